@@ -1,0 +1,191 @@
+# tdc - temporally dense display controller: the one entry point.
+#
+#   make                      host build of firmware library, sim and tools
+#   make BOARD=<b> PANEL=<p>  firmware image for a board/panel pair
+#   make demo                 the main job (installs Debian packages first)
+#   make test                 every test (installs Debian packages first)
+#   make bench                benchmarks (performance lives here, not in tests)
+#   make golden-update        regenerate golden checksums (see docs/golden-vectors.md)
+#
+# Components add themselves through mk/*.mk fragments, each appending to
+# the variables below.  A fragment owns its sources, programs and tests.
+
+BOARD ?= host
+PANEL ?= htc-vive
+BUILD ?= build
+
+BOARDS := $(sort $(notdir $(patsubst %/board.mk,%,$(wildcard boards/*/board.mk))))
+PANELS := $(sort $(basename $(notdir $(wildcard boards/panels/*.panel))))
+
+ifeq ($(filter $(BOARD),$(BOARDS)),)
+$(error unknown BOARD '$(BOARD)'; known boards: $(BOARDS))
+endif
+ifeq ($(filter $(PANEL),$(PANELS)),)
+$(error unknown PANEL '$(PANEL)'; known panels: $(PANELS))
+endif
+
+include boards/$(BOARD)/board.mk
+
+# ---------------------------------------------------------------------------
+# Host toolchain variant: CC (gcc|clang), OPT (-O0|-O2), SAN=1 for
+# AddressSanitizer + UndefinedBehaviorSanitizer.  Each variant builds in its
+# own directory so they can coexist.
+# ---------------------------------------------------------------------------
+CC := $(if $(filter default,$(origin CC)),gcc,$(CC))
+OPT ?= -O2
+SAN ?=
+CCNAME := $(notdir $(firstword $(CC)))
+VARIANT := $(CCNAME)$(OPT)$(if $(SAN),-san)
+B := $(BUILD)/$(VARIANT)
+GEN := $(BUILD)/gen
+
+comma := ,
+SAN_FLAGS := $(if $(SAN),-fsanitize=address$(comma)undefined -fno-sanitize-recover=all -fno-omit-frame-pointer)
+
+# Firmware: C11, warnings are errors, no VLAs.  On x86-64 gcc builds the
+# firmware with -mgeneral-regs-only so any floating-point operation is a
+# compile error (the no-float rule checked by the build).
+FW_WARN := -std=c11 -Wall -Wextra -Werror -Wpedantic -Wvla -Wshadow \
+           -Wstrict-prototypes -Wmissing-prototypes -Wdouble-promotion -Wfloat-equal
+FW_NOFLOAT := $(if $(and $(filter gcc,$(CCNAME)),$(filter x86_64,$(shell uname -m))),-mgeneral-regs-only)
+FW_CFLAGS := $(FW_WARN) $(OPT) -g $(SAN_FLAGS) $(FW_NOFLOAT) -ffunction-sections -fdata-sections \
+             -Ifirmware -I$(GEN)
+
+# Host code (sim, tests, tools): may use double, libc, libraries.
+HOST_CFLAGS := -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror -Wvla -Wshadow $(OPT) -g $(SAN_FLAGS) \
+               -Ifirmware -I$(GEN) -Isim -Itests
+HOST_LDFLAGS := $(SAN_FLAGS)
+HOST_LIBS := -lcmocka -lpng -lm -lpthread
+
+# Variables fragments append to.
+FW_SRCS :=          # firmware library sources (fixed point, no float)
+SIM_SRCS :=         # host simulation library sources (float reference etc.)
+TESTS :=            # executables run by `make test` (exit 0 = pass)
+GOLDEN_STAGES :=    # stage names with tests/golden/golden_<stage>.c
+BENCHES :=          # executables run by `make bench`
+HOST_PROGS :=       # programs built by plain `make`
+DEPS_PKGS := gcc make clang libclang-rt-14-dev libcmocka-dev libpng-dev pkg-config \
+             python3-numpy python3-matplotlib python3-skimage
+TEST_EXTRA :=       # extra phony targets `make test` runs after the host suites
+
+.PHONY: all deps test run-tests run-golden bench demo golden-update clean firmware help
+all: $(if $(filter host,$(BOARD)),host,firmware)
+
+include $(sort $(wildcard mk/*.mk))
+
+# ---------------------------------------------------------------------------
+# Debian packages: installed once, skipped when present.
+# ---------------------------------------------------------------------------
+SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
+deps:
+	@missing=$$(for p in $(sort $(DEPS_PKGS)); do \
+	    dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q '^install ok installed' || echo $$p; done); \
+	if [ -n "$$missing" ]; then \
+	    echo "deps: installing:" $$missing; \
+	    $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get update -qq && \
+	    $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $$missing; \
+	else echo "deps: all Debian packages present"; fi
+
+# ---------------------------------------------------------------------------
+# Generated tables: one C file + config header per panel profile.
+# ---------------------------------------------------------------------------
+TABLEGEN := $(BUILD)/tools/tdc-tablegen
+$(TABLEGEN): hosttools/tablegen/tdc_tablegen.c $(wildcard hosttools/tablegen/*.h) | $(BUILD)/tools
+	gcc -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror -O2 -Ifirmware $(filter %.c,$^) -o $@ -lm
+
+$(GEN)/tdc_panel_%.c $(GEN)/tdc_panel_%_config.h: boards/panels/%.panel $(TABLEGEN) | $(GEN)
+	$(TABLEGEN) $< $(GEN)
+
+PANEL_CSRCS := $(foreach p,$(PANELS),$(GEN)/tdc_panel_$(p).c)
+$(GEN)/tdc_panels.h: $(PANEL_CSRCS) Makefile | $(GEN)
+	@{ echo '/* generated by the Makefile: every panel profile linked into host builds */'; \
+	   echo '#ifndef TDC_PANELS_H'; echo '#define TDC_PANELS_H'; echo '#include "tdc_panel.h"'; \
+	   $(foreach p,$(PANELS),echo 'extern const tdc_panel_t tdc_panel_$(subst -,_,$(p));';) \
+	   echo '#define TDC_PANEL_LIST(X) \'; \
+	   $(foreach p,$(PANELS),echo '    X(tdc_panel_$(subst -,_,$(p))) \';) \
+	   echo ''; echo '#endif'; } > $@
+
+# ---------------------------------------------------------------------------
+# Host libraries.
+# ---------------------------------------------------------------------------
+FW_OBJS = $(patsubst %.c,$(B)/%.o,$(FW_SRCS)) $(patsubst $(GEN)/%.c,$(B)/gen/%.o,$(PANEL_CSRCS))
+SIM_OBJS = $(patsubst %.c,$(B)/%.o,$(SIM_SRCS))
+FWLIB := $(B)/libtdcfw.a
+SIMLIB := $(B)/libtdcsim.a
+
+$(B)/firmware/%.o: firmware/%.c $(GEN)/tdc_panels.h
+	@mkdir -p $(@D)
+	$(CC) $(FW_CFLAGS) -MMD -MP -c $< -o $@
+$(B)/gen/%.o: $(GEN)/%.c
+	@mkdir -p $(@D)
+	$(CC) $(FW_CFLAGS) -c $< -o $@
+$(B)/sim/%.o: sim/%.c $(GEN)/tdc_panels.h
+	@mkdir -p $(@D)
+	$(CC) $(HOST_CFLAGS) -MMD -MP -c $< -o $@
+$(B)/hosttools/%.o: hosttools/%.c $(GEN)/tdc_panels.h
+	@mkdir -p $(@D)
+	$(CC) $(HOST_CFLAGS) -MMD -MP -c $< -o $@
+$(B)/tests/%.o: tests/%.c $(GEN)/tdc_panels.h
+	@mkdir -p $(@D)
+	$(CC) $(HOST_CFLAGS) -MMD -MP -c $< -o $@
+
+$(FWLIB): $(FW_OBJS)
+	@rm -f $@
+	ar rcs $@ $^
+$(SIMLIB): $(SIM_OBJS)
+	@rm -f $@; mkdir -p $(@D)
+	ar rcs $@ $^ $(if $(SIM_OBJS),,--thin)
+
+# A test or bench program from one source file: tests/<name>.c -> $(B)/tests/<name>
+$(B)/tests/%: $(B)/tests/%.o $(SIMLIB) $(FWLIB)
+	$(CC) $(HOST_LDFLAGS) $< -o $@ $(SIMLIB) $(FWLIB) $(HOST_LIBS)
+
+-include $(shell find $(B) -name '*.d' 2>/dev/null)
+
+$(BUILD)/tools $(GEN):
+	@mkdir -p $@
+
+host: $(FWLIB) $(SIMLIB) $(HOST_PROGS)
+
+# ---------------------------------------------------------------------------
+# Build-enforced firmware rules on the host objects: no float, no heap.
+# ---------------------------------------------------------------------------
+$(B)/check-fw-rules: $(FW_OBJS) tests/check_fw_symbols.sh
+	@mkdir -p $(@D)
+	@printf '#!/bin/sh\n# generated: firmware objects must not reference float or heap symbols\nexec tests/check_fw_symbols.sh nm %s\n' "$(FW_OBJS)" > $@
+	@chmod +x $@
+
+# ---------------------------------------------------------------------------
+# Tests.  `make test` runs the whole suite with gcc -O2, again under
+# ASan+UBSan, the golden vectors with gcc/clang at -O0/-O2, then the extra
+# targets fragments register (ARM under QEMU, fuzz smoke, ...).  Every run
+# appends to $(BUILD)/test-results.txt; the summary line decides the exit.
+# ---------------------------------------------------------------------------
+RESULTS := $(abspath $(BUILD))/test-results.txt
+export RESULTS
+
+run-tests: $(TESTS) $(B)/check-fw-rules $(B)/golden-check
+	@tests/run_tests.sh "$(VARIANT)" $(B)/check-fw-rules $(TESTS) $(B)/golden-check
+
+run-golden: $(B)/golden-check
+	@tests/run_tests.sh "$(VARIANT)" $(B)/golden-check
+
+test: deps
+	@mkdir -p $(BUILD); rm -f $(RESULTS)
+	-@$(MAKE) --no-print-directory run-tests CC=gcc OPT=-O2
+	-@$(MAKE) --no-print-directory run-tests CC=gcc OPT=-O1 SAN=1
+	-@$(MAKE) --no-print-directory run-golden CC=gcc OPT=-O0
+	-@$(MAKE) --no-print-directory run-golden CC=clang OPT=-O0
+	-@$(MAKE) --no-print-directory run-golden CC=clang OPT=-O2
+	-@$(foreach t,$(TEST_EXTRA),$(MAKE) --no-print-directory $(t);)
+	@tests/summary.sh $(RESULTS)
+
+bench: deps $(BENCHES)
+	@for b in $(BENCHES); do echo "== $$b"; $$b || exit 1; done
+
+clean:
+	rm -rf $(BUILD)
+
+help:
+	@sed -n '2,12p' Makefile
+	@echo "boards: $(BOARDS)"; echo "panels: $(PANELS)"

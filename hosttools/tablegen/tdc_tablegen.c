@@ -1,0 +1,269 @@
+/*
+ * tdc-tablegen - turns a panel profile (boards/panels/<name>.panel) into
+ * firmware tables: <outdir>/tdc_panel_<name>.c (const tdc_panel_t with its
+ * integer gamma tables) and <outdir>/tdc_panel_<name>_config.h (compile-time
+ * sizes for board builds).  Host tool: uses double precision; the firmware
+ * only ever sees the integers written here.
+ *
+ * Profile format: one "key value..." per line, '#' starts a comment.
+ * Usage: tdc-tablegen PROFILE.panel OUTDIR
+ */
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "tdc_panel.h"
+
+#define MAX_CODES 1024
+
+typedef struct {
+    char name[64];
+    char type[16];
+    int width, height, eyes, bits, refresh_hz;
+    int rates[TDC_PANEL_MAX_RATES];
+    int nrates;
+    double gamma[3];
+    int have_gamma;
+    /* LCD temporal model M(v_t, v_{t-1}) coefficients (normalised drive values). */
+    double lcd_p[4];
+    int have_lcd;
+} profile_t;
+
+static const char *g_path;
+
+static void die(int line, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    if (line > 0) {
+        fprintf(stderr, "%s:%d: ", g_path, line);
+    } else {
+        fprintf(stderr, "%s: ", g_path);
+    }
+    vfprintf(stderr, fmt, ap);
+    fputc('\n', stderr);
+    va_end(ap);
+    exit(1);
+}
+
+static int parse_int(const char *s, int line, int lo, int hi, const char *key)
+{
+    char *end;
+    errno = 0;
+    long v = strtol(s, &end, 10);
+    if (errno || *end || v < lo || v > hi) {
+        die(line, "%s: expected an integer in [%d, %d], got '%s'", key, lo, hi, s);
+    }
+    return (int)v;
+}
+
+static double parse_double(const char *s, int line, double lo, double hi, const char *key)
+{
+    char *end;
+    errno = 0;
+    double v = strtod(s, &end);
+    if (errno || *end || !(v >= lo && v <= hi)) {
+        die(line, "%s: expected a number in [%g, %g], got '%s'", key, lo, hi, s);
+    }
+    return v;
+}
+
+static void parse_profile(const char *path, profile_t *p)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) {
+        die(0, "cannot open: %s", strerror(errno));
+    }
+    memset(p, 0, sizeof *p);
+    char buf[512];
+    int line = 0;
+    while (fgets(buf, sizeof buf, f)) {
+        line++;
+        char *hash = strchr(buf, '#');
+        if (hash) {
+            *hash = 0;
+        }
+        char *tok[8];
+        int n = 0;
+        for (char *t = strtok(buf, " \t\r\n"); t && n < 8; t = strtok(NULL, " \t\r\n")) {
+            tok[n++] = t;
+        }
+        if (n == 0) {
+            continue;
+        }
+        const char *k = tok[0];
+        if (!strcmp(k, "name") && n == 2) {
+            if (strlen(tok[1]) >= sizeof p->name) {
+                die(line, "name too long");
+            }
+            for (const char *c = tok[1]; *c; c++) {
+                if (!(isalnum((unsigned char)*c) || *c == '-')) {
+                    die(line, "name may only hold letters, digits and '-'");
+                }
+            }
+            strcpy(p->name, tok[1]);
+        } else if (!strcmp(k, "type") && n == 2) {
+            if (strcmp(tok[1], "oled") && strcmp(tok[1], "lcd")) {
+                die(line, "type must be 'oled' or 'lcd'");
+            }
+            strcpy(p->type, tok[1]);
+        } else if (!strcmp(k, "width") && n == 2) {
+            p->width = parse_int(tok[1], line, 1, 8192, k);
+        } else if (!strcmp(k, "height") && n == 2) {
+            p->height = parse_int(tok[1], line, 1, 8192, k);
+        } else if (!strcmp(k, "eyes") && n == 2) {
+            p->eyes = parse_int(tok[1], line, 1, 2, k);
+        } else if (!strcmp(k, "bits") && n == 2) {
+            p->bits = parse_int(tok[1], line, 6, 10, k);
+        } else if (!strcmp(k, "refresh_hz") && n == 2) {
+            p->refresh_hz = parse_int(tok[1], line, 1, 1000, k);
+        } else if (!strcmp(k, "rates_hz") && n >= 2 && n <= TDC_PANEL_MAX_RATES) {
+            p->nrates = n - 1;
+            for (int i = 1; i < n; i++) {
+                p->rates[i - 1] = parse_int(tok[i], line, 1, 1000, k);
+            }
+        } else if (!strcmp(k, "gamma") && n == 4) {
+            for (int c = 0; c < 3; c++) {
+                /* rounded to 1e-6: the integer stored in the profile is then
+                 * exactly the gamma the tables were generated from */
+                p->gamma[c] = llround(parse_double(tok[c + 1], line, 1.0, 4.0, k) * 1e6) / 1e6;
+            }
+            p->have_gamma = 1;
+        } else if (!strcmp(k, "lcd_p") && n == 5) {
+            for (int c = 0; c < 4; c++) {
+                p->lcd_p[c] = parse_double(tok[c + 1], line, -4.0, 4.0, k);
+            }
+            p->have_lcd = 1;
+        } else {
+            die(line, "unknown key or wrong number of values: '%s'", k);
+        }
+    }
+    fclose(f);
+    if (!p->name[0] || !p->type[0] || !p->width || !p->height || !p->eyes || !p->bits ||
+        !p->refresh_hz || !p->have_gamma) {
+        die(0, "profile needs name, type, width, height, eyes, bits, refresh_hz and gamma");
+    }
+    if (!strcmp(p->type, "lcd") && !p->have_lcd) {
+        die(0, "an lcd profile needs lcd_p p1 p2 p3 p4");
+    }
+    if (p->nrates == 0) {
+        p->rates[0] = p->refresh_hz;
+        p->nrates = 1;
+    }
+}
+
+static void c_ident(const char *name, char *out)
+{
+    for (; *name; name++) {
+        *out++ = (*name == '-') ? '_' : *name;
+    }
+    *out = 0;
+}
+
+static void emit_u32(FILE *f, const char *decl, const uint32_t *v, int n)
+{
+    fprintf(f, "%s[%d] = {", decl, n);
+    for (int i = 0; i < n; i++) {
+        fprintf(f, "%s%uu,", (i % 8) ? " " : "\n    ", v[i]);
+    }
+    fprintf(f, "\n};\n");
+}
+
+static void emit_u16(FILE *f, const char *decl, const uint16_t *v, int n)
+{
+    fprintf(f, "%s[%d] = {", decl, n);
+    for (int i = 0; i < n; i++) {
+        fprintf(f, "%s%u,", (i % 12) ? " " : "\n    ", v[i]);
+    }
+    fprintf(f, "\n};\n");
+}
+
+static void gen_gamma(FILE *f, const char *id, int ch, double gamma, int bits)
+{
+    static uint32_t dec[MAX_CODES + 1], thr[MAX_CODES];
+    static uint16_t idx[TDC_ENC_INDEX_SIZE];
+    const int codes = 1 << bits;
+    const double max = codes - 1;
+    const double one = (double)(1 << 24);
+    for (int k = 0; k < codes; k++) {
+        dec[k] = (uint32_t)llround(one * pow(k / max, gamma));
+        thr[k] = k == 0 ? 0u : (uint32_t)ceil(one * pow((k - 0.5) / max, gamma));
+    }
+    dec[codes] = dec[codes - 1];
+    int k = 0;
+    for (int b = 0; b < TDC_ENC_INDEX_SIZE; b++) {
+        uint32_t start = (uint32_t)b << (24 - TDC_ENC_INDEX_BITS);
+        while (k + 1 < codes && thr[k + 1] <= start) {
+            k++;
+        }
+        idx[b] = (uint16_t)k;
+    }
+    char decl[128];
+    snprintf(decl, sizeof decl, "static const uint32_t %s_decode_%d", id, ch);
+    emit_u32(f, decl, dec, codes + 1);
+    snprintf(decl, sizeof decl, "static const uint32_t %s_enc_thresh_%d", id, ch);
+    emit_u32(f, decl, thr, codes);
+    snprintf(decl, sizeof decl, "static const uint16_t %s_enc_index_%d", id, ch);
+    emit_u16(f, decl, idx, TDC_ENC_INDEX_SIZE);
+}
+
+int main(int argc, char **argv)
+{
+    if (argc != 3) {
+        fprintf(stderr, "usage: tdc-tablegen PROFILE.panel OUTDIR\n");
+        return 2;
+    }
+    g_path = argv[1];
+    profile_t p;
+    parse_profile(argv[1], &p);
+    char id[80], path[1024];
+    c_ident(p.name, id);
+    const int is_lcd = !strcmp(p.type, "lcd");
+
+    snprintf(path, sizeof path, "%s/tdc_panel_%s.c", argv[2], p.name);
+    FILE *f = fopen(path, "w");
+    if (!f) {
+        die(0, "cannot write %s: %s", path, strerror(errno));
+    }
+    fprintf(f, "/* generated by tdc-tablegen from %s: do not edit */\n", argv[1]);
+    fprintf(f, "#include \"tdc_panel.h\"\n\n");
+    for (int c = 0; c < 3; c++) {
+        gen_gamma(f, id, c, p.gamma[c], p.bits);
+    }
+    fprintf(f, "\nconst tdc_panel_t tdc_panel_%s = {\n", id);
+    fprintf(f, "    .name = \"%s\",\n    .type = %s,\n", p.name, is_lcd ? "TDC_PANEL_LCD" : "TDC_PANEL_OLED");
+    fprintf(f, "    .width = %d, .height = %d, .eyes = %d, .bits = %d, .refresh_hz = %d,\n", p.width,
+            p.height, p.eyes, p.bits, p.refresh_hz);
+    fprintf(f, "    .rates_hz = {");
+    for (int i = 0; i < p.nrates; i++) {
+        fprintf(f, "%d, ", p.rates[i]);
+    }
+    fprintf(f, "0},\n    .gamma_micro = {%ldu, %ldu, %ldu},\n", lround(p.gamma[0] * 1e6),
+            lround(p.gamma[1] * 1e6), lround(p.gamma[2] * 1e6));
+    fprintf(f, "    .gamma = {\n");
+    for (int c = 0; c < 3; c++) {
+        fprintf(f, "        {%s_decode_%d, %s_enc_thresh_%d, %s_enc_index_%d},\n", id, c, id, c, id, c);
+    }
+    fprintf(f, "    },\n    .lcd = 0,\n};\n");
+    fclose(f);
+
+    snprintf(path, sizeof path, "%s/tdc_panel_%s_config.h", argv[2], p.name);
+    f = fopen(path, "w");
+    if (!f) {
+        die(0, "cannot write %s: %s", path, strerror(errno));
+    }
+    fprintf(f, "/* generated by tdc-tablegen from %s: do not edit */\n", argv[1]);
+    fprintf(f, "#ifndef TDC_PANEL_CONFIG_H\n#define TDC_PANEL_CONFIG_H\n");
+    fprintf(f, "#define TDC_PANEL_NAME \"%s\"\n#define TDC_PANEL_SYMBOL tdc_panel_%s\n", p.name, id);
+    fprintf(f, "#define TDC_PANEL_WIDTH %d\n#define TDC_PANEL_HEIGHT %d\n#define TDC_PANEL_EYES %d\n",
+            p.width, p.height, p.eyes);
+    fprintf(f, "#define TDC_PANEL_BITS %d\n#define TDC_PANEL_REFRESH_HZ %d\n#define TDC_PANEL_IS_LCD %d\n",
+            p.bits, p.refresh_hz, is_lcd);
+    fprintf(f, "#endif\n");
+    fclose(f);
+    return 0;
+}

@@ -1,0 +1,43 @@
+/*
+ * golden.h - bit-exact golden vectors.  Each stage has
+ * tests/golden/golden_<stage>.c defining
+ *     void tdc_golden_<stage>(tdc_golden_ctx_t *ctx);
+ * which generates deterministic inputs, runs the firmware stage and reports
+ * one checksum per output frame through tdc_golden_emit().  The same code
+ * runs on the host (gcc/clang, -O0/-O2, sanitizers) and on the ARM boards
+ * under QEMU, so it is freestanding: no malloc, no stdio, static buffers.
+ * Expected values live in tests/golden/STAGE.expected.
+ */
+#ifndef TDC_GOLDEN_H
+#define TDC_GOLDEN_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+typedef struct tdc_golden_ctx {
+    /* Called with one finished line "stage/vector frame checksum\n". */
+    void (*write_line)(struct tdc_golden_ctx *ctx, const char *line);
+    void *user;
+    uint32_t lines;
+} tdc_golden_ctx_t;
+
+/* 64-bit FNV-1a, continued from h (start with TDC_FNV64_INIT). */
+#define TDC_FNV64_INIT 0xcbf29ce484222325ULL
+uint64_t tdc_fnv1a64(uint64_t h, const void *data, size_t n);
+
+/* Formats and writes "stage/vector frame %016x\n". */
+void tdc_golden_emit(tdc_golden_ctx_t *ctx, const char *stage, const char *vector, uint32_t frame,
+                     uint64_t checksum);
+
+/* Deterministic PRNG (xorshift32): same sequence on every CPU. */
+static inline uint32_t tdc_golden_rand(uint32_t *state)
+{
+    uint32_t x = *state;
+    x ^= x << 13;
+    x ^= x >> 17;
+    x ^= x << 5;
+    *state = x;
+    return x;
+}
+
+#endif
