@@ -1,0 +1,157 @@
+/*
+ * tdc_trm.h - temporal resolution multiplexing (DESIGN §4.1, TRM paper §4).
+ *
+ * Per colour channel, for one eye:
+ *   full-res frame t:  beta = 2 I - lin(U(D(I)))      (linear light)
+ *                      shown clamp(beta, 0, 1); rho = beta - clamp(beta)
+ *   reduced frame t+1: alpha = lin(U(i))
+ *                      c = |A - B| / (A + B), A = lin(U(D(I_t))), B = alpha
+ *                      w = exp(-s c); shown clamp(alpha + w rho, 0, 1)
+ * D = separable Gaussian (sigma in full-res pixels) evaluated at the reduced
+ * sample centres; U = bilinear.  Both act on gamma-compressed values (code
+ * Q8); the compensation and the residual live in linear light (Q24, Q15).
+ * The contrast c is Michelson contrast of linear light, as in eq. 5.
+ *
+ * Frames are RGB888 interleaved, rows `stride` bytes apart (so one eye of a
+ * side-by-side stereo frame is just a pointer and the panel's stride).
+ *
+ * Memory: all state lives in one caller-owned arena (libopus style):
+ *     size_t n = tdc_trm_get_size(&cfg);      // or TDC_TRM_MEM_BYTES(...)
+ *     tdc_trm_init(&trm, &cfg, panel, arena, n);
+ * TDC_TRM_MEM_BYTES gives a compile-time upper bound for static arenas.
+ */
+#ifndef TDC_TRM_H
+#define TDC_TRM_H
+
+#include "tdc_fixed.h"
+#include "tdc_panel.h"
+
+/* Largest Gaussian support: taps within 3 sigma, sigma <= 3.5 px. */
+#define TDC_TRM_MAX_TAPS 24
+#define TDC_TRM_MAX_SIGMA_Q8 (7 * 128) /* 3.5 px */
+
+/* Reduced size for ratio num/den: round(n * num / den), at least 1. */
+#define TDC_TRM_REDUCED_DIM(n, num, den) ((((n) * (num)) + (den) / 2) / (den) < 1 ? 1 : (((n) * (num)) + (den) / 2) / (den))
+
+/*
+ * Compile-time arena bound for a W x H eye at reduction ratios up to
+ * RNUM/RDEN (the board's largest r < 1).  Keep in sync with
+ * tdc_trm_get_size(): tests assert get_size() <= this bound.
+ */
+#define TDC_TRM_MEM_BYTES(W, H, RNUM, RDEN)                                                            \
+    (64u + (size_t)(W) * (H) * 3u * 2u                          /* residual rho, Q15 */                \
+     + (size_t)TDC_TRM_REDUCED_DIM(W, RNUM, RDEN) * TDC_TRM_REDUCED_DIM(H, RNUM, RDEN) * 3u * 2u * 2u \
+     /* D(I_t) and scratch reduced frame, code Q8 */                                                   \
+     + (size_t)TDC_TRM_MAX_TAPS * TDC_TRM_REDUCED_DIM(W, RNUM, RDEN) * 3u * 2u /* ring of rows */      \
+     + (size_t)2u * TDC_TRM_REDUCED_DIM(W, RNUM, RDEN) * 3u * 2u               /* U row buffers */    \
+     + (size_t)(TDC_TRM_REDUCED_DIM(W, RNUM, RDEN) + TDC_TRM_REDUCED_DIM(H, RNUM, RDEN)) *            \
+           (TDC_TRM_MAX_TAPS + 1u) * 2u                                       /* D kernels */         \
+     + (size_t)((W) + (H)) * 4u                                              /* U tables */          \
+     + 16u * 8u /* alignment slack */)
+
+typedef struct {
+    uint16_t width;          /* full-res eye size in pixels */
+    uint16_t height;
+    uint16_t r_num;          /* reduction ratio r = r_num / r_den, 1/4 <= r <= 1 */
+    uint16_t r_den;
+    uint16_t sigma_q8;       /* Gaussian sigma of D in full-res pixels, Q8 (2.5 = 640) */
+    uint16_t refresh_hz;     /* refresh the stream runs at */
+    uint16_t min_refresh_hz; /* TRM refused below this (paper §9: 90 Hz) */
+    uint32_t s_q8;           /* motion sensitivity s of w = exp(-s c), Q8 */
+    uint8_t reduced_in_stream; /* 0: stream has no reduced frames -> pass-through */
+} tdc_trm_config_t;
+
+/* Per-stage counters: show what ran and what was elided. */
+typedef struct {
+    uint32_t full_frames;        /* beta computed */
+    uint32_t reduced_frames;     /* alpha' computed */
+    uint32_t passthrough_frames; /* r = 1 or no reduced frames: no TRM work */
+    uint64_t weight_computed;    /* pixel-channels where exp(-s c) ran */
+    uint64_t weight_skipped;     /* pixel-channels with c = 0 known (A == B) */
+    uint64_t residual_skipped;   /* pixel-channels with rho = 0: no weight needed */
+    uint64_t clamped_high;       /* pixel-channels where beta > 1 */
+    uint64_t clamped_low;        /* pixel-channels where beta < 0 */
+} tdc_trm_stats_t;
+
+typedef struct {
+    /* configuration, validated */
+    tdc_trm_config_t cfg;
+    const tdc_panel_t *panel;
+    uint16_t rw, rh;            /* reduced size */
+    uint16_t dtaps;             /* taps per D kernel */
+    uint8_t passthrough;        /* r == 1 or no reduced frames in the stream */
+    uint8_t have_full;          /* a full frame's D(I) and rho are valid */
+    /* views into the arena */
+    tdc_res_t *residual;        /* W*H*3, Q15 linear light */
+    tdc_gval_t *dprev;          /* rw*rh*3, D(I_t), code Q8 */
+    tdc_gval_t *rscratch;       /* rw*rh*3, current reduced frame as code Q8 */
+    tdc_gval_t *ring;           /* TDC_TRM_MAX_TAPS rows of rw*3: horizontal D pass */
+    tdc_gval_t *urow;           /* 2 rows of rw*3: vertically interpolated U rows */
+    int16_t *dx_first;          /* rw: first full-res column of each D kernel */
+    int16_t *dy_first;          /* rh */
+    int16_t *dx_w;              /* rw*dtaps: kernel weights Q15, each sums to 32768 */
+    int16_t *dy_w;              /* rh*dtaps */
+    uint16_t *ux_i;             /* W: left reduced column of U */
+    uint16_t *ux_f;             /* W: bilinear fraction Q14 */
+    uint16_t *uy_i;             /* H */
+    uint16_t *uy_f;             /* H */
+    tdc_trm_stats_t stats;
+} tdc_trm_t;
+
+/* Validates cfg (ratio, sigma, sizes) and returns the arena size in bytes,
+ * or 0 when cfg is invalid. */
+size_t tdc_trm_get_size(const tdc_trm_config_t *cfg);
+
+/* Default configuration: r = 1/2, sigma 2.5 px, s = 10, 90 Hz minimum. */
+void tdc_trm_default_config(tdc_trm_config_t *cfg, uint16_t width, uint16_t height, uint16_t refresh_hz);
+
+/*
+ * Initialises the stage.  Errors: TDC_ERR_ARG (null), TDC_ERR_RATIO (r
+ * outside [1/4, 1]), TDC_ERR_REFRESH_LOW (r < 1 and refresh below the
+ * minimum: TRM is refused, paper §9), TDC_ERR_SIZE (arena too small or eye
+ * larger than the kernel tables allow), TDC_ERR_PANEL (panel not 8-bit).
+ */
+tdc_status_t tdc_trm_init(tdc_trm_t *st, const tdc_trm_config_t *cfg, const tdc_panel_t *panel, void *mem,
+                          size_t mem_bytes);
+
+/* Forget history (stream reset): the next reduced frame needs a full one first. */
+void tdc_trm_reset(tdc_trm_t *st);
+
+/*
+ * Full-resolution frame: in (W x H) -> out (W x H) drive codes, updates rho
+ * and D(I).  In pass-through mode out = in and nothing else runs.
+ */
+tdc_status_t tdc_trm_full(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out,
+                          uint32_t out_stride);
+
+/*
+ * Reduced frame: in (rw x rh) -> out (W x H) drive codes.
+ * TDC_ERR_STATE if no full frame preceded it since init/reset (out is left
+ * untouched: the panel keeps the last good frame).
+ */
+tdc_status_t tdc_trm_reduced(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t in_stride, uint8_t *out,
+                             uint32_t out_stride);
+
+/*
+ * The renderer-side prefilter with this stage's D: full-res in -> reduced
+ * codes (rounded).  For tests, tdc-run --auto-reduce and the demo; a real
+ * renderer supersamples instead (TRM §4.3).
+ */
+tdc_status_t tdc_trm_downsample(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out,
+                                uint32_t out_stride);
+
+/* Residual buffer rho (W*H*3, Q15 linear light, interleaved like the frame),
+ * for the LCD stage, which adds the light the panel could not reach. */
+static inline tdc_res_t *tdc_trm_residual(tdc_trm_t *st)
+{
+    return st->residual;
+}
+
+/* Stereo (paper §7.2): eye 0 gets full-res frames on even frame indices,
+ * eye 1 on odd ones; each eye has its own tdc_trm_t. */
+static inline int tdc_trm_stereo_eye_is_full(uint32_t frame_index, int eye)
+{
+    return (int)((frame_index + (uint32_t)eye) & 1u) == 0;
+}
+
+#endif /* TDC_TRM_H */
