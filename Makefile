@@ -136,9 +136,12 @@ $(SIMLIB): $(SIM_OBJS)
 	@rm -f $@; mkdir -p $(@D)
 	ar rcs $@ $^ $(if $(SIM_OBJS),,--thin)
 
+# Test support linked into every test: deterministic contents, checksums.
+TEST_SUPPORT_OBJS = $(B)/tests/golden/tdc_content.o $(B)/tests/golden/golden_common.o
+
 # A test or bench program from one source file: tests/<name>.c -> $(B)/tests/<name>
-$(B)/tests/%: $(B)/tests/%.o $(SIMLIB) $(FWLIB)
-	$(CC) $(HOST_LDFLAGS) $< -o $@ $(SIMLIB) $(FWLIB) $(HOST_LIBS)
+$(B)/tests/%: $(B)/tests/%.o $(TEST_SUPPORT_OBJS) $(SIMLIB) $(FWLIB)
+	$(CC) $(HOST_LDFLAGS) $< $(TEST_SUPPORT_OBJS) -o $@ $(SIMLIB) $(FWLIB) $(HOST_LIBS)
 
 -include $(shell find $(B) -name '*.d' 2>/dev/null)
 

@@ -24,7 +24,13 @@
  *   tdc_gval_t uint16_t "code Q8": a gamma-compressed value in units of the
  *            panel's output code with 8 fractional bits (8-bit panels:
  *            0 .. 255*256).  Gaussian D and bilinear U work on these.
- *   tdc_res_t int16_t Q1.15  the TRM residual rho, linear light in [-1, 1).
+ *   tdc_res_t int32_t Q7.24  the TRM residual rho, linear light in [-1, 1].
+ *            32 bits, not 16: the reduced frame adds w*rho to alpha, and
+ *            where the two nearly cancel (dark side of an edge, a
+ *            checkerboard) the output sits near black, where one 8-bit code
+ *            is ~1e-6 of linear light.  A Q15 residual (step 3e-5) was
+ *            measured at 2-3 LSB error there against the double reference
+ *            (tests/test_trm_ref.c); Q24 keeps it within 1.
  */
 #ifndef TDC_FIXED_H
 #define TDC_FIXED_H
@@ -36,7 +42,7 @@ typedef int16_t q15_t;
 typedef int32_t q31_t;
 typedef int32_t tdc_lin_t;
 typedef uint16_t tdc_gval_t;
-typedef int16_t tdc_res_t;
+typedef int32_t tdc_res_t;
 
 #define TDC_LIN_FRAC 24
 #define TDC_LIN_ONE ((tdc_lin_t)1 << TDC_LIN_FRAC)

@@ -34,6 +34,22 @@ static inline tdc_lin_t tdc_gamma_decode_gval(const tdc_gamma_table_t *t, uint32
 }
 
 /*
+ * Linear light of a fractional code g in Q16 (g = code * 2^16 + fraction),
+ * for values that come out of interpolation with more precision than Q8
+ * (TRM's U).  The fraction is used to 12 bits (1/4096 code).
+ * Scaling and overflow: a table step is < 2^19 for gamma <= 4, times 2^12
+ * < 2^31.  Error: as tdc_gamma_decode_gval plus <= 2^-12 code of slope.
+ */
+static inline tdc_lin_t tdc_gamma_decode_q16(const tdc_gamma_table_t *t, uint32_t g_q16)
+{
+    uint32_t k = g_q16 >> 16;
+    uint32_t f = (g_q16 >> 4) & 0xfffu;
+    uint32_t a = t->decode[k];
+    uint32_t b = t->decode[k + 1u];
+    return (tdc_lin_t)(a + (((b - a) * f + 0x800u) >> 12));
+}
+
+/*
  * Code for linear light L (Q24), clamped to [0, 1]: exactly the double
  * precision round((C-1) * L^(1/gamma)) applied to the Q24 value, because
  * the thresholds are the exact decision points (see tdc_panel.h).

@@ -74,6 +74,23 @@ int32_t tdc_div_q15(uint32_t num, uint32_t den)
     return (int32_t)((p + (1ULL << (sh - 1))) >> sh);
 }
 
+int32_t tdc_div_q30(uint32_t num, uint32_t den)
+{
+    if (den == 0u) {
+        return 0;
+    }
+    if (num >= den) {
+        return 1 << 30;
+    }
+    unsigned k = tdc_clz32(den);
+    uint32_t dn = den << k;
+    uint64_t r = tdc_recip_norm_q30(dn); /* <= 2^31 */
+    /* num/den in Q30 = num * 2^k * r / 2^32.  num * 2^k < 2^32, so
+     * (num << k) * r < 2^63. */
+    uint64_t p = ((uint64_t)num << k) * r;
+    return (int32_t)((p + (1ULL << 31)) >> 32);
+}
+
 uint32_t tdc_isqrt64(uint64_t x)
 {
     uint64_t res = 0;

@@ -43,6 +43,15 @@ uint32_t tdc_recip_norm_q30(uint32_t dn);
  */
 int32_t tdc_div_q15(uint32_t num, uint32_t den);
 
+/*
+ * num / den in Q30 for 0 <= num <= den, den > 0.
+ * Output: in [0, 2^30]; den == 0 returns 0.
+ * Error: <= 1 LSB of Q30 against double (asserted on a dense sweep).
+ * Used where a ratio is multiplied by a large gain afterwards (the TRM
+ * motion weight exp(-s c) with s up to hundreds).
+ */
+int32_t tdc_div_q30(uint32_t num, uint32_t den);
+
 /* floor(sqrt(x)) for a 64-bit unsigned x; exact (digit-by-digit method). */
 uint32_t tdc_isqrt64(uint64_t x);
 

@@ -9,7 +9,7 @@
  *                      w = exp(-s c); shown clamp(alpha + w rho, 0, 1)
  * D = separable Gaussian (sigma in full-res pixels) evaluated at the reduced
  * sample centres; U = bilinear.  Both act on gamma-compressed values (code
- * Q8); the compensation and the residual live in linear light (Q24, Q15).
+ * Q8, U output Q16); compensation and residual live in linear light (Q24).
  * The contrast c is Michelson contrast of linear light, as in eq. 5.
  *
  * Frames are RGB888 interleaved, rows `stride` bytes apart (so one eye of a
@@ -39,11 +39,11 @@
  * tdc_trm_get_size(): tests assert get_size() <= this bound.
  */
 #define TDC_TRM_MEM_BYTES(W, H, RNUM, RDEN)                                                            \
-    (64u + (size_t)(W) * (H) * 3u * 2u                          /* residual rho, Q15 */                \
+    (64u + (size_t)(W) * (H) * 3u * 4u                          /* residual rho, Q24 */                \
      + (size_t)TDC_TRM_REDUCED_DIM(W, RNUM, RDEN) * TDC_TRM_REDUCED_DIM(H, RNUM, RDEN) * 3u * 2u * 2u \
      /* D(I_t) and scratch reduced frame, code Q8 */                                                   \
      + (size_t)TDC_TRM_MAX_TAPS * TDC_TRM_REDUCED_DIM(W, RNUM, RDEN) * 3u * 2u /* ring of rows */      \
-     + (size_t)2u * TDC_TRM_REDUCED_DIM(W, RNUM, RDEN) * 3u * 2u               /* U row buffers */    \
+     + (size_t)2u * (TDC_TRM_REDUCED_DIM(W, RNUM, RDEN) + 1u) * 3u * 4u        /* U row buffers */    \
      + (size_t)(TDC_TRM_REDUCED_DIM(W, RNUM, RDEN) + TDC_TRM_REDUCED_DIM(H, RNUM, RDEN)) *            \
            (TDC_TRM_MAX_TAPS + 1u) * 2u                                       /* D kernels */         \
      + (size_t)((W) + (H)) * 4u                                              /* U tables */          \
@@ -82,15 +82,15 @@ typedef struct {
     uint8_t passthrough;        /* r == 1 or no reduced frames in the stream */
     uint8_t have_full;          /* a full frame's D(I) and rho are valid */
     /* views into the arena */
-    tdc_res_t *residual;        /* W*H*3, Q15 linear light */
+    tdc_res_t *residual;        /* W*H*3, Q24 linear light */
     tdc_gval_t *dprev;          /* rw*rh*3, D(I_t), code Q8 */
     tdc_gval_t *rscratch;       /* rw*rh*3, current reduced frame as code Q8 */
     tdc_gval_t *ring;           /* TDC_TRM_MAX_TAPS rows of rw*3: horizontal D pass */
-    tdc_gval_t *urow;           /* 2 rows of rw*3: vertically interpolated U rows */
+    uint32_t *urow;             /* 2 rows of (rw+1)*3: vertically interpolated U rows, code Q22 */
     int16_t *dx_first;          /* rw: first full-res column of each D kernel */
     int16_t *dy_first;          /* rh */
-    int16_t *dx_w;              /* rw*dtaps: kernel weights Q15, each sums to 32768 */
-    int16_t *dy_w;              /* rh*dtaps */
+    uint16_t *dx_w;             /* rw*dtaps: kernel weights Q15, each sums to 32768 */
+    uint16_t *dy_w;             /* rh*dtaps */
     uint16_t *ux_i;             /* W: left reduced column of U */
     uint16_t *ux_f;             /* W: bilinear fraction Q14 */
     uint16_t *uy_i;             /* H */
@@ -140,7 +140,7 @@ tdc_status_t tdc_trm_reduced(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t 
 tdc_status_t tdc_trm_downsample(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out,
                                 uint32_t out_stride);
 
-/* Residual buffer rho (W*H*3, Q15 linear light, interleaved like the frame),
+/* Residual buffer rho (W*H*3, Q24 linear light, interleaved like the frame),
  * for the LCD stage, which adds the light the panel could not reach. */
 static inline tdc_res_t *tdc_trm_residual(tdc_trm_t *st)
 {

@@ -73,6 +73,22 @@ static void test_div_q15(void **state)
             max_err = err;
         }
     }
+    double max30 = 0.0;
+    for (int i = 0; i < 2000000; i++) {
+        s = s * 1664525u + 1013904223u;
+        uint32_t den = (s >> (s & 31u)) | 1u;
+        s = s * 1664525u + 1013904223u;
+        uint32_t num = (uint32_t)(((uint64_t)s * den) >> 32);
+        double err = fabs(tdc_div_q30(num, den) - ldexp((double)num / (double)den, 30));
+        if (err > max30) {
+            max30 = err;
+        }
+    }
+    printf("div_q30: max error %.4f LSB (Q30), bound 1\n", max30);
+    assert_true(max30 <= 1.0);
+    assert_int_equal(tdc_div_q30(1, 3), 357913941);
+    assert_int_equal(tdc_div_q30(7, 7), 1 << 30);
+    assert_int_equal(tdc_div_q30(3, 0), 0);
     assert_int_equal(tdc_div_q15(0, 0), 0);
     assert_int_equal(tdc_div_q15(5, 5), 32768);
     assert_int_equal(tdc_div_q15(1, 2), 16384);

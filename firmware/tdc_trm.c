@@ -1,0 +1,495 @@
+/*
+ * tdc_trm.c - temporal resolution multiplexing in fixed point (see
+ * tdc_trm.h for the equations and formats).
+ *
+ * Data path of a full-resolution frame (per channel):
+ *   codes --D--> dprev (reduced, code Q8) --U--> g (code Q8) --lin--> Lu (Q24)
+ *   codes --lin--> LI (Q24);  beta = 2 LI - Lu;  out = enc(clamp(beta));
+ *   rho = beta - clamp(beta) in Q15.
+ * D is evaluated only at the reduced sample centres (a polyphase Gaussian):
+ * a horizontal pass per full-res row into a ring of rows, then a vertical
+ * pass per reduced row, so scratch memory is a few rows, not a frame.
+ * U is separable too: one vertically interpolated reduced row per output
+ * row, then one horizontal lerp per output pixel.
+ */
+#include "tdc_trm.h"
+
+#include "tdc_gamma.h"
+#include "tdc_math.h"
+
+#define TDC_TRM_MAX_DIM 8192
+
+/* ---------------------------------------------------------------------
+ * Configuration and arena layout
+ * ------------------------------------------------------------------- */
+
+static int trm_config_valid(const tdc_trm_config_t *cfg)
+{
+    if (!cfg || cfg->width == 0u || cfg->height == 0u || cfg->width > TDC_TRM_MAX_DIM ||
+        cfg->height > TDC_TRM_MAX_DIM) {
+        return 0;
+    }
+    if (cfg->r_den == 0u || cfg->r_num > cfg->r_den || 4u * cfg->r_num < cfg->r_den) {
+        return 0;
+    }
+    return cfg->sigma_q8 >= 64u && cfg->sigma_q8 <= TDC_TRM_MAX_SIGMA_Q8;
+}
+
+static uint16_t trm_reduced_dim(uint32_t n, uint32_t num, uint32_t den)
+{
+    uint32_t r = (n * num + den / 2u) / den;
+    return (uint16_t)(r < 1u ? 1u : r);
+}
+
+/* Taps of the Gaussian within 3 sigma: integer k with |k - x| <= 3 sigma
+ * number at most floor(6 sigma) + 1. */
+static uint16_t trm_taps(uint16_t sigma_q8)
+{
+    uint32_t taps = ((6u * sigma_q8) >> 8) + 1u;
+    return (uint16_t)(taps > TDC_TRM_MAX_TAPS ? TDC_TRM_MAX_TAPS : taps);
+}
+
+typedef struct {
+    size_t residual, dprev, rscratch, ring, urow, dx_first, dy_first, dx_w, dy_w, ux, uy, total;
+} trm_layout_t;
+
+static size_t align8(size_t n)
+{
+    return (n + 7u) & ~(size_t)7u;
+}
+
+static void trm_layout(const tdc_trm_config_t *cfg, uint16_t rw, uint16_t rh, uint16_t taps, trm_layout_t *l)
+{
+    size_t o = 0;
+    size_t w = cfg->width, h = cfg->height;
+    l->residual = o;
+    o += align8(w * h * 3u * sizeof(tdc_res_t));
+    l->dprev = o;
+    o += align8((size_t)rw * rh * 3u * sizeof(tdc_gval_t));
+    l->rscratch = o;
+    o += align8((size_t)rw * rh * 3u * sizeof(tdc_gval_t));
+    l->ring = o;
+    o += align8((size_t)TDC_TRM_MAX_TAPS * rw * 3u * sizeof(tdc_gval_t));
+    l->urow = o;
+    o += align8((size_t)2u * (rw + 1u) * 3u * sizeof(uint32_t));
+    l->dx_first = o;
+    o += align8((size_t)rw * sizeof(int16_t));
+    l->dy_first = o;
+    o += align8((size_t)rh * sizeof(int16_t));
+    l->dx_w = o;
+    o += align8((size_t)rw * taps * sizeof(uint16_t));
+    l->dy_w = o;
+    o += align8((size_t)rh * taps * sizeof(uint16_t));
+    l->ux = o;
+    o += align8(w * 2u * sizeof(uint16_t));
+    l->uy = o;
+    o += align8(h * 2u * sizeof(uint16_t));
+    l->total = o + 8u; /* slack for aligning the caller's pointer */
+}
+
+size_t tdc_trm_get_size(const tdc_trm_config_t *cfg)
+{
+    if (!trm_config_valid(cfg)) {
+        return 0;
+    }
+    trm_layout_t l;
+    trm_layout(cfg, trm_reduced_dim(cfg->width, cfg->r_num, cfg->r_den),
+               trm_reduced_dim(cfg->height, cfg->r_num, cfg->r_den), trm_taps(cfg->sigma_q8), &l);
+    return l.total;
+}
+
+void tdc_trm_default_config(tdc_trm_config_t *cfg, uint16_t width, uint16_t height, uint16_t refresh_hz)
+{
+    cfg->width = width;
+    cfg->height = height;
+    cfg->r_num = 1;
+    cfg->r_den = 2;
+    cfg->sigma_q8 = 640; /* 2.5 full-res pixels, TRM paper §4.3 */
+    cfg->refresh_hz = refresh_hz;
+    cfg->min_refresh_hz = 90; /* paper §4.1/§9 */
+    cfg->s_q8 = 10u * 256u;
+    cfg->reduced_in_stream = 1;
+}
+
+/* ---------------------------------------------------------------------
+ * Kernel tables (init only)
+ * ------------------------------------------------------------------- */
+
+/*
+ * Gaussian weights of D for n_out reduced samples over n_in full-res
+ * samples.  Reduced sample j is centred at x = (j + 0.5) n_in / n_out - 0.5
+ * (full-res pixel units, Q16).  Weights exp(-d^2 / (2 sigma^2)) in Q15 via
+ * tdc_exp_neg_q16, then normalised so each kernel sums to exactly 32768:
+ * flat fields pass unchanged (all-white stays exactly white).
+ */
+static void trm_build_kernels(uint32_t n_in, uint32_t n_out, uint16_t sigma_q8, uint16_t taps, int16_t *first,
+                              uint16_t *weights)
+{
+    const int64_t radius_q16 = (int64_t)3 * sigma_q8 * 256;       /* 3 sigma, Q16 */
+    const uint64_t two_sigma2_q16 = 2ull * sigma_q8 * sigma_q8; /* 2 sigma^2, Q16 */
+    for (uint32_t j = 0; j < n_out; j++) {
+        /* x = ((2j + 1) n_in / (2 n_out) - 0.5), Q16 */
+        int64_t x_q16 = (int64_t)(((2ull * j + 1u) * n_in * 65536ull) / (2ull * n_out)) - 32768;
+        int64_t lo_q16 = x_q16 - radius_q16;
+        int32_t k0 = (int32_t)tdc_asr64(lo_q16 + 65535, 16); /* ceil(lo) */
+        first[j] = (int16_t)k0;
+        uint32_t w[TDC_TRM_MAX_TAPS];
+        uint32_t sum = 0;
+        for (uint32_t t = 0; t < taps; t++) {
+            int64_t d_q16 = (int64_t)(k0 + (int32_t)t) * 65536 - x_q16;
+            uint64_t ad = (uint64_t)(d_q16 < 0 ? -d_q16 : d_q16);
+            if ((int64_t)ad > radius_q16) {
+                w[t] = 0;
+            } else {
+                uint64_t e_q16 = (ad * ad) / two_sigma2_q16; /* Q32 / Q16 = Q16 */
+                w[t] = (uint32_t)tdc_exp_neg_q16(e_q16 > 0xffffffffull ? 0xffffffffu : (uint32_t)e_q16);
+            }
+            sum += w[t];
+        }
+        uint32_t norm_sum = 0, tmax = 0;
+        for (uint32_t t = 0; t < taps; t++) {
+            uint32_t v = (uint32_t)(((uint64_t)w[t] * 32768u + sum / 2u) / sum);
+            weights[j * taps + t] = (uint16_t)v;
+            norm_sum += v;
+            if (v > weights[j * taps + tmax]) {
+                tmax = t;
+            }
+        }
+        /* put the rounding remainder on the largest tap: sum exactly 32768 */
+        weights[j * taps + tmax] = (uint16_t)((int32_t)weights[j * taps + tmax] + 32768 - (int32_t)norm_sum);
+    }
+}
+
+/* Bilinear U: full-res sample x reads reduced position
+ * u = (x + 0.5) n_red / n_full - 0.5, clamped to [0, n_red - 1]. */
+static void trm_build_upsample(uint32_t n_full, uint32_t n_red, uint16_t *idx_frac)
+{
+    const int64_t umax = (int64_t)(n_red - 1u) * 65536;
+    for (uint32_t x = 0; x < n_full; x++) {
+        int64_t u = (int64_t)(((2ull * x + 1u) * n_red * 65536ull) / (2ull * n_full)) - 32768;
+        u = u < 0 ? 0 : (u > umax ? umax : u);
+        idx_frac[2u * x] = (uint16_t)(u >> 16);
+        idx_frac[2u * x + 1u] = (uint16_t)(((uint64_t)u & 0xffffu) >> 2); /* Q14 */
+    }
+}
+
+tdc_status_t tdc_trm_init(tdc_trm_t *st, const tdc_trm_config_t *cfg, const tdc_panel_t *panel, void *mem,
+                          size_t mem_bytes)
+{
+    if (!st || !cfg || !panel || !mem) {
+        return TDC_ERR_ARG;
+    }
+    if (cfg->r_den == 0u || cfg->r_num > cfg->r_den || 4u * cfg->r_num < cfg->r_den) {
+        return TDC_ERR_RATIO;
+    }
+    if (!trm_config_valid(cfg)) {
+        return TDC_ERR_ARG;
+    }
+    if (panel->bits != 8u) {
+        return TDC_ERR_PANEL;
+    }
+    const int reduces = cfg->r_num != cfg->r_den && cfg->reduced_in_stream;
+    if (reduces && cfg->refresh_hz < cfg->min_refresh_hz) {
+        return TDC_ERR_REFRESH_LOW;
+    }
+    const size_t need = tdc_trm_get_size(cfg);
+    if (mem_bytes < need) {
+        return TDC_ERR_SIZE;
+    }
+    st->cfg = *cfg;
+    st->panel = panel;
+    st->rw = trm_reduced_dim(cfg->width, cfg->r_num, cfg->r_den);
+    st->rh = trm_reduced_dim(cfg->height, cfg->r_num, cfg->r_den);
+    st->dtaps = trm_taps(cfg->sigma_q8);
+    st->passthrough = (uint8_t)!reduces;
+    st->have_full = 0;
+    trm_layout_t l;
+    trm_layout(cfg, st->rw, st->rh, st->dtaps, &l);
+    uint8_t *base = (uint8_t *)mem + ((8u - ((uintptr_t)mem & 7u)) & 7u);
+    st->residual = (tdc_res_t *)(void *)(base + l.residual);
+    st->dprev = (tdc_gval_t *)(void *)(base + l.dprev);
+    st->rscratch = (tdc_gval_t *)(void *)(base + l.rscratch);
+    st->ring = (tdc_gval_t *)(void *)(base + l.ring);
+    st->urow = (uint32_t *)(void *)(base + l.urow);
+    st->dx_first = (int16_t *)(void *)(base + l.dx_first);
+    st->dy_first = (int16_t *)(void *)(base + l.dy_first);
+    st->dx_w = (uint16_t *)(void *)(base + l.dx_w);
+    st->dy_w = (uint16_t *)(void *)(base + l.dy_w);
+    st->ux_i = (uint16_t *)(void *)(base + l.ux);
+    st->uy_i = (uint16_t *)(void *)(base + l.uy);
+    st->ux_f = st->ux_i; /* interleaved (index, fraction) pairs */
+    st->uy_f = st->uy_i;
+    trm_build_kernels(cfg->width, st->rw, cfg->sigma_q8, st->dtaps, st->dx_first, st->dx_w);
+    trm_build_kernels(cfg->height, st->rh, cfg->sigma_q8, st->dtaps, st->dy_first, st->dy_w);
+    trm_build_upsample(cfg->width, st->rw, st->ux_i);
+    trm_build_upsample(cfg->height, st->rh, st->uy_i);
+    st->stats = (tdc_trm_stats_t){0};
+    tdc_trm_reset(st);
+    return TDC_OK;
+}
+
+void tdc_trm_reset(tdc_trm_t *st)
+{
+    size_t n = (size_t)st->cfg.width * st->cfg.height * 3u;
+    for (size_t i = 0; i < n; i++) {
+        st->residual[i] = 0;
+    }
+    st->have_full = 0;
+}
+
+/* ---------------------------------------------------------------------
+ * D: polyphase Gaussian, full-res codes -> reduced code Q8
+ * ------------------------------------------------------------------- */
+
+static int32_t clampi(int32_t v, int32_t lo, int32_t hi)
+{
+    return v < lo ? lo : (v > hi ? hi : v);
+}
+
+/* Horizontal pass of one full-res row into a ring slot (rw x 3, code Q8).
+ * Scaling and overflow: sum of weights 2^15 times codes <= 255 < 2^23;
+ * result (acc + 2^6) >> 7 is code Q8 <= 65280. */
+static void trm_d_row(const tdc_trm_t *st, const uint8_t *row, tdc_gval_t *dst)
+{
+    const int32_t wmax = (int32_t)st->cfg.width - 1;
+    const uint32_t taps = st->dtaps;
+    for (uint32_t j = 0; j < st->rw; j++) {
+        const int32_t k0 = st->dx_first[j];
+        const uint16_t *w = &st->dx_w[j * taps];
+        uint32_t a0 = 0, a1 = 0, a2 = 0;
+        if (k0 >= 0 && k0 + (int32_t)taps - 1 <= wmax) {
+            const uint8_t *p = row + 3 * k0;
+            for (uint32_t t = 0; t < taps; t++, p += 3) {
+                a0 += w[t] * (uint32_t)p[0];
+                a1 += w[t] * (uint32_t)p[1];
+                a2 += w[t] * (uint32_t)p[2];
+            }
+        } else {
+            for (uint32_t t = 0; t < taps; t++) {
+                const uint8_t *p = row + 3 * clampi(k0 + (int32_t)t, 0, wmax);
+                a0 += w[t] * (uint32_t)p[0];
+                a1 += w[t] * (uint32_t)p[1];
+                a2 += w[t] * (uint32_t)p[2];
+            }
+        }
+        dst[3u * j] = (tdc_gval_t)((a0 + 64u) >> 7);
+        dst[3u * j + 1u] = (tdc_gval_t)((a1 + 64u) >> 7);
+        dst[3u * j + 2u] = (tdc_gval_t)((a2 + 64u) >> 7);
+    }
+}
+
+/* Full D: in (W x H codes) -> dst (rw x rh x 3, code Q8).
+ * Vertical pass scaling: 2^15 * 65280 < 2^31; (acc + 2^14) >> 15. */
+static void trm_apply_d(tdc_trm_t *st, const uint8_t *in, uint32_t stride, tdc_gval_t *dst)
+{
+    const int32_t hmax = (int32_t)st->cfg.height - 1;
+    const uint32_t taps = st->dtaps;
+    const uint32_t rw3 = 3u * st->rw;
+    int32_t loaded = -1; /* highest full-res row in the ring */
+    for (uint32_t jy = 0; jy < st->rh; jy++) {
+        const int32_t k0 = st->dy_first[jy];
+        const int32_t need = clampi(k0 + (int32_t)taps - 1, 0, hmax);
+        while (loaded < need) {
+            loaded++;
+            trm_d_row(st, in + (size_t)loaded * stride, &st->ring[((uint32_t)loaded % taps) * rw3]);
+        }
+        const uint16_t *w = &st->dy_w[jy * taps];
+        const tdc_gval_t *rows[TDC_TRM_MAX_TAPS];
+        for (uint32_t t = 0; t < taps; t++) {
+            rows[t] = &st->ring[((uint32_t)clampi(k0 + (int32_t)t, 0, hmax) % taps) * rw3];
+        }
+        tdc_gval_t *o = &dst[jy * rw3];
+        for (uint32_t i = 0; i < rw3; i++) {
+            uint32_t acc = 0;
+            for (uint32_t t = 0; t < taps; t++) {
+                acc += w[t] * (uint32_t)rows[t][i];
+            }
+            o[i] = (tdc_gval_t)((acc + (1u << 14)) >> 15);
+        }
+    }
+}
+
+/* ---------------------------------------------------------------------
+ * U: bilinear, reduced code Q8 -> full-res code Q8
+ * ------------------------------------------------------------------- */
+
+/* Vertically interpolate the reduced rows around full-res row y into dst,
+ * exactly: a * 2^14 + (b - a) f is code Q22 with no rounding (|b - a| <=
+ * 65280, f < 2^14: < 2^30).  dst holds rw + 1 entries per channel, the last
+ * duplicated, so the horizontal lerp may read index + 1 without a branch. */
+static void trm_u_row(const tdc_trm_t *st, const tdc_gval_t *src, uint32_t y, uint32_t *dst)
+{
+    const uint32_t rw3 = 3u * st->rw;
+    const uint32_t i0 = st->uy_i[2u * y], f = st->uy_i[2u * y + 1u];
+    const uint32_t i1 = i0 + 1u < st->rh ? i0 + 1u : i0;
+    const tdc_gval_t *a = &src[i0 * rw3], *b = &src[i1 * rw3];
+    for (uint32_t i = 0; i < rw3; i++) {
+        dst[i] = (uint32_t)((int32_t)a[i] * (1 << 14) + ((int32_t)b[i] - (int32_t)a[i]) * (int32_t)f);
+    }
+    dst[rw3] = dst[rw3 - 3u];
+    dst[rw3 + 1u] = dst[rw3 - 2u];
+    dst[rw3 + 2u] = dst[rw3 - 1u];
+}
+
+/* Horizontal lerp at full-res column x, channel c: code Q22 -> code Q16.
+ * Scaling: |v1 - v0| < 2^30 times f < 2^14 needs 64 bits; rounded once. */
+static inline uint32_t trm_u_at(const tdc_trm_t *st, const uint32_t *urow, uint32_t x, uint32_t c)
+{
+    const uint32_t i0 = st->ux_i[2u * x], f = st->ux_i[2u * x + 1u];
+    const int64_t v0 = urow[3u * i0 + c], v1 = urow[3u * i0 + 3u + c];
+    return (uint32_t)tdc_asr64(v0 * (1 << 14) + (v1 - v0) * (int64_t)f + (1LL << 19), 20);
+}
+
+/* ---------------------------------------------------------------------
+ * Frames
+ * ------------------------------------------------------------------- */
+
+static void trm_copy(const tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out, uint32_t out_stride)
+{
+    for (uint32_t y = 0; y < st->cfg.height; y++) {
+        const uint8_t *s = in + (size_t)y * in_stride;
+        uint8_t *d = out + (size_t)y * out_stride;
+        for (uint32_t i = 0; i < 3u * st->cfg.width; i++) {
+            d[i] = s[i];
+        }
+    }
+}
+
+tdc_status_t tdc_trm_full(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out, uint32_t out_stride)
+{
+    if (!st || !in || !out || in_stride < 3u * st->cfg.width || out_stride < 3u * st->cfg.width) {
+        return TDC_ERR_ARG;
+    }
+    if (st->passthrough) {
+        trm_copy(st, in, in_stride, out, out_stride);
+        st->stats.passthrough_frames++;
+        return TDC_OK;
+    }
+    trm_apply_d(st, in, in_stride, st->dprev);
+    const tdc_panel_t *p = st->panel;
+    const uint32_t w = st->cfg.width;
+    uint32_t *urow = st->urow;
+    uint64_t hi = 0, lo = 0;
+    for (uint32_t y = 0; y < st->cfg.height; y++) {
+        trm_u_row(st, st->dprev, y, urow);
+        const uint8_t *src = in + (size_t)y * in_stride;
+        uint8_t *dst = out + (size_t)y * out_stride;
+        tdc_res_t *res = &st->residual[(size_t)y * w * 3u];
+        for (uint32_t x = 0; x < w; x++) {
+            for (uint32_t c = 0; c < 3u; c++) {
+                const tdc_gamma_table_t *gt = &p->gamma[c];
+                const tdc_lin_t lu = tdc_gamma_decode_q16(gt, trm_u_at(st, urow, x, c));
+                const tdc_lin_t li = tdc_gamma_decode(gt, src[3u * x + c]);
+                /* beta = 2 LI - Lu in [-1, 2] (Q24): no overflow in int32 */
+                const int32_t beta = 2 * li - lu;
+                int32_t shown = beta;
+                if (beta > TDC_LIN_ONE) {
+                    shown = TDC_LIN_ONE;
+                    hi++;
+                } else if (beta < 0) {
+                    shown = 0;
+                    lo++;
+                }
+                /* rho = beta - shown, Q24 (see tdc_res_t) */
+                res[3u * x + c] = beta - shown;
+                dst[3u * x + c] = (uint8_t)tdc_gamma_encode(gt, shown, 255u);
+            }
+        }
+    }
+    st->stats.clamped_high += hi;
+    st->stats.clamped_low += lo;
+    st->stats.full_frames++;
+    st->have_full = 1;
+    return TDC_OK;
+}
+
+tdc_status_t tdc_trm_reduced(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t in_stride, uint8_t *out,
+                             uint32_t out_stride)
+{
+    if (!st || !in_reduced || !out || out_stride < 3u * st->cfg.width) {
+        return TDC_ERR_ARG;
+    }
+    if (st->passthrough) {
+        return TDC_ERR_STATE; /* this stream was configured without reduced frames */
+    }
+    if (in_stride < 3u * st->rw) {
+        return TDC_ERR_ARG;
+    }
+    if (!st->have_full) {
+        return TDC_ERR_STATE;
+    }
+    const uint32_t rw3 = 3u * st->rw;
+    for (uint32_t y = 0; y < st->rh; y++) {
+        const uint8_t *s = in_reduced + (size_t)y * in_stride;
+        for (uint32_t i = 0; i < rw3; i++) {
+            st->rscratch[y * rw3 + i] = (tdc_gval_t)((uint32_t)s[i] << TDC_GVAL_FRAC);
+        }
+    }
+    const tdc_panel_t *p = st->panel;
+    const uint32_t w = st->cfg.width;
+    const uint32_t s_q8 = st->cfg.s_q8;
+    uint32_t *urow_a = st->urow;              /* U(D(I_t)), code Q22 */
+    uint32_t *urow_b = st->urow + rw3 + 3u;   /* U(i_t+1) */
+    uint64_t computed = 0, skipped = 0, no_res = 0;
+    for (uint32_t y = 0; y < st->cfg.height; y++) {
+        trm_u_row(st, st->dprev, y, urow_a);
+        trm_u_row(st, st->rscratch, y, urow_b);
+        uint8_t *dst = out + (size_t)y * out_stride;
+        const tdc_res_t *res = &st->residual[(size_t)y * w * 3u];
+        for (uint32_t x = 0; x < w; x++) {
+            for (uint32_t c = 0; c < 3u; c++) {
+                const tdc_gamma_table_t *gt = &p->gamma[c];
+                const uint32_t gb = trm_u_at(st, urow_b, x, c);
+                const tdc_lin_t alpha = tdc_gamma_decode_q16(gt, gb);
+                const int32_t rho = res[3u * x + c];
+                int32_t shown = alpha;
+                if (rho == 0) {
+                    no_res++; /* nothing to add: the weight is not needed */
+                } else {
+                    const uint32_t ga = trm_u_at(st, urow_a, x, c);
+                    int32_t w_q15;
+                    if (ga == gb) {
+                        w_q15 = 32768; /* c = 0 known: static, exp(0) = 1 */
+                        skipped++;
+                    } else {
+                        const tdc_lin_t la = tdc_gamma_decode_q16(gt, ga);
+                        const uint32_t diff = (uint32_t)tdc_abs32(la - alpha);
+                        /* c = |A - B| / (A + B) in Q30 (A + B <= 2^25): s
+                         * multiplies its error, so Q15 is not enough */
+                        const int32_t c_q30 = tdc_div_q30(diff, (uint32_t)la + (uint32_t)alpha);
+                        /* s c: Q8 * Q30 = Q38 -> Q16; s_q8 < 2^32 keeps it < 2^62 */
+                        const uint64_t sc = ((uint64_t)s_q8 * (uint32_t)c_q30 + (1ull << 21)) >> 22;
+                        w_q15 = tdc_exp_neg_q16(sc > 0xffffffffu ? 0xffffffffu : (uint32_t)sc);
+                        computed++;
+                    }
+                    /* alpha' = alpha + w rho: Q15 * Q24 -> Q24; |rho| <= 2^24 */
+                    shown = alpha + (int32_t)tdc_rshr_round64((int64_t)w_q15 * rho, 15);
+                }
+                dst[3u * x + c] = (uint8_t)tdc_gamma_encode(gt, shown, 255u);
+            }
+        }
+    }
+    st->stats.weight_computed += computed;
+    st->stats.weight_skipped += skipped;
+    st->stats.residual_skipped += no_res;
+    st->stats.reduced_frames++;
+    return TDC_OK;
+}
+
+tdc_status_t tdc_trm_downsample(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out,
+                                uint32_t out_stride)
+{
+    if (!st || !in || !out || in_stride < 3u * st->cfg.width || out_stride < 3u * st->rw) {
+        return TDC_ERR_ARG;
+    }
+    trm_apply_d(st, in, in_stride, st->rscratch);
+    const uint32_t rw3 = 3u * st->rw;
+    for (uint32_t y = 0; y < st->rh; y++) {
+        uint8_t *d = out + (size_t)y * out_stride;
+        for (uint32_t i = 0; i < rw3; i++) {
+            uint32_t v = ((uint32_t)st->rscratch[y * rw3 + i] + 128u) >> 8;
+            d[i] = (uint8_t)(v > 255u ? 255u : v);
+        }
+    }
+    return TDC_OK;
+}
