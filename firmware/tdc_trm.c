@@ -331,6 +331,9 @@ static void trm_u_row(const tdc_trm_t *st, const tdc_gval_t *src, uint32_t y, ui
     dst[rw3 + 2u] = dst[rw3 - 1u];
 }
 
+/* Half an output code in code Q16: the quantisation of a reduced frame. */
+#define TDC_TRM_HALF_CODE_Q16 (1u << 15)
+
 /* Horizontal lerp at full-res column x, channel c: code Q22 -> code Q16.
  * Scaling: |v1 - v0| < 2^30 times f < 2^14 needs 64 bits; rounded once. */
 static inline uint32_t trm_u_at(const tdc_trm_t *st, const uint32_t *urow, uint32_t x, uint32_t c)
@@ -446,8 +449,20 @@ tdc_status_t tdc_trm_reduced(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t 
                 if (rho == 0) {
                     no_res++; /* nothing to add: the weight is not needed */
                 } else {
-                    const uint32_t ga = trm_u_at(st, urow_a, x, c);
+                    uint32_t ga = trm_u_at(st, urow_a, x, c);
                     int32_t w_q15;
+                    /* Motion test at the link's precision: the reduced frame
+                     * arrives in whole codes, so U(D(I_t)) is first moved
+                     * half a code towards U(i).  A static pair (i = round
+                     * D(I)) then has c = 0 exactly and skips the weight;
+                     * the shrink is continuous, so no tie can flip it. */
+                    if (ga > gb + TDC_TRM_HALF_CODE_Q16) {
+                        ga -= TDC_TRM_HALF_CODE_Q16;
+                    } else if (gb > ga + TDC_TRM_HALF_CODE_Q16) {
+                        ga += TDC_TRM_HALF_CODE_Q16;
+                    } else {
+                        ga = gb;
+                    }
                     if (ga == gb) {
                         w_q15 = 32768; /* c = 0 known: static, exp(0) = 1 */
                         skipped++;

@@ -5,3 +5,4 @@ SIM_SRCS += sim/tdc_png.c
 FW_SRCS += firmware/tdc_trm.c
 SIM_SRCS += sim/ref_trm.c
 TESTS += $(B)/tests/test_trm_ref
+TESTS += $(B)/tests/test_trm

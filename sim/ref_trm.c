@@ -144,8 +144,13 @@ int tdc_ref_trm_reduced(tdc_ref_trm_t *r, const uint8_t *in_red, uint8_t *out_co
         for (int x = 0; x < r->w; x++) {
             for (int c = 0; c < 3; c++) {
                 size_t i = ((size_t)y * r->w + x) * 3 + c;
-                double a = pow(upsample_at(r, r->dprev, x, y, c), r->gamma[c]);
-                double alpha = pow(upsample_at(r, r->red, x, y, c), r->gamma[c]);
+                /* motion test at the link's precision: U(D(I_t)) moved half
+                 * a code (gamma domain) towards U(i) */
+                double ga = upsample_at(r, r->dprev, x, y, c), gb = upsample_at(r, r->red, x, y, c);
+                double half = 0.5 / 255.0;
+                ga = ga > gb + half ? ga - half : (gb > ga + half ? ga + half : gb);
+                double a = pow(ga, r->gamma[c]);
+                double alpha = pow(gb, r->gamma[c]);
                 double cc = (a + alpha) > 0 ? fabs(a - alpha) / (a + alpha) : 0.0;
                 double wgt = exp(-r->s * cc);
                 double v = alpha + wgt * r->rho[i];

@@ -7,6 +7,9 @@
  *   beta = 2 lin(I) - lin(U(D(I)));  out = round(255 clamp(beta)^(1/gamma))
  *   rho = beta - clamp(beta)
  *   alpha = lin(U(i));  c = |A - B| / (A + B);  w = exp(-s c)
+ *   with A = lin(g), g = U(D(I_t)) moved half a code towards U(i): the
+ *   motion test works at the link's precision (whole codes), so a static
+ *   pair (i = round(D(I))) has c = 0, as in the firmware
  *   out = round(255 clamp(alpha + w rho)^(1/gamma))
  */
 #ifndef TDC_REF_TRM_H
