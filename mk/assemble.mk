@@ -1,2 +1,15 @@
-# Tile-ordered frame assembly (issue 5): orderings, assembly, reference, tests, bench.
-FW_SRCS += firmware/tdc_ordering.c
+# Tile-ordered frame assembly (issue 5): orderings, assembly, double reference,
+# tests, golden vectors, benchmark, `tdc-run assemble`.
+FW_SRCS += firmware/tdc_ordering.c firmware/tdc_assemble.c
+SIM_SRCS += sim/ref_assemble.c
+
+# Own link rules (only the objects these programs need), so the assembly
+# tests do not depend on every other component of the libraries.
+ASM_FW_OBJS = $(B)/firmware/tdc_ordering.o $(B)/firmware/tdc_assemble.o $(B)/firmware/tdc_math.o
+ASM_SIM_OBJS = $(B)/sim/ref_assemble.o
+ASM_TESTS := test_ordering
+
+TESTS += $(foreach t,$(ASM_TESTS),$(B)/tests/$(t))
+
+$(foreach t,$(ASM_TESTS),$(B)/tests/$(t)): $(B)/tests/%: $(B)/tests/%.o $(ASM_SIM_OBJS) $(ASM_FW_OBJS)
+	$(CC) $(HOST_LDFLAGS) $^ -o $@ $(HOST_LIBS)

@@ -1,0 +1,80 @@
+/*
+ * ref_assemble.h - double-precision reference of tile-ordered frame assembly
+ * (TDRT paper §3.2, DESIGN §4.3), written straight from the text, plus a
+ * synthetic 240 Hz subframe stream (an analytic "renderer") for the tests,
+ * golden-free error reports and the benchmark.
+ *
+ * The reference keeps its own state (heap, host only).  Its previous frame
+ * is its own 8-bit output (the output frame format is RGB888, and the paper
+ * reprojects from the previous output frame); everything else - bilinear
+ * weights, mean, sigma, box, window mean - is computed in double and rounded
+ * half up only when written to the 8-bit output.
+ */
+#ifndef REF_ASSEMBLE_H
+#define REF_ASSEMBLE_H
+
+#include <stdint.h>
+
+#include "tdc_ordering.h"
+
+/* Ordering decision in double: l_f = |m| - floor|m|, a = atan2 folded,
+ * band (0.25, 0.75) shifted by +-0.5 a/(pi/2), random band |a - pi/4| <
+ * pi/40 decided by tdc_ordering_hash (the definition of the random choice). */
+tdc_ordering_t tdc_ref_ordering_decide(double mx, double my, tdc_ordering_t current, uint32_t tile_x,
+                                       uint32_t tile_y, uint32_t frame);
+
+typedef struct tdc_ref_asm tdc_ref_asm_t;
+
+tdc_ref_asm_t *tdc_ref_asm_new(int w, int h);
+void tdc_ref_asm_free(tdc_ref_asm_t *r);
+/* Same contract as tdc_asm_ingest / tdc_asm_assemble (returns 0 or -1). */
+int tdc_ref_asm_ingest(tdc_ref_asm_t *r, uint32_t frame, const uint8_t *samples, const int16_t *mvs,
+                       const uint8_t *pattern_bits);
+int tdc_ref_asm_assemble(tdc_ref_asm_t *r, uint32_t frame);
+/* Last output, RGB888 rows w*3 bytes apart; and its unrounded values. */
+const uint8_t *tdc_ref_asm_output(const tdc_ref_asm_t *r);
+const double *tdc_ref_asm_output_exact(const tdc_ref_asm_t *r);
+
+/* ------------------------------------------------------------------------
+ * Synthetic subframe stream.
+ * ---------------------------------------------------------------------- */
+typedef enum {
+    TDC_SCENE_STATIC = 0, /* fine texture, no motion: jittered samples */
+    TDC_SCENE_PAN,        /* textured panorama moving (vx, vy) px/frame */
+    TDC_SCENE_LINE,       /* 1-px-wide bright vertical lines moving vx over a static background */
+    TDC_SCENE_HLINE       /* 1-px-wide horizontal lines moving vy */
+} tdc_scene_kind_t;
+
+typedef struct {
+    tdc_scene_kind_t kind;
+    int w, h;
+    int32_t vx_q4, vy_q4;   /* scene velocity, Q4 px/frame (MV = -v) */
+    uint32_t seed;
+    int16_t *mvbuf;         /* renderer's full-res motion buffer (like the controller's) */
+    uint8_t *pattern;       /* renderer's orderings */
+} tdc_scene_t;
+
+/* Allocates buffers; all tiles start hourglass, motion zero. */
+int tdc_scene_init(tdc_scene_t *s, tdc_scene_kind_t kind, int w, int h, int32_t vx_q4, int32_t vy_q4,
+                   uint32_t seed);
+void tdc_scene_free(tdc_scene_t *s);
+
+/* Colour of the scene at continuous position (x, y) (pixel centres at
+ * integers) at frame t, 0..255 per channel (double). */
+void tdc_scene_color(const tdc_scene_t *s, double x, double y, uint32_t t, double rgb[3]);
+
+/* Motion at pixel (x, y), frame t: backward Q4 MV (0 where static). */
+void tdc_scene_mv(const tdc_scene_t *s, int x, int y, uint32_t t, int16_t mv[2]);
+
+/*
+ * Renders subframe `frame`: at the first frame of a cycle the renderer
+ * decides orderings with tdc_ordering_update over its motion buffer (frame
+ * index = that frame) and writes them to bits_out (if not NULL).  Then, per
+ * tile, traces the pixel the ordering names: pixel centre if the pixel's
+ * motion is non-zero, centre + tdc_jitter_offset_q4 otherwise; colour
+ * rounded to 8 bits; MV of the pixel.  samples: tiles RGB888; mvs: tiles Q4
+ * pairs.
+ */
+void tdc_scene_subframe(tdc_scene_t *s, uint32_t frame, uint8_t *samples, int16_t *mvs, uint8_t *bits_out);
+
+#endif
