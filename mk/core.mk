@@ -6,3 +6,4 @@ FW_SRCS += firmware/tdc_trm.c
 SIM_SRCS += sim/ref_trm.c
 TESTS += $(B)/tests/test_trm_ref
 TESTS += $(B)/tests/test_trm
+TESTS += $(B)/tests/test_trm_stability
