@@ -1,0 +1,44 @@
+/*
+ * startup.c - MPS3 AN547 (Cortex-M55) vector table and reset handler.
+ * QEMU resets the core with the Secure VTOR at the ITCM: initial SP and PC
+ * come from the table at its start (region ITCM).
+ */
+#include <stdint.h>
+
+#include "board.h"
+#include "tdc_crt0.h"
+#include "tdc_semihost.h"
+
+extern uint32_t __stack_top[];
+void Reset_Handler(void);
+
+typedef struct {
+    const uint32_t *initial_sp;
+    void (*handler[15])(void); /* exceptions 1..15 */
+    void (*irq[32])(void);
+} tdc_vectors_t;
+
+__attribute__((section(".vectors"), used)) const tdc_vectors_t tdc_vectors = {
+    __stack_top,
+    {Reset_Handler, tdc_crt0_default_handler, tdc_crt0_default_handler, tdc_crt0_default_handler,
+     tdc_crt0_default_handler, tdc_crt0_default_handler, 0, 0, 0, 0, tdc_crt0_default_handler,
+     tdc_crt0_default_handler, 0, tdc_crt0_default_handler, tdc_crt0_default_handler},
+    {tdc_crt0_default_handler},
+};
+
+void Reset_Handler(void)
+{
+    int status = tdc_crt0_start();
+    tdc_semihost_exit((uint32_t)status);
+}
+
+_Noreturn void tdc_board_fault(uint32_t exception)
+{
+    static const char *const names[16] = {"thread", "reset", "NMI", "HardFault", "MemManage", "BusFault",
+                                          "UsageFault", "?", "?", "?", "?", "SVCall", "DebugMonitor", "?",
+                                          "PendSV", "SysTick"};
+    tdc_semihost_puts(2, "[" TDC_BOARD_NAME "] fault: ");
+    tdc_semihost_puts(2, exception < 16u ? names[exception] : "external interrupt");
+    tdc_semihost_puts(2, "\n");
+    tdc_semihost_exit(128u + (exception & 0x7fu));
+}
