@@ -1,0 +1,49 @@
+/*
+ * tdc_crc32.c - CRC-32 for the link protocol, slice-by-4 (four bytes per
+ * step through four 1 KiB tables: ~1 cycle/byte on a Cortex-M7 with the
+ * tables in DTCM).  The tables come from build/gen/tdc_crc32_tables.h,
+ * written by sim/link/tdc_crc32_gen.c at build time.
+ */
+#include "tdc_crc32.h"
+
+#include "tdc_crc32_tables.h"
+
+uint32_t tdc_crc32_update(uint32_t state, const uint8_t *data, size_t n)
+{
+    uint32_t c = state;
+    /* Four bytes at a time, read as a little-endian word byte by byte (no
+     * alignment or endianness assumptions; compilers merge the loads). */
+    while (n >= 4u) {
+        c ^= (uint32_t)data[0] | ((uint32_t)data[1] << 8) | ((uint32_t)data[2] << 16) | ((uint32_t)data[3] << 24);
+        c = tdc_crc32_tab[3][c & 0xFFu] ^ tdc_crc32_tab[2][(c >> 8) & 0xFFu] ^ tdc_crc32_tab[1][(c >> 16) & 0xFFu] ^
+            tdc_crc32_tab[0][c >> 24];
+        data += 4;
+        n -= 4u;
+    }
+    while (n--) {
+        c = (c >> 8) ^ tdc_crc32_tab[0][(c ^ *data++) & 0xFFu];
+    }
+    return c;
+}
+
+uint32_t tdc_crc32(const uint8_t *data, size_t n)
+{
+    return tdc_crc32_final(tdc_crc32_update(TDC_CRC32_INIT, data, n));
+}
+
+uint32_t tdc_crc32_bitwise(const uint8_t *data, size_t n)
+{
+    uint32_t c = TDC_CRC32_INIT;
+    for (size_t i = 0; i < n; i++) {
+        c ^= data[i];
+        for (int b = 0; b < 8; b++) {
+            c = (c >> 1) ^ (TDC_CRC32_POLY_REFLECTED & (0u - (c & 1u)));
+        }
+    }
+    return tdc_crc32_final(c);
+}
+
+uint32_t tdc_crc32_table_entry(unsigned table, unsigned k)
+{
+    return tdc_crc32_tab[table & 3u][k & 0xFFu];
+}

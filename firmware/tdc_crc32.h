@@ -1,0 +1,45 @@
+/*
+ * tdc_crc32.h - CRC-32 (IEEE 802.3 / zlib / PNG: reflected polynomial
+ * 0xEDB88320, initial value 0xFFFFFFFF, final XOR 0xFFFFFFFF) for the link
+ * protocol.  Check value: crc32("123456789") = 0xCBF43926.
+ *
+ * The lookup tables (slice-by-4, 4 x 256 uint32) are not typed by hand: they
+ * are written at build time into build/gen/tdc_crc32_tables.h by
+ * sim/link/tdc_crc32_gen.c from the bitwise definition, and
+ * tests/test_link_crc32.c checks them against that definition again.
+ *
+ * Incremental use (any chunking gives the same value):
+ *     uint32_t c = TDC_CRC32_INIT;
+ *     c = tdc_crc32_update(c, a, na);
+ *     c = tdc_crc32_update(c, b, nb);
+ *     uint32_t crc = tdc_crc32_final(c);
+ * or tdc_crc32(data, n) for one buffer.
+ */
+#ifndef TDC_CRC32_H
+#define TDC_CRC32_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#define TDC_CRC32_POLY_REFLECTED 0xEDB88320u
+#define TDC_CRC32_INIT 0xFFFFFFFFu
+
+/* Continue a running (non-finalised) CRC state over n bytes. */
+uint32_t tdc_crc32_update(uint32_t state, const uint8_t *data, size_t n);
+
+/* Finalise a running state into the CRC value. */
+static inline uint32_t tdc_crc32_final(uint32_t state)
+{
+    return state ^ 0xFFFFFFFFu;
+}
+
+/* CRC-32 of one buffer. */
+uint32_t tdc_crc32(const uint8_t *data, size_t n);
+
+/* Bit-at-a-time reference (no table): slow, used by tests and the generator. */
+uint32_t tdc_crc32_bitwise(const uint8_t *data, size_t n);
+
+/* Entry k of table 0 (CRC of the single byte k with a zero state), for tests. */
+uint32_t tdc_crc32_table_entry(unsigned table, unsigned k);
+
+#endif /* TDC_CRC32_H */

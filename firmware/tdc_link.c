@@ -1,0 +1,602 @@
+/*
+ * tdc_link.c - streaming link decoder (docs/link-protocol.md).
+ *
+ * Receive state machine, fed any number of bytes at a time:
+ *
+ *   HUNT     search for the first magic byte; bytes passed over are garbage
+ *   HEADER   collect the 32-byte header.  `synced` says whether it began
+ *            where the previous packet ended (a mismatching magic there is
+ *            ERR_MAGIC: sync lost) or where HUNT found a candidate.  A header
+ *            with a bad CRC is rejected and its bytes 1..31 are rescanned
+ *            (the true packet may start inside a false candidate).
+ *   PAYLOAD  copy the payload into the staging buffer, CRC on the fly
+ *   SKIP     pass over the payload of a packet whose (CRC-valid) header was
+ *            rejected, so the next packet is found without hunting
+ *
+ * Nothing outside this struct is written before a packet is complete and
+ * its payload CRC matched; then the payload is unpacked into the pipeline
+ * buffer of its kind and eye, and the sequence state advances.
+ */
+#include "tdc_link.h"
+
+#include <string.h>
+
+#include "tdc_crc32.h"
+
+enum { ST_HUNT = 0, ST_HEADER = 1, ST_PAYLOAD = 2, ST_SKIP = 3 };
+
+static const uint8_t tdc_link_magic_bytes[4] = {'T', 'D', 'C', 'L'};
+
+/* `synced` lives in the top bit of `state` so the struct stays small. */
+#define ST_MASK 0x7Fu
+#define ST_SYNCED 0x80u
+
+const char *tdc_link_err_name(tdc_link_err_t e)
+{
+    static const char *const names[TDC_LINK_ERR_COUNT] = {
+        "ok",     "magic",  "garbage", "header-crc", "version", "kind",      "eye",
+        "format", "dimensions", "length", "crc",     "stream",  "order",     "duplicate",
+        "missing-reduced", "unexpected", "stream-header"};
+    return (unsigned)e < (unsigned)TDC_LINK_ERR_COUNT ? names[e] : "?";
+}
+
+uint32_t tdc_link_payload_bytes(tdc_link_kind_t kind, tdc_pixfmt_t fmt, uint32_t width, uint32_t height,
+                                uint32_t pkt_flags)
+{
+    /* Callers bound width, height <= 65535; the products below stay below
+     * 2^32 only for w * h < 2^30, which the panel check guarantees before
+     * this is trusted (a 65535^2 RGB30 frame would wrap: callers compare
+     * dimensions first). */
+    const uint32_t tiles = TDC_LINK_TILES(width) * TDC_LINK_TILES(height);
+    switch (kind) {
+    case TDC_LINK_KIND_STREAM:
+        return TDC_LINK_STREAM_HEADER_BYTES;
+    case TDC_LINK_KIND_FULL:
+    case TDC_LINK_KIND_REDUCED:
+        return tdc_pixfmt_payload_bytes(fmt, width, height);
+    case TDC_LINK_KIND_SUBFRAME:
+        return tdc_pixfmt_payload_bytes(fmt, TDC_LINK_TILES(width), TDC_LINK_TILES(height));
+    case TDC_LINK_KIND_MOTION:
+        return (pkt_flags & TDC_LINK_PKT_MV_PER_SAMPLE) ? tiles * 4u : width * height * 4u;
+    case TDC_LINK_KIND_PATTERN:
+        return (tiles + 7u) / 8u;
+    default:
+        return 0;
+    }
+}
+
+/* Duplicate-detection slot of a packet within one frame index. */
+static uint32_t slot_bit(uint32_t kind, uint32_t eye, uint32_t flags)
+{
+    if (kind == TDC_LINK_KIND_MOTION && (flags & TDC_LINK_PKT_MV_PER_SAMPLE)) {
+        return 1u << (14u + eye);
+    }
+    return 1u << (kind * 2u + eye);
+}
+
+/* ------------------------------------------------------------------------
+ * Events and counters.
+ * ---------------------------------------------------------------------- */
+static void push_event(tdc_link_decoder_t *dec, const tdc_link_event_t *ev)
+{
+    if (dec->ev_count >= TDC_LINK_EVENT_QUEUE) {
+        dec->cnt.events_dropped++;
+        return;
+    }
+    dec->ev[(dec->ev_head + dec->ev_count) % TDC_LINK_EVENT_QUEUE] = *ev;
+    dec->ev_count++;
+}
+
+static void push_error(tdc_link_decoder_t *dec, tdc_link_err_t e, int with_header, uint32_t detail)
+{
+    tdc_link_event_t ev;
+    if (with_header) {
+        ev = dec->pkt;
+    } else {
+        memset(&ev, 0, sizeof ev);
+    }
+    ev.type = TDC_LINK_EV_ERROR;
+    ev.error = (uint16_t)e;
+    ev.detail = detail;
+    dec->cnt.errors[e]++;
+    push_event(dec, &ev);
+}
+
+static void set_state(tdc_link_decoder_t *dec, unsigned st, int synced)
+{
+    dec->state = (uint8_t)(st | (synced ? ST_SYNCED : 0u));
+}
+
+/* ------------------------------------------------------------------------
+ * Init and getters.
+ * ---------------------------------------------------------------------- */
+tdc_status_t tdc_link_decoder_init(tdc_link_decoder_t *dec, const tdc_link_config_t *cfg,
+                                   const tdc_link_buffers_t *buffers)
+{
+    if (!dec || !cfg || !buffers || !buffers->staging) {
+        return TDC_ERR_ARG;
+    }
+    if (cfg->eyes < 1 || cfg->eyes > 2 || cfg->width == 0 || cfg->height == 0) {
+        return TDC_ERR_ARG;
+    }
+    if (cfg->width > TDC_LINK_MAX_WIDTH || cfg->height > TDC_LINK_MAX_HEIGHT ||
+        (uint32_t)cfg->width * cfg->height > TDC_LINK_MAX_PIXELS) {
+        return TDC_ERR_SIZE;
+    }
+    if (buffers->staging_bytes < TDC_LINK_STREAM_HEADER_BYTES) {
+        return TDC_ERR_SIZE;
+    }
+    for (unsigned e = 0; e < cfg->eyes; e++) {
+        if (buffers->full[e] && buffers->full_stride < (uint32_t)cfg->width * 3u) {
+            return TDC_ERR_SIZE;
+        }
+    }
+    memset(dec, 0, sizeof *dec);
+    dec->cfg = *cfg;
+    dec->buf = *buffers;
+    set_state(dec, ST_HUNT, 0); /* joining a stream mid-way is normal: no sync to lose yet */
+    return TDC_OK;
+}
+
+const tdc_link_counters_t *tdc_link_counters(const tdc_link_decoder_t *dec)
+{
+    return &dec->cnt;
+}
+
+uint32_t tdc_link_error_count(const tdc_link_decoder_t *dec, tdc_link_err_t e)
+{
+    return (unsigned)e < (unsigned)TDC_LINK_ERR_COUNT ? dec->cnt.errors[e] : 0u;
+}
+
+const tdc_link_stream_info_t *tdc_link_stream(const tdc_link_decoder_t *dec)
+{
+    return dec->stream_active ? &dec->stream : NULL;
+}
+
+void tdc_link_reduced_size(const tdc_link_decoder_t *dec, uint32_t *rw, uint32_t *rh)
+{
+    *rw = dec->rw;
+    *rh = dec->rh;
+}
+
+/* ------------------------------------------------------------------------
+ * Header validation: everything that can be checked before the payload.
+ * ---------------------------------------------------------------------- */
+static tdc_link_err_t check_header(const tdc_link_decoder_t *dec, uint32_t version, uint32_t payload_len)
+{
+    const tdc_link_event_t *p = &dec->pkt;
+    const uint32_t kind = p->kind, eye = p->eye, fmt = p->format, flags = p->flags;
+
+    if (version != TDC_LINK_VERSION) {
+        return TDC_LINK_ERR_VERSION;
+    }
+    if (kind < TDC_LINK_KIND_FIRST || kind > TDC_LINK_KIND_LAST) {
+        return TDC_LINK_ERR_KIND;
+    }
+    if (kind == TDC_LINK_KIND_STREAM) {
+        if (eye != 0) {
+            return TDC_LINK_ERR_EYE;
+        }
+        if (fmt != TDC_PIXFMT_NONE || flags != 0) {
+            return TDC_LINK_ERR_FORMAT;
+        }
+        if (p->width != dec->cfg.width || p->height != dec->cfg.height) {
+            return TDC_LINK_ERR_DIMENSIONS;
+        }
+        if (payload_len != TDC_LINK_STREAM_HEADER_BYTES) {
+            return TDC_LINK_ERR_LENGTH;
+        }
+        return TDC_LINK_OK;
+    }
+    if (!dec->stream_active || p->stream_id != dec->stream_id) {
+        return TDC_LINK_ERR_STREAM;
+    }
+    if (eye >= dec->cfg.eyes) {
+        return TDC_LINK_ERR_EYE;
+    }
+    if ((flags & ~(uint32_t)TDC_LINK_PKT_KNOWN) != 0 ||
+        ((flags & TDC_LINK_PKT_MV_PER_SAMPLE) && kind != TDC_LINK_KIND_MOTION)) {
+        return TDC_LINK_ERR_FORMAT;
+    }
+    const int pixel_kind = kind == TDC_LINK_KIND_FULL || kind == TDC_LINK_KIND_REDUCED || kind == TDC_LINK_KIND_SUBFRAME;
+    if (pixel_kind ? !tdc_pixfmt_valid(fmt) : fmt != TDC_PIXFMT_NONE) {
+        return TDC_LINK_ERR_FORMAT;
+    }
+
+    /* Is this kind part of the stream, supported by this build, and due now? */
+    const uint32_t sflags = dec->stream.flags;
+    const int trm = (sflags & TDC_LINK_STREAM_REDUCED) != 0;
+    const tdc_link_buffers_t *b = &dec->buf;
+    int ok;
+    switch (kind) {
+    case TDC_LINK_KIND_FULL:
+        ok = b->full[eye] != NULL && (!trm || tdc_link_trm_kind(p->frame_index, eye) == TDC_LINK_KIND_FULL);
+        break;
+    case TDC_LINK_KIND_REDUCED:
+        ok = trm && b->reduced[eye] != NULL && tdc_link_trm_kind(p->frame_index, eye) == TDC_LINK_KIND_REDUCED;
+        break;
+    case TDC_LINK_KIND_SUBFRAME:
+        ok = (sflags & TDC_LINK_STREAM_SUBFRAMES) && b->subframe[eye] != NULL;
+        break;
+    case TDC_LINK_KIND_MOTION:
+        ok = (flags & TDC_LINK_PKT_MV_PER_SAMPLE) ? ((sflags & TDC_LINK_STREAM_SAMPLE_MV) && b->sample_motion[eye])
+                                                   : ((sflags & TDC_LINK_STREAM_MOTION) && b->motion[eye]);
+        break;
+    default: /* PATTERN: with the first subframe of each 4-frame cycle */
+        ok = (sflags & TDC_LINK_STREAM_SUBFRAMES) && b->pattern[eye] != NULL && (p->frame_index & 3u) == 0;
+        break;
+    }
+    if (!ok) {
+        return TDC_LINK_ERR_UNEXPECTED;
+    }
+
+    const uint32_t want_w = kind == TDC_LINK_KIND_REDUCED ? dec->rw : dec->cfg.width;
+    const uint32_t want_h = kind == TDC_LINK_KIND_REDUCED ? dec->rh : dec->cfg.height;
+    if (p->width != want_w || p->height != want_h) {
+        return TDC_LINK_ERR_DIMENSIONS;
+    }
+    /* Dimensions now equal the panel's (<= TDC_LINK_MAX_PIXELS), so the
+     * expected length cannot wrap. */
+    const uint32_t want_len =
+        tdc_link_payload_bytes((tdc_link_kind_t)kind, (tdc_pixfmt_t)fmt, p->width, p->height, flags);
+    if (payload_len != want_len || payload_len > dec->buf.staging_bytes) {
+        return TDC_LINK_ERR_LENGTH;
+    }
+    if (dec->have_frame) {
+        if (p->frame_index < dec->frame_index) {
+            return TDC_LINK_ERR_ORDER;
+        }
+        if (p->frame_index == dec->frame_index && (dec->frame_mask & slot_bit(kind, eye, flags))) {
+            return TDC_LINK_ERR_DUPLICATE;
+        }
+    }
+    return TDC_LINK_OK;
+}
+
+/* A complete header is in dec->hdr. */
+static void on_header(tdc_link_decoder_t *dec)
+{
+    const uint8_t *h = dec->hdr;
+    if (tdc_crc32(h, TDC_LINK_OFF_HEADER_CRC) != tdc_link_rd32(h + TDC_LINK_OFF_HEADER_CRC)) {
+        /* Corrupt header, or a false magic inside garbage: rescan bytes
+         * 1..31 (the real packet may begin there).  The first byte is
+         * garbage now. */
+        push_error(dec, TDC_LINK_ERR_HEADER_CRC, 0, 0);
+        memcpy(dec->replay, h + 1, TDC_LINK_HEADER_BYTES - 1u);
+        dec->replay_len = TDC_LINK_HEADER_BYTES - 1u;
+        dec->replay_pos = 0;
+        dec->garbage_run += 1u;
+        dec->cnt.garbage_bytes += 1u;
+        set_state(dec, ST_HUNT, 0);
+        return;
+    }
+    /* A valid header ends any run of garbage before it. */
+    if (dec->garbage_run) {
+        push_error(dec, TDC_LINK_ERR_GARBAGE, 0, dec->garbage_run);
+        dec->garbage_run = 0;
+    }
+    tdc_link_event_t *p = &dec->pkt;
+    memset(p, 0, sizeof *p);
+    p->kind = h[TDC_LINK_OFF_KIND];
+    p->eye = h[TDC_LINK_OFF_EYE];
+    p->format = h[TDC_LINK_OFF_FORMAT];
+    p->stream_id = (uint16_t)tdc_link_rd16(h + TDC_LINK_OFF_STREAM_ID);
+    p->flags = (uint16_t)tdc_link_rd16(h + TDC_LINK_OFF_FLAGS);
+    p->frame_index = tdc_link_rd32(h + TDC_LINK_OFF_FRAME);
+    p->width = (uint16_t)tdc_link_rd16(h + TDC_LINK_OFF_WIDTH);
+    p->height = (uint16_t)tdc_link_rd16(h + TDC_LINK_OFF_HEIGHT);
+    dec->payload_len = tdc_link_rd32(h + TDC_LINK_OFF_PAYLOAD_LEN);
+    dec->payload_crc = tdc_link_rd32(h + TDC_LINK_OFF_PAYLOAD_CRC);
+    p->detail = dec->payload_len;
+
+    const tdc_link_err_t e = check_header(dec, h[TDC_LINK_OFF_VERSION], dec->payload_len);
+    if (e != TDC_LINK_OK) {
+        push_error(dec, e, 1, dec->payload_len);
+        /* The header is intact (CRC), so its length is what was sent: skip
+         * the payload.  A length beyond anything we could accept is not
+         * trusted: hunt instead. */
+        if (dec->payload_len == 0) {
+            set_state(dec, ST_HEADER, 1);
+        } else if (dec->payload_len <= dec->buf.staging_bytes) {
+            dec->skip_left = dec->payload_len;
+            set_state(dec, ST_SKIP, 0);
+        } else {
+            set_state(dec, ST_HUNT, 0);
+        }
+        dec->hdr_fill = 0;
+        return;
+    }
+    dec->payload_fill = 0;
+    dec->crc_state = TDC_CRC32_INIT;
+    set_state(dec, ST_PAYLOAD, 0);
+}
+
+/* ------------------------------------------------------------------------
+ * Commit of a packet whose payload CRC matched.
+ * ---------------------------------------------------------------------- */
+static tdc_link_err_t commit_stream(tdc_link_decoder_t *dec)
+{
+    const uint8_t *s = dec->buf.staging;
+    tdc_link_stream_info_t in;
+    in.flags = tdc_link_rd32(s + 0);
+    in.r_num = (uint16_t)tdc_link_rd16(s + 4);
+    in.r_den = (uint16_t)tdc_link_rd16(s + 6);
+    in.width = (uint16_t)tdc_link_rd16(s + 8);
+    in.height = (uint16_t)tdc_link_rd16(s + 10);
+    in.eyes = s[12];
+    in.reserved = s[13];
+    in.refresh_hz = (uint16_t)tdc_link_rd16(s + 14);
+
+    const tdc_link_buffers_t *b = &dec->buf;
+    if ((in.flags & ~(uint32_t)TDC_LINK_STREAM_KNOWN) != 0 || in.reserved != 0 || in.width != dec->cfg.width ||
+        in.height != dec->cfg.height || in.eyes != dec->cfg.eyes || in.r_den == 0) {
+        return TDC_LINK_ERR_STREAM_HEADER;
+    }
+    uint32_t rw = 0, rh = 0;
+    if (in.flags & TDC_LINK_STREAM_REDUCED) {
+        /* 1/4 <= r < 1 (DESIGN §4.1, tdc_trm.h). */
+        if ((uint32_t)in.r_num * 4u < in.r_den || in.r_num >= in.r_den) {
+            return TDC_LINK_ERR_STREAM_HEADER;
+        }
+        rw = TDC_LINK_REDUCED_DIM(in.width, in.r_num, in.r_den);
+        rh = TDC_LINK_REDUCED_DIM(in.height, in.r_num, in.r_den);
+    } else if (in.r_num != in.r_den) {
+        return TDC_LINK_ERR_STREAM_HEADER; /* r must be 1 without reduced frames */
+    }
+    if ((in.flags & TDC_LINK_STREAM_SAMPLE_MV) && !(in.flags & TDC_LINK_STREAM_SUBFRAMES)) {
+        return TDC_LINK_ERR_STREAM_HEADER;
+    }
+    /* The build must have a buffer for every stage the stream uses. */
+    for (unsigned e = 0; e < in.eyes; e++) {
+        if (((in.flags & TDC_LINK_STREAM_REDUCED) &&
+             (!b->reduced[e] || (size_t)rw * rh * 3u > b->reduced_bytes)) ||
+            ((in.flags & TDC_LINK_STREAM_SUBFRAMES) && (!b->subframe[e] || !b->pattern[e])) ||
+            ((in.flags & TDC_LINK_STREAM_MOTION) && !b->motion[e]) ||
+            ((in.flags & TDC_LINK_STREAM_SAMPLE_MV) && !b->sample_motion[e])) {
+            return TDC_LINK_ERR_STREAM_HEADER;
+        }
+    }
+    /* A repeated identical header (sent for late joiners) keeps the
+     * sequence state; anything else starts a new stream. */
+    if (!(dec->stream_active && dec->stream_id == dec->pkt.stream_id && !memcmp(&in, &dec->stream, sizeof in))) {
+        dec->stream_active = 1;
+        dec->stream_id = dec->pkt.stream_id;
+        dec->stream = in;
+        dec->rw = (uint16_t)rw;
+        dec->rh = (uint16_t)rh;
+        dec->have_frame = 0;
+        dec->frame_mask = 0;
+        dec->frame_index = 0;
+    }
+    return TDC_LINK_OK;
+}
+
+/* Reduced frames due in frames [from, to) that were not received; frame
+ * `from` is the current frame with slots `mask`. */
+static uint32_t count_missing_reduced(const tdc_link_decoder_t *dec, uint32_t from, uint32_t to)
+{
+    uint64_t missing = 0;
+    for (uint32_t e = 0; e < dec->cfg.eyes; e++) {
+        if (tdc_link_trm_kind(from, e) == TDC_LINK_KIND_REDUCED &&
+            !(dec->frame_mask & slot_bit(TDC_LINK_KIND_REDUCED, e, 0))) {
+            missing++;
+        }
+    }
+    if (to - from > 1u) {
+        const uint64_t a = (uint64_t)from + 1u, b = (uint64_t)to - 1u; /* frames never seen */
+        missing += dec->cfg.eyes == 2 ? (b - a + 1u) : ((b + 1u) / 2u - a / 2u); /* odd frames */
+    }
+    return missing > UINT32_MAX ? UINT32_MAX : (uint32_t)missing;
+}
+
+static void unpack_le16(const uint8_t *src, int16_t *dst, size_t count)
+{
+    for (size_t i = 0; i < count; i++) {
+        /* Two's complement reinterpretation without implementation-defined
+         * conversion: subtract 2^16 for values >= 2^15. */
+        const int32_t v = (int32_t)tdc_link_rd16(src + 2u * i);
+        dst[i] = (int16_t)(v >= 32768 ? v - 65536 : v);
+    }
+}
+
+static void on_payload(tdc_link_decoder_t *dec)
+{
+    tdc_link_event_t *p = &dec->pkt;
+    set_state(dec, ST_HEADER, 1);
+    dec->hdr_fill = 0;
+    if (tdc_crc32_final(dec->crc_state) != dec->payload_crc) {
+        push_error(dec, TDC_LINK_ERR_CRC, 1, dec->payload_len);
+        return;
+    }
+    const uint32_t kind = p->kind, eye = p->eye;
+    if (kind == TDC_LINK_KIND_STREAM) {
+        const tdc_link_err_t e = commit_stream(dec);
+        if (e != TDC_LINK_OK) {
+            push_error(dec, e, 1, dec->payload_len);
+            return;
+        }
+    } else {
+        /* Sequence: advancing to a newer frame closes the current one. */
+        if (!dec->have_frame || p->frame_index > dec->frame_index) {
+            if (dec->have_frame && (dec->stream.flags & TDC_LINK_STREAM_REDUCED)) {
+                const uint32_t miss = count_missing_reduced(dec, dec->frame_index, p->frame_index);
+                if (miss) {
+                    tdc_link_event_t ev;
+                    memset(&ev, 0, sizeof ev);
+                    ev.type = TDC_LINK_EV_ERROR;
+                    ev.error = TDC_LINK_ERR_MISSING_REDUCED;
+                    ev.kind = TDC_LINK_KIND_REDUCED;
+                    ev.stream_id = dec->stream_id;
+                    ev.frame_index = dec->frame_index;
+                    ev.detail = miss;
+                    dec->cnt.errors[TDC_LINK_ERR_MISSING_REDUCED]++;
+                    dec->cnt.missing_reduced_frames += miss;
+                    push_event(dec, &ev);
+                }
+            }
+            dec->have_frame = 1;
+            dec->frame_index = p->frame_index;
+            dec->frame_mask = 0;
+        }
+        dec->frame_mask |= slot_bit(kind, eye, p->flags);
+
+        const uint8_t *s = dec->buf.staging;
+        const tdc_pixfmt_t fmt = (tdc_pixfmt_t)p->format;
+        const tdc_link_buffers_t *b = &dec->buf;
+        const uint32_t tx = TDC_LINK_TILES(p->width), ty = TDC_LINK_TILES(p->height);
+        switch (kind) {
+        case TDC_LINK_KIND_FULL:
+            tdc_pixfmt_unpack(fmt, s, p->width, p->height, b->full[eye], b->full_stride);
+            break;
+        case TDC_LINK_KIND_REDUCED:
+            tdc_pixfmt_unpack(fmt, s, p->width, p->height, b->reduced[eye], (uint32_t)p->width * 3u);
+            break;
+        case TDC_LINK_KIND_SUBFRAME:
+            tdc_pixfmt_unpack(fmt, s, tx, ty, b->subframe[eye], tx * 3u);
+            break;
+        case TDC_LINK_KIND_MOTION:
+            if (p->flags & TDC_LINK_PKT_MV_PER_SAMPLE) {
+                unpack_le16(s, b->sample_motion[eye], (size_t)tx * ty * 2u);
+            } else {
+                unpack_le16(s, b->motion[eye], (size_t)p->width * p->height * 2u);
+            }
+            break;
+        default: /* PATTERN */
+            memcpy(b->pattern[eye], s, dec->payload_len);
+            break;
+        }
+    }
+    dec->cnt.packets_ok++;
+    dec->cnt.packets_by_kind[kind]++;
+    tdc_link_event_t ev = *p;
+    ev.type = TDC_LINK_EV_PACKET;
+    ev.error = TDC_LINK_OK;
+    push_event(dec, &ev);
+}
+
+/* ------------------------------------------------------------------------
+ * Byte processing: consumes bytes until an event is queued or n is used up.
+ * ---------------------------------------------------------------------- */
+static size_t step(tdc_link_decoder_t *dec, const uint8_t *p, size_t n)
+{
+    size_t i = 0;
+    while (i < n && dec->ev_count == 0) {
+        switch (dec->state & ST_MASK) {
+        case ST_HUNT: {
+            const uint8_t *t = (const uint8_t *)memchr(p + i, 'T', n - i);
+            const size_t skip = t ? (size_t)(t - (p + i)) : n - i;
+            dec->garbage_run += (uint32_t)skip;
+            dec->cnt.garbage_bytes += skip;
+            i += skip;
+            if (t) {
+                dec->hdr[0] = 'T';
+                dec->hdr_fill = 1;
+                set_state(dec, ST_HEADER, 0);
+                i++;
+            }
+            break;
+        }
+        case ST_HEADER: {
+            if (dec->hdr_fill < 4u) {
+                if (p[i] != tdc_link_magic_bytes[dec->hdr_fill]) {
+                    /* Not a packet start.  At an expected boundary this
+                     * is a loss of sync; the bytes matched so far are
+                     * garbage; p[i] itself is rescanned by HUNT. */
+                    if (dec->state & ST_SYNCED) {
+                        push_error(dec, TDC_LINK_ERR_MAGIC, 0, 0);
+                    }
+                    dec->garbage_run += dec->hdr_fill;
+                    dec->cnt.garbage_bytes += dec->hdr_fill;
+                    dec->hdr_fill = 0;
+                    set_state(dec, ST_HUNT, 0);
+                    break;
+                }
+                dec->hdr[dec->hdr_fill++] = p[i++];
+                break;
+            }
+            size_t k = TDC_LINK_HEADER_BYTES - dec->hdr_fill;
+            if (k > n - i) {
+                k = n - i;
+            }
+            memcpy(dec->hdr + dec->hdr_fill, p + i, k);
+            dec->hdr_fill = (uint8_t)(dec->hdr_fill + k);
+            i += k;
+            if (dec->hdr_fill == TDC_LINK_HEADER_BYTES) {
+                dec->hdr_fill = 0;
+                on_header(dec);
+                if (dec->replay_pos < dec->replay_len) {
+                    return i; /* rescan the replay before more input */
+                }
+            }
+            break;
+        }
+        case ST_PAYLOAD: {
+            size_t k = dec->payload_len - dec->payload_fill;
+            if (k > n - i) {
+                k = n - i;
+            }
+            memcpy(dec->buf.staging + dec->payload_fill, p + i, k);
+            dec->crc_state = tdc_crc32_update(dec->crc_state, p + i, k);
+            dec->payload_fill += (uint32_t)k;
+            i += k;
+            if (dec->payload_fill == dec->payload_len) {
+                on_payload(dec);
+            }
+            break;
+        }
+        default: { /* ST_SKIP */
+            size_t k = dec->skip_left;
+            if (k > n - i) {
+                k = n - i;
+            }
+            dec->skip_left -= (uint32_t)k;
+            dec->cnt.skipped_bytes += k;
+            i += k;
+            if (dec->skip_left == 0) {
+                dec->hdr_fill = 0;
+                set_state(dec, ST_HEADER, 1);
+            }
+            break;
+        }
+        }
+    }
+    return i;
+}
+
+static int pop_event(tdc_link_decoder_t *dec, tdc_link_event_t *ev)
+{
+    if (dec->ev_count == 0) {
+        return 0;
+    }
+    *ev = dec->ev[dec->ev_head];
+    dec->ev_head = (uint8_t)((dec->ev_head + 1u) % TDC_LINK_EVENT_QUEUE);
+    dec->ev_count--;
+    return 1;
+}
+
+size_t tdc_link_feed(tdc_link_decoder_t *dec, const uint8_t *bytes, size_t n, tdc_link_event_t *ev)
+{
+    size_t used = 0;
+    for (;;) {
+        if (pop_event(dec, ev)) {
+            return used;
+        }
+        if (dec->replay_pos < dec->replay_len) {
+            /* Bytes of a rejected header, rescanned before new input.  A
+             * header cannot complete inside the 31-byte replay, so a new
+             * replay is never started while this one has bytes left. */
+            const size_t k = step(dec, dec->replay + dec->replay_pos, (size_t)(dec->replay_len - dec->replay_pos));
+            dec->replay_pos = (uint8_t)(dec->replay_pos + k);
+            continue;
+        }
+        if (used == n) {
+            break;
+        }
+        const size_t k = step(dec, bytes + used, n - used);
+        used += k;
+        dec->cnt.bytes_in += k;
+    }
+    memset(ev, 0, sizeof *ev);
+    ev->type = TDC_LINK_EV_NONE;
+    return used;
+}

@@ -1,0 +1,142 @@
+/*
+ * tdc_pixfmt.c - unpacking of the link pixel formats to RGB888.  See
+ * tdc_pixfmt.h for the wire layouts.  Integer only; every conversion is a
+ * pure function of the input bytes, so host and ARM agree bit for bit.
+ */
+#include "tdc_pixfmt.h"
+
+#include "tdc_fixed.h"
+
+int tdc_pixfmt_valid(uint32_t f)
+{
+    return f >= (uint32_t)TDC_PIXFMT_RGB888 && f < (uint32_t)TDC_PIXFMT_COUNT;
+}
+
+uint32_t tdc_pixfmt_payload_bytes(tdc_pixfmt_t f, uint32_t w, uint32_t h)
+{
+    /* w, h <= 65535: w * h * 4 < 2^34 could overflow 32 bits, so callers
+     * bound w * h first (the decoder checks against the panel size). */
+    switch (f) {
+    case TDC_PIXFMT_RGB888:
+        return w * h * 3u;
+    case TDC_PIXFMT_RGB565:
+        return w * h * 2u;
+    case TDC_PIXFMT_RGB30:
+        return w * h * 4u;
+    case TDC_PIXFMT_YCBCR420:
+        return w * h + 2u * (((w + 1u) / 2u) * ((h + 1u) / 2u));
+    default:
+        return 0;
+    }
+}
+
+void tdc_pixfmt_unpack_rgb888(const uint8_t *src, uint32_t w, uint32_t h, uint8_t *dst, uint32_t dst_stride)
+{
+    const size_t row = (size_t)w * 3u;
+    for (uint32_t y = 0; y < h; y++) {
+        const uint8_t *s = src + row * y;
+        uint8_t *d = dst + (size_t)dst_stride * y;
+        for (size_t i = 0; i < row; i++) {
+            d[i] = s[i];
+        }
+    }
+}
+
+void tdc_pixfmt_unpack_rgb565(const uint8_t *src, uint32_t w, uint32_t h, uint8_t *dst, uint32_t dst_stride)
+{
+    for (uint32_t y = 0; y < h; y++) {
+        const uint8_t *s = src + (size_t)w * 2u * y;
+        uint8_t *d = dst + (size_t)dst_stride * y;
+        for (uint32_t x = 0; x < w; x++) {
+            const uint32_t v = (uint32_t)s[2 * x] | ((uint32_t)s[2 * x + 1] << 8);
+            const uint32_t r5 = v >> 11, g6 = (v >> 5) & 0x3Fu, b5 = v & 0x1Fu;
+            /* Bit replication: 0 -> 0, max -> 255, monotone. */
+            d[3 * x + 0] = (uint8_t)((r5 << 3) | (r5 >> 2));
+            d[3 * x + 1] = (uint8_t)((g6 << 2) | (g6 >> 4));
+            d[3 * x + 2] = (uint8_t)((b5 << 3) | (b5 >> 2));
+        }
+    }
+}
+
+void tdc_pixfmt_unpack_rgb30(const uint8_t *src, uint32_t w, uint32_t h, uint8_t *dst, uint32_t dst_stride)
+{
+    for (uint32_t y = 0; y < h; y++) {
+        const uint8_t *s = src + (size_t)w * 4u * y;
+        uint8_t *d = dst + (size_t)dst_stride * y;
+        for (uint32_t x = 0; x < w; x++) {
+            const uint8_t *p = s + 4u * x;
+            const uint32_t v = (uint32_t)p[0] | ((uint32_t)p[1] << 8) | ((uint32_t)p[2] << 16) | ((uint32_t)p[3] << 24);
+            d[3 * x + 0] = tdc_pixfmt_u10_to_u8(v & 0x3FFu);
+            d[3 * x + 1] = tdc_pixfmt_u10_to_u8((v >> 10) & 0x3FFu);
+            d[3 * x + 2] = tdc_pixfmt_u10_to_u8((v >> 20) & 0x3FFu);
+        }
+    }
+}
+
+/* Q16 value + rounding -> 8-bit code, clamped.  Scaling and overflow:
+ * |v_q16| <= 255 * 2^16 + 121609 * 128 < 2^25, no overflow in int32. */
+static inline uint8_t tdc_q16_to_u8_sat(int32_t v_q16)
+{
+    const int32_t v = tdc_asr32(v_q16 + (1 << 15), 16);
+    return (uint8_t)(v < 0 ? 0 : (v > 255 ? 255 : v));
+}
+
+void tdc_pixfmt_ycbcr_to_rgb(uint8_t y, uint8_t cb, uint8_t cr, uint8_t rgb[3])
+{
+    const int32_t u = (int32_t)cb - 128, v = (int32_t)cr - 128;
+    const int32_t yq = (int32_t)y * 65536;
+    rgb[0] = tdc_q16_to_u8_sat(yq + TDC_YCC_CR_R_Q16 * v);
+    rgb[1] = tdc_q16_to_u8_sat(yq - TDC_YCC_CB_G_Q16 * u - TDC_YCC_CR_G_Q16 * v);
+    rgb[2] = tdc_q16_to_u8_sat(yq + TDC_YCC_CB_B_Q16 * u);
+}
+
+void tdc_pixfmt_unpack_ycbcr420(const uint8_t *src, uint32_t w, uint32_t h, uint8_t *dst, uint32_t dst_stride)
+{
+    const uint32_t cw = (w + 1u) / 2u, ch = (h + 1u) / 2u;
+    const uint8_t *cb_plane = src + (size_t)w * h;
+    const uint8_t *cr_plane = cb_plane + (size_t)cw * ch;
+    for (uint32_t y = 0; y < h; y++) {
+        const uint8_t *ys = src + (size_t)w * y;
+        const uint8_t *cbs = cb_plane + (size_t)cw * (y / 2u);
+        const uint8_t *crs = cr_plane + (size_t)cw * (y / 2u);
+        uint8_t *d = dst + (size_t)dst_stride * y;
+        for (uint32_t cx = 0; cx < cw; cx++) {
+            /* One chroma sample's three offsets (Q16, rounding bias folded
+             * in), shared by its two pixels on this row. */
+            const int32_t u = (int32_t)cbs[cx] - 128, v = (int32_t)crs[cx] - 128;
+            const int32_t dr = TDC_YCC_CR_R_Q16 * v + (1 << 15);
+            const int32_t dg = -TDC_YCC_CB_G_Q16 * u - TDC_YCC_CR_G_Q16 * v + (1 << 15);
+            const int32_t db = TDC_YCC_CB_B_Q16 * u + (1 << 15);
+            const uint32_t x0 = 2u * cx;
+            const uint32_t xn = x0 + 1u < w ? 2u : 1u;
+            for (uint32_t k = 0; k < xn; k++) {
+                const int32_t yq = (int32_t)ys[x0 + k] * 65536;
+                uint8_t *p = d + 3u * (x0 + k);
+                int32_t r = tdc_asr32(yq + dr, 16), g = tdc_asr32(yq + dg, 16), b = tdc_asr32(yq + db, 16);
+                p[0] = (uint8_t)(r < 0 ? 0 : (r > 255 ? 255 : r));
+                p[1] = (uint8_t)(g < 0 ? 0 : (g > 255 ? 255 : g));
+                p[2] = (uint8_t)(b < 0 ? 0 : (b > 255 ? 255 : b));
+            }
+        }
+    }
+}
+
+void tdc_pixfmt_unpack(tdc_pixfmt_t f, const uint8_t *src, uint32_t w, uint32_t h, uint8_t *dst, uint32_t dst_stride)
+{
+    switch (f) {
+    case TDC_PIXFMT_RGB888:
+        tdc_pixfmt_unpack_rgb888(src, w, h, dst, dst_stride);
+        break;
+    case TDC_PIXFMT_RGB565:
+        tdc_pixfmt_unpack_rgb565(src, w, h, dst, dst_stride);
+        break;
+    case TDC_PIXFMT_RGB30:
+        tdc_pixfmt_unpack_rgb30(src, w, h, dst, dst_stride);
+        break;
+    case TDC_PIXFMT_YCBCR420:
+        tdc_pixfmt_unpack_ycbcr420(src, w, h, dst, dst_stride);
+        break;
+    default:
+        break;
+    }
+}

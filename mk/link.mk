@@ -1,0 +1,17 @@
+# Link protocol (docs/link-protocol.md): firmware decoder, CRC-32, pixel
+# formats; host encoder and .tdcs stream files; tests, golden, fuzz, bench.
+
+# CRC-32 tables generated at build time (never typed by hand).
+CRC32_GEN := $(BUILD)/tools/tdc-crc32-gen
+$(CRC32_GEN): sim/link/tdc_crc32_gen.c | $(BUILD)/tools
+	gcc -std=c11 -Wall -Wextra -Werror -O2 $< -o $@
+$(GEN)/tdc_crc32_tables.h: $(CRC32_GEN) | $(GEN)
+	$(CRC32_GEN) $@
+# Every firmware object already depends on tdc_panels.h; ordering the table
+# before it makes the header exist for any build rule (host or board).
+$(GEN)/tdc_panels.h: | $(GEN)/tdc_crc32_tables.h
+$(B)/firmware/tdc_crc32.o: $(GEN)/tdc_crc32_tables.h
+FW_GEN_HDRS += $(GEN)/tdc_crc32_tables.h
+
+FW_SRCS += firmware/tdc_crc32.c firmware/tdc_pixfmt.c firmware/tdc_link.c
+SIM_SRCS += sim/link/tdc_link_encode.c sim/link/tdc_link_file.c sim/link/tdc_pixfmt_ref.c

@@ -1,0 +1,288 @@
+/*
+ * tdc_link_encode.c - host link encoder (see tdc_link_encode.h and
+ * docs/link-protocol.md).  Integer only and allocation-free so that the
+ * golden runner can include it on the boards as well.
+ */
+#include "tdc_link_encode.h"
+
+#include <string.h>
+
+#include "tdc_crc32.h"
+#include "tdc_fixed.h"
+
+/* BT.709 full-range RGB -> YCbCr, Q16 (rows sum to 65536, 0, 0). */
+#define ENC_Y_R 13933
+#define ENC_Y_G 46871
+#define ENC_Y_B 4732
+#define ENC_CB_R (-7509)
+#define ENC_CB_G (-25259)
+#define ENC_CB_B 32768
+#define ENC_CR_R 32768
+#define ENC_CR_G (-29763)
+#define ENC_CR_B (-3005)
+
+static uint8_t sat_u8(int32_t v)
+{
+    return (uint8_t)(v < 0 ? 0 : (v > 255 ? 255 : v));
+}
+
+void tdc_pixfmt_rgb_to_ycbcr(int32_t r, int32_t g, int32_t b, uint8_t ycc[3])
+{
+    ycc[0] = sat_u8(tdc_asr32(ENC_Y_R * r + ENC_Y_G * g + ENC_Y_B * b + 32768, 16));
+    ycc[1] = sat_u8(128 + tdc_asr32(ENC_CB_R * r + ENC_CB_G * g + ENC_CB_B * b + 32768, 16));
+    ycc[2] = sat_u8(128 + tdc_asr32(ENC_CR_R * r + ENC_CR_G * g + ENC_CR_B * b + 32768, 16));
+}
+
+void tdc_pixfmt_pack(tdc_pixfmt_t fmt, const uint8_t *rgb, uint32_t w, uint32_t h, uint32_t stride, uint8_t *out)
+{
+    switch (fmt) {
+    case TDC_PIXFMT_RGB888:
+        for (uint32_t y = 0; y < h; y++) {
+            memcpy(out + (size_t)w * 3u * y, rgb + (size_t)stride * y, (size_t)w * 3u);
+        }
+        break;
+    case TDC_PIXFMT_RGB565:
+        for (uint32_t y = 0; y < h; y++) {
+            const uint8_t *s = rgb + (size_t)stride * y;
+            uint8_t *o = out + (size_t)w * 2u * y;
+            for (uint32_t x = 0; x < w; x++) {
+                const uint32_t r5 = (s[3 * x] * 31u + 127u) / 255u;
+                const uint32_t g6 = (s[3 * x + 1] * 63u + 127u) / 255u;
+                const uint32_t b5 = (s[3 * x + 2] * 31u + 127u) / 255u;
+                tdc_link_wr16(o + 2u * x, (r5 << 11) | (g6 << 5) | b5);
+            }
+        }
+        break;
+    case TDC_PIXFMT_RGB30:
+        for (uint32_t y = 0; y < h; y++) {
+            const uint8_t *s = rgb + (size_t)stride * y;
+            uint8_t *o = out + (size_t)w * 4u * y;
+            for (uint32_t x = 0; x < w; x++) {
+                uint32_t v = 0;
+                for (uint32_t c = 0; c < 3; c++) {
+                    v |= ((s[3 * x + c] * 1023u + 127u) / 255u) << (10u * c);
+                }
+                tdc_link_wr32(o + 4u * x, v);
+            }
+        }
+        break;
+    case TDC_PIXFMT_YCBCR420: {
+        const uint32_t cw = (w + 1u) / 2u, ch = (h + 1u) / 2u;
+        uint8_t *cb = out + (size_t)w * h, *cr = cb + (size_t)cw * ch;
+        for (uint32_t y = 0; y < h; y++) {
+            for (uint32_t x = 0; x < w; x++) {
+                const uint8_t *s = rgb + (size_t)stride * y + 3u * x;
+                uint8_t ycc[3];
+                tdc_pixfmt_rgb_to_ycbcr(s[0], s[1], s[2], ycc);
+                out[(size_t)w * y + x] = ycc[0];
+            }
+        }
+        /* Chroma of the mean colour of each 2x2 block (1, 2 or 4 pixels). */
+        for (uint32_t j = 0; j < ch; j++) {
+            for (uint32_t i = 0; i < cw; i++) {
+                int32_t sr = 0, sg = 0, sb = 0;
+                unsigned n = 0;
+                for (uint32_t dy = 0; dy < 2u && 2u * j + dy < h; dy++) {
+                    for (uint32_t dx = 0; dx < 2u && 2u * i + dx < w; dx++) {
+                        const uint8_t *s = rgb + (size_t)stride * (2u * j + dy) + 3u * (2u * i + dx);
+                        sr += s[0];
+                        sg += s[1];
+                        sb += s[2];
+                        n++;
+                    }
+                }
+                const unsigned sh = 16u + (n == 4u ? 2u : (n == 2u ? 1u : 0u));
+                const int32_t half = (int32_t)1 << (sh - 1u);
+                cb[(size_t)cw * j + i] = sat_u8(128 + tdc_asr32(ENC_CB_R * sr + ENC_CB_G * sg + ENC_CB_B * sb + half, sh));
+                cr[(size_t)cw * j + i] = sat_u8(128 + tdc_asr32(ENC_CR_R * sr + ENC_CR_G * sg + ENC_CR_B * sb + half, sh));
+            }
+        }
+        break;
+    }
+    default:
+        break;
+    }
+}
+
+void tdc_link_encoder_init(tdc_link_encoder_t *enc, uint16_t stream_id, const tdc_link_stream_info_t *info)
+{
+    enc->stream_id = stream_id;
+    enc->info = *info;
+}
+
+size_t tdc_link_packet_bytes(tdc_link_kind_t kind, tdc_pixfmt_t fmt, uint32_t width, uint32_t height,
+                             uint32_t pkt_flags)
+{
+    const uint32_t n = tdc_link_payload_bytes(kind, fmt, width, height, pkt_flags);
+    return n ? (size_t)n + TDC_LINK_HEADER_BYTES : 0;
+}
+
+void tdc_link_write_header(uint8_t *out, const tdc_link_header_fields_t *f, uint32_t payload_len,
+                           uint32_t payload_crc)
+{
+    memset(out, 0, TDC_LINK_HEADER_BYTES);
+    tdc_link_wr32(out + TDC_LINK_OFF_MAGIC, TDC_LINK_MAGIC);
+    out[TDC_LINK_OFF_VERSION] = f->version;
+    out[TDC_LINK_OFF_KIND] = f->kind;
+    out[TDC_LINK_OFF_EYE] = f->eye;
+    out[TDC_LINK_OFF_FORMAT] = f->format;
+    tdc_link_wr16(out + TDC_LINK_OFF_STREAM_ID, f->stream_id);
+    tdc_link_wr16(out + TDC_LINK_OFF_FLAGS, f->flags);
+    tdc_link_wr32(out + TDC_LINK_OFF_FRAME, f->frame_index);
+    tdc_link_wr16(out + TDC_LINK_OFF_WIDTH, f->width);
+    tdc_link_wr16(out + TDC_LINK_OFF_HEIGHT, f->height);
+    tdc_link_wr32(out + TDC_LINK_OFF_PAYLOAD_LEN, payload_len);
+    tdc_link_wr32(out + TDC_LINK_OFF_PAYLOAD_CRC, payload_crc);
+    tdc_link_wr32(out + TDC_LINK_OFF_HEADER_CRC, tdc_crc32(out, TDC_LINK_OFF_HEADER_CRC));
+}
+
+int tdc_link_parse_header(const uint8_t *hdr, tdc_link_header_fields_t *f, uint32_t *payload_len,
+                          uint32_t *payload_crc)
+{
+    f->version = hdr[TDC_LINK_OFF_VERSION];
+    f->kind = hdr[TDC_LINK_OFF_KIND];
+    f->eye = hdr[TDC_LINK_OFF_EYE];
+    f->format = hdr[TDC_LINK_OFF_FORMAT];
+    f->stream_id = (uint16_t)tdc_link_rd16(hdr + TDC_LINK_OFF_STREAM_ID);
+    f->flags = (uint16_t)tdc_link_rd16(hdr + TDC_LINK_OFF_FLAGS);
+    f->frame_index = tdc_link_rd32(hdr + TDC_LINK_OFF_FRAME);
+    f->width = (uint16_t)tdc_link_rd16(hdr + TDC_LINK_OFF_WIDTH);
+    f->height = (uint16_t)tdc_link_rd16(hdr + TDC_LINK_OFF_HEIGHT);
+    *payload_len = tdc_link_rd32(hdr + TDC_LINK_OFF_PAYLOAD_LEN);
+    *payload_crc = tdc_link_rd32(hdr + TDC_LINK_OFF_PAYLOAD_CRC);
+    return tdc_link_rd32(hdr + TDC_LINK_OFF_MAGIC) == TDC_LINK_MAGIC &&
+           tdc_crc32(hdr, TDC_LINK_OFF_HEADER_CRC) == tdc_link_rd32(hdr + TDC_LINK_OFF_HEADER_CRC);
+}
+
+size_t tdc_link_encode_raw(uint8_t *out, size_t cap, const tdc_link_header_fields_t *f, const uint8_t *payload,
+                           uint32_t payload_len)
+{
+    if (!out || cap < (size_t)TDC_LINK_HEADER_BYTES + payload_len || (payload_len && !payload)) {
+        return 0;
+    }
+    memmove(out + TDC_LINK_HEADER_BYTES, payload, payload_len);
+    tdc_link_write_header(out, f, payload_len, tdc_crc32(out + TDC_LINK_HEADER_BYTES, payload_len));
+    return (size_t)TDC_LINK_HEADER_BYTES + payload_len;
+}
+
+static void fields(const tdc_link_encoder_t *enc, tdc_link_header_fields_t *f, tdc_link_kind_t kind, uint32_t eye,
+                   uint32_t frame, tdc_pixfmt_t fmt, uint32_t w, uint32_t h, uint32_t flags)
+{
+    f->version = TDC_LINK_VERSION;
+    f->kind = (uint8_t)kind;
+    f->eye = (uint8_t)eye;
+    f->format = (uint8_t)fmt;
+    f->stream_id = enc->stream_id;
+    f->flags = (uint16_t)flags;
+    f->frame_index = frame;
+    f->width = (uint16_t)w;
+    f->height = (uint16_t)h;
+}
+
+/* Payload already written at out + HEADER_BYTES: add the header. */
+static size_t finish(uint8_t *out, const tdc_link_header_fields_t *f, uint32_t len)
+{
+    tdc_link_write_header(out, f, len, tdc_crc32(out + TDC_LINK_HEADER_BYTES, len));
+    return (size_t)TDC_LINK_HEADER_BYTES + len;
+}
+
+size_t tdc_link_encode_stream(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap)
+{
+    if (cap < (size_t)TDC_LINK_HEADER_BYTES + TDC_LINK_STREAM_HEADER_BYTES) {
+        return 0;
+    }
+    uint8_t *p = out + TDC_LINK_HEADER_BYTES;
+    const tdc_link_stream_info_t *in = &enc->info;
+    tdc_link_wr32(p + 0, in->flags);
+    tdc_link_wr16(p + 4, in->r_num);
+    tdc_link_wr16(p + 6, in->r_den);
+    tdc_link_wr16(p + 8, in->width);
+    tdc_link_wr16(p + 10, in->height);
+    p[12] = in->eyes;
+    p[13] = in->reserved;
+    tdc_link_wr16(p + 14, in->refresh_hz);
+    tdc_link_header_fields_t f;
+    fields(enc, &f, TDC_LINK_KIND_STREAM, 0, 0, TDC_PIXFMT_NONE, in->width, in->height, 0);
+    return finish(out, &f, TDC_LINK_STREAM_HEADER_BYTES);
+}
+
+size_t tdc_link_encode_frame(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap, tdc_link_kind_t kind,
+                             uint32_t eye, uint32_t frame, tdc_pixfmt_t fmt, const uint8_t *rgb, uint32_t w,
+                             uint32_t h, uint32_t stride)
+{
+    if ((kind != TDC_LINK_KIND_FULL && kind != TDC_LINK_KIND_REDUCED) || !tdc_pixfmt_valid(fmt) || w == 0 ||
+        h == 0 || w > 65535u || h > 65535u) {
+        return 0;
+    }
+    const size_t total = tdc_link_packet_bytes(kind, fmt, w, h, 0);
+    if (!out || !rgb || cap < total) {
+        return 0;
+    }
+    tdc_pixfmt_pack(fmt, rgb, w, h, stride, out + TDC_LINK_HEADER_BYTES);
+    tdc_link_header_fields_t f;
+    fields(enc, &f, kind, eye, frame, fmt, w, h, 0);
+    return finish(out, &f, (uint32_t)(total - TDC_LINK_HEADER_BYTES));
+}
+
+size_t tdc_link_encode_subframe(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap, uint32_t eye,
+                                uint32_t frame, tdc_pixfmt_t fmt, const uint8_t *samples, uint32_t w, uint32_t h)
+{
+    if (!tdc_pixfmt_valid(fmt) || w == 0 || h == 0 || w > 65535u || h > 65535u) {
+        return 0;
+    }
+    const size_t total = tdc_link_packet_bytes(TDC_LINK_KIND_SUBFRAME, fmt, w, h, 0);
+    if (!out || !samples || cap < total) {
+        return 0;
+    }
+    const uint32_t tx = TDC_LINK_TILES(w), ty = TDC_LINK_TILES(h);
+    tdc_pixfmt_pack(fmt, samples, tx, ty, tx * 3u, out + TDC_LINK_HEADER_BYTES);
+    tdc_link_header_fields_t f;
+    fields(enc, &f, TDC_LINK_KIND_SUBFRAME, eye, frame, fmt, w, h, 0);
+    return finish(out, &f, (uint32_t)(total - TDC_LINK_HEADER_BYTES));
+}
+
+size_t tdc_link_encode_motion(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap, uint32_t eye,
+                              uint32_t frame, const int16_t *mv, uint32_t w, uint32_t h, int per_sample)
+{
+    const uint32_t flags = per_sample ? TDC_LINK_PKT_MV_PER_SAMPLE : 0u;
+    if (w == 0 || h == 0 || w > 65535u || h > 65535u) {
+        return 0;
+    }
+    const size_t total = tdc_link_packet_bytes(TDC_LINK_KIND_MOTION, TDC_PIXFMT_NONE, w, h, flags);
+    if (!out || !mv || cap < total) {
+        return 0;
+    }
+    const size_t count = (total - TDC_LINK_HEADER_BYTES) / 2u;
+    uint8_t *p = out + TDC_LINK_HEADER_BYTES;
+    for (size_t i = 0; i < count; i++) {
+        /* int16 -> two's complement bits without implementation-defined
+         * conversion: negative values map to v + 2^16. */
+        const int32_t v = mv[i];
+        tdc_link_wr16(p + 2u * i, (uint32_t)(v < 0 ? v + 65536 : v));
+    }
+    tdc_link_header_fields_t f;
+    fields(enc, &f, TDC_LINK_KIND_MOTION, eye, frame, TDC_PIXFMT_NONE, w, h, flags);
+    return finish(out, &f, (uint32_t)(total - TDC_LINK_HEADER_BYTES));
+}
+
+size_t tdc_link_encode_pattern(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap, uint32_t eye,
+                               uint32_t frame, const uint8_t *bits, uint32_t w, uint32_t h)
+{
+    if (w == 0 || h == 0 || w > 65535u || h > 65535u) {
+        return 0;
+    }
+    const size_t total = tdc_link_packet_bytes(TDC_LINK_KIND_PATTERN, TDC_PIXFMT_NONE, w, h, 0);
+    if (!out || !bits || cap < total) {
+        return 0;
+    }
+    const size_t n = total - TDC_LINK_HEADER_BYTES;
+    memcpy(out + TDC_LINK_HEADER_BYTES, bits, n);
+    /* Bits past the last tile are zero on the wire. */
+    const uint32_t tiles = TDC_LINK_TILES(w) * TDC_LINK_TILES(h);
+    if (tiles % 8u) {
+        out[TDC_LINK_HEADER_BYTES + n - 1u] &= (uint8_t)((1u << (tiles % 8u)) - 1u);
+    }
+    tdc_link_header_fields_t f;
+    fields(enc, &f, TDC_LINK_KIND_PATTERN, eye, frame, TDC_PIXFMT_NONE, w, h, 0);
+    return finish(out, &f, (uint32_t)(total - TDC_LINK_HEADER_BYTES));
+}

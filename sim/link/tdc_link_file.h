@@ -1,0 +1,47 @@
+/*
+ * tdc_link_file.h - .tdcs stream files: the link byte stream exactly as it
+ * goes over the wire (packets back to back, normally starting with a STREAM
+ * packet), so a file can be fed to the decoder or sent to a board verbatim.
+ * The renderer and the simulator write them, hosttools and tests read them.
+ *
+ * Reading walks packet by packet and checks magic and header CRC; it does
+ * not skip garbage (use the firmware decoder for damaged streams).
+ */
+#ifndef TDC_LINK_FILE_H
+#define TDC_LINK_FILE_H
+
+#include <stdint.h>
+#include <stdio.h>
+
+#include "link/tdc_link_encode.h"
+
+typedef struct {
+    FILE *f;
+    int writing;
+    uint64_t bytes;   /* bytes written / read so far */
+    uint32_t packets; /* packets written / read */
+    char path[256];
+} tdc_link_file_t;
+
+/* Open for writing (truncates) / reading.  0 on success, -1 with a message
+ * on stderr otherwise. */
+int tdc_link_file_create(tdc_link_file_t *lf, const char *path);
+int tdc_link_file_open(tdc_link_file_t *lf, const char *path);
+
+/* Appends n bytes (one or more complete packets).  0 / -1. */
+int tdc_link_file_write(tdc_link_file_t *lf, const uint8_t *packet, size_t n);
+
+/* Reads the next packet into buf (cap bytes): returns its total size,
+ * 0 at a clean end of file, -1 on a truncated/invalid packet or if it does
+ * not fit (message on stderr).  *fields, *payload_len: parsed header. */
+long tdc_link_file_read_packet(tdc_link_file_t *lf, uint8_t *buf, size_t cap, tdc_link_header_fields_t *fields,
+                               uint32_t *payload_len);
+
+/* Reads up to cap raw bytes (for feeding a decoder in chunks); returns the
+ * count, 0 at end of file, -1 on error. */
+long tdc_link_file_read_raw(tdc_link_file_t *lf, uint8_t *buf, size_t cap);
+
+/* Flushes and closes; 0 / -1 (a write error surfaces here too). */
+int tdc_link_file_close(tdc_link_file_t *lf);
+
+#endif /* TDC_LINK_FILE_H */
