@@ -71,6 +71,10 @@ TEST_EXTRA :=       # extra phony targets `make test` runs after the host suites
 .PHONY: all deps test run-tests run-golden bench demo golden-update clean firmware help
 all: $(if $(filter host,$(BOARD)),host,firmware)
 
+# Host libraries (defined before the fragments so their rules can name them).
+FWLIB := $(B)/libtdcfw.a
+SIMLIB := $(B)/libtdcsim.a
+
 include $(sort $(wildcard mk/*.mk))
 
 # ---------------------------------------------------------------------------
@@ -110,8 +114,6 @@ $(GEN)/tdc_panels.h: $(PANEL_CSRCS) Makefile | $(GEN)
 # ---------------------------------------------------------------------------
 FW_OBJS = $(patsubst %.c,$(B)/%.o,$(FW_SRCS)) $(patsubst $(GEN)/%.c,$(B)/gen/%.o,$(PANEL_CSRCS))
 SIM_OBJS = $(patsubst %.c,$(B)/%.o,$(SIM_SRCS))
-FWLIB := $(B)/libtdcfw.a
-SIMLIB := $(B)/libtdcsim.a
 
 $(B)/firmware/%.o: firmware/%.c $(GEN)/tdc_panels.h
 	@mkdir -p $(@D)

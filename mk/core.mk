@@ -7,3 +7,4 @@ SIM_SRCS += sim/ref_trm.c
 TESTS += $(B)/tests/test_trm_ref
 TESTS += $(B)/tests/test_trm
 TESTS += $(B)/tests/test_trm_stability
+GOLDEN_STAGES += trm

@@ -12,23 +12,24 @@ uint64_t tdc_fnv1a64(uint64_t h, const void *data, size_t n)
     return h;
 }
 
-static char *put_str(char *o, const char *end, const char *s)
+/* Appends s to line[*n], leaving room for the frame number and checksum. */
+static void put_str(char *line, size_t *n, size_t cap, const char *s)
 {
-    while (*s && o < end) {
-        *o++ = *s++;
+    while (*s && *n < cap) {
+        line[(*n)++] = *s++;
     }
-    return o;
 }
 
 void tdc_golden_emit(tdc_golden_ctx_t *ctx, const char *stage, const char *vector, uint32_t frame,
                      uint64_t checksum)
 {
     char line[160];
-    char *o = line;
-    const char *end = line + sizeof line - 20; /* room for frame + hex + newline */
-    o = put_str(o, end, stage);
-    o = put_str(o, end, "/");
-    o = put_str(o, end, vector);
+    size_t len = 0;
+    const size_t cap = sizeof line - 32; /* room for frame + hex + newline */
+    put_str(line, &len, cap, stage);
+    put_str(line, &len, cap, "/");
+    put_str(line, &len, cap, vector);
+    char *o = line + len;
     *o++ = ' ';
     char dec[12];
     int n = 0;
