@@ -115,6 +115,12 @@ tdc_status_t tdc_asm_ingest(tdc_asm_t *st, uint32_t frame, const uint8_t *sample
  * for sum <= 1020 (tests/test_assemble.c checks all sums and n). */
 static const uint16_t tdc_asm_half_recip_q16[5] = {0, 32768, 16384, 10923, 8192};
 
+uint8_t tdc_asm_mean_u8(uint32_t sum, unsigned n)
+{
+    if (n < 1u || n > 4u) return 0;
+    return (uint8_t)(((2u * sum + n) * tdc_asm_half_recip_q16[n]) >> 16);
+}
+
 static void tdc_asm_window_mean(const uint8_t *s12, unsigned mask, uint8_t *out)
 {
     unsigned n = 0, r = 0, g = 0, b = 0;
@@ -126,10 +132,9 @@ static void tdc_asm_window_mean(const uint8_t *s12, unsigned mask, uint8_t *out)
             b += s12[i * 3u + 2u];
         }
     }
-    uint32_t q = tdc_asm_half_recip_q16[n];
-    out[0] = (uint8_t)(((2u * r + n) * q) >> 16);
-    out[1] = (uint8_t)(((2u * g + n) * q) >> 16);
-    out[2] = (uint8_t)(((2u * b + n) * q) >> 16);
+    out[0] = tdc_asm_mean_u8(r, n);
+    out[1] = tdc_asm_mean_u8(g, n);
+    out[2] = tdc_asm_mean_u8(b, n);
 }
 
 /* floor(sqrt(x)) for 32-bit x, digit by digit (16 steps), exact. */

@@ -139,4 +139,8 @@ const uint8_t *tdc_asm_output(const tdc_asm_t *st, int *stride_bytes);
 /* Orderings the stage will use for the current/next cycle (bitmap). */
 const uint8_t *tdc_asm_pattern(const tdc_asm_t *st);
 
+/* Window mean round(sum / n) (half up) for n = 1..4, sum <= 255 n; exposed
+ * for tests (exhaustively checked).  n outside 1..4 gives 0. */
+uint8_t tdc_asm_mean_u8(uint32_t sum, unsigned n);
+
 #endif /* TDC_ASSEMBLE_H */

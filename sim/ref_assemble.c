@@ -328,3 +328,17 @@ void tdc_scene_subframe(tdc_scene_t *s, uint32_t frame, uint8_t *samples, int16_
             }
         }
 }
+
+void tdc_asm_err_add(tdc_asm_err_t *e, const uint8_t *fixed, const uint8_t *ref8, const double *exact, size_t n)
+{
+    for (size_t i = 0; i < n; i++) {
+        int d = abs((int)fixed[i] - (int)ref8[i]);
+        e->hist[d > 3 ? 3 : d]++;
+        if (d > e->max_abs) e->max_abs = d;
+        if (exact) {
+            double de = fabs(fixed[i] - exact[i]);
+            if (de > e->max_exact) e->max_exact = de;
+        }
+    }
+    e->n += n;
+}

@@ -13,6 +13,7 @@
 #ifndef REF_ASSEMBLE_H
 #define REF_ASSEMBLE_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "tdc_ordering.h"
@@ -76,5 +77,18 @@ void tdc_scene_mv(const tdc_scene_t *s, int x, int y, uint32_t t, int16_t mv[2])
  * pairs.
  */
 void tdc_scene_subframe(tdc_scene_t *s, uint32_t frame, uint8_t *samples, int16_t *mvs, uint8_t *bits_out);
+
+/* ------------------------------------------------------------------------
+ * Error statistics of 8-bit outputs against the reference.
+ * ---------------------------------------------------------------------- */
+typedef struct {
+    uint64_t n;          /* samples compared */
+    uint64_t hist[4];    /* |diff| = 0, 1, 2, >= 3 LSB */
+    int max_abs;         /* largest |diff| */
+    double max_exact;    /* largest |fixed - unrounded reference| */
+} tdc_asm_err_t;
+
+/* Accumulates |fixed - ref8| and |fixed - exact| over n bytes. */
+void tdc_asm_err_add(tdc_asm_err_t *e, const uint8_t *fixed, const uint8_t *ref8, const double *exact, size_t n);
 
 #endif
