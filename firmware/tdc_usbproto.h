@@ -1,0 +1,269 @@
+/*
+ * tdc_usbproto.h - the board side of the tdc USB protocol (docs/usb-protocol.md).
+ *
+ * What lives here: the descriptors, the parsing of SETUP packets, the vendor
+ * requests of the streaming interface (board info, counters, reset), the
+ * bulk OUT accounting of link packets, the bulk IN status report, and the
+ * USB DFU 1.1 state machine of the flashing interface with its image checks.
+ * What does not: the USB device controller driver.  A board's USB stack (or
+ * the FunctionFS gadget of `make test-vm`, or the umockdev emulation of the
+ * tests) calls tdc_usbp_control() for every SETUP it does not handle itself,
+ * tdc_usbp_bulk_out() for every bulk OUT transfer and
+ * tdc_usbp_status_report() to fill the bulk IN endpoint.
+ *
+ * Firmware rules: no heap, no float, caller-owned state (tdc_usbp_t), every
+ * multi-byte field is serialised explicitly little-endian (no struct
+ * punning), so the bytes on the wire do not depend on the compiler or CPU.
+ */
+#ifndef TDC_USBPROTO_H
+#define TDC_USBPROTO_H
+
+#include <stdint.h>
+#include <stddef.h>
+
+/* pid.codes open-source VID with its *test* PID 0x0001: for development and
+ * CI only.  A shipped board must get its own PID from pid.codes. */
+#define TDC_USB_VID 0x1209u
+#define TDC_USB_PID 0x0001u
+
+#define TDC_USB_PROTO_VERSION 1u
+
+/* Interfaces and endpoints of configuration 1. */
+#define TDC_USB_IF_STREAM 0u     /* vendor class 0xFF, subclass 'T', protocol 1 */
+#define TDC_USB_IF_DFU 1u        /* DFU 1.1, DFU mode (0xFE/0x01/0x02) */
+#define TDC_USB_EP_LINK_OUT 0x01u /* bulk OUT: link packets, host -> board */
+#define TDC_USB_EP_STATUS_IN 0x81u /* bulk IN: status reports, board -> host */
+#define TDC_USB_STREAM_SUBCLASS 0x54u /* 'T' */
+#define TDC_USB_STREAM_PROTOCOL 0x01u
+
+/* Vendor requests on the streaming interface (wIndex = TDC_USB_IF_STREAM). */
+#define TDC_USB_REQ_BOARD_INFO 0x01u     /* IN  (0xC1): tdc board info, TDC_USB_INFO_LEN bytes */
+#define TDC_USB_REQ_RESET_COUNTERS 0x02u /* OUT (0x41), no data */
+#define TDC_USB_REQ_RESET_BOARD 0x03u    /* OUT (0x41), no data; board resets after the status stage */
+
+/* Board info reply layout (little-endian, offsets in bytes). */
+#define TDC_USB_INFO_MAGIC 0x42434454u /* "TDCB" */
+#define TDC_USB_INFO_LEN 104u
+#define TDC_USB_INFO_NAME_LEN 16u
+enum {
+    TDC_USB_INFO_OFF_MAGIC = 0,       /* u32 */
+    TDC_USB_INFO_OFF_PROTO = 4,       /* u16 protocol version */
+    TDC_USB_INFO_OFF_LEN = 6,         /* u16 length of this reply */
+    TDC_USB_INFO_OFF_FW_VERSION = 8,  /* u32 major<<16 | minor<<8 | patch */
+    TDC_USB_INFO_OFF_BOARD = 12,      /* char[16], NUL padded */
+    TDC_USB_INFO_OFF_PANEL = 28,      /* char[16], NUL padded */
+    TDC_USB_INFO_OFF_WIDTH = 44,      /* u16 panel width, pixels */
+    TDC_USB_INFO_OFF_HEIGHT = 46,     /* u16 panel height, pixels */
+    TDC_USB_INFO_OFF_REFRESH = 48,    /* u32 refresh, millihertz */
+    TDC_USB_INFO_OFF_RX_BUF = 52,     /* u32 link receive buffer, bytes */
+    TDC_USB_INFO_OFF_MAX_PKT = 56,    /* u32 largest link packet, bytes */
+    TDC_USB_INFO_OFF_SLOT = 60,       /* u32 DFU flash slot, bytes */
+    TDC_USB_INFO_OFF_RX_XFERS = 64,   /* u32 bulk OUT transfers received */
+    TDC_USB_INFO_OFF_RX_BYTES = 68,   /* u64 bytes received (lo, hi) */
+    TDC_USB_INFO_OFF_RX_CRC = 76,     /* u32 CRC-32 of every byte received since counter reset */
+    TDC_USB_INFO_OFF_LINK_CRC = 80,   /* u32 link packets failing their CRC */
+    TDC_USB_INFO_OFF_LINK_BAD = 84,   /* u32 malformed link packets */
+    TDC_USB_INFO_OFF_OVERRUNS = 88,   /* u32 transfers dropped, receive buffer full */
+    TDC_USB_INFO_OFF_DFU_ERRORS = 92, /* u32 DFU requests that ended in dfuERROR */
+    TDC_USB_INFO_OFF_STALLS = 96,     /* u32 requests answered with STALL */
+    TDC_USB_INFO_OFF_FRAMES = 100     /* u32 frames shown */
+};
+
+/* Bulk IN status report (little-endian). */
+#define TDC_USB_STATUS_MAGIC 0x53434454u /* "TDCS" */
+#define TDC_USB_STATUS_LEN 32u
+enum {
+    TDC_USB_STATUS_OFF_MAGIC = 0,   /* u32 */
+    TDC_USB_STATUS_OFF_SEQ = 4,     /* u32 report sequence number */
+    TDC_USB_STATUS_OFF_DFU = 8,     /* u8 DFU state, u8 DFU status, u16 reserved */
+    TDC_USB_STATUS_OFF_RX_XFERS = 12, /* u32 */
+    TDC_USB_STATUS_OFF_RX_BYTES = 16, /* u32 low 32 bits */
+    TDC_USB_STATUS_OFF_ERRORS = 20, /* u32 sum of link CRC, malformed, overrun */
+    TDC_USB_STATUS_OFF_FRAMES = 24, /* u32 frames shown */
+    TDC_USB_STATUS_OFF_RX_CRC = 28  /* u32 running CRC-32 of received bytes */
+};
+
+/* USB DFU 1.1 (DFU_1.1.pdf): requests, states and status codes. */
+enum {
+    TDC_DFU_DETACH = 0, TDC_DFU_DNLOAD = 1, TDC_DFU_UPLOAD = 2, TDC_DFU_GETSTATUS = 3,
+    TDC_DFU_CLRSTATUS = 4, TDC_DFU_GETSTATE = 5, TDC_DFU_ABORT = 6
+};
+typedef enum {
+    TDC_DFU_STATE_APP_IDLE = 0, TDC_DFU_STATE_APP_DETACH = 1, TDC_DFU_STATE_IDLE = 2,
+    TDC_DFU_STATE_DNLOAD_SYNC = 3, TDC_DFU_STATE_DNBUSY = 4, TDC_DFU_STATE_DNLOAD_IDLE = 5,
+    TDC_DFU_STATE_MANIFEST_SYNC = 6, TDC_DFU_STATE_MANIFEST = 7,
+    TDC_DFU_STATE_MANIFEST_WAIT_RESET = 8, TDC_DFU_STATE_UPLOAD_IDLE = 9, TDC_DFU_STATE_ERROR = 10
+} tdc_dfu_state_t;
+typedef enum {
+    TDC_DFU_OK = 0x00, TDC_DFU_ERR_TARGET = 0x01, TDC_DFU_ERR_FILE = 0x02,
+    TDC_DFU_ERR_WRITE = 0x03, TDC_DFU_ERR_ERASE = 0x04, TDC_DFU_ERR_CHECK_ERASED = 0x05,
+    TDC_DFU_ERR_PROG = 0x06, TDC_DFU_ERR_VERIFY = 0x07, TDC_DFU_ERR_ADDRESS = 0x08,
+    TDC_DFU_ERR_NOTDONE = 0x09, TDC_DFU_ERR_FIRMWARE = 0x0A, TDC_DFU_ERR_VENDOR = 0x0B,
+    TDC_DFU_ERR_USBR = 0x0C, TDC_DFU_ERR_POR = 0x0D, TDC_DFU_ERR_UNKNOWN = 0x0E,
+    TDC_DFU_ERR_STALLEDPKT = 0x0F
+} tdc_dfu_status_t;
+#define TDC_DFU_TRANSFER_SIZE 1024u /* wTransferSize of the DFU functional descriptor */
+#define TDC_DFU_GETSTATUS_LEN 6u
+
+/* tdc firmware image = 32-byte header + payload (what DFU downloads). */
+#define TDC_IMAGE_MAGIC 0x46434454u /* "TDCF" */
+#define TDC_IMAGE_HEADER_LEN 32u
+#define TDC_IMAGE_BOARD_LEN 12u
+enum {
+    TDC_IMAGE_OFF_MAGIC = 0,       /* u32 */
+    TDC_IMAGE_OFF_HDR_VERSION = 4, /* u16 = 1 */
+    TDC_IMAGE_OFF_HDR_LEN = 6,     /* u16 = 32 */
+    TDC_IMAGE_OFF_PAYLOAD_LEN = 8, /* u32 payload bytes after the header */
+    TDC_IMAGE_OFF_PAYLOAD_CRC = 12,/* u32 CRC-32 (IEEE 802.3) of the payload */
+    TDC_IMAGE_OFF_FW_VERSION = 16, /* u32 */
+    TDC_IMAGE_OFF_BOARD = 20       /* char[12] target board name, NUL padded */
+};
+
+typedef enum {
+    TDC_IMAGE_OK = 0,
+    TDC_IMAGE_ERR_SHORT = -1,     /* fewer bytes than a header */
+    TDC_IMAGE_ERR_MAGIC = -2,     /* not a tdc image */
+    TDC_IMAGE_ERR_HEADER = -3,    /* unknown header version or length */
+    TDC_IMAGE_ERR_SIZE = -4,      /* header payload length != bytes present */
+    TDC_IMAGE_ERR_CRC = -5,       /* payload CRC mismatch */
+    TDC_IMAGE_ERR_BOARD = -6,     /* built for another board */
+    TDC_IMAGE_ERR_TOO_BIG = -7    /* does not fit the flash slot */
+} tdc_image_status_t;
+
+/* Result of handling one request. */
+typedef enum {
+    TDC_USBP_OK = 0,      /* handled; for IN requests *reply_len bytes are the data stage */
+    TDC_USBP_STALL = -1,  /* protocol error: stall the endpoint (counted) */
+    TDC_USBP_ARG = -2     /* caller error (null pointer, reply buffer too small) */
+} tdc_usbp_result_t;
+
+/* What the board's link decoder said about a received transfer. */
+typedef enum {
+    TDC_USBP_SINK_OK = 0, TDC_USBP_SINK_CRC = 1, TDC_USBP_SINK_MALFORMED = 2,
+    TDC_USBP_SINK_OVERRUN = 3
+} tdc_usbp_sink_result_t;
+
+/* The DFU target: a flash slot behind two calls so the same state machine
+ * drives internal flash on a board, RAM in the emulation and a file in the
+ * gadget.  Both return 0 on success, non-zero on a hardware failure. */
+typedef struct {
+    int (*write)(void *ctx, uint32_t offset, const uint8_t *data, uint32_t len);
+    int (*read)(void *ctx, uint32_t offset, uint8_t *data, uint32_t len);
+    void *ctx;
+    uint32_t slot_bytes;
+} tdc_usbp_flash_t;
+
+typedef tdc_usbp_sink_result_t (*tdc_usbp_sink_fn)(void *ctx, const uint8_t *data, uint32_t len);
+
+typedef struct {
+    const char *board_name;  /* <= 15 chars shown, also the image's target */
+    const char *panel_name;
+    const char *serial;      /* iSerialNumber, ASCII, <= 31 chars */
+    uint32_t fw_version;     /* major<<16 | minor<<8 | patch */
+    uint16_t panel_width, panel_height;
+    uint32_t refresh_mhz;
+    uint32_t rx_buffer_bytes;
+    uint32_t max_packet_bytes;
+    tdc_usbp_flash_t flash;
+    tdc_usbp_sink_fn sink;   /* may be NULL: bytes are only counted */
+    void *sink_ctx;
+} tdc_usbp_config_t;
+
+typedef struct {
+    uint32_t rx_transfers;
+    uint64_t rx_bytes;
+    uint32_t rx_crc;         /* running CRC-32 register (pre-inverted) */
+    uint32_t link_crc_errors, link_malformed, rx_overruns;
+    uint32_t dfu_errors, stalls;
+    uint32_t frames_shown;
+} tdc_usbp_counters_t;
+
+typedef struct {
+    tdc_usbp_config_t cfg;
+    tdc_usbp_counters_t cnt;
+    uint32_t status_seq;
+    /* DFU */
+    tdc_dfu_state_t dfu_state;
+    tdc_dfu_status_t dfu_status;
+    uint16_t dfu_next_block;
+    uint32_t dfu_received;     /* bytes written to the slot in this download */
+    uint32_t dfu_image_bytes;  /* bytes of the last image that manifested (upload length) */
+    uint32_t dfu_upload_pos;
+    uint8_t reset_pending;     /* RESET_BOARD acknowledged: reset after the status stage */
+} tdc_usbp_t;
+
+typedef struct {
+    uint8_t bm_request_type, b_request;
+    uint16_t w_value, w_index, w_length;
+} tdc_usbp_setup_t;
+
+/* State lifecycle. */
+tdc_usbp_result_t tdc_usbp_init(tdc_usbp_t *s, const tdc_usbp_config_t *cfg);
+
+/* SETUP packet: 8 raw bytes -> fields (little-endian). */
+void tdc_usbp_parse_setup(const uint8_t raw[8], tdc_usbp_setup_t *out);
+
+/* One control request.  data_out: the OUT data stage (w_length bytes, may be
+ * NULL when w_length is 0).  reply: buffer for the IN data stage, capacity
+ * reply_cap; *reply_len gets the bytes to send (<= w_length).  Handles the
+ * standard GET_DESCRIPTOR requests too (for stacks that forward them). */
+tdc_usbp_result_t tdc_usbp_control(tdc_usbp_t *s, const tdc_usbp_setup_t *setup,
+                                   const uint8_t *data_out, uint8_t *reply,
+                                   uint32_t reply_cap, uint32_t *reply_len);
+
+/* One bulk OUT transfer of link packets. */
+void tdc_usbp_bulk_out(tdc_usbp_t *s, const uint8_t *data, uint32_t len);
+
+/* Fill the bulk IN endpoint: TDC_USB_STATUS_LEN bytes into out. */
+void tdc_usbp_status_report(tdc_usbp_t *s, uint8_t out[TDC_USB_STATUS_LEN]);
+
+/* Returns 1 once after RESET_BOARD was acknowledged (the board then resets). */
+int tdc_usbp_take_reset(tdc_usbp_t *s);
+
+/* Descriptors (high speed: bulk max packet 512; full speed: 64). */
+uint32_t tdc_usbp_device_descriptor(uint8_t out[18]);
+#define TDC_USB_CONFIG_DESC_LEN 50u
+uint32_t tdc_usbp_config_descriptor(uint8_t out[TDC_USB_CONFIG_DESC_LEN], int high_speed);
+/* String descriptor index 0..5 -> bytes in out (cap bytes), 0 if none. */
+uint32_t tdc_usbp_string_descriptor(const tdc_usbp_t *s, uint8_t index, uint8_t *out, uint32_t cap);
+
+/* CRC-32 (IEEE 802.3, reflected 0xEDB88320).  Start with crc = 0xFFFFFFFF,
+ * finish with ~crc; tdc_usbp_crc32() does both for a whole buffer. */
+uint32_t tdc_usbp_crc32_update(uint32_t crc, const uint8_t *data, uint32_t len);
+uint32_t tdc_usbp_crc32(const uint8_t *data, uint32_t len);
+
+/* Image checks shared by the board (manifest) and the host (before download).
+ * image/len: header + payload as it would be downloaded.  board may be NULL
+ * (no board check); slot_bytes 0 = no size limit. */
+tdc_image_status_t tdc_image_check(const uint8_t *image, uint32_t len, const char *board,
+                                   uint32_t slot_bytes);
+/* Write a header for payload (payload_len bytes) into hdr. */
+void tdc_image_make_header(uint8_t hdr[TDC_IMAGE_HEADER_LEN], const uint8_t *payload,
+                           uint32_t payload_len, uint32_t fw_version, const char *board);
+const char *tdc_image_status_name(tdc_image_status_t st);
+const char *tdc_dfu_status_name(tdc_dfu_status_t st);
+const char *tdc_dfu_state_name(tdc_dfu_state_t st);
+
+/* Little-endian helpers used by the protocol (and the host tools). */
+static inline void tdc_put_le16(uint8_t *p, uint16_t v)
+{
+    p[0] = (uint8_t)(v & 0xFFu);
+    p[1] = (uint8_t)(v >> 8);
+}
+static inline void tdc_put_le32(uint8_t *p, uint32_t v)
+{
+    p[0] = (uint8_t)(v & 0xFFu);
+    p[1] = (uint8_t)((v >> 8) & 0xFFu);
+    p[2] = (uint8_t)((v >> 16) & 0xFFu);
+    p[3] = (uint8_t)(v >> 24);
+}
+static inline uint16_t tdc_get_le16(const uint8_t *p)
+{
+    return (uint16_t)((uint16_t)p[0] | (uint16_t)((uint16_t)p[1] << 8));
+}
+static inline uint32_t tdc_get_le32(const uint8_t *p)
+{
+    return (uint32_t)p[0] | ((uint32_t)p[1] << 8) | ((uint32_t)p[2] << 16) | ((uint32_t)p[3] << 24);
+}
+
+#endif

@@ -1,0 +1,637 @@
+/*
+ * tdc-usb - talk to a tdc display-controller board over USB (libusb-1.0):
+ * list boards, show board info, stream link packets, flash firmware (DFU 1.1).
+ * Protocol: docs/usb-protocol.md.  Usage and exit codes: docs/hosttools.md.
+ */
+#include <errno.h>
+#include <getopt.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "tdc_usb_dev.h"
+#include "tdc_usbproto.h"
+
+#define DEFAULT_TIMEOUT_MS 2000u
+#define DFU_STATUS_DEADLINE_MS 10000u /* whole GETSTATUS polling loop of one step */
+
+static const char usage_text[] =
+    "usage: tdc-usb [options] <command> [args]\n"
+    "commands:\n"
+    "  list                     boards (USB %04x:%04x) with bus, address and serial\n"
+    "  info                     firmware, board, panel, buffer sizes, error counters\n"
+    "  stream FILE|-            send a link stream (or stdin, e.g. live tdc-sim output)\n"
+    "                           over bulk OUT; progress, throughput, board counters\n"
+    "  flash IMAGE              DFU download with size and CRC checks, verify, reset\n"
+    "  mkimage --board B [--fw-version X.Y.Z] IN.bin OUT.img\n"
+    "                           wrap a raw firmware binary in a tdc image header\n"
+    "options:\n"
+    "  --bus N --address N      select the board by USB bus and device address\n"
+    "  --serial S               select the board by serial number\n"
+    "  --vid V --pid P          other USB IDs (default %04x:%04x, pid.codes test PID)\n"
+    "  --timeout MS             timeout of every USB transfer (default %u)\n"
+    "  --chunk BYTES            stream: bytes per bulk transfer (default: board buffer)\n"
+    "  --progress/--no-progress stream/flash: force the progress bar on or off\n"
+    "  --no-verify --no-reset   flash: skip the read-back, do not reset afterwards\n"
+    "  -h, --help               this text\n"
+    "exit codes: 0 OK, 1 ARGS, 2 NO_DEVICE, 3 AMBIGUOUS, 4 USB, 5 TIMEOUT,\n"
+    "  6 DISCONNECTED, 7 FILE, 8 IMAGE, 9 INCOMPATIBLE, 10 DFU, 11 VERIFY, 12 PROTOCOL\n";
+
+static void usage(FILE *f)
+{
+    fprintf(f, usage_text, TDC_USB_VID, TDC_USB_PID, TDC_USB_VID, TDC_USB_PID,
+            DEFAULT_TIMEOUT_MS);
+}
+
+typedef struct {
+    tdc_usb_select_t sel;
+    long chunk;
+    int progress; /* -1 auto (tty), 0 off, 1 on */
+    int verify, reset;
+    const char *board;
+    uint32_t fw_version;
+} opts_t;
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static void progress_bar(const opts_t *o, const char *label, uint64_t done, uint64_t total,
+                         double t0)
+{
+    if (o->progress == 0 || (o->progress < 0 && !isatty(2)))
+        return;
+    double dt = now_s() - t0;
+    double mbs = dt > 0 ? (double)done / dt / 1e6 : 0.0;
+    if (total > 0) {
+        int w = 30, fill = (int)((double)w * (double)done / (double)total);
+        fprintf(stderr, "\r%s [%.*s%*s] %5.1f%% %.2f MB/s ", label, fill,
+                "##############################", w - fill, "",
+                100.0 * (double)done / (double)total, mbs);
+    } else {
+        fprintf(stderr, "\r%s %llu bytes %.2f MB/s ", label, (unsigned long long)done, mbs);
+    }
+    fflush(stderr);
+}
+
+static void progress_end(const opts_t *o)
+{
+    if (o->progress == 1 || (o->progress < 0 && isatty(2)))
+        fputc('\n', stderr);
+}
+
+/* ------------------------------------------------------------------ */
+/* Board info                                                          */
+/* ------------------------------------------------------------------ */
+typedef struct {
+    uint32_t fw_version;
+    char board[TDC_USB_INFO_NAME_LEN + 1], panel[TDC_USB_INFO_NAME_LEN + 1];
+    unsigned width, height;
+    uint32_t refresh_mhz, rx_buf, max_pkt, slot;
+    uint32_t rx_xfers, rx_crc, link_crc, link_bad, overruns, dfu_errors, stalls, frames;
+    uint64_t rx_bytes;
+} board_info_t;
+
+static tdc_exit_t get_info(tdc_board_t *b, board_info_t *bi)
+{
+    uint8_t raw[TDC_USB_INFO_LEN];
+    int got = 0;
+    tdc_exit_t e = tdc_usb_ctrl_in(b, "board-info request", LIBUSB_REQUEST_TYPE_VENDOR |
+                                   LIBUSB_RECIPIENT_INTERFACE, TDC_USB_REQ_BOARD_INFO, 0,
+                                   TDC_USB_IF_STREAM, raw, sizeof raw, &got);
+    if (e != TDC_EXIT_OK)
+        return e;
+    if (got < (int)TDC_USB_INFO_LEN || tdc_get_le32(raw + TDC_USB_INFO_OFF_MAGIC) != TDC_USB_INFO_MAGIC ||
+        tdc_get_le16(raw + TDC_USB_INFO_OFF_PROTO) != TDC_USB_PROTO_VERSION) {
+        fprintf(stderr, "tdc-usb: %s: board info malformed (%d bytes, magic %08x, protocol %u; "
+                        "tdc-usb speaks protocol %u)\n", b->op, got,
+                got >= 4 ? tdc_get_le32(raw) : 0u,
+                got >= 6 ? tdc_get_le16(raw + TDC_USB_INFO_OFF_PROTO) : 0u, TDC_USB_PROTO_VERSION);
+        return TDC_EXIT_PROTOCOL;
+    }
+    memset(bi, 0, sizeof *bi);
+    bi->fw_version = tdc_get_le32(raw + TDC_USB_INFO_OFF_FW_VERSION);
+    memcpy(bi->board, raw + TDC_USB_INFO_OFF_BOARD, TDC_USB_INFO_NAME_LEN);
+    memcpy(bi->panel, raw + TDC_USB_INFO_OFF_PANEL, TDC_USB_INFO_NAME_LEN);
+    bi->width = tdc_get_le16(raw + TDC_USB_INFO_OFF_WIDTH);
+    bi->height = tdc_get_le16(raw + TDC_USB_INFO_OFF_HEIGHT);
+    bi->refresh_mhz = tdc_get_le32(raw + TDC_USB_INFO_OFF_REFRESH);
+    bi->rx_buf = tdc_get_le32(raw + TDC_USB_INFO_OFF_RX_BUF);
+    bi->max_pkt = tdc_get_le32(raw + TDC_USB_INFO_OFF_MAX_PKT);
+    bi->slot = tdc_get_le32(raw + TDC_USB_INFO_OFF_SLOT);
+    bi->rx_xfers = tdc_get_le32(raw + TDC_USB_INFO_OFF_RX_XFERS);
+    bi->rx_bytes = (uint64_t)tdc_get_le32(raw + TDC_USB_INFO_OFF_RX_BYTES) |
+                   ((uint64_t)tdc_get_le32(raw + TDC_USB_INFO_OFF_RX_BYTES + 4) << 32);
+    bi->rx_crc = tdc_get_le32(raw + TDC_USB_INFO_OFF_RX_CRC);
+    bi->link_crc = tdc_get_le32(raw + TDC_USB_INFO_OFF_LINK_CRC);
+    bi->link_bad = tdc_get_le32(raw + TDC_USB_INFO_OFF_LINK_BAD);
+    bi->overruns = tdc_get_le32(raw + TDC_USB_INFO_OFF_OVERRUNS);
+    bi->dfu_errors = tdc_get_le32(raw + TDC_USB_INFO_OFF_DFU_ERRORS);
+    bi->stalls = tdc_get_le32(raw + TDC_USB_INFO_OFF_STALLS);
+    bi->frames = tdc_get_le32(raw + TDC_USB_INFO_OFF_FRAMES);
+    return TDC_EXIT_OK;
+}
+
+static void print_counters(const board_info_t *bi)
+{
+    printf("counters: rx_transfers %u rx_bytes %llu link_crc_errors %u link_malformed %u "
+           "rx_overruns %u dfu_errors %u stalls %u frames %u\n",
+           bi->rx_xfers, (unsigned long long)bi->rx_bytes, bi->link_crc, bi->link_bad,
+           bi->overruns, bi->dfu_errors, bi->stalls, bi->frames);
+}
+
+static tdc_exit_t cmd_info(tdc_board_t *b)
+{
+    board_info_t bi;
+    tdc_exit_t e = tdc_usb_claim(b, TDC_USB_IF_STREAM);
+    if (e == TDC_EXIT_OK)
+        e = get_info(b, &bi);
+    if (e != TDC_EXIT_OK)
+        return e;
+    printf("board: bus %03d address %03d serial %s\n", b->bus, b->address, b->serial);
+    printf("firmware: %u.%u.%u (protocol %u)\n", bi.fw_version >> 16, (bi.fw_version >> 8) & 0xFFu,
+           bi.fw_version & 0xFFu, TDC_USB_PROTO_VERSION);
+    printf("board: %s\npanel: %s %ux%u @ %u.%03u Hz\n", bi.board, bi.panel, bi.width, bi.height,
+           bi.refresh_mhz / 1000u, bi.refresh_mhz % 1000u);
+    printf("buffers: link rx %u bytes, max link packet %u bytes, flash slot %u bytes\n",
+           bi.rx_buf, bi.max_pkt, bi.slot);
+    print_counters(&bi);
+    return TDC_EXIT_OK;
+}
+
+/* ------------------------------------------------------------------ */
+/* list                                                                */
+/* ------------------------------------------------------------------ */
+static void list_cb(void *ctx, libusb_device *dev, libusb_device_handle *h, const char *serial,
+                    int open_err)
+{
+    const opts_t *o = ctx;
+    printf("bus %03u address %03u serial %s", libusb_get_bus_number(dev),
+           libusb_get_device_address(dev), open_err == 0 ? serial : "?");
+    if (open_err != 0) {
+        printf(" (cannot open: %s)\n", libusb_error_name(open_err));
+        return;
+    }
+    tdc_board_t b = {.h = h, .timeout_ms = o->sel.timeout_ms, .op = "list"};
+    uint8_t raw[TDC_USB_INFO_LEN];
+    int got = libusb_control_transfer(h, LIBUSB_ENDPOINT_IN | LIBUSB_REQUEST_TYPE_VENDOR |
+                                      LIBUSB_RECIPIENT_INTERFACE, TDC_USB_REQ_BOARD_INFO, 0,
+                                      TDC_USB_IF_STREAM, raw, sizeof raw, b.timeout_ms);
+    if (got >= (int)TDC_USB_INFO_LEN && tdc_get_le32(raw) == TDC_USB_INFO_MAGIC)
+        printf(" board %.16s panel %.16s fw %u.%u.%u\n", (const char *)raw + TDC_USB_INFO_OFF_BOARD,
+               (const char *)raw + TDC_USB_INFO_OFF_PANEL, raw[TDC_USB_INFO_OFF_FW_VERSION + 2],
+               raw[TDC_USB_INFO_OFF_FW_VERSION + 1], raw[TDC_USB_INFO_OFF_FW_VERSION]);
+    else
+        printf(" (board info: %s)\n", got < 0 ? libusb_error_name(got) : "malformed");
+}
+
+static tdc_exit_t cmd_list(libusb_context *ctx, opts_t *o)
+{
+    int n = tdc_usb_enumerate(ctx, &o->sel, list_cb, o);
+    if (n < 0) {
+        tdc_board_t b = {.op = "list"};
+        return tdc_usb_fail(&b, "listing USB devices", n);
+    }
+    if (n == 0) {
+        fprintf(stderr, "tdc-usb: list: no tdc board (USB %04x:%04x) found\n", o->sel.vid,
+                o->sel.pid);
+        return TDC_EXIT_NO_DEVICE;
+    }
+    return TDC_EXIT_OK;
+}
+
+/* ------------------------------------------------------------------ */
+/* stream                                                              */
+/* ------------------------------------------------------------------ */
+static tdc_exit_t cmd_stream(tdc_board_t *b, const opts_t *o, const char *path)
+{
+    FILE *f = strcmp(path, "-") == 0 ? stdin : fopen(path, "rb");
+    if (f == NULL) {
+        fprintf(stderr, "tdc-usb: stream: cannot open %s: %s\n", path, strerror(errno));
+        return TDC_EXIT_FILE;
+    }
+    uint64_t total = 0;
+    if (f != stdin && fseek(f, 0, SEEK_END) == 0) {
+        long sz = ftell(f);
+        total = sz > 0 ? (uint64_t)sz : 0;
+        rewind(f);
+    }
+    board_info_t bi;
+    tdc_exit_t e = tdc_usb_claim(b, TDC_USB_IF_STREAM);
+    if (e == TDC_EXIT_OK)
+        e = get_info(b, &bi);
+    if (e == TDC_EXIT_OK) /* counters (and the board's receive CRC) start with this stream */
+        e = tdc_usb_ctrl_out(b, "reset-counters request", LIBUSB_REQUEST_TYPE_VENDOR |
+                             LIBUSB_RECIPIENT_INTERFACE, TDC_USB_REQ_RESET_COUNTERS, 0,
+                             TDC_USB_IF_STREAM, NULL, 0);
+    if (e != TDC_EXIT_OK) {
+        if (f != stdin)
+            fclose(f);
+        return e;
+    }
+    long chunk = o->chunk > 0 ? o->chunk : (long)bi.rx_buf;
+    if (chunk <= 0 || chunk > (1L << 20))
+        chunk = 16384;
+    uint8_t *buf = malloc((size_t)chunk);
+    if (buf == NULL) {
+        fclose(f);
+        return TDC_EXIT_FILE;
+    }
+    uint64_t sent = 0;
+    uint32_t crc = 0xFFFFFFFFu;
+    double t0 = now_s(), last = 0;
+    size_t n;
+    while (e == TDC_EXIT_OK && (n = fread(buf, 1, (size_t)chunk, f)) > 0) {
+        int done = 0;
+        e = tdc_usb_bulk(b, "bulk OUT of link packets", TDC_USB_EP_LINK_OUT, buf, (int)n, &done);
+        sent += (uint64_t)done;
+        crc = tdc_usbp_crc32_update(crc, buf, (uint32_t)done);
+        if (e == TDC_EXIT_OK && done != (int)n) {
+            fprintf(stderr, "tdc-usb: stream: board took %d of %zu bytes\n", done, n);
+            e = TDC_EXIT_PROTOCOL;
+        }
+        double t = now_s();
+        if (t - last > 0.1) {
+            progress_bar(o, "stream", sent, total, t0);
+            last = t;
+        }
+    }
+    progress_bar(o, "stream", sent, total, t0);
+    progress_end(o);
+    double dt = now_s() - t0;
+    int read_err = ferror(f);
+    if (f != stdin)
+        fclose(f);
+    free(buf);
+    if (e != TDC_EXIT_OK) {
+        fprintf(stderr, "tdc-usb: stream: stopped after %llu bytes\n", (unsigned long long)sent);
+        return e;
+    }
+    if (read_err) {
+        fprintf(stderr, "tdc-usb: stream: read error on %s\n", path);
+        return TDC_EXIT_FILE;
+    }
+    printf("sent %llu bytes in %.3f s: %.2f MB/s\n", (unsigned long long)sent, dt,
+           dt > 0 ? (double)sent / dt / 1e6 : 0.0);
+    /* The board's status (bulk IN) and its counters. */
+    uint8_t st[TDC_USB_STATUS_LEN];
+    int got = 0;
+    e = tdc_usb_bulk(b, "bulk IN status report", TDC_USB_EP_STATUS_IN, st, sizeof st, &got);
+    if (e != TDC_EXIT_OK)
+        return e;
+    if (got < (int)TDC_USB_STATUS_LEN || tdc_get_le32(st) != TDC_USB_STATUS_MAGIC) {
+        fprintf(stderr, "tdc-usb: stream: status report malformed (%d bytes)\n", got);
+        return TDC_EXIT_PROTOCOL;
+    }
+    printf("status: seq %u errors %u frames %u\n", tdc_get_le32(st + TDC_USB_STATUS_OFF_SEQ),
+           tdc_get_le32(st + TDC_USB_STATUS_OFF_ERRORS), tdc_get_le32(st + TDC_USB_STATUS_OFF_FRAMES));
+    e = get_info(b, &bi);
+    if (e != TDC_EXIT_OK)
+        return e;
+    print_counters(&bi);
+    if (bi.rx_bytes != sent || bi.rx_crc != ~crc) {
+        fprintf(stderr, "tdc-usb: stream: board received %llu bytes with CRC-32 %08x, host sent "
+                        "%llu bytes with CRC-32 %08x\n", (unsigned long long)bi.rx_bytes, bi.rx_crc,
+                (unsigned long long)sent, ~crc);
+        return TDC_EXIT_VERIFY;
+    }
+    printf("board received all %llu bytes, CRC-32 %08x matches\n", (unsigned long long)sent, ~crc);
+    return TDC_EXIT_OK;
+}
+
+/* ------------------------------------------------------------------ */
+/* flash (DFU 1.1)                                                     */
+/* ------------------------------------------------------------------ */
+static tdc_exit_t read_file(const char *path, const char *op, uint8_t **data, uint32_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (f == NULL) {
+        fprintf(stderr, "tdc-usb: %s: cannot open %s: %s\n", op, path, strerror(errno));
+        return TDC_EXIT_FILE;
+    }
+    long sz = -1;
+    if (fseek(f, 0, SEEK_END) == 0)
+        sz = ftell(f);
+    if (sz < 0 || sz > (64L << 20)) {
+        fprintf(stderr, "tdc-usb: %s: %s: not a regular file or larger than 64 MiB\n", op, path);
+        fclose(f);
+        return TDC_EXIT_FILE;
+    }
+    rewind(f);
+    *data = malloc(sz > 0 ? (size_t)sz : 1u);
+    if (*data == NULL || fread(*data, 1, (size_t)sz, f) != (size_t)sz) {
+        fprintf(stderr, "tdc-usb: %s: cannot read %s\n", op, path);
+        free(*data);
+        *data = NULL;
+        fclose(f);
+        return TDC_EXIT_FILE;
+    }
+    fclose(f);
+    *len = (uint32_t)sz;
+    return TDC_EXIT_OK;
+}
+
+static uint16_t dfu_transfer_size(tdc_board_t *b)
+{
+    struct libusb_config_descriptor *cd = NULL;
+    uint16_t size = TDC_DFU_TRANSFER_SIZE;
+    if (libusb_get_active_config_descriptor(libusb_get_device(b->h), &cd) != 0)
+        return size;
+    for (int i = 0; i < cd->bNumInterfaces; i++) {
+        const struct libusb_interface_descriptor *id = &cd->interface[i].altsetting[0];
+        if (id->bInterfaceClass != 0xFE || id->bInterfaceSubClass != 0x01)
+            continue;
+        const uint8_t *x = id->extra;
+        for (int k = 0; k + 9 <= id->extra_length && x[k] >= 2; k += x[k])
+            if (x[k + 1] == 0x21 && x[k] >= 7)
+                size = (uint16_t)(x[k + 5] | (x[k + 6] << 8));
+    }
+    libusb_free_config_descriptor(cd);
+    return size >= 64 && size <= 4096 ? size : TDC_DFU_TRANSFER_SIZE;
+}
+
+static tdc_exit_t dfu_getstatus(tdc_board_t *b, uint8_t st[6])
+{
+    int got = 0;
+    tdc_exit_t e = tdc_usb_ctrl_in(b, "DFU_GETSTATUS", LIBUSB_REQUEST_TYPE_CLASS |
+                                   LIBUSB_RECIPIENT_INTERFACE, TDC_DFU_GETSTATUS, 0,
+                                   TDC_USB_IF_DFU, st, 6, &got);
+    if (e == TDC_EXIT_OK && got != 6) {
+        fprintf(stderr, "tdc-usb: flash: DFU_GETSTATUS returned %d bytes, not 6\n", got);
+        return TDC_EXIT_PROTOCOL;
+    }
+    return e;
+}
+
+/* Polls GETSTATUS (honouring bwPollTimeout) until the state is `want` or
+ * dfuERROR, within DFU_STATUS_DEADLINE_MS. */
+static tdc_exit_t dfu_wait(tdc_board_t *b, uint8_t want, const char *step)
+{
+    double deadline = now_s() + DFU_STATUS_DEADLINE_MS / 1000.0;
+    for (;;) {
+        uint8_t st[6];
+        tdc_exit_t e = dfu_getstatus(b, st);
+        if (e != TDC_EXIT_OK)
+            return e;
+        if (st[4] == TDC_DFU_STATE_ERROR || st[0] != TDC_DFU_OK) {
+            fprintf(stderr, "tdc-usb: flash: board rejected the %s: DFU status %s, state %s\n",
+                    step, tdc_dfu_status_name((tdc_dfu_status_t)st[0]),
+                    tdc_dfu_state_name((tdc_dfu_state_t)st[4]));
+            return TDC_EXIT_DFU;
+        }
+        if (st[4] == want)
+            return TDC_EXIT_OK;
+        if (now_s() > deadline) {
+            fprintf(stderr, "tdc-usb: flash: board still in %s after %u ms during the %s\n",
+                    tdc_dfu_state_name((tdc_dfu_state_t)st[4]), DFU_STATUS_DEADLINE_MS, step);
+            return TDC_EXIT_TIMEOUT;
+        }
+        unsigned poll_ms = st[1] | (st[2] << 8) | (st[3] << 16);
+        struct timespec ts = {poll_ms / 1000u, (long)(poll_ms % 1000u) * 1000000L};
+        nanosleep(&ts, NULL);
+    }
+}
+
+static tdc_exit_t cmd_flash(tdc_board_t *b, const opts_t *o, const char *path)
+{
+    uint8_t *img = NULL;
+    uint32_t len = 0;
+    tdc_exit_t e = read_file(path, "flash", &img, &len);
+    if (e != TDC_EXIT_OK)
+        return e;
+    /* Host-side checks before touching the board. */
+    tdc_image_status_t is = tdc_image_check(img, len, NULL, 0);
+    if (is != TDC_IMAGE_OK) {
+        fprintf(stderr, "tdc-usb: flash: %s: %s (file %u bytes", path, tdc_image_status_name(is),
+                len);
+        if (len >= TDC_IMAGE_HEADER_LEN && is != TDC_IMAGE_ERR_MAGIC)
+            fprintf(stderr, ", header says %u + %u bytes", TDC_IMAGE_HEADER_LEN,
+                    tdc_get_le32(img + TDC_IMAGE_OFF_PAYLOAD_LEN));
+        fprintf(stderr, ")\n");
+        free(img);
+        return TDC_EXIT_IMAGE;
+    }
+    board_info_t bi;
+    e = tdc_usb_claim(b, TDC_USB_IF_STREAM);
+    if (e == TDC_EXIT_OK)
+        e = get_info(b, &bi);
+    if (e == TDC_EXIT_OK) {
+        is = tdc_image_check(img, len, bi.board, bi.slot);
+        if (is != TDC_IMAGE_OK) {
+            char target[TDC_IMAGE_BOARD_LEN + 1] = "";
+            memcpy(target, img + TDC_IMAGE_OFF_BOARD, TDC_IMAGE_BOARD_LEN);
+            fprintf(stderr, "tdc-usb: flash: %s: %s (image %u bytes for board '%s'; board '%s' "
+                            "has a %u-byte slot)\n", path, tdc_image_status_name(is), len,
+                    target, bi.board, bi.slot);
+            e = TDC_EXIT_INCOMPATIBLE;
+        }
+    }
+    if (e == TDC_EXIT_OK)
+        e = tdc_usb_claim(b, TDC_USB_IF_DFU);
+    /* Bring the DFU interface to dfuIDLE. */
+    uint8_t st[6];
+    if (e == TDC_EXIT_OK)
+        e = dfu_getstatus(b, st);
+    if (e == TDC_EXIT_OK && st[4] == TDC_DFU_STATE_ERROR)
+        e = tdc_usb_ctrl_out(b, "DFU_CLRSTATUS", LIBUSB_REQUEST_TYPE_CLASS |
+                             LIBUSB_RECIPIENT_INTERFACE, TDC_DFU_CLRSTATUS, 0, TDC_USB_IF_DFU, NULL, 0);
+    else if (e == TDC_EXIT_OK && st[4] != TDC_DFU_STATE_IDLE)
+        e = tdc_usb_ctrl_out(b, "DFU_ABORT", LIBUSB_REQUEST_TYPE_CLASS | LIBUSB_RECIPIENT_INTERFACE,
+                             TDC_DFU_ABORT, 0, TDC_USB_IF_DFU, NULL, 0);
+    uint16_t xfer = dfu_transfer_size(b);
+    double t0 = now_s();
+    uint16_t block = 0;
+    for (uint32_t off = 0; e == TDC_EXIT_OK && off < len; off += xfer, block++) {
+        uint16_t n = (uint16_t)(len - off < xfer ? len - off : xfer);
+        e = tdc_usb_ctrl_out(b, "DFU_DNLOAD", LIBUSB_REQUEST_TYPE_CLASS | LIBUSB_RECIPIENT_INTERFACE,
+                             TDC_DFU_DNLOAD, block, TDC_USB_IF_DFU, img + off, n);
+        if (e == TDC_EXIT_OK)
+            e = dfu_wait(b, TDC_DFU_STATE_DNLOAD_IDLE, "download");
+        progress_bar(o, "flash", off + n, len, t0);
+    }
+    progress_end(o);
+    if (e == TDC_EXIT_OK) /* zero-length DNLOAD: end of image, manifest */
+        e = tdc_usb_ctrl_out(b, "DFU_DNLOAD (end)", LIBUSB_REQUEST_TYPE_CLASS |
+                             LIBUSB_RECIPIENT_INTERFACE, TDC_DFU_DNLOAD, block, TDC_USB_IF_DFU, NULL, 0);
+    if (e == TDC_EXIT_OK)
+        e = dfu_wait(b, TDC_DFU_STATE_IDLE, "image (manifestation: size and CRC check on the board)");
+    if (e == TDC_EXIT_OK)
+        printf("downloaded %u bytes in %.3f s, board checked size and CRC-32 %08x\n", len,
+               now_s() - t0, tdc_get_le32(img + TDC_IMAGE_OFF_PAYLOAD_CRC));
+    if (e == TDC_EXIT_OK && o->verify) {
+        uint8_t *back = malloc((size_t)len + xfer);
+        uint32_t got_total = 0;
+        for (block = 0; e == TDC_EXIT_OK && back != NULL; block++) {
+            int got = 0;
+            e = tdc_usb_ctrl_in(b, "DFU_UPLOAD", LIBUSB_REQUEST_TYPE_CLASS | LIBUSB_RECIPIENT_INTERFACE,
+                                TDC_DFU_UPLOAD, block, TDC_USB_IF_DFU, back + got_total, xfer, &got);
+            got_total += (uint32_t)got;
+            if (got < xfer || got_total > len)
+                break;
+        }
+        if (e == TDC_EXIT_OK && (back == NULL || got_total != len || memcmp(back, img, len) != 0)) {
+            uint32_t first = 0;
+            while (back != NULL && first < len && first < got_total && back[first] == img[first])
+                first++;
+            fprintf(stderr, "tdc-usb: flash: verify failed: read back %u of %u bytes, first "
+                            "difference at byte %u\n", got_total, len, first);
+            e = TDC_EXIT_VERIFY;
+        } else if (e == TDC_EXIT_OK) {
+            printf("verified %u bytes read back\n", got_total);
+        }
+        free(back);
+    }
+    if (e == TDC_EXIT_OK && o->reset) {
+        libusb_release_interface(b->h, TDC_USB_IF_DFU);
+        int r = libusb_control_transfer(b->h, LIBUSB_ENDPOINT_OUT | LIBUSB_REQUEST_TYPE_VENDOR |
+                                        LIBUSB_RECIPIENT_INTERFACE, TDC_USB_REQ_RESET_BOARD, 0,
+                                        TDC_USB_IF_STREAM, NULL, 0, b->timeout_ms);
+        /* A board may drop off the bus before the status stage completes. */
+        if (r < 0 && r != LIBUSB_ERROR_NO_DEVICE && r != LIBUSB_ERROR_PIPE && r != LIBUSB_ERROR_IO)
+            e = tdc_usb_fail(b, "reset request", r);
+        else
+            printf("board reset requested\n");
+    }
+    free(img);
+    return e;
+}
+
+/* ------------------------------------------------------------------ */
+static tdc_exit_t cmd_mkimage(const opts_t *o, const char *in, const char *out)
+{
+    if (o->board == NULL) {
+        fprintf(stderr, "tdc-usb: mkimage: --board NAME is required\n");
+        return TDC_EXIT_ARGS;
+    }
+    uint8_t *payload = NULL;
+    uint32_t len = 0;
+    tdc_exit_t e = read_file(in, "mkimage", &payload, &len);
+    if (e != TDC_EXIT_OK)
+        return e;
+    uint8_t hdr[TDC_IMAGE_HEADER_LEN];
+    tdc_image_make_header(hdr, payload, len, o->fw_version, o->board);
+    FILE *f = fopen(out, "wb");
+    int ok = f != NULL && fwrite(hdr, 1, sizeof hdr, f) == sizeof hdr &&
+             fwrite(payload, 1, len, f) == len;
+    if (f != NULL && fclose(f) != 0)
+        ok = 0;
+    free(payload);
+    if (!ok) {
+        fprintf(stderr, "tdc-usb: mkimage: cannot write %s: %s\n", out, strerror(errno));
+        return TDC_EXIT_FILE;
+    }
+    printf("%s: %u + %u bytes, board %s, CRC-32 %08x\n", out, TDC_IMAGE_HEADER_LEN, len, o->board,
+           tdc_get_le32(hdr + TDC_IMAGE_OFF_PAYLOAD_CRC));
+    return TDC_EXIT_OK;
+}
+
+static int parse_long(const char *s, long lo, long hi, long *out)
+{
+    char *end;
+    errno = 0;
+    long v = strtol(s, &end, 0);
+    if (errno != 0 || end == s || *end != '\0' || v < lo || v > hi)
+        return -1;
+    *out = v;
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    opts_t o = {.sel = {TDC_USB_VID, TDC_USB_PID, -1, -1, NULL, DEFAULT_TIMEOUT_MS},
+                .progress = -1, .verify = 1, .reset = 1, .fw_version = 0x000100u};
+    enum { O_BUS = 256, O_ADDR, O_SERIAL, O_VID, O_PID, O_TIMEOUT, O_CHUNK, O_PROG, O_NOPROG,
+           O_NOVERIFY, O_NORESET, O_BOARD, O_FWV };
+    static const struct option lopts[] = {
+        {"bus", 1, 0, O_BUS}, {"address", 1, 0, O_ADDR}, {"serial", 1, 0, O_SERIAL},
+        {"vid", 1, 0, O_VID}, {"pid", 1, 0, O_PID}, {"timeout", 1, 0, O_TIMEOUT},
+        {"chunk", 1, 0, O_CHUNK}, {"progress", 0, 0, O_PROG}, {"no-progress", 0, 0, O_NOPROG},
+        {"no-verify", 0, 0, O_NOVERIFY}, {"no-reset", 0, 0, O_NORESET}, {"board", 1, 0, O_BOARD},
+        {"fw-version", 1, 0, O_FWV}, {"help", 0, 0, 'h'}, {0, 0, 0, 0}};
+    int c;
+    long v;
+    while ((c = getopt_long(argc, argv, "h", lopts, NULL)) != -1) {
+        const char *bad = NULL;
+        switch (c) {
+        case O_BUS: if (parse_long(optarg, 1, 255, &v)) bad = "--bus"; else o.sel.bus = (int)v; break;
+        case O_ADDR: if (parse_long(optarg, 1, 127, &v)) bad = "--address"; else o.sel.address = (int)v; break;
+        case O_SERIAL: o.sel.serial = optarg; break;
+        case O_VID: if (parse_long(optarg, 0, 0xFFFF, &v)) bad = "--vid"; else o.sel.vid = (uint16_t)v; break;
+        case O_PID: if (parse_long(optarg, 0, 0xFFFF, &v)) bad = "--pid"; else o.sel.pid = (uint16_t)v; break;
+        case O_TIMEOUT: if (parse_long(optarg, 1, 600000, &v)) bad = "--timeout"; else o.sel.timeout_ms = (unsigned)v; break;
+        case O_CHUNK: if (parse_long(optarg, 1, 1L << 20, &v)) bad = "--chunk"; else o.chunk = v; break;
+        case O_PROG: o.progress = 1; break;
+        case O_NOPROG: o.progress = 0; break;
+        case O_NOVERIFY: o.verify = 0; break;
+        case O_NORESET: o.reset = 0; break;
+        case O_BOARD: o.board = optarg; break;
+        case O_FWV: {
+            unsigned a, b2, p;
+            if (sscanf(optarg, "%u.%u.%u", &a, &b2, &p) != 3 || a > 0xFFFF || b2 > 255 || p > 255)
+                bad = "--fw-version";
+            else
+                o.fw_version = a << 16 | b2 << 8 | p;
+            break;
+        }
+        case 'h': usage(stdout); return TDC_EXIT_OK;
+        default: usage(stderr); return TDC_EXIT_ARGS;
+        }
+        if (bad != NULL) {
+            fprintf(stderr, "tdc-usb: bad value for %s: '%s'\n", bad, optarg);
+            return TDC_EXIT_ARGS;
+        }
+    }
+    if (optind >= argc) {
+        usage(stderr);
+        return TDC_EXIT_ARGS;
+    }
+    const char *cmd = argv[optind];
+    int nargs = argc - optind - 1;
+    char **args = argv + optind + 1;
+    int want = strcmp(cmd, "stream") == 0 || strcmp(cmd, "flash") == 0 ? 1
+               : strcmp(cmd, "mkimage") == 0 ? 2
+               : strcmp(cmd, "list") == 0 || strcmp(cmd, "info") == 0 ? 0 : -1;
+    if (want < 0 || nargs != want) {
+        fprintf(stderr, want < 0 ? "tdc-usb: unknown command '%s'\n"
+                                 : "tdc-usb: wrong number of arguments for '%s'\n", cmd);
+        usage(stderr);
+        return TDC_EXIT_ARGS;
+    }
+    if (strcmp(cmd, "mkimage") == 0)
+        return cmd_mkimage(&o, args[0], args[1]);
+
+    libusb_context *ctx = NULL;
+    int r = libusb_init(&ctx);
+    if (r != 0) {
+        fprintf(stderr, "tdc-usb: libusb_init failed: %s (%s)\n", libusb_error_name(r),
+                libusb_strerror(r));
+        return TDC_EXIT_USB;
+    }
+    tdc_exit_t e;
+    if (strcmp(cmd, "list") == 0) {
+        e = cmd_list(ctx, &o);
+    } else {
+        tdc_board_t b;
+        memset(&b, 0, sizeof b);
+        b.op = cmd;
+        e = tdc_usb_open(ctx, &o.sel, &b);
+        if (e == TDC_EXIT_OK) {
+            if (strcmp(cmd, "info") == 0)
+                e = cmd_info(&b);
+            else if (strcmp(cmd, "stream") == 0)
+                e = cmd_stream(&b, &o, args[0]);
+            else
+                e = cmd_flash(&b, &o, args[0]);
+            tdc_usb_close(&b);
+        }
+    }
+    libusb_exit(ctx);
+    if (e != TDC_EXIT_OK)
+        fprintf(stderr, "tdc-usb: exit %d (%s)\n", (int)e, tdc_exit_name(e));
+    return (int)e;
+}

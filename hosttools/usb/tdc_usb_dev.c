@@ -1,0 +1,247 @@
+/*
+ * tdc_usb_dev.c - board selection and transfers for tdc-usb (libusb-1.0).
+ * Every transfer passes b->timeout_ms; every libusb error is reported by
+ * its name (libusb_error_name) and mapped to a named exit code.
+ */
+#include "tdc_usb_dev.h"
+
+#include <stdio.h>
+#include <string.h>
+
+const char *tdc_exit_name(tdc_exit_t e)
+{
+    switch (e) {
+    case TDC_EXIT_OK: return "OK";
+    case TDC_EXIT_ARGS: return "ARGS";
+    case TDC_EXIT_NO_DEVICE: return "NO_DEVICE";
+    case TDC_EXIT_AMBIGUOUS: return "AMBIGUOUS";
+    case TDC_EXIT_USB: return "USB";
+    case TDC_EXIT_TIMEOUT: return "TIMEOUT";
+    case TDC_EXIT_DISCONNECTED: return "DISCONNECTED";
+    case TDC_EXIT_FILE: return "FILE";
+    case TDC_EXIT_IMAGE: return "IMAGE";
+    case TDC_EXIT_INCOMPATIBLE: return "INCOMPATIBLE";
+    case TDC_EXIT_DFU: return "DFU";
+    case TDC_EXIT_VERIFY: return "VERIFY";
+    case TDC_EXIT_PROTOCOL: return "PROTOCOL";
+    }
+    return "?";
+}
+
+tdc_exit_t tdc_usb_fail(const tdc_board_t *b, const char *what, int err)
+{
+    const char *op = b != NULL && b->op != NULL ? b->op : "usb";
+    const char *hint = "";
+    tdc_exit_t code = TDC_EXIT_USB;
+    switch (err) {
+    case LIBUSB_ERROR_TIMEOUT:
+        code = TDC_EXIT_TIMEOUT;
+        hint = " (the board did not answer in time; is it running the tdc firmware?)";
+        break;
+    case LIBUSB_ERROR_NO_DEVICE:
+        code = TDC_EXIT_DISCONNECTED;
+        hint = " (the board was unplugged or reset)";
+        break;
+    case LIBUSB_ERROR_PIPE:
+        hint = " (the board stalled the endpoint: it rejected the request)";
+        break;
+    case LIBUSB_ERROR_ACCESS:
+        hint = " (no permission: install a udev rule for 1209:0001, see docs/hosttools.md)";
+        break;
+    default: break;
+    }
+    if (b != NULL && b->timeout_ms != 0 && err == LIBUSB_ERROR_TIMEOUT)
+        fprintf(stderr, "tdc-usb: %s: %s failed after %u ms: %s (%s)%s\n", op, what,
+                b->timeout_ms, libusb_error_name(err), libusb_strerror(err), hint);
+    else
+        fprintf(stderr, "tdc-usb: %s: %s failed: %s (%s)%s\n", op, what, libusb_error_name(err),
+                libusb_strerror(err), hint);
+    return code;
+}
+
+int tdc_usb_string_ascii(libusb_device_handle *h, uint8_t index, char *out, int cap,
+                         unsigned timeout_ms)
+{
+    uint8_t buf[255];
+    out[0] = '\0';
+    if (index == 0)
+        return 0;
+    int r = libusb_control_transfer(h, LIBUSB_ENDPOINT_IN, LIBUSB_REQUEST_GET_DESCRIPTOR,
+                                    (uint16_t)((LIBUSB_DT_STRING << 8) | index), 0x0409, buf,
+                                    sizeof buf, timeout_ms);
+    if (r < 0)
+        return r;
+    if (r < 2 || buf[1] != LIBUSB_DT_STRING || buf[0] > r)
+        return LIBUSB_ERROR_IO;
+    int n = 0;
+    for (int i = 2; i + 1 < buf[0] && n + 1 < cap; i += 2)
+        out[n++] = buf[i + 1] == 0 && buf[i] >= 0x20 && buf[i] < 0x7F ? (char)buf[i] : '?';
+    out[n] = '\0';
+    return n;
+}
+
+int tdc_usb_enumerate(libusb_context *ctx, const tdc_usb_select_t *sel, tdc_usb_list_fn fn,
+                      void *fn_ctx)
+{
+    libusb_device **list = NULL;
+    ssize_t n = libusb_get_device_list(ctx, &list);
+    if (n < 0)
+        return (int)n;
+    int matches = 0;
+    for (ssize_t i = 0; i < n; i++) {
+        libusb_device *dev = list[i];
+        struct libusb_device_descriptor dd;
+        if (libusb_get_device_descriptor(dev, &dd) != 0)
+            continue;
+        if (dd.idVendor != sel->vid || dd.idProduct != sel->pid)
+            continue;
+        if (sel->bus >= 0 && libusb_get_bus_number(dev) != sel->bus)
+            continue;
+        if (sel->address >= 0 && libusb_get_device_address(dev) != sel->address)
+            continue;
+        libusb_device_handle *h = NULL;
+        char serial[64] = "";
+        int err = libusb_open(dev, &h);
+        if (err == 0) {
+            int r = tdc_usb_string_ascii(h, dd.iSerialNumber, serial, sizeof serial,
+                                         sel->timeout_ms);
+            if (r < 0) {
+                err = r;
+                snprintf(serial, sizeof serial, "?");
+            }
+        }
+        if (sel->serial != NULL && (err != 0 || strcmp(serial, sel->serial) != 0)) {
+            if (h != NULL)
+                libusb_close(h);
+            continue;
+        }
+        matches++;
+        if (fn != NULL)
+            fn(fn_ctx, dev, h, serial, err);
+        if (h != NULL)
+            libusb_close(h);
+    }
+    libusb_free_device_list(list, 1);
+    return matches;
+}
+
+typedef struct {
+    int count;
+    libusb_device *first;
+    char first_serial[64];
+    int first_err;
+    char others[512];
+} pick_t;
+
+static void pick_cb(void *ctx, libusb_device *dev, libusb_device_handle *h, const char *serial,
+                    int open_err)
+{
+    pick_t *p = ctx;
+    (void)h;
+    size_t len = strlen(p->others);
+    snprintf(p->others + len, sizeof p->others - len, "\n  bus %03u address %03u serial %s",
+             libusb_get_bus_number(dev), libusb_get_device_address(dev),
+             open_err == 0 ? serial : libusb_error_name(open_err));
+    if (p->count++ == 0) {
+        p->first = libusb_ref_device(dev);
+        snprintf(p->first_serial, sizeof p->first_serial, "%s", serial);
+        p->first_err = open_err;
+    }
+}
+
+tdc_exit_t tdc_usb_open(libusb_context *ctx, const tdc_usb_select_t *sel, tdc_board_t *b)
+{
+    pick_t p;
+    memset(&p, 0, sizeof p);
+    b->ctx = ctx;
+    b->h = NULL;
+    b->timeout_ms = sel->timeout_ms;
+    int n = tdc_usb_enumerate(ctx, sel, pick_cb, &p);
+    if (n < 0) {
+        if (p.first != NULL)
+            libusb_unref_device(p.first);
+        return tdc_usb_fail(b, "listing USB devices", n);
+    }
+    if (n == 0) {
+        fprintf(stderr, "tdc-usb: %s: no tdc board (USB %04x:%04x)%s found; is it plugged in "
+                        "and running the tdc firmware? (see `tdc-usb list`)\n",
+                b->op, sel->vid, sel->pid,
+                sel->bus >= 0 || sel->address >= 0 || sel->serial != NULL
+                    ? " matching --bus/--address/--serial" : "");
+        return TDC_EXIT_NO_DEVICE;
+    }
+    if (n > 1) {
+        fprintf(stderr, "tdc-usb: %s: %d tdc boards match; choose one with --bus/--address "
+                        "or --serial:%s\n", b->op, n, p.others);
+        libusb_unref_device(p.first);
+        return TDC_EXIT_AMBIGUOUS;
+    }
+    b->bus = libusb_get_bus_number(p.first);
+    b->address = libusb_get_device_address(p.first);
+    snprintf(b->serial, sizeof b->serial, "%s", p.first_serial);
+    int err = libusb_open(p.first, &b->h);
+    libusb_unref_device(p.first);
+    if (err != 0) {
+        b->h = NULL;
+        return tdc_usb_fail(b, "opening the board", err);
+    }
+    return TDC_EXIT_OK;
+}
+
+void tdc_usb_close(tdc_board_t *b)
+{
+    if (b->h != NULL)
+        libusb_close(b->h);
+    b->h = NULL;
+}
+
+tdc_exit_t tdc_usb_claim(tdc_board_t *b, int iface)
+{
+    /* A kernel driver should never be bound to a vendor or DFU interface,
+     * but detach one if some generic driver grabbed it. */
+    libusb_set_auto_detach_kernel_driver(b->h, 1);
+    int err = libusb_claim_interface(b->h, iface);
+    if (err != 0) {
+        char what[48];
+        snprintf(what, sizeof what, "claiming interface %d", iface);
+        return tdc_usb_fail(b, what, err);
+    }
+    return TDC_EXIT_OK;
+}
+
+tdc_exit_t tdc_usb_ctrl_in(tdc_board_t *b, const char *what, uint8_t type, uint8_t req,
+                           uint16_t value, uint16_t index, uint8_t *data, uint16_t len, int *got)
+{
+    int r = libusb_control_transfer(b->h, (uint8_t)(LIBUSB_ENDPOINT_IN | type), req, value, index,
+                                    data, len, b->timeout_ms);
+    if (r < 0)
+        return tdc_usb_fail(b, what, r);
+    *got = r;
+    return TDC_EXIT_OK;
+}
+
+tdc_exit_t tdc_usb_ctrl_out(tdc_board_t *b, const char *what, uint8_t type, uint8_t req,
+                            uint16_t value, uint16_t index, const uint8_t *data, uint16_t len)
+{
+    /* libusb takes a non-const buffer for both directions; OUT data is only read */
+    int r = libusb_control_transfer(b->h, (uint8_t)(LIBUSB_ENDPOINT_OUT | type), req, value,
+                                    index, (unsigned char *)(uintptr_t)data, len, b->timeout_ms);
+    if (r < 0)
+        return tdc_usb_fail(b, what, r);
+    if (r != len) {
+        fprintf(stderr, "tdc-usb: %s: %s: board took %d of %u bytes\n", b->op, what, r, len);
+        return TDC_EXIT_PROTOCOL;
+    }
+    return TDC_EXIT_OK;
+}
+
+tdc_exit_t tdc_usb_bulk(tdc_board_t *b, const char *what, uint8_t ep, uint8_t *data, int len,
+                        int *done)
+{
+    int n = 0;
+    int r = libusb_bulk_transfer(b->h, ep, data, len, &n, b->timeout_ms);
+    *done = n;
+    if (r != 0)
+        return tdc_usb_fail(b, what, r);
+    return TDC_EXIT_OK;
+}

@@ -1,0 +1,76 @@
+/*
+ * tdc_usb_dev.h - the libusb layer of tdc-usb: named exit codes, board
+ * selection, and transfer wrappers that always carry an explicit timeout
+ * and turn every libusb error into one message naming it.
+ */
+#ifndef TDC_USB_DEV_H
+#define TDC_USB_DEV_H
+
+#include <stdint.h>
+#include <libusb.h>
+
+/* Named exit codes (picotool style, positive so shells see them). */
+typedef enum {
+    TDC_EXIT_OK = 0,
+    TDC_EXIT_ARGS = 1,         /* bad command line */
+    TDC_EXIT_NO_DEVICE = 2,    /* no board matches the selection */
+    TDC_EXIT_AMBIGUOUS = 3,    /* more than one board matches: select one */
+    TDC_EXIT_USB = 4,          /* libusb error (access, stall, I/O, ...) */
+    TDC_EXIT_TIMEOUT = 5,      /* a transfer timed out */
+    TDC_EXIT_DISCONNECTED = 6, /* the board went away mid-operation */
+    TDC_EXIT_FILE = 7,         /* cannot read or write a file */
+    TDC_EXIT_IMAGE = 8,        /* image malformed: magic, size or CRC */
+    TDC_EXIT_INCOMPATIBLE = 9, /* image for another board, or too large */
+    TDC_EXIT_DFU = 10,         /* the board's DFU reported an error */
+    TDC_EXIT_VERIFY = 11,      /* read-back or received-data check failed */
+    TDC_EXIT_PROTOCOL = 12     /* the board's reply is malformed */
+} tdc_exit_t;
+
+const char *tdc_exit_name(tdc_exit_t e);
+
+typedef struct {
+    uint16_t vid, pid;
+    int bus, address;          /* -1 = any */
+    const char *serial;        /* NULL = any */
+    unsigned timeout_ms;       /* every transfer */
+} tdc_usb_select_t;
+
+typedef struct {
+    libusb_context *ctx;
+    libusb_device_handle *h;
+    int bus, address;
+    char serial[64];
+    unsigned timeout_ms;
+    const char *op;            /* what we are doing, for messages */
+} tdc_board_t;
+
+/* Maps a libusb error to the exit code and prints
+ * "tdc-usb: <op>: <what>: LIBUSB_ERROR_X (text)". */
+tdc_exit_t tdc_usb_fail(const tdc_board_t *b, const char *what, int libusb_err);
+
+/* Enumerates; one callback per matching board (after the serial filter).
+ * Returns the number of matches, or a negative libusb error. */
+typedef void (*tdc_usb_list_fn)(void *ctx, libusb_device *dev, libusb_device_handle *h,
+                                const char *serial, int open_err);
+int tdc_usb_enumerate(libusb_context *ctx, const tdc_usb_select_t *sel, tdc_usb_list_fn fn,
+                      void *fn_ctx);
+
+/* Opens exactly one board; refuses none or several with a message. */
+tdc_exit_t tdc_usb_open(libusb_context *ctx, const tdc_usb_select_t *sel, tdc_board_t *b);
+void tdc_usb_close(tdc_board_t *b);
+tdc_exit_t tdc_usb_claim(tdc_board_t *b, int iface);
+
+/* Transfers.  Return TDC_EXIT_OK or the mapped error (message printed). */
+tdc_exit_t tdc_usb_ctrl_in(tdc_board_t *b, const char *what, uint8_t type, uint8_t req,
+                           uint16_t value, uint16_t index, uint8_t *data, uint16_t len,
+                           int *got);
+tdc_exit_t tdc_usb_ctrl_out(tdc_board_t *b, const char *what, uint8_t type, uint8_t req,
+                            uint16_t value, uint16_t index, const uint8_t *data, uint16_t len);
+tdc_exit_t tdc_usb_bulk(tdc_board_t *b, const char *what, uint8_t ep, uint8_t *data, int len,
+                        int *done);
+
+/* String descriptor as ASCII with an explicit timeout. */
+int tdc_usb_string_ascii(libusb_device_handle *h, uint8_t index, char *out, int cap,
+                         unsigned timeout_ms);
+
+#endif

@@ -1,0 +1,39 @@
+# Host tools (issue 9): tdc-usb (libusb-1.0), tdc-gpio (libgpiod 1.6), the
+# board side of the USB protocol, and their tests against emulated devices.
+# Docs: docs/usb-protocol.md, docs/hosttools.md.
+
+DEPS_PKGS += libusb-1.0-0-dev libgpiod-dev gpiod umockdev libumockdev-dev libglib2.0-dev
+
+FW_SRCS += firmware/tdc_usbproto.c
+
+LIBUSB_CFLAGS := $(shell pkg-config --cflags libusb-1.0 2>/dev/null)
+LIBUSB_LIBS := $(or $(shell pkg-config --libs libusb-1.0 2>/dev/null),-lusb-1.0)
+UMOCKDEV_CFLAGS := $(shell pkg-config --cflags umockdev-1.0 2>/dev/null)
+UMOCKDEV_LIBS := $(or $(shell pkg-config --libs umockdev-1.0 glib-2.0 gobject-2.0 2>/dev/null),-lumockdev -lgobject-2.0 -lglib-2.0)
+GPIOD_LIBS := $(or $(shell pkg-config --libs libgpiod 2>/dev/null),-lgpiod)
+
+TDC_USB := $(B)/bin/tdc-usb
+TDC_GPIO := $(B)/bin/tdc-gpio
+HOST_PROGS += $(TDC_USB)
+
+# Pattern-specific flags: only the objects that include libusb/umockdev headers.
+$(B)/hosttools/usb/%.o: HOST_CFLAGS += $(LIBUSB_CFLAGS)
+$(B)/tests/usb/%.o: HOST_CFLAGS += $(UMOCKDEV_CFLAGS) -DTDC_USB_BIN='"$(abspath $(TDC_USB))"'
+
+TDC_USB_OBJS = $(B)/hosttools/usb/tdc_usb.o $(B)/hosttools/usb/tdc_usb_dev.o
+$(TDC_USB): $(TDC_USB_OBJS) $(FWLIB)
+	@mkdir -p $(@D)
+	$(CC) $(HOST_LDFLAGS) $(TDC_USB_OBJS) -o $@ $(FWLIB) $(LIBUSB_LIBS)
+
+TDC_GPIO_OBJS = $(B)/hosttools/gpio/tdc_gpio.o $(B)/hosttools/gpio/tdc_gpio_chip.o \
+                $(B)/hosttools/gpio/tdc_vsync_stats.o
+$(TDC_GPIO): $(TDC_GPIO_OBJS)
+	@mkdir -p $(@D)
+	$(CC) $(HOST_LDFLAGS) $(TDC_GPIO_OBJS) -o $@ $(GPIOD_LIBS) -lm
+
+# umockdev tests: the emulated board plus the real tdc-usb binary.
+USB_EMUL_OBJS = $(B)/tests/usb/test_usb_emul.o $(B)/tests/usb/tdc_usb_emul.o
+$(B)/tests/usb/test_usb_emul: $(USB_EMUL_OBJS) $(FWLIB) $(TDC_USB)
+	$(CC) $(HOST_LDFLAGS) $(USB_EMUL_OBJS) -o $@ $(FWLIB) $(UMOCKDEV_LIBS) -lcmocka -lpthread
+TESTS += $(B)/tests/usb/test_usb_emul
+

@@ -1,0 +1,356 @@
+/*
+ * tdc_usb_emul.c - emulated tdc board: the firmware protocol code behind a
+ * umockdev usbdevfs ioctl handler (see tdc_usb_emul.h).
+ *
+ * How a transfer flows: the client (libusb in the child process) issues
+ * SUBMITURB; we resolve the urb and its buffer from the client's memory,
+ * run the firmware on it, write the IN data, status and actual_length into
+ * our copies, and queue the urb as "done".  The umockdev socket flushes the
+ * copies back to the client.  libusb then polls with REAPURBNDELAY and we
+ * hand back the urb pointer with umockdev_ioctl_data_set_ptr().  An urb the
+ * board never answers stays "in flight" until libusb's timeout discards it.
+ */
+#include "tdc_usb_emul.h"
+
+#include <errno.h>
+#include <sys/ioctl.h>
+#include <linux/usbdevice_fs.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define EMUL_MAX_URBS 64
+
+struct emul_board {
+    UMockdevTestbed *tb;
+    UMockdevIoctlBase *handler;
+    char devnode[64];
+    char serial[32];
+    pthread_mutex_t lock;
+    tdc_usbp_t proto;
+    uint8_t *slot;
+    uint32_t slot_bytes;
+    emul_fault_t fault;
+    uint32_t fault_after;
+    uint32_t bulk_out_count;
+    int gone;
+    int reset_requested;
+    UMockdevIoctlData *done[EMUL_MAX_URBS]; /* completed, waiting to be reaped (FIFO) */
+    int n_done;
+    UMockdevIoctlData *flying[EMUL_MAX_URBS]; /* never answered (hang faults) */
+    int n_flying;
+};
+
+/* Flash slot in RAM, with an optional bit flip to emulate a bad cell. */
+static int emul_flash_write(void *ctx, uint32_t offset, const uint8_t *data, uint32_t len)
+{
+    emul_board_t *b = ctx;
+    if ((uint64_t)offset + len > b->slot_bytes)
+        return -1;
+    memcpy(b->slot + offset, data, len);
+    if (b->fault == EMUL_FAULT_CORRUPT_FLASH && b->fault_after >= offset &&
+        b->fault_after < offset + len)
+        b->slot[b->fault_after] ^= 0x10u;
+    return 0;
+}
+
+static int emul_flash_read(void *ctx, uint32_t offset, uint8_t *data, uint32_t len)
+{
+    emul_board_t *b = ctx;
+    if ((uint64_t)offset + len > b->slot_bytes)
+        return -1;
+    memcpy(data, b->slot + offset, len);
+    return 0;
+}
+
+static void urb_finish(emul_board_t *b, UMockdevIoctlData *urb_data, int status, int actual)
+{
+    /* through _update() so umockdev knows the copy is dirty and flushes it */
+    umockdev_ioctl_data_update(urb_data, G_STRUCT_OFFSET(struct usbdevfs_urb, status),
+                               (guint8 *)&status, sizeof status);
+    umockdev_ioctl_data_update(urb_data, G_STRUCT_OFFSET(struct usbdevfs_urb, actual_length),
+                               (guint8 *)&actual, sizeof actual);
+    if (b->n_done < EMUL_MAX_URBS)
+        b->done[b->n_done++] = g_object_ref(urb_data);
+}
+
+/* Runs one submitted urb through the firmware.  Returns 0 if answered,
+ * 1 if the board keeps it (hang fault). */
+static int urb_run(emul_board_t *b, UMockdevIoctlData *urb_data, UMockdevIoctlData *buf)
+{
+    struct usbdevfs_urb *urb = (struct usbdevfs_urb *)urb_data->data;
+    uint8_t *data = buf != NULL ? buf->data : NULL;
+    int len = urb->buffer_length;
+
+    if (urb->type == USBDEVFS_URB_TYPE_CONTROL) {
+        tdc_usbp_setup_t setup;
+        uint8_t reply[TDC_DFU_TRANSFER_SIZE];
+        uint32_t reply_len = 0;
+        if (data == NULL || len < 8) {
+            urb_finish(b, urb_data, -EINVAL, 0);
+            return 0;
+        }
+        tdc_usbp_parse_setup(data, &setup);
+        int is_info = (setup.bm_request_type & 0x60u) == 0x40u &&
+                      setup.b_request == TDC_USB_REQ_BOARD_INFO;
+        if (is_info && b->fault == EMUL_FAULT_HANG_INFO)
+            return 1;
+        if (is_info && b->fault == EMUL_FAULT_STALL_INFO) {
+            urb_finish(b, urb_data, -EPIPE, 0);
+            return 0;
+        }
+        tdc_usbp_result_t r = tdc_usbp_control(&b->proto, &setup, data + 8, reply,
+                                               (uint32_t)sizeof reply, &reply_len);
+        if (r != TDC_USBP_OK) {
+            urb_finish(b, urb_data, -EPIPE, 0);
+            return 0;
+        }
+        if (setup.bm_request_type & 0x80u) {
+            if ((int)reply_len > len - 8)
+                reply_len = (uint32_t)(len - 8);
+            umockdev_ioctl_data_update(buf, 8, reply, (int)reply_len);
+            urb_finish(b, urb_data, 0, (int)reply_len);
+        } else {
+            urb_finish(b, urb_data, 0, setup.w_length);
+        }
+        if (tdc_usbp_take_reset(&b->proto))
+            b->reset_requested++;
+        return 0;
+    }
+    if (urb->type == USBDEVFS_URB_TYPE_BULK && urb->endpoint == TDC_USB_EP_LINK_OUT) {
+        b->bulk_out_count++;
+        if (b->fault == EMUL_FAULT_HANG_BULK && b->bulk_out_count >= b->fault_after)
+            return 1;
+        if (b->fault == EMUL_FAULT_STALL_BULK && b->bulk_out_count >= b->fault_after) {
+            urb_finish(b, urb_data, -EPIPE, 0);
+            return 0;
+        }
+        tdc_usbp_bulk_out(&b->proto, data, (uint32_t)len);
+        urb_finish(b, urb_data, 0, len);
+        if (b->fault == EMUL_FAULT_UNPLUG && b->bulk_out_count >= b->fault_after)
+            b->gone = 1;
+        return 0;
+    }
+    if (urb->type == USBDEVFS_URB_TYPE_BULK && urb->endpoint == TDC_USB_EP_STATUS_IN) {
+        uint8_t rep[TDC_USB_STATUS_LEN];
+        tdc_usbp_status_report(&b->proto, rep);
+        int n = len < (int)sizeof rep ? len : (int)sizeof rep;
+        if (n > 0)
+            umockdev_ioctl_data_update(buf, 0, rep, n);
+        urb_finish(b, urb_data, 0, n);
+        return 0;
+    }
+    urb_finish(b, urb_data, -EPIPE, 0); /* no such endpoint */
+    return 0;
+}
+
+static UMockdevIoctlData *pop_first(UMockdevIoctlData **list, int *n)
+{
+    if (*n == 0)
+        return NULL;
+    UMockdevIoctlData *d = list[0];
+    memmove(list, list + 1, (size_t)(*n - 1) * sizeof list[0]);
+    (*n)--;
+    return d;
+}
+
+static gboolean emul_handle_ioctl(UMockdevIoctlBase *handler, UMockdevIoctlClient *client,
+                                  gpointer user_data)
+{
+    emul_board_t *b = user_data;
+    UMockdevIoctlData *arg = umockdev_ioctl_client_get_arg(client);
+    gulong request = umockdev_ioctl_client_get_request(client);
+    (void)handler;
+
+    pthread_mutex_lock(&b->lock);
+    if (b->gone && request != USBDEVFS_REAPURBNDELAY && request != USBDEVFS_REAPURB &&
+        request != USBDEVFS_DISCARDURB && request != USBDEVFS_RELEASEINTERFACE) {
+        pthread_mutex_unlock(&b->lock);
+        umockdev_ioctl_client_complete(client, -1, ENODEV);
+        return TRUE;
+    }
+    switch (request) {
+    case USBDEVFS_GET_CAPABILITIES: {
+        UMockdevIoctlData *d = umockdev_ioctl_data_resolve(arg, 0, sizeof(uint32_t), NULL);
+        uint32_t caps = USBDEVFS_CAP_BULK_CONTINUATION | USBDEVFS_CAP_NO_PACKET_SIZE_LIM |
+                        USBDEVFS_CAP_ZERO_PACKET | USBDEVFS_CAP_REAP_AFTER_DISCONNECT;
+        if (d != NULL)
+            umockdev_ioctl_data_update(d, 0, (guint8 *)&caps, sizeof caps);
+        umockdev_ioctl_client_complete(client, 0, 0);
+        break;
+    }
+    case USBDEVFS_GETDRIVER: /* no kernel driver bound */
+        umockdev_ioctl_client_complete(client, -1, ENODATA);
+        break;
+    case USBDEVFS_CLAIMINTERFACE: case USBDEVFS_RELEASEINTERFACE: case USBDEVFS_SETINTERFACE:
+    case USBDEVFS_CLEAR_HALT: case USBDEVFS_RESET: case USBDEVFS_RESETEP:
+    case USBDEVFS_SETCONFIGURATION: case USBDEVFS_DISCONNECT_CLAIM:
+        umockdev_ioctl_client_complete(client, 0, 0);
+        break;
+    case USBDEVFS_SUBMITURB: {
+        UMockdevIoctlData *urb_data =
+            umockdev_ioctl_data_resolve(arg, 0, sizeof(struct usbdevfs_urb), NULL);
+        if (urb_data == NULL) {
+            umockdev_ioctl_client_complete(client, -1, EFAULT);
+            break;
+        }
+        struct usbdevfs_urb *urb = (struct usbdevfs_urb *)urb_data->data;
+        UMockdevIoctlData *buf = NULL;
+        if (urb->buffer_length > 0)
+            buf = umockdev_ioctl_data_resolve(urb_data, G_STRUCT_OFFSET(struct usbdevfs_urb, buffer),
+                                              (gsize)urb->buffer_length, NULL);
+        if (urb_run(b, urb_data, buf) == 1 && b->n_flying < EMUL_MAX_URBS)
+            b->flying[b->n_flying++] = g_object_ref(urb_data);
+        umockdev_ioctl_client_complete(client, 0, 0);
+        break;
+    }
+    case USBDEVFS_REAPURB:
+    case USBDEVFS_REAPURBNDELAY: {
+        UMockdevIoctlData *urb_data = pop_first(b->done, &b->n_done);
+        if (urb_data == NULL) {
+            /* Nothing to reap.  A vanished device reports ENODEV like the kernel. */
+            umockdev_ioctl_client_complete(client, -1, b->gone ? ENODEV : EAGAIN);
+            break;
+        }
+        UMockdevIoctlData *ptr = umockdev_ioctl_data_resolve(arg, 0, sizeof(void *), NULL);
+        umockdev_ioctl_data_set_ptr(ptr, 0, urb_data);
+        umockdev_ioctl_client_complete(client, 0, 0);
+        g_object_unref(urb_data);
+        break;
+    }
+    case USBDEVFS_DISCARDURB: {
+        gulong addr = (gulong) * (void **)arg->data;
+        int found = -1;
+        for (int i = 0; i < b->n_flying; i++)
+            if (b->flying[i]->client_addr == addr)
+                found = i;
+        if (found < 0) {
+            umockdev_ioctl_client_complete(client, -1, EINVAL);
+            break;
+        }
+        UMockdevIoctlData *urb_data = b->flying[found];
+        memmove(b->flying + found, b->flying + found + 1,
+                (size_t)(b->n_flying - found - 1) * sizeof b->flying[0]);
+        b->n_flying--;
+        int st = -ENOENT, zero = 0;
+        umockdev_ioctl_data_update(urb_data, G_STRUCT_OFFSET(struct usbdevfs_urb, status),
+                                   (guint8 *)&st, sizeof st);
+        umockdev_ioctl_data_update(urb_data, G_STRUCT_OFFSET(struct usbdevfs_urb, actual_length),
+                                   (guint8 *)&zero, sizeof zero);
+        if (b->n_done < EMUL_MAX_URBS)
+            b->done[b->n_done++] = urb_data; /* reference moves */
+        else
+            g_object_unref(urb_data);
+        umockdev_ioctl_client_complete(client, 0, 0);
+        break;
+    }
+    default:
+        if (getenv("TDC_EMUL_DEBUG") != NULL)
+            fprintf(stderr, "emul: unhandled ioctl 0x%lx\n", (unsigned long)request);
+        umockdev_ioctl_client_complete(client, -1, ENOTTY);
+        break;
+    }
+    pthread_mutex_unlock(&b->lock);
+    return TRUE;
+}
+
+static void hex_append(char *dst, size_t cap, const uint8_t *p, uint32_t n)
+{
+    size_t len = strlen(dst);
+    for (uint32_t i = 0; i < n && len + 3 < cap; i++, len += 2)
+        snprintf(dst + len, cap - len, "%02x", p[i]);
+}
+
+emul_board_t *emul_board_add(UMockdevTestbed *tb, int bus, int dev, const char *serial,
+                             uint32_t slot_bytes)
+{
+    emul_board_t *b = calloc(1, sizeof *b);
+    if (b == NULL)
+        return NULL;
+    b->tb = tb;
+    b->slot = calloc(1, slot_bytes);
+    b->slot_bytes = slot_bytes;
+    pthread_mutex_init(&b->lock, NULL);
+    snprintf(b->devnode, sizeof b->devnode, "/dev/bus/usb/%03d/%03d", bus, dev);
+    snprintf(b->serial, sizeof b->serial, "%s", serial);
+
+    tdc_usbp_config_t cfg = {
+        .board_name = "emul", .panel_name = "htc-vive", .serial = b->serial,
+        .fw_version = 0x000100u, .panel_width = 2160, .panel_height = 1200,
+        .refresh_mhz = 90000u, .rx_buffer_bytes = 16384u, .max_packet_bytes = 16384u,
+        .flash = {emul_flash_write, emul_flash_read, b, slot_bytes}};
+    tdc_usbp_init(&b->proto, &cfg);
+
+    b->handler = umockdev_ioctl_base_new();
+    g_signal_connect(b->handler, "handle-ioctl", G_CALLBACK(emul_handle_ioctl), b);
+    if (!umockdev_testbed_attach_ioctl(tb, b->devnode, b->handler, NULL)) {
+        emul_board_free(b);
+        return NULL;
+    }
+
+    /* sysfs: the kernel's copy of the descriptors, as libusb reads it */
+    uint8_t desc[18 + TDC_USB_CONFIG_DESC_LEN];
+    tdc_usbp_device_descriptor(desc);
+    tdc_usbp_config_descriptor(desc + 18, 1);
+    char hex[2 * sizeof desc + 1] = "";
+    hex_append(hex, sizeof hex, desc, (uint32_t)sizeof desc);
+    char rec[1024];
+    snprintf(rec, sizeof rec,
+             "P: /devices/pci0000:00/0000:00:14.0/usb%d/%d-%d\n"
+             "N: bus/usb/%03d/%03d\n"
+             "E: SUBSYSTEM=usb\nE: DEVTYPE=usb_device\nE: DRIVER=usb\n"
+             "E: BUSNUM=%03d\nE: DEVNUM=%03d\nE: DEVNAME=/dev/bus/usb/%03d/%03d\n"
+             "E: ID_SERIAL_SHORT=%s\n"
+             "A: busnum=%d\\n\nA: devnum=%d\\n\nA: bConfigurationValue=1\\n\n"
+             "A: speed=480\\n\nA: serial=%s\\n\nA: idVendor=%04x\\n\nA: idProduct=%04x\\n\n"
+             "H: descriptors=%s\n",
+             bus, bus, dev, bus, dev, bus, dev, bus, dev, serial, bus, dev, serial,
+             TDC_USB_VID, TDC_USB_PID, hex);
+    GError *err = NULL;
+    if (!umockdev_testbed_add_from_string(tb, rec, &err)) {
+        fprintf(stderr, "emul: add_from_string: %s\n", err != NULL ? err->message : "?");
+        g_clear_error(&err);
+        emul_board_free(b);
+        return NULL;
+    }
+    return b;
+}
+
+void emul_board_set_fault(emul_board_t *b, emul_fault_t fault, uint32_t fault_after)
+{
+    pthread_mutex_lock(&b->lock);
+    b->fault = fault;
+    b->fault_after = fault_after;
+    pthread_mutex_unlock(&b->lock);
+}
+
+void emul_board_stats(emul_board_t *b, emul_board_stats_t *out)
+{
+    pthread_mutex_lock(&b->lock);
+    out->rx_bytes = b->proto.cnt.rx_bytes;
+    out->rx_transfers = b->proto.cnt.rx_transfers;
+    out->rx_crc = ~b->proto.cnt.rx_crc;
+    out->image_bytes = b->proto.dfu_image_bytes;
+    out->slot_crc = tdc_usbp_crc32(b->slot, b->proto.dfu_image_bytes);
+    out->reset_requested = b->reset_requested;
+    out->dfu_state = (int)b->proto.dfu_state;
+    pthread_mutex_unlock(&b->lock);
+}
+
+void emul_board_free(emul_board_t *b)
+{
+    if (b == NULL)
+        return;
+    if (b->handler != NULL) {
+        umockdev_testbed_detach_ioctl(b->tb, b->devnode, NULL);
+        g_object_unref(b->handler);
+    }
+    for (int i = 0; i < b->n_done; i++)
+        g_object_unref(b->done[i]);
+    for (int i = 0; i < b->n_flying; i++)
+        g_object_unref(b->flying[i]);
+    pthread_mutex_destroy(&b->lock);
+    free(b->slot);
+    free(b);
+}

@@ -1,0 +1,496 @@
+/*
+ * test_usb_emul.c - tdc-usb against emulated boards (umockdev).
+ *
+ * Each test builds a fresh umockdev testbed with zero, one or two emulated
+ * boards (tests/usb/tdc_usb_emul.c: the firmware's own protocol code behind
+ * an emulated usbdevfs), then runs the real tdc-usb binary as a child with
+ * LD_PRELOAD=libumockdev-preload.so.0, so the program, libusb and its Linux
+ * backend are all unmodified.  A child that runs longer than CHILD_DEADLINE_S
+ * is killed and the test fails: "no hang" is asserted, not hoped for.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include <errno.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "tdc_usb_emul.h"
+
+#ifndef TDC_USB_BIN
+#error "TDC_USB_BIN (path of the tdc-usb binary) must be defined by the build"
+#endif
+
+#define CHILD_DEADLINE_S 30.0
+#define SLOT_BYTES 65536u
+
+extern char **environ;
+
+typedef struct {
+    int status;        /* exit code, or 128+signal, or -1 if killed for hanging */
+    double secs;
+    char out[16384], err[16384];
+} run_t;
+
+static char tmpdir[] = "/tmp/tdc-usb-test-XXXXXX";
+
+static double mono_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static void slurp(const char *path, char *dst, size_t cap)
+{
+    FILE *f = fopen(path, "rb");
+    size_t n = f != NULL ? fread(dst, 1, cap - 1, f) : 0;
+    dst[n] = '\0';
+    if (f != NULL)
+        fclose(f);
+}
+
+/* Runs tdc-usb with the given arguments inside the current testbed. */
+static void run_tool(run_t *r, const char *const *args)
+{
+    const char *argv[32];
+    int n = 0;
+    argv[n++] = TDC_USB_BIN;
+    for (int i = 0; args[i] != NULL && n < 31; i++)
+        argv[n++] = args[i];
+    argv[n] = NULL;
+
+    /* Environment prepared before fork: the umockdev worker thread makes
+     * this process multi-threaded, so the child only calls dup2/execve. */
+    static char preload[] = "LD_PRELOAD=libumockdev-preload.so.0";
+    /* An ASan tdc-usb must accept a preload library ahead of its runtime. */
+    static char asan[] = "ASAN_OPTIONS=verify_asan_link_order=0:detect_leaks=1";
+    char *envp[256];
+    int ne = 0;
+    for (char **e = environ; *e != NULL && ne < 250; e++)
+        if (strncmp(*e, "LD_PRELOAD=", 11) != 0 && strncmp(*e, "ASAN_OPTIONS=", 13) != 0)
+            envp[ne++] = *e;
+    envp[ne++] = preload;
+    envp[ne++] = asan;
+    envp[ne] = NULL;
+
+    char out_path[128], err_path[128];
+    snprintf(out_path, sizeof out_path, "%s/stdout", tmpdir);
+    snprintf(err_path, sizeof err_path, "%s/stderr", tmpdir);
+    int fo = open(out_path, O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    int fe = open(err_path, O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    assert_true(fo >= 0 && fe >= 0);
+
+    double t0 = mono_s();
+    pid_t pid = fork();
+    assert_true(pid >= 0);
+    if (pid == 0) {
+        dup2(fo, 1);
+        dup2(fe, 2);
+        execve(argv[0], (char *const *)argv, envp);
+        _exit(127);
+    }
+    close(fo);
+    close(fe);
+    int st = 0;
+    r->status = -1;
+    for (;;) {
+        pid_t w = waitpid(pid, &st, WNOHANG);
+        if (w == pid) {
+            r->status = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+            break;
+        }
+        if (mono_s() - t0 > CHILD_DEADLINE_S) {
+            kill(pid, SIGKILL);
+            waitpid(pid, &st, 0);
+            r->status = -1;
+            break;
+        }
+        struct timespec ts = {0, 5000000};
+        nanosleep(&ts, NULL);
+    }
+    r->secs = mono_s() - t0;
+    slurp(out_path, r->out, sizeof r->out);
+    slurp(err_path, r->err, sizeof r->err);
+    printf("  $ tdc-usb");
+    for (int i = 1; argv[i] != NULL; i++)
+        printf(" %s", argv[i]);
+    printf("  -> exit %d in %.2f s\n", r->status, r->secs);
+    if (r->err[0] != '\0')
+        printf("    stderr: %s", r->err);
+}
+
+static void expect(const run_t *r, int status, const char *in_out, const char *in_err)
+{
+    if (r->status != status || (in_out != NULL && strstr(r->out, in_out) == NULL) ||
+        (in_err != NULL && strstr(r->err, in_err) == NULL)) {
+        print_error("expected exit %d, stdout with '%s', stderr with '%s'\n"
+                    "got exit %d\n--- stdout\n%s--- stderr\n%s", status,
+                    in_out != NULL ? in_out : "", in_err != NULL ? in_err : "", r->status,
+                    r->out, r->err);
+        fail();
+    }
+    assert_true(r->secs < CHILD_DEADLINE_S);
+}
+
+/* Reference CRC-32 (table-driven, written from the IEEE 802.3 definition),
+ * independent of the firmware's bitwise one. */
+static uint32_t ref_crc32(const uint8_t *p, size_t n)
+{
+    static uint32_t table[256];
+    if (table[1] == 0)
+        for (uint32_t i = 0; i < 256; i++) {
+            uint32_t c = i;
+            for (int k = 0; k < 8; k++)
+                c = c & 1 ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+            table[i] = c;
+        }
+    uint32_t c = 0xFFFFFFFFu;
+    for (size_t i = 0; i < n; i++)
+        c = table[(c ^ p[i]) & 0xFFu] ^ (c >> 8);
+    return ~c;
+}
+
+static void write_file(const char *path, const uint8_t *data, size_t n)
+{
+    FILE *f = fopen(path, "wb");
+    assert_non_null(f);
+    assert_int_equal(fwrite(data, 1, n, f), n);
+    assert_int_equal(fclose(f), 0);
+}
+
+static uint8_t *random_bytes(size_t n, uint32_t seed)
+{
+    uint8_t *p = malloc(n);
+    assert_non_null(p);
+    for (size_t i = 0; i < n; i++) {
+        seed = seed * 1664525u + 1013904223u;
+        p[i] = (uint8_t)(seed >> 24);
+    }
+    return p;
+}
+
+/* ------------------------------------------------------------------ */
+typedef struct {
+    UMockdevTestbed *tb;
+    emul_board_t *board[2];
+} fixture_t;
+
+static int setup_none(void **state)
+{
+    fixture_t *f = calloc(1, sizeof *f);
+    f->tb = umockdev_testbed_new();
+    *state = f;
+    return f->tb != NULL ? 0 : -1;
+}
+
+static int setup_one(void **state)
+{
+    if (setup_none(state) != 0)
+        return -1;
+    fixture_t *f = *state;
+    f->board[0] = emul_board_add(f->tb, 1, 2, "TDC-A", SLOT_BYTES);
+    return f->board[0] != NULL ? 0 : -1;
+}
+
+static int setup_two(void **state)
+{
+    if (setup_one(state) != 0)
+        return -1;
+    fixture_t *f = *state;
+    f->board[1] = emul_board_add(f->tb, 1, 3, "TDC-B", SLOT_BYTES);
+    return f->board[1] != NULL ? 0 : -1;
+}
+
+static int teardown(void **state)
+{
+    fixture_t *f = *state;
+    for (int i = 0; i < 2; i++)
+        emul_board_free(f->board[i]);
+    g_object_unref(f->tb);
+    free(f);
+    return 0;
+}
+
+/* ------------------------------------------------------------------ */
+static void test_crc_reference(void **state)
+{
+    (void)state;
+    static const uint8_t check[] = "123456789";
+    assert_int_equal(tdc_usbp_crc32(check, 9), 0xCBF43926u); /* the CRC-32 check value */
+    uint8_t *p = random_bytes(4099, 7);
+    assert_int_equal(tdc_usbp_crc32(p, 4099), ref_crc32(p, 4099));
+    free(p);
+}
+
+static void test_no_device(void **state)
+{
+    (void)state;
+    run_t r;
+    run_tool(&r, (const char *[]){"list", NULL});
+    expect(&r, 2, NULL, "no tdc board");
+    run_tool(&r, (const char *[]){"info", NULL});
+    expect(&r, 2, NULL, "no tdc board");
+    run_tool(&r, (const char *[]){"--serial", "NOPE", "info", NULL});
+    expect(&r, 2, NULL, "matching --bus/--address/--serial");
+}
+
+static void test_list_and_info(void **state)
+{
+    (void)state;
+    run_t r;
+    run_tool(&r, (const char *[]){"list", NULL});
+    expect(&r, 0, "bus 001 address 002 serial TDC-A board emul panel htc-vive fw 0.1.0", NULL);
+    run_tool(&r, (const char *[]){"info", NULL});
+    expect(&r, 0, "panel: htc-vive 2160x1200 @ 90.000 Hz", NULL);
+    assert_non_null(strstr(r.out, "flash slot 65536 bytes"));
+    assert_non_null(strstr(r.out, "link rx 16384 bytes"));
+    assert_non_null(strstr(r.out, "serial TDC-A"));
+}
+
+static void test_two_devices(void **state)
+{
+    (void)state;
+    run_t r;
+    run_tool(&r, (const char *[]){"list", NULL});
+    expect(&r, 0, "serial TDC-B", NULL);
+    assert_non_null(strstr(r.out, "serial TDC-A"));
+    run_tool(&r, (const char *[]){"info", NULL});
+    expect(&r, 3, NULL, "2 tdc boards match");
+    assert_non_null(strstr(r.err, "--serial"));
+    run_tool(&r, (const char *[]){"--serial", "TDC-B", "info", NULL});
+    expect(&r, 0, "address 003 serial TDC-B", NULL);
+    run_tool(&r, (const char *[]){"--bus", "1", "--address", "2", "info", NULL});
+    expect(&r, 0, "address 002 serial TDC-A", NULL);
+    run_tool(&r, (const char *[]){"--bus", "1", "info", NULL});
+    expect(&r, 3, NULL, "2 tdc boards match");
+}
+
+static void test_stream(void **state)
+{
+    fixture_t *f = *state;
+    const size_t n = 200003; /* not a multiple of the chunk: the last transfer is short */
+    uint8_t *data = random_bytes(n, 42);
+    char path[128];
+    snprintf(path, sizeof path, "%s/stream.tdcs", tmpdir);
+    write_file(path, data, n);
+    run_t r;
+    run_tool(&r, (const char *[]){"stream", "--chunk", "8192", path, NULL});
+    expect(&r, 0, "board received all 200003 bytes", NULL);
+    assert_non_null(strstr(r.out, "MB/s"));
+    assert_non_null(strstr(r.out, "link_crc_errors 0"));
+    emul_board_stats_t st;
+    emul_board_stats(f->board[0], &st);
+    assert_int_equal(st.rx_bytes, n);
+    assert_int_equal(st.rx_transfers, (n + 8191) / 8192);
+    assert_int_equal(st.rx_crc, ref_crc32(data, n));
+    free(data);
+}
+
+static void stream_fault(fixture_t *f, emul_fault_t fault, uint32_t after, int code,
+                         const char *msg)
+{
+    uint8_t *data = random_bytes(100000, 3);
+    char path[128];
+    snprintf(path, sizeof path, "%s/fault.tdcs", tmpdir);
+    write_file(path, data, 100000);
+    free(data);
+    emul_board_set_fault(f->board[0], fault, after);
+    run_t r;
+    run_tool(&r, (const char *[]){"--timeout", "300", "stream", "--chunk", "4096", path, NULL});
+    expect(&r, code, NULL, msg);
+    assert_non_null(strstr(r.err, "stopped after"));
+    assert_true(r.secs < 10.0);
+}
+
+static void test_stream_stall(void **state)
+{
+    stream_fault(*state, EMUL_FAULT_STALL_BULK, 3, 4, "LIBUSB_ERROR_PIPE");
+}
+
+static void test_stream_timeout(void **state)
+{
+    stream_fault(*state, EMUL_FAULT_HANG_BULK, 3, 5, "LIBUSB_ERROR_TIMEOUT");
+}
+
+static void test_stream_unplug(void **state)
+{
+    stream_fault(*state, EMUL_FAULT_UNPLUG, 3, 6, "LIBUSB_ERROR_NO_DEVICE");
+}
+
+static void test_stream_missing_file(void **state)
+{
+    (void)state;
+    run_t r;
+    run_tool(&r, (const char *[]){"stream", "/nonexistent/file.tdcs", NULL});
+    expect(&r, 7, NULL, "cannot open /nonexistent/file.tdcs");
+}
+
+static void test_info_stall_and_timeout(void **state)
+{
+    fixture_t *f = *state;
+    run_t r;
+    emul_board_set_fault(f->board[0], EMUL_FAULT_STALL_INFO, 0);
+    run_tool(&r, (const char *[]){"info", NULL});
+    expect(&r, 4, NULL, "board-info request failed: LIBUSB_ERROR_PIPE");
+    emul_board_set_fault(f->board[0], EMUL_FAULT_HANG_INFO, 0);
+    run_tool(&r, (const char *[]){"--timeout", "250", "info", NULL});
+    expect(&r, 5, NULL, "failed after 250 ms: LIBUSB_ERROR_TIMEOUT");
+}
+
+/* Builds an image with tdc-usb mkimage; returns its bytes (caller frees). */
+static uint8_t *make_image(const char *board, size_t payload, const char *img_path, size_t *len)
+{
+    uint8_t *p = random_bytes(payload, 99);
+    char bin[128];
+    snprintf(bin, sizeof bin, "%s/fw.bin", tmpdir);
+    write_file(bin, p, payload);
+    free(p);
+    run_t r;
+    run_tool(&r, (const char *[]){"mkimage", "--board", board, "--fw-version", "1.2.3", bin,
+                                  img_path, NULL});
+    expect(&r, 0, "CRC-32", NULL);
+    FILE *f = fopen(img_path, "rb");
+    assert_non_null(f);
+    uint8_t *img = malloc(payload + TDC_IMAGE_HEADER_LEN);
+    *len = fread(img, 1, payload + TDC_IMAGE_HEADER_LEN, f);
+    fclose(f);
+    assert_int_equal(*len, payload + TDC_IMAGE_HEADER_LEN);
+    return img;
+}
+
+static void test_flash(void **state)
+{
+    fixture_t *f = *state;
+    char img_path[128];
+    snprintf(img_path, sizeof img_path, "%s/fw.img", tmpdir);
+    size_t len;
+    uint8_t *img = make_image("emul", 5000, img_path, &len);
+    run_t r;
+    run_tool(&r, (const char *[]){"flash", img_path, NULL});
+    expect(&r, 0, "verified 5032 bytes read back", NULL);
+    assert_non_null(strstr(r.out, "board reset requested"));
+    emul_board_stats_t st;
+    emul_board_stats(f->board[0], &st);
+    assert_int_equal(st.image_bytes, len);
+    assert_int_equal(st.slot_crc, ref_crc32(img, len));
+    assert_int_equal(st.reset_requested, 1);
+    assert_int_equal(st.dfu_state, TDC_DFU_STATE_IDLE);
+    free(img);
+}
+
+static void test_flash_bad_images(void **state)
+{
+    fixture_t *f = *state;
+    char img_path[128], bad_path[128];
+    snprintf(img_path, sizeof img_path, "%s/fw.img", tmpdir);
+    snprintf(bad_path, sizeof bad_path, "%s/bad.img", tmpdir);
+    size_t len;
+    uint8_t *img = make_image("emul", 3000, img_path, &len);
+    run_t r;
+
+    img[TDC_IMAGE_HEADER_LEN + 1000] ^= 0x01u; /* one flipped payload bit */
+    write_file(bad_path, img, len);
+    run_tool(&r, (const char *[]){"flash", bad_path, NULL});
+    expect(&r, 8, NULL, "payload CRC-32 does not match the header");
+    img[TDC_IMAGE_HEADER_LEN + 1000] ^= 0x01u;
+
+    write_file(bad_path, img, len - 100); /* truncated */
+    run_tool(&r, (const char *[]){"flash", bad_path, NULL});
+    expect(&r, 8, NULL, "image size does not match the header's payload length");
+
+    write_file(bad_path, img + 4, len - 4); /* no header */
+    run_tool(&r, (const char *[]){"flash", bad_path, NULL});
+    expect(&r, 8, NULL, "not a tdc firmware image");
+
+    emul_board_stats_t st;
+    emul_board_stats(f->board[0], &st);
+    assert_int_equal(st.image_bytes, 0); /* nothing reached the board */
+    assert_int_equal(st.dfu_state, TDC_DFU_STATE_IDLE);
+    free(img);
+
+    img = make_image("otherboard", 3000, img_path, &len);
+    run_tool(&r, (const char *[]){"flash", img_path, NULL});
+    expect(&r, 9, NULL, "image was built for another board");
+    free(img);
+
+    img = make_image("emul", SLOT_BYTES, img_path, &len); /* header makes it 32 bytes too big */
+    run_tool(&r, (const char *[]){"flash", img_path, NULL});
+    expect(&r, 9, NULL, "larger than the board's flash slot");
+    free(img);
+}
+
+static void test_flash_board_rejects(void **state)
+{
+    fixture_t *f = *state;
+    char img_path[128];
+    snprintf(img_path, sizeof img_path, "%s/fw.img", tmpdir);
+    size_t len;
+    uint8_t *img = make_image("emul", 4000, img_path, &len);
+    emul_board_set_fault(f->board[0], EMUL_FAULT_CORRUPT_FLASH, 2100); /* a bad flash cell */
+    run_t r;
+    run_tool(&r, (const char *[]){"flash", img_path, NULL});
+    expect(&r, 10, NULL, "DFU status errVERIFY");
+    emul_board_stats_t st;
+    emul_board_stats(f->board[0], &st);
+    assert_int_equal(st.image_bytes, 0);
+    assert_int_equal(st.reset_requested, 0);
+    assert_int_equal(st.dfu_state, TDC_DFU_STATE_ERROR);
+    /* The next flash clears the error state first and succeeds. */
+    emul_board_set_fault(f->board[0], EMUL_FAULT_NONE, 0);
+    run_tool(&r, (const char *[]){"flash", "--no-reset", img_path, NULL});
+    expect(&r, 0, "verified 4032 bytes", NULL);
+    free(img);
+}
+
+static void test_args(void **state)
+{
+    (void)state;
+    run_t r;
+    run_tool(&r, (const char *[]){"frobnicate", NULL});
+    expect(&r, 1, NULL, "unknown command 'frobnicate'");
+    run_tool(&r, (const char *[]){"--timeout", "x", "info", NULL});
+    expect(&r, 1, NULL, "bad value for --timeout");
+    run_tool(&r, (const char *[]){"--help", NULL});
+    expect(&r, 0, "exit codes:", NULL);
+}
+
+int main(void)
+{
+    if (mkdtemp(tmpdir) == NULL) {
+        perror("mkdtemp");
+        return 1;
+    }
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_crc_reference),
+        cmocka_unit_test_setup_teardown(test_args, setup_none, teardown),
+        cmocka_unit_test_setup_teardown(test_no_device, setup_none, teardown),
+        cmocka_unit_test_setup_teardown(test_list_and_info, setup_one, teardown),
+        cmocka_unit_test_setup_teardown(test_two_devices, setup_two, teardown),
+        cmocka_unit_test_setup_teardown(test_stream, setup_one, teardown),
+        cmocka_unit_test_setup_teardown(test_stream_stall, setup_one, teardown),
+        cmocka_unit_test_setup_teardown(test_stream_timeout, setup_one, teardown),
+        cmocka_unit_test_setup_teardown(test_stream_unplug, setup_one, teardown),
+        cmocka_unit_test_setup_teardown(test_stream_missing_file, setup_one, teardown),
+        cmocka_unit_test_setup_teardown(test_info_stall_and_timeout, setup_one, teardown),
+        cmocka_unit_test_setup_teardown(test_flash, setup_one, teardown),
+        cmocka_unit_test_setup_teardown(test_flash_bad_images, setup_one, teardown),
+        cmocka_unit_test_setup_teardown(test_flash_board_rejects, setup_one, teardown),
+    };
+    int failed = cmocka_run_group_tests_name("tdc-usb against emulated boards (umockdev)", tests,
+                                             NULL, NULL);
+    char cmd[160];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);
+    if (system(cmd) != 0)
+        fprintf(stderr, "could not remove %s\n", tmpdir);
+    return failed != 0;
+}
