@@ -8,3 +8,18 @@ TESTS += $(B)/tests/test_trm_ref
 TESTS += $(B)/tests/test_trm
 TESTS += $(B)/tests/test_trm_stability
 GOLDEN_STAGES += trm
+
+# tdc-run: the firmware on anyone's frames.  Other modes add their sources
+# to TDCRUN_SRCS (e.g. tile assembly: hosttools/tdcrun/run_assemble.c).
+TDCRUN := $(B)/bin/tdc-run
+TDCRUN_OBJS = $(patsubst %.c,$(B)/%.o,hosttools/tdcrun/tdc_run.c $(TDCRUN_SRCS)) $(B)/tests/golden/tdc_content.o
+$(B)/hosttools/tdcrun/tdc_run.o: HOST_CFLAGS += $(if $(filter hosttools/tdcrun/run_assemble.c,$(TDCRUN_SRCS)),-DTDC_RUN_WITH_ASSEMBLE)
+$(TDCRUN): $(TDCRUN_OBJS) $(SIMLIB) $(FWLIB)
+	@mkdir -p $(@D)
+	$(CC) $(HOST_LDFLAGS) $(TDCRUN_OBJS) -o $@ $(SIMLIB) $(FWLIB) $(HOST_LIBS)
+HOST_PROGS += $(TDCRUN)
+$(B)/test-tdc-run: $(TDCRUN) tests/test_tdc_run.sh
+	@printf '#!/bin/sh\nexec tests/test_tdc_run.sh %s\n' "$(TDCRUN)" > $@
+	@chmod +x $@
+TESTS += $(B)/test-tdc-run
+TESTS += $(B)/tests/test_png

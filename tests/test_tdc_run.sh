@@ -1,0 +1,52 @@
+#!/bin/sh
+# tdc-run end to end: happy paths agree bit for bit, every bad input gets a
+# message and the right exit code.  Usage: tests/test_tdc_run.sh PATH/TO/tdc-run
+run=$1
+t=$(mktemp -d); trap 'rm -rf "$t"' EXIT
+pass=0; fail=0
+ok()   { pass=$((pass+1)); echo "ok   $1"; }
+bad()  { fail=$((fail+1)); echo "FAIL $1"; }
+# expect CODE DESCRIPTION PATTERN -- command...: exit code and a message matching PATTERN
+expect() {
+    code=$1; what=$2; pat=$3; shift 4
+    "$@" >"$t/out" 2>"$t/err"; got=$?
+    if [ "$got" -eq "$code" ] && grep -q -- "$pat" "$t/err" "$t/out"; then ok "$what"
+    else bad "$what (exit $got, want $code; stderr: $(head -c 300 "$t/err"))"; fi
+}
+expect 0 "--help" "usage: tdc-run" -- "$run" --help
+expect 2 "no arguments" "no output folder" -- "$run"
+expect 2 "unknown panel" "unknown panel 'nope'; known panels" -- "$run" -o "$t/o" -p nope x.png
+expect 2 "ratio below 1/4" "--ratio must be" -- "$run" -o "$t/o" -r 1/5 x.png
+expect 2 "bad frames pattern" "--frames must be" -- "$run" -o "$t/o" -f RF x.png
+expect 2 "unknown option" "unknown option" -- "$run" --bogus
+expect 1 "missing file" "cannot open" -- "$run" -o "$t/o" "$t/nothere.png"
+printf 'not a png' > "$t/junk.png"
+expect 1 "not a PNG" "not a PNG" -- "$run" -o "$t/o" "$t/junk.png"
+expect 1 "TRM below 90 Hz refused" "refused" -- "$run" -o "$t/o" --refresh 60 --builtin edge --count 2 --size 32x16
+
+# built-in run: N drive frames and a CSV row each
+"$run" -q -o "$t/a" --builtin text --count 6 --size 40x30 --frames auto --perceived || bad "builtin run"
+n=$(ls "$t/a"/drive_*.png 2>/dev/null | wc -l); rows=$(($(wc -l < "$t/a/stats.csv") - 1))
+[ "$n" -eq 6 ] && [ "$rows" -eq 6 ] && ok "6 drive frames and 6 CSV rows" || bad "drive frames $n, rows $rows"
+[ "$(ls "$t/a"/perceived_*.png | wc -l)" -eq 5 ] && ok "perceived frames" || bad "perceived frames"
+grep -q '^1,0,reduced,' "$t/a/stats.csv" && ok "frame 1 is reduced" || bad "frame kinds in CSV"
+
+# r = 1 passes frames through unchanged: use it to write the inputs as files,
+# then files in --frames auto must give the same bytes as the built-in run
+"$run" -q -o "$t/in" -r 1 --builtin text --count 6 --size 40x30 || bad "pass-through run"
+grep -q ',pass,' "$t/in/stats.csv" && ok "r=1 runs no TRM (pass)" || bad "r=1 not pass-through"
+"$run" -q -o "$t/b" --frames auto "$t/in"/drive_*.png || bad "file run"
+same=1; for f in "$t/a"/drive_*.png; do cmp -s "$f" "$t/b/$(basename "$f")" || same=0; done
+[ $same -eq 1 ] && ok "files and built-in content give identical drive frames" || bad "file vs built-in differ"
+
+# alternate mode: a reduced frame of the wrong size is rejected with the sizes
+expect 1 "reduced frame size mismatch" "reduced frame is 40x30, expected 20x15" -- "$run" -o "$t/c" "$t/in/drive_00000.png" "$t/in/drive_00001.png"
+# a full frame of another size
+"$run" -q -o "$t/small" -r 1 --builtin edge --count 1 --size 20x10 || bad "small run"
+expect 1 "full frame size mismatch" "expected 40x30" -- "$run" -o "$t/d" -f FF "$t/in/drive_00000.png" "$t/small/drive_00000.png"
+# stereo needs auto and works
+expect 2 "stereo without auto" "--stereo needs --frames auto" -- "$run" -o "$t/e" --stereo x.png
+"$run" -q -o "$t/s" --stereo --frames auto --builtin edge --count 4 --size 64x20 && \
+    grep -q '^1,1,full,' "$t/s/stats.csv" && grep -q '^1,0,reduced,' "$t/s/stats.csv" && ok "stereo eyes alternate" || bad "stereo"
+echo "tdc-run: $pass passed, $fail failed"
+[ "$fail" -eq 0 ]
