@@ -23,3 +23,4 @@ $(B)/test-tdc-run: $(TDCRUN) tests/test_tdc_run.sh
 	@chmod +x $@
 TESTS += $(B)/test-tdc-run
 TESTS += $(B)/tests/test_png
+BENCHES += $(B)/tests/bench_trm
