@@ -288,10 +288,11 @@ void tdc_scene_mv(const tdc_scene_t *s, int x, int y, uint32_t t, int16_t mv[2])
         break;
     case TDC_SCENE_LINE:
     case TDC_SCENE_HLINE: {
-        /* Moving within 1 px of a line's centre: wide enough that a jittered
-         * static sample (offset <= 3/8 px) never hits a line. */
+        /* Moving within 1.5 px of a line's centre: wide enough that a
+         * jittered static sample (offset <= 3/8 px) never hits a line, and
+         * that the pixels beside a line carry its motion. */
         int hor = s->kind == TDC_SCENE_HLINE;
-        if (line_dist(hor ? y : x, line_pos(s, t, hor)) < 1.0) {
+        if (line_dist(hor ? y : x, line_pos(s, t, hor)) < 1.5) {
             mv[0] = (int16_t)-s->vx_q4 * (hor ? 0 : 1);
             mv[1] = (int16_t)-s->vy_q4 * (hor ? 1 : 0);
         }
