@@ -14,7 +14,7 @@ GPIOD_LIBS := $(or $(shell pkg-config --libs libgpiod 2>/dev/null),-lgpiod)
 
 TDC_USB := $(B)/bin/tdc-usb
 TDC_GPIO := $(B)/bin/tdc-gpio
-HOST_PROGS += $(TDC_USB)
+HOST_PROGS += $(TDC_USB) $(TDC_GPIO)
 
 # Pattern-specific flags: only the objects that include libusb/umockdev headers.
 $(B)/hosttools/usb/%.o: HOST_CFLAGS += $(LIBUSB_CFLAGS)
@@ -37,3 +37,8 @@ $(B)/tests/usb/test_usb_emul: $(USB_EMUL_OBJS) $(FWLIB) $(TDC_USB)
 	$(CC) $(HOST_LDFLAGS) $(USB_EMUL_OBJS) -o $@ $(FWLIB) $(UMOCKDEV_LIBS) -lcmocka -lpthread
 TESTS += $(B)/tests/usb/test_usb_emul
 
+# The vsync statistics (pure code) and tdc-gpio's error paths without a chip.
+$(B)/tests/usb/test_gpio_vsync: $(B)/tests/usb/test_gpio_vsync.o $(B)/hosttools/gpio/tdc_vsync_stats.o $(TDC_GPIO)
+	$(CC) $(HOST_LDFLAGS) $(B)/tests/usb/test_gpio_vsync.o $(B)/hosttools/gpio/tdc_vsync_stats.o -o $@ -lcmocka -lm
+$(B)/tests/usb/test_gpio_vsync.o: HOST_CFLAGS += -Ihosttools/gpio -DTDC_GPIO_BIN='"$(abspath $(TDC_GPIO))"'
+TESTS += $(B)/tests/usb/test_gpio_vsync
