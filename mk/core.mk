@@ -24,3 +24,20 @@ $(B)/test-tdc-run: $(TDCRUN) tests/test_tdc_run.sh
 TESTS += $(B)/test-tdc-run
 TESTS += $(B)/tests/test_png
 BENCHES += $(B)/tests/bench_trm
+
+# make demo, TRM part: tdc-run on built-in contents -> report/trm/index.md
+REPORT ?= report
+DEMO_TRM_CONTENTS := edge text checker gradient primaries
+demo: deps demo-trm
+demo-trm: $(TDCRUN) $(B)/tests/test_trm_ref
+	@rm -rf $(BUILD)/demo-trm; mkdir -p $(REPORT)/trm
+	@for c in $(DEMO_TRM_CONTENTS); do \
+	    $(TDCRUN) -q -o $(BUILD)/demo-trm/$$c --builtin $$c --count 8 --size 320x200 --frames auto \
+	        --save-input --perceived || exit 1; done
+	/usr/bin/python3 sim/trm_report.py $(REPORT)/trm $(addprefix $(BUILD)/demo-trm/,$(DEMO_TRM_CONTENTS))
+	@{ echo; echo '## Fixed point against the double-precision reference'; echo; \
+	   echo 'Output of `$(B)/tests/test_trm_ref` (max abs error in output LSB, share within 1 LSB):'; \
+	   echo; echo '```'; $(B)/tests/test_trm_ref 2>&1 | grep -E '^  (D|full|reduced) '; echo '```'; } >> $(REPORT)/trm/index.md
+	@[ -f $(REPORT)/index.md ] || { echo '# tdc demo report'; echo; echo '- [TRM on built-in contents](trm/index.md)'; } > $(REPORT)/index.md
+	@echo "demo-trm: wrote $(REPORT)/trm/index.md"
+.PHONY: demo-trm

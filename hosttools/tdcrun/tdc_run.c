@@ -49,6 +49,7 @@ static const char k_usage[] =
     "                         edge text noise black white primaries checker flash gradient\n"
     "      --count N          frames of built-in content (default 8)\n"
     "      --size WxH         size of built-in content (default 160x120)\n"
+    "      --save-input       also write the input frames as OUTDIR/input_NNNNN.png\n"
     "  -q, --quiet            no per-frame lines on stderr\n"
     "  -h, --help             this text\n"
     "\n"
@@ -61,7 +62,7 @@ typedef struct {
     double s, sigma;
     int refresh;
     const char *frames;
-    int stereo, perceived, quiet;
+    int stereo, perceived, quiet, save_input;
     const char *builtin;
     int count, bw, bh;
 } opts_t;
@@ -107,6 +108,26 @@ static double now_s(void)
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+/* mkdir -p */
+static int mkdir_p(const char *path)
+{
+    char buf[4096];
+    if (snprintf(buf, sizeof buf, "%s", path) >= (int)sizeof buf) {
+        errno = ENAMETOOLONG;
+        return -1;
+    }
+    for (char *p = buf + 1; *p; p++) {
+        if (*p == '/') {
+            *p = 0;
+            if (mkdir(buf, 0777) != 0 && errno != EEXIST) {
+                return -1;
+            }
+            *p = '/';
+        }
+    }
+    return (mkdir(buf, 0777) != 0 && errno != EEXIST) ? -1 : 0;
 }
 
 typedef struct {
@@ -174,7 +195,7 @@ static int write_png(const opts_t *o, const char *prefix, int i, const uint8_t *
 
 int tdc_run_trm_main(int argc, char **argv)
 {
-    opts_t o = {NULL, &tdc_panel_htc_vive, 1, 2, 10.0, 2.5, 0, "alternate", 0, 0, 0, NULL, 8, 160, 120};
+    opts_t o = {NULL, &tdc_panel_htc_vive, 1, 2, 10.0, 2.5, 0, "alternate", 0, 0, 0, 0, NULL, 8, 160, 120};
     static const struct option longopts[] = {
         {"out", required_argument, 0, 'o'},   {"panel", required_argument, 0, 'p'},
         {"ratio", required_argument, 0, 'r'}, {"sensitivity", required_argument, 0, 's'},
@@ -183,6 +204,7 @@ int tdc_run_trm_main(int argc, char **argv)
         {"perceived", no_argument, 0, 4},     {"builtin", required_argument, 0, 5},
         {"count", required_argument, 0, 6},   {"size", required_argument, 0, 7},
         {"quiet", no_argument, 0, 'q'},       {"help", no_argument, 0, 'h'},
+        {"save-input", no_argument, 0, 8},
         {0, 0, 0, 0}};
     int c;
     char *end;
@@ -268,6 +290,9 @@ int tdc_run_trm_main(int argc, char **argv)
         case 'q':
             o.quiet = 1;
             break;
+        case 8:
+            o.save_input = 1;
+            break;
         case 'h': {
             char names[512];
             panel_names(names, sizeof names);
@@ -294,7 +319,7 @@ int tdc_run_trm_main(int argc, char **argv)
         return usage_error("%s", "--stereo needs --frames auto");
     }
     char **files = argv + optind;
-    if (mkdir(o.out, 0777) != 0 && errno != EEXIST) {
+    if (mkdir_p(o.out) != 0) {
         fprintf(stderr, "tdc-run: cannot create %s: %s\n", o.out, strerror(errno));
         return TDC_RUN_EXIT_FAILED;
     }
@@ -349,6 +374,11 @@ int tdc_run_trm_main(int argc, char **argv)
             break;
         }
         const char *name = o.builtin ? o.builtin : files[i];
+        if (o.save_input && write_png(&o, "input", i, img.data, img.width, img.height) != 0) {
+            tdc_png_free(&img);
+            rc = TDC_RUN_EXIT_FAILED;
+            break;
+        }
         for (int e = 0; e < eyes && rc == TDC_RUN_EXIT_OK; e++) {
             tdc_trm_t *t = &eye[e].trm;
             char kind = o.stereo ? (tdc_trm_stereo_eye_is_full((uint32_t)i, e) ? 'F' : 'R') : frame_kind(&o, i);
