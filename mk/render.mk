@@ -1,0 +1,24 @@
+# Companion CPU renderer on Embree 3 (issue 6): library, tdc-render, tests, bench.
+# Other components link it with: $(RENDERLIB) ... $(RENDER_LDLIBS)
+DEPS_PKGS += libembree-dev
+RENDER_SRCS := sim/render/tdc_scene_parse.c sim/render/tdc_scene_anim.c sim/render/tdc_scene_builtin.c \
+               sim/render/tdc_render_core.c sim/render/tdc_render_geom.c sim/render/tdc_render_texture.c \
+               sim/render/tdc_render_trace.c sim/render/tdc_render_frame.c
+RENDER_OBJS = $(patsubst %.c,$(B)/%.o,$(RENDER_SRCS))
+RENDERLIB = $(B)/libtdcrender.a
+RENDER_LDLIBS := -lembree3
+
+$(B)/libtdcrender.a: $(RENDER_OBJS)
+	@rm -f $@
+	ar rcs $@ $^
+
+HOST_PROGS += $(B)/tdc-render
+$(B)/tdc-render: $(B)/sim/render/tdc_render_main.o $(B)/libtdcrender.a $(SIMLIB) $(FWLIB)
+	$(CC) $(HOST_LDFLAGS) $< -o $@ $(RENDERLIB) $(SIMLIB) $(FWLIB) $(RENDER_LDLIBS) $(HOST_LIBS)
+
+RENDER_TESTS := test_render_scene test_render_mv test_render_gt
+TESTS += $(foreach t,$(RENDER_TESTS),$(B)/tests/$(t))
+BENCHES += $(B)/tests/bench_render
+RENDER_EXES = $(foreach t,$(RENDER_TESTS) bench_render,$(B)/tests/$(t))
+$(RENDER_EXES): $(B)/tests/%: $(B)/tests/%.o $(B)/libtdcrender.a $(SIMLIB) $(FWLIB)
+	$(CC) $(HOST_LDFLAGS) $< -o $@ $(RENDERLIB) $(SIMLIB) $(FWLIB) $(RENDER_LDLIBS) $(HOST_LIBS)

@@ -1,0 +1,183 @@
+/*
+ * tdc_render.h - the companion CPU renderer (DESIGN §5, issue 6): Whitted
+ * ray tracing on Intel Embree 3, frame by frame, for the simulator.
+ *
+ *   tdc_render_t *r = tdc_render_open(scene, &cfg, err, sizeof err);
+ *   tdc_render_frame(r, frame, TDC_RENDER_FULL, &out, &stats);   // per refresh
+ *   tdc_render_close(r);
+ *
+ * Frame f is the scene at time f / fps; motion vectors of frame f point to
+ * frame f - 1.  All colours are linear light (scene radiance, 1.0 = the
+ * panel's white); tdc_render_linear_to_rgb888() encodes for 8-bit panels.
+ *
+ * Motion vectors (common interface): per traced sample an interleaved
+ * int16 pair (dx, dy) in Q4 px (1/16 px, clamped to +-2047.9375 px),
+ * BACKWARD: the surface point now at sample position p was at p + (dx, dy)
+ * in the previous frame.  Pixel (i, j) covers [i, i+1) x [j, j+1); its
+ * centre is (i + 0.5, j + 0.5).  Float copies are available for tests.
+ *
+ * Output sizes per mode (tdc_render_output_size):
+ *   FULL          W x H pixels, samples at pixel centres
+ *   REDUCED       round(W r) x round(H r), each pixel a Gaussian resolve of a
+ *                 supersampled grid (TRM §4.3: not aliased)
+ *   SUBFRAME      ceil(W/2) x ceil(H/2) tiles, one traced pixel per 2x2 tile:
+ *                 position tdc_ordering_pixel(tile ordering, frame mod 4);
+ *                 static pixels jittered by tdc_jitter_offset_q4(frame),
+ *                 dynamic ones (a non-zero MV in the pixel's 3x3
+ *                 neighbourhood of the renderer's MV history) at the centre.
+ *                 Orderings are updated by tdc_ordering_update() at every
+ *                 frame = 0 mod 4 (see tdc_render_pattern_bits()).
+ *   GROUND_TRUTH  W x H, N stratified samples per pixel (box filter).
+ */
+#ifndef TDC_RENDER_H
+#define TDC_RENDER_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "tdc_scene.h"
+
+typedef enum {
+    TDC_RENDER_FULL = 0,
+    TDC_RENDER_REDUCED = 1,
+    TDC_RENDER_SUBFRAME = 2,
+    TDC_RENDER_GROUND_TRUTH = 3
+} tdc_render_mode_t;
+
+typedef struct {
+    int width, height;      /* output size; 0 = the scene's resolution */
+    int threads;            /* worker threads (pthreads), >= 1 */
+    uint32_t seed;          /* all randomness (jitter, light samples) derives from it */
+    int max_bounces;        /* mirror bounces, 0..3 (default 3) */
+    int reflect_mv;         /* reflected MVs for mirror hits (TDRT §3.1.2), default 1 */
+    int shadow_mv;          /* shadow MVs (Zeng §4.1), default 0 */
+    int dual_mv;            /* dual MVs for disocclusions (Zeng §4.3), default 0 */
+    double reduced_factor;  /* r of REDUCED frames, (0, 1], default 0.5 */
+    int reduced_ss;         /* supersamples per reduced pixel per axis, default 2 */
+    double reduced_sigma;   /* Gaussian resolve sigma in full-res px, default 2.5 (TRM §4.3) */
+    int gt_samples;         /* N of GROUND_TRUTH, default 64 */
+    int record_rays;        /* keep every traced ray of the last frame (benchmark) */
+} tdc_render_config_t;
+
+/* Caller-owned outputs; any pointer may be NULL (that output is not written,
+ * but MVs are still computed if another MV output is requested).
+ * Sizes: n = output pixels (or tiles) of the mode. */
+typedef struct {
+    float *rgb;             /* n x 3 linear RGB */
+    int16_t *mv;            /* n x 2 Q4 backward MVs (primary, or reflected for mirror hits) */
+    float *mv_f;            /* n x 2 the same in float px (before rounding) */
+    int16_t *mv_shadow;     /* n x 2 Q4 shadow MVs (= mv where not in a tracked shadow) */
+    float *shadow_weight;   /* n: Zeng eq. 4 falloff G(theta - pi/2; 0, 0.1), 0 where no shadow MV */
+    int16_t *mv_dual;       /* n x 2 Q4 dual MVs (= mv where not disoccluded) */
+    float *depth;           /* n: camera-space depth of the primary hit, INFINITY for misses */
+} tdc_render_out_t;
+
+typedef enum {
+    TDC_STAGE_SCENE = 0,    /* animation + Embree instance update/commit */
+    TDC_STAGE_PRIMARY,      /* primary rays */
+    TDC_STAGE_SHADE,        /* textures + direct light + shadow rays */
+    TDC_STAGE_REFLECT,      /* mirror bounces (rays, shading of reflected hits) */
+    TDC_STAGE_MV,           /* primary motion vectors */
+    TDC_STAGE_MV_REFLECT,   /* reflected motion vectors */
+    TDC_STAGE_MV_SHADOW,    /* shadow motion vectors (+ previous-frame rays for the falloff) */
+    TDC_STAGE_MV_DUAL,      /* dual motion vectors (+ previous-frame rays) */
+    TDC_STAGE_RESOLVE,      /* Gaussian resolve (reduced) / sample averaging (ground truth) */
+    TDC_STAGE_ORDERING,     /* tile-ordering update (subframes, frame = 0 mod 4) */
+    TDC_STAGE_COUNT
+} tdc_render_stage_t;
+
+typedef enum { TDC_RAY_PRIMARY = 0, TDC_RAY_SHADOW, TDC_RAY_REFLECT, TDC_RAY_MV, TDC_RAY_KIND_COUNT } tdc_ray_kind_t;
+
+typedef struct {
+    double ms[TDC_STAGE_COUNT];     /* CPU milliseconds per stage, summed over threads */
+    int ran[TDC_STAGE_COUNT];       /* 1 if the stage ran this frame, 0 if skipped */
+    uint64_t rays[TDC_RAY_KIND_COUNT];
+    double wall_ms;                 /* whole call, wall clock */
+    int out_w, out_h;               /* output size of the mode */
+    int frame_static;               /* nothing moved between frame - 1 and frame */
+} tdc_render_stats_t;
+
+/* What the scene needs (detected at open); stages it does not need are skipped. */
+typedef struct {
+    int mirrors;          /* a visible object has a mirror material -> reflection rays/MVs */
+    int motion;           /* something moves (camera, object or light) -> MV work */
+    int camera_moves;
+    int objects_move;
+    int moving_blocker;   /* lit scene and an object or light moves -> shadow MVs useful */
+    int lights;           /* point/rect lights present -> shadow rays */
+    int area_lights;
+    uint64_t triangles;   /* triangles + quads*2 over all objects */
+} tdc_render_features_t;
+
+typedef struct tdc_render tdc_render_t;
+
+void tdc_render_default_config(tdc_render_config_t *cfg);
+/* Builds the Embree scenes (copies *scene).  NULL on error with a message. */
+tdc_render_t *tdc_render_open(const tdc_scene_t *scene, const tdc_render_config_t *cfg, char *err, size_t errlen);
+void tdc_render_close(tdc_render_t *r);
+
+/* Renders frame `frame` in `mode`.  Returns 0, or -1 on a bad argument. */
+int tdc_render_frame(tdc_render_t *r, uint32_t frame, tdc_render_mode_t mode, const tdc_render_out_t *out,
+                     tdc_render_stats_t *stats);
+
+void tdc_render_output_size(const tdc_render_t *r, tdc_render_mode_t mode, int *w, int *h);
+void tdc_render_get_features(const tdc_render_t *r, tdc_render_features_t *f);
+/* 1 if nothing moves between frame - 1 and frame (the stream can say static). */
+int tdc_render_frame_static(tdc_render_t *r, uint32_t frame);
+const tdc_scene_t *tdc_render_scene(const tdc_render_t *r);
+
+/* Tile orderings (1 bit per tile, tdc_ordering.h layout) used by subframes,
+ * and the full-res Q4 MV history they are decided from (W x H x 2). */
+const uint8_t *tdc_render_pattern_bits(const tdc_render_t *r);
+void tdc_render_set_pattern_bits(tdc_render_t *r, const uint8_t *bits);
+const int16_t *tdc_render_mv_history(const tdc_render_t *r);
+
+/* One ray through image position (x, y) of `frame`, for tests and tools. */
+typedef struct {
+    int hit;                /* primary ray hit an object */
+    int obj;                /* object index */
+    double q[3];            /* hit point in the object's local space */
+    double world[3];
+    double mv[2];           /* the MV the renderer outputs (float px) */
+    int mirror_hit;         /* primary surface is a mirror and a reflected object was hit */
+    int refl_obj;           /* last reflected non-mirror object */
+    double refl_q[3];
+    int in_shadow;          /* a point light is blocked (first such light) */
+    int blocker_obj;
+    double blocker_q[3];
+    double shadow_mv[2];
+    double shadow_weight;
+    double dual_mv[2];
+    int disoccluded;
+} tdc_render_probe_t;
+int tdc_render_probe(tdc_render_t *r, uint32_t frame, double x, double y, tdc_render_probe_t *p);
+
+/* Screen position at `frame` of a point given in object `obj`'s local space
+ * (obj = -1: world space).  Returns 0, or -1 if behind the camera. */
+int tdc_render_project(tdc_render_t *r, uint32_t frame, int obj, const double q[3], double *x, double *y);
+/* Screen position of the mirror image of object point q seen through the
+ * mirror plane (mirror object mobj, local point mq, local normal from the
+ * renderer); for reflection tests. */
+int tdc_render_project_reflected(tdc_render_t *r, uint32_t frame, int mobj, const double mq[3], int obj,
+                                 const double q[3], double *x, double *y);
+
+/* Linear light -> 8-bit code: code = round(255 * clamp(v, 0, 1)^(1/2.2))
+ * (the "2.2 display" transfer the panels approximate). n = pixels. */
+void tdc_render_linear_to_rgb888(const float *lin, size_t n, uint8_t *rgb);
+int tdc_render_write_png(const char *path, const float *lin, int w, int h, char *err, size_t errlen);
+
+/* Rays of the last frame rendered with record_rays (benchmark replay). */
+typedef struct {
+    float org[3], tnear;
+    float dir[3], tfar;     /* tfar: the ray's original extent */
+    uint32_t kind;          /* tdc_ray_kind_t; shadow rays were occlusion queries */
+    uint32_t prev_frame;    /* 1: traced in the previous frame's scene (MV rays) */
+} tdc_render_ray_t;
+const tdc_render_ray_t *tdc_render_recorded_rays(const tdc_render_t *r, size_t *count);
+/* The committed Embree scene (RTCScene) of `frame`, for bare-Embree comparisons. */
+void *tdc_render_embree_scene(tdc_render_t *r, uint32_t frame);
+
+const char *tdc_render_stage_name(tdc_render_stage_t s);
+const char *tdc_render_mode_name(tdc_render_mode_t m);
+
+#endif /* TDC_RENDER_H */

@@ -1,0 +1,520 @@
+/*
+ * tdc_render_frame.c - one refresh: sample placement per mode (full,
+ * reduced, subframe, ground truth), tiles distributed over pthreads, the
+ * passes of tdc_render_trace.c, output packing (Q4 MVs, MV history), the
+ * Gaussian resolve of reduced frames, per-stage timings and ray counts.
+ * Stages a scene or frame does not need are not entered (0 ms, ran = 0).
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "tdc_ordering.h"
+#include "tdc_png.h"
+#include "tdc_render_trace.h"
+
+typedef struct {
+    tdc_render_t *r;
+    tdc_render_mode_t mode;
+    uint32_t frame;
+    int sw, sh;              /* slot grid */
+    int spp;                 /* samples per slot */
+    int tile;                /* slots per tile side */
+    int ntx, nty;
+    int next;                /* atomic work counter */
+    int32_t jx, jy;          /* subframe static jitter, Q4 */
+    int do_reflect, do_mv, do_mv_reflect, do_mv_shadow, do_mv_dual, frame_static;
+    const tdc_render_out_t *out;
+    float *ss;               /* reduced: supersample buffer sw*sh*3; GT: accumulation target */
+    int record;
+} job_t;
+
+typedef struct {
+    job_t *job;
+    rthread_t th;
+    rsample_t *s;
+    pthread_t tid;
+} worker_t;
+
+static int16_t q4(double v)
+{
+    double q = floor(v * 16 + 0.5);
+    if (q > 32767) q = 32767;
+    if (q < -32767) q = -32767;
+    return (int16_t)q;
+}
+
+/* 1 if any MV in the 3x3 pixel neighbourhood of (x, y) in the history is non-zero. */
+static int hist_dynamic(const tdc_render_t *r, int x, int y)
+{
+    for (int j = y - 1; j <= y + 1; j++) {
+        if (j < 0 || j >= r->H) continue;
+        for (int i = x - 1; i <= x + 1; i++) {
+            if (i < 0 || i >= r->W) continue;
+            const int16_t *m = &r->mv_hist[((size_t)j * r->W + i) * 2];
+            if (m[0] || m[1]) return 1;
+        }
+    }
+    return 0;
+}
+
+static int place_samples(job_t *jb, int tx, int ty, rsample_t *s)
+{
+    tdc_render_t *r = jb->r;
+    int n = 0;
+    int x0 = tx * jb->tile, y0 = ty * jb->tile;
+    int x1 = x0 + jb->tile < jb->sw ? x0 + jb->tile : jb->sw, y1 = y0 + jb->tile < jb->sh ? y0 + jb->tile : jb->sh;
+    for (int sy = y0; sy < y1; sy++)
+        for (int sx = x0; sx < x1; sx++) {
+            uint32_t slot = (uint32_t)sy * (uint32_t)jb->sw + (uint32_t)sx;
+            switch (jb->mode) {
+            case TDC_RENDER_FULL:
+                s[n].x = sx + 0.5f;
+                s[n].y = sy + 0.5f;
+                s[n].px = sx;
+                s[n].py = sy;
+                s[n].dst = slot;
+                s[n].k = 0;
+                n++;
+                break;
+            case TDC_RENDER_SUBFRAME: {
+                tdc_ordering_t o = tdc_ordering_get(r->pattern, slot);
+                unsigned p = tdc_ordering_pixel(o, jb->frame & 3u);
+                int px = 2 * sx + (int)(p & 1u), py = 2 * sy + (int)(p >> 1);
+                if (px >= r->W) px = r->W - 1; /* partial tile at an odd size */
+                if (py >= r->H) py = r->H - 1;
+                int dyn = hist_dynamic(r, px, py);
+                s[n].x = px + 0.5f + (dyn ? 0.0f : jb->jx / 16.0f);
+                s[n].y = py + 0.5f + (dyn ? 0.0f : jb->jy / 16.0f);
+                s[n].px = px;
+                s[n].py = py;
+                s[n].dst = slot;
+                s[n].k = 0;
+                n++;
+                break;
+            }
+            case TDC_RENDER_REDUCED:
+                s[n].x = (float)((sx + 0.5) * r->W / jb->sw);
+                s[n].y = (float)((sy + 0.5) * r->H / jb->sh);
+                s[n].px = s[n].py = 0;
+                s[n].dst = slot;
+                s[n].k = 0;
+                n++;
+                break;
+            case TDC_RENDER_GROUND_TRUTH: {
+                int N = jb->spp, g = (int)floor(sqrt((double)N));
+                for (int k = 0; k < N; k++) {
+                    double ox, oy;
+                    double u1 = tdc_r_rand(r->cfg.seed, jb->frame, slot, (uint32_t)k, 0);
+                    double u2 = tdc_r_rand(r->cfg.seed, jb->frame, slot, (uint32_t)k, 1);
+                    if (g * g == N) { /* jittered grid */
+                        ox = (k % g + u1) / g;
+                        oy = (k / g + u2) / g;
+                    } else { /* Latin hypercube: 7919 is prime > N, so k -> 7919 k mod N permutes */
+                        ox = (k + u1) / N;
+                        oy = ((int)(((long)k * 7919 + slot) % N) + u2) / N;
+                    }
+                    s[n].x = (float)(sx + ox);
+                    s[n].y = (float)(sy + oy);
+                    s[n].px = sx;
+                    s[n].py = sy;
+                    s[n].dst = slot;
+                    s[n].k = (uint32_t)k;
+                    n++;
+                }
+                break;
+            }
+            }
+        }
+    return n;
+}
+
+#define TIMED(th, stage, call)                                                                                         \
+    do {                                                                                                               \
+        double t0_ = tdc_r_now_ms();                                                                                   \
+        call;                                                                                                          \
+        (th)->ms[stage] += tdc_r_now_ms() - t0_;                                                                       \
+    } while (0)
+
+static void write_outputs(job_t *jb, const rsample_t *s, int n)
+{
+    tdc_render_t *r = jb->r;
+    const tdc_render_out_t *o = jb->out;
+    if (jb->mode == TDC_RENDER_REDUCED) {
+        for (int i = 0; i < n; i++)
+            for (int c = 0; c < 3; c++) jb->ss[(size_t)s[i].dst * 3 + c] = (float)s[i].col[c];
+        return;
+    }
+    if (jb->mode == TDC_RENDER_GROUND_TRUTH) {
+        /* all samples of a slot are in this tile, in k order: deterministic */
+        for (int i = 0; i < n; i++) {
+            float *d = &jb->ss[(size_t)s[i].dst * 3];
+            if (s[i].k == 0) d[0] = d[1] = d[2] = 0;
+            for (int c = 0; c < 3; c++) d[c] += (float)(s[i].col[c] / jb->spp);
+        }
+        return;
+    }
+    for (int i = 0; i < n; i++) {
+        const rsample_t *a = &s[i];
+        size_t d = a->dst;
+        if (o->rgb)
+            for (int c = 0; c < 3; c++) o->rgb[d * 3 + c] = (float)a->col[c];
+        if (o->depth) o->depth[d] = (float)a->depth;
+        int16_t m0 = 0, m1 = 0;
+        if (jb->do_mv) {
+            m0 = q4(a->mv[0]);
+            m1 = q4(a->mv[1]);
+        }
+        if (o->mv) {
+            o->mv[d * 2] = m0;
+            o->mv[d * 2 + 1] = m1;
+        }
+        if (o->mv_f) {
+            o->mv_f[d * 2] = jb->do_mv ? (float)a->mv[0] : 0;
+            o->mv_f[d * 2 + 1] = jb->do_mv ? (float)a->mv[1] : 0;
+        }
+        if (o->mv_shadow) {
+            o->mv_shadow[d * 2] = jb->do_mv_shadow ? q4(a->mvs[0]) : m0;
+            o->mv_shadow[d * 2 + 1] = jb->do_mv_shadow ? q4(a->mvs[1]) : m1;
+        }
+        if (o->shadow_weight) o->shadow_weight[d] = jb->do_mv_shadow ? (float)a->sw : 0;
+        if (o->mv_dual) {
+            o->mv_dual[d * 2] = jb->do_mv_dual ? q4(a->mvd[0]) : m0;
+            o->mv_dual[d * 2 + 1] = jb->do_mv_dual ? q4(a->mvd[1]) : m1;
+        }
+        int16_t *h = &r->mv_hist[((size_t)a->py * r->W + a->px) * 2];
+        h[0] = m0;
+        h[1] = m1;
+    }
+}
+
+static void *worker_main(void *arg)
+{
+    worker_t *w = arg;
+    job_t *jb = w->job;
+    rthread_t *th = &w->th;
+    int ntiles = jb->ntx * jb->nty;
+    for (;;) {
+        int ti = __atomic_fetch_add(&jb->next, 1, __ATOMIC_RELAXED);
+        if (ti >= ntiles) break;
+        rsample_t *s = w->s;
+        int n = place_samples(jb, ti % jb->ntx, ti / jb->ntx, s);
+        TIMED(th, TDC_STAGE_PRIMARY, tdc_r_pass_primary(th, s, n));
+        TIMED(th, TDC_STAGE_SHADE, tdc_r_pass_shade(th, s, n));
+        if (jb->do_reflect) TIMED(th, TDC_STAGE_REFLECT, tdc_r_pass_reflect(th, s, n));
+        if (jb->do_mv) TIMED(th, TDC_STAGE_MV, tdc_r_pass_mv(th, s, n));
+        if (jb->do_mv_reflect) TIMED(th, TDC_STAGE_MV_REFLECT, tdc_r_pass_mv_reflect(th, s, n));
+        if (jb->do_mv_shadow) TIMED(th, TDC_STAGE_MV_SHADOW, tdc_r_pass_mv_shadow(th, s, n));
+        if (jb->do_mv_dual) TIMED(th, TDC_STAGE_MV_DUAL, tdc_r_pass_mv_dual(th, s, n));
+        write_outputs(jb, s, n);
+    }
+    return NULL;
+}
+
+/* Separable Gaussian resolve of the supersample grid (sw x sh) to ow x oh. */
+static void resolve_gaussian(const float *ss, int sw, int sh, int ow, int oh, double sigma_s, int ssx, int ssy,
+                             float *out)
+{
+    float *tmp = malloc((size_t)ow * sh * 3 * sizeof(float));
+    double *wt = malloc(sizeof(double) * (size_t)(2 * (int)ceil(3 * sigma_s) + 3));
+    if (!tmp || !wt) {
+        free(tmp);
+        free(wt);
+        memset(out, 0, (size_t)ow * oh * 3 * sizeof(float));
+        return;
+    }
+    int rad = (int)ceil(3 * sigma_s);
+    for (int pass = 0; pass < 2; pass++) {
+        int no = pass ? oh : ow, ss_n = pass ? sh : sw, ssf = pass ? ssy : ssx;
+        for (int o = 0; o < no; o++) {
+            double c = (o + 0.5) * ssf - 0.5;
+            int i0 = (int)ceil(c - rad), i1 = (int)floor(c + rad);
+            double sum = 0;
+            for (int i = i0; i <= i1; i++) sum += wt[i - i0] = exp(-(i - c) * (i - c) / (2 * sigma_s * sigma_s));
+            for (int i = i0; i <= i1; i++) wt[i - i0] /= sum;
+            if (!pass) {
+                for (int y = 0; y < sh; y++) {
+                    double acc[3] = {0, 0, 0};
+                    for (int i = i0; i <= i1; i++) {
+                        int ii = i < 0 ? 0 : i >= ss_n ? ss_n - 1 : i;
+                        const float *p = &ss[((size_t)y * sw + ii) * 3];
+                        for (int k = 0; k < 3; k++) acc[k] += wt[i - i0] * p[k];
+                    }
+                    for (int k = 0; k < 3; k++) tmp[((size_t)y * ow + o) * 3 + k] = (float)acc[k];
+                }
+            } else {
+                for (int x = 0; x < ow; x++) {
+                    double acc[3] = {0, 0, 0};
+                    for (int i = i0; i <= i1; i++) {
+                        int ii = i < 0 ? 0 : i >= ss_n ? ss_n - 1 : i;
+                        const float *p = &tmp[((size_t)ii * ow + x) * 3];
+                        for (int k = 0; k < 3; k++) acc[k] += wt[i - i0] * p[k];
+                    }
+                    for (int k = 0; k < 3; k++) out[((size_t)o * ow + x) * 3 + k] = (float)acc[k];
+                }
+            }
+        }
+    }
+    free(tmp);
+    free(wt);
+}
+
+static void init_thread(rthread_t *th, tdc_render_t *r, uint32_t frame, int gt, int spp, int record, int track)
+{
+    memset(th, 0, sizeof *th);
+    th->r = r;
+    th->frame = frame;
+    th->cur = tdc_r_frame(r, (long)frame);
+    th->prev = tdc_r_frame(r, (long)frame - 1);
+    th->top = r->top[frame & 1u].top;
+    th->top_prev = r->top[(frame - 1) & 1u].top;
+    rtcInitIntersectContext(&th->ctx);
+    th->gt = gt;
+    th->spp = (uint32_t)spp;
+    th->record = record;
+    th->track_blockers = track;
+}
+
+int tdc_render_frame(tdc_render_t *r, uint32_t frame, tdc_render_mode_t mode, const tdc_render_out_t *out,
+                     tdc_render_stats_t *stats)
+{
+    static const tdc_render_out_t none;
+    if (!r || (unsigned)mode > TDC_RENDER_GROUND_TRUTH) return -1;
+    if (!out) out = &none;
+    double wall0 = tdc_r_now_ms();
+    tdc_render_stats_t st;
+    memset(&st, 0, sizeof st);
+    job_t jb;
+    memset(&jb, 0, sizeof jb);
+    jb.r = r;
+    jb.mode = mode;
+    jb.frame = frame;
+    jb.out = out;
+    jb.record = r->cfg.record_rays;
+    tdc_render_output_size(r, mode, &st.out_w, &st.out_h);
+
+    /* Stage selection: leave out what the scene or this frame does not need. */
+    st.frame_static = tdc_render_frame_static(r, frame);
+    int mv_mode = mode == TDC_RENDER_FULL || mode == TDC_RENDER_SUBFRAME;
+    jb.frame_static = st.frame_static;
+    jb.do_reflect = r->feat.mirrors && r->cfg.max_bounces > 0;
+    jb.do_mv = mv_mode && !st.frame_static;
+    jb.do_mv_reflect = jb.do_mv && jb.do_reflect && r->cfg.reflect_mv;
+    jb.do_mv_shadow = jb.do_mv && r->cfg.shadow_mv && r->feat.moving_blocker;
+    jb.do_mv_dual = jb.do_mv && r->cfg.dual_mv;
+
+    double t0 = tdc_r_now_ms();
+    tdc_r_top(r, (long)frame);
+    if (jb.do_mv_shadow || jb.do_mv_dual) tdc_r_top(r, (long)frame - 1);
+    tdc_r_frame(r, (long)frame);
+    tdc_r_frame(r, (long)frame - 1);
+    st.ms[TDC_STAGE_SCENE] = tdc_r_now_ms() - t0;
+    st.ran[TDC_STAGE_SCENE] = 1;
+
+    jb.spp = 1;
+    jb.tile = 16;
+    float *ss = NULL;
+    int ssx = 1, ssy = 1;
+    switch (mode) {
+    case TDC_RENDER_FULL:
+        jb.sw = r->W;
+        jb.sh = r->H;
+        break;
+    case TDC_RENDER_SUBFRAME:
+        jb.sw = st.out_w;
+        jb.sh = st.out_h;
+        if ((frame & 3u) == 0) {
+            t0 = tdc_r_now_ms();
+            tdc_ordering_update(r->mv_hist, r->W, r->H, r->pattern, frame);
+            st.ms[TDC_STAGE_ORDERING] = tdc_r_now_ms() - t0;
+            st.ran[TDC_STAGE_ORDERING] = 1;
+        }
+        tdc_jitter_offset_q4(frame, &jb.jx, &jb.jy);
+        break;
+    case TDC_RENDER_REDUCED:
+        ssx = ssy = r->cfg.reduced_ss;
+        jb.sw = st.out_w * ssx;
+        jb.sh = st.out_h * ssy;
+        ss = malloc((size_t)jb.sw * jb.sh * 3 * sizeof(float));
+        if (!ss) return -1;
+        jb.ss = ss;
+        break;
+    case TDC_RENDER_GROUND_TRUTH:
+        jb.sw = r->W;
+        jb.sh = r->H;
+        jb.spp = r->cfg.gt_samples;
+        jb.tile = jb.spp <= 4 ? 16 : jb.spp <= 64 ? 4 : 2;
+        if (!out->rgb) {
+            ss = malloc((size_t)r->W * r->H * 3 * sizeof(float));
+            if (!ss) return -1;
+        }
+        jb.ss = out->rgb ? out->rgb : ss;
+        break;
+    }
+    jb.ntx = (jb.sw + jb.tile - 1) / jb.tile;
+    jb.nty = (jb.sh + jb.tile - 1) / jb.tile;
+
+    int nth = r->cfg.threads;
+    worker_t *w = calloc((size_t)nth, sizeof *w);
+    if (!w) {
+        free(ss);
+        return -1;
+    }
+    size_t cap = (size_t)jb.tile * jb.tile * jb.spp;
+    int ok = 1;
+    for (int i = 0; i < nth; i++) {
+        w[i].job = &jb;
+        init_thread(&w[i].th, r, frame, mode == TDC_RENDER_GROUND_TRUTH, jb.spp, jb.record, jb.do_mv_shadow);
+        w[i].s = malloc(cap * sizeof(rsample_t));
+        if (!w[i].s) ok = 0;
+    }
+    if (ok) {
+        for (int i = 1; i < nth; i++)
+            if (pthread_create(&w[i].tid, NULL, worker_main, &w[i]) != 0) w[i].tid = 0;
+        worker_main(&w[0]);
+        for (int i = 1; i < nth; i++)
+            if (w[i].tid) pthread_join(w[i].tid, NULL);
+    }
+    if (jb.record) {
+        r->nrec = 0;
+        size_t total = 0;
+        for (int i = 0; i < nth; i++) total += w[i].th.nrec;
+        tdc_render_ray_t *rec = realloc(r->rec, (total ? total : 1) * sizeof *rec);
+        if (rec) {
+            r->rec = rec;
+            for (int i = 0; i < nth; i++) {
+                memcpy(r->rec + r->nrec, w[i].th.rec, w[i].th.nrec * sizeof *rec);
+                r->nrec += w[i].th.nrec;
+            }
+        }
+    }
+    for (int i = 0; i < nth; i++) {
+        for (int s = 0; s < TDC_STAGE_COUNT; s++) st.ms[s] += w[i].th.ms[s];
+        for (int k = 0; k < TDC_RAY_KIND_COUNT; k++) st.rays[k] += w[i].th.rays[k];
+        free(w[i].th.rec);
+        free(w[i].s);
+    }
+    free(w);
+    if (!ok) {
+        free(ss);
+        return -1;
+    }
+    st.ran[TDC_STAGE_PRIMARY] = st.ran[TDC_STAGE_SHADE] = 1;
+    st.ran[TDC_STAGE_REFLECT] = jb.do_reflect;
+    st.ran[TDC_STAGE_MV] = jb.do_mv;
+    st.ran[TDC_STAGE_MV_REFLECT] = jb.do_mv_reflect;
+    st.ran[TDC_STAGE_MV_SHADOW] = jb.do_mv_shadow;
+    st.ran[TDC_STAGE_MV_DUAL] = jb.do_mv_dual;
+
+    if (mode == TDC_RENDER_REDUCED) {
+        t0 = tdc_r_now_ms();
+        double sigma_s = r->cfg.reduced_sigma * jb.sw / (double)r->W;
+        if (out->rgb) resolve_gaussian(ss, jb.sw, jb.sh, st.out_w, st.out_h, sigma_s, ssx, ssy, out->rgb);
+        st.ms[TDC_STAGE_RESOLVE] = tdc_r_now_ms() - t0;
+        st.ran[TDC_STAGE_RESOLVE] = 1;
+    }
+    if (!jb.do_mv && mv_mode) {
+        /* static frame or scene: MVs are zero (written in write_outputs) */
+    }
+    free(ss);
+    st.wall_ms = tdc_r_now_ms() - wall0;
+    if (stats) *stats = st;
+    return 0;
+}
+
+/* ---- single-ray queries for tests and tools ---- */
+
+int tdc_render_probe(tdc_render_t *r, uint32_t frame, double x, double y, tdc_render_probe_t *p)
+{
+    memset(p, 0, sizeof *p);
+    tdc_r_top(r, (long)frame);
+    tdc_r_top(r, (long)frame - 1);
+    rthread_t th;
+    init_thread(&th, r, frame, 0, 1, 0, 1);
+    rsample_t s;
+    memset(&s, 0, sizeof s);
+    s.x = (float)x;
+    s.y = (float)y;
+    tdc_r_pass_primary(&th, &s, 1);
+    tdc_r_pass_shade(&th, &s, 1);
+    if (r->feat.mirrors && r->cfg.max_bounces > 0) tdc_r_pass_reflect(&th, &s, 1);
+    tdc_r_pass_mv(&th, &s, 1);
+    if (r->cfg.reflect_mv) tdc_r_pass_mv_reflect(&th, &s, 1);
+    tdc_r_pass_mv_shadow(&th, &s, 1);
+    tdc_r_pass_mv_dual(&th, &s, 1);
+    p->hit = s.obj >= 0;
+    p->obj = s.obj;
+    memcpy(p->q, s.Q, sizeof p->q);
+    memcpy(p->world, s.P, sizeof p->world);
+    memcpy(p->mv, s.mv, sizeof p->mv);
+    p->mirror_hit = s.nmir > 0 && s.robj >= 0;
+    p->refl_obj = s.robj;
+    memcpy(p->refl_q, s.rQ, sizeof p->refl_q);
+    p->in_shadow = s.in_shadow;
+    p->blocker_obj = s.blk_obj;
+    memcpy(p->blocker_q, s.BQ, sizeof p->blocker_q);
+    memcpy(p->shadow_mv, s.mvs, sizeof p->shadow_mv);
+    p->shadow_weight = s.sw;
+    memcpy(p->dual_mv, s.mvd, sizeof p->dual_mv);
+    p->disoccluded = s.disocc;
+    return 0;
+}
+
+int tdc_render_project(tdc_render_t *r, uint32_t frame, int obj, const double q[3], double *x, double *y)
+{
+    const rframe_t *f = tdc_r_frame(r, (long)frame);
+    double w[3];
+    if (obj >= 0) tdc_r_xform_point(f->m[obj], q, w);
+    else memcpy(w, q, sizeof w);
+    return tdc_r_project(&f->cam, w, x, y);
+}
+
+int tdc_render_project_reflected(tdc_render_t *r, uint32_t frame, int mobj, const double mq[3], int obj,
+                                 const double q[3], double *x, double *y)
+{
+    const rframe_t *f = tdc_r_frame(r, (long)frame);
+    double w[3], pm[3], n[3];
+    tdc_r_xform_point(f->m[obj], q, w);
+    tdc_r_xform_point(f->m[mobj], mq, pm);
+    /* the mirror's local normal: rects and discs are local XY planes (+Z);
+     * other shapes are not planar mirrors for this helper */
+    double nq[3] = {0, 0, 1};
+    tdc_r_xform_normal(f->nm[mobj], nq, n);
+    double d = (w[0] - pm[0]) * n[0] + (w[1] - pm[1]) * n[1] + (w[2] - pm[2]) * n[2];
+    for (int c = 0; c < 3; c++) w[c] -= 2 * d * n[c];
+    return tdc_r_project(&f->cam, w, x, y);
+}
+
+/* ---- output encoding ---- */
+
+void tdc_render_linear_to_rgb888(const float *lin, size_t n, uint8_t *rgb)
+{
+    static uint8_t lut[4097];
+    static int init;
+    if (!__atomic_load_n(&init, __ATOMIC_ACQUIRE)) {
+        for (int i = 0; i <= 4096; i++) lut[i] = (uint8_t)floor(255 * pow(i / 4096.0, 1 / 2.2) + 0.5);
+        __atomic_store_n(&init, 1, __ATOMIC_RELEASE);
+    }
+    for (size_t i = 0; i < n * 3; i++) {
+        float v = lin[i];
+        if (!(v > 0)) v = 0;
+        if (v > 1) v = 1;
+        /* 4096-entry table with rounding of the index: the error against the
+         * exact transfer is at most one code, only near black */
+        rgb[i] = v < 1.0f / 4096 ? (uint8_t)floor(255 * pow(v, 1 / 2.2) + 0.5) : lut[(int)(v * 4096 + 0.5f)];
+    }
+}
+
+int tdc_render_write_png(const char *path, const float *lin, int w, int h, char *err, size_t errlen)
+{
+    uint8_t *b = malloc((size_t)w * h * 3);
+    if (!b) {
+        snprintf(err, errlen, "%s: out of memory", path);
+        return -1;
+    }
+    tdc_render_linear_to_rgb888(lin, (size_t)w * h, b);
+    int rc = tdc_png_write(path, b, w, h, 8, (size_t)w * 3, err, errlen);
+    free(b);
+    return rc;
+}

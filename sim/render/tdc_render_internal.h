@@ -1,0 +1,76 @@
+/*
+ * tdc_render_internal.h - shared internals of the renderer (not a public API).
+ */
+#ifndef TDC_RENDER_INTERNAL_H
+#define TDC_RENDER_INTERNAL_H
+
+#include <embree3/rtcore.h>
+#include <pthread.h>
+
+#include "tdc_render.h"
+
+#define TDC_R_MAX_BOUNCES 3
+
+/* Camera of one frame: pinhole, y down in the image. */
+typedef struct {
+    double pos[3], fwd[3], right[3], up[3];
+    double tan_half, aspect;  /* tan(fov/2), W/H */
+    int w, h;
+} rcam_t;
+
+/* Everything that depends on the frame time. */
+typedef struct {
+    long frame;               /* -1 = invalid */
+    double t;
+    rcam_t cam;
+    double m[TDC_SCENE_MAX_OBJECTS][12];     /* object -> world */
+    double minv[TDC_SCENE_MAX_OBJECTS][12];  /* world -> object */
+    double nm[TDC_SCENE_MAX_OBJECTS][9];     /* normal matrix (inverse transpose of the 3x3) */
+    double light_pos[TDC_SCENE_MAX_LIGHTS][3];
+} rframe_t;
+
+/* Per-object data the shader needs. */
+typedef struct {
+    RTCScene scene;           /* the object's geometry in local space */
+    int animated;
+    uint64_t prims;
+} robj_t;
+
+typedef struct {
+    RTCScene top;
+    RTCGeometry inst[TDC_SCENE_MAX_OBJECTS];
+    long frame;               /* frame the instances are committed for, -1 none */
+} rtop_t;
+
+struct tdc_render {
+    tdc_scene_t *scene;
+    tdc_render_config_t cfg;
+    int W, H;
+    tdc_render_features_t feat;
+    RTCDevice dev;
+    robj_t obj[TDC_SCENE_MAX_OBJECTS];
+    rtop_t top[2];
+    rframe_t fr[2];           /* cache of evaluated frames */
+    int16_t *mv_hist;         /* W*H*2 */
+    uint8_t *pattern;         /* ordering bits */
+    tdc_render_ray_t *rec;    /* recorded rays (merged) */
+    size_t nrec;
+};
+
+/* Geometry (tdc_render_geom.c): builds obj's local Embree scene. */
+int tdc_r_build_object(tdc_render_t *r, int i, char *err, size_t errlen);
+
+/* Frames (tdc_render_core.c). */
+const rframe_t *tdc_r_frame(tdc_render_t *r, long frame);
+RTCScene tdc_r_top(tdc_render_t *r, long frame);
+void tdc_r_cam_ray(const rcam_t *c, double x, double y, double dir[3]);
+int tdc_r_project(const rcam_t *c, const double p[3], double *x, double *y);
+int tdc_r_project_dir(const rcam_t *c, const double d[3], double *x, double *y);
+void tdc_r_xform_point(const double m[12], const double p[3], double out[3]);
+void tdc_r_xform_normal(const double nm[9], const double n[3], double out[3]);
+
+/* Textures (tdc_render_texture.c): base colour at a local point. */
+void tdc_r_base_color(const tdc_scene_t *s, const tdc_object_t *o, const double q[3], const double nq[3],
+                      double out[3]);
+
+#endif

@@ -1,0 +1,178 @@
+/*
+ * tdc_render_texture.c - procedural textures in object space: checker,
+ * stripes, 5x7 glyph text and a city skyline for panoramas.  Texture
+ * coordinates (u, v) are object-space lengths, chosen per shape:
+ * rect/disc (x, y) from the lower-left corner / centre, box and fence faces
+ * the two axes across the face's dominant normal, sphere and cylinder
+ * arc length around Y and height, heightfield and mesh (x, z).
+ * Textures are point-sampled (no filtering): supersampling (ground truth,
+ * reduced frames) and the controller's jitter do the antialiasing.
+ */
+#include <math.h>
+#include <string.h>
+
+#include "tdc_render_internal.h"
+
+/* 5x7 glyphs, rows top to bottom, bit 4 = leftmost column. */
+static const unsigned char font_digits[10][7] = {
+    {0x0E, 0x11, 0x13, 0x15, 0x19, 0x11, 0x0E}, {0x04, 0x0C, 0x04, 0x04, 0x04, 0x04, 0x0E},
+    {0x0E, 0x11, 0x01, 0x02, 0x04, 0x08, 0x1F}, {0x1F, 0x02, 0x04, 0x02, 0x01, 0x11, 0x0E},
+    {0x02, 0x06, 0x0A, 0x12, 0x1F, 0x02, 0x02}, {0x1F, 0x10, 0x1E, 0x01, 0x01, 0x11, 0x0E},
+    {0x06, 0x08, 0x10, 0x1E, 0x11, 0x11, 0x0E}, {0x1F, 0x01, 0x02, 0x04, 0x08, 0x08, 0x08},
+    {0x0E, 0x11, 0x11, 0x0E, 0x11, 0x11, 0x0E}, {0x0E, 0x11, 0x11, 0x0F, 0x01, 0x02, 0x0C}};
+static const unsigned char font_upper[26][7] = {
+    {0x0E, 0x11, 0x11, 0x1F, 0x11, 0x11, 0x11}, {0x1E, 0x11, 0x11, 0x1E, 0x11, 0x11, 0x1E},
+    {0x0E, 0x11, 0x10, 0x10, 0x10, 0x11, 0x0E}, {0x1C, 0x12, 0x11, 0x11, 0x11, 0x12, 0x1C},
+    {0x1F, 0x10, 0x10, 0x1E, 0x10, 0x10, 0x1F}, {0x1F, 0x10, 0x10, 0x1E, 0x10, 0x10, 0x10},
+    {0x0E, 0x11, 0x10, 0x17, 0x11, 0x11, 0x0F}, {0x11, 0x11, 0x11, 0x1F, 0x11, 0x11, 0x11},
+    {0x0E, 0x04, 0x04, 0x04, 0x04, 0x04, 0x0E}, {0x07, 0x02, 0x02, 0x02, 0x02, 0x12, 0x0C},
+    {0x11, 0x12, 0x14, 0x18, 0x14, 0x12, 0x11}, {0x10, 0x10, 0x10, 0x10, 0x10, 0x10, 0x1F},
+    {0x11, 0x1B, 0x15, 0x15, 0x11, 0x11, 0x11}, {0x11, 0x11, 0x19, 0x15, 0x13, 0x11, 0x11},
+    {0x0E, 0x11, 0x11, 0x11, 0x11, 0x11, 0x0E}, {0x1E, 0x11, 0x11, 0x1E, 0x10, 0x10, 0x10},
+    {0x0E, 0x11, 0x11, 0x11, 0x15, 0x12, 0x0D}, {0x1E, 0x11, 0x11, 0x1E, 0x14, 0x12, 0x11},
+    {0x0F, 0x10, 0x10, 0x0E, 0x01, 0x01, 0x1E}, {0x1F, 0x04, 0x04, 0x04, 0x04, 0x04, 0x04},
+    {0x11, 0x11, 0x11, 0x11, 0x11, 0x11, 0x0E}, {0x11, 0x11, 0x11, 0x11, 0x11, 0x0A, 0x04},
+    {0x11, 0x11, 0x11, 0x15, 0x15, 0x15, 0x0A}, {0x11, 0x11, 0x0A, 0x04, 0x0A, 0x11, 0x11},
+    {0x11, 0x11, 0x11, 0x0A, 0x04, 0x04, 0x04}, {0x1F, 0x01, 0x02, 0x04, 0x08, 0x10, 0x1F}};
+
+static const unsigned char *glyph(char ch)
+{
+    static const unsigned char space[7] = {0};
+    static const unsigned char dot[7] = {0, 0, 0, 0, 0, 0x0C, 0x0C};
+    static const unsigned char comma[7] = {0, 0, 0, 0, 0x0C, 0x04, 0x08};
+    static const unsigned char dash[7] = {0, 0, 0, 0x1F, 0, 0, 0};
+    static const unsigned char bang[7] = {0x04, 0x04, 0x04, 0x04, 0x04, 0, 0x04};
+    static const unsigned char colon[7] = {0, 0x0C, 0x0C, 0, 0x0C, 0x0C, 0};
+    static const unsigned char slash[7] = {0, 0x01, 0x02, 0x04, 0x08, 0x10, 0};
+    static const unsigned char quest[7] = {0x0E, 0x11, 0x01, 0x02, 0x04, 0, 0x04};
+    if (ch >= '0' && ch <= '9') return font_digits[ch - '0'];
+    if (ch >= 'a' && ch <= 'z') ch = (char)(ch - 'a' + 'A');
+    if (ch >= 'A' && ch <= 'Z') return font_upper[ch - 'A'];
+    switch (ch) {
+    case ' ': return space;
+    case '.': return dot;
+    case ',': return comma;
+    case '-': return dash;
+    case '!': return bang;
+    case ':': return colon;
+    case '/': return slash;
+    default: return quest;
+    }
+}
+
+static double hash01(long a, long b)
+{
+    uint32_t h = (uint32_t)a * 0x9E3779B1u ^ ((uint32_t)b + 0x7F4A7C15u) * 0x85EBCA77u;
+    h ^= h >> 15;
+    h *= 0x2C1B3C6Du;
+    h ^= h >> 12;
+    h *= 0x297A2D39u;
+    h ^= h >> 15;
+    return (h >> 8) * (1.0 / 16777216.0);
+}
+
+static void uv_of(const tdc_object_t *o, const double q[3], const double n[3], double *u, double *v)
+{
+    switch (o->shape) {
+    case TDC_SHAPE_RECT:
+        *u = q[0] + o->p[0] / 2;
+        *v = q[1] + o->p[1] / 2;
+        return;
+    case TDC_SHAPE_DISC:
+        *u = q[0];
+        *v = q[1];
+        return;
+    case TDC_SHAPE_BOX:
+    case TDC_SHAPE_FENCE: {
+        double ax = fabs(n[0]), ay = fabs(n[1]), az = fabs(n[2]);
+        if (ax >= ay && ax >= az) {
+            *u = q[2];
+            *v = q[1];
+        } else if (ay >= az) {
+            *u = q[0];
+            *v = q[2];
+        } else {
+            *u = q[0];
+            *v = q[1];
+        }
+        return;
+    }
+    case TDC_SHAPE_SPHERE: {
+        double rr = o->p[0];
+        *u = atan2(q[0], q[2]) * rr;
+        double s = q[1] / rr;
+        *v = asin(s < -1 ? -1 : s > 1 ? 1 : s) * rr;
+        return;
+    }
+    case TDC_SHAPE_CYLINDER:
+        *u = atan2(q[0], q[2]) * o->p[0];
+        *v = q[1];
+        return;
+    default:
+        *u = q[0];
+        *v = q[2];
+    }
+}
+
+void tdc_r_base_color(const tdc_scene_t *s, const tdc_object_t *o, const double q[3], const double nq[3], double out[3])
+{
+    const tdc_material_t *m = &s->materials[o->material];
+    const double *c = m->diffuse;
+    if (m->tex != TDC_TEX_NONE) {
+        double u, v, sc = m->tex_scale;
+        uv_of(o, q, nq, &u, &v);
+        switch (m->tex) {
+        case TDC_TEX_CHECKER:
+            if (((long)floor(u / sc) + (long)floor(v / sc)) & 1) c = m->color2;
+            break;
+        case TDC_TEX_STRIPES:
+            if (u / sc - floor(u / sc) >= 0.5) c = m->color2;
+            break;
+        case TDC_TEX_TEXT: {
+            /* Lines of height sc: 7 glyph rows + 1 gap row; cells 6 columns wide. */
+            double cell = sc / 8;
+            double fy = v / sc - floor(v / sc);
+            int row = (int)((1 - fy) * 8);
+            if (row > 7) row = 7;
+            double cx = u / (6 * cell);
+            long ci = (long)floor(cx);
+            int col = (int)((cx - ci) * 6);
+            if (col > 5) col = 5;
+            long len = (long)strlen(m->text) + 1;
+            long line = (long)floor(v / sc);
+            long idx = ((ci + line * 7) % len + len) % len; /* successive lines start at different letters */
+            char ch = idx < len - 1 ? m->text[idx] : ' ';
+            if (row < 7 && col < 5 && ((glyph(ch)[row] >> (4 - col)) & 1)) c = m->color2;
+            break;
+        }
+        case TDC_TEX_SKYLINE: {
+            long b = (long)floor(u / sc);
+            double top = 4 + 4 * hash01(b, 1);
+            if (v < top) {
+                double shade = 0.6 + 0.4 * hash01(b, 2);
+                double wu = u / (sc * 0.25), wv = v / (sc * 0.4);
+                long wi = (long)floor(wu), wj = (long)floor(wv);
+                int in_window = (wu - wi) > 0.35 && (wu - wi) < 0.8 && (wv - wj) > 0.3 && (wv - wj) < 0.75 &&
+                                v < top - 0.2 && hash01(b * 131 + wi, wj) > 0.55;
+                if (in_window) {
+                    out[0] = 1.0;
+                    out[1] = 0.85;
+                    out[2] = 0.45;
+                } else {
+                    for (int k = 0; k < 3; k++) out[k] = m->diffuse[k] * shade;
+                }
+            } else {
+                double g = (v - 4) / 10;
+                g = g < 0 ? 0 : g > 1 ? 1 : g;
+                for (int k = 0; k < 3; k++) out[k] = m->color2[k] * (1.15 - 0.5 * g);
+            }
+            return;
+        }
+        default:
+            break;
+        }
+    }
+    out[0] = c[0];
+    out[1] = c[1];
+    out[2] = c[2];
+}

@@ -1,0 +1,473 @@
+/*
+ * tdc_render_trace.c - the per-sample passes of Whitted ray tracing on
+ * Embree and the motion vectors:
+ *   primary      rtcIntersect1 per sample (camera ray through (x, y))
+ *   shade        procedural texture, ambient + point/rect lights with shadow
+ *                rays (rtcOccluded1, or rtcIntersect1 when shadow MVs need
+ *                the blocker)
+ *   reflect      mirror bounces, up to 3
+ *   mv           primary MV: P_{i-1} T^{-1} P_i^{-1} x (Zeng eq. 1), by
+ *                carrying the object-space hit through both frames' matrices
+ *   mv-reflect   TDRT §3.1.2: the mirror image of the reflected hit's
+ *                previous position, reflected through the mirror chain's
+ *                previous planes (Householder reflections), projected
+ *   mv-shadow    Zeng eq. 3 + falloff eq. 4 (one previous-frame ray)
+ *   mv-dual      Zeng eq. 6: x^O = y + (x - z) (one previous-frame ray)
+ * MVs are in float px, backward (previous minus current position).
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "tdc_render_trace.h"
+
+double tdc_r_now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+static uint32_t mix32(uint32_t h)
+{
+    h ^= h >> 16;
+    h *= 0x7FEB352Du;
+    h ^= h >> 15;
+    h *= 0x846CA68Bu;
+    h ^= h >> 16;
+    return h;
+}
+
+double tdc_r_rand(uint32_t seed, uint32_t frame, uint32_t dst, uint32_t k, uint32_t dim)
+{
+    uint32_t h = mix32(seed ^ mix32(frame ^ mix32(dst ^ mix32(k * 16u + dim + 0x9E3779B9u))));
+    return (h >> 8) * (1.0 / 16777216.0);
+}
+
+static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+static void record(rthread_t *t, const struct RTCRay *ray, uint32_t kind, int prevf)
+{
+    if (t->nrec == t->crec) {
+        size_t c = t->crec ? t->crec * 2 : 65536;
+        tdc_render_ray_t *p = realloc(t->rec, c * sizeof *p);
+        if (!p) {
+            t->record = 0; /* out of memory: stop recording, the render goes on */
+            return;
+        }
+        t->rec = p;
+        t->crec = c;
+    }
+    tdc_render_ray_t *o = &t->rec[t->nrec++];
+    o->org[0] = ray->org_x;
+    o->org[1] = ray->org_y;
+    o->org[2] = ray->org_z;
+    o->tnear = ray->tnear;
+    o->dir[0] = ray->dir_x;
+    o->dir[1] = ray->dir_y;
+    o->dir[2] = ray->dir_z;
+    o->tfar = ray->tfar;
+    o->kind = kind;
+    o->prev_frame = (uint32_t)prevf;
+}
+
+static void set_ray(struct RTCRay *ray, const double o[3], const double d[3], double tnear, double tfar)
+{
+    ray->org_x = (float)o[0];
+    ray->org_y = (float)o[1];
+    ray->org_z = (float)o[2];
+    ray->tnear = (float)tnear;
+    ray->dir_x = (float)d[0];
+    ray->dir_y = (float)d[1];
+    ray->dir_z = (float)d[2];
+    ray->time = 0;
+    ray->tfar = (float)tfar;
+    ray->mask = 0xFFFFFFFFu;
+    ray->id = 0;
+    ray->flags = 0;
+}
+
+/* Closest hit; returns the object index or -1. */
+static int intersect(rthread_t *t, int prevf, const double o[3], const double d[3], double tnear, double tfar,
+                     uint32_t kind, struct RTCRayHit *rh)
+{
+    set_ray(&rh->ray, o, d, tnear, tfar);
+    rh->hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    t->rays[kind]++;
+    if (t->record) record(t, &rh->ray, kind, prevf);
+    rtcIntersect1(prevf ? t->top_prev : t->top, &t->ctx, rh);
+    return rh->hit.geomID == RTC_INVALID_GEOMETRY_ID ? -1 : (int)rh->hit.instID[0];
+}
+
+static int occluded(rthread_t *t, const double o[3], const double d[3], double tfar)
+{
+    struct RTCRay ray;
+    set_ray(&ray, o, d, 0, tfar);
+    t->rays[TDC_RAY_SHADOW]++;
+    if (t->record) record(t, &ray, TDC_RAY_SHADOW, 0);
+    rtcOccluded1(t->top, &t->ctx, &ray);
+    return ray.tfar < 0;
+}
+
+/* Fills the surface fields from a hit of ray (o, d). */
+static void surface(const rframe_t *f, const struct RTCRayHit *rh, int obj, const double o[3], const double d[3], double P[3],
+                    double Q[3], double N[3], double NQ[3])
+{
+    double tt = rh->ray.tfar;
+    for (int i = 0; i < 3; i++) P[i] = o[i] + tt * d[i];
+    tdc_r_xform_point(f->minv[obj], P, Q);
+    NQ[0] = rh->hit.Ng_x;
+    NQ[1] = rh->hit.Ng_y;
+    NQ[2] = rh->hit.Ng_z;
+    tdc_r_xform_normal(f->nm[obj], NQ, N);
+    if (dot3(N, d) > 0)
+        for (int i = 0; i < 3; i++) N[i] = -N[i];
+}
+
+static double offset_eps(const double P[3])
+{
+    double m = fabs(P[0]);
+    if (fabs(P[1]) > m) m = fabs(P[1]);
+    if (fabs(P[2]) > m) m = fabs(P[2]);
+    return 1e-4 * (1 + m);
+}
+
+/* Local (direct) radiance at a surface; optionally records the first
+ * blocked point light's blocker into s. */
+static void shade_direct(rthread_t *t, int obj, const double P[3], const double Q[3], const double N[3],
+                         const double NQ[3], uint32_t dst, uint32_t k, uint32_t salt, rsample_t *track, double out[3])
+{
+    const tdc_render_t *r = t->r;
+    const tdc_scene_t *sc = r->scene;
+    const tdc_object_t *o = &sc->objects[obj];
+    const tdc_material_t *m = &sc->materials[o->material];
+    double base[3];
+    tdc_r_base_color(sc, o, Q, NQ, base);
+    if (m->unlit) {
+        memcpy(out, base, sizeof base);
+        return;
+    }
+    double e[3] = {sc->ambient[0], sc->ambient[1], sc->ambient[2]};
+    double eps = offset_eps(P);
+    double O[3] = {P[0] + N[0] * eps, P[1] + N[1] * eps, P[2] + N[2] * eps};
+    for (int li = 0; li < sc->nlights; li++) {
+        const tdc_light_t *l = &sc->lights[li];
+        const double *lp = t->cur->light_pos[li];
+        if (l->kind == TDC_LIGHT_POINT) {
+            double L[3] = {lp[0] - O[0], lp[1] - O[1], lp[2] - O[2]};
+            double d = sqrt(dot3(L, L));
+            if (!(d > 0)) continue;
+            for (int i = 0; i < 3; i++) L[i] /= d;
+            double c = dot3(N, L);
+            if (c <= 0) continue;
+            int blocked;
+            if (track && t->track_blockers && !track->in_shadow) {
+                struct RTCRayHit rh;
+                int b = intersect(t, 0, O, L, 0, d * (1 - 1e-6), TDC_RAY_SHADOW, &rh);
+                blocked = b >= 0;
+                if (blocked) {
+                    double BP[3];
+                    for (int i = 0; i < 3; i++) BP[i] = O[i] + rh.ray.tfar * L[i];
+                    tdc_r_xform_point(t->cur->minv[b], BP, track->BQ);
+                    track->in_shadow = 1;
+                    track->blk_obj = b;
+                    track->blk_light = li;
+                }
+            } else {
+                blocked = occluded(t, O, L, d * (1 - 1e-6));
+            }
+            if (!blocked)
+                for (int i = 0; i < 3; i++) e[i] += l->intensity[i] * c / (d * d);
+        } else {
+            /* Rect light: stratified samples over the rectangle; ground truth
+             * takes one sample per pixel sample, stratified by k. */
+            int ns = t->gt ? 1 : l->samples;
+            int nx = (int)ceil(sqrt((double)ns));
+            int ny = (ns + nx - 1) / nx;
+            double ln[3] = {l->u[1] * l->v[2] - l->u[2] * l->v[1], l->u[2] * l->v[0] - l->u[0] * l->v[2],
+                            l->u[0] * l->v[1] - l->u[1] * l->v[0]};
+            double lnl = sqrt(dot3(ln, ln));
+            if (!(lnl > 0)) continue;
+            for (int i = 0; i < 3; i++) ln[i] /= lnl;
+            for (int j = 0; j < ns; j++) {
+                double a, b;
+                if (t->gt) {
+                    uint32_t g = (uint32_t)floor(sqrt((double)t->spp));
+                    uint32_t kk = k % (g * g);
+                    a = (kk % g + tdc_r_rand(r->cfg.seed, t->frame, dst, k, 8 + salt)) / g;
+                    b = (kk / g + tdc_r_rand(r->cfg.seed, t->frame, dst, k, 9 + salt)) / g;
+                } else {
+                    a = (j % nx + tdc_r_rand(r->cfg.seed, t->frame, dst, k * 64u + (uint32_t)j, 8 + salt)) / nx;
+                    b = (j / nx + tdc_r_rand(r->cfg.seed, t->frame, dst, k * 64u + (uint32_t)j, 9 + salt)) / ny;
+                }
+                double S[3], L[3];
+                for (int i = 0; i < 3; i++) {
+                    S[i] = lp[i] + (a - 0.5) * l->u[i] + (b - 0.5) * l->v[i];
+                    L[i] = S[i] - O[i];
+                }
+                double d = sqrt(dot3(L, L));
+                if (!(d > 0)) continue;
+                for (int i = 0; i < 3; i++) L[i] /= d;
+                double c = dot3(N, L), cl = fabs(dot3(ln, L));
+                if (c <= 0) continue;
+                if (occluded(t, O, L, d * (1 - 1e-6))) continue;
+                for (int i = 0; i < 3; i++) e[i] += l->intensity[i] * c * cl / (d * d) / ns;
+            }
+        }
+    }
+    for (int i = 0; i < 3; i++) out[i] = base[i] * e[i];
+}
+
+void tdc_r_pass_primary(rthread_t *t, rsample_t *s, int n)
+{
+    const rcam_t *cam = &t->cur->cam;
+    for (int i = 0; i < n; i++) {
+        rsample_t *a = &s[i];
+        tdc_r_cam_ray(cam, a->x, a->y, a->dir);
+        struct RTCRayHit rh;
+        a->obj = intersect(t, 0, cam->pos, a->dir, 0, INFINITY, TDC_RAY_PRIMARY, &rh);
+        a->in_shadow = 0;
+        a->nmir = 0;
+        a->mirror = 0;
+        if (a->obj >= 0) {
+            surface(t->cur, &rh, a->obj, cam->pos, a->dir, a->P, a->Q, a->N, a->NQ);
+            a->depth = dot3(a->dir, cam->fwd) * rh.ray.tfar;
+        } else {
+            a->depth = INFINITY;
+        }
+    }
+}
+
+void tdc_r_pass_shade(rthread_t *t, rsample_t *s, int n)
+{
+    const tdc_scene_t *sc = t->r->scene;
+    for (int i = 0; i < n; i++) {
+        rsample_t *a = &s[i];
+        if (a->obj < 0) {
+            memcpy(a->col, sc->background, sizeof a->col);
+            continue;
+        }
+        shade_direct(t, a->obj, a->P, a->Q, a->N, a->NQ, a->dst, a->k, 0, a, a->col);
+        a->mirror = t->r->cfg.max_bounces > 0 ? sc->materials[sc->objects[a->obj].material].mirror : 0;
+        if (a->mirror > 0)
+            for (int c = 0; c < 3; c++) a->col[c] *= 1 - a->mirror;
+    }
+}
+
+void tdc_r_pass_reflect(rthread_t *t, rsample_t *s, int n)
+{
+    const tdc_scene_t *sc = t->r->scene;
+    int maxb = t->r->cfg.max_bounces;
+    for (int i = 0; i < n; i++) {
+        rsample_t *a = &s[i];
+        if (!(a->mirror > 0)) continue;
+        double thr = a->mirror, P[3], N[3], Q[3], NQ[3], d[3];
+        int obj = a->obj;
+        memcpy(P, a->P, sizeof P);
+        memcpy(N, a->N, sizeof N);
+        memcpy(Q, a->Q, sizeof Q);
+        memcpy(NQ, a->NQ, sizeof NQ);
+        memcpy(d, a->dir, sizeof d);
+        a->robj = -1;
+        for (int b = 0; b < maxb; b++) {
+            a->mobj[b] = obj;
+            memcpy(a->mQ[b], Q, sizeof Q);
+            memcpy(a->mNQ[b], NQ, sizeof NQ);
+            a->nmir = b + 1;
+            double dn = dot3(d, N);
+            for (int c = 0; c < 3; c++) d[c] -= 2 * dn * N[c];
+            double eps = offset_eps(P), O[3] = {P[0] + N[0] * eps, P[1] + N[1] * eps, P[2] + N[2] * eps};
+            struct RTCRayHit rh;
+            int h = intersect(t, 0, O, d, 0, INFINITY, TDC_RAY_REFLECT, &rh);
+            if (h < 0) {
+                for (int c = 0; c < 3; c++) a->col[c] += thr * sc->background[c];
+                memcpy(a->rdir, d, sizeof d);
+                break;
+            }
+            surface(t->cur, &rh, h, O, d, P, Q, N, NQ);
+            double loc[3];
+            shade_direct(t, h, P, Q, N, NQ, a->dst, a->k, 4u * (uint32_t)(b + 1), NULL, loc);
+            double m2 = sc->materials[sc->objects[h].material].mirror;
+            obj = h;
+            if (m2 > 0 && b + 1 < maxb) {
+                for (int c = 0; c < 3; c++) a->col[c] += thr * (1 - m2) * loc[c];
+                thr *= m2;
+                continue;
+            }
+            for (int c = 0; c < 3; c++) a->col[c] += thr * loc[c];
+            a->robj = h;
+            memcpy(a->rQ, Q, sizeof Q);
+            break;
+        }
+    }
+}
+
+/* Current and previous screen position of object point q of object obj. */
+static int track_point(const rthread_t *t, int obj, const double q[3], double *xc, double *yc, double *xp, double *yp)
+{
+    double wc[3], wp[3];
+    tdc_r_xform_point(t->cur->m[obj], q, wc);
+    tdc_r_xform_point(t->prev->m[obj], q, wp);
+    if (tdc_r_project(&t->cur->cam, wc, xc, yc) < 0) return -1;
+    return tdc_r_project(&t->prev->cam, wp, xp, yp);
+}
+
+void tdc_r_pass_mv(rthread_t *t, rsample_t *s, int n)
+{
+    for (int i = 0; i < n; i++) {
+        rsample_t *a = &s[i];
+        double xp, yp;
+        int ok;
+        if (a->obj >= 0) {
+            ok = track_point(t, a->obj, a->Q, &a->xc, &a->yc, &xp, &yp) == 0;
+        } else {
+            ok = tdc_r_project_dir(&t->cur->cam, a->dir, &a->xc, &a->yc) == 0 &&
+                 tdc_r_project_dir(&t->prev->cam, a->dir, &xp, &yp) == 0;
+        }
+        if (!ok) { /* behind the previous camera: no correspondence */
+            a->xc = a->x;
+            a->yc = a->y;
+            xp = a->x;
+            yp = a->y;
+        }
+        a->mv_valid = ok;
+        a->mv[0] = xp - a->xc;
+        a->mv[1] = yp - a->yc;
+        a->refl_used = 0;
+    }
+}
+
+/* Mirror image of point V (or direction when dir_only) through the chain's planes in frame f. */
+static void mirror_chain(const rframe_t *f, const rsample_t *a, double V[3], int dir_only)
+{
+    for (int j = a->nmir - 1; j >= 0; j--) {
+        double Pj[3], nj[3];
+        tdc_r_xform_point(f->m[a->mobj[j]], a->mQ[j], Pj);
+        tdc_r_xform_normal(f->nm[a->mobj[j]], a->mNQ[j], nj);
+        double dd = dir_only ? dot3(V, nj) : (V[0] - Pj[0]) * nj[0] + (V[1] - Pj[1]) * nj[1] + (V[2] - Pj[2]) * nj[2];
+        for (int c = 0; c < 3; c++) V[c] -= 2 * dd * nj[c];
+    }
+}
+
+void tdc_r_pass_mv_reflect(rthread_t *t, rsample_t *s, int n)
+{
+    for (int i = 0; i < n; i++) {
+        rsample_t *a = &s[i];
+        if (a->nmir == 0 || a->mirror < 0.5) continue;
+        double Vc[3], Vp[3], xc, yc, xp, yp;
+        int dir_only = a->robj < 0, ok;
+        if (dir_only) {
+            memcpy(Vc, a->rdir, sizeof Vc);
+            memcpy(Vp, a->rdir, sizeof Vp);
+        } else {
+            tdc_r_xform_point(t->cur->m[a->robj], a->rQ, Vc);
+            tdc_r_xform_point(t->prev->m[a->robj], a->rQ, Vp);
+        }
+        mirror_chain(t->cur, a, Vc, dir_only);
+        mirror_chain(t->prev, a, Vp, dir_only);
+        if (dir_only)
+            ok = tdc_r_project_dir(&t->cur->cam, Vc, &xc, &yc) == 0 && tdc_r_project_dir(&t->prev->cam, Vp, &xp, &yp) == 0;
+        else
+            ok = tdc_r_project(&t->cur->cam, Vc, &xc, &yc) == 0 && tdc_r_project(&t->prev->cam, Vp, &xp, &yp) == 0;
+        if (!ok) continue; /* virtual image behind a camera: keep the primary MV */
+        a->mv[0] = xp - xc;
+        a->mv[1] = yp - yc;
+        a->refl_used = 1;
+    }
+}
+
+/* Previous-frame primary ray through (x, y): object (or -1) and world hit. */
+static int prev_visible(rthread_t *t, double x, double y, double W[3], double d[3])
+{
+    const rcam_t *cam = &t->prev->cam;
+    tdc_r_cam_ray(cam, x, y, d);
+    struct RTCRayHit rh;
+    int o = intersect(t, 1, cam->pos, d, 0, INFINITY, TDC_RAY_MV, &rh);
+    if (o >= 0)
+        for (int c = 0; c < 3; c++) W[c] = cam->pos[c] + rh.ray.tfar * d[c];
+    return o;
+}
+
+void tdc_r_pass_mv_shadow(rthread_t *t, rsample_t *s, int n)
+{
+    const tdc_scene_t *sc = t->r->scene;
+    for (int i = 0; i < n; i++) {
+        rsample_t *a = &s[i];
+        a->mvs[0] = a->mv[0];
+        a->mvs[1] = a->mv[1];
+        a->sw = 0;
+        if (!a->in_shadow || sc->lights[a->blk_light].kind != TDC_LIGHT_POINT) continue;
+        const rframe_t *p = t->prev;
+        const double *lp = p->light_pos[a->blk_light];
+        double bp[3], sp[3], np[3];
+        tdc_r_xform_point(p->m[a->blk_obj], a->BQ, bp);
+        tdc_r_xform_point(p->m[a->obj], a->Q, sp);
+        tdc_r_xform_normal(p->nm[a->obj], a->NQ, np);
+        double d[3] = {bp[0] - lp[0], bp[1] - lp[1], bp[2] - lp[2]};
+        double den = dot3(d, np);
+        if (fabs(den) < 1e-12 * sqrt(dot3(d, d))) continue; /* blocker ray parallel to the receiver plane */
+        double tt = ((sp[0] - lp[0]) * np[0] + (sp[1] - lp[1]) * np[1] + (sp[2] - lp[2]) * np[2]) / den;
+        double sv[3] = {lp[0] + tt * d[0], lp[1] + tt * d[1], lp[2] + tt * d[2]};
+        double xv, yv;
+        if (tdc_r_project(&p->cam, sv, &xv, &yv) < 0) continue;
+        a->mvs[0] = xv - a->xc;
+        a->mvs[1] = yv - a->yc;
+        /* Falloff (Zeng eq. 4): theta between the receiver normal and the
+         * direction to the point actually seen at x^V in the previous frame. */
+        double W[3], dd[3];
+        int o = prev_visible(t, xv, yv, W, dd);
+        if (o < 0) continue;
+        double v[3] = {W[0] - sp[0], W[1] - sp[1], W[2] - sp[2]};
+        double vl = sqrt(dot3(v, v));
+        if (vl < 1e-9 * (1 + sqrt(dot3(sp, sp)))) {
+            a->sw = 1;
+            continue;
+        }
+        double ct = dot3(v, np) / vl;
+        ct = ct < -1 ? -1 : ct > 1 ? 1 : ct;
+        double th = acos(ct) - M_PI / 2;
+        a->sw = exp(-th * th / (2 * 0.1 * 0.1));
+    }
+}
+
+void tdc_r_pass_mv_dual(rthread_t *t, rsample_t *s, int n)
+{
+    for (int i = 0; i < n; i++) {
+        rsample_t *a = &s[i];
+        a->mvd[0] = a->mv[0];
+        a->mvd[1] = a->mv[1];
+        a->disocc = 0;
+        if (!a->mv_valid) continue;
+        double y[2] = {a->xc + a->mv[0], a->yc + a->mv[1]};
+        if (a->refl_used) { /* dual MVs are for primary visibility: use the primary correspondence */
+            if (a->obj < 0 || track_point(t, a->obj, a->Q, &a->xc, &a->yc, &y[0], &y[1]) < 0) continue;
+        }
+        double W[3], d[3];
+        int o = prev_visible(t, y[0], y[1], W, d);
+        int same;
+        if (a->obj < 0) same = o < 0;
+        else if (o != a->obj) same = 0;
+        else {
+            double sp[3];
+            tdc_r_xform_point(t->prev->m[a->obj], a->Q, sp);
+            double e[3] = {W[0] - sp[0], W[1] - sp[1], W[2] - sp[2]};
+            same = sqrt(dot3(e, e)) <= 1e-3 * (1 + a->depth);
+        }
+        if (same) continue;
+        /* Disoccluded: z = where the previous occluder point is now. */
+        double z[2];
+        if (o >= 0) {
+            double q[3], wc[3];
+            tdc_r_xform_point(t->prev->minv[o], W, q);
+            tdc_r_xform_point(t->cur->m[o], q, wc);
+            if (tdc_r_project(&t->cur->cam, wc, &z[0], &z[1]) < 0) continue;
+        } else if (tdc_r_project_dir(&t->cur->cam, d, &z[0], &z[1]) < 0) {
+            continue;
+        }
+        a->disocc = 1;
+        a->mvd[0] = y[0] - z[0];
+        a->mvd[1] = y[1] - z[1];
+    }
+}
