@@ -1,0 +1,55 @@
+/*
+ * tdc_eye.h - the eye model: Talbot-Plateau integration of linear light over
+ * the fused window along the tracked motion (smooth pursuit, TRM paper §3,
+ * §4.1, §6.1 Fig. 12 columns 2-3).
+ *
+ * The panel emits light in slices: during [t0, t1) a slice shows the linear
+ * image lin (W*H*3, double).  With the eye pursuing velocity v (px/s), the
+ * image perceived at time t_end, expressed in the screen coordinates of
+ * t_end, is
+ *     P(x) = norm / T * integral_{t_end - T}^{t_end} L(x + v (t - t_end), t) dt
+ * (retina-stabilised: a point moving with v stays at the same x).  The
+ * integral is evaluated per slice with sub-steps no further apart than
+ * max_step_px of retinal motion, each a bilinear lookup (edges clamped).
+ * norm = 1 / duty cycle of the panel, so a steady full-on low-persistence
+ * panel is perceived at its nominal level and a black-frame-inserting mode
+ * shows its loss of brightness.
+ *
+ * The ground truth goes through the same integral with the scene's own
+ * radiance (continuous time, no panel): tdc_eye_ground_truth().
+ */
+#ifndef TDC_EYE_H
+#define TDC_EYE_H
+
+#include "simulator/tdc_sim_scene.h"
+
+typedef struct {
+    double t0, t1;     /* emission interval, seconds */
+    const double *lin; /* W*H*3 linear light during the interval */
+} tdc_eye_slice_t;
+
+typedef struct {
+    int width, height;
+    double window_s;    /* fused window T, seconds (e.g. 2 frames at 90 Hz) */
+    double norm;        /* 1 / duty cycle */
+    double max_step_px; /* largest retinal shift between sub-steps (0.5) */
+    double pursuit_gain;/* fraction of the target velocity the eye tracks (1: perfect SPEM) */
+} tdc_eye_cfg_t;
+
+/* Perceived image at t_end from n slices (any order; parts outside the
+ * window are ignored).  v: target velocity (px/s, multiplied by the pursuit
+ * gain).  out: W*H*3. */
+void tdc_eye_perceive(const tdc_eye_cfg_t *cfg, const tdc_eye_slice_t *slices, int n, double t_end, const double v[2],
+                      double *out);
+
+/* The same integral of the scene itself: nsteps ground-truth renders over
+ * the window (1 suffices for rigid content tracked exactly).  scratch:
+ * W*H*3 doubles.  Returns the number of ground-truth renders done. */
+int tdc_eye_ground_truth(const tdc_eye_cfg_t *cfg, tdc_source_t *src, double t_end, const double v[2], int nsteps,
+                         double *out, double *scratch);
+
+/* Bilinear lookup of channel c at (x, y) in pixel-centre coordinates
+ * (pixel i's centre at i), edges clamped. */
+double tdc_eye_bilinear(const double *img, int w, int h, double x, double y, int c);
+
+#endif

@@ -1,0 +1,289 @@
+/*
+ * tdc_flip.c - the FLIP difference evaluator (Andersson, Nilsson,
+ * Akenine-Moller, Oskarsson, Astrom, Fairchild, HPG 2020), LDR version,
+ * written from the paper's definition (see tdc_metrics.h for the outline).
+ *
+ * Colour pipeline: linear RGB (sRGB primaries, D65) -> XYZ -> YyCxCz
+ *   Yy = 116 Y/Yn - 16, Cx = 500 (X/Xn - Y/Yn), Cz = 200 (Y/Yn - Z/Zn),
+ * each channel convolved with its contrast sensitivity function written as
+ * a spatial sum of Gaussians (x in degrees)
+ *   S(x) = a1 sqrt(pi/b1) exp(-pi^2 x^2 / b1) + a2 sqrt(pi/b2) exp(-pi^2 x^2 / b2)
+ *   achromatic a1 = 1,    b1 = 0.0047, a2 = 0,    b2 = 1e-5
+ *   red-green  a1 = 1,    b1 = 0.0053, a2 = 0,    b2 = 1e-5
+ *   blue-yell. a1 = 34.1, b1 = 0.04,   a2 = 13.5, b2 = 0.025
+ * (kernel radius ceil(3 sqrt(b_max / (2 pi^2)) ppd), normalised to sum 1),
+ * then back to linear RGB, clamped to [0, 1], to CIE L*a*b*, Hunt-adjusted
+ * (a*, b* scaled by 0.01 L*), and compared with HyAB
+ *   d = |dL| + sqrt(da^2 + db^2).
+ * Colour error: d^0.7 remapped against cmax = HyAB(green, blue)^0.7 so that
+ * [0, 0.4 cmax) maps linearly to [0, 0.95) and [0.4 cmax, cmax] to [0.95, 1].
+ * Feature error on the achromatic channel normalised to [0, 1]:
+ * first- and second-derivative-of-Gaussian responses (sigma = 0.5 * 0.082
+ * degrees * ppd, positive and negative lobes each normalised to unit sum),
+ *   Delta_f = (max(| |e_r| - |e_t| |, | |p_r| - |p_t| |) / sqrt 2)^0.5.
+ * Pixel error: Delta_c^(1 - Delta_f).
+ */
+#include "metrics/tdc_metrics.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define PI 3.14159265358979323846
+
+static const double k_rgb2xyz[9] = {0.4124564, 0.3575761, 0.1804375, 0.2126729, 0.7151522,
+                                    0.0721750, 0.0193339, 0.1191920, 0.9503041};
+static const double k_xyz2rgb[9] = {3.2404542, -1.5371385, -0.4985314, -0.9692660, 1.8760108,
+                                    0.0415560, 0.0556434,  -0.2040259, 1.0572252};
+/* Reference white: XYZ of linear RGB (1, 1, 1). */
+#define XN (0.4124564 + 0.3575761 + 0.1804375)
+#define YN 1.0
+#define ZN (0.0193339 + 0.1191920 + 0.9503041)
+
+static void mat3(const double *m, const double *in, double *out)
+{
+    out[0] = m[0] * in[0] + m[1] * in[1] + m[2] * in[2];
+    out[1] = m[3] * in[0] + m[4] * in[1] + m[5] * in[2];
+    out[2] = m[6] * in[0] + m[7] * in[1] + m[8] * in[2];
+}
+
+static void rgb_to_ycxcz(const double *rgb, double *o)
+{
+    double xyz[3];
+    mat3(k_rgb2xyz, rgb, xyz);
+    double xr = xyz[0] / XN, yr = xyz[1] / YN, zr = xyz[2] / ZN;
+    o[0] = 116.0 * yr - 16.0;
+    o[1] = 500.0 * (xr - yr);
+    o[2] = 200.0 * (yr - zr);
+}
+
+static void ycxcz_to_rgb(const double *c, double *rgb)
+{
+    double yr = (c[0] + 16.0) / 116.0;
+    double xyz[3] = {(c[1] / 500.0 + yr) * XN, yr * YN, (yr - c[2] / 200.0) * ZN};
+    mat3(k_xyz2rgb, xyz, rgb);
+}
+
+static double lab_f(double t)
+{
+    const double d = 6.0 / 29.0;
+    return t > d * d * d ? cbrt(t) : t / (3.0 * d * d) + 4.0 / 29.0;
+}
+
+static void rgb_to_lab_hunt(const double *rgb, double *lab)
+{
+    double xyz[3];
+    mat3(k_rgb2xyz, rgb, xyz);
+    double fx = lab_f(xyz[0] / XN), fy = lab_f(xyz[1] / YN), fz = lab_f(xyz[2] / ZN);
+    double L = 116.0 * fy - 16.0;
+    lab[0] = L;
+    lab[1] = 0.01 * L * 500.0 * (fx - fy);
+    lab[2] = 0.01 * L * 200.0 * (fy - fz);
+}
+
+static double hyab(const double *a, const double *b)
+{
+    double da = a[1] - b[1], db = a[2] - b[2];
+    return fabs(a[0] - b[0]) + sqrt(da * da + db * db);
+}
+
+static int clampi(int i, int n)
+{
+    return i < 0 ? 0 : (i >= n ? n - 1 : i);
+}
+
+/* 1-D horizontal then vertical convolution of plane `in` (w x h) with
+ * kernels kx (along x) and ky (along y), radius r, edges clamped. */
+static void sep_filter(const double *in, double *out, double *tmp, int w, int h, const double *kx, const double *ky,
+                       int r)
+{
+    for (int y = 0; y < h; y++) {
+        for (int x = 0; x < w; x++) {
+            double s = 0.0;
+            for (int j = -r; j <= r; j++) {
+                s += kx[j + r] * in[(size_t)y * w + clampi(x + j, w)];
+            }
+            tmp[(size_t)y * w + x] = s;
+        }
+    }
+    for (int y = 0; y < h; y++) {
+        for (int x = 0; x < w; x++) {
+            double s = 0.0;
+            for (int j = -r; j <= r; j++) {
+                s += ky[j + r] * tmp[(size_t)clampi(y + j, h) * w + x];
+            }
+            out[(size_t)y * w + x] = s;
+        }
+    }
+}
+
+typedef struct {
+    int r;
+    double *g1, *g2;  /* unnormalised 1-D Gaussians per channel */
+    double c1[3], c2[3], norm[3];
+} csf_t;
+
+/* Prefiltered YyCxCz -> clamped linear RGB -> Hunt-adjusted L*a*b*. */
+static int flip_color_prepare(const double *lin, int w, int h, double ppd, double *lab_out, double *yfeat)
+{
+    static const double a1[3] = {1.0, 1.0, 34.1}, b1[3] = {0.0047, 0.0053, 0.04};
+    static const double a2[3] = {0.0, 0.0, 13.5}, b2[3] = {1e-5, 1e-5, 0.025};
+    const double bmax = 0.04;
+    int r = (int)ceil(3.0 * sqrt(bmax / (2.0 * PI * PI)) * ppd);
+    if (r < 1) {
+        r = 1;
+    }
+    size_t n = (size_t)w * h;
+    int kn = 2 * r + 1;
+    double *mem = malloc(sizeof(double) * (n * 9 + (size_t)kn * 6));
+    if (!mem) {
+        return -1;
+    }
+    double *plane[3] = {mem, mem + n, mem + 2 * n};
+    double *filt[3] = {mem + 3 * n, mem + 4 * n, mem + 5 * n};
+    double *f2 = mem + 6 * n, *tmp = mem + 7 * n, *spare = mem + 8 * n;
+    double *k1 = mem + 9 * n;
+    (void)spare;
+    for (size_t i = 0; i < n; i++) {
+        double o[3];
+        rgb_to_ycxcz(lin + 3 * i, o);
+        plane[0][i] = o[0];
+        plane[1][i] = o[1];
+        plane[2][i] = o[2];
+        if (yfeat) {
+            yfeat[i] = (o[0] + 16.0) / 116.0;
+        }
+    }
+    for (int c = 0; c < 3; c++) {
+        double *g1 = k1, *g2 = k1 + kn;
+        double s1 = 0.0, s2 = 0.0;
+        for (int j = -r; j <= r; j++) {
+            double xd = (double)j / ppd; /* degrees */
+            g1[j + r] = exp(-PI * PI * xd * xd / b1[c]);
+            g2[j + r] = exp(-PI * PI * xd * xd / b2[c]);
+            s1 += g1[j + r];
+            s2 += g2[j + r];
+        }
+        /* 2-D weights: a sqrt(pi/b) per dimension -> a pi / b times g(x) g(y) */
+        double w1 = a1[c] * PI / b1[c], w2 = a2[c] * PI / b2[c];
+        double total = w1 * s1 * s1 + w2 * s2 * s2;
+        sep_filter(plane[c], filt[c], tmp, w, h, g1, g1, r);
+        if (w2 > 0.0) {
+            sep_filter(plane[c], f2, tmp, w, h, g2, g2, r);
+            for (size_t i = 0; i < n; i++) {
+                filt[c][i] = (w1 * filt[c][i] + w2 * f2[i]) / total;
+            }
+        } else {
+            for (size_t i = 0; i < n; i++) {
+                filt[c][i] = w1 * filt[c][i] / total;
+            }
+        }
+    }
+    for (size_t i = 0; i < n; i++) {
+        double c[3] = {filt[0][i], filt[1][i], filt[2][i]}, rgb[3];
+        ycxcz_to_rgb(c, rgb);
+        for (int k = 0; k < 3; k++) {
+            rgb[k] = rgb[k] < 0.0 ? 0.0 : (rgb[k] > 1.0 ? 1.0 : rgb[k]);
+        }
+        rgb_to_lab_hunt(rgb, lab_out + 3 * i);
+    }
+    free(mem);
+    return 0;
+}
+
+/* Edge and point feature magnitudes of plane y. */
+static int flip_features(const double *y, int w, int h, double ppd, double *edge, double *point)
+{
+    double sigma = 0.5 * 0.082 * ppd;
+    int r = (int)ceil(3.0 * sigma);
+    if (r < 1) {
+        r = 1;
+    }
+    int kn = 2 * r + 1;
+    size_t n = (size_t)w * h;
+    double *mem = malloc(sizeof(double) * (n * 3 + (size_t)kn * 3));
+    if (!mem) {
+        return -1;
+    }
+    double *gx = mem, *gy = mem + n, *tmp = mem + 2 * n;
+    double *g = mem + 3 * n, *d1 = g + kn, *d2 = d1 + kn;
+    double gs = 0.0, d1p = 0.0, d2p = 0.0, d2n = 0.0;
+    for (int j = -r; j <= r; j++) {
+        double e = exp(-(double)(j * j) / (2.0 * sigma * sigma));
+        g[j + r] = e;
+        d1[j + r] = -(double)j * e;
+        d2[j + r] = ((double)(j * j) / (sigma * sigma) - 1.0) * e;
+        gs += e;
+        if (d1[j + r] > 0.0) {
+            d1p += d1[j + r];
+        }
+        if (d2[j + r] > 0.0) {
+            d2p += d2[j + r];
+        } else {
+            d2n -= d2[j + r];
+        }
+    }
+    for (int j = 0; j < kn; j++) {
+        g[j] /= gs;
+        d1[j] /= d1p; /* antisymmetric: negative lobe sums to -1 too */
+        d2[j] = d2[j] > 0.0 ? d2[j] / d2p : d2[j] / d2n;
+    }
+    sep_filter(y, gx, tmp, w, h, d1, g, r);
+    sep_filter(y, gy, tmp, w, h, g, d1, r);
+    for (size_t i = 0; i < n; i++) {
+        edge[i] = sqrt(gx[i] * gx[i] + gy[i] * gy[i]);
+    }
+    sep_filter(y, gx, tmp, w, h, d2, g, r);
+    sep_filter(y, gy, tmp, w, h, g, d2, r);
+    for (size_t i = 0; i < n; i++) {
+        point[i] = sqrt(gx[i] * gx[i] + gy[i] * gy[i]);
+    }
+    free(mem);
+    return 0;
+}
+
+double tdc_flip(const double *ref, const double *test, int w, int h, double ppd, double *map)
+{
+    const double qc = 0.7, pc = 0.4, pt = 0.95, qf = 0.5;
+    size_t n = (size_t)w * h;
+    double *mem = malloc(sizeof(double) * n * 12);
+    if (!mem) {
+        return -1.0;
+    }
+    double *lab_r = mem, *lab_t = mem + 3 * n, *y_r = mem + 6 * n, *y_t = mem + 7 * n;
+    double *e_r = mem + 8 * n, *p_r = mem + 9 * n, *e_t = mem + 10 * n, *p_t = mem + 11 * n;
+    if (flip_color_prepare(ref, w, h, ppd, lab_r, y_r) || flip_color_prepare(test, w, h, ppd, lab_t, y_t) ||
+        flip_features(y_r, w, h, ppd, e_r, p_r) || flip_features(y_t, w, h, ppd, e_t, p_t)) {
+        free(mem);
+        return -1.0;
+    }
+    const double green[3] = {0.0, 1.0, 0.0}, blue[3] = {0.0, 0.0, 1.0};
+    double lg[3], lb[3];
+    rgb_to_lab_hunt(green, lg);
+    rgb_to_lab_hunt(blue, lb);
+    double cmax = pow(hyab(lg, lb), qc);
+    double sum = 0.0;
+    for (size_t i = 0; i < n; i++) {
+        double dc = pow(hyab(lab_r + 3 * i, lab_t + 3 * i), qc);
+        if (dc < pc * cmax) {
+            dc = pt / (pc * cmax) * dc;
+        } else {
+            dc = pt + (dc - pc * cmax) / (cmax - pc * cmax) * (1.0 - pt);
+        }
+        if (dc > 1.0) {
+            dc = 1.0;
+        }
+        double fe = fabs(e_r[i] - e_t[i]), fp = fabs(p_r[i] - p_t[i]);
+        double df = pow((fe > fp ? fe : fp) / sqrt(2.0), qf);
+        if (df > 1.0) {
+            df = 1.0;
+        }
+        double e = pow(dc, 1.0 - df);
+        if (map) {
+            map[i] = e;
+        }
+        sum += e;
+    }
+    free(mem);
+    return n ? sum / (double)n : 0.0;
+}

@@ -1,0 +1,59 @@
+/*
+ * tdc_panel_sim.h - what light the panel emits for the drive codes the
+ * controller outputs, as time slices for the eye model.
+ *
+ *  - OLED, low persistence: L = (code/255)^gamma per channel (the panel
+ *    profile's gammas, TRM paper §4.4), emitted during the first
+ *    `persistence` fraction of each frame and dark for the rest.
+ *  - LCD: hold-type (persistence 1) with a temporal pixel response.  The
+ *    physical liquid-crystal model comes from sim/lcd/ when it has landed;
+ *    until then the built-in fallback is a first-order relaxation of light
+ *    towards the target with rise/fall time constants, integrated exactly
+ *    (the closed-form exponential: A-stable for any time constant, so stiff
+ *    transitions far shorter or longer than a frame are fine).  The slices
+ *    carry the exact mean light of each quarter frame.
+ */
+#ifndef TDC_PANEL_SIM_H
+#define TDC_PANEL_SIM_H
+
+#include <stdint.h>
+
+#include "eye/tdc_eye.h"
+
+#define TDC_PANEL_SIM_MAX_SLICES 4
+
+typedef enum { TDC_PANEL_SIM_OLED = 0, TDC_PANEL_SIM_LCD = 1 } tdc_panel_sim_kind_t;
+
+typedef struct {
+    tdc_panel_sim_kind_t kind;
+    int width, height;
+    double gamma[3];
+    double persistence;  /* OLED: fraction of the frame emitting (0, 1] */
+    double tau_rise_s;   /* LCD fallback: time constants */
+    double tau_fall_s;
+    const char *model;   /* description for reports */
+    double *state;       /* LCD: current light per sample (W*H*3) */
+    double *slice_buf[TDC_PANEL_SIM_MAX_SLICES];
+    void *ext;           /* physical LCD model from sim/lcd, when linked */
+} tdc_panel_sim_t;
+
+/* Returns 0, or -1 (bad arguments / allocation). */
+int tdc_panel_sim_init(tdc_panel_sim_t *p, tdc_panel_sim_kind_t kind, int w, int h, const double gamma[3],
+                       double persistence);
+void tdc_panel_sim_free(tdc_panel_sim_t *p);
+
+/* Duty cycle for the eye's normalisation. */
+double tdc_panel_sim_duty(const tdc_panel_sim_t *p);
+
+/*
+ * Shows `codes` (RGB888, W*H, tightly packed) for the frame [t, t + frame_s).
+ * Writes up to TDC_PANEL_SIM_MAX_SLICES slices; their images live in the
+ * panel's buffers and stay valid until the next call, so copy them.
+ * Returns the number of slices.
+ */
+int tdc_panel_sim_show(tdc_panel_sim_t *p, const uint8_t *codes, double t, double frame_s, tdc_eye_slice_t *out);
+
+/* Linear light of a code under gamma g. */
+double tdc_panel_sim_decode(int code, double g);
+
+#endif

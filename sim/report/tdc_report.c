@@ -1,0 +1,129 @@
+/* tdc_report.c - CSV, markdown and picture strips of a simulator run. */
+#include "report/tdc_report.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "tdc_png.h"
+
+static uint8_t enc8(double lin)
+{
+    double v = lin < 0 ? 0 : (lin > 1 ? 1 : lin);
+    return (uint8_t)(255.0 * pow(v, 1.0 / 2.2) + 0.5);
+}
+
+/* Error colour map: black -> red -> yellow -> white over [0, 1]. */
+static void heat(double e, uint8_t *p)
+{
+    e = e < 0 ? 0 : (e > 1 ? 1 : e);
+    double r = fmin(1.0, 3.0 * e), g = fmin(1.0, fmax(0.0, 3.0 * e - 1.0)), b = fmax(0.0, 3.0 * e - 2.0);
+    p[0] = (uint8_t)(255 * r);
+    p[1] = (uint8_t)(255 * g);
+    p[2] = (uint8_t)(255 * b);
+}
+
+int tdc_report_strip(const char *outdir, const char *mode, const uint8_t *codes, const double *perc_lin,
+                     const double *gt_lin, const double *flipmap, int w, int h, int cw, int ch, int margin)
+{
+    (void)h;
+    int s = cw < 80 ? 4 : (cw < 160 ? 3 : (cw < 320 ? 2 : 1));
+    int gap = 4;
+    int pw = cw * s, ph = ch * s;
+    int W = 4 * pw + 3 * gap, H = ph;
+    uint8_t *img = malloc((size_t)W * H * 3);
+    if (!img) {
+        return -1;
+    }
+    memset(img, 255, (size_t)W * H * 3);
+    for (int y = 0; y < ph; y++) {
+        for (int x = 0; x < pw; x++) {
+            int sx = x / s, sy = y / s;
+            size_t ci = (size_t)sy * cw + sx;
+            for (int panel = 0; panel < 4; panel++) {
+                uint8_t *p = img + 3 * ((size_t)y * W + panel * (pw + gap) + x);
+                if (panel == 0) {
+                    const uint8_t *c = codes + 3 * ((size_t)(sy + margin) * w + sx + margin);
+                    p[0] = c[0];
+                    p[1] = c[1];
+                    p[2] = c[2];
+                } else if (panel == 1 || panel == 2) {
+                    const double *l = (panel == 1 ? perc_lin : gt_lin) + 3 * ci;
+                    p[0] = enc8(l[0]);
+                    p[1] = enc8(l[1]);
+                    p[2] = enc8(l[2]);
+                } else {
+                    heat(flipmap[ci], p);
+                }
+            }
+        }
+    }
+    char path[1024], err[256];
+    snprintf(path, sizeof(path), "%s/strip_%s.png", outdir, mode);
+    int rc = tdc_png_write(path, img, W, H, 8, (size_t)W * 3, err, sizeof(err));
+    if (rc) {
+        fprintf(stderr, "tdc-sim: %s\n", err);
+    }
+    free(img);
+    return rc;
+}
+
+static const char *panel_name(const tdc_sim_config_t *cfg)
+{
+    return cfg->panel == TDC_PANEL_SIM_LCD ? "lcd" : "oled";
+}
+
+void tdc_report_csv(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_result_t *r, int n, int header)
+{
+    if (header) {
+        fprintf(f, "run,scene,panel,mode,display_hz,width,height,evals,psnr_db,psnr_min_db,ssim,flip,flip_max,"
+                   "flicker,rays_per_s,rays_vs_full,link_bytes_per_s,link_vs_full,fw_us_per_frame,"
+                   "render_us_per_frame,frames,resets,link_errors,nonfinite,available,note\n");
+    }
+    double full_rays = (double)cfg->width * cfg->height * (cfg->spp > 0 ? cfg->spp : (cfg->refresh_hz >= 200 ? 1 : 4)) *
+                       cfg->refresh_hz;
+    double full_bytes = (double)cfg->width * cfg->height * 3.0 * cfg->refresh_hz;
+    for (int i = 0; i < n; i++) {
+        const tdc_sim_result_t *x = &r[i];
+        double T = x->sim_s > 0 ? x->sim_s : 1.0;
+        double fr = x->frames ? (double)x->frames : 1.0;
+        fprintf(f, "%s,%s,%s,%s,%d,%d,%d,%d,%.3f,%.3f,%.5f,%.5f,%.5f,%.3f,%.0f,%.4f,%.0f,%.4f,%.2f,%.2f,%llu,%u,%u,%d,%d,\"%s\"\n",
+                cfg->label ? cfg->label : "run", tdc_scene_name(cfg->scene.kind), panel_name(cfg), x->desc->name,
+                x->display_hz, cfg->width, cfg->height, x->evals, x->psnr, x->evals ? x->psnr_min : 0.0, x->ssim,
+                x->flip, x->flip_max, x->flicker, x->rays / T, x->rays / T / full_rays, x->link_bytes / T,
+                x->link_bytes / T / full_bytes, 1e6 * x->fw_s / fr, 1e6 * x->render_s / fr,
+                (unsigned long long)x->frames, x->resets, x->link_errors, x->nonfinite, x->available, x->note);
+    }
+}
+
+void tdc_report_markdown(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_result_t *r, int n)
+{
+    double full_rays = (double)cfg->width * cfg->height * (cfg->spp > 0 ? cfg->spp : (cfg->refresh_hz >= 200 ? 1 : 4)) *
+                       cfg->refresh_hz;
+    double full_bytes = (double)cfg->width * cfg->height * 3.0 * cfg->refresh_hz;
+    fprintf(f, "| mode | Hz | PSNR dB | SSIM | FLIP | flicker | rays vs full | link vs full | link MB/s | fw us/frame | "
+               "render us/frame |\n");
+    fprintf(f, "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+    for (int i = 0; i < n; i++) {
+        const tdc_sim_result_t *x = &r[i];
+        if (!x->available) {
+            fprintf(f, "| %s | %d | n/a | n/a | n/a | n/a | | | | | |\n", x->desc->name, x->display_hz);
+            continue;
+        }
+        double T = x->sim_s > 0 ? x->sim_s : 1.0;
+        double fr = x->frames ? (double)x->frames : 1.0;
+        fprintf(f, "| %s | %d | %.2f | %.4f | %.4f | %.2f | %.3f | %.3f | %.2f | %.0f | %.0f |\n", x->desc->name,
+                x->display_hz, x->psnr, x->ssim, x->flip, x->flicker, x->rays / T / full_rays,
+                x->link_bytes / T / full_bytes, x->link_bytes / T / 1e6, 1e6 * x->fw_s / fr, 1e6 * x->render_s / fr);
+    }
+    int any = 0;
+    for (int i = 0; i < n; i++) {
+        if (r[i].note[0]) {
+            if (!any) {
+                fprintf(f, "\nNotes:\n\n");
+                any = 1;
+            }
+            fprintf(f, "- `%s`: %s\n", r[i].desc->name, r[i].note);
+        }
+    }
+}

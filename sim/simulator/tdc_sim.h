@@ -1,0 +1,106 @@
+/*
+ * tdc_sim.h - the host simulator: drives every display mode through the
+ * data path  source (renderer) -> link encoder -> link decoder + firmware
+ * stages (exactly the board code) -> panel simulation -> eye model ->
+ * metrics against the ground truth, and collects cost figures.
+ *
+ * All modes of one run share the source, the evaluation clock and the fused
+ * window; they advance in lockstep so the ground truth of each evaluation
+ * instant is computed once.  Evaluation instants are the ends of the frames
+ * of the run's refresh clock; the perceived image at instant t is the eye's
+ * integral over [t - T, t] (T = window frames / refresh).
+ */
+#ifndef TDC_SIM_H
+#define TDC_SIM_H
+
+#include <stdint.h>
+#include <stdio.h>
+
+#include "eye/tdc_eye.h"
+#include "panel/tdc_panel_sim.h"
+#include "simulator/tdc_sim_scene.h"
+
+typedef enum {
+    TDC_MODE_FULL = 0,  /* every refresh rendered at full resolution */
+    TDC_MODE_HALF,      /* half rate, each frame shown twice */
+    TDC_MODE_INTERLACE, /* alternate rows rendered, missing rows black (TRM §6) */
+    TDC_MODE_BFI,       /* half rate, black frame every other refresh */
+    TDC_MODE_NCSFI,     /* half rate, sharpened + blurred pair from one frame, residual always added */
+    TDC_MODE_TRM,       /* temporal resolution multiplexing, ratio r */
+    TDC_MODE_ASW,       /* half rate, in-between frame warped by motion vectors */
+    TDC_MODE_ASM,       /* tile-ordered frame assembly (1 sample per 2x2 tile per refresh) */
+    TDC_MODE_TAA        /* TAA: jittered 1 spp + reprojected exponential history */
+} tdc_mode_kind_t;
+
+typedef struct {
+    const char *name;
+    tdc_mode_kind_t kind;
+    uint16_t r_num, r_den; /* TRM ratio */
+    uint16_t fixed_hz;     /* 0: the run's refresh */
+    int8_t ordering;       /* ASM: 0 hourglass, 1 bowtie, -1 adaptive */
+    uint8_t shadow_mv;     /* ASM: shadow + dual motion vectors */
+    const char *what;      /* one-line description */
+} tdc_mode_desc_t;
+
+/* The mode table; n receives the count. */
+const tdc_mode_desc_t *tdc_sim_modes(int *n);
+const tdc_mode_desc_t *tdc_sim_mode_find(const char *name);
+
+/* Which parts of the data path are real in this build. */
+typedef struct {
+    int trm, link, assemble, lcd_fw, lcd_phys;
+} tdc_sim_parts_t;
+void tdc_sim_parts(tdc_sim_parts_t *p);
+
+typedef struct {
+    tdc_scene_params_t scene;
+    int width, height;
+    int refresh_hz;       /* run clock: display rate of the modes without a fixed rate */
+    int window_frames;    /* fused window in frames of the run clock (0: 2 below 200 Hz, else 4) */
+    double duration_s;
+    int spp;              /* rays per pixel of full frames (0: 4 below 200 Hz, else 1) */
+    tdc_panel_sim_kind_t panel;
+    const char *panel_profile; /* firmware panel profile name (gamma, LCD model), NULL = htc-vive / first LCD */
+    double persistence;   /* OLED duty */
+    double pursuit_gain;
+    int metric_every;     /* evaluate every k-th instant (1 = all) */
+    double flip_ppd;
+    int trm_s;            /* TRM motion sensitivity s (0: firmware default) */
+    int progress;         /* progress bar on stderr */
+    int strip_at;         /* evaluation index for the picture strip (-1: middle) */
+    uint32_t seed;
+    const char *outdir;   /* NULL: no files */
+    const char *label;    /* run label for the report */
+} tdc_sim_config_t;
+
+void tdc_sim_default_config(tdc_sim_config_t *c);
+
+/* Per-mode results. */
+typedef struct {
+    const tdc_mode_desc_t *desc;
+    int display_hz;
+    int available;          /* 0: a part it needs is missing (see note) */
+    char note[256];
+    /* perceived error, means over evaluated instants */
+    double psnr, ssim, flip, flicker;
+    double psnr_min, flip_max;
+    int evals;
+    /* cost */
+    uint64_t rays;          /* primary rays traced (samples x spp) */
+    uint64_t link_bytes;    /* bytes on the link (packets incl. headers) */
+    uint64_t frames;        /* display refreshes */
+    uint64_t rendered;      /* frames/subframes the renderer produced */
+    double fw_s, render_s;  /* seconds in firmware (decode + stages), in the renderer (+ encoder) */
+    uint32_t link_errors;
+    uint32_t resets;        /* stream resets (scene cuts) */
+    double sim_s;           /* duration simulated */
+    int nonfinite;          /* any NaN/Inf seen in a perceived image */
+} tdc_sim_result_t;
+
+/* Runs the given modes; results[i] for modes[i].  Writes per-instant rows
+ * to series (CSV, may be NULL) and picture strips into cfg->outdir.
+ * Returns 0, or -1 on a setup error (message on stderr). */
+int tdc_sim_run(const tdc_sim_config_t *cfg, tdc_source_t *src, const tdc_mode_desc_t *const *modes, int nmodes,
+                tdc_sim_result_t *results, FILE *series);
+
+#endif

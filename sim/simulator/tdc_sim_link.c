@@ -1,0 +1,268 @@
+/* tdc_sim_link.c - link encoder -> firmware decoder for the simulator. */
+#include "simulator/tdc_sim_link.h"
+
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "tdc_sim_features.h"
+
+#if TDC_SIM_HAVE_LINK
+#include "link/tdc_link_encode.h"
+#include "tdc_link.h"
+#endif
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+#define HDR 32u
+
+#if TDC_SIM_HAVE_LINK
+typedef struct {
+    tdc_link_encoder_t enc;
+    tdc_link_decoder_t dec;
+    tdc_link_buffers_t buf;
+    uint8_t *pkt;
+    size_t cap;
+    uint8_t *staging;
+} link_priv_t;
+
+/* Feeds one packet; returns 0 if a packet event of the expected kind came. */
+static int feed(tdc_sim_link_t *l, size_t n, int kind)
+{
+    link_priv_t *p = l->priv;
+    if (n == 0) {
+        l->errors++;
+        return -1;
+    }
+    double t0 = now_s();
+    size_t off = 0;
+    int ok = -1;
+    while (off < n) {
+        tdc_link_event_t ev;
+        off += tdc_link_feed(&p->dec, p->pkt + off, n - off, &ev);
+        if (ev.type == TDC_LINK_EV_PACKET && ev.kind == kind) {
+            ok = 0;
+        } else if (ev.type == TDC_LINK_EV_ERROR) {
+            l->errors++;
+        }
+    }
+    /* drain queued events */
+    for (;;) {
+        tdc_link_event_t ev;
+        tdc_link_feed(&p->dec, p->pkt, 0, &ev);
+        if (ev.type == TDC_LINK_EV_NONE) {
+            break;
+        }
+        if (ev.type == TDC_LINK_EV_PACKET && ev.kind == kind) {
+            ok = 0;
+        } else if (ev.type == TDC_LINK_EV_ERROR) {
+            l->errors++;
+        }
+    }
+    l->decode_s += now_s() - t0;
+    l->bytes += n;
+    l->packets++;
+    return ok;
+}
+#endif
+
+int tdc_sim_link_init(tdc_sim_link_t *l, int w, int h, uint32_t flags, uint16_t r_num, uint16_t r_den,
+                      uint16_t hz)
+{
+    memset(l, 0, sizeof(*l));
+    l->w = w;
+    l->h = h;
+    l->flags = flags;
+    l->r_num = r_num ? r_num : 1;
+    l->r_den = r_den ? r_den : 1;
+    l->hz = hz;
+    l->rw = (int)(((uint32_t)w * l->r_num + l->r_den / 2u) / l->r_den);
+    l->rh = (int)(((uint32_t)h * l->r_num + l->r_den / 2u) / l->r_den);
+    l->rw = l->rw < 1 ? 1 : l->rw;
+    l->rh = l->rh < 1 ? 1 : l->rh;
+    size_t px = (size_t)w * h, tiles = (size_t)((w + 1) / 2) * ((h + 1) / 2);
+    l->full = calloc(px * 3, 1);
+    l->reduced = calloc((size_t)l->rw * l->rh * 3, 1);
+    l->subframe = calloc(tiles * 3, 1);
+    l->pattern = calloc((tiles + 7) / 8 + 1, 1);
+    l->motion = calloc(px * 2, sizeof(int16_t));
+    l->sample_motion = calloc(tiles * 2, sizeof(int16_t));
+    if (!l->full || !l->reduced || !l->subframe || !l->pattern || !l->motion || !l->sample_motion) {
+        tdc_sim_link_free(l);
+        return -1;
+    }
+#if TDC_SIM_HAVE_LINK
+    link_priv_t *p = calloc(1, sizeof(*p));
+    if (!p) {
+        tdc_sim_link_free(l);
+        return -1;
+    }
+    l->priv = p;
+    p->cap = px * 4 + 4096;
+    p->pkt = malloc(p->cap);
+    p->staging = malloc(TDC_LINK_STAGING_BYTES(w, h));
+    if (!p->pkt || !p->staging) {
+        tdc_sim_link_free(l);
+        return -1;
+    }
+    p->buf.staging = p->staging;
+    p->buf.staging_bytes = TDC_LINK_STAGING_BYTES(w, h);
+    p->buf.full[0] = l->full;
+    p->buf.full_stride = (uint32_t)w * 3u;
+    p->buf.reduced[0] = l->reduced;
+    p->buf.reduced_bytes = (size_t)l->rw * l->rh * 3;
+    p->buf.subframe[0] = l->subframe;
+    p->buf.motion[0] = l->motion;
+    p->buf.sample_motion[0] = l->sample_motion;
+    p->buf.pattern[0] = l->pattern;
+    tdc_link_config_t cfg = {(uint16_t)w, (uint16_t)h, 1};
+    if (tdc_link_decoder_init(&p->dec, &cfg, &p->buf) != TDC_OK) {
+        tdc_sim_link_free(l);
+        return -1;
+    }
+    l->real = 1;
+#endif
+    return tdc_sim_link_stream(l);
+}
+
+void tdc_sim_link_free(tdc_sim_link_t *l)
+{
+#if TDC_SIM_HAVE_LINK
+    link_priv_t *p = l->priv;
+    if (p) {
+        free(p->pkt);
+        free(p->staging);
+        free(p);
+    }
+#endif
+    l->priv = NULL;
+    free(l->full);
+    free(l->reduced);
+    free(l->subframe);
+    free(l->pattern);
+    free(l->motion);
+    free(l->sample_motion);
+    l->full = l->reduced = l->subframe = l->pattern = NULL;
+    l->motion = l->sample_motion = NULL;
+}
+
+int tdc_sim_link_stream(tdc_sim_link_t *l)
+{
+    l->stream_id++;
+#if TDC_SIM_HAVE_LINK
+    link_priv_t *p = l->priv;
+    tdc_link_stream_info_t info;
+    memset(&info, 0, sizeof(info));
+    info.flags = l->flags;
+    info.r_num = (l->flags & TDC_SIM_LINK_REDUCED) ? l->r_num : 1;
+    info.r_den = (l->flags & TDC_SIM_LINK_REDUCED) ? l->r_den : 1;
+    info.width = (uint16_t)l->w;
+    info.height = (uint16_t)l->h;
+    info.eyes = 1;
+    info.refresh_hz = l->hz;
+    double t0 = now_s();
+    tdc_link_encoder_init(&p->enc, l->stream_id, &info);
+    size_t n = tdc_link_encode_stream(&p->enc, p->pkt, p->cap);
+    l->encode_s += now_s() - t0;
+    return feed(l, n, TDC_LINK_KIND_STREAM);
+#else
+    l->bytes += HDR + 16u;
+    l->packets++;
+    return 0;
+#endif
+}
+
+int tdc_sim_link_full(tdc_sim_link_t *l, uint32_t frame, const uint8_t *rgb)
+{
+#if TDC_SIM_HAVE_LINK
+    link_priv_t *p = l->priv;
+    double t0 = now_s();
+    size_t n = tdc_link_encode_frame(&p->enc, p->pkt, p->cap, TDC_LINK_KIND_FULL, 0, frame, TDC_PIXFMT_RGB888, rgb,
+                                     (uint32_t)l->w, (uint32_t)l->h, (uint32_t)l->w * 3u);
+    l->encode_s += now_s() - t0;
+    return feed(l, n, TDC_LINK_KIND_FULL);
+#else
+    size_t bytes = (size_t)l->w * l->h * 3;
+    (void)frame;
+    memcpy(l->full, rgb, bytes);
+    l->bytes += HDR + bytes;
+    l->packets++;
+    return 0;
+#endif
+}
+
+int tdc_sim_link_reduced(tdc_sim_link_t *l, uint32_t frame, const uint8_t *rgb)
+{
+    size_t bytes = (size_t)l->rw * l->rh * 3;
+#if TDC_SIM_HAVE_LINK
+    link_priv_t *p = l->priv;
+    double t0 = now_s();
+    size_t n = tdc_link_encode_frame(&p->enc, p->pkt, p->cap, TDC_LINK_KIND_REDUCED, 0, frame, TDC_PIXFMT_RGB888,
+                                     rgb, (uint32_t)l->rw, (uint32_t)l->rh, (uint32_t)l->rw * 3u);
+    l->encode_s += now_s() - t0;
+    (void)bytes;
+    return feed(l, n, TDC_LINK_KIND_REDUCED);
+#else
+    (void)frame;
+    memcpy(l->reduced, rgb, bytes);
+    l->bytes += HDR + bytes;
+    l->packets++;
+    return 0;
+#endif
+}
+
+int tdc_sim_link_subframe(tdc_sim_link_t *l, uint32_t frame, const uint8_t *samples, const int16_t *mv,
+                          const uint8_t *pattern)
+{
+    size_t tiles = (size_t)((l->w + 1) / 2) * ((l->h + 1) / 2);
+    int rc = 0;
+#if TDC_SIM_HAVE_LINK
+    link_priv_t *p = l->priv;
+    double t0 = now_s();
+    size_t n;
+    if (pattern) {
+        n = tdc_link_encode_pattern(&p->enc, p->pkt, p->cap, 0, frame, pattern, (uint32_t)l->w, (uint32_t)l->h);
+        l->encode_s += now_s() - t0;
+        rc |= feed(l, n, TDC_LINK_KIND_PATTERN);
+        t0 = now_s();
+    }
+    n = tdc_link_encode_subframe(&p->enc, p->pkt, p->cap, 0, frame, TDC_PIXFMT_RGB888, samples, (uint32_t)l->w,
+                                 (uint32_t)l->h);
+    l->encode_s += now_s() - t0;
+    rc |= feed(l, n, TDC_LINK_KIND_SUBFRAME);
+    if (mv) {
+        t0 = now_s();
+        n = tdc_link_encode_motion(&p->enc, p->pkt, p->cap, 0, frame, mv, (uint32_t)l->w, (uint32_t)l->h, 1);
+        l->encode_s += now_s() - t0;
+        rc |= feed(l, n, TDC_LINK_KIND_MOTION);
+    }
+#else
+    (void)frame;
+    memcpy(l->subframe, samples, tiles * 3);
+    l->bytes += HDR + tiles * 3;
+    l->packets++;
+    if (pattern) {
+        memcpy(l->pattern, pattern, (tiles + 7) / 8);
+        l->bytes += HDR + (tiles + 7) / 8;
+        l->packets++;
+    }
+    if (mv) {
+        memcpy(l->sample_motion, mv, tiles * 4);
+        l->bytes += HDR + tiles * 4;
+        l->packets++;
+    }
+#endif
+    (void)tiles;
+    return rc ? -1 : 0;
+}
+
+void tdc_sim_link_count_raw(tdc_sim_link_t *l, size_t payload)
+{
+    l->bytes += HDR + payload;
+    l->packets++;
+}

@@ -1,0 +1,51 @@
+/*
+ * tdc_sim_link.h - the link as the simulator uses it: every payload is
+ * encoded into real packets by the host encoder (sim/link) and fed through
+ * the firmware decoder (firmware/tdc_link.h), which fills the buffers the
+ * firmware stages read.  Packets are counted in bytes on the wire.  Without
+ * the link component in the build, payloads are copied and their bytes
+ * counted as payload + a 32-byte header (said in the report).
+ */
+#ifndef TDC_SIM_LINK_H
+#define TDC_SIM_LINK_H
+
+#include <stdint.h>
+#include <stddef.h>
+
+typedef struct {
+    int real;               /* 1: encoder + decoder in the path */
+    int w, h, rw, rh;
+    uint32_t flags;
+    uint16_t r_num, r_den, hz;
+    uint16_t stream_id;
+    uint64_t bytes;         /* on the wire */
+    uint32_t packets;
+    uint32_t errors;        /* decoder errors (should be 0) */
+    double decode_s, encode_s;
+    /* decoded buffers (what the firmware reads) */
+    uint8_t *full, *reduced, *subframe, *pattern;
+    int16_t *motion, *sample_motion;
+    void *priv;
+} tdc_sim_link_t;
+
+/* Stream flags (same bits as TDC_LINK_STREAM_*). */
+#define TDC_SIM_LINK_REDUCED 0x0001u
+#define TDC_SIM_LINK_SUBFRAMES 0x0002u
+#define TDC_SIM_LINK_MOTION 0x0004u
+#define TDC_SIM_LINK_SAMPLE_MV 0x0010u
+
+int tdc_sim_link_init(tdc_sim_link_t *l, int w, int h, uint32_t flags, uint16_t r_num, uint16_t r_den,
+                      uint16_t hz);
+void tdc_sim_link_free(tdc_sim_link_t *l);
+/* (Re)starts the stream: a STREAM packet with a new stream id. */
+int tdc_sim_link_stream(tdc_sim_link_t *l);
+/* Each returns 0 when the packet was accepted (decoded into l->...). */
+int tdc_sim_link_full(tdc_sim_link_t *l, uint32_t frame, const uint8_t *rgb);
+int tdc_sim_link_reduced(tdc_sim_link_t *l, uint32_t frame, const uint8_t *rgb);
+int tdc_sim_link_subframe(tdc_sim_link_t *l, uint32_t frame, const uint8_t *samples, const int16_t *mv,
+                          const uint8_t *pattern);
+/* Bytes of a payload sent without a packet kind of its own (interlaced
+ * rows): counted as payload + header, not decoded. */
+void tdc_sim_link_count_raw(tdc_sim_link_t *l, size_t payload);
+
+#endif

@@ -1,0 +1,396 @@
+/*
+ * tdc-sim - host simulator: every display mode through renderer -> link ->
+ * firmware -> panel -> eye -> metrics, with cost figures.  See --help.
+ */
+#include <errno.h>
+#include <getopt.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "report/tdc_report.h"
+#include "simulator/tdc_sim.h"
+
+static void usage(FILE *f)
+{
+    int n;
+    const tdc_mode_desc_t *m = tdc_sim_modes(&n);
+    fprintf(f,
+            "usage: tdc-sim [options]\n"
+            "Simulates display modes through the whole data path (renderer -> link encoder ->\n"
+            "firmware via the link decoder -> panel -> eye -> metrics vs ground truth).\n\n"
+            "  -s, --scene NAME        built-in scene (default pan):");
+    for (int i = 0; i < TDC_SCENE_COUNT; i++) {
+        fprintf(f, " %s", tdc_scene_name((tdc_scene_kind_t)i));
+    }
+    fprintf(f, "\n"
+               "  -m, --mode LIST         comma-separated modes, or 'all', 'trm-family' (90 Hz comparison),\n"
+               "                          'asm-family' (240 Hz comparison); default trm-family\n"
+               "  -p, --panel oled|lcd    panel simulation (default oled)\n"
+               "      --profile NAME      firmware panel profile (default htc-vive, or the first LCD profile)\n"
+               "  -r, --refresh HZ        run clock / display refresh (default 90)\n"
+               "  -g, --size WxH          resolution (default 160x120)\n"
+               "  -d, --duration S        simulated seconds (default 0.5)\n"
+               "  -n, --frames N          simulated refreshes (overrides --duration)\n"
+               "  -w, --window N          fused window in refreshes (default 2 below 200 Hz, else 4)\n"
+               "      --spp N             rays per pixel of full frames (default 4 below 200 Hz, else 1)\n"
+               "      --speed PX_PER_S    main motion speed (default: the scene's)\n"
+               "      --angle DEG         main motion direction (default 0 = +x)\n"
+               "      --cut-time S        scene 'cut': time of the cut (default duration / 2)\n"
+               "      --persistence F     OLED duty cycle (default 0.2 below 200 Hz, else 1 = hold)\n"
+               "      --pursuit track|fixate  eye tracks the main motion or fixates (default track)\n"
+               "      --pursuit-gain G    smooth-pursuit gain (default 1)\n"
+               "      --metric-every K    evaluate every K-th refresh (default 1)\n"
+               "      --ppd X             FLIP pixels per degree (default 67.02)\n"
+               "      --trm-s S           TRM motion sensitivity s (default: firmware default)\n"
+               "      --gt-ss N           ground-truth supersampling N x N (default 4)\n"
+               "      --strip-at K        evaluation index of the picture strips (default middle)\n"
+               "  -S, --seed N            scene seed (default 1)\n"
+               "  -o, --out DIR           output folder: summary.csv, summary.md, series.csv, strip_*.png\n"
+               "  -l, --label TEXT        run label in the report\n"
+               "  -q, --quiet             no progress bar\n"
+               "      --list              list the modes\n"
+               "  -h, --help              this help\n\nmodes:\n");
+    for (int i = 0; i < n; i++) {
+        fprintf(f, "  %-18s %s%s\n", m[i].name, m[i].what, m[i].fixed_hz ? " (fixed rate)" : "");
+    }
+    tdc_sim_parts_t p;
+    tdc_sim_parts(&p);
+    fprintf(f, "\nparts in this build: TRM firmware %s, link encoder+decoder %s, assembly firmware %s,\n"
+               "LCD firmware stage %s, physical LCD model %s\n",
+            p.trm ? "yes" : "NO", p.link ? "yes" : "NO", p.assemble ? "yes" : "NO", p.lcd_fw ? "yes" : "NO",
+            p.lcd_phys ? "yes" : "no (built-in fallback)");
+}
+
+static int add_modes(const char *list, const tdc_mode_desc_t **out, int *n, int cap)
+{
+    static const char *const trm_family[] = {"full", "half", "interlace", "bfi", "ncsfi", "trm50", "trm40",
+                                             "trm25", "asw"};
+    static const char *const asm_family[] = {"full",         "full60",           "taa60",          "asm-hourglass",
+                                             "asm-bowtie",   "asm-adaptive",     "asm-hourglass-smv",
+                                             "asm-bowtie-smv", "asm-adaptive-smv"};
+    char buf[1024];
+    snprintf(buf, sizeof(buf), "%s", list);
+    for (char *tok = strtok(buf, ","); tok; tok = strtok(NULL, ",")) {
+        if (strcmp(tok, "all") == 0) {
+            int nm;
+            const tdc_mode_desc_t *m = tdc_sim_modes(&nm);
+            for (int i = 0; i < nm && *n < cap; i++) {
+                out[(*n)++] = &m[i];
+            }
+        } else if (strcmp(tok, "trm-family") == 0 || strcmp(tok, "asm-family") == 0) {
+            int tf = strcmp(tok, "trm-family") == 0;
+            int cnt = tf ? 9 : 9;
+            for (int i = 0; i < cnt && *n < cap; i++) {
+                out[(*n)++] = tdc_sim_mode_find(tf ? trm_family[i] : asm_family[i]);
+            }
+        } else {
+            const tdc_mode_desc_t *m = tdc_sim_mode_find(tok);
+            if (!m) {
+                fprintf(stderr, "tdc-sim: unknown mode '%s' (see --list)\n", tok);
+                return -1;
+            }
+            if (*n < cap) {
+                out[(*n)++] = m;
+            }
+        }
+    }
+    return 0;
+}
+
+static int mkdir_p(const char *dir)
+{
+    char tmp[1024];
+    snprintf(tmp, sizeof(tmp), "%s", dir);
+    for (char *p = tmp + 1; *p; p++) {
+        if (*p == '/') {
+            *p = 0;
+            if (mkdir(tmp, 0755) && errno != EEXIST) {
+                return -1;
+            }
+            *p = '/';
+        }
+    }
+    return mkdir(tmp, 0755) && errno != EEXIST ? -1 : 0;
+}
+
+static int parse_num(const char *s, double lo, double hi, double *v, const char *what)
+{
+    char *end;
+    errno = 0;
+    double x = strtod(s, &end);
+    if (errno || end == s || *end || x < lo || x > hi) {
+        fprintf(stderr, "tdc-sim: bad %s '%s' (expected %g .. %g)\n", what, s, lo, hi);
+        return -1;
+    }
+    *v = x;
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    enum { O_SPEED = 256, O_ANGLE, O_CUT, O_PERS, O_PURSUIT, O_GAIN, O_EVERY, O_PPD, O_TRMS, O_GTSS, O_STRIP, O_LIST,
+           O_SPP, O_PROFILE };
+    static const struct option opts[] = {
+        {"scene", required_argument, 0, 's'},   {"mode", required_argument, 0, 'm'},
+        {"panel", required_argument, 0, 'p'},   {"profile", required_argument, 0, O_PROFILE},
+        {"refresh", required_argument, 0, 'r'}, {"size", required_argument, 0, 'g'},
+        {"duration", required_argument, 0, 'd'}, {"frames", required_argument, 0, 'n'},
+        {"window", required_argument, 0, 'w'},  {"spp", required_argument, 0, O_SPP},
+        {"speed", required_argument, 0, O_SPEED}, {"angle", required_argument, 0, O_ANGLE},
+        {"cut-time", required_argument, 0, O_CUT}, {"persistence", required_argument, 0, O_PERS},
+        {"pursuit", required_argument, 0, O_PURSUIT}, {"pursuit-gain", required_argument, 0, O_GAIN},
+        {"metric-every", required_argument, 0, O_EVERY}, {"ppd", required_argument, 0, O_PPD},
+        {"trm-s", required_argument, 0, O_TRMS}, {"gt-ss", required_argument, 0, O_GTSS},
+        {"strip-at", required_argument, 0, O_STRIP}, {"seed", required_argument, 0, 'S'},
+        {"out", required_argument, 0, 'o'},     {"label", required_argument, 0, 'l'},
+        {"quiet", no_argument, 0, 'q'},         {"list", no_argument, 0, O_LIST},
+        {"help", no_argument, 0, 'h'},          {0, 0, 0, 0}};
+    tdc_sim_config_t cfg;
+    tdc_sim_default_config(&cfg);
+    const char *mode_list = "trm-family";
+    long frames = -1;
+    double v;
+    int c;
+    while ((c = getopt_long(argc, argv, "s:m:p:r:g:d:n:w:S:o:l:qh", opts, NULL)) != -1) {
+        switch (c) {
+        case 's': {
+            int k = tdc_scene_from_name(optarg);
+            if (k < 0) {
+                fprintf(stderr, "tdc-sim: unknown scene '%s' (see --help)\n", optarg);
+                return 2;
+            }
+            cfg.scene.kind = (tdc_scene_kind_t)k;
+            break;
+        }
+        case 'm':
+            mode_list = optarg;
+            break;
+        case 'p':
+            if (strcmp(optarg, "oled") == 0) {
+                cfg.panel = TDC_PANEL_SIM_OLED;
+            } else if (strcmp(optarg, "lcd") == 0) {
+                cfg.panel = TDC_PANEL_SIM_LCD;
+            } else {
+                fprintf(stderr, "tdc-sim: panel must be oled or lcd\n");
+                return 2;
+            }
+            break;
+        case O_PROFILE:
+            cfg.panel_profile = optarg;
+            break;
+        case 'r':
+            if (parse_num(optarg, 1, 1000, &v, "refresh")) {
+                return 2;
+            }
+            cfg.refresh_hz = (int)v;
+            break;
+        case 'g': {
+            int w, h;
+            char extra;
+            if (sscanf(optarg, "%dx%d%c", &w, &h, &extra) != 2 || w < 8 || h < 8 || w > 4096 || h > 4096) {
+                fprintf(stderr, "tdc-sim: bad size '%s' (WxH, 8 .. 4096)\n", optarg);
+                return 2;
+            }
+            cfg.width = w;
+            cfg.height = h;
+            break;
+        }
+        case 'd':
+            if (parse_num(optarg, 1e-3, 1e6, &v, "duration")) {
+                return 2;
+            }
+            cfg.duration_s = v;
+            break;
+        case 'n':
+            if (parse_num(optarg, 1, 1e8, &v, "frames")) {
+                return 2;
+            }
+            frames = (long)v;
+            break;
+        case 'w':
+            if (parse_num(optarg, 1, 16, &v, "window")) {
+                return 2;
+            }
+            cfg.window_frames = (int)v;
+            break;
+        case O_SPP:
+            if (parse_num(optarg, 1, 64, &v, "spp")) {
+                return 2;
+            }
+            cfg.spp = (int)v;
+            break;
+        case O_SPEED:
+            if (parse_num(optarg, 0, 1e6, &v, "speed")) {
+                return 2;
+            }
+            cfg.scene.speed = v;
+            break;
+        case O_ANGLE:
+            if (parse_num(optarg, -360, 360, &v, "angle")) {
+                return 2;
+            }
+            cfg.scene.angle_deg = v;
+            break;
+        case O_CUT:
+            if (parse_num(optarg, 0, 1e6, &v, "cut time")) {
+                return 2;
+            }
+            cfg.scene.cut_time = v;
+            break;
+        case O_PERS:
+            if (parse_num(optarg, 0.01, 1, &v, "persistence")) {
+                return 2;
+            }
+            cfg.persistence = v;
+            break;
+        case O_PURSUIT:
+            if (strcmp(optarg, "track") == 0) {
+                cfg.scene.pursuit = 1;
+            } else if (strcmp(optarg, "fixate") == 0) {
+                cfg.scene.pursuit = 0;
+            } else {
+                fprintf(stderr, "tdc-sim: --pursuit track|fixate\n");
+                return 2;
+            }
+            break;
+        case O_GAIN:
+            if (parse_num(optarg, 0, 1.5, &v, "pursuit gain")) {
+                return 2;
+            }
+            cfg.pursuit_gain = v;
+            break;
+        case O_EVERY:
+            if (parse_num(optarg, 1, 1e6, &v, "metric-every")) {
+                return 2;
+            }
+            cfg.metric_every = (int)v;
+            break;
+        case O_PPD:
+            if (parse_num(optarg, 1, 1000, &v, "ppd")) {
+                return 2;
+            }
+            cfg.flip_ppd = v;
+            break;
+        case O_TRMS:
+            if (parse_num(optarg, 0, 1000, &v, "trm-s")) {
+                return 2;
+            }
+            cfg.trm_s = (int)v;
+            break;
+        case O_GTSS:
+            if (parse_num(optarg, 1, 16, &v, "gt-ss")) {
+                return 2;
+            }
+            cfg.scene.gt_ss = (int)v;
+            break;
+        case O_STRIP:
+            if (parse_num(optarg, 0, 1e9, &v, "strip-at")) {
+                return 2;
+            }
+            cfg.strip_at = (int)v;
+            break;
+        case 'S':
+            if (parse_num(optarg, 0, 4294967295.0, &v, "seed")) {
+                return 2;
+            }
+            cfg.seed = (uint32_t)v;
+            break;
+        case 'o':
+            cfg.outdir = optarg;
+            break;
+        case 'l':
+            cfg.label = optarg;
+            break;
+        case 'q':
+            cfg.progress = 0;
+            break;
+        case O_LIST: {
+            int n;
+            const tdc_mode_desc_t *m = tdc_sim_modes(&n);
+            for (int i = 0; i < n; i++) {
+                printf("%s\n", m[i].name);
+            }
+            return 0;
+        }
+        case 'h':
+            usage(stdout);
+            return 0;
+        default:
+            usage(stderr);
+            return 2;
+        }
+    }
+    if (optind < argc) {
+        fprintf(stderr, "tdc-sim: unexpected argument '%s'\n", argv[optind]);
+        return 2;
+    }
+    if (frames > 0) {
+        cfg.duration_s = (double)frames / cfg.refresh_hz;
+    }
+    if (cfg.scene.cut_time < 0) {
+        cfg.scene.cut_time = cfg.duration_s / 2;
+    }
+    cfg.scene.width = cfg.width;
+    cfg.scene.height = cfg.height;
+    cfg.scene.seed = cfg.seed;
+    const tdc_mode_desc_t *modes[64];
+    int nm = 0;
+    if (add_modes(mode_list, modes, &nm, 64)) {
+        return 2;
+    }
+    if (!cfg.label) {
+        cfg.label = tdc_scene_name(cfg.scene.kind);
+    }
+    if (cfg.outdir && mkdir_p(cfg.outdir)) {
+        fprintf(stderr, "tdc-sim: cannot create '%s': %s\n", cfg.outdir, strerror(errno));
+        return 1;
+    }
+    tdc_source_t *src = tdc_scene_create(&cfg.scene, NULL);
+    if (!src) {
+        fprintf(stderr, "tdc-sim: cannot create scene\n");
+        return 1;
+    }
+    tdc_sim_result_t *res = calloc((size_t)nm, sizeof(*res));
+    FILE *series = NULL;
+    char path[1200];
+    if (cfg.outdir) {
+        snprintf(path, sizeof(path), "%s/series.csv", cfg.outdir);
+        series = fopen(path, "w");
+    }
+    int rc = res ? tdc_sim_run(&cfg, src, modes, nm, res, series) : -1;
+    if (series) {
+        fclose(series);
+    }
+    if (rc == 0) {
+        tdc_report_markdown(stdout, &cfg, res, nm);
+        if (cfg.outdir) {
+            snprintf(path, sizeof(path), "%s/summary.csv", cfg.outdir);
+            FILE *f = fopen(path, "w");
+            if (f) {
+                tdc_report_csv(f, &cfg, res, nm, 1);
+                fclose(f);
+            }
+            snprintf(path, sizeof(path), "%s/summary.md", cfg.outdir);
+            f = fopen(path, "w");
+            if (f) {
+                fprintf(f, "Run `%s`: scene `%s`, %s panel, %d Hz clock, %dx%d, %.3f s, window %d refreshes.\n\n",
+                        cfg.label, tdc_scene_name(cfg.scene.kind), cfg.panel == TDC_PANEL_SIM_LCD ? "LCD" : "OLED",
+                        cfg.refresh_hz, cfg.width, cfg.height, cfg.duration_s,
+                        cfg.window_frames > 0 ? cfg.window_frames : (cfg.refresh_hz >= 200 ? 4 : 2));
+                tdc_report_markdown(f, &cfg, res, nm);
+                fclose(f);
+            }
+        }
+        for (int i = 0; i < nm; i++) {
+            if (res[i].nonfinite) {
+                fprintf(stderr, "tdc-sim: mode %s produced non-finite values\n", res[i].desc->name);
+                rc = 1;
+            }
+        }
+    }
+    free(res);
+    src->destroy(src);
+    return rc == 0 ? 0 : 1;
+}

@@ -1,0 +1,439 @@
+/*
+ * tdc_sim_scene.c - built-in procedural scenes: analytic radiance in linear
+ * light, exact motion, exact (densely supersampled) ground truth.  They
+ * stand in for the papers' stimuli (moving discs, scrolling text, panned
+ * panorama, thin vertical features under a pan, a fence whose shadow moves)
+ * and stay useful for tiny smoke tests.
+ */
+#include "tdc_sim_scene.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const k_scene_names[TDC_SCENE_COUNT] = {"static", "pan",   "text",  "discs", "thin",
+                                                           "fence",  "black", "white", "cut"};
+
+const char *tdc_scene_name(tdc_scene_kind_t k)
+{
+    return (unsigned)k < TDC_SCENE_COUNT ? k_scene_names[k] : "?";
+}
+
+int tdc_scene_from_name(const char *name)
+{
+    for (int i = 0; i < TDC_SCENE_COUNT; i++) {
+        if (strcmp(name, k_scene_names[i]) == 0) {
+            return i;
+        }
+    }
+    return -1;
+}
+
+double tdc_scene_default_speed(tdc_scene_kind_t k)
+{
+    switch (k) {
+    case TDC_SCENE_STATIC:
+    case TDC_SCENE_BLACK:
+    case TDC_SCENE_WHITE:
+        return 0.0;
+    case TDC_SCENE_THIN:
+        return 330.0; /* 1.375 px/frame at 240 Hz: fractional motion */
+    case TDC_SCENE_FENCE:
+        return 270.0;
+    case TDC_SCENE_DISCS:
+        return 600.0;
+    default:
+        return 450.0;
+    }
+}
+
+typedef struct {
+    tdc_scene_params_t p;
+    double vx, vy; /* main motion, px/s */
+} scene_ctx_t;
+
+static uint32_t hash2(int32_t a, int32_t b, uint32_t seed)
+{
+    uint32_t x = (uint32_t)a * 0x9E3779B1u ^ ((uint32_t)b * 0x85EBCA77u) ^ (seed * 0xC2B2AE3Du);
+    x ^= x >> 16;
+    x *= 0x7feb352dU;
+    x ^= x >> 15;
+    x *= 0x846ca68bU;
+    x ^= x >> 16;
+    return x;
+}
+
+static double clamp01(double v)
+{
+    return v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v);
+}
+
+/* Panorama-like texture: smooth colour fields, an 8-px checker, a fine
+ * grating band, 1-px lines and small dots. */
+static void tex_pan(double u, double v, uint32_t seed, double c[3])
+{
+    const double tau = 6.283185307179586;
+    c[0] = 0.30 + 0.22 * sin(tau * u / 53.0 + 1.3) * cos(tau * v / 41.0);
+    c[1] = 0.30 + 0.20 * sin(tau * (u + v) / 67.0);
+    c[2] = 0.30 + 0.22 * cos(tau * (u - v) / 47.0 + 0.4);
+    double fu = floor(u), fv = floor(v);
+    int chk = ((int64_t)floor(u / 8.0) + (int64_t)floor(v / 8.0)) & 1;
+    double d = chk ? 0.12 : -0.08;
+    double vm = fv - 64.0 * floor(fv / 64.0);
+    if (vm < 14.0) {
+        d += 0.18 * sin(tau * u / 3.0); /* fine grating: near Nyquist */
+    }
+    double um = fu - 23.0 * floor(fu / 23.0);
+    uint32_t h = hash2((int32_t)floor(u / 5.0), (int32_t)floor(v / 5.0), seed);
+    for (int k = 0; k < 3; k++) {
+        c[k] = clamp01(c[k] + d);
+    }
+    if (um == 0.0) {
+        c[0] = c[1] = c[2] = 0.85;
+    }
+    if ((h & 31u) == 0u) {
+        double cx = floor(u / 5.0) * 5.0 + 2.5, cy = floor(v / 5.0) * 5.0 + 2.5;
+        if ((u - cx) * (u - cx) + (v - cy) * (v - cy) < 1.2) {
+            c[0] = 1.0;
+            c[1] = 0.9;
+            c[2] = 0.3;
+        }
+    }
+}
+
+/* Pseudo text: 6x9 cells, glyph strokes one pixel wide, dark ink on paper. */
+static void tex_text(double u, double v, uint32_t seed, double c[3])
+{
+    int32_t iu = (int32_t)floor(u), iv = (int32_t)floor(v);
+    int32_t cx = (int32_t)floor(u / 6.0), cy = (int32_t)floor(v / 9.0);
+    int32_t gx = iu - cx * 6, gy = iv - cy * 9;
+    uint32_t g = hash2(cx, cy, seed + 77u);
+    int ink = 0;
+    if (gx < 5 && gy < 7 && (g & 7u) != 0u && ((uint32_t)cy % 5u) != 4u) {
+        ink = ((g >> 3) & (1u << gx)) && gy >= (int32_t)((g >> 9) & 3u);
+        ink |= ((g >> 12) & (1u << gy)) && gx < 4;
+    }
+    if (ink) {
+        c[0] = 0.01;
+        c[1] = 0.01;
+        c[2] = 0.02;
+    } else {
+        c[0] = 0.80;
+        c[1] = 0.77;
+        c[2] = 0.66;
+    }
+}
+
+/* Room with thin vertical features: a dim wall with posts of sub-pixel to
+ * 1.5 px width and a few shelves. */
+static void tex_thin(double u, double v, uint32_t seed, double c[3])
+{
+    c[0] = 0.12 + 0.06 * sin(u / 90.0);
+    c[1] = 0.10;
+    c[2] = 0.08 + 0.05 * cos(v / 40.0);
+    int32_t cell = (int32_t)floor(u / 7.0);
+    uint32_t h = hash2(cell, 0, seed + 5u);
+    if ((h & 3u) != 0u) {
+        static const double widths[4] = {0.5, 0.75, 1.0, 1.5};
+        double w = widths[(h >> 2) & 3u];
+        double x0 = cell * 7.0 + 1.0 + (double)((h >> 4) % 4u);
+        if (u >= x0 && u < x0 + w) {
+            double b = 0.75 + 0.25 * (double)((h >> 8) & 1u);
+            c[0] = b;
+            c[1] = b * 0.95;
+            c[2] = b * 0.85;
+        }
+    }
+    double vm = v - 37.0 * floor(v / 37.0);
+    if (vm < 1.0) {
+        c[0] = 0.5;
+        c[1] = 0.45;
+        c[2] = 0.35;
+    }
+}
+
+/* Fence scene: static floor, shadow bars moving at (vx, vy). */
+static double fence_shadow(const scene_ctx_t *sc, double x, double t)
+{
+    const double period = 14.0, bar = 5.0, pen = 1.0;
+    double u = x - sc->vx * t;
+    double m = u - period * floor(u / period); /* 0 .. period */
+    /* fully shadowed in [pen, bar], ramps of width pen on both sides */
+    if (m < pen) {
+        return m / pen;
+    }
+    if (m <= bar) {
+        return 1.0;
+    }
+    if (m < bar + pen) {
+        return 1.0 - (m - bar) / pen;
+    }
+    return 0.0;
+}
+
+static void tex_floor(double x, double y, uint32_t seed, double c[3])
+{
+    int chk = ((int64_t)floor(x / 16.0) + (int64_t)floor(y / 16.0)) & 1;
+    uint32_t h = hash2((int32_t)floor(x / 3.0), (int32_t)floor(y / 3.0), seed + 9u);
+    double n = ((double)(h & 255u) / 255.0 - 0.5) * 0.12;
+    double b = (chk ? 0.55 : 0.38) + n;
+    c[0] = clamp01(b * 1.05);
+    c[1] = clamp01(b);
+    c[2] = clamp01(b * 0.85);
+}
+
+/* Discs: 6 discs on a static background with a grid. */
+#define N_DISCS 6
+static int disc_at(const scene_ctx_t *sc, double x, double y, double t, double c[3])
+{
+    static const double cols[N_DISCS][3] = {{0.9, 0.2, 0.1}, {0.1, 0.8, 0.2}, {0.15, 0.3, 0.95},
+                                            {0.95, 0.9, 0.2}, {0.9, 0.9, 0.9}, {0.8, 0.2, 0.8}};
+    double w = sc->p.width, h = sc->p.height;
+    double pw = w + 40.0, ph = h + 40.0;
+    for (int i = 0; i < N_DISCS; i++) {
+        double r = 4.0 + (double)(i % 3) * 2.5;
+        double x0 = (double)i * pw / N_DISCS + sc->vx * t;
+        double y0 = (0.15 + 0.7 * (double)i / (N_DISCS - 1)) * h + sc->vy * t;
+        x0 = x0 - pw * floor(x0 / pw) - 20.0;
+        y0 = y0 - ph * floor(y0 / ph) - 20.0;
+        double dx = x - x0, dy = y - y0;
+        if (dx * dx + dy * dy < r * r) {
+            if (c) {
+                c[0] = cols[i][0];
+                c[1] = cols[i][1];
+                c[2] = cols[i][2];
+            }
+            return 1;
+        }
+    }
+    return 0;
+}
+
+void tdc_scene_radiance(const tdc_source_t *s, double x, double y, double t, double rgb[3])
+{
+    const scene_ctx_t *sc = (const scene_ctx_t *)s->ctx;
+    double u = x - sc->vx * t, v = y - sc->vy * t;
+    switch (sc->p.kind) {
+    case TDC_SCENE_STATIC:
+        tex_pan(x, y, sc->p.seed, rgb);
+        break;
+    case TDC_SCENE_PAN:
+        tex_pan(u, v, sc->p.seed, rgb);
+        break;
+    case TDC_SCENE_TEXT:
+        tex_text(u, v, sc->p.seed, rgb);
+        break;
+    case TDC_SCENE_THIN:
+        tex_thin(u, v, sc->p.seed, rgb);
+        break;
+    case TDC_SCENE_DISCS:
+        if (!disc_at(sc, x, y, t, rgb)) {
+            double gx = x - 16.0 * floor(x / 16.0), gy = y - 16.0 * floor(y / 16.0);
+            double b = (gx < 1.0 || gy < 1.0) ? 0.35 : 0.06;
+            rgb[0] = rgb[1] = rgb[2] = b;
+        }
+        break;
+    case TDC_SCENE_FENCE: {
+        tex_floor(x, y, sc->p.seed, rgb);
+        double f = 1.0 - 0.8 * fence_shadow(sc, x, t);
+        for (int k = 0; k < 3; k++) {
+            rgb[k] *= f;
+        }
+        break;
+    }
+    case TDC_SCENE_BLACK:
+        rgb[0] = rgb[1] = rgb[2] = 0.0;
+        break;
+    case TDC_SCENE_WHITE:
+        rgb[0] = rgb[1] = rgb[2] = 1.0;
+        break;
+    case TDC_SCENE_CUT:
+        if (t < sc->p.cut_time) {
+            tex_pan(u, v, sc->p.seed, rgb);
+        } else {
+            tex_text(u, v, sc->p.seed + 1u, rgb);
+        }
+        break;
+    default:
+        rgb[0] = rgb[1] = rgb[2] = 0.0;
+        break;
+    }
+}
+
+/* Screen velocity (px/s) of what is seen at (x, y, t). */
+static void scene_velocity(const scene_ctx_t *sc, double x, double y, double t, double dt, tdc_mv_kind_t kind,
+                           double v[2])
+{
+    v[0] = v[1] = 0.0;
+    switch (sc->p.kind) {
+    case TDC_SCENE_PAN:
+    case TDC_SCENE_TEXT:
+    case TDC_SCENE_THIN:
+    case TDC_SCENE_CUT:
+        v[0] = sc->vx;
+        v[1] = sc->vy;
+        break;
+    case TDC_SCENE_DISCS:
+        if (disc_at(sc, x, y, t, NULL)) {
+            v[0] = sc->vx;
+            v[1] = sc->vy;
+        }
+        break;
+    case TDC_SCENE_FENCE:
+        /* The floor never moves: surface MVs are zero.  Shadow MVs follow
+         * the shadow where there is shadow now; dual MVs also where the
+         * shadow was one frame ago (the disoccluded, newly lit floor). */
+        if (kind == TDC_MV_SHADOW && (fence_shadow(sc, x, t) > 0.0 || fence_shadow(sc, x, t - dt) > 0.0)) {
+            v[0] = sc->vx;
+            v[1] = sc->vy;
+        }
+        break;
+    default:
+        break;
+    }
+}
+
+static uint8_t encode_code(double lin, double gamma)
+{
+    double c = 255.0 * pow(clamp01(lin), 1.0 / gamma) + 0.5;
+    return (uint8_t)(c >= 255.0 ? 255 : (int)c);
+}
+
+static int16_t mv_q4(double d)
+{
+    double q = floor(d * 16.0 + 0.5);
+    return (int16_t)(q > 32767.0 ? 32767 : (q < -32767.0 ? -32767 : q));
+}
+
+static void src_samples(tdc_source_t *s, double t, int n, const double *xy, int spp, uint8_t *rgb, int16_t *mv,
+                        double dt, tdc_mv_kind_t kind)
+{
+    const scene_ctx_t *sc = (const scene_ctx_t *)s->ctx;
+    int g = 1;
+    while ((g + 1) * (g + 1) <= spp) {
+        g++;
+    }
+    for (int i = 0; i < n; i++) {
+        double x = xy[2 * i], y = xy[2 * i + 1];
+        double acc[3] = {0, 0, 0};
+        if (spp <= 1) {
+            tdc_scene_radiance(s, x, y, t, acc);
+        } else {
+            double px = floor(x), py = floor(y);
+            for (int j = 0; j < g; j++) {
+                for (int k = 0; k < g; k++) {
+                    double c[3];
+                    tdc_scene_radiance(s, px + (k + 0.5) / g, py + (j + 0.5) / g, t, c);
+                    acc[0] += c[0];
+                    acc[1] += c[1];
+                    acc[2] += c[2];
+                }
+            }
+            for (int k = 0; k < 3; k++) {
+                acc[k] /= (double)(g * g);
+            }
+        }
+        for (int k = 0; k < 3; k++) {
+            rgb[3 * i + k] = encode_code(acc[k], s->gamma[k]);
+        }
+        if (mv) {
+            double v[2];
+            scene_velocity(sc, x, y, t, dt, kind, v);
+            mv[2 * i] = mv_q4(-v[0] * dt);
+            mv[2 * i + 1] = mv_q4(-v[1] * dt);
+        }
+    }
+}
+
+static void src_ground_truth(tdc_source_t *s, double t, double ox, double oy, double *lin)
+{
+    int ss = s->gt_ss;
+    double inv = 1.0 / (double)(ss * ss);
+    for (int y = 0; y < s->height; y++) {
+        for (int x = 0; x < s->width; x++) {
+            double acc[3] = {0, 0, 0};
+            for (int j = 0; j < ss; j++) {
+                for (int k = 0; k < ss; k++) {
+                    double c[3];
+                    tdc_scene_radiance(s, x + ox + (k + 0.5) / ss, y + oy + (j + 0.5) / ss, t, c);
+                    acc[0] += c[0];
+                    acc[1] += c[1];
+                    acc[2] += c[2];
+                }
+            }
+            double *o = lin + 3 * ((size_t)y * s->width + x);
+            o[0] = acc[0] * inv;
+            o[1] = acc[1] * inv;
+            o[2] = acc[2] * inv;
+        }
+    }
+}
+
+static void src_pursuit(tdc_source_t *s, double t, double v[2])
+{
+    const scene_ctx_t *sc = (const scene_ctx_t *)s->ctx;
+    (void)t;
+    v[0] = sc->p.pursuit ? sc->vx : 0.0;
+    v[1] = sc->p.pursuit ? sc->vy : 0.0;
+}
+
+static int src_cut(tdc_source_t *s, double t0, double t1)
+{
+    const scene_ctx_t *sc = (const scene_ctx_t *)s->ctx;
+    return sc->p.kind == TDC_SCENE_CUT && t0 < sc->p.cut_time && t1 >= sc->p.cut_time;
+}
+
+static void src_destroy(tdc_source_t *s)
+{
+    if (s) {
+        free(s->ctx);
+        free(s);
+    }
+}
+
+tdc_source_t *tdc_scene_create(const tdc_scene_params_t *p, const double gamma[3])
+{
+    if (!p || (unsigned)p->kind >= TDC_SCENE_COUNT || p->width < 1 || p->height < 1) {
+        return NULL;
+    }
+    tdc_source_t *s = calloc(1, sizeof(*s));
+    scene_ctx_t *sc = calloc(1, sizeof(*sc));
+    if (!s || !sc) {
+        free(s);
+        free(sc);
+        return NULL;
+    }
+    sc->p = *p;
+    double speed = p->speed < 0.0 ? tdc_scene_default_speed(p->kind) : p->speed;
+    if (p->kind == TDC_SCENE_STATIC || p->kind == TDC_SCENE_BLACK || p->kind == TDC_SCENE_WHITE) {
+        speed = 0.0;
+    }
+    double a = p->angle_deg * 3.141592653589793 / 180.0;
+    sc->vx = speed * cos(a);
+    sc->vy = speed * sin(a);
+    if (fabs(sc->vx) < 1e-12) {
+        sc->vx = 0.0;
+    }
+    if (fabs(sc->vy) < 1e-12) {
+        sc->vy = 0.0;
+    }
+    s->name = tdc_scene_name(p->kind);
+    s->width = p->width;
+    s->height = p->height;
+    for (int k = 0; k < 3; k++) {
+        s->gamma[k] = gamma ? gamma[k] : 2.2;
+    }
+    s->gt_ss = p->gt_ss > 0 ? p->gt_ss : 4;
+    s->rigid = !(p->kind == TDC_SCENE_DISCS || p->kind == TDC_SCENE_FENCE || p->kind == TDC_SCENE_CUT) ||
+               (speed == 0.0 && p->kind != TDC_SCENE_CUT);
+    if (!p->pursuit && speed != 0.0) {
+        s->rigid = 0;
+    }
+    s->ctx = sc;
+    s->samples = src_samples;
+    s->ground_truth = src_ground_truth;
+    s->pursuit = src_pursuit;
+    s->cut = src_cut;
+    s->destroy = src_destroy;
+    return s;
+}

@@ -1,0 +1,92 @@
+/*
+ * tdc_sim_scene.h - the simulator's scene source interface and the built-in
+ * procedural scenes (analytic, exact motion, exact ground truth).
+ *
+ * A source answers three questions, which is all a renderer must do for the
+ * simulator (the Embree renderer plugs in behind the same interface):
+ *   - samples: trace n primary rays at given sub-pixel positions at time t
+ *     and return panel drive codes (RGB888, encoded with the panel gamma so
+ *     that the ideal panel shows the scene's linear light) and optionally the
+ *     backward motion vector of each sample (Q4 pixels, see DESIGN §4.4);
+ *   - ground truth: linear light of every pixel at time t, box-filtered over
+ *     the pixel with a dense supersampling grid;
+ *   - motion: the velocity the eye pursues (paper TRM §3, smooth pursuit) and
+ *     whether the stream is cut between two instants (stream reset).
+ *
+ * Units: positions in pixels (pixel (x, y) covers [x, x+1) x [y, y+1), its
+ * centre is x + 0.5), time in seconds, velocities in pixels per second,
+ * linear light in [0, 1] per channel.
+ */
+#ifndef TDC_SIM_SCENE_H
+#define TDC_SIM_SCENE_H
+
+#include <stdint.h>
+
+typedef enum {
+    TDC_SCENE_STATIC = 0, /* still detailed pattern: TRM eq. 3 check */
+    TDC_SCENE_PAN,        /* panned panorama-like texture */
+    TDC_SCENE_TEXT,       /* scrolling pseudo text (1-px strokes) */
+    TDC_SCENE_DISCS,      /* discs moving over a static textured background */
+    TDC_SCENE_THIN,       /* room with thin vertical features, horizontal pan */
+    TDC_SCENE_FENCE,      /* static floor, moving fence shadow (shadow MVs) */
+    TDC_SCENE_BLACK,
+    TDC_SCENE_WHITE,
+    TDC_SCENE_CUT,        /* pan scene, then a cut to the text scene (stream reset) */
+    TDC_SCENE_COUNT
+} tdc_scene_kind_t;
+
+/* Motion vector flavours a source can produce. */
+typedef enum {
+    TDC_MV_SURFACE = 0, /* motion of the visible surface point (standard) */
+    TDC_MV_SHADOW = 1   /* + shadow MVs and dual MVs for disocclusions (TRMV §4.1, §4.3) */
+} tdc_mv_kind_t;
+
+typedef struct tdc_source tdc_source_t;
+
+struct tdc_source {
+    const char *name;
+    int width, height;
+    double gamma[3];   /* panel gamma used to encode drive codes */
+    int gt_ss;         /* ground-truth supersampling: gt_ss x gt_ss samples per pixel */
+    int rigid;         /* 1: all content moves with the pursuit velocity (GT needs one sample in time) */
+    void *ctx;
+    /* n samples at (xy[2i], xy[2i+1]) at time t.  spp > 1: each sample is the
+     * mean of spp stratified rays within its pixel (MSAA-like; xy is then the
+     * pixel's corner + 0.5).  rgb: n*3 codes.  mv (optional, may be NULL):
+     * n*2 backward MVs in Q4 over dt seconds. */
+    void (*samples)(tdc_source_t *s, double t, int n, const double *xy, int spp, uint8_t *rgb, int16_t *mv,
+                    double dt, tdc_mv_kind_t kind);
+    /* Linear light W*H*3 (double) of the scene at time t, every pixel
+     * sampled at (x + ox, y + oy) shifted by (ox, oy) pixels. */
+    void (*ground_truth)(tdc_source_t *s, double t, double ox, double oy, double *lin);
+    void (*pursuit)(tdc_source_t *s, double t, double v[2]);
+    /* 1 if the content changes discontinuously in (t0, t1]. */
+    int (*cut)(tdc_source_t *s, double t0, double t1);
+    void (*destroy)(tdc_source_t *s);
+};
+
+/* Parameters of the built-in scenes. */
+typedef struct {
+    tdc_scene_kind_t kind;
+    int width, height;
+    double speed;      /* px/s of the main motion; < 0: scene default */
+    double angle_deg;  /* direction of the main motion (0 = +x) */
+    double cut_time;   /* TDC_SCENE_CUT: seconds */
+    uint32_t seed;
+    int pursuit;       /* 1: eye tracks the main motion, 0: fixation */
+    int gt_ss;         /* 0: default 4 */
+} tdc_scene_params_t;
+
+const char *tdc_scene_name(tdc_scene_kind_t k);
+/* -1 if unknown. */
+int tdc_scene_from_name(const char *name);
+/* Default speed of a scene in px/s. */
+double tdc_scene_default_speed(tdc_scene_kind_t k);
+
+/* The built-in procedural source (malloc'd; destroy with s->destroy(s)). */
+tdc_source_t *tdc_scene_create(const tdc_scene_params_t *p, const double gamma[3]);
+
+/* Linear light of scene kind k at point (x, y), time t (exposed for tests). */
+void tdc_scene_radiance(const tdc_source_t *s, double x, double y, double t, double rgb[3]);
+
+#endif
