@@ -13,3 +13,5 @@ TESTS += $(foreach t,$(ASM_TESTS),$(B)/tests/$(t))
 
 $(foreach t,$(ASM_TESTS),$(B)/tests/$(t)): $(B)/tests/%: $(B)/tests/%.o $(ASM_SIM_OBJS) $(ASM_FW_OBJS)
 	$(CC) $(HOST_LDFLAGS) $^ -o $@ $(HOST_LIBS)
+
+GOLDEN_STAGES += assemble
