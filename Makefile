@@ -131,12 +131,20 @@ $(B)/tests/%.o: tests/%.c $(GEN)/tdc_panels.h
 	@mkdir -p $(@D)
 	$(CC) $(HOST_CFLAGS) -MMD -MP -c $< -o $@
 
-$(FWLIB): $(FW_OBJS)
+# The archives also depend on their object lists, so adding or removing a
+# source (or building with another list) rebuilds them.
+.PHONY: FORCE
+$(B)/.fwobjs: FORCE
+	@mkdir -p $(@D); echo '$(FW_OBJS)' | cmp -s - $@ || echo '$(FW_OBJS)' > $@
+$(B)/.simobjs: FORCE
+	@mkdir -p $(@D); echo '$(SIM_OBJS)' | cmp -s - $@ || echo '$(SIM_OBJS)' > $@
+
+$(FWLIB): $(FW_OBJS) $(B)/.fwobjs
 	@rm -f $@
-	ar rcs $@ $^
-$(SIMLIB): $(SIM_OBJS)
+	ar rcs $@ $(FW_OBJS)
+$(SIMLIB): $(SIM_OBJS) $(B)/.simobjs
 	@rm -f $@; mkdir -p $(@D)
-	ar rcs $@ $^ $(if $(SIM_OBJS),,--thin)
+	ar rcs $@ $(SIM_OBJS) $(if $(SIM_OBJS),,--thin)
 
 # Test support linked into every test: deterministic contents, checksums.
 TEST_SUPPORT_OBJS = $(B)/tests/golden/tdc_content.o $(B)/tests/golden/golden_common.o

@@ -14,7 +14,6 @@
  */
 #include "tdc_trm.h"
 
-#include "tdc_gamma.h"
 #include "tdc_math.h"
 
 #define TDC_TRM_MAX_DIM 8192
@@ -334,15 +333,6 @@ static void trm_u_row(const tdc_trm_t *st, const tdc_gval_t *src, uint32_t y, ui
 /* Half an output code in code Q16: the quantisation of a reduced frame. */
 #define TDC_TRM_HALF_CODE_Q16 (1u << 15)
 
-/* Horizontal lerp at full-res column x, channel c: code Q22 -> code Q16.
- * Scaling: |v1 - v0| < 2^30 times f < 2^14 needs 64 bits; rounded once. */
-static inline uint32_t trm_u_at(const tdc_trm_t *st, const uint32_t *urow, uint32_t x, uint32_t c)
-{
-    const uint32_t i0 = st->ux_i[2u * x], f = st->ux_i[2u * x + 1u];
-    const int64_t v0 = urow[3u * i0 + c], v1 = urow[3u * i0 + 3u + c];
-    return (uint32_t)tdc_asr64(v0 * (1 << 14) + (v1 - v0) * (int64_t)f + (1LL << 19), 20);
-}
-
 /* ---------------------------------------------------------------------
  * Frames
  * ------------------------------------------------------------------- */
@@ -358,6 +348,76 @@ static void trm_copy(const tdc_trm_t *st, const uint8_t *in, uint32_t in_stride,
     }
 }
 
+/* One channel's gamma tables as restrict-qualified locals: the byte stores
+ * of the output frame may alias anything, so without these the compiler
+ * reloads every table pointer after each store. */
+typedef struct {
+    const uint32_t *restrict dec;
+    const uint32_t *restrict thr;
+    const uint16_t *restrict idx;
+} trm_gamma_t;
+
+static inline tdc_lin_t trm_dec_q16(const trm_gamma_t *g, uint32_t g_q16)
+{
+    const uint32_t k = g_q16 >> 16, f = (g_q16 >> 4) & 0xfffu;
+    const uint32_t a = g->dec[k], b = g->dec[k + 1u];
+    return (tdc_lin_t)(a + (((b - a) * f + 0x800u) >> 12)); /* as tdc_gamma_decode_q16 */
+}
+
+static inline uint32_t trm_enc(const trm_gamma_t *g, int32_t lin)
+{
+    /* as tdc_gamma_encode: lin already clamped to [0, 2^24] by the caller */
+    uint32_t k = g->idx[(uint32_t)lin >> (TDC_LIN_FRAC - TDC_ENC_INDEX_BITS)];
+    while (k < 255u && (uint32_t)lin >= g->thr[k + 1u]) {
+        k++;
+    }
+    return k;
+}
+
+static void trm_gamma_locals(const tdc_panel_t *p, trm_gamma_t g[3])
+{
+    for (int c = 0; c < 3; c++) {
+        g[c].dec = p->gamma[c].decode;
+        g[c].thr = p->gamma[c].enc_thresh;
+        g[c].idx = p->gamma[c].enc_index;
+    }
+}
+
+/* Full-res row: beta = 2 LI - Lu, shown = clamp(beta), rho = beta - shown. */
+static void trm_full_row(const tdc_trm_t *st, const trm_gamma_t g[3], const uint32_t *restrict urow,
+                         const uint8_t *restrict src, uint8_t *restrict dst, tdc_res_t *restrict res,
+                         uint64_t *hi, uint64_t *lo)
+{
+    const uint16_t *restrict ux = st->ux_i;
+    const uint32_t w = st->cfg.width;
+    uint32_t nhi = 0, nlo = 0;
+    for (uint32_t x = 0; x < w; x++) {
+        const uint32_t i0 = 3u * ux[2u * x], f = ux[2u * x + 1u];
+        for (uint32_t c = 0; c < 3u; c++) {
+            const int64_t v0 = urow[i0 + c], v1 = urow[i0 + 3u + c];
+            /* horizontal lerp, code Q22 -> Q16 (see trm_u_at) */
+            const uint32_t gu = (uint32_t)tdc_asr64(v0 * (1 << 14) + (v1 - v0) * (int64_t)f + (1LL << 19), 20);
+            const tdc_lin_t lu = trm_dec_q16(&g[c], gu);
+            const tdc_lin_t li = (tdc_lin_t)g[c].dec[src[3u * x + c]];
+            /* beta = 2 LI - Lu in [-1, 2] (Q24): no overflow in int32 */
+            const int32_t beta = 2 * li - lu;
+            int32_t shown = beta;
+            if (beta > TDC_LIN_ONE) {
+                shown = TDC_LIN_ONE;
+                nhi++;
+            } else if (beta < 0) {
+                shown = 0;
+                nlo++;
+            }
+            /* rho = beta - shown, Q24 (see tdc_res_t) */
+            res[3u * x + c] = beta - shown;
+            dst[3u * x + c] = (uint8_t)trm_enc(&g[c], shown);
+        }
+    }
+    *hi += nhi;
+    *lo += nlo;
+}
+
 tdc_status_t tdc_trm_full(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out, uint32_t out_stride)
 {
     if (!st || !in || !out || in_stride < 3u * st->cfg.width || out_stride < 3u * st->cfg.width) {
@@ -369,41 +429,85 @@ tdc_status_t tdc_trm_full(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, 
         return TDC_OK;
     }
     trm_apply_d(st, in, in_stride, st->dprev);
-    const tdc_panel_t *p = st->panel;
+    trm_gamma_t g[3];
+    trm_gamma_locals(st->panel, g);
     const uint32_t w = st->cfg.width;
-    uint32_t *urow = st->urow;
     uint64_t hi = 0, lo = 0;
     for (uint32_t y = 0; y < st->cfg.height; y++) {
-        trm_u_row(st, st->dprev, y, urow);
-        const uint8_t *src = in + (size_t)y * in_stride;
-        uint8_t *dst = out + (size_t)y * out_stride;
-        tdc_res_t *res = &st->residual[(size_t)y * w * 3u];
-        for (uint32_t x = 0; x < w; x++) {
-            for (uint32_t c = 0; c < 3u; c++) {
-                const tdc_gamma_table_t *gt = &p->gamma[c];
-                const tdc_lin_t lu = tdc_gamma_decode_q16(gt, trm_u_at(st, urow, x, c));
-                const tdc_lin_t li = tdc_gamma_decode(gt, src[3u * x + c]);
-                /* beta = 2 LI - Lu in [-1, 2] (Q24): no overflow in int32 */
-                const int32_t beta = 2 * li - lu;
-                int32_t shown = beta;
-                if (beta > TDC_LIN_ONE) {
-                    shown = TDC_LIN_ONE;
-                    hi++;
-                } else if (beta < 0) {
-                    shown = 0;
-                    lo++;
-                }
-                /* rho = beta - shown, Q24 (see tdc_res_t) */
-                res[3u * x + c] = beta - shown;
-                dst[3u * x + c] = (uint8_t)tdc_gamma_encode(gt, shown, 255u);
-            }
-        }
+        trm_u_row(st, st->dprev, y, st->urow);
+        trm_full_row(st, g, st->urow, in + (size_t)y * in_stride, out + (size_t)y * out_stride,
+                     &st->residual[(size_t)y * w * 3u], &hi, &lo);
     }
     st->stats.clamped_high += hi;
     st->stats.clamped_low += lo;
     st->stats.full_frames++;
     st->have_full = 1;
     return TDC_OK;
+}
+
+typedef struct {
+    uint64_t computed, skipped, no_res;
+} trm_weight_counts_t;
+
+/* Reduced row: alpha' = alpha + w rho, w = exp(-s c). */
+static void trm_reduced_row(const tdc_trm_t *st, const trm_gamma_t g[3], const uint32_t *restrict urow_a,
+                            const uint32_t *restrict urow_b, const tdc_res_t *restrict res,
+                            uint8_t *restrict dst, trm_weight_counts_t *n)
+{
+    const uint16_t *restrict ux = st->ux_i;
+    const uint32_t w = st->cfg.width;
+    const uint32_t s_q8 = st->cfg.s_q8;
+    uint32_t computed = 0, skipped = 0, no_res = 0;
+    for (uint32_t x = 0; x < w; x++) {
+        const uint32_t i0 = 3u * ux[2u * x], f = ux[2u * x + 1u];
+        for (uint32_t c = 0; c < 3u; c++) {
+            const int64_t b0 = urow_b[i0 + c], b1 = urow_b[i0 + 3u + c];
+            const uint32_t gb = (uint32_t)tdc_asr64(b0 * (1 << 14) + (b1 - b0) * (int64_t)f + (1LL << 19), 20);
+            const tdc_lin_t alpha = trm_dec_q16(&g[c], gb);
+            const int32_t rho = res[3u * x + c];
+            int32_t shown = alpha;
+            if (rho == 0) {
+                no_res++; /* nothing to add: the weight is not needed */
+            } else {
+                const int64_t a0 = urow_a[i0 + c], a1 = urow_a[i0 + 3u + c];
+                uint32_t ga = (uint32_t)tdc_asr64(a0 * (1 << 14) + (a1 - a0) * (int64_t)f + (1LL << 19), 20);
+                int32_t w_q15;
+                /* Motion test at the link's precision: the reduced frame
+                 * arrives in whole codes, so U(D(I_t)) is first moved half
+                 * a code towards U(i).  A static pair (i = round D(I)) then
+                 * has c = 0 exactly and skips the weight; the shrink is
+                 * continuous, so no tie can flip it. */
+                if (ga > gb + TDC_TRM_HALF_CODE_Q16) {
+                    ga -= TDC_TRM_HALF_CODE_Q16;
+                } else if (gb > ga + TDC_TRM_HALF_CODE_Q16) {
+                    ga += TDC_TRM_HALF_CODE_Q16;
+                } else {
+                    ga = gb;
+                }
+                if (ga == gb) {
+                    w_q15 = 32768; /* c = 0 known: static, exp(0) = 1 */
+                    skipped++;
+                } else {
+                    const tdc_lin_t la = trm_dec_q16(&g[c], ga);
+                    const uint32_t diff = (uint32_t)tdc_abs32(la - alpha);
+                    /* c = |A - B| / (A + B) in Q30 (A + B <= 2^25): s
+                     * multiplies its error, so Q15 is not enough */
+                    const int32_t c_q30 = tdc_div_q30(diff, (uint32_t)la + (uint32_t)alpha);
+                    /* s c: Q8 * Q30 = Q38 -> Q16; s_q8 < 2^32 keeps it < 2^62 */
+                    const uint64_t sc = ((uint64_t)s_q8 * (uint32_t)c_q30 + (1ull << 21)) >> 22;
+                    w_q15 = tdc_exp_neg_q16(sc > 0xffffffffu ? 0xffffffffu : (uint32_t)sc);
+                    computed++;
+                }
+                /* alpha' = alpha + w rho: Q15 * Q24 -> Q24; |rho| <= 2^24 */
+                shown = alpha + (int32_t)tdc_rshr_round64((int64_t)w_q15 * rho, 15);
+            }
+            shown = shown < 0 ? 0 : (shown > TDC_LIN_ONE ? TDC_LIN_ONE : shown);
+            dst[3u * x + c] = (uint8_t)trm_enc(&g[c], shown);
+        }
+    }
+    n->computed += computed;
+    n->skipped += skipped;
+    n->no_res += no_res;
 }
 
 tdc_status_t tdc_trm_reduced(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t in_stride, uint8_t *out,
@@ -428,65 +532,21 @@ tdc_status_t tdc_trm_reduced(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t 
             st->rscratch[y * rw3 + i] = (tdc_gval_t)((uint32_t)s[i] << TDC_GVAL_FRAC);
         }
     }
-    const tdc_panel_t *p = st->panel;
+    trm_gamma_t g[3];
+    trm_gamma_locals(st->panel, g);
     const uint32_t w = st->cfg.width;
-    const uint32_t s_q8 = st->cfg.s_q8;
-    uint32_t *urow_a = st->urow;              /* U(D(I_t)), code Q22 */
-    uint32_t *urow_b = st->urow + rw3 + 3u;   /* U(i_t+1) */
-    uint64_t computed = 0, skipped = 0, no_res = 0;
+    uint32_t *urow_a = st->urow;            /* U(D(I_t)), code Q22 */
+    uint32_t *urow_b = st->urow + rw3 + 3u; /* U(i_t+1) */
+    trm_weight_counts_t n = {0, 0, 0};
     for (uint32_t y = 0; y < st->cfg.height; y++) {
         trm_u_row(st, st->dprev, y, urow_a);
         trm_u_row(st, st->rscratch, y, urow_b);
-        uint8_t *dst = out + (size_t)y * out_stride;
-        const tdc_res_t *res = &st->residual[(size_t)y * w * 3u];
-        for (uint32_t x = 0; x < w; x++) {
-            for (uint32_t c = 0; c < 3u; c++) {
-                const tdc_gamma_table_t *gt = &p->gamma[c];
-                const uint32_t gb = trm_u_at(st, urow_b, x, c);
-                const tdc_lin_t alpha = tdc_gamma_decode_q16(gt, gb);
-                const int32_t rho = res[3u * x + c];
-                int32_t shown = alpha;
-                if (rho == 0) {
-                    no_res++; /* nothing to add: the weight is not needed */
-                } else {
-                    uint32_t ga = trm_u_at(st, urow_a, x, c);
-                    int32_t w_q15;
-                    /* Motion test at the link's precision: the reduced frame
-                     * arrives in whole codes, so U(D(I_t)) is first moved
-                     * half a code towards U(i).  A static pair (i = round
-                     * D(I)) then has c = 0 exactly and skips the weight;
-                     * the shrink is continuous, so no tie can flip it. */
-                    if (ga > gb + TDC_TRM_HALF_CODE_Q16) {
-                        ga -= TDC_TRM_HALF_CODE_Q16;
-                    } else if (gb > ga + TDC_TRM_HALF_CODE_Q16) {
-                        ga += TDC_TRM_HALF_CODE_Q16;
-                    } else {
-                        ga = gb;
-                    }
-                    if (ga == gb) {
-                        w_q15 = 32768; /* c = 0 known: static, exp(0) = 1 */
-                        skipped++;
-                    } else {
-                        const tdc_lin_t la = tdc_gamma_decode_q16(gt, ga);
-                        const uint32_t diff = (uint32_t)tdc_abs32(la - alpha);
-                        /* c = |A - B| / (A + B) in Q30 (A + B <= 2^25): s
-                         * multiplies its error, so Q15 is not enough */
-                        const int32_t c_q30 = tdc_div_q30(diff, (uint32_t)la + (uint32_t)alpha);
-                        /* s c: Q8 * Q30 = Q38 -> Q16; s_q8 < 2^32 keeps it < 2^62 */
-                        const uint64_t sc = ((uint64_t)s_q8 * (uint32_t)c_q30 + (1ull << 21)) >> 22;
-                        w_q15 = tdc_exp_neg_q16(sc > 0xffffffffu ? 0xffffffffu : (uint32_t)sc);
-                        computed++;
-                    }
-                    /* alpha' = alpha + w rho: Q15 * Q24 -> Q24; |rho| <= 2^24 */
-                    shown = alpha + (int32_t)tdc_rshr_round64((int64_t)w_q15 * rho, 15);
-                }
-                dst[3u * x + c] = (uint8_t)tdc_gamma_encode(gt, shown, 255u);
-            }
-        }
+        trm_reduced_row(st, g, urow_a, urow_b, &st->residual[(size_t)y * w * 3u], out + (size_t)y * out_stride,
+                        &n);
     }
-    st->stats.weight_computed += computed;
-    st->stats.weight_skipped += skipped;
-    st->stats.residual_skipped += no_res;
+    st->stats.weight_computed += n.computed;
+    st->stats.weight_skipped += n.skipped;
+    st->stats.residual_skipped += n.no_res;
     st->stats.reduced_frames++;
     return TDC_OK;
 }
