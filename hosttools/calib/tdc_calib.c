@@ -1,0 +1,485 @@
+/*
+ * tdc-calib - fits an LCD panel profile from alternating-pair luminance
+ * measurements (TRM paper §4.4, Fig. 7-9; DESIGN §6).
+ *
+ * Input: the measurement CSV of docs/lcd.md (rate_hz,channel,code_a,code_b,
+ * luminance_cd_m2; '#' comments; header line).  For every (rate, channel)
+ * the rows (0,0) and (max,max) are required: they give black and white, and
+ * luminance is normalised Y = (L - black) / (white - black).
+ *
+ * Fit:
+ *  1. gamma per channel from the static rows (a == b, every rate):
+ *     least squares of Y - v^gamma over gamma in [1, 4] (golden section;
+ *     the sum of squares is unimodal in gamma for Y in [0, 1]).
+ *  2. per refresh rate, p1..p4 of M(a, b) (eq. 7) over every row of every
+ *     channel (the liquid crystal is shared, the colour filters only change
+ *     gamma): first linear least squares of M(a, b) = Y^(1/gamma_c) (normal
+ *     equations of the features a^2 + b^2, a b, a + b, 1), then refined by
+ *     Gauss-Newton least squares in luminance, sum (M^gamma_c - Y)^2, which
+ *     is the quantity the eye integrates.
+ *  3. RMSE of the fit, in luminance (% of white) and in M (codes), next to
+ *     the RMSE of the plain gamma model that ignores the previous frame
+ *     (predicted pair mean (a^g + b^g) / 2).
+ * Output: a panel profile (boards/panels/NAME.panel format) with the fitted
+ * gamma and coefficients; the firmware builds it through tdc-tablegen.
+ *
+ * Usage: tdc-calib MEAS.csv -o OUT.panel --name NAME --width W --height H
+ *                  [--eyes N] [--refresh HZ] [--table 0|17|33] [--note TEXT]
+ */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../../sim/lcd/tdc_lcd_model.h"
+
+#define MAX_ROWS 200000
+#define MAX_RATES 4
+
+typedef struct {
+    int rate, ch, a, b;
+    double lum;
+} row_t;
+
+static row_t g_rows[MAX_ROWS];
+static int g_nrows;
+
+static int parse_csv(const char *path, int *max_code)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) {
+        fprintf(stderr, "tdc-calib: cannot open %s: %s\n", path, strerror(errno));
+        return -1;
+    }
+    char buf[512];
+    int line = 0, header = 0;
+    *max_code = 0;
+    while (fgets(buf, sizeof buf, f)) {
+        line++;
+        char *s = buf;
+        while (*s == ' ' || *s == '\t') {
+            s++;
+        }
+        if (*s == '#' || *s == '\n' || *s == '\r' || !*s) {
+            continue;
+        }
+        if (!header) {
+            if (strncmp(s, "rate_hz,channel,code_a,code_b,luminance_cd_m2", 45) != 0) {
+                fprintf(stderr, "%s:%d: expected the header rate_hz,channel,code_a,code_b,luminance_cd_m2\n",
+                        path, line);
+                fclose(f);
+                return -1;
+            }
+            header = 1;
+            continue;
+        }
+        row_t r;
+        char ch;
+        int used = 0;
+        if (sscanf(s, "%d,%c,%d,%d,%lf%n", &r.rate, &ch, &r.a, &r.b, &r.lum, &used) != 5 ||
+            (s[used] != 0 && s[used] != '\n' && s[used] != '\r')) {
+            fprintf(stderr, "%s:%d: expected RATE,R|G|B,CODE_A,CODE_B,LUMINANCE\n", path, line);
+            fclose(f);
+            return -1;
+        }
+        r.ch = ch == 'R' ? 0 : ch == 'G' ? 1 : ch == 'B' ? 2 : -1;
+        if (r.ch < 0 || r.rate < 1 || r.rate > 1000 || r.a < 0 || r.b < 0 || r.a > 1023 || r.b > 1023 ||
+            !isfinite(r.lum)) {
+            fprintf(stderr, "%s:%d: value out of range (channel R/G/B, codes 0..1023, rate 1..1000)\n", path,
+                    line);
+            fclose(f);
+            return -1;
+        }
+        if (g_nrows >= MAX_ROWS) {
+            fprintf(stderr, "%s: more than %d rows\n", path, MAX_ROWS);
+            fclose(f);
+            return -1;
+        }
+        if (r.a > *max_code) {
+            *max_code = r.a;
+        }
+        if (r.b > *max_code) {
+            *max_code = r.b;
+        }
+        g_rows[g_nrows++] = r;
+    }
+    fclose(f);
+    if (!header || g_nrows == 0) {
+        fprintf(stderr, "%s: no measurements\n", path);
+        return -1;
+    }
+    return 0;
+}
+
+/* Mean luminance of the rows (rate, ch, a, b); NAN if none. */
+static double lookup(int rate, int ch, int a, int b)
+{
+    double s = 0.0;
+    int n = 0;
+    for (int i = 0; i < g_nrows; i++) {
+        if (g_rows[i].rate == rate && g_rows[i].ch == ch && g_rows[i].a == a && g_rows[i].b == b) {
+            s += g_rows[i].lum;
+            n++;
+        }
+    }
+    return n ? s / n : NAN;
+}
+
+static double g_black[MAX_RATES][3], g_white[MAX_RATES][3];
+static int g_rates[MAX_RATES], g_nr;
+static double g_max;
+
+static int rate_index(int rate)
+{
+    for (int i = 0; i < g_nr; i++) {
+        if (g_rates[i] == rate) {
+            return i;
+        }
+    }
+    return -1;
+}
+
+static double norm_lum(const row_t *r)
+{
+    int ri = rate_index(r->rate);
+    return (r->lum - g_black[ri][r->ch]) / (g_white[ri][r->ch] - g_black[ri][r->ch]);
+}
+
+static double gamma_sse(int ch, double g)
+{
+    double s = 0.0;
+    for (int i = 0; i < g_nrows; i++) {
+        const row_t *r = &g_rows[i];
+        if (r->ch == ch && r->a == r->b) {
+            double e = norm_lum(r) - pow(r->a / g_max, g);
+            s += e * e;
+        }
+    }
+    return s;
+}
+
+static double fit_gamma(int ch)
+{
+    double lo = 1.0, hi = 4.0;
+    const double k = 0.6180339887498949;
+    double x1 = hi - k * (hi - lo), x2 = lo + k * (hi - lo);
+    double f1 = gamma_sse(ch, x1), f2 = gamma_sse(ch, x2);
+    for (int it = 0; it < 80; it++) {
+        if (f1 < f2) {
+            hi = x2, x2 = x1, f2 = f1;
+            x1 = hi - k * (hi - lo);
+            f1 = gamma_sse(ch, x1);
+        } else {
+            lo = x1, x1 = x2, f1 = f2;
+            x2 = lo + k * (hi - lo);
+            f2 = gamma_sse(ch, x2);
+        }
+    }
+    return 0.5 * (lo + hi);
+}
+
+/* Solves the 4x4 system A x = y by Gaussian elimination with partial pivoting. */
+static int solve4(double A[4][4], double y[4], double x[4])
+{
+    for (int c = 0; c < 4; c++) {
+        int piv = c;
+        for (int r = c + 1; r < 4; r++) {
+            if (fabs(A[r][c]) > fabs(A[piv][c])) {
+                piv = r;
+            }
+        }
+        if (fabs(A[piv][c]) < 1e-12) {
+            return -1;
+        }
+        for (int k = 0; k < 4; k++) {
+            double t = A[c][k];
+            A[c][k] = A[piv][k];
+            A[piv][k] = t;
+        }
+        double t = y[c];
+        y[c] = y[piv];
+        y[piv] = t;
+        for (int r = c + 1; r < 4; r++) {
+            double f = A[r][c] / A[c][c];
+            for (int k = c; k < 4; k++) {
+                A[r][k] -= f * A[c][k];
+            }
+            y[r] -= f * y[c];
+        }
+    }
+    for (int c = 3; c >= 0; c--) {
+        double s = y[c];
+        for (int k = c + 1; k < 4; k++) {
+            s -= A[c][k] * x[k];
+        }
+        x[c] = s / A[c][c];
+    }
+    return 0;
+}
+
+/* Sum of squared luminance errors of the model at one rate. */
+static double lum_sse(int rate, const double p[4], const double gamma[3])
+{
+    double s = 0.0;
+    for (int i = 0; i < g_nrows; i++) {
+        const row_t *w = &g_rows[i];
+        if (w->rate != rate) {
+            continue;
+        }
+        double mm = tdc_lcdm_M(p, w->a / g_max, w->b / g_max);
+        double e = pow(mm < 0.0 ? 0.0 : (mm > 1.0 ? 1.0 : mm), gamma[w->ch]) - norm_lum(w);
+        s += e * e;
+    }
+    return s;
+}
+
+static int usage(void)
+{
+    fprintf(stderr, "usage: tdc-calib MEAS.csv -o OUT.panel --name NAME --width W --height H [--eyes N]\n"
+                    "                 [--refresh HZ] [--table 0|17|33] [--note TEXT]\n");
+    return 2;
+}
+
+int main(int argc, char **argv)
+{
+    const char *in = NULL, *out = NULL, *name = NULL, *note = NULL;
+    int width = 0, height = 0, eyes = 1, refresh = 0, table = 33;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (!strcmp(a, "-o") && i + 1 < argc) {
+            out = argv[++i];
+        } else if (!strcmp(a, "--name") && i + 1 < argc) {
+            name = argv[++i];
+        } else if (!strcmp(a, "--width") && i + 1 < argc) {
+            width = atoi(argv[++i]);
+        } else if (!strcmp(a, "--height") && i + 1 < argc) {
+            height = atoi(argv[++i]);
+        } else if (!strcmp(a, "--eyes") && i + 1 < argc) {
+            eyes = atoi(argv[++i]);
+        } else if (!strcmp(a, "--refresh") && i + 1 < argc) {
+            refresh = atoi(argv[++i]);
+        } else if (!strcmp(a, "--table") && i + 1 < argc) {
+            table = atoi(argv[++i]);
+        } else if (!strcmp(a, "--note") && i + 1 < argc) {
+            note = argv[++i];
+        } else if (a[0] != '-' && !in) {
+            in = a;
+        } else {
+            return usage();
+        }
+    }
+    if (!in || !out || !name || width < 1 || height < 1 || eyes < 1 || eyes > 2 ||
+        (table != 0 && table != 17 && table != 33)) {
+        return usage();
+    }
+    int max_code;
+    if (parse_csv(in, &max_code) != 0) {
+        return 1;
+    }
+    if (max_code != 255 && max_code != 1023) {
+        fprintf(stderr, "tdc-calib: the largest code measured is %d; need the full-drive rows (255 or 1023)\n",
+                max_code);
+        return 1;
+    }
+    g_max = max_code;
+    const int bits = max_code == 255 ? 8 : 10;
+    /* Rates, black and white per (rate, channel). */
+    for (int i = 0; i < g_nrows; i++) {
+        if (rate_index(g_rows[i].rate) < 0) {
+            if (g_nr == MAX_RATES) {
+                fprintf(stderr, "tdc-calib: at most %d refresh rates\n", MAX_RATES);
+                return 1;
+            }
+            g_rates[g_nr++] = g_rows[i].rate;
+        }
+    }
+    for (int r = 0; r < g_nr; r++) {
+        for (int c = 0; c < 3; c++) {
+            g_black[r][c] = lookup(g_rates[r], c, 0, 0);
+            g_white[r][c] = lookup(g_rates[r], c, max_code, max_code);
+            if (!isfinite(g_black[r][c]) || !isfinite(g_white[r][c]) || !(g_white[r][c] > g_black[r][c])) {
+                fprintf(stderr, "tdc-calib: rate %d channel %c needs rows (0,0) and (%d,%d) with white > black\n",
+                        g_rates[r], "RGB"[c], max_code, max_code);
+                return 1;
+            }
+        }
+    }
+    double gamma[3];
+    for (int c = 0; c < 3; c++) {
+        gamma[c] = fit_gamma(c);
+    }
+    double p[MAX_RATES][4];
+    double rmse_lum[MAX_RATES], rmse_m[MAX_RATES], rmse_plain[MAX_RATES];
+    int nfit[MAX_RATES];
+    for (int r = 0; r < g_nr; r++) {
+        double A[4][4] = {{0}}, y[4] = {0};
+        int n = 0;
+        for (int i = 0; i < g_nrows; i++) {
+            const row_t *w = &g_rows[i];
+            if (w->rate != g_rates[r]) {
+                continue;
+            }
+            double a = w->a / g_max, b = w->b / g_max;
+            double yn = norm_lum(w);
+            double m = pow(yn < 0.0 ? 0.0 : (yn > 1.0 ? 1.0 : yn), 1.0 / gamma[w->ch]);
+            double f[4] = {a * a + b * b, a * b, a + b, 1.0};
+            for (int k = 0; k < 4; k++) {
+                for (int l = 0; l < 4; l++) {
+                    A[k][l] += f[k] * f[l];
+                }
+                y[k] += f[k] * m;
+            }
+            n++;
+        }
+        if (n < 4 || solve4(A, y, p[r]) != 0) {
+            fprintf(stderr, "tdc-calib: rate %d: too few or degenerate measurements for p1..p4\n", g_rates[r]);
+            return 1;
+        }
+        /* Refine in luminance space (what the eye integrates): Gauss-Newton on
+         * sum (M^gamma - Y)^2 from the linear fit, with step halving. */
+        double cur = lum_sse(g_rates[r], p[r], gamma);
+        for (int it = 0; it < 50; it++) {
+            double JA[4][4] = {{0}}, Jy[4] = {0}, step[4];
+            for (int i = 0; i < g_nrows; i++) {
+                const row_t *w = &g_rows[i];
+                if (w->rate != g_rates[r]) {
+                    continue;
+                }
+                double a = w->a / g_max, b = w->b / g_max, yn = norm_lum(w);
+                double mm = tdc_lcdm_M(p[r], a, b);
+                if (mm <= 1e-6) {
+                    mm = 1e-6; /* derivative of M^g at M <= 0 (clamped): tiny slope */
+                }
+                double g = gamma[w->ch];
+                double ym = pow(mm > 1.0 ? 1.0 : mm, g);
+                double d = g * pow(mm > 1.0 ? 1.0 : mm, g - 1.0);
+                double f[4] = {d * (a * a + b * b), d * a * b, d * (a + b), d};
+                for (int k = 0; k < 4; k++) {
+                    for (int l = 0; l < 4; l++) {
+                        JA[k][l] += f[k] * f[l];
+                    }
+                    Jy[k] += f[k] * (yn - ym);
+                }
+            }
+            if (solve4(JA, Jy, step) != 0) {
+                break;
+            }
+            double lambda = 1.0, trial[4], sse = cur;
+            for (int h = 0; h < 20; h++, lambda *= 0.5) {
+                for (int k = 0; k < 4; k++) {
+                    trial[k] = p[r][k] + lambda * step[k];
+                }
+                sse = lum_sse(g_rates[r], trial, gamma);
+                if (sse < cur) {
+                    break;
+                }
+            }
+            if (!(sse < cur)) {
+                break;
+            }
+            double gain = cur - sse;
+            memcpy(p[r], trial, sizeof trial);
+            cur = sse;
+            if (gain < 1e-14 * (1.0 + cur)) {
+                break;
+            }
+        }
+        for (int k = 0; k < 4; k++) {
+            if (!(fabs(p[r][k]) < 4.0)) {
+                fprintf(stderr, "tdc-calib: rate %d: fitted p%d = %g outside the profile range [-4, 4]\n",
+                        g_rates[r], k + 1, p[r][k]);
+                return 1;
+            }
+        }
+        double sl = 0.0, sm = 0.0, sp = 0.0;
+        for (int i = 0; i < g_nrows; i++) {
+            const row_t *w = &g_rows[i];
+            if (w->rate != g_rates[r]) {
+                continue;
+            }
+            double a = w->a / g_max, b = w->b / g_max, yn = norm_lum(w);
+            double mm = tdc_lcdm_M(p[r], a, b);
+            double ym = pow(mm < 0.0 ? 0.0 : (mm > 1.0 ? 1.0 : mm), gamma[w->ch]);
+            double mt = pow(yn < 0.0 ? 0.0 : (yn > 1.0 ? 1.0 : yn), 1.0 / gamma[w->ch]);
+            double yp = 0.5 * (pow(a, gamma[w->ch]) + pow(b, gamma[w->ch]));
+            sl += (ym - yn) * (ym - yn);
+            sm += (mm - mt) * (mm - mt) * g_max * g_max;
+            sp += (yp - yn) * (yp - yn);
+        }
+        nfit[r] = n;
+        rmse_lum[r] = sqrt(sl / n);
+        rmse_m[r] = sqrt(sm / n);
+        rmse_plain[r] = sqrt(sp / n);
+    }
+    /* Report. */
+    printf("tdc-calib: %d measurements, %d-bit, %d rate(s)\n", g_nrows, bits, g_nr);
+    printf("gamma R G B: %.4f %.4f %.4f (static rows; RMSE %.3e %.3e %.3e of white)\n", gamma[0], gamma[1],
+           gamma[2], sqrt(gamma_sse(0, gamma[0]) / (g_nrows / 3.0 / g_nr)),
+           sqrt(gamma_sse(1, gamma[1]) / (g_nrows / 3.0 / g_nr)),
+           sqrt(gamma_sse(2, gamma[2]) / (g_nrows / 3.0 / g_nr)));
+    for (int r = 0; r < g_nr; r++) {
+        printf("rate %d Hz: p = %.6f %.6f %.6f %.6f  fit RMSE %.3f %% of white (%.3f codes in M); "
+               "plain gamma model %.3f %% (%d rows)\n",
+               g_rates[r], p[r][0], p[r][1], p[r][2], p[r][3], 100.0 * rmse_lum[r], rmse_m[r],
+               100.0 * rmse_plain[r], nfit[r]);
+    }
+    /* Profile. */
+    FILE *f = fopen(out, "w");
+    if (!f) {
+        fprintf(stderr, "tdc-calib: cannot write %s: %s\n", out, strerror(errno));
+        return 1;
+    }
+    /* Rates in ascending order, nominal = --refresh or the lowest. */
+    for (int i = 0; i < g_nr; i++) {
+        for (int j = i + 1; j < g_nr; j++) {
+            if (g_rates[j] < g_rates[i]) {
+                int t = g_rates[i];
+                g_rates[i] = g_rates[j];
+                g_rates[j] = t;
+                for (int k = 0; k < 4; k++) {
+                    double d = p[i][k];
+                    p[i][k] = p[j][k];
+                    p[j][k] = d;
+                }
+                double d = rmse_lum[i];
+                rmse_lum[i] = rmse_lum[j];
+                rmse_lum[j] = d;
+                d = rmse_plain[i];
+                rmse_plain[i] = rmse_plain[j];
+                rmse_plain[j] = d;
+            }
+        }
+    }
+    int nominal = refresh ? rate_index(refresh) : 0;
+    if (nominal < 0) {
+        fprintf(stderr, "tdc-calib: --refresh %d was not measured\n", refresh);
+        fclose(f);
+        return 1;
+    }
+    fprintf(f, "# %s: LCD profile written by tdc-calib from %s.\n", name, in);
+    if (note) {
+        fprintf(f, "# %s\n", note);
+    }
+    fprintf(f, "# Fit: gamma per channel from static patches; p1..p4 of M (TRM eq. 7) per refresh\n");
+    fprintf(f, "# rate by least squares over alternating pairs (Fig. 7).  Fit RMSE, %% of white:\n");
+    for (int r = 0; r < g_nr; r++) {
+        fprintf(f, "#   %d Hz: temporal model %.3f %%, plain gamma %.3f %%\n", g_rates[r], 100.0 * rmse_lum[r],
+                100.0 * rmse_plain[r]);
+    }
+    fprintf(f, "name        %s\ntype        lcd\nwidth       %d\nheight      %d\neyes        %d\nbits        %d\n",
+            name, width, height, eyes, bits);
+    fprintf(f, "refresh_hz  %d\nrates_hz   ", g_rates[nominal]);
+    for (int r = 0; r < g_nr; r++) {
+        fprintf(f, " %d", g_rates[r]);
+    }
+    fprintf(f, "\ngamma       %.6f %.6f %.6f\n", gamma[0], gamma[1], gamma[2]);
+    fprintf(f, "lcd_p       %.6f %.6f %.6f %.6f\n", p[nominal][0], p[nominal][1], p[nominal][2], p[nominal][3]);
+    for (int r = 0; r < g_nr; r++) {
+        fprintf(f, "lcd_p_hz    %d %.6f %.6f %.6f %.6f\n", g_rates[r], p[r][0], p[r][1], p[r][2], p[r][3]);
+    }
+    fprintf(f, "lcd_table   %d\n", table);
+    fclose(f);
+    printf("wrote %s\n", out);
+    return 0;
+}
