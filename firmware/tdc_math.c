@@ -13,13 +13,16 @@ static const int32_t k_exp2_poly_q30[6] = {
 /* 1/ln(2) in Q30. */
 #define TDC_INV_LN2_Q30 1549082005LL
 
-int32_t tdc_exp_neg_q16(uint32_t x_q16)
+/* 2^-(x/ln2) split as acc * 2^-n: acc = 2^-g in Q30 (2^29 < acc <= 2^30)
+ * and the integer part n.  Returns 0 and n = 64 when n would exceed 62. */
+static int64_t exp_neg_parts(uint32_t x_q16, unsigned *n_out)
 {
     /* y = x / ln2 in Q30: x < 2^32, K < 2^31, product < 2^63. */
     uint64_t y_q30 = ((uint64_t)x_q16 * (uint64_t)TDC_INV_LN2_Q30) >> 16;
     uint64_t n = y_q30 >> 30;
-    if (n >= 17u) {
-        return 0; /* 2^-17 * 32768 = 0.25 LSB: rounds to zero */
+    if (n > 62u) {
+        *n_out = 64u;
+        return 0;
     }
     int64_t g = (int64_t)(y_q30 & ((1u << 30) - 1u)); /* [0, 2^30) */
     /* Horner in Q30; |acc| <= 2^30, |acc*g| < 2^60. */
@@ -27,9 +30,33 @@ int32_t tdc_exp_neg_q16(uint32_t x_q16)
     for (int k = 4; k >= 0; k--) {
         acc = k_exp2_poly_q30[k] + tdc_asr64(acc * g + (1LL << 29), 30);
     }
-    /* acc in (2^29, 2^30] is 2^-g in Q30; scale to Q15 and by 2^-n. */
-    unsigned sh = 15u + (unsigned)n;
+    *n_out = (unsigned)n;
+    return acc;
+}
+
+int32_t tdc_exp_neg_q16(uint32_t x_q16)
+{
+    unsigned n;
+    int64_t acc = exp_neg_parts(x_q16, &n);
+    if (n >= 17u) {
+        return 0; /* 2^-17 * 32768 = 0.25 LSB: rounds to zero */
+    }
+    /* acc is 2^-g in Q30; scale to Q15 and by 2^-n with one rounding */
+    unsigned sh = 15u + n;
     return (int32_t)((acc + (1LL << (sh - 1))) >> sh);
+}
+
+uint32_t tdc_exp_neg_q16_q30(uint32_t x_q16)
+{
+    unsigned n;
+    int64_t acc = exp_neg_parts(x_q16, &n);
+    if (n >= 31u) {
+        return 0; /* below half an LSB of Q30 */
+    }
+    if (n == 0u) {
+        return (uint32_t)acc;
+    }
+    return (uint32_t)((acc + (1LL << (n - 1u))) >> n);
 }
 
 uint32_t tdc_recip_norm_q30(uint32_t dn)

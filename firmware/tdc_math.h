@@ -26,6 +26,10 @@ static inline unsigned tdc_clz32(uint32_t x)
  */
 int32_t tdc_exp_neg_q16(uint32_t x_q16);
 
+/* The same exp(-x) in Q30 (exp(0) = 2^30), for tables that interpolate
+ * and round once.  Error: <= 0.5 LSB + 1.7e-7 relative (polynomial). */
+uint32_t tdc_exp_neg_q16_q30(uint32_t x_q16);
+
 /*
  * Reciprocal of a normalised value.
  * Input: dn in [2^31, 2^32), read as the Q32 fraction dn / 2^32 in [0.5, 1).

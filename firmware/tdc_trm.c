@@ -49,7 +49,7 @@ static uint16_t trm_taps(uint16_t sigma_q8)
 }
 
 typedef struct {
-    size_t residual, dprev, rscratch, ring, urow, dx_first, dy_first, dx_w, dy_w, ux, uy, total;
+    size_t residual, dprev, rscratch, ring, urow, dx_first, dy_first, dx_w, dy_w, ux, uy, wexp, total;
 } trm_layout_t;
 
 static size_t align8(size_t n)
@@ -83,6 +83,8 @@ static void trm_layout(const tdc_trm_config_t *cfg, uint16_t rw, uint16_t rh, ui
     o += align8(w * 2u * sizeof(uint16_t));
     l->uy = o;
     o += align8(h * 2u * sizeof(uint16_t));
+    l->wexp = o;
+    o += align8(TDC_TRM_WEXP_ENTRIES * sizeof(uint32_t));
     l->total = o + 8u; /* slack for aligning the caller's pointer */
 }
 
@@ -216,12 +218,18 @@ tdc_status_t tdc_trm_init(tdc_trm_t *st, const tdc_trm_config_t *cfg, const tdc_
     st->dy_w = (uint16_t *)(void *)(base + l.dy_w);
     st->ux_i = (uint16_t *)(void *)(base + l.ux);
     st->uy_i = (uint16_t *)(void *)(base + l.uy);
+    st->wexp = (uint32_t *)(void *)(base + l.wexp);
     st->ux_f = st->ux_i; /* interleaved (index, fraction) pairs */
     st->uy_f = st->uy_i;
     trm_build_kernels(cfg->width, st->rw, cfg->sigma_q8, st->dtaps, st->dx_first, st->dx_w);
     trm_build_kernels(cfg->height, st->rh, cfg->sigma_q8, st->dtaps, st->dy_first, st->dy_w);
     trm_build_upsample(cfg->width, st->rw, st->ux_i);
     trm_build_upsample(cfg->height, st->rh, st->uy_i);
+    /* exp(-x) at x = k / 256 from the exact helper, for the per-pixel
+     * weight (tdc_trm_weight): generated here, never typed by hand */
+    for (uint32_t k = 0; k < TDC_TRM_WEXP_ENTRIES; k++) {
+        st->wexp[k] = tdc_exp_neg_q16_q30(k << 8);
+    }
     st->stats = (tdc_trm_stats_t){0};
     tdc_trm_reset(st);
     return TDC_OK;
@@ -346,6 +354,30 @@ static void trm_copy(const tdc_trm_t *st, const uint8_t *in, uint32_t in_stride,
             d[i] = s[i];
         }
     }
+}
+
+/*
+ * w = exp(-x), x in Q16, from a table of exp(-k/256) in Q30 with linear
+ * interpolation and one rounding to Q15.  Error: 0.5 LSB rounding plus the
+ * interpolation's (1/256)^2 / 8 * 32768 = 0.06 LSB (asserted <= 0.6 in
+ * tests/test_trm.c against double).  Beyond x = 17, exp(-x) < 2^-24: 0.
+ */
+static inline int32_t trm_weight(const uint32_t *restrict wexp, uint64_t x_q16)
+{
+    if (x_q16 >= (uint64_t)(TDC_TRM_WEXP_ENTRIES - 1u) << 8) {
+        return 0;
+    }
+    const uint32_t k = (uint32_t)(x_q16 >> 8), f = (uint32_t)(x_q16 & 255u);
+    /* entries Q30, decreasing: a - (a - b) f / 256, then one rounding to Q15;
+     * (a - b) < 2^23 times f < 2^8 fits 32 bits */
+    const uint32_t a = wexp[k], b = wexp[k + 1u];
+    const uint32_t v = a - (((a - b) * f) >> 8);
+    return (int32_t)((v + (1u << 14)) >> 15);
+}
+
+int32_t tdc_trm_weight(const tdc_trm_t *st, uint32_t x_q16)
+{
+    return trm_weight(st->wexp, x_q16);
 }
 
 /* One channel's gamma tables as restrict-qualified locals: the byte stores
@@ -495,7 +527,7 @@ static void trm_reduced_row(const tdc_trm_t *st, const trm_gamma_t g[3], const u
                     const int32_t c_q30 = tdc_div_q30(diff, (uint32_t)la + (uint32_t)alpha);
                     /* s c: Q8 * Q30 = Q38 -> Q16; s_q8 < 2^32 keeps it < 2^62 */
                     const uint64_t sc = ((uint64_t)s_q8 * (uint32_t)c_q30 + (1ull << 21)) >> 22;
-                    w_q15 = tdc_exp_neg_q16(sc > 0xffffffffu ? 0xffffffffu : (uint32_t)sc);
+                    w_q15 = trm_weight(st->wexp, sc);
                     computed++;
                 }
                 /* alpha' = alpha + w rho: Q15 * Q24 -> Q24; |rho| <= 2^24 */

@@ -30,6 +30,9 @@
 #define TDC_TRM_MAX_TAPS 24
 #define TDC_TRM_MAX_SIGMA_Q8 (7 * 128) /* 3.5 px */
 
+/* Entries of the exp(-x) weight table, x = k/256 for k < 17*256 (+1 end). */
+#define TDC_TRM_WEXP_ENTRIES (17u * 256u + 1u)
+
 /* Reduced size for ratio num/den: round(n * num / den), at least 1. */
 #define TDC_TRM_REDUCED_DIM(n, num, den) ((((n) * (num)) + (den) / 2) / (den) < 1 ? 1 : (((n) * (num)) + (den) / 2) / (den))
 
@@ -47,6 +50,7 @@
      + (size_t)(TDC_TRM_REDUCED_DIM(W, RNUM, RDEN) + TDC_TRM_REDUCED_DIM(H, RNUM, RDEN)) *            \
            (TDC_TRM_MAX_TAPS + 1u) * 2u                                       /* D kernels */         \
      + (size_t)((W) + (H)) * 4u                                              /* U tables */          \
+     + (size_t)TDC_TRM_WEXP_ENTRIES * 4u                                     /* exp table */         \
      + 16u * 8u /* alignment slack */)
 
 typedef struct {
@@ -95,6 +99,7 @@ typedef struct {
     uint16_t *ux_f;             /* W: bilinear fraction Q14 */
     uint16_t *uy_i;             /* H */
     uint16_t *uy_f;             /* H */
+    uint32_t *wexp;             /* TDC_TRM_WEXP_ENTRIES: exp(-k/256) in Q30 */
     tdc_trm_stats_t stats;
 } tdc_trm_t;
 
@@ -139,6 +144,10 @@ tdc_status_t tdc_trm_reduced(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t 
  */
 tdc_status_t tdc_trm_downsample(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out,
                                 uint32_t out_stride);
+
+/* The motion weight w = exp(-x), x in Q16, as the reduced path computes it
+ * (table interpolation; exposed for the accuracy test). */
+int32_t tdc_trm_weight(const tdc_trm_t *st, uint32_t x_q16);
 
 /* Residual buffer rho (W*H*3, Q24 linear light, interleaved like the frame),
  * for the LCD stage, which adds the light the panel could not reach. */

@@ -6,6 +6,7 @@
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 #include <cmocka.h>
@@ -208,13 +209,36 @@ static void test_stereo_alternation(void **state)
     trm_fix_close(&mono);
 }
 
+/* The reduced path's weight table against double exp(-x). */
+static void test_weight_accuracy(void **state)
+{
+    (void)state;
+    tdc_trm_config_t cfg;
+    trm_fix_t f;
+    tdc_trm_default_config(&cfg, 8, 8, 90);
+    assert_int_equal(trm_fix_open(&f, &cfg, &tdc_panel_htc_vive), TDC_OK);
+    double max_err = 0.0;
+    int32_t prev = 32768;
+    for (uint32_t x = 0; x < (20u << 16); x += 7u) {
+        int32_t got = tdc_trm_weight(&f.trm, x);
+        double err = fabs(got - 32768.0 * exp(-(double)x / 65536.0));
+        max_err = err > max_err ? err : max_err;
+        assert_true(got <= prev && got >= 0);
+        prev = got;
+    }
+    assert_int_equal(tdc_trm_weight(&f.trm, 0), 32768);
+    printf("motion weight table: max error %.3f LSB (Q15), bound 0.6\n", max_err);
+    assert_true(max_err <= 0.6);
+    trm_fix_close(&f);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_config_errors),       cmocka_unit_test(test_refuses_low_refresh),
         cmocka_unit_test(test_call_order_keeps_last_frame), cmocka_unit_test(test_arena_bound),
         cmocka_unit_test(test_passthrough_elision), cmocka_unit_test(test_static_pair_skips_weight),
-        cmocka_unit_test(test_stereo_alternation),
+        cmocka_unit_test(test_stereo_alternation),  cmocka_unit_test(test_weight_accuracy),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
