@@ -1,0 +1,203 @@
+/*
+ * test_sim_eye.c - eye model (Talbot-Plateau, smooth pursuit), panel
+ * simulation (OLED gamma, LCD response incl. stiff time constants) and the
+ * procedural scenes' exact motion.
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "eye/tdc_eye.h"
+#include "panel/tdc_panel_sim.h"
+#include "simulator/tdc_sim_scene.h"
+
+#define W 24
+#define H 16
+#define N (W * H * 3)
+
+static double maxdiff(const double *a, const double *b, size_t n)
+{
+    double m = 0;
+    for (size_t i = 0; i < n; i++) {
+        m = fmax(m, fabs(a[i] - b[i]));
+    }
+    return m;
+}
+
+/* Steady light on a full-duty panel is perceived at its level. */
+static void test_eye_steady(void **state)
+{
+    (void)state;
+    static double img[N], out[N];
+    for (int i = 0; i < N; i++) {
+        img[i] = (double)(i % 97) / 97.0;
+    }
+    tdc_eye_slice_t s[3] = {{0.0, 0.01, img}, {0.01, 0.02, img}, {0.02, 0.03, img}};
+    tdc_eye_cfg_t c = {W, H, 0.02, 1.0, 0.5, 1.0};
+    double v[2] = {0, 0};
+    tdc_eye_perceive(&c, s, 3, 0.03, v, out);
+    assert_true(maxdiff(out, img, N) < 1e-12);
+}
+
+/* Talbot-Plateau: two frames in the window fuse to their mean (eq. 3). */
+static void test_eye_talbot_plateau(void **state)
+{
+    (void)state;
+    static double a[N], b[N], out[N], mean[N];
+    for (int i = 0; i < N; i++) {
+        a[i] = (i & 1) ? 0.9 : 0.1;
+        b[i] = 0.3;
+        mean[i] = 0.5 * (a[i] + b[i]);
+    }
+    /* low persistence 0.25: each frame emits a quarter of its period */
+    tdc_eye_slice_t s[2] = {{0.0, 0.0025, a}, {0.01, 0.0125, b}};
+    tdc_eye_cfg_t c = {W, H, 0.02, 4.0, 0.5, 1.0};
+    double v[2] = {0, 0};
+    tdc_eye_perceive(&c, s, 2, 0.02, v, out);
+    assert_true(maxdiff(out, mean, N) < 1e-12);
+}
+
+/* Pursuit: a pattern displayed 2 px further right each frame, tracked at
+ * 2 px/frame, is perceived exactly (short flashes, integer shifts). */
+static void test_eye_pursuit(void **state)
+{
+    (void)state;
+    static double f0[N], f1[N], out[N];
+    for (int y = 0; y < H; y++) {
+        for (int x = 0; x < W; x++) {
+            for (int c = 0; c < 3; c++) {
+                f0[3 * (y * W + x) + c] = (x % 5 == 0) ? 1.0 : 0.0;
+                f1[3 * (y * W + x) + c] = ((x - 2 + 50) % 5 == 0) ? 1.0 : 0.0;
+            }
+        }
+    }
+    /* flashes of 1 us at t = 0 and t = 0.01 (pursuit shift within a flash
+     * is 0.0002 px: one sub-step, bilinear weight ~1) */
+    tdc_eye_slice_t s[2] = {{0.0, 1e-6, f0}, {0.01, 0.01 + 1e-6, f1}};
+    tdc_eye_cfg_t c = {W, H, 0.02, 0.02 / 2e-6, 0.5, 1.0};
+    double v[2] = {200.0, 0.0}; /* 2 px per 10 ms */
+    tdc_eye_perceive(&c, s, 2, 0.01 + 1e-6, v, out);
+    /* interior columns: perceived = f1 (the pattern at the last frame) */
+    for (int y = 0; y < H; y++) {
+        for (int x = 3; x < W - 3; x++) {
+            assert_true(fabs(out[3 * (y * W + x)] - f1[3 * (y * W + x)]) < 1e-3);
+        }
+    }
+    /* without pursuit the two positions blur into two half-bright lines */
+    v[0] = 0.0;
+    tdc_eye_perceive(&c, s, 2, 0.01 + 1e-6, v, out);
+    assert_true(fabs(out[3 * (0 * W + 10)] - 0.5) < 1e-9);
+}
+
+static void test_panel_oled(void **state)
+{
+    (void)state;
+    tdc_panel_sim_t p;
+    const double g[3] = {2.2912, 2.2520, 2.1940};
+    assert_int_equal(tdc_panel_sim_init(&p, TDC_PANEL_SIM_OLED, 4, 2, g, 0.2), 0);
+    uint8_t codes[4 * 2 * 3];
+    for (int i = 0; i < 24; i++) {
+        codes[i] = (uint8_t)(i * 11);
+    }
+    tdc_eye_slice_t s[TDC_PANEL_SIM_MAX_SLICES];
+    int n = tdc_panel_sim_show(&p, codes, 1.0, 0.01, s);
+    assert_int_equal(n, 1);
+    assert_true(fabs(s[0].t1 - s[0].t0 - 0.002) < 1e-12);
+    for (int i = 0; i < 24; i++) {
+        assert_true(fabs(s[0].lin[i] - pow(codes[i] / 255.0, g[i % 3])) < 1e-12);
+    }
+    assert_true(fabs(tdc_panel_sim_duty(&p) - 0.2) < 1e-12);
+    tdc_panel_sim_free(&p);
+}
+
+/* LCD fallback: exact mean of the exponential response; converges to the
+ * target; stiff time constants (1 ns, 1000 s) stay finite and bounded. */
+static void test_panel_lcd(void **state)
+{
+    (void)state;
+    const double g[3] = {2.2, 2.2, 2.2};
+    const double taus[3] = {0.004, 1e-9, 1e3};
+    for (int k = 0; k < 3; k++) {
+        tdc_panel_sim_t p;
+        assert_int_equal(tdc_panel_sim_init(&p, TDC_PANEL_SIM_LCD, 2, 1, g, 1.0), 0);
+        p.tau_rise_s = p.tau_fall_s = taus[k];
+        uint8_t white[6] = {255, 255, 255, 255, 255, 255};
+        tdc_eye_slice_t s[TDC_PANEL_SIM_MAX_SLICES];
+        int n = tdc_panel_sim_show(&p, white, 0.0, 1.0 / 120, s);
+        assert_int_equal(n, TDC_PANEL_SIM_MAX_SLICES);
+        /* numerical check of the first slice's mean: L(t) = 1 - exp(-t/tau) */
+        double a = s[0].t0, b = s[0].t1, num = 0.0;
+        for (int i = 0; i < 100000; i++) {
+            double t = a + (i + 0.5) * (b - a) / 100000;
+            num += (1.0 - exp(-t / taus[k])) / 100000;
+        }
+        assert_true(fabs(s[0].lin[0] - num) < 1e-6);
+        for (int f = 0; f < 200; f++) {
+            tdc_panel_sim_show(&p, white, f / 120.0, 1.0 / 120, s);
+            for (int i = 0; i < n; i++) {
+                for (int j = 0; j < 6; j++) {
+                    assert_true(isfinite(s[i].lin[j]) && s[i].lin[j] >= 0.0 && s[i].lin[j] <= 1.0);
+                }
+            }
+        }
+        if (taus[k] < 1.0) {
+            assert_true(fabs(s[n - 1].lin[0] - 1.0) < 1e-9);
+        }
+        tdc_panel_sim_free(&p);
+    }
+}
+
+/* Scenes: exact motion vectors; rigid pan ground truth is the same
+ * content shifted by v t; static scene ground truth does not change. */
+static void test_scene_motion(void **state)
+{
+    (void)state;
+    tdc_scene_params_t sp = {TDC_SCENE_PAN, 32, 16, 160.0, 0.0, 1.0, 3, 1, 2};
+    const double g[3] = {2.2, 2.2, 2.2};
+    tdc_source_t *s = tdc_scene_create(&sp, g);
+    assert_non_null(s);
+    double xy[2] = {10.5, 5.5};
+    uint8_t rgb[3];
+    int16_t mv[2];
+    s->samples(s, 0.1, 1, xy, 1, rgb, mv, 1.0 / 80, TDC_MV_SURFACE);
+    assert_int_equal(mv[0], -32); /* -160 px/s * 1/80 s = -2 px = -32 Q4 */
+    assert_int_equal(mv[1], 0);
+    static double a[32 * 16 * 3], b[32 * 16 * 3];
+    s->ground_truth(s, 0.0, 0.0, 0.0, a);
+    s->ground_truth(s, 0.05, 8.0, 0.0, b); /* content moved 8 px; sample 8 px further */
+    assert_true(maxdiff(a, b, 32 * 16 * 3) < 1e-12);
+    double v[2];
+    s->pursuit(s, 0.0, v);
+    assert_true(v[0] == 160.0 && v[1] == 0.0);
+    s->destroy(s);
+    sp.kind = TDC_SCENE_FENCE;
+    s = tdc_scene_create(&sp, g);
+    /* fence: the floor is static (surface MV 0); shadow MVs follow the shadow */
+    int shadow_seen = 0;
+    for (int x = 0; x < 32; x++) {
+        xy[0] = x + 0.5;
+        s->samples(s, 0.0, 1, xy, 1, rgb, mv, 1.0 / 80, TDC_MV_SURFACE);
+        assert_int_equal(mv[0], 0);
+        s->samples(s, 0.0, 1, xy, 1, rgb, mv, 1.0 / 80, TDC_MV_SHADOW);
+        assert_true(mv[0] == 0 || mv[0] == -32);
+        shadow_seen |= mv[0] == -32;
+    }
+    assert_true(shadow_seen);
+    s->destroy(s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_eye_steady),   cmocka_unit_test(test_eye_talbot_plateau),
+        cmocka_unit_test(test_eye_pursuit),  cmocka_unit_test(test_panel_oled),
+        cmocka_unit_test(test_panel_lcd),    cmocka_unit_test(test_scene_motion),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

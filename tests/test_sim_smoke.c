@@ -1,0 +1,148 @@
+/*
+ * test_sim_smoke.c - the whole simulator path on tiny scenes: renderer
+ * (procedural) -> link encoder -> decoder + firmware stages -> panel -> eye
+ * -> metrics.  Checks that every mode whose parts are in the build runs,
+ * gives finite, bounded figures, no link errors, and the first paper
+ * properties: a static scene under TRM is perceived like full rate; TRM
+ * r = 1/2 sends 5/8 of the pixels; assembly traces 1/4 of the rays.
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "simulator/tdc_sim.h"
+#include "tdc_sim_features.h"
+
+static int run(tdc_scene_kind_t scene, int hz, int frames, const char *const *names, int n, tdc_sim_result_t *res,
+               tdc_panel_sim_kind_t panel, double speed)
+{
+    tdc_sim_config_t cfg;
+    tdc_sim_default_config(&cfg);
+    cfg.scene.kind = scene;
+    cfg.scene.speed = speed;
+    cfg.width = cfg.scene.width = 48;
+    cfg.height = cfg.scene.height = 40;
+    cfg.refresh_hz = hz;
+    cfg.duration_s = (double)frames / hz;
+    cfg.scene.cut_time = cfg.duration_s / 2;
+    cfg.panel = panel;
+    cfg.progress = 0;
+    cfg.flip_ppd = 20.0;
+    cfg.scene.gt_ss = 2;
+    const tdc_mode_desc_t *modes[32];
+    for (int i = 0; i < n; i++) {
+        modes[i] = tdc_sim_mode_find(names[i]);
+        assert_non_null(modes[i]);
+    }
+    tdc_source_t *src = tdc_scene_create(&cfg.scene, NULL);
+    assert_non_null(src);
+    int rc = tdc_sim_run(&cfg, src, modes, n, res, NULL);
+    src->destroy(src);
+    return rc;
+}
+
+static void check_sane(const tdc_sim_result_t *r, int n)
+{
+    for (int i = 0; i < n; i++) {
+        if (!r[i].available) {
+            printf("  %-18s unavailable: %s\n", r[i].desc->name, r[i].note);
+            continue;
+        }
+        printf("  %-18s PSNR %6.2f SSIM %.4f FLIP %.4f flicker %6.2f rays %llu bytes %llu\n", r[i].desc->name,
+               r[i].psnr, r[i].ssim, r[i].flip, r[i].flicker, (unsigned long long)r[i].rays,
+               (unsigned long long)r[i].link_bytes);
+        assert_true(r[i].evals > 0);
+        assert_false(r[i].nonfinite);
+        assert_true(isfinite(r[i].psnr) && r[i].psnr > 3.0 && r[i].psnr <= 100.0);
+        assert_true(r[i].ssim > -1.0 && r[i].ssim <= 1.0);
+        assert_true(r[i].flip >= 0.0 && r[i].flip <= 1.0);
+        assert_true(isfinite(r[i].flicker) && r[i].flicker >= 0.0);
+        assert_int_equal(r[i].link_errors, 0);
+        assert_true(r[i].frames > 0);
+    }
+}
+
+static void test_trm_family_pan(void **state)
+{
+    (void)state;
+    static const char *const m[] = {"full", "half", "interlace", "bfi", "ncsfi", "trm50", "trm40", "trm25", "asw"};
+    tdc_sim_result_t r[9];
+    assert_int_equal(run(TDC_SCENE_PAN, 90, 12, m, 9, r, TDC_PANEL_SIM_OLED, -1.0), 0);
+    check_sane(r, 9);
+    /* half-rate modes trace half the rays of full rate */
+    assert_true(llabs((long long)r[1].rays * 2 - (long long)r[0].rays) <= (long long)r[0].rays / 6);
+}
+
+static void test_static_trm_equals_full(void **state)
+{
+    (void)state;
+    static const char *const m[] = {"full", "trm50"};
+    tdc_sim_result_t r[2];
+    assert_int_equal(run(TDC_SCENE_STATIC, 90, 16, m, 2, r, TDC_PANEL_SIM_OLED, -1.0), 0);
+    check_sane(r, 2);
+#if TDC_SIM_HAVE_TRM
+    assert_true(r[1].available);
+    /* eq. 3: perceived identical up to 8-bit quantisation (> 45 dB, FLIP
+     * within 0.005 of full rate's) */
+    assert_true(r[1].psnr > 45.0 && r[0].psnr > 45.0);
+    assert_true(fabs(r[1].flip - r[0].flip) < 0.005);
+    /* 16 frames: 8 full + 8 reduced at r = 1/2 -> 5/8 of the pixels */
+    assert_true(fabs((double)r[1].rays / (double)r[0].rays - 0.625) < 0.01);
+#endif
+}
+
+static void test_asm_family(void **state)
+{
+    (void)state;
+    static const char *const m[] = {"full", "full60", "taa60", "asm-hourglass", "asm-bowtie", "asm-adaptive",
+                                    "asm-adaptive-smv"};
+    tdc_sim_result_t r[7];
+    assert_int_equal(run(TDC_SCENE_FENCE, 240, 16, m, 7, r, TDC_PANEL_SIM_OLED, -1.0), 0);
+    check_sane(r, 7);
+#if TDC_SIM_HAVE_ASM
+    for (int i = 3; i < 7; i++) {
+        assert_true(r[i].available);
+        assert_true(fabs((double)r[i].rays / (double)r[0].rays - 0.25) < 1e-9);
+    }
+#endif
+}
+
+static void test_extremes(void **state)
+{
+    (void)state;
+    static const char *const m[] = {"full", "trm50", "ncsfi", "asw", "bfi"};
+    tdc_sim_result_t r[5];
+    /* all black, all white, extreme pan speed, scene cut */
+    assert_int_equal(run(TDC_SCENE_BLACK, 90, 8, m, 5, r, TDC_PANEL_SIM_OLED, -1.0), 0);
+    check_sane(r, 5);
+    assert_true(r[0].psnr >= 99.0);
+    assert_int_equal(run(TDC_SCENE_WHITE, 90, 8, m, 5, r, TDC_PANEL_SIM_OLED, -1.0), 0);
+    check_sane(r, 5);
+    assert_true(r[0].psnr >= 99.0);
+    assert_int_equal(run(TDC_SCENE_PAN, 90, 8, m, 5, r, TDC_PANEL_SIM_OLED, 50000.0), 0);
+    check_sane(r, 5);
+    assert_int_equal(run(TDC_SCENE_CUT, 90, 12, m, 5, r, TDC_PANEL_SIM_OLED, -1.0), 0);
+    check_sane(r, 5);
+    assert_int_equal(r[1].resets, 1);
+    static const char *const l[] = {"full", "trm50"};
+    assert_int_equal(run(TDC_SCENE_PAN, 120, 8, l, 2, r, TDC_PANEL_SIM_LCD, -1.0), 0);
+    check_sane(r, 2);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_trm_family_pan),
+        cmocka_unit_test(test_static_trm_equals_full),
+        cmocka_unit_test(test_asm_family),
+        cmocka_unit_test(test_extremes),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
