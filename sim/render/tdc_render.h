@@ -149,6 +149,7 @@ typedef struct {
     double shadow_weight;
     double dual_mv[2];
     int disoccluded;
+    double rgb[3];          /* linear radiance of the sample */
 } tdc_render_probe_t;
 int tdc_render_probe(tdc_render_t *r, uint32_t frame, double x, double y, tdc_render_probe_t *p);
 

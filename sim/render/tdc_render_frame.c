@@ -458,6 +458,7 @@ int tdc_render_probe(tdc_render_t *r, uint32_t frame, double x, double y, tdc_re
     p->shadow_weight = s.sw;
     memcpy(p->dual_mv, s.mvd, sizeof p->dual_mv);
     p->disoccluded = s.disocc;
+    memcpy(p->rgb, s.col, sizeof p->rgb);
     return 0;
 }
 

@@ -244,6 +244,9 @@ int tdc_r_build_object(tdc_render_t *r, int i, char *err, size_t errlen)
 commit:
     rtcCommitGeometry(g);
     r->obj[i].scene = rtcNewScene(r->dev);
+    /* robust traversal: without it rays can slip through the shared edge of
+     * the two triangles of a quad (seen along rect diagonals) */
+    rtcSetSceneFlags(r->obj[i].scene, RTC_SCENE_FLAG_ROBUST);
     rtcAttachGeometry(r->obj[i].scene, g);
     rtcReleaseGeometry(g);
     rtcCommitScene(r->obj[i].scene);

@@ -278,9 +278,11 @@ void tdc_r_pass_reflect(rthread_t *t, rsample_t *s, int n)
             a->nmir = b + 1;
             double dn = dot3(d, N);
             for (int c = 0; c < 3; c++) d[c] -= 2 * dn * N[c];
-            double eps = offset_eps(P), O[3] = {P[0] + N[0] * eps, P[1] + N[1] * eps, P[2] + N[2] * eps};
+            /* start exactly at the mirror point (so the reflected MV geometry is
+             * exact) and skip self-hits with tnear instead of a normal offset */
+            double O[3] = {P[0], P[1], P[2]};
             struct RTCRayHit rh;
-            int h = intersect(t, 0, O, d, 0, INFINITY, TDC_RAY_REFLECT, &rh);
+            int h = intersect(t, 0, O, d, offset_eps(P), INFINITY, TDC_RAY_REFLECT, &rh);
             if (h < 0) {
                 for (int c = 0; c < 3; c++) a->col[c] += thr * sc->background[c];
                 memcpy(a->rdir, d, sizeof d);

@@ -1,0 +1,314 @@
+/*
+ * tdc-render - command-line front end of the companion renderer: renders
+ * frames of a scene file or a built-in scene in one of the modes, writes
+ * PNG images (linear light encoded with the 2.2 transfer) and/or a .tdcs
+ * link stream through the link encoder, and prints per-stage timings.
+ *
+ *   tdc-render --builtin fence --frames 0:8 --mode full --png out/ --stream out/fence.tdcs --shadow-mv
+ *   tdc-render --scene sim/scenes/example.scene --mode gt --gt-samples 256 --png out/
+ *   tdc-render --list | --print-scene NAME
+ */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "link/tdc_link_encode.h"
+#include "link/tdc_link_file.h"
+#include "tdc_render.h"
+
+static void usage(void)
+{
+    fprintf(stderr,
+            "usage: tdc-render (--scene FILE | --builtin NAME) [options]\n"
+            "       tdc-render --list | --print-scene NAME\n"
+            "options:\n"
+            "  --mode full|reduced|subframe|gt|trm   (trm: full and reduced frames alternate)\n"
+            "  --frames A:B         frames A..B-1 (default 0:1)\n"
+            "  --size WxH           output size (default: the scene's)\n"
+            "  --threads N          worker threads (default 2)\n"
+            "  --seed S             random seed (default 1)\n"
+            "  --gt-samples N       ground-truth samples per pixel (default 64)\n"
+            "  --reduced-factor R   r of reduced frames (default 0.5)\n"
+            "  --shadow-mv --dual-mv --no-reflect-mv --bounces N\n"
+            "  --png DIR            write DIR/<scene>-<mode>-<frame>.png (+ -mv.png for motion)\n"
+            "  --stream FILE        write a .tdcs link stream (full, reduced, subframe, trm)\n"
+            "  --quiet              no per-frame lines\n");
+}
+
+static int parse_int(const char *s, int lo, int hi, int *out)
+{
+    char *e;
+    errno = 0;
+    long v = strtol(s, &e, 10);
+    if (e == s || *e || errno || v < lo || v > hi) return -1;
+    *out = (int)v;
+    return 0;
+}
+
+/* MV visualisation: hue = direction, brightness = length (saturates at 8 px). */
+static void mv_to_rgb(const int16_t *mv, size_t n, float *rgb)
+{
+    for (size_t i = 0; i < n; i++) {
+        double dx = mv[2 * i] / 16.0, dy = mv[2 * i + 1] / 16.0;
+        double len = sqrt(dx * dx + dy * dy), a = atan2(dy, dx);
+        double v = len / 8 > 1 ? 1 : len / 8;
+        rgb[3 * i] = (float)(v * (0.5 + 0.5 * cos(a)));
+        rgb[3 * i + 1] = (float)(v * (0.5 + 0.5 * cos(a - 2.094)));
+        rgb[3 * i + 2] = (float)(v * (0.5 + 0.5 * cos(a + 2.094)));
+    }
+}
+
+int main(int argc, char **argv)
+{
+    const char *scene_file = NULL, *builtin = NULL, *png_dir = NULL, *stream_path = NULL, *mode_s = "full";
+    int f0 = 0, f1 = 1, quiet = 0, w = 0, h = 0;
+    tdc_render_config_t cfg;
+    tdc_render_default_config(&cfg);
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (!strcmp(a, "--list")) {
+            for (int k = 0; k < tdc_scene_builtin_count; k++) printf("%s\n", tdc_scene_builtin_names[k]);
+            return 0;
+        } else if (!strcmp(a, "--print-scene") && v) {
+            const char *t = tdc_scene_builtin_text(v);
+            if (!t) {
+                fprintf(stderr, "tdc-render: unknown built-in scene '%s'\n", v);
+                return 2;
+            }
+            fputs(t, stdout);
+            return 0;
+        } else if (!strcmp(a, "--scene") && v) scene_file = argv[++i];
+        else if (!strcmp(a, "--builtin") && v) builtin = argv[++i];
+        else if (!strcmp(a, "--mode") && v) mode_s = argv[++i];
+        else if (!strcmp(a, "--png") && v) png_dir = argv[++i];
+        else if (!strcmp(a, "--stream") && v) stream_path = argv[++i];
+        else if (!strcmp(a, "--quiet")) quiet = 1;
+        else if (!strcmp(a, "--shadow-mv")) cfg.shadow_mv = 1;
+        else if (!strcmp(a, "--dual-mv")) cfg.dual_mv = 1;
+        else if (!strcmp(a, "--no-reflect-mv")) cfg.reflect_mv = 0;
+        else if (!strcmp(a, "--frames") && v) {
+            if (sscanf(argv[++i], "%d:%d", &f0, &f1) != 2 || f0 < 0 || f1 <= f0) {
+                fprintf(stderr, "tdc-render: --frames wants A:B with 0 <= A < B\n");
+                return 2;
+            }
+        } else if (!strcmp(a, "--size") && v) {
+            if (sscanf(argv[++i], "%dx%d", &w, &h) != 2 || w < 1 || h < 1 || w > 16384 || h > 16384) {
+                fprintf(stderr, "tdc-render: --size wants WxH\n");
+                return 2;
+            }
+        } else if (!strcmp(a, "--threads") && v) {
+            if (parse_int(argv[++i], 1, 64, &cfg.threads)) goto bad;
+        } else if (!strcmp(a, "--bounces") && v) {
+            if (parse_int(argv[++i], 0, 3, &cfg.max_bounces)) goto bad;
+        } else if (!strcmp(a, "--gt-samples") && v) {
+            if (parse_int(argv[++i], 1, 4096, &cfg.gt_samples)) goto bad;
+        } else if (!strcmp(a, "--seed") && v) {
+            int s;
+            if (parse_int(argv[++i], 0, 0x7FFFFFFF, &s)) goto bad;
+            cfg.seed = (uint32_t)s;
+        } else if (!strcmp(a, "--reduced-factor") && v) {
+            cfg.reduced_factor = atof(argv[++i]);
+        } else {
+            usage();
+            return 2;
+        }
+        continue;
+    bad:
+        fprintf(stderr, "tdc-render: bad value for %s\n", a);
+        return 2;
+    }
+    if (!!scene_file == !!builtin) {
+        usage();
+        return 2;
+    }
+    int trm = 0;
+    tdc_render_mode_t mode;
+    if (!strcmp(mode_s, "full")) mode = TDC_RENDER_FULL;
+    else if (!strcmp(mode_s, "reduced")) mode = TDC_RENDER_REDUCED;
+    else if (!strcmp(mode_s, "subframe")) mode = TDC_RENDER_SUBFRAME;
+    else if (!strcmp(mode_s, "gt")) mode = TDC_RENDER_GROUND_TRUTH;
+    else if (!strcmp(mode_s, "trm")) {
+        mode = TDC_RENDER_FULL;
+        trm = 1;
+    } else {
+        fprintf(stderr, "tdc-render: unknown mode '%s'\n", mode_s);
+        return 2;
+    }
+    if (stream_path && mode == TDC_RENDER_GROUND_TRUTH) {
+        fprintf(stderr, "tdc-render: ground truth is not streamed (use --png)\n");
+        return 2;
+    }
+    cfg.width = w;
+    cfg.height = h;
+    char err[512];
+    tdc_scene_t *scene = malloc(sizeof *scene);
+    if (!scene) return 1;
+    tdc_scene_status_t st = scene_file ? tdc_scene_load(scene_file, scene, err, sizeof err)
+                                       : tdc_scene_builtin(builtin, scene, err, sizeof err);
+    if (st != TDC_SCENE_OK) {
+        fprintf(stderr, "tdc-render: %s\n", err);
+        free(scene);
+        return 1;
+    }
+    tdc_render_t *r = tdc_render_open(scene, &cfg, err, sizeof err);
+    if (!r) {
+        fprintf(stderr, "tdc-render: %s\n", err);
+        free(scene);
+        return 1;
+    }
+    tdc_render_features_t ft;
+    tdc_render_get_features(r, &ft);
+    int W, H;
+    tdc_render_output_size(r, TDC_RENDER_FULL, &W, &H);
+    printf("scene %s: %dx%d, %d objects, %llu triangles, features: mirrors=%d motion=%d (camera %d, objects %d) "
+           "moving-blocker=%d lights=%d area-lights=%d\n",
+           scene->name, W, H, scene->nobjects, (unsigned long long)ft.triangles, ft.mirrors, ft.motion,
+           ft.camera_moves, ft.objects_move, ft.moving_blocker, ft.lights, ft.area_lights);
+    if (png_dir) mkdir(png_dir, 0777);
+
+    size_t npix = (size_t)W * H;
+    float *rgb = malloc(npix * 3 * sizeof(float));
+    float *vis = malloc(npix * 3 * sizeof(float));
+    int16_t *mv = malloc(npix * 2 * sizeof(int16_t));
+    int16_t *mvs = malloc(npix * 2 * sizeof(int16_t));
+    int16_t *mvd = malloc(npix * 2 * sizeof(int16_t));
+    uint8_t *rgb8 = malloc(npix * 3);
+    size_t pkt_cap = npix * 4 + 4096;
+    uint8_t *pkt = malloc(pkt_cap);
+    if (!rgb || !vis || !mv || !mvs || !mvd || !rgb8 || !pkt) {
+        fprintf(stderr, "tdc-render: out of memory\n");
+        return 1;
+    }
+    tdc_link_file_t lf;
+    tdc_link_encoder_t enc;
+    int streaming = 0;
+    if (stream_path) {
+        tdc_link_stream_info_t info;
+        memset(&info, 0, sizeof info);
+        info.flags = (ft.motion ? TDC_LINK_STREAM_MOTION : 0) |
+                     (ft.motion && ft.mirrors && cfg.reflect_mv ? TDC_LINK_STREAM_MIRRORS : 0);
+        if (trm || mode == TDC_RENDER_REDUCED) info.flags |= TDC_LINK_STREAM_REDUCED;
+        if (mode == TDC_RENDER_SUBFRAME)
+            info.flags |= TDC_LINK_STREAM_SUBFRAMES | (ft.motion ? TDC_LINK_STREAM_SAMPLE_MV : 0);
+        info.r_num = 1;
+        info.r_den = (info.flags & TDC_LINK_STREAM_REDUCED) ? (uint16_t)lround(1 / cfg.reduced_factor) : 1;
+        info.width = (uint16_t)W;
+        info.height = (uint16_t)H;
+        info.eyes = 1;
+        info.refresh_hz = (uint16_t)lround(scene->fps);
+        tdc_link_encoder_init(&enc, 1, &info);
+        if (tdc_link_file_create(&lf, stream_path) < 0) return 1;
+        size_t n = tdc_link_encode_stream(&enc, pkt, pkt_cap);
+        if (!n || tdc_link_file_write(&lf, pkt, n) < 0) {
+            fprintf(stderr, "tdc-render: stream header rejected by the encoder\n");
+            return 1;
+        }
+        streaming = 1;
+        printf("stream %s: flags 0x%04x%s\n", stream_path, (unsigned)info.flags,
+               ft.motion ? "" : " (static: no motion vectors)");
+    }
+
+    tdc_render_stats_t tot;
+    memset(&tot, 0, sizeof tot);
+    int ran_frames[TDC_STAGE_COUNT] = {0};
+    int rc = 0;
+    for (int f = f0; f < f1 && !rc; f++) {
+        tdc_render_mode_t m = mode;
+        if (trm) m = tdc_link_trm_kind((uint32_t)f, 0) == TDC_LINK_KIND_REDUCED ? TDC_RENDER_REDUCED : TDC_RENDER_FULL;
+        tdc_render_out_t out = {rgb, mv, NULL, cfg.shadow_mv ? mvs : NULL, NULL, cfg.dual_mv ? mvd : NULL, NULL};
+        tdc_render_stats_t s;
+        if (tdc_render_frame(r, (uint32_t)f, m, &out, &s) < 0) {
+            fprintf(stderr, "tdc-render: frame %d failed\n", f);
+            rc = 1;
+            break;
+        }
+        uint64_t rays = 0;
+        for (int k = 0; k < TDC_RAY_KIND_COUNT; k++) {
+            rays += s.rays[k];
+            tot.rays[k] += s.rays[k];
+        }
+        for (int k = 0; k < TDC_STAGE_COUNT; k++) {
+            tot.ms[k] += s.ms[k];
+            ran_frames[k] += s.ran[k];
+        }
+        tot.wall_ms += s.wall_ms;
+        if (!quiet)
+            printf("frame %4d %-12s %4dx%-4d %8.2f ms  %9llu rays %s\n", f, tdc_render_mode_name(m), s.out_w, s.out_h,
+                   s.wall_ms, (unsigned long long)rays, s.frame_static ? "static" : "");
+        if (png_dir) {
+            char path[1024];
+            snprintf(path, sizeof path, "%s/%s-%s-%04d.png", png_dir, scene->name, tdc_render_mode_name(m), f);
+            if (tdc_render_write_png(path, rgb, s.out_w, s.out_h, err, sizeof err) < 0) {
+                fprintf(stderr, "tdc-render: %s\n", err);
+                rc = 1;
+            }
+            if ((m == TDC_RENDER_FULL || m == TDC_RENDER_SUBFRAME) && ft.motion) {
+                const int16_t *src[3] = {mv, cfg.shadow_mv ? mvs : NULL, cfg.dual_mv ? mvd : NULL};
+                const char *suffix[3] = {"mv", "mv-shadow", "mv-dual"};
+                for (int k = 0; k < 3; k++) {
+                    if (!src[k]) continue;
+                    mv_to_rgb(src[k], (size_t)s.out_w * s.out_h, vis);
+                    snprintf(path, sizeof path, "%s/%s-%s-%04d-%s.png", png_dir, scene->name, tdc_render_mode_name(m),
+                             f, suffix[k]);
+                    if (tdc_render_write_png(path, vis, s.out_w, s.out_h, err, sizeof err) < 0) rc = 1;
+                }
+            }
+        }
+        if (streaming) {
+            size_t n = 0;
+            tdc_render_linear_to_rgb888(rgb, (size_t)s.out_w * s.out_h, rgb8);
+            if (m == TDC_RENDER_SUBFRAME) {
+                if ((f & 3) == 0) {
+                    n = tdc_link_encode_pattern(&enc, pkt, pkt_cap, 0, (uint32_t)f, tdc_render_pattern_bits(r),
+                                                (uint32_t)W, (uint32_t)H);
+                    if (!n || tdc_link_file_write(&lf, pkt, n) < 0) rc = 1;
+                }
+                n = tdc_link_encode_subframe(&enc, pkt, pkt_cap, 0, (uint32_t)f, TDC_PIXFMT_RGB888, rgb8, (uint32_t)W,
+                                             (uint32_t)H);
+                if (!n || tdc_link_file_write(&lf, pkt, n) < 0) rc = 1;
+                if (ft.motion) {
+                    n = tdc_link_encode_motion(&enc, pkt, pkt_cap, 0, (uint32_t)f, mv, (uint32_t)W, (uint32_t)H, 1);
+                    if (!n || tdc_link_file_write(&lf, pkt, n) < 0) rc = 1;
+                }
+            } else {
+                n = tdc_link_encode_frame(&enc, pkt, pkt_cap,
+                                          m == TDC_RENDER_REDUCED ? TDC_LINK_KIND_REDUCED : TDC_LINK_KIND_FULL, 0,
+                                          (uint32_t)f, TDC_PIXFMT_RGB888, rgb8, (uint32_t)s.out_w, (uint32_t)s.out_h,
+                                          (uint32_t)s.out_w * 3);
+                if (!n || tdc_link_file_write(&lf, pkt, n) < 0) rc = 1;
+                if (ft.motion && m == TDC_RENDER_FULL) {
+                    n = tdc_link_encode_motion(&enc, pkt, pkt_cap, 0, (uint32_t)f, mv, (uint32_t)W, (uint32_t)H, 0);
+                    if (!n || tdc_link_file_write(&lf, pkt, n) < 0) rc = 1;
+                }
+            }
+            if (rc) fprintf(stderr, "tdc-render: link encoder rejected a packet of frame %d\n", f);
+        }
+    }
+    int nf = f1 - f0;
+    printf("per-stage CPU time over %d frames (summed over %d threads; skipped stages are not entered):\n", nf,
+           cfg.threads);
+    for (int k = 0; k < TDC_STAGE_COUNT; k++)
+        printf("  %-10s %10.3f ms  %s\n", tdc_render_stage_name((tdc_render_stage_t)k), tot.ms[k],
+               ran_frames[k] ? "" : "skipped");
+    uint64_t all = 0;
+    for (int k = 0; k < TDC_RAY_KIND_COUNT; k++) all += tot.rays[k];
+    printf("rays: primary %llu shadow %llu reflect %llu mv %llu; wall %.1f ms, %.2f Mrays/s\n",
+           (unsigned long long)tot.rays[0], (unsigned long long)tot.rays[1], (unsigned long long)tot.rays[2],
+           (unsigned long long)tot.rays[3], tot.wall_ms, tot.wall_ms > 0 ? all / tot.wall_ms / 1e3 : 0.0);
+    if (streaming && tdc_link_file_close(&lf) < 0) rc = 1;
+    if (streaming) printf("stream: %u packets, %llu bytes\n", lf.packets, (unsigned long long)lf.bytes);
+    tdc_render_close(r);
+    free(scene);
+    free(rgb);
+    free(vis);
+    free(mv);
+    free(mvs);
+    free(mvd);
+    free(rgb8);
+    free(pkt);
+    return rc;
+}
