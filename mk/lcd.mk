@@ -42,3 +42,6 @@ report-lcd: $(B)/tests/bench_lcd_report
 	$(B)/tests/bench_lcd_report --panel pg279q -o docs/lcd-report.md
 	$(B)/tests/bench_lcd_report --panel lcd-240 -o docs/lcd-report-240.md
 .PHONY: report-lcd
+
+# Tests.
+TESTS += $(B)/tests/test_lcd_solve

@@ -206,20 +206,15 @@ static const double *lcd_coefs_for_rate(const profile_t *p, int rate)
  */
 static void gen_od_table(FILE *f, const char *decl, const int32_t p_q24[4], int n, int bits)
 {
-    const double max = (double)((1 << bits) - 1);
     double dp[4];
+    static short t[33 * 33];
     for (int c = 0; c < 4; c++) {
         dp[c] = p_q24[c] / (double)(1 << TDC_LCD_COEF_FRAC);
     }
+    tdc_lcdm_make_od(dp, n, bits, t);
     fprintf(f, "%s[%d] = {", decl, n * n);
-    for (int i = 0; i < n; i++) {
-        for (int j = 0; j < n; j++) {
-            double u = i / (double)(n - 1), m = j / (double)(n - 1);
-            double v = tdc_lcdm_solve(dp, u, m, 0.5 / max, NULL);
-            long d = lround((v - m) * max * (1 << TDC_OD_DELTA_FRAC));
-            d = d > 32767 ? 32767 : (d < -32768 ? -32768 : d);
-            fprintf(f, "%s%ld,", ((i * n + j) % 12) ? " " : "\n    ", d);
-        }
+    for (int k = 0; k < n * n; k++) {
+        fprintf(f, "%s%d,", (k % 12) ? " " : "\n    ", t[k]);
     }
     fprintf(f, "\n};\n");
 }

@@ -116,4 +116,24 @@ static inline double tdc_lcdm_solve_steady(const double p[4], double m, double h
     return tdc_lcdm_nearest(p, 0.0, 1, a, b, m, kind);
 }
 
+/*
+ * Overdrive table of n x n deltas (convention in firmware/tdc_overdrive.h:
+ * row = previous drive u_i = i/(n-1), column = target m_j = j/(n-1),
+ * entry = round(16 (C-1) (v*(u_i, m_j) - m_j)), int16) for coefficients p
+ * (normally the Q24-quantised ones as doubles) and a panel of `bits` bits.
+ * Used by tdc-tablegen and by the tests, so both make the same tables.
+ */
+static inline void tdc_lcdm_make_od(const double p[4], int n, int bits, short *out)
+{
+    const double max = (double)((1 << bits) - 1);
+    for (int i = 0; i < n; i++) {
+        for (int j = 0; j < n; j++) {
+            double u = i / (double)(n - 1), m = j / (double)(n - 1);
+            double v = tdc_lcdm_solve(p, u, m, 0.5 / max, 0);
+            long d = lround((v - m) * max * 16.0);
+            out[i * n + j] = (short)(d > 32767 ? 32767 : (d < -32768 ? -32768 : d));
+        }
+    }
+}
+
 #endif /* TDC_LCD_MODEL_H */
