@@ -248,7 +248,7 @@ static tdc_exit_t cmd_stream(tdc_board_t *b, const opts_t *o, const char *path)
     size_t n;
     while (e == TDC_EXIT_OK && (n = fread(buf, 1, (size_t)chunk, f)) > 0) {
         int done = 0;
-        e = tdc_usb_bulk(b, "bulk OUT of link packets", TDC_USB_EP_LINK_OUT, buf, (int)n, &done);
+        e = tdc_usb_bulk(b, "bulk OUT of link packets", b->ep_out, buf, (int)n, &done);
         sent += (uint64_t)done;
         crc = tdc_usbp_crc32_update(crc, buf, (uint32_t)done);
         if (e == TDC_EXIT_OK && done != (int)n) {
@@ -281,7 +281,7 @@ static tdc_exit_t cmd_stream(tdc_board_t *b, const opts_t *o, const char *path)
     /* The board's status (bulk IN) and its counters. */
     uint8_t st[TDC_USB_STATUS_LEN];
     int got = 0;
-    e = tdc_usb_bulk(b, "bulk IN status report", TDC_USB_EP_STATUS_IN, st, sizeof st, &got);
+    e = tdc_usb_bulk(b, "bulk IN status report", b->ep_in, st, sizeof st, &got);
     if (e != TDC_EXIT_OK)
         return e;
     if (got < (int)TDC_USB_STATUS_LEN || tdc_get_le32(st) != TDC_USB_STATUS_MAGIC) {

@@ -4,6 +4,7 @@
  * its name (libusb_error_name) and mapped to a named exit code.
  */
 #include "tdc_usb_dev.h"
+#include "tdc_usbproto.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -125,6 +126,32 @@ int tdc_usb_enumerate(libusb_context *ctx, const tdc_usb_select_t *sel, tdc_usb_
     return matches;
 }
 
+/* Bulk endpoint addresses of the streaming interface, from the descriptor:
+ * a gadget stack may renumber them (Linux's dummy_hcd gives 0x02/0x81). */
+static void find_endpoints(tdc_board_t *b, libusb_device *dev)
+{
+    struct libusb_config_descriptor *cd = NULL;
+    b->ep_out = TDC_USB_EP_LINK_OUT;
+    b->ep_in = TDC_USB_EP_STATUS_IN;
+    if (libusb_get_active_config_descriptor(dev, &cd) != 0)
+        return;
+    for (int i = 0; i < cd->bNumInterfaces; i++) {
+        const struct libusb_interface_descriptor *id = &cd->interface[i].altsetting[0];
+        if (id->bInterfaceNumber != TDC_USB_IF_STREAM || id->bInterfaceClass != 0xFF)
+            continue;
+        for (int k = 0; k < id->bNumEndpoints; k++) {
+            const struct libusb_endpoint_descriptor *ep = &id->endpoint[k];
+            if ((ep->bmAttributes & 0x03) != LIBUSB_TRANSFER_TYPE_BULK)
+                continue;
+            if (ep->bEndpointAddress & LIBUSB_ENDPOINT_IN)
+                b->ep_in = ep->bEndpointAddress;
+            else
+                b->ep_out = ep->bEndpointAddress;
+        }
+    }
+    libusb_free_config_descriptor(cd);
+}
+
 typedef struct {
     int count;
     libusb_device *first;
@@ -179,6 +206,7 @@ tdc_exit_t tdc_usb_open(libusb_context *ctx, const tdc_usb_select_t *sel, tdc_bo
     b->bus = libusb_get_bus_number(p.first);
     b->address = libusb_get_device_address(p.first);
     snprintf(b->serial, sizeof b->serial, "%s", p.first_serial);
+    find_endpoints(b, p.first);
     int err = libusb_open(p.first, &b->h);
     libusb_unref_device(p.first);
     if (err != 0) {

@@ -42,6 +42,7 @@ typedef struct {
     char serial[64];
     unsigned timeout_ms;
     const char *op;            /* what we are doing, for messages */
+    uint8_t ep_out, ep_in;     /* bulk endpoints of the streaming interface */
 } tdc_board_t;
 
 /* Maps a libusb error to the exit code and prints
