@@ -45,3 +45,4 @@ report-lcd: $(B)/tests/bench_lcd_report
 
 # Tests.
 TESTS += $(B)/tests/test_lcd_solve
+TESTS += $(B)/tests/test_lcd_sim
