@@ -1,0 +1,195 @@
+/*
+ * fuzz_link.c - libFuzzer harness for the streaming link decoder
+ * (firmware/tdc_link.c).  Built with clang -fsanitize=fuzzer,address,undefined
+ * by mk/link.mk: `make fuzz FUZZ_SECONDS=600`, smoke run in `make test`.
+ *
+ * Input: byte 0 selects the chunking (bits 0..5: seed of the chunk sizes,
+ * 0 = whole input at once) and whether CRCs are repaired first (bit 7):
+ * mutated packets almost never keep a valid CRC, so half of the runs
+ * recompute header and payload CRCs of everything that parses as a packet,
+ * which lets the fuzzer reach the field checks, sequencing and unpacking.
+ * The rest of the input is the link byte stream for a 19 x 13 stereo panel.
+ *
+ * Checked on every event, beyond the sanitizers:
+ *  - a buffer changes only with an accepted packet of its kind and eye
+ *    (a rejected packet never touches frame state);
+ *  - error counters equal the error events seen, packets_ok the packet events;
+ *  - no event is ever dropped; every byte is consumed.
+ */
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "tdc_crc32.h"
+#include "tdc_link.h"
+
+#define FW 19
+#define FH 13
+
+static uint8_t staging[TDC_LINK_STAGING_BYTES(FW, FH)];
+static uint8_t full[2][TDC_LINK_FRAME_BYTES(FW, FH)];
+static uint8_t reduced[2][TDC_LINK_FRAME_BYTES(FW, FH)];
+static uint8_t subframe[2][TDC_LINK_SUBFRAME_BYTES(FW, FH)];
+static int16_t motion[2][TDC_LINK_MOTION_COUNT(FW, FH)];
+static int16_t sample_motion[2][TDC_LINK_SAMPLE_MOTION_COUNT(FW, FH)];
+static uint8_t pattern[2][TDC_LINK_PATTERN_BYTES(FW, FH)];
+static uint8_t work[1 << 20];
+
+/* Every pipeline buffer, by slot (kind, or KIND_LAST + 1 for per-sample
+ * motion) and eye, and a copy of what it held after its last accepted
+ * packet. */
+static uint8_t *slot_ptr(unsigned slot, unsigned e, size_t *n)
+{
+    switch (slot) {
+    case TDC_LINK_KIND_FULL: *n = sizeof full[e]; return full[e];
+    case TDC_LINK_KIND_REDUCED: *n = sizeof reduced[e]; return reduced[e];
+    case TDC_LINK_KIND_SUBFRAME: *n = sizeof subframe[e]; return subframe[e];
+    case TDC_LINK_KIND_MOTION: *n = sizeof motion[e]; return (uint8_t *)motion[e];
+    case TDC_LINK_KIND_PATTERN: *n = sizeof pattern[e]; return pattern[e];
+    case TDC_LINK_KIND_LAST + 1: *n = sizeof sample_motion[e]; return (uint8_t *)sample_motion[e];
+    default: *n = 0; return NULL;
+    }
+}
+
+static uint8_t snap[TDC_LINK_KIND_LAST + 2][2][TDC_LINK_STAGING_BYTES(FW, FH)];
+
+static void take_snap(unsigned slot, unsigned e)
+{
+    size_t n;
+    uint8_t *p = slot_ptr(slot, e, &n);
+    if (p) {
+        memcpy(snap[slot][e], p, n);
+    }
+}
+
+static int snap_differs(unsigned slot, unsigned e)
+{
+    size_t n;
+    uint8_t *p = slot_ptr(slot, e, &n);
+    return p && memcmp(snap[slot][e], p, n) != 0;
+}
+
+/* Recompute CRCs of everything that parses as a packet. */
+static void repair_crcs(uint8_t *p, size_t n)
+{
+    size_t o = 0;
+    while (o + TDC_LINK_HEADER_BYTES <= n) {
+        if (tdc_link_rd32(p + o) != TDC_LINK_MAGIC) {
+            o++;
+            continue;
+        }
+        const uint32_t len = tdc_link_rd32(p + o + TDC_LINK_OFF_PAYLOAD_LEN);
+        if (len <= n - o - TDC_LINK_HEADER_BYTES) {
+            tdc_link_wr32(p + o + TDC_LINK_OFF_PAYLOAD_CRC, tdc_crc32(p + o + TDC_LINK_HEADER_BYTES, len));
+        }
+        tdc_link_wr32(p + o + TDC_LINK_OFF_HEADER_CRC, tdc_crc32(p + o, TDC_LINK_OFF_HEADER_CRC));
+        o += len <= n - o - TDC_LINK_HEADER_BYTES ? TDC_LINK_HEADER_BYTES + len : 1u;
+    }
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    if (size < 1 || size - 1 > sizeof work) {
+        return 0;
+    }
+    const uint8_t mode = data[0];
+    const size_t n = size - 1;
+    memcpy(work, data + 1, n);
+    if (mode & 0x80u) {
+        repair_crcs(work, n);
+    }
+
+    static tdc_link_decoder_t dec;
+    tdc_link_config_t cfg = {FW, FH, 2};
+    tdc_link_buffers_t b;
+    memset(&b, 0, sizeof b);
+    b.staging = staging;
+    b.staging_bytes = sizeof staging;
+    b.full_stride = FW * 3;
+    b.reduced_bytes = sizeof reduced[0];
+    for (int e = 0; e < 2; e++) {
+        b.full[e] = full[e];
+        b.reduced[e] = reduced[e];
+        b.subframe[e] = subframe[e];
+        b.motion[e] = motion[e];
+        b.sample_motion[e] = sample_motion[e];
+        b.pattern[e] = pattern[e];
+    }
+    if (tdc_link_decoder_init(&dec, &cfg, &b) != TDC_OK) {
+        abort();
+    }
+    for (unsigned k = 1; k <= TDC_LINK_KIND_LAST + 1; k++) {
+        for (unsigned e = 0; e < 2; e++) {
+            take_snap(k, e);
+        }
+    }
+
+    uint32_t err_events[TDC_LINK_ERR_COUNT] = {0};
+    uint32_t ok_events = 0;
+    uint32_t rng = 0x9E3779B9u ^ (mode & 0x3Fu);
+    size_t pos = 0;
+    unsigned guard = 0;
+    while (pos < n || dec.ev_count) {
+        size_t chunk = n - pos;
+        if ((mode & 0x3Fu) != 0) {
+            rng ^= rng << 13;
+            rng ^= rng >> 17;
+            rng ^= rng << 5;
+            const size_t c = 1u + rng % 97u;
+            chunk = c < chunk ? c : chunk;
+        }
+        tdc_link_event_t ev;
+        const size_t used = tdc_link_feed(&dec, work + pos, chunk, &ev);
+        if (used > chunk) {
+            abort();
+        }
+        pos += used;
+        if (ev.type == TDC_LINK_EV_NONE) {
+            if (used != chunk) {
+                abort(); /* no event means the whole chunk was consumed */
+            }
+        }
+        if (used > 0) {
+            guard = 0;
+        } else if (++guard > 64) {
+            abort(); /* calls without progress: a livelock */
+        }
+        if (ev.type == TDC_LINK_EV_ERROR) {
+            if (ev.error == 0 || ev.error >= TDC_LINK_ERR_COUNT) {
+                abort();
+            }
+            err_events[ev.error]++;
+        } else if (ev.type == TDC_LINK_EV_PACKET) {
+            ok_events++;
+            if (ev.kind < TDC_LINK_KIND_FIRST || ev.kind > TDC_LINK_KIND_LAST || ev.eye > 1) {
+                abort();
+            }
+            const unsigned slot = (ev.kind == TDC_LINK_KIND_MOTION && (ev.flags & TDC_LINK_PKT_MV_PER_SAMPLE))
+                                      ? TDC_LINK_KIND_LAST + 1u
+                                      : ev.kind;
+            take_snap(slot, ev.eye);
+        }
+        /* Only the slot of an accepted packet may have changed.  Checked
+         * once the events of this call are all delivered: a commit can
+         * queue MISSING_REDUCED before its own PACKET event. */
+        for (unsigned k = 1; dec.ev_count == 0 && k <= TDC_LINK_KIND_LAST + 1; k++) {
+            for (unsigned e = 0; e < 2; e++) {
+                if (snap_differs(k, e)) {
+                    abort();
+                }
+            }
+        }
+    }
+    const tdc_link_counters_t *c = tdc_link_counters(&dec);
+    for (unsigned e = 1; e < TDC_LINK_ERR_COUNT; e++) {
+        if (c->errors[e] != err_events[e]) {
+            abort();
+        }
+    }
+    if (c->packets_ok != ok_events || c->events_dropped != 0 || c->bytes_in != n) {
+        abort();
+    }
+    return 0;
+}

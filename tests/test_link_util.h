@@ -1,0 +1,120 @@
+/*
+ * test_link_util.h - shared helpers of the link tests (tests/test_link*.c):
+ * a decoder over static buffers for a W x H panel, an event log, and
+ * hashes of every pipeline buffer.  Header-only (static functions) so each
+ * test stays a single-source program.
+ */
+#ifndef TEST_LINK_UTIL_H
+#define TEST_LINK_UTIL_H
+
+#include <stdint.h>
+#include <string.h>
+
+#include "link/tdc_link_gen.h"
+#include "tdc_link.h"
+
+#define LT_MAX_W 64
+#define LT_MAX_H 48
+#define LT_MAX_EVENTS 4096
+
+typedef struct {
+    uint8_t staging[TDC_LINK_STAGING_BYTES(LT_MAX_W, LT_MAX_H)];
+    uint8_t full[2][TDC_LINK_FRAME_BYTES(LT_MAX_W, LT_MAX_H)];
+    uint8_t reduced[2][TDC_LINK_FRAME_BYTES(LT_MAX_W, LT_MAX_H)];
+    uint8_t subframe[2][TDC_LINK_SUBFRAME_BYTES(LT_MAX_W, LT_MAX_H)];
+    int16_t motion[2][TDC_LINK_MOTION_COUNT(LT_MAX_W, LT_MAX_H)];
+    int16_t sample_motion[2][TDC_LINK_SAMPLE_MOTION_COUNT(LT_MAX_W, LT_MAX_H)];
+    uint8_t pattern[2][TDC_LINK_PATTERN_BYTES(LT_MAX_W, LT_MAX_H)];
+    tdc_link_decoder_t dec;
+    tdc_link_event_t ev[LT_MAX_EVENTS];
+    uint32_t nev;
+} lt_rig_t;
+
+static inline uint64_t lt_fnv(uint64_t h, const void *p, size_t n)
+{
+    const uint8_t *b = (const uint8_t *)p;
+    for (size_t i = 0; i < n; i++) {
+        h = (h ^ b[i]) * 0x100000001b3ULL;
+    }
+    return h;
+}
+
+/* Fills buffers with a recognisable pattern so "unchanged" is meaningful. */
+static inline int lt_init(lt_rig_t *r, uint16_t w, uint16_t h, uint8_t eyes)
+{
+    memset(r->full, 0xA5, sizeof r->full);
+    memset(r->reduced, 0x5A, sizeof r->reduced);
+    memset(r->subframe, 0x33, sizeof r->subframe);
+    memset(r->motion, 0x44, sizeof r->motion);
+    memset(r->sample_motion, 0x55, sizeof r->sample_motion);
+    memset(r->pattern, 0x66, sizeof r->pattern);
+    tdc_link_config_t cfg = {w, h, eyes};
+    tdc_link_buffers_t b;
+    memset(&b, 0, sizeof b);
+    b.staging = r->staging;
+    b.staging_bytes = sizeof r->staging;
+    b.full_stride = (uint32_t)w * 3u;
+    b.reduced_bytes = sizeof r->reduced[0];
+    for (int e = 0; e < 2; e++) {
+        b.full[e] = r->full[e];
+        b.reduced[e] = r->reduced[e];
+        b.subframe[e] = r->subframe[e];
+        b.motion[e] = r->motion[e];
+        b.sample_motion[e] = r->sample_motion[e];
+        b.pattern[e] = r->pattern[e];
+    }
+    r->nev = 0;
+    return tdc_link_decoder_init(&r->dec, &cfg, &b);
+}
+
+/* Hash of every pipeline buffer (what the display could show or use). */
+static inline uint64_t lt_hash_all(const lt_rig_t *r)
+{
+    uint64_t h = 0xcbf29ce484222325ULL;
+    h = lt_fnv(h, r->full, sizeof r->full);
+    h = lt_fnv(h, r->reduced, sizeof r->reduced);
+    h = lt_fnv(h, r->subframe, sizeof r->subframe);
+    h = lt_fnv(h, r->motion, sizeof r->motion);
+    h = lt_fnv(h, r->sample_motion, sizeof r->sample_motion);
+    h = lt_fnv(h, r->pattern, sizeof r->pattern);
+    return h;
+}
+
+/* Feeds n bytes in chunks: chunk = 0 whole, > 0 fixed size, < 0 random
+ * sizes 1..-chunk from seed.  Logs every event.  Returns bytes consumed. */
+static inline size_t lt_feed(lt_rig_t *r, const uint8_t *p, size_t n, int chunk, uint32_t seed)
+{
+    size_t pos = 0;
+    uint32_t s = seed | 1u;
+    while (pos < n || r->dec.ev_count) {
+        size_t c = n - pos;
+        if (chunk > 0 && (size_t)chunk < c) {
+            c = (size_t)chunk;
+        } else if (chunk < 0) {
+            s ^= s << 13;
+            s ^= s >> 17;
+            s ^= s << 5;
+            const size_t k = 1u + s % (uint32_t)(-chunk);
+            c = k < c ? k : c;
+        }
+        tdc_link_event_t ev;
+        pos += tdc_link_feed(&r->dec, p + pos, c, &ev);
+        if (ev.type != TDC_LINK_EV_NONE && r->nev < LT_MAX_EVENTS) {
+            r->ev[r->nev++] = ev;
+        }
+    }
+    return pos;
+}
+
+static inline uint32_t lt_count(const lt_rig_t *r, uint32_t from, int type, int code)
+{
+    uint32_t n = 0;
+    for (uint32_t i = from; i < r->nev; i++) {
+        if (r->ev[i].type == type && (type != TDC_LINK_EV_ERROR || r->ev[i].error == code)) {
+            n++;
+        }
+    }
+    return n;
+}
+
+#endif
