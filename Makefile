@@ -177,20 +177,28 @@ $(B)/check-fw-rules: $(FW_OBJS) tests/check_fw_symbols.sh
 RESULTS := $(abspath $(BUILD))/test-results.txt
 export RESULTS
 
+# The runner records each test's verdict in $(RESULTS) and never fails the
+# recipe itself, so a non-zero sub-make below means the build failed, which
+# is recorded as a failure of its own (a broken build must not pass quietly).
 run-tests: $(TESTS) $(B)/check-fw-rules $(B)/golden-check
-	@tests/run_tests.sh "$(VARIANT)" $(B)/check-fw-rules $(TESTS) $(B)/golden-check
+	@tests/run_tests.sh "$(VARIANT)" $(B)/check-fw-rules $(TESTS) $(B)/golden-check || true
 
 run-golden: $(B)/golden-check
-	@tests/run_tests.sh "$(VARIANT)" $(B)/golden-check
+	@tests/run_tests.sh "$(VARIANT)" $(B)/golden-check || true
+
+define run_step
+	@$(MAKE) --no-print-directory -j2 $(1) || { echo "$(2) build FAIL" >> $(RESULTS); echo "*** $(2): build or target failed"; }
+endef
 
 test: deps
 	@mkdir -p $(BUILD); rm -f $(RESULTS)
-	-@$(MAKE) --no-print-directory run-tests CC=gcc OPT=-O2
-	-@$(MAKE) --no-print-directory run-tests CC=gcc OPT=-O1 SAN=1
-	-@$(MAKE) --no-print-directory run-golden CC=gcc OPT=-O0
-	-@$(MAKE) --no-print-directory run-golden CC=clang OPT=-O0
-	-@$(MAKE) --no-print-directory run-golden CC=clang OPT=-O2
-	-@$(foreach t,$(TEST_EXTRA),$(MAKE) --no-print-directory $(t);)
+	$(call run_step,run-tests CC=gcc OPT=-O2,gcc-O2 run-tests)
+	$(call run_step,run-tests CC=gcc OPT=-O1 SAN=1,gcc-O1-san run-tests)
+	$(call run_step,run-golden CC=gcc OPT=-O0,gcc-O0 run-golden)
+	$(call run_step,run-golden CC=clang OPT=-O0,clang-O0 run-golden)
+	$(call run_step,run-golden CC=clang OPT=-O2,clang-O2 run-golden)
+	@for t in $(TEST_EXTRA); do $(MAKE) --no-print-directory $$t || \
+	    { echo "$$t target FAIL" >> $(RESULTS); echo "*** $$t: target failed"; }; done
 	@tests/summary.sh $(RESULTS)
 
 bench: deps $(BENCHES)
