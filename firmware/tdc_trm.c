@@ -380,6 +380,15 @@ int32_t tdc_trm_weight(const tdc_trm_t *st, uint32_t x_q16)
     return trm_weight(st->wexp, x_q16);
 }
 
+/* Horizontal lerp of a vertically interpolated row (code Q22) between
+ * samples i and i + 3 (the next pixel, same channel): code Q16.
+ * Scaling: |v1 - v0| < 2^30 times f < 2^14 needs 64 bits; rounded once. */
+static inline uint32_t trm_hlerp(const uint32_t *restrict urow, uint32_t i, uint32_t f_q14)
+{
+    const int64_t v0 = urow[i], v1 = urow[i + 3u];
+    return (uint32_t)tdc_asr64(v0 * (1 << 14) + (v1 - v0) * (int64_t)f_q14 + (1LL << 19), 20);
+}
+
 /* One channel's gamma tables as restrict-qualified locals: the byte stores
  * of the output frame may alias anything, so without these the compiler
  * reloads every table pointer after each store. */
@@ -426,10 +435,7 @@ static void trm_full_row(const tdc_trm_t *st, const trm_gamma_t g[3], const uint
     for (uint32_t x = 0; x < w; x++) {
         const uint32_t i0 = 3u * ux[2u * x], f = ux[2u * x + 1u];
         for (uint32_t c = 0; c < 3u; c++) {
-            const int64_t v0 = urow[i0 + c], v1 = urow[i0 + 3u + c];
-            /* horizontal lerp, code Q22 -> Q16 (see trm_u_at) */
-            const uint32_t gu = (uint32_t)tdc_asr64(v0 * (1 << 14) + (v1 - v0) * (int64_t)f + (1LL << 19), 20);
-            const tdc_lin_t lu = trm_dec_q16(&g[c], gu);
+            const tdc_lin_t lu = trm_dec_q16(&g[c], trm_hlerp(urow, i0 + c, f));
             const tdc_lin_t li = (tdc_lin_t)g[c].dec[src[3u * x + c]];
             /* beta = 2 LI - Lu in [-1, 2] (Q24): no overflow in int32 */
             const int32_t beta = 2 * li - lu;
@@ -493,16 +499,14 @@ static void trm_reduced_row(const tdc_trm_t *st, const trm_gamma_t g[3], const u
     for (uint32_t x = 0; x < w; x++) {
         const uint32_t i0 = 3u * ux[2u * x], f = ux[2u * x + 1u];
         for (uint32_t c = 0; c < 3u; c++) {
-            const int64_t b0 = urow_b[i0 + c], b1 = urow_b[i0 + 3u + c];
-            const uint32_t gb = (uint32_t)tdc_asr64(b0 * (1 << 14) + (b1 - b0) * (int64_t)f + (1LL << 19), 20);
+            const uint32_t gb = trm_hlerp(urow_b, i0 + c, f);
             const tdc_lin_t alpha = trm_dec_q16(&g[c], gb);
             const int32_t rho = res[3u * x + c];
             int32_t shown = alpha;
             if (rho == 0) {
                 no_res++; /* nothing to add: the weight is not needed */
             } else {
-                const int64_t a0 = urow_a[i0 + c], a1 = urow_a[i0 + 3u + c];
-                uint32_t ga = (uint32_t)tdc_asr64(a0 * (1 << 14) + (a1 - a0) * (int64_t)f + (1LL << 19), 20);
+                uint32_t ga = trm_hlerp(urow_a, i0 + c, f);
                 int32_t w_q15;
                 /* Motion test at the link's precision: the reduced frame
                  * arrives in whole codes, so U(D(I_t)) is first moved half
