@@ -184,8 +184,9 @@ tdc_render_t *tdc_render_open(const tdc_scene_t *scene, const tdc_render_config_
     r->H = cfg->height ? cfg->height : scene->height;
     r->fr[0].frame = r->fr[1].frame = -1000;
     r->mv_hist = calloc((size_t)r->W * r->H * 2, sizeof(int16_t));
+    r->mv_hist_prev = calloc((size_t)r->W * r->H * 2, sizeof(int16_t));
     r->pattern = calloc(TDC_ORDERING_BITMAP_BYTES(r->W, r->H), 1);
-    if (!r->mv_hist || !r->pattern) goto nomem;
+    if (!r->mv_hist || !r->mv_hist_prev || !r->pattern) goto nomem;
     r->dev = rtcNewDevice(NULL);
     if (!r->dev) {
         snprintf(err, errlen, "tdc_render_open: rtcNewDevice failed (error %d)", (int)rtcGetDeviceError(NULL));
@@ -238,6 +239,7 @@ void tdc_render_close(tdc_render_t *r)
     if (r->dev) rtcReleaseDevice(r->dev);
     free(r->scene);
     free(r->mv_hist);
+    free(r->mv_hist_prev);
     free(r->pattern);
     free(r->rec);
     free(r);

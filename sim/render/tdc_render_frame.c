@@ -45,14 +45,15 @@ static int16_t q4(double v)
     return (int16_t)q;
 }
 
-/* 1 if any MV in the 3x3 pixel neighbourhood of (x, y) in the history is non-zero. */
+/* 1 if any MV in the 3x3 pixel neighbourhood of (x, y) in the history (as
+ * it was before this frame) is non-zero. */
 static int hist_dynamic(const tdc_render_t *r, int x, int y)
 {
     for (int j = y - 1; j <= y + 1; j++) {
         if (j < 0 || j >= r->H) continue;
         for (int i = x - 1; i <= x + 1; i++) {
             if (i < 0 || i >= r->W) continue;
-            const int16_t *m = &r->mv_hist[((size_t)j * r->W + i) * 2];
+            const int16_t *m = &r->mv_hist_prev[((size_t)j * r->W + i) * 2];
             if (m[0] || m[1]) return 1;
         }
     }
@@ -95,9 +96,13 @@ static int place_samples(job_t *jb, int tx, int ty, rsample_t *s)
                 break;
             }
             case TDC_RENDER_REDUCED:
+                /* a regular supersample grid (MSAA-like, TRM §4.3); jitter
+                 * would turn resolved detail into noise the resolve cannot
+                 * remove as well as it removes a regular pattern */
                 s[n].x = (float)((sx + 0.5) * r->W / jb->sw);
                 s[n].y = (float)((sy + 0.5) * r->H / jb->sh);
-                s[n].px = s[n].py = 0;
+                s[n].px = sx; /* random-number key only: no MV history in this mode */
+                s[n].py = sy;
                 s[n].dst = slot;
                 s[n].k = 0;
                 n++;
@@ -331,6 +336,9 @@ int tdc_render_frame(tdc_render_t *r, uint32_t frame, tdc_render_mode_t mode, co
             st.ran[TDC_STAGE_ORDERING] = 1;
         }
         tdc_jitter_offset_q4(frame, &jb.jx, &jb.jy);
+        /* pixel classes from the history before this frame: tiles update
+         * the live history while others still classify */
+        memcpy(r->mv_hist_prev, r->mv_hist, (size_t)r->W * r->H * 2 * sizeof(int16_t));
         break;
     case TDC_RENDER_REDUCED:
         ssx = ssy = r->cfg.reduced_ss;
@@ -436,6 +444,8 @@ int tdc_render_probe(tdc_render_t *r, uint32_t frame, double x, double y, tdc_re
     memset(&s, 0, sizeof s);
     s.x = (float)x;
     s.y = (float)y;
+    s.px = (int)floor(x); /* same random-number key as a frame's sample in this pixel */
+    s.py = (int)floor(y);
     tdc_r_pass_primary(&th, &s, 1);
     tdc_r_pass_shade(&th, &s, 1);
     if (r->feat.mirrors && r->cfg.max_bounces > 0) tdc_r_pass_reflect(&th, &s, 1);

@@ -52,6 +52,7 @@ struct tdc_render {
     rtop_t top[2];
     rframe_t fr[2];           /* cache of evaluated frames */
     int16_t *mv_hist;         /* W*H*2 */
+    int16_t *mv_hist_prev;    /* snapshot at the start of a subframe (pixel classes) */
     uint8_t *pattern;         /* ordering bits */
     tdc_render_ray_t *rec;    /* recorded rays (merged) */
     size_t nrec;

@@ -220,6 +220,10 @@ static void shade_direct(rthread_t *t, int obj, const double P[3], const double 
     for (int i = 0; i < 3; i++) out[i] = base[i] * e[i];
 }
 
+/* Random numbers are keyed by the pixel (not the output slot), so a pixel
+ * gets the same light samples in full frames, subframes and probes. */
+static uint32_t rng_key(const rsample_t *a) { return (uint32_t)a->py * 65536u + (uint32_t)a->px; }
+
 void tdc_r_pass_primary(rthread_t *t, rsample_t *s, int n)
 {
     const rcam_t *cam = &t->cur->cam;
@@ -249,7 +253,7 @@ void tdc_r_pass_shade(rthread_t *t, rsample_t *s, int n)
             memcpy(a->col, sc->background, sizeof a->col);
             continue;
         }
-        shade_direct(t, a->obj, a->P, a->Q, a->N, a->NQ, a->dst, a->k, 0, a, a->col);
+        shade_direct(t, a->obj, a->P, a->Q, a->N, a->NQ, rng_key(a), a->k, 0, a, a->col);
         a->mirror = t->r->cfg.max_bounces > 0 ? sc->materials[sc->objects[a->obj].material].mirror : 0;
         if (a->mirror > 0)
             for (int c = 0; c < 3; c++) a->col[c] *= 1 - a->mirror;
@@ -290,7 +294,7 @@ void tdc_r_pass_reflect(rthread_t *t, rsample_t *s, int n)
             }
             surface(t->cur, &rh, h, O, d, P, Q, N, NQ);
             double loc[3];
-            shade_direct(t, h, P, Q, N, NQ, a->dst, a->k, 4u * (uint32_t)(b + 1), NULL, loc);
+            shade_direct(t, h, P, Q, N, NQ, rng_key(a), a->k, 4u * (uint32_t)(b + 1), NULL, loc);
             double m2 = sc->materials[sc->objects[h].material].mirror;
             obj = h;
             if (m2 > 0 && b + 1 < maxb) {

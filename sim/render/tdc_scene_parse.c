@@ -368,7 +368,7 @@ static int parse_light(pctx_t *c, tdc_scene_t *s, char **tok, int n)
 
 static int parse_lightkey(pctx_t *c, tdc_scene_t *s, char **tok, int n, int *keyed)
 {
-    if (n != 6 || strcmp(tok[3], "pos")) return fail(c, "usage: lightkey NAME T pos X Y Z");
+    if (n != 7 || strcmp(tok[3], "pos")) return fail(c, "usage: lightkey NAME T pos X Y Z");
     int li = find_light(s, tok[1]);
     if (li < 0) return fail(c, "lightkey for unknown light '%s'", tok[1]);
     tdc_light_t *l = &s->lights[li];
@@ -462,7 +462,7 @@ tdc_scene_status_t tdc_scene_parse(const char *text, const char *src_name, const
         return TDC_SCENE_ERR_NOMEM;
     }
     memcpy(buf, text, len + 1);
-    int header = 0;
+    int header = 0, last_line = 0;
     char *line = buf;
     while (line && !c.failed) {
         char *nl = strchr(line, '\n');
@@ -471,6 +471,7 @@ tdc_scene_status_t tdc_scene_parse(const char *text, const char *src_name, const
         char *tok[MAX_TOKENS];
         int n = tokenize(&c, line, tok);
         if (n > 0) {
+            last_line = c.line;
             const char *k = tok[0];
             if (!header) {
                 if (strcmp(k, "tdc-scene") || n != 2 || strcmp(tok[1], "1")) fail(&c, "first line must be 'tdc-scene 1'");
@@ -513,6 +514,7 @@ tdc_scene_status_t tdc_scene_parse(const char *text, const char *src_name, const
     free(buf);
     free(okeyed);
     free(lkeyed);
+    c.line = last_line; /* end-of-file problems: name the last line */
     if (!c.failed && !header) fail(&c, "empty scene (first line must be 'tdc-scene 1')");
     if (!c.failed && s->ncamkeys == 0) fail(&c, "scene has no camera");
     if (!c.failed && s->nobjects == 0) fail(&c, "scene has no objects");
