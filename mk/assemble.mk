@@ -15,3 +15,8 @@ $(foreach t,$(ASM_TESTS),$(B)/tests/$(t)): $(B)/tests/%: $(B)/tests/%.o $(ASM_SI
 	$(CC) $(HOST_LDFLAGS) $^ -o $@ $(HOST_LIBS)
 
 GOLDEN_STAGES += assemble
+
+# Benchmark: Mpixel/s at 1920x1080 vs the memcpy-bandwidth bound (make bench).
+BENCHES += $(B)/tests/bench_assemble
+$(B)/tests/bench_assemble: $(B)/tests/bench_assemble.o $(ASM_SIM_OBJS) $(ASM_FW_OBJS)
+	$(CC) $(HOST_LDFLAGS) $^ -o $@ $(HOST_LIBS)

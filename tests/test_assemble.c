@@ -89,6 +89,18 @@ static void test_mean_exhaustive(void **state)
     assert_int_equal(tdc_asm_mean_u8(10, 5), 0);
 }
 
+static void test_sqrt_q8(void **state)
+{
+    (void)state;
+    double maxerr = 0;
+    for (uint32_t d = 0; d < (1u << 20); d++) {
+        double e = fabs((double)tdc_asm_sqrt_q8(d) - 256.0 * sqrt((double)d));
+        if (e > maxerr) maxerr = e;
+    }
+    printf("sqrt_q8: max error %.3f (Q8) over all d < 2^20\n", maxerr);
+    assert_true(maxerr <= 12.0); /* < 0.05 code value in the clamp edge */
+}
+
 /* Static scene: after 16 frames every pixel is exactly the mean (round half
  * up) of its 4 jittered samples; before, not yet; no reprojection, no clamp,
  * every frame by the in-place static path. */
@@ -469,6 +481,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_mean_exhaustive),
+        cmocka_unit_test(test_sqrt_q8),
         cmocka_unit_test(test_static_converges_in_16),
         cmocka_unit_test(test_orderings_eq4_eq5),
         cmocka_unit_test(test_diagonal_hashed),

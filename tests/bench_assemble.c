@@ -1,0 +1,161 @@
+/*
+ * bench_assemble.c - speed of tile-ordered frame assembly at 1920x1080 on
+ * one core, against the memory-bandwidth bound measured in the same run.
+ *
+ * Times are CPU time of the benchmark thread (CLOCK_THREAD_CPUTIME_ID).
+ *   Mpixel/s = output pixels / (ingest + assemble time), best of 3 runs of
+ *              FRAMES frames each.
+ *   memcpy bandwidth = bytes read + written per second by memcpy of a 64 MiB
+ *              buffer (best of 5).
+ *   bound    = bandwidth / bytes touched per output pixel (counted from the
+ *              data layout below; cache-resident scratch rows not counted).
+ *   fraction = Mpixel/s / bound.
+ *
+ * Streams: a pan (every pixel dynamic: the worst case: reprojection + clamp
+ * of 3/4 of the pixels every frame) and a static scene (the elided path).
+ * Usage: bench_assemble [frames]   (default 48)
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "ref_assemble.h"
+#include "tdc_assemble.h"
+
+#define BW 1920
+#define BH 1080
+
+static double now_s(void)
+{
+    struct timespec ts;
+    /* CPU time of this thread: the machine is shared, wall time would
+     * count other processes' turns. */
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static double memcpy_bandwidth(void)
+{
+    const size_t n = 64u << 20;
+    uint8_t *a = malloc(n), *b = malloc(n);
+    if (!a || !b) return 0;
+    memset(a, 1, n), memset(b, 2, n);
+    double best = 1e30;
+    for (int i = 0; i < 5; i++) {
+        double t0 = now_s();
+        memcpy(i & 1 ? a : b, i & 1 ? b : a, n);
+        double t = now_s() - t0;
+        if (t < best) best = t;
+    }
+    volatile uint8_t sink = a[n / 2] ^ b[n / 3];
+    (void)sink;
+    free(a), free(b);
+    return 2.0 * (double)n / best; /* read + write */
+}
+
+/*
+ * Bytes touched per output pixel per frame (steady state), from the layout
+ * of tdc_assemble.c:
+ *   ingest, per tile (= 4 px): sample in 3 + MV in 4, sample slot write 3
+ *     (the 12-byte record's line is pulled: 12), MV buffer read+write 8
+ *     -> (3 + 4 + 12 + 8) / 4 = 6.75 B/px;
+ *   dynamic frame: MV buffer read 4 (3x3 search), previous frame read 3,
+ *     new frame write 3, window byte read 1, sample records read 12 (the
+ *     newest slot of the neighbours and of new pixels sits in 12-byte
+ *     records) -> 23 B/px;  total 29.75 B/px.
+ *   static frame (elided): ingest 6.75 + per new pixel (1/4): window r/w 2,
+ *     sample record 12, output write 3 -> 6.75 + 17/4 = 11 B/px.
+ */
+#define BYTES_PX_DYNAMIC 29.75
+#define BYTES_PX_STATIC 11.0
+
+typedef struct {
+    uint8_t *samples[8];
+    int16_t *mvs[8];
+    uint8_t *bits[8];
+} stream_t;
+
+static void make_stream(stream_t *s, tdc_scene_kind_t kind, int32_t vx, int32_t vy)
+{
+    tdc_scene_t sc;
+    size_t tiles = (size_t)((BW + 1) / 2) * ((BH + 1) / 2);
+    tdc_scene_init(&sc, kind, BW, BH, vx, vy, 1);
+    for (uint32_t f = 0; f < 8; f++) {
+        s->samples[f] = malloc(tiles * 3);
+        s->mvs[f] = malloc(tiles * 4);
+        s->bits[f] = malloc((size_t)TDC_ORDERING_BITMAP_BYTES(BW, BH));
+        tdc_scene_subframe(&sc, f, s->samples[f], s->mvs[f], s->bits[f]);
+    }
+    tdc_scene_free(&sc);
+}
+
+static void free_stream(stream_t *s)
+{
+    for (int f = 0; f < 8; f++) free(s->samples[f]), free(s->mvs[f]), free(s->bits[f]);
+}
+
+/* Runs `frames` frames (subframes repeat with period 8) and returns the best
+ * seconds per frame of 3 runs; fills *stats with the last run's counters. */
+static double run(const stream_t *s, int frames, tdc_asm_stats_t *stats)
+{
+    tdc_asm_config_t cfg = {BW, BH};
+    size_t n = tdc_asm_get_size(&cfg);
+    void *arena = aligned_alloc(64, (n + 63) & ~(size_t)63);
+    tdc_asm_t st;
+    double best = 1e30;
+    for (int rep = 0; rep < 3; rep++) {
+        tdc_asm_init(&st, &cfg, arena, n);
+        /* warm-up cycle: fills the buffers (not timed) */
+        uint32_t f = 0;
+        for (; f < 8; f++) {
+            tdc_asm_ingest(&st, f, s->samples[f & 7], s->mvs[f & 7], (f & 3) == 0 ? s->bits[f & 7] : NULL);
+            tdc_asm_assemble(&st, f);
+        }
+        double t0 = now_s();
+        for (int i = 0; i < frames; i++, f++) {
+            tdc_asm_ingest(&st, f, s->samples[f & 7], s->mvs[f & 7], NULL);
+            tdc_asm_assemble(&st, f);
+        }
+        double t = (now_s() - t0) / frames;
+        if (t < best) best = t;
+    }
+    *stats = st.stats;
+    free(arena);
+    return best;
+}
+
+int main(int argc, char **argv)
+{
+    int frames = argc > 1 ? atoi(argv[1]) : 48;
+    if (frames < 4) frames = 4;
+    double bw = memcpy_bandwidth();
+    printf("bench_assemble: %dx%d, %d frames per run, best of 3; memcpy bandwidth %.2f GB/s (read+write)\n", BW, BH,
+           frames, bw / 1e9);
+    const struct {
+        const char *name;
+        tdc_scene_kind_t kind;
+        int32_t vx, vy;
+        double bytes;
+    } cases[] = {
+        {"pan (2.3,-1.3) px/frame, all dynamic", TDC_SCENE_PAN, 37, -21, BYTES_PX_DYNAMIC},
+        {"static scene (elided path)", TDC_SCENE_STATIC, 0, 0, BYTES_PX_STATIC},
+    };
+    for (size_t i = 0; i < sizeof(cases) / sizeof(cases[0]); i++) {
+        stream_t s;
+        tdc_asm_stats_t stats;
+        make_stream(&s, cases[i].kind, cases[i].vx, cases[i].vy);
+        double t = run(&s, frames, &stats);
+        double mpx = (double)BW * BH / t / 1e6;
+        double bound = bw / cases[i].bytes / 1e6;
+        printf("  %-38s %7.2f ms/frame  %8.1f Mpixel/s  (%5.1f fps; 240 Hz needs %.0f Mpixel/s)  "
+               "bound %.1f B/px -> %.0f Mpixel/s  fraction %.1f %%\n",
+               cases[i].name, t * 1e3, mpx, 1.0 / t, 240.0 * BW * BH / 1e6, cases[i].bytes, bound,
+               100.0 * mpx / bound);
+        printf("  %-38s counters (last run): reprojected %llu clamp boxes %llu static frames %u static rows %llu\n", "",
+               (unsigned long long)stats.reprojected, (unsigned long long)stats.clamp_boxes, stats.static_frames,
+               (unsigned long long)stats.static_rows);
+        free_stream(&s);
+    }
+    return 0;
+}
