@@ -93,6 +93,9 @@ size_t tdc_trm_get_size(const tdc_trm_config_t *cfg)
     if (!trm_config_valid(cfg)) {
         return 0;
     }
+    if (cfg->r_num == cfg->r_den || !cfg->reduced_in_stream) {
+        return 8u; /* pass-through keeps no state: a stream of full frames needs no arena */
+    }
     trm_layout_t l;
     trm_layout(cfg, trm_reduced_dim(cfg->width, cfg->r_num, cfg->r_den),
                trm_reduced_dim(cfg->height, cfg->r_num, cfg->r_den), trm_taps(cfg->sigma_q8), &l);
@@ -204,6 +207,16 @@ tdc_status_t tdc_trm_init(tdc_trm_t *st, const tdc_trm_config_t *cfg, const tdc_
     st->dtaps = trm_taps(cfg->sigma_q8);
     st->passthrough = (uint8_t)!reduces;
     st->have_full = 0;
+    st->stats = (tdc_trm_stats_t){0};
+    if (st->passthrough) {
+        st->residual = NULL;
+        st->dprev = st->rscratch = st->ring = NULL;
+        st->urow = NULL;
+        st->dx_first = st->dy_first = NULL;
+        st->dx_w = st->dy_w = st->ux_i = st->ux_f = st->uy_i = st->uy_f = NULL;
+        st->wexp = NULL;
+        return TDC_OK;
+    }
     trm_layout_t l;
     trm_layout(cfg, st->rw, st->rh, st->dtaps, &l);
     uint8_t *base = (uint8_t *)mem + ((8u - ((uintptr_t)mem & 7u)) & 7u);
@@ -237,9 +250,11 @@ tdc_status_t tdc_trm_init(tdc_trm_t *st, const tdc_trm_config_t *cfg, const tdc_
 
 void tdc_trm_reset(tdc_trm_t *st)
 {
-    size_t n = (size_t)st->cfg.width * st->cfg.height * 3u;
-    for (size_t i = 0; i < n; i++) {
-        st->residual[i] = 0;
+    if (st->residual) {
+        size_t n = (size_t)st->cfg.width * st->cfg.height * 3u;
+        for (size_t i = 0; i < n; i++) {
+            st->residual[i] = 0;
+        }
     }
     st->have_full = 0;
 }
@@ -592,6 +607,9 @@ tdc_status_t tdc_trm_downsample(tdc_trm_t *st, const uint8_t *in, uint32_t in_st
 {
     if (!st || !in || !out || in_stride < 3u * st->cfg.width || out_stride < 3u * st->rw) {
         return TDC_ERR_ARG;
+    }
+    if (st->passthrough) {
+        return TDC_ERR_STATE; /* no reduced frames in this configuration */
     }
     trm_apply_d(st, in, in_stride, st->rscratch);
     const uint32_t rw3 = 3u * st->rw;

@@ -104,7 +104,8 @@ typedef struct {
 } tdc_trm_t;
 
 /* Validates cfg (ratio, sigma, sizes) and returns the arena size in bytes,
- * or 0 when cfg is invalid. */
+ * or 0 when cfg is invalid.  Pass-through (r = 1 or no reduced frames in
+ * the stream) keeps no state and needs only 8 bytes. */
 size_t tdc_trm_get_size(const tdc_trm_config_t *cfg);
 
 /* Default configuration: r = 1/2, sigma 2.5 px, s = 10, 90 Hz minimum. */
