@@ -165,7 +165,7 @@ typedef struct {
 
 /* Compile-time arena bound for a W x H eye (full-precision buffers). */
 #define TDC_LCD_MEM_BYTES(W, H)                                                                 \
-    (2u * TDC_LCD_PACKED_BYTES((size_t)(W) * (H) * 3u, 8u) + 3u * 256u * 4u + 16u)
+    (2u * (TDC_LCD_PACKED_BYTES((size_t)(W) * (H) * 3u, 8u) + 3u) + 3u * 256u * 4u + 16u)
 
 /* Arena bytes for cfg (0 when cfg is invalid). */
 size_t tdc_lcd_get_size(const tdc_lcd_config_t *cfg);

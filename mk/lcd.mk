@@ -5,7 +5,7 @@
 # (FW_SRCS); board builds for OLED panels leave them out (mk/boards.mk).
 FW_LCD_SRCS := firmware/tdc_lcd.c firmware/tdc_overdrive.c
 FW_SRCS += $(FW_LCD_SRCS)
-SIM_SRCS += sim/lcd/tdc_lcdsim.c
+SIM_SRCS += sim/lcd/tdc_lcdsim.c sim/lcd/tdc_lcd_ref.c
 
 # The overdrive tables are generated from the double-precision model.
 $(TABLEGEN): sim/lcd/tdc_lcd_model.h firmware/tdc_lcd.h
@@ -46,3 +46,4 @@ report-lcd: $(B)/tests/bench_lcd_report
 # Tests.
 TESTS += $(B)/tests/test_lcd_solve
 TESTS += $(B)/tests/test_lcd_sim
+TESTS += $(B)/tests/test_lcd_stage
