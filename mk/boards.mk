@@ -25,7 +25,7 @@ ARM_BOARDS := $(filter-out host,$(BOARDS))
 # Emulated boards: those whose board.mk names a QEMU machine.
 QEMU_BOARDS := $(sort $(patsubst boards/%/board.mk,%,$(shell grep -l '^BOARD_QEMU' boards/*/board.mk)))
 
-.PHONY: test-arm size bench-arm arm-golden arm-golden-check arm-image-check arm-fit-check
+.PHONY: test-arm size bench-arm arm-golden arm-golden-check arm-image-check arm-fit-check arm-fw-check
 
 .SECONDEXPANSION:
 
@@ -39,7 +39,6 @@ ifneq ($(BOARD),host)
 # it would be silent VFP instructions).
 # ---------------------------------------------------------------------------
 BA := $(BUILD)/arm-$(BOARD)
-BP := $(BUILD)/$(BOARD)-$(PANEL)
 PANEL_TYPE := $(shell awk '$$1 == "type" { print $$2 }' boards/panels/$(PANEL).panel)
 
 ARM_CFLAGS := $(BOARD_CPU) $(ARM_OPT) -g -ffunction-sections -fdata-sections -fno-common \
@@ -88,7 +87,7 @@ $(BA)/libtdcfw.a: $$(ARM_FW_OBJS)
 # Link an image; a region overflow becomes the memory-fit verdict ($(1) names
 # what was linked).
 ARM_LINK = $(ARM_CC) $(ARM_LDFLAGS) -Wl,-Map=$(basename $@).map $(filter %.o %.a,$^) $(ARM_LIBS) -o $@ \
-           2> $@.log || { cat $@.log; tests/arm/fit_report.sh "$(BOARD)" "$(1)" $@.log; rm -f $@; exit 1; }; \
+           2> $@.log || { cat $@.log; tests/arm/fit_report.sh "$(BOARD)" "$(1)" $@.log $(ARM_NM) $(filter %.o,$^); rm -f $@; exit 1; }; \
            cat $@.log; rm -f $@.log
 
 # ---------------------------------------------------------------------------
@@ -103,6 +102,14 @@ $(BA)/tdc_golden.elf: $$(ARM_GOLDEN_OBJS) $(BA)/libtdcfw.a $(ARM_LDDEPS)
 	$(call ARM_LINK,the golden-vector runner)
 $(BA)/tdc_harness.elf: $$(ARM_HARNESS_OBJS) $(ARM_LDDEPS)
 	$(call ARM_LINK,the harness self-test)
+
+# An image that breaks the rules on purpose: the image check must catch it.
+ARM_BAD_OBJS = $(patsubst %.c,$(BA)/%.o,$(ARM_BOARD_SRCS) tests/arm/bad_rules.c)
+$(BA)/bad_rules.elf: $$(ARM_BAD_OBJS) $(ARM_LDDEPS)
+	$(ARM_CC) $(ARM_LDFLAGS) --specs=nosys.specs -Wl,--defsym=end=__ext_end $(filter %.o,$^) $(ARM_LIBS) -o $@
+$(BA)/image-rules-selftest: $(BA)/bad_rules.elf tests/arm/test_image_rules.sh
+	@printf '#!/bin/sh\nexec tests/arm/test_image_rules.sh %s %s\n' "$(ARM_NM)" "$<" > $@
+	@chmod +x $@
 
 arm-golden: $(BA)/tdc_golden.elf $(if $(BOARD_QEMU),$(BA)/tdc_harness.elf)
 
@@ -119,16 +126,136 @@ $(BA)/harness-check: $(BA)/tdc_harness.elf tests/arm/test_harness.sh
 arm-golden-check: $(BA)/golden-check $(BA)/harness-check
 	@tests/run_tests.sh "arm-$(BOARD)" $(BA)/harness-check $(BA)/golden-check
 
--include $(shell find $(BA) -name '*.d' 2>/dev/null)
-endif
+# ---------------------------------------------------------------------------
+# Firmware image of a board/panel pair: the frame loop (firmware/board/
+# tdc_main.c) over the firmware sources, compiled with the panel's config
+# header.  STAGES picks the pipeline stages (default: the board's
+# BOARD_STAGES, else all); the LCD inverse only on LCD panels, and its
+# sources ($(FW_LCD_SRCS)) are left out of every other build.
+# ---------------------------------------------------------------------------
+ALL_STAGES := trm assemble lcd
+STAGES_DEFAULT := $(if $(filter undefined,$(origin BOARD_STAGES)),$(ALL_STAGES),$(BOARD_STAGES))
+STAGES ?= $(STAGES_DEFAULT)
+# The image of a pair: build/<board>-<panel>, or build/<board>-<panel>-<stages>
+# when STAGES differs from the board's default (e.g. -link for STAGES=).
+space := $(eval) $(eval)
+STAGES_TAG := $(or $(subst $(space),+,$(sort $(STAGES))),link)
+BP := $(BUILD)/$(BOARD)-$(PANEL)$(if $(filter-out $(sort $(STAGES)),$(sort $(STAGES_DEFAULT)))$(filter-out $(sort $(STAGES_DEFAULT)),$(sort $(STAGES))),-$(STAGES_TAG))
+FW_LCD_ON := $(if $(and $(filter lcd,$(PANEL_TYPE)),$(filter lcd,$(STAGES))),1,0)
+FW_CFG := -DTDC_CFG_TRM=$(if $(filter trm,$(STAGES)),1,0) -DTDC_CFG_ASSEMBLE=$(if $(filter assemble,$(STAGES)),1,0) \
+          -DTDC_CFG_LCD=$(FW_LCD_ON)
+PANEL_CONFIG := $(GEN)/tdc_panel_$(PANEL)_config.h
+ARM_IMG_CFLAGS := $(ARM_FW_CFLAGS) -include $(PANEL_CONFIG) $(FW_CFG)
+FW_IMG_SRCS = $(filter-out $(if $(filter 1,$(FW_LCD_ON)),,$(FW_LCD_SRCS)),$(FW_SRCS)) \
+              $(BOARD_SRCS) firmware/board/tdc_crt0.c firmware/board/tdc_main.c
+FW_IMG_OBJS = $(patsubst %.c,$(BP)/%.o,$(FW_IMG_SRCS)) $(BP)/gen/tdc_panel_$(PANEL).o
+
+# The stage selection is part of the objects: rebuild when it changes.
+$(BP)/stages: FORCE
+	@mkdir -p $(@D); echo '$(FW_CFG)' | cmp -s - $@ || echo '$(FW_CFG)' > $@
+$(BP)/%.o: %.c $(GEN)/tdc_panels.h $(PANEL_CONFIG) $(BP)/stages
+	@mkdir -p $(@D)
+	$(ARM_CC) $(ARM_IMG_CFLAGS) -MMD -MP -c $< -o $@
+$(BP)/gen/%.o: $(GEN)/%.c $(BP)/stages
+	@mkdir -p $(@D)
+	$(ARM_CC) $(ARM_IMG_CFLAGS) -c $< -o $@
+
+$(BP)/tdc-firmware.elf: $$(FW_IMG_OBJS) $(ARM_LDDEPS)
+	$(call ARM_LINK,panel $(PANEL) (stages: $(or $(strip $(STAGES)),link only)))
+	@$(ARM_OBJCOPY) -O binary $@ $(BP)/tdc-firmware.bin
+	@echo "firmware: $@ ($(BOARD), panel $(PANEL), stages: $(or $(strip $(STAGES)),link only))"
+	@$(ARM_SIZE) $@
+
+firmware: $(BP)/tdc-firmware.elf
+
+# Firmware rules on the linked image (not just the objects).
+$(BP)/check-image-rules: $(BP)/tdc-firmware.elf tests/arm/check_image_symbols.sh
+	@printf '#!/bin/sh\nexec tests/arm/check_image_symbols.sh %s %s\n' "$(ARM_NM)" "$<" > $@
+	@chmod +x $@
+arm-image-check: $(BP)/check-image-rules
+	@tests/run_tests.sh "$(BOARD)-$(PANEL)" $(BP)/check-image-rules
 
 # ---------------------------------------------------------------------------
-# make test-arm: every emulated board runs the golden vectors in QEMU.
-# A build failure counts as a FAIL line too, so it cannot go unnoticed.
+# End-to-end: the frame loop in QEMU against the same loop built for the
+# host (tests/arm/tdc_board_host.c), on streams from tests/arm/fw_stream.c.
 # ---------------------------------------------------------------------------
+PANEL_DIMS := $(shell awk '$$1 == "width" { w = $$2 } $$1 == "height" { h = $$2 } $$1 == "eyes" { e = $$2 } \
+                END { print w, h, (e ? e : 1) }' boards/panels/$(PANEL).panel)
+FW_MODES := plain $(if $(filter trm,$(STAGES)),trm) $(if $(filter assemble,$(STAGES)),subframes)
+FW_FRAMES_plain := 3
+FW_FRAMES_trm := 4
+FW_FRAMES_subframes := 6
+FWH := $(B)/fw-host/$(PANEL)-$(STAGES_TAG)
+STREAMS := $(BUILD)/fw-streams
+
+$(FWH)/tdc_main.o: firmware/board/tdc_main.c $(GEN)/tdc_panels.h $(PANEL_CONFIG)
+	@mkdir -p $(@D)
+	$(CC) $(FW_CFLAGS) -Ifirmware/board -include $(PANEL_CONFIG) $(FW_CFG) -DTDC_FW_NO_MAIN -c $< -o $@
+$(FWH)/tdc_board_host.o: tests/arm/tdc_board_host.c firmware/board/tdc_board.h
+	@mkdir -p $(@D)
+	$(CC) $(HOST_CFLAGS) -Ifirmware/board -c $< -o $@
+$(FWH)/tdc_fw_host: $(FWH)/tdc_main.o $(FWH)/tdc_board_host.o $(FWLIB)
+	$(CC) $(HOST_LDFLAGS) $^ -o $@ $(HOST_LIBS)
+
+$(B)/tests/arm/fw_stream.o: tests/arm/fw_stream.c $(GEN)/tdc_panels.h
+	@mkdir -p $(@D)
+	$(CC) $(HOST_CFLAGS) -Isim/link -Itests/golden -c $< -o $@
+$(B)/tests/fw_stream: $(B)/tests/arm/fw_stream.o $(B)/tests/golden/tdc_content.o $(SIMLIB) $(FWLIB)
+	$(CC) $(HOST_LDFLAGS) $^ -o $@ $(HOST_LIBS)
+
+$(STREAMS)/$(PANEL)-%.tdcs: $(B)/tests/fw_stream
+	@mkdir -p $(@D)
+	$(B)/tests/fw_stream $* $(PANEL_DIMS) $(FW_FRAMES_$*) $@
+
+$(BP)/fw-check: $(BP)/tdc-firmware.elf $(FWH)/tdc_fw_host $(foreach m,$(FW_MODES),$(STREAMS)/$(PANEL)-$(m).tdcs) \
+                tests/arm/run_fw_qemu.sh
+	@{ echo '#!/bin/sh'; echo 'rc=0'; \
+	   $(foreach m,$(FW_MODES),echo 'tests/arm/run_fw_qemu.sh "$(BOARD)/$(PANEL)/$(m)" $(QEMU_TIMEOUT) $(BP)/tdc-firmware.elf $(FWH)/tdc_fw_host $(STREAMS)/$(PANEL)-$(m).tdcs $(BOARD_QEMU) || rc=1';) \
+	   echo 'exit $$rc'; } > $@
+	@chmod +x $@
+arm-fw-check: $(BP)/fw-check
+	@tests/run_tests.sh "$(BOARD)-$(PANEL)" $(BP)/fw-check
+
+-include $(shell find $(BA) $(BP) -name '*.d' 2>/dev/null)
+endif
+
+.PHONY: FORCE
+FORCE:
+
+# ---------------------------------------------------------------------------
+# make test-arm (part of make test): on every emulated board the golden
+# vectors and the harness self-test in QEMU; the firmware images of the
+# pairs below built, checked for float/heap symbols, and (emulated boards)
+# run end to end against the host build of the frame loop; the image check
+# and the memory-fit check each shown to fail when they must.  A build
+# failure is recorded as a FAIL line too.
+#   ARM_TEST_PAIRS: board:panel:stages ("default" = the board's default
+#   stages, "link" = STAGES= : link decode and panel output only)
+#   ARM_FIT_FAIL: board:panel:stages:region pairs that must not fit
+# ---------------------------------------------------------------------------
+ARM_TEST_PAIRS ?= mps2-an500:htc-vive:link mps3-an547:htc-vive:default stm32h747i-disco:htc-vive:default
+ARM_FIT_FAIL ?= mps2-an500:htc-vive:default:PSRAM stm32h747i-disco:htc-vive:trm:SDRAM
+ARM_FAIL_LINE = echo "[$(1)] FAIL $(2)"; echo "$(1) $(2) FAIL" >> "$(RESULTS)"
+
 test-arm:
 	@for b in $(QEMU_BOARDS); do \
-	    if $(MAKE) --no-print-directory -j2 BOARD=$$b arm-golden; then \
-	        $(MAKE) --no-print-directory BOARD=$$b arm-golden-check; \
-	    else echo "[arm-$$b] FAIL golden runner build"; echo "arm-$$b golden-build FAIL" >> "$(RESULTS)"; fi; \
+	    if $(MAKE) --no-print-directory -j2 BOARD=$$b arm-golden $(BUILD)/arm-$$b/image-rules-selftest; then \
+	        $(MAKE) --no-print-directory BOARD=$$b arm-golden-check || :; \
+	    else $(call ARM_FAIL_LINE,arm-$$b,golden-build); fi; \
+	done
+	@tests/run_tests.sh arm-$(firstword $(QEMU_BOARDS)) $(BUILD)/arm-$(firstword $(QEMU_BOARDS))/image-rules-selftest || :
+	@for t in $(ARM_TEST_PAIRS); do \
+	    b=$${t%%:*}; r=$${t#*:}; p=$${r%%:*}; s=$${r#*:}; \
+	    case $$s in default) set -- ;; link) set -- 'STAGES=' ;; *) set -- "STAGES=$$(echo $$s | tr + ' ')" ;; esac; \
+	    if $(MAKE) --no-print-directory -j2 BOARD=$$b PANEL=$$p "$$@" firmware >/dev/null 2>$(BUILD)/.fwlog-$$b || \
+	       { cat $(BUILD)/.fwlog-$$b; false; }; then \
+	        $(MAKE) --no-print-directory BOARD=$$b PANEL=$$p "$$@" arm-image-check || :; \
+	        if grep -q '^BOARD_QEMU' boards/$$b/board.mk; then \
+	            $(MAKE) --no-print-directory -j2 BOARD=$$b PANEL=$$p "$$@" arm-fw-check || :; fi; \
+	    else $(call ARM_FAIL_LINE,$$b-$$p,firmware-build); fi; \
+	done
+	@for t in $(ARM_FIT_FAIL); do \
+	    b=$${t%%:*}; r=$${t#*:}; p=$${r%%:*}; r=$${r#*:}; s=$${r%%:*}; g=$${r#*:}; \
+	    printf '#!/bin/sh\nexec tests/arm/test_fit.sh %s %s %s %s\n' $$b $$p $$s $$g > $(BUILD)/fit-$$b-$$p; \
+	    chmod +x $(BUILD)/fit-$$b-$$p; MAKE="$(MAKE)" tests/run_tests.sh "fit-$$b" $(BUILD)/fit-$$b-$$p || :; \
 	done

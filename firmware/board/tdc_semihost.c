@@ -9,7 +9,9 @@
 
 enum {
     SYS_OPEN = 0x01,
+    SYS_CLOSE = 0x02,
     SYS_WRITE = 0x05,
+    SYS_READ = 0x06,
     SYS_CLOCK = 0x10,
     SYS_GET_CMDLINE = 0x15,
     SYS_EXIT_EXTENDED = 0x20
@@ -65,6 +67,25 @@ void tdc_semihost_puts(int fd, const char *s)
 uint32_t tdc_semihost_clock_cs(void)
 {
     return semihost_call(SYS_CLOCK, NULL);
+}
+
+int32_t tdc_semihost_open_read(const char *path)
+{
+    uint32_t args[3] = {(uint32_t)(uintptr_t)path, 1u /* "rb" */, str_len(path)};
+    return (int32_t)semihost_call(SYS_OPEN, args);
+}
+
+int32_t tdc_semihost_read(int32_t handle, void *buf, uint32_t n)
+{
+    uint32_t args[3] = {(uint32_t)handle, (uint32_t)(uintptr_t)buf, n};
+    const uint32_t not_read = semihost_call(SYS_READ, args); /* bytes NOT read */
+    return not_read > n ? -1 : (int32_t)(n - not_read);
+}
+
+void tdc_semihost_close(int32_t handle)
+{
+    uint32_t args[1] = {(uint32_t)handle};
+    (void)semihost_call(SYS_CLOSE, args);
 }
 
 int tdc_semihost_cmdline(char *buf, uint32_t size)

@@ -25,6 +25,15 @@ uint32_t tdc_semihost_clock_cs(void);
  * terminated); returns its length, or -1 when there is none. */
 int tdc_semihost_cmdline(char *buf, uint32_t size);
 
+/* Host files (target=native): opens path for binary reading; returns a
+ * handle >= 0, or -1. */
+int32_t tdc_semihost_open_read(const char *path);
+
+/* Reads up to n bytes; returns the number read (0 at end of file), -1 on error. */
+int32_t tdc_semihost_read(int32_t handle, void *buf, uint32_t n);
+
+void tdc_semihost_close(int32_t handle);
+
 /* Ends the emulation with exit status `code` (SYS_EXIT_EXTENDED, so the
  * status reaches the shell: a failing run fails the test). */
 _Noreturn void tdc_semihost_exit(uint32_t code);

@@ -1,0 +1,516 @@
+/*
+ * tdc_main.c - the controller's frame loop (DESIGN §1):
+ *
+ *   transport bytes -> link decoder -> tile assembly | TRM -> LCD inverse -> panel
+ *
+ * One build per board/panel pair: every size comes from the panel's config
+ * header (-include build/gen/tdc_panel_<panel>_config.h) and the enabled
+ * stages (TDC_CFG_TRM, TDC_CFG_ASSEMBLE, TDC_CFG_LCD, set by `make STAGES=`),
+ * so every buffer is a static object and a pair that does not fit its board
+ * fails at link time (see mk/boards.mk, docs/boards.md).
+ *
+ * Buffers (all eyes; W x H per eye, E eyes):
+ *   frame buffer   E*W*H*3   RGB888 drive codes, eyes side by side; FULL
+ *                            packets are unpacked straight into it and TRM
+ *                            and the LCD inverse work on it in place
+ *   link staging   TDC_LINK_STAGING_BYTES(W, H)   one payload, checked
+ *                            before anything is unpacked
+ *   reduced        E * reduced frame (TRM, r <= TDC_CFG_R_NUM/TDC_CFG_R_DEN)
+ *   subframe, sample motion, pattern bits   per eye (assembly)
+ *   mode arena     per eye max(TRM arena, assembly arena): a stream uses
+ *                  TRM (reduced frames) or assembly (subframes), not both
+ *   LCD arena      per eye (LCD panels only)
+ *
+ * A frame is shown when every eye has what its mode needs (TRM: the FULL or
+ * REDUCED packet due; plain: FULL; assembly: SUBFRAME and, if the stream
+ * sends them, its sample motion vectors), or when a packet of a later frame
+ * arrives (then eyes are processed with what arrived, or keep their last
+ * frame).  Rejected packets never touch the frame buffer (tdc_link.h).
+ */
+#include "tdc_board.h"
+#include "tdc_link.h"
+#include "tdc_panel.h"
+
+#ifndef TDC_PANEL_WIDTH
+#error "the frame loop is built per panel: compile with -include tdc_panel_<panel>_config.h"
+#endif
+#ifndef TDC_CFG_TRM
+#define TDC_CFG_TRM 0
+#endif
+#ifndef TDC_CFG_ASSEMBLE
+#define TDC_CFG_ASSEMBLE 0
+#endif
+#ifndef TDC_CFG_LCD
+#define TDC_CFG_LCD 0
+#endif
+#if TDC_CFG_LCD && !TDC_PANEL_IS_LCD
+#error "TDC_CFG_LCD on an OLED panel: the LCD inverse is compiled out of OLED builds"
+#endif
+#if TDC_CFG_TRM
+#include "tdc_trm.h"
+#endif
+#if TDC_CFG_ASSEMBLE
+#include "tdc_assemble.h"
+#endif
+#if TDC_CFG_LCD
+#include "tdc_lcd.h"
+#ifndef TDC_CFG_LCD_MODE
+#define TDC_CFG_LCD_MODE TDC_LCD_MODE_EXACT
+#endif
+#endif
+
+/* Largest TRM ratio r this build accepts (buffers are sized for it). */
+#ifndef TDC_CFG_R_NUM
+#define TDC_CFG_R_NUM 1
+#define TDC_CFG_R_DEN 2
+#endif
+
+#define FW_W ((uint32_t)TDC_PANEL_WIDTH)
+#define FW_H ((uint32_t)TDC_PANEL_HEIGHT)
+#define FW_EYES ((uint32_t)TDC_PANEL_EYES)
+#define FW_STRIDE (FW_EYES * FW_W * 3u)
+#define FW_ALIGN8(n) ((((size_t)(n)) + 7u) & ~(size_t)7u)
+
+extern const tdc_panel_t TDC_PANEL_SYMBOL;
+
+/* ---- static buffers (sizes from the panel and the stages) ---- */
+static uint8_t g_fb[(size_t)FW_STRIDE * FW_H] TDC_EXTRAM;
+static uint8_t g_staging[TDC_LINK_STAGING_BYTES(FW_W, FW_H)] TDC_EXTRAM;
+
+#if TDC_CFG_TRM
+#define FW_RW TDC_LINK_REDUCED_DIM(FW_W, TDC_CFG_R_NUM, TDC_CFG_R_DEN)
+#define FW_RH TDC_LINK_REDUCED_DIM(FW_H, TDC_CFG_R_NUM, TDC_CFG_R_DEN)
+static uint8_t g_reduced[FW_EYES][(size_t)FW_RW * FW_RH * 3u] TDC_EXTRAM;
+#define FW_TRM_BYTES FW_ALIGN8(TDC_TRM_MEM_BYTES(FW_W, FW_H, TDC_CFG_R_NUM, TDC_CFG_R_DEN))
+#else
+#define FW_TRM_BYTES ((size_t)0)
+#endif
+
+#if TDC_CFG_ASSEMBLE
+static uint8_t g_subframe[FW_EYES][TDC_LINK_SUBFRAME_BYTES(FW_W, FW_H)] TDC_EXTRAM;
+static int16_t g_sample_mv[FW_EYES][TDC_LINK_SAMPLE_MOTION_COUNT(FW_W, FW_H)] TDC_EXTRAM;
+static uint8_t g_pattern[FW_EYES][TDC_LINK_PATTERN_BYTES(FW_W, FW_H)] TDC_EXTRAM;
+#define FW_ASM_BYTES FW_ALIGN8(TDC_ASM_MEM_BYTES(FW_W, FW_H))
+#else
+#define FW_ASM_BYTES ((size_t)0)
+#endif
+
+#define FW_MODE_BYTES (FW_TRM_BYTES > FW_ASM_BYTES ? FW_TRM_BYTES : FW_ASM_BYTES)
+#if TDC_CFG_TRM || TDC_CFG_ASSEMBLE
+static uint64_t g_mode_arena[FW_EYES][FW_MODE_BYTES / 8u] TDC_EXTRAM;
+#endif
+
+#if TDC_CFG_LCD
+static uint32_t g_lcd_arena[FW_EYES][(TDC_LCD_MEM_BYTES(FW_W, FW_H) + 3u) / 4u] TDC_EXTRAM;
+#endif
+
+/* Transport chunk: what one USB bulk transfer (or semihosting read) brings. */
+static uint8_t g_rx[16384];
+
+/* ---- loop state ---- */
+typedef enum { MODE_NONE = 0, MODE_PLAIN, MODE_TRM, MODE_ASSEMBLE } fw_mode_t;
+
+#define KIND_BIT(k) (1u << (k))
+
+static struct {
+    tdc_link_decoder_t dec;
+    uint8_t mode;             /* fw_mode_t of the active stream */
+    uint8_t have_frame;       /* a frame is being collected */
+    uint8_t eyes_done;        /* bit e: eye e processed (or tried) for `frame` */
+    uint8_t eyes_updated;     /* bit e: eye e's image changed for `frame` */
+    uint8_t kinds[2];         /* KIND_BIT()s received per eye for `frame` */
+    uint32_t frame;
+    uint32_t frames_shown;
+    uint32_t eyes_incomplete; /* eyes that kept their last frame */
+    uint32_t stage_errors;    /* a stage refused a frame (status != TDC_OK) */
+    uint32_t unsupported;     /* streams this build cannot run */
+#if TDC_CFG_TRM
+    tdc_trm_t trm[FW_EYES];
+#endif
+#if TDC_CFG_ASSEMBLE
+    tdc_asm_t as[FW_EYES];
+    uint32_t asm_skipped;     /* frames too far ahead to catch up with */
+#endif
+#if TDC_CFG_LCD
+    tdc_lcd_t lcd[FW_EYES];
+    uint8_t lcd_ok;
+#endif
+} g;
+
+/* ---- small text helpers for the log (no printf in firmware) ---- */
+static char *put_str(char *o, const char *end, const char *s)
+{
+    while (*s && o < end) {
+        *o++ = *s++;
+    }
+    return o;
+}
+
+static char *put_u32(char *o, const char *end, uint32_t v)
+{
+    char d[10];
+    int n = 0;
+    do {
+        d[n++] = (char)('0' + v % 10u);
+        v /= 10u;
+    } while (v);
+    while (n && o < end) {
+        *o++ = d[--n];
+    }
+    return o;
+}
+
+static void log_kv(const char *what, uint32_t v)
+{
+    char line[96];
+    char *end = line + sizeof line - 1;
+    char *o = put_str(line, end, what);
+    o = put_u32(o, end, v);
+    *o = 0;
+    tdc_board_log(line);
+}
+
+static const char *reset_name(tdc_reset_cause_t c)
+{
+    static const char *const names[] = {"unknown", "power-on", "pin", "software", "watchdog", "brown-out", "low-power"};
+    return (unsigned)c < sizeof names / sizeof names[0] ? names[c] : "unknown";
+}
+
+/* ---- stream configuration ---- */
+static void configure_stream(void)
+{
+    const tdc_link_stream_info_t *si = tdc_link_stream(&g.dec);
+    const tdc_panel_t *panel = &TDC_PANEL_SYMBOL;
+    (void)panel;
+    g.mode = MODE_NONE;
+    g.have_frame = 0;
+    if (!si) {
+        return;
+    }
+    const int reduced = (si->flags & TDC_LINK_STREAM_REDUCED) != 0;
+    const int subframes = (si->flags & TDC_LINK_STREAM_SUBFRAMES) != 0;
+    if (reduced && subframes) {
+        tdc_board_log("stream uses TRM and tile assembly together: not supported by this build");
+        g.unsupported++;
+        return;
+    }
+    if (reduced) {
+#if TDC_CFG_TRM
+        for (uint32_t e = 0; e < FW_EYES; e++) {
+            tdc_trm_config_t cfg;
+            tdc_trm_default_config(&cfg, (uint16_t)FW_W, (uint16_t)FW_H, si->refresh_hz);
+            cfg.r_num = si->r_num;
+            cfg.r_den = si->r_den;
+            cfg.reduced_in_stream = 1;
+            const size_t need = tdc_trm_get_size(&cfg);
+            if (need == 0 || need > sizeof g_mode_arena[e] ||
+                tdc_trm_init(&g.trm[e], &cfg, panel, g_mode_arena[e], sizeof g_mode_arena[e]) != TDC_OK) {
+                tdc_board_log("TRM refused the stream (ratio, refresh or size): frames keep the last image");
+                g.unsupported++;
+                return;
+            }
+        }
+        g.mode = MODE_TRM;
+#endif
+    } else if (subframes) {
+#if TDC_CFG_ASSEMBLE
+        for (uint32_t e = 0; e < FW_EYES; e++) {
+            const tdc_asm_config_t cfg = {(uint16_t)FW_W, (uint16_t)FW_H};
+            const size_t need = tdc_asm_get_size(&cfg);
+            if (need == 0 || need > sizeof g_mode_arena[e] ||
+                tdc_asm_init(&g.as[e], &cfg, g_mode_arena[e], sizeof g_mode_arena[e]) != TDC_OK) {
+                tdc_board_log("tile assembly refused the stream (size)");
+                g.unsupported++;
+                return;
+            }
+        }
+        g.mode = MODE_ASSEMBLE;
+#endif
+    } else {
+        g.mode = MODE_PLAIN;
+    }
+#if TDC_CFG_LCD
+    /* The overdrive model is per refresh rate: the stream's if the panel
+     * has it, else the panel's nominal one. */
+    uint16_t hz = panel->refresh_hz;
+    for (unsigned i = 0; i < TDC_PANEL_MAX_RATES && panel->rates_hz[i]; i++) {
+        if (panel->rates_hz[i] == si->refresh_hz) {
+            hz = si->refresh_hz;
+        }
+    }
+    g.lcd_ok = 1;
+    for (uint32_t e = 0; e < FW_EYES; e++) {
+        const tdc_lcd_config_t cfg = {(uint16_t)FW_W, (uint16_t)FW_H, hz, TDC_CFG_LCD_MODE, 8u};
+        if (tdc_lcd_init(&g.lcd[e], &cfg, panel, g_lcd_arena[e], sizeof g_lcd_arena[e]) != TDC_OK) {
+            tdc_board_log("LCD inverse refused the panel profile: drive = wanted code");
+            g.lcd_ok = 0;
+        }
+    }
+#endif
+}
+
+/* ---- per-eye pipeline ---- */
+static uint32_t kinds_needed(uint32_t eye, uint32_t frame)
+{
+    switch (g.mode) {
+    case MODE_TRM:
+        return KIND_BIT(tdc_link_trm_kind(frame, eye));
+    case MODE_ASSEMBLE: {
+        const tdc_link_stream_info_t *si = tdc_link_stream(&g.dec);
+        return KIND_BIT(TDC_LINK_KIND_SUBFRAME) |
+               ((si && (si->flags & TDC_LINK_STREAM_SAMPLE_MV)) ? KIND_BIT(TDC_LINK_KIND_MOTION) : 0u);
+    }
+    case MODE_PLAIN:
+        return KIND_BIT(TDC_LINK_KIND_FULL);
+    default:
+        return 0u;
+    }
+}
+
+#if TDC_CFG_ASSEMBLE
+/* Assembly runs frames in order; frames without a subframe are assembled
+ * from history (up to 64 behind, beyond that the frame is skipped). */
+static int assemble_eye(uint32_t e, uint32_t frame, uint32_t kinds)
+{
+    tdc_asm_t *st = &g.as[e];
+    if (frame < st->next_frame || frame - st->next_frame > 64u) {
+        g.asm_skipped++;
+        return 0;
+    }
+    while (st->next_frame < frame) {
+        if (tdc_asm_assemble(st, st->next_frame) != TDC_OK) {
+            return 0;
+        }
+    }
+    if (kinds & KIND_BIT(TDC_LINK_KIND_SUBFRAME)) {
+        const int16_t *mv = (kinds & KIND_BIT(TDC_LINK_KIND_MOTION)) ? g_sample_mv[e] : NULL;
+        const uint8_t *bits = (kinds & KIND_BIT(TDC_LINK_KIND_PATTERN)) ? g_pattern[e] : NULL;
+        if (tdc_asm_ingest(st, frame, g_subframe[e], mv, bits) != TDC_OK) {
+            return 0;
+        }
+    }
+    if (tdc_asm_assemble(st, frame) != TDC_OK) {
+        return 0;
+    }
+    int stride = 0;
+    const uint8_t *out = tdc_asm_output(st, &stride);
+    for (uint32_t y = 0; y < FW_H; y++) {
+        const uint8_t *s = out + (size_t)y * (uint32_t)stride;
+        uint8_t *d = g_fb + (size_t)y * FW_STRIDE + (size_t)e * FW_W * 3u;
+        for (uint32_t i = 0; i < FW_W * 3u; i++) {
+            d[i] = s[i];
+        }
+    }
+    return 1;
+}
+#endif
+
+/* Runs the pipeline of eye e on what arrived; returns 1 if the eye's part of
+ * the frame buffer was updated. */
+static int process_eye(uint32_t e, uint32_t frame)
+{
+    const uint32_t kinds = g.kinds[e];
+    uint8_t *fb = g_fb + (size_t)e * FW_W * 3u;
+    tdc_res_t *residual = NULL;
+    tdc_status_t st = TDC_OK;
+    (void)fb;
+    (void)frame;
+    switch (g.mode) {
+    case MODE_PLAIN:
+        if (!(kinds & KIND_BIT(TDC_LINK_KIND_FULL))) {
+            return 0;
+        }
+        break;
+#if TDC_CFG_TRM
+    case MODE_TRM:
+        if (kinds & KIND_BIT(TDC_LINK_KIND_FULL)) {
+            st = tdc_trm_full(&g.trm[e], fb, FW_STRIDE, fb, FW_STRIDE); /* in place: D(I) is taken first */
+        } else if (kinds & KIND_BIT(TDC_LINK_KIND_REDUCED)) {
+            uint32_t rw = 0, rh = 0;
+            tdc_link_reduced_size(&g.dec, &rw, &rh);
+            st = tdc_trm_reduced(&g.trm[e], g_reduced[e], rw * 3u, fb, FW_STRIDE);
+            if (st == TDC_ERR_STATE) {
+                return 0; /* no full frame of this eye yet (stream start): keep the image */
+            }
+        } else {
+            return 0;
+        }
+        residual = tdc_trm_residual(&g.trm[e]);
+        break;
+#endif
+#if TDC_CFG_ASSEMBLE
+    case MODE_ASSEMBLE:
+        if (!assemble_eye(e, frame, kinds)) {
+            g.stage_errors++;
+            return 0;
+        }
+        break;
+#endif
+    default:
+        return 0;
+    }
+    if (st != TDC_OK) {
+        g.stage_errors++;
+        return 0;
+    }
+#if TDC_CFG_LCD
+    if (g.lcd_ok && tdc_lcd_frame(&g.lcd[e], fb, FW_STRIDE, fb, FW_STRIDE, residual) != TDC_OK) {
+        g.stage_errors++;
+    }
+#endif
+    (void)residual;
+    return 1;
+}
+
+static void show_frame(void)
+{
+    (void)tdc_board_panel_show(g_fb, FW_STRIDE, FW_EYES * FW_W, FW_H, g.frame);
+    tdc_board_vsync_wait();
+    g.frames_shown++;
+}
+
+/* Ends the frame being collected: eyes still missing something are
+ * processed with what arrived (or keep their last image). */
+static void finish_frame(void)
+{
+    if (!g.have_frame) {
+        return;
+    }
+    for (uint32_t e = 0; e < FW_EYES; e++) {
+        if (!(g.eyes_done & (1u << e)) && g.kinds[e] && process_eye(e, g.frame)) {
+            g.eyes_updated = (uint8_t)(g.eyes_updated | (1u << e));
+        }
+        if (!(g.eyes_updated & (1u << e))) {
+            g.eyes_incomplete++;
+        }
+    }
+    if (g.eyes_updated) {
+        show_frame();
+    }
+    g.have_frame = 0;
+}
+
+static void on_packet(const tdc_link_event_t *ev)
+{
+    if (ev->kind == TDC_LINK_KIND_STREAM) {
+        finish_frame();
+        configure_stream();
+        return;
+    }
+    if (g.mode == MODE_NONE || ev->eye >= FW_EYES) {
+        return;
+    }
+    if (!g.have_frame || ev->frame_index != g.frame) {
+        finish_frame();
+        g.have_frame = 1;
+        g.frame = ev->frame_index;
+        g.eyes_done = 0;
+        g.eyes_updated = 0;
+        g.kinds[0] = g.kinds[1] = 0;
+    }
+    const uint32_t e = ev->eye;
+    g.kinds[e] = (uint8_t)(g.kinds[e] | KIND_BIT(ev->kind));
+    const uint32_t need = kinds_needed(e, g.frame);
+    if (!(g.eyes_done & (1u << e)) && need && (g.kinds[e] & need) == need) {
+        g.eyes_done = (uint8_t)(g.eyes_done | (1u << e));
+        if (process_eye(e, g.frame)) {
+            g.eyes_updated = (uint8_t)(g.eyes_updated | (1u << e));
+        }
+        if (g.eyes_done == (1u << FW_EYES) - 1u) {
+            finish_frame(); /* every eye had what it needs: show now */
+        }
+    }
+}
+
+static void decoder_init(void)
+{
+    tdc_link_config_t cfg = {(uint16_t)FW_W, (uint16_t)FW_H, (uint8_t)FW_EYES};
+    tdc_link_buffers_t b = {0};
+    b.staging = g_staging;
+    b.staging_bytes = sizeof g_staging;
+    b.full_stride = FW_STRIDE;
+    for (uint32_t e = 0; e < FW_EYES; e++) {
+        b.full[e] = g_fb + (size_t)e * FW_W * 3u;
+#if TDC_CFG_TRM
+        b.reduced[e] = g_reduced[e];
+#endif
+#if TDC_CFG_ASSEMBLE
+        b.subframe[e] = g_subframe[e];
+        b.sample_motion[e] = g_sample_mv[e];
+        b.pattern[e] = g_pattern[e];
+#endif
+    }
+#if TDC_CFG_TRM
+    b.reduced_bytes = sizeof g_reduced[0];
+#endif
+    if (tdc_link_decoder_init(&g.dec, &cfg, &b) != TDC_OK) {
+        tdc_board_log("link decoder: panel larger than the compiled maximum");
+    }
+}
+
+int tdc_fw_run(void)
+{
+    if (tdc_board_init() != TDC_BOARD_OK) {
+        tdc_board_log("board init failed");
+        return 1;
+    }
+    tdc_board_log(reset_name(tdc_board_reset_cause()));
+    decoder_init();
+    const uint32_t t0 = tdc_board_time_us();
+    int status = 0;
+    for (;;) {
+        uint32_t got = 0;
+        const tdc_board_status_t rs = tdc_board_transport_read(g_rx, sizeof g_rx, &got);
+        if (rs == TDC_BOARD_END) {
+            break;
+        }
+        if (rs != TDC_BOARD_OK) {
+            tdc_board_log("transport failed");
+            status = 1;
+            break;
+        }
+        const uint8_t *p = g_rx;
+        while (got) {
+            tdc_link_event_t ev;
+            const size_t used = tdc_link_feed(&g.dec, p, got, &ev);
+            p += used;
+            got -= (uint32_t)used;
+            if (ev.type == TDC_LINK_EV_PACKET) {
+                on_packet(&ev);
+            }
+        }
+    }
+    /* Queued events, then the last frame. */
+    for (;;) {
+        tdc_link_event_t ev;
+        (void)tdc_link_feed(&g.dec, g_rx, 0, &ev);
+        if (ev.type == TDC_LINK_EV_NONE) {
+            break;
+        }
+        if (ev.type == TDC_LINK_EV_PACKET) {
+            on_packet(&ev);
+        }
+    }
+    finish_frame();
+    const tdc_link_counters_t *c = tdc_link_counters(&g.dec);
+    uint32_t errors = 0;
+    for (unsigned i = 1; i < TDC_LINK_ERR_COUNT; i++) {
+        errors += c->errors[i];
+    }
+    log_kv("packets accepted: ", c->packets_ok);
+    log_kv("packets/bytes rejected: ", errors);
+    log_kv("frames shown: ", g.frames_shown);
+    log_kv("eyes kept (incomplete): ", g.eyes_incomplete);
+    log_kv("stage errors: ", g.stage_errors);
+    log_kv("unsupported streams: ", g.unsupported);
+    log_kv("time us: ", tdc_board_time_us() - t0);
+    return status || g.stage_errors || g.unsupported ? 1 : 0;
+}
+
+#ifndef TDC_FW_NO_MAIN
+int main(void);
+int main(void)
+{
+    return tdc_fw_run();
+}
+#endif

@@ -1,0 +1,155 @@
+/*
+ * fw_stream.c - writes the link streams the firmware frame loop is tested
+ * with (on the host double and on the emulated boards), through the host
+ * link encoder (sim/link/tdc_link_encode.h).
+ *
+ * Usage: fw_stream MODE WIDTH HEIGHT EYES FRAMES OUT.tdcs
+ *   plain      full RGB888 frames every refresh; frame 1 of eye 0 arrives
+ *              with a corrupted payload byte (must be rejected: the eye
+ *              keeps frame 0), frame 2 of the last eye in RGB565
+ *   trm        TRM stream, r = 1/2 at 90 Hz: per frame one eye full, the
+ *              other reduced (2x2 box prefilter), swapped every frame
+ *   subframes  240 Hz tile-ordered subframes: hourglass pattern bits on the
+ *              first frame of every cycle, one sample per 2x2 tile, and a
+ *              motion vector per sample (content panning 3 px per frame)
+ * Contents: tests/golden/tdc_content.h (edge on eye 0, text on eye 1).
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "tdc_content.h"
+#include "tdc_link_encode.h"
+#include "tdc_ordering.h"
+
+static uint8_t *g_pkt;
+static size_t g_cap;
+static FILE *g_out;
+
+static void put(size_t n, const char *what)
+{
+    if (n == 0 || fwrite(g_pkt, 1, n, g_out) != n) {
+        fprintf(stderr, "fw_stream: cannot encode/write %s\n", what);
+        exit(1);
+    }
+}
+
+static tdc_content_t eye_content(uint32_t eye)
+{
+    return eye ? TDC_CONTENT_TEXT : TDC_CONTENT_EDGE;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc != 7) {
+        fprintf(stderr, "usage: %s plain|trm|subframes W H EYES FRAMES OUT.tdcs\n", argv[0]);
+        return 2;
+    }
+    const char *mode = argv[1];
+    const uint32_t w = (uint32_t)atoi(argv[2]), h = (uint32_t)atoi(argv[3]);
+    const uint32_t eyes = (uint32_t)atoi(argv[4]), frames = (uint32_t)atoi(argv[5]);
+    if (w < 2 || h < 2 || eyes < 1 || eyes > 2 || frames < 1) {
+        fprintf(stderr, "fw_stream: bad size\n");
+        return 2;
+    }
+    const int trm = !strcmp(mode, "trm"), sub = !strcmp(mode, "subframes"), plain = !strcmp(mode, "plain");
+    if (!trm && !sub && !plain) {
+        fprintf(stderr, "fw_stream: unknown mode %s\n", mode);
+        return 2;
+    }
+    tdc_link_stream_info_t info = {0};
+    info.flags = trm ? TDC_LINK_STREAM_REDUCED
+                     : sub ? (TDC_LINK_STREAM_SUBFRAMES | TDC_LINK_STREAM_SAMPLE_MV) : 0u;
+    info.r_num = 1;
+    info.r_den = trm ? 2 : 1;
+    info.width = (uint16_t)w;
+    info.height = (uint16_t)h;
+    info.eyes = (uint8_t)eyes;
+    info.refresh_hz = sub ? 240 : 90;
+    tdc_link_encoder_t enc;
+    tdc_link_encoder_init(&enc, 7, &info);
+
+    const uint32_t tx = (w + 1) / 2, ty = (h + 1) / 2;
+    const uint32_t rw = TDC_LINK_REDUCED_DIM(w, 1u, 2u), rh = TDC_LINK_REDUCED_DIM(h, 1u, 2u);
+    g_cap = (size_t)w * h * 4u + 1024u;
+    g_pkt = malloc(g_cap);
+    uint8_t *rgb = malloc((size_t)w * h * 3u);
+    uint8_t *red = malloc((size_t)rw * rh * 3u);
+    uint8_t *samples = malloc((size_t)tx * ty * 3u);
+    int16_t *mv = malloc((size_t)tx * ty * 2u * sizeof *mv);
+    uint8_t *bits = calloc(TDC_LINK_PATTERN_BYTES(w, h) + 1u, 1);
+    g_out = fopen(argv[6], "wb");
+    if (!g_pkt || !rgb || !red || !samples || !mv || !bits || !g_out) {
+        fprintf(stderr, "fw_stream: out of memory or cannot create %s\n", argv[6]);
+        return 1;
+    }
+    put(tdc_link_encode_stream(&enc, g_pkt, g_cap), "stream header");
+    for (uint32_t f = 0; f < frames; f++) {
+        for (uint32_t e = 0; e < eyes; e++) {
+            tdc_content_frame(eye_content(e), f, 11u + e, rgb, (int)w, (int)h, (int)(w * 3u));
+            if (plain) {
+                const tdc_pixfmt_t fmt = (f == 2 && e == eyes - 1u) ? TDC_PIXFMT_RGB565 : TDC_PIXFMT_RGB888;
+                size_t n = tdc_link_encode_frame(&enc, g_pkt, g_cap, TDC_LINK_KIND_FULL, e, f, fmt, rgb, w, h, w * 3u);
+                if (f == 1 && e == 0 && n > TDC_LINK_HEADER_BYTES + 100u) {
+                    g_pkt[TDC_LINK_HEADER_BYTES + 100u] ^= 0x40u; /* payload CRC must catch it */
+                }
+                put(n, "full frame");
+            } else if (trm) {
+                if (tdc_link_trm_kind(f, e) == TDC_LINK_KIND_FULL) {
+                    put(tdc_link_encode_frame(&enc, g_pkt, g_cap, TDC_LINK_KIND_FULL, e, f, TDC_PIXFMT_RGB888, rgb, w,
+                                              h, w * 3u),
+                        "full frame");
+                } else {
+                    /* 2x2 box prefilter (rounded; edge pixels replicated). */
+                    for (uint32_t y = 0; y < rh; y++) {
+                        for (uint32_t x = 0; x < rw; x++) {
+                            for (uint32_t c = 0; c < 3; c++) {
+                                uint32_t s = 0;
+                                for (uint32_t k = 0; k < 4; k++) {
+                                    uint32_t xx = 2 * x + (k & 1), yy = 2 * y + (k >> 1);
+                                    xx = xx < w ? xx : w - 1;
+                                    yy = yy < h ? yy : h - 1;
+                                    s += rgb[((size_t)yy * w + xx) * 3 + c];
+                                }
+                                red[((size_t)y * rw + x) * 3 + c] = (uint8_t)((s + 2) / 4);
+                            }
+                        }
+                    }
+                    put(tdc_link_encode_frame(&enc, g_pkt, g_cap, TDC_LINK_KIND_REDUCED, e, f, TDC_PIXFMT_RGB888, red,
+                                              rw, rh, rw * 3u),
+                        "reduced frame");
+                }
+            } else {
+                /* Hourglass everywhere (bits 0); sample k = f mod 4 of each tile. */
+                const unsigned pos = tdc_ordering_pixel(TDC_ORDER_HOURGLASS, f & 3u);
+                if ((f & 3u) == 0) {
+                    put(tdc_link_encode_pattern(&enc, g_pkt, g_cap, e, f, bits, w, h), "pattern");
+                }
+                for (uint32_t y = 0; y < ty; y++) {
+                    for (uint32_t x = 0; x < tx; x++) {
+                        uint32_t px = 2 * x + (pos & 1u), py = 2 * y + (pos >> 1);
+                        px = px < w ? px : w - 1;
+                        py = py < h ? py : h - 1;
+                        memcpy(&samples[((size_t)y * tx + x) * 3], &rgb[((size_t)py * w + px) * 3], 3);
+                        /* Backward MV in Q4: the edge content moves +3 px per frame. */
+                        mv[((size_t)y * tx + x) * 2] = (int16_t)(e == 0 ? -3 * 16 : 0);
+                        mv[((size_t)y * tx + x) * 2 + 1] = (int16_t)(e == 1 ? 2 * 16 : 0);
+                    }
+                }
+                put(tdc_link_encode_subframe(&enc, g_pkt, g_cap, e, f, TDC_PIXFMT_RGB888, samples, w, h), "subframe");
+                put(tdc_link_encode_motion(&enc, g_pkt, g_cap, e, f, mv, w, h, 1), "sample motion");
+            }
+        }
+    }
+    if (fclose(g_out) != 0) {
+        fprintf(stderr, "fw_stream: write error\n");
+        return 1;
+    }
+    free(g_pkt);
+    free(rgb);
+    free(red);
+    free(samples);
+    free(mv);
+    free(bits);
+    return 0;
+}
