@@ -42,3 +42,25 @@ $(B)/tests/usb/test_gpio_vsync: $(B)/tests/usb/test_gpio_vsync.o $(B)/hosttools/
 	$(CC) $(HOST_LDFLAGS) $(B)/tests/usb/test_gpio_vsync.o $(B)/hosttools/gpio/tdc_vsync_stats.o -o $@ -lcmocka -lm
 $(B)/tests/usb/test_gpio_vsync.o: HOST_CFLAGS += -Ihosttools/gpio -DTDC_GPIO_BIN='"$(abspath $(TDC_GPIO))"'
 TESTS += $(B)/tests/usb/test_gpio_vsync
+
+# ---------------------------------------------------------------------------
+# make test-vm: the real kernel stacks (tests/vm/run-vm.sh, tests/vm/README.md).
+# Always the gcc -O2 tools; the gadget board and the vsync generator are
+# static (the initramfs has no libc of its own for them).
+# ---------------------------------------------------------------------------
+DEPS_PKGS += qemu-system-x86 busybox-static linux-image-amd64 linux-headers-amd64 linux-source cpio kmod
+VM_BIN := $(BUILD)/gcc-O2/bin
+$(VM_BIN)/tdc_ffs_board: tests/vm/tdc_ffs_board.c firmware/tdc_usbproto.c firmware/tdc_usbproto.h
+	@mkdir -p $(@D)
+	gcc -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror -O2 -Ifirmware -static $(filter %.c,$^) -o $@ -lpthread
+$(VM_BIN)/tdc_vsync_gen: tests/vm/tdc_vsync_gen.c
+	@mkdir -p $(@D)
+	gcc -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror -O2 -static $< -o $@
+
+.PHONY: test-vm
+test-vm:
+	@$(MAKE) --no-print-directory CC=gcc OPT=-O2 SAN= $(VM_BIN)/tdc-usb $(VM_BIN)/tdc-gpio \
+	    $(VM_BIN)/tdc_ffs_board $(VM_BIN)/tdc_vsync_gen
+	@if tests/vm/run-vm.sh $(VM_BIN) $(BUILD)/vm; then r=PASS; else r=FAIL; fi; \
+	    echo "[vm] $$r test-vm"; [ -z "$$RESULTS" ] || echo "vm test-vm $$r" >> "$$RESULTS"; \
+	    [ $$r = PASS ]

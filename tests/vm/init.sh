@@ -1,0 +1,149 @@
+#!/bin/sh
+# /init of the test-vm initramfs (busybox sh).  Sets up a tdc board made of
+# dummy_hcd + a FunctionFS gadget (tdc_ffs_board, running the firmware's USB
+# protocol code) and a gpio-sim chip, runs tdc-usb and tdc-gpio against them
+# through the real kernel stacks, prints "VMTEST <name> PASS|FAIL" per check
+# and "VMTEST-DONE pass=N fail=M", then powers off.
+/bin/busybox --install -s /bin
+export PATH=/bin:/usr/bin
+mount -t proc proc /proc
+mount -t sysfs sys /sys
+mount -t devtmpfs dev /dev
+mount -t tmpfs tmp /tmp
+echo 3 > /proc/sys/kernel/printk
+
+pass=0; fail=0
+ok()  { echo "VMTEST $1 PASS"; pass=$((pass+1)); }
+bad() { echo "VMTEST $1 FAIL: $2"; fail=$((fail+1)); }
+# check NAME WANT_EXIT PATTERN cmd... : exit code and a pattern in the output
+check() {
+    name=$1; want=$2; pat=$3; shift 3
+    "$@" > /tmp/out 2>&1; rc=$?
+    sed 's/^/    /' /tmp/out
+    if [ "$rc" != "$want" ]; then bad "$name" "exit $rc, want $want"
+    elif [ -n "$pat" ] && ! grep -q "$pat" /tmp/out; then bad "$name" "no '$pat' in output"
+    else ok "$name"; fi
+}
+finish() {
+    echo "VMTEST-DONE pass=$pass fail=$fail"
+    sync; poweroff -f
+}
+
+for m in configfs usb-common usbcore udc-core libcomposite usb_f_fs dummy_hcd gpio-sim; do
+    insmod /lib/modules/$m.ko || { bad "insmod-$m" "insmod failed"; finish; }
+done
+mount -t configfs none /sys/kernel/config
+
+# ---------------------------------------------------------------- USB board
+G=/sys/kernel/config/usb_gadget/tdc
+mkdir $G && cd $G || { bad gadget "no configfs gadget"; finish; }
+echo 0x1209 > idVendor; echo 0x0001 > idProduct; echo 0x0001 > bcdDevice; echo 0x0200 > bcdUSB
+mkdir strings/0x409
+echo "tdc project" > strings/0x409/manufacturer
+echo "tdc display controller" > strings/0x409/product
+echo "VM-1" > strings/0x409/serialnumber
+mkdir functions/ffs.tdc configs/c.1
+echo 100 > configs/c.1/MaxPower
+ln -s $G/functions/ffs.tdc configs/c.1/
+cd /
+mkdir -p /dev/ffs-tdc
+mount -t functionfs tdc /dev/ffs-tdc
+tdc_ffs_board /dev/ffs-tdc VM-1 > /tmp/board.log 2>&1 &
+board_pid=$!
+for i in $(seq 50); do grep -q ready /tmp/board.log && break; usleep 100000; done
+UDC=$(ls /sys/class/udc | head -n 1)
+bind()   { echo "$UDC" > $G/UDC; }
+unbind() { echo "" > $G/UDC; }
+wait_board() {
+    for i in $(seq 100); do tdc-usb list > /dev/null 2>&1 && return 0; usleep 100000; done
+    return 1
+}
+bind
+if wait_board; then ok usb-enumerate; else bad usb-enumerate "no board after 10 s"; cat /tmp/board.log; finish; fi
+
+check usb-list 0 "serial VM-1 board vm-gadget panel htc-vive" tdc-usb list
+check usb-info 0 "panel: htc-vive 2160x1200 @ 90.000 Hz" tdc-usb --serial VM-1 info
+dd if=/dev/urandom of=/tmp/stream.bin bs=1024 count=4096 2>/dev/null
+check usb-stream 0 "board received all 4194304 bytes" tdc-usb stream /tmp/stream.bin
+dd if=/dev/urandom of=/tmp/fw.bin bs=1024 count=100 2>/dev/null
+check usb-mkimage 0 "CRC-32" tdc-usb mkimage --board vm-gadget /tmp/fw.bin /tmp/fw.img
+check usb-flash 0 "verified 102432 bytes read back" tdc-usb flash /tmp/fw.img
+grep -q "reset requested" /tmp/board.log && ok usb-flash-reset || bad usb-flash-reset "board saw no reset"
+cp /tmp/fw.img /tmp/bad.img
+printf 'X' | dd of=/tmp/bad.img bs=1 seek=5000 conv=notrunc 2>/dev/null
+check usb-flash-bad-crc 8 "payload CRC-32 does not match" tdc-usb flash /tmp/bad.img
+check usb-flash-too-big 9 "larger than the board's flash slot" sh -c \
+    'dd if=/dev/zero of=/tmp/big.bin bs=1024 count=300 2>/dev/null &&
+     tdc-usb mkimage --board vm-gadget /tmp/big.bin /tmp/big.img > /dev/null && tdc-usb flash /tmp/big.img'
+
+# The board stops answering: the control request times out.
+kill -STOP $board_pid
+check usb-timeout 5 "LIBUSB_ERROR_TIMEOUT" tdc-usb --timeout 500 info
+kill -CONT $board_pid
+usleep 300000
+
+# Unplug during a stream (the UDC is unbound: a real disconnect).
+dd if=/dev/zero of=/tmp/long.bin bs=1M count=64 2>/dev/null
+tdc-usb --chunk 512 stream /tmp/long.bin > /tmp/unplug.out 2>&1 &
+stream_pid=$!
+sleep 1
+unbind
+wait $stream_pid; rc=$?
+sed 's/^/    /' /tmp/unplug.out
+if [ $rc = 6 ] && grep -q LIBUSB_ERROR_NO_DEVICE /tmp/unplug.out; then ok usb-unplug
+else bad usb-unplug "exit $rc, want 6 with LIBUSB_ERROR_NO_DEVICE"; fi
+rm -f /tmp/long.bin
+check usb-no-device 2 "no tdc board" tdc-usb info
+bind
+wait_board && check usb-rebind 0 "serial VM-1" tdc-usb info
+
+# ---------------------------------------------------------------- GPIO
+S=/sys/kernel/config/gpio-sim/tdc
+mkdir $S $S/bank0 && echo 4 > $S/bank0/num_lines
+for l in 0:nreset 1:boot 2:vsync; do
+    mkdir $S/bank0/line${l%%:*}; echo ${l#*:} > $S/bank0/line${l%%:*}/name
+done
+echo 1 > $S/live
+CHIP=$(cat $S/bank0/chip_name)
+SIM=/sys/devices/platform/$(cat $S/dev_name)/$CHIP
+echo "gpio-sim chip $CHIP at $SIM"
+[ -n "$CHIP" ] && [ -e /dev/$CHIP ] && ok gpio-sim-live || bad gpio-sim-live "no chip"
+
+# reset: the line is active (1) during the pulse and released afterwards
+tdc-gpio reset --chip $CHIP --line nreset --pulse-ms 1500 > /tmp/g.out 2>&1 &
+p=$!; usleep 700000; during=$(cat $SIM/sim_gpio0/value); wait $p; rc=$?
+after=$(cat $SIM/sim_gpio0/value)
+cat /tmp/g.out
+[ $rc = 0 ] && [ "$during" = 1 ] && [ "$after" = 0 ] && ok gpio-reset || bad gpio-reset "exit $rc, value during $during after $after"
+# active low, with a pull-up: 0 during the pulse, 1 after
+echo pull-up > $SIM/sim_gpio0/pull
+tdc-gpio reset --chip $CHIP --line 0 --active-low --pulse-ms 1500 > /tmp/g.out 2>&1 &
+p=$!; usleep 700000; during=$(cat $SIM/sim_gpio0/value); wait $p; rc=$?
+after=$(cat $SIM/sim_gpio0/value)
+[ $rc = 0 ] && [ "$during" = 0 ] && [ "$after" = 1 ] && ok gpio-reset-active-low || bad gpio-reset-active-low "exit $rc, value during $during after $after"
+echo pull-down > $SIM/sim_gpio0/pull
+# boot: boot line held while reset is pulsed and for --hold-ms after it
+tdc-gpio boot --chip $CHIP --line nreset --boot-line boot --pulse-ms 300 --hold-ms 1500 > /tmp/g.out 2>&1 &
+p=$!; usleep 1000000; boot_v=$(cat $SIM/sim_gpio1/value); rst_v=$(cat $SIM/sim_gpio0/value); wait $p; rc=$?
+cat /tmp/g.out
+[ $rc = 0 ] && [ "$boot_v" = 1 ] && [ "$rst_v" = 0 ] && ok gpio-boot || bad gpio-boot "exit $rc, boot $boot_v reset $rst_v during hold"
+# busy: a held line is refused with the holder's name
+tdc-gpio reset --chip $CHIP --line nreset --pulse-ms 1500 > /dev/null 2>&1 &
+p=$!; usleep 500000
+check gpio-busy 4 "in use by 'tdc-gpio'" tdc-gpio reset --chip $CHIP --line nreset
+wait $p
+check gpio-no-line 3 "no line 'nosuch'" tdc-gpio reset --chip $CHIP --line nosuch
+check gpio-no-chip 2 "cannot open GPIO chip" tdc-gpio reset --chip gpiochip99 --line 0
+check gpio-vsync-timeout 6 "no edge" tdc-gpio vsync --chip $CHIP --line vsync --timeout-ms 300
+# vsync: 100 Hz with every 40th pulse left out
+tdc_vsync_gen $SIM/sim_gpio2/pull 100 250 40 &
+g=$!
+check gpio-vsync 0 "refresh" tdc-gpio vsync --chip $CHIP --line vsync --count 120 --expect-hz 100
+wait $g
+hz=$(sed -n 's/.*refresh \([0-9]*\)\..*/\1/p' /tmp/out)
+missed=$(sed -n 's/.*missed frames \([0-9]*\).*/\1/p' /tmp/out)
+echo "    measured refresh ${hz} Hz, missed ${missed}"
+[ -n "$hz" ] && [ "$hz" -ge 95 ] && [ "$hz" -le 105 ] && ok gpio-vsync-rate || bad gpio-vsync-rate "refresh '$hz' Hz, want 95..105"
+[ -n "$missed" ] && [ "$missed" -ge 2 ] && [ "$missed" -le 4 ] && ok gpio-vsync-missed || bad gpio-vsync-missed "missed '$missed', want 2..4 (3 left out)"
+
+finish

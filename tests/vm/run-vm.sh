@@ -1,0 +1,79 @@
+#!/bin/sh
+# make test-vm: boots Debian's kernel (linux-image-amd64) under
+# qemu-system-x86_64 with TCG (no KVM) and a busybox initramfs that runs
+# tests/vm/init.sh: tdc-usb against dummy_hcd + a FunctionFS gadget running
+# the firmware's USB protocol code, tdc-gpio against gpio-sim (built here as
+# an out-of-tree module from Debian's linux-source).
+# Usage: tests/vm/run-vm.sh BIN_DIR VM_DIR
+#   BIN_DIR: directory with tdc-usb, tdc-gpio, tdc_ffs_board, tdc_vsync_gen
+#   VM_DIR:  work directory (module build, initramfs, console log)
+set -eu
+bin=$1; vm=$2
+mkdir -p "$vm"
+
+need() { command -v "$1" > /dev/null 2>&1 || { echo "test-vm: missing $1 ($2)"; exit 1; }; }
+need qemu-system-x86_64 "Debian package qemu-system-x86"
+need cpio "Debian package cpio"
+[ -x /bin/busybox ] && file -L /bin/busybox | grep -q static \
+    || { echo "test-vm: missing static /bin/busybox (Debian package busybox-static)"; exit 1; }
+
+# The kernel linux-image-amd64 points to, its headers and its source.
+kpkg=$(dpkg-query -W -f='${Depends}' linux-image-amd64 2>/dev/null | sed -n 's/^\(linux-image-[^ ,]*\).*/\1/p')
+kver=${kpkg#linux-image-}
+[ -n "$kver" ] && [ -r "/boot/vmlinuz-$kver" ] || { echo "test-vm: no kernel (Debian package linux-image-amd64)"; exit 1; }
+[ -d "/lib/modules/$kver/build" ] || { echo "test-vm: no headers for $kver (linux-headers-amd64)"; exit 1; }
+src=$(ls /usr/src/linux-source-*.tar.xz 2>/dev/null | tail -n 1)
+[ -n "$src" ] || { echo "test-vm: no /usr/src/linux-source-*.tar.xz (Debian package linux-source)"; exit 1; }
+
+# gpio-sim is not built in Debian's kernel: build it with irq_sim as one
+# module.  The one change: irq_sim.c calls handle_simple_irq(irq_to_desc())
+# and irq_to_desc is not exported to modules; generic_handle_irq() is, and
+# runs the same flow handler.
+ko=$vm/gpio-sim/gpio-sim.ko
+if [ ! -f "$ko" ] || [ "$src" -nt "$ko" ]; then
+    rm -rf "$vm/gpio-sim"; mkdir -p "$vm/gpio-sim"
+    echo "test-vm: extracting gpio-sim from $src"
+    tar -xJf "$src" -C "$vm/gpio-sim" --strip-components=3 --wildcards \
+        '*/drivers/gpio/gpio-sim.c' '*/drivers/gpio/gpiolib.h'
+    tar -xJf "$src" -C "$vm/gpio-sim" --strip-components=3 --wildcards '*/kernel/irq/irq_sim.c'
+    mv "$vm/gpio-sim/gpio-sim.c" "$vm/gpio-sim/gpio-sim-main.c"
+    sed -i 's/handle_simple_irq(irq_to_desc(irqnum));/generic_handle_irq(irqnum);/' "$vm/gpio-sim/irq_sim.c"
+    grep -q 'generic_handle_irq(irqnum);' "$vm/gpio-sim/irq_sim.c" \
+        || { echo "test-vm: irq_sim.c changed upstream; patch does not apply"; exit 1; }
+    printf 'obj-m := gpio-sim.o\ngpio-sim-y := gpio-sim-main.o irq_sim.o\n' > "$vm/gpio-sim/Kbuild"
+    make -s -C "/lib/modules/$kver/build" M="$(cd "$vm/gpio-sim" && pwd)" modules
+fi
+
+# initramfs
+root=$vm/root
+rm -rf "$root"
+mkdir -p "$root/bin" "$root/usr/bin" "$root/lib/modules" "$root/proc" "$root/sys" "$root/dev" "$root/tmp"
+cp /bin/busybox "$root/bin/busybox"
+ln -s busybox "$root/bin/sh"
+for m in configfs usb-common usbcore udc-core libcomposite usb_f_fs dummy_hcd; do
+    cp "$(modinfo -k "$kver" -n $m)" "$root/lib/modules/$m.ko"
+done
+cp "$ko" "$root/lib/modules/gpio-sim.ko"
+for p in tdc-usb tdc-gpio tdc_ffs_board tdc_vsync_gen; do cp "$bin/$p" "$root/usr/bin/"; done
+# shared libraries of the dynamically linked tools, at their own paths
+for lib in $(ldd "$bin/tdc-usb" "$bin/tdc-gpio" | awk '/=> \//{print $3} /^\t\/lib/{print $1}' | sort -u); do
+    mkdir -p "$root$(dirname "$lib")"; cp -L "$lib" "$root$lib"
+done
+mkdir -p "$root/lib64"; cp -L /lib64/ld-linux-x86-64.so.2 "$root/lib64/"
+cp tests/vm/init.sh "$root/init"; chmod +x "$root/init"
+(cd "$root" && find . | cpio -o -H newc --quiet) | gzip -1 > "$vm/initramfs.gz"
+
+echo "test-vm: booting $kver (qemu TCG) ..."
+start=$(date +%s)
+timeout 240 qemu-system-x86_64 -accel tcg -m 1024 -smp 1 -nographic -no-reboot \
+    -kernel "/boot/vmlinuz-$kver" -initrd "$vm/initramfs.gz" \
+    -append "console=ttyS0 panic=-1 loglevel=3 rdinit=/init" < /dev/null > "$vm/console.log" 2>&1 || true
+end=$(date +%s)
+grep -a -E '^ *(VMTEST|    )' "$vm/console.log" | tr -d '\r' || true
+echo "test-vm: $((end-start)) s, console log: $vm/console.log"
+res=$(grep -a 'VMTEST-DONE' "$vm/console.log" | tr -d '\r' | tail -n 1)
+case "$res" in
+    *"fail=0"*) echo "test-vm: $res"; exit 0 ;;
+    "") echo "test-vm: the VM did not finish (see $vm/console.log)"; exit 1 ;;
+    *) echo "test-vm: $res"; exit 1 ;;
+esac
