@@ -20,3 +20,11 @@ GOLDEN_STAGES += assemble
 BENCHES += $(B)/tests/bench_assemble
 $(B)/tests/bench_assemble: $(B)/tests/bench_assemble.o $(ASM_SIM_OBJS) $(ASM_FW_OBJS)
 	$(CC) $(HOST_LDFLAGS) $^ -o $@ $(HOST_LIBS)
+
+# tdc-run assemble (hosttools/tdcrun/run_assemble.c)
+TDCRUN_SRCS += hosttools/tdcrun/run_assemble.c
+# End-to-end test of `tdc-run assemble` (needs the tdc-run program).
+TESTS += $(B)/tests/test_assemble_tdcrun
+$(B)/tests/test_assemble_tdcrun.o: HOST_CFLAGS += -DTDC_RUN_PATH='"$(B)/bin/tdc-run"'
+$(B)/tests/test_assemble_tdcrun: $(B)/tests/test_assemble_tdcrun.o $(ASM_SIM_OBJS) $(ASM_FW_OBJS) $(B)/sim/tdc_png.o | $(B)/bin/tdc-run
+	$(CC) $(HOST_LDFLAGS) $^ -o $@ $(HOST_LIBS)
