@@ -52,3 +52,14 @@ GOLDEN_STAGES += lcd
 # (the archive is linked again after it through HOST_LIBS, as mk/link.mk does).
 $(B)/tests/tdc_golden: $(B)/tests/golden/golden_lcd.o
 $(B)/tests/tdc_golden: HOST_LIBS := $(FWLIB) $(HOST_LIBS)
+
+# Compile-out check: an OLED build's object set has no LCD symbols.
+LCD_OLED_PANELS = $(foreach p,$(PANELS),$(if $(filter oled,$(shell awk '$$1 == "type" { print $$2 }' boards/panels/$(p).panel)),$(p)))
+LCD_OLED_OBJS = $(patsubst %.c,$(B)/%.o,$(filter-out $(FW_LCD_SRCS),$(FW_SRCS))) \
+                $(foreach p,$(LCD_OLED_PANELS),$(B)/gen/tdc_panel_$(p).o)
+LCD_FW_OBJS = $(patsubst %.c,$(B)/%.o,$(FW_LCD_SRCS))
+$(B)/tests/test_lcd_compile_out: $(FWLIB) tests/test_lcd_compile_out.sh
+	@mkdir -p $(@D)
+	@printf '#!/bin/sh\nexec tests/test_lcd_compile_out.sh nm --oled %s --lcd %s\n' "$(LCD_OLED_OBJS)" "$(LCD_FW_OBJS)" > $@
+	@chmod +x $@
+TESTS += $(B)/tests/test_lcd_compile_out
