@@ -3,7 +3,7 @@
  * 0xEDB88320, initial value 0xFFFFFFFF, final XOR 0xFFFFFFFF) for the link
  * protocol.  Check value: crc32("123456789") = 0xCBF43926.
  *
- * The lookup tables (slice-by-4, 4 x 256 uint32) are not typed by hand: they
+ * The lookup tables (slice-by-8, 8 x 256 uint32) are not typed by hand: they
  * are written at build time into build/gen/tdc_crc32_tables.h by
  * sim/link/tdc_crc32_gen.c from the bitwise definition, and
  * tests/test_link_crc32.c checks them against that definition again.
@@ -39,7 +39,8 @@ uint32_t tdc_crc32(const uint8_t *data, size_t n);
 /* Bit-at-a-time reference (no table): slow, used by tests and the generator. */
 uint32_t tdc_crc32_bitwise(const uint8_t *data, size_t n);
 
-/* Entry k of table 0 (CRC of the single byte k with a zero state), for tests. */
+/* Entry k of table `table` (0..7; table 0: CRC register after byte k from a
+ * zero state; table j: byte k followed by j zero bytes), for tests. */
 uint32_t tdc_crc32_table_entry(unsigned table, unsigned k);
 
 #endif /* TDC_CRC32_H */

@@ -5,6 +5,8 @@
  */
 #include "tdc_pixfmt.h"
 
+#include <string.h>
+
 #include "tdc_fixed.h"
 
 int tdc_pixfmt_valid(uint32_t f)
@@ -35,10 +37,7 @@ void tdc_pixfmt_unpack_rgb888(const uint8_t *src, uint32_t w, uint32_t h, uint8_
     const size_t row = (size_t)w * 3u;
     for (uint32_t y = 0; y < h; y++) {
         const uint8_t *s = src + row * y;
-        uint8_t *d = dst + (size_t)dst_stride * y;
-        for (size_t i = 0; i < row; i++) {
-            d[i] = s[i];
-        }
+        memcpy(dst + (size_t)dst_stride * y, s, row);
     }
 }
 

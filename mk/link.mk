@@ -66,3 +66,4 @@ GOLDEN_STAGES += link
 # It lands after $(FWLIB) on the link line, so name the library once more.
 $(B)/tests/tdc_golden: $(B)/tests/golden/golden_link.o
 $(B)/tests/tdc_golden: HOST_LIBS := $(FWLIB) $(HOST_LIBS)
+BENCHES += $(B)/tests/bench_link
