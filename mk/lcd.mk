@@ -63,3 +63,11 @@ $(B)/tests/test_lcd_compile_out: $(FWLIB) tests/test_lcd_compile_out.sh
 	@printf '#!/bin/sh\nexec tests/test_lcd_compile_out.sh nm --oled %s --lcd %s\n' "$(LCD_OLED_OBJS)" "$(LCD_FW_OBJS)" > $@
 	@chmod +x $@
 TESTS += $(B)/tests/test_lcd_compile_out
+
+# The calibration loop end to end (measure -> fit -> profile -> tables -> compile).
+$(B)/tests/test_lcd_calib: $(TDC_LCD_MEASURE) $(TDC_CALIB) $(TABLEGEN) tests/test_lcd_calib.sh
+	@mkdir -p $(@D)
+	@printf '#!/bin/sh\nexec tests/test_lcd_calib.sh %s %s %s "%s"\n' "$(TDC_LCD_MEASURE)" "$(TDC_CALIB)" \
+	    "$(TABLEGEN)" "$(CC) $(FW_CFLAGS)" > $@
+	@chmod +x $@
+TESTS += $(B)/tests/test_lcd_calib
