@@ -115,6 +115,10 @@ void tdc_render_default_config(tdc_render_config_t *cfg);
 /* Builds the Embree scenes (copies *scene).  NULL on error with a message. */
 tdc_render_t *tdc_render_open(const tdc_scene_t *scene, const tdc_render_config_t *cfg, char *err, size_t errlen);
 void tdc_render_close(tdc_render_t *r);
+/* Changes the worker thread count (1..64) for the following frames. */
+int tdc_render_set_threads(tdc_render_t *r, int threads);
+/* Turns ray recording (benchmark) on or off for the following frames. */
+void tdc_render_set_record(tdc_render_t *r, int on);
 
 /* Renders frame `frame` in `mode`.  Returns 0, or -1 on a bad argument. */
 int tdc_render_frame(tdc_render_t *r, uint32_t frame, tdc_render_mode_t mode, const tdc_render_out_t *out,
@@ -171,9 +175,11 @@ int tdc_render_write_png(const char *path, const float *lin, int w, int h, char 
 typedef struct {
     float org[3], tnear;
     float dir[3], tfar;     /* tfar: the ray's original extent */
-    uint32_t kind;          /* tdc_ray_kind_t; shadow rays were occlusion queries */
-    uint32_t prev_frame;    /* 1: traced in the previous frame's scene (MV rays) */
+    uint32_t kind;          /* tdc_ray_kind_t */
+    uint32_t flags;         /* TDC_RAY_PREV_FRAME, TDC_RAY_OCCLUSION */
 } tdc_render_ray_t;
+#define TDC_RAY_PREV_FRAME 1u  /* traced in the previous frame's scene (MV rays) */
+#define TDC_RAY_OCCLUSION 2u   /* rtcOccluded1 query (else rtcIntersect1) */
 const tdc_render_ray_t *tdc_render_recorded_rays(const tdc_render_t *r, size_t *count);
 /* The committed Embree scene (RTCScene) of `frame`, for bare-Embree comparisons. */
 void *tdc_render_embree_scene(tdc_render_t *r, uint32_t frame);

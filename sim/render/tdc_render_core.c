@@ -75,11 +75,17 @@ static void make_cam(const tdc_scene_t *s, double t, int w, int h, rcam_t *c)
     c->aspect = (double)w / h;
     c->w = w;
     c->h = h;
+    c->ax = 2.0 / w * c->tan_half * c->aspect;
+    c->bx = -c->tan_half * c->aspect;
+    c->ay = -2.0 / h * c->tan_half;
+    c->by = c->tan_half;
+    c->kx = 0.5 * w / (c->tan_half * c->aspect);
+    c->ky = 0.5 * h / c->tan_half;
 }
 
 void tdc_r_cam_ray(const rcam_t *c, double x, double y, double dir[3])
 {
-    double sx = (2 * x / c->w - 1) * c->tan_half * c->aspect, sy = (1 - 2 * y / c->h) * c->tan_half;
+    double sx = x * c->ax + c->bx, sy = y * c->ay + c->by;
     double l2 = 0;
     for (int i = 0; i < 3; i++) {
         dir[i] = c->fwd[i] + sx * c->right[i] + sy * c->up[i];
@@ -93,10 +99,11 @@ int tdc_r_project_dir(const rcam_t *c, const double d[3], double *x, double *y)
 {
     double z = d[0] * c->fwd[0] + d[1] * c->fwd[1] + d[2] * c->fwd[2];
     if (!(z > 1e-12)) return -1;
-    double u = (d[0] * c->right[0] + d[1] * c->right[1] + d[2] * c->right[2]) / z;
-    double v = (d[0] * c->up[0] + d[1] * c->up[1] + d[2] * c->up[2]) / z;
-    *x = (u / (c->tan_half * c->aspect) + 1) * 0.5 * c->w;
-    *y = (1 - v / c->tan_half) * 0.5 * c->h;
+    double iz = 1.0 / z;
+    double u = (d[0] * c->right[0] + d[1] * c->right[1] + d[2] * c->right[2]) * iz;
+    double v = (d[0] * c->up[0] + d[1] * c->up[1] + d[2] * c->up[2]) * iz;
+    *x = u * c->kx + 0.5 * c->w;
+    *y = 0.5 * c->h - v * c->ky;
     return 0;
 }
 
@@ -242,6 +249,7 @@ void tdc_render_close(tdc_render_t *r)
     free(r->mv_hist_prev);
     free(r->pattern);
     free(r->rec);
+    for (int i = 0; i < 64; i++) free(r->sbuf[i]);
     free(r);
 }
 
@@ -263,6 +271,15 @@ void tdc_render_output_size(const tdc_render_t *r, tdc_render_mode_t mode, int *
         *h = r->H;
     }
 }
+
+int tdc_render_set_threads(tdc_render_t *r, int threads)
+{
+    if (threads < 1 || threads > 64) return -1;
+    r->cfg.threads = threads;
+    return 0;
+}
+
+void tdc_render_set_record(tdc_render_t *r, int on) { r->cfg.record_rays = on != 0; }
 
 void tdc_render_get_features(const tdc_render_t *r, tdc_render_features_t *f) { *f = r->feat; }
 const tdc_scene_t *tdc_render_scene(const tdc_render_t *r) { return r->scene; }

@@ -37,9 +37,15 @@ typedef struct {
     pthread_t tid;
 } worker_t;
 
+/* round(v * 16) half up, clamped; floor without a libm call (x86-64
+ * baseline has no SSE4.1 round instruction) */
 static int16_t q4(double v)
 {
-    double q = floor(v * 16 + 0.5);
+    double f = v * 16 + 0.5;
+    if (f > 32767) f = 32767;
+    if (!(f >= -32767)) f = -32767; /* also NaN */
+    long i = (long)f;
+    double q = (double)(i - (i > f));
     if (q > 32767) q = 32767;
     if (q < -32767) q = -32767;
     return (int16_t)q;
@@ -374,7 +380,12 @@ int tdc_render_frame(tdc_render_t *r, uint32_t frame, tdc_render_mode_t mode, co
     for (int i = 0; i < nth; i++) {
         w[i].job = &jb;
         init_thread(&w[i].th, r, frame, mode == TDC_RENDER_GROUND_TRUTH, jb.spp, jb.record, jb.do_mv_shadow);
-        w[i].s = malloc(cap * sizeof(rsample_t));
+        if (r->sbuf_cap[i] < cap) { /* kept between frames: no page faults per frame */
+            free(r->sbuf[i]);
+            r->sbuf[i] = malloc(cap * sizeof(rsample_t));
+            r->sbuf_cap[i] = r->sbuf[i] ? cap : 0;
+        }
+        w[i].s = r->sbuf[i];
         if (!w[i].s) ok = 0;
     }
     if (ok) {
@@ -401,7 +412,6 @@ int tdc_render_frame(tdc_render_t *r, uint32_t frame, tdc_render_mode_t mode, co
         for (int s = 0; s < TDC_STAGE_COUNT; s++) st.ms[s] += w[i].th.ms[s];
         for (int k = 0; k < TDC_RAY_KIND_COUNT; k++) st.rays[k] += w[i].th.rays[k];
         free(w[i].th.rec);
-        free(w[i].s);
     }
     free(w);
     if (!ok) {

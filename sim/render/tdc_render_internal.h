@@ -16,6 +16,9 @@ typedef struct {
     double pos[3], fwd[3], right[3], up[3];
     double tan_half, aspect;  /* tan(fov/2), W/H */
     int w, h;
+    /* precomputed: image (x, y) -> screen-plane (sx, sy) = (x ax + bx, y ay + by),
+     * and back: x = u kx + w/2, y = h/2 - v ky for u, v = plane coordinates / depth */
+    double ax, bx, ay, by, kx, ky;
 } rcam_t;
 
 /* Everything that depends on the frame time. */
@@ -54,6 +57,8 @@ struct tdc_render {
     int16_t *mv_hist;         /* W*H*2 */
     int16_t *mv_hist_prev;    /* snapshot at the start of a subframe (pixel classes) */
     uint8_t *pattern;         /* ordering bits */
+    void *sbuf[64];           /* per-thread sample buffers, kept between frames */
+    size_t sbuf_cap[64];      /* in samples */
     tdc_render_ray_t *rec;    /* recorded rays (merged) */
     size_t nrec;
 };

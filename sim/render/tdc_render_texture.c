@@ -60,6 +60,15 @@ static const unsigned char *glyph(char ch)
     }
 }
 
+/* floor() without a libm call (the x86-64 baseline has no SSE4.1 round);
+ * texture coordinates are far inside the long range */
+static inline double ffloor(double x)
+{
+    if (!(x > -1e15 && x < 1e15)) return 0;
+    long i = (long)x;
+    return (double)(i - (i > x));
+}
+
 static double hash01(long a, long b)
 {
     uint32_t h = (uint32_t)a * 0x9E3779B1u ^ ((uint32_t)b + 0x7F4A7C15u) * 0x85EBCA77u;
@@ -123,35 +132,35 @@ void tdc_r_base_color(const tdc_scene_t *s, const tdc_object_t *o, const double 
         uv_of(o, q, nq, &u, &v);
         switch (m->tex) {
         case TDC_TEX_CHECKER:
-            if (((long)floor(u / sc) + (long)floor(v / sc)) & 1) c = m->color2;
+            if (((long)ffloor(u / sc) + (long)ffloor(v / sc)) & 1) c = m->color2;
             break;
         case TDC_TEX_STRIPES:
-            if (u / sc - floor(u / sc) >= 0.5) c = m->color2;
+            if (u / sc - ffloor(u / sc) >= 0.5) c = m->color2;
             break;
         case TDC_TEX_TEXT: {
             /* Lines of height sc: 7 glyph rows + 1 gap row; cells 6 columns wide. */
             double cell = sc / 8;
-            double fy = v / sc - floor(v / sc);
+            double fy = v / sc - ffloor(v / sc);
             int row = (int)((1 - fy) * 8);
             if (row > 7) row = 7;
             double cx = u / (6 * cell);
-            long ci = (long)floor(cx);
+            long ci = (long)ffloor(cx);
             int col = (int)((cx - ci) * 6);
             if (col > 5) col = 5;
             long len = (long)strlen(m->text) + 1;
-            long line = (long)floor(v / sc);
+            long line = (long)ffloor(v / sc);
             long idx = ((ci + line * 7) % len + len) % len; /* successive lines start at different letters */
             char ch = idx < len - 1 ? m->text[idx] : ' ';
             if (row < 7 && col < 5 && ((glyph(ch)[row] >> (4 - col)) & 1)) c = m->color2;
             break;
         }
         case TDC_TEX_SKYLINE: {
-            long b = (long)floor(u / sc);
+            long b = (long)ffloor(u / sc);
             double top = 4 + 4 * hash01(b, 1);
             if (v < top) {
                 double shade = 0.6 + 0.4 * hash01(b, 2);
                 double wu = u / (sc * 0.25), wv = v / (sc * 0.4);
-                long wi = (long)floor(wu), wj = (long)floor(wv);
+                long wi = (long)ffloor(wu), wj = (long)ffloor(wv);
                 int in_window = (wu - wi) > 0.35 && (wu - wi) < 0.8 && (wv - wj) > 0.3 && (wv - wj) < 0.75 &&
                                 v < top - 0.2 && hash01(b * 131 + wi, wj) > 0.55;
                 if (in_window) {

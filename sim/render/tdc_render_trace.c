@@ -47,7 +47,7 @@ double tdc_r_rand(uint32_t seed, uint32_t frame, uint32_t dst, uint32_t k, uint3
 
 static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-static void record(rthread_t *t, const struct RTCRay *ray, uint32_t kind, int prevf)
+static void record(rthread_t *t, const struct RTCRay *ray, uint32_t kind, uint32_t flags)
 {
     if (t->nrec == t->crec) {
         size_t c = t->crec ? t->crec * 2 : 65536;
@@ -69,7 +69,7 @@ static void record(rthread_t *t, const struct RTCRay *ray, uint32_t kind, int pr
     o->dir[2] = ray->dir_z;
     o->tfar = ray->tfar;
     o->kind = kind;
-    o->prev_frame = (uint32_t)prevf;
+    o->flags = flags;
 }
 
 static void set_ray(struct RTCRay *ray, const double o[3], const double d[3], double tnear, double tfar)
@@ -96,7 +96,7 @@ static int intersect(rthread_t *t, int prevf, const double o[3], const double d[
     rh->hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     t->rays[kind]++;
-    if (t->record) record(t, &rh->ray, kind, prevf);
+    if (t->record) record(t, &rh->ray, kind, prevf ? TDC_RAY_PREV_FRAME : 0);
     rtcIntersect1(prevf ? t->top_prev : t->top, &t->ctx, rh);
     return rh->hit.geomID == RTC_INVALID_GEOMETRY_ID ? -1 : (int)rh->hit.instID[0];
 }
@@ -106,7 +106,7 @@ static int occluded(rthread_t *t, const double o[3], const double d[3], double t
     struct RTCRay ray;
     set_ray(&ray, o, d, 0, tfar);
     t->rays[TDC_RAY_SHADOW]++;
-    if (t->record) record(t, &ray, TDC_RAY_SHADOW, 0);
+    if (t->record) record(t, &ray, TDC_RAY_SHADOW, TDC_RAY_OCCLUSION);
     rtcOccluded1(t->top, &t->ctx, &ray);
     return ray.tfar < 0;
 }
