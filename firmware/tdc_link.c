@@ -199,7 +199,7 @@ static tdc_link_err_t check_header(const tdc_link_decoder_t *dec, uint32_t versi
         return TDC_LINK_ERR_FORMAT;
     }
     const int pixel_kind = kind == TDC_LINK_KIND_FULL || kind == TDC_LINK_KIND_REDUCED || kind == TDC_LINK_KIND_SUBFRAME;
-    if (pixel_kind ? !tdc_pixfmt_valid(fmt) : fmt != TDC_PIXFMT_NONE) {
+    if (pixel_kind ? (!tdc_pixfmt_valid(fmt) || !((TDC_LINK_FORMAT_MASK >> fmt) & 1u)) : fmt != TDC_PIXFMT_NONE) {
         return TDC_LINK_ERR_FORMAT;
     }
 
@@ -389,6 +389,41 @@ static uint32_t count_missing_reduced(const tdc_link_decoder_t *dec, uint32_t fr
     return missing > UINT32_MAX ? UINT32_MAX : (uint32_t)missing;
 }
 
+/* Unpack dispatch limited to the compiled-in formats, so a board's mask
+ * removes the other unpackers from its image. */
+static void unpack_pixels(tdc_pixfmt_t fmt, const uint8_t *src, uint32_t w, uint32_t h, uint8_t *dst, uint32_t stride)
+{
+    (void)src; /* unused when the mask is empty */
+    (void)w;
+    (void)h;
+    (void)dst;
+    (void)stride;
+    switch (fmt) {
+#if (TDC_LINK_FORMAT_MASK >> 1) & 1u
+    case TDC_PIXFMT_RGB888:
+        tdc_pixfmt_unpack_rgb888(src, w, h, dst, stride);
+        break;
+#endif
+#if (TDC_LINK_FORMAT_MASK >> 2) & 1u
+    case TDC_PIXFMT_RGB565:
+        tdc_pixfmt_unpack_rgb565(src, w, h, dst, stride);
+        break;
+#endif
+#if (TDC_LINK_FORMAT_MASK >> 3) & 1u
+    case TDC_PIXFMT_RGB30:
+        tdc_pixfmt_unpack_rgb30(src, w, h, dst, stride);
+        break;
+#endif
+#if (TDC_LINK_FORMAT_MASK >> 4) & 1u
+    case TDC_PIXFMT_YCBCR420:
+        tdc_pixfmt_unpack_ycbcr420(src, w, h, dst, stride);
+        break;
+#endif
+    default: /* unreachable: check_header rejected it */
+        break;
+    }
+}
+
 static void unpack_le16(const uint8_t *src, int16_t *dst, size_t count)
 {
     for (size_t i = 0; i < count; i++) {
@@ -446,13 +481,13 @@ static void on_payload(tdc_link_decoder_t *dec)
         const uint32_t tx = TDC_LINK_TILES(p->width), ty = TDC_LINK_TILES(p->height);
         switch (kind) {
         case TDC_LINK_KIND_FULL:
-            tdc_pixfmt_unpack(fmt, s, p->width, p->height, b->full[eye], b->full_stride);
+            unpack_pixels(fmt, s, p->width, p->height, b->full[eye], b->full_stride);
             break;
         case TDC_LINK_KIND_REDUCED:
-            tdc_pixfmt_unpack(fmt, s, p->width, p->height, b->reduced[eye], (uint32_t)p->width * 3u);
+            unpack_pixels(fmt, s, p->width, p->height, b->reduced[eye], (uint32_t)p->width * 3u);
             break;
         case TDC_LINK_KIND_SUBFRAME:
-            tdc_pixfmt_unpack(fmt, s, tx, ty, b->subframe[eye], tx * 3u);
+            unpack_pixels(fmt, s, tx, ty, b->subframe[eye], tx * 3u);
             break;
         case TDC_LINK_KIND_MOTION:
             if (p->flags & TDC_LINK_PKT_MV_PER_SAMPLE) {

@@ -147,6 +147,14 @@ const char *tdc_link_err_name(tdc_link_err_t e);
 #define TDC_LINK_MAX_PIXELS ((uint32_t)TDC_LINK_MAX_WIDTH * TDC_LINK_MAX_HEIGHT)
 #endif
 
+/* Pixel formats this build accepts: bit f set = tdc_pixfmt_t f compiled in.
+ * A board that never receives e.g. RGB30 defines a smaller mask and the
+ * unpacker for it is left out of the image; packets in a format outside the
+ * mask are rejected with TDC_LINK_ERR_FORMAT. */
+#ifndef TDC_LINK_FORMAT_MASK
+#define TDC_LINK_FORMAT_MASK 0x1Eu /* bits 1..4: RGB888, RGB565, RGB30, YCBCR420 (numeric: used in #if) */
+#endif
+
 /* Reduced size for ratio num/den: round(n * num / den), at least 1 (the same
  * rule as TDC_TRM_REDUCED_DIM in tdc_trm.h). */
 #define TDC_LINK_REDUCED_DIM(n, num, den)                                                          \

@@ -67,3 +67,4 @@ GOLDEN_STAGES += link
 $(B)/tests/tdc_golden: $(B)/tests/golden/golden_link.o
 $(B)/tests/tdc_golden: HOST_LIBS := $(FWLIB) $(HOST_LIBS)
 BENCHES += $(B)/tests/bench_link
+TEST_EXTRA += fuzz-smoke
