@@ -840,6 +840,11 @@ static void test_init_errors(void **state)
     assert_int_equal(tdc_link_encode_frame(&menc, pkt, sizeof pkt, TDC_LINK_KIND_FULL, 0, 0, (tdc_pixfmt_t)9, src, 8, 8, 24),
                      0);
     assert_int_equal(tdc_link_packet_bytes(TDC_LINK_KIND_FULL, TDC_PIXFMT_YCBCR420, 3, 3, 0), 32u + 9u + 2u * 4u);
+    /* Sizes whose payload would not fit 32 bits are refused, not wrapped. */
+    assert_int_equal(tdc_link_packet_bytes(TDC_LINK_KIND_FULL, TDC_PIXFMT_RGB30, 65535, 65535, 0), 0);
+    assert_int_equal(tdc_link_encode_frame(&menc, pkt, sizeof pkt, TDC_LINK_KIND_FULL, 0, 0, TDC_PIXFMT_RGB30, src,
+                                           65535, 65535, 65535u * 3u),
+                     0);
 }
 
 int main(void)

@@ -113,6 +113,12 @@ void tdc_link_encoder_init(tdc_link_encoder_t *enc, uint16_t stream_id, const td
 size_t tdc_link_packet_bytes(tdc_link_kind_t kind, tdc_pixfmt_t fmt, uint32_t width, uint32_t height,
                              uint32_t pkt_flags)
 {
+    /* Payload sizes are 32-bit: refuse sizes whose 4 B/px payload would
+     * not fit (far beyond any panel). */
+    if (width == 0 || height == 0 || width > 65535u || height > 65535u ||
+        (uint64_t)width * height > ((uint64_t)1 << 28)) {
+        return 0;
+    }
     const uint32_t n = tdc_link_payload_bytes(kind, fmt, width, height, pkt_flags);
     return n ? (size_t)n + TDC_LINK_HEADER_BYTES : 0;
 }
@@ -215,7 +221,7 @@ size_t tdc_link_encode_frame(const tdc_link_encoder_t *enc, uint8_t *out, size_t
         return 0;
     }
     const size_t total = tdc_link_packet_bytes(kind, fmt, w, h, 0);
-    if (!out || !rgb || cap < total) {
+    if (!out || !rgb || total == 0 || cap < total) {
         return 0;
     }
     tdc_pixfmt_pack(fmt, rgb, w, h, stride, out + TDC_LINK_HEADER_BYTES);
@@ -231,7 +237,7 @@ size_t tdc_link_encode_subframe(const tdc_link_encoder_t *enc, uint8_t *out, siz
         return 0;
     }
     const size_t total = tdc_link_packet_bytes(TDC_LINK_KIND_SUBFRAME, fmt, w, h, 0);
-    if (!out || !samples || cap < total) {
+    if (!out || !samples || total == 0 || cap < total) {
         return 0;
     }
     const uint32_t tx = TDC_LINK_TILES(w), ty = TDC_LINK_TILES(h);
@@ -249,7 +255,7 @@ size_t tdc_link_encode_motion(const tdc_link_encoder_t *enc, uint8_t *out, size_
         return 0;
     }
     const size_t total = tdc_link_packet_bytes(TDC_LINK_KIND_MOTION, TDC_PIXFMT_NONE, w, h, flags);
-    if (!out || !mv || cap < total) {
+    if (!out || !mv || total == 0 || cap < total) {
         return 0;
     }
     const size_t count = (total - TDC_LINK_HEADER_BYTES) / 2u;
@@ -272,7 +278,7 @@ size_t tdc_link_encode_pattern(const tdc_link_encoder_t *enc, uint8_t *out, size
         return 0;
     }
     const size_t total = tdc_link_packet_bytes(TDC_LINK_KIND_PATTERN, TDC_PIXFMT_NONE, w, h, 0);
-    if (!out || !bits || cap < total) {
+    if (!out || !bits || total == 0 || cap < total) {
         return 0;
     }
     const size_t n = total - TDC_LINK_HEADER_BYTES;
