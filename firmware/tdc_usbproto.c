@@ -515,12 +515,13 @@ void tdc_usbp_bulk_out(tdc_usbp_t *s, const uint8_t *data, uint32_t len)
     s->cnt.rx_crc = tdc_usbp_crc32_update(s->cnt.rx_crc, data, len);
     if (s->cfg.sink == NULL)
         return;
-    switch (s->cfg.sink(s->cfg.sink_ctx, data, len)) {
-    case TDC_USBP_SINK_CRC: s->cnt.link_crc_errors++; break;
-    case TDC_USBP_SINK_MALFORMED: s->cnt.link_malformed++; break;
-    case TDC_USBP_SINK_OVERRUN: s->cnt.rx_overruns++; break;
-    case TDC_USBP_SINK_OK: break;
-    }
+    /* Counters wrap modulo 2^32 (unsigned, defined); hosts compare deltas. */
+    tdc_usbp_sink_report_t d = {0, 0, 0, 0};
+    s->cfg.sink(s->cfg.sink_ctx, data, len, &d);
+    s->cnt.link_crc_errors += d.crc_errors;
+    s->cnt.link_malformed += d.malformed;
+    s->cnt.rx_overruns += d.overruns;
+    s->cnt.frames_shown += d.frames;
 }
 
 void tdc_usbp_status_report(tdc_usbp_t *s, uint8_t out[TDC_USB_STATUS_LEN])

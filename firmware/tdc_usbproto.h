@@ -137,11 +137,14 @@ typedef enum {
     TDC_USBP_ARG = -2     /* caller error (null pointer, reply buffer too small) */
 } tdc_usbp_result_t;
 
-/* What the board's link decoder said about a received transfer. */
-typedef enum {
-    TDC_USBP_SINK_OK = 0, TDC_USBP_SINK_CRC = 1, TDC_USBP_SINK_MALFORMED = 2,
-    TDC_USBP_SINK_OVERRUN = 3
-} tdc_usbp_sink_result_t;
+/* What the board's link decoder found in one received transfer: counts
+ * added to the board counters (a transfer may close several packets). */
+typedef struct {
+    uint32_t crc_errors;  /* packets (or headers) failing their CRC */
+    uint32_t malformed;   /* other rejected packets or discarded garbage */
+    uint32_t overruns;    /* bytes dropped because the receive buffer was full */
+    uint32_t frames;      /* frames completed (shown) */
+} tdc_usbp_sink_report_t;
 
 /* The DFU target: a flash slot behind two calls so the same state machine
  * drives internal flash on a board, RAM in the emulation and a file in the
@@ -153,7 +156,9 @@ typedef struct {
     uint32_t slot_bytes;
 } tdc_usbp_flash_t;
 
-typedef tdc_usbp_sink_result_t (*tdc_usbp_sink_fn)(void *ctx, const uint8_t *data, uint32_t len);
+/* Called with each bulk OUT transfer; *delta arrives zeroed. */
+typedef void (*tdc_usbp_sink_fn)(void *ctx, const uint8_t *data, uint32_t len,
+                                 tdc_usbp_sink_report_t *delta);
 
 typedef struct {
     const char *board_name;  /* <= 15 chars shown, also the image's target */

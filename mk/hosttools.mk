@@ -33,8 +33,8 @@ $(TDC_GPIO): $(TDC_GPIO_OBJS)
 
 # umockdev tests: the emulated board plus the real tdc-usb binary.
 USB_EMUL_OBJS = $(B)/tests/usb/test_usb_emul.o $(B)/tests/usb/tdc_usb_emul.o
-$(B)/tests/usb/test_usb_emul: $(USB_EMUL_OBJS) $(FWLIB) $(TDC_USB)
-	$(CC) $(HOST_LDFLAGS) $(USB_EMUL_OBJS) -o $@ $(FWLIB) $(UMOCKDEV_LIBS) -lcmocka -lpthread
+$(B)/tests/usb/test_usb_emul: $(USB_EMUL_OBJS) $(SIMLIB) $(FWLIB) $(TDC_USB)
+	$(CC) $(HOST_LDFLAGS) $(USB_EMUL_OBJS) -o $@ $(SIMLIB) $(FWLIB) $(UMOCKDEV_LIBS) -lcmocka -lpthread -lm
 TESTS += $(B)/tests/usb/test_usb_emul
 
 # The vsync statistics (pure code) and tdc-gpio's error paths without a chip.

@@ -34,6 +34,10 @@ typedef struct emul_board emul_board_t;
  * slot_bytes: size of its DFU flash slot. */
 emul_board_t *emul_board_add(UMockdevTestbed *tb, int bus, int dev, const char *serial,
                              uint32_t slot_bytes);
+/* Feeds every bulk OUT byte to the firmware's link decoder (tdc_link.h)
+ * for a w x h mono panel, so the board's error counters and frame count
+ * are the decoder's verdicts.  Returns 0, or -1 if the decoder refused. */
+int emul_board_attach_link_decoder(emul_board_t *b, uint16_t w, uint16_t h);
 void emul_board_set_fault(emul_board_t *b, emul_fault_t fault, uint32_t fault_after);
 void emul_board_free(emul_board_t *b);
 

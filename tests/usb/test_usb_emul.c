@@ -24,6 +24,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "link/tdc_link_gen.h"
 #include "tdc_usb_emul.h"
 
 #ifndef TDC_USB_BIN
@@ -296,6 +297,51 @@ static void test_stream(void **state)
     free(data);
 }
 
+/* A real link stream (sim/link generator) into a board whose sink is the
+ * firmware's link decoder: its verdicts become the counters tdc-usb prints. */
+static void test_stream_link_decoder(void **state)
+{
+    fixture_t *f = *state;
+    enum { W = 32, H = 24, FRAMES = 12 };
+    assert_int_equal(emul_board_attach_link_decoder(f->board[0], W, H), 0);
+    tdc_link_gen_opts_t o;
+    memset(&o, 0, sizeof o);
+    o.stream_id = 7;
+    o.info.r_num = 1;
+    o.info.r_den = 1;
+    o.info.width = W;
+    o.info.height = H;
+    o.info.eyes = 1;
+    o.info.refresh_hz = 90;
+    o.fmt = TDC_PIXFMT_RGB888;
+    o.frames = FRAMES;
+    o.seed = 5;
+    o.with_stream_header = 1;
+    static uint8_t stream[64 * 1024], scratch[TDC_LINK_GEN_SCRATCH_BYTES(W, H)];
+    tdc_link_gen_packet_t pk[64];
+    uint32_t npk = 0;
+    size_t n = tdc_link_gen_stream(stream, sizeof stream, &o, scratch, sizeof scratch, pk, 64, &npk);
+    assert_true(n > 0 && npk == FRAMES + 1);
+    char path[128];
+    snprintf(path, sizeof path, "%s/gen.tdcs", tmpdir);
+    write_file(path, stream, n);
+    run_t r;
+    run_tool(&r, (const char *[]){"stream", "--chunk", "1000", path, NULL});
+    expect(&r, 0, "link_crc_errors 0 link_malformed 0", NULL);
+    assert_non_null(strstr(r.out, "frames 12"));
+    /* A new stream (new id: the board keeps its sequence state across
+     * transfers, like a real decoder) with one flipped payload bit in frame
+     * packet 5: one CRC error, one frame lost, the rest shown. */
+    o.stream_id = 8;
+    assert_int_equal(tdc_link_gen_stream(stream, sizeof stream, &o, scratch, sizeof scratch, pk, 64,
+                                         &npk), n);
+    stream[pk[5].offset + TDC_LINK_HEADER_BYTES + 17] ^= 0x04u;
+    write_file(path, stream, n);
+    run_tool(&r, (const char *[]){"stream", "--chunk", "1000", path, NULL});
+    expect(&r, 0, "link_crc_errors 1 link_malformed 0", NULL);
+    assert_non_null(strstr(r.out, "frames 11"));
+}
+
 static void stream_fault(fixture_t *f, emul_fault_t fault, uint32_t after, int code,
                          const char *msg)
 {
@@ -477,6 +523,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_list_and_info, setup_one, teardown),
         cmocka_unit_test_setup_teardown(test_two_devices, setup_two, teardown),
         cmocka_unit_test_setup_teardown(test_stream, setup_one, teardown),
+        cmocka_unit_test_setup_teardown(test_stream_link_decoder, setup_one, teardown),
         cmocka_unit_test_setup_teardown(test_stream_stall, setup_one, teardown),
         cmocka_unit_test_setup_teardown(test_stream_timeout, setup_one, teardown),
         cmocka_unit_test_setup_teardown(test_stream_unplug, setup_one, teardown),

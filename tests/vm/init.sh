@@ -135,15 +135,17 @@ wait $p
 check gpio-no-line 3 "no line 'nosuch'" tdc-gpio reset --chip $CHIP --line nosuch
 check gpio-no-chip 2 "cannot open GPIO chip" tdc-gpio reset --chip gpiochip99 --line 0
 check gpio-vsync-timeout 6 "no edge" tdc-gpio vsync --chip $CHIP --line vsync --timeout-ms 300
-# vsync: 100 Hz with every 40th pulse left out
-tdc_vsync_gen $SIM/sim_gpio2/pull 100 250 40 &
+# vsync: 20 Hz with every 20th pulse left out.  The rate is low on purpose:
+# under TCG on a loaded host the generator's wake-ups slip by milliseconds,
+# which at 100 Hz already looks like missed frames; at 50 ms periods it does not.
+tdc_vsync_gen $SIM/sim_gpio2/pull 20 100 20 &
 g=$!
-check gpio-vsync 0 "refresh" tdc-gpio vsync --chip $CHIP --line vsync --count 120 --expect-hz 100
+check gpio-vsync 0 "refresh" tdc-gpio vsync --chip $CHIP --line vsync --count 60 --expect-hz 20
 wait $g
-hz=$(sed -n 's/.*refresh \([0-9]*\)\..*/\1/p' /tmp/out)
+hz=$(sed -n 's/.*refresh \([0-9]*\.[0-9]\).*/\1/p' /tmp/out | tr -d .)
 missed=$(sed -n 's/.*missed frames \([0-9]*\).*/\1/p' /tmp/out)
-echo "    measured refresh ${hz} Hz, missed ${missed}"
-[ -n "$hz" ] && [ "$hz" -ge 95 ] && [ "$hz" -le 105 ] && ok gpio-vsync-rate || bad gpio-vsync-rate "refresh '$hz' Hz, want 95..105"
-[ -n "$missed" ] && [ "$missed" -ge 2 ] && [ "$missed" -le 4 ] && ok gpio-vsync-missed || bad gpio-vsync-missed "missed '$missed', want 2..4 (3 left out)"
+echo "    measured refresh ${hz} dHz, missed ${missed}"
+[ -n "$hz" ] && [ "$hz" -ge 190 ] && [ "$hz" -le 210 ] && ok gpio-vsync-rate || bad gpio-vsync-rate "refresh '$hz' dHz, want 190..210 (20 Hz +-5 %)"
+[ -n "$missed" ] && [ "$missed" -ge 2 ] && [ "$missed" -le 5 ] && ok gpio-vsync-missed || bad gpio-vsync-missed "missed '$missed', want 2..5 (3 left out in the window)"
 
 finish
