@@ -60,8 +60,9 @@ static void slurp(const char *path, char *dst, size_t cap)
         fclose(f);
 }
 
-/* Runs tdc-usb with the given arguments inside the current testbed. */
-static void run_tool(run_t *r, const char *const *args)
+/* Runs tdc-usb with the given arguments inside the current testbed;
+ * stdin from in_path (NULL: /dev/null). */
+static void run_tool_in(run_t *r, const char *const *args, const char *in_path)
 {
     const char *argv[32];
     int n = 0;
@@ -89,12 +90,14 @@ static void run_tool(run_t *r, const char *const *args)
     snprintf(err_path, sizeof err_path, "%s/stderr", tmpdir);
     int fo = open(out_path, O_WRONLY | O_CREAT | O_TRUNC, 0600);
     int fe = open(err_path, O_WRONLY | O_CREAT | O_TRUNC, 0600);
-    assert_true(fo >= 0 && fe >= 0);
+    int fi = open(in_path != NULL ? in_path : "/dev/null", O_RDONLY);
+    assert_true(fo >= 0 && fe >= 0 && fi >= 0);
 
     double t0 = mono_s();
     pid_t pid = fork();
     assert_true(pid >= 0);
     if (pid == 0) {
+        dup2(fi, 0);
         dup2(fo, 1);
         dup2(fe, 2);
         execve(argv[0], (char *const *)argv, envp);
@@ -102,6 +105,7 @@ static void run_tool(run_t *r, const char *const *args)
     }
     close(fo);
     close(fe);
+    close(fi);
     int st = 0;
     r->status = -1;
     for (;;) {
@@ -128,6 +132,11 @@ static void run_tool(run_t *r, const char *const *args)
     printf("  -> exit %d in %.2f s\n", r->status, r->secs);
     if (r->err[0] != '\0')
         printf("    stderr: %s", r->err);
+}
+
+static void run_tool(run_t *r, const char *const *args)
+{
+    run_tool_in(r, args, NULL);
 }
 
 static void expect(const run_t *r, int status, const char *in_out, const char *in_err)
@@ -294,6 +303,14 @@ static void test_stream(void **state)
     assert_int_equal(st.rx_bytes, n);
     assert_int_equal(st.rx_transfers, (n + 8191) / 8192);
     assert_int_equal(st.rx_crc, ref_crc32(data, n));
+    /* the same bytes from stdin (a live producer such as tdc-sim), with
+     * the progress bar forced on (stderr is not a terminal here) */
+    run_tool_in(&r, (const char *[]){"stream", "--progress", "--chunk", "8192", "-", NULL}, path);
+    expect(&r, 0, "board received all 200003 bytes", "stream 200003 bytes");
+    emul_board_stats(f->board[0], &st);
+    assert_int_equal(st.rx_crc, ref_crc32(data, n));
+    run_tool(&r, (const char *[]){"stream", "--progress", path, NULL});
+    expect(&r, 0, "board received all 200003 bytes", "100.0%");
     free(data);
 }
 
