@@ -121,6 +121,8 @@ int main(int argc, char **argv)
             return 1;
         }
         double build_ms = now_ms() - t0;
+        tdc_render_features_t ft;
+        tdc_render_get_features(r, &ft);
         tdc_render_out_t out = {0};
         out.rgb = rgb;
         out.mv = mv;
@@ -179,7 +181,7 @@ int main(int argc, char **argv)
         printf("          subframe: %.1f%% of the full frame's rays, %.1f%% of its time (%.1f vs %.1f ms); "
                "BVH build %.0f ms, %llu triangles\n",
                100.0 * total_rays(&sf) / total_rays(&ff), 100 * sub_best / ff.wall_ms, sub_best, ff.wall_ms, build_ms,
-               (unsigned long long)0);
+               (unsigned long long)ft.triangles);
         free(prim);
         tdc_render_close(r);
     }

@@ -15,9 +15,9 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "link/tdc_link_encode.h"
-#include "link/tdc_link_file.h"
+#include "tdc_link.h"
 #include "tdc_render.h"
+#include "tdc_render_stream.h"
 
 static void usage(void)
 {
@@ -176,40 +176,23 @@ int main(int argc, char **argv)
     int16_t *mv = malloc(npix * 2 * sizeof(int16_t));
     int16_t *mvs = malloc(npix * 2 * sizeof(int16_t));
     int16_t *mvd = malloc(npix * 2 * sizeof(int16_t));
-    uint8_t *rgb8 = malloc(npix * 3);
-    size_t pkt_cap = npix * 4 + 4096;
-    uint8_t *pkt = malloc(pkt_cap);
-    if (!rgb || !vis || !mv || !mvs || !mvd || !rgb8 || !pkt) {
+    if (!rgb || !vis || !mv || !mvs || !mvd) {
         fprintf(stderr, "tdc-render: out of memory\n");
         return 1;
     }
-    tdc_link_file_t lf;
-    tdc_link_encoder_t enc;
-    int streaming = 0;
+    tdc_render_stream_t *stream = NULL;
     if (stream_path) {
-        tdc_link_stream_info_t info;
-        memset(&info, 0, sizeof info);
-        info.flags = (ft.motion ? TDC_LINK_STREAM_MOTION : 0) |
-                     (ft.motion && ft.mirrors && cfg.reflect_mv ? TDC_LINK_STREAM_MIRRORS : 0);
-        if (trm || mode == TDC_RENDER_REDUCED) info.flags |= TDC_LINK_STREAM_REDUCED;
-        if (mode == TDC_RENDER_SUBFRAME)
-            info.flags |= TDC_LINK_STREAM_SUBFRAMES | (ft.motion ? TDC_LINK_STREAM_SAMPLE_MV : 0);
-        info.r_num = 1;
-        info.r_den = (info.flags & TDC_LINK_STREAM_REDUCED) ? (uint16_t)lround(1 / cfg.reduced_factor) : 1;
-        info.width = (uint16_t)W;
-        info.height = (uint16_t)H;
-        info.eyes = 1;
-        info.refresh_hz = (uint16_t)lround(scene->fps);
-        tdc_link_encoder_init(&enc, 1, &info);
-        if (tdc_link_file_create(&lf, stream_path) < 0) return 1;
-        size_t n = tdc_link_encode_stream(&enc, pkt, pkt_cap);
-        if (!n || tdc_link_file_write(&lf, pkt, n) < 0) {
-            fprintf(stderr, "tdc-render: stream header rejected by the encoder\n");
+        stream = tdc_render_stream_create(stream_path, r,
+                                          trm || mode == TDC_RENDER_REDUCED ? TDC_RSTREAM_TRM
+                                          : mode == TDC_RENDER_SUBFRAME     ? TDC_RSTREAM_SUBFRAMES
+                                                                            : TDC_RSTREAM_FULL,
+                                          err, sizeof err);
+        if (!stream) {
+            fprintf(stderr, "tdc-render: %s\n", err);
             return 1;
         }
-        streaming = 1;
-        printf("stream %s: flags 0x%04x%s\n", stream_path, (unsigned)info.flags,
-               ft.motion ? "" : " (static: no motion vectors)");
+        printf("stream %s: flags 0x%04x%s\n", stream_path, (unsigned)tdc_render_stream_flags(stream),
+               ft.motion ? "" : " (static scene: no motion vectors)");
     }
 
     tdc_render_stats_t tot;
@@ -258,34 +241,9 @@ int main(int argc, char **argv)
                 }
             }
         }
-        if (streaming) {
-            size_t n = 0;
-            tdc_render_linear_to_rgb888(rgb, (size_t)s.out_w * s.out_h, rgb8);
-            if (m == TDC_RENDER_SUBFRAME) {
-                if ((f & 3) == 0) {
-                    n = tdc_link_encode_pattern(&enc, pkt, pkt_cap, 0, (uint32_t)f, tdc_render_pattern_bits(r),
-                                                (uint32_t)W, (uint32_t)H);
-                    if (!n || tdc_link_file_write(&lf, pkt, n) < 0) rc = 1;
-                }
-                n = tdc_link_encode_subframe(&enc, pkt, pkt_cap, 0, (uint32_t)f, TDC_PIXFMT_RGB888, rgb8, (uint32_t)W,
-                                             (uint32_t)H);
-                if (!n || tdc_link_file_write(&lf, pkt, n) < 0) rc = 1;
-                if (ft.motion) {
-                    n = tdc_link_encode_motion(&enc, pkt, pkt_cap, 0, (uint32_t)f, mv, (uint32_t)W, (uint32_t)H, 1);
-                    if (!n || tdc_link_file_write(&lf, pkt, n) < 0) rc = 1;
-                }
-            } else {
-                n = tdc_link_encode_frame(&enc, pkt, pkt_cap,
-                                          m == TDC_RENDER_REDUCED ? TDC_LINK_KIND_REDUCED : TDC_LINK_KIND_FULL, 0,
-                                          (uint32_t)f, TDC_PIXFMT_RGB888, rgb8, (uint32_t)s.out_w, (uint32_t)s.out_h,
-                                          (uint32_t)s.out_w * 3);
-                if (!n || tdc_link_file_write(&lf, pkt, n) < 0) rc = 1;
-                if (ft.motion && m == TDC_RENDER_FULL) {
-                    n = tdc_link_encode_motion(&enc, pkt, pkt_cap, 0, (uint32_t)f, mv, (uint32_t)W, (uint32_t)H, 0);
-                    if (!n || tdc_link_file_write(&lf, pkt, n) < 0) rc = 1;
-                }
-            }
-            if (rc) fprintf(stderr, "tdc-render: link encoder rejected a packet of frame %d\n", f);
+        if (stream && tdc_render_stream_frame(stream, (uint32_t)f, m, rgb, mv) < 0) {
+            fprintf(stderr, "tdc-render: link encoder or file rejected a packet of frame %d\n", f);
+            rc = 1;
         }
     }
     int nf = f1 - f0;
@@ -299,8 +257,12 @@ int main(int argc, char **argv)
     printf("rays: primary %llu shadow %llu reflect %llu mv %llu; wall %.1f ms, %.2f Mrays/s\n",
            (unsigned long long)tot.rays[0], (unsigned long long)tot.rays[1], (unsigned long long)tot.rays[2],
            (unsigned long long)tot.rays[3], tot.wall_ms, tot.wall_ms > 0 ? all / tot.wall_ms / 1e3 : 0.0);
-    if (streaming && tdc_link_file_close(&lf) < 0) rc = 1;
-    if (streaming) printf("stream: %u packets, %llu bytes\n", lf.packets, (unsigned long long)lf.bytes);
+    if (stream) {
+        uint32_t np;
+        uint64_t nb;
+        if (tdc_render_stream_close(stream, &np, &nb) < 0) rc = 1;
+        printf("stream: %u packets, %llu bytes\n", np, (unsigned long long)nb);
+    }
     tdc_render_close(r);
     free(scene);
     free(rgb);
@@ -308,7 +270,5 @@ int main(int argc, char **argv)
     free(mv);
     free(mvs);
     free(mvd);
-    free(rgb8);
-    free(pkt);
     return rc;
 }

@@ -1,0 +1,218 @@
+/*
+ * test_render_stream.c - renderer -> link encoder -> .tdcs file -> firmware
+ * link decoder (issue 6): every packet of full, TRM and subframe streams is
+ * accepted, the decoded pixels and motion vectors are the renderer's, and a
+ * static scene's stream says static (no motion flag, no MOTION packets).
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "render/tdc_render.h"
+#include "render/tdc_render_stream.h"
+#include "tdc_link.h"
+
+#define W 32
+#define H 24
+#define TX ((W + 1) / 2)
+#define TY ((H + 1) / 2)
+
+static tdc_scene_t sc;
+static uint8_t staging[TDC_LINK_STAGING_BYTES(W, H)];
+static uint8_t dfull[W * H * 3], dred[W * H * 3], dsub[TX * TY * 3], dpat[TDC_LINK_PATTERN_BYTES(W, H)];
+static int16_t dmv[W * H * 2], dsmv[TX * TY * 2];
+
+/* Feeds the whole file; returns packets accepted, counts per kind. */
+static uint32_t decode_file(const char *path, uint32_t by_kind[TDC_LINK_KIND_LAST + 1], uint32_t *errors)
+{
+    static tdc_link_decoder_t dec;
+    tdc_link_config_t cfg = {W, H, 1};
+    tdc_link_buffers_t b;
+    memset(&b, 0, sizeof b);
+    b.staging = staging;
+    b.staging_bytes = sizeof staging;
+    b.full[0] = dfull;
+    b.full_stride = W * 3;
+    b.reduced[0] = dred;
+    b.reduced_bytes = sizeof dred;
+    b.subframe[0] = dsub;
+    b.motion[0] = dmv;
+    b.sample_motion[0] = dsmv;
+    b.pattern[0] = dpat;
+    assert_int_equal(tdc_link_decoder_init(&dec, &cfg, &b), TDC_OK);
+    FILE *f = fopen(path, "rb");
+    assert_non_null(f);
+    static uint8_t buf[1 << 20];
+    size_t n = fread(buf, 1, sizeof buf, f);
+    fclose(f);
+    size_t off = 0;
+    while (off < n) {
+        tdc_link_event_t ev;
+        off += tdc_link_feed(&dec, buf + off, n - off, &ev);
+    }
+    const tdc_link_counters_t *c = tdc_link_counters(&dec);
+    *errors = 0;
+    for (int e = 1; e < TDC_LINK_ERR_COUNT; e++) *errors += c->errors[e];
+    memcpy(by_kind, c->packets_by_kind, sizeof c->packets_by_kind);
+    return c->packets_ok;
+}
+
+static tdc_render_t *open_scene(const char *name)
+{
+    char err[256];
+    assert_int_equal(tdc_scene_builtin(name, &sc, err, sizeof err), TDC_SCENE_OK);
+    tdc_render_config_t cfg;
+    tdc_render_default_config(&cfg);
+    cfg.width = W;
+    cfg.height = H;
+    tdc_render_t *r = tdc_render_open(&sc, &cfg, err, sizeof err);
+    assert_non_null(r);
+    return r;
+}
+
+static void run(tdc_rstream_kind_t kind, const char *scene, int frames, uint32_t expect[TDC_LINK_KIND_LAST + 1],
+                uint32_t *flags)
+{
+    char path[] = "/tmp/tdc_rstream_XXXXXX";
+    int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    close(fd);
+    tdc_render_t *r = open_scene(scene);
+    char err[256];
+    tdc_render_stream_t *s = tdc_render_stream_create(path, r, kind, err, sizeof err);
+    if (!s) fail_msg("%s", err);
+    *flags = tdc_render_stream_flags(s);
+    static float rgb[W * H * 3];
+    static int16_t mv[W * H * 2];
+    static uint8_t last8[W * H * 3];
+    static int16_t lastmv[W * H * 2];
+    int have_full = 0;
+    for (int f = 0; f < frames; f++) {
+        tdc_render_mode_t m = kind == TDC_RSTREAM_SUBFRAMES ? TDC_RENDER_SUBFRAME
+                              : kind == TDC_RSTREAM_TRM && tdc_link_trm_kind((uint32_t)f, 0) == TDC_LINK_KIND_REDUCED
+                                  ? TDC_RENDER_REDUCED
+                                  : TDC_RENDER_FULL;
+        tdc_render_out_t out = {0};
+        out.rgb = rgb;
+        out.mv = mv;
+        assert_int_equal(tdc_render_frame(r, (uint32_t)f, m, &out, NULL), 0);
+        assert_int_equal(tdc_render_stream_frame(s, (uint32_t)f, m, rgb, m == TDC_RENDER_REDUCED ? NULL : mv), 0);
+        if (m == TDC_RENDER_FULL) {
+            tdc_render_linear_to_rgb888(rgb, W * H, last8);
+            memcpy(lastmv, mv, sizeof mv);
+            have_full = 1;
+        }
+    }
+    uint32_t np;
+    uint64_t nb;
+    assert_int_equal(tdc_render_stream_close(s, &np, &nb), 0);
+    uint32_t kinds[TDC_LINK_KIND_LAST + 1], errors;
+    uint32_t ok = decode_file(path, kinds, &errors);
+    printf("%-9s kind %d: %u packets, %llu bytes written; decoder accepted %u, errors %u; flags 0x%04x\n", scene,
+           (int)kind, np, (unsigned long long)nb, ok, errors, *flags);
+    assert_int_equal(errors, 0);
+    assert_int_equal(ok, np);
+    for (int k = TDC_LINK_KIND_FIRST; k <= TDC_LINK_KIND_LAST; k++) assert_int_equal(kinds[k], expect[k]);
+    if (have_full && kind == TDC_RSTREAM_FULL) {
+        assert_memory_equal(dfull, last8, sizeof last8);
+        if (*flags & TDC_LINK_STREAM_MOTION) assert_memory_equal(dmv, lastmv, sizeof lastmv);
+    }
+    remove(path);
+    tdc_render_close(r);
+}
+
+static void test_full_stream(void **state)
+{
+    (void)state;
+    uint32_t e[TDC_LINK_KIND_LAST + 1] = {0}, flags;
+    e[TDC_LINK_KIND_STREAM] = 1;
+    e[TDC_LINK_KIND_FULL] = 6;
+    e[TDC_LINK_KIND_MOTION] = 6;
+    run(TDC_RSTREAM_FULL, "fence", 6, e, &flags);
+    assert_true(flags & TDC_LINK_STREAM_MOTION);
+}
+
+static void test_trm_stream(void **state)
+{
+    (void)state;
+    uint32_t e[TDC_LINK_KIND_LAST + 1] = {0}, flags;
+    e[TDC_LINK_KIND_STREAM] = 1;
+    e[TDC_LINK_KIND_FULL] = 3;
+    e[TDC_LINK_KIND_REDUCED] = 3;
+    e[TDC_LINK_KIND_MOTION] = 3;
+    run(TDC_RSTREAM_TRM, "mirror", 6, e, &flags);
+    assert_true((flags & TDC_LINK_STREAM_REDUCED) && (flags & TDC_LINK_STREAM_MIRRORS));
+}
+
+static void test_subframe_stream(void **state)
+{
+    (void)state;
+    uint32_t e[TDC_LINK_KIND_LAST + 1] = {0}, flags;
+    e[TDC_LINK_KIND_STREAM] = 1;
+    e[TDC_LINK_KIND_SUBFRAME] = 8;
+    e[TDC_LINK_KIND_PATTERN] = 2;
+    e[TDC_LINK_KIND_MOTION] = 8;
+    run(TDC_RSTREAM_SUBFRAMES, "discs", 8, e, &flags);
+    assert_true((flags & TDC_LINK_STREAM_SUBFRAMES) && (flags & TDC_LINK_STREAM_SAMPLE_MV));
+}
+
+static void test_static_stream(void **state)
+{
+    (void)state;
+    char path[] = "/tmp/tdc_rstream_XXXXXX";
+    int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    close(fd);
+    char err[256];
+    assert_int_equal(tdc_scene_parse("tdc-scene 1\nmaterial m checker 0.2 0 0 0\ncamera 0 pos 0 0 5\n"
+                                     "object a sphere radius 1 material m\nlight l point pos 0 3 3 intensity 9 9 9\n",
+                                     "static", NULL, &sc, err, sizeof err),
+                     TDC_SCENE_OK);
+    tdc_render_config_t cfg;
+    tdc_render_default_config(&cfg);
+    cfg.width = W;
+    cfg.height = H;
+    tdc_render_t *r = tdc_render_open(&sc, &cfg, err, sizeof err);
+    assert_non_null(r);
+    tdc_render_stream_t *s = tdc_render_stream_create(path, r, TDC_RSTREAM_FULL, err, sizeof err);
+    assert_non_null(s);
+    assert_int_equal(tdc_render_stream_flags(s) & TDC_LINK_STREAM_MOTION, 0);
+    static float rgb[W * H * 3];
+    static int16_t mv[W * H * 2];
+    for (uint32_t f = 0; f < 3; f++) {
+        tdc_render_out_t out = {0};
+        out.rgb = rgb;
+        out.mv = mv;
+        tdc_render_stats_t st;
+        assert_int_equal(tdc_render_frame(r, f, TDC_RENDER_FULL, &out, &st), 0);
+        assert_int_equal(st.frame_static, 1);
+        assert_int_equal(st.ran[TDC_STAGE_MV], 0);
+        assert_int_equal(tdc_render_stream_frame(s, f, TDC_RENDER_FULL, rgb, mv), 0);
+    }
+    uint32_t np;
+    assert_int_equal(tdc_render_stream_close(s, &np, NULL), 0);
+    assert_int_equal(np, 4); /* STREAM + 3 FULL, no MOTION */
+    uint32_t kinds[TDC_LINK_KIND_LAST + 1], errors;
+    assert_int_equal(decode_file(path, kinds, &errors), 4);
+    assert_int_equal(errors, 0);
+    assert_int_equal(kinds[TDC_LINK_KIND_MOTION], 0);
+    remove(path);
+    tdc_render_close(r);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_full_stream),
+        cmocka_unit_test(test_trm_stream),
+        cmocka_unit_test(test_subframe_stream),
+        cmocka_unit_test(test_static_stream),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
