@@ -25,7 +25,7 @@ ARM_BOARDS := $(filter-out host,$(BOARDS))
 # Emulated boards: those whose board.mk names a QEMU machine.
 QEMU_BOARDS := $(sort $(patsubst boards/%/board.mk,%,$(shell grep -l '^BOARD_QEMU' boards/*/board.mk)))
 
-.PHONY: test-arm size bench-arm arm-golden arm-golden-check arm-image-check arm-fit-check arm-fw-check
+.PHONY: firmware-size test-arm size bench-arm arm-bench arm-golden arm-golden-check arm-image-check arm-fit-check arm-fw-check
 
 .SECONDEXPANSION:
 
@@ -111,6 +111,19 @@ $(BA)/image-rules-selftest: $(BA)/bad_rules.elf tests/arm/test_image_rules.sh
 	@printf '#!/bin/sh\nexec tests/arm/test_image_rules.sh %s %s\n' "$(ARM_NM)" "$<" > $@
 	@chmod +x $@
 
+# Cost per pixel on the target: bench image (tests/arm/bench_arm_main.c).
+$(BA)/sim/%.o: sim/%.c $(GEN)/tdc_panels.h
+	@mkdir -p $(@D)
+	$(ARM_CC) $(ARM_TEST_CFLAGS) -Isim/link -MMD -MP -c $< -o $@
+ARM_BENCH_OBJS = $(patsubst %.c,$(BA)/%.o,$(ARM_BOARD_SRCS) tests/arm/bench_arm_main.c tests/golden/tdc_content.c \
+                 sim/link/tdc_link_encode.c)
+$(BA)/tests/arm/bench_arm_main.o: ARM_TEST_CFLAGS += -Isim/link
+$(BA)/tdc_bench.elf: $$(ARM_BENCH_OBJS) $(BA)/libtdcfw.a $(ARM_LDDEPS)
+	$(call ARM_LINK,the bench image)
+$(BA)/bench.tsv: $(BA)/tdc_bench.elf $(INSN_PLUGIN) tests/arm/bench_arm.sh
+	tests/arm/bench_arm.sh $(ARM_NM) $(INSN_PLUGIN) $< $(BOARD_QEMU) > $@.tmp && mv $@.tmp $@
+arm-bench: $(BA)/bench.tsv
+
 arm-golden: $(BA)/tdc_golden.elf $(if $(BOARD_QEMU),$(BA)/tdc_harness.elf)
 
 # QEMU run and comparison (only for emulated boards).
@@ -167,6 +180,13 @@ $(BP)/tdc-firmware.elf: $$(FW_IMG_OBJS) $(ARM_LDDEPS)
 	@$(ARM_SIZE) $@
 
 firmware: $(BP)/tdc-firmware.elf
+
+# Sections and region use of this pair's image, or its memory-fit verdict.
+firmware-size:
+	@echo "== $(BOARD) / $(PANEL) (stages: $(or $(strip $(STAGES)),link only))"
+	@if $(MAKE) --no-print-directory firmware > $(BUILD)/.size-$(BOARD)-$(PANEL).log 2>&1; then \
+	    tests/arm/size_report.sh $(ARM_SIZE) $(BP)/tdc-firmware.elf "$(BOARD_MEM)"; \
+	else grep -A12 '^memory fit' $(BUILD)/.size-$(BOARD)-$(PANEL).log | grep -v '^make' | sed 's/^/    /' || tail -5 $(BUILD)/.size-$(BOARD)-$(PANEL).log; fi
 
 # Firmware rules on the linked image (not just the objects).
 $(BP)/check-image-rules: $(BP)/tdc-firmware.elf tests/arm/check_image_symbols.sh
@@ -259,3 +279,21 @@ test-arm:
 	    printf '#!/bin/sh\nexec tests/arm/test_fit.sh %s %s %s %s\n' $$b $$p $$s $$g > $(BUILD)/fit-$$b-$$p; \
 	    chmod +x $(BUILD)/fit-$$b-$$p; MAKE="$(MAKE)" tests/run_tests.sh "fit-$$b" $(BUILD)/fit-$$b-$$p || :; \
 	done
+
+# ---------------------------------------------------------------------------
+# make bench-arm: instructions per output pixel of each firmware stage on
+# the Cortex-M7 (mps2-an500) and Cortex-M55 (mps3-an547) under QEMU, counted
+# by a TCG plugin built here against the plugin API of Debian's QEMU.
+# ---------------------------------------------------------------------------
+INSN_PLUGIN := $(BUILD)/tools/tdc-insn-count.so
+$(INSN_PLUGIN): tests/arm/tdc_insn_plugin.c | $(BUILD)/tools
+	gcc -std=c11 -Wall -Wextra -Werror -O2 -shared -fPIC $< -o $@
+
+bench-arm: deps $(INSN_PLUGIN)
+	@for b in $(QEMU_BOARDS); do $(MAKE) --no-print-directory -j2 BOARD=$$b arm-bench >/dev/null || exit 1; done
+	@tests/arm/bench_table.sh $(foreach b,$(QEMU_BOARDS),$(b)=$(BUILD)/arm-$(b)/bench.tsv)
+
+# make size: every board/panel pair with the board's default stages.
+size:
+	@for b in $(ARM_BOARDS); do for p in $(PANELS); do \
+	    $(MAKE) --no-print-directory -j2 BOARD=$$b PANEL=$$p firmware-size; done; done

@@ -1,0 +1,266 @@
+/*
+ * bench_arm_main.c - instructions per output pixel of each firmware stage
+ * on the emulated Cortex-M boards.  Run under QEMU with the counting plugin
+ * (tests/arm/tdc_insn_plugin.c): each measurement is bracketed by two calls
+ * of tdc_bench_mark(), whose executions the plugin records with the number
+ * of guest instructions executed so far; the guest writes one line
+ * "label pixels" per measurement to stdout (semihosting), and
+ * tests/arm/bench_arm.sh divides.  Inputs are prepared outside the marks.
+ *
+ * Frame: BENCH_W x BENCH_H (one eye), two frames per measurement, contents
+ * from tests/golden/tdc_content.h (moving text = typical, noise = worst
+ * case for the motion test).  Panels: HTC Vive gamma for TRM; the first
+ * LCD profile for the LCD inverse.
+ */
+#include <stdint.h>
+#include <string.h>
+
+#include "board.h"
+#include "tdc_assemble.h"
+#include "tdc_content.h"
+#include "tdc_crt0.h"
+#include "tdc_lcd.h"
+#include "tdc_link.h"
+#include "tdc_link_encode.h"
+#include "tdc_panels.h"
+#include "tdc_semihost.h"
+#include "tdc_trm.h"
+
+#define BENCH_W 640u
+#define BENCH_H 360u
+#define BENCH_PX (BENCH_W * BENCH_H)
+#define BENCH_FRAMES 2u
+#define RW ((BENCH_W + 1u) / 2u)
+#define RH ((BENCH_H + 1u) / 2u)
+
+void tdc_bench_mark(void);
+__attribute__((noinline, used)) void tdc_bench_mark(void)
+{
+    __asm__ volatile("" ::: "memory");
+}
+
+static uint8_t g_in[BENCH_FRAMES][BENCH_PX * 3u] TDC_EXTRAM;
+static uint8_t g_red[BENCH_FRAMES][RW * RH * 3u] TDC_EXTRAM;
+static uint8_t g_out[BENCH_PX * 3u] TDC_EXTRAM;
+static uint8_t g_pkt[BENCH_FRAMES][BENCH_PX * 4u + 64u] TDC_EXTRAM;
+static uint32_t g_pkt_len[BENCH_FRAMES];
+static uint8_t g_staging[TDC_LINK_STAGING_BYTES(BENCH_W, BENCH_H)] TDC_EXTRAM;
+static uint64_t g_arena[(TDC_ASM_MEM_BYTES(BENCH_W, BENCH_H) > TDC_TRM_MEM_BYTES(BENCH_W, BENCH_H, 1, 2)
+                             ? TDC_ASM_MEM_BYTES(BENCH_W, BENCH_H)
+                             : TDC_TRM_MEM_BYTES(BENCH_W, BENCH_H, 1, 2)) / 8u + 1u] TDC_EXTRAM;
+static uint32_t g_lcd_arena[TDC_LCD_MEM_BYTES(BENCH_W, BENCH_H) / 4u + 1u] TDC_EXTRAM;
+static uint8_t g_samples[RW * RH * 3u];
+static int16_t g_mv[RW * RH * 2u];
+
+static tdc_link_decoder_t g_dec;
+static tdc_trm_t g_trm;
+static tdc_asm_t g_asm;
+static tdc_lcd_t g_lcd;
+
+static const tdc_panel_t *const k_panels[] = {
+#define PANEL_PTR(sym) &sym,
+    TDC_PANEL_LIST(PANEL_PTR)
+};
+
+static void report(const char *label, uint32_t pixels)
+{
+    char num[12];
+    int n = 0;
+    char d[10];
+    do {
+        d[n++] = (char)('0' + pixels % 10u);
+        pixels /= 10u;
+    } while (pixels);
+    int k = 0;
+    num[k++] = ' ';
+    while (n) {
+        num[k++] = d[--n];
+    }
+    num[k++] = '\n';
+    num[k] = 0;
+    tdc_semihost_puts(1, label);
+    tdc_semihost_puts(1, num);
+}
+
+static void fail(const char *what)
+{
+    tdc_semihost_puts(2, "[" TDC_BOARD_NAME "] bench: ");
+    tdc_semihost_puts(2, what);
+    tdc_semihost_puts(2, "\n");
+    tdc_semihost_exit(1);
+}
+
+static void make_inputs(tdc_content_t c)
+{
+    for (uint32_t f = 0; f < BENCH_FRAMES; f++) {
+        tdc_content_frame(c, f, 5u, g_in[f], (int)BENCH_W, (int)BENCH_H, (int)(BENCH_W * 3u));
+        tdc_content_frame(c, f, 5u, g_out, (int)RW, (int)RH, (int)(RW * 3u)); /* reduced content, own frame */
+        memcpy(g_red[f], g_out, RW * RH * 3u);
+    }
+}
+
+static void bench_memcpy(void)
+{
+    tdc_bench_mark();
+    for (uint32_t f = 0; f < BENCH_FRAMES; f++) {
+        memcpy(g_out, g_in[f], BENCH_PX * 3u);
+    }
+    tdc_bench_mark();
+    report("memcpy RGB888 frame (reference)", BENCH_FRAMES * BENCH_PX);
+}
+
+static void bench_link(tdc_pixfmt_t fmt, const char *label)
+{
+    tdc_link_stream_info_t info = {0, 1, 1, (uint16_t)BENCH_W, (uint16_t)BENCH_H, 1, 0, 120};
+    tdc_link_encoder_t enc;
+    tdc_link_encoder_init(&enc, 3, &info);
+    uint8_t hdr[64];
+    const size_t hn = tdc_link_encode_stream(&enc, hdr, sizeof hdr);
+    for (uint32_t f = 0; f < BENCH_FRAMES; f++) {
+        g_pkt_len[f] = (uint32_t)tdc_link_encode_frame(&enc, g_pkt[f], sizeof g_pkt[f], TDC_LINK_KIND_FULL, 0, f, fmt,
+                                                       g_in[f], BENCH_W, BENCH_H, BENCH_W * 3u);
+        if (!g_pkt_len[f]) {
+            fail("link encode");
+        }
+    }
+    const tdc_link_config_t cfg = {(uint16_t)BENCH_W, (uint16_t)BENCH_H, 1};
+    tdc_link_buffers_t b;
+    memset(&b, 0, sizeof b);
+    b.staging = g_staging;
+    b.staging_bytes = sizeof g_staging;
+    b.full[0] = g_out;
+    b.full_stride = BENCH_W * 3u;
+    if (tdc_link_decoder_init(&g_dec, &cfg, &b) != TDC_OK) {
+        fail("link decoder init");
+    }
+    tdc_link_event_t ev;
+    const uint8_t *p = hdr;
+    size_t n = hn;
+    while (n) {
+        const size_t used = tdc_link_feed(&g_dec, p, n, &ev);
+        p += used;
+        n -= used;
+    }
+    uint32_t ok = 0;
+    tdc_bench_mark();
+    for (uint32_t f = 0; f < BENCH_FRAMES; f++) {
+        p = g_pkt[f];
+        n = g_pkt_len[f];
+        while (n) {
+            const size_t used = tdc_link_feed(&g_dec, p, n, &ev);
+            p += used;
+            n -= used;
+            ok += ev.type == TDC_LINK_EV_PACKET;
+        }
+    }
+    tdc_bench_mark();
+    if (ok != BENCH_FRAMES) {
+        fail("link decode rejected a frame");
+    }
+    report(label, BENCH_FRAMES * BENCH_PX);
+}
+
+static void bench_trm(tdc_content_t c, const char *full_label, const char *reduced_label)
+{
+    make_inputs(c);
+    tdc_trm_config_t cfg;
+    tdc_trm_default_config(&cfg, (uint16_t)BENCH_W, (uint16_t)BENCH_H, 90);
+    cfg.reduced_in_stream = 1;
+    if (tdc_trm_init(&g_trm, &cfg, &tdc_panel_htc_vive, g_arena, sizeof g_arena) != TDC_OK) {
+        fail("TRM init");
+    }
+    /* Full and reduced alternate, as in a stream; each kind is bracketed. */
+    uint64_t dummy = 0;
+    for (uint32_t f = 0; f < BENCH_FRAMES; f++) {
+        tdc_bench_mark();
+        if (tdc_trm_full(&g_trm, g_in[f], BENCH_W * 3u, g_out, BENCH_W * 3u) != TDC_OK) {
+            fail("TRM full");
+        }
+        tdc_bench_mark();
+        report(full_label, BENCH_PX);
+        tdc_bench_mark();
+        if (tdc_trm_reduced(&g_trm, g_red[f], RW * 3u, g_out, BENCH_W * 3u) != TDC_OK) {
+            fail("TRM reduced");
+        }
+        tdc_bench_mark();
+        report(reduced_label, BENCH_PX);
+        dummy += g_out[f];
+    }
+    (void)dummy;
+}
+
+static void bench_assemble(int moving, const char *label)
+{
+    const tdc_asm_config_t cfg = {(uint16_t)BENCH_W, (uint16_t)BENCH_H};
+    if (tdc_asm_init(&g_asm, &cfg, g_arena, sizeof g_arena) != TDC_OK) {
+        fail("assembly init");
+    }
+    /* 8 frames (two cycles) warm the history; the next 4 are measured. */
+    for (uint32_t f = 0; f < 12u; f++) {
+        tdc_content_frame(TDC_CONTENT_TEXT, moving ? f : 0u, 5u, g_samples, (int)RW, (int)RH, (int)(RW * 3u));
+        for (uint32_t i = 0; i < RW * RH; i++) {
+            g_mv[2u * i] = (int16_t)(moving ? -2 * 16 : 0);
+            g_mv[2u * i + 1u] = (int16_t)(moving ? 16 : 0);
+        }
+        if (f >= 8u) {
+            tdc_bench_mark();
+        }
+        if (tdc_asm_ingest(&g_asm, f, g_samples, g_mv, NULL) != TDC_OK || tdc_asm_assemble(&g_asm, f) != TDC_OK) {
+            fail("assembly");
+        }
+        if (f >= 8u) {
+            tdc_bench_mark();
+            report(label, BENCH_PX);
+        }
+    }
+}
+
+static void bench_lcd(void)
+{
+    const tdc_panel_t *lcd = NULL;
+    for (unsigned i = 0; i < sizeof k_panels / sizeof k_panels[0]; i++) {
+        if (k_panels[i]->type == TDC_PANEL_LCD && !lcd) {
+            lcd = k_panels[i];
+        }
+    }
+    if (!lcd) {
+        return;
+    }
+    static const struct {
+        uint8_t mode;
+        const char *label;
+    } modes[] = {{TDC_LCD_MODE_EXACT, "LCD inverse, exact solve (moving text)"},
+                 {TDC_LCD_MODE_TABLE17, "LCD inverse, 17x17 table (moving text)"},
+                 {TDC_LCD_MODE_TABLE33, "LCD inverse, 33x33 table (moving text)"}};
+    make_inputs(TDC_CONTENT_TEXT);
+    for (unsigned m = 0; m < sizeof modes / sizeof modes[0]; m++) {
+        const tdc_lcd_config_t cfg = {(uint16_t)BENCH_W, (uint16_t)BENCH_H, lcd->refresh_hz, modes[m].mode, 8u};
+        if (tdc_lcd_init(&g_lcd, &cfg, lcd, g_lcd_arena, sizeof g_lcd_arena) != TDC_OK) {
+            continue; /* the profile has no table of this size */
+        }
+        /* Frame 0 has no history (steady-state solve); measure frame 1. */
+        (void)tdc_lcd_frame(&g_lcd, g_in[0], BENCH_W * 3u, g_out, BENCH_W * 3u, NULL);
+        tdc_bench_mark();
+        (void)tdc_lcd_frame(&g_lcd, g_in[1], BENCH_W * 3u, g_out, BENCH_W * 3u, NULL);
+        tdc_bench_mark();
+        report(modes[m].label, BENCH_PX);
+    }
+}
+
+int main(void)
+{
+    tdc_bench_mark();
+    tdc_bench_mark();
+    report("(mark overhead)", 1u);
+    make_inputs(TDC_CONTENT_TEXT);
+    bench_memcpy();
+    bench_link(TDC_PIXFMT_RGB888, "link decode, full frame RGB888");
+    bench_link(TDC_PIXFMT_RGB565, "link decode, full frame RGB565");
+    bench_link(TDC_PIXFMT_YCBCR420, "link decode, full frame YCbCr 4:2:0");
+    bench_trm(TDC_CONTENT_TEXT, "TRM full-res frame (moving text)", "TRM reduced frame r=1/2 (moving text)");
+    bench_trm(TDC_CONTENT_NOISE, "TRM full-res frame (noise)", "TRM reduced frame r=1/2 (noise)");
+    bench_assemble(0, "tile assembly, static (4x SSAA window)");
+    bench_assemble(1, "tile assembly, dynamic (reprojection + clamp)");
+    bench_lcd();
+    return 0;
+}
