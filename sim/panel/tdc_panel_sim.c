@@ -2,8 +2,20 @@
 #include "panel/tdc_panel_sim.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "tdc_sim_features.h"
+#if TDC_SIM_HAVE_LCD_PHYS
+#include "lcd/tdc_lcdsim.h"
+
+typedef struct {
+    tdc_lcdsim_panel_t panel;
+    tdc_lcdsim_t sim;
+    char model[160];
+} lcdsim_ext_t;
+#endif
 
 double tdc_panel_sim_decode(int code, double g)
 {
@@ -49,11 +61,49 @@ int tdc_panel_sim_init(tdc_panel_sim_t *p, tdc_panel_sim_kind_t kind, int w, int
     return 0;
 }
 
+int tdc_panel_sim_use_lcdsim(tdc_panel_sim_t *p, const char *path, char *err, size_t errlen)
+{
+#if TDC_SIM_HAVE_LCD_PHYS
+    if (!p || p->kind != TDC_PANEL_SIM_LCD || !path) {
+        snprintf(err, errlen, "not an LCD panel");
+        return -1;
+    }
+    lcdsim_ext_t *e = calloc(1, sizeof(*e));
+    if (!e) {
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    if (tdc_lcdsim_load(path, &e->panel, err, errlen) != 0 ||
+        tdc_lcdsim_init(&e->sim, &e->panel, 3 * (size_t)p->width * p->height) != 0) {
+        free(e);
+        return -1;
+    }
+    snprintf(e->model, sizeof(e->model), "LCD: physical model sim/lcd (%s, %s backlight)", e->panel.name,
+             e->panel.strobe ? "strobed" : "constant");
+    p->model = e->model;
+    p->ext = e;
+    return 0;
+#else
+    (void)p;
+    (void)path;
+    snprintf(err, errlen, "physical LCD model (sim/lcd) not in this build");
+    return -1;
+#endif
+}
+
 void tdc_panel_sim_free(tdc_panel_sim_t *p)
 {
     if (!p) {
         return;
     }
+#if TDC_SIM_HAVE_LCD_PHYS
+    if (p->ext) {
+        lcdsim_ext_t *e = p->ext;
+        tdc_lcdsim_free(&e->sim);
+        free(e);
+        p->ext = NULL;
+    }
+#endif
     for (int i = 0; i < TDC_PANEL_SIM_MAX_SLICES; i++) {
         free(p->slice_buf[i]);
         p->slice_buf[i] = NULL;
@@ -86,6 +136,26 @@ int tdc_panel_sim_show(tdc_panel_sim_t *p, const uint8_t *codes, double t, doubl
         out[0].lin = b;
         return 1;
     }
+#if TDC_SIM_HAVE_LCD_PHYS
+    if (p->ext) {
+        /* physical model: mean light of the refresh; a strobed backlight
+         * emits it during its flash only */
+        lcdsim_ext_t *e = p->ext;
+        tdc_lcdsim_frame(&e->sim, codes, 1.0 / frame_s, p->slice_buf[0]);
+        double a = 0.0, d = 1.0;
+        if (e->panel.strobe && e->panel.strobe_duty > 0.0 && e->panel.strobe_duty <= 1.0) {
+            a = e->panel.strobe_phase;
+            d = e->panel.strobe_duty;
+            for (size_t i = 0; i < n; i++) {
+                p->slice_buf[0][i] /= d;
+            }
+        }
+        out[0].t0 = t + a * frame_s;
+        out[0].t1 = t + (a + d) * frame_s;
+        out[0].lin = p->slice_buf[0];
+        return 1;
+    }
+#endif
     /* LCD fallback: L(s) = T + (L0 - T) exp(-s / tau) within the frame; the
      * mean over [a, b] is T + (L0 - T) tau (e^{-a/tau} - e^{-b/tau}) / (b - a). */
     const int ns = TDC_PANEL_SIM_MAX_SLICES;

@@ -16,6 +16,7 @@
 #ifndef TDC_PANEL_SIM_H
 #define TDC_PANEL_SIM_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "eye/tdc_eye.h"
@@ -41,6 +42,13 @@ typedef struct {
 int tdc_panel_sim_init(tdc_panel_sim_t *p, tdc_panel_sim_kind_t kind, int w, int h, const double gamma[3],
                        double persistence);
 void tdc_panel_sim_free(tdc_panel_sim_t *p);
+
+/* Switches an LCD panel to the physical liquid-crystal model of sim/lcd
+ * (tdc_lcdsim: transition-dependent time constants, exact integration,
+ * constant or strobed backlight) loaded from a .lcdsim file.  Returns 0, or
+ * -1 (model not in this build, or the file does not load: message in err);
+ * the built-in fallback stays in use then. */
+int tdc_panel_sim_use_lcdsim(tdc_panel_sim_t *p, const char *path, char *err, size_t errlen);
 
 /* Duty cycle for the eye's normalisation. */
 double tdc_panel_sim_duty(const tdc_panel_sim_t *p);

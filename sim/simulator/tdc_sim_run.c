@@ -357,6 +357,11 @@ static int mode_init(sim_mode_t *m, const tdc_mode_desc_t *d, tdc_sim_result_t *
         (void)lcd_panel;
         note(m, "LCD firmware stage not in this build: drive = wanted code");
 #endif
+        char path[512], err[256];
+        snprintf(path, sizeof(path), "sim/lcd/panels/%s.lcdsim", lcd_panel ? lcd_panel->name : "pg279q");
+        if (tdc_panel_sim_use_lcdsim(&m->panel, path, err, sizeof(err)) != 0) {
+            note(m, err);
+        }
         note(m, m->panel.model);
     }
     return 0;

@@ -152,6 +152,9 @@ static void tex_thin(double u, double v, uint32_t seed, double c[3])
     }
 }
 
+/* Foreground speed of the thin-feature scene relative to the pan. */
+#define THIN_FG (8.0 / 11.0)
+
 /* Fence scene: static floor, shadow bars moving at (vx, vy). */
 static double fence_shadow(const scene_ctx_t *sc, double x, double t)
 {
@@ -224,7 +227,13 @@ void tdc_scene_radiance(const tdc_source_t *s, double x, double y, double t, dou
         tex_text(u, v, sc->p.seed, rgb);
         break;
     case TDC_SCENE_THIN:
-        tex_thin(u, v, sc->p.seed, rgb);
+        /* parallax: the lower half (foreground) moves at 8/11 of the pan
+         * (330 -> 240 px/s), so its fractional motion per frame differs */
+        if (y >= 0.5 * sc->p.height) {
+            tex_thin(x - THIN_FG * sc->vx * t, y - THIN_FG * sc->vy * t + 1000.0, sc->p.seed, rgb);
+        } else {
+            tex_thin(u, v, sc->p.seed, rgb);
+        }
         break;
     case TDC_SCENE_DISCS:
         if (!disc_at(sc, x, y, t, rgb)) {
@@ -268,11 +277,16 @@ static void scene_velocity(const scene_ctx_t *sc, double x, double y, double t, 
     switch (sc->p.kind) {
     case TDC_SCENE_PAN:
     case TDC_SCENE_TEXT:
-    case TDC_SCENE_THIN:
     case TDC_SCENE_CUT:
         v[0] = sc->vx;
         v[1] = sc->vy;
         break;
+    case TDC_SCENE_THIN: {
+        double k = y >= 0.5 * sc->p.height ? THIN_FG : 1.0;
+        v[0] = k * sc->vx;
+        v[1] = k * sc->vy;
+        break;
+    }
     case TDC_SCENE_DISCS:
         if (disc_at(sc, x, y, t, NULL)) {
             v[0] = sc->vx;
@@ -424,7 +438,8 @@ tdc_source_t *tdc_scene_create(const tdc_scene_params_t *p, const double gamma[3
         s->gamma[k] = gamma ? gamma[k] : 2.2;
     }
     s->gt_ss = p->gt_ss > 0 ? p->gt_ss : 4;
-    s->rigid = !(p->kind == TDC_SCENE_DISCS || p->kind == TDC_SCENE_FENCE || p->kind == TDC_SCENE_CUT) ||
+    s->rigid = !(p->kind == TDC_SCENE_DISCS || p->kind == TDC_SCENE_FENCE || p->kind == TDC_SCENE_CUT ||
+                 p->kind == TDC_SCENE_THIN) ||
                (speed == 0.0 && p->kind != TDC_SCENE_CUT);
     if (!p->pursuit && speed != 0.0) {
         s->rigid = 0;
