@@ -423,6 +423,11 @@ int main(int argc, char **argv)
                "plain gamma model %.3f %% (%d rows)\n",
                g_rates[r], p[r][0], p[r][1], p[r][2], p[r][3], 100.0 * rmse_lum[r], rmse_m[r],
                100.0 * rmse_plain[r], nfit[r]);
+        if (!(rmse_lum[r] < rmse_plain[r])) {
+            printf("rate %d Hz: the temporal model does not fit better than the plain gamma model: "
+                   "drive this rate with the plain gamma inverse (tdc_lcd mode GAMMA)\n",
+                   g_rates[r]);
+        }
     }
     /* Profile. */
     FILE *f = fopen(out, "w");
@@ -464,8 +469,9 @@ int main(int argc, char **argv)
     fprintf(f, "# Fit: gamma per channel from static patches; p1..p4 of M (TRM eq. 7) per refresh\n");
     fprintf(f, "# rate by least squares over alternating pairs (Fig. 7).  Fit RMSE, %% of white:\n");
     for (int r = 0; r < g_nr; r++) {
-        fprintf(f, "#   %d Hz: temporal model %.3f %%, plain gamma %.3f %%\n", g_rates[r], 100.0 * rmse_lum[r],
-                100.0 * rmse_plain[r]);
+        fprintf(f, "#   %d Hz: temporal model %.3f %%, plain gamma %.3f %%%s\n", g_rates[r], 100.0 * rmse_lum[r],
+                100.0 * rmse_plain[r],
+                rmse_lum[r] < rmse_plain[r] ? "" : "  -> model no better: use the plain gamma inverse at this rate");
     }
     fprintf(f, "name        %s\ntype        lcd\nwidth       %d\nheight      %d\neyes        %d\nbits        %d\n",
             name, width, height, eyes, bits);
