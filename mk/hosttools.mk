@@ -31,6 +31,9 @@ $(TDC_GPIO): $(TDC_GPIO_OBJS)
 	@mkdir -p $(@D)
 	$(CC) $(HOST_LDFLAGS) $(TDC_GPIO_OBJS) -o $@ $(GPIOD_LIBS) -lm
 
+# The protocol state machine request by request (pattern rule build).
+TESTS += $(B)/tests/usb/test_usbproto
+
 # umockdev tests: the emulated board plus the real tdc-usb binary.
 USB_EMUL_OBJS = $(B)/tests/usb/test_usb_emul.o $(B)/tests/usb/tdc_usb_emul.o
 $(B)/tests/usb/test_usb_emul: $(USB_EMUL_OBJS) $(SIMLIB) $(FWLIB) $(TDC_USB)
