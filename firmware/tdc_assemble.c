@@ -237,6 +237,19 @@ static void tdc_asm_new_row(const tdc_asm_t *st, uint32_t y, unsigned pos_h, uns
     }
 }
 
+/* floor(x / n) = (x * ceil(2^32 / n)) >> 32 for 1 <= n <= 8, 0 <= x < 2^29
+ * (the error term x (n ceil(2^32/n) - 2^32) / 2^32 < x n / 2^32 stays below
+ * 1/n); tests check it exhaustively for x < 2^21. */
+static const uint32_t tdc_asm_recip32[9] = {0, 0, 2147483648u, 1431655766u, 1073741824u,
+                                            858993460u, 715827883u, 613566757u, 536870912u};
+
+uint32_t tdc_asm_div_small(uint32_t x, uint32_t n)
+{
+    if (n < 1u || n > 8u) return 0;
+    if (n == 1u) return x;
+    return (uint32_t)(((uint64_t)x * tdc_asm_recip32[n]) >> 32);
+}
+
 /* Local counters of one dynamic frame (kept out of the stage struct in the
  * inner loops so byte stores do not force reloads). */
 typedef struct {
@@ -284,9 +297,9 @@ static int32_t tdc_asm_clamp_box_q8(int32_t v, int32_t n, int32_t s1, int32_t s2
     int32_t r = (int32_t)tdc_asm_sqrt_q8(d);
     if (dev < 0) {
         int32_t lo_num = s1 * 256 - r;
-        return lo_num > 0 ? lo_num / n : 0;
+        return lo_num > 0 ? (int32_t)tdc_asm_div_small((uint32_t)lo_num, (uint32_t)n) : 0;
     }
-    return (s1 * 256 + r) / n;
+    return (int32_t)tdc_asm_div_small((uint32_t)(s1 * 256 + r), (uint32_t)n);
 }
 
 /* Old dynamic pixel: reproject and clamp to the newest neighbours' box.

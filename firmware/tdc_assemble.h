@@ -149,4 +149,8 @@ uint8_t tdc_asm_mean_u8(uint32_t sum, unsigned n);
  * for tests. */
 uint32_t tdc_asm_sqrt_q8(uint32_t d);
 
+/* floor(x / n) for 1 <= n <= 8 and x < 2^29 by a reciprocal multiply
+ * (no divide instruction); other n give 0.  Exposed for tests. */
+uint32_t tdc_asm_div_small(uint32_t x, uint32_t n);
+
 #endif /* TDC_ASSEMBLE_H */

@@ -101,6 +101,17 @@ static void test_sqrt_q8(void **state)
     assert_true(maxerr <= 12.0); /* < 0.05 code value in the clamp edge */
 }
 
+static void test_div_small(void **state)
+{
+    (void)state;
+    for (uint32_t n = 1; n <= 8; n++)
+        for (uint32_t x = 0; x < (1u << 21); x++)
+            if (tdc_asm_div_small(x, n) != x / n) fail_msg("div_small(%u, %u) = %u", x, n, tdc_asm_div_small(x, n));
+    assert_int_equal(tdc_asm_div_small((1u << 29) - 1u, 7), ((1u << 29) - 1u) / 7);
+    assert_int_equal(tdc_asm_div_small(5, 0), 0);
+    assert_int_equal(tdc_asm_div_small(5, 9), 0);
+}
+
 /* Static scene: after 16 frames every pixel is exactly the mean (round half
  * up) of its 4 jittered samples; before, not yet; no reprojection, no clamp,
  * every frame by the in-place static path. */
@@ -482,6 +493,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_mean_exhaustive),
         cmocka_unit_test(test_sqrt_q8),
+        cmocka_unit_test(test_div_small),
         cmocka_unit_test(test_static_converges_in_16),
         cmocka_unit_test(test_orderings_eq4_eq5),
         cmocka_unit_test(test_diagonal_hashed),
