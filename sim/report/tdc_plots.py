@@ -18,7 +18,7 @@ out = sys.argv[1]
 secs = sys.argv[2] if len(sys.argv) > 2 else "?"
 
 ORDER = ["trm-pan", "trm-discs", "trm-static", "trm-lcd", "ncsfi-slow", "ncsfi-fast", "asm-thin", "asm-fence",
-         "asm-pan", "stiff-long", "stiff-cut", "stiff-cut240", "stiff-fast", "stiff-black", "stiff-white",
+         "asm-pan", "render-panorama", "stiff-long", "stiff-cut", "stiff-cut240", "stiff-fast", "stiff-black", "stiff-white",
          "stiff-black240", "stiff-white240"]
 DESC = {
     "trm-pan": "Panned panorama-like texture, 450 px/s, 90 Hz OLED (HTC Vive gammas, 20 % persistence), eye tracking.",
@@ -30,6 +30,8 @@ DESC = {
     "asm-thin": "Room with thin vertical features under a horizontal pan (330 px/s = 1.375 px/frame), 240 Hz hold display.",
     "asm-fence": "Static floor with a moving fence shadow (270 px/s), 240 Hz: surface MVs vs shadow + dual MVs.",
     "asm-pan": "Panned texture at 240 Hz: tile-ordered assembly vs full rate, 60 Hz and TAA.",
+    "render-panorama": "Embree renderer (sim/render, built-in scene `panorama`: camera yawing over a skyline drum), "
+                       "1 ray per pixel centre, ground truth 16 rays per pixel, 90 Hz OLED.",
     "stiff-long": "10^5 refreshes at 16x16 (metrics every 500th instant): long-run stability.",
     "stiff-cut": "Scene cut half-way (stream reset: new STREAM packet, firmware histories reset), 90 Hz.",
     "stiff-cut240": "Scene cut half-way at 240 Hz (assembly re-initialised, TAA history dropped).",

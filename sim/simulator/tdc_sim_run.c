@@ -113,6 +113,18 @@ static const tdc_panel_t *find_panel(const char *name, int want_lcd)
 static void render_full(sim_mode_t *m, tdc_source_t *src, double t, int spp, double jx, double jy, int with_mv,
                         double dt, tdc_mv_kind_t kind)
 {
+    if (src->full_frame) {
+        /* a renderer tracing whole frames (Embree): its own timing and rays */
+        uint64_t rays = 0;
+        double ms = 0.0;
+        double t1 = now_s();
+        src->full_frame(src, t, with_mv ? dt : 0.0, m->render, with_mv ? m->mv : NULL, &rays, &ms);
+        (void)ms;
+        m->res->render_s += now_s() - t1;
+        m->res->rays += rays;
+        m->res->rendered++;
+        return;
+    }
     double t0 = now_s();
     for (int y = 0; y < m->h; y++) {
         for (int x = 0; x < m->w; x++) {
@@ -130,6 +142,17 @@ static void render_full(sim_mode_t *m, tdc_source_t *src, double t, int spp, dou
 /* Interlaced rows of parity p: rendered directly into m->render. */
 static void render_rows(sim_mode_t *m, tdc_source_t *src, double t, int spp, int parity)
 {
+    if (src->full_frame) {
+        /* whole-frame renderer: trace the frame, keep the field's rows;
+         * rays are counted for the field only (a renderer restricted to
+         * those rows would trace that many) */
+        render_full(m, src, t, spp, 0, 0, 0, 0, TDC_MV_SURFACE);
+        m->res->rays -= m->res->rays ? (uint64_t)m->w * (m->h / 2) : 0;
+        for (int y = 1 - parity; y < m->h; y += 2) {
+            memset(m->render + (size_t)y * m->w * 3, 0, (size_t)m->w * 3);
+        }
+        return;
+    }
     double t0 = now_s();
     int n = 0;
     for (int y = parity; y < m->h; y += 2) {
@@ -222,7 +245,7 @@ static void taa_resolve(sim_mode_t *m)
  * ------------------------------------------------------------------- */
 static int mode_init(sim_mode_t *m, const tdc_mode_desc_t *d, tdc_sim_result_t *res, const tdc_sim_config_t *cfg,
                      const double gamma[3], double window_s, const tdc_panel_t *fw_panel,
-                     const tdc_panel_t *lcd_panel)
+                     const tdc_panel_t *lcd_panel, int src_full_frame)
 {
     memset(m, 0, sizeof(*m));
     memset(res, 0, sizeof(*res));
@@ -325,7 +348,10 @@ static int mode_init(sim_mode_t *m, const tdc_mode_desc_t *d, tdc_sim_result_t *
         res->available = 0;
 #endif
     }
-    if (d->kind == TDC_MODE_ASM) {
+    if (d->kind == TDC_MODE_ASM && src_full_frame) {
+        note(m, "subframes are not wired to the Embree renderer source");
+        res->available = 0;
+    } else if (d->kind == TDC_MODE_ASM) {
 #if TDC_SIM_HAVE_ASM
         tdc_asm_config_t ac = {(uint16_t)m->w, (uint16_t)m->h};
         m->asm_bytes = tdc_asm_get_size(&ac);
@@ -564,9 +590,10 @@ static void mode_display_frame(sim_mode_t *m, tdc_source_t *src, int spp)
             /* Renderer: full-res render prefiltered by D (TRM §4.3); its cost
              * is counted as the reduced frame's rays (a renderer traces the
              * reduced target with MSAA). */
+            uint64_t rays0 = r->rays;
             render_full(m, src, t, spp, 0, 0, 0, 0, TDC_MV_SURFACE);
-            r->rays -= (uint64_t)m->npx * (uint64_t)(spp < 1 ? 1 : spp);
-            r->rays += (uint64_t)m->trm.rw * m->trm.rh * (uint64_t)(spp < 1 ? 1 : spp);
+            uint64_t traced = r->rays - rays0;
+            r->rays = rays0 + traced * ((uint64_t)m->trm.rw * m->trm.rh) / m->npx;
             t0 = now_s();
             tdc_trm_downsample(&m->trm_r, m->render, (uint32_t)m->w * 3u, m->reduced, (uint32_t)m->trm_r.rw * 3u);
             r->render_s += now_s() - t0;
@@ -726,12 +753,13 @@ int tdc_sim_run(const tdc_sim_config_t *cfg, tdc_source_t *src, const tdc_mode_d
     }
     int rc = 0;
     for (int i = 0; i < nmodes; i++) {
-        if (mode_init(&ms[i], modes[i], &results[i], cfg, gamma, W, lcd_panel ? lcd_panel : fw_panel, lcd_panel)) {
+        if (mode_init(&ms[i], modes[i], &results[i], cfg, gamma, W, lcd_panel ? lcd_panel : fw_panel, lcd_panel,
+                      src->full_frame != NULL)) {
             fprintf(stderr, "tdc-sim: out of memory setting up mode %s\n", modes[i]->name);
             rc = -1;
         }
-        if (cfg->panel != TDC_PANEL_SIM_LCD || !lcd_panel) {
-            /* TRM compensates for the OLED profile's gamma */
+        if (src->note && src->full_frame) {
+            note(&ms[i], src->note);
         }
     }
     long total = (long)floor(cfg->duration_s * R + 1e-9);

@@ -63,6 +63,12 @@ struct tdc_source {
     /* 1 if the content changes discontinuously in (t0, t1]. */
     int (*cut)(tdc_source_t *s, double t0, double t1);
     void (*destroy)(tdc_source_t *s);
+    /* Optional, for renderers that trace whole frames (the Embree renderer):
+     * a full W x H frame at pixel centres for time t, drive codes (panel
+     * gamma), MVs over dt if mv != NULL; *rays = primary rays traced, *ms =
+     * renderer wall time.  NULL: the modes use samples().  Returns 0. */
+    int (*full_frame)(tdc_source_t *s, double t, double dt, uint8_t *rgb, int16_t *mv, uint64_t *rays, double *ms);
+    const char *note; /* what this source does not support, for reports */
 };
 
 /* Parameters of the built-in scenes. */

@@ -1,0 +1,22 @@
+/*
+ * tdc_sim_render.h - the Embree companion renderer (sim/render, tdc-render)
+ * as a simulator source.  Full frames (1 primary ray per pixel centre, Whitted
+ * shading), motion vectors and supersampled ground truth come from the
+ * renderer; the eye pursues the motion at the image centre (renderer probe).
+ * Scene time t maps to renderer frame floor(t * clock_hz) of a scene whose
+ * fps is set to the run clock.
+ */
+#ifndef TDC_SIM_RENDER_H
+#define TDC_SIM_RENDER_H
+
+#include <stddef.h>
+
+#include "simulator/tdc_sim_scene.h"
+
+/* name: a built-in renderer scene (discs text panorama room mirror fence
+ * bigmesh) or a scene file path.  NULL with a message in err if the renderer
+ * is not in this build or the scene does not load. */
+tdc_source_t *tdc_sim_render_source(const char *name, int w, int h, int clock_hz, int gt_samples, int threads,
+                                    char *err, size_t errlen);
+
+#endif
