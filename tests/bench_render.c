@@ -29,6 +29,15 @@ static double now_ms(void)
     return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
 }
 
+/* CPU time of the whole process (all threads): immune to other processes
+ * taking the cores, which wall time on a shared machine is not. */
+static double cpu_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
 typedef struct {
     const tdc_render_ray_t *rays;
     size_t n;
@@ -65,11 +74,12 @@ static void *replay_main(void *arg)
     return NULL;
 }
 
-/* Bare Embree over the rays, split in `threads` contiguous chunks; ms wall. */
-static double replay(const tdc_render_ray_t *rays, size_t n, RTCScene cur, RTCScene prev, int threads)
+/* Bare Embree over the rays, split in `threads` contiguous chunks; ms wall,
+ * *cpu = process CPU ms. */
+static double replay(const tdc_render_ray_t *rays, size_t n, RTCScene cur, RTCScene prev, int threads, double *cpu)
 {
     replay_t p[2];
-    double t0 = now_ms();
+    double c0 = cpu_ms(), t0 = now_ms();
     for (int i = 0; i < threads; i++) {
         size_t a = n * (size_t)i / (size_t)threads, b = n * (size_t)(i + 1) / (size_t)threads;
         p[i] = (replay_t){rays + a, b - a, cur, prev, 0, 0};
@@ -77,6 +87,7 @@ static double replay(const tdc_render_ray_t *rays, size_t n, RTCScene cur, RTCSc
     }
     replay_main(&p[0]);
     for (int i = 1; i < threads; i++) pthread_join(p[i].tid, NULL);
+    *cpu = cpu_ms() - c0;
     return now_ms() - t0;
 }
 
@@ -96,8 +107,10 @@ int main(int argc, char **argv)
     float *rgb = malloc((size_t)BW * BH * 3 * sizeof(float));
     int16_t *mv = malloc((size_t)BW * BH * 2 * sizeof(int16_t));
     if (!rgb || !mv) return 1;
-    printf("renderer throughput at %dx%d, frame %d, best of %d; Mrays/s (render / bare Embree on the same rays)\n", BW,
-           BH, FRAME, reps);
+    printf("renderer throughput at %dx%d, frame %d, best of %d.\n"
+           "Mrays/s by wall clock (render / bare Embree on the same recorded rays); ratio = render/bare throughput\n"
+           "per CPU-second (process CPU time, so other processes on the machine do not skew it)\n",
+           BW, BH, FRAME, reps);
     printf("%-9s %3s %8s %8s | %8s %8s %6s | %8s %8s %6s | %8s\n", "scene", "thr", "rays", "primary", "total",
            "bare", "ratio", "primary", "bare", "ratio", "frame ms");
     double worst = 1e9;
@@ -142,25 +155,38 @@ int main(int argc, char **argv)
         for (int thr = 1; thr <= 2; thr++) {
             tdc_render_set_threads(r, thr);
             double best_wall = 1e30, best_prim = 1e30, bare_all = 1e30, bare_prim = 1e30;
+            double cpu_r = 1e30, cpu_p = 1e30, cpu_ba = 1e30, cpu_bp = 1e30, c;
             for (int k = 0; k < reps; k++) {
+                double c0 = cpu_ms();
                 tdc_render_frame(r, FRAME, TDC_RENDER_FULL, &out, &st);
+                c = cpu_ms() - c0;
+                if (c < cpu_r) cpu_r = c;
                 if (st.wall_ms < best_wall) {
                     best_wall = st.wall_ms;
                     s2 = st;
                 }
+                /* primary stage: its summed per-thread time, scaled to CPU
+                 * time by the frame's CPU/wall-sum ratio */
                 double pm = st.ms[TDC_STAGE_PRIMARY] / thr;
                 if (pm < best_prim) best_prim = pm;
-                double b = replay(all, nrays, cur, prev, thr);
+                double sum_ms = 0;
+                for (int q = 0; q < TDC_STAGE_COUNT; q++) sum_ms += st.ms[q];
+                double pc = st.ms[TDC_STAGE_PRIMARY] * (sum_ms > 0 ? c / sum_ms : 1);
+                if (pc < cpu_p) cpu_p = pc;
+                double b = replay(all, nrays, cur, prev, thr, &c);
                 if (b < bare_all) bare_all = b;
-                b = replay(prim, nprim, cur, prev, thr);
+                if (c < cpu_ba) cpu_ba = c;
+                b = replay(prim, nprim, cur, prev, thr, &c);
                 if (b < bare_prim) bare_prim = b;
+                if (c < cpu_bp) cpu_bp = c;
             }
             uint64_t n = total_rays(&st);
             double mr_all = n / best_wall / 1e3, mr_bare = nrays / bare_all / 1e3;
             double mr_p = nprim / best_prim / 1e3, mr_bp = nprim / bare_prim / 1e3;
+            double ratio = cpu_ba / cpu_r, ratio_p = cpu_bp / cpu_p;
             printf("%-9s %3d %7.2fM %7.2fM | %8.2f %8.2f %5.0f%% | %8.2f %8.2f %5.0f%% | %8.1f\n", name, thr, n / 1e6,
-                   nprim / 1e6, mr_all, mr_bare, 100 * mr_all / mr_bare, mr_p, mr_bp, 100 * mr_p / mr_bp, best_wall);
-            if (mr_all / mr_bare < worst) worst = mr_all / mr_bare;
+                   nprim / 1e6, mr_all, mr_bare, 100 * ratio, mr_p, mr_bp, 100 * ratio_p, best_wall);
+            if (ratio < worst) worst = ratio;
         }
         /* stages of the 2-thread frame: skipped ones are not entered */
         printf("          stages (CPU ms):");
@@ -185,7 +211,7 @@ int main(int argc, char **argv)
         free(prim);
         tdc_render_close(r);
     }
-    printf("worst total ratio render/bare: %.0f%% (goal >= 70%%)\n", 100 * worst);
+    printf("worst total ratio render/bare (CPU time): %.0f%% (goal >= 70%%)\n", 100 * worst);
     free(rgb);
     free(mv);
     return 0;

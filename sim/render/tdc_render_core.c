@@ -86,13 +86,10 @@ static void make_cam(const tdc_scene_t *s, double t, int w, int h, rcam_t *c)
 void tdc_r_cam_ray(const rcam_t *c, double x, double y, double dir[3])
 {
     double sx = x * c->ax + c->bx, sy = y * c->ay + c->by;
-    double l2 = 0;
-    for (int i = 0; i < 3; i++) {
-        dir[i] = c->fwd[i] + sx * c->right[i] + sy * c->up[i];
-        l2 += dir[i] * dir[i];
-    }
-    double il = 1 / sqrt(l2);
-    for (int i = 0; i < 3; i++) dir[i] *= il;
+    /* not normalised: Embree and every use downstream (hit = org + t dir,
+     * reflection, projection of directions) work with any length, and the
+     * square root and division cost more than the rest of the ray setup */
+    for (int i = 0; i < 3; i++) dir[i] = c->fwd[i] + sx * c->right[i] + sy * c->up[i];
 }
 
 int tdc_r_project_dir(const rcam_t *c, const double d[3], double *x, double *y)
