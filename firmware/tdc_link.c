@@ -138,6 +138,24 @@ tdc_status_t tdc_link_decoder_init(tdc_link_decoder_t *dec, const tdc_link_confi
     return TDC_OK;
 }
 
+void tdc_link_decoder_resync(tdc_link_decoder_t *dec)
+{
+    const unsigned st = dec->state & ST_MASK;
+    uint32_t dropped = 0;
+    if (st == ST_HEADER) {
+        dropped = dec->hdr_fill;
+    } else if (st == ST_PAYLOAD) {
+        dropped = TDC_LINK_HEADER_BYTES + dec->payload_fill;
+    }
+    dec->garbage_run += dropped;
+    dec->cnt.garbage_bytes += dropped;
+    dec->hdr_fill = 0;
+    dec->replay_len = 0;
+    dec->replay_pos = 0;
+    dec->skip_left = 0;
+    set_state(dec, ST_HUNT, 0);
+}
+
 const tdc_link_counters_t *tdc_link_counters(const tdc_link_decoder_t *dec)
 {
     return &dec->cnt;

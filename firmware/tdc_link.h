@@ -279,6 +279,11 @@ tdc_status_t tdc_link_decoder_init(tdc_link_decoder_t *dec, const tdc_link_confi
  * events are returned first, consuming 0 bytes. */
 size_t tdc_link_feed(tdc_link_decoder_t *dec, const uint8_t *bytes, size_t n, tdc_link_event_t *ev);
 
+/* Drops any partly received packet and hunts for the next magic (e.g. after
+ * a USB disconnect); stream, sequence, counters and buffers are kept.  The
+ * dropped bytes count as garbage. */
+void tdc_link_decoder_resync(tdc_link_decoder_t *dec);
+
 /* Counters (live). */
 const tdc_link_counters_t *tdc_link_counters(const tdc_link_decoder_t *dec);
 uint32_t tdc_link_error_count(const tdc_link_decoder_t *dec, tdc_link_err_t e);

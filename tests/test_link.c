@@ -560,6 +560,26 @@ static void test_garbage_and_resync(void **state)
     assert_int_equal(tdc_link_counters(&rig.dec)->packets_by_kind[TDC_LINK_KIND_REDUCED], 2 + 1);
 }
 
+/* A transfer cut off mid-packet (USB unplugged): resync drops the partial
+ * packet, keeps the stream, and the next packet is decoded. */
+static void test_resync_after_cut(void **state)
+{
+    (void)state;
+    build_baseline();
+    assert_int_equal(lt_init(&rig, MW, MH, 2), TDC_OK);
+    lt_feed(&rig, stream, base_len, 0, 0);
+    const uint64_t before = lt_hash_all(&rig);
+    lt_feed(&rig, pkt2, 500, 0, 0); /* header + part of the payload */
+    tdc_link_decoder_resync(&rig.dec);
+    assert_true(lt_hash_all(&rig) == before);
+    lt_feed(&rig, pkt2, good_len, 3, 0);
+    assert_int_equal(tdc_link_counters(&rig.dec)->packets_ok, 10);
+    assert_int_equal(tdc_link_error_count(&rig.dec, TDC_LINK_ERR_GARBAGE), 1);
+    assert_int_equal(tdc_link_error_count(&rig.dec, TDC_LINK_ERR_MAGIC), 0);
+    assert_int_equal(tdc_link_counters(&rig.dec)->garbage_bytes, 500);
+    assert_memory_equal(rig.full[0], pkt2 + TDC_LINK_HEADER_BYTES, (size_t)MW * MH * 3u);
+}
+
 /* ------------------------------------------------------------------------
  * Chunking: 1-byte, random and whole-packet pieces give identical events,
  * counters and buffers, on a stream with errors mixed in.
@@ -855,6 +875,7 @@ int main(void)
         cmocka_unit_test(test_round_trip_full_only_and_stride),
         cmocka_unit_test(test_malformed_table),
         cmocka_unit_test(test_garbage_and_resync),
+        cmocka_unit_test(test_resync_after_cut),
         cmocka_unit_test(test_chunking_identical),
         cmocka_unit_test(test_missing_reduced_counts),
         cmocka_unit_test(test_stream_headers),

@@ -4,7 +4,8 @@
  * by mk/link.mk: `make fuzz FUZZ_SECONDS=600`, smoke run in `make test`.
  *
  * Input: byte 0 selects the chunking (bits 0..5: seed of the chunk sizes,
- * 0 = whole input at once) and whether CRCs are repaired first (bit 7):
+ * 0 = whole input at once), random tdc_link_decoder_resync() calls between
+ * chunks (bit 6) and whether CRCs are repaired first (bit 7):
  * mutated packets almost never keep a valid CRC, so half of the runs
  * recompute header and payload CRCs of everything that parses as a packet,
  * which lets the fuzzer reach the field checks, sequencing and unpacking.
@@ -139,6 +140,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             rng ^= rng << 5;
             const size_t c = 1u + rng % 97u;
             chunk = c < chunk ? c : chunk;
+        }
+        if ((mode & 0x40u) && (rng % 13u) == 0u) {
+            tdc_link_decoder_resync(&dec); /* a cut-off transfer */
         }
         tdc_link_event_t ev;
         const size_t used = tdc_link_feed(&dec, work + pos, chunk, &ev);
