@@ -201,7 +201,7 @@ arm-image-check: $(BP)/check-image-rules
 # ---------------------------------------------------------------------------
 PANEL_DIMS := $(shell awk '$$1 == "width" { w = $$2 } $$1 == "height" { h = $$2 } $$1 == "eyes" { e = $$2 } \
                 END { print w, h, (e ? e : 1) }' boards/panels/$(PANEL).panel)
-FW_MODES := plain $(if $(filter trm,$(STAGES)),trm) $(if $(filter assemble,$(STAGES)),subframes)
+FW_MODES ?= plain $(if $(filter trm,$(STAGES)),trm) $(if $(filter assemble,$(STAGES)),subframes)
 FW_FRAMES_plain := 3
 FW_FRAMES_trm := 4
 FW_FRAMES_subframes := 6
@@ -249,11 +249,14 @@ FORCE:
 # run end to end against the host build of the frame loop; the image check
 # and the memory-fit check each shown to fail when they must.  A build
 # failure is recorded as a FAIL line too.
-#   ARM_TEST_PAIRS: board:panel:stages ("default" = the board's default
-#   stages, "link" = STAGES= : link decode and panel output only)
+#   ARM_TEST_PAIRS: board:panel:stages[:streams] ("default" = the board's
+#   default stages, "link" = STAGES= : link decode and panel output only;
+#   streams: which of plain+trm+subframes to run, default all the stages
+#   allow; the LCD pair runs only trm to stay within the time budget)
 #   ARM_FIT_FAIL: board:panel:stages:region pairs that must not fit
 # ---------------------------------------------------------------------------
-ARM_TEST_PAIRS ?= mps2-an500:htc-vive:link mps3-an547:htc-vive:default stm32h747i-disco:htc-vive:default
+ARM_TEST_PAIRS ?= mps2-an500:htc-vive:link mps3-an547:htc-vive:default mps3-an547:lcd-240:default:trm \
+                  stm32h747i-disco:htc-vive:default
 ARM_FIT_FAIL ?= mps2-an500:htc-vive:default:PSRAM stm32h747i-disco:htc-vive:trm:SDRAM
 ARM_FAIL_LINE = echo "[$(1)] FAIL $(2)"; echo "$(1) $(2) FAIL" >> "$(RESULTS)"
 
@@ -265,8 +268,9 @@ test-arm:
 	done
 	@tests/run_tests.sh arm-$(firstword $(QEMU_BOARDS)) $(BUILD)/arm-$(firstword $(QEMU_BOARDS))/image-rules-selftest || :
 	@for t in $(ARM_TEST_PAIRS); do \
-	    b=$${t%%:*}; r=$${t#*:}; p=$${r%%:*}; s=$${r#*:}; \
+	    b=$${t%%:*}; r=$${t#*:}; p=$${r%%:*}; r=$${r#*:}; s=$${r%%:*}; m=; [ "$$r" != "$$s" ] && m=$${r#*:}; \
 	    case $$s in default) set -- ;; link) set -- 'STAGES=' ;; *) set -- "STAGES=$$(echo $$s | tr + ' ')" ;; esac; \
+	    [ -n "$$m" ] && set -- "$$@" "FW_MODES=$$(echo $$m | tr + ' ')"; \
 	    if $(MAKE) --no-print-directory -j2 BOARD=$$b PANEL=$$p "$$@" firmware >/dev/null 2>$(BUILD)/.fwlog-$$b || \
 	       { cat $(BUILD)/.fwlog-$$b; false; }; then \
 	        $(MAKE) --no-print-directory BOARD=$$b PANEL=$$p "$$@" arm-image-check || :; \

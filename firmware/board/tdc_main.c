@@ -54,8 +54,11 @@
 #endif
 #if TDC_CFG_LCD
 #include "tdc_lcd.h"
+/* Overdrive table (what monitor scalers use; ~4.5x fewer instructions per
+ * pixel than the exact solve on Cortex-M7, docs/boards.md); profiles
+ * without that table fall back to the exact solve. */
 #ifndef TDC_CFG_LCD_MODE
-#define TDC_CFG_LCD_MODE TDC_LCD_MODE_EXACT
+#define TDC_CFG_LCD_MODE TDC_LCD_MODE_TABLE33
 #endif
 #endif
 
@@ -240,8 +243,13 @@ static void configure_stream(void)
     }
     g.lcd_ok = 1;
     for (uint32_t e = 0; e < FW_EYES; e++) {
-        const tdc_lcd_config_t cfg = {(uint16_t)FW_W, (uint16_t)FW_H, hz, TDC_CFG_LCD_MODE, 8u};
-        if (tdc_lcd_init(&g.lcd[e], &cfg, panel, g_lcd_arena[e], sizeof g_lcd_arena[e]) != TDC_OK) {
+        tdc_lcd_config_t cfg = {(uint16_t)FW_W, (uint16_t)FW_H, hz, TDC_CFG_LCD_MODE, 8u};
+        tdc_status_t st = tdc_lcd_init(&g.lcd[e], &cfg, panel, g_lcd_arena[e], sizeof g_lcd_arena[e]);
+        if (st == TDC_ERR_PANEL && cfg.mode != TDC_LCD_MODE_EXACT) {
+            cfg.mode = TDC_LCD_MODE_EXACT;
+            st = tdc_lcd_init(&g.lcd[e], &cfg, panel, g_lcd_arena[e], sizeof g_lcd_arena[e]);
+        }
+        if (st != TDC_OK) {
             tdc_board_log("LCD inverse refused the panel profile: drive = wanted code");
             g.lcd_ok = 0;
         }
