@@ -208,13 +208,19 @@ static tdc_exit_t cmd_list(libusb_context *ctx, opts_t *o)
 /* ------------------------------------------------------------------ */
 /* stream                                                              */
 /* ------------------------------------------------------------------ */
-static tdc_exit_t cmd_stream(tdc_board_t *b, const opts_t *o, const char *path)
+/* Opened before the board, so a missing file is reported as such. */
+static tdc_exit_t open_stream_file(const char *path, FILE **f)
 {
-    FILE *f = strcmp(path, "-") == 0 ? stdin : fopen(path, "rb");
-    if (f == NULL) {
+    *f = strcmp(path, "-") == 0 ? stdin : fopen(path, "rb");
+    if (*f == NULL) {
         fprintf(stderr, "tdc-usb: stream: cannot open %s: %s\n", path, strerror(errno));
         return TDC_EXIT_FILE;
     }
+    return TDC_EXIT_OK;
+}
+
+static tdc_exit_t cmd_stream(tdc_board_t *b, const opts_t *o, const char *path, FILE *f)
+{
     uint64_t total = 0;
     if (f != stdin && fseek(f, 0, SEEK_END) == 0) {
         long sz = ftell(f);
@@ -397,14 +403,14 @@ static tdc_exit_t dfu_wait(tdc_board_t *b, uint8_t want, const char *step)
     }
 }
 
-static tdc_exit_t cmd_flash(tdc_board_t *b, const opts_t *o, const char *path)
+/* Reads the image and checks it on the host, before any board is touched. */
+static tdc_exit_t load_image(const char *path, uint8_t **image, uint32_t *image_len)
 {
     uint8_t *img = NULL;
     uint32_t len = 0;
     tdc_exit_t e = read_file(path, "flash", &img, &len);
     if (e != TDC_EXIT_OK)
         return e;
-    /* Host-side checks before touching the board. */
     tdc_image_status_t is = tdc_image_check(img, len, NULL, 0);
     if (is != TDC_IMAGE_OK) {
         fprintf(stderr, "tdc-usb: flash: %s: %s (file %u bytes", path, tdc_image_status_name(is),
@@ -416,12 +422,20 @@ static tdc_exit_t cmd_flash(tdc_board_t *b, const opts_t *o, const char *path)
         free(img);
         return TDC_EXIT_IMAGE;
     }
+    *image = img;
+    *image_len = len;
+    return TDC_EXIT_OK;
+}
+
+static tdc_exit_t cmd_flash(tdc_board_t *b, const opts_t *o, const char *path, const uint8_t *img,
+                            uint32_t len)
+{
     board_info_t bi;
-    e = tdc_usb_claim(b, TDC_USB_IF_STREAM);
+    tdc_exit_t e = tdc_usb_claim(b, TDC_USB_IF_STREAM);
     if (e == TDC_EXIT_OK)
         e = get_info(b, &bi);
     if (e == TDC_EXIT_OK) {
-        is = tdc_image_check(img, len, bi.board, bi.slot);
+        tdc_image_status_t is = tdc_image_check(img, len, bi.board, bi.slot);
         if (is != TDC_IMAGE_OK) {
             char target[TDC_IMAGE_BOARD_LEN + 1] = "";
             memcpy(target, img + TDC_IMAGE_OFF_BOARD, TDC_IMAGE_BOARD_LEN);
@@ -497,7 +511,6 @@ static tdc_exit_t cmd_flash(tdc_board_t *b, const opts_t *o, const char *path)
         else
             printf("board reset requested\n");
     }
-    free(img);
     return e;
 }
 
@@ -619,16 +632,26 @@ int main(int argc, char **argv)
         tdc_board_t b;
         memset(&b, 0, sizeof b);
         b.op = cmd;
-        e = tdc_usb_open(ctx, &o.sel, &b);
+        FILE *f = NULL;
+        uint8_t *img = NULL;
+        uint32_t len = 0;
+        /* Local inputs first: a bad file is reported even without a board. */
+        e = strcmp(cmd, "stream") == 0 ? open_stream_file(args[0], &f)
+            : strcmp(cmd, "flash") == 0 ? load_image(args[0], &img, &len) : TDC_EXIT_OK;
+        if (e == TDC_EXIT_OK)
+            e = tdc_usb_open(ctx, &o.sel, &b);
         if (e == TDC_EXIT_OK) {
             if (strcmp(cmd, "info") == 0)
                 e = cmd_info(&b);
             else if (strcmp(cmd, "stream") == 0)
-                e = cmd_stream(&b, &o, args[0]);
+                e = cmd_stream(&b, &o, args[0], f);
             else
-                e = cmd_flash(&b, &o, args[0]);
+                e = cmd_flash(&b, &o, args[0], img, len);
             tdc_usb_close(&b);
+        } else if (f != NULL && f != stdin) {
+            fclose(f);
         }
+        free(img);
     }
     libusb_exit(ctx);
     if (e != TDC_EXIT_OK)

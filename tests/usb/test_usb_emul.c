@@ -252,6 +252,14 @@ static void test_no_device(void **state)
     expect(&r, 2, NULL, "no tdc board");
     run_tool(&r, (const char *[]){"--serial", "NOPE", "info", NULL});
     expect(&r, 2, NULL, "matching --bus/--address/--serial");
+    /* local inputs are checked first: a bad file is named even without a board */
+    run_tool(&r, (const char *[]){"stream", "/nonexistent/x.tdcs", NULL});
+    expect(&r, 7, NULL, "cannot open /nonexistent/x.tdcs");
+    char path[128];
+    snprintf(path, sizeof path, "%s/garbage.img", tmpdir);
+    write_file(path, (const uint8_t *)"not an image at all, but longer than 32 bytes", 45);
+    run_tool(&r, (const char *[]){"flash", path, NULL});
+    expect(&r, 8, NULL, "not a tdc firmware image");
 }
 
 static void test_list_and_info(void **state)
