@@ -47,7 +47,7 @@ tdc_exit_t tdc_usb_fail(const tdc_board_t *b, const char *what, int err)
         hint = " (the board stalled the endpoint: it rejected the request)";
         break;
     case LIBUSB_ERROR_ACCESS:
-        hint = " (no permission: install a udev rule for 1209:0001, see docs/hosttools.md)";
+        hint = " (no permission: install hosttools/usb/60-tdc-board.rules, see docs/hosttools.md)";
         break;
     default: break;
     }
