@@ -21,7 +21,8 @@ size_t tdc_asm_get_size(const tdc_asm_config_t *cfg)
     if (!tdc_asm_cfg_ok(cfg)) return 0;
     size_t px = (size_t)cfg->width * cfg->height;
     size_t bm = (size_t)TDC_ORDERING_BITMAP_BYTES(cfg->width, cfg->height);
-    return TDC_ASM_ALIGN(px * 3u) * 2u + TDC_ASM_ALIGN(px * 12u) + TDC_ASM_ALIGN(px) + TDC_ASM_ALIGN(px * 4u) +
+    size_t tiles = (size_t)TDC_ORDERING_TILES_X(cfg->width) * TDC_ORDERING_TILES_Y(cfg->height);
+    return TDC_ASM_ALIGN(px * 3u) * 2u + TDC_ASM_ALIGN(tiles * 48u) + TDC_ASM_ALIGN(px) + TDC_ASM_ALIGN(px * 4u) +
            TDC_ASM_ALIGN((size_t)cfg->width * 3u * sizeof(tdc_asm_mvmax_t)) + TDC_ASM_ALIGN((size_t)cfg->width * 3u) +
            TDC_ASM_ALIGN(bm) * 2u;
 }
@@ -40,7 +41,7 @@ tdc_status_t tdc_asm_init(tdc_asm_t *st, const tdc_asm_config_t *cfg, void *aren
     uint8_t *p = (uint8_t *)arena;
     st->frame[0] = p, p += TDC_ASM_ALIGN(px * 3u);
     st->frame[1] = p, p += TDC_ASM_ALIGN(px * 3u);
-    st->samples = p, p += TDC_ASM_ALIGN(px * 12u);
+    st->samples = p, p += TDC_ASM_ALIGN((size_t)st->tiles_x * st->tiles_y * 48u);
     st->window = p, p += TDC_ASM_ALIGN(px);
     st->mv = (int16_t *)(void *)p, p += TDC_ASM_ALIGN(px * 4u);
     st->ring = (tdc_asm_mvmax_t *)(void *)p, p += TDC_ASM_ALIGN((size_t)cfg->width * 3u * sizeof(tdc_asm_mvmax_t));
@@ -84,6 +85,7 @@ tdc_status_t tdc_asm_ingest(tdc_asm_t *st, uint32_t frame, const uint8_t *sample
     }
     const unsigned pos_h = tdc_ordering_pixel(TDC_ORDER_HOURGLASS, k);
     const unsigned pos_b = tdc_ordering_pixel(TDC_ORDER_BOWTIE, k);
+    const size_t tiles = (size_t)st->tiles_x * st->tiles_y;
     for (uint32_t ty = 0; ty < st->tiles_y; ty++) {
         for (uint32_t tx = 0; tx < st->tiles_x; tx++) {
             uint32_t ti = ty * st->tiles_x + tx;
@@ -91,7 +93,7 @@ tdc_status_t tdc_asm_ingest(tdc_asm_t *st, uint32_t frame, const uint8_t *sample
             uint32_t x = 2u * tx + (pos & 1u), y = 2u * ty + (pos >> 1);
             if (x >= w || y >= h) continue; /* partial tile: no such pixel */
             size_t p = (size_t)y * w + x;
-            uint8_t *s = st->samples + p * 12u + slot * 3u;
+            uint8_t *s = st->samples + ((size_t)(slot * 4u + pos) * tiles + ti) * 3u;
             s[0] = samples[ti * 3u];
             s[1] = samples[ti * 3u + 1u];
             s[2] = samples[ti * 3u + 2u];
@@ -111,6 +113,18 @@ tdc_status_t tdc_asm_ingest(tdc_asm_t *st, uint32_t frame, const uint8_t *sample
  * Helpers of assembly.
  * ---------------------------------------------------------------------- */
 
+/* Sample storage: 16 planes of tiles RGB888, plane (slot * 4 + position);
+ * a subframe is written densely into (at most two of) the planes of its slot,
+ * and a pixel's 4 window samples are at the same offset of 4 planes.
+ * Returns the start of row y's samples for pixels with x & 1 = q in `slot`:
+ * pixel x is at + (x >> 1) * 3. */
+static inline const uint8_t *tdc_asm_sample_row(const tdc_asm_t *st, uint32_t y, unsigned q, uint32_t slot)
+{
+    const size_t tiles = (size_t)st->tiles_x * st->tiles_y;
+    unsigned pos = ((y & 1u) << 1) | q;
+    return st->samples + ((size_t)(slot * 4u + pos) * tiles + (size_t)(y >> 1) * st->tiles_x) * 3u;
+}
+
 /* Mean of the samples in the window mask (1..4 slots), rounded half up.
  * Scaling and overflow: sum <= 4 * 255; round(sum / n) =
  * floor((2 sum + n) / (2 n)) = ((2 sum + n) * ceil(2^16 / 2n)) >> 16, exact
@@ -123,15 +137,25 @@ uint8_t tdc_asm_mean_u8(uint32_t sum, unsigned n)
     return (uint8_t)(((2u * sum + n) * tdc_asm_half_recip_q16[n]) >> 16);
 }
 
-static void tdc_asm_window_mean(const uint8_t *s12, unsigned mask, uint8_t *out)
+/* s0: the pixel's sample in slot 0; slot i is at s0 + i * stride. */
+static void tdc_asm_window_mean(const uint8_t *s0, size_t stride, unsigned mask, uint8_t *out)
 {
+    const uint8_t *a = s0, *b1 = s0 + stride, *c = s0 + 2u * stride, *d = s0 + 3u * stride;
+    if (mask == 0xFu) {
+        /* Full window (the steady state of a static pixel): plain mean of 4. */
+        out[0] = (uint8_t)((a[0] + b1[0] + c[0] + d[0] + 2u) >> 2);
+        out[1] = (uint8_t)((a[1] + b1[1] + c[1] + d[1] + 2u) >> 2);
+        out[2] = (uint8_t)((a[2] + b1[2] + c[2] + d[2] + 2u) >> 2);
+        return;
+    }
     unsigned n = 0, r = 0, g = 0, b = 0;
     for (unsigned i = 0; i < 4; i++) {
         if (mask & (1u << i)) {
+            const uint8_t *q = s0 + i * stride;
             n++;
-            r += s12[i * 3u];
-            g += s12[i * 3u + 1u];
-            b += s12[i * 3u + 2u];
+            r += q[0];
+            g += q[1];
+            b += q[2];
         }
     }
     out[0] = tdc_asm_mean_u8(r, n);
@@ -303,10 +327,11 @@ static int32_t tdc_asm_clamp_box_q8(int32_t v, int32_t n, int32_t s1, int32_t s2
 }
 
 /* Old dynamic pixel: reproject and clamp to the newest neighbours' box.
- * nr[0..2], sr[0..2]: newness and sample-record rows y-1, y, y+1 (NULL
- * outside the frame). */
+ * nr[0..2]: newness rows y-1, y, y+1 (NULL outside the frame); sr[j][q]:
+ * the newest-slot sample plane row of row y-1+j for pixels with x & 1 = q
+ * (pixel x at sr[j][x & 1] + (x >> 1) * 3). */
 static void tdc_asm_reproject_pixel(const tdc_asm_t *st, const uint8_t *prev, uint32_t x, uint32_t y, int32_t dx,
-                                    int32_t dy, const uint8_t *const nr[3], const uint8_t *const sr[3],
+                                    int32_t dy, const uint8_t *const nr[3], const uint8_t *sr[3][2],
                                     tdc_asm_dyn_count_t *cnt, uint8_t *out)
 {
     const uint32_t w = st->cfg.width;
@@ -322,7 +347,7 @@ static void tdc_asm_reproject_pixel(const tdc_asm_t *st, const uint8_t *prev, ui
         if (!nr[j]) continue;
         for (uint32_t nx = xa; nx <= xb; nx++) {
             if (!nr[j][nx]) continue;
-            const uint8_t *s = sr[j] + (size_t)nx * 12u;
+            const uint8_t *s = sr[j][nx & 1u] + (size_t)(nx >> 1) * 3u;
             int32_t r = s[0], g = s[1], b = s[2];
             s1r += r, s1g += g, s1b += b;
             s2r += r * r, s2g += g * g, s2b += b * b;
@@ -353,14 +378,16 @@ static void tdc_asm_static_frame(tdc_asm_t *st, uint32_t frame)
     const unsigned pos_h = tdc_ordering_pixel(TDC_ORDER_HOURGLASS, k);
     const unsigned pos_b = tdc_ordering_pixel(TDC_ORDER_BOWTIE, k);
     uint64_t averaged = 0;
+    const size_t tiles = (size_t)st->tiles_x * st->tiles_y, stride = tiles * 12u;
     for (uint32_t ty = 0; ty < st->tiles_y; ty++) {
         for (uint32_t tx = 0; tx < st->tiles_x; tx++) {
-            unsigned pos = tdc_ordering_get(st->pattern, ty * st->tiles_x + tx) == TDC_ORDER_BOWTIE ? pos_b : pos_h;
+            uint32_t ti = ty * st->tiles_x + tx;
+            unsigned pos = tdc_ordering_get(st->pattern, ti) == TDC_ORDER_BOWTIE ? pos_b : pos_h;
             uint32_t x = 2u * tx + (pos & 1u), y = 2u * ty + (pos >> 1);
             if (x >= w || y >= h) continue;
             size_t p = (size_t)y * w + x;
             st->window[p] = (uint8_t)(st->window[p] | (1u << slot));
-            tdc_asm_window_mean(st->samples + p * 12u, st->window[p], img + p * 3u);
+            tdc_asm_window_mean(st->samples + ((size_t)pos * tiles + ti) * 3u, stride, st->window[p], img + p * 3u);
             averaged++;
         }
     }
@@ -379,6 +406,7 @@ static void tdc_asm_dynamic_frame(tdc_asm_t *st, uint32_t frame)
     uint8_t *dst = st->frame[st->cur ^ 1];
     int row_any[3] = {0, 0, 0};
     tdc_asm_dyn_count_t cnt = {0, 0, 0, 0, 0};
+    const size_t stride = (size_t)st->tiles_x * st->tiles_y * 12u; /* bytes between slots */
     uint64_t new_dynamic = 0, resets = 0, averaged = 0, kept = 0, static_rows = 0;
 
     row_any[0] = tdc_asm_hmax_row(st, 0, st->ring);
@@ -392,17 +420,20 @@ static void tdc_asm_dynamic_frame(tdc_asm_t *st, uint32_t frame)
         const tdc_asm_mvmax_t *rt = st->ring + (size_t)((y + 2u) % 3u) * w;
         const tdc_asm_mvmax_t *rm = st->ring + (size_t)(y % 3u) * w;
         const tdc_asm_mvmax_t *rb = st->ring + (size_t)((y + 1u) % 3u) * w;
-        const uint8_t *nr[3], *sr[3];
+        const uint8_t *nr[3], *sr[3][2];
         nr[0] = top ? st->newring + (size_t)((y + 2u) % 3u) * w : NULL;
         nr[1] = st->newring + (size_t)(y % 3u) * w;
         nr[2] = bot ? st->newring + (size_t)((y + 1u) % 3u) * w : NULL;
-        sr[0] = top ? st->samples + ((size_t)(y - 1u) * w) * 12u + slot * 3u : NULL;
-        sr[1] = st->samples + ((size_t)y * w) * 12u + slot * 3u;
-        sr[2] = bot ? st->samples + ((size_t)(y + 1u) * w) * 12u + slot * 3u : NULL;
+        for (int j = 0; j < 3; j++) {
+            uint32_t yy = y + (uint32_t)j - 1u; /* wraps for y = 0, j = 0: unused (nr NULL) */
+            for (unsigned q = 0; q < 2; q++)
+                sr[j][q] = nr[j] ? tdc_asm_sample_row(st, yy, q, slot) : NULL;
+        }
         const uint8_t *prow = prev + (size_t)y * w * 3u;
         uint8_t *drow = dst + (size_t)y * w * 3u;
         uint8_t *win = st->window + (size_t)y * w;
-        const uint8_t *rec = st->samples + ((size_t)y * w) * 12u;
+        /* slot-0 sample rows of row y for even / odd x; slot i at + i * stride */
+        const uint8_t *rec[2] = {tdc_asm_sample_row(st, y, 0, 0), tdc_asm_sample_row(st, y, 1, 0)};
         int any = row_any[y % 3u] || (top && row_any[(y + 2u) % 3u]) || (bot && row_any[(y + 1u) % 3u]);
         if (!any) {
             /* Static row: copy, then average the new samples. */
@@ -411,7 +442,7 @@ static void tdc_asm_dynamic_frame(tdc_asm_t *st, uint32_t frame)
             for (uint32_t x = 0; x < w; x++) {
                 if (nr[1][x]) {
                     win[x] = (uint8_t)(win[x] | (1u << slot));
-                    tdc_asm_window_mean(rec + (size_t)x * 12u, win[x], drow + x * 3u);
+                    tdc_asm_window_mean(rec[x & 1u] + (size_t)(x >> 1) * 3u, stride, win[x], drow + x * 3u);
                     averaged++;
                 } else {
                     kept++;
@@ -430,7 +461,7 @@ static void tdc_asm_dynamic_frame(tdc_asm_t *st, uint32_t frame)
             if (m.l2 == 0) {
                 if (is_new) {
                     win[x] = (uint8_t)(win[x] | (1u << slot));
-                    tdc_asm_window_mean(rec + (size_t)x * 12u, win[x], o);
+                    tdc_asm_window_mean(rec[x & 1u] + (size_t)(x >> 1) * 3u, stride, win[x], o);
                     averaged++;
                 } else {
                     o[0] = prow[x * 3u], o[1] = prow[x * 3u + 1u], o[2] = prow[x * 3u + 2u];
@@ -443,7 +474,7 @@ static void tdc_asm_dynamic_frame(tdc_asm_t *st, uint32_t frame)
                 resets++;
             }
             if (is_new) {
-                const uint8_t *s = rec + (size_t)x * 12u + slot * 3u;
+                const uint8_t *s = rec[x & 1u] + (size_t)(x >> 1) * 3u + slot * stride;
                 o[0] = s[0], o[1] = s[1], o[2] = s[2];
                 new_dynamic++;
             } else {

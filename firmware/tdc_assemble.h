@@ -55,12 +55,13 @@ enum {
     TDC_ASM_ERR_FRAME = -20 /* ingest/assemble for a frame out of sequence */
 };
 
-/* Bytes per pixel of the arena: 2 output frames (6), 4 samples (12),
- * window mask (1), motion buffer (4). */
-#define TDC_ASM_BYTES_PER_PIXEL 23u
+/* Bytes per pixel of the arena: 2 output frames (6), window mask (1),
+ * motion buffer (4); plus 48 per tile: 4 slots x 4 positions of RGB888. */
+#define TDC_ASM_BYTES_PER_PIXEL 11u
 
 #define TDC_ASM_MEM_BYTES(W, H)                                                         \
-    ((size_t)(W) * (size_t)(H) * TDC_ASM_BYTES_PER_PIXEL + (size_t)(W) * 3u * 9u /* rings */ \
+    ((size_t)(W) * (size_t)(H) * TDC_ASM_BYTES_PER_PIXEL +                                \
+     (size_t)TDC_ORDERING_TILES_X(W) * TDC_ORDERING_TILES_Y(H) * 48u + (size_t)(W) * 3u * 9u /* rings */ \
      + 2u * (size_t)TDC_ORDERING_BITMAP_BYTES(W, H) + 8u * 8u /* alignment slack */)
 
 typedef struct {
@@ -98,7 +99,8 @@ typedef struct {
     uint32_t tiles_x, tiles_y;
     uint8_t *frame[2];      /* output frames, RGB888, stride width*3 */
     int cur;                /* index of the last output frame */
-    uint8_t *samples;       /* per pixel 4 slots x RGB888: last samples, slot = cycle mod 4 */
+    uint8_t *samples;       /* 16 planes (slot * 4 + tile position) of tiles RGB888:
+                               last samples, slot = cycle mod 4 */
     uint8_t *window;        /* per pixel: bit s = slot s holds a sample of the window */
     int16_t *mv;            /* per pixel (dx, dy) Q4 of its latest sample */
     tdc_asm_mvmax_t *ring;  /* 3 rows of horizontal 3-maxima */

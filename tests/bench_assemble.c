@@ -13,7 +13,7 @@
  *
  * Streams: a pan (every pixel dynamic: the worst case: reprojection + clamp
  * of 3/4 of the pixels every frame) and a static scene (the elided path).
- * Usage: bench_assemble [frames]   (default 48)
+ * Usage: bench_assemble [frames [pan|static]]   (default 48, both)
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -56,19 +56,19 @@ static double memcpy_bandwidth(void)
 
 /*
  * Bytes touched per output pixel per frame (steady state), from the layout
- * of tdc_assemble.c:
- *   ingest, per tile (= 4 px): sample in 3 + MV in 4, sample slot write 3
- *     (the 12-byte record's line is pulled: 12), MV buffer read+write 8
- *     -> (3 + 4 + 12 + 8) / 4 = 6.75 B/px;
+ * of tdc_assemble.c (samples in 16 dense planes: slot x tile position):
+ *   ingest, per tile (= 4 px): sample in 3 + MV in 4, sample write 3 (dense
+ *     plane), MV buffer read + write 8 -> 18 / 4 = 4.5 B/px;
  *   dynamic frame: MV buffer read 4 (3x3 search), previous frame read 3,
- *     new frame write 3, window byte read 1, sample records read 12 (the
- *     newest slot of the neighbours and of new pixels sits in 12-byte
- *     records) -> 23 B/px;  total 29.75 B/px.
- *   static frame (elided): ingest 6.75 + per new pixel (1/4): window r/w 2,
- *     sample record 12, output write 3 -> 6.75 + 17/4 = 11 B/px.
+ *     new frame write 3, window byte read 1, the newest slot's 4 planes read
+ *     once (neighbour boxes and new pixels; 12 B per tile) 3 -> 14 B/px;
+ *     total 18.5 B/px;
+ *   static frame (elided): ingest 4.5 + per new pixel (1/4 of them): window
+ *     read + write 2, 4 window samples 12, output write 3 -> 17 / 4;
+ *     total 8.75 B/px.
  */
-#define BYTES_PX_DYNAMIC 29.75
-#define BYTES_PX_STATIC 11.0
+#define BYTES_PX_DYNAMIC 18.5
+#define BYTES_PX_STATIC 8.75
 
 typedef struct {
     uint8_t *samples[8];
@@ -142,6 +142,7 @@ int main(int argc, char **argv)
         {"static scene (elided path)", TDC_SCENE_STATIC, 0, 0, BYTES_PX_STATIC},
     };
     for (size_t i = 0; i < sizeof(cases) / sizeof(cases[0]); i++) {
+        if (argc > 2 && strncmp(cases[i].name, argv[2], strlen(argv[2])) != 0) continue;
         stream_t s;
         tdc_asm_stats_t stats;
         make_stream(&s, cases[i].kind, cases[i].vx, cases[i].vy);
