@@ -186,7 +186,9 @@ firmware-size:
 	@echo "== $(BOARD) / $(PANEL) (stages: $(or $(strip $(STAGES)),link only))"
 	@if $(MAKE) --no-print-directory firmware > $(BUILD)/.size-$(BOARD)-$(PANEL).log 2>&1; then \
 	    tests/arm/size_report.sh $(ARM_SIZE) $(BP)/tdc-firmware.elf "$(BOARD_MEM)"; \
-	else grep -A12 '^memory fit' $(BUILD)/.size-$(BOARD)-$(PANEL).log | grep -v '^make' | sed 's/^/    /' || tail -5 $(BUILD)/.size-$(BOARD)-$(PANEL).log; fi
+	elif grep -q '^memory fit' $(BUILD)/.size-$(BOARD)-$(PANEL).log; then \
+	    grep -A12 '^memory fit' $(BUILD)/.size-$(BOARD)-$(PANEL).log | grep -v '^make' | sed 's/^/    /'; \
+	else echo "    build failed (not a memory-fit verdict):"; tail -5 $(BUILD)/.size-$(BOARD)-$(PANEL).log | sed 's/^/    /'; fi
 
 # Firmware rules on the linked image (not just the objects).
 $(BP)/check-image-rules: $(BP)/tdc-firmware.elf tests/arm/check_image_symbols.sh
