@@ -38,14 +38,17 @@ int tdc_lcd_quad_root_q16(int64_t a, int64_t b, int64_t c, uint32_t half_lsb_q16
 {
     const int64_t lo = -(int64_t)half_lsb_q16;
     const int64_t hi = V_ONE + half_lsb_q16;
-    int64_t cand[2];
-    int ok[2] = {0, 0};
     if (a == 0) {
         /* p1 = 0: linear b v + c = 0; b == 0 means M does not depend on v. */
-        if (b != 0) {
-            cand[0] = div_q16_round(-c, b);
-            ok[0] = 1;
+        if (b == 0) {
+            return 0;
         }
+        const int64_t r = div_q16_round(-c, b);
+        if (r >= lo && r <= hi) {
+            *v_q16 = (int32_t)(r < 0 ? 0 : (r > V_ONE ? V_ONE : r));
+            return 1;
+        }
+        return 0;
     } else {
         /* Scaling and overflow: |a|, |b|, |c| < 2^29 (Q24 with |p| <= 4, m <= 1)
          * so b^2 < 2^58 and |4 a c| < 2^60: the Q48 discriminant fits int64. */
@@ -58,29 +61,26 @@ int tdc_lcd_quad_root_q16(int64_t a, int64_t b, int64_t c, uint32_t half_lsb_q16
          * 2c / q2.  The increasing-branch root (2 a v + b = +s) is 2c / q2 for
          * b >= 0 and q2 / (2a) for b < 0. */
         const int64_t q2 = b >= 0 ? -(b + s) : (s - b);
-        int64_t r_qa = 0, r_cq = 0;
-        int ok_qa = 0, ok_cq = 0;
-        r_qa = div_q16_round(q2, 2 * a);
-        ok_qa = 1;
-        if (q2 != 0) {
-            r_cq = div_q16_round(2 * c, q2);
-            ok_cq = 1;
+        /* Increasing-branch root first; the other only if that one is out of
+         * range (saves a 64-bit division in the common case). */
+        for (int k = 0; k < 2; k++) {
+            const int use_cq = (b >= 0) == (k == 0);
+            int64_t r;
+            if (use_cq) {
+                if (q2 == 0) {
+                    continue;
+                }
+                r = div_q16_round(2 * c, q2);
+            } else {
+                r = div_q16_round(q2, 2 * a);
+            }
+            if (r >= lo && r <= hi) {
+                *v_q16 = (int32_t)(r < 0 ? 0 : (r > V_ONE ? V_ONE : r));
+                return 1;
+            }
         }
-        if (b >= 0) {
-            cand[0] = r_cq, ok[0] = ok_cq;
-            cand[1] = r_qa, ok[1] = ok_qa;
-        } else {
-            cand[0] = r_qa, ok[0] = ok_qa;
-            cand[1] = r_cq, ok[1] = ok_cq;
-        }
+        return 0;
     }
-    for (int k = 0; k < 2; k++) {
-        if (ok[k] && cand[k] >= lo && cand[k] <= hi) {
-            *v_q16 = (int32_t)(cand[k] < 0 ? 0 : (cand[k] > V_ONE ? V_ONE : cand[k]));
-            return 1;
-        }
-    }
-    return 0;
 }
 
 /*
@@ -332,7 +332,8 @@ tdc_status_t tdc_lcd_frame(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_str
                 const uint32_t u = code8_to_q16(d);
                 tdc_lcd_case_t kind;
                 if (st->od) {
-                    code = tdc_od_lookup(st->od, st->od_n, u, m, 255u);
+                    code = st->od_n == 33u ? tdc_od_lookup_inline(st->od, 33u, u, m, 255u)
+                                           : tdc_od_lookup_inline(st->od, 17u, u, m, 255u);
                     kind = TDC_LCD_ROOT;
                     if (code == 0u || code == 255u) {
                         /* At a table end the target may be out of reach. */
