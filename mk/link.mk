@@ -68,3 +68,9 @@ $(B)/tests/tdc_golden: $(B)/tests/golden/golden_link.o
 $(B)/tests/tdc_golden: HOST_LIBS := $(FWLIB) $(HOST_LIBS)
 BENCHES += $(B)/tests/bench_link
 TEST_EXTRA += fuzz-smoke
+
+# tdc-linkdump: check a .tdcs stream file with the firmware decoder.
+LINKDUMP := $(B)/tdc-linkdump
+$(LINKDUMP): $(B)/sim/link/tdc_linkdump.o $(SIMLIB) $(FWLIB)
+	$(CC) $(HOST_LDFLAGS) $< -o $@ $(SIMLIB) $(FWLIB) $(HOST_LIBS)
+HOST_PROGS += $(LINKDUMP)

@@ -90,6 +90,24 @@ static void test_write_read_decode(void **state)
     assert_memory_equal(rig_file.ev, rig_mem.ev, sizeof(tdc_link_event_t) * rig_mem.nev);
     assert_true(lt_hash_all(&rig_file) == lt_hash_all(&rig_mem));
 
+    /* The whole-file check: clean, then with a corrupted byte. */
+    tdc_link_file_summary_t sum;
+    assert_int_equal(tdc_link_file_check(path, NULL, 0, &sum), 0);
+    assert_int_equal(sum.counters.packets_ok, npk);
+    assert_int_equal(sum.stream.width, 31);
+    assert_int_equal(sum.stream_id, 11);
+    assert_int_equal(sum.bytes, n);
+    {
+        FILE *fp = fopen(path, "r+b");
+        assert_non_null(fp);
+        fseek(fp, (long)pk[3].offset + 50, SEEK_SET);
+        fputc(0x5A ^ stream[pk[3].offset + 50], fp);
+        fclose(fp);
+    }
+    assert_int_equal(tdc_link_file_check(path, NULL, 0, &sum), 1);
+    assert_int_equal(sum.counters.errors[TDC_LINK_ERR_CRC], 1);
+    assert_int_equal(sum.counters.packets_ok, npk - 1);
+
     /* Truncated in the middle of a payload: an error, not a crash. */
     assert_int_equal(truncate(path, (off_t)(pk[2].offset + 40)), 0);
     assert_int_equal(tdc_link_file_open(&lf, path), 0);
@@ -104,6 +122,7 @@ static void test_write_read_decode(void **state)
     unlink(path);
     assert_int_equal(tdc_link_file_open(&lf, "/nonexistent/dir/x.tdcs"), -1);
     assert_int_equal(tdc_link_file_create(&lf, "/nonexistent/dir/x.tdcs"), -1);
+    assert_int_equal(tdc_link_file_check("/nonexistent/dir/x.tdcs", NULL, 0, &sum), -1);
 }
 
 int main(void)

@@ -2,6 +2,7 @@
 #include "link/tdc_link_file.h"
 
 #include <errno.h>
+#include <stdlib.h>
 #include <string.h>
 
 static int open_mode(tdc_link_file_t *lf, const char *path, const char *mode, int writing)
@@ -104,5 +105,121 @@ int tdc_link_file_close(tdc_link_file_t *lf)
         rc = -1;
     }
     lf->f = NULL;
+    return rc;
+}
+
+static const char *kind_name(uint32_t k)
+{
+    static const char *const n[] = {"?", "stream", "full", "reduced", "subframe", "motion", "pattern"};
+    return k <= TDC_LINK_KIND_LAST ? n[k] : "?";
+}
+
+int tdc_link_file_check(const char *path, FILE *log, int verbose, tdc_link_file_summary_t *sum)
+{
+    memset(sum, 0, sizeof *sum);
+    tdc_link_file_t lf;
+    if (tdc_link_file_open(&lf, path) < 0) {
+        return -1;
+    }
+    uint8_t first[TDC_LINK_HEADER_BYTES + TDC_LINK_STREAM_HEADER_BYTES];
+    tdc_link_header_fields_t f;
+    uint32_t len, crc;
+    if (fread(first, 1, sizeof first, lf.f) != sizeof first || !tdc_link_parse_header(first, &f, &len, &crc) ||
+        f.kind != TDC_LINK_KIND_STREAM || len != TDC_LINK_STREAM_HEADER_BYTES) {
+        fprintf(stderr, "tdcs: '%s' does not start with a valid STREAM packet\n", path);
+        tdc_link_file_close(&lf);
+        return -1;
+    }
+    const uint8_t *p = first + TDC_LINK_HEADER_BYTES;
+    tdc_link_stream_info_t in;
+    in.flags = tdc_link_rd32(p);
+    in.r_num = (uint16_t)tdc_link_rd16(p + 4);
+    in.r_den = (uint16_t)tdc_link_rd16(p + 6);
+    in.width = (uint16_t)tdc_link_rd16(p + 8);
+    in.height = (uint16_t)tdc_link_rd16(p + 10);
+    in.eyes = p[12];
+    in.reserved = p[13];
+    in.refresh_hz = (uint16_t)tdc_link_rd16(p + 14);
+    sum->stream = in;
+    sum->stream_id = f.stream_id;
+    rewind(lf.f);
+    if (in.width == 0 || in.height == 0 || in.eyes < 1 || in.eyes > 2 ||
+        (uint32_t)in.width * in.height > TDC_LINK_MAX_PIXELS || in.width > TDC_LINK_MAX_WIDTH ||
+        in.height > TDC_LINK_MAX_HEIGHT) {
+        fprintf(stderr, "tdcs: '%s': stream size %ux%u x %u eyes is not supported\n", path, in.width, in.height,
+                in.eyes);
+        tdc_link_file_close(&lf);
+        return -1;
+    }
+    const size_t w = in.width, h = in.height;
+    tdc_link_buffers_t b;
+    memset(&b, 0, sizeof b);
+    b.staging_bytes = TDC_LINK_STAGING_BYTES(w, h);
+    b.full_stride = (uint32_t)(w * 3u);
+    b.reduced_bytes = TDC_LINK_FRAME_BYTES(w, h);
+    uint8_t *mem[16];
+    size_t nmem = 0;
+#define TDCS_ALLOC(dst, type, bytes)                        \
+    do {                                                    \
+        mem[nmem] = calloc(1, (bytes));                     \
+        (dst) = (type)(void *)mem[nmem];                    \
+        nmem++;                                             \
+    } while (0)
+    TDCS_ALLOC(b.staging, uint8_t *, b.staging_bytes);
+    for (unsigned e = 0; e < in.eyes; e++) {
+        TDCS_ALLOC(b.full[e], uint8_t *, TDC_LINK_FRAME_BYTES(w, h));
+        TDCS_ALLOC(b.reduced[e], uint8_t *, TDC_LINK_FRAME_BYTES(w, h));
+        TDCS_ALLOC(b.subframe[e], uint8_t *, TDC_LINK_SUBFRAME_BYTES(w, h));
+        TDCS_ALLOC(b.motion[e], int16_t *, TDC_LINK_MOTION_COUNT(w, h) * 2u);
+        TDCS_ALLOC(b.sample_motion[e], int16_t *, TDC_LINK_SAMPLE_MOTION_COUNT(w, h) * 2u);
+        TDCS_ALLOC(b.pattern[e], uint8_t *, TDC_LINK_PATTERN_BYTES(w, h));
+    }
+#undef TDCS_ALLOC
+    static uint8_t chunk[65536];
+    int rc = 0;
+    for (size_t i = 0; i < nmem; i++) {
+        if (!mem[i]) {
+            rc = -1;
+        }
+    }
+    tdc_link_decoder_t *dec = rc == 0 ? calloc(1, sizeof *dec) : NULL;
+    tdc_link_config_t cfg = {in.width, in.height, in.eyes};
+    if (!dec || tdc_link_decoder_init(dec, &cfg, &b) != TDC_OK) {
+        fprintf(stderr, "tdcs: '%s': out of memory for a %ux%u decoder\n", path, in.width, in.height);
+        rc = -1;
+    }
+    long got = 0;
+    while (rc == 0 && (got = tdc_link_file_read_raw(&lf, chunk, sizeof chunk)) > 0) {
+        size_t pos = 0;
+        while (pos < (size_t)got || dec->ev_count) {
+            tdc_link_event_t ev;
+            pos += tdc_link_feed(dec, chunk + pos, (size_t)got - pos, &ev);
+            if (ev.type == TDC_LINK_EV_ERROR && log) {
+                fprintf(log, "error %-15s frame %u kind %s eye %u detail %u (at byte ~%llu)\n",
+                        tdc_link_err_name((tdc_link_err_t)ev.error), ev.frame_index, kind_name(ev.kind), ev.eye,
+                        ev.detail, (unsigned long long)(dec->cnt.bytes_in));
+            } else if (ev.type == TDC_LINK_EV_PACKET && log && verbose) {
+                fprintf(log, "packet %-8s frame %u eye %u %ux%u format %u flags %u payload %u\n", kind_name(ev.kind),
+                        ev.frame_index, ev.eye, ev.width, ev.height, ev.format, ev.flags, ev.detail);
+            }
+        }
+    }
+    if (got < 0) {
+        rc = -1;
+    }
+    if (dec) {
+        sum->counters = dec->cnt;
+        sum->bytes = dec->cnt.bytes_in;
+        if (rc == 0) {
+            for (int e = 1; e < TDC_LINK_ERR_COUNT; e++) {
+                rc |= dec->cnt.errors[e] != 0;
+            }
+        }
+    }
+    free(dec);
+    for (size_t i = 0; i < nmem; i++) {
+        free(mem[i]);
+    }
+    tdc_link_file_close(&lf);
     return rc;
 }

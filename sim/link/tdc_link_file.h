@@ -44,4 +44,20 @@ long tdc_link_file_read_raw(tdc_link_file_t *lf, uint8_t *buf, size_t cap);
 /* Flushes and closes; 0 / -1 (a write error surfaces here too). */
 int tdc_link_file_close(tdc_link_file_t *lf);
 
+/* Result of tdc_link_file_check(). */
+typedef struct {
+    tdc_link_stream_info_t stream; /* first stream header of the file */
+    uint16_t stream_id;
+    tdc_link_counters_t counters;  /* of a decoder fed the whole file */
+    uint64_t bytes;
+} tdc_link_file_summary_t;
+
+/* Decodes a whole .tdcs file with the firmware decoder, sized from the
+ * file's first STREAM packet (buffers on the heap: host only).  Logs every
+ * error event (and with verbose every accepted packet) to log (may be NULL).
+ * Returns 0 if the stream decoded without an error event, 1 if there were
+ * errors, -1 if the file cannot be read or does not start with a valid
+ * STREAM packet (message on stderr). */
+int tdc_link_file_check(const char *path, FILE *log, int verbose, tdc_link_file_summary_t *sum);
+
 #endif /* TDC_LINK_FILE_H */
