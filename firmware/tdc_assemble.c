@@ -280,6 +280,12 @@ typedef struct {
     uint64_t reprojected, edge, boxes, changed, no_neighbour;
 } tdc_asm_dyn_count_t;
 
+/* RGB888 pixel -> R | G << 16 | B << 32. */
+static inline uint64_t tdc_asm_lanes(const uint8_t *p)
+{
+    return (uint64_t)p[0] | (uint64_t)p[1] << 16 | (uint64_t)p[2] << 32;
+}
+
 /* Bilinear sample of frame `src` at (x + dx/16, y + dy/16), position
  * clamped to the frame; result in code Q8 per channel (weights Q4 x Q4 =
  * Q8, sum 256: max 255 * 256, exact).  Returns 1 if the position was
@@ -297,9 +303,15 @@ static int tdc_asm_bilinear_q8(const tdc_asm_t *st, const uint8_t *src, uint32_t
     int32_t x0 = sx >> 4, y0 = sy >> 4, fx = sx & 15, fy = sy & 15; /* sx, sy >= 0 */
     int32_t x1 = x0 + (fx != 0), y1 = y0 + (fy != 0);
     const uint8_t *r0 = src + ((size_t)y0 * (size_t)w) * 3u, *r1 = src + ((size_t)y1 * (size_t)w) * 3u;
-    int32_t w00 = (16 - fx) * (16 - fy), w01 = fx * (16 - fy), w10 = (16 - fx) * fy, w11 = fx * fy;
-    for (int c = 0; c < 3; c++)
-        out_q8[c] = w00 * r0[x0 * 3 + c] + w01 * r0[x1 * 3 + c] + w10 * r1[x0 * 3 + c] + w11 * r1[x1 * 3 + c];
+    uint64_t w00 = (uint64_t)((16 - fx) * (16 - fy)), w01 = (uint64_t)(fx * (16 - fy));
+    uint64_t w10 = (uint64_t)((16 - fx) * fy), w11 = (uint64_t)(fx * fy);
+    /* Three channels in 16-bit lanes of one 64-bit word: each lane's sum
+     * <= 255 * 256 < 2^16, so lanes never carry into each other. */
+    uint64_t acc = w00 * tdc_asm_lanes(r0 + x0 * 3) + w01 * tdc_asm_lanes(r0 + x1 * 3) +
+                   w10 * tdc_asm_lanes(r1 + x0 * 3) + w11 * tdc_asm_lanes(r1 + x1 * 3);
+    out_q8[0] = (int32_t)(acc & 0xFFFFu);
+    out_q8[1] = (int32_t)((acc >> 16) & 0xFFFFu);
+    out_q8[2] = (int32_t)((acc >> 32) & 0xFFFFu);
     return clamped;
 }
 

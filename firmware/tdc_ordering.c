@@ -121,35 +121,70 @@ tdc_ordering_t tdc_ordering_decide(int32_t mx_q4, int32_t my_q4, tdc_ordering_t 
     return hourglass ? TDC_ORDER_HOURGLASS : TDC_ORDER_BOWTIE;
 }
 
+/* Longest vector of one pixel column over rows y0..y1 (first in y on ties). */
+typedef struct {
+    uint32_t l2; /* squared length, Q8: each square <= 2^30, sum <= 2^31 */
+    int32_t y, dx, dy;
+} tdc_ordering_colmax_t;
+
+static tdc_ordering_colmax_t tdc_ordering_column(const int16_t *mv, int w, int x, int y0, int y1)
+{
+    tdc_ordering_colmax_t c = {0, 0, 0, 0};
+    for (int y = y0; y <= y1; y++) {
+        const int16_t *v = mv + ((size_t)y * (size_t)w + (size_t)x) * 2u;
+        int32_t dx = v[0], dy = v[1];
+        uint32_t l2 = (uint32_t)(dx * dx) + (uint32_t)(dy * dy);
+        if (l2 > c.l2) c.l2 = l2, c.y = y, c.dx = dx, c.dy = dy;
+    }
+    return c;
+}
+
 void tdc_ordering_update(const int16_t *mv, int w, int h, uint8_t *pattern_bits, uint32_t frame)
 {
     if (!mv || !pattern_bits || w <= 0 || h <= 0) return;
     int tx_n = (w + 1) / 2, ty_n = (h + 1) / 2;
     for (int ty = 0; ty < ty_n; ty++) {
-        /* 3x3 tiles = pixel rows 2ty-2 .. 2ty+3, clipped. */
+        /* 3x3 tiles = pixel rows 2ty-2 .. 2ty+3 and columns 2tx-2 .. 2tx+3,
+         * clipped.  Column maxima slide by two columns per tile: col[i] is
+         * pixel column 2tx-2+i.  The longest vector is the first in raster
+         * order on ties: larger l2, or equal l2 and a smaller row (columns
+         * are visited left to right, so equal rows keep the leftmost). */
         int y0 = 2 * ty - 2 < 0 ? 0 : 2 * ty - 2;
         int y1 = 2 * ty + 3 >= h ? h - 1 : 2 * ty + 3;
+        tdc_ordering_colmax_t col[6];
+        for (int i = 0; i < 6; i++) {
+            int x = i - 2;
+            col[i] = (x >= 0 && x < w) ? tdc_ordering_column(mv, w, x, y0, y1) : (tdc_ordering_colmax_t){0, 0, 0, 0};
+        }
+        /* Decision memo: a run of tiles with the same longest vector outside
+         * the random band (the usual case of a pan) decides once. */
+        int32_t memo_dx = 0, memo_dy = 0;
+        int memo_valid = 0;
+        tdc_ordering_t memo = TDC_ORDER_HOURGLASS;
         for (int tx = 0; tx < tx_n; tx++) {
-            int x0 = 2 * tx - 2 < 0 ? 0 : 2 * tx - 2;
-            int x1 = 2 * tx + 3 >= w ? w - 1 : 2 * tx + 3;
-            uint32_t best2 = 0;
-            int32_t bx = 0, by = 0;
-            for (int y = y0; y <= y1; y++) {
-                const int16_t *row = mv + (size_t)y * (size_t)w * 2u;
-                for (int x = x0; x <= x1; x++) {
-                    int32_t dx = row[2 * x], dy = row[2 * x + 1];
-                    /* Squared length, Q8: each square <= 2^30, sum <= 2^31 in uint32. */
-                    uint32_t l2 = (uint32_t)(dx * dx) + (uint32_t)(dy * dy);
-                    if (l2 > best2) {
-                        best2 = l2;
-                        bx = dx;
-                        by = dy;
-                    }
+            if (tx > 0) {
+                for (int i = 0; i < 4; i++) col[i] = col[i + 2];
+                for (int i = 4; i < 6; i++) {
+                    int x = 2 * tx - 2 + i;
+                    col[i] = x < w ? tdc_ordering_column(mv, w, x, y0, y1) : (tdc_ordering_colmax_t){0, 0, 0, 0};
                 }
             }
+            tdc_ordering_colmax_t best = {0, 0, 0, 0};
+            for (int i = 0; i < 6; i++)
+                if (col[i].l2 > best.l2 || (col[i].l2 == best.l2 && col[i].l2 != 0 && col[i].y < best.y)) best = col[i];
             uint32_t ti = (uint32_t)ty * (uint32_t)tx_n + (uint32_t)tx;
-            tdc_ordering_t cur = tdc_ordering_get(pattern_bits, ti);
-            tdc_ordering_set(pattern_bits, ti, tdc_ordering_decide(bx, by, cur, (uint32_t)tx, (uint32_t)ty, frame));
+            if (best.l2 == 0) continue; /* m = 0: keep the current ordering */
+            tdc_ordering_t o;
+            if (memo_valid && best.dx == memo_dx && best.dy == memo_dy) {
+                o = memo;
+            } else if (tdc_ordering_in_random_band(best.dx, best.dy)) {
+                o = tdc_ordering_decide(best.dx, best.dy, TDC_ORDER_HOURGLASS, (uint32_t)tx, (uint32_t)ty, frame);
+                memo_valid = 0;
+            } else {
+                o = tdc_ordering_decide(best.dx, best.dy, TDC_ORDER_HOURGLASS, (uint32_t)tx, (uint32_t)ty, frame);
+                memo_dx = best.dx, memo_dy = best.dy, memo = o, memo_valid = 1;
+            }
+            tdc_ordering_set(pattern_bits, ti, o);
         }
     }
 }

@@ -251,6 +251,61 @@ static void test_update_neighbourhood(void **st)
     assert_int_equal(tdc_ordering_get(bits, 0), TDC_ORDER_HOURGLASS);
 }
 
+/* The straightforward definition: raster scan of the clipped 6x6 block. */
+static void naive_update(const int16_t *mv, int w, int h, uint8_t *bits, uint32_t frame)
+{
+    int tx_n = (w + 1) / 2, ty_n = (h + 1) / 2;
+    for (int ty = 0; ty < ty_n; ty++)
+        for (int tx = 0; tx < tx_n; tx++) {
+            uint32_t best = 0;
+            int32_t bx = 0, by = 0;
+            for (int y = 2 * ty - 2; y <= 2 * ty + 3; y++)
+                for (int x = 2 * tx - 2; x <= 2 * tx + 3; x++) {
+                    if (x < 0 || y < 0 || x >= w || y >= h) continue;
+                    int32_t dx = mv[(y * w + x) * 2], dy = mv[(y * w + x) * 2 + 1];
+                    uint32_t l2 = (uint32_t)(dx * dx) + (uint32_t)(dy * dy);
+                    if (l2 > best) best = l2, bx = dx, by = dy;
+                }
+            uint32_t ti = (uint32_t)(ty * tx_n + tx);
+            tdc_ordering_set(bits, ti, tdc_ordering_decide(bx, by, tdc_ordering_get(bits, ti), (uint32_t)tx, (uint32_t)ty, frame));
+        }
+}
+
+/* The optimised update (sliding column maxima, decision memo) against the
+ * definition, on random fields full of equal-length ties ((3,4), (4,3),
+ * (5,0), (0,-5), ...), at odd and even sizes. */
+static void test_update_matches_definition(void **st)
+{
+    (void)st;
+    static const int16_t vals[][2] = {{0, 0}, {3, 4}, {4, 3}, {5, 0}, {0, -5}, {-4, 3}, {56, 0}, {0, 56},
+                                      {40, 40}, {-32768, 0}, {32767, 32767}, {18, -7}};
+    uint32_t rng = 12345;
+    const int sizes[][2] = {{1, 1}, {2, 3}, {7, 5}, {13, 9}, {32, 17}, {41, 40}};
+    for (size_t si = 0; si < sizeof(sizes) / sizeof(sizes[0]); si++) {
+        int w = sizes[si][0], h = sizes[si][1];
+        int16_t *mv = calloc((size_t)w * h * 2, sizeof(int16_t));
+        size_t nb = (size_t)TDC_ORDERING_BITMAP_BYTES(w, h);
+        uint8_t *a = calloc(nb, 1), *b = calloc(nb, 1);
+        for (int rep = 0; rep < 50; rep++) {
+            int density = rep % 5; /* 0: sparse motion .. 4: dense */
+            for (int i = 0; i < w * h; i++) {
+                rng = rng * 1664525u + 1013904223u;
+                int pick = (int)((rng >> 8) % 12u);
+                if ((int)((rng >> 24) % 5u) > density) pick = 0;
+                mv[2 * i] = vals[pick][0], mv[2 * i + 1] = vals[pick][1];
+            }
+            for (size_t i = 0; i < nb; i++) {
+                rng = rng * 1664525u + 1013904223u;
+                a[i] = b[i] = (uint8_t)(rng >> 24);
+            }
+            tdc_ordering_update(mv, w, h, a, (uint32_t)rep * 4u);
+            naive_update(mv, w, h, b, (uint32_t)rep * 4u);
+            assert_memory_equal(a, b, nb);
+        }
+        free(mv), free(a), free(b);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -264,6 +319,7 @@ int main(void)
         cmocka_unit_test(test_diagonal_hashed),
         cmocka_unit_test(test_zero_keeps),
         cmocka_unit_test(test_update_neighbourhood),
+        cmocka_unit_test(test_update_matches_definition),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
