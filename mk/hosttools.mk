@@ -35,7 +35,7 @@ $(TDC_GPIO): $(TDC_GPIO_OBJS)
 TESTS += $(B)/tests/usb/test_usbproto
 
 # umockdev tests: the emulated board plus the real tdc-usb binary.
-USB_EMUL_OBJS = $(B)/tests/usb/test_usb_emul.o $(B)/tests/usb/tdc_usb_emul.o
+USB_EMUL_OBJS = $(B)/tests/usb/test_usb_emul.o $(B)/tests/usb/tdc_usb_emul.o $(B)/tests/usb/tdc_link_sink.o
 $(B)/tests/usb/test_usb_emul: $(USB_EMUL_OBJS) $(SIMLIB) $(FWLIB) $(TDC_USB)
 	$(CC) $(HOST_LDFLAGS) $(USB_EMUL_OBJS) -o $@ $(SIMLIB) $(FWLIB) $(UMOCKDEV_LIBS) -lcmocka -lpthread -lm
 TESTS += $(B)/tests/usb/test_usb_emul
@@ -53,9 +53,15 @@ TESTS += $(B)/tests/usb/test_gpio_vsync
 # ---------------------------------------------------------------------------
 DEPS_PKGS += qemu-system-x86 busybox-static linux-image-amd64 linux-headers-amd64 linux-source cpio kmod
 VM_BIN := $(BUILD)/gcc-O2/bin
-$(VM_BIN)/tdc_ffs_board: tests/vm/tdc_ffs_board.c firmware/tdc_usbproto.c firmware/tdc_usbproto.h
+VM_BOARD_SRCS := tests/vm/tdc_ffs_board.c tests/usb/tdc_link_sink.c firmware/tdc_usbproto.c \
+                 firmware/tdc_link.c firmware/tdc_crc32.c firmware/tdc_pixfmt.c
+$(VM_BIN)/tdc_ffs_board: $(VM_BOARD_SRCS) $(wildcard firmware/*.h) $(GEN)/tdc_crc32_tables.h
 	@mkdir -p $(@D)
-	gcc -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror -O2 -Ifirmware -static $(filter %.c,$^) -o $@ -lpthread
+	gcc -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror -O2 -Ifirmware -I$(GEN) -Itests/usb -static \
+	    $(VM_BOARD_SRCS) -o $@ -lpthread
+# The .tdcs streams the VM sends, from the link generator (host program).
+$(VM_BIN)/tdc_vm_mkstream: $(B)/tests/vm/tdc_vm_mkstream.o $(SIMLIB) $(FWLIB)
+	$(CC) $(HOST_LDFLAGS) $< -o $@ $(SIMLIB) $(FWLIB) -lm
 $(VM_BIN)/tdc_vsync_gen: tests/vm/tdc_vsync_gen.c
 	@mkdir -p $(@D)
 	gcc -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror -O2 -static $< -o $@
@@ -67,7 +73,7 @@ TEST_EXTRA += test-vm
 .PHONY: test-vm
 test-vm:
 	@$(MAKE) --no-print-directory CC=gcc OPT=-O2 SAN= $(VM_BIN)/tdc-usb $(VM_BIN)/tdc-gpio \
-	    $(VM_BIN)/tdc_ffs_board $(VM_BIN)/tdc_vsync_gen
+	    $(VM_BIN)/tdc_ffs_board $(VM_BIN)/tdc_vsync_gen $(VM_BIN)/tdc_vm_mkstream
 	@if tests/vm/run-vm.sh $(VM_BIN) $(BUILD)/vm; then r=PASS; else r=FAIL; fi; \
 	    echo "[vm] $$r test-vm"; [ -z "$$RESULTS" ] || echo "vm test-vm $$r" >> "$$RESULTS"; \
 	    [ $$r = PASS ]

@@ -11,7 +11,7 @@
  * board never answers stays "in flight" until libusb's timeout discards it.
  */
 #include "tdc_usb_emul.h"
-#include "tdc_link.h"
+#include "tdc_link_sink.h"
 
 #include <errno.h>
 #include <sys/ioctl.h>
@@ -41,66 +41,20 @@ struct emul_board {
     int n_done;
     UMockdevIoctlData *flying[EMUL_MAX_URBS]; /* never answered (hang faults) */
     int n_flying;
-    tdc_link_decoder_t *dec; /* optional: the firmware's link decoder as the sink */
-    uint8_t *dec_mem;
+    tdc_link_sink_t *sink; /* optional: the firmware's link decoder as the sink */
 };
-
-/* Link decoder as the protocol's sink: every event of this transfer counted. */
-static void emul_link_sink(void *ctx, const uint8_t *data, uint32_t len, tdc_usbp_sink_report_t *d)
-{
-    tdc_link_decoder_t *dec = ctx;
-    size_t off = 0;
-    for (;;) {
-        tdc_link_event_t ev;
-        size_t used = tdc_link_feed(dec, data + off, len - off, &ev);
-        off += used;
-        if (ev.type == TDC_LINK_EV_ERROR) {
-            if (ev.error == TDC_LINK_ERR_CRC || ev.error == TDC_LINK_ERR_HEADER_CRC)
-                d->crc_errors++;
-            else
-                d->malformed++;
-        } else if (ev.type == TDC_LINK_EV_PACKET &&
-                   (ev.kind == TDC_LINK_KIND_FULL || ev.kind == TDC_LINK_KIND_REDUCED)) {
-            d->frames++;
-        } else if (ev.type == TDC_LINK_EV_NONE) {
-            break; /* every byte of this transfer consumed */
-        }
-    }
-}
 
 int emul_board_attach_link_decoder(emul_board_t *b, uint16_t w, uint16_t h)
 {
-    size_t staging = TDC_LINK_STAGING_BYTES(w, h), frame = TDC_LINK_FRAME_BYTES(w, h);
-    size_t sub = TDC_LINK_SUBFRAME_BYTES(w, h), mv = TDC_LINK_MOTION_COUNT(w, h) * 2u;
-    size_t smv = TDC_LINK_SAMPLE_MOTION_COUNT(w, h) * 2u, pat = TDC_LINK_PATTERN_BYTES(w, h);
-    uint8_t *m = calloc(1, staging + 2 * frame + sub + mv + smv + pat + 64);
-    tdc_link_decoder_t *dec = calloc(1, sizeof *dec);
-    if (m == NULL || dec == NULL) {
-        free(m);
-        free(dec);
-        return -1;
-    }
-    tdc_link_buffers_t buf = {0};
-    uint8_t *p = m;
-    buf.staging = p; buf.staging_bytes = staging; p += staging;
-    buf.full[0] = p; buf.full_stride = (uint32_t)w * 3u; p += frame;
-    buf.reduced[0] = p; buf.reduced_bytes = frame; p += frame;
-    buf.subframe[0] = p; p += sub;
-    p += (uintptr_t)p & 1u; /* int16 alignment */
-    buf.motion[0] = (int16_t *)(void *)p; p += mv;
-    buf.sample_motion[0] = (int16_t *)(void *)p; p += smv;
-    buf.pattern[0] = p;
-    tdc_link_config_t cfg = {w, h, 1};
-    if (tdc_link_decoder_init(dec, &cfg, &buf) != TDC_OK) {
-        free(m);
-        free(dec);
+    tdc_link_sink_t *sink = calloc(1, sizeof *sink);
+    if (sink == NULL || tdc_link_sink_init(sink, w, h) != 0) {
+        free(sink);
         return -1;
     }
     pthread_mutex_lock(&b->lock);
-    b->dec = dec;
-    b->dec_mem = m;
-    b->proto.cfg.sink = emul_link_sink;
-    b->proto.cfg.sink_ctx = dec;
+    b->sink = sink;
+    b->proto.cfg.sink = tdc_link_sink_feed;
+    b->proto.cfg.sink_ctx = sink;
     pthread_mutex_unlock(&b->lock);
     return 0;
 }
@@ -414,8 +368,7 @@ void emul_board_free(emul_board_t *b)
     for (int i = 0; i < b->n_flying; i++)
         g_object_unref(b->flying[i]);
     pthread_mutex_destroy(&b->lock);
-    free(b->dec);
-    free(b->dec_mem);
+    free(b->sink);
     free(b->slot);
     free(b);
 }

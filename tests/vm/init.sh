@@ -61,8 +61,16 @@ wait_board() {
 bind
 if wait_board; then ok usb-enumerate; else bad usb-enumerate "no board after 10 s"; cat /tmp/board.log; finish; fi
 
-check usb-list 0 "serial VM-1 board vm-gadget panel htc-vive" tdc-usb list
-check usb-info 0 "panel: htc-vive 2160x1200 @ 90.000 Hz" tdc-usb --serial VM-1 info
+check usb-list 0 "serial VM-1 board vm-gadget panel vm-32x24" tdc-usb list
+check usb-info 0 "panel: vm-32x24 32x24 @ 90.000 Hz" tdc-usb --serial VM-1 info
+# link streams through the firmware decoder on the board: counters are its verdicts
+check usb-stream-link 0 "link_crc_errors 0 link_malformed 0 rx_overruns 0 dfu_errors 0 stalls 0 frames 24" \
+    tdc-usb --chunk 700 stream /data/clean.tdcs
+check usb-stream-link-damaged 0 "link_crc_errors 1 link_malformed 0 rx_overruns 0 dfu_errors 0 stalls 0 frames 23" \
+    tdc-usb stream /data/damaged.tdcs
+# 4 MiB of random bytes: to the decoder it is garbage (reported as one
+# malformed run when the next packet resyncs it, so this comes after the
+# link streams); the check is the byte count and CRC of what arrived.
 dd if=/dev/urandom of=/tmp/stream.bin bs=1024 count=4096 2>/dev/null
 check usb-stream 0 "board received all 4194304 bytes" tdc-usb stream /tmp/stream.bin
 dd if=/dev/urandom of=/tmp/fw.bin bs=1024 count=100 2>/dev/null

@@ -5,7 +5,7 @@
 # the firmware's USB protocol code, tdc-gpio against gpio-sim (built here as
 # an out-of-tree module from Debian's linux-source).
 # Usage: tests/vm/run-vm.sh BIN_DIR VM_DIR
-#   BIN_DIR: directory with tdc-usb, tdc-gpio, tdc_ffs_board, tdc_vsync_gen
+#   BIN_DIR: directory with tdc-usb, tdc-gpio, tdc_ffs_board, tdc_vsync_gen, tdc_vm_mkstream
 #   VM_DIR:  work directory (module build, initramfs, console log)
 set -eu
 bin=$1; vm=$2
@@ -60,6 +60,8 @@ for lib in $(ldd "$bin/tdc-usb" "$bin/tdc-gpio" | awk '/=> \//{print $3} /^\t\/l
     mkdir -p "$root$(dirname "$lib")"; cp -L "$lib" "$root$lib"
 done
 mkdir -p "$root/lib64"; cp -L /lib64/ld-linux-x86-64.so.2 "$root/lib64/"
+mkdir -p "$root/data"
+"$bin/tdc_vm_mkstream" "$root/data"
 cp tests/vm/init.sh "$root/init"; chmod +x "$root/init"
 (cd "$root" && find . | cpio -o -H newc --quiet) | gzip -1 > "$vm/initramfs.gz"
 

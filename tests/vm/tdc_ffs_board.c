@@ -5,6 +5,8 @@
  * inside the `make test-vm` VM.  The host side (tdc-usb, libusb, usbfs,
  * usbcore) then talks to it through the real kernel.
  *
+ * Bulk OUT bytes go through the firmware's link decoder (32x24 mono panel),
+ * so the counters tdc-usb reports are the decoder's verdicts.
  * Usage: tdc_ffs_board <functionfs mount dir> <serial>
  * Writes descriptors and strings to ep0, prints "ready" on stdout once the
  * endpoints exist (the init script then binds the UDC), and serves forever.
@@ -20,6 +22,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "tdc_link_sink.h"
 #include "tdc_usbproto.h"
 
 #define SLOT_BYTES (256u * 1024u)
@@ -34,6 +37,7 @@ static pthread_mutex_t lock = PTHREAD_MUTEX_INITIALIZER;
 static tdc_usbp_t proto;
 static uint8_t slot[SLOT_BYTES];
 static char dir[256];
+static tdc_link_sink_t link_sink; /* the firmware link decoder, 32x24 mono */
 
 static int flash_write(void *ctx, uint32_t off, const uint8_t *d, uint32_t n)
 {
@@ -197,10 +201,15 @@ int main(int argc, char **argv)
     }
     snprintf(dir, sizeof dir, "%s", argv[1]);
     tdc_usbp_config_t cfg = {
-        .board_name = "vm-gadget", .panel_name = "htc-vive", .serial = argv[2],
-        .fw_version = 0x000100u, .panel_width = 2160, .panel_height = 1200,
+        .board_name = "vm-gadget", .panel_name = "vm-32x24", .serial = argv[2],
+        .fw_version = 0x000100u, .panel_width = 32, .panel_height = 24,
         .refresh_mhz = 90000u, .rx_buffer_bytes = 16384u, .max_packet_bytes = 65536u,
-        .flash = {flash_write, flash_read, NULL, SLOT_BYTES}};
+        .flash = {flash_write, flash_read, NULL, SLOT_BYTES},
+        .sink = tdc_link_sink_feed, .sink_ctx = &link_sink};
+    if (tdc_link_sink_init(&link_sink, 32, 24) != 0) {
+        fprintf(stderr, "tdc_ffs_board: link decoder init failed\n");
+        return 1;
+    }
     tdc_usbp_init(&proto, &cfg);
     int ep0 = open_ep("ep0", O_RDWR);
     if (ep0 < 0) {
