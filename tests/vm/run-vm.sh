@@ -14,7 +14,7 @@ mkdir -p "$vm"
 need() { command -v "$1" > /dev/null 2>&1 || { echo "test-vm: missing $1 ($2)"; exit 1; }; }
 need qemu-system-x86_64 "Debian package qemu-system-x86"
 need cpio "Debian package cpio"
-[ -x /bin/busybox ] && file -L /bin/busybox | grep -q static \
+[ -x /bin/busybox ] && ldd /bin/busybox 2>&1 | grep -q 'not a dynamic' \
     || { echo "test-vm: missing static /bin/busybox (Debian package busybox-static)"; exit 1; }
 
 # The kernel linux-image-amd64 points to, its headers and its source.
