@@ -24,7 +24,7 @@ size_t tdc_asm_get_size(const tdc_asm_config_t *cfg)
     size_t tiles = (size_t)TDC_ORDERING_TILES_X(cfg->width) * TDC_ORDERING_TILES_Y(cfg->height);
     return TDC_ASM_ALIGN(px * 3u) * 2u + TDC_ASM_ALIGN(tiles * 48u) + TDC_ASM_ALIGN(px) + TDC_ASM_ALIGN(px * 4u) +
            TDC_ASM_ALIGN((size_t)cfg->width * 3u * sizeof(tdc_asm_mvmax_t)) + TDC_ASM_ALIGN((size_t)cfg->width * 3u) +
-           TDC_ASM_ALIGN(bm) * 2u;
+           TDC_ASM_ALIGN((size_t)cfg->width * 3u * 16u) + TDC_ASM_ALIGN((size_t)cfg->width * 3u) + TDC_ASM_ALIGN(bm) * 2u;
 }
 
 tdc_status_t tdc_asm_init(tdc_asm_t *st, const tdc_asm_config_t *cfg, void *arena, size_t n)
@@ -46,6 +46,8 @@ tdc_status_t tdc_asm_init(tdc_asm_t *st, const tdc_asm_config_t *cfg, void *aren
     st->mv = (int16_t *)(void *)p, p += TDC_ASM_ALIGN(px * 4u);
     st->ring = (tdc_asm_mvmax_t *)(void *)p, p += TDC_ASM_ALIGN((size_t)cfg->width * 3u * sizeof(tdc_asm_mvmax_t));
     st->newring = p, p += TDC_ASM_ALIGN((size_t)cfg->width * 3u);
+    st->boxring = (uint64_t *)(void *)p, p += TDC_ASM_ALIGN((size_t)cfg->width * 3u * 16u);
+    st->cntring = p, p += TDC_ASM_ALIGN((size_t)cfg->width * 3u);
     st->pattern = p, p += TDC_ASM_ALIGN(bm);
     st->pattern_next = p;
     memset(arena, 0, tdc_asm_get_size(cfg));
@@ -274,6 +276,44 @@ uint32_t tdc_asm_div_small(uint32_t x, uint32_t n)
     return (uint32_t)(((uint64_t)x * tdc_asm_recip32[n]) >> 32);
 }
 
+/*
+ * Box sums of row y for the clamp: per pixel the sums over x-1..x+1 of the
+ * newest samples (0 where a pixel is not new), packed as R | G << 21 |
+ * B << 42 for the values (box[2x]) and their squares (box[2x+1]), and the
+ * count of new pixels (cnt[x]).  Summing rows y-1, y, y+1 gives an old
+ * pixel's sums over its 8 neighbours in the newest subframe (the pixel
+ * itself is not new), with no branch per neighbour.  Scaling: a lane's
+ * final sum <= 8 * 255^2 = 520200 < 2^21, so lanes never carry.
+ */
+static void tdc_asm_box_row(const tdc_asm_t *st, uint32_t y, uint32_t slot, const uint8_t *newrow, uint64_t *box,
+                            uint8_t *cnt)
+{
+    const uint32_t w = st->cfg.width;
+    const uint8_t *base[2] = {tdc_asm_sample_row(st, y, 0, slot), tdc_asm_sample_row(st, y, 1, slot)};
+    uint64_t p1 = 0, p2 = 0, c1 = 0, c2 = 0;
+    unsigned pn = 0, cn = newrow[0];
+    if (cn) {
+        const uint8_t *q = base[0];
+        c1 = (uint64_t)q[0] | (uint64_t)q[1] << 21 | (uint64_t)q[2] << 42;
+        c2 = (uint64_t)(q[0] * q[0]) | (uint64_t)(q[1] * q[1]) << 21 | (uint64_t)(q[2] * q[2]) << 42;
+    }
+    for (uint32_t x = 0; x < w; x++) {
+        uint64_t n1 = 0, n2 = 0;
+        unsigned nn = 0;
+        if (x + 1u < w && newrow[x + 1u]) {
+            const uint8_t *q = base[(x + 1u) & 1u] + (size_t)((x + 1u) >> 1) * 3u;
+            n1 = (uint64_t)q[0] | (uint64_t)q[1] << 21 | (uint64_t)q[2] << 42;
+            n2 = (uint64_t)(q[0] * q[0]) | (uint64_t)(q[1] * q[1]) << 21 | (uint64_t)(q[2] * q[2]) << 42;
+            nn = 1;
+        }
+        box[2u * x] = p1 + c1 + n1;
+        box[2u * x + 1u] = p2 + c2 + n2;
+        cnt[x] = (uint8_t)(pn + cn + nn);
+        p1 = c1, p2 = c2, pn = cn;
+        c1 = n1, c2 = n2, cn = nn;
+    }
+}
+
 /* Local counters of one dynamic frame (kept out of the stage struct in the
  * inner loops so byte stores do not force reloads). */
 typedef struct {
@@ -339,32 +379,25 @@ static int32_t tdc_asm_clamp_box_q8(int32_t v, int32_t n, int32_t s1, int32_t s2
 }
 
 /* Old dynamic pixel: reproject and clamp to the newest neighbours' box.
- * nr[0..2]: newness rows y-1, y, y+1 (NULL outside the frame); sr[j][q]:
- * the newest-slot sample plane row of row y-1+j for pixels with x & 1 = q
- * (pixel x at sr[j][x & 1] + (x >> 1) * 3). */
+ * bx[j], cn[j]: box-sum rows of rows y-1, y, y+1 (NULL outside the frame or
+ * when no subframe arrived). */
 static void tdc_asm_reproject_pixel(const tdc_asm_t *st, const uint8_t *prev, uint32_t x, uint32_t y, int32_t dx,
-                                    int32_t dy, const uint8_t *const nr[3], const uint8_t *sr[3][2],
+                                    int32_t dy, const uint64_t *const bx[3], const uint8_t *const cn[3],
                                     tdc_asm_dyn_count_t *cnt, uint8_t *out)
 {
-    const uint32_t w = st->cfg.width;
     int32_t v[3];
     cnt->edge += (uint64_t)tdc_asm_bilinear_q8(st, prev, x, y, dx, dy, v);
     cnt->reprojected++;
 
     /* Variance sampling over the immediate neighbours in the newest
-     * subframe (the pixel itself is old).  S1 <= 8*255, S2 <= 8*255^2. */
-    int32_t n = 0, s1r = 0, s1g = 0, s1b = 0, s2r = 0, s2g = 0, s2b = 0;
-    const uint32_t xa = x > 0 ? x - 1u : 0, xb = x + 1u < w ? x + 1u : x;
+     * subframe: S1 <= 8*255, S2 <= 8*255^2 (21-bit lanes). */
+    uint64_t l1 = 0, l2 = 0;
+    int32_t n = 0;
     for (int j = 0; j < 3; j++) {
-        if (!nr[j]) continue;
-        for (uint32_t nx = xa; nx <= xb; nx++) {
-            if (!nr[j][nx]) continue;
-            const uint8_t *s = sr[j][nx & 1u] + (size_t)(nx >> 1) * 3u;
-            int32_t r = s[0], g = s[1], b = s[2];
-            s1r += r, s1g += g, s1b += b;
-            s2r += r * r, s2g += g * g, s2b += b * b;
-            n++;
-        }
+        if (!bx[j]) continue;
+        l1 += bx[j][2u * x];
+        l2 += bx[j][2u * x + 1u];
+        n += cn[j][x];
     }
     if (n == 0) {
         cnt->no_neighbour++;
@@ -372,9 +405,12 @@ static void tdc_asm_reproject_pixel(const tdc_asm_t *st, const uint8_t *prev, ui
         return;
     }
     cnt->boxes++;
-    out[0] = (uint8_t)((tdc_asm_clamp_box_q8(v[0], n, s1r, s2r, &cnt->changed) + 128) >> 8);
-    out[1] = (uint8_t)((tdc_asm_clamp_box_q8(v[1], n, s1g, s2g, &cnt->changed) + 128) >> 8);
-    out[2] = (uint8_t)((tdc_asm_clamp_box_q8(v[2], n, s1b, s2b, &cnt->changed) + 128) >> 8);
+    const uint64_t m21 = (1u << 21) - 1u;
+    out[0] = (uint8_t)((tdc_asm_clamp_box_q8(v[0], n, (int32_t)(l1 & m21), (int32_t)(l2 & m21), &cnt->changed) + 128) >> 8);
+    out[1] = (uint8_t)((tdc_asm_clamp_box_q8(v[1], n, (int32_t)((l1 >> 21) & m21), (int32_t)((l2 >> 21) & m21),
+                                             &cnt->changed) + 128) >> 8);
+    out[2] = (uint8_t)((tdc_asm_clamp_box_q8(v[2], n, (int32_t)((l1 >> 42) & m21), (int32_t)((l2 >> 42) & m21),
+                                             &cnt->changed) + 128) >> 8);
 }
 
 /* Static frame: only the new samples change; update in place. */
@@ -421,25 +457,30 @@ static void tdc_asm_dynamic_frame(tdc_asm_t *st, uint32_t frame)
     const size_t stride = (size_t)st->tiles_x * st->tiles_y * 12u; /* bytes between slots */
     uint64_t new_dynamic = 0, resets = 0, averaged = 0, kept = 0, static_rows = 0;
 
+    const size_t bw = (size_t)w * 2u;
     row_any[0] = tdc_asm_hmax_row(st, 0, st->ring);
     tdc_asm_new_row(st, 0, pos_h, pos_b, have_new, st->newring);
+    if (have_new) tdc_asm_box_row(st, 0, slot, st->newring, st->boxring, st->cntring);
     for (uint32_t y = 0; y < h; y++) {
         if (y + 1u < h) {
             row_any[(y + 1u) % 3u] = tdc_asm_hmax_row(st, y + 1u, st->ring + (size_t)((y + 1u) % 3u) * w);
             tdc_asm_new_row(st, y + 1u, pos_h, pos_b, have_new, st->newring + (size_t)((y + 1u) % 3u) * w);
+            if (have_new)
+                tdc_asm_box_row(st, y + 1u, slot, st->newring + (size_t)((y + 1u) % 3u) * w,
+                                st->boxring + (size_t)((y + 1u) % 3u) * bw, st->cntring + (size_t)((y + 1u) % 3u) * w);
         }
         const int top = y > 0, bot = y + 1u < h;
         const tdc_asm_mvmax_t *rt = st->ring + (size_t)((y + 2u) % 3u) * w;
         const tdc_asm_mvmax_t *rm = st->ring + (size_t)(y % 3u) * w;
         const tdc_asm_mvmax_t *rb = st->ring + (size_t)((y + 1u) % 3u) * w;
-        const uint8_t *nr[3], *sr[3][2];
-        nr[0] = top ? st->newring + (size_t)((y + 2u) % 3u) * w : NULL;
-        nr[1] = st->newring + (size_t)(y % 3u) * w;
-        nr[2] = bot ? st->newring + (size_t)((y + 1u) % 3u) * w : NULL;
+        const uint8_t *nr1 = st->newring + (size_t)(y % 3u) * w;
+        const uint64_t *bx[3];
+        const uint8_t *cn[3];
+        const uint32_t ri[3] = {(y + 2u) % 3u, y % 3u, (y + 1u) % 3u};
+        const int in[3] = {top, 1, bot};
         for (int j = 0; j < 3; j++) {
-            uint32_t yy = y + (uint32_t)j - 1u; /* wraps for y = 0, j = 0: unused (nr NULL) */
-            for (unsigned q = 0; q < 2; q++)
-                sr[j][q] = nr[j] ? tdc_asm_sample_row(st, yy, q, slot) : NULL;
+            bx[j] = have_new && in[j] ? st->boxring + (size_t)ri[j] * bw : NULL;
+            cn[j] = have_new && in[j] ? st->cntring + (size_t)ri[j] * w : NULL;
         }
         const uint8_t *prow = prev + (size_t)y * w * 3u;
         uint8_t *drow = dst + (size_t)y * w * 3u;
@@ -452,7 +493,7 @@ static void tdc_asm_dynamic_frame(tdc_asm_t *st, uint32_t frame)
             memcpy(drow, prow, (size_t)w * 3u);
             static_rows++;
             for (uint32_t x = 0; x < w; x++) {
-                if (nr[1][x]) {
+                if (nr1[x]) {
                     win[x] = (uint8_t)(win[x] | (1u << slot));
                     tdc_asm_window_mean(rec[x & 1u] + (size_t)(x >> 1) * 3u, stride, win[x], drow + x * 3u);
                     averaged++;
@@ -468,7 +509,7 @@ static void tdc_asm_dynamic_frame(tdc_asm_t *st, uint32_t frame)
             if (top && rt[x].l2 > m.l2) m = rt[x];
             if (rm[x].l2 > m.l2) m = rm[x];
             if (bot && rb[x].l2 > m.l2) m = rb[x];
-            const int is_new = nr[1][x];
+            const int is_new = nr1[x];
             uint8_t *o = drow + x * 3u;
             if (m.l2 == 0) {
                 if (is_new) {
@@ -490,7 +531,7 @@ static void tdc_asm_dynamic_frame(tdc_asm_t *st, uint32_t frame)
                 o[0] = s[0], o[1] = s[1], o[2] = s[2];
                 new_dynamic++;
             } else {
-                tdc_asm_reproject_pixel(st, prev, x, y, m.dx, m.dy, nr, sr, &cnt, o);
+                tdc_asm_reproject_pixel(st, prev, x, y, m.dx, m.dy, bx, cn, &cnt, o);
             }
         }
     }

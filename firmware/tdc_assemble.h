@@ -61,7 +61,7 @@ enum {
 
 #define TDC_ASM_MEM_BYTES(W, H)                                                         \
     ((size_t)(W) * (size_t)(H) * TDC_ASM_BYTES_PER_PIXEL +                                \
-     (size_t)TDC_ORDERING_TILES_X(W) * TDC_ORDERING_TILES_Y(H) * 48u + (size_t)(W) * 3u * 9u /* rings */ \
+     (size_t)TDC_ORDERING_TILES_X(W) * TDC_ORDERING_TILES_Y(H) * 48u + (size_t)(W) * 3u * 26u /* rings */ \
      + 2u * (size_t)TDC_ORDERING_BITMAP_BYTES(W, H) + 8u * 8u /* alignment slack */)
 
 typedef struct {
@@ -105,6 +105,9 @@ typedef struct {
     int16_t *mv;            /* per pixel (dx, dy) Q4 of its latest sample */
     tdc_asm_mvmax_t *ring;  /* 3 rows of horizontal 3-maxima */
     uint8_t *newring;       /* 3 rows: 1 where the pixel is in the newest subframe */
+    uint64_t *boxring;      /* 3 rows x W x 2: horizontal 3-sums of the newest samples
+                               and their squares, R | G << 21 | B << 42 */
+    uint8_t *cntring;       /* 3 rows x W: horizontal 3-sums of the newness */
     uint8_t *pattern;       /* orderings of the current cycle */
     uint8_t *pattern_next;  /* scratch for the next decision */
     uint32_t mv_nonzero;    /* pixels whose motion-buffer entry is non-zero */
