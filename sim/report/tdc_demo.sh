@@ -15,8 +15,8 @@ RUNS='trm-pan|-s pan -r 90 -m trm-family -n 48
 trm-discs|-s discs -r 90 -m trm-family -n 48
 trm-static|-s static -r 90 -m full,half,ncsfi,trm50,trm40,trm25 -n 48
 trm-lcd|-s pan -r 120 -p lcd --profile pg279q -m full,half,trm50,trm40,trm25 -n 48
-ncsfi-slow|-s pan -r 90 --speed 150 -m full,ncsfi,trm50 -n 36
-ncsfi-fast|-s pan -r 90 --speed 1800 -m full,ncsfi,trm50 -n 36
+ncsfi-slow|-s pan -r 90 --speed 150 -m full,ncsfi,trm50 -n 36 -g 192x96
+ncsfi-fast|-s pan -r 90 --speed 1800 -m full,ncsfi,trm50 -n 36 -g 192x96
 asm-thin|-s thin -r 240 -m full,asm-hourglass,asm-bowtie,asm-adaptive -d 0.3
 asm-fence|-s fence -r 240 -m asm-family -d 0.25
 asm-pan|-s pan -r 240 -m asm-family -d 0.25

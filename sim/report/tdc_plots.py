@@ -138,10 +138,11 @@ def check(title, ok, text):
 # 1. static scene under TRM perceived identical to full rate (eq. 3)
 f, t = row("trm-static", "full"), row("trm-static", "trm50")
 if f and t:
-    ok = fnum(t["psnr_db"]) > 45 and abs(fnum(t["flip"]) - fnum(f["flip"])) < 0.005
+    ok = fnum(t["psnr_db"]) >= fnum(f["psnr_db"]) - 0.5 and abs(fnum(t["flip"]) - fnum(f["flip"])) < 0.005
     check("Static scene under TRM perceived identical to full rate (eq. 3)", ok,
           f"full: PSNR {fnum(f['psnr_db']):.2f} dB, FLIP {fnum(f['flip']):.4f}; trm50: PSNR {fnum(t['psnr_db']):.2f} dB, "
-          f"FLIP {fnum(t['flip']):.4f} (both against the supersampled ground truth; the residual difference is 8-bit quantisation)")
+          f"FLIP {fnum(t['flip']):.4f} (both against the supersampled ground truth; criterion: TRM PSNR within 0.5 dB "
+          "of full rate or better and FLIP within 0.005)")
 else:
     check("Static scene under TRM perceived identical to full rate (eq. 3)", None, "TRM run missing")
 # 2. TRM r = 1/2 saves 37.5 % of pixels and link bytes
@@ -217,6 +218,12 @@ with open(os.path.join(out, "index.md"), "w") as f:
     f.write("Columns: PSNR/SSIM on gamma-2.2-encoded perceived images, FLIP (mean, 67 px/deg), flicker = RMS "
             "frame-to-frame change of the motion-compensated error in code values; costs relative to full rate "
             "at the run's refresh; firmware and renderer times are host CPU microseconds per refresh.\n\n")
+    log = os.path.join(out, "demo.log")
+    if os.path.isfile(log):
+        f.write("Runs (wall seconds on this machine, shared with other jobs):\n\n")
+        for line in open(log):
+            f.write(f"- {line.strip()}\n")
+        f.write("\n")
     f.write("## Paper checks\n\n")
     f.write(open(os.path.join(out, "checks.md")).read())
     for n in names:

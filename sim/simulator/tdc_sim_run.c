@@ -777,7 +777,9 @@ int tdc_sim_run(const tdc_sim_config_t *cfg, tdc_source_t *src, const tdc_mode_d
         double sp = cfg->scene.speed >= 0 ? cfg->scene.speed : tdc_scene_default_speed(cfg->scene.kind);
         speed = speed > sp ? speed : sp;
     }
-    int margin = (int)ceil(speed * W * (1.0 + fabs(cfg->pursuit_gain))) + 2;
+    /* evaluated interior: content shifted in from beyond the edges during the
+     * window (pursuit shift up to v T) is excluded */
+    int margin = (int)ceil(speed * W * fmax(1.0, fabs(cfg->pursuit_gain))) + 2;
     int maxm = ((w < h ? w : h) - 8) / 2;
     margin = margin > maxm ? (maxm > 0 ? maxm : 0) : margin;
     int cw = w - 2 * margin, ch = h - 2 * margin;
