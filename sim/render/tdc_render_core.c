@@ -24,18 +24,7 @@ void tdc_render_default_config(tdc_render_config_t *cfg)
     cfg->gt_samples = 64;
 }
 
-void tdc_r_xform_point(const double m[12], const double p[3], double out[3])
-{
-    for (int i = 0; i < 3; i++) out[i] = m[i * 4] * p[0] + m[i * 4 + 1] * p[1] + m[i * 4 + 2] * p[2] + m[i * 4 + 3];
-}
 
-void tdc_r_xform_normal(const double nm[9], const double n[3], double out[3])
-{
-    for (int i = 0; i < 3; i++) out[i] = nm[i * 3] * n[0] + nm[i * 3 + 1] * n[1] + nm[i * 3 + 2] * n[2];
-    double l = sqrt(out[0] * out[0] + out[1] * out[1] + out[2] * out[2]);
-    if (l > 0)
-        for (int i = 0; i < 3; i++) out[i] /= l;
-}
 
 /* Inverse of a 3x4 affine matrix; also the normal matrix (inverse transpose of the 3x3). */
 static void invert_affine(const double m[12], double inv[12], double nm[9])
@@ -83,32 +72,8 @@ static void make_cam(const tdc_scene_t *s, double t, int w, int h, rcam_t *c)
     c->ky = 0.5 * h / c->tan_half;
 }
 
-void tdc_r_cam_ray(const rcam_t *c, double x, double y, double dir[3])
-{
-    double sx = x * c->ax + c->bx, sy = y * c->ay + c->by;
-    /* not normalised: Embree and every use downstream (hit = org + t dir,
-     * reflection, projection of directions) work with any length, and the
-     * square root and division cost more than the rest of the ray setup */
-    for (int i = 0; i < 3; i++) dir[i] = c->fwd[i] + sx * c->right[i] + sy * c->up[i];
-}
 
-int tdc_r_project_dir(const rcam_t *c, const double d[3], double *x, double *y)
-{
-    double z = d[0] * c->fwd[0] + d[1] * c->fwd[1] + d[2] * c->fwd[2];
-    if (!(z > 1e-12)) return -1;
-    double iz = 1.0 / z;
-    double u = (d[0] * c->right[0] + d[1] * c->right[1] + d[2] * c->right[2]) * iz;
-    double v = (d[0] * c->up[0] + d[1] * c->up[1] + d[2] * c->up[2]) * iz;
-    *x = u * c->kx + 0.5 * c->w;
-    *y = 0.5 * c->h - v * c->ky;
-    return 0;
-}
 
-int tdc_r_project(const rcam_t *c, const double p[3], double *x, double *y)
-{
-    double d[3] = {p[0] - c->pos[0], p[1] - c->pos[1], p[2] - c->pos[2]};
-    return tdc_r_project_dir(c, d, x, y);
-}
 
 const rframe_t *tdc_r_frame(tdc_render_t *r, long frame)
 {

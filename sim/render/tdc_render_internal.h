@@ -5,6 +5,7 @@
 #define TDC_RENDER_INTERNAL_H
 
 #include <embree3/rtcore.h>
+#include <math.h>
 #include <pthread.h>
 
 #include "tdc_render.h"
@@ -69,11 +70,59 @@ int tdc_r_build_object(tdc_render_t *r, int i, char *err, size_t errlen);
 /* Frames (tdc_render_core.c). */
 const rframe_t *tdc_r_frame(tdc_render_t *r, long frame);
 RTCScene tdc_r_top(tdc_render_t *r, long frame);
-void tdc_r_cam_ray(const rcam_t *c, double x, double y, double dir[3]);
-int tdc_r_project(const rcam_t *c, const double p[3], double *x, double *y);
-int tdc_r_project_dir(const rcam_t *c, const double d[3], double *x, double *y);
-void tdc_r_xform_point(const double m[12], const double p[3], double out[3]);
-void tdc_r_xform_normal(const double nm[9], const double n[3], double out[3]);
+
+
+/* Small geometry helpers, inline: they run several times per sample. */
+static inline void tdc_r_xform_point(const double m[12], const double p[3], double out[3])
+{
+    double x = m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + m[3];
+    double y = m[4] * p[0] + m[5] * p[1] + m[6] * p[2] + m[7];
+    double z = m[8] * p[0] + m[9] * p[1] + m[10] * p[2] + m[11];
+    out[0] = x; /* out may alias p */
+    out[1] = y;
+    out[2] = z;
+}
+
+static inline void tdc_r_xform_normal(const double nm[9], const double n[3], double out[3])
+{
+    /* in locals (writing out[] then reading it back stalled on store
+     * forwarding), one reciprocal instead of three divisions */
+    double x = nm[0] * n[0] + nm[1] * n[1] + nm[2] * n[2];
+    double y = nm[3] * n[0] + nm[4] * n[1] + nm[5] * n[2];
+    double z = nm[6] * n[0] + nm[7] * n[1] + nm[8] * n[2];
+    double l2 = x * x + y * y + z * z;
+    double il = l2 > 0 ? 1.0 / sqrt(l2) : 0.0;
+    out[0] = x * il;
+    out[1] = y * il;
+    out[2] = z * il;
+}
+
+static inline void tdc_r_cam_ray(const rcam_t *c, double x, double y, double dir[3])
+{
+    double sx = x * c->ax + c->bx, sy = y * c->ay + c->by;
+    /* not normalised: Embree and every use downstream (hit = org + t dir,
+     * reflection, projection of directions) work with any length, and the
+     * square root and division cost more than the rest of the ray setup */
+    for (int i = 0; i < 3; i++) dir[i] = c->fwd[i] + sx * c->right[i] + sy * c->up[i];
+}
+
+static inline int tdc_r_project_dir(const rcam_t *c, const double d[3], double *x, double *y)
+{
+    double z = d[0] * c->fwd[0] + d[1] * c->fwd[1] + d[2] * c->fwd[2];
+    if (!(z > 1e-12)) return -1;
+    double iz = 1.0 / z;
+    double u = (d[0] * c->right[0] + d[1] * c->right[1] + d[2] * c->right[2]) * iz;
+    double v = (d[0] * c->up[0] + d[1] * c->up[1] + d[2] * c->up[2]) * iz;
+    *x = u * c->kx + 0.5 * c->w;
+    *y = 0.5 * c->h - v * c->ky;
+    return 0;
+}
+
+static inline int tdc_r_project(const rcam_t *c, const double p[3], double *x, double *y)
+{
+    double d[3] = {p[0] - c->pos[0], p[1] - c->pos[1], p[2] - c->pos[2]};
+    return tdc_r_project_dir(c, d, x, y);
+}
 
 /* Textures (tdc_render_texture.c): base colour at a local point. */
 void tdc_r_base_color(const tdc_scene_t *s, const tdc_object_t *o, const double q[3], const double nq[3],
