@@ -21,6 +21,7 @@ asm-thin|-s thin -r 240 -m full,asm-hourglass,asm-bowtie,asm-adaptive -d 0.3
 asm-fence|-s fence -r 240 -m asm-family -d 0.25
 asm-pan|-s pan -r 240 -m asm-family -d 0.25
 render-panorama|-R panorama -r 90 -m trm-family -n 36
+render-fence|-R fence -r 240 -m full,full60,taa60,asm-adaptive,asm-adaptive-smv -d 0.2
 stiff-long|-s pan -r 90 -g 16x16 -n 100000 --metric-every 1000 -m full,trm50 --gt-ss 2
 stiff-cut|-s cut -r 90 -m trm-family -n 36
 stiff-cut240|-s cut -r 240 -m full,asm-adaptive,taa60 -d 0.2

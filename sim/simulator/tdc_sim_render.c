@@ -12,8 +12,15 @@
 #include "render/tdc_render.h"
 #include "render/tdc_scene.h"
 
+#define RS_SLOTS 8
+
 typedef struct {
     tdc_render_t *r;
+    tdc_scene_t *scene;          /* kept to open per-mode subframe renderers */
+    tdc_render_config_t cfg;
+    tdc_render_t *sub[RS_SLOTS]; /* subframe renderers (own MV history, orderings) */
+    float *sub_lin;
+    int16_t *sub_mv, *sub_mvs, *sub_mvd;
     int clock_hz;
     float *lin;        /* W*H*3 */
     int16_t *mv;
@@ -149,6 +156,66 @@ static void rs_samples(tdc_source_t *s, double t, int n, const double *xy, int s
     free(fmv);
 }
 
+static int rs_subframe(tdc_source_t *s, int slot, int shadow, uint32_t frame, double t, double dt, uint8_t *samples,
+                       int16_t *mv, uint8_t *pattern, uint64_t *rays)
+{
+    rsrc_t *c = s->ctx;
+    if (slot < 0 || slot >= RS_SLOTS) {
+        return -1;
+    }
+    if (!c->sub[slot]) {
+        tdc_render_config_t cfg = c->cfg;
+        cfg.shadow_mv = shadow ? 1 : 0;
+        cfg.dual_mv = shadow ? 1 : 0;
+        char err[256];
+        c->sub[slot] = tdc_render_open(c->scene, &cfg, err, sizeof(err));
+        if (!c->sub[slot]) {
+            return -1;
+        }
+    }
+    long f = frame_of(c, t);
+    if ((uint32_t)f % 4u != frame % 4u) {
+        return -1; /* the renderer's cycle follows its frame index */
+    }
+    tdc_render_out_t out;
+    memset(&out, 0, sizeof(out));
+    out.rgb = c->sub_lin;
+    out.mv = c->sub_mv;
+    if (shadow) {
+        out.mv_shadow = c->sub_mvs;
+        out.mv_dual = c->sub_mvd;
+    }
+    tdc_render_stats_t st;
+    if (tdc_render_frame(c->sub[slot], (uint32_t)f, TDC_RENDER_SUBFRAME, &out, &st) != 0) {
+        return -1;
+    }
+    size_t n = (size_t)st.out_w * st.out_h;
+    for (size_t i = 0; i < 3 * n; i++) {
+        double l = c->sub_lin[i] < 0.0f ? 0.0 : (c->sub_lin[i] > 1.0f ? 1.0 : (double)c->sub_lin[i]);
+        samples[i] = (uint8_t)(255.0 * pow(l, 1.0 / s->gamma[i % 3]) + 0.5);
+    }
+    double k = dt * c->clock_hz;
+    for (size_t i = 0; i < n; i++) {
+        const int16_t *src = c->sub_mv + 2 * i;
+        if (shadow) {
+            /* shadow MV where the sample is in a tracked shadow, else the
+             * dual MV where it was disoccluded, else the surface MV */
+            if (c->sub_mvs[2 * i] != src[0] || c->sub_mvs[2 * i + 1] != src[1]) {
+                src = c->sub_mvs + 2 * i;
+            } else if (c->sub_mvd[2 * i] != src[0] || c->sub_mvd[2 * i + 1] != src[1]) {
+                src = c->sub_mvd + 2 * i;
+            }
+        }
+        for (int j = 0; j < 2; j++) {
+            double q = floor(src[j] * k + 0.5);
+            mv[2 * i + j] = (int16_t)(q > 32767 ? 32767 : (q < -32767 ? -32767 : q));
+        }
+    }
+    memcpy(pattern, tdc_render_pattern_bits(c->sub[slot]), ((size_t)n + 7) / 8);
+    *rays = st.rays[TDC_RAY_PRIMARY];
+    return 0;
+}
+
 static int rs_cut(tdc_source_t *s, double t0, double t1)
 {
     (void)s;
@@ -165,6 +232,16 @@ static void rs_destroy(tdc_source_t *s)
     rsrc_t *c = s->ctx;
     if (c) {
         tdc_render_close(c->r);
+        for (int i = 0; i < RS_SLOTS; i++) {
+            if (c->sub[i]) {
+                tdc_render_close(c->sub[i]);
+            }
+        }
+        free(c->scene);
+        free(c->sub_lin);
+        free(c->sub_mv);
+        free(c->sub_mvs);
+        free(c->sub_mvd);
         free(c->lin);
         free(c->mv);
         free(c->gt);
@@ -206,12 +283,19 @@ tdc_source_t *tdc_sim_render_source(const char *name, int w, int h, int clock_hz
         return NULL;
     }
     c->r = tdc_render_open(sc, &cfg, err, errlen);
-    free(sc);
     if (!c->r) {
+        free(sc);
         free(s);
         free(c);
         return NULL;
     }
+    c->scene = sc;
+    c->cfg = cfg;
+    size_t tiles = (size_t)((w + 1) / 2) * ((h + 1) / 2);
+    c->sub_lin = malloc(sizeof(float) * 3 * tiles);
+    c->sub_mv = malloc(sizeof(int16_t) * 2 * tiles);
+    c->sub_mvs = malloc(sizeof(int16_t) * 2 * tiles);
+    c->sub_mvd = malloc(sizeof(int16_t) * 2 * tiles);
     c->clock_hz = clock_hz;
     c->lin = malloc(sizeof(float) * 3 * (size_t)w * h);
     c->mv = malloc(sizeof(int16_t) * 2 * (size_t)w * h);
@@ -219,7 +303,7 @@ tdc_source_t *tdc_sim_render_source(const char *name, int w, int h, int clock_hz
     c->gt_frame = -1;
     c->v_frame = -1;
     s->ctx = c;
-    if (!c->lin || !c->mv || !c->gt) {
+    if (!c->lin || !c->mv || !c->gt || !c->sub_lin || !c->sub_mv || !c->sub_mvs || !c->sub_mvd) {
         rs_destroy(s);
         snprintf(err, errlen, "out of memory");
         return NULL;
@@ -236,8 +320,9 @@ tdc_source_t *tdc_sim_render_source(const char *name, int w, int h, int clock_hz
     s->cut = rs_cut;
     s->destroy = rs_destroy;
     s->full_frame = rs_full;
+    s->subframe = rs_subframe;
     s->note = "Embree renderer: full frames at 1 ray per pixel centre; reduced frames are full renders prefiltered "
-              "by the TRM stage's D; subframe (assembly) modes are not wired to the renderer";
+              "by the TRM stage's D; subframes traced by the renderer with its own adaptive orderings";
     return s;
 }
 

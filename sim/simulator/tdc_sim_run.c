@@ -71,6 +71,7 @@ typedef struct {
     tdc_lcd_t lcd;
 #endif
     int use_trm, use_lcd;
+    int slot; /* index of the mode (per-mode renderer state) */
     /* metrics */
     double *perc, *crop_p, *crop_g, *enc_p, *enc_g, *err, *err_prev, *flipmap;
     int have_err_prev;
@@ -245,7 +246,7 @@ static void taa_resolve(sim_mode_t *m)
  * ------------------------------------------------------------------- */
 static int mode_init(sim_mode_t *m, const tdc_mode_desc_t *d, tdc_sim_result_t *res, const tdc_sim_config_t *cfg,
                      const double gamma[3], double window_s, const tdc_panel_t *fw_panel,
-                     const tdc_panel_t *lcd_panel, int src_full_frame)
+                     const tdc_panel_t *lcd_panel, int src_full_frame, int src_subframe)
 {
     memset(m, 0, sizeof(*m));
     memset(res, 0, sizeof(*res));
@@ -348,8 +349,9 @@ static int mode_init(sim_mode_t *m, const tdc_mode_desc_t *d, tdc_sim_result_t *
         res->available = 0;
 #endif
     }
-    if (d->kind == TDC_MODE_ASM && src_full_frame) {
-        note(m, "subframes are not wired to the Embree renderer source");
+    if (d->kind == TDC_MODE_ASM && src_full_frame && (!src_subframe || d->ordering >= 0)) {
+        note(m, src_subframe ? "the renderer chooses its own (adaptive) orderings: fixed orderings not available"
+                             : "this source does not trace subframes");
         res->available = 0;
     } else if (d->kind == TDC_MODE_ASM) {
 #if TDC_SIM_HAVE_ASM
@@ -641,7 +643,18 @@ static void mode_display_frame(sim_mode_t *m, tdc_source_t *src, int spp)
     case TDC_MODE_ASM:
 #if TDC_SIM_HAVE_ASM
         if (m->asm_mem) {
-            asm_subframe(m, src, t, lf);
+            if (src->subframe) {
+                uint64_t rays = 0;
+                double t1 = now_s();
+                if (src->subframe(src, m->slot, m->d->shadow_mv, lf, t, m->fs, m->sub, m->submv, m->pattern, &rays)) {
+                    r->link_errors++;
+                }
+                r->render_s += now_s() - t1;
+                r->rays += rays;
+                r->rendered++;
+            } else {
+                asm_subframe(m, src, t, lf);
+            }
             if (tdc_sim_link_subframe(&m->link, lf, m->sub, m->submv, (lf & 3u) == 0u ? m->pattern : NULL) == 0) {
                 t0 = now_s();
                 tdc_asm_ingest(&m->as, lf, m->link.subframe, m->link.sample_motion,
@@ -754,10 +767,11 @@ int tdc_sim_run(const tdc_sim_config_t *cfg, tdc_source_t *src, const tdc_mode_d
     int rc = 0;
     for (int i = 0; i < nmodes; i++) {
         if (mode_init(&ms[i], modes[i], &results[i], cfg, gamma, W, lcd_panel ? lcd_panel : fw_panel, lcd_panel,
-                      src->full_frame != NULL)) {
+                      src->full_frame != NULL, src->subframe != NULL)) {
             fprintf(stderr, "tdc-sim: out of memory setting up mode %s\n", modes[i]->name);
             rc = -1;
         }
+        ms[i].slot = i;
         if (src->note && src->full_frame) {
             note(&ms[i], src->note);
         }

@@ -68,6 +68,13 @@ struct tdc_source {
      * gamma), MVs over dt if mv != NULL; *rays = primary rays traced, *ms =
      * renderer wall time.  NULL: the modes use samples().  Returns 0. */
     int (*full_frame)(tdc_source_t *s, double t, double dt, uint8_t *rgb, int16_t *mv, uint64_t *rays, double *ms);
+    /* Optional: a renderer that traces subframes itself with its own
+     * (adaptive) tile orderings.  slot: one renderer state per mode;
+     * samples: tiles*3 codes, mv: tiles*2 Q4 over dt (shadow != 0: shadow
+     * and dual MVs), pattern: receives the orderings of the current cycle.
+     * Returns 0. */
+    int (*subframe)(tdc_source_t *s, int slot, int shadow, uint32_t frame, double t, double dt, uint8_t *samples,
+                    int16_t *mv, uint8_t *pattern, uint64_t *rays);
     const char *note; /* what this source does not support, for reports */
 };
 
