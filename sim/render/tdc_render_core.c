@@ -253,19 +253,31 @@ void tdc_render_set_pattern_bits(tdc_render_t *r, const uint8_t *bits)
     memcpy(r->pattern, bits, TDC_ORDERING_BITMAP_BYTES(r->W, r->H));
 }
 
+int tdc_r_update_motion(tdc_render_t *r, long frame)
+{
+    const rframe_t *a = tdc_r_frame(r, frame);
+    const rframe_t *b = tdc_r_frame(r, frame - 1);
+    int any = 0;
+    r->cam_moved = memcmp(a->cam.pos, b->cam.pos, sizeof a->cam.pos) || memcmp(a->cam.fwd, b->cam.fwd, sizeof a->cam.fwd) ||
+                   a->cam.tan_half != b->cam.tan_half;
+    any |= r->cam_moved;
+    for (int i = 0; i < r->scene->nobjects; i++) {
+        r->obj_moved[i] = r->obj[i].animated && memcmp(a->m[i], b->m[i], sizeof a->m[i]) != 0;
+        any |= r->obj_moved[i];
+    }
+    for (int i = 0; i < r->scene->nlights; i++)
+        if (memcmp(a->light_pos[i], b->light_pos[i], sizeof a->light_pos[i])) any = 1;
+    return any;
+}
+
 int tdc_render_frame_static(tdc_render_t *r, uint32_t frame)
 {
-    if (!r->feat.motion) return 1;
-    const rframe_t *a = tdc_r_frame(r, (long)frame);
-    const rframe_t *b = tdc_r_frame(r, (long)frame - 1);
-    if (memcmp(&a->cam.pos, &b->cam.pos, sizeof a->cam.pos) || memcmp(a->cam.fwd, b->cam.fwd, sizeof a->cam.fwd) ||
-        a->cam.tan_half != b->cam.tan_half)
-        return 0;
-    for (int i = 0; i < r->scene->nobjects; i++)
-        if (r->obj[i].animated && memcmp(a->m[i], b->m[i], sizeof a->m[i])) return 0;
-    for (int i = 0; i < r->scene->nlights; i++)
-        if (memcmp(a->light_pos[i], b->light_pos[i], sizeof a->light_pos[i])) return 0;
-    return 1;
+    if (!r->feat.motion) {
+        r->cam_moved = 0;
+        memset(r->obj_moved, 0, sizeof r->obj_moved);
+        return 1;
+    }
+    return !tdc_r_update_motion(r, (long)frame);
 }
 
 void *tdc_render_embree_scene(tdc_render_t *r, uint32_t frame) { return tdc_r_top(r, (long)frame); }

@@ -446,6 +446,7 @@ int tdc_render_frame(tdc_render_t *r, uint32_t frame, tdc_render_mode_t mode, co
 int tdc_render_probe(tdc_render_t *r, uint32_t frame, double x, double y, tdc_render_probe_t *p)
 {
     memset(p, 0, sizeof *p);
+    tdc_render_frame_static(r, frame); /* camera / object motion flags of this frame */
     tdc_r_top(r, (long)frame);
     tdc_r_top(r, (long)frame - 1);
     rthread_t th;

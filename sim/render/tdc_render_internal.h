@@ -55,6 +55,10 @@ struct tdc_render {
     robj_t obj[TDC_SCENE_MAX_OBJECTS];
     rtop_t top[2];
     rframe_t fr[2];           /* cache of evaluated frames */
+    /* motion between the frame being rendered and the previous one: pixels
+     * of unmoved objects under an unmoved camera get MV = 0 without math */
+    int cam_moved;
+    uint8_t obj_moved[TDC_SCENE_MAX_OBJECTS];
     int16_t *mv_hist;         /* W*H*2 */
     int16_t *mv_hist_prev;    /* snapshot at the start of a subframe (pixel classes) */
     uint8_t *pattern;         /* ordering bits */
@@ -69,6 +73,9 @@ int tdc_r_build_object(tdc_render_t *r, int i, char *err, size_t errlen);
 
 /* Frames (tdc_render_core.c). */
 const rframe_t *tdc_r_frame(tdc_render_t *r, long frame);
+/* Fills cam_moved / obj_moved for frame vs frame - 1; returns 1 if anything
+ * (camera, object or light) moved. */
+int tdc_r_update_motion(tdc_render_t *r, long frame);
 RTCScene tdc_r_top(tdc_render_t *r, long frame);
 
 

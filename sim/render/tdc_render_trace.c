@@ -326,6 +326,15 @@ void tdc_r_pass_mv(rthread_t *t, rsample_t *s, int n)
         rsample_t *a = &s[i];
         double xp, yp;
         int ok;
+        if (!t->r->cam_moved && (a->obj < 0 || !t->r->obj_moved[a->obj])) {
+            /* nothing here moved: the point is where it was */
+            a->xc = a->x;
+            a->yc = a->y;
+            a->mv_valid = 1;
+            a->mv[0] = a->mv[1] = 0;
+            a->refl_used = 0;
+            continue;
+        }
         if (a->obj >= 0) {
             ok = track_point(t, a->obj, a->Q, &a->xc, &a->yc, &xp, &yp) == 0;
         } else {
