@@ -258,7 +258,7 @@ FORCE:
 #   ARM_FIT_FAIL: board:panel:stages:region pairs that must not fit
 # ---------------------------------------------------------------------------
 ARM_TEST_PAIRS ?= mps2-an500:htc-vive:link mps3-an547:htc-vive:default mps3-an547:lcd-240:default:trm \
-                  stm32h747i-disco:htc-vive:default
+                  stm32h747i-disco:htc-vive:default stm32h747i-disco:lcd-240:default
 ARM_FIT_FAIL ?= mps2-an500:htc-vive:default:PSRAM stm32h747i-disco:htc-vive:trm:SDRAM
 ARM_FAIL_LINE = echo "[$(1)] FAIL $(2)"; echo "$(1) $(2) FAIL" >> "$(RESULTS)"
 

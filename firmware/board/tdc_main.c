@@ -27,6 +27,8 @@
  * arrives (then eyes are processed with what arrived, or keep their last
  * frame).  Rejected packets never touch the frame buffer (tdc_link.h).
  */
+#include <string.h>
+
 #include "tdc_board.h"
 #include "tdc_link.h"
 #include "tdc_panel.h"
@@ -303,11 +305,7 @@ static int assemble_eye(uint32_t e, uint32_t frame, uint32_t kinds)
     int stride = 0;
     const uint8_t *out = tdc_asm_output(st, &stride);
     for (uint32_t y = 0; y < FW_H; y++) {
-        const uint8_t *s = out + (size_t)y * (uint32_t)stride;
-        uint8_t *d = g_fb + (size_t)y * FW_STRIDE + (size_t)e * FW_W * 3u;
-        for (uint32_t i = 0; i < FW_W * 3u; i++) {
-            d[i] = s[i];
-        }
+        memcpy(g_fb + (size_t)y * FW_STRIDE + (size_t)e * FW_W * 3u, out + (size_t)y * (uint32_t)stride, FW_W * 3u);
     }
     return 1;
 }

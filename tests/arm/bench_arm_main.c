@@ -189,6 +189,31 @@ static void bench_trm(tdc_content_t c, const char *full_label, const char *reduc
     (void)dummy;
 }
 
+/* Static pair: the reduced frame is TRM's own prefilter of the full frame,
+ * so the motion test finds c = 0 and skips the weights. */
+static void bench_trm_static(void)
+{
+    make_inputs(TDC_CONTENT_TEXT);
+    tdc_trm_config_t cfg;
+    tdc_trm_default_config(&cfg, (uint16_t)BENCH_W, (uint16_t)BENCH_H, 90);
+    cfg.reduced_in_stream = 1;
+    if (tdc_trm_init(&g_trm, &cfg, &tdc_panel_htc_vive, g_arena, sizeof g_arena) != TDC_OK ||
+        tdc_trm_downsample(&g_trm, g_in[0], BENCH_W * 3u, g_red[0], RW * 3u) != TDC_OK) {
+        fail("TRM static init");
+    }
+    for (uint32_t f = 0; f < BENCH_FRAMES; f++) {
+        if (tdc_trm_full(&g_trm, g_in[0], BENCH_W * 3u, g_out, BENCH_W * 3u) != TDC_OK) {
+            fail("TRM full");
+        }
+        tdc_bench_mark();
+        if (tdc_trm_reduced(&g_trm, g_red[0], RW * 3u, g_out, BENCH_W * 3u) != TDC_OK) {
+            fail("TRM reduced");
+        }
+        tdc_bench_mark();
+        report("TRM reduced frame r=1/2 (static pair)", BENCH_PX);
+    }
+}
+
 static void bench_assemble(int moving, const char *label)
 {
     const tdc_asm_config_t cfg = {(uint16_t)BENCH_W, (uint16_t)BENCH_H};
@@ -259,6 +284,7 @@ int main(void)
     bench_link(TDC_PIXFMT_YCBCR420, "link decode, full frame YCbCr 4:2:0");
     bench_trm(TDC_CONTENT_TEXT, "TRM full-res frame (moving text)", "TRM reduced frame r=1/2 (moving text)");
     bench_trm(TDC_CONTENT_NOISE, "TRM full-res frame (noise)", "TRM reduced frame r=1/2 (noise)");
+    bench_trm_static();
     bench_assemble(0, "tile assembly, static (4x SSAA window)");
     bench_assemble(1, "tile assembly, dynamic (reprojection + clamp)");
     bench_lcd();
