@@ -111,6 +111,22 @@ tdc_status_t tdc_asm_ingest(tdc_asm_t *st, uint32_t frame, const uint8_t *sample
     return TDC_OK;
 }
 
+tdc_status_t tdc_asm_set_motion(tdc_asm_t *st, uint32_t frame, const int16_t *mv)
+{
+    if (!st || !mv) return TDC_ERR_ARG;
+    if (frame != st->next_frame) return (tdc_status_t)TDC_ASM_ERR_FRAME;
+    const size_t n = (size_t)st->cfg.width * st->cfg.height;
+    uint32_t nz = 0;
+    for (size_t i = 0; i < n; i++) {
+        int16_t dx = mv[2u * i], dy = mv[2u * i + 1u];
+        st->mv[2u * i] = dx;
+        st->mv[2u * i + 1u] = dy;
+        nz += (uint32_t)((dx | dy) != 0);
+    }
+    st->mv_nonzero = nz;
+    return TDC_OK;
+}
+
 /* ------------------------------------------------------------------------
  * Helpers of assembly.
  * ---------------------------------------------------------------------- */

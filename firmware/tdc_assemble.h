@@ -41,6 +41,12 @@
  * Per frame:  tdc_asm_ingest(&st, f, samples, mvs, bits)  (skip when dropped)
  *             tdc_asm_assemble(&st, f);  out = tdc_asm_output(&st, &stride);
  * Frames must be assembled in order f = 0, 1, 2, ...
+ *
+ * From the link decoder (firmware/tdc_link.h) for eye e: samples =
+ * buffers.subframe[e], mvs = buffers.sample_motion[e] (streams with
+ * per-sample motion) and pattern_bits = buffers.pattern[e] on the first
+ * subframe of a cycle; per-pixel motion (buffers.motion[e]) goes through
+ * tdc_asm_set_motion().  The layouts are the same by construction.
  */
 #ifndef TDC_ASSEMBLE_H
 #define TDC_ASSEMBLE_H
@@ -135,6 +141,15 @@ tdc_status_t tdc_asm_init(tdc_asm_t *st, const tdc_asm_config_t *cfg, void *aren
  */
 tdc_status_t tdc_asm_ingest(tdc_asm_t *st, uint32_t frame, const uint8_t *samples, const int16_t *mvs,
                             const uint8_t *pattern_bits);
+
+/*
+ * Streams that send per-pixel motion (a full w x h field of (dx, dy) Q4
+ * pairs, e.g. the link's MOTION packets without the per-sample flag):
+ * replaces the whole motion buffer for `frame` (call after tdc_asm_ingest,
+ * or alone when the subframe was lost, before tdc_asm_assemble).
+ * Errors: TDC_ERR_ARG, TDC_ASM_ERR_FRAME (not the next frame).
+ */
+tdc_status_t tdc_asm_set_motion(tdc_asm_t *st, uint32_t frame, const int16_t *mv);
 
 /* Assembles output frame `frame` (= the next frame; missing subframe allowed). */
 tdc_status_t tdc_asm_assemble(tdc_asm_t *st, uint32_t frame);

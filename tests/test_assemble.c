@@ -470,6 +470,37 @@ static void test_bad_input(void **state)
     assert_null(tdc_asm_output(NULL, NULL));
 }
 
+/* Per-pixel motion (a full field) gives the same frames as per-sample
+ * motion when the field equals the stage's own motion buffer. */
+static void test_set_motion(void **state)
+{
+    (void)state;
+    rig_t a, b;
+    rig_open(&a, 23, 15, TDC_SCENE_PAN, 21, -9);
+    rig_open(&b, 23, 15, TDC_SCENE_PAN, 21, -9);
+    int16_t *field = malloc(23 * 15 * 4);
+    for (uint32_t f = 0; f < 12; f++) {
+        rig_frame(&a, f, 0, 1);
+        tdc_scene_subframe(&b.scene, f, b.samples, b.mvs, b.bits);
+        assert_int_equal(tdc_asm_ingest(&b.st, f, b.samples, NULL, (f & 3u) == 0 ? b.bits : NULL), TDC_OK);
+        memcpy(field, a.st.mv, 23 * 15 * 4); /* what per-sample ingest built */
+        assert_int_equal(tdc_asm_set_motion(&b.st, f + 1, field), TDC_ASM_ERR_FRAME);
+        assert_int_equal(tdc_asm_set_motion(&b.st, f, NULL), TDC_ERR_ARG);
+        assert_int_equal(tdc_asm_set_motion(&b.st, f, field), TDC_OK);
+        assert_int_equal(tdc_asm_assemble(&b.st, f), TDC_OK);
+        assert_memory_equal(tdc_asm_output(&a.st, NULL), tdc_asm_output(&b.st, NULL), 23 * 15 * 3);
+    }
+    /* a zero field makes the next frame static (elided) */
+    memset(field, 0, 23 * 15 * 4);
+    assert_int_equal(tdc_asm_set_motion(&b.st, 12, field), TDC_OK);
+    uint32_t sf = b.st.stats.static_frames;
+    assert_int_equal(tdc_asm_assemble(&b.st, 12), TDC_OK);
+    assert_int_equal(b.st.stats.static_frames, sf + 1);
+    free(field);
+    rig_close(&a);
+    rig_close(&b);
+}
+
 /* Dynamic stream: the counters show the work (the contrast to the static
  * elision above). */
 static void test_dynamic_counters(void **state)
@@ -504,6 +535,7 @@ int main(void)
         cmocka_unit_test(test_odd_sizes),
         cmocka_unit_test(test_bad_input),
         cmocka_unit_test(test_dynamic_counters),
+        cmocka_unit_test(test_set_motion),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
