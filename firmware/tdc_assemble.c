@@ -380,7 +380,7 @@ static int tdc_asm_bilinear_q8(const tdc_asm_t *st, const uint8_t *src, uint32_t
  * R = tdc_asm_sqrt_q8(d) = n sigma in Q8 (within 0.02 code),
  * edge = (256 S1 -+ R) / n, floor, lower edge >= 0.
  */
-static int32_t tdc_asm_clamp_box_q8(int32_t v, int32_t n, int32_t s1, int32_t s2, uint64_t *changed)
+static inline int32_t tdc_asm_clamp_box_q8(int32_t v, int32_t n, int32_t s1, int32_t s2, uint64_t *changed)
 {
     uint32_t d = (uint32_t)(n * s2 - s1 * s1);
     int64_t dev = (int64_t)n * v - (int64_t)256 * s1;

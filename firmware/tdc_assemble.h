@@ -68,7 +68,7 @@ enum {
 #define TDC_ASM_MEM_BYTES(W, H)                                                         \
     ((size_t)(W) * (size_t)(H) * TDC_ASM_BYTES_PER_PIXEL +                                \
      (size_t)TDC_ORDERING_TILES_X(W) * TDC_ORDERING_TILES_Y(H) * 48u + (size_t)(W) * 3u * 26u /* rings */ \
-     + 2u * (size_t)TDC_ORDERING_BITMAP_BYTES(W, H) + 8u * 8u /* alignment slack */)
+     + 2u * (size_t)TDC_ORDERING_BITMAP_BYTES(W, H) + 16u * 8u /* alignment slack: 11 regions */)
 
 typedef struct {
     uint16_t width; /* full-res frame size, 1 .. TDC_ASM_MAX_DIM */

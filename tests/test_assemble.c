@@ -441,6 +441,13 @@ static void test_bad_input(void **state)
     tdc_asm_config_t cfg = {10, 6}, bad0 = {0, 6}, big = {TDC_ASM_MAX_DIM + 1, 6};
     static uint64_t arena[TDC_ASM_MEM_BYTES(10, 6) / 8 + 1];
     tdc_asm_t st;
+    for (uint16_t hh = 1; hh <= 40; hh++)
+        for (uint16_t ww = 1; ww <= 70; ww++) {
+            tdc_asm_config_t c = {ww, hh};
+            assert_true(tdc_asm_get_size(&c) <= TDC_ASM_MEM_BYTES(ww, hh));
+        }
+    tdc_asm_config_t maxc = {TDC_ASM_MAX_DIM, TDC_ASM_MAX_DIM};
+    assert_true(tdc_asm_get_size(&maxc) <= TDC_ASM_MEM_BYTES(TDC_ASM_MAX_DIM, TDC_ASM_MAX_DIM));
     assert_int_equal(tdc_asm_get_size(&bad0), 0);
     assert_int_equal(tdc_asm_get_size(&big), 0);
     assert_int_equal(tdc_asm_get_size(NULL), 0);
