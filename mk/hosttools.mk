@@ -20,7 +20,7 @@ HOST_PROGS += $(TDC_USB) $(TDC_GPIO)
 $(B)/hosttools/usb/%.o: HOST_CFLAGS += $(LIBUSB_CFLAGS)
 $(B)/tests/usb/%.o: HOST_CFLAGS += $(UMOCKDEV_CFLAGS) -DTDC_USB_BIN='"$(abspath $(TDC_USB))"'
 
-TDC_USB_OBJS = $(B)/hosttools/usb/tdc_usb.o $(B)/hosttools/usb/tdc_usb_dev.o
+TDC_USB_OBJS = $(B)/hosttools/usb/tdc_usb.o $(B)/hosttools/usb/tdc_usb_dev.o $(B)/hosttools/usb/tdc_usb_dfu.o
 $(TDC_USB): $(TDC_USB_OBJS) $(FWLIB)
 	@mkdir -p $(@D)
 	$(CC) $(HOST_LDFLAGS) $(TDC_USB_OBJS) -o $@ $(FWLIB) $(LIBUSB_LIBS)

@@ -1,6 +1,7 @@
 /*
  * tdc-usb - talk to a tdc display-controller board over USB (libusb-1.0):
- * list boards, show board info, stream link packets, flash firmware (DFU 1.1).
+ * list boards, show board info, stream link packets, flash firmware (DFU 1.1,
+ * in tdc_usb_dfu.c).
  * Protocol: docs/usb-protocol.md.  Usage and exit codes: docs/hosttools.md.
  */
 #include <errno.h>
@@ -11,11 +12,9 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "tdc_usb_cmd.h"
 #include "tdc_usb_dev.h"
 #include "tdc_usbproto.h"
-
-#define DEFAULT_TIMEOUT_MS 2000u
-#define DFU_STATUS_DEADLINE_MS 10000u /* whole GETSTATUS polling loop of one step */
 
 static const char usage_text[] =
     "usage: tdc-usb [options] <command> [args]\n"
@@ -45,28 +44,20 @@ static void usage(FILE *f)
             DEFAULT_TIMEOUT_MS);
 }
 
-typedef struct {
-    tdc_usb_select_t sel;
-    long chunk;
-    int progress; /* -1 auto (tty), 0 off, 1 on */
-    int verify, reset;
-    const char *board;
-    uint32_t fw_version;
-} opts_t;
 
-static double now_s(void)
+double tdc_usb_now_s(void)
 {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-static void progress_bar(const opts_t *o, const char *label, uint64_t done, uint64_t total,
+void tdc_usb_progress(const opts_t *o, const char *label, uint64_t done, uint64_t total,
                          double t0)
 {
     if (o->progress == 0 || (o->progress < 0 && !isatty(2)))
         return;
-    double dt = now_s() - t0;
+    double dt = tdc_usb_now_s() - t0;
     double mbs = dt > 0 ? (double)done / dt / 1e6 : 0.0;
     if (total > 0) {
         int w = 30, fill = (int)((double)w * (double)done / (double)total);
@@ -79,7 +70,7 @@ static void progress_bar(const opts_t *o, const char *label, uint64_t done, uint
     fflush(stderr);
 }
 
-static void progress_end(const opts_t *o)
+void tdc_usb_progress_end(const opts_t *o)
 {
     if (o->progress == 1 || (o->progress < 0 && isatty(2)))
         fputc('\n', stderr);
@@ -88,16 +79,8 @@ static void progress_end(const opts_t *o)
 /* ------------------------------------------------------------------ */
 /* Board info                                                          */
 /* ------------------------------------------------------------------ */
-typedef struct {
-    uint32_t fw_version;
-    char board[TDC_USB_INFO_NAME_LEN + 1], panel[TDC_USB_INFO_NAME_LEN + 1];
-    unsigned width, height;
-    uint32_t refresh_mhz, rx_buf, max_pkt, slot;
-    uint32_t rx_xfers, rx_crc, link_crc, link_bad, overruns, dfu_errors, stalls, frames;
-    uint64_t rx_bytes;
-} board_info_t;
 
-static tdc_exit_t get_info(tdc_board_t *b, board_info_t *bi)
+tdc_exit_t tdc_usb_get_info(tdc_board_t *b, board_info_t *bi)
 {
     uint8_t raw[TDC_USB_INFO_LEN];
     int got = 0;
@@ -150,7 +133,7 @@ static tdc_exit_t cmd_info(tdc_board_t *b)
     board_info_t bi;
     tdc_exit_t e = tdc_usb_claim(b, TDC_USB_IF_STREAM);
     if (e == TDC_EXIT_OK)
-        e = get_info(b, &bi);
+        e = tdc_usb_get_info(b, &bi);
     if (e != TDC_EXIT_OK)
         return e;
     printf("board: bus %03d address %03d serial %s\n", b->bus, b->address, b->serial);
@@ -230,7 +213,7 @@ static tdc_exit_t cmd_stream(tdc_board_t *b, const opts_t *o, const char *path, 
     board_info_t bi;
     tdc_exit_t e = tdc_usb_claim(b, TDC_USB_IF_STREAM);
     if (e == TDC_EXIT_OK)
-        e = get_info(b, &bi);
+        e = tdc_usb_get_info(b, &bi);
     if (e == TDC_EXIT_OK) /* counters (and the board's receive CRC) start with this stream */
         e = tdc_usb_ctrl_out(b, "reset-counters request", LIBUSB_REQUEST_TYPE_VENDOR |
                              LIBUSB_RECIPIENT_INTERFACE, TDC_USB_REQ_RESET_COUNTERS, 0,
@@ -250,7 +233,7 @@ static tdc_exit_t cmd_stream(tdc_board_t *b, const opts_t *o, const char *path, 
     }
     uint64_t sent = 0;
     uint32_t crc = 0xFFFFFFFFu;
-    double t0 = now_s(), last = 0;
+    double t0 = tdc_usb_now_s(), last = 0;
     size_t n;
     while (e == TDC_EXIT_OK && (n = fread(buf, 1, (size_t)chunk, f)) > 0) {
         int done = 0;
@@ -261,15 +244,15 @@ static tdc_exit_t cmd_stream(tdc_board_t *b, const opts_t *o, const char *path, 
             fprintf(stderr, "tdc-usb: stream: board took %d of %zu bytes\n", done, n);
             e = TDC_EXIT_PROTOCOL;
         }
-        double t = now_s();
+        double t = tdc_usb_now_s();
         if (t - last > 0.1) {
-            progress_bar(o, "stream", sent, total, t0);
+            tdc_usb_progress(o, "stream", sent, total, t0);
             last = t;
         }
     }
-    progress_bar(o, "stream", sent, total, t0);
-    progress_end(o);
-    double dt = now_s() - t0;
+    tdc_usb_progress(o, "stream", sent, total, t0);
+    tdc_usb_progress_end(o);
+    double dt = tdc_usb_now_s() - t0;
     int read_err = ferror(f);
     if (f != stdin)
         fclose(f);
@@ -296,7 +279,7 @@ static tdc_exit_t cmd_stream(tdc_board_t *b, const opts_t *o, const char *path, 
     }
     printf("status: seq %u errors %u frames %u\n", tdc_get_le32(st + TDC_USB_STATUS_OFF_SEQ),
            tdc_get_le32(st + TDC_USB_STATUS_OFF_ERRORS), tdc_get_le32(st + TDC_USB_STATUS_OFF_FRAMES));
-    e = get_info(b, &bi);
+    e = tdc_usb_get_info(b, &bi);
     if (e != TDC_EXIT_OK)
         return e;
     print_counters(&bi);
@@ -307,239 +290,6 @@ static tdc_exit_t cmd_stream(tdc_board_t *b, const opts_t *o, const char *path, 
         return TDC_EXIT_VERIFY;
     }
     printf("board received all %llu bytes, CRC-32 %08x matches\n", (unsigned long long)sent, ~crc);
-    return TDC_EXIT_OK;
-}
-
-/* ------------------------------------------------------------------ */
-/* flash (DFU 1.1)                                                     */
-/* ------------------------------------------------------------------ */
-static tdc_exit_t read_file(const char *path, const char *op, uint8_t **data, uint32_t *len)
-{
-    FILE *f = fopen(path, "rb");
-    if (f == NULL) {
-        fprintf(stderr, "tdc-usb: %s: cannot open %s: %s\n", op, path, strerror(errno));
-        return TDC_EXIT_FILE;
-    }
-    long sz = -1;
-    if (fseek(f, 0, SEEK_END) == 0)
-        sz = ftell(f);
-    if (sz < 0 || sz > (64L << 20)) {
-        fprintf(stderr, "tdc-usb: %s: %s: not a regular file or larger than 64 MiB\n", op, path);
-        fclose(f);
-        return TDC_EXIT_FILE;
-    }
-    rewind(f);
-    *data = malloc(sz > 0 ? (size_t)sz : 1u);
-    if (*data == NULL || fread(*data, 1, (size_t)sz, f) != (size_t)sz) {
-        fprintf(stderr, "tdc-usb: %s: cannot read %s\n", op, path);
-        free(*data);
-        *data = NULL;
-        fclose(f);
-        return TDC_EXIT_FILE;
-    }
-    fclose(f);
-    *len = (uint32_t)sz;
-    return TDC_EXIT_OK;
-}
-
-static uint16_t dfu_transfer_size(tdc_board_t *b)
-{
-    struct libusb_config_descriptor *cd = NULL;
-    uint16_t size = TDC_DFU_TRANSFER_SIZE;
-    if (libusb_get_active_config_descriptor(libusb_get_device(b->h), &cd) != 0)
-        return size;
-    for (int i = 0; i < cd->bNumInterfaces; i++) {
-        const struct libusb_interface_descriptor *id = &cd->interface[i].altsetting[0];
-        if (id->bInterfaceClass != 0xFE || id->bInterfaceSubClass != 0x01)
-            continue;
-        const uint8_t *x = id->extra;
-        for (int k = 0; k + 9 <= id->extra_length && x[k] >= 2; k += x[k])
-            if (x[k + 1] == 0x21 && x[k] >= 7)
-                size = (uint16_t)(x[k + 5] | (x[k + 6] << 8));
-    }
-    libusb_free_config_descriptor(cd);
-    return size >= 64 && size <= 4096 ? size : TDC_DFU_TRANSFER_SIZE;
-}
-
-static tdc_exit_t dfu_getstatus(tdc_board_t *b, uint8_t st[6])
-{
-    int got = 0;
-    tdc_exit_t e = tdc_usb_ctrl_in(b, "DFU_GETSTATUS", LIBUSB_REQUEST_TYPE_CLASS |
-                                   LIBUSB_RECIPIENT_INTERFACE, TDC_DFU_GETSTATUS, 0,
-                                   TDC_USB_IF_DFU, st, 6, &got);
-    if (e == TDC_EXIT_OK && got != 6) {
-        fprintf(stderr, "tdc-usb: flash: DFU_GETSTATUS returned %d bytes, not 6\n", got);
-        return TDC_EXIT_PROTOCOL;
-    }
-    return e;
-}
-
-/* Polls GETSTATUS (honouring bwPollTimeout) until the state is `want` or
- * dfuERROR, within DFU_STATUS_DEADLINE_MS. */
-static tdc_exit_t dfu_wait(tdc_board_t *b, uint8_t want, const char *step)
-{
-    double deadline = now_s() + DFU_STATUS_DEADLINE_MS / 1000.0;
-    for (;;) {
-        uint8_t st[6];
-        tdc_exit_t e = dfu_getstatus(b, st);
-        if (e != TDC_EXIT_OK)
-            return e;
-        if (st[4] == TDC_DFU_STATE_ERROR || st[0] != TDC_DFU_OK) {
-            fprintf(stderr, "tdc-usb: flash: board rejected the %s: DFU status %s, state %s\n",
-                    step, tdc_dfu_status_name((tdc_dfu_status_t)st[0]),
-                    tdc_dfu_state_name((tdc_dfu_state_t)st[4]));
-            return TDC_EXIT_DFU;
-        }
-        if (st[4] == want)
-            return TDC_EXIT_OK;
-        if (now_s() > deadline) {
-            fprintf(stderr, "tdc-usb: flash: board still in %s after %u ms during the %s\n",
-                    tdc_dfu_state_name((tdc_dfu_state_t)st[4]), DFU_STATUS_DEADLINE_MS, step);
-            return TDC_EXIT_TIMEOUT;
-        }
-        unsigned poll_ms = st[1] | (st[2] << 8) | (st[3] << 16);
-        struct timespec ts = {poll_ms / 1000u, (long)(poll_ms % 1000u) * 1000000L};
-        nanosleep(&ts, NULL);
-    }
-}
-
-/* Reads the image and checks it on the host, before any board is touched. */
-static tdc_exit_t load_image(const char *path, uint8_t **image, uint32_t *image_len)
-{
-    uint8_t *img = NULL;
-    uint32_t len = 0;
-    tdc_exit_t e = read_file(path, "flash", &img, &len);
-    if (e != TDC_EXIT_OK)
-        return e;
-    tdc_image_status_t is = tdc_image_check(img, len, NULL, 0);
-    if (is != TDC_IMAGE_OK) {
-        fprintf(stderr, "tdc-usb: flash: %s: %s (file %u bytes", path, tdc_image_status_name(is),
-                len);
-        if (len >= TDC_IMAGE_HEADER_LEN && is != TDC_IMAGE_ERR_MAGIC)
-            fprintf(stderr, ", header says %u + %u bytes", TDC_IMAGE_HEADER_LEN,
-                    tdc_get_le32(img + TDC_IMAGE_OFF_PAYLOAD_LEN));
-        fprintf(stderr, ")\n");
-        free(img);
-        return TDC_EXIT_IMAGE;
-    }
-    *image = img;
-    *image_len = len;
-    return TDC_EXIT_OK;
-}
-
-static tdc_exit_t cmd_flash(tdc_board_t *b, const opts_t *o, const char *path, const uint8_t *img,
-                            uint32_t len)
-{
-    board_info_t bi;
-    tdc_exit_t e = tdc_usb_claim(b, TDC_USB_IF_STREAM);
-    if (e == TDC_EXIT_OK)
-        e = get_info(b, &bi);
-    if (e == TDC_EXIT_OK) {
-        tdc_image_status_t is = tdc_image_check(img, len, bi.board, bi.slot);
-        if (is != TDC_IMAGE_OK) {
-            char target[TDC_IMAGE_BOARD_LEN + 1] = "";
-            memcpy(target, img + TDC_IMAGE_OFF_BOARD, TDC_IMAGE_BOARD_LEN);
-            fprintf(stderr, "tdc-usb: flash: %s: %s (image %u bytes for board '%s'; board '%s' "
-                            "has a %u-byte slot)\n", path, tdc_image_status_name(is), len,
-                    target, bi.board, bi.slot);
-            e = TDC_EXIT_INCOMPATIBLE;
-        }
-    }
-    if (e == TDC_EXIT_OK)
-        e = tdc_usb_claim(b, TDC_USB_IF_DFU);
-    /* Bring the DFU interface to dfuIDLE. */
-    uint8_t st[6];
-    if (e == TDC_EXIT_OK)
-        e = dfu_getstatus(b, st);
-    if (e == TDC_EXIT_OK && st[4] == TDC_DFU_STATE_ERROR)
-        e = tdc_usb_ctrl_out(b, "DFU_CLRSTATUS", LIBUSB_REQUEST_TYPE_CLASS |
-                             LIBUSB_RECIPIENT_INTERFACE, TDC_DFU_CLRSTATUS, 0, TDC_USB_IF_DFU, NULL, 0);
-    else if (e == TDC_EXIT_OK && st[4] != TDC_DFU_STATE_IDLE)
-        e = tdc_usb_ctrl_out(b, "DFU_ABORT", LIBUSB_REQUEST_TYPE_CLASS | LIBUSB_RECIPIENT_INTERFACE,
-                             TDC_DFU_ABORT, 0, TDC_USB_IF_DFU, NULL, 0);
-    uint16_t xfer = dfu_transfer_size(b);
-    double t0 = now_s();
-    uint16_t block = 0;
-    for (uint32_t off = 0; e == TDC_EXIT_OK && off < len; off += xfer, block++) {
-        uint16_t n = (uint16_t)(len - off < xfer ? len - off : xfer);
-        e = tdc_usb_ctrl_out(b, "DFU_DNLOAD", LIBUSB_REQUEST_TYPE_CLASS | LIBUSB_RECIPIENT_INTERFACE,
-                             TDC_DFU_DNLOAD, block, TDC_USB_IF_DFU, img + off, n);
-        if (e == TDC_EXIT_OK)
-            e = dfu_wait(b, TDC_DFU_STATE_DNLOAD_IDLE, "download");
-        progress_bar(o, "flash", off + n, len, t0);
-    }
-    progress_end(o);
-    if (e == TDC_EXIT_OK) /* zero-length DNLOAD: end of image, manifest */
-        e = tdc_usb_ctrl_out(b, "DFU_DNLOAD (end)", LIBUSB_REQUEST_TYPE_CLASS |
-                             LIBUSB_RECIPIENT_INTERFACE, TDC_DFU_DNLOAD, block, TDC_USB_IF_DFU, NULL, 0);
-    if (e == TDC_EXIT_OK)
-        e = dfu_wait(b, TDC_DFU_STATE_IDLE, "image (manifestation: size and CRC check on the board)");
-    if (e == TDC_EXIT_OK)
-        printf("downloaded %u bytes in %.3f s, board checked size and CRC-32 %08x\n", len,
-               now_s() - t0, tdc_get_le32(img + TDC_IMAGE_OFF_PAYLOAD_CRC));
-    if (e == TDC_EXIT_OK && o->verify) {
-        uint8_t *back = malloc((size_t)len + xfer);
-        uint32_t got_total = 0;
-        for (block = 0; e == TDC_EXIT_OK && back != NULL; block++) {
-            int got = 0;
-            e = tdc_usb_ctrl_in(b, "DFU_UPLOAD", LIBUSB_REQUEST_TYPE_CLASS | LIBUSB_RECIPIENT_INTERFACE,
-                                TDC_DFU_UPLOAD, block, TDC_USB_IF_DFU, back + got_total, xfer, &got);
-            got_total += (uint32_t)got;
-            if (got < xfer || got_total > len)
-                break;
-        }
-        if (e == TDC_EXIT_OK && (back == NULL || got_total != len || memcmp(back, img, len) != 0)) {
-            uint32_t first = 0;
-            while (back != NULL && first < len && first < got_total && back[first] == img[first])
-                first++;
-            fprintf(stderr, "tdc-usb: flash: verify failed: read back %u of %u bytes, first "
-                            "difference at byte %u\n", got_total, len, first);
-            e = TDC_EXIT_VERIFY;
-        } else if (e == TDC_EXIT_OK) {
-            printf("verified %u bytes read back\n", got_total);
-        }
-        free(back);
-    }
-    if (e == TDC_EXIT_OK && o->reset) {
-        libusb_release_interface(b->h, TDC_USB_IF_DFU);
-        int r = libusb_control_transfer(b->h, LIBUSB_ENDPOINT_OUT | LIBUSB_REQUEST_TYPE_VENDOR |
-                                        LIBUSB_RECIPIENT_INTERFACE, TDC_USB_REQ_RESET_BOARD, 0,
-                                        TDC_USB_IF_STREAM, NULL, 0, b->timeout_ms);
-        /* A board may drop off the bus before the status stage completes. */
-        if (r < 0 && r != LIBUSB_ERROR_NO_DEVICE && r != LIBUSB_ERROR_PIPE && r != LIBUSB_ERROR_IO)
-            e = tdc_usb_fail(b, "reset request", r);
-        else
-            printf("board reset requested\n");
-    }
-    return e;
-}
-
-/* ------------------------------------------------------------------ */
-static tdc_exit_t cmd_mkimage(const opts_t *o, const char *in, const char *out)
-{
-    if (o->board == NULL) {
-        fprintf(stderr, "tdc-usb: mkimage: --board NAME is required\n");
-        return TDC_EXIT_ARGS;
-    }
-    uint8_t *payload = NULL;
-    uint32_t len = 0;
-    tdc_exit_t e = read_file(in, "mkimage", &payload, &len);
-    if (e != TDC_EXIT_OK)
-        return e;
-    uint8_t hdr[TDC_IMAGE_HEADER_LEN];
-    tdc_image_make_header(hdr, payload, len, o->fw_version, o->board);
-    FILE *f = fopen(out, "wb");
-    int ok = f != NULL && fwrite(hdr, 1, sizeof hdr, f) == sizeof hdr &&
-             fwrite(payload, 1, len, f) == len;
-    if (f != NULL && fclose(f) != 0)
-        ok = 0;
-    free(payload);
-    if (!ok) {
-        fprintf(stderr, "tdc-usb: mkimage: cannot write %s: %s\n", out, strerror(errno));
-        return TDC_EXIT_FILE;
-    }
-    printf("%s: %u + %u bytes, board %s, CRC-32 %08x\n", out, TDC_IMAGE_HEADER_LEN, len, o->board,
-           tdc_get_le32(hdr + TDC_IMAGE_OFF_PAYLOAD_CRC));
     return TDC_EXIT_OK;
 }
 
@@ -616,7 +366,7 @@ int main(int argc, char **argv)
         return TDC_EXIT_ARGS;
     }
     if (strcmp(cmd, "mkimage") == 0)
-        return cmd_mkimage(&o, args[0], args[1]);
+        return tdc_usb_cmd_mkimage(&o, args[0], args[1]);
 
     libusb_context *ctx = NULL;
     int r = libusb_init(&ctx);
@@ -637,7 +387,7 @@ int main(int argc, char **argv)
         uint32_t len = 0;
         /* Local inputs first: a bad file is reported even without a board. */
         e = strcmp(cmd, "stream") == 0 ? open_stream_file(args[0], &f)
-            : strcmp(cmd, "flash") == 0 ? load_image(args[0], &img, &len) : TDC_EXIT_OK;
+            : strcmp(cmd, "flash") == 0 ? tdc_usb_load_image(args[0], &img, &len) : TDC_EXIT_OK;
         if (e == TDC_EXIT_OK)
             e = tdc_usb_open(ctx, &o.sel, &b);
         if (e == TDC_EXIT_OK) {
@@ -646,7 +396,7 @@ int main(int argc, char **argv)
             else if (strcmp(cmd, "stream") == 0)
                 e = cmd_stream(&b, &o, args[0], f);
             else
-                e = cmd_flash(&b, &o, args[0], img, len);
+                e = tdc_usb_cmd_flash(&b, &o, args[0], img, len);
             tdc_usb_close(&b);
         } else if (f != NULL && f != stdin) {
             fclose(f);
