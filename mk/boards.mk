@@ -204,7 +204,7 @@ arm-image-check: $(BP)/check-image-rules
 PANEL_DIMS := $(shell awk '$$1 == "width" { w = $$2 } $$1 == "height" { h = $$2 } $$1 == "eyes" { e = $$2 } \
                 END { print w, h, (e ? e : 1) }' boards/panels/$(PANEL).panel)
 FW_MODES ?= plain $(if $(filter trm,$(STAGES)),trm) $(if $(filter assemble,$(STAGES)),subframes)
-FW_FRAMES_plain := 3
+FW_FRAMES_plain := 5
 FW_FRAMES_trm := 4
 FW_FRAMES_subframes := 6
 FWH := $(B)/fw-host/$(PANEL)-$(STAGES_TAG)
@@ -227,7 +227,7 @@ $(B)/tests/fw_stream: $(B)/tests/arm/fw_stream.o $(B)/tests/golden/tdc_content.o
 
 $(STREAMS)/$(PANEL)-%.tdcs: $(B)/tests/fw_stream
 	@mkdir -p $(@D)
-	$(B)/tests/fw_stream $* $(PANEL_DIMS) $(FW_FRAMES_$*) $@
+	$(B)/tests/fw_stream $* $(PANEL_DIMS) $(FW_FRAMES_$*) $@ $(if $(filter plain,$*),$(if $(filter lcd,$(PANEL_TYPE)),,$@.expected))
 
 $(BP)/fw-check: $(BP)/tdc-firmware.elf $(FWH)/tdc_fw_host $(foreach m,$(FW_MODES),$(STREAMS)/$(PANEL)-$(m).tdcs) \
                 tests/arm/run_fw_qemu.sh

@@ -7,8 +7,8 @@ extern uint32_t __ext_start[], __ext_end[];
 
 int main(void);
 
-/* Word loops written out so the compiler cannot turn them into calls to
- * memcpy/memset before .data exists (-ffreestanding keeps them loops too). */
+/* Plain word loops.  gcc may turn them into memcpy/memset calls, which is
+ * fine: those need no initialised data of their own. */
 static void zero_words(uint32_t *p, const uint32_t *end)
 {
     while (p < end) {

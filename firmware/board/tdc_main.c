@@ -23,9 +23,13 @@
  *
  * A frame is shown when every eye has what its mode needs (TRM: the FULL or
  * REDUCED packet due; plain: FULL; assembly: SUBFRAME and, if the stream
- * sends them, its sample motion vectors), or when a packet of a later frame
- * arrives (then eyes are processed with what arrived, or keep their last
- * frame).  Rejected packets never touch the frame buffer (tdc_link.h).
+ * sends them, its sample motion vectors) or had that packet rejected for a
+ * bad payload CRC (the eye keeps its last image: rejected packets never
+ * touch the frame buffer, tdc_link.h).  If a packet of a later frame
+ * arrives first, the unfinished frame is completed with what arrived and
+ * shown, unless that packet is a FULL frame: the decoder has then already
+ * unpacked it into the frame buffer, the unfinished frame is no longer
+ * intact, and it is dropped (counted).
  */
 #include <string.h>
 
@@ -127,6 +131,7 @@ static struct {
     uint32_t frame;
     uint32_t frames_shown;
     uint32_t eyes_incomplete; /* eyes that kept their last frame */
+    uint32_t frames_dropped;  /* unfinished frames overwritten by a later FULL packet */
     uint32_t stage_errors;    /* a stage refused a frame (status != TDC_OK) */
     uint32_t unsupported;     /* streams this build cannot run */
 #if TDC_CFG_TRM
@@ -376,10 +381,16 @@ static void show_frame(void)
 }
 
 /* Ends the frame being collected: eyes still missing something are
- * processed with what arrived (or keep their last image). */
-static void finish_frame(void)
+ * processed with what arrived (or keep their last image); the frame is shown
+ * if any eye changed and may_show (see the top of this file). */
+static void finish_frame(int may_show)
 {
     if (!g.have_frame) {
+        return;
+    }
+    g.have_frame = 0;
+    if (!may_show) {
+        g.frames_dropped++;
         return;
     }
     for (uint32_t e = 0; e < FW_EYES; e++) {
@@ -393,13 +404,47 @@ static void finish_frame(void)
     if (g.eyes_updated) {
         show_frame();
     }
-    g.have_frame = 0;
+}
+
+static void start_frame(uint32_t frame, int may_show_previous)
+{
+    finish_frame(may_show_previous);
+    g.have_frame = 1;
+    g.frame = frame;
+    g.eyes_done = 0;
+    g.eyes_updated = 0;
+    g.kinds[0] = g.kinds[1] = 0;
+}
+
+static void eye_done(uint32_t e)
+{
+    g.eyes_done = (uint8_t)(g.eyes_done | (1u << e));
+    if (g.eyes_done == (1u << FW_EYES) - 1u) {
+        finish_frame(1); /* every eye had what it needs (or lost it): show now */
+    }
+}
+
+/* A pixel packet of the current or a later frame failed its payload CRC:
+ * that eye keeps its image for this frame. */
+static void on_rejected(const tdc_link_event_t *ev)
+{
+    if (g.mode == MODE_NONE || ev->error != TDC_LINK_ERR_CRC || ev->eye >= FW_EYES ||
+        (g.have_frame && ev->frame_index < g.frame)) {
+        return;
+    }
+    if (!g.have_frame || ev->frame_index != g.frame) {
+        start_frame(ev->frame_index, 1); /* nothing was unpacked: the old frame is intact */
+    }
+    const uint32_t need = kinds_needed(ev->eye, g.frame);
+    if ((need & KIND_BIT(ev->kind)) && !(g.eyes_done & (1u << ev->eye))) {
+        eye_done(ev->eye);
+    }
 }
 
 static void on_packet(const tdc_link_event_t *ev)
 {
     if (ev->kind == TDC_LINK_KIND_STREAM) {
-        finish_frame();
+        finish_frame(1);
         configure_stream();
         return;
     }
@@ -407,24 +452,16 @@ static void on_packet(const tdc_link_event_t *ev)
         return;
     }
     if (!g.have_frame || ev->frame_index != g.frame) {
-        finish_frame();
-        g.have_frame = 1;
-        g.frame = ev->frame_index;
-        g.eyes_done = 0;
-        g.eyes_updated = 0;
-        g.kinds[0] = g.kinds[1] = 0;
+        start_frame(ev->frame_index, ev->kind != TDC_LINK_KIND_FULL);
     }
     const uint32_t e = ev->eye;
     g.kinds[e] = (uint8_t)(g.kinds[e] | KIND_BIT(ev->kind));
     const uint32_t need = kinds_needed(e, g.frame);
     if (!(g.eyes_done & (1u << e)) && need && (g.kinds[e] & need) == need) {
-        g.eyes_done = (uint8_t)(g.eyes_done | (1u << e));
         if (process_eye(e, g.frame)) {
             g.eyes_updated = (uint8_t)(g.eyes_updated | (1u << e));
         }
-        if (g.eyes_done == (1u << FW_EYES) - 1u) {
-            finish_frame(); /* every eye had what it needs: show now */
-        }
+        eye_done(e);
     }
 }
 
@@ -483,6 +520,8 @@ int tdc_fw_run(void)
             got -= (uint32_t)used;
             if (ev.type == TDC_LINK_EV_PACKET) {
                 on_packet(&ev);
+            } else if (ev.type == TDC_LINK_EV_ERROR) {
+                on_rejected(&ev);
             }
         }
     }
@@ -495,9 +534,11 @@ int tdc_fw_run(void)
         }
         if (ev.type == TDC_LINK_EV_PACKET) {
             on_packet(&ev);
+        } else if (ev.type == TDC_LINK_EV_ERROR) {
+            on_rejected(&ev);
         }
     }
-    finish_frame();
+    finish_frame(1);
     const tdc_link_counters_t *c = tdc_link_counters(&g.dec);
     uint32_t errors = 0;
     for (unsigned i = 1; i < TDC_LINK_ERR_COUNT; i++) {
@@ -507,6 +548,7 @@ int tdc_fw_run(void)
     log_kv("packets/bytes rejected: ", errors);
     log_kv("frames shown: ", g.frames_shown);
     log_kv("eyes kept (incomplete): ", g.eyes_incomplete);
+    log_kv("frames dropped (overwritten): ", g.frames_dropped);
     log_kv("stage errors: ", g.stage_errors);
     log_kv("unsupported streams: ", g.unsupported);
     log_kv("time us: ", tdc_board_time_us() - t0);

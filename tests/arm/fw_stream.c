@@ -3,16 +3,25 @@
  * with (on the host double and on the emulated boards), through the host
  * link encoder (sim/link/tdc_link_encode.h).
  *
- * Usage: fw_stream MODE WIDTH HEIGHT EYES FRAMES OUT.tdcs
+ * Usage: fw_stream MODE WIDTH HEIGHT EYES FRAMES OUT.tdcs [EXPECTED]
  *   plain      full RGB888 frames every refresh; frame 1 of eye 0 arrives
  *              with a corrupted payload byte (must be rejected: the eye
- *              keeps frame 0), frame 2 of the last eye in RGB565
+ *              keeps frame 0), frame 2 of the last eye in RGB565, frame 3
+ *              of eye 0 is lost on the way (never sent: the loop learns it
+ *              only from frame 4's FULL packet, which is already unpacked,
+ *              so frame 3 must be dropped, not shown)
  *   trm        TRM stream, r = 1/2 at 90 Hz: per frame one eye full, the
  *              other reduced (2x2 box prefilter), swapped every frame
  *   subframes  240 Hz tile-ordered subframes: hourglass pattern bits on the
  *              first frame of every cycle, one sample per 2x2 tile, and a
  *              motion vector per sample (content panning 3 px per frame)
  * Contents: tests/golden/tdc_content.h (edge on eye 0, text on eye 1).
+ *
+ * EXPECTED (plain mode only, for panels that show the decoded codes, i.e.
+ * not LCD): the "frame N fnv1a64" lines the panel must show, computed here
+ * independently of the firmware loop: each eye's packet payload unpacked
+ * into a side-by-side frame buffer, the corrupted eye keeping its previous
+ * image, a frame with no accepted packet not shown at all.
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -21,6 +30,7 @@
 #include "tdc_content.h"
 #include "tdc_link_encode.h"
 #include "tdc_ordering.h"
+#include "tdc_pixfmt.h"
 
 static uint8_t *g_pkt;
 static size_t g_cap;
@@ -41,8 +51,8 @@ static tdc_content_t eye_content(uint32_t eye)
 
 int main(int argc, char **argv)
 {
-    if (argc != 7) {
-        fprintf(stderr, "usage: %s plain|trm|subframes W H EYES FRAMES OUT.tdcs\n", argv[0]);
+    if (argc != 7 && argc != 8) {
+        fprintf(stderr, "usage: %s plain|trm|subframes W H EYES FRAMES OUT.tdcs [EXPECTED]\n", argv[0]);
         return 2;
     }
     const char *mode = argv[1];
@@ -83,14 +93,34 @@ int main(int argc, char **argv)
         fprintf(stderr, "fw_stream: out of memory or cannot create %s\n", argv[6]);
         return 1;
     }
+    FILE *expect = NULL;
+    uint8_t *fb = NULL;
+    if (argc == 8 && plain) {
+        expect = fopen(argv[7], "w");
+        fb = calloc((size_t)eyes * w * h * 3u, 1);
+        if (!expect || !fb) {
+            fprintf(stderr, "fw_stream: cannot create %s\n", argv[7]);
+            return 1;
+        }
+    }
     put(tdc_link_encode_stream(&enc, g_pkt, g_cap), "stream header");
     for (uint32_t f = 0; f < frames; f++) {
+        int shown = 0, lost = 0;
         for (uint32_t e = 0; e < eyes; e++) {
             tdc_content_frame(eye_content(e), f, 11u + e, rgb, (int)w, (int)h, (int)(w * 3u));
+            if (plain && f == 3 && e == 0) {
+                lost = 1; /* the packet never arrives */
+                continue;
+            }
             if (plain) {
                 const tdc_pixfmt_t fmt = (f == 2 && e == eyes - 1u) ? TDC_PIXFMT_RGB565 : TDC_PIXFMT_RGB888;
                 size_t n = tdc_link_encode_frame(&enc, g_pkt, g_cap, TDC_LINK_KIND_FULL, e, f, fmt, rgb, w, h, w * 3u);
-                if (f == 1 && e == 0 && n > TDC_LINK_HEADER_BYTES + 100u) {
+                const int corrupt = f == 1 && e == 0 && n > TDC_LINK_HEADER_BYTES + 100u;
+                if (fb && !corrupt) {
+                    tdc_pixfmt_unpack(fmt, g_pkt + TDC_LINK_HEADER_BYTES, w, h, fb + (size_t)e * w * 3u, eyes * w * 3u);
+                    shown = 1;
+                }
+                if (corrupt) {
                     g_pkt[TDC_LINK_HEADER_BYTES + 100u] ^= 0x40u; /* payload CRC must catch it */
                 }
                 put(n, "full frame");
@@ -140,7 +170,19 @@ int main(int argc, char **argv)
                 put(tdc_link_encode_motion(&enc, g_pkt, g_cap, e, f, mv, w, h, 1), "sample motion");
             }
         }
+        if (expect && shown && !lost) {
+            uint64_t hash = 0xcbf29ce484222325ULL;
+            for (size_t i = 0; i < (size_t)eyes * w * h * 3u; i++) {
+                hash = (hash ^ fb[i]) * 0x100000001b3ULL;
+            }
+            fprintf(expect, "frame %u %016llx\n", (unsigned)f, (unsigned long long)hash);
+        }
     }
+    if (expect && fclose(expect) != 0) {
+        fprintf(stderr, "fw_stream: write error (expected)\n");
+        return 1;
+    }
+    free(fb);
     if (fclose(g_out) != 0) {
         fprintf(stderr, "fw_stream: write error\n");
         return 1;
