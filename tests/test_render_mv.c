@@ -261,6 +261,37 @@ static void test_shadow_mv_follows_shadow(void **state)
     tdc_render_close(r);
 }
 
+/* The same fence under a small rect (area) light: shadow MVs from the
+ * blocked light sample (one random sample per pixel and frame, so only the
+ * direction is checked: the shadow moves with the fence, +x). */
+static void test_shadow_mv_area_light(void **state)
+{
+    (void)state;
+    char text[2048];
+    snprintf(text, sizeof text, "%s", scene_fence);
+    char *l = strstr(text, "light lamp point");
+    assert_non_null(l);
+    snprintf(l, sizeof text - (size_t)(l - text),
+             "light lamp rect pos 0 3 -3.5 u 0.3 0 0 v 0 0 0.3 intensity 20 20 20 samples 4\n");
+    tdc_render_t *r = open_text(text, 1, 0);
+    int shadowed = 0, left = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            tdc_render_probe_t a;
+            tdc_render_probe(r, 5, x + 0.5, y + 0.5, &a);
+            if (!a.hit || a.obj != 0 || !a.in_shadow) continue;
+            shadowed++;
+            assert_int_equal(a.blocker_obj, 1);
+            if (a.shadow_mv[0] < -0.05) left++;
+            assert_true(a.shadow_weight >= 0 && a.shadow_weight <= 1);
+        }
+    printf("area light: %d floor pixels with a blocked light sample, %d with shadow MVs against the fence motion\n",
+           shadowed, left);
+    assert_true(shadowed > 50);
+    assert_true(left >= shadowed * 95 / 100);
+    tdc_render_close(r);
+}
+
 static const char scene_disocc[] =
     "tdc-scene 1\n"
     "fps 8\n"
@@ -358,6 +389,7 @@ int main(void)
         cmocka_unit_test(test_mv_mirror),
         cmocka_unit_test(test_mv_mirror_needs_reflected),
         cmocka_unit_test(test_shadow_mv_follows_shadow),
+        cmocka_unit_test(test_shadow_mv_area_light),
         cmocka_unit_test(test_dual_mv_disocclusion),
         cmocka_unit_test(test_static_scene_skips_mv),
         cmocka_unit_test(test_frame_mv_matches_probe),

@@ -146,7 +146,7 @@ typedef struct {
     int mirror_hit;         /* primary surface is a mirror and a reflected object was hit */
     int refl_obj;           /* last reflected non-mirror object */
     double refl_q[3];
-    int in_shadow;          /* a point light is blocked (first such light) */
+    int in_shadow;          /* a light (sample) is blocked: the first such one is tracked */
     int blocker_obj;
     double blocker_q[3];
     double shadow_mv[2];

@@ -174,6 +174,7 @@ static void shade_direct(rthread_t *t, int obj, const double P[3], const double 
                     track->in_shadow = 1;
                     track->blk_obj = b;
                     track->blk_light = li;
+                    track->loff[0] = track->loff[1] = track->loff[2] = 0;
                 }
             } else {
                 blocked = occluded(t, O, L, d * (1 - 1e-6));
@@ -212,7 +213,26 @@ static void shade_direct(rthread_t *t, int obj, const double P[3], const double 
                 for (int i = 0; i < 3; i++) L[i] /= d;
                 double c = dot3(N, L), cl = fabs(dot3(ln, L));
                 if (c <= 0) continue;
-                if (occluded(t, O, L, d * (1 - 1e-6))) continue;
+                if (track && t->track_blockers && !track->in_shadow) {
+                    /* shadow MVs: the first blocked light sample keeps its
+                     * blocker and its offset on the (translating) light */
+                    struct RTCRayHit rh;
+                    int bo = intersect(t, 0, O, L, 0, d * (1 - 1e-6), TDC_RAY_SHADOW, &rh);
+                    if (bo >= 0) {
+                        double BP[3];
+                        for (int i = 0; i < 3; i++) {
+                            BP[i] = O[i] + rh.ray.tfar * L[i];
+                            track->loff[i] = S[i] - lp[i];
+                        }
+                        tdc_r_xform_point(t->cur->minv[bo], BP, track->BQ);
+                        track->in_shadow = 1;
+                        track->blk_obj = bo;
+                        track->blk_light = li;
+                        continue;
+                    }
+                } else if (occluded(t, O, L, d * (1 - 1e-6))) {
+                    continue;
+                }
                 for (int i = 0; i < 3; i++) e[i] += l->intensity[i] * c * cl / (d * d) / ns;
             }
         }
@@ -407,15 +427,17 @@ static int prev_visible(rthread_t *t, double x, double y, double W[3], double d[
 
 void tdc_r_pass_mv_shadow(rthread_t *t, rsample_t *s, int n)
 {
-    const tdc_scene_t *sc = t->r->scene;
     for (int i = 0; i < n; i++) {
         rsample_t *a = &s[i];
         a->mvs[0] = a->mv[0];
         a->mvs[1] = a->mv[1];
         a->sw = 0;
-        if (!a->in_shadow || sc->lights[a->blk_light].kind != TDC_LIGHT_POINT) continue;
+        if (!a->in_shadow) continue;
         const rframe_t *p = t->prev;
-        const double *lp = p->light_pos[a->blk_light];
+        /* the light sample in the previous frame: rect lights translate, so
+         * the sample keeps its offset from the light's position */
+        const double *lp0 = p->light_pos[a->blk_light];
+        double lp[3] = {lp0[0] + a->loff[0], lp0[1] + a->loff[1], lp0[2] + a->loff[2]};
         double bp[3], sp[3], np[3];
         tdc_r_xform_point(p->m[a->blk_obj], a->BQ, bp);
         tdc_r_xform_point(p->m[a->obj], a->Q, sp);

@@ -23,6 +23,7 @@ typedef struct {
     /* shadow tracking (first blocked point light) */
     int in_shadow, blk_obj, blk_light;
     double BQ[3];
+    double loff[3];         /* blocked light sample - light position (0 for point lights) */
     /* mirror chain */
     int nmir;
     int mobj[TDC_R_MAX_BOUNCES];
