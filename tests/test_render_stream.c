@@ -18,8 +18,8 @@
 #include "render/tdc_render_stream.h"
 #include "tdc_link.h"
 
-#define W 32
-#define H 24
+#define W 33 /* odd sizes: partial tiles, reduced size rounding */
+#define H 25
 #define TX ((W + 1) / 2)
 #define TY ((H + 1) / 2)
 

@@ -10,6 +10,7 @@
 
 #include "link/tdc_link_encode.h"
 #include "link/tdc_link_file.h"
+#include "tdc_render_internal.h"
 
 struct tdc_render_stream {
     tdc_render_t *r;
@@ -52,13 +53,10 @@ tdc_render_stream_t *tdc_render_stream_create(const char *path, tdc_render_t *r,
     info.r_num = 1;
     info.r_den = 1;
     if (kind == TDC_RSTREAM_TRM) {
-        /* r as num/1000 reduced by the gcd; the decoder's reduced size
-         * round(n num / den) then equals the renderer's lround(n r) */
-        double rf = 0.5;
-        int rw, rh;
-        tdc_render_output_size(r, TDC_RENDER_REDUCED, &rw, &rh);
-        rf = (double)rw / s->W;
-        unsigned num = (unsigned)lround(rf * 1000), den = 1000, a = num, b = den;
+        /* r = num/1000 of the renderer's reduced_factor, reduced by the gcd
+         * (0.5 -> 1/2); the decoder's reduced size round(n num / den) then
+         * equals the renderer's lround(n r) */
+        unsigned num = (unsigned)lround(r->cfg.reduced_factor * 1000), den = 1000, a = num, b = den;
         while (b) {
             unsigned t = a % b;
             a = b;
