@@ -14,6 +14,8 @@ GOLDEN_STAGES += trm
 TDCRUN := $(B)/bin/tdc-run
 TDCRUN_OBJS = $(patsubst %.c,$(B)/%.o,hosttools/tdcrun/tdc_run.c $(TDCRUN_SRCS)) $(B)/tests/golden/tdc_content.o
 $(B)/hosttools/tdcrun/tdc_run.o: HOST_CFLAGS += $(if $(filter hosttools/tdcrun/run_assemble.c,$(TDCRUN_SRCS)),-DTDC_RUN_WITH_ASSEMBLE)
+# the mode list comes from the fragments: rebuild when they change
+$(B)/hosttools/tdcrun/tdc_run.o: $(wildcard mk/*.mk)
 $(TDCRUN): $(TDCRUN_OBJS) $(SIMLIB) $(FWLIB)
 	@mkdir -p $(@D)
 	$(CC) $(HOST_LDFLAGS) $(TDCRUN_OBJS) -o $@ $(SIMLIB) $(FWLIB) $(HOST_LIBS)
