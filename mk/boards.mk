@@ -6,6 +6,7 @@
 #   make test-arm                   (part of make test) golden run in QEMU, image rules, fit test
 #   make size                       arm-none-eabi-size of every board/panel pair
 #   make bench-arm                  instructions per output pixel on Cortex-M7 / M55 (QEMU)
+#   make profile-arm [GROUP=trm]    which functions those instructions are spent in (M7)
 #
 # A board folder holds board.mk (BOARD_CPU, BOARD_LDS, BOARD_MEM, BOARD_FLASH,
 # BOARD_QEMU for emulated boards), board.h, startup.c and the linker script.
@@ -25,7 +26,7 @@ ARM_BOARDS := $(filter-out host,$(BOARDS))
 # Emulated boards: those whose board.mk names a QEMU machine.
 QEMU_BOARDS := $(sort $(patsubst boards/%/board.mk,%,$(shell grep -l '^BOARD_QEMU' boards/*/board.mk)))
 
-.PHONY: firmware-size test-arm size bench-arm arm-bench arm-golden arm-golden-check arm-image-check arm-fit-check arm-fw-check
+.PHONY: firmware-size test-arm size bench-arm arm-bench profile-arm arm-profile arm-golden arm-golden-check arm-image-check arm-fit-check arm-fw-check
 
 .SECONDEXPANSION:
 
@@ -123,6 +124,10 @@ $(BA)/tdc_bench.elf: $$(ARM_BENCH_OBJS) $(BA)/libtdcfw.a $(ARM_LDDEPS)
 $(BA)/bench.tsv: $(BA)/tdc_bench.elf $(INSN_PLUGIN) tests/arm/bench_arm.sh
 	tests/arm/bench_arm.sh $(ARM_NM) $(INSN_PLUGIN) $< $(BOARD_QEMU) > $@.tmp && mv $@.tmp $@
 arm-bench: $(BA)/bench.tsv
+# Per-function profile of one bench group: make profile-arm [BOARD=..] [GROUP=trm]
+GROUP ?= trm
+arm-profile: $(BA)/tdc_bench.elf $(INSN_PLUGIN)
+	@tests/arm/profile_arm.sh $(ARM_NM) $(INSN_PLUGIN) $< $(GROUP) $(BOARD_QEMU)
 
 arm-golden: $(BA)/tdc_golden.elf $(if $(BOARD_QEMU),$(BA)/tdc_harness.elf)
 
@@ -302,6 +307,9 @@ test-arm:
 INSN_PLUGIN := $(BUILD)/tools/tdc-insn-count.so
 $(INSN_PLUGIN): tests/arm/tdc_insn_plugin.c | $(BUILD)/tools
 	gcc -std=c11 -Wall -Wextra -Werror -O2 -shared -fPIC $< -o $@
+
+profile-arm: $(INSN_PLUGIN)
+	@$(MAKE) --no-print-directory -j2 BOARD=$(if $(filter host,$(BOARD)),$(firstword $(QEMU_BOARDS)),$(BOARD)) arm-profile
 
 bench-arm: deps $(INSN_PLUGIN)
 	@for b in $(QEMU_BOARDS); do $(MAKE) --no-print-directory -j2 BOARD=$$b arm-bench >/dev/null || exit 1; done

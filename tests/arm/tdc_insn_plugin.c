@@ -13,9 +13,11 @@
  * taken, the same for every mark, so differences between marks are exact
  * instruction counts of the code in between.
  *
- * Usage: qemu-system-arm ... -plugin tdc-insn-count.so,mark=0xADDR,out=FILE
+ * Usage: qemu-system-arm ... -plugin tdc-insn-count.so,mark=0xADDR,out=FILE[,tbprof=FILE2]
  * FILE gets one line per mark: "<index> <instructions so far>", and a last
- * line "total <instructions>".
+ * line "total <instructions>".  FILE2 (optional profile) gets one line per
+ * translated block: "<vaddr hex> <instructions in block> <executions>";
+ * tests/arm/profile_arm.sh sums them per function.
  */
 #include <stdint.h>
 #include <stdio.h>
@@ -54,6 +56,35 @@ static uint64_t g_mark_addr = UINT64_MAX;
 static uint64_t g_marks[MAX_MARKS];
 static unsigned g_nmarks;
 static char g_out[1024];
+static char g_prof[1024];
+
+/* Profile records live in fixed blocks, so the counters the inline adds
+ * point at never move. */
+typedef struct {
+    uint64_t vaddr;
+    uint64_t count;
+    uint32_t n;
+} tb_rec_t;
+#define RECS_PER_BLOCK 4096
+typedef struct rec_block {
+    struct rec_block *next;
+    unsigned used;
+    tb_rec_t rec[RECS_PER_BLOCK];
+} rec_block_t;
+static rec_block_t *g_blocks;
+
+static tb_rec_t *new_rec(void)
+{
+    if (!g_blocks || g_blocks->used == RECS_PER_BLOCK) {
+        rec_block_t *b = calloc(1, sizeof *b);
+        if (!b) {
+            return NULL;
+        }
+        b->next = g_blocks;
+        g_blocks = b;
+    }
+    return &g_blocks->rec[g_blocks->used++];
+}
 
 static void on_mark(unsigned int vcpu, void *userdata)
 {
@@ -69,6 +100,14 @@ static void on_tb_trans(qemu_plugin_id_t id, struct qemu_plugin_tb *tb)
     (void)id;
     const size_t n = qemu_plugin_tb_n_insns(tb);
     qemu_plugin_register_vcpu_tb_exec_inline(tb, QEMU_PLUGIN_INLINE_ADD_U64, &g_insns, n);
+    if (g_prof[0] && n) {
+        tb_rec_t *r = new_rec();
+        if (r) {
+            r->vaddr = qemu_plugin_insn_vaddr(qemu_plugin_tb_get_insn(tb, 0));
+            r->n = (uint32_t)n;
+            qemu_plugin_register_vcpu_tb_exec_inline(tb, QEMU_PLUGIN_INLINE_ADD_U64, &r->count, 1);
+        }
+    }
     for (size_t i = 0; i < n; i++) {
         struct qemu_plugin_insn *insn = qemu_plugin_tb_get_insn(tb, i);
         if (qemu_plugin_insn_vaddr(insn) == g_mark_addr) {
@@ -91,6 +130,18 @@ static void on_plugin_exit(qemu_plugin_id_t id, void *userdata)
     }
     fprintf(f, "total %llu\n", (unsigned long long)g_insns);
     fclose(f);
+    FILE *p = g_prof[0] ? fopen(g_prof, "w") : NULL;
+    for (rec_block_t *b = g_blocks; p && b; b = b->next) {
+        for (unsigned i = 0; i < b->used; i++) {
+            if (b->rec[i].count) {
+                fprintf(p, "%llx %u %llu\n", (unsigned long long)b->rec[i].vaddr, b->rec[i].n,
+                        (unsigned long long)b->rec[i].count);
+            }
+        }
+    }
+    if (p) {
+        fclose(p);
+    }
 }
 
 QEMU_PLUGIN_EXPORT int qemu_plugin_install(qemu_plugin_id_t id, const qemu_info_t *info, int argc, char **argv)
@@ -101,6 +152,8 @@ QEMU_PLUGIN_EXPORT int qemu_plugin_install(qemu_plugin_id_t id, const qemu_info_
             g_mark_addr = strtoull(argv[i] + 5, NULL, 0) & ~1ull; /* Thumb bit off */
         } else if (!strncmp(argv[i], "out=", 4)) {
             snprintf(g_out, sizeof g_out, "%s", argv[i] + 4);
+        } else if (!strncmp(argv[i], "tbprof=", 7)) {
+            snprintf(g_prof, sizeof g_prof, "%s", argv[i] + 7);
         }
     }
     if (g_mark_addr == UINT64_MAX || !g_out[0]) {
