@@ -432,9 +432,6 @@ int tdc_render_frame(tdc_render_t *r, uint32_t frame, tdc_render_mode_t mode, co
         st.ms[TDC_STAGE_RESOLVE] = tdc_r_now_ms() - t0;
         st.ran[TDC_STAGE_RESOLVE] = 1;
     }
-    if (!jb.do_mv && mv_mode) {
-        /* static frame or scene: MVs are zero (written in write_outputs) */
-    }
     free(ss);
     st.wall_ms = tdc_r_now_ms() - wall0;
     if (stats) *stats = st;

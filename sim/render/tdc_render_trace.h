@@ -13,14 +13,18 @@ typedef struct {
     uint32_t dst, k;        /* output slot, sample index within the slot (GT) */
     int px, py;             /* full-res pixel (MV history) */
     int obj;                /* primary hit object, -1 = miss */
-    double dir[3];          /* primary direction (unit) */
+    double dir[3];          /* primary direction (not normalised, see tdc_r_cam_ray) */
     double P[3], Q[3];      /* hit: world, object space */
     double N[3], NQ[3];     /* normal: world (facing the ray), object space (raw) */
     double xc, yc;          /* current-frame projection of the hit (= x, y up to rounding) */
     double depth;
     double col[3];
     double mirror;
-    /* shadow tracking (first blocked point light) */
+    /* motion vectors (float px); before the rarely used shadow and mirror
+     * fields so the passes every sample goes through share cache lines */
+    double mv[2], mvs[2], sw, mvd[2];
+    int mv_valid, refl_used, disocc;
+    /* shadow tracking (first blocked light sample) */
     int in_shadow, blk_obj, blk_light;
     double BQ[3];
     double loff[3];         /* blocked light sample - light position (0 for point lights) */
@@ -30,9 +34,6 @@ typedef struct {
     double mQ[TDC_R_MAX_BOUNCES][3], mNQ[TDC_R_MAX_BOUNCES][3];
     int robj;               /* final reflected object, -1 = miss */
     double rQ[3], rdir[3];
-    /* motion vectors (float px) */
-    double mv[2], mvs[2], sw, mvd[2];
-    int mv_valid, refl_used, disocc;
 } rsample_t;
 
 typedef struct {
