@@ -59,9 +59,12 @@ typedef struct {
     int record_rays;        /* keep every traced ray of the last frame (benchmark) */
 } tdc_render_config_t;
 
-/* Caller-owned outputs; any pointer may be NULL (that output is not written,
- * but MVs are still computed if another MV output is requested).
- * Sizes: n = output pixels (or tiles) of the mode. */
+/* Caller-owned outputs; any pointer may be NULL (that output is not
+ * written).  Sizes: n = output pixels (or tiles) of the mode.  FULL and
+ * SUBFRAME write all of them; REDUCED and GROUND_TRUTH only rgb.  Primary
+ * MVs are computed whenever something moved since the previous frame, even
+ * if `mv` is NULL: they feed the MV history that drives the subframe
+ * orderings and pixel classes.  Shadow and dual MVs only with their option. */
 typedef struct {
     float *rgb;             /* n x 3 linear RGB */
     int16_t *mv;            /* n x 2 Q4 backward MVs (primary, or reflected for mirror hits) */
