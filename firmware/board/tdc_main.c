@@ -129,6 +129,9 @@ static struct {
     uint8_t eyes_updated;     /* bit e: eye e's image changed for `frame` */
     uint8_t kinds[2];         /* KIND_BIT()s received per eye for `frame` */
     uint32_t frame;
+    uint8_t have_last;        /* a frame of this stream was finished ... */
+    uint32_t last_frame;      /* ... and this was its index */
+    uint32_t late_packets;    /* packets for a frame already finished (ignored) */
     uint32_t frames_shown;
     uint32_t eyes_incomplete; /* eyes that kept their last frame */
     uint32_t frames_dropped;  /* unfinished frames overwritten by a later FULL packet */
@@ -194,6 +197,7 @@ static void configure_stream(void)
     (void)panel;
     g.mode = MODE_NONE;
     g.have_frame = 0;
+    g.have_last = 0;
     if (!si) {
         return;
     }
@@ -389,6 +393,8 @@ static void finish_frame(int may_show)
         return;
     }
     g.have_frame = 0;
+    g.have_last = 1;
+    g.last_frame = g.frame;
     if (!may_show) {
         g.frames_dropped++;
         return;
@@ -429,7 +435,7 @@ static void eye_done(uint32_t e)
 static void on_rejected(const tdc_link_event_t *ev)
 {
     if (g.mode == MODE_NONE || ev->error != TDC_LINK_ERR_CRC || ev->eye >= FW_EYES ||
-        (g.have_frame && ev->frame_index < g.frame)) {
+        (g.have_frame && ev->frame_index < g.frame) || (g.have_last && ev->frame_index <= g.last_frame)) {
         return;
     }
     if (!g.have_frame || ev->frame_index != g.frame) {
@@ -449,6 +455,10 @@ static void on_packet(const tdc_link_event_t *ev)
         return;
     }
     if (g.mode == MODE_NONE || ev->eye >= FW_EYES) {
+        return;
+    }
+    if (!g.have_frame && g.have_last && ev->frame_index <= g.last_frame) {
+        g.late_packets++; /* its frame was shown already (or dropped) */
         return;
     }
     if (!g.have_frame || ev->frame_index != g.frame) {
@@ -549,6 +559,7 @@ int tdc_fw_run(void)
     log_kv("frames shown: ", g.frames_shown);
     log_kv("eyes kept (incomplete): ", g.eyes_incomplete);
     log_kv("frames dropped (overwritten): ", g.frames_dropped);
+    log_kv("late packets (ignored): ", g.late_packets);
     log_kv("stage errors: ", g.stage_errors);
     log_kv("unsupported streams: ", g.unsupported);
     log_kv("time us: ", tdc_board_time_us() - t0);
