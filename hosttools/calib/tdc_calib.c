@@ -480,9 +480,24 @@ int main(int argc, char **argv)
         fprintf(f, " %d", g_rates[r]);
     }
     fprintf(f, "\ngamma       %.6f %.6f %.6f\n", gamma[0], gamma[1], gamma[2]);
-    fprintf(f, "lcd_p       %.6f %.6f %.6f %.6f\n", p[nominal][0], p[nominal][1], p[nominal][2], p[nominal][3]);
+    /* Coefficients as the firmware holds them: Q24 integers (TDC_LCD_COEF_FRAC),
+     * written as their exact decimal value q / 2^24 so that tdc-tablegen's
+     * rounding gives back exactly q; the integers themselves in a comment. */
+    long q[MAX_RATES][4];
     for (int r = 0; r < g_nr; r++) {
-        fprintf(f, "lcd_p_hz    %d %.6f %.6f %.6f %.6f\n", g_rates[r], p[r][0], p[r][1], p[r][2], p[r][3]);
+        for (int k = 0; k < 4; k++) {
+            q[r][k] = lround(p[r][k] * 16777216.0);
+        }
+    }
+    fprintf(f, "# coefficients in Q24 (firmware integers), per rate:");
+    for (int r = 0; r < g_nr; r++) {
+        fprintf(f, "%s %d Hz: %ld %ld %ld %ld", r ? ";" : "", g_rates[r], q[r][0], q[r][1], q[r][2], q[r][3]);
+    }
+    fprintf(f, "\nlcd_p       %.10f %.10f %.10f %.10f\n", q[nominal][0] / 16777216.0, q[nominal][1] / 16777216.0,
+            q[nominal][2] / 16777216.0, q[nominal][3] / 16777216.0);
+    for (int r = 0; r < g_nr; r++) {
+        fprintf(f, "lcd_p_hz    %d %.10f %.10f %.10f %.10f\n", g_rates[r], q[r][0] / 16777216.0,
+                q[r][1] / 16777216.0, q[r][2] / 16777216.0, q[r][3] / 16777216.0);
     }
     fprintf(f, "lcd_table   %d\n", table);
     fclose(f);
