@@ -20,15 +20,16 @@
 #include "tdc_crc32.h"
 #include "tdc_link.h"
 
-#define BW_MAX 1920
-#define BH_MAX 1080
+#define BW_DEFAULT 1920
+#define BH_DEFAULT 1080
 #define CHUNK 65536
 
-static uint8_t staging[TDC_LINK_STAGING_BYTES(BW_MAX, BH_MAX)];
-static uint8_t frame[TDC_LINK_FRAME_BYTES(BW_MAX, BH_MAX)];
-static uint8_t src[TDC_LINK_FRAME_BYTES(BW_MAX, BH_MAX)];
-static uint8_t pkt[TDC_LINK_STAGING_BYTES(BW_MAX, BH_MAX) + 64];
-static uint8_t copy_dst[TDC_LINK_STAGING_BYTES(BW_MAX, BH_MAX) + 64];
+/* Any eye up to the host maximum (1920 x 1080, 1440 x 1600, 1080 x 1200 ...). */
+static uint8_t staging[TDC_LINK_STAGING_BYTES(1, TDC_LINK_MAX_PIXELS)];
+static uint8_t frame[TDC_LINK_FRAME_BYTES(1, TDC_LINK_MAX_PIXELS)];
+static uint8_t src[TDC_LINK_FRAME_BYTES(1, TDC_LINK_MAX_PIXELS)];
+static uint8_t pkt[TDC_LINK_STAGING_BYTES(1, TDC_LINK_MAX_PIXELS) + 64];
+static uint8_t copy_dst[TDC_LINK_STAGING_BYTES(1, TDC_LINK_MAX_PIXELS) + 64];
 
 static double now_s(void)
 {
@@ -45,12 +46,13 @@ static void set_frame_index(uint8_t *p, uint32_t f)
 
 int main(int argc, char **argv)
 {
-    uint32_t w = BW_MAX, h = BH_MAX;
+    uint32_t w = BW_DEFAULT, h = BH_DEFAULT;
     if (argc == 3) {
         w = (uint32_t)atoi(argv[1]);
         h = (uint32_t)atoi(argv[2]);
-        if (w < 1 || h < 1 || w > BW_MAX || h > BH_MAX) {
-            fprintf(stderr, "bench_link: size must be within %dx%d\n", BW_MAX, BH_MAX);
+        if (w < 1 || h < 1 || w > TDC_LINK_MAX_WIDTH || h > TDC_LINK_MAX_HEIGHT || w * h > TDC_LINK_MAX_PIXELS) {
+            fprintf(stderr, "bench_link: size must be within %dx%d and %u pixels\n", TDC_LINK_MAX_WIDTH,
+                    TDC_LINK_MAX_HEIGHT, (unsigned)TDC_LINK_MAX_PIXELS);
             return 2;
         }
     }
