@@ -3,6 +3,7 @@
 # per-pixel cost on the target.  See docs/boards.md.
 #
 #   make BOARD=<b> PANEL=<p>        firmware image build/<b>-<p>/tdc-firmware.elf
+#   make BOARD=<b> PANEL=<p> run-arm STREAM=f.tdcs   run it in QEMU on a link stream
 #   make test-arm                   (part of make test) golden run in QEMU, image rules, fit test
 #   make size                       arm-none-eabi-size of every board/panel pair
 #   make bench-arm                  instructions per output pixel on Cortex-M7 / M55 (QEMU)
@@ -26,7 +27,7 @@ ARM_BOARDS := $(filter-out host,$(BOARDS))
 # Emulated boards: those whose board.mk names a QEMU machine.
 QEMU_BOARDS := $(sort $(patsubst boards/%/board.mk,%,$(shell grep -l '^BOARD_QEMU' boards/*/board.mk)))
 
-.PHONY: firmware-size test-arm size bench-arm arm-bench profile-arm arm-profile arm-golden arm-golden-check arm-image-check arm-fit-check arm-fw-check
+.PHONY: run-arm firmware-size test-arm size bench-arm arm-bench profile-arm arm-profile arm-golden arm-golden-check arm-image-check arm-fit-check arm-fw-check
 
 .SECONDEXPANSION:
 
@@ -194,6 +195,15 @@ firmware-size:
 	elif grep -q '^memory fit' $(BUILD)/.size-$(BOARD)-$(PANEL).log; then \
 	    grep -A12 '^memory fit' $(BUILD)/.size-$(BOARD)-$(PANEL).log | grep -v '^make' | sed 's/^/    /'; \
 	else echo "    build failed (not a memory-fit verdict):"; tail -5 $(BUILD)/.size-$(BOARD)-$(PANEL).log | sed 's/^/    /'; fi
+
+# Run this pair's image in QEMU on a link stream file (emulated boards):
+#   make BOARD=mps3-an547 PANEL=htc-vive run-arm STREAM=file.tdcs
+# prints one "frame N checksum" line per shown frame, the counters on stderr.
+run-arm: $(BP)/tdc-firmware.elf
+	@test -n "$(BOARD_QEMU)" || { echo "run-arm: $(BOARD) is not an emulated board"; exit 2; }
+	@test -f "$(STREAM)" || { echo "run-arm: give STREAM=<file.tdcs>"; exit 2; }
+	qemu-system-arm $(BOARD_QEMU) -display none -nodefaults -semihosting-config enable=on,target=native \
+	    -kernel $< -append "$(STREAM)"
 
 # Firmware rules on the linked image (not just the objects).
 $(BP)/check-image-rules: $(BP)/tdc-firmware.elf tests/arm/check_image_symbols.sh
