@@ -55,4 +55,4 @@ demo: deps demo-sim
 
 # The default comparison on built-in scenes (< 5 minutes on 2 cores).
 demo-sim: $(TDC_SIM)
-	@sim/report/tdc_demo.sh $(TDC_SIM) report
+	@sim/report/tdc_demo.sh $(TDC_SIM) $(or $(REPORT),report)

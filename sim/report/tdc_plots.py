@@ -227,6 +227,8 @@ with open(os.path.join(out, "index.md"), "w") as f:
     f.write("Columns: PSNR/SSIM on gamma-2.2-encoded perceived images, FLIP (mean, 67 px/deg), flicker = RMS "
             "frame-to-frame change of the motion-compensated error in code values; costs relative to full rate "
             "at the run's refresh; firmware and renderer times are host CPU microseconds per refresh.\n\n")
+    f.write("Other parts of `make demo`: [TRM on built-in contents, fixed point vs reference](trm/index.md) "
+            "(`make demo-trm`).\n\n")
     log = os.path.join(out, "demo.log")
     if os.path.isfile(log):
         f.write("Runs (wall seconds on this machine, shared with other jobs):\n\n")
