@@ -323,7 +323,7 @@ profile-arm: $(INSN_PLUGIN)
 
 bench-arm: deps $(INSN_PLUGIN)
 	@for b in $(QEMU_BOARDS); do $(MAKE) --no-print-directory -j2 BOARD=$$b arm-bench >/dev/null || exit 1; done
-	@tests/arm/bench_table.sh $(foreach b,$(QEMU_BOARDS),$(b)=$(BUILD)/arm-$(b)/bench.tsv)
+	@ARM_OPT="$(ARM_OPT)" tests/arm/bench_table.sh $(foreach b,$(QEMU_BOARDS),$(b)=$(BUILD)/arm-$(b)/bench.tsv)
 
 # make size: every board/panel pair with the board's default stages.
 size:
