@@ -64,16 +64,19 @@ ARM_BOARD_SRCS := boards/$(BOARD)/startup.c firmware/board/tdc_crt0.c \
                   $(if $(BOARD_QEMU),firmware/board/tdc_semihost.c)
 ARM_LDDEPS := $(BA)/memory.ld $(BOARD_LDS) firmware/board/tdc_cortexm_sections.ld
 
-$(BA)/firmware/%.o: firmware/%.c $(GEN)/tdc_panels.h
+# Compiler flags are part of the objects: rebuild when they change (ARM_OPT).
+$(BA)/cflags: FORCE
+	@mkdir -p $(@D); echo '$(ARM_TEST_CFLAGS)' | cmp -s - $@ || echo '$(ARM_TEST_CFLAGS)' > $@
+$(BA)/firmware/%.o: firmware/%.c $(GEN)/tdc_panels.h $(BA)/cflags
 	@mkdir -p $(@D)
 	$(ARM_CC) $(ARM_FW_CFLAGS) -MMD -MP -c $< -o $@
-$(BA)/boards/%.o: boards/%.c
+$(BA)/boards/%.o: boards/%.c $(BA)/cflags
 	@mkdir -p $(@D)
 	$(ARM_CC) $(ARM_FW_CFLAGS) -MMD -MP -c $< -o $@
-$(BA)/gen/%.o: $(GEN)/%.c
+$(BA)/gen/%.o: $(GEN)/%.c $(BA)/cflags
 	@mkdir -p $(@D)
 	$(ARM_CC) $(ARM_FW_CFLAGS) -c $< -o $@
-$(BA)/tests/%.o: tests/%.c $(GEN)/tdc_panels.h $(GEN)/golden_list.h
+$(BA)/tests/%.o: tests/%.c $(GEN)/tdc_panels.h $(GEN)/golden_list.h $(BA)/cflags
 	@mkdir -p $(@D)
 	$(ARM_CC) $(ARM_TEST_CFLAGS) -MMD -MP -c $< -o $@
 
@@ -114,7 +117,7 @@ $(BA)/image-rules-selftest: $(BA)/bad_rules.elf tests/arm/test_image_rules.sh
 	@chmod +x $@
 
 # Cost per pixel on the target: bench image (tests/arm/bench_arm_main.c).
-$(BA)/sim/%.o: sim/%.c $(GEN)/tdc_panels.h
+$(BA)/sim/%.o: sim/%.c $(GEN)/tdc_panels.h $(BA)/cflags
 	@mkdir -p $(@D)
 	$(ARM_CC) $(ARM_TEST_CFLAGS) -Isim/link -MMD -MP -c $< -o $@
 ARM_BENCH_OBJS = $(patsubst %.c,$(BA)/%.o,$(ARM_BOARD_SRCS) tests/arm/bench_arm_main.c tests/golden/tdc_content.c \
@@ -169,9 +172,9 @@ FW_IMG_SRCS = $(filter-out $(if $(filter 1,$(FW_LCD_ON)),,$(FW_LCD_SRCS)),$(FW_S
               $(BOARD_SRCS) firmware/board/tdc_crt0.c firmware/board/tdc_main.c
 FW_IMG_OBJS = $(patsubst %.c,$(BP)/%.o,$(FW_IMG_SRCS)) $(BP)/gen/tdc_panel_$(PANEL).o
 
-# The stage selection is part of the objects: rebuild when it changes.
+# The stage selection and flags are part of the objects: rebuild when they change.
 $(BP)/stages: FORCE
-	@mkdir -p $(@D); echo '$(FW_CFG)' | cmp -s - $@ || echo '$(FW_CFG)' > $@
+	@mkdir -p $(@D); echo '$(ARM_IMG_CFLAGS)' | cmp -s - $@ || echo '$(ARM_IMG_CFLAGS)' > $@
 $(BP)/%.o: %.c $(GEN)/tdc_panels.h $(PANEL_CONFIG) $(BP)/stages
 	@mkdir -p $(@D)
 	$(ARM_CC) $(ARM_IMG_CFLAGS) -MMD -MP -c $< -o $@
