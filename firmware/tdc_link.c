@@ -9,7 +9,11 @@
  *            ERR_MAGIC: sync lost) or where HUNT found a candidate.  A header
  *            with a bad CRC is rejected and its bytes 1..31 are rescanned
  *            (the true packet may start inside a false candidate).
- *   PAYLOAD  copy the payload into the staging buffer, CRC on the fly
+ *   PAYLOAD  copy the payload into the staging buffer, CRC on the fly.  A
+ *            payload whose CRC fails is rescanned for a packet start (a byte
+ *            lost in transit puts the next packet's magic inside it), so the
+ *            decoder resynchronises on the very next valid packet.  A packet
+ *            found inside such a rescan is collected in place (payload_base).
  *   SKIP     pass over the payload of a packet whose (CRC-valid) header was
  *            rejected, so the next packet is found without hunting
  *
@@ -24,6 +28,11 @@
 #include "tdc_crc32.h"
 
 enum { ST_HUNT = 0, ST_HEADER = 1, ST_PAYLOAD = 2, ST_SKIP = 3 };
+enum { RP_NONE = 0, RP_HEADER = 1, RP_STAGING = 2 };
+
+/* Source offset meaning "these bytes are new input (or the header replay),
+ * not part of the staging buffer". */
+#define NOT_STAGING UINT32_MAX
 
 static const uint8_t tdc_link_magic_bytes[4] = {'T', 'D', 'C', 'L'};
 
@@ -107,6 +116,18 @@ static void set_state(tdc_link_decoder_t *dec, unsigned st, int synced)
     dec->state = (uint8_t)(st | (synced ? ST_SYNCED : 0u));
 }
 
+/* n bytes passed over while hunting: garbage between packets, or (inside a
+ * staging rescan) the rest of a packet already rejected for its CRC. */
+static void discard(tdc_link_decoder_t *dec, size_t n, uint32_t src_off)
+{
+    if (src_off == NOT_STAGING) {
+        dec->garbage_run += (uint32_t)n;
+        dec->cnt.garbage_bytes += n;
+    } else {
+        dec->cnt.skipped_bytes += n;
+    }
+}
+
 /* ------------------------------------------------------------------------
  * Init and getters.
  * ---------------------------------------------------------------------- */
@@ -150,8 +171,12 @@ void tdc_link_decoder_resync(tdc_link_decoder_t *dec)
     dec->garbage_run += dropped;
     dec->cnt.garbage_bytes += dropped;
     dec->hdr_fill = 0;
+    dec->replay_src = RP_NONE;
     dec->replay_len = 0;
     dec->replay_pos = 0;
+    dec->replay_gen++;
+    dec->hdr_in_staging = 0;
+    dec->payload_base = 0;
     dec->skip_left = 0;
     set_state(dec, ST_HUNT, 0);
 }
@@ -271,23 +296,34 @@ static tdc_link_err_t check_header(const tdc_link_decoder_t *dec, uint32_t versi
     return TDC_LINK_OK;
 }
 
-/* A complete header is in dec->hdr. */
-static void on_header(tdc_link_decoder_t *dec)
+/* A complete header is in dec->hdr; its last byte was at staging offset
+ * end_off - 1 if it came from a staging rescan (else end_off = NOT_STAGING). */
+static void on_header(tdc_link_decoder_t *dec, uint32_t end_off)
 {
     const uint8_t *h = dec->hdr;
     if (tdc_crc32(h, TDC_LINK_OFF_HEADER_CRC) != tdc_link_rd32(h + TDC_LINK_OFF_HEADER_CRC)) {
-        /* Corrupt header, or a false magic inside garbage: rescan bytes
-         * 1..31 (the real packet may begin there).  The first byte is
-         * garbage now. */
+        /* Corrupt header, or a false magic: rescan bytes 1..31 (the real
+         * packet may begin there).  If the whole header came from the
+         * staging rescan, just rewind it; otherwise replay a copy (any
+         * staging rescan is used up then, so rescans never nest). */
         push_error(dec, TDC_LINK_ERR_HEADER_CRC, 0, 0);
-        memcpy(dec->replay, h + 1, TDC_LINK_HEADER_BYTES - 1u);
-        dec->replay_len = TDC_LINK_HEADER_BYTES - 1u;
-        dec->replay_pos = 0;
-        dec->garbage_run += 1u;
-        dec->cnt.garbage_bytes += 1u;
+        dec->replay_gen++;
+        if (dec->hdr_in_staging && end_off != NOT_STAGING) {
+            dec->replay_src = RP_STAGING;
+            dec->replay_pos = dec->hdr_start + 1u;
+            dec->cnt.skipped_bytes += 1u;
+        } else {
+            memcpy(dec->replay, h + 1, TDC_LINK_HEADER_BYTES - 1u);
+            dec->replay_src = RP_HEADER;
+            dec->replay_len = TDC_LINK_HEADER_BYTES - 1u;
+            dec->replay_pos = 0;
+            discard(dec, 1u, dec->hdr_in_staging ? 0u : NOT_STAGING);
+        }
+        dec->hdr_in_staging = 0;
         set_state(dec, ST_HUNT, 0);
         return;
     }
+    dec->hdr_in_staging = 0;
     /* A valid header ends any run of garbage before it. */
     if (dec->garbage_run) {
         push_error(dec, TDC_LINK_ERR_GARBAGE, 0, dec->garbage_run);
@@ -326,6 +362,9 @@ static void on_header(tdc_link_decoder_t *dec)
     }
     dec->payload_fill = 0;
     dec->crc_state = TDC_CRC32_INIT;
+    /* Found inside a staging rescan: the payload (or its start) is already
+     * in place right after the header. */
+    dec->payload_base = end_off == NOT_STAGING ? 0u : end_off;
     set_state(dec, ST_PAYLOAD, 0);
 }
 
@@ -334,7 +373,7 @@ static void on_header(tdc_link_decoder_t *dec)
  * ---------------------------------------------------------------------- */
 static tdc_link_err_t commit_stream(tdc_link_decoder_t *dec)
 {
-    const uint8_t *s = dec->buf.staging;
+    const uint8_t *s = dec->buf.staging + dec->payload_base;
     tdc_link_stream_info_t in;
     in.flags = tdc_link_rd32(s + 0);
     in.r_num = (uint16_t)tdc_link_rd16(s + 4);
@@ -452,13 +491,24 @@ static void unpack_le16(const uint8_t *src, int16_t *dst, size_t count)
     }
 }
 
-static void on_payload(tdc_link_decoder_t *dec)
+/* The payload is complete; src_end = staging offset after its last byte if
+ * it was collected inside a staging rescan, else NOT_STAGING. */
+static void on_payload(tdc_link_decoder_t *dec, uint32_t src_end)
 {
     tdc_link_event_t *p = &dec->pkt;
     set_state(dec, ST_HEADER, 1);
     dec->hdr_fill = 0;
     if (tdc_crc32_final(dec->crc_state) != dec->payload_crc) {
         push_error(dec, TDC_LINK_ERR_CRC, 1, dec->payload_len);
+        /* Rescan the payload for a packet start; inside a staging rescan
+         * the rest of that rescan follows it contiguously. */
+        dec->replay_gen++;
+        dec->replay_src = RP_STAGING;
+        dec->replay_pos = dec->payload_base;
+        if (src_end == NOT_STAGING) {
+            dec->replay_len = dec->payload_base + dec->payload_len;
+        }
+        set_state(dec, ST_HUNT, 0);
         return;
     }
     const uint32_t kind = p->kind, eye = p->eye;
@@ -493,7 +543,7 @@ static void on_payload(tdc_link_decoder_t *dec)
         }
         dec->frame_mask |= slot_bit(kind, eye, p->flags);
 
-        const uint8_t *s = dec->buf.staging;
+        const uint8_t *s = dec->buf.staging + dec->payload_base;
         const tdc_pixfmt_t fmt = (tdc_pixfmt_t)p->format;
         const tdc_link_buffers_t *b = &dec->buf;
         const uint32_t tx = TDC_LINK_TILES(p->width), ty = TDC_LINK_TILES(p->height);
@@ -529,8 +579,10 @@ static void on_payload(tdc_link_decoder_t *dec)
 
 /* ------------------------------------------------------------------------
  * Byte processing: consumes bytes until an event is queued or n is used up.
+ * src_off = staging offset of p[0] when p points into a staging rescan,
+ * else NOT_STAGING (new input or the header replay).
  * ---------------------------------------------------------------------- */
-static size_t step(tdc_link_decoder_t *dec, const uint8_t *p, size_t n)
+static size_t step(tdc_link_decoder_t *dec, const uint8_t *p, size_t n, uint32_t src_off)
 {
     size_t i = 0;
     while (i < n && dec->ev_count == 0) {
@@ -538,29 +590,35 @@ static size_t step(tdc_link_decoder_t *dec, const uint8_t *p, size_t n)
         case ST_HUNT: {
             const uint8_t *t = (const uint8_t *)memchr(p + i, 'T', n - i);
             const size_t skip = t ? (size_t)(t - (p + i)) : n - i;
-            dec->garbage_run += (uint32_t)skip;
-            dec->cnt.garbage_bytes += skip;
+            discard(dec, skip, src_off);
             i += skip;
             if (t) {
                 dec->hdr[0] = 'T';
                 dec->hdr_fill = 1;
+                dec->hdr_in_staging = src_off != NOT_STAGING;
+                dec->hdr_start = src_off != NOT_STAGING ? src_off + (uint32_t)i : 0u;
                 set_state(dec, ST_HEADER, 0);
                 i++;
             }
             break;
         }
         case ST_HEADER: {
+            if (dec->hdr_fill == 0) {
+                /* A packet boundary: remember where, for a rewind. */
+                dec->hdr_in_staging = src_off != NOT_STAGING;
+                dec->hdr_start = src_off != NOT_STAGING ? src_off + (uint32_t)i : 0u;
+            }
             if (dec->hdr_fill < 4u) {
                 if (p[i] != tdc_link_magic_bytes[dec->hdr_fill]) {
                     /* Not a packet start.  At an expected boundary this
                      * is a loss of sync; the bytes matched so far are
-                     * garbage; p[i] itself is rescanned by HUNT. */
+                     * passed over; p[i] itself is rescanned by HUNT. */
                     if (dec->state & ST_SYNCED) {
                         push_error(dec, TDC_LINK_ERR_MAGIC, 0, 0);
                     }
-                    dec->garbage_run += dec->hdr_fill;
-                    dec->cnt.garbage_bytes += dec->hdr_fill;
+                    discard(dec, dec->hdr_fill, dec->hdr_in_staging ? 0u : NOT_STAGING);
                     dec->hdr_fill = 0;
+                    dec->hdr_in_staging = 0;
                     set_state(dec, ST_HUNT, 0);
                     break;
                 }
@@ -576,10 +634,7 @@ static size_t step(tdc_link_decoder_t *dec, const uint8_t *p, size_t n)
             i += k;
             if (dec->hdr_fill == TDC_LINK_HEADER_BYTES) {
                 dec->hdr_fill = 0;
-                on_header(dec);
-                if (dec->replay_pos < dec->replay_len) {
-                    return i; /* rescan the replay before more input */
-                }
+                on_header(dec, src_off != NOT_STAGING ? src_off + (uint32_t)i : NOT_STAGING);
             }
             break;
         }
@@ -588,12 +643,22 @@ static size_t step(tdc_link_decoder_t *dec, const uint8_t *p, size_t n)
             if (k > n - i) {
                 k = n - i;
             }
-            memcpy(dec->buf.staging + dec->payload_fill, p + i, k);
+            /* CRC first: when p points into staging the bytes are already
+             * in place (src_off + i == payload_base + payload_fill). */
             dec->crc_state = tdc_crc32_update(dec->crc_state, p + i, k);
+            if (src_off == NOT_STAGING) {
+                if (dec->payload_base != 0) {
+                    /* The rescan that held the start of this payload is
+                     * used up: move what we have to the front. */
+                    memmove(dec->buf.staging, dec->buf.staging + dec->payload_base, dec->payload_fill);
+                    dec->payload_base = 0;
+                }
+                memcpy(dec->buf.staging + dec->payload_fill, p + i, k);
+            }
             dec->payload_fill += (uint32_t)k;
             i += k;
             if (dec->payload_fill == dec->payload_len) {
-                on_payload(dec);
+                on_payload(dec, src_off != NOT_STAGING ? src_off + (uint32_t)i : NOT_STAGING);
             }
             break;
         }
@@ -634,18 +699,27 @@ size_t tdc_link_feed(tdc_link_decoder_t *dec, const uint8_t *bytes, size_t n, td
         if (pop_event(dec, ev)) {
             return used;
         }
-        if (dec->replay_pos < dec->replay_len) {
-            /* Bytes of a rejected header, rescanned before new input.  A
-             * header cannot complete inside the 31-byte replay, so a new
-             * replay is never started while this one has bytes left. */
-            const size_t k = step(dec, dec->replay + dec->replay_pos, (size_t)(dec->replay_len - dec->replay_pos));
-            dec->replay_pos = (uint8_t)(dec->replay_pos + k);
+        if (dec->replay_src != RP_NONE && dec->replay_pos < dec->replay_len) {
+            /* Bytes of a rejected header or payload, rescanned before new
+             * input.  If the step sets up a new rescan (generation bumped)
+             * its position is already right. */
+            const uint32_t gen = dec->replay_gen;
+            const int staging = dec->replay_src == RP_STAGING;
+            const uint8_t *src = staging ? dec->buf.staging : dec->replay;
+            const size_t k = step(dec, src + dec->replay_pos, (size_t)(dec->replay_len - dec->replay_pos),
+                                  staging ? dec->replay_pos : NOT_STAGING);
+            if (dec->replay_gen == gen) {
+                dec->replay_pos += (uint32_t)k;
+                if (dec->replay_pos >= dec->replay_len) {
+                    dec->replay_src = RP_NONE;
+                }
+            }
             continue;
         }
         if (used == n) {
             break;
         }
-        const size_t k = step(dec, bytes + used, n - used);
+        const size_t k = step(dec, bytes + used, n - used, NOT_STAGING);
         used += k;
         dec->cnt.bytes_in += k;
     }

@@ -242,10 +242,15 @@ typedef struct {
     /* receive state machine */
     uint8_t state;           /* internal */
     uint8_t hdr_fill;        /* header bytes collected */
-    uint8_t replay_len;      /* bytes of `replay` still to rescan after a bad header */
-    uint8_t replay_pos;
+    uint8_t replay_src;      /* what is being rescanned: none, `replay` (a bad header), staging (a bad payload) */
+    uint8_t hdr_in_staging;  /* the header being collected began inside a staging rescan, at hdr_start */
     uint8_t hdr[TDC_LINK_HEADER_BYTES];
     uint8_t replay[TDC_LINK_HEADER_BYTES];
+    uint32_t replay_pos;     /* rescan position / end (bytes of `replay` or staging offsets) */
+    uint32_t replay_len;
+    uint32_t replay_gen;     /* bumped whenever a new rescan is set up */
+    uint32_t hdr_start;      /* staging offset of the header's first byte (hdr_in_staging) */
+    uint32_t payload_base;   /* the payload being collected lies at staging + payload_base */
     uint32_t payload_len;    /* current packet */
     uint32_t payload_fill;
     uint32_t payload_crc;    /* expected */

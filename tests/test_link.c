@@ -537,27 +537,71 @@ static void test_garbage_and_resync(void **state)
         assert_int_equal(tdc_link_counters(&rig.dec)->packets_ok, 10);
         assert_memory_equal(rig.full[0], pkt2 + TDC_LINK_HEADER_BYTES, (size_t)MW * MH * 3u);
     }
-    /* A dropped byte inside a payload: that packet fails its CRC, the next
-     * boundary loses sync, and the decoder is back on the packet after. */
+    /* A dropped byte inside a payload: that packet fails its CRC and its
+     * payload now holds the first byte of the next packet.  The decoder
+     * rescans the failed payload and resynchronises on that very next
+     * packet (here a duplicate, recognised as such), losing nothing else. */
     memcpy(stream2, stream, base_len);
     n = base_len;
     memcpy(stream2 + n, pkt2, 200);
     memcpy(stream2 + n + 200, pkt2 + 201, good_len - 201);
     n += good_len - 1;
-    size_t m = good_with(stream2 + n, sizeof stream2 - n, ed_dup); /* rejected as dup, but its bytes are eaten */
-    (void)m;
+    n += good_with(stream2 + n, sizeof stream2 - n, ed_dup);
     tdc_link_gen_rgb(src, MW, MH, 2, 1, 4);
     const uint32_t rw = TDC_LINK_REDUCED_DIM(MW, 1, 2), rh = TDC_LINK_REDUCED_DIM(MH, 1, 2);
     n += tdc_link_encode_frame(&menc, stream2 + n, sizeof stream2 - n, TDC_LINK_KIND_REDUCED, 1, 2, TDC_PIXFMT_RGB888,
                                src, rw, rh, rw * 3u);
     n += tdc_link_encode_frame(&menc, stream2 + n, sizeof stream2 - n, TDC_LINK_KIND_REDUCED, 1, 2, TDC_PIXFMT_RGB888,
                                src, rw, rh, rw * 3u);
-    assert_int_equal(lt_init(&rig, MW, MH, 2), TDC_OK);
-    lt_feed(&rig, stream2, n, 0, 0);
-    assert_int_equal(tdc_link_error_count(&rig.dec, TDC_LINK_ERR_CRC), 1);
-    assert_int_equal(tdc_link_error_count(&rig.dec, TDC_LINK_ERR_MAGIC), 1);
-    assert_true(tdc_link_counters(&rig.dec)->packets_ok >= 10); /* at least the last reduced frame */
-    assert_int_equal(tdc_link_counters(&rig.dec)->packets_by_kind[TDC_LINK_KIND_REDUCED], 2 + 1);
+    for (int chunk = 0; chunk < 3; chunk++) {
+        assert_int_equal(lt_init(&rig, MW, MH, 2), TDC_OK);
+        lt_feed(&rig, stream2, n, chunk == 2 ? -7 : chunk, 5);
+        assert_int_equal(tdc_link_error_count(&rig.dec, TDC_LINK_ERR_CRC), 1);
+        assert_int_equal(tdc_link_error_count(&rig.dec, TDC_LINK_ERR_DUPLICATE), 2); /* the next packet, found */
+        assert_int_equal(tdc_link_error_count(&rig.dec, TDC_LINK_ERR_MAGIC), 0);
+        assert_int_equal(tdc_link_error_count(&rig.dec, TDC_LINK_ERR_GARBAGE), 0);
+        assert_int_equal(tdc_link_counters(&rig.dec)->packets_ok, 10);
+        assert_int_equal(tdc_link_counters(&rig.dec)->packets_by_kind[TDC_LINK_KIND_REDUCED], 2 + 1);
+        assert_memory_equal(rig.reduced[1], src, (size_t)rw * rh * 3u);
+    }
+    /* A packet hidden entirely inside a failed payload (a short packet
+     * spliced into a long one that then fails its CRC) is found too, and
+     * the stream after it continues in sync. */
+    {
+        uint8_t pat[TDC_LINK_PATTERN_BYTES(MW, MH)];
+        memset(pat, 0, sizeof pat);
+        tdc_link_stream_info_t in = info_of(TDC_LINK_STREAM_SUBFRAMES, MW, MH, 1, 1, 1);
+        tdc_link_encoder_t e1;
+        tdc_link_encoder_init(&e1, 4, &in);
+        size_t q = tdc_link_encode_stream(&e1, stream2, sizeof stream2);
+        tdc_link_gen_rgb(src, MW, MH, 0, 0, 1);
+        const size_t a = tdc_link_encode_frame(&e1, stream2 + q, sizeof stream2 - q, TDC_LINK_KIND_FULL, 0, 0,
+                                               TDC_PIXFMT_RGB888, src, MW, MH, MW * 3u);
+        /* Cut the full frame at byte 300 and append a pattern packet and the
+         * rest: the frame's CRC fails (its payload swallowed the pattern). */
+        static uint8_t tmp[1 << 16];
+        memcpy(tmp, stream2 + q, a);
+        size_t r = q;
+        memcpy(stream2 + r, tmp, 300);
+        r += 300;
+        pat[0] = 0x5A;
+        const size_t pl = tdc_link_encode_pattern(&e1, stream2 + r, sizeof stream2 - r, 0, 0, pat, MW, MH);
+        r += pl;
+        memcpy(stream2 + r, tmp + 300, a - 300 - pl); /* keep the total = a: the frame's length still matches */
+        r += a - 300 - pl;
+        const size_t sub = tdc_link_encode_subframe(&e1, stream2 + r, sizeof stream2 - r, 0, 0, TDC_PIXFMT_RGB565,
+                                                    src, MW, MH);
+        r += sub;
+        for (int chunk = 0; chunk < 3; chunk++) {
+            assert_int_equal(lt_init(&rig, MW, MH, 1), TDC_OK);
+            lt_feed(&rig, stream2, r, chunk == 2 ? -11 : chunk, 8);
+            assert_int_equal(tdc_link_error_count(&rig.dec, TDC_LINK_ERR_CRC), 1);
+            assert_int_equal(tdc_link_counters(&rig.dec)->packets_by_kind[TDC_LINK_KIND_PATTERN], 1);
+            assert_int_equal(rig.pattern[0][0], 0x5A);
+            assert_int_equal(tdc_link_counters(&rig.dec)->packets_by_kind[TDC_LINK_KIND_SUBFRAME], 1);
+            assert_int_equal(tdc_link_counters(&rig.dec)->packets_ok, 3);
+        }
+    }
 }
 
 /* A transfer cut off mid-packet (USB unplugged): resync drops the partial
