@@ -80,7 +80,8 @@ int main(int argc, char **argv)
             bad |= write_seed(argv[1], name, 0x85, stream, n);
             if (fmt == TDC_PIXFMT_RGB888 && npk > 3) {
                 /* Damaged variants: garbage between packets, a flipped
-                 * payload byte, a truncated packet, a dropped packet. */
+                 * payload byte, a truncated packet, a dropped packet, a
+                 * lost byte. */
                 static uint8_t d[1 << 18];
                 size_t m = 0;
                 memcpy(d, stream, pk[1].offset);
@@ -103,6 +104,12 @@ int main(int argc, char **argv)
                 memcpy(d + pk[2].offset, stream + pk[3].offset, n - pk[3].offset);
                 snprintf(name, sizeof name, "m%d-dropped", mode);
                 bad |= write_seed(argv[1], name, 0x80, d, pk[2].offset + n - pk[3].offset);
+                /* One byte lost inside packet 2's payload: the next packet's
+                 * magic ends up inside the payload that fails its CRC. */
+                memcpy(d, stream, pk[2].offset + 45);
+                memcpy(d + pk[2].offset + 45, stream + pk[2].offset + 46, n - pk[2].offset - 46);
+                snprintf(name, sizeof name, "m%d-lostbyte", mode);
+                bad |= write_seed(argv[1], name, 0x02, d, n - 1);
             }
         }
     }
