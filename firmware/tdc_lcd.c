@@ -190,6 +190,25 @@ static inline uint32_t lin_to_m_q16(const tdc_gamma_table_t *t, const uint32_t *
     return ((k << 16) + frac + 127u) / 255u;
 }
 
+/*
+ * An unreachable target: the pair shows Ls = M(code, u)^g (M clamped to
+ * [0, 1], decoded through the panel's gamma table), so the frame-pair SUM
+ * misses wl + el - 2 Ls (returned, Q24).  *e_code gets the code of the light
+ * refresh t delivered, 2 Ls - el (clamped), assuming t-1 delivered el.
+ * Scaling and overflow: ms <= 2^24, ms * 255 < 2^32 (uint64 anyway);
+ * wl, el, ls <= 2^24 so the sums stay below 2^26.
+ */
+static int32_t unreached_light_q24(const int32_t p[4], const tdc_gamma_table_t *gt, uint32_t code, uint32_t u_q16,
+                                   uint32_t wl, uint32_t el, uint32_t *e_code)
+{
+    int32_t ms = tdc_clamp32(tdc_lcd_model_q24(p, code8_to_q16(code), u_q16), 0, TDC_LIN_ONE);
+    /* Q24 -> code Q8: ms * 255 * 256 / 2^24 = ms * 255 >> 16, rounded. */
+    const uint32_t ms_q8 = (uint32_t)(((uint64_t)(uint32_t)ms * 255u + 32768u) >> 16);
+    const int32_t ls = tdc_gamma_decode_gval(gt, ms_q8);
+    *e_code = tdc_gamma_encode(gt, tdc_clamp32(2 * ls - (int32_t)el, 0, TDC_LIN_ONE), 255u);
+    return (int32_t)(wl + el) - 2 * ls;
+}
+
 size_t tdc_lcd_history_bytes(uint32_t width, uint32_t height, unsigned prev_bits)
 {
     return 2u * TDC_LCD_PACKED_BYTES((size_t)width * height * 3u, prev_bits);
@@ -355,19 +374,11 @@ tdc_status_t tdc_lcd_frame(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_str
                 } else {
                     n_low += kind == TDC_LCD_CLAMP_LOW;
                     n_high += kind == TDC_LCD_CLAMP_HIGH;
-                    /* Shown pair mean Ls = Ms^g; missing pair SUM = wl + el - 2 Ls. */
-                    int32_t ms = tdc_lcd_model_q24(p, code8_to_q16(code), u);
-                    ms = tdc_clamp32(ms, 0, TDC_LIN_ONE);
-                    /* Q24 -> code Q8: ms * 255 * 256 / 2^24 = ms * 255 >> 16. */
-                    const uint32_t ms_q8 = (uint32_t)(((uint64_t)(uint32_t)ms * 255u + 32768u) >> 16);
-                    const int32_t ls = tdc_gamma_decode_gval(gt, ms_q8);
-                    const int32_t miss = (int32_t)(wl + el) - 2 * ls;
+                    const int32_t miss = unreached_light_q24(p, gt, code, u, wl, el, &e_code);
                     if (residual && miss != 0) {
                         residual[s] = tdc_clamp32(tdc_add_sat32(residual[s], miss), -TDC_LIN_ONE, TDC_LIN_ONE);
                         n_res++;
                     }
-                    /* What frame t delivered, assuming t-1 delivered el. */
-                    e_code = tdc_gamma_encode(gt, tdc_clamp32(2 * ls - (int32_t)el, 0, TDC_LIN_ONE), 255u);
                 }
             }
             out[i] = (uint8_t)code;
