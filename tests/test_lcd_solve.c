@@ -313,6 +313,36 @@ static void test_tables(void **state)
     }
 }
 
+/* The header's convention, directly: row = previous drive, column = target,
+ * entries are deltas in 1/16 code; at a node the lookup returns exactly
+ * round(255 m_j + delta / 16), and between nodes it interpolates. */
+static void test_table_convention(void **state)
+{
+    (void)state;
+    for (unsigned n = 17; n <= 33; n += 16) {
+        static int16_t t[33 * 33];
+        for (unsigned i = 0; i < n; i++) {
+            for (unsigned j = 0; j < n; j++) {
+                t[i * n + j] = (int16_t)(16 * (int)i - 8 * (int)j); /* depends on row and column differently */
+            }
+        }
+        const unsigned sh = n == 17 ? 12 : 11;
+        for (unsigned i = 0; i < n; i++) {
+            for (unsigned j = 0; j < n; j++) {
+                const uint32_t u = i << sh, m = j << sh; /* node i/(n-1), j/(n-1) in Q16 */
+                const double want = 255.0 * m / 65536.0 + t[i * n + j] / 16.0;
+                const double clamped = want < 0 ? 0 : (want > 255 ? 255 : want);
+                assert_int_equal(tdc_od_lookup(t, n, u, m, 255u), (uint32_t)floor(clamped + 0.5));
+            }
+        }
+        /* halfway between rows 1 and 2 at column 3: delta (16*1.5 - 24)/16 = 0 */
+        const uint32_t u = (1u << sh) + (1u << (sh - 1)), m = 3u << sh;
+        assert_int_equal(tdc_od_lookup(t, n, u, m, 255u), (uint32_t)floor(255.0 * m / 65536.0 + 0.5));
+        /* rows are the previous value: swapping u and m changes the answer */
+        assert_true(tdc_od_lookup(t, n, 5u << sh, 1u << sh, 255u) != tdc_od_lookup(t, n, 1u << sh, 5u << sh, 255u));
+    }
+}
+
 /* The generated panel tables are exactly what the reference generator makes. */
 static void test_generated_tables_match(void **state)
 {
@@ -395,6 +425,7 @@ int main(void)
         cmocka_unit_test(test_exact_profiles),
         cmocka_unit_test(test_exact_10bit_dense),
         cmocka_unit_test(test_tables),
+        cmocka_unit_test(test_table_convention),
         cmocka_unit_test(test_generated_tables_match),
         cmocka_unit_test(test_packing),
     };
