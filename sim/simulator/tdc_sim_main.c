@@ -21,7 +21,10 @@ static void usage(FILE *f)
             "usage: tdc-sim [options]\n"
             "Simulates display modes through the whole data path (renderer -> link encoder ->\n"
             "firmware via the link decoder -> panel -> eye -> metrics vs ground truth).\n\n"
-            "  -s, --scene NAME        built-in scene (default pan):");
+            "  -R, --renderer SCENE    use the Embree renderer (sim/render): a built-in renderer scene\n"
+            "                          (discs text panorama room mirror fence bigmesh) or a scene file\n"
+            "      --threads N         renderer threads (default 2)\n"
+            "  -s, --scene NAME        built-in procedural scene (default pan):");
     for (int i = 0; i < TDC_SCENE_COUNT; i++) {
         fprintf(f, " %s", tdc_scene_name((tdc_scene_kind_t)i));
     }
