@@ -89,32 +89,46 @@ void tdc_pixfmt_ycbcr_to_rgb(uint8_t y, uint8_t cb, uint8_t cr, uint8_t rgb[3])
     rgb[2] = tdc_q16_to_u8_sat(yq + TDC_YCC_CB_B_Q16 * u);
 }
 
+/* Y + offset clamped to [0, 255]; |offset| <= 240 so no overflow. */
+static inline uint8_t tdc_u8_add_sat(int32_t y, int32_t off)
+{
+    const int32_t v = y + off;
+    return (uint8_t)(v < 0 ? 0 : (v > 255 ? 255 : v));
+}
+
+/*
+ * Scaling: the Q16 sum Y * 2^16 + c * (C - 128) + 2^15 is a multiple of 2^16
+ * plus the chroma term, so floor(sum / 2^16) = Y + floor((c * (C - 128) +
+ * 2^15) / 2^16) exactly.  The chroma part is therefore reduced to one
+ * integer offset per channel per chroma sample, shared by the (up to) four
+ * pixels of its 2x2 block: bit-identical to tdc_pixfmt_ycbcr_to_rgb().
+ */
 void tdc_pixfmt_unpack_ycbcr420(const uint8_t *src, uint32_t w, uint32_t h, uint8_t *dst, uint32_t dst_stride)
 {
     const uint32_t cw = (w + 1u) / 2u, ch = (h + 1u) / 2u;
     const uint8_t *cb_plane = src + (size_t)w * h;
     const uint8_t *cr_plane = cb_plane + (size_t)cw * ch;
-    for (uint32_t y = 0; y < h; y++) {
-        const uint8_t *ys = src + (size_t)w * y;
-        const uint8_t *cbs = cb_plane + (size_t)cw * (y / 2u);
-        const uint8_t *crs = cr_plane + (size_t)cw * (y / 2u);
-        uint8_t *d = dst + (size_t)dst_stride * y;
+    for (uint32_t cy = 0; cy < ch; cy++) {
+        const uint32_t y0 = 2u * cy;
+        const uint32_t rows = y0 + 1u < h ? 2u : 1u;
+        const uint8_t *cbs = cb_plane + (size_t)cw * cy;
+        const uint8_t *crs = cr_plane + (size_t)cw * cy;
         for (uint32_t cx = 0; cx < cw; cx++) {
-            /* One chroma sample's three offsets (Q16, rounding bias folded
-             * in), shared by its two pixels on this row. */
             const int32_t u = (int32_t)cbs[cx] - 128, v = (int32_t)crs[cx] - 128;
-            const int32_t dr = TDC_YCC_CR_R_Q16 * v + (1 << 15);
-            const int32_t dg = -TDC_YCC_CB_G_Q16 * u - TDC_YCC_CR_G_Q16 * v + (1 << 15);
-            const int32_t db = TDC_YCC_CB_B_Q16 * u + (1 << 15);
+            const int32_t orr = tdc_asr32(TDC_YCC_CR_R_Q16 * v + (1 << 15), 16);
+            const int32_t og = tdc_asr32(-TDC_YCC_CB_G_Q16 * u - TDC_YCC_CR_G_Q16 * v + (1 << 15), 16);
+            const int32_t ob = tdc_asr32(TDC_YCC_CB_B_Q16 * u + (1 << 15), 16);
             const uint32_t x0 = 2u * cx;
-            const uint32_t xn = x0 + 1u < w ? 2u : 1u;
-            for (uint32_t k = 0; k < xn; k++) {
-                const int32_t yq = (int32_t)ys[x0 + k] * 65536;
-                uint8_t *p = d + 3u * (x0 + k);
-                int32_t r = tdc_asr32(yq + dr, 16), g = tdc_asr32(yq + dg, 16), b = tdc_asr32(yq + db, 16);
-                p[0] = (uint8_t)(r < 0 ? 0 : (r > 255 ? 255 : r));
-                p[1] = (uint8_t)(g < 0 ? 0 : (g > 255 ? 255 : g));
-                p[2] = (uint8_t)(b < 0 ? 0 : (b > 255 ? 255 : b));
+            const uint32_t cols = x0 + 1u < w ? 2u : 1u;
+            for (uint32_t r = 0; r < rows; r++) {
+                const uint8_t *ys = src + (size_t)w * (y0 + r) + x0;
+                uint8_t *p = dst + (size_t)dst_stride * (y0 + r) + 3u * x0;
+                for (uint32_t k = 0; k < cols; k++) {
+                    const int32_t yv = ys[k];
+                    p[3u * k + 0u] = tdc_u8_add_sat(yv, orr);
+                    p[3u * k + 1u] = tdc_u8_add_sat(yv, og);
+                    p[3u * k + 2u] = tdc_u8_add_sat(yv, ob);
+                }
             }
         }
     }

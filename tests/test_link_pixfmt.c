@@ -102,6 +102,28 @@ static void test_ycbcr_to_rgb_vs_reference(void **state)
     assert_true(max_abs_unrounded < 0.51);
 }
 
+/* The 4:2:0 unpacker (one offset per chroma sample) equals the per-pixel
+ * conversion for every (Y, Cb, Cr). */
+static void test_ycbcr420_unpack_equals_pointwise(void **state)
+{
+    (void)state;
+    uint64_t mismatches = 0;
+    for (int cb = 0; cb < 256; cb++) {
+        for (int cr = 0; cr < 256; cr++) {
+            for (int y = 0; y < 256; y++) {
+                /* 2 x 1 image: luma y and 255 - y sharing one chroma sample. */
+                const uint8_t in[4] = {(uint8_t)y, (uint8_t)(255 - y), (uint8_t)cb, (uint8_t)cr};
+                uint8_t out[6], want[6];
+                tdc_pixfmt_unpack_ycbcr420(in, 2, 1, out, 6);
+                tdc_pixfmt_ycbcr_to_rgb((uint8_t)y, (uint8_t)cb, (uint8_t)cr, want);
+                tdc_pixfmt_ycbcr_to_rgb((uint8_t)(255 - y), (uint8_t)cb, (uint8_t)cr, want + 3);
+                mismatches += memcmp(out, want, 6) != 0;
+            }
+        }
+    }
+    assert_int_equal(mismatches, 0);
+}
+
 static void test_rgb30_and_rgb565_vs_reference(void **state)
 {
     (void)state;
@@ -187,6 +209,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_crc32_tables_and_check_value),
         cmocka_unit_test(test_ycbcr_to_rgb_vs_reference),
+        cmocka_unit_test(test_ycbcr420_unpack_equals_pointwise),
         cmocka_unit_test(test_rgb30_and_rgb565_vs_reference),
         cmocka_unit_test(test_rgb_to_ycbcr_vs_reference),
         cmocka_unit_test(test_payload_sizes),
