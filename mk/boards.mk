@@ -230,24 +230,24 @@ STREAMS := $(BUILD)/fw-streams
 
 $(FWH)/tdc_main.o: firmware/board/tdc_main.c $(GEN)/tdc_panels.h $(PANEL_CONFIG)
 	@mkdir -p $(@D)
-	$(CC) $(FW_CFLAGS) -Ifirmware/board -include $(PANEL_CONFIG) $(FW_CFG) -DTDC_FW_NO_MAIN -c $< -o $@
+	$(CC) $(FW_CFLAGS) -Ifirmware/board -include $(PANEL_CONFIG) $(FW_CFG) -DTDC_FW_NO_MAIN -MMD -MP -c $< -o $@
 $(FWH)/tdc_board_host.o: tests/arm/tdc_board_host.c firmware/board/tdc_board.h
 	@mkdir -p $(@D)
-	$(CC) $(HOST_CFLAGS) -Ifirmware/board -c $< -o $@
+	$(CC) $(HOST_CFLAGS) -Ifirmware/board -MMD -MP -c $< -o $@
 # Firmware sources whose compiled code depends on the panel config (the link
 # decoder's compile-time maximum size): built for this panel, linked before
 # the host library so its panel-independent copies are not used.
 FWH_PANEL_SRCS := $(shell grep -l '"tdc_link.h"' $(filter firmware/%.c,$(wildcard firmware/*.c)))
 $(FWH)/fw/%.o: firmware/%.c $(GEN)/tdc_panels.h $(PANEL_CONFIG)
 	@mkdir -p $(@D)
-	$(CC) $(FW_CFLAGS) -include $(PANEL_CONFIG) $(FW_CFG) -c $< -o $@
+	$(CC) $(FW_CFLAGS) -include $(PANEL_CONFIG) $(FW_CFG) -MMD -MP -c $< -o $@
 $(FWH)/tdc_fw_host: $(FWH)/tdc_main.o $(FWH)/tdc_board_host.o $(patsubst firmware/%.c,$(FWH)/fw/%.o,$(FWH_PANEL_SRCS)) \
                     $(FWLIB)
 	$(CC) $(HOST_LDFLAGS) $^ -o $@ $(HOST_LIBS)
 
 $(B)/tests/arm/fw_stream.o: tests/arm/fw_stream.c $(GEN)/tdc_panels.h
 	@mkdir -p $(@D)
-	$(CC) $(HOST_CFLAGS) -Isim/link -Itests/golden -c $< -o $@
+	$(CC) $(HOST_CFLAGS) -Isim/link -Itests/golden -MMD -MP -c $< -o $@
 $(B)/tests/fw_stream: $(B)/tests/arm/fw_stream.o $(B)/tests/golden/tdc_content.o $(SIMLIB) $(FWLIB)
 	$(CC) $(HOST_LDFLAGS) $^ -o $@ $(HOST_LIBS)
 
