@@ -11,7 +11,6 @@ $(GEN)/tdc_crc32_tables.h: $(CRC32_GEN) | $(GEN)
 # before it makes the header exist for any build rule (host or board).
 $(GEN)/tdc_panels.h: | $(GEN)/tdc_crc32_tables.h
 $(B)/firmware/tdc_crc32.o: $(GEN)/tdc_crc32_tables.h
-FW_GEN_HDRS += $(GEN)/tdc_crc32_tables.h
 
 FW_SRCS += firmware/tdc_crc32.c firmware/tdc_pixfmt.c firmware/tdc_link.c
 SIM_SRCS += sim/link/tdc_link_encode.c sim/link/tdc_link_file.c sim/link/tdc_pixfmt_ref.c sim/link/tdc_link_gen.c
