@@ -27,7 +27,7 @@ ARM_BOARDS := $(filter-out host,$(BOARDS))
 # Emulated boards: those whose board.mk names a QEMU machine.
 QEMU_BOARDS := $(sort $(patsubst boards/%/board.mk,%,$(shell grep -l '^BOARD_QEMU' boards/*/board.mk)))
 
-.PHONY: run-arm firmware-size test-arm size bench-arm arm-bench profile-arm arm-profile arm-golden arm-golden-check arm-image-check arm-fit-check arm-fw-check
+.PHONY: arm-loop-cost run-arm firmware-size test-arm size bench-arm arm-bench profile-arm arm-profile arm-golden arm-golden-check arm-image-check arm-fit-check arm-fw-check
 
 .SECONDEXPANSION:
 
@@ -261,6 +261,15 @@ $(BP)/fw-check: $(BP)/tdc-firmware.elf $(FWH)/tdc_fw_host $(foreach m,$(FW_MODES
 	   $(foreach m,$(FW_MODES),echo 'tests/arm/run_fw_qemu.sh "$(BOARD)/$(PANEL)/$(m)" $(QEMU_TIMEOUT) $(BP)/tdc-firmware.elf $(FWH)/tdc_fw_host $(STREAMS)/$(PANEL)-$(m).tdcs $(BOARD_QEMU) || rc=1';) \
 	   echo 'exit $$rc'; } > $@
 	@chmod +x $@
+# Instructions per shown frame of the whole loop on this pair's streams.
+PANEL_PIXELS = $(shell echo $(PANEL_DIMS) | awk '{ print $$1 * $$2 * $$3 }')
+$(BP)/loop.tsv: $(BP)/tdc-firmware.elf $(INSN_PLUGIN) tests/arm/loop_cost.sh \
+                $(foreach m,$(FW_MODES),$(STREAMS)/$(PANEL)-$(m).tdcs)
+	@for m in $(filter-out plain,$(FW_MODES)); do \
+	    tests/arm/loop_cost.sh $(ARM_NM) $(INSN_PLUGIN) $< $(STREAMS)/$(PANEL)-$$m.tdcs $(PANEL_PIXELS) \
+	        "frame loop, $(PANEL) $$m stream" $(BOARD_QEMU) || exit 1; done > $@.tmp && mv $@.tmp $@
+arm-loop-cost: $(BP)/loop.tsv
+
 arm-fw-check: $(BP)/fw-check
 	@tests/run_tests.sh "$(BOARD)-$(PANEL)" $(BP)/fw-check
 
@@ -324,9 +333,18 @@ $(INSN_PLUGIN): tests/arm/tdc_insn_plugin.c | $(BUILD)/tools
 profile-arm: $(INSN_PLUGIN)
 	@$(MAKE) --no-print-directory -j2 BOARD=$(if $(filter host,$(BOARD)),$(firstword $(QEMU_BOARDS)),$(BOARD)) arm-profile
 
+# Whole frame loop per shown frame (mps3-an547: the board whose DDR holds
+# every stage at these panel sizes).
+ARM_LOOP_PAIRS ?= mps3-an547:htc-vive mps3-an547:lcd-240
 bench-arm: deps $(INSN_PLUGIN)
 	@for b in $(QEMU_BOARDS); do $(MAKE) --no-print-directory -j2 BOARD=$$b arm-bench >/dev/null || exit 1; done
 	@ARM_OPT="$(ARM_OPT)" tests/arm/bench_table.sh $(foreach b,$(QEMU_BOARDS),$(b)=$(BUILD)/arm-$(b)/bench.tsv)
+	@for t in $(ARM_LOOP_PAIRS); do \
+	    $(MAKE) --no-print-directory -j2 BOARD=$${t%%:*} PANEL=$${t#*:} arm-loop-cost >/dev/null || exit 1; done
+	@echo; echo "whole frame loop per shown frame (link decode + stages; frames 1.., without the panel checksum):"
+	@printf '%-44s %8s %16s %12s\n' stream board "instructions" "per pixel"
+	@for t in $(ARM_LOOP_PAIRS); do awk -F '\t' -v b=$${t%%:*} '{ printf "%-44s %8s %16s %12s\n", $$1, b, $$2, $$3 }' \
+	    $(BUILD)/$${t%%:*}-$${t#*:}/loop.tsv; done
 
 # make size: every board/panel pair with the board's default stages.
 size:

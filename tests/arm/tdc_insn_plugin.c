@@ -13,9 +13,9 @@
  * taken, the same for every mark, so differences between marks are exact
  * instruction counts of the code in between.
  *
- * Usage: qemu-system-arm ... -plugin tdc-insn-count.so,mark=0xADDR,out=FILE[,tbprof=FILE2]
- * FILE gets one line per mark: "<index> <instructions so far>", and a last
- * line "total <instructions>".  FILE2 (optional profile) gets one line per
+ * Usage: qemu-system-arm ... -plugin tdc-insn-count.so,mark=0xADDR[+0xADDR2...],out=FILE[,tbprof=FILE2]
+ * FILE gets one line per mark: "<index> <instructions so far> <which mark
+ * address, 0-based>", and a last line "total <instructions>".  FILE2 (optional profile) gets one line per
  * translated block: "<vaddr hex> <instructions in block> <executions>";
  * tests/arm/profile_arm.sh sums them per function.
  */
@@ -50,10 +50,13 @@ void qemu_plugin_outs(const char *string);
 QEMU_PLUGIN_EXPORT int qemu_plugin_version = 1;
 
 #define MAX_MARKS 4096
+#define MAX_MARK_ADDRS 8
 
 static uint64_t g_insns;
-static uint64_t g_mark_addr = UINT64_MAX;
+static uint64_t g_mark_addr[MAX_MARK_ADDRS];
+static unsigned g_nmark_addr;
 static uint64_t g_marks[MAX_MARKS];
+static unsigned g_mark_id[MAX_MARKS];
 static unsigned g_nmarks;
 static char g_out[1024];
 static char g_prof[1024];
@@ -89,8 +92,8 @@ static tb_rec_t *new_rec(void)
 static void on_mark(unsigned int vcpu, void *userdata)
 {
     (void)vcpu;
-    (void)userdata;
     if (g_nmarks < MAX_MARKS) {
+        g_mark_id[g_nmarks] = (unsigned)(uintptr_t)userdata;
         g_marks[g_nmarks++] = g_insns;
     }
 }
@@ -110,8 +113,11 @@ static void on_tb_trans(qemu_plugin_id_t id, struct qemu_plugin_tb *tb)
     }
     for (size_t i = 0; i < n; i++) {
         struct qemu_plugin_insn *insn = qemu_plugin_tb_get_insn(tb, i);
-        if (qemu_plugin_insn_vaddr(insn) == g_mark_addr) {
-            qemu_plugin_register_vcpu_insn_exec_cb(insn, on_mark, QEMU_PLUGIN_CB_NO_REGS, NULL);
+        const uint64_t va = qemu_plugin_insn_vaddr(insn);
+        for (unsigned m = 0; m < g_nmark_addr; m++) {
+            if (va == g_mark_addr[m]) {
+                qemu_plugin_register_vcpu_insn_exec_cb(insn, on_mark, QEMU_PLUGIN_CB_NO_REGS, (void *)(uintptr_t)m);
+            }
         }
     }
 }
@@ -126,7 +132,7 @@ static void on_plugin_exit(qemu_plugin_id_t id, void *userdata)
         return;
     }
     for (unsigned i = 0; i < g_nmarks; i++) {
-        fprintf(f, "%u %llu\n", i, (unsigned long long)g_marks[i]);
+        fprintf(f, "%u %llu %u\n", i, (unsigned long long)g_marks[i], g_mark_id[i]);
     }
     fprintf(f, "total %llu\n", (unsigned long long)g_insns);
     fclose(f);
@@ -149,14 +155,22 @@ QEMU_PLUGIN_EXPORT int qemu_plugin_install(qemu_plugin_id_t id, const qemu_info_
     (void)info;
     for (int i = 0; i < argc; i++) {
         if (!strncmp(argv[i], "mark=", 5)) {
-            g_mark_addr = strtoull(argv[i] + 5, NULL, 0) & ~1ull; /* Thumb bit off */
+            const char *p = argv[i] + 5;
+            while (*p && g_nmark_addr < MAX_MARK_ADDRS) {
+                char *end;
+                g_mark_addr[g_nmark_addr++] = strtoull(p, &end, 0) & ~1ull; /* Thumb bit off */
+                p = *end == '+' ? end + 1 : end;
+                if (end == p && *p) {
+                    break;
+                }
+            }
         } else if (!strncmp(argv[i], "out=", 4)) {
             snprintf(g_out, sizeof g_out, "%s", argv[i] + 4);
         } else if (!strncmp(argv[i], "tbprof=", 7)) {
             snprintf(g_prof, sizeof g_prof, "%s", argv[i] + 7);
         }
     }
-    if (g_mark_addr == UINT64_MAX || !g_out[0]) {
+    if (!g_nmark_addr || !g_out[0]) {
         qemu_plugin_outs("tdc-insn-count: need mark=0xADDR,out=FILE\n");
         return -1;
     }
