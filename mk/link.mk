@@ -58,7 +58,7 @@ fuzz-seeds: $(FUZZ_SEEDS_BIN)
 # ---------------------------------------------------------------------------
 # Tests, golden vectors, benchmark.
 # ---------------------------------------------------------------------------
-TESTS += $(B)/tests/test_link $(B)/tests/test_link_pixfmt $(B)/tests/test_link_file
+TESTS += $(B)/tests/test_link $(B)/tests/test_link_pixfmt $(B)/tests/test_link_file $(B)/tests/test_link_mask
 GOLDEN_STAGES += link
 # mk/golden.mk expands its object list before this fragment is read
 # (fragments load in name order): add ours to the runner explicitly.
