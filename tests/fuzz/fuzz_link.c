@@ -3,13 +3,15 @@
  * (firmware/tdc_link.c).  Built with clang -fsanitize=fuzzer,address,undefined
  * by mk/link.mk: `make fuzz FUZZ_SECONDS=600`, smoke run in `make test`.
  *
- * Input: byte 0 selects the chunking (bits 0..5: seed of the chunk sizes,
- * 0 = whole input at once), random tdc_link_decoder_resync() calls between
- * chunks (bit 6) and whether CRCs are repaired first (bit 7):
+ * Input: byte 0 selects the chunking (bits 0..4: seed of the chunk sizes,
+ * 0 = whole input at once), the panel and build (bit 5: 0 = stereo with
+ * every buffer, 1 = mono without subframe/pattern/per-sample-motion buffers),
+ * random tdc_link_decoder_resync() calls between chunks (bit 6) and whether
+ * CRCs are repaired first (bit 7):
  * mutated packets almost never keep a valid CRC, so half of the runs
  * recompute header and payload CRCs of everything that parses as a packet,
  * which lets the fuzzer reach the field checks, sequencing and unpacking.
- * The rest of the input is the link byte stream for a 19 x 13 stereo panel.
+ * The rest of the input is the link byte stream for the 19 x 13 panel.
  *
  * Checked on every event, beyond the sanitizers:
  *  - a buffer changes only with an accepted packet of its kind and eye
@@ -103,7 +105,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
 
     static tdc_link_decoder_t dec;
-    tdc_link_config_t cfg = {FW, FH, 2};
+    const int mono = (mode & 0x20u) != 0;
+    tdc_link_config_t cfg = {FW, FH, (uint8_t)(mono ? 1 : 2)};
     tdc_link_buffers_t b;
     memset(&b, 0, sizeof b);
     b.staging = staging;
@@ -113,10 +116,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     for (int e = 0; e < 2; e++) {
         b.full[e] = full[e];
         b.reduced[e] = reduced[e];
-        b.subframe[e] = subframe[e];
+        b.subframe[e] = mono ? NULL : subframe[e];
         b.motion[e] = motion[e];
-        b.sample_motion[e] = sample_motion[e];
-        b.pattern[e] = pattern[e];
+        b.sample_motion[e] = mono ? NULL : sample_motion[e];
+        b.pattern[e] = mono ? NULL : pattern[e];
     }
     if (tdc_link_decoder_init(&dec, &cfg, &b) != TDC_OK) {
         abort();
@@ -129,12 +132,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 
     uint32_t err_events[TDC_LINK_ERR_COUNT] = {0};
     uint32_t ok_events = 0;
-    uint32_t rng = 0x9E3779B9u ^ (mode & 0x3Fu);
+    uint32_t rng = 0x9E3779B9u ^ (mode & 0x1Fu);
     size_t pos = 0;
     unsigned guard = 0;
     while (pos < n || dec.ev_count) {
         size_t chunk = n - pos;
-        if ((mode & 0x3Fu) != 0) {
+        if ((mode & 0x1Fu) != 0) {
             rng ^= rng << 13;
             rng ^= rng >> 17;
             rng ^= rng << 5;
@@ -167,7 +170,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             err_events[ev.error]++;
         } else if (ev.type == TDC_LINK_EV_PACKET) {
             ok_events++;
-            if (ev.kind < TDC_LINK_KIND_FIRST || ev.kind > TDC_LINK_KIND_LAST || ev.eye > 1) {
+            if (ev.kind < TDC_LINK_KIND_FIRST || ev.kind > TDC_LINK_KIND_LAST || ev.eye >= cfg.eyes) {
                 abort();
             }
             const unsigned slot = (ev.kind == TDC_LINK_KIND_MOTION && (ev.flags & TDC_LINK_PKT_MV_PER_SAMPLE))

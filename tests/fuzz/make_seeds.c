@@ -1,7 +1,8 @@
 /*
  * make_seeds.c - writes the libFuzzer seed corpus for fuzz_link.c
  * (tests/fuzz/corpus/): valid streams for the harness's 19 x 13 stereo
- * panel in every pixel format and stream mode, plus damaged variants.
+ * panel in every pixel format and stream mode (and the mono variants for
+ * the harness's mono build), plus damaged variants.
  * Byte 0 of each file is the harness's mode byte (chunking, CRC repair).
  * Usage: make_seeds OUTDIR      (mk/link.mk: make fuzz-seeds)
  */
@@ -74,6 +75,20 @@ int main(int argc, char **argv)
                 return 1;
             }
             char name[96];
+            if (mode != 1) {
+                /* The same stream for a mono panel (harness mode bit 5). */
+                tdc_link_gen_opts_t om = o;
+                om.info.eyes = 1;
+                static uint8_t mono[1 << 18];
+                const size_t nm = tdc_link_gen_stream(mono, sizeof mono, &om, (uint8_t *)scratch, sizeof scratch,
+                                                      NULL, 0, NULL);
+                if (!nm) {
+                    fprintf(stderr, "make_seeds: generation failed\n");
+                    return 1;
+                }
+                snprintf(name, sizeof name, "m%d-%s-mono", mode, fmt_names[fmt]);
+                bad |= write_seed(argv[1], name, 0xA3, mono, nm);
+            }
             snprintf(name, sizeof name, "m%d-%s-whole", mode, fmt_names[fmt]);
             bad |= write_seed(argv[1], name, 0x00, stream, n);
             snprintf(name, sizeof name, "m%d-%s-chunked-repair", mode, fmt_names[fmt]);
