@@ -56,6 +56,22 @@ int32_t tdc_div_q15(uint32_t num, uint32_t den);
  */
 int32_t tdc_div_q30(uint32_t num, uint32_t den);
 
+/*
+ * Integer hash: a 32-bit mix with full avalanche (xorshift-multiply
+ * "lowbias32" constants).  Unsigned arithmetic only, so it wraps the same
+ * on every CPU.  Used for deterministic noise and jitter in test contents,
+ * the renderer's sampling and the simulator's scenes.
+ */
+static inline uint32_t tdc_mix32(uint32_t x)
+{
+    x ^= x >> 16;
+    x *= 0x7feb352dU;
+    x ^= x >> 15;
+    x *= 0x846ca68bU;
+    x ^= x >> 16;
+    return x;
+}
+
 /* floor(sqrt(x)) for a 64-bit unsigned x; exact (digit-by-digit method). */
 uint32_t tdc_isqrt64(uint64_t x);
 

@@ -20,6 +20,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "tdc_math.h"
 #include "tdc_render_trace.h"
 
 double tdc_r_now_ms(void)
@@ -29,19 +30,10 @@ double tdc_r_now_ms(void)
     return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
 }
 
-static uint32_t mix32(uint32_t h)
-{
-    h ^= h >> 16;
-    h *= 0x7FEB352Du;
-    h ^= h >> 15;
-    h *= 0x846CA68Bu;
-    h ^= h >> 16;
-    return h;
-}
 
 double tdc_r_rand(uint32_t seed, uint32_t frame, uint32_t dst, uint32_t k, uint32_t dim)
 {
-    uint32_t h = mix32(seed ^ mix32(frame ^ mix32(dst ^ mix32(k * 16u + dim + 0x9E3779B9u))));
+    uint32_t h = tdc_mix32(seed ^ tdc_mix32(frame ^ tdc_mix32(dst ^ tdc_mix32(k * 16u + dim + 0x9E3779B9u))));
     return (h >> 8) * (1.0 / 16777216.0);
 }
 

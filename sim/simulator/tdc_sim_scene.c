@@ -11,6 +11,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "tdc_math.h"
+
 static const char *const k_scene_names[TDC_SCENE_COUNT] = {"static", "pan",   "text",  "discs", "thin",
                                                            "fence",  "black", "white", "cut"};
 
@@ -54,13 +56,7 @@ typedef struct {
 
 static uint32_t hash2(int32_t a, int32_t b, uint32_t seed)
 {
-    uint32_t x = (uint32_t)a * 0x9E3779B1u ^ ((uint32_t)b * 0x85EBCA77u) ^ (seed * 0xC2B2AE3Du);
-    x ^= x >> 16;
-    x *= 0x7feb352dU;
-    x ^= x >> 15;
-    x *= 0x846ca68bU;
-    x ^= x >> 16;
-    return x;
+    return tdc_mix32((uint32_t)a * 0x9E3779B1u ^ ((uint32_t)b * 0x85EBCA77u) ^ (seed * 0xC2B2AE3Du));
 }
 
 static double clamp01(double v)

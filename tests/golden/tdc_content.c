@@ -1,6 +1,8 @@
 /* tdc_content.c - deterministic test contents (see tdc_content.h). */
 #include "tdc_content.h"
 
+#include "tdc_math.h"
+
 static const char *const k_names[TDC_CONTENT_COUNT] = {
     "edge", "text", "noise", "black", "white", "primaries", "checker", "flash", "gradient"
 };
@@ -10,15 +12,6 @@ const char *tdc_content_name(tdc_content_t c)
     return (unsigned)c < TDC_CONTENT_COUNT ? k_names[c] : "?";
 }
 
-static uint32_t hash32(uint32_t x)
-{
-    x ^= x >> 16;
-    x *= 0x7feb352dU;
-    x ^= x >> 15;
-    x *= 0x846ca68bU;
-    x ^= x >> 16;
-    return x;
-}
 
 static void put(uint8_t *p, uint8_t r, uint8_t g, uint8_t b)
 {
@@ -50,7 +43,7 @@ void tdc_content_frame(tdc_content_t c, uint32_t t, uint32_t seed, uint8_t *rgb,
                 uint32_t yy = (uint32_t)y + t * 2u;
                 uint32_t cx = (uint32_t)x / 6u, cy = yy / 9u;
                 uint32_t gx = (uint32_t)x % 6u, gy = yy % 9u;
-                uint32_t glyph = hash32(cx * 7919u + cy * 104729u + seed);
+                uint32_t glyph = tdc_mix32(cx * 7919u + cy * 104729u + seed);
                 int ink = 0;
                 if (gx < 5u && gy < 7u && (glyph & 7u) != 0u) {
                     /* strokes: a few vertical and horizontal bars per glyph */
@@ -65,7 +58,7 @@ void tdc_content_frame(tdc_content_t c, uint32_t t, uint32_t seed, uint8_t *rgb,
                 break;
             }
             case TDC_CONTENT_NOISE: {
-                uint32_t v = hash32(((uint32_t)y * 65521u + (uint32_t)x) ^ (t * 2654435761u) ^ seed);
+                uint32_t v = tdc_mix32(((uint32_t)y * 65521u + (uint32_t)x) ^ (t * 2654435761u) ^ seed);
                 put(p, (uint8_t)v, (uint8_t)(v >> 8), (uint8_t)(v >> 16));
                 break;
             }
