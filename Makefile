@@ -77,6 +77,10 @@ SIMLIB := $(B)/libtdcsim.a
 
 include $(sort $(wildcard mk/*.mk))
 
+# Golden runner over every registered stage (GOLDEN_STAGES is complete here).
+$(B)/tests/tdc_golden: $(B)/tests/golden/golden_host_main.o $(GOLDEN_OBJS) $(FWLIB)
+	$(CC) $(HOST_LDFLAGS) $(filter %.o,$^) -o $@ $(FWLIB) $(HOST_LIBS)
+
 # ---------------------------------------------------------------------------
 # Debian packages: installed once, skipped when present.
 # ---------------------------------------------------------------------------

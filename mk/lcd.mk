@@ -48,10 +48,6 @@ TESTS += $(B)/tests/test_lcd_solve
 TESTS += $(B)/tests/test_lcd_sim
 TESTS += $(B)/tests/test_lcd_stage
 GOLDEN_STAGES += lcd
-# mk/golden.mk expands its object list before this fragment is read: add ours
-# (the archive is linked again after it through HOST_LIBS, as mk/link.mk does).
-$(B)/tests/tdc_golden: $(B)/tests/golden/golden_lcd.o
-$(B)/tests/tdc_golden: HOST_LIBS := $(FWLIB) $(HOST_LIBS)
 
 # Compile-out check: an OLED build's object set has no LCD symbols.
 LCD_OLED_PANELS = $(foreach p,$(PANELS),$(if $(filter oled,$(shell awk '$$1 == "type" { print $$2 }' boards/panels/$(p).panel)),$(p)))

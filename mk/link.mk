@@ -60,11 +60,6 @@ fuzz-seeds: $(FUZZ_SEEDS_BIN)
 # ---------------------------------------------------------------------------
 TESTS += $(B)/tests/test_link $(B)/tests/test_link_pixfmt $(B)/tests/test_link_file $(B)/tests/test_link_mask
 GOLDEN_STAGES += link
-# mk/golden.mk expands its object list before this fragment is read
-# (fragments load in name order): add ours to the runner explicitly.
-# It lands after $(FWLIB) on the link line, so name the library once more.
-$(B)/tests/tdc_golden: $(B)/tests/golden/golden_link.o
-$(B)/tests/tdc_golden: HOST_LIBS := $(FWLIB) $(HOST_LIBS)
 BENCHES += $(B)/tests/bench_link
 TEST_EXTRA += fuzz-smoke
 
