@@ -10,7 +10,7 @@
 #   make profile-arm [GROUP=trm]    which functions those instructions are spent in (M7)
 #
 # A board folder holds board.mk (BOARD_CPU, BOARD_LDS, BOARD_MEM, BOARD_FLASH,
-# BOARD_QEMU for emulated boards), board.h, startup.c and the linker script.
+# BOARD_QEMU for emulated boards), board.h, startup.c (or BOARD_STARTUP: the QEMU boards share firmware/board/tdc_startup_qemu.c) and the linker script.
 
 DEPS_PKGS += gcc-arm-none-eabi binutils-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm
 TEST_EXTRA += test-arm
@@ -60,7 +60,7 @@ $(BA)/memory.ld: boards/$(BOARD)/board.mk mk/boards.mk
 	   $(foreach r,$(BOARD_MEM),echo '    $(word 1,$(subst :, ,$(r))) ($(word 4,$(subst :, ,$(r)))) : ORIGIN = $(word 2,$(subst :, ,$(r))), LENGTH = $(word 3,$(subst :, ,$(r)))';) \
 	   echo '}'; } > $@
 
-ARM_BOARD_SRCS := boards/$(BOARD)/startup.c firmware/board/tdc_crt0.c \
+ARM_BOARD_SRCS := $(or $(BOARD_STARTUP),boards/$(BOARD)/startup.c) firmware/board/tdc_crt0.c \
                   $(if $(BOARD_QEMU),firmware/board/tdc_semihost.c)
 ARM_LDDEPS := $(BA)/memory.ld $(BOARD_LDS) firmware/board/tdc_cortexm_sections.ld
 

@@ -1,7 +1,11 @@
 /*
- * startup.c - MPS2+ AN500 (Cortex-M7) vector table and reset handler.
- * QEMU resets the core with VTOR = 0: initial SP and PC come from the
- * table at the start of ZBT SSRAM1 (region CODE).
+ * tdc_startup_qemu.c - vector table and reset handler of the boards QEMU
+ * runs (BOARD_STARTUP in their board.mk):
+ *   mps2-an500 (Cortex-M7): QEMU resets the core with VTOR = 0, so initial
+ *     SP and PC come from the table at the start of ZBT SSRAM1 (region CODE);
+ *   mps3-an547 (Cortex-M55): QEMU resets with the Secure VTOR at the ITCM,
+ *     so they come from the table at its start (region ITCM).
+ * The linker script of each board places .vectors there.
  */
 #include <stdint.h>
 
