@@ -1,15 +1,7 @@
 /* tdc_link_gen.c - deterministic synthetic link streams (see tdc_link_gen.h). */
 #include "tdc_link_gen.h"
 
-static uint32_t mix32(uint32_t x)
-{
-    x ^= x >> 16;
-    x *= 0x7FEB352Du;
-    x ^= x >> 15;
-    x *= 0x846CA68Bu;
-    x ^= x >> 16;
-    return x;
-}
+#include "tdc_math.h"
 
 void tdc_link_gen_rgb(uint8_t *rgb, uint32_t w, uint32_t h, uint32_t frame, uint32_t eye, uint32_t seed)
 {
@@ -18,7 +10,7 @@ void tdc_link_gen_rgb(uint8_t *rgb, uint32_t w, uint32_t h, uint32_t frame, uint
     for (uint32_t y = 0; y < h; y++) {
         for (uint32_t x = 0; x < w; x++) {
             uint8_t *p = rgb + ((size_t)w * y + x) * 3u;
-            const uint32_t n = mix32(seed ^ (x * 0x9E3779B1u) ^ (y * 0x85EBCA77u) ^ (frame * 0xC2B2AE3Du) ^ eye);
+            const uint32_t n = tdc_mix32(seed ^ (x * 0x9E3779B1u) ^ (y * 0x85EBCA77u) ^ (frame * 0xC2B2AE3Du) ^ eye);
             const int edge = ((x + 3u * frame) % 16u) < 8u;
             p[0] = (uint8_t)(x * 255u / (w > 1 ? w - 1u : 1u));
             p[1] = (uint8_t)(edge ? 230u + (n & 15u) : 20u + (n & 15u));
@@ -30,7 +22,7 @@ void tdc_link_gen_rgb(uint8_t *rgb, uint32_t w, uint32_t h, uint32_t frame, uint
 void tdc_link_gen_mv(int16_t *mv, size_t count, uint32_t frame, uint32_t eye, uint32_t seed)
 {
     for (size_t i = 0; i < count; i++) {
-        const uint32_t n = mix32(seed ^ (uint32_t)i ^ (frame << 20) ^ (eye << 30));
+        const uint32_t n = tdc_mix32(seed ^ (uint32_t)i ^ (frame << 20) ^ (eye << 30));
         /* Full int16 range now and then, small vectors mostly. */
         const int32_t v = (n & 0x100u) ? (int32_t)(n >> 16) - 32768 : (int32_t)(n & 0xFFu) - 128;
         mv[i] = (int16_t)v;
@@ -40,7 +32,7 @@ void tdc_link_gen_mv(int16_t *mv, size_t count, uint32_t frame, uint32_t eye, ui
 void tdc_link_gen_pattern(uint8_t *bits, size_t nbytes, uint32_t tiles, uint32_t frame, uint32_t eye, uint32_t seed)
 {
     for (size_t i = 0; i < nbytes; i++) {
-        bits[i] = (uint8_t)mix32(seed ^ (uint32_t)i ^ (frame * 977u) ^ (eye << 28));
+        bits[i] = (uint8_t)tdc_mix32(seed ^ (uint32_t)i ^ (frame * 977u) ^ (eye << 28));
     }
     if (tiles % 8u && nbytes) {
         bits[nbytes - 1u] &= (uint8_t)((1u << (tiles % 8u)) - 1u);

@@ -29,6 +29,11 @@ uint64_t tdc_fnv1a64(uint64_t h, const void *data, size_t n);
 void tdc_golden_emit(tdc_golden_ctx_t *ctx, const char *stage, const char *vector, uint32_t frame,
                      uint64_t checksum);
 
+/* Vector-name builders (no stdio): append s / decimal v at o, return the
+ * new end.  The caller's buffer must hold the whole name. */
+char *tdc_golden_put_str(char *o, const char *s);
+char *tdc_golden_put_u32(char *o, uint32_t v);
+
 /* Deterministic PRNG (xorshift32): same sequence on every CPU. */
 static inline uint32_t tdc_golden_rand(uint32_t *state)
 {

@@ -49,3 +49,25 @@ void tdc_golden_emit(tdc_golden_ctx_t *ctx, const char *stage, const char *vecto
     ctx->lines++;
     ctx->write_line(ctx, line);
 }
+
+char *tdc_golden_put_str(char *o, const char *s)
+{
+    while (*s) {
+        *o++ = *s++;
+    }
+    return o;
+}
+
+char *tdc_golden_put_u32(char *o, uint32_t v)
+{
+    char d[12];
+    int n = 0;
+    do {
+        d[n++] = (char)('0' + v % 10u);
+        v /= 10u;
+    } while (v);
+    while (n) {
+        *o++ = d[--n];
+    }
+    return o;
+}

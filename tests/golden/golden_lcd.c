@@ -29,41 +29,19 @@ typedef struct {
     uint8_t bits;
 } lcd_vector_t;
 
-static char *put(char *o, const char *s)
-{
-    while (*s) {
-        *o++ = *s++;
-    }
-    return o;
-}
-
-static char *put_u(char *o, uint32_t v)
-{
-    char d[12];
-    int n = 0;
-    do {
-        d[n++] = (char)('0' + v % 10u);
-        v /= 10u;
-    } while (v);
-    while (n) {
-        *o++ = d[--n];
-    }
-    return o;
-}
-
 static void run_vector(tdc_golden_ctx_t *ctx, const lcd_vector_t *v)
 {
     static const char *const mode_name[4] = {"gamma", "exact", "od17", "od33"};
     char name[80];
-    char *o = put(name, tdc_content_name(v->content));
+    char *o = tdc_golden_put_str(name, tdc_content_name(v->content));
     *o++ = '-';
-    o = put(o, v->panel->name);
+    o = tdc_golden_put_str(o, v->panel->name);
     *o++ = '-';
-    o = put_u(o, v->rate);
-    o = put(o, "hz-");
-    o = put(o, mode_name[v->mode & 3u]);
-    o = put(o, "-b");
-    o = put_u(o, v->bits);
+    o = tdc_golden_put_u32(o, v->rate);
+    o = tdc_golden_put_str(o, "hz-");
+    o = tdc_golden_put_str(o, mode_name[v->mode & 3u]);
+    o = tdc_golden_put_str(o, "-b");
+    o = tdc_golden_put_u32(o, v->bits);
     *o = 0;
 
     tdc_lcd_config_t cfg = {GW, GH, v->rate, v->mode, v->bits};

@@ -24,44 +24,22 @@ typedef struct {
     const tdc_panel_t *panel;
 } trm_vector_t;
 
-static char *put(char *o, const char *s)
-{
-    while (*s) {
-        *o++ = *s++;
-    }
-    return o;
-}
-
-static char *put_u(char *o, uint32_t v)
-{
-    char d[12];
-    int n = 0;
-    do {
-        d[n++] = (char)('0' + v % 10u);
-        v /= 10u;
-    } while (v);
-    while (n) {
-        *o++ = d[--n];
-    }
-    return o;
-}
-
 static void run_vector(tdc_golden_ctx_t *ctx, const trm_vector_t *v)
 {
     char name[64];
-    char *o = put(name, tdc_content_name(v->content));
+    char *o = tdc_golden_put_str(name, tdc_content_name(v->content));
     *o++ = '-';
-    o = put_u(o, v->w);
+    o = tdc_golden_put_u32(o, v->w);
     *o++ = 'x';
-    o = put_u(o, v->h);
-    o = put(o, "-r");
-    o = put_u(o, v->rn);
+    o = tdc_golden_put_u32(o, v->h);
+    o = tdc_golden_put_str(o, "-r");
+    o = tdc_golden_put_u32(o, v->rn);
     *o++ = '_';
-    o = put_u(o, v->rd);
-    o = put(o, "-s");
-    o = put_u(o, v->s_q8);
+    o = tdc_golden_put_u32(o, v->rd);
+    o = tdc_golden_put_str(o, "-s");
+    o = tdc_golden_put_u32(o, v->s_q8);
     *o++ = '-';
-    o = put(o, v->panel->name);
+    o = tdc_golden_put_str(o, v->panel->name);
     *o = 0;
 
     tdc_trm_config_t cfg;
