@@ -517,6 +517,20 @@ static void asm_subframe(sim_mode_t *m, tdc_source_t *src, double t, uint32_t lf
 #endif
 
 /* Produces drive codes for the next display frame and shows them. */
+#if TDC_SIM_HAVE_TRM
+/* The full-resolution frame of a TRM pair (TRM and NCSFI): render, send over
+ * the link, run the firmware's full-frame step on what the decoder got. */
+static void trm_full_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32_t lf)
+{
+    render_full(m, src, t, spp, 0, 0, 0, 0, TDC_MV_SURFACE);
+    if (tdc_sim_link_full(&m->link, lf, m->render) == 0) {
+        double t0 = now_s();
+        tdc_trm_full(&m->trm, m->link.full, (uint32_t)m->w * 3u, m->wanted, (uint32_t)m->w * 3u);
+        m->res->fw_s += now_s() - t0;
+    }
+}
+#endif
+
 static void mode_display_frame(sim_mode_t *m, tdc_source_t *src, int spp)
 {
     /* Frames are rendered for the middle of their emission (as a renderer
@@ -561,12 +575,7 @@ static void mode_display_frame(sim_mode_t *m, tdc_source_t *src, int spp)
             break;
         }
         if (even) {
-            render_full(m, src, t, spp, 0, 0, 0, 0, TDC_MV_SURFACE);
-            if (tdc_sim_link_full(&m->link, lf, m->render) == 0) {
-                t0 = now_s();
-                tdc_trm_full(&m->trm, m->link.full, (uint32_t)m->w * 3u, m->wanted, (uint32_t)m->w * 3u);
-                r->fw_s += now_s() - t0;
-            }
+            trm_full_frame(m, src, t, spp, lf);
         } else {
             /* the blurred frame comes from the same rendered frame */
             t0 = now_s();
@@ -582,12 +591,7 @@ static void mode_display_frame(sim_mode_t *m, tdc_source_t *src, int spp)
             break;
         }
         if (even) {
-            render_full(m, src, t, spp, 0, 0, 0, 0, TDC_MV_SURFACE);
-            if (tdc_sim_link_full(&m->link, lf, m->render) == 0) {
-                t0 = now_s();
-                tdc_trm_full(&m->trm, m->link.full, (uint32_t)m->w * 3u, m->wanted, (uint32_t)m->w * 3u);
-                r->fw_s += now_s() - t0;
-            }
+            trm_full_frame(m, src, t, spp, lf);
         } else {
             /* Renderer: full-res render prefiltered by D (TRM §4.3); its cost
              * is counted as the reduced frame's rays (a renderer traces the
