@@ -3,6 +3,25 @@
 
 #include "tdc_math.h"
 
+void tdc_link_gen_opts_plain(tdc_link_gen_opts_t *o, uint16_t stream_id, uint16_t w, uint16_t h, uint8_t eyes,
+                             uint16_t refresh_hz, tdc_pixfmt_t fmt, uint32_t frames, uint32_t seed)
+{
+    /* field by field, no memset: this file also builds freestanding */
+    const tdc_link_gen_opts_t zero = {0};
+    *o = zero;
+    o->stream_id = stream_id;
+    o->info.r_num = 1;
+    o->info.r_den = 1;
+    o->info.width = w;
+    o->info.height = h;
+    o->info.eyes = eyes;
+    o->info.refresh_hz = refresh_hz;
+    o->fmt = fmt;
+    o->frames = frames;
+    o->seed = seed;
+    o->with_stream_header = 1;
+}
+
 void tdc_link_gen_rgb(uint8_t *rgb, uint32_t w, uint32_t h, uint32_t frame, uint32_t eye, uint32_t seed)
 {
     /* Smooth ramps (chroma-friendly), a moving hard edge and some noise, so

@@ -32,6 +32,11 @@ typedef struct {
     uint32_t frame;
 } tdc_link_gen_packet_t;
 
+/* Options of a plain stream: stream header first, r = 1 (no reduced
+ * frames), no flags, frames from 0.  Callers change what they test. */
+void tdc_link_gen_opts_plain(tdc_link_gen_opts_t *o, uint16_t stream_id, uint16_t w, uint16_t h, uint8_t eyes,
+                             uint16_t refresh_hz, tdc_pixfmt_t fmt, uint32_t frames, uint32_t seed);
+
 /* Scratch bytes tdc_link_gen_stream needs for a w x h eye (4-byte aligned:
  * it also holds int16 motion vectors). */
 #define TDC_LINK_GEN_SCRATCH_BYTES(w, h) ((size_t)(w) * (h) * 4u)

@@ -122,21 +122,9 @@ static void run(tdc_golden_ctx_t *ctx, const char *vector, size_t n, size_t chun
 static size_t gen(uint32_t flags, tdc_pixfmt_t fmt, uint32_t frames, uint32_t seed)
 {
     tdc_link_gen_opts_t o;
-    for (size_t i = 0; i < sizeof o; i++) {
-        ((uint8_t *)&o)[i] = 0;
-    }
-    o.stream_id = 0x1D;
+    tdc_link_gen_opts_plain(&o, 0x1D, LW, LH, 2, 144, fmt, frames, seed);
     o.info.flags = flags;
-    o.info.r_num = (flags & TDC_LINK_STREAM_REDUCED) ? 1 : 1;
-    o.info.r_den = (flags & TDC_LINK_STREAM_REDUCED) ? 2 : 1;
-    o.info.width = LW;
-    o.info.height = LH;
-    o.info.eyes = 2;
-    o.info.refresh_hz = 144;
-    o.fmt = fmt;
-    o.frames = frames;
-    o.seed = seed;
-    o.with_stream_header = 1;
+    o.info.r_den = (flags & TDC_LINK_STREAM_REDUCED) ? 2 : 1; /* r = 1/2 with reduced frames */
     return tdc_link_gen_stream(g_stream, sizeof g_stream, &o, (uint8_t *)g_scratch, sizeof g_scratch, NULL, 0, NULL);
 }
 

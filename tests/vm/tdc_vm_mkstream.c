@@ -19,18 +19,7 @@ static int write_stream(const char *dir, const char *name, uint16_t id, int dama
     static uint8_t out[256 * 1024], scratch[TDC_LINK_GEN_SCRATCH_BYTES(W, H)];
     tdc_link_gen_packet_t pk[FRAMES + 1];
     tdc_link_gen_opts_t o;
-    memset(&o, 0, sizeof o);
-    o.stream_id = id;
-    o.info.r_num = 1;
-    o.info.r_den = 1;
-    o.info.width = W;
-    o.info.height = H;
-    o.info.eyes = 1;
-    o.info.refresh_hz = 90;
-    o.fmt = TDC_PIXFMT_RGB888;
-    o.frames = FRAMES;
-    o.seed = 11;
-    o.with_stream_header = 1;
+    tdc_link_gen_opts_plain(&o, id, W, H, 1, 90, TDC_PIXFMT_RGB888, FRAMES, 11);
     uint32_t npk = 0;
     size_t n = tdc_link_gen_stream(out, sizeof out, &o, scratch, sizeof scratch, pk, FRAMES + 1, &npk);
     if (n == 0 || npk != FRAMES + 1) {
