@@ -55,6 +55,22 @@ tdc_board_status_t tdc_board_transport_read(uint8_t *buf, uint32_t cap, uint32_t
 
 /* Panel out: frame `frame_index` is complete in fb (all eyes side by side,
  * RGB888 drive codes, rows stride bytes apart): show it. */
+/* Checksum of a shown RGB888 frame (64-bit FNV-1a over the visible bytes of
+ * each row): what the emulated boards and the host build of the frame loop
+ * print per frame, so their outputs compare bit for bit. */
+static inline uint64_t tdc_board_frame_checksum(const uint8_t *fb, uint32_t stride, uint32_t width, uint32_t height)
+{
+    uint64_t h = 0xcbf29ce484222325ULL;
+    for (uint32_t y = 0; y < height; y++) {
+        const uint8_t *row = fb + (size_t)y * stride;
+        for (uint32_t i = 0; i < width * 3u; i++) {
+            h ^= row[i];
+            h *= 0x100000001b3ULL;
+        }
+    }
+    return h;
+}
+
 tdc_board_status_t tdc_board_panel_show(const uint8_t *fb, uint32_t stride, uint32_t width, uint32_t height,
                                         uint32_t frame_index);
 

@@ -32,14 +32,7 @@ tdc_board_status_t tdc_board_transport_read(uint8_t *buf, uint32_t cap, uint32_t
 tdc_board_status_t tdc_board_panel_show(const uint8_t *fb, uint32_t stride, uint32_t width, uint32_t height,
                                         uint32_t frame_index)
 {
-    uint64_t h = 0xcbf29ce484222325ULL;
-    for (uint32_t y = 0; y < height; y++) {
-        const uint8_t *row = fb + (size_t)y * stride;
-        for (uint32_t i = 0; i < width * 3u; i++) {
-            h ^= row[i];
-            h *= 0x100000001b3ULL;
-        }
-    }
+    const uint64_t h = tdc_board_frame_checksum(fb, stride, width, height);
     printf("frame %u %016llx\n", (unsigned)frame_index, (unsigned long long)h);
     return TDC_BOARD_OK;
 }
