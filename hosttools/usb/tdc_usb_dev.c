@@ -8,6 +8,7 @@
 
 #include <stdio.h>
 #include <string.h>
+#include <time.h>
 
 const char *tdc_exit_name(tdc_exit_t e)
 {
@@ -237,13 +238,43 @@ tdc_exit_t tdc_usb_claim(tdc_board_t *b, int iface)
     return TDC_EXIT_OK;
 }
 
+/*
+ * A transfer cut by an unplug does not always fail with NO_DEVICE: the host
+ * controller may kill the URB (-EPROTO, -ESHUTDOWN: LIBUSB_ERROR_IO) before
+ * the hub driver has noticed the disconnect.  Before reporting an I/O-class
+ * error, ask the device for its status a few times (50 ms apart, 100 ms
+ * timeout each, 0.5 s in all): NO_DEVICE then means it went away; an answer
+ * means the error was real and is reported as it was.
+ */
+static int reclassify_gone(tdc_board_t *b, int err)
+{
+    if (b == NULL || b->h == NULL)
+        return err;
+    if (err != LIBUSB_ERROR_IO && err != LIBUSB_ERROR_OTHER && err != LIBUSB_ERROR_OVERFLOW &&
+        err != LIBUSB_ERROR_INTERRUPTED)
+        return err;
+    for (int i = 0; i < 5; i++) {
+        uint8_t st[2];
+        int r = libusb_control_transfer(b->h, LIBUSB_ENDPOINT_IN | LIBUSB_REQUEST_TYPE_STANDARD |
+                                                  LIBUSB_RECIPIENT_DEVICE,
+                                        LIBUSB_REQUEST_GET_STATUS, 0, 0, st, sizeof st, 100);
+        if (r == LIBUSB_ERROR_NO_DEVICE)
+            return LIBUSB_ERROR_NO_DEVICE;
+        if (r >= 0)
+            return err;
+        struct timespec ts = {0, 50 * 1000 * 1000};
+        nanosleep(&ts, NULL);
+    }
+    return err;
+}
+
 tdc_exit_t tdc_usb_ctrl_in(tdc_board_t *b, const char *what, uint8_t type, uint8_t req,
                            uint16_t value, uint16_t index, uint8_t *data, uint16_t len, int *got)
 {
     int r = libusb_control_transfer(b->h, (uint8_t)(LIBUSB_ENDPOINT_IN | type), req, value, index,
                                     data, len, b->timeout_ms);
     if (r < 0)
-        return tdc_usb_fail(b, what, r);
+        return tdc_usb_fail(b, what, reclassify_gone(b, r));
     *got = r;
     return TDC_EXIT_OK;
 }
@@ -255,7 +286,7 @@ tdc_exit_t tdc_usb_ctrl_out(tdc_board_t *b, const char *what, uint8_t type, uint
     int r = libusb_control_transfer(b->h, (uint8_t)(LIBUSB_ENDPOINT_OUT | type), req, value,
                                     index, (unsigned char *)(uintptr_t)data, len, b->timeout_ms);
     if (r < 0)
-        return tdc_usb_fail(b, what, r);
+        return tdc_usb_fail(b, what, reclassify_gone(b, r));
     if (r != len) {
         fprintf(stderr, "tdc-usb: %s: %s: board took %d of %u bytes\n", b->op, what, r, len);
         return TDC_EXIT_PROTOCOL;
@@ -270,6 +301,6 @@ tdc_exit_t tdc_usb_bulk(tdc_board_t *b, const char *what, uint8_t ep, uint8_t *d
     int r = libusb_bulk_transfer(b->h, ep, data, len, &n, b->timeout_ms);
     *done = n;
     if (r != 0)
-        return tdc_usb_fail(b, what, r);
+        return tdc_usb_fail(b, what, reclassify_gone(b, r));
     return TDC_EXIT_OK;
 }
