@@ -225,14 +225,44 @@ uint32_t tdc_asm_sqrt_q8(uint32_t d)
     return half <= 8u ? r << (8u - half) : r >> (half - 8u);
 }
 
-/* Horizontal 3-maximum (longest MV, first on ties) of motion row y. */
-static int tdc_asm_hmax_row(const tdc_asm_t *st, uint32_t y, tdc_asm_mvmax_t *out)
+/* Motion word of pixel p: its (dx, dy) pair as one 32-bit value, only
+ * compared for equality and against zero (so byte order does not matter). */
+static inline uint32_t tdc_asm_mv_word(const int16_t *pair)
+{
+    uint32_t v;
+    memcpy(&v, pair, sizeof(v));
+    return v;
+}
+
+/* Summary of motion row y: TDC_ASM_ROW_ANY if any vector is non-zero,
+ * TDC_ASM_ROW_UNIFORM if all vectors of the row are equal (*value = the
+ * word).  One pass of 32-bit loads; lets a frame skip the per-pixel 3x3
+ * search where three consecutive rows hold one and the same vector. */
+#define TDC_ASM_ROW_ANY 1u
+#define TDC_ASM_ROW_UNIFORM 2u
+
+static unsigned tdc_asm_row_scan(const tdc_asm_t *st, uint32_t y, uint32_t *value)
 {
     const uint32_t w = st->cfg.width;
     const int16_t *mv = st->mv + (size_t)y * w * 2u;
-    uint32_t any = 0;
+    const uint32_t first = tdc_asm_mv_word(mv);
+    uint32_t any = 0, diff = 0;
+    for (uint32_t x = 0; x < w; x++) {
+        uint32_t v = tdc_asm_mv_word(mv + 2u * x);
+        any |= v;
+        diff |= v ^ first;
+    }
+    *value = first;
+    return (any != 0 ? TDC_ASM_ROW_ANY : 0u) | (diff == 0 ? TDC_ASM_ROW_UNIFORM : 0u);
+}
+
+/* Horizontal 3-maximum (longest MV, first on ties) of motion row y. */
+static void tdc_asm_hmax_row(const tdc_asm_t *st, uint32_t y, tdc_asm_mvmax_t *out)
+{
+    const uint32_t w = st->cfg.width;
+    const int16_t *mv = st->mv + (size_t)y * w * 2u;
     uint32_t l_prev = 0, l_cur, l_next;
-    int32_t cdx = mv[0], cdy = mv[1];
+    int32_t pdx = 0, pdy = 0, cdx = mv[0], cdy = mv[1];
     l_cur = (uint32_t)(cdx * cdx) + (uint32_t)(cdy * cdy);
     for (uint32_t x = 0; x < w; x++) {
         int32_t ndx = 0, ndy = 0;
@@ -242,41 +272,51 @@ static int tdc_asm_hmax_row(const tdc_asm_t *st, uint32_t y, tdc_asm_mvmax_t *ou
             ndy = mv[2u * x + 3u];
             l_next = (uint32_t)(ndx * ndx) + (uint32_t)(ndy * ndy);
         }
-        /* Candidates in order left, centre, right; strict > keeps the first. */
-        uint32_t best = 0;
-        int32_t bx = 0, by = 0;
-        if (x > 0 && l_prev > best) best = l_prev, bx = mv[2u * x - 2u], by = mv[2u * x - 1u];
+        /* Candidates in order left, centre, right; strict > keeps the first
+         * (l_prev = 0 at x = 0). */
+        uint32_t best = l_prev;
+        int32_t bx = pdx, by = pdy;
         if (l_cur > best) best = l_cur, bx = cdx, by = cdy;
         if (l_next > best) best = l_next, bx = ndx, by = ndy;
         out[x].l2 = best;
         out[x].dx = (int16_t)bx;
         out[x].dy = (int16_t)by;
-        any |= best;
-        l_prev = l_cur;
-        l_cur = l_next;
-        cdx = ndx;
-        cdy = ndy;
+        l_prev = l_cur, pdx = cdx, pdy = cdy;
+        l_cur = l_next, cdx = ndx, cdy = ndy;
     }
-    return any != 0;
 }
 
-/* Newness of row y: out[x] = 1 if pixel (x, y) is in the newest subframe. */
-static void tdc_asm_new_row(const tdc_asm_t *st, uint32_t y, unsigned pos_h, unsigned pos_b, int have_new,
-                            uint8_t *out)
+/* Newness of row y: out[x] = 1 if pixel (x, y) is in the newest subframe.
+ * Returns 1 if any pixel of the row is new. */
+static int tdc_asm_new_row(const tdc_asm_t *st, uint32_t y, unsigned pos_h, unsigned pos_b, int have_new,
+                           uint8_t *out)
 {
     const uint32_t w = st->cfg.width;
-    if (!have_new) {
+    const unsigned py = (y & 1u) << 1;
+    if (!have_new || ((pos_h & 2u) != py && (pos_b & 2u) != py)) {
         memset(out, 0, w);
-        return;
+        return 0;
+    }
+    if (pos_h == pos_b) {
+        /* Subframes 0 and 3: both orderings trace the same position, so
+         * every tile's new pixel is in column parity pos & 1. */
+        const uint8_t q = (uint8_t)(pos_h & 1u);
+        for (uint32_t x = 0; x < w; x++) out[x] = (uint8_t)((x & 1u) == q);
+        return 1;
     }
     const uint32_t ti0 = (y >> 1) * st->tiles_x;
-    const unsigned py = (y & 1u) << 1;
+    int any = 0;
     for (uint32_t tx = 0; tx < st->tiles_x; tx++) {
         unsigned pos = tdc_ordering_get(st->pattern, ti0 + tx) == TDC_ORDER_BOWTIE ? pos_b : pos_h;
         uint32_t x = 2u * tx;
         out[x] = (uint8_t)(pos == py);
-        if (x + 1u < w) out[x + 1u] = (uint8_t)(pos == (py | 1u));
+        any |= pos == py;
+        if (x + 1u < w) {
+            out[x + 1u] = (uint8_t)(pos == (py | 1u));
+            any |= pos == (py | 1u);
+        }
     }
+    return any;
 }
 
 /* floor(x / n) = (x * ceil(2^32 / n)) >> 32 for 1 <= n <= 8, 0 <= x < 2^29
@@ -333,7 +373,7 @@ static void tdc_asm_box_row(const tdc_asm_t *st, uint32_t y, uint32_t slot, cons
 /* Local counters of one dynamic frame (kept out of the stage struct in the
  * inner loops so byte stores do not force reloads). */
 typedef struct {
-    uint64_t reprojected, edge, boxes, changed, no_neighbour;
+    uint64_t reprojected, edge, boxes, changed, no_neighbour, new_dynamic, resets;
 } tdc_asm_dyn_count_t;
 
 /* RGB888 pixel -> R | G << 16 | B << 32. */
@@ -343,32 +383,28 @@ static inline uint64_t tdc_asm_lanes(const uint8_t *p)
 }
 
 /* Bilinear sample of frame `src` at (x + dx/16, y + dy/16), position
- * clamped to the frame; result in code Q8 per channel (weights Q4 x Q4 =
- * Q8, sum 256: max 255 * 256, exact).  Returns 1 if the position was
- * clamped. */
-static int tdc_asm_bilinear_q8(const tdc_asm_t *st, const uint8_t *src, uint32_t x, uint32_t y, int32_t dx,
-                               int32_t dy, int32_t out_q8[3])
+ * clamped to the frame; result in code Q8 per channel, packed in 16-bit
+ * lanes R | G << 16 | B << 32 (weights Q4 x Q4 = Q8, sum 256: a lane's sum
+ * <= 255 * 256 < 2^16, so lanes never carry into each other).  *clamped =
+ * 1 if the position was clamped. */
+static uint64_t tdc_asm_bilinear_q8(const tdc_asm_t *st, const uint8_t *src, uint32_t x, uint32_t y, int32_t dx,
+                                    int32_t dy, uint64_t *clamped)
 {
     const int32_t w = st->cfg.width, h = st->cfg.height;
     int32_t sx = (int32_t)x * 16 + dx, sy = (int32_t)y * 16 + dy;
-    int clamped = 0;
-    if (sx < 0) sx = 0, clamped = 1;
-    if (sy < 0) sy = 0, clamped = 1;
-    if (sx > (w - 1) * 16) sx = (w - 1) * 16, clamped = 1;
-    if (sy > (h - 1) * 16) sy = (h - 1) * 16, clamped = 1;
+    int c = 0;
+    if (sx < 0) sx = 0, c = 1;
+    if (sy < 0) sy = 0, c = 1;
+    if (sx > (w - 1) * 16) sx = (w - 1) * 16, c = 1;
+    if (sy > (h - 1) * 16) sy = (h - 1) * 16, c = 1;
+    *clamped += (uint64_t)c;
     int32_t x0 = sx >> 4, y0 = sy >> 4, fx = sx & 15, fy = sy & 15; /* sx, sy >= 0 */
     int32_t x1 = x0 + (fx != 0), y1 = y0 + (fy != 0);
     const uint8_t *r0 = src + ((size_t)y0 * (size_t)w) * 3u, *r1 = src + ((size_t)y1 * (size_t)w) * 3u;
     uint64_t w00 = (uint64_t)((16 - fx) * (16 - fy)), w01 = (uint64_t)(fx * (16 - fy));
     uint64_t w10 = (uint64_t)((16 - fx) * fy), w11 = (uint64_t)(fx * fy);
-    /* Three channels in 16-bit lanes of one 64-bit word: each lane's sum
-     * <= 255 * 256 < 2^16, so lanes never carry into each other. */
-    uint64_t acc = w00 * tdc_asm_lanes(r0 + x0 * 3) + w01 * tdc_asm_lanes(r0 + x1 * 3) +
-                   w10 * tdc_asm_lanes(r1 + x0 * 3) + w11 * tdc_asm_lanes(r1 + x1 * 3);
-    out_q8[0] = (int32_t)(acc & 0xFFFFu);
-    out_q8[1] = (int32_t)((acc >> 16) & 0xFFFFu);
-    out_q8[2] = (int32_t)((acc >> 32) & 0xFFFFu);
-    return clamped;
+    return w00 * tdc_asm_lanes(r0 + x0 * 3) + w01 * tdc_asm_lanes(r0 + x1 * 3) + w10 * tdc_asm_lanes(r1 + x0 * 3) +
+           w11 * tdc_asm_lanes(r1 + x1 * 3);
 }
 
 /*
@@ -378,33 +414,35 @@ static int tdc_asm_bilinear_q8(const tdc_asm_t *st, const uint8_t *src, uint32_t
  * |n v - 256 S1| > 256 sqrt(d)  <=>  (n v - 256 S1)^2 > 65536 d (int64:
  * < 2^39 and < 2^36).  Only when it fails is the edge computed:
  * R = tdc_asm_sqrt_q8(d) = n sigma in Q8 (within 0.02 code),
- * edge = (256 S1 -+ R) / n, floor, lower edge >= 0.
+ * edge = (256 S1 -+ R) / n, floor, lower edge >= 0.  Returns the output
+ * code, rounded half up to 8 bits.
  */
-static inline int32_t tdc_asm_clamp_box_q8(int32_t v, int32_t n, int32_t s1, int32_t s2, uint64_t *changed)
+static inline uint8_t tdc_asm_clamp_box_u8(int32_t v, int32_t n, int32_t s1, int32_t s2, uint64_t *changed)
 {
     uint32_t d = (uint32_t)(n * s2 - s1 * s1);
     int64_t dev = (int64_t)n * v - (int64_t)256 * s1;
-    if (dev * dev <= (int64_t)65536 * (int64_t)d) return v;
+    if (dev * dev <= (int64_t)65536 * (int64_t)d) return (uint8_t)((v + 128) >> 8);
     (*changed)++;
     int32_t r = (int32_t)tdc_asm_sqrt_q8(d);
+    int32_t e;
     if (dev < 0) {
         int32_t lo_num = s1 * 256 - r;
-        return lo_num > 0 ? (int32_t)tdc_asm_div_small((uint32_t)lo_num, (uint32_t)n) : 0;
+        e = lo_num > 0 ? (int32_t)tdc_asm_div_small((uint32_t)lo_num, (uint32_t)n) : 0;
+    } else {
+        e = (int32_t)tdc_asm_div_small((uint32_t)(s1 * 256 + r), (uint32_t)n);
     }
-    return (int32_t)tdc_asm_div_small((uint32_t)(s1 * 256 + r), (uint32_t)n);
+    return (uint8_t)((e + 128) >> 8);
 }
 
-/* Old dynamic pixel: reproject and clamp to the newest neighbours' box.
- * bx[j], cn[j]: box-sum rows of rows y-1, y, y+1 (NULL outside the frame or
- * when no subframe arrived). */
-static void tdc_asm_reproject_pixel(const tdc_asm_t *st, const uint8_t *prev, uint32_t x, uint32_t y, int32_t dx,
-                                    int32_t dy, const uint64_t *const bx[3], const uint8_t *const cn[3],
-                                    tdc_asm_dyn_count_t *cnt, uint8_t *out)
+/* Old dynamic pixel, after the bilinear sample v (16-bit lanes, code Q8):
+ * clamp to the box of the newest neighbours and store.  bx[j], cn[j]:
+ * box-sum rows of rows y-1, y, y+1 (NULL outside the frame, when no
+ * subframe arrived or when the row has no new pixel). */
+static inline void tdc_asm_clamp_store(uint64_t v, uint32_t x, const uint64_t *const bx[3],
+                                       const uint8_t *const cn[3], tdc_asm_dyn_count_t *cnt, uint8_t *out)
 {
-    int32_t v[3];
-    cnt->edge += (uint64_t)tdc_asm_bilinear_q8(st, prev, x, y, dx, dy, v);
+    const int32_t v0 = (int32_t)(v & 0xFFFFu), v1 = (int32_t)((v >> 16) & 0xFFFFu), v2 = (int32_t)((v >> 32) & 0xFFFFu);
     cnt->reprojected++;
-
     /* Variance sampling over the immediate neighbours in the newest
      * subframe: S1 <= 8*255, S2 <= 8*255^2 (21-bit lanes). */
     uint64_t l1 = 0, l2 = 0;
@@ -417,16 +455,108 @@ static void tdc_asm_reproject_pixel(const tdc_asm_t *st, const uint8_t *prev, ui
     }
     if (n == 0) {
         cnt->no_neighbour++;
-        for (int c = 0; c < 3; c++) out[c] = (uint8_t)((v[c] + 128) >> 8);
+        out[0] = (uint8_t)((v0 + 128) >> 8);
+        out[1] = (uint8_t)((v1 + 128) >> 8);
+        out[2] = (uint8_t)((v2 + 128) >> 8);
         return;
     }
     cnt->boxes++;
     const uint64_t m21 = (1u << 21) - 1u;
-    out[0] = (uint8_t)((tdc_asm_clamp_box_q8(v[0], n, (int32_t)(l1 & m21), (int32_t)(l2 & m21), &cnt->changed) + 128) >> 8);
-    out[1] = (uint8_t)((tdc_asm_clamp_box_q8(v[1], n, (int32_t)((l1 >> 21) & m21), (int32_t)((l2 >> 21) & m21),
-                                             &cnt->changed) + 128) >> 8);
-    out[2] = (uint8_t)((tdc_asm_clamp_box_q8(v[2], n, (int32_t)((l1 >> 42) & m21), (int32_t)((l2 >> 42) & m21),
-                                             &cnt->changed) + 128) >> 8);
+    out[0] = tdc_asm_clamp_box_u8(v0, n, (int32_t)(l1 & m21), (int32_t)(l2 & m21), &cnt->changed);
+    out[1] = tdc_asm_clamp_box_u8(v1, n, (int32_t)((l1 >> 21) & m21), (int32_t)((l2 >> 21) & m21), &cnt->changed);
+    out[2] = tdc_asm_clamp_box_u8(v2, n, (int32_t)((l1 >> 42) & m21), (int32_t)((l2 >> 42) & m21), &cnt->changed);
+}
+
+/* Everything one row of a dynamic frame needs. */
+typedef struct {
+    uint32_t y;
+    const uint8_t *prev;       /* previous output frame */
+    const uint8_t *prow;       /* its row y */
+    uint8_t *drow;             /* output row y */
+    uint8_t *win;              /* window masks of row y */
+    const uint8_t *newrow;     /* newness of row y */
+    const uint8_t *rec[2];     /* slot-0 sample rows of row y for even / odd x */
+    const uint64_t *bx[3];     /* box-sum rows y-1, y, y+1 (or NULL) */
+    const uint8_t *cn[3];      /* new-neighbour counts of rows y-1, y, y+1 (or NULL) */
+} tdc_asm_row_t;
+
+/* Dynamic pixel x with 3x3 maximum (dx, dy) != 0: window reset, then the
+ * new sample or a reprojected, clamped old value. */
+static inline void tdc_asm_dynamic_pixel(const tdc_asm_t *st, const tdc_asm_row_t *r, uint32_t x, int32_t dx,
+                                         int32_t dy, size_t slot_off, tdc_asm_dyn_count_t *cnt)
+{
+    uint8_t *o = r->drow + x * 3u;
+    if (r->win[x]) {
+        r->win[x] = 0;
+        cnt->resets++;
+    }
+    if (r->newrow[x]) {
+        const uint8_t *s = r->rec[x & 1u] + (size_t)(x >> 1) * 3u + slot_off;
+        o[0] = s[0], o[1] = s[1], o[2] = s[2];
+        cnt->new_dynamic++;
+    } else {
+        uint64_t v = tdc_asm_bilinear_q8(st, r->prev, x, r->y, dx, dy, &cnt->edge);
+        tdc_asm_clamp_store(v, x, r->bx, r->cn, cnt, o);
+    }
+}
+
+/*
+ * Row whose 3x3 neighbourhoods all hold the one vector (dx, dy) != 0 (rows
+ * y-1..y+1 uniform and equal; the common case of a pan): no per-pixel
+ * search, and the bilinear position is p + (dx, dy) with the same
+ * fractional weights and row pair for every pixel.  Pixels whose position
+ * falls outside the frame horizontally take the general (clamping) path;
+ * the results are the same as tdc_asm_dynamic_pixel's.
+ */
+static void tdc_asm_uniform_row(const tdc_asm_t *st, const tdc_asm_row_t *r, int32_t dx, int32_t dy, size_t slot_off,
+                                tdc_asm_dyn_count_t *cnt)
+{
+    const uint32_t w = st->cfg.width;
+    const int32_t h = st->cfg.height;
+    /* Window reset of the whole row (every pixel is dynamic). */
+    uint64_t resets = 0;
+    for (uint32_t x = 0; x < w; x++) resets += r->win[x] != 0;
+    if (resets) memset(r->win, 0, w);
+    cnt->resets += resets;
+
+    /* Vertical position: the same for the whole row. */
+    int32_t sy = (int32_t)r->y * 16 + dy;
+    uint64_t yc = 0;
+    if (sy < 0) sy = 0, yc = 1;
+    if (sy > (h - 1) * 16) sy = (h - 1) * 16, yc = 1;
+    const int32_t y0 = sy >> 4, fy = sy & 15, y1 = y0 + (fy != 0);
+    const uint8_t *r0 = r->prev + (size_t)y0 * w * 3u, *r1 = r->prev + (size_t)y1 * w * 3u;
+    /* Horizontal: 0 <= 16 x + dx <= 16 (w - 1) for x in [xa, xb). */
+    const int32_t wi = (int32_t)w;
+    int32_t xa = dx >= 0 ? 0 : (-dx + 15) / 16;
+    int32_t xb = 16 * (wi - 1) - dx < 0 ? 0 : (16 * (wi - 1) - dx) / 16 + 1;
+    if (xa > wi) xa = wi;
+    if (xb > wi) xb = wi;
+    if (xb < xa) xb = xa;
+    const int32_t fx = (int32_t)((uint32_t)dx & 15u), step = fx != 0;
+    const uint64_t w00 = (uint64_t)((16 - fx) * (16 - fy)), w01 = (uint64_t)(fx * (16 - fy));
+    const uint64_t w10 = (uint64_t)((16 - fx) * fy), w11 = (uint64_t)(fx * fy);
+    uint64_t new_dynamic = 0;
+    for (uint32_t x = 0; x < w; x++) {
+        uint8_t *o = r->drow + x * 3u;
+        if (r->newrow[x]) {
+            const uint8_t *s = r->rec[x & 1u] + (size_t)(x >> 1) * 3u + slot_off;
+            o[0] = s[0], o[1] = s[1], o[2] = s[2];
+            new_dynamic++;
+            continue;
+        }
+        uint64_t v;
+        if ((int32_t)x >= xa && (int32_t)x < xb) {
+            const int32_t x0 = ((int32_t)x * 16 + dx) >> 4, x1 = x0 + step; /* 16 x + dx >= 0 */
+            v = w00 * tdc_asm_lanes(r0 + x0 * 3) + w01 * tdc_asm_lanes(r0 + x1 * 3) + w10 * tdc_asm_lanes(r1 + x0 * 3) +
+                w11 * tdc_asm_lanes(r1 + x1 * 3);
+            cnt->edge += yc;
+        } else {
+            v = tdc_asm_bilinear_q8(st, r->prev, x, r->y, dx, dy, &cnt->edge);
+        }
+        tdc_asm_clamp_store(v, x, r->bx, r->cn, cnt, o);
+    }
+    cnt->new_dynamic += new_dynamic;
 }
 
 /* Static frame: only the new samples change; update in place. */
@@ -468,42 +598,58 @@ static void tdc_asm_dynamic_frame(tdc_asm_t *st, uint32_t frame)
     const int have_new = st->have_subframe;
     const uint8_t *prev = st->frame[st->cur];
     uint8_t *dst = st->frame[st->cur ^ 1];
-    int row_any[3] = {0, 0, 0};
-    tdc_asm_dyn_count_t cnt = {0, 0, 0, 0, 0};
+    tdc_asm_dyn_count_t cnt = {0, 0, 0, 0, 0, 0, 0};
     const size_t stride = (size_t)st->tiles_x * st->tiles_y * 12u; /* bytes between slots */
-    uint64_t new_dynamic = 0, resets = 0, averaged = 0, kept = 0, static_rows = 0;
-
+    const size_t slot_off = slot * stride;
+    uint64_t averaged = 0, kept = 0, static_rows = 0;
     const size_t bw = (size_t)w * 2u;
-    row_any[0] = tdc_asm_hmax_row(st, 0, st->ring);
-    tdc_asm_new_row(st, 0, pos_h, pos_b, have_new, st->newring);
-    if (have_new) tdc_asm_box_row(st, 0, slot, st->newring, st->boxring, st->cntring);
+    /* Ring slot s = r % 3 holds row r's summaries; hmax_of[s] = the row whose
+     * horizontal maxima are in st->ring slot s (computed only when a row
+     * needs the per-pixel search), UINT32_MAX = none. */
+    unsigned rinfo[3] = {0, 0, 0};
+    uint32_t rval[3] = {0, 0, 0}, hmax_of[3] = {UINT32_MAX, UINT32_MAX, UINT32_MAX};
+    int has_new[3] = {0, 0, 0};
+
+    for (uint32_t r = 0; r < 2u && r < h; r++) {
+        rinfo[r] = tdc_asm_row_scan(st, r, &rval[r]);
+        has_new[r] = tdc_asm_new_row(st, r, pos_h, pos_b, have_new, st->newring + (size_t)r * w);
+        if (has_new[r]) tdc_asm_box_row(st, r, slot, st->newring + (size_t)r * w, st->boxring + (size_t)r * bw,
+                                        st->cntring + (size_t)r * w);
+    }
     for (uint32_t y = 0; y < h; y++) {
-        if (y + 1u < h) {
-            row_any[(y + 1u) % 3u] = tdc_asm_hmax_row(st, y + 1u, st->ring + (size_t)((y + 1u) % 3u) * w);
-            tdc_asm_new_row(st, y + 1u, pos_h, pos_b, have_new, st->newring + (size_t)((y + 1u) % 3u) * w);
-            if (have_new)
-                tdc_asm_box_row(st, y + 1u, slot, st->newring + (size_t)((y + 1u) % 3u) * w,
-                                st->boxring + (size_t)((y + 1u) % 3u) * bw, st->cntring + (size_t)((y + 1u) % 3u) * w);
+        if (y >= 1u && y + 1u < h) {
+            const uint32_t s = (y + 1u) % 3u;
+            rinfo[s] = tdc_asm_row_scan(st, y + 1u, &rval[s]);
+            has_new[s] = tdc_asm_new_row(st, y + 1u, pos_h, pos_b, have_new, st->newring + (size_t)s * w);
+            if (has_new[s])
+                tdc_asm_box_row(st, y + 1u, slot, st->newring + (size_t)s * w, st->boxring + (size_t)s * bw,
+                                st->cntring + (size_t)s * w);
         }
         const int top = y > 0, bot = y + 1u < h;
-        const tdc_asm_mvmax_t *rt = st->ring + (size_t)((y + 2u) % 3u) * w;
-        const tdc_asm_mvmax_t *rm = st->ring + (size_t)(y % 3u) * w;
-        const tdc_asm_mvmax_t *rb = st->ring + (size_t)((y + 1u) % 3u) * w;
-        const uint8_t *nr1 = st->newring + (size_t)(y % 3u) * w;
-        const uint64_t *bx[3];
-        const uint8_t *cn[3];
         const uint32_t ri[3] = {(y + 2u) % 3u, y % 3u, (y + 1u) % 3u};
         const int in[3] = {top, 1, bot};
-        for (int j = 0; j < 3; j++) {
-            bx[j] = have_new && in[j] ? st->boxring + (size_t)ri[j] * bw : NULL;
-            cn[j] = have_new && in[j] ? st->cntring + (size_t)ri[j] * w : NULL;
-        }
-        const uint8_t *prow = prev + (size_t)y * w * 3u;
-        uint8_t *drow = dst + (size_t)y * w * 3u;
-        uint8_t *win = st->window + (size_t)y * w;
+        tdc_asm_row_t row;
+        row.y = y;
+        row.prev = prev;
+        row.prow = prev + (size_t)y * w * 3u;
+        row.drow = dst + (size_t)y * w * 3u;
+        row.win = st->window + (size_t)y * w;
+        row.newrow = st->newring + (size_t)ri[1] * w;
         /* slot-0 sample rows of row y for even / odd x; slot i at + i * stride */
-        const uint8_t *rec[2] = {tdc_asm_sample_row(st, y, 0, 0), tdc_asm_sample_row(st, y, 1, 0)};
-        int any = row_any[y % 3u] || (top && row_any[(y + 2u) % 3u]) || (bot && row_any[(y + 1u) % 3u]);
+        row.rec[0] = tdc_asm_sample_row(st, y, 0, 0);
+        row.rec[1] = tdc_asm_sample_row(st, y, 1, 0);
+        unsigned any = 0, uniform = TDC_ASM_ROW_UNIFORM;
+        for (int j = 0; j < 3; j++) {
+            const int use = in[j] && has_new[ri[j]];
+            row.bx[j] = use ? st->boxring + (size_t)ri[j] * bw : NULL;
+            row.cn[j] = use ? st->cntring + (size_t)ri[j] * w : NULL;
+            if (!in[j]) continue;
+            any |= rinfo[ri[j]] & TDC_ASM_ROW_ANY;
+            uniform &= rinfo[ri[j]];
+            if (rval[ri[j]] != rval[ri[1]]) uniform = 0;
+        }
+        uint8_t *win = row.win, *drow = row.drow;
+        const uint8_t *nr1 = row.newrow, *prow = row.prow;
         if (!any) {
             /* Static row: copy, then average the new samples. */
             memcpy(drow, prow, (size_t)w * 3u);
@@ -511,7 +657,7 @@ static void tdc_asm_dynamic_frame(tdc_asm_t *st, uint32_t frame)
             for (uint32_t x = 0; x < w; x++) {
                 if (nr1[x]) {
                     win[x] = (uint8_t)(win[x] | (1u << slot));
-                    tdc_asm_window_mean(rec[x & 1u] + (size_t)(x >> 1) * 3u, stride, win[x], drow + x * 3u);
+                    tdc_asm_window_mean(row.rec[x & 1u] + (size_t)(x >> 1) * 3u, stride, win[x], drow + x * 3u);
                     averaged++;
                 } else {
                     kept++;
@@ -519,35 +665,39 @@ static void tdc_asm_dynamic_frame(tdc_asm_t *st, uint32_t frame)
             }
             continue;
         }
+        if (uniform) {
+            /* Rows y-1..y+1 hold one non-zero vector everywhere. */
+            const int16_t *m = st->mv + (size_t)y * w * 2u;
+            tdc_asm_uniform_row(st, &row, m[0], m[1], slot_off, &cnt);
+            continue;
+        }
+        /* General row: per-pixel 3x3 maximum from the horizontal maxima. */
+        for (int j = 0; j < 3; j++) {
+            const uint32_t r = y + (uint32_t)j - 1u;
+            if (in[j] && hmax_of[ri[j]] != r) {
+                tdc_asm_hmax_row(st, r, st->ring + (size_t)ri[j] * w);
+                hmax_of[ri[j]] = r;
+            }
+        }
+        const tdc_asm_mvmax_t *rt = st->ring + (size_t)ri[0] * w;
+        const tdc_asm_mvmax_t *rm = st->ring + (size_t)ri[1] * w;
+        const tdc_asm_mvmax_t *rb = st->ring + (size_t)ri[2] * w;
         for (uint32_t x = 0; x < w; x++) {
             /* Vertical maximum in order top, middle, bottom (first on ties). */
             tdc_asm_mvmax_t m = {0, 0, 0};
             if (top && rt[x].l2 > m.l2) m = rt[x];
             if (rm[x].l2 > m.l2) m = rm[x];
             if (bot && rb[x].l2 > m.l2) m = rb[x];
-            const int is_new = nr1[x];
-            uint8_t *o = drow + x * 3u;
-            if (m.l2 == 0) {
-                if (is_new) {
-                    win[x] = (uint8_t)(win[x] | (1u << slot));
-                    tdc_asm_window_mean(rec[x & 1u] + (size_t)(x >> 1) * 3u, stride, win[x], o);
-                    averaged++;
-                } else {
-                    o[0] = prow[x * 3u], o[1] = prow[x * 3u + 1u], o[2] = prow[x * 3u + 2u];
-                    kept++;
-                }
-                continue;
-            }
-            if (win[x]) {
-                win[x] = 0;
-                resets++;
-            }
-            if (is_new) {
-                const uint8_t *s = rec[x & 1u] + (size_t)(x >> 1) * 3u + slot * stride;
-                o[0] = s[0], o[1] = s[1], o[2] = s[2];
-                new_dynamic++;
+            if (m.l2 != 0) {
+                tdc_asm_dynamic_pixel(st, &row, x, m.dx, m.dy, slot_off, &cnt);
+            } else if (nr1[x]) {
+                win[x] = (uint8_t)(win[x] | (1u << slot));
+                tdc_asm_window_mean(row.rec[x & 1u] + (size_t)(x >> 1) * 3u, stride, win[x], drow + x * 3u);
+                averaged++;
             } else {
-                tdc_asm_reproject_pixel(st, prev, x, y, m.dx, m.dy, bx, cn, &cnt, o);
+                uint8_t *o = drow + x * 3u;
+                o[0] = prow[x * 3u], o[1] = prow[x * 3u + 1u], o[2] = prow[x * 3u + 2u];
+                kept++;
             }
         }
     }
@@ -557,8 +707,8 @@ static void tdc_asm_dynamic_frame(tdc_asm_t *st, uint32_t frame)
     st->stats.clamp_boxes += cnt.boxes;
     st->stats.clamp_changed += cnt.changed;
     st->stats.clamp_no_neighbour += cnt.no_neighbour;
-    st->stats.new_dynamic += new_dynamic;
-    st->stats.window_resets += resets;
+    st->stats.new_dynamic += cnt.new_dynamic;
+    st->stats.window_resets += cnt.resets;
     st->stats.static_averaged += averaged;
     st->stats.static_kept += kept;
     st->stats.static_rows += static_rows;

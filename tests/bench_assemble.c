@@ -153,9 +153,10 @@ int main(int argc, char **argv)
                "bound %.1f B/px -> %.0f Mpixel/s  fraction %.1f %%\n",
                cases[i].name, t * 1e3, mpx, 1.0 / t, 240.0 * BW * BH / 1e6, cases[i].bytes, bound,
                100.0 * mpx / bound);
-        printf("  %-38s counters (last run): reprojected %llu clamp boxes %llu static frames %u static rows %llu\n", "",
-               (unsigned long long)stats.reprojected, (unsigned long long)stats.clamp_boxes, stats.static_frames,
-               (unsigned long long)stats.static_rows);
+        printf("  %-38s counters (last run): reprojected %llu clamp boxes %llu clamp changed %llu static frames %u "
+               "static rows %llu\n",
+               "", (unsigned long long)stats.reprojected, (unsigned long long)stats.clamp_boxes,
+               (unsigned long long)stats.clamp_changed, stats.static_frames, (unsigned long long)stats.static_rows);
         free_stream(&s);
     }
     return 0;
