@@ -186,6 +186,7 @@ tdc_render_t *tdc_render_open(const tdc_scene_t *scene, const tdc_render_config_
         return NULL;
     }
     detect_features(r);
+    tdc_r_tex_prepare(r);
     return r;
 nomem:
     snprintf(err, errlen, "tdc_render_open: out of memory");
@@ -262,7 +263,8 @@ int tdc_r_update_motion(tdc_render_t *r, long frame)
                    a->cam.tan_half != b->cam.tan_half;
     any |= r->cam_moved;
     for (int i = 0; i < r->scene->nobjects; i++) {
-        r->obj_moved[i] = r->obj[i].animated && memcmp(a->m[i], b->m[i], sizeof a->m[i]) != 0;
+        r->obj_same_m[i] = memcmp(a->m[i], b->m[i], sizeof a->m[i]) == 0;
+        r->obj_moved[i] = r->obj[i].animated && !r->obj_same_m[i];
         any |= r->obj_moved[i];
     }
     for (int i = 0; i < r->scene->nlights; i++)
@@ -275,6 +277,7 @@ int tdc_render_frame_static(tdc_render_t *r, uint32_t frame)
     if (!r->feat.motion) {
         r->cam_moved = 0;
         memset(r->obj_moved, 0, sizeof r->obj_moved);
+        memset(r->obj_same_m, 0, sizeof r->obj_same_m); /* not compared: transform both */
         return 1;
     }
     return !tdc_r_update_motion(r, (long)frame);

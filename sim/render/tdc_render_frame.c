@@ -38,17 +38,15 @@ typedef struct {
 } worker_t;
 
 /* round(v * 16) half up, clamped; floor without a libm call (x86-64
- * baseline has no SSE4.1 round instruction) */
-static int16_t q4(double v)
+ * baseline has no SSE4.1 round instruction).  f is clamped to
+ * [-32767, 32767] first, so its floor is in range too. */
+static inline int16_t q4(double v)
 {
     double f = v * 16 + 0.5;
     if (f > 32767) f = 32767;
     if (!(f >= -32767)) f = -32767; /* also NaN */
     long i = (long)f;
-    double q = (double)(i - (i > f));
-    if (q > 32767) q = 32767;
-    if (q < -32767) q = -32767;
-    return (int16_t)q;
+    return (int16_t)(i - (i > f));
 }
 
 /* 1 if any MV in the 3x3 pixel neighbourhood of (x, y) in the history (as
@@ -166,20 +164,46 @@ static void write_outputs(job_t *jb, const rsample_t *s, int n)
         }
         return;
     }
+    /* the common outputs in a loop of their own, without per-sample tests */
+    float *rgb = o->rgb;
+    int16_t *mv = o->mv, *hist = r->mv_hist;
+    size_t W = (size_t)r->W;
+    if (rgb)
+        for (int i = 0; i < n; i++) {
+            float *p = &rgb[(size_t)s[i].dst * 3];
+            p[0] = (float)s[i].col[0];
+            p[1] = (float)s[i].col[1];
+            p[2] = (float)s[i].col[2];
+        }
+    if (jb->do_mv) {
+        for (int i = 0; i < n; i++) {
+            const rsample_t *a = &s[i];
+            int16_t m0 = q4(a->mv[0]), m1 = q4(a->mv[1]);
+            int16_t *h = &hist[((size_t)a->py * W + (size_t)a->px) * 2];
+            h[0] = m0;
+            h[1] = m1;
+            if (mv) {
+                mv[(size_t)a->dst * 2] = m0;
+                mv[(size_t)a->dst * 2 + 1] = m1;
+            }
+        }
+    } else {
+        for (int i = 0; i < n; i++) {
+            const rsample_t *a = &s[i];
+            int16_t *h = &hist[((size_t)a->py * W + (size_t)a->px) * 2];
+            h[0] = h[1] = 0;
+            if (mv) mv[(size_t)a->dst * 2] = mv[(size_t)a->dst * 2 + 1] = 0;
+        }
+    }
+    if (!o->depth && !o->mv_f && !o->mv_shadow && !o->shadow_weight && !o->mv_dual) return;
     for (int i = 0; i < n; i++) {
         const rsample_t *a = &s[i];
         size_t d = a->dst;
-        if (o->rgb)
-            for (int c = 0; c < 3; c++) o->rgb[d * 3 + c] = (float)a->col[c];
         if (o->depth) o->depth[d] = (float)a->depth;
         int16_t m0 = 0, m1 = 0;
         if (jb->do_mv) {
             m0 = q4(a->mv[0]);
             m1 = q4(a->mv[1]);
-        }
-        if (o->mv) {
-            o->mv[d * 2] = m0;
-            o->mv[d * 2 + 1] = m1;
         }
         if (o->mv_f) {
             o->mv_f[d * 2] = jb->do_mv ? (float)a->mv[0] : 0;
@@ -194,9 +218,6 @@ static void write_outputs(job_t *jb, const rsample_t *s, int n)
             o->mv_dual[d * 2] = jb->do_mv_dual ? q4(a->mvd[0]) : m0;
             o->mv_dual[d * 2 + 1] = jb->do_mv_dual ? q4(a->mvd[1]) : m1;
         }
-        int16_t *h = &r->mv_hist[((size_t)a->py * r->W + a->px) * 2];
-        h[0] = m0;
-        h[1] = m1;
     }
 }
 
@@ -382,7 +403,8 @@ int tdc_render_frame(tdc_render_t *r, uint32_t frame, tdc_render_mode_t mode, co
         init_thread(&w[i].th, r, frame, mode == TDC_RENDER_GROUND_TRUTH, jb.spp, jb.record, jb.do_mv_shadow);
         if (r->sbuf_cap[i] < cap) { /* kept between frames: no page faults per frame */
             free(r->sbuf[i]);
-            r->sbuf[i] = malloc(cap * sizeof(rsample_t));
+            /* cache-line aligned: the hot fields of a sample are 4 whole lines */
+            r->sbuf[i] = aligned_alloc(64, cap * sizeof(rsample_t));
             r->sbuf_cap[i] = r->sbuf[i] ? cap : 0;
         }
         w[i].s = r->sbuf[i];

@@ -46,6 +46,14 @@ typedef struct {
     long frame;               /* frame the instances are committed for, -1 none */
 } rtop_t;
 
+/* Per-material texture data prepared at open (tdc_r_tex_prepare): the
+ * glyph of every character position of a text texture, so the per-sample
+ * lookup needs neither strlen() nor the character switch. */
+typedef struct {
+    long text_len1;           /* strlen(text) + 1: the text repeats with one space */
+    const unsigned char *glyph[TDC_SCENE_TEXT_LEN + 1];
+} rtex_t;
+
 struct tdc_render {
     tdc_scene_t *scene;
     tdc_render_config_t cfg;
@@ -53,12 +61,16 @@ struct tdc_render {
     tdc_render_features_t feat;
     RTCDevice dev;
     robj_t obj[TDC_SCENE_MAX_OBJECTS];
+    rtex_t tex[TDC_SCENE_MAX_MATERIALS];
     rtop_t top[2];
     rframe_t fr[2];           /* cache of evaluated frames */
     /* motion between the frame being rendered and the previous one: pixels
      * of unmoved objects under an unmoved camera get MV = 0 without math */
     int cam_moved;
     uint8_t obj_moved[TDC_SCENE_MAX_OBJECTS];
+    /* 1: the object's matrices of the two frames are bitwise equal, so its
+     * previous world position is the current one without a second transform */
+    uint8_t obj_same_m[TDC_SCENE_MAX_OBJECTS];
     int16_t *mv_hist;         /* W*H*2 */
     int16_t *mv_hist_prev;    /* snapshot at the start of a subframe (pixel classes) */
     uint8_t *pattern;         /* ordering bits */
@@ -110,7 +122,12 @@ static inline void tdc_r_cam_ray(const rcam_t *c, double x, double y, double dir
     /* not normalised: Embree and every use downstream (hit = org + t dir,
      * reflection, projection of directions) work with any length, and the
      * square root and division cost more than the rest of the ray setup */
-    for (int i = 0; i < 3; i++) dir[i] = c->fwd[i] + sx * c->right[i] + sy * c->up[i];
+    double x0 = c->fwd[0] + sx * c->right[0] + sy * c->up[0];
+    double x1 = c->fwd[1] + sx * c->right[1] + sy * c->up[1];
+    double x2 = c->fwd[2] + sx * c->right[2] + sy * c->up[2];
+    dir[0] = x0; /* in locals: no store-forwarding stall when the ray is set up */
+    dir[1] = x1;
+    dir[2] = x2;
 }
 
 static inline int tdc_r_project_dir(const rcam_t *c, const double d[3], double *x, double *y)
@@ -131,8 +148,10 @@ static inline int tdc_r_project(const rcam_t *c, const double p[3], double *x, d
     return tdc_r_project_dir(c, d, x, y);
 }
 
-/* Textures (tdc_render_texture.c): base colour at a local point. */
-void tdc_r_base_color(const tdc_scene_t *s, const tdc_object_t *o, const double q[3], const double nq[3],
+/* Textures (tdc_render_texture.c): per-material tables at open; base
+ * colour at a local point. */
+void tdc_r_tex_prepare(tdc_render_t *r);
+void tdc_r_base_color(const tdc_render_t *r, const tdc_object_t *o, const double q[3], const double nq[3],
                       double out[3]);
 
 #endif

@@ -123,9 +123,20 @@ static void uv_of(const tdc_object_t *o, const double q[3], const double n[3], d
     }
 }
 
-void tdc_r_base_color(const tdc_scene_t *s, const tdc_object_t *o, const double q[3], const double nq[3], double out[3])
+void tdc_r_tex_prepare(tdc_render_t *r)
 {
-    const tdc_material_t *m = &s->materials[o->material];
+    for (int i = 0; i < r->scene->nmaterials; i++) {
+        const tdc_material_t *m = &r->scene->materials[i];
+        rtex_t *t = &r->tex[i];
+        t->text_len1 = m->tex == TDC_TEX_TEXT ? (long)strlen(m->text) + 1 : 1;
+        for (long k = 0; k < t->text_len1; k++) t->glyph[k] = glyph(k < t->text_len1 - 1 ? m->text[k] : ' ');
+    }
+}
+
+void tdc_r_base_color(const tdc_render_t *r, const tdc_object_t *o, const double q[3], const double nq[3],
+                      double out[3])
+{
+    const tdc_material_t *m = &r->scene->materials[o->material];
     const double *c = m->diffuse;
     if (m->tex != TDC_TEX_NONE) {
         double u, v, sc = m->tex_scale;
@@ -147,11 +158,13 @@ void tdc_r_base_color(const tdc_scene_t *s, const tdc_object_t *o, const double 
             long ci = (long)ffloor(cx);
             int col = (int)((cx - ci) * 6);
             if (col > 5) col = 5;
-            long len = (long)strlen(m->text) + 1;
+            if (row >= 7 || col >= 5) break; /* gap row / gap column: no ink */
+            const rtex_t *tx = &r->tex[o->material];
+            long len = tx->text_len1;
             long line = (long)ffloor(v / sc);
-            long idx = ((ci + line * 7) % len + len) % len; /* successive lines start at different letters */
-            char ch = idx < len - 1 ? m->text[idx] : ' ';
-            if (row < 7 && col < 5 && ((glyph(ch)[row] >> (4 - col)) & 1)) c = m->color2;
+            long idx = (ci + line * 7) % len; /* successive lines start at different letters */
+            if (idx < 0) idx += len;
+            if ((tx->glyph[idx][row] >> (4 - col)) & 1) c = m->color2;
             break;
         }
         case TDC_TEX_SKYLINE: {

@@ -103,19 +103,34 @@ static int occluded(rthread_t *t, const double o[3], const double d[3], double t
     return ray.tfar < 0;
 }
 
-/* Fills the surface fields from a hit of ray (o, d). */
-static void surface(const rframe_t *f, const struct RTCRayHit *rh, int obj, const double o[3], const double d[3], double P[3],
-                    double Q[3], double N[3], double NQ[3])
+/* Fills the surface fields from a hit at ray parameter tt of ray (o, d) with
+ * Embree's raw object-space normal ng.  P in locals: storing it element by
+ * element and reading it back as a vector stalled on store forwarding. */
+static inline void surface(const rframe_t *f, float tt_f, const float ng[3], int obj, const double o[3],
+                           const double d[3], double P[3], double Q[3], double N[3], double NQ[3])
 {
-    double tt = rh->ray.tfar;
-    for (int i = 0; i < 3; i++) P[i] = o[i] + tt * d[i];
-    tdc_r_xform_point(f->minv[obj], P, Q);
-    NQ[0] = rh->hit.Ng_x;
-    NQ[1] = rh->hit.Ng_y;
-    NQ[2] = rh->hit.Ng_z;
+    double tt = tt_f;
+    double p0 = o[0] + tt * d[0], p1 = o[1] + tt * d[1], p2 = o[2] + tt * d[2];
+    const double *m = f->minv[obj];
+    Q[0] = m[0] * p0 + m[1] * p1 + m[2] * p2 + m[3];
+    Q[1] = m[4] * p0 + m[5] * p1 + m[6] * p2 + m[7];
+    Q[2] = m[8] * p0 + m[9] * p1 + m[10] * p2 + m[11];
+    P[0] = p0;
+    P[1] = p1;
+    P[2] = p2;
+    NQ[0] = ng[0];
+    NQ[1] = ng[1];
+    NQ[2] = ng[2];
     tdc_r_xform_normal(f->nm[obj], NQ, N);
     if (dot3(N, d) > 0)
         for (int i = 0; i < 3; i++) N[i] = -N[i];
+}
+
+static inline void surface_rh(const rframe_t *f, const struct RTCRayHit *rh, int obj, const double o[3],
+                              const double d[3], double P[3], double Q[3], double N[3], double NQ[3])
+{
+    const float ng[3] = {rh->hit.Ng_x, rh->hit.Ng_y, rh->hit.Ng_z};
+    surface(f, rh->ray.tfar, ng, obj, o, d, P, Q, N, NQ);
 }
 
 static double offset_eps(const double P[3])
@@ -136,7 +151,7 @@ static void shade_direct(rthread_t *t, int obj, const double P[3], const double 
     const tdc_object_t *o = &sc->objects[obj];
     const tdc_material_t *m = &sc->materials[o->material];
     double base[3];
-    tdc_r_base_color(sc, o, Q, NQ, base);
+    tdc_r_base_color(r, o, Q, NQ, base);
     if (m->unlit) {
         memcpy(out, base, sizeof base);
         return;
@@ -247,9 +262,19 @@ void tdc_r_pass_primary(rthread_t *t, rsample_t *s, int n)
         a->in_shadow = 0;
         a->nmir = 0;
         a->mirror = 0;
+        a->hit_t = rh.ray.tfar;
+        a->hit_ng[0] = rh.hit.Ng_x;
+        a->hit_ng[1] = rh.hit.Ng_y;
+        a->hit_ng[2] = rh.hit.Ng_z;
+    }
+    /* Surfaces in a second loop: its iterations are independent, so the
+     * square roots and divisions of successive samples overlap instead of
+     * each waiting behind the next Embree call. Same arithmetic. */
+    for (int i = 0; i < n; i++) {
+        rsample_t *a = &s[i];
         if (a->obj >= 0) {
-            surface(t->cur, &rh, a->obj, cam->pos, a->dir, a->P, a->Q, a->N, a->NQ);
-            a->depth = dot3(a->dir, cam->fwd) * rh.ray.tfar;
+            surface(t->cur, a->hit_t, a->hit_ng, a->obj, cam->pos, a->dir, a->P, a->Q, a->N, a->NQ);
+            a->depth = dot3(a->dir, cam->fwd) * (double)a->hit_t;
         } else {
             a->depth = INFINITY;
         }
@@ -304,7 +329,7 @@ void tdc_r_pass_reflect(rthread_t *t, rsample_t *s, int n)
                 memcpy(a->rdir, d, sizeof d);
                 break;
             }
-            surface(t->cur, &rh, h, O, d, P, Q, N, NQ);
+            surface_rh(t->cur, &rh, h, O, d, P, Q, N, NQ);
             double loc[3];
             shade_direct(t, h, P, Q, N, NQ, rng_key(a), a->k, 4u * (uint32_t)(b + 1), NULL, loc);
             double m2 = sc->materials[sc->objects[h].material].mirror;
@@ -327,7 +352,8 @@ static int track_point(const rthread_t *t, int obj, const double q[3], double *x
 {
     double wc[3], wp[3];
     tdc_r_xform_point(t->cur->m[obj], q, wc);
-    tdc_r_xform_point(t->prev->m[obj], q, wp);
+    if (t->r->obj_same_m[obj]) memcpy(wp, wc, sizeof wp); /* same matrix: same product */
+    else tdc_r_xform_point(t->prev->m[obj], q, wp);
     if (tdc_r_project(&t->cur->cam, wc, xc, yc) < 0) return -1;
     return tdc_r_project(&t->prev->cam, wp, xp, yp);
 }

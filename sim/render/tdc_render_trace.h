@@ -7,29 +7,31 @@
 
 #include "tdc_render_internal.h"
 
-/* One traced sample and everything the passes derive from it. */
+/* One traced sample and everything the passes derive from it.  The fields
+ * every sample goes through (placement, primary hit, shading, primary MV)
+ * come first and fill 4 cache lines; shadow, dual and mirror-chain fields
+ * follow and are only touched by the passes that need them. */
 typedef struct {
     float x, y;             /* image position, full-res px */
     uint32_t dst, k;        /* output slot, sample index within the slot (GT) */
     int px, py;             /* full-res pixel (MV history) */
     int obj;                /* primary hit object, -1 = miss */
+    int in_shadow, nmir, mv_valid, refl_used; /* flags: tracked shadow, mirror chain length, MV */
+    float hit_t, hit_ng[3]; /* Embree's primary hit: ray parameter, raw object-space normal */
     double dir[3];          /* primary direction (not normalised, see tdc_r_cam_ray) */
     double P[3], Q[3];      /* hit: world, object space */
     double N[3], NQ[3];     /* normal: world (facing the ray), object space (raw) */
-    double xc, yc;          /* current-frame projection of the hit (= x, y up to rounding) */
     double depth;
     double col[3];
     double mirror;
-    /* motion vectors (float px); before the rarely used shadow and mirror
-     * fields so the passes every sample goes through share cache lines */
-    double mv[2], mvs[2], sw, mvd[2];
-    int mv_valid, refl_used, disocc;
-    /* shadow tracking (first blocked light sample) */
-    int in_shadow, blk_obj, blk_light;
+    double mv[2];           /* motion vector (float px) */
+    double xc, yc;          /* current-frame projection of the hit (= x, y up to rounding) */
+    /* rarely used: shadow and dual MVs, shadow tracking, mirror chain */
+    double mvs[2], sw, mvd[2];
+    int disocc;
+    int blk_obj, blk_light; /* shadow tracking (first blocked light sample) */
     double BQ[3];
     double loff[3];         /* blocked light sample - light position (0 for point lights) */
-    /* mirror chain */
-    int nmir;
     int mobj[TDC_R_MAX_BOUNCES];
     double mQ[TDC_R_MAX_BOUNCES][3], mNQ[TDC_R_MAX_BOUNCES][3];
     int robj;               /* final reflected object, -1 = miss */
