@@ -66,6 +66,15 @@ const uint8_t *tdc_asm_pattern(const tdc_asm_t *st)
     return st ? st->pattern : NULL;
 }
 
+/* Motion word of pixel p: its (dx, dy) pair as one 32-bit value, only
+ * compared for equality and against zero (so byte order does not matter). */
+static inline uint32_t tdc_asm_mv_word(const int16_t *pair)
+{
+    uint32_t v;
+    memcpy(&v, pair, sizeof(v));
+    return v;
+}
+
 /* ------------------------------------------------------------------------
  * Ingest.
  * ---------------------------------------------------------------------- */
@@ -87,25 +96,47 @@ tdc_status_t tdc_asm_ingest(tdc_asm_t *st, uint32_t frame, const uint8_t *sample
     }
     const unsigned pos_h = tdc_ordering_pixel(TDC_ORDER_HOURGLASS, k);
     const unsigned pos_b = tdc_ordering_pixel(TDC_ORDER_BOWTIE, k);
-    const size_t tiles = (size_t)st->tiles_x * st->tiles_y;
+    const uint32_t tx_n = st->tiles_x;
+    const size_t tiles = (size_t)tx_n * st->tiles_y;
+    uint8_t *const plane_h = st->samples + (size_t)(slot * 4u + pos_h) * tiles * 3u;
+    uint8_t *const plane_b = st->samples + (size_t)(slot * 4u + pos_b) * tiles * 3u;
+    int32_t nz = 0; /* change of the count of non-zero motion entries */
     for (uint32_t ty = 0; ty < st->tiles_y; ty++) {
-        for (uint32_t tx = 0; tx < st->tiles_x; tx++) {
-            uint32_t ti = ty * st->tiles_x + tx;
-            unsigned pos = tdc_ordering_get(st->pattern, ti) == TDC_ORDER_BOWTIE ? pos_b : pos_h;
+        const uint32_t ti0 = ty * tx_n;
+        if (pos_h == pos_b) {
+            /* Subframes 0 and 3: every tile traces the same position, so
+             * the row of samples is one dense copy into one plane. */
+            const uint32_t y = 2u * ty + (pos_h >> 1), q = pos_h & 1u;
+            if (y >= h) continue; /* partial tile row: no such pixels */
+            const uint32_t n = tx_n - (q && (w & 1u) ? 1u : 0u);
+            memcpy(plane_h + (size_t)ti0 * 3u, samples + (size_t)ti0 * 3u, (size_t)n * 3u);
+            int16_t *m = st->mv + ((size_t)y * w + q) * 2u;
+            for (uint32_t tx = 0; tx < n; tx++, m += 4) {
+                uint32_t was = tdc_asm_mv_word(m), is = 0;
+                if (mvs) memcpy(&is, mvs + (size_t)(ti0 + tx) * 2u, sizeof(is));
+                if (is != was) memcpy(m, &is, sizeof(is)); /* unchanged: keep the line clean */
+                nz += (int32_t)(is != 0) - (int32_t)(was != 0);
+            }
+            continue;
+        }
+        for (uint32_t tx = 0; tx < tx_n; tx++) {
+            const uint32_t ti = ti0 + tx;
+            const int bowtie = tdc_ordering_get(st->pattern, ti) == TDC_ORDER_BOWTIE;
+            const unsigned pos = bowtie ? pos_b : pos_h;
             uint32_t x = 2u * tx + (pos & 1u), y = 2u * ty + (pos >> 1);
             if (x >= w || y >= h) continue; /* partial tile: no such pixel */
-            size_t p = (size_t)y * w + x;
-            uint8_t *s = st->samples + ((size_t)(slot * 4u + pos) * tiles + ti) * 3u;
-            s[0] = samples[ti * 3u];
-            s[1] = samples[ti * 3u + 1u];
-            s[2] = samples[ti * 3u + 2u];
-            int16_t dx = mvs ? mvs[ti * 2u] : 0, dy = mvs ? mvs[ti * 2u + 1u] : 0;
-            int was = (st->mv[p * 2u] | st->mv[p * 2u + 1u]) != 0, is = (dx | dy) != 0;
-            st->mv_nonzero = st->mv_nonzero + (uint32_t)is - (uint32_t)was;
-            st->mv[p * 2u] = dx;
-            st->mv[p * 2u + 1u] = dy;
+            uint8_t *d = (bowtie ? plane_b : plane_h) + (size_t)ti * 3u;
+            d[0] = samples[ti * 3u];
+            d[1] = samples[ti * 3u + 1u];
+            d[2] = samples[ti * 3u + 2u];
+            int16_t *m = st->mv + ((size_t)y * w + x) * 2u;
+            uint32_t was = tdc_asm_mv_word(m), is = 0;
+            if (mvs) memcpy(&is, mvs + (size_t)ti * 2u, sizeof(is));
+            if (is != was) memcpy(m, &is, sizeof(is));
+            nz += (int32_t)(is != 0) - (int32_t)(was != 0);
         }
     }
+    st->mv_nonzero = (uint32_t)((int32_t)st->mv_nonzero + nz);
     st->have_subframe = 1;
     st->stats.subframes++;
     return TDC_OK;
@@ -155,17 +186,9 @@ uint8_t tdc_asm_mean_u8(uint32_t sum, unsigned n)
     return (uint8_t)(((2u * sum + n) * tdc_asm_half_recip_q16[n]) >> 16);
 }
 
-/* s0: the pixel's sample in slot 0; slot i is at s0 + i * stride. */
-static void tdc_asm_window_mean(const uint8_t *s0, size_t stride, unsigned mask, uint8_t *out)
+/* Mean of a partial window (mask != 0xF): the first frames after a reset. */
+static void tdc_asm_window_mean_part(const uint8_t *s0, size_t stride, unsigned mask, uint8_t *out)
 {
-    const uint8_t *a = s0, *b1 = s0 + stride, *c = s0 + 2u * stride, *d = s0 + 3u * stride;
-    if (mask == 0xFu) {
-        /* Full window (the steady state of a static pixel): plain mean of 4. */
-        out[0] = (uint8_t)((a[0] + b1[0] + c[0] + d[0] + 2u) >> 2);
-        out[1] = (uint8_t)((a[1] + b1[1] + c[1] + d[1] + 2u) >> 2);
-        out[2] = (uint8_t)((a[2] + b1[2] + c[2] + d[2] + 2u) >> 2);
-        return;
-    }
     unsigned n = 0, r = 0, g = 0, b = 0;
     for (unsigned i = 0; i < 4; i++) {
         if (mask & (1u << i)) {
@@ -179,6 +202,20 @@ static void tdc_asm_window_mean(const uint8_t *s0, size_t stride, unsigned mask,
     out[0] = tdc_asm_mean_u8(r, n);
     out[1] = tdc_asm_mean_u8(g, n);
     out[2] = tdc_asm_mean_u8(b, n);
+}
+
+/* s0: the pixel's sample in slot 0; slot i is at s0 + i * stride. */
+static inline void tdc_asm_window_mean(const uint8_t *s0, size_t stride, unsigned mask, uint8_t *out)
+{
+    if (mask != 0xFu) {
+        tdc_asm_window_mean_part(s0, stride, mask, out);
+        return;
+    }
+    /* Full window (the steady state of a static pixel): plain mean of 4. */
+    const uint8_t *a = s0, *b1 = s0 + stride, *c = s0 + 2u * stride, *d = s0 + 3u * stride;
+    out[0] = (uint8_t)((a[0] + b1[0] + c[0] + d[0] + 2u) >> 2);
+    out[1] = (uint8_t)((a[1] + b1[1] + c[1] + d[1] + 2u) >> 2);
+    out[2] = (uint8_t)((a[2] + b1[2] + c[2] + d[2] + 2u) >> 2);
 }
 
 /*
@@ -223,15 +260,6 @@ uint32_t tdc_asm_sqrt_q8(uint32_t d)
     uint32_t r = lo + (uint32_t)(((uint64_t)(hi - lo) * f) >> 24);
     unsigned half = z >> 1;
     return half <= 8u ? r << (8u - half) : r >> (half - 8u);
-}
-
-/* Motion word of pixel p: its (dx, dy) pair as one 32-bit value, only
- * compared for equality and against zero (so byte order does not matter). */
-static inline uint32_t tdc_asm_mv_word(const int16_t *pair)
-{
-    uint32_t v;
-    memcpy(&v, pair, sizeof(v));
-    return v;
 }
 
 /* Summary of motion row y: TDC_ASM_ROW_ANY if any vector is non-zero,
@@ -572,15 +600,32 @@ static void tdc_asm_static_frame(tdc_asm_t *st, uint32_t frame)
     const unsigned pos_h = tdc_ordering_pixel(TDC_ORDER_HOURGLASS, k);
     const unsigned pos_b = tdc_ordering_pixel(TDC_ORDER_BOWTIE, k);
     uint64_t averaged = 0;
-    const size_t tiles = (size_t)st->tiles_x * st->tiles_y, stride = tiles * 12u;
+    const uint32_t tx_n = st->tiles_x;
+    const size_t tiles = (size_t)tx_n * st->tiles_y, stride = tiles * 12u;
+    const uint8_t bit = (uint8_t)(1u << slot);
     for (uint32_t ty = 0; ty < st->tiles_y; ty++) {
-        for (uint32_t tx = 0; tx < st->tiles_x; tx++) {
-            uint32_t ti = ty * st->tiles_x + tx;
+        const uint32_t ti0 = ty * tx_n;
+        if (pos_h == pos_b) {
+            /* Subframes 0 and 3: one position for every tile of the row. */
+            const uint32_t y = 2u * ty + (pos_h >> 1), q = pos_h & 1u;
+            if (y >= h) continue;
+            const uint32_t n = tx_n - (q && (w & 1u) ? 1u : 0u);
+            const uint8_t *s0 = st->samples + ((size_t)pos_h * tiles + ti0) * 3u;
+            uint8_t *win = st->window + (size_t)y * w + q, *o = img + ((size_t)y * w + q) * 3u;
+            for (uint32_t tx = 0; tx < n; tx++, win += 2, o += 6, s0 += 3) {
+                *win = (uint8_t)(*win | bit);
+                tdc_asm_window_mean(s0, stride, *win, o);
+            }
+            averaged += n;
+            continue;
+        }
+        for (uint32_t tx = 0; tx < tx_n; tx++) {
+            uint32_t ti = ti0 + tx;
             unsigned pos = tdc_ordering_get(st->pattern, ti) == TDC_ORDER_BOWTIE ? pos_b : pos_h;
             uint32_t x = 2u * tx + (pos & 1u), y = 2u * ty + (pos >> 1);
             if (x >= w || y >= h) continue;
             size_t p = (size_t)y * w + x;
-            st->window[p] = (uint8_t)(st->window[p] | (1u << slot));
+            st->window[p] = (uint8_t)(st->window[p] | bit);
             tdc_asm_window_mean(st->samples + ((size_t)pos * tiles + ti) * 3u, stride, st->window[p], img + p * 3u);
             averaged++;
         }

@@ -7,6 +7,8 @@
 #include "tdc_fixed.h"
 #include "tdc_math.h"
 
+#include <string.h>
+
 /* Subframe k -> tile position.  Hourglass TL,TR,BL,BR; bowtie TL,BL,TR,BR. */
 static const uint8_t tdc_order_pos[2][4] = {
     {TDC_TILE_TL, TDC_TILE_TR, TDC_TILE_BL, TDC_TILE_BR},
@@ -139,11 +141,60 @@ static tdc_ordering_colmax_t tdc_ordering_column(const int16_t *mv, int w, int x
     return c;
 }
 
+/* 1 if every (dx, dy) pair of motion row y equals the first (*value = that
+ * pair as one 32-bit word, only compared, so byte order does not matter). */
+static int tdc_ordering_row_uniform(const int16_t *mv, int w, int y, uint32_t *value)
+{
+    const int16_t *row = mv + (size_t)y * (size_t)w * 2u;
+    uint32_t first, diff = 0;
+    memcpy(&first, row, sizeof(first));
+    for (int x = 1; x < w; x++) {
+        uint32_t v;
+        memcpy(&v, row + 2 * x, sizeof(v));
+        diff |= v ^ first;
+    }
+    *value = first;
+    return diff == 0;
+}
+
 void tdc_ordering_update(const int16_t *mv, int w, int h, uint8_t *pattern_bits, uint32_t frame)
 {
     if (!mv || !pattern_bits || w <= 0 || h <= 0) return;
     int tx_n = (w + 1) / 2, ty_n = (h + 1) / 2;
+    /* Row summaries, each pixel row scanned once: slot y & 7 holds row
+     * row_of[slot] (a tile row needs 6 consecutive rows). */
+    int row_of[8] = {-1, -1, -1, -1, -1, -1, -1, -1}, row_uni[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    uint32_t row_val[8] = {0, 0, 0, 0, 0, 0, 0, 0};
     for (int ty = 0; ty < ty_n; ty++) {
+        {
+            /* Fast path: all pixel rows of the tile row's neighbourhood hold
+             * one vector v.  Then every tile's longest vector is v: v = 0
+             * keeps every ordering; otherwise the decision depends on the
+             * tile only in the random band (hash), else it is one value. */
+            int y0 = 2 * ty - 2 < 0 ? 0 : 2 * ty - 2;
+            int y1 = 2 * ty + 3 >= h ? h - 1 : 2 * ty + 3;
+            int uni = 1;
+            uint32_t v0 = 0;
+            for (int y = y0; y <= y1; y++) {
+                int sl = y & 7;
+                if (row_of[sl] != y) row_uni[sl] = tdc_ordering_row_uniform(mv, w, y, &row_val[sl]), row_of[sl] = y;
+                if (y == y0) v0 = row_val[sl];
+                uni = uni && row_uni[sl] && row_val[sl] == v0;
+            }
+            if (uni) {
+                const int16_t *m = mv + (size_t)y0 * (size_t)w * 2u;
+                int32_t dx = m[0], dy = m[1];
+                if (dx == 0 && dy == 0) continue;
+                int random_band = tdc_ordering_in_random_band(dx, dy);
+                tdc_ordering_t o = tdc_ordering_decide(dx, dy, TDC_ORDER_HOURGLASS, 0u, (uint32_t)ty, frame);
+                for (int tx = 0; tx < tx_n; tx++) {
+                    if (random_band)
+                        o = tdc_ordering_decide(dx, dy, TDC_ORDER_HOURGLASS, (uint32_t)tx, (uint32_t)ty, frame);
+                    tdc_ordering_set(pattern_bits, (uint32_t)ty * (uint32_t)tx_n + (uint32_t)tx, o);
+                }
+                continue;
+            }
+        }
         /* 3x3 tiles = pixel rows 2ty-2 .. 2ty+3 and columns 2tx-2 .. 2tx+3,
          * clipped.  Column maxima slide by two columns per tile: col[i] is
          * pixel column 2tx-2+i.  The longest vector is the first in raster
