@@ -5,7 +5,9 @@
  * Data path of a full-resolution frame (per channel):
  *   codes --D--> dprev (reduced, code Q8) --U--> g (code Q8) --lin--> Lu (Q24)
  *   codes --lin--> LI (Q24);  beta = 2 LI - Lu;  out = enc(clamp(beta));
- *   rho = beta - clamp(beta) in Q15.
+ *   rho = beta - clamp(beta) in Q24.
+ * The per-pixel work of a row is in tdc_trm_rows.c (portable C) and
+ * tdc_trm_avx2.c (host SIMD, same bytes); see tdc_trm_kernels.h.
  * D is evaluated only at the reduced sample centres (a polyphase Gaussian):
  * a horizontal pass per full-res row into a ring of rows, then a vertical
  * pass per reduced row, so scratch memory is a few rows, not a frame.
@@ -15,6 +17,7 @@
 #include "tdc_trm.h"
 
 #include "tdc_math.h"
+#include "tdc_trm_kernels.h"
 
 #define TDC_TRM_MAX_DIM 8192
 
@@ -49,7 +52,7 @@ static uint16_t trm_taps(uint16_t sigma_q8)
 }
 
 typedef struct {
-    size_t residual, dprev, rscratch, ring, urow, dx_first, dy_first, dx_w, dy_w, ux, uy, wexp, total;
+    size_t residual, dprev, rscratch, ring, urow, dx_first, dy_first, dx_w, dy_w, ux, uy, wexp, simd, total;
 } trm_layout_t;
 
 static size_t align8(size_t n)
@@ -85,6 +88,8 @@ static void trm_layout(const tdc_trm_config_t *cfg, uint16_t rw, uint16_t rh, ui
     o += align8(h * 2u * sizeof(uint16_t));
     l->wexp = o;
     o += align8(TDC_TRM_WEXP_ENTRIES * sizeof(uint32_t));
+    l->simd = o;
+    o += align8(TDC_TRM_SIMD_BYTES);
     l->total = o + 8u; /* slack for aligning the caller's pointer */
 }
 
@@ -208,6 +213,7 @@ tdc_status_t tdc_trm_init(tdc_trm_t *st, const tdc_trm_config_t *cfg, const tdc_
     st->passthrough = (uint8_t)!reduces;
     st->have_full = 0;
     st->stats = (tdc_trm_stats_t){0};
+    st->simd = (uint8_t)tdc_trm_avx2_available();
     if (st->passthrough) {
         st->residual = NULL;
         st->dprev = st->rscratch = st->ring = NULL;
@@ -215,6 +221,8 @@ tdc_status_t tdc_trm_init(tdc_trm_t *st, const tdc_trm_config_t *cfg, const tdc_
         st->dx_first = st->dy_first = NULL;
         st->dx_w = st->dy_w = st->ux_i = st->ux_f = st->uy_i = st->uy_f = NULL;
         st->wexp = NULL;
+        st->enc_comb = NULL;
+        st->simd = 0;
         return TDC_OK;
     }
     trm_layout_t l;
@@ -243,6 +251,12 @@ tdc_status_t tdc_trm_init(tdc_trm_t *st, const tdc_trm_config_t *cfg, const tdc_
     for (uint32_t k = 0; k < TDC_TRM_WEXP_ENTRIES; k++) {
         st->wexp[k] = tdc_exp_neg_q16_q30(k << 8);
     }
+    st->enc_comb = TDC_TRM_SIMD_BYTES != 0u ? base + l.simd : NULL;
+    st->enc_one_step = 0;
+    if (st->simd && st->enc_comb) {
+        st->enc_one_step = (uint8_t)tdc_trm_avx2_build_encode(panel, st->enc_comb);
+    }
+    st->simd = (uint8_t)(st->simd && st->enc_comb);
     st->stats = (tdc_trm_stats_t){0};
     tdc_trm_reset(st);
     return TDC_OK;
@@ -320,14 +334,8 @@ static void trm_apply_d(tdc_trm_t *st, const uint8_t *in, uint32_t stride, tdc_g
         for (uint32_t t = 0; t < taps; t++) {
             rows[t] = &st->ring[((uint32_t)clampi(k0 + (int32_t)t, 0, hmax) % taps) * rw3];
         }
-        tdc_gval_t *o = &dst[jy * rw3];
-        for (uint32_t i = 0; i < rw3; i++) {
-            uint32_t acc = 0;
-            for (uint32_t t = 0; t < taps; t++) {
-                acc += w[t] * (uint32_t)rows[t][i];
-            }
-            o[i] = (tdc_gval_t)((acc + (1u << 14)) >> 15);
-        }
+        (st->simd ? tdc_trm_dvert_avx2 : tdc_trm_dvert_c)((const uint16_t *const *)rows, w, taps, rw3,
+                                                          &dst[jy * rw3]);
     }
 }
 
@@ -353,9 +361,6 @@ static void trm_u_row(const tdc_trm_t *st, const tdc_gval_t *src, uint32_t y, ui
     dst[rw3 + 2u] = dst[rw3 - 1u];
 }
 
-/* Half an output code in code Q16: the quantisation of a reduced frame. */
-#define TDC_TRM_HALF_CODE_Q16 (1u << 15)
-
 /* ---------------------------------------------------------------------
  * Frames
  * ------------------------------------------------------------------- */
@@ -371,104 +376,32 @@ static void trm_copy(const tdc_trm_t *st, const uint8_t *in, uint32_t in_stride,
     }
 }
 
-/*
- * w = exp(-x), x in Q16, from a table of exp(-k/256) in Q30 with linear
- * interpolation and one rounding to Q15.  Error: 0.5 LSB rounding plus the
- * interpolation's (1/256)^2 / 8 * 32768 = 0.06 LSB (asserted <= 0.6 in
- * tests/test_trm.c against double).  Beyond x = 17, exp(-x) < 2^-24: 0.
- */
-static inline int32_t trm_weight(const uint32_t *restrict wexp, uint64_t x_q16)
+void tdc_trm_set_simd(tdc_trm_t *st, int enable)
 {
-    if (x_q16 >= (uint64_t)(TDC_TRM_WEXP_ENTRIES - 1u) << 8) {
-        return 0;
-    }
-    const uint32_t k = (uint32_t)(x_q16 >> 8), f = (uint32_t)(x_q16 & 255u);
-    /* entries Q30, decreasing: a - (a - b) f / 256, then one rounding to Q15;
-     * (a - b) < 2^23 times f < 2^8 fits 32 bits */
-    const uint32_t a = wexp[k], b = wexp[k + 1u];
-    const uint32_t v = a - (((a - b) * f) >> 8);
-    return (int32_t)((v + (1u << 14)) >> 15);
+    st->simd = (uint8_t)(enable && tdc_trm_avx2_available() && st->enc_comb != NULL);
 }
 
 int32_t tdc_trm_weight(const tdc_trm_t *st, uint32_t x_q16)
 {
-    return trm_weight(st->wexp, x_q16);
+    return tdc_trm_weight_q15(st->wexp, x_q16);
 }
 
-/* Horizontal lerp of a vertically interpolated row (code Q22) between
- * samples i and i + 3 (the next pixel, same channel): code Q16.
- * Scaling: |v1 - v0| < 2^30 times f < 2^14 needs 64 bits; rounded once. */
-static inline uint32_t trm_hlerp(const uint32_t *restrict urow, uint32_t i, uint32_t f_q14)
-{
-    const int64_t v0 = urow[i], v1 = urow[i + 3u];
-    return (uint32_t)tdc_asr64(v0 * (1 << 14) + (v1 - v0) * (int64_t)f_q14 + (1LL << 19), 20);
-}
-
-/* One channel's gamma tables as restrict-qualified locals: the byte stores
- * of the output frame may alias anything, so without these the compiler
- * reloads every table pointer after each store. */
-typedef struct {
-    const uint32_t *restrict dec;
-    const uint32_t *restrict thr;
-    const uint16_t *restrict idx;
-} trm_gamma_t;
-
-static inline tdc_lin_t trm_dec_q16(const trm_gamma_t *g, uint32_t g_q16)
-{
-    const uint32_t k = g_q16 >> 16, f = (g_q16 >> 4) & 0xfffu;
-    const uint32_t a = g->dec[k], b = g->dec[k + 1u];
-    return (tdc_lin_t)(a + (((b - a) * f + 0x800u) >> 12)); /* as tdc_gamma_decode_q16 */
-}
-
-static inline uint32_t trm_enc(const trm_gamma_t *g, int32_t lin)
-{
-    /* as tdc_gamma_encode: lin already clamped to [0, 2^24] by the caller */
-    uint32_t k = g->idx[(uint32_t)lin >> (TDC_LIN_FRAC - TDC_ENC_INDEX_BITS)];
-    while (k < 255u && (uint32_t)lin >= g->thr[k + 1u]) {
-        k++;
-    }
-    return k;
-}
-
-static void trm_gamma_locals(const tdc_panel_t *p, trm_gamma_t g[3])
+/* The row kernels' view of the state (tdc_trm_kernels.h). */
+static void trm_rowctx(const tdc_trm_t *st, tdc_trm_rowctx_t *k)
 {
     for (int c = 0; c < 3; c++) {
-        g[c].dec = p->gamma[c].decode;
-        g[c].thr = p->gamma[c].enc_thresh;
-        g[c].idx = p->gamma[c].enc_index;
+        k->dec[c] = st->panel->gamma[c].decode;
+        k->thr[c] = st->panel->gamma[c].enc_thresh;
+        k->idx[c] = st->panel->gamma[c].enc_index;
     }
-}
-
-/* Full-res row: beta = 2 LI - Lu, shown = clamp(beta), rho = beta - shown. */
-static void trm_full_row(const tdc_trm_t *st, const trm_gamma_t g[3], const uint32_t *restrict urow,
-                         const uint8_t *restrict src, uint8_t *restrict dst, tdc_res_t *restrict res,
-                         uint64_t *hi, uint64_t *lo)
-{
-    const uint16_t *restrict ux = st->ux_i;
-    const uint32_t w = st->cfg.width;
-    uint32_t nhi = 0, nlo = 0;
-    for (uint32_t x = 0; x < w; x++) {
-        const uint32_t i0 = 3u * ux[2u * x], f = ux[2u * x + 1u];
-        for (uint32_t c = 0; c < 3u; c++) {
-            const tdc_lin_t lu = trm_dec_q16(&g[c], trm_hlerp(urow, i0 + c, f));
-            const tdc_lin_t li = (tdc_lin_t)g[c].dec[src[3u * x + c]];
-            /* beta = 2 LI - Lu in [-1, 2] (Q24): no overflow in int32 */
-            const int32_t beta = 2 * li - lu;
-            int32_t shown = beta;
-            if (beta > TDC_LIN_ONE) {
-                shown = TDC_LIN_ONE;
-                nhi++;
-            } else if (beta < 0) {
-                shown = 0;
-                nlo++;
-            }
-            /* rho = beta - shown, Q24 (see tdc_res_t) */
-            res[3u * x + c] = beta - shown;
-            dst[3u * x + c] = (uint8_t)trm_enc(&g[c], shown);
-        }
+    k->ux = st->ux_i;
+    k->wexp = st->wexp;
+    k->width = st->cfg.width;
+    k->s_q8 = st->cfg.s_q8;
+    for (int c = 0; c < 3; c++) {
+        k->enc_comb[c] = st->enc_comb ? st->enc_comb + (size_t)c * TDC_TRM_ENC_COMB : NULL;
     }
-    *hi += nhi;
-    *lo += nlo;
+    k->enc_one_step = st->enc_one_step;
 }
 
 tdc_status_t tdc_trm_full(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out, uint32_t out_stride)
@@ -482,83 +415,24 @@ tdc_status_t tdc_trm_full(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, 
         return TDC_OK;
     }
     trm_apply_d(st, in, in_stride, st->dprev);
-    trm_gamma_t g[3];
-    trm_gamma_locals(st->panel, g);
+    tdc_trm_rowctx_t k;
+    trm_rowctx(st, &k);
+    tdc_trm_full_row_fn *row = st->simd ? tdc_trm_full_row_avx2 : tdc_trm_full_row_c;
     const uint32_t w = st->cfg.width;
     uint64_t hi = 0, lo = 0;
     for (uint32_t y = 0; y < st->cfg.height; y++) {
+        tdc_trm_full_counts_t n = {0, 0};
         trm_u_row(st, st->dprev, y, st->urow);
-        trm_full_row(st, g, st->urow, in + (size_t)y * in_stride, out + (size_t)y * out_stride,
-                     &st->residual[(size_t)y * w * 3u], &hi, &lo);
+        row(&k, st->urow, in + (size_t)y * in_stride, out + (size_t)y * out_stride,
+            &st->residual[(size_t)y * w * 3u], &n);
+        hi += n.hi;
+        lo += n.lo;
     }
     st->stats.clamped_high += hi;
     st->stats.clamped_low += lo;
     st->stats.full_frames++;
     st->have_full = 1;
     return TDC_OK;
-}
-
-typedef struct {
-    uint64_t computed, skipped, no_res;
-} trm_weight_counts_t;
-
-/* Reduced row: alpha' = alpha + w rho, w = exp(-s c). */
-static void trm_reduced_row(const tdc_trm_t *st, const trm_gamma_t g[3], const uint32_t *restrict urow_a,
-                            const uint32_t *restrict urow_b, const tdc_res_t *restrict res,
-                            uint8_t *restrict dst, trm_weight_counts_t *n)
-{
-    const uint16_t *restrict ux = st->ux_i;
-    const uint32_t w = st->cfg.width;
-    const uint32_t s_q8 = st->cfg.s_q8;
-    uint32_t computed = 0, skipped = 0, no_res = 0;
-    for (uint32_t x = 0; x < w; x++) {
-        const uint32_t i0 = 3u * ux[2u * x], f = ux[2u * x + 1u];
-        for (uint32_t c = 0; c < 3u; c++) {
-            const uint32_t gb = trm_hlerp(urow_b, i0 + c, f);
-            const tdc_lin_t alpha = trm_dec_q16(&g[c], gb);
-            const int32_t rho = res[3u * x + c];
-            int32_t shown = alpha;
-            if (rho == 0) {
-                no_res++; /* nothing to add: the weight is not needed */
-            } else {
-                uint32_t ga = trm_hlerp(urow_a, i0 + c, f);
-                int32_t w_q15;
-                /* Motion test at the link's precision: the reduced frame
-                 * arrives in whole codes, so U(D(I_t)) is first moved half
-                 * a code towards U(i).  A static pair (i = round D(I)) then
-                 * has c = 0 exactly and skips the weight; the shrink is
-                 * continuous, so no tie can flip it. */
-                if (ga > gb + TDC_TRM_HALF_CODE_Q16) {
-                    ga -= TDC_TRM_HALF_CODE_Q16;
-                } else if (gb > ga + TDC_TRM_HALF_CODE_Q16) {
-                    ga += TDC_TRM_HALF_CODE_Q16;
-                } else {
-                    ga = gb;
-                }
-                if (ga == gb) {
-                    w_q15 = 32768; /* c = 0 known: static, exp(0) = 1 */
-                    skipped++;
-                } else {
-                    const tdc_lin_t la = trm_dec_q16(&g[c], ga);
-                    const uint32_t diff = (uint32_t)tdc_abs32(la - alpha);
-                    /* c = |A - B| / (A + B) in Q30 (A + B <= 2^25): s
-                     * multiplies its error, so Q15 is not enough */
-                    const int32_t c_q30 = tdc_div_q30(diff, (uint32_t)la + (uint32_t)alpha);
-                    /* s c: Q8 * Q30 = Q38 -> Q16; s_q8 < 2^32 keeps it < 2^62 */
-                    const uint64_t sc = ((uint64_t)s_q8 * (uint32_t)c_q30 + (1ull << 21)) >> 22;
-                    w_q15 = trm_weight(st->wexp, sc);
-                    computed++;
-                }
-                /* alpha' = alpha + w rho: Q15 * Q24 -> Q24; |rho| <= 2^24 */
-                shown = alpha + (int32_t)tdc_rshr_round64((int64_t)w_q15 * rho, 15);
-            }
-            shown = shown < 0 ? 0 : (shown > TDC_LIN_ONE ? TDC_LIN_ONE : shown);
-            dst[3u * x + c] = (uint8_t)trm_enc(&g[c], shown);
-        }
-    }
-    n->computed += computed;
-    n->skipped += skipped;
-    n->no_res += no_res;
 }
 
 tdc_status_t tdc_trm_reduced(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t in_stride, uint8_t *out,
@@ -583,21 +457,25 @@ tdc_status_t tdc_trm_reduced(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t 
             st->rscratch[y * rw3 + i] = (tdc_gval_t)((uint32_t)s[i] << TDC_GVAL_FRAC);
         }
     }
-    trm_gamma_t g[3];
-    trm_gamma_locals(st->panel, g);
+    tdc_trm_rowctx_t k;
+    trm_rowctx(st, &k);
+    tdc_trm_reduced_row_fn *row = st->simd ? tdc_trm_reduced_row_avx2 : tdc_trm_reduced_row_c;
     const uint32_t w = st->cfg.width;
     uint32_t *urow_a = st->urow;            /* U(D(I_t)), code Q22 */
     uint32_t *urow_b = st->urow + rw3 + 3u; /* U(i_t+1) */
-    trm_weight_counts_t n = {0, 0, 0};
+    uint64_t computed = 0, skipped = 0, no_res = 0;
     for (uint32_t y = 0; y < st->cfg.height; y++) {
+        tdc_trm_reduced_counts_t n = {0, 0, 0};
         trm_u_row(st, st->dprev, y, urow_a);
         trm_u_row(st, st->rscratch, y, urow_b);
-        trm_reduced_row(st, g, urow_a, urow_b, &st->residual[(size_t)y * w * 3u], out + (size_t)y * out_stride,
-                        &n);
+        row(&k, urow_a, urow_b, &st->residual[(size_t)y * w * 3u], out + (size_t)y * out_stride, &n);
+        computed += n.computed;
+        skipped += n.skipped;
+        no_res += n.no_res;
     }
-    st->stats.weight_computed += n.computed;
-    st->stats.weight_skipped += n.skipped;
-    st->stats.residual_skipped += n.no_res;
+    st->stats.weight_computed += computed;
+    st->stats.weight_skipped += skipped;
+    st->stats.residual_skipped += no_res;
     st->stats.reduced_frames++;
     return TDC_OK;
 }

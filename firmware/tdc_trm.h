@@ -34,6 +34,16 @@
 #define TDC_TRM_WEXP_ENTRIES (17u * 256u + 1u)
 
 /* Reduced size for ratio num/den: round(n * num / den), at least 1. */
+/* The AVX2 row kernels' one-step encode index (tdc_trm_kernels.h):
+ * 3 channels x TDC_TRM_ENC_COMB entries + 4 bytes of gather padding, on
+ * x86-64 hosts only; boards reserve nothing for it. */
+#define TDC_TRM_ENC_COMB (1024u + 4096u - 16u + 1u)
+#if defined(__x86_64__) && !defined(TDC_NO_SIMD)
+#define TDC_TRM_SIMD_BYTES (3u * TDC_TRM_ENC_COMB + 8u)
+#else
+#define TDC_TRM_SIMD_BYTES 0u
+#endif
+
 #define TDC_TRM_REDUCED_DIM(n, num, den) ((((n) * (num)) + (den) / 2) / (den) < 1 ? 1 : (((n) * (num)) + (den) / 2) / (den))
 
 /*
@@ -51,6 +61,7 @@
            (TDC_TRM_MAX_TAPS + 1u) * 2u                                       /* D kernels */         \
      + (size_t)((W) + (H)) * 4u                                              /* U tables */          \
      + (size_t)TDC_TRM_WEXP_ENTRIES * 4u                                     /* exp table */         \
+     + (size_t)TDC_TRM_SIMD_BYTES                                            /* AVX2 encode index */ \
      + 16u * 8u /* alignment slack */)
 
 typedef struct {
@@ -85,6 +96,7 @@ typedef struct {
     uint16_t dtaps;             /* taps per D kernel */
     uint8_t passthrough;        /* r == 1 or no reduced frames in the stream */
     uint8_t have_full;          /* a full frame's D(I) and rho are valid */
+    uint8_t simd;               /* row kernels: 1 = AVX2 (host), 0 = portable C */
     /* views into the arena */
     tdc_res_t *residual;        /* W*H*3, Q24 linear light */
     tdc_gval_t *dprev;          /* rw*rh*3, D(I_t), code Q8 */
@@ -100,6 +112,8 @@ typedef struct {
     uint16_t *uy_i;             /* H */
     uint16_t *uy_f;             /* H */
     uint32_t *wexp;             /* TDC_TRM_WEXP_ENTRIES: exp(-k/256) in Q30 */
+    uint8_t *enc_comb;          /* TDC_TRM_SIMD_BYTES: AVX2 encode index (NULL without) */
+    uint8_t enc_one_step;       /* enc_comb needs at most one threshold step */
     tdc_trm_stats_t stats;
 } tdc_trm_t;
 
@@ -149,6 +163,11 @@ tdc_status_t tdc_trm_downsample(tdc_trm_t *st, const uint8_t *in, uint32_t in_st
 /* The motion weight w = exp(-x), x in Q16, as the reduced path computes it
  * (table interpolation; exposed for the accuracy test). */
 int32_t tdc_trm_weight(const tdc_trm_t *st, uint32_t x_q16);
+
+/* Row kernels: AVX2 (enable = 1, the default when the host CPU has it) or
+ * portable C (0).  Both give the same bytes (tests/checkasm_trm.c); boards
+ * and CPUs without AVX2 always run C. */
+void tdc_trm_set_simd(tdc_trm_t *st, int enable);
 
 /* Residual buffer rho (W*H*3, Q24 linear light, interleaved like the frame),
  * for the LCD stage, which adds the light the panel could not reach. */

@@ -43,3 +43,21 @@ demo-trm: $(TDCRUN) $(B)/tests/test_trm_ref
 	@[ -f $(REPORT)/index.md ] || { echo '# tdc demo report'; echo; echo '- [TRM on built-in contents](trm/index.md)'; } > $(REPORT)/index.md
 	@echo "demo-trm: wrote $(REPORT)/trm/index.md"
 .PHONY: demo-trm
+
+# TRM row kernels: portable C (boards, the reference) and AVX2 (x86-64 hosts;
+# the file compiles to the C kernels elsewhere).  The AVX2 object is built
+# without -mgeneral-regs-only, so every firmware object's machine code is
+# checked for floating-point instructions instead.
+FW_SRCS += firmware/tdc_trm_rows.c firmware/tdc_trm_avx2.c
+$(B)/firmware/tdc_trm_avx2.o: FW_CFLAGS := $(filter-out -mgeneral-regs-only,$(FW_CFLAGS))
+ifeq ($(shell uname -m),x86_64)
+$(B)/test-fw-nofloat-insn: $(FWLIB) tests/check_simd_nofloat.sh
+	@printf '#!/bin/sh\nexec tests/check_simd_nofloat.sh objdump %s\n' "$(FW_OBJS)" > $@
+	@chmod +x $@
+TESTS += $(B)/test-fw-nofloat-insn
+endif
+TESTS += $(B)/tests/checkasm_trm
+$(B)/bench-checkasm-trm: $(B)/tests/checkasm_trm
+	@printf '#!/bin/sh\nexec %s --bench\n' "$<" > $@
+	@chmod +x $@
+BENCHES += $(B)/bench-checkasm-trm

@@ -15,6 +15,7 @@
 #include "golden/tdc_content.h"
 #include "tdc_panels.h"
 #include "tdc_trm.h"
+#include "tdc_trm_kernels.h"
 
 static double now_s(void)
 {
@@ -67,22 +68,6 @@ int main(int argc, char **argv)
     tdc_trm_downsample(&trm, in1, W * 3u, red_moving, trm.rw * 3u);
 
     double bw = memcpy_bandwidth();
-    double best_full = 1e9, best_red = 1e9, best_red_static = 1e9;
-    for (int r = 0; r < reps; r++) {
-        double t0 = now_s();
-        tdc_trm_full(&trm, in, W * 3u, out, W * 3u);
-        double t1 = now_s();
-        tdc_trm_reduced(&trm, red_moving, trm.rw * 3u, out, W * 3u);
-        double t2 = now_s();
-        tdc_trm_full(&trm, in, W * 3u, out, W * 3u);
-        double t3 = now_s();
-        tdc_trm_reduced(&trm, red, trm.rw * 3u, out, W * 3u);
-        double t4 = now_s();
-        best_full = (t1 - t0) < best_full ? (t1 - t0) : best_full;
-        best_full = (t3 - t2) < best_full ? (t3 - t2) : best_full;
-        best_red = (t2 - t1) < best_red ? (t2 - t1) : best_red;
-        best_red_static = (t4 - t3) < best_red_static ? (t4 - t3) : best_red_static;
-    }
     const double px = (double)W * H;
     /* Bytes touched per output pixel.  Full: read I (3) twice (D pass and
      * beta), write out (3), write rho (3 x 4), D(I) (3 x 2 x r^2).
@@ -92,17 +77,48 @@ int main(int argc, char **argv)
     const double bytes_red = 3 * r2 + 6 * r2 + 12 + 3;
     printf("TRM benchmark, %dx%d RGB, one core, r = 1/2, best of %d\n", W, H, reps);
     printf("  memcpy bandwidth            %8.2f GB/s (read + write)\n", bw / 1e9);
-    const struct {
-        const char *name;
-        double t, bytes;
-    } rows[] = {{"full-res path (beta, rho, D)", best_full, bytes_full},
-                {"reduced path, moving", best_red, bytes_red},
-                {"reduced path, static pair", best_red_static, bytes_red}};
-    for (int i = 0; i < 3; i++) {
-        double mpx = px / rows[i].t / 1e6;
-        double bound = bw / rows[i].bytes / 1e6; /* Mpixel/s if memory-bound */
-        printf("  %-28s %8.2f Mpixel/s  %6.2f ms/frame  %5.1f B/px  bound %8.2f Mpixel/s  -> %5.1f %% of bound\n",
-               rows[i].name, mpx, rows[i].t * 1e3, rows[i].bytes, bound, 100.0 * mpx / bound);
+    /* the portable C kernels (what boards run), then the AVX2 kernels
+     * (tdc_trm_avx2.c, same bytes) when this CPU has AVX2 */
+    const int nsets = tdc_trm_avx2_available() ? 2 : 1;
+    double mpx_set[2][3] = {{0}};
+    for (int set = 0; set < nsets; set++) {
+        tdc_trm_set_simd(&trm, set);
+        double best_full = 1e9, best_red = 1e9, best_red_static = 1e9;
+        for (int r = 0; r < reps; r++) {
+            double t0 = now_s();
+            tdc_trm_full(&trm, in, W * 3u, out, W * 3u);
+            double t1 = now_s();
+            tdc_trm_reduced(&trm, red_moving, trm.rw * 3u, out, W * 3u);
+            double t2 = now_s();
+            tdc_trm_full(&trm, in, W * 3u, out, W * 3u);
+            double t3 = now_s();
+            tdc_trm_reduced(&trm, red, trm.rw * 3u, out, W * 3u);
+            double t4 = now_s();
+            best_full = (t1 - t0) < best_full ? (t1 - t0) : best_full;
+            best_full = (t3 - t2) < best_full ? (t3 - t2) : best_full;
+            best_red = (t2 - t1) < best_red ? (t2 - t1) : best_red;
+            best_red_static = (t4 - t3) < best_red_static ? (t4 - t3) : best_red_static;
+        }
+        printf("  %s kernels:\n", set ? "AVX2" : "portable C");
+        const struct {
+            const char *name;
+            double t, bytes;
+        } rows[] = {{"full-res path (beta, rho, D)", best_full, bytes_full},
+                    {"reduced path, moving", best_red, bytes_red},
+                    {"reduced path, static pair", best_red_static, bytes_red}};
+        for (int i = 0; i < 3; i++) {
+            double mpx = px / rows[i].t / 1e6;
+            double bound = bw / rows[i].bytes / 1e6; /* Mpixel/s if memory-bound */
+            mpx_set[set][i] = mpx;
+            printf("  %-28s %8.2f Mpixel/s  %6.2f ms/frame  %5.1f B/px  bound %8.2f Mpixel/s  -> %5.1f %% of bound\n",
+                   rows[i].name, mpx, rows[i].t * 1e3, rows[i].bytes, bound, 100.0 * mpx / bound);
+        }
+    }
+    if (nsets == 2) {
+        printf("  AVX2 / C: full %.2fx, reduced moving %.2fx, reduced static %.2fx\n", mpx_set[1][0] / mpx_set[0][0],
+               mpx_set[1][1] / mpx_set[0][1], mpx_set[1][2] / mpx_set[0][2]);
+    } else {
+        printf("  (no AVX2 on this CPU: C kernels only)\n");
     }
     const tdc_trm_stats_t *s = &trm.stats;
     printf("  counters: full %u reduced %u pass-through %u; weights computed %llu, skipped (c = 0) %llu, "

@@ -1,0 +1,420 @@
+/*
+ * tdc_trm_avx2.c - TRM's row kernels with x86-64 AVX2 integer SIMD, for
+ * host builds.  They produce the same bytes as the portable C kernels in
+ * tdc_trm_rows.c (tests/checkasm_trm.c checks that and benchmarks both;
+ * the golden vectors run through them on any AVX2 host).
+ *
+ * Layout: 8 consecutive pixels per step, one vector per colour channel, so
+ * every lane of a vector uses the same channel's gamma tables (gathers with
+ * one base).  Interleaved RGB inputs are read with gathers (stride 3);
+ * outputs are re-interleaved with permutes and blends.  Integer only: the
+ * object is checked for floating-point instructions by
+ * tests/check_simd_nofloat.sh.  Other targets get 0 from
+ * tdc_trm_avx2_available() and the C kernels behind the AVX2 names.
+ *
+ * Exactness notes (why 32-bit lanes give the C path's 64-bit results):
+ *  - hlerp: C computes floor((v0 2^14 + (v1 - v0) f + 2^19) / 2^20) in 64
+ *    bits.  With d = v1 - v0 = dh 2^14 + dl (dl in [0, 2^14)) and
+ *    X = v0 + dh f = Xh 2^6 + Xl (Xl in [0, 64)), the sum is
+ *    Xh 2^20 + Z with Z = Xl 2^14 + dl f + 2^19 in [0, 2^29): the result is
+ *    Xh + (Z >> 20).  |dh f| < 2^30 and v0 < 2^30 keep X in int32.
+ *  - alpha + round(w rho / 2^15): with rho = rh 2^15 + rl (rl in
+ *    [0, 2^15)), floor((w rho + 2^14) / 2^15) = w rh + ((w rl + 2^14) >> 15);
+ *    w <= 2^15, |rho| <= 2^24 keep both products in int32.
+ *  - encode: the forward scan over thresholds finds the largest k with
+ *    thr[k] <= L from any start k0 with thr[k0] <= L, so a finer index
+ *    than the panel's (64-wide buckets below L = 2^16, where the dark codes
+ *    crowd) gives the same code; with at most one threshold per bucket
+ *    (checked when the index is built) one compare replaces the scan and
+ *    its data-dependent branch, which stalled the gathers behind it.
+ *  - the motion weight (a division) runs per lane in scalar C through the
+ *    same function as the C kernel, only for lanes that moved.
+ */
+#include "tdc_trm_kernels.h"
+
+/* Portable C: builds the AVX2 kernels' encode index (tdc_trm_kernels.h). */
+int tdc_trm_avx2_build_encode(const tdc_panel_t *panel, uint8_t *comb)
+{
+    int one_step = 1;
+    for (uint32_t c = 0; c < 3u; c++) {
+        const uint32_t *thr = panel->gamma[c].enc_thresh;
+        uint8_t *t = comb + (size_t)c * TDC_TRM_ENC_COMB;
+        uint32_t k = 0;
+        for (uint32_t i = 0; i < TDC_TRM_ENC_COMB; i++) {
+            const uint32_t lo = i < 1024u ? i << 6 : (i - 1008u) << 12;
+            const uint32_t hi = i < 1024u ? lo + 63u : lo + 4095u;
+            while (k < 255u && thr[k + 1u] <= lo) {
+                k++;
+            }
+            t[i] = (uint8_t)k;
+            uint32_t inside = 0; /* thresholds in (lo, hi] */
+            for (uint32_t j = k + 1u; j <= 255u && thr[j] <= hi; j++) {
+                inside++;
+            }
+            if (inside > 1u) {
+                one_step = 0;
+            }
+        }
+    }
+    for (uint32_t i = 3u * TDC_TRM_ENC_COMB; i < 3u * TDC_TRM_ENC_COMB + 8u; i++) {
+        comb[i] = 0; /* read, never used, by the 32-bit gathers */
+    }
+    return one_step;
+}
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(TDC_NO_SIMD)
+
+#include <immintrin.h>
+
+#define TDC_AVX2 __attribute__((target("avx2,popcnt")))
+
+int tdc_trm_avx2_available(void)
+{
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt");
+}
+
+/* Horizontal lerp (see the header comment): 8 pixels of one channel. */
+static inline TDC_AVX2 __m256i trm_hlerp8(const uint32_t *urow, __m256i i0, __m256i f)
+{
+    const __m256i v0 = _mm256_i32gather_epi32((const int *)urow, i0, 4);
+    const __m256i v1 = _mm256_i32gather_epi32((const int *)(urow + 3), i0, 4);
+    const __m256i d = _mm256_sub_epi32(v1, v0);
+    const __m256i dh = _mm256_srai_epi32(d, 14);
+    const __m256i dl = _mm256_and_si256(d, _mm256_set1_epi32(0x3fff));
+    const __m256i x = _mm256_add_epi32(v0, _mm256_mullo_epi32(dh, f));
+    const __m256i xh = _mm256_srai_epi32(x, 6);
+    const __m256i xl = _mm256_and_si256(x, _mm256_set1_epi32(63));
+    const __m256i z = _mm256_add_epi32(_mm256_add_epi32(_mm256_slli_epi32(xl, 14), _mm256_mullo_epi32(dl, f)),
+                                       _mm256_set1_epi32(1 << 19));
+    return _mm256_add_epi32(xh, _mm256_srli_epi32(z, 20));
+}
+
+/* Gamma decode of code Q16 (as tdc_gamma_decode_q16); (b - a) f < 2^31. */
+static inline TDC_AVX2 __m256i trm_dec8(const uint32_t *dec, __m256i g)
+{
+    const __m256i k = _mm256_srli_epi32(g, 16);
+    const __m256i f = _mm256_and_si256(_mm256_srli_epi32(g, 4), _mm256_set1_epi32(0xfff));
+    const __m256i a = _mm256_i32gather_epi32((const int *)dec, k, 4);
+    const __m256i b = _mm256_i32gather_epi32((const int *)(dec + 1), k, 4);
+    const __m256i step = _mm256_add_epi32(_mm256_mullo_epi32(_mm256_sub_epi32(b, a), f), _mm256_set1_epi32(0x800));
+    return _mm256_add_epi32(a, _mm256_srli_epi32(step, 12));
+}
+
+/* Gamma encode of L in [0, 2^24] (as tdc_gamma_encode): the combined
+ * index (tdc_trm_avx2_build_encode) then one threshold compare; a forward
+ * scan only for panels whose index cannot guarantee one step. */
+static inline TDC_AVX2 __m256i trm_enc8(const uint32_t *thr, const uint8_t *comb, uint32_t one_step, __m256i l)
+{
+    const __m256i fine = _mm256_cmpgt_epi32(_mm256_set1_epi32(1 << 16), l);
+    const __m256i i = _mm256_blendv_epi8(_mm256_add_epi32(_mm256_srli_epi32(l, 12), _mm256_set1_epi32(1008)),
+                                         _mm256_srli_epi32(l, 6), fine);
+    __m256i k = _mm256_and_si256(_mm256_i32gather_epi32((const int *)(const void *)comb, i, 1),
+                                 _mm256_set1_epi32(0xff));
+    const __m256i top = _mm256_set1_epi32(255);
+    for (;;) {
+        const __m256i next = _mm256_min_epi32(_mm256_add_epi32(k, _mm256_set1_epi32(1)), top);
+        const __m256i t = _mm256_i32gather_epi32((const int *)thr, next, 4);
+        /* advance where k < 255 and L >= thr[k + 1] */
+        const __m256i adv = _mm256_andnot_si256(_mm256_cmpgt_epi32(t, l), _mm256_cmpgt_epi32(top, k));
+        k = _mm256_sub_epi32(k, adv);
+        if (one_step || _mm256_testz_si256(adv, adv)) {
+            return k;
+        }
+    }
+}
+
+/* Encode of three channels: the index gathers of all three, then the
+ * threshold gathers, so they overlap (the scan only if a bucket of this
+ * panel holds two thresholds). */
+static inline TDC_AVX2 void trm_enc8x3(const tdc_trm_rowctx_t *k, const __m256i l[3], __m256i code[3])
+{
+    if (!k->enc_one_step) {
+        for (int c = 0; c < 3; c++) {
+            code[c] = trm_enc8(k->thr[c], k->enc_comb[c], 0u, l[c]);
+        }
+        return;
+    }
+    const __m256i top = _mm256_set1_epi32(255);
+    __m256i kk[3], t[3];
+#pragma GCC unroll 3
+    for (int c = 0; c < 3; c++) {
+        const __m256i fine = _mm256_cmpgt_epi32(_mm256_set1_epi32(1 << 16), l[c]);
+        const __m256i i = _mm256_blendv_epi8(_mm256_add_epi32(_mm256_srli_epi32(l[c], 12), _mm256_set1_epi32(1008)),
+                                             _mm256_srli_epi32(l[c], 6), fine);
+        kk[c] = _mm256_and_si256(_mm256_i32gather_epi32((const int *)(const void *)k->enc_comb[c], i, 1),
+                                 _mm256_set1_epi32(0xff));
+    }
+#pragma GCC unroll 3
+    for (int c = 0; c < 3; c++) {
+        t[c] = _mm256_i32gather_epi32((const int *)k->thr[c],
+                                      _mm256_min_epi32(_mm256_add_epi32(kk[c], _mm256_set1_epi32(1)), top), 4);
+    }
+#pragma GCC unroll 3
+    for (int c = 0; c < 3; c++) {
+        const __m256i adv = _mm256_andnot_si256(_mm256_cmpgt_epi32(t[c], l[c]), _mm256_cmpgt_epi32(top, kk[c]));
+        code[c] = _mm256_sub_epi32(kk[c], adv);
+    }
+}
+
+/* Lanes set in a compare mask. */
+static inline TDC_AVX2 uint32_t trm_count8(__m256i m)
+{
+    return (uint32_t)_mm_popcnt_u32((uint32_t)_mm256_movemask_epi8(m)) / 4u;
+}
+
+/* (R0..R7, G0..G7, B0..B7) -> R0 G0 B0 R1 ... B7 in three vectors. */
+static inline TDC_AVX2 void trm_interleave3(__m256i r, __m256i g, __m256i b, __m256i o[3])
+{
+    const __m256i p0 = _mm256_setr_epi32(0, 0, 0, 1, 1, 1, 2, 2);
+    const __m256i p1 = _mm256_setr_epi32(2, 3, 3, 3, 4, 4, 4, 5);
+    const __m256i p2 = _mm256_setr_epi32(5, 5, 6, 6, 6, 7, 7, 7);
+    o[0] = _mm256_blend_epi32(_mm256_blend_epi32(_mm256_permutevar8x32_epi32(r, p0), _mm256_permutevar8x32_epi32(g, p0),
+                                                 0x92),
+                              _mm256_permutevar8x32_epi32(b, p0), 0x24);
+    o[1] = _mm256_blend_epi32(_mm256_blend_epi32(_mm256_permutevar8x32_epi32(r, p1), _mm256_permutevar8x32_epi32(g, p1),
+                                                 0x24),
+                              _mm256_permutevar8x32_epi32(b, p1), 0x49);
+    o[2] = _mm256_blend_epi32(_mm256_blend_epi32(_mm256_permutevar8x32_epi32(r, p2), _mm256_permutevar8x32_epi32(g, p2),
+                                                 0x49),
+                              _mm256_permutevar8x32_epi32(b, p2), 0x92);
+}
+
+/* Codes (0..255 in 32-bit lanes, one vector per channel) -> 24 RGB bytes. */
+static inline TDC_AVX2 void trm_store_codes(uint8_t *dst, __m256i r, __m256i g, __m256i b)
+{
+    __m256i o[3];
+    trm_interleave3(r, g, b, o);
+    const __m256i lowbytes = _mm256_setr_epi8(0, 4, 8, 12, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, 0, 4, 8,
+                                              12, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1);
+    const __m256i gather2 = _mm256_setr_epi32(0, 4, 1, 1, 1, 1, 1, 1);
+    for (int j = 0; j < 3; j++) {
+        const __m256i p = _mm256_permutevar8x32_epi32(_mm256_shuffle_epi8(o[j], lowbytes), gather2);
+        _mm_storel_epi64((__m128i *)(void *)(dst + 8 * j), _mm256_castsi256_si128(p));
+    }
+}
+
+/* Per-step constants: reduced column * 3, fraction, pixel offsets * 3. */
+typedef struct {
+    __m256i i3, f, x3;
+} trm_step_t;
+
+static inline TDC_AVX2 trm_step_t trm_step(const tdc_trm_rowctx_t *k, uint32_t x)
+{
+    trm_step_t s;
+    const __m256i uxv = _mm256_loadu_si256((const __m256i *)(const void *)(k->ux + 2u * x));
+    const __m256i ui = _mm256_and_si256(uxv, _mm256_set1_epi32(0xffff));
+    s.i3 = _mm256_add_epi32(_mm256_add_epi32(ui, ui), ui);
+    s.f = _mm256_srli_epi32(uxv, 16);
+    s.x3 = _mm256_add_epi32(_mm256_set1_epi32((int)(3u * x)), _mm256_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21));
+    return s;
+}
+
+/* The C kernel on pixels [x, width) for the tail of a row. */
+static tdc_trm_rowctx_t trm_tail_ctx(const tdc_trm_rowctx_t *k, uint32_t x)
+{
+    tdc_trm_rowctx_t t = *k;
+    t.ux = k->ux + 2u * x;
+    t.width = k->width - x;
+    return t;
+}
+
+TDC_AVX2 void tdc_trm_full_row_avx2(const tdc_trm_rowctx_t *k, const uint32_t *urow, const uint8_t *src,
+                                    uint8_t *dst, tdc_res_t *res, tdc_trm_full_counts_t *n)
+{
+    const __m256i one = _mm256_set1_epi32(TDC_LIN_ONE), zero = _mm256_setzero_si256();
+    uint32_t x = 0, nhi = 0, nlo = 0;
+    /* The work goes in phases over the three channels so that each phase's
+     * gathers are independent of each other and overlap: a gather's latency
+     * (~20 cycles) chained four deep per channel is what bounds this loop.
+     * The byte gathers read 3 bytes past a pixel-channel: keep one pixel
+     * after the last vector for the C tail. */
+    for (; x + 9u <= k->width; x += 8u) {
+        const trm_step_t s = trm_step(k, x);
+        __m256i ui[3], in[3], g[3], lu[3], li[3], beta[3], shown[3], code[3], rho[3];
+#pragma GCC unroll 3
+        for (int c = 0; c < 3; c++) {
+            ui[c] = _mm256_add_epi32(s.i3, _mm256_set1_epi32(c));
+            in[c] = _mm256_and_si256(
+                _mm256_i32gather_epi32((const int *)(const void *)src, _mm256_add_epi32(s.x3, _mm256_set1_epi32(c)), 1),
+                _mm256_set1_epi32(0xff));
+        }
+#pragma GCC unroll 3
+        for (int c = 0; c < 3; c++) {
+            g[c] = trm_hlerp8(urow, ui[c], s.f);
+            li[c] = _mm256_i32gather_epi32((const int *)k->dec[c], in[c], 4);
+        }
+#pragma GCC unroll 3
+        for (int c = 0; c < 3; c++) {
+            lu[c] = trm_dec8(k->dec[c], g[c]);
+        }
+#pragma GCC unroll 3
+        for (int c = 0; c < 3; c++) {
+            beta[c] = _mm256_sub_epi32(_mm256_add_epi32(li[c], li[c]), lu[c]);
+            shown[c] = _mm256_min_epi32(_mm256_max_epi32(beta[c], zero), one);
+            nhi += trm_count8(_mm256_cmpgt_epi32(beta[c], one));
+            nlo += trm_count8(_mm256_cmpgt_epi32(zero, beta[c]));
+            rho[c] = _mm256_sub_epi32(beta[c], shown[c]);
+        }
+        trm_enc8x3(k, shown, code);
+        __m256i o[3];
+        trm_interleave3(rho[0], rho[1], rho[2], o);
+        for (int j = 0; j < 3; j++) {
+            _mm256_storeu_si256((__m256i *)(void *)(res + 3u * x + 8u * (uint32_t)j), o[j]);
+        }
+        trm_store_codes(dst + 3u * x, code[0], code[1], code[2]);
+    }
+    n->hi += nhi;
+    n->lo += nlo;
+    if (x < k->width) {
+        const tdc_trm_rowctx_t t = trm_tail_ctx(k, x);
+        tdc_trm_full_row_c(&t, urow, src + 3u * x, dst + 3u * x, res + 3u * x, n);
+    }
+}
+
+TDC_AVX2 void tdc_trm_reduced_row_avx2(const tdc_trm_rowctx_t *k, const uint32_t *urow_a, const uint32_t *urow_b,
+                                       const tdc_res_t *res, uint8_t *dst, tdc_trm_reduced_counts_t *n)
+{
+    const __m256i one = _mm256_set1_epi32(TDC_LIN_ONE), zero = _mm256_setzero_si256();
+    const __m256i half = _mm256_set1_epi32(1 << 15); /* half a code in code Q16 */
+    uint32_t x = 0, computed = 0, skipped = 0, no_res = 0;
+    /* in phases over the channels, as the full row */
+    for (; x + 8u <= k->width; x += 8u) {
+        const trm_step_t s = trm_step(k, x);
+        __m256i ui[3], gb[3], alpha[3], rho[3], has[3], shown[3], code[3];
+        uint32_t nhas = 0;
+#pragma GCC unroll 3
+        for (int c = 0; c < 3; c++) {
+            ui[c] = _mm256_add_epi32(s.i3, _mm256_set1_epi32(c));
+            gb[c] = trm_hlerp8(urow_b, ui[c], s.f);
+            rho[c] = _mm256_i32gather_epi32((const int *)res, _mm256_add_epi32(s.x3, _mm256_set1_epi32(c)), 4);
+        }
+#pragma GCC unroll 3
+        for (int c = 0; c < 3; c++) {
+            alpha[c] = trm_dec8(k->dec[c], gb[c]);
+            has[c] = _mm256_xor_si256(_mm256_cmpeq_epi32(rho[c], zero), _mm256_set1_epi32(-1));
+            nhas += trm_count8(has[c]);
+            shown[c] = alpha[c];
+        }
+        no_res += 24u - nhas;
+        if (nhas != 0u) {
+            __m256i ga[3], gs[3], still[3], moved[3], w[3];
+            uint32_t nmoved = 0;
+#pragma GCC unroll 3
+            for (int c = 0; c < 3; c++) {
+                ga[c] = trm_hlerp8(urow_a, ui[c], s.f);
+            }
+#pragma GCC unroll 3
+            for (int c = 0; c < 3; c++) {
+                /* motion test at the link's precision (tdc_trm_rows.c) */
+                const __m256i gt = _mm256_cmpgt_epi32(ga[c], _mm256_add_epi32(gb[c], half));
+                const __m256i lt = _mm256_cmpgt_epi32(gb[c], _mm256_add_epi32(ga[c], half));
+                gs[c] = _mm256_blendv_epi8(gb[c], _mm256_sub_epi32(ga[c], half), gt);
+                gs[c] = _mm256_blendv_epi8(gs[c], _mm256_add_epi32(ga[c], half), lt);
+                const __m256i eq = _mm256_cmpeq_epi32(gs[c], gb[c]);
+                still[c] = _mm256_and_si256(has[c], eq);
+                moved[c] = _mm256_andnot_si256(eq, has[c]);
+                w[c] = _mm256_and_si256(still[c], _mm256_set1_epi32(32768));
+                skipped += trm_count8(still[c]);
+                nmoved += trm_count8(moved[c]);
+            }
+            if (nmoved != 0u) {
+                computed += nmoved;
+                /* w = exp(-s c) of the lanes that moved: a division each,
+                 * in scalar C through the C kernel's own function */
+                __m256i la[3];
+#pragma GCC unroll 3
+                for (int c = 0; c < 3; c++) {
+                    la[c] = trm_dec8(k->dec[c], gs[c]);
+                }
+                for (int c = 0; c < 3; c++) {
+                    if (_mm256_testz_si256(moved[c], moved[c])) {
+                        continue;
+                    }
+                    /* all 8 lanes, then keep the moved ones: a fixed trip
+                     * count, where a test per lane would mispredict */
+                    int32_t lav[8], alv[8], wl[8];
+                    _mm256_storeu_si256((__m256i *)(void *)lav, la[c]);
+                    _mm256_storeu_si256((__m256i *)(void *)alv, alpha[c]);
+                    for (int l = 0; l < 8; l++) {
+                        wl[l] = tdc_trm_motion_weight_q15(k, lav[l], alv[l]);
+                    }
+                    w[c] = _mm256_blendv_epi8(w[c], _mm256_loadu_si256((const __m256i *)(const void *)wl), moved[c]);
+                }
+            }
+#pragma GCC unroll 3
+            for (int c = 0; c < 3; c++) {
+                /* alpha + round(w rho / 2^15), split as in the header comment */
+                const __m256i rh = _mm256_srai_epi32(rho[c], 15);
+                const __m256i rl = _mm256_and_si256(rho[c], _mm256_set1_epi32(0x7fff));
+                const __m256i lo = _mm256_srli_epi32(
+                    _mm256_add_epi32(_mm256_mullo_epi32(w[c], rl), _mm256_set1_epi32(1 << 14)), 15);
+                const __m256i v = _mm256_add_epi32(alpha[c], _mm256_add_epi32(_mm256_mullo_epi32(w[c], rh), lo));
+                shown[c] = _mm256_min_epi32(_mm256_max_epi32(v, zero), one);
+            }
+        }
+        trm_enc8x3(k, shown, code);
+        trm_store_codes(dst + 3u * x, code[0], code[1], code[2]);
+    }
+    n->computed += computed;
+    n->skipped += skipped;
+    n->no_res += no_res;
+    if (x < k->width) {
+        const tdc_trm_rowctx_t t = trm_tail_ctx(k, x);
+        tdc_trm_reduced_row_c(&t, urow_a, urow_b, res + 3u * x, dst + 3u * x, n);
+    }
+}
+
+TDC_AVX2 void tdc_trm_dvert_avx2(const uint16_t *const *rows, const uint16_t *w, uint32_t taps, uint32_t n,
+                                 uint16_t *out)
+{
+    const __m256i bias = _mm256_set1_epi32(1 << 14);
+    uint32_t i = 0;
+    for (; i + 16u <= n; i += 16u) {
+        __m256i a0 = _mm256_setzero_si256(), a1 = _mm256_setzero_si256();
+        for (uint32_t t = 0; t < taps; t++) {
+            const __m256i wt = _mm256_set1_epi32(w[t]);
+            const __m256i v = _mm256_loadu_si256((const __m256i *)(const void *)(rows[t] + i));
+            a0 = _mm256_add_epi32(a0, _mm256_mullo_epi32(wt, _mm256_cvtepu16_epi32(_mm256_castsi256_si128(v))));
+            a1 = _mm256_add_epi32(a1, _mm256_mullo_epi32(wt, _mm256_cvtepu16_epi32(_mm256_extracti128_si256(v, 1))));
+        }
+        /* sums < 2^31 (tdc_trm_dvert_c): results <= 65280 pack unsaturated */
+        a0 = _mm256_srli_epi32(_mm256_add_epi32(a0, bias), 15);
+        a1 = _mm256_srli_epi32(_mm256_add_epi32(a1, bias), 15);
+        const __m256i p = _mm256_permute4x64_epi64(_mm256_packus_epi32(a0, a1), 0xd8);
+        _mm256_storeu_si256((__m256i *)(void *)(out + i), p);
+    }
+    if (i < n) {
+        const uint16_t *tail[TDC_TRM_MAX_TAPS];
+        for (uint32_t t = 0; t < taps; t++) {
+            tail[t] = rows[t] + i;
+        }
+        tdc_trm_dvert_c(tail, w, taps, n - i, out + i);
+    }
+}
+
+#else /* no AVX2 on this target: the portable kernels behind the same names */
+
+int tdc_trm_avx2_available(void)
+{
+    return 0;
+}
+
+void tdc_trm_full_row_avx2(const tdc_trm_rowctx_t *k, const uint32_t *urow, const uint8_t *src, uint8_t *dst,
+                           tdc_res_t *res, tdc_trm_full_counts_t *n)
+{
+    tdc_trm_full_row_c(k, urow, src, dst, res, n);
+}
+
+void tdc_trm_reduced_row_avx2(const tdc_trm_rowctx_t *k, const uint32_t *urow_a, const uint32_t *urow_b,
+                              const tdc_res_t *res, uint8_t *dst, tdc_trm_reduced_counts_t *n)
+{
+    tdc_trm_reduced_row_c(k, urow_a, urow_b, res, dst, n);
+}
+
+void tdc_trm_dvert_avx2(const uint16_t *const *rows, const uint16_t *w, uint32_t taps, uint32_t n, uint16_t *out)
+{
+    tdc_trm_dvert_c(rows, w, taps, n, out);
+}
+
+#endif

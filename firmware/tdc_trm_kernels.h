@@ -1,0 +1,103 @@
+/*
+ * tdc_trm_kernels.h - TRM's per-row kernels, internal to the stage.
+ *
+ * tdc_trm.c walks the frame; these do the per-pixel work of one row.  The
+ * portable C kernels (tdc_trm_rows.c) are the reference and what boards
+ * run; tdc_trm_avx2.c has host versions with x86 AVX2 integer SIMD that
+ * must produce the same bytes (tests/checkasm_trm.c checks that on random
+ * and extreme rows and benchmarks both).  tdc_trm_init() picks the AVX2
+ * kernels when the CPU has AVX2 (tdc_trm_set_simd() overrides).
+ *
+ * Formats as tdc_trm.h: urow rows are vertically interpolated reduced rows
+ * in code Q22 with (rw + 1) * 3 entries (the last pixel duplicated); ux holds
+ * per full-res column the left reduced column and the bilinear fraction Q14
+ * as interleaved uint16 pairs; residual rho is Q24 linear light; codes and
+ * rows are RGB888 interleaved.
+ */
+#ifndef TDC_TRM_KERNELS_H
+#define TDC_TRM_KERNELS_H
+
+#include "tdc_fixed.h"
+#include "tdc_panel.h"
+#include "tdc_trm.h"
+
+/* What a row kernel needs; built per frame from tdc_trm_t. */
+typedef struct {
+    const uint32_t *dec[3];  /* gamma decode, 257 entries, Q24 */
+    const uint32_t *thr[3];  /* encode thresholds, 256 entries, Q24 */
+    const uint16_t *idx[3];  /* encode index, TDC_ENC_INDEX_SIZE entries */
+    const uint16_t *ux;      /* 2 * width: (reduced column, fraction Q14) */
+    const uint32_t *wexp;    /* TDC_TRM_WEXP_ENTRIES: exp(-k/256), Q30 */
+    uint32_t width;          /* full-res pixels in the row */
+    uint32_t s_q8;           /* motion sensitivity s, Q8 */
+    /* AVX2 kernels only: per channel a combined encode index (uint8,
+     * TDC_TRM_ENC_COMB entries): entry L >> 6 for L < 2^16, entry
+     * 1008 + (L >> 12) above; each is the largest code whose threshold is
+     * <= the bucket's start.  enc_one_step: no bucket holds two thresholds,
+     * so one compare finishes the encode. */
+    const uint8_t *enc_comb[3];
+    uint32_t enc_one_step;
+} tdc_trm_rowctx_t;
+
+typedef struct {
+    uint32_t hi, lo; /* pixel-channels with beta > 1, beta < 0 */
+} tdc_trm_full_counts_t;
+
+typedef struct {
+    uint32_t computed, skipped, no_res; /* as tdc_trm_stats_t's weight counters */
+} tdc_trm_reduced_counts_t;
+
+/* Full-res row: beta = 2 lin(I) - lin(U(D(I))), dst = enc(clamp(beta)),
+ * res = beta - clamp(beta).  Counts are added to *n. */
+typedef void tdc_trm_full_row_fn(const tdc_trm_rowctx_t *k, const uint32_t *urow, const uint8_t *src,
+                                 uint8_t *dst, tdc_res_t *res, tdc_trm_full_counts_t *n);
+/* Reduced row: alpha = lin(U(i)), w = exp(-s c), dst = enc(clamp(alpha + w rho)). */
+typedef void tdc_trm_reduced_row_fn(const tdc_trm_rowctx_t *k, const uint32_t *urow_a,
+                                    const uint32_t *urow_b, const tdc_res_t *res, uint8_t *dst,
+                                    tdc_trm_reduced_counts_t *n);
+/* Vertical pass of D: out[i] = (sum_t w[t] rows[t][i] + 2^14) >> 15 for
+ * i < n (weights Q15 summing to 32768, values code Q8). */
+typedef void tdc_trm_dvert_fn(const uint16_t *const *rows, const uint16_t *w, uint32_t taps, uint32_t n,
+                              uint16_t *out);
+
+tdc_trm_full_row_fn tdc_trm_full_row_c;
+tdc_trm_reduced_row_fn tdc_trm_reduced_row_c;
+tdc_trm_dvert_fn tdc_trm_dvert_c;
+
+/* 1 when this build has the AVX2 kernels and the CPU runs them. */
+int tdc_trm_avx2_available(void);
+/* Fills 3 x TDC_TRM_ENC_COMB bytes (+ 8 of padding) for the AVX2 encode;
+ * returns 1 when every bucket holds at most one threshold. */
+int tdc_trm_avx2_build_encode(const tdc_panel_t *panel, uint8_t *comb);
+tdc_trm_full_row_fn tdc_trm_full_row_avx2;
+tdc_trm_reduced_row_fn tdc_trm_reduced_row_avx2;
+tdc_trm_dvert_fn tdc_trm_dvert_avx2;
+
+/*
+ * w = exp(-x), x in Q16, from the Q30 table with linear interpolation and
+ * one rounding to Q15.  Error: 0.5 LSB rounding plus the interpolation's
+ * (1/256)^2 / 8 * 32768 = 0.06 LSB (asserted <= 0.6 in tests/test_trm.c).
+ * Beyond x = 17, exp(-x) < 2^-24: 0.
+ */
+static inline int32_t tdc_trm_weight_q15(const uint32_t *wexp, uint64_t x_q16)
+{
+    if (x_q16 >= (uint64_t)(TDC_TRM_WEXP_ENTRIES - 1u) << 8) {
+        return 0;
+    }
+    const uint32_t k = (uint32_t)(x_q16 >> 8), f = (uint32_t)(x_q16 & 255u);
+    /* entries Q30, decreasing: a - (a - b) f / 256, then one rounding to
+     * Q15; (a - b) < 2^23 times f < 2^8 fits 32 bits */
+    const uint32_t a = wexp[k], b = wexp[k + 1u];
+    const uint32_t v = a - (((a - b) * f) >> 8);
+    return (int32_t)((v + (1u << 14)) >> 15);
+}
+
+/*
+ * The motion weight of one pixel-channel that moved: c = |A - B| / (A + B)
+ * in Q30 (A, B linear light Q24, A + B <= 2^25; s multiplies its error, so
+ * Q15 is not enough), s c in Q16 (Q8 * Q30 -> Q38, rounded; s_q8 < 2^32
+ * keeps it < 2^62), w = exp(-s c) in Q15.
+ */
+int32_t tdc_trm_motion_weight_q15(const tdc_trm_rowctx_t *k, tdc_lin_t a, tdc_lin_t b);
+
+#endif /* TDC_TRM_KERNELS_H */
