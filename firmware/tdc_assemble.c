@@ -250,16 +250,18 @@ uint32_t tdc_asm_sqrt_q8(uint32_t d)
      * linear interpolation in [32768, 65536] (chord error <= 0.25, entry
      * floor <= 1: |error| <= 1.25 units of 2^-16 relative); then
      * 256 sqrt(d) = sqrt(xn) * 2^(8 - z/2).  Scaling and overflow: entry
-     * differences <= 256, times the 24-bit fraction < 2^32. */
+     * differences <= 255, times the 24-bit fraction < 2^32 (uint32). */
     if (d == 0) return 0;
     if (d >= (1u << 20)) d = (1u << 20) - 1u;
     unsigned z = tdc_clz32(d) & ~1u;
     uint32_t xn = d << z;
     uint32_t i = (xn >> 24) - 64u, f = xn & 0xFFFFFFu;
     uint32_t lo = tdc_asm_sqrt_tab[i], hi = i + 1u < 192u ? tdc_asm_sqrt_tab[i + 1u] : 65536u;
-    uint32_t r = lo + (uint32_t)(((uint64_t)(hi - lo) * f) >> 24);
+    uint32_t r = lo + (((hi - lo) * f) >> 24);
+    /* half = z / 2 in 6 .. 15 (z >= 12): r << (8 - half) or r >> (half - 8),
+     * one shift: r << 2 <= 2^18, then >> (half - 6), exact both ways. */
     unsigned half = z >> 1;
-    return half <= 8u ? r << (8u - half) : r >> (half - 8u);
+    return (r << 2) >> (half - 6u);
 }
 
 /* Summary of motion row y: TDC_ASM_ROW_ANY if any vector is non-zero,
@@ -440,26 +442,38 @@ static uint64_t tdc_asm_bilinear_q8(const tdc_asm_t *st, const uint8_t *src, uin
  * S2 (code units); v in code Q8.  Scaling and overflow: d = n S2 - S1^2 =
  * n^2 var in [0, 64 * 255^2 / 4] < 2^20.  The box test is exact:
  * |n v - 256 S1| > 256 sqrt(d)  <=>  (n v - 256 S1)^2 > 65536 d (int64:
- * < 2^39 and < 2^36).  Only when it fails is the edge computed:
- * R = tdc_asm_sqrt_q8(d) = n sigma in Q8 (within 0.02 code),
- * edge = (256 S1 -+ R) / n, floor, lower edge >= 0.  Returns the output
- * code, rounded half up to 8 bits.
+ * < 2^39 and < 2^36); tdc_asm_box_out() says whether it fails.  Only then
+ * is the edge computed (tdc_asm_box_edge_u8): R = tdc_asm_sqrt_q8(d) =
+ * n sigma in Q8 (within 0.02 code), edge = (256 S1 -+ R) / n, floor, lower
+ * edge >= 0, rounded half up to 8 bits.
  */
-static inline uint8_t tdc_asm_clamp_box_u8(int32_t v, int32_t n, int32_t s1, int32_t s2, uint64_t *changed)
+static inline int tdc_asm_box_out(int32_t v, int32_t n, int32_t s1, int32_t s2)
 {
     uint32_t d = (uint32_t)(n * s2 - s1 * s1);
     int64_t dev = (int64_t)n * v - (int64_t)256 * s1;
-    if (dev * dev <= (int64_t)65536 * (int64_t)d) return (uint8_t)((v + 128) >> 8);
-    (*changed)++;
+    return dev * dev > (int64_t)65536 * (int64_t)d;
+}
+
+static uint8_t tdc_asm_box_edge_u8(int32_t v, int32_t n, int32_t s1, int32_t s2)
+{
+    uint32_t d = (uint32_t)(n * s2 - s1 * s1);
     int32_t r = (int32_t)tdc_asm_sqrt_q8(d);
     int32_t e;
-    if (dev < 0) {
+    if ((int64_t)n * v < (int64_t)256 * s1) {
         int32_t lo_num = s1 * 256 - r;
         e = lo_num > 0 ? (int32_t)tdc_asm_div_small((uint32_t)lo_num, (uint32_t)n) : 0;
     } else {
         e = (int32_t)tdc_asm_div_small((uint32_t)(s1 * 256 + r), (uint32_t)n);
     }
     return (uint8_t)((e + 128) >> 8);
+}
+
+/* One channel: v (code Q8) clamped to its box, as an 8-bit code. */
+static inline uint8_t tdc_asm_clamp_box_u8(int32_t v, int32_t n, int32_t s1, int32_t s2, uint64_t *changed)
+{
+    if (!tdc_asm_box_out(v, n, s1, s2)) return (uint8_t)((v + 128) >> 8);
+    (*changed)++;
+    return tdc_asm_box_edge_u8(v, n, s1, s2);
 }
 
 /* Old dynamic pixel, after the bilinear sample v (16-bit lanes, code Q8):
@@ -490,9 +504,12 @@ static inline void tdc_asm_clamp_store(uint64_t v, uint32_t x, const uint64_t *c
     }
     cnt->boxes++;
     const uint64_t m21 = (1u << 21) - 1u;
-    out[0] = tdc_asm_clamp_box_u8(v0, n, (int32_t)(l1 & m21), (int32_t)(l2 & m21), &cnt->changed);
-    out[1] = tdc_asm_clamp_box_u8(v1, n, (int32_t)((l1 >> 21) & m21), (int32_t)((l2 >> 21) & m21), &cnt->changed);
-    out[2] = tdc_asm_clamp_box_u8(v2, n, (int32_t)((l1 >> 42) & m21), (int32_t)((l2 >> 42) & m21), &cnt->changed);
+    const int32_t a1 = (int32_t)(l1 & m21), a2 = (int32_t)(l2 & m21);
+    const int32_t b1 = (int32_t)((l1 >> 21) & m21), b2 = (int32_t)((l2 >> 21) & m21);
+    const int32_t c1 = (int32_t)((l1 >> 42) & m21), c2 = (int32_t)((l2 >> 42) & m21);
+    out[0] = tdc_asm_clamp_box_u8(v0, n, a1, a2, &cnt->changed);
+    out[1] = tdc_asm_clamp_box_u8(v1, n, b1, b2, &cnt->changed);
+    out[2] = tdc_asm_clamp_box_u8(v2, n, c1, c2, &cnt->changed);
 }
 
 /* Everything one row of a dynamic frame needs. */
@@ -542,9 +559,19 @@ static void tdc_asm_uniform_row(const tdc_asm_t *st, const tdc_asm_row_t *r, int
     const uint32_t w = st->cfg.width;
     const int32_t h = st->cfg.height;
     /* Window reset of the whole row (every pixel is dynamic). */
-    uint64_t resets = 0;
-    for (uint32_t x = 0; x < w; x++) resets += r->win[x] != 0;
-    if (resets) memset(r->win, 0, w);
+    uint64_t resets = 0, any = 0;
+    uint32_t x8 = 0;
+    for (; x8 + 8u <= w; x8 += 8u) {
+        uint64_t v8;
+        memcpy(&v8, r->win + x8, sizeof(v8));
+        any |= v8;
+    }
+    for (uint32_t x = x8; x < w; x++) any |= r->win[x];
+    if (any) {
+        /* Rare (the first dynamic frame after a static spell): count. */
+        for (uint32_t x = 0; x < w; x++) resets += r->win[x] != 0;
+        memset(r->win, 0, w);
+    }
     cnt->resets += resets;
 
     /* Vertical position: the same for the whole row. */
