@@ -70,6 +70,19 @@ static int place_samples(job_t *jb, int tx, int ty, rsample_t *s)
     int n = 0;
     int x0 = tx * jb->tile, y0 = ty * jb->tile;
     int x1 = x0 + jb->tile < jb->sw ? x0 + jb->tile : jb->sw, y1 = y0 + jb->tile < jb->sh ? y0 + jb->tile : jb->sh;
+    if (jb->mode == TDC_RENDER_FULL) { /* the common case without the per-slot switch */
+        for (int sy = y0; sy < y1; sy++)
+            for (int sx = x0; sx < x1; sx++) {
+                s[n].x = sx + 0.5f;
+                s[n].y = sy + 0.5f;
+                s[n].px = sx;
+                s[n].py = sy;
+                s[n].dst = (uint32_t)sy * (uint32_t)jb->sw + (uint32_t)sx;
+                s[n].k = 0;
+                n++;
+            }
+        return n;
+    }
     for (int sy = y0; sy < y1; sy++)
         for (int sx = x0; sx < x1; sx++) {
             uint32_t slot = (uint32_t)sy * (uint32_t)jb->sw + (uint32_t)sx;

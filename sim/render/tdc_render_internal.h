@@ -51,7 +51,10 @@ typedef struct {
  * lookup needs neither strlen() nor the character switch. */
 typedef struct {
     long text_len1;           /* strlen(text) + 1: the text repeats with one space */
-    const unsigned char *glyph[TDC_SCENE_TEXT_LEN + 1];
+    double text_cell6;        /* 6 * (scale / 8): glyph cell width */
+    /* 5x7 glyph rows (bit 4 = leftmost column) of each character position,
+     * row 7 = 0 (the gap row), so the lookup needs no range test */
+    unsigned char rows[TDC_SCENE_TEXT_LEN + 1][8];
 } rtex_t;
 
 struct tdc_render {
@@ -71,6 +74,9 @@ struct tdc_render {
     /* 1: the object's matrices of the two frames are bitwise equal, so its
      * previous world position is the current one without a second transform */
     uint8_t obj_same_m[TDC_SCENE_MAX_OBJECTS];
+    /* 1: the world normal of a primary hit is used (lit or mirror material);
+     * unlit, non-mirror surfaces skip its transform and normalisation */
+    uint8_t obj_needs_n[TDC_SCENE_MAX_OBJECTS];
     int16_t *mv_hist;         /* W*H*2 */
     int16_t *mv_hist_prev;    /* snapshot at the start of a subframe (pixel classes) */
     uint8_t *pattern;         /* ordering bits */

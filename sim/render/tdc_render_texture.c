@@ -129,7 +129,15 @@ void tdc_r_tex_prepare(tdc_render_t *r)
         const tdc_material_t *m = &r->scene->materials[i];
         rtex_t *t = &r->tex[i];
         t->text_len1 = m->tex == TDC_TEX_TEXT ? (long)strlen(m->text) + 1 : 1;
-        for (long k = 0; k < t->text_len1; k++) t->glyph[k] = glyph(k < t->text_len1 - 1 ? m->text[k] : ' ');
+        t->text_cell6 = 6 * (m->tex_scale / 8); /* the same operations as the per-sample code had */
+        for (long k = 0; k < t->text_len1; k++) {
+            memcpy(t->rows[k], glyph(k < t->text_len1 - 1 ? m->text[k] : ' '), 7);
+            t->rows[k][7] = 0;
+        }
+    }
+    for (int i = 0; i < r->scene->nobjects; i++) {
+        const tdc_material_t *m = &r->scene->materials[r->scene->objects[i].material];
+        r->obj_needs_n[i] = !m->unlit || m->mirror > 0;
     }
 }
 
@@ -149,22 +157,24 @@ void tdc_r_base_color(const tdc_render_t *r, const tdc_object_t *o, const double
             if (u / sc - ffloor(u / sc) >= 0.5) c = m->color2;
             break;
         case TDC_TEX_TEXT: {
-            /* Lines of height sc: 7 glyph rows + 1 gap row; cells 6 columns wide. */
-            double cell = sc / 8;
-            double fy = v / sc - ffloor(v / sc);
+            /* Lines of height sc: 7 glyph rows + 1 gap row; cells 6 columns
+             * wide.  No branches on the ink: the glyph bit selects the
+             * colour (ink flips every few pixels; branches mispredicted). */
+            const rtex_t *tx = &r->tex[o->material];
+            double vs = v / sc, fl = ffloor(vs);
+            double fy = vs - fl;
             int row = (int)((1 - fy) * 8);
             if (row > 7) row = 7;
-            double cx = u / (6 * cell);
+            double cx = u / tx->text_cell6;
             long ci = (long)ffloor(cx);
             int col = (int)((cx - ci) * 6);
             if (col > 5) col = 5;
-            if (row >= 7 || col >= 5) break; /* gap row / gap column: no ink */
-            const rtex_t *tx = &r->tex[o->material];
             long len = tx->text_len1;
-            long line = (long)ffloor(v / sc);
-            long idx = (ci + line * 7) % len; /* successive lines start at different letters */
-            if (idx < 0) idx += len;
-            if ((tx->glyph[idx][row] >> (4 - col)) & 1) c = m->color2;
+            long idx = (ci + (long)fl * 7) % len; /* successive lines start at different letters */
+            idx += idx < 0 ? len : 0;
+            /* bit (4 - col) of the row; col = 5 (gap column) reads the 0 shifted in */
+            unsigned ink = ((unsigned)tx->rows[idx][row] << 1 >> (5 - col)) & 1u;
+            c = ink ? m->color2 : m->diffuse;
             break;
         }
         case TDC_TEX_SKYLINE: {
@@ -174,15 +184,15 @@ void tdc_r_base_color(const tdc_render_t *r, const tdc_object_t *o, const double
                 double shade = 0.6 + 0.4 * hash01(b, 2);
                 double wu = u / (sc * 0.25), wv = v / (sc * 0.4);
                 long wi = (long)ffloor(wu), wj = (long)ffloor(wv);
-                int in_window = (wu - wi) > 0.35 && (wu - wi) < 0.8 && (wv - wj) > 0.3 && (wv - wj) < 0.75 &&
-                                v < top - 0.2 && hash01(b * 131 + wi, wj) > 0.55;
-                if (in_window) {
-                    out[0] = 1.0;
-                    out[1] = 0.85;
-                    out[2] = 0.45;
-                } else {
-                    for (int k = 0; k < 3; k++) out[k] = m->diffuse[k] * shade;
-                }
+                double fu = wu - wi, fv = wv - wj;
+                /* & instead of &&, and the hash always: windows flip every
+                 * few pixels and the branches were mispredicted */
+                int in_window = (fu > 0.35) & (fu < 0.8) & (fv > 0.3) & (fv < 0.75) & (v < top - 0.2) &
+                                (hash01(b * 131 + wi, wj) > 0.55);
+                double d0 = m->diffuse[0] * shade, d1 = m->diffuse[1] * shade, d2 = m->diffuse[2] * shade;
+                out[0] = in_window ? 1.0 : d0;
+                out[1] = in_window ? 0.85 : d1;
+                out[2] = in_window ? 0.45 : d2;
             } else {
                 double g = (v - 4) / 10;
                 g = g < 0 ? 0 : g > 1 ? 1 : g;

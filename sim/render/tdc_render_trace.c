@@ -23,6 +23,16 @@
 #include "tdc_math.h"
 #include "tdc_render_trace.h"
 
+/* GCC 12 vectorises straight-line code at -O2 (SLP): vectors are loaded from
+ * arrays just written element by element (the ray set-up after the
+ * reflection or light direction, a colour after the texture call), and such
+ * loads stall on store forwarding (the profile showed ~30 % of several passes
+ * there).  Scalar code here; it does the same floating-point operations, so
+ * the results are unchanged. */
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC optimize("no-tree-slp-vectorize")
+#endif
+
 double tdc_r_now_ms(void)
 {
     struct timespec ts;
@@ -107,7 +117,7 @@ static int occluded(rthread_t *t, const double o[3], const double d[3], double t
  * Embree's raw object-space normal ng.  P in locals: storing it element by
  * element and reading it back as a vector stalled on store forwarding. */
 static inline void surface(const rframe_t *f, float tt_f, const float ng[3], int obj, const double o[3],
-                           const double d[3], double P[3], double Q[3], double N[3], double NQ[3])
+                           const double d[3], double P[3], double Q[3], double N[3], double NQ[3], int need_n)
 {
     double tt = tt_f;
     double p0 = o[0] + tt * d[0], p1 = o[1] + tt * d[1], p2 = o[2] + tt * d[2];
@@ -121,6 +131,10 @@ static inline void surface(const rframe_t *f, float tt_f, const float ng[3], int
     NQ[0] = ng[0];
     NQ[1] = ng[1];
     NQ[2] = ng[2];
+    if (!need_n) { /* nobody reads it (unlit, no mirror) */
+        N[0] = N[1] = N[2] = 0;
+        return;
+    }
     tdc_r_xform_normal(f->nm[obj], NQ, N);
     if (dot3(N, d) > 0)
         for (int i = 0; i < 3; i++) N[i] = -N[i];
@@ -130,7 +144,7 @@ static inline void surface_rh(const rframe_t *f, const struct RTCRayHit *rh, int
                               const double d[3], double P[3], double Q[3], double N[3], double NQ[3])
 {
     const float ng[3] = {rh->hit.Ng_x, rh->hit.Ng_y, rh->hit.Ng_z};
-    surface(f, rh->ray.tfar, ng, obj, o, d, P, Q, N, NQ);
+    surface(f, rh->ray.tfar, ng, obj, o, d, P, Q, N, NQ, 1);
 }
 
 static double offset_eps(const double P[3])
@@ -150,12 +164,12 @@ static void shade_direct(rthread_t *t, int obj, const double P[3], const double 
     const tdc_scene_t *sc = r->scene;
     const tdc_object_t *o = &sc->objects[obj];
     const tdc_material_t *m = &sc->materials[o->material];
-    double base[3];
-    tdc_r_base_color(r, o, Q, NQ, base);
-    if (m->unlit) {
-        memcpy(out, base, sizeof base);
+    if (m->unlit) { /* straight into out: a copy through base[] stalled on store forwarding */
+        tdc_r_base_color(r, o, Q, NQ, out);
         return;
     }
+    double base[3];
+    tdc_r_base_color(r, o, Q, NQ, base);
     double e[3] = {sc->ambient[0], sc->ambient[1], sc->ambient[2]};
     double eps = offset_eps(P);
     double O[3] = {P[0] + N[0] * eps, P[1] + N[1] * eps, P[2] + N[2] * eps};
@@ -273,7 +287,8 @@ void tdc_r_pass_primary(rthread_t *t, rsample_t *s, int n)
     for (int i = 0; i < n; i++) {
         rsample_t *a = &s[i];
         if (a->obj >= 0) {
-            surface(t->cur, a->hit_t, a->hit_ng, a->obj, cam->pos, a->dir, a->P, a->Q, a->N, a->NQ);
+            surface(t->cur, a->hit_t, a->hit_ng, a->obj, cam->pos, a->dir, a->P, a->Q, a->N, a->NQ,
+                    t->r->obj_needs_n[a->obj]);
             a->depth = dot3(a->dir, cam->fwd) * (double)a->hit_t;
         } else {
             a->depth = INFINITY;
@@ -290,8 +305,13 @@ void tdc_r_pass_shade(rthread_t *t, rsample_t *s, int n)
             memcpy(a->col, sc->background, sizeof a->col);
             continue;
         }
-        shade_direct(t, a->obj, a->P, a->Q, a->N, a->NQ, rng_key(a), a->k, 0, a, a->col);
-        a->mirror = t->r->cfg.max_bounces > 0 ? sc->materials[sc->objects[a->obj].material].mirror : 0;
+        const tdc_object_t *o = &sc->objects[a->obj];
+        const tdc_material_t *m = &sc->materials[o->material];
+        if (m->unlit) /* the texture colour: no call into the lighting code */
+            tdc_r_base_color(t->r, o, a->Q, a->NQ, a->col);
+        else
+            shade_direct(t, a->obj, a->P, a->Q, a->N, a->NQ, rng_key(a), a->k, 0, a, a->col);
+        a->mirror = t->r->cfg.max_bounces > 0 ? m->mirror : 0;
         if (a->mirror > 0)
             for (int c = 0; c < 3; c++) a->col[c] *= 1 - a->mirror;
     }
@@ -348,7 +368,7 @@ void tdc_r_pass_reflect(rthread_t *t, rsample_t *s, int n)
 }
 
 /* Current and previous screen position of object point q of object obj. */
-static int track_point(const rthread_t *t, int obj, const double q[3], double *xc, double *yc, double *xp, double *yp)
+static inline __attribute__((always_inline)) int track_point(const rthread_t *t, int obj, const double q[3], double *xc, double *yc, double *xp, double *yp)
 {
     double wc[3], wp[3];
     tdc_r_xform_point(t->cur->m[obj], q, wc);
@@ -362,7 +382,9 @@ void tdc_r_pass_mv(rthread_t *t, rsample_t *s, int n)
 {
     for (int i = 0; i < n; i++) {
         rsample_t *a = &s[i];
-        double xp, yp;
+        /* results in locals, stored once: reading back fields just written
+         * one by one stalled on store forwarding */
+        double xc, yc, xp, yp;
         int ok;
         if (!t->r->cam_moved && (a->obj < 0 || !t->r->obj_moved[a->obj])) {
             /* nothing here moved: the point is where it was */
@@ -374,20 +396,22 @@ void tdc_r_pass_mv(rthread_t *t, rsample_t *s, int n)
             continue;
         }
         if (a->obj >= 0) {
-            ok = track_point(t, a->obj, a->Q, &a->xc, &a->yc, &xp, &yp) == 0;
+            ok = track_point(t, a->obj, a->Q, &xc, &yc, &xp, &yp) == 0;
         } else {
-            ok = tdc_r_project_dir(&t->cur->cam, a->dir, &a->xc, &a->yc) == 0 &&
+            ok = tdc_r_project_dir(&t->cur->cam, a->dir, &xc, &yc) == 0 &&
                  tdc_r_project_dir(&t->prev->cam, a->dir, &xp, &yp) == 0;
         }
         if (!ok) { /* behind the previous camera: no correspondence */
-            a->xc = a->x;
-            a->yc = a->y;
+            xc = a->x;
+            yc = a->y;
             xp = a->x;
             yp = a->y;
         }
+        a->xc = xc;
+        a->yc = yc;
         a->mv_valid = ok;
-        a->mv[0] = xp - a->xc;
-        a->mv[1] = yp - a->yc;
+        a->mv[0] = xp - xc;
+        a->mv[1] = yp - yc;
         a->refl_used = 0;
     }
 }
