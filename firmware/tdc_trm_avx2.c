@@ -27,8 +27,10 @@
  *    crowd) gives the same code; with at most one threshold per bucket
  *    (checked when the index is built) one compare replaces the scan and
  *    its data-dependent branch, which stalled the gathers behind it.
- *  - the motion weight (a division) runs per lane in scalar C through the
- *    same function as the C kernel, only for lanes that moved.
+ *  - the motion weight's division: the reciprocal by the Newton steps of
+ *    tdc_recip_norm_q30_newton in 64-bit lanes, corrected and checked
+ *    against its defining inequality (trm_recip4), so it is the exact
+ *    floor the C path gets from a divide instruction.
  */
 #include "tdc_trm_kernels.h"
 
@@ -155,6 +157,110 @@ static inline TDC_AVX2 void trm_enc8x3(const tdc_trm_rowctx_t *k, const __m256i 
         const __m256i adv = _mm256_andnot_si256(_mm256_cmpgt_epi32(t[c], l[c]), _mm256_cmpgt_epi32(top, kk[c]));
         code[c] = _mm256_sub_epi32(kk[c], adv);
     }
+}
+
+/*
+ * The reciprocal floor((2^62 + floor(d/2)) / d) of tdc_recip_norm_q30 for
+ * the normalised d (in [2^31, 2^32)) in the low half of each 64-bit lane:
+ * the Newton steps of tdc_recip_norm_q30_newton in 64-bit lanes, then two
+ * correction steps each way and a check of the defining inequality
+ * x d <= 2^62 + floor(d/2) < (x + 1) d.  *ok is cleared when a lane fails
+ * the check (never seen; the caller then uses the scalar path).
+ * Ranges: x stays in (2^30, 2^32), so every product is an unsigned 32 x 32
+ * multiply below 2^63 and the signed 64-bit compares are exact.
+ */
+static inline TDC_AVX2 __m256i trm_recip4(__m256i d, int *ok)
+{
+    const __m256i zero = _mm256_setzero_si256(), one = _mm256_set1_epi64x(1);
+    __m256i x = _mm256_sub_epi64(_mm256_set1_epi64x(3031741621LL),
+                                 _mm256_srli_epi64(_mm256_mul_epu32(_mm256_set1_epi64x(2021161081LL), d), 32));
+    for (int it = 0; it < 3; it++) {
+        /* e = 1 - d x in Q30 (signed, small); x += floor(x e / 2^30) */
+        const __m256i e = _mm256_sub_epi64(_mm256_set1_epi64x(1LL << 30),
+                                           _mm256_srli_epi64(_mm256_mul_epu32(d, x), 32));
+        const __m256i neg = _mm256_cmpgt_epi64(zero, e);
+        const __m256i prod = _mm256_mul_epu32(x, _mm256_blendv_epi8(e, _mm256_sub_epi64(zero, e), neg));
+        const __m256i up = _mm256_srli_epi64(prod, 30);
+        const __m256i down = _mm256_sub_epi64(
+            zero, _mm256_srli_epi64(_mm256_add_epi64(prod, _mm256_set1_epi64x((1LL << 30) - 1)), 30));
+        x = _mm256_add_epi64(x, _mm256_blendv_epi8(up, down, neg));
+    }
+    const __m256i t = _mm256_add_epi64(_mm256_set1_epi64x(1LL << 62), _mm256_srli_epi64(d, 1));
+    for (int i = 0; i < 2; i++) {
+        x = _mm256_add_epi64(x, _mm256_cmpgt_epi64(_mm256_mul_epu32(x, d), t)); /* x d > t: x - 1 */
+    }
+    for (int i = 0; i < 2; i++) {
+        const __m256i above = _mm256_cmpgt_epi64(_mm256_mul_epu32(_mm256_add_epi64(x, one), d), t);
+        x = _mm256_add_epi64(x, _mm256_andnot_si256(above, one)); /* (x + 1) d <= t: x + 1 */
+    }
+    const __m256i bad = _mm256_or_si256(
+        _mm256_cmpgt_epi64(_mm256_mul_epu32(x, d), t),
+        _mm256_xor_si256(_mm256_cmpgt_epi64(_mm256_mul_epu32(_mm256_add_epi64(x, one), d), t),
+                         _mm256_set1_epi32(-1)));
+    if (!_mm256_testz_si256(bad, bad)) {
+        *ok = 0;
+    }
+    return x;
+}
+
+/* 8 lanes of 32-bit values -> the even lanes and the odd lanes, each in
+ * the low half of a 64-bit lane, and back. */
+static inline TDC_AVX2 __m256i trm_even(__m256i v)
+{
+    return _mm256_and_si256(v, _mm256_set1_epi64x(0xffffffffLL));
+}
+static inline TDC_AVX2 __m256i trm_odd(__m256i v)
+{
+    return _mm256_srli_epi64(v, 32);
+}
+static inline TDC_AVX2 __m256i trm_join(__m256i even, __m256i odd)
+{
+    return _mm256_blend_epi32(even, _mm256_slli_epi64(odd, 32), 0xaa);
+}
+
+/*
+ * w = exp(-s |a - b| / (a + b)) in Q15 for 8 lanes: exactly
+ * tdc_trm_motion_weight_q15 (tdc_div_q30, the Q16 product with s, the exp
+ * table), with the division as above.  *ok as trm_recip4.
+ */
+static inline TDC_AVX2 __m256i trm_motion_weight8(const tdc_trm_rowctx_t *k, __m256i a, __m256i b, int *ok)
+{
+    const __m256i zero = _mm256_setzero_si256();
+    const __m256i diff = _mm256_abs_epi32(_mm256_sub_epi32(a, b));
+    const __m256i den = _mm256_add_epi32(a, b);
+    const __m256i den0 = _mm256_cmpeq_epi32(den, zero);
+    const __m256i whole = _mm256_cmpgt_epi32(_mm256_add_epi32(diff, _mm256_set1_epi32(1)), den); /* diff >= den */
+    /* normalise: shift = clz(den), dn = den << shift; den 0 gets any valid dn */
+    __m256i dn = _mm256_blendv_epi8(den, _mm256_set1_epi32(1), den0), sh = zero;
+    static const int steps[5] = {16, 8, 4, 2, 1};
+    for (int i = 0; i < 5; i++) {
+        const __m256i top = _mm256_srlv_epi32(dn, _mm256_set1_epi32(32 - steps[i]));
+        const __m256i m = _mm256_cmpeq_epi32(top, zero);
+        sh = _mm256_add_epi32(sh, _mm256_and_si256(m, _mm256_set1_epi32(steps[i])));
+        dn = _mm256_blendv_epi8(dn, _mm256_sllv_epi32(dn, _mm256_set1_epi32(steps[i])), m);
+    }
+    const __m256i num = _mm256_sllv_epi32(diff, sh); /* diff < den: < 2^32 */
+    const __m256i round31 = _mm256_set1_epi64x(1LL << 31);
+    const __m256i ce = _mm256_srli_epi64(
+        _mm256_add_epi64(_mm256_mul_epu32(trm_even(num), trm_recip4(trm_even(dn), ok)), round31), 32);
+    const __m256i co = _mm256_srli_epi64(
+        _mm256_add_epi64(_mm256_mul_epu32(trm_odd(num), trm_recip4(trm_odd(dn), ok)), round31), 32);
+    __m256i c = trm_join(ce, co); /* Q30 */
+    c = _mm256_blendv_epi8(c, _mm256_set1_epi32(1 << 30), whole);
+    c = _mm256_andnot_si256(den0, c);
+    /* s c: Q8 x Q30 -> Q16, rounded, in 64 bits; beyond the table w = 0 */
+    const __m256i s = _mm256_set1_epi64x((long long)k->s_q8);
+    const __m256i round21 = _mm256_set1_epi64x(1LL << 21), last = _mm256_set1_epi64x(((long long)TDC_TRM_WEXP_ENTRIES - 1) * 256 - 1);
+    const __m256i se = _mm256_srli_epi64(_mm256_add_epi64(_mm256_mul_epu32(s, trm_even(c)), round21), 22);
+    const __m256i so = _mm256_srli_epi64(_mm256_add_epi64(_mm256_mul_epu32(s, trm_odd(c)), round21), 22);
+    const __m256i bige = _mm256_cmpgt_epi64(se, last), bigo = _mm256_cmpgt_epi64(so, last);
+    const __m256i big = _mm256_blend_epi32(bige, bigo, 0xaa);
+    const __m256i sc = trm_join(_mm256_andnot_si256(bige, se), _mm256_andnot_si256(bigo, so)); /* < 2^21 */
+    const __m256i kk = _mm256_srli_epi32(sc, 8), f = _mm256_and_si256(sc, _mm256_set1_epi32(255));
+    const __m256i wa = _mm256_i32gather_epi32((const int *)k->wexp, kk, 4);
+    const __m256i wb = _mm256_i32gather_epi32((const int *)(k->wexp + 1), kk, 4);
+    const __m256i v = _mm256_sub_epi32(wa, _mm256_srli_epi32(_mm256_mullo_epi32(_mm256_sub_epi32(wa, wb), f), 8));
+    return _mm256_andnot_si256(big, _mm256_srli_epi32(_mm256_add_epi32(v, _mm256_set1_epi32(1 << 14)), 15));
 }
 
 /* Lanes set in a compare mask. */
@@ -327,19 +433,29 @@ TDC_AVX2 void tdc_trm_reduced_row_avx2(const tdc_trm_rowctx_t *k, const uint32_t
                 for (int c = 0; c < 3; c++) {
                     la[c] = trm_dec8(k->dec[c], gs[c]);
                 }
+                /* all three channels together (their Newton chains
+                 * overlap), lanes that did not move are dropped after */
+                int ok = 1;
+                __m256i wm[3];
+#pragma GCC unroll 3
                 for (int c = 0; c < 3; c++) {
-                    if (_mm256_testz_si256(moved[c], moved[c])) {
-                        continue;
+                    wm[c] = trm_motion_weight8(k, la[c], alpha[c], &ok);
+                }
+                if (!ok) {
+                    /* a vector reciprocal missed its bound: scalar */
+                    for (int c = 0; c < 3; c++) {
+                        int32_t lav[8], alv[8], wl[8];
+                        _mm256_storeu_si256((__m256i *)(void *)lav, la[c]);
+                        _mm256_storeu_si256((__m256i *)(void *)alv, alpha[c]);
+                        for (int l = 0; l < 8; l++) {
+                            wl[l] = tdc_trm_motion_weight_q15(k, lav[l], alv[l]);
+                        }
+                        wm[c] = _mm256_loadu_si256((const __m256i *)(const void *)wl);
                     }
-                    /* all 8 lanes, then keep the moved ones: a fixed trip
-                     * count, where a test per lane would mispredict */
-                    int32_t lav[8], alv[8], wl[8];
-                    _mm256_storeu_si256((__m256i *)(void *)lav, la[c]);
-                    _mm256_storeu_si256((__m256i *)(void *)alv, alpha[c]);
-                    for (int l = 0; l < 8; l++) {
-                        wl[l] = tdc_trm_motion_weight_q15(k, lav[l], alv[l]);
-                    }
-                    w[c] = _mm256_blendv_epi8(w[c], _mm256_loadu_si256((const __m256i *)(const void *)wl), moved[c]);
+                }
+#pragma GCC unroll 3
+                for (int c = 0; c < 3; c++) {
+                    w[c] = _mm256_blendv_epi8(w[c], wm[c], moved[c]);
                 }
             }
 #pragma GCC unroll 3
