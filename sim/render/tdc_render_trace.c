@@ -416,15 +416,34 @@ void tdc_r_pass_mv(rthread_t *t, rsample_t *s, int n)
     }
 }
 
-/* Mirror image of point V (or direction when dir_only) through the chain's planes in frame f. */
-static void mirror_chain(const rframe_t *f, const rsample_t *a, double V[3], int dir_only)
+/* Reflects V (a point, or a direction when dir_only) through the plane
+ * (P, n): V -= 2 ((V - P) . n) n. */
+static inline void mirror_reflect(double V[3], const double P[3], const double nrm[3], int dir_only)
+{
+    double dd = dir_only ? dot3(V, nrm)
+                         : (V[0] - P[0]) * nrm[0] + (V[1] - P[1]) * nrm[1] + (V[2] - P[2]) * nrm[2];
+    for (int c = 0; c < 3; c++) V[c] -= 2 * dd * nrm[c];
+}
+
+/* Mirror images of Vc and Vp through the chain's planes in the current and
+ * the previous frame.  A mirror whose matrix did not change has the same
+ * plane in both frames: transformed and normalised once. */
+static void mirror_chain2(const rthread_t *t, const rsample_t *a, double Vc[3], double Vp[3], int dir_only)
 {
     for (int j = a->nmir - 1; j >= 0; j--) {
-        double Pj[3], nj[3];
-        tdc_r_xform_point(f->m[a->mobj[j]], a->mQ[j], Pj);
-        tdc_r_xform_normal(f->nm[a->mobj[j]], a->mNQ[j], nj);
-        double dd = dir_only ? dot3(V, nj) : (V[0] - Pj[0]) * nj[0] + (V[1] - Pj[1]) * nj[1] + (V[2] - Pj[2]) * nj[2];
-        for (int c = 0; c < 3; c++) V[c] -= 2 * dd * nj[c];
+        int o = a->mobj[j];
+        double Pc[3], nc[3];
+        tdc_r_xform_point(t->cur->m[o], a->mQ[j], Pc);
+        tdc_r_xform_normal(t->cur->nm[o], a->mNQ[j], nc);
+        mirror_reflect(Vc, Pc, nc, dir_only);
+        if (t->r->obj_same_m[o]) { /* same matrix (so same normal matrix): same plane */
+            mirror_reflect(Vp, Pc, nc, dir_only);
+        } else {
+            double Pp[3], np[3];
+            tdc_r_xform_point(t->prev->m[o], a->mQ[j], Pp);
+            tdc_r_xform_normal(t->prev->nm[o], a->mNQ[j], np);
+            mirror_reflect(Vp, Pp, np, dir_only);
+        }
     }
 }
 
@@ -440,10 +459,10 @@ void tdc_r_pass_mv_reflect(rthread_t *t, rsample_t *s, int n)
             memcpy(Vp, a->rdir, sizeof Vp);
         } else {
             tdc_r_xform_point(t->cur->m[a->robj], a->rQ, Vc);
-            tdc_r_xform_point(t->prev->m[a->robj], a->rQ, Vp);
+            if (t->r->obj_same_m[a->robj]) memcpy(Vp, Vc, sizeof Vp);
+            else tdc_r_xform_point(t->prev->m[a->robj], a->rQ, Vp);
         }
-        mirror_chain(t->cur, a, Vc, dir_only);
-        mirror_chain(t->prev, a, Vp, dir_only);
+        mirror_chain2(t, a, Vc, Vp, dir_only);
         if (dir_only)
             ok = tdc_r_project_dir(&t->cur->cam, Vc, &xc, &yc) == 0 && tdc_r_project_dir(&t->prev->cam, Vp, &xp, &yp) == 0;
         else
