@@ -282,38 +282,6 @@ static int32_t clampi(int32_t v, int32_t lo, int32_t hi)
     return v < lo ? lo : (v > hi ? hi : v);
 }
 
-/* Horizontal pass of one full-res row into a ring slot (rw x 3, code Q8).
- * Scaling and overflow: sum of weights 2^15 times codes <= 255 < 2^23;
- * result (acc + 2^6) >> 7 is code Q8 <= 65280. */
-static void trm_d_row(const tdc_trm_t *st, const uint8_t *row, tdc_gval_t *dst)
-{
-    const int32_t wmax = (int32_t)st->cfg.width - 1;
-    const uint32_t taps = st->dtaps;
-    for (uint32_t j = 0; j < st->rw; j++) {
-        const int32_t k0 = st->dx_first[j];
-        const uint16_t *w = &st->dx_w[j * taps];
-        uint32_t a0 = 0, a1 = 0, a2 = 0;
-        if (k0 >= 0 && k0 + (int32_t)taps - 1 <= wmax) {
-            const uint8_t *p = row + 3 * k0;
-            for (uint32_t t = 0; t < taps; t++, p += 3) {
-                a0 += w[t] * (uint32_t)p[0];
-                a1 += w[t] * (uint32_t)p[1];
-                a2 += w[t] * (uint32_t)p[2];
-            }
-        } else {
-            for (uint32_t t = 0; t < taps; t++) {
-                const uint8_t *p = row + 3 * clampi(k0 + (int32_t)t, 0, wmax);
-                a0 += w[t] * (uint32_t)p[0];
-                a1 += w[t] * (uint32_t)p[1];
-                a2 += w[t] * (uint32_t)p[2];
-            }
-        }
-        dst[3u * j] = (tdc_gval_t)((a0 + 64u) >> 7);
-        dst[3u * j + 1u] = (tdc_gval_t)((a1 + 64u) >> 7);
-        dst[3u * j + 2u] = (tdc_gval_t)((a2 + 64u) >> 7);
-    }
-}
-
 /* Full D: in (W x H codes) -> dst (rw x rh x 3, code Q8).
  * Vertical pass scaling: 2^15 * 65280 < 2^31; (acc + 2^14) >> 15. */
 static void trm_apply_d(tdc_trm_t *st, const uint8_t *in, uint32_t stride, tdc_gval_t *dst)
@@ -327,7 +295,9 @@ static void trm_apply_d(tdc_trm_t *st, const uint8_t *in, uint32_t stride, tdc_g
         const int32_t need = clampi(k0 + (int32_t)taps - 1, 0, hmax);
         while (loaded < need) {
             loaded++;
-            trm_d_row(st, in + (size_t)loaded * stride, &st->ring[((uint32_t)loaded % taps) * rw3]);
+            (st->simd ? tdc_trm_dhoriz_avx2 : tdc_trm_dhoriz_c)(in + (size_t)loaded * stride, st->cfg.width,
+                                                                st->dx_first, st->dx_w, taps, st->rw,
+                                                                &st->ring[((uint32_t)loaded % taps) * rw3]);
         }
         const uint16_t *w = &st->dy_w[jy * taps];
         const tdc_gval_t *rows[TDC_TRM_MAX_TAPS];

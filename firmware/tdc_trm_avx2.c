@@ -509,6 +509,52 @@ TDC_AVX2 void tdc_trm_dvert_avx2(const uint16_t *const *rows, const uint16_t *w,
     }
 }
 
+TDC_AVX2 void tdc_trm_dhoriz_avx2(const uint8_t *row, uint32_t width, const int16_t *first, const uint16_t *w,
+                                  uint32_t taps, uint32_t rw, uint16_t *dst)
+{
+    /* 8 reduced columns per step; one 32-bit gather per tap reads a whole
+     * pixel (R, G, B and the next byte), so the last tap must end one pixel
+     * before the row does: blocks near the edges go to the C kernel */
+    const int32_t wlast = (int32_t)width - 2;
+    const __m256i ff = _mm256_set1_epi32(0xff), bias = _mm256_set1_epi32(64);
+    const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    uint32_t j = 0;
+    while (j < rw) {
+        if (j + 8u > rw || first[j] < 0 || first[j + 7u] + (int32_t)taps - 1 > wlast) {
+            /* first[] increases with j: lanes 0 and 7 bound the block */
+            const uint32_t n = j + 8u <= rw ? 8u : rw - j;
+            tdc_trm_dhoriz_c(row, width, first + j, w + (size_t)j * taps, taps, n, dst + 3u * j);
+            j += n;
+            continue;
+        }
+        const __m256i k0 = _mm256_cvtepi16_epi32(_mm_loadu_si128((const __m128i *)(const void *)(first + j)));
+        const __m256i pix = _mm256_add_epi32(_mm256_add_epi32(k0, k0), k0); /* byte offset 3 k0 */
+        const __m256i widx = _mm256_mullo_epi32(_mm256_add_epi32(_mm256_set1_epi32((int)j), lane),
+                                                _mm256_set1_epi32((int)taps));
+        __m256i ar = _mm256_setzero_si256(), ag = ar, ab = ar;
+        for (uint32_t t = 0; t < taps; t++) {
+            const __m256i off = _mm256_set1_epi32((int)t);
+            const __m256i v = _mm256_i32gather_epi32((const int *)(const void *)row,
+                                                     _mm256_add_epi32(pix, _mm256_set1_epi32((int)(3u * t))), 1);
+            const __m256i wt = _mm256_and_si256(
+                _mm256_i32gather_epi32((const int *)(const void *)w, _mm256_add_epi32(widx, off), 2),
+                _mm256_set1_epi32(0xffff));
+            ar = _mm256_add_epi32(ar, _mm256_mullo_epi32(wt, _mm256_and_si256(v, ff)));
+            ag = _mm256_add_epi32(ag, _mm256_mullo_epi32(wt, _mm256_and_si256(_mm256_srli_epi32(v, 8), ff)));
+            ab = _mm256_add_epi32(ab, _mm256_mullo_epi32(wt, _mm256_and_si256(_mm256_srli_epi32(v, 16), ff)));
+        }
+        __m256i o[3];
+        trm_interleave3(_mm256_srli_epi32(_mm256_add_epi32(ar, bias), 7), _mm256_srli_epi32(_mm256_add_epi32(ag, bias), 7),
+                        _mm256_srli_epi32(_mm256_add_epi32(ab, bias), 7), o);
+        /* 24 values <= 65280 -> uint16 */
+        _mm256_storeu_si256((__m256i *)(void *)(dst + 3u * j),
+                            _mm256_permute4x64_epi64(_mm256_packus_epi32(o[0], o[1]), 0xd8));
+        _mm_storeu_si128((__m128i *)(void *)(dst + 3u * j + 16u),
+                         _mm256_castsi256_si128(_mm256_permute4x64_epi64(_mm256_packus_epi32(o[2], o[2]), 0xd8)));
+        j += 8u;
+    }
+}
+
 #else /* no AVX2 on this target: the portable kernels behind the same names */
 
 int tdc_trm_avx2_available(void)
@@ -531,6 +577,12 @@ void tdc_trm_reduced_row_avx2(const tdc_trm_rowctx_t *k, const uint32_t *urow_a,
 void tdc_trm_dvert_avx2(const uint16_t *const *rows, const uint16_t *w, uint32_t taps, uint32_t n, uint16_t *out)
 {
     tdc_trm_dvert_c(rows, w, taps, n, out);
+}
+
+void tdc_trm_dhoriz_avx2(const uint8_t *row, uint32_t width, const int16_t *first, const uint16_t *w, uint32_t taps,
+                         uint32_t rw, uint16_t *dst)
+{
+    tdc_trm_dhoriz_c(row, width, first, w, taps, rw, dst);
 }
 
 #endif

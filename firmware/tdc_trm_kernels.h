@@ -60,7 +60,16 @@ typedef void tdc_trm_reduced_row_fn(const tdc_trm_rowctx_t *k, const uint32_t *u
 typedef void tdc_trm_dvert_fn(const uint16_t *const *rows, const uint16_t *w, uint32_t taps, uint32_t n,
                               uint16_t *out);
 
+/* Horizontal pass of D over one full-res row of codes (width pixels, RGB):
+ * for each reduced column j < rw the kernel first[j] .. first[j] + taps - 1
+ * (clamped to the row) with weights w[j * taps + t] (Q15, summing to 32768);
+ * dst gets rw x 3 values in code Q8.  The AVX2 version may read the weight
+ * table 2 bytes past its end (the arena keeps more after it). */
+typedef void tdc_trm_dhoriz_fn(const uint8_t *row, uint32_t width, const int16_t *first, const uint16_t *w,
+                               uint32_t taps, uint32_t rw, uint16_t *dst);
+
 tdc_trm_full_row_fn tdc_trm_full_row_c;
+tdc_trm_dhoriz_fn tdc_trm_dhoriz_c;
 tdc_trm_reduced_row_fn tdc_trm_reduced_row_c;
 tdc_trm_dvert_fn tdc_trm_dvert_c;
 
@@ -70,6 +79,7 @@ int tdc_trm_avx2_available(void);
  * returns 1 when every bucket holds at most one threshold. */
 int tdc_trm_avx2_build_encode(const tdc_panel_t *panel, uint8_t *comb);
 tdc_trm_full_row_fn tdc_trm_full_row_avx2;
+tdc_trm_dhoriz_fn tdc_trm_dhoriz_avx2;
 tdc_trm_reduced_row_fn tdc_trm_reduced_row_avx2;
 tdc_trm_dvert_fn tdc_trm_dvert_avx2;
 

@@ -166,3 +166,36 @@ void tdc_trm_dvert_c(const uint16_t *const *rows, const uint16_t *w, uint32_t ta
         out[i] = (uint16_t)((acc + (1u << 14)) >> 15);
     }
 }
+
+/* Horizontal pass of D over one full-res row (see tdc_trm_kernels.h).
+ * Scaling and overflow: sum of weights 2^15 times codes <= 255 < 2^23;
+ * result (acc + 2^6) >> 7 is code Q8 <= 65280. */
+void tdc_trm_dhoriz_c(const uint8_t *row, uint32_t width, const int16_t *first, const uint16_t *w_all,
+                      uint32_t taps, uint32_t rw, uint16_t *dst)
+{
+    const int32_t wmax = (int32_t)width - 1;
+    for (uint32_t j = 0; j < rw; j++) {
+        const int32_t k0 = first[j];
+        const uint16_t *w = &w_all[j * taps];
+        uint32_t a0 = 0, a1 = 0, a2 = 0;
+        if (k0 >= 0 && k0 + (int32_t)taps - 1 <= wmax) {
+            const uint8_t *p = row + 3 * k0;
+            for (uint32_t t = 0; t < taps; t++, p += 3) {
+                a0 += w[t] * (uint32_t)p[0];
+                a1 += w[t] * (uint32_t)p[1];
+                a2 += w[t] * (uint32_t)p[2];
+            }
+        } else {
+            for (uint32_t t = 0; t < taps; t++) {
+                const int32_t q = k0 + (int32_t)t;
+                const uint8_t *p = row + 3 * (q < 0 ? 0 : (q > wmax ? wmax : q));
+                a0 += w[t] * (uint32_t)p[0];
+                a1 += w[t] * (uint32_t)p[1];
+                a2 += w[t] * (uint32_t)p[2];
+            }
+        }
+        dst[3u * j] = (uint16_t)((a0 + 64u) >> 7);
+        dst[3u * j + 1u] = (uint16_t)((a1 + 64u) >> 7);
+        dst[3u * j + 2u] = (uint16_t)((a2 + 64u) >> 7);
+    }
+}

@@ -181,6 +181,40 @@ static int check_dvert(uint32_t n, uint32_t taps, uint32_t row)
     return 0;
 }
 
+static int16_t hfirst[MAXW];
+static uint16_t hw[MAXW * TDC_TRM_MAX_TAPS + 8u];
+static uint16_t hout_c[3u * MAXW], hout_v[3u * MAXW];
+
+/* Horizontal D pass: a row of width pixels, rw columns whose kernels start
+ * at increasing positions from before the row to past its end. */
+static int check_dhoriz(uint32_t row)
+{
+    const uint32_t width = 1u + rnd_below(MAXW), taps = 1u + rnd_below(TDC_TRM_MAX_TAPS);
+    const uint32_t rw = 1u + rnd_below(width);
+    for (uint32_t i = 0; i < 3u * width; i++) {
+        src[i] = (uint8_t)(rnd_below(4u) == 0u ? 255u : rnd());
+    }
+    for (uint32_t j = 0; j < rw; j++) {
+        /* centre (j + 0.5) W / rw - 0.5, kernel starting taps/2 before it */
+        hfirst[j] = (int16_t)((int32_t)(((2u * j + 1u) * width) / (2u * rw)) - (int32_t)(taps / 2u));
+        uint32_t left = 32768u;
+        for (uint32_t t = 0; t < taps; t++) {
+            hw[j * taps + t] = (uint16_t)(t + 1u == taps ? left : rnd_below(left + 1u));
+            left -= hw[j * taps + t];
+        }
+    }
+    memset(hout_c, 0, sizeof hout_c);
+    memset(hout_v, 0, sizeof hout_v);
+    tdc_trm_dhoriz_c(src, width, hfirst, hw, taps, rw, hout_c);
+    tdc_trm_dhoriz_avx2(src, width, hfirst, hw, taps, rw, hout_v);
+    if (memcmp(hout_c, hout_v, sizeof hout_c) != 0) {
+        fprintf(stderr, "checkasm_trm: D horizontal row %" PRIu32 " (width %" PRIu32 ", rw %" PRIu32 ", %" PRIu32
+                        " taps) differs\n", row, width, rw, taps);
+        return 1;
+    }
+    return 0;
+}
+
 static double now_s(void)
 {
     struct timespec ts;
@@ -256,14 +290,15 @@ int main(int argc, char **argv)
         nfull++;
         nred++;
         if (row % 4u == 0u) {
-            if (check_dvert(1u + rnd_below(3u * MAXW), 1u + rnd_below(TDC_TRM_MAX_TAPS), row)) {
+            if (check_dvert(1u + rnd_below(3u * MAXW), 1u + rnd_below(TDC_TRM_MAX_TAPS), row) ||
+                check_dhoriz(row)) {
                 return 1;
             }
             nd++;
         }
     }
     printf("checkasm_trm: AVX2 == C bit for bit: %" PRIu32 " full rows, %" PRIu32 " reduced rows, %" PRIu32
-           " D vertical rows (random, extremes, widths 1..%u, 3 panels)\n",
+           " D vertical and horizontal rows (random, extremes, widths 1..%u, 3 panels)\n",
            nfull, nred, nd, MAXW);
     if (!bench) {
         return 0;
