@@ -191,7 +191,11 @@ static void write_outputs(job_t *jb, const rsample_t *s, int n)
     if (jb->do_mv) {
         for (int i = 0; i < n; i++) {
             const rsample_t *a = &s[i];
-            int16_t m0 = q4(a->mv[0]), m1 = q4(a->mv[1]);
+            int16_t m0 = 0, m1 = 0; /* q4(+-0) = 0: no conversions for the many pixels that did not move */
+            if (a->mv[0] != 0 || a->mv[1] != 0) {
+                m0 = q4(a->mv[0]);
+                m1 = q4(a->mv[1]);
+            }
             int16_t *h = &hist[((size_t)a->py * W + (size_t)a->px) * 2];
             h[0] = m0;
             h[1] = m1;

@@ -74,7 +74,7 @@ static void record(rthread_t *t, const struct RTCRay *ray, uint32_t kind, uint32
     o->flags = flags;
 }
 
-static void set_ray(struct RTCRay *ray, const double o[3], const double d[3], double tnear, double tfar)
+static inline void set_ray(struct RTCRay *ray, const double o[3], const double d[3], double tnear, double tfar)
 {
     ray->org_x = (float)o[0];
     ray->org_y = (float)o[1];
@@ -91,7 +91,7 @@ static void set_ray(struct RTCRay *ray, const double o[3], const double d[3], do
 }
 
 /* Closest hit; returns the object index or -1. */
-static int intersect(rthread_t *t, int prevf, const double o[3], const double d[3], double tnear, double tfar,
+static inline int intersect(rthread_t *t, int prevf, const double o[3], const double d[3], double tnear, double tfar,
                      uint32_t kind, struct RTCRayHit *rh)
 {
     set_ray(&rh->ray, o, d, tnear, tfar);
@@ -103,7 +103,7 @@ static int intersect(rthread_t *t, int prevf, const double o[3], const double d[
     return rh->hit.geomID == RTC_INVALID_GEOMETRY_ID ? -1 : (int)rh->hit.instID[0];
 }
 
-static int occluded(rthread_t *t, const double o[3], const double d[3], double tfar)
+static inline int occluded(rthread_t *t, const double o[3], const double d[3], double tfar)
 {
     struct RTCRay ray;
     set_ray(&ray, o, d, 0, tfar);
