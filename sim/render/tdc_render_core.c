@@ -264,6 +264,9 @@ int tdc_r_update_motion(tdc_render_t *r, long frame)
     any |= r->cam_moved;
     for (int i = 0; i < r->scene->nobjects; i++) {
         r->obj_same_m[i] = memcmp(a->m[i], b->m[i], sizeof a->m[i]) == 0;
+        r->obj_same_rs[i] = memcmp(&a->m[i][0], &b->m[i][0], 3 * sizeof(double)) == 0 &&
+                            memcmp(&a->m[i][4], &b->m[i][4], 3 * sizeof(double)) == 0 &&
+                            memcmp(&a->m[i][8], &b->m[i][8], 3 * sizeof(double)) == 0;
         r->obj_moved[i] = r->obj[i].animated && !r->obj_same_m[i];
         any |= r->obj_moved[i];
     }
@@ -278,6 +281,7 @@ int tdc_render_frame_static(tdc_render_t *r, uint32_t frame)
         r->cam_moved = 0;
         memset(r->obj_moved, 0, sizeof r->obj_moved);
         memset(r->obj_same_m, 0, sizeof r->obj_same_m); /* not compared: transform both */
+        memset(r->obj_same_rs, 0, sizeof r->obj_same_rs);
         return 1;
     }
     return !tdc_r_update_motion(r, (long)frame);

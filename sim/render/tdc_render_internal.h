@@ -74,6 +74,9 @@ struct tdc_render {
     /* 1: the object's matrices of the two frames are bitwise equal, so its
      * previous world position is the current one without a second transform */
     uint8_t obj_same_m[TDC_SCENE_MAX_OBJECTS];
+    /* 1: only the translation column differs (a translating object): the
+     * rotation-scale product of a point is shared by both frames */
+    uint8_t obj_same_rs[TDC_SCENE_MAX_OBJECTS];
     /* 1: the world normal of a primary hit is used (lit or mirror material);
      * unlit, non-mirror surfaces skip its transform and normalisation */
     uint8_t obj_needs_n[TDC_SCENE_MAX_OBJECTS];

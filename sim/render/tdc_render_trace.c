@@ -371,9 +371,22 @@ void tdc_r_pass_reflect(rthread_t *t, rsample_t *s, int n)
 static inline __attribute__((always_inline)) int track_point(const rthread_t *t, int obj, const double q[3], double *xc, double *yc, double *xp, double *yp)
 {
     double wc[3], wp[3];
-    tdc_r_xform_point(t->cur->m[obj], q, wc);
-    if (t->r->obj_same_m[obj]) memcpy(wp, wc, sizeof wp); /* same matrix: same product */
-    else tdc_r_xform_point(t->prev->m[obj], q, wp);
+    const double *mc = t->cur->m[obj], *mp = t->prev->m[obj];
+    if (t->r->obj_same_m[obj]) { /* same matrix: same product */
+        tdc_r_xform_point(mc, q, wc);
+        memcpy(wp, wc, sizeof wp);
+    } else if (t->r->obj_same_rs[obj]) {
+        /* translation only: ((m0 q0 + m1 q1) + m2 q2) is the same in both
+         * frames, then each adds its own translation (as tdc_r_xform_point) */
+        for (int k = 0; k < 3; k++) {
+            double rs = mc[4 * k] * q[0] + mc[4 * k + 1] * q[1] + mc[4 * k + 2] * q[2];
+            wc[k] = rs + mc[4 * k + 3];
+            wp[k] = rs + mp[4 * k + 3];
+        }
+    } else {
+        tdc_r_xform_point(mc, q, wc);
+        tdc_r_xform_point(mp, q, wp);
+    }
     if (tdc_r_project(&t->cur->cam, wc, xc, yc) < 0) return -1;
     return tdc_r_project(&t->prev->cam, wp, xp, yp);
 }
