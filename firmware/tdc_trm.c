@@ -52,7 +52,7 @@ static uint16_t trm_taps(uint16_t sigma_q8)
 }
 
 typedef struct {
-    size_t residual, dprev, rscratch, ring, urow, dx_first, dy_first, dx_w, dy_w, ux, uy, wexp, simd, total;
+    size_t residual, dprev, ring, urow, dx_first, dy_first, dx_w, dy_w, ux, uy, wexp, simd, total;
 } trm_layout_t;
 
 static size_t align8(size_t n)
@@ -67,8 +67,6 @@ static void trm_layout(const tdc_trm_config_t *cfg, uint16_t rw, uint16_t rh, ui
     l->residual = o;
     o += align8(w * h * 3u * sizeof(tdc_res_t));
     l->dprev = o;
-    o += align8((size_t)rw * rh * 3u * sizeof(tdc_gval_t));
-    l->rscratch = o;
     o += align8((size_t)rw * rh * 3u * sizeof(tdc_gval_t));
     l->ring = o;
     o += align8((size_t)TDC_TRM_MAX_TAPS * rw * 3u * sizeof(tdc_gval_t));
@@ -216,7 +214,7 @@ tdc_status_t tdc_trm_init(tdc_trm_t *st, const tdc_trm_config_t *cfg, const tdc_
     st->simd = (uint8_t)tdc_trm_avx2_available();
     if (st->passthrough) {
         st->residual = NULL;
-        st->dprev = st->rscratch = st->ring = NULL;
+        st->dprev = st->ring = NULL;
         st->urow = NULL;
         st->dx_first = st->dy_first = NULL;
         st->dx_w = st->dy_w = st->ux_i = st->ux_f = st->uy_i = st->uy_f = NULL;
@@ -230,7 +228,6 @@ tdc_status_t tdc_trm_init(tdc_trm_t *st, const tdc_trm_config_t *cfg, const tdc_
     uint8_t *base = (uint8_t *)mem + ((8u - ((uintptr_t)mem & 7u)) & 7u);
     st->residual = (tdc_res_t *)(void *)(base + l.residual);
     st->dprev = (tdc_gval_t *)(void *)(base + l.dprev);
-    st->rscratch = (tdc_gval_t *)(void *)(base + l.rscratch);
     st->ring = (tdc_gval_t *)(void *)(base + l.ring);
     st->urow = (uint32_t *)(void *)(base + l.urow);
     st->dx_first = (int16_t *)(void *)(base + l.dx_first);
@@ -284,7 +281,8 @@ static int32_t clampi(int32_t v, int32_t lo, int32_t hi)
 
 /* Full D: in (W x H codes) -> dst (rw x rh x 3, code Q8).
  * Vertical pass scaling: 2^15 * 65280 < 2^31; (acc + 2^14) >> 15. */
-static void trm_apply_d(tdc_trm_t *st, const uint8_t *in, uint32_t stride, tdc_gval_t *dst)
+static void trm_apply_d(tdc_trm_t *st, const uint8_t *in, uint32_t stride, tdc_gval_t *dst, uint8_t *out8,
+                        uint32_t out8_stride)
 {
     const int32_t hmax = (int32_t)st->cfg.height - 1;
     const uint32_t taps = st->dtaps;
@@ -304,8 +302,17 @@ static void trm_apply_d(tdc_trm_t *st, const uint8_t *in, uint32_t stride, tdc_g
         for (uint32_t t = 0; t < taps; t++) {
             rows[t] = &st->ring[((uint32_t)clampi(k0 + (int32_t)t, 0, hmax) % taps) * rw3];
         }
-        (st->simd ? tdc_trm_dvert_avx2 : tdc_trm_dvert_c)((const uint16_t *const *)rows, w, taps, rw3,
-                                                          &dst[jy * rw3]);
+        /* into D(I) (dst), or one row at a time rounded to codes (out8,
+         * tdc_trm_downsample: the U row buffer is free then) */
+        tdc_gval_t *o = out8 ? (tdc_gval_t *)(void *)st->urow : &dst[jy * rw3];
+        (st->simd ? tdc_trm_dvert_avx2 : tdc_trm_dvert_c)((const uint16_t *const *)rows, w, taps, rw3, o);
+        if (out8) {
+            uint8_t *d = out8 + (size_t)jy * out8_stride;
+            for (uint32_t i = 0; i < rw3; i++) {
+                const uint32_t v = ((uint32_t)o[i] + 128u) >> 8;
+                d[i] = (uint8_t)(v > 255u ? 255u : v);
+            }
+        }
     }
 }
 
@@ -325,6 +332,23 @@ static void trm_u_row(const tdc_trm_t *st, const tdc_gval_t *src, uint32_t y, ui
     const tdc_gval_t *a = &src[i0 * rw3], *b = &src[i1 * rw3];
     for (uint32_t i = 0; i < rw3; i++) {
         dst[i] = (uint32_t)((int32_t)a[i] * (1 << 14) + ((int32_t)b[i] - (int32_t)a[i]) * (int32_t)f);
+    }
+    dst[rw3] = dst[rw3 - 3u];
+    dst[rw3 + 1u] = dst[rw3 - 2u];
+    dst[rw3 + 2u] = dst[rw3 - 1u];
+}
+
+/* As trm_u_row for a reduced frame of 8-bit codes as it arrives: a code c
+ * is code Q8 c << 8, so this is the same value without a Q8 copy of the
+ * frame (a * 2^22 + (b - a) f 2^8 < 2^30). */
+static void trm_u_row_codes(const tdc_trm_t *st, const uint8_t *src, uint32_t stride, uint32_t y, uint32_t *dst)
+{
+    const uint32_t rw3 = 3u * st->rw;
+    const uint32_t i0 = st->uy_i[2u * y], f = st->uy_i[2u * y + 1u];
+    const uint32_t i1 = i0 + 1u < st->rh ? i0 + 1u : i0;
+    const uint8_t *a = src + (size_t)i0 * stride, *b = src + (size_t)i1 * stride;
+    for (uint32_t i = 0; i < rw3; i++) {
+        dst[i] = (uint32_t)((int32_t)a[i] * (1 << 22) + ((int32_t)b[i] - (int32_t)a[i]) * (int32_t)f * 256);
     }
     dst[rw3] = dst[rw3 - 3u];
     dst[rw3 + 1u] = dst[rw3 - 2u];
@@ -384,7 +408,7 @@ tdc_status_t tdc_trm_full(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, 
         st->stats.passthrough_frames++;
         return TDC_OK;
     }
-    trm_apply_d(st, in, in_stride, st->dprev);
+    trm_apply_d(st, in, in_stride, st->dprev, NULL, 0);
     tdc_trm_rowctx_t k;
     trm_rowctx(st, &k);
     tdc_trm_full_row_fn *row = st->simd ? tdc_trm_full_row_avx2 : tdc_trm_full_row_c;
@@ -421,12 +445,6 @@ tdc_status_t tdc_trm_reduced(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t 
         return TDC_ERR_STATE;
     }
     const uint32_t rw3 = 3u * st->rw;
-    for (uint32_t y = 0; y < st->rh; y++) {
-        const uint8_t *s = in_reduced + (size_t)y * in_stride;
-        for (uint32_t i = 0; i < rw3; i++) {
-            st->rscratch[y * rw3 + i] = (tdc_gval_t)((uint32_t)s[i] << TDC_GVAL_FRAC);
-        }
-    }
     tdc_trm_rowctx_t k;
     trm_rowctx(st, &k);
     tdc_trm_reduced_row_fn *row = st->simd ? tdc_trm_reduced_row_avx2 : tdc_trm_reduced_row_c;
@@ -437,7 +455,7 @@ tdc_status_t tdc_trm_reduced(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t 
     for (uint32_t y = 0; y < st->cfg.height; y++) {
         tdc_trm_reduced_counts_t n = {0, 0, 0};
         trm_u_row(st, st->dprev, y, urow_a);
-        trm_u_row(st, st->rscratch, y, urow_b);
+        trm_u_row_codes(st, in_reduced, in_stride, y, urow_b);
         row(&k, urow_a, urow_b, &st->residual[(size_t)y * w * 3u], out + (size_t)y * out_stride, &n);
         computed += n.computed;
         skipped += n.skipped;
@@ -459,14 +477,6 @@ tdc_status_t tdc_trm_downsample(tdc_trm_t *st, const uint8_t *in, uint32_t in_st
     if (st->passthrough) {
         return TDC_ERR_STATE; /* no reduced frames in this configuration */
     }
-    trm_apply_d(st, in, in_stride, st->rscratch);
-    const uint32_t rw3 = 3u * st->rw;
-    for (uint32_t y = 0; y < st->rh; y++) {
-        uint8_t *d = out + (size_t)y * out_stride;
-        for (uint32_t i = 0; i < rw3; i++) {
-            uint32_t v = ((uint32_t)st->rscratch[y * rw3 + i] + 128u) >> 8;
-            d[i] = (uint8_t)(v > 255u ? 255u : v);
-        }
-    }
+    trm_apply_d(st, in, in_stride, NULL, out, out_stride);
     return TDC_OK;
 }

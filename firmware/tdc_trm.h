@@ -53,8 +53,8 @@
  */
 #define TDC_TRM_MEM_BYTES(W, H, RNUM, RDEN)                                                            \
     (64u + (size_t)(W) * (H) * 3u * 4u                          /* residual rho, Q24 */                \
-     + (size_t)TDC_TRM_REDUCED_DIM(W, RNUM, RDEN) * TDC_TRM_REDUCED_DIM(H, RNUM, RDEN) * 3u * 2u * 2u \
-     /* D(I_t) and scratch reduced frame, code Q8 */                                                   \
+     + (size_t)TDC_TRM_REDUCED_DIM(W, RNUM, RDEN) * TDC_TRM_REDUCED_DIM(H, RNUM, RDEN) * 3u * 2u      \
+     /* D(I_t), code Q8 */                                                                             \
      + (size_t)TDC_TRM_MAX_TAPS * TDC_TRM_REDUCED_DIM(W, RNUM, RDEN) * 3u * 2u /* ring of rows */      \
      + (size_t)2u * (TDC_TRM_REDUCED_DIM(W, RNUM, RDEN) + 1u) * 3u * 4u        /* U row buffers */    \
      + (size_t)(TDC_TRM_REDUCED_DIM(W, RNUM, RDEN) + TDC_TRM_REDUCED_DIM(H, RNUM, RDEN)) *            \
@@ -100,7 +100,6 @@ typedef struct {
     /* views into the arena */
     tdc_res_t *residual;        /* W*H*3, Q24 linear light */
     tdc_gval_t *dprev;          /* rw*rh*3, D(I_t), code Q8 */
-    tdc_gval_t *rscratch;       /* rw*rh*3, current reduced frame as code Q8 */
     tdc_gval_t *ring;           /* TDC_TRM_MAX_TAPS rows of rw*3: horizontal D pass */
     uint32_t *urow;             /* 2 rows of (rw+1)*3: vertically interpolated U rows, code Q22 */
     int16_t *dx_first;          /* rw: first full-res column of each D kernel */
