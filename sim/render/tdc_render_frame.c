@@ -238,6 +238,24 @@ static void write_outputs(job_t *jb, const rsample_t *s, int n)
     }
 }
 
+/* Asks for the output lines of a tile before the passes run, so that
+ * write_outputs finds them in the cache instead of stalling on up to ~80
+ * cache-line misses per tile (the outputs of a 1080p frame are ~40 MB). */
+static void prefetch_outputs(const job_t *jb, const rsample_t *s, int n)
+{
+    if (jb->mode != TDC_RENDER_FULL && jb->mode != TDC_RENDER_SUBFRAME) return;
+    const tdc_render_out_t *o = jb->out;
+    const int16_t *hist = jb->r->mv_hist;
+    size_t W = (size_t)jb->r->W;
+    for (int i = 0; i < n; i += 4) { /* 4 samples: 48 bytes of rgb, under a line */
+        if (o->rgb) __builtin_prefetch(&o->rgb[(size_t)s[i].dst * 3], 1);
+        if ((i & 15) == 0) {
+            if (o->mv) __builtin_prefetch(&o->mv[(size_t)s[i].dst * 2], 1);
+            __builtin_prefetch(&hist[((size_t)s[i].py * W + (size_t)s[i].px) * 2], 1);
+        }
+    }
+}
+
 static void *worker_main(void *arg)
 {
     worker_t *w = arg;
@@ -249,6 +267,7 @@ static void *worker_main(void *arg)
         if (ti >= ntiles) break;
         rsample_t *s = w->s;
         int n = place_samples(jb, ti % jb->ntx, ti / jb->ntx, s);
+        prefetch_outputs(jb, s, n);
         TIMED(th, TDC_STAGE_PRIMARY, tdc_r_pass_primary(th, s, n));
         TIMED(th, TDC_STAGE_SHADE, tdc_r_pass_shade(th, s, n));
         if (jb->do_reflect) TIMED(th, TDC_STAGE_REFLECT, tdc_r_pass_reflect(th, s, n));
