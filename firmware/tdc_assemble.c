@@ -75,6 +75,22 @@ static inline uint32_t tdc_asm_mv_word(const int16_t *pair)
     return v;
 }
 
+/* Ordering of tile row [ti0, ti0 + n) of `bits` if every tile has the
+ * same one (0 hourglass, 1 bowtie), -1 if they differ (n >= 1). */
+static int tdc_asm_bits_uniform(const uint8_t *bits, uint32_t ti0, uint32_t n)
+{
+    const unsigned first = (unsigned)tdc_ordering_get(bits, ti0);
+    const uint8_t all = first ? 0xFFu : 0x00u;
+    uint32_t i = ti0, end = ti0 + n;
+    for (; i < end && (i & 7u); i++)
+        if ((unsigned)tdc_ordering_get(bits, i) != first) return -1;
+    for (; i + 8u <= end; i += 8u)
+        if (bits[i >> 3] != all) return -1;
+    for (; i < end; i++)
+        if ((unsigned)tdc_ordering_get(bits, i) != first) return -1;
+    return (int)first;
+}
+
 /* ------------------------------------------------------------------------
  * Ingest.
  * ---------------------------------------------------------------------- */
@@ -103,13 +119,16 @@ tdc_status_t tdc_asm_ingest(tdc_asm_t *st, uint32_t frame, const uint8_t *sample
     int32_t nz = 0; /* change of the count of non-zero motion entries */
     for (uint32_t ty = 0; ty < st->tiles_y; ty++) {
         const uint32_t ti0 = ty * tx_n;
-        if (pos_h == pos_b) {
-            /* Subframes 0 and 3: every tile traces the same position, so
-             * the row of samples is one dense copy into one plane. */
-            const uint32_t y = 2u * ty + (pos_h >> 1), q = pos_h & 1u;
+        const int row_order = pos_h == pos_b ? 0 : tdc_asm_bits_uniform(st->pattern, ti0, tx_n);
+        if (row_order >= 0) {
+            /* Every tile of the row traces the same position (subframes 0
+             * and 3, or one ordering for the whole tile row): the row of
+             * samples is one dense copy into one plane. */
+            const unsigned pos = row_order ? pos_b : pos_h;
+            const uint32_t y = 2u * ty + (pos >> 1), q = pos & 1u;
             if (y >= h) continue; /* partial tile row: no such pixels */
             const uint32_t n = tx_n - (q && (w & 1u) ? 1u : 0u);
-            memcpy(plane_h + (size_t)ti0 * 3u, samples + (size_t)ti0 * 3u, (size_t)n * 3u);
+            memcpy((row_order ? plane_b : plane_h) + (size_t)ti0 * 3u, samples + (size_t)ti0 * 3u, (size_t)n * 3u);
             int16_t *m = st->mv + ((size_t)y * w + q) * 2u;
             for (uint32_t tx = 0; tx < n; tx++, m += 4) {
                 uint32_t was = tdc_asm_mv_word(m), is = 0;
@@ -327,14 +346,21 @@ static int tdc_asm_new_row(const tdc_asm_t *st, uint32_t y, unsigned pos_h, unsi
         memset(out, 0, w);
         return 0;
     }
-    if (pos_h == pos_b) {
-        /* Subframes 0 and 3: both orderings trace the same position, so
-         * every tile's new pixel is in column parity pos & 1. */
-        const uint8_t q = (uint8_t)(pos_h & 1u);
+    const uint32_t ti0 = (y >> 1) * st->tiles_x;
+    const int row_order = pos_h == pos_b ? 0 : tdc_asm_bits_uniform(st->pattern, ti0, st->tiles_x);
+    if (row_order >= 0) {
+        /* One position for every tile (subframes 0 and 3, or one ordering
+         * for the tile row): new pixels in row parity pos >> 1, column
+         * parity pos & 1. */
+        const unsigned pos = row_order ? pos_b : pos_h;
+        if ((pos & 2u) != py) {
+            memset(out, 0, w);
+            return 0;
+        }
+        const uint8_t q = (uint8_t)(pos & 1u);
         for (uint32_t x = 0; x < w; x++) out[x] = (uint8_t)((x & 1u) == q);
         return 1;
     }
-    const uint32_t ti0 = (y >> 1) * st->tiles_x;
     int any = 0;
     for (uint32_t tx = 0; tx < st->tiles_x; tx++) {
         unsigned pos = tdc_ordering_get(st->pattern, ti0 + tx) == TDC_ORDER_BOWTIE ? pos_b : pos_h;
@@ -632,12 +658,14 @@ static void tdc_asm_static_frame(tdc_asm_t *st, uint32_t frame)
     const uint8_t bit = (uint8_t)(1u << slot);
     for (uint32_t ty = 0; ty < st->tiles_y; ty++) {
         const uint32_t ti0 = ty * tx_n;
-        if (pos_h == pos_b) {
-            /* Subframes 0 and 3: one position for every tile of the row. */
-            const uint32_t y = 2u * ty + (pos_h >> 1), q = pos_h & 1u;
+        const int row_order = pos_h == pos_b ? 0 : tdc_asm_bits_uniform(st->pattern, ti0, tx_n);
+        if (row_order >= 0) {
+            /* One position for every tile of the row (see ingest). */
+            const unsigned pos = row_order ? pos_b : pos_h;
+            const uint32_t y = 2u * ty + (pos >> 1), q = pos & 1u;
             if (y >= h) continue;
             const uint32_t n = tx_n - (q && (w & 1u) ? 1u : 0u);
-            const uint8_t *s0 = st->samples + ((size_t)pos_h * tiles + ti0) * 3u;
+            const uint8_t *s0 = st->samples + ((size_t)pos * tiles + ti0) * 3u;
             uint8_t *win = st->window + (size_t)y * w + q, *o = img + ((size_t)y * w + q) * 3u;
             for (uint32_t tx = 0; tx < n; tx++, win += 2, o += 6, s0 += 3) {
                 *win = (uint8_t)(*win | bit);
