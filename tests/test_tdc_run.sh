@@ -48,5 +48,18 @@ expect 1 "full frame size mismatch" "expected 40x30" -- "$run" -o "$t/d" -f FF "
 expect 2 "stereo without auto" "--stereo needs --frames auto" -- "$run" -o "$t/e" --stereo x.png
 "$run" -q -o "$t/s" --stereo --frames auto --builtin edge --count 4 --size 64x20 && \
     grep -q '^1,1,full,' "$t/s/stats.csv" && grep -q '^1,0,reduced,' "$t/s/stats.csv" && ok "stereo eyes alternate" || bad "stereo"
+# the portable and the AVX2 row kernels give the same drive frames through
+# the whole tool (on a CPU without AVX2 only the refusal is checked)
+expect 2 "bad --kernels" "--kernels must be auto, c or avx2" -- "$run" -o "$t/k" --kernels neon --builtin edge
+"$run" -q -o "$t/kc" --kernels c --builtin text --count 6 --size 97x67 --frames auto || bad "--kernels c run"
+if "$run" -q -o "$t/kv" --kernels avx2 --builtin text --count 6 --size 97x67 --frames auto 2> "$t/kv.err"; then
+    same=1; for f in "$t/kc"/drive_*.png; do cmp -s "$f" "$t/kv/$(basename "$f")" || same=0; done
+    # every column but the last (firmware_us, a time)
+    [ $same -eq 1 ] && [ "$(sed 's/,[^,]*$//' "$t/kc/stats.csv")" = "$(sed 's/,[^,]*$//' "$t/kv/stats.csv")" ] && \
+        ok "C and AVX2 kernels give identical drive frames and stats" \
+        || bad "C and AVX2 kernels differ"
+else
+    grep -q "no AVX2 kernels" "$t/kv.err" && ok "--kernels avx2 refused without AVX2" || bad "--kernels avx2"
+fi
 echo "tdc-run: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -18,6 +18,7 @@
 #include "tdc_png.h"
 #include "tdc_run.h"
 #include "tdc_trm.h"
+#include "tdc_trm_kernels.h"
 
 static const char k_usage[] =
     "usage: tdc-run [options] -o OUTDIR FRAME.png...\n"
@@ -50,6 +51,9 @@ static const char k_usage[] =
     "      --count N          frames of built-in content (default 8)\n"
     "      --size WxH         size of built-in content (default 160x120)\n"
     "      --save-input       also write the input frames as OUTDIR/input_NNNNN.png\n"
+    "      --kernels K        TRM row kernels: auto (AVX2 when this CPU has it), c (the\n"
+    "                         portable kernels boards run) or avx2 (error without AVX2);\n"
+    "                         all give the same bytes (default auto)\n"
     "  -q, --quiet            no per-frame lines on stderr\n"
     "  -h, --help             this text\n"
     "\n"
@@ -65,6 +69,7 @@ typedef struct {
     int stereo, perceived, quiet, save_input;
     const char *builtin;
     int count, bw, bh;
+    int kernels; /* -1 auto, 0 C, 1 AVX2 */
 } opts_t;
 
 static const tdc_panel_t *find_panel(const char *name)
@@ -135,7 +140,7 @@ typedef struct {
     void *mem;
 } eye_t;
 
-static int eye_open(eye_t *e, const tdc_trm_config_t *cfg, const tdc_panel_t *panel)
+static int eye_open(eye_t *e, const tdc_trm_config_t *cfg, const tdc_panel_t *panel, int kernels)
 {
     size_t n = tdc_trm_get_size(cfg);
     e->mem = n ? malloc(n) : NULL;
@@ -152,6 +157,9 @@ static int eye_open(eye_t *e, const tdc_trm_config_t *cfg, const tdc_panel_t *pa
     if (st != TDC_OK) {
         fprintf(stderr, "tdc-run: TRM init failed (status %d)\n", (int)st);
         return -1;
+    }
+    if (kernels >= 0) {
+        tdc_trm_set_simd(&e->trm, kernels);
     }
     return 0;
 }
@@ -195,7 +203,7 @@ static int write_png(const opts_t *o, const char *prefix, int i, const uint8_t *
 
 int tdc_run_trm_main(int argc, char **argv)
 {
-    opts_t o = {NULL, &tdc_panel_htc_vive, 1, 2, 10.0, 2.5, 0, "alternate", 0, 0, 0, 0, NULL, 8, 160, 120};
+    opts_t o = {NULL, &tdc_panel_htc_vive, 1, 2, 10.0, 2.5, 0, "alternate", 0, 0, 0, 0, NULL, 8, 160, 120, -1};
     static const struct option longopts[] = {
         {"out", required_argument, 0, 'o'},   {"panel", required_argument, 0, 'p'},
         {"ratio", required_argument, 0, 'r'}, {"sensitivity", required_argument, 0, 's'},
@@ -204,7 +212,7 @@ int tdc_run_trm_main(int argc, char **argv)
         {"perceived", no_argument, 0, 4},     {"builtin", required_argument, 0, 5},
         {"count", required_argument, 0, 6},   {"size", required_argument, 0, 7},
         {"quiet", no_argument, 0, 'q'},       {"help", no_argument, 0, 'h'},
-        {"save-input", no_argument, 0, 8},
+        {"save-input", no_argument, 0, 8},    {"kernels", required_argument, 0, 9},
         {0, 0, 0, 0}};
     int c;
     char *end;
@@ -293,6 +301,21 @@ int tdc_run_trm_main(int argc, char **argv)
         case 8:
             o.save_input = 1;
             break;
+        case 9:
+            if (!strcmp(optarg, "auto")) {
+                o.kernels = -1;
+            } else if (!strcmp(optarg, "c")) {
+                o.kernels = 0;
+            } else if (!strcmp(optarg, "avx2")) {
+                if (!tdc_trm_avx2_available()) {
+                    fprintf(stderr, "tdc-run: --kernels avx2: this build or CPU has no AVX2 kernels\n");
+                    return TDC_RUN_EXIT_FAILED;
+                }
+                o.kernels = 1;
+            } else {
+                return usage_error("--kernels must be auto, c or avx2, got '%s'", optarg);
+            }
+            break;
         case 'h': {
             char names[512];
             panel_names(names, sizeof names);
@@ -350,7 +373,7 @@ int tdc_run_trm_main(int argc, char **argv)
     cfg.reduced_in_stream = (uint8_t)(o.r_num != o.r_den);
     eye_t eye[2];
     for (int e = 0; e < eyes; e++) {
-        if (eye_open(&eye[e], &cfg, o.panel) != 0) {
+        if (eye_open(&eye[e], &cfg, o.panel, o.kernels) != 0) {
             return TDC_RUN_EXIT_FAILED;
         }
     }
