@@ -80,6 +80,10 @@ struct tdc_render {
     /* 1: the world normal of a primary hit is used (lit or mirror material);
      * unlit, non-mirror surfaces skip its transform and normalisation */
     uint8_t obj_needs_n[TDC_SCENE_MAX_OBJECTS];
+    /* 1: unlit, textured, and its texture coordinates need atan2 (sphere,
+     * cylinder): the shade pass computes them in a loop of their own */
+    uint8_t obj_uv_first[TDC_SCENE_MAX_OBJECTS];
+    int any_uv_first;
     int16_t *mv_hist;         /* W*H*2 */
     int16_t *mv_hist_prev;    /* snapshot at the start of a subframe (pixel classes) */
     uint8_t *pattern;         /* ordering bits */
@@ -162,5 +166,9 @@ static inline int tdc_r_project(const rcam_t *c, const double p[3], double *x, d
 void tdc_r_tex_prepare(tdc_render_t *r);
 void tdc_r_base_color(const tdc_render_t *r, const tdc_object_t *o, const double q[3], const double nq[3],
                       double out[3]);
+/* The two halves of tdc_r_base_color for a textured material: texture
+ * coordinates of a local point, then the colour at (u, v). */
+void tdc_r_tex_uv(const tdc_object_t *o, const double q[3], const double nq[3], double *u, double *v);
+void tdc_r_tex_color(const tdc_render_t *r, const tdc_object_t *o, double u, double v, double out[3]);
 
 #endif

@@ -69,6 +69,14 @@ static inline double ffloor(double x)
     return (double)(i - (i > x));
 }
 
+/* (long)ffloor(x) without the round trip through double */
+static inline long lfloor(double x)
+{
+    if (!(x > -1e15 && x < 1e15)) return 0;
+    long i = (long)x;
+    return i - (i > x);
+}
+
 static double hash01(long a, long b)
 {
     uint32_t h = (uint32_t)a * 0x9E3779B1u ^ ((uint32_t)b + 0x7F4A7C15u) * 0x85EBCA77u;
@@ -138,20 +146,42 @@ void tdc_r_tex_prepare(tdc_render_t *r)
     for (int i = 0; i < r->scene->nobjects; i++) {
         const tdc_material_t *m = &r->scene->materials[r->scene->objects[i].material];
         r->obj_needs_n[i] = !m->unlit || m->mirror > 0;
+        int shape = r->scene->objects[i].shape;
+        r->obj_uv_first[i] =
+            m->unlit && m->tex != TDC_TEX_NONE && (shape == TDC_SHAPE_SPHERE || shape == TDC_SHAPE_CYLINDER);
+        r->any_uv_first |= r->obj_uv_first[i];
     }
+}
+
+void tdc_r_tex_uv(const tdc_object_t *o, const double q[3], const double nq[3], double *u, double *v)
+{
+    uv_of(o, q, nq, u, v);
 }
 
 void tdc_r_base_color(const tdc_render_t *r, const tdc_object_t *o, const double q[3], const double nq[3],
                       double out[3])
 {
     const tdc_material_t *m = &r->scene->materials[o->material];
+    if (m->tex == TDC_TEX_NONE) {
+        out[0] = m->diffuse[0];
+        out[1] = m->diffuse[1];
+        out[2] = m->diffuse[2];
+        return;
+    }
+    double u, v;
+    uv_of(o, q, nq, &u, &v);
+    tdc_r_tex_color(r, o, u, v, out);
+}
+
+void tdc_r_tex_color(const tdc_render_t *r, const tdc_object_t *o, double u, double v, double out[3])
+{
+    const tdc_material_t *m = &r->scene->materials[o->material];
     const double *c = m->diffuse;
-    if (m->tex != TDC_TEX_NONE) {
-        double u, v, sc = m->tex_scale;
-        uv_of(o, q, nq, &u, &v);
+    {
+        double sc = m->tex_scale;
         switch (m->tex) {
         case TDC_TEX_CHECKER:
-            if (((long)ffloor(u / sc) + (long)ffloor(v / sc)) & 1) c = m->color2;
+            if ((lfloor(u / sc) + lfloor(v / sc)) & 1) c = m->color2;
             break;
         case TDC_TEX_STRIPES:
             if (u / sc - ffloor(u / sc) >= 0.5) c = m->color2;
@@ -166,7 +196,7 @@ void tdc_r_base_color(const tdc_render_t *r, const tdc_object_t *o, const double
             int row = (int)((1 - fy) * 8);
             if (row > 7) row = 7;
             double cx = u / tx->text_cell6;
-            long ci = (long)ffloor(cx);
+            long ci = lfloor(cx);
             int col = (int)((cx - ci) * 6);
             if (col > 5) col = 5;
             long len = tx->text_len1;
@@ -178,12 +208,12 @@ void tdc_r_base_color(const tdc_render_t *r, const tdc_object_t *o, const double
             break;
         }
         case TDC_TEX_SKYLINE: {
-            long b = (long)ffloor(u / sc);
+            long b = lfloor(u / sc);
             double top = 4 + 4 * hash01(b, 1);
             if (v < top) {
                 double shade = 0.6 + 0.4 * hash01(b, 2);
                 double wu = u / (sc * 0.25), wv = v / (sc * 0.4);
-                long wi = (long)ffloor(wu), wj = (long)ffloor(wv);
+                long wi = lfloor(wu), wj = lfloor(wv);
                 double fu = wu - wi, fv = wv - wj;
                 /* & instead of &&, and the hash always: windows flip every
                  * few pixels and the branches were mispredicted */

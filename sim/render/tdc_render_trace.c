@@ -299,6 +299,16 @@ void tdc_r_pass_primary(rthread_t *t, rsample_t *s, int n)
 void tdc_r_pass_shade(rthread_t *t, rsample_t *s, int n)
 {
     const tdc_scene_t *sc = t->r->scene;
+    /* Texture coordinates that need atan2 (unlit textured spheres and
+     * cylinders) first, in a loop of their own: its iterations are
+     * independent and overlap, then the texture lookups below. Same
+     * arithmetic as tdc_r_base_color. */
+    const uint8_t *uv_first = t->r->obj_uv_first;
+    if (t->r->any_uv_first)
+        for (int i = 0; i < n; i++) {
+            rsample_t *a = &s[i];
+            if (a->obj >= 0 && uv_first[a->obj]) tdc_r_tex_uv(&sc->objects[a->obj], a->Q, a->NQ, &a->tu, &a->tv);
+        }
     for (int i = 0; i < n; i++) {
         rsample_t *a = &s[i];
         if (a->obj < 0) {
@@ -307,7 +317,9 @@ void tdc_r_pass_shade(rthread_t *t, rsample_t *s, int n)
         }
         const tdc_object_t *o = &sc->objects[a->obj];
         const tdc_material_t *m = &sc->materials[o->material];
-        if (m->unlit) /* the texture colour: no call into the lighting code */
+        if (uv_first[a->obj]) /* the texture colour at the coordinates computed above */
+            tdc_r_tex_color(t->r, o, a->tu, a->tv, a->col);
+        else if (m->unlit) /* the texture colour: no call into the lighting code */
             tdc_r_base_color(t->r, o, a->Q, a->NQ, a->col);
         else
             shade_direct(t, a->obj, a->P, a->Q, a->N, a->NQ, rng_key(a), a->k, 0, a, a->col);

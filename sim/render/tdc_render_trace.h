@@ -26,6 +26,7 @@ typedef struct {
     double mirror;
     double mv[2];           /* motion vector (float px) */
     double xc, yc;          /* current-frame projection of the hit (= x, y up to rounding) */
+    double tu, tv;          /* texture coordinates of an unlit textured primary hit (shade pass) */
     /* rarely used: shadow and dual MVs, shadow tracking, mirror chain */
     double mvs[2], sw, mvd[2];
     int disocc;
