@@ -153,6 +153,9 @@ void tdc_r_tex_prepare(tdc_render_t *r)
     }
 }
 
+static inline __attribute__((always_inline)) void tex_color(const tdc_render_t *r, const tdc_object_t *o, double u,
+                                                            double v, double out[3]);
+
 void tdc_r_tex_uv(const tdc_object_t *o, const double q[3], const double nq[3], double *u, double *v)
 {
     uv_of(o, q, nq, u, v);
@@ -170,10 +173,17 @@ void tdc_r_base_color(const tdc_render_t *r, const tdc_object_t *o, const double
     }
     double u, v;
     uv_of(o, q, nq, &u, &v);
-    tdc_r_tex_color(r, o, u, v, out);
+    tex_color(r, o, u, v, out);
 }
 
 void tdc_r_tex_color(const tdc_render_t *r, const tdc_object_t *o, double u, double v, double out[3])
+{
+    tex_color(r, o, u, v, out);
+}
+
+/* inlined into both callers above: one call per sample, not two */
+static inline __attribute__((always_inline)) void tex_color(const tdc_render_t *r, const tdc_object_t *o, double u,
+                                                            double v, double out[3])
 {
     const tdc_material_t *m = &r->scene->materials[o->material];
     const double *c = m->diffuse;

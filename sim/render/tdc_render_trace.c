@@ -379,28 +379,55 @@ void tdc_r_pass_reflect(rthread_t *t, rsample_t *s, int n)
     }
 }
 
-/* Current and previous screen position of object point q of object obj. */
-static inline __attribute__((always_inline)) int track_point(const rthread_t *t, int obj, const double q[3], double *xc, double *yc, double *xp, double *yp)
+/* tdc_r_project of the point (p0, p1, p2) held in registers: the same
+ * operations, without arrays (a point stored element by element and copied
+ * or read back as a vector stalled on store forwarding). */
+static inline int project_s(const rcam_t *c, double p0, double p1, double p2, double *x, double *y)
 {
-    double wc[3], wp[3];
+    double d0 = p0 - c->pos[0], d1 = p1 - c->pos[1], d2 = p2 - c->pos[2];
+    double z = d0 * c->fwd[0] + d1 * c->fwd[1] + d2 * c->fwd[2];
+    if (!(z > 1e-12)) return -1;
+    double iz = 1.0 / z;
+    double u = (d0 * c->right[0] + d1 * c->right[1] + d2 * c->right[2]) * iz;
+    double v = (d0 * c->up[0] + d1 * c->up[1] + d2 * c->up[2]) * iz;
+    *x = u * c->kx + 0.5 * c->w;
+    *y = 0.5 * c->h - v * c->ky;
+    return 0;
+}
+
+/* Current and previous screen position of object point q of object obj
+ * (the products as in tdc_r_xform_point). */
+static inline __attribute__((always_inline)) int track_point(const rthread_t *t, int obj, const double q[3],
+                                                             double *xc, double *yc, double *xp, double *yp)
+{
     const double *mc = t->cur->m[obj], *mp = t->prev->m[obj];
+    double c0, c1, c2, p0, p1, p2;
     if (t->r->obj_same_m[obj]) { /* same matrix: same product */
-        tdc_r_xform_point(mc, q, wc);
-        memcpy(wp, wc, sizeof wp);
+        c0 = p0 = mc[0] * q[0] + mc[1] * q[1] + mc[2] * q[2] + mc[3];
+        c1 = p1 = mc[4] * q[0] + mc[5] * q[1] + mc[6] * q[2] + mc[7];
+        c2 = p2 = mc[8] * q[0] + mc[9] * q[1] + mc[10] * q[2] + mc[11];
     } else if (t->r->obj_same_rs[obj]) {
         /* translation only: ((m0 q0 + m1 q1) + m2 q2) is the same in both
-         * frames, then each adds its own translation (as tdc_r_xform_point) */
-        for (int k = 0; k < 3; k++) {
-            double rs = mc[4 * k] * q[0] + mc[4 * k + 1] * q[1] + mc[4 * k + 2] * q[2];
-            wc[k] = rs + mc[4 * k + 3];
-            wp[k] = rs + mp[4 * k + 3];
-        }
+         * frames, then each adds its own translation */
+        double r0 = mc[0] * q[0] + mc[1] * q[1] + mc[2] * q[2];
+        double r1 = mc[4] * q[0] + mc[5] * q[1] + mc[6] * q[2];
+        double r2 = mc[8] * q[0] + mc[9] * q[1] + mc[10] * q[2];
+        c0 = r0 + mc[3];
+        c1 = r1 + mc[7];
+        c2 = r2 + mc[11];
+        p0 = r0 + mp[3];
+        p1 = r1 + mp[7];
+        p2 = r2 + mp[11];
     } else {
-        tdc_r_xform_point(mc, q, wc);
-        tdc_r_xform_point(mp, q, wp);
+        c0 = mc[0] * q[0] + mc[1] * q[1] + mc[2] * q[2] + mc[3];
+        c1 = mc[4] * q[0] + mc[5] * q[1] + mc[6] * q[2] + mc[7];
+        c2 = mc[8] * q[0] + mc[9] * q[1] + mc[10] * q[2] + mc[11];
+        p0 = mp[0] * q[0] + mp[1] * q[1] + mp[2] * q[2] + mp[3];
+        p1 = mp[4] * q[0] + mp[5] * q[1] + mp[6] * q[2] + mp[7];
+        p2 = mp[8] * q[0] + mp[9] * q[1] + mp[10] * q[2] + mp[11];
     }
-    if (tdc_r_project(&t->cur->cam, wc, xc, yc) < 0) return -1;
-    return tdc_r_project(&t->prev->cam, wp, xp, yp);
+    if (project_s(&t->cur->cam, c0, c1, c2, xc, yc) < 0) return -1;
+    return project_s(&t->prev->cam, p0, p1, p2, xp, yp);
 }
 
 void tdc_r_pass_mv(rthread_t *t, rsample_t *s, int n)
