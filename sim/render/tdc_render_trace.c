@@ -49,6 +49,16 @@ double tdc_r_rand(uint32_t seed, uint32_t frame, uint32_t dst, uint32_t k, uint3
 
 static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
+/* Element-wise copy of a 3-vector that was just written element by element:
+ * memcpy's 16-byte load of it would stall on store forwarding. */
+static inline void copy3(double dst[3], const double src[3])
+{
+    double x = src[0], y = src[1], z = src[2];
+    dst[0] = x;
+    dst[1] = y;
+    dst[2] = z;
+}
+
 static void record(rthread_t *t, const struct RTCRay *ray, uint32_t kind, uint32_t flags)
 {
     if (t->nrec == t->crec) {
@@ -346,8 +356,8 @@ void tdc_r_pass_reflect(rthread_t *t, rsample_t *s, int n)
         a->robj = -1;
         for (int b = 0; b < maxb; b++) {
             a->mobj[b] = obj;
-            memcpy(a->mQ[b], Q, sizeof Q);
-            memcpy(a->mNQ[b], NQ, sizeof NQ);
+            copy3(a->mQ[b], Q);
+            copy3(a->mNQ[b], NQ);
             a->nmir = b + 1;
             double dn = dot3(d, N);
             for (int c = 0; c < 3; c++) d[c] -= 2 * dn * N[c];
@@ -358,7 +368,7 @@ void tdc_r_pass_reflect(rthread_t *t, rsample_t *s, int n)
             int h = intersect(t, 0, O, d, offset_eps(P), INFINITY, TDC_RAY_REFLECT, &rh);
             if (h < 0) {
                 for (int c = 0; c < 3; c++) a->col[c] += thr * sc->background[c];
-                memcpy(a->rdir, d, sizeof d);
+                copy3(a->rdir, d);
                 break;
             }
             surface_rh(t->cur, &rh, h, O, d, P, Q, N, NQ);
@@ -373,7 +383,7 @@ void tdc_r_pass_reflect(rthread_t *t, rsample_t *s, int n)
             }
             for (int c = 0; c < 3; c++) a->col[c] += thr * loc[c];
             a->robj = h;
-            memcpy(a->rQ, Q, sizeof Q);
+            copy3(a->rQ, Q);
             break;
         }
     }
@@ -511,7 +521,7 @@ void tdc_r_pass_mv_reflect(rthread_t *t, rsample_t *s, int n)
             memcpy(Vp, a->rdir, sizeof Vp);
         } else {
             tdc_r_xform_point(t->cur->m[a->robj], a->rQ, Vc);
-            if (t->r->obj_same_m[a->robj]) memcpy(Vp, Vc, sizeof Vp);
+            if (t->r->obj_same_m[a->robj]) copy3(Vp, Vc);
             else tdc_r_xform_point(t->prev->m[a->robj], a->rQ, Vp);
         }
         mirror_chain2(t, a, Vc, Vp, dir_only);
