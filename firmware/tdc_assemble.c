@@ -546,6 +546,7 @@ typedef struct {
     uint8_t *drow;             /* output row y */
     uint8_t *win;              /* window masks of row y */
     const uint8_t *newrow;     /* newness of row y */
+    int has_new;               /* some pixel of row y is new */
     const uint8_t *rec[2];     /* slot-0 sample rows of row y for even / odd x */
     const uint64_t *bx[3];     /* box-sum rows y-1, y, y+1 (or NULL) */
     const uint8_t *cn[3];      /* new-neighbour counts of rows y-1, y, y+1 (or NULL) */
@@ -618,6 +619,35 @@ static void tdc_asm_uniform_row(const tdc_asm_t *st, const tdc_asm_row_t *r, int
     const uint64_t w00 = (uint64_t)((16 - fx) * (16 - fy)), w01 = (uint64_t)(fx * (16 - fy));
     const uint64_t w10 = (uint64_t)((16 - fx) * fy), w11 = (uint64_t)(fx * fy);
     uint64_t new_dynamic = 0;
+    if (!r->has_new && xa < xb) {
+        /* No new pixel in the row: every pixel is old, and consecutive
+         * pixels share a tap column.  Vertical blend per column once,
+         * colv(c) = (16 - fy) L(r0, c) + fy L(r1, c) (lanes <= 16 * 255),
+         * then v = (16 - fx) colv(x0) + fx colv(x1) (lanes <= 65280): the
+         * same integer as the four-tap sum, regrouped. */
+        const uint64_t wy0 = (uint64_t)(16 - fy), wy1 = (uint64_t)fy, wx0 = (uint64_t)(16 - fx), wx1 = (uint64_t)fx;
+        int32_t c = (xa * 16 + dx) >> 4; /* x0 of pixel xa (>= 0) */
+        uint64_t col0 = wy0 * tdc_asm_lanes(r0 + c * 3) + wy1 * tdc_asm_lanes(r1 + c * 3);
+        for (int32_t x = xa; x < xb; x++, c++) {
+            /* col0 = colv(x0).  step = 1: x1 = x0 + 1 is the next pixel's
+             * x0 (one new column per pixel); step = 0: x1 = x0, wx1 = 0. */
+            uint64_t col1 = col0;
+            if (step) col1 = wy0 * tdc_asm_lanes(r0 + (c + 1) * 3) + wy1 * tdc_asm_lanes(r1 + (c + 1) * 3);
+            tdc_asm_clamp_store(wx0 * col0 + wx1 * col1, (uint32_t)x, r->bx, r->cn, cnt, r->drow + (size_t)x * 3u);
+            if (step)
+                col0 = col1;
+            else if (x + 1 < xb)
+                col0 = wy0 * tdc_asm_lanes(r0 + (c + 1) * 3) + wy1 * tdc_asm_lanes(r1 + (c + 1) * 3);
+        }
+        cnt->edge += yc * (uint64_t)(xb - xa);
+        for (uint32_t x = 0; x < w; x++) {
+            if ((int32_t)x == xa) x = (uint32_t)xb;
+            if (x >= w) break;
+            uint64_t v = tdc_asm_bilinear_q8(st, r->prev, x, r->y, dx, dy, &cnt->edge);
+            tdc_asm_clamp_store(v, x, r->bx, r->cn, cnt, r->drow + x * 3u);
+        }
+        return;
+    }
     for (uint32_t x = 0; x < w; x++) {
         uint8_t *o = r->drow + x * 3u;
         if (r->newrow[x]) {
@@ -735,6 +765,7 @@ static void tdc_asm_dynamic_frame(tdc_asm_t *st, uint32_t frame)
         row.drow = dst + (size_t)y * w * 3u;
         row.win = st->window + (size_t)y * w;
         row.newrow = st->newring + (size_t)ri[1] * w;
+        row.has_new = has_new[ri[1]];
         /* slot-0 sample rows of row y for even / odd x; slot i at + i * stride */
         row.rec[0] = tdc_asm_sample_row(st, y, 0, 0);
         row.rec[1] = tdc_asm_sample_row(st, y, 1, 0);
