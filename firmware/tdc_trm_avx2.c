@@ -126,36 +126,37 @@ static inline TDC_AVX2 __m256i trm_enc8(const uint32_t *thr, const uint8_t *comb
     }
 }
 
-/* Encode of three channels: the index gathers of all three, then the
- * threshold gathers, so they overlap (the scan only if a bucket of this
- * panel holds two thresholds). */
-static inline TDC_AVX2 void trm_enc8x3(const tdc_trm_rowctx_t *k, const __m256i l[3], __m256i code[3])
+/* Encode of N vectors (entry e holds channel e % 3): the index gathers of
+ * all, then the threshold gathers, so they overlap (the scan only if a
+ * bucket of this panel holds two thresholds). */
+#define TRM_ENC_MAX 6
+static inline TDC_AVX2 void trm_enc8xn(const tdc_trm_rowctx_t *k, const __m256i *l, __m256i *code, int n)
 {
     if (!k->enc_one_step) {
-        for (int c = 0; c < 3; c++) {
-            code[c] = trm_enc8(k->thr[c], k->enc_comb[c], 0u, l[c]);
+        for (int e = 0; e < n; e++) {
+            code[e] = trm_enc8(k->thr[e % 3], k->enc_comb[e % 3], 0u, l[e]);
         }
         return;
     }
     const __m256i top = _mm256_set1_epi32(255);
-    __m256i kk[3], t[3];
-#pragma GCC unroll 3
-    for (int c = 0; c < 3; c++) {
-        const __m256i fine = _mm256_cmpgt_epi32(_mm256_set1_epi32(1 << 16), l[c]);
-        const __m256i i = _mm256_blendv_epi8(_mm256_add_epi32(_mm256_srli_epi32(l[c], 12), _mm256_set1_epi32(1008)),
-                                             _mm256_srli_epi32(l[c], 6), fine);
-        kk[c] = _mm256_and_si256(_mm256_i32gather_epi32((const int *)(const void *)k->enc_comb[c], i, 1),
+    __m256i kk[TRM_ENC_MAX], t[TRM_ENC_MAX];
+#pragma GCC unroll 6
+    for (int e = 0; e < n; e++) {
+        const __m256i fine = _mm256_cmpgt_epi32(_mm256_set1_epi32(1 << 16), l[e]);
+        const __m256i i = _mm256_blendv_epi8(_mm256_add_epi32(_mm256_srli_epi32(l[e], 12), _mm256_set1_epi32(1008)),
+                                             _mm256_srli_epi32(l[e], 6), fine);
+        kk[e] = _mm256_and_si256(_mm256_i32gather_epi32((const int *)(const void *)k->enc_comb[e % 3], i, 1),
                                  _mm256_set1_epi32(0xff));
     }
-#pragma GCC unroll 3
-    for (int c = 0; c < 3; c++) {
-        t[c] = _mm256_i32gather_epi32((const int *)k->thr[c],
-                                      _mm256_min_epi32(_mm256_add_epi32(kk[c], _mm256_set1_epi32(1)), top), 4);
+#pragma GCC unroll 6
+    for (int e = 0; e < n; e++) {
+        t[e] = _mm256_i32gather_epi32((const int *)k->thr[e % 3],
+                                      _mm256_min_epi32(_mm256_add_epi32(kk[e], _mm256_set1_epi32(1)), top), 4);
     }
-#pragma GCC unroll 3
-    for (int c = 0; c < 3; c++) {
-        const __m256i adv = _mm256_andnot_si256(_mm256_cmpgt_epi32(t[c], l[c]), _mm256_cmpgt_epi32(top, kk[c]));
-        code[c] = _mm256_sub_epi32(kk[c], adv);
+#pragma GCC unroll 6
+    for (int e = 0; e < n; e++) {
+        const __m256i adv = _mm256_andnot_si256(_mm256_cmpgt_epi32(t[e], l[e]), _mm256_cmpgt_epi32(top, kk[e]));
+        code[e] = _mm256_sub_epi32(kk[e], adv);
     }
 }
 
@@ -165,13 +166,15 @@ static inline TDC_AVX2 void trm_enc8x3(const tdc_trm_rowctx_t *k, const __m256i 
  * the Newton steps of tdc_recip_norm_q30_newton in 64-bit lanes, then two
  * correction steps each way and a check of the defining inequality
  * x d <= 2^62 + floor(d/2) < (x + 1) d.  *ok is cleared when a lane fails
- * the check (never seen; the caller then uses the scalar path).
+ * the check (never seen; the caller then uses the scalar path).  d is in
+ * the low half of each lane with the high half zero, so "and with a mask,
+ * then subtract" subtracts d itself.
  * Ranges: x stays in (2^30, 2^32), so every product is an unsigned 32 x 32
  * multiply below 2^63 and the signed 64-bit compares are exact.
  */
 static inline TDC_AVX2 __m256i trm_recip4(__m256i d, int *ok)
 {
-    const __m256i zero = _mm256_setzero_si256(), one = _mm256_set1_epi64x(1);
+    const __m256i zero = _mm256_setzero_si256();
     __m256i x = _mm256_sub_epi64(_mm256_set1_epi64x(3031741621LL),
                                  _mm256_srli_epi64(_mm256_mul_epu32(_mm256_set1_epi64x(2021161081LL), d), 32));
     for (int it = 0; it < 3; it++) {
@@ -186,17 +189,24 @@ static inline TDC_AVX2 __m256i trm_recip4(__m256i d, int *ok)
         x = _mm256_add_epi64(x, _mm256_blendv_epi8(up, down, neg));
     }
     const __m256i t = _mm256_add_epi64(_mm256_set1_epi64x(1LL << 62), _mm256_srli_epi64(d, 1));
+    /* After the Newton steps x - floor is in {-1, 0, 1, 2} for every d in
+     * [2^31, 2^32) (checked exhaustively, all 2^31 values, when this was
+     * written): two steps down, one up, keeping p = x d by adding or
+     * subtracting d instead of multiplying again; then the check, so the
+     * scalar fallback is a safety net that is never taken. */
+    __m256i p = _mm256_mul_epu32(x, d);
     for (int i = 0; i < 2; i++) {
-        x = _mm256_add_epi64(x, _mm256_cmpgt_epi64(_mm256_mul_epu32(x, d), t)); /* x d > t: x - 1 */
+        const __m256i over = _mm256_cmpgt_epi64(p, t); /* x d > t: x - 1 */
+        x = _mm256_add_epi64(x, over);
+        p = _mm256_sub_epi64(p, _mm256_and_si256(over, d));
     }
-    for (int i = 0; i < 2; i++) {
-        const __m256i above = _mm256_cmpgt_epi64(_mm256_mul_epu32(_mm256_add_epi64(x, one), d), t);
-        x = _mm256_add_epi64(x, _mm256_andnot_si256(above, one)); /* (x + 1) d <= t: x + 1 */
-    }
+    const __m256i q = _mm256_add_epi64(p, d);
+    const __m256i up = _mm256_xor_si256(_mm256_cmpgt_epi64(q, t), _mm256_set1_epi32(-1)); /* (x + 1) d <= t */
+    x = _mm256_sub_epi64(x, up);
+    p = _mm256_blendv_epi8(p, q, up);
     const __m256i bad = _mm256_or_si256(
-        _mm256_cmpgt_epi64(_mm256_mul_epu32(x, d), t),
-        _mm256_xor_si256(_mm256_cmpgt_epi64(_mm256_mul_epu32(_mm256_add_epi64(x, one), d), t),
-                         _mm256_set1_epi32(-1)));
+        _mm256_cmpgt_epi64(p, t),
+        _mm256_xor_si256(_mm256_cmpgt_epi64(_mm256_add_epi64(p, d), t), _mm256_set1_epi32(-1)));
     if (!_mm256_testz_si256(bad, bad)) {
         *ok = 0;
     }
@@ -330,45 +340,48 @@ TDC_AVX2 void tdc_trm_full_row_avx2(const tdc_trm_rowctx_t *k, const uint32_t *u
 {
     const __m256i one = _mm256_set1_epi32(TDC_LIN_ONE), zero = _mm256_setzero_si256();
     uint32_t x = 0, nhi = 0, nlo = 0;
-    /* The work goes in phases over the three channels so that each phase's
-     * gathers are independent of each other and overlap: a gather's latency
-     * (~20 cycles) chained four deep per channel is what bounds this loop.
-     * The byte gathers read 3 bytes past a pixel-channel: keep one pixel
-     * after the last vector for the C tail. */
-    for (; x + 9u <= k->width; x += 8u) {
-        const trm_step_t s = trm_step(k, x);
-        __m256i ui[3], in[3], g[3], lu[3], li[3], beta[3], shown[3], code[3], rho[3];
-#pragma GCC unroll 3
-        for (int c = 0; c < 3; c++) {
-            ui[c] = _mm256_add_epi32(s.i3, _mm256_set1_epi32(c));
-            in[c] = _mm256_and_si256(
-                _mm256_i32gather_epi32((const int *)(const void *)src, _mm256_add_epi32(s.x3, _mm256_set1_epi32(c)), 1),
-                _mm256_set1_epi32(0xff));
+    /* 16 pixels per step, in phases over the 6 (block, channel) vectors so
+     * that each phase's gathers are independent and overlap: a gather's
+     * latency (~20 cycles) chained four deep per channel is what bounds this
+     * loop.  The byte gathers read 3 bytes past a pixel-channel: keep one
+     * pixel after the last vector for the C tail.  Entry e = 3 block + c. */
+    for (; x + 17u <= k->width; x += 16u) {
+        const trm_step_t s0 = trm_step(k, x), s1 = trm_step(k, x + 8u);
+        __m256i ui[6], in[6], g[6], lu[6], li[6], shown[6], code[6], rho[6];
+#pragma GCC unroll 6
+        for (int e = 0; e < 6; e++) {
+            const trm_step_t *s = e < 3 ? &s0 : &s1;
+            ui[e] = _mm256_add_epi32(s->i3, _mm256_set1_epi32(e % 3));
+            in[e] = _mm256_and_si256(_mm256_i32gather_epi32((const int *)(const void *)src,
+                                                            _mm256_add_epi32(s->x3, _mm256_set1_epi32(e % 3)), 1),
+                                     _mm256_set1_epi32(0xff));
         }
-#pragma GCC unroll 3
-        for (int c = 0; c < 3; c++) {
-            g[c] = trm_hlerp8(urow, ui[c], s.f);
-            li[c] = _mm256_i32gather_epi32((const int *)k->dec[c], in[c], 4);
+#pragma GCC unroll 6
+        for (int e = 0; e < 6; e++) {
+            g[e] = trm_hlerp8(urow, ui[e], e < 3 ? s0.f : s1.f);
+            li[e] = _mm256_i32gather_epi32((const int *)k->dec[e % 3], in[e], 4);
         }
-#pragma GCC unroll 3
-        for (int c = 0; c < 3; c++) {
-            lu[c] = trm_dec8(k->dec[c], g[c]);
+#pragma GCC unroll 6
+        for (int e = 0; e < 6; e++) {
+            lu[e] = trm_dec8(k->dec[e % 3], g[e]);
         }
-#pragma GCC unroll 3
-        for (int c = 0; c < 3; c++) {
-            beta[c] = _mm256_sub_epi32(_mm256_add_epi32(li[c], li[c]), lu[c]);
-            shown[c] = _mm256_min_epi32(_mm256_max_epi32(beta[c], zero), one);
-            nhi += trm_count8(_mm256_cmpgt_epi32(beta[c], one));
-            nlo += trm_count8(_mm256_cmpgt_epi32(zero, beta[c]));
-            rho[c] = _mm256_sub_epi32(beta[c], shown[c]);
+#pragma GCC unroll 6
+        for (int e = 0; e < 6; e++) {
+            const __m256i beta = _mm256_sub_epi32(_mm256_add_epi32(li[e], li[e]), lu[e]);
+            shown[e] = _mm256_min_epi32(_mm256_max_epi32(beta, zero), one);
+            nhi += trm_count8(_mm256_cmpgt_epi32(beta, one));
+            nlo += trm_count8(_mm256_cmpgt_epi32(zero, beta));
+            rho[e] = _mm256_sub_epi32(beta, shown[e]);
         }
-        trm_enc8x3(k, shown, code);
-        __m256i o[3];
-        trm_interleave3(rho[0], rho[1], rho[2], o);
-        for (int j = 0; j < 3; j++) {
-            _mm256_storeu_si256((__m256i *)(void *)(res + 3u * x + 8u * (uint32_t)j), o[j]);
+        trm_enc8xn(k, shown, code, 6);
+        for (int b = 0; b < 2; b++) {
+            __m256i o[3];
+            trm_interleave3(rho[3 * b], rho[3 * b + 1], rho[3 * b + 2], o);
+            for (int j = 0; j < 3; j++) {
+                _mm256_storeu_si256((__m256i *)(void *)(res + 3u * x + 24u * (uint32_t)b + 8u * (uint32_t)j), o[j]);
+            }
+            trm_store_codes(dst + 3u * x + 24u * (uint32_t)b, code[3 * b], code[3 * b + 1], code[3 * b + 2]);
         }
-        trm_store_codes(dst + 3u * x, code[0], code[1], code[2]);
     }
     n->hi += nhi;
     n->lo += nlo;
@@ -469,7 +482,7 @@ TDC_AVX2 void tdc_trm_reduced_row_avx2(const tdc_trm_rowctx_t *k, const uint32_t
                 shown[c] = _mm256_min_epi32(_mm256_max_epi32(v, zero), one);
             }
         }
-        trm_enc8x3(k, shown, code);
+        trm_enc8xn(k, shown, code, 3);
         trm_store_codes(dst + 3u * x, code[0], code[1], code[2]);
     }
     n->computed += computed;
