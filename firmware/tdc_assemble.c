@@ -336,7 +336,12 @@ static void tdc_asm_hmax_row(const tdc_asm_t *st, uint32_t y, tdc_asm_mvmax_t *o
 }
 
 /* Newness of row y: out[x] = 1 if pixel (x, y) is in the newest subframe.
- * Returns 1 if any pixel of the row is new. */
+ * Returns 0 if no pixel of the row is new, TDC_ASM_NEW_EVEN / _ODD if the
+ * new pixels are exactly the even / odd columns, TDC_ASM_NEW_MIXED else. */
+#define TDC_ASM_NEW_EVEN 1
+#define TDC_ASM_NEW_ODD 2
+#define TDC_ASM_NEW_MIXED 3
+
 static int tdc_asm_new_row(const tdc_asm_t *st, uint32_t y, unsigned pos_h, unsigned pos_b, int have_new,
                            uint8_t *out)
 {
@@ -359,7 +364,7 @@ static int tdc_asm_new_row(const tdc_asm_t *st, uint32_t y, unsigned pos_h, unsi
         }
         const uint8_t q = (uint8_t)(pos & 1u);
         for (uint32_t x = 0; x < w; x++) out[x] = (uint8_t)((x & 1u) == q);
-        return 1;
+        return q ? TDC_ASM_NEW_ODD : TDC_ASM_NEW_EVEN;
     }
     int any = 0;
     for (uint32_t tx = 0; tx < st->tiles_x; tx++) {
@@ -372,7 +377,7 @@ static int tdc_asm_new_row(const tdc_asm_t *st, uint32_t y, unsigned pos_h, unsi
             any |= pos == (py | 1u);
         }
     }
-    return any;
+    return any ? TDC_ASM_NEW_MIXED : 0;
 }
 
 /* floor(x / n) = (x * ceil(2^32 / n)) >> 32 for 1 <= n <= 8, 0 <= x < 2^29
@@ -475,9 +480,11 @@ static uint64_t tdc_asm_bilinear_q8(const tdc_asm_t *st, const uint8_t *src, uin
  */
 static inline int tdc_asm_box_out(int32_t v, int32_t n, int32_t s1, int32_t s2)
 {
-    uint32_t d = (uint32_t)(n * s2 - s1 * s1);
-    int64_t dev = (int64_t)n * v - (int64_t)256 * s1;
-    return dev * dev > (int64_t)65536 * (int64_t)d;
+    /* n v <= 8 * 65280 and 256 S1 <= 256 * 2040: dev fits int32; only the
+     * square needs 64 bits. */
+    const uint32_t d = (uint32_t)(n * s2 - s1 * s1);
+    const int32_t dev = n * v - 256 * s1;
+    return (uint64_t)((int64_t)dev * dev) > ((uint64_t)d << 16);
 }
 
 static uint8_t tdc_asm_box_edge_u8(int32_t v, int32_t n, int32_t s1, int32_t s2)
@@ -485,7 +492,7 @@ static uint8_t tdc_asm_box_edge_u8(int32_t v, int32_t n, int32_t s1, int32_t s2)
     uint32_t d = (uint32_t)(n * s2 - s1 * s1);
     int32_t r = (int32_t)tdc_asm_sqrt_q8(d);
     int32_t e;
-    if ((int64_t)n * v < (int64_t)256 * s1) {
+    if (n * v < 256 * s1) { /* both < 2^20 */
         int32_t lo_num = s1 * 256 - r;
         e = lo_num > 0 ? (int32_t)tdc_asm_div_small((uint32_t)lo_num, (uint32_t)n) : 0;
     } else {
@@ -546,7 +553,7 @@ typedef struct {
     uint8_t *drow;             /* output row y */
     uint8_t *win;              /* window masks of row y */
     const uint8_t *newrow;     /* newness of row y */
-    int has_new;               /* some pixel of row y is new */
+    int has_new;               /* tdc_asm_new_row's result for row y (0: no new pixel) */
     const uint8_t *rec[2];     /* slot-0 sample rows of row y for even / odd x */
     const uint64_t *bx[3];     /* box-sum rows y-1, y, y+1 (or NULL) */
     const uint8_t *cn[3];      /* new-neighbour counts of rows y-1, y, y+1 (or NULL) */
@@ -648,9 +655,22 @@ static void tdc_asm_uniform_row(const tdc_asm_t *st, const tdc_asm_row_t *r, int
         }
         return;
     }
-    for (uint32_t x = 0; x < w; x++) {
+    /* New pixels exactly in one column parity q (the common case): the
+     * old ones and the new ones each with a stride of 2, no test per pixel;
+     * otherwise one loop testing the newness. */
+    const int regular = r->has_new == TDC_ASM_NEW_EVEN || r->has_new == TDC_ASM_NEW_ODD;
+    const uint32_t q = r->has_new == TDC_ASM_NEW_ODD ? 1u : 0u;
+    if (regular) {
+        const uint8_t *s = r->rec[q] + slot_off;
+        for (uint32_t x = q; x < w; x += 2u, s += 3) {
+            uint8_t *o = r->drow + x * 3u;
+            o[0] = s[0], o[1] = s[1], o[2] = s[2];
+            new_dynamic++;
+        }
+    }
+    for (uint32_t x = regular ? 1u - q : 0u; x < w; x += regular ? 2u : 1u) {
         uint8_t *o = r->drow + x * 3u;
-        if (r->newrow[x]) {
+        if (!regular && r->newrow[x]) {
             const uint8_t *s = r->rec[x & 1u] + (size_t)(x >> 1) * 3u + slot_off;
             o[0] = s[0], o[1] = s[1], o[2] = s[2];
             new_dynamic++;
