@@ -24,7 +24,7 @@ size_t tdc_asm_get_size(const tdc_asm_config_t *cfg)
     size_t tiles = (size_t)TDC_ORDERING_TILES_X(cfg->width) * TDC_ORDERING_TILES_Y(cfg->height);
     return TDC_ASM_ALIGN(px * 3u) * 2u + TDC_ASM_ALIGN(tiles * 48u) + TDC_ASM_ALIGN(px) + TDC_ASM_ALIGN(px * 4u) +
            TDC_ASM_ALIGN((size_t)cfg->width * 3u * sizeof(tdc_asm_mvmax_t)) + TDC_ASM_ALIGN((size_t)cfg->width * 3u) +
-           TDC_ASM_ALIGN((size_t)cfg->width * 3u * 16u) + TDC_ASM_ALIGN((size_t)cfg->width * 3u) + TDC_ASM_ALIGN(bm) * 2u;
+           TDC_ASM_ALIGN((size_t)cfg->width * 3u * 16u) + TDC_ASM_ALIGN(bm) * 2u;
 }
 
 tdc_status_t tdc_asm_init(tdc_asm_t *st, const tdc_asm_config_t *cfg, void *arena, size_t n)
@@ -47,7 +47,6 @@ tdc_status_t tdc_asm_init(tdc_asm_t *st, const tdc_asm_config_t *cfg, void *aren
     st->ring = (tdc_asm_mvmax_t *)(void *)p, p += TDC_ASM_ALIGN((size_t)cfg->width * 3u * sizeof(tdc_asm_mvmax_t));
     st->newring = p, p += TDC_ASM_ALIGN((size_t)cfg->width * 3u);
     st->boxring = (uint64_t *)(void *)p, p += TDC_ASM_ALIGN((size_t)cfg->width * 3u * 16u);
-    st->cntring = p, p += TDC_ASM_ALIGN((size_t)cfg->width * 3u);
     st->pattern = p, p += TDC_ASM_ALIGN(bm);
     st->pattern_next = p;
     memset(arena, 0, tdc_asm_get_size(cfg));
@@ -395,39 +394,46 @@ uint32_t tdc_asm_div_small(uint32_t x, uint32_t n)
 
 /*
  * Box sums of row y for the clamp: per pixel the sums over x-1..x+1 of the
- * newest samples (0 where a pixel is not new), packed as R | G << 21 |
- * B << 42 for the values (box[2x]) and their squares (box[2x+1]), and the
- * count of new pixels (cnt[x]).  Summing rows y-1, y, y+1 gives an old
+ * newest samples (0 where a pixel is not new) and their count, packed as
+ * R | G << 16 | B << 32 | count << 48 (box[2x]), and of their squares as
+ * R | G << 21 | B << 42 (box[2x+1]).  Summing rows y-1, y, y+1 gives an old
  * pixel's sums over its 8 neighbours in the newest subframe (the pixel
- * itself is not new), with no branch per neighbour.  Scaling: a lane's
- * final sum <= 8 * 255^2 = 520200 < 2^21, so lanes never carry.
+ * itself is not new), with no branch per neighbour.  Scaling: a final sum
+ * <= 8 * 255 = 2040 < 2^16, a count <= 8, a sum of squares <= 8 * 255^2 =
+ * 520200 < 2^21, so lanes never carry.
  */
-static void tdc_asm_box_row(const tdc_asm_t *st, uint32_t y, uint32_t slot, const uint8_t *newrow, uint64_t *box,
-                            uint8_t *cnt)
+#define TDC_ASM_BOX_ONE ((uint64_t)1 << 48) /* count lane of box[2x] */
+
+static inline uint64_t tdc_asm_box_sum_lanes(const uint8_t *q)
+{
+    return (uint64_t)q[0] | (uint64_t)q[1] << 16 | (uint64_t)q[2] << 32 | TDC_ASM_BOX_ONE;
+}
+
+static inline uint64_t tdc_asm_box_sq_lanes(const uint8_t *q)
+{
+    return (uint64_t)(q[0] * q[0]) | (uint64_t)(q[1] * q[1]) << 21 | (uint64_t)(q[2] * q[2]) << 42;
+}
+
+static void tdc_asm_box_row(const tdc_asm_t *st, uint32_t y, uint32_t slot, const uint8_t *newrow, uint64_t *box)
 {
     const uint32_t w = st->cfg.width;
     const uint8_t *base[2] = {tdc_asm_sample_row(st, y, 0, slot), tdc_asm_sample_row(st, y, 1, slot)};
     uint64_t p1 = 0, p2 = 0, c1 = 0, c2 = 0;
-    unsigned pn = 0, cn = newrow[0];
-    if (cn) {
-        const uint8_t *q = base[0];
-        c1 = (uint64_t)q[0] | (uint64_t)q[1] << 21 | (uint64_t)q[2] << 42;
-        c2 = (uint64_t)(q[0] * q[0]) | (uint64_t)(q[1] * q[1]) << 21 | (uint64_t)(q[2] * q[2]) << 42;
+    if (newrow[0]) {
+        c1 = tdc_asm_box_sum_lanes(base[0]);
+        c2 = tdc_asm_box_sq_lanes(base[0]);
     }
     for (uint32_t x = 0; x < w; x++) {
         uint64_t n1 = 0, n2 = 0;
-        unsigned nn = 0;
         if (x + 1u < w && newrow[x + 1u]) {
             const uint8_t *q = base[(x + 1u) & 1u] + (size_t)((x + 1u) >> 1) * 3u;
-            n1 = (uint64_t)q[0] | (uint64_t)q[1] << 21 | (uint64_t)q[2] << 42;
-            n2 = (uint64_t)(q[0] * q[0]) | (uint64_t)(q[1] * q[1]) << 21 | (uint64_t)(q[2] * q[2]) << 42;
-            nn = 1;
+            n1 = tdc_asm_box_sum_lanes(q);
+            n2 = tdc_asm_box_sq_lanes(q);
         }
         box[2u * x] = p1 + c1 + n1;
         box[2u * x + 1u] = p2 + c2 + n2;
-        cnt[x] = (uint8_t)(pn + cn + nn);
-        p1 = c1, p2 = c2, pn = cn;
-        c1 = n1, c2 = n2, cn = nn;
+        p1 = c1, p2 = c2;
+        c1 = n1, c2 = n2;
     }
 }
 
@@ -510,24 +516,24 @@ static inline uint8_t tdc_asm_clamp_box_u8(int32_t v, int32_t n, int32_t s1, int
 }
 
 /* Old dynamic pixel, after the bilinear sample v (16-bit lanes, code Q8):
- * clamp to the box of the newest neighbours and store.  bx[j], cn[j]:
- * box-sum rows of rows y-1, y, y+1 (NULL outside the frame, when no
- * subframe arrived or when the row has no new pixel). */
-static inline void tdc_asm_clamp_store(uint64_t v, uint32_t x, const uint64_t *const bx[3],
-                                       const uint8_t *const cn[3], tdc_asm_dyn_count_t *cnt, uint8_t *out)
+ * clamp to the box of the newest neighbours and store.  bx[j]: box-sum rows
+ * of rows y-1, y, y+1 (NULL outside the frame, when no subframe arrived or
+ * when the row has no new pixel). */
+static inline void tdc_asm_clamp_store(uint64_t v, uint32_t x, const uint64_t *const bx[3], tdc_asm_dyn_count_t *cnt,
+                                       uint8_t *out)
 {
     const int32_t v0 = (int32_t)(v & 0xFFFFu), v1 = (int32_t)((v >> 16) & 0xFFFFu), v2 = (int32_t)((v >> 32) & 0xFFFFu);
     cnt->reprojected++;
     /* Variance sampling over the immediate neighbours in the newest
-     * subframe: S1 <= 8*255, S2 <= 8*255^2 (21-bit lanes). */
+     * subframe: S1 <= 8*255 (16-bit lanes, count in the top lane),
+     * S2 <= 8*255^2 (21-bit lanes). */
     uint64_t l1 = 0, l2 = 0;
-    int32_t n = 0;
     for (int j = 0; j < 3; j++) {
         if (!bx[j]) continue;
         l1 += bx[j][2u * x];
         l2 += bx[j][2u * x + 1u];
-        n += cn[j][x];
     }
+    const int32_t n = (int32_t)(l1 >> 48);
     if (n == 0) {
         cnt->no_neighbour++;
         out[0] = (uint8_t)((v0 + 128) >> 8);
@@ -537,9 +543,9 @@ static inline void tdc_asm_clamp_store(uint64_t v, uint32_t x, const uint64_t *c
     }
     cnt->boxes++;
     const uint64_t m21 = (1u << 21) - 1u;
-    const int32_t a1 = (int32_t)(l1 & m21), a2 = (int32_t)(l2 & m21);
-    const int32_t b1 = (int32_t)((l1 >> 21) & m21), b2 = (int32_t)((l2 >> 21) & m21);
-    const int32_t c1 = (int32_t)((l1 >> 42) & m21), c2 = (int32_t)((l2 >> 42) & m21);
+    const int32_t a1 = (int32_t)(l1 & 0xFFFFu), a2 = (int32_t)(l2 & m21);
+    const int32_t b1 = (int32_t)((l1 >> 16) & 0xFFFFu), b2 = (int32_t)((l2 >> 21) & m21);
+    const int32_t c1 = (int32_t)((l1 >> 32) & 0xFFFFu), c2 = (int32_t)((l2 >> 42) & m21);
     out[0] = tdc_asm_clamp_box_u8(v0, n, a1, a2, &cnt->changed);
     out[1] = tdc_asm_clamp_box_u8(v1, n, b1, b2, &cnt->changed);
     out[2] = tdc_asm_clamp_box_u8(v2, n, c1, c2, &cnt->changed);
@@ -556,7 +562,6 @@ typedef struct {
     int has_new;               /* tdc_asm_new_row's result for row y (0: no new pixel) */
     const uint8_t *rec[2];     /* slot-0 sample rows of row y for even / odd x */
     const uint64_t *bx[3];     /* box-sum rows y-1, y, y+1 (or NULL) */
-    const uint8_t *cn[3];      /* new-neighbour counts of rows y-1, y, y+1 (or NULL) */
 } tdc_asm_row_t;
 
 /* Dynamic pixel x with 3x3 maximum (dx, dy) != 0: window reset, then the
@@ -575,7 +580,7 @@ static inline void tdc_asm_dynamic_pixel(const tdc_asm_t *st, const tdc_asm_row_
         cnt->new_dynamic++;
     } else {
         uint64_t v = tdc_asm_bilinear_q8(st, r->prev, x, r->y, dx, dy, &cnt->edge);
-        tdc_asm_clamp_store(v, x, r->bx, r->cn, cnt, o);
+        tdc_asm_clamp_store(v, x, r->bx, cnt, o);
     }
 }
 
@@ -640,7 +645,7 @@ static void tdc_asm_uniform_row(const tdc_asm_t *st, const tdc_asm_row_t *r, int
              * x0 (one new column per pixel); step = 0: x1 = x0, wx1 = 0. */
             uint64_t col1 = col0;
             if (step) col1 = wy0 * tdc_asm_lanes(r0 + (c + 1) * 3) + wy1 * tdc_asm_lanes(r1 + (c + 1) * 3);
-            tdc_asm_clamp_store(wx0 * col0 + wx1 * col1, (uint32_t)x, r->bx, r->cn, cnt, r->drow + (size_t)x * 3u);
+            tdc_asm_clamp_store(wx0 * col0 + wx1 * col1, (uint32_t)x, r->bx, cnt, r->drow + (size_t)x * 3u);
             if (step)
                 col0 = col1;
             else if (x + 1 < xb)
@@ -651,7 +656,7 @@ static void tdc_asm_uniform_row(const tdc_asm_t *st, const tdc_asm_row_t *r, int
             if ((int32_t)x == xa) x = (uint32_t)xb;
             if (x >= w) break;
             uint64_t v = tdc_asm_bilinear_q8(st, r->prev, x, r->y, dx, dy, &cnt->edge);
-            tdc_asm_clamp_store(v, x, r->bx, r->cn, cnt, r->drow + x * 3u);
+            tdc_asm_clamp_store(v, x, r->bx, cnt, r->drow + x * 3u);
         }
         return;
     }
@@ -685,7 +690,7 @@ static void tdc_asm_uniform_row(const tdc_asm_t *st, const tdc_asm_row_t *r, int
         } else {
             v = tdc_asm_bilinear_q8(st, r->prev, x, r->y, dx, dy, &cnt->edge);
         }
-        tdc_asm_clamp_store(v, x, r->bx, r->cn, cnt, o);
+        tdc_asm_clamp_store(v, x, r->bx, cnt, o);
     }
     cnt->new_dynamic += new_dynamic;
 }
@@ -763,8 +768,7 @@ static void tdc_asm_dynamic_frame(tdc_asm_t *st, uint32_t frame)
     for (uint32_t r = 0; r < 2u && r < h; r++) {
         rinfo[r] = tdc_asm_row_scan(st, r, &rval[r]);
         has_new[r] = tdc_asm_new_row(st, r, pos_h, pos_b, have_new, st->newring + (size_t)r * w);
-        if (has_new[r]) tdc_asm_box_row(st, r, slot, st->newring + (size_t)r * w, st->boxring + (size_t)r * bw,
-                                        st->cntring + (size_t)r * w);
+        if (has_new[r]) tdc_asm_box_row(st, r, slot, st->newring + (size_t)r * w, st->boxring + (size_t)r * bw);
     }
     for (uint32_t y = 0; y < h; y++) {
         if (y >= 1u && y + 1u < h) {
@@ -772,8 +776,7 @@ static void tdc_asm_dynamic_frame(tdc_asm_t *st, uint32_t frame)
             rinfo[s] = tdc_asm_row_scan(st, y + 1u, &rval[s]);
             has_new[s] = tdc_asm_new_row(st, y + 1u, pos_h, pos_b, have_new, st->newring + (size_t)s * w);
             if (has_new[s])
-                tdc_asm_box_row(st, y + 1u, slot, st->newring + (size_t)s * w, st->boxring + (size_t)s * bw,
-                                st->cntring + (size_t)s * w);
+                tdc_asm_box_row(st, y + 1u, slot, st->newring + (size_t)s * w, st->boxring + (size_t)s * bw);
         }
         const int top = y > 0, bot = y + 1u < h;
         const uint32_t ri[3] = {(y + 2u) % 3u, y % 3u, (y + 1u) % 3u};
@@ -793,7 +796,6 @@ static void tdc_asm_dynamic_frame(tdc_asm_t *st, uint32_t frame)
         for (int j = 0; j < 3; j++) {
             const int use = in[j] && has_new[ri[j]];
             row.bx[j] = use ? st->boxring + (size_t)ri[j] * bw : NULL;
-            row.cn[j] = use ? st->cntring + (size_t)ri[j] * w : NULL;
             if (!in[j]) continue;
             any |= rinfo[ri[j]] & TDC_ASM_ROW_ANY;
             uniform &= rinfo[ri[j]];

@@ -112,8 +112,8 @@ typedef struct {
     tdc_asm_mvmax_t *ring;  /* 3 rows of horizontal 3-maxima */
     uint8_t *newring;       /* 3 rows: 1 where the pixel is in the newest subframe */
     uint64_t *boxring;      /* 3 rows x W x 2: horizontal 3-sums of the newest samples
-                               and their squares, R | G << 21 | B << 42 */
-    uint8_t *cntring;       /* 3 rows x W: horizontal 3-sums of the newness */
+                               and their count, R | G << 16 | B << 32 | count << 48,
+                               and of their squares, R | G << 21 | B << 42 */
     uint8_t *pattern;       /* orderings of the current cycle */
     uint8_t *pattern_next;  /* scratch for the next decision */
     uint32_t mv_nonzero;    /* pixels whose motion-buffer entry is non-zero */
