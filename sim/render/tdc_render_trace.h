@@ -12,7 +12,8 @@
  * come first and fill 4 cache lines; shadow, dual and mirror-chain fields
  * follow and are only touched by the passes that need them. */
 typedef struct {
-    float x, y;             /* image position, full-res px */
+    _Alignas(64) float x;   /* image position, full-res px (every sample starts a cache line) */
+    float y;
     uint32_t dst, k;        /* output slot, sample index within the slot (GT) */
     int px, py;             /* full-res pixel (MV history) */
     int obj;                /* primary hit object, -1 = miss */
