@@ -414,9 +414,35 @@ static inline uint64_t tdc_asm_box_sq_lanes(const uint8_t *q)
     return (uint64_t)(q[0] * q[0]) | (uint64_t)(q[1] * q[1]) << 21 | (uint64_t)(q[2] * q[2]) << 42;
 }
 
-static void tdc_asm_box_row(const tdc_asm_t *st, uint32_t y, uint32_t slot, const uint8_t *newrow, uint64_t *box)
+static void tdc_asm_box_row(const tdc_asm_t *st, uint32_t y, uint32_t slot, const uint8_t *newrow, int kind,
+                            uint64_t *box)
 {
     const uint32_t w = st->cfg.width;
+    if (kind == TDC_ASM_NEW_EVEN || kind == TDC_ASM_NEW_ODD) {
+        /* New pixels exactly in column parity q: a new pixel's sums are its
+         * own sample (its neighbours are old), an old pixel's are those of
+         * its left and right neighbours.  Each sample is packed once. */
+        const uint32_t q = kind == TDC_ASM_NEW_ODD ? 1u : 0u;
+        const uint8_t *s = tdc_asm_sample_row(st, y, q, slot);
+        uint64_t l1 = 0, l2 = 0; /* the last new pixel's lanes (0 before the first) */
+        for (uint32_t x = 0; x < w; x++) {
+            if ((x & 1u) != q) {
+                box[2u * x] = l1; /* left neighbour; the right one is added next */
+                box[2u * x + 1u] = l2;
+                continue;
+            }
+            const uint8_t *p = s + (size_t)(x >> 1) * 3u;
+            l1 = tdc_asm_box_sum_lanes(p);
+            l2 = tdc_asm_box_sq_lanes(p);
+            box[2u * x] = l1;
+            box[2u * x + 1u] = l2;
+            if (x > 0) {
+                box[2u * x - 2u] += l1;
+                box[2u * x - 1u] += l2;
+            }
+        }
+        return;
+    }
     const uint8_t *base[2] = {tdc_asm_sample_row(st, y, 0, slot), tdc_asm_sample_row(st, y, 1, slot)};
     uint64_t p1 = 0, p2 = 0, c1 = 0, c2 = 0;
     if (newrow[0]) {
@@ -768,7 +794,8 @@ static void tdc_asm_dynamic_frame(tdc_asm_t *st, uint32_t frame)
     for (uint32_t r = 0; r < 2u && r < h; r++) {
         rinfo[r] = tdc_asm_row_scan(st, r, &rval[r]);
         has_new[r] = tdc_asm_new_row(st, r, pos_h, pos_b, have_new, st->newring + (size_t)r * w);
-        if (has_new[r]) tdc_asm_box_row(st, r, slot, st->newring + (size_t)r * w, st->boxring + (size_t)r * bw);
+        if (has_new[r]) tdc_asm_box_row(st, r, slot, st->newring + (size_t)r * w, has_new[r],
+                                        st->boxring + (size_t)r * bw);
     }
     for (uint32_t y = 0; y < h; y++) {
         if (y >= 1u && y + 1u < h) {
@@ -776,7 +803,8 @@ static void tdc_asm_dynamic_frame(tdc_asm_t *st, uint32_t frame)
             rinfo[s] = tdc_asm_row_scan(st, y + 1u, &rval[s]);
             has_new[s] = tdc_asm_new_row(st, y + 1u, pos_h, pos_b, have_new, st->newring + (size_t)s * w);
             if (has_new[s])
-                tdc_asm_box_row(st, y + 1u, slot, st->newring + (size_t)s * w, st->boxring + (size_t)s * bw);
+                tdc_asm_box_row(st, y + 1u, slot, st->newring + (size_t)s * w, has_new[s],
+                                st->boxring + (size_t)s * bw);
         }
         const int top = y > 0, bot = y + 1u < h;
         const uint32_t ri[3] = {(y + 2u) % 3u, y % 3u, (y + 1u) % 3u};
