@@ -542,11 +542,11 @@ static inline uint8_t tdc_asm_clamp_box_u8(int32_t v, int32_t n, int32_t s1, int
 }
 
 /* Old dynamic pixel, after the bilinear sample v (16-bit lanes, code Q8):
- * clamp to the box of the newest neighbours and store.  bx[j]: box-sum rows
- * of rows y-1, y, y+1 (NULL outside the frame, when no subframe arrived or
- * when the row has no new pixel). */
-static inline void tdc_asm_clamp_store(uint64_t v, uint32_t x, const uint64_t *const bx[3], tdc_asm_dyn_count_t *cnt,
-                                       uint8_t *out)
+ * clamp to the box of the newest neighbours and store.  bx[0 .. nbx-1]: the
+ * box-sum rows among rows y-1, y, y+1 that exist and hold a new pixel
+ * (none when no subframe arrived). */
+static inline void tdc_asm_clamp_store(uint64_t v, uint32_t x, const uint64_t *const bx[3], int nbx,
+                                       tdc_asm_dyn_count_t *cnt, uint8_t *out)
 {
     const int32_t v0 = (int32_t)(v & 0xFFFFu), v1 = (int32_t)((v >> 16) & 0xFFFFu), v2 = (int32_t)((v >> 32) & 0xFFFFu);
     cnt->reprojected++;
@@ -554,8 +554,7 @@ static inline void tdc_asm_clamp_store(uint64_t v, uint32_t x, const uint64_t *c
      * subframe: S1 <= 8*255 (16-bit lanes, count in the top lane),
      * S2 <= 8*255^2 (21-bit lanes). */
     uint64_t l1 = 0, l2 = 0;
-    for (int j = 0; j < 3; j++) {
-        if (!bx[j]) continue;
+    for (int j = 0; j < nbx; j++) {
         l1 += bx[j][2u * x];
         l2 += bx[j][2u * x + 1u];
     }
@@ -587,7 +586,8 @@ typedef struct {
     const uint8_t *newrow;     /* newness of row y */
     int has_new;               /* tdc_asm_new_row's result for row y (0: no new pixel) */
     const uint8_t *rec[2];     /* slot-0 sample rows of row y for even / odd x */
-    const uint64_t *bx[3];     /* box-sum rows y-1, y, y+1 (or NULL) */
+    const uint64_t *bx[3];     /* box-sum rows among y-1, y, y+1 that hold a new pixel */
+    int nbx;                   /* ... how many */
 } tdc_asm_row_t;
 
 /* Dynamic pixel x with 3x3 maximum (dx, dy) != 0: window reset, then the
@@ -606,7 +606,7 @@ static inline void tdc_asm_dynamic_pixel(const tdc_asm_t *st, const tdc_asm_row_
         cnt->new_dynamic++;
     } else {
         uint64_t v = tdc_asm_bilinear_q8(st, r->prev, x, r->y, dx, dy, &cnt->edge);
-        tdc_asm_clamp_store(v, x, r->bx, cnt, o);
+        tdc_asm_clamp_store(v, x, r->bx, r->nbx, cnt, o);
     }
 }
 
@@ -671,7 +671,7 @@ static void tdc_asm_uniform_row(const tdc_asm_t *st, const tdc_asm_row_t *r, int
              * x0 (one new column per pixel); step = 0: x1 = x0, wx1 = 0. */
             uint64_t col1 = col0;
             if (step) col1 = wy0 * tdc_asm_lanes(r0 + (c + 1) * 3) + wy1 * tdc_asm_lanes(r1 + (c + 1) * 3);
-            tdc_asm_clamp_store(wx0 * col0 + wx1 * col1, (uint32_t)x, r->bx, cnt, r->drow + (size_t)x * 3u);
+            tdc_asm_clamp_store(wx0 * col0 + wx1 * col1, (uint32_t)x, r->bx, r->nbx, cnt, r->drow + (size_t)x * 3u);
             if (step)
                 col0 = col1;
             else if (x + 1 < xb)
@@ -682,7 +682,7 @@ static void tdc_asm_uniform_row(const tdc_asm_t *st, const tdc_asm_row_t *r, int
             if ((int32_t)x == xa) x = (uint32_t)xb;
             if (x >= w) break;
             uint64_t v = tdc_asm_bilinear_q8(st, r->prev, x, r->y, dx, dy, &cnt->edge);
-            tdc_asm_clamp_store(v, x, r->bx, cnt, r->drow + x * 3u);
+            tdc_asm_clamp_store(v, x, r->bx, r->nbx, cnt, r->drow + x * 3u);
         }
         return;
     }
@@ -716,7 +716,7 @@ static void tdc_asm_uniform_row(const tdc_asm_t *st, const tdc_asm_row_t *r, int
         } else {
             v = tdc_asm_bilinear_q8(st, r->prev, x, r->y, dx, dy, &cnt->edge);
         }
-        tdc_asm_clamp_store(v, x, r->bx, cnt, o);
+        tdc_asm_clamp_store(v, x, r->bx, r->nbx, cnt, o);
     }
     cnt->new_dynamic += new_dynamic;
 }
@@ -817,13 +817,15 @@ static void tdc_asm_dynamic_frame(tdc_asm_t *st, uint32_t frame)
         row.win = st->window + (size_t)y * w;
         row.newrow = st->newring + (size_t)ri[1] * w;
         row.has_new = has_new[ri[1]];
+        row.nbx = 0;
+        row.bx[0] = row.bx[1] = row.bx[2] = NULL;
         /* slot-0 sample rows of row y for even / odd x; slot i at + i * stride */
         row.rec[0] = tdc_asm_sample_row(st, y, 0, 0);
         row.rec[1] = tdc_asm_sample_row(st, y, 1, 0);
         unsigned any = 0, uniform = TDC_ASM_ROW_UNIFORM;
         for (int j = 0; j < 3; j++) {
             const int use = in[j] && has_new[ri[j]];
-            row.bx[j] = use ? st->boxring + (size_t)ri[j] * bw : NULL;
+            if (use) row.bx[row.nbx++] = st->boxring + (size_t)ri[j] * bw;
             if (!in[j]) continue;
             any |= rinfo[ri[j]] & TDC_ASM_ROW_ANY;
             uniform &= rinfo[ri[j]];
