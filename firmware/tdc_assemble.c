@@ -204,22 +204,17 @@ uint8_t tdc_asm_mean_u8(uint32_t sum, unsigned n)
     return (uint8_t)(((2u * sum + n) * tdc_asm_half_recip_q16[n]) >> 16);
 }
 
-/* Mean of a partial window (mask != 0xF): the first frames after a reset. */
+/* Mean of a partial window (mask != 0xF): the first frames after a reset.
+ * Branch-free: each slot's sample times its mask bit (0 or 1). */
 static void tdc_asm_window_mean_part(const uint8_t *s0, size_t stride, unsigned mask, uint8_t *out)
 {
-    unsigned n = 0, r = 0, g = 0, b = 0;
-    for (unsigned i = 0; i < 4; i++) {
-        if (mask & (1u << i)) {
-            const uint8_t *q = s0 + i * stride;
-            n++;
-            r += q[0];
-            g += q[1];
-            b += q[2];
-        }
-    }
-    out[0] = tdc_asm_mean_u8(r, n);
-    out[1] = tdc_asm_mean_u8(g, n);
-    out[2] = tdc_asm_mean_u8(b, n);
+    static const uint8_t popcount4[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};
+    const uint8_t *a = s0, *b1 = s0 + stride, *c = s0 + 2u * stride, *d = s0 + 3u * stride;
+    const unsigned m0 = mask & 1u, m1 = (mask >> 1) & 1u, m2 = (mask >> 2) & 1u, m3 = (mask >> 3) & 1u;
+    const unsigned n = popcount4[mask & 15u];
+    out[0] = tdc_asm_mean_u8(a[0] * m0 + b1[0] * m1 + c[0] * m2 + d[0] * m3, n);
+    out[1] = tdc_asm_mean_u8(a[1] * m0 + b1[1] * m1 + c[1] * m2 + d[1] * m3, n);
+    out[2] = tdc_asm_mean_u8(a[2] * m0 + b1[2] * m1 + c[2] * m2 + d[2] * m3, n);
 }
 
 /* s0: the pixel's sample in slot 0; slot i is at s0 + i * stride. */
