@@ -310,7 +310,7 @@ static void tdc_asm_hmax_row(const tdc_asm_t *st, uint32_t y, tdc_asm_mvmax_t *o
     for (uint32_t x = 0; x < w; x++) {
         int32_t ndx = 0, ndy = 0;
         l_next = 0;
-        if (x + 1u < w) {
+        if (x + 1u < w && tdc_asm_mv_word(mv + 2u * x + 2u) != 0) { /* zero: l = 0, no multiply */
             ndx = mv[2u * x + 2u];
             ndy = mv[2u * x + 3u];
             l_next = (uint32_t)(ndx * ndx) + (uint32_t)(ndy * ndy);

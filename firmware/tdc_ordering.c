@@ -135,6 +135,7 @@ static tdc_ordering_colmax_t tdc_ordering_column(const int16_t *mv, int w, int x
     for (int y = y0; y <= y1; y++) {
         const int16_t *v = mv + ((size_t)y * (size_t)w + (size_t)x) * 2u;
         int32_t dx = v[0], dy = v[1];
+        if ((dx | dy) == 0) continue; /* l2 = 0 never wins: skip the multiplies */
         uint32_t l2 = (uint32_t)(dx * dx) + (uint32_t)(dy * dy);
         if (l2 > c.l2) c.l2 = l2, c.y = y, c.dx = dx, c.dy = dy;
     }
