@@ -20,6 +20,7 @@
 #include "tdc_fixed.h"
 #include "tdc_panel.h"
 #include "tdc_trm.h"
+#include "tdc_math.h"
 
 /* What a row kernel needs; built per frame from tdc_trm_t. */
 typedef struct {
@@ -108,6 +109,12 @@ static inline int32_t tdc_trm_weight_q15(const uint32_t *wexp, uint64_t x_q16)
  * Q15 is not enough), s c in Q16 (Q8 * Q30 -> Q38, rounded; s_q8 < 2^32
  * keeps it < 2^62), w = exp(-s c) in Q15.
  */
-int32_t tdc_trm_motion_weight_q15(const tdc_trm_rowctx_t *k, tdc_lin_t a, tdc_lin_t b);
+static inline int32_t tdc_trm_motion_weight_q15(const tdc_trm_rowctx_t *k, tdc_lin_t a, tdc_lin_t b)
+{
+    const uint32_t diff = (uint32_t)tdc_abs32(a - b);
+    const int32_t c_q30 = tdc_div_q30(diff, (uint32_t)a + (uint32_t)b);
+    const uint64_t sc = ((uint64_t)k->s_q8 * (uint32_t)c_q30 + (1ull << 21)) >> 22;
+    return tdc_trm_weight_q15(k->wexp, sc);
+}
 
 #endif /* TDC_TRM_KERNELS_H */

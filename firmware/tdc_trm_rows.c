@@ -55,14 +55,6 @@ static inline uint32_t trm_enc(const trm_gamma_t *g, int32_t lin)
     return k;
 }
 
-int32_t tdc_trm_motion_weight_q15(const tdc_trm_rowctx_t *k, tdc_lin_t a, tdc_lin_t b)
-{
-    const uint32_t diff = (uint32_t)tdc_abs32(a - b);
-    const int32_t c_q30 = tdc_div_q30(diff, (uint32_t)a + (uint32_t)b);
-    const uint64_t sc = ((uint64_t)k->s_q8 * (uint32_t)c_q30 + (1ull << 21)) >> 22;
-    return tdc_trm_weight_q15(k->wexp, sc);
-}
-
 void tdc_trm_full_row_c(const tdc_trm_rowctx_t *k, const uint32_t *urow_in, const uint8_t *src_in,
                         uint8_t *dst_in, tdc_res_t *res_in, tdc_trm_full_counts_t *n)
 {
