@@ -83,15 +83,53 @@ uint32_t tdc_recip_norm_q30_newton(uint32_t dn)
     return (uint32_t)xr;
 }
 
+/*
+ * floor((2^62 + floor(dn/2)) / dn) by long division in 16-bit digits with
+ * 32-bit divides (Knuth's algorithm D for a 64/32 quotient, as in Hacker's
+ * Delight divlu): dn is already normalised (top bit set) and the dividend's
+ * high word 2^30 is below it, so the quotient fits 32 bits.  Each digit
+ * estimate is corrected at most twice.  Scaling and overflow: digits and
+ * remainders below 2^16, so every product and b * rhat + digit fits 32 bits.
+ * For targets with a 32-bit hardware divide and no 64-bit one (Cortex-M7,
+ * M55: UDIV): two divides instead of three Newton steps on 64-bit products.
+ */
+uint32_t tdc_recip_norm_q30_div32(uint32_t dn)
+{
+    const uint32_t b = 65536u;
+    const uint32_t vn1 = dn >> 16, vn0 = dn & 0xffffu;
+    const uint32_t un32 = 1u << 30;   /* high word of 2^62 + floor(dn/2) */
+    const uint32_t un10 = dn >> 1;    /* low word */
+    const uint32_t un1 = un10 >> 16, un0 = un10 & 0xffffu;
+    uint32_t q1 = un32 / vn1, rhat = un32 - q1 * vn1;
+    while (q1 >= b || q1 * vn0 > b * rhat + un1) {
+        q1--;
+        rhat += vn1;
+        if (rhat >= b) {
+            break;
+        }
+    }
+    const uint32_t un21 = un32 * b + un1 - q1 * dn; /* mod 2^32: the true remainder < dn */
+    uint32_t q0 = un21 / vn1;
+    rhat = un21 - q0 * vn1;
+    while (q0 >= b || q0 * vn0 > b * rhat + un0) {
+        q0--;
+        rhat += vn1;
+        if (rhat >= b) {
+            break;
+        }
+    }
+    return q1 * b + q0;
+}
+
 uint32_t tdc_recip_norm_q30(uint32_t dn)
 {
 #if defined(__x86_64__) || defined(__aarch64__)
     /* A hardware 64-bit divide: the same floor((2^62 + floor(dn/2)) / dn)
      * the Newton path's correction loops settle on (tests/test_math.c
-     * compares the two), in one instruction instead of three Newton steps. */
+     * compares all three), in one instruction. */
     return (uint32_t)(((1ULL << 62) + (dn >> 1)) / dn);
 #else
-    return tdc_recip_norm_q30_newton(dn);
+    return tdc_recip_norm_q30_div32(dn);
 #endif
 }
 

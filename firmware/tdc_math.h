@@ -36,10 +36,12 @@ uint32_t tdc_exp_neg_q16_q30(uint32_t x_q16);
  * Output: 1/(dn/2^32) in Q30, i.e. round(2^62 / dn), in (2^30, 2^31].
  * Exactly floor((2^62 + floor(dn/2)) / dn): within 0.5 LSB of Q30.
  * Method: on targets with a 64-bit hardware divide (x86-64, AArch64) that
- * division; elsewhere (Cortex-M: no 64-bit divide) tdc_recip_norm_q30_newton.
- * Both give the same bits (tests/test_math.c compares them).
+ * division; elsewhere (Cortex-M: 32-bit divide only) tdc_recip_norm_q30_div32.
+ * All three versions give the same bits (tests/test_math.c compares them).
  */
 uint32_t tdc_recip_norm_q30(uint32_t dn);
+/* Long division in 16-bit digits with two 32-bit divides. */
+uint32_t tdc_recip_norm_q30_div32(uint32_t dn);
 /* Linear seed 48/17 - 32/17*d, three Newton steps, then a correction to
  * exactly the value above. */
 uint32_t tdc_recip_norm_q30_newton(uint32_t dn);
