@@ -83,47 +83,9 @@ uint32_t tdc_recip_norm_q30_newton(uint32_t dn)
     return (uint32_t)xr;
 }
 
-/*
- * floor((2^62 + floor(dn/2)) / dn) by long division in 16-bit digits with
- * 32-bit divides (Knuth's algorithm D for a 64/32 quotient, as in Hacker's
- * Delight divlu): dn is already normalised (top bit set) and the dividend's
- * high word 2^30 is below it, so the quotient fits 32 bits.  Each digit
- * estimate is corrected at most twice.  Scaling and overflow: digits and
- * remainders below 2^16, so every product and b * rhat + digit fits 32 bits.
- * For targets with a 32-bit hardware divide and no 64-bit one (Cortex-M7,
- * M55: UDIV): two divides instead of three Newton steps on 64-bit products.
- */
-uint32_t tdc_recip_norm_q30_div32(uint32_t dn)
-{
-    const uint32_t b = 65536u;
-    const uint32_t vn1 = dn >> 16, vn0 = dn & 0xffffu;
-    const uint32_t un32 = 1u << 30;   /* high word of 2^62 + floor(dn/2) */
-    const uint32_t un10 = dn >> 1;    /* low word */
-    const uint32_t un1 = un10 >> 16, un0 = un10 & 0xffffu;
-    uint32_t q1 = un32 / vn1, rhat = un32 - q1 * vn1;
-    while (q1 >= b || q1 * vn0 > b * rhat + un1) {
-        q1--;
-        rhat += vn1;
-        if (rhat >= b) {
-            break;
-        }
-    }
-    const uint32_t un21 = un32 * b + un1 - q1 * dn; /* mod 2^32: the true remainder < dn */
-    uint32_t q0 = un21 / vn1;
-    rhat = un21 - q0 * vn1;
-    while (q0 >= b || q0 * vn0 > b * rhat + un0) {
-        q0--;
-        rhat += vn1;
-        if (rhat >= b) {
-            break;
-        }
-    }
-    return q1 * b + q0;
-}
-
 uint32_t tdc_recip_norm_q30(uint32_t dn)
 {
-#if defined(__x86_64__) || defined(__aarch64__)
+#if TDC_HW_DIV64
     /* A hardware 64-bit divide: the same floor((2^62 + floor(dn/2)) / dn)
      * the Newton path's correction loops settle on (tests/test_math.c
      * compares all three), in one instruction. */
@@ -168,10 +130,93 @@ int32_t tdc_div_q30(uint32_t num, uint32_t den)
     return (int32_t)((p + (1ULL << 31)) >> 32);
 }
 
-uint32_t tdc_isqrt64(uint64_t x)
+/* Digit-by-digit square root, 2 bits per step; the first step is found
+ * with a count of leading zeros instead of a scan down from 2^62. */
+uint32_t tdc_isqrt64_digits(uint64_t x)
 {
+    if (x == 0u) {
+        return 0u;
+    }
+    const uint32_t hi = (uint32_t)(x >> 32);
+    const unsigned lz = hi ? tdc_clz32(hi) : 32u + tdc_clz32((uint32_t)x);
     uint64_t res = 0;
-    uint64_t bit = 1ULL << 62;
+    uint64_t bit = 1ULL << ((63u - lz) & ~1u); /* highest power of 4 <= x */
+    while (bit != 0u) {
+        if (x >= res + bit) {
+            x -= res + bit;
+            res = (res >> 1) + bit;
+        } else {
+            res >>= 1;
+        }
+        bit >>= 2;
+    }
+    return (uint32_t)res;
+}
+
+/*
+ * Long division of the 64-bit un32:un10 by a normalised v (top bit set),
+ * un32 < v, in 16-bit digits with two 32-bit divides (Knuth's algorithm D
+ * as in Hacker's Delight divlu; each digit estimate is corrected at most
+ * twice; digits and remainders below 2^16 keep every product and
+ * b * rhat + digit within 32 bits).
+ */
+static inline uint32_t udiv_digits_norm(uint32_t un32, uint32_t un10, uint32_t v)
+{
+    const uint32_t b = 65536u;
+    const uint32_t vn1 = v >> 16, vn0 = v & 0xffffu;
+    const uint32_t un1 = un10 >> 16, un0 = un10 & 0xffffu;
+    uint32_t q1 = un32 / vn1, rhat = un32 - q1 * vn1;
+    while (q1 >= b || q1 * vn0 > b * rhat + un1) {
+        q1--;
+        rhat += vn1;
+        if (rhat >= b) {
+            break;
+        }
+    }
+    const uint32_t un21 = un32 * b + un1 - q1 * v; /* mod 2^32: the true remainder < v */
+    uint32_t q0 = un21 / vn1;
+    rhat = un21 - q0 * vn1;
+    while (q0 >= b || q0 * vn0 > b * rhat + un0) {
+        q0--;
+        rhat += vn1;
+        if (rhat >= b) {
+            break;
+        }
+    }
+    return q1 * b + q0;
+}
+
+/* floor((2^62 + floor(dn/2)) / dn): the dividend's high word 2^30 is below
+ * the normalised dn, so the quotient fits 32 bits.  For targets with a
+ * 32-bit hardware divide and no 64-bit one (Cortex-M7, M55: UDIV): two
+ * divides instead of three Newton steps on 64-bit products. */
+uint32_t tdc_recip_norm_q30_div32(uint32_t dn)
+{
+    return udiv_digits_norm(1u << 30, dn >> 1, dn);
+}
+
+/* floor(u / v) for (u >> 32) < v, v != 0: normalise v, then the above. */
+uint32_t tdc_udiv64_32_digits(uint64_t u, uint32_t v)
+{
+    const unsigned sh = tdc_clz32(v);
+    const uint32_t u1 = (uint32_t)(u >> 32), u0 = (uint32_t)u;
+    const uint32_t un32 = sh ? (u1 << sh) | (u0 >> (32u - sh)) : u1;
+    return udiv_digits_norm(un32, u0 << sh, v << sh);
+}
+
+uint32_t tdc_udiv64_32(uint64_t u, uint32_t v)
+{
+#if TDC_HW_DIV64
+    return (uint32_t)(u / v);
+#else
+    return tdc_udiv64_32_digits(u, v);
+#endif
+}
+
+/* floor(sqrt(x)) of a 32-bit value, digit by digit in 32-bit arithmetic. */
+static inline uint32_t isqrt32_digits(uint32_t x)
+{
+    uint32_t res = 0, bit = 1u << 30;
     while (bit > x) {
         bit >>= 2;
     }
@@ -184,5 +229,39 @@ uint32_t tdc_isqrt64(uint64_t x)
         }
         bit >>= 2;
     }
-    return (uint32_t)res;
+    return res;
+}
+
+/*
+ * Integer Newton from above: any start s0 >= floor(sqrt(x)) gives a
+ * sequence s' = floor((s + floor(x / s)) / 2) that falls until it stops
+ * falling, and then s = floor(sqrt(x)) exactly (the classic argument: for
+ * s > floor(sqrt x), floor(sqrt x) <= s' < s).  The start comes from the
+ * digit method on the top 32 bits of x normalised to [2^62, 2^64): with
+ * r = isqrt(top), sqrt(x) < (r + 1) 2^16 / 2^(lz/2), 2^-15 relative above,
+ * so two divisions converge and a third sees it.  The divisions need
+ * (x >> 32) < s, true below x = 0xfffffffc 2^32 (there floor(sqrt x) >=
+ * (x >> 32) + 1); the top range uses the digit method.
+ */
+uint32_t tdc_isqrt64(uint64_t x)
+{
+    if (x < 2u || (x >> 32) >= 0xfffffffcu) {
+        return tdc_isqrt64_digits(x);
+    }
+    const uint32_t hi = (uint32_t)(x >> 32);
+    const unsigned lz = (hi ? tdc_clz32(hi) : 32u + tdc_clz32((uint32_t)x)) & ~1u; /* even */
+    const uint32_t top = (uint32_t)((x << lz) >> 32); /* in [2^30, 2^32) */
+    const uint64_t up = ((uint64_t)isqrt32_digits(top) + 1u) << 16; /* > sqrt(x << lz) */
+    const unsigned half = lz / 2u;
+    uint64_t s = (up + ((1ULL << half) - 1u)) >> half; /* ceil: > sqrt(x) */
+    if (s > 0xffffffffu) {
+        s = 0xffffffffu; /* still >= floor(sqrt x) < 2^32 */
+    }
+    for (;;) {
+        const uint64_t t = (s + tdc_udiv64_32(x, (uint32_t)s)) >> 1;
+        if (t >= s) {
+            return (uint32_t)s;
+        }
+        s = t;
+    }
 }

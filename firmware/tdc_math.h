@@ -9,6 +9,19 @@
 
 #include "tdc_fixed.h"
 
+/* 1 where the CPU divides 64 by 64 bits in hardware (x86-64, AArch64): the
+ * reciprocal and the square root then divide directly; elsewhere (Cortex-M:
+ * 32-bit UDIV only) they use long division in 16-bit digits.  Both give the
+ * same bits; -DTDC_HW_DIV64=0 builds the Cortex-M arithmetic on a host
+ * (tests/test_math runs both ways). */
+#ifndef TDC_HW_DIV64
+#if defined(__x86_64__) || defined(__aarch64__)
+#define TDC_HW_DIV64 1
+#else
+#define TDC_HW_DIV64 0
+#endif
+#endif
+
 /* Count leading zeros of a non-zero 32-bit value (x == 0 gives 32). */
 static inline unsigned tdc_clz32(uint32_t x)
 {
@@ -79,7 +92,16 @@ static inline uint32_t tdc_mix32(uint32_t x)
     return x;
 }
 
-/* floor(sqrt(x)) for a 64-bit unsigned x; exact (digit-by-digit method). */
+/* floor(sqrt(x)) for a 64-bit unsigned x, exact: integer Newton from
+ * above with a digit-method start (two or three 64/32 divisions). */
 uint32_t tdc_isqrt64(uint64_t x);
+/* The same by the digit-by-digit method (2 bits per step): the reference
+ * the tests compare with, and the path for the top of the range. */
+uint32_t tdc_isqrt64_digits(uint64_t x);
+
+/* floor(u / v) for (u >> 32) < v: the hardware divide (TDC_HW_DIV64) or
+ * tdc_udiv64_32_digits, long division with two 32-bit divides. */
+uint32_t tdc_udiv64_32(uint64_t u, uint32_t v);
+uint32_t tdc_udiv64_32_digits(uint64_t u, uint32_t v);
 
 #endif /* TDC_MATH_H */

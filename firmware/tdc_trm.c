@@ -293,9 +293,15 @@ static void trm_apply_d(tdc_trm_t *st, const uint8_t *in, uint32_t stride, tdc_g
         const int32_t need = clampi(k0 + (int32_t)taps - 1, 0, hmax);
         while (loaded < need) {
             loaded++;
-            (st->simd ? tdc_trm_dhoriz_avx2 : tdc_trm_dhoriz_c)(in + (size_t)loaded * stride, st->cfg.width,
-                                                                st->dx_first, st->dx_w, taps, st->rw,
-                                                                &st->ring[((uint32_t)loaded % taps) * rw3]);
+            const uint8_t *row = in + (size_t)loaded * stride;
+            uint16_t *slot = &st->ring[((uint32_t)loaded % taps) * rw3];
+            /* direct calls, not a function pointer: the recursion check
+             * follows the call graph */
+            if (st->simd) {
+                tdc_trm_dhoriz_avx2(row, st->cfg.width, st->dx_first, st->dx_w, taps, st->rw, slot);
+            } else {
+                tdc_trm_dhoriz_c(row, st->cfg.width, st->dx_first, st->dx_w, taps, st->rw, slot);
+            }
         }
         const uint16_t *w = &st->dy_w[jy * taps];
         const tdc_gval_t *rows[TDC_TRM_MAX_TAPS];
@@ -305,7 +311,11 @@ static void trm_apply_d(tdc_trm_t *st, const uint8_t *in, uint32_t stride, tdc_g
         /* into D(I) (dst), or one row at a time rounded to codes (out8,
          * tdc_trm_downsample: the U row buffer is free then) */
         tdc_gval_t *o = out8 ? (tdc_gval_t *)(void *)st->urow : &dst[jy * rw3];
-        (st->simd ? tdc_trm_dvert_avx2 : tdc_trm_dvert_c)((const uint16_t *const *)rows, w, taps, rw3, o);
+        if (st->simd) {
+            tdc_trm_dvert_avx2((const uint16_t *const *)rows, w, taps, rw3, o);
+        } else {
+            tdc_trm_dvert_c((const uint16_t *const *)rows, w, taps, rw3, o);
+        }
         if (out8) {
             uint8_t *d = out8 + (size_t)jy * out8_stride;
             for (uint32_t i = 0; i < rw3; i++) {
@@ -411,14 +421,18 @@ tdc_status_t tdc_trm_full(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, 
     trm_apply_d(st, in, in_stride, st->dprev, NULL, 0);
     tdc_trm_rowctx_t k;
     trm_rowctx(st, &k);
-    tdc_trm_full_row_fn *row = st->simd ? tdc_trm_full_row_avx2 : tdc_trm_full_row_c;
     const uint32_t w = st->cfg.width;
     uint64_t hi = 0, lo = 0;
     for (uint32_t y = 0; y < st->cfg.height; y++) {
         tdc_trm_full_counts_t n = {0, 0};
         trm_u_row(st, st->dprev, y, st->urow);
-        row(&k, st->urow, in + (size_t)y * in_stride, out + (size_t)y * out_stride,
-            &st->residual[(size_t)y * w * 3u], &n);
+        if (st->simd) {
+            tdc_trm_full_row_avx2(&k, st->urow, in + (size_t)y * in_stride, out + (size_t)y * out_stride,
+                                  &st->residual[(size_t)y * w * 3u], &n);
+        } else {
+            tdc_trm_full_row_c(&k, st->urow, in + (size_t)y * in_stride, out + (size_t)y * out_stride,
+                               &st->residual[(size_t)y * w * 3u], &n);
+        }
         hi += n.hi;
         lo += n.lo;
     }
@@ -447,7 +461,6 @@ tdc_status_t tdc_trm_reduced(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t 
     const uint32_t rw3 = 3u * st->rw;
     tdc_trm_rowctx_t k;
     trm_rowctx(st, &k);
-    tdc_trm_reduced_row_fn *row = st->simd ? tdc_trm_reduced_row_avx2 : tdc_trm_reduced_row_c;
     const uint32_t w = st->cfg.width;
     uint32_t *urow_a = st->urow;            /* U(D(I_t)), code Q22 */
     uint32_t *urow_b = st->urow + rw3 + 3u; /* U(i_t+1) */
@@ -456,7 +469,13 @@ tdc_status_t tdc_trm_reduced(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t 
         tdc_trm_reduced_counts_t n = {0, 0, 0};
         trm_u_row(st, st->dprev, y, urow_a);
         trm_u_row_codes(st, in_reduced, in_stride, y, urow_b);
-        row(&k, urow_a, urow_b, &st->residual[(size_t)y * w * 3u], out + (size_t)y * out_stride, &n);
+        if (st->simd) {
+            tdc_trm_reduced_row_avx2(&k, urow_a, urow_b, &st->residual[(size_t)y * w * 3u],
+                                     out + (size_t)y * out_stride, &n);
+        } else {
+            tdc_trm_reduced_row_c(&k, urow_a, urow_b, &st->residual[(size_t)y * w * 3u], out + (size_t)y * out_stride,
+                                  &n);
+        }
         computed += n.computed;
         skipped += n.skipped;
         no_res += n.no_res;

@@ -61,3 +61,16 @@ $(B)/bench-checkasm-trm: $(B)/tests/checkasm_trm
 	@printf '#!/bin/sh\nexec %s --bench\n' "$<" > $@
 	@chmod +x $@
 BENCHES += $(B)/bench-checkasm-trm
+
+# test_math again with the Cortex-M arithmetic (TDC_HW_DIV64=0: long
+# division with 32-bit divides in the reciprocal and the square root), so
+# the boards' paths are checked on the host too, not only through QEMU.
+$(B)/tests/portable/tdc_math.o: firmware/tdc_math.c $(GEN)/tdc_panels.h
+	@mkdir -p $(@D)
+	$(CC) $(FW_CFLAGS) -DTDC_HW_DIV64=0 -c $< -o $@
+$(B)/tests/portable/test_math.o: tests/test_math.c $(GEN)/tdc_panels.h
+	@mkdir -p $(@D)
+	$(CC) $(HOST_CFLAGS) -DTDC_HW_DIV64=0 -c $< -o $@
+$(B)/tests/test_math_portable: $(B)/tests/portable/test_math.o $(B)/tests/portable/tdc_math.o $(TEST_SUPPORT_OBJS) $(SIMLIB) $(FWLIB)
+	$(CC) $(HOST_LDFLAGS) $(filter %.o,$^) -o $@ $(SIMLIB) $(FWLIB) $(HOST_LIBS)
+TESTS += $(B)/tests/test_math_portable

@@ -135,6 +135,68 @@ static void test_isqrt(void **state)
         assert_true(r * r <= x && (r + 1) * (r + 1) > x);
     }
     assert_int_equal(tdc_isqrt64(UINT64_MAX), 0xffffffffu);
+    /* squares and their neighbours at every magnitude, near 2^32 - 1, the
+     * start of the top range and random values: Newton and the digit
+     * method agree with each other and with the definition */
+    uint32_t nchecked = 0;
+    for (int k = 0; k < 64; k++) {
+        for (int j = -3; j <= 3; j++) {
+            const uint64_t n = (1ULL << (k / 2)) + (uint64_t)(int64_t)j * ((k & 1) ? 977u : 1u);
+            if (n > 0xffffffffu) {
+                continue;
+            }
+            const uint64_t sq = n * n;
+            const uint64_t xs[4] = {sq, sq - 1u, sq + 1u, sq + 2u * n};
+            for (int m = 0; m < 4; m++) {
+                const uint64_t x = xs[m];
+                const uint64_t r = tdc_isqrt64(x);
+                if (r != tdc_isqrt64_digits(x) || r * r > x || (r < 0xffffffffu && (r + 1) * (r + 1) <= x)) {
+                    fail_msg("isqrt64(%llu) = %llu", (unsigned long long)x, (unsigned long long)r);
+                }
+                nchecked++;
+            }
+        }
+    }
+    uint64_t z = 0x9e3779b97f4a7c15ull;
+    for (int i = 0; i < 2000000; i++) {
+        z ^= z << 13; z ^= z >> 7; z ^= z << 17;
+        const uint64_t x = i < 100000 ? (0xfffffffbull << 32) + (z >> 31) /* around the top range */
+                                      : z >> (z & 63u);
+        const uint64_t r = tdc_isqrt64(x);
+        if (r != tdc_isqrt64_digits(x) || r * r > x || (r < 0xffffffffu && (r + 1) * (r + 1) <= x)) {
+            fail_msg("isqrt64(%llu) = %llu", (unsigned long long)x, (unsigned long long)r);
+        }
+        nchecked++;
+    }
+    printf("isqrt64: Newton and digit method exact on %u structured and random inputs (TDC_HW_DIV64 = %d)\n",
+           nchecked, TDC_HW_DIV64);
+}
+
+/* The Cortex-M long division against the host's divide. */
+static void test_udiv64_32(void **state)
+{
+    (void)state;
+    uint64_t z = 0x2545f4914f6cdd1dull;
+    uint32_t n = 0;
+    for (int i = 0; i < 3000000; i++) {
+        z ^= z << 13; z ^= z >> 7; z ^= z << 17;
+        uint32_t v = (uint32_t)(z >> 32) >> (z & 31u);
+        if (v == 0u) {
+            v = 1u;
+        }
+        /* u below v 2^32: high word < v; extremes every few draws */
+        uint64_t u = ((uint64_t)((uint32_t)z % v) << 32) | (uint32_t)(z >> 17);
+        if (i % 7 == 0) {
+            u = ((uint64_t)(v - 1u) << 32) | 0xffffffffu; /* largest quotient */
+        }
+        const uint32_t want = (uint32_t)(u / v);
+        if (tdc_udiv64_32_digits(u, v) != want || tdc_udiv64_32(u, v) != want) {
+            fail_msg("udiv64_32(%llu, %u) = %u/%u, want %u", (unsigned long long)u, v, tdc_udiv64_32_digits(u, v),
+                     tdc_udiv64_32(u, v), want);
+        }
+        n++;
+    }
+    printf("udiv64_32: long division equals the host divide on %u pairs\n", n);
 }
 
 static void test_shifts(void **state)
@@ -244,7 +306,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_shifts),     cmocka_unit_test(test_exp_neg),
         cmocka_unit_test(test_recip),      cmocka_unit_test(test_div_q15),
-        cmocka_unit_test(test_isqrt),      cmocka_unit_test(test_gamma_tables),
+        cmocka_unit_test(test_isqrt),      cmocka_unit_test(test_udiv64_32),      cmocka_unit_test(test_gamma_tables),
         cmocka_unit_test(test_helper_checksum),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
