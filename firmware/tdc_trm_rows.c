@@ -69,6 +69,7 @@ void tdc_trm_full_row_c(const tdc_trm_rowctx_t *k, const uint32_t *urow_in, cons
     uint32_t nhi = 0, nlo = 0;
     for (uint32_t x = 0; x < w; x++) {
         const uint32_t i0 = 3u * ux[2u * x], f = ux[2u * x + 1u];
+#pragma GCC unroll 3
         for (uint32_t c = 0; c < 3u; c++) {
             const tdc_lin_t lu = trm_dec_q16(&g[c], trm_hlerp(urow, i0 + c, f));
             const tdc_lin_t li = (tdc_lin_t)g[c].dec[src[3u * x + c]];
@@ -105,6 +106,7 @@ void tdc_trm_reduced_row_c(const tdc_trm_rowctx_t *k, const uint32_t *urow_a_in,
     uint32_t computed = 0, skipped = 0, no_res = 0;
     for (uint32_t x = 0; x < w; x++) {
         const uint32_t i0 = 3u * ux[2u * x], f = ux[2u * x + 1u];
+#pragma GCC unroll 3
         for (uint32_t c = 0; c < 3u; c++) {
             const uint32_t gb = trm_hlerp(urow_b, i0 + c, f);
             const tdc_lin_t alpha = trm_dec_q16(&g[c], gb);
