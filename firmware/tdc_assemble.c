@@ -4,6 +4,7 @@
  */
 #include "tdc_assemble.h"
 
+#include <stddef.h>
 #include <string.h>
 
 #include "tdc_math.h"
@@ -585,54 +586,67 @@ typedef struct {
     int nbx;                   /* ... how many */
 } tdc_asm_row_t;
 
-/* Dynamic pixel x with 3x3 maximum (dx, dy) != 0: window reset, then the
- * new sample or a reprojected, clamped old value. */
-static inline void tdc_asm_dynamic_pixel(const tdc_asm_t *st, const tdc_asm_row_t *r, uint32_t x, int32_t dx,
-                                         int32_t dy, size_t slot_off, tdc_asm_dyn_count_t *cnt)
+/* (dx, dy) of an MV maximum as one 32-bit word (memory order, so that
+ * memcpy back to an int16_t pair gives dx, dy; 0 iff the vector is zero). */
+static inline uint32_t tdc_asm_mvmax_word(const tdc_asm_mvmax_t *m)
 {
-    uint8_t *o = r->drow + x * 3u;
-    if (r->win[x]) {
-        r->win[x] = 0;
-        cnt->resets++;
+    uint32_t v;
+    memcpy(&v, (const uint8_t *)m + offsetof(tdc_asm_mvmax_t, dx), sizeof(v));
+    return v;
+}
+
+/* Vertical 3-maximum of pixel x from the horizontal maxima of rows y-1, y,
+ * y+1, in that order, first on ties (the longest MV of the 3x3
+ * neighbourhood), as a word.  Selects instead of branches: the outcome
+ * follows the content and would mispredict at every motion edge. */
+static inline uint32_t tdc_asm_vmax_word(const tdc_asm_mvmax_t *t, const tdc_asm_mvmax_t *m,
+                                         const tdc_asm_mvmax_t *b, uint32_t x)
+{
+    uint32_t l2 = t[x].l2, wd = tdc_asm_mvmax_word(&t[x]);
+    const uint32_t lm = m[x].l2, wm = tdc_asm_mvmax_word(&m[x]);
+    const uint32_t lb = b[x].l2, wb = tdc_asm_mvmax_word(&b[x]);
+    const int cm = lm > l2;
+    l2 = cm ? lm : l2;
+    wd = cm ? wm : wd;
+    return lb > l2 ? wb : wd;
+}
+
+/* Window reset of pixels [xs, xe) (all dynamic): one OR scan of the masks,
+ * written (and counted) only when some mask is set (rare: the first dynamic
+ * frames after a static spell), so clean lines stay clean. */
+static void tdc_asm_window_reset(uint8_t *win, uint32_t xs, uint32_t xe, tdc_asm_dyn_count_t *cnt)
+{
+    uint64_t any = 0;
+    uint32_t x = xs;
+    for (; x + 8u <= xe; x += 8u) {
+        uint64_t v8;
+        memcpy(&v8, win + x, sizeof(v8));
+        any |= v8;
     }
-    if (r->newrow[x]) {
-        const uint8_t *s = r->rec[x & 1u] + (size_t)(x >> 1) * 3u + slot_off;
-        o[0] = s[0], o[1] = s[1], o[2] = s[2];
-        cnt->new_dynamic++;
-    } else {
-        uint64_t v = tdc_asm_bilinear_q8(st, r->prev, x, r->y, dx, dy, &cnt->edge);
-        tdc_asm_clamp_store(v, x, r->bx, r->nbx, cnt, o);
-    }
+    for (; x < xe; x++) any |= win[x];
+    if (!any) return;
+    uint64_t resets = 0;
+    for (x = xs; x < xe; x++) resets += win[x] != 0;
+    memset(win + xs, 0, xe - xs);
+    cnt->resets += resets;
 }
 
 /*
- * Row whose 3x3 neighbourhoods all hold the one vector (dx, dy) != 0 (rows
- * y-1..y+1 uniform and equal; the common case of a pan): no per-pixel
- * search, and the bilinear position is p + (dx, dy) with the same
- * fractional weights and row pair for every pixel.  Pixels whose position
- * falls outside the frame horizontally take the general (clamping) path;
- * the results are the same as tdc_asm_dynamic_pixel's.
+ * Span [xs, xe) of row y whose pixels all have the 3x3 maximum (dx, dy) != 0
+ * (a whole row in a pan, a run of equal maxima in a general row): window
+ * reset, then new pixels stored and old ones reprojected and clamped, as
+ * defined in tdc_assemble.h.  The bilinear position p + (dx, dy) has the
+ * same fractional weights and row pair for every pixel of the span, so the
+ * pixels whose position stays inside the frame horizontally take a loop with
+ * span-constant weights and no clamping tests; the others take the general
+ * (clamping) bilinear.  Same integers as the per-pixel definition.
  */
-static void tdc_asm_uniform_row(const tdc_asm_t *st, const tdc_asm_row_t *r, int32_t dx, int32_t dy, size_t slot_off,
-                                tdc_asm_dyn_count_t *cnt)
+static void tdc_asm_dyn_span(const tdc_asm_t *st, const tdc_asm_row_t *r, uint32_t xs, uint32_t xe, int32_t dx,
+                             int32_t dy, size_t slot_off, tdc_asm_dyn_count_t *cnt)
 {
     const uint32_t w = st->cfg.width;
     const int32_t h = st->cfg.height;
-    /* Window reset of the whole row (every pixel is dynamic). */
-    uint64_t resets = 0, any = 0;
-    uint32_t x8 = 0;
-    for (; x8 + 8u <= w; x8 += 8u) {
-        uint64_t v8;
-        memcpy(&v8, r->win + x8, sizeof(v8));
-        any |= v8;
-    }
-    for (uint32_t x = x8; x < w; x++) any |= r->win[x];
-    if (any) {
-        /* Rare (the first dynamic frame after a static spell): count. */
-        for (uint32_t x = 0; x < w; x++) resets += r->win[x] != 0;
-        memset(r->win, 0, w);
-    }
-    cnt->resets += resets;
+    tdc_asm_window_reset(r->win, xs, xe, cnt);
 
     /* Vertical position: the same for the whole row. */
     int32_t sy = (int32_t)r->y * 16 + dy;
@@ -645,8 +659,9 @@ static void tdc_asm_uniform_row(const tdc_asm_t *st, const tdc_asm_row_t *r, int
     const int32_t wi = (int32_t)w;
     int32_t xa = dx >= 0 ? 0 : (-dx + 15) / 16;
     int32_t xb = 16 * (wi - 1) - dx < 0 ? 0 : (16 * (wi - 1) - dx) / 16 + 1;
-    if (xa > wi) xa = wi;
-    if (xb > wi) xb = wi;
+    if (xa < (int32_t)xs) xa = (int32_t)xs;
+    if (xb > (int32_t)xe) xb = (int32_t)xe;
+    if (xa > (int32_t)xe) xa = (int32_t)xe;
     if (xb < xa) xb = xa;
     const int32_t fx = (int32_t)((uint32_t)dx & 15u), step = fx != 0;
     const uint64_t w00 = (uint64_t)((16 - fx) * (16 - fy)), w01 = (uint64_t)(fx * (16 - fy));
@@ -673,9 +688,9 @@ static void tdc_asm_uniform_row(const tdc_asm_t *st, const tdc_asm_row_t *r, int
                 col0 = wy0 * tdc_asm_lanes(r0 + (c + 1) * 3) + wy1 * tdc_asm_lanes(r1 + (c + 1) * 3);
         }
         cnt->edge += yc * (uint64_t)(xb - xa);
-        for (uint32_t x = 0; x < w; x++) {
+        for (uint32_t x = xs; x < xe; x++) {
             if ((int32_t)x == xa) x = (uint32_t)xb;
-            if (x >= w) break;
+            if (x >= xe) break;
             uint64_t v = tdc_asm_bilinear_q8(st, r->prev, x, r->y, dx, dy, &cnt->edge);
             tdc_asm_clamp_store(v, x, r->bx, r->nbx, cnt, r->drow + x * 3u);
         }
@@ -686,15 +701,16 @@ static void tdc_asm_uniform_row(const tdc_asm_t *st, const tdc_asm_row_t *r, int
      * otherwise one loop testing the newness. */
     const int regular = r->has_new == TDC_ASM_NEW_EVEN || r->has_new == TDC_ASM_NEW_ODD;
     const uint32_t q = r->has_new == TDC_ASM_NEW_ODD ? 1u : 0u;
+    const uint32_t xq = xs + ((xs & 1u) != q), xo = xs + ((xs & 1u) == q); /* first new / old x */
     if (regular) {
-        const uint8_t *s = r->rec[q] + slot_off;
-        for (uint32_t x = q; x < w; x += 2u, s += 3) {
+        const uint8_t *s = r->rec[q] + slot_off + (size_t)(xq >> 1) * 3u;
+        for (uint32_t x = xq; x < xe; x += 2u, s += 3) {
             uint8_t *o = r->drow + x * 3u;
             o[0] = s[0], o[1] = s[1], o[2] = s[2];
             new_dynamic++;
         }
     }
-    for (uint32_t x = regular ? 1u - q : 0u; x < w; x += regular ? 2u : 1u) {
+    for (uint32_t x = regular ? xo : xs; x < xe; x += regular ? 2u : 1u) {
         uint8_t *o = r->drow + x * 3u;
         if (!regular && r->newrow[x]) {
             const uint8_t *s = r->rec[x & 1u] + (size_t)(x >> 1) * 3u + slot_off;
@@ -846,7 +862,7 @@ static void tdc_asm_dynamic_frame(tdc_asm_t *st, uint32_t frame)
         if (uniform) {
             /* Rows y-1..y+1 hold one non-zero vector everywhere. */
             const int16_t *m = st->mv + (size_t)y * w * 2u;
-            tdc_asm_uniform_row(st, &row, m[0], m[1], slot_off, &cnt);
+            tdc_asm_dyn_span(st, &row, 0, w, m[0], m[1], slot_off, &cnt);
             continue;
         }
         /* General row: per-pixel 3x3 maximum from the horizontal maxima. */
@@ -857,26 +873,37 @@ static void tdc_asm_dynamic_frame(tdc_asm_t *st, uint32_t frame)
                 hmax_of[ri[j]] = r;
             }
         }
-        const tdc_asm_mvmax_t *rt = st->ring + (size_t)ri[0] * w;
+        /* Absent rows (frame edge) read the middle row again: a repeated
+         * candidate never wins over itself (strict >), the same as none. */
         const tdc_asm_mvmax_t *rm = st->ring + (size_t)ri[1] * w;
-        const tdc_asm_mvmax_t *rb = st->ring + (size_t)ri[2] * w;
-        for (uint32_t x = 0; x < w; x++) {
-            /* Vertical maximum in order top, middle, bottom (first on ties). */
-            tdc_asm_mvmax_t m = {0, 0, 0};
-            if (top && rt[x].l2 > m.l2) m = rt[x];
-            if (rm[x].l2 > m.l2) m = rm[x];
-            if (bot && rb[x].l2 > m.l2) m = rb[x];
-            if (m.l2 != 0) {
-                tdc_asm_dynamic_pixel(st, &row, x, m.dx, m.dy, slot_off, &cnt);
-            } else if (nr1[x]) {
-                win[x] = (uint8_t)(win[x] | (1u << slot));
-                tdc_asm_window_mean(row.rec[x & 1u] + (size_t)(x >> 1) * 3u, stride, win[x], drow + x * 3u);
-                averaged++;
+        const tdc_asm_mvmax_t *rt = top ? st->ring + (size_t)ri[0] * w : rm;
+        const tdc_asm_mvmax_t *rb = bot ? st->ring + (size_t)ri[2] * w : rm;
+        /* Runs of pixels with one and the same maximum: a zero run takes the
+         * static path, a non-zero one the span path (span-constant bilinear
+         * weights), the same integers as pixel by pixel. */
+        uint32_t xs = 0, run = tdc_asm_vmax_word(rt, rm, rb, 0); /* current run [xs, x) and its vector */
+        for (uint32_t x = 1; x <= w; x++) {
+            const uint32_t word = x < w ? tdc_asm_vmax_word(rt, rm, rb, x) : ~run; /* x = w ends the last run */
+            if (word == run) continue;
+            if (run != 0) {
+                int16_t m[2];
+                memcpy(m, &run, sizeof(m));
+                tdc_asm_dyn_span(st, &row, xs, x, m[0], m[1], slot_off, &cnt);
             } else {
-                uint8_t *o = drow + x * 3u;
-                o[0] = prow[x * 3u], o[1] = prow[x * 3u + 1u], o[2] = prow[x * 3u + 2u];
-                kept++;
+                for (uint32_t xx = xs; xx < x; xx++) {
+                    if (nr1[xx]) {
+                        win[xx] = (uint8_t)(win[xx] | (1u << slot));
+                        tdc_asm_window_mean(row.rec[xx & 1u] + (size_t)(xx >> 1) * 3u, stride, win[xx],
+                                            drow + xx * 3u);
+                        averaged++;
+                    } else {
+                        uint8_t *o = drow + xx * 3u;
+                        o[0] = prow[xx * 3u], o[1] = prow[xx * 3u + 1u], o[2] = prow[xx * 3u + 2u];
+                        kept++;
+                    }
+                }
             }
+            xs = x, run = word;
         }
     }
     st->cur ^= 1;
