@@ -49,7 +49,7 @@ typedef struct {
     int gt;                 /* ground truth: one light sample per pixel sample, stratified by k */
     uint32_t spp;
     int track_blockers;     /* shadow rays return the blocker (shadow MVs) */
-    double ms[TDC_STAGE_COUNT];
+    uint64_t ticks[TDC_STAGE_COUNT]; /* stage time in stamp() ticks (tdc_render_frame.c) */
     uint64_t rays[TDC_RAY_KIND_COUNT];
     int record;
     tdc_render_ray_t *rec;
