@@ -18,6 +18,13 @@
 #else
 #define TDC_ASM_HOT_INLINE inline
 #endif
+/* Forced inlining where a body is instantiated twice on purpose (GNU C
+ * compilers: gcc, clang, arm-none-eabi-gcc; plain inline elsewhere). */
+#if defined(__GNUC__) || defined(__clang__)
+#define TDC_ASM_ALWAYS_INLINE __attribute__((always_inline)) inline
+#else
+#define TDC_ASM_ALWAYS_INLINE inline
+#endif
 
 #define TDC_ASM_ALIGN(n) (((n) + 7u) & ~(size_t)7u)
 
@@ -651,8 +658,9 @@ static void tdc_asm_window_reset(uint8_t *win, uint32_t xs, uint32_t xe, tdc_asm
  * span-constant weights and no clamping tests; the others take the general
  * (clamping) bilinear.  Same integers as the per-pixel definition.
  */
-static void tdc_asm_dyn_span(const tdc_asm_t *st, const tdc_asm_row_t *r, uint32_t xs, uint32_t xe, int32_t dx,
-                             int32_t dy, size_t slot_off, tdc_asm_dyn_count_t *cnt)
+static TDC_ASM_ALWAYS_INLINE void tdc_asm_dyn_span_body(const tdc_asm_t *st, const tdc_asm_row_t *r, uint32_t xs,
+                                                         uint32_t xe, int32_t dx, int32_t dy, size_t slot_off,
+                                                         tdc_asm_dyn_count_t *cnt)
 {
     const uint32_t w = st->cfg.width;
     const int32_t h = st->cfg.height;
@@ -740,6 +748,22 @@ static void tdc_asm_dyn_span(const tdc_asm_t *st, const tdc_asm_row_t *r, uint32
         tdc_asm_clamp_store(v, x, r->bx, r->nbx, cnt, o);
     }
     cnt->new_dynamic += new_dynamic;
+}
+
+/* A span of a general row (a run of equal maxima). */
+static void tdc_asm_dyn_span(const tdc_asm_t *st, const tdc_asm_row_t *r, uint32_t xs, uint32_t xe, int32_t dx,
+                             int32_t dy, size_t slot_off, tdc_asm_dyn_count_t *cnt)
+{
+    tdc_asm_dyn_span_body(st, r, xs, xe, dx, dy, slot_off, cnt);
+}
+
+/* A whole uniform row (a pan): the same body with the span [0, w), its
+ * bounds constant (a copy of its own, so the row loops keep the registers
+ * they had before spans existed: fewer instructions per pixel on the M7). */
+static void tdc_asm_uniform_row(const tdc_asm_t *st, const tdc_asm_row_t *r, int32_t dx, int32_t dy, size_t slot_off,
+                                tdc_asm_dyn_count_t *cnt)
+{
+    tdc_asm_dyn_span_body(st, r, 0, st->cfg.width, dx, dy, slot_off, cnt);
 }
 
 /* Static frame: only the new samples change; update in place. */
@@ -872,7 +896,7 @@ static void tdc_asm_dynamic_frame(tdc_asm_t *st, uint32_t frame)
         if (uniform) {
             /* Rows y-1..y+1 hold one non-zero vector everywhere. */
             const int16_t *m = st->mv + (size_t)y * w * 2u;
-            tdc_asm_dyn_span(st, &row, 0, w, m[0], m[1], slot_off, &cnt);
+            tdc_asm_uniform_row(st, &row, m[0], m[1], slot_off, &cnt);
             continue;
         }
         /* General row: per-pixel 3x3 maximum from the horizontal maxima. */
