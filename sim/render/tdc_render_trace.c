@@ -440,41 +440,147 @@ static inline __attribute__((always_inline)) int track_point(const rthread_t *t,
     return project_s(&t->prev->cam, p0, p1, p2, xp, yp);
 }
 
+/* The point or direction each MV sample projects, as camera-relative
+ * directions (d = point - camera position, or the ray direction of a
+ * miss) for both frames: the projections then run two samples at a time. */
+static inline void track_dirs(const rthread_t *t, const rsample_t *a, double dc[3], double dp[3])
+{
+    if (a->obj < 0) {
+        for (int c = 0; c < 3; c++) dc[c] = dp[c] = a->dir[c];
+        return;
+    }
+    const double *mc = t->cur->m[a->obj], *mp = t->prev->m[a->obj], *q = a->Q;
+    const double *pc = t->cur->cam.pos, *pp = t->prev->cam.pos;
+    double c0, c1, c2, p0, p1, p2;
+    if (t->r->obj_same_m[a->obj]) { /* same matrix: same product */
+        c0 = p0 = mc[0] * q[0] + mc[1] * q[1] + mc[2] * q[2] + mc[3];
+        c1 = p1 = mc[4] * q[0] + mc[5] * q[1] + mc[6] * q[2] + mc[7];
+        c2 = p2 = mc[8] * q[0] + mc[9] * q[1] + mc[10] * q[2] + mc[11];
+    } else if (t->r->obj_same_rs[a->obj]) { /* translation only, as in track_point */
+        double r0 = mc[0] * q[0] + mc[1] * q[1] + mc[2] * q[2];
+        double r1 = mc[4] * q[0] + mc[5] * q[1] + mc[6] * q[2];
+        double r2 = mc[8] * q[0] + mc[9] * q[1] + mc[10] * q[2];
+        c0 = r0 + mc[3];
+        c1 = r1 + mc[7];
+        c2 = r2 + mc[11];
+        p0 = r0 + mp[3];
+        p1 = r1 + mp[7];
+        p2 = r2 + mp[11];
+    } else {
+        c0 = mc[0] * q[0] + mc[1] * q[1] + mc[2] * q[2] + mc[3];
+        c1 = mc[4] * q[0] + mc[5] * q[1] + mc[6] * q[2] + mc[7];
+        c2 = mc[8] * q[0] + mc[9] * q[1] + mc[10] * q[2] + mc[11];
+        p0 = mp[0] * q[0] + mp[1] * q[1] + mp[2] * q[2] + mp[3];
+        p1 = mp[4] * q[0] + mp[5] * q[1] + mp[6] * q[2] + mp[7];
+        p2 = mp[8] * q[0] + mp[9] * q[1] + mp[10] * q[2] + mp[11];
+    }
+    dc[0] = c0 - pc[0]; /* the subtraction project_s starts with */
+    dc[1] = c1 - pc[1];
+    dc[2] = c2 - pc[2];
+    dp[0] = p0 - pp[0];
+    dp[1] = p1 - pp[1];
+    dp[2] = p2 - pp[2];
+}
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+/* tdc_r_project_dir for two directions (one per lane), without the depth
+ * test (the caller tests z): every lane does the same IEEE operations in
+ * the same order as the scalar function (SSE2 mul/add/sub/div are
+ * correctly rounded per lane, no FMA), so the results are bit-identical. */
+static inline void project_dir2(const rcam_t *c, __m128d d0, __m128d d1, __m128d d2, __m128d *x, __m128d *y,
+                                __m128d *z)
+{
+    __m128d zz = _mm_add_pd(_mm_add_pd(_mm_mul_pd(d0, _mm_set1_pd(c->fwd[0])), _mm_mul_pd(d1, _mm_set1_pd(c->fwd[1]))),
+                            _mm_mul_pd(d2, _mm_set1_pd(c->fwd[2])));
+    __m128d iz = _mm_div_pd(_mm_set1_pd(1.0), zz);
+    __m128d u = _mm_mul_pd(
+        _mm_add_pd(_mm_add_pd(_mm_mul_pd(d0, _mm_set1_pd(c->right[0])), _mm_mul_pd(d1, _mm_set1_pd(c->right[1]))),
+                   _mm_mul_pd(d2, _mm_set1_pd(c->right[2]))),
+        iz);
+    __m128d v = _mm_mul_pd(
+        _mm_add_pd(_mm_add_pd(_mm_mul_pd(d0, _mm_set1_pd(c->up[0])), _mm_mul_pd(d1, _mm_set1_pd(c->up[1]))),
+                   _mm_mul_pd(d2, _mm_set1_pd(c->up[2]))),
+        iz);
+    *x = _mm_add_pd(_mm_mul_pd(u, _mm_set1_pd(c->kx)), _mm_set1_pd(0.5 * c->w));
+    *y = _mm_sub_pd(_mm_set1_pd(0.5 * c->h), _mm_mul_pd(v, _mm_set1_pd(c->ky)));
+    *z = zz;
+}
+#endif
+
+/* MV of one sample from its projections (depths zc, zp as tested by
+ * tdc_r_project_dir); results in locals, stored once: reading back fields
+ * just written one by one stalled on store forwarding. */
+static inline void mv_store(rsample_t *a, double zc, double zp, double xc, double yc, double xp, double yp)
+{
+    int ok = zc > 1e-12 && zp > 1e-12;
+    if (!ok) { /* behind a camera: no correspondence */
+        xc = a->x;
+        yc = a->y;
+        xp = a->x;
+        yp = a->y;
+    }
+    a->xc = xc;
+    a->yc = yc;
+    a->mv_valid = ok;
+    a->mv[0] = xp - xc;
+    a->mv[1] = yp - yc;
+    a->refl_used = 0;
+}
+
+#define MV_CHUNK 64
 void tdc_r_pass_mv(rthread_t *t, rsample_t *s, int n)
 {
-    for (int i = 0; i < n; i++) {
-        rsample_t *a = &s[i];
-        /* results in locals, stored once: reading back fields just written
-         * one by one stalled on store forwarding */
-        double xc, yc, xp, yp;
-        int ok;
-        if (!t->r->cam_moved && (a->obj < 0 || !t->r->obj_moved[a->obj])) {
-            /* nothing here moved: the point is where it was */
-            a->xc = a->x;
-            a->yc = a->y;
-            a->mv_valid = 1;
-            a->mv[0] = a->mv[1] = 0;
-            a->refl_used = 0;
-            continue;
+    const rcam_t *cc = &t->cur->cam, *cp = &t->prev->cam;
+    /* pending samples of a chunk and their camera-relative directions (SoA) */
+    int idx[MV_CHUNK + 1];
+    double dc[3][MV_CHUNK + 1], dp[3][MV_CHUNK + 1];
+    for (int i0 = 0; i0 < n; i0 += MV_CHUNK) {
+        int i1 = i0 + MV_CHUNK < n ? i0 + MV_CHUNK : n, m = 0;
+        for (int i = i0; i < i1; i++) {
+            rsample_t *a = &s[i];
+            if (!t->r->cam_moved && (a->obj < 0 || !t->r->obj_moved[a->obj])) {
+                /* nothing here moved: the point is where it was */
+                a->xc = a->x;
+                a->yc = a->y;
+                a->mv_valid = 1;
+                a->mv[0] = a->mv[1] = 0;
+                a->refl_used = 0;
+                continue;
+            }
+            idx[m++] = i;
         }
-        if (a->obj >= 0) {
-            ok = track_point(t, a->obj, a->Q, &xc, &yc, &xp, &yp) == 0;
-        } else {
-            ok = tdc_r_project_dir(&t->cur->cam, a->dir, &xc, &yc) == 0 &&
-                 tdc_r_project_dir(&t->prev->cam, a->dir, &xp, &yp) == 0;
+        for (int j = 0; j < m; j++) {
+            double c3[3], p3[3];
+            track_dirs(t, &s[idx[j]], c3, p3);
+            for (int c = 0; c < 3; c++) {
+                dc[c][j] = c3[c];
+                dp[c][j] = p3[c];
+            }
         }
-        if (!ok) { /* behind the previous camera: no correspondence */
-            xc = a->x;
-            yc = a->y;
-            xp = a->x;
-            yp = a->y;
+        int j = 0;
+#if defined(__SSE2__)
+        for (; j + 2 <= m; j += 2) {
+            __m128d xc, yc, zc, xp, yp, zp;
+            project_dir2(cc, _mm_loadu_pd(&dc[0][j]), _mm_loadu_pd(&dc[1][j]), _mm_loadu_pd(&dc[2][j]), &xc, &yc, &zc);
+            project_dir2(cp, _mm_loadu_pd(&dp[0][j]), _mm_loadu_pd(&dp[1][j]), _mm_loadu_pd(&dp[2][j]), &xp, &yp, &zp);
+            double r[6][2];
+            _mm_storeu_pd(r[0], zc);
+            _mm_storeu_pd(r[1], zp);
+            _mm_storeu_pd(r[2], xc);
+            _mm_storeu_pd(r[3], yc);
+            _mm_storeu_pd(r[4], xp);
+            _mm_storeu_pd(r[5], yp);
+            for (int l = 0; l < 2; l++) mv_store(&s[idx[j + l]], r[0][l], r[1][l], r[2][l], r[3][l], r[4][l], r[5][l]);
         }
-        a->xc = xc;
-        a->yc = yc;
-        a->mv_valid = ok;
-        a->mv[0] = xp - xc;
-        a->mv[1] = yp - yc;
-        a->refl_used = 0;
+#endif
+        for (; j < m; j++) {
+            const double d3c[3] = {dc[0][j], dc[1][j], dc[2][j]}, d3p[3] = {dp[0][j], dp[1][j], dp[2][j]};
+            double xc = 0, yc = 0, xp = 0, yp = 0;
+            double zc = tdc_r_project_dir(cc, d3c, &xc, &yc) == 0 ? 1 : 0;
+            double zp = zc > 0 && tdc_r_project_dir(cp, d3p, &xp, &yp) == 0 ? 1 : 0;
+            mv_store(&s[idx[j]], zc, zp, xc, yc, xp, yp);
+        }
     }
 }
 
