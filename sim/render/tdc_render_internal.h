@@ -52,6 +52,8 @@ typedef struct {
 typedef struct {
     long text_len1;           /* strlen(text) + 1: the text repeats with one space */
     double text_cell6;        /* 6 * (scale / 8): glyph cell width */
+    uint64_t text_mod_m;      /* floor((2^64 - 1) / text_len1) + 1: remainder by multiplication */
+    long text_mod_k;          /* smallest multiple of text_len1 >= 2^30 */
     /* 5x7 glyph rows (bit 4 = leftmost column) of each character position,
      * row 7 = 0 (the gap row), so the lookup needs no range test */
     unsigned char rows[TDC_SCENE_TEXT_LEN + 1][8];
