@@ -98,8 +98,8 @@ static double replay(const tdc_render_ray_t *rays, size_t n, RTCScene cur, RTCSc
 }
 
 /* For information: the primary rays through Embree's packet kernel
- * (rtcIntersect16, coherent context, 16 consecutive recorded rays = one
- * tile row) against rtcIntersect1 on the same rays, one thread.  Returns the
+ * (rtcIntersect16, coherent context, 16 consecutive recorded rays =
+ * two rows of an 8x8 tile) against rtcIntersect1 on the same rays, one thread.  Returns the
  * packet CPU ms, *single_ms the rtcIntersect1 CPU ms, *ndiff the rays whose
  * hit differs in any bit the renderer uses (object, t, geometric normal),
  * *nvalue those that differ in value (not only in the sign of a zero). */
