@@ -126,8 +126,19 @@ static inline int occluded(rthread_t *t, const double o[3], const double d[3], d
 /* Fills the surface fields from a hit at ray parameter tt of ray (o, d) with
  * Embree's raw object-space normal ng.  P in locals: storing it element by
  * element and reading it back as a vector stalled on store forwarding. */
-static inline void surface(const rframe_t *f, float tt_f, const float ng[3], int obj, const double o[3],
-                           const double d[3], double P[3], double Q[3], double N[3], double NQ[3], int need_n)
+/* The last world normal computed from a raw normal: neighbouring samples hit
+ * the same triangle, and the same object with the same normal bits gives the
+ * same (deterministic) result without the square root and division. */
+typedef struct {
+    int obj;                /* -1: empty */
+    uint32_t ng[3];         /* bits of Embree's raw normal */
+    double n[3];            /* tdc_r_xform_normal of it (before facing the ray) */
+} wncache_t;
+
+static inline __attribute__((always_inline)) void surface(const rframe_t *f, float tt_f, const float ng[3], int obj,
+                                                          const double o[3], const double d[3], double P[3],
+                                                          double Q[3], double N[3], double NQ[3], int need_n,
+                                                          wncache_t *wc)
 {
     double tt = tt_f;
     double p0 = o[0] + tt * d[0], p1 = o[1] + tt * d[1], p2 = o[2] + tt * d[2];
@@ -145,16 +156,25 @@ static inline void surface(const rframe_t *f, float tt_f, const float ng[3], int
         N[0] = N[1] = N[2] = 0;
         return;
     }
-    tdc_r_xform_normal(f->nm[obj], NQ, N);
+    uint32_t b[3];
+    memcpy(b, ng, sizeof b);
+    if (wc->obj != obj || wc->ng[0] != b[0] || wc->ng[1] != b[1] || wc->ng[2] != b[2]) {
+        tdc_r_xform_normal(f->nm[obj], NQ, wc->n);
+        wc->obj = obj;
+        wc->ng[0] = b[0];
+        wc->ng[1] = b[1];
+        wc->ng[2] = b[2];
+    }
+    copy3(N, wc->n);
     if (dot3(N, d) > 0)
         for (int i = 0; i < 3; i++) N[i] = -N[i];
 }
 
 static inline void surface_rh(const rframe_t *f, const struct RTCRayHit *rh, int obj, const double o[3],
-                              const double d[3], double P[3], double Q[3], double N[3], double NQ[3])
+                              const double d[3], double P[3], double Q[3], double N[3], double NQ[3], wncache_t *wc)
 {
     const float ng[3] = {rh->hit.Ng_x, rh->hit.Ng_y, rh->hit.Ng_z};
-    surface(f, rh->ray.tfar, ng, obj, o, d, P, Q, N, NQ, 1);
+    surface(f, rh->ray.tfar, ng, obj, o, d, P, Q, N, NQ, 1, wc);
 }
 
 static double offset_eps(const double P[3])
@@ -291,6 +311,7 @@ void tdc_r_pass_primary(rthread_t *t, rsample_t *s, int n)
         a->hit_ng[1] = rh.hit.Ng_y;
         a->hit_ng[2] = rh.hit.Ng_z;
     }
+    wncache_t wc = {.obj = -1};
     /* Surfaces in a second loop: its iterations are independent, so the
      * square roots and divisions of successive samples overlap instead of
      * each waiting behind the next Embree call. Same arithmetic. */
@@ -298,7 +319,7 @@ void tdc_r_pass_primary(rthread_t *t, rsample_t *s, int n)
         rsample_t *a = &s[i];
         if (a->obj >= 0) {
             surface(t->cur, a->hit_t, a->hit_ng, a->obj, cam->pos, a->dir, a->P, a->Q, a->N, a->NQ,
-                    t->r->obj_needs_n[a->obj]);
+                    t->r->obj_needs_n[a->obj], &wc);
             a->depth = dot3(a->dir, cam->fwd) * (double)a->hit_t;
         } else {
             a->depth = INFINITY;
@@ -343,6 +364,7 @@ void tdc_r_pass_reflect(rthread_t *t, rsample_t *s, int n)
 {
     const tdc_scene_t *sc = t->r->scene;
     int maxb = t->r->cfg.max_bounces;
+    wncache_t wc = {.obj = -1};
     for (int i = 0; i < n; i++) {
         rsample_t *a = &s[i];
         if (!(a->mirror > 0)) continue;
@@ -371,7 +393,7 @@ void tdc_r_pass_reflect(rthread_t *t, rsample_t *s, int n)
                 copy3(a->rdir, d);
                 break;
             }
-            surface_rh(t->cur, &rh, h, O, d, P, Q, N, NQ);
+            surface_rh(t->cur, &rh, h, O, d, P, Q, N, NQ, &wc);
             double loc[3];
             shade_direct(t, h, P, Q, N, NQ, rng_key(a), a->k, 4u * (uint32_t)(b + 1), NULL, loc);
             double m2 = sc->materials[sc->objects[h].material].mirror;
@@ -596,20 +618,48 @@ static inline void mirror_reflect(double V[3], const double P[3], const double n
 /* Mirror images of Vc and Vp through the chain's planes in the current and
  * the previous frame.  A mirror whose matrix did not change has the same
  * plane in both frames: transformed and normalised once. */
-static void mirror_chain2(const rthread_t *t, const rsample_t *a, double Vc[3], double Vp[3], int dir_only)
+/* The last mirror plane normals computed in a pass: neighbouring samples
+ * see the same mirror triangle, so the same object and the same raw normal
+ * bits give the same (deterministic) normalised normals without the square
+ * root and division again. */
+typedef struct {
+    int o;                  /* -1: empty */
+    uint64_t nq[3];         /* bits of the raw object-space normal */
+    double nc[3], np[3];    /* current / previous world normal */
+} ncache_t;
+
+static inline void plane_normals(const rthread_t *t, ncache_t *nc_, int o, const double nq[3], double nc[3],
+                                 double np[3])
+{
+    uint64_t b[3];
+    memcpy(b, nq, sizeof b);
+    if (nc_->o != o || nc_->nq[0] != b[0] || nc_->nq[1] != b[1] || nc_->nq[2] != b[2]) {
+        tdc_r_xform_normal(t->cur->nm[o], nq, nc_->nc);
+        if (t->r->obj_same_m[o]) copy3(nc_->np, nc_->nc); /* unused: the same plane is taken */
+        else tdc_r_xform_normal(t->prev->nm[o], nq, nc_->np);
+        nc_->o = o;
+        nc_->nq[0] = b[0];
+        nc_->nq[1] = b[1];
+        nc_->nq[2] = b[2];
+    }
+    copy3(nc, nc_->nc);
+    copy3(np, nc_->np);
+}
+
+static void mirror_chain2(const rthread_t *t, const rsample_t *a, double Vc[3], double Vp[3], int dir_only,
+                          ncache_t *ncache)
 {
     for (int j = a->nmir - 1; j >= 0; j--) {
         int o = a->mobj[j];
-        double Pc[3], nc[3];
+        double Pc[3], nc[3], np[3];
         tdc_r_xform_point(t->cur->m[o], a->mQ[j], Pc);
-        tdc_r_xform_normal(t->cur->nm[o], a->mNQ[j], nc);
+        plane_normals(t, ncache, o, a->mNQ[j], nc, np);
         mirror_reflect(Vc, Pc, nc, dir_only);
         if (t->r->obj_same_m[o]) { /* same matrix (so same normal matrix): same plane */
             mirror_reflect(Vp, Pc, nc, dir_only);
         } else {
-            double Pp[3], np[3];
+            double Pp[3];
             tdc_r_xform_point(t->prev->m[o], a->mQ[j], Pp);
-            tdc_r_xform_normal(t->prev->nm[o], a->mNQ[j], np);
             mirror_reflect(Vp, Pp, np, dir_only);
         }
     }
@@ -617,6 +667,7 @@ static void mirror_chain2(const rthread_t *t, const rsample_t *a, double Vc[3], 
 
 void tdc_r_pass_mv_reflect(rthread_t *t, rsample_t *s, int n)
 {
+    ncache_t ncache = {.o = -1};
     for (int i = 0; i < n; i++) {
         rsample_t *a = &s[i];
         if (a->nmir == 0 || a->mirror < 0.5) continue;
@@ -630,7 +681,7 @@ void tdc_r_pass_mv_reflect(rthread_t *t, rsample_t *s, int n)
             if (t->r->obj_same_m[a->robj]) copy3(Vp, Vc);
             else tdc_r_xform_point(t->prev->m[a->robj], a->rQ, Vp);
         }
-        mirror_chain2(t, a, Vc, Vp, dir_only);
+        mirror_chain2(t, a, Vc, Vp, dir_only, &ncache);
         if (dir_only)
             ok = tdc_r_project_dir(&t->cur->cam, Vc, &xc, &yc) == 0 && tdc_r_project_dir(&t->prev->cam, Vp, &xp, &yp) == 0;
         else
