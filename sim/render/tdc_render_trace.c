@@ -682,10 +682,49 @@ void tdc_r_pass_mv_reflect(rthread_t *t, rsample_t *s, int n)
             else tdc_r_xform_point(t->prev->m[a->robj], a->rQ, Vp);
         }
         mirror_chain2(t, a, Vc, Vp, dir_only, &ncache);
+#if defined(__SSE2__)
+        {
+            /* both projections in one register (lane 0 current camera, lane
+             * 1 previous): the operations of tdc_r_project(_dir) per lane */
+            const rcam_t *cc = &t->cur->cam, *cp = &t->prev->cam;
+            __m128d d[3];
+            for (int c = 0; c < 3; c++) {
+                d[c] = _mm_set_pd(Vp[c], Vc[c]);
+                if (!dir_only) d[c] = _mm_sub_pd(d[c], _mm_set_pd(cp->pos[c], cc->pos[c]));
+            }
+            __m128d z = _mm_add_pd(
+                _mm_add_pd(_mm_mul_pd(d[0], _mm_set_pd(cp->fwd[0], cc->fwd[0])),
+                           _mm_mul_pd(d[1], _mm_set_pd(cp->fwd[1], cc->fwd[1]))),
+                _mm_mul_pd(d[2], _mm_set_pd(cp->fwd[2], cc->fwd[2])));
+            __m128d iz = _mm_div_pd(_mm_set1_pd(1.0), z);
+            __m128d u = _mm_mul_pd(
+                _mm_add_pd(_mm_add_pd(_mm_mul_pd(d[0], _mm_set_pd(cp->right[0], cc->right[0])),
+                                      _mm_mul_pd(d[1], _mm_set_pd(cp->right[1], cc->right[1]))),
+                           _mm_mul_pd(d[2], _mm_set_pd(cp->right[2], cc->right[2]))),
+                iz);
+            __m128d v = _mm_mul_pd(
+                _mm_add_pd(_mm_add_pd(_mm_mul_pd(d[0], _mm_set_pd(cp->up[0], cc->up[0])),
+                                      _mm_mul_pd(d[1], _mm_set_pd(cp->up[1], cc->up[1]))),
+                           _mm_mul_pd(d[2], _mm_set_pd(cp->up[2], cc->up[2]))),
+                iz);
+            __m128d x = _mm_add_pd(_mm_mul_pd(u, _mm_set_pd(cp->kx, cc->kx)), _mm_set_pd(0.5 * cp->w, 0.5 * cc->w));
+            __m128d y = _mm_sub_pd(_mm_set_pd(0.5 * cp->h, 0.5 * cc->h), _mm_mul_pd(v, _mm_set_pd(cp->ky, cc->ky)));
+            double zz[2], xx[2], yy[2];
+            _mm_storeu_pd(zz, z);
+            _mm_storeu_pd(xx, x);
+            _mm_storeu_pd(yy, y);
+            ok = zz[0] > 1e-12 && zz[1] > 1e-12;
+            xc = xx[0];
+            yc = yy[0];
+            xp = xx[1];
+            yp = yy[1];
+        }
+#else
         if (dir_only)
             ok = tdc_r_project_dir(&t->cur->cam, Vc, &xc, &yc) == 0 && tdc_r_project_dir(&t->prev->cam, Vp, &xp, &yp) == 0;
         else
             ok = tdc_r_project(&t->cur->cam, Vc, &xc, &yc) == 0 && tdc_r_project(&t->prev->cam, Vp, &xp, &yp) == 0;
+#endif
         if (!ok) continue; /* virtual image behind a camera: keep the primary MV */
         a->mv[0] = xp - xc;
         a->mv[1] = yp - yc;
