@@ -255,35 +255,6 @@ static void write_outputs(job_t *jb, const rsample_t *s, int n)
     }
 }
 
-/* Asks for the output lines of a tile before the passes run, so that
- * write_outputs finds them in the cache instead of stalling on up to ~80
- * cache-line misses per tile (the outputs of a 1080p frame are ~40 MB). */
-static void prefetch_outputs(const job_t *jb, const rsample_t *s, int n)
-{
-    if (jb->mode != TDC_RENDER_FULL && jb->mode != TDC_RENDER_SUBFRAME) return;
-    const tdc_render_out_t *o = jb->out;
-    const int16_t *hist = jb->r->mv_hist;
-    size_t W = (size_t)jb->r->W;
-    /* every line the tile writes, once (rows of any tile width; subframe
-     * history pixels two apart) */
-    uintptr_t lr = 0, lm = 0, lh = 0;
-    for (int i = 0; i < n; i++) {
-        /* addresses as integers: no pointer arithmetic on absent (NULL) outputs */
-        uintptr_t pr = (uintptr_t)o->rgb + (uintptr_t)s[i].dst * (3 * sizeof(float));
-        uintptr_t pm = (uintptr_t)o->mv + (uintptr_t)s[i].dst * (2 * sizeof(int16_t));
-        uintptr_t ph = (uintptr_t)hist + ((uintptr_t)s[i].py * W + (uintptr_t)s[i].px) * (2 * sizeof(int16_t));
-        if (o->rgb) {
-            if (pr >> 6 != lr) __builtin_prefetch((const void *)pr, 1);
-            if ((pr + 11) >> 6 != pr >> 6) __builtin_prefetch((const void *)(pr + 11), 1); /* pixel across two lines */
-            lr = (pr + 11) >> 6;
-        }
-        if (o->mv && pm >> 6 != lm) __builtin_prefetch((const void *)pm, 1);
-        lm = pm >> 6;
-        if (ph >> 6 != lh) __builtin_prefetch((const void *)ph, 1);
-        lh = ph >> 6;
-    }
-}
-
 static void *worker_main(void *arg)
 {
     worker_t *w = arg;
@@ -304,7 +275,6 @@ static void *worker_main(void *arg)
         if (ti >= ntiles) break;
         rsample_t *s = w->s;
         int n = place_samples(jb, ti % jb->ntx, ti / jb->ntx, s);
-        prefetch_outputs(jb, s, n);
         uint64_t t_ = stamp();
         TIMED(th, TDC_STAGE_PRIMARY, tdc_r_pass_primary(th, s, n));
         TIMED(th, TDC_STAGE_SHADE, tdc_r_pass_shade(th, s, n));
