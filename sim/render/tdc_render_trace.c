@@ -449,39 +449,48 @@ static inline int project_s(const rcam_t *c, double p0, double p1, double p2, do
     return 0;
 }
 
+/* Object point q of object obj in world space in the current (c) and the
+ * previous (p) frame (the products as in tdc_r_xform_point), sharing the
+ * product when the matrix or its rotation-scale part did not change. */
+static inline __attribute__((always_inline)) void xform_both(const rthread_t *t, int obj, const double q[3],
+                                                             double c[3], double p[3])
+{
+    const double *mc = t->cur->m[obj], *mp = t->prev->m[obj];
+    if (t->r->obj_same_m[obj]) { /* same matrix: same product */
+        c[0] = p[0] = mc[0] * q[0] + mc[1] * q[1] + mc[2] * q[2] + mc[3];
+        c[1] = p[1] = mc[4] * q[0] + mc[5] * q[1] + mc[6] * q[2] + mc[7];
+        c[2] = p[2] = mc[8] * q[0] + mc[9] * q[1] + mc[10] * q[2] + mc[11];
+    } else if (t->r->obj_same_rs[obj]) {
+        /* translation only: ((m0 q0 + m1 q1) + m2 q2) is the same in both
+         * frames, then each adds its own translation */
+        const double r0 = mc[0] * q[0] + mc[1] * q[1] + mc[2] * q[2];
+        const double r1 = mc[4] * q[0] + mc[5] * q[1] + mc[6] * q[2];
+        const double r2 = mc[8] * q[0] + mc[9] * q[1] + mc[10] * q[2];
+        c[0] = r0 + mc[3];
+        c[1] = r1 + mc[7];
+        c[2] = r2 + mc[11];
+        p[0] = r0 + mp[3];
+        p[1] = r1 + mp[7];
+        p[2] = r2 + mp[11];
+    } else {
+        c[0] = mc[0] * q[0] + mc[1] * q[1] + mc[2] * q[2] + mc[3];
+        c[1] = mc[4] * q[0] + mc[5] * q[1] + mc[6] * q[2] + mc[7];
+        c[2] = mc[8] * q[0] + mc[9] * q[1] + mc[10] * q[2] + mc[11];
+        p[0] = mp[0] * q[0] + mp[1] * q[1] + mp[2] * q[2] + mp[3];
+        p[1] = mp[4] * q[0] + mp[5] * q[1] + mp[6] * q[2] + mp[7];
+        p[2] = mp[8] * q[0] + mp[9] * q[1] + mp[10] * q[2] + mp[11];
+    }
+}
+
 /* Current and previous screen position of object point q of object obj
  * (the products as in tdc_r_xform_point). */
 static inline __attribute__((always_inline)) int track_point(const rthread_t *t, int obj, const double q[3],
                                                              double *xc, double *yc, double *xp, double *yp)
 {
-    const double *mc = t->cur->m[obj], *mp = t->prev->m[obj];
-    double c0, c1, c2, p0, p1, p2;
-    if (t->r->obj_same_m[obj]) { /* same matrix: same product */
-        c0 = p0 = mc[0] * q[0] + mc[1] * q[1] + mc[2] * q[2] + mc[3];
-        c1 = p1 = mc[4] * q[0] + mc[5] * q[1] + mc[6] * q[2] + mc[7];
-        c2 = p2 = mc[8] * q[0] + mc[9] * q[1] + mc[10] * q[2] + mc[11];
-    } else if (t->r->obj_same_rs[obj]) {
-        /* translation only: ((m0 q0 + m1 q1) + m2 q2) is the same in both
-         * frames, then each adds its own translation */
-        double r0 = mc[0] * q[0] + mc[1] * q[1] + mc[2] * q[2];
-        double r1 = mc[4] * q[0] + mc[5] * q[1] + mc[6] * q[2];
-        double r2 = mc[8] * q[0] + mc[9] * q[1] + mc[10] * q[2];
-        c0 = r0 + mc[3];
-        c1 = r1 + mc[7];
-        c2 = r2 + mc[11];
-        p0 = r0 + mp[3];
-        p1 = r1 + mp[7];
-        p2 = r2 + mp[11];
-    } else {
-        c0 = mc[0] * q[0] + mc[1] * q[1] + mc[2] * q[2] + mc[3];
-        c1 = mc[4] * q[0] + mc[5] * q[1] + mc[6] * q[2] + mc[7];
-        c2 = mc[8] * q[0] + mc[9] * q[1] + mc[10] * q[2] + mc[11];
-        p0 = mp[0] * q[0] + mp[1] * q[1] + mp[2] * q[2] + mp[3];
-        p1 = mp[4] * q[0] + mp[5] * q[1] + mp[6] * q[2] + mp[7];
-        p2 = mp[8] * q[0] + mp[9] * q[1] + mp[10] * q[2] + mp[11];
-    }
-    if (project_s(&t->cur->cam, c0, c1, c2, xc, yc) < 0) return -1;
-    return project_s(&t->prev->cam, p0, p1, p2, xp, yp);
+    double c[3], p[3];
+    xform_both(t, obj, q, c, p);
+    if (project_s(&t->cur->cam, c[0], c[1], c[2], xc, yc) < 0) return -1;
+    return project_s(&t->prev->cam, p[0], p[1], p[2], xp, yp);
 }
 
 /* The point or direction each MV sample projects, as camera-relative
@@ -493,37 +502,15 @@ static inline void track_dirs(const rthread_t *t, const rsample_t *a, double dc[
         for (int c = 0; c < 3; c++) dc[c] = dp[c] = a->dir[c];
         return;
     }
-    const double *mc = t->cur->m[a->obj], *mp = t->prev->m[a->obj], *q = a->Q;
     const double *pc = t->cur->cam.pos, *pp = t->prev->cam.pos;
-    double c0, c1, c2, p0, p1, p2;
-    if (t->r->obj_same_m[a->obj]) { /* same matrix: same product */
-        c0 = p0 = mc[0] * q[0] + mc[1] * q[1] + mc[2] * q[2] + mc[3];
-        c1 = p1 = mc[4] * q[0] + mc[5] * q[1] + mc[6] * q[2] + mc[7];
-        c2 = p2 = mc[8] * q[0] + mc[9] * q[1] + mc[10] * q[2] + mc[11];
-    } else if (t->r->obj_same_rs[a->obj]) { /* translation only, as in track_point */
-        double r0 = mc[0] * q[0] + mc[1] * q[1] + mc[2] * q[2];
-        double r1 = mc[4] * q[0] + mc[5] * q[1] + mc[6] * q[2];
-        double r2 = mc[8] * q[0] + mc[9] * q[1] + mc[10] * q[2];
-        c0 = r0 + mc[3];
-        c1 = r1 + mc[7];
-        c2 = r2 + mc[11];
-        p0 = r0 + mp[3];
-        p1 = r1 + mp[7];
-        p2 = r2 + mp[11];
-    } else {
-        c0 = mc[0] * q[0] + mc[1] * q[1] + mc[2] * q[2] + mc[3];
-        c1 = mc[4] * q[0] + mc[5] * q[1] + mc[6] * q[2] + mc[7];
-        c2 = mc[8] * q[0] + mc[9] * q[1] + mc[10] * q[2] + mc[11];
-        p0 = mp[0] * q[0] + mp[1] * q[1] + mp[2] * q[2] + mp[3];
-        p1 = mp[4] * q[0] + mp[5] * q[1] + mp[6] * q[2] + mp[7];
-        p2 = mp[8] * q[0] + mp[9] * q[1] + mp[10] * q[2] + mp[11];
-    }
-    dc[0] = c0 - pc[0]; /* the subtraction project_s starts with */
-    dc[1] = c1 - pc[1];
-    dc[2] = c2 - pc[2];
-    dp[0] = p0 - pp[0];
-    dp[1] = p1 - pp[1];
-    dp[2] = p2 - pp[2];
+    double c[3], p[3];
+    xform_both(t, a->obj, a->Q, c, p);
+    dc[0] = c[0] - pc[0]; /* the subtraction project_s starts with */
+    dc[1] = c[1] - pc[1];
+    dc[2] = c[2] - pc[2];
+    dp[0] = p[0] - pp[0];
+    dp[1] = p[1] - pp[1];
+    dp[2] = p[2] - pp[2];
 }
 
 #if defined(__SSE2__)
