@@ -103,60 +103,51 @@ static inline TDC_AVX2 __m256i trm_dec8(const uint32_t *dec, __m256i g)
     return _mm256_add_epi32(a, _mm256_srli_epi32(step, 12));
 }
 
-/* Gamma encode of L in [0, 2^24] (as tdc_gamma_encode): the combined
- * index (tdc_trm_avx2_build_encode) then one threshold compare; a forward
- * scan only for panels whose index cannot guarantee one step. */
-static inline TDC_AVX2 __m256i trm_enc8(const uint32_t *thr, const uint8_t *comb, uint32_t one_step, __m256i l)
+/* Gamma encode of L in [0, 2^24] (as tdc_gamma_encode), 8 lanes at a time:
+ * a start code from the combined index (tdc_trm_avx2_build_encode) ... */
+static inline TDC_AVX2 __m256i trm_enc_start(const uint8_t *comb, __m256i l)
 {
     const __m256i fine = _mm256_cmpgt_epi32(_mm256_set1_epi32(1 << 16), l);
     const __m256i i = _mm256_blendv_epi8(_mm256_add_epi32(_mm256_srli_epi32(l, 12), _mm256_set1_epi32(1008)),
                                          _mm256_srli_epi32(l, 6), fine);
-    __m256i k = _mm256_and_si256(_mm256_i32gather_epi32((const int *)(const void *)comb, i, 1),
-                                 _mm256_set1_epi32(0xff));
+    return _mm256_and_si256(_mm256_i32gather_epi32((const int *)(const void *)comb, i, 1), _mm256_set1_epi32(0xff));
+}
+
+/* ... then forward steps: k + 1 where k < 255 and L >= thr[k + 1]; *adv
+ * gets the lanes that moved. */
+static inline TDC_AVX2 __m256i trm_enc_step(const uint32_t *thr, __m256i k, __m256i l, __m256i *adv)
+{
     const __m256i top = _mm256_set1_epi32(255);
-    for (;;) {
-        const __m256i next = _mm256_min_epi32(_mm256_add_epi32(k, _mm256_set1_epi32(1)), top);
-        const __m256i t = _mm256_i32gather_epi32((const int *)thr, next, 4);
-        /* advance where k < 255 and L >= thr[k + 1] */
-        const __m256i adv = _mm256_andnot_si256(_mm256_cmpgt_epi32(t, l), _mm256_cmpgt_epi32(top, k));
-        k = _mm256_sub_epi32(k, adv);
-        if (one_step || _mm256_testz_si256(adv, adv)) {
-            return k;
-        }
-    }
+    const __m256i t = _mm256_i32gather_epi32((const int *)thr, _mm256_min_epi32(_mm256_add_epi32(k, _mm256_set1_epi32(1)), top), 4);
+    *adv = _mm256_andnot_si256(_mm256_cmpgt_epi32(t, l), _mm256_cmpgt_epi32(top, k));
+    return _mm256_sub_epi32(k, *adv);
 }
 
 /* Encode of N vectors (entry e holds channel e % 3): the index gathers of
- * all, then the threshold gathers, so they overlap (the scan only if a
- * bucket of this panel holds two thresholds). */
+ * all, then one threshold step of all, so the gathers overlap; further
+ * steps only for a panel whose index has a bucket with two thresholds. */
 #define TRM_ENC_MAX 6
 static inline TDC_AVX2 void trm_enc8xn(const tdc_trm_rowctx_t *k, const __m256i *l, __m256i *code, int n)
 {
+    __m256i kk[TRM_ENC_MAX], adv[TRM_ENC_MAX];
+#pragma GCC unroll 6
+    for (int e = 0; e < n; e++) {
+        kk[e] = trm_enc_start(k->enc_comb[e % 3], l[e]);
+    }
+#pragma GCC unroll 6
+    for (int e = 0; e < n; e++) {
+        kk[e] = trm_enc_step(k->thr[e % 3], kk[e], l[e], &adv[e]);
+    }
     if (!k->enc_one_step) {
         for (int e = 0; e < n; e++) {
-            code[e] = trm_enc8(k->thr[e % 3], k->enc_comb[e % 3], 0u, l[e]);
+            while (!_mm256_testz_si256(adv[e], adv[e])) {
+                kk[e] = trm_enc_step(k->thr[e % 3], kk[e], l[e], &adv[e]);
+            }
         }
-        return;
-    }
-    const __m256i top = _mm256_set1_epi32(255);
-    __m256i kk[TRM_ENC_MAX], t[TRM_ENC_MAX];
-#pragma GCC unroll 6
-    for (int e = 0; e < n; e++) {
-        const __m256i fine = _mm256_cmpgt_epi32(_mm256_set1_epi32(1 << 16), l[e]);
-        const __m256i i = _mm256_blendv_epi8(_mm256_add_epi32(_mm256_srli_epi32(l[e], 12), _mm256_set1_epi32(1008)),
-                                             _mm256_srli_epi32(l[e], 6), fine);
-        kk[e] = _mm256_and_si256(_mm256_i32gather_epi32((const int *)(const void *)k->enc_comb[e % 3], i, 1),
-                                 _mm256_set1_epi32(0xff));
     }
 #pragma GCC unroll 6
     for (int e = 0; e < n; e++) {
-        t[e] = _mm256_i32gather_epi32((const int *)k->thr[e % 3],
-                                      _mm256_min_epi32(_mm256_add_epi32(kk[e], _mm256_set1_epi32(1)), top), 4);
-    }
-#pragma GCC unroll 6
-    for (int e = 0; e < n; e++) {
-        const __m256i adv = _mm256_andnot_si256(_mm256_cmpgt_epi32(t[e], l[e]), _mm256_cmpgt_epi32(top, kk[e]));
-        code[e] = _mm256_sub_epi32(kk[e], adv);
+        code[e] = kk[e];
     }
 }
 
