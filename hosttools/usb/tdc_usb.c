@@ -35,7 +35,7 @@ static const char usage_text[] =
     "  --progress/--no-progress stream/flash: force the progress bar on or off\n"
     "  --no-verify --no-reset   flash: skip the read-back, do not reset afterwards\n"
     "  -h, --help               this text\n"
-    "exit codes: 0 OK, 1 ARGS, 2 NO_DEVICE, 3 AMBIGUOUS, 4 USB, 5 TIMEOUT,\n"
+    "exit codes: 0 OK, 1 ARGS, 2 NO_DEVICE, 3 AMBIGUOUS, 4 IO, 5 TIMEOUT,\n"
     "  6 DISCONNECTED, 7 FILE, 8 IMAGE, 9 INCOMPATIBLE, 10 DFU, 11 VERIFY, 12 PROTOCOL\n";
 
 static void usage(FILE *f)
@@ -293,14 +293,26 @@ static tdc_exit_t cmd_stream(tdc_board_t *b, const opts_t *o, const char *path, 
     return TDC_EXIT_OK;
 }
 
+/* Option numbers: decimal or 0x hex, whole string, range-checked (never wrapped). */
 static int parse_long(const char *s, long lo, long hi, long *out)
 {
-    char *end;
-    errno = 0;
-    long v = strtol(s, &end, 0);
-    if (errno != 0 || end == s || *end != '\0' || v < lo || v > hi)
+    uint64_t v;
+    if (tdc_parse_u64(s, (uint64_t)lo, (uint64_t)hi, &v) != 0)
         return -1;
-    *out = v;
+    *out = (long)v;
+    return 0;
+}
+
+/* X.Y.Z with X <= 65535, Y, Z <= 255, as 0x00XXYYZZ. */
+static int parse_version(const char *s, uint32_t *out)
+{
+    uint64_t a, b, c;
+    const char *e;
+    if (tdc_parse_u64_field(s, &e, 0xFFFF, &a) != 0 || *e != '.' ||
+        tdc_parse_u64_field(e + 1, &e, 255, &b) != 0 || *e != '.' ||
+        tdc_parse_u64_field(e + 1, &e, 255, &c) != 0 || *e != '\0')
+        return -1;
+    *out = (uint32_t)(a << 16 | b << 8 | c);
     return 0;
 }
 
@@ -318,6 +330,7 @@ int main(int argc, char **argv)
         {"fw-version", 1, 0, O_FWV}, {"help", 0, 0, 'h'}, {0, 0, 0, 0}};
     int c;
     long v;
+    tdc_tool_set_name("tdc-usb");
     while ((c = getopt_long(argc, argv, "h", lopts, NULL)) != -1) {
         const char *bad = NULL;
         switch (c) {
@@ -333,20 +346,12 @@ int main(int argc, char **argv)
         case O_NOVERIFY: o.verify = 0; break;
         case O_NORESET: o.reset = 0; break;
         case O_BOARD: o.board = optarg; break;
-        case O_FWV: {
-            unsigned a, b2, p;
-            if (sscanf(optarg, "%u.%u.%u", &a, &b2, &p) != 3 || a > 0xFFFF || b2 > 255 || p > 255)
-                bad = "--fw-version";
-            else
-                o.fw_version = a << 16 | b2 << 8 | p;
-            break;
-        }
+        case O_FWV: if (parse_version(optarg, &o.fw_version)) bad = "--fw-version"; break;
         case 'h': usage(stdout); return TDC_EXIT_OK;
         default: usage(stderr); return TDC_EXIT_ARGS;
         }
         if (bad != NULL) {
-            fprintf(stderr, "tdc-usb: bad value for %s: '%s'\n", bad, optarg);
-            return TDC_EXIT_ARGS;
+            return tdc_fail_option(NULL, bad, optarg, "see tdc-usb --help");
         }
     }
     if (optind >= argc) {
@@ -373,7 +378,7 @@ int main(int argc, char **argv)
     if (r != 0) {
         fprintf(stderr, "tdc-usb: libusb_init failed: %s (%s)\n", libusb_error_name(r),
                 libusb_strerror(r));
-        return TDC_EXIT_USB;
+        return TDC_EXIT_IO;
     }
     tdc_exit_t e;
     if (strcmp(cmd, "list") == 0) {

@@ -10,31 +10,11 @@
 #include <string.h>
 #include <time.h>
 
-const char *tdc_exit_name(tdc_exit_t e)
-{
-    switch (e) {
-    case TDC_EXIT_OK: return "OK";
-    case TDC_EXIT_ARGS: return "ARGS";
-    case TDC_EXIT_NO_DEVICE: return "NO_DEVICE";
-    case TDC_EXIT_AMBIGUOUS: return "AMBIGUOUS";
-    case TDC_EXIT_USB: return "USB";
-    case TDC_EXIT_TIMEOUT: return "TIMEOUT";
-    case TDC_EXIT_DISCONNECTED: return "DISCONNECTED";
-    case TDC_EXIT_FILE: return "FILE";
-    case TDC_EXIT_IMAGE: return "IMAGE";
-    case TDC_EXIT_INCOMPATIBLE: return "INCOMPATIBLE";
-    case TDC_EXIT_DFU: return "DFU";
-    case TDC_EXIT_VERIFY: return "VERIFY";
-    case TDC_EXIT_PROTOCOL: return "PROTOCOL";
-    }
-    return "?";
-}
-
 tdc_exit_t tdc_usb_fail(const tdc_board_t *b, const char *what, int err)
 {
     const char *op = b != NULL && b->op != NULL ? b->op : "usb";
     const char *hint = "";
-    tdc_exit_t code = TDC_EXIT_USB;
+    tdc_exit_t code = TDC_EXIT_IO;
     switch (err) {
     case LIBUSB_ERROR_TIMEOUT:
         code = TDC_EXIT_TIMEOUT;

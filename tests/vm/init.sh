@@ -138,11 +138,11 @@ cat /tmp/g.out
 # busy: a held line is refused with the holder's name
 tdc-gpio reset --chip $CHIP --line nreset --pulse-ms 1500 > /dev/null 2>&1 &
 p=$!; usleep 500000
-check gpio-busy 4 "in use by 'tdc-gpio'" tdc-gpio reset --chip $CHIP --line nreset
+check gpio-busy 16 "in use by 'tdc-gpio'" tdc-gpio reset --chip $CHIP --line nreset
 wait $p
-check gpio-no-line 3 "no line 'nosuch'" tdc-gpio reset --chip $CHIP --line nosuch
+check gpio-no-line 15 "no line 'nosuch'" tdc-gpio reset --chip $CHIP --line nosuch
 check gpio-no-chip 2 "cannot open GPIO chip" tdc-gpio reset --chip gpiochip99 --line 0
-check gpio-vsync-timeout 6 "no edge" tdc-gpio vsync --chip $CHIP --line vsync --timeout-ms 300
+check gpio-vsync-timeout 5 "no edge" tdc-gpio vsync --chip $CHIP --line vsync --timeout-ms 300
 # vsync: 20 Hz with every 20th pulse left out.  The rate is low on purpose:
 # under TCG on a loaded host the generator's wake-ups slip by milliseconds,
 # which at 100 Hz already looks like missed frames; at 50 ms periods it does not.
