@@ -2,7 +2,7 @@
 # board side of the USB protocol, and their tests against emulated devices.
 # Docs: docs/usb-protocol.md, docs/hosttools.md.
 
-DEPS_PKGS += libusb-1.0-0-dev libgpiod-dev gpiod umockdev libumockdev-dev libglib2.0-dev
+DEPS_PKGS += libusb-1.0-0-dev libgpiod-dev gpiod umockdev libumockdev-dev libglib2.0-dev dfu-util usbutils
 
 FW_SRCS += firmware/tdc_usbproto.c
 
@@ -36,10 +36,14 @@ $(TDC_GPIO): $(TDC_GPIO_OBJS)
 TESTS += $(B)/tests/usb/test_usbproto
 
 # umockdev tests: the emulated board plus the real tdc-usb binary.
-USB_EMUL_OBJS = $(B)/tests/usb/test_usb_emul.o $(B)/tests/usb/tdc_usb_emul.o $(B)/tests/usb/tdc_link_sink.o
-$(B)/tests/usb/test_usb_emul: $(USB_EMUL_OBJS) $(SIMLIB) $(FWLIB) $(TDC_USB)
-	$(CC) $(HOST_LDFLAGS) $(USB_EMUL_OBJS) -o $@ $(SIMLIB) $(FWLIB) $(UMOCKDEV_LIBS) -lcmocka -lpthread -lm
+USB_EMUL_OBJS = $(B)/tests/usb/tdc_usb_run.o $(B)/tests/usb/tdc_usb_emul.o $(B)/tests/usb/tdc_link_sink.o
+$(B)/tests/usb/test_usb_emul: $(B)/tests/usb/test_usb_emul.o $(USB_EMUL_OBJS) $(SIMLIB) $(FWLIB) $(TDC_USB)
+	$(CC) $(HOST_LDFLAGS) $< $(USB_EMUL_OBJS) -o $@ $(SIMLIB) $(FWLIB) $(UMOCKDEV_LIBS) -lcmocka -lpthread -lm
 TESTS += $(B)/tests/usb/test_usb_emul
+# Debian's dfu-util and lsusb (independent clients) against the same boards.
+$(B)/tests/usb/test_usb_clients: $(B)/tests/usb/test_usb_clients.o $(USB_EMUL_OBJS) $(SIMLIB) $(FWLIB) $(TDC_USB)
+	$(CC) $(HOST_LDFLAGS) $< $(USB_EMUL_OBJS) -o $@ $(SIMLIB) $(FWLIB) $(UMOCKDEV_LIBS) -lcmocka -lpthread -lm
+TESTS += $(B)/tests/usb/test_usb_clients
 
 # The vsync statistics (pure code) and tdc-gpio's error paths without a chip.
 $(B)/tests/usb/test_gpio_vsync: $(B)/tests/usb/test_gpio_vsync.o $(B)/hosttools/gpio/tdc_vsync_stats.o $(TDC_GPIO)

@@ -392,7 +392,7 @@ int main(int argc, char **argv)
         uint32_t len = 0;
         /* Local inputs first: a bad file is reported even without a board. */
         e = strcmp(cmd, "stream") == 0 ? open_stream_file(args[0], &f)
-            : strcmp(cmd, "flash") == 0 ? tdc_usb_load_image(args[0], &img, &len) : TDC_EXIT_OK;
+            : strcmp(cmd, "flash") == 0 ? tdc_usb_load_image(args[0], o.sel.vid, o.sel.pid, &img, &len) : TDC_EXIT_OK;
         if (e == TDC_EXIT_OK)
             e = tdc_usb_open(ctx, &o.sel, &b);
         if (e == TDC_EXIT_OK) {

@@ -55,8 +55,11 @@ for m in configfs usb-common usbcore udc-core libcomposite usb_f_fs dummy_hcd; d
 done
 cp "$ko" "$root/lib/modules/gpio-sim.ko"
 for p in tdc-usb tdc-gpio tdc_ffs_board tdc_vsync_gen; do cp "$bin/$p" "$root/usr/bin/"; done
+# Debian's dfu-util (an independent DFU client, package dfu-util) as it is
+need dfu-util "Debian package dfu-util"
+cp "$(command -v dfu-util)" "$root/usr/bin/dfu-util"
 # shared libraries of the dynamically linked tools, at their own paths
-for lib in $(ldd "$bin/tdc-usb" "$bin/tdc-gpio" | awk '/=> \//{print $3} /^\t\/lib/{print $1}' | sort -u); do
+for lib in $(ldd "$bin/tdc-usb" "$bin/tdc-gpio" "$root/usr/bin/dfu-util" | awk '/=> \//{print $3} /^\t\/lib/{print $1}' | sort -u); do
     mkdir -p "$root$(dirname "$lib")"; cp -L "$lib" "$root$lib"
 done
 mkdir -p "$root/lib64"; cp -L /lib64/ld-linux-x86-64.so.2 "$root/lib64/"
