@@ -1,6 +1,6 @@
 #!/bin/sh
 # tdc-run end to end: happy paths agree bit for bit, every bad input gets a
-# message and the right exit code.  Usage: tests/test_tdc_run.sh PATH/TO/tdc-run
+# message and the right exit code.  Usage: tests/unit/test_tdc_run.sh PATH/TO/tdc-run
 run=$1
 # In the ASan build: LeakSanitizer on, so an error path that leaks fails (docs/tools.md)
 export ASAN_OPTIONS="detect_leaks=1${ASAN_OPTIONS:+:$ASAN_OPTIONS}"
