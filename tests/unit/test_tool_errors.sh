@@ -4,7 +4,7 @@
 # exit code, nothing is written outside the folder named, an existing output
 # survives a failed run.  In the ASan build the tools run with LeakSanitizer
 # on, so an error path that leaks fails here.
-# Usage: tests/test_tool_errors.sh BUILD_DIR TABLEGEN
+# Usage: tests/unit/test_tool_errors.sh BUILD_DIR TABLEGEN
 b=$1; tablegen=$2
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0${ASAN_OPTIONS:+:$ASAN_OPTIONS}"
 t=$(mktemp -d); trap 'rm -rf "$t"' EXIT
