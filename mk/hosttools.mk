@@ -21,6 +21,7 @@ $(B)/hosttools/usb/%.o: HOST_CFLAGS += $(LIBUSB_CFLAGS)
 $(B)/tests/usb/%.o: HOST_CFLAGS += $(UMOCKDEV_CFLAGS) -DTDC_USB_BIN='"$(abspath $(TDC_USB))"'
 
 TDC_USB_OBJS = $(B)/hosttools/usb/tdc_usb.o $(B)/hosttools/usb/tdc_usb_dev.o $(B)/hosttools/usb/tdc_usb_dfu.o \
+               $(B)/hosttools/usb/tdc_usb_reply.o \
                $(B)/hosttools/common/tdc_tool.o
 $(TDC_USB): $(TDC_USB_OBJS) $(FWLIB)
 	@mkdir -p $(@D)
@@ -44,6 +45,12 @@ TESTS += $(B)/tests/usb/test_usb_emul
 $(B)/tests/usb/test_usb_clients: $(B)/tests/usb/test_usb_clients.o $(USB_EMUL_OBJS) $(SIMLIB) $(FWLIB) $(TDC_USB)
 	$(CC) $(HOST_LDFLAGS) $< $(USB_EMUL_OBJS) -o $@ $(SIMLIB) $(FWLIB) $(UMOCKDEV_LIBS) -lcmocka -lpthread -lm
 TESTS += $(B)/tests/usb/test_usb_clients
+
+# tdc-usb's parsing of board replies (pure code, also fuzzed: tests/fuzz/fuzz_usbreply.c).
+$(B)/tests/usb/test_usb_reply: $(B)/tests/usb/test_usb_reply.o $(B)/hosttools/usb/tdc_usb_reply.o
+	$(CC) $(HOST_LDFLAGS) $^ -o $@ -lcmocka
+$(B)/tests/usb/test_usb_reply.o: HOST_CFLAGS += -Ihosttools/usb
+TESTS += $(B)/tests/usb/test_usb_reply
 
 # The vsync statistics (pure code) and tdc-gpio's error paths without a chip.
 $(B)/tests/usb/test_gpio_vsync: $(B)/tests/usb/test_gpio_vsync.o $(B)/hosttools/gpio/tdc_vsync_stats.o $(TDC_GPIO)

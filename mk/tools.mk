@@ -11,7 +11,7 @@ TESTS += $(B)/tests/unit/test_tool
 
 # Error paths of tdc-linkdump, tdc-render and the table generator (both
 # variants; LeakSanitizer on in the ASan one).
-$(B)/test-tool-errors: tests/unit/test_tool_errors.sh $(B)/tdc-render $(B)/tdc-linkdump $(TABLEGEN)
+$(B)/test-tool-errors: tests/unit/test_tool_errors.sh $(B)/tdc-render $(B)/tdc-linkdump $(B)/tdc-sim $(TABLEGEN)
 	@printf '#!/bin/sh\nexec tests/unit/test_tool_errors.sh %s %s\n' "$(B)" "$(TABLEGEN)" > $@
 	@chmod +x $@
 TESTS += $(B)/test-tool-errors

@@ -89,34 +89,13 @@ tdc_exit_t tdc_usb_get_info(tdc_board_t *b, board_info_t *bi)
                                    TDC_USB_IF_STREAM, raw, sizeof raw, &got);
     if (e != TDC_EXIT_OK)
         return e;
-    if (got < (int)TDC_USB_INFO_LEN || tdc_get_le32(raw + TDC_USB_INFO_OFF_MAGIC) != TDC_USB_INFO_MAGIC ||
-        tdc_get_le16(raw + TDC_USB_INFO_OFF_PROTO) != TDC_USB_PROTO_VERSION) {
+    if (tdc_usb_parse_info(raw, got, bi) != 0) {
         fprintf(stderr, "tdc-usb: %s: board info malformed (%d bytes, magic %08x, protocol %u; "
                         "tdc-usb speaks protocol %u)\n", b->op, got,
                 got >= 4 ? tdc_get_le32(raw) : 0u,
                 got >= 6 ? tdc_get_le16(raw + TDC_USB_INFO_OFF_PROTO) : 0u, TDC_USB_PROTO_VERSION);
         return TDC_EXIT_PROTOCOL;
     }
-    memset(bi, 0, sizeof *bi);
-    bi->fw_version = tdc_get_le32(raw + TDC_USB_INFO_OFF_FW_VERSION);
-    memcpy(bi->board, raw + TDC_USB_INFO_OFF_BOARD, TDC_USB_INFO_NAME_LEN);
-    memcpy(bi->panel, raw + TDC_USB_INFO_OFF_PANEL, TDC_USB_INFO_NAME_LEN);
-    bi->width = tdc_get_le16(raw + TDC_USB_INFO_OFF_WIDTH);
-    bi->height = tdc_get_le16(raw + TDC_USB_INFO_OFF_HEIGHT);
-    bi->refresh_mhz = tdc_get_le32(raw + TDC_USB_INFO_OFF_REFRESH);
-    bi->rx_buf = tdc_get_le32(raw + TDC_USB_INFO_OFF_RX_BUF);
-    bi->max_pkt = tdc_get_le32(raw + TDC_USB_INFO_OFF_MAX_PKT);
-    bi->slot = tdc_get_le32(raw + TDC_USB_INFO_OFF_SLOT);
-    bi->rx_xfers = tdc_get_le32(raw + TDC_USB_INFO_OFF_RX_XFERS);
-    bi->rx_bytes = (uint64_t)tdc_get_le32(raw + TDC_USB_INFO_OFF_RX_BYTES) |
-                   ((uint64_t)tdc_get_le32(raw + TDC_USB_INFO_OFF_RX_BYTES + 4) << 32);
-    bi->rx_crc = tdc_get_le32(raw + TDC_USB_INFO_OFF_RX_CRC);
-    bi->link_crc = tdc_get_le32(raw + TDC_USB_INFO_OFF_LINK_CRC);
-    bi->link_bad = tdc_get_le32(raw + TDC_USB_INFO_OFF_LINK_BAD);
-    bi->overruns = tdc_get_le32(raw + TDC_USB_INFO_OFF_OVERRUNS);
-    bi->dfu_errors = tdc_get_le32(raw + TDC_USB_INFO_OFF_DFU_ERRORS);
-    bi->stalls = tdc_get_le32(raw + TDC_USB_INFO_OFF_STALLS);
-    bi->frames = tdc_get_le32(raw + TDC_USB_INFO_OFF_FRAMES);
     return TDC_EXIT_OK;
 }
 
@@ -165,10 +144,10 @@ static void list_cb(void *ctx, libusb_device *dev, libusb_device_handle *h, cons
     int got = libusb_control_transfer(h, LIBUSB_ENDPOINT_IN | LIBUSB_REQUEST_TYPE_VENDOR |
                                       LIBUSB_RECIPIENT_INTERFACE, TDC_USB_REQ_BOARD_INFO, 0,
                                       TDC_USB_IF_STREAM, raw, sizeof raw, b.timeout_ms);
-    if (got >= (int)TDC_USB_INFO_LEN && tdc_get_le32(raw) == TDC_USB_INFO_MAGIC)
-        printf(" board %.16s panel %.16s fw %u.%u.%u\n", (const char *)raw + TDC_USB_INFO_OFF_BOARD,
-               (const char *)raw + TDC_USB_INFO_OFF_PANEL, raw[TDC_USB_INFO_OFF_FW_VERSION + 2],
-               raw[TDC_USB_INFO_OFF_FW_VERSION + 1], raw[TDC_USB_INFO_OFF_FW_VERSION]);
+    board_info_t bi;
+    if (tdc_usb_parse_info(raw, got, &bi) == 0)
+        printf(" board %s panel %s fw %u.%u.%u\n", bi.board, bi.panel, bi.fw_version >> 16,
+               (bi.fw_version >> 8) & 0xFFu, bi.fw_version & 0xFFu);
     else
         printf(" (board info: %s)\n", got < 0 ? libusb_error_name(got) : "malformed");
 }
@@ -273,12 +252,12 @@ static tdc_exit_t cmd_stream(tdc_board_t *b, const opts_t *o, const char *path, 
     e = tdc_usb_bulk(b, "bulk IN status report", b->ep_in, st, sizeof st, &got);
     if (e != TDC_EXIT_OK)
         return e;
-    if (got < (int)TDC_USB_STATUS_LEN || tdc_get_le32(st) != TDC_USB_STATUS_MAGIC) {
+    tdc_usb_status_t sr;
+    if (tdc_usb_parse_status(st, got, &sr) != 0) {
         fprintf(stderr, "tdc-usb: stream: status report malformed (%d bytes)\n", got);
         return TDC_EXIT_PROTOCOL;
     }
-    printf("status: seq %u errors %u frames %u\n", tdc_get_le32(st + TDC_USB_STATUS_OFF_SEQ),
-           tdc_get_le32(st + TDC_USB_STATUS_OFF_ERRORS), tdc_get_le32(st + TDC_USB_STATUS_OFF_FRAMES));
+    printf("status: seq %u errors %u frames %u\n", sr.seq, sr.errors, sr.frames);
     e = tdc_usb_get_info(b, &bi);
     if (e != TDC_EXIT_OK)
         return e;

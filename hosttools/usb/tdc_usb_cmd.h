@@ -10,6 +10,7 @@
 #include <stdint.h>
 
 #include "tdc_usb_dev.h"
+#include "tdc_usb_reply.h"
 #include "tdc_usbproto.h"
 
 #define DEFAULT_TIMEOUT_MS 2000u
@@ -24,14 +25,6 @@ typedef struct {
     uint32_t fw_version;
 } opts_t;
 
-typedef struct {
-    uint32_t fw_version;
-    char board[TDC_USB_INFO_NAME_LEN + 1], panel[TDC_USB_INFO_NAME_LEN + 1];
-    unsigned width, height;
-    uint32_t refresh_mhz, rx_buf, max_pkt, slot;
-    uint32_t rx_xfers, rx_crc, link_crc, link_bad, overruns, dfu_errors, stalls, frames;
-    uint64_t rx_bytes;
-} board_info_t;
 
 double tdc_usb_now_s(void);
 void tdc_usb_progress(const opts_t *o, const char *label, uint64_t done, uint64_t total, double t0);

@@ -5,6 +5,7 @@
  */
 #include "tdc_usb_dev.h"
 #include "tdc_usbproto.h"
+#include "tdc_usb_reply.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -53,13 +54,8 @@ int tdc_usb_string_ascii(libusb_device_handle *h, uint8_t index, char *out, int 
                                     sizeof buf, timeout_ms);
     if (r < 0)
         return r;
-    if (r < 2 || buf[1] != LIBUSB_DT_STRING || buf[0] > r)
-        return LIBUSB_ERROR_IO;
-    int n = 0;
-    for (int i = 2; i + 1 < buf[0] && n + 1 < cap; i += 2)
-        out[n++] = buf[i + 1] == 0 && buf[i] >= 0x20 && buf[i] < 0x7F ? (char)buf[i] : '?';
-    out[n] = '\0';
-    return n;
+    int n = tdc_usb_string_decode(buf, r, out, cap);
+    return n < 0 ? LIBUSB_ERROR_IO : n;
 }
 
 int tdc_usb_enumerate(libusb_context *ctx, const tdc_usb_select_t *sel, tdc_usb_list_fn fn,

@@ -53,13 +53,10 @@ static uint16_t dfu_transfer_size(tdc_board_t *b)
         const struct libusb_interface_descriptor *id = &cd->interface[i].altsetting[0];
         if (id->bInterfaceClass != 0xFE || id->bInterfaceSubClass != 0x01)
             continue;
-        const uint8_t *x = id->extra;
-        for (int k = 0; k + 9 <= id->extra_length && x[k] >= 2; k += x[k])
-            if (x[k + 1] == 0x21 && x[k] >= 7)
-                size = (uint16_t)(x[k + 5] | (x[k + 6] << 8));
+        size = tdc_usb_dfu_transfer_size(id->extra, id->extra_length, size);
     }
     libusb_free_config_descriptor(cd);
-    return size >= 64 && size <= 4096 ? size : TDC_DFU_TRANSFER_SIZE;
+    return size;
 }
 
 static tdc_exit_t dfu_getstatus(tdc_board_t *b, uint8_t st[6])
