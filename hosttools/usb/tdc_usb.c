@@ -25,7 +25,7 @@ static const char usage_text[] =
     "                           over bulk OUT; progress, throughput, board counters\n"
     "  flash IMAGE              DFU download with size and CRC checks, verify, reset\n"
     "  mkimage --board B [--fw-version X.Y.Z] IN.bin OUT.img\n"
-    "                           wrap a raw firmware binary in a tdc image header\n"
+    "                           wrap a raw binary: tdc image header + DFU suffix\n"
     "options:\n"
     "  --bus N --address N      select the board by USB bus and device address\n"
     "  --serial S               select the board by serial number\n"

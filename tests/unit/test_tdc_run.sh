@@ -2,19 +2,7 @@
 # tdc-run end to end: happy paths agree bit for bit, every bad input gets a
 # message and the right exit code.  Usage: tests/unit/test_tdc_run.sh PATH/TO/tdc-run
 run=$1
-# In the ASan build: LeakSanitizer on, so an error path that leaks fails (docs/tools.md)
-export ASAN_OPTIONS="detect_leaks=1${ASAN_OPTIONS:+:$ASAN_OPTIONS}"
-t=$(mktemp -d); trap 'rm -rf "$t"' EXIT
-pass=0; fail=0
-ok()   { pass=$((pass+1)); echo "ok   $1"; }
-bad()  { fail=$((fail+1)); echo "FAIL $1"; }
-# expect CODE DESCRIPTION PATTERN -- command...: exit code and a message matching PATTERN
-expect() {
-    code=$1; what=$2; pat=$3; shift 4
-    "$@" >"$t/out" 2>"$t/err"; got=$?
-    if [ "$got" -eq "$code" ] && grep -q -- "$pat" "$t/err" "$t/out"; then ok "$what"
-    else bad "$what (exit $got, want $code; stderr: $(head -c 300 "$t/err"))"; fi
-}
+. tests/unit/tool_expect.sh
 expect 0 "--help" "usage: tdc-run" -- "$run" --help
 expect 1 "no arguments" "no output folder" -- "$run"
 expect 1 "unknown panel" "tdc-run: unknown panel 'nope': known panels" -- "$run" -o "$t/o" -p nope x.png

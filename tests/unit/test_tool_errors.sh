@@ -6,18 +6,7 @@
 # on, so an error path that leaks fails here.
 # Usage: tests/unit/test_tool_errors.sh BUILD_DIR TABLEGEN
 b=$1; tablegen=$2
-export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0${ASAN_OPTIONS:+:$ASAN_OPTIONS}"
-t=$(mktemp -d); trap 'rm -rf "$t"' EXIT
-pass=0; fail=0
-ok()  { pass=$((pass+1)); echo "ok   $1"; }
-bad() { fail=$((fail+1)); echo "FAIL $1"; }
-# expect CODE WHAT PATTERN -- cmd...: exit code, the pattern on stderr, no sanitizer report
-expect() {
-    code=$1; what=$2; pat=$3; shift 4
-    "$@" >"$t/out" 2>"$t/err"; got=$?
-    if [ "$got" -eq "$code" ] && { [ -z "$pat" ] || grep -q -- "$pat" "$t/err"; } && ! grep -q "Sanitizer" "$t/err"; then ok "$what"
-    else bad "$what (exit $got, want $code; stderr: $(head -c 400 "$t/err"))"; fi
-}
+. tests/unit/tool_expect.sh
 render=$b/tdc-render; dump=$b/tdc-linkdump
 
 # ---- tdc-linkdump
