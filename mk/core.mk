@@ -6,6 +6,7 @@ FW_SRCS += firmware/tdc_trm.c
 SIM_SRCS += sim/ref_trm.c
 TESTS += $(B)/tests/test_trm_ref
 TESTS += $(B)/tests/test_trm
+TESTS += $(B)/tests/test_arena
 TESTS += $(B)/tests/test_trm_stability
 GOLDEN_STAGES += trm
 
