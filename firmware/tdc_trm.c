@@ -198,11 +198,7 @@ tdc_status_t tdc_trm_init(tdc_trm_t *st, const tdc_trm_config_t *cfg, const tdc_
     trm_build_kernels(cfg->height, st->rh, cfg->sigma_q8, st->dtaps, st->dy_first, st->dy_w);
     trm_build_upsample(cfg->width, st->rw, st->ux_i);
     trm_build_upsample(cfg->height, st->rh, st->uy_i);
-    /* exp(-x) at x = k / 256 from the exact helper, for the per-pixel
-     * weight (tdc_trm_weight): generated here, never typed by hand */
-    for (uint32_t k = 0; k < TDC_TRM_WEXP_ENTRIES; k++) {
-        st->wexp[k] = tdc_exp_neg_q16_q30(k << 8);
-    }
+    tdc_trm_wexp_build(st->wexp); /* for the per-pixel weight (tdc_trm_weight) */
     st->enc_one_step = 0;
     if (st->simd && st->enc_comb) {
         st->enc_one_step = (uint8_t)tdc_trm_avx2_build_encode(panel, st->enc_comb);
@@ -346,19 +342,7 @@ int32_t tdc_trm_weight(const tdc_trm_t *st, uint32_t x_q16)
 /* The row kernels' view of the state (tdc_trm_kernels.h). */
 static void trm_rowctx(const tdc_trm_t *st, tdc_trm_rowctx_t *k)
 {
-    for (int c = 0; c < 3; c++) {
-        k->dec[c] = st->panel->gamma[c].decode;
-        k->thr[c] = st->panel->gamma[c].enc_thresh;
-        k->idx[c] = st->panel->gamma[c].enc_index;
-    }
-    k->ux = st->ux_i;
-    k->wexp = st->wexp;
-    k->width = st->cfg.width;
-    k->s_q8 = st->cfg.s_q8;
-    for (int c = 0; c < 3; c++) {
-        k->enc_comb[c] = st->enc_comb ? st->enc_comb + (size_t)c * TDC_TRM_ENC_COMB : NULL;
-    }
-    k->enc_one_step = st->enc_one_step;
+    tdc_trm_rowctx_init(k, st->panel, st->ux_i, st->wexp, st->cfg.width, st->cfg.s_q8, st->enc_comb, st->enc_one_step);
 }
 
 tdc_status_t tdc_trm_full(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out, uint32_t out_stride)

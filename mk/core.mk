@@ -57,11 +57,6 @@ $(B)/test-fw-nofloat-insn: $(FWLIB) tests/check_simd_nofloat.sh
 	@chmod +x $@
 TESTS += $(B)/test-fw-nofloat-insn
 endif
-TESTS += $(B)/tests/checkasm_trm
-$(B)/bench-checkasm-trm: $(B)/tests/checkasm_trm
-	@printf '#!/bin/sh\nexec %s --bench\n' "$<" > $@
-	@chmod +x $@
-BENCHES += $(B)/bench-checkasm-trm
 
 # test_math again with the Cortex-M arithmetic (TDC_HW_DIV64=0: long
 # division with 32-bit divides in the reciprocal and the square root), so
