@@ -19,7 +19,7 @@ int32_t tdc_lcd_model_q24(const int32_t p_q24[4], uint32_t v_q16, uint32_t u_q16
     const int64_t v = v_q16, u = u_q16;
     int64_t sq = tdc_rshr_round64((int64_t)p_q24[0] * (v * v + u * u), 32);
     int64_t cross = tdc_rshr_round64((int64_t)p_q24[1] * (v * u), 32);
-    int64_t lin = tdc_rshr_round64((int64_t)p_q24[2] * (v + u), 16);
+    int64_t lin = tdc_mul_q16_32(p_q24[2], (int32_t)(v + u)); /* v + u <= 2^17, |result| < 2^27 */
     return tdc_sat32(sq + cross + lin + p_q24[3]);
 }
 
@@ -126,7 +126,7 @@ void tdc_lcd_solve_q16(const int32_t p[4], uint32_t u_q16, uint32_t m_q16, uint3
     /* a v^2 + b v + c = 0 in Q24: a = p1, b = p2 u + p3, c = M(0, u) - m. */
     const int64_t u = u_q16;
     const int64_t a = p[0];
-    const int64_t b = tdc_rshr_round64((int64_t)p[1] * u, 16) + p[2];
+    const int64_t b = (int64_t)tdc_mul_q16_32(p[1], (int32_t)u) + p[2]; /* u <= 2^16: |p2 u| < 2^26 */
     const int64_t c = (int64_t)tdc_lcd_model_q24(p, 0u, u_q16) - ((int64_t)m_q16 << 8);
     int32_t v;
     if (tdc_lcd_quad_root_q16(a, b, c, half_lsb_q16, &v)) {
