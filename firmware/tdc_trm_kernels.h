@@ -99,7 +99,7 @@ tdc_trm_dvert_fn tdc_trm_dvert_avx2;
 /*
  * w = exp(-x), x in Q16, from the Q30 table with linear interpolation and
  * one rounding to Q15.  Error: 0.5 LSB rounding plus the interpolation's
- * (1/256)^2 / 8 * 32768 = 0.06 LSB (asserted <= 0.6 in tests/test_trm.c).
+ * (1/256)^2 / 8 * 32768 = 0.06 LSB (asserted <= 0.6 in tests/unit/test_trm.c).
  * Beyond x = 17, exp(-x) < 2^-24: 0.
  */
 static inline int32_t tdc_trm_weight_q15(const uint32_t *wexp, uint64_t x_q16)
