@@ -12,7 +12,6 @@
 
 #include "checkasm.h"
 
-#include <inttypes.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -39,6 +38,19 @@ static struct {
     int quiet; /* the core's self-test: count failures, print nothing */
     long last_index;
 } g = {DEFAULT_SEED, 1, 0, NULL, "", 0, 0, 0, -1};
+
+/* 64-bit numbers as text without printf's 64-bit conversions (newlib
+ * nano has none): hex with base 16, decimal with base 10. */
+static const char *u64_text(uint64_t v, unsigned base, char buf[24])
+{
+    char *p = buf + 23;
+    *p = '\0';
+    do {
+        *--p = "0123456789abcdef"[v % base];
+        v /= base;
+    } while (v);
+    return p;
+}
 
 /* ---- RNG ---- */
 
@@ -107,7 +119,9 @@ int checkasm_fail(const char *fmt, ...)
         g.cur_failed = 1;
         g.failures++;
         if (!g.quiet) {
-            printf("checkasm: FAIL %s (replay: checkasm --seed 0x%" PRIx64 " %s):\n  ", g.cur_name, g.seed, g.cur_name);
+            char hex[24];
+            const char *seed = u64_text(g.seed, 16u, hex);
+            printf("checkasm: FAIL %s (replay: checkasm --seed 0x%s %s):\n  ", g.cur_name, seed, g.cur_name);
             va_list ap;
             va_start(ap, fmt);
             vprintf(fmt, ap);
@@ -159,7 +173,8 @@ checkasm_fn_t checkasm_bench_fn(const checkasm_bench_t *b)
 /* x / 100 as "int.frac" with two decimals. */
 static void print_centi(uint64_t x)
 {
-    printf("%8" PRIu64 ".%02u", x / 100u, (unsigned)(x % 100u));
+    char dec[24];
+    printf("%8s.%02u", u64_text(x / 100u, 10u, dec), (unsigned)(x % 100u));
 }
 
 int checkasm_bench_step(checkasm_bench_t *b)
@@ -293,18 +308,19 @@ static int selected(const checkasm_kernel_t *k, const char *name, char **pats, i
     return 0;
 }
 
-static int usage(void)
+static int usage(int status)
 {
+    char hex[24];
     printf("usage: checkasm [--seed N] [--runs N] [--bench] [--list] [PATTERN...]\n"
            "  checks every registered optimised kernel against its C reference, bit for bit\n"
-           "  --seed N   RNG seed (default 0x%" PRIx64 "); each kernel reseeds from it and its name\n"
+           "  --seed N   RNG seed (default 0x%s); each kernel reseeds from it and its name\n"
            "  --runs N   inputs per kernel (default: each family's own)\n"
            "  --bench    then time reference and optimised kernel (ns per unit, speed-up)\n"
            "  --list     list the registered kernels and whether this CPU runs them\n"
            "  PATTERN    glob on the kernel name (family_isa), its family or its ISA;\n"
            "             a plain word selects the kernels whose name contains it\n",
-           (uint64_t)DEFAULT_SEED);
-    return 2;
+           u64_text(DEFAULT_SEED, 16u, hex));
+    return status;
 }
 
 int checkasm_main(int argc, char **argv)
@@ -313,7 +329,9 @@ int checkasm_main(int argc, char **argv)
     char **pats = argv + 1;
     for (int i = 1; i < argc; i++) {
         char *end = NULL;
-        if (strcmp(argv[i], "--bench") == 0) {
+        if (strcmp(argv[i], "-h") == 0 || strcmp(argv[i], "--help") == 0) {
+            return usage(0);
+        } else if (strcmp(argv[i], "--bench") == 0) {
             bench = 1;
         } else if (strcmp(argv[i], "--list") == 0) {
             list = 1;
@@ -321,7 +339,7 @@ int checkasm_main(int argc, char **argv)
             const unsigned long long v = strtoull(argv[i + 1], &end, 0);
             if (!end || *end || end == argv[i + 1]) {
                 printf("checkasm: %s: not a number: '%s'\n", argv[i], argv[i + 1]);
-                return usage();
+                return usage(2);
             }
             if (argv[i][2] == 's') {
                 g.seed = v;
@@ -331,7 +349,7 @@ int checkasm_main(int argc, char **argv)
             i++;
         } else if (argv[i][0] == '-') {
             printf("checkasm: unknown option '%s'\n", argv[i]);
-            return usage();
+            return usage(2);
         } else {
             pats[npats++] = argv[i]; /* compacted in place: npats <= i */
         }
@@ -353,7 +371,8 @@ int checkasm_main(int argc, char **argv)
     if (!selftest()) {
         return 1;
     }
-    printf("checkasm: seed 0x%" PRIx64 "\n", g.seed);
+    char hex[24];
+    printf("checkasm: seed 0x%s\n", u64_text(g.seed, 16u, hex));
     unsigned checked = 0, skipped = 0, matched = 0;
     for (size_t m = 0; m < NMODULES; m++) {
         for (size_t j = 0; j < g_modules[m]->count; j++) {

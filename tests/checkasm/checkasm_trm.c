@@ -121,13 +121,14 @@ static void describe_sample(char *buf, size_t cap, uint32_t width, long i)
 {
     const uint32_t x = (uint32_t)i / 3u, c = (uint32_t)i % 3u;
     if ((uint32_t)i >= 3u * width) {
-        snprintf(buf, cap, "(past the row of %u pixels: written by one side only)", width);
+        snprintf(buf, cap, "(past the row of %u pixels: written by one side only)", (unsigned)width);
         return;
     }
     const uint32_t j = ux[2u * x];
     snprintf(buf, cap, "pixel %u channel %u: src %u, ux (%u, frac %u), urow_a[%u] %u, [%u] %u, urow_b %u, %u, rho in %d",
-             x, c, src[i], j, ux[2u * x + 1u], 3u * j + c, urow_a[3u * j + c], 3u * (j + 1u) + c,
-             urow_a[3u * (j + 1u) + c], urow_b[3u * j + c], urow_b[3u * (j + 1u) + c], res_in[i]);
+             (unsigned)x, (unsigned)c, src[i], (unsigned)j, ux[2u * x + 1u], (unsigned)(3u * j + c),
+             (unsigned)urow_a[3u * j + c], (unsigned)(3u * (j + 1u) + c), (unsigned)urow_a[3u * (j + 1u) + c],
+             (unsigned)urow_b[3u * j + c], (unsigned)urow_b[3u * (j + 1u) + c], (int)res_in[i]);
 }
 
 /* ---- full-res row ---- */
@@ -154,11 +155,12 @@ static void check_full_row(const checkasm_kernel_t *kr)
         char where[256];
         if (i >= 0) {
             describe_sample(where, sizeof where, r.width, i);
-            checkasm_fail("row %u width %u panel %s mode %u: sample %ld: code %u vs %u, rho %d vs %d; %s", row, r.width,
-                          panels[r.panel]->name, r.mode, i, dst_c[i], dst_v[i], res_c[i], res_v[i], where);
+            checkasm_fail("row %u width %u panel %s mode %u: sample %ld: code %u vs %u, rho %d vs %d; %s", (unsigned)row,
+                          (unsigned)r.width, panels[r.panel]->name, (unsigned)r.mode, i, dst_c[i], dst_v[i], (int)res_c[i],
+                          (int)res_v[i], where);
         } else if (nc.hi != nv.hi || nc.lo != nv.lo) {
-            checkasm_fail("row %u width %u: clamp counts hi %u vs %u, lo %u vs %u", row, r.width, nc.hi, nv.hi, nc.lo,
-                          nv.lo);
+            checkasm_fail("row %u width %u: clamp counts hi %u vs %u, lo %u vs %u", (unsigned)row, (unsigned)r.width,
+                          (unsigned)nc.hi, (unsigned)nv.hi, (unsigned)nc.lo, (unsigned)nv.lo);
         }
     }
 }
@@ -183,11 +185,13 @@ static void check_reduced_row(const checkasm_kernel_t *kr)
         char where[256];
         if (i >= 0) {
             describe_sample(where, sizeof where, r.width, i);
-            checkasm_fail("row %u width %u panel %s mode %u s_q8 %u: sample %ld: code %u vs %u; %s", row, r.width,
-                          panels[r.panel]->name, r.mode, r.s_q8, i, dst_c[i], dst_v[i], where);
+            checkasm_fail("row %u width %u panel %s mode %u s_q8 %u: sample %ld: code %u vs %u; %s", (unsigned)row,
+                          (unsigned)r.width, panels[r.panel]->name, (unsigned)r.mode, (unsigned)r.s_q8, i, dst_c[i],
+                          dst_v[i], where);
         } else if (nc.computed != nv.computed || nc.skipped != nv.skipped || nc.no_res != nv.no_res) {
-            checkasm_fail("row %u width %u: weight counts computed %u vs %u, skipped %u vs %u, no_res %u vs %u", row,
-                          r.width, nc.computed, nv.computed, nc.skipped, nv.skipped, nc.no_res, nv.no_res);
+            checkasm_fail("row %u width %u: weight counts computed %u vs %u, skipped %u vs %u, no_res %u vs %u",
+                          (unsigned)row, (unsigned)r.width, (unsigned)nc.computed, (unsigned)nv.computed,
+                          (unsigned)nc.skipped, (unsigned)nv.skipped, (unsigned)nc.no_res, (unsigned)nv.no_res);
         }
     }
 }
@@ -229,8 +233,8 @@ static void check_dvert(const checkasm_kernel_t *kr)
         CHECKASM_OPT(tdc_trm_dvert_fn, kr)(rows, w, taps, n, dout_v);
         const long i = checkasm_diff_u16(dout_c, dout_v, 3u * MAXW);
         if (i >= 0) {
-            checkasm_fail("run %u n %u taps %u: out[%ld] %u vs %u%s; rows[0..2][i] %u %u %u, w[0..2] %u %u %u", run, n,
-                          taps, i, dout_c[i], dout_v[i], (uint32_t)i >= n ? " (past n)" : "", drows[0][i],
+            checkasm_fail("run %u n %u taps %u: out[%ld] %u vs %u%s; rows[0..2][i] %u %u %u, w[0..2] %u %u %u",
+                          (unsigned)run, (unsigned)n, (unsigned)taps, i, dout_c[i], dout_v[i], (uint32_t)i >= n ? " (past n)" : "", drows[0][i],
                           taps > 1u ? drows[1][i] : 0u, taps > 2u ? drows[2][i] : 0u, w[0], taps > 1u ? w[1] : 0u,
                           taps > 2u ? w[2] : 0u);
         }
@@ -267,8 +271,9 @@ static void check_dhoriz(const checkasm_kernel_t *kr)
         const long i = checkasm_diff_u16(dout_c, dout_v, 3u * MAXW);
         if (i >= 0) {
             const uint32_t j = (uint32_t)i / 3u;
-            checkasm_fail("run %u width %u rw %u taps %u: out[%ld] (column %u channel %u) %u vs %u%s; kernel first %d", run,
-                          width, rw, taps, i, j, (uint32_t)i % 3u, dout_c[i], dout_v[i],
+            checkasm_fail("run %u width %u rw %u taps %u: out[%ld] (column %u channel %u) %u vs %u%s; kernel first %d",
+                          (unsigned)run, (unsigned)width, (unsigned)rw, (unsigned)taps, i, (unsigned)j,
+                          (unsigned)((uint32_t)i % 3u), dout_c[i], dout_v[i],
                           j >= rw ? " (past rw)" : "", j < rw ? hfirst[j] : 0);
         }
     }
