@@ -116,6 +116,16 @@ static row_params_t next_row(uint32_t row)
     return r;
 }
 
+/* Check row `row`: its parameters, context and inputs. */
+static row_params_t setup_row(uint32_t row, tdc_trm_rowctx_t *k)
+{
+    tables_once();
+    const row_params_t r = next_row(row);
+    set_ctx(k, r.panel, r.width, r.s_q8, r.force_scan);
+    make_row(r.width, r.mode);
+    return r;
+}
+
 /* The inputs that decide output sample i of a full-res row. */
 static void describe_sample(char *buf, size_t cap, uint32_t width, long i)
 {
@@ -135,13 +145,10 @@ static void describe_sample(char *buf, size_t cap, uint32_t width, long i)
 
 static void check_full_row(const checkasm_kernel_t *kr)
 {
-    tables_once();
     const uint32_t rows = checkasm_runs(3000u);
     for (uint32_t row = 0; row < rows && !checkasm_failed(); row++) {
-        const row_params_t r = next_row(row);
         tdc_trm_rowctx_t k;
-        set_ctx(&k, r.panel, r.width, r.s_q8, r.force_scan);
-        make_row(r.width, r.mode);
+        const row_params_t r = setup_row(row, &k);
         tdc_trm_full_counts_t nc = {0, 0}, nv = {0, 0};
         memset(dst_c, 0xa5, sizeof dst_c);
         memset(dst_v, 0xa5, sizeof dst_v);
@@ -169,13 +176,10 @@ static void check_full_row(const checkasm_kernel_t *kr)
 
 static void check_reduced_row(const checkasm_kernel_t *kr)
 {
-    tables_once();
     const uint32_t rows = checkasm_runs(3000u);
     for (uint32_t row = 0; row < rows && !checkasm_failed(); row++) {
-        const row_params_t r = next_row(row);
         tdc_trm_rowctx_t k;
-        set_ctx(&k, r.panel, r.width, r.s_q8, r.force_scan);
-        make_row(r.width, r.mode);
+        const row_params_t r = setup_row(row, &k);
         tdc_trm_reduced_counts_t nc = {0, 0, 0}, nv = {0, 0, 0};
         memset(dst_c, 0xa5, sizeof dst_c);
         memset(dst_v, 0xa5, sizeof dst_v);
