@@ -1,5 +1,5 @@
 # Firmware backbone: fixed-point core, gamma, TRM, golden vectors, tdc-run.
-FW_SRCS += firmware/tdc_math.c
+FW_SRCS += firmware/tdc_status.c firmware/tdc_math.c
 TESTS += $(B)/tests/test_math
 SIM_SRCS += sim/tdc_png.c
 FW_SRCS += firmware/tdc_trm.c
