@@ -1,6 +1,6 @@
 # Firmware backbone: fixed-point core, gamma, TRM, golden vectors, tdc-run.
 FW_SRCS += firmware/tdc_status.c firmware/tdc_math.c
-TESTS += $(B)/tests/test_math
+TESTS += $(B)/tests/test_math $(B)/tests/test_status
 SIM_SRCS += sim/tdc_png.c
 FW_SRCS += firmware/tdc_trm.c
 SIM_SRCS += sim/ref_trm.c

@@ -210,7 +210,10 @@ int main(int argc, char **argv)
         fprintf(stderr, "tdc_ffs_board: link decoder init failed\n");
         return 1;
     }
-    tdc_usbp_init(&proto, &cfg);
+    if (tdc_usbp_init(&proto, &cfg) != TDC_OK) {
+        fprintf(stderr, "tdc_ffs_board: USB protocol init failed\n");
+        return 1;
+    }
     int ep0 = open_ep("ep0", O_RDWR);
     if (ep0 < 0) {
         perror("tdc_ffs_board: open ep0");
