@@ -28,7 +28,7 @@
 
 #include "golden/tdc_content.h"
 #include "lcd/tdc_lcdsim.h"
-#include "tdc_must.h"
+#include "bench/tdc_must.h"
 #include "tdc_lcd.h"
 #include "tdc_panels.h"
 #include "tdc_trm.h"

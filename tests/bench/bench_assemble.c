@@ -23,7 +23,7 @@
 #include <time.h>
 
 #include "ref_assemble.h"
-#include "tdc_must.h"
+#include "bench/tdc_must.h"
 #include "tdc_assemble.h"
 
 #define BW 1920

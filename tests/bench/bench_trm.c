@@ -13,7 +13,7 @@
 #include <time.h>
 
 #include "golden/tdc_content.h"
-#include "tdc_must.h"
+#include "bench/tdc_must.h"
 #include "tdc_panels.h"
 #include "tdc_trm.h"
 #include "tdc_trm_kernels.h"
