@@ -109,7 +109,7 @@ tdc_status_t tdc_asm_ingest(tdc_asm_t *st, uint32_t frame, const uint8_t *sample
                             const uint8_t *pattern_bits)
 {
     if (!st || !samples) return TDC_ERR_ARG;
-    if (frame != st->next_frame || st->have_subframe) return (tdc_status_t)TDC_ASM_ERR_FRAME;
+    if (frame != st->next_frame || st->have_subframe) return TDC_ERR_FRAME;
     const uint32_t w = st->cfg.width, h = st->cfg.height, k = frame & 3u;
     const uint32_t slot = (frame >> 2) & 3u;
     if (pattern_bits) {
@@ -175,7 +175,7 @@ tdc_status_t tdc_asm_ingest(tdc_asm_t *st, uint32_t frame, const uint8_t *sample
 tdc_status_t tdc_asm_set_motion(tdc_asm_t *st, uint32_t frame, const int16_t *mv)
 {
     if (!st || !mv) return TDC_ERR_ARG;
-    if (frame != st->next_frame) return (tdc_status_t)TDC_ASM_ERR_FRAME;
+    if (frame != st->next_frame) return TDC_ERR_FRAME;
     const size_t n = (size_t)st->cfg.width * st->cfg.height;
     uint32_t nz = 0;
     for (size_t i = 0; i < n; i++) {
@@ -950,7 +950,7 @@ static void tdc_asm_dynamic_frame(tdc_asm_t *st, uint32_t frame)
 tdc_status_t tdc_asm_assemble(tdc_asm_t *st, uint32_t frame)
 {
     if (!st) return TDC_ERR_ARG;
-    if (frame != st->next_frame) return (tdc_status_t)TDC_ASM_ERR_FRAME;
+    if (frame != st->next_frame) return TDC_ERR_FRAME;
     if (!st->have_subframe) st->stats.subframes_missing++;
     if (st->mv_nonzero == 0)
         tdc_asm_static_frame(st, frame);

@@ -153,6 +153,7 @@ void tdc_trm_default_config(tdc_trm_config_t *cfg, uint16_t width, uint16_t heig
  * TDC_ERR_ARG also for mem not aligned to TDC_ARENA_ALIGN.  Nothing is
  * written (st or mem) on error.
  */
+TDC_MUST_CHECK
 tdc_status_t tdc_trm_init(tdc_trm_t *st, const tdc_trm_config_t *cfg, const tdc_panel_t *panel, void *mem,
                           size_t mem_bytes);
 
@@ -163,6 +164,7 @@ void tdc_trm_reset(tdc_trm_t *st);
  * Full-resolution frame: in (W x H) -> out (W x H) drive codes, updates rho
  * and D(I).  In pass-through mode out = in and nothing else runs.
  */
+TDC_MUST_CHECK
 tdc_status_t tdc_trm_full(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out,
                           uint32_t out_stride);
 
@@ -171,6 +173,7 @@ tdc_status_t tdc_trm_full(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, 
  * TDC_ERR_STATE if no full frame preceded it since init/reset (out is left
  * untouched: the panel keeps the last good frame).
  */
+TDC_MUST_CHECK
 tdc_status_t tdc_trm_reduced(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t in_stride, uint8_t *out,
                              uint32_t out_stride);
 
@@ -179,6 +182,7 @@ tdc_status_t tdc_trm_reduced(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t 
  * codes (rounded).  For tests, tdc-run --auto-reduce and the demo; a real
  * renderer supersamples instead (TRM §4.3).
  */
+TDC_MUST_CHECK
 tdc_status_t tdc_trm_downsample(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out,
                                 uint32_t out_stride);
 
