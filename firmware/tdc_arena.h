@@ -17,7 +17,7 @@
  *   - at compile time, with the build's largest geometry, through
  *     TDC_ARENA_BLOCK_BYTES: the stage's TDC_XXX_MEM_BYTES(...) bound that
  *     boards size their static buffers with.
- * tests/test_arena.c checks all three against each other for every stage,
+ * tests/unit/test_arena.c checks all three against each other for every stage,
  * every panel and the extreme sizes (get_size <= bound, equality at the
  * bound's geometry, init's pointers inside and disjoint, nothing written
  * past get_size bytes).
