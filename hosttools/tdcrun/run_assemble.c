@@ -332,11 +332,16 @@ int tdc_run_assemble_main(int argc, char **argv)
                                             r == 0 && has_bits ? bits : NULL);
             tdc_png_free(&img);
             if (s != TDC_OK) {
-                rc = tdc_fail(TDC_EXIT_REFUSED, "assemble", name, "firmware refused subframe %u: status %d", frame, (int)s);
+                rc = tdc_fail(TDC_EXIT_REFUSED, "assemble", name, "firmware refused subframe %u: %s", frame, tdc_status_name(s));
                 break;
             }
         }
-        tdc_asm_assemble(&st, frame);
+        const tdc_status_t as = tdc_asm_assemble(&st, frame);
+        if (as != TDC_OK) {
+            rc = tdc_fail(TDC_EXIT_REFUSED, "assemble", NULL, "firmware could not assemble frame %u: %s", frame,
+                          tdc_status_name(as));
+            break;
+        }
         int stride;
         const uint8_t *out = tdc_asm_output(&st, &stride);
         char path[4096];

@@ -169,7 +169,7 @@ static int eye_open(eye_t *e, const tdc_trm_config_t *cfg, const tdc_panel_t *pa
                         cfg->refresh_hz, cfg->min_refresh_hz);
     }
     if (st != TDC_OK) {
-        return tdc_fail(TDC_EXIT_REFUSED, NULL, "TRM init", "firmware status %d", (int)st);
+        return tdc_fail(TDC_EXIT_REFUSED, NULL, "TRM init", "%s", tdc_status_name(st));
     }
     if (kernels >= 0) {
         tdc_trm_set_simd(&e->trm, kernels);
@@ -460,8 +460,13 @@ static int run_trm(const opts_t *po, char **files, int nframes)
                                       img.width, img.height, W, H);
                         break;
                     }
-                    tdc_trm_downsample(t, (uint8_t *)img.data + (size_t)e * EW * 3, (uint32_t)W * 3, red,
-                                       (uint32_t)rw * 3);
+                    st = tdc_trm_downsample(t, (uint8_t *)img.data + (size_t)e * EW * 3, (uint32_t)W * 3, red,
+                                            (uint32_t)rw * 3);
+                    if (st != TDC_OK) {
+                        rc = tdc_fail(TDC_EXIT_REFUSED, NULL, name, "firmware could not reduce frame %d: %s", i,
+                                      tdc_status_name(st));
+                        break;
+                    }
                     rsrc = red;
                     rstride = (uint32_t)rw * 3;
                 } else {
@@ -477,7 +482,7 @@ static int run_trm(const opts_t *po, char **files, int nframes)
             }
             double us = (now_s() - t0) * 1e6;
             if (st != TDC_OK) {
-                rc = tdc_fail(TDC_EXIT_REFUSED, NULL, name, "firmware rejected frame %d (status %d)", i, (int)st);
+                rc = tdc_fail(TDC_EXIT_REFUSED, NULL, name, "firmware rejected frame %d: %s", i, tdc_status_name(st));
                 break;
             }
             fprintf(csv, "%d,%d,%s,%llu,%llu,%llu,%llu,%llu,%.1f\n", i, e,

@@ -17,7 +17,7 @@
  * Aborts (besides the sanitizers) when:
  *   - a result is not OK/STALL/ARG, or an IN reply is longer than wLength or
  *     the buffer, or a state/status is outside DFU 1.1's;
- *   - TDC_USBP_ARG changed the DFU state or status (a caller error must not
+ *   - TDC_ERR_ARG changed the DFU state or status (a caller error must not
  *     advance anything: the GETSTATUS-with-a-short-buffer finding);
  *   - the running slot's bytes changed, except by an activation, and an
  *     activated slot does not hold a valid image for this board (a failed
@@ -89,14 +89,14 @@ static void control(const uint8_t *raw, uint8_t capsel, const uint8_t *data)
         upload_off = 0;
     }
     uint32_t n = 0xDEADu;
-    tdc_usbp_result_t r = tdc_usbp_control(&s, &st, data, cap ? reply : NULL, cap, &n);
-    if (r != TDC_USBP_OK && r != TDC_USBP_STALL && r != TDC_USBP_ARG)
+    tdc_status_t r = tdc_usbp_control(&s, &st, data, cap ? reply : NULL, cap, &n);
+    if (r != TDC_OK && r != TDC_ERR_STALL && r != TDC_ERR_ARG)
         abort();
-    if (r == TDC_USBP_OK && (n > st.w_length || n > cap))
+    if (r == TDC_OK && (n > st.w_length || n > cap))
         abort();
-    if (r == TDC_USBP_ARG && (s.dfu_state != st0 || s.dfu_status != ss0))
+    if (r == TDC_ERR_ARG && (s.dfu_state != st0 || s.dfu_status != ss0))
         abort();
-    if (r == TDC_USBP_OK && (st.bm_request_type & 0xE0u) == 0xA0u && st.b_request == TDC_DFU_UPLOAD &&
+    if (r == TDC_OK && (st.bm_request_type & 0xE0u) == 0xA0u && st.b_request == TDC_DFU_UPLOAD &&
         (st.w_index & 0xFFu) == TDC_USB_IF_DFU &&
         (st0 == TDC_DFU_STATE_IDLE || st0 == TDC_DFU_STATE_UPLOAD_IDLE)) {
         if (upload_off + n > upload_len || memcmp(reply, upload_src + upload_off, n) != 0)
@@ -111,7 +111,7 @@ static void bus_reset(void)
     if (tdc_usbp_bus_reset(&s)) {
         const uint32_t len = s.dfu_slot_image[s.dfu_active_slot];
         const uint8_t *img = flash + (size_t)s.dfu_active_slot * SLOT;
-        if (len == 0 || tdc_image_check(img, len, BOARD, SLOT) != TDC_IMAGE_OK)
+        if (len == 0 || tdc_image_check(img, len, BOARD, SLOT) != TDC_OK)
             abort(); /* booted something that is not a checked image */
         memcpy(shadow, img, SLOT);
     }
@@ -137,12 +137,12 @@ static void full_download(uint32_t payload, const char *board, const uint8_t *sr
         tdc_put_le16(raw + 6, k);
         tdc_usbp_setup_t st;
         tdc_usbp_parse_setup(raw, &st);
-        if (tdc_usbp_control(&s, &st, img + (off < len ? off : 0), NULL, 0, &n) != TDC_USBP_OK)
+        if (tdc_usbp_control(&s, &st, img + (off < len ? off : 0), NULL, 0, &n) != TDC_OK)
             return;
         check_state();
         for (int i = 0; i < 2; i++) { /* GETSTATUS (twice: manifest, then idle) */
             tdc_usbp_setup_t g = {0xA1, TDC_DFU_GETSTATUS, 0, 1, 6};
-            if (tdc_usbp_control(&s, &g, NULL, status, sizeof status, &n) != TDC_USBP_OK)
+            if (tdc_usbp_control(&s, &g, NULL, status, sizeof status, &n) != TDC_OK)
                 return;
             check_state();
         }
@@ -161,7 +161,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                              .fw_version = 0x000100u, .panel_width = 2160, .panel_height = 1200,
                              .refresh_mhz = 90000u, .rx_buffer_bytes = 8192u, .max_packet_bytes = 8192u,
                              .flash = {fw, fr, NULL, SLOT}};
-    if (tdc_usbp_init(&s, &cfg) != TDC_USBP_OK)
+    if (tdc_usbp_init(&s, &cfg) != TDC_OK)
         abort();
     size_t p = 0;
     while (p < size) {
