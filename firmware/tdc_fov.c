@@ -413,8 +413,13 @@ static void finish_row(const tdc_fov_t *st, const fov_rows_t *rw, int32_t y, uin
             amin = amin < 3277u ? 3277u : (amin > ONE_Q15 ? ONE_Q15 : amin);
             const uint32_t a = amin + (((ONE_Q15 - amin) * e[6] + 16384u) >> 15);
             const uint32_t aeff = ONE_Q15 - ((e[7] * (ONE_Q15 - a) + 128u) >> 8);
+            /* f = s + (1 - a)(h - s), the product rounded toward zero: |f - s|
+             * shrinks every frame, so a static field converges to exactly s
+             * (rounding half up stalls at h - s = 5/256 of a code with a = 0.1) */
             for (int ch = 0; ch < 3; ch++) {
-                f[ch] = (aeff * e[ch] + (ONE_Q15 - aeff) * e[3 + ch] + 16384u) >> 15;
+                const int32_t dlt = (int32_t)e[3 + ch] - (int32_t)e[ch];
+                const int32_t m = (int32_t)(((ONE_Q15 - aeff) * (uint32_t)tdc_abs32(dlt)) >> 15);
+                f[ch] = (uint32_t)((int32_t)e[ch] + (dlt < 0 ? -m : m));
             }
         }
         for (int ch = 0; ch < 3; ch++) {
