@@ -23,3 +23,7 @@ $(foreach t,$(FOV_TESTS),$(B)/tests/$(t)): $(B)/tests/%: $(B)/tests/%.o $(FOV_OB
 $(B)/tests/test_fov.o $(B)/tests/test_fov_ref.o: $(GEN)/tdc_fov_tables.h
 
 GOLDEN_STAGES += fov
+
+# make bench: rays and link bytes vs full rate per panel, eq. 5.1 curve, remap
+# throughput vs the memcpy bound (docs/foveation.md)
+BENCHES += $(B)/tests/bench_fov
