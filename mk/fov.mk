@@ -17,13 +17,13 @@ $(B)/check-fw-rules: $(GEN)/tdc_fov_tables.h
 # Own link rules: the fov tests need only these objects.
 FOV_OBJS = $(B)/firmware/tdc_fov.o $(B)/firmware/tdc_math.o $(B)/sim/ref_fov.o
 FOV_TESTS := test_fov test_fov_ref
-TESTS += $(foreach t,$(FOV_TESTS),$(B)/tests/$(t))
-$(foreach t,$(FOV_TESTS),$(B)/tests/$(t)): $(B)/tests/%: $(B)/tests/%.o $(FOV_OBJS)
+TESTS += $(foreach t,$(FOV_TESTS),$(B)/tests/unit/$(t))
+$(foreach t,$(FOV_TESTS),$(B)/tests/unit/$(t)): $(B)/tests/unit/%: $(B)/tests/unit/%.o $(FOV_OBJS)
 	$(CC) $(HOST_LDFLAGS) $^ -o $@ $(HOST_LIBS)
-$(B)/tests/test_fov.o $(B)/tests/test_fov_ref.o: $(GEN)/tdc_fov_tables.h
+$(B)/tests/unit/test_fov.o $(B)/tests/unit/test_fov_ref.o: $(GEN)/tdc_fov_tables.h
 
 GOLDEN_STAGES += fov
 
 # make bench: rays and link bytes vs full rate per panel, eq. 5.1 curve, remap
 # throughput vs the memcpy bound (docs/foveation.md)
-BENCHES += $(B)/tests/bench_fov
+BENCHES += $(B)/tests/bench/bench_fov
