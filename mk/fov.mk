@@ -1,7 +1,7 @@
 # Foveated streams (issue 14, DESIGN §4.5): the display-side remap stage with
 # peripheral TAA, its double-precision reference, tests, golden vectors.
 # The stage's log/power/atan/Gaussian tables come from tdc-tablegen --fov.
-FW_SRCS += firmware/tdc_fov.c
+FW_SRCS += firmware/tdc_fov.c firmware/tdc_fov_link.c
 SIM_SRCS += sim/ref_fov.c
 
 # (TABLEGEN is defined after the fragments are read: name the program)
@@ -15,8 +15,8 @@ endif
 $(B)/check-fw-rules: $(GEN)/tdc_fov_tables.h
 
 # Own link rules: the fov tests need only these objects.
-FOV_OBJS = $(B)/firmware/tdc_fov.o $(B)/firmware/tdc_math.o $(B)/sim/ref_fov.o
-FOV_TESTS := test_fov test_fov_ref
+FOV_OBJS = $(B)/firmware/tdc_fov.o $(B)/firmware/tdc_fov_link.o $(B)/firmware/tdc_math.o $(B)/sim/ref_fov.o
+FOV_TESTS := test_fov test_fov_ref test_fov_link
 TESTS += $(foreach t,$(FOV_TESTS),$(B)/tests/unit/$(t))
 $(foreach t,$(FOV_TESTS),$(B)/tests/unit/$(t)): $(B)/tests/unit/%: $(B)/tests/unit/%.o $(FOV_OBJS)
 	$(CC) $(HOST_LDFLAGS) $^ -o $@ $(HOST_LIBS)

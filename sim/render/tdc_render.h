@@ -59,7 +59,8 @@ typedef enum {
 typedef struct {
     double gaze_x, gaze_y;  /* display pixels; rounded to Q8 like the link header */
     double alpha;           /* K(x) = x^alpha, [1, 8], default 4 */
-    double delta;           /* buffer downscale: w = floor(delta W), h = floor(delta H); default 0.555 */
+    double delta;           /* buffer downscale, default 0.555: quantised up to Q15 like the link header,
+                               w = floor(delta_q15 W / 2^15) (tdc_fov_lp_size) */
     double disk;            /* disk radius / distance to the farthest corner, [0, 1]; default 0.12443 */
     double jx, jy;          /* sub-sample jitter of the log-polar samples (Halton 2,3 where TAA follows) */
 } tdc_render_fov_t;

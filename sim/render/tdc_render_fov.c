@@ -10,6 +10,7 @@
 #include <stdlib.h>
 
 #include "tdc_fov.h"
+#include "tdc_fov_link.h"
 #include "tdc_render_internal.h"
 
 void tdc_render_halton(uint32_t f, double *jx, double *jy)
@@ -26,9 +27,11 @@ int tdc_render_set_foveation(tdc_render_t *r, const tdc_render_fov_t *f, int *lp
     if (!r || !f || !(f->delta > 0 && f->delta <= 1) || !(f->alpha >= 1 && f->alpha <= 8) ||
         !(f->disk >= 0 && f->disk <= 1) || !(fabs(f->gaze_x) < 1e6 && fabs(f->gaze_y) < 1e6))
         return -1;
+    /* delta quantised up to Q15 as the link header carries it (0.555 -> 18187) */
+    const uint16_t dq = (uint16_t)ceil(f->delta * 32768 - 1e-9);
     tdc_fov_params_t p = {(int32_t)lround(f->gaze_x * 256), (int32_t)lround(f->gaze_y * 256),
                           (uint16_t)lround(f->alpha * 256), (uint16_t)lround(f->disk * 32768),
-                          (uint16_t)floor(f->delta * r->W + 1e-9), (uint16_t)floor(f->delta * r->H + 1e-9)};
+                          tdc_fov_lp_size(dq, (uint16_t)r->W), tdc_fov_lp_size(dq, (uint16_t)r->H)};
     tdc_fov_geom_t g;
     if (tdc_fov_geom(&g, (uint16_t)r->W, (uint16_t)r->H, &p) != TDC_OK) return -1;
     const int nlp = (g.lp_w - g.u0) * g.lp_h;

@@ -7,8 +7,8 @@
  *    to the farthest corner, gaze at the centre and off-centre: rays traced
  *    (log-polar columns [u0, w) x h + disk pixels on the screen; exact counts
  *    from the firmware's own geometry) and link bytes (32-byte packet header +
- *    32-byte foveation header + 3 B per sample + 4 B motion vector per
- *    log-polar sample for fov-taa) against full rate (W x H rays, 32 + 3 W H
+ *    32-byte foveation header + the payload of tdc_fov_payload_bytes: 3 B per
+ *    sample + 4 B motion vector per log-polar sample for fov-taa) against full rate (W x H rays, 32 + 3 W H
  *    bytes).  Goal (issue 14): <= 35 % each.  Also the eq. 5.1 curve: the
  *    ray share per disk fraction and where it is lowest (thesis: 10-20 %,
  *    12.443 % observed).
@@ -25,33 +25,9 @@
 #include <time.h>
 
 #include "tdc_fov.h"
+#include "tdc_fov_link.h"
 #include "tdc_panels.h"
-
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts); /* CPU time: the machine is shared */
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static double memcpy_bandwidth(void)
-{
-    const size_t n = 64u << 20;
-    uint8_t *a = malloc(n), *b = malloc(n);
-    if (!a || !b) return 0;
-    memset(a, 1, n), memset(b, 2, n);
-    double best = 1e30;
-    for (int i = 0; i < 5; i++) {
-        double t0 = now_s();
-        memcpy(i & 1 ? a : b, i & 1 ? b : a, n);
-        double t = now_s() - t0;
-        if (t < best) best = t;
-    }
-    volatile uint8_t sink = a[n / 2] ^ b[n / 3];
-    (void)sink;
-    free(a), free(b);
-    return 2.0 * (double)n / best; /* read + write */
-}
+#include "bench_clock.h"
 
 #define HDR_BYTES 64.0 /* link packet header 32 + foveation header 32 */
 
@@ -61,8 +37,8 @@ static void params(tdc_fov_params_t *p, int W, int H, double gx, double gy, doub
     p->gaze_y_q8 = (int32_t)lround(gy * H * 256);
     p->alpha_q8 = 1024;
     p->disk_q15 = (uint16_t)lround(disk * 32768);
-    p->lp_w = (uint16_t)(W * 555 / 1000);
-    p->lp_h = (uint16_t)(H * 555 / 1000);
+    p->lp_w = tdc_fov_lp_size(18187, (uint16_t)W); /* delta 0.555 as the link header carries it */
+    p->lp_h = tdc_fov_lp_size(18187, (uint16_t)H);
 }
 
 static int costs(void)
@@ -85,7 +61,8 @@ static int costs(void)
             if (tdc_fov_geom(&fg, (uint16_t)W, (uint16_t)H, &p) != TDC_OK) return 1;
             const double lps = (double)(fg.lp_w - fg.u0) * fg.lp_h, dk = tdc_fov_disk_pixels(&fg);
             const double full_b = 32.0 + 3.0 * W * H;
-            const double rays = lps + dk, fb = HDR_BYTES + 3 * (lps + dk), tb = fb + 4 * lps;
+            const double rays = lps + dk;
+            const double fb = HDR_BYTES + tdc_fov_payload_bytes(&fg, 0), tb = HDR_BYTES + tdc_fov_payload_bytes(&fg, 1);
             char sz[24];
             snprintf(sz, sizeof sz, "%dx%d", W, H);
             printf("%-10s %-10s %-10s %7u %7u %9.0f %10.0f %8.2f%% %8.2f%% %8.2f%%\n", panels[k]->name, sz,

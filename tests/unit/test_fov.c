@@ -20,15 +20,10 @@
 #include <cmocka.h>
 
 #include "fov_fixture.h"
+#include "golden/golden.h"
 
 static uint32_t g_rng = 12345u;
-static uint32_t rnd(void)
-{
-    g_rng ^= g_rng << 13;
-    g_rng ^= g_rng >> 17;
-    g_rng ^= g_rng << 5;
-    return g_rng;
-}
+static uint32_t rnd(void) { return tdc_golden_rand(&g_rng); }
 static double rndu(void) { return (rnd() >> 8) / 16777216.0; }
 
 static void test_building_blocks(void **state)
