@@ -337,30 +337,41 @@ static uint32_t compose(const fov_src_t *s, int32_t i, int32_t dx, int32_t dy, u
 /* ---------------------------------------------------------------------
  * Stage state.
  * ------------------------------------------------------------------- */
+static int fov_config_valid(const tdc_fov_config_t *cfg)
+{
+    return cfg && cfg->width >= TDC_FOV_MIN_SIZE && cfg->height >= TDC_FOV_MIN_SIZE &&
+           cfg->width <= TDC_FOV_MAX_SIZE && cfg->height <= TDC_FOV_MAX_SIZE && cfg->taa <= 1u;
+}
+
+/* The one layout (tdc_fov.h TDC_FOV_ARENA); NULL views in a dry run. */
+static void fov_carve(tdc_fov_t *st, const tdc_fov_config_t *cfg, tdc_arena_t *arena)
+{
+    TDC_FOV_ARENA(TDC_ARENA_CARVE, cfg->width, cfg->height, cfg->taa)
+}
+
 size_t tdc_fov_get_size(const tdc_fov_config_t *cfg)
 {
-    if (!cfg || cfg->width < TDC_FOV_MIN_SIZE || cfg->height < TDC_FOV_MIN_SIZE || cfg->width > TDC_FOV_MAX_SIZE ||
-        cfg->height > TDC_FOV_MAX_SIZE) {
+    if (!fov_config_valid(cfg)) {
         return 0;
     }
-    return TDC_FOV_MEM_BYTES(cfg->width, cfg->height, cfg->taa);
+    tdc_fov_t dry;
+    tdc_arena_t arena;
+    tdc_arena_dry(&arena);
+    fov_carve(&dry, cfg, &arena);
+    return tdc_arena_size(&arena);
 }
 
 tdc_status_t tdc_fov_init(tdc_fov_t *st, const tdc_fov_config_t *cfg, void *mem, size_t mem_bytes)
 {
-    const size_t need = tdc_fov_get_size(cfg);
-    if (!st || need == 0 || !mem || ((uintptr_t)mem & 3u)) {
-        return TDC_ERR_ARG;
+    tdc_arena_t arena;
+    if (!st || !fov_config_valid(cfg) || !tdc_arena_over(&arena, mem, mem_bytes)) {
+        return TDC_ERR_ARG; /* null, bad size, mem not aligned to TDC_ARENA_ALIGN */
     }
-    if (mem_bytes < need) {
+    if (mem_bytes < tdc_fov_get_size(cfg)) { /* the same carve, dry: nothing is touched on error */
         return TDC_ERR_SIZE;
     }
+    fov_carve(st, cfg, &arena);
     st->cfg = *cfg;
-    uint16_t *m = (uint16_t *)mem;
-    const size_t n = (size_t)cfg->width * cfg->height * 3u;
-    st->hist[0] = cfg->taa ? m : 0;
-    st->hist[1] = cfg->taa ? m + n : 0;
-    st->rows = cfg->taa ? m + 2u * n : 0;
     st->frames = 0;
     st->rejected_frames = 0;
     tdc_fov_reset(st);

@@ -41,14 +41,16 @@
  * values in Q8 (like TRM's D and U), the history is Q8 codes (uint16).
  *
  * Memory: caller-owned arena of tdc_fov_get_size() bytes (TDC_FOV_MEM_BYTES
- * on a board): with TAA two Q8 history frames (12 bytes per display pixel:
- * the previous frame is read by reprojection while the new one is written)
- * and 38 bytes per display column of row scratch; without TAA nothing.
+ * on a board; layout TDC_FOV_ARENA, carved by tdc_arena.h): with TAA two Q8
+ * history frames (12 bytes per display pixel: the previous frame is read by
+ * reprojection while the new one is written) and 38 bytes per display
+ * column of row scratch; without TAA nothing.
  * No heap, no float, no recursion; same bytes on every compiler and CPU.
  */
 #ifndef TDC_FOV_H
 #define TDC_FOV_H
 
+#include "tdc_arena.h"
 #include "tdc_fixed.h"
 
 #define TDC_FOV_MIN_SIZE 4u       /* display and log-polar sides at least this */
@@ -85,7 +87,7 @@ typedef struct {
 /* Checks the parameters against a display of width x height and fills g.
  * TDC_ERR_ARG: alpha, disk, lp size out of range or the gaze farther than
  * one screen size outside the screen; TDC_ERR_SIZE: lp larger than the display. */
-tdc_status_t tdc_fov_geom(tdc_fov_geom_t *g, uint16_t width, uint16_t height, const tdc_fov_params_t *p);
+TDC_MUST_CHECK tdc_status_t tdc_fov_geom(tdc_fov_geom_t *g, uint16_t width, uint16_t height, const tdc_fov_params_t *p);
 
 /* eq. 2.2 at a display point (Q8): u, v in Q16 log-polar samples,
  * u in [0, lp_w], v in [0, lp_h). */
@@ -104,9 +106,18 @@ typedef struct {
     uint8_t taa;            /* 1: peripheral TAA (history in the arena) */
 } tdc_fov_config_t;
 
-#define TDC_FOV_ROW_BYTES(W) ((size_t)(W) * 38u)
+/* The arena layout (firmware/tdc_arena.h), one list: with TAA two Q8 RGB
+ * history frames (ping-pong) and the row scratch, 19 uint16 per display
+ * column (2 rows x 8 values + 3 rows of |s - h|); without TAA nothing. */
+#define TDC_FOV_ROW_VALS 19u
+#define TDC_FOV_ARENA(X, W, H, TAA)                                        \
+    X(hist[0], uint16_t, (TAA) ? (size_t)(W) * (size_t)(H) * 3u : 0u)     \
+    X(hist[1], uint16_t, (TAA) ? (size_t)(W) * (size_t)(H) * 3u : 0u)     \
+    X(rows, uint16_t, (TAA) ? (size_t)(W) * TDC_FOV_ROW_VALS : 0u)
+/* Compile-time bound for static arenas (an empty layout still reports
+ * TDC_ARENA_ALIGN bytes, as get_size does). */
 #define TDC_FOV_MEM_BYTES(W, H, TAA) \
-    ((TAA) ? (size_t)(W) * (size_t)(H) * 12u + TDC_FOV_ROW_BYTES(W) + 16u : (size_t)16u)
+    ((TAA) ? (size_t)0 TDC_FOV_ARENA(TDC_ARENA_BLOCK_BYTES, W, H, 1) : (size_t)TDC_ARENA_ALIGN)
 
 typedef struct {
     tdc_fov_config_t cfg;
@@ -120,8 +131,9 @@ typedef struct {
 } tdc_fov_t;
 
 size_t tdc_fov_get_size(const tdc_fov_config_t *cfg);
-/* mem: caller-owned arena of tdc_fov_get_size() bytes, 4-byte aligned. */
-tdc_status_t tdc_fov_init(tdc_fov_t *st, const tdc_fov_config_t *cfg, void *mem, size_t mem_bytes);
+/* mem: caller-owned arena of tdc_fov_get_size() bytes, aligned to
+ * TDC_ARENA_ALIGN (8); TDC_ERR_ARG if not, TDC_ERR_SIZE if too small. */
+TDC_MUST_CHECK tdc_status_t tdc_fov_init(tdc_fov_t *st, const tdc_fov_config_t *cfg, void *mem, size_t mem_bytes);
 /* Forget the history (stream restart, loss): the next frame is taken as is. */
 void tdc_fov_reset(tdc_fov_t *st);
 
@@ -136,7 +148,7 @@ void tdc_fov_reset(tdc_fov_t *st);
  *         before it is written).
  *   dt_us: this frame's time, for eq. 4.7 (TAA only; 0 = as the last one).
  * TDC_ERR_ARG / TDC_ERR_SIZE as tdc_fov_geom, or a geometry larger than the config. */
-tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8_t *lp, size_t lp_stride,
+TDC_MUST_CHECK tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8_t *lp, size_t lp_stride,
                            const int16_t *mv, size_t mv_stride, const uint8_t *disk, size_t disk_stride,
                            uint32_t dt_us, uint8_t *out, size_t out_stride);
 

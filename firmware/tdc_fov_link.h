@@ -58,7 +58,7 @@ typedef struct {
 
 /* Writes the header of the parameters for a width x height panel (u0, the
  * disk count from the geometry).  Returns TDC_OK or TDC_ERR_ARG. */
-tdc_status_t tdc_fov_hdr_pack(uint8_t out[TDC_FOV_HDR_BYTES], uint16_t width, uint16_t height,
+TDC_MUST_CHECK tdc_status_t tdc_fov_hdr_pack(uint8_t out[TDC_FOV_HDR_BYTES], uint16_t width, uint16_t height,
                               const tdc_fov_params_t *p, uint16_t delta_q15, uint8_t flags);
 /* Checks a received header against the configured panel; fills *h.
  * Returns TDC_FOV_HDR_OK or the first reason it is refused. */

@@ -56,7 +56,7 @@ static uint8_t g_samples[RW * RH * 3u];
 #define FOV_LH ((BENCH_H * 555u) / 1000u)
 static uint8_t g_fov_lp[FOV_LW * FOV_LH * 3u] TDC_EXTRAM;
 static int16_t g_fov_mv[FOV_LW * FOV_LH * 2u] TDC_EXTRAM;
-static uint32_t g_fov_arena[TDC_FOV_MEM_BYTES(BENCH_W, BENCH_H, 1) / 4u + 1u] TDC_EXTRAM;
+static uint64_t g_fov_arena[TDC_FOV_MEM_BYTES(BENCH_W, BENCH_H, 1) / 8u] TDC_EXTRAM;
 static tdc_fov_t g_fov;
 static int16_t g_mv[RW * RH * 2u];
 
@@ -286,7 +286,7 @@ static void bench_fov(uint8_t taa, const char *label)
 {
     const tdc_fov_config_t cfg = {(uint16_t)BENCH_W, (uint16_t)BENCH_H, taa};
     if (tdc_fov_init(&g_fov, &cfg, g_fov_arena, sizeof g_fov_arena) != TDC_OK) {
-        return;
+        fail("fov init");
     }
     const tdc_fov_params_t p = {(int32_t)(BENCH_W * 110u), (int32_t)(BENCH_H * 140u), 1024u, 4077u, (uint16_t)FOV_LW,
                                 (uint16_t)FOV_LH};
@@ -295,11 +295,15 @@ static void bench_fov(uint8_t taa, const char *label)
         g_fov_mv[2u * k] = 24; /* 1.5 px pan */
         g_fov_mv[2u * k + 1u] = 0;
     }
-    (void)tdc_fov_frame(&g_fov, &p, g_fov_lp, FOV_LW * 3u, g_fov_mv, FOV_LW * 2u, g_in[0], BENCH_W * 3u, 11111u,
-                        g_out, BENCH_W * 3u);
+    if (tdc_fov_frame(&g_fov, &p, g_fov_lp, FOV_LW * 3u, g_fov_mv, FOV_LW * 2u, g_in[0], BENCH_W * 3u, 11111u, g_out,
+                      BENCH_W * 3u) != TDC_OK) {
+        fail("fov frame");
+    }
     tdc_bench_mark();
-    (void)tdc_fov_frame(&g_fov, &p, g_fov_lp, FOV_LW * 3u, g_fov_mv, FOV_LW * 2u, g_in[1], BENCH_W * 3u, 11111u,
-                        g_out, BENCH_W * 3u);
+    if (tdc_fov_frame(&g_fov, &p, g_fov_lp, FOV_LW * 3u, g_fov_mv, FOV_LW * 2u, g_in[1], BENCH_W * 3u, 11111u, g_out,
+                      BENCH_W * 3u) != TDC_OK) {
+        fail("fov frame");
+    }
     tdc_bench_mark();
     report(label, BENCH_PX);
 }

@@ -28,6 +28,7 @@
 #include "tdc_fov_link.h"
 #include "tdc_panels.h"
 #include "bench_clock.h"
+#include "tdc_must.h"
 
 #define HDR_BYTES 64.0 /* link packet header 32 + foveation header 32 */
 
@@ -79,7 +80,7 @@ static int costs(void)
         tdc_fov_params_t p;
         params(&p, 1920, 1080, 0.5, 0.5, x);
         tdc_fov_geom_t fg;
-        tdc_fov_geom(&fg, 1920, 1080, &p);
+        TDC_MUST(tdc_fov_geom(&fg, 1920, 1080, &p));
         const double thesis = ((double)(fg.lp_w - fg.l) * fg.lp_h + tdc_fov_disk_pixels(&fg)) / (1920.0 * 1080);
         const double ours = ((double)(fg.lp_w - fg.u0) * fg.lp_h + tdc_fov_disk_pixels(&fg)) / (1920.0 * 1080);
         if (ours < best) best = ours, best_x = x;
@@ -108,7 +109,7 @@ static void throughput(void)
     tdc_fov_params_t p;
     params(&p, W, H, 0.45, 0.5, 0.12443);
     tdc_fov_geom_t fg;
-    tdc_fov_geom(&fg, W, H, &p);
+    TDC_MUST(tdc_fov_geom(&fg, W, H, &p));
     uint8_t *lp = malloc((size_t)p.lp_w * p.lp_h * 3), *dk = malloc(W * H * 3), *out = malloc(W * H * 3);
     int16_t *mv = malloc((size_t)p.lp_w * p.lp_h * 4);
     fill(lp, (size_t)p.lp_w * p.lp_h * 3, 1);
@@ -125,12 +126,12 @@ static void throughput(void)
         size_t n = tdc_fov_get_size(&cfg);
         void *mem = malloc(n);
         tdc_fov_t st;
-        tdc_fov_init(&st, &cfg, mem, n);
-        tdc_fov_frame(&st, &p, lp, (size_t)p.lp_w * 3, mv, (size_t)p.lp_w * 2, dk, W * 3, 11111, out, W * 3);
+        TDC_MUST(tdc_fov_init(&st, &cfg, mem, n));
+        TDC_MUST(tdc_fov_frame(&st, &p, lp, (size_t)p.lp_w * 3, mv, (size_t)p.lp_w * 2, dk, W * 3, 11111, out, W * 3));
         double best = 1e30;
         for (int r = 0; r < 5; r++) {
             const double t0 = now_s();
-            tdc_fov_frame(&st, &p, lp, (size_t)p.lp_w * 3, mv, (size_t)p.lp_w * 2, dk, W * 3, 11111, out, W * 3);
+            TDC_MUST(tdc_fov_frame(&st, &p, lp, (size_t)p.lp_w * 3, mv, (size_t)p.lp_w * 2, dk, W * 3, 11111, out, W * 3));
             const double t = now_s() - t0;
             best = t < best ? t : best;
         }

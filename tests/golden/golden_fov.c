@@ -17,7 +17,7 @@
 #define LW 25 /* ~0.555 W, H */
 #define LH 16
 
-static uint32_t g_arena[TDC_FOV_MEM_BYTES(GW, GH, 1) / 4u + 1u];
+static uint64_t g_arena[TDC_FOV_MEM_BYTES(GW, GH, 1) / 8u];
 static uint8_t g_lp[LW * LH * 3];
 static uint8_t g_disk[GW * GH * 3];
 static uint8_t g_out[GW * GH * 3];
