@@ -272,9 +272,13 @@ static void bench_lcd(void)
             continue; /* the profile has no table of this size */
         }
         /* Frame 0 has no history (steady-state solve); measure frame 1. */
-        (void)tdc_lcd_frame(&g_lcd, g_in[0], BENCH_W * 3u, g_out, BENCH_W * 3u, NULL);
+        if (tdc_lcd_frame(&g_lcd, g_in[0], BENCH_W * 3u, g_out, BENCH_W * 3u, NULL) != TDC_OK) {
+            fail("LCD frame");
+        }
         tdc_bench_mark();
-        (void)tdc_lcd_frame(&g_lcd, g_in[1], BENCH_W * 3u, g_out, BENCH_W * 3u, NULL);
+        if (tdc_lcd_frame(&g_lcd, g_in[1], BENCH_W * 3u, g_out, BENCH_W * 3u, NULL) != TDC_OK) {
+            fail("LCD frame");
+        }
         tdc_bench_mark();
         report(modes[m].label, BENCH_PX);
     }
