@@ -1,7 +1,7 @@
 /*
  * fw_stream.c - writes the link streams the firmware frame loop is tested
  * with (on the host double and on the emulated boards), through the host
- * link encoder (sim/link/tdc_link_encode.h).
+ * link encoder (firmware/tdc_link_encode.h).
  *
  * Usage: fw_stream MODE WIDTH HEIGHT EYES FRAMES OUT.tdcs [EXPECTED]
  *   plain      full RGB888 frames every refresh; frame 1 of eye 0 arrives

@@ -1,7 +1,7 @@
 /*
  * golden_link.c - bit-exact golden vectors of the link decoder: synthetic
- * streams (sim/link/tdc_link_gen.c, encoded by sim/link/tdc_link_encode.c,
- * both integer-only and included here so the ARM runner has them too) in
+ * streams (sim/link/tdc_link_gen.c, integer-only and included here so the
+ * ARM runner has it too, encoded by firmware/tdc_link_encode.c) in
  * every pixel format, for TRM streams (full/reduced, motion) and
  * tile-ordered subframe streams (pattern, subframes, per-sample motion),
  * plus one damaged stream.  One checksum per accepted packet: FNV-1a 64 of
@@ -11,7 +11,6 @@
  */
 #include "golden.h"
 
-#include "../../sim/link/tdc_link_encode.c"
 #include "../../sim/link/tdc_link_gen.c"
 
 #define LW 45

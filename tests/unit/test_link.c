@@ -13,7 +13,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "link/tdc_link_encode.h"
+#include "tdc_link_encode.h"
 #include "link/tdc_link_gen.h"
 #include "tdc_link.h"
 #include "tdc_trm.h"
@@ -293,23 +293,22 @@ static void build_baseline(void)
 }
 
 /* The good packet with header fields changed (CRCs recomputed). */
-static size_t good_with(uint8_t *out, size_t cap, void (*edit)(tdc_link_header_fields_t *f))
+static size_t good_with(uint8_t *out, size_t cap, void (*edit)(tdc_link_header_t *f))
 {
-    tdc_link_header_fields_t f;
-    uint32_t len, crc;
-    assert_true(tdc_link_parse_header(pkt2, &f, &len, &crc));
+    tdc_link_header_t f;
+    assert_int_equal(tdc_link_header_unpack(pkt2, &f), TDC_LINK_OK);
     edit(&f);
-    return tdc_link_encode_raw(out, cap, &f, pkt2 + TDC_LINK_HEADER_BYTES, len);
+    return tdc_link_encode_raw(out, cap, &f, pkt2 + TDC_LINK_HEADER_BYTES, f.payload_len);
 }
 
-static void ed_version(tdc_link_header_fields_t *f) { f->version = 2; }
-static void ed_kind(tdc_link_header_fields_t *f) { f->kind = 9; }
-static void ed_eye(tdc_link_header_fields_t *f) { f->eye = 2; }
-static void ed_format(tdc_link_header_fields_t *f) { f->format = 7; }
-static void ed_dims(tdc_link_header_fields_t *f) { f->width = MW + 2; }
-static void ed_stream(tdc_link_header_fields_t *f) { f->stream_id = 43; }
-static void ed_order(tdc_link_header_fields_t *f) { f->frame_index = 0; }
-static void ed_dup(tdc_link_header_fields_t *f) { f->frame_index = 1; f->eye = 1; }
+static void ed_version(tdc_link_header_t *f) { f->version = 2; }
+static void ed_kind(tdc_link_header_t *f) { f->kind = 9; }
+static void ed_eye(tdc_link_header_t *f) { f->eye = 2; }
+static void ed_format(tdc_link_header_t *f) { f->format = 7; }
+static void ed_dims(tdc_link_header_t *f) { f->width = MW + 2; }
+static void ed_stream(tdc_link_header_t *f) { f->stream_id = 43; }
+static void ed_order(tdc_link_header_t *f) { f->frame_index = 0; }
+static void ed_dup(tdc_link_header_t *f) { f->frame_index = 1; f->eye = 1; }
 
 static size_t mk_magic(uint8_t *out, size_t cap)
 {
@@ -340,10 +339,9 @@ static size_t mk_format(uint8_t *out, size_t cap) { return good_with(out, cap, e
 static size_t mk_dims(uint8_t *out, size_t cap) { return good_with(out, cap, ed_dims); }
 static size_t mk_length(uint8_t *out, size_t cap)
 {
-    tdc_link_header_fields_t f;
-    uint32_t len, crc;
-    tdc_link_parse_header(pkt2, &f, &len, &crc);
-    return tdc_link_encode_raw(out, cap, &f, pkt2 + TDC_LINK_HEADER_BYTES, len - 3u);
+    tdc_link_header_t f;
+    assert_int_equal(tdc_link_header_unpack(pkt2, &f), TDC_LINK_OK);
+    return tdc_link_encode_raw(out, cap, &f, pkt2 + TDC_LINK_HEADER_BYTES, f.payload_len - 3u);
 }
 static size_t mk_crc(uint8_t *out, size_t cap)
 {

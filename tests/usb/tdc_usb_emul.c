@@ -353,7 +353,7 @@ void emul_board_stats(emul_board_t *b, emul_board_stats_t *out)
     out->rx_transfers = b->proto.cnt.rx_transfers;
     out->rx_crc = ~b->proto.cnt.rx_crc;
     out->image_bytes = b->proto.dfu_image_bytes;
-    out->slot_crc = tdc_usbp_crc32(b->slot, b->proto.dfu_image_bytes);
+    out->slot_crc = tdc_crc32(b->slot, b->proto.dfu_image_bytes);
     out->reset_requested = b->reset_requested;
     out->dfu_state = (int)b->proto.dfu_state;
     pthread_mutex_unlock(&b->lock);

