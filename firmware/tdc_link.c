@@ -356,8 +356,8 @@ static tdc_link_err_t commit_stream(tdc_link_decoder_t *dec)
         if ((uint32_t)in.r_num * 4u < in.r_den || in.r_num >= in.r_den) {
             return TDC_LINK_ERR_STREAM_HEADER;
         }
-        rw = TDC_LINK_REDUCED_DIM(in.width, in.r_num, in.r_den);
-        rh = TDC_LINK_REDUCED_DIM(in.height, in.r_num, in.r_den);
+        rw = TDC_REDUCED_DIM(in.width, in.r_num, in.r_den);
+        rh = TDC_REDUCED_DIM(in.height, in.r_num, in.r_den);
     } else if (in.r_num != in.r_den) {
         return TDC_LINK_ERR_STREAM_HEADER; /* r must be 1 without reduced frames */
     }
@@ -504,7 +504,7 @@ static void on_payload(tdc_link_decoder_t *dec, uint32_t src_end)
         const uint8_t *s = dec->buf.staging + dec->payload_base;
         const tdc_pixfmt_t fmt = (tdc_pixfmt_t)p->format;
         const tdc_link_buffers_t *b = &dec->buf;
-        const uint32_t tx = TDC_LINK_TILES(p->width), ty = TDC_LINK_TILES(p->height);
+        const uint32_t tx = TDC_TILES(p->width), ty = TDC_TILES(p->height);
         switch (kind) {
         case TDC_LINK_KIND_FULL:
             unpack_pixels(fmt, s, p->width, p->height, b->full[eye], b->full_stride);

@@ -185,7 +185,7 @@ size_t tdc_link_encode_subframe(const tdc_link_encoder_t *enc, uint8_t *out, siz
     if (!out || !samples || total == 0 || cap < total) {
         return 0;
     }
-    const uint32_t tx = TDC_LINK_TILES(w), ty = TDC_LINK_TILES(h);
+    const uint32_t tx = TDC_TILES(w), ty = TDC_TILES(h);
     tdc_pixfmt_pack(fmt, samples, tx, ty, tx * 3u, out + TDC_LINK_HEADER_BYTES);
     tdc_link_header_t f;
     fields(enc, &f, TDC_LINK_KIND_SUBFRAME, eye, frame, fmt, w, h, 0);
@@ -226,7 +226,7 @@ size_t tdc_link_encode_pattern(const tdc_link_encoder_t *enc, uint8_t *out, size
     const size_t n = total - TDC_LINK_HEADER_BYTES;
     memcpy(out + TDC_LINK_HEADER_BYTES, bits, n);
     /* Bits past the last tile are zero on the wire. */
-    const uint32_t tiles = TDC_LINK_TILES(w) * TDC_LINK_TILES(h);
+    const uint32_t tiles = TDC_TILES(w) * TDC_TILES(h);
     if (tiles % 8u) {
         out[TDC_LINK_HEADER_BYTES + n - 1u] &= (uint8_t)((1u << (tiles % 8u)) - 1u);
     }

@@ -57,7 +57,7 @@ size_t tdc_link_encode_subframe(const tdc_link_encoder_t *enc, uint8_t *out, siz
 size_t tdc_link_encode_motion(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap, uint32_t eye,
                               uint32_t frame, const int16_t *mv, uint32_t w, uint32_t h, int per_sample);
 
-/* PATTERN: tile bitmap (TDC_LINK_PATTERN_BYTES(w, h) bytes) of a w x h eye. */
+/* PATTERN: tile bitmap (TDC_PATTERN_BYTES(w, h) bytes) of a w x h eye. */
 size_t tdc_link_encode_pattern(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap, uint32_t eye,
                                uint32_t frame, const uint8_t *bits, uint32_t w, uint32_t h);
 

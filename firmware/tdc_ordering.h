@@ -21,15 +21,19 @@
 
 #include <stdint.h>
 
+#include "tdc_geom.h"
+
 typedef enum { TDC_ORDER_HOURGLASS = 0, TDC_ORDER_BOWTIE = 1 } tdc_ordering_t;
 
 /* Tile position numbers. */
 enum { TDC_TILE_TL = 0, TDC_TILE_TR = 1, TDC_TILE_BL = 2, TDC_TILE_BR = 3 };
 
-/* Bytes of a pattern bitmap for a w x h frame. */
-#define TDC_ORDERING_TILES_X(w) (((w) + 1) / 2)
-#define TDC_ORDERING_TILES_Y(h) (((h) + 1) / 2)
-#define TDC_ORDERING_BITMAP_BYTES(w, h) ((TDC_ORDERING_TILES_X(w) * TDC_ORDERING_TILES_Y(h) + 7) / 8)
+/* Tiles and bitmap bytes of a w x h frame: TDC_TILES, TDC_PATTERN_BYTES
+ * (tdc_geom.h).  The names below are the same rule, kept for the
+ * assembly's arena list until it moves to the tdc_geom.h names. */
+#define TDC_ORDERING_TILES_X(w) TDC_TILES(w)
+#define TDC_ORDERING_TILES_Y(h) TDC_TILES(h)
+#define TDC_ORDERING_BITMAP_BYTES(w, h) TDC_PATTERN_BYTES(w, h)
 
 /* Position traced in subframe k (k taken mod 4): hourglass TL,TR,BL,BR;
  * bowtie TL,BL,TR,BR. */
@@ -67,7 +71,7 @@ tdc_ordering_t tdc_ordering_decide(int32_t mx_q4, int32_t my_q4, tdc_ordering_t 
  * the full-res pixels of the tile's 3x3 tile neighbourhood (up to 6x6
  * pixels, clipped to the frame); then bit = tdc_ordering_decide(m, bit, ...).
  * mv: w*h interleaved Q4 pairs, rows w pairs apart.  pattern_bits: in/out,
- * TDC_ORDERING_BITMAP_BYTES(w, h) bytes (the current orderings in, the new
+ * TDC_PATTERN_BYTES(w, h) bytes (the current orderings in, the new
  * ones out; padding bits of the last byte are left unchanged).
  */
 void tdc_ordering_update(const int16_t *mv, int w, int h, uint8_t *pattern_bits, uint32_t frame);

@@ -24,6 +24,7 @@
 #define TDC_TRM_H
 
 #include "tdc_fixed.h"
+#include "tdc_geom.h"
 #include "tdc_panel.h"
 
 /* Largest Gaussian support: taps within 3 sigma, sigma <= 3.5 px. */
@@ -44,7 +45,8 @@
 #define TDC_TRM_SIMD_BYTES 0u
 #endif
 
-#define TDC_TRM_REDUCED_DIM(n, num, den) ((((n) * (num)) + (den) / 2) / (den) < 1 ? 1 : (((n) * (num)) + (den) / 2) / (den))
+/* The reduced size rule is tdc_geom.h's (the link and the host use it too). */
+#define TDC_TRM_REDUCED_DIM(n, num, den) TDC_REDUCED_DIM(n, num, den)
 
 /*
  * Compile-time arena bound for a W x H eye at reduction ratios up to

@@ -118,8 +118,8 @@ uint32_t tdc_link_payload_bytes(tdc_link_kind_t kind, tdc_pixfmt_t fmt, uint32_t
     }
     const int tiles = k->grid == TDC_LINK_GRID_TILES ||
                       (k->grid == TDC_LINK_GRID_MV && (pkt_flags & TDC_LINK_PKT_MV_PER_SAMPLE));
-    const uint32_t gw = tiles ? TDC_LINK_TILES(width) : width;
-    const uint32_t gh = tiles ? TDC_LINK_TILES(height) : height;
+    const uint32_t gw = tiles ? TDC_TILES(width) : width;
+    const uint32_t gh = tiles ? TDC_TILES(height) : height;
     switch (k->rule) {
     case TDC_LINK_PAYLOAD_FIXED:
         return k->unit;

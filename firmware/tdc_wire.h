@@ -26,6 +26,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "tdc_geom.h"
 #include "tdc_pixfmt.h"
 
 /* ------------------------------------------------------------------------
@@ -199,11 +200,8 @@ void tdc_link_stream_unpack(const uint8_t in[TDC_LINK_STREAM_HEADER_BYTES], tdc_
  * 4. Kinds and sizes.
  * ---------------------------------------------------------------------- */
 
-/* Reduced size for ratio num/den: round(n * num / den), at least 1 (the same
- * rule as TDC_TRM_REDUCED_DIM in tdc_trm.h). */
-#define TDC_LINK_REDUCED_DIM(n, num, den)                                                          \
-    ((((uint32_t)(n) * (num)) + (den) / 2u) / (den) < 1u ? 1u : (((uint32_t)(n) * (num)) + (den) / 2u) / (den))
-#define TDC_LINK_TILES(n) (((uint32_t)(n) + 1u) / 2u) /* 2x2 tiles along a side */
+/* Geometry (reduced size TDC_REDUCED_DIM, tiles TDC_TILES, pattern bytes
+ * TDC_PATTERN_BYTES): tdc_geom.h. */
 
 /* How a kind's payload length follows from the header (format, w x h,
  * flags): `rule` over the elements of `grid`. */
@@ -246,11 +244,11 @@ uint32_t tdc_link_payload_bytes(tdc_link_kind_t kind, tdc_pixfmt_t fmt, uint32_t
 size_t tdc_link_packet_bytes(tdc_link_kind_t kind, tdc_pixfmt_t fmt, uint32_t width, uint32_t height,
                              uint32_t pkt_flags);
 
-/* Pipeline buffer sizes for a w x h eye, one per kind. */
+/* Pipeline buffer sizes for a w x h eye, one per kind (PATTERN:
+ * TDC_PATTERN_BYTES of tdc_geom.h). */
 #define TDC_LINK_FRAME_BYTES(w, h) ((size_t)(w) * (h) * 3u)                          /* RGB888 */
-#define TDC_LINK_SUBFRAME_BYTES(w, h) ((size_t)TDC_LINK_TILES(w) * TDC_LINK_TILES(h) * 3u)
+#define TDC_LINK_SUBFRAME_BYTES(w, h) (TDC_TILE_COUNT(w, h) * 3u)
 #define TDC_LINK_MOTION_COUNT(w, h) ((size_t)(w) * (h) * 2u)                         /* int16s */
-#define TDC_LINK_SAMPLE_MOTION_COUNT(w, h) ((size_t)TDC_LINK_TILES(w) * TDC_LINK_TILES(h) * 2u)
-#define TDC_LINK_PATTERN_BYTES(w, h) (((size_t)TDC_LINK_TILES(w) * TDC_LINK_TILES(h) + 7u) / 8u)
+#define TDC_LINK_SAMPLE_MOTION_COUNT(w, h) (TDC_TILE_COUNT(w, h) * 2u)
 
 #endif /* TDC_WIRE_H */

@@ -87,8 +87,8 @@ static uint8_t g_fb[(size_t)FW_STRIDE * FW_H] TDC_EXTRAM;
 static uint8_t g_staging[TDC_LINK_STAGING_BYTES(FW_W, FW_H)] TDC_EXTRAM;
 
 #if TDC_CFG_TRM
-#define FW_RW TDC_LINK_REDUCED_DIM(FW_W, TDC_CFG_R_NUM, TDC_CFG_R_DEN)
-#define FW_RH TDC_LINK_REDUCED_DIM(FW_H, TDC_CFG_R_NUM, TDC_CFG_R_DEN)
+#define FW_RW TDC_REDUCED_DIM(FW_W, TDC_CFG_R_NUM, TDC_CFG_R_DEN)
+#define FW_RH TDC_REDUCED_DIM(FW_H, TDC_CFG_R_NUM, TDC_CFG_R_DEN)
 static uint8_t g_reduced[FW_EYES][(size_t)FW_RW * FW_RH * 3u] TDC_EXTRAM;
 #define FW_TRM_BYTES FW_ALIGN8(TDC_TRM_MEM_BYTES(FW_W, FW_H, TDC_CFG_R_NUM, TDC_CFG_R_DEN))
 #else
@@ -98,7 +98,7 @@ static uint8_t g_reduced[FW_EYES][(size_t)FW_RW * FW_RH * 3u] TDC_EXTRAM;
 #if TDC_CFG_ASSEMBLE
 static uint8_t g_subframe[FW_EYES][TDC_LINK_SUBFRAME_BYTES(FW_W, FW_H)] TDC_EXTRAM;
 static int16_t g_sample_mv[FW_EYES][TDC_LINK_SAMPLE_MOTION_COUNT(FW_W, FW_H)] TDC_EXTRAM;
-static uint8_t g_pattern[FW_EYES][TDC_LINK_PATTERN_BYTES(FW_W, FW_H)] TDC_EXTRAM;
+static uint8_t g_pattern[FW_EYES][TDC_PATTERN_BYTES(FW_W, FW_H)] TDC_EXTRAM;
 #define FW_ASM_BYTES FW_ALIGN8(TDC_ASM_MEM_BYTES(FW_W, FW_H))
 #else
 #define FW_ASM_BYTES ((size_t)0)

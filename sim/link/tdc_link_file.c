@@ -157,7 +157,7 @@ int tdc_link_file_check(const char *path, FILE *log, int verbose, tdc_link_file_
         TDCS_ALLOC(b.subframe[e], uint8_t *, TDC_LINK_SUBFRAME_BYTES(w, h));
         TDCS_ALLOC(b.motion[e], int16_t *, TDC_LINK_MOTION_COUNT(w, h) * 2u);
         TDCS_ALLOC(b.sample_motion[e], int16_t *, TDC_LINK_SAMPLE_MOTION_COUNT(w, h) * 2u);
-        TDCS_ALLOC(b.pattern[e], uint8_t *, TDC_LINK_PATTERN_BYTES(w, h));
+        TDCS_ALLOC(b.pattern[e], uint8_t *, TDC_PATTERN_BYTES(w, h));
     }
 #undef TDCS_ALLOC
     static uint8_t chunk[65536];

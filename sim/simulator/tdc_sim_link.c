@@ -80,12 +80,12 @@ int tdc_sim_link_init(tdc_sim_link_t *l, int w, int h, uint32_t flags, uint16_t 
     l->r_num = r_num ? r_num : 1;
     l->r_den = r_den ? r_den : 1;
     l->hz = hz;
-    l->rw = (int)TDC_LINK_REDUCED_DIM(w, l->r_num, l->r_den);
-    l->rh = (int)TDC_LINK_REDUCED_DIM(h, l->r_num, l->r_den);
+    l->rw = (int)TDC_REDUCED_DIM(w, l->r_num, l->r_den);
+    l->rh = (int)TDC_REDUCED_DIM(h, l->r_num, l->r_den);
     l->full = calloc(TDC_LINK_FRAME_BYTES(w, h), 1);
     l->reduced = calloc(TDC_LINK_FRAME_BYTES(l->rw, l->rh), 1);
     l->subframe = calloc(TDC_LINK_SUBFRAME_BYTES(w, h), 1);
-    l->pattern = calloc(TDC_LINK_PATTERN_BYTES(w, h) + 1, 1);
+    l->pattern = calloc(TDC_PATTERN_BYTES(w, h) + 1, 1);
     l->motion = calloc(TDC_LINK_MOTION_COUNT(w, h), sizeof(int16_t));
     l->sample_motion = calloc(TDC_LINK_SAMPLE_MOTION_COUNT(w, h), sizeof(int16_t));
     if (!l->full || !l->reduced || !l->subframe || !l->pattern || !l->motion || !l->sample_motion) {
@@ -242,8 +242,8 @@ int tdc_sim_link_subframe(tdc_sim_link_t *l, uint32_t frame, const uint8_t *samp
     l->bytes += TDC_LINK_HEADER_BYTES + TDC_LINK_SUBFRAME_BYTES(l->w, l->h);
     l->packets++;
     if (pattern) {
-        memcpy(l->pattern, pattern, TDC_LINK_PATTERN_BYTES(l->w, l->h));
-        l->bytes += TDC_LINK_HEADER_BYTES + TDC_LINK_PATTERN_BYTES(l->w, l->h);
+        memcpy(l->pattern, pattern, TDC_PATTERN_BYTES(l->w, l->h));
+        l->bytes += TDC_LINK_HEADER_BYTES + TDC_PATTERN_BYTES(l->w, l->h);
         l->packets++;
     }
     if (mv) {

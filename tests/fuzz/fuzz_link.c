@@ -35,7 +35,7 @@ static uint8_t reduced[2][TDC_LINK_FRAME_BYTES(FW, FH)];
 static uint8_t subframe[2][TDC_LINK_SUBFRAME_BYTES(FW, FH)];
 static int16_t motion[2][TDC_LINK_MOTION_COUNT(FW, FH)];
 static int16_t sample_motion[2][TDC_LINK_SAMPLE_MOTION_COUNT(FW, FH)];
-static uint8_t pattern[2][TDC_LINK_PATTERN_BYTES(FW, FH)];
+static uint8_t pattern[2][TDC_PATTERN_BYTES(FW, FH)];
 static uint8_t work[1 << 20];
 
 /* Every pipeline buffer, by slot (kind, or KIND_LAST + 1 for per-sample

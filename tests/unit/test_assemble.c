@@ -48,7 +48,7 @@ static void rig_open(rig_t *r, int w, int h, tdc_scene_kind_t kind, int32_t vx, 
     size_t tiles = (size_t)((w + 1) / 2) * ((h + 1) / 2);
     r->samples = malloc(tiles * 3);
     r->mvs = malloc(tiles * 4);
-    r->bits = calloc((size_t)TDC_ORDERING_BITMAP_BYTES(w, h), 1);
+    r->bits = calloc((size_t)TDC_PATTERN_BYTES(w, h), 1);
 }
 
 static void rig_close(rig_t *r)
@@ -194,7 +194,7 @@ static void test_orderings_eq4_eq5(void **state)
 static void test_diagonal_hashed(void **state)
 {
     (void)state;
-    uint8_t first[2][TDC_ORDERING_BITMAP_BYTES(40, 30)];
+    uint8_t first[2][TDC_PATTERN_BYTES(40, 30)];
     for (int run = 0; run < 2; run++) {
         rig_t r;
         rig_open(&r, 40, 30, TDC_SCENE_PAN, 40, -37); /* 42.8 deg, in the band */

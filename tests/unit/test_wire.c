@@ -188,7 +188,7 @@ static void test_payload_sizes(void **state)
             assert_int_equal(TDC_LINK_SAMPLE_MOTION_COUNT(w, h) * 2u,
                              tdc_link_payload_bytes(TDC_LINK_KIND_MOTION, TDC_PIXFMT_NONE, w, h,
                                                     TDC_LINK_PKT_MV_PER_SAMPLE));
-            assert_int_equal(TDC_LINK_PATTERN_BYTES(w, h),
+            assert_int_equal(TDC_PATTERN_BYTES(w, h),
                              tdc_link_payload_bytes(TDC_LINK_KIND_PATTERN, TDC_PIXFMT_NONE, w, h, 0));
             assert_int_equal(tdc_link_packet_bytes(TDC_LINK_KIND_PATTERN, TDC_PIXFMT_NONE, w, h, 0),
                              TDC_LINK_HEADER_BYTES + (tx * ty + 7u) / 8u);
