@@ -8,6 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "tdc_math.h"
+
 /* ------------------------------------------------------------------------
  * Ordering decision, straight from DESIGN §4.3 / paper eq. 2-5.
  * ---------------------------------------------------------------------- */
@@ -18,7 +20,7 @@ tdc_ordering_t tdc_ref_ordering_decide(double mx, double my, tdc_ordering_t curr
     const double gamma = M_PI / 40.0;
     double a = atan2(fabs(my), fabs(mx)); /* folded into [0, pi/2] */
     if (fabs(a - M_PI / 4.0) < gamma)
-        return (tdc_ordering_hash(tile_x, tile_y, frame) >> 31) ? TDC_ORDER_BOWTIE : TDC_ORDER_HOURGLASS;
+        return (tdc_hash3(tile_x, tile_y, frame) >> 31) ? TDC_ORDER_BOWTIE : TDC_ORDER_HOURGLASS;
     double l = hypot(mx, my);
     double lf = l - floor(l);
     double s = 0.5 * a / (M_PI / 2.0);

@@ -36,6 +36,7 @@
 #include "tdc_board.h"
 #include "tdc_link.h"
 #include "tdc_panel.h"
+#include "tdc_text.h"
 
 #ifndef TDC_PANEL_WIDTH
 #error "the frame loop is built per panel: compile with -include tdc_panel_<panel>_config.h"
@@ -151,34 +152,12 @@ static struct {
 } g;
 
 /* ---- small text helpers for the log (no printf in firmware) ---- */
-static char *put_str(char *o, const char *end, const char *s)
-{
-    while (*s && o < end) {
-        *o++ = *s++;
-    }
-    return o;
-}
-
-static char *put_u32(char *o, const char *end, uint32_t v)
-{
-    char d[10];
-    int n = 0;
-    do {
-        d[n++] = (char)('0' + v % 10u);
-        v /= 10u;
-    } while (v);
-    while (n && o < end) {
-        *o++ = d[--n];
-    }
-    return o;
-}
-
 static void log_kv(const char *what, uint32_t v)
 {
     char line[96];
     char *end = line + sizeof line - 1;
-    char *o = put_str(line, end, what);
-    o = put_u32(o, end, v);
+    char *o = tdc_text_str(line, end, what);
+    o = tdc_text_u32(o, end, v);
     *o = 0;
     tdc_board_log(line);
 }
