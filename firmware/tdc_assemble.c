@@ -36,8 +36,8 @@ static int tdc_asm_cfg_ok(const tdc_asm_config_t *cfg)
 static void tdc_asm_carve(tdc_asm_t *st, const tdc_asm_config_t *cfg, tdc_arena_t *arena)
 {
     TDC_ASM_ARENA(TDC_ARENA_CARVE, cfg->width, cfg->height,
-                  (size_t)TDC_ORDERING_TILES_X((uint32_t)cfg->width) * TDC_ORDERING_TILES_Y((uint32_t)cfg->height),
-                  TDC_ORDERING_BITMAP_BYTES(cfg->width, cfg->height))
+                  (size_t)TDC_TILES((uint32_t)cfg->width) * TDC_TILES((uint32_t)cfg->height),
+                  TDC_PATTERN_BYTES(cfg->width, cfg->height))
 }
 
 size_t tdc_asm_get_size(const tdc_asm_config_t *cfg)
@@ -58,8 +58,8 @@ tdc_status_t tdc_asm_init(tdc_asm_t *st, const tdc_asm_config_t *cfg, void *aren
     if (n < need) return TDC_ERR_SIZE;
     memset(st, 0, sizeof(*st));
     st->cfg = *cfg;
-    st->tiles_x = TDC_ORDERING_TILES_X((uint32_t)cfg->width);
-    st->tiles_y = TDC_ORDERING_TILES_Y((uint32_t)cfg->height);
+    st->tiles_x = TDC_TILES((uint32_t)cfg->width);
+    st->tiles_y = TDC_TILES((uint32_t)cfg->height);
     tdc_asm_carve(st, cfg, &a);
     memset(arena, 0, need);
     return TDC_OK;
@@ -110,7 +110,7 @@ tdc_status_t tdc_asm_ingest(tdc_asm_t *st, uint32_t frame, const uint8_t *sample
         for (uint32_t i = 0; i < nt; i++) diff += tdc_ordering_get(pattern_bits, i) != tdc_ordering_get(st->pattern, i);
         st->stats.pattern_checks += nt;
         st->stats.pattern_disagreements += diff;
-        if (k == 0 && diff) memcpy(st->pattern, pattern_bits, (size_t)TDC_ORDERING_BITMAP_BYTES(w, h));
+        if (k == 0 && diff) memcpy(st->pattern, pattern_bits, (size_t)TDC_PATTERN_BYTES(w, h));
     }
     const unsigned pos_h = tdc_ordering_pixel(TDC_ORDER_HOURGLASS, k);
     const unsigned pos_b = tdc_ordering_pixel(TDC_ORDER_BOWTIE, k);
@@ -865,7 +865,7 @@ tdc_status_t tdc_asm_assemble(tdc_asm_t *st, uint32_t frame)
     st->stats.frames++;
     if ((frame & 3u) == 3u) {
         /* Decide the orderings of the next cycle from the motion buffer. */
-        size_t bm = (size_t)TDC_ORDERING_BITMAP_BYTES(st->cfg.width, st->cfg.height);
+        size_t bm = (size_t)TDC_PATTERN_BYTES(st->cfg.width, st->cfg.height);
         if (st->mv_nonzero != 0) {
             memcpy(st->pattern_next, st->pattern, bm);
             tdc_ordering_update(st->mv, st->cfg.width, st->cfg.height, st->pattern_next, frame + 1u);

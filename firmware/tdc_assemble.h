@@ -82,8 +82,8 @@
 
 #define TDC_ASM_MEM_BYTES(W, H)                                                                               \
     ((size_t)0 TDC_ASM_ARENA(TDC_ARENA_BLOCK_BYTES, W, H,                                                     \
-                             (size_t)TDC_ORDERING_TILES_X(W) * TDC_ORDERING_TILES_Y(H),                       \
-                             TDC_ORDERING_BITMAP_BYTES(W, H)))
+                             (size_t)TDC_TILES(W) * TDC_TILES(H),                       \
+                             TDC_PATTERN_BYTES(W, H)))
 
 typedef struct {
     uint16_t width; /* full-res frame size, 1 .. TDC_ASM_MAX_DIM */

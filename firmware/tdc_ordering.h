@@ -30,11 +30,7 @@ typedef enum { TDC_ORDER_HOURGLASS = 0, TDC_ORDER_BOWTIE = 1 } tdc_ordering_t;
 enum { TDC_TILE_TL = 0, TDC_TILE_TR = 1, TDC_TILE_BL = 2, TDC_TILE_BR = 3 };
 
 /* Tiles and bitmap bytes of a w x h frame: TDC_TILES, TDC_PATTERN_BYTES
- * (tdc_geom.h).  The names below are the same rule, kept for the
- * assembly's arena list until it moves to the tdc_geom.h names. */
-#define TDC_ORDERING_TILES_X(w) TDC_TILES(w)
-#define TDC_ORDERING_TILES_Y(h) TDC_TILES(h)
-#define TDC_ORDERING_BITMAP_BYTES(w, h) TDC_PATTERN_BYTES(w, h)
+ * (tdc_geom.h). */
 
 /* One motion vector (dx, dy) as a 32-bit word, for equality and zero tests
  * only (so its byte order does not matter). */

@@ -50,8 +50,8 @@
 #define TDC_TRM_SIMD_BYTES 0u
 #endif
 
-/* The reduced size rule is tdc_geom.h's (the link and the host use it too). */
-#define TDC_TRM_REDUCED_DIM(n, num, den) TDC_REDUCED_DIM(n, num, den)
+/* The reduced size of ratio r_num / r_den: TDC_REDUCED_DIM (tdc_geom.h),
+ * the rule the link and the host use too. */
 
 /*
  * The arena (tdc_arena.h), one line per block: X(member of tdc_trm_t,
@@ -83,8 +83,8 @@
  * r and taps, so no smaller configuration needs more).
  */
 #define TDC_TRM_MEM_BYTES(W, H, RNUM, RDEN)                                                                   \
-    ((size_t)0 TDC_TRM_ARENA(TDC_ARENA_BLOCK_BYTES, W, H, TDC_TRM_REDUCED_DIM(W, RNUM, RDEN),                 \
-                             TDC_TRM_REDUCED_DIM(H, RNUM, RDEN), TDC_TRM_TAPS(TDC_TRM_MAX_SIGMA_Q8)))
+    ((size_t)0 TDC_TRM_ARENA(TDC_ARENA_BLOCK_BYTES, W, H, TDC_REDUCED_DIM(W, RNUM, RDEN),                 \
+                             TDC_REDUCED_DIM(H, RNUM, RDEN), TDC_TRM_TAPS(TDC_TRM_MAX_SIGMA_Q8)))
 
 typedef struct {
     uint16_t width;          /* full-res eye size in pixels */
