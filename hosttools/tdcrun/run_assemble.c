@@ -281,7 +281,7 @@ int tdc_run_assemble_main(int argc, char **argv)
 
     tdc_asm_config_t cfg = {(uint16_t)w, (uint16_t)h};
     size_t n = tdc_asm_get_size(&cfg);
-    void *arena = aligned_alloc(8, (n + 7) & ~(size_t)7);
+    void *arena = aligned_alloc(TDC_ARENA_ALIGN, TDC_ARENA_ROUND(n));
     int16_t *mv = malloc((size_t)tx * ty * 4);
     uint8_t *bits = malloc(((size_t)tx * ty + 7) / 8);
     tdc_asm_t st;

@@ -40,7 +40,7 @@ static void rig_open(rig_t *r, int w, int h, tdc_scene_kind_t kind, int32_t vx, 
     r->w = w, r->h = h;
     r->n = tdc_asm_get_size(&cfg);
     assert_true(r->n > 0 && r->n <= TDC_ASM_MEM_BYTES(w, h));
-    r->arena = aligned_alloc(8, (r->n + CANARY + 7) & ~(size_t)7);
+    r->arena = aligned_alloc(TDC_ARENA_ALIGN, TDC_ARENA_ROUND(r->n + CANARY));
     assert_non_null(r->arena);
     memset(r->arena + r->n, 0x5A, CANARY);
     assert_int_equal(tdc_asm_init(&r->st, &cfg, r->arena, r->n), TDC_OK);

@@ -44,7 +44,7 @@ static void run_scenario(const scenario_t *sc, int w, int h, int frames, tdc_asm
 {
     tdc_asm_config_t cfg = {(uint16_t)w, (uint16_t)h};
     size_t n = tdc_asm_get_size(&cfg);
-    void *arena = aligned_alloc(8, (n + 7) & ~(size_t)7);
+    void *arena = aligned_alloc(TDC_ARENA_ALIGN, TDC_ARENA_ROUND(n));
     tdc_asm_t st;
     assert_non_null(arena);
     assert_int_equal(tdc_asm_init(&st, &cfg, arena, n), TDC_OK);
