@@ -63,6 +63,12 @@ static inline void tdc_put_le16s(uint8_t *p, int16_t v)
 {
     tdc_put_le16(p, (uint32_t)(v < 0 ? (int32_t)v + 65536 : (int32_t)v));
 }
+/* int32 likewise (writing needs no helper: (uint32_t)v is defined). */
+static inline int32_t tdc_get_le32s(const uint8_t *p)
+{
+    const uint32_t v = tdc_get_le32(p);
+    return v <= 0x7FFFFFFFu ? (int32_t)v : -(int32_t)(~v) - 1;
+}
 
 /* ------------------------------------------------------------------------
  * 2. Link packet header: 32 bytes, little-endian, naturally aligned fields.

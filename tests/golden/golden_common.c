@@ -18,7 +18,7 @@ void tdc_golden_emit(tdc_golden_ctx_t *ctx, const char *stage, const char *vecto
                      uint64_t checksum)
 {
     char line[160];
-    const char *name_end = line + sizeof line - 32; /* room for frame + hex + newline */
+    char *name_end = line + sizeof line - 32; /* room for frame + hex + newline */
     char *o = tdc_text_str(line, name_end, stage);
     o = tdc_text_str(o, name_end, "/");
     o = tdc_text_str(o, name_end, vector);
