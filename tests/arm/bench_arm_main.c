@@ -25,6 +25,7 @@
 #include "tdc_link_encode.h"
 #include "tdc_panels.h"
 #include "tdc_semihost.h"
+#include "tdc_text.h"
 #include "tdc_trm.h"
 
 #define BENCH_W 640u
@@ -72,20 +73,10 @@ static const tdc_panel_t *const k_panels[] = {
 
 static void report(const char *label, uint32_t pixels)
 {
-    char num[12];
-    int n = 0;
-    char d[10];
-    do {
-        d[n++] = (char)('0' + pixels % 10u);
-        pixels /= 10u;
-    } while (pixels);
-    int k = 0;
-    num[k++] = ' ';
-    while (n) {
-        num[k++] = d[--n];
-    }
-    num[k++] = '\n';
-    num[k] = 0;
+    char num[13];
+    char *o = tdc_text_u32(tdc_text_str(num, NULL, " "), NULL, pixels);
+    *o++ = '\n';
+    *o = 0;
     tdc_semihost_puts(1, label);
     tdc_semihost_puts(1, num);
 }
