@@ -78,7 +78,17 @@ static int64_t mirror_index(int64_t i, int n)
 static void row_integral(const img_ctx_t *c, double x, int64_t row, double out[3])
 {
     const int w = c->iw;
-    const double *S = c->S + (size_t)mirror_index(row, c->ih) * (size_t)(w + 1) * 3;
+    const double *S = c->S + (size_t)(row >= 0 && row < c->ih ? row : mirror_index(row, c->ih)) * (size_t)(w + 1) * 3;
+    if (x >= 0.0 && x < (double)w) {
+        /* inside the image (the common case): no period, no reflection */
+        int col = (int)x;
+        double fr = x - col;
+        const double *a = S + 3 * col;
+        out[0] = a[0] + fr * (a[3] - a[0]);
+        out[1] = a[1] + fr * (a[4] - a[1]);
+        out[2] = a[2] + fr * (a[5] - a[2]);
+        return;
+    }
     double p = 2.0 * w;
     double k = floor(x / p);
     double xr = x - k * p;
