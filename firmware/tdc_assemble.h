@@ -56,11 +56,6 @@
 
 #define TDC_ASM_MAX_DIM 4096
 
-/* Status codes beyond tdc_status_t. */
-enum {
-    TDC_ASM_ERR_FRAME = -20 /* ingest/assemble for a frame out of sequence */
-};
-
 /* Bytes per pixel of the arena: 2 output frames (6), window mask (1),
  * motion buffer (4); plus 48 per tile: 4 slots x 4 positions of RGB888. */
 #define TDC_ASM_BYTES_PER_PIXEL 11u
@@ -127,6 +122,7 @@ size_t tdc_asm_get_size(const tdc_asm_config_t *cfg);
 
 /* Initialises st over arena (aligned to 8, n >= get_size).  Output starts
  * black, motion zero, all tiles hourglass. */
+TDC_MUST_CHECK
 tdc_status_t tdc_asm_init(tdc_asm_t *st, const tdc_asm_config_t *cfg, void *arena, size_t n);
 
 /*
@@ -136,9 +132,10 @@ tdc_status_t tdc_asm_init(tdc_asm_t *st, const tdc_asm_config_t *cfg, void *aren
  *   pattern_bits: the stream's orderings (only read when frame % 4 == 0),
  *                 or NULL: the stage uses its own decision.
  * Samples of partial tiles that fall outside the frame are ignored.
- * Errors: TDC_ERR_ARG (null st/samples), TDC_ASM_ERR_FRAME (out of sequence,
+ * Errors: TDC_ERR_ARG (null st/samples), TDC_ERR_FRAME (out of sequence,
  * or a second subframe for the same frame); nothing is changed on error.
  */
+TDC_MUST_CHECK
 tdc_status_t tdc_asm_ingest(tdc_asm_t *st, uint32_t frame, const uint8_t *samples, const int16_t *mvs,
                             const uint8_t *pattern_bits);
 
@@ -147,11 +144,13 @@ tdc_status_t tdc_asm_ingest(tdc_asm_t *st, uint32_t frame, const uint8_t *sample
  * pairs, e.g. the link's MOTION packets without the per-sample flag):
  * replaces the whole motion buffer for `frame` (call after tdc_asm_ingest,
  * or alone when the subframe was lost, before tdc_asm_assemble).
- * Errors: TDC_ERR_ARG, TDC_ASM_ERR_FRAME (not the next frame).
+ * Errors: TDC_ERR_ARG, TDC_ERR_FRAME (not the next frame).
  */
+TDC_MUST_CHECK
 tdc_status_t tdc_asm_set_motion(tdc_asm_t *st, uint32_t frame, const int16_t *mv);
 
 /* Assembles output frame `frame` (= the next frame; missing subframe allowed). */
+TDC_MUST_CHECK
 tdc_status_t tdc_asm_assemble(tdc_asm_t *st, uint32_t frame);
 
 /* The last assembled frame, RGB888, *stride_bytes = width * 3. */

@@ -177,6 +177,7 @@ size_t tdc_lcd_get_size(const tdc_lcd_config_t *cfg);
  * LCD profile, not 8-bit, or refresh_hz not one of its rates, or the table
  * the mode needs is absent), TDC_ERR_SIZE (arena too small).
  */
+TDC_MUST_CHECK
 tdc_status_t tdc_lcd_init(tdc_lcd_t *st, const tdc_lcd_config_t *cfg, const tdc_panel_t *panel, void *mem,
                           size_t mem_bytes);
 
@@ -189,6 +190,7 @@ void tdc_lcd_reset(tdc_lcd_t *st);
  * interleaved) to which unreached light is added, or NULL.  in == out is
  * allowed (rows processed in place).
  */
+TDC_MUST_CHECK
 tdc_status_t tdc_lcd_frame(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_stride, uint8_t *drive,
                            uint32_t out_stride, tdc_res_t *residual);
 

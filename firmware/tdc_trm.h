@@ -130,6 +130,7 @@ void tdc_trm_default_config(tdc_trm_config_t *cfg, uint16_t width, uint16_t heig
  * minimum: TRM is refused, paper §9), TDC_ERR_SIZE (arena too small or eye
  * larger than the kernel tables allow), TDC_ERR_PANEL (panel not 8-bit).
  */
+TDC_MUST_CHECK
 tdc_status_t tdc_trm_init(tdc_trm_t *st, const tdc_trm_config_t *cfg, const tdc_panel_t *panel, void *mem,
                           size_t mem_bytes);
 
@@ -140,6 +141,7 @@ void tdc_trm_reset(tdc_trm_t *st);
  * Full-resolution frame: in (W x H) -> out (W x H) drive codes, updates rho
  * and D(I).  In pass-through mode out = in and nothing else runs.
  */
+TDC_MUST_CHECK
 tdc_status_t tdc_trm_full(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out,
                           uint32_t out_stride);
 
@@ -148,6 +150,7 @@ tdc_status_t tdc_trm_full(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, 
  * TDC_ERR_STATE if no full frame preceded it since init/reset (out is left
  * untouched: the panel keeps the last good frame).
  */
+TDC_MUST_CHECK
 tdc_status_t tdc_trm_reduced(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t in_stride, uint8_t *out,
                              uint32_t out_stride);
 
@@ -156,6 +159,7 @@ tdc_status_t tdc_trm_reduced(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t 
  * codes (rounded).  For tests, tdc-run --auto-reduce and the demo; a real
  * renderer supersamples instead (TRM §4.3).
  */
+TDC_MUST_CHECK
 tdc_status_t tdc_trm_downsample(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out,
                                 uint32_t out_stride);
 
@@ -164,7 +168,7 @@ tdc_status_t tdc_trm_downsample(tdc_trm_t *st, const uint8_t *in, uint32_t in_st
 int32_t tdc_trm_weight(const tdc_trm_t *st, uint32_t x_q16);
 
 /* Row kernels: AVX2 (enable = 1, the default when the host CPU has it) or
- * portable C (0).  Both give the same bytes (tests/checkasm_trm.c); boards
+ * portable C (0).  Both give the same bytes (tests/checkasm/checkasm_trm.c); boards
  * and CPUs without AVX2 always run C. */
 void tdc_trm_set_simd(tdc_trm_t *st, int enable);
 
