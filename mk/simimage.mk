@@ -8,9 +8,9 @@ HOST_LIBS += -ljpeg
 DEPS_PKGS += libjpeg62-turbo-dev mate-backgrounds
 DEMO_PHOTOS := /usr/share/backgrounds/mate/nature
 
-TESTS += $(B)/tests/test_image_source $(B)/test-sim-image
-$(B)/tests/test_image_source: $(B)/tests/test_image_source.o $(SIMXLIB) $(SIMLIB) $(FWLIB)
+TESTS += $(B)/tests/unit/test_image_source $(B)/test-sim-image
+$(B)/tests/unit/test_image_source: $(B)/tests/unit/test_image_source.o $(SIMXLIB) $(SIMLIB) $(FWLIB)
 	$(CC) $(HOST_LDFLAGS) $^ -o $@ $(HOST_LIBS)
-$(B)/test-sim-image: tests/test_sim_image.sh $(TDC_SIM)
-	@printf '#!/bin/sh\nexec tests/test_sim_image.sh %s %s\n' "$(TDC_SIM)" "$(DEMO_PHOTOS)" > $@
+$(B)/test-sim-image: tests/unit/test_sim_image.sh $(TDC_SIM)
+	@printf '#!/bin/sh\nexec tests/unit/test_sim_image.sh %s %s\n' "$(TDC_SIM)" "$(DEMO_PHOTOS)" > $@
 	@chmod +x $@

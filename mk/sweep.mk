@@ -19,8 +19,8 @@ sweep: $(TDC_SIM)
 
 # Run once (not per sanitizer variant): GNU parallel and a one-node Slurm
 # cluster the test starts and stops itself (~30 s).
-$(B)/test-sweep: tests/test_sweep.sh $(TDC_SIM)
-	@printf '#!/bin/sh\nexec tests/test_sweep.sh %s\n' "$(TDC_SIM)" > $@
+$(B)/test-sweep: tests/unit/test_sweep.sh $(TDC_SIM)
+	@printf '#!/bin/sh\nexec tests/unit/test_sweep.sh %s\n' "$(TDC_SIM)" > $@
 	@chmod +x $@
 test-sweep: $(B)/test-sweep
 	@tests/run_tests.sh sweep $(B)/test-sweep
