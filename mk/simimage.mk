@@ -5,7 +5,7 @@ SIMIMG_OBJS = $(patsubst %.c,$(B)/%.o,sim/image/tdc_image_read.c sim/image/tdc_i
 # into the simulator archive (its rule takes every prerequisite: ar rcs $@ $^)
 $(SIMXLIB): $(SIMIMG_OBJS)
 HOST_LIBS += -ljpeg
-DEPS_PKGS += libjpeg62-turbo-dev mate-backgrounds
+DEPS_PKGS += libjpeg62-turbo-dev mate-backgrounds time
 DEMO_PHOTOS := /usr/share/backgrounds/mate/nature
 
 TESTS += $(B)/tests/unit/test_image_source $(B)/test-sim-image

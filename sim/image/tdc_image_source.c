@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "image/tdc_image_read.h"
+#include "simulator/tdc_sim_codes.h"
 
 typedef struct {
     int iw, ih;
@@ -199,19 +200,6 @@ static double texel(const img_ctx_t *c, double qx, double qy, int ch)
     return S[3 + ch] - S[ch];
 }
 
-static uint8_t encode_code(double lin, double gamma)
-{
-    lin = lin < 0.0 ? 0.0 : (lin > 1.0 ? 1.0 : lin);
-    double v = 255.0 * pow(lin, 1.0 / gamma) + 0.5;
-    return (uint8_t)(v >= 255.0 ? 255 : (int)v);
-}
-
-static int16_t mv_q4(double d)
-{
-    double q = floor(d * 16.0 + 0.5);
-    return (int16_t)(q > 32767.0 ? 32767 : (q < -32767.0 ? -32767 : q));
-}
-
 static void src_samples(tdc_source_t *s, double t, int n, const double *xy, int spp, uint8_t *rgb, int16_t *mv,
                         double dt, tdc_mv_kind_t kind)
 {
@@ -222,10 +210,7 @@ static void src_samples(tdc_source_t *s, double t, int n, const double *xy, int 
     if (mv) {
         map_at(c, s->width, s->height, t - dt, Ap, bp);
     }
-    int g = 1;
-    while ((g + 1) * (g + 1) <= spp) {
-        g++;
-    }
+    int g = tdc_sim_spp_grid(spp);
     for (int i = 0; i < n; i++) {
         double x = xy[2 * i], y = xy[2 * i + 1];
         double acc[3] = {0, 0, 0};
@@ -250,15 +235,15 @@ static void src_samples(tdc_source_t *s, double t, int n, const double *xy, int 
             }
         }
         for (int k = 0; k < 3; k++) {
-            rgb[3 * i + k] = encode_code(acc[k], s->gamma[k]);
+            rgb[3 * i + k] = tdc_sim_encode_code(acc[k], s->gamma[k]);
         }
         if (mv) {
             /* p' with q(p', t - dt) = q(p, t): p' = Ap^-1 (q - bp) */
             double qx = A[0] * x + A[1] * y + b[0] - bp[0], qy = A[2] * x + A[3] * y + b[1] - bp[1];
             double id = 1.0 / (Ap[0] * Ap[3] - Ap[1] * Ap[2]);
             double ppx = (Ap[3] * qx - Ap[1] * qy) * id, ppy = (-Ap[2] * qx + Ap[0] * qy) * id;
-            mv[2 * i] = mv_q4(ppx - x);
-            mv[2 * i + 1] = mv_q4(ppy - y);
+            mv[2 * i] = tdc_sim_mv_q4(ppx - x);
+            mv[2 * i + 1] = tdc_sim_mv_q4(ppy - y);
         }
     }
 }
@@ -275,14 +260,6 @@ static void src_pursuit(tdc_source_t *s, double t, double v[2])
     double th = c->m.rotate_dps * (3.141592653589793 / 180.0) * t;
     v[0] = z * (cos(th) * c->vx - sin(th) * c->vy);
     v[1] = z * (sin(th) * c->vx + cos(th) * c->vy);
-}
-
-static int src_cut(tdc_source_t *s, double t0, double t1)
-{
-    (void)s;
-    (void)t0;
-    (void)t1;
-    return 0;
 }
 
 static void ctx_free(img_ctx_t *c)
@@ -386,7 +363,7 @@ static tdc_source_t *create(int iw, int ih, const tdc_scene_params_t *p, const t
     s->samples = src_samples;
     s->ground_truth = src_ground_truth;
     s->pursuit = src_pursuit;
-    s->cut = src_cut;
+    s->cut = NULL; /* never cut (the run treats NULL as no cut) */
     s->destroy = src_destroy;
     return s;
 }

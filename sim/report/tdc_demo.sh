@@ -59,8 +59,8 @@ today)
 *)
     echo "tdc_demo.sh: DEMO_SCALE '$SCALE': headset or today" >&2; exit 2 ;;
 esac
-HS="hs-trm-dune|--image $PH/Dune.jpg --zoom 1.25 --speed 300 --angle 10 -r 90 $EYE -m $TM -n $TN
-hs-trm-wings|--image $PH/TwoWings.jpg --zoom 0.8 --zoom-rate 0.6 --rotate 12 --speed 150 -r 90 $EYE -m $TM2 -n $TN
+HS="hs-trm-dune|--image $PH/Dune.jpg --zoom 1.6 --speed 300 --angle 10 -r 90 $EYE -m $TM -n $TN
+hs-trm-wings|--image $PH/TwoWings.jpg --zoom 1.0 --zoom-rate 0.6 --rotate 12 --speed 150 -r 90 $EYE -m $TM2 -n $TN
 hs-render-panorama|-R panorama -r 90 $EYE -m $TM2 -n $TN
 hs-asm-blinds|--image $PH/Blinds.jpg --speed 330 --angle 90 -r 240 -g 1920x1080 -m $AM -n $AN
 hs-render-text|-R text -r 240 -g 1920x1080 -m $AM2 -n $AN"

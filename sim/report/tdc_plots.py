@@ -22,7 +22,7 @@ ORDER = ["hs-trm-dune", "hs-trm-wings", "hs-render-panorama", "hs-asm-blinds", "
          "stiff-black240", "stiff-white240"]
 DESC = {
     "hs-trm-dune": "Headset scale, photograph `Dune.jpg` (mate-backgrounds: thin grass stalks against the sky) panned at "
-                   "300 px/s, 1.25 screen px per image px, 90 Hz OLED, eye tracking; exact area-sampled ground truth.",
+                   "300 px/s, 1.6 screen px per image px, 90 Hz OLED, eye tracking; exact area-sampled ground truth.",
     "hs-trm-wings": "Headset scale, photograph `TwoWings.jpg` (dandelion filaments) zooming in (d ln z/dt = 0.6/s), "
                     "rotating at 12 deg/s and panning at 150 px/s, 90 Hz OLED; the eye tracks the centre, so the "
                     "periphery moves on the retina.",
