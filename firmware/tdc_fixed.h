@@ -112,30 +112,14 @@ static inline int32_t tdc_abs32(int32_t x)
  * product (libopus style).  All round half up and saturate to 32 bits.
  * ------------------------------------------------------------------- */
 
-/* (a * b) >> 15 with rounding: Q15 x Qn -> Qn.  a in Q15 (int32 so that
- * 1.0 = 32768 fits), b any 32-bit.  Scaling and overflow: |a| <= 2^15 and
- * |b| < 2^31 give |a*b| < 2^46, exact in 64 bits; result saturated. */
-static inline int32_t tdc_mul_q15_32(int32_t a_q15, int32_t b)
-{
-    return tdc_sat32(tdc_rshr_round64((int64_t)a_q15 * b, 15));
-}
-
-/* (a * b) >> 16 with rounding: Q16 x Qn -> Qn. */
+/* (a * b) >> 16 with rounding: Q16 x Qn -> Qn (the LCD model's linear
+ * terms, the YCbCr chroma offsets).  |a*b| < 2^62: exact in 64 bits;
+ * result saturated.  Where a kernel proves its product in range and runs
+ * per pixel on the boards it writes tdc_rshr_round64(a * b, n) instead
+ * (TRM's w rho): the saturation is a 64-bit compare pair there. */
 static inline int32_t tdc_mul_q16_32(int32_t a_q16, int32_t b)
 {
     return tdc_sat32(tdc_rshr_round64((int64_t)a_q16 * b, 16));
-}
-
-/* (a * b) >> 24 with rounding: Q24 x Q24 -> Q24 (linear light product). */
-static inline int32_t tdc_mul_q24_q24(int32_t a, int32_t b)
-{
-    return tdc_sat32(tdc_rshr_round64((int64_t)a * b, 24));
-}
-
-/* (a * b) >> s with rounding for a general shift 1 <= s <= 62. */
-static inline int32_t tdc_mul32_shr(int32_t a, int32_t b, unsigned s)
-{
-    return tdc_sat32(tdc_rshr_round64((int64_t)a * b, s));
 }
 
 /* Saturating add of two 32-bit values. */

@@ -16,7 +16,7 @@
 #define GH 29
 #define GN (GW * GH * 3)
 
-static uint32_t g_arena[TDC_LCD_MEM_BYTES(GW, GH) / 4u + 1u];
+static uint64_t g_arena[TDC_LCD_MEM_BYTES(GW, GH) / 8u];
 static uint8_t g_in[GN];
 static uint8_t g_out[GN];
 static int32_t g_res[GN];
