@@ -14,12 +14,14 @@ $(TABLEGEN): sim/lcd/tdc_lcd_model.h firmware/tdc_lcd.h
 TDC_LCD_MEASURE := $(B)/bin/tdc-lcd-measure
 TDC_CALIB := $(B)/bin/tdc-calib
 HOST_PROGS += $(TDC_LCD_MEASURE) $(TDC_CALIB)
-$(TDC_LCD_MEASURE): $(B)/sim/lcd/tdc_lcd_measure.o $(SIMLIB)
+# The measurement-file reader (tdc_meas) is shared by both and the fuzz target.
+TDC_MEAS_OBJ := $(B)/hosttools/calib/tdc_meas.o
+$(TDC_LCD_MEASURE): $(B)/sim/lcd/tdc_lcd_measure.o $(TDC_MEAS_OBJ) $(SIMLIB)
 	@mkdir -p $(@D)
-	$(CC) $(HOST_LDFLAGS) $< -o $@ $(SIMLIB) -lm
-$(TDC_CALIB): $(B)/hosttools/calib/tdc_calib.o
+	$(CC) $(HOST_LDFLAGS) $(filter %.o,$^) -o $@ $(SIMLIB) -lm
+$(TDC_CALIB): $(B)/hosttools/calib/tdc_calib.o $(B)/hosttools/calib/tdc_calib_trans.o $(TDC_MEAS_OBJ)
 	@mkdir -p $(@D)
-	$(CC) $(HOST_LDFLAGS) $< -o $@ -lm
+	$(CC) $(HOST_LDFLAGS) $^ -o $@ -lm
 
 # The calibration loop (docs/lcd.md): measure the simulated panels as paper
 # Fig. 7 does, fit, write the shipped LCD profiles.  Deliberate, like
