@@ -214,14 +214,32 @@ size_t tdc_lcd_history_bytes(uint32_t width, uint32_t height, unsigned prev_bits
     return 2u * TDC_LCD_PACKED_BYTES((size_t)width * height * 3u, prev_bits);
 }
 
+size_t tdc_lcd_cfg_history_bytes(const tdc_lcd_config_t *cfg)
+{
+    if (!cfg || cfg->mode == TDC_LCD_MODE_GAMMA) {
+        return 0;
+    }
+    const size_t one = TDC_LCD_PACKED_BYTES((size_t)cfg->width * cfg->height * 3u, cfg->prev_bits);
+    return cfg->mode == TDC_LCD_MODE_STATEFUL ? one : 2u * one;
+}
+
+/* Stateful tables for 2^bits states: lookup, whi/wlo codes, lhi/llo lights. */
+static size_t st_fixed_bytes(unsigned bits)
+{
+    return 3u * ((size_t)1 << bits) * (256u * 2u + 2u + 8u);
+}
+
 size_t tdc_lcd_get_size(const tdc_lcd_config_t *cfg)
 {
-    if (!cfg || cfg->width == 0 || cfg->height == 0 || cfg->mode > TDC_LCD_MODE_TABLE33 || cfg->prev_bits < 4 ||
+    if (!cfg || cfg->width == 0 || cfg->height == 0 || cfg->mode > TDC_LCD_MODE_STATEFUL || cfg->prev_bits < 4 ||
         cfg->prev_bits > 8) {
         return 0;
     }
     size_t hist = TDC_LCD_PACKED_BYTES((size_t)cfg->width * cfg->height * 3u, cfg->prev_bits);
     hist = (hist + 3u) & ~(size_t)3u;
+    if (cfg->mode == TDC_LCD_MODE_STATEFUL) {
+        return hist + st_fixed_bytes(cfg->prev_bits) + 16u;
+    }
     return 2u * hist + 3u * 256u * sizeof(uint32_t) + 16u;
 }
 
@@ -252,6 +270,13 @@ tdc_status_t tdc_lcd_init(tdc_lcd_t *st, const tdc_lcd_config_t *cfg, const tdc_
     if ((cfg->mode == TDC_LCD_MODE_TABLE17 || cfg->mode == TDC_LCD_MODE_TABLE33) && !od) {
         return TDC_ERR_PANEL;
     }
+    st->table_fault = TDC_LCD_TABLE_OK;
+    if (cfg->mode == TDC_LCD_MODE_STATEFUL) {
+        st->table_fault = (uint8_t)tdc_lcd_st_validate(rate);
+        if (st->table_fault != TDC_LCD_TABLE_OK) {
+            return TDC_ERR_PANEL;
+        }
+    }
     if (mem_bytes < need) {
         return TDC_ERR_SIZE;
     }
@@ -267,6 +292,23 @@ tdc_status_t tdc_lcd_init(tdc_lcd_t *st, const tdc_lcd_config_t *cfg, const tdc_
     hist = (hist + 3u) & ~(size_t)3u;
     st->prev_drive = mp;
     st->prev_light = mp + hist;
+    tdc_od_quant_tables(cfg->prev_bits, st->q_enc, st->q_dec);
+    st->stats = (tdc_lcd_stats_t){0};
+    st->have_history = 0;
+    if (cfg->mode == TDC_LCD_MODE_STATEFUL) {
+        /* Arena: the state buffer, the lookup (uint16), the Q24 limits, the codes. */
+        const size_t nk = 3u * ((size_t)1 << cfg->prev_bits);
+        st->prev_light = 0;
+        st->m_step_recip = 0;
+        st->st_lut = (uint16_t *)(void *)(mp + hist);
+        st->st_lhi = (int32_t *)(void *)(mp + hist + nk * 512u);
+        st->st_llo = st->st_lhi + nk;
+        st->st_whi = (uint8_t *)(st->st_llo + nk);
+        st->st_wlo = st->st_whi + nk;
+        tdc_lcd_st_build(st);
+        return TDC_OK;
+    }
+    st->st_lut = 0;
     st->m_step_recip = (uint32_t *)(void *)(mp + 2u * hist);
     for (unsigned ch = 0; ch < 3u; ch++) {
         const uint32_t *dec = panel->gamma[ch].decode;
@@ -299,6 +341,10 @@ tdc_status_t tdc_lcd_frame(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_str
     const uint32_t w3 = st->cfg.width * 3u;
     const uint32_t h = st->cfg.height;
     st->stats.frames++;
+    if (st->cfg.mode == TDC_LCD_MODE_STATEFUL) {
+        tdc_lcd_st_frame(st, wanted, in_stride, drive, out_stride, residual);
+        return TDC_OK;
+    }
     if (st->cfg.mode == TDC_LCD_MODE_GAMMA) {
         /* Plain gamma inverse: the wanted code is the drive; no history needed. */
         for (uint32_t y = 0; y < h; y++) {

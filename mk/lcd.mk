@@ -3,7 +3,7 @@
 #
 # FW_LCD_SRCS: firmware sources only LCD panels need.  Host builds link them
 # (FW_SRCS); board builds for OLED panels leave them out (mk/boards.mk).
-FW_LCD_SRCS := firmware/tdc_lcd.c firmware/tdc_overdrive.c
+FW_LCD_SRCS := firmware/tdc_lcd.c firmware/tdc_lcd_state.c firmware/tdc_overdrive.c
 FW_SRCS += $(FW_LCD_SRCS)
 SIM_SRCS += sim/lcd/tdc_lcdsim.c sim/lcd/tdc_lcd_ref.c
 
@@ -26,15 +26,20 @@ $(TDC_CALIB): $(B)/hosttools/calib/tdc_calib.o $(B)/hosttools/calib/tdc_calib_tr
 # The calibration loop (docs/lcd.md): measure the simulated panels as paper
 # Fig. 7 does, fit, write the shipped LCD profiles.  Deliberate, like
 # golden-update: the profiles are committed, regenerate them only on purpose.
+# Transitions (stateful tables): a 33 x 33 (previous drive, drive) grid, two
+# runs of every transition so tdc-calib sees the measurement noise.
 LCD_MEAS_FLAGS := --grid 17 --integration 1 --noise 0.002 --seed 1
+LCD_TRANS_FLAGS := --transitions --grid 33 --runs 2 --noise 0.002 --seed 2
 lcd-profiles: $(TDC_LCD_MEASURE) $(TDC_CALIB)
 	@mkdir -p $(B)/lcd
 	$(TDC_LCD_MEASURE) sim/lcd/panels/pg279q.lcdsim 120,144,165 $(LCD_MEAS_FLAGS) -o $(B)/lcd/pg279q.csv
+	$(TDC_LCD_MEASURE) sim/lcd/panels/pg279q.lcdsim 120,144,165 $(LCD_TRANS_FLAGS) -o $(B)/lcd/pg279q-tr.csv
 	$(TDC_CALIB) $(B)/lcd/pg279q.csv -o boards/panels/pg279q.panel --name pg279q --width 2560 --height 1440 \
-	    --refresh 144 --table 33 --note "FITTED TO THE SIMULATED PANEL sim/lcd/panels/pg279q.lcdsim (ASUS PG279Q class, not a measured monitor) by make lcd-profiles"
+	    --refresh 144 --table 33 --transitions $(B)/lcd/pg279q-tr.csv --note "FITTED TO THE SIMULATED PANEL sim/lcd/panels/pg279q.lcdsim (ASUS PG279Q class, not a measured monitor) by make lcd-profiles"
 	$(TDC_LCD_MEASURE) sim/lcd/panels/lcd-240.lcdsim 144,240 $(LCD_MEAS_FLAGS) -o $(B)/lcd/lcd-240.csv
+	$(TDC_LCD_MEASURE) sim/lcd/panels/lcd-240.lcdsim 144,240 $(LCD_TRANS_FLAGS) -o $(B)/lcd/lcd-240-tr.csv
 	$(TDC_CALIB) $(B)/lcd/lcd-240.csv -o boards/panels/lcd-240.panel --name lcd-240 --width 1920 --height 1080 \
-	    --refresh 240 --table 33 --note "FITTED TO THE SIMULATED PANEL sim/lcd/panels/lcd-240.lcdsim (240 Hz TN class, strobed backlight, not a measured monitor) by make lcd-profiles"
+	    --refresh 240 --table 33 --transitions $(B)/lcd/lcd-240-tr.csv --note "FITTED TO THE SIMULATED PANEL sim/lcd/panels/lcd-240.lcdsim (240 Hz TN class, strobed backlight, not a measured monitor) by make lcd-profiles"
 .PHONY: lcd-profiles
 
 # The report (docs/lcd-report.md): perceived error of TRM frames on the
@@ -49,6 +54,7 @@ report-lcd: $(B)/tests/bench_lcd_report
 TESTS += $(B)/tests/test_lcd_solve
 TESTS += $(B)/tests/test_lcd_sim
 TESTS += $(B)/tests/test_lcd_stage
+TESTS += $(B)/tests/test_lcd_state
 GOLDEN_STAGES += lcd
 
 # Compile-out check: an OLED build's object set has no LCD symbols.

@@ -443,7 +443,7 @@ int main(int argc, char **argv)
         tdc_meas_t tm;
         int rc = tdc_meas_load(trans, &tm, err, sizeof err);
         if (rc == 0) {
-            rc = tdc_st_fit(&tm, trans, state_n, &st, err, sizeof err);
+            rc = tdc_st_fit(&tm, trans, state_n, gamma, &st, err, sizeof err);
         }
         tdc_meas_free(&tm);
         if (rc != 0) {

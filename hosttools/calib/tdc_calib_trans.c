@@ -119,7 +119,8 @@ static int cmp_int(const void *a, const void *b)
 
 static const char k_cls[5][12] = {"rise", "fall", "small step", "full swing", "all"};
 
-int tdc_st_fit(const tdc_meas_t *m, const char *path, int n, tdc_st_fits_t *out, char *err, size_t errlen)
+int tdc_st_fit(const tdc_meas_t *m, const char *path, int n, const double *gamma, tdc_st_fits_t *out, char *err,
+               size_t errlen)
 {
     memset(out, 0, sizeof *out);
     if (m->kind != TDC_MEAS_TRANSITIONS) {
@@ -278,7 +279,7 @@ int tdc_st_fit(const tdc_meas_t *m, const char *path, int n, tdc_st_fits_t *out,
                     lo = x1;
                 }
             }
-            c.gamma = fit->gamma[ch] = 0.5 * (lo + hi);
+            c.gamma = fit->gamma[ch] = gamma ? gamma[ch] : 0.5 * (lo + hi);
             /* Monotonic in the drive beyond the noise (4 sigma of a cell mean,
              * at least 0.3 % of white): else the data are not a panel's. */
             const double sig = noise_df > 0.0 ? sqrt(noise_ss / noise_df) : 0.0;

@@ -55,9 +55,13 @@ typedef struct {
 } tdc_st_fits_t;
 
 /* Fits every rate of m (a TDC_MEAS_TRANSITIONS file named path) to n x n
- * tables.  0 on success; else -1 and one line in err saying what is wrong
- * and why the fit cannot be trusted. */
-int tdc_st_fit(const tdc_meas_t *m, const char *path, int n, tdc_st_fits_t *out, char *err, size_t errlen);
+ * tables.  gamma: the profile's per-channel gamma (the code axes of the
+ * tables are the firmware's codes, so they must use the gamma its tables
+ * decode with), or NULL to fit it from the settled transitions.  0 on
+ * success; else -1 and one line in err saying what is wrong and why the fit
+ * cannot be trusted. */
+int tdc_st_fit(const tdc_meas_t *m, const char *path, int n, const double *gamma, tdc_st_fits_t *out, char *err,
+               size_t errlen);
 
 /* Prints the per-class fit errors (stdout of tdc-calib). */
 void tdc_st_print(const tdc_st_fits_t *fits, FILE *f);

@@ -1,0 +1,204 @@
+/*
+ * tdc_lcd_state.c - the stateful LCD inverse (TDC_LCD_MODE_STATEFUL):
+ * measured transition tables, a per-pixel state estimate, unreachable light
+ * into rho.  Tables and their convention: tdc_lcd.h; why: docs/lcd.md §2.
+ *
+ * Per sub-pixel and refresh, with q the pixel's state (prev_bits code of the
+ * state's 8-bit code) and w the wanted code:
+ *     e = lut[c][q][w];  drive = e & 255;  q' = e >> 8
+ *     w > whi[c][q]: rho += decode(w) - lhi[c][q]  (light not delivered)
+ *     w < wlo[c][q]: rho += decode(w) - llo[c][q]  (light delivered too much)
+ * lut is built at init by bilinear interpolation of the profile's 17 x 17 or
+ * 33 x 33 tables (drive = OD(state, wanted); next state = ST(state, drive)),
+ * so the frame loop is one 16-bit load, two byte loads and a compare per
+ * sub-pixel.  First frame after init/reset: drive = w, state = w (assumed
+ * settled: the real history is unknown).
+ *
+ * Memory: per pixel 3 * prev_bits bits (3 bytes at 8 bits: half of the
+ * exact/table modes' two buffers); fixed 3 * 2^prev_bits * (512 + 10) bytes
+ * (392 KiB at 8 bits, 24.5 KiB at 4 bits).
+ */
+#include "tdc_gamma.h"
+#include "tdc_lcd.h"
+#include "tdc_overdrive.h"
+
+#define ST_MAX (255u << TDC_LCD_ST_FRAC) /* largest Q4 code */
+
+/*
+ * Bilinear interpolation of an n x n Q4 table at (a, b), both Q16 in
+ * [0, 65536] (node i at i / (n - 1)); result Q4, rounded.
+ * Scaling and overflow: entries <= 4080 < 2^12, fraction < 2^12, so a row
+ * value scaled by 2^fb < 2^24 (int32), the second stage < 2^36 (int64).
+ * All terms are non-negative except the differences, and the result is a
+ * convex combination of entries, so it stays in [0, 4080].
+ */
+static uint32_t interp_q4(const uint16_t *t, unsigned n, uint32_t a, uint32_t b)
+{
+    const unsigned fb = n == 33u ? 11u : 12u;
+    const uint32_t fmask = (1u << fb) - 1u;
+    unsigned ia = a >> fb, ib = b >> fb;
+    int32_t fa = (int32_t)(a & fmask), fbb = (int32_t)(b & fmask);
+    if (ia >= n - 1u) {
+        ia = n - 2u;
+        fa = (int32_t)fmask + 1;
+    }
+    if (ib >= n - 1u) {
+        ib = n - 2u;
+        fbb = (int32_t)fmask + 1;
+    }
+    const uint16_t *r0 = t + (size_t)ia * n + ib, *r1 = r0 + n;
+    const int32_t p = (int32_t)((uint32_t)r0[0] << fb) + ((int32_t)r0[1] - (int32_t)r0[0]) * fbb;
+    const int32_t q = (int32_t)((uint32_t)r1[0] << fb) + ((int32_t)r1[1] - (int32_t)r1[0]) * fbb;
+    const int64_t d = (int64_t)p * ((int64_t)1 << fb) + (int64_t)(q - p) * fa; /* Q4 * 2^(2 fb), >= 0 */
+    return (uint32_t)((d + ((int64_t)1 << (2u * fb - 1u))) >> (2u * fb));
+}
+
+/* 8-bit code -> Q16 (as tdc_lcd.c: round(k * 65536 / 255)). */
+static uint32_t code_q16(uint32_t k)
+{
+    return k * 257u + (k >> 7);
+}
+
+/* Q4 code -> nearest 8-bit code. */
+static uint32_t q4_code(uint32_t v)
+{
+    const uint32_t c = (v + (1u << (TDC_LCD_ST_FRAC - 1u))) >> TDC_LCD_ST_FRAC;
+    return c > 255u ? 255u : c;
+}
+
+tdc_lcd_table_fault_t tdc_lcd_st_validate(const tdc_lcd_rate_t *rate)
+{
+    const unsigned n = rate->st_n;
+    if (n != 17u && n != 33u) {
+        return TDC_LCD_TABLE_MISSING;
+    }
+    for (unsigned c = 0; c < 3u; c++) {
+        const uint16_t *od = rate->st_od[c], *nx = rate->st_next[c], *rc = rate->st_reach[c];
+        if (!od || !nx || !rc) {
+            return TDC_LCD_TABLE_MISSING;
+        }
+        for (unsigned i = 0; i < n; i++) {
+            for (unsigned j = 0; j < n; j++) {
+                if (od[i * n + j] > ST_MAX || nx[i * n + j] > ST_MAX) {
+                    return TDC_LCD_TABLE_RANGE;
+                }
+                if (j && od[i * n + j] < od[i * n + j - 1u]) {
+                    return TDC_LCD_TABLE_MONOTONE;
+                }
+            }
+            const uint32_t lo = rc[i], hi = rc[n + i];
+            /* node state in Q4: i * 255 * 16 / (n - 1) */
+            const uint32_t s = (i * ST_MAX + (n - 1u) / 2u) / (n - 1u);
+            if (lo > ST_MAX || hi > ST_MAX || lo > hi || lo > s + 8u || hi + 8u < s) {
+                return TDC_LCD_TABLE_REACH;
+            }
+        }
+    }
+    return TDC_LCD_TABLE_OK;
+}
+
+void tdc_lcd_st_build(tdc_lcd_t *st)
+{
+    const tdc_lcd_rate_t *rate = st->rate;
+    const unsigned n = rate->st_n, bits = st->cfg.prev_bits;
+    const uint32_t nq = 1u << bits;
+    for (unsigned c = 0; c < 3u; c++) {
+        const tdc_gamma_table_t *gt = &st->panel->gamma[c];
+        for (uint32_t q = 0; q < nq; q++) {
+            const uint32_t s16 = code_q16(st->q_dec[q]);
+            uint16_t *row = st->st_lut + ((size_t)c * nq + q) * 256u;
+            for (uint32_t w = 0; w < 256u; w++) {
+                const uint32_t drive = q4_code(interp_q4(rate->st_od[c], n, s16, code_q16(w)));
+                const uint32_t next = q4_code(interp_q4(rate->st_next[c], n, s16, code_q16(drive)));
+                row[w] = (uint16_t)(drive | ((uint32_t)st->q_enc[next] << 8));
+            }
+            /* Reach from this state, interpolated along the state axis. */
+            const unsigned fb = n == 33u ? 11u : 12u;
+            unsigned i = s16 >> fb;
+            uint32_t f = s16 & ((1u << fb) - 1u);
+            if (i >= n - 1u) {
+                i = n - 2u;
+                f = 1u << fb;
+            }
+            const uint16_t *rc = rate->st_reach[c];
+            const uint32_t lo = (rc[i] * ((1u << fb) - f) + rc[i + 1u] * f + (1u << (fb - 1u))) >> fb;
+            const uint32_t hi = (rc[n + i] * ((1u << fb) - f) + rc[n + i + 1u] * f + (1u << (fb - 1u))) >> fb;
+            /* Wanted code w is out of reach when it lies more than half a code
+             * beyond the limit: w * 16 > hi + 8, i.e. w > (hi + 8) / 16. */
+            const size_t k = (size_t)c * nq + q;
+            const uint32_t whi = (hi + 8u) >> 4, wlo = lo > 8u ? (lo - 8u + 15u) >> 4 : 0u;
+            st->st_whi[k] = (uint8_t)(whi > 255u ? 255u : whi);
+            st->st_wlo[k] = (uint8_t)(wlo > 255u ? 255u : wlo);
+            /* Q4 code -> Q8 code for the gamma interpolation: << 4. */
+            st->st_lhi[k] = tdc_gamma_decode_gval(gt, hi << 4);
+            st->st_llo[k] = tdc_gamma_decode_gval(gt, lo << 4);
+        }
+    }
+}
+
+/* The residual of a sub-pixel out of reach, counted in the stage stats. */
+static void st_miss(tdc_lcd_t *st, tdc_res_t *residual, size_t s, int32_t miss)
+{
+    if (miss > 0) {
+        st->stats.clamped_high++;
+    } else {
+        st->stats.clamped_low++;
+    }
+    if (residual && miss != 0) {
+        residual[s] = tdc_clamp32(tdc_add_sat32(residual[s], miss), -TDC_LIN_ONE, TDC_LIN_ONE);
+        st->stats.residual_added++;
+    }
+}
+
+void tdc_lcd_st_frame(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_stride, uint8_t *drive, uint32_t out_stride,
+                      tdc_res_t *residual)
+{
+    const uint32_t w3 = st->cfg.width * 3u, h = st->cfg.height;
+    const unsigned bits = st->cfg.prev_bits;
+    const uint32_t nq = 1u << bits;
+    uint8_t *state = st->prev_drive;
+    uint64_t reached = 0;
+    if (!st->have_history) {
+        st->stats.first_frames++;
+    }
+    for (uint32_t y = 0; y < h; y++) {
+        const uint8_t *in = wanted + (size_t)y * in_stride;
+        uint8_t *out = drive + (size_t)y * out_stride;
+        size_t s = (size_t)y * w3;
+        if (!st->have_history) {
+            for (uint32_t i = 0; i < w3; i++, s++) {
+                const uint32_t w = in[i];
+                out[i] = (uint8_t)w;
+                if (bits == 8u) {
+                    state[s] = (uint8_t)w;
+                } else {
+                    tdc_od_pack(state, s, bits, st->q_enc[w]);
+                }
+            }
+            continue;
+        }
+        for (uint32_t i = 0; i < w3; i += 3u) {
+            for (uint32_t c = 0; c < 3u; c++, s++) {
+                const uint32_t w = in[i + c];
+                const uint32_t q = bits == 8u ? state[s] : tdc_od_unpack(state, s, bits);
+                const size_t k = (size_t)c * nq + q;
+                const uint32_t e = st->st_lut[k * 256u + w];
+                out[i + c] = (uint8_t)e;
+                if (bits == 8u) {
+                    state[s] = (uint8_t)(e >> 8);
+                } else {
+                    tdc_od_pack(state, s, bits, e >> 8);
+                }
+                if (w > st->st_whi[k]) {
+                    st_miss(st, residual, s, (int32_t)st->panel->gamma[c].decode[w] - st->st_lhi[k]);
+                } else if (w < st->st_wlo[k]) {
+                    st_miss(st, residual, s, (int32_t)st->panel->gamma[c].decode[w] - st->st_llo[k]);
+                } else {
+                    reached++;
+                }
+            }
+        }
+    }
+    st->stats.roots += reached;
+    st->have_history = 1;
+}
