@@ -220,6 +220,9 @@ size_t tdc_lcd_cfg_history_bytes(const tdc_lcd_config_t *cfg)
         return 0;
     }
     const size_t one = TDC_LCD_PACKED_BYTES((size_t)cfg->width * cfg->height * 3u, cfg->prev_bits);
+    if (cfg->mode == TDC_LCD_MODE_STATEFUL_PAIR) {
+        return one + (size_t)cfg->width * cfg->height * 3u;
+    }
     return cfg->mode == TDC_LCD_MODE_STATEFUL ? one : 2u * one;
 }
 
@@ -231,7 +234,7 @@ static size_t st_fixed_bytes(unsigned bits)
 
 size_t tdc_lcd_get_size(const tdc_lcd_config_t *cfg)
 {
-    if (!cfg || cfg->width == 0 || cfg->height == 0 || cfg->mode > TDC_LCD_MODE_STATEFUL || cfg->prev_bits < 4 ||
+    if (!cfg || cfg->width == 0 || cfg->height == 0 || cfg->mode > TDC_LCD_MODE_STATEFUL_PAIR || cfg->prev_bits < 4 ||
         cfg->prev_bits > 8) {
         return 0;
     }
@@ -239,6 +242,10 @@ size_t tdc_lcd_get_size(const tdc_lcd_config_t *cfg)
     hist = (hist + 3u) & ~(size_t)3u;
     if (cfg->mode == TDC_LCD_MODE_STATEFUL) {
         return hist + st_fixed_bytes(cfg->prev_bits) + 16u;
+    }
+    if (cfg->mode == TDC_LCD_MODE_STATEFUL_PAIR) {
+        const size_t debt = ((size_t)cfg->width * cfg->height * 3u + 3u) & ~(size_t)3u;
+        return hist + st_fixed_bytes(cfg->prev_bits) + debt + 16u;
     }
     return 2u * hist + 3u * 256u * sizeof(uint32_t) + 16u;
 }
@@ -271,7 +278,7 @@ tdc_status_t tdc_lcd_init(tdc_lcd_t *st, const tdc_lcd_config_t *cfg, const tdc_
         return TDC_ERR_PANEL;
     }
     st->table_fault = TDC_LCD_TABLE_OK;
-    if (cfg->mode == TDC_LCD_MODE_STATEFUL) {
+    if (TDC_LCD_MODE_IS_STATEFUL(cfg->mode)) {
         st->table_fault = (uint8_t)tdc_lcd_st_validate(rate);
         if (st->table_fault != TDC_LCD_TABLE_OK) {
             return TDC_ERR_PANEL;
@@ -295,8 +302,11 @@ tdc_status_t tdc_lcd_init(tdc_lcd_t *st, const tdc_lcd_config_t *cfg, const tdc_
     tdc_od_quant_tables(cfg->prev_bits, st->q_enc, st->q_dec);
     st->stats = (tdc_lcd_stats_t){0};
     st->have_history = 0;
-    if (cfg->mode == TDC_LCD_MODE_STATEFUL) {
-        /* Arena: the state buffer, the lookup (uint16), the Q24 limits, the codes. */
+    st->st_debt = 0;
+    st->st_phase = 0;
+    if (TDC_LCD_MODE_IS_STATEFUL(cfg->mode)) {
+        /* Arena: the state buffer, the lookup (uint16), the Q24 limits, the
+         * codes, then (pair mode) the debt buffer. */
         const size_t nk = 3u * ((size_t)1 << cfg->prev_bits);
         st->prev_light = 0;
         st->m_step_recip = 0;
@@ -305,6 +315,9 @@ tdc_status_t tdc_lcd_init(tdc_lcd_t *st, const tdc_lcd_config_t *cfg, const tdc_
         st->st_llo = st->st_lhi + nk;
         st->st_whi = (uint8_t *)(st->st_llo + nk);
         st->st_wlo = st->st_whi + nk;
+        if (cfg->mode == TDC_LCD_MODE_STATEFUL_PAIR) {
+            st->st_debt = (int8_t *)(void *)(mp + hist + st_fixed_bytes(cfg->prev_bits));
+        }
         tdc_lcd_st_build(st);
         return TDC_OK;
     }
@@ -329,6 +342,7 @@ void tdc_lcd_reset(tdc_lcd_t *st)
 {
     if (st) {
         st->have_history = 0;
+        st->st_phase = 0;
     }
 }
 
@@ -341,7 +355,7 @@ tdc_status_t tdc_lcd_frame(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_str
     const uint32_t w3 = st->cfg.width * 3u;
     const uint32_t h = st->cfg.height;
     st->stats.frames++;
-    if (st->cfg.mode == TDC_LCD_MODE_STATEFUL) {
+    if (TDC_LCD_MODE_IS_STATEFUL(st->cfg.mode)) {
         tdc_lcd_st_frame(st, wanted, in_stride, drive, out_stride, residual);
         return TDC_OK;
     }

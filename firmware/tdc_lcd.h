@@ -144,8 +144,13 @@ typedef enum {
     TDC_LCD_MODE_EXACT = 1,   /* exact solve with integer square root */
     TDC_LCD_MODE_TABLE17 = 2, /* 17 x 17 overdrive table, bilinear */
     TDC_LCD_MODE_TABLE33 = 3, /* 33 x 33 overdrive table, bilinear */
-    TDC_LCD_MODE_STATEFUL = 4 /* measured transition tables with a per-pixel state estimate */
+    TDC_LCD_MODE_STATEFUL = 4, /* measured transition tables with a per-pixel state estimate */
+    TDC_LCD_MODE_STATEFUL_PAIR = 5 /* the same, and the light the first refresh of a pair could not
+                                      deliver is carried into the second (the eye fuses the pair) */
 } tdc_lcd_mode_t;
+
+/* Stateful modes (both use the measured tables). */
+#define TDC_LCD_MODE_IS_STATEFUL(m) ((m) == TDC_LCD_MODE_STATEFUL || (m) == TDC_LCD_MODE_STATEFUL_PAIR)
 
 /* Why tdc_lcd_init refused a profile's stateful tables (tdc_lcd_t.table_fault). */
 typedef enum {
@@ -189,6 +194,8 @@ typedef struct {
     uint16_t *st_lut;         /* [3][2^prev_bits][256]: drive | next state << 8, from (state, wanted) */
     uint8_t *st_whi, *st_wlo; /* [3][2^prev_bits]: wanted codes above / below are out of reach */
     int32_t *st_lhi, *st_llo; /* [3][2^prev_bits]: light (Q24) delivered at the reach limits */
+    int8_t *st_debt;          /* STATEFUL_PAIR: light owed to the pair's second refresh, 1/127 of white */
+    uint8_t st_phase;         /* STATEFUL_PAIR: 0 = first refresh of a pair (even frame since reset) */
     uint8_t table_fault;      /* tdc_lcd_table_fault_t of the last refused init */
     uint8_t q_enc[256];       /* 8-bit code -> prev_bits code (rounded) */
     uint8_t q_dec[256];       /* prev_bits code -> 8-bit code */
@@ -203,12 +210,12 @@ typedef struct {
 #define TDC_LCD_ST_FIXED_BYTES (3u * 256u * 256u * 2u + 3u * 256u * 10u)
 
 /* Compile-time arena bound for a W x H eye (full-precision buffers), any mode:
- * the larger of two history buffers + reciprocals and one state buffer + the
- * stateful tables. */
+ * the larger of two history buffers + reciprocals and the state and debt
+ * buffers + the stateful tables. */
 #define TDC_LCD_MEM_BYTES_(hist)                                                                \
-    ((2u * ((hist) + 3u) + 3u * 256u * 4u) > ((hist) + 3u + TDC_LCD_ST_FIXED_BYTES)             \
+    ((2u * ((hist) + 3u) + 3u * 256u * 4u) > (2u * ((hist) + 3u) + TDC_LCD_ST_FIXED_BYTES)      \
          ? (2u * ((hist) + 3u) + 3u * 256u * 4u + 16u)                                          \
-         : ((hist) + 3u + TDC_LCD_ST_FIXED_BYTES + 16u))
+         : (2u * ((hist) + 3u) + TDC_LCD_ST_FIXED_BYTES + 16u))
 #define TDC_LCD_MEM_BYTES(W, H) TDC_LCD_MEM_BYTES_(TDC_LCD_PACKED_BYTES((size_t)(W) * (H) * 3u, 8u))
 
 /* Arena bytes for cfg (0 when cfg is invalid). */
@@ -244,7 +251,8 @@ tdc_status_t tdc_lcd_frame(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_str
 size_t tdc_lcd_history_bytes(uint32_t width, uint32_t height, unsigned prev_bits);
 
 /* Per-frame-pixel history of a configuration (what scales with the frame):
- * GAMMA 0, EXACT/TABLE* two buffers, STATEFUL one state buffer. */
+ * GAMMA 0, EXACT/TABLE* two buffers, STATEFUL one state buffer,
+ * STATEFUL_PAIR the state buffer and an 8-bit debt per sample. */
 size_t tdc_lcd_cfg_history_bytes(const tdc_lcd_config_t *cfg);
 
 /* The stateful mode's parts (tdc_lcd_state.c), called by tdc_lcd_init and

@@ -14,9 +14,17 @@
  * sub-pixel.  First frame after init/reset: drive = w, state = w (assumed
  * settled: the real history is unknown).
  *
+ * STATEFUL_PAIR: the eye fuses TRM's (full, reduced) pair (Talbot-Plateau),
+ * so light the FIRST refresh of a pair (even frames since init/reset) could
+ * not deliver is owed to the second: debt[s] = round(127 miss) (1/127 of
+ * white, int8), and the second refresh targets decode(w) + debt (re-encoded
+ * to a wanted code through the panel's gamma thresholds).  What the second
+ * refresh cannot deliver goes to rho as in STATEFUL; the first's does not
+ * (it is carried here instead of through TRM's motion-weighted residual).
+ *
  * Memory: per pixel 3 * prev_bits bits (3 bytes at 8 bits: half of the
- * exact/table modes' two buffers); fixed 3 * 2^prev_bits * (512 + 10) bytes
- * (392 KiB at 8 bits, 24.5 KiB at 4 bits).
+ * exact/table modes' two buffers), + 3 bytes of debt in STATEFUL_PAIR; fixed
+ * 3 * 2^prev_bits * (512 + 10) bytes (392 KiB at 8 bits, 24.5 KiB at 4 bits).
  */
 #include "tdc_gamma.h"
 #include "tdc_lcd.h"
@@ -150,6 +158,9 @@ static void st_miss(tdc_lcd_t *st, tdc_res_t *residual, size_t s, int32_t miss)
     }
 }
 
+/* Debt scale: 1/127 of white per step, Q24 per step = round(2^24 / 127). */
+#define ST_DEBT_STEP 132104
+
 void tdc_lcd_st_frame(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_stride, uint8_t *drive, uint32_t out_stride,
                       tdc_res_t *residual)
 {
@@ -157,6 +168,10 @@ void tdc_lcd_st_frame(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_stride, 
     const unsigned bits = st->cfg.prev_bits;
     const uint32_t nq = 1u << bits;
     uint8_t *state = st->prev_drive;
+    int8_t *debt = st->st_debt;
+    /* Pair mode: the first refresh of a pair records what it could not
+     * deliver, the second adds it to its own wanted light. */
+    const int owe = debt && st->st_phase == 0u, pay = debt && st->st_phase != 0u;
     uint64_t reached = 0;
     if (!st->have_history) {
         st->stats.first_frames++;
@@ -174,12 +189,22 @@ void tdc_lcd_st_frame(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_stride, 
                 } else {
                     tdc_od_pack(state, s, bits, st->q_enc[w]);
                 }
+                if (debt) {
+                    debt[s] = 0;
+                }
             }
             continue;
         }
         for (uint32_t i = 0; i < w3; i += 3u) {
             for (uint32_t c = 0; c < 3u; c++, s++) {
-                const uint32_t w = in[i + c];
+                const tdc_gamma_table_t *gt = &st->panel->gamma[c];
+                uint32_t w = in[i + c];
+                int32_t want = (int32_t)gt->decode[w];
+                if (pay && debt[s] != 0) {
+                    /* |debt| <= 127 steps: want + debt within +-2^25, no overflow. */
+                    want = tdc_clamp32(want + debt[s] * ST_DEBT_STEP, 0, TDC_LIN_ONE);
+                    w = tdc_gamma_encode(gt, want, 255u);
+                }
                 const uint32_t q = bits == 8u ? state[s] : tdc_od_unpack(state, s, bits);
                 const size_t k = (size_t)c * nq + q;
                 const uint32_t e = st->st_lut[k * 256u + w];
@@ -189,16 +214,28 @@ void tdc_lcd_st_frame(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_stride, 
                 } else {
                     tdc_od_pack(state, s, bits, e >> 8);
                 }
+                int32_t miss = 0;
                 if (w > st->st_whi[k]) {
-                    st_miss(st, residual, s, (int32_t)st->panel->gamma[c].decode[w] - st->st_lhi[k]);
+                    miss = want - st->st_lhi[k];
                 } else if (w < st->st_wlo[k]) {
-                    st_miss(st, residual, s, (int32_t)st->panel->gamma[c].decode[w] - st->st_llo[k]);
+                    miss = want - st->st_llo[k];
                 } else {
                     reached++;
+                }
+                if (owe) {
+                    /* miss in [-2^24, 2^24]: * 127 < 2^31 in int64, rounded to a step. */
+                    debt[s] = (int8_t)tdc_clamp32((int32_t)tdc_rshr_round64((int64_t)miss * 127, 24), -127, 127);
+                    if (miss != 0) {
+                        st->stats.clamped_high += miss > 0;
+                        st->stats.clamped_low += miss < 0;
+                    }
+                } else if (miss != 0) {
+                    st_miss(st, residual, s, miss);
                 }
             }
         }
     }
     st->stats.roots += reached;
     st->have_history = 1;
+    st->st_phase ^= 1u;
 }

@@ -54,6 +54,7 @@ static const mode_t_ k_modes[] = {
     {"(e') 33x33, 6-bit previous frame", TDC_LCD_MODE_TABLE33, 6},
     {"(f) stateful measured tables", TDC_LCD_MODE_STATEFUL, 8},
     {"(f') stateful, 6-bit state", TDC_LCD_MODE_STATEFUL, 6},
+    {"(g) stateful, pair-fused", TDC_LCD_MODE_STATEFUL_PAIR, 8},
 };
 #define NMODES (sizeof k_modes / sizeof k_modes[0])
 
