@@ -226,10 +226,11 @@ size_t tdc_lcd_cfg_history_bytes(const tdc_lcd_config_t *cfg)
     return cfg->mode == TDC_LCD_MODE_STATEFUL ? one : 2u * one;
 }
 
-/* Stateful tables for 2^bits states: lookup, whi/wlo codes, lhi/llo lights. */
-static size_t st_fixed_bytes(unsigned bits)
+/* Stateful tables for 2^bits states: lookup, whi/wlo codes, lhi/llo lights;
+ * pair mode: + the debt lookup and its decode table. */
+static size_t st_fixed_bytes(unsigned bits, int pair)
 {
-    return 3u * ((size_t)1 << bits) * (256u * 2u + 2u + 8u);
+    return 3u * ((size_t)1 << bits) * (256u * 2u + 2u + 8u) + (pair ? 3u * ((size_t)1 << bits) * 256u + 1024u : 0u);
 }
 
 size_t tdc_lcd_get_size(const tdc_lcd_config_t *cfg)
@@ -241,11 +242,11 @@ size_t tdc_lcd_get_size(const tdc_lcd_config_t *cfg)
     size_t hist = TDC_LCD_PACKED_BYTES((size_t)cfg->width * cfg->height * 3u, cfg->prev_bits);
     hist = (hist + 3u) & ~(size_t)3u;
     if (cfg->mode == TDC_LCD_MODE_STATEFUL) {
-        return hist + st_fixed_bytes(cfg->prev_bits) + 16u;
+        return hist + st_fixed_bytes(cfg->prev_bits, 0) + 16u;
     }
     if (cfg->mode == TDC_LCD_MODE_STATEFUL_PAIR) {
         const size_t debt = ((size_t)cfg->width * cfg->height * 3u + 3u) & ~(size_t)3u;
-        return hist + st_fixed_bytes(cfg->prev_bits) + debt + 16u;
+        return hist + st_fixed_bytes(cfg->prev_bits, 1) + debt + 16u;
     }
     return 2u * hist + 3u * 256u * sizeof(uint32_t) + 16u;
 }
@@ -279,7 +280,7 @@ tdc_status_t tdc_lcd_init(tdc_lcd_t *st, const tdc_lcd_config_t *cfg, const tdc_
     }
     st->table_fault = TDC_LCD_TABLE_OK;
     if (TDC_LCD_MODE_IS_STATEFUL(cfg->mode)) {
-        st->table_fault = (uint8_t)tdc_lcd_st_validate(rate);
+        st->table_fault = (uint8_t)tdc_lcd_st_validate(rate, cfg->mode == TDC_LCD_MODE_STATEFUL_PAIR);
         if (st->table_fault != TDC_LCD_TABLE_OK) {
             return TDC_ERR_PANEL;
         }
@@ -315,8 +316,14 @@ tdc_status_t tdc_lcd_init(tdc_lcd_t *st, const tdc_lcd_config_t *cfg, const tdc_
         st->st_llo = st->st_lhi + nk;
         st->st_whi = (uint8_t *)(st->st_llo + nk);
         st->st_wlo = st->st_whi + nk;
+        st->st_dlut = 0;
+        st->st_ddec = 0;
         if (cfg->mode == TDC_LCD_MODE_STATEFUL_PAIR) {
-            st->st_debt = (int8_t *)(void *)(mp + hist + st_fixed_bytes(cfg->prev_bits));
+            /* after the reach codes: the decode table (4-aligned), the debt lookup, the debt buffer */
+            uint8_t *p = mp + hist + st_fixed_bytes(cfg->prev_bits, 0);
+            st->st_ddec = (int32_t *)(void *)p;
+            st->st_dlut = (int8_t *)(void *)(p + 1024u);
+            st->st_debt = (int8_t *)(void *)(mp + hist + st_fixed_bytes(cfg->prev_bits, 1));
         }
         tdc_lcd_st_build(st);
         return TDC_OK;

@@ -16,9 +16,11 @@
  *
  * STATEFUL_PAIR: the eye fuses TRM's (full, reduced) pair (Talbot-Plateau),
  * so light the FIRST refresh of a pair (even frames since init/reset) could
- * not deliver is owed to the second: debt[s] = round(127 miss) (1/127 of
- * white, int8), and the second refresh targets decode(w) + debt (re-encoded
- * to a wanted code through the panel's gamma thresholds).  What the second
+ * not deliver is owed to the second: debt[s] = dlut[c][q][w], the wanted
+ * light minus what the forward model st_light says drive(q, w) delivers
+ * (the shortfall out of reach AND the drive's quantisation), companded to
+ * int8 at init; the second refresh targets decode(w) + debt (re-encoded to a
+ * wanted code through the panel's gamma thresholds).  What the second
  * refresh cannot deliver goes to rho as in STATEFUL; the first's does not
  * (it is carried here instead of through TRM's motion-weighted residual).
  *
@@ -74,7 +76,7 @@ static uint32_t q4_code(uint32_t v)
     return c > 255u ? 255u : c;
 }
 
-tdc_lcd_table_fault_t tdc_lcd_st_validate(const tdc_lcd_rate_t *rate)
+tdc_lcd_table_fault_t tdc_lcd_st_validate(const tdc_lcd_rate_t *rate, int need_light)
 {
     const unsigned n = rate->st_n;
     if (n != 17u && n != 33u) {
@@ -82,8 +84,17 @@ tdc_lcd_table_fault_t tdc_lcd_st_validate(const tdc_lcd_rate_t *rate)
     }
     for (unsigned c = 0; c < 3u; c++) {
         const uint16_t *od = rate->st_od[c], *nx = rate->st_next[c], *rc = rate->st_reach[c];
-        if (!od || !nx || !rc) {
+        const uint16_t *lt = rate->st_light[c];
+        if (!od || !nx || !rc || (need_light && !lt)) {
             return TDC_LCD_TABLE_MISSING;
+        }
+        for (unsigned k = 0; lt && k < n * n; k++) {
+            if (lt[k] > ST_MAX) {
+                return TDC_LCD_TABLE_RANGE;
+            }
+            if (k % n && lt[k] < lt[k - 1u]) {
+                return TDC_LCD_TABLE_MONOTONE; /* light falls as the drive rises */
+            }
         }
         for (unsigned i = 0; i < n; i++) {
             for (unsigned j = 0; j < n; j++) {
@@ -105,6 +116,26 @@ tdc_lcd_table_fault_t tdc_lcd_st_validate(const tdc_lcd_rate_t *rate)
     return TDC_LCD_TABLE_OK;
 }
 
+/*
+ * Debt code (int8, -127..127) <-> light (Q24): fine steps of 2^12 (1/4096 of
+ * white: the drive's own quantisation is ~1/1000) up to |64|, then steps of
+ * 2^18 up to 2^24 at |127| (the shortfall of a transition out of reach).
+ */
+static int32_t debt_decode(int32_t c)
+{
+    const int32_t a = c < 0 ? -c : c;
+    const int32_t v = a <= 64 ? a << 12 : (a - 63) << 18;
+    return c < 0 ? -v : v;
+}
+
+static int8_t debt_encode(int32_t e)
+{
+    const int32_t a = e < 0 ? -e : e;
+    int32_t c = a <= (64 << 12) ? (a + (1 << 11)) >> 12 : 63 + ((a + (1 << 17)) >> 18);
+    c = c > 127 ? 127 : c;
+    return (int8_t)(e < 0 ? -c : c);
+}
+
 void tdc_lcd_st_build(tdc_lcd_t *st)
 {
     const tdc_lcd_rate_t *rate = st->rate;
@@ -119,6 +150,12 @@ void tdc_lcd_st_build(tdc_lcd_t *st)
                 const uint32_t drive = q4_code(interp_q4(rate->st_od[c], n, s16, code_q16(w)));
                 const uint32_t next = q4_code(interp_q4(rate->st_next[c], n, s16, code_q16(drive)));
                 row[w] = (uint16_t)(drive | ((uint32_t)st->q_enc[next] << 8));
+                if (st->st_dlut) {
+                    /* what this refresh misses of the wanted light, by the forward model */
+                    const uint32_t l = interp_q4(rate->st_light[c], n, s16, code_q16(drive));
+                    const int32_t miss = (int32_t)gt->decode[w] - tdc_gamma_decode_gval(gt, l << 4);
+                    st->st_dlut[((size_t)c * nq + q) * 256u + w] = debt_encode(miss);
+                }
             }
             /* Reach from this state, interpolated along the state axis. */
             const unsigned fb = n == 33u ? 11u : 12u;
@@ -142,6 +179,9 @@ void tdc_lcd_st_build(tdc_lcd_t *st)
             st->st_llo[k] = tdc_gamma_decode_gval(gt, lo << 4);
         }
     }
+    for (int32_t code = 0; st->st_ddec && code < 256; code++) {
+        st->st_ddec[code] = debt_decode(code < 128 ? code : code - 256); /* index = (uint8_t)debt */
+    }
 }
 
 /* The residual of a sub-pixel out of reach, counted in the stage stats. */
@@ -157,9 +197,6 @@ static void st_miss(tdc_lcd_t *st, tdc_res_t *residual, size_t s, int32_t miss)
         st->stats.residual_added++;
     }
 }
-
-/* Debt scale: 1/127 of white per step, Q24 per step = round(2^24 / 127). */
-#define ST_DEBT_STEP 132104
 
 void tdc_lcd_st_frame(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_stride, uint8_t *drive, uint32_t out_stride,
                       tdc_res_t *residual)
@@ -201,8 +238,8 @@ void tdc_lcd_st_frame(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_stride, 
                 uint32_t w = in[i + c];
                 int32_t want = (int32_t)gt->decode[w];
                 if (pay && debt[s] != 0) {
-                    /* |debt| <= 127 steps: want + debt within +-2^25, no overflow. */
-                    want = tdc_clamp32(want + debt[s] * ST_DEBT_STEP, 0, TDC_LIN_ONE);
+                    /* |debt| <= 2^24: want + debt within +-2^25, no overflow. */
+                    want = tdc_clamp32(want + st->st_ddec[(uint8_t)debt[s]], 0, TDC_LIN_ONE);
                     w = tdc_gamma_encode(gt, want, 255u);
                 }
                 const uint32_t q = bits == 8u ? state[s] : tdc_od_unpack(state, s, bits);
@@ -223,8 +260,8 @@ void tdc_lcd_st_frame(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_stride, 
                     reached++;
                 }
                 if (owe) {
-                    /* miss in [-2^24, 2^24]: * 127 < 2^31 in int64, rounded to a step. */
-                    debt[s] = (int8_t)tdc_clamp32((int32_t)tdc_rshr_round64((int64_t)miss * 127, 24), -127, 127);
+                    /* the whole miss by the forward model: out of reach and quantisation */
+                    debt[s] = st->st_dlut[k * 256u + w];
                     if (miss != 0) {
                         st->stats.clamped_high += miss > 0;
                         st->stats.clamped_low += miss < 0;
