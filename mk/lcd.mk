@@ -75,3 +75,10 @@ $(B)/tests/test_lcd_calib: $(TDC_LCD_MEASURE) $(TDC_CALIB) $(TABLEGEN) tests/tes
 	    "$(TABLEGEN)" "$(CC) $(FW_CFLAGS)" > $@
 	@chmod +x $@
 TESTS += $(B)/tests/test_lcd_calib
+
+# Every LCD inverse through the simulator (modes x profiles x rates x backlight, with/without TRM).
+$(B)/tests/test_lcd_sim_modes: $(TDC_SIM) tests/test_lcd_sim_modes.sh
+	@mkdir -p $(@D)
+	@printf '#!/bin/sh\nexec tests/test_lcd_sim_modes.sh %s\n' "$(TDC_SIM)" > $@
+	@chmod +x $@
+TESTS += $(B)/tests/test_lcd_sim_modes
