@@ -164,7 +164,7 @@ tdc_status_t tdc_trm_downsample(tdc_trm_t *st, const uint8_t *in, uint32_t in_st
 int32_t tdc_trm_weight(const tdc_trm_t *st, uint32_t x_q16);
 
 /* Row kernels: AVX2 (enable = 1, the default when the host CPU has it) or
- * portable C (0).  Both give the same bytes (tests/checkasm_trm.c); boards
+ * portable C (0).  Both give the same bytes (tests/checkasm/checkasm_trm.c); boards
  * and CPUs without AVX2 always run C. */
 void tdc_trm_set_simd(tdc_trm_t *st, int enable);
 
