@@ -72,7 +72,9 @@
  *   st_next[c][i * st_n + k]  state reached at the end of a refresh at drive
  *                             k from state i;
  *   st_reach[c][i], [st_n + i]  light (as a Q4 code) drives 0 and 255 deliver
- *                             from state i: the reachable range;
+ *                             from state i: the reachable range (interpolated
+ *                             along the state; a wanted code more than half a
+ *                             code beyond it gets the limit drive 0 / 255);
  *   st_light[c][i * st_n + k] light (as a Q4 code) a refresh at drive k
  *                             delivers from state i (the forward model; the
  *                             pair mode's bookkeeping).
