@@ -227,10 +227,10 @@ size_t tdc_lcd_cfg_history_bytes(const tdc_lcd_config_t *cfg)
 }
 
 /* Stateful tables for 2^bits states: lookup, whi/wlo codes, lhi/llo lights;
- * pair mode: + the debt lookup and its decode table. */
+ * pair mode: + the debt decode table. */
 static size_t st_fixed_bytes(unsigned bits, int pair)
 {
-    return 3u * ((size_t)1 << bits) * (256u * 2u + 2u + 8u) + (pair ? 3u * ((size_t)1 << bits) * 256u + 1024u : 0u);
+    return 3u * ((size_t)1 << bits) * (256u * 2u + 2u + 8u) + (pair ? 1024u : 0u);
 }
 
 size_t tdc_lcd_get_size(const tdc_lcd_config_t *cfg)
@@ -280,7 +280,7 @@ tdc_status_t tdc_lcd_init(tdc_lcd_t *st, const tdc_lcd_config_t *cfg, const tdc_
     }
     st->table_fault = TDC_LCD_TABLE_OK;
     if (TDC_LCD_MODE_IS_STATEFUL(cfg->mode)) {
-        st->table_fault = (uint8_t)tdc_lcd_st_validate(rate, cfg->mode == TDC_LCD_MODE_STATEFUL_PAIR);
+        st->table_fault = (uint8_t)tdc_lcd_st_validate(rate);
         if (st->table_fault != TDC_LCD_TABLE_OK) {
             return TDC_ERR_PANEL;
         }
@@ -316,13 +316,10 @@ tdc_status_t tdc_lcd_init(tdc_lcd_t *st, const tdc_lcd_config_t *cfg, const tdc_
         st->st_llo = st->st_lhi + nk;
         st->st_whi = (uint8_t *)(st->st_llo + nk);
         st->st_wlo = st->st_whi + nk;
-        st->st_dlut = 0;
         st->st_ddec = 0;
         if (cfg->mode == TDC_LCD_MODE_STATEFUL_PAIR) {
-            /* after the reach codes: the decode table (4-aligned), the debt lookup, the debt buffer */
-            uint8_t *p = mp + hist + st_fixed_bytes(cfg->prev_bits, 0);
-            st->st_ddec = (int32_t *)(void *)p;
-            st->st_dlut = (int8_t *)(void *)(p + 1024u);
+            /* after the reach codes: the debt decode table (4-aligned), then the debt buffer */
+            st->st_ddec = (int32_t *)(void *)(mp + hist + st_fixed_bytes(cfg->prev_bits, 0));
             st->st_debt = (int8_t *)(void *)(mp + hist + st_fixed_bytes(cfg->prev_bits, 1));
         }
         tdc_lcd_st_build(st);

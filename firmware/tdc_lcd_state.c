@@ -16,11 +16,12 @@
  *
  * STATEFUL_PAIR: the eye fuses TRM's (full, reduced) pair (Talbot-Plateau),
  * so light the FIRST refresh of a pair (even frames since init/reset) could
- * not deliver is owed to the second: debt[s] = dlut[c][q][w], the wanted
- * light minus what the forward model st_light says drive(q, w) delivers
- * (the shortfall out of reach AND the drive's quantisation), companded to
- * int8 at init; the second refresh targets decode(w) + debt (re-encoded to a
- * wanted code through the panel's gamma thresholds).  What the second
+ * not deliver (out of reach: wanted light minus the reach limit) is owed to
+ * the second: debt[s], companded to int8; the second refresh targets
+ * decode(w) + debt (re-encoded to a wanted code through the panel's gamma
+ * thresholds).  Carrying the drive's quantisation error as well (through a
+ * forward light table) was tried and measured no better (quick report,
+ * pg279q static 0.628 % vs 0.628 %), so only the out-of-reach light is owed.  What the second
  * refresh cannot deliver goes to rho as in STATEFUL; the first's does not
  * (it is carried here instead of through TRM's motion-weighted residual).
  *
@@ -76,7 +77,7 @@ static uint32_t q4_code(uint32_t v)
     return c > 255u ? 255u : c;
 }
 
-tdc_lcd_table_fault_t tdc_lcd_st_validate(const tdc_lcd_rate_t *rate, int need_light)
+tdc_lcd_table_fault_t tdc_lcd_st_validate(const tdc_lcd_rate_t *rate)
 {
     const unsigned n = rate->st_n;
     if (n != 17u && n != 33u) {
@@ -84,17 +85,8 @@ tdc_lcd_table_fault_t tdc_lcd_st_validate(const tdc_lcd_rate_t *rate, int need_l
     }
     for (unsigned c = 0; c < 3u; c++) {
         const uint16_t *od = rate->st_od[c], *nx = rate->st_next[c], *rc = rate->st_reach[c];
-        const uint16_t *lt = rate->st_light[c];
-        if (!od || !nx || !rc || (need_light && !lt)) {
+        if (!od || !nx || !rc) {
             return TDC_LCD_TABLE_MISSING;
-        }
-        for (unsigned k = 0; lt && k < n * n; k++) {
-            if (lt[k] > ST_MAX) {
-                return TDC_LCD_TABLE_RANGE;
-            }
-            if (k % n && lt[k] < lt[k - 1u]) {
-                return TDC_LCD_TABLE_MONOTONE; /* light falls as the drive rises */
-            }
         }
         for (unsigned i = 0; i < n; i++) {
             for (unsigned j = 0; j < n; j++) {
@@ -176,12 +168,6 @@ void tdc_lcd_st_build(tdc_lcd_t *st)
                 drive = w > whi ? 255u : (w < wlo ? 0u : drive);
                 const uint32_t next = q4_code(interp_q4(rate->st_next[c], n, s16, code_q16(drive)));
                 row[w] = (uint16_t)(drive | ((uint32_t)st->q_enc[next] << 8));
-                if (st->st_dlut) {
-                    /* what this refresh misses of the wanted light, by the forward model */
-                    const uint32_t l = interp_q4(rate->st_light[c], n, s16, code_q16(drive));
-                    const int32_t miss = (int32_t)gt->decode[w] - tdc_gamma_decode_gval(gt, l << 4);
-                    st->st_dlut[k * 256u + w] = debt_encode(miss);
-                }
             }
         }
     }
@@ -214,7 +200,6 @@ typedef struct {
     const uint16_t *lut;       /* [2^bits][256] */
     const uint8_t *whi, *wlo;  /* [2^bits] */
     const int32_t *lhi, *llo;  /* [2^bits] */
-    const int8_t *dlut;        /* pair mode [2^bits][256] */
     const tdc_gamma_table_t *gt;
 } st_chan_t;
 
@@ -230,17 +215,59 @@ static inline int32_t st_out_of_reach(const st_chan_t *ch, uint32_t q, uint32_t 
     return 0;
 }
 
-/* 8-bit state, no pair debt: the hot loop.  A target out of reach always
- * gets drive 0 or 255 (the tables clamp), so the reach limits are read only
- * for those drives: one 16-bit lookup and a test of the drive per sub-pixel.
- * The three channels' lookups sit at constant offsets (2^16 entries) from
- * one base.  Returns the sub-pixels out of reach. */
-static uint32_t st_row8(tdc_lcd_t *st, const st_chan_t ch[3], const uint8_t *in, uint8_t *out, uint8_t *state,
-                        uint32_t w3, size_t s0, tdc_res_t *residual)
+/* A pair's second refresh, 8-bit state, for a sub-pixel that is owed light:
+ * the wanted light plus the debt, re-encoded to a wanted code. */
+static void st_one8(tdc_lcd_t *st, const st_chan_t *k, uint32_t w, uint8_t *out, uint8_t *state, const int8_t *debt,
+                    size_t s, tdc_res_t *residual, uint32_t *nmiss)
+{
+    int32_t want = (int32_t)k->gt->decode[w];
+    if (*debt != 0) {
+        /* |debt| <= 2^24: want + debt within +-2^25, no overflow. */
+        want = tdc_clamp32(want + st->st_ddec[(uint8_t)*debt], 0, TDC_LIN_ONE);
+        w = tdc_gamma_encode(k->gt, want, 255u);
+    }
+    const uint32_t q = *state;
+    const uint32_t e = k->lut[(q << 8) | w];
+    *out = (uint8_t)e;
+    *state = (uint8_t)(e >> 8);
+    const int32_t miss = st_out_of_reach(k, q, w, want);
+    if (miss != 0) {
+        st_miss(st, residual, s, miss);
+        (*nmiss)++;
+    }
+}
+
+/* 8-bit state: the hot loop.  A target out of reach always gets drive 0 or
+ * 255 (the dense table clamps), so the reach limits are read only for those
+ * drives: one 16-bit lookup and a test of the drive per sub-pixel.  The
+ * three channels' lookups sit at constant offsets (2^16 entries) from one
+ * base.  debt: NULL, or the pair mode's debt row (owe: first refresh of a
+ * pair, else second).  Returns the sub-pixels out of reach. */
+#if defined(__GNUC__)
+#define ST_ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define ST_ALWAYS_INLINE inline
+#endif
+static ST_ALWAYS_INLINE uint32_t st_row8(tdc_lcd_t *st, const st_chan_t ch[3], const uint8_t *in, uint8_t *out,
+                                         uint8_t *state, int8_t *debt, int owe, uint32_t w3, size_t s0,
+                                         tdc_res_t *residual)
 {
     const uint16_t *lut = ch[0].lut;
     uint32_t nmiss = 0;
+    if (debt && owe) {
+        /* a pair's first refresh: nothing owed unless a target is out of reach below */
+        for (uint32_t i = 0; i < w3; i++) {
+            debt[i] = 0;
+        }
+    }
     for (uint32_t i = 0; i < w3; i += 3u) {
+        if (debt && !owe && (debt[i] | debt[i + 1u] | debt[i + 2u]) != 0) {
+            /* a pair's second refresh pays what is owed (rare: after a target out of reach) */
+            for (unsigned c = 0; c < 3u; c++) {
+                st_one8(st, &ch[c], in[i + c], out + i + c, state + i + c, debt + i + c, s0 + i + c, residual, &nmiss);
+            }
+            continue;
+        }
         const uint32_t w0 = in[i], w1 = in[i + 1u], w2 = in[i + 2u];
         const uint32_t q0 = state[i], q1 = state[i + 1u], q2 = state[i + 2u];
         const uint32_t e0 = lut[(q0 << 8) | w0];
@@ -258,9 +285,16 @@ static uint32_t st_row8(tdc_lcd_t *st, const st_chan_t ch[3], const uint8_t *in,
             for (unsigned c = 0; c < 3u; c++) {
                 const int32_t want = (int32_t)ch[c].gt->decode[ws[c]];
                 const int32_t miss = st_out_of_reach(&ch[c], qs[c], ws[c], want);
-                if (miss != 0) {
+                if (miss == 0) {
+                    continue;
+                }
+                nmiss++;
+                if (owe) {
+                    debt[i + c] = debt_encode(miss);
+                    st->stats.clamped_high += miss > 0;
+                    st->stats.clamped_low += miss < 0;
+                } else {
                     st_miss(st, residual, s0 + i + c, miss);
-                    nmiss++;
                 }
             }
         }
@@ -268,7 +302,21 @@ static uint32_t st_row8(tdc_lcd_t *st, const st_chan_t ch[3], const uint8_t *in,
     return nmiss;
 }
 
-/* Any state precision, pair mode or not. */
+/* st_row8 specialised (the debt tests vanish from the plain loop). */
+static uint32_t st_row8_plain(tdc_lcd_t *st, const st_chan_t ch[3], const uint8_t *in, uint8_t *out, uint8_t *state,
+                              uint32_t w3, size_t s0, tdc_res_t *residual)
+{
+    return st_row8(st, ch, in, out, state, 0, 0, w3, s0, residual);
+}
+
+static uint32_t st_row8_pair(tdc_lcd_t *st, const st_chan_t ch[3], const uint8_t *in, uint8_t *out, uint8_t *state,
+                             int8_t *debt, int owe, uint32_t w3, size_t s0, tdc_res_t *residual)
+{
+    return owe ? st_row8(st, ch, in, out, state, debt, 1, w3, s0, residual)
+               : st_row8(st, ch, in, out, state, debt, 0, w3, s0, residual);
+}
+
+/* Any state precision below 8 bits, pair mode or not. */
 static uint32_t st_row_general(tdc_lcd_t *st, const st_chan_t ch[3], const uint8_t *in, uint8_t *out, uint8_t *state,
                                int8_t *debt, int owe, int pay, unsigned bits, uint32_t w3, size_t s0,
                                tdc_res_t *residual)
@@ -295,8 +343,8 @@ static uint32_t st_row_general(tdc_lcd_t *st, const st_chan_t ch[3], const uint8
             }
             const int32_t miss = st_out_of_reach(k, q, w, want);
             if (owe) {
-                /* the whole miss by the forward model: out of reach and quantisation */
-                debt[s] = k->dlut[(q << 8) | w];
+                /* out of reach: owed to the pair's second refresh */
+                debt[s] = debt_encode(miss);
                 if (miss != 0) {
                     st->stats.clamped_high += miss > 0;
                     st->stats.clamped_low += miss < 0;
@@ -326,7 +374,7 @@ void tdc_lcd_st_frame(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_stride, 
     for (unsigned c = 0; c < 3u; c++) {
         const size_t k = (size_t)c * nq;
         ch[c] = (st_chan_t){st->st_lut + k * 256u, st->st_whi + k, st->st_wlo + k, st->st_lhi + k, st->st_llo + k,
-                            st->st_dlut ? st->st_dlut + k * 256u : 0, &st->panel->gamma[c]};
+                            &st->panel->gamma[c]};
     }
     uint64_t missed = 0;
     if (!st->have_history) {
@@ -352,7 +400,9 @@ void tdc_lcd_st_frame(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_stride, 
             continue;
         }
         if (bits == 8u && !debt) {
-            missed += st_row8(st, ch, in, out, state + s0, w3, s0, residual);
+            missed += st_row8_plain(st, ch, in, out, state + s0, w3, s0, residual);
+        } else if (bits == 8u) {
+            missed += st_row8_pair(st, ch, in, out, state + s0, debt + s0, owe, w3, s0, residual);
         } else {
             missed += st_row_general(st, ch, in, out, state, debt, owe, pay, bits, w3, s0, residual);
         }

@@ -320,7 +320,6 @@ int tdc_st_fit(const tdc_meas_t *m, const char *path, int n, const double *gamma
                     const double v = invert(&c, s, T(&c, x));
                     fit->od[ch][i * n + j] = (unsigned short)lround(16.0 * v);
                     fit->st[ch][i * n + j] = (unsigned short)lround(16.0 * enc(&c, eval(&c, c.Ec, s, x)));
-                    fit->lt[ch][i * n + j] = (unsigned short)lround(16.0 * enc(&c, eval(&c, c.Lc, s, x)));
                 }
                 fit->lo[ch][i] = (unsigned short)lround(16.0 * enc(&c, eval(&c, c.Lc, s, 0.0)));
                 fit->hi[ch][i] = (unsigned short)lround(16.0 * enc(&c, eval(&c, c.Lc, s, 255.0)));
@@ -433,8 +432,7 @@ void tdc_st_write_profile(const tdc_st_fits_t *fits, FILE *f)
 {
     const int n = fits->n;
     fprintf(f, "# stateful overdrive tables (docs/lcd.md §2): Q4 codes; lcd_od RATE CH STATE_ROW: drive per wanted\n"
-               "# code column; lcd_st RATE CH STATE_ROW: state reached per drive column; lcd_lt: light (as a code)\n"
-               "# delivered per drive column; lcd_reach_lo/hi RATE CH:\n"
+               "# code column; lcd_st RATE CH STATE_ROW: state reached per drive column; lcd_reach_lo/hi RATE CH:\n"
                "# light (as a code) of drive 0 / 255 per state row\n");
     fprintf(f, "lcd_state_n %d\n", n);
     for (int r = 0; r < fits->nrates; r++) {
@@ -445,9 +443,6 @@ void tdc_st_write_profile(const tdc_st_fits_t *fits, FILE *f)
             }
             for (int i = 0; i < n; i++) {
                 write_row(f, "lcd_st", t->rate, ch, i, t->st[ch] + i * n, n);
-            }
-            for (int i = 0; i < n; i++) {
-                write_row(f, "lcd_lt", t->rate, ch, i, t->lt[ch] + i * n, n);
             }
             fprintf(f, "lcd_reach_lo %d %c", t->rate, "RGB"[ch]);
             for (int i = 0; i < n; i++) {

@@ -11,8 +11,6 @@
  *             the wanted light is out of reach from that state;
  *   ST[i][k]  the state (Q4 code) reached at the end of a refresh at drive
  *             v_k from state s_i;
- *   LT[i][k]  the light (as a Q4 code) a refresh at drive v_k delivers from
- *             s_i: the forward model (the pair mode's bookkeeping);
  *   LO/HI[i]  the light (as a Q4 code) drives 0 and C-1 deliver from s_i:
  *             the reachable range, used for the residual rho.
  * Between measured rows the state is interpolated in linear light (a first
@@ -37,7 +35,6 @@ typedef struct {
     int rate;
     unsigned short od[3][TDC_ST_MAX_N * TDC_ST_MAX_N];
     unsigned short st[3][TDC_ST_MAX_N * TDC_ST_MAX_N];
-    unsigned short lt[3][TDC_ST_MAX_N * TDC_ST_MAX_N]; /* light (Q4 code) of drive k from state i */
     unsigned short lo[3][TDC_ST_MAX_N], hi[3][TDC_ST_MAX_N];
     /* fit report: RMS per transition class (0 rise, 1 fall, 2 small step,
      * 3 full swing, 4 all): light error % of white, drive error in codes,

@@ -45,9 +45,8 @@ typedef struct {
     int st_nr;
     int st_rate_hz[TDC_PANEL_MAX_RATES];
     uint16_t st_od[TDC_PANEL_MAX_RATES][3][33 * 33], st_next[TDC_PANEL_MAX_RATES][3][33 * 33];
-    uint16_t st_light[TDC_PANEL_MAX_RATES][3][33 * 33];
     uint16_t st_reach[TDC_PANEL_MAX_RATES][3][2 * 33];
-    unsigned char st_seen[TDC_PANEL_MAX_RATES][3][3 * 33 + 2]; /* od rows, st rows, lo, hi, lt rows */
+    unsigned char st_seen[TDC_PANEL_MAX_RATES][3][2 * 33 + 2]; /* od rows, st rows, lo, hi */
 } profile_t;
 
 #define TOK_MAX 40
@@ -191,9 +190,9 @@ static void parse_profile(const char *path, profile_t *p)
             if (p->st_n != 17 && p->st_n != 33) {
                 die(line, "lcd_state_n must be 17 or 33");
             }
-        } else if ((!strcmp(k, "lcd_od") || !strcmp(k, "lcd_st") || !strcmp(k, "lcd_lt") ||
-                    !strcmp(k, "lcd_reach_lo") || !strcmp(k, "lcd_reach_hi")) && n >= 3) {
-            const int row_key = !strcmp(k, "lcd_od") || !strcmp(k, "lcd_st") || !strcmp(k, "lcd_lt");
+        } else if ((!strcmp(k, "lcd_od") || !strcmp(k, "lcd_st") || !strcmp(k, "lcd_reach_lo") ||
+                    !strcmp(k, "lcd_reach_hi")) && n >= 3) {
+            const int row_key = !strcmp(k, "lcd_od") || !strcmp(k, "lcd_st");
             if (!p->st_n) {
                 die(line, "%s before lcd_state_n", k);
             }
@@ -207,7 +206,7 @@ static void parse_profile(const char *path, profile_t *p)
             }
             const int row = row_key ? parse_int(tok[3], line, 0, p->st_n - 1, k) : 0;
             const int slot = !strcmp(k, "lcd_od") ? row : !strcmp(k, "lcd_st") ? 33 + row
-                             : !strcmp(k, "lcd_lt") ? 68 + row : !strcmp(k, "lcd_reach_lo") ? 66 : 67;
+                             : !strcmp(k, "lcd_reach_lo") ? 66 : 67;
             if (p->st_seen[ri][ch][slot]) {
                 die(line, "%s: rate %s channel %s%s%s given twice", k, tok[1], tok[2], row_key ? " row " : "",
                     row_key ? tok[3] : "");
@@ -219,8 +218,6 @@ static void parse_profile(const char *path, profile_t *p)
                     p->st_od[ri][ch][row * p->st_n + c] = v;
                 } else if (!strcmp(k, "lcd_st")) {
                     p->st_next[ri][ch][row * p->st_n + c] = v;
-                } else if (!strcmp(k, "lcd_lt")) {
-                    p->st_light[ri][ch][row * p->st_n + c] = v;
                 } else {
                     p->st_reach[ri][ch][(slot - 66) * p->st_n + c] = v;
                 }
@@ -270,8 +267,8 @@ static void check_state_tables(const profile_t *p)
         }
         for (int ch = 0; ch < 3; ch++) {
             for (int row = 0; row < p->st_n; row++) {
-                if (!p->st_seen[i][ch][row] || !p->st_seen[i][ch][33 + row] || !p->st_seen[i][ch][68 + row]) {
-                    die(0, "stateful tables for %d Hz channel %c: lcd_od/lcd_st/lcd_lt row %d missing", p->st_rate_hz[i],
+                if (!p->st_seen[i][ch][row] || !p->st_seen[i][ch][33 + row]) {
+                    die(0, "stateful tables for %d Hz channel %c: lcd_od/lcd_st row %d missing", p->st_rate_hz[i],
                         "RGB"[ch], row);
                 }
             }
@@ -332,10 +329,10 @@ static void gen_lcd(FILE *f, const profile_t *p, const char *id)
         const int nn = p->st_n * p->st_n;
         for (int ch = 0; ch < 3; ch++) {
             const char cn = "rgb"[ch];
-            const uint16_t *src[4] = {p->st_od[i][ch], p->st_next[i][ch], p->st_reach[i][ch], p->st_light[i][ch]};
-            const int len[4] = {nn, nn, 2 * p->st_n, nn};
-            static const char *const kind[4] = {"sod", "sst", "srch", "slt"};
-            for (int k = 0; k < 4; k++) {
+            const uint16_t *src[3] = {p->st_od[i][ch], p->st_next[i][ch], p->st_reach[i][ch]};
+            const int len[3] = {nn, nn, 2 * p->st_n};
+            static const char *const kind[3] = {"sod", "sst", "srch"};
+            for (int k = 0; k < 3; k++) {
                 fprintf(f, "static const uint16_t %s_%s_%dhz_%c[%d] = {", id, kind[k], p->st_rate_hz[i], cn, len[k]);
                 for (int v = 0; v < len[k]; v++) {
                     fprintf(f, "%s%u,", (v % 16) ? " " : "\n    ", src[k][v]);
@@ -359,13 +356,13 @@ static void gen_lcd(FILE *f, const profile_t *p, const char *id)
         }
         if (si >= 0) {
             fprintf(f, ", %d", p->st_n);
-            static const char *const kind[4] = {"sod", "sst", "srch", "slt"};
-            for (int k = 0; k < 4; k++) {
+            static const char *const kind[3] = {"sod", "sst", "srch"};
+            for (int k = 0; k < 3; k++) {
                 fprintf(f, ", {%s_%s_%dhz_r, %s_%s_%dhz_g, %s_%s_%dhz_b}", id, kind[k], p->rates[r], id, kind[k],
                         p->rates[r], id, kind[k], p->rates[r]);
             }
         } else {
-            fprintf(f, ", 0, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}");
+            fprintf(f, ", 0, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}");
         }
         fprintf(f, "},\n");
     }

@@ -232,6 +232,60 @@ static void test_residual(void **state)
     }
 }
 
+/* Pair mode: what the first refresh of a pair cannot deliver goes to the
+ * second (not to rho), and nothing is carried from a second refresh into
+ * the next pair; at 6 bits of state the same holds through the packed path. */
+static void test_pair_carry(void **state)
+{
+    (void)state;
+    const tdc_panel_t *pn = &tdc_panel_pg279q;
+    for (unsigned bits = 8; bits >= 6; bits -= 2) {
+        tdc_lcd_config_t cp = {W, H, 144, TDC_LCD_MODE_STATEFUL_PAIR, (uint8_t)bits};
+        tdc_lcd_config_t cs = {W, H, 144, TDC_LCD_MODE_STATEFUL, (uint8_t)bits};
+        static _Alignas(8) uint8_t arena2[TDC_LCD_MEM_BYTES(W, H) + 64];
+        tdc_lcd_t sp, ss;
+        assert_int_equal(tdc_lcd_init(&sp, &cp, pn, g_arena, sizeof g_arena), TDC_OK);
+        assert_int_equal(tdc_lcd_init(&ss, &cs, pn, arena2, sizeof arena2), TDC_OK);
+        assert_int_equal(tdc_lcd_cfg_history_bytes(&cp), tdc_lcd_cfg_history_bytes(&cs) + N);
+        static uint8_t in[N], op[N], os[N];
+        static tdc_res_t rp[N], rs[N];
+        /* frame 0 (no history, first of a pair): black; frame 1: black */
+        memset(in, 0, sizeof in);
+        for (int t = 0; t < 2; t++) {
+            tdc_lcd_frame(&sp, in, W * 3, op, W * 3, rp);
+            tdc_lcd_frame(&ss, in, W * 3, os, W * 3, rs);
+        }
+        /* frame 2 (first of a pair): white, out of reach from black */
+        memset(in, 255, sizeof in);
+        memset(rp, 0, sizeof rp);
+        memset(rs, 0, sizeof rs);
+        tdc_lcd_frame(&sp, in, W * 3, op, W * 3, rp);
+        tdc_lcd_frame(&ss, in, W * 3, os, W * 3, rs);
+        for (size_t i = 0; i < N; i++) {
+            assert_int_equal(op[i], 255);
+            assert_int_equal(rp[i], 0);  /* owed to the second refresh, not to rho */
+            assert_true(rs[i] > 0);      /* the per-refresh mode puts it into rho */
+            assert_true(sp.st_debt[i] > 0);
+        }
+        /* frame 3 (second): mid grey; the pair mode drives brighter to pay */
+        memset(in, 128, sizeof in);
+        tdc_lcd_frame(&sp, in, W * 3, op, W * 3, rp);
+        tdc_lcd_frame(&ss, in, W * 3, os, W * 3, rs);
+        long brighter = 0;
+        for (size_t i = 0; i < N; i++) {
+            assert_true(op[i] >= os[i]);
+            brighter += op[i] > os[i] + 8;
+        }
+        assert_true(brighter == (long)N);
+        /* frame 4 (first of the next pair): same grey; nothing carried over */
+        memset(rp, 0, sizeof rp);
+        tdc_lcd_frame(&sp, in, W * 3, op, W * 3, rp);
+        for (size_t i = 0; i < N; i++) {
+            assert_true(sp.st_debt[i] == 0 || op[i] == 0 || op[i] == 255);
+        }
+    }
+}
+
 /* Per-refresh light error on the simulated panel, moving content. */
 /* small != 0: only sub-pixels whose wanted code changed by 1..32 codes
  * (transitions one refresh can complete); else all of them. */
@@ -306,6 +360,7 @@ int main(void)
         cmocka_unit_test(test_vs_reference),
         cmocka_unit_test(test_bad_tables),
         cmocka_unit_test(test_residual),
+        cmocka_unit_test(test_pair_carry),
         cmocka_unit_test(test_beats_gamma_on_the_panel),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
