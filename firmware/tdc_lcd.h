@@ -44,6 +44,7 @@
 #ifndef TDC_LCD_H
 #define TDC_LCD_H
 
+#include "tdc_arena.h"
 #include "tdc_fixed.h"
 #include "tdc_panel.h"
 
@@ -208,26 +209,46 @@ typedef struct {
 /* Bytes of a packed previous-frame buffer of n samples at b bits (+1 slack). */
 #define TDC_LCD_PACKED_BYTES(n, b) ((((size_t)(n) * (b)) + 7u) / 8u + 1u)
 
-/* Stateful modes' fixed tables at 8-bit state: the dense (state, wanted)
- * lookup (uint16), the reach limits (2 codes + 2 Q24 lights per state), and
- * for the pair mode the debt decode table. */
-#define TDC_LCD_ST_FIXED_BYTES (3u * 256u * 256u * 2u + 3u * 256u * 10u + 256u * 4u)
+#define TDC_LCD_PAIR_(m) ((m) == TDC_LCD_MODE_STATEFUL_PAIR)
 
-/* Compile-time arena bound for a W x H eye (full-precision buffers), any mode:
- * the larger of two history buffers + reciprocals and the state and debt
- * buffers + the stateful tables. */
-#define TDC_LCD_MEM_BYTES_(hist)                                                                \
-    ((2u * ((hist) + 3u) + 3u * 256u * 4u) > (2u * ((hist) + 3u) + TDC_LCD_ST_FIXED_BYTES)      \
-         ? (2u * ((hist) + 3u) + 3u * 256u * 4u + 16u)                                          \
-         : (2u * ((hist) + 3u) + TDC_LCD_ST_FIXED_BYTES + 16u))
-#define TDC_LCD_MEM_BYTES(W, H) TDC_LCD_MEM_BYTES_(TDC_LCD_PACKED_BYTES((size_t)(W) * (H) * 3u, 8u))
+/*
+ * The arena (tdc_arena.h), one line per block: X(member of tdc_lcd_t,
+ * element type, count) for a W x H eye keeping BITS bits per previous
+ * sample in mode MODE (blocks a mode does not use have count 0 and stay
+ * NULL).  Init carves it, get_size() is the same carve as a dry run,
+ * TDC_LCD_MEM_BYTES the same list at full precision (8 bits), the larger of
+ * the exact/table and the pair-mode layouts.
+ *   exact/table: drive and delivered-light history, reciprocals;
+ *   stateful:    the state (prev_drive), the dense (state, wanted) lookup,
+ *                the reach limits per state; pair mode: + the debt decode
+ *                table and the debt per sample.
+ */
+#define TDC_LCD_ARENA(X, W, H, BITS, MODE)                                                                    \
+    X(prev_drive, uint8_t, TDC_LCD_PACKED_BYTES((size_t)(W) * (H) * 3u, BITS)) /* drive (state) of t-1 */     \
+    X(prev_light, uint8_t, TDC_LCD_MODE_IS_STATEFUL(MODE) ? 0u : TDC_LCD_PACKED_BYTES((size_t)(W) * (H) * 3u, BITS))      \
+    X(m_step_recip, uint32_t, TDC_LCD_MODE_IS_STATEFUL(MODE) ? 0u : 3u * 256u) /* 2^32 / decode step */                   \
+    X(st_lut, uint16_t, TDC_LCD_MODE_IS_STATEFUL(MODE) ? (3u << (BITS)) * 256u : 0u) /* drive | next state << 8 */        \
+    X(st_lhi, int32_t, TDC_LCD_MODE_IS_STATEFUL(MODE) ? (3u << (BITS)) : 0u)         /* light at the reach limits */      \
+    X(st_llo, int32_t, TDC_LCD_MODE_IS_STATEFUL(MODE) ? (3u << (BITS)) : 0u)                                               \
+    X(st_whi, uint8_t, TDC_LCD_MODE_IS_STATEFUL(MODE) ? (3u << (BITS)) : 0u)         /* wanted codes beyond are */        \
+    X(st_wlo, uint8_t, TDC_LCD_MODE_IS_STATEFUL(MODE) ? (3u << (BITS)) : 0u)         /* out of reach */                   \
+    X(st_ddec, int32_t, TDC_LCD_PAIR_(MODE) ? 256u : 0u)               /* debt code -> light */             \
+    X(st_debt, int8_t, TDC_LCD_PAIR_(MODE) ? (size_t)(W) * (H) * 3u : 0u) /* light owed, per sample */
 
-/* Arena bytes for cfg (0 when cfg is invalid). */
+/* Compile-time arena bound for a W x H eye (full-precision buffers), any mode. */
+#define TDC_LCD_MEM_BYTES_MODE(W, H, MODE) ((size_t)0 TDC_LCD_ARENA(TDC_ARENA_BLOCK_BYTES, W, H, 8u, MODE))
+#define TDC_LCD_MEM_BYTES(W, H)                                                                               \
+    (TDC_LCD_MEM_BYTES_MODE(W, H, TDC_LCD_MODE_EXACT) > TDC_LCD_MEM_BYTES_MODE(W, H, TDC_LCD_MODE_STATEFUL_PAIR) \
+         ? TDC_LCD_MEM_BYTES_MODE(W, H, TDC_LCD_MODE_EXACT)                                                    \
+         : TDC_LCD_MEM_BYTES_MODE(W, H, TDC_LCD_MODE_STATEFUL_PAIR))
+
+/* Arena bytes for cfg (a dry run of init's layout; 0 when cfg is invalid). */
 size_t tdc_lcd_get_size(const tdc_lcd_config_t *cfg);
 
 /*
- * mem: caller-owned arena of tdc_lcd_get_size() bytes, 4-byte aligned (a
- * static buffer of TDC_LCD_MEM_BYTES on a board).
+ * mem: caller-owned arena of tdc_lcd_get_size() bytes, aligned to
+ * TDC_ARENA_ALIGN (8, tdc_arena.h; a static buffer of TDC_LCD_MEM_BYTES on a
+ * board).
  * Errors: TDC_ERR_ARG (null, misaligned, bad mode or prev_bits), TDC_ERR_PANEL (not an
  * LCD profile, not 8-bit, or refresh_hz not one of its rates, or the table
  * the mode needs is absent or, for STATEFUL, fails validation: st->table_fault
@@ -236,6 +257,7 @@ size_t tdc_lcd_get_size(const tdc_lcd_config_t *cfg);
  * (state, wanted) lookup here (3 * 2^prev_bits * 256 bilinear interpolations
  * of each table), so the per-pixel work is one lookup and a range compare.
  */
+TDC_MUST_CHECK
 tdc_status_t tdc_lcd_init(tdc_lcd_t *st, const tdc_lcd_config_t *cfg, const tdc_panel_t *panel, void *mem,
                           size_t mem_bytes);
 
@@ -248,6 +270,7 @@ void tdc_lcd_reset(tdc_lcd_t *st);
  * interleaved) to which unreached light is added, or NULL.  in == out is
  * allowed (rows processed in place).
  */
+TDC_MUST_CHECK
 tdc_status_t tdc_lcd_frame(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_stride, uint8_t *drive,
                            uint32_t out_stride, tdc_res_t *residual);
 

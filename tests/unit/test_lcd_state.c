@@ -206,12 +206,12 @@ static void test_residual(void **state)
     static uint8_t in[N], out[N];
     static tdc_res_t res[N];
     memset(in, 0, sizeof in);
-    tdc_lcd_frame(&st, in, W * 3, out, W * 3, res);
+    assert_int_equal(tdc_lcd_frame(&st, in, W * 3, out, W * 3, res), TDC_OK);
     memset(in, 255, sizeof in);
     for (size_t i = 0; i < N; i++) {
         res[i] = 1000;
     }
-    tdc_lcd_frame(&st, in, W * 3, out, W * 3, res);
+    assert_int_equal(tdc_lcd_frame(&st, in, W * 3, out, W * 3, res), TDC_OK);
     for (size_t i = 0; i < N; i++) {
         const int ch = (int)(i % 3);
         assert_int_equal(out[i], 255);
@@ -225,7 +225,7 @@ static void test_residual(void **state)
      * (~0.7 of white's code) is out of reach too: negative residual. */
     memset(in, 0, sizeof in);
     memset(res, 0, sizeof res);
-    tdc_lcd_frame(&st, in, W * 3, out, W * 3, res);
+    assert_int_equal(tdc_lcd_frame(&st, in, W * 3, out, W * 3, res), TDC_OK);
     for (size_t i = 0; i < N; i++) {
         assert_int_equal(out[i], 0);
         assert_true(res[i] < 0);
@@ -252,15 +252,15 @@ static void test_pair_carry(void **state)
         /* frame 0 (no history, first of a pair): black; frame 1: black */
         memset(in, 0, sizeof in);
         for (int t = 0; t < 2; t++) {
-            tdc_lcd_frame(&sp, in, W * 3, op, W * 3, rp);
-            tdc_lcd_frame(&ss, in, W * 3, os, W * 3, rs);
+            assert_int_equal(tdc_lcd_frame(&sp, in, W * 3, op, W * 3, rp), TDC_OK);
+            assert_int_equal(tdc_lcd_frame(&ss, in, W * 3, os, W * 3, rs), TDC_OK);
         }
         /* frame 2 (first of a pair): white, out of reach from black */
         memset(in, 255, sizeof in);
         memset(rp, 0, sizeof rp);
         memset(rs, 0, sizeof rs);
-        tdc_lcd_frame(&sp, in, W * 3, op, W * 3, rp);
-        tdc_lcd_frame(&ss, in, W * 3, os, W * 3, rs);
+        assert_int_equal(tdc_lcd_frame(&sp, in, W * 3, op, W * 3, rp), TDC_OK);
+        assert_int_equal(tdc_lcd_frame(&ss, in, W * 3, os, W * 3, rs), TDC_OK);
         for (size_t i = 0; i < N; i++) {
             assert_int_equal(op[i], 255);
             assert_int_equal(rp[i], 0);  /* owed to the second refresh, not to rho */
@@ -269,8 +269,8 @@ static void test_pair_carry(void **state)
         }
         /* frame 3 (second): mid grey; the pair mode drives brighter to pay */
         memset(in, 128, sizeof in);
-        tdc_lcd_frame(&sp, in, W * 3, op, W * 3, rp);
-        tdc_lcd_frame(&ss, in, W * 3, os, W * 3, rs);
+        assert_int_equal(tdc_lcd_frame(&sp, in, W * 3, op, W * 3, rp), TDC_OK);
+        assert_int_equal(tdc_lcd_frame(&ss, in, W * 3, os, W * 3, rs), TDC_OK);
         long brighter = 0;
         for (size_t i = 0; i < N; i++) {
             assert_true(op[i] >= os[i]);
@@ -279,7 +279,7 @@ static void test_pair_carry(void **state)
         assert_true(brighter == (long)N);
         /* frame 4 (first of the next pair): same grey; nothing carried over */
         memset(rp, 0, sizeof rp);
-        tdc_lcd_frame(&sp, in, W * 3, op, W * 3, rp);
+        assert_int_equal(tdc_lcd_frame(&sp, in, W * 3, op, W * 3, rp), TDC_OK);
         for (size_t i = 0; i < N; i++) {
             assert_true(sp.st_debt[i] == 0 || op[i] == 0 || op[i] == 255);
         }
@@ -307,7 +307,7 @@ static double sim_rms(const char *sim, const tdc_panel_t *pn, unsigned hz, tdc_l
     for (int t = 0; t < 16; t++) {
         memcpy(prev, in, N);
         tdc_content_frame(ct, (uint32_t)(t * speed), 7, in, W, H, W * 3);
-        tdc_lcd_frame(&st, in, W * 3, out, W * 3, NULL);
+        assert_int_equal(tdc_lcd_frame(&st, in, W * 3, out, W * 3, NULL), TDC_OK);
         if (t == 0) {
             tdc_lcdsim_settle(&s, out);
         }
