@@ -5,7 +5,6 @@
 #include "tdc_calib_trans.h"
 
 #include <math.h>
-#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -18,14 +17,7 @@
 #define MAX_CLASS_RMS 0.015
 #define MIN_GRID 5
 
-static int fail(char *err, size_t errlen, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(err, errlen, fmt, ap);
-    va_end(ap);
-    return -1;
-}
+#define fail tdc_meas_errf
 
 typedef struct {
     int G;
@@ -117,6 +109,20 @@ static int cmp_int(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+/* The per-channel working arrays (freed between channels and at the end). */
+static void chan_free(chan_t *c, int **cnt, double **acc)
+{
+    free(*cnt);
+    free(*acc);
+    free(c->Lc);
+    free(c->Ll);
+    free(c->Ec);
+    free(c->El);
+    *cnt = NULL;
+    *acc = NULL;
+    c->Lc = c->Ll = c->Ec = c->El = NULL;
+}
+
 static const char k_cls[5][12] = {"rise", "fall", "small step", "full swing", "all"};
 
 int tdc_st_fit(const tdc_meas_t *m, const char *path, int n, const double *gamma, tdc_st_fits_t *out, char *err,
@@ -195,12 +201,7 @@ int tdc_st_fit(const tdc_meas_t *m, const char *path, int n, const double *gamma
                 c.g[k] = want;
             }
             c.G = G;
-            free(cnt);
-            free(acc);
-            free(c.Lc);
-            free(c.Ll);
-            free(c.Ec);
-            free(c.El);
+            chan_free(&c, &cnt, &acc);
             const size_t gg = (size_t)G * G;
             cnt = calloc(gg, sizeof *cnt);
             acc = calloc(gg * 4, sizeof *acc);
@@ -391,12 +392,7 @@ int tdc_st_fit(const tdc_meas_t *m, const char *path, int n, const double *gamma
     }
     rc = 0;
 out:
-    free(cnt);
-    free(acc);
-    free(c.Lc);
-    free(c.Ll);
-    free(c.Ec);
-    free(c.El);
+    chan_free(&c, &cnt, &acc);
     return rc;
 }
 

@@ -45,6 +45,10 @@ int tdc_meas_load(const char *path, tdc_meas_t *m, char *err, size_t errlen);
 
 void tdc_meas_free(tdc_meas_t *m);
 
+/* Formats one message line into err (if err and errlen); returns -1, so a
+ * refusal is `return tdc_meas_errf(err, errlen, "...", ...)`. */
+int tdc_meas_errf(char *err, size_t errlen, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+
 /* Overflow-checked numbers for options and fields: the whole string must be
  * the number, within [lo, hi].  0 on success, -1 otherwise (*out untouched). */
 int tdc_parse_long(const char *s, long lo, long hi, long *out);
