@@ -106,7 +106,7 @@ static int trm_step(tdc_trm_t *trm, tdc_content_t c, int speed, int t, int W, in
 int main(int argc, char **argv)
 {
     const char *out_path = NULL, *panel_name = "pg279q";
-    int quick = 0;
+    int quick = 0, time_only = 0; /* --time-only: only the firmware times (seconds, not the error runs) */
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "-o") && i + 1 < argc) {
             out_path = argv[++i];
@@ -114,10 +114,12 @@ int main(int argc, char **argv)
             panel_name = argv[++i];
         } else if (!strcmp(argv[i], "--quick")) {
             quick = 1;
+        } else if (!strcmp(argv[i], "--time-only")) {
+            time_only = 1;
         } else if (!strcmp(argv[i], "--full")) {
             quick = -1;
         } else {
-            fprintf(stderr, "usage: bench_lcd_report [-o report.md] [--panel pg279q|lcd-240] [--quick]\n");
+            fprintf(stderr, "usage: bench_lcd_report [-o report.md] [--panel pg279q|lcd-240] [--quick] [--time-only]\n");
             return 2;
         }
     }
@@ -174,7 +176,7 @@ int main(int argc, char **argv)
     memset(errs_cls, 0, sizeof errs_cls);
     tdc_lcd_stats_t stats[NMODES];
     memset(stats, 0, sizeof stats);
-    for (size_t m = 0; m < NMODES; m++) {
+    for (size_t m = 0; m < NMODES && !time_only; m++) {
         for (int ci = 0; ci < ncontents; ci++) {
             tdc_trm_t trm, trm_ref;
             if (tdc_trm_init(&trm, &tcfg, panel, tmem, tn) != TDC_OK ||
@@ -260,6 +262,26 @@ int main(int argc, char **argv)
         free(lmem);
     }
 
+    if (time_only) {
+        /* The firmware times alone, as a Markdown table on stdout (docs/lcd.md §8). */
+        char la[128] = "unknown";
+        FILE *lf0 = fopen("/proc/loadavg", "r");
+        if (lf0) {
+            if (!fgets(la, sizeof la, lf0)) {
+                strcpy(la, "unknown");
+            }
+            la[strcspn(la, "\n")] = 0;
+            fclose(lf0);
+        }
+        printf("%s, %d x %d, thread CPU time, best of %d; memcpy %.3f ms; loadavg %s\n\n| mode | ms / frame | x memcpy "
+               "| history bytes |\n|---|---|---|---|\n",
+               panel_name, TW, TH, reps, 1e3 * t_memcpy, la);
+        for (size_t m = 0; m < NMODES; m++) {
+            printf("| %s | %.2f | %.1f | %zu |\n", k_modes[m].label, 1e3 * t_mode[m], t_mode[m] / t_memcpy,
+                   hist_bytes[m]);
+        }
+        return 0;
+    }
     FILE *f = out_path ? fopen(out_path, "w") : stdout;
     if (!f) {
         fprintf(stderr, "bench_lcd_report: cannot write %s\n", out_path);
