@@ -19,7 +19,8 @@ TDC_MEAS_OBJ := $(B)/hosttools/calib/tdc_meas.o
 $(TDC_LCD_MEASURE): $(B)/sim/lcd/tdc_lcd_measure.o $(TDC_MEAS_OBJ) $(SIMLIB)
 	@mkdir -p $(@D)
 	$(CC) $(HOST_LDFLAGS) $(filter %.o,$^) -o $@ $(SIMLIB) -lm
-$(TDC_CALIB): $(B)/hosttools/calib/tdc_calib.o $(B)/hosttools/calib/tdc_calib_trans.o $(TDC_MEAS_OBJ)
+$(TDC_CALIB): $(B)/hosttools/calib/tdc_calib.o $(B)/hosttools/calib/tdc_calib_trans.o $(TDC_MEAS_OBJ) \
+              $(B)/hosttools/common/tdc_tool.o
 	@mkdir -p $(@D)
 	$(CC) $(HOST_LDFLAGS) $^ -o $@ -lm
 
@@ -87,26 +88,4 @@ ifeq ($(SAN),)
 TESTS += $(B)/tests/unit/test_lcd_sim_modes
 endif
 
-# Fuzzing the measurement reader and the transition fit's checks (issue 19):
-#   make fuzz-meas FUZZ_SECONDS=600    long run (new inputs in build/fuzz/corpus-meas)
-#   fuzz-meas-smoke                    bounded run in make test (FUZZ_MEAS_SMOKE_SECONDS)
-FUZZ_MEAS_DIR := $(BUILD)/fuzz
-FUZZ_MEAS_BIN := $(FUZZ_MEAS_DIR)/fuzz_meas
-FUZZ_MEAS_SMOKE_SECONDS ?= 10
-FUZZ_MEAS_SRCS := tests/fuzz/fuzz_meas.c hosttools/calib/tdc_meas.c hosttools/calib/tdc_calib_trans.c
-$(FUZZ_MEAS_BIN): $(FUZZ_MEAS_SRCS) hosttools/calib/tdc_meas.h hosttools/calib/tdc_calib_trans.h
-	@mkdir -p $(@D)
-	$(FUZZ_CC) -std=c11 -D_GNU_SOURCE -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
-	    $(FUZZ_MEAS_SRCS) -o $@ -lm
-.PHONY: fuzz-meas fuzz-meas-smoke
-fuzz-meas: $(FUZZ_MEAS_BIN)
-	@mkdir -p $(FUZZ_DIR)/corpus-meas $(FUZZ_DIR)/artifacts-meas
-	$(FUZZ_MEAS_BIN) -max_total_time=$(FUZZ_SECONDS) -timeout=10 -max_len=65536 -print_final_stats=1 \
-	    -artifact_prefix=$(FUZZ_DIR)/artifacts-meas/ $(FUZZ_DIR)/corpus-meas tests/fuzz/corpus-meas
-$(FUZZ_MEAS_DIR)/fuzz-meas-smoke: $(FUZZ_MEAS_BIN) tests/fuzz/smoke.sh mk/lcd.mk
-	@printf '#!/bin/sh\nexec tests/fuzz/smoke.sh "%s" "%s" "%s" tests/fuzz/corpus-meas\n' "$(FUZZ_MEAS_BIN)" \
-	    "$(FUZZ_MEAS_SMOKE_SECONDS)" "$(abspath $(FUZZ_DIR))/artifacts-meas" > $@
-	@chmod +x $@
-fuzz-meas-smoke: $(FUZZ_MEAS_DIR)/fuzz-meas-smoke
-	@tests/run_tests.sh "clang-fuzz" $(FUZZ_MEAS_DIR)/fuzz-meas-smoke
-TEST_EXTRA += fuzz-meas-smoke
+# The measurement reader is fuzzed as target "meas" of mk/fuzz.mk (tests/fuzz/fuzz_meas.c).

@@ -30,6 +30,10 @@
  * The profile is written to OUT.panel.tmp and renamed onto OUT.panel only
  * when everything succeeded: an error never truncates an existing profile.
  *
+ * Exit codes (hosttools/common/tdc_tool.h): 0 OK, ARGS (1) bad command line,
+ * FILE (7) cannot read or write a file, INPUT (13) a measurement file is
+ * malformed or cannot be fitted (the message says why).
+ *
  * Usage: tdc-calib MEAS.csv -o OUT.panel --name NAME --width W --height H
  *                  [--eyes N] [--refresh HZ] [--table 0|17|33] [--note TEXT]
  *                  [--transitions TRANS.csv [--state-table 17|33]]
@@ -182,18 +186,16 @@ static int usage(void)
     fprintf(stderr, "usage: tdc-calib MEAS.csv -o OUT.panel --name NAME --width W --height H [--eyes N]\n"
                     "                 [--refresh HZ] [--table 0|17|33] [--note TEXT]\n"
                     "                 [--transitions TRANS.csv [--state-table 17|33]]\n");
-    return 2;
+    return TDC_EXIT_ARGS;
 }
 
 /* Numeric option: the whole argument, in range, no wrap-around. */
-static int opt_num(const char *opt, const char *v, long lo, long hi, int *out)
+static int opt_num(const char *opt, const char *v, int lo, int hi, int *out)
 {
-    long x;
-    if (tdc_parse_long(v, lo, hi, &x) != 0) {
-        fprintf(stderr, "tdc-calib: %s '%s': need an integer in %ld..%ld\n", opt, v, lo, hi);
+    if (tdc_parse_int(v, lo, hi, out) != 0) {
+        fprintf(stderr, "tdc-calib: %s '%s': need an integer in %d..%d\n", opt, v, lo, hi);
         return -1;
     }
-    *out = (int)x;
     return 0;
 }
 
@@ -230,7 +232,7 @@ int main(int argc, char **argv)
             return usage();
         }
         if (bad) {
-            return 2;
+            return TDC_EXIT_ARGS;
         }
     }
     if (!in || !out || !name || width < 1 || height < 1 || (table != 0 && table != 17 && table != 33) ||
@@ -239,20 +241,21 @@ int main(int argc, char **argv)
     }
     if (!name[0] || strpbrk(name, " \t\r\n#")) {
         fprintf(stderr, "tdc-calib: --name '%s': need a non-empty name without blanks or '#'\n", name);
-        return 2;
+        return TDC_EXIT_ARGS;
     }
     char err[512];
     tdc_meas_t meas;
-    if (tdc_meas_load(in, &meas, err, sizeof err) != 0) {
+    const int lrc = tdc_meas_load(in, &meas, err, sizeof err);
+    if (lrc != 0) {
         fprintf(stderr, "tdc-calib: %s\n", err);
         tdc_meas_free(&meas);
-        return 1;
+        return lrc == -2 ? TDC_EXIT_FILE : TDC_EXIT_INPUT;
     }
     if (meas.kind != TDC_MEAS_PAIRS) {
         fprintf(stderr, "tdc-calib: %s: a transition file; the first file is the pair measurement (Fig. 7), "
                         "transitions go to --transitions\n", in);
         tdc_meas_free(&meas);
-        return 1;
+        return TDC_EXIT_INPUT;
     }
     g_rows = meas.rows;
     g_nrows = (int)meas.nrows;
@@ -260,7 +263,7 @@ int main(int argc, char **argv)
     if (max_code != 255 && max_code != 1023) {
         fprintf(stderr, "tdc-calib: %s: the largest code measured is %d; need the full-drive rows (255 or 1023)\n",
                 in, max_code);
-        return 1;
+        return TDC_EXIT_INPUT;
     }
     g_max = max_code;
     const int bits = max_code == 255 ? 8 : 10;
@@ -270,7 +273,7 @@ int main(int argc, char **argv)
             if (g_nr == MAX_RATES) {
                 fprintf(stderr, "tdc-calib: %s:%d: field rate_hz: a %dth refresh rate (%d Hz); a panel profile "
                                 "holds at most %d\n", in, g_rows[i].line, g_nr + 1, g_rows[i].rate, MAX_RATES);
-                return 1;
+                return TDC_EXIT_INPUT;
             }
             g_rates[g_nr++] = g_rows[i].rate;
         }
@@ -282,7 +285,7 @@ int main(int argc, char **argv)
             if (!isfinite(g_black[r][c]) || !isfinite(g_white[r][c]) || !(g_white[r][c] > g_black[r][c])) {
                 fprintf(stderr, "tdc-calib: rate %d channel %c needs rows (0,0) and (%d,%d) with white > black\n",
                         g_rates[r], "RGB"[c], max_code, max_code);
-                return 1;
+                return TDC_EXIT_INPUT;
             }
         }
     }
@@ -315,7 +318,7 @@ int main(int argc, char **argv)
         }
         if (n < 4 || solve4(A, y, p[r]) != 0) {
             fprintf(stderr, "tdc-calib: rate %d: too few or degenerate measurements for p1..p4\n", g_rates[r]);
-            return 1;
+            return TDC_EXIT_INPUT;
         }
         /* Refine in luminance space (what the eye integrates): Gauss-Newton on
          * sum (M^gamma - Y)^2 from the linear fit, with step halving. */
@@ -370,7 +373,7 @@ int main(int argc, char **argv)
             if (!(fabs(p[r][k]) < 4.0)) {
                 fprintf(stderr, "tdc-calib: rate %d: fitted p%d = %g outside the profile range [-4, 4]\n",
                         g_rates[r], k + 1, p[r][k]);
-                return 1;
+                return TDC_EXIT_INPUT;
             }
         }
         double sl = 0.0, sm = 0.0, sp = 0.0;
@@ -434,7 +437,7 @@ int main(int argc, char **argv)
     int nominal = refresh ? rate_index(refresh) : 0;
     if (nominal < 0) {
         fprintf(stderr, "tdc-calib: --refresh %d was not measured in %s\n", refresh, in);
-        return 1;
+        return TDC_EXIT_INPUT;
     }
     /* Stateful tables from the transition measurement (every check before
      * anything is written). */
@@ -442,19 +445,20 @@ int main(int argc, char **argv)
     if (trans) {
         tdc_meas_t tm;
         int rc = tdc_meas_load(trans, &tm, err, sizeof err);
+        const int code = rc == -2 ? TDC_EXIT_FILE : TDC_EXIT_INPUT;
         if (rc == 0) {
             rc = tdc_st_fit(&tm, trans, state_n, gamma, &st, err, sizeof err);
         }
         tdc_meas_free(&tm);
         if (rc != 0) {
             fprintf(stderr, "tdc-calib: %s\n", err);
-            return 1;
+            return code;
         }
         for (int r = 0; r < st.nrates; r++) {
             if (rate_index(st.rate[r].rate) < 0) {
                 fprintf(stderr, "tdc-calib: %s: transitions at %d Hz, a rate %s does not measure\n", trans,
                         st.rate[r].rate, in);
-                return 1;
+                return TDC_EXIT_INPUT;
             }
         }
         tdc_st_print(&st, stdout);
@@ -463,12 +467,12 @@ int main(int argc, char **argv)
     char tmp_path[4096];
     if (snprintf(tmp_path, sizeof tmp_path, "%s.tmp", out) >= (int)sizeof tmp_path) {
         fprintf(stderr, "tdc-calib: -o %s: path too long\n", out);
-        return 2;
+        return TDC_EXIT_ARGS;
     }
     FILE *f = fopen(tmp_path, "w");
     if (!f) {
         fprintf(stderr, "tdc-calib: cannot write %s: %s\n", tmp_path, strerror(errno));
-        return 1;
+        return TDC_EXIT_FILE;
     }
     fprintf(f, "# %s: LCD profile written by tdc-calib from %s.\n", name, in);
     if (note) {
@@ -514,7 +518,7 @@ int main(int argc, char **argv)
     if ((ferror(f) | fclose(f)) != 0 || rename(tmp_path, out) != 0) {
         fprintf(stderr, "tdc-calib: cannot write %s: %s\n", out, strerror(errno));
         remove(tmp_path);
-        return 1;
+        return TDC_EXIT_FILE;
     }
     printf("wrote %s\n", out);
     tdc_meas_free(&meas);

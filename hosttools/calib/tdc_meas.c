@@ -11,36 +11,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-int tdc_parse_long(const char *s, long lo, long hi, long *out)
-{
-    if (!s || !*s || *s == ' ' || *s == '\t' || *s == '+') {
-        return -1;
-    }
-    char *end;
-    errno = 0;
-    long v = strtol(s, &end, 10);
-    if (errno == ERANGE || end == s || *end || v < lo || v > hi) {
-        return -1;
-    }
-    *out = v;
-    return 0;
-}
-
-int tdc_parse_double(const char *s, double lo, double hi, double *out)
-{
-    if (!s || !*s || *s == ' ' || *s == '\t') {
-        return -1;
-    }
-    char *end;
-    errno = 0;
-    double v = strtod(s, &end);
-    if (errno == ERANGE || end == s || *end || !isfinite(v) || v < lo || v > hi) {
-        return -1;
-    }
-    *out = v;
-    return 0;
-}
-
 int tdc_meas_errf(char *err, size_t errlen, const char *fmt, ...)
 {
     if (err && errlen) {
@@ -129,31 +99,31 @@ int tdc_meas_parse(const char *text, size_t len, const char *path, tdc_meas_t *m
                         m->kind == TDC_MEAS_PAIRS ? k_hdr_pairs : k_hdr_trans);
         }
         tdc_meas_row_t r = {0};
-        long v;
+        int v;
         r.line = line;
-        if (tdc_parse_long(fld[0], 1, 1000, &v)) {
+        if (tdc_parse_int(fld[0], 1, 1000, &v)) {
             return tdc_meas_errf(err, errlen, "%s:%d: field %s: '%s' is not an integer in 1..1000", path, line, nm[0], fld[0]);
         }
-        r.rate = (int)v;
+        r.rate = v;
         if (strlen(fld[1]) != 1 || !strchr("RGB", fld[1][0])) {
             return tdc_meas_errf(err, errlen, "%s:%d: field %s: '%s' is not R, G or B", path, line, nm[1], fld[1]);
         }
         r.ch = fld[1][0] == 'R' ? 0 : fld[1][0] == 'G' ? 1 : 2;
-        if (tdc_parse_long(fld[2], 0, 1023, &v)) {
+        if (tdc_parse_int(fld[2], 0, 1023, &v)) {
             return tdc_meas_errf(err, errlen, "%s:%d: field %s: '%s' is not an integer in 0..1023", path, line, nm[2], fld[2]);
         }
-        r.a = (int)v;
-        if (tdc_parse_long(fld[3], 0, 1023, &v)) {
+        r.a = v;
+        if (tdc_parse_int(fld[3], 0, 1023, &v)) {
             return tdc_meas_errf(err, errlen, "%s:%d: field %s: '%s' is not an integer in 0..1023", path, line, nm[3], fld[3]);
         }
-        r.b = (int)v;
+        r.b = v;
         int li = 4;
         if (m->kind == TDC_MEAS_TRANSITIONS) {
-            if (tdc_parse_long(fld[4], 0, 999, &v)) {
+            if (tdc_parse_int(fld[4], 0, 999, &v)) {
                 return tdc_meas_errf(err, errlen, "%s:%d: field %s: '%s' is not an integer in 0..999", path, line, nm[4],
                             fld[4]);
             }
-            r.run = (int)v;
+            r.run = v;
             li = 5;
         }
         if (tdc_parse_double(fld[li], -1e6, 1e6, &r.lum)) {
@@ -194,7 +164,8 @@ int tdc_meas_load(const char *path, tdc_meas_t *m, char *err, size_t errlen)
     memset(m, 0, sizeof *m);
     FILE *f = fopen(path, "rb");
     if (!f) {
-        return tdc_meas_errf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
+        tdc_meas_errf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
+        return -2;
     }
     size_t cap = 1 << 16, n = 0;
     char *text = malloc(cap);
@@ -225,7 +196,8 @@ int tdc_meas_load(const char *path, tdc_meas_t *m, char *err, size_t errlen)
     fclose(f);
     if (!text || rd_err) {
         free(text);
-        return tdc_meas_errf(err, errlen, "%s: read error", path);
+        tdc_meas_errf(err, errlen, "%s: read error", path);
+        return -2;
     }
     int rc = tdc_meas_parse(text, n, path, m, err, errlen);
     free(text);

@@ -15,6 +15,8 @@
 
 #include <stddef.h>
 
+#include "tdc_tool.h"
+
 #define TDC_MEAS_MAX_LINE 511
 #define TDC_MEAS_MAX_ROWS 2000000
 
@@ -40,7 +42,8 @@ typedef struct {
  * are malloc'ed: tdc_meas_free() in both cases. */
 int tdc_meas_parse(const char *text, size_t len, const char *path, tdc_meas_t *m, char *err, size_t errlen);
 
-/* Reads and parses a file (at most 256 MiB). */
+/* Reads and parses a file (at most 256 MiB); -2 when the file cannot be
+ * opened or read (exit code FILE), -1 for its contents (INPUT). */
 int tdc_meas_load(const char *path, tdc_meas_t *m, char *err, size_t errlen);
 
 void tdc_meas_free(tdc_meas_t *m);
@@ -49,9 +52,7 @@ void tdc_meas_free(tdc_meas_t *m);
  * refusal is `return tdc_meas_errf(err, errlen, "...", ...)`. */
 int tdc_meas_errf(char *err, size_t errlen, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 
-/* Overflow-checked numbers for options and fields: the whole string must be
- * the number, within [lo, hi].  0 on success, -1 otherwise (*out untouched). */
-int tdc_parse_long(const char *s, long lo, long hi, long *out);
-int tdc_parse_double(const char *s, double lo, double hi, double *out);
+/* Numbers (options and fields) are parsed with hosttools/common/tdc_tool.h
+ * (tdc_parse_int, tdc_parse_double: the whole string, in range, no wrap). */
 
 #endif /* TDC_MEAS_H */

@@ -82,7 +82,14 @@ done
 head -3 "$tmp/m.csv" > "$tmp/wrap.csv"; echo "120,R,4294967299,0,0.07" >> "$tmp/wrap.csv"
 "$calib" "$tmp/wrap.csv" -o "$tmp/w.panel" --name x --width 8 --height 8 > "$tmp/err.txt" 2>&1 && fail "code 4294967299 accepted"
 grep -q "wrap.csv:4: field code_a" "$tmp/err.txt" || fail "wrapped code: $(cat "$tmp/err.txt")"
-echo "calib loop: no truncation on error, 4 rates refused, wrapping numbers refused"
+# named exit codes (hosttools/common/tdc_tool.h): ARGS 1, FILE 7, INPUT 13
+code() { "$@" > /dev/null 2>&1; echo $?; }
+[ "$(code "$calib" "$tmp/m.csv" -o "$tmp/w.panel" --name x --width 8 --height 8 --width 0)" = 1 ] || fail "bad option: not ARGS"
+[ "$(code "$calib" "$tmp/none.csv" -o "$tmp/w.panel" --name x --width 8 --height 8)" = 7 ] || fail "missing file: not FILE"
+[ "$(code "$calib" "$tmp/bad1.csv" -o "$tmp/w.panel" --name x --width 8 --height 8)" = 13 ] || fail "bad header: not INPUT"
+[ "$(code "$measure" sim/lcd/panels/pg279q.lcdsim 120 --grid 4294967313 -o "$tmp/x.csv")" = 1 ] || fail "measure --grid wrap: not ARGS"
+[ "$(code "$measure" sim/lcd/panels/pg279q.lcdsim 120 -o "$tmp/no/such/dir.csv")" = 7 ] || fail "measure unwritable: not FILE"
+echo "calib loop: no truncation on error, 4 rates refused, wrapping numbers refused, named exit codes"
 
 # 5. transitions: the stateful tables are fitted with per-class errors; every
 #    kind of bad transition file is refused naming file, line and field.
