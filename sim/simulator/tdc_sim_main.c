@@ -40,6 +40,9 @@ static void usage(FILE *f)
                "                          'asm-family' (240 Hz comparison); default trm-family\n"
                "  -p, --panel oled|lcd    panel simulation (default oled)\n"
                "      --profile NAME      firmware panel profile (default htc-vive, or the first LCD profile)\n"
+               "      --lcd-mode M        LCD inverse: gamma, exact (default), od17, od33, state, state-pair\n"
+               "      --lcd-bits N        LCD history / state bits 4..8 (default 8)\n"
+               "      --backlight B       LCD backlight: hold, strobe or strobe:DUTY:PHASE (default: the panel's)\n"
                "  -r, --refresh HZ        run clock / display refresh (default 90)\n"
                "  -g, --size WxH          resolution (default 160x120)\n"
                "  -d, --duration S        simulated seconds (default 0.5)\n"
@@ -140,7 +143,8 @@ static int parse_num(const char *s, double lo, double hi, double *v, const char 
 int main(int argc, char **argv)
 {
     enum { O_SPEED = 256, O_ANGLE, O_CUT, O_PERS, O_PURSUIT, O_GAIN, O_EVERY, O_PPD, O_TRMS, O_GTSS, O_STRIP, O_LIST,
-           O_SPP, O_PROFILE, O_THREADS, O_IMAGE, O_ZOOM, O_ZOOMRATE, O_ROTATE };
+           O_SPP, O_PROFILE, O_THREADS, O_IMAGE, O_ZOOM, O_ZOOMRATE, O_ROTATE, O_LCDMODE, O_LCDBITS,
+           O_BACKLIGHT };
     static const struct option opts[] = {
         {"scene", required_argument, 0, 's'},   {"mode", required_argument, 0, 'm'},
         {"panel", required_argument, 0, 'p'},   {"profile", required_argument, 0, O_PROFILE},
@@ -158,6 +162,8 @@ int main(int argc, char **argv)
         {"renderer", required_argument, 0, 'R'}, {"threads", required_argument, 0, O_THREADS},
         {"image", required_argument, 0, O_IMAGE}, {"zoom", required_argument, 0, O_ZOOM},
         {"zoom-rate", required_argument, 0, O_ZOOMRATE}, {"rotate", required_argument, 0, O_ROTATE},
+        {"lcd-mode", required_argument, 0, O_LCDMODE}, {"lcd-bits", required_argument, 0, O_LCDBITS},
+        {"backlight", required_argument, 0, O_BACKLIGHT},
         {"help", no_argument, 0, 'h'},          {0, 0, 0, 0}};
     tdc_sim_config_t cfg;
     tdc_sim_default_config(&cfg);
@@ -228,6 +234,43 @@ int main(int argc, char **argv)
         case O_PROFILE:
             cfg.panel_profile = optarg;
             break;
+        case O_LCDMODE: {
+            static const char *const names[] = {"gamma", "exact", "od17", "od33", "state", "state-pair"};
+            int k = -1;
+            for (int i = 0; i < 6; i++) {
+                k = strcmp(optarg, names[i]) == 0 ? i : k;
+            }
+            if (k < 0) {
+                fprintf(stderr, "tdc-sim: --lcd-mode '%s': gamma, exact, od17, od33, state or state-pair\n", optarg);
+                return 2;
+            }
+            cfg.lcd_mode = k;
+            break;
+        }
+        case O_LCDBITS:
+            if (parse_num(optarg, 4, 8, &v, "lcd-bits")) {
+                return 2;
+            }
+            cfg.lcd_bits = (int)v;
+            break;
+        case O_BACKLIGHT: {
+            double d = 0.3, ph = 0.7;
+            char extra;
+            if (strcmp(optarg, "hold") == 0) {
+                cfg.backlight = 0;
+            } else if (strcmp(optarg, "strobe") == 0 ||
+                       (sscanf(optarg, "strobe:%lf:%lf%c", &d, &ph, &extra) == 2 && d > 0.0 && d <= 1.0 &&
+                        ph >= 0.0 && ph + d <= 1.0)) {
+                cfg.backlight = 1;
+                cfg.strobe_duty = d;
+                cfg.strobe_phase = ph;
+            } else {
+                fprintf(stderr, "tdc-sim: --backlight '%s': hold, strobe or strobe:DUTY:PHASE (DUTY + PHASE <= 1)\n",
+                        optarg);
+                return 2;
+            }
+            break;
+        }
         case 'r':
             if (parse_num(optarg, 1, 1000, &v, "refresh")) {
                 return 2;
