@@ -3,6 +3,11 @@
 # The stage's log/power/atan/Gaussian tables come from tdc-tablegen --fov.
 FW_SRCS += firmware/tdc_fov.c firmware/tdc_fov_link.c
 SIM_SRCS += sim/ref_fov.c
+# foveated error statistics (eccentricity weighting, FLIP's weighted median) for the simulator
+FOV_METRICS_OBJ = $(B)/sim/metrics/tdc_fov_metrics.o
+TESTS += $(B)/tests/unit/test_fov_metrics
+$(B)/tests/unit/test_fov_metrics: $(B)/tests/unit/test_fov_metrics.o $(FOV_METRICS_OBJ)
+	$(CC) $(HOST_LDFLAGS) $^ -o $@ $(HOST_LIBS)
 
 # (TABLEGEN is defined after the fragments are read: name the program)
 $(GEN)/tdc_fov_tables.h: $(BUILD)/tools/tdc-tablegen | $(GEN)
