@@ -538,8 +538,9 @@ tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8
                     mx = m[0];
                     my = m[1];
                 }
-                /* reprojection p - m (eq. 2.5's pi(p)), Q4 pixel indices */
-                int32_t px = x * 16 - mx, py = y * 16 - my;
+                /* reprojection pi(p) of eq. 2.5 = p + mv (backward MVs, the link's
+                 * common interface; the thesis's eq. 4.6 m = p - f(W[p]) is -mv) */
+                int32_t px = x * 16 + mx, py = y * 16 + my;
                 if (px >= -8 && px <= (W - 1) * 16 + 8 && py >= -8 && py <= (H - 1) * 16 + 8) {
                     px = tdc_clamp32(px, 0, (W - 1) * 16);
                     py = tdc_clamp32(py, 0, (H - 1) * 16);
