@@ -13,7 +13,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "link/tdc_link_encode.h"
+#include "tdc_link_encode.h"
 
 typedef struct {
     FILE *f;
@@ -33,9 +33,8 @@ int tdc_link_file_write(tdc_link_file_t *lf, const uint8_t *packet, size_t n);
 
 /* Reads the next packet into buf (cap bytes): returns its total size,
  * 0 at a clean end of file, -1 on a truncated/invalid packet or if it does
- * not fit (message on stderr).  *fields, *payload_len: parsed header. */
-long tdc_link_file_read_packet(tdc_link_file_t *lf, uint8_t *buf, size_t cap, tdc_link_header_fields_t *fields,
-                               uint32_t *payload_len);
+ * not fit (message on stderr).  *hdr: the unpacked header. */
+long tdc_link_file_read_packet(tdc_link_file_t *lf, uint8_t *buf, size_t cap, tdc_link_header_t *hdr);
 
 /* Reads up to cap raw bytes (for feeding a decoder in chunks); returns the
  * count, 0 at end of file, -1 on error. */
@@ -50,13 +49,14 @@ typedef struct {
     uint16_t stream_id;
     tdc_link_counters_t counters;  /* of a decoder fed the whole file */
     uint64_t bytes;
+    uint32_t truncated_bytes;      /* bytes of an unfinished packet (or garbage) at the end of the file */
 } tdc_link_file_summary_t;
 
 /* Decodes a whole .tdcs file with the firmware decoder, sized from the
  * file's first STREAM packet (buffers on the heap: host only).  Logs every
  * error event (and with verbose every accepted packet) to log (may be NULL).
  * Returns 0 if the stream decoded without an error event, 1 if there were
- * errors, -1 if the file cannot be read or does not start with a valid
+ * errors or the file ends inside a packet (truncated_bytes), -1 if the file cannot be read or does not start with a valid
  * STREAM packet (message on stderr). */
 int tdc_link_file_check(const char *path, FILE *log, int verbose, tdc_link_file_summary_t *sum);
 

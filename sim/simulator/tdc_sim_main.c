@@ -9,6 +9,8 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "image/tdc_image_source.h"
+#include "tdc_tool.h"
 #include "report/tdc_report.h"
 #include "simulator/tdc_sim.h"
 #include "simulator/tdc_sim_render.h"
@@ -24,6 +26,11 @@ static void usage(FILE *f)
             "  -R, --renderer SCENE    use the Embree renderer (sim/render): a built-in renderer scene\n"
             "                          (discs text panorama room mirror fence bigmesh) or a scene file\n"
             "      --threads N         renderer threads (default 2)\n"
+            "      --image FILE        pan/zoom/rotate across a photograph (PNG or JPEG; exact area-sampled\n"
+            "                          ground truth); pan from --speed/--angle (default 0), with\n"
+            "      --zoom Z            screen pixels per image pixel at t = 0 (default 1)\n"
+            "      --zoom-rate R       d ln(zoom)/dt in 1/s (default 0)\n"
+            "      --rotate DEG_PER_S  rotation speed (default 0)\n"
             "  -s, --scene NAME        built-in procedural scene (default pan):");
     for (int i = 0; i < TDC_SCENE_COUNT; i++) {
         fprintf(f, " %s", tdc_scene_name((tdc_scene_kind_t)i));
@@ -33,6 +40,9 @@ static void usage(FILE *f)
                "                          'asm-family' (240 Hz comparison); default trm-family\n"
                "  -p, --panel oled|lcd    panel simulation (default oled)\n"
                "      --profile NAME      firmware panel profile (default htc-vive, or the first LCD profile)\n"
+               "      --lcd-mode M        LCD inverse: gamma, exact (default), od17, od33, state, state-pair\n"
+               "      --lcd-bits N        LCD history / state bits 4..8 (default 8)\n"
+               "      --backlight B       LCD backlight: hold, strobe or strobe:DUTY:PHASE (default: the panel's)\n"
                "  -r, --refresh HZ        run clock / display refresh (default 90)\n"
                "  -g, --size WxH          resolution (default 160x120)\n"
                "  -d, --duration S        simulated seconds (default 0.5)\n"
@@ -121,21 +131,20 @@ static int mkdir_p(const char *dir)
 
 static int parse_num(const char *s, double lo, double hi, double *v, const char *what)
 {
-    char *end;
-    errno = 0;
-    double x = strtod(s, &end);
-    if (errno || end == s || *end || x < lo || x > hi) {
+    /* tdc_parse_double refuses nan/inf and overflow (issue 19: -r nan passed
+     * the range check and failed later as "invalid configuration") */
+    if (tdc_parse_double(s, lo, hi, v) != 0) {
         fprintf(stderr, "tdc-sim: bad %s '%s' (expected %g .. %g)\n", what, s, lo, hi);
         return -1;
     }
-    *v = x;
     return 0;
 }
 
 int main(int argc, char **argv)
 {
     enum { O_SPEED = 256, O_ANGLE, O_CUT, O_PERS, O_PURSUIT, O_GAIN, O_EVERY, O_PPD, O_TRMS, O_GTSS, O_STRIP, O_LIST,
-           O_SPP, O_PROFILE, O_THREADS };
+           O_SPP, O_PROFILE, O_THREADS, O_IMAGE, O_ZOOM, O_ZOOMRATE, O_ROTATE, O_LCDMODE, O_LCDBITS,
+           O_BACKLIGHT };
     static const struct option opts[] = {
         {"scene", required_argument, 0, 's'},   {"mode", required_argument, 0, 'm'},
         {"panel", required_argument, 0, 'p'},   {"profile", required_argument, 0, O_PROFILE},
@@ -151,11 +160,18 @@ int main(int argc, char **argv)
         {"out", required_argument, 0, 'o'},     {"label", required_argument, 0, 'l'},
         {"quiet", no_argument, 0, 'q'},         {"list", no_argument, 0, O_LIST},
         {"renderer", required_argument, 0, 'R'}, {"threads", required_argument, 0, O_THREADS},
+        {"image", required_argument, 0, O_IMAGE}, {"zoom", required_argument, 0, O_ZOOM},
+        {"zoom-rate", required_argument, 0, O_ZOOMRATE}, {"rotate", required_argument, 0, O_ROTATE},
+        {"lcd-mode", required_argument, 0, O_LCDMODE}, {"lcd-bits", required_argument, 0, O_LCDBITS},
+        {"backlight", required_argument, 0, O_BACKLIGHT},
         {"help", no_argument, 0, 'h'},          {0, 0, 0, 0}};
     tdc_sim_config_t cfg;
     tdc_sim_default_config(&cfg);
     const char *mode_list = "trm-family";
     const char *renderer = NULL;
+    const char *image = NULL;
+    tdc_image_motion_t im;
+    tdc_image_motion_default(&im);
     int threads = 2;
     long frames = -1;
     double v;
@@ -172,10 +188,32 @@ int main(int argc, char **argv)
             break;
         }
         case 'm':
+            if (optarg[0] == '\0') {
+                fprintf(stderr, "tdc-sim: bad mode list '' (-m needs at least one mode)\n");
+                return 2;
+            }
             mode_list = optarg;
             break;
         case 'R':
             renderer = optarg;
+            break;
+        case O_IMAGE:
+            image = optarg;
+            break;
+        case O_ZOOM:
+            if (parse_num(optarg, 1e-3, 1e3, &im.zoom, "zoom")) {
+                return 2;
+            }
+            break;
+        case O_ZOOMRATE:
+            if (parse_num(optarg, -20, 20, &im.zoom_rate, "zoom-rate")) {
+                return 2;
+            }
+            break;
+        case O_ROTATE:
+            if (parse_num(optarg, -3600, 3600, &im.rotate_dps, "rotate")) {
+                return 2;
+            }
             break;
         case O_THREADS:
             if (parse_num(optarg, 1, 64, &v, "threads")) {
@@ -196,6 +234,43 @@ int main(int argc, char **argv)
         case O_PROFILE:
             cfg.panel_profile = optarg;
             break;
+        case O_LCDMODE: {
+            static const char *const names[] = {"gamma", "exact", "od17", "od33", "state", "state-pair"};
+            int k = -1;
+            for (int i = 0; i < 6; i++) {
+                k = strcmp(optarg, names[i]) == 0 ? i : k;
+            }
+            if (k < 0) {
+                fprintf(stderr, "tdc-sim: --lcd-mode '%s': gamma, exact, od17, od33, state or state-pair\n", optarg);
+                return 2;
+            }
+            cfg.lcd_mode = k;
+            break;
+        }
+        case O_LCDBITS:
+            if (parse_num(optarg, 4, 8, &v, "lcd-bits")) {
+                return 2;
+            }
+            cfg.lcd_bits = (int)v;
+            break;
+        case O_BACKLIGHT: {
+            double d = 0.3, ph = 0.7;
+            char extra;
+            if (strcmp(optarg, "hold") == 0) {
+                cfg.backlight = 0;
+            } else if (strcmp(optarg, "strobe") == 0 ||
+                       (sscanf(optarg, "strobe:%lf:%lf%c", &d, &ph, &extra) == 2 && d > 0.0 && d <= 1.0 &&
+                        ph >= 0.0 && ph + d <= 1.0)) {
+                cfg.backlight = 1;
+                cfg.strobe_duty = d;
+                cfg.strobe_phase = ph;
+            } else {
+                fprintf(stderr, "tdc-sim: --backlight '%s': hold, strobe or strobe:DUTY:PHASE (DUTY + PHASE <= 1)\n",
+                        optarg);
+                return 2;
+            }
+            break;
+        }
         case 'r':
             if (parse_num(optarg, 1, 1000, &v, "refresh")) {
                 return 2;
@@ -203,9 +278,8 @@ int main(int argc, char **argv)
             cfg.refresh_hz = (int)v;
             break;
         case 'g': {
-            int w, h;
-            char extra;
-            if (sscanf(optarg, "%dx%d%c", &w, &h, &extra) != 2 || w < 8 || h < 8 || w > 4096 || h > 4096) {
+            unsigned w, h; /* overflow-checked: 4294967328x24 is refused, not 32x24 */
+            if (tdc_parse_size(optarg, 4096, &w, &h) != 0 || w < 8 || h < 8) {
                 fprintf(stderr, "tdc-sim: bad size '%s' (WxH, 8 .. 4096)\n", optarg);
                 return 2;
             }
@@ -357,14 +431,29 @@ int main(int argc, char **argv)
         return 2;
     }
     if (!cfg.label) {
-        cfg.label = renderer ? renderer : tdc_scene_name(cfg.scene.kind);
+        cfg.label = renderer ? renderer : (image ? image : tdc_scene_name(cfg.scene.kind));
     }
     if (cfg.outdir && mkdir_p(cfg.outdir)) {
         fprintf(stderr, "tdc-sim: cannot create '%s': %s\n", cfg.outdir, strerror(errno));
         return 1;
     }
     tdc_source_t *src;
-    if (renderer) {
+    if (image && renderer) {
+        fprintf(stderr, "tdc-sim: --image and --renderer exclude each other\n");
+        return 2;
+    }
+    if (image) {
+        char err[512];
+        if (cfg.scene.speed < 0) {
+            cfg.scene.speed = 0.0;
+        }
+        src = tdc_image_source_open(image, &cfg.scene, &im, err, sizeof(err));
+        if (!src) {
+            fprintf(stderr, "tdc-sim: --image %s\n", err);
+            return 1;
+        }
+        cfg.scene.speed = tdc_image_source_max_speed(src, cfg.duration_s); /* evaluation margin */
+    } else if (renderer) {
         char err[256];
         src = tdc_sim_render_source(renderer, cfg.width, cfg.height, cfg.refresh_hz,
                                     cfg.scene.gt_ss > 0 ? cfg.scene.gt_ss * cfg.scene.gt_ss : 16, threads, err,

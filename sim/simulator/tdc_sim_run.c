@@ -370,13 +370,21 @@ static int mode_init(sim_mode_t *m, const tdc_mode_desc_t *d, tdc_sim_result_t *
     if (cfg->panel == TDC_PANEL_SIM_LCD) {
 #if TDC_SIM_HAVE_LCD_FW
         if (lcd_panel) {
-            tdc_lcd_config_t lc = {(uint16_t)m->w, (uint16_t)m->h, (uint16_t)m->hz, TDC_LCD_MODE_EXACT, 8};
+            tdc_lcd_config_t lc = {(uint16_t)m->w, (uint16_t)m->h, (uint16_t)m->hz, (uint8_t)cfg->lcd_mode,
+                                   (uint8_t)cfg->lcd_bits};
             size_t n = tdc_lcd_get_size(&lc);
             m->lcd_mem = n ? malloc(n) : NULL;
             if (m->lcd_mem && tdc_lcd_init(&m->lcd, &lc, lcd_panel, m->lcd_mem, n) == TDC_OK) {
+                static const char *const names[] = {"gamma", "exact", "od17", "od33", "state", "state-pair"};
+                char b[96];
+                snprintf(b, sizeof(b), "LCD inverse %s, %d-bit history", names[cfg->lcd_mode % 6], cfg->lcd_bits);
+                note(m, b);
                 m->use_lcd = 1;
             } else {
-                note(m, "LCD firmware stage refused the panel/rate: drive = wanted code");
+                char b[160];
+                snprintf(b, sizeof(b), "LCD firmware stage refused mode %d at %d Hz on %s: drive = wanted code",
+                         cfg->lcd_mode, m->hz, lcd_panel->name);
+                note(m, b);
             }
         } else {
             note(m, "no LCD panel profile: LCD firmware stage skipped, drive = wanted code");
@@ -389,6 +397,9 @@ static int mode_init(sim_mode_t *m, const tdc_mode_desc_t *d, tdc_sim_result_t *
         snprintf(path, sizeof(path), "sim/lcd/panels/%s.lcdsim", lcd_panel ? lcd_panel->name : "pg279q");
         if (tdc_panel_sim_use_lcdsim(&m->panel, path, err, sizeof(err)) != 0) {
             note(m, err);
+        } else if (cfg->backlight >= 0 &&
+                   tdc_panel_sim_lcd_backlight(&m->panel, cfg->backlight, cfg->strobe_duty, cfg->strobe_phase) != 0) {
+            note(m, "LCD backlight timing refused: the panel's own is used");
         }
         note(m, m->panel.model);
     }
@@ -903,7 +914,7 @@ int tdc_sim_run(const tdc_sim_config_t *cfg, tdc_source_t *src, const tdc_mode_d
             }
         }
         prev_te = te;
-        if (cfg->progress && (j % 16 == 0 || j == nevals - 1)) {
+        if (cfg->progress && (j % ((nevals + 99) / 100) == 0 || j == nevals - 1)) {
             progress((double)(j + 1) / nevals, cfg->label);
         }
     }
