@@ -33,30 +33,12 @@ GOLDEN_STAGES += fov
 # throughput vs the memcpy bound (docs/foveation.md)
 BENCHES += $(B)/tests/bench/bench_fov
 
-# Fuzzing the foveated packet's kind-specific path (header, payload length,
-# unpack, the stage with TAA): libFuzzer + ASan + UBSan, like fuzz_link
-# (mk/link.mk, read after this fragment: its variables are named here).
-# A 15 s smoke run is part of make test; `make fuzz-fov FUZZ_SECONDS=600` runs long.
-FOV_FUZZ_BIN := $(BUILD)/fuzz/fuzz_fov
-FOV_FUZZ_SRCS := firmware/tdc_fov.c firmware/tdc_fov_link.c firmware/tdc_math.c
-$(FOV_FUZZ_BIN): tests/fuzz/fuzz_fov.c $(FOV_FUZZ_SRCS) firmware/tdc_fov.h firmware/tdc_fov_link.h $(GEN)/tdc_fov_tables.h
-	@mkdir -p $(@D)
-	$(or $(FUZZ_CC),clang) -std=c11 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
-	    -Ifirmware -I$(GEN) tests/fuzz/fuzz_fov.c $(FOV_FUZZ_SRCS) -o $@
-$(BUILD)/fuzz/fuzz-smoke-fov: $(FOV_FUZZ_BIN) tests/fuzz/smoke.sh mk/fov.mk
-	@printf '#!/bin/sh\nexec tests/fuzz/smoke.sh "%s" 15 "%s" tests/fuzz/corpus-fov\n' "$(FOV_FUZZ_BIN)" "$(abspath $(BUILD))/fuzz/artifacts-fov" > $@
-	@chmod +x $@
-fuzz-smoke-fov: $(BUILD)/fuzz/fuzz-smoke-fov
-	@tests/run_tests.sh "clang-fuzz" $(BUILD)/fuzz/fuzz-smoke-fov
-fuzz-fov: $(FOV_FUZZ_BIN)
-	@mkdir -p $(BUILD)/fuzz/corpus-fov $(BUILD)/fuzz/artifacts-fov
-	$(FOV_FUZZ_BIN) -max_total_time=$(or $(FUZZ_SECONDS),600) -timeout=10 -print_final_stats=1 \
-	    -artifact_prefix=$(BUILD)/fuzz/artifacts-fov/ $(BUILD)/fuzz/corpus-fov tests/fuzz/corpus-fov
+# Fuzzing: the target `fov` is registered in mk/fuzz.mk (tests/fuzz/fuzz_fov.c,
+# seeds tests/fuzz/corpus-fov, regenerated deliberately by make fuzz-seeds-fov).
 $(BUILD)/fuzz/make_seeds_fov: tests/fuzz/make_seeds_fov.c firmware/tdc_fov.c firmware/tdc_fov_link.c firmware/tdc_math.c $(GEN)/tdc_fov_tables.h
 	@mkdir -p $(@D)
 	gcc -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror -O2 -Ifirmware -I$(GEN) $(filter %.c,$^) -o $@
 fuzz-seeds-fov: $(BUILD)/fuzz/make_seeds_fov
 	@mkdir -p tests/fuzz/corpus-fov
 	$(BUILD)/fuzz/make_seeds_fov tests/fuzz/corpus-fov
-.PHONY: fuzz-smoke-fov fuzz-fov fuzz-seeds-fov
-TEST_EXTRA += fuzz-smoke-fov
+.PHONY: fuzz-seeds-fov
