@@ -86,6 +86,11 @@ tdc_fov_hdr_err_t tdc_fov_hdr_parse(const uint8_t in[TDC_FOV_HDR_BYTES], uint16_
     return TDC_FOV_HDR_OK;
 }
 
+tdc_fov_hdr_err_t tdc_fov_payload_check(const tdc_fov_hdr_t *h, uint32_t len)
+{
+    return len == h->payload_bytes ? TDC_FOV_HDR_OK : TDC_FOV_HDR_PAYLOAD;
+}
+
 const char *tdc_fov_hdr_err_name(tdc_fov_hdr_err_t e)
 {
     static const char *const n[TDC_FOV_HDR_COUNT] = {

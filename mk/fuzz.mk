@@ -15,7 +15,7 @@ FUZZ_FLAGS := -std=c11 -D_GNU_SOURCE -g -O1 -fsanitize=fuzzer,address,undefined 
 LINK_FW_SRCS := firmware/tdc_wire.c firmware/tdc_link.c firmware/tdc_pixfmt.c firmware/tdc_crc32.c
 
 # name: harness + sources [+ flags, libraries]
-FUZZ_ALL := link usbproto usbreply panel tdcs scene frameloop meas
+FUZZ_ALL := link usbproto usbreply panel tdcs scene frameloop meas fov
 FUZZ_TARGETS ?= $(FUZZ_ALL)
 FUZZ_SRCS_link := tests/fuzz/fuzz_link.c $(LINK_FW_SRCS)
 FUZZ_SRCS_usbproto := tests/fuzz/fuzz_usbproto.c firmware/tdc_usbproto.c firmware/tdc_crc32.c
@@ -46,6 +46,10 @@ FUZZ_CORPUS_link := tests/fuzz/corpus
 FUZZ_SRCS_meas := tests/fuzz/fuzz_meas.c hosttools/calib/tdc_meas.c hosttools/calib/tdc_calib_trans.c \
                   hosttools/common/tdc_tool.c
 FUZZ_LIBS_meas := -lm
+# the foveated packet's kind-specific path: header, payload length, unpack, the stage with TAA
+# (seeds: make fuzz-seeds-fov, mk/fov.mk)
+FUZZ_SRCS_fov := tests/fuzz/fuzz_fov.c firmware/tdc_fov.c firmware/tdc_fov_link.c firmware/tdc_math.c
+FUZZ_DEPS_fov := $(GEN)/tdc_fov_tables.h
 
 define fuzz_target
 $(FUZZ_DIR)/fuzz_$(1): $(FUZZ_SRCS_$(1)) $(FUZZ_DEPS_$(1)) $(wildcard firmware/*.h sim/link/*.h sim/render/*.h) \

@@ -295,7 +295,7 @@ static void bench_fov(uint8_t taa, const char *label)
                                 (uint16_t)FOV_LH};
     tdc_content_frame(TDC_CONTENT_TEXT, 0u, 1u, g_fov_lp, (int)FOV_LW, (int)FOV_LH, (int)(FOV_LW * 3u));
     for (uint32_t k = 0; k < FOV_LW * FOV_LH; k++) {
-        g_fov_mv[2u * k] = 24; /* 1.5 px pan */
+        g_fov_mv[2u * k] = -24; /* a 1.5 px pan: backward MV */
         g_fov_mv[2u * k + 1u] = 0;
     }
     if (tdc_fov_frame(&g_fov, &p, g_fov_lp, FOV_LW * 3u, g_fov_mv, FOV_LW * 2u, g_in[0], BENCH_W * 3u, 11111u, g_out,
