@@ -52,7 +52,7 @@ static uint16_t trm_taps(uint16_t sigma_q8)
 }
 
 typedef struct {
-    size_t residual, dprev, ring, urow, dx_first, dy_first, dx_w, dy_w, ux, uy, wexp, simd, total;
+    size_t residual, icodes, rrow, crow, dprev, ring, urow, dx_first, dy_first, dx_w, dy_w, ux, uy, wexp, simd, total;
 } trm_layout_t;
 
 static size_t align8(size_t n)
@@ -64,8 +64,20 @@ static void trm_layout(const tdc_trm_config_t *cfg, uint16_t rw, uint16_t rh, ui
 {
     size_t o = 0;
     size_t w = cfg->width, h = cfg->height;
-    l->residual = o;
-    o += align8(w * h * 3u * sizeof(tdc_res_t));
+    /* rho stored (12 B/px), or the full frame's codes (3 B/px) and one row
+     * of rho and codes to recompute it from */
+    l->residual = l->icodes = l->rrow = l->crow = 0;
+    if (cfg->keep_residual) {
+        l->residual = o;
+        o += align8(w * h * 3u * sizeof(tdc_res_t));
+    } else {
+        l->icodes = o;
+        o += align8(w * h * 3u);
+        l->rrow = o;
+        o += align8(w * 3u * sizeof(tdc_res_t));
+        l->crow = o;
+        o += align8(w * 3u);
+    }
     l->dprev = o;
     o += align8((size_t)rw * rh * 3u * sizeof(tdc_gval_t));
     l->ring = o;
@@ -116,6 +128,7 @@ void tdc_trm_default_config(tdc_trm_config_t *cfg, uint16_t width, uint16_t heig
     cfg->min_refresh_hz = 90; /* paper §4.1/§9 */
     cfg->s_q8 = 10u * 256u;
     cfg->reduced_in_stream = 1;
+    cfg->keep_residual = 0;
 }
 
 /* ---------------------------------------------------------------------
@@ -210,10 +223,13 @@ tdc_status_t tdc_trm_init(tdc_trm_t *st, const tdc_trm_config_t *cfg, const tdc_
     st->dtaps = trm_taps(cfg->sigma_q8);
     st->passthrough = (uint8_t)!reduces;
     st->have_full = 0;
+    st->full_seq = 0;
     st->stats = (tdc_trm_stats_t){0};
     st->simd = (uint8_t)tdc_trm_avx2_available();
     if (st->passthrough) {
         st->residual = NULL;
+        st->icodes = st->crow = NULL;
+        st->rrow = NULL;
         st->dprev = st->ring = NULL;
         st->urow = NULL;
         st->dx_first = st->dy_first = NULL;
@@ -226,7 +242,10 @@ tdc_status_t tdc_trm_init(tdc_trm_t *st, const tdc_trm_config_t *cfg, const tdc_
     trm_layout_t l;
     trm_layout(cfg, st->rw, st->rh, st->dtaps, &l);
     uint8_t *base = (uint8_t *)mem + ((8u - ((uintptr_t)mem & 7u)) & 7u);
-    st->residual = (tdc_res_t *)(void *)(base + l.residual);
+    st->residual = cfg->keep_residual ? (tdc_res_t *)(void *)(base + l.residual) : NULL;
+    st->icodes = cfg->keep_residual ? NULL : base + l.icodes;
+    st->rrow = cfg->keep_residual ? NULL : (tdc_res_t *)(void *)(base + l.rrow);
+    st->crow = cfg->keep_residual ? NULL : base + l.crow;
     st->dprev = (tdc_gval_t *)(void *)(base + l.dprev);
     st->ring = (tdc_gval_t *)(void *)(base + l.ring);
     st->urow = (uint32_t *)(void *)(base + l.urow);
@@ -268,6 +287,13 @@ void tdc_trm_reset(tdc_trm_t *st)
         }
     }
     st->have_full = 0;
+}
+
+void tdc_trm_invalidate(tdc_trm_t *st)
+{
+    if (st) {
+        st->have_full = 0;
+    }
 }
 
 /* ---------------------------------------------------------------------
@@ -408,6 +434,20 @@ static void trm_rowctx(const tdc_trm_t *st, tdc_trm_rowctx_t *k)
     k->enc_one_step = st->enc_one_step;
 }
 
+/* beta of full-res row y from codes src and the kept D(I): dst = shown
+ * codes, res = rho.  The one place both the full frame and the recompute
+ * of rho for a reduced frame run (same kernel: same bytes). */
+static void trm_beta_row(tdc_trm_t *st, const tdc_trm_rowctx_t *k, uint32_t y, const uint32_t *urow,
+                         const uint8_t *src, uint8_t *dst, tdc_res_t *res, tdc_trm_full_counts_t *n)
+{
+    (void)y;
+    if (st->simd) {
+        tdc_trm_full_row_avx2(k, urow, src, dst, res, n);
+    } else {
+        tdc_trm_full_row_c(k, urow, src, dst, res, n);
+    }
+}
+
 tdc_status_t tdc_trm_full(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out, uint32_t out_stride)
 {
     if (!st || !in || !out || in_stride < 3u * st->cfg.width || out_stride < 3u * st->cfg.width) {
@@ -421,18 +461,25 @@ tdc_status_t tdc_trm_full(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, 
     trm_apply_d(st, in, in_stride, st->dprev, NULL, 0);
     tdc_trm_rowctx_t k;
     trm_rowctx(st, &k);
-    const uint32_t w = st->cfg.width;
+    const uint32_t w = st->cfg.width, w3 = 3u * w;
     uint64_t hi = 0, lo = 0;
     for (uint32_t y = 0; y < st->cfg.height; y++) {
         tdc_trm_full_counts_t n = {0, 0};
         trm_u_row(st, st->dprev, y, st->urow);
-        if (st->simd) {
-            tdc_trm_full_row_avx2(&k, st->urow, in + (size_t)y * in_stride, out + (size_t)y * out_stride,
-                                  &st->residual[(size_t)y * w * 3u], &n);
+        const uint8_t *src = in + (size_t)y * in_stride;
+        tdc_res_t *res = st->rrow;
+        if (st->icodes) {
+            /* keep I_t (in may be out: copy before the row is overwritten);
+             * rho of this row is not kept, it is recomputed when needed */
+            uint8_t *keep = st->icodes + (size_t)y * w3;
+            for (uint32_t i = 0; i < w3; i++) {
+                keep[i] = src[i];
+            }
+            src = keep;
         } else {
-            tdc_trm_full_row_c(&k, st->urow, in + (size_t)y * in_stride, out + (size_t)y * out_stride,
-                               &st->residual[(size_t)y * w * 3u], &n);
+            res = &st->residual[(size_t)y * w3];
         }
+        trm_beta_row(st, &k, y, st->urow, src, out + (size_t)y * out_stride, res, &n);
         hi += n.hi;
         lo += n.lo;
     }
@@ -443,38 +490,90 @@ tdc_status_t tdc_trm_full(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, 
     return TDC_OK;
 }
 
-tdc_status_t tdc_trm_reduced(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t in_stride, uint8_t *out,
-                             uint32_t out_stride)
+tdc_status_t tdc_trm_full_seq(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out,
+                              uint32_t out_stride, uint32_t seq)
 {
-    if (!st || !in_reduced || !out || out_stride < 3u * st->cfg.width) {
+    const tdc_status_t r = tdc_trm_full(st, in, in_stride, out, out_stride);
+    if (r == TDC_OK && st) {
+        st->full_seq = seq;
+    }
+    return r;
+}
+
+/* rho of row y into the row buffer (recompute) or a pointer into the stored
+ * residual; urow holds U(D(I_t)) of row y. */
+static const tdc_res_t *trm_rho_row(tdc_trm_t *st, const tdc_trm_rowctx_t *k, uint32_t y, const uint32_t *urow)
+{
+    const uint32_t w3 = 3u * st->cfg.width;
+    if (!st->icodes) {
+        return &st->residual[(size_t)y * w3];
+    }
+    tdc_trm_full_counts_t n = {0, 0};
+    trm_beta_row(st, k, y, urow, st->icodes + (size_t)y * w3, st->crow, st->rrow, &n);
+    return st->rrow;
+}
+
+tdc_status_t tdc_trm_residual_row(tdc_trm_t *st, uint32_t y, tdc_res_t *out)
+{
+    if (!st || !out || y >= st->cfg.height) {
         return TDC_ERR_ARG;
     }
-    if (st->passthrough) {
-        return TDC_ERR_STATE; /* this stream was configured without reduced frames */
-    }
-    if (in_stride < 3u * st->rw) {
-        return TDC_ERR_ARG;
-    }
-    if (!st->have_full) {
+    if (st->passthrough || !st->have_full) {
         return TDC_ERR_STATE;
     }
+    tdc_trm_rowctx_t k;
+    trm_rowctx(st, &k);
+    trm_u_row(st, st->dprev, y, st->urow);
+    const tdc_res_t *r = trm_rho_row(st, &k, y, st->urow);
+    for (uint32_t i = 0; i < 3u * st->cfg.width; i++) {
+        out[i] = r[i];
+    }
+    return TDC_OK;
+}
+
+/* Reduced frame; with_state = 0 shows alpha alone (no residual). */
+static tdc_status_t trm_reduced(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t in_stride, uint8_t *out,
+                                uint32_t out_stride, int with_state)
+{
     const uint32_t rw3 = 3u * st->rw;
     tdc_trm_rowctx_t k;
     trm_rowctx(st, &k);
-    const uint32_t w = st->cfg.width;
     uint32_t *urow_a = st->urow;            /* U(D(I_t)), code Q22 */
     uint32_t *urow_b = st->urow + rw3 + 3u; /* U(i_t+1) */
+    /* without state: alpha alone, i.e. rho = 0 everywhere (the kernel then
+     * never reads U(D(I_t))); the row buffer holds the zeros */
+    tdc_res_t *zero = with_state ? NULL : st->rrow;
     uint64_t computed = 0, skipped = 0, no_res = 0;
     for (uint32_t y = 0; y < st->cfg.height; y++) {
         tdc_trm_reduced_counts_t n = {0, 0, 0};
-        trm_u_row(st, st->dprev, y, urow_a);
+        const tdc_res_t *rho;
+        if (with_state) {
+            trm_u_row(st, st->dprev, y, urow_a);
+            rho = trm_rho_row(st, &k, y, urow_a);
+        } else {
+            if (y == 0u) {
+                for (uint32_t i = 0; zero && i < 3u * st->cfg.width; i++) {
+                    zero[i] = 0;
+                }
+                for (uint32_t i = 0; i < rw3 + 3u; i++) {
+                    urow_a[i] = 0; /* defined, though no kernel needs it where rho = 0 */
+                }
+            }
+            /* stored-residual layout has no row buffer: its own rho row is
+             * cleared (that state is stale anyway) */
+            rho = zero ? zero : &st->residual[(size_t)y * 3u * st->cfg.width];
+            if (!zero) {
+                tdc_res_t *r = &st->residual[(size_t)y * 3u * st->cfg.width];
+                for (uint32_t i = 0; i < 3u * st->cfg.width; i++) {
+                    r[i] = 0;
+                }
+            }
+        }
         trm_u_row_codes(st, in_reduced, in_stride, y, urow_b);
         if (st->simd) {
-            tdc_trm_reduced_row_avx2(&k, urow_a, urow_b, &st->residual[(size_t)y * w * 3u],
-                                     out + (size_t)y * out_stride, &n);
+            tdc_trm_reduced_row_avx2(&k, urow_a, urow_b, rho, out + (size_t)y * out_stride, &n);
         } else {
-            tdc_trm_reduced_row_c(&k, urow_a, urow_b, &st->residual[(size_t)y * w * 3u], out + (size_t)y * out_stride,
-                                  &n);
+            tdc_trm_reduced_row_c(&k, urow_a, urow_b, rho, out + (size_t)y * out_stride, &n);
         }
         computed += n.computed;
         skipped += n.skipped;
@@ -485,6 +584,49 @@ tdc_status_t tdc_trm_reduced(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t 
     st->stats.residual_skipped += no_res;
     st->stats.reduced_frames++;
     return TDC_OK;
+}
+
+static tdc_status_t trm_reduced_args(const tdc_trm_t *st, const uint8_t *in_reduced, uint32_t in_stride,
+                                     const uint8_t *out, uint32_t out_stride)
+{
+    if (!st || !in_reduced || !out || out_stride < 3u * st->cfg.width) {
+        return TDC_ERR_ARG;
+    }
+    if (st->passthrough) {
+        return TDC_ERR_STATE; /* this stream was configured without reduced frames */
+    }
+    if (in_stride < 3u * st->rw) {
+        return TDC_ERR_ARG;
+    }
+    return TDC_OK;
+}
+
+tdc_status_t tdc_trm_reduced(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t in_stride, uint8_t *out,
+                             uint32_t out_stride)
+{
+    const tdc_status_t a = trm_reduced_args(st, in_reduced, in_stride, out, out_stride);
+    if (a != TDC_OK) {
+        return a;
+    }
+    if (!st->have_full) {
+        return TDC_ERR_STATE;
+    }
+    return trm_reduced(st, in_reduced, in_stride, out, out_stride, 1);
+}
+
+tdc_status_t tdc_trm_reduced_seq(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t in_stride, uint8_t *out,
+                                 uint32_t out_stride, uint32_t seq)
+{
+    const tdc_status_t a = trm_reduced_args(st, in_reduced, in_stride, out, out_stride);
+    if (a != TDC_OK) {
+        return a;
+    }
+    const int paired = st->have_full && st->full_seq + 1u == seq;
+    if (!paired) {
+        st->stats.reduced_unpaired++;
+        st->have_full = 0; /* whatever is kept is older than this frame: never use it again */
+    }
+    return trm_reduced(st, in_reduced, in_stride, out, out_stride, paired);
 }
 
 tdc_status_t tdc_trm_downsample(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out,

@@ -48,11 +48,14 @@
 
 /*
  * Compile-time arena bound for a W x H eye at reduction ratios up to
- * RNUM/RDEN (the board's largest r < 1).  Keep in sync with
- * tdc_trm_get_size(): tests assert get_size() <= this bound.
+ * RNUM/RDEN (the board's largest r < 1), default state layout (rho
+ * recomputed, keep_residual = 0).  Keep in sync with tdc_trm_get_size():
+ * tests assert get_size() <= this bound.  Per display pixel at r = 1/2:
+ * 3 B of full-frame codes + 1.5 B of D(I) + a few rows (docs/boards.md).
  */
 #define TDC_TRM_MEM_BYTES(W, H, RNUM, RDEN)                                                            \
-    (64u + (size_t)(W) * (H) * 3u * 4u                          /* residual rho, Q24 */                \
+    (64u + (size_t)(W) * (H) * 3u                               /* full-frame codes I_t */            \
+     + (size_t)(W) * 3u * (4u + 1u)                             /* one row of rho and of codes */     \
      + (size_t)TDC_TRM_REDUCED_DIM(W, RNUM, RDEN) * TDC_TRM_REDUCED_DIM(H, RNUM, RDEN) * 3u * 2u      \
      /* D(I_t), code Q8 */                                                                             \
      + (size_t)TDC_TRM_MAX_TAPS * TDC_TRM_REDUCED_DIM(W, RNUM, RDEN) * 3u * 2u /* ring of rows */      \
@@ -64,6 +67,10 @@
      + (size_t)TDC_TRM_SIMD_BYTES                                            /* AVX2 encode index */ \
      + 16u * 8u /* alignment slack */)
 
+/* The same with keep_residual = 1 (rho stored, W*H*3 Q24: 12 B/px, so that
+ * a later stage, the LCD inverse, can add light to it). */
+#define TDC_TRM_MEM_BYTES_KEEP(W, H, RNUM, RDEN) (TDC_TRM_MEM_BYTES(W, H, RNUM, RDEN) + (size_t)(W) * (H) * 3u * 4u)
+
 typedef struct {
     uint16_t width;          /* full-res eye size in pixels */
     uint16_t height;
@@ -74,6 +81,13 @@ typedef struct {
     uint16_t min_refresh_hz; /* TRM refused below this (paper §9: 90 Hz) */
     uint32_t s_q8;           /* motion sensitivity s of w = exp(-s c), Q8 */
     uint8_t reduced_in_stream; /* 0: stream has no reduced frames -> pass-through */
+    /* 0 (default): keep the full frame's codes I_t and D(I_t) and recompute
+     * rho = beta - clamp(beta) row by row when the reduced frame arrives
+     * (beta is a deterministic function of I_t and D(I_t): same bytes,
+     * 4.5 B/px at r = 1/2 instead of 13.5).  1: store rho (W*H*3 Q24), which
+     * tdc_trm_residual() exposes so the LCD inverse can add its unreached
+     * light to it (the simulator does; boards drop that light, counted). */
+    uint8_t keep_residual;
 } tdc_trm_config_t;
 
 /* Per-stage counters: show what ran and what was elided. */
@@ -86,6 +100,8 @@ typedef struct {
     uint64_t residual_skipped;   /* pixel-channels with rho = 0: no weight needed */
     uint64_t clamped_high;       /* pixel-channels where beta > 1 */
     uint64_t clamped_low;        /* pixel-channels where beta < 0 */
+    uint32_t reduced_unpaired;   /* reduced frames shown without residual: their full
+                                    frame (sequence number - 1) was lost or out of order */
 } tdc_trm_stats_t;
 
 typedef struct {
@@ -96,9 +112,13 @@ typedef struct {
     uint16_t dtaps;             /* taps per D kernel */
     uint8_t passthrough;        /* r == 1 or no reduced frames in the stream */
     uint8_t have_full;          /* a full frame's D(I) and rho are valid */
+    uint32_t full_seq;          /* sequence number of that full frame (tdc_trm_full_seq) */
     uint8_t simd;               /* row kernels: 1 = AVX2 (host), 0 = portable C */
     /* views into the arena */
-    tdc_res_t *residual;        /* W*H*3, Q24 linear light */
+    tdc_res_t *residual;        /* keep_residual: W*H*3, Q24 linear light; else NULL */
+    uint8_t *icodes;            /* keep_residual = 0: W*H*3 codes of the last full frame */
+    tdc_res_t *rrow;            /* keep_residual = 0: one row of rho (W*3, Q24) */
+    uint8_t *crow;              /* keep_residual = 0: one row of codes (W*3), discarded */
     tdc_gval_t *dprev;          /* rw*rh*3, D(I_t), code Q8 */
     tdc_gval_t *ring;           /* TDC_TRM_MAX_TAPS rows of rw*3: horizontal D pass */
     uint32_t *urow;             /* 2 rows of (rw+1)*3: vertically interpolated U rows, code Q22 */
@@ -163,13 +183,40 @@ tdc_status_t tdc_trm_downsample(tdc_trm_t *st, const uint8_t *in, uint32_t in_st
  * (table interpolation; exposed for the accuracy test). */
 int32_t tdc_trm_weight(const tdc_trm_t *st, uint32_t x_q16);
 
+/*
+ * Frames tied by sequence number (the link's frame index).  tdc_trm_full_seq
+ * is tdc_trm_full and records seq; tdc_trm_reduced_seq uses the kept state
+ * only if it belongs to the full frame seq - 1 of this eye (the frame just
+ * before: TRM alternates per eye).  Otherwise -- the full frame was lost,
+ * rejected or came out of order, or no full frame at all since init/reset --
+ * the reduced frame is shown as alpha = lin(U(i)) alone, without residual
+ * (never with stale state), counted in stats.reduced_unpaired, and TDC_OK.
+ */
+tdc_status_t tdc_trm_full_seq(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out,
+                              uint32_t out_stride, uint32_t seq);
+tdc_status_t tdc_trm_reduced_seq(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t in_stride, uint8_t *out,
+                                 uint32_t out_stride, uint32_t seq);
+
+/* Forget the kept full frame (it is no longer what the next reduced frame
+ * pairs with), keeping the tables: e.g. when a newer full frame of this
+ * eye was lost. */
+void tdc_trm_invalidate(tdc_trm_t *st);
+
+/*
+ * rho of row y (W*3 Q24) of the last full frame, as the reduced frame uses
+ * it: recomputed from the kept codes (or copied when keep_residual).
+ * TDC_ERR_STATE without a full frame.  For tests and golden vectors.
+ */
+tdc_status_t tdc_trm_residual_row(tdc_trm_t *st, uint32_t y, tdc_res_t *out);
+
 /* Row kernels: AVX2 (enable = 1, the default when the host CPU has it) or
  * portable C (0).  Both give the same bytes (tests/checkasm_trm.c); boards
  * and CPUs without AVX2 always run C. */
 void tdc_trm_set_simd(tdc_trm_t *st, int enable);
 
 /* Residual buffer rho (W*H*3, Q24 linear light, interleaved like the frame),
- * for the LCD stage, which adds the light the panel could not reach. */
+ * for the LCD stage, which adds the light the panel could not reach; NULL
+ * unless keep_residual (rho is then recomputed, never stored). */
 static inline tdc_res_t *tdc_trm_residual(tdc_trm_t *st)
 {
     return st->residual;

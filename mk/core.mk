@@ -7,6 +7,7 @@ SIM_SRCS += sim/ref_trm.c
 TESTS += $(B)/tests/test_trm_ref
 TESTS += $(B)/tests/test_trm
 TESTS += $(B)/tests/test_trm_stability
+TESTS += $(B)/tests/test_trm_loss
 GOLDEN_STAGES += trm
 
 # tdc-run: the firmware on anyone's frames.  Other modes add their sources
