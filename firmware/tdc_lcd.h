@@ -141,6 +141,8 @@ typedef struct {
     uint64_t clamped_low;
     uint64_t clamped_high;
     uint64_t residual_added; /* pixel-channels whose unreached light went to rho */
+    uint64_t residual_dropped; /* pixel-channels whose unreached light had no rho to go to
+                                  (residual NULL: a reduced frame, or TRM keeps no rho) */
 } tdc_lcd_stats_t;
 
 typedef struct {

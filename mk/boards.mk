@@ -27,7 +27,7 @@ ARM_BOARDS := $(filter-out host,$(BOARDS))
 # Emulated boards: those whose board.mk names a QEMU machine.
 QEMU_BOARDS := $(sort $(patsubst boards/%/board.mk,%,$(shell grep -l '^BOARD_QEMU' boards/*/board.mk)))
 
-.PHONY: arm-loop-cost run-arm firmware-size test-arm size bench-arm arm-bench profile-arm arm-profile arm-golden arm-golden-check arm-image-check arm-fit-check arm-fw-check
+.PHONY: arm-fw-loop-check arm-loop-cost run-arm firmware-size test-arm size bench-arm arm-bench profile-arm arm-profile arm-golden arm-golden-check arm-image-check arm-fit-check arm-fw-check
 
 .SECONDEXPANSION:
 
@@ -273,6 +273,15 @@ arm-loop-cost: $(BP)/loop.tsv
 arm-fw-check: $(BP)/fw-check
 	@tests/run_tests.sh "$(BOARD)-$(PANEL)" $(BP)/fw-check
 
+# The loop after loss, on crafted streams against clean ones (host build of
+# the loop; issue 17 item 3): tests/arm/test_fw_loop.sh.
+$(BP)/fw-loop-check: $(FWH)/tdc_fw_host $(B)/tests/fw_stream tests/arm/test_fw_loop.sh
+	@mkdir -p $(@D)
+	@printf '#!/bin/sh\nexec tests/arm/test_fw_loop.sh %s %s %s\n' "$(FWH)/tdc_fw_host" "$(B)/tests/fw_stream" "$(PANEL_DIMS)" > $@
+	@chmod +x $@
+arm-fw-loop-check: $(BP)/fw-loop-check
+	@tests/run_tests.sh "fw-loop-$(PANEL)" $(BP)/fw-loop-check
+
 -include $(shell find $(BA) $(BP) -name '*.d' 2>/dev/null)
 endif
 
@@ -315,6 +324,7 @@ test-arm:
 	            $(MAKE) --no-print-directory -j2 BOARD=$$b PANEL=$$p "$$@" arm-fw-check || :; fi; \
 	    else $(call ARM_FAIL_LINE,$$b-$$p,firmware-build); fi; \
 	done
+	@$(MAKE) --no-print-directory -j2 BOARD=mps3-an547 PANEL=htc-vive arm-fw-loop-check || :
 	@for t in $(ARM_FIT_FAIL); do \
 	    b=$${t%%:*}; r=$${t#*:}; p=$${r%%:*}; r=$${r#*:}; s=$${r%%:*}; g=$${r#*:}; \
 	    printf '#!/bin/sh\nexec tests/arm/test_fit.sh %s %s %s %s\n' $$b $$p $$s $$g > $(BUILD)/fit-$$b-$$p; \
