@@ -165,9 +165,11 @@ typedef struct {
 /* Bytes of a packed previous-frame buffer of n samples at b bits (+1 slack). */
 #define TDC_LCD_PACKED_BYTES(n, b) ((((size_t)(n) * (b)) + 7u) / 8u + 1u)
 
-/* Compile-time arena bound for a W x H eye (full-precision buffers). */
-#define TDC_LCD_MEM_BYTES(W, H)                                                                 \
-    (2u * (TDC_LCD_PACKED_BYTES((size_t)(W) * (H) * 3u, 8u) + 3u) + 3u * 256u * 4u + 16u)
+/* Compile-time arena bound for a W x H eye with history at B bits per
+ * sample (2 x 3 B/px at 8 bits), and at full precision. */
+#define TDC_LCD_MEM_BYTES_BITS(W, H, B)                                                         \
+    (2u * (TDC_LCD_PACKED_BYTES((size_t)(W) * (H) * 3u, (B)) + 3u) + 3u * 256u * 4u + 16u)
+#define TDC_LCD_MEM_BYTES(W, H) TDC_LCD_MEM_BYTES_BITS(W, H, 8u)
 
 /* Arena bytes for cfg (0 when cfg is invalid). */
 size_t tdc_lcd_get_size(const tdc_lcd_config_t *cfg);

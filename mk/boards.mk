@@ -27,7 +27,7 @@ ARM_BOARDS := $(filter-out host,$(BOARDS))
 # Emulated boards: those whose board.mk names a QEMU machine.
 QEMU_BOARDS := $(sort $(patsubst boards/%/board.mk,%,$(shell grep -l '^BOARD_QEMU' boards/*/board.mk)))
 
-.PHONY: arm-fw-loop-check arm-loop-cost run-arm firmware-size test-arm size bench-arm arm-bench profile-arm arm-profile arm-golden arm-golden-check arm-image-check arm-fit-check arm-fw-check
+.PHONY: arm-fw-loop-check arm-fw-refuse-check arm-loop-cost run-arm firmware-size test-arm size bench-arm arm-bench profile-arm arm-profile arm-golden arm-golden-check arm-image-check arm-fit-check arm-fw-check
 
 .SECONDEXPANSION:
 
@@ -156,7 +156,9 @@ arm-golden-check: $(BA)/golden-check $(BA)/harness-check
 # sources ($(FW_LCD_SRCS)) are left out of every other build.
 # ---------------------------------------------------------------------------
 ALL_STAGES := trm assemble lcd
-STAGES_DEFAULT := $(if $(filter undefined,$(origin BOARD_STAGES)),$(ALL_STAGES),$(BOARD_STAGES))
+# A board may name other default stages for a panel: BOARD_STAGES_<panel>.
+STAGES_DEFAULT := $(if $(filter-out undefined,$(origin BOARD_STAGES_$(PANEL))),$(BOARD_STAGES_$(PANEL)),$(if \
+                  $(filter undefined,$(origin BOARD_STAGES)),$(ALL_STAGES),$(BOARD_STAGES)))
 STAGES ?= $(STAGES_DEFAULT)
 # The image of a pair: build/<board>-<panel>, or build/<board>-<panel>-<stages>
 # when STAGES differs from the board's default (e.g. -link for STAGES=).
@@ -164,8 +166,10 @@ space := $(eval) $(eval)
 STAGES_TAG := $(or $(subst $(space),+,$(sort $(STAGES))),link)
 BP := $(BUILD)/$(BOARD)-$(PANEL)$(if $(filter-out $(sort $(STAGES)),$(sort $(STAGES_DEFAULT)))$(filter-out $(sort $(STAGES_DEFAULT)),$(sort $(STAGES))),-$(STAGES_TAG))
 FW_LCD_ON := $(if $(and $(filter lcd,$(PANEL_TYPE)),$(filter lcd,$(STAGES))),1,0)
+# BOARD_FW_CFG: the board's own configuration defines (e.g. LCD history
+# bits, the link formats it accepts), for every object of its images.
 FW_CFG := -DTDC_CFG_TRM=$(if $(filter trm,$(STAGES)),1,0) -DTDC_CFG_ASSEMBLE=$(if $(filter assemble,$(STAGES)),1,0) \
-          -DTDC_CFG_LCD=$(FW_LCD_ON)
+          -DTDC_CFG_LCD=$(FW_LCD_ON) $(BOARD_FW_CFG)
 PANEL_CONFIG := $(GEN)/tdc_panel_$(PANEL)_config.h
 ARM_IMG_CFLAGS := $(ARM_FW_CFLAGS) -include $(PANEL_CONFIG) $(FW_CFG)
 FW_IMG_SRCS = $(filter-out $(if $(filter 1,$(FW_LCD_ON)),,$(FW_LCD_SRCS)),$(FW_SRCS)) \
@@ -281,6 +285,12 @@ $(BP)/fw-loop-check: $(FWH)/tdc_fw_host $(B)/tests/fw_stream tests/arm/test_fw_l
 	@chmod +x $@
 arm-fw-loop-check: $(BP)/fw-loop-check
 	@tests/run_tests.sh "fw-loop-$(PANEL)" $(BP)/fw-loop-check
+$(BP)/fw-refuse-check: $(FWH)/tdc_fw_host $(B)/tests/fw_stream tests/arm/test_fw_refuse.sh
+	@mkdir -p $(@D)
+	@printf '#!/bin/sh\nexec tests/arm/test_fw_refuse.sh %s %s %s\n' "$(FWH)/tdc_fw_host" "$(B)/tests/fw_stream" "$(PANEL_DIMS)" > $@
+	@chmod +x $@
+arm-fw-refuse-check: $(BP)/fw-refuse-check
+	@tests/run_tests.sh "fw-refuse-$(PANEL)" $(BP)/fw-refuse-check
 
 -include $(shell find $(BA) $(BP) -name '*.d' 2>/dev/null)
 endif
@@ -302,8 +312,9 @@ FORCE:
 #   ARM_FIT_FAIL: board:panel:stages:region pairs that must not fit
 # ---------------------------------------------------------------------------
 ARM_TEST_PAIRS ?= mps2-an500:htc-vive:link mps3-an547:htc-vive:default mps3-an547:lcd-240:default:trm \
-                  stm32h747i-disco:htc-vive:default stm32h747i-disco:lcd-240:default
-ARM_FIT_FAIL ?= mps2-an500:htc-vive:default:PSRAM stm32h747i-disco:htc-vive:trm:SDRAM
+                  stm32h747i-disco:htc-vive:default stm32h747i-disco:lcd-240:default \
+                  stm32h747i-disco:disco-dsi:default
+ARM_FIT_FAIL ?= mps2-an500:htc-vive:default:PSRAM stm32h747i-disco:htc-vive:assemble:SDRAM
 ARM_FAIL_LINE = echo "[$(1)] FAIL $(2)"; echo "$(1) $(2) FAIL" >> "$(RESULTS)"
 
 test-arm:
@@ -325,6 +336,7 @@ test-arm:
 	    else $(call ARM_FAIL_LINE,$$b-$$p,firmware-build); fi; \
 	done
 	@$(MAKE) --no-print-directory -j2 BOARD=mps3-an547 PANEL=htc-vive arm-fw-loop-check || :
+	@$(MAKE) --no-print-directory -j2 BOARD=mps3-an547 PANEL=disco-dsi arm-fw-refuse-check || :
 	@for t in $(ARM_FIT_FAIL); do \
 	    b=$${t%%:*}; r=$${t#*:}; p=$${r%%:*}; r=$${r#*:}; s=$${r%%:*}; g=$${r#*:}; \
 	    printf '#!/bin/sh\nexec tests/arm/test_fit.sh %s %s %s %s\n' $$b $$p $$s $$g > $(BUILD)/fit-$$b-$$p; \

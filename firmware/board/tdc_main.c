@@ -66,6 +66,11 @@
 #ifndef TDC_CFG_LCD_MODE
 #define TDC_CFG_LCD_MODE TDC_LCD_MODE_TABLE33
 #endif
+/* Bits per sample of the LCD history (previous drive and light): 8 is
+ * exact; a board short of memory configures fewer (boards/<b>/board.mk). */
+#ifndef TDC_CFG_LCD_PREV_BITS
+#define TDC_CFG_LCD_PREV_BITS 8u
+#endif
 #endif
 
 /* Largest TRM ratio r this build accepts (buffers are sized for it). */
@@ -115,7 +120,7 @@ static uint64_t g_mode_arena[FW_EYES][FW_MODE_BYTES / 8u] TDC_EXTRAM;
 #endif
 
 #if TDC_CFG_LCD
-static uint32_t g_lcd_arena[FW_EYES][(TDC_LCD_MEM_BYTES(FW_W, FW_H) + 3u) / 4u] TDC_EXTRAM;
+static uint32_t g_lcd_arena[FW_EYES][(TDC_LCD_MEM_BYTES_BITS(FW_W, FW_H, TDC_CFG_LCD_PREV_BITS) + 3u) / 4u] TDC_EXTRAM;
 #endif
 
 /* Transport chunk: what one USB bulk transfer (or semihosting read) brings. */
@@ -204,6 +209,21 @@ static const char *reset_name(tdc_reset_cause_t c)
 }
 
 /* ---- stream configuration ---- */
+#if TDC_CFG_TRM || TDC_CFG_LCD
+/* The refresh rate the panel runs a stream at: the stream's if the panel
+ * has that rate, else the panel's nominal one. */
+static uint16_t panel_hz(const tdc_panel_t *panel, uint16_t stream_hz)
+{
+    uint16_t hz = panel->refresh_hz;
+    for (unsigned i = 0; i < TDC_PANEL_MAX_RATES && panel->rates_hz[i]; i++) {
+        if (panel->rates_hz[i] == stream_hz) {
+            hz = stream_hz;
+        }
+    }
+    return hz;
+}
+#endif
+
 static void configure_stream(void)
 {
     const tdc_link_stream_info_t *si = tdc_link_stream(&g.dec);
@@ -231,7 +251,10 @@ static void configure_stream(void)
 #if TDC_CFG_TRM
         for (uint32_t e = 0; e < FW_EYES; e++) {
             tdc_trm_config_t cfg;
-            tdc_trm_default_config(&cfg, (uint16_t)FW_W, (uint16_t)FW_H, si->refresh_hz);
+            /* the rate the panel really runs: the stream's if the panel
+             * has it, else the panel's own (a 60 Hz panel refuses TRM
+             * whatever the stream claims) */
+            tdc_trm_default_config(&cfg, (uint16_t)FW_W, (uint16_t)FW_H, panel_hz(panel, si->refresh_hz));
             cfg.r_num = si->r_num;
             cfg.r_den = si->r_den;
             cfg.reduced_in_stream = 1;
@@ -266,15 +289,10 @@ static void configure_stream(void)
 #if TDC_CFG_LCD
     /* The overdrive model is per refresh rate: the stream's if the panel
      * has it, else the panel's nominal one. */
-    uint16_t hz = panel->refresh_hz;
-    for (unsigned i = 0; i < TDC_PANEL_MAX_RATES && panel->rates_hz[i]; i++) {
-        if (panel->rates_hz[i] == si->refresh_hz) {
-            hz = si->refresh_hz;
-        }
-    }
+    const uint16_t hz = panel_hz(panel, si->refresh_hz);
     g.lcd_ok = 1;
     for (uint32_t e = 0; e < FW_EYES; e++) {
-        tdc_lcd_config_t cfg = {(uint16_t)FW_W, (uint16_t)FW_H, hz, TDC_CFG_LCD_MODE, 8u};
+        tdc_lcd_config_t cfg = {(uint16_t)FW_W, (uint16_t)FW_H, hz, TDC_CFG_LCD_MODE, (uint8_t)TDC_CFG_LCD_PREV_BITS};
         tdc_status_t st = tdc_lcd_init(&g.lcd[e], &cfg, panel, g_lcd_arena[e], sizeof g_lcd_arena[e]);
         if (st == TDC_ERR_PANEL && cfg.mode != TDC_LCD_MODE_EXACT) {
             cfg.mode = TDC_LCD_MODE_EXACT;
