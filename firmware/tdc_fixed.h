@@ -30,7 +30,7 @@
  *            checkerboard) the output sits near black, where one 8-bit code
  *            is ~1e-6 of linear light.  A Q15 residual (step 3e-5) was
  *            measured at 2-3 LSB error there against the double reference
- *            (tests/test_trm_ref.c); Q24 keeps it within 1.
+ *            (tests/unit/test_trm_ref.c); Q24 keeps it within 1.
  */
 #ifndef TDC_FIXED_H
 #define TDC_FIXED_H

@@ -87,7 +87,7 @@ uint32_t tdc_recip_norm_q30(uint32_t dn)
 {
 #if TDC_HW_DIV64
     /* A hardware 64-bit divide: the same floor((2^62 + floor(dn/2)) / dn)
-     * the Newton path's correction loops settle on (tests/test_math.c
+     * the Newton path's correction loops settle on (tests/unit/test_math.c
      * compares all three), in one instruction. */
     return (uint32_t)(((1ULL << 62) + (dn >> 1)) / dn);
 #else

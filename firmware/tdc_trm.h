@@ -210,7 +210,7 @@ void tdc_trm_invalidate(tdc_trm_t *st);
 tdc_status_t tdc_trm_residual_row(tdc_trm_t *st, uint32_t y, tdc_res_t *out);
 
 /* Row kernels: AVX2 (enable = 1, the default when the host CPU has it) or
- * portable C (0).  Both give the same bytes (tests/checkasm_trm.c); boards
+ * portable C (0).  Both give the same bytes (tests/checkasm/checkasm_trm.c); boards
  * and CPUs without AVX2 always run C. */
 void tdc_trm_set_simd(tdc_trm_t *st, int enable);
 

@@ -4,7 +4,7 @@
  * tdc_trm.c walks the frame; these do the per-pixel work of one row.  The
  * portable C kernels (tdc_trm_rows.c) are the reference and what boards
  * run; tdc_trm_avx2.c has host versions with x86 AVX2 integer SIMD that
- * must produce the same bytes (tests/checkasm_trm.c checks that on random
+ * must produce the same bytes (tests/checkasm/checkasm_trm.c checks that on random
  * and extreme rows and benchmarks both).  tdc_trm_init() picks the AVX2
  * kernels when the CPU has AVX2 (tdc_trm_set_simd() overrides).
  *
@@ -87,7 +87,7 @@ tdc_trm_dvert_fn tdc_trm_dvert_avx2;
 /*
  * w = exp(-x), x in Q16, from the Q30 table with linear interpolation and
  * one rounding to Q15.  Error: 0.5 LSB rounding plus the interpolation's
- * (1/256)^2 / 8 * 32768 = 0.06 LSB (asserted <= 0.6 in tests/test_trm.c).
+ * (1/256)^2 / 8 * 32768 = 0.06 LSB (asserted <= 0.6 in tests/unit/test_trm.c).
  * Beyond x = 17, exp(-x) < 2^-24: 0.
  */
 static inline int32_t tdc_trm_weight_q15(const uint32_t *wexp, uint64_t x_q16)

@@ -17,9 +17,9 @@ $(B)/tdc-render: $(B)/sim/render/tdc_render_main.o $(B)/libtdcrender.a $(SIMLIB)
 	$(CC) $(HOST_LDFLAGS) $< -o $@ $(RENDERLIB) $(SIMLIB) $(FWLIB) $(RENDER_LDLIBS) $(HOST_LIBS)
 
 RENDER_TESTS := test_render_scene test_render_mv test_render_gt test_render_stream
-TESTS += $(foreach t,$(RENDER_TESTS),$(B)/tests/$(t))
-BENCHES += $(B)/tests/bench_render
+TESTS += $(foreach t,$(RENDER_TESTS),$(B)/tests/unit/$(t))
+BENCHES += $(B)/tests/bench/bench_render
 # test_render_hash: output hash of every built-in/mode (a tool for pixel-identical optimisations, not in TESTS)
-RENDER_EXES = $(foreach t,$(RENDER_TESTS) bench_render test_render_hash,$(B)/tests/$(t))
+RENDER_EXES = $(foreach t,$(RENDER_TESTS) test_render_hash,$(B)/tests/unit/$(t)) $(B)/tests/bench/bench_render
 $(RENDER_EXES): $(B)/tests/%: $(B)/tests/%.o $(B)/libtdcrender.a $(SIMLIB) $(FWLIB)
 	$(CC) $(HOST_LDFLAGS) $< -o $@ $(RENDERLIB) $(SIMLIB) $(FWLIB) $(RENDER_LDLIBS) $(HOST_LIBS)
