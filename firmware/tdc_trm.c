@@ -444,7 +444,7 @@ static void trm_beta_row(tdc_trm_t *st, const tdc_trm_rowctx_t *k, uint32_t y, c
     if (st->simd) {
         tdc_trm_full_row_avx2(k, urow, src, dst, res, n);
     } else {
-        tdc_trm_full_row_c(k, urow, src, dst, res, n);
+        TDC_TRM_FULL_ROW_BOARD(k, urow, src, dst, res, n);
     }
 }
 
@@ -573,7 +573,7 @@ static tdc_status_t trm_reduced(tdc_trm_t *st, const uint8_t *in_reduced, uint32
         if (st->simd) {
             tdc_trm_reduced_row_avx2(&k, urow_a, urow_b, rho, out + (size_t)y * out_stride, &n);
         } else {
-            tdc_trm_reduced_row_c(&k, urow_a, urow_b, rho, out + (size_t)y * out_stride, &n);
+            TDC_TRM_REDUCED_ROW_BOARD(&k, urow_a, urow_b, rho, out + (size_t)y * out_stride, &n);
         }
         computed += n.computed;
         skipped += n.skipped;

@@ -70,6 +70,17 @@ typedef void tdc_trm_dhoriz_fn(const uint8_t *row, uint32_t width, const int16_t
                                uint32_t taps, uint32_t rw, uint16_t *dst);
 
 tdc_trm_full_row_fn tdc_trm_full_row_c;
+/* Helium (MVE) row kernels, Cortex-M55 boards (tdc_trm_mve.c; BOARD_MVE). */
+tdc_trm_full_row_fn tdc_trm_full_row_mve;
+tdc_trm_reduced_row_fn tdc_trm_reduced_row_mve;
+/* What a board runs for the rows (AVX2 on hosts is chosen at run time). */
+#if defined(TDC_TRM_MVE)
+#define TDC_TRM_FULL_ROW_BOARD tdc_trm_full_row_mve
+#define TDC_TRM_REDUCED_ROW_BOARD tdc_trm_reduced_row_mve
+#else
+#define TDC_TRM_FULL_ROW_BOARD tdc_trm_full_row_c
+#define TDC_TRM_REDUCED_ROW_BOARD tdc_trm_reduced_row_c
+#endif
 tdc_trm_dhoriz_fn tdc_trm_dhoriz_c;
 tdc_trm_reduced_row_fn tdc_trm_reduced_row_c;
 tdc_trm_dvert_fn tdc_trm_dvert_c;

@@ -45,6 +45,14 @@ PANEL_TYPE := $(shell awk '$$1 == "type" { print $$2 }' boards/panels/$(PANEL).p
 
 ARM_CFLAGS := $(BOARD_CPU) $(ARM_OPT) -g -ffunction-sections -fdata-sections -fno-common \
               -Ifirmware -Ifirmware/board -Iboards/$(BOARD) -I$(GEN)
+# Helium boards (BOARD_MVE := 1): every object knows (TDC_TRM_MVE selects the
+# MVE row kernels, the start-up enables CP10/CP11); the MVE object itself is
+# built with integer MVE and no FPU (+nofp) under the softfp ABI, which MVE
+# needs and which passes arguments in core registers like soft.
+ifeq ($(BOARD_MVE),1)
+ARM_CFLAGS += -DTDC_TRM_MVE=1
+ARM_MVE_FIX = $(subst -mfloat-abi=soft,-mfloat-abi=softfp,$(subst -mcpu=cortex-m55,-mcpu=cortex-m55+nofp,$(1)))
+endif
 ARM_FW_CFLAGS := $(FW_WARN) $(ARM_CFLAGS)
 # Test code (golden stages): same warnings as the host build of tests.
 ARM_TEST_CFLAGS := -std=c11 -Wall -Wextra -Werror -Wvla $(ARM_CFLAGS) -Itests -Itests/golden
@@ -88,6 +96,10 @@ ARM_FW_OBJS = $(patsubst %.c,$(BA)/%.o,$(FW_SRCS)) $(foreach p,$(PANELS),$(BA)/g
 $(BA)/libtdcfw.a: $$(ARM_FW_OBJS)
 	@rm -f $@
 	$(ARM_CROSS)ar rcs $@ $^
+
+ifeq ($(BOARD_MVE),1)
+$(BA)/firmware/tdc_trm_mve.o: ARM_FW_CFLAGS := $(call ARM_MVE_FIX,$(ARM_FW_CFLAGS))
+endif
 
 # Link an image; a region overflow becomes the memory-fit verdict ($(1) names
 # what was linked).
@@ -145,8 +157,19 @@ $(BA)/harness-check: $(BA)/tdc_harness.elf tests/arm/test_harness.sh
 	    "$(BOARD)" "$(BA)/tdc_harness.elf" "$(BOARD_QEMU)" > $@
 	@chmod +x $@
 
-arm-golden-check: $(BA)/golden-check $(BA)/harness-check
-	@tests/run_tests.sh "arm-$(BOARD)" $(BA)/harness-check $(BA)/golden-check
+# Helium boards: the MVE row kernels against the C kernels in QEMU
+# (tests/checkasm/checkasm_trm_mve.c).
+ARM_CHECKASM_OBJS = $(patsubst %.c,$(BA)/%.o,$(ARM_BOARD_SRCS) tests/checkasm/checkasm_trm_mve.c)
+$(BA)/checkasm_mve.elf: $$(ARM_CHECKASM_OBJS) $(BA)/libtdcfw.a $(ARM_LDDEPS)
+	$(call ARM_LINK,the Helium checkasm runner)
+$(BA)/checkasm-mve: $(BA)/checkasm_mve.elf tests/arm/run_checkasm_qemu.sh
+	@printf '#!/bin/sh\nexec tests/arm/run_checkasm_qemu.sh "%s" %s "%s" %s\n' \
+	    "$(BOARD)" "$(QEMU_TIMEOUT)" "$(BA)/checkasm_mve.elf" "$(BOARD_QEMU)" > $@
+	@chmod +x $@
+ARM_CHECKASM = $(if $(filter 1,$(BOARD_MVE)),$(BA)/checkasm-mve)
+
+arm-golden-check: $(BA)/golden-check $(BA)/harness-check $(ARM_CHECKASM)
+	@tests/run_tests.sh "arm-$(BOARD)" $(BA)/harness-check $(BA)/golden-check $(ARM_CHECKASM)
 
 # ---------------------------------------------------------------------------
 # Firmware image of a board/panel pair: the frame loop (firmware/board/
@@ -179,6 +202,9 @@ FW_IMG_OBJS = $(patsubst %.c,$(BP)/%.o,$(FW_IMG_SRCS)) $(BP)/gen/tdc_panel_$(PAN
 # The stage selection and flags are part of the objects: rebuild when they change.
 $(BP)/stages: FORCE
 	@mkdir -p $(@D); echo '$(ARM_IMG_CFLAGS)' | cmp -s - $@ || echo '$(ARM_IMG_CFLAGS)' > $@
+ifeq ($(BOARD_MVE),1)
+$(BP)/firmware/tdc_trm_mve.o: ARM_IMG_CFLAGS := $(call ARM_MVE_FIX,$(ARM_IMG_CFLAGS))
+endif
 $(BP)/%.o: %.c $(GEN)/tdc_panels.h $(PANEL_CONFIG) $(BP)/stages
 	@mkdir -p $(@D)
 	$(ARM_CC) $(ARM_IMG_CFLAGS) -MMD -MP -c $< -o $@
