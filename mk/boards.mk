@@ -166,7 +166,10 @@ $(BA)/checkasm-mve: $(BA)/checkasm_mve.elf tests/arm/run_checkasm_qemu.sh
 	@printf '#!/bin/sh\nexec tests/arm/run_checkasm_qemu.sh "%s" %s "%s" %s\n' \
 	    "$(BOARD)" "$(QEMU_TIMEOUT)" "$(BA)/checkasm_mve.elf" "$(BOARD_QEMU)" > $@
 	@chmod +x $@
-ARM_CHECKASM = $(if $(filter 1,$(BOARD_MVE)),$(BA)/checkasm-mve)
+$(BA)/mve-nofloat: $(BA)/firmware/tdc_trm_mve.o tests/rules/check_arm_nofloat.sh
+	@printf '#!/bin/sh\nexec tests/rules/check_arm_nofloat.sh %s %s\n' "$(ARM_CROSS)objdump" "$<" > $@
+	@chmod +x $@
+ARM_CHECKASM = $(if $(filter 1,$(BOARD_MVE)),$(BA)/checkasm-mve $(BA)/mve-nofloat)
 
 arm-golden-check: $(BA)/golden-check $(BA)/harness-check $(ARM_CHECKASM)
 	@tests/run_tests.sh "arm-$(BOARD)" $(BA)/harness-check $(BA)/golden-check $(ARM_CHECKASM)
