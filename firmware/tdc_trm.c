@@ -16,6 +16,8 @@
  */
 #include "tdc_trm.h"
 
+#include <string.h>
+
 #include "tdc_math.h"
 #include "tdc_trm_kernels.h"
 
@@ -326,7 +328,7 @@ static void trm_apply_d(tdc_trm_t *st, const uint8_t *in, uint32_t stride, tdc_g
             if (st->simd) {
                 tdc_trm_dhoriz_avx2(row, st->cfg.width, st->dx_first, st->dx_w, taps, st->rw, slot);
             } else {
-                tdc_trm_dhoriz_c(row, st->cfg.width, st->dx_first, st->dx_w, taps, st->rw, slot);
+                TDC_TRM_DHORIZ_BOARD(row, st->cfg.width, st->dx_first, st->dx_w, taps, st->rw, slot);
             }
         }
         const uint16_t *w = &st->dy_w[jy * taps];
@@ -340,7 +342,7 @@ static void trm_apply_d(tdc_trm_t *st, const uint8_t *in, uint32_t stride, tdc_g
         if (st->simd) {
             tdc_trm_dvert_avx2((const uint16_t *const *)rows, w, taps, rw3, o);
         } else {
-            tdc_trm_dvert_c((const uint16_t *const *)rows, w, taps, rw3, o);
+            TDC_TRM_DVERT_BOARD((const uint16_t *const *)rows, w, taps, rw3, o);
         }
         if (out8) {
             uint8_t *d = out8 + (size_t)jy * out8_stride;
@@ -472,9 +474,7 @@ tdc_status_t tdc_trm_full(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, 
             /* keep I_t (in may be out: copy before the row is overwritten);
              * rho of this row is not kept, it is recomputed when needed */
             uint8_t *keep = st->icodes + (size_t)y * w3;
-            for (uint32_t i = 0; i < w3; i++) {
-                keep[i] = src[i];
-            }
+            memcpy(keep, src, w3);
             src = keep;
         } else {
             res = &st->residual[(size_t)y * w3];

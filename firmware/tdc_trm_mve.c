@@ -43,14 +43,16 @@ static inline uint32x4_t trm_hlerp4(const uint32_t *urow, uint32x4_t i, uint32x4
     const int32x4_t v0 = vreinterpretq_s32_u32(vldrwq_gather_shifted_offset_u32(urow, i));
     const int32x4_t v1 = vreinterpretq_s32_u32(vldrwq_gather_shifted_offset_u32(urow + 3, i));
     const int32x4_t fs = vreinterpretq_s32_u32(f);
+    /* low parts by subtraction and constants as scalar operands: Helium
+     * has 8 vector registers, and every constant vector is one less */
     const int32x4_t d = vsubq_s32(v1, v0);
     const int32x4_t dh = vshrq_n_s32(d, 14);
-    const int32x4_t dl = vandq_s32(d, vdupq_n_s32(0x3fff));
+    const int32x4_t dl = vsubq_s32(d, vshlq_n_s32(dh, 14));
     const int32x4_t x = vaddq_s32(v0, vmulq_s32(dh, fs));
     const int32x4_t xh = vshrq_n_s32(x, 6);
-    const int32x4_t xl = vandq_s32(x, vdupq_n_s32(63));
-    const uint32x4_t z = vreinterpretq_u32_s32(
-        vaddq_s32(vaddq_s32(vshlq_n_s32(xl, 14), vmulq_s32(dl, fs)), vdupq_n_s32(1 << 19)));
+    const int32x4_t xl = vsubq_s32(x, vshlq_n_s32(xh, 6));
+    const uint32x4_t z =
+        vreinterpretq_u32_s32(vaddq_n_s32(vaddq_s32(vshlq_n_s32(xl, 14), vmulq_s32(dl, fs)), 1 << 19));
     return vreinterpretq_u32_s32(vaddq_s32(xh, vreinterpretq_s32_u32(vshrq_n_u32(z, 20))));
 }
 
@@ -58,10 +60,10 @@ static inline uint32x4_t trm_hlerp4(const uint32_t *urow, uint32x4_t i, uint32x4
 static inline uint32x4_t trm_dec4(const uint32_t *dec, uint32x4_t g)
 {
     const uint32x4_t k = vshrq_n_u32(g, 16);
-    const uint32x4_t f = vandq_u32(vshrq_n_u32(g, 4), vdupq_n_u32(0xfff));
+    const uint32x4_t f = vshrq_n_u32(vshlq_n_u32(g, 16), 20); /* (g >> 4) & 0xfff */
     const uint32x4_t a = vldrwq_gather_shifted_offset_u32(dec, k);
     const uint32x4_t b = vldrwq_gather_shifted_offset_u32(dec + 1, k);
-    return vaddq_u32(a, vshrq_n_u32(vaddq_u32(vmulq_u32(vsubq_u32(b, a), f), vdupq_n_u32(0x800)), 12));
+    return vaddq_u32(a, vshrq_n_u32(vaddq_n_u32(vmulq_u32(vsubq_u32(b, a), f), 0x800u), 12));
 }
 
 /* Gamma encode of L in [0, 2^24] (as tdc_gamma_encode). */
@@ -88,36 +90,36 @@ static inline uint32_t trm_lanes(mve_pred16_t p)
     return vaddvq_p_u32(vdupq_n_u32(1u), p);
 }
 
+/* clamp(v, 0, 2^24) without constant vectors: max(v, 0) = v & ~(v >> 31);
+ * with m = v - 2^24, min(v, 2^24) = 2^24 + (m & (m >> 31)). */
+static inline int32x4_t trm_clamp_lin(int32x4_t v)
+{
+    const int32x4_t p = vbicq_s32(v, vshrq_n_s32(v, 31));
+    const int32x4_t m = vsubq_n_s32(p, TDC_LIN_ONE);
+    return vaddq_n_s32(vandq_s32(m, vshrq_n_s32(m, 31)), TDC_LIN_ONE);
+}
+
 typedef struct {
     uint32x4_t i3, f, x3;
 } trm_step_t;
 
 static inline trm_step_t trm_step(const tdc_trm_rowctx_t *k, uint32_t x)
 {
-    static const uint32_t lane2[4] = {0, 2, 4, 6}, lane3[4] = {0, 3, 6, 9};
     trm_step_t s;
-    const uint32x4_t o = vaddq_n_u32(vld1q_u32(lane2), 2u * x);
+    const uint32x4_t o = vidupq_n_u32(2u * x, 2); /* 2x, 2x + 2, ... */
     const uint32x4_t ui = vldrhq_gather_shifted_offset_u32(k->ux, o);
     s.i3 = vmulq_n_u32(ui, 3u);
     s.f = vldrhq_gather_shifted_offset_u32(k->ux + 1, o);
-    s.x3 = vaddq_n_u32(vld1q_u32(lane3), 3u * x);
+    s.x3 = vmulq_n_u32(vidupq_n_u32(x, 1), 3u);
     return s;
-}
-
-static tdc_trm_rowctx_t trm_tail_ctx(const tdc_trm_rowctx_t *k, uint32_t x)
-{
-    tdc_trm_rowctx_t t = *k;
-    t.ux = k->ux + 2u * x;
-    t.width = k->width - x;
-    return t;
 }
 
 void tdc_trm_full_row_mve(const tdc_trm_rowctx_t *k, const uint32_t *urow, const uint8_t *src, uint8_t *dst,
                           tdc_res_t *res, tdc_trm_full_counts_t *n)
 {
     const uint32_t w4 = k->width & ~3u;
-    uint32_t nhi = 0, nlo = 0;
-    const int32x4_t one = vdupq_n_s32(TDC_LIN_ONE), zero = vdupq_n_s32(0);
+    /* per-lane counts of beta > 1 and beta < 0, summed once at the end */
+    uint32x4_t chi = vdupq_n_u32(0u), clo = vdupq_n_u32(0u);
     for (uint32_t x = 0; x < w4; x += 4u) {
         const trm_step_t s = trm_step(k, x);
         for (uint32_t c = 0; c < 3u; c++) {
@@ -128,17 +130,18 @@ void tdc_trm_full_row_mve(const tdc_trm_rowctx_t *k, const uint32_t *urow, const
             const int32x4_t li = vreinterpretq_s32_u32(vldrwq_gather_shifted_offset_u32(k->dec[c], code));
             /* beta = 2 LI - Lu in [-1, 2] (Q24) */
             const int32x4_t beta = vsubq_s32(vaddq_s32(li, li), lu);
-            nhi += trm_lanes(vcmpgtq_s32(beta, one));
-            nlo += trm_lanes(vcmpltq_s32(beta, zero));
-            const int32x4_t shown = vminq_s32(vmaxq_s32(beta, zero), one);
+            /* beta > 2^24: the sign of 2^24 - beta; beta < 0: its sign */
+            chi = vaddq_u32(chi, vshrq_n_u32(vreinterpretq_u32_s32(vsubq_s32(vdupq_n_s32(TDC_LIN_ONE), beta)), 31));
+            clo = vaddq_u32(clo, vshrq_n_u32(vreinterpretq_u32_s32(beta), 31));
+            const int32x4_t shown = trm_clamp_lin(beta);
             vstrwq_scatter_shifted_offset_s32(res, xc, vsubq_s32(beta, shown));
             vstrbq_scatter_offset_u32(dst, xc, trm_enc4(k->idx[c], k->thr[c], vreinterpretq_u32_s32(shown)));
         }
     }
-    n->hi += nhi;
-    n->lo += nlo;
+    n->hi += vaddvq_u32(chi);
+    n->lo += vaddvq_u32(clo);
     if (w4 < k->width) {
-        const tdc_trm_rowctx_t t = trm_tail_ctx(k, w4);
+        const tdc_trm_rowctx_t t = tdc_trm_tail_ctx(k, w4);
         tdc_trm_full_row_c(&t, urow, src + 3u * w4, dst + 3u * w4, res + 3u * w4, n);
     }
 }
@@ -148,8 +151,7 @@ void tdc_trm_reduced_row_mve(const tdc_trm_rowctx_t *k, const uint32_t *urow_a, 
 {
     const uint32_t w4 = k->width & ~3u;
     uint32_t computed = 0, skipped = 0, no_res = 0;
-    const int32x4_t one = vdupq_n_s32(TDC_LIN_ONE), zero = vdupq_n_s32(0);
-    const uint32x4_t half = vdupq_n_u32(1u << 15); /* half a code in code Q16 */
+    const uint32_t half = 1u << 15; /* half a code in code Q16 */
     for (uint32_t x = 0; x < w4; x += 4u) {
         const trm_step_t s = trm_step(k, x);
         for (uint32_t c = 0; c < 3u; c++) {
@@ -159,15 +161,15 @@ void tdc_trm_reduced_row_mve(const tdc_trm_rowctx_t *k, const uint32_t *urow_a, 
             const int32x4_t alpha = vreinterpretq_s32_u32(trm_dec4(k->dec[c], gb));
             const int32x4_t rho = vreinterpretq_s32_u32(
                 vldrwq_gather_shifted_offset_u32((const uint32_t *)(const void *)res, xc));
-            const mve_pred16_t nz = vcmpneq_s32(rho, zero);
+            const mve_pred16_t nz = vcmpneq_s32(rho, vdupq_n_s32(0));
             int32x4_t shown = alpha;
             no_res += 4u - trm_lanes(nz);
             if (nz) {
                 /* the motion test at the link's precision (tdc_trm_rows.c) */
                 uint32x4_t ga = trm_hlerp4(urow_a, ic, s.f);
-                const mve_pred16_t down = vcmphiq_u32(ga, vaddq_u32(gb, half));
-                const mve_pred16_t up = vcmphiq_u32(gb, vaddq_u32(ga, half));
-                ga = vpselq_u32(vsubq_u32(ga, half), vpselq_u32(vaddq_u32(ga, half), gb, up), down);
+                const mve_pred16_t down = vcmphiq_u32(ga, vaddq_n_u32(gb, half));
+                const mve_pred16_t up = vcmphiq_u32(gb, vaddq_n_u32(ga, half));
+                ga = vpselq_u32(vsubq_n_u32(ga, half), vpselq_u32(vaddq_n_u32(ga, half), gb, up), down);
                 const mve_pred16_t moved = vcmpneq_u32(ga, gb) & nz;
                 skipped += trm_lanes(nz) - trm_lanes(moved);
                 int32x4_t wq = vdupq_n_s32(32768); /* c = 0 known: exp(0) = 1 */
@@ -188,14 +190,13 @@ void tdc_trm_reduced_row_mve(const tdc_trm_rowctx_t *k, const uint32_t *urow_a, 
                 }
                 /* alpha' = alpha + round(w rho / 2^15), split exactly */
                 const int32x4_t rh = vshrq_n_s32(rho, 15);
-                const int32x4_t rl = vandq_s32(rho, vdupq_n_s32(0x7fff));
+                const int32x4_t rl = vsubq_s32(rho, vshlq_n_s32(rh, 15));
                 const int32x4_t add = vaddq_s32(
                     vmulq_s32(wq, rh),
-                    vreinterpretq_s32_u32(vshrq_n_u32(
-                        vreinterpretq_u32_s32(vaddq_s32(vmulq_s32(wq, rl), vdupq_n_s32(1 << 14))), 15)));
+                    vreinterpretq_s32_u32(vshrq_n_u32(vreinterpretq_u32_s32(vaddq_n_s32(vmulq_s32(wq, rl), 1 << 14)), 15)));
                 shown = vpselq_s32(vaddq_s32(alpha, add), alpha, nz);
             }
-            shown = vminq_s32(vmaxq_s32(shown, zero), one);
+            shown = trm_clamp_lin(shown);
             vstrbq_scatter_offset_u32(dst, xc, trm_enc4(k->idx[c], k->thr[c], vreinterpretq_u32_s32(shown)));
         }
     }
@@ -203,8 +204,54 @@ void tdc_trm_reduced_row_mve(const tdc_trm_rowctx_t *k, const uint32_t *urow_a, 
     n->skipped += skipped;
     n->no_res += no_res;
     if (w4 < k->width) {
-        const tdc_trm_rowctx_t t = trm_tail_ctx(k, w4);
+        const tdc_trm_rowctx_t t = tdc_trm_tail_ctx(k, w4);
         tdc_trm_reduced_row_c(&t, urow_a, urow_b, res + 3u * w4, dst + 3u * w4, n);
+    }
+}
+
+/* Vertical pass of D (tdc_trm_kernels.h), 4 outputs per step, the tail
+ * predicated: (sum_t w[t] rows[t][i] + 2^14) >> 15 with the bias as the
+ * accumulator's start; the sum stays below 2^31 (weights sum to 2^15,
+ * values <= 65280). */
+void tdc_trm_dvert_mve(const uint16_t *const *rows, const uint16_t *w, uint32_t taps, uint32_t n, uint16_t *out)
+{
+    for (uint32_t i = 0; i < n; i += 4u) {
+        const mve_pred16_t p = vctp32q(n - i);
+        uint32x4_t acc = vdupq_n_u32(1u << 14);
+        for (uint32_t t = 0; t < taps; t++) {
+            acc = vmlaq_n_u32(acc, vldrhq_z_u32(rows[t] + i, p), w[t]);
+        }
+        vstrhq_p_u32(out + i, vshrq_n_u32(acc, 15), p);
+    }
+}
+
+/* Horizontal pass of D (tdc_trm_kernels.h): 4 reduced columns per step,
+ * taps read with gathers at the clamped full-res columns (the C kernel's
+ * clamp-to-edge), the last rw % 4 columns by the C kernel. */
+void tdc_trm_dhoriz_mve(const uint8_t *row, uint32_t width, const int16_t *first, const uint16_t *w_all,
+                        uint32_t taps, uint32_t rw, uint16_t *dst)
+{
+    const int32x4_t wmax = vdupq_n_s32((int32_t)width - 1);
+    uint32_t j = 0;
+    for (; j + 4u <= rw; j += 4u) {
+        const int32x4_t k0 = vldrhq_s32(first + j);
+        const uint32x4_t jt = vmulq_n_u32(vidupq_n_u32(j, 1), taps);
+        uint32x4_t a0 = vdupq_n_u32(64u), a1 = vdupq_n_u32(64u), a2 = vdupq_n_u32(64u); /* + 2^6: rounding */
+        for (uint32_t t = 0; t < taps; t++) {
+            const int32x4_t q = vminq_s32(vmaxq_s32(vaddq_n_s32(k0, (int32_t)t), vdupq_n_s32(0)), wmax);
+            const uint32x4_t o = vmulq_n_u32(vreinterpretq_u32_s32(q), 3u);
+            const uint32x4_t wt = vldrhq_gather_shifted_offset_u32(w_all, vaddq_n_u32(jt, t));
+            a0 = vaddq_u32(a0, vmulq_u32(vldrbq_gather_offset_u32(row, o), wt));
+            a1 = vaddq_u32(a1, vmulq_u32(vldrbq_gather_offset_u32(row + 1, o), wt));
+            a2 = vaddq_u32(a2, vmulq_u32(vldrbq_gather_offset_u32(row + 2, o), wt));
+        }
+        const uint32x4_t o3 = vmulq_n_u32(vidupq_n_u32(j, 1), 3u);
+        vstrhq_scatter_shifted_offset_u32(dst, o3, vshrq_n_u32(a0, 7));
+        vstrhq_scatter_shifted_offset_u32(dst + 1, o3, vshrq_n_u32(a1, 7));
+        vstrhq_scatter_shifted_offset_u32(dst + 2, o3, vshrq_n_u32(a2, 7));
+    }
+    if (j < rw) {
+        tdc_trm_dhoriz_c(row, width, first + j, w_all + (size_t)j * taps, taps, rw - j, dst + 3u * j);
     }
 }
 

@@ -306,20 +306,15 @@ arm-loop-cost: $(BP)/loop.tsv
 arm-fw-check: $(BP)/fw-check
 	@tests/run_tests.sh "$(BOARD)-$(PANEL)" $(BP)/fw-check
 
-# The loop after loss, on crafted streams against clean ones (host build of
-# the loop; issue 17 item 3): tests/arm/test_fw_loop.sh.
-$(BP)/fw-loop-check: $(FWH)/tdc_fw_host $(B)/tests/fw_stream tests/arm/test_fw_loop.sh
+# Host-build checks of the loop on crafted streams (issue 17): fw-loop
+# (tests/arm/test_fw_loop.sh: after loss, against clean streams) and
+# fw-refuse (tests/arm/test_fw_refuse.sh: a 60 Hz panel refuses TRM).
+$(BP)/fw-%-check: $(FWH)/tdc_fw_host $(B)/tests/fw_stream tests/arm/test_fw_%.sh
 	@mkdir -p $(@D)
-	@printf '#!/bin/sh\nexec tests/arm/test_fw_loop.sh %s %s %s\n' "$(FWH)/tdc_fw_host" "$(B)/tests/fw_stream" "$(PANEL_DIMS)" > $@
+	@printf '#!/bin/sh\nexec tests/arm/test_fw_$*.sh %s %s %s\n' "$(FWH)/tdc_fw_host" "$(B)/tests/fw_stream" "$(PANEL_DIMS)" > $@
 	@chmod +x $@
-arm-fw-loop-check: $(BP)/fw-loop-check
-	@tests/run_tests.sh "fw-loop-$(PANEL)" $(BP)/fw-loop-check
-$(BP)/fw-refuse-check: $(FWH)/tdc_fw_host $(B)/tests/fw_stream tests/arm/test_fw_refuse.sh
-	@mkdir -p $(@D)
-	@printf '#!/bin/sh\nexec tests/arm/test_fw_refuse.sh %s %s %s\n' "$(FWH)/tdc_fw_host" "$(B)/tests/fw_stream" "$(PANEL_DIMS)" > $@
-	@chmod +x $@
-arm-fw-refuse-check: $(BP)/fw-refuse-check
-	@tests/run_tests.sh "fw-refuse-$(PANEL)" $(BP)/fw-refuse-check
+arm-fw-loop-check arm-fw-refuse-check: arm-fw-%-check: $(BP)/fw-%-check
+	@tests/run_tests.sh "fw-$*-$(PANEL)" $<
 
 -include $(shell find $(BA) $(BP) -name '*.d' 2>/dev/null)
 endif
