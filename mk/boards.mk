@@ -21,7 +21,7 @@ ARM_NM := $(ARM_CROSS)nm
 ARM_SIZE := $(ARM_CROSS)size
 ARM_OBJCOPY := $(ARM_CROSS)objcopy
 ARM_OPT ?= -O2
-QEMU_TIMEOUT ?= 120
+QEMU_TIMEOUT ?= 300
 
 ARM_BOARDS := $(filter-out host,$(BOARDS))
 # Emulated boards: those whose board.mk names a QEMU machine.
