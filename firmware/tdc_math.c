@@ -28,7 +28,7 @@ static int64_t exp_neg_parts(uint32_t x_q16, unsigned *n_out)
     /* Horner in Q30; |acc| <= 2^30, |acc*g| < 2^60. */
     int64_t acc = k_exp2_poly_q30[5];
     for (int k = 4; k >= 0; k--) {
-        acc = k_exp2_poly_q30[k] + tdc_asr64(acc * g + (1LL << 29), 30);
+        acc = k_exp2_poly_q30[k] + tdc_rshr_round64(acc * g, 30);
     }
     *n_out = (unsigned)n;
     return acc;

@@ -5,7 +5,7 @@ SIM_SRCS += sim/ref_assemble.c
 
 # Own link rules (only the objects these programs need), so the assembly
 # tests do not depend on every other component of the libraries.
-ASM_FW_OBJS = $(B)/firmware/tdc_ordering.o $(B)/firmware/tdc_assemble.o $(B)/firmware/tdc_math.o
+ASM_FW_OBJS = $(B)/firmware/tdc_ordering.o $(B)/firmware/tdc_assemble.o $(B)/firmware/tdc_math.o $(B)/firmware/tdc_status.o
 ASM_SIM_OBJS = $(B)/sim/ref_assemble.o
 ASM_TESTS := test_ordering test_assemble_ref test_assemble test_assemble_long
 

@@ -1,5 +1,5 @@
 # TRM (DESIGN §4.1): the stage, its double reference, row kernels (C and AVX2),
-# checkasm, tests, golden vectors, benchmark.
+# tests, golden vectors, benchmark.
 FW_SRCS += firmware/tdc_trm.c
 SIM_SRCS += sim/ref_trm.c
 TESTS += $(B)/tests/unit/test_trm_ref
@@ -24,8 +24,4 @@ $(B)/test-fw-nofloat-insn: $(FWLIB) tests/rules/check_simd_nofloat.sh
 	@chmod +x $@
 TESTS += $(B)/test-fw-nofloat-insn
 endif
-TESTS += $(B)/tests/checkasm/checkasm_trm
-$(B)/bench-checkasm-trm: $(B)/tests/checkasm/checkasm_trm
-	@printf '#!/bin/sh\nexec %s --bench\n' "$<" > $@
-	@chmod +x $@
-BENCHES += $(B)/bench-checkasm-trm
+# Their bit-exactness check and benchmark: tests/checkasm (mk/checkasm.mk).

@@ -342,7 +342,7 @@ static int mode_init(sim_mode_t *m, const tdc_mode_desc_t *d, tdc_sim_result_t *
         tdc_status_t s2 = m->trmr_mem ? tdc_trm_init(&m->trm_r, &tc, fw_panel, m->trmr_mem, n) : TDC_ERR_SIZE;
         if (s1 != TDC_OK || s2 != TDC_OK) {
             char b[96];
-            snprintf(b, sizeof(b), "TRM firmware refused the configuration (status %d)", (int)(s1 ? s1 : s2));
+            snprintf(b, sizeof(b), "TRM firmware refused the configuration (%s)", tdc_status_name(s1 ? s1 : s2));
             note(m, b);
             res->available = 0;
         } else {
@@ -433,6 +433,20 @@ static void mode_free(sim_mode_t *m)
 }
 
 /* Stream reset (scene cut): new stream, firmware history dropped. */
+#if TDC_SIM_HAVE_TRM || TDC_SIM_HAVE_ASM || TDC_SIM_HAVE_LCD_FW
+/* A firmware stage refused a call the simulator made: a simulator bug (the
+ * link layer already filters bad input), so report mode, frame and stage
+ * and stop with a non-zero exit rather than measure a stale image. */
+static void stage_ok(const sim_mode_t *m, const char *stage, tdc_status_t st)
+{
+    if (st != TDC_OK) {
+        fprintf(stderr, "tdc-sim: mode %s: frame %u: %s failed: %s (%s)\n", m->d->name, m->lf, stage,
+                tdc_status_name(st), tdc_status_text(st));
+        exit(1);
+    }
+}
+#endif
+
 static void mode_reset(sim_mode_t *m)
 {
     m->lf = 0;
@@ -451,7 +465,7 @@ static void mode_reset(sim_mode_t *m)
 #if TDC_SIM_HAVE_ASM
     if (m->d->kind == TDC_MODE_ASM && m->asm_mem) {
         tdc_asm_config_t ac = {(uint16_t)m->w, (uint16_t)m->h};
-        tdc_asm_init(&m->as, &ac, m->asm_mem, m->asm_bytes);
+        stage_ok(m, "tdc_asm_init", tdc_asm_init(&m->as, &ac, m->asm_mem, m->asm_bytes));
     }
 #endif
 #if TDC_SIM_HAVE_LCD_FW
@@ -529,7 +543,7 @@ static void trm_full_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, 
     render_full(m, src, t, spp, 0, 0, 0, 0, TDC_MV_SURFACE);
     if (tdc_sim_link_full(&m->link, lf, m->render) == 0) {
         double t0 = now_s();
-        tdc_trm_full(&m->trm, m->link.full, (uint32_t)m->w * 3u, m->wanted, (uint32_t)m->w * 3u);
+        stage_ok(m, "tdc_trm_full", tdc_trm_full(&m->trm, m->link.full, (uint32_t)m->w * 3u, m->wanted, (uint32_t)m->w * 3u));
         m->res->fw_s += now_s() - t0;
     }
 }
@@ -583,8 +597,10 @@ static void mode_display_frame(sim_mode_t *m, tdc_source_t *src, int spp)
         } else {
             /* the blurred frame comes from the same rendered frame */
             t0 = now_s();
-            tdc_trm_downsample(&m->trm, m->link.full, (uint32_t)m->w * 3u, m->reduced, (uint32_t)m->trm.rw * 3u);
-            tdc_trm_reduced(&m->trm, m->reduced, (uint32_t)m->trm.rw * 3u, m->wanted, (uint32_t)m->w * 3u);
+            stage_ok(m, "tdc_trm_downsample",
+                     tdc_trm_downsample(&m->trm, m->link.full, (uint32_t)m->w * 3u, m->reduced, (uint32_t)m->trm.rw * 3u));
+            stage_ok(m, "tdc_trm_reduced",
+                     tdc_trm_reduced(&m->trm, m->reduced, (uint32_t)m->trm.rw * 3u, m->wanted, (uint32_t)m->w * 3u));
             r->fw_s += now_s() - t0;
         }
 #endif
@@ -605,7 +621,8 @@ static void mode_display_frame(sim_mode_t *m, tdc_source_t *src, int spp)
             uint64_t traced = r->rays - rays0;
             r->rays = rays0 + traced * ((uint64_t)m->trm.rw * m->trm.rh) / m->npx;
             t0 = now_s();
-            tdc_trm_downsample(&m->trm_r, m->render, (uint32_t)m->w * 3u, m->reduced, (uint32_t)m->trm_r.rw * 3u);
+            stage_ok(m, "tdc_trm_downsample",
+                     tdc_trm_downsample(&m->trm_r, m->render, (uint32_t)m->w * 3u, m->reduced, (uint32_t)m->trm_r.rw * 3u));
             r->render_s += now_s() - t0;
             if (tdc_sim_link_reduced(&m->link, lf, m->reduced) == 0) {
                 t0 = now_s();
@@ -665,9 +682,10 @@ static void mode_display_frame(sim_mode_t *m, tdc_source_t *src, int spp)
             }
             if (tdc_sim_link_subframe(&m->link, lf, m->sub, m->submv, (lf & 3u) == 0u ? m->pattern : NULL) == 0) {
                 t0 = now_s();
-                tdc_asm_ingest(&m->as, lf, m->link.subframe, m->link.sample_motion,
-                               (lf & 3u) == 0u ? m->link.pattern : NULL);
-                tdc_asm_assemble(&m->as, lf);
+                stage_ok(m, "tdc_asm_ingest",
+                         tdc_asm_ingest(&m->as, lf, m->link.subframe, m->link.sample_motion,
+                                        (lf & 3u) == 0u ? m->link.pattern : NULL));
+                stage_ok(m, "tdc_asm_assemble", tdc_asm_assemble(&m->as, lf));
                 int stride;
                 const uint8_t *o = tdc_asm_output(&m->as, &stride);
                 for (int y = 0; y < m->h; y++) {
@@ -690,7 +708,7 @@ static void mode_display_frame(sim_mode_t *m, tdc_source_t *src, int spp)
         }
 #endif
         t0 = now_s();
-        tdc_lcd_frame(&m->lcd, m->wanted, (uint32_t)m->w * 3u, m->out, (uint32_t)m->w * 3u, rho);
+        stage_ok(m, "tdc_lcd_frame", tdc_lcd_frame(&m->lcd, m->wanted, (uint32_t)m->w * 3u, m->out, (uint32_t)m->w * 3u, rho));
         r->fw_s += now_s() - t0;
     }
 #endif

@@ -48,7 +48,7 @@ static uint8_t g_staging[TDC_LINK_STAGING_BYTES(BENCH_W, BENCH_H)] TDC_EXTRAM;
 static uint64_t g_arena[(TDC_ASM_MEM_BYTES(BENCH_W, BENCH_H) > TDC_TRM_MEM_BYTES(BENCH_W, BENCH_H, 1, 2)
                              ? TDC_ASM_MEM_BYTES(BENCH_W, BENCH_H)
                              : TDC_TRM_MEM_BYTES(BENCH_W, BENCH_H, 1, 2)) / 8u + 1u] TDC_EXTRAM;
-static uint32_t g_lcd_arena[TDC_LCD_MEM_BYTES(BENCH_W, BENCH_H) / 4u + 1u] TDC_EXTRAM;
+static uint64_t g_lcd_arena[TDC_LCD_MEM_BYTES(BENCH_W, BENCH_H) / 8u] TDC_EXTRAM;
 static uint8_t g_samples[RW * RH * 3u];
 static int16_t g_mv[RW * RH * 2u];
 

@@ -23,6 +23,7 @@
 #include <time.h>
 
 #include "ref_assemble.h"
+#include "bench/tdc_must.h"
 #include "tdc_assemble.h"
 
 #define BW 1920
@@ -112,17 +113,17 @@ static double run(const stream_t *s, int frames, tdc_asm_stats_t *stats)
     tdc_asm_t st;
     double best = 1e30;
     for (int rep = 0; rep < 3; rep++) {
-        tdc_asm_init(&st, &cfg, arena, n);
+        TDC_MUST(tdc_asm_init(&st, &cfg, arena, n));
         /* warm-up cycle: fills the buffers (not timed) */
         uint32_t f = 0;
         for (; f < 8; f++) {
-            tdc_asm_ingest(&st, f, s->samples[f & 7], s->mvs[f & 7], (f & 3) == 0 ? s->bits[f & 7] : NULL);
-            tdc_asm_assemble(&st, f);
+            TDC_MUST(tdc_asm_ingest(&st, f, s->samples[f & 7], s->mvs[f & 7], (f & 3) == 0 ? s->bits[f & 7] : NULL));
+            TDC_MUST(tdc_asm_assemble(&st, f));
         }
         double t0 = now_s();
         for (int i = 0; i < frames; i++, f++) {
-            tdc_asm_ingest(&st, f, s->samples[f & 7], s->mvs[f & 7], NULL);
-            tdc_asm_assemble(&st, f);
+            TDC_MUST(tdc_asm_ingest(&st, f, s->samples[f & 7], s->mvs[f & 7], NULL));
+            TDC_MUST(tdc_asm_assemble(&st, f));
         }
         double t = (now_s() - t0) / frames;
         if (t < best) best = t;
