@@ -223,8 +223,10 @@ int32_t tdc_trm_weight(const tdc_trm_t *st, uint32_t x_q16);
  * the reduced frame is shown as alpha = lin(U(i)) alone, without residual
  * (never with stale state), counted in stats.reduced_unpaired, and TDC_OK.
  */
+TDC_MUST_CHECK
 tdc_status_t tdc_trm_full_seq(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out,
                               uint32_t out_stride, uint32_t seq);
+TDC_MUST_CHECK
 tdc_status_t tdc_trm_reduced_seq(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t in_stride, uint8_t *out,
                                  uint32_t out_stride, uint32_t seq);
 
@@ -238,6 +240,7 @@ void tdc_trm_invalidate(tdc_trm_t *st);
  * it: recomputed from the kept codes (or copied when keep_residual).
  * TDC_ERR_STATE without a full frame.  For tests and golden vectors.
  */
+TDC_MUST_CHECK
 tdc_status_t tdc_trm_residual_row(tdc_trm_t *st, uint32_t y, tdc_res_t *out);
 
 /* Row kernels: AVX2 (enable = 1, the default when the host CPU has it) or

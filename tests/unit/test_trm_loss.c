@@ -75,7 +75,8 @@ static void test_recompute_equals_stored(void **state)
                             assert_int_equal(tdc_trm_full(a, oa, (uint32_t)w * 3, oa, (uint32_t)w * 3), TDC_OK);
                             assert_int_equal(tdc_trm_full(b, ob, (uint32_t)w * 3, ob, (uint32_t)w * 3), TDC_OK);
                         } else {
-                            tdc_trm_downsample(a, in, (uint32_t)w * 3, red, (uint32_t)a->rw * 3);
+                            assert_int_equal(tdc_trm_downsample(a, in, (uint32_t)w * 3, red, (uint32_t)a->rw * 3),
+                                             TDC_OK);
                             assert_int_equal(tdc_trm_reduced(a, red, (uint32_t)a->rw * 3, oa, (uint32_t)w * 3),
                                              TDC_OK);
                             assert_int_equal(tdc_trm_reduced(b, red, (uint32_t)b->rw * 3, ob, (uint32_t)w * 3),
@@ -170,7 +171,7 @@ static void loss_deliver(loss_t *L, tdc_content_t content, uint32_t seq, uint32_
         L->ref_have = 1;
         L->ref_seq = seq;
     } else {
-        tdc_trm_downsample(L->fw, L->in, st, L->red, (uint32_t)L->fw->rw * 3);
+        assert_int_equal(tdc_trm_downsample(L->fw, L->in, st, L->red, (uint32_t)L->fw->rw * 3), TDC_OK);
         const uint32_t before = L->fw->stats.reduced_unpaired;
         assert_int_equal(tdc_trm_reduced_seq(L->fw, L->red, (uint32_t)L->fw->rw * 3, L->out_fw, st, seq), TDC_OK);
         const int paired = L->ref_have && L->ref_seq + 1u == seq;
