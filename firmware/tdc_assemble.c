@@ -96,6 +96,14 @@ static int tdc_asm_bits_uniform(const uint8_t *bits, uint32_t ti0, uint32_t n)
 /* ------------------------------------------------------------------------
  * Ingest.
  * ---------------------------------------------------------------------- */
+void tdc_asm_start_at(tdc_asm_t *st, uint32_t frame)
+{
+    if (st) {
+        st->next_frame = frame;
+        st->have_subframe = 0;
+    }
+}
+
 tdc_status_t tdc_asm_ingest(tdc_asm_t *st, uint32_t frame, const uint8_t *samples, const int16_t *mvs,
                             const uint8_t *pattern_bits)
 {

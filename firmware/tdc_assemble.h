@@ -170,6 +170,10 @@ tdc_status_t tdc_asm_ingest(tdc_asm_t *st, uint32_t frame, const uint8_t *sample
 TDC_MUST_CHECK
 tdc_status_t tdc_asm_set_motion(tdc_asm_t *st, uint32_t frame, const int16_t *mv);
 
+/* Right after tdc_asm_init: the stream starts (or was joined late, e.g.
+ * after a board reset mid-stream) at `frame` instead of 0. */
+void tdc_asm_start_at(tdc_asm_t *st, uint32_t frame);
+
 /* Assembles output frame `frame` (= the next frame; missing subframe allowed). */
 TDC_MUST_CHECK
 tdc_status_t tdc_asm_assemble(tdc_asm_t *st, uint32_t frame);

@@ -350,7 +350,7 @@ tdc_status_t tdc_lcd_frame(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_str
     const unsigned bits = st->cfg.prev_bits;
     const int first = !st->have_history;
     const uint32_t half = st->half_lsb_q16;
-    uint64_t n_root = 0, n_low = 0, n_high = 0, n_res = 0;
+    uint64_t n_root = 0, n_low = 0, n_high = 0, n_res = 0, n_drop = 0;
     if (first) {
         st->stats.first_frames++;
     }
@@ -412,6 +412,8 @@ tdc_status_t tdc_lcd_frame(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_str
                     if (residual && miss != 0) {
                         residual[s] = tdc_clamp32(tdc_add_sat32(residual[s], miss), -TDC_LIN_ONE, TDC_LIN_ONE);
                         n_res++;
+                    } else if (miss != 0) {
+                        n_drop++; /* explicitly dropped: counted */
                     }
                 }
             }
@@ -431,5 +433,6 @@ tdc_status_t tdc_lcd_frame(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_str
     st->stats.clamped_low += n_low;
     st->stats.clamped_high += n_high;
     st->stats.residual_added += n_res;
+    st->stats.residual_dropped += n_drop;
     return TDC_OK;
 }

@@ -179,6 +179,8 @@ typedef struct {
     uint64_t clamped_low;
     uint64_t clamped_high;
     uint64_t residual_added; /* pixel-channels whose unreached light went to rho */
+    uint64_t residual_dropped; /* pixel-channels whose unreached light had no rho to go to
+                                  (residual NULL: a reduced frame, or TRM keeps no rho) */
 } tdc_lcd_stats_t;
 
 typedef struct {
@@ -235,8 +237,11 @@ typedef struct {
     X(st_ddec, int32_t, TDC_LCD_PAIR_(MODE) ? 256u : 0u)               /* debt code -> light */             \
     X(st_debt, int8_t, TDC_LCD_PAIR_(MODE) ? (size_t)(W) * (H) * 3u : 0u) /* light owed, per sample */
 
-/* Compile-time arena bound for a W x H eye (full-precision buffers), any mode. */
-#define TDC_LCD_MEM_BYTES_MODE(W, H, MODE) ((size_t)0 TDC_LCD_ARENA(TDC_ARENA_BLOCK_BYTES, W, H, 8u, MODE))
+/* Compile-time arena bound for a W x H eye in mode MODE with history at B
+ * bits per sample (a board sizes its arena for its configured mode and
+ * bits), at full precision, and for any mode at full precision. */
+#define TDC_LCD_MEM_BYTES_MODE_BITS(W, H, MODE, B) ((size_t)0 TDC_LCD_ARENA(TDC_ARENA_BLOCK_BYTES, W, H, B, MODE))
+#define TDC_LCD_MEM_BYTES_MODE(W, H, MODE) TDC_LCD_MEM_BYTES_MODE_BITS(W, H, MODE, 8u)
 #define TDC_LCD_MEM_BYTES(W, H)                                                                               \
     (TDC_LCD_MEM_BYTES_MODE(W, H, TDC_LCD_MODE_EXACT) > TDC_LCD_MEM_BYTES_MODE(W, H, TDC_LCD_MODE_STATEFUL_PAIR) \
          ? TDC_LCD_MEM_BYTES_MODE(W, H, TDC_LCD_MODE_EXACT)                                                    \

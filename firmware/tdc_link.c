@@ -23,6 +23,9 @@
  */
 #include "tdc_link.h"
 
+/* check_header(): a valid packet of a kind this build skips (skip_motion). */
+#define LINK_SKIP_UNUSED ((tdc_link_err_t)(TDC_LINK_ERR_COUNT + 1))
+
 #include <string.h>
 
 #include "tdc_crc32.h"
@@ -229,7 +232,7 @@ static tdc_link_err_t check_header(const tdc_link_decoder_t *dec, uint32_t versi
         break;
     case TDC_LINK_KIND_MOTION:
         ok = (flags & TDC_LINK_PKT_MV_PER_SAMPLE) ? ((sflags & TDC_LINK_STREAM_SAMPLE_MV) && b->sample_motion[eye])
-                                                   : ((sflags & TDC_LINK_STREAM_MOTION) && b->motion[eye]);
+                                                   : ((sflags & TDC_LINK_STREAM_MOTION) && (b->motion[eye] || b->skip_motion));
         break;
     default: /* PATTERN: with the first subframe of each 4-frame cycle */
         ok = (sflags & TDC_LINK_STREAM_SUBFRAMES) && b->pattern[eye] != NULL && (p->frame_index & 3u) == 0;
@@ -248,7 +251,13 @@ static tdc_link_err_t check_header(const tdc_link_decoder_t *dec, uint32_t versi
      * expected length cannot wrap. */
     const uint32_t want_len =
         tdc_link_payload_bytes((tdc_link_kind_t)kind, (tdc_pixfmt_t)fmt, p->width, p->height, flags);
-    if (payload_len != want_len || payload_len > dec->buf.staging_bytes) {
+    if (payload_len != want_len) {
+        return TDC_LINK_ERR_LENGTH;
+    }
+    if (kind == TDC_LINK_KIND_MOTION && !(flags & TDC_LINK_PKT_MV_PER_SAMPLE) && !b->motion[eye]) {
+        return LINK_SKIP_UNUSED; /* skip_motion: valid, but nothing here uses it */
+    }
+    if (payload_len > dec->buf.staging_bytes) {
         return TDC_LINK_ERR_LENGTH;
     }
     if (dec->have_frame) {
@@ -312,6 +321,15 @@ static void on_header(tdc_link_decoder_t *dec, uint32_t end_off)
     p->detail = dec->payload_len;
 
     const tdc_link_err_t e = check_header(dec, ph.version, dec->payload_len);
+    if (e == LINK_SKIP_UNUSED) {
+        /* intact header of a packet no stage uses: skip its payload, which
+         * is not checked (nothing is written from it), no error */
+        dec->cnt.packets_skipped++;
+        dec->skip_left = dec->payload_len;
+        set_state(dec, ST_SKIP, 0);
+        dec->hdr_fill = 0;
+        return;
+    }
     if (e != TDC_LINK_OK) {
         push_error(dec, e, 1, dec->payload_len);
         /* The header is intact (CRC), so its length is what was sent: skip
@@ -369,7 +387,7 @@ static tdc_link_err_t commit_stream(tdc_link_decoder_t *dec)
         if (((in.flags & TDC_LINK_STREAM_REDUCED) &&
              (!b->reduced[e] || (size_t)rw * rh * 3u > b->reduced_bytes)) ||
             ((in.flags & TDC_LINK_STREAM_SUBFRAMES) && (!b->subframe[e] || !b->pattern[e])) ||
-            ((in.flags & TDC_LINK_STREAM_MOTION) && !b->motion[e]) ||
+            ((in.flags & TDC_LINK_STREAM_MOTION) && !b->motion[e] && !b->skip_motion) ||
             ((in.flags & TDC_LINK_STREAM_SAMPLE_MV) && !b->sample_motion[e])) {
             return TDC_LINK_ERR_STREAM_HEADER;
         }

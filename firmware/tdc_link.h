@@ -102,6 +102,11 @@ typedef struct {
     int16_t *motion[2];       /* (dx, dy) Q4 per pixel, width x height x 2 */
     int16_t *sample_motion[2]; /* (dx, dy) Q4 per subframe sample, tiles x 2 */
     uint8_t *pattern[2];      /* 1 bit per tile, row-major, LSB first, 1 = bowtie */
+    /* 1: a stream may announce per-pixel MOTION that no stage of this build
+     * uses (motion[] NULL): its packets are not staged or stored, their
+     * payloads skipped (the header CRC vouches for the length, which must
+     * be the expected one) and counted in packets_skipped -- not errors. */
+    uint8_t skip_motion;
 } tdc_link_buffers_t;
 
 typedef enum {
@@ -128,6 +133,7 @@ typedef struct {
 typedef struct {
     uint32_t errors[TDC_LINK_ERR_COUNT]; /* per error code (index 0 unused) */
     uint32_t packets_ok;                 /* accepted packets */
+    uint32_t packets_skipped;            /* packets of kinds no stage uses (skip_motion), not stored */
     uint32_t packets_by_kind[TDC_LINK_KIND_LAST + 1];
     uint64_t bytes_in;                   /* all bytes fed */
     uint64_t garbage_bytes;              /* bytes discarded while hunting for a packet */

@@ -16,6 +16,8 @@
  */
 #include "tdc_trm.h"
 
+#include <string.h>
+
 #include "tdc_math.h"
 #include "tdc_trm_kernels.h"
 
@@ -64,7 +66,8 @@ static void trm_geometry(tdc_trm_t *st, const tdc_trm_config_t *cfg)
 static void trm_carve(tdc_trm_t *st, tdc_arena_t *arena)
 {
     if (!st->passthrough) {
-        TDC_TRM_ARENA(TDC_ARENA_CARVE, st->cfg.width, st->cfg.height, st->rw, st->rh, st->dtaps)
+        TDC_TRM_ARENA(TDC_ARENA_CARVE, st->cfg.width, st->cfg.height, st->rw, st->rh, st->dtaps,
+                      st->cfg.keep_residual)
     }
 }
 
@@ -92,6 +95,7 @@ void tdc_trm_default_config(tdc_trm_config_t *cfg, uint16_t width, uint16_t heig
     cfg->min_refresh_hz = 90; /* paper §4.1/§9 */
     cfg->s_q8 = 10u * 256u;
     cfg->reduced_in_stream = 1;
+    cfg->keep_residual = 0;
 }
 
 /* ---------------------------------------------------------------------
@@ -218,6 +222,13 @@ void tdc_trm_reset(tdc_trm_t *st)
     st->have_full = 0;
 }
 
+void tdc_trm_invalidate(tdc_trm_t *st)
+{
+    if (st) {
+        st->have_full = 0;
+    }
+}
+
 /* ---------------------------------------------------------------------
  * D: polyphase Gaussian, full-res codes -> reduced code Q8
  * ------------------------------------------------------------------- */
@@ -248,7 +259,7 @@ static void trm_apply_d(tdc_trm_t *st, const uint8_t *in, uint32_t stride, tdc_g
             if (st->simd) {
                 tdc_trm_dhoriz_avx2(row, st->cfg.width, st->dx_first, st->dx_w, taps, st->rw, slot);
             } else {
-                tdc_trm_dhoriz_c(row, st->cfg.width, st->dx_first, st->dx_w, taps, st->rw, slot);
+                TDC_TRM_DHORIZ_BOARD(row, st->cfg.width, st->dx_first, st->dx_w, taps, st->rw, slot);
             }
         }
         const uint16_t *w = &st->dy_w[jy * taps];
@@ -262,7 +273,7 @@ static void trm_apply_d(tdc_trm_t *st, const uint8_t *in, uint32_t stride, tdc_g
         if (st->simd) {
             tdc_trm_dvert_avx2((const uint16_t *const *)rows, w, taps, rw3, o);
         } else {
-            tdc_trm_dvert_c((const uint16_t *const *)rows, w, taps, rw3, o);
+            TDC_TRM_DVERT_BOARD((const uint16_t *const *)rows, w, taps, rw3, o);
         }
         if (out8) {
             uint8_t *d = out8 + (size_t)jy * out8_stride;
@@ -344,6 +355,20 @@ static void trm_rowctx(const tdc_trm_t *st, tdc_trm_rowctx_t *k)
     tdc_trm_rowctx_init(k, st->panel, st->ux_i, st->wexp, st->cfg.width, st->cfg.s_q8, st->enc_comb, st->enc_one_step);
 }
 
+/* beta of full-res row y from codes src and the kept D(I): dst = shown
+ * codes, res = rho.  The one place both the full frame and the recompute
+ * of rho for a reduced frame run (same kernel: same bytes). */
+static void trm_beta_row(tdc_trm_t *st, const tdc_trm_rowctx_t *k, uint32_t y, const uint32_t *urow,
+                         const uint8_t *src, uint8_t *dst, tdc_res_t *res, tdc_trm_full_counts_t *n)
+{
+    (void)y;
+    if (st->simd) {
+        tdc_trm_full_row_avx2(k, urow, src, dst, res, n);
+    } else {
+        TDC_TRM_FULL_ROW_BOARD(k, urow, src, dst, res, n);
+    }
+}
+
 tdc_status_t tdc_trm_full(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out, uint32_t out_stride)
 {
     if (!st || !in || !out || in_stride < 3u * st->cfg.width || out_stride < 3u * st->cfg.width) {
@@ -357,18 +382,23 @@ tdc_status_t tdc_trm_full(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, 
     trm_apply_d(st, in, in_stride, st->dprev, NULL, 0);
     tdc_trm_rowctx_t k;
     trm_rowctx(st, &k);
-    const uint32_t w = st->cfg.width;
+    const uint32_t w = st->cfg.width, w3 = 3u * w;
     uint64_t hi = 0, lo = 0;
     for (uint32_t y = 0; y < st->cfg.height; y++) {
         tdc_trm_full_counts_t n = {0, 0};
         trm_u_row(st, st->dprev, y, st->urow);
-        if (st->simd) {
-            tdc_trm_full_row_avx2(&k, st->urow, in + (size_t)y * in_stride, out + (size_t)y * out_stride,
-                                  &st->residual[(size_t)y * w * 3u], &n);
+        const uint8_t *src = in + (size_t)y * in_stride;
+        tdc_res_t *res = st->rrow;
+        if (st->icodes) {
+            /* keep I_t (in may be out: copy before the row is overwritten);
+             * rho of this row is not kept, it is recomputed when needed */
+            uint8_t *keep = st->icodes + (size_t)y * w3;
+            memcpy(keep, src, w3);
+            src = keep;
         } else {
-            tdc_trm_full_row_c(&k, st->urow, in + (size_t)y * in_stride, out + (size_t)y * out_stride,
-                               &st->residual[(size_t)y * w * 3u], &n);
+            res = &st->residual[(size_t)y * w3];
         }
+        trm_beta_row(st, &k, y, st->urow, src, out + (size_t)y * out_stride, res, &n);
         hi += n.hi;
         lo += n.lo;
     }
@@ -379,38 +409,90 @@ tdc_status_t tdc_trm_full(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, 
     return TDC_OK;
 }
 
-tdc_status_t tdc_trm_reduced(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t in_stride, uint8_t *out,
-                             uint32_t out_stride)
+tdc_status_t tdc_trm_full_seq(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out,
+                              uint32_t out_stride, uint32_t seq)
 {
-    if (!st || !in_reduced || !out || out_stride < 3u * st->cfg.width) {
+    const tdc_status_t r = tdc_trm_full(st, in, in_stride, out, out_stride);
+    if (r == TDC_OK && st) {
+        st->full_seq = seq;
+    }
+    return r;
+}
+
+/* rho of row y into the row buffer (recompute) or a pointer into the stored
+ * residual; urow holds U(D(I_t)) of row y. */
+static const tdc_res_t *trm_rho_row(tdc_trm_t *st, const tdc_trm_rowctx_t *k, uint32_t y, const uint32_t *urow)
+{
+    const uint32_t w3 = 3u * st->cfg.width;
+    if (!st->icodes) {
+        return &st->residual[(size_t)y * w3];
+    }
+    tdc_trm_full_counts_t n = {0, 0};
+    trm_beta_row(st, k, y, urow, st->icodes + (size_t)y * w3, st->crow, st->rrow, &n);
+    return st->rrow;
+}
+
+tdc_status_t tdc_trm_residual_row(tdc_trm_t *st, uint32_t y, tdc_res_t *out)
+{
+    if (!st || !out || y >= st->cfg.height) {
         return TDC_ERR_ARG;
     }
-    if (st->passthrough) {
-        return TDC_ERR_STATE; /* this stream was configured without reduced frames */
-    }
-    if (in_stride < 3u * st->rw) {
-        return TDC_ERR_ARG;
-    }
-    if (!st->have_full) {
+    if (st->passthrough || !st->have_full) {
         return TDC_ERR_STATE;
     }
+    tdc_trm_rowctx_t k;
+    trm_rowctx(st, &k);
+    trm_u_row(st, st->dprev, y, st->urow);
+    const tdc_res_t *r = trm_rho_row(st, &k, y, st->urow);
+    for (uint32_t i = 0; i < 3u * st->cfg.width; i++) {
+        out[i] = r[i];
+    }
+    return TDC_OK;
+}
+
+/* Reduced frame; with_state = 0 shows alpha alone (no residual). */
+static tdc_status_t trm_reduced(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t in_stride, uint8_t *out,
+                                uint32_t out_stride, int with_state)
+{
     const uint32_t rw3 = 3u * st->rw;
     tdc_trm_rowctx_t k;
     trm_rowctx(st, &k);
-    const uint32_t w = st->cfg.width;
     uint32_t *urow_a = st->urow;            /* U(D(I_t)), code Q22 */
     uint32_t *urow_b = st->urow + rw3 + 3u; /* U(i_t+1) */
+    /* without state: alpha alone, i.e. rho = 0 everywhere (the kernel then
+     * never reads U(D(I_t))); the row buffer holds the zeros */
+    tdc_res_t *zero = with_state ? NULL : st->rrow;
     uint64_t computed = 0, skipped = 0, no_res = 0;
     for (uint32_t y = 0; y < st->cfg.height; y++) {
         tdc_trm_reduced_counts_t n = {0, 0, 0};
-        trm_u_row(st, st->dprev, y, urow_a);
+        const tdc_res_t *rho;
+        if (with_state) {
+            trm_u_row(st, st->dprev, y, urow_a);
+            rho = trm_rho_row(st, &k, y, urow_a);
+        } else {
+            if (y == 0u) {
+                for (uint32_t i = 0; zero && i < 3u * st->cfg.width; i++) {
+                    zero[i] = 0;
+                }
+                for (uint32_t i = 0; i < rw3 + 3u; i++) {
+                    urow_a[i] = 0; /* defined, though no kernel needs it where rho = 0 */
+                }
+            }
+            /* stored-residual layout has no row buffer: its own rho row is
+             * cleared (that state is stale anyway) */
+            rho = zero ? zero : &st->residual[(size_t)y * 3u * st->cfg.width];
+            if (!zero) {
+                tdc_res_t *r = &st->residual[(size_t)y * 3u * st->cfg.width];
+                for (uint32_t i = 0; i < 3u * st->cfg.width; i++) {
+                    r[i] = 0;
+                }
+            }
+        }
         trm_u_row_codes(st, in_reduced, in_stride, y, urow_b);
         if (st->simd) {
-            tdc_trm_reduced_row_avx2(&k, urow_a, urow_b, &st->residual[(size_t)y * w * 3u],
-                                     out + (size_t)y * out_stride, &n);
+            tdc_trm_reduced_row_avx2(&k, urow_a, urow_b, rho, out + (size_t)y * out_stride, &n);
         } else {
-            tdc_trm_reduced_row_c(&k, urow_a, urow_b, &st->residual[(size_t)y * w * 3u], out + (size_t)y * out_stride,
-                                  &n);
+            TDC_TRM_REDUCED_ROW_BOARD(&k, urow_a, urow_b, rho, out + (size_t)y * out_stride, &n);
         }
         computed += n.computed;
         skipped += n.skipped;
@@ -421,6 +503,49 @@ tdc_status_t tdc_trm_reduced(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t 
     st->stats.residual_skipped += no_res;
     st->stats.reduced_frames++;
     return TDC_OK;
+}
+
+static tdc_status_t trm_reduced_args(const tdc_trm_t *st, const uint8_t *in_reduced, uint32_t in_stride,
+                                     const uint8_t *out, uint32_t out_stride)
+{
+    if (!st || !in_reduced || !out || out_stride < 3u * st->cfg.width) {
+        return TDC_ERR_ARG;
+    }
+    if (st->passthrough) {
+        return TDC_ERR_STATE; /* this stream was configured without reduced frames */
+    }
+    if (in_stride < 3u * st->rw) {
+        return TDC_ERR_ARG;
+    }
+    return TDC_OK;
+}
+
+tdc_status_t tdc_trm_reduced(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t in_stride, uint8_t *out,
+                             uint32_t out_stride)
+{
+    const tdc_status_t a = trm_reduced_args(st, in_reduced, in_stride, out, out_stride);
+    if (a != TDC_OK) {
+        return a;
+    }
+    if (!st->have_full) {
+        return TDC_ERR_STATE;
+    }
+    return trm_reduced(st, in_reduced, in_stride, out, out_stride, 1);
+}
+
+tdc_status_t tdc_trm_reduced_seq(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t in_stride, uint8_t *out,
+                                 uint32_t out_stride, uint32_t seq)
+{
+    const tdc_status_t a = trm_reduced_args(st, in_reduced, in_stride, out, out_stride);
+    if (a != TDC_OK) {
+        return a;
+    }
+    const int paired = st->have_full && st->full_seq + 1u == seq;
+    if (!paired) {
+        st->stats.reduced_unpaired++;
+        st->have_full = 0; /* whatever is kept is older than this frame: never use it again */
+    }
+    return trm_reduced(st, in_reduced, in_stride, out, out_stride, paired);
 }
 
 tdc_status_t tdc_trm_downsample(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out,

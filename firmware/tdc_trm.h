@@ -56,14 +56,21 @@
 /*
  * The arena (tdc_arena.h), one line per block: X(member of tdc_trm_t,
  * element type, count) for a W x H eye, reduced RW x RH, TAPS taps per D
- * kernel.  Init carves it with the configuration's geometry, get_size() is
- * the same carve as a dry run, TDC_TRM_MEM_BYTES the same list summed at
- * the largest geometry.  A pass-through configuration carves nothing.
- * Order matters for one block: the AVX2 horizontal D pass may read 2 bytes
- * past dx_w (dy_w follows it).
+ * kernel, KEEP = keep_residual.  Init carves it with the configuration's
+ * geometry, get_size() is the same carve as a dry run, TDC_TRM_MEM_BYTES
+ * the same list summed at the largest geometry.  A pass-through
+ * configuration carves nothing; a block of 0 elements is NULL (rho is
+ * stored only with KEEP, the full frame's codes and the rho/code row only
+ * without).  Per display pixel at r = 1/2 without KEEP: 3 B of codes +
+ * 1.5 B of D(I) + a few rows (docs/boards.md).  Order matters for one
+ * block: the AVX2 horizontal D pass may read 2 bytes past dx_w (dy_w
+ * follows it).
  */
-#define TDC_TRM_ARENA(X, W, H, RW, RH, TAPS)                                                                  \
-    X(residual, tdc_res_t, (size_t)(W) * (H) * 3u)                    /* rho, Q24 linear light */             \
+#define TDC_TRM_ARENA(X, W, H, RW, RH, TAPS, KEEP)                                                            \
+    X(residual, tdc_res_t, (KEEP) ? (size_t)(W) * (H) * 3u : 0u)      /* rho, Q24 linear light (KEEP) */      \
+    X(icodes, uint8_t, (KEEP) ? 0u : (size_t)(W) * (H) * 3u)          /* codes of the last full frame */      \
+    X(rrow, tdc_res_t, (KEEP) ? 0u : (size_t)(W) * 3u)                /* one row of rho, recomputed */        \
+    X(crow, uint8_t, (KEEP) ? 0u : (size_t)(W) * 3u)                  /* one row of codes, discarded */       \
     X(dprev, tdc_gval_t, (size_t)(RW) * (RH) * 3u)                    /* D(I_t), code Q8 */                    \
     X(ring, tdc_gval_t, (size_t)(TAPS) * (RW) * 3u)                   /* horizontal D pass, a ring of rows */  \
     X(urow, uint32_t, (size_t)2u * ((RW) + 1u) * 3u)                  /* two U rows, code Q22 */               \
@@ -80,11 +87,15 @@
  * Compile-time arena bound for a W x H eye at reduction ratios up to
  * RNUM/RDEN (the board's largest r < 1) and any sigma: the list above at
  * that geometry with the taps of the largest sigma (every block grows with
- * r and taps, so no smaller configuration needs more).
+ * r and taps, so no smaller configuration needs more), default layout
+ * (keep_residual = 0); _KEEP with rho stored.
  */
 #define TDC_TRM_MEM_BYTES(W, H, RNUM, RDEN)                                                                   \
     ((size_t)0 TDC_TRM_ARENA(TDC_ARENA_BLOCK_BYTES, W, H, TDC_REDUCED_DIM(W, RNUM, RDEN),                 \
-                             TDC_REDUCED_DIM(H, RNUM, RDEN), TDC_TRM_TAPS(TDC_TRM_MAX_SIGMA_Q8)))
+                             TDC_REDUCED_DIM(H, RNUM, RDEN), TDC_TRM_TAPS(TDC_TRM_MAX_SIGMA_Q8), 0))
+#define TDC_TRM_MEM_BYTES_KEEP(W, H, RNUM, RDEN)                                                              \
+    ((size_t)0 TDC_TRM_ARENA(TDC_ARENA_BLOCK_BYTES, W, H, TDC_REDUCED_DIM(W, RNUM, RDEN),                 \
+                             TDC_REDUCED_DIM(H, RNUM, RDEN), TDC_TRM_TAPS(TDC_TRM_MAX_SIGMA_Q8), 1))
 
 typedef struct {
     uint16_t width;          /* full-res eye size in pixels */
@@ -96,6 +107,13 @@ typedef struct {
     uint16_t min_refresh_hz; /* TRM refused below this (paper §9: 90 Hz) */
     uint32_t s_q8;           /* motion sensitivity s of w = exp(-s c), Q8 */
     uint8_t reduced_in_stream; /* 0: stream has no reduced frames -> pass-through */
+    /* 0 (default): keep the full frame's codes I_t and D(I_t) and recompute
+     * rho = beta - clamp(beta) row by row when the reduced frame arrives
+     * (beta is a deterministic function of I_t and D(I_t): same bytes,
+     * 4.5 B/px at r = 1/2 instead of 13.5).  1: store rho (W*H*3 Q24), which
+     * tdc_trm_residual() exposes so the LCD inverse can add its unreached
+     * light to it (the simulator does; boards drop that light, counted). */
+    uint8_t keep_residual;
 } tdc_trm_config_t;
 
 /* Per-stage counters: show what ran and what was elided. */
@@ -108,6 +126,8 @@ typedef struct {
     uint64_t residual_skipped;   /* pixel-channels with rho = 0: no weight needed */
     uint64_t clamped_high;       /* pixel-channels where beta > 1 */
     uint64_t clamped_low;        /* pixel-channels where beta < 0 */
+    uint32_t reduced_unpaired;   /* reduced frames shown without residual: their full
+                                    frame (sequence number - 1) was lost or out of order */
 } tdc_trm_stats_t;
 
 typedef struct {
@@ -118,9 +138,13 @@ typedef struct {
     uint16_t dtaps;             /* taps per D kernel */
     uint8_t passthrough;        /* r == 1 or no reduced frames in the stream */
     uint8_t have_full;          /* a full frame's D(I) and rho are valid */
+    uint32_t full_seq;          /* sequence number of that full frame (tdc_trm_full_seq) */
     uint8_t simd;               /* row kernels: 1 = AVX2 (host), 0 = portable C */
     /* views into the arena */
-    tdc_res_t *residual;        /* W*H*3, Q24 linear light */
+    tdc_res_t *residual;        /* keep_residual: W*H*3, Q24 linear light; else NULL */
+    uint8_t *icodes;            /* keep_residual = 0: W*H*3 codes of the last full frame */
+    tdc_res_t *rrow;            /* keep_residual = 0: one row of rho (W*3, Q24) */
+    uint8_t *crow;              /* keep_residual = 0: one row of codes (W*3), discarded */
     tdc_gval_t *dprev;          /* rw*rh*3, D(I_t), code Q8 */
     tdc_gval_t *ring;           /* dtaps rows of rw*3: horizontal D pass */
     uint32_t *urow;             /* 2 rows of (rw+1)*3: vertically interpolated U rows, code Q22 */
@@ -192,13 +216,43 @@ tdc_status_t tdc_trm_downsample(tdc_trm_t *st, const uint8_t *in, uint32_t in_st
  * (table interpolation; exposed for the accuracy test). */
 int32_t tdc_trm_weight(const tdc_trm_t *st, uint32_t x_q16);
 
+/*
+ * Frames tied by sequence number (the link's frame index).  tdc_trm_full_seq
+ * is tdc_trm_full and records seq; tdc_trm_reduced_seq uses the kept state
+ * only if it belongs to the full frame seq - 1 of this eye (the frame just
+ * before: TRM alternates per eye).  Otherwise -- the full frame was lost,
+ * rejected or came out of order, or no full frame at all since init/reset --
+ * the reduced frame is shown as alpha = lin(U(i)) alone, without residual
+ * (never with stale state), counted in stats.reduced_unpaired, and TDC_OK.
+ */
+TDC_MUST_CHECK
+tdc_status_t tdc_trm_full_seq(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out,
+                              uint32_t out_stride, uint32_t seq);
+TDC_MUST_CHECK
+tdc_status_t tdc_trm_reduced_seq(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t in_stride, uint8_t *out,
+                                 uint32_t out_stride, uint32_t seq);
+
+/* Forget the kept full frame (it is no longer what the next reduced frame
+ * pairs with), keeping the tables: e.g. when a newer full frame of this
+ * eye was lost. */
+void tdc_trm_invalidate(tdc_trm_t *st);
+
+/*
+ * rho of row y (W*3 Q24) of the last full frame, as the reduced frame uses
+ * it: recomputed from the kept codes (or copied when keep_residual).
+ * TDC_ERR_STATE without a full frame.  For tests and golden vectors.
+ */
+TDC_MUST_CHECK
+tdc_status_t tdc_trm_residual_row(tdc_trm_t *st, uint32_t y, tdc_res_t *out);
+
 /* Row kernels: AVX2 (enable = 1, the default when the host CPU has it) or
  * portable C (0).  Both give the same bytes (tests/checkasm/checkasm_trm.c); boards
  * and CPUs without AVX2 always run C. */
 void tdc_trm_set_simd(tdc_trm_t *st, int enable);
 
 /* Residual buffer rho (W*H*3, Q24 linear light, interleaved like the frame),
- * for the LCD stage, which adds the light the panel could not reach. */
+ * for the LCD stage, which adds the light the panel could not reach; NULL
+ * unless keep_residual (rho is then recomputed, never stored). */
 static inline tdc_res_t *tdc_trm_residual(tdc_trm_t *st)
 {
     return st->residual;

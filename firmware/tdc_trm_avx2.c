@@ -317,15 +317,6 @@ static inline TDC_AVX2 trm_step_t trm_step(const tdc_trm_rowctx_t *k, uint32_t x
     return s;
 }
 
-/* The C kernel on pixels [x, width) for the tail of a row. */
-static tdc_trm_rowctx_t trm_tail_ctx(const tdc_trm_rowctx_t *k, uint32_t x)
-{
-    tdc_trm_rowctx_t t = *k;
-    t.ux = k->ux + 2u * x;
-    t.width = k->width - x;
-    return t;
-}
-
 TDC_AVX2 void tdc_trm_full_row_avx2(const tdc_trm_rowctx_t *k, const uint32_t *urow, const uint8_t *src,
                                     uint8_t *dst, tdc_res_t *res, tdc_trm_full_counts_t *n)
 {
@@ -377,7 +368,7 @@ TDC_AVX2 void tdc_trm_full_row_avx2(const tdc_trm_rowctx_t *k, const uint32_t *u
     n->hi += nhi;
     n->lo += nlo;
     if (x < k->width) {
-        const tdc_trm_rowctx_t t = trm_tail_ctx(k, x);
+        const tdc_trm_rowctx_t t = tdc_trm_tail_ctx(k, x);
         tdc_trm_full_row_c(&t, urow, src + 3u * x, dst + 3u * x, res + 3u * x, n);
     }
 }
@@ -480,7 +471,7 @@ TDC_AVX2 void tdc_trm_reduced_row_avx2(const tdc_trm_rowctx_t *k, const uint32_t
     n->skipped += skipped;
     n->no_res += no_res;
     if (x < k->width) {
-        const tdc_trm_rowctx_t t = trm_tail_ctx(k, x);
+        const tdc_trm_rowctx_t t = tdc_trm_tail_ctx(k, x);
         tdc_trm_reduced_row_c(&t, urow_a, urow_b, res + 3u * x, dst + 3u * x, n);
     }
 }

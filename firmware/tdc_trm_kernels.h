@@ -82,6 +82,24 @@ typedef void tdc_trm_dhoriz_fn(const uint8_t *row, uint32_t width, const int16_t
                                uint32_t taps, uint32_t rw, uint16_t *dst);
 
 tdc_trm_full_row_fn tdc_trm_full_row_c;
+/* Helium (MVE) row kernels, Cortex-M55 boards (tdc_trm_mve.c; BOARD_MVE). */
+tdc_trm_full_row_fn tdc_trm_full_row_mve;
+tdc_trm_reduced_row_fn tdc_trm_reduced_row_mve;
+tdc_trm_dvert_fn tdc_trm_dvert_mve;
+tdc_trm_dhoriz_fn tdc_trm_dhoriz_mve;
+/* What a board runs for the rows and D passes (AVX2 on hosts is chosen at
+ * run time). */
+#if defined(TDC_TRM_MVE)
+#define TDC_TRM_FULL_ROW_BOARD tdc_trm_full_row_mve
+#define TDC_TRM_REDUCED_ROW_BOARD tdc_trm_reduced_row_mve
+#define TDC_TRM_DVERT_BOARD tdc_trm_dvert_mve
+#define TDC_TRM_DHORIZ_BOARD tdc_trm_dhoriz_mve
+#else
+#define TDC_TRM_FULL_ROW_BOARD tdc_trm_full_row_c
+#define TDC_TRM_REDUCED_ROW_BOARD tdc_trm_reduced_row_c
+#define TDC_TRM_DVERT_BOARD tdc_trm_dvert_c
+#define TDC_TRM_DHORIZ_BOARD tdc_trm_dhoriz_c
+#endif
 tdc_trm_dhoriz_fn tdc_trm_dhoriz_c;
 tdc_trm_reduced_row_fn tdc_trm_reduced_row_c;
 tdc_trm_dvert_fn tdc_trm_dvert_c;
@@ -95,6 +113,16 @@ tdc_trm_full_row_fn tdc_trm_full_row_avx2;
 tdc_trm_dhoriz_fn tdc_trm_dhoriz_avx2;
 tdc_trm_reduced_row_fn tdc_trm_reduced_row_avx2;
 tdc_trm_dvert_fn tdc_trm_dvert_avx2;
+
+/* The context of the pixels [x, width) of a row: the SIMD kernels run the
+ * C kernel on the tail of a row that does not fill a vector. */
+static inline tdc_trm_rowctx_t tdc_trm_tail_ctx(const tdc_trm_rowctx_t *k, uint32_t x)
+{
+    tdc_trm_rowctx_t t = *k;
+    t.ux = k->ux + 2u * x;
+    t.width = k->width - x;
+    return t;
+}
 
 /*
  * w = exp(-x), x in Q16, from the Q30 table with linear interpolation and

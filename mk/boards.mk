@@ -21,13 +21,13 @@ ARM_NM := $(ARM_CROSS)nm
 ARM_SIZE := $(ARM_CROSS)size
 ARM_OBJCOPY := $(ARM_CROSS)objcopy
 ARM_OPT ?= -O2
-QEMU_TIMEOUT ?= 120
+QEMU_TIMEOUT ?= 300
 
 ARM_BOARDS := $(filter-out host,$(BOARDS))
 # Emulated boards: those whose board.mk names a QEMU machine.
 QEMU_BOARDS := $(sort $(patsubst boards/%/board.mk,%,$(shell grep -l '^BOARD_QEMU' boards/*/board.mk)))
 
-.PHONY: arm-loop-cost run-arm firmware-size test-arm size bench-arm arm-bench profile-arm arm-profile arm-golden arm-golden-check arm-image-check arm-fit-check arm-fw-check
+.PHONY: arm-fw-loop-check arm-fw-refuse-check arm-loop-cost run-arm firmware-size test-arm size bench-arm arm-bench profile-arm arm-profile arm-golden arm-golden-check arm-image-check arm-fit-check arm-fw-check
 
 .SECONDEXPANSION:
 
@@ -45,6 +45,14 @@ PANEL_TYPE := $(shell awk '$$1 == "type" { print $$2 }' boards/panels/$(PANEL).p
 
 ARM_CFLAGS := $(BOARD_CPU) $(ARM_OPT) -g -ffunction-sections -fdata-sections -fno-common \
               -Ifirmware -Ifirmware/board -Iboards/$(BOARD) -I$(GEN)
+# Helium boards (BOARD_MVE := 1): every object knows (TDC_TRM_MVE selects the
+# MVE row kernels, the start-up enables CP10/CP11); the MVE object itself is
+# built with integer MVE and no FPU (+nofp) under the softfp ABI, which MVE
+# needs and which passes arguments in core registers like soft.
+ifeq ($(BOARD_MVE),1)
+ARM_CFLAGS += -DTDC_TRM_MVE=1
+ARM_MVE_FIX = $(subst -mfloat-abi=soft,-mfloat-abi=softfp,$(subst -mcpu=cortex-m55,-mcpu=cortex-m55+nofp,$(1)))
+endif
 ARM_FW_CFLAGS := $(FW_WARN) $(ARM_CFLAGS)
 # Test code (golden stages): same warnings as the host build of tests.
 ARM_TEST_CFLAGS := -std=c11 -Wall -Wextra -Werror -Wvla $(ARM_CFLAGS) -Itests -Itests/golden
@@ -88,6 +96,10 @@ ARM_FW_OBJS = $(patsubst %.c,$(BA)/%.o,$(FW_SRCS)) $(foreach p,$(PANELS),$(BA)/g
 $(BA)/libtdcfw.a: $$(ARM_FW_OBJS)
 	@rm -f $@
 	$(ARM_CROSS)ar rcs $@ $^
+
+ifeq ($(BOARD_MVE),1)
+$(BA)/firmware/tdc_trm_mve.o: ARM_FW_CFLAGS := $(call ARM_MVE_FIX,$(ARM_FW_CFLAGS))
+endif
 
 # Link an image; a region overflow becomes the memory-fit verdict ($(1) names
 # what was linked).
@@ -141,8 +153,22 @@ $(BA)/harness-check: $(BA)/tdc_harness.elf tests/arm/test_harness.sh
 	    "$(BOARD)" "$(BA)/tdc_harness.elf" "$(BOARD_QEMU)" > $@
 	@chmod +x $@
 
-arm-golden-check: $(BA)/golden-check $(BA)/harness-check
-	@tests/run_tests.sh "arm-$(BOARD)" $(BA)/harness-check $(BA)/golden-check
+# Helium boards: the MVE row kernels against the C kernels in QEMU
+# (tests/checkasm/checkasm_trm_mve.c).
+ARM_CHECKASM_OBJS = $(patsubst %.c,$(BA)/%.o,$(ARM_BOARD_SRCS) tests/checkasm/checkasm_trm_mve.c)
+$(BA)/checkasm_mve.elf: $$(ARM_CHECKASM_OBJS) $(BA)/libtdcfw.a $(ARM_LDDEPS)
+	$(call ARM_LINK,the Helium checkasm runner)
+$(BA)/checkasm-mve: $(BA)/checkasm_mve.elf tests/arm/run_checkasm_qemu.sh
+	@printf '#!/bin/sh\nexec tests/arm/run_checkasm_qemu.sh "%s" %s "%s" %s\n' \
+	    "$(BOARD)" "$(QEMU_TIMEOUT)" "$(BA)/checkasm_mve.elf" "$(BOARD_QEMU)" > $@
+	@chmod +x $@
+$(BA)/mve-nofloat: $(BA)/firmware/tdc_trm_mve.o tests/rules/check_arm_nofloat.sh
+	@printf '#!/bin/sh\nexec tests/rules/check_arm_nofloat.sh %s %s\n' "$(ARM_CROSS)objdump" "$<" > $@
+	@chmod +x $@
+ARM_CHECKASM = $(if $(filter 1,$(BOARD_MVE)),$(BA)/checkasm-mve $(BA)/mve-nofloat)
+
+arm-golden-check: $(BA)/golden-check $(BA)/harness-check $(ARM_CHECKASM)
+	@tests/run_tests.sh "arm-$(BOARD)" $(BA)/harness-check $(BA)/golden-check $(ARM_CHECKASM)
 
 # ---------------------------------------------------------------------------
 # Firmware image of a board/panel pair: the frame loop (firmware/board/
@@ -152,7 +178,9 @@ arm-golden-check: $(BA)/golden-check $(BA)/harness-check
 # sources ($(FW_LCD_SRCS)) are left out of every other build.
 # ---------------------------------------------------------------------------
 ALL_STAGES := trm assemble lcd
-STAGES_DEFAULT := $(if $(filter undefined,$(origin BOARD_STAGES)),$(ALL_STAGES),$(BOARD_STAGES))
+# A board may name other default stages for a panel: BOARD_STAGES_<panel>.
+STAGES_DEFAULT := $(if $(filter-out undefined,$(origin BOARD_STAGES_$(PANEL))),$(BOARD_STAGES_$(PANEL)),$(if \
+                  $(filter undefined,$(origin BOARD_STAGES)),$(ALL_STAGES),$(BOARD_STAGES)))
 STAGES ?= $(STAGES_DEFAULT)
 # The image of a pair: build/<board>-<panel>, or build/<board>-<panel>-<stages>
 # when STAGES differs from the board's default (e.g. -link for STAGES=).
@@ -160,8 +188,10 @@ space := $(eval) $(eval)
 STAGES_TAG := $(or $(subst $(space),+,$(sort $(STAGES))),link)
 BP := $(BUILD)/$(BOARD)-$(PANEL)$(if $(filter-out $(sort $(STAGES)),$(sort $(STAGES_DEFAULT)))$(filter-out $(sort $(STAGES_DEFAULT)),$(sort $(STAGES))),-$(STAGES_TAG))
 FW_LCD_ON := $(if $(and $(filter lcd,$(PANEL_TYPE)),$(filter lcd,$(STAGES))),1,0)
+# BOARD_FW_CFG: the board's own configuration defines (e.g. LCD history
+# bits, the link formats it accepts), for every object of its images.
 FW_CFG := -DTDC_CFG_TRM=$(if $(filter trm,$(STAGES)),1,0) -DTDC_CFG_ASSEMBLE=$(if $(filter assemble,$(STAGES)),1,0) \
-          -DTDC_CFG_LCD=$(FW_LCD_ON)
+          -DTDC_CFG_LCD=$(FW_LCD_ON) $(BOARD_FW_CFG)
 PANEL_CONFIG := $(GEN)/tdc_panel_$(PANEL)_config.h
 ARM_IMG_CFLAGS := $(ARM_FW_CFLAGS) -include $(PANEL_CONFIG) $(FW_CFG)
 FW_IMG_SRCS = $(filter-out $(if $(filter 1,$(FW_LCD_ON)),,$(FW_LCD_SRCS)),$(FW_SRCS)) \
@@ -171,6 +201,9 @@ FW_IMG_OBJS = $(patsubst %.c,$(BP)/%.o,$(FW_IMG_SRCS)) $(BP)/gen/tdc_panel_$(PAN
 # The stage selection and flags are part of the objects: rebuild when they change.
 $(BP)/stages: FORCE
 	@mkdir -p $(@D); echo '$(ARM_IMG_CFLAGS)' | cmp -s - $@ || echo '$(ARM_IMG_CFLAGS)' > $@
+ifeq ($(BOARD_MVE),1)
+$(BP)/firmware/tdc_trm_mve.o: ARM_IMG_CFLAGS := $(call ARM_MVE_FIX,$(ARM_IMG_CFLAGS))
+endif
 $(BP)/%.o: %.c $(GEN)/tdc_panels.h $(PANEL_CONFIG) $(BP)/stages
 	@mkdir -p $(@D)
 	$(ARM_CC) $(ARM_IMG_CFLAGS) -MMD -MP -c $< -o $@
@@ -269,6 +302,16 @@ arm-loop-cost: $(BP)/loop.tsv
 arm-fw-check: $(BP)/fw-check
 	@tests/run_tests.sh "$(BOARD)-$(PANEL)" $(BP)/fw-check
 
+# Host-build checks of the loop on crafted streams (issue 17): fw-loop
+# (tests/arm/test_fw_loop.sh: after loss, against clean streams) and
+# fw-refuse (tests/arm/test_fw_refuse.sh: a 60 Hz panel refuses TRM).
+$(BP)/fw-%-check: $(FWH)/tdc_fw_host $(B)/tests/fw_stream tests/arm/test_fw_%.sh
+	@mkdir -p $(@D)
+	@printf '#!/bin/sh\nexec tests/arm/test_fw_$*.sh %s %s %s\n' "$(FWH)/tdc_fw_host" "$(B)/tests/fw_stream" "$(PANEL_DIMS)" > $@
+	@chmod +x $@
+arm-fw-loop-check arm-fw-refuse-check: arm-fw-%-check: $(BP)/fw-%-check
+	@tests/run_tests.sh "fw-$*-$(PANEL)" $<
+
 -include $(shell find $(BA) $(BP) -name '*.d' 2>/dev/null)
 endif
 
@@ -289,8 +332,9 @@ FORCE:
 #   ARM_FIT_FAIL: board:panel:stages:region pairs that must not fit
 # ---------------------------------------------------------------------------
 ARM_TEST_PAIRS ?= mps2-an500:htc-vive:link mps3-an547:htc-vive:default mps3-an547:lcd-240:default:trm \
-                  stm32h747i-disco:htc-vive:default stm32h747i-disco:lcd-240:default
-ARM_FIT_FAIL ?= mps2-an500:htc-vive:default:PSRAM stm32h747i-disco:htc-vive:trm:SDRAM
+                  stm32h747i-disco:htc-vive:default stm32h747i-disco:lcd-240:default \
+                  stm32h747i-disco:disco-dsi:default
+ARM_FIT_FAIL ?= mps2-an500:htc-vive:default:PSRAM stm32h747i-disco:htc-vive:assemble:SDRAM
 ARM_FAIL_LINE = echo "[$(1)] FAIL $(2)"; echo "$(1) $(2) FAIL" >> "$(RESULTS)"
 
 test-arm:
@@ -311,6 +355,8 @@ test-arm:
 	            $(MAKE) --no-print-directory -j2 BOARD=$$b PANEL=$$p "$$@" arm-fw-check || :; fi; \
 	    else $(call ARM_FAIL_LINE,$$b-$$p,firmware-build); fi; \
 	done
+	@$(MAKE) --no-print-directory -j2 BOARD=mps3-an547 PANEL=htc-vive arm-fw-loop-check || :
+	@$(MAKE) --no-print-directory -j2 BOARD=mps3-an547 PANEL=disco-dsi arm-fw-refuse-check || :
 	@for t in $(ARM_FIT_FAIL); do \
 	    b=$${t%%:*}; r=$${t#*:}; p=$${r%%:*}; r=$${r#*:}; s=$${r%%:*}; g=$${r#*:}; \
 	    printf '#!/bin/sh\nexec tests/arm/test_fit.sh %s %s %s %s\n' $$b $$p $$s $$g > $(BUILD)/fit-$$b-$$p; \

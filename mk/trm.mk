@@ -5,6 +5,7 @@ SIM_SRCS += sim/ref_trm.c
 TESTS += $(B)/tests/unit/test_trm_ref
 TESTS += $(B)/tests/unit/test_trm
 TESTS += $(B)/tests/unit/test_trm_stability
+TESTS += $(B)/tests/unit/test_trm_loss
 GOLDEN_STAGES += trm
 BENCHES += $(B)/tests/bench/bench_trm
 
@@ -13,6 +14,9 @@ BENCHES += $(B)/tests/bench/bench_trm
 # without -mgeneral-regs-only, so every firmware object's machine code is
 # checked for floating-point instructions instead.
 FW_SRCS += firmware/tdc_trm_rows.c firmware/tdc_trm_avx2.c
+# Helium (MVE) row kernels: compiled empty except for boards with BOARD_MVE
+# (mk/boards.mk gives that object -mcpu=cortex-m55+nofp -mfloat-abi=softfp).
+FW_SRCS += firmware/tdc_trm_mve.c
 $(B)/firmware/tdc_trm_avx2.o: FW_CFLAGS := $(filter-out -mgeneral-regs-only,$(FW_CFLAGS))
 ifeq ($(shell uname -m),x86_64)
 $(B)/test-fw-nofloat-insn: $(FWLIB) tests/rules/check_simd_nofloat.sh

@@ -5,6 +5,16 @@ BOARD_LDS   := boards/stm32h747i-disco/stm32h747i-disco.ld
 # name:origin:length:attributes (RM0399 memory map; SDRAM on FMC bank 2 as wired on the DISCO)
 BOARD_MEM   := FLASH:0x08000000:1M:rx DTCM:0x20000000:128K:rw AXISRAM:0x24000000:512K:rwx SDRAM:0xD0000000:32M:rw
 BOARD_SRCS  := boards/stm32h747i-disco/startup.c boards/stm32h747i-disco/sdram.c firmware/board/tdc_board_stm32h7.c
-# Default stages (see docs/boards.md: TRM and assembly of a 1080x1200-per-eye panel need more than 32 MiB)
-BOARD_STAGES := lcd
+# Default stages (docs/boards.md, memory fit): TRM (rho recomputed, 4.5 B/px)
+# and the LCD inverse fit the 32 MiB SDRAM for htc-vive, rift-cv1 and
+# lcd-240; tile assembly (23 B/px) only for the board's own 800x480 panel,
+# which runs at 60 Hz, so TRM is compiled in there but refused at run time.
+BOARD_STAGES := trm lcd
+BOARD_STAGES_disco-dsi := trm assemble lcd
+# 2560x1440: not even the LCD inverse fits (frame buffer + staging 22 MB +
+# 6-bit history 16.6 MB): link decode and panel out only.
+BOARD_STAGES_pg279q :=
+# LCD history at 6 bits per sample (4.5 B/px instead of 6: lcd-240's "trm
+# lcd" fits with it), and no RGB30 link format (staging 3 B/px, not 4).
+BOARD_FW_CFG := -DTDC_CFG_LCD_PREV_BITS=6u -DTDC_LINK_FORMAT_MASK=0x16u
 BOARD_FLASH := dfu: hosttools USB DFU path (tdc-usb flash), or dfu-util -a 0 -s 0x08000000:leave -D IMAGE.bin (BOOT0 high), or STM32CubeProgrammer over ST-LINK

@@ -67,6 +67,11 @@
 #ifndef TDC_CFG_LCD_MODE
 #define TDC_CFG_LCD_MODE TDC_LCD_MODE_TABLE33
 #endif
+/* Bits per sample of the LCD history (previous drive and light): 8 is
+ * exact; a board short of memory configures fewer (boards/<b>/board.mk). */
+#ifndef TDC_CFG_LCD_PREV_BITS
+#define TDC_CFG_LCD_PREV_BITS 8u
+#endif
 #endif
 
 /* Largest TRM ratio r this build accepts (buffers are sized for it). */
@@ -84,7 +89,12 @@ extern const tdc_panel_t TDC_PANEL_SYMBOL;
 
 /* ---- static buffers (sizes from the panel and the stages) ---- */
 static uint8_t g_fb[(size_t)FW_STRIDE * FW_H] TDC_EXTRAM;
-static uint8_t g_staging[TDC_LINK_STAGING_BYTES(FW_W, FW_H)] TDC_EXTRAM;
+/* Staging holds the largest payload this build accepts: a full frame in
+ * the widest compiled-in format (RGB30: 4 B/px; without it RGB888, 3 B/px).
+ * Per-pixel MOTION is never staged: no stage here uses it (skip_motion). */
+#define FW_FULL_BPP ((((unsigned)TDC_LINK_FORMAT_MASK >> TDC_PIXFMT_RGB30) & 1u) ? 4u : 3u)
+#define FW_STAGING_BYTES ((size_t)FW_W * FW_H * FW_FULL_BPP + TDC_LINK_STREAM_HEADER_BYTES)
+static uint8_t g_staging[FW_STAGING_BYTES] TDC_EXTRAM;
 
 #if TDC_CFG_TRM
 #define FW_RW TDC_REDUCED_DIM(FW_W, TDC_CFG_R_NUM, TDC_CFG_R_DEN)
@@ -110,7 +120,7 @@ static uint64_t g_mode_arena[FW_EYES][FW_MODE_BYTES / 8u] TDC_EXTRAM;
 #endif
 
 #if TDC_CFG_LCD
-static uint64_t g_lcd_arena[FW_EYES][TDC_LCD_MEM_BYTES(FW_W, FW_H) / 8u] TDC_EXTRAM;
+static uint64_t g_lcd_arena[FW_EYES][TDC_LCD_MEM_BYTES_MODE_BITS(FW_W, FW_H, TDC_CFG_LCD_MODE, TDC_CFG_LCD_PREV_BITS) / 8u] TDC_EXTRAM;
 #endif
 
 /* Transport chunk: what one USB bulk transfer (or semihosting read) brings. */
@@ -137,12 +147,21 @@ static struct {
     uint32_t frames_dropped;  /* unfinished frames overwritten by a later FULL packet */
     uint32_t stage_errors;    /* a stage refused a frame (status != TDC_OK) */
     uint32_t unsupported;     /* streams this build cannot run */
+    uint32_t stream_repeats;  /* identical stream headers (late-joiner copies): no-ops */
+    uint32_t late_full;       /* FULL packets of a finished frame: unpacked by the decoder, so processed */
+    uint8_t have_rej;         /* a pixel packet of a frame not started yet was rejected ... */
+    uint32_t rej_frame;       /* ... for this frame ... */
+    uint8_t rej_kinds[2];     /* ... these kinds, per eye (applied only if a good packet starts it) */
+    uint8_t have_stream;      /* the configured stream's header, to recognise a repeat */
+    uint16_t stream_id;
+    tdc_link_stream_info_t stream;
 #if TDC_CFG_TRM
     tdc_trm_t trm[FW_EYES];
 #endif
 #if TDC_CFG_ASSEMBLE
     tdc_asm_t as[FW_EYES];
-    uint32_t asm_skipped;     /* frames too far ahead to catch up with */
+    uint32_t asm_skipped;     /* frames behind assembly's counter */
+    uint32_t asm_resyncs;     /* joined mid-stream / too far ahead: assembly restarted at the frame */
 #endif
 #if TDC_CFG_LCD
     tdc_lcd_t lcd[FW_EYES];
@@ -168,6 +187,21 @@ static const char *reset_name(tdc_reset_cause_t c)
 }
 
 /* ---- stream configuration ---- */
+#if TDC_CFG_TRM || TDC_CFG_LCD
+/* The refresh rate the panel runs a stream at: the stream's if the panel
+ * has that rate, else the panel's nominal one. */
+static uint16_t panel_hz(const tdc_panel_t *panel, uint16_t stream_hz)
+{
+    uint16_t hz = panel->refresh_hz;
+    for (unsigned i = 0; i < TDC_PANEL_MAX_RATES && panel->rates_hz[i]; i++) {
+        if (panel->rates_hz[i] == stream_hz) {
+            hz = stream_hz;
+        }
+    }
+    return hz;
+}
+#endif
+
 static void configure_stream(void)
 {
     const tdc_link_stream_info_t *si = tdc_link_stream(&g.dec);
@@ -176,9 +210,14 @@ static void configure_stream(void)
     g.mode = MODE_NONE;
     g.have_frame = 0;
     g.have_last = 0;
+    g.have_rej = 0;
+    g.have_stream = 0;
     if (!si) {
         return;
     }
+    g.stream = *si;
+    g.stream_id = g.dec.stream_id;
+    g.have_stream = 1;
     const int reduced = (si->flags & TDC_LINK_STREAM_REDUCED) != 0;
     const int subframes = (si->flags & TDC_LINK_STREAM_SUBFRAMES) != 0;
     if (reduced && subframes) {
@@ -190,10 +229,14 @@ static void configure_stream(void)
 #if TDC_CFG_TRM
         for (uint32_t e = 0; e < FW_EYES; e++) {
             tdc_trm_config_t cfg;
-            tdc_trm_default_config(&cfg, (uint16_t)FW_W, (uint16_t)FW_H, si->refresh_hz);
+            /* the rate the panel really runs: the stream's if the panel
+             * has it, else the panel's own (a 60 Hz panel refuses TRM
+             * whatever the stream claims) */
+            tdc_trm_default_config(&cfg, (uint16_t)FW_W, (uint16_t)FW_H, panel_hz(panel, si->refresh_hz));
             cfg.r_num = si->r_num;
             cfg.r_den = si->r_den;
             cfg.reduced_in_stream = 1;
+            cfg.keep_residual = 0; /* rho recomputed from the kept codes: 4.5 B/px, docs/boards.md */
             const size_t need = tdc_trm_get_size(&cfg);
             if (need == 0 || need > sizeof g_mode_arena[e] ||
                 tdc_trm_init(&g.trm[e], &cfg, panel, g_mode_arena[e], sizeof g_mode_arena[e]) != TDC_OK) {
@@ -224,15 +267,10 @@ static void configure_stream(void)
 #if TDC_CFG_LCD
     /* The overdrive model is per refresh rate: the stream's if the panel
      * has it, else the panel's nominal one. */
-    uint16_t hz = panel->refresh_hz;
-    for (unsigned i = 0; i < TDC_PANEL_MAX_RATES && panel->rates_hz[i]; i++) {
-        if (panel->rates_hz[i] == si->refresh_hz) {
-            hz = si->refresh_hz;
-        }
-    }
+    const uint16_t hz = panel_hz(panel, si->refresh_hz);
     g.lcd_ok = 1;
     for (uint32_t e = 0; e < FW_EYES; e++) {
-        tdc_lcd_config_t cfg = {(uint16_t)FW_W, (uint16_t)FW_H, hz, TDC_CFG_LCD_MODE, 8u};
+        tdc_lcd_config_t cfg = {(uint16_t)FW_W, (uint16_t)FW_H, hz, TDC_CFG_LCD_MODE, (uint8_t)TDC_CFG_LCD_PREV_BITS};
         tdc_status_t st = tdc_lcd_init(&g.lcd[e], &cfg, panel, g_lcd_arena[e], sizeof g_lcd_arena[e]);
         if (st == TDC_ERR_PANEL && cfg.mode != TDC_LCD_MODE_EXACT) {
             cfg.mode = TDC_LCD_MODE_EXACT;
@@ -270,9 +308,19 @@ static uint32_t kinds_needed(uint32_t eye, uint32_t frame)
 static int assemble_eye(uint32_t e, uint32_t frame, uint32_t kinds)
 {
     tdc_asm_t *st = &g.as[e];
-    if (frame < st->next_frame || frame - st->next_frame > 64u) {
+    if (frame < st->next_frame) {
         g.asm_skipped++;
         return 0;
+    }
+    if (frame - st->next_frame > 64u) {
+        /* a late joiner (or a board reset mid-stream, or a long gap): the
+         * history is gone either way; restart assembly at this frame */
+        const tdc_asm_config_t cfg = {(uint16_t)FW_W, (uint16_t)FW_H};
+        if (tdc_asm_init(st, &cfg, g_mode_arena[e], sizeof g_mode_arena[e]) != TDC_OK) {
+            return 0;
+        }
+        tdc_asm_start_at(st, frame);
+        g.asm_resyncs++;
     }
     while (st->next_frame < frame) {
         if (tdc_asm_assemble(st, st->next_frame) != TDC_OK) {
@@ -300,9 +348,8 @@ static int assemble_eye(uint32_t e, uint32_t frame, uint32_t kinds)
 
 /* Runs the pipeline of eye e on what arrived; returns 1 if the eye's part of
  * the frame buffer was updated. */
-static int process_eye(uint32_t e, uint32_t frame)
+static int process_eye_kinds(uint32_t e, uint32_t frame, uint32_t kinds)
 {
-    const uint32_t kinds = g.kinds[e];
     uint8_t *fb = g_fb + (size_t)e * FW_W * 3u;
     tdc_res_t *residual = NULL;
     tdc_status_t st = TDC_OK;
@@ -316,18 +363,21 @@ static int process_eye(uint32_t e, uint32_t frame)
         break;
 #if TDC_CFG_TRM
     case MODE_TRM:
+        /* The frame index ties a reduced frame to the full frame before it:
+         * if that one was lost, rejected or out of order (or this is the
+         * stream's start), the reduced frame is shown without residual,
+         * never with stale state (tdc_trm_reduced_seq). */
         if (kinds & KIND_BIT(TDC_LINK_KIND_FULL)) {
-            st = tdc_trm_full(&g.trm[e], fb, FW_STRIDE, fb, FW_STRIDE); /* in place: D(I) is taken first */
+            st = tdc_trm_full_seq(&g.trm[e], fb, FW_STRIDE, fb, FW_STRIDE, frame); /* in place: D(I) is taken first */
         } else if (kinds & KIND_BIT(TDC_LINK_KIND_REDUCED)) {
             uint32_t rw = 0, rh = 0;
             tdc_link_reduced_size(&g.dec, &rw, &rh);
-            st = tdc_trm_reduced(&g.trm[e], g_reduced[e], rw * 3u, fb, FW_STRIDE);
-            if (st == TDC_ERR_STATE) {
-                return 0; /* no full frame of this eye yet (stream start): keep the image */
-            }
+            st = tdc_trm_reduced_seq(&g.trm[e], g_reduced[e], rw * 3u, fb, FW_STRIDE, frame);
         } else {
             return 0;
         }
+        /* NULL (rho is recomputed, not stored): the LCD inverse drops the
+         * light it cannot reach and counts it (tdc_lcd_stats_t) */
         residual = tdc_trm_residual(&g.trm[e]);
         break;
 #endif
@@ -353,6 +403,11 @@ static int process_eye(uint32_t e, uint32_t frame)
 #endif
     (void)residual;
     return 1;
+}
+
+static int process_eye(uint32_t e, uint32_t frame)
+{
+    return process_eye_kinds(e, frame, g.kinds[e]);
 }
 
 static void show_frame(void)
@@ -398,6 +453,17 @@ static void start_frame(uint32_t frame, int may_show_previous)
     g.eyes_done = 0;
     g.eyes_updated = 0;
     g.kinds[0] = g.kinds[1] = 0;
+    if (g.have_rej && g.rej_frame == frame) {
+        /* rejected earlier for this frame: those eyes keep their image */
+        for (uint32_t e = 0; e < FW_EYES; e++) {
+            if (g.rej_kinds[e] & kinds_needed(e, frame)) {
+                g.eyes_done = (uint8_t)(g.eyes_done | (1u << e));
+            }
+        }
+    }
+    if (g.have_rej && g.rej_frame <= frame) {
+        g.have_rej = 0;
+    }
 }
 
 static void eye_done(uint32_t e)
@@ -409,25 +475,63 @@ static void eye_done(uint32_t e)
 }
 
 /* A pixel packet of the current or a later frame failed its payload CRC:
- * that eye keeps its image for this frame. */
+ * that eye keeps its image for this frame.  A rejected packet never moves
+ * the loop's notion of time (its frame index is not trusted: only the
+ * header CRC vouched for it): for the current frame the eye is done; for a
+ * later one this is remembered and applied only if an accepted packet
+ * starts that frame. */
 static void on_rejected(const tdc_link_event_t *ev)
 {
     if (g.mode == MODE_NONE || ev->error != TDC_LINK_ERR_CRC || ev->eye >= FW_EYES ||
         (g.have_frame && ev->frame_index < g.frame) || (g.have_last && ev->frame_index <= g.last_frame)) {
         return;
     }
-    if (!g.have_frame || ev->frame_index != g.frame) {
-        start_frame(ev->frame_index, 1); /* nothing was unpacked: the old frame is intact */
+    if (g.have_frame && ev->frame_index == g.frame) {
+        const uint32_t need = kinds_needed(ev->eye, g.frame);
+        if ((need & KIND_BIT(ev->kind)) && !(g.eyes_done & (1u << ev->eye))) {
+            eye_done(ev->eye);
+        }
+        return;
     }
-    const uint32_t need = kinds_needed(ev->eye, g.frame);
-    if ((need & KIND_BIT(ev->kind)) && !(g.eyes_done & (1u << ev->eye))) {
-        eye_done(ev->eye);
+    if (!g.have_rej || g.rej_frame != ev->frame_index) {
+        /* one frame ahead is all a real loss needs; a newer claim replaces
+         * an older one (both unverified) */
+        g.have_rej = 1;
+        g.rej_frame = ev->frame_index;
+        g.rej_kinds[0] = g.rej_kinds[1] = 0;
     }
+    if (ev->kind <= 7u) {
+        g.rej_kinds[ev->eye] = (uint8_t)(g.rej_kinds[ev->eye] | KIND_BIT(ev->kind));
+    }
+}
+
+/* A FULL packet the decoder accepted for an eye the loop had already
+ * finished (rejected first, then resent intact): the decoder has unpacked
+ * it into the frame buffer, so it is processed now -- the eye must never
+ * show a raw, unprocessed image -- and shown with the next frame. */
+static void late_full(uint32_t e, uint32_t frame)
+{
+    g.late_full++;
+    if (kinds_needed(e, frame) & KIND_BIT(TDC_LINK_KIND_FULL)) {
+        (void)process_eye_kinds(e, frame, KIND_BIT(TDC_LINK_KIND_FULL));
+    }
+}
+
+static int same_stream(const tdc_link_event_t *ev)
+{
+    const tdc_link_stream_info_t *si = tdc_link_stream(&g.dec);
+    return g.have_stream && si && ev->stream_id == g.stream_id && g.stream.flags == si->flags &&
+           g.stream.r_num == si->r_num && g.stream.r_den == si->r_den && g.stream.width == si->width &&
+           g.stream.height == si->height && g.stream.eyes == si->eyes && g.stream.refresh_hz == si->refresh_hz;
 }
 
 static void on_packet(const tdc_link_event_t *ev)
 {
     if (ev->kind == TDC_LINK_KIND_STREAM) {
+        if (g.mode != MODE_NONE && same_stream(ev)) {
+            g.stream_repeats++; /* the late joiners' copy: nothing changes */
+            return;
+        }
         finish_frame(1);
         configure_stream();
         return;
@@ -436,13 +540,27 @@ static void on_packet(const tdc_link_event_t *ev)
         return;
     }
     if (!g.have_frame && g.have_last && ev->frame_index <= g.last_frame) {
-        g.late_packets++; /* its frame was shown already (or dropped) */
+        if (ev->kind == TDC_LINK_KIND_FULL && ev->frame_index == g.last_frame) {
+            late_full(ev->eye, ev->frame_index);
+        } else {
+            g.late_packets++; /* its frame was shown already (or dropped) */
+        }
         return;
     }
     if (!g.have_frame || ev->frame_index != g.frame) {
         start_frame(ev->frame_index, ev->kind != TDC_LINK_KIND_FULL);
     }
     const uint32_t e = ev->eye;
+    if ((g.eyes_done & (1u << e)) && ev->kind == TDC_LINK_KIND_FULL &&
+        (kinds_needed(e, g.frame) & KIND_BIT(TDC_LINK_KIND_FULL))) {
+        /* rejected first, resent intact before the frame finished: now in
+         * the frame buffer, so processed and part of this frame */
+        g.kinds[e] = (uint8_t)(g.kinds[e] | KIND_BIT(ev->kind));
+        if (process_eye(e, g.frame)) {
+            g.eyes_updated = (uint8_t)(g.eyes_updated | (1u << e));
+        }
+        return;
+    }
     g.kinds[e] = (uint8_t)(g.kinds[e] | KIND_BIT(ev->kind));
     const uint32_t need = kinds_needed(e, g.frame);
     if (!(g.eyes_done & (1u << e)) && need && (g.kinds[e] & need) == need) {
@@ -459,6 +577,7 @@ static void decoder_init(void)
     tdc_link_buffers_t b = {0};
     b.staging = g_staging;
     b.staging_bytes = sizeof g_staging;
+    b.skip_motion = 1; /* per-pixel motion: sent by the renderer, used by no stage here */
     b.full_stride = FW_STRIDE;
     for (uint32_t e = 0; e < FW_EYES; e++) {
         b.full[e] = g_fb + (size_t)e * FW_W * 3u;
@@ -540,6 +659,30 @@ int tdc_fw_run(void)
     log_kv("late packets (ignored): ", g.late_packets);
     log_kv("stage errors: ", g.stage_errors);
     log_kv("unsupported streams: ", g.unsupported);
+    log_kv("repeated stream headers (no-op): ", g.stream_repeats);
+    log_kv("late full packets processed: ", g.late_full);
+    log_kv("packets skipped (unused kind): ", c->packets_skipped);
+#if TDC_CFG_TRM
+    if (g.mode == MODE_TRM) {
+        uint32_t unpaired = 0;
+        for (uint32_t e = 0; e < FW_EYES; e++) {
+            unpaired += g.trm[e].stats.reduced_unpaired;
+        }
+        log_kv("reduced frames without their full frame (no residual): ", unpaired);
+    }
+#endif
+#if TDC_CFG_ASSEMBLE
+    log_kv("assembly restarts (joined mid-stream): ", g.asm_resyncs);
+#endif
+#if TDC_CFG_LCD
+    {
+        uint64_t dropped = 0;
+        for (uint32_t e = 0; e < FW_EYES; e++) {
+            dropped += g.lcd[e].stats.residual_dropped;
+        }
+        log_kv("LCD unreached light dropped (pixel-channels): ", (uint32_t)(dropped > 0xffffffffu ? 0xffffffffu : dropped));
+    }
+#endif
     log_kv("time us: ", tdc_board_time_us() - t0);
     return status || g.stage_errors || g.unsupported ? 1 : 0;
 }

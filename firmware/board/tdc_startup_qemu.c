@@ -32,6 +32,12 @@ __attribute__((section(".vectors"), used)) const tdc_vectors_t tdc_vectors = {
 
 void Reset_Handler(void)
 {
+#if defined(TDC_TRM_MVE)
+    /* Helium (MVE) kernels: enable CP10/CP11 (CPACR, full access) before
+     * the first vector instruction; otherwise it faults (NOCP). */
+    *(volatile uint32_t *)0xE000ED88u |= 0xFu << 20;
+    __asm volatile("dsb\n\tisb" ::: "memory");
+#endif
     int status = tdc_crt0_start();
     tdc_semihost_exit((uint32_t)status);
 }

@@ -331,6 +331,10 @@ static int mode_init(sim_mode_t *m, const tdc_mode_desc_t *d, tdc_sim_result_t *
         if (d->kind == TDC_MODE_NCSFI) {
             tc.s_q8 = 0; /* w = exp(0) = 1: residual added regardless of motion */
         }
+        /* the LCD inverse adds the light it could not reach to rho: the
+         * simulator keeps rho stored for it (boards recompute rho and drop
+         * that light, counted: docs/boards.md) */
+        tc.keep_residual = 1;
         size_t n = tdc_trm_get_size(&tc);
         m->trm_mem = n ? malloc(n) : NULL;
         m->trmr_mem = n ? malloc(n) : NULL;

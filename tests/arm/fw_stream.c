@@ -15,6 +15,17 @@
  *   subframes  240 Hz tile-ordered subframes: hourglass pattern bits on the
  *              first frame of every cycle, one sample per 2x2 tile, and a
  *              motion vector per sample (content panning 3 px per frame)
+ * Crafted variants (issue 17: the loop must show what the plain stream
+ * shows; tests/arm/test_fw_loop.sh compares them):
+ *   trm-motion      the renderer's TRM stream: also per-pixel MOTION
+ *                   packets (stream flag MOTION), which no stage uses
+ *   trm-future      after frame 0, the packets of both eyes with a valid
+ *                   header CRC, frame index 0x7FFFFFF0 and a bad payload CRC
+ *   trm-rehdr       the identical stream header again after every frame
+ *   trm-resend      frame 2: eye 0's FULL corrupted, then resent intact
+ *                   after eye 1's packet; frame 3: eye 0's REDUCED corrupted
+ *   trm-resend-ref  frame 2 intact, frame 3 eye 0's REDUCED corrupted
+ *   subframes-late  the subframe stream with frame indices from 1000
  * Contents: tests/golden/tdc_content.h (edge on eye 0, text on eye 1).
  *
  * EXPECTED (plain mode only, for panels that show the decoded codes, i.e.
@@ -62,7 +73,11 @@ int main(int argc, char **argv)
         fprintf(stderr, "fw_stream: bad size\n");
         return 2;
     }
-    const int trm = !strcmp(mode, "trm"), sub = !strcmp(mode, "subframes"), plain = !strcmp(mode, "plain");
+    const int trm = !strncmp(mode, "trm", 3), sub = !strncmp(mode, "subframes", 9), plain = !strcmp(mode, "plain");
+    const int v_motion = !strcmp(mode, "trm-motion"), v_future = !strcmp(mode, "trm-future");
+    const int v_rehdr = !strcmp(mode, "trm-rehdr"), v_resend = !strcmp(mode, "trm-resend");
+    const int v_resend_ref = !strcmp(mode, "trm-resend-ref");
+    const uint32_t f0 = !strcmp(mode, "subframes-late") ? 1000u : 0u;
     if (!trm && !sub && !plain) {
         fprintf(stderr, "fw_stream: unknown mode %s\n", mode);
         return 2;
@@ -70,6 +85,9 @@ int main(int argc, char **argv)
     tdc_link_stream_info_t info = {0};
     info.flags = trm ? TDC_LINK_STREAM_REDUCED
                      : sub ? (TDC_LINK_STREAM_SUBFRAMES | TDC_LINK_STREAM_SAMPLE_MV) : 0u;
+    if (v_motion) {
+        info.flags |= TDC_LINK_STREAM_MOTION;
+    }
     info.r_num = 1;
     info.r_den = trm ? 2 : 1;
     info.width = (uint16_t)w;
@@ -83,11 +101,14 @@ int main(int argc, char **argv)
     const uint32_t rw = TDC_REDUCED_DIM(w, 1u, 2u), rh = TDC_REDUCED_DIM(h, 1u, 2u);
     g_cap = (size_t)w * h * 4u + 1024u;
     g_pkt = malloc(g_cap);
+    uint8_t *g_resend = malloc(g_cap);
+    size_t resend_n = 0;
     uint8_t *rgb = malloc((size_t)w * h * 3u);
     uint8_t *red = malloc((size_t)rw * rh * 3u);
     uint8_t *samples = malloc((size_t)tx * ty * 3u);
     int16_t *mv = malloc((size_t)tx * ty * 2u * sizeof *mv);
     uint8_t *bits = calloc(TDC_PATTERN_BYTES(w, h) + 1u, 1);
+    int16_t *pmv = calloc((size_t)w * h * 2u, sizeof *pmv);
     g_out = fopen(argv[6], "wb");
     if (!g_pkt || !rgb || !red || !samples || !mv || !bits || !g_out) {
         fprintf(stderr, "fw_stream: out of memory or cannot create %s\n", argv[6]);
@@ -126,9 +147,18 @@ int main(int argc, char **argv)
                 put(n, "full frame");
             } else if (trm) {
                 if (tdc_link_trm_kind(f, e) == TDC_LINK_KIND_FULL) {
-                    put(tdc_link_encode_frame(&enc, g_pkt, g_cap, TDC_LINK_KIND_FULL, e, f, TDC_PIXFMT_RGB888, rgb, w,
-                                              h, w * 3u),
-                        "full frame");
+                    size_t n = tdc_link_encode_frame(&enc, g_pkt, g_cap, TDC_LINK_KIND_FULL, e, f, TDC_PIXFMT_RGB888,
+                                                     rgb, w, h, w * 3u);
+                    if (v_resend && f == 2 && e == 0) {
+                        /* corrupted now, resent intact after eye 1's packet */
+                        g_pkt[TDC_LINK_HEADER_BYTES + 100u] ^= 0x40u;
+                        put(n, "full frame (corrupted)");
+                        g_pkt[TDC_LINK_HEADER_BYTES + 100u] ^= 0x40u;
+                        resend_n = n;
+                        memcpy(g_resend, g_pkt, n);
+                    } else {
+                        put(n, "full frame");
+                    }
                 } else {
                     /* 2x2 box prefilter (rounded; edge pixels replicated). */
                     for (uint32_t y = 0; y < rh; y++) {
@@ -145,15 +175,24 @@ int main(int argc, char **argv)
                             }
                         }
                     }
-                    put(tdc_link_encode_frame(&enc, g_pkt, g_cap, TDC_LINK_KIND_REDUCED, e, f, TDC_PIXFMT_RGB888, red,
-                                              rw, rh, rw * 3u),
-                        "reduced frame");
+                    size_t n = tdc_link_encode_frame(&enc, g_pkt, g_cap, TDC_LINK_KIND_REDUCED, e, f,
+                                                     TDC_PIXFMT_RGB888, red, rw, rh, rw * 3u);
+                    if ((v_resend || v_resend_ref) && f == 3 && e == 0) {
+                        g_pkt[TDC_LINK_HEADER_BYTES + 10u] ^= 0x40u; /* payload CRC must catch it */
+                    }
+                    put(n, "reduced frame");
+                }
+                if (v_motion) {
+                    for (size_t i = 0; i < (size_t)w * h * 2u; i++) {
+                        pmv[i] = (int16_t)((i & 1u) ? 2 * 16 : -3 * 16);
+                    }
+                    put(tdc_link_encode_motion(&enc, g_pkt, g_cap, e, f, pmv, w, h, 0), "per-pixel motion");
                 }
             } else {
                 /* Hourglass everywhere (bits 0); sample k = f mod 4 of each tile. */
                 const unsigned pos = tdc_ordering_pixel(TDC_ORDER_HOURGLASS, f & 3u);
                 if ((f & 3u) == 0) {
-                    put(tdc_link_encode_pattern(&enc, g_pkt, g_cap, e, f, bits, w, h), "pattern");
+                    put(tdc_link_encode_pattern(&enc, g_pkt, g_cap, e, f + f0, bits, w, h), "pattern");
                 }
                 for (uint32_t y = 0; y < ty; y++) {
                     for (uint32_t x = 0; x < tx; x++) {
@@ -166,9 +205,33 @@ int main(int argc, char **argv)
                         mv[((size_t)y * tx + x) * 2 + 1] = (int16_t)(e == 1 ? 2 * 16 : 0);
                     }
                 }
-                put(tdc_link_encode_subframe(&enc, g_pkt, g_cap, e, f, TDC_PIXFMT_RGB888, samples, w, h), "subframe");
-                put(tdc_link_encode_motion(&enc, g_pkt, g_cap, e, f, mv, w, h, 1), "sample motion");
+                put(tdc_link_encode_subframe(&enc, g_pkt, g_cap, e, f + f0, TDC_PIXFMT_RGB888, samples, w, h),
+                    "subframe");
+                put(tdc_link_encode_motion(&enc, g_pkt, g_cap, e, f + f0, mv, w, h, 1), "sample motion");
             }
+        }
+        if (resend_n && f == 2) {
+            memcpy(g_pkt, g_resend, resend_n);
+            put(resend_n, "full frame (resent intact)");
+            resend_n = 0;
+        }
+        if (v_future && f == 0) {
+            /* valid header CRC, far-future frame index, bad payload CRC */
+            tdc_content_frame(eye_content(0), 0, 11u, rgb, (int)w, (int)h, (int)(w * 3u));
+            size_t n = tdc_link_encode_frame(&enc, g_pkt, g_cap, TDC_LINK_KIND_FULL, 0, 0x7FFFFFF0u,
+                                             TDC_PIXFMT_RGB888, rgb, w, h, w * 3u);
+            g_pkt[TDC_LINK_HEADER_BYTES + 7u] ^= 0x01u;
+            put(n, "far-future frame (bad payload)");
+            if (eyes == 2) {
+                /* and the other eye's packet of that frame: every eye of it "lost" */
+                n = tdc_link_encode_frame(&enc, g_pkt, g_cap, TDC_LINK_KIND_REDUCED, 1, 0x7FFFFFF0u,
+                                          TDC_PIXFMT_RGB888, rgb, rw, rh, rw * 3u);
+                g_pkt[TDC_LINK_HEADER_BYTES + 7u] ^= 0x01u;
+                put(n, "far-future reduced frame (bad payload)");
+            }
+        }
+        if (v_rehdr) {
+            put(tdc_link_encode_stream(&enc, g_pkt, g_cap), "repeated stream header");
         }
         if (expect && shown && !lost) {
             uint64_t hash = 0xcbf29ce484222325ULL;
@@ -193,5 +256,7 @@ int main(int argc, char **argv)
     free(samples);
     free(mv);
     free(bits);
+    free(pmv);
+    free(g_resend);
     return 0;
 }

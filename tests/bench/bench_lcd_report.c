@@ -170,6 +170,7 @@ int main(int argc, char **argv)
     }
     tdc_trm_config_t tcfg;
     tdc_trm_default_config(&tcfg, (uint16_t)W, (uint16_t)H, (uint16_t)rate);
+    tcfg.keep_residual = 1; /* the LCD inverse adds its unreached light to rho */
     size_t tn = tdc_trm_get_size(&tcfg);
     void *tmem = malloc(tn), *tmem_ref = malloc(tn);
     static err_t errs_cls[2][NMODES]; /* [static, moving] */

@@ -16,6 +16,7 @@ static uint64_t g_arena[TDC_TRM_MEM_BYTES(GW_MAX, GH_MAX, 1, 1) / 8u + 1u];
 static uint8_t g_in[GW_MAX * GH_MAX * 3];
 static uint8_t g_out[GW_MAX * GH_MAX * 3];
 static uint8_t g_red[GW_MAX * GH_MAX * 3];
+static tdc_res_t g_rho_row[GW_MAX * 3];
 
 typedef struct {
     tdc_content_t content;
@@ -60,7 +61,15 @@ static void run_vector(tdc_golden_ctx_t *ctx, const trm_vector_t *v)
         if ((t & 1u) == 0u) {
             ok &= tdc_trm_full(&trm, g_in, stride, g_out, stride) == TDC_OK;
             h = tdc_fnv1a64(h, g_out, (size_t)stride * v->h);
-            h = tdc_fnv1a64(h, trm.residual, sizeof(tdc_res_t) * stride * v->h);
+            /* rho as the reduced frame will use it: recomputed from the
+             * kept codes row by row (the stage stores no rho), hashed in
+             * the same byte order as the stored buffer was */
+            for (uint32_t y = 0; y < v->h; y++) {
+                if (tdc_trm_residual_row(&trm, y, g_rho_row) != TDC_OK) {
+                    h = 0; /* shows as a mismatch */
+                }
+                h = tdc_fnv1a64(h, g_rho_row, sizeof(tdc_res_t) * stride);
+            }
         } else {
             ok &= tdc_trm_downsample(&trm, g_in, stride, g_red, 3u * trm.rw) == TDC_OK;
             h = tdc_fnv1a64(h, g_red, (size_t)3u * trm.rw * trm.rh);

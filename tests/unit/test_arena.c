@@ -166,7 +166,7 @@ static void trm_layout(const tdc_panel_t *panel, uint32_t w, uint32_t h, const u
     assert_int_equal(tdc_trm_init(st, &c, panel, a.mem, n), TDC_OK);
     walk_t wk = {a.mem, 0, "TRM"};
     if (!st->passthrough) {
-        TDC_TRM_ARENA(WALK, c.width, c.height, st->rw, st->rh, st->dtaps)
+        TDC_TRM_ARENA(WALK, c.width, c.height, st->rw, st->rh, st->dtaps, c.keep_residual)
     }
     walk_end(&wk, n);
     arena_check_guard(&a, "TRM init");
