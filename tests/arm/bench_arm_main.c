@@ -25,6 +25,7 @@
 #include "tdc_link_encode.h"
 #include "tdc_panels.h"
 #include "tdc_semihost.h"
+#include "tdc_text.h"
 #include "tdc_trm.h"
 
 #define BENCH_W 640u
@@ -72,20 +73,10 @@ static const tdc_panel_t *const k_panels[] = {
 
 static void report(const char *label, uint32_t pixels)
 {
-    char num[12];
-    int n = 0;
-    char d[10];
-    do {
-        d[n++] = (char)('0' + pixels % 10u);
-        pixels /= 10u;
-    } while (pixels);
-    int k = 0;
-    num[k++] = ' ';
-    while (n) {
-        num[k++] = d[--n];
-    }
-    num[k++] = '\n';
-    num[k] = 0;
+    char num[13];
+    char *o = tdc_text_u32(tdc_text_str(num, NULL, " "), NULL, pixels);
+    *o++ = '\n';
+    *o = 0;
     tdc_semihost_puts(1, label);
     tdc_semihost_puts(1, num);
 }
@@ -304,7 +295,7 @@ static void bench_fov(uint8_t taa, const char *label)
                                 (uint16_t)FOV_LH};
     tdc_content_frame(TDC_CONTENT_TEXT, 0u, 1u, g_fov_lp, (int)FOV_LW, (int)FOV_LH, (int)(FOV_LW * 3u));
     for (uint32_t k = 0; k < FOV_LW * FOV_LH; k++) {
-        g_fov_mv[2u * k] = 24; /* 1.5 px pan */
+        g_fov_mv[2u * k] = -24; /* a 1.5 px pan: backward MV */
         g_fov_mv[2u * k + 1u] = 0;
     }
     if (tdc_fov_frame(&g_fov, &p, g_fov_lp, FOV_LW * 3u, g_fov_mv, FOV_LW * 2u, g_in[0], BENCH_W * 3u, 11111u, g_out,

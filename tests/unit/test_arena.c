@@ -333,7 +333,7 @@ static void asm_one(uint32_t w, uint32_t h, int init, int frames)
     assert_int_equal(tdc_asm_init(st, &c, a.mem, n), TDC_OK);
     walk_t wk = {a.mem, 0, "assembly"};
     TDC_ASM_ARENA(WALK, c.width, c.height, (size_t)st->tiles_x * st->tiles_y,
-                  TDC_ORDERING_BITMAP_BYTES(c.width, c.height))
+                  TDC_PATTERN_BYTES(c.width, c.height))
     walk_end(&wk, n);
     arena_check_guard(&a, "assembly init");
     if (frames) {
