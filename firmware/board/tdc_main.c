@@ -78,7 +78,6 @@
 #define FW_H ((uint32_t)TDC_PANEL_HEIGHT)
 #define FW_EYES ((uint32_t)TDC_PANEL_EYES)
 #define FW_STRIDE (FW_EYES * FW_W * 3u)
-#define FW_ALIGN8(n) ((((size_t)(n)) + 7u) & ~(size_t)7u)
 
 extern const tdc_panel_t TDC_PANEL_SYMBOL;
 
@@ -90,7 +89,7 @@ static uint8_t g_staging[TDC_LINK_STAGING_BYTES(FW_W, FW_H)] TDC_EXTRAM;
 #define FW_RW TDC_LINK_REDUCED_DIM(FW_W, TDC_CFG_R_NUM, TDC_CFG_R_DEN)
 #define FW_RH TDC_LINK_REDUCED_DIM(FW_H, TDC_CFG_R_NUM, TDC_CFG_R_DEN)
 static uint8_t g_reduced[FW_EYES][(size_t)FW_RW * FW_RH * 3u] TDC_EXTRAM;
-#define FW_TRM_BYTES FW_ALIGN8(TDC_TRM_MEM_BYTES(FW_W, FW_H, TDC_CFG_R_NUM, TDC_CFG_R_DEN))
+#define FW_TRM_BYTES TDC_TRM_MEM_BYTES(FW_W, FW_H, TDC_CFG_R_NUM, TDC_CFG_R_DEN) /* a multiple of 8 (tdc_arena.h) */
 #else
 #define FW_TRM_BYTES ((size_t)0)
 #endif
@@ -99,7 +98,7 @@ static uint8_t g_reduced[FW_EYES][(size_t)FW_RW * FW_RH * 3u] TDC_EXTRAM;
 static uint8_t g_subframe[FW_EYES][TDC_LINK_SUBFRAME_BYTES(FW_W, FW_H)] TDC_EXTRAM;
 static int16_t g_sample_mv[FW_EYES][TDC_LINK_SAMPLE_MOTION_COUNT(FW_W, FW_H)] TDC_EXTRAM;
 static uint8_t g_pattern[FW_EYES][TDC_LINK_PATTERN_BYTES(FW_W, FW_H)] TDC_EXTRAM;
-#define FW_ASM_BYTES FW_ALIGN8(TDC_ASM_MEM_BYTES(FW_W, FW_H))
+#define FW_ASM_BYTES TDC_ASM_MEM_BYTES(FW_W, FW_H)
 #else
 #define FW_ASM_BYTES ((size_t)0)
 #endif
