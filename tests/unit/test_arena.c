@@ -1,6 +1,6 @@
 /*
  * test_arena.c - the stage scaffold (firmware/tdc_arena.h): for every stage
- * with caller-owned memory (TRM, LCD inverse, tile assembly), every panel
+ * with caller-owned memory (TRM, LCD inverse, tile assembly, foveated remap), every panel
  * and the extreme sizes, the three views of one arena agree:
  *   get_size(cfg)        the dry-run carve,
  *   init()'s layout      every view pointer where the stage's layout list
@@ -24,6 +24,7 @@
 
 #include "tdc_arena.h"
 #include "tdc_assemble.h"
+#include "tdc_fov.h"
 #include "tdc_lcd.h"
 #include "tdc_panels.h"
 #include "tdc_trm.h"
@@ -35,9 +36,12 @@
 static uint64_t g_static_trm[TDC_TRM_MEM_BYTES(64, 48, 1, 2) / 8u];
 static uint64_t g_static_lcd[TDC_LCD_MEM_BYTES(64, 48) / 8u];
 static uint64_t g_static_asm[TDC_ASM_MEM_BYTES(64, 48) / 8u];
+static uint64_t g_static_fov[TDC_FOV_MEM_BYTES(64, 48, 1) / 8u];
 _Static_assert(TDC_TRM_MEM_BYTES(64, 48, 1, 2) % TDC_ARENA_ALIGN == 0, "bounds are multiples of the alignment");
 _Static_assert(TDC_LCD_MEM_BYTES(64, 48) % TDC_ARENA_ALIGN == 0, "bounds are multiples of the alignment");
 _Static_assert(TDC_ASM_MEM_BYTES(64, 48) % TDC_ARENA_ALIGN == 0, "bounds are multiples of the alignment");
+_Static_assert(TDC_FOV_MEM_BYTES(64, 48, 1) % TDC_ARENA_ALIGN == 0, "bounds are multiples of the alignment");
+_Static_assert(TDC_FOV_MEM_BYTES(64, 48, 0) == TDC_ARENA_ALIGN, "an empty layout reports the alignment");
 
 static const tdc_panel_t *const g_panels[] = {
 #define PANEL_PTR(p) &p,
@@ -353,6 +357,75 @@ static void test_asm_arena(void **state)
     assert_int_equal(tdc_asm_init(&st, &c, g_static_asm, sizeof g_static_asm), TDC_OK);
 }
 
+/* ------------------------------------------------------ foveated remap */
+
+static void fov_one(uint32_t w, uint32_t h, int taa, int init, int frames)
+{
+    const tdc_fov_config_t c = {(uint16_t)w, (uint16_t)h, (uint8_t)taa};
+    const size_t n = tdc_fov_get_size(&c), bound = TDC_FOV_MEM_BYTES((size_t)w, (size_t)h, taa);
+    if (n == 0 || n % TDC_ARENA_ALIGN != 0 || n != bound) {
+        fail_msg("fov %ux%u taa %d: get_size %zu, bound %zu", w, h, taa, n, bound);
+    }
+    if (!init) {
+        return;
+    }
+    arena_t a;
+    arena_new(&a, n);
+    tdc_fov_t fs, *st = &fs;
+    assert_int_equal(tdc_fov_init(st, &c, a.mem + 4, n), TDC_ERR_ARG);
+    assert_int_equal(tdc_fov_init(st, &c, a.mem, n - 1), TDC_ERR_SIZE);
+    assert_int_equal(tdc_fov_init(st, &c, a.mem, n), TDC_OK);
+    walk_t wk = {a.mem, 0, "fov"};
+    TDC_FOV_ARENA(WALK, c.width, c.height, c.taa)
+    walk_end(&wk, n);
+    arena_check_guard(&a, "fov init");
+    if (frames) {
+        const uint16_t lw = (uint16_t)(w > 6 ? w * 555 / 1000 : w), lh = (uint16_t)(h > 6 ? h * 555 / 1000 : h);
+        uint8_t *lp = malloc((size_t)lw * lh * 3u), *img = malloc((size_t)w * h * 3u);
+        int16_t *mv = malloc((size_t)lw * lh * 2u * sizeof *mv);
+        for (size_t i = 0; i < (size_t)lw * lh * 3u; i++) lp[i] = (uint8_t)(i * 29u);
+        for (size_t i = 0; i < (size_t)lw * lh * 2u; i++) mv[i] = (int16_t)((int)(i % 41u) - 20);
+        for (size_t i = 0; i < (size_t)w * h * 3u; i++) img[i] = (uint8_t)(i * 7u);
+        for (int f = 0; f < 3; f++) {
+            const tdc_fov_params_t p = {(int32_t)(w * 100u + 50u * (uint32_t)f), (int32_t)(h * 140u), 1024, 4077, lw, lh};
+            assert_int_equal(tdc_fov_frame(st, &p, lp, (size_t)lw * 3u, mv, (size_t)lw * 2u, img, w * 3u, 11111, img,
+                                           w * 3u),
+                             TDC_OK);
+        }
+        arena_check_guard(&a, "fov frames");
+        free(lp);
+        free(img);
+        free(mv);
+    }
+    free(a.mem);
+}
+
+static void test_fov_arena(void **state)
+{
+    (void)state;
+    static const uint32_t small[][2] = {{4, 4}, {4, 9}, {9, 4}, {33, 17}, {64, 48}};
+    for (unsigned i = 0; i < sizeof small / sizeof small[0]; i++) {
+        for (int taa = 0; taa < 2; taa++) {
+            fov_one(small[i][0], small[i][1], taa, 1, 1);
+        }
+    }
+    for (unsigned p = 0; p < NPANELS; p++) {
+        for (int taa = 0; taa < 2; taa++) {
+            fov_one(g_panels[p]->width, g_panels[p]->height, taa, 1, 0);
+        }
+    }
+    fov_one(TDC_FOV_MAX_SIZE, TDC_FOV_MAX_SIZE, 1, 0, 0);
+    fov_one(TDC_FOV_MIN_SIZE, TDC_FOV_MAX_SIZE, 1, 0, 0);
+    const tdc_fov_config_t bad[] = {{3, 4, 0}, {4, 3, 1}, {TDC_FOV_MAX_SIZE + 1, 4, 0}, {4, 4, 2}};
+    for (unsigned i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        assert_int_equal(tdc_fov_get_size(&bad[i]), 0);
+    }
+    const tdc_fov_config_t c = {64, 48, 1};
+    tdc_fov_t st;
+    assert_int_equal(tdc_fov_init(&st, &c, g_static_fov, sizeof g_static_fov), TDC_OK);
+    assert_int_equal(tdc_fov_get_size(&c), sizeof g_static_fov);
+}
+
 /* ------------------------------------------------------------ the carver */
 
 static void test_carver(void **state)
@@ -390,6 +463,7 @@ int main(void)
         cmocka_unit_test(test_trm_arena),
         cmocka_unit_test(test_lcd_arena),
         cmocka_unit_test(test_asm_arena),
+        cmocka_unit_test(test_fov_arena),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
