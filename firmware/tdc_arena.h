@@ -2,7 +2,7 @@
  * tdc_arena.h - the one way a stage lays out its caller-owned memory
  * (libopus / CMSIS-DSP style get_size() + init()).
  *
- * Every stage with state (TRM, LCD inverse, tile assembly) writes its arena
+ * Every stage with state (TRM, LCD inverse, tile assembly, foveated remap) writes its arena
  * layout ONCE, as a list of blocks in its header:
  *
  *     #define TDC_XXX_ARENA(X, <geometry>)      \
