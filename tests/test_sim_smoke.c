@@ -136,6 +136,65 @@ static void test_extremes(void **state)
     check_sane(r, 2);
 }
 
+/* A renderer whose subframe call fails: the run reports the mode, frame and
+ * stage and returns an error instead of counting on. */
+static int failing_subframe(tdc_source_t *s, int slot, int shadow, uint32_t frame, double t, double dt,
+                            uint8_t *samples, int16_t *mv, uint8_t *pattern, uint64_t *rays)
+{
+    (void)s, (void)slot, (void)shadow, (void)t, (void)dt, (void)samples, (void)mv, (void)pattern, (void)rays;
+    return frame == 3 ? -1 : 0;
+}
+
+static void test_stage_error_ends_run(void **state)
+{
+    (void)state;
+#if TDC_SIM_HAVE_ASM
+    tdc_sim_config_t cfg;
+    tdc_sim_default_config(&cfg);
+    cfg.width = cfg.scene.width = 32;
+    cfg.height = cfg.scene.height = 24;
+    cfg.refresh_hz = 240;
+    cfg.duration_s = 12.0 / 240;
+    cfg.progress = 0;
+    cfg.scene.gt_ss = 1;
+    tdc_source_t *src = tdc_scene_create(&cfg.scene, NULL);
+    assert_non_null(src);
+    src->subframe = failing_subframe;
+    const tdc_mode_desc_t *modes[1] = {tdc_sim_mode_find("asm-adaptive")};
+    tdc_sim_result_t r[1];
+    assert_int_equal(tdc_sim_run(&cfg, src, modes, 1, r, NULL), -1);
+    assert_true(r[0].frames == 3); /* frames 0-2 shown, the run stopped at 3 */
+    src->destroy(src);
+#endif
+}
+
+/* A rate a firmware stage refuses: noted (mode unavailable) in a group run,
+ * an error when the mode was asked for by name (cfg.strict). */
+static void test_refused_rate(void **state)
+{
+    (void)state;
+#if TDC_SIM_HAVE_TRM
+    tdc_sim_config_t cfg;
+    tdc_sim_default_config(&cfg);
+    cfg.width = cfg.scene.width = 32;
+    cfg.height = cfg.scene.height = 24;
+    cfg.refresh_hz = 30; /* below TRM's minimum refresh */
+    cfg.duration_s = 4.0 / 30;
+    cfg.progress = 0;
+    cfg.scene.gt_ss = 1;
+    tdc_source_t *src = tdc_scene_create(&cfg.scene, NULL);
+    assert_non_null(src);
+    const tdc_mode_desc_t *modes[2] = {tdc_sim_mode_find("full"), tdc_sim_mode_find("trm50")};
+    tdc_sim_result_t r[2];
+    assert_int_equal(tdc_sim_run(&cfg, src, modes, 2, r, NULL), 0);
+    assert_true(r[0].available && !r[1].available);
+    assert_int_equal(r[1].refused, -3); /* TDC_ERR_REFRESH_LOW */
+    cfg.strict = 1;
+    assert_int_equal(tdc_sim_run(&cfg, src, modes, 2, r, NULL), -1);
+    src->destroy(src);
+#endif
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -143,6 +202,8 @@ int main(void)
         cmocka_unit_test(test_static_trm_equals_full),
         cmocka_unit_test(test_asm_family),
         cmocka_unit_test(test_extremes),
+        cmocka_unit_test(test_stage_error_ends_run),
+        cmocka_unit_test(test_refused_rate),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

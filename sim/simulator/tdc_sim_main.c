@@ -16,7 +16,7 @@
 static void usage(FILE *f)
 {
     int n;
-    const tdc_mode_desc_t *m = tdc_sim_modes(&n);
+    const tdc_mode_desc_t *const *m = tdc_sim_modes(&n);
     fprintf(f,
             "usage: tdc-sim [options]\n"
             "Simulates display modes through the whole data path (renderer -> link encoder ->\n"
@@ -57,7 +57,7 @@ static void usage(FILE *f)
                "      --list              list the modes\n"
                "  -h, --help              this help\n\nmodes:\n");
     for (int i = 0; i < n; i++) {
-        fprintf(f, "  %-18s %s%s\n", m[i].name, m[i].what, m[i].fixed_hz ? " (fixed rate)" : "");
+        fprintf(f, "  %-18s %s%s\n", m[i]->name, m[i]->what, m[i]->fixed_hz ? " (fixed rate)" : "");
     }
     tdc_sim_parts_t p;
     tdc_sim_parts(&p);
@@ -67,8 +67,10 @@ static void usage(FILE *f)
             p.lcd_phys ? "yes" : "no (built-in fallback)");
 }
 
-static int add_modes(const char *list, const tdc_mode_desc_t **out, int *n, int cap)
+/* *explicit: 0 when a group ('all', a family) was named. */
+static int add_modes(const char *list, const tdc_mode_desc_t **out, int *n, int cap, int *explicit)
 {
+    *explicit = 1;
     static const char *const trm_family[] = {"full", "half", "interlace", "bfi", "ncsfi", "trm50", "trm40",
                                              "trm25", "asw"};
     static const char *const asm_family[] = {"full",         "full60",           "taa60",          "asm-hourglass",
@@ -78,13 +80,15 @@ static int add_modes(const char *list, const tdc_mode_desc_t **out, int *n, int 
     snprintf(buf, sizeof(buf), "%s", list);
     for (char *tok = strtok(buf, ","); tok; tok = strtok(NULL, ",")) {
         if (strcmp(tok, "all") == 0) {
+            *explicit = 0;
             int nm;
-            const tdc_mode_desc_t *m = tdc_sim_modes(&nm);
+            const tdc_mode_desc_t *const *m = tdc_sim_modes(&nm);
             for (int i = 0; i < nm && *n < cap; i++) {
-                out[(*n)++] = &m[i];
+                out[(*n)++] = m[i];
             }
         } else if (strcmp(tok, "trm-family") == 0 || strcmp(tok, "asm-family") == 0) {
             int tf = strcmp(tok, "trm-family") == 0;
+            *explicit = 0;
             int cnt = tf ? 9 : 9;
             for (int i = 0; i < cnt && *n < cap; i++) {
                 out[(*n)++] = tdc_sim_mode_find(tf ? trm_family[i] : asm_family[i]);
@@ -324,9 +328,9 @@ int main(int argc, char **argv)
             break;
         case O_LIST: {
             int n;
-            const tdc_mode_desc_t *m = tdc_sim_modes(&n);
+            const tdc_mode_desc_t *const *m = tdc_sim_modes(&n);
             for (int i = 0; i < n; i++) {
-                printf("%s\n", m[i].name);
+                printf("%s\n", m[i]->name);
             }
             return 0;
         }
@@ -353,7 +357,7 @@ int main(int argc, char **argv)
     cfg.scene.seed = cfg.seed;
     const tdc_mode_desc_t *modes[64];
     int nm = 0;
-    if (add_modes(mode_list, modes, &nm, 64)) {
+    if (add_modes(mode_list, modes, &nm, 64, &cfg.strict)) {
         return 2;
     }
     if (!cfg.label) {

@@ -12,7 +12,7 @@
 #include "render/tdc_render.h"
 #include "render/tdc_scene.h"
 
-#define RS_SLOTS 8
+#define RS_SLOTS 64 /* one per mode of a run (tdc-sim takes up to 64) */
 
 typedef struct {
     tdc_render_t *r;
