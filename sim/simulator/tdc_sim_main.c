@@ -12,6 +12,7 @@
 #include "report/tdc_report.h"
 #include "simulator/tdc_sim.h"
 #include "simulator/tdc_sim_render.h"
+#include "tdc_par.h"
 
 static void usage(FILE *f)
 {
@@ -23,7 +24,8 @@ static void usage(FILE *f)
             "firmware via the link decoder -> panel -> eye -> metrics vs ground truth).\n\n"
             "  -R, --renderer SCENE    use the Embree renderer (sim/render): a built-in renderer scene\n"
             "                          (discs text panorama room mirror fence bigmesh) or a scene file\n"
-            "      --threads N         renderer threads (default 2)\n"
+            "      --threads N         threads of the renderer and of the simulator's own stages (source,\n"
+            "                          eye, metrics; default 2); results do not depend on it\n"
             "  -s, --scene NAME        built-in procedural scene (default pan):");
     for (int i = 0; i < TDC_SCENE_COUNT; i++) {
         fprintf(f, " %s", tdc_scene_name((tdc_scene_kind_t)i));
@@ -342,6 +344,7 @@ int main(int argc, char **argv)
             return 2;
         }
     }
+    tdc_par_set_threads(threads);
     if (optind < argc) {
         fprintf(stderr, "tdc-sim: unexpected argument '%s'\n", argv[optind]);
         return 2;
