@@ -38,7 +38,7 @@ static void test_eye_steady(void **state)
     for (int i = 0; i < N; i++) {
         img[i] = (double)(i % 97) / 97.0;
     }
-    tdc_eye_slice_t s[3] = {{0.0, 0.01, img}, {0.01, 0.02, img}, {0.02, 0.03, img}};
+    tdc_eye_slice_t s[3] = {{0.0, 0.01, img, NULL, NULL}, {0.01, 0.02, img, NULL, NULL}, {0.02, 0.03, img, NULL, NULL}};
     tdc_eye_cfg_t c = {W, H, 0.02, 1.0, 0.5, 1.0};
     double v[2] = {0, 0};
     tdc_eye_perceive(&c, s, 3, 0.03, v, out);
@@ -56,7 +56,7 @@ static void test_eye_talbot_plateau(void **state)
         mean[i] = 0.5 * (a[i] + b[i]);
     }
     /* low persistence 0.25: each frame emits a quarter of its period */
-    tdc_eye_slice_t s[2] = {{0.0, 0.0025, a}, {0.01, 0.0125, b}};
+    tdc_eye_slice_t s[2] = {{0.0, 0.0025, a, NULL, NULL}, {0.01, 0.0125, b, NULL, NULL}};
     tdc_eye_cfg_t c = {W, H, 0.02, 4.0, 0.5, 1.0};
     double v[2] = {0, 0};
     tdc_eye_perceive(&c, s, 2, 0.02, v, out);
@@ -79,7 +79,7 @@ static void test_eye_pursuit(void **state)
     }
     /* flashes of 1 us at t = 0 and t = 0.01 (pursuit shift within a flash
      * is 0.0002 px: one sub-step, bilinear weight ~1) */
-    tdc_eye_slice_t s[2] = {{0.0, 1e-6, f0}, {0.01, 0.01 + 1e-6, f1}};
+    tdc_eye_slice_t s[2] = {{0.0, 1e-6, f0, NULL, NULL}, {0.01, 0.01 + 1e-6, f1, NULL, NULL}};
     tdc_eye_cfg_t c = {W, H, 0.02, 0.02 / 2e-6, 0.5, 1.0};
     double v[2] = {200.0, 0.0}; /* 2 px per 10 ms */
     tdc_eye_perceive(&c, s, 2, 0.01 + 1e-6, v, out);

@@ -19,6 +19,7 @@
 #include "eye/tdc_eye.h"
 #include "panel/tdc_panel_sim.h"
 #include "simulator/tdc_sim_scene.h"
+#include "tdc_panel.h"
 
 /* A mode family (tdc_sim_mode.h): the file that implements its modes. */
 typedef struct tdc_sim_family tdc_sim_family_t;
@@ -45,9 +46,23 @@ typedef struct {
 } tdc_sim_parts_t;
 void tdc_sim_parts(tdc_sim_parts_t *p);
 
+/* Wall-clock seconds per stage of a run (tdc_sim_config_t.times). */
+typedef struct {
+    double source_s;   /* renderer: frames, subframes, ground truth */
+    double link_s;     /* encoder + decoder */
+    double firmware_s; /* firmware stages (TRM, assembly, LCD) */
+    double panel_s;    /* panel simulation */
+    double eye_s;      /* eye integration */
+    double metrics_s;  /* PSNR, SSIM, FLIP, flicker, encoding, crops */
+    double total_s;
+} tdc_sim_times_t;
+
 typedef struct {
     tdc_scene_params_t scene;
     int width, height;
+    int eyes;             /* 1, or 2: stereo (TRM §7.2), eye 1's view from `right` */
+    tdc_source_t *right;  /* eye 1's source (its own camera) when eyes == 2 */
+    tdc_sim_times_t *times; /* optional: receives the stage breakdown */
     int refresh_hz;       /* run clock: display rate of the modes without a fixed rate */
     int window_frames;    /* fused window in frames of the run clock (0: 2 below 200 Hz, else 4) */
     double duration_s;
@@ -69,6 +84,10 @@ typedef struct {
 
 void tdc_sim_default_config(tdc_sim_config_t *c);
 
+/* A firmware panel profile by name; name NULL: the first OLED (want_lcd 0)
+ * or LCD profile.  NULL if unknown. */
+const tdc_panel_t *tdc_sim_panel_find(const char *name, int want_lcd);
+
 /* Per-mode results. */
 typedef struct {
     const tdc_mode_desc_t *desc;
@@ -80,9 +99,11 @@ typedef struct {
     double psnr, ssim, flip, flicker;
     double psnr_min, flip_max;
     int evals;
+    int eyes;                /* 1 or 2; the figures above are the mean of the eyes */
+    double eye_psnr[2], eye_ssim[2], eye_flip[2], eye_flicker[2];
     /* cost */
     uint64_t rays;          /* primary rays traced (samples x spp) */
-    uint64_t link_bytes;    /* bytes on the link (packets incl. headers) */
+    uint64_t link_bytes;    /* bytes on the link (packets incl. headers; stereo: both eyes' stream) */
     uint64_t frames;        /* display refreshes */
     uint64_t rendered;      /* frames/subframes the renderer produced */
     double fw_s, render_s;  /* seconds in firmware (decode + stages), in the renderer (+ encoder) */

@@ -36,7 +36,16 @@ static void usage(FILE *f)
                "  -p, --panel oled|lcd    panel simulation (default oled)\n"
                "      --profile NAME      firmware panel profile (default htc-vive, or the first LCD profile)\n"
                "  -r, --refresh HZ        run clock / display refresh (default 90)\n"
-               "  -g, --size WxH          resolution (default 160x120)\n"
+               "  -g, --size WxH          resolution of one eye (default: the panel profile's, e.g.\n"
+               "                          1080x1200 for htc-vive); a smaller size is a window of the panel\n"
+               "                          at its native pixel density\n"
+               "      --eyes 1|2          eyes (default: the profile's; htc-vive and rift-cv1 have 2)\n"
+               "      --stereo, --mono    --eyes 2, --eyes 1.  Stereo (TRM §7.2): both eyes through one\n"
+               "                          stereo link stream and the firmware per eye; TRM modes send one\n"
+               "                          eye full and the other reduced, swapped every frame\n"
+               "      --disparity PX      procedural stereo: the eyes' views differ by PX pixels (default 4)\n"
+               "      --ipd M             renderer stereo: camera offset between the eyes in scene units\n"
+               "                          (default 0.063)\n"
                "  -d, --duration S        simulated seconds (default 0.5)\n"
                "  -n, --frames N          simulated refreshes (overrides --duration)\n"
                "  -w, --window N          fused window in refreshes (default 2 below 200 Hz, else 4)\n"
@@ -48,7 +57,9 @@ static void usage(FILE *f)
                "      --pursuit track|fixate  eye tracks the main motion or fixates (default track)\n"
                "      --pursuit-gain G    smooth-pursuit gain (default 1)\n"
                "      --metric-every K    evaluate every K-th refresh (default 1)\n"
-               "      --ppd X             FLIP pixels per degree (default 67.02)\n"
+               "      --ppd X             pixels per degree of the view (FLIP; default: the profile's, e.g.\n"
+               "                          11.4 for htc-vive; 67.02, FLIP's desktop default, for profiles\n"
+               "                          without one)\n"
                "      --trm-s S           TRM motion sensitivity s (default: firmware default)\n"
                "      --gt-ss N           ground-truth supersampling N x N (default 4)\n"
                "      --strip-at K        evaluation index of the picture strips (default middle)\n"
@@ -141,7 +152,7 @@ static int parse_num(const char *s, double lo, double hi, double *v, const char 
 int main(int argc, char **argv)
 {
     enum { O_SPEED = 256, O_ANGLE, O_CUT, O_PERS, O_PURSUIT, O_GAIN, O_EVERY, O_PPD, O_TRMS, O_GTSS, O_STRIP, O_LIST,
-           O_SPP, O_PROFILE, O_THREADS };
+           O_SPP, O_PROFILE, O_THREADS, O_EYES, O_STEREO, O_MONO, O_DISP, O_IPD };
     static const struct option opts[] = {
         {"scene", required_argument, 0, 's'},   {"mode", required_argument, 0, 'm'},
         {"panel", required_argument, 0, 'p'},   {"profile", required_argument, 0, O_PROFILE},
@@ -157,12 +168,17 @@ int main(int argc, char **argv)
         {"out", required_argument, 0, 'o'},     {"label", required_argument, 0, 'l'},
         {"quiet", no_argument, 0, 'q'},         {"list", no_argument, 0, O_LIST},
         {"renderer", required_argument, 0, 'R'}, {"threads", required_argument, 0, O_THREADS},
+        {"eyes", required_argument, 0, O_EYES}, {"stereo", no_argument, 0, O_STEREO},
+        {"mono", no_argument, 0, O_MONO},       {"disparity", required_argument, 0, O_DISP},
+        {"ipd", required_argument, 0, O_IPD},
         {"help", no_argument, 0, 'h'},          {0, 0, 0, 0}};
     tdc_sim_config_t cfg;
     tdc_sim_default_config(&cfg);
     const char *mode_list = "trm-family";
     const char *renderer = NULL;
     int threads = 2;
+    int size_given = 0, ppd_given = 0, eyes = 0;
+    double disparity = 4.0, ipd = 0.063;
     long frames = -1;
     double v;
     int c;
@@ -182,6 +198,31 @@ int main(int argc, char **argv)
             break;
         case 'R':
             renderer = optarg;
+            break;
+        case O_EYES:
+            if (strcmp(optarg, "1") != 0 && strcmp(optarg, "2") != 0) {
+                fprintf(stderr, "tdc-sim: bad eyes '%s' (1 or 2)\n", optarg);
+                return 2;
+            }
+            eyes = optarg[0] - '0';
+            break;
+        case O_STEREO:
+            eyes = 2;
+            break;
+        case O_MONO:
+            eyes = 1;
+            break;
+        case O_DISP:
+            if (parse_num(optarg, -1000, 1000, &v, "disparity")) {
+                return 2;
+            }
+            disparity = v;
+            break;
+        case O_IPD:
+            if (parse_num(optarg, -10, 10, &v, "ipd")) {
+                return 2;
+            }
+            ipd = v;
             break;
         case O_THREADS:
             if (parse_num(optarg, 1, 64, &v, "threads")) {
@@ -217,6 +258,7 @@ int main(int argc, char **argv)
             }
             cfg.width = w;
             cfg.height = h;
+            size_given = 1;
             break;
         }
         case 'd':
@@ -294,6 +336,7 @@ int main(int argc, char **argv)
                 return 2;
             }
             cfg.flip_ppd = v;
+            ppd_given = 1;
             break;
         case O_TRMS:
             if (parse_num(optarg, 0, 1000, &v, "trm-s")) {
@@ -349,6 +392,21 @@ int main(int argc, char **argv)
         fprintf(stderr, "tdc-sim: unexpected argument '%s'\n", argv[optind]);
         return 2;
     }
+    /* native geometry from the panel profile unless overridden */
+    const tdc_panel_t *prof = tdc_sim_panel_find(cfg.panel_profile, cfg.panel == TDC_PANEL_SIM_LCD);
+    if (!prof) {
+        fprintf(stderr, "tdc-sim: --profile %s: no such %s panel profile (see make help)\n",
+                cfg.panel_profile ? cfg.panel_profile : "(default)", cfg.panel == TDC_PANEL_SIM_LCD ? "LCD" : "");
+        return 2;
+    }
+    if (!size_given) {
+        cfg.width = prof->width;
+        cfg.height = prof->height;
+    }
+    cfg.eyes = eyes ? eyes : prof->eyes;
+    if (!ppd_given && prof->ppd_x100) {
+        cfg.flip_ppd = prof->ppd_x100 / 100.0;
+    }
     if (frames > 0) {
         cfg.duration_s = (double)frames / cfg.refresh_hz;
     }
@@ -370,20 +428,42 @@ int main(int argc, char **argv)
         fprintf(stderr, "tdc-sim: cannot create '%s': %s\n", cfg.outdir, strerror(errno));
         return 1;
     }
-    tdc_source_t *src;
+    tdc_source_t *src = NULL;
     if (renderer) {
         char err[256];
-        src = tdc_sim_render_source(renderer, cfg.width, cfg.height, cfg.refresh_hz,
-                                    cfg.scene.gt_ss > 0 ? cfg.scene.gt_ss * cfg.scene.gt_ss : 16, threads, err,
-                                    sizeof(err));
-        if (!src) {
-            fprintf(stderr, "tdc-sim: renderer: %s\n", err);
-            return 1;
+        for (int e = 0; e < cfg.eyes; e++) {
+            tdc_source_t *s = tdc_sim_render_source(renderer, cfg.width, cfg.height, cfg.refresh_hz,
+                                                    cfg.scene.gt_ss > 0 ? cfg.scene.gt_ss * cfg.scene.gt_ss : 16,
+                                                    threads, cfg.eyes == 2 ? (e ? 0.5 : -0.5) * ipd : 0.0, err,
+                                                    sizeof(err));
+            if (!s) {
+                fprintf(stderr, "tdc-sim: renderer: %s\n", err);
+                if (e) {
+                    src->destroy(src);
+                }
+                return 1;
+            }
+            if (e) {
+                cfg.right = s;
+            } else {
+                src = s;
+            }
         }
         cfg.scene.speed = 0.0; /* margins from the measured pursuit instead */
         cfg.spp = 1;           /* the renderer traces one ray per pixel centre */
     } else {
-        src = tdc_scene_create(&cfg.scene, NULL);
+        /* stereo: the eyes see the scene shifted by -+disparity / 2 */
+        tdc_scene_params_t sp = cfg.scene;
+        sp.shift_x = cfg.eyes == 2 ? -0.5 * disparity : 0.0;
+        src = tdc_scene_create(&sp, NULL);
+        if (src && cfg.eyes == 2) {
+            sp.shift_x = 0.5 * disparity;
+            cfg.right = tdc_scene_create(&sp, NULL);
+            if (!cfg.right) {
+                src->destroy(src);
+                src = NULL;
+            }
+        }
     }
     if (!src) {
         fprintf(stderr, "tdc-sim: cannot create scene\n");
@@ -412,9 +492,12 @@ int main(int argc, char **argv)
             snprintf(path, sizeof(path), "%s/summary.md", cfg.outdir);
             f = fopen(path, "w");
             if (f) {
-                fprintf(f, "Run `%s`: scene `%s`, %s panel, %d Hz clock, %dx%d, %.3f s, window %d refreshes.\n\n",
+                fprintf(f,
+                        "Run `%s`: scene `%s`, %s panel, %d Hz clock, %s%dx%d, %.2f px/deg, %.3f s, window %d "
+                        "refreshes.\n\n",
                         cfg.label, tdc_scene_name(cfg.scene.kind), cfg.panel == TDC_PANEL_SIM_LCD ? "LCD" : "OLED",
-                        cfg.refresh_hz, cfg.width, cfg.height, cfg.duration_s,
+                        cfg.refresh_hz, cfg.eyes == 2 ? "stereo 2x" : "", cfg.width, cfg.height, cfg.flip_ppd,
+                        cfg.duration_s,
                         cfg.window_frames > 0 ? cfg.window_frames : (cfg.refresh_hz >= 200 ? 4 : 2));
                 tdc_report_markdown(f, &cfg, res, nm);
                 fclose(f);
@@ -429,5 +512,8 @@ int main(int argc, char **argv)
     }
     free(res);
     src->destroy(src);
+    if (cfg.right) {
+        cfg.right->destroy(cfg.right);
+    }
     return rc == 0 ? 0 : 1;
 }

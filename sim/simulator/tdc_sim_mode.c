@@ -54,8 +54,12 @@ int tdc_sim_stage(sim_mode_t *m, const char *stage, int status)
     if (!m->failed) {
         /* firmware stages (tdc_*) return a tdc_status_t; the renderer and the
          * link wrappers return -1 */
-        fprintf(stderr, "tdc-sim: mode %s: frame %u: stage %s: %s (%d)\n", m->d->name, (unsigned)m->frame, stage,
-                strncmp(stage, "tdc_", 4) == 0 ? tdc_sim_status_name(status) : "failed", status);
+        char eye[16] = "";
+        if (m->eyes == 2) {
+            snprintf(eye, sizeof(eye), " eye %d", m->eye);
+        }
+        fprintf(stderr, "tdc-sim: mode %s: frame %u%s: stage %s: %s (%d)\n", m->d->name, (unsigned)m->frame, eye,
+                stage, strncmp(stage, "tdc_", 4) == 0 ? tdc_sim_status_name(status) : "failed", status);
     }
     m->failed = 1;
     return status;
@@ -85,6 +89,13 @@ void tdc_sim_render_full(sim_mode_t *m, tdc_source_t *src, double t, int spp, do
         return;
     }
     double t0 = tdc_sim_now();
+    if (!mv && src->frame && src->frame(src, t, jx, jy, spp, m->render, m->scratch) == 0) {
+        /* the source's whole-frame path (tabulated, threaded) */
+        m->res->render_s += tdc_sim_now() - t0;
+        m->res->rays += (uint64_t)m->npx * (uint64_t)(spp < 1 ? 1 : spp);
+        m->res->rendered++;
+        return;
+    }
     for (int y = 0; y < m->h; y++) {
         for (int x = 0; x < m->w; x++) {
             size_t i = (size_t)y * m->w + x;
@@ -134,9 +145,9 @@ void tdc_sim_render_rows(sim_mode_t *m, tdc_source_t *src, double t, int spp, in
 
 int tdc_sim_send_full(sim_mode_t *m, uint32_t lf, const uint8_t *rgb)
 {
-    int st = tdc_sim_stage(m, "link FULL packet", tdc_sim_link_full(&m->link, lf, rgb));
+    int st = tdc_sim_stage(m, "link FULL packet", tdc_sim_link_full(m->link, m->eye, lf, rgb));
     if (st == 0) {
-        memcpy(m->wanted, m->link.full, m->npx * 3);
+        memcpy(m->wanted, TDC_SIM_LINK_FULL(m), m->npx * 3);
     }
     return st;
 }

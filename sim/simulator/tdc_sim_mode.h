@@ -43,6 +43,7 @@ typedef struct sim_mode sim_mode_t;
 /* What init needs beyond the mode descriptor. */
 typedef struct {
     const tdc_sim_config_t *cfg;
+    int eyes;                     /* 1, or 2 (stereo: one sim_mode_t per eye) */
     const tdc_panel_t *fw_panel;  /* gamma / TRM profile */
     const tdc_panel_t *lcd_panel; /* LCD profile, NULL without an LCD panel */
     int src_full_frame;           /* the source traces whole frames (Embree) */
@@ -63,11 +64,16 @@ struct tdc_sim_family {
     void (*free)(sim_mode_t *m);
 };
 
-/* State every mode has; the family's own state hangs off fam, the LCD drive
- * stage's off drive. */
+/* State every mode has, one per eye; the family's own state hangs off fam,
+ * the LCD drive stage's off drive.  In stereo the two eyes of a mode share
+ * the result (costs add up) and the link (one stream, packets per eye);
+ * frame() is called for eye 0, then eye 1, of each refresh. */
 struct sim_mode {
     const tdc_mode_desc_t *d;
     tdc_sim_result_t *res;
+    int eye, eyes;        /* this eye, eyes of the run */
+    tdc_sim_link_t *link; /* the mode's stream (eye 0 owns it: link_own) */
+    tdc_sim_link_t link_own;
     int hz;
     double fs; /* frame period, s */
     int w, h;
@@ -78,22 +84,25 @@ struct sim_mode {
     int slot;       /* index of the mode (per-mode renderer state) */
     int failed;     /* a stage returned an error */
     tdc_panel_sim_t panel;
-    tdc_sim_link_t link;
     /* buffers every family uses */
     uint8_t *render; /* the renderer's frame */
     uint8_t *wanted; /* codes the controller wants shown */
     uint8_t *out;    /* drive codes (= wanted without an LCD stage) */
-    double *xy;      /* sample positions for src->samples */
+    double *xy;      /* sample positions for src->samples (shared by all modes of a run) */
+    double *scratch; /* W*H*3 doubles for src->frame (shared too) */
     void *fam;       /* family state */
     void *drive;     /* LCD drive-stage state */
     /* the residual the LCD stage adds (TRM), NULL if none */
     int32_t *(*residual)(sim_mode_t *m);
-    /* slices covering the fused window */
+    /* slices covering the fused window: OLED slices as drive codes (decoded
+     * by the panel's table in the eye: 1 byte per sample instead of 8),
+     * LCD slices as linear light */
     int ring_n, ring_head, ring_count;
-    double *ring_buf[TDC_SIM_RING_MAX];
+    void *ring_buf[TDC_SIM_RING_MAX];
     tdc_eye_slice_t ring[TDC_SIM_RING_MAX];
-    /* metrics */
-    double *perc, *crop_p, *crop_g, *enc_p, *enc_g, *err, *err_prev, *flipmap;
+    double lut[3 * 256]; /* OLED: linear light of each code per channel */
+    /* metrics of this eye (the buffers of one evaluation are the run's) */
+    double *err_prev;
     int have_err_prev;
     double sum_psnr, sum_ssim, sum_flip, sum_flicker;
     int n_flicker;
@@ -131,6 +140,9 @@ void tdc_sim_render_rows(sim_mode_t *m, tdc_source_t *src, double t, int spp, in
 /* Sends rgb as a FULL packet; what the decoder got becomes m->wanted.
  * 0 or the (reported) error. */
 int tdc_sim_send_full(sim_mode_t *m, uint32_t lf, const uint8_t *rgb);
+/* The decoded buffers of this eye. */
+#define TDC_SIM_LINK_FULL(m) ((m)->link->full[(m)->eye])
+#define TDC_SIM_LINK_REDUCED_BUF(m) ((m)->link->reduced[(m)->eye])
 
 /* Bilinear sample of an RGB888 image at pixel-centre coordinates. */
 double tdc_sim_sample8(const uint8_t *img, int w, int h, double x, double y, int c);

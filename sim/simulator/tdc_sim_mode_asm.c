@@ -151,14 +151,14 @@ static int asm_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32
     }
     int cycle = (lf & 3u) == 0u;
     rc = tdc_sim_stage(m, "link SUBFRAME/PATTERN/MOTION packets",
-                       tdc_sim_link_subframe(&m->link, lf, st->sub, st->submv, cycle ? st->pattern : NULL));
+                       tdc_sim_link_subframe(m->link, m->eye, lf, st->sub, st->submv, cycle ? st->pattern : NULL));
     if (rc) {
         return rc;
     }
     double t0 = tdc_sim_now();
     rc = tdc_sim_stage(m, "tdc_asm_ingest",
-                       tdc_asm_ingest(&st->as, lf, m->link.subframe, m->link.sample_motion,
-                                      cycle ? m->link.pattern : NULL));
+                       tdc_asm_ingest(&st->as, lf, m->link->subframe[m->eye], m->link->sample_motion[m->eye],
+                                      cycle ? m->link->pattern[m->eye] : NULL));
     if (rc == 0) {
         rc = tdc_sim_stage(m, "tdc_asm_assemble", tdc_asm_assemble(&st->as, lf));
     }

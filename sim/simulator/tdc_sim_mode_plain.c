@@ -36,7 +36,7 @@ static int plain_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint
     int even = (lf & 1u) == 0u;
     if (m->d->variant == PLAIN_INTERLACE) {
         tdc_sim_render_rows(m, src, t, spp, (int)(lf & 1u), m->fam);
-        tdc_sim_link_count_raw(&m->link, (size_t)m->w * ((m->h + 1 - (int)(lf & 1u)) / 2) * 3);
+        tdc_sim_link_count_raw(m->link, (size_t)m->w * ((m->h + 1 - (int)(lf & 1u)) / 2) * 3);
         memcpy(m->wanted, m->render, m->npx * 3);
         return 0;
     }

@@ -86,12 +86,12 @@ static int trm_init(sim_mode_t *m, const tdc_sim_setup_t *s)
 static int trm_full_frame(sim_mode_t *m, trm_state_t *st, tdc_source_t *src, double t, int spp, uint32_t lf)
 {
     tdc_sim_render_full(m, src, t, spp, 0, 0, NULL, 0, TDC_MV_SURFACE);
-    int rc = tdc_sim_stage(m, "link FULL packet", tdc_sim_link_full(&m->link, lf, m->render));
+    int rc = tdc_sim_stage(m, "link FULL packet", tdc_sim_link_full(m->link, m->eye, lf, m->render));
     if (rc) {
         return rc;
     }
     double t0 = tdc_sim_now();
-    rc = tdc_trm_full(&st->trm, m->link.full, (uint32_t)m->w * 3u, m->wanted, (uint32_t)m->w * 3u);
+    rc = tdc_trm_full(&st->trm, TDC_SIM_LINK_FULL(m), (uint32_t)m->w * 3u, m->wanted, (uint32_t)m->w * 3u);
     m->res->fw_s += tdc_sim_now() - t0;
     return tdc_sim_stage(m, "tdc_trm_full", rc);
 }
@@ -101,7 +101,11 @@ static int trm_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32
     trm_state_t *st = m->fam;
     tdc_sim_result_t *r = m->res;
     uint32_t rw3 = (uint32_t)st->trm.rw * 3u, w3 = (uint32_t)m->w * 3u;
-    if ((lf & 1u) == 0u) {
+    /* mono: even frames full; stereo (TRM §7.2): eye e full on frames with
+     * f + e even, i.e. one eye full and the other reduced, swapped every
+     * frame (the firmware's and the link's rule) */
+    int full = m->d->variant == TRM_NCSFI ? (lf & 1u) == 0u : tdc_trm_stereo_eye_is_full(lf, m->eye);
+    if (full) {
         return trm_full_frame(m, st, src, t, spp, lf);
     }
     double t0;
@@ -109,7 +113,7 @@ static int trm_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32
     if (m->d->variant == TRM_NCSFI) {
         /* the blurred frame comes from the same rendered frame */
         t0 = tdc_sim_now();
-        rc = tdc_sim_stage(m, "tdc_trm_downsample", tdc_trm_downsample(&st->trm, m->link.full, w3, st->reduced, rw3));
+        rc = tdc_sim_stage(m, "tdc_trm_downsample", tdc_trm_downsample(&st->trm, TDC_SIM_LINK_FULL(m), w3, st->reduced, rw3));
         if (rc == 0) {
             rc = tdc_sim_stage(m, "tdc_trm_reduced", tdc_trm_reduced(&st->trm, st->reduced, rw3, m->wanted, w3));
         }
@@ -128,12 +132,19 @@ static int trm_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32
                        tdc_trm_downsample(&st->trm_r, m->render, w3, st->reduced, (uint32_t)st->trm_r.rw * 3u));
     r->render_s += tdc_sim_now() - t0;
     if (rc == 0) {
-        rc = tdc_sim_stage(m, "link REDUCED packet", tdc_sim_link_reduced(&m->link, lf, st->reduced));
+        rc = tdc_sim_stage(m, "link REDUCED packet", tdc_sim_link_reduced(m->link, m->eye, lf, st->reduced));
     }
     if (rc == 0) {
         t0 = tdc_sim_now();
-        rc = tdc_sim_stage(m, "tdc_trm_reduced", tdc_trm_reduced(&st->trm, m->link.reduced, rw3, m->wanted, w3));
+        rc = tdc_trm_reduced(&st->trm, TDC_SIM_LINK_REDUCED_BUF(m), rw3, m->wanted, w3);
         r->fw_s += tdc_sim_now() - t0;
+        if (rc == TDC_ERR_STATE && m->eye == 1 && lf == 0) {
+            /* stereo stream start: eye 1's first frame is reduced and has
+             * no full frame before it; the firmware refuses it and the
+             * panel keeps its last good frame (black), as on a board */
+            rc = 0;
+        }
+        rc = tdc_sim_stage(m, "tdc_trm_reduced", rc);
     }
     return rc;
 }

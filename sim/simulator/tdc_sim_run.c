@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "metrics/tdc_metrics.h"
 #include "report/tdc_report.h"
@@ -15,8 +16,9 @@
 #include "simulator/tdc_sim_link.h"
 #include "simulator/tdc_sim_mode.h"
 #include "tdc_panels.h"
+#include "tdc_par.h"
 
-static const tdc_panel_t *find_panel(const char *name, int want_lcd)
+const tdc_panel_t *tdc_sim_panel_find(const char *name, int want_lcd)
 {
 #define X(p) &p,
     static const tdc_panel_t *const all[] = {TDC_PANEL_LIST(X) NULL};
@@ -37,19 +39,80 @@ static const tdc_panel_t *find_panel(const char *name, int want_lcd)
     return want_lcd ? NULL : all[0];
 }
 
+/* Wall-clock seconds (stage breakdown: threads overlap, so not CPU time). */
+static double wall_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* What one evaluation instant needs, shared by every mode (modes are
+ * evaluated one after another, so one set of buffers serves all). */
+typedef struct {
+    double *gt[2], *crop_g[2], *enc_g[2]; /* per eye: ground truth, its crop, encoded */
+    double *scratch, *perc, *crop_p, *enc_p, *err, *flipmap, *rows;
+    double *xy; /* sample positions (render calls are sequential too) */
+} sim_eval_t;
+
+static void eval_free(sim_eval_t *e)
+{
+    for (int k = 0; k < 2; k++) {
+        free(e->gt[k]);
+        free(e->crop_g[k]);
+        free(e->enc_g[k]);
+    }
+    free(e->scratch);
+    free(e->perc);
+    free(e->crop_p);
+    free(e->enc_p);
+    free(e->err);
+    free(e->flipmap);
+    free(e->rows);
+    free(e->xy);
+}
+
+static int eval_alloc(sim_eval_t *e, int w, int h, int eyes)
+{
+    size_t n3 = (size_t)w * h * 3;
+    memset(e, 0, sizeof(*e));
+    int bad = 0;
+    for (int k = 0; k < eyes; k++) {
+        bad |= !(e->gt[k] = malloc(sizeof(double) * n3));
+        bad |= !(e->crop_g[k] = malloc(sizeof(double) * n3));
+        bad |= !(e->enc_g[k] = malloc(sizeof(double) * n3));
+    }
+    bad |= !(e->scratch = malloc(sizeof(double) * n3));
+    bad |= !(e->perc = malloc(sizeof(double) * n3));
+    bad |= !(e->crop_p = malloc(sizeof(double) * n3));
+    bad |= !(e->enc_p = malloc(sizeof(double) * n3));
+    bad |= !(e->err = malloc(sizeof(double) * n3));
+    bad |= !(e->flipmap = malloc(sizeof(double) * (size_t)w * h));
+    bad |= !(e->rows = malloc(sizeof(double) * (size_t)h));
+    bad |= !(e->xy = malloc(sizeof(double) * 2 * (size_t)w * h));
+    return bad ? -1 : 0;
+}
+
 /* ---------------------------------------------------------------------
  * Mode set-up: what every mode shares, then its family and the LCD stage.
  * ------------------------------------------------------------------- */
 static int mode_init(sim_mode_t *m, const tdc_mode_desc_t *d, tdc_sim_result_t *res, const tdc_sim_setup_t *s,
-                     const double gamma[3], double window_s)
+                     const double gamma[3], double window_s, int eye, sim_mode_t *eye0, double *xy,
+                     double *scratch)
 {
     const tdc_sim_config_t *cfg = s->cfg;
     memset(m, 0, sizeof(*m));
-    memset(res, 0, sizeof(*res));
+    if (eye == 0) {
+        memset(res, 0, sizeof(*res));
+        res->desc = d;
+        res->available = 1;
+        res->psnr_min = 1e9;
+        res->eyes = s->eyes;
+    }
     m->d = d;
     m->res = res;
-    res->desc = d;
-    res->available = 1;
+    m->eye = eye;
+    m->eyes = s->eyes;
     m->hz = d->fixed_hz ? d->fixed_hz : cfg->refresh_hz;
     res->display_hz = m->hz;
     m->fs = 1.0 / m->hz;
@@ -57,19 +120,26 @@ static int mode_init(sim_mode_t *m, const tdc_mode_desc_t *d, tdc_sim_result_t *
     m->h = cfg->height;
     m->npx = (size_t)m->w * m->h;
     m->last_t = -1.0;
-    res->psnr_min = 1e9;
+    m->xy = xy;
+    m->scratch = scratch;
     double pers = cfg->persistence > 0 ? cfg->persistence : (cfg->refresh_hz >= 200 ? 1.0 : 0.2);
     if (tdc_panel_sim_init(&m->panel, cfg->panel, m->w, m->h, gamma, pers)) {
         return -1;
     }
-    int spf = cfg->panel == TDC_PANEL_SIM_LCD ? TDC_PANEL_SIM_MAX_SLICES : 1;
+    for (int k = 0; k < 3; k++) {
+        for (int c = 0; c < 256; c++) {
+            m->lut[256 * k + c] = tdc_panel_sim_decode(c, gamma[k]);
+        }
+    }
+    int lcd = cfg->panel == TDC_PANEL_SIM_LCD;
+    int spf = lcd ? TDC_PANEL_SIM_MAX_SLICES : 1;
     m->ring_n = ((int)ceil(window_s * m->hz) + 3) * spf;
     if (m->ring_n > TDC_SIM_RING_MAX) {
         m->ring_n = TDC_SIM_RING_MAX;
     }
     size_t n3 = m->npx * 3;
     for (int i = 0; i < m->ring_n; i++) {
-        m->ring_buf[i] = calloc(n3, sizeof(double));
+        m->ring_buf[i] = calloc(n3, lcd ? sizeof(double) : 1);
         if (!m->ring_buf[i]) {
             return -1;
         }
@@ -77,27 +147,24 @@ static int mode_init(sim_mode_t *m, const tdc_mode_desc_t *d, tdc_sim_result_t *
     m->render = calloc(n3, 1);
     m->wanted = calloc(n3, 1);
     m->out = calloc(n3, 1);
-    m->xy = calloc(m->npx * 2, sizeof(double));
-    m->perc = calloc(n3, sizeof(double));
-    m->crop_p = calloc(n3, sizeof(double));
-    m->crop_g = calloc(n3, sizeof(double));
-    m->enc_p = calloc(n3, sizeof(double));
-    m->enc_g = calloc(n3, sizeof(double));
-    m->err = calloc(n3, sizeof(double));
     m->err_prev = calloc(n3, sizeof(double));
-    m->flipmap = calloc(m->npx, sizeof(double));
-    if (!m->render || !m->wanted || !m->out || !m->xy || !m->perc || !m->crop_p || !m->crop_g || !m->enc_p ||
-        !m->enc_g || !m->err || !m->err_prev || !m->flipmap) {
+    if (!m->render || !m->wanted || !m->out || !m->err_prev) {
         return -1;
     }
-    if (tdc_sim_link_init(&m->link, m->w, m->h, d->link_flags, d->r_num, d->r_den, (uint16_t)m->hz) != 0) {
-        if (!m->link.full) {
-            return -1;
+    if (eye == 0) {
+        m->link = &m->link_own;
+        if (tdc_sim_link_init(m->link, m->w, m->h, s->eyes, d->link_flags, d->r_num, d->r_den, (uint16_t)m->hz) !=
+            0) {
+            if (!m->link->full[0]) {
+                return -1;
+            }
+            tdc_sim_note(m, "link stream header rejected");
         }
-        tdc_sim_note(m, "link stream header rejected");
-    }
-    if (!m->link.real) {
-        tdc_sim_note(m, "link: payload copied, bytes = payload + 32-byte header (encoder/decoder not in this build)");
+        if (!m->link->real) {
+            tdc_sim_note(m, "link: payload copied, bytes = payload + 32-byte header (encoder/decoder not in this build)");
+        }
+    } else {
+        m->link = eye0->link;
     }
     if (d->family->init(m, s)) {
         return -1;
@@ -120,33 +187,30 @@ static void mode_free(sim_mode_t *m)
     free(m->render);
     free(m->wanted);
     free(m->out);
-    free(m->xy);
-    free(m->perc);
-    free(m->crop_p);
-    free(m->crop_g);
-    free(m->enc_p);
-    free(m->enc_g);
-    free(m->err);
     free(m->err_prev);
-    free(m->flipmap);
-    tdc_sim_link_free(&m->link);
+    if (m->link == &m->link_own) {
+        tdc_sim_link_free(m->link);
+    }
     tdc_panel_sim_free(&m->panel);
 }
 
-/* Stream reset (scene cut): new stream, firmware history dropped. */
+/* Stream reset (scene cut): new stream (once per mode), firmware history
+ * dropped (every eye). */
 static void mode_reset(sim_mode_t *m)
 {
     m->lf = 0;
-    m->res->resets++;
-    tdc_sim_stage(m, "link STREAM packet (reset)", tdc_sim_link_stream(&m->link));
+    if (m->eye == 0) {
+        m->res->resets++;
+        tdc_sim_stage(m, "link STREAM packet (reset)", tdc_sim_link_stream(m->link));
+    }
     if (m->d->family->reset) {
         m->d->family->reset(m);
     }
     tdc_sim_stage_lcd.reset(m);
 }
 
-/* Produces drive codes for the next display frame and shows them. */
-static void mode_display_frame(sim_mode_t *m, tdc_source_t *src, int spp)
+/* Produces drive codes for the next display frame of one eye and shows them. */
+static void mode_display_frame(sim_mode_t *m, tdc_source_t *src, int spp, tdc_sim_times_t *tm)
 {
     /* Frames are rendered for the middle of their emission (as a renderer
      * predicts the display time), then shown from the frame start. */
@@ -157,32 +221,59 @@ static void mode_display_frame(sim_mode_t *m, tdc_source_t *src, int spp)
         mode_reset(m);
     }
     uint32_t lf = m->lf;
-    double dec0 = m->link.decode_s, enc0 = m->link.encode_s;
+    double dec0 = m->link->decode_s, enc0 = m->link->encode_s, fw0 = r->fw_s, ren0 = r->render_s;
+    double w0 = wall_now();
     m->d->family->frame(m, src, t, spp, lf);
     memcpy(m->out, m->wanted, m->npx * 3);
     if (m->drive && !m->failed) {
         tdc_sim_stage_lcd.frame(m, src, t, spp, lf);
     }
+    double w1 = wall_now();
+    double dec = m->link->decode_s - dec0, enc = m->link->encode_s - enc0;
+    r->fw_s += dec;
+    r->render_s += enc;
+    if (tm) {
+        /* the families time source and firmware in CPU seconds; the wall
+         * time of the frame is split between source, link and firmware in
+         * the same proportions */
+        double cpu = (r->fw_s - fw0) + (r->render_s - ren0);
+        double k = cpu > 0.0 ? (w1 - w0) / cpu : 0.0;
+        tm->link_s += k * (dec + enc);
+        tm->firmware_s += k * (r->fw_s - fw0 - dec);
+        tm->source_s += k * (r->render_s - ren0 - enc);
+    }
     if (m->failed) {
         return; /* reported; a failed frame is not shown */
     }
-    r->fw_s += m->link.decode_s - dec0;
-    r->render_s += m->link.encode_s - enc0;
     /* panel */
     tdc_eye_slice_t sl[TDC_PANEL_SIM_MAX_SLICES];
     int ns = tdc_panel_sim_show(&m->panel, m->out, t_show, m->fs, sl);
     for (int i = 0; i < ns; i++) {
         int slot = m->ring_head;
-        memcpy(m->ring_buf[slot], sl[i].lin, m->npx * 3 * sizeof(double));
-        m->ring[slot].t0 = sl[i].t0;
-        m->ring[slot].t1 = sl[i].t1;
-        m->ring[slot].lin = m->ring_buf[slot];
+        tdc_eye_slice_t *rs = &m->ring[slot];
+        memset(rs, 0, sizeof(*rs));
+        if (m->panel.kind == TDC_PANEL_SIM_OLED) {
+            /* the OLED slice is the panel's decode of the codes: keep the codes */
+            memcpy(m->ring_buf[slot], m->out, m->npx * 3);
+            rs->codes = m->ring_buf[slot];
+            rs->lut = m->lut;
+        } else {
+            memcpy(m->ring_buf[slot], sl[i].lin, m->npx * 3 * sizeof(double));
+            rs->lin = m->ring_buf[slot];
+        }
+        rs->t0 = sl[i].t0;
+        rs->t1 = sl[i].t1;
         m->ring_head = (m->ring_head + 1) % m->ring_n;
         if (m->ring_count < m->ring_n) {
             m->ring_count++;
         }
     }
-    r->frames++;
+    if (tm) {
+        tm->panel_s += wall_now() - w1;
+    }
+    if (m->eye == 0) {
+        r->frames++;
+    }
     m->last_t = t;
     m->frame++;
     m->lf++;
@@ -193,6 +284,7 @@ static void mode_display_frame(sim_mode_t *m, tdc_source_t *src, int spp)
  * ------------------------------------------------------------------- */
 static void crop_copy(const double *in, int w, int x0, int y0, int cw, int ch, double *out)
 {
+    TDC_PAR_ROWS
     for (int y = 0; y < ch; y++) {
         memcpy(out + (size_t)y * cw * 3, in + 3 * ((size_t)(y + y0) * w + x0), sizeof(double) * 3 * (size_t)cw);
     }
@@ -209,22 +301,116 @@ static void progress(double frac, const char *label)
     fflush(stderr);
 }
 
+/* Perceived error of one mode's eye at te against that eye's ground truth
+ * (already cropped and encoded in ev); accumulates into m. */
+static void eval_mode_eye(sim_mode_t *m, sim_eval_t *ev, const tdc_eye_cfg_t *ec, const tdc_sim_config_t *cfg, long j,
+                          double te, double prev_te, const double v[2], int margin, int cw, int ch, int strip_at,
+                          FILE *series, tdc_sim_times_t *tm)
+{
+    tdc_sim_result_t *r = m->res;
+    int w = m->w, h = m->h;
+    size_t n3 = m->npx * 3, cn = (size_t)cw * ch * 3;
+    double w0 = wall_now();
+    if (tdc_eye_perceive(ec, m->ring, m->ring_count, te, v, ev->perc)) {
+        tdc_sim_stage(m, "eye model (out of memory)", -1);
+        return;
+    }
+    double w1 = wall_now();
+    int nonfinite = 0;
+    TDC_PAR_ROWS
+    for (int y = 0; y < h; y++) {
+        for (size_t k = 3 * (size_t)y * w; k < 3 * (size_t)(y + 1) * w; k++) {
+            if (!isfinite(ev->perc[k])) {
+                ev->perc[k] = 0.0;
+                nonfinite = 1; /* benign race: every writer stores 1 */
+            }
+        }
+    }
+    (void)n3;
+    r->nonfinite |= nonfinite;
+    crop_copy(ev->perc, w, margin, margin, cw, ch, ev->crop_p);
+    tdc_metrics_encode(ev->crop_p, ev->enc_p, cn);
+    const double *enc_g = ev->enc_g[m->eye], *crop_g = ev->crop_g[m->eye];
+    double psnr = tdc_psnr(ev->enc_p, enc_g, cn, 1.0);
+    double ssim = tdc_ssim(ev->enc_p, enc_g, cw, ch, 1.0);
+    double flip = tdc_flip(crop_g, ev->crop_p, cw, ch, cfg->flip_ppd, ev->flipmap);
+    if (psnr < 0.0 || ssim < -1.0 || flip < 0.0) {
+        tdc_sim_stage(m, "metrics (out of memory or size beyond the filters)", -1);
+        return;
+    }
+    TDC_PAR_ROWS
+    for (int y = 0; y < ch; y++) {
+        for (size_t k = 3 * (size_t)y * cw; k < 3 * (size_t)(y + 1) * cw; k++) {
+            ev->err[k] = ev->enc_p[k] - enc_g[k];
+        }
+    }
+    double flick = NAN;
+    if (m->have_err_prev) {
+        /* frame-to-frame change of the motion-compensated error: the
+         * retinal point at x now was at x - v dt in the last image */
+        double sx = -v[0] * cfg->pursuit_gain * (te - prev_te), sy = -v[1] * cfg->pursuit_gain * (te - prev_te);
+        TDC_PAR_ROWS
+        for (int y = 0; y < ch; y++) {
+            double se = 0.0;
+            for (int x = 0; x < cw; x++) {
+                for (int c = 0; c < 3; c++) {
+                    double pe = tdc_eye_bilinear(m->err_prev, cw, ch, x + sx, y + sy, c);
+                    double d = ev->err[3 * ((size_t)y * cw + x) + c] - pe;
+                    se += d * d;
+                }
+            }
+            ev->rows[y] = se;
+        }
+        flick = 255.0 * sqrt(tdc_par_sum_rows(ev->rows, ch) / (double)cn);
+        m->sum_flicker += flick;
+        m->n_flicker++;
+    }
+    memcpy(m->err_prev, ev->err, cn * sizeof(double));
+    m->have_err_prev = 1;
+    m->sum_psnr += psnr;
+    m->sum_ssim += ssim;
+    m->sum_flip += flip;
+    r->psnr_min = psnr < r->psnr_min ? psnr : r->psnr_min;
+    r->flip_max = flip > r->flip_max ? flip : r->flip_max;
+    static const char *const eye_tag[2] = {".L", ".R"};
+    const char *tag = m->eyes == 2 ? eye_tag[m->eye] : "";
+    if (series) {
+        fprintf(series, "%s%s,%ld,%.6f,%.4f,%.6f,%.6f,%s%.4f\n", r->desc->name, tag, j, te, psnr, ssim, flip,
+                isnan(flick) ? "" : "", isnan(flick) ? 0.0 : flick);
+    }
+    if (j == strip_at && cfg->outdir) {
+        char name[96];
+        snprintf(name, sizeof(name), "%s%s", r->desc->name, m->eyes == 2 ? (m->eye ? "_R" : "_L") : "");
+        tdc_report_strip(cfg->outdir, name, m->out, ev->crop_p, crop_g, ev->flipmap, w, h, cw, ch, margin);
+    }
+    if (tm) {
+        tm->eye_s += w1 - w0;
+        tm->metrics_s += wall_now() - w1;
+    }
+}
+
 int tdc_sim_run(const tdc_sim_config_t *cfg, tdc_source_t *src, const tdc_mode_desc_t *const *modes, int nmodes,
                 tdc_sim_result_t *results, FILE *series)
 {
+    const int eyes = cfg && cfg->eyes == 2 ? 2 : 1;
     if (!cfg || !src || nmodes < 1 || cfg->width < 2 || cfg->height < 2 || cfg->refresh_hz < 1 ||
-        cfg->duration_s <= 0.0) {
+        cfg->duration_s <= 0.0 || (eyes == 2 && !cfg->right)) {
         fprintf(stderr, "tdc-sim: invalid configuration\n");
         return -1;
     }
+    tdc_source_t *srcs[2] = {src, eyes == 2 ? cfg->right : NULL};
+    tdc_sim_times_t *tm = cfg->times;
+    if (tm) {
+        memset(tm, 0, sizeof(*tm));
+    }
+    double wall0 = wall_now();
     const int R = cfg->refresh_hz;
     const int wf = cfg->window_frames > 0 ? cfg->window_frames : (R >= 200 ? 4 : 2);
     const double W = (double)wf / R;
     const int spp = cfg->spp > 0 ? cfg->spp : (R >= 200 ? 1 : 4);
     const int w = cfg->width, h = cfg->height;
-    const size_t n3 = (size_t)w * h * 3;
-    const tdc_panel_t *fw_panel = find_panel(cfg->panel == TDC_PANEL_SIM_LCD ? NULL : cfg->panel_profile, 0);
-    const tdc_panel_t *lcd_panel = cfg->panel == TDC_PANEL_SIM_LCD ? find_panel(cfg->panel_profile, 1) : NULL;
+    const tdc_panel_t *fw_panel = tdc_sim_panel_find(cfg->panel == TDC_PANEL_SIM_LCD ? NULL : cfg->panel_profile, 0);
+    const tdc_panel_t *lcd_panel = cfg->panel == TDC_PANEL_SIM_LCD ? tdc_sim_panel_find(cfg->panel_profile, 1) : NULL;
     if (!fw_panel) {
         fprintf(stderr, "tdc-sim: unknown panel profile '%s'\n", cfg->panel_profile ? cfg->panel_profile : "?");
         return -1;
@@ -233,31 +419,36 @@ int tdc_sim_run(const tdc_sim_config_t *cfg, tdc_source_t *src, const tdc_mode_d
     double gamma[3];
     for (int k = 0; k < 3; k++) {
         gamma[k] = gp->gamma_micro[k] / 1e6;
-        src->gamma[k] = gamma[k];
+        for (int e = 0; e < eyes; e++) {
+            srcs[e]->gamma[k] = gamma[k];
+        }
     }
-    sim_mode_t *ms = calloc((size_t)nmodes, sizeof(sim_mode_t));
-    double *gt = malloc(sizeof(double) * n3), *scratch = malloc(sizeof(double) * n3);
-    if (!ms || !gt || !scratch) {
+    sim_mode_t *ms = calloc((size_t)nmodes * eyes, sizeof(sim_mode_t));
+    sim_eval_t ev;
+    if (!ms || eval_alloc(&ev, w, h, eyes)) {
+        fprintf(stderr, "tdc-sim: out of memory for %dx%d x %d eye(s)\n", w, h, eyes);
         free(ms);
-        free(gt);
-        free(scratch);
+        eval_free(&ev);
         return -1;
     }
     int rc = 0;
-    tdc_sim_setup_t setup = {cfg, lcd_panel ? lcd_panel : fw_panel, lcd_panel, src->full_frame != NULL,
+    tdc_sim_setup_t setup = {cfg, eyes, lcd_panel ? lcd_panel : fw_panel, lcd_panel, src->full_frame != NULL,
                              src->subframe != NULL};
     for (int i = 0; i < nmodes; i++) {
-        if (mode_init(&ms[i], modes[i], &results[i], &setup, gamma, W)) {
-            fprintf(stderr, "tdc-sim: out of memory setting up mode %s\n", modes[i]->name);
-            rc = -1;
+        for (int e = 0; e < eyes; e++) {
+            sim_mode_t *m = &ms[i * eyes + e];
+            if (mode_init(m, modes[i], &results[i], &setup, gamma, W, e, &ms[i * eyes], ev.xy, ev.scratch)) {
+                fprintf(stderr, "tdc-sim: out of memory setting up mode %s\n", modes[i]->name);
+                rc = -1;
+            }
+            m->slot = i;
         }
-        ms[i].slot = i;
         if (src->note && src->full_frame) {
-            tdc_sim_note(&ms[i], src->note);
+            tdc_sim_note(&ms[i * eyes], src->note);
         }
         if (rc == 0 && cfg->strict && results[i].refused) {
-            fprintf(stderr, "tdc-sim: --mode %s at --refresh %d, --size %dx%d: %s\n", modes[i]->name, ms[i].hz, w, h,
-                    results[i].note);
+            fprintf(stderr, "tdc-sim: --mode %s at --refresh %d, --size %dx%d: %s\n", modes[i]->name, ms[i * eyes].hz,
+                    w, h, results[i].note);
             rc = -1;
         }
     }
@@ -290,15 +481,20 @@ int tdc_sim_run(const tdc_sim_config_t *cfg, tdc_source_t *src, const tdc_mode_d
     for (long j = 0; j < nevals && rc == 0; j++) {
         double te = (double)(j + wf) / R;
         for (int i = 0; i < nmodes; i++) {
-            sim_mode_t *m = &ms[i];
-            if (!m->res->available) {
+            sim_mode_t *m0 = &ms[i * eyes];
+            if (!m0->res->available) {
                 continue;
             }
-            while (m->frame * m->fs < te - 1e-12 && !m->failed) {
-                mode_display_frame(m, src, spp);
-            }
-            if (m->failed) {
-                rc = -1; /* reported with the mode, frame and stage */
+            /* both eyes of a refresh, eye 0 first (the stereo stream's order) */
+            while (m0->frame * m0->fs < te - 1e-12 && rc == 0) {
+                for (int e = 0; e < eyes; e++) {
+                    sim_mode_t *m = &ms[i * eyes + e];
+                    mode_display_frame(m, srcs[e], spp, tm);
+                    if (m->failed) {
+                        rc = -1; /* reported with the mode, frame and stage */
+                        break;
+                    }
+                }
             }
         }
         if (rc) {
@@ -309,67 +505,27 @@ int tdc_sim_run(const tdc_sim_config_t *cfg, tdc_source_t *src, const tdc_mode_d
         }
         double v[2];
         src->pursuit(src, te, v);
-        tdc_eye_ground_truth(&ec, src, te, v, gt_steps, gt, scratch);
-        for (int i = 0; i < nmodes; i++) {
-            sim_mode_t *m = &ms[i];
-            tdc_sim_result_t *r = m->res;
-            if (!r->available) {
+        for (int e = 0; e < eyes; e++) {
+            double w0 = wall_now();
+            tdc_eye_ground_truth(&ec, srcs[e], te, v, gt_steps, ev.gt[e], ev.scratch);
+            double w1 = wall_now();
+            crop_copy(ev.gt[e], w, margin, margin, cw, ch, ev.crop_g[e]);
+            tdc_metrics_encode(ev.crop_g[e], ev.enc_g[e], (size_t)cw * ch * 3);
+            if (tm) {
+                tm->source_s += w1 - w0;
+                tm->metrics_s += wall_now() - w1;
+            }
+        }
+        for (int i = 0; i < nmodes && rc == 0; i++) {
+            if (!results[i].available) {
                 continue;
             }
-            /* slices in ring order */
-            tdc_eye_perceive(&ec, m->ring, m->ring_count, te, v, m->perc);
-            for (size_t k = 0; k < n3; k++) {
-                if (!isfinite(m->perc[k])) {
-                    r->nonfinite = 1;
-                    m->perc[k] = 0.0;
-                }
+            for (int e = 0; e < eyes && rc == 0; e++) {
+                sim_mode_t *m = &ms[i * eyes + e];
+                eval_mode_eye(m, &ev, &ec, cfg, j, te, prev_te, v, margin, cw, ch, strip_at, series, tm);
+                rc = m->failed ? -1 : 0;
             }
-            crop_copy(m->perc, w, margin, margin, cw, ch, m->crop_p);
-            crop_copy(gt, w, margin, margin, cw, ch, m->crop_g);
-            size_t cn = (size_t)cw * ch * 3;
-            tdc_metrics_encode(m->crop_p, m->enc_p, cn);
-            tdc_metrics_encode(m->crop_g, m->enc_g, cn);
-            double psnr = tdc_psnr(m->enc_p, m->enc_g, cn, 1.0);
-            double ssim = tdc_ssim(m->enc_p, m->enc_g, cw, ch, 1.0);
-            double flip = tdc_flip(m->crop_g, m->crop_p, cw, ch, cfg->flip_ppd, m->flipmap);
-            for (size_t k = 0; k < cn; k++) {
-                m->err[k] = m->enc_p[k] - m->enc_g[k];
-            }
-            double flick = NAN;
-            if (m->have_err_prev) {
-                /* frame-to-frame change of the motion-compensated error: the
-                 * retinal point at x now was at x - v dt in the last image */
-                double sx = -v[0] * cfg->pursuit_gain * (te - prev_te), sy = -v[1] * cfg->pursuit_gain * (te - prev_te);
-                double se = 0.0;
-                for (int y = 0; y < ch; y++) {
-                    for (int x = 0; x < cw; x++) {
-                        for (int c = 0; c < 3; c++) {
-                            double pe = tdc_eye_bilinear(m->err_prev, cw, ch, x + sx, y + sy, c);
-                            double d = m->err[3 * ((size_t)y * cw + x) + c] - pe;
-                            se += d * d;
-                        }
-                    }
-                }
-                flick = 255.0 * sqrt(se / (double)cn);
-                m->sum_flicker += flick;
-                m->n_flicker++;
-            }
-            memcpy(m->err_prev, m->err, cn * sizeof(double));
-            m->have_err_prev = 1;
-            m->sum_psnr += psnr;
-            m->sum_ssim += ssim;
-            m->sum_flip += flip;
-            r->evals++;
-            r->psnr_min = psnr < r->psnr_min ? psnr : r->psnr_min;
-            r->flip_max = flip > r->flip_max ? flip : r->flip_max;
-            if (series) {
-                fprintf(series, "%s,%ld,%.6f,%.4f,%.6f,%.6f,%s%.4f\n", r->desc->name, j, te, psnr, ssim, flip,
-                        isnan(flick) ? "" : "", isnan(flick) ? 0.0 : flick);
-            }
-            if (j == strip_at && cfg->outdir) {
-                tdc_report_strip(cfg->outdir, r->desc->name, m->out, m->crop_p, m->crop_g, m->flipmap, w, h, cw, ch,
-                                 margin);
-            }
+            results[i].evals++;
         }
         prev_te = te;
         if (cfg->progress && (j % 16 == 0 || j == nevals - 1)) {
@@ -380,22 +536,38 @@ int tdc_sim_run(const tdc_sim_config_t *cfg, tdc_source_t *src, const tdc_mode_d
         fputc('\n', stderr);
     }
     for (int i = 0; i < nmodes; i++) {
-        sim_mode_t *m = &ms[i];
-        tdc_sim_result_t *r = m->res;
-        if (r->evals) {
-            r->psnr = m->sum_psnr / r->evals;
-            r->ssim = m->sum_ssim / r->evals;
-            r->flip = m->sum_flip / r->evals;
+        tdc_sim_result_t *r = &results[i];
+        double sp = 0.0, ss = 0.0, sf = 0.0, sk = 0.0;
+        for (int e = 0; e < eyes; e++) {
+            sim_mode_t *m = &ms[i * eyes + e];
+            if (r->evals) {
+                r->eye_psnr[e] = m->sum_psnr / r->evals;
+                r->eye_ssim[e] = m->sum_ssim / r->evals;
+                r->eye_flip[e] = m->sum_flip / r->evals;
+            }
+            r->eye_flicker[e] = m->n_flicker ? m->sum_flicker / m->n_flicker : 0.0;
+            sp += r->eye_psnr[e];
+            ss += r->eye_ssim[e];
+            sf += r->eye_flip[e];
+            sk += r->eye_flicker[e];
         }
-        r->flicker = m->n_flicker ? m->sum_flicker / m->n_flicker : 0.0;
-        r->link_bytes = m->link.bytes;
-        r->link_errors += m->link.errors;
-        r->sim_s = (double)nevals / R + W - 1.0 / R;
-        r->sim_s = m->frame * m->fs;
-        mode_free(m);
+        /* both eyes: the mean of the two eyes' figures */
+        r->psnr = sp / eyes;
+        r->ssim = ss / eyes;
+        r->flip = sf / eyes;
+        r->flicker = sk / eyes;
+        sim_mode_t *m0 = &ms[i * eyes];
+        r->link_bytes = m0->link ? m0->link->bytes : 0;
+        r->link_errors += m0->link ? m0->link->errors : 0;
+        r->sim_s = m0->frame * m0->fs;
+        for (int e = 0; e < eyes; e++) {
+            mode_free(&ms[i * eyes + e]);
+        }
     }
     free(ms);
-    free(gt);
-    free(scratch);
+    eval_free(&ev);
+    if (tm) {
+        tm->total_s = wall_now() - wall0;
+    }
     return rc;
 }
