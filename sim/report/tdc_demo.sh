@@ -34,8 +34,8 @@ stiff-white240|-s white -r 240 -m asm-family -d 0.05'
 run_one() {
     name=$1; shift
     t0=$(date +%s)
-    # 128x96 unless the run gives its own -g (the later option wins)
-    if "$SIM" -q -l "$name" -o "$OUT/$name" -g 128x96 "$@" > "$OUT/$name/stdout.txt" 2> "$OUT/$name/stderr.txt"; then
+    # 128x96 mono unless the run gives its own -g / --stereo (the later option wins)
+    if "$SIM" -q -l "$name" -o "$OUT/$name" -g 128x96 --mono "$@" > "$OUT/$name/stdout.txt" 2> "$OUT/$name/stderr.txt"; then
         echo "$name ok ($(( $(date +%s) - t0 )) s): tdc-sim $*" >> "$LOG"
     else
         echo "$name FAILED (exit $?): tdc-sim $*" >> "$LOG"
