@@ -167,9 +167,9 @@ host: $(FWLIB) $(SIMLIB) $(HOST_PROGS)
 # ---------------------------------------------------------------------------
 # Build-enforced firmware rules on the host objects: no float, no heap.
 # ---------------------------------------------------------------------------
-$(B)/check-fw-rules: $(FW_OBJS) tests/check_fw_symbols.sh tests/check_no_recursion.sh
+$(B)/check-fw-rules: $(FW_OBJS) tests/rules/check_fw_symbols.sh tests/rules/check_no_recursion.sh
 	@mkdir -p $(@D)
-	@printf '#!/bin/sh\n# generated: firmware objects must not reference float or heap symbols, no recursion\ntests/check_fw_symbols.sh nm %s || exit 1\nexec tests/check_no_recursion.sh -std=c11 -I%s -I%s -- %s\n' "$(FW_OBJS)" "$(abspath firmware)" "$(abspath $(GEN))" "$(FW_SRCS)" > $@
+	@printf '#!/bin/sh\n# generated: firmware objects must not reference float or heap symbols, no recursion\ntests/rules/check_fw_symbols.sh nm %s || exit 1\nexec tests/rules/check_no_recursion.sh -std=c11 -I%s -I%s -- %s\n' "$(FW_OBJS)" "$(abspath firmware)" "$(abspath $(GEN))" "$(FW_SRCS)" > $@
 	@chmod +x $@
 
 # ---------------------------------------------------------------------------

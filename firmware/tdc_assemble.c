@@ -26,48 +26,42 @@
 #define TDC_ASM_ALWAYS_INLINE inline
 #endif
 
-#define TDC_ASM_ALIGN(n) (((n) + 7u) & ~(size_t)7u)
-
 static int tdc_asm_cfg_ok(const tdc_asm_config_t *cfg)
 {
     return cfg && cfg->width >= 1 && cfg->height >= 1 && cfg->width <= TDC_ASM_MAX_DIM &&
            cfg->height <= TDC_ASM_MAX_DIM;
 }
 
+/* The one layout (tdc_assemble.h TDC_ASM_ARENA); NULL views in a dry run. */
+static void tdc_asm_carve(tdc_asm_t *st, const tdc_asm_config_t *cfg, tdc_arena_t *arena)
+{
+    TDC_ASM_ARENA(TDC_ARENA_CARVE, cfg->width, cfg->height,
+                  (size_t)TDC_ORDERING_TILES_X((uint32_t)cfg->width) * TDC_ORDERING_TILES_Y((uint32_t)cfg->height),
+                  TDC_ORDERING_BITMAP_BYTES(cfg->width, cfg->height))
+}
+
 size_t tdc_asm_get_size(const tdc_asm_config_t *cfg)
 {
     if (!tdc_asm_cfg_ok(cfg)) return 0;
-    size_t px = (size_t)cfg->width * cfg->height;
-    size_t bm = (size_t)TDC_ORDERING_BITMAP_BYTES(cfg->width, cfg->height);
-    size_t tiles = (size_t)TDC_ORDERING_TILES_X(cfg->width) * TDC_ORDERING_TILES_Y(cfg->height);
-    return TDC_ASM_ALIGN(px * 3u) * 2u + TDC_ASM_ALIGN(tiles * 48u) + TDC_ASM_ALIGN(px) + TDC_ASM_ALIGN(px * 4u) +
-           TDC_ASM_ALIGN((size_t)cfg->width * 3u * sizeof(tdc_asm_mvmax_t)) + TDC_ASM_ALIGN((size_t)cfg->width * 3u) +
-           TDC_ASM_ALIGN((size_t)cfg->width * 3u * 16u) + TDC_ASM_ALIGN(bm) * 2u;
+    tdc_asm_t dry;
+    tdc_arena_t arena;
+    tdc_arena_dry(&arena);
+    tdc_asm_carve(&dry, cfg, &arena);
+    return tdc_arena_size(&arena);
 }
 
 tdc_status_t tdc_asm_init(tdc_asm_t *st, const tdc_asm_config_t *cfg, void *arena, size_t n)
 {
-    if (!st || !arena || !tdc_asm_cfg_ok(cfg)) return TDC_ERR_ARG;
-    if (((uintptr_t)arena & 7u) != 0) return TDC_ERR_ARG;
-    if (n < tdc_asm_get_size(cfg)) return TDC_ERR_SIZE;
+    tdc_arena_t a;
+    if (!st || !tdc_asm_cfg_ok(cfg) || !tdc_arena_over(&a, arena, n)) return TDC_ERR_ARG;
+    const size_t need = tdc_asm_get_size(cfg); /* the same carve, dry: nothing is touched on error */
+    if (n < need) return TDC_ERR_SIZE;
     memset(st, 0, sizeof(*st));
     st->cfg = *cfg;
     st->tiles_x = TDC_ORDERING_TILES_X((uint32_t)cfg->width);
     st->tiles_y = TDC_ORDERING_TILES_Y((uint32_t)cfg->height);
-    size_t px = (size_t)cfg->width * cfg->height;
-    size_t bm = (size_t)TDC_ORDERING_BITMAP_BYTES(cfg->width, cfg->height);
-    uint8_t *p = (uint8_t *)arena;
-    st->frame[0] = p, p += TDC_ASM_ALIGN(px * 3u);
-    st->frame[1] = p, p += TDC_ASM_ALIGN(px * 3u);
-    st->samples = p, p += TDC_ASM_ALIGN((size_t)st->tiles_x * st->tiles_y * 48u);
-    st->window = p, p += TDC_ASM_ALIGN(px);
-    st->mv = (int16_t *)(void *)p, p += TDC_ASM_ALIGN(px * 4u);
-    st->ring = (tdc_asm_mvmax_t *)(void *)p, p += TDC_ASM_ALIGN((size_t)cfg->width * 3u * sizeof(tdc_asm_mvmax_t));
-    st->newring = p, p += TDC_ASM_ALIGN((size_t)cfg->width * 3u);
-    st->boxring = (uint64_t *)(void *)p, p += TDC_ASM_ALIGN((size_t)cfg->width * 3u * 16u);
-    st->pattern = p, p += TDC_ASM_ALIGN(bm);
-    st->pattern_next = p;
-    memset(arena, 0, tdc_asm_get_size(cfg));
+    tdc_asm_carve(st, cfg, &a);
+    memset(arena, 0, need);
     return TDC_OK;
 }
 
@@ -115,7 +109,7 @@ tdc_status_t tdc_asm_ingest(tdc_asm_t *st, uint32_t frame, const uint8_t *sample
                             const uint8_t *pattern_bits)
 {
     if (!st || !samples) return TDC_ERR_ARG;
-    if (frame != st->next_frame || st->have_subframe) return (tdc_status_t)TDC_ASM_ERR_FRAME;
+    if (frame != st->next_frame || st->have_subframe) return TDC_ERR_FRAME;
     const uint32_t w = st->cfg.width, h = st->cfg.height, k = frame & 3u;
     const uint32_t slot = (frame >> 2) & 3u;
     if (pattern_bits) {
@@ -181,7 +175,7 @@ tdc_status_t tdc_asm_ingest(tdc_asm_t *st, uint32_t frame, const uint8_t *sample
 tdc_status_t tdc_asm_set_motion(tdc_asm_t *st, uint32_t frame, const int16_t *mv)
 {
     if (!st || !mv) return TDC_ERR_ARG;
-    if (frame != st->next_frame) return (tdc_status_t)TDC_ASM_ERR_FRAME;
+    if (frame != st->next_frame) return TDC_ERR_FRAME;
     const size_t n = (size_t)st->cfg.width * st->cfg.height;
     uint32_t nz = 0;
     for (size_t i = 0; i < n; i++) {
@@ -213,7 +207,7 @@ static inline const uint8_t *tdc_asm_sample_row(const tdc_asm_t *st, uint32_t y,
 /* Mean of the samples in the window mask (1..4 slots), rounded half up.
  * Scaling and overflow: sum <= 4 * 255; round(sum / n) =
  * floor((2 sum + n) / (2 n)) = ((2 sum + n) * ceil(2^16 / 2n)) >> 16, exact
- * for sum <= 1020 (tests/test_assemble.c checks all sums and n). */
+ * for sum <= 1020 (tests/unit/test_assemble.c checks all sums and n). */
 static const uint16_t tdc_asm_half_recip_q16[5] = {0, 32768, 16384, 10923, 8192};
 
 uint8_t tdc_asm_mean_u8(uint32_t sum, unsigned n)
@@ -253,7 +247,7 @@ static inline void tdc_asm_window_mean(const uint8_t *s0, size_t stride, unsigne
  * floor(sqrt(i * 2^24)) = floor(4096 sqrt(i)) for i = 64 .. 255 (i = 256
  * gives 65536, handled in code), generated by
  * python3 -c "import math; print([math.isqrt(i<<24) for i in range(64,256)])"
- * (tests/test_assemble.c checks tdc_asm_sqrt_q8 against double sqrt).
+ * (tests/unit/test_assemble.c checks tdc_asm_sqrt_q8 against double sqrt).
  */
 static const uint16_t tdc_asm_sqrt_tab[192] = {
     32768, 33023, 33276, 33527, 33776, 34023, 34269, 34513, 34755, 34996, 35235, 35472,
@@ -956,7 +950,7 @@ static void tdc_asm_dynamic_frame(tdc_asm_t *st, uint32_t frame)
 tdc_status_t tdc_asm_assemble(tdc_asm_t *st, uint32_t frame)
 {
     if (!st) return TDC_ERR_ARG;
-    if (frame != st->next_frame) return (tdc_status_t)TDC_ASM_ERR_FRAME;
+    if (frame != st->next_frame) return TDC_ERR_FRAME;
     if (!st->have_subframe) st->stats.subframes_missing++;
     if (st->mv_nonzero == 0)
         tdc_asm_static_frame(st, frame);

@@ -51,24 +51,39 @@
 #ifndef TDC_ASSEMBLE_H
 #define TDC_ASSEMBLE_H
 
+#include "tdc_arena.h"
 #include "tdc_fixed.h"
 #include "tdc_ordering.h"
 
 #define TDC_ASM_MAX_DIM 4096
 
-/* Status codes beyond tdc_status_t. */
-enum {
-    TDC_ASM_ERR_FRAME = -20 /* ingest/assemble for a frame out of sequence */
-};
-
 /* Bytes per pixel of the arena: 2 output frames (6), window mask (1),
- * motion buffer (4); plus 48 per tile: 4 slots x 4 positions of RGB888. */
+ * motion buffer (4); plus 48 per tile: 4 slots x 4 positions of RGB888;
+ * plus 75 per column of row rings. */
 #define TDC_ASM_BYTES_PER_PIXEL 11u
 
-#define TDC_ASM_MEM_BYTES(W, H)                                                         \
-    ((size_t)(W) * (size_t)(H) * TDC_ASM_BYTES_PER_PIXEL +                                \
-     (size_t)TDC_ORDERING_TILES_X(W) * TDC_ORDERING_TILES_Y(H) * 48u + (size_t)(W) * 3u * 26u /* rings */ \
-     + 2u * (size_t)TDC_ORDERING_BITMAP_BYTES(W, H) + 16u * 8u /* alignment slack: 11 regions */)
+/*
+ * The arena (tdc_arena.h), one line per block: X(member of tdc_asm_t,
+ * element type, count) for a W x H frame of TILES 2x2 tiles and BM bytes of
+ * ordering bits.  Init carves it, get_size() is the same carve as a dry
+ * run, TDC_ASM_MEM_BYTES the same list at the build's size.
+ */
+#define TDC_ASM_ARENA(X, W, H, TILES, BM)                                                                     \
+    X(frame[0], uint8_t, (size_t)(W) * (H) * 3u) /* output frames, RGB888 */                                  \
+    X(frame[1], uint8_t, (size_t)(W) * (H) * 3u)                                                               \
+    X(samples, uint8_t, (size_t)(TILES) * 48u)   /* 4 slots x 4 positions x RGB888 per tile */                 \
+    X(window, uint8_t, (size_t)(W) * (H))        /* averaging window mask */                                   \
+    X(mv, int16_t, (size_t)(W) * (H) * 2u)       /* motion buffer, (dx, dy) Q4 */                              \
+    X(ring, tdc_asm_mvmax_t, (size_t)(W) * 3u)   /* 3 rows of horizontal 3-maxima */                           \
+    X(newring, uint8_t, (size_t)(W) * 3u)                                                                      \
+    X(boxring, uint64_t, (size_t)(W) * 3u * 2u)  /* 3 rows of box sums and sums of squares */                  \
+    X(pattern, uint8_t, (size_t)(BM))            /* orderings of the cycle */                                  \
+    X(pattern_next, uint8_t, (size_t)(BM))
+
+#define TDC_ASM_MEM_BYTES(W, H)                                                                               \
+    ((size_t)0 TDC_ASM_ARENA(TDC_ARENA_BLOCK_BYTES, W, H,                                                     \
+                             (size_t)TDC_ORDERING_TILES_X(W) * TDC_ORDERING_TILES_Y(H),                       \
+                             TDC_ORDERING_BITMAP_BYTES(W, H)))
 
 typedef struct {
     uint16_t width; /* full-res frame size, 1 .. TDC_ASM_MAX_DIM */
@@ -125,8 +140,10 @@ typedef struct {
 /* Arena bytes for cfg (0 if cfg is invalid). */
 size_t tdc_asm_get_size(const tdc_asm_config_t *cfg);
 
-/* Initialises st over arena (aligned to 8, n >= get_size).  Output starts
+/* Initialises st over arena (aligned to TDC_ARENA_ALIGN, n >= get_size;
+ * else TDC_ERR_ARG / TDC_ERR_SIZE and nothing is touched).  Output starts
  * black, motion zero, all tiles hourglass. */
+TDC_MUST_CHECK
 tdc_status_t tdc_asm_init(tdc_asm_t *st, const tdc_asm_config_t *cfg, void *arena, size_t n);
 
 /*
@@ -136,9 +153,10 @@ tdc_status_t tdc_asm_init(tdc_asm_t *st, const tdc_asm_config_t *cfg, void *aren
  *   pattern_bits: the stream's orderings (only read when frame % 4 == 0),
  *                 or NULL: the stage uses its own decision.
  * Samples of partial tiles that fall outside the frame are ignored.
- * Errors: TDC_ERR_ARG (null st/samples), TDC_ASM_ERR_FRAME (out of sequence,
+ * Errors: TDC_ERR_ARG (null st/samples), TDC_ERR_FRAME (out of sequence,
  * or a second subframe for the same frame); nothing is changed on error.
  */
+TDC_MUST_CHECK
 tdc_status_t tdc_asm_ingest(tdc_asm_t *st, uint32_t frame, const uint8_t *samples, const int16_t *mvs,
                             const uint8_t *pattern_bits);
 
@@ -147,11 +165,13 @@ tdc_status_t tdc_asm_ingest(tdc_asm_t *st, uint32_t frame, const uint8_t *sample
  * pairs, e.g. the link's MOTION packets without the per-sample flag):
  * replaces the whole motion buffer for `frame` (call after tdc_asm_ingest,
  * or alone when the subframe was lost, before tdc_asm_assemble).
- * Errors: TDC_ERR_ARG, TDC_ASM_ERR_FRAME (not the next frame).
+ * Errors: TDC_ERR_ARG, TDC_ERR_FRAME (not the next frame).
  */
+TDC_MUST_CHECK
 tdc_status_t tdc_asm_set_motion(tdc_asm_t *st, uint32_t frame, const int16_t *mv);
 
 /* Assembles output frame `frame` (= the next frame; missing subframe allowed). */
+TDC_MUST_CHECK
 tdc_status_t tdc_asm_assemble(tdc_asm_t *st, uint32_t frame);
 
 /* The last assembled frame, RGB888, *stride_bytes = width * 3. */

@@ -6,7 +6,7 @@
  * The lookup tables (slice-by-8, 8 x 256 uint32) are not typed by hand: they
  * are written at build time into build/gen/tdc_crc32_tables.h by
  * sim/link/tdc_crc32_gen.c from the bitwise definition, and
- * tests/test_link_crc32.c checks them against that definition again.
+ * tests/unit/test_link_crc32.c checks them against that definition again.
  *
  * Incremental use (any chunking gives the same value):
  *     uint32_t c = TDC_CRC32_INIT;

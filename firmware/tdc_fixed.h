@@ -1,7 +1,8 @@
 /*
  * tdc_fixed.h - the one header that decides numeric representation in the
- * firmware.  Every Q format, every saturating / rounding operator and the
- * status enum live here, so that a stage never invents its own arithmetic.
+ * firmware.  Every Q format and every saturating / rounding operator live
+ * here, so that a stage never invents its own arithmetic (the status enum,
+ * included from here, is tdc_status.h).
  *
  * Rules (DESIGN §3): C11, no floating point, no implementation-defined
  * behaviour.  In particular:
@@ -30,13 +31,15 @@
  *            checkerboard) the output sits near black, where one 8-bit code
  *            is ~1e-6 of linear light.  A Q15 residual (step 3e-5) was
  *            measured at 2-3 LSB error there against the double reference
- *            (tests/test_trm_ref.c); Q24 keeps it within 1.
+ *            (tests/unit/test_trm_ref.c); Q24 keeps it within 1.
  */
 #ifndef TDC_FIXED_H
 #define TDC_FIXED_H
 
 #include <stdint.h>
 #include <stddef.h>
+
+#include "tdc_status.h"
 
 typedef int16_t q15_t;
 typedef int32_t q31_t;
@@ -48,17 +51,6 @@ typedef int32_t tdc_res_t;
 #define TDC_LIN_ONE ((tdc_lin_t)1 << TDC_LIN_FRAC)
 #define TDC_Q15_ONE 32768 /* 1.0 in Q15: not representable in q15_t, use int32 */
 #define TDC_GVAL_FRAC 8
-
-/* Status codes returned by every fallible firmware function. */
-typedef enum {
-    TDC_OK = 0,
-    TDC_ERR_ARG = -1,          /* null pointer or out-of-range argument */
-    TDC_ERR_SIZE = -2,         /* dimensions exceed the compiled buffers */
-    TDC_ERR_REFRESH_LOW = -3,  /* TRM requested below the minimum refresh */
-    TDC_ERR_STATE = -4,        /* call out of sequence (e.g. reduced before full) */
-    TDC_ERR_RATIO = -5,        /* reduction ratio outside [1/4, 1] */
-    TDC_ERR_PANEL = -6         /* panel profile lacks what the stage needs */
-} tdc_status_t;
 
 /* ---------------------------------------------------------------------
  * Shifts without implementation-defined behaviour.
@@ -120,30 +112,14 @@ static inline int32_t tdc_abs32(int32_t x)
  * product (libopus style).  All round half up and saturate to 32 bits.
  * ------------------------------------------------------------------- */
 
-/* (a * b) >> 15 with rounding: Q15 x Qn -> Qn.  a in Q15 (int32 so that
- * 1.0 = 32768 fits), b any 32-bit.  Scaling and overflow: |a| <= 2^15 and
- * |b| < 2^31 give |a*b| < 2^46, exact in 64 bits; result saturated. */
-static inline int32_t tdc_mul_q15_32(int32_t a_q15, int32_t b)
-{
-    return tdc_sat32(tdc_rshr_round64((int64_t)a_q15 * b, 15));
-}
-
-/* (a * b) >> 16 with rounding: Q16 x Qn -> Qn. */
+/* (a * b) >> 16 with rounding: Q16 x Qn -> Qn (the LCD model's linear
+ * terms, the YCbCr chroma offsets).  |a*b| < 2^62: exact in 64 bits;
+ * result saturated.  Where a kernel proves its product in range and runs
+ * per pixel on the boards it writes tdc_rshr_round64(a * b, n) instead
+ * (TRM's w rho): the saturation is a 64-bit compare pair there. */
 static inline int32_t tdc_mul_q16_32(int32_t a_q16, int32_t b)
 {
     return tdc_sat32(tdc_rshr_round64((int64_t)a_q16 * b, 16));
-}
-
-/* (a * b) >> 24 with rounding: Q24 x Q24 -> Q24 (linear light product). */
-static inline int32_t tdc_mul_q24_q24(int32_t a, int32_t b)
-{
-    return tdc_sat32(tdc_rshr_round64((int64_t)a * b, 24));
-}
-
-/* (a * b) >> s with rounding for a general shift 1 <= s <= 62. */
-static inline int32_t tdc_mul32_shr(int32_t a, int32_t b, unsigned s)
-{
-    return tdc_sat32(tdc_rshr_round64((int64_t)a * b, s));
 }
 
 /* Saturating add of two 32-bit values. */

@@ -22,7 +22,7 @@ static inline tdc_lin_t tdc_gamma_decode(const tdc_gamma_table_t *t, uint32_t co
  * fraction < 2^8, fits 32 bits.  Error against (g/255)^gamma in double:
  * <= 0.5 LSB (Q24) rounding plus the interpolation error, which is at most
  * gamma(gamma-1)/8 / 255^2 + 2^-25 <= 5.8e-6 of full scale for gamma <= 2.3
- * (asserted in tests/test_math.c).
+ * (asserted in tests/unit/test_math.c).
  */
 static inline tdc_lin_t tdc_gamma_decode_gval(const tdc_gamma_table_t *t, uint32_t g_q8)
 {

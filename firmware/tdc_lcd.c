@@ -19,7 +19,7 @@ int32_t tdc_lcd_model_q24(const int32_t p_q24[4], uint32_t v_q16, uint32_t u_q16
     const int64_t v = v_q16, u = u_q16;
     int64_t sq = tdc_rshr_round64((int64_t)p_q24[0] * (v * v + u * u), 32);
     int64_t cross = tdc_rshr_round64((int64_t)p_q24[1] * (v * u), 32);
-    int64_t lin = tdc_rshr_round64((int64_t)p_q24[2] * (v + u), 16);
+    int64_t lin = tdc_mul_q16_32(p_q24[2], (int32_t)(v + u)); /* v + u <= 2^17, |result| < 2^27 */
     return tdc_sat32(sq + cross + lin + p_q24[3]);
 }
 
@@ -126,7 +126,7 @@ void tdc_lcd_solve_q16(const int32_t p[4], uint32_t u_q16, uint32_t m_q16, uint3
     /* a v^2 + b v + c = 0 in Q24: a = p1, b = p2 u + p3, c = M(0, u) - m. */
     const int64_t u = u_q16;
     const int64_t a = p[0];
-    const int64_t b = tdc_rshr_round64((int64_t)p[1] * u, 16) + p[2];
+    const int64_t b = (int64_t)tdc_mul_q16_32(p[1], (int32_t)u) + p[2]; /* u <= 2^16: |p2 u| < 2^26 */
     const int64_t c = (int64_t)tdc_lcd_model_q24(p, 0u, u_q16) - ((int64_t)m_q16 << 8);
     int32_t v;
     if (tdc_lcd_quad_root_q16(a, b, c, half_lsb_q16, &v)) {
@@ -214,26 +214,36 @@ size_t tdc_lcd_history_bytes(uint32_t width, uint32_t height, unsigned prev_bits
     return 2u * TDC_LCD_PACKED_BYTES((size_t)width * height * 3u, prev_bits);
 }
 
+static int lcd_config_valid(const tdc_lcd_config_t *cfg)
+{
+    return cfg && cfg->width != 0 && cfg->height != 0 && cfg->mode <= TDC_LCD_MODE_TABLE33 && cfg->prev_bits >= 4 &&
+           cfg->prev_bits <= 8;
+}
+
+/* The one layout (tdc_lcd.h TDC_LCD_ARENA); NULL views in a dry run. */
+static void lcd_carve(tdc_lcd_t *st, const tdc_lcd_config_t *cfg, tdc_arena_t *arena)
+{
+    TDC_LCD_ARENA(TDC_ARENA_CARVE, cfg->width, cfg->height, cfg->prev_bits)
+}
+
 size_t tdc_lcd_get_size(const tdc_lcd_config_t *cfg)
 {
-    if (!cfg || cfg->width == 0 || cfg->height == 0 || cfg->mode > TDC_LCD_MODE_TABLE33 || cfg->prev_bits < 4 ||
-        cfg->prev_bits > 8) {
+    if (!lcd_config_valid(cfg)) {
         return 0;
     }
-    size_t hist = TDC_LCD_PACKED_BYTES((size_t)cfg->width * cfg->height * 3u, cfg->prev_bits);
-    hist = (hist + 3u) & ~(size_t)3u;
-    return 2u * hist + 3u * 256u * sizeof(uint32_t) + 16u;
+    tdc_lcd_t dry;
+    tdc_arena_t arena;
+    tdc_arena_dry(&arena);
+    lcd_carve(&dry, cfg, &arena);
+    return tdc_arena_size(&arena);
 }
 
 tdc_status_t tdc_lcd_init(tdc_lcd_t *st, const tdc_lcd_config_t *cfg, const tdc_panel_t *panel, void *mem,
                           size_t mem_bytes)
 {
-    if (!st || !cfg || !panel || !mem || ((uintptr_t)mem & 3u) != 0u) {
-        return TDC_ERR_ARG;
-    }
-    const size_t need = tdc_lcd_get_size(cfg);
-    if (need == 0) {
-        return TDC_ERR_ARG;
+    tdc_arena_t arena;
+    if (!st || !panel || !lcd_config_valid(cfg) || !tdc_arena_over(&arena, mem, mem_bytes)) {
+        return TDC_ERR_ARG; /* null, bad mode or prev_bits, mem not aligned to TDC_ARENA_ALIGN */
     }
     if (panel->type != TDC_PANEL_LCD || !panel->lcd || panel->bits != 8) {
         return TDC_ERR_PANEL;
@@ -252,22 +262,16 @@ tdc_status_t tdc_lcd_init(tdc_lcd_t *st, const tdc_lcd_config_t *cfg, const tdc_
     if ((cfg->mode == TDC_LCD_MODE_TABLE17 || cfg->mode == TDC_LCD_MODE_TABLE33) && !od) {
         return TDC_ERR_PANEL;
     }
-    if (mem_bytes < need) {
+    if (mem_bytes < tdc_lcd_get_size(cfg)) { /* the same carve, dry: nothing is touched on error */
         return TDC_ERR_SIZE;
     }
+    lcd_carve(st, cfg, &arena);
     st->cfg = *cfg;
     st->panel = panel;
     st->rate = rate;
     st->od = od;
     st->od_n = cfg->mode == TDC_LCD_MODE_TABLE33 ? 33u : 17u;
     st->half_lsb_q16 = 32768u / 255u;
-    /* Arena (4-byte aligned): the two packed buffers, then the reciprocals. */
-    uint8_t *mp = (uint8_t *)mem;
-    size_t hist = TDC_LCD_PACKED_BYTES((size_t)cfg->width * cfg->height * 3u, cfg->prev_bits);
-    hist = (hist + 3u) & ~(size_t)3u;
-    st->prev_drive = mp;
-    st->prev_light = mp + hist;
-    st->m_step_recip = (uint32_t *)(void *)(mp + 2u * hist);
     for (unsigned ch = 0; ch < 3u; ch++) {
         const uint32_t *dec = panel->gamma[ch].decode;
         for (uint32_t k = 0; k < 256u; k++) {

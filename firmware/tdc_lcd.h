@@ -44,6 +44,7 @@
 #ifndef TDC_LCD_H
 #define TDC_LCD_H
 
+#include "tdc_arena.h"
 #include "tdc_fixed.h"
 #include "tdc_panel.h"
 
@@ -163,20 +164,32 @@ typedef struct {
 /* Bytes of a packed previous-frame buffer of n samples at b bits (+1 slack). */
 #define TDC_LCD_PACKED_BYTES(n, b) ((((size_t)(n) * (b)) + 7u) / 8u + 1u)
 
-/* Compile-time arena bound for a W x H eye (full-precision buffers). */
-#define TDC_LCD_MEM_BYTES(W, H)                                                                 \
-    (2u * (TDC_LCD_PACKED_BYTES((size_t)(W) * (H) * 3u, 8u) + 3u) + 3u * 256u * 4u + 16u)
+/*
+ * The arena (tdc_arena.h), one line per block: X(member of tdc_lcd_t,
+ * element type, count) for a W x H eye keeping BITS bits per previous
+ * sample.  Init carves it, get_size() is the same carve as a dry run,
+ * TDC_LCD_MEM_BYTES the same list at full precision (8 bits).
+ */
+#define TDC_LCD_ARENA(X, W, H, BITS)                                                                          \
+    X(prev_drive, uint8_t, TDC_LCD_PACKED_BYTES((size_t)(W) * (H) * 3u, BITS)) /* drive of t-1 */             \
+    X(prev_light, uint8_t, TDC_LCD_PACKED_BYTES((size_t)(W) * (H) * 3u, BITS)) /* code of E_{t-1} */          \
+    X(m_step_recip, uint32_t, 3u * 256u)                                       /* 2^32 / decode step */
 
-/* Arena bytes for cfg (0 when cfg is invalid). */
+/* Compile-time arena bound for a W x H eye (full-precision buffers). */
+#define TDC_LCD_MEM_BYTES(W, H) ((size_t)0 TDC_LCD_ARENA(TDC_ARENA_BLOCK_BYTES, W, H, 8u))
+
+/* Arena bytes for cfg (a dry run of init's layout; 0 when cfg is invalid). */
 size_t tdc_lcd_get_size(const tdc_lcd_config_t *cfg);
 
 /*
- * mem: caller-owned arena of tdc_lcd_get_size() bytes, 4-byte aligned (a
- * static buffer of TDC_LCD_MEM_BYTES on a board).
+ * mem: caller-owned arena of tdc_lcd_get_size() bytes, aligned to
+ * TDC_ARENA_ALIGN (8, tdc_arena.h; a static buffer of TDC_LCD_MEM_BYTES on a
+ * board).
  * Errors: TDC_ERR_ARG (null, misaligned, bad mode or prev_bits), TDC_ERR_PANEL (not an
  * LCD profile, not 8-bit, or refresh_hz not one of its rates, or the table
  * the mode needs is absent), TDC_ERR_SIZE (arena too small).
  */
+TDC_MUST_CHECK
 tdc_status_t tdc_lcd_init(tdc_lcd_t *st, const tdc_lcd_config_t *cfg, const tdc_panel_t *panel, void *mem,
                           size_t mem_bytes);
 
@@ -189,6 +202,7 @@ void tdc_lcd_reset(tdc_lcd_t *st);
  * interleaved) to which unreached light is added, or NULL.  in == out is
  * allowed (rows processed in place).
  */
+TDC_MUST_CHECK
 tdc_status_t tdc_lcd_frame(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_stride, uint8_t *drive,
                            uint32_t out_stride, tdc_res_t *residual);
 

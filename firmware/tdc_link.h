@@ -275,6 +275,7 @@ typedef struct {
 /* Validates cfg and buffers (sizes for cfg's panel) and resets everything.
  * TDC_ERR_ARG for NULLs / bad eyes, TDC_ERR_SIZE if the panel exceeds the
  * compiled maximum or the staging buffer cannot hold a minimal payload. */
+TDC_MUST_CHECK
 tdc_status_t tdc_link_decoder_init(tdc_link_decoder_t *dec, const tdc_link_config_t *cfg,
                                    const tdc_link_buffers_t *buffers);
 

@@ -28,7 +28,7 @@ static int64_t exp_neg_parts(uint32_t x_q16, unsigned *n_out)
     /* Horner in Q30; |acc| <= 2^30, |acc*g| < 2^60. */
     int64_t acc = k_exp2_poly_q30[5];
     for (int k = 4; k >= 0; k--) {
-        acc = k_exp2_poly_q30[k] + tdc_asr64(acc * g + (1LL << 29), 30);
+        acc = k_exp2_poly_q30[k] + tdc_rshr_round64(acc * g, 30);
     }
     *n_out = (unsigned)n;
     return acc;
@@ -87,7 +87,7 @@ uint32_t tdc_recip_norm_q30(uint32_t dn)
 {
 #if TDC_HW_DIV64
     /* A hardware 64-bit divide: the same floor((2^62 + floor(dn/2)) / dn)
-     * the Newton path's correction loops settle on (tests/test_math.c
+     * the Newton path's correction loops settle on (tests/unit/test_math.c
      * compares all three), in one instruction. */
     return (uint32_t)(((1ULL << 62) + (dn >> 1)) / dn);
 #else

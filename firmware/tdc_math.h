@@ -1,7 +1,7 @@
 /*
  * tdc_math.h - integer math helpers: exp(-x), reciprocal, division in Q15,
  * integer square root.  Each is tested exhaustively or densely against
- * double precision in tests/test_math.c, which asserts the error bounds
+ * double precision in tests/unit/test_math.c, which asserts the error bounds
  * stated here.
  */
 #ifndef TDC_MATH_H
@@ -13,7 +13,7 @@
  * reciprocal and the square root then divide directly; elsewhere (Cortex-M:
  * 32-bit UDIV only) they use long division in 16-bit digits.  Both give the
  * same bits; -DTDC_HW_DIV64=0 builds the Cortex-M arithmetic on a host
- * (tests/test_math runs both ways). */
+ * (tests/unit/test_math runs both ways). */
 #ifndef TDC_HW_DIV64
 #if defined(__x86_64__) || defined(__aarch64__)
 #define TDC_HW_DIV64 1
@@ -50,7 +50,7 @@ uint32_t tdc_exp_neg_q16_q30(uint32_t x_q16);
  * Exactly floor((2^62 + floor(dn/2)) / dn): within 0.5 LSB of Q30.
  * Method: on targets with a 64-bit hardware divide (x86-64, AArch64) that
  * division; elsewhere (Cortex-M: 32-bit divide only) tdc_recip_norm_q30_div32.
- * All three versions give the same bits (tests/test_math.c compares them).
+ * All three versions give the same bits (tests/unit/test_math.c compares them).
  */
 uint32_t tdc_recip_norm_q30(uint32_t dn);
 /* Long division in 16-bit digits with two 32-bit divides. */

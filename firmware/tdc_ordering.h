@@ -44,7 +44,7 @@ unsigned tdc_ordering_pixel(tdc_ordering_t o, unsigned k);
  *   a   = angle of m folded into [0, pi/2] (|mx|, |my|), measured in
  *         quarter turns u = a / (pi/2) in Q16 by a 33-entry atan table on
  *         min/max with linear interpolation: |error| <= 2^-13 quarter turns
- *         (asserted by tests/test_ordering.c against double atan2).
+ *         (asserted by tests/unit/test_ordering.c against double atan2).
  *   Band: hourglass iff (l_f - s) mod 1 in (0.25, 0.75), where s = u/2 for
  *         a <= pi/4 - gamma (a = 0 gives paper eq. 4), and iff (l_f + s)
  *         mod 1 in [0.25, 0.75] for a >= pi/4 + gamma (a = pi/2 gives paper

@@ -63,7 +63,7 @@ static inline uint32_t tdc_od_lookup_inline(const int16_t *t, unsigned n, uint32
     int64_t d = (int64_t)a * ((int64_t)1 << fb) + (int64_t)(b - a) * fu; /* Q4 * 2^(2 fb) */
     /* drive in Q16 code units: m * max_code + delta * 2^(16 - 4). */
     int64_t v = (int64_t)m_q16 * max_code + tdc_asr64(d, 2u * fb - 12u);
-    int64_t code = tdc_asr64(v + 32768, 16);
+    int64_t code = tdc_rshr_round64(v, 16);
     if (code < 0) {
         return 0;
     }

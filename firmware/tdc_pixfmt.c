@@ -76,7 +76,7 @@ void tdc_pixfmt_unpack_rgb30(const uint8_t *src, uint32_t w, uint32_t h, uint8_t
  * |v_q16| <= 255 * 2^16 + 121609 * 128 < 2^25, no overflow in int32. */
 static inline uint8_t tdc_q16_to_u8_sat(int32_t v_q16)
 {
-    const int32_t v = tdc_asr32(v_q16 + (1 << 15), 16);
+    const int32_t v = tdc_rshr_round32(v_q16, 16);
     return (uint8_t)(v < 0 ? 0 : (v > 255 ? 255 : v));
 }
 
@@ -115,9 +115,9 @@ void tdc_pixfmt_unpack_ycbcr420(const uint8_t *src, uint32_t w, uint32_t h, uint
         const uint8_t *crs = cr_plane + (size_t)cw * cy;
         for (uint32_t cx = 0; cx < cw; cx++) {
             const int32_t u = (int32_t)cbs[cx] - 128, v = (int32_t)crs[cx] - 128;
-            const int32_t orr = tdc_asr32(TDC_YCC_CR_R_Q16 * v + (1 << 15), 16);
-            const int32_t og = tdc_asr32(-TDC_YCC_CB_G_Q16 * u - TDC_YCC_CR_G_Q16 * v + (1 << 15), 16);
-            const int32_t ob = tdc_asr32(TDC_YCC_CB_B_Q16 * u + (1 << 15), 16);
+            const int32_t orr = tdc_mul_q16_32(TDC_YCC_CR_R_Q16, v);
+            const int32_t og = tdc_rshr_round32(-TDC_YCC_CB_G_Q16 * u - TDC_YCC_CR_G_Q16 * v, 16);
+            const int32_t ob = tdc_mul_q16_32(TDC_YCC_CB_B_Q16, u);
             const uint32_t x0 = 2u * cx;
             const uint32_t cols = x0 + 1u < w ? 2u : 1u;
             for (uint32_t r = 0; r < rows; r++) {

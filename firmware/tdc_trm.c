@@ -43,52 +43,30 @@ static uint16_t trm_reduced_dim(uint32_t n, uint32_t num, uint32_t den)
     return (uint16_t)(r < 1u ? 1u : r);
 }
 
-/* Taps of the Gaussian within 3 sigma: integer k with |k - x| <= 3 sigma
- * number at most floor(6 sigma) + 1. */
 static uint16_t trm_taps(uint16_t sigma_q8)
 {
-    uint32_t taps = ((6u * sigma_q8) >> 8) + 1u;
-    return (uint16_t)(taps > TDC_TRM_MAX_TAPS ? TDC_TRM_MAX_TAPS : taps);
+    return (uint16_t)TDC_TRM_TAPS(sigma_q8);
 }
 
-typedef struct {
-    size_t residual, dprev, ring, urow, dx_first, dy_first, dx_w, dy_w, ux, uy, wexp, simd, total;
-} trm_layout_t;
-
-static size_t align8(size_t n)
+/* The geometry a configuration implies (cfg valid): everything the arena
+ * layout depends on. */
+static void trm_geometry(tdc_trm_t *st, const tdc_trm_config_t *cfg)
 {
-    return (n + 7u) & ~(size_t)7u;
+    st->cfg = *cfg;
+    st->rw = trm_reduced_dim(cfg->width, cfg->r_num, cfg->r_den);
+    st->rh = trm_reduced_dim(cfg->height, cfg->r_num, cfg->r_den);
+    st->dtaps = trm_taps(cfg->sigma_q8);
+    st->passthrough = (uint8_t)(cfg->r_num == cfg->r_den || !cfg->reduced_in_stream);
 }
 
-static void trm_layout(const tdc_trm_config_t *cfg, uint16_t rw, uint16_t rh, uint16_t taps, trm_layout_t *l)
+/* The one layout (tdc_trm.h TDC_TRM_ARENA): views of st carved from arena
+ * (NULL in a dry run).  Pass-through keeps no state: a stream of full
+ * frames needs no arena. */
+static void trm_carve(tdc_trm_t *st, tdc_arena_t *arena)
 {
-    size_t o = 0;
-    size_t w = cfg->width, h = cfg->height;
-    l->residual = o;
-    o += align8(w * h * 3u * sizeof(tdc_res_t));
-    l->dprev = o;
-    o += align8((size_t)rw * rh * 3u * sizeof(tdc_gval_t));
-    l->ring = o;
-    o += align8((size_t)TDC_TRM_MAX_TAPS * rw * 3u * sizeof(tdc_gval_t));
-    l->urow = o;
-    o += align8((size_t)2u * (rw + 1u) * 3u * sizeof(uint32_t));
-    l->dx_first = o;
-    o += align8((size_t)rw * sizeof(int16_t));
-    l->dy_first = o;
-    o += align8((size_t)rh * sizeof(int16_t));
-    l->dx_w = o;
-    o += align8((size_t)rw * taps * sizeof(uint16_t));
-    l->dy_w = o;
-    o += align8((size_t)rh * taps * sizeof(uint16_t));
-    l->ux = o;
-    o += align8(w * 2u * sizeof(uint16_t));
-    l->uy = o;
-    o += align8(h * 2u * sizeof(uint16_t));
-    l->wexp = o;
-    o += align8(TDC_TRM_WEXP_ENTRIES * sizeof(uint32_t));
-    l->simd = o;
-    o += align8(TDC_TRM_SIMD_BYTES);
-    l->total = o + 8u; /* slack for aligning the caller's pointer */
+    if (!st->passthrough) {
+        TDC_TRM_ARENA(TDC_ARENA_CARVE, st->cfg.width, st->cfg.height, st->rw, st->rh, st->dtaps)
+    }
 }
 
 size_t tdc_trm_get_size(const tdc_trm_config_t *cfg)
@@ -96,13 +74,12 @@ size_t tdc_trm_get_size(const tdc_trm_config_t *cfg)
     if (!trm_config_valid(cfg)) {
         return 0;
     }
-    if (cfg->r_num == cfg->r_den || !cfg->reduced_in_stream) {
-        return 8u; /* pass-through keeps no state: a stream of full frames needs no arena */
-    }
-    trm_layout_t l;
-    trm_layout(cfg, trm_reduced_dim(cfg->width, cfg->r_num, cfg->r_den),
-               trm_reduced_dim(cfg->height, cfg->r_num, cfg->r_den), trm_taps(cfg->sigma_q8), &l);
-    return l.total;
+    tdc_trm_t dry = {0};
+    tdc_arena_t arena;
+    tdc_arena_dry(&arena);
+    trm_geometry(&dry, cfg);
+    trm_carve(&dry, &arena);
+    return tdc_arena_size(&arena);
 }
 
 void tdc_trm_default_config(tdc_trm_config_t *cfg, uint16_t width, uint16_t height, uint16_t refresh_hz)
@@ -199,62 +176,34 @@ tdc_status_t tdc_trm_init(tdc_trm_t *st, const tdc_trm_config_t *cfg, const tdc_
     if (reduces && cfg->refresh_hz < cfg->min_refresh_hz) {
         return TDC_ERR_REFRESH_LOW;
     }
-    const size_t need = tdc_trm_get_size(cfg);
-    if (mem_bytes < need) {
+    tdc_arena_t arena;
+    if (!tdc_arena_over(&arena, mem, mem_bytes)) {
+        return TDC_ERR_ARG; /* not aligned to TDC_ARENA_ALIGN */
+    }
+    if (mem_bytes < tdc_trm_get_size(cfg)) { /* the same carve, dry: nothing is touched on error */
         return TDC_ERR_SIZE;
     }
-    st->cfg = *cfg;
+    *st = (tdc_trm_t){0};
+    trm_geometry(st, cfg);
+    trm_carve(st, &arena);
     st->panel = panel;
-    st->rw = trm_reduced_dim(cfg->width, cfg->r_num, cfg->r_den);
-    st->rh = trm_reduced_dim(cfg->height, cfg->r_num, cfg->r_den);
-    st->dtaps = trm_taps(cfg->sigma_q8);
-    st->passthrough = (uint8_t)!reduces;
-    st->have_full = 0;
-    st->stats = (tdc_trm_stats_t){0};
+    st->ux_f = st->ux_i; /* interleaved (index, fraction) pairs */
+    st->uy_f = st->uy_i;
     st->simd = (uint8_t)tdc_trm_avx2_available();
     if (st->passthrough) {
-        st->residual = NULL;
-        st->dprev = st->ring = NULL;
-        st->urow = NULL;
-        st->dx_first = st->dy_first = NULL;
-        st->dx_w = st->dy_w = st->ux_i = st->ux_f = st->uy_i = st->uy_f = NULL;
-        st->wexp = NULL;
-        st->enc_comb = NULL;
         st->simd = 0;
         return TDC_OK;
     }
-    trm_layout_t l;
-    trm_layout(cfg, st->rw, st->rh, st->dtaps, &l);
-    uint8_t *base = (uint8_t *)mem + ((8u - ((uintptr_t)mem & 7u)) & 7u);
-    st->residual = (tdc_res_t *)(void *)(base + l.residual);
-    st->dprev = (tdc_gval_t *)(void *)(base + l.dprev);
-    st->ring = (tdc_gval_t *)(void *)(base + l.ring);
-    st->urow = (uint32_t *)(void *)(base + l.urow);
-    st->dx_first = (int16_t *)(void *)(base + l.dx_first);
-    st->dy_first = (int16_t *)(void *)(base + l.dy_first);
-    st->dx_w = (uint16_t *)(void *)(base + l.dx_w);
-    st->dy_w = (uint16_t *)(void *)(base + l.dy_w);
-    st->ux_i = (uint16_t *)(void *)(base + l.ux);
-    st->uy_i = (uint16_t *)(void *)(base + l.uy);
-    st->wexp = (uint32_t *)(void *)(base + l.wexp);
-    st->ux_f = st->ux_i; /* interleaved (index, fraction) pairs */
-    st->uy_f = st->uy_i;
     trm_build_kernels(cfg->width, st->rw, cfg->sigma_q8, st->dtaps, st->dx_first, st->dx_w);
     trm_build_kernels(cfg->height, st->rh, cfg->sigma_q8, st->dtaps, st->dy_first, st->dy_w);
     trm_build_upsample(cfg->width, st->rw, st->ux_i);
     trm_build_upsample(cfg->height, st->rh, st->uy_i);
-    /* exp(-x) at x = k / 256 from the exact helper, for the per-pixel
-     * weight (tdc_trm_weight): generated here, never typed by hand */
-    for (uint32_t k = 0; k < TDC_TRM_WEXP_ENTRIES; k++) {
-        st->wexp[k] = tdc_exp_neg_q16_q30(k << 8);
-    }
-    st->enc_comb = TDC_TRM_SIMD_BYTES != 0u ? base + l.simd : NULL;
+    tdc_trm_wexp_build(st->wexp); /* for the per-pixel weight (tdc_trm_weight) */
     st->enc_one_step = 0;
     if (st->simd && st->enc_comb) {
         st->enc_one_step = (uint8_t)tdc_trm_avx2_build_encode(panel, st->enc_comb);
     }
     st->simd = (uint8_t)(st->simd && st->enc_comb);
-    st->stats = (tdc_trm_stats_t){0};
     tdc_trm_reset(st);
     return TDC_OK;
 }
@@ -393,19 +342,7 @@ int32_t tdc_trm_weight(const tdc_trm_t *st, uint32_t x_q16)
 /* The row kernels' view of the state (tdc_trm_kernels.h). */
 static void trm_rowctx(const tdc_trm_t *st, tdc_trm_rowctx_t *k)
 {
-    for (int c = 0; c < 3; c++) {
-        k->dec[c] = st->panel->gamma[c].decode;
-        k->thr[c] = st->panel->gamma[c].enc_thresh;
-        k->idx[c] = st->panel->gamma[c].enc_index;
-    }
-    k->ux = st->ux_i;
-    k->wexp = st->wexp;
-    k->width = st->cfg.width;
-    k->s_q8 = st->cfg.s_q8;
-    for (int c = 0; c < 3; c++) {
-        k->enc_comb[c] = st->enc_comb ? st->enc_comb + (size_t)c * TDC_TRM_ENC_COMB : NULL;
-    }
-    k->enc_one_step = st->enc_one_step;
+    tdc_trm_rowctx_init(k, st->panel, st->ux_i, st->wexp, st->cfg.width, st->cfg.s_q8, st->enc_comb, st->enc_one_step);
 }
 
 tdc_status_t tdc_trm_full(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out, uint32_t out_stride)

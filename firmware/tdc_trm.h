@@ -15,20 +15,25 @@
  * Frames are RGB888 interleaved, rows `stride` bytes apart (so one eye of a
  * side-by-side stereo frame is just a pointer and the panel's stride).
  *
- * Memory: all state lives in one caller-owned arena (libopus style):
- *     size_t n = tdc_trm_get_size(&cfg);      // or TDC_TRM_MEM_BYTES(...)
+ * Memory: all state lives in one caller-owned arena (libopus style, layout
+ * and alignment rule in tdc_arena.h: 8-byte aligned):
+ *     size_t n = tdc_trm_get_size(&cfg);      // <= TDC_TRM_MEM_BYTES(...)
  *     tdc_trm_init(&trm, &cfg, panel, arena, n);
  * TDC_TRM_MEM_BYTES gives a compile-time upper bound for static arenas.
  */
 #ifndef TDC_TRM_H
 #define TDC_TRM_H
 
+#include "tdc_arena.h"
 #include "tdc_fixed.h"
 #include "tdc_panel.h"
 
 /* Largest Gaussian support: taps within 3 sigma, sigma <= 3.5 px. */
 #define TDC_TRM_MAX_TAPS 24
 #define TDC_TRM_MAX_SIGMA_Q8 (7 * 128) /* 3.5 px */
+/* Taps of D for sigma (Q8): integer k with |k - x| <= 3 sigma number at
+ * most floor(6 sigma) + 1 (22 at the largest sigma, 16 at 2.5 px). */
+#define TDC_TRM_TAPS(sigma_q8) ((((6u * (uint32_t)(sigma_q8)) >> 8) + 1u) > TDC_TRM_MAX_TAPS ? (uint32_t)TDC_TRM_MAX_TAPS : (((6u * (uint32_t)(sigma_q8)) >> 8) + 1u))
 
 /* Entries of the exp(-x) weight table, x = k/256 for k < 17*256 (+1 end). */
 #define TDC_TRM_WEXP_ENTRIES (17u * 256u + 1u)
@@ -47,22 +52,37 @@
 #define TDC_TRM_REDUCED_DIM(n, num, den) ((((n) * (num)) + (den) / 2) / (den) < 1 ? 1 : (((n) * (num)) + (den) / 2) / (den))
 
 /*
- * Compile-time arena bound for a W x H eye at reduction ratios up to
- * RNUM/RDEN (the board's largest r < 1).  Keep in sync with
- * tdc_trm_get_size(): tests assert get_size() <= this bound.
+ * The arena (tdc_arena.h), one line per block: X(member of tdc_trm_t,
+ * element type, count) for a W x H eye, reduced RW x RH, TAPS taps per D
+ * kernel.  Init carves it with the configuration's geometry, get_size() is
+ * the same carve as a dry run, TDC_TRM_MEM_BYTES the same list summed at
+ * the largest geometry.  A pass-through configuration carves nothing.
+ * Order matters for one block: the AVX2 horizontal D pass may read 2 bytes
+ * past dx_w (dy_w follows it).
  */
-#define TDC_TRM_MEM_BYTES(W, H, RNUM, RDEN)                                                            \
-    (64u + (size_t)(W) * (H) * 3u * 4u                          /* residual rho, Q24 */                \
-     + (size_t)TDC_TRM_REDUCED_DIM(W, RNUM, RDEN) * TDC_TRM_REDUCED_DIM(H, RNUM, RDEN) * 3u * 2u      \
-     /* D(I_t), code Q8 */                                                                             \
-     + (size_t)TDC_TRM_MAX_TAPS * TDC_TRM_REDUCED_DIM(W, RNUM, RDEN) * 3u * 2u /* ring of rows */      \
-     + (size_t)2u * (TDC_TRM_REDUCED_DIM(W, RNUM, RDEN) + 1u) * 3u * 4u        /* U row buffers */    \
-     + (size_t)(TDC_TRM_REDUCED_DIM(W, RNUM, RDEN) + TDC_TRM_REDUCED_DIM(H, RNUM, RDEN)) *            \
-           (TDC_TRM_MAX_TAPS + 1u) * 2u                                       /* D kernels */         \
-     + (size_t)((W) + (H)) * 4u                                              /* U tables */          \
-     + (size_t)TDC_TRM_WEXP_ENTRIES * 4u                                     /* exp table */         \
-     + (size_t)TDC_TRM_SIMD_BYTES                                            /* AVX2 encode index */ \
-     + 16u * 8u /* alignment slack */)
+#define TDC_TRM_ARENA(X, W, H, RW, RH, TAPS)                                                                  \
+    X(residual, tdc_res_t, (size_t)(W) * (H) * 3u)                    /* rho, Q24 linear light */             \
+    X(dprev, tdc_gval_t, (size_t)(RW) * (RH) * 3u)                    /* D(I_t), code Q8 */                    \
+    X(ring, tdc_gval_t, (size_t)(TAPS) * (RW) * 3u)                   /* horizontal D pass, a ring of rows */  \
+    X(urow, uint32_t, (size_t)2u * ((RW) + 1u) * 3u)                  /* two U rows, code Q22 */               \
+    X(dx_first, int16_t, (size_t)(RW))                                /* D kernels */                          \
+    X(dy_first, int16_t, (size_t)(RH))                                                                         \
+    X(dx_w, uint16_t, (size_t)(RW) * (TAPS))                                                                   \
+    X(dy_w, uint16_t, (size_t)(RH) * (TAPS))                                                                   \
+    X(ux_i, uint16_t, (size_t)(W) * 2u)                               /* U tables (index, fraction) */         \
+    X(uy_i, uint16_t, (size_t)(H) * 2u)                                                                        \
+    X(wexp, uint32_t, (size_t)TDC_TRM_WEXP_ENTRIES)                   /* exp(-x) table */                      \
+    X(enc_comb, uint8_t, (size_t)TDC_TRM_SIMD_BYTES)                  /* AVX2 encode index (0 on boards) */
+
+/*
+ * Compile-time arena bound for a W x H eye at reduction ratios up to
+ * RNUM/RDEN (the board's largest r < 1) and any sigma: the list above at
+ * that geometry with the taps of the largest sigma (every block grows with
+ * r and taps, so no smaller configuration needs more).
+ */
+#define TDC_TRM_MEM_BYTES(W, H, RNUM, RDEN)                                                                   \
+    ((size_t)0 TDC_TRM_ARENA(TDC_ARENA_BLOCK_BYTES, W, H, TDC_TRM_REDUCED_DIM(W, RNUM, RDEN),                 \
+                             TDC_TRM_REDUCED_DIM(H, RNUM, RDEN), TDC_TRM_TAPS(TDC_TRM_MAX_SIGMA_Q8)))
 
 typedef struct {
     uint16_t width;          /* full-res eye size in pixels */
@@ -100,7 +120,7 @@ typedef struct {
     /* views into the arena */
     tdc_res_t *residual;        /* W*H*3, Q24 linear light */
     tdc_gval_t *dprev;          /* rw*rh*3, D(I_t), code Q8 */
-    tdc_gval_t *ring;           /* TDC_TRM_MAX_TAPS rows of rw*3: horizontal D pass */
+    tdc_gval_t *ring;           /* dtaps rows of rw*3: horizontal D pass */
     uint32_t *urow;             /* 2 rows of (rw+1)*3: vertically interpolated U rows, code Q22 */
     int16_t *dx_first;          /* rw: first full-res column of each D kernel */
     int16_t *dy_first;          /* rh */
@@ -116,9 +136,10 @@ typedef struct {
     tdc_trm_stats_t stats;
 } tdc_trm_t;
 
-/* Validates cfg (ratio, sigma, sizes) and returns the arena size in bytes,
- * or 0 when cfg is invalid.  Pass-through (r = 1 or no reduced frames in
- * the stream) keeps no state and needs only 8 bytes. */
+/* Validates cfg (ratio, sigma, sizes) and returns the arena size in bytes
+ * (a dry run of init's layout), or 0 when cfg is invalid.  Pass-through
+ * (r = 1 or no reduced frames in the stream) keeps no state and needs only
+ * TDC_ARENA_ALIGN bytes. */
 size_t tdc_trm_get_size(const tdc_trm_config_t *cfg);
 
 /* Default configuration: r = 1/2, sigma 2.5 px, s = 10, 90 Hz minimum. */
@@ -128,8 +149,11 @@ void tdc_trm_default_config(tdc_trm_config_t *cfg, uint16_t width, uint16_t heig
  * Initialises the stage.  Errors: TDC_ERR_ARG (null), TDC_ERR_RATIO (r
  * outside [1/4, 1]), TDC_ERR_REFRESH_LOW (r < 1 and refresh below the
  * minimum: TRM is refused, paper §9), TDC_ERR_SIZE (arena too small or eye
- * larger than the kernel tables allow), TDC_ERR_PANEL (panel not 8-bit).
+ * larger than the kernel tables allow), TDC_ERR_PANEL (panel not 8-bit),
+ * TDC_ERR_ARG also for mem not aligned to TDC_ARENA_ALIGN.  Nothing is
+ * written (st or mem) on error.
  */
+TDC_MUST_CHECK
 tdc_status_t tdc_trm_init(tdc_trm_t *st, const tdc_trm_config_t *cfg, const tdc_panel_t *panel, void *mem,
                           size_t mem_bytes);
 
@@ -140,6 +164,7 @@ void tdc_trm_reset(tdc_trm_t *st);
  * Full-resolution frame: in (W x H) -> out (W x H) drive codes, updates rho
  * and D(I).  In pass-through mode out = in and nothing else runs.
  */
+TDC_MUST_CHECK
 tdc_status_t tdc_trm_full(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out,
                           uint32_t out_stride);
 
@@ -148,6 +173,7 @@ tdc_status_t tdc_trm_full(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, 
  * TDC_ERR_STATE if no full frame preceded it since init/reset (out is left
  * untouched: the panel keeps the last good frame).
  */
+TDC_MUST_CHECK
 tdc_status_t tdc_trm_reduced(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t in_stride, uint8_t *out,
                              uint32_t out_stride);
 
@@ -156,6 +182,7 @@ tdc_status_t tdc_trm_reduced(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t 
  * codes (rounded).  For tests, tdc-run --auto-reduce and the demo; a real
  * renderer supersamples instead (TRM §4.3).
  */
+TDC_MUST_CHECK
 tdc_status_t tdc_trm_downsample(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out,
                                 uint32_t out_stride);
 
@@ -164,7 +191,7 @@ tdc_status_t tdc_trm_downsample(tdc_trm_t *st, const uint8_t *in, uint32_t in_st
 int32_t tdc_trm_weight(const tdc_trm_t *st, uint32_t x_q16);
 
 /* Row kernels: AVX2 (enable = 1, the default when the host CPU has it) or
- * portable C (0).  Both give the same bytes (tests/checkasm_trm.c); boards
+ * portable C (0).  Both give the same bytes (tests/checkasm/checkasm_trm.c); boards
  * and CPUs without AVX2 always run C. */
 void tdc_trm_set_simd(tdc_trm_t *st, int enable);
 

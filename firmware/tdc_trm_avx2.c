@@ -1,7 +1,7 @@
 /*
  * tdc_trm_avx2.c - TRM's row kernels with x86-64 AVX2 integer SIMD, for
  * host builds.  They produce the same bytes as the portable C kernels in
- * tdc_trm_rows.c (tests/checkasm_trm.c checks that and benchmarks both;
+ * tdc_trm_rows.c (tests/checkasm/checkasm_trm.c checks that and benchmarks both;
  * the golden vectors run through them on any AVX2 host).
  *
  * Layout: 8 consecutive pixels per step, one vector per colour channel, so

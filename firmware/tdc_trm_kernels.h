@@ -4,7 +4,7 @@
  * tdc_trm.c walks the frame; these do the per-pixel work of one row.  The
  * portable C kernels (tdc_trm_rows.c) are the reference and what boards
  * run; tdc_trm_avx2.c has host versions with x86 AVX2 integer SIMD that
- * must produce the same bytes (tests/checkasm_trm.c checks that on random
+ * must produce the same bytes (tests/checkasm/checkasm_trm.c checks that on random
  * and extreme rows and benchmarks both).  tdc_trm_init() picks the AVX2
  * kernels when the CPU has AVX2 (tdc_trm_set_simd() overrides).
  *
@@ -39,6 +39,18 @@ typedef struct {
     const uint8_t *enc_comb[3];
     uint32_t enc_one_step;
 } tdc_trm_rowctx_t;
+
+/* Builds the row context from its parts: panel's gamma tables, the U table
+ * ux, the exp table wexp (tdc_trm_wexp_build), the row width, s, and the
+ * AVX2 encode index (3 x TDC_TRM_ENC_COMB bytes, tdc_trm_avx2_build_encode;
+ * NULL without).  tdc_trm.c builds one per frame from its state; checkasm
+ * builds them from its own random tables: one builder, no copy. */
+void tdc_trm_rowctx_init(tdc_trm_rowctx_t *k, const tdc_panel_t *panel, const uint16_t *ux, const uint32_t *wexp,
+                         uint32_t width, uint32_t s_q8, const uint8_t *enc_comb, uint32_t enc_one_step);
+
+/* exp(-x) at x = k / 256 in Q30, k < TDC_TRM_WEXP_ENTRIES, from the exact
+ * helper (the table of tdc_trm_weight_q15; generated, never typed). */
+void tdc_trm_wexp_build(uint32_t *wexp);
 
 typedef struct {
     uint32_t hi, lo; /* pixel-channels with beta > 1, beta < 0 */
@@ -87,7 +99,7 @@ tdc_trm_dvert_fn tdc_trm_dvert_avx2;
 /*
  * w = exp(-x), x in Q16, from the Q30 table with linear interpolation and
  * one rounding to Q15.  Error: 0.5 LSB rounding plus the interpolation's
- * (1/256)^2 / 8 * 32768 = 0.06 LSB (asserted <= 0.6 in tests/test_trm.c).
+ * (1/256)^2 / 8 * 32768 = 0.06 LSB (asserted <= 0.6 in tests/unit/test_trm.c).
  * Beyond x = 17, exp(-x) < 2^-24: 0.
  */
 static inline int32_t tdc_trm_weight_q15(const uint32_t *wexp, uint64_t x_q16)

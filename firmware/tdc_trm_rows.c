@@ -7,6 +7,29 @@
 
 #include "tdc_math.h"
 
+void tdc_trm_rowctx_init(tdc_trm_rowctx_t *k, const tdc_panel_t *panel, const uint16_t *ux, const uint32_t *wexp,
+                         uint32_t width, uint32_t s_q8, const uint8_t *enc_comb, uint32_t enc_one_step)
+{
+    for (int c = 0; c < 3; c++) {
+        k->dec[c] = panel->gamma[c].decode;
+        k->thr[c] = panel->gamma[c].enc_thresh;
+        k->idx[c] = panel->gamma[c].enc_index;
+        k->enc_comb[c] = enc_comb ? enc_comb + (size_t)c * TDC_TRM_ENC_COMB : NULL;
+    }
+    k->ux = ux;
+    k->wexp = wexp;
+    k->width = width;
+    k->s_q8 = s_q8;
+    k->enc_one_step = enc_one_step;
+}
+
+void tdc_trm_wexp_build(uint32_t *wexp)
+{
+    for (uint32_t k = 0; k < TDC_TRM_WEXP_ENTRIES; k++) {
+        wexp[k] = tdc_exp_neg_q16_q30(k << 8);
+    }
+}
+
 /* Half an output code in code Q16: the quantisation of a reduced frame. */
 #define TDC_TRM_HALF_CODE_Q16 (1u << 15)
 
@@ -16,7 +39,7 @@
 static inline uint32_t trm_hlerp(const uint32_t *restrict urow, uint32_t i, uint32_t f_q14)
 {
     const int64_t v0 = urow[i], v1 = urow[i + 3u];
-    return (uint32_t)tdc_asr64(v0 * (1 << 14) + (v1 - v0) * (int64_t)f_q14 + (1LL << 19), 20);
+    return (uint32_t)tdc_rshr_round64(v0 * (1 << 14) + (v1 - v0) * (int64_t)f_q14, 20);
 }
 
 /* One channel's gamma tables as restrict-qualified locals: the byte stores
@@ -136,7 +159,10 @@ void tdc_trm_reduced_row_c(const tdc_trm_rowctx_t *k, const uint32_t *urow_a_in,
                     w_q15 = tdc_trm_motion_weight_q15(k, trm_dec_q16(&g[c], ga), alpha);
                     computed++;
                 }
-                /* alpha' = alpha + w rho: Q15 * Q24 -> Q24; |rho| <= 2^24 */
+                /* alpha' = alpha + w rho: Q15 * Q24 -> Q24; w <= 2^15 and
+                 * |rho| <= 2^24, so the product cannot saturate: not
+                 * tdc_fixed.h's saturating multiply, whose dead 64-bit
+                 * clamp cost 132 bytes of Cortex-M7 code in this loop */
                 shown = alpha + (int32_t)tdc_rshr_round64((int64_t)w_q15 * rho, 15);
             }
             shown = shown < 0 ? 0 : (shown > TDC_LIN_ONE ? TDC_LIN_ONE : shown);

@@ -56,38 +56,38 @@ static int board_name_matches(const uint8_t *field, const char *board)
 }
 
 /* Header fields only; total_len = bytes that follow the start of the header. */
-static tdc_image_status_t image_check_header(const uint8_t hdr[TDC_IMAGE_HEADER_LEN],
+static tdc_status_t image_check_header(const uint8_t hdr[TDC_IMAGE_HEADER_LEN],
                                              uint32_t total_len, const char *board,
                                              uint32_t slot_bytes)
 {
     if (total_len < TDC_IMAGE_HEADER_LEN)
-        return TDC_IMAGE_ERR_SHORT;
+        return TDC_ERR_IMAGE_SHORT;
     if (tdc_get_le32(hdr + TDC_IMAGE_OFF_MAGIC) != TDC_IMAGE_MAGIC)
-        return TDC_IMAGE_ERR_MAGIC;
+        return TDC_ERR_IMAGE_MAGIC;
     if (tdc_get_le16(hdr + TDC_IMAGE_OFF_HDR_VERSION) != 1u ||
         tdc_get_le16(hdr + TDC_IMAGE_OFF_HDR_LEN) != TDC_IMAGE_HEADER_LEN)
-        return TDC_IMAGE_ERR_HEADER;
+        return TDC_ERR_IMAGE_HEADER;
     if (slot_bytes != 0u && total_len > slot_bytes)
-        return TDC_IMAGE_ERR_TOO_BIG;
+        return TDC_ERR_IMAGE_TOO_BIG;
     if (tdc_get_le32(hdr + TDC_IMAGE_OFF_PAYLOAD_LEN) != total_len - TDC_IMAGE_HEADER_LEN)
-        return TDC_IMAGE_ERR_SIZE;
+        return TDC_ERR_IMAGE_SIZE;
     if (board != NULL && !board_name_matches(hdr + TDC_IMAGE_OFF_BOARD, board))
-        return TDC_IMAGE_ERR_BOARD;
-    return TDC_IMAGE_OK;
+        return TDC_ERR_IMAGE_BOARD;
+    return TDC_OK;
 }
 
-tdc_image_status_t tdc_image_check(const uint8_t *image, uint32_t len, const char *board,
+tdc_status_t tdc_image_check(const uint8_t *image, uint32_t len, const char *board,
                                    uint32_t slot_bytes)
 {
     if (image == NULL || len < TDC_IMAGE_HEADER_LEN)
-        return TDC_IMAGE_ERR_SHORT;
-    tdc_image_status_t st = image_check_header(image, len, board, slot_bytes);
-    if (st != TDC_IMAGE_OK)
+        return TDC_ERR_IMAGE_SHORT;
+    tdc_status_t st = image_check_header(image, len, board, slot_bytes);
+    if (st != TDC_OK)
         return st;
     uint32_t crc = tdc_usbp_crc32(image + TDC_IMAGE_HEADER_LEN, len - TDC_IMAGE_HEADER_LEN);
     if (crc != tdc_get_le32(image + TDC_IMAGE_OFF_PAYLOAD_CRC))
-        return TDC_IMAGE_ERR_CRC;
-    return TDC_IMAGE_OK;
+        return TDC_ERR_IMAGE_CRC;
+    return TDC_OK;
 }
 
 void tdc_image_make_header(uint8_t hdr[TDC_IMAGE_HEADER_LEN], const uint8_t *payload,
@@ -102,21 +102,6 @@ void tdc_image_make_header(uint8_t hdr[TDC_IMAGE_HEADER_LEN], const uint8_t *pay
     tdc_put_le32(hdr + TDC_IMAGE_OFF_FW_VERSION, fw_version);
     for (uint32_t i = 0; board != NULL && i < TDC_IMAGE_BOARD_LEN && board[i] != '\0'; i++)
         hdr[TDC_IMAGE_OFF_BOARD + i] = (uint8_t)board[i];
-}
-
-const char *tdc_image_status_name(tdc_image_status_t st)
-{
-    switch (st) {
-    case TDC_IMAGE_OK: return "ok";
-    case TDC_IMAGE_ERR_SHORT: return "shorter than the 32-byte image header";
-    case TDC_IMAGE_ERR_MAGIC: return "not a tdc firmware image (bad magic)";
-    case TDC_IMAGE_ERR_HEADER: return "unknown image header version or length";
-    case TDC_IMAGE_ERR_SIZE: return "image size does not match the header's payload length";
-    case TDC_IMAGE_ERR_CRC: return "payload CRC-32 does not match the header";
-    case TDC_IMAGE_ERR_BOARD: return "image was built for another board";
-    case TDC_IMAGE_ERR_TOO_BIG: return "image larger than the board's flash slot";
-    }
-    return "unknown image status";
 }
 
 const char *tdc_dfu_status_name(tdc_dfu_status_t st)
@@ -205,16 +190,16 @@ uint32_t tdc_usbp_string_descriptor(const tdc_usbp_t *s, uint8_t index, uint8_t 
 /* ---------------------------------------------------------------------
  * State.
  * ------------------------------------------------------------------- */
-tdc_usbp_result_t tdc_usbp_init(tdc_usbp_t *s, const tdc_usbp_config_t *cfg)
+tdc_status_t tdc_usbp_init(tdc_usbp_t *s, const tdc_usbp_config_t *cfg)
 {
     if (s == NULL || cfg == NULL)
-        return TDC_USBP_ARG;
+        return TDC_ERR_ARG;
     memset(s, 0, sizeof *s);
     s->cfg = *cfg;
     s->cnt.rx_crc = 0xFFFFFFFFu;
     s->dfu_state = TDC_DFU_STATE_IDLE;
     s->dfu_status = TDC_DFU_OK;
-    return TDC_USBP_OK;
+    return TDC_OK;
 }
 
 void tdc_usbp_parse_setup(const uint8_t raw[8], tdc_usbp_setup_t *out)
@@ -263,27 +248,27 @@ static uint32_t board_info(const tdc_usbp_t *s, uint8_t out[TDC_USB_INFO_LEN])
 }
 
 /* Copy an IN reply of n bytes, truncated to wLength and the buffer. */
-static tdc_usbp_result_t reply_in(const uint8_t *src, uint32_t n, const tdc_usbp_setup_t *setup,
+static tdc_status_t reply_in(const uint8_t *src, uint32_t n, const tdc_usbp_setup_t *setup,
                                   uint8_t *reply, uint32_t reply_cap, uint32_t *reply_len)
 {
     if (n > setup->w_length)
         n = setup->w_length;
     if (n > reply_cap)
-        return TDC_USBP_ARG;
+        return TDC_ERR_ARG;
     memcpy(reply, src, n);
     *reply_len = n;
-    return TDC_USBP_OK;
+    return TDC_OK;
 }
 
 /* ---------------------------------------------------------------------
  * DFU 1.1.
  * ------------------------------------------------------------------- */
-static tdc_usbp_result_t dfu_fail(tdc_usbp_t *s, tdc_dfu_status_t st)
+static tdc_status_t dfu_fail(tdc_usbp_t *s, tdc_dfu_status_t st)
 {
     s->dfu_state = TDC_DFU_STATE_ERROR;
     s->dfu_status = st;
     s->cnt.dfu_errors++;
-    return TDC_USBP_STALL;
+    return TDC_ERR_STALL;
 }
 
 /* Manifestation: the downloaded bytes must form a valid image for this
@@ -296,13 +281,13 @@ static tdc_dfu_status_t dfu_manifest(tdc_usbp_t *s)
         return TDC_DFU_ERR_NOTDONE;
     if (f->read(f->ctx, 0, hdr, TDC_IMAGE_HEADER_LEN) != 0)
         return TDC_DFU_ERR_VERIFY;
-    tdc_image_status_t st = image_check_header(hdr, s->dfu_received, s->cfg.board_name,
+    tdc_status_t st = image_check_header(hdr, s->dfu_received, s->cfg.board_name,
                                                f->slot_bytes);
-    if (st == TDC_IMAGE_ERR_SIZE)
+    if (st == TDC_ERR_IMAGE_SIZE)
         return TDC_DFU_ERR_NOTDONE;
-    if (st == TDC_IMAGE_ERR_TOO_BIG)
+    if (st == TDC_ERR_IMAGE_TOO_BIG)
         return TDC_DFU_ERR_ADDRESS;
-    if (st != TDC_IMAGE_OK)
+    if (st != TDC_OK)
         return TDC_DFU_ERR_FILE;
     uint32_t crc = 0xFFFFFFFFu;
     uint8_t chunk[64];
@@ -320,7 +305,7 @@ static tdc_dfu_status_t dfu_manifest(tdc_usbp_t *s)
     return TDC_DFU_OK;
 }
 
-static tdc_usbp_result_t dfu_request(tdc_usbp_t *s, const tdc_usbp_setup_t *setup,
+static tdc_status_t dfu_request(tdc_usbp_t *s, const tdc_usbp_setup_t *setup,
                                      const uint8_t *data_out, uint8_t *reply,
                                      uint32_t reply_cap, uint32_t *reply_len)
 {
@@ -339,7 +324,7 @@ static tdc_usbp_result_t dfu_request(tdc_usbp_t *s, const tdc_usbp_setup_t *setu
         } else if (s->dfu_state == TDC_DFU_STATE_DNLOAD_IDLE) {
             if (setup->w_length == 0u) {
                 s->dfu_state = TDC_DFU_STATE_MANIFEST_SYNC;
-                return TDC_USBP_OK;
+                return TDC_OK;
             }
         } else {
             return dfu_fail(s, TDC_DFU_ERR_STALLEDPKT);
@@ -355,7 +340,7 @@ static tdc_usbp_result_t dfu_request(tdc_usbp_t *s, const tdc_usbp_setup_t *setu
         s->dfu_next_block = (uint16_t)(s->dfu_next_block + 1u);
         s->dfu_image_bytes = 0; /* the slot no longer holds a checked image */
         s->dfu_state = TDC_DFU_STATE_DNLOAD_SYNC;
-        return TDC_USBP_OK;
+        return TDC_OK;
 
     case TDC_DFU_GETSTATUS: {
         if (!dir_in || setup->w_length < TDC_DFU_GETSTATUS_LEN)
@@ -388,7 +373,7 @@ static tdc_usbp_result_t dfu_request(tdc_usbp_t *s, const tdc_usbp_setup_t *setu
             return dfu_fail(s, TDC_DFU_ERR_STALLEDPKT);
         s->dfu_state = TDC_DFU_STATE_IDLE;
         s->dfu_status = TDC_DFU_OK;
-        return TDC_USBP_OK;
+        return TDC_OK;
 
     case TDC_DFU_GETSTATE: {
         if (!dir_in || setup->w_length < 1u)
@@ -404,7 +389,7 @@ static tdc_usbp_result_t dfu_request(tdc_usbp_t *s, const tdc_usbp_setup_t *setu
         case TDC_DFU_STATE_IDLE: case TDC_DFU_STATE_DNLOAD_SYNC: case TDC_DFU_STATE_DNLOAD_IDLE:
         case TDC_DFU_STATE_MANIFEST_SYNC: case TDC_DFU_STATE_UPLOAD_IDLE:
             s->dfu_state = TDC_DFU_STATE_IDLE;
-            return TDC_USBP_OK;
+            return TDC_OK;
         default:
             return dfu_fail(s, TDC_DFU_ERR_STALLEDPKT);
         }
@@ -420,14 +405,14 @@ static tdc_usbp_result_t dfu_request(tdc_usbp_t *s, const tdc_usbp_setup_t *setu
         if (n > setup->w_length)
             n = setup->w_length;
         if (n > reply_cap)
-            return TDC_USBP_ARG;
+            return TDC_ERR_ARG;
         if (n > 0u && f->read(f->ctx, s->dfu_upload_pos, reply, n) != 0)
             return dfu_fail(s, TDC_DFU_ERR_VERIFY);
         s->dfu_upload_pos += n;
         /* a short frame ends the upload (DFU 1.1 §6.2) */
         s->dfu_state = n < setup->w_length ? TDC_DFU_STATE_IDLE : TDC_DFU_STATE_UPLOAD_IDLE;
         *reply_len = n;
-        return TDC_USBP_OK;
+        return TDC_OK;
     }
 
     default: /* DETACH is meaningless in DFU mode */
@@ -438,7 +423,7 @@ static tdc_usbp_result_t dfu_request(tdc_usbp_t *s, const tdc_usbp_setup_t *setu
 /* ---------------------------------------------------------------------
  * Dispatch.
  * ------------------------------------------------------------------- */
-static tdc_usbp_result_t control_dispatch(tdc_usbp_t *s, const tdc_usbp_setup_t *setup,
+static tdc_status_t control_dispatch(tdc_usbp_t *s, const tdc_usbp_setup_t *setup,
                                           const uint8_t *data_out, uint8_t *reply,
                                           uint32_t reply_cap, uint32_t *reply_len)
 {
@@ -458,7 +443,7 @@ static tdc_usbp_result_t control_dispatch(tdc_usbp_t *s, const tdc_usbp_setup_t 
         default: break;
         }
         if (n == 0u)
-            return TDC_USBP_STALL;
+            return TDC_ERR_STALL;
         return reply_in(buf, n, setup, reply, reply_cap, reply_len);
     }
     if (type == REQ_TYPE_VENDOR && (recip == REQ_RECIP_INTERFACE || recip == REQ_RECIP_DEVICE) &&
@@ -466,42 +451,42 @@ static tdc_usbp_result_t control_dispatch(tdc_usbp_t *s, const tdc_usbp_setup_t 
         switch (setup->b_request) {
         case TDC_USB_REQ_BOARD_INFO: {
             if (!dir_in)
-                return TDC_USBP_STALL;
+                return TDC_ERR_STALL;
             uint8_t info[TDC_USB_INFO_LEN];
             return reply_in(info, board_info(s, info), setup, reply, reply_cap, reply_len);
         }
         case TDC_USB_REQ_RESET_COUNTERS: {
             if (dir_in)
-                return TDC_USBP_STALL;
+                return TDC_ERR_STALL;
             uint32_t stalls = s->cnt.stalls;
             memset(&s->cnt, 0, sizeof s->cnt);
             s->cnt.rx_crc = 0xFFFFFFFFu;
             s->cnt.stalls = stalls; /* stalls are a lifetime count */
-            return TDC_USBP_OK;
+            return TDC_OK;
         }
         case TDC_USB_REQ_RESET_BOARD:
             if (dir_in)
-                return TDC_USBP_STALL;
+                return TDC_ERR_STALL;
             s->reset_pending = 1;
-            return TDC_USBP_OK;
+            return TDC_OK;
         default:
-            return TDC_USBP_STALL;
+            return TDC_ERR_STALL;
         }
     }
     if (type == REQ_TYPE_CLASS && recip == REQ_RECIP_INTERFACE && iface == TDC_USB_IF_DFU)
         return dfu_request(s, setup, data_out, reply, reply_cap, reply_len);
-    return TDC_USBP_STALL;
+    return TDC_ERR_STALL;
 }
 
-tdc_usbp_result_t tdc_usbp_control(tdc_usbp_t *s, const tdc_usbp_setup_t *setup,
+tdc_status_t tdc_usbp_control(tdc_usbp_t *s, const tdc_usbp_setup_t *setup,
                                    const uint8_t *data_out, uint8_t *reply,
                                    uint32_t reply_cap, uint32_t *reply_len)
 {
     if (s == NULL || setup == NULL || reply_len == NULL || (reply == NULL && reply_cap != 0u))
-        return TDC_USBP_ARG;
+        return TDC_ERR_ARG;
     *reply_len = 0;
-    tdc_usbp_result_t r = control_dispatch(s, setup, data_out, reply, reply_cap, reply_len);
-    if (r == TDC_USBP_STALL)
+    tdc_status_t r = control_dispatch(s, setup, data_out, reply, reply_cap, reply_len);
+    if (r == TDC_ERR_STALL)
         s->cnt.stalls++;
     return r;
 }

@@ -21,6 +21,8 @@
 #include <stdint.h>
 #include <stddef.h>
 
+#include "tdc_status.h"
+
 /* pid.codes open-source VID with its *test* PID 0x0001: for development and
  * CI only.  A shipped board must get its own PID from pid.codes. */
 #define TDC_USB_VID 0x1209u
@@ -119,23 +121,11 @@ enum {
     TDC_IMAGE_OFF_BOARD = 20       /* char[12] target board name, NUL padded */
 };
 
-typedef enum {
-    TDC_IMAGE_OK = 0,
-    TDC_IMAGE_ERR_SHORT = -1,     /* fewer bytes than a header */
-    TDC_IMAGE_ERR_MAGIC = -2,     /* not a tdc image */
-    TDC_IMAGE_ERR_HEADER = -3,    /* unknown header version or length */
-    TDC_IMAGE_ERR_SIZE = -4,      /* header payload length != bytes present */
-    TDC_IMAGE_ERR_CRC = -5,       /* payload CRC mismatch */
-    TDC_IMAGE_ERR_BOARD = -6,     /* built for another board */
-    TDC_IMAGE_ERR_TOO_BIG = -7    /* does not fit the flash slot */
-} tdc_image_status_t;
-
-/* Result of handling one request. */
-typedef enum {
-    TDC_USBP_OK = 0,      /* handled; for IN requests *reply_len bytes are the data stage */
-    TDC_USBP_STALL = -1,  /* protocol error: stall the endpoint (counted) */
-    TDC_USBP_ARG = -2     /* caller error (null pointer, reply buffer too small) */
-} tdc_usbp_result_t;
+/* Results: tdc_status_t (tdc_status.h).  tdc_image_check() returns TDC_OK
+ * or a TDC_ERR_IMAGE_* code; a control request TDC_OK (handled; for IN
+ * requests *reply_len bytes are the data stage), TDC_ERR_STALL (protocol
+ * error: stall the endpoint, counted) or TDC_ERR_ARG (caller error: null
+ * pointer, reply buffer too small). */
 
 /* What the board's link decoder found in one received transfer: counts
  * added to the board counters (a transfer may close several packets). */
@@ -203,7 +193,8 @@ typedef struct {
 } tdc_usbp_setup_t;
 
 /* State lifecycle. */
-tdc_usbp_result_t tdc_usbp_init(tdc_usbp_t *s, const tdc_usbp_config_t *cfg);
+TDC_MUST_CHECK
+tdc_status_t tdc_usbp_init(tdc_usbp_t *s, const tdc_usbp_config_t *cfg);
 
 /* SETUP packet: 8 raw bytes -> fields (little-endian). */
 void tdc_usbp_parse_setup(const uint8_t raw[8], tdc_usbp_setup_t *out);
@@ -212,9 +203,10 @@ void tdc_usbp_parse_setup(const uint8_t raw[8], tdc_usbp_setup_t *out);
  * NULL when w_length is 0).  reply: buffer for the IN data stage, capacity
  * reply_cap; *reply_len gets the bytes to send (<= w_length).  Handles the
  * standard GET_DESCRIPTOR requests too (for stacks that forward them). */
-tdc_usbp_result_t tdc_usbp_control(tdc_usbp_t *s, const tdc_usbp_setup_t *setup,
-                                   const uint8_t *data_out, uint8_t *reply,
-                                   uint32_t reply_cap, uint32_t *reply_len);
+TDC_MUST_CHECK
+tdc_status_t tdc_usbp_control(tdc_usbp_t *s, const tdc_usbp_setup_t *setup,
+                              const uint8_t *data_out, uint8_t *reply,
+                              uint32_t reply_cap, uint32_t *reply_len);
 
 /* One bulk OUT transfer of link packets. */
 void tdc_usbp_bulk_out(tdc_usbp_t *s, const uint8_t *data, uint32_t len);
@@ -240,12 +232,12 @@ uint32_t tdc_usbp_crc32(const uint8_t *data, uint32_t len);
 /* Image checks shared by the board (manifest) and the host (before download).
  * image/len: header + payload as it would be downloaded.  board may be NULL
  * (no board check); slot_bytes 0 = no size limit. */
-tdc_image_status_t tdc_image_check(const uint8_t *image, uint32_t len, const char *board,
-                                   uint32_t slot_bytes);
+TDC_MUST_CHECK
+tdc_status_t tdc_image_check(const uint8_t *image, uint32_t len, const char *board,
+                             uint32_t slot_bytes);
 /* Write a header for payload (payload_len bytes) into hdr. */
 void tdc_image_make_header(uint8_t hdr[TDC_IMAGE_HEADER_LEN], const uint8_t *payload,
                            uint32_t payload_len, uint32_t fw_version, const char *board);
-const char *tdc_image_status_name(tdc_image_status_t st);
 const char *tdc_dfu_status_name(tdc_dfu_status_t st);
 const char *tdc_dfu_state_name(tdc_dfu_state_t st);
 

@@ -92,7 +92,7 @@ $(BA)/libtdcfw.a: $$(ARM_FW_OBJS)
 # Link an image; a region overflow becomes the memory-fit verdict ($(1) names
 # what was linked).
 ARM_LINK = $(ARM_CC) $(ARM_LDFLAGS) -Wl,-Map=$(basename $@).map $(filter %.o %.a,$^) $(ARM_LIBS) -o $@ \
-           2> $@.log || { cat $@.log; tests/arm/fit_report.sh "$(BOARD)" "$(1)" $@.log $(ARM_NM) $(filter %.o,$^); rm -f $@; exit 1; }; \
+           2> $@.log || { cat $@.log; tools/fit_report.sh "$(BOARD)" "$(1)" $@.log $(ARM_NM) $(filter %.o,$^); rm -f $@; exit 1; }; \
            cat $@.log; rm -f $@.log
 
 # ---------------------------------------------------------------------------
@@ -194,7 +194,7 @@ firmware: $(BP)/tdc-firmware.elf
 firmware-size:
 	@echo "== $(BOARD) / $(PANEL) (stages: $(or $(strip $(STAGES)),link only))"
 	@if $(MAKE) --no-print-directory firmware > $(BUILD)/.size-$(BOARD)-$(PANEL).log 2>&1; then \
-	    tests/arm/size_report.sh $(ARM_SIZE) $(BP)/tdc-firmware.elf "$(BOARD_MEM)"; \
+	    tools/size_report.sh $(ARM_SIZE) $(BP)/tdc-firmware.elf "$(BOARD_MEM)"; \
 	elif grep -q '^memory fit' $(BUILD)/.size-$(BOARD)-$(PANEL).log; then \
 	    grep -A12 '^memory fit' $(BUILD)/.size-$(BOARD)-$(PANEL).log | grep -v '^make' | sed 's/^/    /'; \
 	else echo "    build failed (not a memory-fit verdict):"; tail -5 $(BUILD)/.size-$(BOARD)-$(PANEL).log | sed 's/^/    /'; fi

@@ -37,16 +37,16 @@ lcd-profiles: $(TDC_LCD_MEASURE) $(TDC_CALIB)
 
 # The report (docs/lcd-report.md): perceived error of TRM frames on the
 # simulated LCD per inverse mode, and the firmware time per 1440x1600 frame.
-BENCHES += $(B)/tests/bench_lcd_report
-report-lcd: $(B)/tests/bench_lcd_report
-	$(B)/tests/bench_lcd_report --panel pg279q -o docs/lcd-report.md
-	$(B)/tests/bench_lcd_report --panel lcd-240 -o docs/lcd-report-240.md
+BENCHES += $(B)/tests/bench/bench_lcd_report
+report-lcd: $(B)/tests/bench/bench_lcd_report
+	$(B)/tests/bench/bench_lcd_report --panel pg279q -o docs/lcd-report.md
+	$(B)/tests/bench/bench_lcd_report --panel lcd-240 -o docs/lcd-report-240.md
 .PHONY: report-lcd
 
 # Tests.
-TESTS += $(B)/tests/test_lcd_solve
-TESTS += $(B)/tests/test_lcd_sim
-TESTS += $(B)/tests/test_lcd_stage
+TESTS += $(B)/tests/unit/test_lcd_solve
+TESTS += $(B)/tests/unit/test_lcd_sim
+TESTS += $(B)/tests/unit/test_lcd_stage
 GOLDEN_STAGES += lcd
 
 # Compile-out check: an OLED build's object set has no LCD symbols.
@@ -54,16 +54,16 @@ LCD_OLED_PANELS = $(foreach p,$(PANELS),$(if $(filter oled,$(shell awk '$$1 == "
 LCD_OLED_OBJS = $(patsubst %.c,$(B)/%.o,$(filter-out $(FW_LCD_SRCS),$(FW_SRCS))) \
                 $(foreach p,$(LCD_OLED_PANELS),$(B)/gen/tdc_panel_$(p).o)
 LCD_FW_OBJS = $(patsubst %.c,$(B)/%.o,$(FW_LCD_SRCS))
-$(B)/tests/test_lcd_compile_out: $(FWLIB) tests/test_lcd_compile_out.sh
+$(B)/tests/unit/test_lcd_compile_out: $(FWLIB) tests/unit/test_lcd_compile_out.sh
 	@mkdir -p $(@D)
-	@printf '#!/bin/sh\nexec tests/test_lcd_compile_out.sh nm --oled %s --lcd %s\n' "$(LCD_OLED_OBJS)" "$(LCD_FW_OBJS)" > $@
+	@printf '#!/bin/sh\nexec tests/unit/test_lcd_compile_out.sh nm --oled %s --lcd %s\n' "$(LCD_OLED_OBJS)" "$(LCD_FW_OBJS)" > $@
 	@chmod +x $@
-TESTS += $(B)/tests/test_lcd_compile_out
+TESTS += $(B)/tests/unit/test_lcd_compile_out
 
 # The calibration loop end to end (measure -> fit -> profile -> tables -> compile).
-$(B)/tests/test_lcd_calib: $(TDC_LCD_MEASURE) $(TDC_CALIB) $(TABLEGEN) tests/test_lcd_calib.sh
+$(B)/tests/unit/test_lcd_calib: $(TDC_LCD_MEASURE) $(TDC_CALIB) $(TABLEGEN) tests/unit/test_lcd_calib.sh
 	@mkdir -p $(@D)
-	@printf '#!/bin/sh\nexec tests/test_lcd_calib.sh %s %s %s "%s"\n' "$(TDC_LCD_MEASURE)" "$(TDC_CALIB)" \
+	@printf '#!/bin/sh\nexec tests/unit/test_lcd_calib.sh %s %s %s "%s"\n' "$(TDC_LCD_MEASURE)" "$(TDC_CALIB)" \
 	    "$(TABLEGEN)" "$(CC) $(FW_CFLAGS)" > $@
 	@chmod +x $@
-TESTS += $(B)/tests/test_lcd_calib
+TESTS += $(B)/tests/unit/test_lcd_calib

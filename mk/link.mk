@@ -58,9 +58,9 @@ fuzz-seeds: $(FUZZ_SEEDS_BIN)
 # ---------------------------------------------------------------------------
 # Tests, golden vectors, benchmark.
 # ---------------------------------------------------------------------------
-TESTS += $(B)/tests/test_link $(B)/tests/test_link_pixfmt $(B)/tests/test_link_file $(B)/tests/test_link_mask
+TESTS += $(B)/tests/unit/test_link $(B)/tests/unit/test_link_pixfmt $(B)/tests/unit/test_link_file $(B)/tests/unit/test_link_mask
 GOLDEN_STAGES += link
-BENCHES += $(B)/tests/bench_link
+BENCHES += $(B)/tests/bench/bench_link
 TEST_EXTRA += fuzz-smoke
 
 # tdc-linkdump: check a .tdcs stream file with the firmware decoder.

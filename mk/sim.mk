@@ -16,7 +16,7 @@ TDC_SIM := $(B)/tdc-sim
 HOST_PROGS += $(TDC_SIM)
 DEPS_PKGS += python3-scipy # test_metrics: the flip v1.6 transcription (scipy.signal.convolve2d)
 SIM_TESTS := test_sim_smoke test_sim_eye test_metrics
-TESTS += $(foreach t,$(SIM_TESTS),$(B)/tests/$(t))
+TESTS += $(foreach t,$(SIM_TESTS),$(B)/tests/unit/$(t))
 
 # Which parts of the data path exist in this tree: decided from the other
 # fragments' source lists (recursively expanded, so after every fragment is
@@ -51,9 +51,9 @@ $(TDC_SIM): $(B)/sim/simulator/tdc_sim_main.o $(SIMXLIB) $(SIMLIB) $(FWLIB) $$(S
 	$(CC) $(HOST_LDFLAGS) $(SIM_OMP) $< -o $@ $(SIMXLIB) $(SIM_RENDER_LIBS) $(SIMLIB) $(FWLIB) \
 	    $(if $(SIM_RENDER_LIBS),$(RENDER_LDLIBS)) $(HOST_LIBS)
 
-$(foreach t,$(SIM_TESTS),$(B)/tests/$(t)): $(B)/tests/%: $(B)/tests/%.o $(SIMXLIB) $(SIMLIB) $(FWLIB)
+$(foreach t,$(SIM_TESTS),$(B)/tests/unit/$(t)): $(B)/tests/%: $(B)/tests/%.o $(SIMXLIB) $(SIMLIB) $(FWLIB)
 	$(CC) $(HOST_LDFLAGS) $(SIM_OMP) $^ -o $@ $(HOST_LIBS)
-$(foreach t,$(SIM_TESTS),$(B)/tests/$(t).o): $(GEN)/tdc_sim_features.h
+$(foreach t,$(SIM_TESTS),$(B)/tests/unit/$(t).o): $(GEN)/tdc_sim_features.h
 
 .PHONY: tdc-sim demo-sim
 tdc-sim: $(TDC_SIM)

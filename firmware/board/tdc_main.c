@@ -110,7 +110,7 @@ static uint64_t g_mode_arena[FW_EYES][FW_MODE_BYTES / 8u] TDC_EXTRAM;
 #endif
 
 #if TDC_CFG_LCD
-static uint32_t g_lcd_arena[FW_EYES][(TDC_LCD_MEM_BYTES(FW_W, FW_H) + 3u) / 4u] TDC_EXTRAM;
+static uint64_t g_lcd_arena[FW_EYES][TDC_LCD_MEM_BYTES(FW_W, FW_H) / 8u] TDC_EXTRAM;
 #endif
 
 /* Transport chunk: what one USB bulk transfer (or semihosting read) brings. */

@@ -330,12 +330,17 @@ int tdc_run_assemble_main(int argc, char **argv)
                                             r == 0 && has_bits ? bits : NULL);
             tdc_png_free(&img);
             if (s != TDC_OK) {
-                fprintf(stderr, "tdc-run assemble: firmware refused subframe %u (%s): status %d\n", frame, name, (int)s);
+                fprintf(stderr, "tdc-run assemble: firmware refused subframe %u (%s): %s\n", frame, name, tdc_status_name(s));
                 rc = TDC_RUN_EXIT_FAILED;
                 break;
             }
         }
-        tdc_asm_assemble(&st, frame);
+        const tdc_status_t as = tdc_asm_assemble(&st, frame);
+        if (as != TDC_OK) {
+            fprintf(stderr, "tdc-run assemble: firmware could not assemble frame %u: %s\n", frame, tdc_status_name(as));
+            rc = TDC_RUN_EXIT_FAILED;
+            break;
+        }
         int stride;
         const uint8_t *out = tdc_asm_output(&st, &stride);
         char path[4096];

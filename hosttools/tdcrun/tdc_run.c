@@ -155,7 +155,7 @@ static int eye_open(eye_t *e, const tdc_trm_config_t *cfg, const tdc_panel_t *pa
         return -1;
     }
     if (st != TDC_OK) {
-        fprintf(stderr, "tdc-run: TRM init failed (status %d)\n", (int)st);
+        fprintf(stderr, "tdc-run: TRM init failed: %s\n", tdc_status_name(st));
         return -1;
     }
     if (kernels >= 0) {
@@ -435,8 +435,14 @@ int tdc_run_trm_main(int argc, char **argv)
                         rc = TDC_RUN_EXIT_FAILED;
                         break;
                     }
-                    tdc_trm_downsample(t, (uint8_t *)img.data + (size_t)e * EW * 3, (uint32_t)W * 3, red,
-                                       (uint32_t)rw * 3);
+                    st = tdc_trm_downsample(t, (uint8_t *)img.data + (size_t)e * EW * 3, (uint32_t)W * 3, red,
+                                            (uint32_t)rw * 3);
+                    if (st != TDC_OK) {
+                        fprintf(stderr, "tdc-run: %s: firmware could not reduce frame %d: %s\n", name, i,
+                                tdc_status_name(st));
+                        rc = TDC_RUN_EXIT_FAILED;
+                        break;
+                    }
                     rsrc = red;
                     rstride = (uint32_t)rw * 3;
                 } else {
@@ -453,7 +459,7 @@ int tdc_run_trm_main(int argc, char **argv)
             }
             double us = (now_s() - t0) * 1e6;
             if (st != TDC_OK) {
-                fprintf(stderr, "tdc-run: %s: firmware rejected frame %d (status %d)\n", name, i, (int)st);
+                fprintf(stderr, "tdc-run: %s: firmware rejected frame %d: %s\n", name, i, tdc_status_name(st));
                 rc = TDC_RUN_EXIT_FAILED;
                 break;
             }

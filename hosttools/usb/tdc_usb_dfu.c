@@ -112,11 +112,11 @@ tdc_exit_t tdc_usb_load_image(const char *path, uint8_t **image, uint32_t *image
     tdc_exit_t e = tdc_usb_read_file(path, "flash", &img, &len);
     if (e != TDC_EXIT_OK)
         return e;
-    tdc_image_status_t is = tdc_image_check(img, len, NULL, 0);
-    if (is != TDC_IMAGE_OK) {
-        fprintf(stderr, "tdc-usb: flash: %s: %s (file %u bytes", path, tdc_image_status_name(is),
+    tdc_status_t is = tdc_image_check(img, len, NULL, 0);
+    if (is != TDC_OK) {
+        fprintf(stderr, "tdc-usb: flash: %s: %s (file %u bytes", path, tdc_status_text(is),
                 len);
-        if (len >= TDC_IMAGE_HEADER_LEN && is != TDC_IMAGE_ERR_MAGIC)
+        if (len >= TDC_IMAGE_HEADER_LEN && is != TDC_ERR_IMAGE_MAGIC)
             fprintf(stderr, ", header says %u + %u bytes", TDC_IMAGE_HEADER_LEN,
                     tdc_get_le32(img + TDC_IMAGE_OFF_PAYLOAD_LEN));
         fprintf(stderr, ")\n");
@@ -136,12 +136,12 @@ tdc_exit_t tdc_usb_cmd_flash(tdc_board_t *b, const opts_t *o, const char *path, 
     if (e == TDC_EXIT_OK)
         e = tdc_usb_get_info(b, &bi);
     if (e == TDC_EXIT_OK) {
-        tdc_image_status_t is = tdc_image_check(img, len, bi.board, bi.slot);
-        if (is != TDC_IMAGE_OK) {
+        tdc_status_t is = tdc_image_check(img, len, bi.board, bi.slot);
+        if (is != TDC_OK) {
             char target[TDC_IMAGE_BOARD_LEN + 1] = "";
             memcpy(target, img + TDC_IMAGE_OFF_BOARD, TDC_IMAGE_BOARD_LEN);
             fprintf(stderr, "tdc-usb: flash: %s: %s (image %u bytes for board '%s'; board '%s' "
-                            "has a %u-byte slot)\n", path, tdc_image_status_name(is), len,
+                            "has a %u-byte slot)\n", path, tdc_status_text(is), len,
                     target, bi.board, bi.slot);
             e = TDC_EXIT_INCOMPATIBLE;
         }

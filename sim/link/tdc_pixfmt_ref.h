@@ -1,7 +1,7 @@
 /*
  * tdc_pixfmt_ref.h - double-precision reference of the link colour
  * conversions, written straight from the BT.709 definition, against which
- * tests/test_link_pixfmt.c reports the fixed-point error.
+ * tests/unit/test_link_pixfmt.c reports the fixed-point error.
  */
 #ifndef TDC_PIXFMT_REF_H
 #define TDC_PIXFMT_REF_H

@@ -28,6 +28,16 @@
  *                 Orderings are updated by tdc_ordering_update() at every
  *                 frame = 0 mod 4 (see tdc_render_pattern_bits()).
  *   GROUND_TRUTH  W x H, N stratified samples per pixel (box filter).
+ *   FOVEATED      n x 1 samples (thesis §4.2, DESIGN §4.5; set with
+ *                 tdc_render_set_foveation): first the kernel log-polar
+ *                 buffer, rows j = 0..h-1 (angle) of columns u0..w-1
+ *                 (radius), each a ray through the exact inverse of eq. 2.2
+ *                 (r = e^(L K(u / w)), K(x) = x^alpha) of (i + jx, j + jy);
+ *                 then the foveal disk, one ray per display pixel centre in
+ *                 the disk, rows top to bottom (tdc_fov_disk_span).  This is
+ *                 the link payload order; MVs as for FULL.  The geometry (u0,
+ *                 the disk) is the firmware's (tdc_fov_geom), so both sides
+ *                 agree on every sample.
  */
 #ifndef TDC_RENDER_H
 #define TDC_RENDER_H
@@ -41,8 +51,19 @@ typedef enum {
     TDC_RENDER_FULL = 0,
     TDC_RENDER_REDUCED = 1,
     TDC_RENDER_SUBFRAME = 2,
-    TDC_RENDER_GROUND_TRUTH = 3
+    TDC_RENDER_GROUND_TRUTH = 3,
+    TDC_RENDER_FOVEATED = 4
 } tdc_render_mode_t;
+
+/* Foveation of the FOVEATED mode (per frame: the gaze moves). */
+typedef struct {
+    double gaze_x, gaze_y;  /* display pixels; rounded to Q8 like the link header */
+    double alpha;           /* K(x) = x^alpha, [1, 8], default 4 */
+    double delta;           /* buffer downscale, default 0.555: quantised up to Q15 like the link header,
+                               w = floor(delta_q15 W / 2^15) (tdc_fov_lp_size) */
+    double disk;            /* disk radius / distance to the farthest corner, [0, 1]; default 0.12443 */
+    double jx, jy;          /* sub-sample jitter of the log-polar samples (Halton 2,3 where TAA follows) */
+} tdc_render_fov_t;
 
 typedef struct {
     int width, height;      /* output size; 0 = the scene's resolution */
@@ -128,6 +149,12 @@ int tdc_render_frame(tdc_render_t *r, uint32_t frame, tdc_render_mode_t mode, co
                      tdc_render_stats_t *stats);
 
 void tdc_render_output_size(const tdc_render_t *r, tdc_render_mode_t mode, int *w, int *h);
+/* Sets the foveation of the following FOVEATED frames.  Returns 0, or -1 on
+ * parameters the firmware would refuse (alpha, disk, gaze more than one
+ * screen outside).  *lp_samples / *disk_pixels (may be NULL): the counts. */
+int tdc_render_set_foveation(tdc_render_t *r, const tdc_render_fov_t *f, int *lp_samples, int *disk_pixels);
+/* Halton(2,3) jitter of frame f in [-0.5, 0.5)^2 (the thesis's sub-pixel jitter, §4.3.2). */
+void tdc_render_halton(uint32_t f, double *jx, double *jy);
 void tdc_render_get_features(const tdc_render_t *r, tdc_render_features_t *f);
 /* 1 if nothing moves between frame - 1 and frame (the stream can say static). */
 int tdc_render_frame_static(tdc_render_t *r, uint32_t frame);

@@ -212,6 +212,7 @@ void tdc_render_close(tdc_render_t *r)
     free(r->mv_hist_prev);
     free(r->pattern);
     free(r->rec);
+    free(r->fov_xy);
     for (int i = 0; i < 64; i++) free(r->sbuf[i]);
     free(r);
 }
@@ -228,6 +229,10 @@ void tdc_render_output_size(const tdc_render_t *r, tdc_render_mode_t mode, int *
     case TDC_RENDER_SUBFRAME:
         *w = TDC_ORDERING_TILES_X(r->W);
         *h = TDC_ORDERING_TILES_Y(r->H);
+        break;
+    case TDC_RENDER_FOVEATED:
+        *w = r->fov_n;
+        *h = 1;
         break;
     default:
         *w = r->W;
@@ -305,6 +310,6 @@ const char *tdc_render_stage_name(tdc_render_stage_t s)
 
 const char *tdc_render_mode_name(tdc_render_mode_t m)
 {
-    static const char *const n[] = {"full", "reduced", "subframe", "ground-truth"};
-    return (unsigned)m < 4 ? n[m] : "?";
+    static const char *const n[] = {"full", "reduced", "subframe", "ground-truth", "foveated"};
+    return (unsigned)m < 5 ? n[m] : "?";
 }

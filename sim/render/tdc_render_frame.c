@@ -87,6 +87,20 @@ static int place_samples(job_t *jb, int tx, int ty, rsample_t *s)
             }
         return n;
     }
+    if (jb->mode == TDC_RENDER_FOVEATED) { /* one row of sample positions */
+        for (int sx = x0; sx < x1; sx++) {
+            const float x = r->fov_xy[2 * sx], y = r->fov_xy[2 * sx + 1];
+            int px = (int)floorf(x), py = (int)floorf(y); /* random-number key: the pixel it falls in */
+            s[n].x = x;
+            s[n].y = y;
+            s[n].px = px < 0 ? 0 : px >= r->W ? r->W - 1 : px;
+            s[n].py = py < 0 ? 0 : py >= r->H ? r->H - 1 : py;
+            s[n].dst = (uint32_t)sx;
+            s[n].k = 0;
+            n++;
+        }
+        return n;
+    }
     for (int sy = y0; sy < y1; sy++)
         for (int sx = x0; sx < x1; sx++) {
             uint32_t slot = (uint32_t)sy * (uint32_t)jb->sw + (uint32_t)sx;
@@ -127,6 +141,8 @@ static int place_samples(job_t *jb, int tx, int ty, rsample_t *s)
                 s[n].dst = slot;
                 s[n].k = 0;
                 n++;
+                break;
+            case TDC_RENDER_FOVEATED: /* placed above */
                 break;
             case TDC_RENDER_GROUND_TRUTH: {
                 int N = jb->spp, g = (int)floor(sqrt((double)N));
@@ -191,6 +207,19 @@ static void write_outputs(job_t *jb, const rsample_t *s, int n)
             float *d = &jb->ss[(size_t)s[i].dst * 3];
             if (s[i].k == 0) d[0] = d[1] = d[2] = 0;
             for (int c = 0; c < 3; c++) d[c] += (float)(s[i].col[c] / jb->spp);
+        }
+        return;
+    }
+    if (jb->mode == TDC_RENDER_FOVEATED) { /* samples, not pixels: no MV history */
+        for (int i = 0; i < n; i++) {
+            const rsample_t *a = &s[i];
+            if (o->rgb)
+                for (int c = 0; c < 3; c++) o->rgb[(size_t)a->dst * 3 + c] = (float)a->col[c];
+            if (o->mv) {
+                o->mv[(size_t)a->dst * 2] = jb->do_mv ? q4(a->mv[0]) : 0;
+                o->mv[(size_t)a->dst * 2 + 1] = jb->do_mv ? q4(a->mv[1]) : 0;
+            }
+            if (o->depth) o->depth[a->dst] = (float)a->depth;
         }
         return;
     }
@@ -356,7 +385,7 @@ int tdc_render_frame(tdc_render_t *r, uint32_t frame, tdc_render_mode_t mode, co
                      tdc_render_stats_t *stats)
 {
     static const tdc_render_out_t none;
-    if (!r || (unsigned)mode > TDC_RENDER_GROUND_TRUTH) return -1;
+    if (!r || (unsigned)mode > TDC_RENDER_FOVEATED || (mode == TDC_RENDER_FOVEATED && !r->fov_n)) return -1;
     if (!out) out = &none;
     double wall0 = tdc_r_now_ms();
     tdc_render_stats_t st;
@@ -372,7 +401,7 @@ int tdc_render_frame(tdc_render_t *r, uint32_t frame, tdc_render_mode_t mode, co
 
     /* Stage selection: leave out what the scene or this frame does not need. */
     st.frame_static = tdc_render_frame_static(r, frame);
-    int mv_mode = mode == TDC_RENDER_FULL || mode == TDC_RENDER_SUBFRAME;
+    int mv_mode = mode == TDC_RENDER_FULL || mode == TDC_RENDER_SUBFRAME || mode == TDC_RENDER_FOVEATED;
     jb.frame_static = st.frame_static;
     jb.do_reflect = r->feat.mirrors && r->cfg.max_bounces > 0;
     jb.do_mv = mv_mode && !st.frame_static;
@@ -397,6 +426,12 @@ int tdc_render_frame(tdc_render_t *r, uint32_t frame, tdc_render_mode_t mode, co
     case TDC_RENDER_FULL:
         jb.sw = r->W;
         jb.sh = r->H;
+        break;
+    case TDC_RENDER_FOVEATED:
+        jb.sw = r->fov_n;
+        jb.sh = 1;
+        jb.tile = 64;
+        jb.tile_h = 1;
         break;
     case TDC_RENDER_SUBFRAME:
         jb.sw = st.out_w;

@@ -91,6 +91,8 @@ struct tdc_render {
     uint8_t *pattern;         /* ordering bits */
     void *sbuf[64];           /* per-thread sample buffers, kept between frames */
     size_t sbuf_cap[64];      /* in samples */
+    float *fov_xy;            /* FOVEATED: sample positions, fov_n x 2 */
+    int fov_n, fov_lp;        /* samples, of which log-polar */
     tdc_render_ray_t *rec;    /* recorded rays (merged) */
     size_t nrec;
 };

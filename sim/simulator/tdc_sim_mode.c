@@ -5,7 +5,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "tdc_fixed.h"
+#include "tdc_status.h"
 
 double tdc_sim_now(void)
 {
@@ -22,30 +22,6 @@ void tdc_sim_note(sim_mode_t *m, const char *s)
     }
 }
 
-const char *tdc_sim_status_name(int status)
-{
-    switch (status) {
-    case TDC_OK:
-        return "TDC_OK";
-    case TDC_ERR_ARG:
-        return "TDC_ERR_ARG";
-    case TDC_ERR_SIZE:
-        return "TDC_ERR_SIZE";
-    case TDC_ERR_REFRESH_LOW:
-        return "TDC_ERR_REFRESH_LOW";
-    case TDC_ERR_STATE:
-        return "TDC_ERR_STATE";
-    case TDC_ERR_RATIO:
-        return "TDC_ERR_RATIO";
-    case TDC_ERR_PANEL:
-        return "TDC_ERR_PANEL";
-    case -20:
-        return "TDC_ASM_ERR_FRAME";
-    default:
-        return "error";
-    }
-}
-
 int tdc_sim_stage(sim_mode_t *m, const char *stage, int status)
 {
     if (status == 0) {
@@ -58,8 +34,10 @@ int tdc_sim_stage(sim_mode_t *m, const char *stage, int status)
         if (m->eyes == 2) {
             snprintf(eye, sizeof(eye), " eye %d", m->eye);
         }
-        fprintf(stderr, "tdc-sim: mode %s: frame %u%s: stage %s: %s (%d)\n", m->d->name, (unsigned)m->frame, eye,
-                stage, strncmp(stage, "tdc_", 4) == 0 ? tdc_sim_status_name(status) : "failed", status);
+        int fw = strncmp(stage, "tdc_", 4) == 0;
+        fprintf(stderr, "tdc-sim: mode %s: frame %u%s: stage %s: %s (%s)\n", m->d->name, (unsigned)m->frame, eye,
+                stage, fw ? tdc_status_name((tdc_status_t)status) : "failed",
+                fw ? tdc_status_text((tdc_status_t)status) : "returned an error");
     }
     m->failed = 1;
     return status;
@@ -68,7 +46,7 @@ int tdc_sim_stage(sim_mode_t *m, const char *stage, int status)
 void tdc_sim_refuse(sim_mode_t *m, const char *what, int status)
 {
     char b[160];
-    snprintf(b, sizeof(b), "%s refused the configuration (%s)", what, tdc_sim_status_name(status));
+    snprintf(b, sizeof(b), "%s refused the configuration (%s)", what, tdc_status_name((tdc_status_t)status));
     tdc_sim_note(m, b);
     m->res->available = 0;
     m->res->refused = status ? status : -1;

@@ -122,11 +122,10 @@ double tdc_sim_now(void);
 /* Appends a note to the mode's report line. */
 void tdc_sim_note(sim_mode_t *m, const char *s);
 /* Checks a stage's status: 0 passes; otherwise reports
- * "tdc-sim: mode M: frame F: stage S: NAME (status)" once, marks the mode
+ * "tdc-sim: mode M: frame F: stage S: NAME (text)" once (tdc_status_name,
+ * tdc_status_text of the firmware's one status vocabulary), marks the mode
  * failed and returns the status. */
 int tdc_sim_stage(sim_mode_t *m, const char *stage, int status);
-/* The name of a firmware status code. */
-const char *tdc_sim_status_name(int status);
 /* A firmware stage refused the mode's configuration at init: noted, the
  * mode is unavailable, res->refused = status. */
 void tdc_sim_refuse(sim_mode_t *m, const char *what, int status);

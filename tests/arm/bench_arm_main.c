@@ -19,6 +19,7 @@
 #include "tdc_assemble.h"
 #include "tdc_content.h"
 #include "tdc_crt0.h"
+#include "tdc_fov.h"
 #include "tdc_lcd.h"
 #include "tdc_link.h"
 #include "tdc_link_encode.h"
@@ -48,8 +49,15 @@ static uint8_t g_staging[TDC_LINK_STAGING_BYTES(BENCH_W, BENCH_H)] TDC_EXTRAM;
 static uint64_t g_arena[(TDC_ASM_MEM_BYTES(BENCH_W, BENCH_H) > TDC_TRM_MEM_BYTES(BENCH_W, BENCH_H, 1, 2)
                              ? TDC_ASM_MEM_BYTES(BENCH_W, BENCH_H)
                              : TDC_TRM_MEM_BYTES(BENCH_W, BENCH_H, 1, 2)) / 8u + 1u] TDC_EXTRAM;
-static uint32_t g_lcd_arena[TDC_LCD_MEM_BYTES(BENCH_W, BENCH_H) / 4u + 1u] TDC_EXTRAM;
+static uint64_t g_lcd_arena[TDC_LCD_MEM_BYTES(BENCH_W, BENCH_H) / 8u] TDC_EXTRAM;
 static uint8_t g_samples[RW * RH * 3u];
+/* foveated remap: log-polar buffer 0.555 W x 0.555 H, its motion vectors, TAA arena */
+#define FOV_LW ((BENCH_W * 555u) / 1000u)
+#define FOV_LH ((BENCH_H * 555u) / 1000u)
+static uint8_t g_fov_lp[FOV_LW * FOV_LH * 3u] TDC_EXTRAM;
+static int16_t g_fov_mv[FOV_LW * FOV_LH * 2u] TDC_EXTRAM;
+static uint64_t g_fov_arena[TDC_FOV_MEM_BYTES(BENCH_W, BENCH_H, 1) / 8u] TDC_EXTRAM;
+static tdc_fov_t g_fov;
 static int16_t g_mv[RW * RH * 2u];
 
 static tdc_link_decoder_t g_dec;
@@ -264,15 +272,47 @@ static void bench_lcd(void)
             continue; /* the profile has no table of this size */
         }
         /* Frame 0 has no history (steady-state solve); measure frame 1. */
-        (void)tdc_lcd_frame(&g_lcd, g_in[0], BENCH_W * 3u, g_out, BENCH_W * 3u, NULL);
+        if (tdc_lcd_frame(&g_lcd, g_in[0], BENCH_W * 3u, g_out, BENCH_W * 3u, NULL) != TDC_OK) {
+            fail("LCD frame");
+        }
         tdc_bench_mark();
-        (void)tdc_lcd_frame(&g_lcd, g_in[1], BENCH_W * 3u, g_out, BENCH_W * 3u, NULL);
+        if (tdc_lcd_frame(&g_lcd, g_in[1], BENCH_W * 3u, g_out, BENCH_W * 3u, NULL) != TDC_OK) {
+            fail("LCD frame");
+        }
         tdc_bench_mark();
         report(modes[m].label, BENCH_PX);
     }
 }
 
-/* Group from QEMU's -append (last word): link, trm, assemble, lcd; anything
+/* Foveated remap at alpha = 4, delta = 0.555, 12.443 % disk, gaze off-centre;
+ * frame 0 fills the history, frame 1 is measured. */
+static void bench_fov(uint8_t taa, const char *label)
+{
+    const tdc_fov_config_t cfg = {(uint16_t)BENCH_W, (uint16_t)BENCH_H, taa};
+    if (tdc_fov_init(&g_fov, &cfg, g_fov_arena, sizeof g_fov_arena) != TDC_OK) {
+        fail("fov init");
+    }
+    const tdc_fov_params_t p = {(int32_t)(BENCH_W * 110u), (int32_t)(BENCH_H * 140u), 1024u, 4077u, (uint16_t)FOV_LW,
+                                (uint16_t)FOV_LH};
+    tdc_content_frame(TDC_CONTENT_TEXT, 0u, 1u, g_fov_lp, (int)FOV_LW, (int)FOV_LH, (int)(FOV_LW * 3u));
+    for (uint32_t k = 0; k < FOV_LW * FOV_LH; k++) {
+        g_fov_mv[2u * k] = 24; /* 1.5 px pan */
+        g_fov_mv[2u * k + 1u] = 0;
+    }
+    if (tdc_fov_frame(&g_fov, &p, g_fov_lp, FOV_LW * 3u, g_fov_mv, FOV_LW * 2u, g_in[0], BENCH_W * 3u, 11111u, g_out,
+                      BENCH_W * 3u) != TDC_OK) {
+        fail("fov frame");
+    }
+    tdc_bench_mark();
+    if (tdc_fov_frame(&g_fov, &p, g_fov_lp, FOV_LW * 3u, g_fov_mv, FOV_LW * 2u, g_in[1], BENCH_W * 3u, 11111u, g_out,
+                      BENCH_W * 3u) != TDC_OK) {
+        fail("fov frame");
+    }
+    tdc_bench_mark();
+    report(label, BENCH_PX);
+}
+
+/* Group from QEMU's -append (last word): link, trm, assemble, lcd, fov; anything
  * else runs all (make profile-arm runs one group under the profiler). */
 static int want(const char *group)
 {
@@ -289,7 +329,7 @@ static int want(const char *group)
             }
         }
     }
-    static const char *const groups[] = {"link", "trm", "assemble", "lcd"};
+    static const char *const groups[] = {"link", "trm", "assemble", "lcd", "fov"};
     int known = 0;
     for (unsigned i = 0; i < sizeof groups / sizeof groups[0]; i++) {
         known |= !strcmp(word, groups[i]);
@@ -320,6 +360,10 @@ int main(void)
     }
     if (want("lcd")) {
         bench_lcd();
+    }
+    if (want("fov")) {
+        bench_fov(0, "foveated remap (alpha 4, 12.4 % disk)");
+        bench_fov(1, "foveated remap + peripheral TAA");
     }
     return 0;
 }

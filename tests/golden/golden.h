@@ -25,6 +25,10 @@ typedef struct tdc_golden_ctx {
 #define TDC_FNV64_INIT 0xcbf29ce484222325ULL
 uint64_t tdc_fnv1a64(uint64_t h, const void *data, size_t n);
 
+/* Checksum emitted for a frame whose stage call failed: shows as a mismatch
+ * against the expected file (FNV-1a of real outputs is never asked to be 0). */
+#define TDC_GOLDEN_FAILED 0u
+
 /* Formats and writes "stage/vector frame %016x\n". */
 void tdc_golden_emit(tdc_golden_ctx_t *ctx, const char *stage, const char *vector, uint32_t frame,
                      uint64_t checksum);

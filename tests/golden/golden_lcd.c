@@ -16,7 +16,7 @@
 #define GH 29
 #define GN (GW * GH * 3)
 
-static uint32_t g_arena[TDC_LCD_MEM_BYTES(GW, GH) / 4u + 1u];
+static uint64_t g_arena[TDC_LCD_MEM_BYTES(GW, GH) / 8u];
 static uint8_t g_in[GN];
 static uint8_t g_out[GN];
 static int32_t g_res[GN];
@@ -58,14 +58,14 @@ static void run_vector(tdc_golden_ctx_t *ctx, const lcd_vector_t *v)
             tdc_lcd_reset(&st);
         }
         tdc_content_frame(v->content, t, 5u, g_in, GW, GH, GW * 3);
-        tdc_lcd_frame(&st, g_in, GW * 3u, g_out, GW * 3u, g_res);
+        const int ok = tdc_lcd_frame(&st, g_in, GW * 3u, g_out, GW * 3u, g_res) == TDC_OK;
         uint64_t h = tdc_fnv1a64(TDC_FNV64_INIT, g_out, sizeof g_out);
         for (uint32_t i = 0; i < GN; i++) {
             const uint32_t r = (uint32_t)g_res[i];
             const uint8_t b[4] = {(uint8_t)r, (uint8_t)(r >> 8), (uint8_t)(r >> 16), (uint8_t)(r >> 24)};
             h = tdc_fnv1a64(h, b, 4);
         }
-        tdc_golden_emit(ctx, "lcd", name, t, h);
+        tdc_golden_emit(ctx, "lcd", name, t, ok ? h : TDC_GOLDEN_FAILED);
     }
 }
 

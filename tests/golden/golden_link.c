@@ -27,6 +27,7 @@ static uint8_t g_pat[2][TDC_LINK_PATTERN_BYTES(LW, LH)];
 static uint32_t g_scratch[LW * LH];
 static uint8_t g_stream[72 * 1024];
 static tdc_link_decoder_t g_dec;
+static int g_dec_ok; /* init_decoder() succeeded */
 
 static const char *const fmt_name[TDC_PIXFMT_COUNT] = {"none", "rgb888", "rgb565", "rgb30", "ycbcr420"};
 
@@ -53,7 +54,7 @@ static void init_decoder(void)
             g_reduced[e][i] = 0;
         }
     }
-    (void)tdc_link_decoder_init(&g_dec, &cfg, &b);
+    g_dec_ok = tdc_link_decoder_init(&g_dec, &cfg, &b) == TDC_OK;
 }
 
 static uint64_t fold_u32(uint64_t h, uint32_t v)
@@ -76,6 +77,10 @@ static void run(tdc_golden_ctx_t *ctx, const char *vector, size_t n, size_t chun
     uint64_t pending = TDC_FNV64_INIT;
     uint32_t line = 0;
     size_t pos = 0;
+    if (!g_dec_ok) {
+        tdc_golden_emit(ctx, "link", vector, 9999, TDC_GOLDEN_FAILED);
+        return;
+    }
     while (pos < n || g_dec.ev_count) {
         const size_t c = n - pos < chunk ? n - pos : chunk;
         tdc_link_event_t ev;

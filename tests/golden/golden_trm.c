@@ -56,17 +56,18 @@ static void run_vector(tdc_golden_ctx_t *ctx, const trm_vector_t *v)
     for (uint32_t t = 0; t < 6u; t++) {
         tdc_content_frame(v->content, t, 11u, g_in, v->w, v->h, (int)stride);
         uint64_t h = TDC_FNV64_INIT;
+        int ok = 1;
         if ((t & 1u) == 0u) {
-            tdc_trm_full(&trm, g_in, stride, g_out, stride);
+            ok &= tdc_trm_full(&trm, g_in, stride, g_out, stride) == TDC_OK;
             h = tdc_fnv1a64(h, g_out, (size_t)stride * v->h);
             h = tdc_fnv1a64(h, trm.residual, sizeof(tdc_res_t) * stride * v->h);
         } else {
-            tdc_trm_downsample(&trm, g_in, stride, g_red, 3u * trm.rw);
+            ok &= tdc_trm_downsample(&trm, g_in, stride, g_red, 3u * trm.rw) == TDC_OK;
             h = tdc_fnv1a64(h, g_red, (size_t)3u * trm.rw * trm.rh);
-            tdc_trm_reduced(&trm, g_red, 3u * trm.rw, g_out, stride);
+            ok &= tdc_trm_reduced(&trm, g_red, 3u * trm.rw, g_out, stride) == TDC_OK;
             h = tdc_fnv1a64(h, g_out, (size_t)stride * v->h);
         }
-        tdc_golden_emit(ctx, "trm", name, t, h);
+        tdc_golden_emit(ctx, "trm", name, t, ok ? h : TDC_GOLDEN_FAILED);
     }
 }
 
@@ -101,12 +102,13 @@ void tdc_golden_trm(tdc_golden_ctx_t *ctx)
             tdc_trm_default_config(&cfg, extra[i].w, extra[i].h, 90);
             cfg.r_num = cfg.r_den = 1;
             tdc_trm_t trm;
-            tdc_trm_init(&trm, &cfg, extra[i].panel, g_arena, sizeof g_arena);
+            const int init_ok = tdc_trm_init(&trm, &cfg, extra[i].panel, g_arena, sizeof g_arena) == TDC_OK;
             for (uint32_t t = 0; t < 3u; t++) {
                 tdc_content_frame(extra[i].content, t, 11u, g_in, extra[i].w, extra[i].h, 3 * extra[i].w);
-                tdc_trm_full(&trm, g_in, 3u * extra[i].w, g_out, 3u * extra[i].w);
+                const int ok = init_ok && tdc_trm_full(&trm, g_in, 3u * extra[i].w, g_out, 3u * extra[i].w) == TDC_OK;
                 tdc_golden_emit(ctx, "trm", "noise-33x21-r1_1-passthrough", t,
-                                tdc_fnv1a64(TDC_FNV64_INIT, g_out, 3u * extra[i].w * extra[i].h));
+                                ok ? tdc_fnv1a64(TDC_FNV64_INIT, g_out, 3u * extra[i].w * extra[i].h)
+                                   : TDC_GOLDEN_FAILED);
             }
         } else {
             run_vector(ctx, &extra[i]);

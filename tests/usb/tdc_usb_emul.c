@@ -117,9 +117,9 @@ static int urb_run(emul_board_t *b, UMockdevIoctlData *urb_data, UMockdevIoctlDa
             urb_finish(b, urb_data, -EPIPE, 0);
             return 0;
         }
-        tdc_usbp_result_t r = tdc_usbp_control(&b->proto, &setup, data + 8, reply,
+        tdc_status_t r = tdc_usbp_control(&b->proto, &setup, data + 8, reply,
                                                (uint32_t)sizeof reply, &reply_len);
-        if (r != TDC_USBP_OK) {
+        if (r != TDC_OK) {
             urb_finish(b, urb_data, -EPIPE, 0);
             return 0;
         }
@@ -297,7 +297,11 @@ emul_board_t *emul_board_add(UMockdevTestbed *tb, int bus, int dev, const char *
         .fw_version = 0x000100u, .panel_width = 2160, .panel_height = 1200,
         .refresh_mhz = 90000u, .rx_buffer_bytes = 16384u, .max_packet_bytes = 16384u,
         .flash = {emul_flash_write, emul_flash_read, b, slot_bytes}};
-    tdc_usbp_init(&b->proto, &cfg);
+    if (tdc_usbp_init(&b->proto, &cfg) != TDC_OK) {
+        fprintf(stderr, "tdc_usb_emul: board protocol init failed\n");
+        emul_board_free(b);
+        return NULL;
+    }
 
     b->handler = umockdev_ioctl_base_new();
     g_signal_connect(b->handler, "handle-ioctl", G_CALLBACK(emul_handle_ioctl), b);

@@ -47,13 +47,13 @@ static int setup(void **state)
                              .fw_version = 0x010203u, .panel_width = 2160, .panel_height = 1200,
                              .refresh_mhz = 90000u, .rx_buffer_bytes = 8192u,
                              .max_packet_bytes = 8192u, .flash = {fw, fr, NULL, SLOT}};
-    return tdc_usbp_init(&s, &cfg) == TDC_USBP_OK ? 0 : -1;
+    return tdc_usbp_init(&s, &cfg) == TDC_OK ? 0 : -1;
 }
 
 static uint8_t reply[TDC_DFU_TRANSFER_SIZE];
 static uint32_t rlen;
 
-static tdc_usbp_result_t req(uint8_t type, uint8_t r, uint16_t value, uint16_t index,
+static tdc_status_t req(uint8_t type, uint8_t r, uint16_t value, uint16_t index,
                              uint16_t len, const uint8_t *data)
 {
     tdc_usbp_setup_t st = {type, r, value, index, len};
@@ -65,14 +65,14 @@ static tdc_usbp_result_t req(uint8_t type, uint8_t r, uint16_t value, uint16_t i
 
 static uint8_t dfu_state(void)
 {
-    assert_int_equal(req(DFU_IN, TDC_DFU_GETSTATE, 0, 1, 1, NULL), TDC_USBP_OK);
+    assert_int_equal(req(DFU_IN, TDC_DFU_GETSTATE, 0, 1, 1, NULL), TDC_OK);
     assert_int_equal(rlen, 1);
     return reply[0];
 }
 
 static void getstatus(uint8_t *status, uint8_t *state)
 {
-    assert_int_equal(req(DFU_IN, TDC_DFU_GETSTATUS, 0, 1, 6, NULL), TDC_USBP_OK);
+    assert_int_equal(req(DFU_IN, TDC_DFU_GETSTATUS, 0, 1, 6, NULL), TDC_OK);
     assert_int_equal(rlen, 6);
     *status = reply[0];
     *state = reply[4];
@@ -93,11 +93,11 @@ static void download(uint32_t len, uint32_t bs, uint8_t *status, uint8_t *state)
     uint16_t block = 0;
     for (uint32_t off = 0; off < len; off += bs, block++) {
         uint16_t n = (uint16_t)(len - off < bs ? len - off : bs);
-        assert_int_equal(req(DFU_OUT, TDC_DFU_DNLOAD, block, 1, n, image + off), TDC_USBP_OK);
+        assert_int_equal(req(DFU_OUT, TDC_DFU_DNLOAD, block, 1, n, image + off), TDC_OK);
         getstatus(status, state);
         assert_int_equal(*state, TDC_DFU_STATE_DNLOAD_IDLE);
     }
-    assert_int_equal(req(DFU_OUT, TDC_DFU_DNLOAD, block, 1, 0, NULL), TDC_USBP_OK);
+    assert_int_equal(req(DFU_OUT, TDC_DFU_DNLOAD, block, 1, 0, NULL), TDC_OK);
     assert_int_equal(dfu_state(), TDC_DFU_STATE_MANIFEST_SYNC);
     getstatus(status, state);
     if (*state == TDC_DFU_STATE_MANIFEST)
@@ -127,12 +127,12 @@ static void test_descriptors(void **state)
     assert_int_equal(tdc_get_le16(c + 18 + 4), 64);             /* FS bulk OUT */
     assert_int_equal(tdc_get_le16(c + 41 + 5), TDC_DFU_TRANSFER_SIZE); /* wTransferSize */
     /* string: serial as UTF-16LE, and through GET_DESCRIPTOR with wLength truncation */
-    assert_int_equal(req(0x80, 6, 0x0303, 0x0409, 255, NULL), TDC_USBP_OK);
+    assert_int_equal(req(0x80, 6, 0x0303, 0x0409, 255, NULL), TDC_OK);
     assert_int_equal(rlen, 6);
     assert_memory_equal(reply, ((uint8_t[]){6, 3, 'S', 0, '1', 0}), 6);
-    assert_int_equal(req(0x80, 6, 0x0200, 0, 9, NULL), TDC_USBP_OK);
+    assert_int_equal(req(0x80, 6, 0x0200, 0, 9, NULL), TDC_OK);
     assert_int_equal(rlen, 9);
-    assert_int_equal(req(0x80, 6, 0x0309, 0, 255, NULL), TDC_USBP_STALL); /* no string 9 */
+    assert_int_equal(req(0x80, 6, 0x0309, 0, 255, NULL), TDC_ERR_STALL); /* no string 9 */
 }
 
 static void test_board_info_and_counters(void **state)
@@ -143,7 +143,7 @@ static void test_board_info_and_counters(void **state)
         data[i] = (uint8_t)i;
     tdc_usbp_bulk_out(&s, data, 100);
     tdc_usbp_bulk_out(&s, data, 40);
-    assert_int_equal(req(0xC1, TDC_USB_REQ_BOARD_INFO, 0, 0, 255, NULL), TDC_USBP_OK);
+    assert_int_equal(req(0xC1, TDC_USB_REQ_BOARD_INFO, 0, 0, 255, NULL), TDC_OK);
     assert_int_equal(rlen, TDC_USB_INFO_LEN);
     assert_int_equal(tdc_get_le32(reply), TDC_USB_INFO_MAGIC);
     assert_string_equal((const char *)reply + TDC_USB_INFO_OFF_BOARD, "testboard");
@@ -156,13 +156,13 @@ static void test_board_info_and_counters(void **state)
     memcpy(both + 100, data, 40);
     assert_int_equal(tdc_get_le32(reply + TDC_USB_INFO_OFF_RX_CRC), tdc_usbp_crc32(both, 140));
     /* short wLength truncates; wrong direction and unknown requests stall and count */
-    assert_int_equal(req(0xC1, TDC_USB_REQ_BOARD_INFO, 0, 0, 8, NULL), TDC_USBP_OK);
+    assert_int_equal(req(0xC1, TDC_USB_REQ_BOARD_INFO, 0, 0, 8, NULL), TDC_OK);
     assert_int_equal(rlen, 8);
-    assert_int_equal(req(0x41, TDC_USB_REQ_BOARD_INFO, 0, 0, 0, NULL), TDC_USBP_STALL);
-    assert_int_equal(req(0xC1, 0x7F, 0, 0, 8, NULL), TDC_USBP_STALL);
-    assert_int_equal(req(0xC1, TDC_USB_REQ_BOARD_INFO, 0, 5, 8, NULL), TDC_USBP_STALL); /* other interface */
-    assert_int_equal(req(0x41, TDC_USB_REQ_RESET_COUNTERS, 0, 0, 0, NULL), TDC_USBP_OK);
-    assert_int_equal(req(0xC1, TDC_USB_REQ_BOARD_INFO, 0, 0, 255, NULL), TDC_USBP_OK);
+    assert_int_equal(req(0x41, TDC_USB_REQ_BOARD_INFO, 0, 0, 0, NULL), TDC_ERR_STALL);
+    assert_int_equal(req(0xC1, 0x7F, 0, 0, 8, NULL), TDC_ERR_STALL);
+    assert_int_equal(req(0xC1, TDC_USB_REQ_BOARD_INFO, 0, 5, 8, NULL), TDC_ERR_STALL); /* other interface */
+    assert_int_equal(req(0x41, TDC_USB_REQ_RESET_COUNTERS, 0, 0, 0, NULL), TDC_OK);
+    assert_int_equal(req(0xC1, TDC_USB_REQ_BOARD_INFO, 0, 0, 255, NULL), TDC_OK);
     assert_int_equal(tdc_get_le32(reply + TDC_USB_INFO_OFF_RX_BYTES), 0);
     assert_int_equal(tdc_get_le32(reply + TDC_USB_INFO_OFF_RX_CRC), 0); /* CRC of nothing */
     assert_int_equal(tdc_get_le32(reply + TDC_USB_INFO_OFF_STALLS), 3); /* kept */
@@ -173,7 +173,7 @@ static void test_board_info_and_counters(void **state)
     assert_int_equal(tdc_get_le32(st + TDC_USB_STATUS_OFF_SEQ), 1);
     assert_int_equal(st[TDC_USB_STATUS_OFF_DFU], TDC_DFU_STATE_IDLE);
     assert_int_equal(tdc_usbp_take_reset(&s), 0);
-    assert_int_equal(req(0x41, TDC_USB_REQ_RESET_BOARD, 0, 0, 0, NULL), TDC_USBP_OK);
+    assert_int_equal(req(0x41, TDC_USB_REQ_RESET_BOARD, 0, 0, 0, NULL), TDC_OK);
     assert_int_equal(tdc_usbp_take_reset(&s), 1);
     assert_int_equal(tdc_usbp_take_reset(&s), 0);
 }
@@ -191,7 +191,7 @@ static void test_dfu_download_upload(void **state)
     uint8_t back[SLOT];
     uint32_t got = 0;
     for (uint16_t b = 0;; b++) {
-        assert_int_equal(req(DFU_IN, TDC_DFU_UPLOAD, b, 1, 1000, NULL), TDC_USBP_OK);
+        assert_int_equal(req(DFU_IN, TDC_DFU_UPLOAD, b, 1, 1000, NULL), TDC_OK);
         memcpy(back + got, reply, rlen);
         got += rlen;
         if (rlen < 1000)
@@ -210,39 +210,39 @@ static void test_dfu_rejects(void **state)
     uint32_t len = make_image(2000, "testboard");
 
     /* block out of sequence */
-    assert_int_equal(req(DFU_OUT, TDC_DFU_DNLOAD, 0, 1, 1024, image), TDC_USBP_OK);
+    assert_int_equal(req(DFU_OUT, TDC_DFU_DNLOAD, 0, 1, 1024, image), TDC_OK);
     getstatus(&status, &st);
-    assert_int_equal(req(DFU_OUT, TDC_DFU_DNLOAD, 2, 1, 1024, image + 1024), TDC_USBP_STALL);
+    assert_int_equal(req(DFU_OUT, TDC_DFU_DNLOAD, 2, 1, 1024, image + 1024), TDC_ERR_STALL);
     getstatus(&status, &st);
     assert_int_equal(st, TDC_DFU_STATE_ERROR);
     assert_int_equal(status, TDC_DFU_ERR_STALLEDPKT);
     /* in dfuERROR everything but GETSTATUS/GETSTATE/CLRSTATUS stalls */
-    assert_int_equal(req(DFU_OUT, TDC_DFU_DNLOAD, 0, 1, 16, image), TDC_USBP_STALL);
-    assert_int_equal(req(DFU_OUT, TDC_DFU_ABORT, 0, 1, 0, NULL), TDC_USBP_STALL);
-    assert_int_equal(req(DFU_OUT, TDC_DFU_CLRSTATUS, 0, 1, 0, NULL), TDC_USBP_OK);
+    assert_int_equal(req(DFU_OUT, TDC_DFU_DNLOAD, 0, 1, 16, image), TDC_ERR_STALL);
+    assert_int_equal(req(DFU_OUT, TDC_DFU_ABORT, 0, 1, 0, NULL), TDC_ERR_STALL);
+    assert_int_equal(req(DFU_OUT, TDC_DFU_CLRSTATUS, 0, 1, 0, NULL), TDC_OK);
     assert_int_equal(dfu_state(), TDC_DFU_STATE_IDLE);
     /* CLRSTATUS outside dfuERROR is a protocol error */
-    assert_int_equal(req(DFU_OUT, TDC_DFU_CLRSTATUS, 0, 1, 0, NULL), TDC_USBP_STALL);
+    assert_int_equal(req(DFU_OUT, TDC_DFU_CLRSTATUS, 0, 1, 0, NULL), TDC_ERR_STALL);
     req(DFU_OUT, TDC_DFU_CLRSTATUS, 0, 1, 0, NULL);
 
     /* zero-length DNLOAD in dfuIDLE: nothing to manifest */
-    assert_int_equal(req(DFU_OUT, TDC_DFU_DNLOAD, 0, 1, 0, NULL), TDC_USBP_STALL);
+    assert_int_equal(req(DFU_OUT, TDC_DFU_DNLOAD, 0, 1, 0, NULL), TDC_ERR_STALL);
     getstatus(&status, &st);
     assert_int_equal(status, TDC_DFU_ERR_NOTDONE);
     req(DFU_OUT, TDC_DFU_CLRSTATUS, 0, 1, 0, NULL);
 
     /* block larger than wTransferSize; DETACH in DFU mode */
-    assert_int_equal(req(DFU_OUT, TDC_DFU_DNLOAD, 0, 1, TDC_DFU_TRANSFER_SIZE + 1, image), TDC_USBP_STALL);
+    assert_int_equal(req(DFU_OUT, TDC_DFU_DNLOAD, 0, 1, TDC_DFU_TRANSFER_SIZE + 1, image), TDC_ERR_STALL);
     req(DFU_OUT, TDC_DFU_CLRSTATUS, 0, 1, 0, NULL);
-    assert_int_equal(req(DFU_OUT, TDC_DFU_DETACH, 1000, 1, 0, NULL), TDC_USBP_STALL);
+    assert_int_equal(req(DFU_OUT, TDC_DFU_DETACH, 1000, 1, 0, NULL), TDC_ERR_STALL);
     req(DFU_OUT, TDC_DFU_CLRSTATUS, 0, 1, 0, NULL);
 
     /* ABORT mid-download returns to dfuIDLE; the slot holds no checked image */
-    assert_int_equal(req(DFU_OUT, TDC_DFU_DNLOAD, 0, 1, 1024, image), TDC_USBP_OK);
+    assert_int_equal(req(DFU_OUT, TDC_DFU_DNLOAD, 0, 1, 1024, image), TDC_OK);
     getstatus(&status, &st);
-    assert_int_equal(req(DFU_OUT, TDC_DFU_ABORT, 0, 1, 0, NULL), TDC_USBP_OK);
+    assert_int_equal(req(DFU_OUT, TDC_DFU_ABORT, 0, 1, 0, NULL), TDC_OK);
     assert_int_equal(dfu_state(), TDC_DFU_STATE_IDLE);
-    assert_int_equal(req(DFU_IN, TDC_DFU_UPLOAD, 0, 1, 1000, NULL), TDC_USBP_OK);
+    assert_int_equal(req(DFU_IN, TDC_DFU_UPLOAD, 0, 1, 1000, NULL), TDC_OK);
     assert_int_equal(rlen, 0);
 
     /* truncated image (header says 2000 payload bytes): errNOTDONE */
@@ -265,16 +265,16 @@ static void test_dfu_rejects(void **state)
     len = make_image(2000, "testboard");
     uint16_t b = 0;
     for (uint32_t off = 0; off < SLOT; off += 1024, b++) {
-        assert_int_equal(req(DFU_OUT, TDC_DFU_DNLOAD, b, 1, 1024, image), TDC_USBP_OK);
+        assert_int_equal(req(DFU_OUT, TDC_DFU_DNLOAD, b, 1, 1024, image), TDC_OK);
         getstatus(&status, &st);
     }
-    assert_int_equal(req(DFU_OUT, TDC_DFU_DNLOAD, b, 1, 1024, image), TDC_USBP_STALL);
+    assert_int_equal(req(DFU_OUT, TDC_DFU_DNLOAD, b, 1, 1024, image), TDC_ERR_STALL);
     getstatus(&status, &st);
     assert_int_equal(status, TDC_DFU_ERR_ADDRESS);
     req(DFU_OUT, TDC_DFU_CLRSTATUS, 0, 1, 0, NULL);
     /* flash write failure: errWRITE */
     fail_write = 1;
-    assert_int_equal(req(DFU_OUT, TDC_DFU_DNLOAD, 0, 1, 64, image), TDC_USBP_STALL);
+    assert_int_equal(req(DFU_OUT, TDC_DFU_DNLOAD, 0, 1, 64, image), TDC_ERR_STALL);
     getstatus(&status, &st);
     assert_int_equal(status, TDC_DFU_ERR_WRITE);
     fail_write = 0;
@@ -290,24 +290,24 @@ static void test_image_check(void **state)
 {
     (void)state;
     uint32_t len = make_image(100, "testboard");
-    assert_int_equal(tdc_image_check(image, len, "testboard", SLOT), TDC_IMAGE_OK);
-    assert_int_equal(tdc_image_check(image, len, NULL, 0), TDC_IMAGE_OK);
-    assert_int_equal(tdc_image_check(image, 31, NULL, 0), TDC_IMAGE_ERR_SHORT);
-    assert_int_equal(tdc_image_check(image, len - 1, NULL, 0), TDC_IMAGE_ERR_SIZE);
-    assert_int_equal(tdc_image_check(image, len, "testboar", 0), TDC_IMAGE_ERR_BOARD);
-    assert_int_equal(tdc_image_check(image, len, "testboardX", 0), TDC_IMAGE_ERR_BOARD);
-    assert_int_equal(tdc_image_check(image, len, "testboard", len - 1), TDC_IMAGE_ERR_TOO_BIG);
+    assert_int_equal(tdc_image_check(image, len, "testboard", SLOT), TDC_OK);
+    assert_int_equal(tdc_image_check(image, len, NULL, 0), TDC_OK);
+    assert_int_equal(tdc_image_check(image, 31, NULL, 0), TDC_ERR_IMAGE_SHORT);
+    assert_int_equal(tdc_image_check(image, len - 1, NULL, 0), TDC_ERR_IMAGE_SIZE);
+    assert_int_equal(tdc_image_check(image, len, "testboar", 0), TDC_ERR_IMAGE_BOARD);
+    assert_int_equal(tdc_image_check(image, len, "testboardX", 0), TDC_ERR_IMAGE_BOARD);
+    assert_int_equal(tdc_image_check(image, len, "testboard", len - 1), TDC_ERR_IMAGE_TOO_BIG);
     image[40] ^= 0x80u;
-    assert_int_equal(tdc_image_check(image, len, NULL, 0), TDC_IMAGE_ERR_CRC);
+    assert_int_equal(tdc_image_check(image, len, NULL, 0), TDC_ERR_IMAGE_CRC);
     image[40] ^= 0x80u;
     image[4] = 2; /* header version */
-    assert_int_equal(tdc_image_check(image, len, NULL, 0), TDC_IMAGE_ERR_HEADER);
+    assert_int_equal(tdc_image_check(image, len, NULL, 0), TDC_ERR_IMAGE_HEADER);
     image[0] = 'X';
-    assert_int_equal(tdc_image_check(image, len, NULL, 0), TDC_IMAGE_ERR_MAGIC);
+    assert_int_equal(tdc_image_check(image, len, NULL, 0), TDC_ERR_IMAGE_MAGIC);
     /* a 12-character board name fills the field with no NUL */
     len = make_image(10, "twelve-chars");
-    assert_int_equal(tdc_image_check(image, len, "twelve-chars", 0), TDC_IMAGE_OK);
-    assert_int_equal(tdc_image_check(image, len, "twelve-chars!", 0), TDC_IMAGE_ERR_BOARD);
+    assert_int_equal(tdc_image_check(image, len, "twelve-chars", 0), TDC_OK);
+    assert_int_equal(tdc_image_check(image, len, "twelve-chars!", 0), TDC_ERR_IMAGE_BOARD);
     assert_string_equal(tdc_dfu_status_name(TDC_DFU_ERR_VERIFY), "errVERIFY");
     assert_string_equal(tdc_dfu_state_name(TDC_DFU_STATE_ERROR), "dfuERROR");
 }

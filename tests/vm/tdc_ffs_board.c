@@ -153,9 +153,9 @@ static void handle_setup(int ep0, const struct usb_ctrlrequest *c)
     uint32_t len = 0;
     if (s.bm_request_type & 0x80u) {
         pthread_mutex_lock(&lock);
-        tdc_usbp_result_t r = tdc_usbp_control(&proto, &s, NULL, reply, sizeof reply, &len);
+        tdc_status_t r = tdc_usbp_control(&proto, &s, NULL, reply, sizeof reply, &len);
         pthread_mutex_unlock(&lock);
-        if (r == TDC_USBP_OK) {
+        if (r == TDC_OK) {
             if (write(ep0, reply, len) < 0)
                 perror("tdc_ffs_board: ep0 write");
         } else if (read(ep0, NULL, 0) < 0 && errno != EL2HLT) { /* wrong direction = stall */
@@ -176,11 +176,11 @@ static void handle_setup(int ep0, const struct usb_ctrlrequest *c)
         return;
     }
     pthread_mutex_lock(&lock);
-    tdc_usbp_result_t r = tdc_usbp_control(&proto, &s, data, reply, sizeof reply, &len);
+    tdc_status_t r = tdc_usbp_control(&proto, &s, data, reply, sizeof reply, &len);
     int reset = tdc_usbp_take_reset(&proto);
     pthread_mutex_unlock(&lock);
     if (s.w_length == 0) {
-        if (r == TDC_USBP_OK) {
+        if (r == TDC_OK) {
             if (read(ep0, NULL, 0) < 0)
                 perror("tdc_ffs_board: ep0 ack");
         } else if (write(ep0, NULL, 0) < 0 && errno != EL2HLT) {
@@ -210,7 +210,10 @@ int main(int argc, char **argv)
         fprintf(stderr, "tdc_ffs_board: link decoder init failed\n");
         return 1;
     }
-    tdc_usbp_init(&proto, &cfg);
+    if (tdc_usbp_init(&proto, &cfg) != TDC_OK) {
+        fprintf(stderr, "tdc_ffs_board: USB protocol init failed\n");
+        return 1;
+    }
     int ep0 = open_ep("ep0", O_RDWR);
     if (ep0 < 0) {
         perror("tdc_ffs_board: open ep0");

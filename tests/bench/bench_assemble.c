@@ -23,38 +23,12 @@
 #include <time.h>
 
 #include "ref_assemble.h"
+#include "bench/tdc_must.h"
 #include "tdc_assemble.h"
+#include "bench_clock.h"
 
 #define BW 1920
 #define BH 1080
-
-static double now_s(void)
-{
-    struct timespec ts;
-    /* CPU time of this thread: the machine is shared, wall time would
-     * count other processes' turns. */
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static double memcpy_bandwidth(void)
-{
-    const size_t n = 64u << 20;
-    uint8_t *a = malloc(n), *b = malloc(n);
-    if (!a || !b) return 0;
-    memset(a, 1, n), memset(b, 2, n);
-    double best = 1e30;
-    for (int i = 0; i < 5; i++) {
-        double t0 = now_s();
-        memcpy(i & 1 ? a : b, i & 1 ? b : a, n);
-        double t = now_s() - t0;
-        if (t < best) best = t;
-    }
-    volatile uint8_t sink = a[n / 2] ^ b[n / 3];
-    (void)sink;
-    free(a), free(b);
-    return 2.0 * (double)n / best; /* read + write */
-}
 
 /*
  * Bytes touched per output pixel per frame (steady state), useful bytes read
@@ -112,17 +86,17 @@ static double run(const stream_t *s, int frames, tdc_asm_stats_t *stats)
     tdc_asm_t st;
     double best = 1e30;
     for (int rep = 0; rep < 3; rep++) {
-        tdc_asm_init(&st, &cfg, arena, n);
+        TDC_MUST(tdc_asm_init(&st, &cfg, arena, n));
         /* warm-up cycle: fills the buffers (not timed) */
         uint32_t f = 0;
         for (; f < 8; f++) {
-            tdc_asm_ingest(&st, f, s->samples[f & 7], s->mvs[f & 7], (f & 3) == 0 ? s->bits[f & 7] : NULL);
-            tdc_asm_assemble(&st, f);
+            TDC_MUST(tdc_asm_ingest(&st, f, s->samples[f & 7], s->mvs[f & 7], (f & 3) == 0 ? s->bits[f & 7] : NULL));
+            TDC_MUST(tdc_asm_assemble(&st, f));
         }
         double t0 = now_s();
         for (int i = 0; i < frames; i++, f++) {
-            tdc_asm_ingest(&st, f, s->samples[f & 7], s->mvs[f & 7], NULL);
-            tdc_asm_assemble(&st, f);
+            TDC_MUST(tdc_asm_ingest(&st, f, s->samples[f & 7], s->mvs[f & 7], NULL));
+            TDC_MUST(tdc_asm_assemble(&st, f));
         }
         double t = (now_s() - t0) / frames;
         if (t < best) best = t;

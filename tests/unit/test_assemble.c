@@ -464,14 +464,14 @@ static void test_bad_input(void **state)
     static uint64_t snapshot[sizeof(arena) / 8];
     memcpy(snapshot, arena, sizeof(arena));
     tdc_asm_t st_before = st;
-    assert_int_equal(tdc_asm_ingest(&st, 1, samples, NULL, NULL), TDC_ASM_ERR_FRAME);
-    assert_int_equal(tdc_asm_assemble(&st, 5), TDC_ASM_ERR_FRAME);
+    assert_int_equal(tdc_asm_ingest(&st, 1, samples, NULL, NULL), TDC_ERR_FRAME);
+    assert_int_equal(tdc_asm_assemble(&st, 5), TDC_ERR_FRAME);
     assert_memory_equal(snapshot, arena, sizeof(arena));
     assert_memory_equal(&st_before, &st, sizeof(st));
     assert_int_equal(tdc_asm_ingest(&st, 0, samples, NULL, NULL), TDC_OK);
-    assert_int_equal(tdc_asm_ingest(&st, 0, samples, NULL, NULL), TDC_ASM_ERR_FRAME); /* twice */
+    assert_int_equal(tdc_asm_ingest(&st, 0, samples, NULL, NULL), TDC_ERR_FRAME); /* twice */
     assert_int_equal(tdc_asm_assemble(&st, 0), TDC_OK);
-    assert_int_equal(tdc_asm_assemble(&st, 0), TDC_ASM_ERR_FRAME); /* already shown */
+    assert_int_equal(tdc_asm_assemble(&st, 0), TDC_ERR_FRAME); /* already shown */
     assert_int_equal(tdc_asm_assemble(NULL, 1), TDC_ERR_ARG);
     assert_int_equal(tdc_asm_assemble(&st, 1), TDC_OK);
     assert_null(tdc_asm_output(NULL, NULL));
@@ -491,7 +491,7 @@ static void test_set_motion(void **state)
         tdc_scene_subframe(&b.scene, f, b.samples, b.mvs, b.bits);
         assert_int_equal(tdc_asm_ingest(&b.st, f, b.samples, NULL, (f & 3u) == 0 ? b.bits : NULL), TDC_OK);
         memcpy(field, a.st.mv, 23 * 15 * 4); /* what per-sample ingest built */
-        assert_int_equal(tdc_asm_set_motion(&b.st, f + 1, field), TDC_ASM_ERR_FRAME);
+        assert_int_equal(tdc_asm_set_motion(&b.st, f + 1, field), TDC_ERR_FRAME);
         assert_int_equal(tdc_asm_set_motion(&b.st, f, NULL), TDC_ERR_ARG);
         assert_int_equal(tdc_asm_set_motion(&b.st, f, field), TDC_OK);
         assert_int_equal(tdc_asm_assemble(&b.st, f), TDC_OK);

@@ -1,5 +1,5 @@
 /*
- * test_link_util.h - shared helpers of the link tests (tests/test_link*.c):
+ * test_link_util.h - shared helpers of the link tests (tests/unit/test_link*.c):
  * a decoder over static buffers for a W x H panel, an event log, and
  * hashes of every pipeline buffer.  Header-only (static functions) so each
  * test stays a single-source program.

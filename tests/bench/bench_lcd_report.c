@@ -28,6 +28,7 @@
 
 #include "golden/tdc_content.h"
 #include "lcd/tdc_lcdsim.h"
+#include "bench/tdc_must.h"
 #include "tdc_lcd.h"
 #include "tdc_panels.h"
 #include "tdc_trm.h"
@@ -92,7 +93,10 @@ static int trm_step(tdc_trm_t *trm, tdc_content_t c, int moving, int t, int W, i
     if ((t & 1) == 0) {
         return tdc_trm_full(trm, in, (uint32_t)W * 3u, out, (uint32_t)W * 3u);
     }
-    tdc_trm_downsample(trm, in, (uint32_t)W * 3u, red, trm->rw * 3u);
+    const tdc_status_t st = tdc_trm_downsample(trm, in, (uint32_t)W * 3u, red, trm->rw * 3u);
+    if (st != TDC_OK) {
+        return st;
+    }
     return tdc_trm_reduced(trm, red, trm->rw * 3u, out, (uint32_t)W * 3u);
 }
 
@@ -184,7 +188,7 @@ int main(int argc, char **argv)
             for (int t = 0; t < frames; t++) {
                 trm_step(&trm_ref, contents[ci], moving[ci], t, W, H, in, red, wref);
                 trm_step(&trm, contents[ci], moving[ci], t, W, H, in, red, w);
-                tdc_lcd_frame(&lcd, w, (uint32_t)W * 3u, drive, (uint32_t)W * 3u, tdc_trm_residual(&trm));
+                TDC_MUST(tdc_lcd_frame(&lcd, w, (uint32_t)W * 3u, drive, (uint32_t)W * 3u, tdc_trm_residual(&trm)));
                 if (t == 0) {
                     tdc_lcdsim_settle(&sim, drive);
                 }
@@ -235,13 +239,13 @@ int main(int argc, char **argv)
         size_t ln = tdc_lcd_get_size(&lcfg);
         void *lmem = malloc(ln);
         tdc_lcd_t lcd;
-        tdc_lcd_init(&lcd, &lcfg, panel, lmem, ln);
+        TDC_MUST(tdc_lcd_init(&lcd, &lcfg, panel, lmem, ln));
         hist_bytes[m] = k_modes[m].mode == TDC_LCD_MODE_GAMMA ? 0 : tdc_lcd_history_bytes(TW, TH, k_modes[m].prev_bits);
-        tdc_lcd_frame(&lcd, fa, TW * 3u, fo, TW * 3u, NULL); /* first frame: history */
+        TDC_MUST(tdc_lcd_frame(&lcd, fa, TW * 3u, fo, TW * 3u, NULL)); /* first frame: history */
         double best = 1e9;
         for (int r = 0; r < reps; r++) {
             double t0 = now_s();
-            tdc_lcd_frame(&lcd, (r & 1) ? fa : fb, TW * 3u, fo, TW * 3u, NULL);
+            TDC_MUST(tdc_lcd_frame(&lcd, (r & 1) ? fa : fb, TW * 3u, fo, TW * 3u, NULL));
             best = fmin(best, now_s() - t0);
         }
         t_mode[m] = best;

@@ -129,10 +129,10 @@ static void test_first_frame_and_reset(void **state)
     }
     tdc_lcd_ref_free(&ref);
     /* second frame uses history; after reset the first-frame path again */
-    tdc_lcd_frame(&st, in, W * 3, out2, W * 3, res);
+    assert_int_equal(tdc_lcd_frame(&st, in, W * 3, out2, W * 3, res), TDC_OK);
     assert_int_equal(st.stats.first_frames, 1);
     tdc_lcd_reset(&st);
-    tdc_lcd_frame(&st, in, W * 3, out2, W * 3, res);
+    assert_int_equal(tdc_lcd_frame(&st, in, W * 3, out2, W * 3, res), TDC_OK);
     assert_int_equal(st.stats.first_frames, 2);
     assert_memory_equal(out, out2, N);
 }
@@ -173,7 +173,7 @@ static void compare_with_reference(const tdc_panel_t *pn, uint16_t rate, int fra
         memcpy(d0, st.prev_drive, N);
         memcpy(e0, st.prev_light, N);
         double vref[N];
-        tdc_lcd_frame(&st, in, W * 3, out, W * 3, res);
+        assert_int_equal(tdc_lcd_frame(&st, in, W * 3, out, W * 3, res), TDC_OK);
         tdc_lcd_ref_frame(&ref, in, ref_out, ref_res, vref, NULL);
         for (size_t i = 0; i < N; i++) {
             const double e = fabs(out[i] - vref[i] * 255.0);
@@ -234,12 +234,12 @@ static void test_residual_unreachable(void **state)
         tdc_lcd_config_t c = cfg_for((tdc_lcd_mode_t)mode, 8, 144);
         assert_int_equal(tdc_lcd_init(&st, &c, &pn, g_arena, sizeof g_arena), TDC_OK);
         memset(in, 0, sizeof in);
-        tdc_lcd_frame(&st, in, W * 3, out, W * 3, res); /* black, first frame */
+        assert_int_equal(tdc_lcd_frame(&st, in, W * 3, out, W * 3, res), TDC_OK); /* black, first frame */
         memset(in, 255, sizeof in);
         for (size_t i = 0; i < N; i++) {
             res[i] = 1000; /* existing TRM residual is kept and added to */
         }
-        tdc_lcd_frame(&st, in, W * 3, out, W * 3, res);
+        assert_int_equal(tdc_lcd_frame(&st, in, W * 3, out, W * 3, res), TDC_OK);
         /* wanted pair mean (1 + 0)/2, m = 0.5^(1/g) ~ 0.73 > 0.3 reachable max:
          * v = 1, shown M = 0.3, light 0.3^g; missing W + E - 2 Ls. */
         for (size_t i = 0; i < N; i++) {
@@ -261,9 +261,9 @@ static void test_residual_unreachable(void **state)
         }
         memset(in, 0, sizeof in);
         tdc_lcd_reset(&st);
-        tdc_lcd_frame(&st, in, W * 3, out, W * 3, res);
+        assert_int_equal(tdc_lcd_frame(&st, in, W * 3, out, W * 3, res), TDC_OK);
         memset(in, 255, sizeof in);
-        tdc_lcd_frame(&st, in, W * 3, out, W * 3, res);
+        assert_int_equal(tdc_lcd_frame(&st, in, W * 3, out, W * 3, res), TDC_OK);
         for (size_t i = 0; i < N; i++) {
             assert_int_equal(res[i], TDC_LIN_ONE);
         }
@@ -292,8 +292,8 @@ static void test_reduced_precision(void **state)
             for (size_t i = 0; i < N; i++) {
                 in[i] = (uint8_t)(128 + (int)(90 * sin(0.07 * (double)(i / 3) + 0.4 * f + (double)(i % 3))));
             }
-            tdc_lcd_frame(&a, in, W * 3, out8, W * 3, NULL);
-            tdc_lcd_frame(&b, in, W * 3, outb, W * 3, NULL);
+            assert_int_equal(tdc_lcd_frame(&a, in, W * 3, out8, W * 3, NULL), TDC_OK);
+            assert_int_equal(tdc_lcd_frame(&b, in, W * 3, outb, W * 3, NULL), TDC_OK);
             for (size_t i = 0; i < N; i++) {
                 int e = abs((int)out8[i] - (int)outb[i]);
                 mx = e > mx ? e : mx;
@@ -321,17 +321,17 @@ static void test_in_place_and_gamma_mode(void **state)
     tdc_lcd_t st;
     tdc_lcd_config_t c = cfg_for(TDC_LCD_MODE_TABLE33, 8, 144);
     assert_int_equal(tdc_lcd_init(&st, &c, &tdc_panel_pg279q, g_arena, sizeof g_arena), TDC_OK);
-    tdc_lcd_frame(&st, in, W * 3, a, W * 3, NULL);
-    tdc_lcd_frame(&st, in, W * 3, a, W * 3, NULL);
+    assert_int_equal(tdc_lcd_frame(&st, in, W * 3, a, W * 3, NULL), TDC_OK);
+    assert_int_equal(tdc_lcd_frame(&st, in, W * 3, a, W * 3, NULL), TDC_OK);
     memcpy(b, in, N);
     assert_int_equal(tdc_lcd_init(&st, &c, &tdc_panel_pg279q, g_arena, sizeof g_arena), TDC_OK);
-    tdc_lcd_frame(&st, b, W * 3, b, W * 3, NULL);
+    assert_int_equal(tdc_lcd_frame(&st, b, W * 3, b, W * 3, NULL), TDC_OK);
     memcpy(b, in, N);
-    tdc_lcd_frame(&st, b, W * 3, b, W * 3, NULL);
+    assert_int_equal(tdc_lcd_frame(&st, b, W * 3, b, W * 3, NULL), TDC_OK);
     assert_memory_equal(a, b, N);
     c = cfg_for(TDC_LCD_MODE_GAMMA, 8, 144);
     assert_int_equal(tdc_lcd_init(&st, &c, &tdc_panel_pg279q, g_arena, sizeof g_arena), TDC_OK);
-    tdc_lcd_frame(&st, in, W * 3, a, W * 3, NULL);
+    assert_int_equal(tdc_lcd_frame(&st, in, W * 3, a, W * 3, NULL), TDC_OK);
     assert_memory_equal(a, in, N);
 }
 

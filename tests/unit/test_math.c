@@ -215,7 +215,11 @@ static void test_shifts(void **state)
     assert_int_equal(tdc_sat16(40000), INT16_MAX);
     assert_int_equal(tdc_sat32((int64_t)1 << 40), INT32_MAX);
     assert_int_equal(tdc_abs32(INT32_MIN), INT32_MAX);
-    assert_int_equal(tdc_mul_q15_32(32768, -12345), -12345);
+    assert_int_equal(tdc_mul_q16_32(65536, -12345), -12345);
+    assert_int_equal(tdc_mul_q16_32(-3, 32768), -1); /* -1.5 rounds half up to -1 */
+    assert_int_equal(tdc_mul_q16_32(3, 32768), 2);
+    assert_int_equal(tdc_mul_q16_32(INT32_MAX, INT32_MAX), INT32_MAX); /* saturates */
+    assert_int_equal(tdc_mul_q16_32(INT32_MIN, INT32_MAX), INT32_MIN);
 }
 
 /* Gamma tables of every panel: decode exact at codes, interpolation error

@@ -13,6 +13,7 @@
 #include <time.h>
 
 #include "golden/tdc_content.h"
+#include "bench/tdc_must.h"
 #include "tdc_panels.h"
 #include "tdc_trm.h"
 #include "tdc_trm_kernels.h"
@@ -60,12 +61,12 @@ int main(int argc, char **argv)
     uint8_t *in = malloc((size_t)W * H * 3), *out = malloc((size_t)W * H * 3);
     uint8_t *red = malloc((size_t)trm.rw * trm.rh * 3);
     tdc_content_frame(TDC_CONTENT_TEXT, 0, 3, in, W, H, W * 3);
-    tdc_trm_downsample(&trm, in, W * 3u, red, trm.rw * 3u);
+    TDC_MUST(tdc_trm_downsample(&trm, in, W * 3u, red, trm.rw * 3u));
     /* a moving reduced frame so the weight path runs: content of frame 1 */
     uint8_t *in1 = malloc((size_t)W * H * 3);
     tdc_content_frame(TDC_CONTENT_TEXT, 1, 3, in1, W, H, W * 3);
     uint8_t *red_moving = malloc((size_t)trm.rw * trm.rh * 3);
-    tdc_trm_downsample(&trm, in1, W * 3u, red_moving, trm.rw * 3u);
+    TDC_MUST(tdc_trm_downsample(&trm, in1, W * 3u, red_moving, trm.rw * 3u));
 
     double bw = memcpy_bandwidth();
     const double px = (double)W * H;
@@ -86,13 +87,13 @@ int main(int argc, char **argv)
         double best_full = 1e9, best_red = 1e9, best_red_static = 1e9;
         for (int r = 0; r < reps; r++) {
             double t0 = now_s();
-            tdc_trm_full(&trm, in, W * 3u, out, W * 3u);
+            TDC_MUST(tdc_trm_full(&trm, in, W * 3u, out, W * 3u));
             double t1 = now_s();
-            tdc_trm_reduced(&trm, red_moving, trm.rw * 3u, out, W * 3u);
+            TDC_MUST(tdc_trm_reduced(&trm, red_moving, trm.rw * 3u, out, W * 3u));
             double t2 = now_s();
-            tdc_trm_full(&trm, in, W * 3u, out, W * 3u);
+            TDC_MUST(tdc_trm_full(&trm, in, W * 3u, out, W * 3u));
             double t3 = now_s();
-            tdc_trm_reduced(&trm, red, trm.rw * 3u, out, W * 3u);
+            TDC_MUST(tdc_trm_reduced(&trm, red, trm.rw * 3u, out, W * 3u));
             double t4 = now_s();
             best_full = (t1 - t0) < best_full ? (t1 - t0) : best_full;
             best_full = (t3 - t2) < best_full ? (t3 - t2) : best_full;
@@ -135,7 +136,7 @@ int main(int argc, char **argv)
         return 1;
     }
     double t0 = now_s();
-    tdc_trm_full(&trm, in, W * 3u, out, W * 3u);
+    TDC_MUST(tdc_trm_full(&trm, in, W * 3u, out, W * 3u));
     double tp = now_s() - t0;
     printf("  r = 1 pass-through         %8.2f Mpixel/s (a frame copy; counters: pass-through %u, full %u)\n",
            px / tp / 1e6, trm.stats.passthrough_frames, trm.stats.full_frames);

@@ -5,7 +5,7 @@
 # Also: the fitted gamma recovers the simulated panel's static gamma; the
 # shipped profiles are exactly what the loop produces (make lcd-profiles);
 # bad measurement files are rejected with a message and a non-zero exit.
-# Usage: tests/test_lcd_calib.sh MEASURE CALIB TABLEGEN "CC FW_CFLAGS..."
+# Usage: tests/unit/test_lcd_calib.sh MEASURE CALIB TABLEGEN "CC FW_CFLAGS..."
 measure=$1; calib=$2; tablegen=$3; cc=$4
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 fail() { echo "calib loop: FAIL: $*"; exit 1; }

@@ -11,7 +11,7 @@
 #    have no tdc_lcd_ / tdc_od_ symbol; LCD images with the LCD stage must.
 #    Images are optional here (make test-arm builds them); the host object
 #    check always runs.
-# Usage: tests/test_lcd_compile_out.sh NM --oled obj... --lcd obj...
+# Usage: tests/unit/test_lcd_compile_out.sh NM --oled obj... --lcd obj...
 nm_tool=$1; shift
 [ "$1" = "--oled" ] || { echo "usage: $0 NM --oled obj... --lcd obj..."; exit 2; }
 shift

@@ -1,6 +1,6 @@
 #!/bin/sh
 # tdc-run end to end: happy paths agree bit for bit, every bad input gets a
-# message and the right exit code.  Usage: tests/test_tdc_run.sh PATH/TO/tdc-run
+# message and the right exit code.  Usage: tests/unit/test_tdc_run.sh PATH/TO/tdc-run
 run=$1
 t=$(mktemp -d); trap 'rm -rf "$t"' EXIT
 pass=0; fail=0

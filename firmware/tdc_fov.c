@@ -1,0 +1,575 @@
+/*
+ * tdc_fov.c - foveated remap to Cartesian with the radial blur, the disk
+ * composite and peripheral TAA.  The equations and formats are in
+ * tdc_fov.h; the double-precision reference is sim/ref_fov.c.
+ *
+ * Scaling and overflow (every product is checked here once):
+ *   display coordinates Q8, |x'| < 3 * 8192 * 256 < 2^23, so |x'|^2 (Q16) < 2^47
+ *   in uint64; log2 values Q24 with |value| < 64, so < 2^30; the u coordinate
+ *   Q16 < 8192 * 2^16 = 2^29; colours Q8 codes <= 255 * 256 < 2^16; kernel
+ *   weights Q15 <= 2^15, <= 9 taps: sum < 2^19; the angular interpolation
+ *   gives Q16 codes < 2^24, so weighted colour sums < 2^43 (uint64), divided
+ *   once per channel (tdc_udiv64_32 needs sum > acc >> 32: sum >= 0.54 * 2^15,
+ *   acc >> 32 < 2^11);
+ *   TAA blend a (Q15) * colour (Q8) < 2^31 in uint32.
+ * Rounding: half up at every shift; tables interpolated linearly.
+ *
+ * Separability: eq. 2.2 is radial/angular, so it does not separate into
+ * rows and columns; per row the stage hoists y' and y'^2, per pixel it
+ * skips the log-polar path where the disk covers the pixel (b = 0) and the
+ * square root where the pixel is outside the blend band.  TAA is one pass
+ * over rows with 2 rows of composed colour and 3 rows of |s - h| scratch
+ * (the 3x3 box of eq. 4.9 finishes row y - 1 while row y is composed).
+ */
+#include "tdc_fov.h"
+
+#include "tdc_fov_tables.h"
+#include "tdc_math.h"
+
+#define Q24 (1 << 24)
+#define ONE_Q15 32768u
+
+static unsigned clz64(uint64_t x)
+{
+    const uint32_t hi = (uint32_t)(x >> 32);
+    return hi ? tdc_clz32(hi) : 32u + tdc_clz32((uint32_t)x);
+}
+
+/* log2(x), x >= 1, Q24.  Mantissa table of 257 entries, linear
+ * interpolation on the next 16 bits: error <= 2.8e-6 (h^2/8 |f''|, h = 1/256)
+ * plus 0.5 LSB Q24 rounding; asserted in tests/test_fov.c. */
+int32_t tdc_fov_log2_q24(uint64_t x)
+{
+    if (x == 0) {
+        return 0;
+    }
+    const unsigned e = 63u - clz64(x);
+    const uint64_t m = x << (63u - e);
+    const uint32_t idx = (uint32_t)(m >> 55) & 255u;
+    const uint32_t fr = (uint32_t)(m >> 39) & 0xFFFFu;
+    const uint32_t a = tdc_fov_log2_tab[idx], b = tdc_fov_log2_tab[idx + 1u];
+    const uint32_t val = a + (uint32_t)(((uint64_t)(b - a) * fr + 32768u) >> 16); /* Q30 <= 2^30 */
+    return (int32_t)(e << 24) + (int32_t)((val + 32u) >> 6);
+}
+
+/* 2^(-g) for g in [0, 1] (Q24, g <= 2^24), Q30 in [2^29, 2^30].
+ * Error <= 9.2e-7 relative (interpolation) + 0.5 LSB. */
+static uint32_t exp2_frac_q30(uint32_t g)
+{
+    const uint32_t idx = g >> 16, fr = g & 0xFFFFu;
+    const uint32_t a = tdc_fov_exp2_tab[idx];
+    const uint32_t b = idx < 256u ? tdc_fov_exp2_tab[idx + 1u] : a;
+    return a - (uint32_t)(((uint64_t)(a - b) * fr + 32768u) >> 16);
+}
+
+/* 2^(-n) for n >= 0 (Q24), Q30. */
+static uint32_t exp2neg_q30(uint32_t n)
+{
+    const uint32_t ip = n >> 24;
+    if (ip >= 31u) {
+        return 0;
+    }
+    const uint32_t v = exp2_frac_q30(n & 0xFFFFFFu);
+    return ip ? (v + (1u << (ip - 1u))) >> ip : v;
+}
+
+/* 2^s, s in Q24 (any sign), Q16, saturating at INT32_MAX for s >= 14. */
+int32_t tdc_fov_exp2_q16(int32_t s)
+{
+    const int32_t k = tdc_asr32(s, 24);                  /* floor(s) */
+    const uint32_t f = (uint32_t)(s - TDC_SHL32(k, 24)); /* [0, 2^24) */
+    /* 2^s = 2^(k+1) * 2^-(1 - f); the Q30 value shifts right by 13 - k */
+    const uint32_t v = exp2_frac_q30((uint32_t)Q24 - f);
+    const int32_t sh = 13 - k;
+    if (sh > 31) {
+        return 0;
+    }
+    if (sh > 0) {
+        return (int32_t)((v + (1u << (sh - 1))) >> sh);
+    }
+    return sh == 0 ? (int32_t)v : INT32_MAX;
+}
+
+/* atan2(dy, dx) mod 2 pi in Q32 turns (eq. 2.2's arctan + 1[y' < 0] 2 pi).
+ * One octant from the table (error < 2e-7 turns), the rest by symmetry. */
+uint32_t tdc_fov_turns_q32(int32_t dx, int32_t dy)
+{
+    const uint32_t ax = (uint32_t)tdc_abs32(dx), ay = (uint32_t)tdc_abs32(dy);
+    if ((ax | ay) == 0u) {
+        return 0;
+    }
+    const uint32_t mx = ax > ay ? ax : ay, mn = ax > ay ? ay : ax;
+    const uint32_t t = (uint32_t)tdc_div_q30(mn, mx); /* [0, 2^30] */
+    const uint32_t idx = t >> 22, fr = (t >> 6) & 0xFFFFu;
+    const uint32_t a0 = tdc_fov_atan_tab[idx];
+    const uint32_t a1 = idx < 256u ? tdc_fov_atan_tab[idx + 1u] : a0;
+    uint32_t a = a0 + (uint32_t)(((uint64_t)(a1 - a0) * fr + 32768u) >> 16);
+    if (ay > ax) {
+        a = (1u << 30) - a;
+    }
+    if (dx < 0) {
+        a = (1u << 31) - a;
+    }
+    if (dy < 0) {
+        a = 0u - a;
+    }
+    return a;
+}
+
+/* eq. 2.2 radial part for |x'|^2 in Q16, with the intermediates the blur
+ * needs.  ln|x'| / L = log2(|x'|^2) / log2(R^2) = rho; u/w = 2^(log2(rho)/alpha). */
+typedef struct {
+    uint32_t u_q16;
+    int32_t l1;    /* log2(|x'|^2), Q24 (0 when |x'| <= 1) */
+    int32_t lg_l1; /* log2 of the Q24 integer l1 */
+    uint32_t nq;   /* -log2(u/w), Q24 */
+} fov_radial_t;
+
+static void radial(const tdc_fov_geom_t *g, uint64_t r2_q16, fov_radial_t *o)
+{
+    o->u_q16 = 0;
+    o->l1 = 0;
+    o->lg_l1 = 0;
+    o->nq = 31u * (uint32_t)Q24;
+    if (r2_q16 <= 65536u) {
+        return; /* |x'| <= 1: ln |x'| <= 0, K^-1 undefined below 0: u = 0 */
+    }
+    const int32_t l1 = tdc_fov_log2_q24(r2_q16) - 16 * Q24;
+    if (l1 <= 0) {
+        return;
+    }
+    o->l1 = l1;
+    if (l1 >= g->log2_r2max_q24) {
+        o->lg_l1 = g->lg_lr_q24;
+        o->nq = 0;
+        o->u_q16 = (uint32_t)g->lp_w << 16;
+        return;
+    }
+    o->lg_l1 = tdc_fov_log2_q24((uint64_t)l1);
+    const uint32_t neg = (uint32_t)(g->lg_lr_q24 - o->lg_l1);
+    o->nq = (uint32_t)(((uint64_t)neg * g->inv_alpha_q24 + (1u << 23)) >> 24);
+    o->u_q16 = (uint32_t)(((uint64_t)g->lp_w * exp2neg_q30(o->nq) + (1u << 13)) >> 14);
+}
+
+void tdc_fov_to_lp(const tdc_fov_geom_t *g, int32_t x_q8, int32_t y_q8, uint32_t *u_q16, uint32_t *v_q16)
+{
+    const int32_t dx = x_q8 - g->cx_q8, dy = y_q8 - g->cy_q8;
+    fov_radial_t rr;
+    radial(g, (uint64_t)((int64_t)dx * dx + (int64_t)dy * dy), &rr);
+    *u_q16 = rr.u_q16;
+    *v_q16 = (uint32_t)(((uint64_t)tdc_fov_turns_q32(dx, dy) * g->lp_h) >> 16);
+}
+
+tdc_status_t tdc_fov_geom(tdc_fov_geom_t *g, uint16_t width, uint16_t height, const tdc_fov_params_t *p)
+{
+    if (!g || !p || width < TDC_FOV_MIN_SIZE || height < TDC_FOV_MIN_SIZE || width > TDC_FOV_MAX_SIZE ||
+        height > TDC_FOV_MAX_SIZE || p->lp_w < TDC_FOV_MIN_SIZE || p->lp_h < TDC_FOV_MIN_SIZE ||
+        p->alpha_q8 < TDC_FOV_ALPHA_MIN_Q8 || p->alpha_q8 > TDC_FOV_ALPHA_MAX_Q8 || p->disk_q15 > ONE_Q15) {
+        return TDC_ERR_ARG;
+    }
+    const int32_t w8 = (int32_t)width * 256, h8 = (int32_t)height * 256;
+    if (p->gaze_x_q8 < -w8 || p->gaze_x_q8 > 2 * w8 || p->gaze_y_q8 < -h8 || p->gaze_y_q8 > 2 * h8) {
+        return TDC_ERR_ARG;
+    }
+    if (p->lp_w > width || p->lp_h > height) {
+        return TDC_ERR_SIZE;
+    }
+    g->width = width;
+    g->height = height;
+    g->lp_w = p->lp_w;
+    g->lp_h = p->lp_h;
+    g->cx_q8 = p->gaze_x_q8;
+    g->cy_q8 = p->gaze_y_q8;
+    /* R^2: the farthest corner (eq. 2.4's L = ln R) */
+    const int64_t ex = p->gaze_x_q8 > w8 - p->gaze_x_q8 ? p->gaze_x_q8 : w8 - p->gaze_x_q8;
+    const int64_t ey = p->gaze_y_q8 > h8 - p->gaze_y_q8 ? p->gaze_y_q8 : h8 - p->gaze_y_q8;
+    const uint64_t r2max = (uint64_t)(ex * ex + ey * ey); /* >= 8 px^2 */
+    g->log2_r2max_q24 = tdc_fov_log2_q24(r2max) - 16 * Q24;
+    g->lg_lr_q24 = tdc_fov_log2_q24((uint64_t)g->log2_r2max_q24);
+    g->log2_w_q24 = tdc_fov_log2_q24(p->lp_w);
+    g->log2_alpha_q24 = tdc_fov_log2_q24(p->alpha_q8) - 8 * Q24;
+    g->inv_alpha_q24 = tdc_udiv64_32(((uint64_t)1 << 32) + p->alpha_q8 / 2u, p->alpha_q8);
+    g->r_max_q8 = tdc_isqrt64(r2max);
+    g->r_disk_q8 = (uint32_t)(((uint64_t)p->disk_q15 * g->r_max_q8 + 16384u) >> 15);
+    g->r_disk2_q16 = (uint64_t)g->r_disk_q8 * g->r_disk_q8;
+    fov_radial_t rr;
+    radial(g, g->r_disk2_q16, &rr);
+    uint32_t l = (rr.u_q16 + 65535u) >> 16; /* eq. 4.5: ceil */
+    g->l = (uint16_t)(l > p->lp_w ? p->lp_w : l);
+    uint32_t u0 = 0;
+    if (g->r_disk_q8 > (uint32_t)TDC_FOV_BLEND_Q8) {
+        const uint64_t rb = g->r_disk_q8 - (uint32_t)TDC_FOV_BLEND_Q8;
+        radial(g, rb * rb, &rr);
+        const uint32_t fu = rr.u_q16 >> 16;
+        u0 = fu > (uint32_t)TDC_FOV_REACH ? fu - (uint32_t)TDC_FOV_REACH : 0u;
+    }
+    g->u0 = (uint16_t)(u0 > g->l ? g->l : u0);
+    return TDC_OK;
+}
+
+int tdc_fov_in_disk(const tdc_fov_geom_t *g, int32_t i, int32_t j)
+{
+    const int64_t dx = (int64_t)i * 256 + 128 - g->cx_q8, dy = (int64_t)j * 256 + 128 - g->cy_q8;
+    return (uint64_t)(dx * dx + dy * dy) <= g->r_disk2_q16;
+}
+
+uint32_t tdc_fov_disk_span(const tdc_fov_geom_t *g, int32_t j, int32_t *x0)
+{
+    *x0 = 0;
+    const int64_t dy = (int64_t)j * 256 + 128 - g->cy_q8;
+    const uint64_t dy2 = (uint64_t)(dy * dy);
+    if (j < 0 || j >= (int32_t)g->height || dy2 > g->r_disk2_q16) {
+        return 0;
+    }
+    /* |dx| <= s = floor(sqrt(r_d^2 - dy^2)) (Q8); centres i*256+128 */
+    const int64_t s = tdc_isqrt64(g->r_disk2_q16 - dy2);
+    int64_t lo = tdc_asr64(g->cx_q8 - s - 128 + 255, 8); /* ceil((cx - s - 128) / 256) */
+    int64_t hi = tdc_asr64(g->cx_q8 + s - 128, 8);       /* floor */
+    lo = lo < 0 ? 0 : lo;
+    hi = hi >= g->width ? g->width - 1 : hi;
+    if (hi < lo) {
+        return 0;
+    }
+    *x0 = (int32_t)lo;
+    return (uint32_t)(hi - lo + 1);
+}
+
+uint32_t tdc_fov_disk_pixels(const tdc_fov_geom_t *g)
+{
+    uint32_t n = 0;
+    for (int32_t j = 0; j < (int32_t)g->height; j++) {
+        int32_t x0;
+        n += tdc_fov_disk_span(g, j, &x0);
+    }
+    return n;
+}
+
+/* ---------------------------------------------------------------------
+ * One display pixel: log-polar sample with the radial blur (eq. 4.4), the
+ * disk composite.  Writes the composed colour (Q8) and returns the blend
+ * weight b (Q8, 0 = disk only); *iu, *jv: the nearest log-polar sample.
+ * ------------------------------------------------------------------- */
+typedef struct {
+    const tdc_fov_geom_t *g;
+    const uint8_t *lp;
+    size_t lp_stride;
+    const uint8_t *disk;
+    size_t disk_stride;
+    uint64_t rb2_q16; /* (r_d - 4 px)^2, or 0 */
+    int32_t rb_q8;    /* r_d - 4 px (may be negative) */
+} fov_src_t;
+
+static uint32_t compose(const fov_src_t *s, int32_t i, int32_t dx, int32_t dy, uint64_t r2, uint16_t c[3],
+                        uint32_t *iu, uint32_t *jv)
+{
+    const tdc_fov_geom_t *g = s->g;
+    uint32_t b = 256;
+    if (r2 < g->r_disk2_q16) {
+        if (r2 <= s->rb2_q16) {
+            b = 0;
+        } else {
+            const int32_t x = (int32_t)tdc_isqrt64(r2) - s->rb_q8;
+            b = (uint32_t)tdc_clamp32(x, 0, TDC_FOV_BLEND_Q8) >> 2;
+        }
+    }
+    uint32_t lpc[3] = {0, 0, 0};
+    if (b) {
+        fov_radial_t rr;
+        radial(g, r2, &rr);
+        const uint32_t v = (uint32_t)(((uint64_t)tdc_fov_turns_q32(dx, dy) * g->lp_h) >> 16);
+        /* sigma_u = eta/4 du/dr, du/dr = u / (alpha ln(r) r), eta = 1.4 + 16 r/R (eq. 4.4),
+         * all in log2: log2 sigma = log2 eta + log2 u - 2 - log2 alpha - log2 ln r - log2 r */
+        int32_t ls = Q24; /* sigma = 2 where r <= 1 */
+        if (rr.l1 > 0) {
+            const int32_t x_q16 = tdc_fov_exp2_q16(tdc_asr32(rr.l1 - g->log2_r2max_q24, 1));
+            const int32_t leta = tdc_fov_log2_q24((uint64_t)(91750 + 16 * (int64_t)x_q16)) - 16 * Q24;
+            const int64_t lnr = (int64_t)rr.lg_l1 - 24 * Q24 + TDC_FOV_LOG2_LN2_Q24 - Q24;
+            const int64_t s64 = (int64_t)leta + g->log2_w_q24 - (int64_t)rr.nq - 2 * Q24 - g->log2_alpha_q24 - lnr -
+                                (rr.l1 / 2);
+            ls = (int32_t)(s64 < -Q24 ? -Q24 : (s64 > Q24 ? Q24 : s64));
+        }
+        const int32_t sig = tdc_fov_exp2_q16(ls);       /* [2^15, 2^17] */
+        const uint32_t inv2 = (uint32_t)tdc_fov_exp2_q16(-2 * ls); /* 1/sigma^2 */
+        const int32_t u = (int32_t)rr.u_q16;
+        int32_t lo = tdc_asr32(u - 2 * sig + 65535, 16), hi = tdc_asr32(u + 2 * sig, 16);
+        const uint32_t j0 = v >> 16, fv = v & 0xFFFFu;
+        const uint32_t j1 = j0 + 1u == g->lp_h ? 0u : j0 + 1u;
+        const uint8_t *r0 = s->lp + (size_t)j0 * s->lp_stride, *r1 = s->lp + (size_t)j1 * s->lp_stride;
+        uint64_t acc[3] = {0, 0, 0};
+        uint32_t sum = 0;
+        for (int32_t t = lo; t <= hi; t++) {
+            const int32_t d = TDC_SHL32(t, 16) - u;
+            const uint64_t d2 = (uint64_t)((int64_t)d * d) >> 16;
+            const uint32_t t2 = (uint32_t)((d2 * inv2) >> 16); /* (d / sigma)^2, Q16 */
+            const uint32_t k = t2 >> 10, fr = t2 & 1023u;
+            if (k >= 256u) {
+                continue;
+            }
+            const uint32_t ga = tdc_fov_gauss_tab[k], gb = tdc_fov_gauss_tab[k + 1u];
+            const uint32_t wgt = ga - (((ga - gb) * fr + 512u) >> 10);
+            const int32_t col = tdc_clamp32(t, g->u0, (int32_t)g->lp_w - 1);
+            const uint8_t *p0 = r0 + (size_t)col * 3u, *p1 = r1 + (size_t)col * 3u;
+            for (int ch = 0; ch < 3; ch++) {
+                acc[ch] += (uint64_t)wgt * (p0[ch] * (65536u - fv) + p1[ch] * fv); /* Q16 codes */
+            }
+            sum += wgt;
+        }
+        for (int ch = 0; ch < 3; ch++) {
+            lpc[ch] = (tdc_udiv64_32(acc[ch] + sum / 2u, sum) + 128u) >> 8; /* Q8 */
+        }
+        const uint32_t ui = (rr.u_q16 + 32768u) >> 16, vi = (v + 32768u) >> 16;
+        *iu = (uint32_t)tdc_clamp32((int32_t)ui, g->u0, (int32_t)g->lp_w - 1);
+        *jv = vi >= g->lp_h ? 0u : vi;
+    }
+    if (b < 256u) {
+        const uint8_t *dp = s->disk + (size_t)i * 3u;
+        for (int ch = 0; ch < 3; ch++) {
+            c[ch] = (uint16_t)(((256u - b) * dp[ch] * 256u + b * lpc[ch] + 128u) >> 8);
+        }
+    } else {
+        for (int ch = 0; ch < 3; ch++) {
+            c[ch] = (uint16_t)lpc[ch];
+        }
+    }
+    return b;
+}
+
+/* ---------------------------------------------------------------------
+ * Stage state.
+ * ------------------------------------------------------------------- */
+static int fov_config_valid(const tdc_fov_config_t *cfg)
+{
+    return cfg && cfg->width >= TDC_FOV_MIN_SIZE && cfg->height >= TDC_FOV_MIN_SIZE &&
+           cfg->width <= TDC_FOV_MAX_SIZE && cfg->height <= TDC_FOV_MAX_SIZE && cfg->taa <= 1u;
+}
+
+/* The one layout (tdc_fov.h TDC_FOV_ARENA); NULL views in a dry run. */
+static void fov_carve(tdc_fov_t *st, const tdc_fov_config_t *cfg, tdc_arena_t *arena)
+{
+    TDC_FOV_ARENA(TDC_ARENA_CARVE, cfg->width, cfg->height, cfg->taa)
+}
+
+size_t tdc_fov_get_size(const tdc_fov_config_t *cfg)
+{
+    if (!fov_config_valid(cfg)) {
+        return 0;
+    }
+    tdc_fov_t dry;
+    tdc_arena_t arena;
+    tdc_arena_dry(&arena);
+    fov_carve(&dry, cfg, &arena);
+    return tdc_arena_size(&arena);
+}
+
+tdc_status_t tdc_fov_init(tdc_fov_t *st, const tdc_fov_config_t *cfg, void *mem, size_t mem_bytes)
+{
+    tdc_arena_t arena;
+    if (!st || !fov_config_valid(cfg) || !tdc_arena_over(&arena, mem, mem_bytes)) {
+        return TDC_ERR_ARG; /* null, bad size, mem not aligned to TDC_ARENA_ALIGN */
+    }
+    if (mem_bytes < tdc_fov_get_size(cfg)) { /* the same carve, dry: nothing is touched on error */
+        return TDC_ERR_SIZE;
+    }
+    fov_carve(st, cfg, &arena);
+    st->cfg = *cfg;
+    st->frames = 0;
+    st->rejected_frames = 0;
+    tdc_fov_reset(st);
+    return TDC_OK;
+}
+
+void tdc_fov_reset(tdc_fov_t *st)
+{
+    st->cur = 0;
+    st->have_hist = 0;
+    st->dt_prev_us = 0;
+    st->gaze_prev_x_q8 = 0;
+    st->gaze_prev_y_q8 = 0;
+}
+
+/* Row scratch layout (uint16): slot k (row y & 1) of 8 values per pixel
+ * {s0, s1, s2, h0, h1, h2, H, b}, then 3 rows of |s - h| (slot y % 3). */
+#define ROW_VALS 8u
+
+typedef struct {
+    uint16_t *slot[2];
+    uint16_t *dif[3];
+} fov_rows_t;
+
+/* eq. 4.9 box, eq. 4.10 and eq. 2.5 for row y; writes history and output. */
+static void finish_row(const tdc_fov_t *st, const fov_rows_t *rw, int32_t y, uint16_t *hist_new, uint8_t *orow)
+{
+    const int32_t W = st->cfg.width, H = st->cfg.height;
+    const uint16_t *sl = rw->slot[y & 1];
+    for (int32_t x = 0; x < W; x++) {
+        const uint16_t *e = sl + (size_t)x * ROW_VALS;
+        uint16_t *hn = hist_new + ((size_t)y * W + (size_t)x) * 3u;
+        uint32_t f[3] = {e[0], e[1], e[2]};
+        if (e[6] != 0xFFFFu) { /* history valid */
+            uint32_t sum = 0, cnt = 0;
+            for (int32_t yy = y - 1; yy <= y + 1; yy++) {
+                if (yy < 0 || yy >= H) {
+                    continue;
+                }
+                const uint16_t *dr = rw->dif[yy % 3];
+                for (int32_t xx = x - 1; xx <= x + 1; xx++) {
+                    if (xx >= 0 && xx < W) {
+                        sum += dr[xx];
+                        cnt++;
+                    }
+                }
+            }
+            const uint32_t eps = (sum + cnt / 2u) / cnt; /* Q8 codes */
+            uint32_t amin = (eps * ONE_Q15 + 32640u) / 65280u;
+            amin = amin < 3277u ? 3277u : (amin > ONE_Q15 ? ONE_Q15 : amin);
+            const uint32_t a = amin + (((ONE_Q15 - amin) * e[6] + 16384u) >> 15);
+            const uint32_t aeff = ONE_Q15 - ((e[7] * (ONE_Q15 - a) + 128u) >> 8);
+            /* f = s + (1 - a)(h - s), the product rounded toward zero: |f - s|
+             * shrinks every frame, so a static field converges to exactly s
+             * (rounding half up stalls at h - s = 5/256 of a code with a = 0.1) */
+            for (int ch = 0; ch < 3; ch++) {
+                const int32_t dlt = (int32_t)e[3 + ch] - (int32_t)e[ch];
+                const int32_t m = (int32_t)(((ONE_Q15 - aeff) * (uint32_t)tdc_abs32(dlt)) >> 15);
+                f[ch] = (uint32_t)((int32_t)e[ch] + (dlt < 0 ? -m : m));
+            }
+        }
+        for (int ch = 0; ch < 3; ch++) {
+            hn[ch] = (uint16_t)f[ch];
+            orow[(size_t)x * 3u + (size_t)ch] = (uint8_t)((f[ch] + 128u) >> 8);
+        }
+    }
+}
+
+tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8_t *lp, size_t lp_stride,
+                           const int16_t *mv, size_t mv_stride, const uint8_t *disk, size_t disk_stride,
+                           uint32_t dt_us, uint8_t *out, size_t out_stride)
+{
+    if (!st || !p || !lp || !disk || !out) {
+        return TDC_ERR_ARG;
+    }
+    tdc_fov_geom_t g;
+    const tdc_status_t s = tdc_fov_geom(&g, st->cfg.width, st->cfg.height, p);
+    if (s != TDC_OK) {
+        return s;
+    }
+    if (lp_stride < (size_t)p->lp_w * 3u || disk_stride < (size_t)g.width * 3u ||
+        out_stride < (size_t)g.width * 3u || (mv && mv_stride < (size_t)p->lp_w * 2u)) {
+        return TDC_ERR_ARG;
+    }
+    fov_src_t src = {&g, lp, lp_stride, disk, disk_stride, 0, (int32_t)g.r_disk_q8 - TDC_FOV_BLEND_Q8};
+    if (src.rb_q8 > 0) {
+        src.rb2_q16 = (uint64_t)src.rb_q8 * (uint64_t)src.rb_q8;
+    }
+    const int32_t W = g.width, H = g.height;
+
+    /* TAA set-up: eq. 4.7 rate, 60 / R_n (Q16); saccade rejection */
+    int reject_all = 1;
+    uint32_t r60_q16 = 0;
+    int32_t log2_diag2 = 0;
+    if (st->cfg.taa) {
+        const uint32_t dt = dt_us ? (dt_us < 100u ? 100u : dt_us) : (st->dt_prev_us ? st->dt_prev_us : 11111u);
+        const uint32_t dtp = st->dt_prev_us ? st->dt_prev_us : dt;
+        const uint32_t rn = (256000000u + dt / 2u) / dt, rp = (256000000u + dtp / 2u) / dtp; /* Hz Q8 */
+        const uint32_t rate = (rn + 9u * rp + 5u) / 10u;
+        r60_q16 = (1006632960u + rate / 2u) / rate; /* 60 * 2^24 / rate */
+        st->dt_prev_us = dt;
+        const uint64_t diag2 = (uint64_t)W * W + (uint64_t)H * H;
+        log2_diag2 = tdc_fov_log2_q24(diag2);
+        const int64_t gx = (int64_t)p->gaze_x_q8 - st->gaze_prev_x_q8, gy = (int64_t)p->gaze_y_q8 - st->gaze_prev_y_q8;
+        const int saccade = (uint64_t)(gx * gx + gy * gy) > diag2 * 1024u; /* > diag / 8, Q8 */
+        reject_all = !st->have_hist || saccade;
+        st->rejected_frames += (uint32_t)(st->have_hist && saccade);
+        st->gaze_prev_x_q8 = p->gaze_x_q8;
+        st->gaze_prev_y_q8 = p->gaze_y_q8;
+    }
+
+    fov_rows_t rw = {{0, 0}, {0, 0, 0}};
+    uint16_t *hist_old = 0, *hist_new = 0;
+    if (st->cfg.taa) {
+        rw.slot[0] = st->rows;
+        rw.slot[1] = st->rows + (size_t)W * ROW_VALS;
+        for (int k = 0; k < 3; k++) {
+            rw.dif[k] = st->rows + (size_t)W * (2u * ROW_VALS + (size_t)k);
+        }
+        hist_old = st->hist[st->cur];
+        hist_new = st->hist[st->cur ^ 1u];
+    }
+
+    for (int32_t y = 0; y < H; y++) {
+        const int32_t dy = y * 256 + 128 - g.cy_q8;
+        const uint64_t dy2 = (uint64_t)((int64_t)dy * dy);
+        src.disk = disk + (size_t)y * disk_stride;
+        uint8_t *orow = out + (size_t)y * out_stride;
+        uint16_t *sl = st->cfg.taa ? rw.slot[y & 1] : 0;
+        for (int32_t x = 0; x < W; x++) {
+            const int32_t dx = x * 256 + 128 - g.cx_q8;
+            const uint64_t r2 = (uint64_t)((int64_t)dx * dx) + dy2;
+            uint16_t c[3];
+            uint32_t iu = 0, jv = 0;
+            const uint32_t b = compose(&src, x, dx, dy, r2, c, &iu, &jv);
+            if (!st->cfg.taa) {
+                for (int ch = 0; ch < 3; ch++) {
+                    orow[(size_t)x * 3u + (size_t)ch] = (uint8_t)((c[ch] + 128u) >> 8);
+                }
+                continue;
+            }
+            uint16_t *e = sl + (size_t)x * ROW_VALS;
+            e[0] = c[0];
+            e[1] = c[1];
+            e[2] = c[2];
+            e[6] = 0xFFFFu; /* no history */
+            e[7] = (uint16_t)b;
+            uint32_t dsum = 3u * 65280u;
+            if (!reject_all && b) {
+                int32_t mx = 0, my = 0;
+                if (mv) {
+                    const int16_t *m = mv + (size_t)jv * mv_stride + (size_t)iu * 2u;
+                    mx = m[0];
+                    my = m[1];
+                }
+                /* reprojection p - m (eq. 2.5's pi(p)), Q4 pixel indices */
+                int32_t px = x * 16 - mx, py = y * 16 - my;
+                if (px >= -8 && px <= (W - 1) * 16 + 8 && py >= -8 && py <= (H - 1) * 16 + 8) {
+                    px = tdc_clamp32(px, 0, (W - 1) * 16);
+                    py = tdc_clamp32(py, 0, (H - 1) * 16);
+                    const int32_t x0 = px >> 4, y0 = py >> 4;
+                    const uint32_t fx = (uint32_t)px & 15u, fy = (uint32_t)py & 15u;
+                    const int32_t x1 = x0 + 1 < W ? x0 + 1 : x0, y1 = y0 + 1 < H ? y0 + 1 : y0;
+                    const uint16_t *h00 = hist_old + ((size_t)y0 * W + (size_t)x0) * 3u;
+                    const uint16_t *h01 = hist_old + ((size_t)y0 * W + (size_t)x1) * 3u;
+                    const uint16_t *h10 = hist_old + ((size_t)y1 * W + (size_t)x0) * 3u;
+                    const uint16_t *h11 = hist_old + ((size_t)y1 * W + (size_t)x1) * 3u;
+                    dsum = 0;
+                    for (int ch = 0; ch < 3; ch++) {
+                        const uint32_t top = h00[ch] * (16u - fx) + h01[ch] * fx;
+                        const uint32_t bot = h10[ch] * (16u - fx) + h11[ch] * fx;
+                        const uint32_t hv = (top * (16u - fy) + bot * fy + 128u) >> 8;
+                        e[3 + ch] = (uint16_t)hv;
+                        dsum += (uint32_t)tdc_abs32((int32_t)c[ch] - (int32_t)hv);
+                    }
+                    /* eq. 4.8: H = (|m| / |(W, H)|)^(1/4) * 60 / R_n, Q15, capped at 1 (eq. 4.10's min) */
+                    const uint32_t m2 = (uint32_t)(mx * mx) + (uint32_t)(my * my);
+                    uint32_t hq = 0;
+                    if (m2) {
+                        const int32_t lg = tdc_fov_log2_q24(m2) - 8 * Q24 - log2_diag2;
+                        const uint64_t e16 = (uint64_t)tdc_fov_exp2_q16(tdc_asr32(lg, 3));
+                        const uint64_t hh = (e16 * r60_q16 + (1u << 16)) >> 17;
+                        hq = hh > ONE_Q15 ? ONE_Q15 : (uint32_t)hh;
+                    }
+                    e[6] = (uint16_t)hq;
+                }
+            }
+            rw.dif[y % 3][x] = (uint16_t)((dsum + 1u) / 3u);
+        }
+        if (st->cfg.taa && y > 0) {
+            finish_row(st, &rw, y - 1, hist_new, out + (size_t)(y - 1) * out_stride);
+        }
+    }
+    if (st->cfg.taa) {
+        finish_row(st, &rw, H - 1, hist_new, out + (size_t)(H - 1) * out_stride);
+        st->cur ^= 1u;
+        st->have_hist = 1;
+    }
+    st->frames++;
+    return TDC_OK;
+}

@@ -1,0 +1,160 @@
+/*
+ * tdc_fov.h - foveated streams, display side (DESIGN §4.5; thesis
+ * "Image Upscaling for Ray Traced Foveated Rendering" §2.2.2, §4.2, §4.4).
+ *
+ * The renderer traces a kernel log-polar buffer of lp_w x lp_h samples
+ * (column u = radius, row v = angle) around the gaze point C, plus a foveal
+ * disk of radius r_d = disk * R uniformly (one sample per display pixel);
+ * R is the distance from C to the farthest screen corner, L = ln R.
+ * This stage rebuilds the Cartesian frame:
+ *
+ *   eq. 2.2   u = K^-1(ln|x'| / L) * lp_w,  v = atan2(y', x') mod 2pi * lp_h / 2pi,
+ *             K(x) = x^alpha, so K^-1(x) = 2^(log2(x) / alpha).
+ *   eq. 4.4   radial Gaussian along u, diameter eta(x) = max(3 + 0.8 (x - 0.1) / 0.05, 0)
+ *             output pixels, x = |x'| / R; sigma_u = eta/4 * du/dr columns, clamped
+ *             to [1/2, 2] (1/2: the kernel then interpolates like a tent; 2: at most
+ *             9 taps).  Kernel (e^(-t^2/2) - e^-2)/(1 - e^-2) for t = d/sigma < 2:
+ *             cut continuously at t = 2, so no tap switches on with a jump.
+ *             Bilinear (periodic) along v.
+ *   eq. 4.5   the disk is the rectangle u < l(r_d) = ceil(K^-1(ln r_d / L) * lp_w):
+ *             tdc_fov_geom_t.l.  The link carries columns [u0, lp_w), u0 <= l, so
+ *             that the blend band and the kernel's reach have samples.
+ *   blend     log-polar weight b = clamp((r - (r_d - 4 px)) / 4 px, 0, 1): the disk
+ *             inside, the log-polar buffer outside, a 4-pixel ramp inside the border.
+ *   TAA       eqs. 2.5, 4.7-4.10 in the periphery: f = a s + (1 - a) f_{n-1}(p - m),
+ *             a = a_min + min((1 - a_min) H, 1 - a_min), a_min = clamp(box3x3 |s - f_{n-1}|,
+ *             0.1, 1), H = (|m| / |(W, H)|)^(1/4) * 60 / R_n, R_n = 0.1/dt_n + 0.9/dt_{n-1}.
+ *             Phased out *after* the disk border (§5.3): the TAA weight is b, so it
+ *             runs at full strength up to the border and ramps to 0 inside it.
+ *             A gaze jump of more than 1/8 of the screen diagonal (a saccade)
+ *             rejects the whole history for that frame.
+ *
+ * Note on eq. 2.3 as printed (x = e^(A K(u)) cos(Bv) + x^, A = L/w): it is the
+ * inverse of eq. 2.2 only for K(x) = x.  The exact inverse, used by the
+ * renderer (sim/render) and the reference (sim/ref_fov.c), is
+ * r = e^(L K(u / w)), which equals the printed form at alpha = 1.
+ *
+ * Coordinates: the screen is [0, W] x [0, H]; pixel (i, j) has its centre at
+ * (i + 1/2, j + 1/2); the gaze is in Q8 pixels and may lie outside the screen
+ * by up to one screen size.  Log-polar sample (i, j) sits at u = i, v = j.
+ * Colours: 8-bit RGB interleaved codes; the stage interpolates gamma-coded
+ * values in Q8 (like TRM's D and U), the history is Q8 codes (uint16).
+ *
+ * Memory: caller-owned arena of tdc_fov_get_size() bytes (TDC_FOV_MEM_BYTES
+ * on a board; layout TDC_FOV_ARENA, carved by tdc_arena.h): with TAA two Q8
+ * history frames (12 bytes per display pixel: the previous frame is read by
+ * reprojection while the new one is written) and 38 bytes per display
+ * column of row scratch; without TAA nothing.
+ * No heap, no float, no recursion; same bytes on every compiler and CPU.
+ */
+#ifndef TDC_FOV_H
+#define TDC_FOV_H
+
+#include "tdc_arena.h"
+#include "tdc_fixed.h"
+
+#define TDC_FOV_MIN_SIZE 4u       /* display and log-polar sides at least this */
+#define TDC_FOV_MAX_SIZE 8192u
+#define TDC_FOV_ALPHA_MIN_Q8 256u  /* K(x) = x^alpha, alpha in [1, 8], Q8 */
+#define TDC_FOV_ALPHA_MAX_Q8 2048u
+#define TDC_FOV_BLEND_Q8 1024      /* the blend band: 4 px, Q8 */
+#define TDC_FOV_REACH 4            /* the kernel reaches 2 sigma <= 4 columns */
+
+/* Per-frame foveation parameters (the foveated packet's header). */
+typedef struct {
+    int32_t gaze_x_q8, gaze_y_q8; /* C in display pixels, Q8 */
+    uint16_t alpha_q8;            /* K(x) = x^alpha, Q8 in [1, 8] */
+    uint16_t disk_q15;            /* r_d / R, Q15 in [0, 1] (32768 = 1) */
+    uint16_t lp_w, lp_h;          /* log-polar buffer size (delta * W, delta * H) */
+} tdc_fov_params_t;
+
+/* Geometry of one frame, derived from the parameters (tdc_fov_geom). */
+typedef struct {
+    uint16_t width, height, lp_w, lp_h;
+    int32_t cx_q8, cy_q8;
+    int32_t log2_r2max_q24;   /* log2(R^2), Q24, > 0 */
+    int32_t lg_lr_q24;        /* log2(log2(R^2)) + 24 (the table's scale), Q24 */
+    int32_t log2_w_q24;       /* log2(lp_w), Q24 */
+    int32_t log2_alpha_q24;   /* log2(alpha), Q24 */
+    uint32_t inv_alpha_q24;   /* 2^24 / alpha */
+    uint32_t r_max_q8;        /* R = sqrt(R^2), Q8 (floor) */
+    uint32_t r_disk_q8;       /* r_d = disk * R, Q8 */
+    uint64_t r_disk2_q16;     /* r_d^2: a pixel is in the disk iff |x'|^2 <= r_d^2 */
+    uint16_t l;               /* eq. 4.5: disk rectangle columns [0, l) */
+    uint16_t u0;              /* first column the link carries */
+} tdc_fov_geom_t;
+
+/* Checks the parameters against a display of width x height and fills g.
+ * TDC_ERR_ARG: alpha, disk, lp size out of range or the gaze farther than
+ * one screen size outside the screen; TDC_ERR_SIZE: lp larger than the display. */
+TDC_MUST_CHECK tdc_status_t tdc_fov_geom(tdc_fov_geom_t *g, uint16_t width, uint16_t height, const tdc_fov_params_t *p);
+
+/* eq. 2.2 at a display point (Q8): u, v in Q16 log-polar samples,
+ * u in [0, lp_w], v in [0, lp_h). */
+void tdc_fov_to_lp(const tdc_fov_geom_t *g, int32_t x_q8, int32_t y_q8, uint32_t *u_q16, uint32_t *v_q16);
+
+/* Is display pixel (i, j) in the foveal disk (the link carries it)? */
+int tdc_fov_in_disk(const tdc_fov_geom_t *g, int32_t i, int32_t j);
+/* Pixels of display row j in the disk: [*x0, *x0 + return value). */
+uint32_t tdc_fov_disk_span(const tdc_fov_geom_t *g, int32_t j, int32_t *x0);
+/* Number of disk pixels on the screen (the link's disk payload / 3 bytes). */
+uint32_t tdc_fov_disk_pixels(const tdc_fov_geom_t *g);
+
+/* Stage configuration: the largest frame it must handle. */
+typedef struct {
+    uint16_t width, height; /* display size */
+    uint8_t taa;            /* 1: peripheral TAA (history in the arena) */
+} tdc_fov_config_t;
+
+/* The arena layout (firmware/tdc_arena.h), one list: with TAA two Q8 RGB
+ * history frames (ping-pong) and the row scratch, 19 uint16 per display
+ * column (2 rows x 8 values + 3 rows of |s - h|); without TAA nothing. */
+#define TDC_FOV_ROW_VALS 19u
+#define TDC_FOV_ARENA(X, W, H, TAA)                                        \
+    X(hist[0], uint16_t, (TAA) ? (size_t)(W) * (size_t)(H) * 3u : 0u)     \
+    X(hist[1], uint16_t, (TAA) ? (size_t)(W) * (size_t)(H) * 3u : 0u)     \
+    X(rows, uint16_t, (TAA) ? (size_t)(W) * TDC_FOV_ROW_VALS : 0u)
+/* Compile-time bound for static arenas (an empty layout still reports
+ * TDC_ARENA_ALIGN bytes, as get_size does). */
+#define TDC_FOV_MEM_BYTES(W, H, TAA) \
+    ((TAA) ? (size_t)0 TDC_FOV_ARENA(TDC_ARENA_BLOCK_BYTES, W, H, 1) : (size_t)TDC_ARENA_ALIGN)
+
+typedef struct {
+    tdc_fov_config_t cfg;
+    uint16_t *hist[2];   /* Q8 RGB history frames, ping-pong */
+    uint16_t *rows;      /* scratch: 2 rows x 8 values + 3 rows of |s - h| */
+    uint8_t cur;         /* hist[cur] holds the last output */
+    uint8_t have_hist;
+    uint32_t dt_prev_us;
+    int32_t gaze_prev_x_q8, gaze_prev_y_q8;
+    uint32_t frames, rejected_frames; /* counters: frames composed, histories rejected */
+} tdc_fov_t;
+
+size_t tdc_fov_get_size(const tdc_fov_config_t *cfg);
+/* mem: caller-owned arena of tdc_fov_get_size() bytes, aligned to
+ * TDC_ARENA_ALIGN (8); TDC_ERR_ARG if not, TDC_ERR_SIZE if too small. */
+TDC_MUST_CHECK tdc_status_t tdc_fov_init(tdc_fov_t *st, const tdc_fov_config_t *cfg, void *mem, size_t mem_bytes);
+/* Forget the history (stream restart, loss): the next frame is taken as is. */
+void tdc_fov_reset(tdc_fov_t *st);
+
+/* One foveated frame.
+ *   lp:   lp_h rows of lp_w RGB8 samples (row = angle), stride lp_stride bytes;
+ *         only columns [g.u0, lp_w) are read.
+ *   mv:   motion vectors of the log-polar samples, int16 (x, y) pairs in Q4
+ *         display pixels, m = p_now - p_prev (thesis eq. 4.6), stride
+ *         mv_stride int16 per row; NULL = no motion.  Used by TAA only.
+ *   disk: W x H RGB8 image of which only disk pixels are read (stride
+ *         disk_stride); may be the same buffer as out (each pixel is read
+ *         before it is written).
+ *   dt_us: this frame's time, for eq. 4.7 (TAA only; 0 = as the last one).
+ * TDC_ERR_ARG / TDC_ERR_SIZE as tdc_fov_geom, or a geometry larger than the config. */
+TDC_MUST_CHECK tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8_t *lp, size_t lp_stride,
+                           const int16_t *mv, size_t mv_stride, const uint8_t *disk, size_t disk_stride,
+                           uint32_t dt_us, uint8_t *out, size_t out_stride);
+
+/* Building blocks, exported for the tests (each states its error). */
+int32_t tdc_fov_log2_q24(uint64_t x);   /* log2(x) for x >= 1, Q24 */
+int32_t tdc_fov_exp2_q16(int32_t s_q24); /* 2^s in Q16, s in Q24, saturating */
+uint32_t tdc_fov_turns_q32(int32_t dx, int32_t dy); /* atan2(dy, dx) mod 2pi, Q32 turns */
+
+#endif /* TDC_FOV_H */

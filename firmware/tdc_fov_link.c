@@ -1,0 +1,117 @@
+/*
+ * tdc_fov_link.c - foveation header of the foveated link kind; layout and
+ * rules in tdc_fov_link.h.  Little-endian byte access only (no casts of the
+ * buffer), so the bytes mean the same on every CPU.
+ */
+#include "tdc_fov_link.h"
+
+static uint32_t rd32(const uint8_t *b)
+{
+    return (uint32_t)b[0] | (uint32_t)b[1] << 8 | (uint32_t)b[2] << 16 | (uint32_t)b[3] << 24;
+}
+static uint16_t rd16(const uint8_t *b)
+{
+    return (uint16_t)(b[0] | b[1] << 8);
+}
+static void wr32(uint8_t *b, uint32_t v)
+{
+    b[0] = (uint8_t)v;
+    b[1] = (uint8_t)(v >> 8);
+    b[2] = (uint8_t)(v >> 16);
+    b[3] = (uint8_t)(v >> 24);
+}
+static void wr16(uint8_t *b, uint16_t v)
+{
+    b[0] = (uint8_t)v;
+    b[1] = (uint8_t)(v >> 8);
+}
+
+uint16_t tdc_fov_lp_size(uint16_t delta_q15, uint16_t n)
+{
+    return (uint16_t)(((uint32_t)delta_q15 * n) >> 15);
+}
+
+uint32_t tdc_fov_payload_bytes(const tdc_fov_geom_t *g, int with_mv)
+{
+    const uint32_t lp = (uint32_t)(g->lp_w - g->u0) * g->lp_h;
+    return 3u * lp + 3u * tdc_fov_disk_pixels(g) + (with_mv ? 4u * lp : 0u);
+}
+
+tdc_status_t tdc_fov_hdr_pack(uint8_t out[TDC_FOV_HDR_BYTES], uint16_t width, uint16_t height,
+                              const tdc_fov_params_t *p, uint16_t delta_q15, uint8_t flags)
+{
+    tdc_fov_geom_t g;
+    if (!out || !p || (flags & ~TDC_FOV_FLAG_MV) || tdc_fov_geom(&g, width, height, p) != TDC_OK) {
+        return TDC_ERR_ARG;
+    }
+    for (unsigned i = 0; i < TDC_FOV_HDR_BYTES; i++) {
+        out[i] = 0;
+    }
+    wr32(out + 0, (uint32_t)p->gaze_x_q8);
+    wr32(out + 4, (uint32_t)p->gaze_y_q8);
+    wr16(out + 8, p->alpha_q8);
+    wr16(out + 10, delta_q15);
+    wr16(out + 12, p->disk_q15);
+    wr16(out + 14, p->lp_w);
+    wr16(out + 16, p->lp_h);
+    wr16(out + 18, g.u0);
+    wr32(out + 20, tdc_fov_disk_pixels(&g));
+    out[24] = flags;
+    return TDC_OK;
+}
+
+tdc_fov_hdr_err_t tdc_fov_hdr_parse(const uint8_t in[TDC_FOV_HDR_BYTES], uint16_t width, uint16_t height,
+                                    tdc_fov_hdr_t *h)
+{
+    tdc_fov_params_t *p = &h->p;
+    /* two's complement read of the gaze without implementation-defined conversion */
+    const uint32_t gx = rd32(in + 0), gy = rd32(in + 4);
+    p->gaze_x_q8 = gx <= 0x7FFFFFFFu ? (int32_t)gx : -(int32_t)(~gx) - 1;
+    p->gaze_y_q8 = gy <= 0x7FFFFFFFu ? (int32_t)gy : -(int32_t)(~gy) - 1;
+    p->alpha_q8 = rd16(in + 8);
+    h->delta_q15 = rd16(in + 10);
+    p->disk_q15 = rd16(in + 12);
+    p->lp_w = rd16(in + 14);
+    p->lp_h = rd16(in + 16);
+    h->flags = in[24];
+    h->payload_bytes = 0;
+    if (p->alpha_q8 < TDC_FOV_ALPHA_MIN_Q8 || p->alpha_q8 > TDC_FOV_ALPHA_MAX_Q8) {
+        return TDC_FOV_HDR_ALPHA;
+    }
+    if (h->delta_q15 == 0 || h->delta_q15 > 32768u) {
+        return TDC_FOV_HDR_DELTA;
+    }
+    if (p->disk_q15 > 32768u) {
+        return TDC_FOV_HDR_DISK;
+    }
+    const int32_t w8 = (int32_t)width * 256, h8 = (int32_t)height * 256;
+    if (p->gaze_x_q8 < -w8 || p->gaze_x_q8 > 2 * w8 || p->gaze_y_q8 < -h8 || p->gaze_y_q8 > 2 * h8) {
+        return TDC_FOV_HDR_GAZE;
+    }
+    if (p->lp_w != tdc_fov_lp_size(h->delta_q15, width) || p->lp_h != tdc_fov_lp_size(h->delta_q15, height) ||
+        tdc_fov_geom(&h->g, width, height, p) != TDC_OK) {
+        return TDC_FOV_HDR_BUFFER;
+    }
+    if (rd16(in + 18) != h->g.u0 || rd32(in + 20) != tdc_fov_disk_pixels(&h->g)) {
+        return TDC_FOV_HDR_GEOMETRY;
+    }
+    if (h->flags & ~TDC_FOV_FLAG_MV) {
+        return TDC_FOV_HDR_RESERVED;
+    }
+    for (unsigned i = 25; i < TDC_FOV_HDR_BYTES; i++) {
+        if (in[i]) {
+            return TDC_FOV_HDR_RESERVED;
+        }
+    }
+    h->payload_bytes = tdc_fov_payload_bytes(&h->g, h->flags & TDC_FOV_FLAG_MV);
+    return TDC_FOV_HDR_OK;
+}
+
+const char *tdc_fov_hdr_err_name(tdc_fov_hdr_err_t e)
+{
+    static const char *const n[TDC_FOV_HDR_COUNT] = {
+        "TDC_FOV_HDR_OK",       "TDC_FOV_HDR_ALPHA",    "TDC_FOV_HDR_DELTA",    "TDC_FOV_HDR_DISK",
+        "TDC_FOV_HDR_GAZE",     "TDC_FOV_HDR_BUFFER",   "TDC_FOV_HDR_GEOMETRY", "TDC_FOV_HDR_RESERVED",
+        "TDC_FOV_HDR_PAYLOAD"};
+    return (unsigned)e < TDC_FOV_HDR_COUNT ? n[e] : "TDC_FOV_HDR_?";
+}

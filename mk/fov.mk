@@ -1,0 +1,29 @@
+# Foveated streams (issue 14, DESIGN §4.5): the display-side remap stage with
+# peripheral TAA, its double-precision reference, tests, golden vectors.
+# The stage's log/power/atan/Gaussian tables come from tdc-tablegen --fov.
+FW_SRCS += firmware/tdc_fov.c firmware/tdc_fov_link.c
+SIM_SRCS += sim/ref_fov.c
+
+# (TABLEGEN is defined after the fragments are read: name the program)
+$(GEN)/tdc_fov_tables.h: $(BUILD)/tools/tdc-tablegen | $(GEN)
+	$(BUILD)/tools/tdc-tablegen --fov $@
+$(B)/firmware/tdc_fov.o: $(GEN)/tdc_fov_tables.h
+ifneq ($(BOARD),host)
+$(BA)/firmware/tdc_fov.o: $(GEN)/tdc_fov_tables.h
+endif
+# the recursion check compiles every firmware source on its own
+$(B)/check-fw-rules: $(GEN)/tdc_fov_tables.h
+
+# Own link rules: the fov tests need only these objects.
+FOV_OBJS = $(B)/firmware/tdc_fov.o $(B)/firmware/tdc_fov_link.o $(B)/firmware/tdc_math.o $(B)/sim/ref_fov.o
+FOV_TESTS := test_fov test_fov_ref test_fov_link
+TESTS += $(foreach t,$(FOV_TESTS),$(B)/tests/unit/$(t))
+$(foreach t,$(FOV_TESTS),$(B)/tests/unit/$(t)): $(B)/tests/unit/%: $(B)/tests/unit/%.o $(FOV_OBJS)
+	$(CC) $(HOST_LDFLAGS) $^ -o $@ $(HOST_LIBS)
+$(B)/tests/unit/test_fov.o $(B)/tests/unit/test_fov_ref.o: $(GEN)/tdc_fov_tables.h
+
+GOLDEN_STAGES += fov
+
+# make bench: rays and link bytes vs full rate per panel, eq. 5.1 curve, remap
+# throughput vs the memcpy bound (docs/foveation.md)
+BENCHES += $(B)/tests/bench/bench_fov

@@ -1,0 +1,23 @@
+# TRM (DESIGN §4.1): the stage, its double reference, row kernels (C and AVX2),
+# tests, golden vectors, benchmark.
+FW_SRCS += firmware/tdc_trm.c
+SIM_SRCS += sim/ref_trm.c
+TESTS += $(B)/tests/unit/test_trm_ref
+TESTS += $(B)/tests/unit/test_trm
+TESTS += $(B)/tests/unit/test_trm_stability
+GOLDEN_STAGES += trm
+BENCHES += $(B)/tests/bench/bench_trm
+
+# TRM row kernels: portable C (boards, the reference) and AVX2 (x86-64 hosts;
+# the file compiles to the C kernels elsewhere).  The AVX2 object is built
+# without -mgeneral-regs-only, so every firmware object's machine code is
+# checked for floating-point instructions instead.
+FW_SRCS += firmware/tdc_trm_rows.c firmware/tdc_trm_avx2.c
+$(B)/firmware/tdc_trm_avx2.o: FW_CFLAGS := $(filter-out -mgeneral-regs-only,$(FW_CFLAGS))
+ifeq ($(shell uname -m),x86_64)
+$(B)/test-fw-nofloat-insn: $(FWLIB) tests/rules/check_simd_nofloat.sh
+	@printf '#!/bin/sh\nexec tests/rules/check_simd_nofloat.sh objdump %s\n' "$(FW_OBJS)" > $@
+	@chmod +x $@
+TESTS += $(B)/test-fw-nofloat-insn
+endif
+# Their bit-exactness check and benchmark: tests/checkasm (mk/checkasm.mk).

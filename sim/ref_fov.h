@@ -1,0 +1,61 @@
+/*
+ * ref_fov.h - double-precision reference of the foveated remap
+ * (firmware/tdc_fov.c), straight from the thesis's equations: eq. 2.2 and its
+ * exact inverse (eq. 2.3, see tdc_fov.h for the note on the printed form),
+ * eq. 4.4 blur, eq. 4.5 disk rectangle, the disk blend, TAA eqs. 2.5 and
+ * 4.7-4.10 phased out after the disk border (§5.3).  Host code: doubles,
+ * malloc, libm.  Colours are codes in [0, 255] (doubles).
+ */
+#ifndef REF_FOV_H
+#define REF_FOV_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+typedef struct {
+    double cx, cy;    /* gaze, display pixels (screen [0, W] x [0, H]) */
+    double alpha;     /* K(x) = x^alpha */
+    double disk;      /* r_d / R */
+    int lp_w, lp_h;   /* log-polar buffer */
+} ref_fov_params_t;
+
+typedef struct {
+    int width, height, lp_w, lp_h;
+    double cx, cy, alpha;
+    double R, L;      /* farthest corner distance, L = ln R */
+    double r_disk;    /* r_d */
+    int l;            /* eq. 4.5 */
+    int u0;           /* first column carried (same rule as the firmware) */
+} ref_fov_geom_t;
+
+void ref_fov_geom(ref_fov_geom_t *g, int width, int height, const ref_fov_params_t *p);
+/* eq. 2.2: display point -> (u, v); r <= 1 gives u = 0. */
+void ref_fov_to_lp(const ref_fov_geom_t *g, double x, double y, double *u, double *v);
+/* exact inverse of eq. 2.2 (eq. 2.3 with r = e^(L K(u / w))). */
+void ref_fov_from_lp(const ref_fov_geom_t *g, double u, double v, double *x, double *y);
+/* eq. 4.5 in double: ceil(K^-1(ln r / L) w), also the unrounded value. */
+int ref_fov_disk_columns(const ref_fov_geom_t *g, double r, double *exact);
+/* eq. 4.4 sigma along u in columns before the [1/2, 2] clamp. */
+double ref_fov_sigma_u(const ref_fov_geom_t *g, double r, double u);
+
+typedef struct {
+    int width, height, taa;
+    double *hist;      /* W x H x 3 */
+    int have_hist;
+    uint32_t dt_prev_us;
+    double gaze_prev_x, gaze_prev_y;
+} ref_fov_t;
+
+int ref_fov_init(ref_fov_t *st, int width, int height, int taa);
+void ref_fov_free(ref_fov_t *st);
+/* Same inputs as tdc_fov_frame (mv: Q4 int16 pairs per log-polar sample or
+ * NULL); out: W x H x 3 doubles (codes). */
+void ref_fov_frame(ref_fov_t *st, const ref_fov_params_t *p, const uint8_t *lp, size_t lp_stride,
+                   const int16_t *mv, size_t mv_stride, const uint8_t *disk, size_t disk_stride, uint32_t dt_us,
+                   double *out);
+
+/* eq. 5.1 ray model: samples traced for a frame (log-polar columns [u0, w)
+ * plus the disk pixels on the screen) over W*H. */
+double ref_fov_ray_share(const ref_fov_geom_t *g, long disk_pixels);
+
+#endif

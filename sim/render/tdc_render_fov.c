@@ -1,0 +1,71 @@
+/*
+ * tdc_render_fov.c - sample positions of the FOVEATED mode (thesis §4.2.1,
+ * §4.2.3): the kernel log-polar buffer through the exact inverse of eq. 2.2
+ * and the uniformly sampled foveal disk.  The geometry (the columns u0..w-1
+ * the link carries, which pixels are in the disk) comes from the firmware
+ * (tdc_fov_geom, tdc_fov_disk_span), so renderer and controller agree on
+ * every sample; the positions themselves are double precision.
+ */
+#include <math.h>
+#include <stdlib.h>
+
+#include "tdc_fov.h"
+#include "tdc_fov_link.h"
+#include "tdc_render_internal.h"
+
+void tdc_render_halton(uint32_t f, double *jx, double *jy)
+{
+    double hx = 0, hy = 0;
+    for (uint32_t k = f + 1, b = 2; k; k /= 2, b *= 2) hx += (double)(k % 2) / b;
+    for (uint32_t k = f + 1, b = 3; k; k /= 3, b *= 3) hy += (double)(k % 3) / b;
+    *jx = hx - 0.5;
+    *jy = hy - 0.5;
+}
+
+int tdc_render_set_foveation(tdc_render_t *r, const tdc_render_fov_t *f, int *lp_samples, int *disk_pixels)
+{
+    if (!r || !f || !(f->delta > 0 && f->delta <= 1) || !(f->alpha >= 1 && f->alpha <= 8) ||
+        !(f->disk >= 0 && f->disk <= 1) || !(fabs(f->gaze_x) < 1e6 && fabs(f->gaze_y) < 1e6))
+        return -1;
+    /* delta quantised up to Q15 as the link header carries it (0.555 -> 18187) */
+    const uint16_t dq = (uint16_t)ceil(f->delta * 32768 - 1e-9);
+    tdc_fov_params_t p = {(int32_t)lround(f->gaze_x * 256), (int32_t)lround(f->gaze_y * 256),
+                          (uint16_t)lround(f->alpha * 256), (uint16_t)lround(f->disk * 32768),
+                          tdc_fov_lp_size(dq, (uint16_t)r->W), tdc_fov_lp_size(dq, (uint16_t)r->H)};
+    tdc_fov_geom_t g;
+    if (tdc_fov_geom(&g, (uint16_t)r->W, (uint16_t)r->H, &p) != TDC_OK) return -1;
+    const int nlp = (g.lp_w - g.u0) * g.lp_h;
+    const int nd = (int)tdc_fov_disk_pixels(&g);
+    float *xy = realloc(r->fov_xy, (size_t)(nlp + nd > 0 ? nlp + nd : 1) * 2 * sizeof(float));
+    if (!xy) return -1;
+    r->fov_xy = xy;
+    /* eq. 2.3 with the exact inverse: r = e^(L (u / w)^alpha), theta = 2 pi v / h */
+    const double cx = p.gaze_x_q8 / 256.0, cy = p.gaze_y_q8 / 256.0, alpha = p.alpha_q8 / 256.0;
+    const double ex = fmax(cx, r->W - cx), ey = fmax(cy, r->H - cy), L = log(sqrt(ex * ex + ey * ey));
+    size_t k = 0;
+    for (int j = 0; j < g.lp_h; j++) {
+        const double th = 2 * M_PI * (j + f->jy) / g.lp_h;
+        const double c = cos(th), s = sin(th);
+        for (int i = g.u0; i < g.lp_w; i++) {
+            const double u = fmax(i + f->jx, 0.0);
+            const double rad = exp(L * pow(u / g.lp_w, alpha));
+            xy[2 * k] = (float)(cx + rad * c);
+            xy[2 * k + 1] = (float)(cy + rad * s);
+            k++;
+        }
+    }
+    for (int j = 0; j < g.height; j++) {
+        int32_t x0;
+        const uint32_t n = tdc_fov_disk_span(&g, j, &x0);
+        for (uint32_t i = 0; i < n; i++) {
+            xy[2 * k] = (float)(x0 + (int32_t)i + 0.5);
+            xy[2 * k + 1] = (float)(j + 0.5);
+            k++;
+        }
+    }
+    r->fov_n = (int)k;
+    r->fov_lp = nlp;
+    if (lp_samples) *lp_samples = nlp;
+    if (disk_pixels) *disk_pixels = nd;
+    return 0;
+}
