@@ -64,3 +64,9 @@ demo: deps demo-sim
 # The default comparison on built-in scenes (< 5 minutes on 2 cores).
 demo-sim: $(TDC_SIM)
 	@sim/report/tdc_demo.sh $(TDC_SIM) $(or $(REPORT),report)
+
+# `make bench-sim`: simulated pixel-refreshes/s, peak memory and the stage
+# breakdown at headset scale (docs/simulator-performance.md).
+.PHONY: bench-sim
+bench-sim: deps $(TDC_SIM)
+	@tests/bench/bench_sim.sh $(TDC_SIM)

@@ -18,9 +18,16 @@
 
 #include <stddef.h>
 
+/* Loops of less work than tdc_par_min_work (pixels or samples) run serial:
+ * a parallel region costs a barrier, and on an oversubscribed host a
+ * barrier waits for a descheduled thread (tiny test images would spend
+ * their time there).  Default 32768; 0 threads everything (tests). */
+extern long tdc_par_min_work;
+
 #ifdef _OPENMP
 #include <omp.h>
-#define TDC_PAR_ROWS _Pragma("omp parallel for schedule(dynamic, 4)")
+#define TDC_PAR_PRAGMA(x) _Pragma(#x)
+#define TDC_PAR_FOR(work) TDC_PAR_PRAGMA(omp parallel for schedule(dynamic, 4) if ((long)(work) >= tdc_par_min_work))
 static inline void tdc_par_set_threads(int n)
 {
     omp_set_num_threads(n > 0 ? n : 1);
@@ -30,7 +37,7 @@ static inline int tdc_par_threads(void)
     return omp_get_max_threads();
 }
 #else
-#define TDC_PAR_ROWS
+#define TDC_PAR_FOR(work)
 static inline void tdc_par_set_threads(int n)
 {
     (void)n;

@@ -62,7 +62,7 @@ static int accumulate_shifted(double *out, const tdc_eye_slice_t *sl, int w, int
         col[2 * x + 1] = 3 * (x0 + 1 < w ? x0 + 1 : x0);
         fxs[x] = xs - x0;
     }
-    TDC_PAR_ROWS
+    TDC_PAR_FOR((size_t)w * h)
     for (int y = 0; y < h; y++) {
         double *o = out + 3 * (size_t)y * w;
         if (integer) {
@@ -141,7 +141,7 @@ int tdc_eye_ground_truth(const tdc_eye_cfg_t *cfg, tdc_source_t *src, double t_e
         double tm = t_end - T + (i + 0.5) * T / nsteps;
         double ox = v[0] * g * (tm - t_end), oy = v[1] * g * (tm - t_end);
         src->ground_truth(src, tm, ox, oy, scratch);
-        TDC_PAR_ROWS
+        TDC_PAR_FOR((size_t)cfg->width * cfg->height)
         for (int y = 0; y < cfg->height; y++) {
             for (size_t j = 3 * (size_t)y * cfg->width; j < 3 * (size_t)(y + 1) * cfg->width; j++) {
                 out[j] += scratch[j] / nsteps;

@@ -3,6 +3,8 @@
 
 #include "tdc_par.h"
 
+long tdc_par_min_work = 32768;
+
 static int edge_index(int i, int n, tdc_edge_t e)
 {
     if (e == TDC_EDGE_CLAMP || n == 1) {
@@ -22,7 +24,7 @@ static int edge_index(int i, int n, tdc_edge_t e)
         return -1;                                                                                                \
     }                                                                                                             \
     const int kn = 2 * r + 1;                                                                                     \
-    TDC_PAR_ROWS                                                                                                  \
+    TDC_PAR_FOR((size_t)w * h)                                                                                    \
     for (int y = 0; y < h; y++) {                                                                                 \
         T pad[TDC_FILTER_MAX_W + 2 * TDC_FILTER_MAX_R];                                                           \
         const T *row = in + (size_t)y * w;                                                                        \
@@ -41,7 +43,7 @@ static int edge_index(int i, int n, tdc_edge_t e)
             }                                                                                                     \
         }                                                                                                         \
     }                                                                                                             \
-    TDC_PAR_ROWS                                                                                                  \
+    TDC_PAR_FOR((size_t)w * h)                                                                                    \
     for (int y = 0; y < h; y++) {                                                                                 \
         T *o = out + (size_t)y * w;                                                                               \
         for (int x = 0; x < w; x++) {                                                                             \

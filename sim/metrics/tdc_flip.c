@@ -115,7 +115,7 @@ static int flip_color_prepare(const double *lin, int w, int h, double ppd, float
     float *plane[3] = {work, work + n, work + 2 * n};
     float *filt[3] = {work + 3 * n, work + 4 * n, work + 5 * n};
     float *f2 = work + 6 * n, *tmp = work + 7 * n;
-    TDC_PAR_ROWS
+    TDC_PAR_FOR((size_t)w * h)
     for (int y = 0; y < h; y++) {
         for (size_t i = (size_t)y * w; i < (size_t)(y + 1) * w; i++) {
             double o[3];
@@ -154,7 +154,7 @@ static int flip_color_prepare(const double *lin, int w, int h, double ppd, float
             if (tdc_sep_filter_f(plane[c], f2, tmp, w, h, k2, k2, r, TDC_EDGE_CLAMP)) {
                 return -1;
             }
-            TDC_PAR_ROWS
+            TDC_PAR_FOR((size_t)w * h)
             for (int y = 0; y < h; y++) {
                 for (size_t i = (size_t)y * w; i < (size_t)(y + 1) * w; i++) {
                     filt[c][i] += f2[i];
@@ -162,7 +162,7 @@ static int flip_color_prepare(const double *lin, int w, int h, double ppd, float
             }
         }
     }
-    TDC_PAR_ROWS
+    TDC_PAR_FOR((size_t)w * h)
     for (int y = 0; y < h; y++) {
         for (size_t i = (size_t)y * w; i < (size_t)(y + 1) * w; i++) {
             double c[3] = {filt[0][i], filt[1][i], filt[2][i]}, rgb[3], lab[3];
@@ -223,7 +223,7 @@ static int flip_features(const float *y, int w, int h, double ppd, float *edge, 
             tdc_sep_filter_f(y, gy, tmp, w, h, fg, d, r, TDC_EDGE_CLAMP)) {
             return -1;
         }
-        TDC_PAR_ROWS
+        TDC_PAR_FOR((size_t)w * h)
         for (int yr = 0; yr < h; yr++) {
             for (size_t i = (size_t)yr * w; i < (size_t)(yr + 1) * w; i++) {
                 o[i] = sqrtf(gx[i] * gx[i] + gy[i] * gy[i]);
@@ -257,7 +257,7 @@ double tdc_flip(const double *ref, const double *test, int w, int h, double ppd,
     rgb_to_lab_hunt(green, lg);
     rgb_to_lab_hunt(blue, lb);
     const double cmax = pow(hyab(lg, lb), qc);
-    TDC_PAR_ROWS
+    TDC_PAR_FOR((size_t)w * h)
     for (int y = 0; y < h; y++) {
         double sum = 0.0;
         for (size_t i = (size_t)y * w; i < (size_t)(y + 1) * w; i++) {

@@ -17,7 +17,7 @@ double tdc_psnr(const double *a, const double *b, size_t n, double peak)
     if (!rows) {
         return -1.0;
     }
-    TDC_PAR_ROWS
+    TDC_PAR_FOR(n)
     for (int r = 0; r < nrows; r++) {
         size_t i0 = (size_t)r * chunk, i1 = i0 + chunk < n ? i0 + chunk : n;
         double se = 0.0;
@@ -41,7 +41,7 @@ void tdc_metrics_encode(const double *lin, double *enc, size_t n)
 {
     const size_t chunk = 4096;
     int nrows = (int)((n + chunk - 1) / chunk);
-    TDC_PAR_ROWS
+    TDC_PAR_FOR(n)
     for (int r = 0; r < nrows; r++) {
         size_t i0 = (size_t)r * chunk, i1 = i0 + chunk < n ? i0 + chunk : n;
         for (size_t i = i0; i < i1; i++) {
@@ -78,7 +78,7 @@ double tdc_ssim(const double *a, const double *b, int w, int h, double data_rang
     double total = 0.0;
     int bad = 0;
     for (int c = 0; c < 3 && !bad; c++) {
-        TDC_PAR_ROWS
+        TDC_PAR_FOR((size_t)w * h)
         for (int yr = 0; yr < h; yr++) {
             for (size_t i = (size_t)yr * w; i < (size_t)(yr + 1) * w; i++) {
                 x[i] = a[3 * i + c];
@@ -93,7 +93,7 @@ double tdc_ssim(const double *a, const double *b, int w, int h, double data_rang
         bad |= tdc_sep_filter_d(xx, uxx, tmp, w, h, k, k, r, TDC_EDGE_REFLECT);
         bad |= tdc_sep_filter_d(yy, uyy, tmp, w, h, k, k, r, TDC_EDGE_REFLECT);
         bad |= tdc_sep_filter_d(xy, uxy, tmp, w, h, k, k, r, TDC_EDGE_REFLECT);
-        TDC_PAR_ROWS
+        TDC_PAR_FOR((size_t)w * h)
         for (int yy0 = pad; yy0 < h - pad; yy0++) {
             double s = 0.0;
             for (int xx0 = pad; xx0 < w - pad; xx0++) {

@@ -67,6 +67,8 @@ static void usage(FILE *f)
                "  -o, --out DIR           output folder: summary.csv, summary.md, series.csv, strip_*.png\n"
                "  -l, --label TEXT        run label in the report\n"
                "  -q, --quiet             no progress bar\n"
+               "      --times             print the wall seconds per stage (source, link, firmware, panel,\n"
+               "                          eye, metrics) on stderr\n"
                "      --list              list the modes\n"
                "  -h, --help              this help\n\nmodes:\n");
     for (int i = 0; i < n; i++) {
@@ -152,7 +154,7 @@ static int parse_num(const char *s, double lo, double hi, double *v, const char 
 int main(int argc, char **argv)
 {
     enum { O_SPEED = 256, O_ANGLE, O_CUT, O_PERS, O_PURSUIT, O_GAIN, O_EVERY, O_PPD, O_TRMS, O_GTSS, O_STRIP, O_LIST,
-           O_SPP, O_PROFILE, O_THREADS, O_EYES, O_STEREO, O_MONO, O_DISP, O_IPD };
+           O_SPP, O_PROFILE, O_THREADS, O_EYES, O_STEREO, O_MONO, O_DISP, O_IPD, O_TIMES };
     static const struct option opts[] = {
         {"scene", required_argument, 0, 's'},   {"mode", required_argument, 0, 'm'},
         {"panel", required_argument, 0, 'p'},   {"profile", required_argument, 0, O_PROFILE},
@@ -170,7 +172,7 @@ int main(int argc, char **argv)
         {"renderer", required_argument, 0, 'R'}, {"threads", required_argument, 0, O_THREADS},
         {"eyes", required_argument, 0, O_EYES}, {"stereo", no_argument, 0, O_STEREO},
         {"mono", no_argument, 0, O_MONO},       {"disparity", required_argument, 0, O_DISP},
-        {"ipd", required_argument, 0, O_IPD},
+        {"ipd", required_argument, 0, O_IPD},   {"times", no_argument, 0, O_TIMES},
         {"help", no_argument, 0, 'h'},          {0, 0, 0, 0}};
     tdc_sim_config_t cfg;
     tdc_sim_default_config(&cfg);
@@ -178,6 +180,7 @@ int main(int argc, char **argv)
     const char *renderer = NULL;
     int threads = 2;
     int size_given = 0, ppd_given = 0, eyes = 0;
+    tdc_sim_times_t times;
     double disparity = 4.0, ipd = 0.063;
     long frames = -1;
     double v;
@@ -208,6 +211,9 @@ int main(int argc, char **argv)
             break;
         case O_STEREO:
             eyes = 2;
+            break;
+        case O_TIMES:
+            cfg.times = &times;
             break;
         case O_MONO:
             eyes = 1;
@@ -479,6 +485,13 @@ int main(int argc, char **argv)
     int rc = res ? tdc_sim_run(&cfg, src, modes, nm, res, series) : -1;
     if (series) {
         fclose(series);
+    }
+    if (rc == 0 && cfg.times) {
+        fprintf(stderr,
+                "tdc-sim: stage wall seconds: source %.2f link %.2f firmware %.2f panel %.2f eye %.2f metrics %.2f "
+                "total %.2f\n",
+                times.source_s, times.link_s, times.firmware_s, times.panel_s, times.eye_s, times.metrics_s,
+                times.total_s);
     }
     if (rc == 0) {
         tdc_report_markdown(stdout, &cfg, res, nm);

@@ -284,7 +284,7 @@ static void mode_display_frame(sim_mode_t *m, tdc_source_t *src, int spp, tdc_si
  * ------------------------------------------------------------------- */
 static void crop_copy(const double *in, int w, int x0, int y0, int cw, int ch, double *out)
 {
-    TDC_PAR_ROWS
+    TDC_PAR_FOR((size_t)cw * ch)
     for (int y = 0; y < ch; y++) {
         memcpy(out + (size_t)y * cw * 3, in + 3 * ((size_t)(y + y0) * w + x0), sizeof(double) * 3 * (size_t)cw);
     }
@@ -317,7 +317,7 @@ static void eval_mode_eye(sim_mode_t *m, sim_eval_t *ev, const tdc_eye_cfg_t *ec
     }
     double w1 = wall_now();
     int nonfinite = 0;
-    TDC_PAR_ROWS
+    TDC_PAR_FOR((size_t)w * h)
     for (int y = 0; y < h; y++) {
         for (size_t k = 3 * (size_t)y * w; k < 3 * (size_t)(y + 1) * w; k++) {
             if (!isfinite(ev->perc[k])) {
@@ -338,7 +338,7 @@ static void eval_mode_eye(sim_mode_t *m, sim_eval_t *ev, const tdc_eye_cfg_t *ec
         tdc_sim_stage(m, "metrics (out of memory or size beyond the filters)", -1);
         return;
     }
-    TDC_PAR_ROWS
+    TDC_PAR_FOR((size_t)cw * ch)
     for (int y = 0; y < ch; y++) {
         for (size_t k = 3 * (size_t)y * cw; k < 3 * (size_t)(y + 1) * cw; k++) {
             ev->err[k] = ev->enc_p[k] - enc_g[k];
@@ -349,7 +349,7 @@ static void eval_mode_eye(sim_mode_t *m, sim_eval_t *ev, const tdc_eye_cfg_t *ec
         /* frame-to-frame change of the motion-compensated error: the
          * retinal point at x now was at x - v dt in the last image */
         double sx = -v[0] * cfg->pursuit_gain * (te - prev_te), sy = -v[1] * cfg->pursuit_gain * (te - prev_te);
-        TDC_PAR_ROWS
+        TDC_PAR_FOR((size_t)cw * ch)
         for (int y = 0; y < ch; y++) {
             double se = 0.0;
             for (int x = 0; x < cw; x++) {

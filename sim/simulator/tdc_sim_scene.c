@@ -401,7 +401,7 @@ static void src_samples(tdc_source_t *s, double t, int n, const double *xy, int 
     }
     const code_table_t *ct = sc->codes;
     const int blk = 256; /* samples per work item */
-    TDC_PAR_ROWS
+    TDC_PAR_FOR((size_t)n)
     for (int b = 0; b < (n + blk - 1) / blk; b++) {
         for (int i = b * blk; i < n && i < (b + 1) * blk; i++) {
             double x = xy[2 * i], y = xy[2 * i + 1];
@@ -565,7 +565,7 @@ static int grid_lin(const tdc_source_t *s, double t, double ox, double oy, int g
         for (int q = 0; q < n; q++) {
             pan_col((q / g) + ox + ((q % g) + 0.5) / g + sc->p.shift_x - du, &cols[q]);
         }
-        TDC_PAR_ROWS
+        TDC_PAR_FOR((size_t)W * H)
         for (int y = 0; y < H; y++) {
             double *o = lin + 3 * (size_t)y * W;
             memset(o, 0, sizeof(double) * 3 * (size_t)W);
@@ -579,7 +579,7 @@ static int grid_lin(const tdc_source_t *s, double t, double ox, double oy, int g
         free(cols);
         return 0;
     }
-    TDC_PAR_ROWS
+    TDC_PAR_FOR((size_t)W * H)
     for (int y = 0; y < H; y++) {
         for (int x = 0; x < W; x++) {
             double acc[3] = {0, 0, 0};
@@ -627,7 +627,7 @@ static int src_frame(tdc_source_t *s, double t, double jx, double jy, int spp, u
     }
     const code_table_t *ct = sc->codes;
     size_t n = (size_t)s->width * s->height;
-    TDC_PAR_ROWS
+    TDC_PAR_FOR((size_t)s->width * s->height)
     for (int y = 0; y < s->height; y++) {
         for (size_t i = (size_t)y * s->width; i < (size_t)(y + 1) * s->width; i++) {
             for (int k = 0; k < 3; k++) {
