@@ -102,7 +102,7 @@ struct sim_mode {
     tdc_eye_slice_t ring[TDC_SIM_RING_MAX];
     double lut[3 * 256]; /* OLED: linear light of each code per channel */
     /* metrics of this eye (the buffers of one evaluation are the run's) */
-    double *err_prev;
+    float *err_prev; /* the last instant's encoded error (crop), for flicker */
     int have_err_prev;
     double sum_psnr, sum_ssim, sum_flip, sum_flicker;
     int n_flicker;

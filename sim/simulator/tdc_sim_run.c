@@ -50,7 +50,8 @@ static double wall_now(void)
 /* What one evaluation instant needs, shared by every mode (modes are
  * evaluated one after another, so one set of buffers serves all). */
 typedef struct {
-    double *gt[2], *crop_g[2], *enc_g[2]; /* per eye: ground truth, its crop, encoded */
+    double *gt;                 /* ground truth of the eye being evaluated (cropped at once) */
+    double *crop_g[2], *enc_g[2]; /* per eye: the ground truth's crop, encoded */
     double *scratch, *perc, *crop_p, *enc_p, *err, *flipmap, *rows;
     double *xy; /* sample positions (render calls are sequential too) */
 } sim_eval_t;
@@ -58,10 +59,10 @@ typedef struct {
 static void eval_free(sim_eval_t *e)
 {
     for (int k = 0; k < 2; k++) {
-        free(e->gt[k]);
         free(e->crop_g[k]);
         free(e->enc_g[k]);
     }
+    free(e->gt);
     free(e->scratch);
     free(e->perc);
     free(e->crop_p);
@@ -78,10 +79,10 @@ static int eval_alloc(sim_eval_t *e, int w, int h, int eyes)
     memset(e, 0, sizeof(*e));
     int bad = 0;
     for (int k = 0; k < eyes; k++) {
-        bad |= !(e->gt[k] = malloc(sizeof(double) * n3));
         bad |= !(e->crop_g[k] = malloc(sizeof(double) * n3));
         bad |= !(e->enc_g[k] = malloc(sizeof(double) * n3));
     }
+    bad |= !(e->gt = malloc(sizeof(double) * n3));
     bad |= !(e->scratch = malloc(sizeof(double) * n3));
     bad |= !(e->perc = malloc(sizeof(double) * n3));
     bad |= !(e->crop_p = malloc(sizeof(double) * n3));
@@ -147,7 +148,7 @@ static int mode_init(sim_mode_t *m, const tdc_mode_desc_t *d, tdc_sim_result_t *
     m->render = calloc(n3, 1);
     m->wanted = calloc(n3, 1);
     m->out = calloc(n3, 1);
-    m->err_prev = calloc(n3, sizeof(double));
+    m->err_prev = calloc(n3, sizeof(float));
     if (!m->render || !m->wanted || !m->out || !m->err_prev) {
         return -1;
     }
@@ -301,6 +302,20 @@ static void progress(double frac, const char *label)
     fflush(stderr);
 }
 
+/* tdc_eye_bilinear of a float image (the last instant's error, kept in
+ * single precision: 4 bytes per sample per mode and eye instead of 8). */
+static double bilinear_f(const float *img, int w, int h, double x, double y, int c)
+{
+    x = x < 0.0 ? 0.0 : (x > w - 1 ? w - 1 : x);
+    y = y < 0.0 ? 0.0 : (y > h - 1 ? h - 1 : y);
+    int x0 = (int)x, y0 = (int)y;
+    int x1 = x0 + 1 < w ? x0 + 1 : x0, y1 = y0 + 1 < h ? y0 + 1 : y0;
+    double fx = x - x0, fy = y - y0;
+    double a = img[3 * ((size_t)y0 * w + x0) + c], b = img[3 * ((size_t)y0 * w + x1) + c];
+    double d = img[3 * ((size_t)y1 * w + x0) + c], e = img[3 * ((size_t)y1 * w + x1) + c];
+    return (a + (b - a) * fx) * (1.0 - fy) + (d + (e - d) * fx) * fy;
+}
+
 /* Perceived error of one mode's eye at te against that eye's ground truth
  * (already cropped and encoded in ev); accumulates into m. */
 static void eval_mode_eye(sim_mode_t *m, sim_eval_t *ev, const tdc_eye_cfg_t *ec, const tdc_sim_config_t *cfg, long j,
@@ -354,7 +369,7 @@ static void eval_mode_eye(sim_mode_t *m, sim_eval_t *ev, const tdc_eye_cfg_t *ec
             double se = 0.0;
             for (int x = 0; x < cw; x++) {
                 for (int c = 0; c < 3; c++) {
-                    double pe = tdc_eye_bilinear(m->err_prev, cw, ch, x + sx, y + sy, c);
+                    double pe = bilinear_f(m->err_prev, cw, ch, x + sx, y + sy, c);
                     double d = ev->err[3 * ((size_t)y * cw + x) + c] - pe;
                     se += d * d;
                 }
@@ -365,7 +380,12 @@ static void eval_mode_eye(sim_mode_t *m, sim_eval_t *ev, const tdc_eye_cfg_t *ec
         m->sum_flicker += flick;
         m->n_flicker++;
     }
-    memcpy(m->err_prev, ev->err, cn * sizeof(double));
+    TDC_PAR_FOR((size_t)cw * ch)
+    for (int y = 0; y < ch; y++) {
+        for (size_t k = 3 * (size_t)y * cw; k < 3 * (size_t)(y + 1) * cw; k++) {
+            m->err_prev[k] = (float)ev->err[k];
+        }
+    }
     m->have_err_prev = 1;
     m->sum_psnr += psnr;
     m->sum_ssim += ssim;
@@ -507,9 +527,9 @@ int tdc_sim_run(const tdc_sim_config_t *cfg, tdc_source_t *src, const tdc_mode_d
         src->pursuit(src, te, v);
         for (int e = 0; e < eyes; e++) {
             double w0 = wall_now();
-            tdc_eye_ground_truth(&ec, srcs[e], te, v, gt_steps, ev.gt[e], ev.scratch);
+            tdc_eye_ground_truth(&ec, srcs[e], te, v, gt_steps, ev.gt, ev.scratch);
             double w1 = wall_now();
-            crop_copy(ev.gt[e], w, margin, margin, cw, ch, ev.crop_g[e]);
+            crop_copy(ev.gt, w, margin, margin, cw, ch, ev.crop_g[e]);
             tdc_metrics_encode(ev.crop_g[e], ev.enc_g[e], (size_t)cw * ch * 3);
             if (tm) {
                 tm->source_s += w1 - w0;

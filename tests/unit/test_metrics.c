@@ -72,6 +72,21 @@ static void make_pairs(pair_t *p, int n)
     }
 }
 
+/* dir/p<k>.bin: pair k's two images (doubles) for the Python references. */
+static void write_pairs(const pair_t *p, int n, const char *dir)
+{
+    for (int k = 0; k < n; k++) {
+        char path[256];
+        snprintf(path, sizeof(path), "%s/p%d.bin", dir, k);
+        FILE *f = fopen(path, "wb");
+        assert_non_null(f);
+        size_t m = 3 * (size_t)p[k].w * p[k].h;
+        assert_int_equal(fwrite(p[k].a, sizeof(double), m, f), m);
+        assert_int_equal(fwrite(p[k].b, sizeof(double), m, f), m);
+        fclose(f);
+    }
+}
+
 static void test_psnr_ssim_vs_skimage(void **state)
 {
     (void)state;
@@ -79,16 +94,7 @@ static void test_psnr_ssim_vs_skimage(void **state)
     make_pairs(p, 4);
     char dir[] = "/tmp/tdc_metrics_XXXXXX";
     assert_non_null(mkdtemp(dir));
-    for (int k = 0; k < 4; k++) {
-        char path[256];
-        snprintf(path, sizeof(path), "%s/p%d.bin", dir, k);
-        FILE *f = fopen(path, "wb");
-        assert_non_null(f);
-        size_t n = 3 * (size_t)p[k].w * p[k].h;
-        assert_int_equal(fwrite(p[k].a, sizeof(double), n, f), n);
-        assert_int_equal(fwrite(p[k].b, sizeof(double), n, f), n);
-        fclose(f);
-    }
+    write_pairs(p, 4, dir);
     char cmd[2048];
     snprintf(cmd, sizeof(cmd),
              "/usr/bin/python3 -c \""
@@ -203,16 +209,7 @@ static void test_flip_vs_nvlabs(void **state)
     make_pairs(p, 4);
     char dir[] = "/tmp/tdc_flip_XXXXXX";
     assert_non_null(mkdtemp(dir));
-    for (int k = 0; k < 4; k++) {
-        char path[256];
-        snprintf(path, sizeof(path), "%s/p%d.bin", dir, k);
-        FILE *f = fopen(path, "wb");
-        assert_non_null(f);
-        size_t n = 3 * (size_t)p[k].w * p[k].h;
-        assert_int_equal(fwrite(p[k].a, sizeof(double), n, f), n);
-        assert_int_equal(fwrite(p[k].b, sizeof(double), n, f), n);
-        fclose(f);
-    }
+    write_pairs(p, 4, dir);
     static const char *const py =
         "import numpy as np, sys\n"
         "from scipy import signal\n"

@@ -146,18 +146,24 @@ static int failing_subframe(tdc_source_t *s, int slot, int shadow, uint32_t fram
     return frame == 3 ? -1 : 0;
 }
 
+/* A 32x24 pan run of `frames` refreshes at hz, 1x1 ground truth. */
+static inline void tiny_config(tdc_sim_config_t *cfg, int hz, int frames)
+{
+    tdc_sim_default_config(cfg);
+    cfg->width = cfg->scene.width = 32;
+    cfg->height = cfg->scene.height = 24;
+    cfg->refresh_hz = hz;
+    cfg->duration_s = (double)frames / hz;
+    cfg->progress = 0;
+    cfg->scene.gt_ss = 1;
+}
+
 static void test_stage_error_ends_run(void **state)
 {
     (void)state;
 #if TDC_SIM_HAVE_ASM
     tdc_sim_config_t cfg;
-    tdc_sim_default_config(&cfg);
-    cfg.width = cfg.scene.width = 32;
-    cfg.height = cfg.scene.height = 24;
-    cfg.refresh_hz = 240;
-    cfg.duration_s = 12.0 / 240;
-    cfg.progress = 0;
-    cfg.scene.gt_ss = 1;
+    tiny_config(&cfg, 240, 12);
     tdc_source_t *src = tdc_scene_create(&cfg.scene, NULL);
     assert_non_null(src);
     src->subframe = failing_subframe;
@@ -176,13 +182,7 @@ static void test_refused_rate(void **state)
     (void)state;
 #if TDC_SIM_HAVE_TRM
     tdc_sim_config_t cfg;
-    tdc_sim_default_config(&cfg);
-    cfg.width = cfg.scene.width = 32;
-    cfg.height = cfg.scene.height = 24;
-    cfg.refresh_hz = 30; /* below TRM's minimum refresh */
-    cfg.duration_s = 4.0 / 30;
-    cfg.progress = 0;
-    cfg.scene.gt_ss = 1;
+    tiny_config(&cfg, 30, 4); /* below TRM's minimum refresh */
     tdc_source_t *src = tdc_scene_create(&cfg.scene, NULL);
     assert_non_null(src);
     const tdc_mode_desc_t *modes[2] = {tdc_sim_mode_find("full"), tdc_sim_mode_find("trm50")};
