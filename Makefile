@@ -98,8 +98,9 @@ deps:
 # Generated tables: one C file + config header per panel profile.
 # ---------------------------------------------------------------------------
 TABLEGEN := $(BUILD)/tools/tdc-tablegen
-$(TABLEGEN): hosttools/tablegen/tdc_tablegen.c $(wildcard hosttools/tablegen/*.h) | $(BUILD)/tools
-	gcc -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror -O2 -Ifirmware $(filter %.c,$^) -o $@ -lm
+$(TABLEGEN): hosttools/tablegen/tdc_tablegen.c hosttools/common/tdc_tool.c $(wildcard hosttools/tablegen/*.h) \
+             hosttools/common/tdc_tool.h | $(BUILD)/tools
+	gcc -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror -O2 -Ifirmware -Ihosttools/common $(filter %.c,$^) -o $@ -lm
 
 $(GEN)/tdc_panel_%.c $(GEN)/tdc_panel_%_config.h: boards/panels/%.panel $(TABLEGEN) | $(GEN)
 	$(TABLEGEN) $< $(GEN)

@@ -41,7 +41,7 @@ const char *tdc_status_text(tdc_status_t st)
     case TDC_ERR_FRAME: return "frame out of sequence";
     case TDC_ERR_STALL: return "request refused (endpoint stalled)";
     /* The image texts are what tdc-usb prints (tests/usb, tests/vm match them). */
-    case TDC_ERR_IMAGE_SHORT: return "shorter than the 32-byte image header";
+    case TDC_ERR_IMAGE_SHORT: return "shorter than the 48-byte image header";
     case TDC_ERR_IMAGE_MAGIC: return "not a tdc firmware image (bad magic)";
     case TDC_ERR_IMAGE_HEADER: return "unknown image header version or length";
     case TDC_ERR_IMAGE_SIZE: return "image size does not match the header's payload length";

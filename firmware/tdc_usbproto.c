@@ -64,9 +64,12 @@ static tdc_status_t image_check_header(const uint8_t hdr[TDC_IMAGE_HEADER_LEN],
         return TDC_ERR_IMAGE_SHORT;
     if (tdc_get_le32(hdr + TDC_IMAGE_OFF_MAGIC) != TDC_IMAGE_MAGIC)
         return TDC_ERR_IMAGE_MAGIC;
-    if (tdc_get_le16(hdr + TDC_IMAGE_OFF_HDR_VERSION) != 1u ||
+    if (tdc_get_le16(hdr + TDC_IMAGE_OFF_HDR_VERSION) != TDC_IMAGE_HEADER_VERSION ||
         tdc_get_le16(hdr + TDC_IMAGE_OFF_HDR_LEN) != TDC_IMAGE_HEADER_LEN)
         return TDC_ERR_IMAGE_HEADER;
+    for (uint32_t i = TDC_IMAGE_OFF_RESERVED; i < TDC_IMAGE_HEADER_LEN; i++)
+        if (hdr[i] != 0u)
+            return TDC_ERR_IMAGE_HEADER;
     if (slot_bytes != 0u && total_len > slot_bytes)
         return TDC_ERR_IMAGE_TOO_BIG;
     if (tdc_get_le32(hdr + TDC_IMAGE_OFF_PAYLOAD_LEN) != total_len - TDC_IMAGE_HEADER_LEN)
@@ -95,13 +98,53 @@ void tdc_image_make_header(uint8_t hdr[TDC_IMAGE_HEADER_LEN], const uint8_t *pay
 {
     memset(hdr, 0, TDC_IMAGE_HEADER_LEN);
     tdc_put_le32(hdr + TDC_IMAGE_OFF_MAGIC, TDC_IMAGE_MAGIC);
-    tdc_put_le16(hdr + TDC_IMAGE_OFF_HDR_VERSION, 1u);
+    tdc_put_le16(hdr + TDC_IMAGE_OFF_HDR_VERSION, (uint16_t)TDC_IMAGE_HEADER_VERSION);
     tdc_put_le16(hdr + TDC_IMAGE_OFF_HDR_LEN, (uint16_t)TDC_IMAGE_HEADER_LEN);
     tdc_put_le32(hdr + TDC_IMAGE_OFF_PAYLOAD_LEN, payload_len);
     tdc_put_le32(hdr + TDC_IMAGE_OFF_PAYLOAD_CRC, tdc_usbp_crc32(payload, payload_len));
     tdc_put_le32(hdr + TDC_IMAGE_OFF_FW_VERSION, fw_version);
     for (uint32_t i = 0; board != NULL && i < TDC_IMAGE_BOARD_LEN && board[i] != '\0'; i++)
         hdr[TDC_IMAGE_OFF_BOARD + i] = (uint8_t)board[i];
+}
+
+/* DFU suffix CRC: the CRC-32 register (init 0xFFFFFFFF, reflected
+ * 0xEDB88320) over every byte before the CRC field, not inverted at the
+ * end: what dfu-util and dfu-suffix compute (dfu_file.c). */
+tdc_dfu_suffix_status_t tdc_dfu_suffix_check(const uint8_t *file, uint32_t len, uint16_t vid,
+                                             uint16_t pid, uint32_t *image_len)
+{
+    *image_len = len;
+    if (file == NULL || len < TDC_DFU_SUFFIX_LEN)
+        return TDC_DFU_SUFFIX_NONE;
+    const uint8_t *sx = file + len - TDC_DFU_SUFFIX_LEN;
+    if (sx[TDC_DFU_SUFFIX_OFF_SIG] != 'U' || sx[TDC_DFU_SUFFIX_OFF_SIG + 1] != 'F' ||
+        sx[TDC_DFU_SUFFIX_OFF_SIG + 2] != 'D' || sx[TDC_DFU_SUFFIX_OFF_LEN] < TDC_DFU_SUFFIX_LEN ||
+        sx[TDC_DFU_SUFFIX_OFF_LEN] > len)
+        return TDC_DFU_SUFFIX_NONE;
+    if (tdc_usbp_crc32_update(0xFFFFFFFFu, file, len - 4u) != tdc_get_le32(sx + TDC_DFU_SUFFIX_OFF_CRC))
+        return TDC_DFU_SUFFIX_ERR_CRC;
+    const uint16_t fv = tdc_get_le16(sx + TDC_DFU_SUFFIX_OFF_VID);
+    const uint16_t fp = tdc_get_le16(sx + TDC_DFU_SUFFIX_OFF_PID);
+    if ((fv != 0xFFFFu && fv != vid) || (fp != 0xFFFFu && fp != pid))
+        return TDC_DFU_SUFFIX_ERR_ID;
+    *image_len = len - sx[TDC_DFU_SUFFIX_OFF_LEN];
+    return TDC_DFU_SUFFIX_OK;
+}
+
+void tdc_dfu_suffix_make(uint8_t out[TDC_DFU_SUFFIX_LEN], const uint8_t *file, uint32_t len,
+                         uint16_t vid, uint16_t pid)
+{
+    tdc_put_le16(out + TDC_DFU_SUFFIX_OFF_BCD_DEVICE, 0xFFFFu);
+    tdc_put_le16(out + TDC_DFU_SUFFIX_OFF_PID, pid);
+    tdc_put_le16(out + TDC_DFU_SUFFIX_OFF_VID, vid);
+    tdc_put_le16(out + TDC_DFU_SUFFIX_OFF_BCD_DFU, 0x0100u);
+    out[TDC_DFU_SUFFIX_OFF_SIG] = 'U';
+    out[TDC_DFU_SUFFIX_OFF_SIG + 1] = 'F';
+    out[TDC_DFU_SUFFIX_OFF_SIG + 2] = 'D';
+    out[TDC_DFU_SUFFIX_OFF_LEN] = (uint8_t)TDC_DFU_SUFFIX_LEN;
+    uint32_t crc = tdc_usbp_crc32_update(0xFFFFFFFFu, file, len);
+    crc = tdc_usbp_crc32_update(crc, out, TDC_DFU_SUFFIX_OFF_CRC);
+    tdc_put_le32(out + TDC_DFU_SUFFIX_OFF_CRC, crc);
 }
 
 const char *tdc_dfu_status_name(tdc_dfu_status_t st)
@@ -132,7 +175,9 @@ uint32_t tdc_usbp_device_descriptor(uint8_t out[18])
         0x00, 0x00, 0x00, 64, /* class per interface, ep0 max packet 64 */
         (uint8_t)(TDC_USB_VID & 0xFFu), (uint8_t)(TDC_USB_VID >> 8),
         (uint8_t)(TDC_USB_PID & 0xFFu), (uint8_t)(TDC_USB_PID >> 8),
-        0x00, TDC_USB_PROTO_VERSION, /* bcdDevice = protocol version */
+        /* bcdDevice = protocol version, 0x0001 (little-endian: low byte first;
+         * it read 0x0100 before, issue 19) */
+        (uint8_t)(TDC_USB_PROTO_VERSION & 0xFFu), (uint8_t)(TDC_USB_PROTO_VERSION >> 8),
         1, 2, 3, 1};                  /* strings, 1 configuration */
     memcpy(out, dev, sizeof dev);
     return (uint32_t)sizeof dev;
@@ -214,7 +259,8 @@ void tdc_usbp_parse_setup(const uint8_t raw[8], tdc_usbp_setup_t *out)
 static void put_name(uint8_t *dst, const char *name)
 {
     memset(dst, 0, TDC_USB_INFO_NAME_LEN);
-    for (uint32_t i = 0; name != NULL && i + 1u < TDC_USB_INFO_NAME_LEN && name[i] != '\0'; i++)
+    /* NUL padded; a name of exactly 16 characters fills the field */
+    for (uint32_t i = 0; name != NULL && i < TDC_USB_INFO_NAME_LEN && name[i] != '\0'; i++)
         dst[i] = (uint8_t)name[i];
 }
 
@@ -255,7 +301,8 @@ static tdc_status_t reply_in(const uint8_t *src, uint32_t n, const tdc_usbp_setu
         n = setup->w_length;
     if (n > reply_cap)
         return TDC_ERR_ARG;
-    memcpy(reply, src, n);
+    if (n > 0u) /* reply may be NULL with capacity 0 (wLength 0): no memcpy(NULL, .., 0) */
+        memcpy(reply, src, n);
     *reply_len = n;
     return TDC_OK;
 }
@@ -271,15 +318,26 @@ static tdc_status_t dfu_fail(tdc_usbp_t *s, tdc_dfu_status_t st)
     return TDC_ERR_STALL;
 }
 
+static unsigned inactive_slot(const tdc_usbp_t *s)
+{
+    return s->dfu_active_slot ^ 1u;
+}
+
+static uint32_t slot_base(const tdc_usbp_t *s, unsigned slot)
+{
+    return slot * s->cfg.flash.slot_bytes;
+}
+
 /* Manifestation: the downloaded bytes must form a valid image for this
- * board.  Reads the slot back in 64-byte pieces (CRC while reading). */
+ * board.  Reads the inactive slot back in 64-byte pieces (CRC while reading). */
 static tdc_dfu_status_t dfu_manifest(tdc_usbp_t *s)
 {
     uint8_t hdr[TDC_IMAGE_HEADER_LEN];
     const tdc_usbp_flash_t *f = &s->cfg.flash;
+    const uint32_t base = slot_base(s, inactive_slot(s));
     if (s->dfu_received < TDC_IMAGE_HEADER_LEN)
         return TDC_DFU_ERR_NOTDONE;
-    if (f->read(f->ctx, 0, hdr, TDC_IMAGE_HEADER_LEN) != 0)
+    if (f->read(f->ctx, base, hdr, TDC_IMAGE_HEADER_LEN) != 0)
         return TDC_DFU_ERR_VERIFY;
     tdc_status_t st = image_check_header(hdr, s->dfu_received, s->cfg.board_name,
                                                f->slot_bytes);
@@ -295,7 +353,7 @@ static tdc_dfu_status_t dfu_manifest(tdc_usbp_t *s)
         uint32_t n = s->dfu_received - off;
         if (n > sizeof chunk)
             n = (uint32_t)sizeof chunk;
-        if (f->read(f->ctx, off, chunk, n) != 0)
+        if (f->read(f->ctx, base + off, chunk, n) != 0)
             return TDC_DFU_ERR_VERIFY;
         crc = tdc_usbp_crc32_update(crc, chunk, n);
         off += n;
@@ -321,6 +379,10 @@ static tdc_status_t dfu_request(tdc_usbp_t *s, const tdc_usbp_setup_t *setup,
                 return dfu_fail(s, TDC_DFU_ERR_NOTDONE);
             s->dfu_received = 0;
             s->dfu_next_block = setup->w_value;
+            /* the inactive slot is about to be overwritten: it no longer
+             * holds an image to boot or upload; the running slot is untouched */
+            s->dfu_slot_image[inactive_slot(s)] = 0;
+            s->dfu_pending = 0;
         } else if (s->dfu_state == TDC_DFU_STATE_DNLOAD_IDLE) {
             if (setup->w_length == 0u) {
                 s->dfu_state = TDC_DFU_STATE_MANIFEST_SYNC;
@@ -334,17 +396,19 @@ static tdc_status_t dfu_request(tdc_usbp_t *s, const tdc_usbp_setup_t *setup,
             return dfu_fail(s, TDC_DFU_ERR_STALLEDPKT);
         if ((uint64_t)s->dfu_received + setup->w_length > f->slot_bytes)
             return dfu_fail(s, TDC_DFU_ERR_ADDRESS);
-        if (f->write(f->ctx, s->dfu_received, data_out, setup->w_length) != 0)
+        if (f->write(f->ctx, slot_base(s, inactive_slot(s)) + s->dfu_received, data_out,
+                     setup->w_length) != 0)
             return dfu_fail(s, TDC_DFU_ERR_WRITE);
         s->dfu_received += setup->w_length;
         s->dfu_next_block = (uint16_t)(s->dfu_next_block + 1u);
-        s->dfu_image_bytes = 0; /* the slot no longer holds a checked image */
         s->dfu_state = TDC_DFU_STATE_DNLOAD_SYNC;
         return TDC_OK;
 
     case TDC_DFU_GETSTATUS: {
         if (!dir_in || setup->w_length < TDC_DFU_GETSTATUS_LEN)
             return dfu_fail(s, TDC_DFU_ERR_STALLEDPKT);
+        if (reply_cap < TDC_DFU_GETSTATUS_LEN) /* caller error: answer nothing, change nothing */
+            return TDC_ERR_ARG;
         uint32_t poll_ms = 0;
         if (s->dfu_state == TDC_DFU_STATE_DNLOAD_SYNC) {
             s->dfu_state = TDC_DFU_STATE_DNLOAD_IDLE; /* writes complete synchronously */
@@ -355,7 +419,8 @@ static tdc_status_t dfu_request(tdc_usbp_t *s, const tdc_usbp_setup_t *setup,
                 s->dfu_status = st;
                 s->cnt.dfu_errors++;
             } else {
-                s->dfu_image_bytes = s->dfu_received;
+                s->dfu_slot_image[inactive_slot(s)] = s->dfu_received;
+                s->dfu_pending = 1; /* booted at the next reset (activation) */
                 s->dfu_state = TDC_DFU_STATE_MANIFEST;
                 poll_ms = DFU_MANIFEST_POLL_MS;
             }
@@ -397,16 +462,21 @@ static tdc_status_t dfu_request(tdc_usbp_t *s, const tdc_usbp_setup_t *setup,
     case TDC_DFU_UPLOAD: {
         if (!dir_in || setup->w_length > TDC_DFU_TRANSFER_SIZE)
             return dfu_fail(s, TDC_DFU_ERR_STALLEDPKT);
-        if (s->dfu_state == TDC_DFU_STATE_IDLE)
+        if (s->dfu_state == TDC_DFU_STATE_IDLE) {
+            /* the newest good image: the one waiting to be booted, else the
+             * running one (a failed download never hides the last good image) */
+            const unsigned in = inactive_slot(s);
+            s->dfu_upload_slot = (uint8_t)(s->dfu_pending && s->dfu_slot_image[in] ? in : s->dfu_active_slot);
             s->dfu_upload_pos = 0;
-        else if (s->dfu_state != TDC_DFU_STATE_UPLOAD_IDLE)
+        } else if (s->dfu_state != TDC_DFU_STATE_UPLOAD_IDLE) {
             return dfu_fail(s, TDC_DFU_ERR_STALLEDPKT);
-        uint32_t n = s->dfu_image_bytes - s->dfu_upload_pos;
+        }
+        uint32_t n = s->dfu_slot_image[s->dfu_upload_slot] - s->dfu_upload_pos;
         if (n > setup->w_length)
             n = setup->w_length;
         if (n > reply_cap)
             return TDC_ERR_ARG;
-        if (n > 0u && f->read(f->ctx, s->dfu_upload_pos, reply, n) != 0)
+        if (n > 0u && f->read(f->ctx, slot_base(s, s->dfu_upload_slot) + s->dfu_upload_pos, reply, n) != 0)
             return dfu_fail(s, TDC_DFU_ERR_VERIFY);
         s->dfu_upload_pos += n;
         /* a short frame ends the upload (DFU 1.1 §6.2) */
@@ -415,9 +485,44 @@ static tdc_status_t dfu_request(tdc_usbp_t *s, const tdc_usbp_setup_t *setup,
         return TDC_OK;
     }
 
-    default: /* DETACH is meaningless in DFU mode */
+    case TDC_DFU_DETACH:
+        /* DFU 1.1 semantics chosen here (docs/usb-protocol.md): the interface
+         * is in DFU mode and manifestation tolerant, so DETACH does not
+         * re-enumerate; it is accepted in dfuIDLE and arms the activation,
+         * which the next USB reset performs (dfu-util -R: DETACH, then a
+         * bus reset).  A reset alone activates too.  Elsewhere: STALL. */
+        if (dir_in || s->dfu_state != TDC_DFU_STATE_IDLE)
+            return dfu_fail(s, TDC_DFU_ERR_STALLEDPKT);
+        s->detach_pending = 1;
+        return TDC_OK;
+
+    default:
         return dfu_fail(s, TDC_DFU_ERR_STALLEDPKT);
     }
+}
+
+int tdc_usbp_bus_reset(tdc_usbp_t *s)
+{
+    if (s == NULL)
+        return 0;
+    int switched = 0;
+    const unsigned in = inactive_slot(s);
+    if (s->dfu_pending && s->dfu_slot_image[in] != 0u) {
+        s->dfu_active_slot = (uint8_t)in;
+        switched = 1;
+    }
+    s->dfu_pending = 0;
+    s->detach_pending = 0;
+    s->dfu_state = TDC_DFU_STATE_IDLE;
+    s->dfu_status = TDC_DFU_OK;
+    s->dfu_upload_pos = 0;
+    s->dfu_received = 0;
+    return switched;
+}
+
+uint32_t tdc_usbp_slot_image(const tdc_usbp_t *s, unsigned slot)
+{
+    return s != NULL && slot < 2u ? s->dfu_slot_image[slot] : 0u;
 }
 
 /* ---------------------------------------------------------------------

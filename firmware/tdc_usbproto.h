@@ -107,19 +107,51 @@ typedef enum {
 #define TDC_DFU_TRANSFER_SIZE 1024u /* wTransferSize of the DFU functional descriptor */
 #define TDC_DFU_GETSTATUS_LEN 6u
 
-/* tdc firmware image = 32-byte header + payload (what DFU downloads). */
+/* tdc firmware image = 48-byte header + payload (what DFU downloads).
+ * Header version 2: the board field holds 16 characters, the longest board
+ * name (stm32h747i-disco) and the BOARD_INFO name field; version 1 had 12
+ * and no image could ever name that board (issue 19). */
 #define TDC_IMAGE_MAGIC 0x46434454u /* "TDCF" */
-#define TDC_IMAGE_HEADER_LEN 32u
-#define TDC_IMAGE_BOARD_LEN 12u
+#define TDC_IMAGE_HEADER_VERSION 2u
+#define TDC_IMAGE_HEADER_LEN 48u
+#define TDC_IMAGE_BOARD_LEN 16u     /* = TDC_USB_INFO_NAME_LEN; NUL padded, not terminated at 16 */
 enum {
     TDC_IMAGE_OFF_MAGIC = 0,       /* u32 */
-    TDC_IMAGE_OFF_HDR_VERSION = 4, /* u16 = 1 */
-    TDC_IMAGE_OFF_HDR_LEN = 6,     /* u16 = 32 */
+    TDC_IMAGE_OFF_HDR_VERSION = 4, /* u16 = 2 */
+    TDC_IMAGE_OFF_HDR_LEN = 6,     /* u16 = 48 */
     TDC_IMAGE_OFF_PAYLOAD_LEN = 8, /* u32 payload bytes after the header */
     TDC_IMAGE_OFF_PAYLOAD_CRC = 12,/* u32 CRC-32 (IEEE 802.3) of the payload */
     TDC_IMAGE_OFF_FW_VERSION = 16, /* u32 */
-    TDC_IMAGE_OFF_BOARD = 20       /* char[12] target board name, NUL padded */
+    TDC_IMAGE_OFF_BOARD = 20,      /* char[16] target board name, NUL padded */
+    TDC_IMAGE_OFF_RESERVED = 36    /* 12 bytes, zero */
 };
+
+/* Standard DFU file suffix (DFU 1.1 appendix B; what dfu-suffix writes and
+ * dfu-util strips before downloading): 16 bytes at the end of a file. */
+#define TDC_DFU_SUFFIX_LEN 16u
+enum {
+    TDC_DFU_SUFFIX_OFF_BCD_DEVICE = 0, /* u16, 0xFFFF = any */
+    TDC_DFU_SUFFIX_OFF_PID = 2,        /* u16, 0xFFFF = any */
+    TDC_DFU_SUFFIX_OFF_VID = 4,        /* u16, 0xFFFF = any */
+    TDC_DFU_SUFFIX_OFF_BCD_DFU = 6,    /* u16 0x0100 */
+    TDC_DFU_SUFFIX_OFF_SIG = 8,        /* "UFD" */
+    TDC_DFU_SUFFIX_OFF_LEN = 11,       /* u8 16 */
+    TDC_DFU_SUFFIX_OFF_CRC = 12        /* u32: CRC-32 register over the file before it, not inverted */
+};
+typedef enum {
+    TDC_DFU_SUFFIX_NONE = 0,   /* no suffix: the whole file is the image */
+    TDC_DFU_SUFFIX_OK = 1,     /* a valid suffix for vid:pid; the image is the bytes before it */
+    TDC_DFU_SUFFIX_ERR_CRC = -1, /* a suffix whose CRC does not match the file */
+    TDC_DFU_SUFFIX_ERR_ID = -2   /* a suffix for another USB device */
+} tdc_dfu_suffix_status_t;
+/* Looks for a suffix at the end of file (len bytes); *image_len gets the
+ * bytes before it (len when there is none). */
+tdc_dfu_suffix_status_t tdc_dfu_suffix_check(const uint8_t *file, uint32_t len, uint16_t vid,
+                                             uint16_t pid, uint32_t *image_len);
+/* Writes the 16-byte suffix for file[0..len) (bcdDevice any). */
+void tdc_dfu_suffix_make(uint8_t out[TDC_DFU_SUFFIX_LEN], const uint8_t *file, uint32_t len,
+                         uint16_t vid, uint16_t pid);
+
 
 /* Results: tdc_status_t (tdc_status.h).  tdc_image_check() returns TDC_OK
  * or a TDC_ERR_IMAGE_* code; a control request TDC_OK (handled; for IN
@@ -136,9 +168,12 @@ typedef struct {
     uint32_t frames;      /* frames completed (shown) */
 } tdc_usbp_sink_report_t;
 
-/* The DFU target: a flash slot behind two calls so the same state machine
- * drives internal flash on a board, RAM in the emulation and a file in the
- * gadget.  Both return 0 on success, non-zero on a hardware failure. */
+/* The DFU target: an A/B flash region behind two calls so the same state
+ * machine drives internal flash on a board, RAM in the emulation and a file
+ * in the gadget.  The region holds two slots of slot_bytes each, slot k at
+ * offset k * slot_bytes (2 * slot_bytes in all); a download always goes to
+ * the slot that is not running.  Both return 0 on success, non-zero on a
+ * hardware failure. */
 typedef struct {
     int (*write)(void *ctx, uint32_t offset, const uint8_t *data, uint32_t len);
     int (*read)(void *ctx, uint32_t offset, uint8_t *data, uint32_t len);
@@ -151,7 +186,7 @@ typedef void (*tdc_usbp_sink_fn)(void *ctx, const uint8_t *data, uint32_t len,
                                  tdc_usbp_sink_report_t *delta);
 
 typedef struct {
-    const char *board_name;  /* <= 15 chars shown, also the image's target */
+    const char *board_name;  /* <= 16 chars (TDC_IMAGE_BOARD_LEN), also the image's target */
     const char *panel_name;
     const char *serial;      /* iSerialNumber, ASCII, <= 31 chars */
     uint32_t fw_version;     /* major<<16 | minor<<8 | patch */
@@ -181,8 +216,12 @@ typedef struct {
     tdc_dfu_state_t dfu_state;
     tdc_dfu_status_t dfu_status;
     uint16_t dfu_next_block;
-    uint32_t dfu_received;     /* bytes written to the slot in this download */
-    uint32_t dfu_image_bytes;  /* bytes of the last image that manifested (upload length) */
+    uint32_t dfu_received;     /* bytes written to the inactive slot in this download */
+    uint32_t dfu_slot_image[2];/* bytes of the checked image each slot holds (0: none / destroyed) */
+    uint8_t dfu_active_slot;   /* the slot the board runs */
+    uint8_t dfu_pending;       /* the inactive slot holds a manifested image: boot it at the next reset */
+    uint8_t dfu_upload_slot;   /* slot an upload in progress reads */
+    uint8_t detach_pending;    /* DFU_DETACH acknowledged: reset (activate) within wDetachTimeOut */
     uint32_t dfu_upload_pos;
     uint8_t reset_pending;     /* RESET_BOARD acknowledged: reset after the status stage */
 } tdc_usbp_t;
@@ -205,8 +244,8 @@ void tdc_usbp_parse_setup(const uint8_t raw[8], tdc_usbp_setup_t *out);
  * standard GET_DESCRIPTOR requests too (for stacks that forward them). */
 TDC_MUST_CHECK
 tdc_status_t tdc_usbp_control(tdc_usbp_t *s, const tdc_usbp_setup_t *setup,
-                              const uint8_t *data_out, uint8_t *reply,
-                              uint32_t reply_cap, uint32_t *reply_len);
+                                   const uint8_t *data_out, uint8_t *reply,
+                                   uint32_t reply_cap, uint32_t *reply_len);
 
 /* One bulk OUT transfer of link packets. */
 void tdc_usbp_bulk_out(tdc_usbp_t *s, const uint8_t *data, uint32_t len);
@@ -214,8 +253,19 @@ void tdc_usbp_bulk_out(tdc_usbp_t *s, const uint8_t *data, uint32_t len);
 /* Fill the bulk IN endpoint: TDC_USB_STATUS_LEN bytes into out. */
 void tdc_usbp_status_report(tdc_usbp_t *s, uint8_t out[TDC_USB_STATUS_LEN]);
 
-/* Returns 1 once after RESET_BOARD was acknowledged (the board then resets). */
+/* Returns 1 once after RESET_BOARD (or DFU_DETACH) was acknowledged: the
+ * board then resets itself (and calls tdc_usbp_bus_reset() as it restarts). */
 int tdc_usbp_take_reset(tdc_usbp_t *s);
+
+/* A USB bus reset (or the board's own reset after RESET_BOARD/DETACH).
+ * Activation (DFU 1.1 manifestation-tolerant, docs/usb-protocol.md): when
+ * the inactive slot holds a manifested image, it becomes the running slot.
+ * DFU state returns to dfuIDLE/OK either way.  Returns 1 if the slot
+ * switched (the board then runs the new image), 0 if not. */
+int tdc_usbp_bus_reset(tdc_usbp_t *s);
+/* The image the board runs or will upload: slot index and its bytes (0 if
+ * that slot holds no checked image). */
+uint32_t tdc_usbp_slot_image(const tdc_usbp_t *s, unsigned slot);
 
 /* Descriptors (high speed: bulk max packet 512; full speed: 64). */
 uint32_t tdc_usbp_device_descriptor(uint8_t out[18]);
@@ -234,7 +284,7 @@ uint32_t tdc_usbp_crc32(const uint8_t *data, uint32_t len);
  * (no board check); slot_bytes 0 = no size limit. */
 TDC_MUST_CHECK
 tdc_status_t tdc_image_check(const uint8_t *image, uint32_t len, const char *board,
-                             uint32_t slot_bytes);
+                                   uint32_t slot_bytes);
 /* Write a header for payload (payload_len bytes) into hdr. */
 void tdc_image_make_header(uint8_t hdr[TDC_IMAGE_HEADER_LEN], const uint8_t *payload,
                            uint32_t payload_len, uint32_t fw_version, const char *board);

@@ -2,7 +2,7 @@
 # board side of the USB protocol, and their tests against emulated devices.
 # Docs: docs/usb-protocol.md, docs/hosttools.md.
 
-DEPS_PKGS += libusb-1.0-0-dev libgpiod-dev gpiod umockdev libumockdev-dev libglib2.0-dev
+DEPS_PKGS += libusb-1.0-0-dev libgpiod-dev gpiod umockdev libumockdev-dev libglib2.0-dev dfu-util usbutils
 
 FW_SRCS += firmware/tdc_usbproto.c
 
@@ -20,13 +20,15 @@ HOST_PROGS += $(TDC_USB) $(TDC_GPIO)
 $(B)/hosttools/usb/%.o: HOST_CFLAGS += $(LIBUSB_CFLAGS)
 $(B)/tests/usb/%.o: HOST_CFLAGS += $(UMOCKDEV_CFLAGS) -DTDC_USB_BIN='"$(abspath $(TDC_USB))"'
 
-TDC_USB_OBJS = $(B)/hosttools/usb/tdc_usb.o $(B)/hosttools/usb/tdc_usb_dev.o $(B)/hosttools/usb/tdc_usb_dfu.o
+TDC_USB_OBJS = $(B)/hosttools/usb/tdc_usb.o $(B)/hosttools/usb/tdc_usb_dev.o $(B)/hosttools/usb/tdc_usb_dfu.o \
+               $(B)/hosttools/usb/tdc_usb_reply.o \
+               $(B)/hosttools/common/tdc_tool.o
 $(TDC_USB): $(TDC_USB_OBJS) $(FWLIB)
 	@mkdir -p $(@D)
 	$(CC) $(HOST_LDFLAGS) $(TDC_USB_OBJS) -o $@ $(FWLIB) $(LIBUSB_LIBS)
 
 TDC_GPIO_OBJS = $(B)/hosttools/gpio/tdc_gpio.o $(B)/hosttools/gpio/tdc_gpio_chip.o \
-                $(B)/hosttools/gpio/tdc_vsync_stats.o
+                $(B)/hosttools/gpio/tdc_vsync_stats.o $(B)/hosttools/common/tdc_tool.o
 $(TDC_GPIO): $(TDC_GPIO_OBJS)
 	@mkdir -p $(@D)
 	$(CC) $(HOST_LDFLAGS) $(TDC_GPIO_OBJS) -o $@ $(GPIOD_LIBS) -lm
@@ -35,10 +37,20 @@ $(TDC_GPIO): $(TDC_GPIO_OBJS)
 TESTS += $(B)/tests/usb/test_usbproto
 
 # umockdev tests: the emulated board plus the real tdc-usb binary.
-USB_EMUL_OBJS = $(B)/tests/usb/test_usb_emul.o $(B)/tests/usb/tdc_usb_emul.o $(B)/tests/usb/tdc_link_sink.o
-$(B)/tests/usb/test_usb_emul: $(USB_EMUL_OBJS) $(SIMLIB) $(FWLIB) $(TDC_USB)
-	$(CC) $(HOST_LDFLAGS) $(USB_EMUL_OBJS) -o $@ $(SIMLIB) $(FWLIB) $(UMOCKDEV_LIBS) -lcmocka -lpthread -lm
+USB_EMUL_OBJS = $(B)/tests/usb/tdc_usb_run.o $(B)/tests/usb/tdc_usb_emul.o $(B)/tests/usb/tdc_link_sink.o
+$(B)/tests/usb/test_usb_emul: $(B)/tests/usb/test_usb_emul.o $(USB_EMUL_OBJS) $(SIMLIB) $(FWLIB) $(TDC_USB)
+	$(CC) $(HOST_LDFLAGS) $< $(USB_EMUL_OBJS) -o $@ $(SIMLIB) $(FWLIB) $(UMOCKDEV_LIBS) -lcmocka -lpthread -lm
 TESTS += $(B)/tests/usb/test_usb_emul
+# Debian's dfu-util and lsusb (independent clients) against the same boards.
+$(B)/tests/usb/test_usb_clients: $(B)/tests/usb/test_usb_clients.o $(USB_EMUL_OBJS) $(SIMLIB) $(FWLIB) $(TDC_USB)
+	$(CC) $(HOST_LDFLAGS) $< $(USB_EMUL_OBJS) -o $@ $(SIMLIB) $(FWLIB) $(UMOCKDEV_LIBS) -lcmocka -lpthread -lm
+TESTS += $(B)/tests/usb/test_usb_clients
+
+# tdc-usb's parsing of board replies (pure code, also fuzzed: tests/fuzz/fuzz_usbreply.c).
+$(B)/tests/usb/test_usb_reply: $(B)/tests/usb/test_usb_reply.o $(B)/hosttools/usb/tdc_usb_reply.o
+	$(CC) $(HOST_LDFLAGS) $^ -o $@ -lcmocka
+$(B)/tests/usb/test_usb_reply.o: HOST_CFLAGS += -Ihosttools/usb
+TESTS += $(B)/tests/usb/test_usb_reply
 
 # The vsync statistics (pure code) and tdc-gpio's error paths without a chip.
 $(B)/tests/usb/test_gpio_vsync: $(B)/tests/usb/test_gpio_vsync.o $(B)/hosttools/gpio/tdc_vsync_stats.o $(TDC_GPIO)

@@ -4,9 +4,23 @@
 #include <errno.h>
 #include <png.h>
 #include <setjmp.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+/* libpng's own messages would be a second line beside the tool's one
+ * (docs/tools.md): errors only longjmp, warnings are dropped. */
+static void png_quiet_error(png_structp png, png_const_charp msg)
+{
+    (void)msg;
+    png_longjmp(png, 1);
+}
+
+static void png_quiet_warning(png_structp png, png_const_charp msg)
+{
+    (void)png, (void)msg;
+}
 
 int tdc_png_read(const char *path, tdc_image_t *img, char *err, size_t errlen)
 {
@@ -22,10 +36,13 @@ int tdc_png_read(const char *path, tdc_image_t *img, char *err, size_t errlen)
         fclose(f);
         return -1;
     }
-    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
+    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, NULL, png_quiet_error, png_quiet_warning);
     png_infop info = png ? png_create_info_struct(png) : NULL;
-    png_bytep *rows = NULL;
-    void *data = NULL;
+    /* volatile: they change between setjmp and a longjmp from libpng, so the
+     * error path must see their current values (issue 19: it freed the
+     * stale NULLs and leaked the buffers of a truncated PNG). */
+    png_bytep *volatile rows = NULL;
+    void *volatile data = NULL;
     if (!png || !info) {
         snprintf(err, errlen, "%s: out of memory", path);
         fclose(f);
@@ -49,6 +66,28 @@ int tdc_png_read(const char *path, tdc_image_t *img, char *err, size_t errlen)
         png_destroy_read_struct(&png, &info, NULL);
         fclose(f);
         return -1;
+    }
+    /* A header may claim any size; the file must be able to hold it.
+     * Deflate compresses at most 1032:1, so the filtered rows (one filter
+     * byte each) cannot exceed 1032 x the file's size: a 69-byte file
+     * claiming 16384 x 16384 x 48 bits is refused before 1.6 GB are
+     * allocated (issue 19). */
+    {
+        const uint64_t raw = (uint64_t)h * ((uint64_t)png_get_rowbytes(png, info) + 1u);
+        long here = ftell(f);
+        uint64_t fsize = 0;
+        if (here >= 0 && fseek(f, 0, SEEK_END) == 0) {
+            long end = ftell(f);
+            fsize = end > 0 ? (uint64_t)end : 0;
+            fseek(f, here, SEEK_SET);
+        }
+        if (fsize && raw > fsize * 1032u + 4096u) {
+            snprintf(err, errlen, "%s: header claims %dx%d at %d bits (%llu bytes of rows) but the file has only %llu bytes",
+                     path, w, h, depth, (unsigned long long)raw, (unsigned long long)fsize);
+            png_destroy_read_struct(&png, &info, NULL);
+            fclose(f);
+            return -1;
+        }
     }
     if (ct == PNG_COLOR_TYPE_PALETTE) {
         png_set_palette_to_rgb(png);
@@ -92,6 +131,7 @@ int tdc_png_read(const char *path, tdc_image_t *img, char *err, size_t errlen)
     png_read_end(png, NULL);
     png_destroy_read_struct(&png, &info, NULL);
     free(rows);
+    rows = NULL;
     fclose(f);
     img->width = w;
     img->height = h;

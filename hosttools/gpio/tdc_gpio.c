@@ -13,12 +13,9 @@
 #include <time.h>
 
 #include "tdc_gpio_chip.h"
+#include "tdc_tool.h"
 #include "tdc_vsync_stats.h"
 
-typedef enum {
-    GPIO_EXIT_OK = 0, GPIO_EXIT_ARGS = 1, GPIO_EXIT_NO_CHIP = 2, GPIO_EXIT_NO_LINE = 3,
-    GPIO_EXIT_BUSY = 4, GPIO_EXIT_IO = 5, GPIO_EXIT_TIMEOUT = 6
-} gpio_exit_t;
 
 #define MAX_EDGES 100000
 
@@ -44,19 +41,20 @@ static const char usage_text[] =
     "                       the median interval)\n"
     "  --timeout-ms N       vsync: give up when no edge arrives for N ms (default 1000)\n"
     "  -h, --help           this text\n"
-    "exit codes: 0 OK, 1 ARGS, 2 NO_CHIP, 3 NO_LINE, 4 BUSY, 5 IO, 6 TIMEOUT\n";
+    "exit codes (docs/tools.md): 0 OK, 1 ARGS, 2 NO_DEVICE (no chip), 4 IO, 5 TIMEOUT,\n"
+    "  15 NO_LINE, 16 BUSY\n";
 
-static gpio_exit_t report(const char *cmd, tdc_gpio_status_t st, const char *err)
+static tdc_exit_t report(const char *cmd, tdc_gpio_status_t st, const char *err)
 {
     if (st == TDC_GPIO_OK)
-        return GPIO_EXIT_OK;
+        return TDC_EXIT_OK;
     fprintf(stderr, "tdc-gpio: %s: %s\n", cmd, err);
     switch (st) {
-    case TDC_GPIO_ERR_NO_CHIP: return GPIO_EXIT_NO_CHIP;
-    case TDC_GPIO_ERR_NO_LINE: return GPIO_EXIT_NO_LINE;
-    case TDC_GPIO_ERR_BUSY: return GPIO_EXIT_BUSY;
-    case TDC_GPIO_ERR_TIMEOUT: return GPIO_EXIT_TIMEOUT;
-    default: return GPIO_EXIT_IO;
+    case TDC_GPIO_ERR_NO_CHIP: return TDC_EXIT_NO_DEVICE;
+    case TDC_GPIO_ERR_NO_LINE: return TDC_EXIT_NO_LINE;
+    case TDC_GPIO_ERR_BUSY: return TDC_EXIT_BUSY;
+    case TDC_GPIO_ERR_TIMEOUT: return TDC_EXIT_TIMEOUT;
+    default: return TDC_EXIT_IO;
     }
 }
 
@@ -76,7 +74,7 @@ typedef struct {
     tdc_gpio_edge_t edge;
 } opts_t;
 
-static gpio_exit_t pulse_reset(const opts_t *o, const char *cmd)
+static tdc_exit_t pulse_reset(const opts_t *o, const char *cmd)
 {
     char err[256] = "";
     tdc_gpio_line_t *rst = NULL;
@@ -91,7 +89,7 @@ static gpio_exit_t pulse_reset(const opts_t *o, const char *cmd)
     return report(cmd, st, "cannot release reset");
 }
 
-static gpio_exit_t cmd_boot(const opts_t *o)
+static tdc_exit_t cmd_boot(const opts_t *o)
 {
     char err[256] = "";
     tdc_gpio_line_t *boot = NULL;
@@ -99,8 +97,8 @@ static gpio_exit_t cmd_boot(const opts_t *o)
                                                 &boot, err, sizeof err);
     if (st != TDC_GPIO_OK)
         return report("boot", st, err);
-    gpio_exit_t e = pulse_reset(o, "boot");
-    if (e == GPIO_EXIT_OK) {
+    tdc_exit_t e = pulse_reset(o, "boot");
+    if (e == TDC_EXIT_OK) {
         sleep_ms(o->hold_ms);
         printf("boot: boot-mode line %s held %u ms after reset: board should be in its "
                "bootloader\n", tdc_gpio_describe(boot), o->hold_ms);
@@ -117,7 +115,7 @@ static void on_sigint(int sig)
     stop_requested = 1;
 }
 
-static gpio_exit_t cmd_vsync(const opts_t *o)
+static tdc_exit_t cmd_vsync(const opts_t *o)
 {
     char err[256] = "";
     tdc_gpio_line_t *l = NULL;
@@ -128,7 +126,7 @@ static gpio_exit_t cmd_vsync(const opts_t *o)
     uint64_t *ts = malloc((size_t)o->count * sizeof *ts);
     if (ts == NULL) {
         tdc_gpio_close(l);
-        return GPIO_EXIT_IO;
+        return TDC_EXIT_IO;
     }
     signal(SIGINT, on_sigint);
     long n = 0;
@@ -142,15 +140,15 @@ static gpio_exit_t cmd_vsync(const opts_t *o)
     char desc[128];
     snprintf(desc, sizeof desc, "%s", tdc_gpio_describe(l));
     tdc_gpio_close(l);
-    gpio_exit_t e = GPIO_EXIT_OK;
+    tdc_exit_t e = TDC_EXIT_OK;
     if (st == TDC_GPIO_ERR_TIMEOUT) {
         fprintf(stderr, "tdc-gpio: vsync: no edge on %s for %u ms after %ld edges%s\n", desc,
                 o->timeout_ms, n, n < 2 ? " (is the panel running?)" : "");
-        e = GPIO_EXIT_TIMEOUT;
+        e = TDC_EXIT_TIMEOUT;
     } else if (st != TDC_GPIO_OK) {
         fprintf(stderr, "tdc-gpio: vsync: reading events on %s failed: %s\n", desc,
                 strerror(errno));
-        e = GPIO_EXIT_IO;
+        e = TDC_EXIT_IO;
     }
     tdc_vsync_stats_t s;
     if (n >= 2 && tdc_vsync_analyse(ts, (size_t)n, o->expect_hz, &s) == 0) {
@@ -158,9 +156,9 @@ static gpio_exit_t cmd_vsync(const opts_t *o)
                "jitter rms %.1f us p-p %.1f us, interval %.1f..%.1f us, missed frames %u\n",
                desc, s.edges, s.refresh_hz, s.period_us, s.jitter_rms_us, s.jitter_pp_us,
                s.min_interval_us, s.max_interval_us, s.missed);
-    } else if (e == GPIO_EXIT_OK) {
+    } else if (e == TDC_EXIT_OK) {
         fprintf(stderr, "tdc-gpio: vsync: fewer than 2 edges, nothing to measure\n");
-        e = GPIO_EXIT_TIMEOUT;
+        e = TDC_EXIT_TIMEOUT;
     }
     free(ts);
     return e;
@@ -168,12 +166,10 @@ static gpio_exit_t cmd_vsync(const opts_t *o)
 
 static int parse_ulong(const char *s, unsigned long lo, unsigned long hi, unsigned long *v)
 {
-    char *end;
-    errno = 0;
-    unsigned long x = strtoul(s, &end, 10);
-    if (errno != 0 || end == s || *end != '\0' || x < lo || x > hi)
+    uint64_t x;
+    if (tdc_parse_u64(s, lo, hi, &x) != 0)
         return -1;
-    *v = x;
+    *v = (unsigned long)x;
     return 0;
 }
 
@@ -191,6 +187,7 @@ int main(int argc, char **argv)
         {0, 0, 0, 0}};
     int c;
     unsigned long v;
+    tdc_tool_set_name("tdc-gpio");
     while ((c = getopt_long(argc, argv, "h", lopts, NULL)) != -1) {
         const char *bad = NULL;
         switch (c) {
@@ -203,40 +200,35 @@ int main(int argc, char **argv)
         case O_HOLD: if (parse_ulong(optarg, 0, 60000, &v)) bad = "--hold-ms"; else o.hold_ms = (unsigned)v; break;
         case O_TMO: if (parse_ulong(optarg, 1, 600000, &v)) bad = "--timeout-ms"; else o.timeout_ms = (unsigned)v; break;
         case O_COUNT: if (parse_ulong(optarg, 2, MAX_EDGES, &v)) bad = "--count"; else o.count = (long)v; break;
-        case O_HZ: {
-            char *end;
-            o.expect_hz = strtod(optarg, &end);
-            if (end == optarg || *end != '\0' || !(o.expect_hz > 0 && o.expect_hz < 100000))
-                bad = "--expect-hz";
+        case O_HZ:
+            if (tdc_parse_double(optarg, 1e-3, 99999.0, &o.expect_hz)) bad = "--expect-hz";
             break;
-        }
         case O_EDGE:
             if (strcmp(optarg, "rising") == 0) o.edge = TDC_EDGE_RISING;
             else if (strcmp(optarg, "falling") == 0) o.edge = TDC_EDGE_FALLING;
             else if (strcmp(optarg, "both") == 0) o.edge = TDC_EDGE_BOTH;
             else bad = "--edge";
             break;
-        case 'h': fputs(usage_text, stdout); return GPIO_EXIT_OK;
-        default: fputs(usage_text, stderr); return GPIO_EXIT_ARGS;
+        case 'h': fputs(usage_text, stdout); return TDC_EXIT_OK;
+        default: fputs(usage_text, stderr); return TDC_EXIT_ARGS;
         }
         if (bad != NULL) {
-            fprintf(stderr, "tdc-gpio: bad value for %s: '%s'\n", bad, optarg);
-            return GPIO_EXIT_ARGS;
+            return tdc_fail_option(NULL, bad, optarg, "see tdc-gpio --help");
         }
     }
     if (optind != argc - 1) {
         fputs(usage_text, stderr);
-        return GPIO_EXIT_ARGS;
+        return TDC_EXIT_ARGS;
     }
     const char *cmd = argv[optind];
     if (strcmp(cmd, "reset") != 0 && strcmp(cmd, "boot") != 0 && strcmp(cmd, "vsync") != 0) {
         fprintf(stderr, "tdc-gpio: unknown command '%s'\n", cmd);
-        return GPIO_EXIT_ARGS;
+        return TDC_EXIT_ARGS;
     }
     if (o.chip == NULL || o.line == NULL || (strcmp(cmd, "boot") == 0 && o.boot_line == NULL)) {
         fprintf(stderr, "tdc-gpio: %s needs --chip and --line%s\n", cmd,
                 strcmp(cmd, "boot") == 0 ? " and --boot-line" : "");
-        return GPIO_EXIT_ARGS;
+        return TDC_EXIT_ARGS;
     }
     if (strcmp(cmd, "reset") == 0)
         return (int)pulse_reset(&o, "reset");

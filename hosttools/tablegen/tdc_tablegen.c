@@ -18,6 +18,7 @@
 #include <string.h>
 
 #include "tdc_panel.h"
+#include "tdc_tool.h"
 #include "tdc_lcd.h"
 #include "../../sim/lcd/tdc_lcd_model.h"
 
@@ -44,55 +45,70 @@ typedef struct {
 } profile_t;
 
 static const char *g_path;
+static FILE *g_in; /* the profile being read (closed by whoever catches a failure) */
 
-static void die(int line, const char *fmt, ...)
+/* Every failure ends here: "tdc-tablegen: PROFILE:LINE: why", then the named
+ * exit code (docs/tools.md: INPUT for the profile's contents, FILE for files).
+ * The fuzz harness (tests/fuzz/fuzz_panel.c) defines TDC_TABLEGEN_FAIL_HOOK to
+ * return to itself instead of exiting. */
+#ifdef TDC_TABLEGEN_FAIL_HOOK
+void TDC_TABLEGEN_FAIL_HOOK(int code);
+#endif
+#if defined(__GNUC__)
+__attribute__((format(printf, 3, 4)))
+#endif
+static void die(int code, int line, const char *fmt, ...)
 {
+    char why[768], where[300];
     va_list ap;
     va_start(ap, fmt);
-    if (line > 0) {
-        fprintf(stderr, "%s:%d: ", g_path, line);
-    } else {
-        fprintf(stderr, "%s: ", g_path);
-    }
-    vfprintf(stderr, fmt, ap);
-    fputc('\n', stderr);
+    vsnprintf(why, sizeof why, fmt, ap);
     va_end(ap);
-    exit(1);
+    if (line > 0) {
+        snprintf(where, sizeof where, "%s:%d", g_path, line);
+    } else {
+        snprintf(where, sizeof where, "%s", g_path);
+    }
+    tdc_fail(code, NULL, where, "%s", why);
+#ifdef TDC_TABLEGEN_FAIL_HOOK
+    TDC_TABLEGEN_FAIL_HOOK(code);
+#endif
+    exit(code);
 }
 
 static int parse_int(const char *s, int line, int lo, int hi, const char *key)
 {
-    char *end;
-    errno = 0;
-    long v = strtol(s, &end, 10);
-    if (errno || *end || v < lo || v > hi) {
-        die(line, "%s: expected an integer in [%d, %d], got '%s'", key, lo, hi, s);
-    }
-    return (int)v;
-}
-
-static double parse_double(const char *s, int line, double lo, double hi, const char *key)
-{
-    char *end;
-    errno = 0;
-    double v = strtod(s, &end);
-    if (errno || *end || !(v >= lo && v <= hi)) {
-        die(line, "%s: expected a number in [%g, %g], got '%s'", key, lo, hi, s);
+    int v = 0;
+    if (tdc_parse_int(s, lo, hi, &v) != 0) {
+        die(TDC_EXIT_INPUT, line, "%s: expected an integer in [%d, %d], got '%s'", key, lo, hi, s);
     }
     return v;
 }
 
-static void parse_profile(const char *path, profile_t *p)
+static double parse_double(const char *s, int line, double lo, double hi, const char *key)
 {
-    FILE *f = fopen(path, "r");
-    if (!f) {
-        die(0, "cannot open: %s", strerror(errno));
+    double v = 0;
+    if (tdc_parse_double(s, lo, hi, &v) != 0) {
+        die(TDC_EXIT_INPUT, line, "%s: expected a number in [%g, %g], got '%s'", key, lo, hi, s);
     }
+    return v;
+}
+
+/* Reads a profile from an open stream (g_in; g_path names it in messages). */
+static void parse_profile_stream(FILE *f, profile_t *p)
+{
     memset(p, 0, sizeof *p);
     char buf[512];
-    int line = 0;
-    while (fgets(buf, sizeof buf, f)) {
-        line++;
+    unsigned line = 0;
+    int r;
+    while ((r = tdc_read_line(f, buf, sizeof buf, &line)) != 0) {
+        if (r == -2) {
+            die(TDC_EXIT_FILE, 0, "read error: %s", strerror(errno));
+        }
+        if (r < 0) {
+            /* fgets would split it and parse the tail as a key (issue 19) */
+            die(TDC_EXIT_INPUT, (int)line, "line longer than %zu bytes or with a NUL byte", sizeof buf - 1);
+        }
         char *hash = strchr(buf, '#');
         if (hash) {
             *hash = 0;
@@ -108,73 +124,72 @@ static void parse_profile(const char *path, profile_t *p)
         const char *k = tok[0];
         if (!strcmp(k, "name") && n == 2) {
             if (strlen(tok[1]) >= sizeof p->name) {
-                die(line, "name too long");
+                die(TDC_EXIT_INPUT, (int)line, "name too long");
             }
             for (const char *c = tok[1]; *c; c++) {
                 if (!(isalnum((unsigned char)*c) || *c == '-')) {
-                    die(line, "name may only hold letters, digits and '-'");
+                    die(TDC_EXIT_INPUT, (int)line, "name may only hold letters, digits and '-'");
                 }
             }
             strcpy(p->name, tok[1]);
         } else if (!strcmp(k, "type") && n == 2) {
             if (strcmp(tok[1], "oled") && strcmp(tok[1], "lcd")) {
-                die(line, "type must be 'oled' or 'lcd'");
+                die(TDC_EXIT_INPUT, (int)line, "type must be 'oled' or 'lcd'");
             }
             strcpy(p->type, tok[1]);
         } else if (!strcmp(k, "width") && n == 2) {
-            p->width = parse_int(tok[1], line, 1, 8192, k);
+            p->width = parse_int(tok[1], (int)line, 1, 8192, k);
         } else if (!strcmp(k, "height") && n == 2) {
-            p->height = parse_int(tok[1], line, 1, 8192, k);
+            p->height = parse_int(tok[1], (int)line, 1, 8192, k);
         } else if (!strcmp(k, "eyes") && n == 2) {
-            p->eyes = parse_int(tok[1], line, 1, 2, k);
+            p->eyes = parse_int(tok[1], (int)line, 1, 2, k);
         } else if (!strcmp(k, "bits") && n == 2) {
-            p->bits = parse_int(tok[1], line, 6, 10, k);
+            p->bits = parse_int(tok[1], (int)line, 6, 10, k);
         } else if (!strcmp(k, "ppd") && n == 2) {
-            p->ppd = parse_double(tok[1], line, 1.0, 200.0, k);
+            p->ppd = parse_double(tok[1], (int)line, 1.0, 200.0, k);
         } else if (!strcmp(k, "refresh_hz") && n == 2) {
-            p->refresh_hz = parse_int(tok[1], line, 1, 1000, k);
+            p->refresh_hz = parse_int(tok[1], (int)line, 1, 1000, k);
         } else if (!strcmp(k, "rates_hz") && n >= 2 && n <= TDC_PANEL_MAX_RATES) {
             p->nrates = n - 1;
             for (int i = 1; i < n; i++) {
-                p->rates[i - 1] = parse_int(tok[i], line, 1, 1000, k);
+                p->rates[i - 1] = parse_int(tok[i], (int)line, 1, 1000, k);
             }
         } else if (!strcmp(k, "gamma") && n == 4) {
             for (int c = 0; c < 3; c++) {
                 /* rounded to 1e-6: the integer stored in the profile is then
                  * exactly the gamma the tables were generated from */
-                p->gamma[c] = llround(parse_double(tok[c + 1], line, 1.0, 4.0, k) * 1e6) / 1e6;
+                p->gamma[c] = llround(parse_double(tok[c + 1], (int)line, 1.0, 4.0, k) * 1e6) / 1e6;
             }
             p->have_gamma = 1;
         } else if (!strcmp(k, "lcd_p") && n == 5) {
             for (int c = 0; c < 4; c++) {
-                p->lcd_p[c] = parse_double(tok[c + 1], line, -4.0, 4.0, k);
+                p->lcd_p[c] = parse_double(tok[c + 1], (int)line, -4.0, 4.0, k);
             }
             p->have_lcd = 1;
         } else if (!strcmp(k, "lcd_p_hz") && n == 6) {
             if (p->n_lcd_rate_p >= TDC_PANEL_MAX_RATES) {
-                die(line, "at most %d lcd_p_hz lines", TDC_PANEL_MAX_RATES);
+                die(TDC_EXIT_INPUT, (int)line, "at most %d lcd_p_hz lines", TDC_PANEL_MAX_RATES);
             }
-            p->lcd_rate_hz[p->n_lcd_rate_p] = parse_int(tok[1], line, 1, 1000, k);
+            p->lcd_rate_hz[p->n_lcd_rate_p] = parse_int(tok[1], (int)line, 1, 1000, k);
             for (int c = 0; c < 4; c++) {
-                p->lcd_rate_p[p->n_lcd_rate_p][c] = parse_double(tok[c + 2], line, -4.0, 4.0, k);
+                p->lcd_rate_p[p->n_lcd_rate_p][c] = parse_double(tok[c + 2], (int)line, -4.0, 4.0, k);
             }
             p->n_lcd_rate_p++;
         } else if (!strcmp(k, "lcd_table") && n == 2) {
-            p->lcd_table = parse_int(tok[1], line, 0, 33, k);
+            p->lcd_table = parse_int(tok[1], (int)line, 0, 33, k);
             if (p->lcd_table != 0 && p->lcd_table != 17 && p->lcd_table != 33) {
-                die(line, "lcd_table must be 0 (exact solve), 17 or 33");
+                die(TDC_EXIT_INPUT, (int)line, "lcd_table must be 0 (exact solve), 17 or 33");
             }
         } else {
-            die(line, "unknown key or wrong number of values: '%s'", k);
+            die(TDC_EXIT_INPUT, (int)line, "unknown key or wrong number of values: '%s'", k);
         }
     }
-    fclose(f);
     if (!p->name[0] || !p->type[0] || !p->width || !p->height || !p->eyes || !p->bits ||
         !p->refresh_hz || !p->have_gamma) {
-        die(0, "profile needs name, type, width, height, eyes, bits, refresh_hz and gamma");
+        die(TDC_EXIT_INPUT, 0, "profile needs name, type, width, height, eyes, bits, refresh_hz and gamma");
     }
     if (!strcmp(p->type, "lcd") && !p->have_lcd) {
-        die(0, "an lcd profile needs lcd_p p1 p2 p3 p4");
+        die(TDC_EXIT_INPUT, 0, "an lcd profile needs lcd_p p1 p2 p3 p4");
     }
     if (p->nrates == 0) {
         p->rates[0] = p->refresh_hz;
@@ -186,9 +201,20 @@ static void parse_profile(const char *path, profile_t *p)
             found |= p->rates[r] == p->lcd_rate_hz[i];
         }
         if (!found) {
-            die(0, "lcd_p_hz %d: not one of rates_hz", p->lcd_rate_hz[i]);
+            die(TDC_EXIT_INPUT, 0, "lcd_p_hz %d: not one of rates_hz", p->lcd_rate_hz[i]);
         }
     }
+}
+
+static void parse_profile(const char *path, profile_t *p)
+{
+    g_in = fopen(path, "r");
+    if (!g_in) {
+        die(TDC_EXIT_FILE, 0, "cannot open: %s", strerror(errno));
+    }
+    parse_profile_stream(g_in, p);
+    fclose(g_in);
+    g_in = NULL;
 }
 
 /* Coefficients of one rate: its lcd_p_hz line, else lcd_p. */
@@ -317,11 +343,12 @@ static void gen_gamma(FILE *f, const char *id, int ch, double gamma, int bits)
  */
 static void gen_fov(const char *path)
 {
-    FILE *f = fopen(path, "w");
-    if (!f) {
-        fprintf(stderr, "tdc-tablegen: cannot write %s: %s\n", path, strerror(errno));
-        exit(1);
+    tdc_out_t out; /* renamed over path only when complete */
+    if (tdc_out_open(&out, path, "w") != 0) {
+        g_path = path;
+        die(TDC_EXIT_FILE, 0, "cannot write: %s", strerror(errno));
     }
+    FILE *f = out.f;
     static uint32_t t[257];
     fprintf(f, "/* generated by tdc-tablegen --fov: do not edit */\n");
     fprintf(f, "#ifndef TDC_FOV_TABLES_H\n#define TDC_FOV_TABLES_H\n#include <stdint.h>\n");
@@ -345,18 +372,22 @@ static void gen_fov(const char *path)
     /* log2(ln 2) in Q24 (negative): d/dr of eq. 2.2 needs ln r = log2(r) ln 2 */
     fprintf(f, "#define TDC_FOV_LOG2_LN2_Q24 (%ld)\n", lround(ldexp(log2(log(2.0)), 24)));
     fprintf(f, "#endif\n");
-    fclose(f);
+    if (tdc_out_commit(&out) != 0) {
+        g_path = path;
+        die(TDC_EXIT_FILE, 0, "cannot write: %s", strerror(errno));
+    }
 }
 
+#ifndef TDC_TABLEGEN_NO_MAIN
 int main(int argc, char **argv)
 {
+    tdc_tool_set_name("tdc-tablegen");
     if (argc == 3 && !strcmp(argv[1], "--fov")) {
         gen_fov(argv[2]);
-        return 0;
+        return TDC_EXIT_OK;
     }
     if (argc != 3) {
-        fprintf(stderr, "usage: tdc-tablegen PROFILE.panel OUTDIR | tdc-tablegen --fov OUT.h\n");
-        return 2;
+        return tdc_fail(TDC_EXIT_ARGS, NULL, "usage", "tdc-tablegen PROFILE.panel OUTDIR | tdc-tablegen --fov OUT.h");
     }
     g_path = argv[1];
     profile_t p;
@@ -366,10 +397,13 @@ int main(int argc, char **argv)
     const int is_lcd = !strcmp(p.type, "lcd");
 
     snprintf(path, sizeof path, "%s/tdc_panel_%s.c", argv[2], p.name);
-    FILE *f = fopen(path, "w");
-    if (!f) {
-        die(0, "cannot write %s: %s", path, strerror(errno));
+    /* Written to a temporary renamed on success: a failed run never leaves a
+     * half-written table that make would take for up to date. */
+    tdc_out_t out;
+    if (tdc_out_open(&out, path, "w") != 0) {
+        die(TDC_EXIT_FILE, 0, "cannot write %s: %s", path, strerror(errno));
     }
+    FILE *f = out.f;
     fprintf(f, "/* generated by tdc-tablegen from %s: do not edit */\n", argv[1]);
     fprintf(f, "#include \"tdc_panel.h\"\n\n");
     if (is_lcd) {
@@ -402,13 +436,15 @@ int main(int argc, char **argv)
     } else {
         fprintf(f, "    },\n    .lcd = 0,\n};\n");
     }
-    fclose(f);
+    if (tdc_out_commit(&out) != 0) {
+        die(TDC_EXIT_FILE, 0, "cannot write %s: %s", path, strerror(errno));
+    }
 
     snprintf(path, sizeof path, "%s/tdc_panel_%s_config.h", argv[2], p.name);
-    f = fopen(path, "w");
-    if (!f) {
-        die(0, "cannot write %s: %s", path, strerror(errno));
+    if (tdc_out_open(&out, path, "w") != 0) {
+        die(TDC_EXIT_FILE, 0, "cannot write %s: %s", path, strerror(errno));
     }
+    f = out.f;
     fprintf(f, "/* generated by tdc-tablegen from %s: do not edit */\n", argv[1]);
     fprintf(f, "#ifndef TDC_PANEL_CONFIG_H\n#define TDC_PANEL_CONFIG_H\n");
     fprintf(f, "#define TDC_PANEL_NAME \"%s\"\n#define TDC_PANEL_SYMBOL tdc_panel_%s\n", p.name, id);
@@ -417,6 +453,9 @@ int main(int argc, char **argv)
     fprintf(f, "#define TDC_PANEL_BITS %d\n#define TDC_PANEL_REFRESH_HZ %d\n#define TDC_PANEL_IS_LCD %d\n",
             p.bits, p.refresh_hz, is_lcd);
     fprintf(f, "#endif\n");
-    fclose(f);
-    return 0;
+    if (tdc_out_commit(&out) != 0) {
+        die(TDC_EXIT_FILE, 0, "cannot write %s: %s", path, strerror(errno));
+    }
+    return TDC_EXIT_OK;
 }
+#endif

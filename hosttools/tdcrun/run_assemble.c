@@ -33,6 +33,8 @@
 
 #include "ref_assemble.h"
 #include "tdc_assemble.h"
+#include <unistd.h>
+
 #include "tdc_png.h"
 #include "tdc_run.h"
 
@@ -43,7 +45,7 @@ static const char k_usage[] =
     "Tile-ordered frame assembly (240 Hz subframes, DESIGN 4.3) with the firmware stage.\n"
     "Each SUBFRAME.png holds one RGB sample per 2x2 tile (ceil(W/2) x ceil(H/2) pixels) of\n"
     "refresh i (i = its position in the list); SUBFRAME.mv beside it, if present, holds the\n"
-    "samples' motion vectors (int16 Q4 pairs, backward) and, on frames i %% 4 == 0, the\n"
+    "samples' motion vectors (int16 Q4 pairs, backward) and, on frames i % 4 == 0, the\n"
     "renderer's per-tile ordering bits (format: docs/tile-assembly.md).  '-' = dropped subframe.\n"
     "Writes OUTDIR/frame_NNNNN.png (W x H RGB888) per refresh and OUTDIR/stats.txt.\n"
     "\n"
@@ -59,25 +61,32 @@ static const char k_usage[] =
     "  --velocity VX,VY       scene velocity in px/frame for --write-stream (default 1.5,0.5;\n"
     "                         rounded to 1/16 px)\n"
     "\n"
-    "exit status: 0 ok, 1 bad input file, 2 usage error\n";
+    "exit codes (docs/tools.md): 0 OK, 1 ARGS, 7 FILE, 13 INPUT, 14 REFUSED, 17 NOMEM\n";
 
 static int usage_error(const char *fmt, const char *arg)
 {
-    fprintf(stderr, "tdc-run assemble: ");
-    fprintf(stderr, fmt, arg);
-    fprintf(stderr, "\ntry 'tdc-run assemble --help'\n");
-    return TDC_RUN_EXIT_USAGE;
+    char what[512];
+    snprintf(what, sizeof what, fmt, arg);
+    return tdc_fail(TDC_EXIT_ARGS, "assemble", what, "try 'tdc-run assemble --help'");
 }
 
 static int parse_size(const char *s, int *w, int *h)
 {
-    char *e;
-    long a = strtol(s, &e, 10);
-    if (e == s || (*e != 'x' && *e != 'X')) return -1;
-    const char *s2 = e + 1;
-    long b = strtol(s2, &e, 10);
-    if (e == s2 || *e || a < 1 || b < 1 || a > TDC_ASM_MAX_DIM || b > TDC_ASM_MAX_DIM) return -1;
+    unsigned a, b;
+    if (tdc_parse_size(s, TDC_ASM_MAX_DIM, &a, &b) != 0) return -1;
     *w = (int)a, *h = (int)b;
+    return 0;
+}
+
+/* VX,VY: two finite numbers within +-2047 px/frame. */
+static int parse_velocity(const char *s, double *vx, double *vy)
+{
+    const char *e;
+    double a, b;
+    if (tdc_parse_double_field(s, &e, &a) != 0 || *e != ',' || tdc_parse_double_field(e + 1, &e, &b) != 0 ||
+        *e != '\0' || !(a >= -2047 && a <= 2047 && b >= -2047 && b <= 2047))
+        return -1;
+    *vx = a, *vy = b;
     return 0;
 }
 
@@ -182,27 +191,27 @@ static int write_stream(const char *dir, const char *kind, int w, int h, int cou
     else return usage_error("unknown stream kind '%s' (static, pan, lines, hlines)", kind);
     int32_t vxq = (int32_t)(vx * 16.0 + (vx < 0 ? -0.5 : 0.5)), vyq = (int32_t)(vy * 16.0 + (vy < 0 ? -0.5 : 0.5));
     tdc_scene_t sc;
-    if (tdc_scene_init(&sc, k, w, h, vxq, vyq, 1) != 0) return TDC_RUN_EXIT_FAILED;
+    if (tdc_scene_init(&sc, k, w, h, vxq, vyq, 1) != 0)
+        return tdc_fail(TDC_EXIT_NOMEM, "assemble", "--write-stream", "cannot set up a %dx%d scene", w, h);
     uint32_t tx = (uint32_t)(w + 1) / 2, ty = (uint32_t)(h + 1) / 2;
     uint8_t *smp = malloc((size_t)tx * ty * 3), *bits = malloc(((size_t)tx * ty + 7) / 8);
     int16_t *mv = malloc((size_t)tx * ty * 4);
-    int rc = TDC_RUN_EXIT_OK;
-    for (int f = 0; f < count && rc == TDC_RUN_EXIT_OK; f++) {
+    int rc = smp && bits && mv ? TDC_EXIT_OK
+                               : tdc_fail(TDC_EXIT_NOMEM, "assemble", "--write-stream", "out of memory for %dx%d", w, h);
+    for (int f = 0; f < count && rc == TDC_EXIT_OK; f++) {
         char path[4096], err[512];
         tdc_scene_subframe(&sc, (uint32_t)f, smp, mv, bits);
         snprintf(path, sizeof(path), "%s/sub_%05d.png", dir, f);
         if (tdc_png_write(path, smp, (int)tx, (int)ty, 8, (size_t)tx * 3, err, sizeof(err)) != 0) {
-            fprintf(stderr, "tdc-run assemble: %s\n", err);
-            rc = TDC_RUN_EXIT_FAILED;
+            rc = tdc_fail(TDC_EXIT_FILE, "assemble", NULL, "%s", err);
             break;
         }
         snprintf(path, sizeof(path), "%s/sub_%05d.mv", dir, f);
         if (write_mv(path, tx, ty, mv, (f & 3) == 0 ? bits : NULL) != 0) {
-            fprintf(stderr, "tdc-run assemble: cannot write %s\n", path);
-            rc = TDC_RUN_EXIT_FAILED;
+            rc = tdc_fail(TDC_EXIT_FILE, "assemble", path, "cannot write: %s", strerror(errno));
         }
     }
-    if (rc == TDC_RUN_EXIT_OK)
+    if (rc == TDC_EXIT_OK)
         printf("wrote %d subframes (%ux%u tiles of a %dx%d %s stream) to %s\n", count, tx, ty, w, h, kind, dir);
     free(smp), free(bits), free(mv);
     tdc_scene_free(&sc);
@@ -232,17 +241,13 @@ int tdc_run_assemble_main(int argc, char **argv)
                 return usage_error("--size must be WxH within 1..4096, got '%s'", optarg);
             break;
         case 'q': quiet = 1; break;
-        case 'h': printf("%s", k_usage); return TDC_RUN_EXIT_OK;
+        case 'h': printf("%s", k_usage); return TDC_EXIT_OK;
         case OPT_WRITE: stream_kind = optarg; break;
-        case OPT_COUNT: {
-            char *e;
-            long v = strtol(optarg, &e, 10);
-            if (e == optarg || *e || v < 1 || v > 1000000) return usage_error("--count must be 1..1000000, got '%s'", optarg);
-            count = (int)v;
+        case OPT_COUNT:
+            if (tdc_parse_int(optarg, 1, 1000000, &count) != 0) return usage_error("--count must be 1..1000000, got '%s'", optarg);
             break;
-        }
         case OPT_VEL:
-            if (sscanf(optarg, "%lf,%lf", &vx, &vy) != 2 || vx < -2047 || vx > 2047 || vy < -2047 || vy > 2047)
+            if (parse_velocity(optarg, &vx, &vy) != 0)
                 return usage_error("--velocity must be VX,VY in px/frame within +-2047, got '%s'", optarg);
             break;
         case ':': return usage_error("option '%s' needs a value", argv[optind - 1]);
@@ -251,8 +256,7 @@ int tdc_run_assemble_main(int argc, char **argv)
     }
     if (!outdir) return usage_error("%s", "no output folder: give -o DIR");
     if (make_dirs(outdir) != 0) {
-        fprintf(stderr, "tdc-run assemble: cannot create %s: %s\n", outdir, strerror(errno));
-        return TDC_RUN_EXIT_FAILED;
+        return tdc_fail(TDC_EXIT_FILE, "assemble", outdir, "cannot create the output folder: %s", strerror(errno));
     }
     if (stream_kind) {
         if (optind < argc) return usage_error("--write-stream takes no subframe files (got '%s')", argv[optind]);
@@ -266,21 +270,18 @@ int tdc_run_assemble_main(int argc, char **argv)
     if (first >= argc) return usage_error("%s", "every subframe is '-': nothing to assemble");
     tdc_image_t img;
     char err[600];
-    if (tdc_png_read(argv[first], &img, err, sizeof(err)) != 0) {
-        fprintf(stderr, "tdc-run assemble: %s\n", err);
-        return TDC_RUN_EXIT_FAILED;
-    }
+    if (tdc_png_read(argv[first], &img, err, sizeof(err)) != 0)
+        return tdc_fail(access(argv[first], R_OK) != 0 ? TDC_EXIT_FILE : TDC_EXIT_INPUT, "assemble", NULL, "%s", err);
     uint32_t tx = (uint32_t)img.width, ty = (uint32_t)img.height;
     tdc_png_free(&img);
     if (!w) w = (int)(2 * tx), h = (int)(2 * ty);
     if ((uint32_t)(w + 1) / 2 != tx || (uint32_t)(h + 1) / 2 != ty) {
-        fprintf(stderr, "tdc-run assemble: --size %dx%d needs %dx%d subframes, %s is %ux%u\n", w, h, (w + 1) / 2,
-                (h + 1) / 2, argv[first], tx, ty);
-        return TDC_RUN_EXIT_FAILED;
+        return tdc_fail(TDC_EXIT_INPUT, "assemble", argv[first], "--size %dx%d needs %dx%d subframes, the file is %ux%u",
+                        w, h, (w + 1) / 2, (h + 1) / 2, tx, ty);
     }
     if (w > TDC_ASM_MAX_DIM || h > TDC_ASM_MAX_DIM) {
-        fprintf(stderr, "tdc-run assemble: %dx%d exceeds the stage's %d pixel limit\n", w, h, TDC_ASM_MAX_DIM);
-        return TDC_RUN_EXIT_FAILED;
+        return tdc_fail(TDC_EXIT_INPUT, "assemble", argv[first], "%dx%d exceeds the stage's %d pixel limit", w, h,
+                        TDC_ASM_MAX_DIM);
     }
 
     tdc_asm_config_t cfg = {(uint16_t)w, (uint16_t)h};
@@ -289,27 +290,29 @@ int tdc_run_assemble_main(int argc, char **argv)
     int16_t *mv = malloc((size_t)tx * ty * 4);
     uint8_t *bits = malloc(((size_t)tx * ty + 7) / 8);
     tdc_asm_t st;
-    if (!arena || !mv || !bits || tdc_asm_init(&st, &cfg, arena, n) != TDC_OK) {
-        fprintf(stderr, "tdc-run assemble: out of memory for %dx%d\n", w, h);
+    if (!arena || !mv || !bits) {
         free(arena), free(mv), free(bits);
-        return TDC_RUN_EXIT_FAILED;
+        return tdc_fail(TDC_EXIT_NOMEM, "assemble", NULL, "out of memory for %dx%d", w, h);
     }
-    int rc = TDC_RUN_EXIT_OK;
+    tdc_status_t ist = tdc_asm_init(&st, &cfg, arena, n);
+    if (ist != TDC_OK) {
+        free(arena), free(mv), free(bits);
+        return tdc_fail(TDC_EXIT_REFUSED, "assemble", "stage init", "firmware status %d for %dx%d", (int)ist, w, h);
+    }
+    int rc = TDC_EXIT_OK;
     uint32_t frame = 0;
     for (int a = optind; a < argc; a++, frame++) {
         const char *name = argv[a];
         int dropped = !strcmp(name, "-");
         if (!dropped) {
             if (tdc_png_read(name, &img, err, sizeof(err)) != 0) {
-                fprintf(stderr, "tdc-run assemble: %s\n", err);
-                rc = TDC_RUN_EXIT_FAILED;
+                rc = tdc_fail(access(name, R_OK) != 0 ? TDC_EXIT_FILE : TDC_EXIT_INPUT, "assemble", NULL, "%s", err);
                 break;
             }
             if ((uint32_t)img.width != tx || (uint32_t)img.height != ty) {
-                fprintf(stderr, "tdc-run assemble: %s is %dx%d, the stream's subframes are %ux%u\n", name, img.width,
-                        img.height, tx, ty);
+                rc = tdc_fail(TDC_EXIT_INPUT, "assemble", name, "%dx%d, the stream's subframes are %ux%u", img.width,
+                              img.height, tx, ty);
                 tdc_png_free(&img);
-                rc = TDC_RUN_EXIT_FAILED;
                 break;
             }
             if (img.bits == 16) tdc_png_to8(&img);
@@ -321,24 +324,22 @@ int tdc_run_assemble_main(int argc, char **argv)
             int has_bits = 0;
             int r = read_mv(mvpath, tx, ty, mv, bits, &has_bits, err, sizeof(err));
             if (r < 0) {
-                fprintf(stderr, "tdc-run assemble: %s\n", err);
+                rc = tdc_fail(TDC_EXIT_INPUT, "assemble", NULL, "%s", err);
                 tdc_png_free(&img);
-                rc = TDC_RUN_EXIT_FAILED;
                 break;
             }
             tdc_status_t s = tdc_asm_ingest(&st, frame, (const uint8_t *)img.data, r == 0 ? mv : NULL,
                                             r == 0 && has_bits ? bits : NULL);
             tdc_png_free(&img);
             if (s != TDC_OK) {
-                fprintf(stderr, "tdc-run assemble: firmware refused subframe %u (%s): %s\n", frame, name, tdc_status_name(s));
-                rc = TDC_RUN_EXIT_FAILED;
+                rc = tdc_fail(TDC_EXIT_REFUSED, "assemble", name, "firmware refused subframe %u: %s", frame, tdc_status_name(s));
                 break;
             }
         }
         const tdc_status_t as = tdc_asm_assemble(&st, frame);
         if (as != TDC_OK) {
-            fprintf(stderr, "tdc-run assemble: firmware could not assemble frame %u: %s\n", frame, tdc_status_name(as));
-            rc = TDC_RUN_EXIT_FAILED;
+            rc = tdc_fail(TDC_EXIT_REFUSED, "assemble", NULL, "firmware could not assemble frame %u: %s", frame,
+                          tdc_status_name(as));
             break;
         }
         int stride;
@@ -346,8 +347,7 @@ int tdc_run_assemble_main(int argc, char **argv)
         char path[4096];
         snprintf(path, sizeof(path), "%s/frame_%05u.png", outdir, frame);
         if (tdc_png_write(path, out, w, h, 8, (size_t)stride, err, sizeof(err)) != 0) {
-            fprintf(stderr, "tdc-run assemble: %s\n", err);
-            rc = TDC_RUN_EXIT_FAILED;
+            rc = tdc_fail(TDC_EXIT_FILE, "assemble", NULL, "%s", err);
             break;
         }
         if (!quiet)
@@ -371,7 +371,8 @@ int tdc_run_assemble_main(int argc, char **argv)
                 (unsigned long long)s->static_averaged, (unsigned long long)s->static_kept,
                 (unsigned long long)s->window_resets, (unsigned long long)s->static_rows);
     }
-    if (sf) fclose(sf);
+    if ((!sf || fclose(sf) != 0) && rc == TDC_EXIT_OK)
+        rc = tdc_fail(TDC_EXIT_FILE, "assemble", spath, "cannot write: %s", strerror(errno));
     free(arena), free(mv), free(bits);
     return rc;
 }

@@ -11,6 +11,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "golden/tdc_content.h"
 #include "tdc_gamma.h"
@@ -57,7 +58,7 @@ static const char k_usage[] =
     "  -q, --quiet            no per-frame lines on stderr\n"
     "  -h, --help             this text\n"
     "\n"
-    "exit status: 0 ok, 1 bad input or firmware refused, 2 usage error\n";
+    "exit codes (docs/tools.md): 0 OK, 1 ARGS, 7 FILE, 13 INPUT, 14 REFUSED, 17 NOMEM\n";
 
 typedef struct {
     const char *out;
@@ -94,10 +95,23 @@ static void panel_names(char *buf, size_t n)
 
 static int usage_error(const char *fmt, const char *arg)
 {
-    fprintf(stderr, "tdc-run: ");
-    fprintf(stderr, fmt, arg);
-    fprintf(stderr, "\ntry 'tdc-run --help'\n");
-    return TDC_RUN_EXIT_USAGE;
+    char what[512];
+    snprintf(what, sizeof what, fmt, arg);
+    return tdc_fail(TDC_EXIT_ARGS, NULL, what, "try 'tdc-run --help'");
+}
+
+/* N/D with 1 <= N, D <= 1000 (the range check against 1/4..1 is the caller's). */
+static int parse_ratio(const char *s, int *num, int *den)
+{
+    uint64_t n, d;
+    const char *e;
+    if (tdc_parse_u64_field(s, &e, 1000, &n) != 0 || *e != '/' ||
+        tdc_parse_u64_field(e + 1, &e, 1000, &d) != 0 || *e != '\0' || n < 1 || d < 1) {
+        return -1;
+    }
+    *num = (int)n;
+    *den = (int)d;
+    return 0;
 }
 
 static char frame_kind(const opts_t *o, int i)
@@ -145,18 +159,17 @@ static int eye_open(eye_t *e, const tdc_trm_config_t *cfg, const tdc_panel_t *pa
     size_t n = tdc_trm_get_size(cfg);
     e->mem = n ? malloc(n) : NULL;
     if (!e->mem) {
-        fprintf(stderr, "tdc-run: invalid TRM configuration\n");
-        return -1;
+        return n ? tdc_fail(TDC_EXIT_NOMEM, NULL, "TRM state", "cannot allocate %zu bytes", n)
+                 : tdc_fail(TDC_EXIT_REFUSED, NULL, "TRM configuration", "refused by the firmware (size 0)");
     }
     tdc_status_t st = tdc_trm_init(&e->trm, cfg, panel, e->mem, n);
     if (st == TDC_ERR_REFRESH_LOW) {
-        fprintf(stderr, "tdc-run: TRM refused: refresh %u Hz is below the minimum %u Hz (paper §9); "
-                        "use --ratio 1 for no TRM\n", cfg->refresh_hz, cfg->min_refresh_hz);
-        return -1;
+        return tdc_fail(TDC_EXIT_REFUSED, NULL, "TRM refused",
+                        "refresh %u Hz is below the minimum %u Hz (paper §9); use --ratio 1 for no TRM",
+                        cfg->refresh_hz, cfg->min_refresh_hz);
     }
     if (st != TDC_OK) {
-        fprintf(stderr, "tdc-run: TRM init failed: %s\n", tdc_status_name(st));
-        return -1;
+        return tdc_fail(TDC_EXIT_REFUSED, NULL, "TRM init", "%s", tdc_status_name(st));
     }
     if (kernels >= 0) {
         tdc_trm_set_simd(&e->trm, kernels);
@@ -179,24 +192,28 @@ static int load_frame(const opts_t *o, char **files, int i, tdc_image_t *img)
         img->height = o->bh;
         img->bits = 8;
         img->data = malloc((size_t)o->bw * o->bh * 3);
+        if (!img->data) {
+            return tdc_fail(TDC_EXIT_NOMEM, NULL, o->builtin, "cannot allocate a %dx%d frame", o->bw, o->bh);
+        }
         tdc_content_frame(c, (uint32_t)i, 1u, img->data, o->bw, o->bh, o->bw * 3);
         return 0;
     }
     if (tdc_png_read(files[i], img, err, sizeof err) != 0) {
-        fprintf(stderr, "tdc-run: %s\n", err);
-        return -1;
+        /* tdc_png_read's message names the file and why; a file it cannot open is FILE */
+        return tdc_fail(access(files[i], R_OK) != 0 ? TDC_EXIT_FILE : TDC_EXIT_INPUT, NULL, NULL, "%s", err);
     }
     tdc_png_to8(img);
     return 0;
 }
+
+static int run_trm(const opts_t *po, char **files, int nframes);
 
 static int write_png(const opts_t *o, const char *prefix, int i, const uint8_t *rgb, int w, int h)
 {
     char path[4096], err[512];
     snprintf(path, sizeof path, "%s/%s_%05d.png", o->out, prefix, i);
     if (tdc_png_write(path, rgb, w, h, 8, (size_t)w * 3, err, sizeof err) != 0) {
-        fprintf(stderr, "tdc-run: %s\n", err);
-        return -1;
+        return tdc_fail(TDC_EXIT_FILE, NULL, NULL, "%s", err);
     }
     return 0;
 }
@@ -215,7 +232,6 @@ int tdc_run_trm_main(int argc, char **argv)
         {"save-input", no_argument, 0, 8},    {"kernels", required_argument, 0, 9},
         {0, 0, 0, 0}};
     int c;
-    char *end;
     opterr = 0;
     while ((c = getopt_long(argc, argv, ":o:p:r:s:f:qh", longopts, NULL)) != -1) {
         switch (c) {
@@ -227,33 +243,31 @@ int tdc_run_trm_main(int argc, char **argv)
             if (!o.panel) {
                 char names[512];
                 panel_names(names, sizeof names);
-                fprintf(stderr, "tdc-run: unknown panel '%s'; known panels: %s\n", optarg, names);
-                return TDC_RUN_EXIT_USAGE;
+                char what[300];
+                snprintf(what, sizeof what, "unknown panel '%s'", optarg);
+                return tdc_fail(TDC_EXIT_ARGS, NULL, what, "known panels: %s", names);
             }
             break;
         case 'r':
             if (!strcmp(optarg, "1")) {
                 o.r_num = o.r_den = 1;
-            } else if (sscanf(optarg, "%d/%d", &o.r_num, &o.r_den) != 2 || o.r_den <= 0 || o.r_num <= 0 ||
-                       o.r_num > o.r_den || 4 * o.r_num < o.r_den || o.r_den > 1000) {
+            } else if (parse_ratio(optarg, &o.r_num, &o.r_den) != 0 || o.r_num > o.r_den ||
+                       4 * o.r_num < o.r_den) {
                 return usage_error("--ratio must be N/D with 1/4 <= N/D <= 1, got '%s'", optarg);
             }
             break;
         case 's':
-            o.s = strtod(optarg, &end);
-            if (*end || !(o.s >= 0.0 && o.s <= 1e6)) {
+            if (tdc_parse_double(optarg, 0.0, 1e6, &o.s) != 0) {
                 return usage_error("--sensitivity must be a number in [0, 1e6], got '%s'", optarg);
             }
             break;
         case 1:
-            o.sigma = strtod(optarg, &end);
-            if (*end || !(o.sigma >= 0.25 && o.sigma <= 3.5)) {
+            if (tdc_parse_double(optarg, 0.25, 3.5, &o.sigma) != 0) {
                 return usage_error("--sigma must be in [0.25, 3.5] pixels, got '%s'", optarg);
             }
             break;
         case 2:
-            o.refresh = (int)strtol(optarg, &end, 10);
-            if (*end || o.refresh < 1 || o.refresh > 1000) {
+            if (tdc_parse_int(optarg, 1, 1000, &o.refresh) != 0) {
                 return usage_error("--refresh must be 1..1000 Hz, got '%s'", optarg);
             }
             break;
@@ -284,17 +298,19 @@ int tdc_run_trm_main(int argc, char **argv)
             break;
         }
         case 6:
-            o.count = (int)strtol(optarg, &end, 10);
-            if (*end || o.count < 1 || o.count > 1000000) {
+            if (tdc_parse_int(optarg, 1, 1000000, &o.count) != 0) {
                 return usage_error("--count must be 1..1000000, got '%s'", optarg);
             }
             break;
-        case 7:
-            if (sscanf(optarg, "%dx%d", &o.bw, &o.bh) != 2 || o.bw < 1 || o.bh < 1 || o.bw > 8192 ||
-                o.bh > 8192) {
+        case 7: {
+            unsigned bw, bh;
+            if (tdc_parse_size(optarg, 8192, &bw, &bh) != 0) {
                 return usage_error("--size must be WxH within 1..8192, got '%s'", optarg);
             }
+            o.bw = (int)bw;
+            o.bh = (int)bh;
             break;
+        }
         case 'q':
             o.quiet = 1;
             break;
@@ -308,8 +324,7 @@ int tdc_run_trm_main(int argc, char **argv)
                 o.kernels = 0;
             } else if (!strcmp(optarg, "avx2")) {
                 if (!tdc_trm_avx2_available()) {
-                    fprintf(stderr, "tdc-run: --kernels avx2: this build or CPU has no AVX2 kernels\n");
-                    return TDC_RUN_EXIT_FAILED;
+                    return tdc_fail(TDC_EXIT_ARGS, NULL, "--kernels avx2", "this build or CPU has no AVX2 kernels");
                 }
                 o.kernels = 1;
             } else {
@@ -320,7 +335,7 @@ int tdc_run_trm_main(int argc, char **argv)
             char names[512];
             panel_names(names, sizeof names);
             printf(k_usage, names);
-            return TDC_RUN_EXIT_OK;
+            return TDC_EXIT_OK;
         }
         case ':':
             return usage_error("option '%s' needs a value", argv[optind - 1]);
@@ -343,26 +358,34 @@ int tdc_run_trm_main(int argc, char **argv)
     }
     char **files = argv + optind;
     if (mkdir_p(o.out) != 0) {
-        fprintf(stderr, "tdc-run: cannot create %s: %s\n", o.out, strerror(errno));
-        return TDC_RUN_EXIT_FAILED;
+        return tdc_fail(TDC_EXIT_FILE, NULL, o.out, "cannot create the output folder: %s", strerror(errno));
     }
+    return run_trm(&o, files, nframes);
+}
+
+/* The frames through TRM; every error path frees what was allocated. */
+static int run_trm(const opts_t *po, char **files, int nframes)
+{
+    const opts_t o = *po;
+    eye_t eye[2] = {{.mem = NULL}, {.mem = NULL}};
+    uint8_t *out = NULL, *prev_out = NULL, *red = NULL, *perc = NULL;
+    FILE *csv = NULL;
+    int rc = TDC_EXIT_OK, eyes = o.stereo ? 2 : 1;
 
     /* The first frame decides the size; it must be full-res. */
     tdc_image_t first;
-    if (load_frame(&o, files, 0, &first) != 0) {
-        return TDC_RUN_EXIT_FAILED;
+    rc = load_frame(&o, files, 0, &first);
+    if (rc != TDC_EXIT_OK) {
+        return rc;
     }
     const int W = first.width, H = first.height;
     tdc_png_free(&first);
-    const int eyes = o.stereo ? 2 : 1;
     if (o.stereo && (W & 1)) {
-        fprintf(stderr, "tdc-run: stereo frames need an even width (two eyes side by side), got %d\n", W);
-        return TDC_RUN_EXIT_FAILED;
+        return tdc_fail(TDC_EXIT_INPUT, NULL, files[0], "stereo frames need an even width (two eyes side by side), got %d", W);
     }
     const int EW = W / eyes;
     if (EW > 8192 || H > 8192) {
-        fprintf(stderr, "tdc-run: frames of %dx%d exceed 8192x8192\n", W, H);
-        return TDC_RUN_EXIT_FAILED;
+        return tdc_fail(TDC_EXIT_INPUT, NULL, o.builtin ? o.builtin : files[0], "frames of %dx%d exceed 8192x8192", W, H);
     }
     tdc_trm_config_t cfg;
     tdc_trm_default_config(&cfg, (uint16_t)EW, (uint16_t)H, (uint16_t)(o.refresh ? o.refresh : o.panel->refresh_hz));
@@ -371,38 +394,42 @@ int tdc_run_trm_main(int argc, char **argv)
     cfg.s_q8 = (uint32_t)(o.s * 256.0 + 0.5);
     cfg.sigma_q8 = (uint16_t)(o.sigma * 256.0 + 0.5);
     cfg.reduced_in_stream = (uint8_t)(o.r_num != o.r_den);
-    eye_t eye[2];
-    for (int e = 0; e < eyes; e++) {
-        if (eye_open(&eye[e], &cfg, o.panel, o.kernels) != 0) {
-            return TDC_RUN_EXIT_FAILED;
-        }
+    for (int e = 0; e < eyes && rc == TDC_EXIT_OK; e++) {
+        rc = eye_open(&eye[e], &cfg, o.panel, o.kernels);
+    }
+    if (rc != TDC_EXIT_OK) {
+        goto done;
     }
     const int rw = eye[0].trm.rw, rh = eye[0].trm.rh;
-    uint8_t *out = calloc((size_t)W * H * 3, 1), *prev_out = calloc((size_t)W * H * 3, 1);
-    uint8_t *red = calloc((size_t)rw * rh * 3, 1), *perc = calloc((size_t)W * H * 3, 1);
+    out = calloc((size_t)W * H * 3, 1);
+    prev_out = calloc((size_t)W * H * 3, 1);
+    red = calloc((size_t)rw * rh * 3, 1);
+    perc = calloc((size_t)W * H * 3, 1);
+    if (!out || !prev_out || !red || !perc) {
+        rc = tdc_fail(TDC_EXIT_NOMEM, NULL, "frame buffers", "cannot allocate 4 buffers of %dx%d", W, H);
+        goto done;
+    }
     char path[4096];
     snprintf(path, sizeof path, "%s/stats.csv", o.out);
-    FILE *csv = fopen(path, "w");
-    if (!csv || !out || !prev_out || !red || !perc) {
-        fprintf(stderr, "tdc-run: cannot write %s: %s\n", path, strerror(errno));
-        return TDC_RUN_EXIT_FAILED;
+    csv = fopen(path, "w");
+    if (!csv) {
+        rc = tdc_fail(TDC_EXIT_FILE, NULL, path, "cannot write: %s", strerror(errno));
+        goto done;
     }
     fprintf(csv, "frame,eye,kind,clamped_high,clamped_low,weights_computed,weights_skipped,"
                  "no_residual,firmware_us\n");
-    int rc = TDC_RUN_EXIT_OK;
-    for (int i = 0; i < nframes && rc == TDC_RUN_EXIT_OK; i++) {
+    for (int i = 0; i < nframes && rc == TDC_EXIT_OK; i++) {
         tdc_image_t img;
-        if (load_frame(&o, files, i, &img) != 0) {
-            rc = TDC_RUN_EXIT_FAILED;
+        rc = load_frame(&o, files, i, &img);
+        if (rc != TDC_EXIT_OK) {
             break;
         }
         const char *name = o.builtin ? o.builtin : files[i];
-        if (o.save_input && write_png(&o, "input", i, img.data, img.width, img.height) != 0) {
+        if (o.save_input && (rc = write_png(&o, "input", i, img.data, img.width, img.height)) != 0) {
             tdc_png_free(&img);
-            rc = TDC_RUN_EXIT_FAILED;
             break;
         }
-        for (int e = 0; e < eyes && rc == TDC_RUN_EXIT_OK; e++) {
+        for (int e = 0; e < eyes && rc == TDC_EXIT_OK; e++) {
             tdc_trm_t *t = &eye[e].trm;
             char kind = o.stereo ? (tdc_trm_stereo_eye_is_full((uint32_t)i, e) ? 'F' : 'R') : frame_kind(&o, i);
             if (t->passthrough) {
@@ -418,9 +445,8 @@ int tdc_run_trm_main(int argc, char **argv)
             uint8_t *eye_out = out + (size_t)e * EW * 3;
             if (kind == 'F') {
                 if (img.width != W || img.height != H) {
-                    fprintf(stderr, "tdc-run: %s: full-res frame is %dx%d, expected %dx%d\n", name, img.width,
-                            img.height, W, H);
-                    rc = TDC_RUN_EXIT_FAILED;
+                    rc = tdc_fail(TDC_EXIT_INPUT, NULL, name, "full-res frame is %dx%d, expected %dx%d", img.width,
+                                  img.height, W, H);
                     break;
                 }
                 st = tdc_trm_full(t, (uint8_t *)img.data + (size_t)e * EW * 3, (uint32_t)W * 3, eye_out,
@@ -430,26 +456,23 @@ int tdc_run_trm_main(int argc, char **argv)
                 uint32_t rstride;
                 if (!strcmp(o.frames, "auto")) {
                     if (img.width != W || img.height != H) {
-                        fprintf(stderr, "tdc-run: %s: frame is %dx%d, expected %dx%d (--frames auto)\n", name,
-                                img.width, img.height, W, H);
-                        rc = TDC_RUN_EXIT_FAILED;
+                        rc = tdc_fail(TDC_EXIT_INPUT, NULL, name, "frame is %dx%d, expected %dx%d (--frames auto)",
+                                      img.width, img.height, W, H);
                         break;
                     }
                     st = tdc_trm_downsample(t, (uint8_t *)img.data + (size_t)e * EW * 3, (uint32_t)W * 3, red,
                                             (uint32_t)rw * 3);
                     if (st != TDC_OK) {
-                        fprintf(stderr, "tdc-run: %s: firmware could not reduce frame %d: %s\n", name, i,
-                                tdc_status_name(st));
-                        rc = TDC_RUN_EXIT_FAILED;
+                        rc = tdc_fail(TDC_EXIT_REFUSED, NULL, name, "firmware could not reduce frame %d: %s", i,
+                                      tdc_status_name(st));
                         break;
                     }
                     rsrc = red;
                     rstride = (uint32_t)rw * 3;
                 } else {
                     if (img.width != rw || img.height != rh) {
-                        fprintf(stderr, "tdc-run: %s: reduced frame is %dx%d, expected %dx%d (r = %d/%d of %dx%d)\n",
-                                name, img.width, img.height, rw, rh, o.r_num, o.r_den, W, H);
-                        rc = TDC_RUN_EXIT_FAILED;
+                        rc = tdc_fail(TDC_EXIT_INPUT, NULL, name, "reduced frame is %dx%d, expected %dx%d (r = %d/%d of %dx%d)",
+                                      img.width, img.height, rw, rh, o.r_num, o.r_den, W, H);
                         break;
                     }
                     rsrc = img.data;
@@ -459,8 +482,7 @@ int tdc_run_trm_main(int argc, char **argv)
             }
             double us = (now_s() - t0) * 1e6;
             if (st != TDC_OK) {
-                fprintf(stderr, "tdc-run: %s: firmware rejected frame %d: %s\n", name, i, tdc_status_name(st));
-                rc = TDC_RUN_EXIT_FAILED;
+                rc = tdc_fail(TDC_EXIT_REFUSED, NULL, name, "firmware rejected frame %d: %s", i, tdc_status_name(st));
                 break;
             }
             fprintf(csv, "%d,%d,%s,%llu,%llu,%llu,%llu,%llu,%.1f\n", i, e,
@@ -475,11 +497,7 @@ int tdc_run_trm_main(int argc, char **argv)
             }
         }
         tdc_png_free(&img);
-        if (rc != TDC_RUN_EXIT_OK) {
-            break;
-        }
-        if (write_png(&o, "drive", i, out, W, H) != 0) {
-            rc = TDC_RUN_EXIT_FAILED;
+        if (rc != TDC_EXIT_OK || (rc = write_png(&o, "drive", i, out, W, H)) != TDC_EXIT_OK) {
             break;
         }
         if (o.perceived && i > 0) {
@@ -489,14 +507,16 @@ int tdc_run_trm_main(int argc, char **argv)
                 int64_t sum = (int64_t)tdc_gamma_decode(gt, out[k]) + tdc_gamma_decode(gt, prev_out[k]);
                 perc[k] = (uint8_t)tdc_gamma_encode(gt, (tdc_lin_t)(sum / 2), 255u);
             }
-            if (write_png(&o, "perceived", i, perc, W, H) != 0) {
-                rc = TDC_RUN_EXIT_FAILED;
+            if ((rc = write_png(&o, "perceived", i, perc, W, H)) != TDC_EXIT_OK) {
                 break;
             }
         }
         memcpy(prev_out, out, (size_t)W * H * 3);
     }
-    fclose(csv);
+done:
+    if (csv && fclose(csv) != 0 && rc == TDC_EXIT_OK) {
+        rc = tdc_fail(TDC_EXIT_FILE, NULL, "stats.csv", "write failed: %s", strerror(errno));
+    }
     for (int e = 0; e < eyes; e++) {
         free(eye[e].mem);
     }
@@ -509,12 +529,12 @@ int tdc_run_trm_main(int argc, char **argv)
 
 int main(int argc, char **argv)
 {
+    tdc_tool_set_name("tdc-run");
     if (argc > 1 && !strcmp(argv[1], "assemble")) {
 #ifdef TDC_RUN_WITH_ASSEMBLE
         return tdc_run_assemble_main(argc - 1, argv + 1);
 #else
-        fprintf(stderr, "tdc-run: this build has no tile-assembly mode\n");
-        return TDC_RUN_EXIT_USAGE;
+        return tdc_fail(TDC_EXIT_ARGS, "assemble", NULL, "this build has no tile-assembly mode");
 #endif
     }
     return tdc_run_trm_main(argc, argv);

@@ -2,12 +2,12 @@
 #ifndef TDC_RUN_H
 #define TDC_RUN_H
 
-/* Exit codes shared by every mode. */
-enum {
-    TDC_RUN_EXIT_OK = 0,
-    TDC_RUN_EXIT_FAILED = 1, /* bad input file, size mismatch, firmware refused */
-    TDC_RUN_EXIT_USAGE = 2   /* wrong options */
-};
+#include "tdc_tool.h"
+
+/* Exit codes: the shared table of every tdc program (tdc_tool.h,
+ * docs/tools.md): OK, ARGS (usage), FILE (cannot read or write a file),
+ * INPUT (a PNG or frame of the wrong size), REFUSED (the firmware refused
+ * the frame or the configuration), NOMEM. */
 
 /* TRM mode (default): tdc_run.c */
 int tdc_run_trm_main(int argc, char **argv);

@@ -25,7 +25,7 @@ static const char usage_text[] =
     "                           over bulk OUT; progress, throughput, board counters\n"
     "  flash IMAGE              DFU download with size and CRC checks, verify, reset\n"
     "  mkimage --board B [--fw-version X.Y.Z] IN.bin OUT.img\n"
-    "                           wrap a raw firmware binary in a tdc image header\n"
+    "                           wrap a raw binary: tdc image header + DFU suffix\n"
     "options:\n"
     "  --bus N --address N      select the board by USB bus and device address\n"
     "  --serial S               select the board by serial number\n"
@@ -35,7 +35,7 @@ static const char usage_text[] =
     "  --progress/--no-progress stream/flash: force the progress bar on or off\n"
     "  --no-verify --no-reset   flash: skip the read-back, do not reset afterwards\n"
     "  -h, --help               this text\n"
-    "exit codes: 0 OK, 1 ARGS, 2 NO_DEVICE, 3 AMBIGUOUS, 4 USB, 5 TIMEOUT,\n"
+    "exit codes: 0 OK, 1 ARGS, 2 NO_DEVICE, 3 AMBIGUOUS, 4 IO, 5 TIMEOUT,\n"
     "  6 DISCONNECTED, 7 FILE, 8 IMAGE, 9 INCOMPATIBLE, 10 DFU, 11 VERIFY, 12 PROTOCOL\n";
 
 static void usage(FILE *f)
@@ -89,34 +89,13 @@ tdc_exit_t tdc_usb_get_info(tdc_board_t *b, board_info_t *bi)
                                    TDC_USB_IF_STREAM, raw, sizeof raw, &got);
     if (e != TDC_EXIT_OK)
         return e;
-    if (got < (int)TDC_USB_INFO_LEN || tdc_get_le32(raw + TDC_USB_INFO_OFF_MAGIC) != TDC_USB_INFO_MAGIC ||
-        tdc_get_le16(raw + TDC_USB_INFO_OFF_PROTO) != TDC_USB_PROTO_VERSION) {
+    if (tdc_usb_parse_info(raw, got, bi) != 0) {
         fprintf(stderr, "tdc-usb: %s: board info malformed (%d bytes, magic %08x, protocol %u; "
                         "tdc-usb speaks protocol %u)\n", b->op, got,
                 got >= 4 ? tdc_get_le32(raw) : 0u,
                 got >= 6 ? tdc_get_le16(raw + TDC_USB_INFO_OFF_PROTO) : 0u, TDC_USB_PROTO_VERSION);
         return TDC_EXIT_PROTOCOL;
     }
-    memset(bi, 0, sizeof *bi);
-    bi->fw_version = tdc_get_le32(raw + TDC_USB_INFO_OFF_FW_VERSION);
-    memcpy(bi->board, raw + TDC_USB_INFO_OFF_BOARD, TDC_USB_INFO_NAME_LEN);
-    memcpy(bi->panel, raw + TDC_USB_INFO_OFF_PANEL, TDC_USB_INFO_NAME_LEN);
-    bi->width = tdc_get_le16(raw + TDC_USB_INFO_OFF_WIDTH);
-    bi->height = tdc_get_le16(raw + TDC_USB_INFO_OFF_HEIGHT);
-    bi->refresh_mhz = tdc_get_le32(raw + TDC_USB_INFO_OFF_REFRESH);
-    bi->rx_buf = tdc_get_le32(raw + TDC_USB_INFO_OFF_RX_BUF);
-    bi->max_pkt = tdc_get_le32(raw + TDC_USB_INFO_OFF_MAX_PKT);
-    bi->slot = tdc_get_le32(raw + TDC_USB_INFO_OFF_SLOT);
-    bi->rx_xfers = tdc_get_le32(raw + TDC_USB_INFO_OFF_RX_XFERS);
-    bi->rx_bytes = (uint64_t)tdc_get_le32(raw + TDC_USB_INFO_OFF_RX_BYTES) |
-                   ((uint64_t)tdc_get_le32(raw + TDC_USB_INFO_OFF_RX_BYTES + 4) << 32);
-    bi->rx_crc = tdc_get_le32(raw + TDC_USB_INFO_OFF_RX_CRC);
-    bi->link_crc = tdc_get_le32(raw + TDC_USB_INFO_OFF_LINK_CRC);
-    bi->link_bad = tdc_get_le32(raw + TDC_USB_INFO_OFF_LINK_BAD);
-    bi->overruns = tdc_get_le32(raw + TDC_USB_INFO_OFF_OVERRUNS);
-    bi->dfu_errors = tdc_get_le32(raw + TDC_USB_INFO_OFF_DFU_ERRORS);
-    bi->stalls = tdc_get_le32(raw + TDC_USB_INFO_OFF_STALLS);
-    bi->frames = tdc_get_le32(raw + TDC_USB_INFO_OFF_FRAMES);
     return TDC_EXIT_OK;
 }
 
@@ -165,10 +144,10 @@ static void list_cb(void *ctx, libusb_device *dev, libusb_device_handle *h, cons
     int got = libusb_control_transfer(h, LIBUSB_ENDPOINT_IN | LIBUSB_REQUEST_TYPE_VENDOR |
                                       LIBUSB_RECIPIENT_INTERFACE, TDC_USB_REQ_BOARD_INFO, 0,
                                       TDC_USB_IF_STREAM, raw, sizeof raw, b.timeout_ms);
-    if (got >= (int)TDC_USB_INFO_LEN && tdc_get_le32(raw) == TDC_USB_INFO_MAGIC)
-        printf(" board %.16s panel %.16s fw %u.%u.%u\n", (const char *)raw + TDC_USB_INFO_OFF_BOARD,
-               (const char *)raw + TDC_USB_INFO_OFF_PANEL, raw[TDC_USB_INFO_OFF_FW_VERSION + 2],
-               raw[TDC_USB_INFO_OFF_FW_VERSION + 1], raw[TDC_USB_INFO_OFF_FW_VERSION]);
+    board_info_t bi;
+    if (tdc_usb_parse_info(raw, got, &bi) == 0)
+        printf(" board %s panel %s fw %u.%u.%u\n", bi.board, bi.panel, bi.fw_version >> 16,
+               (bi.fw_version >> 8) & 0xFFu, bi.fw_version & 0xFFu);
     else
         printf(" (board info: %s)\n", got < 0 ? libusb_error_name(got) : "malformed");
 }
@@ -273,12 +252,12 @@ static tdc_exit_t cmd_stream(tdc_board_t *b, const opts_t *o, const char *path, 
     e = tdc_usb_bulk(b, "bulk IN status report", b->ep_in, st, sizeof st, &got);
     if (e != TDC_EXIT_OK)
         return e;
-    if (got < (int)TDC_USB_STATUS_LEN || tdc_get_le32(st) != TDC_USB_STATUS_MAGIC) {
+    tdc_usb_status_t sr;
+    if (tdc_usb_parse_status(st, got, &sr) != 0) {
         fprintf(stderr, "tdc-usb: stream: status report malformed (%d bytes)\n", got);
         return TDC_EXIT_PROTOCOL;
     }
-    printf("status: seq %u errors %u frames %u\n", tdc_get_le32(st + TDC_USB_STATUS_OFF_SEQ),
-           tdc_get_le32(st + TDC_USB_STATUS_OFF_ERRORS), tdc_get_le32(st + TDC_USB_STATUS_OFF_FRAMES));
+    printf("status: seq %u errors %u frames %u\n", sr.seq, sr.errors, sr.frames);
     e = tdc_usb_get_info(b, &bi);
     if (e != TDC_EXIT_OK)
         return e;
@@ -293,14 +272,26 @@ static tdc_exit_t cmd_stream(tdc_board_t *b, const opts_t *o, const char *path, 
     return TDC_EXIT_OK;
 }
 
+/* Option numbers: decimal or 0x hex, whole string, range-checked (never wrapped). */
 static int parse_long(const char *s, long lo, long hi, long *out)
 {
-    char *end;
-    errno = 0;
-    long v = strtol(s, &end, 0);
-    if (errno != 0 || end == s || *end != '\0' || v < lo || v > hi)
+    uint64_t v;
+    if (tdc_parse_u64(s, (uint64_t)lo, (uint64_t)hi, &v) != 0)
         return -1;
-    *out = v;
+    *out = (long)v;
+    return 0;
+}
+
+/* X.Y.Z with X <= 65535, Y, Z <= 255, as 0x00XXYYZZ. */
+static int parse_version(const char *s, uint32_t *out)
+{
+    uint64_t a, b, c;
+    const char *e;
+    if (tdc_parse_u64_field(s, &e, 0xFFFF, &a) != 0 || *e != '.' ||
+        tdc_parse_u64_field(e + 1, &e, 255, &b) != 0 || *e != '.' ||
+        tdc_parse_u64_field(e + 1, &e, 255, &c) != 0 || *e != '\0')
+        return -1;
+    *out = (uint32_t)(a << 16 | b << 8 | c);
     return 0;
 }
 
@@ -318,6 +309,7 @@ int main(int argc, char **argv)
         {"fw-version", 1, 0, O_FWV}, {"help", 0, 0, 'h'}, {0, 0, 0, 0}};
     int c;
     long v;
+    tdc_tool_set_name("tdc-usb");
     while ((c = getopt_long(argc, argv, "h", lopts, NULL)) != -1) {
         const char *bad = NULL;
         switch (c) {
@@ -333,20 +325,12 @@ int main(int argc, char **argv)
         case O_NOVERIFY: o.verify = 0; break;
         case O_NORESET: o.reset = 0; break;
         case O_BOARD: o.board = optarg; break;
-        case O_FWV: {
-            unsigned a, b2, p;
-            if (sscanf(optarg, "%u.%u.%u", &a, &b2, &p) != 3 || a > 0xFFFF || b2 > 255 || p > 255)
-                bad = "--fw-version";
-            else
-                o.fw_version = a << 16 | b2 << 8 | p;
-            break;
-        }
+        case O_FWV: if (parse_version(optarg, &o.fw_version)) bad = "--fw-version"; break;
         case 'h': usage(stdout); return TDC_EXIT_OK;
         default: usage(stderr); return TDC_EXIT_ARGS;
         }
         if (bad != NULL) {
-            fprintf(stderr, "tdc-usb: bad value for %s: '%s'\n", bad, optarg);
-            return TDC_EXIT_ARGS;
+            return tdc_fail_option(NULL, bad, optarg, "see tdc-usb --help");
         }
     }
     if (optind >= argc) {
@@ -373,7 +357,7 @@ int main(int argc, char **argv)
     if (r != 0) {
         fprintf(stderr, "tdc-usb: libusb_init failed: %s (%s)\n", libusb_error_name(r),
                 libusb_strerror(r));
-        return TDC_EXIT_USB;
+        return TDC_EXIT_IO;
     }
     tdc_exit_t e;
     if (strcmp(cmd, "list") == 0) {
@@ -387,7 +371,7 @@ int main(int argc, char **argv)
         uint32_t len = 0;
         /* Local inputs first: a bad file is reported even without a board. */
         e = strcmp(cmd, "stream") == 0 ? open_stream_file(args[0], &f)
-            : strcmp(cmd, "flash") == 0 ? tdc_usb_load_image(args[0], &img, &len) : TDC_EXIT_OK;
+            : strcmp(cmd, "flash") == 0 ? tdc_usb_load_image(args[0], o.sel.vid, o.sel.pid, &img, &len) : TDC_EXIT_OK;
         if (e == TDC_EXIT_OK)
             e = tdc_usb_open(ctx, &o.sel, &b);
         if (e == TDC_EXIT_OK) {

@@ -10,6 +10,7 @@
 #include <stdint.h>
 
 #include "tdc_usb_dev.h"
+#include "tdc_usb_reply.h"
 #include "tdc_usbproto.h"
 
 #define DEFAULT_TIMEOUT_MS 2000u
@@ -24,14 +25,6 @@ typedef struct {
     uint32_t fw_version;
 } opts_t;
 
-typedef struct {
-    uint32_t fw_version;
-    char board[TDC_USB_INFO_NAME_LEN + 1], panel[TDC_USB_INFO_NAME_LEN + 1];
-    unsigned width, height;
-    uint32_t refresh_mhz, rx_buf, max_pkt, slot;
-    uint32_t rx_xfers, rx_crc, link_crc, link_bad, overruns, dfu_errors, stalls, frames;
-    uint64_t rx_bytes;
-} board_info_t;
 
 double tdc_usb_now_s(void);
 void tdc_usb_progress(const opts_t *o, const char *label, uint64_t done, uint64_t total, double t0);
@@ -40,7 +33,8 @@ tdc_exit_t tdc_usb_get_info(tdc_board_t *b, board_info_t *bi);
 
 /* tdc_usb_dfu.c */
 tdc_exit_t tdc_usb_read_file(const char *path, const char *op, uint8_t **data, uint32_t *len);
-tdc_exit_t tdc_usb_load_image(const char *path, uint8_t **image, uint32_t *image_len);
+tdc_exit_t tdc_usb_load_image(const char *path, uint16_t vid, uint16_t pid, uint8_t **image,
+                              uint32_t *image_len);
 tdc_exit_t tdc_usb_cmd_flash(tdc_board_t *b, const opts_t *o, const char *path, const uint8_t *img,
                              uint32_t len);
 tdc_exit_t tdc_usb_cmd_mkimage(const opts_t *o, const char *in, const char *out);

@@ -5,36 +5,17 @@
  */
 #include "tdc_usb_dev.h"
 #include "tdc_usbproto.h"
+#include "tdc_usb_reply.h"
 
 #include <stdio.h>
 #include <string.h>
 #include <time.h>
 
-const char *tdc_exit_name(tdc_exit_t e)
-{
-    switch (e) {
-    case TDC_EXIT_OK: return "OK";
-    case TDC_EXIT_ARGS: return "ARGS";
-    case TDC_EXIT_NO_DEVICE: return "NO_DEVICE";
-    case TDC_EXIT_AMBIGUOUS: return "AMBIGUOUS";
-    case TDC_EXIT_USB: return "USB";
-    case TDC_EXIT_TIMEOUT: return "TIMEOUT";
-    case TDC_EXIT_DISCONNECTED: return "DISCONNECTED";
-    case TDC_EXIT_FILE: return "FILE";
-    case TDC_EXIT_IMAGE: return "IMAGE";
-    case TDC_EXIT_INCOMPATIBLE: return "INCOMPATIBLE";
-    case TDC_EXIT_DFU: return "DFU";
-    case TDC_EXIT_VERIFY: return "VERIFY";
-    case TDC_EXIT_PROTOCOL: return "PROTOCOL";
-    }
-    return "?";
-}
-
 tdc_exit_t tdc_usb_fail(const tdc_board_t *b, const char *what, int err)
 {
     const char *op = b != NULL && b->op != NULL ? b->op : "usb";
     const char *hint = "";
-    tdc_exit_t code = TDC_EXIT_USB;
+    tdc_exit_t code = TDC_EXIT_IO;
     switch (err) {
     case LIBUSB_ERROR_TIMEOUT:
         code = TDC_EXIT_TIMEOUT;
@@ -73,13 +54,8 @@ int tdc_usb_string_ascii(libusb_device_handle *h, uint8_t index, char *out, int 
                                     sizeof buf, timeout_ms);
     if (r < 0)
         return r;
-    if (r < 2 || buf[1] != LIBUSB_DT_STRING || buf[0] > r)
-        return LIBUSB_ERROR_IO;
-    int n = 0;
-    for (int i = 2; i + 1 < buf[0] && n + 1 < cap; i += 2)
-        out[n++] = buf[i + 1] == 0 && buf[i] >= 0x20 && buf[i] < 0x7F ? (char)buf[i] : '?';
-    out[n] = '\0';
-    return n;
+    int n = tdc_usb_string_decode(buf, r, out, cap);
+    return n < 0 ? LIBUSB_ERROR_IO : n;
 }
 
 int tdc_usb_enumerate(libusb_context *ctx, const tdc_usb_select_t *sel, tdc_usb_list_fn fn,

@@ -9,24 +9,9 @@
 #include <stdint.h>
 #include <libusb.h>
 
-/* Named exit codes (picotool style, positive so shells see them). */
-typedef enum {
-    TDC_EXIT_OK = 0,
-    TDC_EXIT_ARGS = 1,         /* bad command line */
-    TDC_EXIT_NO_DEVICE = 2,    /* no board matches the selection */
-    TDC_EXIT_AMBIGUOUS = 3,    /* more than one board matches: select one */
-    TDC_EXIT_USB = 4,          /* libusb error (access, stall, I/O, ...) */
-    TDC_EXIT_TIMEOUT = 5,      /* a transfer timed out */
-    TDC_EXIT_DISCONNECTED = 6, /* the board went away mid-operation */
-    TDC_EXIT_FILE = 7,         /* cannot read or write a file */
-    TDC_EXIT_IMAGE = 8,        /* image malformed: magic, size or CRC */
-    TDC_EXIT_INCOMPATIBLE = 9, /* image for another board, or too large */
-    TDC_EXIT_DFU = 10,         /* the board's DFU reported an error */
-    TDC_EXIT_VERIFY = 11,      /* read-back or received-data check failed */
-    TDC_EXIT_PROTOCOL = 12     /* the board's reply is malformed */
-} tdc_exit_t;
+#include "tdc_tool.h"
 
-const char *tdc_exit_name(tdc_exit_t e);
+/* Exit codes: the shared table of every tdc program (docs/tools.md). */
 
 typedef struct {
     uint16_t vid, pid;

@@ -53,13 +53,10 @@ static uint16_t dfu_transfer_size(tdc_board_t *b)
         const struct libusb_interface_descriptor *id = &cd->interface[i].altsetting[0];
         if (id->bInterfaceClass != 0xFE || id->bInterfaceSubClass != 0x01)
             continue;
-        const uint8_t *x = id->extra;
-        for (int k = 0; k + 9 <= id->extra_length && x[k] >= 2; k += x[k])
-            if (x[k + 1] == 0x21 && x[k] >= 7)
-                size = (uint16_t)(x[k + 5] | (x[k + 6] << 8));
+        size = tdc_usb_dfu_transfer_size(id->extra, id->extra_length, size);
     }
     libusb_free_config_descriptor(cd);
-    return size >= 64 && size <= 4096 ? size : TDC_DFU_TRANSFER_SIZE;
+    return size;
 }
 
 static tdc_exit_t dfu_getstatus(tdc_board_t *b, uint8_t st[6])
@@ -104,14 +101,30 @@ static tdc_exit_t dfu_wait(tdc_board_t *b, uint8_t want, const char *step)
     }
 }
 
-/* Reads the image and checks it on the host, before any board is touched. */
-tdc_exit_t tdc_usb_load_image(const char *path, uint8_t **image, uint32_t *image_len)
+/* Reads the image and checks it on the host, before any board is touched.
+ * A standard DFU suffix (dfu-suffix, tdc-usb mkimage) is checked and
+ * stripped, as dfu-util does: the board receives the image without it. */
+tdc_exit_t tdc_usb_load_image(const char *path, uint16_t vid, uint16_t pid, uint8_t **image,
+                              uint32_t *image_len)
 {
     uint8_t *img = NULL;
     uint32_t len = 0;
     tdc_exit_t e = tdc_usb_read_file(path, "flash", &img, &len);
     if (e != TDC_EXIT_OK)
         return e;
+    uint32_t file_len = len;
+    tdc_dfu_suffix_status_t ss = tdc_dfu_suffix_check(img, file_len, vid, pid, &len);
+    if (ss == TDC_DFU_SUFFIX_ERR_CRC || ss == TDC_DFU_SUFFIX_ERR_ID) {
+        const uint8_t *sx = img + file_len - TDC_DFU_SUFFIX_LEN;
+        if (ss == TDC_DFU_SUFFIX_ERR_CRC)
+            fprintf(stderr, "tdc-usb: flash: %s: DFU suffix CRC does not match the file\n", path);
+        else
+            fprintf(stderr, "tdc-usb: flash: %s: DFU suffix is for USB %04x:%04x, the board is %04x:%04x\n",
+                    path, tdc_get_le16(sx + TDC_DFU_SUFFIX_OFF_VID), tdc_get_le16(sx + TDC_DFU_SUFFIX_OFF_PID),
+                    vid, pid);
+        free(img);
+        return ss == TDC_DFU_SUFFIX_ERR_CRC ? TDC_EXIT_IMAGE : TDC_EXIT_INCOMPATIBLE;
+    }
     tdc_status_t is = tdc_image_check(img, len, NULL, 0);
     if (is != TDC_OK) {
         fprintf(stderr, "tdc-usb: flash: %s: %s (file %u bytes", path, tdc_status_text(is),
@@ -218,29 +231,43 @@ tdc_exit_t tdc_usb_cmd_flash(tdc_board_t *b, const opts_t *o, const char *path, 
 /* ------------------------------------------------------------------ */
 tdc_exit_t tdc_usb_cmd_mkimage(const opts_t *o, const char *in, const char *out)
 {
-    if (o->board == NULL) {
-        fprintf(stderr, "tdc-usb: mkimage: --board NAME is required\n");
-        return TDC_EXIT_ARGS;
-    }
+    if (o->board == NULL)
+        return tdc_fail(TDC_EXIT_ARGS, "mkimage", "--board", "a board name is required");
+    if (o->board[0] == '\0' || strlen(o->board) > TDC_IMAGE_BOARD_LEN)
+        return tdc_fail(TDC_EXIT_ARGS, "mkimage", "--board", "'%s' does not fit the image header's %u characters",
+                        o->board, TDC_IMAGE_BOARD_LEN);
     uint8_t *payload = NULL;
     uint32_t len = 0;
     tdc_exit_t e = tdc_usb_read_file(in, "mkimage", &payload, &len);
     if (e != TDC_EXIT_OK)
         return e;
-    uint8_t hdr[TDC_IMAGE_HEADER_LEN];
-    tdc_image_make_header(hdr, payload, len, o->fw_version, o->board);
-    FILE *f = fopen(out, "wb");
-    int ok = f != NULL && fwrite(hdr, 1, sizeof hdr, f) == sizeof hdr &&
-             fwrite(payload, 1, len, f) == len;
-    if (f != NULL && fclose(f) != 0)
-        ok = 0;
-    free(payload);
-    if (!ok) {
-        fprintf(stderr, "tdc-usb: mkimage: cannot write %s: %s\n", out, strerror(errno));
-        return TDC_EXIT_FILE;
+    if (len > (64u << 20) - TDC_IMAGE_HEADER_LEN - TDC_DFU_SUFFIX_LEN) {
+        free(payload);
+        return tdc_fail(TDC_EXIT_FILE, "mkimage", in, "larger than 64 MiB");
     }
-    printf("%s: %u + %u bytes, board %s, CRC-32 %08x\n", out, TDC_IMAGE_HEADER_LEN, len, o->board,
-           tdc_get_le32(hdr + TDC_IMAGE_OFF_PAYLOAD_CRC));
+    /* header + payload + DFU suffix in one buffer: the suffix CRC covers both */
+    uint8_t *file = malloc((size_t)len + TDC_IMAGE_HEADER_LEN + TDC_DFU_SUFFIX_LEN);
+    if (file == NULL) {
+        free(payload);
+        return tdc_fail(TDC_EXIT_NOMEM, "mkimage", in, "out of memory");
+    }
+    tdc_image_make_header(file, payload, len, o->fw_version, o->board);
+    memcpy(file + TDC_IMAGE_HEADER_LEN, payload, len);
+    free(payload);
+    const uint32_t img_len = TDC_IMAGE_HEADER_LEN + len;
+    tdc_dfu_suffix_make(file + img_len, file, img_len, o->sel.vid, o->sel.pid);
+    const uint32_t crc = tdc_get_le32(file + TDC_IMAGE_OFF_PAYLOAD_CRC);
+    tdc_out_t w; /* a temporary renamed on success: a failed run leaves OUT as it was */
+    int ok = tdc_out_open(&w, out, "wb") == 0 &&
+             fwrite(file, 1, img_len + TDC_DFU_SUFFIX_LEN, w.f) == img_len + TDC_DFU_SUFFIX_LEN;
+    free(file);
+    if (!ok || tdc_out_commit(&w) != 0) {
+        int err = errno;
+        tdc_out_abort(&w);
+        return tdc_fail(TDC_EXIT_FILE, "mkimage", out, "cannot write: %s", strerror(err));
+    }
+    printf("%s: %u + %u bytes + %u-byte DFU suffix (%04x:%04x), board %s, CRC-32 %08x\n", out,
+           TDC_IMAGE_HEADER_LEN, len, TDC_DFU_SUFFIX_LEN, o->sel.vid, o->sel.pid, o->board, crc);
     return TDC_EXIT_OK;
 }
 

@@ -207,6 +207,23 @@ int tdc_link_file_check(const char *path, FILE *log, int verbose, tdc_link_file_
     if (got < 0) {
         rc = -1;
     }
+    if (rc == 0 && dec) {
+        /* End of file: a packet begun but not finished (a truncated file), or
+         * bytes after the last packet, would only be reported by the next
+         * packet's resync, which never comes; report them here (issue 19:
+         * a file cut mid-packet passed as clean). */
+        const uint64_t before = dec->cnt.garbage_bytes;
+        tdc_link_decoder_resync(dec);
+        const uint64_t cut = dec->cnt.garbage_bytes - before;
+        if (dec->garbage_run) {
+            if (log) {
+                fprintf(log, "error %-15s %u bytes at the end of the file (%s)\n", cut ? "TRUNCATED" : "GARBAGE",
+                        dec->garbage_run, cut ? "it ends inside a packet" : "after the last packet");
+            }
+            sum->truncated_bytes = dec->garbage_run;
+            rc = 1;
+        }
+    }
     if (dec) {
         sum->counters = dec->cnt;
         sum->bytes = dec->cnt.bytes_in;

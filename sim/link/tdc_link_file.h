@@ -50,13 +50,14 @@ typedef struct {
     uint16_t stream_id;
     tdc_link_counters_t counters;  /* of a decoder fed the whole file */
     uint64_t bytes;
+    uint32_t truncated_bytes;      /* bytes of an unfinished packet (or garbage) at the end of the file */
 } tdc_link_file_summary_t;
 
 /* Decodes a whole .tdcs file with the firmware decoder, sized from the
  * file's first STREAM packet (buffers on the heap: host only).  Logs every
  * error event (and with verbose every accepted packet) to log (may be NULL).
  * Returns 0 if the stream decoded without an error event, 1 if there were
- * errors, -1 if the file cannot be read or does not start with a valid
+ * errors or the file ends inside a packet (truncated_bytes), -1 if the file cannot be read or does not start with a valid
  * STREAM packet (message on stderr). */
 int tdc_link_file_check(const char *path, FILE *log, int verbose, tdc_link_file_summary_t *sum);
 

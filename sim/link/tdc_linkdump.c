@@ -1,30 +1,45 @@
 /*
  * tdc_linkdump.c - checks a .tdcs link stream file with the firmware
  * decoder: lists error events (and with -v every accepted packet), then the
- * counters.  Exit status 0: clean stream, 1: errors in the stream, 2: the
- * file cannot be read / is not a stream.
+ * counters.  Exit codes (docs/tools.md): 0 OK (a clean stream), 1 ARGS,
+ * 7 FILE (cannot read it), 13 INPUT (not a stream, errors in the stream,
+ * or the file ends inside a packet).
  * Usage: tdc-linkdump [-v] FILE.tdcs
  */
+#include <errno.h>
 #include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "link/tdc_link_file.h"
+#include "tdc_tool.h"
 
 int main(int argc, char **argv)
 {
     int verbose = 0, a = 1;
+    tdc_tool_set_name("tdc-linkdump");
+    if (a < argc && (!strcmp(argv[a], "-h") || !strcmp(argv[a], "--help"))) {
+        printf("usage: tdc-linkdump [-v] FILE.tdcs\n"
+               "Decodes a .tdcs link stream with the firmware decoder; lists error events\n"
+               "(-v: every accepted packet) and the counters.\n"
+               "exit codes (docs/tools.md): 0 OK (clean), 1 ARGS, 7 FILE, 13 INPUT (not a stream,\n"
+               "  errors in it, or it ends inside a packet)\n");
+        return TDC_EXIT_OK;
+    }
     if (a < argc && !strcmp(argv[a], "-v")) {
         verbose = 1;
         a++;
     }
     if (a + 1 != argc) {
-        fprintf(stderr, "usage: %s [-v] FILE.tdcs\n", argv[0]);
-        return 2;
+        return tdc_fail(TDC_EXIT_ARGS, NULL, "usage", "tdc-linkdump [-v] FILE.tdcs");
+    }
+    if (access(argv[a], R_OK) != 0) {
+        return tdc_fail(TDC_EXIT_FILE, NULL, argv[a], "cannot read: %s", strerror(errno));
     }
     tdc_link_file_summary_t s;
     const int rc = tdc_link_file_check(argv[a], stdout, verbose, &s);
     if (rc < 0) {
-        return 2;
+        return tdc_fail(TDC_EXIT_INPUT, NULL, argv[a], "not a readable .tdcs stream (see above)");
     }
     printf("%s: stream %u, %ux%u x %u eye(s), flags 0x%x, r = %u/%u, %u Hz; %llu bytes, %u packets accepted\n", argv[a],
            s.stream_id, s.stream.width, s.stream.height, s.stream.eyes, (unsigned)s.stream.flags, s.stream.r_num,
@@ -46,5 +61,12 @@ int main(int argc, char **argv)
     if (s.counters.missing_reduced_frames) {
         printf("  missing reduced %u\n", s.counters.missing_reduced_frames);
     }
-    return rc;
+    if (s.truncated_bytes) {
+        return tdc_fail(TDC_EXIT_INPUT, NULL, argv[a], "the file ends inside a packet or with garbage (%u bytes)",
+                        s.truncated_bytes);
+    }
+    if (rc != 0) {
+        return tdc_fail(TDC_EXIT_INPUT, NULL, argv[a], "the stream has errors (listed above)");
+    }
+    return TDC_EXIT_OK;
 }

@@ -18,6 +18,7 @@
 #include "tdc_link.h"
 #include "tdc_render.h"
 #include "tdc_render_stream.h"
+#include "tdc_tool.h"
 
 static void usage(void)
 {
@@ -35,16 +36,25 @@ static void usage(void)
             "  --shadow-mv --dual-mv --no-reflect-mv --bounces N\n"
             "  --png DIR            write DIR/<scene>-<mode>-<frame>.png (+ -mv.png for motion)\n"
             "  --stream FILE        write a .tdcs link stream (full, reduced, subframe, trm)\n"
-            "  --quiet              no per-frame lines\n");
+            "  --quiet              no per-frame lines\n"
+            "exit codes (docs/tools.md): 0 OK, 1 ARGS, 7 FILE, 13 INPUT (scene), 14 REFUSED (renderer\n"
+            "  or link encoder), 17 NOMEM\n");
 }
 
 static int parse_int(const char *s, int lo, int hi, int *out)
 {
-    char *e;
-    errno = 0;
-    long v = strtol(s, &e, 10);
-    if (e == s || *e || errno || v < lo || v > hi) return -1;
-    *out = (int)v;
+    return tdc_parse_int(s, lo, hi, out);
+}
+
+/* A:B with 0 <= A < B <= 10^7 */
+static int parse_frames(const char *s, int *a, int *b)
+{
+    uint64_t x, y;
+    const char *e;
+    if (tdc_parse_u64_field(s, &e, 10000000, &x) != 0 || *e != ':' ||
+        tdc_parse_u64_field(e + 1, &e, 10000000, &y) != 0 || *e != '\0' || y <= x)
+        return -1;
+    *a = (int)x, *b = (int)y;
     return 0;
 }
 
@@ -63,6 +73,7 @@ static void mv_to_rgb(const int16_t *mv, size_t n, float *rgb)
 
 int main(int argc, char **argv)
 {
+    tdc_tool_set_name("tdc-render");
     const char *scene_file = NULL, *builtin = NULL, *png_dir = NULL, *stream_path = NULL, *mode_s = "full";
     int f0 = 0, f1 = 1, quiet = 0, w = 0, h = 0;
     tdc_render_config_t cfg;
@@ -76,8 +87,7 @@ int main(int argc, char **argv)
         } else if (!strcmp(a, "--print-scene") && v) {
             const char *t = tdc_scene_builtin_text(v);
             if (!t) {
-                fprintf(stderr, "tdc-render: unknown built-in scene '%s'\n", v);
-                return 2;
+                return tdc_fail(TDC_EXIT_ARGS, NULL, "--print-scene", "unknown built-in scene '%s'", v);
             }
             fputs(t, stdout);
             return 0;
@@ -91,15 +101,13 @@ int main(int argc, char **argv)
         else if (!strcmp(a, "--dual-mv")) cfg.dual_mv = 1;
         else if (!strcmp(a, "--no-reflect-mv")) cfg.reflect_mv = 0;
         else if (!strcmp(a, "--frames") && v) {
-            if (sscanf(argv[++i], "%d:%d", &f0, &f1) != 2 || f0 < 0 || f1 <= f0) {
-                fprintf(stderr, "tdc-render: --frames wants A:B with 0 <= A < B\n");
-                return 2;
-            }
+            if (parse_frames(argv[++i], &f0, &f1) != 0)
+                return tdc_fail_option(NULL, a, argv[i], "want A:B with 0 <= A < B <= 10000000");
         } else if (!strcmp(a, "--size") && v) {
-            if (sscanf(argv[++i], "%dx%d", &w, &h) != 2 || w < 1 || h < 1 || w > 16384 || h > 16384) {
-                fprintf(stderr, "tdc-render: --size wants WxH\n");
-                return 2;
-            }
+            unsigned uw, uh;
+            if (tdc_parse_size(argv[++i], 16384, &uw, &uh) != 0)
+                return tdc_fail_option(NULL, a, argv[i], "want WxH within 1..16384");
+            w = (int)uw, h = (int)uh;
         } else if (!strcmp(a, "--threads") && v) {
             if (parse_int(argv[++i], 1, 64, &cfg.threads)) goto bad;
         } else if (!strcmp(a, "--bounces") && v) {
@@ -111,19 +119,18 @@ int main(int argc, char **argv)
             if (parse_int(argv[++i], 0, 0x7FFFFFFF, &s)) goto bad;
             cfg.seed = (uint32_t)s;
         } else if (!strcmp(a, "--reduced-factor") && v) {
-            cfg.reduced_factor = atof(argv[++i]);
+            if (tdc_parse_double(argv[++i], 0.01, 1.0, &cfg.reduced_factor)) goto bad;
         } else {
             usage();
-            return 2;
+            return tdc_fail(TDC_EXIT_ARGS, NULL, a, v || a[0] != '-' ? "unknown option" : "needs a value");
         }
         continue;
     bad:
-        fprintf(stderr, "tdc-render: bad value for %s\n", a);
-        return 2;
+        return tdc_fail_option(NULL, a, argv[i], "see tdc-render --help");
     }
     if (!!scene_file == !!builtin) {
         usage();
-        return 2;
+        return tdc_fail(TDC_EXIT_ARGS, NULL, NULL, "give exactly one of --scene FILE and --builtin NAME");
     }
     int trm = 0;
     tdc_render_mode_t mode;
@@ -135,30 +142,43 @@ int main(int argc, char **argv)
         mode = TDC_RENDER_FULL;
         trm = 1;
     } else {
-        fprintf(stderr, "tdc-render: unknown mode '%s'\n", mode_s);
-        return 2;
+        return tdc_fail_option(NULL, "--mode", mode_s, "want full, reduced, subframe, gt or trm");
     }
     if (stream_path && mode == TDC_RENDER_GROUND_TRUTH) {
-        fprintf(stderr, "tdc-render: ground truth is not streamed (use --png)\n");
-        return 2;
+        return tdc_fail(TDC_EXIT_ARGS, NULL, "--stream", "ground truth is not streamed (use --png)");
     }
     cfg.width = w;
     cfg.height = h;
     char err[512];
+    int rc = TDC_EXIT_OK;
+    tdc_render_t *r = NULL;
+    tdc_render_stream_t *stream = NULL;
+    float *rgb = NULL, *vis = NULL;
+    int16_t *mv = NULL, *mvs = NULL, *mvd = NULL;
     tdc_scene_t *scene = malloc(sizeof *scene);
-    if (!scene) return 1;
+    if (!scene) return tdc_fail(TDC_EXIT_NOMEM, NULL, "scene", "out of memory");
     tdc_scene_status_t st = scene_file ? tdc_scene_load(scene_file, scene, err, sizeof err)
                                        : tdc_scene_builtin(builtin, scene, err, sizeof err);
     if (st != TDC_SCENE_OK) {
-        fprintf(stderr, "tdc-render: %s\n", err);
+        rc = tdc_fail(st == TDC_SCENE_ERR_NOMEM     ? TDC_EXIT_NOMEM
+                      : st == TDC_SCENE_ERR_IO      ? TDC_EXIT_FILE
+                      : st == TDC_SCENE_ERR_UNKNOWN ? TDC_EXIT_ARGS
+                                                    : TDC_EXIT_INPUT,
+                      NULL, NULL, "%s", err);
         free(scene);
-        return 1;
+        return rc;
     }
-    tdc_render_t *r = tdc_render_open(scene, &cfg, err, sizeof err);
+    /* Output names come from the scene: confined to --png DIR (issue 19:
+     * 'name ../escaped' wrote outside it). */
+    if (png_dir && !tdc_safe_name(scene->name)) {
+        rc = tdc_fail(TDC_EXIT_INPUT, NULL, scene_file ? scene_file : builtin,
+                      "scene name '%s' cannot name a file in %s", scene->name, png_dir);
+        goto done;
+    }
+    r = tdc_render_open(scene, &cfg, err, sizeof err);
     if (!r) {
-        fprintf(stderr, "tdc-render: %s\n", err);
-        free(scene);
-        return 1;
+        rc = tdc_fail(TDC_EXIT_REFUSED, NULL, "renderer", "%s", err);
+        goto done;
     }
     tdc_render_features_t ft;
     tdc_render_get_features(r, &ft);
@@ -168,19 +188,21 @@ int main(int argc, char **argv)
            "moving-blocker=%d lights=%d area-lights=%d\n",
            scene->name, W, H, scene->nobjects, (unsigned long long)ft.triangles, ft.mirrors, ft.motion,
            ft.camera_moves, ft.objects_move, ft.moving_blocker, ft.lights, ft.area_lights);
-    if (png_dir) mkdir(png_dir, 0777);
+    if (png_dir && mkdir(png_dir, 0777) != 0 && errno != EEXIST) {
+        rc = tdc_fail(TDC_EXIT_FILE, NULL, png_dir, "cannot create the output folder: %s", strerror(errno));
+        goto done;
+    }
 
     size_t npix = (size_t)W * H;
-    float *rgb = malloc(npix * 3 * sizeof(float));
-    float *vis = malloc(npix * 3 * sizeof(float));
-    int16_t *mv = malloc(npix * 2 * sizeof(int16_t));
-    int16_t *mvs = malloc(npix * 2 * sizeof(int16_t));
-    int16_t *mvd = malloc(npix * 2 * sizeof(int16_t));
+    rgb = malloc(npix * 3 * sizeof(float));
+    vis = malloc(npix * 3 * sizeof(float));
+    mv = malloc(npix * 2 * sizeof(int16_t));
+    mvs = malloc(npix * 2 * sizeof(int16_t));
+    mvd = malloc(npix * 2 * sizeof(int16_t));
     if (!rgb || !vis || !mv || !mvs || !mvd) {
-        fprintf(stderr, "tdc-render: out of memory\n");
-        return 1;
+        rc = tdc_fail(TDC_EXIT_NOMEM, NULL, "frame buffers", "out of memory for %dx%d", W, H);
+        goto done;
     }
-    tdc_render_stream_t *stream = NULL;
     if (stream_path) {
         stream = tdc_render_stream_create(stream_path, r,
                                           trm || mode == TDC_RENDER_REDUCED ? TDC_RSTREAM_TRM
@@ -188,8 +210,8 @@ int main(int argc, char **argv)
                                                                             : TDC_RSTREAM_FULL,
                                           err, sizeof err);
         if (!stream) {
-            fprintf(stderr, "tdc-render: %s\n", err);
-            return 1;
+            rc = tdc_fail(TDC_EXIT_FILE, NULL, stream_path, "%s", err);
+            goto done;
         }
         printf("stream %s: flags 0x%04x%s\n", stream_path, (unsigned)tdc_render_stream_flags(stream),
                ft.motion ? "" : " (static scene: no motion vectors)");
@@ -198,15 +220,13 @@ int main(int argc, char **argv)
     tdc_render_stats_t tot;
     memset(&tot, 0, sizeof tot);
     int ran_frames[TDC_STAGE_COUNT] = {0};
-    int rc = 0;
     for (int f = f0; f < f1 && !rc; f++) {
         tdc_render_mode_t m = mode;
         if (trm) m = tdc_link_trm_kind((uint32_t)f, 0) == TDC_LINK_KIND_REDUCED ? TDC_RENDER_REDUCED : TDC_RENDER_FULL;
         tdc_render_out_t out = {rgb, mv, NULL, cfg.shadow_mv ? mvs : NULL, NULL, cfg.dual_mv ? mvd : NULL, NULL};
         tdc_render_stats_t s;
         if (tdc_render_frame(r, (uint32_t)f, m, &out, &s) < 0) {
-            fprintf(stderr, "tdc-render: frame %d failed\n", f);
-            rc = 1;
+            rc = tdc_fail(TDC_EXIT_REFUSED, NULL, "renderer", "frame %d failed", f);
             break;
         }
         uint64_t rays = 0;
@@ -225,10 +245,8 @@ int main(int argc, char **argv)
         if (png_dir) {
             char path[1024];
             snprintf(path, sizeof path, "%s/%s-%s-%04d.png", png_dir, scene->name, tdc_render_mode_name(m), f);
-            if (tdc_render_write_png(path, rgb, s.out_w, s.out_h, err, sizeof err) < 0) {
-                fprintf(stderr, "tdc-render: %s\n", err);
-                rc = 1;
-            }
+            if (tdc_render_write_png(path, rgb, s.out_w, s.out_h, err, sizeof err) < 0)
+                rc = tdc_fail(TDC_EXIT_FILE, NULL, NULL, "%s", err);
             if ((m == TDC_RENDER_FULL || m == TDC_RENDER_SUBFRAME) && ft.motion) {
                 const int16_t *src[3] = {mv, cfg.shadow_mv ? mvs : NULL, cfg.dual_mv ? mvd : NULL};
                 const char *suffix[3] = {"mv", "mv-shadow", "mv-dual"};
@@ -237,13 +255,13 @@ int main(int argc, char **argv)
                     mv_to_rgb(src[k], (size_t)s.out_w * s.out_h, vis);
                     snprintf(path, sizeof path, "%s/%s-%s-%04d-%s.png", png_dir, scene->name, tdc_render_mode_name(m),
                              f, suffix[k]);
-                    if (tdc_render_write_png(path, vis, s.out_w, s.out_h, err, sizeof err) < 0) rc = 1;
+                    if (tdc_render_write_png(path, vis, s.out_w, s.out_h, err, sizeof err) < 0)
+                        rc = tdc_fail(TDC_EXIT_FILE, NULL, NULL, "%s", err);
                 }
             }
         }
         if (stream && tdc_render_stream_frame(stream, (uint32_t)f, m, rgb, mv) < 0) {
-            fprintf(stderr, "tdc-render: link encoder or file rejected a packet of frame %d\n", f);
-            rc = 1;
+            rc = tdc_fail(TDC_EXIT_FILE, NULL, stream_path, "link encoder or file rejected a packet of frame %d", f);
         }
     }
     int nf = f1 - f0;
@@ -260,10 +278,19 @@ int main(int argc, char **argv)
     if (stream) {
         uint32_t np;
         uint64_t nb;
-        if (tdc_render_stream_close(stream, &np, &nb) < 0) rc = 1;
-        printf("stream: %u packets, %llu bytes\n", np, (unsigned long long)nb);
+        if (tdc_render_stream_close(stream, &np, &nb) < 0 && rc == TDC_EXIT_OK)
+            rc = tdc_fail(TDC_EXIT_FILE, NULL, stream_path, "closing the stream failed");
+        else
+            printf("stream: %u packets, %llu bytes\n", np, (unsigned long long)nb);
+        stream = NULL;
     }
-    tdc_render_close(r);
+done:
+    if (stream) {
+        uint32_t np;
+        uint64_t nb;
+        tdc_render_stream_close(stream, &np, &nb);
+    }
+    if (r) tdc_render_close(r);
     free(scene);
     free(rgb);
     free(vis);

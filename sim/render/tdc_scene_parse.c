@@ -449,7 +449,20 @@ tdc_scene_status_t tdc_scene_parse(const char *text, const char *src_name, const
     s->fps = 240;
     s->duration = 1;
     s->ambient[0] = s->ambient[1] = s->ambient[2] = 0.05;
-    snprintf(s->name, sizeof s->name, "%s", c.src);
+    /* Default name: the file's base name without extension, with anything
+     * but [A-Za-z0-9_.-] replaced by '_'; it names output files
+     * (tdc-render --png DIR/<name>-...), so it never holds a '/' (issue 19). */
+    {
+        const char *b = strrchr(c.src, '/');
+        b = b ? b + 1 : c.src;
+        size_t bn = strcspn(b, ".");
+        if (bn == 0) bn = strlen(b);
+        if (bn >= sizeof s->name) bn = sizeof s->name - 1;
+        for (size_t i = 0; i < bn; i++)
+            s->name[i] = isalnum((unsigned char)b[i]) || b[i] == '_' || b[i] == '-' || b[i] == '.' ? b[i] : '_';
+        s->name[bn] = '\0';
+        if (bn == 0) snprintf(s->name, sizeof s->name, "scene");
+    }
     size_t len = strlen(text);
     char *buf = malloc(len + 1);
     int *okeyed = calloc(TDC_SCENE_MAX_OBJECTS, sizeof(int));
@@ -478,6 +491,10 @@ tdc_scene_status_t tdc_scene_parse(const char *text, const char *src_name, const
                 header = 1;
             } else if (!strcmp(k, "name")) {
                 if (n != 2 || strlen(tok[1]) >= sizeof s->name) fail(&c, "usage: name NAME (< 64 characters)");
+                else if (strspn(tok[1], "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_-.") != strlen(tok[1]) ||
+                         !strcmp(tok[1], ".") || !strcmp(tok[1], ".."))
+                    /* it names output files (tdc-render --png DIR/<name>-...): no '/', not '..' */
+                    fail(&c, "scene name '%s' may only contain letters, digits, '_', '-', '.' (not '.' or '..')", tok[1]);
                 else strcpy(s->name, tok[1]);
             } else if (!strcmp(k, "resolution")) {
                 if (n != 3) fail(&c, "usage: resolution W H");

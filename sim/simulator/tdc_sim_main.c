@@ -9,6 +9,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "tdc_tool.h"
 #include "report/tdc_report.h"
 #include "simulator/tdc_sim.h"
 #include "simulator/tdc_sim_render.h"
@@ -140,14 +141,12 @@ static int mkdir_p(const char *dir)
 
 static int parse_num(const char *s, double lo, double hi, double *v, const char *what)
 {
-    char *end;
-    errno = 0;
-    double x = strtod(s, &end);
-    if (errno || end == s || *end || x < lo || x > hi) {
+    /* tdc_parse_double refuses nan/inf and overflow (issue 19: -r nan passed
+     * the range check and failed later as "invalid configuration") */
+    if (tdc_parse_double(s, lo, hi, v) != 0) {
         fprintf(stderr, "tdc-sim: bad %s '%s' (expected %g .. %g)\n", what, s, lo, hi);
         return -1;
     }
-    *v = x;
     return 0;
 }
 
@@ -197,6 +196,10 @@ int main(int argc, char **argv)
             break;
         }
         case 'm':
+            if (optarg[0] == '\0') {
+                fprintf(stderr, "tdc-sim: bad mode list '' (-m needs at least one mode)\n");
+                return 2;
+            }
             mode_list = optarg;
             break;
         case 'R':
@@ -256,9 +259,8 @@ int main(int argc, char **argv)
             cfg.refresh_hz = (int)v;
             break;
         case 'g': {
-            int w, h;
-            char extra;
-            if (sscanf(optarg, "%dx%d%c", &w, &h, &extra) != 2 || w < 8 || h < 8 || w > 4096 || h > 4096) {
+            unsigned w, h; /* overflow-checked: 4294967328x24 is refused, not 32x24 */
+            if (tdc_parse_size(optarg, 4096, &w, &h) != 0 || w < 8 || h < 8) {
                 fprintf(stderr, "tdc-sim: bad size '%s' (WxH, 8 .. 4096)\n", optarg);
                 return 2;
             }

@@ -10,6 +10,8 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
+
+#include "tdc_tool.h"
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -93,12 +95,12 @@ static void test_bad_input(void **state)
 {
     (void)state;
     char cmd[4096];
-    /* no such file */
+    /* no such file: FILE (exit codes: hosttools/common/tdc_tool.h, docs/tools.md) */
     snprintf(cmd, sizeof(cmd), "%s assemble -o %s/o2 %s/nope.png", TDC_RUN_PATH, g_dir, g_dir);
-    assert_int_equal(run(cmd), 1);
+    assert_int_equal(run(cmd), TDC_EXIT_FILE);
     /* size does not match the subframes */
     snprintf(cmd, sizeof(cmd), "%s assemble -o %s/o2 --size 10x10 %s/in/sub_00000.png", TDC_RUN_PATH, g_dir, g_dir);
-    assert_int_equal(run(cmd), 1);
+    assert_int_equal(run(cmd), TDC_EXIT_INPUT);
     assert_true(log_contains("needs 5x5 subframes"));
     /* truncated and corrupted motion files */
     snprintf(cmd, sizeof(cmd),
@@ -107,18 +109,29 @@ static void test_bad_input(void **state)
              g_dir, g_dir, g_dir, g_dir, g_dir, g_dir, g_dir);
     assert_int_equal(system(cmd), 0);
     snprintf(cmd, sizeof(cmd), "%s assemble -o %s/o2 %s/in/cut.png", TDC_RUN_PATH, g_dir, g_dir);
-    assert_int_equal(run(cmd), 1);
+    assert_int_equal(run(cmd), TDC_EXIT_INPUT);
     assert_true(log_contains("truncated"));
     snprintf(cmd, sizeof(cmd), "%s assemble -o %s/o2 %s/in/bad.png", TDC_RUN_PATH, g_dir, g_dir);
-    assert_int_equal(run(cmd), 1);
+    assert_int_equal(run(cmd), TDC_EXIT_INPUT);
     assert_true(log_contains("not a motion-vector file"));
     /* usage errors */
     snprintf(cmd, sizeof(cmd), "%s assemble --frobnicate", TDC_RUN_PATH);
-    assert_int_equal(run(cmd), 2);
+    assert_int_equal(run(cmd), TDC_EXIT_ARGS);
+    assert_true(log_contains("tdc-run: assemble: unknown option '--frobnicate'"));
     snprintf(cmd, sizeof(cmd), "%s assemble -o %s/o3", TDC_RUN_PATH, g_dir);
-    assert_int_equal(run(cmd), 2);
+    assert_int_equal(run(cmd), TDC_EXIT_ARGS);
+    /* numbers that do not fit are refused, not wrapped (issue 19) */
+    snprintf(cmd, sizeof(cmd), "%s assemble --write-stream pan -o %s/o4 --count 4294967297", TDC_RUN_PATH, g_dir);
+    assert_int_equal(run(cmd), TDC_EXIT_ARGS);
+    snprintf(cmd, sizeof(cmd), "%s assemble --write-stream pan -o %s/o4 --size 4294967312x16", TDC_RUN_PATH, g_dir);
+    assert_int_equal(run(cmd), TDC_EXIT_ARGS);
+    snprintf(cmd, sizeof(cmd), "%s assemble --write-stream pan -o %s/o4 --velocity nan,1", TDC_RUN_PATH, g_dir);
+    assert_int_equal(run(cmd), TDC_EXIT_ARGS);
     snprintf(cmd, sizeof(cmd), "%s assemble --help", TDC_RUN_PATH);
     assert_int_equal(run(cmd), 0);
+    /* the help is printed as it is, not through printf: no literal %% */
+    assert_false(log_contains("%%"));
+    assert_true(log_contains("i % 4 == 0"));
     assert_true(log_contains("SUBFRAME.mv"));
 }
 

@@ -2,27 +2,26 @@
 # tdc-run end to end: happy paths agree bit for bit, every bad input gets a
 # message and the right exit code.  Usage: tests/unit/test_tdc_run.sh PATH/TO/tdc-run
 run=$1
-t=$(mktemp -d); trap 'rm -rf "$t"' EXIT
-pass=0; fail=0
-ok()   { pass=$((pass+1)); echo "ok   $1"; }
-bad()  { fail=$((fail+1)); echo "FAIL $1"; }
-# expect CODE DESCRIPTION PATTERN -- command...: exit code and a message matching PATTERN
-expect() {
-    code=$1; what=$2; pat=$3; shift 4
-    "$@" >"$t/out" 2>"$t/err"; got=$?
-    if [ "$got" -eq "$code" ] && grep -q -- "$pat" "$t/err" "$t/out"; then ok "$what"
-    else bad "$what (exit $got, want $code; stderr: $(head -c 300 "$t/err"))"; fi
-}
+. tests/unit/tool_expect.sh
 expect 0 "--help" "usage: tdc-run" -- "$run" --help
-expect 2 "no arguments" "no output folder" -- "$run"
-expect 2 "unknown panel" "unknown panel 'nope'; known panels" -- "$run" -o "$t/o" -p nope x.png
-expect 2 "ratio below 1/4" "--ratio must be" -- "$run" -o "$t/o" -r 1/5 x.png
-expect 2 "bad frames pattern" "--frames must be" -- "$run" -o "$t/o" -f RF x.png
-expect 2 "unknown option" "unknown option" -- "$run" --bogus
-expect 1 "missing file" "cannot open" -- "$run" -o "$t/o" "$t/nothere.png"
+expect 1 "no arguments" "no output folder" -- "$run"
+expect 1 "unknown panel" "tdc-run: unknown panel 'nope': known panels" -- "$run" -o "$t/o" -p nope x.png
+expect 1 "ratio below 1/4" "--ratio must be" -- "$run" -o "$t/o" -r 1/5 x.png
+expect 1 "bad frames pattern" "--frames must be" -- "$run" -o "$t/o" -f RF x.png
+expect 1 "unknown option" "unknown option" -- "$run" --bogus
+expect 7 "missing file" "cannot open" -- "$run" -o "$t/o" "$t/nothere.png"
 printf 'not a png' > "$t/junk.png"
-expect 1 "not a PNG" "not a PNG" -- "$run" -o "$t/o" "$t/junk.png"
-expect 1 "TRM below 90 Hz refused" "refused" -- "$run" -o "$t/o" --refresh 60 --builtin edge --count 2 --size 32x16
+expect 13 "not a PNG" "not a PNG" -- "$run" -o "$t/o" "$t/junk.png"
+expect 14 "TRM below 90 Hz refused" "refused" -- "$run" -o "$t/o" --refresh 60 --builtin edge --count 2 --size 32x16
+# Exit codes are the shared table (docs/tools.md); numbers that do not fit
+# are refused, never wrapped (issue 19: 4294967297 Hz passed as 1 Hz,
+# 4294967312x16 as 16x16)
+expect 1 "--refresh 2^32+1 refused" "--refresh must be 1..1000 Hz, got '4294967297'" -- "$run" -o "$t/o" --refresh 4294967297 --builtin edge
+expect 1 "--size 2^32+16 refused" "--size must be WxH" -- "$run" -o "$t/o" --size 4294967312x16 --builtin edge
+expect 1 "--count 2^32+1 refused" "--count must be" -- "$run" -o "$t/o" --count 4294967297 --builtin edge
+expect 1 "--ratio 2^32+1/2 refused" "--ratio must be" -- "$run" -o "$t/o" -r 4294967297/2 --builtin edge
+expect 1 "--sigma nan refused" "--sigma must be" -- "$run" -o "$t/o" --sigma nan --builtin edge
+expect 1 "--sensitivity inf refused" "--sensitivity must be" -- "$run" -o "$t/o" -s inf --builtin edge
 
 # built-in run: N drive frames and a CSV row each
 "$run" -q -o "$t/a" --builtin text --count 6 --size 40x30 --frames auto --perceived || bad "builtin run"
@@ -40,17 +39,17 @@ same=1; for f in "$t/a"/drive_*.png; do cmp -s "$f" "$t/b/$(basename "$f")" || s
 [ $same -eq 1 ] && ok "files and built-in content give identical drive frames" || bad "file vs built-in differ"
 
 # alternate mode: a reduced frame of the wrong size is rejected with the sizes
-expect 1 "reduced frame size mismatch" "reduced frame is 40x30, expected 20x15" -- "$run" -o "$t/c" "$t/in/drive_00000.png" "$t/in/drive_00001.png"
+expect 13 "reduced frame size mismatch" "reduced frame is 40x30, expected 20x15" -- "$run" -o "$t/c" "$t/in/drive_00000.png" "$t/in/drive_00001.png"
 # a full frame of another size
 "$run" -q -o "$t/small" -r 1 --builtin edge --count 1 --size 20x10 || bad "small run"
-expect 1 "full frame size mismatch" "expected 40x30" -- "$run" -o "$t/d" -f FF "$t/in/drive_00000.png" "$t/small/drive_00000.png"
+expect 13 "full frame size mismatch" "expected 40x30" -- "$run" -o "$t/d" -f FF "$t/in/drive_00000.png" "$t/small/drive_00000.png"
 # stereo needs auto and works
-expect 2 "stereo without auto" "--stereo needs --frames auto" -- "$run" -o "$t/e" --stereo x.png
+expect 1 "stereo without auto" "--stereo needs --frames auto" -- "$run" -o "$t/e" --stereo x.png
 "$run" -q -o "$t/s" --stereo --frames auto --builtin edge --count 4 --size 64x20 && \
     grep -q '^1,1,full,' "$t/s/stats.csv" && grep -q '^1,0,reduced,' "$t/s/stats.csv" && ok "stereo eyes alternate" || bad "stereo"
 # the portable and the AVX2 row kernels give the same drive frames through
 # the whole tool (on a CPU without AVX2 only the refusal is checked)
-expect 2 "bad --kernels" "--kernels must be auto, c or avx2" -- "$run" -o "$t/k" --kernels neon --builtin edge
+expect 1 "bad --kernels" "--kernels must be auto, c or avx2" -- "$run" -o "$t/k" --kernels neon --builtin edge
 "$run" -q -o "$t/kc" --kernels c --builtin text --count 6 --size 97x67 --frames auto || bad "--kernels c run"
 if "$run" -q -o "$t/kv" --kernels avx2 --builtin text --count 6 --size 97x67 --frames auto 2> "$t/kv.err"; then
     same=1; for f in "$t/kc"/drive_*.png; do cmp -s "$f" "$t/kv/$(basename "$f")" || same=0; done

@@ -37,6 +37,7 @@ struct emul_board {
     uint32_t bulk_out_count;
     int gone;
     int reset_requested;
+    int resets, activations;
     UMockdevIoctlData *done[EMUL_MAX_URBS]; /* completed, waiting to be reaped (FIFO) */
     int n_done;
     UMockdevIoctlData *flying[EMUL_MAX_URBS]; /* never answered (hang faults) */
@@ -59,26 +60,40 @@ int emul_board_attach_link_decoder(emul_board_t *b, uint16_t w, uint16_t h)
     return 0;
 }
 
-/* Flash slot in RAM, with an optional bit flip to emulate a bad cell. */
+/* A/B flash (2 slots of slot_bytes) in RAM, with an optional bit flip to
+ * emulate a bad cell (fault_after: offset inside the slot written). */
 static int emul_flash_write(void *ctx, uint32_t offset, const uint8_t *data, uint32_t len)
 {
     emul_board_t *b = ctx;
-    if ((uint64_t)offset + len > b->slot_bytes)
+    if ((uint64_t)offset + len > 2u * (uint64_t)b->slot_bytes)
         return -1;
     memcpy(b->slot + offset, data, len);
-    if (b->fault == EMUL_FAULT_CORRUPT_FLASH && b->fault_after >= offset &&
-        b->fault_after < offset + len)
-        b->slot[b->fault_after] ^= 0x10u;
+    const uint32_t in_slot = offset % b->slot_bytes, base = offset - in_slot;
+    if (b->fault == EMUL_FAULT_CORRUPT_FLASH && b->fault_after >= in_slot &&
+        b->fault_after < in_slot + len)
+        b->slot[base + b->fault_after] ^= 0x10u;
     return 0;
 }
 
 static int emul_flash_read(void *ctx, uint32_t offset, uint8_t *data, uint32_t len)
 {
     emul_board_t *b = ctx;
-    if ((uint64_t)offset + len > b->slot_bytes)
+    if ((uint64_t)offset + len > 2u * (uint64_t)b->slot_bytes)
         return -1;
     memcpy(data, b->slot + offset, len);
     return 0;
+}
+
+/* The board restarts (a USB bus reset or its own reset): activation of a
+ * manifested image, which then runs, so BOARD_INFO reports its version. */
+static void board_reboot(emul_board_t *b)
+{
+    b->resets++;
+    if (tdc_usbp_bus_reset(&b->proto)) {
+        const uint8_t *hdr = b->slot + (size_t)b->proto.dfu_active_slot * b->slot_bytes;
+        b->proto.cfg.fw_version = tdc_get_le32(hdr + TDC_IMAGE_OFF_FW_VERSION);
+        b->activations++;
+    }
 }
 
 static void urb_finish(emul_board_t *b, UMockdevIoctlData *urb_data, int status, int actual)
@@ -113,6 +128,22 @@ static int urb_run(emul_board_t *b, UMockdevIoctlData *urb_data, UMockdevIoctlDa
                       setup.b_request == TDC_USB_REQ_BOARD_INFO;
         if (is_info && b->fault == EMUL_FAULT_HANG_INFO)
             return 1;
+        if ((setup.bm_request_type & 0xE0u) == 0x80u && setup.b_request == 0x00u) {
+            /* standard GET_STATUS (lsusb -v asks): the device's USB stack
+             * answers it, not the protocol code: bus powered, no remote wake */
+            uint8_t zero[2] = {0, 0};
+            int n = setup.w_length < 2 ? setup.w_length : 2;
+            if (n > len - 8)
+                n = len - 8;
+            umockdev_ioctl_data_update(buf, 8, zero, n);
+            urb_finish(b, urb_data, 0, n);
+            return 0;
+        }
+        if (b->fault == EMUL_FAULT_STALL_DNLOAD && (setup.bm_request_type & 0x7Fu) == 0x21u &&
+            setup.b_request == TDC_DFU_DNLOAD && setup.w_length > 0 && setup.w_value == b->fault_after) {
+            urb_finish(b, urb_data, -EPIPE, 0); /* never reaches the firmware */
+            return 0;
+        }
         if (is_info && b->fault == EMUL_FAULT_STALL_INFO) {
             urb_finish(b, urb_data, -EPIPE, 0);
             return 0;
@@ -131,8 +162,10 @@ static int urb_run(emul_board_t *b, UMockdevIoctlData *urb_data, UMockdevIoctlDa
         } else {
             urb_finish(b, urb_data, 0, setup.w_length);
         }
-        if (tdc_usbp_take_reset(&b->proto))
+        if (tdc_usbp_take_reset(&b->proto)) { /* RESET_BOARD: the board resets itself */
             b->reset_requested++;
+            board_reboot(b);
+        }
         return 0;
     }
     if (urb->type == USBDEVFS_URB_TYPE_BULK && urb->endpoint == TDC_USB_EP_LINK_OUT) {
@@ -200,8 +233,12 @@ static gboolean emul_handle_ioctl(UMockdevIoctlBase *handler, UMockdevIoctlClien
     case USBDEVFS_GETDRIVER: /* no kernel driver bound */
         umockdev_ioctl_client_complete(client, -1, ENODATA);
         break;
+    case USBDEVFS_RESET: /* libusb_reset_device(): a USB bus reset (dfu-util -R) */
+        board_reboot(b);
+        umockdev_ioctl_client_complete(client, 0, 0);
+        break;
     case USBDEVFS_CLAIMINTERFACE: case USBDEVFS_RELEASEINTERFACE: case USBDEVFS_SETINTERFACE:
-    case USBDEVFS_CLEAR_HALT: case USBDEVFS_RESET: case USBDEVFS_RESETEP:
+    case USBDEVFS_CLEAR_HALT: case USBDEVFS_RESETEP:
     case USBDEVFS_SETCONFIGURATION: case USBDEVFS_DISCONNECT_CLAIM:
         umockdev_ioctl_client_complete(client, 0, 0);
         break;
@@ -275,7 +312,9 @@ static gboolean emul_handle_ioctl(UMockdevIoctlBase *handler, UMockdevIoctlClien
 static void hex_append(char *dst, size_t cap, const uint8_t *p, uint32_t n)
 {
     size_t len = strlen(dst);
-    for (uint32_t i = 0; i < n && len + 3 < cap; i++, len += 2)
+    /* two digits and the NUL must fit: len + 2 < cap (it was len + 3, which
+     * dropped the last byte of a buffer sized 2n + 1: issue 19) */
+    for (uint32_t i = 0; i < n && len + 2 < cap; i++, len += 2)
         snprintf(dst + len, cap - len, "%02x", p[i]);
 }
 
@@ -286,7 +325,7 @@ emul_board_t *emul_board_add(UMockdevTestbed *tb, int bus, int dev, const char *
     if (b == NULL)
         return NULL;
     b->tb = tb;
-    b->slot = calloc(1, slot_bytes);
+    b->slot = calloc(2, slot_bytes); /* A/B */
     b->slot_bytes = slot_bytes;
     pthread_mutex_init(&b->lock, NULL);
     snprintf(b->devnode, sizeof b->devnode, "/dev/bus/usb/%03d/%03d", bus, dev);
@@ -352,8 +391,19 @@ void emul_board_stats(emul_board_t *b, emul_board_stats_t *out)
     out->rx_bytes = b->proto.cnt.rx_bytes;
     out->rx_transfers = b->proto.cnt.rx_transfers;
     out->rx_crc = ~b->proto.cnt.rx_crc;
-    out->image_bytes = b->proto.dfu_image_bytes;
-    out->slot_crc = tdc_usbp_crc32(b->slot, b->proto.dfu_image_bytes);
+    /* the image that is uploaded: the manifested one waiting for activation, else the running one */
+    const unsigned in = b->proto.dfu_active_slot ^ 1u;
+    const unsigned up = b->proto.dfu_pending && b->proto.dfu_slot_image[in] ? in : b->proto.dfu_active_slot;
+    out->image_bytes = b->proto.dfu_slot_image[up];
+    out->slot_crc = tdc_usbp_crc32(b->slot + (size_t)up * b->slot_bytes, out->image_bytes);
+    out->active_slot = b->proto.dfu_active_slot;
+    out->active_bytes = b->proto.dfu_slot_image[b->proto.dfu_active_slot];
+    out->active_crc = tdc_usbp_crc32(b->slot + (size_t)b->proto.dfu_active_slot * b->slot_bytes, out->active_bytes);
+    out->pending = b->proto.dfu_pending;
+    out->fw_version = b->proto.cfg.fw_version;
+    out->resets = b->resets;
+    out->activations = b->activations;
+    out->dfu_status = (int)b->proto.dfu_status;
     out->reset_requested = b->reset_requested;
     out->dfu_state = (int)b->proto.dfu_state;
     pthread_mutex_unlock(&b->lock);

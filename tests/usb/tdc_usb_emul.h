@@ -25,13 +25,14 @@ typedef enum {
     EMUL_FAULT_UNPLUG,        /* after fault_after bulk OUTs the board is gone (ENODEV) */
     EMUL_FAULT_STALL_INFO,    /* the board-info request stalls */
     EMUL_FAULT_HANG_INFO,     /* the board-info request never completes */
-    EMUL_FAULT_CORRUPT_FLASH  /* the flash flips one bit at byte fault_after */
+    EMUL_FAULT_CORRUPT_FLASH, /* the flash flips one bit at byte fault_after */
+    EMUL_FAULT_STALL_DNLOAD   /* DFU DNLOAD block number fault_after is lost on the wire (-EPIPE) */
 } emul_fault_t;
 
 typedef struct emul_board emul_board_t;
 
 /* Adds a board at /dev/bus/usb/<bus>/<dev> with the given serial.
- * slot_bytes: size of its DFU flash slot. */
+ * slot_bytes: size of each of its two DFU flash slots (A/B). */
 emul_board_t *emul_board_add(UMockdevTestbed *tb, int bus, int dev, const char *serial,
                              uint32_t slot_bytes);
 /* Feeds every bulk OUT byte to the firmware's link decoder (tdc_link.h)
@@ -45,10 +46,16 @@ void emul_board_free(emul_board_t *b);
 typedef struct {
     uint64_t rx_bytes;
     uint32_t rx_transfers, rx_crc;   /* CRC-32 of every byte received */
-    uint32_t image_bytes;            /* bytes of the last image that manifested */
-    uint32_t slot_crc;               /* CRC-32 of the first image_bytes of the slot */
+    uint32_t image_bytes;            /* bytes of the image an UPLOAD returns (newest good one) */
+    uint32_t slot_crc;               /* CRC-32 of those bytes in their slot */
+    int active_slot;                 /* the slot the board runs (A/B) */
+    uint32_t active_bytes;           /* bytes of the image in it (0: the factory firmware) */
+    uint32_t active_crc;             /* CRC-32 of those bytes */
+    int pending;                     /* a manifested image waits for the next reset */
+    uint32_t fw_version;             /* of the running firmware (from the image after activation) */
+    int resets, activations;         /* board restarts; those that switched slots */
     int reset_requested;
-    int dfu_state;
+    int dfu_state, dfu_status;
 } emul_board_stats_t;
 void emul_board_stats(emul_board_t *b, emul_board_stats_t *out);
 

@@ -111,6 +111,11 @@ static void test_cli_errors(void **state)
     assert_int_equal(run("boot --chip x --line 0", err, sizeof err), 1);
     assert_non_null(strstr(err, "--boot-line"));
     assert_int_equal(run("vsync --chip x --line 0 --edge sideways", err, sizeof err), 1);
+    /* the shared convention (docs/tools.md): tool: what failed: why */
+    assert_non_null(strstr(err, "tdc-gpio: bad value for --edge 'sideways': "));
+    assert_int_equal(run("vsync --chip x --line 0 --count 4294967298", err, sizeof err), 1);
+    assert_int_equal(run("vsync --chip x --line 0 --expect-hz nan", err, sizeof err), 1);
+    assert_non_null(strstr(err, "--expect-hz 'nan'"));
     assert_int_equal(run("frob --chip x --line 0", err, sizeof err), 1);
     assert_int_equal(run("--help", err, sizeof err), 0);
 }

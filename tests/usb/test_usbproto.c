@@ -15,13 +15,13 @@
 
 #define SLOT 4096u
 
-static uint8_t slot[SLOT];
+static uint8_t slot[2 * SLOT]; /* A/B: slot k at k * SLOT */
 static int fail_write;
 
 static int fw(void *ctx, uint32_t off, const uint8_t *d, uint32_t n)
 {
     (void)ctx;
-    if (fail_write || off + n > SLOT)
+    if (fail_write || off + n > 2 * SLOT)
         return -1;
     memcpy(slot + off, d, n);
     return 0;
@@ -30,7 +30,7 @@ static int fw(void *ctx, uint32_t off, const uint8_t *d, uint32_t n)
 static int fr(void *ctx, uint32_t off, uint8_t *d, uint32_t n)
 {
     (void)ctx;
-    if (off + n > SLOT)
+    if (off + n > 2 * SLOT)
         return -1;
     memcpy(d, slot + off, n);
     return 0;
@@ -126,6 +126,10 @@ static void test_descriptors(void **state)
     tdc_usbp_config_descriptor(c, 0);
     assert_int_equal(tdc_get_le16(c + 18 + 4), 64);             /* FS bulk OUT */
     assert_int_equal(tdc_get_le16(c + 41 + 5), TDC_DFU_TRANSFER_SIZE); /* wTransferSize */
+    /* the whole DFU functional descriptor (DFU 1.1 table 4.2) */
+    assert_memory_equal(c + 41, ((uint8_t[]){9, 0x21, 0x07, 0xE8, 0x03, 0x00, 0x04, 0x10, 0x01}), 9);
+    /* bcdDevice as documented: 0x0001 (it read 0x0100, issue 19) */
+    assert_int_equal(tdc_get_le16(d + 12), 0x0001);
     /* string: serial as UTF-16LE, and through GET_DESCRIPTOR with wLength truncation */
     assert_int_equal(req(0x80, 6, 0x0303, 0x0409, 255, NULL), TDC_OK);
     assert_int_equal(rlen, 6);
@@ -186,8 +190,10 @@ static void test_dfu_download_upload(void **state)
     download(len, 1024, &status, &st);
     assert_int_equal(status, TDC_DFU_OK);
     assert_int_equal(st, TDC_DFU_STATE_IDLE);
-    assert_memory_equal(slot, image, len);
-    /* upload in 1000-byte frames: 1000, 1000, 1000, 32 (short: ends) */
+    assert_memory_equal(slot + SLOT, image, len); /* into the slot that is not running */
+    assert_int_equal(tdc_usbp_slot_image(&s, 1), len);
+    assert_int_equal(tdc_usbp_slot_image(&s, 0), 0);
+    /* upload in 1000-byte frames: 1000, 1000, 1000, 48 (short: ends) */
     uint8_t back[SLOT];
     uint32_t got = 0;
     for (uint16_t b = 0;; b++) {
@@ -234,8 +240,13 @@ static void test_dfu_rejects(void **state)
     /* block larger than wTransferSize; DETACH in DFU mode */
     assert_int_equal(req(DFU_OUT, TDC_DFU_DNLOAD, 0, 1, TDC_DFU_TRANSFER_SIZE + 1, image), TDC_ERR_STALL);
     req(DFU_OUT, TDC_DFU_CLRSTATUS, 0, 1, 0, NULL);
-    assert_int_equal(req(DFU_OUT, TDC_DFU_DETACH, 1000, 1, 0, NULL), TDC_ERR_STALL);
+    /* DETACH: accepted in dfuIDLE (arms activation), a protocol error elsewhere */
+    assert_int_equal(req(DFU_OUT, TDC_DFU_DNLOAD, 0, 1, 0, NULL), TDC_ERR_STALL);
+    assert_int_equal(req(DFU_OUT, TDC_DFU_DETACH, 1000, 1, 0, NULL), TDC_ERR_STALL); /* in dfuERROR */
     req(DFU_OUT, TDC_DFU_CLRSTATUS, 0, 1, 0, NULL);
+    assert_int_equal(req(DFU_OUT, TDC_DFU_DETACH, 1000, 1, 0, NULL), TDC_OK);
+    assert_int_equal(dfu_state(), TDC_DFU_STATE_IDLE);
+    assert_int_equal(tdc_usbp_bus_reset(&s), 0); /* nothing manifested: no switch */
 
     /* ABORT mid-download returns to dfuIDLE; the slot holds no checked image */
     assert_int_equal(req(DFU_OUT, TDC_DFU_DNLOAD, 0, 1, 1024, image), TDC_OK);
@@ -292,24 +303,131 @@ static void test_image_check(void **state)
     uint32_t len = make_image(100, "testboard");
     assert_int_equal(tdc_image_check(image, len, "testboard", SLOT), TDC_OK);
     assert_int_equal(tdc_image_check(image, len, NULL, 0), TDC_OK);
-    assert_int_equal(tdc_image_check(image, 31, NULL, 0), TDC_ERR_IMAGE_SHORT);
+    assert_int_equal(tdc_image_check(image, TDC_IMAGE_HEADER_LEN - 1, NULL, 0), TDC_ERR_IMAGE_SHORT);
     assert_int_equal(tdc_image_check(image, len - 1, NULL, 0), TDC_ERR_IMAGE_SIZE);
     assert_int_equal(tdc_image_check(image, len, "testboar", 0), TDC_ERR_IMAGE_BOARD);
     assert_int_equal(tdc_image_check(image, len, "testboardX", 0), TDC_ERR_IMAGE_BOARD);
     assert_int_equal(tdc_image_check(image, len, "testboard", len - 1), TDC_ERR_IMAGE_TOO_BIG);
-    image[40] ^= 0x80u;
+    image[TDC_IMAGE_HEADER_LEN + 8] ^= 0x80u;
     assert_int_equal(tdc_image_check(image, len, NULL, 0), TDC_ERR_IMAGE_CRC);
-    image[40] ^= 0x80u;
-    image[4] = 2; /* header version */
+    image[TDC_IMAGE_HEADER_LEN + 8] ^= 0x80u;
+    image[TDC_IMAGE_OFF_RESERVED + 3] = 1; /* reserved bytes must be zero */
+    assert_int_equal(tdc_image_check(image, len, NULL, 0), TDC_ERR_IMAGE_HEADER);
+    image[TDC_IMAGE_OFF_RESERVED + 3] = 0;
+    image[4] = 1; /* header version 1 (12-character board field) is not accepted */
     assert_int_equal(tdc_image_check(image, len, NULL, 0), TDC_ERR_IMAGE_HEADER);
     image[0] = 'X';
     assert_int_equal(tdc_image_check(image, len, NULL, 0), TDC_ERR_IMAGE_MAGIC);
-    /* a 12-character board name fills the field with no NUL */
-    len = make_image(10, "twelve-chars");
-    assert_int_equal(tdc_image_check(image, len, "twelve-chars", 0), TDC_OK);
-    assert_int_equal(tdc_image_check(image, len, "twelve-chars!", 0), TDC_ERR_IMAGE_BOARD);
+    /* the longest board name, 16 characters, fills the field with no NUL (issue 19:
+     * with 12 no image could ever pass the check for this board) */
+    len = make_image(10, "stm32h747i-disco");
+    assert_int_equal(tdc_image_check(image, len, "stm32h747i-disco", 0), TDC_OK);
+    assert_int_equal(tdc_image_check(image, len, "stm32h747i-disco!", 0), TDC_ERR_IMAGE_BOARD);
+    assert_int_equal(tdc_image_check(image, len, "stm32h747i-disc", 0), TDC_ERR_IMAGE_BOARD);
     assert_string_equal(tdc_dfu_status_name(TDC_DFU_ERR_VERIFY), "errVERIFY");
     assert_string_equal(tdc_dfu_state_name(TDC_DFU_STATE_ERROR), "dfuERROR");
+}
+
+/* Found by fuzzing the device side (issue 19): BOARD_INFO with wLength 0
+ * and a NULL reply buffer of capacity 0 (the API allows it) must not
+ * memcpy(NULL, .., 0) (UBSan in the ASan build); GETSTATUS with a reply
+ * buffer under 6 bytes is the caller's error and must not advance state. */
+static void test_corner_cases(void **state)
+{
+    (void)state;
+    tdc_usbp_setup_t info = {0xC1, TDC_USB_REQ_BOARD_INFO, 0, 0, 0};
+    uint32_t n = 99;
+    assert_int_equal(tdc_usbp_control(&s, &info, NULL, NULL, 0, &n), TDC_OK);
+    assert_int_equal(n, 0);
+    make_image(100, "testboard");
+    assert_int_equal(req(DFU_OUT, TDC_DFU_DNLOAD, 0, 1, 64, image), TDC_OK);
+    assert_int_equal(dfu_state(), TDC_DFU_STATE_DNLOAD_SYNC);
+    tdc_usbp_setup_t gs = {DFU_IN, TDC_DFU_GETSTATUS, 0, 1, 6};
+    uint8_t small[4];
+    assert_int_equal(tdc_usbp_control(&s, &gs, NULL, small, sizeof small, &n), TDC_ERR_ARG);
+    assert_int_equal(dfu_state(), TDC_DFU_STATE_DNLOAD_SYNC); /* not advanced */
+    assert_int_equal(tdc_usbp_control(&s, &gs, NULL, NULL, 0, &n), TDC_ERR_ARG);
+    assert_int_equal(dfu_state(), TDC_DFU_STATE_DNLOAD_SYNC);
+    uint8_t status, st;
+    getstatus(&status, &st);
+    assert_int_equal(st, TDC_DFU_STATE_DNLOAD_IDLE);
+}
+
+static uint32_t upload_all(uint8_t *back)
+{
+    uint32_t got = 0;
+    for (uint16_t b = 0;; b++) {
+        assert_int_equal(req(DFU_IN, TDC_DFU_UPLOAD, b, 1, 1024, NULL), TDC_OK);
+        memcpy(back + got, reply, rlen);
+        got += rlen;
+        if (rlen < 1024)
+            return got;
+    }
+}
+
+/* A/B activation and "a failed download never destroys the last good image". */
+static void test_activation(void **state)
+{
+    (void)state;
+    uint8_t status, st, back[2 * SLOT];
+    uint8_t good[SLOT];
+    uint32_t len = make_image(1500, "testboard");
+    memcpy(good, image, len);
+    download(len, 1024, &status, &st);
+    assert_int_equal(status, TDC_DFU_OK);
+    /* DETACH (dfu-util -R) then the bus reset: slot 1 runs */
+    assert_int_equal(req(DFU_OUT, TDC_DFU_DETACH, 1000, 1, 0, NULL), TDC_OK);
+    assert_int_equal(tdc_usbp_bus_reset(&s), 1);
+    assert_int_equal(s.dfu_active_slot, 1);
+    assert_int_equal(tdc_usbp_bus_reset(&s), 0); /* a second reset changes nothing */
+    /* a raw binary (no header) goes to slot 0 and is rejected at manifestation */
+    for (uint32_t i = 0; i < 2000; i++)
+        image[i] = (uint8_t)(i * 13u);
+    download(2000, 1024, &status, &st);
+    assert_int_equal(st, TDC_DFU_STATE_ERROR);
+    assert_int_equal(status, TDC_DFU_ERR_FILE);
+    assert_int_equal(req(DFU_OUT, TDC_DFU_CLRSTATUS, 0, 1, 0, NULL), TDC_OK);
+    /* the running image is intact and still what an upload returns */
+    assert_memory_equal(slot + SLOT, good, len);
+    assert_int_equal(upload_all(back), len);
+    assert_memory_equal(back, good, len);
+    /* a reset now does not boot the rejected bytes */
+    assert_int_equal(tdc_usbp_bus_reset(&s), 0);
+    assert_int_equal(s.dfu_active_slot, 1);
+    /* an interrupted download (ABORT half way), then recovery */
+    len = make_image(3000, "testboard");
+    assert_int_equal(req(DFU_OUT, TDC_DFU_DNLOAD, 0, 1, 1024, image), TDC_OK);
+    getstatus(&status, &st);
+    assert_int_equal(req(DFU_OUT, TDC_DFU_ABORT, 0, 1, 0, NULL), TDC_OK);
+    assert_int_equal(upload_all(back), 1500 + TDC_IMAGE_HEADER_LEN); /* still the good one */
+    download(len, 1024, &status, &st);
+    assert_int_equal(status, TDC_DFU_OK);
+    assert_int_equal(upload_all(back), len); /* the new one, waiting for activation */
+    assert_memory_equal(back, image, len);
+    /* RESET_BOARD: the board resets itself and calls bus_reset */
+    assert_int_equal(req(0x41, TDC_USB_REQ_RESET_BOARD, 0, 0, 0, NULL), TDC_OK);
+    assert_int_equal(tdc_usbp_take_reset(&s), 1);
+    assert_int_equal(tdc_usbp_bus_reset(&s), 1);
+    assert_int_equal(s.dfu_active_slot, 0);
+    assert_memory_equal(slot, image, len);
+}
+
+/* The standard DFU suffix: what dfu-suffix writes, checked and stripped. */
+static void test_dfu_suffix(void **state)
+{
+    (void)state;
+    uint32_t len = make_image(200, "testboard"), il = 0;
+    assert_int_equal(tdc_dfu_suffix_check(image, len, 0x1209, 0x0001, &il), TDC_DFU_SUFFIX_NONE);
+    assert_int_equal(il, len);
+    tdc_dfu_suffix_make(image + len, image, len, 0x1209, 0x0001);
+    assert_memory_equal(image + len + 6, ((uint8_t[]){0x00, 0x01, 'U', 'F', 'D', 16}), 6);
+    assert_int_equal(tdc_dfu_suffix_check(image, len + 16, 0x1209, 0x0001, &il), TDC_DFU_SUFFIX_OK);
+    assert_int_equal(il, len);
+    assert_int_equal(tdc_dfu_suffix_check(image, len + 16, 0x1209, 0x0002, &il), TDC_DFU_SUFFIX_ERR_ID);
+    image[100] ^= 1u;
+    assert_int_equal(tdc_dfu_suffix_check(image, len + 16, 0x1209, 0x0001, &il), TDC_DFU_SUFFIX_ERR_CRC);
+    image[100] ^= 1u;
+    assert_int_equal(tdc_dfu_suffix_check(NULL, 0, 0, 0, &il), TDC_DFU_SUFFIX_NONE);
 }
 
 int main(void)
@@ -320,6 +438,9 @@ int main(void)
         cmocka_unit_test_setup(test_dfu_download_upload, setup),
         cmocka_unit_test_setup(test_dfu_rejects, setup),
         cmocka_unit_test_setup(test_image_check, setup),
+        cmocka_unit_test_setup(test_corner_cases, setup),
+        cmocka_unit_test_setup(test_activation, setup),
+        cmocka_unit_test_setup(test_dfu_suffix, setup),
     };
     return cmocka_run_group_tests_name("board USB protocol (tdc_usbproto)", tests, NULL, NULL);
 }

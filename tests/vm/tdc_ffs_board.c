@@ -29,20 +29,23 @@
 /* The function's descriptors: the configuration descriptor minus its 9-byte
  * header and minus the 9-byte DFU functional descriptor at its end.  Linux
  * 6.1's FunctionFS accepts class descriptors (type 0x21) only inside HID and
- * CCID interfaces (ffs_do_single_desc), so this gadget cannot carry it;
- * tdc-usb then uses the protocol's wTransferSize (1024).  Boards send it. */
+ * CCID interfaces: ffs_do_single_desc() in drivers/usb/gadget/function/f_fs.c,
+ * `case USB_TYPE_CLASS | 0x01`, returns -EINVAL for any other interface
+ * class ("unknown descriptor"), so this gadget cannot carry it.  tdc-usb
+ * then uses the protocol's wTransferSize (1024) and dfu-util needs `-t 1024`
+ * (tests/vm/init.sh).  Boards and the umockdev emulation send it. */
 #define FN_DESC_LEN (TDC_USB_CONFIG_DESC_LEN - 18u)
 
 static pthread_mutex_t lock = PTHREAD_MUTEX_INITIALIZER;
 static tdc_usbp_t proto;
-static uint8_t slot[SLOT_BYTES];
+static uint8_t slot[2 * SLOT_BYTES]; /* A/B: slot k at k * SLOT_BYTES */
 static char dir[256];
 static tdc_link_sink_t link_sink; /* the firmware link decoder, 32x24 mono */
 
 static int flash_write(void *ctx, uint32_t off, const uint8_t *d, uint32_t n)
 {
     (void)ctx;
-    if ((uint64_t)off + n > SLOT_BYTES)
+    if ((uint64_t)off + n > 2u * SLOT_BYTES)
         return -1;
     memcpy(slot + off, d, n);
     return 0;
@@ -51,10 +54,25 @@ static int flash_write(void *ctx, uint32_t off, const uint8_t *d, uint32_t n)
 static int flash_read(void *ctx, uint32_t off, uint8_t *d, uint32_t n)
 {
     (void)ctx;
-    if ((uint64_t)off + n > SLOT_BYTES)
+    if ((uint64_t)off + n > 2u * SLOT_BYTES)
         return -1;
     memcpy(d, slot + off, n);
     return 0;
+}
+
+/* The board restarts (USB bus reset, seen as FUNCTIONFS_DISABLE, or its
+ * own reset after RESET_BOARD): a manifested image becomes the running one.
+ * Called with the lock held. */
+static void board_reboot(const char *why)
+{
+    if (tdc_usbp_bus_reset(&proto)) {
+        const uint8_t *hdr = slot + (size_t)proto.dfu_active_slot * SLOT_BYTES;
+        proto.cfg.fw_version = tdc_get_le32(hdr + TDC_IMAGE_OFF_FW_VERSION);
+        printf("tdc_ffs_board: %s: activated slot %u, firmware %u.%u.%u, %u bytes\n", why,
+               proto.dfu_active_slot, proto.cfg.fw_version >> 16, (proto.cfg.fw_version >> 8) & 0xFFu,
+               proto.cfg.fw_version & 0xFFu, tdc_usbp_slot_image(&proto, proto.dfu_active_slot));
+        fflush(stdout);
+    }
 }
 
 static int open_ep(const char *name, int flags)
@@ -178,6 +196,8 @@ static void handle_setup(int ep0, const struct usb_ctrlrequest *c)
     pthread_mutex_lock(&lock);
     tdc_status_t r = tdc_usbp_control(&proto, &s, data, reply, sizeof reply, &len);
     int reset = tdc_usbp_take_reset(&proto);
+    if (reset)
+        board_reboot("RESET_BOARD");
     pthread_mutex_unlock(&lock);
     if (s.w_length == 0) {
         if (r == TDC_OK) {
@@ -235,8 +255,14 @@ int main(int argc, char **argv)
             usleep(20000);
             continue;
         }
-        for (ssize_t i = 0; i < n / (ssize_t)sizeof ev[0]; i++)
-            if (ev[i].type == FUNCTIONFS_SETUP)
+        for (ssize_t i = 0; i < n / (ssize_t)sizeof ev[0]; i++) {
+            if (ev[i].type == FUNCTIONFS_SETUP) {
                 handle_setup(ep0, &ev[i].u.setup);
+            } else if (ev[i].type == FUNCTIONFS_DISABLE) { /* bus reset (dfu-util -R) or unplug */
+                pthread_mutex_lock(&lock);
+                board_reboot("USB reset");
+                pthread_mutex_unlock(&lock);
+            }
+        }
     }
 }

@@ -1,0 +1,108 @@
+/*
+ * tdc_tool.h - the one convention of every tdc host program (tdc-run,
+ * tdc-sim, tdc-render, tdc-linkdump, tdc-usb, tdc-gpio, tdc-calib,
+ * tdc-lcd-measure, the table generator): one table of named exit codes,
+ * one-line messages "tool: command: what failed: why", and number parsing
+ * that refuses what does not fit instead of wrapping it.
+ *
+ * The table (and the message format) is documented in docs/tools.md; a
+ * program uses the codes that can happen in it and never gives a code
+ * another meaning.  Host code only (libc, stdio).
+ */
+#ifndef TDC_TOOL_H
+#define TDC_TOOL_H
+
+#include <stdint.h>
+#include <stdio.h>
+
+/* Named exit codes, positive so shells see them (picotool style).  0..12
+ * are the codes tdc-usb has always used; the rest were added for the other
+ * programs.  Keep in step with tdc_exit_name() and docs/tools.md. */
+typedef enum {
+    TDC_EXIT_OK = 0,
+    TDC_EXIT_ARGS = 1,          /* bad command line: unknown option, bad value, missing argument */
+    TDC_EXIT_NO_DEVICE = 2,     /* no board (USB) or GPIO chip matches */
+    TDC_EXIT_AMBIGUOUS = 3,     /* more than one board matches: select one */
+    TDC_EXIT_IO = 4,            /* device I/O error (libusb: access, stall, I/O; GPIO request or read) */
+    TDC_EXIT_TIMEOUT = 5,       /* a transfer or an expected event timed out */
+    TDC_EXIT_DISCONNECTED = 6,  /* the board went away mid-operation */
+    TDC_EXIT_FILE = 7,          /* cannot open, read, write or create a file or folder */
+    TDC_EXIT_IMAGE = 8,         /* firmware image malformed: magic, size, CRC, suffix */
+    TDC_EXIT_INCOMPATIBLE = 9,  /* image for another board, or too large for its slot */
+    TDC_EXIT_DFU = 10,          /* the board's DFU reported an error */
+    TDC_EXIT_VERIFY = 11,       /* read-back or received-data check failed */
+    TDC_EXIT_PROTOCOL = 12,     /* the board's reply is malformed */
+    TDC_EXIT_INPUT = 13,        /* an input file's contents are malformed (PNG, CSV, scene, OBJ,
+                                   panel profile, .tdcs stream: truncated, corrupt, out of range) */
+    TDC_EXIT_REFUSED = 14,      /* the firmware (a stage) refused the input or the configuration */
+    TDC_EXIT_NO_LINE = 15,      /* no such GPIO line on the chip */
+    TDC_EXIT_BUSY = 16,         /* the GPIO line is in use by another consumer */
+    TDC_EXIT_NOMEM = 17         /* out of memory */
+} tdc_exit_t;
+
+#define TDC_EXIT_COUNT 18
+
+/* "OK", "ARGS", ... ; "?" for a value outside the table. */
+const char *tdc_exit_name(int code);
+
+/* The program name used as the first field of every message (default
+ * "tdc"); set once at the top of main(). */
+void tdc_tool_set_name(const char *name);
+const char *tdc_tool_name(void);
+
+/* Prints one line to stderr, "tool: cmd: what: why\n" (cmd and what may be
+ * NULL: their field is left out), and returns code, so a failure is
+ * `return tdc_fail(TDC_EXIT_FILE, "flash", path, "%s", strerror(errno));`. */
+#if defined(__GNUC__)
+__attribute__((format(printf, 4, 5)))
+#endif
+int tdc_fail(int code, const char *cmd, const char *what, const char *why_fmt, ...);
+
+/* A bad option value: "tool: cmd: bad value for OPT 'VAL': WANT" -> ARGS. */
+int tdc_fail_option(const char *cmd, const char *opt, const char *val, const char *want);
+
+/* ---- numbers: the whole string, decimal (or 0x hex where noted), no sign
+ * unless signed, no white space, no wrap.  Return 0 on success, -1 (and
+ * leave *out alone) when the text is not a number or is outside [lo, hi]. */
+int tdc_parse_u64(const char *s, uint64_t lo, uint64_t hi, uint64_t *out); /* 0x.. accepted */
+int tdc_parse_u32(const char *s, uint32_t lo, uint32_t hi, uint32_t *out);
+int tdc_parse_int(const char *s, int lo, int hi, int *out);                /* optional '-' */
+/* Finite doubles only: "nan", "inf" and overflow are refused. */
+int tdc_parse_double(const char *s, double lo, double hi, double *out);
+/* "WxH" with 1 <= W, H <= max each. */
+int tdc_parse_size(const char *s, unsigned max, unsigned *w, unsigned *h);
+
+/* A field inside a line (CSV, key/value files): parses an unsigned decimal
+ * at s up to the first character that is not a digit, which is returned in
+ * *end.  -1 when there is no digit or the value exceeds hi (never wraps). */
+int tdc_parse_u64_field(const char *s, const char **end, uint64_t hi, uint64_t *out);
+/* A finite double field (strtod syntax); *end after it; -1 on none/nan/inf/overflow. */
+int tdc_parse_double_field(const char *s, const char **end, double *out);
+
+/* ---- lines: reads one line of at most cap-1 bytes (without the '\n').
+ * Returns 1 for a line, 0 at end of file, -1 for a line longer than the
+ * buffer (the rest of that line is consumed, nothing of it is parsed) or a
+ * NUL byte in it, -2 for a read error.  *lineno counts lines. */
+int tdc_read_line(FILE *f, char *buf, size_t cap, unsigned *lineno);
+
+/* ---- output files that never destroy what was there: written to
+ * "PATH.tmp.PID" and renamed over PATH only by tdc_out_commit(). */
+typedef struct {
+    FILE *f;
+    char path[4096];
+    char tmp[4120];
+} tdc_out_t;
+/* 0 and o->f open, or -1 with errno set (nothing created). */
+int tdc_out_open(tdc_out_t *o, const char *path, const char *mode);
+/* fflush + fclose + rename; -1 with errno set (the temporary is removed and
+ * PATH is untouched). */
+int tdc_out_commit(tdc_out_t *o);
+/* Closes and removes the temporary; PATH is untouched. */
+void tdc_out_abort(tdc_out_t *o);
+
+/* ---- a file name from untrusted text (scene names, frame names): 1 when
+ * name is a plain file name: 1..128 bytes of [A-Za-z0-9._-], not "." or
+ * "..", no '/', so OUTDIR/name stays inside OUTDIR. */
+int tdc_safe_name(const char *name);
+
+#endif

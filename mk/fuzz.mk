@@ -1,0 +1,80 @@
+# Fuzzing (docs/fuzzing.md): libFuzzer + ASan + UBSan, clang 14.  One
+# target per parser, each with its seed corpus in tests/fuzz/corpus-<name>
+# (the link decoder's: tests/fuzz/corpus).
+#   make fuzz FUZZ_SECONDS=600     every target for FUZZ_SECONDS each (FUZZ_TARGETS to choose),
+#                                  new inputs kept in build/fuzz/corpus-<name>
+#   make fuzz-smoke                every target for FUZZ_SMOKE_SECONDS each, part of make test
+#   make fuzz-seeds                regenerate the link decoder's tests/fuzz/corpus (deliberately)
+# ---------------------------------------------------------------------------
+FUZZ_CC ?= clang
+FUZZ_SECONDS ?= 600
+FUZZ_SMOKE_SECONDS ?= 8
+FUZZ_DIR := $(BUILD)/fuzz
+FUZZ_FLAGS := -std=c11 -D_GNU_SOURCE -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
+              -Ifirmware -I$(GEN) -Isim -Ihosttools/common
+LINK_FW_SRCS := firmware/tdc_link.c firmware/tdc_pixfmt.c firmware/tdc_crc32.c
+
+# name: harness + sources [+ flags, libraries]
+FUZZ_ALL := link usbproto usbreply panel tdcs scene frameloop
+FUZZ_TARGETS ?= $(FUZZ_ALL)
+FUZZ_SRCS_link := tests/fuzz/fuzz_link.c $(LINK_FW_SRCS)
+FUZZ_SRCS_usbproto := tests/fuzz/fuzz_usbproto.c firmware/tdc_usbproto.c
+FUZZ_SRCS_usbreply := tests/fuzz/fuzz_usbreply.c hosttools/usb/tdc_usb_reply.c
+FUZZ_CFLAGS_usbreply := -Ihosttools/usb
+FUZZ_SRCS_panel := tests/fuzz/fuzz_panel.c hosttools/common/tdc_tool.c
+FUZZ_DEPS_panel := hosttools/tablegen/tdc_tablegen.c
+FUZZ_LIBS_panel := -lm
+# the .tdcs reader with a small compiled maximum (a 96 x 64 board)
+FUZZ_SRCS_tdcs := tests/fuzz/fuzz_tdcs.c sim/link/tdc_link_file.c sim/link/tdc_link_encode.c $(LINK_FW_SRCS)
+FUZZ_CFLAGS_tdcs := -DTDC_PANEL_WIDTH=96 -DTDC_PANEL_HEIGHT=64
+FUZZ_SRCS_scene := tests/fuzz/fuzz_scene.c sim/render/tdc_scene_parse.c
+FUZZ_DEPS_scene := sim/render/tdc_render_geom.c
+FUZZ_CFLAGS_scene := -Isim/render
+FUZZ_LIBS_scene := -lembree3 -lm
+# the board frame loop for a 16 x 8 stereo OLED panel with TRM and tile assembly
+FUZZ_SRCS_frameloop := tests/fuzz/fuzz_frameloop.c $(LINK_FW_SRCS) firmware/tdc_assemble.c firmware/tdc_math.c \
+                       firmware/tdc_ordering.c firmware/tdc_trm.c firmware/tdc_trm_rows.c firmware/tdc_trm_avx2.c \
+                       $(GEN)/tdc_panel_htc-vive.c sim/link/tdc_link_encode.c
+FUZZ_DEPS_frameloop := firmware/board/tdc_main.c
+FUZZ_CFLAGS_frameloop := -Ifirmware/board -DTDC_PANEL_NAME='"fuzz"' -DTDC_PANEL_SYMBOL=tdc_panel_htc_vive \
+    -DTDC_PANEL_WIDTH=16 -DTDC_PANEL_HEIGHT=8 -DTDC_PANEL_EYES=2 -DTDC_PANEL_BITS=8 -DTDC_PANEL_REFRESH_HZ=90 \
+    -DTDC_PANEL_IS_LCD=0 -DTDC_CFG_TRM=1 -DTDC_CFG_ASSEMBLE=1 -DTDC_FW_NO_MAIN
+# known findings a smoke run does not stop on (docs/fuzzing.md); make fuzz checks everything
+FUZZ_SMOKE_ENV_frameloop := TDC_FUZZ_KNOWN=F1
+FUZZ_CORPUS_link := tests/fuzz/corpus
+
+define fuzz_target
+$(FUZZ_DIR)/fuzz_$(1): $(FUZZ_SRCS_$(1)) $(FUZZ_DEPS_$(1)) $(wildcard firmware/*.h sim/link/*.h sim/render/*.h) \
+                       $(GEN)/tdc_crc32_tables.h $(GEN)/tdc_panels.h
+	@mkdir -p $$(@D)
+	$(FUZZ_CC) $(FUZZ_FLAGS) $(FUZZ_CFLAGS_$(1)) $(FUZZ_SRCS_$(1)) -o $$@ $(FUZZ_LIBS_$(1))
+$(FUZZ_DIR)/fuzz-smoke-$(1): $(FUZZ_DIR)/fuzz_$(1) tests/fuzz/smoke.sh mk/fuzz.mk
+	@printf '#!/bin/sh\n%s exec tests/fuzz/smoke.sh "%s" "%s" "%s" "%s"\n' "$(FUZZ_SMOKE_ENV_$(1))" "$(FUZZ_DIR)/fuzz_$(1)" "$(FUZZ_SMOKE_SECONDS)" \
+	    "$(abspath $(FUZZ_DIR))/artifacts-$(1)" "$(or $(FUZZ_CORPUS_$(1)),tests/fuzz/corpus-$(1))" > $$@
+	@chmod +x $$@
+endef
+$(foreach t,$(FUZZ_ALL),$(eval $(call fuzz_target,$(t))))
+
+.PHONY: fuzz fuzz-smoke fuzz-seeds
+fuzz: $(foreach t,$(FUZZ_TARGETS),$(FUZZ_DIR)/fuzz_$(t))
+	@for t in $(FUZZ_TARGETS); do \
+	    c=tests/fuzz/corpus-$$t; [ $$t = link ] && c=tests/fuzz/corpus; \
+	    mkdir -p $(FUZZ_DIR)/corpus-$$t $(FUZZ_DIR)/artifacts-$$t; echo "== fuzz $$t ($(FUZZ_SECONDS) s)"; \
+	    $(FUZZ_DIR)/fuzz_$$t -max_total_time=$(FUZZ_SECONDS) -timeout=10 -close_fd_mask=2 -print_final_stats=1 \
+	        -artifact_prefix=$(FUZZ_DIR)/artifacts-$$t/ $(FUZZ_DIR)/corpus-$$t $$c 2>&1 | \
+	        grep -E '^(stat::|SUMMARY|==[0-9]+==|Done )|ERROR|crash-|leak|INITED|DONE' || true; \
+	done
+
+fuzz-smoke: $(foreach t,$(FUZZ_ALL),$(FUZZ_DIR)/fuzz-smoke-$(t))
+	@tests/run_tests.sh "clang-fuzz" $^
+
+FUZZ_SEEDS_BIN := $(FUZZ_DIR)/make_seeds
+$(FUZZ_SEEDS_BIN): tests/fuzz/make_seeds.c sim/link/tdc_link_gen.c sim/link/tdc_link_encode.c $(LINK_FW_SRCS) $(GEN)/tdc_crc32_tables.h
+	@mkdir -p $(@D)
+	gcc -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror -O2 -Ifirmware -Isim -I$(GEN) $(filter %.c,$^) -o $@
+fuzz-seeds: $(FUZZ_SEEDS_BIN)
+	@mkdir -p tests/fuzz/corpus
+	$(FUZZ_SEEDS_BIN) tests/fuzz/corpus
+	@ls tests/fuzz/corpus | wc -l
+
+TEST_EXTRA += fuzz-smoke

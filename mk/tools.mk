@@ -1,0 +1,17 @@
+# The one tool convention (issue 12 item 4, docs/tools.md): exit-code table,
+# "tool: command: what: why" messages, overflow-checked number parsing,
+# bounded line reading and rename-on-success output files, shared by every
+# host program.  In SIMLIB, so every program and test linking it has it;
+# tdc-usb, tdc-gpio and the table generator name the object or source.
+TOOL_SRC := hosttools/common/tdc_tool.c
+TOOL_OBJ := $(B)/hosttools/common/tdc_tool.o
+SIM_SRCS += $(TOOL_SRC)
+HOST_CFLAGS += -Ihosttools/common
+TESTS += $(B)/tests/unit/test_tool
+
+# Error paths of tdc-linkdump, tdc-render and the table generator (both
+# variants; LeakSanitizer on in the ASan one).
+$(B)/test-tool-errors: tests/unit/test_tool_errors.sh $(B)/tdc-render $(B)/tdc-linkdump $(B)/tdc-sim $(TABLEGEN)
+	@printf '#!/bin/sh\nexec tests/unit/test_tool_errors.sh %s %s\n' "$(B)" "$(TABLEGEN)" > $@
+	@chmod +x $@
+TESTS += $(B)/test-tool-errors
