@@ -403,8 +403,8 @@ int main(int argc, char **argv)
     /* native geometry from the panel profile unless overridden */
     const tdc_panel_t *prof = tdc_sim_panel_find(cfg.panel_profile, cfg.panel == TDC_PANEL_SIM_LCD);
     if (!prof) {
-        fprintf(stderr, "tdc-sim: --profile %s: no such %s panel profile (see make help)\n",
-                cfg.panel_profile ? cfg.panel_profile : "(default)", cfg.panel == TDC_PANEL_SIM_LCD ? "LCD" : "");
+        fprintf(stderr, "tdc-sim: --profile %s: no such %spanel profile (see make help)\n",
+                cfg.panel_profile ? cfg.panel_profile : "(default)", cfg.panel == TDC_PANEL_SIM_LCD ? "LCD " : "");
         return 2;
     }
     if (!size_given) {
