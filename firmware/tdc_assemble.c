@@ -36,8 +36,8 @@ static int tdc_asm_cfg_ok(const tdc_asm_config_t *cfg)
 static void tdc_asm_carve(tdc_asm_t *st, const tdc_asm_config_t *cfg, tdc_arena_t *arena)
 {
     TDC_ASM_ARENA(TDC_ARENA_CARVE, cfg->width, cfg->height,
-                  (size_t)TDC_ORDERING_TILES_X((uint32_t)cfg->width) * TDC_ORDERING_TILES_Y((uint32_t)cfg->height),
-                  TDC_ORDERING_BITMAP_BYTES(cfg->width, cfg->height))
+                  (size_t)TDC_TILES((uint32_t)cfg->width) * TDC_TILES((uint32_t)cfg->height),
+                  TDC_PATTERN_BYTES(cfg->width, cfg->height))
 }
 
 size_t tdc_asm_get_size(const tdc_asm_config_t *cfg)
@@ -58,8 +58,8 @@ tdc_status_t tdc_asm_init(tdc_asm_t *st, const tdc_asm_config_t *cfg, void *aren
     if (n < need) return TDC_ERR_SIZE;
     memset(st, 0, sizeof(*st));
     st->cfg = *cfg;
-    st->tiles_x = TDC_ORDERING_TILES_X((uint32_t)cfg->width);
-    st->tiles_y = TDC_ORDERING_TILES_Y((uint32_t)cfg->height);
+    st->tiles_x = TDC_TILES((uint32_t)cfg->width);
+    st->tiles_y = TDC_TILES((uint32_t)cfg->height);
     tdc_asm_carve(st, cfg, &a);
     memset(arena, 0, need);
     return TDC_OK;
@@ -75,15 +75,6 @@ const uint8_t *tdc_asm_output(const tdc_asm_t *st, int *stride_bytes)
 const uint8_t *tdc_asm_pattern(const tdc_asm_t *st)
 {
     return st ? st->pattern : NULL;
-}
-
-/* Motion word of pixel p: its (dx, dy) pair as one 32-bit value, only
- * compared for equality and against zero (so byte order does not matter). */
-static inline uint32_t tdc_asm_mv_word(const int16_t *pair)
-{
-    uint32_t v;
-    memcpy(&v, pair, sizeof(v));
-    return v;
 }
 
 /* Ordering of tile row [ti0, ti0 + n) of `bits` if every tile has the
@@ -119,7 +110,7 @@ tdc_status_t tdc_asm_ingest(tdc_asm_t *st, uint32_t frame, const uint8_t *sample
         for (uint32_t i = 0; i < nt; i++) diff += tdc_ordering_get(pattern_bits, i) != tdc_ordering_get(st->pattern, i);
         st->stats.pattern_checks += nt;
         st->stats.pattern_disagreements += diff;
-        if (k == 0 && diff) memcpy(st->pattern, pattern_bits, (size_t)TDC_ORDERING_BITMAP_BYTES(w, h));
+        if (k == 0 && diff) memcpy(st->pattern, pattern_bits, (size_t)TDC_PATTERN_BYTES(w, h));
     }
     const unsigned pos_h = tdc_ordering_pixel(TDC_ORDER_HOURGLASS, k);
     const unsigned pos_b = tdc_ordering_pixel(TDC_ORDER_BOWTIE, k);
@@ -142,7 +133,7 @@ tdc_status_t tdc_asm_ingest(tdc_asm_t *st, uint32_t frame, const uint8_t *sample
             memcpy((row_order ? plane_b : plane_h) + (size_t)ti0 * 3u, samples + (size_t)ti0 * 3u, (size_t)n * 3u);
             int16_t *m = st->mv + ((size_t)y * w + q) * 2u;
             for (uint32_t tx = 0; tx < n; tx++, m += 4) {
-                uint32_t was = tdc_asm_mv_word(m), is = 0;
+                uint32_t was = tdc_mv_word(m), is = 0;
                 if (mvs) memcpy(&is, mvs + (size_t)(ti0 + tx) * 2u, sizeof(is));
                 if (is != was) memcpy(m, &is, sizeof(is)); /* unchanged: keep the line clean */
                 nz += (int32_t)(is != 0) - (int32_t)(was != 0);
@@ -160,7 +151,7 @@ tdc_status_t tdc_asm_ingest(tdc_asm_t *st, uint32_t frame, const uint8_t *sample
             d[1] = samples[ti * 3u + 1u];
             d[2] = samples[ti * 3u + 2u];
             int16_t *m = st->mv + ((size_t)y * w + x) * 2u;
-            uint32_t was = tdc_asm_mv_word(m), is = 0;
+            uint32_t was = tdc_mv_word(m), is = 0;
             if (mvs) memcpy(&is, mvs + (size_t)ti * 2u, sizeof(is));
             if (is != was) memcpy(m, &is, sizeof(is));
             nz += (int32_t)(is != 0) - (int32_t)(was != 0);
@@ -204,18 +195,6 @@ static inline const uint8_t *tdc_asm_sample_row(const tdc_asm_t *st, uint32_t y,
     return st->samples + ((size_t)(slot * 4u + pos) * tiles + (size_t)(y >> 1) * st->tiles_x) * 3u;
 }
 
-/* Mean of the samples in the window mask (1..4 slots), rounded half up.
- * Scaling and overflow: sum <= 4 * 255; round(sum / n) =
- * floor((2 sum + n) / (2 n)) = ((2 sum + n) * ceil(2^16 / 2n)) >> 16, exact
- * for sum <= 1020 (tests/unit/test_assemble.c checks all sums and n). */
-static const uint16_t tdc_asm_half_recip_q16[5] = {0, 32768, 16384, 10923, 8192};
-
-uint8_t tdc_asm_mean_u8(uint32_t sum, unsigned n)
-{
-    if (n < 1u || n > 4u) return 0;
-    return (uint8_t)(((2u * sum + n) * tdc_asm_half_recip_q16[n]) >> 16);
-}
-
 /* Mean of a partial window (mask != 0xF): the first frames after a reset.
  * Branch-free: each slot's sample times its mask bit (0 or 1). */
 static void tdc_asm_window_mean_part(const uint8_t *s0, size_t stride, unsigned mask, uint8_t *out)
@@ -224,9 +203,9 @@ static void tdc_asm_window_mean_part(const uint8_t *s0, size_t stride, unsigned 
     const uint8_t *a = s0, *b1 = s0 + stride, *c = s0 + 2u * stride, *d = s0 + 3u * stride;
     const unsigned m0 = mask & 1u, m1 = (mask >> 1) & 1u, m2 = (mask >> 2) & 1u, m3 = (mask >> 3) & 1u;
     const unsigned n = popcount4[mask & 15u];
-    out[0] = tdc_asm_mean_u8(a[0] * m0 + b1[0] * m1 + c[0] * m2 + d[0] * m3, n);
-    out[1] = tdc_asm_mean_u8(a[1] * m0 + b1[1] * m1 + c[1] * m2 + d[1] * m3, n);
-    out[2] = tdc_asm_mean_u8(a[2] * m0 + b1[2] * m1 + c[2] * m2 + d[2] * m3, n);
+    out[0] = tdc_mean_u8(a[0] * m0 + b1[0] * m1 + c[0] * m2 + d[0] * m3, n);
+    out[1] = tdc_mean_u8(a[1] * m0 + b1[1] * m1 + c[1] * m2 + d[1] * m3, n);
+    out[2] = tdc_mean_u8(a[2] * m0 + b1[2] * m1 + c[2] * m2 + d[2] * m3, n);
 }
 
 /* s0: the pixel's sample in slot 0; slot i is at s0 + i * stride. */
@@ -243,72 +222,12 @@ static inline void tdc_asm_window_mean(const uint8_t *s0, size_t stride, unsigne
     out[2] = (uint8_t)((a[2] + b1[2] + c[2] + d[2] + 2u) >> 2);
 }
 
-/*
- * floor(sqrt(i * 2^24)) = floor(4096 sqrt(i)) for i = 64 .. 255 (i = 256
- * gives 65536, handled in code), generated by
- * python3 -c "import math; print([math.isqrt(i<<24) for i in range(64,256)])"
- * (tests/unit/test_assemble.c checks tdc_asm_sqrt_q8 against double sqrt).
- */
-static const uint16_t tdc_asm_sqrt_tab[192] = {
-    32768, 33023, 33276, 33527, 33776, 34023, 34269, 34513, 34755, 34996, 35235, 35472,
-    35708, 35942, 36174, 36406, 36635, 36864, 37090, 37316, 37540, 37763, 37984, 38204,
-    38423, 38641, 38858, 39073, 39287, 39500, 39712, 39922, 40132, 40340, 40548, 40754,
-    40960, 41164, 41367, 41569, 41771, 41971, 42170, 42369, 42566, 42763, 42959, 43154,
-    43347, 43541, 43733, 43924, 44115, 44305, 44493, 44682, 44869, 45056, 45241, 45426,
-    45611, 45794, 45977, 46159, 46340, 46521, 46701, 46880, 47059, 47237, 47414, 47591,
-    47767, 47942, 48117, 48291, 48464, 48637, 48809, 48981, 49152, 49322, 49492, 49661,
-    49829, 49998, 50165, 50332, 50498, 50664, 50830, 50994, 51159, 51322, 51485, 51648,
-    51810, 51972, 52133, 52294, 52454, 52614, 52773, 52931, 53090, 53248, 53405, 53562,
-    53718, 53874, 54029, 54184, 54339, 54493, 54647, 54800, 54953, 55106, 55258, 55409,
-    55560, 55711, 55861, 56011, 56161, 56310, 56459, 56607, 56755, 56903, 57050, 57197,
-    57344, 57490, 57635, 57781, 57926, 58070, 58215, 58359, 58502, 58645, 58788, 58931,
-    59073, 59215, 59356, 59497, 59638, 59779, 59919, 60059, 60198, 60337, 60476, 60615,
-    60753, 60891, 61029, 61166, 61303, 61440, 61576, 61712, 61848, 61983, 62118, 62253,
-    62388, 62522, 62656, 62790, 62923, 63057, 63190, 63322, 63454, 63587, 63718, 63850,
-    63981, 64112, 64243, 64373, 64503, 64633, 64763, 64892, 65021, 65150, 65279, 65407,
-};
-
-uint32_t tdc_asm_sqrt_q8(uint32_t d)
-{
-    /* 256 sqrt(d) for d < 2^20.  Normalise: z even, xn = d << z in
-     * [2^30, 2^32) (z >= 12 because d < 2^20); sqrt(xn) from the table by
-     * linear interpolation in [32768, 65536] (chord error <= 0.25, entry
-     * floor <= 1: |error| <= 1.25 units of 2^-16 relative); then
-     * 256 sqrt(d) = sqrt(xn) * 2^(8 - z/2).  Scaling and overflow: entry
-     * differences <= 255, times the 24-bit fraction < 2^32 (uint32). */
-    if (d == 0) return 0;
-    if (d >= (1u << 20)) d = (1u << 20) - 1u;
-    unsigned z = tdc_clz32(d) & ~1u;
-    uint32_t xn = d << z;
-    uint32_t i = (xn >> 24) - 64u, f = xn & 0xFFFFFFu;
-    uint32_t lo = tdc_asm_sqrt_tab[i], hi = i + 1u < 192u ? tdc_asm_sqrt_tab[i + 1u] : 65536u;
-    uint32_t r = lo + (((hi - lo) * f) >> 24);
-    /* half = z / 2 in 6 .. 15 (z >= 12): r << (8 - half) or r >> (half - 8),
-     * one shift: r << 2 <= 2^18, then >> (half - 6), exact both ways. */
-    unsigned half = z >> 1;
-    return (r << 2) >> (half - 6u);
-}
-
-/* Summary of motion row y: TDC_ASM_ROW_ANY if any vector is non-zero,
- * TDC_ASM_ROW_UNIFORM if all vectors of the row are equal (*value = the
- * word).  One pass of 32-bit loads; lets a frame skip the per-pixel 3x3
- * search where three consecutive rows hold one and the same vector. */
-#define TDC_ASM_ROW_ANY 1u
-#define TDC_ASM_ROW_UNIFORM 2u
-
+/* Summary of motion row y (tdc_mv_row_scan, tdc_ordering.h): lets a frame
+ * skip the per-pixel 3x3 search where three consecutive rows hold one and
+ * the same vector. */
 static unsigned tdc_asm_row_scan(const tdc_asm_t *st, uint32_t y, uint32_t *value)
 {
-    const uint32_t w = st->cfg.width;
-    const int16_t *mv = st->mv + (size_t)y * w * 2u;
-    const uint32_t first = tdc_asm_mv_word(mv);
-    uint32_t any = 0, diff = 0;
-    for (uint32_t x = 0; x < w; x++) {
-        uint32_t v = tdc_asm_mv_word(mv + 2u * x);
-        any |= v;
-        diff |= v ^ first;
-    }
-    *value = first;
-    return (any != 0 ? TDC_ASM_ROW_ANY : 0u) | (diff == 0 ? TDC_ASM_ROW_UNIFORM : 0u);
+    return tdc_mv_row_scan(st->mv + (size_t)y * st->cfg.width * 2u, st->cfg.width, value);
 }
 
 /* Horizontal 3-maximum (longest MV, first on ties) of motion row y. */
@@ -322,7 +241,7 @@ static void tdc_asm_hmax_row(const tdc_asm_t *st, uint32_t y, tdc_asm_mvmax_t *o
     for (uint32_t x = 0; x < w; x++) {
         int32_t ndx = 0, ndy = 0;
         l_next = 0;
-        if (x + 1u < w && tdc_asm_mv_word(mv + 2u * x + 2u) != 0) { /* zero: l = 0, no multiply */
+        if (x + 1u < w && tdc_mv_word(mv + 2u * x + 2u) != 0) { /* zero: l = 0, no multiply */
             ndx = mv[2u * x + 2u];
             ndy = mv[2u * x + 3u];
             l_next = (uint32_t)(ndx * ndx) + (uint32_t)(ndy * ndy);
@@ -384,19 +303,6 @@ static int tdc_asm_new_row(const tdc_asm_t *st, uint32_t y, unsigned pos_h, unsi
         }
     }
     return any ? TDC_ASM_NEW_MIXED : 0;
-}
-
-/* floor(x / n) = (x * ceil(2^32 / n)) >> 32 for 1 <= n <= 8, 0 <= x < 2^29
- * (the error term x (n ceil(2^32/n) - 2^32) / 2^32 < x n / 2^32 stays below
- * 1/n); tests check it exhaustively for x < 2^21. */
-static const uint32_t tdc_asm_recip32[9] = {0, 0, 2147483648u, 1431655766u, 1073741824u,
-                                            858993460u, 715827883u, 613566757u, 536870912u};
-
-uint32_t tdc_asm_div_small(uint32_t x, uint32_t n)
-{
-    if (n < 1u || n > 8u) return 0;
-    if (n == 1u) return x;
-    return (uint32_t)(((uint64_t)x * tdc_asm_recip32[n]) >> 32);
 }
 
 /*
@@ -513,7 +419,7 @@ static uint64_t tdc_asm_bilinear_q8(const tdc_asm_t *st, const uint8_t *src, uin
  * n^2 var in [0, 64 * 255^2 / 4] < 2^20.  The box test is exact:
  * |n v - 256 S1| > 256 sqrt(d)  <=>  (n v - 256 S1)^2 > 65536 d (int64:
  * < 2^39 and < 2^36); tdc_asm_box_out() says whether it fails.  Only then
- * is the edge computed (tdc_asm_box_edge_u8): R = tdc_asm_sqrt_q8(d) =
+ * is the edge computed (tdc_asm_box_edge_u8): R = tdc_sqrt_q8(d) =
  * n sigma in Q8 (within 0.02 code), edge = (256 S1 -+ R) / n, floor, lower
  * edge >= 0, rounded half up to 8 bits.
  */
@@ -529,13 +435,13 @@ static inline int tdc_asm_box_out(int32_t v, int32_t n, int32_t s1, int32_t s2)
 static uint8_t tdc_asm_box_edge_u8(int32_t v, int32_t n, int32_t s1, int32_t s2)
 {
     uint32_t d = (uint32_t)(n * s2 - s1 * s1);
-    int32_t r = (int32_t)tdc_asm_sqrt_q8(d);
+    int32_t r = (int32_t)tdc_sqrt_q8(d);
     int32_t e;
     if (n * v < 256 * s1) { /* both < 2^20 */
         int32_t lo_num = s1 * 256 - r;
-        e = lo_num > 0 ? (int32_t)tdc_asm_div_small((uint32_t)lo_num, (uint32_t)n) : 0;
+        e = lo_num > 0 ? (int32_t)tdc_div_small((uint32_t)lo_num, (uint32_t)n) : 0;
     } else {
-        e = (int32_t)tdc_asm_div_small((uint32_t)(s1 * 256 + r), (uint32_t)n);
+        e = (int32_t)tdc_div_small((uint32_t)(s1 * 256 + r), (uint32_t)n);
     }
     return (uint8_t)((e + 128) >> 8);
 }
@@ -861,12 +767,12 @@ static void tdc_asm_dynamic_frame(tdc_asm_t *st, uint32_t frame)
         /* slot-0 sample rows of row y for even / odd x; slot i at + i * stride */
         row.rec[0] = tdc_asm_sample_row(st, y, 0, 0);
         row.rec[1] = tdc_asm_sample_row(st, y, 1, 0);
-        unsigned any = 0, uniform = TDC_ASM_ROW_UNIFORM;
+        unsigned any = 0, uniform = TDC_MV_ROW_UNIFORM;
         for (int j = 0; j < 3; j++) {
             const int use = in[j] && has_new[ri[j]];
             if (use) row.bx[row.nbx++] = st->boxring + (size_t)ri[j] * bw;
             if (!in[j]) continue;
-            any |= rinfo[ri[j]] & TDC_ASM_ROW_ANY;
+            any |= rinfo[ri[j]] & TDC_MV_ROW_ANY;
             uniform &= rinfo[ri[j]];
             if (rval[ri[j]] != rval[ri[1]]) uniform = 0;
         }
@@ -959,7 +865,7 @@ tdc_status_t tdc_asm_assemble(tdc_asm_t *st, uint32_t frame)
     st->stats.frames++;
     if ((frame & 3u) == 3u) {
         /* Decide the orderings of the next cycle from the motion buffer. */
-        size_t bm = (size_t)TDC_ORDERING_BITMAP_BYTES(st->cfg.width, st->cfg.height);
+        size_t bm = (size_t)TDC_PATTERN_BYTES(st->cfg.width, st->cfg.height);
         if (st->mv_nonzero != 0) {
             memcpy(st->pattern_next, st->pattern, bm);
             tdc_ordering_update(st->mv, st->cfg.width, st->cfg.height, st->pattern_next, frame + 1u);

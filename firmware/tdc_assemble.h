@@ -82,8 +82,8 @@
 
 #define TDC_ASM_MEM_BYTES(W, H)                                                                               \
     ((size_t)0 TDC_ASM_ARENA(TDC_ARENA_BLOCK_BYTES, W, H,                                                     \
-                             (size_t)TDC_ORDERING_TILES_X(W) * TDC_ORDERING_TILES_Y(H),                       \
-                             TDC_ORDERING_BITMAP_BYTES(W, H)))
+                             (size_t)TDC_TILES(W) * TDC_TILES(H),                       \
+                             TDC_PATTERN_BYTES(W, H)))
 
 typedef struct {
     uint16_t width; /* full-res frame size, 1 .. TDC_ASM_MAX_DIM */
@@ -180,17 +180,7 @@ const uint8_t *tdc_asm_output(const tdc_asm_t *st, int *stride_bytes);
 /* Orderings the stage will use for the current/next cycle (bitmap). */
 const uint8_t *tdc_asm_pattern(const tdc_asm_t *st);
 
-/* Window mean round(sum / n) (half up) for n = 1..4, sum <= 255 n; exposed
- * for tests (exhaustively checked).  n outside 1..4 gives 0. */
-uint8_t tdc_asm_mean_u8(uint32_t sum, unsigned n);
-
-/* 256 sqrt(d) for 0 <= d < 2^20 (larger d saturate), table + linear
- * interpolation; |error| <= 12 (< 0.05 code in the clamp box; 8.3 measured).  Exposed
- * for tests. */
-uint32_t tdc_asm_sqrt_q8(uint32_t d);
-
-/* floor(x / n) for 1 <= n <= 8 and x < 2^29 by a reciprocal multiply
- * (no divide instruction); other n give 0.  Exposed for tests. */
-uint32_t tdc_asm_div_small(uint32_t x, uint32_t n);
+/* The stage's generic arithmetic (window mean, division by 1..8, table
+ * square root, the random-band hash) is in tdc_math.h. */
 
 #endif /* TDC_ASSEMBLE_H */

@@ -7,6 +7,7 @@
 #include "tdc_crc32.h"
 
 #include "tdc_crc32_tables.h"
+#include "tdc_wire.h"
 
 uint32_t tdc_crc32_update(uint32_t state, const uint8_t *data, size_t n)
 {
@@ -14,10 +15,8 @@ uint32_t tdc_crc32_update(uint32_t state, const uint8_t *data, size_t n)
     /* Eight bytes at a time, read as two little-endian words byte by byte
      * (no alignment or endianness assumptions; compilers merge the loads). */
     while (n >= 8u) {
-        const uint32_t lo = c ^ ((uint32_t)data[0] | ((uint32_t)data[1] << 8) | ((uint32_t)data[2] << 16) |
-                                 ((uint32_t)data[3] << 24));
-        const uint32_t hi =
-            (uint32_t)data[4] | ((uint32_t)data[5] << 8) | ((uint32_t)data[6] << 16) | ((uint32_t)data[7] << 24);
+        const uint32_t lo = c ^ tdc_get_le32(data);
+        const uint32_t hi = tdc_get_le32(data + 4);
         c = tdc_crc32_tab[7][lo & 0xFFu] ^ tdc_crc32_tab[6][(lo >> 8) & 0xFFu] ^ tdc_crc32_tab[5][(lo >> 16) & 0xFFu] ^
             tdc_crc32_tab[4][lo >> 24] ^ tdc_crc32_tab[3][hi & 0xFFu] ^ tdc_crc32_tab[2][(hi >> 8) & 0xFFu] ^
             tdc_crc32_tab[1][(hi >> 16) & 0xFFu] ^ tdc_crc32_tab[0][hi >> 24];
@@ -39,10 +38,7 @@ uint32_t tdc_crc32_bitwise(const uint8_t *data, size_t n)
 {
     uint32_t c = TDC_CRC32_INIT;
     for (size_t i = 0; i < n; i++) {
-        c ^= data[i];
-        for (int b = 0; b < 8; b++) {
-            c = (c >> 1) ^ (TDC_CRC32_POLY_REFLECTED & (0u - (c & 1u)));
-        }
+        c = tdc_crc32_shift8(c ^ data[i]);
     }
     return tdc_crc32_final(c);
 }

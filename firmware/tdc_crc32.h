@@ -8,6 +8,11 @@
  * sim/link/tdc_crc32_gen.c from the bitwise definition, and
  * tests/unit/test_link_crc32.c checks them against that definition again.
  *
+ * One implementation for the whole firmware: the link decoder, the USB
+ * protocol (received-bytes CRC, DFU image checks) and every host tool.  The
+ * tables are const (flash); the 8 KiB are in every board image anyway for
+ * the link decoder, so the USB side reusing them costs no memory.
+ *
  * Incremental use (any chunking gives the same value):
  *     uint32_t c = TDC_CRC32_INIT;
  *     c = tdc_crc32_update(c, a, na);
@@ -36,7 +41,18 @@ static inline uint32_t tdc_crc32_final(uint32_t state)
 /* CRC-32 of one buffer. */
 uint32_t tdc_crc32(const uint8_t *data, size_t n);
 
-/* Bit-at-a-time reference (no table): slow, used by tests and the generator. */
+/* The definition, one byte of register shift: eight bit steps of the
+ * reflected polynomial.  The only CRC-32 bit loop: the table generator
+ * (sim/link/tdc_crc32_gen.c) and tdc_crc32_bitwise() both use it. */
+static inline uint32_t tdc_crc32_shift8(uint32_t c)
+{
+    for (int b = 0; b < 8; b++) {
+        c = (c >> 1) ^ (TDC_CRC32_POLY_REFLECTED & (0u - (c & 1u)));
+    }
+    return c;
+}
+
+/* Bit-at-a-time reference (no table): slow, used by tests. */
 uint32_t tdc_crc32_bitwise(const uint8_t *data, size_t n);
 
 /* Entry k of table `table` (0..7; table 0: CRC register after byte k from a

@@ -257,6 +257,9 @@ typedef struct {
     size_t disk_stride;
     uint64_t rb2_q16; /* (r_d - 4 px)^2, or 0 */
     int32_t rb_q8;    /* r_d - 4 px (may be negative) */
+    int32_t leta_max; /* log2 of the largest eta (x = 1), Q24: log2 is monotone, so eta <= this */
+    int32_t sig_lo;   /* sigma = 1/2 and 1/sigma^2 = 4 as the functions give them */
+    uint32_t inv2_lo;
 } fov_src_t;
 
 static uint32_t compose(const fov_src_t *s, int32_t i, int32_t dx, int32_t dy, uint64_t r2, uint16_t c[3],
@@ -281,15 +284,20 @@ static uint32_t compose(const fov_src_t *s, int32_t i, int32_t dx, int32_t dy, u
          * all in log2: log2 sigma = log2 eta + log2 u - 2 - log2 alpha - log2 ln r - log2 r */
         int32_t ls = Q24; /* sigma = 2 where r <= 1 */
         if (rr.l1 > 0) {
-            const int32_t x_q16 = tdc_fov_exp2_q16(tdc_asr32(rr.l1 - g->log2_r2max_q24, 1));
-            const int32_t leta = tdc_fov_log2_q24((uint64_t)(91750 + 16 * (int64_t)x_q16)) - 16 * Q24;
             const int64_t lnr = (int64_t)rr.lg_l1 - 24 * Q24 + TDC_FOV_LOG2_LN2_Q24 - Q24;
-            const int64_t s64 = (int64_t)leta + g->log2_w_q24 - (int64_t)rr.nq - 2 * Q24 - g->log2_alpha_q24 - lnr -
-                                (rr.l1 / 2);
-            ls = (int32_t)(s64 < -Q24 ? -Q24 : (s64 > Q24 ? Q24 : s64));
+            const int64_t s0 = (int64_t)g->log2_w_q24 - (int64_t)rr.nq - 2 * Q24 - g->log2_alpha_q24 - lnr - (rr.l1 / 2);
+            if (s0 + s->leta_max <= -Q24) {
+                ls = -Q24; /* clamped whatever eta is (the common case at alpha 4): the same result, no eta */
+            } else {
+                const int32_t x_q16 = tdc_fov_exp2_q16(tdc_asr32(rr.l1 - g->log2_r2max_q24, 1));
+                const int32_t leta = tdc_fov_log2_q24((uint64_t)(91750 + 16 * (int64_t)x_q16)) - 16 * Q24;
+                const int64_t s64 = s0 + leta;
+                ls = (int32_t)(s64 < -Q24 ? -Q24 : (s64 > Q24 ? Q24 : s64));
+            }
         }
-        const int32_t sig = tdc_fov_exp2_q16(ls);       /* [2^15, 2^17] */
-        const uint32_t inv2 = (uint32_t)tdc_fov_exp2_q16(-2 * ls); /* 1/sigma^2 */
+        /* sigma in [2^15, 2^17] (Q16) and 1/sigma^2; the clamped ends from the frame's constants */
+        const int32_t sig = ls == -Q24 ? s->sig_lo : tdc_fov_exp2_q16(ls);
+        const uint32_t inv2 = ls == -Q24 ? s->inv2_lo : (uint32_t)tdc_fov_exp2_q16(-2 * ls);
         const int32_t u = (int32_t)rr.u_q16;
         int32_t lo = tdc_asr32(u - 2 * sig + 65535, 16), hi = tdc_asr32(u + 2 * sig, 16);
         const uint32_t j0 = v >> 16, fv = v & 0xFFFFu;
@@ -456,7 +464,10 @@ tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8
         out_stride < (size_t)g.width * 3u || (mv && mv_stride < (size_t)p->lp_w * 2u)) {
         return TDC_ERR_ARG;
     }
-    fov_src_t src = {&g, lp, lp_stride, disk, disk_stride, 0, (int32_t)g.r_disk_q8 - TDC_FOV_BLEND_Q8};
+    fov_src_t src = {&g, lp, lp_stride, disk, disk_stride, 0, (int32_t)g.r_disk_q8 - TDC_FOV_BLEND_Q8, 0, 0, 0};
+    src.leta_max = tdc_fov_log2_q24(91750u + 16u * 65536u) - 16 * Q24;
+    src.sig_lo = tdc_fov_exp2_q16(-Q24);
+    src.inv2_lo = (uint32_t)tdc_fov_exp2_q16(2 * Q24);
     if (src.rb_q8 > 0) {
         src.rb2_q16 = (uint64_t)src.rb_q8 * (uint64_t)src.rb_q8;
     }
@@ -527,8 +538,9 @@ tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8
                     mx = m[0];
                     my = m[1];
                 }
-                /* reprojection p - m (eq. 2.5's pi(p)), Q4 pixel indices */
-                int32_t px = x * 16 - mx, py = y * 16 - my;
+                /* reprojection pi(p) of eq. 2.5 = p + mv (backward MVs, the link's
+                 * common interface; the thesis's eq. 4.6 m = p - f(W[p]) is -mv) */
+                int32_t px = x * 16 + mx, py = y * 16 + my;
                 if (px >= -8 && px <= (W - 1) * 16 + 8 && py >= -8 && py <= (H - 1) * 16 + 8) {
                     px = tdc_clamp32(px, 0, (W - 1) * 16);
                     py = tdc_clamp32(py, 0, (H - 1) * 16);

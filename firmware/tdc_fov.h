@@ -21,7 +21,7 @@
  *             that the blend band and the kernel's reach have samples.
  *   blend     log-polar weight b = clamp((r - (r_d - 4 px)) / 4 px, 0, 1): the disk
  *             inside, the log-polar buffer outside, a 4-pixel ramp inside the border.
- *   TAA       eqs. 2.5, 4.7-4.10 in the periphery: f = a s + (1 - a) f_{n-1}(p - m),
+ *   TAA       eqs. 2.5, 4.7-4.10 in the periphery: f = a s + (1 - a) f_{n-1}(p + mv),
  *             a = a_min + min((1 - a_min) H, 1 - a_min), a_min = clamp(box3x3 |s - f_{n-1}|,
  *             0.1, 1), H = (|m| / |(W, H)|)^(1/4) * 60 / R_n, R_n = 0.1/dt_n + 0.9/dt_{n-1}.
  *             Phased out *after* the disk border (§5.3): the TAA weight is b, so it
@@ -141,8 +141,9 @@ void tdc_fov_reset(tdc_fov_t *st);
  *   lp:   lp_h rows of lp_w RGB8 samples (row = angle), stride lp_stride bytes;
  *         only columns [g.u0, lp_w) are read.
  *   mv:   motion vectors of the log-polar samples, int16 (x, y) pairs in Q4
- *         display pixels, m = p_now - p_prev (thesis eq. 4.6), stride
- *         mv_stride int16 per row; NULL = no motion.  Used by TAA only.
+ *         display pixels, BACKWARD as everywhere on the link (DESIGN §4.4):
+ *         the point now at p was at p + mv (the thesis's eq. 4.6 vector is
+ *         -mv); stride mv_stride int16 per row; NULL = no motion.  TAA only.
  *   disk: W x H RGB8 image of which only disk pixels are read (stride
  *         disk_stride); may be the same buffer as out (each pixel is read
  *         before it is written).

@@ -5,26 +5,7 @@
  */
 #include "tdc_fov_link.h"
 
-static uint32_t rd32(const uint8_t *b)
-{
-    return (uint32_t)b[0] | (uint32_t)b[1] << 8 | (uint32_t)b[2] << 16 | (uint32_t)b[3] << 24;
-}
-static uint16_t rd16(const uint8_t *b)
-{
-    return (uint16_t)(b[0] | b[1] << 8);
-}
-static void wr32(uint8_t *b, uint32_t v)
-{
-    b[0] = (uint8_t)v;
-    b[1] = (uint8_t)(v >> 8);
-    b[2] = (uint8_t)(v >> 16);
-    b[3] = (uint8_t)(v >> 24);
-}
-static void wr16(uint8_t *b, uint16_t v)
-{
-    b[0] = (uint8_t)v;
-    b[1] = (uint8_t)(v >> 8);
-}
+#include "tdc_wire.h" /* little-endian fields */
 
 uint16_t tdc_fov_lp_size(uint16_t delta_q15, uint16_t n)
 {
@@ -47,15 +28,15 @@ tdc_status_t tdc_fov_hdr_pack(uint8_t out[TDC_FOV_HDR_BYTES], uint16_t width, ui
     for (unsigned i = 0; i < TDC_FOV_HDR_BYTES; i++) {
         out[i] = 0;
     }
-    wr32(out + 0, (uint32_t)p->gaze_x_q8);
-    wr32(out + 4, (uint32_t)p->gaze_y_q8);
-    wr16(out + 8, p->alpha_q8);
-    wr16(out + 10, delta_q15);
-    wr16(out + 12, p->disk_q15);
-    wr16(out + 14, p->lp_w);
-    wr16(out + 16, p->lp_h);
-    wr16(out + 18, g.u0);
-    wr32(out + 20, tdc_fov_disk_pixels(&g));
+    tdc_put_le32(out + 0, (uint32_t)p->gaze_x_q8);
+    tdc_put_le32(out + 4, (uint32_t)p->gaze_y_q8);
+    tdc_put_le16(out + 8, p->alpha_q8);
+    tdc_put_le16(out + 10, delta_q15);
+    tdc_put_le16(out + 12, p->disk_q15);
+    tdc_put_le16(out + 14, p->lp_w);
+    tdc_put_le16(out + 16, p->lp_h);
+    tdc_put_le16(out + 18, g.u0);
+    tdc_put_le32(out + 20, tdc_fov_disk_pixels(&g));
     out[24] = flags;
     return TDC_OK;
 }
@@ -64,15 +45,13 @@ tdc_fov_hdr_err_t tdc_fov_hdr_parse(const uint8_t in[TDC_FOV_HDR_BYTES], uint16_
                                     tdc_fov_hdr_t *h)
 {
     tdc_fov_params_t *p = &h->p;
-    /* two's complement read of the gaze without implementation-defined conversion */
-    const uint32_t gx = rd32(in + 0), gy = rd32(in + 4);
-    p->gaze_x_q8 = gx <= 0x7FFFFFFFu ? (int32_t)gx : -(int32_t)(~gx) - 1;
-    p->gaze_y_q8 = gy <= 0x7FFFFFFFu ? (int32_t)gy : -(int32_t)(~gy) - 1;
-    p->alpha_q8 = rd16(in + 8);
-    h->delta_q15 = rd16(in + 10);
-    p->disk_q15 = rd16(in + 12);
-    p->lp_w = rd16(in + 14);
-    p->lp_h = rd16(in + 16);
+    p->gaze_x_q8 = tdc_get_le32s(in + 0);
+    p->gaze_y_q8 = tdc_get_le32s(in + 4);
+    p->alpha_q8 = tdc_get_le16(in + 8);
+    h->delta_q15 = tdc_get_le16(in + 10);
+    p->disk_q15 = tdc_get_le16(in + 12);
+    p->lp_w = tdc_get_le16(in + 14);
+    p->lp_h = tdc_get_le16(in + 16);
     h->flags = in[24];
     h->payload_bytes = 0;
     if (p->alpha_q8 < TDC_FOV_ALPHA_MIN_Q8 || p->alpha_q8 > TDC_FOV_ALPHA_MAX_Q8) {
@@ -92,7 +71,7 @@ tdc_fov_hdr_err_t tdc_fov_hdr_parse(const uint8_t in[TDC_FOV_HDR_BYTES], uint16_
         tdc_fov_geom(&h->g, width, height, p) != TDC_OK) {
         return TDC_FOV_HDR_BUFFER;
     }
-    if (rd16(in + 18) != h->g.u0 || rd32(in + 20) != tdc_fov_disk_pixels(&h->g)) {
+    if (tdc_get_le16(in + 18) != h->g.u0 || tdc_get_le32(in + 20) != tdc_fov_disk_pixels(&h->g)) {
         return TDC_FOV_HDR_GEOMETRY;
     }
     if (h->flags & ~TDC_FOV_FLAG_MV) {
@@ -105,6 +84,11 @@ tdc_fov_hdr_err_t tdc_fov_hdr_parse(const uint8_t in[TDC_FOV_HDR_BYTES], uint16_
     }
     h->payload_bytes = tdc_fov_payload_bytes(&h->g, h->flags & TDC_FOV_FLAG_MV);
     return TDC_FOV_HDR_OK;
+}
+
+tdc_fov_hdr_err_t tdc_fov_payload_check(const tdc_fov_hdr_t *h, uint32_t len)
+{
+    return len == h->payload_bytes ? TDC_FOV_HDR_OK : TDC_FOV_HDR_PAYLOAD;
 }
 
 const char *tdc_fov_hdr_err_name(tdc_fov_hdr_err_t e)

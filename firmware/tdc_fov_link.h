@@ -66,6 +66,9 @@ tdc_fov_hdr_err_t tdc_fov_hdr_parse(const uint8_t in[TDC_FOV_HDR_BYTES], uint16_
                                     tdc_fov_hdr_t *h);
 /* The log-polar buffer side for a display side n: floor(delta_q15 n / 2^15). */
 uint16_t tdc_fov_lp_size(uint16_t delta_q15, uint16_t n);
+/* TDC_FOV_HDR_OK if a payload of len bytes is what the accepted header h
+ * announces, else TDC_FOV_HDR_PAYLOAD (truncated or padded packet). */
+tdc_fov_hdr_err_t tdc_fov_payload_check(const tdc_fov_hdr_t *h, uint32_t len);
 /* Payload bytes of a geometry with or without motion vectors. */
 uint32_t tdc_fov_payload_bytes(const tdc_fov_geom_t *g, int with_mv);
 /* "TDC_FOV_HDR_ALPHA"; "TDC_FOV_HDR_?" outside the enum. */

@@ -214,16 +214,29 @@ size_t tdc_lcd_history_bytes(uint32_t width, uint32_t height, unsigned prev_bits
     return 2u * TDC_LCD_PACKED_BYTES((size_t)width * height * 3u, prev_bits);
 }
 
-static int lcd_config_valid(const tdc_lcd_config_t *cfg)
+size_t tdc_lcd_cfg_history_bytes(const tdc_lcd_config_t *cfg)
 {
-    return cfg && cfg->width != 0 && cfg->height != 0 && cfg->mode <= TDC_LCD_MODE_TABLE33 && cfg->prev_bits >= 4 &&
-           cfg->prev_bits <= 8;
+    if (!cfg || cfg->mode == TDC_LCD_MODE_GAMMA) {
+        return 0;
+    }
+    const size_t one = TDC_LCD_PACKED_BYTES((size_t)cfg->width * cfg->height * 3u, cfg->prev_bits);
+    if (cfg->mode == TDC_LCD_MODE_STATEFUL_PAIR) {
+        return one + (size_t)cfg->width * cfg->height * 3u;
+    }
+    return cfg->mode == TDC_LCD_MODE_STATEFUL ? one : 2u * one;
 }
 
-/* The one layout (tdc_lcd.h TDC_LCD_ARENA); NULL views in a dry run. */
+static int lcd_config_valid(const tdc_lcd_config_t *cfg)
+{
+    return cfg && cfg->width != 0 && cfg->height != 0 && cfg->mode <= TDC_LCD_MODE_STATEFUL_PAIR &&
+           cfg->prev_bits >= 4 && cfg->prev_bits <= 8;
+}
+
+/* The one layout (tdc_lcd.h TDC_LCD_ARENA); NULL views in a dry run and for
+ * the blocks the mode does not use. */
 static void lcd_carve(tdc_lcd_t *st, const tdc_lcd_config_t *cfg, tdc_arena_t *arena)
 {
-    TDC_LCD_ARENA(TDC_ARENA_CARVE, cfg->width, cfg->height, cfg->prev_bits)
+    TDC_LCD_ARENA(TDC_ARENA_CARVE, cfg->width, cfg->height, cfg->prev_bits, cfg->mode)
 }
 
 size_t tdc_lcd_get_size(const tdc_lcd_config_t *cfg)
@@ -262,6 +275,13 @@ tdc_status_t tdc_lcd_init(tdc_lcd_t *st, const tdc_lcd_config_t *cfg, const tdc_
     if ((cfg->mode == TDC_LCD_MODE_TABLE17 || cfg->mode == TDC_LCD_MODE_TABLE33) && !od) {
         return TDC_ERR_PANEL;
     }
+    st->table_fault = TDC_LCD_TABLE_OK;
+    if (TDC_LCD_MODE_IS_STATEFUL(cfg->mode)) {
+        st->table_fault = (uint8_t)tdc_lcd_st_validate(rate);
+        if (st->table_fault != TDC_LCD_TABLE_OK) {
+            return TDC_ERR_PANEL;
+        }
+    }
     if (mem_bytes < tdc_lcd_get_size(cfg)) { /* the same carve, dry: nothing is touched on error */
         return TDC_ERR_SIZE;
     }
@@ -272,6 +292,14 @@ tdc_status_t tdc_lcd_init(tdc_lcd_t *st, const tdc_lcd_config_t *cfg, const tdc_
     st->od = od;
     st->od_n = cfg->mode == TDC_LCD_MODE_TABLE33 ? 33u : 17u;
     st->half_lsb_q16 = 32768u / 255u;
+    tdc_od_quant_tables(cfg->prev_bits, st->q_enc, st->q_dec);
+    st->stats = (tdc_lcd_stats_t){0};
+    st->have_history = 0;
+    st->st_phase = 0;
+    if (TDC_LCD_MODE_IS_STATEFUL(cfg->mode)) {
+        tdc_lcd_st_build(st);
+        return TDC_OK;
+    }
     for (unsigned ch = 0; ch < 3u; ch++) {
         const uint32_t *dec = panel->gamma[ch].decode;
         for (uint32_t k = 0; k < 256u; k++) {
@@ -281,9 +309,6 @@ tdc_status_t tdc_lcd_init(tdc_lcd_t *st, const tdc_lcd_config_t *cfg, const tdc_
             st->m_step_recip[ch * 256u + k] = r > 0xffffffffu ? 0xffffffffu : (uint32_t)r;
         }
     }
-    tdc_od_quant_tables(cfg->prev_bits, st->q_enc, st->q_dec);
-    st->stats = (tdc_lcd_stats_t){0};
-    st->have_history = 0;
     return TDC_OK;
 }
 
@@ -291,6 +316,7 @@ void tdc_lcd_reset(tdc_lcd_t *st)
 {
     if (st) {
         st->have_history = 0;
+        st->st_phase = 0;
     }
 }
 
@@ -303,6 +329,10 @@ tdc_status_t tdc_lcd_frame(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_str
     const uint32_t w3 = st->cfg.width * 3u;
     const uint32_t h = st->cfg.height;
     st->stats.frames++;
+    if (TDC_LCD_MODE_IS_STATEFUL(st->cfg.mode)) {
+        tdc_lcd_st_frame(st, wanted, in_stride, drive, out_stride, residual);
+        return TDC_OK;
+    }
     if (st->cfg.mode == TDC_LCD_MODE_GAMMA) {
         /* Plain gamma inverse: the wanted code is the drive; no history needed. */
         for (uint32_t y = 0; y < h; y++) {

@@ -40,40 +40,6 @@ static const uint8_t tdc_link_magic_bytes[4] = {'T', 'D', 'C', 'L'};
 #define ST_MASK 0x7Fu
 #define ST_SYNCED 0x80u
 
-const char *tdc_link_err_name(tdc_link_err_t e)
-{
-    static const char *const names[TDC_LINK_ERR_COUNT] = {
-        "ok",     "magic",  "garbage", "header-crc", "version", "kind",      "eye",
-        "format", "dimensions", "length", "crc",     "stream",  "order",     "duplicate",
-        "missing-reduced", "unexpected", "stream-header"};
-    return (unsigned)e < (unsigned)TDC_LINK_ERR_COUNT ? names[e] : "?";
-}
-
-uint32_t tdc_link_payload_bytes(tdc_link_kind_t kind, tdc_pixfmt_t fmt, uint32_t width, uint32_t height,
-                                uint32_t pkt_flags)
-{
-    /* Callers bound width, height <= 65535; the products below stay below
-     * 2^32 only for w * h < 2^30, which the panel check guarantees before
-     * this is trusted (a 65535^2 RGB30 frame would wrap: callers compare
-     * dimensions first). */
-    const uint32_t tiles = TDC_LINK_TILES(width) * TDC_LINK_TILES(height);
-    switch (kind) {
-    case TDC_LINK_KIND_STREAM:
-        return TDC_LINK_STREAM_HEADER_BYTES;
-    case TDC_LINK_KIND_FULL:
-    case TDC_LINK_KIND_REDUCED:
-        return tdc_pixfmt_payload_bytes(fmt, width, height);
-    case TDC_LINK_KIND_SUBFRAME:
-        return tdc_pixfmt_payload_bytes(fmt, TDC_LINK_TILES(width), TDC_LINK_TILES(height));
-    case TDC_LINK_KIND_MOTION:
-        return (pkt_flags & TDC_LINK_PKT_MV_PER_SAMPLE) ? tiles * 4u : width * height * 4u;
-    case TDC_LINK_KIND_PATTERN:
-        return (tiles + 7u) / 8u;
-    default:
-        return 0;
-    }
-}
-
 /* Duplicate-detection slot of a packet within one frame index. */
 static uint32_t slot_bit(uint32_t kind, uint32_t eye, uint32_t flags)
 {
@@ -237,11 +203,11 @@ static tdc_link_err_t check_header(const tdc_link_decoder_t *dec, uint32_t versi
     if (eye >= dec->cfg.eyes) {
         return TDC_LINK_ERR_EYE;
     }
-    if ((flags & ~(uint32_t)TDC_LINK_PKT_KNOWN) != 0 ||
-        ((flags & TDC_LINK_PKT_MV_PER_SAMPLE) && kind != TDC_LINK_KIND_MOTION)) {
+    const tdc_link_kind_info_t *ki = tdc_link_kind_info(kind);
+    if ((flags & ~(uint32_t)ki->pkt_flags) != 0) {
         return TDC_LINK_ERR_FORMAT;
     }
-    const int pixel_kind = kind == TDC_LINK_KIND_FULL || kind == TDC_LINK_KIND_REDUCED || kind == TDC_LINK_KIND_SUBFRAME;
+    const int pixel_kind = ki->rule == TDC_LINK_PAYLOAD_PIXELS;
     if (pixel_kind ? (!tdc_pixfmt_valid(fmt) || !((TDC_LINK_FORMAT_MASK >> fmt) & 1u)) : fmt != TDC_PIXFMT_NONE) {
         return TDC_LINK_ERR_FORMAT;
     }
@@ -301,7 +267,9 @@ static tdc_link_err_t check_header(const tdc_link_decoder_t *dec, uint32_t versi
 static void on_header(tdc_link_decoder_t *dec, uint32_t end_off)
 {
     const uint8_t *h = dec->hdr;
-    if (tdc_crc32(h, TDC_LINK_OFF_HEADER_CRC) != tdc_link_rd32(h + TDC_LINK_OFF_HEADER_CRC)) {
+    tdc_link_header_t ph;
+    /* The magic matched byte by byte on the way in: only the CRC can fail. */
+    if (tdc_link_header_unpack(h, &ph) != TDC_LINK_OK) {
         /* Corrupt header, or a false magic: rescan bytes 1..31 (the real
          * packet may begin there).  If the whole header came from the
          * staging rescan, just rewind it; otherwise replay a copy (any
@@ -331,19 +299,19 @@ static void on_header(tdc_link_decoder_t *dec, uint32_t end_off)
     }
     tdc_link_event_t *p = &dec->pkt;
     memset(p, 0, sizeof *p);
-    p->kind = h[TDC_LINK_OFF_KIND];
-    p->eye = h[TDC_LINK_OFF_EYE];
-    p->format = h[TDC_LINK_OFF_FORMAT];
-    p->stream_id = (uint16_t)tdc_link_rd16(h + TDC_LINK_OFF_STREAM_ID);
-    p->flags = (uint16_t)tdc_link_rd16(h + TDC_LINK_OFF_FLAGS);
-    p->frame_index = tdc_link_rd32(h + TDC_LINK_OFF_FRAME);
-    p->width = (uint16_t)tdc_link_rd16(h + TDC_LINK_OFF_WIDTH);
-    p->height = (uint16_t)tdc_link_rd16(h + TDC_LINK_OFF_HEIGHT);
-    dec->payload_len = tdc_link_rd32(h + TDC_LINK_OFF_PAYLOAD_LEN);
-    dec->payload_crc = tdc_link_rd32(h + TDC_LINK_OFF_PAYLOAD_CRC);
+    p->kind = ph.kind;
+    p->eye = ph.eye;
+    p->format = ph.format;
+    p->stream_id = ph.stream_id;
+    p->flags = ph.flags;
+    p->frame_index = ph.frame_index;
+    p->width = ph.width;
+    p->height = ph.height;
+    dec->payload_len = ph.payload_len;
+    dec->payload_crc = ph.payload_crc;
     p->detail = dec->payload_len;
 
-    const tdc_link_err_t e = check_header(dec, h[TDC_LINK_OFF_VERSION], dec->payload_len);
+    const tdc_link_err_t e = check_header(dec, ph.version, dec->payload_len);
     if (e != TDC_LINK_OK) {
         push_error(dec, e, 1, dec->payload_len);
         /* The header is intact (CRC), so its length is what was sent: skip
@@ -375,14 +343,7 @@ static tdc_link_err_t commit_stream(tdc_link_decoder_t *dec)
 {
     const uint8_t *s = dec->buf.staging + dec->payload_base;
     tdc_link_stream_info_t in;
-    in.flags = tdc_link_rd32(s + 0);
-    in.r_num = (uint16_t)tdc_link_rd16(s + 4);
-    in.r_den = (uint16_t)tdc_link_rd16(s + 6);
-    in.width = (uint16_t)tdc_link_rd16(s + 8);
-    in.height = (uint16_t)tdc_link_rd16(s + 10);
-    in.eyes = s[12];
-    in.reserved = s[13];
-    in.refresh_hz = (uint16_t)tdc_link_rd16(s + 14);
+    tdc_link_stream_unpack(s, &in);
 
     const tdc_link_buffers_t *b = &dec->buf;
     if ((in.flags & ~(uint32_t)TDC_LINK_STREAM_KNOWN) != 0 || in.reserved != 0 || in.width != dec->cfg.width ||
@@ -395,8 +356,8 @@ static tdc_link_err_t commit_stream(tdc_link_decoder_t *dec)
         if ((uint32_t)in.r_num * 4u < in.r_den || in.r_num >= in.r_den) {
             return TDC_LINK_ERR_STREAM_HEADER;
         }
-        rw = TDC_LINK_REDUCED_DIM(in.width, in.r_num, in.r_den);
-        rh = TDC_LINK_REDUCED_DIM(in.height, in.r_num, in.r_den);
+        rw = TDC_REDUCED_DIM(in.width, in.r_num, in.r_den);
+        rh = TDC_REDUCED_DIM(in.height, in.r_num, in.r_den);
     } else if (in.r_num != in.r_den) {
         return TDC_LINK_ERR_STREAM_HEADER; /* r must be 1 without reduced frames */
     }
@@ -484,10 +445,7 @@ static void unpack_pixels(tdc_pixfmt_t fmt, const uint8_t *src, uint32_t w, uint
 static void unpack_le16(const uint8_t *src, int16_t *dst, size_t count)
 {
     for (size_t i = 0; i < count; i++) {
-        /* Two's complement reinterpretation without implementation-defined
-         * conversion: subtract 2^16 for values >= 2^15. */
-        const int32_t v = (int32_t)tdc_link_rd16(src + 2u * i);
-        dst[i] = (int16_t)(v >= 32768 ? v - 65536 : v);
+        dst[i] = tdc_get_le16s(src + 2u * i);
     }
 }
 
@@ -546,7 +504,7 @@ static void on_payload(tdc_link_decoder_t *dec, uint32_t src_end)
         const uint8_t *s = dec->buf.staging + dec->payload_base;
         const tdc_pixfmt_t fmt = (tdc_pixfmt_t)p->format;
         const tdc_link_buffers_t *b = &dec->buf;
-        const uint32_t tx = TDC_LINK_TILES(p->width), ty = TDC_LINK_TILES(p->height);
+        const uint32_t tx = TDC_TILES(p->width), ty = TDC_TILES(p->height);
         switch (kind) {
         case TDC_LINK_KIND_FULL:
             unpack_pixels(fmt, s, p->width, p->height, b->full[eye], b->full_stride);

@@ -4,7 +4,8 @@
  *
  * The renderer sends packets: a 32-byte header (magic, version, kind, eye,
  * pixel format, stream id, flags, frame index, dimensions, payload length,
- * payload CRC-32, header CRC-32; little-endian) followed by the payload.
+ * payload CRC-32, header CRC-32; little-endian, tdc_wire.h) followed by the
+ * payload.
  * The decoder accepts the byte stream in chunks of any size (as USB bulk
  * transfers deliver it), allocates nothing, and validates a packet
  * completely (header CRC, header fields against the panel and the stream,
@@ -36,96 +37,10 @@
 
 #include "tdc_fixed.h"
 #include "tdc_pixfmt.h"
+#include "tdc_wire.h"
 
-/* ------------------------------------------------------------------------
- * Wire format constants.
- * ---------------------------------------------------------------------- */
-#define TDC_LINK_MAGIC 0x4C434454u /* bytes 'T' 'D' 'C' 'L' read as uint32 LE */
-#define TDC_LINK_VERSION 1u
-#define TDC_LINK_HEADER_BYTES 32u
-#define TDC_LINK_STREAM_HEADER_BYTES 16u /* payload of a STREAM packet */
-
-/* Header field byte offsets (all naturally aligned). */
-#define TDC_LINK_OFF_MAGIC 0u        /* uint32 */
-#define TDC_LINK_OFF_VERSION 4u      /* uint8 */
-#define TDC_LINK_OFF_KIND 5u         /* uint8  tdc_link_kind_t */
-#define TDC_LINK_OFF_EYE 6u          /* uint8  0 = left / mono, 1 = right */
-#define TDC_LINK_OFF_FORMAT 7u       /* uint8  tdc_pixfmt_t, 0 for non-pixel kinds */
-#define TDC_LINK_OFF_STREAM_ID 8u    /* uint16 */
-#define TDC_LINK_OFF_FLAGS 10u       /* uint16 TDC_LINK_PKT_* */
-#define TDC_LINK_OFF_FRAME 12u       /* uint32 frame index */
-#define TDC_LINK_OFF_WIDTH 16u       /* uint16 */
-#define TDC_LINK_OFF_HEIGHT 18u      /* uint16 */
-#define TDC_LINK_OFF_PAYLOAD_LEN 20u /* uint32 */
-#define TDC_LINK_OFF_PAYLOAD_CRC 24u /* uint32 CRC-32 of the payload */
-#define TDC_LINK_OFF_HEADER_CRC 28u  /* uint32 CRC-32 of header bytes 0..27 */
-
-typedef enum {
-    TDC_LINK_KIND_STREAM = 1,   /* stream header / reset: starts a stream (payload 16 B) */
-    TDC_LINK_KIND_FULL = 2,     /* full-resolution frame of one eye */
-    TDC_LINK_KIND_REDUCED = 3,  /* reduced-resolution frame (TRM, ratio r) */
-    TDC_LINK_KIND_SUBFRAME = 4, /* one sample per 2x2 tile (tile-ordered assembly) */
-    TDC_LINK_KIND_MOTION = 5,   /* motion vectors, int16 (dx, dy) Q4 pairs */
-    TDC_LINK_KIND_PATTERN = 6,  /* tile-ordering bitmap, 1 bit per tile */
-    TDC_LINK_KIND_FIRST = TDC_LINK_KIND_STREAM,
-    TDC_LINK_KIND_LAST = TDC_LINK_KIND_PATTERN
-} tdc_link_kind_t;
-
-/* Per-packet flags (header `flags`). */
-#define TDC_LINK_PKT_MV_PER_SAMPLE 0x0001u /* MOTION: one vector per subframe sample (tile grid) */
-#define TDC_LINK_PKT_KNOWN 0x0001u
-
-/* Stream header flags: which stages the stream uses, so the controller can
- * skip the others. */
-#define TDC_LINK_STREAM_REDUCED 0x0001u   /* TRM: reduced frames alternate with full ones */
-#define TDC_LINK_STREAM_SUBFRAMES 0x0002u /* tile-ordered subframes (+ pattern bitmaps) */
-#define TDC_LINK_STREAM_MOTION 0x0004u    /* per-pixel motion vectors are sent */
-#define TDC_LINK_STREAM_MIRRORS 0x0008u   /* motion vectors include mirror reflections */
-#define TDC_LINK_STREAM_SAMPLE_MV 0x0010u /* subframe samples carry their own motion vectors */
-#define TDC_LINK_STREAM_KNOWN 0x001Fu
-
-/* Motion vectors: Q4 (1/16 px), range +-2047.9375 px, BACKWARD (the point
- * now at p was at p + mv in the previous frame). */
-#define TDC_LINK_MV_FRAC_BITS 4
-
-/* Stream header (payload of a STREAM packet, 16 bytes LE on the wire). */
-typedef struct {
-    uint32_t flags;      /* TDC_LINK_STREAM_* */
-    uint16_t r_num;      /* TRM ratio r = r_num / r_den; 1/4 <= r < 1 if REDUCED, */
-    uint16_t r_den;      /* else r = 1 (1/1) */
-    uint16_t width;      /* full-resolution size of one eye: must match the panel */
-    uint16_t height;
-    uint8_t eyes;        /* 1 or 2: must match the panel */
-    uint8_t reserved;    /* 0 */
-    uint16_t refresh_hz; /* rate the renderer sends frames at (informative) */
-} tdc_link_stream_info_t;
-
-/* ------------------------------------------------------------------------
- * Errors: one code per malformed class, each with its own counter.
- * ---------------------------------------------------------------------- */
-typedef enum {
-    TDC_LINK_OK = 0,
-    TDC_LINK_ERR_MAGIC = 1,       /* sync lost: a packet boundary does not start with the magic */
-    TDC_LINK_ERR_GARBAGE = 2,     /* bytes between packets discarded while resynchronising */
-    TDC_LINK_ERR_HEADER_CRC = 3,  /* header CRC mismatch (corrupt header or false magic) */
-    TDC_LINK_ERR_VERSION = 4,     /* unsupported protocol version */
-    TDC_LINK_ERR_KIND = 5,        /* unknown packet kind */
-    TDC_LINK_ERR_EYE = 6,         /* eye index >= the panel's eyes */
-    TDC_LINK_ERR_FORMAT = 7,      /* unknown/unsupported pixel format or packet flags */
-    TDC_LINK_ERR_DIMENSIONS = 8,  /* dimensions do not match the panel (or reduced size) */
-    TDC_LINK_ERR_LENGTH = 9,      /* payload length inconsistent with kind/format/size */
-    TDC_LINK_ERR_CRC = 10,        /* payload CRC mismatch */
-    TDC_LINK_ERR_STREAM = 11,     /* no stream header yet, or a different stream id */
-    TDC_LINK_ERR_ORDER = 12,      /* frame index lower than the current frame */
-    TDC_LINK_ERR_DUPLICATE = 13,  /* same frame index, kind and eye accepted already */
-    TDC_LINK_ERR_MISSING_REDUCED = 14, /* a frame whose reduced eye never arrived was passed */
-    TDC_LINK_ERR_UNEXPECTED = 15, /* kind not enabled by the stream header / not due now */
-    TDC_LINK_ERR_STREAM_HEADER = 16, /* stream header contents invalid (flags, r, size) */
-    TDC_LINK_ERR_COUNT = 17
-} tdc_link_err_t;
-
-/* Short name of an error code ("crc", "magic", ...). */
-const char *tdc_link_err_name(tdc_link_err_t e);
+/* Wire format (header, kinds, STREAM payload, rejection reasons, sizes):
+ * tdc_wire.h, included here. */
 
 /* ------------------------------------------------------------------------
  * Compile-time sizes.  A board build defines TDC_LINK_MAX_WIDTH/HEIGHT from
@@ -155,18 +70,6 @@ const char *tdc_link_err_name(tdc_link_err_t e);
 #define TDC_LINK_FORMAT_MASK 0x1Eu /* bits 1..4: RGB888, RGB565, RGB30, YCBCR420 (numeric: used in #if) */
 #endif
 
-/* Reduced size for ratio num/den: round(n * num / den), at least 1 (the same
- * rule as TDC_TRM_REDUCED_DIM in tdc_trm.h). */
-#define TDC_LINK_REDUCED_DIM(n, num, den)                                                          \
-    ((((uint32_t)(n) * (num)) + (den) / 2u) / (den) < 1u ? 1u : (((uint32_t)(n) * (num)) + (den) / 2u) / (den))
-#define TDC_LINK_TILES(n) (((uint32_t)(n) + 1u) / 2u) /* 2x2 tiles along a side */
-
-/* Buffer sizes in bytes for a w x h eye. */
-#define TDC_LINK_FRAME_BYTES(w, h) ((size_t)(w) * (h) * 3u)                          /* RGB888 */
-#define TDC_LINK_SUBFRAME_BYTES(w, h) ((size_t)TDC_LINK_TILES(w) * TDC_LINK_TILES(h) * 3u)
-#define TDC_LINK_MOTION_COUNT(w, h) ((size_t)(w) * (h) * 2u)                         /* int16s */
-#define TDC_LINK_SAMPLE_MOTION_COUNT(w, h) ((size_t)TDC_LINK_TILES(w) * TDC_LINK_TILES(h) * 2u)
-#define TDC_LINK_PATTERN_BYTES(w, h) (((size_t)TDC_LINK_TILES(w) * TDC_LINK_TILES(h) + 7u) / 8u)
 /* Staging: the largest payload, a full frame in RGB30 (4 B/px) or the
  * per-pixel motion vectors (4 B/px). */
 #define TDC_LINK_STAGING_BYTES(w, h) ((size_t)(w) * (h) * 4u + TDC_LINK_STREAM_HEADER_BYTES)
@@ -306,32 +209,6 @@ void tdc_link_reduced_size(const tdc_link_decoder_t *dec, uint32_t *rw, uint32_t
 static inline tdc_link_kind_t tdc_link_trm_kind(uint32_t frame, uint32_t eye)
 {
     return ((frame + eye) & 1u) ? TDC_LINK_KIND_REDUCED : TDC_LINK_KIND_FULL;
-}
-
-/* Expected payload bytes of a packet (0 if the combination is invalid). */
-uint32_t tdc_link_payload_bytes(tdc_link_kind_t kind, tdc_pixfmt_t fmt, uint32_t width, uint32_t height,
-                                uint32_t pkt_flags);
-
-/* Little-endian field access shared by decoder and encoder. */
-static inline uint32_t tdc_link_rd16(const uint8_t *p)
-{
-    return (uint32_t)p[0] | ((uint32_t)p[1] << 8);
-}
-static inline uint32_t tdc_link_rd32(const uint8_t *p)
-{
-    return (uint32_t)p[0] | ((uint32_t)p[1] << 8) | ((uint32_t)p[2] << 16) | ((uint32_t)p[3] << 24);
-}
-static inline void tdc_link_wr16(uint8_t *p, uint32_t v)
-{
-    p[0] = (uint8_t)v;
-    p[1] = (uint8_t)(v >> 8);
-}
-static inline void tdc_link_wr32(uint8_t *p, uint32_t v)
-{
-    p[0] = (uint8_t)v;
-    p[1] = (uint8_t)(v >> 8);
-    p[2] = (uint8_t)(v >> 16);
-    p[3] = (uint8_t)(v >> 24);
 }
 
 #endif /* TDC_LINK_H */

@@ -1,6 +1,7 @@
 /*
  * tdc_math.h - integer math helpers: exp(-x), reciprocal, division in Q15,
- * integer square root.  Each is tested exhaustively or densely against
+ * integer square root, and the small generic kernels of the pixel loops
+ * (mean of up to 4, division by 1..8, table square root, a 3-word hash).  Each is tested exhaustively or densely against
  * double precision in tests/unit/test_math.c, which asserts the error bounds
  * stated here.
  */
@@ -103,5 +104,80 @@ uint32_t tdc_isqrt64_digits(uint64_t x);
  * tdc_udiv64_32_digits, long division with two 32-bit divides. */
 uint32_t tdc_udiv64_32(uint64_t u, uint32_t v);
 uint32_t tdc_udiv64_32_digits(uint64_t u, uint32_t v);
+
+/* ---------------------------------------------------------------------
+ * Small kernels of the pixel loops.  Inline (their callers are per-pixel
+ * loops in other files; a call each would cost more than the body) and
+ * each checked exhaustively in tests/unit/test_math.c.
+ * ------------------------------------------------------------------- */
+
+/* round(sum / n), half up, for n = 1..4 and sum <= 255 n (a mean of 1..4
+ * 8-bit samples, e.g. tile-ordered assembly's window); n outside 1..4
+ * gives 0.  Scaling and overflow: round(sum / n) = floor((2 sum + n) / 2n)
+ * = ((2 sum + n) * ceil(2^16 / 2n)) >> 16, exact for sum <= 1020 (every sum
+ * and n checked). */
+static inline uint8_t tdc_mean_u8(uint32_t sum, unsigned n)
+{
+    static const uint16_t half_recip_q16[5] = {0, 32768, 16384, 10923, 8192};
+    if (n < 1u || n > 4u) return 0;
+    return (uint8_t)(((2u * sum + n) * half_recip_q16[n]) >> 16);
+}
+
+/* floor(x / n) for 1 <= n <= 8 and x < 2^29 by a reciprocal multiply (no
+ * divide instruction); other n give 0.  floor(x / n) =
+ * (x * ceil(2^32 / n)) >> 32: the error term x (n ceil(2^32/n) - 2^32) / 2^32
+ * < x n / 2^32 stays below 1/n (checked for every x < 2^21 and the top). */
+static inline uint32_t tdc_div_small(uint32_t x, uint32_t n)
+{
+    static const uint32_t recip32[9] = {0, 0, 2147483648u, 1431655766u, 1073741824u,
+                                        858993460u, 715827883u, 613566757u, 536870912u};
+    if (n < 1u || n > 8u) return 0;
+    if (n == 1u) return x;
+    return (uint32_t)(((uint64_t)x * recip32[n]) >> 32);
+}
+
+/* floor(4096 sqrt(i)) for i = 64 .. 255 (tdc_math.c). */
+extern const uint16_t tdc_sqrt_q8_tab[192];
+
+/* 256 sqrt(d) for 0 <= d < 2^20 (larger d saturate), table + linear
+ * interpolation: |error| <= 12 in Q8 (8.3 measured over every d; the
+ * exact floor is tdc_isqrt64).  Used for the assembly clamp's box edge. */
+static inline uint32_t tdc_sqrt_q8(uint32_t d)
+{
+    /* Normalise: z even, xn = d << z in [2^30, 2^32) (z >= 12 because
+     * d < 2^20); sqrt(xn) from the table by linear interpolation in
+     * [32768, 65536] (chord error <= 0.25, entry floor <= 1: |error| <= 1.25
+     * units of 2^-16 relative); then 256 sqrt(d) = sqrt(xn) * 2^(8 - z/2).
+     * Scaling and overflow: entry differences <= 255, times the 24-bit
+     * fraction < 2^32 (uint32). */
+    if (d == 0) return 0;
+    if (d >= (1u << 20)) d = (1u << 20) - 1u;
+    const unsigned z = tdc_clz32(d) & ~1u;
+    const uint32_t xn = d << z;
+    const uint32_t i = (xn >> 24) - 64u, f = xn & 0xFFFFFFu;
+    const uint32_t lo = tdc_sqrt_q8_tab[i], hi = i + 1u < 192u ? tdc_sqrt_q8_tab[i + 1u] : 65536u;
+    const uint32_t r = lo + (((hi - lo) * f) >> 24);
+    /* half = z / 2 in 6 .. 15 (z >= 12): r << (8 - half) or r >> (half - 8),
+     * one shift: r << 2 <= 2^18, then >> (half - 6), exact both ways. */
+    const unsigned half = z >> 1;
+    return (r << 2) >> (half - 6u);
+}
+
+/* Hash of three words (murmur3 finaliser over a multiplicative mix): well
+ * spread, unsigned arithmetic only (wraps the same everywhere).  Tile-
+ * ordered assembly's random band draws its bit from (tile_x, tile_y,
+ * frame); renderer and controller must agree, and the assembly golden
+ * vectors pin it: the constants are part of the stream format's behaviour
+ * (tests/unit/test_math.c checks known values). */
+static inline uint32_t tdc_hash3(uint32_t a, uint32_t b, uint32_t c)
+{
+    uint32_t h = a * 0x9E3779B1u ^ b * 0x85EBCA77u ^ c * 0xC2B2AE3Du;
+    h ^= h >> 16;
+    h *= 0x85EBCA6Bu;
+    h ^= h >> 13;
+    h *= 0xC2B2AE35u;
+    h ^= h >> 16;
+    return h;
+}
 
 #endif /* TDC_MATH_H */

@@ -85,25 +85,12 @@ int tdc_ordering_in_random_band(int32_t mx_q4, int32_t my_q4)
     return (lo << 16) > (uint64_t)TDC_TAN_9PI_40_Q16 * hi;
 }
 
-uint32_t tdc_ordering_hash(uint32_t tile_x, uint32_t tile_y, uint32_t frame)
-{
-    /* murmur3 finaliser over a multiplicative mix: well spread, and only
-     * unsigned arithmetic (wraps, defined). */
-    uint32_t h = tile_x * 0x9E3779B1u ^ tile_y * 0x85EBCA77u ^ frame * 0xC2B2AE3Du;
-    h ^= h >> 16;
-    h *= 0x85EBCA6Bu;
-    h ^= h >> 13;
-    h *= 0xC2B2AE35u;
-    h ^= h >> 16;
-    return h;
-}
-
 tdc_ordering_t tdc_ordering_decide(int32_t mx_q4, int32_t my_q4, tdc_ordering_t current, uint32_t tile_x,
                                    uint32_t tile_y, uint32_t frame)
 {
     if (mx_q4 == 0 && my_q4 == 0) return current;
     if (tdc_ordering_in_random_band(mx_q4, my_q4))
-        return (tdc_ordering_hash(tile_x, tile_y, frame) >> 31) ? TDC_ORDER_BOWTIE : TDC_ORDER_HOURGLASS;
+        return (tdc_hash3(tile_x, tile_y, frame) >> 31) ? TDC_ORDER_BOWTIE : TDC_ORDER_HOURGLASS;
 
     uint32_t lf = tdc_ordering_frac_len_q12(mx_q4, my_q4);
     uint32_t u = tdc_ordering_angle_q16(mx_q4, my_q4);
@@ -142,20 +129,23 @@ static tdc_ordering_colmax_t tdc_ordering_column(const int16_t *mv, int w, int x
     return c;
 }
 
-/* 1 if every (dx, dy) pair of motion row y equals the first (*value = that
- * pair as one 32-bit word, only compared, so byte order does not matter). */
+unsigned tdc_mv_row_scan(const int16_t *row, uint32_t w, uint32_t *first)
+{
+    const uint32_t f = tdc_mv_word(row);
+    uint32_t any = 0, diff = 0;
+    for (uint32_t x = 0; x < w; x++) {
+        const uint32_t v = tdc_mv_word(row + 2u * x);
+        any |= v;
+        diff |= v ^ f;
+    }
+    *first = f;
+    return (any != 0 ? TDC_MV_ROW_ANY : 0u) | (diff == 0 ? TDC_MV_ROW_UNIFORM : 0u);
+}
+
+/* 1 if every vector of motion row y equals the first (*value = its word). */
 static int tdc_ordering_row_uniform(const int16_t *mv, int w, int y, uint32_t *value)
 {
-    const int16_t *row = mv + (size_t)y * (size_t)w * 2u;
-    uint32_t first, diff = 0;
-    memcpy(&first, row, sizeof(first));
-    for (int x = 1; x < w; x++) {
-        uint32_t v;
-        memcpy(&v, row + 2 * x, sizeof(v));
-        diff |= v ^ first;
-    }
-    *value = first;
-    return diff == 0;
+    return (tdc_mv_row_scan(mv + (size_t)y * (size_t)w * 2u, (uint32_t)w, value) & TDC_MV_ROW_UNIFORM) != 0;
 }
 
 void tdc_ordering_update(const int16_t *mv, int w, int h, uint8_t *pattern_bits, uint32_t frame)

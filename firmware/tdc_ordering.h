@@ -20,16 +20,34 @@
 #define TDC_ORDERING_H
 
 #include <stdint.h>
+#include <string.h>
+
+#include "tdc_geom.h"
 
 typedef enum { TDC_ORDER_HOURGLASS = 0, TDC_ORDER_BOWTIE = 1 } tdc_ordering_t;
 
 /* Tile position numbers. */
 enum { TDC_TILE_TL = 0, TDC_TILE_TR = 1, TDC_TILE_BL = 2, TDC_TILE_BR = 3 };
 
-/* Bytes of a pattern bitmap for a w x h frame. */
-#define TDC_ORDERING_TILES_X(w) (((w) + 1) / 2)
-#define TDC_ORDERING_TILES_Y(h) (((h) + 1) / 2)
-#define TDC_ORDERING_BITMAP_BYTES(w, h) ((TDC_ORDERING_TILES_X(w) * TDC_ORDERING_TILES_Y(h) + 7) / 8)
+/* Tiles and bitmap bytes of a w x h frame: TDC_TILES, TDC_PATTERN_BYTES
+ * (tdc_geom.h). */
+
+/* One motion vector (dx, dy) as a 32-bit word, for equality and zero tests
+ * only (so its byte order does not matter). */
+static inline uint32_t tdc_mv_word(const int16_t *pair)
+{
+    uint32_t v;
+    memcpy(&v, pair, sizeof v);
+    return v;
+}
+
+/* Summary of one motion row of w vectors (w >= 1): TDC_MV_ROW_ANY if any
+ * vector is non-zero, TDC_MV_ROW_UNIFORM if all equal the first (*first =
+ * its tdc_mv_word).  One pass of 32-bit loads; the ordering update and the
+ * assembly use it to skip per-pixel searches over rows of one vector. */
+#define TDC_MV_ROW_ANY 1u
+#define TDC_MV_ROW_UNIFORM 2u
+unsigned tdc_mv_row_scan(const int16_t *row, uint32_t w, uint32_t *first);
 
 /* Position traced in subframe k (k taken mod 4): hourglass TL,TR,BL,BR;
  * bowtie TL,BL,TR,BR. */
@@ -67,7 +85,7 @@ tdc_ordering_t tdc_ordering_decide(int32_t mx_q4, int32_t my_q4, tdc_ordering_t 
  * the full-res pixels of the tile's 3x3 tile neighbourhood (up to 6x6
  * pixels, clipped to the frame); then bit = tdc_ordering_decide(m, bit, ...).
  * mv: w*h interleaved Q4 pairs, rows w pairs apart.  pattern_bits: in/out,
- * TDC_ORDERING_BITMAP_BYTES(w, h) bytes (the current orderings in, the new
+ * TDC_PATTERN_BYTES(w, h) bytes (the current orderings in, the new
  * ones out; padding bits of the last byte are left unchanged).
  */
 void tdc_ordering_update(const int16_t *mv, int w, int h, uint8_t *pattern_bits, uint32_t frame);
@@ -99,7 +117,7 @@ uint32_t tdc_ordering_angle_q16(int32_t mx_q4, int32_t my_q4);
 uint32_t tdc_ordering_frac_len_q12(int32_t mx_q4, int32_t my_q4);
 /* 1 if the folded angle lies in the random band (pi/4 - gamma, pi/4 + gamma). */
 int tdc_ordering_in_random_band(int32_t mx_q4, int32_t my_q4);
-/* The deterministic hash used in the random band. */
-uint32_t tdc_ordering_hash(uint32_t tile_x, uint32_t tile_y, uint32_t frame);
+/* The random band's bit is bit 31 of tdc_hash3(tile_x, tile_y, frame)
+ * (tdc_math.h). */
 
 #endif /* TDC_ORDERING_H */

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "tdc_fixed.h"
+#include "tdc_wire.h"
 
 int tdc_pixfmt_valid(uint32_t f)
 {
@@ -47,7 +48,7 @@ void tdc_pixfmt_unpack_rgb565(const uint8_t *src, uint32_t w, uint32_t h, uint8_
         const uint8_t *s = src + (size_t)w * 2u * y;
         uint8_t *d = dst + (size_t)dst_stride * y;
         for (uint32_t x = 0; x < w; x++) {
-            const uint32_t v = (uint32_t)s[2 * x] | ((uint32_t)s[2 * x + 1] << 8);
+            const uint32_t v = tdc_get_le16(s + 2u * x);
             const uint32_t r5 = v >> 11, g6 = (v >> 5) & 0x3Fu, b5 = v & 0x1Fu;
             /* Bit replication: 0 -> 0, max -> 255, monotone. */
             d[3 * x + 0] = (uint8_t)((r5 << 3) | (r5 >> 2));
@@ -63,8 +64,7 @@ void tdc_pixfmt_unpack_rgb30(const uint8_t *src, uint32_t w, uint32_t h, uint8_t
         const uint8_t *s = src + (size_t)w * 4u * y;
         uint8_t *d = dst + (size_t)dst_stride * y;
         for (uint32_t x = 0; x < w; x++) {
-            const uint8_t *p = s + 4u * x;
-            const uint32_t v = (uint32_t)p[0] | ((uint32_t)p[1] << 8) | ((uint32_t)p[2] << 16) | ((uint32_t)p[3] << 24);
+            const uint32_t v = tdc_get_le32(s + 4u * x);
             d[3 * x + 0] = tdc_pixfmt_u10_to_u8(v & 0x3FFu);
             d[3 * x + 1] = tdc_pixfmt_u10_to_u8((v >> 10) & 0x3FFu);
             d[3 * x + 2] = tdc_pixfmt_u10_to_u8((v >> 20) & 0x3FFu);

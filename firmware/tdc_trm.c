@@ -39,8 +39,7 @@ static int trm_config_valid(const tdc_trm_config_t *cfg)
 
 static uint16_t trm_reduced_dim(uint32_t n, uint32_t num, uint32_t den)
 {
-    uint32_t r = (n * num + den / 2u) / den;
-    return (uint16_t)(r < 1u ? 1u : r);
+    return (uint16_t)tdc_reduced_dim(n, num, den); /* r <= 1: at most n, a uint16 width */
 }
 
 static uint16_t trm_taps(uint16_t sigma_q8)

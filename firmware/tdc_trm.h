@@ -26,6 +26,7 @@
 
 #include "tdc_arena.h"
 #include "tdc_fixed.h"
+#include "tdc_geom.h"
 #include "tdc_panel.h"
 
 /* Largest Gaussian support: taps within 3 sigma, sigma <= 3.5 px. */
@@ -49,7 +50,8 @@
 #define TDC_TRM_SIMD_BYTES 0u
 #endif
 
-#define TDC_TRM_REDUCED_DIM(n, num, den) ((((n) * (num)) + (den) / 2) / (den) < 1 ? 1 : (((n) * (num)) + (den) / 2) / (den))
+/* The reduced size of ratio r_num / r_den: TDC_REDUCED_DIM (tdc_geom.h),
+ * the rule the link and the host use too. */
 
 /*
  * The arena (tdc_arena.h), one line per block: X(member of tdc_trm_t,
@@ -81,8 +83,8 @@
  * r and taps, so no smaller configuration needs more).
  */
 #define TDC_TRM_MEM_BYTES(W, H, RNUM, RDEN)                                                                   \
-    ((size_t)0 TDC_TRM_ARENA(TDC_ARENA_BLOCK_BYTES, W, H, TDC_TRM_REDUCED_DIM(W, RNUM, RDEN),                 \
-                             TDC_TRM_REDUCED_DIM(H, RNUM, RDEN), TDC_TRM_TAPS(TDC_TRM_MAX_SIGMA_Q8)))
+    ((size_t)0 TDC_TRM_ARENA(TDC_ARENA_BLOCK_BYTES, W, H, TDC_REDUCED_DIM(W, RNUM, RDEN),                 \
+                             TDC_REDUCED_DIM(H, RNUM, RDEN), TDC_TRM_TAPS(TDC_TRM_MAX_SIGMA_Q8)))
 
 typedef struct {
     uint16_t width;          /* full-res eye size in pixels */

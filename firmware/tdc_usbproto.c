@@ -23,25 +23,6 @@
 #define DFU_MANIFEST_POLL_MS 10u
 
 /* ---------------------------------------------------------------------
- * CRC-32, bitwise (no table: 1 KiB of RAM is worth more than the cycles
- * on a board that checks an image once per flash).
- * ------------------------------------------------------------------- */
-uint32_t tdc_usbp_crc32_update(uint32_t crc, const uint8_t *data, uint32_t len)
-{
-    for (uint32_t i = 0; i < len; i++) {
-        crc ^= data[i];
-        for (unsigned b = 0; b < 8u; b++)
-            crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
-    }
-    return crc;
-}
-
-uint32_t tdc_usbp_crc32(const uint8_t *data, uint32_t len)
-{
-    return ~tdc_usbp_crc32_update(0xFFFFFFFFu, data, len);
-}
-
-/* ---------------------------------------------------------------------
  * Image header checks (shared by host and board).
  * ------------------------------------------------------------------- */
 static int board_name_matches(const uint8_t *field, const char *board)
@@ -87,7 +68,7 @@ tdc_status_t tdc_image_check(const uint8_t *image, uint32_t len, const char *boa
     tdc_status_t st = image_check_header(image, len, board, slot_bytes);
     if (st != TDC_OK)
         return st;
-    uint32_t crc = tdc_usbp_crc32(image + TDC_IMAGE_HEADER_LEN, len - TDC_IMAGE_HEADER_LEN);
+    uint32_t crc = tdc_crc32(image + TDC_IMAGE_HEADER_LEN, len - TDC_IMAGE_HEADER_LEN);
     if (crc != tdc_get_le32(image + TDC_IMAGE_OFF_PAYLOAD_CRC))
         return TDC_ERR_IMAGE_CRC;
     return TDC_OK;
@@ -101,7 +82,7 @@ void tdc_image_make_header(uint8_t hdr[TDC_IMAGE_HEADER_LEN], const uint8_t *pay
     tdc_put_le16(hdr + TDC_IMAGE_OFF_HDR_VERSION, (uint16_t)TDC_IMAGE_HEADER_VERSION);
     tdc_put_le16(hdr + TDC_IMAGE_OFF_HDR_LEN, (uint16_t)TDC_IMAGE_HEADER_LEN);
     tdc_put_le32(hdr + TDC_IMAGE_OFF_PAYLOAD_LEN, payload_len);
-    tdc_put_le32(hdr + TDC_IMAGE_OFF_PAYLOAD_CRC, tdc_usbp_crc32(payload, payload_len));
+    tdc_put_le32(hdr + TDC_IMAGE_OFF_PAYLOAD_CRC, tdc_crc32(payload, payload_len));
     tdc_put_le32(hdr + TDC_IMAGE_OFF_FW_VERSION, fw_version);
     for (uint32_t i = 0; board != NULL && i < TDC_IMAGE_BOARD_LEN && board[i] != '\0'; i++)
         hdr[TDC_IMAGE_OFF_BOARD + i] = (uint8_t)board[i];
@@ -121,7 +102,7 @@ tdc_dfu_suffix_status_t tdc_dfu_suffix_check(const uint8_t *file, uint32_t len, 
         sx[TDC_DFU_SUFFIX_OFF_SIG + 2] != 'D' || sx[TDC_DFU_SUFFIX_OFF_LEN] < TDC_DFU_SUFFIX_LEN ||
         sx[TDC_DFU_SUFFIX_OFF_LEN] > len)
         return TDC_DFU_SUFFIX_NONE;
-    if (tdc_usbp_crc32_update(0xFFFFFFFFu, file, len - 4u) != tdc_get_le32(sx + TDC_DFU_SUFFIX_OFF_CRC))
+    if (tdc_crc32_update(TDC_CRC32_INIT, file, len - 4u) != tdc_get_le32(sx + TDC_DFU_SUFFIX_OFF_CRC))
         return TDC_DFU_SUFFIX_ERR_CRC;
     const uint16_t fv = tdc_get_le16(sx + TDC_DFU_SUFFIX_OFF_VID);
     const uint16_t fp = tdc_get_le16(sx + TDC_DFU_SUFFIX_OFF_PID);
@@ -142,8 +123,8 @@ void tdc_dfu_suffix_make(uint8_t out[TDC_DFU_SUFFIX_LEN], const uint8_t *file, u
     out[TDC_DFU_SUFFIX_OFF_SIG + 1] = 'F';
     out[TDC_DFU_SUFFIX_OFF_SIG + 2] = 'D';
     out[TDC_DFU_SUFFIX_OFF_LEN] = (uint8_t)TDC_DFU_SUFFIX_LEN;
-    uint32_t crc = tdc_usbp_crc32_update(0xFFFFFFFFu, file, len);
-    crc = tdc_usbp_crc32_update(crc, out, TDC_DFU_SUFFIX_OFF_CRC);
+    uint32_t crc = tdc_crc32_update(TDC_CRC32_INIT, file, len);
+    crc = tdc_crc32_update(crc, out, TDC_DFU_SUFFIX_OFF_CRC);
     tdc_put_le32(out + TDC_DFU_SUFFIX_OFF_CRC, crc);
 }
 
@@ -241,7 +222,7 @@ tdc_status_t tdc_usbp_init(tdc_usbp_t *s, const tdc_usbp_config_t *cfg)
         return TDC_ERR_ARG;
     memset(s, 0, sizeof *s);
     s->cfg = *cfg;
-    s->cnt.rx_crc = 0xFFFFFFFFu;
+    s->cnt.rx_crc = TDC_CRC32_INIT;
     s->dfu_state = TDC_DFU_STATE_IDLE;
     s->dfu_status = TDC_DFU_OK;
     return TDC_OK;
@@ -283,7 +264,7 @@ static uint32_t board_info(const tdc_usbp_t *s, uint8_t out[TDC_USB_INFO_LEN])
     tdc_put_le32(out + TDC_USB_INFO_OFF_RX_XFERS, c->rx_transfers);
     tdc_put_le32(out + TDC_USB_INFO_OFF_RX_BYTES, (uint32_t)(c->rx_bytes & 0xFFFFFFFFu));
     tdc_put_le32(out + TDC_USB_INFO_OFF_RX_BYTES + 4, (uint32_t)(c->rx_bytes >> 32));
-    tdc_put_le32(out + TDC_USB_INFO_OFF_RX_CRC, ~c->rx_crc);
+    tdc_put_le32(out + TDC_USB_INFO_OFF_RX_CRC, tdc_crc32_final(c->rx_crc));
     tdc_put_le32(out + TDC_USB_INFO_OFF_LINK_CRC, c->link_crc_errors);
     tdc_put_le32(out + TDC_USB_INFO_OFF_LINK_BAD, c->link_malformed);
     tdc_put_le32(out + TDC_USB_INFO_OFF_OVERRUNS, c->rx_overruns);
@@ -347,7 +328,7 @@ static tdc_dfu_status_t dfu_manifest(tdc_usbp_t *s)
         return TDC_DFU_ERR_ADDRESS;
     if (st != TDC_OK)
         return TDC_DFU_ERR_FILE;
-    uint32_t crc = 0xFFFFFFFFu;
+    uint32_t crc = TDC_CRC32_INIT;
     uint8_t chunk[64];
     for (uint32_t off = TDC_IMAGE_HEADER_LEN; off < s->dfu_received;) {
         uint32_t n = s->dfu_received - off;
@@ -355,10 +336,10 @@ static tdc_dfu_status_t dfu_manifest(tdc_usbp_t *s)
             n = (uint32_t)sizeof chunk;
         if (f->read(f->ctx, base + off, chunk, n) != 0)
             return TDC_DFU_ERR_VERIFY;
-        crc = tdc_usbp_crc32_update(crc, chunk, n);
+        crc = tdc_crc32_update(crc, chunk, n);
         off += n;
     }
-    if (~crc != tdc_get_le32(hdr + TDC_IMAGE_OFF_PAYLOAD_CRC))
+    if (tdc_crc32_final(crc) != tdc_get_le32(hdr + TDC_IMAGE_OFF_PAYLOAD_CRC))
         return TDC_DFU_ERR_VERIFY;
     return TDC_DFU_OK;
 }
@@ -565,7 +546,7 @@ static tdc_status_t control_dispatch(tdc_usbp_t *s, const tdc_usbp_setup_t *setu
                 return TDC_ERR_STALL;
             uint32_t stalls = s->cnt.stalls;
             memset(&s->cnt, 0, sizeof s->cnt);
-            s->cnt.rx_crc = 0xFFFFFFFFu;
+            s->cnt.rx_crc = TDC_CRC32_INIT;
             s->cnt.stalls = stalls; /* stalls are a lifetime count */
             return TDC_OK;
         }
@@ -602,7 +583,7 @@ void tdc_usbp_bulk_out(tdc_usbp_t *s, const uint8_t *data, uint32_t len)
         return;
     s->cnt.rx_transfers++;
     s->cnt.rx_bytes += len;
-    s->cnt.rx_crc = tdc_usbp_crc32_update(s->cnt.rx_crc, data, len);
+    s->cnt.rx_crc = tdc_crc32_update(s->cnt.rx_crc, data, len);
     if (s->cfg.sink == NULL)
         return;
     /* Counters wrap modulo 2^32 (unsigned, defined); hosts compare deltas. */
@@ -627,7 +608,7 @@ void tdc_usbp_status_report(tdc_usbp_t *s, uint8_t out[TDC_USB_STATUS_LEN])
     tdc_put_le32(out + TDC_USB_STATUS_OFF_ERRORS,
                  c->link_crc_errors + c->link_malformed + c->rx_overruns);
     tdc_put_le32(out + TDC_USB_STATUS_OFF_FRAMES, c->frames_shown);
-    tdc_put_le32(out + TDC_USB_STATUS_OFF_RX_CRC, ~c->rx_crc);
+    tdc_put_le32(out + TDC_USB_STATUS_OFF_RX_CRC, tdc_crc32_final(c->rx_crc));
 }
 
 int tdc_usbp_take_reset(tdc_usbp_t *s)

@@ -12,8 +12,9 @@
  * tdc_usbp_status_report() to fill the bulk IN endpoint.
  *
  * Firmware rules: no heap, no float, caller-owned state (tdc_usbp_t), every
- * multi-byte field is serialised explicitly little-endian (no struct
- * punning), so the bytes on the wire do not depend on the compiler or CPU.
+ * multi-byte field is serialised explicitly little-endian (tdc_wire.h's
+ * tdc_get/put_le*, no struct punning), so the bytes on the wire do not
+ * depend on the compiler or CPU; CRC-32 is the link's (tdc_crc32.h).
  */
 #ifndef TDC_USBPROTO_H
 #define TDC_USBPROTO_H
@@ -21,7 +22,9 @@
 #include <stdint.h>
 #include <stddef.h>
 
+#include "tdc_crc32.h" /* CRC-32 of images and of the received bytes */
 #include "tdc_status.h"
+#include "tdc_wire.h"   /* little-endian fields */
 
 /* pid.codes open-source VID with its *test* PID 0x0001: for development and
  * CI only.  A shipped board must get its own PID from pid.codes. */
@@ -274,11 +277,6 @@ uint32_t tdc_usbp_config_descriptor(uint8_t out[TDC_USB_CONFIG_DESC_LEN], int hi
 /* String descriptor index 0..5 -> bytes in out (cap bytes), 0 if none. */
 uint32_t tdc_usbp_string_descriptor(const tdc_usbp_t *s, uint8_t index, uint8_t *out, uint32_t cap);
 
-/* CRC-32 (IEEE 802.3, reflected 0xEDB88320).  Start with crc = 0xFFFFFFFF,
- * finish with ~crc; tdc_usbp_crc32() does both for a whole buffer. */
-uint32_t tdc_usbp_crc32_update(uint32_t crc, const uint8_t *data, uint32_t len);
-uint32_t tdc_usbp_crc32(const uint8_t *data, uint32_t len);
-
 /* Image checks shared by the board (manifest) and the host (before download).
  * image/len: header + payload as it would be downloaded.  board may be NULL
  * (no board check); slot_bytes 0 = no size limit. */
@@ -290,27 +288,5 @@ void tdc_image_make_header(uint8_t hdr[TDC_IMAGE_HEADER_LEN], const uint8_t *pay
                            uint32_t payload_len, uint32_t fw_version, const char *board);
 const char *tdc_dfu_status_name(tdc_dfu_status_t st);
 const char *tdc_dfu_state_name(tdc_dfu_state_t st);
-
-/* Little-endian helpers used by the protocol (and the host tools). */
-static inline void tdc_put_le16(uint8_t *p, uint16_t v)
-{
-    p[0] = (uint8_t)(v & 0xFFu);
-    p[1] = (uint8_t)(v >> 8);
-}
-static inline void tdc_put_le32(uint8_t *p, uint32_t v)
-{
-    p[0] = (uint8_t)(v & 0xFFu);
-    p[1] = (uint8_t)((v >> 8) & 0xFFu);
-    p[2] = (uint8_t)((v >> 16) & 0xFFu);
-    p[3] = (uint8_t)(v >> 24);
-}
-static inline uint16_t tdc_get_le16(const uint8_t *p)
-{
-    return (uint16_t)((uint16_t)p[0] | (uint16_t)((uint16_t)p[1] << 8));
-}
-static inline uint32_t tdc_get_le32(const uint8_t *p)
-{
-    return (uint32_t)p[0] | ((uint32_t)p[1] << 8) | ((uint32_t)p[2] << 16) | ((uint32_t)p[3] << 24);
-}
 
 #endif

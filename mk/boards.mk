@@ -117,12 +117,8 @@ $(BA)/image-rules-selftest: $(BA)/bad_rules.elf tests/arm/test_image_rules.sh
 	@chmod +x $@
 
 # Cost per pixel on the target: bench image (tests/arm/bench_arm_main.c).
-$(BA)/sim/%.o: sim/%.c $(GEN)/tdc_panels.h $(BA)/cflags
-	@mkdir -p $(@D)
-	$(ARM_CC) $(ARM_TEST_CFLAGS) -Isim/link -MMD -MP -c $< -o $@
-ARM_BENCH_OBJS = $(patsubst %.c,$(BA)/%.o,$(ARM_BOARD_SRCS) tests/arm/bench_arm_main.c tests/golden/tdc_content.c \
-                 sim/link/tdc_link_encode.c)
-$(BA)/tests/arm/bench_arm_main.o: ARM_TEST_CFLAGS += -Isim/link
+# (The link encoder it uses is firmware/tdc_link_encode.c, in libtdcfw.a.)
+ARM_BENCH_OBJS = $(patsubst %.c,$(BA)/%.o,$(ARM_BOARD_SRCS) tests/arm/bench_arm_main.c tests/golden/tdc_content.c)
 $(BA)/tdc_bench.elf: $$(ARM_BENCH_OBJS) $(BA)/libtdcfw.a $(ARM_LDDEPS)
 	$(call ARM_LINK,the bench image)
 $(BA)/bench.tsv: $(BA)/tdc_bench.elf $(INSN_PLUGIN) tests/arm/bench_arm.sh

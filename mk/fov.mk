@@ -3,6 +3,11 @@
 # The stage's log/power/atan/Gaussian tables come from tdc-tablegen --fov.
 FW_SRCS += firmware/tdc_fov.c firmware/tdc_fov_link.c
 SIM_SRCS += sim/ref_fov.c
+# foveated error statistics (eccentricity weighting, FLIP's weighted median) for the simulator
+FOV_METRICS_OBJ = $(B)/sim/metrics/tdc_fov_metrics.o
+TESTS += $(B)/tests/unit/test_fov_metrics
+$(B)/tests/unit/test_fov_metrics: $(B)/tests/unit/test_fov_metrics.o $(FOV_METRICS_OBJ)
+	$(CC) $(HOST_LDFLAGS) $^ -o $@ $(HOST_LIBS)
 
 # (TABLEGEN is defined after the fragments are read: name the program)
 $(GEN)/tdc_fov_tables.h: $(BUILD)/tools/tdc-tablegen | $(GEN)
@@ -27,3 +32,13 @@ GOLDEN_STAGES += fov
 # make bench: rays and link bytes vs full rate per panel, eq. 5.1 curve, remap
 # throughput vs the memcpy bound (docs/foveation.md)
 BENCHES += $(B)/tests/bench/bench_fov
+
+# Fuzzing: the target `fov` is registered in mk/fuzz.mk (tests/fuzz/fuzz_fov.c,
+# seeds tests/fuzz/corpus-fov, regenerated deliberately by make fuzz-seeds-fov).
+$(BUILD)/fuzz/make_seeds_fov: tests/fuzz/make_seeds_fov.c firmware/tdc_fov.c firmware/tdc_fov_link.c firmware/tdc_math.c $(GEN)/tdc_fov_tables.h
+	@mkdir -p $(@D)
+	gcc -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror -O2 -Ifirmware -I$(GEN) $(filter %.c,$^) -o $@
+fuzz-seeds-fov: $(BUILD)/fuzz/make_seeds_fov
+	@mkdir -p tests/fuzz/corpus-fov
+	$(BUILD)/fuzz/make_seeds_fov tests/fuzz/corpus-fov
+.PHONY: fuzz-seeds-fov

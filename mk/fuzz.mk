@@ -12,20 +12,20 @@ FUZZ_SMOKE_SECONDS ?= 8
 FUZZ_DIR := $(BUILD)/fuzz
 FUZZ_FLAGS := -std=c11 -D_GNU_SOURCE -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
               -Ifirmware -I$(GEN) -Isim -Ihosttools/common
-LINK_FW_SRCS := firmware/tdc_link.c firmware/tdc_pixfmt.c firmware/tdc_crc32.c
+LINK_FW_SRCS := firmware/tdc_wire.c firmware/tdc_link.c firmware/tdc_pixfmt.c firmware/tdc_crc32.c
 
 # name: harness + sources [+ flags, libraries]
-FUZZ_ALL := link usbproto usbreply panel tdcs scene frameloop
+FUZZ_ALL := link usbproto usbreply panel tdcs scene frameloop meas fov
 FUZZ_TARGETS ?= $(FUZZ_ALL)
 FUZZ_SRCS_link := tests/fuzz/fuzz_link.c $(LINK_FW_SRCS)
-FUZZ_SRCS_usbproto := tests/fuzz/fuzz_usbproto.c firmware/tdc_usbproto.c
+FUZZ_SRCS_usbproto := tests/fuzz/fuzz_usbproto.c firmware/tdc_usbproto.c firmware/tdc_crc32.c
 FUZZ_SRCS_usbreply := tests/fuzz/fuzz_usbreply.c hosttools/usb/tdc_usb_reply.c
 FUZZ_CFLAGS_usbreply := -Ihosttools/usb
 FUZZ_SRCS_panel := tests/fuzz/fuzz_panel.c hosttools/common/tdc_tool.c
 FUZZ_DEPS_panel := hosttools/tablegen/tdc_tablegen.c
 FUZZ_LIBS_panel := -lm
 # the .tdcs reader with a small compiled maximum (a 96 x 64 board)
-FUZZ_SRCS_tdcs := tests/fuzz/fuzz_tdcs.c sim/link/tdc_link_file.c sim/link/tdc_link_encode.c $(LINK_FW_SRCS)
+FUZZ_SRCS_tdcs := tests/fuzz/fuzz_tdcs.c sim/link/tdc_link_file.c firmware/tdc_link_encode.c $(LINK_FW_SRCS)
 FUZZ_CFLAGS_tdcs := -DTDC_PANEL_WIDTH=96 -DTDC_PANEL_HEIGHT=64
 FUZZ_SRCS_scene := tests/fuzz/fuzz_scene.c sim/render/tdc_scene_parse.c
 FUZZ_DEPS_scene := sim/render/tdc_render_geom.c
@@ -34,7 +34,7 @@ FUZZ_LIBS_scene := -lembree3 -lm
 # the board frame loop for a 16 x 8 stereo OLED panel with TRM and tile assembly
 FUZZ_SRCS_frameloop := tests/fuzz/fuzz_frameloop.c $(LINK_FW_SRCS) firmware/tdc_assemble.c firmware/tdc_math.c \
                        firmware/tdc_ordering.c firmware/tdc_trm.c firmware/tdc_trm_rows.c firmware/tdc_trm_avx2.c \
-                       $(GEN)/tdc_panel_htc-vive.c sim/link/tdc_link_encode.c
+                       $(GEN)/tdc_panel_htc-vive.c firmware/tdc_link_encode.c
 FUZZ_DEPS_frameloop := firmware/board/tdc_main.c
 FUZZ_CFLAGS_frameloop := -Ifirmware/board -DTDC_PANEL_NAME='"fuzz"' -DTDC_PANEL_SYMBOL=tdc_panel_htc_vive \
     -DTDC_PANEL_WIDTH=16 -DTDC_PANEL_HEIGHT=8 -DTDC_PANEL_EYES=2 -DTDC_PANEL_BITS=8 -DTDC_PANEL_REFRESH_HZ=90 \
@@ -42,6 +42,14 @@ FUZZ_CFLAGS_frameloop := -Ifirmware/board -DTDC_PANEL_NAME='"fuzz"' -DTDC_PANEL_
 # known findings a smoke run does not stop on (docs/fuzzing.md); make fuzz checks everything
 FUZZ_SMOKE_ENV_frameloop := TDC_FUZZ_KNOWN=F1
 FUZZ_CORPUS_link := tests/fuzz/corpus
+# the LCD measurement reader and the transition fit's checks (hosttools/calib)
+FUZZ_SRCS_meas := tests/fuzz/fuzz_meas.c hosttools/calib/tdc_meas.c hosttools/calib/tdc_calib_trans.c \
+                  hosttools/common/tdc_tool.c
+FUZZ_LIBS_meas := -lm
+# the foveated packet's kind-specific path: header, payload length, unpack, the stage with TAA
+# (seeds: make fuzz-seeds-fov, mk/fov.mk)
+FUZZ_SRCS_fov := tests/fuzz/fuzz_fov.c firmware/tdc_fov.c firmware/tdc_fov_link.c firmware/tdc_math.c
+FUZZ_DEPS_fov := $(GEN)/tdc_fov_tables.h
 
 define fuzz_target
 $(FUZZ_DIR)/fuzz_$(1): $(FUZZ_SRCS_$(1)) $(FUZZ_DEPS_$(1)) $(wildcard firmware/*.h sim/link/*.h sim/render/*.h) \
@@ -69,7 +77,7 @@ fuzz-smoke: $(foreach t,$(FUZZ_ALL),$(FUZZ_DIR)/fuzz-smoke-$(t))
 	@tests/run_tests.sh "clang-fuzz" $^
 
 FUZZ_SEEDS_BIN := $(FUZZ_DIR)/make_seeds
-$(FUZZ_SEEDS_BIN): tests/fuzz/make_seeds.c sim/link/tdc_link_gen.c sim/link/tdc_link_encode.c $(LINK_FW_SRCS) $(GEN)/tdc_crc32_tables.h
+$(FUZZ_SEEDS_BIN): tests/fuzz/make_seeds.c sim/link/tdc_link_gen.c firmware/tdc_link_encode.c $(LINK_FW_SRCS) $(GEN)/tdc_crc32_tables.h
 	@mkdir -p $(@D)
 	gcc -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror -O2 -Ifirmware -Isim -I$(GEN) $(filter %.c,$^) -o $@
 fuzz-seeds: $(FUZZ_SEEDS_BIN)

@@ -3,7 +3,7 @@
 #
 # FW_LCD_SRCS: firmware sources only LCD panels need.  Host builds link them
 # (FW_SRCS); board builds for OLED panels leave them out (mk/boards.mk).
-FW_LCD_SRCS := firmware/tdc_lcd.c firmware/tdc_overdrive.c
+FW_LCD_SRCS := firmware/tdc_lcd.c firmware/tdc_lcd_state.c firmware/tdc_overdrive.c
 FW_SRCS += $(FW_LCD_SRCS)
 SIM_SRCS += sim/lcd/tdc_lcdsim.c sim/lcd/tdc_lcd_ref.c
 
@@ -14,25 +14,33 @@ $(TABLEGEN): sim/lcd/tdc_lcd_model.h firmware/tdc_lcd.h
 TDC_LCD_MEASURE := $(B)/bin/tdc-lcd-measure
 TDC_CALIB := $(B)/bin/tdc-calib
 HOST_PROGS += $(TDC_LCD_MEASURE) $(TDC_CALIB)
-$(TDC_LCD_MEASURE): $(B)/sim/lcd/tdc_lcd_measure.o $(SIMLIB)
+# The measurement-file reader (tdc_meas) is shared by both and the fuzz target.
+TDC_MEAS_OBJ := $(B)/hosttools/calib/tdc_meas.o
+$(TDC_LCD_MEASURE): $(B)/sim/lcd/tdc_lcd_measure.o $(TDC_MEAS_OBJ) $(SIMLIB)
 	@mkdir -p $(@D)
-	$(CC) $(HOST_LDFLAGS) $< -o $@ $(SIMLIB) -lm
-$(TDC_CALIB): $(B)/hosttools/calib/tdc_calib.o
+	$(CC) $(HOST_LDFLAGS) $(filter %.o,$^) -o $@ $(SIMLIB) -lm
+$(TDC_CALIB): $(B)/hosttools/calib/tdc_calib.o $(B)/hosttools/calib/tdc_calib_trans.o $(TDC_MEAS_OBJ) \
+              $(B)/hosttools/common/tdc_tool.o
 	@mkdir -p $(@D)
-	$(CC) $(HOST_LDFLAGS) $< -o $@ -lm
+	$(CC) $(HOST_LDFLAGS) $^ -o $@ -lm
 
 # The calibration loop (docs/lcd.md): measure the simulated panels as paper
 # Fig. 7 does, fit, write the shipped LCD profiles.  Deliberate, like
 # golden-update: the profiles are committed, regenerate them only on purpose.
+# Transitions (stateful tables): a 33 x 33 (previous drive, drive) grid, two
+# runs of every transition so tdc-calib sees the measurement noise.
 LCD_MEAS_FLAGS := --grid 17 --integration 1 --noise 0.002 --seed 1
+LCD_TRANS_FLAGS := --transitions --grid 33 --runs 2 --noise 0.002 --seed 2
 lcd-profiles: $(TDC_LCD_MEASURE) $(TDC_CALIB)
 	@mkdir -p $(B)/lcd
 	$(TDC_LCD_MEASURE) sim/lcd/panels/pg279q.lcdsim 120,144,165 $(LCD_MEAS_FLAGS) -o $(B)/lcd/pg279q.csv
+	$(TDC_LCD_MEASURE) sim/lcd/panels/pg279q.lcdsim 120,144,165 $(LCD_TRANS_FLAGS) -o $(B)/lcd/pg279q-tr.csv
 	$(TDC_CALIB) $(B)/lcd/pg279q.csv -o boards/panels/pg279q.panel --name pg279q --width 2560 --height 1440 \
-	    --refresh 144 --table 33 --note "FITTED TO THE SIMULATED PANEL sim/lcd/panels/pg279q.lcdsim (ASUS PG279Q class, not a measured monitor) by make lcd-profiles"
+	    --refresh 144 --table 33 --transitions $(B)/lcd/pg279q-tr.csv --note "FITTED TO THE SIMULATED PANEL sim/lcd/panels/pg279q.lcdsim (ASUS PG279Q class, not a measured monitor) by make lcd-profiles"
 	$(TDC_LCD_MEASURE) sim/lcd/panels/lcd-240.lcdsim 144,240 $(LCD_MEAS_FLAGS) -o $(B)/lcd/lcd-240.csv
+	$(TDC_LCD_MEASURE) sim/lcd/panels/lcd-240.lcdsim 144,240 $(LCD_TRANS_FLAGS) -o $(B)/lcd/lcd-240-tr.csv
 	$(TDC_CALIB) $(B)/lcd/lcd-240.csv -o boards/panels/lcd-240.panel --name lcd-240 --width 1920 --height 1080 \
-	    --refresh 240 --table 33 --note "FITTED TO THE SIMULATED PANEL sim/lcd/panels/lcd-240.lcdsim (240 Hz TN class, strobed backlight, not a measured monitor) by make lcd-profiles"
+	    --refresh 240 --table 33 --transitions $(B)/lcd/lcd-240-tr.csv --note "FITTED TO THE SIMULATED PANEL sim/lcd/panels/lcd-240.lcdsim (240 Hz TN class, strobed backlight, not a measured monitor) by make lcd-profiles"
 .PHONY: lcd-profiles
 
 # The report (docs/lcd-report.md): perceived error of TRM frames on the
@@ -47,6 +55,7 @@ report-lcd: $(B)/tests/bench/bench_lcd_report
 TESTS += $(B)/tests/unit/test_lcd_solve
 TESTS += $(B)/tests/unit/test_lcd_sim
 TESTS += $(B)/tests/unit/test_lcd_stage
+TESTS += $(B)/tests/unit/test_lcd_state
 GOLDEN_STAGES += lcd
 
 # Compile-out check: an OLED build's object set has no LCD symbols.
@@ -67,3 +76,16 @@ $(B)/tests/unit/test_lcd_calib: $(TDC_LCD_MEASURE) $(TDC_CALIB) $(TABLEGEN) test
 	    "$(TABLEGEN)" "$(CC) $(FW_CFLAGS)" > $@
 	@chmod +x $@
 TESTS += $(B)/tests/unit/test_lcd_calib
+
+# Every LCD inverse through the simulator (modes x profiles x rates x backlight, with/without TRM).
+# The optimised build only: 60 simulator runs (17 s at -O2) would add minutes
+# under ASan, and the stage itself runs in the sanitizer build's unit tests.
+$(B)/tests/unit/test_lcd_sim_modes: $(B)/tdc-sim tests/unit/test_lcd_sim_modes.sh
+	@mkdir -p $(@D)
+	@printf '#!/bin/sh\nexec tests/unit/test_lcd_sim_modes.sh %s\n' "$(B)/tdc-sim" > $@
+	@chmod +x $@
+ifeq ($(SAN),)
+TESTS += $(B)/tests/unit/test_lcd_sim_modes
+endif
+
+# The measurement reader is fuzzed as target "meas" of mk/fuzz.mk (tests/fuzz/fuzz_meas.c).

@@ -23,7 +23,7 @@ TESTS += $(foreach t,$(SIM_TESTS),$(B)/tests/unit/$(t))
 # read) and written to a generated header, rewritten only when it changes.
 sim_have = $(if $(and $(filter $(1),$(FW_SRCS) $(SIM_SRCS) $(RENDER_SRCS)),$(wildcard $(1))),1,0)
 SIM_FEATURES = TRM=$(call sim_have,firmware/tdc_trm.c) \
-               LINK=$(if $(and $(filter 1,$(call sim_have,firmware/tdc_link.c)),$(filter 1,$(call sim_have,sim/link/tdc_link_encode.c))),1,0) \
+               LINK=$(if $(and $(filter 1,$(call sim_have,firmware/tdc_link.c)),$(filter 1,$(call sim_have,firmware/tdc_link_encode.c))),1,0) \
                ASM=$(if $(and $(filter 1,$(call sim_have,firmware/tdc_assemble.c)),$(filter 1,$(call sim_have,firmware/tdc_ordering.c))),1,0) \
                LCD_FW=$(call sim_have,firmware/tdc_lcd.c) \
                LCD_PHYS=$(call sim_have,sim/lcd/tdc_lcdsim.c) \

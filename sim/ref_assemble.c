@@ -8,6 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "tdc_math.h"
+
 /* ------------------------------------------------------------------------
  * Ordering decision, straight from DESIGN §4.3 / paper eq. 2-5.
  * ---------------------------------------------------------------------- */
@@ -18,7 +20,7 @@ tdc_ordering_t tdc_ref_ordering_decide(double mx, double my, tdc_ordering_t curr
     const double gamma = M_PI / 40.0;
     double a = atan2(fabs(my), fabs(mx)); /* folded into [0, pi/2] */
     if (fabs(a - M_PI / 4.0) < gamma)
-        return (tdc_ordering_hash(tile_x, tile_y, frame) >> 31) ? TDC_ORDER_BOWTIE : TDC_ORDER_HOURGLASS;
+        return (tdc_hash3(tile_x, tile_y, frame) >> 31) ? TDC_ORDER_BOWTIE : TDC_ORDER_HOURGLASS;
     double l = hypot(mx, my);
     double lf = l - floor(l);
     double s = 0.5 * a / (M_PI / 2.0);
@@ -61,7 +63,7 @@ tdc_ref_asm_t *tdc_ref_asm_new(int w, int h)
     r->window = calloc(px, 1);
     r->isnew = calloc(px, 1);
     r->mv = calloc(px * 2, sizeof(int16_t));
-    r->pattern = calloc((size_t)TDC_ORDERING_BITMAP_BYTES(w, h), 1);
+    r->pattern = calloc((size_t)TDC_PATTERN_BYTES(w, h), 1);
     if (!r->out || !r->exact || !r->samples || !r->window || !r->isnew || !r->mv || !r->pattern) {
         tdc_ref_asm_free(r);
         return NULL;
@@ -84,7 +86,7 @@ int tdc_ref_asm_ingest(tdc_ref_asm_t *r, uint32_t frame, const uint8_t *samples,
 {
     if (!samples || frame != r->next_frame || r->have_sub) return -1;
     unsigned k = frame & 3u, slot = (frame >> 2) & 3u;
-    if (pattern_bits && k == 0) memcpy(r->pattern, pattern_bits, (size_t)TDC_ORDERING_BITMAP_BYTES(r->w, r->h));
+    if (pattern_bits && k == 0) memcpy(r->pattern, pattern_bits, (size_t)TDC_PATTERN_BYTES(r->w, r->h));
     memset(r->isnew, 0, (size_t)r->w * r->h);
     for (int ty = 0; ty < r->ty; ty++)
         for (int tx = 0; tx < r->tx; tx++) {
@@ -224,7 +226,7 @@ int tdc_scene_init(tdc_scene_t *s, tdc_scene_kind_t kind, int w, int h, int32_t 
     memset(s, 0, sizeof(*s));
     s->kind = kind, s->w = w, s->h = h, s->vx_q4 = vx_q4, s->vy_q4 = vy_q4, s->seed = seed;
     s->mvbuf = calloc((size_t)w * h * 2, sizeof(int16_t));
-    s->pattern = calloc((size_t)TDC_ORDERING_BITMAP_BYTES(w, h), 1);
+    s->pattern = calloc((size_t)TDC_PATTERN_BYTES(w, h), 1);
     return s->mvbuf && s->pattern ? 0 : -1;
 }
 
@@ -307,7 +309,7 @@ void tdc_scene_subframe(tdc_scene_t *s, uint32_t frame, uint8_t *samples, int16_
     unsigned k = frame & 3u;
     if (k == 0) {
         tdc_ordering_update(s->mvbuf, w, h, s->pattern, frame);
-        if (bits_out) memcpy(bits_out, s->pattern, (size_t)TDC_ORDERING_BITMAP_BYTES(w, h));
+        if (bits_out) memcpy(bits_out, s->pattern, (size_t)TDC_PATTERN_BYTES(w, h));
     }
     int32_t jx, jy;
     tdc_jitter_offset_q4(frame, &jx, &jy);

@@ -20,7 +20,7 @@
 
 /* Ordering decision in double: l_f = |m| - floor|m|, a = atan2 folded,
  * band (0.25, 0.75) shifted by +-0.5 a/(pi/2), random band |a - pi/4| <
- * pi/40 decided by tdc_ordering_hash (the definition of the random choice). */
+ * pi/40 decided by tdc_hash3 (tdc_math.h: the definition of the random choice). */
 tdc_ordering_t tdc_ref_ordering_decide(double mx, double my, tdc_ordering_t current, uint32_t tile_x,
                                        uint32_t tile_y, uint32_t frame);
 

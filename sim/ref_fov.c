@@ -188,7 +188,7 @@ void ref_fov_frame(ref_fov_t *st, const ref_fov_params_t *p, const uint8_t *lp, 
                 mx = mv[(size_t)jv * mv_stride + (size_t)iu * 2] / 16.0;
                 my = mv[(size_t)jv * mv_stride + (size_t)iu * 2 + 1] / 16.0;
             }
-            double px = i - mx, py = j - my;
+            double px = i + mx, py = j + my; /* backward MVs: the point was at p + mv */
             if (px < -0.5 || px > W - 0.5 || py < -0.5 || py > H - 0.5) {
                 continue;
             }

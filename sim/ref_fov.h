@@ -48,8 +48,8 @@ typedef struct {
 
 int ref_fov_init(ref_fov_t *st, int width, int height, int taa);
 void ref_fov_free(ref_fov_t *st);
-/* Same inputs as tdc_fov_frame (mv: Q4 int16 pairs per log-polar sample or
- * NULL); out: W x H x 3 doubles (codes). */
+/* Same inputs as tdc_fov_frame (mv: backward Q4 int16 pairs per log-polar
+ * sample or NULL); out: W x H x 3 doubles (codes). */
 void ref_fov_frame(ref_fov_t *st, const ref_fov_params_t *p, const uint8_t *lp, size_t lp_stride,
                    const int16_t *mv, size_t mv_stride, const uint8_t *disk, size_t disk_stride, uint32_t dt_us,
                    double *out);

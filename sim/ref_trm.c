@@ -5,10 +5,13 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "tdc_geom.h"
+
+/* The firmware's size rule (tdc_geom.h): the reference works on the same
+ * reduced grid, only its arithmetic is double. */
 static int reduced_dim(int n, int num, int den)
 {
-    int r = (n * num + den / 2) / den;
-    return r < 1 ? 1 : r;
+    return (int)tdc_reduced_dim((uint32_t)n, (uint32_t)num, (uint32_t)den);
 }
 
 int tdc_ref_trm_init(tdc_ref_trm_t *r, int w, int h, int r_num, int r_den, double sigma, double s,

@@ -15,6 +15,7 @@
 #include "board.h"
 #include "tdc_board.h"
 #include "tdc_semihost.h"
+#include "tdc_text.h"
 
 #define SYST_CSR (*(volatile uint32_t *)(uintptr_t)(TDC_BOARD_SYSTICK_BASE + 0x0u))
 #define SYST_RVR (*(volatile uint32_t *)(uintptr_t)(TDC_BOARD_SYSTICK_BASE + 0x4u))
@@ -62,25 +63,10 @@ tdc_board_status_t tdc_board_panel_show(const uint8_t *fb, uint32_t stride, uint
                                         uint32_t frame_index)
 {
     const uint64_t h = tdc_board_frame_checksum(fb, stride, width, height);
-    char line[48];
-    char *o = line;
-    const char *pre = "frame ";
-    while (*pre) {
-        *o++ = *pre++;
-    }
-    char d[10];
-    int n = 0;
-    do {
-        d[n++] = (char)('0' + frame_index % 10u);
-        frame_index /= 10u;
-    } while (frame_index);
-    while (n) {
-        *o++ = d[--n];
-    }
+    char line[48]; /* "frame " + 10 digits + ' ' + 16 hex + '\n' */
+    char *o = tdc_text_u32(tdc_text_str(line, NULL, "frame "), NULL, frame_index);
     *o++ = ' ';
-    for (int i = 15; i >= 0; i--) {
-        *o++ = "0123456789abcdef"[(h >> (4 * i)) & 15u];
-    }
+    o = tdc_text_hex(o, NULL, h, 16u);
     *o++ = '\n';
     tdc_semihost_write(1, line, (size_t)(o - line));
     return TDC_BOARD_OK;

@@ -36,6 +36,7 @@
 #include "tdc_board.h"
 #include "tdc_link.h"
 #include "tdc_panel.h"
+#include "tdc_text.h"
 
 #ifndef TDC_PANEL_WIDTH
 #error "the frame loop is built per panel: compile with -include tdc_panel_<panel>_config.h"
@@ -78,7 +79,6 @@
 #define FW_H ((uint32_t)TDC_PANEL_HEIGHT)
 #define FW_EYES ((uint32_t)TDC_PANEL_EYES)
 #define FW_STRIDE (FW_EYES * FW_W * 3u)
-#define FW_ALIGN8(n) ((((size_t)(n)) + 7u) & ~(size_t)7u)
 
 extern const tdc_panel_t TDC_PANEL_SYMBOL;
 
@@ -87,10 +87,10 @@ static uint8_t g_fb[(size_t)FW_STRIDE * FW_H] TDC_EXTRAM;
 static uint8_t g_staging[TDC_LINK_STAGING_BYTES(FW_W, FW_H)] TDC_EXTRAM;
 
 #if TDC_CFG_TRM
-#define FW_RW TDC_LINK_REDUCED_DIM(FW_W, TDC_CFG_R_NUM, TDC_CFG_R_DEN)
-#define FW_RH TDC_LINK_REDUCED_DIM(FW_H, TDC_CFG_R_NUM, TDC_CFG_R_DEN)
+#define FW_RW TDC_REDUCED_DIM(FW_W, TDC_CFG_R_NUM, TDC_CFG_R_DEN)
+#define FW_RH TDC_REDUCED_DIM(FW_H, TDC_CFG_R_NUM, TDC_CFG_R_DEN)
 static uint8_t g_reduced[FW_EYES][(size_t)FW_RW * FW_RH * 3u] TDC_EXTRAM;
-#define FW_TRM_BYTES FW_ALIGN8(TDC_TRM_MEM_BYTES(FW_W, FW_H, TDC_CFG_R_NUM, TDC_CFG_R_DEN))
+#define FW_TRM_BYTES TDC_ARENA_ROUND(TDC_TRM_MEM_BYTES(FW_W, FW_H, TDC_CFG_R_NUM, TDC_CFG_R_DEN))
 #else
 #define FW_TRM_BYTES ((size_t)0)
 #endif
@@ -98,8 +98,8 @@ static uint8_t g_reduced[FW_EYES][(size_t)FW_RW * FW_RH * 3u] TDC_EXTRAM;
 #if TDC_CFG_ASSEMBLE
 static uint8_t g_subframe[FW_EYES][TDC_LINK_SUBFRAME_BYTES(FW_W, FW_H)] TDC_EXTRAM;
 static int16_t g_sample_mv[FW_EYES][TDC_LINK_SAMPLE_MOTION_COUNT(FW_W, FW_H)] TDC_EXTRAM;
-static uint8_t g_pattern[FW_EYES][TDC_LINK_PATTERN_BYTES(FW_W, FW_H)] TDC_EXTRAM;
-#define FW_ASM_BYTES FW_ALIGN8(TDC_ASM_MEM_BYTES(FW_W, FW_H))
+static uint8_t g_pattern[FW_EYES][TDC_PATTERN_BYTES(FW_W, FW_H)] TDC_EXTRAM;
+#define FW_ASM_BYTES TDC_ARENA_ROUND(TDC_ASM_MEM_BYTES(FW_W, FW_H))
 #else
 #define FW_ASM_BYTES ((size_t)0)
 #endif
@@ -151,34 +151,12 @@ static struct {
 } g;
 
 /* ---- small text helpers for the log (no printf in firmware) ---- */
-static char *put_str(char *o, const char *end, const char *s)
-{
-    while (*s && o < end) {
-        *o++ = *s++;
-    }
-    return o;
-}
-
-static char *put_u32(char *o, const char *end, uint32_t v)
-{
-    char d[10];
-    int n = 0;
-    do {
-        d[n++] = (char)('0' + v % 10u);
-        v /= 10u;
-    } while (v);
-    while (n && o < end) {
-        *o++ = d[--n];
-    }
-    return o;
-}
-
 static void log_kv(const char *what, uint32_t v)
 {
     char line[96];
     char *end = line + sizeof line - 1;
-    char *o = put_str(line, end, what);
-    o = put_u32(o, end, v);
+    char *o = tdc_text_str(line, end, what);
+    o = tdc_text_u32(o, end, v);
     *o = 0;
     tdc_board_log(line);
 }

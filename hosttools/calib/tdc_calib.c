@@ -23,8 +23,20 @@
  * Output: a panel profile (boards/panels/NAME.panel format) with the fitted
  * gamma and coefficients; the firmware builds it through tdc-tablegen.
  *
+ * With --transitions TRANS.csv (tdc-lcd-measure --transitions) it also fits
+ * the stateful overdrive tables (tdc_calib_trans.h) and writes them into
+ * the profile; the per-class fit errors are printed.
+ *
+ * The profile is written to OUT.panel.tmp and renamed onto OUT.panel only
+ * when everything succeeded: an error never truncates an existing profile.
+ *
+ * Exit codes (hosttools/common/tdc_tool.h): 0 OK, ARGS (1) bad command line,
+ * FILE (7) cannot read or write a file, INPUT (13) a measurement file is
+ * malformed or cannot be fitted (the message says why).
+ *
  * Usage: tdc-calib MEAS.csv -o OUT.panel --name NAME --width W --height H
  *                  [--eyes N] [--refresh HZ] [--table 0|17|33] [--note TEXT]
+ *                  [--transitions TRANS.csv [--state-table 17|33]]
  */
 #include <errno.h>
 #include <math.h>
@@ -33,84 +45,19 @@
 #include <string.h>
 
 #include "../../sim/lcd/tdc_lcd_model.h"
+#include "tdc_calib_trans.h"
+#include "tdc_meas.h"
+#include "tdc_panel.h"
 
-#define MAX_ROWS 200000
-#define MAX_RATES 4
+/* rates_hz of a profile is 0-terminated in TDC_PANEL_MAX_RATES slots, so the
+ * table generator takes at most TDC_PANEL_MAX_RATES - 1 rates. */
+#define MAX_RATES (TDC_PANEL_MAX_RATES - 1)
+_Static_assert(MAX_RATES == TDC_ST_MAX_RATES, "one rate limit for both fits");
 
-typedef struct {
-    int rate, ch, a, b;
-    double lum;
-} row_t;
+typedef tdc_meas_row_t row_t;
 
-static row_t g_rows[MAX_ROWS];
+static row_t *g_rows;
 static int g_nrows;
-
-static int parse_csv(const char *path, int *max_code)
-{
-    FILE *f = fopen(path, "r");
-    if (!f) {
-        fprintf(stderr, "tdc-calib: cannot open %s: %s\n", path, strerror(errno));
-        return -1;
-    }
-    char buf[512];
-    int line = 0, header = 0;
-    *max_code = 0;
-    while (fgets(buf, sizeof buf, f)) {
-        line++;
-        char *s = buf;
-        while (*s == ' ' || *s == '\t') {
-            s++;
-        }
-        if (*s == '#' || *s == '\n' || *s == '\r' || !*s) {
-            continue;
-        }
-        if (!header) {
-            if (strncmp(s, "rate_hz,channel,code_a,code_b,luminance_cd_m2", 45) != 0) {
-                fprintf(stderr, "%s:%d: expected the header rate_hz,channel,code_a,code_b,luminance_cd_m2\n",
-                        path, line);
-                fclose(f);
-                return -1;
-            }
-            header = 1;
-            continue;
-        }
-        row_t r;
-        char ch;
-        int used = 0;
-        if (sscanf(s, "%d,%c,%d,%d,%lf%n", &r.rate, &ch, &r.a, &r.b, &r.lum, &used) != 5 ||
-            (s[used] != 0 && s[used] != '\n' && s[used] != '\r')) {
-            fprintf(stderr, "%s:%d: expected RATE,R|G|B,CODE_A,CODE_B,LUMINANCE\n", path, line);
-            fclose(f);
-            return -1;
-        }
-        r.ch = ch == 'R' ? 0 : ch == 'G' ? 1 : ch == 'B' ? 2 : -1;
-        if (r.ch < 0 || r.rate < 1 || r.rate > 1000 || r.a < 0 || r.b < 0 || r.a > 1023 || r.b > 1023 ||
-            !isfinite(r.lum)) {
-            fprintf(stderr, "%s:%d: value out of range (channel R/G/B, codes 0..1023, rate 1..1000)\n", path,
-                    line);
-            fclose(f);
-            return -1;
-        }
-        if (g_nrows >= MAX_ROWS) {
-            fprintf(stderr, "%s: more than %d rows\n", path, MAX_ROWS);
-            fclose(f);
-            return -1;
-        }
-        if (r.a > *max_code) {
-            *max_code = r.a;
-        }
-        if (r.b > *max_code) {
-            *max_code = r.b;
-        }
-        g_rows[g_nrows++] = r;
-    }
-    fclose(f);
-    if (!header || g_nrows == 0) {
-        fprintf(stderr, "%s: no measurements\n", path);
-        return -1;
-    }
-    return 0;
-}
 
 /* Mean luminance of the rows (rate, ch, a, b); NAN if none. */
 static double lookup(int rate, int ch, int a, int b)
@@ -237,50 +184,86 @@ static double lum_sse(int rate, const double p[4], const double gamma[3])
 static int usage(void)
 {
     fprintf(stderr, "usage: tdc-calib MEAS.csv -o OUT.panel --name NAME --width W --height H [--eyes N]\n"
-                    "                 [--refresh HZ] [--table 0|17|33] [--note TEXT]\n");
-    return 2;
+                    "                 [--refresh HZ] [--table 0|17|33] [--note TEXT]\n"
+                    "                 [--transitions TRANS.csv [--state-table 17|33]]\n");
+    return TDC_EXIT_ARGS;
+}
+
+/* Numeric option: the whole argument, in range, no wrap-around. */
+static int opt_num(const char *opt, const char *v, int lo, int hi, int *out)
+{
+    if (tdc_parse_int(v, lo, hi, out) != 0) {
+        fprintf(stderr, "tdc-calib: %s '%s': need an integer in %d..%d\n", opt, v, lo, hi);
+        return -1;
+    }
+    return 0;
 }
 
 int main(int argc, char **argv)
 {
-    const char *in = NULL, *out = NULL, *name = NULL, *note = NULL;
-    int width = 0, height = 0, eyes = 1, refresh = 0, table = 33;
+    const char *in = NULL, *out = NULL, *name = NULL, *note = NULL, *trans = NULL;
+    int width = 0, height = 0, eyes = 1, refresh = 0, table = 33, state_n = 33;
     for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        if (!strcmp(a, "-o") && i + 1 < argc) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        int bad = 0;
+        if (!strcmp(a, "-o") && v) {
             out = argv[++i];
-        } else if (!strcmp(a, "--name") && i + 1 < argc) {
+        } else if (!strcmp(a, "--name") && v) {
             name = argv[++i];
-        } else if (!strcmp(a, "--width") && i + 1 < argc) {
-            width = atoi(argv[++i]);
-        } else if (!strcmp(a, "--height") && i + 1 < argc) {
-            height = atoi(argv[++i]);
-        } else if (!strcmp(a, "--eyes") && i + 1 < argc) {
-            eyes = atoi(argv[++i]);
-        } else if (!strcmp(a, "--refresh") && i + 1 < argc) {
-            refresh = atoi(argv[++i]);
-        } else if (!strcmp(a, "--table") && i + 1 < argc) {
-            table = atoi(argv[++i]);
-        } else if (!strcmp(a, "--note") && i + 1 < argc) {
+        } else if (!strcmp(a, "--width") && v) {
+            bad = opt_num(a, argv[++i], 1, 16384, &width);
+        } else if (!strcmp(a, "--height") && v) {
+            bad = opt_num(a, argv[++i], 1, 16384, &height);
+        } else if (!strcmp(a, "--eyes") && v) {
+            bad = opt_num(a, argv[++i], 1, 2, &eyes);
+        } else if (!strcmp(a, "--refresh") && v) {
+            bad = opt_num(a, argv[++i], 1, 1000, &refresh);
+        } else if (!strcmp(a, "--table") && v) {
+            bad = opt_num(a, argv[++i], 0, 33, &table);
+        } else if (!strcmp(a, "--state-table") && v) {
+            bad = opt_num(a, argv[++i], 17, 33, &state_n);
+        } else if (!strcmp(a, "--transitions") && v) {
+            trans = argv[++i];
+        } else if (!strcmp(a, "--note") && v) {
             note = argv[++i];
         } else if (a[0] != '-' && !in) {
             in = a;
         } else {
             return usage();
         }
+        if (bad) {
+            return TDC_EXIT_ARGS;
+        }
     }
-    if (!in || !out || !name || width < 1 || height < 1 || eyes < 1 || eyes > 2 ||
-        (table != 0 && table != 17 && table != 33)) {
+    if (!in || !out || !name || width < 1 || height < 1 || (table != 0 && table != 17 && table != 33) ||
+        (state_n != 17 && state_n != 33)) {
         return usage();
     }
-    int max_code;
-    if (parse_csv(in, &max_code) != 0) {
-        return 1;
+    if (!name[0] || strpbrk(name, " \t\r\n#")) {
+        fprintf(stderr, "tdc-calib: --name '%s': need a non-empty name without blanks or '#'\n", name);
+        return TDC_EXIT_ARGS;
     }
+    char err[512];
+    tdc_meas_t meas;
+    const int lrc = tdc_meas_load(in, &meas, err, sizeof err);
+    if (lrc != 0) {
+        fprintf(stderr, "tdc-calib: %s\n", err);
+        tdc_meas_free(&meas);
+        return lrc == -2 ? TDC_EXIT_FILE : TDC_EXIT_INPUT;
+    }
+    if (meas.kind != TDC_MEAS_PAIRS) {
+        fprintf(stderr, "tdc-calib: %s: a transition file; the first file is the pair measurement (Fig. 7), "
+                        "transitions go to --transitions\n", in);
+        tdc_meas_free(&meas);
+        return TDC_EXIT_INPUT;
+    }
+    g_rows = meas.rows;
+    g_nrows = (int)meas.nrows;
+    const int max_code = meas.max_code;
     if (max_code != 255 && max_code != 1023) {
-        fprintf(stderr, "tdc-calib: the largest code measured is %d; need the full-drive rows (255 or 1023)\n",
-                max_code);
-        return 1;
+        fprintf(stderr, "tdc-calib: %s: the largest code measured is %d; need the full-drive rows (255 or 1023)\n",
+                in, max_code);
+        return TDC_EXIT_INPUT;
     }
     g_max = max_code;
     const int bits = max_code == 255 ? 8 : 10;
@@ -288,8 +271,9 @@ int main(int argc, char **argv)
     for (int i = 0; i < g_nrows; i++) {
         if (rate_index(g_rows[i].rate) < 0) {
             if (g_nr == MAX_RATES) {
-                fprintf(stderr, "tdc-calib: at most %d refresh rates\n", MAX_RATES);
-                return 1;
+                fprintf(stderr, "tdc-calib: %s:%d: field rate_hz: a %dth refresh rate (%d Hz); a panel profile "
+                                "holds at most %d\n", in, g_rows[i].line, g_nr + 1, g_rows[i].rate, MAX_RATES);
+                return TDC_EXIT_INPUT;
             }
             g_rates[g_nr++] = g_rows[i].rate;
         }
@@ -301,7 +285,7 @@ int main(int argc, char **argv)
             if (!isfinite(g_black[r][c]) || !isfinite(g_white[r][c]) || !(g_white[r][c] > g_black[r][c])) {
                 fprintf(stderr, "tdc-calib: rate %d channel %c needs rows (0,0) and (%d,%d) with white > black\n",
                         g_rates[r], "RGB"[c], max_code, max_code);
-                return 1;
+                return TDC_EXIT_INPUT;
             }
         }
     }
@@ -334,7 +318,7 @@ int main(int argc, char **argv)
         }
         if (n < 4 || solve4(A, y, p[r]) != 0) {
             fprintf(stderr, "tdc-calib: rate %d: too few or degenerate measurements for p1..p4\n", g_rates[r]);
-            return 1;
+            return TDC_EXIT_INPUT;
         }
         /* Refine in luminance space (what the eye integrates): Gauss-Newton on
          * sum (M^gamma - Y)^2 from the linear fit, with step halving. */
@@ -389,7 +373,7 @@ int main(int argc, char **argv)
             if (!(fabs(p[r][k]) < 4.0)) {
                 fprintf(stderr, "tdc-calib: rate %d: fitted p%d = %g outside the profile range [-4, 4]\n",
                         g_rates[r], k + 1, p[r][k]);
-                return 1;
+                return TDC_EXIT_INPUT;
             }
         }
         double sl = 0.0, sm = 0.0, sp = 0.0;
@@ -429,12 +413,6 @@ int main(int argc, char **argv)
                    g_rates[r]);
         }
     }
-    /* Profile. */
-    FILE *f = fopen(out, "w");
-    if (!f) {
-        fprintf(stderr, "tdc-calib: cannot write %s: %s\n", out, strerror(errno));
-        return 1;
-    }
     /* Rates in ascending order, nominal = --refresh or the lowest. */
     for (int i = 0; i < g_nr; i++) {
         for (int j = i + 1; j < g_nr; j++) {
@@ -458,9 +436,43 @@ int main(int argc, char **argv)
     }
     int nominal = refresh ? rate_index(refresh) : 0;
     if (nominal < 0) {
-        fprintf(stderr, "tdc-calib: --refresh %d was not measured\n", refresh);
-        fclose(f);
-        return 1;
+        fprintf(stderr, "tdc-calib: --refresh %d was not measured in %s\n", refresh, in);
+        return TDC_EXIT_INPUT;
+    }
+    /* Stateful tables from the transition measurement (every check before
+     * anything is written). */
+    static tdc_st_fits_t st;
+    if (trans) {
+        tdc_meas_t tm;
+        int rc = tdc_meas_load(trans, &tm, err, sizeof err);
+        const int code = rc == -2 ? TDC_EXIT_FILE : TDC_EXIT_INPUT;
+        if (rc == 0) {
+            rc = tdc_st_fit(&tm, trans, state_n, gamma, &st, err, sizeof err);
+        }
+        tdc_meas_free(&tm);
+        if (rc != 0) {
+            fprintf(stderr, "tdc-calib: %s\n", err);
+            return code;
+        }
+        for (int r = 0; r < st.nrates; r++) {
+            if (rate_index(st.rate[r].rate) < 0) {
+                fprintf(stderr, "tdc-calib: %s: transitions at %d Hz, a rate %s does not measure\n", trans,
+                        st.rate[r].rate, in);
+                return TDC_EXIT_INPUT;
+            }
+        }
+        tdc_st_print(&st, stdout);
+    }
+    /* Profile: written to OUT.tmp, renamed onto OUT when complete. */
+    char tmp_path[4096];
+    if (snprintf(tmp_path, sizeof tmp_path, "%s.tmp", out) >= (int)sizeof tmp_path) {
+        fprintf(stderr, "tdc-calib: -o %s: path too long\n", out);
+        return TDC_EXIT_ARGS;
+    }
+    FILE *f = fopen(tmp_path, "w");
+    if (!f) {
+        fprintf(stderr, "tdc-calib: cannot write %s: %s\n", tmp_path, strerror(errno));
+        return TDC_EXIT_FILE;
     }
     fprintf(f, "# %s: LCD profile written by tdc-calib from %s.\n", name, in);
     if (note) {
@@ -500,7 +512,15 @@ int main(int argc, char **argv)
                 q[r][1] / 16777216.0, q[r][2] / 16777216.0, q[r][3] / 16777216.0);
     }
     fprintf(f, "lcd_table   %d\n", table);
-    fclose(f);
+    if (trans) {
+        tdc_st_write_profile(&st, f);
+    }
+    if ((ferror(f) | fclose(f)) != 0 || rename(tmp_path, out) != 0) {
+        fprintf(stderr, "tdc-calib: cannot write %s: %s\n", out, strerror(errno));
+        remove(tmp_path);
+        return TDC_EXIT_FILE;
+    }
     printf("wrote %s\n", out);
+    tdc_meas_free(&meas);
     return 0;
 }

@@ -42,7 +42,17 @@ typedef struct {
     int lcd_rate_hz[TDC_PANEL_MAX_RATES];
     int n_lcd_rate_p;
     int lcd_table;
+    /* Stateful overdrive tables (lcd_state_n, lcd_od, lcd_st, lcd_reach_lo/hi,
+     * written by tdc-calib --transitions; firmware/tdc_lcd.h), per rate. */
+    int st_n;
+    int st_nr;
+    int st_rate_hz[TDC_PANEL_MAX_RATES];
+    uint16_t st_od[TDC_PANEL_MAX_RATES][3][33 * 33], st_next[TDC_PANEL_MAX_RATES][3][33 * 33];
+    uint16_t st_reach[TDC_PANEL_MAX_RATES][3][2 * 33];
+    unsigned char st_seen[TDC_PANEL_MAX_RATES][3][2 * 33 + 2]; /* od rows, st rows, lo, hi */
 } profile_t;
+
+#define TOK_MAX 40
 
 static const char *g_path;
 static FILE *g_in; /* the profile being read (closed by whoever catches a failure) */
@@ -94,6 +104,21 @@ static double parse_double(const char *s, int line, double lo, double hi, const 
     return v;
 }
 
+/* Index of a stateful-table rate (added on first use). */
+static int st_rate(profile_t *p, int hz, int line)
+{
+    for (int i = 0; i < p->st_nr; i++) {
+        if (p->st_rate_hz[i] == hz) {
+            return i;
+        }
+    }
+    if (p->st_nr == TDC_PANEL_MAX_RATES - 1) {
+        die(TDC_EXIT_INPUT, line, "stateful tables for more than %d rates", TDC_PANEL_MAX_RATES - 1);
+    }
+    p->st_rate_hz[p->st_nr] = hz;
+    return p->st_nr++;
+}
+
 /* Reads a profile from an open stream (g_in; g_path names it in messages). */
 static void parse_profile_stream(FILE *f, profile_t *p)
 {
@@ -113,9 +138,12 @@ static void parse_profile_stream(FILE *f, profile_t *p)
         if (hash) {
             *hash = 0;
         }
-        char *tok[8];
+        char *tok[TOK_MAX];
         int n = 0;
-        for (char *t = strtok(buf, " \t\r\n"); t && n < 8; t = strtok(NULL, " \t\r\n")) {
+        for (char *t = strtok(buf, " \t\r\n"); t; t = strtok(NULL, " \t\r\n")) {
+            if (n == TOK_MAX) {
+                die(TDC_EXIT_INPUT, (int)line, "more than %d values on one line", TOK_MAX);
+            }
             tok[n++] = t;
         }
         if (n == 0) {
@@ -175,6 +203,43 @@ static void parse_profile_stream(FILE *f, profile_t *p)
                 p->lcd_rate_p[p->n_lcd_rate_p][c] = parse_double(tok[c + 2], (int)line, -4.0, 4.0, k);
             }
             p->n_lcd_rate_p++;
+        } else if (!strcmp(k, "lcd_state_n") && n == 2) {
+            p->st_n = parse_int(tok[1], (int)line, 17, 33, k);
+            if (p->st_n != 17 && p->st_n != 33) {
+                die(TDC_EXIT_INPUT, (int)line, "lcd_state_n must be 17 or 33");
+            }
+        } else if ((!strcmp(k, "lcd_od") || !strcmp(k, "lcd_st") || !strcmp(k, "lcd_reach_lo") ||
+                    !strcmp(k, "lcd_reach_hi")) && n >= 3) {
+            const int row_key = !strcmp(k, "lcd_od") || !strcmp(k, "lcd_st");
+            if (!p->st_n) {
+                die(TDC_EXIT_INPUT, (int)line, "%s before lcd_state_n", k);
+            }
+            if (n != 3 + row_key + p->st_n) {
+                die(TDC_EXIT_INPUT, (int)line, "%s: expected RATE CH%s and %d values", k, row_key ? " ROW" : "", p->st_n);
+            }
+            const int ri = st_rate(p, parse_int(tok[1], (int)line, 1, 1000, k), line);
+            const int ch = !strcmp(tok[2], "R") ? 0 : !strcmp(tok[2], "G") ? 1 : !strcmp(tok[2], "B") ? 2 : -1;
+            if (ch < 0) {
+                die(TDC_EXIT_INPUT, (int)line, "%s: channel must be R, G or B", k);
+            }
+            const int row = row_key ? parse_int(tok[3], (int)line, 0, p->st_n - 1, k) : 0;
+            const int slot = !strcmp(k, "lcd_od") ? row : !strcmp(k, "lcd_st") ? 33 + row
+                             : !strcmp(k, "lcd_reach_lo") ? 66 : 67;
+            if (p->st_seen[ri][ch][slot]) {
+                die(TDC_EXIT_INPUT, (int)line, "%s: rate %s channel %s%s%s given twice", k, tok[1], tok[2], row_key ? " row " : "",
+                    row_key ? tok[3] : "");
+            }
+            p->st_seen[ri][ch][slot] = 1;
+            for (int c = 0; c < p->st_n; c++) {
+                const uint16_t v = (uint16_t)parse_int(tok[3 + row_key + c], (int)line, 0, 255 * 16, k);
+                if (!strcmp(k, "lcd_od")) {
+                    p->st_od[ri][ch][row * p->st_n + c] = v;
+                } else if (!strcmp(k, "lcd_st")) {
+                    p->st_next[ri][ch][row * p->st_n + c] = v;
+                } else {
+                    p->st_reach[ri][ch][(slot - 66) * p->st_n + c] = v;
+                }
+            }
         } else if (!strcmp(k, "lcd_table") && n == 2) {
             p->lcd_table = parse_int(tok[1], (int)line, 0, 33, k);
             if (p->lcd_table != 0 && p->lcd_table != 17 && p->lcd_table != 33) {
@@ -215,6 +280,31 @@ static void parse_profile(const char *path, profile_t *p)
     parse_profile_stream(g_in, p);
     fclose(g_in);
     g_in = NULL;
+}
+
+/* The stateful tables of a rate: complete, of a rate the profile has. */
+static void check_state_tables(const profile_t *p)
+{
+    for (int i = 0; i < p->st_nr; i++) {
+        int found = 0;
+        for (int r = 0; r < p->nrates; r++) {
+            found |= p->rates[r] == p->st_rate_hz[i];
+        }
+        if (!found) {
+            die(TDC_EXIT_INPUT, 0, "stateful tables for %d Hz: not one of rates_hz", p->st_rate_hz[i]);
+        }
+        for (int ch = 0; ch < 3; ch++) {
+            for (int row = 0; row < p->st_n; row++) {
+                if (!p->st_seen[i][ch][row] || !p->st_seen[i][ch][33 + row]) {
+                    die(TDC_EXIT_INPUT, 0, "stateful tables for %d Hz channel %c: lcd_od/lcd_st row %d missing", p->st_rate_hz[i],
+                        "RGB"[ch], row);
+                }
+            }
+            if (!p->st_seen[i][ch][66] || !p->st_seen[i][ch][67]) {
+                die(TDC_EXIT_INPUT, 0, "stateful tables for %d Hz channel %c: lcd_reach_lo/hi missing", p->st_rate_hz[i], "RGB"[ch]);
+            }
+        }
+    }
 }
 
 /* Coefficients of one rate: its lcd_p_hz line, else lcd_p. */
@@ -263,6 +353,22 @@ static void gen_lcd(FILE *f, const profile_t *p, const char *id)
         snprintf(decl, sizeof decl, "static const int16_t %s_od33_%dhz", id, p->rates[r]);
         gen_od_table(f, decl, q, 33, p->bits);
     }
+    for (int i = 0; i < p->st_nr; i++) {
+        const int nn = p->st_n * p->st_n;
+        for (int ch = 0; ch < 3; ch++) {
+            const char cn = "rgb"[ch];
+            const uint16_t *src[3] = {p->st_od[i][ch], p->st_next[i][ch], p->st_reach[i][ch]};
+            const int len[3] = {nn, nn, 2 * p->st_n};
+            static const char *const kind[3] = {"sod", "sst", "srch"};
+            for (int k = 0; k < 3; k++) {
+                fprintf(f, "static const uint16_t %s_%s_%dhz_%c[%d] = {", id, kind[k], p->st_rate_hz[i], cn, len[k]);
+                for (int v = 0; v < len[k]; v++) {
+                    fprintf(f, "%s%u,", (v % 16) ? " " : "\n    ", src[k][v]);
+                }
+                fprintf(f, "\n};\n");
+            }
+        }
+    }
     fprintf(f, "\nstatic const struct tdc_lcd_profile %s_lcd = {\n", id);
     fprintf(f, "    .nrates = %d,\n    .default_table = %d,\n    .rate = {\n", p->nrates, p->lcd_table);
     for (int r = 0; r < p->nrates; r++) {
@@ -271,7 +377,22 @@ static void gen_lcd(FILE *f, const profile_t *p, const char *id)
         for (int c = 0; c < 4; c++) {
             fprintf(f, "%ld%s", (long)llround(cp[c] * (double)(1 << TDC_LCD_COEF_FRAC)), c < 3 ? ", " : "");
         }
-        fprintf(f, "}, %s_od17_%dhz, %s_od33_%dhz},\n", id, p->rates[r], id, p->rates[r]);
+        fprintf(f, "}, %s_od17_%dhz, %s_od33_%dhz", id, p->rates[r], id, p->rates[r]);
+        int si = -1;
+        for (int i = 0; i < p->st_nr; i++) {
+            si = p->st_rate_hz[i] == p->rates[r] ? i : si;
+        }
+        if (si >= 0) {
+            fprintf(f, ", %d", p->st_n);
+            static const char *const kind[3] = {"sod", "sst", "srch"};
+            for (int k = 0; k < 3; k++) {
+                fprintf(f, ", {%s_%s_%dhz_r, %s_%s_%dhz_g, %s_%s_%dhz_b}", id, kind[k], p->rates[r], id, kind[k],
+                        p->rates[r], id, kind[k], p->rates[r]);
+            }
+        } else {
+            fprintf(f, ", 0, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}");
+        }
+        fprintf(f, "},\n");
     }
     fprintf(f, "    },\n};\n");
 }
@@ -392,6 +513,7 @@ int main(int argc, char **argv)
     g_path = argv[1];
     profile_t p;
     parse_profile(argv[1], &p);
+    check_state_tables(&p);
     char id[80], path[1024];
     c_ident(p.name, id);
     const int is_lcd = !strcmp(p.type, "lcd");

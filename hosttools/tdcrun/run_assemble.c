@@ -37,6 +37,7 @@
 
 #include "tdc_png.h"
 #include "tdc_run.h"
+#include "tdc_wire.h"
 
 static const char k_usage[] =
     "usage: tdc-run assemble [options] -o OUTDIR SUBFRAME.png|- ...\n"
@@ -110,10 +111,6 @@ static int make_dirs(const char *path)
 
 static const uint8_t k_mv_magic[8] = {'T', 'D', 'C', 'M', 'V', '1', 0, 0};
 
-static void put_u16(uint8_t *p, uint32_t v) { p[0] = (uint8_t)v, p[1] = (uint8_t)(v >> 8); }
-static void put_u32(uint8_t *p, uint32_t v) { put_u16(p, v), put_u16(p + 2, v >> 16); }
-static uint32_t get_u16(const uint8_t *p) { return (uint32_t)p[0] | (uint32_t)p[1] << 8; }
-static uint32_t get_u32(const uint8_t *p) { return get_u16(p) | get_u16(p + 2) << 16; }
 
 /* Writes a .mv file; bits may be NULL. */
 static int write_mv(const char *path, uint32_t tx, uint32_t ty, const int16_t *mv, const uint8_t *bits)
@@ -122,11 +119,11 @@ static int write_mv(const char *path, uint32_t tx, uint32_t ty, const int16_t *m
     if (!f) return -1;
     uint8_t hdr[16];
     memcpy(hdr, k_mv_magic, 8);
-    put_u16(hdr + 8, tx), put_u16(hdr + 10, ty), put_u32(hdr + 12, bits ? 1u : 0u);
+    tdc_put_le16(hdr + 8, tx), tdc_put_le16(hdr + 10, ty), tdc_put_le32(hdr + 12, bits ? 1u : 0u);
     int ok = fwrite(hdr, 1, 16, f) == 16;
     for (size_t i = 0; ok && i < (size_t)tx * ty * 2; i++) {
         uint8_t b[2];
-        put_u16(b, (uint16_t)mv[i]);
+        tdc_put_le16s(b, mv[i]);
         ok = fwrite(b, 1, 2, f) == 2;
     }
     if (ok && bits) ok = fwrite(bits, 1, ((size_t)tx * ty + 7) / 8, f) == ((size_t)tx * ty + 7) / 8;
@@ -151,11 +148,11 @@ static int read_mv(const char *path, uint32_t tx, uint32_t ty, int16_t *mv, uint
     size_t n = (size_t)tx * ty, nb = (n + 7) / 8;
     if (fread(hdr, 1, 16, f) != 16 || memcmp(hdr, k_mv_magic, 8) != 0) {
         snprintf(err, errlen, "%.400s: not a motion-vector file (no TDCMV1 header)", path);
-    } else if (get_u16(hdr + 8) != tx || get_u16(hdr + 10) != ty) {
+    } else if (tdc_get_le16(hdr + 8) != tx || tdc_get_le16(hdr + 10) != ty) {
         snprintf(err, errlen, "%.400s: motion vectors for %ux%u tiles, but the subframe has %ux%u", path,
-                 get_u16(hdr + 8), get_u16(hdr + 10), tx, ty);
-    } else if (get_u32(hdr + 12) & ~1u) {
-        snprintf(err, errlen, "%.400s: unknown flags 0x%x", path, get_u32(hdr + 12));
+                 tdc_get_le16(hdr + 8), tdc_get_le16(hdr + 10), tx, ty);
+    } else if (tdc_get_le32(hdr + 12) & ~1u) {
+        snprintf(err, errlen, "%.400s: unknown flags 0x%x", path, tdc_get_le32(hdr + 12));
     } else {
         uint8_t *raw = malloc(n * 4);
         size_t got = raw ? fread(raw, 1, n * 4, f) : 0;
@@ -163,10 +160,9 @@ static int read_mv(const char *path, uint32_t tx, uint32_t ty, int16_t *mv, uint
             snprintf(err, errlen, "%.400s: truncated: %zu of %zu bytes of vectors", path, got, n * 4);
         } else {
             for (size_t i = 0; i < n * 2; i++) {
-                int32_t u = (int32_t)get_u16(raw + 2 * i);
-                mv[i] = (int16_t)(u >= 32768 ? u - 65536 : u);
+                mv[i] = tdc_get_le16s(raw + 2 * i);
             }
-            *has_bits = (get_u32(hdr + 12) & 1u) != 0;
+            *has_bits = (tdc_get_le32(hdr + 12) & 1u) != 0;
             if (*has_bits && fread(bits, 1, nb, f) != nb) {
                 snprintf(err, errlen, "%.400s: truncated ordering bits", path);
             } else if (fgetc(f) != EOF) {
@@ -286,7 +282,7 @@ int tdc_run_assemble_main(int argc, char **argv)
 
     tdc_asm_config_t cfg = {(uint16_t)w, (uint16_t)h};
     size_t n = tdc_asm_get_size(&cfg);
-    void *arena = aligned_alloc(8, (n + 7) & ~(size_t)7);
+    void *arena = aligned_alloc(TDC_ARENA_ALIGN, TDC_ARENA_ROUND(n));
     int16_t *mv = malloc((size_t)tx * ty * 4);
     uint8_t *bits = malloc(((size_t)tx * ty + 7) / 8);
     tdc_asm_t st;

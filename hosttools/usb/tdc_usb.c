@@ -211,14 +211,14 @@ static tdc_exit_t cmd_stream(tdc_board_t *b, const opts_t *o, const char *path, 
         return TDC_EXIT_FILE;
     }
     uint64_t sent = 0;
-    uint32_t crc = 0xFFFFFFFFu;
+    uint32_t crc = TDC_CRC32_INIT;
     double t0 = tdc_usb_now_s(), last = 0;
     size_t n;
     while (e == TDC_EXIT_OK && (n = fread(buf, 1, (size_t)chunk, f)) > 0) {
         int done = 0;
         e = tdc_usb_bulk(b, "bulk OUT of link packets", b->ep_out, buf, (int)n, &done);
         sent += (uint64_t)done;
-        crc = tdc_usbp_crc32_update(crc, buf, (uint32_t)done);
+        crc = tdc_crc32_update(crc, buf, (uint32_t)done);
         if (e == TDC_EXIT_OK && done != (int)n) {
             fprintf(stderr, "tdc-usb: stream: board took %d of %zu bytes\n", done, n);
             e = TDC_EXIT_PROTOCOL;

@@ -6,9 +6,19 @@
  * tdc-calib reads (format in docs/lcd.md), optionally with multiplicative
  * and additive measurement noise from a seeded generator.
  *
+ * With --transitions it measures instead what an overdrive calibration
+ * needs (docs/lcd.md §5): for every (previous drive, drive) pair of an N x N
+ * grid, the patch settled at the previous drive, then ONE refresh at the
+ * drive with the panel's backlight timing: the light delivered within that
+ * refresh and the state (transmittance, as the luminance it shows) reached
+ * at its end; --runs R repeats every transition R times with independent
+ * noise so the calibration can see the measurement noise.
+ *
  * Usage: tdc-lcd-measure PANEL.lcdsim RATES [--grid N] [--integration S]
- *                        [--noise REL] [--seed N] [-o FILE]
+ *                        [--noise REL] [--seed N] [--transitions [--runs R]] [-o FILE]
  *   RATES: comma-separated refresh rates in Hz, e.g. 120,144,165
+ * The output is written to a temporary file renamed onto FILE on success,
+ * so an error never leaves a truncated file behind.
  */
 #include <math.h>
 #include <stdint.h>
@@ -17,6 +27,7 @@
 #include <string.h>
 
 #include "lcd/tdc_lcdsim.h"
+#include "../../hosttools/calib/tdc_meas.h"
 
 static uint64_t g_rng = 0x9e3779b97f4a7c15ull;
 
@@ -36,8 +47,14 @@ static double rnd_gauss(void)
 static int usage(void)
 {
     fprintf(stderr, "usage: tdc-lcd-measure PANEL.lcdsim RATES [--grid N] [--integration S] [--noise REL] "
-                    "[--seed N] [-o FILE]\n");
-    return 2;
+                    "[--seed N] [--transitions [--runs R]] [-o FILE]\n");
+    return TDC_EXIT_ARGS;
+}
+
+static double noisy(double y, double noise)
+{
+    /* relative noise plus a floor of 1e-4 cd/m^2 (instrument dark noise) */
+    return noise > 0.0 ? y + y * noise * rnd_gauss() + 1e-4 * rnd_gauss() : y;
 }
 
 int main(int argc, char **argv)
@@ -48,72 +65,116 @@ int main(int argc, char **argv)
     const char *panel_path = argv[1];
     const char *rates_arg = argv[2];
     const char *out_path = NULL;
-    int grid = 17;
+    int grid = 17, runs = 1, seed = 0;
+    int transitions = 0;
     double integration = 1.0, noise = 0.0;
     for (int i = 3; i < argc; i++) {
-        if (!strcmp(argv[i], "--grid") && i + 1 < argc) {
-            grid = atoi(argv[++i]);
-        } else if (!strcmp(argv[i], "--integration") && i + 1 < argc) {
-            integration = atof(argv[++i]);
-        } else if (!strcmp(argv[i], "--noise") && i + 1 < argc) {
-            noise = atof(argv[++i]);
-        } else if (!strcmp(argv[i], "--seed") && i + 1 < argc) {
-            g_rng ^= strtoull(argv[++i], NULL, 10) * 0x2545f4914f6cdd1dull;
-        } else if (!strcmp(argv[i], "-o") && i + 1 < argc) {
-            out_path = argv[++i];
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        int bad = 0;
+        if (!strcmp(a, "--grid") && v) {
+            bad = tdc_parse_int(v, 2, 256, &grid);
+            i++;
+        } else if (!strcmp(a, "--runs") && v) {
+            bad = tdc_parse_int(v, 1, 100, &runs);
+            i++;
+        } else if (!strcmp(a, "--integration") && v) {
+            bad = tdc_parse_double(v, 1e-3, 100.0, &integration);
+            i++;
+        } else if (!strcmp(a, "--noise") && v) {
+            bad = tdc_parse_double(v, 0.0, 1.0, &noise);
+            i++;
+        } else if (!strcmp(a, "--seed") && v) {
+            bad = tdc_parse_int(v, 0, 2147483647L, &seed);
+            i++;
+        } else if (!strcmp(a, "--transitions")) {
+            transitions = 1;
+        } else if (!strcmp(a, "-o") && v) {
+            out_path = v;
+            i++;
         } else {
             return usage();
         }
+        if (bad) {
+            fprintf(stderr, "tdc-lcd-measure: %s '%s': need --grid 2..256, --runs 1..100, --integration "
+                            "0.001..100, --noise 0..1, --seed 0..2147483647\n", a, v);
+            return TDC_EXIT_ARGS;
+        }
     }
-    if (grid < 2 || grid > 256 || !(integration > 0.0) || noise < 0.0) {
-        fprintf(stderr, "tdc-lcd-measure: need 2 <= grid <= 256, integration > 0, noise >= 0\n");
-        return 2;
-    }
+    g_rng ^= (uint64_t)seed * 0x2545f4914f6cdd1dull;
     tdc_lcdsim_panel_t p;
     char err[256];
     if (tdc_lcdsim_load(panel_path, &p, err, sizeof err) != 0) {
         fprintf(stderr, "tdc-lcd-measure: %s\n", err);
-        return 1;
+        return TDC_EXIT_INPUT;
     }
     int rates[8], nrates = 0;
-    for (const char *s = rates_arg; *s && nrates < 8;) {
-        char *end;
-        long r = strtol(s, &end, 10);
-        if (end == s || r < 1 || r > 1000) {
-            fprintf(stderr, "tdc-lcd-measure: bad rate list '%s'\n", rates_arg);
-            return 2;
+    char rbuf[128];
+    snprintf(rbuf, sizeof rbuf, "%s", rates_arg);
+    for (char *tok = strtok(rbuf, ","); tok; tok = strtok(NULL, ",")) {
+        int r;
+        if (nrates == 8 || tdc_parse_int(tok, 1, 1000, &r)) {
+            fprintf(stderr, "tdc-lcd-measure: bad rate list '%s' (1..8 rates in 1..1000 Hz, comma-separated)\n",
+                    rates_arg);
+            return TDC_EXIT_ARGS;
         }
-        rates[nrates++] = (int)r;
-        s = *end == ',' ? end + 1 : end;
+        rates[nrates++] = r;
     }
-    FILE *f = out_path ? fopen(out_path, "w") : stdout;
-    if (!f) {
-        fprintf(stderr, "tdc-lcd-measure: cannot write %s\n", out_path);
-        return 1;
+    if (!nrates) {
+        fprintf(stderr, "tdc-lcd-measure: bad rate list '%s'\n", rates_arg);
+        return TDC_EXIT_ARGS;
     }
-    fprintf(f, "# tdc LCD measurement v1 (docs/lcd.md): simulated panel %s, Fig. 7 alternating pairs,\n",
-            p.name);
-    fprintf(f, "# %g s integration, noise %g relative; generated by tdc-lcd-measure\n", integration, noise);
-    fprintf(f, "rate_hz,channel,code_a,code_b,luminance_cd_m2\n");
+    char tmp_path[4096];
+    FILE *f = stdout;
+    if (out_path) {
+        snprintf(tmp_path, sizeof tmp_path, "%s.tmp", out_path);
+        f = fopen(tmp_path, "w");
+        if (!f) {
+            fprintf(stderr, "tdc-lcd-measure: cannot write %s\n", tmp_path);
+            return TDC_EXIT_FILE;
+        }
+    }
     static const char chname[3] = {'R', 'G', 'B'};
+    if (!transitions) {
+        fprintf(f, "# tdc LCD measurement v1 (docs/lcd.md): simulated panel %s, Fig. 7 alternating pairs,\n",
+                p.name);
+        fprintf(f, "# %g s integration, noise %g relative; generated by tdc-lcd-measure\n", integration, noise);
+        fprintf(f, "rate_hz,channel,code_a,code_b,luminance_cd_m2\n");
+    } else {
+        fprintf(f, "# tdc LCD transition measurement v2 (docs/lcd.md): simulated panel %s, %s backlight;\n", p.name,
+                p.strobe ? "strobed" : "constant");
+        fprintf(f, "# settled at prev_code, one refresh at code: light within the refresh and the state at its\n"
+                   "# end (as luminance); %d x %d grid, %d run(s), noise %g relative; generated by "
+                   "tdc-lcd-measure\n",
+                grid, grid, runs, noise);
+        fprintf(f, "rate_hz,channel,prev_code,code,run,light_cd_m2,end_cd_m2\n");
+    }
     for (int r = 0; r < nrates; r++) {
         for (int ch = 0; ch < 3; ch++) {
             for (int i = 0; i < grid; i++) {
                 for (int j = 0; j < grid; j++) {
                     int a = (int)lround(i * 255.0 / (grid - 1));
                     int b = (int)lround(j * 255.0 / (grid - 1));
-                    double y = tdc_lcdsim_measure_pair(&p, ch, a, b, rates[r], integration) * p.peak_cd[ch];
-                    if (noise > 0.0) {
-                        /* relative noise plus a floor of 1e-4 cd/m^2 (instrument dark noise) */
-                        y += y * noise * rnd_gauss() + 1e-4 * rnd_gauss();
+                    if (!transitions) {
+                        double y = tdc_lcdsim_measure_pair(&p, ch, a, b, rates[r], integration) * p.peak_cd[ch];
+                        fprintf(f, "%d,%c,%d,%d,%.6f\n", rates[r], chname[ch], a, b, noisy(y, noise));
+                        continue;
                     }
-                    fprintf(f, "%d,%c,%d,%d,%.6f\n", rates[r], chname[ch], a, b, y);
+                    double light, end;
+                    tdc_lcdsim_measure_transition(&p, ch, a, b, rates[r], &light, &end);
+                    for (int k = 0; k < runs; k++) {
+                        fprintf(f, "%d,%c,%d,%d,%d,%.6f,%.6f\n", rates[r], chname[ch], a, b, k,
+                                noisy(light * p.peak_cd[ch], noise), noisy(end * p.peak_cd[ch], noise));
+                    }
                 }
             }
         }
     }
     if (out_path) {
-        fclose(f);
+        if (ferror(f) | fclose(f) || rename(tmp_path, out_path) != 0) {
+            fprintf(stderr, "tdc-lcd-measure: cannot write %s\n", out_path);
+            remove(tmp_path);
+            return TDC_EXIT_FILE;
+        }
     }
     return 0;
 }

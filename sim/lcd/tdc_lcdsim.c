@@ -238,3 +238,20 @@ double tdc_lcdsim_measure_pair(const tdc_lcdsim_panel_t *p, int ch, int a, int b
     tdc_lcdsim_free(&s);
     return sum / (double)frames;
 }
+
+void tdc_lcdsim_measure_transition(const tdc_lcdsim_panel_t *p, int ch, int prev, int code, double refresh_hz,
+                                   double *light, double *end)
+{
+    /* The state of a settled drive and one exact refresh: no allocation, the
+     * same closed forms as tdc_lcdsim_frame (one sub-pixel of it). */
+    uint8_t d0[3] = {0, 0, 0}, d1[3] = {0, 0, 0};
+    double x[3], l[3];
+    uint8_t pr[3];
+    d0[ch] = (uint8_t)prev;
+    d1[ch] = (uint8_t)code;
+    tdc_lcdsim_t s = {p, 3, x, pr, 0, 1};
+    tdc_lcdsim_settle(&s, d0);
+    tdc_lcdsim_frame(&s, d1, refresh_hz, l);
+    *light = l[ch];
+    *end = p->black + (1.0 - p->black) * x[ch];
+}

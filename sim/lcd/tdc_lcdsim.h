@@ -82,4 +82,17 @@ void tdc_lcdsim_frame(tdc_lcdsim_t *s, const uint8_t *drive, double refresh_hz, 
 double tdc_lcdsim_measure_pair(const tdc_lcdsim_panel_t *p, int ch, int a, int b, double refresh_hz,
                                double integration_s);
 
+/*
+ * The transition measurement (docs/lcd.md §5, tdc-lcd-measure --transitions):
+ * channel ch settled at drive `prev`, then ONE refresh at drive `code` at
+ * refresh_hz with the panel's backlight timing.  *light = the normalised
+ * luminance delivered within that refresh (backlight-weighted mean, black
+ * included, as tdc_lcdsim_frame reports it); *end = the normalised luminance
+ * the transmittance reached at the end of the refresh would show under a lit
+ * backlight (black + (1 - black) x_end): the state the next refresh starts
+ * from.  prev == code is the settled static patch (*light == *end).
+ */
+void tdc_lcdsim_measure_transition(const tdc_lcdsim_panel_t *p, int ch, int prev, int code, double refresh_hz,
+                                   double *light, double *end);
+
 #endif /* TDC_LCDSIM_H */

@@ -3,7 +3,8 @@
  * by firmware/tdc_crc32.c (never typed by hand).
  *
  * Table 0: T0[k] = CRC register after shifting in byte k with zero state,
- * eight bit-steps of the reflected polynomial 0xEDB88320.
+ * eight bit-steps of the reflected polynomial 0xEDB88320
+ * (tdc_crc32_shift8() of firmware/tdc_crc32.h: the definition).
  * Tables 1..7 (slice-by-8): Tj[k] = (T(j-1)[k] >> 8) ^ T0[T(j-1)[k] & 0xFF],
  * i.e. byte k followed by j zero bytes.
  *
@@ -11,6 +12,8 @@
  */
 #include <stdint.h>
 #include <stdio.h>
+
+#include "tdc_crc32.h"
 
 int main(int argc, char **argv)
 {
@@ -20,11 +23,7 @@ int main(int argc, char **argv)
     }
     static uint32_t t[8][256];
     for (uint32_t k = 0; k < 256; k++) {
-        uint32_t c = k;
-        for (int b = 0; b < 8; b++) {
-            c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1u)));
-        }
-        t[0][k] = c;
+        t[0][k] = tdc_crc32_shift8(k);
     }
     for (int j = 1; j < 8; j++) {
         for (uint32_t k = 0; k < 256; k++) {

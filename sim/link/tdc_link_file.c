@@ -42,8 +42,7 @@ int tdc_link_file_write(tdc_link_file_t *lf, const uint8_t *packet, size_t n)
     return 0;
 }
 
-long tdc_link_file_read_packet(tdc_link_file_t *lf, uint8_t *buf, size_t cap, tdc_link_header_fields_t *fields,
-                               uint32_t *payload_len)
+long tdc_link_file_read_packet(tdc_link_file_t *lf, uint8_t *buf, size_t cap, tdc_link_header_t *hdr)
 {
     if (!lf->f || lf->writing || cap < TDC_LINK_HEADER_BYTES) {
         return -1;
@@ -56,21 +55,22 @@ long tdc_link_file_read_packet(tdc_link_file_t *lf, uint8_t *buf, size_t cap, td
         fprintf(stderr, "tdcs: '%s': truncated header at byte %llu\n", lf->path, (unsigned long long)lf->bytes);
         return -1;
     }
-    uint32_t crc;
-    if (!tdc_link_parse_header(buf, fields, payload_len, &crc)) {
-        fprintf(stderr, "tdcs: '%s': bad magic or header CRC at byte %llu\n", lf->path, (unsigned long long)lf->bytes);
+    const tdc_link_err_t e = tdc_link_header_unpack(buf, hdr);
+    if (e != TDC_LINK_OK) {
+        fprintf(stderr, "tdcs: '%s': bad %s at byte %llu\n", lf->path,
+                e == TDC_LINK_ERR_MAGIC ? "magic" : "header CRC", (unsigned long long)lf->bytes);
         return -1;
     }
-    if ((size_t)*payload_len > cap - TDC_LINK_HEADER_BYTES) {
+    if ((size_t)hdr->payload_len > cap - TDC_LINK_HEADER_BYTES) {
         fprintf(stderr, "tdcs: '%s': packet of %u payload bytes at byte %llu does not fit %zu\n", lf->path,
-                (unsigned)*payload_len, (unsigned long long)lf->bytes, cap);
+                (unsigned)hdr->payload_len, (unsigned long long)lf->bytes, cap);
         return -1;
     }
-    if (fread(buf + TDC_LINK_HEADER_BYTES, 1, *payload_len, lf->f) != *payload_len) {
+    if (fread(buf + TDC_LINK_HEADER_BYTES, 1, hdr->payload_len, lf->f) != hdr->payload_len) {
         fprintf(stderr, "tdcs: '%s': truncated payload at byte %llu\n", lf->path, (unsigned long long)lf->bytes);
         return -1;
     }
-    const long total = (long)(TDC_LINK_HEADER_BYTES + *payload_len);
+    const long total = (long)(TDC_LINK_HEADER_BYTES + hdr->payload_len);
     lf->bytes += (uint64_t)total;
     lf->packets++;
     return total;
@@ -108,12 +108,6 @@ int tdc_link_file_close(tdc_link_file_t *lf)
     return rc;
 }
 
-static const char *kind_name(uint32_t k)
-{
-    static const char *const n[] = {"?", "stream", "full", "reduced", "subframe", "motion", "pattern"};
-    return k <= TDC_LINK_KIND_LAST ? n[k] : "?";
-}
-
 int tdc_link_file_check(const char *path, FILE *log, int verbose, tdc_link_file_summary_t *sum)
 {
     memset(sum, 0, sizeof *sum);
@@ -122,24 +116,15 @@ int tdc_link_file_check(const char *path, FILE *log, int verbose, tdc_link_file_
         return -1;
     }
     uint8_t first[TDC_LINK_HEADER_BYTES + TDC_LINK_STREAM_HEADER_BYTES];
-    tdc_link_header_fields_t f;
-    uint32_t len, crc;
-    if (fread(first, 1, sizeof first, lf.f) != sizeof first || !tdc_link_parse_header(first, &f, &len, &crc) ||
-        f.kind != TDC_LINK_KIND_STREAM || len != TDC_LINK_STREAM_HEADER_BYTES) {
+    tdc_link_header_t f;
+    if (fread(first, 1, sizeof first, lf.f) != sizeof first || tdc_link_header_unpack(first, &f) != TDC_LINK_OK ||
+        f.kind != TDC_LINK_KIND_STREAM || f.payload_len != TDC_LINK_STREAM_HEADER_BYTES) {
         fprintf(stderr, "tdcs: '%s' does not start with a valid STREAM packet\n", path);
         tdc_link_file_close(&lf);
         return -1;
     }
-    const uint8_t *p = first + TDC_LINK_HEADER_BYTES;
     tdc_link_stream_info_t in;
-    in.flags = tdc_link_rd32(p);
-    in.r_num = (uint16_t)tdc_link_rd16(p + 4);
-    in.r_den = (uint16_t)tdc_link_rd16(p + 6);
-    in.width = (uint16_t)tdc_link_rd16(p + 8);
-    in.height = (uint16_t)tdc_link_rd16(p + 10);
-    in.eyes = p[12];
-    in.reserved = p[13];
-    in.refresh_hz = (uint16_t)tdc_link_rd16(p + 14);
+    tdc_link_stream_unpack(first + TDC_LINK_HEADER_BYTES, &in);
     sum->stream = in;
     sum->stream_id = f.stream_id;
     rewind(lf.f);
@@ -172,7 +157,7 @@ int tdc_link_file_check(const char *path, FILE *log, int verbose, tdc_link_file_
         TDCS_ALLOC(b.subframe[e], uint8_t *, TDC_LINK_SUBFRAME_BYTES(w, h));
         TDCS_ALLOC(b.motion[e], int16_t *, TDC_LINK_MOTION_COUNT(w, h) * 2u);
         TDCS_ALLOC(b.sample_motion[e], int16_t *, TDC_LINK_SAMPLE_MOTION_COUNT(w, h) * 2u);
-        TDCS_ALLOC(b.pattern[e], uint8_t *, TDC_LINK_PATTERN_BYTES(w, h));
+        TDCS_ALLOC(b.pattern[e], uint8_t *, TDC_PATTERN_BYTES(w, h));
     }
 #undef TDCS_ALLOC
     static uint8_t chunk[65536];
@@ -196,10 +181,10 @@ int tdc_link_file_check(const char *path, FILE *log, int verbose, tdc_link_file_
             pos += tdc_link_feed(dec, chunk + pos, (size_t)got - pos, &ev);
             if (ev.type == TDC_LINK_EV_ERROR && log) {
                 fprintf(log, "error %-15s frame %u kind %s eye %u detail %u (at byte ~%llu)\n",
-                        tdc_link_err_name((tdc_link_err_t)ev.error), ev.frame_index, kind_name(ev.kind), ev.eye,
+                        tdc_link_err_name((tdc_link_err_t)ev.error), ev.frame_index, tdc_link_kind_name(ev.kind), ev.eye,
                         ev.detail, (unsigned long long)(dec->cnt.bytes_in));
             } else if (ev.type == TDC_LINK_EV_PACKET && log && verbose) {
-                fprintf(log, "packet %-8s frame %u eye %u %ux%u format %u flags %u payload %u\n", kind_name(ev.kind),
+                fprintf(log, "packet %-8s frame %u eye %u %ux%u format %u flags %u payload %u\n", tdc_link_kind_name(ev.kind),
                         ev.frame_index, ev.eye, ev.width, ev.height, ev.format, ev.flags, ev.detail);
             }
         }

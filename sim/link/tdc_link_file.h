@@ -13,7 +13,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "link/tdc_link_encode.h"
+#include "tdc_link_encode.h"
 
 typedef struct {
     FILE *f;
@@ -33,9 +33,8 @@ int tdc_link_file_write(tdc_link_file_t *lf, const uint8_t *packet, size_t n);
 
 /* Reads the next packet into buf (cap bytes): returns its total size,
  * 0 at a clean end of file, -1 on a truncated/invalid packet or if it does
- * not fit (message on stderr).  *fields, *payload_len: parsed header. */
-long tdc_link_file_read_packet(tdc_link_file_t *lf, uint8_t *buf, size_t cap, tdc_link_header_fields_t *fields,
-                               uint32_t *payload_len);
+ * not fit (message on stderr).  *hdr: the unpacked header. */
+long tdc_link_file_read_packet(tdc_link_file_t *lf, uint8_t *buf, size_t cap, tdc_link_header_t *hdr);
 
 /* Reads up to cap raw bytes (for feeding a decoder in chunks); returns the
  * count, 0 at end of file, -1 on error. */

@@ -83,7 +83,7 @@ size_t tdc_link_gen_stream(uint8_t *out, size_t cap, const tdc_link_gen_opts_t *
                            size_t scratch_bytes, tdc_link_gen_packet_t *pk, uint32_t pk_cap, uint32_t *pk_count)
 {
     const tdc_link_stream_info_t *in = &o->info;
-    const uint32_t w = in->width, h = in->height, tx = TDC_LINK_TILES(w), ty = TDC_LINK_TILES(h);
+    const uint32_t w = in->width, h = in->height, tx = TDC_TILES(w), ty = TDC_TILES(h);
     const uint32_t fl = in->flags;
     uint32_t count = 0;
     size_t pos = 0;
@@ -102,7 +102,7 @@ size_t tdc_link_gen_stream(uint8_t *out, size_t cap, const tdc_link_gen_opts_t *
         for (uint32_t e = 0; e < in->eyes; e++) {
             if (fl & TDC_LINK_STREAM_SUBFRAMES) {
                 if ((f & 3u) == 0) {
-                    const size_t nb = TDC_LINK_PATTERN_BYTES(w, h);
+                    const size_t nb = TDC_PATTERN_BYTES(w, h);
                     tdc_link_gen_pattern(scratch, nb, tx * ty, f, e, o->seed);
                     if (!add(out, cap, &pos, tdc_link_encode_pattern(&enc, out + pos, cap - pos, e, f, scratch, w, h),
                              pk, pk_cap, &count, TDC_LINK_KIND_PATTERN, e, 0, f)) {
@@ -124,8 +124,8 @@ size_t tdc_link_gen_stream(uint8_t *out, size_t cap, const tdc_link_gen_opts_t *
                 }
             } else {
                 const tdc_link_kind_t k = (fl & TDC_LINK_STREAM_REDUCED) ? tdc_link_trm_kind(f, e) : TDC_LINK_KIND_FULL;
-                const uint32_t fw = k == TDC_LINK_KIND_REDUCED ? TDC_LINK_REDUCED_DIM(w, in->r_num, in->r_den) : w;
-                const uint32_t fh = k == TDC_LINK_KIND_REDUCED ? TDC_LINK_REDUCED_DIM(h, in->r_num, in->r_den) : h;
+                const uint32_t fw = k == TDC_LINK_KIND_REDUCED ? TDC_REDUCED_DIM(w, in->r_num, in->r_den) : w;
+                const uint32_t fh = k == TDC_LINK_KIND_REDUCED ? TDC_REDUCED_DIM(h, in->r_num, in->r_den) : h;
                 tdc_link_gen_rgb(scratch, fw, fh, f, e, o->seed);
                 if (!add(out, cap, &pos,
                          tdc_link_encode_frame(&enc, out + pos, cap - pos, k, e, f, o->fmt, scratch, fw, fh, fw * 3u),

@@ -45,9 +45,8 @@ int main(int argc, char **argv)
            s.stream_id, s.stream.width, s.stream.height, s.stream.eyes, (unsigned)s.stream.flags, s.stream.r_num,
            s.stream.r_den, s.stream.refresh_hz, (unsigned long long)s.bytes, s.counters.packets_ok);
     for (int k = TDC_LINK_KIND_FIRST; k <= TDC_LINK_KIND_LAST; k++) {
-        static const char *const n[] = {"", "stream", "full", "reduced", "subframe", "motion", "pattern"};
         if (s.counters.packets_by_kind[k]) {
-            printf("  %-9s %u\n", n[k], s.counters.packets_by_kind[k]);
+            printf("  %-9s %u\n", tdc_link_kind_name((uint32_t)k), s.counters.packets_by_kind[k]);
         }
     }
     for (int e = 1; e < TDC_LINK_ERR_COUNT; e++) {

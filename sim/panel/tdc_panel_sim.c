@@ -61,6 +61,29 @@ int tdc_panel_sim_init(tdc_panel_sim_t *p, tdc_panel_sim_kind_t kind, int w, int
     return 0;
 }
 
+int tdc_panel_sim_lcd_backlight(tdc_panel_sim_t *p, int strobe, double duty, double phase)
+{
+#if TDC_SIM_HAVE_LCD_PHYS
+    lcdsim_ext_t *e = p ? (lcdsim_ext_t *)p->ext : NULL;
+    if (!e || p->kind != TDC_PANEL_SIM_LCD || (strobe && !(duty > 0.0 && duty <= 1.0 && phase >= 0.0 &&
+                                                           phase + duty <= 1.0 + 1e-12))) {
+        return -1;
+    }
+    e->panel.strobe = strobe != 0;
+    e->panel.strobe_duty = strobe ? duty : 1.0;
+    e->panel.strobe_phase = strobe ? phase : 0.0;
+    snprintf(e->model, sizeof(e->model), "LCD: physical model sim/lcd (%s, %s backlight)", e->panel.name,
+             e->panel.strobe ? "strobed" : "constant");
+    return 0;
+#else
+    (void)p;
+    (void)strobe;
+    (void)duty;
+    (void)phase;
+    return -1;
+#endif
+}
+
 int tdc_panel_sim_use_lcdsim(tdc_panel_sim_t *p, const char *path, char *err, size_t errlen)
 {
 #if TDC_SIM_HAVE_LCD_PHYS

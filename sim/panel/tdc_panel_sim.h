@@ -50,6 +50,11 @@ void tdc_panel_sim_free(tdc_panel_sim_t *p);
  * the built-in fallback stays in use then. */
 int tdc_panel_sim_use_lcdsim(tdc_panel_sim_t *p, const char *path, char *err, size_t errlen);
 
+/* Overrides the physical LCD's backlight (after tdc_panel_sim_use_lcdsim):
+ * strobe 0 = hold-type (constant), 1 = strobed for duty of the refresh from
+ * phase.  0, or -1 if there is no physical LCD or the timing is invalid. */
+int tdc_panel_sim_lcd_backlight(tdc_panel_sim_t *p, int strobe, double duty, double phase);
+
 /* Duty cycle for the eye's normalisation. */
 double tdc_panel_sim_duty(const tdc_panel_sim_t *p);
 

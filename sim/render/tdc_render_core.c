@@ -154,7 +154,7 @@ tdc_render_t *tdc_render_open(const tdc_scene_t *scene, const tdc_render_config_
     r->fr[0].frame = r->fr[1].frame = -1000;
     r->mv_hist = calloc((size_t)r->W * r->H * 2, sizeof(int16_t));
     r->mv_hist_prev = calloc((size_t)r->W * r->H * 2, sizeof(int16_t));
-    r->pattern = calloc(TDC_ORDERING_BITMAP_BYTES(r->W, r->H), 1);
+    r->pattern = calloc(TDC_PATTERN_BYTES(r->W, r->H), 1);
     if (!r->mv_hist || !r->mv_hist_prev || !r->pattern) goto nomem;
     r->dev = rtcNewDevice(NULL);
     if (!r->dev) {
@@ -227,8 +227,8 @@ void tdc_render_output_size(const tdc_render_t *r, tdc_render_mode_t mode, int *
         if (*h < 1) *h = 1;
         break;
     case TDC_RENDER_SUBFRAME:
-        *w = TDC_ORDERING_TILES_X(r->W);
-        *h = TDC_ORDERING_TILES_Y(r->H);
+        *w = TDC_TILES(r->W);
+        *h = TDC_TILES(r->H);
         break;
     case TDC_RENDER_FOVEATED:
         *w = r->fov_n;
@@ -256,7 +256,7 @@ const int16_t *tdc_render_mv_history(const tdc_render_t *r) { return r->mv_hist;
 
 void tdc_render_set_pattern_bits(tdc_render_t *r, const uint8_t *bits)
 {
-    memcpy(r->pattern, bits, TDC_ORDERING_BITMAP_BYTES(r->W, r->H));
+    memcpy(r->pattern, bits, TDC_PATTERN_BYTES(r->W, r->H));
 }
 
 int tdc_r_update_motion(tdc_render_t *r, long frame)

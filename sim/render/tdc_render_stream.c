@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "link/tdc_link_encode.h"
+#include "tdc_link_encode.h"
 #include "link/tdc_link_file.h"
 #include "tdc_render_internal.h"
 

@@ -1,6 +1,6 @@
 /*
  * tdc_render_stream.h - renderer output as a .tdcs link stream (the bytes
- * the link carries), through the link encoder (sim/link/tdc_link_encode.h):
+ * the link carries), through the link encoder (firmware/tdc_link_encode.h):
  * a STREAM packet whose flags say which stages the stream uses (no motion
  * flag, and no MOTION packets, when nothing in the scene moves), then per
  * refresh: FULL or REDUCED frames + MOTION (per pixel), or SUBFRAME +

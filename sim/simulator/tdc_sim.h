@@ -69,6 +69,10 @@ typedef struct {
     int spp;              /* rays per pixel of full frames (0: 4 below 200 Hz, else 1) */
     tdc_panel_sim_kind_t panel;
     const char *panel_profile; /* firmware panel profile name (gamma, LCD model), NULL = htc-vive / first LCD */
+    int lcd_mode;         /* LCD firmware inverse (tdc_lcd_mode_t; default exact), docs/lcd.md */
+    int lcd_bits;         /* LCD history / state bits (4..8, default 8) */
+    int backlight;        /* LCD backlight: -1 as the panel's sim file, 0 hold (constant), 1 strobed */
+    double strobe_duty, strobe_phase; /* backlight 1: flash duty and phase (fractions of the refresh) */
     double persistence;   /* OLED duty */
     double pursuit_gain;
     int metric_every;     /* evaluate every k-th instant (1 = all) */

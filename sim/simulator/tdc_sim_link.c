@@ -6,9 +6,10 @@
 #include <time.h>
 
 #include "tdc_sim_features.h"
+#include "tdc_wire.h" /* packet sizes, also for the accounting without the link */
 
 #if TDC_SIM_HAVE_LINK
-#include "link/tdc_link_encode.h"
+#include "tdc_link_encode.h"
 #include "tdc_link.h"
 #endif
 
@@ -18,8 +19,6 @@ static double now_s(void)
     clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts); /* CPU time: robust to a loaded host */
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
-
-#define HDR 32u
 
 #if TDC_SIM_HAVE_LINK
 typedef struct {
@@ -82,20 +81,17 @@ int tdc_sim_link_init(tdc_sim_link_t *l, int w, int h, int eyes, uint32_t flags,
     l->r_num = r_num ? r_num : 1;
     l->r_den = r_den ? r_den : 1;
     l->hz = hz;
-    l->rw = (int)(((uint32_t)w * l->r_num + l->r_den / 2u) / l->r_den);
-    l->rh = (int)(((uint32_t)h * l->r_num + l->r_den / 2u) / l->r_den);
-    l->rw = l->rw < 1 ? 1 : l->rw;
-    l->rh = l->rh < 1 ? 1 : l->rh;
-    size_t px = (size_t)w * h, tiles = (size_t)((w + 1) / 2) * ((h + 1) / 2);
+    l->rw = (int)TDC_REDUCED_DIM(w, l->r_num, l->r_den);
+    l->rh = (int)TDC_REDUCED_DIM(h, l->r_num, l->r_den);
     /* only the buffers of the stream's packet kinds */
     int sub = (flags & TDC_SIM_LINK_SUBFRAMES) != 0, red = (flags & TDC_SIM_LINK_REDUCED) != 0;
     for (int e = 0; e < l->eyes; e++) {
-        l->full[e] = calloc(px * 3, 1);
-        l->reduced[e] = red ? calloc((size_t)l->rw * l->rh * 3, 1) : NULL;
-        l->subframe[e] = sub ? calloc(tiles * 3, 1) : NULL;
-        l->pattern[e] = sub ? calloc((tiles + 7) / 8 + 1, 1) : NULL;
-        l->motion[e] = (flags & TDC_SIM_LINK_MOTION) ? calloc(px * 2, sizeof(int16_t)) : NULL;
-        l->sample_motion[e] = sub ? calloc(tiles * 2, sizeof(int16_t)) : NULL;
+        l->full[e] = calloc(TDC_LINK_FRAME_BYTES(w, h), 1);
+        l->reduced[e] = red ? calloc(TDC_LINK_FRAME_BYTES(l->rw, l->rh), 1) : NULL;
+        l->subframe[e] = sub ? calloc(TDC_LINK_SUBFRAME_BYTES(w, h), 1) : NULL;
+        l->pattern[e] = sub ? calloc(TDC_PATTERN_BYTES(w, h) + 1, 1) : NULL;
+        l->motion[e] = (flags & TDC_SIM_LINK_MOTION) ? calloc(TDC_LINK_MOTION_COUNT(w, h), sizeof(int16_t)) : NULL;
+        l->sample_motion[e] = sub ? calloc(TDC_LINK_SAMPLE_MOTION_COUNT(w, h), sizeof(int16_t)) : NULL;
         if (!l->full[e] || (red && !l->reduced[e]) || (sub && (!l->subframe[e] || !l->pattern[e] ||
                                                               !l->sample_motion[e]))) {
             tdc_sim_link_free(l);
@@ -109,7 +105,7 @@ int tdc_sim_link_init(tdc_sim_link_t *l, int w, int h, int eyes, uint32_t flags,
         return -1;
     }
     l->priv = p;
-    p->cap = px * 4 + 4096;
+    p->cap = TDC_LINK_STAGING_BYTES(w, h) + TDC_LINK_HEADER_BYTES; /* the largest packet */
     p->pkt = malloc(p->cap);
     p->staging = malloc(TDC_LINK_STAGING_BYTES(w, h));
     if (!p->pkt || !p->staging) {
@@ -119,7 +115,7 @@ int tdc_sim_link_init(tdc_sim_link_t *l, int w, int h, int eyes, uint32_t flags,
     p->buf.staging = p->staging;
     p->buf.staging_bytes = TDC_LINK_STAGING_BYTES(w, h);
     p->buf.full_stride = (uint32_t)w * 3u;
-    p->buf.reduced_bytes = (size_t)l->rw * l->rh * 3;
+    p->buf.reduced_bytes = TDC_LINK_FRAME_BYTES(l->rw, l->rh);
     for (int e = 0; e < l->eyes; e++) {
         p->buf.full[e] = l->full[e];
         p->buf.reduced[e] = l->reduced[e];
@@ -181,7 +177,7 @@ int tdc_sim_link_stream(tdc_sim_link_t *l)
     l->encode_s += now_s() - t0;
     return feed(l, n, TDC_LINK_KIND_STREAM);
 #else
-    l->bytes += HDR + 16u;
+    l->bytes += TDC_LINK_HEADER_BYTES + TDC_LINK_STREAM_HEADER_BYTES;
     l->packets++;
     return 0;
 #endif
@@ -197,10 +193,10 @@ int tdc_sim_link_full(tdc_sim_link_t *l, int eye, uint32_t frame, const uint8_t 
     l->encode_s += now_s() - t0;
     return feed(l, n, TDC_LINK_KIND_FULL);
 #else
-    size_t bytes = (size_t)l->w * l->h * 3;
+    size_t bytes = TDC_LINK_FRAME_BYTES(l->w, l->h);
     (void)frame;
     memcpy(l->full[eye], rgb, bytes);
-    l->bytes += HDR + bytes;
+    l->bytes += TDC_LINK_HEADER_BYTES + bytes;
     l->packets++;
     return 0;
 #endif
@@ -208,7 +204,7 @@ int tdc_sim_link_full(tdc_sim_link_t *l, int eye, uint32_t frame, const uint8_t 
 
 int tdc_sim_link_reduced(tdc_sim_link_t *l, int eye, uint32_t frame, const uint8_t *rgb)
 {
-    size_t bytes = (size_t)l->rw * l->rh * 3;
+    size_t bytes = TDC_LINK_FRAME_BYTES(l->rw, l->rh);
 #if TDC_SIM_HAVE_LINK
     link_priv_t *p = l->priv;
     double t0 = now_s();
@@ -220,7 +216,7 @@ int tdc_sim_link_reduced(tdc_sim_link_t *l, int eye, uint32_t frame, const uint8
 #else
     (void)frame;
     memcpy(l->reduced[eye], rgb, bytes);
-    l->bytes += HDR + bytes;
+    l->bytes += TDC_LINK_HEADER_BYTES + bytes;
     l->packets++;
     return 0;
 #endif
@@ -229,7 +225,6 @@ int tdc_sim_link_reduced(tdc_sim_link_t *l, int eye, uint32_t frame, const uint8
 int tdc_sim_link_subframe(tdc_sim_link_t *l, int eye, uint32_t frame, const uint8_t *samples, const int16_t *mv,
                           const uint8_t *pattern)
 {
-    size_t tiles = (size_t)((l->w + 1) / 2) * ((l->h + 1) / 2);
     int rc = 0;
 #if TDC_SIM_HAVE_LINK
     link_priv_t *p = l->priv;
@@ -253,26 +248,25 @@ int tdc_sim_link_subframe(tdc_sim_link_t *l, int eye, uint32_t frame, const uint
     }
 #else
     (void)frame;
-    memcpy(l->subframe[eye], samples, tiles * 3);
-    l->bytes += HDR + tiles * 3;
+    memcpy(l->subframe[eye], samples, TDC_LINK_SUBFRAME_BYTES(l->w, l->h));
+    l->bytes += TDC_LINK_HEADER_BYTES + TDC_LINK_SUBFRAME_BYTES(l->w, l->h);
     l->packets++;
     if (pattern) {
-        memcpy(l->pattern[eye], pattern, (tiles + 7) / 8);
-        l->bytes += HDR + (tiles + 7) / 8;
+        memcpy(l->pattern[eye], pattern, TDC_PATTERN_BYTES(l->w, l->h));
+        l->bytes += TDC_LINK_HEADER_BYTES + TDC_PATTERN_BYTES(l->w, l->h);
         l->packets++;
     }
     if (mv) {
-        memcpy(l->sample_motion[eye], mv, tiles * 4);
-        l->bytes += HDR + tiles * 4;
+        memcpy(l->sample_motion[eye], mv, TDC_LINK_SAMPLE_MOTION_COUNT(l->w, l->h) * sizeof(int16_t));
+        l->bytes += TDC_LINK_HEADER_BYTES + TDC_LINK_SAMPLE_MOTION_COUNT(l->w, l->h) * sizeof(int16_t);
         l->packets++;
     }
 #endif
-    (void)tiles;
     return rc ? -1 : 0;
 }
 
 void tdc_sim_link_count_raw(tdc_sim_link_t *l, size_t payload)
 {
-    l->bytes += HDR + payload;
+    l->bytes += TDC_LINK_HEADER_BYTES + payload;
     l->packets++;
 }

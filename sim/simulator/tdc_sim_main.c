@@ -9,6 +9,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "image/tdc_image_source.h"
 #include "tdc_tool.h"
 #include "report/tdc_report.h"
 #include "simulator/tdc_sim.h"
@@ -27,6 +28,11 @@ static void usage(FILE *f)
             "                          (discs text panorama room mirror fence bigmesh) or a scene file\n"
             "      --threads N         threads of the renderer and of the simulator's own stages (source,\n"
             "                          eye, metrics; default 2); results do not depend on it\n"
+            "      --image FILE        pan/zoom/rotate across a photograph (PNG or JPEG; exact area-sampled\n"
+            "                          ground truth); pan from --speed/--angle (default 0), with\n"
+            "      --zoom Z            screen pixels per image pixel at t = 0 (default 1)\n"
+            "      --zoom-rate R       d ln(zoom)/dt in 1/s (default 0)\n"
+            "      --rotate DEG_PER_S  rotation speed (default 0)\n"
             "  -s, --scene NAME        built-in procedural scene (default pan):");
     for (int i = 0; i < TDC_SCENE_COUNT; i++) {
         fprintf(f, " %s", tdc_scene_name((tdc_scene_kind_t)i));
@@ -36,6 +42,9 @@ static void usage(FILE *f)
                "                          'asm-family' (240 Hz comparison); default trm-family\n"
                "  -p, --panel oled|lcd    panel simulation (default oled)\n"
                "      --profile NAME      firmware panel profile (default htc-vive, or the first LCD profile)\n"
+               "      --lcd-mode M        LCD inverse: gamma, exact (default), od17, od33, state, state-pair\n"
+               "      --lcd-bits N        LCD history / state bits 4..8 (default 8)\n"
+               "      --backlight B       LCD backlight: hold, strobe or strobe:DUTY:PHASE (default: the panel's)\n"
                "  -r, --refresh HZ        run clock / display refresh (default 90)\n"
                "  -g, --size WxH          resolution of one eye (default: the panel profile's, e.g.\n"
                "                          1080x1200 for htc-vive); a smaller size is a window of the panel\n"
@@ -44,7 +53,7 @@ static void usage(FILE *f)
                "      --stereo, --mono    --eyes 2, --eyes 1.  Stereo (TRM §7.2): both eyes through one\n"
                "                          stereo link stream and the firmware per eye; TRM modes send one\n"
                "                          eye full and the other reduced, swapped every frame\n"
-               "      --disparity PX      procedural stereo: the eyes' views differ by PX pixels (default 4)\n"
+               "      --disparity PX      procedural / --image stereo: the eyes' views differ by PX pixels (default 4)\n"
                "      --ipd M             renderer stereo: camera offset between the eyes in scene units\n"
                "                          (default 0.063)\n"
                "  -d, --duration S        simulated seconds (default 0.5)\n"
@@ -153,7 +162,8 @@ static int parse_num(const char *s, double lo, double hi, double *v, const char 
 int main(int argc, char **argv)
 {
     enum { O_SPEED = 256, O_ANGLE, O_CUT, O_PERS, O_PURSUIT, O_GAIN, O_EVERY, O_PPD, O_TRMS, O_GTSS, O_STRIP, O_LIST,
-           O_SPP, O_PROFILE, O_THREADS, O_EYES, O_STEREO, O_MONO, O_DISP, O_IPD, O_TIMES };
+           O_SPP, O_PROFILE, O_THREADS, O_EYES, O_STEREO, O_MONO, O_DISP, O_IPD, O_TIMES,
+           O_IMAGE, O_ZOOM, O_ZOOMRATE, O_ROTATE, O_LCDMODE, O_LCDBITS, O_BACKLIGHT };
     static const struct option opts[] = {
         {"scene", required_argument, 0, 's'},   {"mode", required_argument, 0, 'm'},
         {"panel", required_argument, 0, 'p'},   {"profile", required_argument, 0, O_PROFILE},
@@ -172,11 +182,18 @@ int main(int argc, char **argv)
         {"eyes", required_argument, 0, O_EYES}, {"stereo", no_argument, 0, O_STEREO},
         {"mono", no_argument, 0, O_MONO},       {"disparity", required_argument, 0, O_DISP},
         {"ipd", required_argument, 0, O_IPD},   {"times", no_argument, 0, O_TIMES},
+        {"image", required_argument, 0, O_IMAGE}, {"zoom", required_argument, 0, O_ZOOM},
+        {"zoom-rate", required_argument, 0, O_ZOOMRATE}, {"rotate", required_argument, 0, O_ROTATE},
+        {"lcd-mode", required_argument, 0, O_LCDMODE}, {"lcd-bits", required_argument, 0, O_LCDBITS},
+        {"backlight", required_argument, 0, O_BACKLIGHT},
         {"help", no_argument, 0, 'h'},          {0, 0, 0, 0}};
     tdc_sim_config_t cfg;
     tdc_sim_default_config(&cfg);
     const char *mode_list = "trm-family";
     const char *renderer = NULL;
+    const char *image = NULL;
+    tdc_image_motion_t im;
+    tdc_image_motion_default(&im);
     int threads = 2;
     int size_given = 0, ppd_given = 0, eyes = 0;
     tdc_sim_times_t times;
@@ -233,6 +250,24 @@ int main(int argc, char **argv)
             }
             ipd = v;
             break;
+        case O_IMAGE:
+            image = optarg;
+            break;
+        case O_ZOOM:
+            if (parse_num(optarg, 1e-3, 1e3, &im.zoom, "zoom")) {
+                return 2;
+            }
+            break;
+        case O_ZOOMRATE:
+            if (parse_num(optarg, -20, 20, &im.zoom_rate, "zoom-rate")) {
+                return 2;
+            }
+            break;
+        case O_ROTATE:
+            if (parse_num(optarg, -3600, 3600, &im.rotate_dps, "rotate")) {
+                return 2;
+            }
+            break;
         case O_THREADS:
             if (parse_num(optarg, 1, 64, &v, "threads")) {
                 return 2;
@@ -252,6 +287,43 @@ int main(int argc, char **argv)
         case O_PROFILE:
             cfg.panel_profile = optarg;
             break;
+        case O_LCDMODE: {
+            static const char *const names[] = {"gamma", "exact", "od17", "od33", "state", "state-pair"};
+            int k = -1;
+            for (int i = 0; i < 6; i++) {
+                k = strcmp(optarg, names[i]) == 0 ? i : k;
+            }
+            if (k < 0) {
+                fprintf(stderr, "tdc-sim: --lcd-mode '%s': gamma, exact, od17, od33, state or state-pair\n", optarg);
+                return 2;
+            }
+            cfg.lcd_mode = k;
+            break;
+        }
+        case O_LCDBITS:
+            if (parse_num(optarg, 4, 8, &v, "lcd-bits")) {
+                return 2;
+            }
+            cfg.lcd_bits = (int)v;
+            break;
+        case O_BACKLIGHT: {
+            double d = 0.3, ph = 0.7;
+            char extra;
+            if (strcmp(optarg, "hold") == 0) {
+                cfg.backlight = 0;
+            } else if (strcmp(optarg, "strobe") == 0 ||
+                       (sscanf(optarg, "strobe:%lf:%lf%c", &d, &ph, &extra) == 2 && d > 0.0 && d <= 1.0 &&
+                        ph >= 0.0 && ph + d <= 1.0)) {
+                cfg.backlight = 1;
+                cfg.strobe_duty = d;
+                cfg.strobe_phase = ph;
+            } else {
+                fprintf(stderr, "tdc-sim: --backlight '%s': hold, strobe or strobe:DUTY:PHASE (DUTY + PHASE <= 1)\n",
+                        optarg);
+                return 2;
+            }
+            break;
+        }
         case 'r':
             if (parse_num(optarg, 1, 1000, &v, "refresh")) {
                 return 2;
@@ -430,14 +502,52 @@ int main(int argc, char **argv)
         return 2;
     }
     if (!cfg.label) {
-        cfg.label = renderer ? renderer : tdc_scene_name(cfg.scene.kind);
+        cfg.label = renderer ? renderer : (image ? image : tdc_scene_name(cfg.scene.kind));
     }
     if (cfg.outdir && mkdir_p(cfg.outdir)) {
         fprintf(stderr, "tdc-sim: cannot create '%s': %s\n", cfg.outdir, strerror(errno));
         return 1;
     }
     tdc_source_t *src = NULL;
-    if (renderer) {
+    if (image && renderer) {
+        fprintf(stderr, "tdc-sim: --image and --renderer exclude each other\n");
+        return 2;
+    }
+    if (image) {
+        char err[512];
+        if (cfg.scene.speed < 0) {
+            cfg.scene.speed = 0.0;
+        }
+        src = tdc_image_source_open(image, &cfg.scene, &im, err, sizeof(err));
+        if (!src) {
+            fprintf(stderr, "tdc-sim: --image %s\n", err);
+            return 1;
+        }
+        if (cfg.eyes == 2) {
+            /* stereo: as the procedural scenes, the eyes see the photograph
+             * shifted by -+disparity / 2 screen pixels at t = 0, i.e. the
+             * image point at the screen centre c0 moves by +-disparity / (2 z0) */
+            double A[4], b[2];
+            tdc_image_source_map(src, 0.0, A, b);
+            double c0x = A[0] * 0.5 * cfg.width + A[1] * 0.5 * cfg.height + b[0];
+            double c0y = A[2] * 0.5 * cfg.width + A[3] * 0.5 * cfg.height + b[1];
+            src->destroy(src);
+            tdc_image_motion_t eye = im;
+            eye.cy = c0y;
+            eye.cx = c0x + 0.5 * disparity / im.zoom;
+            src = tdc_image_source_open(image, &cfg.scene, &eye, err, sizeof(err));
+            eye.cx = c0x - 0.5 * disparity / im.zoom;
+            cfg.right = src ? tdc_image_source_open(image, &cfg.scene, &eye, err, sizeof(err)) : NULL;
+            if (!cfg.right) {
+                fprintf(stderr, "tdc-sim: --image %s\n", err);
+                if (src) {
+                    src->destroy(src);
+                }
+                return 1;
+            }
+        }
+        cfg.scene.speed = tdc_image_source_max_speed(src, cfg.duration_s); /* evaluation margin */
+    } else if (renderer) {
         char err[256];
         for (int e = 0; e < cfg.eyes; e++) {
             tdc_source_t *s = tdc_sim_render_source(renderer, cfg.width, cfg.height, cfg.refresh_hz,

@@ -66,6 +66,11 @@ void tdc_sim_default_config(tdc_sim_config_t *c)
     c->refresh_hz = 90;
     c->duration_s = 0.5;
     c->panel = TDC_PANEL_SIM_OLED;
+    c->lcd_mode = 1; /* TDC_LCD_MODE_EXACT, as before the mode was selectable */
+    c->lcd_bits = 8;
+    c->backlight = -1;
+    c->strobe_duty = 0.3;
+    c->strobe_phase = 0.7;
     c->persistence = -1.0;
     c->pursuit_gain = 1.0;
     c->metric_every = 1;

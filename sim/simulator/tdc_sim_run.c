@@ -548,7 +548,7 @@ int tdc_sim_run(const tdc_sim_config_t *cfg, tdc_source_t *src, const tdc_mode_d
             results[i].evals++;
         }
         prev_te = te;
-        if (cfg->progress && (j % 16 == 0 || j == nevals - 1)) {
+        if (cfg->progress && (j % ((nevals + 99) / 100) == 0 || j == nevals - 1)) {
             progress((double)(j + 1) / nevals, cfg->label);
         }
     }

@@ -26,7 +26,9 @@ static int lcd_init(sim_mode_t *m, const tdc_sim_setup_t *s)
 {
 #if TDC_SIM_HAVE_LCD_FW
     if (s->lcd_panel) {
-        tdc_lcd_config_t lc = {(uint16_t)m->w, (uint16_t)m->h, (uint16_t)m->hz, TDC_LCD_MODE_EXACT, 8};
+        const tdc_sim_config_t *cfg = s->cfg;
+        tdc_lcd_config_t lc = {(uint16_t)m->w, (uint16_t)m->h, (uint16_t)m->hz, (uint8_t)cfg->lcd_mode,
+                               (uint8_t)cfg->lcd_bits};
         size_t n = tdc_lcd_get_size(&lc);
         lcd_state_t *st = calloc(1, sizeof(*st));
         if (!st) {
@@ -34,11 +36,18 @@ static int lcd_init(sim_mode_t *m, const tdc_sim_setup_t *s)
         }
         st->mem = n ? malloc(n) : NULL;
         if (st->mem && tdc_lcd_init(&st->lcd, &lc, s->lcd_panel, st->mem, n) == TDC_OK) {
+            static const char *const names[] = {"gamma", "exact", "od17", "od33", "state", "state-pair"};
+            char b[96];
+            snprintf(b, sizeof(b), "LCD inverse %s, %d-bit history", names[cfg->lcd_mode % 6], cfg->lcd_bits);
+            tdc_sim_note(m, b);
             m->drive = st;
         } else {
+            char b[160];
             free(st->mem);
             free(st);
-            tdc_sim_note(m, "LCD firmware stage refused the panel/rate: drive = wanted code");
+            snprintf(b, sizeof(b), "LCD firmware stage refused mode %d at %d Hz on %s: drive = wanted code",
+                     cfg->lcd_mode, m->hz, s->lcd_panel->name);
+            tdc_sim_note(m, b);
         }
     } else {
         tdc_sim_note(m, "no LCD panel profile: LCD firmware stage skipped, drive = wanted code");
@@ -50,6 +59,9 @@ static int lcd_init(sim_mode_t *m, const tdc_sim_setup_t *s)
     snprintf(path, sizeof(path), "sim/lcd/panels/%s.lcdsim", s->lcd_panel ? s->lcd_panel->name : "pg279q");
     if (tdc_panel_sim_use_lcdsim(&m->panel, path, err, sizeof(err)) != 0) {
         tdc_sim_note(m, err);
+    } else if (s->cfg->backlight >= 0 && tdc_panel_sim_lcd_backlight(&m->panel, s->cfg->backlight,
+                                                                     s->cfg->strobe_duty, s->cfg->strobe_phase) != 0) {
+        tdc_sim_note(m, "LCD backlight timing refused: the panel's own is used");
     }
     tdc_sim_note(m, m->panel.model);
     return 0;

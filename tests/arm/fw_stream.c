@@ -1,7 +1,7 @@
 /*
  * fw_stream.c - writes the link streams the firmware frame loop is tested
  * with (on the host double and on the emulated boards), through the host
- * link encoder (sim/link/tdc_link_encode.h).
+ * link encoder (firmware/tdc_link_encode.h).
  *
  * Usage: fw_stream MODE WIDTH HEIGHT EYES FRAMES OUT.tdcs [EXPECTED]
  *   plain      full RGB888 frames every refresh; frame 1 of eye 0 arrives
@@ -80,14 +80,14 @@ int main(int argc, char **argv)
     tdc_link_encoder_init(&enc, 7, &info);
 
     const uint32_t tx = (w + 1) / 2, ty = (h + 1) / 2;
-    const uint32_t rw = TDC_LINK_REDUCED_DIM(w, 1u, 2u), rh = TDC_LINK_REDUCED_DIM(h, 1u, 2u);
+    const uint32_t rw = TDC_REDUCED_DIM(w, 1u, 2u), rh = TDC_REDUCED_DIM(h, 1u, 2u);
     g_cap = (size_t)w * h * 4u + 1024u;
     g_pkt = malloc(g_cap);
     uint8_t *rgb = malloc((size_t)w * h * 3u);
     uint8_t *red = malloc((size_t)rw * rh * 3u);
     uint8_t *samples = malloc((size_t)tx * ty * 3u);
     int16_t *mv = malloc((size_t)tx * ty * 2u * sizeof *mv);
-    uint8_t *bits = calloc(TDC_LINK_PATTERN_BYTES(w, h) + 1u, 1);
+    uint8_t *bits = calloc(TDC_PATTERN_BYTES(w, h) + 1u, 1);
     g_out = fopen(argv[6], "wb");
     if (!g_pkt || !rgb || !red || !samples || !mv || !bits || !g_out) {
         fprintf(stderr, "fw_stream: out of memory or cannot create %s\n", argv[6]);

@@ -12,6 +12,7 @@
 #include "golden.h"
 #include "golden_list.h"
 #include "tdc_semihost.h"
+#include "tdc_text.h"
 
 /* Lines are batched: one semihosting trap per 2 KiB instead of per line. */
 static char g_out[2048];
@@ -38,18 +39,8 @@ static void write_semihost(tdc_golden_ctx_t *ctx, const char *line)
 
 static void put_u32(uint32_t v)
 {
-    char dec[11];
-    int n = 0;
-    do {
-        dec[n++] = (char)('0' + v % 10u);
-        v /= 10u;
-    } while (v);
     char s[12];
-    int k = 0;
-    while (n) {
-        s[k++] = dec[--n];
-    }
-    s[k] = 0;
+    *tdc_text_u32(s, s + sizeof s - 1, v) = 0;
     tdc_semihost_puts(2, s);
 }
 

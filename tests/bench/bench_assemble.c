@@ -65,7 +65,7 @@ static void make_stream(stream_t *s, tdc_scene_kind_t kind, int32_t vx, int32_t 
     for (uint32_t f = 0; f < 8; f++) {
         s->samples[f] = malloc(tiles * 3);
         s->mvs[f] = malloc(tiles * 4);
-        s->bits[f] = malloc((size_t)TDC_ORDERING_BITMAP_BYTES(BW, BH));
+        s->bits[f] = malloc((size_t)TDC_PATTERN_BYTES(BW, BH));
         tdc_scene_subframe(&sc, f, s->samples[f], s->mvs[f], s->bits[f]);
     }
     tdc_scene_free(&sc);

@@ -115,8 +115,8 @@ static void throughput(void)
     fill(lp, (size_t)p.lp_w * p.lp_h * 3, 1);
     fill(dk, W * H * 3, 2);
     for (size_t k = 0; k < (size_t)p.lp_w * p.lp_h; k++) {
-        mv[2 * k] = 24;
-        mv[2 * k + 1] = -8;
+        mv[2 * k] = -24; /* backward MVs of a (1.5, -0.5) px pan */
+        mv[2 * k + 1] = 8;
     }
     const double lps = (double)(p.lp_w - fg.u0) * p.lp_h / (W * H), dks = tdc_fov_disk_pixels(&fg) / (double)(W * H);
     printf("\nremap throughput, %dx%d (one eye), one core; memcpy bandwidth %.2f GB/s (read + write)\n", W, H,

@@ -16,7 +16,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "link/tdc_link_encode.h"
+#include "tdc_link_encode.h"
 #include "link/tdc_link_gen.h"
 #include "tdc_crc32.h"
 #include "tdc_link.h"
@@ -41,8 +41,10 @@ static double now_s(void)
 
 static void set_frame_index(uint8_t *p, uint32_t f)
 {
-    tdc_link_wr32(p + TDC_LINK_OFF_FRAME, f);
-    tdc_link_wr32(p + TDC_LINK_OFF_HEADER_CRC, tdc_crc32(p, TDC_LINK_OFF_HEADER_CRC));
+    tdc_link_header_t h;
+    (void)tdc_link_header_unpack(p, &h); /* our own packet: only the frame index changes */
+    h.frame_index = f;
+    tdc_link_header_pack(p, &h);
 }
 
 int main(int argc, char **argv)

@@ -25,7 +25,7 @@
 #include <string.h>
 
 #include "../../firmware/board/tdc_main.c"
-#include "link/tdc_link_encode.h"
+#include "tdc_link_encode.h"
 
 static const uint8_t *g_in;
 static size_t g_in_len, g_in_pos;

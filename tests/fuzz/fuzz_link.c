@@ -35,7 +35,7 @@ static uint8_t reduced[2][TDC_LINK_FRAME_BYTES(FW, FH)];
 static uint8_t subframe[2][TDC_LINK_SUBFRAME_BYTES(FW, FH)];
 static int16_t motion[2][TDC_LINK_MOTION_COUNT(FW, FH)];
 static int16_t sample_motion[2][TDC_LINK_SAMPLE_MOTION_COUNT(FW, FH)];
-static uint8_t pattern[2][TDC_LINK_PATTERN_BYTES(FW, FH)];
+static uint8_t pattern[2][TDC_PATTERN_BYTES(FW, FH)];
 static uint8_t work[1 << 20];
 
 /* Every pipeline buffer, by slot (kind, or KIND_LAST + 1 for per-sample
@@ -77,15 +77,18 @@ static void repair_crcs(uint8_t *p, size_t n)
 {
     size_t o = 0;
     while (o + TDC_LINK_HEADER_BYTES <= n) {
-        if (tdc_link_rd32(p + o) != TDC_LINK_MAGIC) {
+        tdc_link_header_t h;
+        if (tdc_link_header_unpack(p + o, &h) == TDC_LINK_ERR_MAGIC) {
             o++;
             continue;
         }
-        const uint32_t len = tdc_link_rd32(p + o + TDC_LINK_OFF_PAYLOAD_LEN);
+        /* Every header byte is a field, so unpack + pack rewrites the same
+         * bytes with a valid header CRC. */
+        const uint32_t len = h.payload_len;
         if (len <= n - o - TDC_LINK_HEADER_BYTES) {
-            tdc_link_wr32(p + o + TDC_LINK_OFF_PAYLOAD_CRC, tdc_crc32(p + o + TDC_LINK_HEADER_BYTES, len));
+            h.payload_crc = tdc_crc32(p + o + TDC_LINK_HEADER_BYTES, len);
         }
-        tdc_link_wr32(p + o + TDC_LINK_OFF_HEADER_CRC, tdc_crc32(p + o, TDC_LINK_OFF_HEADER_CRC));
+        tdc_link_header_pack(p + o, &h);
         o += len <= n - o - TDC_LINK_HEADER_BYTES ? TDC_LINK_HEADER_BYTES + len : 1u;
     }
 }

@@ -38,12 +38,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (tdc_link_file_open(&lf, path) == 0) {
         uint64_t total = 0;
         for (;;) {
-            tdc_link_header_fields_t f;
-            uint32_t plen = 0;
-            long n = tdc_link_file_read_packet(&lf, buf, sizeof buf, &f, &plen);
+            tdc_link_header_t f;
+            long n = tdc_link_file_read_packet(&lf, buf, sizeof buf, &f);
             if (n <= 0)
                 break;
-            if ((size_t)n > sizeof buf || plen > (uint32_t)n)
+            if ((size_t)n > sizeof buf || f.payload_len > (uint32_t)n)
                 abort();
             total += (uint64_t)n;
             if (total > size)

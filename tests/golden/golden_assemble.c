@@ -19,7 +19,7 @@
 static uint64_t g_arena[TDC_ASM_MEM_BYTES(GW_MAX, GH_MAX) / 8u + 1u];
 static uint8_t g_frame[GW_MAX * GH_MAX * 3];
 static int16_t g_mvbuf[GW_MAX * GH_MAX * 2];
-static uint8_t g_pattern[TDC_ORDERING_BITMAP_BYTES(GW_MAX, GH_MAX)];
+static uint8_t g_pattern[TDC_PATTERN_BYTES(GW_MAX, GH_MAX)];
 static uint8_t g_samples[GT_MAX * 3];
 static int16_t g_mvs[GT_MAX * 2];
 static tdc_asm_t g_st;
@@ -60,7 +60,7 @@ static void run_vector(tdc_golden_ctx_t *ctx, const asm_vector_t *v)
 {
     tdc_asm_config_t cfg = {v->w, v->h};
     const uint32_t tx_n = (v->w + 1u) / 2u, ty_n = (v->h + 1u) / 2u;
-    const uint32_t bm = TDC_ORDERING_BITMAP_BYTES(v->w, v->h);
+    const uint32_t bm = TDC_PATTERN_BYTES(v->w, v->h);
     uint32_t rng = 0x2545F491u;
     if (tdc_asm_init(&g_st, &cfg, g_arena, sizeof(g_arena)) != TDC_OK) return;
     for (uint32_t i = 0; i < (uint32_t)v->w * v->h * 2u; i++) g_mvbuf[i] = 0;

@@ -2,6 +2,8 @@
  * (freestanding: no stdio, so the ARM runner uses it unchanged). */
 #include "golden.h"
 
+#include "tdc_text.h"
+
 uint64_t tdc_fnv1a64(uint64_t h, const void *data, size_t n)
 {
     const uint8_t *p = (const uint8_t *)data;
@@ -12,38 +14,18 @@ uint64_t tdc_fnv1a64(uint64_t h, const void *data, size_t n)
     return h;
 }
 
-/* Appends s to line[*n], leaving room for the frame number and checksum. */
-static void put_str(char *line, size_t *n, size_t cap, const char *s)
-{
-    while (*s && *n < cap) {
-        line[(*n)++] = *s++;
-    }
-}
-
 void tdc_golden_emit(tdc_golden_ctx_t *ctx, const char *stage, const char *vector, uint32_t frame,
                      uint64_t checksum)
 {
     char line[160];
-    size_t len = 0;
-    const size_t cap = sizeof line - 32; /* room for frame + hex + newline */
-    put_str(line, &len, cap, stage);
-    put_str(line, &len, cap, "/");
-    put_str(line, &len, cap, vector);
-    char *o = line + len;
+    char *name_end = line + sizeof line - 32; /* room for frame + hex + newline */
+    char *o = tdc_text_str(line, name_end, stage);
+    o = tdc_text_str(o, name_end, "/");
+    o = tdc_text_str(o, name_end, vector);
     *o++ = ' ';
-    char dec[12];
-    int n = 0;
-    do {
-        dec[n++] = (char)('0' + frame % 10u);
-        frame /= 10u;
-    } while (frame && n < 11);
-    while (n) {
-        *o++ = dec[--n];
-    }
+    o = tdc_text_u32(o, NULL, frame);
     *o++ = ' ';
-    for (int i = 15; i >= 0; i--) {
-        *o++ = "0123456789abcdef"[(checksum >> (4 * i)) & 15u];
-    }
+    o = tdc_text_hex(o, NULL, checksum, 16u);
     *o++ = '\n';
     *o = 0;
     ctx->lines++;
@@ -52,22 +34,10 @@ void tdc_golden_emit(tdc_golden_ctx_t *ctx, const char *stage, const char *vecto
 
 char *tdc_golden_put_str(char *o, const char *s)
 {
-    while (*s) {
-        *o++ = *s++;
-    }
-    return o;
+    return tdc_text_str(o, NULL, s);
 }
 
 char *tdc_golden_put_u32(char *o, uint32_t v)
 {
-    char d[12];
-    int n = 0;
-    do {
-        d[n++] = (char)('0' + v % 10u);
-        v /= 10u;
-    } while (v);
-    while (n) {
-        *o++ = d[--n];
-    }
-    return o;
+    return tdc_text_u32(o, NULL, v);
 }

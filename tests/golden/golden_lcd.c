@@ -31,7 +31,7 @@ typedef struct {
 
 static void run_vector(tdc_golden_ctx_t *ctx, const lcd_vector_t *v)
 {
-    static const char *const mode_name[4] = {"gamma", "exact", "od17", "od33"};
+    static const char *const mode_name[6] = {"gamma", "exact", "od17", "od33", "state", "pair"};
     char name[80];
     char *o = tdc_golden_put_str(name, tdc_content_name(v->content));
     *o++ = '-';
@@ -39,7 +39,7 @@ static void run_vector(tdc_golden_ctx_t *ctx, const lcd_vector_t *v)
     *o++ = '-';
     o = tdc_golden_put_u32(o, v->rate);
     o = tdc_golden_put_str(o, "hz-");
-    o = tdc_golden_put_str(o, mode_name[v->mode & 3u]);
+    o = tdc_golden_put_str(o, mode_name[v->mode < 6u ? v->mode : 0u]);
     o = tdc_golden_put_str(o, "-b");
     o = tdc_golden_put_u32(o, v->bits);
     *o = 0;
@@ -77,7 +77,10 @@ void tdc_golden_lcd(tdc_golden_ctx_t *ctx)
     static const struct {
         uint8_t mode, bits;
     } modes[] = {{TDC_LCD_MODE_EXACT, 8}, {TDC_LCD_MODE_TABLE17, 8}, {TDC_LCD_MODE_TABLE33, 8},
-                 {TDC_LCD_MODE_EXACT, 6}, {TDC_LCD_MODE_TABLE33, 5}};
+                 {TDC_LCD_MODE_EXACT, 6}, {TDC_LCD_MODE_TABLE33, 5},
+                 /* stateful measured tables (issue 18): new vectors, the ones above unchanged */
+                 {TDC_LCD_MODE_STATEFUL, 8}, {TDC_LCD_MODE_STATEFUL, 6}, {TDC_LCD_MODE_STATEFUL_PAIR, 8},
+                 {TDC_LCD_MODE_STATEFUL_PAIR, 5}};
     static const struct {
         const tdc_panel_t *panel;
         uint16_t rate;

@@ -1,7 +1,7 @@
 /*
  * golden_link.c - bit-exact golden vectors of the link decoder: synthetic
- * streams (sim/link/tdc_link_gen.c, encoded by sim/link/tdc_link_encode.c,
- * both integer-only and included here so the ARM runner has them too) in
+ * streams (sim/link/tdc_link_gen.c, integer-only and included here so the
+ * ARM runner has it too, encoded by firmware/tdc_link_encode.c) in
  * every pixel format, for TRM streams (full/reduced, motion) and
  * tile-ordered subframe streams (pattern, subframes, per-sample motion),
  * plus one damaged stream.  One checksum per accepted packet: FNV-1a 64 of
@@ -11,7 +11,6 @@
  */
 #include "golden.h"
 
-#include "../../sim/link/tdc_link_encode.c"
 #include "../../sim/link/tdc_link_gen.c"
 
 #define LW 45
@@ -23,7 +22,7 @@ static uint8_t g_reduced[2][TDC_LINK_FRAME_BYTES(LW, LH)];
 static uint8_t g_sub[2][TDC_LINK_SUBFRAME_BYTES(LW, LH)];
 static int16_t g_mv[2][TDC_LINK_MOTION_COUNT(LW, LH)];
 static int16_t g_smv[2][TDC_LINK_SAMPLE_MOTION_COUNT(LW, LH)];
-static uint8_t g_pat[2][TDC_LINK_PATTERN_BYTES(LW, LH)];
+static uint8_t g_pat[2][TDC_PATTERN_BYTES(LW, LH)];
 static uint32_t g_scratch[LW * LH];
 static uint8_t g_stream[72 * 1024];
 static tdc_link_decoder_t g_dec;
@@ -90,7 +89,7 @@ static void run(tdc_golden_ctx_t *ctx, const char *vector, size_t n, size_t chun
         } else if (ev.type == TDC_LINK_EV_PACKET) {
             const uint32_t e = ev.eye;
             uint64_t h = fold_u32(fold_u32(fold_u32(pending, ev.kind), ev.eye), ev.frame_index);
-            const uint32_t tiles = TDC_LINK_TILES(LW) * TDC_LINK_TILES(LH);
+            const uint32_t tiles = TDC_TILES(LW) * TDC_TILES(LH);
             switch (ev.kind) {
             case TDC_LINK_KIND_FULL:
                 h = tdc_fnv1a64(h, g_full[e], sizeof g_full[e]);

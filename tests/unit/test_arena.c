@@ -231,13 +231,16 @@ static const tdc_panel_t *lcd_panel(void)
     return NULL;
 }
 
-static void lcd_one(const tdc_panel_t *panel, uint32_t w, uint32_t h, unsigned bits, int init, int frames)
+static void lcd_one_mode(const tdc_panel_t *panel, uint32_t w, uint32_t h, unsigned bits, int init, int frames,
+                         tdc_lcd_mode_t mode)
 {
     const tdc_lcd_config_t c = {(uint16_t)w, (uint16_t)h, panel && panel->lcd ? panel->lcd->rate[0].rate_hz : 0,
-                                TDC_LCD_MODE_EXACT, (uint8_t)bits};
+                                (uint8_t)mode, (uint8_t)bits};
     const size_t n = tdc_lcd_get_size(&c), bound = TDC_LCD_MEM_BYTES((size_t)w, (size_t)h);
-    if (n == 0 || n % TDC_ARENA_ALIGN != 0 || n > bound || (bits == 8u && n != bound)) {
-        fail_msg("LCD %ux%u %u bits: get_size %zu, bound %zu", w, h, bits, n, bound);
+    const size_t mode_bound = TDC_LCD_MEM_BYTES_MODE((size_t)w, (size_t)h, mode);
+    if (n == 0 || n % TDC_ARENA_ALIGN != 0 || n > bound || n > mode_bound || (bits == 8u && n != mode_bound)) {
+        fail_msg("LCD %ux%u %u bits mode %d: get_size %zu, bound %zu (mode %zu)", w, h, bits, (int)mode, n, bound,
+                 mode_bound);
     }
     if (!init) {
         return;
@@ -249,7 +252,7 @@ static void lcd_one(const tdc_panel_t *panel, uint32_t w, uint32_t h, unsigned b
     assert_int_equal(tdc_lcd_init(st, &c, panel, a.mem, n - 1), TDC_ERR_SIZE);
     assert_int_equal(tdc_lcd_init(st, &c, panel, a.mem, n), TDC_OK);
     walk_t wk = {a.mem, 0, "LCD"};
-    TDC_LCD_ARENA(WALK, c.width, c.height, c.prev_bits)
+    TDC_LCD_ARENA(WALK, c.width, c.height, c.prev_bits, c.mode)
     walk_end(&wk, n);
     arena_check_guard(&a, "LCD init");
     if (frames) {
@@ -268,6 +271,22 @@ static void lcd_one(const tdc_panel_t *panel, uint32_t w, uint32_t h, unsigned b
         free(res);
     }
     free(a.mem);
+}
+
+/* Every layout: exact/table (two history buffers), stateful, pair mode. */
+static void lcd_one(const tdc_panel_t *panel, uint32_t w, uint32_t h, unsigned bits, int init, int frames)
+{
+    lcd_one_mode(panel, w, h, bits, init, frames, TDC_LCD_MODE_EXACT);
+    const int st = panel && panel->lcd && panel->lcd->rate[0].st_n;
+    lcd_one_mode(panel, w, h, bits, init && st, frames, TDC_LCD_MODE_STATEFUL);
+    lcd_one_mode(panel, w, h, bits, init && st, frames, TDC_LCD_MODE_STATEFUL_PAIR);
+    /* the bound holds the larger of the two: equality for one of them at 8 bits */
+    if (bits == 8u) {
+        const tdc_lcd_config_t a = {(uint16_t)w, (uint16_t)h, 144, TDC_LCD_MODE_EXACT, 8},
+                               b = {(uint16_t)w, (uint16_t)h, 144, TDC_LCD_MODE_STATEFUL_PAIR, 8};
+        const size_t na = tdc_lcd_get_size(&a), nb = tdc_lcd_get_size(&b);
+        assert_true(TDC_LCD_MEM_BYTES((size_t)w, (size_t)h) == (na > nb ? na : nb));
+    }
 }
 
 static void test_lcd_arena(void **state)
@@ -314,7 +333,7 @@ static void asm_one(uint32_t w, uint32_t h, int init, int frames)
     assert_int_equal(tdc_asm_init(st, &c, a.mem, n), TDC_OK);
     walk_t wk = {a.mem, 0, "assembly"};
     TDC_ASM_ARENA(WALK, c.width, c.height, (size_t)st->tiles_x * st->tiles_y,
-                  TDC_ORDERING_BITMAP_BYTES(c.width, c.height))
+                  TDC_PATTERN_BYTES(c.width, c.height))
     walk_end(&wk, n);
     arena_check_guard(&a, "assembly init");
     if (frames) {

@@ -18,6 +18,7 @@
 
 #include "ref_assemble.h"
 #include "tdc_assemble.h"
+#include "tdc_math.h"
 
 #define CANARY 64
 
@@ -39,7 +40,7 @@ static void rig_open(rig_t *r, int w, int h, tdc_scene_kind_t kind, int32_t vx, 
     r->w = w, r->h = h;
     r->n = tdc_asm_get_size(&cfg);
     assert_true(r->n > 0 && r->n <= TDC_ASM_MEM_BYTES(w, h));
-    r->arena = aligned_alloc(8, (r->n + CANARY + 7) & ~(size_t)7);
+    r->arena = aligned_alloc(TDC_ARENA_ALIGN, TDC_ARENA_ROUND(r->n + CANARY));
     assert_non_null(r->arena);
     memset(r->arena + r->n, 0x5A, CANARY);
     assert_int_equal(tdc_asm_init(&r->st, &cfg, r->arena, r->n), TDC_OK);
@@ -48,7 +49,7 @@ static void rig_open(rig_t *r, int w, int h, tdc_scene_kind_t kind, int32_t vx, 
     size_t tiles = (size_t)((w + 1) / 2) * ((h + 1) / 2);
     r->samples = malloc(tiles * 3);
     r->mvs = malloc(tiles * 4);
-    r->bits = calloc((size_t)TDC_ORDERING_BITMAP_BYTES(w, h), 1);
+    r->bits = calloc((size_t)TDC_PATTERN_BYTES(w, h), 1);
 }
 
 static void rig_close(rig_t *r)
@@ -78,38 +79,6 @@ static int rig_frame(rig_t *r, uint32_t f, int drop, int with_bits)
         if (d > mx) mx = d;
     }
     return mx;
-}
-
-static void test_mean_exhaustive(void **state)
-{
-    (void)state;
-    for (unsigned n = 1; n <= 4; n++)
-        for (uint32_t s = 0; s <= 255u * n; s++) assert_int_equal(tdc_asm_mean_u8(s, n), (2 * s + n) / (2 * n));
-    assert_int_equal(tdc_asm_mean_u8(10, 0), 0);
-    assert_int_equal(tdc_asm_mean_u8(10, 5), 0);
-}
-
-static void test_sqrt_q8(void **state)
-{
-    (void)state;
-    double maxerr = 0;
-    for (uint32_t d = 0; d < (1u << 20); d++) {
-        double e = fabs((double)tdc_asm_sqrt_q8(d) - 256.0 * sqrt((double)d));
-        if (e > maxerr) maxerr = e;
-    }
-    printf("sqrt_q8: max error %.3f (Q8) over all d < 2^20\n", maxerr);
-    assert_true(maxerr <= 12.0); /* < 0.05 code value in the clamp edge */
-}
-
-static void test_div_small(void **state)
-{
-    (void)state;
-    for (uint32_t n = 1; n <= 8; n++)
-        for (uint32_t x = 0; x < (1u << 21); x++)
-            if (tdc_asm_div_small(x, n) != x / n) fail_msg("div_small(%u, %u) = %u", x, n, tdc_asm_div_small(x, n));
-    assert_int_equal(tdc_asm_div_small((1u << 29) - 1u, 7), ((1u << 29) - 1u) / 7);
-    assert_int_equal(tdc_asm_div_small(5, 0), 0);
-    assert_int_equal(tdc_asm_div_small(5, 9), 0);
 }
 
 /* Static scene: after 16 frames every pixel is exactly the mean (round half
@@ -194,7 +163,7 @@ static void test_orderings_eq4_eq5(void **state)
 static void test_diagonal_hashed(void **state)
 {
     (void)state;
-    uint8_t first[2][TDC_ORDERING_BITMAP_BYTES(40, 30)];
+    uint8_t first[2][TDC_PATTERN_BYTES(40, 30)];
     for (int run = 0; run < 2; run++) {
         rig_t r;
         rig_open(&r, 40, 30, TDC_SCENE_PAN, 40, -37); /* 42.8 deg, in the band */
@@ -206,7 +175,7 @@ static void test_diagonal_hashed(void **state)
                 int bow = 0;
                 for (uint32_t ty = 0; ty < 15; ty++)
                     for (uint32_t tx = 0; tx < 20; tx++) {
-                        tdc_ordering_t want = (tdc_ordering_hash(tx, ty, f + 1) >> 31) ? TDC_ORDER_BOWTIE : TDC_ORDER_HOURGLASS;
+                        tdc_ordering_t want = (tdc_hash3(tx, ty, f + 1) >> 31) ? TDC_ORDER_BOWTIE : TDC_ORDER_HOURGLASS;
                         assert_int_equal(tdc_ordering_get(p, ty * 20 + tx), want);
                         bow += want == TDC_ORDER_BOWTIE;
                         if (f == 7) changed += tdc_ordering_get(first[run], ty * 20 + tx) != want;
@@ -324,7 +293,7 @@ static void test_mv_extremes(void **state)
         rig_close(&r);
     }
     assert_int_equal(tdc_ordering_decide(-32768, -32768, TDC_ORDER_HOURGLASS, 0, 0, 0),
-                     (tdc_ordering_hash(0, 0, 0) >> 31) ? TDC_ORDER_BOWTIE : TDC_ORDER_HOURGLASS);
+                     (tdc_hash3(0, 0, 0) >> 31) ? TDC_ORDER_BOWTIE : TDC_ORDER_HOURGLASS);
 }
 
 /* 1-px-wide lines moving across a static background: every traced line
@@ -529,9 +498,6 @@ static void test_dynamic_counters(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_mean_exhaustive),
-        cmocka_unit_test(test_sqrt_q8),
-        cmocka_unit_test(test_div_small),
         cmocka_unit_test(test_static_converges_in_16),
         cmocka_unit_test(test_orderings_eq4_eq5),
         cmocka_unit_test(test_diagonal_hashed),

@@ -38,7 +38,7 @@ static void test_long_pan(void **state)
     tdc_asm_t st;
     assert_int_equal(tdc_asm_init(&st, &cfg, arena, n), TDC_OK);
     tdc_ref_asm_t *ref = tdc_ref_asm_new(W, H);
-    uint8_t samples[(W / 2) * (H / 2) * 3], bits[TDC_ORDERING_BITMAP_BYTES(W, H)];
+    uint8_t samples[(W / 2) * (H / 2) * 3], bits[TDC_PATTERN_BYTES(W, H)];
     int16_t mvs[(W / 2) * (H / 2) * 2];
     tdc_asm_err_t e;
     memset(&e, 0, sizeof(e));

@@ -44,7 +44,7 @@ static void run_scenario(const scenario_t *sc, int w, int h, int frames, tdc_asm
 {
     tdc_asm_config_t cfg = {(uint16_t)w, (uint16_t)h};
     size_t n = tdc_asm_get_size(&cfg);
-    void *arena = aligned_alloc(8, (n + 7) & ~(size_t)7);
+    void *arena = aligned_alloc(TDC_ARENA_ALIGN, TDC_ARENA_ROUND(n));
     tdc_asm_t st;
     assert_non_null(arena);
     assert_int_equal(tdc_asm_init(&st, &cfg, arena, n), TDC_OK);
@@ -52,7 +52,7 @@ static void run_scenario(const scenario_t *sc, int w, int h, int frames, tdc_asm
     tdc_scene_t scene;
     assert_int_equal(tdc_scene_init(&scene, sc->kind, w, h, sc->vx, sc->vy, 7), 0);
     size_t tiles = (size_t)((w + 1) / 2) * ((h + 1) / 2);
-    uint8_t *samples = malloc(tiles * 3), *bits = calloc((size_t)TDC_ORDERING_BITMAP_BYTES(w, h), 1);
+    uint8_t *samples = malloc(tiles * 3), *bits = calloc((size_t)TDC_PATTERN_BYTES(w, h), 1);
     int16_t *mvs = malloc(tiles * 4);
     tdc_asm_err_t e;
     memset(&e, 0, sizeof(e));
@@ -69,7 +69,7 @@ static void run_scenario(const scenario_t *sc, int w, int h, int frames, tdc_asm
         /* Both sides must use the same orderings (fixed vs double decision
          * when the stream carries no bits). */
         if ((f & 3) != 3) /* after frame 4c+3 the stage already holds the next cycle's */
-            assert_memory_equal(tdc_asm_pattern(&st), scene.pattern, (size_t)TDC_ORDERING_BITMAP_BYTES(w, h));
+            assert_memory_equal(tdc_asm_pattern(&st), scene.pattern, (size_t)TDC_PATTERN_BYTES(w, h));
         tdc_asm_err_add(&e, tdc_asm_output(&st, NULL), tdc_ref_asm_output(ref), tdc_ref_asm_output_exact(ref),
                         (size_t)w * h * 3);
     }

@@ -67,7 +67,7 @@ static void test_stream_roundtrip(void **state)
     assert_int_equal(tdc_scene_init(&sc, TDC_SCENE_PAN, W, H, -28, 10, 1), 0);
     tdc_asm_config_t cfg = {W, H};
     size_t n = tdc_asm_get_size(&cfg);
-    void *arena = aligned_alloc(8, (n + 7) & ~(size_t)7);
+    void *arena = aligned_alloc(TDC_ARENA_ALIGN, TDC_ARENA_ROUND(n));
     tdc_asm_t st;
     assert_int_equal(tdc_asm_init(&st, &cfg, arena, n), TDC_OK);
     size_t tiles = (size_t)((W + 1) / 2) * ((H + 1) / 2);

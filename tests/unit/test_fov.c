@@ -348,7 +348,7 @@ static void test_gaze_jump(void **state)
         /* the picture changes completely at the jump (old content must not ghost) */
         fov_make_inputs(&g, f < 8 ? 0.7 * f : 500 + 0.7 * f, (f % 4) * 0.25 - 0.375, (f % 3) * 0.33 - 0.33, lp, dk);
         for (int k = 0; k < LW * LH; k++) {
-            mv[2 * k] = 11; /* 0.7 px in Q4 */
+            mv[2 * k] = -11; /* the picture moves +0.7 px/frame: backward MV -0.7 px, Q4 */
             mv[2 * k + 1] = 0;
         }
         tdc_fov_params_t fp;

@@ -45,6 +45,9 @@ static void test_round_trip(void **state)
             assert_int_equal(h.flags, k & 1);
             const uint32_t lp = (uint32_t)(h.g.lp_w - h.g.u0) * h.g.lp_h;
             assert_int_equal(h.payload_bytes, 3 * lp + 3 * tdc_fov_disk_pixels(&h.g) + ((k & 1) ? 4 * lp : 0));
+            assert_int_equal(tdc_fov_payload_check(&h, h.payload_bytes), TDC_FOV_HDR_OK);
+            assert_int_equal(tdc_fov_payload_check(&h, h.payload_bytes - 1), TDC_FOV_HDR_PAYLOAD); /* truncated */
+            assert_int_equal(tdc_fov_payload_check(&h, h.payload_bytes + 3), TDC_FOV_HDR_PAYLOAD);
             /* the same header does not fit another panel */
             assert_int_equal(tdc_fov_hdr_parse(hdr, (uint16_t)(W + 2), H, &h), TDC_FOV_HDR_BUFFER);
         }

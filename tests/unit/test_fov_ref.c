@@ -61,7 +61,7 @@ static void run_case(const char *name, double cx, double cy, double alpha, doubl
         const double t = taa ? 1.3 * f : 0;
         fov_make_inputs(&g, t, hx, hy, lp, dk);
         for (int k = 0; k < rp.lp_w * rp.lp_h; k++) {
-            mv[2 * k] = (int16_t)lround(1.3 * 16); /* the pan: p_now - p_prev = +1.3 px x */
+            mv[2 * k] = (int16_t)lround(-1.3 * 16); /* the pan moves +1.3 px x: backward MV -1.3 px */
             mv[2 * k + 1] = 0;
         }
         assert_int_equal(tdc_fov_frame(&st, &fp, lp, (size_t)rp.lp_w * 3, mv, (size_t)rp.lp_w * 2, dk, W * 3, 11111,

@@ -217,7 +217,7 @@ static void test_vs_reference(void **state)
 /* A profile whose M cannot reach bright targets from a dark previous drive:
  * M = 0.3 (v + u) (p3 = 0.3), so from u = 0 at most 0.3. */
 static int16_t g_od17[17 * 17], g_od33[33 * 33];
-static struct tdc_lcd_profile g_weak = {1, 0, {{144, {0, 0, 5033165, 0}, g_od17, g_od33}}};
+static struct tdc_lcd_profile g_weak = {1, 0, {{144, {0, 0, 5033165, 0}, g_od17, g_od33, 0, {0}, {0}, {0}}}};
 
 static void test_residual_unreachable(void **state)
 {

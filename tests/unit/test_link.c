@@ -13,7 +13,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "link/tdc_link_encode.h"
+#include "tdc_link_encode.h"
 #include "link/tdc_link_gen.h"
 #include "tdc_link.h"
 #include "tdc_trm.h"
@@ -98,7 +98,7 @@ static void round_trip_frames(uint16_t w, uint16_t h, uint8_t eyes, uint16_t rn,
         const size_t n = tdc_link_gen_stream(stream, sizeof stream, &o, (uint8_t *)scratch, sizeof scratch, pk, 64, &npk);
         assert_true(n > 0);
         assert_int_equal(lt_init(&rig, w, h, eyes), TDC_OK);
-        const uint32_t rw = TDC_LINK_REDUCED_DIM(w, rn, rd), rh = TDC_LINK_REDUCED_DIM(h, rn, rd);
+        const uint32_t rw = TDC_REDUCED_DIM(w, rn, rd), rh = TDC_REDUCED_DIM(h, rn, rd);
         /* Packet by packet: check each buffer right after its event. */
         for (uint32_t i = 0; i < npk; i++) {
             const uint32_t before = rig.nev;
@@ -145,7 +145,7 @@ static void test_round_trip_trm_odd_sizes(void **state)
 
 static void round_trip_subframes(uint16_t w, uint16_t h, uint8_t eyes)
 {
-    const uint32_t tx = TDC_LINK_TILES(w), ty = TDC_LINK_TILES(h);
+    const uint32_t tx = TDC_TILES(w), ty = TDC_TILES(h);
     for (size_t fi = 0; fi < sizeof all_fmts / sizeof all_fmts[0]; fi++) {
         const tdc_pixfmt_t fmt = all_fmts[fi];
         tdc_link_gen_opts_t o;
@@ -177,8 +177,8 @@ static void round_trip_subframes(uint16_t w, uint16_t h, uint8_t eyes)
                 expected_rgb(fmt, src, tx, ty, expect);
                 assert_memory_equal(rig.subframe[e], expect, (size_t)tx * ty * 3u);
             } else if (ev->kind == TDC_LINK_KIND_PATTERN) {
-                uint8_t bits[TDC_LINK_PATTERN_BYTES(LT_MAX_W, LT_MAX_H)];
-                const size_t nb = TDC_LINK_PATTERN_BYTES(w, h);
+                uint8_t bits[TDC_PATTERN_BYTES(LT_MAX_W, LT_MAX_H)];
+                const size_t nb = TDC_PATTERN_BYTES(w, h);
                 tdc_link_gen_pattern(bits, nb, tx * ty, f, e, o.seed);
                 assert_memory_equal(rig.pattern[e], bits, nb);
                 assert_int_equal(f % 4u, 0);
@@ -293,23 +293,22 @@ static void build_baseline(void)
 }
 
 /* The good packet with header fields changed (CRCs recomputed). */
-static size_t good_with(uint8_t *out, size_t cap, void (*edit)(tdc_link_header_fields_t *f))
+static size_t good_with(uint8_t *out, size_t cap, void (*edit)(tdc_link_header_t *f))
 {
-    tdc_link_header_fields_t f;
-    uint32_t len, crc;
-    assert_true(tdc_link_parse_header(pkt2, &f, &len, &crc));
+    tdc_link_header_t f;
+    assert_int_equal(tdc_link_header_unpack(pkt2, &f), TDC_LINK_OK);
     edit(&f);
-    return tdc_link_encode_raw(out, cap, &f, pkt2 + TDC_LINK_HEADER_BYTES, len);
+    return tdc_link_encode_raw(out, cap, &f, pkt2 + TDC_LINK_HEADER_BYTES, f.payload_len);
 }
 
-static void ed_version(tdc_link_header_fields_t *f) { f->version = 2; }
-static void ed_kind(tdc_link_header_fields_t *f) { f->kind = 9; }
-static void ed_eye(tdc_link_header_fields_t *f) { f->eye = 2; }
-static void ed_format(tdc_link_header_fields_t *f) { f->format = 7; }
-static void ed_dims(tdc_link_header_fields_t *f) { f->width = MW + 2; }
-static void ed_stream(tdc_link_header_fields_t *f) { f->stream_id = 43; }
-static void ed_order(tdc_link_header_fields_t *f) { f->frame_index = 0; }
-static void ed_dup(tdc_link_header_fields_t *f) { f->frame_index = 1; f->eye = 1; }
+static void ed_version(tdc_link_header_t *f) { f->version = 2; }
+static void ed_kind(tdc_link_header_t *f) { f->kind = 9; }
+static void ed_eye(tdc_link_header_t *f) { f->eye = 2; }
+static void ed_format(tdc_link_header_t *f) { f->format = 7; }
+static void ed_dims(tdc_link_header_t *f) { f->width = MW + 2; }
+static void ed_stream(tdc_link_header_t *f) { f->stream_id = 43; }
+static void ed_order(tdc_link_header_t *f) { f->frame_index = 0; }
+static void ed_dup(tdc_link_header_t *f) { f->frame_index = 1; f->eye = 1; }
 
 static size_t mk_magic(uint8_t *out, size_t cap)
 {
@@ -340,10 +339,9 @@ static size_t mk_format(uint8_t *out, size_t cap) { return good_with(out, cap, e
 static size_t mk_dims(uint8_t *out, size_t cap) { return good_with(out, cap, ed_dims); }
 static size_t mk_length(uint8_t *out, size_t cap)
 {
-    tdc_link_header_fields_t f;
-    uint32_t len, crc;
-    tdc_link_parse_header(pkt2, &f, &len, &crc);
-    return tdc_link_encode_raw(out, cap, &f, pkt2 + TDC_LINK_HEADER_BYTES, len - 3u);
+    tdc_link_header_t f;
+    assert_int_equal(tdc_link_header_unpack(pkt2, &f), TDC_LINK_OK);
+    return tdc_link_encode_raw(out, cap, &f, pkt2 + TDC_LINK_HEADER_BYTES, f.payload_len - 3u);
 }
 static size_t mk_crc(uint8_t *out, size_t cap)
 {
@@ -365,7 +363,7 @@ static size_t mk_missing(uint8_t *out, size_t cap)
 static size_t mk_unexpected(uint8_t *out, size_t cap)
 {
     /* A reduced frame for frame 2, eye 0: that slot is due a full frame. */
-    const uint32_t rw = TDC_LINK_REDUCED_DIM(MW, 1, 2), rh = TDC_LINK_REDUCED_DIM(MH, 1, 2);
+    const uint32_t rw = TDC_REDUCED_DIM(MW, 1, 2), rh = TDC_REDUCED_DIM(MH, 1, 2);
     tdc_link_gen_rgb(src, rw, rh, 2, 0, 7);
     return tdc_link_encode_frame(&menc, out, cap, TDC_LINK_KIND_REDUCED, 0, 2, TDC_PIXFMT_RGB888, src, rw, rh, rw * 3u);
 }
@@ -433,7 +431,7 @@ static void run_bad_case(const bad_case_t *c, int chunk)
         assert_int_equal(tdc_link_counters(&rig.dec)->packets_ok, ok_before + 1);
         assert_memory_equal(rig.full[0], pkt2 + TDC_LINK_HEADER_BYTES, (size_t)MW * MH * 3u);
     } else {
-        const uint32_t rw = TDC_LINK_REDUCED_DIM(MW, 1, 2), rh = TDC_LINK_REDUCED_DIM(MH, 1, 2);
+        const uint32_t rw = TDC_REDUCED_DIM(MW, 1, 2), rh = TDC_REDUCED_DIM(MH, 1, 2);
         tdc_link_gen_rgb(src, rw, rh, 3, 0, 7);
         const size_t m = tdc_link_encode_frame(&menc, pkt, sizeof pkt, TDC_LINK_KIND_REDUCED, 0, 3, TDC_PIXFMT_RGB888,
                                                src, rw, rh, rw * 3u);
@@ -548,7 +546,7 @@ static void test_garbage_and_resync(void **state)
     n += good_len - 1;
     n += good_with(stream2 + n, sizeof stream2 - n, ed_dup);
     tdc_link_gen_rgb(src, MW, MH, 2, 1, 4);
-    const uint32_t rw = TDC_LINK_REDUCED_DIM(MW, 1, 2), rh = TDC_LINK_REDUCED_DIM(MH, 1, 2);
+    const uint32_t rw = TDC_REDUCED_DIM(MW, 1, 2), rh = TDC_REDUCED_DIM(MH, 1, 2);
     n += tdc_link_encode_frame(&menc, stream2 + n, sizeof stream2 - n, TDC_LINK_KIND_REDUCED, 1, 2, TDC_PIXFMT_RGB888,
                                src, rw, rh, rw * 3u);
     n += tdc_link_encode_frame(&menc, stream2 + n, sizeof stream2 - n, TDC_LINK_KIND_REDUCED, 1, 2, TDC_PIXFMT_RGB888,
@@ -568,7 +566,7 @@ static void test_garbage_and_resync(void **state)
      * spliced into a long one that then fails its CRC) is found too, and
      * the stream after it continues in sync. */
     {
-        uint8_t pat[TDC_LINK_PATTERN_BYTES(MW, MH)];
+        uint8_t pat[TDC_PATTERN_BYTES(MW, MH)];
         memset(pat, 0, sizeof pat);
         tdc_link_stream_info_t in = info_of(TDC_LINK_STREAM_SUBFRAMES, MW, MH, 1, 1, 1);
         tdc_link_encoder_t e1;
@@ -720,8 +718,8 @@ static void test_chunking_identical(void **state)
  * ---------------------------------------------------------------------- */
 static size_t frame_pkt(uint8_t *out, size_t cap, tdc_link_kind_t k, uint32_t eye, uint32_t f)
 {
-    const uint32_t w = k == TDC_LINK_KIND_REDUCED ? TDC_LINK_REDUCED_DIM(MW, 1, 2) : MW;
-    const uint32_t h = k == TDC_LINK_KIND_REDUCED ? TDC_LINK_REDUCED_DIM(MH, 1, 2) : MH;
+    const uint32_t w = k == TDC_LINK_KIND_REDUCED ? TDC_REDUCED_DIM(MW, 1, 2) : MW;
+    const uint32_t h = k == TDC_LINK_KIND_REDUCED ? TDC_REDUCED_DIM(MH, 1, 2) : MH;
     tdc_link_gen_rgb(src, w, h, f, eye, 1);
     return tdc_link_encode_frame(&menc, out, cap, k, eye, f, TDC_PIXFMT_RGB565, src, w, h, w * 3u);
 }
@@ -841,11 +839,16 @@ static void test_stream_headers(void **state)
     rig.nev = 0;
     lt_feed(&rig, stream, base_len, 0, 0);
     assert_int_equal(tdc_link_error_count(&rig.dec, TDC_LINK_ERR_STREAM_HEADER), 1);
-    /* Reduced size is round(n r): the same rule as TRM's. */
-    for (uint32_t d = 1; d < 200; d += 7) {
-        assert_int_equal(TDC_LINK_REDUCED_DIM(d, 1, 2), TDC_TRM_REDUCED_DIM(d, 1u, 2u));
-        assert_int_equal(TDC_LINK_REDUCED_DIM(d, 3, 4), TDC_TRM_REDUCED_DIM(d, 3u, 4u));
+    /* Reduced size is round(n r), at least 1 (tdc_geom.h, shared with TRM). */
+    for (uint32_t d = 1; d < 5000; d += 7) {
+        for (uint32_t num = 1; num <= 8; num++) {
+            const uint32_t den = 8u;
+            const uint32_t want = (uint32_t)((double)d * num / den + 0.5);
+            assert_int_equal(TDC_REDUCED_DIM(d, num, den), want < 1u ? 1u : want);
+            assert_int_equal(tdc_reduced_dim(d, num, den), TDC_REDUCED_DIM(d, num, den));
+        }
     }
+    assert_int_equal(TDC_REDUCED_DIM(1, 1, 4), 1); /* never 0 */
 }
 
 static void test_pattern_only_at_cycle_start(void **state)

@@ -12,7 +12,7 @@
 #include <stddef.h>
 #include <cmocka.h>
 
-#include "link/tdc_link_encode.h"
+#include "tdc_link_encode.h"
 #include "link/tdc_link_gen.h"
 
 #define W 17

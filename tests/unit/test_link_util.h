@@ -24,7 +24,7 @@ typedef struct {
     uint8_t subframe[2][TDC_LINK_SUBFRAME_BYTES(LT_MAX_W, LT_MAX_H)];
     int16_t motion[2][TDC_LINK_MOTION_COUNT(LT_MAX_W, LT_MAX_H)];
     int16_t sample_motion[2][TDC_LINK_SAMPLE_MOTION_COUNT(LT_MAX_W, LT_MAX_H)];
-    uint8_t pattern[2][TDC_LINK_PATTERN_BYTES(LT_MAX_W, LT_MAX_H)];
+    uint8_t pattern[2][TDC_PATTERN_BYTES(LT_MAX_W, LT_MAX_H)];
     tdc_link_decoder_t dec;
     tdc_link_event_t ev[LT_MAX_EVENTS];
     uint32_t nev;

@@ -305,6 +305,55 @@ static void test_helper_checksum(void **state)
     assert_true(h == TDC_MATH_HELPER_CHECKSUM);
 }
 
+static void test_mean_u8_exhaustive(void **state)
+{
+    (void)state;
+    for (unsigned n = 1; n <= 4; n++)
+        for (uint32_t s = 0; s <= 255u * n; s++) assert_int_equal(tdc_mean_u8(s, n), (2 * s + n) / (2 * n));
+    assert_int_equal(tdc_mean_u8(10, 0), 0);
+    assert_int_equal(tdc_mean_u8(10, 5), 0);
+}
+
+static void test_sqrt_q8(void **state)
+{
+    (void)state;
+    double maxerr = 0;
+    for (uint32_t d = 0; d < (1u << 20); d++) {
+        double e = fabs((double)tdc_sqrt_q8(d) - 256.0 * sqrt((double)d));
+        if (e > maxerr) maxerr = e;
+    }
+    printf("sqrt_q8: max error %.3f (Q8) over all d < 2^20\n", maxerr);
+    assert_true(maxerr <= 12.0); /* < 0.05 code value in the clamp edge */
+}
+
+static void test_div_small(void **state)
+{
+    (void)state;
+    for (uint32_t n = 1; n <= 8; n++)
+        for (uint32_t x = 0; x < (1u << 21); x++)
+            if (tdc_div_small(x, n) != x / n) fail_msg("div_small(%u, %u) = %u", x, n, tdc_div_small(x, n));
+    assert_int_equal(tdc_div_small((1u << 29) - 1u, 7), ((1u << 29) - 1u) / 7);
+    assert_int_equal(tdc_div_small(5, 0), 0);
+    assert_int_equal(tdc_div_small(5, 9), 0);
+}
+
+/* The random-band hash keeps its constants (the assembly golden vectors and
+ * every renderer/controller pair depend on them): known values, and bit 31
+ * (the ordering bit) balanced over a frame of tiles. */
+static void test_hash3(void **state)
+{
+    (void)state;
+    assert_int_equal(tdc_hash3(0, 0, 0), 0x00000000u);
+    assert_int_equal(tdc_hash3(1, 0, 0), 0x11FD02EBu);
+    assert_int_equal(tdc_hash3(3, 5, 40), 0xD3B7F9B6u);
+    assert_int_equal(tdc_hash3(959, 539, 0xFFFFFFFCu), 0xC5277794u);
+    uint32_t ones = 0;
+    for (uint32_t ty = 0; ty < 540; ty++)
+        for (uint32_t tx = 0; tx < 960; tx++) ones += tdc_hash3(tx, ty, 4) >> 31;
+    printf("hash3: bit 31 set in %u of %u tiles\n", ones, 960u * 540u);
+    assert_true(ones > 960u * 540u / 2u - 2000u && ones < 960u * 540u / 2u + 2000u);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -312,6 +361,8 @@ int main(void)
         cmocka_unit_test(test_recip),      cmocka_unit_test(test_div_q15),
         cmocka_unit_test(test_isqrt),      cmocka_unit_test(test_udiv64_32),      cmocka_unit_test(test_gamma_tables),
         cmocka_unit_test(test_helper_checksum),
+        cmocka_unit_test(test_mean_u8_exhaustive), cmocka_unit_test(test_sqrt_q8),
+        cmocka_unit_test(test_div_small),   cmocka_unit_test(test_hash3),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

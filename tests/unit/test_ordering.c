@@ -10,6 +10,7 @@
 #include <cmocka.h>
 #include <math.h>
 #include <stdio.h>
+#include "tdc_math.h"
 #include <stdlib.h>
 #include <string.h>
 
@@ -25,8 +26,8 @@ static void test_pixel_orders(void **st)
         assert_int_equal(tdc_ordering_pixel(TDC_ORDER_HOURGLASS, k), hg[k & 3]);
         assert_int_equal(tdc_ordering_pixel(TDC_ORDER_BOWTIE, k), bt[k & 3]);
     }
-    assert_int_equal(TDC_ORDERING_BITMAP_BYTES(5, 3), 1);  /* 3 x 2 tiles */
-    assert_int_equal(TDC_ORDERING_BITMAP_BYTES(17, 3), 3); /* 9 x 2 = 18 bits */
+    assert_int_equal(TDC_PATTERN_BYTES(5, 3), 1);  /* 3 x 2 tiles */
+    assert_int_equal(TDC_PATTERN_BYTES(17, 3), 3); /* 9 x 2 = 18 bits */
 }
 
 static void test_jitter(void **st)
@@ -199,7 +200,7 @@ static void test_diagonal_hashed(void **st)
             tdc_ordering_t a = tdc_ordering_decide(37, 37, TDC_ORDER_HOURGLASS, tx, ty, 40);
             tdc_ordering_t b = tdc_ordering_decide(-37, 37, TDC_ORDER_BOWTIE, tx, ty, 40);
             assert_int_equal(a, b); /* reproducible: only (tile, frame) matter */
-            assert_int_equal(a, (tdc_ordering_hash(tx, ty, 40) >> 31) ? TDC_ORDER_BOWTIE : TDC_ORDER_HOURGLASS);
+            assert_int_equal(a, (tdc_hash3(tx, ty, 40) >> 31) ? TDC_ORDER_BOWTIE : TDC_ORDER_HOURGLASS);
             changed += a != tdc_ordering_decide(37, 37, TDC_ORDER_HOURGLASS, tx, ty, 44);
             bowtie += a == TDC_ORDER_BOWTIE;
             n++;
@@ -223,11 +224,11 @@ static void test_update_neighbourhood(void **st)
     (void)st;
     enum { W = 13, H = 9 }; /* 7 x 5 tiles, odd sizes */
     int16_t mv[W * H * 2];
-    uint8_t bits[TDC_ORDERING_BITMAP_BYTES(W, H) + 1];
+    uint8_t bits[TDC_PATTERN_BYTES(W, H) + 1];
     memset(mv, 0, sizeof(mv));
     memset(bits, 0, sizeof(bits));
     bits[sizeof(bits) - 1] = 0xA5; /* guard */
-    bits[TDC_ORDERING_BITMAP_BYTES(W, H) - 1] = 0xF8; /* padding bits set: 35 tiles -> bits 3..7 of byte 4 */
+    bits[TDC_PATTERN_BYTES(W, H) - 1] = 0xF8; /* padding bits set: 35 tiles -> bits 3..7 of byte 4 */
     /* pixel (8, 4) = tile (4, 2): horizontal 3.5 px -> hourglass; a shorter
      * vector (1.0 px, -> bowtie) at pixel (12, 8) = tile (6, 4). */
     mv[(4 * W + 8) * 2] = 56;
@@ -240,7 +241,7 @@ static void test_update_neighbourhood(void **st)
             if (abs(tx - 4) <= 1 && abs(ty - 2) <= 1) want = TDC_ORDER_HOURGLASS; /* longest wins */
             assert_int_equal(tdc_ordering_get(bits, (uint32_t)(ty * 7 + tx)), want);
         }
-    assert_int_equal(bits[TDC_ORDERING_BITMAP_BYTES(W, H) - 1] & 0xF8, 0xF8);
+    assert_int_equal(bits[TDC_PATTERN_BYTES(W, H) - 1] & 0xF8, 0xF8);
     assert_int_equal(bits[sizeof(bits) - 1], 0xA5);
     /* Now the tile (5, 3) also sees (12, 8)? No: tile (5,3) covers pixels 8..13 x 4..9,
      * so it sees both; the longer 3.5 px wins.  Tile (6, 4) sees only 1.0 px. */
@@ -284,7 +285,7 @@ static void test_update_matches_definition(void **st)
     for (size_t si = 0; si < sizeof(sizes) / sizeof(sizes[0]); si++) {
         int w = sizes[si][0], h = sizes[si][1];
         int16_t *mv = calloc((size_t)w * h * 2, sizeof(int16_t));
-        size_t nb = (size_t)TDC_ORDERING_BITMAP_BYTES(w, h);
+        size_t nb = (size_t)TDC_PATTERN_BYTES(w, h);
         uint8_t *a = calloc(nb, 1), *b = calloc(nb, 1);
         for (int rep = 0; rep < 50; rep++) {
             int density = rep % 5; /* 0: sparse motion .. 4: dense */

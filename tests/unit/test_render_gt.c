@@ -211,7 +211,7 @@ static void test_subframe_positions(void **state)
     tdc_render_t *r = open_cfg(scene_mix, 2, 3, 1);
     /* frames 0..7 include static (frame 0: no previous motion) and dynamic pixels */
     for (uint32_t f = 0; f < 8; f++) {
-        uint8_t bits[TDC_ORDERING_BITMAP_BYTES(W, H)];
+        uint8_t bits[TDC_PATTERN_BYTES(W, H)];
         static int16_t hist[W * H * 2];
         memcpy(hist, tdc_render_mv_history(r), sizeof hist);
         if ((f & 3) == 0) tdc_ordering_update(hist, W, H, (memcpy(bits, tdc_render_pattern_bits(r), sizeof bits), bits), f);

@@ -25,7 +25,7 @@
 
 static tdc_scene_t sc;
 static uint8_t staging[TDC_LINK_STAGING_BYTES(W, H)];
-static uint8_t dfull[W * H * 3], dred[W * H * 3], dsub[TX * TY * 3], dpat[TDC_LINK_PATTERN_BYTES(W, H)];
+static uint8_t dfull[W * H * 3], dred[W * H * 3], dsub[TX * TY * 3], dpat[TDC_PATTERN_BYTES(W, H)];
 static int16_t dmv[W * H * 2], dsmv[TX * TY * 2];
 
 /* Feeds the whole file; returns packets accepted, counts per kind. */

@@ -24,7 +24,7 @@ typedef struct {
     uint8_t subframe[TDC_LINK_SUBFRAME_BYTES(TDC_LINK_SINK_MAX_W, TDC_LINK_SINK_MAX_H)];
     int16_t motion[TDC_LINK_MOTION_COUNT(TDC_LINK_SINK_MAX_W, TDC_LINK_SINK_MAX_H)];
     int16_t sample_motion[TDC_LINK_SAMPLE_MOTION_COUNT(TDC_LINK_SINK_MAX_W, TDC_LINK_SINK_MAX_H)];
-    uint8_t pattern[TDC_LINK_PATTERN_BYTES(TDC_LINK_SINK_MAX_W, TDC_LINK_SINK_MAX_H)];
+    uint8_t pattern[TDC_PATTERN_BYTES(TDC_LINK_SINK_MAX_W, TDC_LINK_SINK_MAX_H)];
 } tdc_link_sink_t;
 
 /* 0 on success, -1 if w x h exceeds the static buffers or the decoder refuses. */

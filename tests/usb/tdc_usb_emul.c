@@ -395,10 +395,10 @@ void emul_board_stats(emul_board_t *b, emul_board_stats_t *out)
     const unsigned in = b->proto.dfu_active_slot ^ 1u;
     const unsigned up = b->proto.dfu_pending && b->proto.dfu_slot_image[in] ? in : b->proto.dfu_active_slot;
     out->image_bytes = b->proto.dfu_slot_image[up];
-    out->slot_crc = tdc_usbp_crc32(b->slot + (size_t)up * b->slot_bytes, out->image_bytes);
+    out->slot_crc = tdc_crc32(b->slot + (size_t)up * b->slot_bytes, out->image_bytes);
     out->active_slot = b->proto.dfu_active_slot;
     out->active_bytes = b->proto.dfu_slot_image[b->proto.dfu_active_slot];
-    out->active_crc = tdc_usbp_crc32(b->slot + (size_t)b->proto.dfu_active_slot * b->slot_bytes, out->active_bytes);
+    out->active_crc = tdc_crc32(b->slot + (size_t)b->proto.dfu_active_slot * b->slot_bytes, out->active_bytes);
     out->pending = b->proto.dfu_pending;
     out->fw_version = b->proto.cfg.fw_version;
     out->resets = b->resets;

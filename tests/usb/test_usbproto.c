@@ -158,7 +158,7 @@ static void test_board_info_and_counters(void **state)
     uint8_t both[140];
     memcpy(both, data, 100);
     memcpy(both + 100, data, 40);
-    assert_int_equal(tdc_get_le32(reply + TDC_USB_INFO_OFF_RX_CRC), tdc_usbp_crc32(both, 140));
+    assert_int_equal(tdc_get_le32(reply + TDC_USB_INFO_OFF_RX_CRC), tdc_crc32(both, 140));
     /* short wLength truncates; wrong direction and unknown requests stall and count */
     assert_int_equal(req(0xC1, TDC_USB_REQ_BOARD_INFO, 0, 0, 8, NULL), TDC_OK);
     assert_int_equal(rlen, 8);

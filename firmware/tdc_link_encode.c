@@ -1,7 +1,6 @@
 /*
- * tdc_link_encode.c - host link encoder (see tdc_link_encode.h and
- * docs/link-protocol.md).  Integer only and allocation-free so that the
- * golden runner can include it on the boards as well.
+ * tdc_link_encode.c - link encoder (see tdc_link_encode.h and
+ * docs/link-protocol.md).  Integer only and allocation-free.
  */
 #include "tdc_link_encode.h"
 
@@ -49,7 +48,7 @@ void tdc_pixfmt_pack(tdc_pixfmt_t fmt, const uint8_t *rgb, uint32_t w, uint32_t 
                 const uint32_t r5 = (s[3 * x] * 31u + 127u) / 255u;
                 const uint32_t g6 = (s[3 * x + 1] * 63u + 127u) / 255u;
                 const uint32_t b5 = (s[3 * x + 2] * 31u + 127u) / 255u;
-                tdc_link_wr16(o + 2u * x, (r5 << 11) | (g6 << 5) | b5);
+                tdc_put_le16(o + 2u * x, (r5 << 11) | (g6 << 5) | b5);
             }
         }
         break;
@@ -62,7 +61,7 @@ void tdc_pixfmt_pack(tdc_pixfmt_t fmt, const uint8_t *rgb, uint32_t w, uint32_t 
                 for (uint32_t c = 0; c < 3; c++) {
                     v |= ((s[3 * x + c] * 1023u + 127u) / 255u) << (10u * c);
                 }
-                tdc_link_wr32(o + 4u * x, v);
+                tdc_put_le32(o + 4u * x, v);
             }
         }
         break;
@@ -110,68 +109,27 @@ void tdc_link_encoder_init(tdc_link_encoder_t *enc, uint16_t stream_id, const td
     enc->info = *info;
 }
 
-size_t tdc_link_packet_bytes(tdc_link_kind_t kind, tdc_pixfmt_t fmt, uint32_t width, uint32_t height,
-                             uint32_t pkt_flags)
+/* Payload already written at out + HEADER_BYTES: add the header. */
+static size_t finish(uint8_t *out, const tdc_link_header_t *f, uint32_t len)
 {
-    /* Payload sizes are 32-bit: refuse sizes whose 4 B/px payload would
-     * not fit (far beyond any panel). */
-    if (width == 0 || height == 0 || width > 65535u || height > 65535u ||
-        (uint64_t)width * height > ((uint64_t)1 << 28)) {
-        return 0;
-    }
-    const uint32_t n = tdc_link_payload_bytes(kind, fmt, width, height, pkt_flags);
-    return n ? (size_t)n + TDC_LINK_HEADER_BYTES : 0;
+    tdc_link_header_t h = *f;
+    h.payload_len = len;
+    h.payload_crc = tdc_crc32(out + TDC_LINK_HEADER_BYTES, len);
+    tdc_link_header_pack(out, &h);
+    return (size_t)TDC_LINK_HEADER_BYTES + len;
 }
 
-void tdc_link_write_header(uint8_t *out, const tdc_link_header_fields_t *f, uint32_t payload_len,
-                           uint32_t payload_crc)
-{
-    memset(out, 0, TDC_LINK_HEADER_BYTES);
-    tdc_link_wr32(out + TDC_LINK_OFF_MAGIC, TDC_LINK_MAGIC);
-    out[TDC_LINK_OFF_VERSION] = f->version;
-    out[TDC_LINK_OFF_KIND] = f->kind;
-    out[TDC_LINK_OFF_EYE] = f->eye;
-    out[TDC_LINK_OFF_FORMAT] = f->format;
-    tdc_link_wr16(out + TDC_LINK_OFF_STREAM_ID, f->stream_id);
-    tdc_link_wr16(out + TDC_LINK_OFF_FLAGS, f->flags);
-    tdc_link_wr32(out + TDC_LINK_OFF_FRAME, f->frame_index);
-    tdc_link_wr16(out + TDC_LINK_OFF_WIDTH, f->width);
-    tdc_link_wr16(out + TDC_LINK_OFF_HEIGHT, f->height);
-    tdc_link_wr32(out + TDC_LINK_OFF_PAYLOAD_LEN, payload_len);
-    tdc_link_wr32(out + TDC_LINK_OFF_PAYLOAD_CRC, payload_crc);
-    tdc_link_wr32(out + TDC_LINK_OFF_HEADER_CRC, tdc_crc32(out, TDC_LINK_OFF_HEADER_CRC));
-}
-
-int tdc_link_parse_header(const uint8_t *hdr, tdc_link_header_fields_t *f, uint32_t *payload_len,
-                          uint32_t *payload_crc)
-{
-    f->version = hdr[TDC_LINK_OFF_VERSION];
-    f->kind = hdr[TDC_LINK_OFF_KIND];
-    f->eye = hdr[TDC_LINK_OFF_EYE];
-    f->format = hdr[TDC_LINK_OFF_FORMAT];
-    f->stream_id = (uint16_t)tdc_link_rd16(hdr + TDC_LINK_OFF_STREAM_ID);
-    f->flags = (uint16_t)tdc_link_rd16(hdr + TDC_LINK_OFF_FLAGS);
-    f->frame_index = tdc_link_rd32(hdr + TDC_LINK_OFF_FRAME);
-    f->width = (uint16_t)tdc_link_rd16(hdr + TDC_LINK_OFF_WIDTH);
-    f->height = (uint16_t)tdc_link_rd16(hdr + TDC_LINK_OFF_HEIGHT);
-    *payload_len = tdc_link_rd32(hdr + TDC_LINK_OFF_PAYLOAD_LEN);
-    *payload_crc = tdc_link_rd32(hdr + TDC_LINK_OFF_PAYLOAD_CRC);
-    return tdc_link_rd32(hdr + TDC_LINK_OFF_MAGIC) == TDC_LINK_MAGIC &&
-           tdc_crc32(hdr, TDC_LINK_OFF_HEADER_CRC) == tdc_link_rd32(hdr + TDC_LINK_OFF_HEADER_CRC);
-}
-
-size_t tdc_link_encode_raw(uint8_t *out, size_t cap, const tdc_link_header_fields_t *f, const uint8_t *payload,
+size_t tdc_link_encode_raw(uint8_t *out, size_t cap, const tdc_link_header_t *f, const uint8_t *payload,
                            uint32_t payload_len)
 {
     if (!out || cap < (size_t)TDC_LINK_HEADER_BYTES + payload_len || (payload_len && !payload)) {
         return 0;
     }
     memmove(out + TDC_LINK_HEADER_BYTES, payload, payload_len);
-    tdc_link_write_header(out, f, payload_len, tdc_crc32(out + TDC_LINK_HEADER_BYTES, payload_len));
-    return (size_t)TDC_LINK_HEADER_BYTES + payload_len;
+    return finish(out, f, payload_len);
 }
 
-static void fields(const tdc_link_encoder_t *enc, tdc_link_header_fields_t *f, tdc_link_kind_t kind, uint32_t eye,
+static void fields(const tdc_link_encoder_t *enc, tdc_link_header_t *f, tdc_link_kind_t kind, uint32_t eye,
                    uint32_t frame, tdc_pixfmt_t fmt, uint32_t w, uint32_t h, uint32_t flags)
 {
     f->version = TDC_LINK_VERSION;
@@ -183,13 +141,8 @@ static void fields(const tdc_link_encoder_t *enc, tdc_link_header_fields_t *f, t
     f->frame_index = frame;
     f->width = (uint16_t)w;
     f->height = (uint16_t)h;
-}
-
-/* Payload already written at out + HEADER_BYTES: add the header. */
-static size_t finish(uint8_t *out, const tdc_link_header_fields_t *f, uint32_t len)
-{
-    tdc_link_write_header(out, f, len, tdc_crc32(out + TDC_LINK_HEADER_BYTES, len));
-    return (size_t)TDC_LINK_HEADER_BYTES + len;
+    f->payload_len = 0; /* set by finish() */
+    f->payload_crc = 0;
 }
 
 size_t tdc_link_encode_stream(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap)
@@ -197,17 +150,9 @@ size_t tdc_link_encode_stream(const tdc_link_encoder_t *enc, uint8_t *out, size_
     if (cap < (size_t)TDC_LINK_HEADER_BYTES + TDC_LINK_STREAM_HEADER_BYTES) {
         return 0;
     }
-    uint8_t *p = out + TDC_LINK_HEADER_BYTES;
     const tdc_link_stream_info_t *in = &enc->info;
-    tdc_link_wr32(p + 0, in->flags);
-    tdc_link_wr16(p + 4, in->r_num);
-    tdc_link_wr16(p + 6, in->r_den);
-    tdc_link_wr16(p + 8, in->width);
-    tdc_link_wr16(p + 10, in->height);
-    p[12] = in->eyes;
-    p[13] = in->reserved;
-    tdc_link_wr16(p + 14, in->refresh_hz);
-    tdc_link_header_fields_t f;
+    tdc_link_stream_pack(out + TDC_LINK_HEADER_BYTES, in);
+    tdc_link_header_t f;
     fields(enc, &f, TDC_LINK_KIND_STREAM, 0, 0, TDC_PIXFMT_NONE, in->width, in->height, 0);
     return finish(out, &f, TDC_LINK_STREAM_HEADER_BYTES);
 }
@@ -225,7 +170,7 @@ size_t tdc_link_encode_frame(const tdc_link_encoder_t *enc, uint8_t *out, size_t
         return 0;
     }
     tdc_pixfmt_pack(fmt, rgb, w, h, stride, out + TDC_LINK_HEADER_BYTES);
-    tdc_link_header_fields_t f;
+    tdc_link_header_t f;
     fields(enc, &f, kind, eye, frame, fmt, w, h, 0);
     return finish(out, &f, (uint32_t)(total - TDC_LINK_HEADER_BYTES));
 }
@@ -240,9 +185,9 @@ size_t tdc_link_encode_subframe(const tdc_link_encoder_t *enc, uint8_t *out, siz
     if (!out || !samples || total == 0 || cap < total) {
         return 0;
     }
-    const uint32_t tx = TDC_LINK_TILES(w), ty = TDC_LINK_TILES(h);
+    const uint32_t tx = TDC_TILES(w), ty = TDC_TILES(h);
     tdc_pixfmt_pack(fmt, samples, tx, ty, tx * 3u, out + TDC_LINK_HEADER_BYTES);
-    tdc_link_header_fields_t f;
+    tdc_link_header_t f;
     fields(enc, &f, TDC_LINK_KIND_SUBFRAME, eye, frame, fmt, w, h, 0);
     return finish(out, &f, (uint32_t)(total - TDC_LINK_HEADER_BYTES));
 }
@@ -261,12 +206,9 @@ size_t tdc_link_encode_motion(const tdc_link_encoder_t *enc, uint8_t *out, size_
     const size_t count = (total - TDC_LINK_HEADER_BYTES) / 2u;
     uint8_t *p = out + TDC_LINK_HEADER_BYTES;
     for (size_t i = 0; i < count; i++) {
-        /* int16 -> two's complement bits without implementation-defined
-         * conversion: negative values map to v + 2^16. */
-        const int32_t v = mv[i];
-        tdc_link_wr16(p + 2u * i, (uint32_t)(v < 0 ? v + 65536 : v));
+        tdc_put_le16s(p + 2u * i, mv[i]);
     }
-    tdc_link_header_fields_t f;
+    tdc_link_header_t f;
     fields(enc, &f, TDC_LINK_KIND_MOTION, eye, frame, TDC_PIXFMT_NONE, w, h, flags);
     return finish(out, &f, (uint32_t)(total - TDC_LINK_HEADER_BYTES));
 }
@@ -284,11 +226,11 @@ size_t tdc_link_encode_pattern(const tdc_link_encoder_t *enc, uint8_t *out, size
     const size_t n = total - TDC_LINK_HEADER_BYTES;
     memcpy(out + TDC_LINK_HEADER_BYTES, bits, n);
     /* Bits past the last tile are zero on the wire. */
-    const uint32_t tiles = TDC_LINK_TILES(w) * TDC_LINK_TILES(h);
+    const uint32_t tiles = TDC_TILES(w) * TDC_TILES(h);
     if (tiles % 8u) {
         out[TDC_LINK_HEADER_BYTES + n - 1u] &= (uint8_t)((1u << (tiles % 8u)) - 1u);
     }
-    tdc_link_header_fields_t f;
+    tdc_link_header_t f;
     fields(enc, &f, TDC_LINK_KIND_PATTERN, eye, frame, TDC_PIXFMT_NONE, w, h, 0);
     return finish(out, &f, (uint32_t)(total - TDC_LINK_HEADER_BYTES));
 }

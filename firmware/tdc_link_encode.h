@@ -1,14 +1,16 @@
 /*
- * tdc_link_encode.h - host-side link encoder (docs/link-protocol.md): turns
- * frames, reduced frames, subframes, motion vectors and tile-pattern bitmaps
- * into link packets the firmware decoder (firmware/tdc_link.h) accepts.
- * Used by the renderer, the simulator and hosttools.
+ * tdc_link_encode.h - link encoder (docs/link-protocol.md), the sending side
+ * beside the decoder (tdc_link.h): turns frames, reduced frames, subframes,
+ * motion vectors and tile-pattern bitmaps into link packets the decoder
+ * accepts.  Used by the renderer, the simulator, hosttools and tests;
+ * header and STREAM bytes are written by tdc_wire.h's packers.
  *
- * Integer only and allocation-free (the caller owns the output buffer), so
- * the golden-vector runner can use it on the ARM boards too.  Every function
+ * Integer only and allocation-free (the caller owns the output buffer): it
+ * lives in firmware/ so the golden-vector and bench runners have it on the
+ * ARM boards too (a board image that does not call it does not link it).  Every function
  * writes one complete packet (header + payload) to out[0 .. cap) and returns
  * its size in bytes, or 0 if cap is too small or an argument is invalid.
- * tdc_link_packet_bytes() tells the size in advance.
+ * tdc_link_packet_bytes() (tdc_wire.h) tells the size in advance.
  *
  *     tdc_link_encoder_t enc;
  *     tdc_link_encoder_init(&enc, stream_id, &info);       // info: flags, r, size, eyes
@@ -29,36 +31,11 @@ typedef struct {
     tdc_link_stream_info_t info;
 } tdc_link_encoder_t;
 
-/* Header fields of one packet (payload_len/CRCs are filled in by the encoder). */
-typedef struct {
-    uint8_t version; /* TDC_LINK_VERSION */
-    uint8_t kind;
-    uint8_t eye;
-    uint8_t format;
-    uint16_t stream_id;
-    uint16_t flags;
-    uint32_t frame_index;
-    uint16_t width;
-    uint16_t height;
-} tdc_link_header_fields_t;
-
 void tdc_link_encoder_init(tdc_link_encoder_t *enc, uint16_t stream_id, const tdc_link_stream_info_t *info);
 
-/* Total packet bytes (header + payload) for these fields, 0 if invalid. */
-size_t tdc_link_packet_bytes(tdc_link_kind_t kind, tdc_pixfmt_t fmt, uint32_t width, uint32_t height,
-                             uint32_t pkt_flags);
-
-/* Writes a 32-byte header for `f` with the given payload length and CRC. */
-void tdc_link_write_header(uint8_t *out, const tdc_link_header_fields_t *f, uint32_t payload_len,
-                           uint32_t payload_crc);
-
-/* Parses a header (no validation besides reading fields); returns 1 if the
- * magic and header CRC are right. */
-int tdc_link_parse_header(const uint8_t *hdr, tdc_link_header_fields_t *f, uint32_t *payload_len,
-                          uint32_t *payload_crc);
-
-/* Raw packet: header fields + an already formatted payload (any length). */
-size_t tdc_link_encode_raw(uint8_t *out, size_t cap, const tdc_link_header_fields_t *f, const uint8_t *payload,
+/* Raw packet: header fields (payload_len and payload_crc are replaced) + an
+ * already formatted payload (any length). */
+size_t tdc_link_encode_raw(uint8_t *out, size_t cap, const tdc_link_header_t *f, const uint8_t *payload,
                            uint32_t payload_len);
 
 /* STREAM packet from the encoder's stream info (frame index 0). */
@@ -80,7 +57,7 @@ size_t tdc_link_encode_subframe(const tdc_link_encoder_t *enc, uint8_t *out, siz
 size_t tdc_link_encode_motion(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap, uint32_t eye,
                               uint32_t frame, const int16_t *mv, uint32_t w, uint32_t h, int per_sample);
 
-/* PATTERN: tile bitmap (TDC_LINK_PATTERN_BYTES(w, h) bytes) of a w x h eye. */
+/* PATTERN: tile bitmap (TDC_PATTERN_BYTES(w, h) bytes) of a w x h eye. */
 size_t tdc_link_encode_pattern(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap, uint32_t eye,
                                uint32_t frame, const uint8_t *bits, uint32_t w, uint32_t h);
 
