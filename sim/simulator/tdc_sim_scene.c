@@ -14,6 +14,7 @@
 
 #include "tdc_math.h"
 #include "tdc_par.h"
+#include "simulator/tdc_sim_codes.h"
 
 /* ---------------------------------------------------------------------
  * Tabulated functions for the inner loops (no libm call per sample).
@@ -382,20 +383,11 @@ static uint8_t encode_code(const code_table_t *t, double lin)
     return (uint8_t)k;
 }
 
-static int16_t mv_q4(double d)
-{
-    double q = floor(d * 16.0 + 0.5);
-    return (int16_t)(q > 32767.0 ? 32767 : (q < -32767.0 ? -32767 : q));
-}
-
 static void src_samples(tdc_source_t *s, double t, int n, const double *xy, int spp, uint8_t *rgb, int16_t *mv,
                         double dt, tdc_mv_kind_t kind)
 {
     scene_ctx_t *sc = (scene_ctx_t *)s->ctx;
-    int g = 1;
-    while ((g + 1) * (g + 1) <= spp) {
-        g++;
-    }
+    int g = tdc_sim_spp_grid(spp);
     for (int k = 0; k < 3; k++) {
         code_table_init(&sc->codes[k], s->gamma[k]);
     }
@@ -429,8 +421,8 @@ static void src_samples(tdc_source_t *s, double t, int n, const double *xy, int 
             if (mv) {
                 double v[2];
                 scene_velocity(sc, x, y, t, dt, kind, v);
-                mv[2 * i] = mv_q4(-v[0] * dt);
-                mv[2 * i + 1] = mv_q4(-v[1] * dt);
+                mv[2 * i] = tdc_sim_mv_q4(-v[0] * dt);
+                mv[2 * i + 1] = tdc_sim_mv_q4(-v[1] * dt);
             }
         }
     }
@@ -614,10 +606,7 @@ static void src_ground_truth(tdc_source_t *s, double t, double ox, double oy, do
 static int src_frame(tdc_source_t *s, double t, double jx, double jy, int spp, uint8_t *rgb, double *lin)
 {
     scene_ctx_t *sc = (scene_ctx_t *)s->ctx;
-    int g = 1;
-    while ((g + 1) * (g + 1) <= spp) {
-        g++;
-    }
+    int g = tdc_sim_spp_grid(spp);
     double ox = g == 1 ? jx : 0.0, oy = g == 1 ? jy : 0.0;
     if (grid_lin(s, t, ox, oy, g, lin) != 0) {
         return -1;
