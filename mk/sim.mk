@@ -5,13 +5,16 @@
 # shared host library other components' tests link.
 
 SIMX_SRCS := sim/simulator/tdc_sim_scene.c sim/simulator/tdc_sim_modes.c sim/simulator/tdc_sim_run.c \
-             sim/simulator/tdc_sim_link.c sim/eye/tdc_eye.c sim/metrics/tdc_metrics.c sim/metrics/tdc_flip.c \
+             sim/simulator/tdc_sim_mode.c sim/simulator/tdc_sim_mode_plain.c sim/simulator/tdc_sim_mode_trm.c \
+             sim/simulator/tdc_sim_mode_warp.c sim/simulator/tdc_sim_mode_asm.c sim/simulator/tdc_sim_stage_lcd.c \
+             sim/simulator/tdc_sim_link.c sim/eye/tdc_eye.c sim/metrics/tdc_metrics.c sim/metrics/tdc_flip.c sim/metrics/tdc_filter.c \
              sim/panel/tdc_panel_sim.c sim/report/tdc_report.c sim/simulator/tdc_sim_render.c
 SIMX_OBJS = $(patsubst %.c,$(B)/%.o,$(SIMX_SRCS))
 SIMXLIB := $(B)/libtdcsimulator.a
 TDC_SIM := $(B)/tdc-sim
 
 HOST_PROGS += $(TDC_SIM)
+DEPS_PKGS += python3-scipy # test_metrics: the flip v1.6 transcription (scipy.signal.convolve2d)
 SIM_TESTS := test_sim_smoke test_sim_eye test_metrics
 TESTS += $(foreach t,$(SIM_TESTS),$(B)/tests/unit/$(t))
 
@@ -33,6 +36,11 @@ $(GEN)/tdc_sim_features.h: Makefile $(wildcard mk/*.mk) | $(GEN)
 
 $(SIMX_OBJS) $(B)/sim/simulator/tdc_sim_main.o: $(GEN)/tdc_sim_features.h
 
+# The simulator's own stages run threaded over rows with gcc's OpenMP
+# (sim/tdc_par.h says why); other compilers build them serial.
+SIM_OMP := $(if $(filter gcc,$(CCNAME)),-fopenmp)
+$(SIMX_OBJS) $(B)/sim/simulator/tdc_sim_main.o: HOST_CFLAGS += $(SIM_OMP)
+
 $(SIMXLIB): $(SIMX_OBJS)
 	@rm -f $@; mkdir -p $(@D)
 	ar rcs $@ $^
@@ -40,11 +48,11 @@ $(SIMXLIB): $(SIMX_OBJS)
 # With the renderer in the tree, tdc-sim links it (--renderer SCENE).
 SIM_RENDER_LIBS = $(if $(filter 1,$(call sim_have,sim/render/tdc_render_frame.c)),$(RENDERLIB))
 $(TDC_SIM): $(B)/sim/simulator/tdc_sim_main.o $(SIMXLIB) $(SIMLIB) $(FWLIB) $$(SIM_RENDER_LIBS)
-	$(CC) $(HOST_LDFLAGS) $< -o $@ $(SIMXLIB) $(SIM_RENDER_LIBS) $(SIMLIB) $(FWLIB) \
+	$(CC) $(HOST_LDFLAGS) $(SIM_OMP) $< -o $@ $(SIMXLIB) $(SIM_RENDER_LIBS) $(SIMLIB) $(FWLIB) \
 	    $(if $(SIM_RENDER_LIBS),$(RENDER_LDLIBS)) $(HOST_LIBS)
 
 $(foreach t,$(SIM_TESTS),$(B)/tests/unit/$(t)): $(B)/tests/%: $(B)/tests/%.o $(SIMXLIB) $(SIMLIB) $(FWLIB)
-	$(CC) $(HOST_LDFLAGS) $^ -o $@ $(HOST_LIBS)
+	$(CC) $(HOST_LDFLAGS) $(SIM_OMP) $^ -o $@ $(HOST_LIBS)
 $(foreach t,$(SIM_TESTS),$(B)/tests/unit/$(t).o): $(GEN)/tdc_sim_features.h
 
 .PHONY: tdc-sim demo-sim
@@ -56,3 +64,9 @@ demo: deps demo-sim
 # The default comparison on built-in scenes (< 5 minutes on 2 cores).
 demo-sim: $(TDC_SIM)
 	@sim/report/tdc_demo.sh $(TDC_SIM) $(or $(REPORT),report)
+
+# `make bench-sim`: simulated pixel-refreshes/s, peak memory and the stage
+# breakdown at headset scale (docs/simulator-performance.md).
+.PHONY: bench-sim
+bench-sim: deps $(TDC_SIM)
+	@tests/bench/bench_sim.sh $(TDC_SIM)

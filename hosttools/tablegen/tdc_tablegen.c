@@ -28,6 +28,7 @@ typedef struct {
     char name[64];
     char type[16];
     int width, height, eyes, bits, refresh_hz;
+    double ppd; /* pixels per degree at the view centre (0: not given) */
     int rates[TDC_PANEL_MAX_RATES];
     int nrates;
     double gamma[3];
@@ -172,6 +173,8 @@ static void parse_profile_stream(FILE *f, profile_t *p)
             p->eyes = parse_int(tok[1], (int)line, 1, 2, k);
         } else if (!strcmp(k, "bits") && n == 2) {
             p->bits = parse_int(tok[1], (int)line, 6, 10, k);
+        } else if (!strcmp(k, "ppd") && n == 2) {
+            p->ppd = parse_double(tok[1], (int)line, 1.0, 200.0, k);
         } else if (!strcmp(k, "refresh_hz") && n == 2) {
             p->refresh_hz = parse_int(tok[1], (int)line, 1, 1000, k);
         } else if (!strcmp(k, "rates_hz") && n >= 2 && n <= TDC_PANEL_MAX_RATES) {
@@ -539,6 +542,7 @@ int main(int argc, char **argv)
     fprintf(f, "    .name = \"%s\",\n    .type = %s,\n", p.name, is_lcd ? "TDC_PANEL_LCD" : "TDC_PANEL_OLED");
     fprintf(f, "    .width = %d, .height = %d, .eyes = %d, .bits = %d, .refresh_hz = %d,\n", p.width,
             p.height, p.eyes, p.bits, p.refresh_hz);
+    fprintf(f, "    .ppd_x100 = %ldu,\n", lround(p.ppd * 100.0));
     fprintf(f, "    .rates_hz = {");
     for (int i = 0; i < p.nrates; i++) {
         fprintf(f, "%d, ", p.rates[i]);

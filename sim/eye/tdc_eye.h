@@ -21,11 +21,15 @@
 #ifndef TDC_EYE_H
 #define TDC_EYE_H
 
+#include <stdint.h>
+
 #include "simulator/tdc_sim_scene.h"
 
 typedef struct {
     double t0, t1;     /* emission interval, seconds */
-    const double *lin; /* W*H*3 linear light during the interval */
+    const double *lin; /* W*H*3 linear light during the interval, or NULL and: */
+    const uint8_t *codes; /* W*H*3 drive codes whose light is lut[256 * channel + code] */
+    const double *lut;
 } tdc_eye_slice_t;
 
 typedef struct {
@@ -38,9 +42,9 @@ typedef struct {
 
 /* Perceived image at t_end from n slices (any order; parts outside the
  * window are ignored).  v: target velocity (px/s, multiplied by the pursuit
- * gain).  out: W*H*3. */
-void tdc_eye_perceive(const tdc_eye_cfg_t *cfg, const tdc_eye_slice_t *slices, int n, double t_end, const double v[2],
-                      double *out);
+ * gain).  out: W*H*3.  0, or -1 when out of memory. */
+int tdc_eye_perceive(const tdc_eye_cfg_t *cfg, const tdc_eye_slice_t *slices, int n, double t_end, const double v[2],
+                     double *out);
 
 /* The same integral of the scene itself: nsteps ground-truth renders over
  * the window (1 suffices for rigid content tracked exactly).  scratch:

@@ -8,6 +8,13 @@
  * each channel convolved with its contrast sensitivity function written as
  * a spatial sum of Gaussians (x in degrees)
  *   S(x) = a1 sqrt(pi/b1) exp(-pi^2 x^2 / b1) + a2 sqrt(pi/b2) exp(-pi^2 x^2 / b2)
+ * evaluated in 2-D at the radial distance (x^2 = dx^2 + dy^2, as the paper's
+ * eq. 2 and NVlabs flip v1.6's generate_spatial_filter do): each Gaussian is
+ * separable, exp(-pi^2 (dx^2 + dy^2) / b) = g(dx) g(dy), and keeps its
+ * amplitude a sqrt(pi / b) - not (a sqrt(pi / b))^2 = a pi / b, which an
+ * earlier version used and which weighted the blue-yellow channel's two
+ * Gaussians 34.1 sqrt(pi/0.04) : 13.5 sqrt(pi/0.025) wrongly (per-pixel
+ * maps off by up to 0.02 from flip v1.6)
  *   achromatic a1 = 1,    b1 = 0.0047, a2 = 0,    b2 = 1e-5
  *   red-green  a1 = 1,    b1 = 0.0053, a2 = 0,    b2 = 1e-5
  *   blue-yell. a1 = 34.1, b1 = 0.04,   a2 = 13.5, b2 = 0.025
@@ -28,6 +35,9 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "metrics/tdc_filter.h"
+#include "tdc_par.h"
 
 #define PI 3.14159265358979323846
 
@@ -87,44 +97,9 @@ static double hyab(const double *a, const double *b)
     return fabs(a[0] - b[0]) + sqrt(da * da + db * db);
 }
 
-static int clampi(int i, int n)
-{
-    return i < 0 ? 0 : (i >= n ? n - 1 : i);
-}
-
-/* 1-D horizontal then vertical convolution of plane `in` (w x h) with
- * kernels kx (along x) and ky (along y), radius r, edges clamped. */
-static void sep_filter(const double *in, double *out, double *tmp, int w, int h, const double *kx, const double *ky,
-                       int r)
-{
-    for (int y = 0; y < h; y++) {
-        for (int x = 0; x < w; x++) {
-            double s = 0.0;
-            for (int j = -r; j <= r; j++) {
-                s += kx[j + r] * in[(size_t)y * w + clampi(x + j, w)];
-            }
-            tmp[(size_t)y * w + x] = s;
-        }
-    }
-    for (int y = 0; y < h; y++) {
-        for (int x = 0; x < w; x++) {
-            double s = 0.0;
-            for (int j = -r; j <= r; j++) {
-                s += ky[j + r] * tmp[(size_t)clampi(y + j, h) * w + x];
-            }
-            out[(size_t)y * w + x] = s;
-        }
-    }
-}
-
-typedef struct {
-    int r;
-    double *g1, *g2;  /* unnormalised 1-D Gaussians per channel */
-    double c1[3], c2[3], norm[3];
-} csf_t;
-
-/* Prefiltered YyCxCz -> clamped linear RGB -> Hunt-adjusted L*a*b*. */
-static int flip_color_prepare(const double *lin, int w, int h, double ppd, double *lab_out, double *yfeat)
+/* Prefiltered YyCxCz -> clamped linear RGB -> Hunt-adjusted L*a*b* (lab_out,
+ * 3 floats per pixel) and the feature plane (Yy + 16) / 116 (yfeat). */
+static int flip_color_prepare(const double *lin, int w, int h, double ppd, float *lab_out, float *yfeat, float *work)
 {
     static const double a1[3] = {1.0, 1.0, 34.1}, b1[3] = {0.0047, 0.0053, 0.04};
     static const double a2[3] = {0.0, 0.0, 13.5}, b2[3] = {1e-5, 1e-5, 0.025};
@@ -133,29 +108,30 @@ static int flip_color_prepare(const double *lin, int w, int h, double ppd, doubl
     if (r < 1) {
         r = 1;
     }
-    size_t n = (size_t)w * h;
-    int kn = 2 * r + 1;
-    double *mem = malloc(sizeof(double) * (n * 9 + (size_t)kn * 6));
-    if (!mem) {
+    if (r > TDC_FILTER_MAX_R) {
         return -1;
     }
-    double *plane[3] = {mem, mem + n, mem + 2 * n};
-    double *filt[3] = {mem + 3 * n, mem + 4 * n, mem + 5 * n};
-    double *f2 = mem + 6 * n, *tmp = mem + 7 * n, *spare = mem + 8 * n;
-    double *k1 = mem + 9 * n;
-    (void)spare;
-    for (size_t i = 0; i < n; i++) {
-        double o[3];
-        rgb_to_ycxcz(lin + 3 * i, o);
-        plane[0][i] = o[0];
-        plane[1][i] = o[1];
-        plane[2][i] = o[2];
-        if (yfeat) {
-            yfeat[i] = (o[0] + 16.0) / 116.0;
+    size_t n = (size_t)w * h;
+    float *plane[3] = {work, work + n, work + 2 * n};
+    float *filt[3] = {work + 3 * n, work + 4 * n, work + 5 * n};
+    float *f2 = work + 6 * n, *tmp = work + 7 * n;
+    TDC_PAR_FOR((size_t)w * h)
+    for (int y = 0; y < h; y++) {
+        for (size_t i = (size_t)y * w; i < (size_t)(y + 1) * w; i++) {
+            double o[3];
+            rgb_to_ycxcz(lin + 3 * i, o);
+            plane[0][i] = (float)o[0];
+            plane[1][i] = (float)o[1];
+            plane[2][i] = (float)o[2];
+            yfeat[i] = (float)((o[0] + 16.0) / 116.0);
         }
     }
     for (int c = 0; c < 3; c++) {
-        double *g1 = k1, *g2 = k1 + kn;
+        /* 2-D kernel (w1 g1(x) g1(y) + w2 g2(x) g2(y)) / total with
+         * w = a sqrt(pi / b); each term as a separable pass whose 1-D
+         * kernels carry sqrt(w / total) */
+        double g1[2 * TDC_FILTER_MAX_R + 1], g2[2 * TDC_FILTER_MAX_R + 1];
+        float k1[2 * TDC_FILTER_MAX_R + 1], k2[2 * TDC_FILTER_MAX_R + 1];
         double s1 = 0.0, s2 = 0.0;
         for (int j = -r; j <= r; j++) {
             double xd = (double)j / ppd; /* degrees */
@@ -164,49 +140,61 @@ static int flip_color_prepare(const double *lin, int w, int h, double ppd, doubl
             s1 += g1[j + r];
             s2 += g2[j + r];
         }
-        /* 2-D weights: a sqrt(pi/b) per dimension -> a pi / b times g(x) g(y) */
-        double w1 = a1[c] * PI / b1[c], w2 = a2[c] * PI / b2[c];
+        double w1 = a1[c] * sqrt(PI / b1[c]), w2 = a2[c] * sqrt(PI / b2[c]);
         double total = w1 * s1 * s1 + w2 * s2 * s2;
-        sep_filter(plane[c], filt[c], tmp, w, h, g1, g1, r);
+        double q1 = sqrt(w1 / total), q2 = sqrt(w2 / total);
+        for (int j = 0; j < 2 * r + 1; j++) {
+            k1[j] = (float)(q1 * g1[j]);
+            k2[j] = (float)(q2 * g2[j]);
+        }
+        if (tdc_sep_filter_f(plane[c], filt[c], tmp, w, h, k1, k1, r, TDC_EDGE_CLAMP)) {
+            return -1;
+        }
         if (w2 > 0.0) {
-            sep_filter(plane[c], f2, tmp, w, h, g2, g2, r);
-            for (size_t i = 0; i < n; i++) {
-                filt[c][i] = (w1 * filt[c][i] + w2 * f2[i]) / total;
+            if (tdc_sep_filter_f(plane[c], f2, tmp, w, h, k2, k2, r, TDC_EDGE_CLAMP)) {
+                return -1;
             }
-        } else {
-            for (size_t i = 0; i < n; i++) {
-                filt[c][i] = w1 * filt[c][i] / total;
+            TDC_PAR_FOR((size_t)w * h)
+            for (int y = 0; y < h; y++) {
+                for (size_t i = (size_t)y * w; i < (size_t)(y + 1) * w; i++) {
+                    filt[c][i] += f2[i];
+                }
             }
         }
     }
-    for (size_t i = 0; i < n; i++) {
-        double c[3] = {filt[0][i], filt[1][i], filt[2][i]}, rgb[3];
-        ycxcz_to_rgb(c, rgb);
-        for (int k = 0; k < 3; k++) {
-            rgb[k] = rgb[k] < 0.0 ? 0.0 : (rgb[k] > 1.0 ? 1.0 : rgb[k]);
+    TDC_PAR_FOR((size_t)w * h)
+    for (int y = 0; y < h; y++) {
+        for (size_t i = (size_t)y * w; i < (size_t)(y + 1) * w; i++) {
+            double c[3] = {filt[0][i], filt[1][i], filt[2][i]}, rgb[3], lab[3];
+            ycxcz_to_rgb(c, rgb);
+            for (int k = 0; k < 3; k++) {
+                rgb[k] = rgb[k] < 0.0 ? 0.0 : (rgb[k] > 1.0 ? 1.0 : rgb[k]);
+            }
+            rgb_to_lab_hunt(rgb, lab);
+            lab_out[3 * i] = (float)lab[0];
+            lab_out[3 * i + 1] = (float)lab[1];
+            lab_out[3 * i + 2] = (float)lab[2];
         }
-        rgb_to_lab_hunt(rgb, lab_out + 3 * i);
     }
-    free(mem);
     return 0;
 }
 
-/* Edge and point feature magnitudes of plane y. */
-static int flip_features(const double *y, int w, int h, double ppd, double *edge, double *point)
+/* Edge and point feature magnitudes of plane y (work: 3 w*h floats). */
+static int flip_features(const float *y, int w, int h, double ppd, float *edge, float *point, float *work)
 {
     double sigma = 0.5 * 0.082 * ppd;
     int r = (int)ceil(3.0 * sigma);
     if (r < 1) {
         r = 1;
     }
-    int kn = 2 * r + 1;
-    size_t n = (size_t)w * h;
-    double *mem = malloc(sizeof(double) * (n * 3 + (size_t)kn * 3));
-    if (!mem) {
+    if (r > TDC_FILTER_MAX_R) {
         return -1;
     }
-    double *gx = mem, *gy = mem + n, *tmp = mem + 2 * n;
-    double *g = mem + 3 * n, *d1 = g + kn, *d2 = d1 + kn;
+    int kn = 2 * r + 1;
+    size_t n = (size_t)w * h;
+    float *gx = work, *gy = work + n, *tmp = work + 2 * n;
+    double g[2 * TDC_FILTER_MAX_R + 1], d1[2 * TDC_FILTER_MAX_R + 1], d2[2 * TDC_FILTER_MAX_R + 1];
+    float fg[2 * TDC_FILTER_MAX_R + 1], fd1[2 * TDC_FILTER_MAX_R + 1], fd2[2 * TDC_FILTER_MAX_R + 1];
     double gs = 0.0, d1p = 0.0, d2p = 0.0, d2n = 0.0;
     for (int j = -r; j <= r; j++) {
         double e = exp(-(double)(j * j) / (2.0 * sigma * sigma));
@@ -224,21 +212,24 @@ static int flip_features(const double *y, int w, int h, double ppd, double *edge
         }
     }
     for (int j = 0; j < kn; j++) {
-        g[j] /= gs;
-        d1[j] /= d1p; /* antisymmetric: negative lobe sums to -1 too */
-        d2[j] = d2[j] > 0.0 ? d2[j] / d2p : d2[j] / d2n;
+        fg[j] = (float)(g[j] / gs);
+        fd1[j] = (float)(d1[j] / d1p); /* antisymmetric: negative lobe sums to -1 too */
+        fd2[j] = (float)(d2[j] > 0.0 ? d2[j] / d2p : d2[j] / d2n);
     }
-    sep_filter(y, gx, tmp, w, h, d1, g, r);
-    sep_filter(y, gy, tmp, w, h, g, d1, r);
-    for (size_t i = 0; i < n; i++) {
-        edge[i] = sqrt(gx[i] * gx[i] + gy[i] * gy[i]);
+    for (int pass = 0; pass < 2; pass++) {
+        const float *d = pass ? fd2 : fd1;
+        float *o = pass ? point : edge;
+        if (tdc_sep_filter_f(y, gx, tmp, w, h, d, fg, r, TDC_EDGE_CLAMP) ||
+            tdc_sep_filter_f(y, gy, tmp, w, h, fg, d, r, TDC_EDGE_CLAMP)) {
+            return -1;
+        }
+        TDC_PAR_FOR((size_t)w * h)
+        for (int yr = 0; yr < h; yr++) {
+            for (size_t i = (size_t)yr * w; i < (size_t)(yr + 1) * w; i++) {
+                o[i] = sqrtf(gx[i] * gx[i] + gy[i] * gy[i]);
+            }
+        }
     }
-    sep_filter(y, gx, tmp, w, h, d2, g, r);
-    sep_filter(y, gy, tmp, w, h, g, d2, r);
-    for (size_t i = 0; i < n; i++) {
-        point[i] = sqrt(gx[i] * gx[i] + gy[i] * gy[i]);
-    }
-    free(mem);
     return 0;
 }
 
@@ -246,14 +237,18 @@ double tdc_flip(const double *ref, const double *test, int w, int h, double ppd,
 {
     const double qc = 0.7, pc = 0.4, pt = 0.95, qf = 0.5;
     size_t n = (size_t)w * h;
-    double *mem = malloc(sizeof(double) * n * 12);
-    if (!mem) {
+    /* lab r/t 6, y r/t 2, features 4, work 8 floats per pixel; row sums */
+    float *mem = malloc(sizeof(float) * n * 20 + sizeof(double) * (size_t)h);
+    if (!mem || w > TDC_FILTER_MAX_W) {
+        free(mem);
         return -1.0;
     }
-    double *lab_r = mem, *lab_t = mem + 3 * n, *y_r = mem + 6 * n, *y_t = mem + 7 * n;
-    double *e_r = mem + 8 * n, *p_r = mem + 9 * n, *e_t = mem + 10 * n, *p_t = mem + 11 * n;
-    if (flip_color_prepare(ref, w, h, ppd, lab_r, y_r) || flip_color_prepare(test, w, h, ppd, lab_t, y_t) ||
-        flip_features(y_r, w, h, ppd, e_r, p_r) || flip_features(y_t, w, h, ppd, e_t, p_t)) {
+    float *lab_r = mem, *lab_t = mem + 3 * n, *y_r = mem + 6 * n, *y_t = mem + 7 * n;
+    float *e_r = mem + 8 * n, *p_r = mem + 9 * n, *e_t = mem + 10 * n, *p_t = mem + 11 * n;
+    float *work = mem + 12 * n;
+    double *rows = (double *)(void *)(mem + 20 * n);
+    if (flip_color_prepare(ref, w, h, ppd, lab_r, y_r, work) || flip_color_prepare(test, w, h, ppd, lab_t, y_t, work) ||
+        flip_features(y_r, w, h, ppd, e_r, p_r, work) || flip_features(y_t, w, h, ppd, e_t, p_t, work)) {
         free(mem);
         return -1.0;
     }
@@ -261,29 +256,37 @@ double tdc_flip(const double *ref, const double *test, int w, int h, double ppd,
     double lg[3], lb[3];
     rgb_to_lab_hunt(green, lg);
     rgb_to_lab_hunt(blue, lb);
-    double cmax = pow(hyab(lg, lb), qc);
-    double sum = 0.0;
-    for (size_t i = 0; i < n; i++) {
-        double dc = pow(hyab(lab_r + 3 * i, lab_t + 3 * i), qc);
-        if (dc < pc * cmax) {
-            dc = pt / (pc * cmax) * dc;
-        } else {
-            dc = pt + (dc - pc * cmax) / (cmax - pc * cmax) * (1.0 - pt);
+    const double cmax = pow(hyab(lg, lb), qc);
+    TDC_PAR_FOR((size_t)w * h)
+    for (int y = 0; y < h; y++) {
+        double sum = 0.0;
+        for (size_t i = (size_t)y * w; i < (size_t)(y + 1) * w; i++) {
+            double lr[3] = {lab_r[3 * i], lab_r[3 * i + 1], lab_r[3 * i + 2]};
+            double lt[3] = {lab_t[3 * i], lab_t[3 * i + 1], lab_t[3 * i + 2]};
+            double dc = pow(hyab(lr, lt), qc);
+            if (dc < pc * cmax) {
+                dc = pt / (pc * cmax) * dc;
+            } else {
+                dc = pt + (dc - pc * cmax) / (cmax - pc * cmax) * (1.0 - pt);
+            }
+            if (dc > 1.0) {
+                dc = 1.0;
+            }
+            double fe = fabs((double)e_r[i] - e_t[i]), fp = fabs((double)p_r[i] - p_t[i]);
+            double df = sqrt((fe > fp ? fe : fp) / sqrt(2.0)); /* ^qf, qf = 0.5 */
+            if (df > 1.0) {
+                df = 1.0;
+            }
+            double e = pow(dc, 1.0 - df);
+            if (map) {
+                map[i] = e;
+            }
+            sum += e;
         }
-        if (dc > 1.0) {
-            dc = 1.0;
-        }
-        double fe = fabs(e_r[i] - e_t[i]), fp = fabs(p_r[i] - p_t[i]);
-        double df = pow((fe > fp ? fe : fp) / sqrt(2.0), qf);
-        if (df > 1.0) {
-            df = 1.0;
-        }
-        double e = pow(dc, 1.0 - df);
-        if (map) {
-            map[i] = e;
-        }
-        sum += e;
+        rows[y] = sum;
     }
+    (void)qf;
+    double sum = tdc_par_sum_rows(rows, h);
     free(mem);
     return n ? sum / (double)n : 0.0;
 }

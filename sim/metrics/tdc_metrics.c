@@ -5,13 +5,30 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "metrics/tdc_filter.h"
+#include "tdc_par.h"
+
 double tdc_psnr(const double *a, const double *b, size_t n, double peak)
 {
-    double se = 0.0;
-    for (size_t i = 0; i < n; i++) {
-        double d = a[i] - b[i];
-        se += d * d;
+    /* rows of 4096 values, summed per row then in row order */
+    const size_t chunk = 4096;
+    int nrows = (int)((n + chunk - 1) / chunk);
+    double *rows = malloc(sizeof(double) * (size_t)(nrows > 0 ? nrows : 1));
+    if (!rows) {
+        return -1.0;
     }
+    TDC_PAR_FOR(n)
+    for (int r = 0; r < nrows; r++) {
+        size_t i0 = (size_t)r * chunk, i1 = i0 + chunk < n ? i0 + chunk : n;
+        double se = 0.0;
+        for (size_t i = i0; i < i1; i++) {
+            double d = a[i] - b[i];
+            se += d * d;
+        }
+        rows[r] = se;
+    }
+    double se = tdc_par_sum_rows(rows, nrows);
+    free(rows);
     double mse = n ? se / (double)n : 0.0;
     if (mse <= peak * peak * 1e-10) {
         return TDC_PSNR_CAP;
@@ -22,45 +39,14 @@ double tdc_psnr(const double *a, const double *b, size_t n, double peak)
 
 void tdc_metrics_encode(const double *lin, double *enc, size_t n)
 {
-    for (size_t i = 0; i < n; i++) {
-        double v = lin[i] < 0.0 ? 0.0 : (lin[i] > 1.0 ? 1.0 : lin[i]);
-        enc[i] = pow(v, 1.0 / 2.2);
-    }
-}
-
-/* scipy.ndimage 'reflect' (half-sample symmetric) index. */
-static int reflect_index(int i, int n)
-{
-    if (n == 1) {
-        return 0;
-    }
-    int period = 2 * n;
-    i %= period;
-    if (i < 0) {
-        i += period;
-    }
-    return i < n ? i : period - 1 - i;
-}
-
-/* Separable Gaussian filter of one plane (w x h), kernel k of radius r. */
-static void filter_plane(const double *in, double *out, double *tmp, int w, int h, const double *k, int r)
-{
-    for (int y = 0; y < h; y++) {
-        for (int x = 0; x < w; x++) {
-            double s = 0.0;
-            for (int j = -r; j <= r; j++) {
-                s += k[j + r] * in[(size_t)y * w + reflect_index(x + j, w)];
-            }
-            tmp[(size_t)y * w + x] = s;
-        }
-    }
-    for (int y = 0; y < h; y++) {
-        for (int x = 0; x < w; x++) {
-            double s = 0.0;
-            for (int j = -r; j <= r; j++) {
-                s += k[j + r] * tmp[(size_t)reflect_index(y + j, h) * w + x];
-            }
-            out[(size_t)y * w + x] = s;
+    const size_t chunk = 4096;
+    int nrows = (int)((n + chunk - 1) / chunk);
+    TDC_PAR_FOR(n)
+    for (int r = 0; r < nrows; r++) {
+        size_t i0 = (size_t)r * chunk, i1 = i0 + chunk < n ? i0 + chunk : n;
+        for (size_t i = i0; i < i1; i++) {
+            double v = lin[i] < 0.0 ? 0.0 : (lin[i] > 1.0 ? 1.0 : lin[i]);
+            enc[i] = pow(v, 1.0 / 2.2);
         }
     }
 }
@@ -79,33 +65,37 @@ double tdc_ssim(const double *a, const double *b, int w, int h, double data_rang
         k[j] /= ks;
     }
     size_t n = (size_t)w * h;
-    double *buf = malloc(sizeof(double) * n * 11);
+    double *buf = malloc(sizeof(double) * (n * 11 + (size_t)h));
     if (!buf) {
         return -1.0;
     }
     double *x = buf, *y = buf + n, *xx = buf + 2 * n, *yy = buf + 3 * n, *xy = buf + 4 * n;
     double *ux = buf + 5 * n, *uy = buf + 6 * n, *uxx = buf + 7 * n, *uyy = buf + 8 * n, *uxy = buf + 9 * n;
-    double *tmp = buf + 10 * n;
+    double *tmp = buf + 10 * n, *rows = buf + 11 * n;
     const double c1 = (0.01 * data_range) * (0.01 * data_range);
     const double c2 = (0.03 * data_range) * (0.03 * data_range);
     const int pad = r; /* (win_size - 1) / 2 with win_size = 2r + 1 */
     double total = 0.0;
-    for (int c = 0; c < 3; c++) {
-        for (size_t i = 0; i < n; i++) {
-            x[i] = a[3 * i + c];
-            y[i] = b[3 * i + c];
-            xx[i] = x[i] * x[i];
-            yy[i] = y[i] * y[i];
-            xy[i] = x[i] * y[i];
+    int bad = 0;
+    for (int c = 0; c < 3 && !bad; c++) {
+        TDC_PAR_FOR((size_t)w * h)
+        for (int yr = 0; yr < h; yr++) {
+            for (size_t i = (size_t)yr * w; i < (size_t)(yr + 1) * w; i++) {
+                x[i] = a[3 * i + c];
+                y[i] = b[3 * i + c];
+                xx[i] = x[i] * x[i];
+                yy[i] = y[i] * y[i];
+                xy[i] = x[i] * y[i];
+            }
         }
-        filter_plane(x, ux, tmp, w, h, k, r);
-        filter_plane(y, uy, tmp, w, h, k, r);
-        filter_plane(xx, uxx, tmp, w, h, k, r);
-        filter_plane(yy, uyy, tmp, w, h, k, r);
-        filter_plane(xy, uxy, tmp, w, h, k, r);
-        double s = 0.0;
-        size_t cnt = 0;
+        bad |= tdc_sep_filter_d(x, ux, tmp, w, h, k, k, r, TDC_EDGE_REFLECT);
+        bad |= tdc_sep_filter_d(y, uy, tmp, w, h, k, k, r, TDC_EDGE_REFLECT);
+        bad |= tdc_sep_filter_d(xx, uxx, tmp, w, h, k, k, r, TDC_EDGE_REFLECT);
+        bad |= tdc_sep_filter_d(yy, uyy, tmp, w, h, k, k, r, TDC_EDGE_REFLECT);
+        bad |= tdc_sep_filter_d(xy, uxy, tmp, w, h, k, k, r, TDC_EDGE_REFLECT);
+        TDC_PAR_FOR((size_t)w * h)
         for (int yy0 = pad; yy0 < h - pad; yy0++) {
+            double s = 0.0;
             for (int xx0 = pad; xx0 < w - pad; xx0++) {
                 size_t i = (size_t)yy0 * w + xx0;
                 double vx = uxx[i] - ux[i] * ux[i];
@@ -114,11 +104,13 @@ double tdc_ssim(const double *a, const double *b, int w, int h, double data_rang
                 double num = (2.0 * ux[i] * uy[i] + c1) * (2.0 * vxy + c2);
                 double den = (ux[i] * ux[i] + uy[i] * uy[i] + c1) * (vx + vy + c2);
                 s += num / den;
-                cnt++;
             }
+            rows[yy0] = s;
         }
+        size_t cnt = h > 2 * pad && w > 2 * pad ? (size_t)(h - 2 * pad) * (size_t)(w - 2 * pad) : 0;
+        double s = h > 2 * pad ? tdc_par_sum_rows(rows + pad, h - 2 * pad) : 0.0;
         total += cnt ? s / (double)cnt : 1.0;
     }
     free(buf);
-    return total / 3.0;
+    return bad ? -1.0 : total / 3.0;
 }

@@ -7,10 +7,10 @@ SIM=$1; OUT=$2; name=$3; args=$4
 mkdir -p "$OUT/$name"
 rm -f "$OUT/$name/done"
 t0=$(date +%s)
-# 128x96 unless the run gives its own -g (the later option wins)
+# 128x96 mono unless the run gives its own -g / --stereo (the later option wins)
 # shellcheck disable=SC2086
 if /usr/bin/time -o "$OUT/$name/time.txt" -f '%U %S %M' \
-        "$SIM" -l "$name" -o "$OUT/$name" -g 128x96 $args > "$OUT/$name/stdout.txt" 2> "$OUT/$name/stderr.txt"; then
+        "$SIM" -l "$name" -o "$OUT/$name" -g 128x96 --mono $args > "$OUT/$name/stdout.txt" 2> "$OUT/$name/stderr.txt"; then
     case $name in hs-*) /usr/bin/python3 sim/report/tdc_crops.py "$OUT/$name" >> "$OUT/$name/stderr.txt" 2>&1 ;; esac
     cpu=$(awk '{printf "%.0f s CPU, %.2f GB peak", $1 + $2, $3 / 1048576}' "$OUT/$name/time.txt")
     echo "$name ok ($(( $(date +%s) - t0 )) s wall, $cpu): tdc-sim $args" >> "$OUT/demo.log"

@@ -78,29 +78,39 @@ void tdc_report_csv(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_result_t
     if (header) {
         fprintf(f, "run,scene,panel,mode,display_hz,width,height,evals,psnr_db,psnr_min_db,ssim,flip,flip_max,"
                    "flicker,rays_per_s,rays_vs_full,link_bytes_per_s,link_vs_full,fw_us_per_frame,"
-                   "render_us_per_frame,frames,resets,link_errors,nonfinite,available,note\n");
+                   "render_us_per_frame,frames,resets,link_errors,nonfinite,available,eyes,psnr_eye0_db,psnr_eye1_db,"
+                   "ssim_eye0,ssim_eye1,flip_eye0,flip_eye1,note\n");
     }
+    const int eyes = cfg->eyes == 2 ? 2 : 1;
     double full_rays = (double)cfg->width * cfg->height * (cfg->spp > 0 ? cfg->spp : (cfg->refresh_hz >= 200 ? 1 : 4)) *
-                       cfg->refresh_hz;
-    double full_bytes = (double)cfg->width * cfg->height * 3.0 * cfg->refresh_hz;
+                       cfg->refresh_hz * eyes;
+    double full_bytes = (double)cfg->width * cfg->height * 3.0 * cfg->refresh_hz * eyes;
     for (int i = 0; i < n; i++) {
         const tdc_sim_result_t *x = &r[i];
         double T = x->sim_s > 0 ? x->sim_s : 1.0;
         double fr = x->frames ? (double)x->frames : 1.0;
-        fprintf(f, "%s,%s,%s,%s,%d,%d,%d,%d,%.3f,%.3f,%.5f,%.5f,%.5f,%.3f,%.0f,%.4f,%.0f,%.4f,%.2f,%.2f,%llu,%u,%u,%d,%d,\"%s\"\n",
+        char per_eye[160] = ",,,,,";
+        if (eyes == 2) {
+            snprintf(per_eye, sizeof(per_eye), "%.3f,%.3f,%.5f,%.5f,%.5f,%.5f", x->eye_psnr[0], x->eye_psnr[1],
+                     x->eye_ssim[0], x->eye_ssim[1], x->eye_flip[0], x->eye_flip[1]);
+        }
+        fprintf(f, "%s,%s,%s,%s,%d,%d,%d,%d,%.3f,%.3f,%.5f,%.5f,%.5f,%.3f,%.0f,%.4f,%.0f,%.4f,%.2f,%.2f,%llu,%u,%u,%d,%d,"
+                   "%d,%s,\"%s\"\n",
                 cfg->label ? cfg->label : "run", tdc_scene_name(cfg->scene.kind), panel_name(cfg), x->desc->name,
                 x->display_hz, cfg->width, cfg->height, x->evals, x->psnr, x->evals ? x->psnr_min : 0.0, x->ssim,
                 x->flip, x->flip_max, x->flicker, x->rays / T, x->rays / T / full_rays, x->link_bytes / T,
                 x->link_bytes / T / full_bytes, 1e6 * x->fw_s / fr, 1e6 * x->render_s / fr,
-                (unsigned long long)x->frames, x->resets, x->link_errors, x->nonfinite, x->available, x->note);
+                (unsigned long long)x->frames, x->resets, x->link_errors, x->nonfinite, x->available, eyes, per_eye,
+                x->note);
     }
 }
 
 void tdc_report_markdown(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_result_t *r, int n)
 {
+    const int eyes = cfg->eyes == 2 ? 2 : 1;
     double full_rays = (double)cfg->width * cfg->height * (cfg->spp > 0 ? cfg->spp : (cfg->refresh_hz >= 200 ? 1 : 4)) *
-                       cfg->refresh_hz;
-    double full_bytes = (double)cfg->width * cfg->height * 3.0 * cfg->refresh_hz;
+                       cfg->refresh_hz * eyes;
+    double full_bytes = (double)cfg->width * cfg->height * 3.0 * cfg->refresh_hz * eyes;
     fprintf(f, "| mode | Hz | PSNR dB | SSIM | FLIP | flicker | rays vs full | link vs full | link MB/s | fw us/frame | "
                "render us/frame |\n");
     fprintf(f, "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
@@ -115,6 +125,19 @@ void tdc_report_markdown(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_res
         fprintf(f, "| %s | %d | %.2f | %.4f | %.4f | %.2f | %.3f | %.3f | %.2f | %.0f | %.0f |\n", x->desc->name,
                 x->display_hz, x->psnr, x->ssim, x->flip, x->flicker, x->rays / T / full_rays,
                 x->link_bytes / T / full_bytes, x->link_bytes / T / 1e6, 1e6 * x->fw_s / fr, 1e6 * x->render_s / fr);
+    }
+    if (eyes == 2) {
+        /* stereo: the table above is both eyes (mean figures, the pair's rays and link bytes) */
+        fprintf(f, "\nPer eye (left = eye 0, right = eye 1):\n\n| mode | PSNR L | PSNR R | SSIM L | SSIM R | FLIP L | "
+                   "FLIP R | flicker L | flicker R |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+        for (int i = 0; i < n; i++) {
+            const tdc_sim_result_t *x = &r[i];
+            if (x->available) {
+                fprintf(f, "| %s | %.2f | %.2f | %.4f | %.4f | %.4f | %.4f | %.2f | %.2f |\n", x->desc->name,
+                        x->eye_psnr[0], x->eye_psnr[1], x->eye_ssim[0], x->eye_ssim[1], x->eye_flip[0], x->eye_flip[1],
+                        x->eye_flicker[0], x->eye_flicker[1]);
+            }
+        }
     }
     int any = 0;
     for (int i = 0; i < n; i++) {

@@ -19,22 +19,16 @@
 #include "eye/tdc_eye.h"
 #include "panel/tdc_panel_sim.h"
 #include "simulator/tdc_sim_scene.h"
+#include "tdc_panel.h"
 
-typedef enum {
-    TDC_MODE_FULL = 0,  /* every refresh rendered at full resolution */
-    TDC_MODE_HALF,      /* half rate, each frame shown twice */
-    TDC_MODE_INTERLACE, /* alternate rows rendered, missing rows black (TRM §6) */
-    TDC_MODE_BFI,       /* half rate, black frame every other refresh */
-    TDC_MODE_NCSFI,     /* half rate, sharpened + blurred pair from one frame, residual always added */
-    TDC_MODE_TRM,       /* temporal resolution multiplexing, ratio r */
-    TDC_MODE_ASW,       /* half rate, in-between frame warped by motion vectors */
-    TDC_MODE_ASM,       /* tile-ordered frame assembly (1 sample per 2x2 tile per refresh) */
-    TDC_MODE_TAA        /* TAA: jittered 1 spp + reprojected exponential history */
-} tdc_mode_kind_t;
+/* A mode family (tdc_sim_mode.h): the file that implements its modes. */
+typedef struct tdc_sim_family tdc_sim_family_t;
 
 typedef struct {
     const char *name;
-    tdc_mode_kind_t kind;
+    const tdc_sim_family_t *family;
+    int variant;           /* which mode of the family (family's own enum) */
+    uint32_t link_flags;   /* TDC_SIM_LINK_* of the mode's stream */
     uint16_t r_num, r_den; /* TRM ratio */
     uint16_t fixed_hz;     /* 0: the run's refresh */
     int8_t ordering;       /* ASM: 0 hourglass, 1 bowtie, -1 adaptive */
@@ -42,8 +36,8 @@ typedef struct {
     const char *what;      /* one-line description */
 } tdc_mode_desc_t;
 
-/* The mode table; n receives the count. */
-const tdc_mode_desc_t *tdc_sim_modes(int *n);
+/* Every mode, in the families' order; n receives the count. */
+const tdc_mode_desc_t *const *tdc_sim_modes(int *n);
 const tdc_mode_desc_t *tdc_sim_mode_find(const char *name);
 
 /* Which parts of the data path are real in this build. */
@@ -52,9 +46,23 @@ typedef struct {
 } tdc_sim_parts_t;
 void tdc_sim_parts(tdc_sim_parts_t *p);
 
+/* Wall-clock seconds per stage of a run (tdc_sim_config_t.times). */
+typedef struct {
+    double source_s;   /* renderer: frames, subframes, ground truth */
+    double link_s;     /* encoder + decoder */
+    double firmware_s; /* firmware stages (TRM, assembly, LCD) */
+    double panel_s;    /* panel simulation */
+    double eye_s;      /* eye integration */
+    double metrics_s;  /* PSNR, SSIM, FLIP, flicker, encoding, crops */
+    double total_s;
+} tdc_sim_times_t;
+
 typedef struct {
     tdc_scene_params_t scene;
     int width, height;
+    int eyes;             /* 1, or 2: stereo (TRM §7.2), eye 1's view from `right` */
+    tdc_source_t *right;  /* eye 1's source (its own camera) when eyes == 2 */
+    tdc_sim_times_t *times; /* optional: receives the stage breakdown */
     int refresh_hz;       /* run clock: display rate of the modes without a fixed rate */
     int window_frames;    /* fused window in frames of the run clock (0: 2 below 200 Hz, else 4) */
     double duration_s;
@@ -73,25 +81,33 @@ typedef struct {
     int progress;         /* progress bar on stderr */
     int strip_at;         /* evaluation index for the picture strip (-1: middle) */
     uint32_t seed;
+    int strict;           /* 1: a mode a firmware stage refuses is an error, not a note */
     const char *outdir;   /* NULL: no files */
     const char *label;    /* run label for the report */
 } tdc_sim_config_t;
 
 void tdc_sim_default_config(tdc_sim_config_t *c);
 
+/* A firmware panel profile by name; name NULL: the first OLED (want_lcd 0)
+ * or LCD profile.  NULL if unknown. */
+const tdc_panel_t *tdc_sim_panel_find(const char *name, int want_lcd);
+
 /* Per-mode results. */
 typedef struct {
     const tdc_mode_desc_t *desc;
     int display_hz;
-    int available;          /* 0: a part it needs is missing (see note) */
+    int available;          /* 0: a part it needs is missing or a stage refused (see note) */
+    int refused;            /* a firmware stage refused the configuration: its status (< 0), else 0 */
     char note[256];
     /* perceived error, means over evaluated instants */
     double psnr, ssim, flip, flicker;
     double psnr_min, flip_max;
     int evals;
+    int eyes;                /* 1 or 2; the figures above are the mean of the eyes */
+    double eye_psnr[2], eye_ssim[2], eye_flip[2], eye_flicker[2];
     /* cost */
     uint64_t rays;          /* primary rays traced (samples x spp) */
-    uint64_t link_bytes;    /* bytes on the link (packets incl. headers) */
+    uint64_t link_bytes;    /* bytes on the link (packets incl. headers; stereo: both eyes' stream) */
     uint64_t frames;        /* display refreshes */
     uint64_t rendered;      /* frames/subframes the renderer produced */
     double fw_s, render_s;  /* seconds in firmware (decode + stages), in the renderer (+ encoder) */

@@ -70,27 +70,33 @@ static int feed(tdc_sim_link_t *l, size_t n, int kind)
 }
 #endif
 
-int tdc_sim_link_init(tdc_sim_link_t *l, int w, int h, uint32_t flags, uint16_t r_num, uint16_t r_den,
+int tdc_sim_link_init(tdc_sim_link_t *l, int w, int h, int eyes, uint32_t flags, uint16_t r_num, uint16_t r_den,
                       uint16_t hz)
 {
     memset(l, 0, sizeof(*l));
     l->w = w;
     l->h = h;
+    l->eyes = eyes == 2 ? 2 : 1;
     l->flags = flags;
     l->r_num = r_num ? r_num : 1;
     l->r_den = r_den ? r_den : 1;
     l->hz = hz;
     l->rw = (int)TDC_REDUCED_DIM(w, l->r_num, l->r_den);
     l->rh = (int)TDC_REDUCED_DIM(h, l->r_num, l->r_den);
-    l->full = calloc(TDC_LINK_FRAME_BYTES(w, h), 1);
-    l->reduced = calloc(TDC_LINK_FRAME_BYTES(l->rw, l->rh), 1);
-    l->subframe = calloc(TDC_LINK_SUBFRAME_BYTES(w, h), 1);
-    l->pattern = calloc(TDC_PATTERN_BYTES(w, h) + 1, 1);
-    l->motion = calloc(TDC_LINK_MOTION_COUNT(w, h), sizeof(int16_t));
-    l->sample_motion = calloc(TDC_LINK_SAMPLE_MOTION_COUNT(w, h), sizeof(int16_t));
-    if (!l->full || !l->reduced || !l->subframe || !l->pattern || !l->motion || !l->sample_motion) {
-        tdc_sim_link_free(l);
-        return -1;
+    /* only the buffers of the stream's packet kinds */
+    int sub = (flags & TDC_SIM_LINK_SUBFRAMES) != 0, red = (flags & TDC_SIM_LINK_REDUCED) != 0;
+    for (int e = 0; e < l->eyes; e++) {
+        l->full[e] = calloc(TDC_LINK_FRAME_BYTES(w, h), 1);
+        l->reduced[e] = red ? calloc(TDC_LINK_FRAME_BYTES(l->rw, l->rh), 1) : NULL;
+        l->subframe[e] = sub ? calloc(TDC_LINK_SUBFRAME_BYTES(w, h), 1) : NULL;
+        l->pattern[e] = sub ? calloc(TDC_PATTERN_BYTES(w, h) + 1, 1) : NULL;
+        l->motion[e] = (flags & TDC_SIM_LINK_MOTION) ? calloc(TDC_LINK_MOTION_COUNT(w, h), sizeof(int16_t)) : NULL;
+        l->sample_motion[e] = sub ? calloc(TDC_LINK_SAMPLE_MOTION_COUNT(w, h), sizeof(int16_t)) : NULL;
+        if (!l->full[e] || (red && !l->reduced[e]) || (sub && (!l->subframe[e] || !l->pattern[e] ||
+                                                              !l->sample_motion[e]))) {
+            tdc_sim_link_free(l);
+            return -1;
+        }
     }
 #if TDC_SIM_HAVE_LINK
     link_priv_t *p = calloc(1, sizeof(*p));
@@ -108,15 +114,17 @@ int tdc_sim_link_init(tdc_sim_link_t *l, int w, int h, uint32_t flags, uint16_t 
     }
     p->buf.staging = p->staging;
     p->buf.staging_bytes = TDC_LINK_STAGING_BYTES(w, h);
-    p->buf.full[0] = l->full;
     p->buf.full_stride = (uint32_t)w * 3u;
-    p->buf.reduced[0] = l->reduced;
     p->buf.reduced_bytes = TDC_LINK_FRAME_BYTES(l->rw, l->rh);
-    p->buf.subframe[0] = l->subframe;
-    p->buf.motion[0] = l->motion;
-    p->buf.sample_motion[0] = l->sample_motion;
-    p->buf.pattern[0] = l->pattern;
-    tdc_link_config_t cfg = {(uint16_t)w, (uint16_t)h, 1};
+    for (int e = 0; e < l->eyes; e++) {
+        p->buf.full[e] = l->full[e];
+        p->buf.reduced[e] = l->reduced[e];
+        p->buf.subframe[e] = l->subframe[e];
+        p->buf.motion[e] = l->motion[e];
+        p->buf.sample_motion[e] = l->sample_motion[e];
+        p->buf.pattern[e] = l->pattern[e];
+    }
+    tdc_link_config_t cfg = {(uint16_t)w, (uint16_t)h, (uint8_t)l->eyes};
     if (tdc_link_decoder_init(&p->dec, &cfg, &p->buf) != TDC_OK) {
         tdc_sim_link_free(l);
         return -1;
@@ -137,14 +145,16 @@ void tdc_sim_link_free(tdc_sim_link_t *l)
     }
 #endif
     l->priv = NULL;
-    free(l->full);
-    free(l->reduced);
-    free(l->subframe);
-    free(l->pattern);
-    free(l->motion);
-    free(l->sample_motion);
-    l->full = l->reduced = l->subframe = l->pattern = NULL;
-    l->motion = l->sample_motion = NULL;
+    for (int e = 0; e < 2; e++) {
+        free(l->full[e]);
+        free(l->reduced[e]);
+        free(l->subframe[e]);
+        free(l->pattern[e]);
+        free(l->motion[e]);
+        free(l->sample_motion[e]);
+        l->full[e] = l->reduced[e] = l->subframe[e] = l->pattern[e] = NULL;
+        l->motion[e] = l->sample_motion[e] = NULL;
+    }
 }
 
 int tdc_sim_link_stream(tdc_sim_link_t *l)
@@ -159,7 +169,7 @@ int tdc_sim_link_stream(tdc_sim_link_t *l)
     info.r_den = (l->flags & TDC_SIM_LINK_REDUCED) ? l->r_den : 1;
     info.width = (uint16_t)l->w;
     info.height = (uint16_t)l->h;
-    info.eyes = 1;
+    info.eyes = (uint8_t)l->eyes;
     info.refresh_hz = l->hz;
     double t0 = now_s();
     tdc_link_encoder_init(&p->enc, l->stream_id, &info);
@@ -173,46 +183,46 @@ int tdc_sim_link_stream(tdc_sim_link_t *l)
 #endif
 }
 
-int tdc_sim_link_full(tdc_sim_link_t *l, uint32_t frame, const uint8_t *rgb)
+int tdc_sim_link_full(tdc_sim_link_t *l, int eye, uint32_t frame, const uint8_t *rgb)
 {
 #if TDC_SIM_HAVE_LINK
     link_priv_t *p = l->priv;
     double t0 = now_s();
-    size_t n = tdc_link_encode_frame(&p->enc, p->pkt, p->cap, TDC_LINK_KIND_FULL, 0, frame, TDC_PIXFMT_RGB888, rgb,
+    size_t n = tdc_link_encode_frame(&p->enc, p->pkt, p->cap, TDC_LINK_KIND_FULL, (uint32_t)eye, frame, TDC_PIXFMT_RGB888, rgb,
                                      (uint32_t)l->w, (uint32_t)l->h, (uint32_t)l->w * 3u);
     l->encode_s += now_s() - t0;
     return feed(l, n, TDC_LINK_KIND_FULL);
 #else
     size_t bytes = TDC_LINK_FRAME_BYTES(l->w, l->h);
     (void)frame;
-    memcpy(l->full, rgb, bytes);
+    memcpy(l->full[eye], rgb, bytes);
     l->bytes += TDC_LINK_HEADER_BYTES + bytes;
     l->packets++;
     return 0;
 #endif
 }
 
-int tdc_sim_link_reduced(tdc_sim_link_t *l, uint32_t frame, const uint8_t *rgb)
+int tdc_sim_link_reduced(tdc_sim_link_t *l, int eye, uint32_t frame, const uint8_t *rgb)
 {
     size_t bytes = TDC_LINK_FRAME_BYTES(l->rw, l->rh);
 #if TDC_SIM_HAVE_LINK
     link_priv_t *p = l->priv;
     double t0 = now_s();
-    size_t n = tdc_link_encode_frame(&p->enc, p->pkt, p->cap, TDC_LINK_KIND_REDUCED, 0, frame, TDC_PIXFMT_RGB888,
+    size_t n = tdc_link_encode_frame(&p->enc, p->pkt, p->cap, TDC_LINK_KIND_REDUCED, (uint32_t)eye, frame, TDC_PIXFMT_RGB888,
                                      rgb, (uint32_t)l->rw, (uint32_t)l->rh, (uint32_t)l->rw * 3u);
     l->encode_s += now_s() - t0;
     (void)bytes;
     return feed(l, n, TDC_LINK_KIND_REDUCED);
 #else
     (void)frame;
-    memcpy(l->reduced, rgb, bytes);
+    memcpy(l->reduced[eye], rgb, bytes);
     l->bytes += TDC_LINK_HEADER_BYTES + bytes;
     l->packets++;
     return 0;
 #endif
 }
 
-int tdc_sim_link_subframe(tdc_sim_link_t *l, uint32_t frame, const uint8_t *samples, const int16_t *mv,
+int tdc_sim_link_subframe(tdc_sim_link_t *l, int eye, uint32_t frame, const uint8_t *samples, const int16_t *mv,
                           const uint8_t *pattern)
 {
     int rc = 0;
@@ -221,33 +231,33 @@ int tdc_sim_link_subframe(tdc_sim_link_t *l, uint32_t frame, const uint8_t *samp
     double t0 = now_s();
     size_t n;
     if (pattern) {
-        n = tdc_link_encode_pattern(&p->enc, p->pkt, p->cap, 0, frame, pattern, (uint32_t)l->w, (uint32_t)l->h);
+        n = tdc_link_encode_pattern(&p->enc, p->pkt, p->cap, (uint32_t)eye, frame, pattern, (uint32_t)l->w, (uint32_t)l->h);
         l->encode_s += now_s() - t0;
         rc |= feed(l, n, TDC_LINK_KIND_PATTERN);
         t0 = now_s();
     }
-    n = tdc_link_encode_subframe(&p->enc, p->pkt, p->cap, 0, frame, TDC_PIXFMT_RGB888, samples, (uint32_t)l->w,
+    n = tdc_link_encode_subframe(&p->enc, p->pkt, p->cap, (uint32_t)eye, frame, TDC_PIXFMT_RGB888, samples, (uint32_t)l->w,
                                  (uint32_t)l->h);
     l->encode_s += now_s() - t0;
     rc |= feed(l, n, TDC_LINK_KIND_SUBFRAME);
     if (mv) {
         t0 = now_s();
-        n = tdc_link_encode_motion(&p->enc, p->pkt, p->cap, 0, frame, mv, (uint32_t)l->w, (uint32_t)l->h, 1);
+        n = tdc_link_encode_motion(&p->enc, p->pkt, p->cap, (uint32_t)eye, frame, mv, (uint32_t)l->w, (uint32_t)l->h, 1);
         l->encode_s += now_s() - t0;
         rc |= feed(l, n, TDC_LINK_KIND_MOTION);
     }
 #else
     (void)frame;
-    memcpy(l->subframe, samples, TDC_LINK_SUBFRAME_BYTES(l->w, l->h));
+    memcpy(l->subframe[eye], samples, TDC_LINK_SUBFRAME_BYTES(l->w, l->h));
     l->bytes += TDC_LINK_HEADER_BYTES + TDC_LINK_SUBFRAME_BYTES(l->w, l->h);
     l->packets++;
     if (pattern) {
-        memcpy(l->pattern, pattern, TDC_PATTERN_BYTES(l->w, l->h));
+        memcpy(l->pattern[eye], pattern, TDC_PATTERN_BYTES(l->w, l->h));
         l->bytes += TDC_LINK_HEADER_BYTES + TDC_PATTERN_BYTES(l->w, l->h);
         l->packets++;
     }
     if (mv) {
-        memcpy(l->sample_motion, mv, TDC_LINK_SAMPLE_MOTION_COUNT(l->w, l->h) * sizeof(int16_t));
+        memcpy(l->sample_motion[eye], mv, TDC_LINK_SAMPLE_MOTION_COUNT(l->w, l->h) * sizeof(int16_t));
         l->bytes += TDC_LINK_HEADER_BYTES + TDC_LINK_SAMPLE_MOTION_COUNT(l->w, l->h) * sizeof(int16_t);
         l->packets++;
     }

@@ -15,6 +15,7 @@
 typedef struct {
     int real;               /* 1: encoder + decoder in the path */
     int w, h, rw, rh;
+    int eyes;               /* 1, or 2: one stereo stream, packets carry the eye */
     uint32_t flags;
     uint16_t r_num, r_den, hz;
     uint16_t stream_id;
@@ -22,9 +23,9 @@ typedef struct {
     uint32_t packets;
     uint32_t errors;        /* decoder errors (should be 0) */
     double decode_s, encode_s;
-    /* decoded buffers (what the firmware reads) */
-    uint8_t *full, *reduced, *subframe, *pattern;
-    int16_t *motion, *sample_motion;
+    /* decoded buffers per eye (what the firmware reads) */
+    uint8_t *full[2], *reduced[2], *subframe[2], *pattern[2];
+    int16_t *motion[2], *sample_motion[2];
     void *priv;
 } tdc_sim_link_t;
 
@@ -34,15 +35,15 @@ typedef struct {
 #define TDC_SIM_LINK_MOTION 0x0004u
 #define TDC_SIM_LINK_SAMPLE_MV 0x0010u
 
-int tdc_sim_link_init(tdc_sim_link_t *l, int w, int h, uint32_t flags, uint16_t r_num, uint16_t r_den,
+int tdc_sim_link_init(tdc_sim_link_t *l, int w, int h, int eyes, uint32_t flags, uint16_t r_num, uint16_t r_den,
                       uint16_t hz);
 void tdc_sim_link_free(tdc_sim_link_t *l);
 /* (Re)starts the stream: a STREAM packet with a new stream id. */
 int tdc_sim_link_stream(tdc_sim_link_t *l);
 /* Each returns 0 when the packet was accepted (decoded into l->...). */
-int tdc_sim_link_full(tdc_sim_link_t *l, uint32_t frame, const uint8_t *rgb);
-int tdc_sim_link_reduced(tdc_sim_link_t *l, uint32_t frame, const uint8_t *rgb);
-int tdc_sim_link_subframe(tdc_sim_link_t *l, uint32_t frame, const uint8_t *samples, const int16_t *mv,
+int tdc_sim_link_full(tdc_sim_link_t *l, int eye, uint32_t frame, const uint8_t *rgb);
+int tdc_sim_link_reduced(tdc_sim_link_t *l, int eye, uint32_t frame, const uint8_t *rgb);
+int tdc_sim_link_subframe(tdc_sim_link_t *l, int eye, uint32_t frame, const uint8_t *samples, const int16_t *mv,
                           const uint8_t *pattern);
 /* Bytes of a payload sent without a packet kind of its own (interlaced
  * rows): counted as payload + header, not decoded. */

@@ -14,18 +14,20 @@
 #include "report/tdc_report.h"
 #include "simulator/tdc_sim.h"
 #include "simulator/tdc_sim_render.h"
+#include "tdc_par.h"
 
 static void usage(FILE *f)
 {
     int n;
-    const tdc_mode_desc_t *m = tdc_sim_modes(&n);
+    const tdc_mode_desc_t *const *m = tdc_sim_modes(&n);
     fprintf(f,
             "usage: tdc-sim [options]\n"
             "Simulates display modes through the whole data path (renderer -> link encoder ->\n"
             "firmware via the link decoder -> panel -> eye -> metrics vs ground truth).\n\n"
             "  -R, --renderer SCENE    use the Embree renderer (sim/render): a built-in renderer scene\n"
             "                          (discs text panorama room mirror fence bigmesh) or a scene file\n"
-            "      --threads N         renderer threads (default 2)\n"
+            "      --threads N         threads of the renderer and of the simulator's own stages (source,\n"
+            "                          eye, metrics; default 2); results do not depend on it\n"
             "      --image FILE        pan/zoom/rotate across a photograph (PNG or JPEG; exact area-sampled\n"
             "                          ground truth); pan from --speed/--angle (default 0), with\n"
             "      --zoom Z            screen pixels per image pixel at t = 0 (default 1)\n"
@@ -44,7 +46,16 @@ static void usage(FILE *f)
                "      --lcd-bits N        LCD history / state bits 4..8 (default 8)\n"
                "      --backlight B       LCD backlight: hold, strobe or strobe:DUTY:PHASE (default: the panel's)\n"
                "  -r, --refresh HZ        run clock / display refresh (default 90)\n"
-               "  -g, --size WxH          resolution (default 160x120)\n"
+               "  -g, --size WxH          resolution of one eye (default: the panel profile's, e.g.\n"
+               "                          1080x1200 for htc-vive); a smaller size is a window of the panel\n"
+               "                          at its native pixel density\n"
+               "      --eyes 1|2          eyes (default: the profile's; htc-vive and rift-cv1 have 2)\n"
+               "      --stereo, --mono    --eyes 2, --eyes 1.  Stereo (TRM §7.2): both eyes through one\n"
+               "                          stereo link stream and the firmware per eye; TRM modes send one\n"
+               "                          eye full and the other reduced, swapped every frame\n"
+               "      --disparity PX      procedural / --image stereo: the eyes' views differ by PX pixels (default 4)\n"
+               "      --ipd M             renderer stereo: camera offset between the eyes in scene units\n"
+               "                          (default 0.063)\n"
                "  -d, --duration S        simulated seconds (default 0.5)\n"
                "  -n, --frames N          simulated refreshes (overrides --duration)\n"
                "  -w, --window N          fused window in refreshes (default 2 below 200 Hz, else 4)\n"
@@ -56,7 +67,9 @@ static void usage(FILE *f)
                "      --pursuit track|fixate  eye tracks the main motion or fixates (default track)\n"
                "      --pursuit-gain G    smooth-pursuit gain (default 1)\n"
                "      --metric-every K    evaluate every K-th refresh (default 1)\n"
-               "      --ppd X             FLIP pixels per degree (default 67.02)\n"
+               "      --ppd X             pixels per degree of the view (FLIP; default: the profile's, e.g.\n"
+               "                          11.4 for htc-vive; 67.02, FLIP's desktop default, for profiles\n"
+               "                          without one)\n"
                "      --trm-s S           TRM motion sensitivity s (default: firmware default)\n"
                "      --gt-ss N           ground-truth supersampling N x N (default 4)\n"
                "      --strip-at K        evaluation index of the picture strips (default middle)\n"
@@ -64,10 +77,12 @@ static void usage(FILE *f)
                "  -o, --out DIR           output folder: summary.csv, summary.md, series.csv, strip_*.png\n"
                "  -l, --label TEXT        run label in the report\n"
                "  -q, --quiet             no progress bar\n"
+               "      --times             print the wall seconds per stage (source, link, firmware, panel,\n"
+               "                          eye, metrics) on stderr\n"
                "      --list              list the modes\n"
                "  -h, --help              this help\n\nmodes:\n");
     for (int i = 0; i < n; i++) {
-        fprintf(f, "  %-18s %s%s\n", m[i].name, m[i].what, m[i].fixed_hz ? " (fixed rate)" : "");
+        fprintf(f, "  %-18s %s%s\n", m[i]->name, m[i]->what, m[i]->fixed_hz ? " (fixed rate)" : "");
     }
     tdc_sim_parts_t p;
     tdc_sim_parts(&p);
@@ -77,8 +92,10 @@ static void usage(FILE *f)
             p.lcd_phys ? "yes" : "no (built-in fallback)");
 }
 
-static int add_modes(const char *list, const tdc_mode_desc_t **out, int *n, int cap)
+/* *explicit: 0 when a group ('all', a family) was named. */
+static int add_modes(const char *list, const tdc_mode_desc_t **out, int *n, int cap, int *explicit)
 {
+    *explicit = 1;
     static const char *const trm_family[] = {"full", "half", "interlace", "bfi", "ncsfi", "trm50", "trm40",
                                              "trm25", "asw"};
     static const char *const asm_family[] = {"full",         "full60",           "taa60",          "asm-hourglass",
@@ -88,13 +105,15 @@ static int add_modes(const char *list, const tdc_mode_desc_t **out, int *n, int 
     snprintf(buf, sizeof(buf), "%s", list);
     for (char *tok = strtok(buf, ","); tok; tok = strtok(NULL, ",")) {
         if (strcmp(tok, "all") == 0) {
+            *explicit = 0;
             int nm;
-            const tdc_mode_desc_t *m = tdc_sim_modes(&nm);
+            const tdc_mode_desc_t *const *m = tdc_sim_modes(&nm);
             for (int i = 0; i < nm && *n < cap; i++) {
-                out[(*n)++] = &m[i];
+                out[(*n)++] = m[i];
             }
         } else if (strcmp(tok, "trm-family") == 0 || strcmp(tok, "asm-family") == 0) {
             int tf = strcmp(tok, "trm-family") == 0;
+            *explicit = 0;
             int cnt = tf ? 9 : 9;
             for (int i = 0; i < cnt && *n < cap; i++) {
                 out[(*n)++] = tdc_sim_mode_find(tf ? trm_family[i] : asm_family[i]);
@@ -143,8 +162,8 @@ static int parse_num(const char *s, double lo, double hi, double *v, const char 
 int main(int argc, char **argv)
 {
     enum { O_SPEED = 256, O_ANGLE, O_CUT, O_PERS, O_PURSUIT, O_GAIN, O_EVERY, O_PPD, O_TRMS, O_GTSS, O_STRIP, O_LIST,
-           O_SPP, O_PROFILE, O_THREADS, O_IMAGE, O_ZOOM, O_ZOOMRATE, O_ROTATE, O_LCDMODE, O_LCDBITS,
-           O_BACKLIGHT };
+           O_SPP, O_PROFILE, O_THREADS, O_EYES, O_STEREO, O_MONO, O_DISP, O_IPD, O_TIMES,
+           O_IMAGE, O_ZOOM, O_ZOOMRATE, O_ROTATE, O_LCDMODE, O_LCDBITS, O_BACKLIGHT };
     static const struct option opts[] = {
         {"scene", required_argument, 0, 's'},   {"mode", required_argument, 0, 'm'},
         {"panel", required_argument, 0, 'p'},   {"profile", required_argument, 0, O_PROFILE},
@@ -160,6 +179,9 @@ int main(int argc, char **argv)
         {"out", required_argument, 0, 'o'},     {"label", required_argument, 0, 'l'},
         {"quiet", no_argument, 0, 'q'},         {"list", no_argument, 0, O_LIST},
         {"renderer", required_argument, 0, 'R'}, {"threads", required_argument, 0, O_THREADS},
+        {"eyes", required_argument, 0, O_EYES}, {"stereo", no_argument, 0, O_STEREO},
+        {"mono", no_argument, 0, O_MONO},       {"disparity", required_argument, 0, O_DISP},
+        {"ipd", required_argument, 0, O_IPD},   {"times", no_argument, 0, O_TIMES},
         {"image", required_argument, 0, O_IMAGE}, {"zoom", required_argument, 0, O_ZOOM},
         {"zoom-rate", required_argument, 0, O_ZOOMRATE}, {"rotate", required_argument, 0, O_ROTATE},
         {"lcd-mode", required_argument, 0, O_LCDMODE}, {"lcd-bits", required_argument, 0, O_LCDBITS},
@@ -173,6 +195,9 @@ int main(int argc, char **argv)
     tdc_image_motion_t im;
     tdc_image_motion_default(&im);
     int threads = 2;
+    int size_given = 0, ppd_given = 0, eyes = 0;
+    tdc_sim_times_t times;
+    double disparity = 4.0, ipd = 0.063;
     long frames = -1;
     double v;
     int c;
@@ -196,6 +221,34 @@ int main(int argc, char **argv)
             break;
         case 'R':
             renderer = optarg;
+            break;
+        case O_EYES:
+            if (strcmp(optarg, "1") != 0 && strcmp(optarg, "2") != 0) {
+                fprintf(stderr, "tdc-sim: bad eyes '%s' (1 or 2)\n", optarg);
+                return 2;
+            }
+            eyes = optarg[0] - '0';
+            break;
+        case O_STEREO:
+            eyes = 2;
+            break;
+        case O_TIMES:
+            cfg.times = &times;
+            break;
+        case O_MONO:
+            eyes = 1;
+            break;
+        case O_DISP:
+            if (parse_num(optarg, -1000, 1000, &v, "disparity")) {
+                return 2;
+            }
+            disparity = v;
+            break;
+        case O_IPD:
+            if (parse_num(optarg, -10, 10, &v, "ipd")) {
+                return 2;
+            }
+            ipd = v;
             break;
         case O_IMAGE:
             image = optarg;
@@ -285,6 +338,7 @@ int main(int argc, char **argv)
             }
             cfg.width = w;
             cfg.height = h;
+            size_given = 1;
             break;
         }
         case 'd':
@@ -362,6 +416,7 @@ int main(int argc, char **argv)
                 return 2;
             }
             cfg.flip_ppd = v;
+            ppd_given = 1;
             break;
         case O_TRMS:
             if (parse_num(optarg, 0, 1000, &v, "trm-s")) {
@@ -398,9 +453,9 @@ int main(int argc, char **argv)
             break;
         case O_LIST: {
             int n;
-            const tdc_mode_desc_t *m = tdc_sim_modes(&n);
+            const tdc_mode_desc_t *const *m = tdc_sim_modes(&n);
             for (int i = 0; i < n; i++) {
-                printf("%s\n", m[i].name);
+                printf("%s\n", m[i]->name);
             }
             return 0;
         }
@@ -412,9 +467,25 @@ int main(int argc, char **argv)
             return 2;
         }
     }
+    tdc_par_set_threads(threads);
     if (optind < argc) {
         fprintf(stderr, "tdc-sim: unexpected argument '%s'\n", argv[optind]);
         return 2;
+    }
+    /* native geometry from the panel profile unless overridden */
+    const tdc_panel_t *prof = tdc_sim_panel_find(cfg.panel_profile, cfg.panel == TDC_PANEL_SIM_LCD);
+    if (!prof) {
+        fprintf(stderr, "tdc-sim: --profile %s: no such %spanel profile (see make help)\n",
+                cfg.panel_profile ? cfg.panel_profile : "(default)", cfg.panel == TDC_PANEL_SIM_LCD ? "LCD " : "");
+        return 2;
+    }
+    if (!size_given) {
+        cfg.width = prof->width;
+        cfg.height = prof->height;
+    }
+    cfg.eyes = eyes ? eyes : prof->eyes;
+    if (!ppd_given && prof->ppd_x100) {
+        cfg.flip_ppd = prof->ppd_x100 / 100.0;
     }
     if (frames > 0) {
         cfg.duration_s = (double)frames / cfg.refresh_hz;
@@ -427,7 +498,7 @@ int main(int argc, char **argv)
     cfg.scene.seed = cfg.seed;
     const tdc_mode_desc_t *modes[64];
     int nm = 0;
-    if (add_modes(mode_list, modes, &nm, 64)) {
+    if (add_modes(mode_list, modes, &nm, 64, &cfg.strict)) {
         return 2;
     }
     if (!cfg.label) {
@@ -437,7 +508,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "tdc-sim: cannot create '%s': %s\n", cfg.outdir, strerror(errno));
         return 1;
     }
-    tdc_source_t *src;
+    tdc_source_t *src = NULL;
     if (image && renderer) {
         fprintf(stderr, "tdc-sim: --image and --renderer exclude each other\n");
         return 2;
@@ -452,20 +523,65 @@ int main(int argc, char **argv)
             fprintf(stderr, "tdc-sim: --image %s\n", err);
             return 1;
         }
+        if (cfg.eyes == 2) {
+            /* stereo: as the procedural scenes, the eyes see the photograph
+             * shifted by -+disparity / 2 screen pixels at t = 0, i.e. the
+             * image point at the screen centre c0 moves by +-disparity / (2 z0) */
+            double A[4], b[2];
+            tdc_image_source_map(src, 0.0, A, b);
+            double c0x = A[0] * 0.5 * cfg.width + A[1] * 0.5 * cfg.height + b[0];
+            double c0y = A[2] * 0.5 * cfg.width + A[3] * 0.5 * cfg.height + b[1];
+            src->destroy(src);
+            tdc_image_motion_t eye = im;
+            eye.cy = c0y;
+            eye.cx = c0x + 0.5 * disparity / im.zoom;
+            src = tdc_image_source_open(image, &cfg.scene, &eye, err, sizeof(err));
+            eye.cx = c0x - 0.5 * disparity / im.zoom;
+            cfg.right = src ? tdc_image_source_open(image, &cfg.scene, &eye, err, sizeof(err)) : NULL;
+            if (!cfg.right) {
+                fprintf(stderr, "tdc-sim: --image %s\n", err);
+                if (src) {
+                    src->destroy(src);
+                }
+                return 1;
+            }
+        }
         cfg.scene.speed = tdc_image_source_max_speed(src, cfg.duration_s); /* evaluation margin */
     } else if (renderer) {
         char err[256];
-        src = tdc_sim_render_source(renderer, cfg.width, cfg.height, cfg.refresh_hz,
-                                    cfg.scene.gt_ss > 0 ? cfg.scene.gt_ss * cfg.scene.gt_ss : 16, threads, err,
-                                    sizeof(err));
-        if (!src) {
-            fprintf(stderr, "tdc-sim: renderer: %s\n", err);
-            return 1;
+        for (int e = 0; e < cfg.eyes; e++) {
+            tdc_source_t *s = tdc_sim_render_source(renderer, cfg.width, cfg.height, cfg.refresh_hz,
+                                                    cfg.scene.gt_ss > 0 ? cfg.scene.gt_ss * cfg.scene.gt_ss : 16,
+                                                    threads, cfg.eyes == 2 ? (e ? 0.5 : -0.5) * ipd : 0.0, err,
+                                                    sizeof(err));
+            if (!s) {
+                fprintf(stderr, "tdc-sim: renderer: %s\n", err);
+                if (e) {
+                    src->destroy(src);
+                }
+                return 1;
+            }
+            if (e) {
+                cfg.right = s;
+            } else {
+                src = s;
+            }
         }
         cfg.scene.speed = 0.0; /* margins from the measured pursuit instead */
         cfg.spp = 1;           /* the renderer traces one ray per pixel centre */
     } else {
-        src = tdc_scene_create(&cfg.scene, NULL);
+        /* stereo: the eyes see the scene shifted by -+disparity / 2 */
+        tdc_scene_params_t sp = cfg.scene;
+        sp.shift_x = cfg.eyes == 2 ? -0.5 * disparity : 0.0;
+        src = tdc_scene_create(&sp, NULL);
+        if (src && cfg.eyes == 2) {
+            sp.shift_x = 0.5 * disparity;
+            cfg.right = tdc_scene_create(&sp, NULL);
+            if (!cfg.right) {
+                src->destroy(src);
+                src = NULL;
+            }
+        }
     }
     if (!src) {
         fprintf(stderr, "tdc-sim: cannot create scene\n");
@@ -482,6 +598,13 @@ int main(int argc, char **argv)
     if (series) {
         fclose(series);
     }
+    if (rc == 0 && cfg.times) {
+        fprintf(stderr,
+                "tdc-sim: stage wall seconds: source %.2f link %.2f firmware %.2f panel %.2f eye %.2f metrics %.2f "
+                "total %.2f\n",
+                times.source_s, times.link_s, times.firmware_s, times.panel_s, times.eye_s, times.metrics_s,
+                times.total_s);
+    }
     if (rc == 0) {
         tdc_report_markdown(stdout, &cfg, res, nm);
         if (cfg.outdir) {
@@ -494,9 +617,12 @@ int main(int argc, char **argv)
             snprintf(path, sizeof(path), "%s/summary.md", cfg.outdir);
             f = fopen(path, "w");
             if (f) {
-                fprintf(f, "Run `%s`: scene `%s`, %s panel, %d Hz clock, %dx%d, %.3f s, window %d refreshes.\n\n",
+                fprintf(f,
+                        "Run `%s`: scene `%s`, %s panel, %d Hz clock, %s%dx%d, %.2f px/deg, %.3f s, window %d "
+                        "refreshes.\n\n",
                         cfg.label, tdc_scene_name(cfg.scene.kind), cfg.panel == TDC_PANEL_SIM_LCD ? "LCD" : "OLED",
-                        cfg.refresh_hz, cfg.width, cfg.height, cfg.duration_s,
+                        cfg.refresh_hz, cfg.eyes == 2 ? "stereo 2x" : "", cfg.width, cfg.height, cfg.flip_ppd,
+                        cfg.duration_s,
                         cfg.window_frames > 0 ? cfg.window_frames : (cfg.refresh_hz >= 200 ? 4 : 2));
                 tdc_report_markdown(f, &cfg, res, nm);
                 fclose(f);
@@ -511,5 +637,8 @@ int main(int argc, char **argv)
     }
     free(res);
     src->destroy(src);
+    if (cfg.right) {
+        cfg.right->destroy(cfg.right);
+    }
     return rc == 0 ? 0 : 1;
 }

@@ -1,43 +1,45 @@
-/* tdc_sim_modes.c - the mode table and which parts of the data path exist. */
+/* tdc_sim_modes.c - the mode families, the run defaults and which parts of the data path exist. */
 #include <string.h>
 
 #include "simulator/tdc_sim.h"
+#include "simulator/tdc_sim_mode.h"
 #include "tdc_sim_features.h"
 
-static const tdc_mode_desc_t k_modes[] = {
-    {"full", TDC_MODE_FULL, 1, 1, 0, 0, 0, "every refresh rendered at full resolution (reference cost)"},
-    {"half", TDC_MODE_HALF, 1, 1, 0, 0, 0, "half frame rate, each frame shown twice"},
-    {"interlace", TDC_MODE_INTERLACE, 1, 1, 0, 0, 0, "odd/even rows on alternate refreshes, missing rows black"},
-    {"bfi", TDC_MODE_BFI, 1, 1, 0, 0, 0, "half rate, black frame inserted every other refresh"},
-    {"ncsfi", TDC_MODE_NCSFI, 1, 2, 0, 0, 0,
-     "half rate; sharpened + blurred frame pair from one frame, residual always added"},
-    {"trm50", TDC_MODE_TRM, 1, 2, 0, 0, 0, "TRM, every other frame at r = 1/2"},
-    {"trm40", TDC_MODE_TRM, 2, 5, 0, 0, 0, "TRM, every other frame at r = 0.4"},
-    {"trm25", TDC_MODE_TRM, 1, 4, 0, 0, 0, "TRM, every other frame at r = 1/4"},
-    {"asw", TDC_MODE_ASW, 1, 1, 0, 0, 0, "half rate, in-between frame warped by motion vectors (ASW style)"},
-    {"asm-hourglass", TDC_MODE_ASM, 1, 1, 0, 0, 0, "tile-ordered assembly, hourglass only"},
-    {"asm-bowtie", TDC_MODE_ASM, 1, 1, 0, 1, 0, "tile-ordered assembly, bowtie only"},
-    {"asm-adaptive", TDC_MODE_ASM, 1, 1, 0, -1, 0, "tile-ordered assembly, adaptive orderings"},
-    {"asm-hourglass-smv", TDC_MODE_ASM, 1, 1, 0, 0, 1, "assembly, hourglass, shadow + dual MVs"},
-    {"asm-bowtie-smv", TDC_MODE_ASM, 1, 1, 0, 1, 1, "assembly, bowtie, shadow + dual MVs"},
-    {"asm-adaptive-smv", TDC_MODE_ASM, 1, 1, 0, -1, 1, "assembly, adaptive, shadow + dual MVs"},
-    {"full60", TDC_MODE_FULL, 1, 1, 60, 0, 0, "full frames at 60 Hz"},
-    {"taa60", TDC_MODE_TAA, 1, 1, 60, 0, 0, "60 Hz, jittered 1 spp with TAA (reprojection, clamp, blend 0.1)"},
+/* The mode families, in the order --list and 'all' show them.  A new
+ * family is one file (tdc_sim_mode.h) and one line here. */
+static const tdc_sim_family_t *const k_families[] = {
+    &tdc_sim_family_plain,
+    &tdc_sim_family_trm,
+    &tdc_sim_family_warp,
+    &tdc_sim_family_asm,
 };
 
-const tdc_mode_desc_t *tdc_sim_modes(int *n)
+#define MAX_MODES 64
+
+const tdc_mode_desc_t *const *tdc_sim_modes(int *n)
 {
-    *n = (int)(sizeof(k_modes) / sizeof(k_modes[0]));
-    return k_modes;
+    static const tdc_mode_desc_t *all[MAX_MODES];
+    static int count = -1;
+    if (count < 0) {
+        int k = 0;
+        for (size_t f = 0; f < sizeof(k_families) / sizeof(k_families[0]); f++) {
+            for (int i = 0; i < k_families[f]->nmodes && k < MAX_MODES; i++) {
+                all[k++] = &k_families[f]->modes[i];
+            }
+        }
+        count = k;
+    }
+    *n = count;
+    return all;
 }
 
 const tdc_mode_desc_t *tdc_sim_mode_find(const char *name)
 {
     int n;
-    const tdc_mode_desc_t *m = tdc_sim_modes(&n);
+    const tdc_mode_desc_t *const *m = tdc_sim_modes(&n);
     for (int i = 0; i < n; i++) {
-        if (strcmp(m[i].name, name) == 0) {
-            return &m[i];
+        if (strcmp(m[i]->name, name) == 0) {
+            return m[i];
         }
     }
     return NULL;

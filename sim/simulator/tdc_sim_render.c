@@ -12,7 +12,7 @@
 #include "render/tdc_render.h"
 #include "render/tdc_scene.h"
 
-#define RS_SLOTS 8
+#define RS_SLOTS 64 /* one per mode of a run (tdc-sim takes up to 64) */
 
 typedef struct {
     tdc_render_t *r;
@@ -251,7 +251,7 @@ static void rs_destroy(tdc_source_t *s)
 }
 
 tdc_source_t *tdc_sim_render_source(const char *name, int w, int h, int clock_hz, int gt_samples, int threads,
-                                    char *err, size_t errlen)
+                                    double eye_x, char *err, size_t errlen)
 {
     tdc_scene_t *sc = malloc(sizeof(*sc));
     if (!sc) {
@@ -267,6 +267,13 @@ tdc_source_t *tdc_sim_render_source(const char *name, int w, int h, int clock_hz
         return NULL;
     }
     sc->fps = clock_hz;
+    /* this eye's camera: every key moved by eye_x along the camera's right
+     * vector (yaw 0 looks along -Z, +yaw turns toward +X: right = (cos yaw,
+     * 0, sin yaw)); the stereo pair's interpupillary offset */
+    for (int k = 0; k < sc->ncamkeys; k++) {
+        sc->cam[k].pos[0] += eye_x * cos(sc->cam[k].yaw);
+        sc->cam[k].pos[2] += eye_x * sin(sc->cam[k].yaw);
+    }
     tdc_render_config_t cfg;
     tdc_render_default_config(&cfg);
     cfg.width = w;
@@ -329,8 +336,9 @@ tdc_source_t *tdc_sim_render_source(const char *name, int w, int h, int clock_hz
 #else
 
 tdc_source_t *tdc_sim_render_source(const char *name, int w, int h, int clock_hz, int gt_samples, int threads,
-                                    char *err, size_t errlen)
+                                    double eye_x, char *err, size_t errlen)
 {
+    (void)eye_x;
     (void)name;
     (void)w;
     (void)h;

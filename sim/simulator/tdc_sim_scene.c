@@ -9,9 +9,54 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <stdint.h>
 #include <string.h>
 
 #include "tdc_math.h"
+#include "tdc_par.h"
+#include "simulator/tdc_sim_codes.h"
+
+/* ---------------------------------------------------------------------
+ * Tabulated functions for the inner loops (no libm call per sample).
+ *
+ * turns_sin(x) = sin(2 pi x) from a table of TURN_N + 1 samples over one
+ * turn, linearly interpolated: error <= (2 pi / TURN_N)^2 / 8 = 2.9e-7
+ * (TURN_N = 4096), 1/1700 of an 8-bit code step.  ffloor() is floor()
+ * without the libm call (x86-64 baseline has no SSE4.1 round): exact for
+ * |x| < 2^62, which every texture coordinate is.
+ * ------------------------------------------------------------------- */
+#define TURN_N 4096
+static double k_turn[TURN_N + 2];
+
+static void turn_table_init(void)
+{
+    static int done;
+    if (!done) {
+        for (int i = 0; i <= TURN_N + 1; i++) {
+            k_turn[i] = sin(6.283185307179586 * (double)i / TURN_N);
+        }
+        done = 1;
+    }
+}
+
+static inline double ffloor(double x)
+{
+    double t = (double)(int64_t)x;
+    return t > x ? t - 1.0 : t;
+}
+
+static inline double turns_sin(double x)
+{
+    double f = (x - ffloor(x)) * TURN_N;
+    int i = (int)f;
+    double a = k_turn[i];
+    return a + (k_turn[i + 1] - a) * (f - i);
+}
+
+static inline double turns_cos(double x)
+{
+    return turns_sin(x + 0.25);
+}
 
 static const char *const k_scene_names[TDC_SCENE_COUNT] = {"static", "pan",   "text",  "discs", "thin",
                                                            "fence",  "black", "white", "cut"};
@@ -50,8 +95,14 @@ double tdc_scene_default_speed(tdc_scene_kind_t k)
 }
 
 typedef struct {
+    double gamma;
+    double level[256]; /* level[k] = ((k - 0.5) / 255)^gamma, level[0] = -1 */
+} code_table_t;
+
+typedef struct {
     tdc_scene_params_t p;
-    double vx, vy; /* main motion, px/s */
+    double vx, vy;          /* main motion, px/s */
+    code_table_t codes[3]; /* drive-code decision levels per channel */
 } scene_ctx_t;
 
 static uint32_t hash2(int32_t a, int32_t b, uint32_t seed)
@@ -69,18 +120,18 @@ static double clamp01(double v)
 static void tex_pan(double u, double v, uint32_t seed, double c[3])
 {
     const double tau = 6.283185307179586;
-    c[0] = 0.30 + 0.22 * sin(tau * u / 53.0 + 1.3) * cos(tau * v / 41.0);
-    c[1] = 0.30 + 0.20 * sin(tau * (u + v) / 67.0);
-    c[2] = 0.30 + 0.22 * cos(tau * (u - v) / 47.0 + 0.4);
-    double fu = floor(u), fv = floor(v);
-    int chk = ((int64_t)floor(u / 8.0) + (int64_t)floor(v / 8.0)) & 1;
+    c[0] = 0.30 + 0.22 * turns_sin(u / 53.0 + 1.3 / tau) * turns_cos(v / 41.0);
+    c[1] = 0.30 + 0.20 * turns_sin((u + v) / 67.0);
+    c[2] = 0.30 + 0.22 * turns_cos((u - v) / 47.0 + 0.4 / tau);
+    double fu = ffloor(u), fv = ffloor(v);
+    int chk = ((int64_t)ffloor(u / 8.0) + (int64_t)ffloor(v / 8.0)) & 1;
     double d = chk ? 0.12 : -0.08;
-    double vm = fv - 64.0 * floor(fv / 64.0);
+    double vm = fv - 64.0 * ffloor(fv / 64.0);
     if (vm < 14.0) {
-        d += 0.18 * sin(tau * u / 3.0); /* fine grating: near Nyquist */
+        d += 0.18 * turns_sin(u / 3.0); /* fine grating: near Nyquist */
     }
-    double um = fu - 23.0 * floor(fu / 23.0);
-    uint32_t h = hash2((int32_t)floor(u / 5.0), (int32_t)floor(v / 5.0), seed);
+    double um = fu - 23.0 * ffloor(fu / 23.0);
+    uint32_t h = hash2((int32_t)ffloor(u / 5.0), (int32_t)ffloor(v / 5.0), seed);
     for (int k = 0; k < 3; k++) {
         c[k] = clamp01(c[k] + d);
     }
@@ -88,7 +139,7 @@ static void tex_pan(double u, double v, uint32_t seed, double c[3])
         c[0] = c[1] = c[2] = 0.85;
     }
     if ((h & 31u) == 0u) {
-        double cx = floor(u / 5.0) * 5.0 + 2.5, cy = floor(v / 5.0) * 5.0 + 2.5;
+        double cx = ffloor(u / 5.0) * 5.0 + 2.5, cy = ffloor(v / 5.0) * 5.0 + 2.5;
         if ((u - cx) * (u - cx) + (v - cy) * (v - cy) < 1.2) {
             c[0] = 1.0;
             c[1] = 0.9;
@@ -100,8 +151,8 @@ static void tex_pan(double u, double v, uint32_t seed, double c[3])
 /* Pseudo text: 6x9 cells, glyph strokes one pixel wide, dark ink on paper. */
 static void tex_text(double u, double v, uint32_t seed, double c[3])
 {
-    int32_t iu = (int32_t)floor(u), iv = (int32_t)floor(v);
-    int32_t cx = (int32_t)floor(u / 6.0), cy = (int32_t)floor(v / 9.0);
+    int32_t iu = (int32_t)ffloor(u), iv = (int32_t)ffloor(v);
+    int32_t cx = (int32_t)ffloor(u / 6.0), cy = (int32_t)ffloor(v / 9.0);
     int32_t gx = iu - cx * 6, gy = iv - cy * 9;
     uint32_t g = hash2(cx, cy, seed + 77u);
     int ink = 0;
@@ -124,10 +175,11 @@ static void tex_text(double u, double v, uint32_t seed, double c[3])
  * 1.5 px width and a few shelves. */
 static void tex_thin(double u, double v, uint32_t seed, double c[3])
 {
-    c[0] = 0.12 + 0.06 * sin(u / 90.0);
+    const double inv_tau = 1.0 / 6.283185307179586;
+    c[0] = 0.12 + 0.06 * turns_sin(u / 90.0 * inv_tau);
     c[1] = 0.10;
-    c[2] = 0.08 + 0.05 * cos(v / 40.0);
-    int32_t cell = (int32_t)floor(u / 7.0);
+    c[2] = 0.08 + 0.05 * turns_cos(v / 40.0 * inv_tau);
+    int32_t cell = (int32_t)ffloor(u / 7.0);
     uint32_t h = hash2(cell, 0, seed + 5u);
     if ((h & 3u) != 0u) {
         static const double widths[4] = {0.5, 0.75, 1.0, 1.5};
@@ -140,7 +192,7 @@ static void tex_thin(double u, double v, uint32_t seed, double c[3])
             c[2] = b * 0.85;
         }
     }
-    double vm = v - 37.0 * floor(v / 37.0);
+    double vm = v - 37.0 * ffloor(v / 37.0);
     if (vm < 1.0) {
         c[0] = 0.5;
         c[1] = 0.45;
@@ -156,7 +208,7 @@ static double fence_shadow(const scene_ctx_t *sc, double x, double t)
 {
     const double period = 14.0, bar = 5.0, pen = 1.0;
     double u = x - sc->vx * t;
-    double m = u - period * floor(u / period); /* 0 .. period */
+    double m = u - period * ffloor(u / period); /* 0 .. period */
     /* fully shadowed in [pen, bar], ramps of width pen on both sides */
     if (m < pen) {
         return m / pen;
@@ -172,8 +224,8 @@ static double fence_shadow(const scene_ctx_t *sc, double x, double t)
 
 static void tex_floor(double x, double y, uint32_t seed, double c[3])
 {
-    int chk = ((int64_t)floor(x / 16.0) + (int64_t)floor(y / 16.0)) & 1;
-    uint32_t h = hash2((int32_t)floor(x / 3.0), (int32_t)floor(y / 3.0), seed + 9u);
+    int chk = ((int64_t)ffloor(x / 16.0) + (int64_t)ffloor(y / 16.0)) & 1;
+    uint32_t h = hash2((int32_t)ffloor(x / 3.0), (int32_t)ffloor(y / 3.0), seed + 9u);
     double n = ((double)(h & 255u) / 255.0 - 0.5) * 0.12;
     double b = (chk ? 0.55 : 0.38) + n;
     c[0] = clamp01(b * 1.05);
@@ -193,8 +245,8 @@ static int disc_at(const scene_ctx_t *sc, double x, double y, double t, double c
         double r = 4.0 + (double)(i % 3) * 2.5;
         double x0 = (double)i * pw / N_DISCS + sc->vx * t;
         double y0 = (0.15 + 0.7 * (double)i / (N_DISCS - 1)) * h + sc->vy * t;
-        x0 = x0 - pw * floor(x0 / pw) - 20.0;
-        y0 = y0 - ph * floor(y0 / ph) - 20.0;
+        x0 = x0 - pw * ffloor(x0 / pw) - 20.0;
+        y0 = y0 - ph * ffloor(y0 / ph) - 20.0;
         double dx = x - x0, dy = y - y0;
         if (dx * dx + dy * dy < r * r) {
             if (c) {
@@ -211,6 +263,7 @@ static int disc_at(const scene_ctx_t *sc, double x, double y, double t, double c
 void tdc_scene_radiance(const tdc_source_t *s, double x, double y, double t, double rgb[3])
 {
     const scene_ctx_t *sc = (const scene_ctx_t *)s->ctx;
+    x += sc->p.shift_x; /* stereo: this eye's view */
     double u = x - sc->vx * t, v = y - sc->vy * t;
     switch (sc->p.kind) {
     case TDC_SCENE_STATIC:
@@ -233,7 +286,7 @@ void tdc_scene_radiance(const tdc_source_t *s, double x, double y, double t, dou
         break;
     case TDC_SCENE_DISCS:
         if (!disc_at(sc, x, y, t, rgb)) {
-            double gx = x - 16.0 * floor(x / 16.0), gy = y - 16.0 * floor(y / 16.0);
+            double gx = x - 16.0 * ffloor(x / 16.0), gy = y - 16.0 * ffloor(y / 16.0);
             double b = (gx < 1.0 || gy < 1.0) ? 0.35 : 0.06;
             rgb[0] = rgb[1] = rgb[2] = b;
         }
@@ -269,6 +322,7 @@ void tdc_scene_radiance(const tdc_source_t *s, double x, double y, double t, dou
 static void scene_velocity(const scene_ctx_t *sc, double x, double y, double t, double dt, tdc_mv_kind_t kind,
                            double v[2])
 {
+    x += sc->p.shift_x; /* stereo: this eye's view */
     v[0] = v[1] = 0.0;
     switch (sc->p.kind) {
     case TDC_SCENE_PAN:
@@ -303,80 +357,275 @@ static void scene_velocity(const scene_ctx_t *sc, double x, double y, double t, 
     }
 }
 
-static uint8_t encode_code(double lin, double gamma)
+/* Drive code of linear light: round(255 lin^(1/gamma)), as the count of
+ * decision levels ((k - 0.5) / 255)^gamma, k = 1..255, at or below lin
+ * (binary search in a per-gamma table instead of a pow per channel). */
+static void code_table_init(code_table_t *t, double gamma)
 {
-    double c = 255.0 * pow(clamp01(lin), 1.0 / gamma) + 0.5;
-    return (uint8_t)(c >= 255.0 ? 255 : (int)c);
+    if (t->gamma == gamma) {
+        return;
+    }
+    t->level[0] = -1.0;
+    for (int k = 1; k < 256; k++) {
+        t->level[k] = pow((k - 0.5) / 255.0, gamma);
+    }
+    t->gamma = gamma;
 }
 
-static int16_t mv_q4(double d)
+static uint8_t encode_code(const code_table_t *t, double lin)
 {
-    double q = floor(d * 16.0 + 0.5);
-    return (int16_t)(q > 32767.0 ? 32767 : (q < -32767.0 ? -32767 : q));
+    int k = 0;
+    for (int step = 128; step > 0; step >>= 1) {
+        if (t->level[k + step] <= lin) {
+            k += step;
+        }
+    }
+    return (uint8_t)k;
 }
 
 static void src_samples(tdc_source_t *s, double t, int n, const double *xy, int spp, uint8_t *rgb, int16_t *mv,
                         double dt, tdc_mv_kind_t kind)
 {
-    const scene_ctx_t *sc = (const scene_ctx_t *)s->ctx;
-    int g = 1;
-    while ((g + 1) * (g + 1) <= spp) {
-        g++;
+    scene_ctx_t *sc = (scene_ctx_t *)s->ctx;
+    int g = tdc_sim_spp_grid(spp);
+    for (int k = 0; k < 3; k++) {
+        code_table_init(&sc->codes[k], s->gamma[k]);
     }
-    for (int i = 0; i < n; i++) {
-        double x = xy[2 * i], y = xy[2 * i + 1];
-        double acc[3] = {0, 0, 0};
-        if (spp <= 1) {
-            tdc_scene_radiance(s, x, y, t, acc);
-        } else {
-            double px = floor(x), py = floor(y);
-            for (int j = 0; j < g; j++) {
-                for (int k = 0; k < g; k++) {
-                    double c[3];
-                    tdc_scene_radiance(s, px + (k + 0.5) / g, py + (j + 0.5) / g, t, c);
-                    acc[0] += c[0];
-                    acc[1] += c[1];
-                    acc[2] += c[2];
+    const code_table_t *ct = sc->codes;
+    const int blk = 256; /* samples per work item */
+    TDC_PAR_FOR((size_t)n)
+    for (int b = 0; b < (n + blk - 1) / blk; b++) {
+        for (int i = b * blk; i < n && i < (b + 1) * blk; i++) {
+            double x = xy[2 * i], y = xy[2 * i + 1];
+            double acc[3] = {0, 0, 0};
+            if (spp <= 1) {
+                tdc_scene_radiance(s, x, y, t, acc);
+            } else {
+                double px = floor(x), py = floor(y);
+                for (int j = 0; j < g; j++) {
+                    for (int k = 0; k < g; k++) {
+                        double c[3];
+                        tdc_scene_radiance(s, px + (k + 0.5) / g, py + (j + 0.5) / g, t, c);
+                        acc[0] += c[0];
+                        acc[1] += c[1];
+                        acc[2] += c[2];
+                    }
+                }
+                for (int k = 0; k < 3; k++) {
+                    acc[k] /= (double)(g * g);
                 }
             }
             for (int k = 0; k < 3; k++) {
-                acc[k] /= (double)(g * g);
+                rgb[3 * i + k] = encode_code(&ct[k], acc[k]);
             }
-        }
-        for (int k = 0; k < 3; k++) {
-            rgb[3 * i + k] = encode_code(acc[k], s->gamma[k]);
-        }
-        if (mv) {
-            double v[2];
-            scene_velocity(sc, x, y, t, dt, kind, v);
-            mv[2 * i] = mv_q4(-v[0] * dt);
-            mv[2 * i + 1] = mv_q4(-v[1] * dt);
+            if (mv) {
+                double v[2];
+                scene_velocity(sc, x, y, t, dt, kind, v);
+                mv[2 * i] = tdc_sim_mv_q4(-v[0] * dt);
+                mv[2 * i + 1] = tdc_sim_mv_q4(-v[1] * dt);
+            }
         }
     }
 }
 
-static void src_ground_truth(tdc_source_t *s, double t, double ox, double oy, double *lin)
+/* ---------------------------------------------------------------------
+ * Regular grids (full frames, ground truth): every pixel of a W x H frame,
+ * g x g box samples at (x + ox + (k + 0.5) / g, y + oy + (j + 0.5) / g).
+ *
+ * The panorama texture is separable into functions of u (column) and v
+ * (row) - the two products of sines by angle addition - so a grid call
+ * tabulates the column terms once (W g entries, exact libm values) and each
+ * sample row its row terms; a sample is then a handful of multiply-adds
+ * and two table reads, no transcendental call and no division.  Other
+ * scenes sample tdc_scene_radiance() per point.  Rows run in parallel.
+ * ------------------------------------------------------------------- */
+typedef struct {
+    double s53, s67, c67, sa, ca, g3, u;
+    int32_t cu;  /* floor(u / 5): dot cell */
+    uint8_t p8;  /* floor(u / 8) & 1 */
+    uint8_t line; /* floor(u) == 0 mod 23 */
+} pan_col_t;
+
+/* The scene kinds whose texture at t is tex_pan(x - vx t, y - vy t). */
+static int pan_like(const scene_ctx_t *sc, double t, double *du, double *dv)
 {
-    int ss = s->gt_ss;
-    double inv = 1.0 / (double)(ss * ss);
-    for (int y = 0; y < s->height; y++) {
-        for (int x = 0; x < s->width; x++) {
+    switch (sc->p.kind) {
+    case TDC_SCENE_STATIC:
+        *du = *dv = 0.0;
+        return 1;
+    case TDC_SCENE_PAN:
+        *du = sc->vx * t;
+        *dv = sc->vy * t;
+        return 1;
+    case TDC_SCENE_CUT:
+        *du = sc->vx * t;
+        *dv = sc->vy * t;
+        return t < sc->p.cut_time;
+    default:
+        return 0;
+    }
+}
+
+static int32_t floor_div(double x, double d)
+{
+    /* floor(x / d) for the exact quotient, without a division */
+    double q = ffloor(x * (1.0 / d));
+    if (q * d > x) {
+        q -= 1.0;
+    } else if ((q + 1.0) * d <= x) {
+        q += 1.0;
+    }
+    return (int32_t)q;
+}
+
+static void pan_col(double u, pan_col_t *c)
+{
+    const double tau = 6.283185307179586;
+    c->u = u;
+    c->s53 = sin(tau * u / 53.0 + 1.3);
+    c->s67 = sin(tau * u / 67.0);
+    c->c67 = cos(tau * u / 67.0);
+    c->sa = sin(tau * u / 47.0 + 0.4);
+    c->ca = cos(tau * u / 47.0 + 0.4);
+    c->g3 = sin(tau * u / 3.0);
+    c->cu = floor_div(u, 5.0);
+    c->p8 = (uint8_t)(floor_div(u, 8.0) & 1);
+    c->line = (uint8_t)(floor_div(ffloor(u), 23.0) * 23 == (int32_t)ffloor(u));
+}
+
+/* One row of samples at v over the tabulated columns: light into acc
+ * (3 per column sample, added). */
+static void pan_row(const pan_col_t *cols, int n, double v, uint32_t seed, double *acc, int g)
+{
+    const double tau = 6.283185307179586;
+    double c41 = cos(tau * v / 41.0), s67 = sin(tau * v / 67.0), c67 = cos(tau * v / 67.0);
+    double sb = sin(tau * v / 47.0), cb = cos(tau * v / 47.0);
+    int p8 = floor_div(v, 8.0) & 1;
+    double fv = ffloor(v);
+    int band = fv - 64.0 * ffloor(fv / 64.0) < 14.0;
+    int32_t cv = floor_div(v, 5.0);
+    double cy = cv * 5.0 + 2.5;
+    int32_t last_cu = INT32_MIN;
+    int dot_cell = 0;
+    for (int q = 0; q < n; q++) {
+        const pan_col_t *c = &cols[q];
+        double r = 0.30 + 0.22 * c->s53 * c41;
+        double gg = 0.30 + 0.20 * (c->s67 * c67 + c->c67 * s67); /* sin(a + b) */
+        double b = 0.30 + 0.22 * (c->ca * cb + c->sa * sb);      /* cos(a - b) */
+        double d = (c->p8 ^ p8) ? 0.12 : -0.08;
+        if (band) {
+            d += 0.18 * c->g3;
+        }
+        r = clamp01(r + d);
+        gg = clamp01(gg + d);
+        b = clamp01(b + d);
+        if (c->line) {
+            r = gg = b = 0.85;
+        }
+        if (c->cu != last_cu) {
+            last_cu = c->cu;
+            dot_cell = (hash2(c->cu, cv, seed) & 31u) == 0u;
+        }
+        if (dot_cell) {
+            double cx = c->cu * 5.0 + 2.5;
+            if ((c->u - cx) * (c->u - cx) + (v - cy) * (v - cy) < 1.2) {
+                r = 1.0;
+                gg = 0.9;
+                b = 0.3;
+            }
+        }
+        double *o = acc + 3 * (q / g);
+        o[0] += r;
+        o[1] += gg;
+        o[2] += b;
+    }
+}
+
+/* Mean linear light of every pixel of rows [0, H) into lin (W*H*3). */
+static int grid_lin(const tdc_source_t *s, double t, double ox, double oy, int g, double *lin)
+{
+    const scene_ctx_t *sc = (const scene_ctx_t *)s->ctx;
+    const int W = s->width, H = s->height;
+    const double inv = 1.0 / (double)(g * g);
+    double du, dv;
+    if (pan_like(sc, t, &du, &dv)) {
+        int n = W * g;
+        pan_col_t *cols = malloc(sizeof(pan_col_t) * (size_t)n);
+        if (!cols) {
+            return -1;
+        }
+        for (int q = 0; q < n; q++) {
+            pan_col((q / g) + ox + ((q % g) + 0.5) / g + sc->p.shift_x - du, &cols[q]);
+        }
+        TDC_PAR_FOR((size_t)W * H)
+        for (int y = 0; y < H; y++) {
+            double *o = lin + 3 * (size_t)y * W;
+            memset(o, 0, sizeof(double) * 3 * (size_t)W);
+            for (int j = 0; j < g; j++) {
+                pan_row(cols, n, y + oy + (j + 0.5) / g - dv, sc->p.seed, o, g);
+            }
+            for (int i = 0; i < 3 * W; i++) {
+                o[i] *= inv;
+            }
+        }
+        free(cols);
+        return 0;
+    }
+    TDC_PAR_FOR((size_t)W * H)
+    for (int y = 0; y < H; y++) {
+        for (int x = 0; x < W; x++) {
             double acc[3] = {0, 0, 0};
-            for (int j = 0; j < ss; j++) {
-                for (int k = 0; k < ss; k++) {
+            for (int j = 0; j < g; j++) {
+                for (int k = 0; k < g; k++) {
                     double c[3];
-                    tdc_scene_radiance(s, x + ox + (k + 0.5) / ss, y + oy + (j + 0.5) / ss, t, c);
+                    tdc_scene_radiance(s, x + ox + (k + 0.5) / g, y + oy + (j + 0.5) / g, t, c);
                     acc[0] += c[0];
                     acc[1] += c[1];
                     acc[2] += c[2];
                 }
             }
-            double *o = lin + 3 * ((size_t)y * s->width + x);
+            double *o = lin + 3 * ((size_t)y * W + x);
             o[0] = acc[0] * inv;
             o[1] = acc[1] * inv;
             o[2] = acc[2] * inv;
         }
     }
+    return 0;
+}
+
+static void src_ground_truth(tdc_source_t *s, double t, double ox, double oy, double *lin)
+{
+    if (grid_lin(s, t, ox, oy, s->gt_ss, lin) != 0) {
+        memset(lin, 0, sizeof(double) * 3 * (size_t)s->width * s->height); /* out of memory */
+    }
+}
+
+/* A full frame of drive codes: spp box samples per pixel (g x g, g the
+ * largest with g^2 <= spp) or, at spp 1, one at the centre + (jx, jy).
+ * The same samples src_samples takes for a frame's pixel grid. */
+static int src_frame(tdc_source_t *s, double t, double jx, double jy, int spp, uint8_t *rgb, double *lin)
+{
+    scene_ctx_t *sc = (scene_ctx_t *)s->ctx;
+    int g = tdc_sim_spp_grid(spp);
+    double ox = g == 1 ? jx : 0.0, oy = g == 1 ? jy : 0.0;
+    if (grid_lin(s, t, ox, oy, g, lin) != 0) {
+        return -1;
+    }
+    for (int k = 0; k < 3; k++) {
+        code_table_init(&sc->codes[k], s->gamma[k]);
+    }
+    const code_table_t *ct = sc->codes;
+    size_t n = (size_t)s->width * s->height;
+    TDC_PAR_FOR((size_t)s->width * s->height)
+    for (int y = 0; y < s->height; y++) {
+        for (size_t i = (size_t)y * s->width; i < (size_t)(y + 1) * s->width; i++) {
+            for (int k = 0; k < 3; k++) {
+                rgb[3 * i + k] = encode_code(&ct[k], lin[3 * i + k]);
+            }
+        }
+    }
+    (void)n;
+    return 0;
 }
 
 static void src_pursuit(tdc_source_t *s, double t, double v[2])
@@ -414,6 +663,7 @@ tdc_source_t *tdc_scene_create(const tdc_scene_params_t *p, const double gamma[3
         return NULL;
     }
     sc->p = *p;
+    turn_table_init();
     double speed = p->speed < 0.0 ? tdc_scene_default_speed(p->kind) : p->speed;
     if (p->kind == TDC_SCENE_STATIC || p->kind == TDC_SCENE_BLACK || p->kind == TDC_SCENE_WHITE) {
         speed = 0.0;
@@ -443,6 +693,7 @@ tdc_source_t *tdc_scene_create(const tdc_scene_params_t *p, const double gamma[3
     s->ctx = sc;
     s->samples = src_samples;
     s->ground_truth = src_ground_truth;
+    s->frame = src_frame;
     s->pursuit = src_pursuit;
     s->cut = src_cut;
     s->destroy = src_destroy;

@@ -59,6 +59,11 @@ struct tdc_source {
     /* Linear light W*H*3 (double) of the scene at time t, every pixel
      * sampled at (x + ox, y + oy) shifted by (ox, oy) pixels. */
     void (*ground_truth)(tdc_source_t *s, double t, double ox, double oy, double *lin);
+    /* Optional fast path for whole frames without motion vectors: drive
+     * codes of every pixel as samples() would give for the pixel grid
+     * (spp > 1: g x g box samples; spp 1: the centre + (jx, jy)); lin:
+     * W*H*3 doubles of scratch.  0, or -1 (then use samples()). */
+    int (*frame)(tdc_source_t *s, double t, double jx, double jy, int spp, uint8_t *rgb, double *lin);
     void (*pursuit)(tdc_source_t *s, double t, double v[2]);
     /* 1 if the content changes discontinuously in (t0, t1]. */
     int (*cut)(tdc_source_t *s, double t0, double t1);
@@ -88,6 +93,7 @@ typedef struct {
     uint32_t seed;
     int pursuit;       /* 1: eye tracks the main motion, 0: fixation */
     int gt_ss;         /* 0: default 4 */
+    double shift_x;    /* this eye's view: the scene seen shifted by shift_x px (stereo disparity) */
 } tdc_scene_params_t;
 
 const char *tdc_scene_name(tdc_scene_kind_t k);

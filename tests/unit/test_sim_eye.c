@@ -38,7 +38,7 @@ static void test_eye_steady(void **state)
     for (int i = 0; i < N; i++) {
         img[i] = (double)(i % 97) / 97.0;
     }
-    tdc_eye_slice_t s[3] = {{0.0, 0.01, img}, {0.01, 0.02, img}, {0.02, 0.03, img}};
+    tdc_eye_slice_t s[3] = {{0.0, 0.01, img, NULL, NULL}, {0.01, 0.02, img, NULL, NULL}, {0.02, 0.03, img, NULL, NULL}};
     tdc_eye_cfg_t c = {W, H, 0.02, 1.0, 0.5, 1.0};
     double v[2] = {0, 0};
     tdc_eye_perceive(&c, s, 3, 0.03, v, out);
@@ -56,7 +56,7 @@ static void test_eye_talbot_plateau(void **state)
         mean[i] = 0.5 * (a[i] + b[i]);
     }
     /* low persistence 0.25: each frame emits a quarter of its period */
-    tdc_eye_slice_t s[2] = {{0.0, 0.0025, a}, {0.01, 0.0125, b}};
+    tdc_eye_slice_t s[2] = {{0.0, 0.0025, a, NULL, NULL}, {0.01, 0.0125, b, NULL, NULL}};
     tdc_eye_cfg_t c = {W, H, 0.02, 4.0, 0.5, 1.0};
     double v[2] = {0, 0};
     tdc_eye_perceive(&c, s, 2, 0.02, v, out);
@@ -79,7 +79,7 @@ static void test_eye_pursuit(void **state)
     }
     /* flashes of 1 us at t = 0 and t = 0.01 (pursuit shift within a flash
      * is 0.0002 px: one sub-step, bilinear weight ~1) */
-    tdc_eye_slice_t s[2] = {{0.0, 1e-6, f0}, {0.01, 0.01 + 1e-6, f1}};
+    tdc_eye_slice_t s[2] = {{0.0, 1e-6, f0, NULL, NULL}, {0.01, 0.01 + 1e-6, f1, NULL, NULL}};
     tdc_eye_cfg_t c = {W, H, 0.02, 0.02 / 2e-6, 0.5, 1.0};
     double v[2] = {200.0, 0.0}; /* 2 px per 10 ms */
     tdc_eye_perceive(&c, s, 2, 0.01 + 1e-6, v, out);
@@ -158,7 +158,7 @@ static void test_panel_lcd(void **state)
 static void test_scene_motion(void **state)
 {
     (void)state;
-    tdc_scene_params_t sp = {TDC_SCENE_PAN, 32, 16, 160.0, 0.0, 1.0, 3, 1, 2};
+    tdc_scene_params_t sp = {TDC_SCENE_PAN, 32, 16, 160.0, 0.0, 1.0, 3, 1, 2, 0.0};
     const double g[3] = {2.2, 2.2, 2.2};
     tdc_source_t *s = tdc_scene_create(&sp, g);
     assert_non_null(s);
@@ -192,9 +192,41 @@ static void test_scene_motion(void **state)
     s->destroy(s);
 }
 
+/* OLED slices kept as codes + the panel's decode table perceive exactly as
+ * the decoded light itself (the ring keeps codes to save 7/8 of its memory),
+ * at integer and fractional retinal shifts. */
+static void test_code_slices_equal_light(void **state)
+{
+    (void)state;
+    enum { CW = 23, CH = 17, CN = CW * CH * 3 };
+    uint8_t codes[CN];
+    double lut[3 * 256], lin[CN], a[CN], b[CN];
+    for (int k = 0; k < 3; k++) {
+        for (int c = 0; c < 256; c++) {
+            lut[256 * k + c] = tdc_panel_sim_decode(c, 2.1 + 0.1 * k);
+        }
+    }
+    uint32_t x = 7;
+    for (int i = 0; i < CN; i++) {
+        x = x * 1664525u + 1013904223u;
+        codes[i] = (uint8_t)(x >> 24);
+        lin[i] = lut[256 * (i % 3) + codes[i]];
+    }
+    tdc_eye_cfg_t c = {CW, CH, 0.02, 5.0, 0.5, 1.0};
+    static const double speeds[3] = {0.0, 100.0, 437.0};
+    for (int k = 0; k < 3; k++) {
+        double v[2] = {speeds[k], -0.5 * speeds[k]};
+        tdc_eye_slice_t s1[1] = {{0.01, 0.014, lin, NULL, NULL}}, s2[1] = {{0.01, 0.014, NULL, codes, lut}};
+        assert_int_equal(tdc_eye_perceive(&c, s1, 1, 0.02, v, a), 0);
+        assert_int_equal(tdc_eye_perceive(&c, s2, 1, 0.02, v, b), 0);
+        assert_memory_equal(a, b, sizeof(a));
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_code_slices_equal_light),
         cmocka_unit_test(test_eye_steady),   cmocka_unit_test(test_eye_talbot_plateau),
         cmocka_unit_test(test_eye_pursuit),  cmocka_unit_test(test_panel_oled),
         cmocka_unit_test(test_panel_lcd),    cmocka_unit_test(test_scene_motion),

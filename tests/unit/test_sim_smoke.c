@@ -18,6 +18,7 @@
 #include <cmocka.h>
 
 #include "simulator/tdc_sim.h"
+#include "tdc_par.h"
 #include "tdc_sim_features.h"
 
 static int run(tdc_scene_kind_t scene, int hz, int frames, const char *const *names, int n, tdc_sim_result_t *res,
@@ -136,6 +137,155 @@ static void test_extremes(void **state)
     check_sane(r, 2);
 }
 
+/* A renderer whose subframe call fails: the run reports the mode, frame and
+ * stage and returns an error instead of counting on. */
+static int failing_subframe(tdc_source_t *s, int slot, int shadow, uint32_t frame, double t, double dt,
+                            uint8_t *samples, int16_t *mv, uint8_t *pattern, uint64_t *rays)
+{
+    (void)s, (void)slot, (void)shadow, (void)t, (void)dt, (void)samples, (void)mv, (void)pattern, (void)rays;
+    return frame == 3 ? -1 : 0;
+}
+
+/* A 32x24 pan run of `frames` refreshes at hz, 1x1 ground truth. */
+static inline void tiny_config(tdc_sim_config_t *cfg, int hz, int frames)
+{
+    tdc_sim_default_config(cfg);
+    cfg->width = cfg->scene.width = 32;
+    cfg->height = cfg->scene.height = 24;
+    cfg->refresh_hz = hz;
+    cfg->duration_s = (double)frames / hz;
+    cfg->progress = 0;
+    cfg->scene.gt_ss = 1;
+}
+
+static void test_stage_error_ends_run(void **state)
+{
+    (void)state;
+#if TDC_SIM_HAVE_ASM
+    tdc_sim_config_t cfg;
+    tiny_config(&cfg, 240, 12);
+    tdc_source_t *src = tdc_scene_create(&cfg.scene, NULL);
+    assert_non_null(src);
+    src->subframe = failing_subframe;
+    const tdc_mode_desc_t *modes[1] = {tdc_sim_mode_find("asm-adaptive")};
+    tdc_sim_result_t r[1];
+    assert_int_equal(tdc_sim_run(&cfg, src, modes, 1, r, NULL), -1);
+    assert_true(r[0].frames == 3); /* frames 0-2 shown, the run stopped at 3 */
+    src->destroy(src);
+#endif
+}
+
+/* A rate a firmware stage refuses: noted (mode unavailable) in a group run,
+ * an error when the mode was asked for by name (cfg.strict). */
+static void test_refused_rate(void **state)
+{
+    (void)state;
+#if TDC_SIM_HAVE_TRM
+    tdc_sim_config_t cfg;
+    tiny_config(&cfg, 30, 4); /* below TRM's minimum refresh */
+    tdc_source_t *src = tdc_scene_create(&cfg.scene, NULL);
+    assert_non_null(src);
+    const tdc_mode_desc_t *modes[2] = {tdc_sim_mode_find("full"), tdc_sim_mode_find("trm50")};
+    tdc_sim_result_t r[2];
+    assert_int_equal(tdc_sim_run(&cfg, src, modes, 2, r, NULL), 0);
+    assert_true(r[0].available && !r[1].available);
+    assert_int_equal(r[1].refused, -3); /* TDC_ERR_REFRESH_LOW */
+    cfg.strict = 1;
+    assert_int_equal(tdc_sim_run(&cfg, src, modes, 2, r, NULL), -1);
+    src->destroy(src);
+#endif
+}
+
+/* Results do not depend on the thread count: every metric and cost column
+ * equal to the last bit with 1 and 2 threads (only the time columns may
+ * differ), over a TRM, an assembly and an LCD run. */
+static void same_results(const tdc_sim_result_t *a, const tdc_sim_result_t *b, int n)
+{
+    for (int i = 0; i < n; i++) {
+        assert_memory_equal(&a[i].psnr, &b[i].psnr, sizeof(double));
+        assert_memory_equal(&a[i].ssim, &b[i].ssim, sizeof(double));
+        assert_memory_equal(&a[i].flip, &b[i].flip, sizeof(double));
+        assert_memory_equal(&a[i].flicker, &b[i].flicker, sizeof(double));
+        assert_memory_equal(&a[i].psnr_min, &b[i].psnr_min, sizeof(double));
+        assert_memory_equal(&a[i].flip_max, &b[i].flip_max, sizeof(double));
+        assert_memory_equal(a[i].eye_flip, b[i].eye_flip, sizeof(a[i].eye_flip));
+        assert_true(a[i].rays == b[i].rays && a[i].link_bytes == b[i].link_bytes && a[i].frames == b[i].frames);
+        assert_int_equal(a[i].evals, b[i].evals);
+    }
+}
+
+static void test_threads_same_digits(void **state)
+{
+    (void)state;
+    static const char *const m[] = {"full", "trm50", "asw", "interlace"};
+    static const char *const a[] = {"full", "asm-adaptive", "taa60"};
+    tdc_sim_result_t r1[4], r2[4];
+    long min_work = tdc_par_min_work;
+    tdc_par_min_work = 0; /* thread even these small images */
+    tdc_par_set_threads(1);
+    assert_int_equal(run(TDC_SCENE_PAN, 90, 8, m, 4, r1, TDC_PANEL_SIM_OLED, -1.0), 0);
+    tdc_par_set_threads(2);
+    assert_int_equal(run(TDC_SCENE_PAN, 90, 8, m, 4, r2, TDC_PANEL_SIM_OLED, -1.0), 0);
+    same_results(r1, r2, 4);
+    tdc_par_set_threads(1);
+    assert_int_equal(run(TDC_SCENE_DISCS, 240, 10, a, 3, r1, TDC_PANEL_SIM_OLED, -1.0), 0);
+    tdc_par_set_threads(2);
+    assert_int_equal(run(TDC_SCENE_DISCS, 240, 10, a, 3, r2, TDC_PANEL_SIM_OLED, -1.0), 0);
+    same_results(r1, r2, 3);
+    tdc_par_set_threads(1);
+    assert_int_equal(run(TDC_SCENE_PAN, 120, 6, m, 2, r1, TDC_PANEL_SIM_LCD, -1.0), 0);
+    tdc_par_set_threads(2);
+    assert_int_equal(run(TDC_SCENE_PAN, 120, 6, m, 2, r2, TDC_PANEL_SIM_LCD, -1.0), 0);
+    same_results(r1, r2, 2);
+    tdc_par_min_work = min_work;
+}
+
+/* Stereo (TRM §7.2): both eyes through one stereo stream.  TRM sends one
+ * eye full and the other reduced each frame, so the pair costs what a mono
+ * TRM stream of both eyes costs (5/8 of full at r = 1/2); each eye has its
+ * own figures; with zero disparity and a static scene both eyes see the
+ * same and match the mono run; with a disparity the eyes' images differ. */
+static void test_stereo(void **state)
+{
+    (void)state;
+    tdc_sim_config_t cfg;
+    tdc_sim_default_config(&cfg);
+    cfg.scene.kind = TDC_SCENE_PAN;
+    cfg.width = cfg.scene.width = 48;
+    cfg.height = cfg.scene.height = 40;
+    cfg.duration_s = 12.0 / 90;
+    cfg.progress = 0;
+    cfg.flip_ppd = 11.4;
+    cfg.scene.gt_ss = 2;
+    const tdc_mode_desc_t *modes[2] = {tdc_sim_mode_find("full"), tdc_sim_mode_find("trm50")};
+    tdc_sim_result_t mono[2], st[2];
+    tdc_source_t *l = tdc_scene_create(&cfg.scene, NULL);
+    assert_int_equal(tdc_sim_run(&cfg, l, modes, 2, mono, NULL), 0);
+    tdc_scene_params_t sp = cfg.scene;
+    sp.shift_x = 3.0;
+    tdc_source_t *r = tdc_scene_create(&sp, NULL);
+    cfg.eyes = 2;
+    cfg.right = r;
+    assert_int_equal(tdc_sim_run(&cfg, l, modes, 2, st, NULL), 0);
+    check_sane(st, 2);
+    printf("  stereo trm50: eye L PSNR %.3f FLIP %.4f, eye R PSNR %.3f FLIP %.4f, link %llu bytes (mono %llu)\n",
+           st[1].eye_psnr[0], st[1].eye_flip[0], st[1].eye_psnr[1], st[1].eye_flip[1],
+           (unsigned long long)st[1].link_bytes, (unsigned long long)mono[1].link_bytes);
+    /* eye 0 is the mono run's eye: the same figures to the last bit */
+    assert_memory_equal(&st[0].eye_psnr[0], &mono[0].psnr, sizeof(double));
+    assert_memory_equal(&st[0].eye_flip[0], &mono[0].flip, sizeof(double));
+    /* the pair: twice the rays of one eye; link bytes about twice mono's */
+    assert_true(st[0].rays == 2 * mono[0].rays && st[1].rays == 2 * mono[1].rays);
+    double ratio = (double)st[1].link_bytes / (double)mono[1].link_bytes;
+    assert_true(ratio > 1.9 && ratio < 2.05);
+    assert_true(fabs((double)st[1].link_bytes / st[0].link_bytes - 0.625) < 0.02);
+    /* the right eye sees another view: different figures */
+    assert_true(st[1].eye_flip[0] != st[1].eye_flip[1]);
+    assert_int_equal(st[1].link_errors, 0);
+    r->destroy(r);
+    l->destroy(l);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -143,6 +293,10 @@ int main(void)
         cmocka_unit_test(test_static_trm_equals_full),
         cmocka_unit_test(test_asm_family),
         cmocka_unit_test(test_extremes),
+        cmocka_unit_test(test_stage_error_ends_run),
+        cmocka_unit_test(test_refused_rate),
+        cmocka_unit_test(test_threads_same_digits),
+        cmocka_unit_test(test_stereo),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,0 +1,149 @@
+/* tdc_sim_mode.c - helpers the mode families share (see tdc_sim_mode.h). */
+#include "simulator/tdc_sim_mode.h"
+
+#include <stdio.h>
+#include <string.h>
+#include <time.h>
+
+#include "tdc_status.h"
+
+double tdc_sim_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts); /* CPU time: robust to a loaded host */
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+void tdc_sim_note(sim_mode_t *m, const char *s)
+{
+    size_t l = strlen(m->res->note);
+    if (l + strlen(s) + 3 < sizeof(m->res->note)) {
+        snprintf(m->res->note + l, sizeof(m->res->note) - l, "%s%s", l ? "; " : "", s);
+    }
+}
+
+int tdc_sim_stage(sim_mode_t *m, const char *stage, int status)
+{
+    if (status == 0) {
+        return 0;
+    }
+    if (!m->failed) {
+        /* firmware stages (tdc_*) return a tdc_status_t; the renderer and the
+         * link wrappers return -1 */
+        char eye[16] = "";
+        if (m->eyes == 2) {
+            snprintf(eye, sizeof(eye), " eye %d", m->eye);
+        }
+        int fw = strncmp(stage, "tdc_", 4) == 0;
+        fprintf(stderr, "tdc-sim: mode %s: frame %u%s: stage %s: %s (%s)\n", m->d->name, (unsigned)m->frame, eye,
+                stage, fw ? tdc_status_name((tdc_status_t)status) : "failed",
+                fw ? tdc_status_text((tdc_status_t)status) : "returned an error");
+    }
+    m->failed = 1;
+    return status;
+}
+
+void tdc_sim_refuse(sim_mode_t *m, const char *what, int status)
+{
+    char b[160];
+    snprintf(b, sizeof(b), "%s refused the configuration (%s)", what, tdc_status_name((tdc_status_t)status));
+    tdc_sim_note(m, b);
+    m->res->available = 0;
+    m->res->refused = status ? status : -1;
+}
+
+void tdc_sim_render_full(sim_mode_t *m, tdc_source_t *src, double t, int spp, double jx, double jy, int16_t *mv,
+                         double dt, tdc_mv_kind_t kind)
+{
+    if (src->full_frame) {
+        /* a renderer tracing whole frames (Embree): its own timing and rays */
+        uint64_t rays = 0;
+        double ms = 0.0;
+        double t1 = tdc_sim_now();
+        src->full_frame(src, t, mv ? dt : 0.0, m->render, mv, &rays, &ms);
+        m->res->render_s += tdc_sim_now() - t1;
+        m->res->rays += rays;
+        m->res->rendered++;
+        return;
+    }
+    double t0 = tdc_sim_now();
+    if (!mv && src->frame && src->frame(src, t, jx, jy, spp, m->render, m->scratch) == 0) {
+        /* the source's whole-frame path (tabulated, threaded) */
+        m->res->render_s += tdc_sim_now() - t0;
+        m->res->rays += (uint64_t)m->npx * (uint64_t)(spp < 1 ? 1 : spp);
+        m->res->rendered++;
+        return;
+    }
+    for (int y = 0; y < m->h; y++) {
+        for (int x = 0; x < m->w; x++) {
+            size_t i = (size_t)y * m->w + x;
+            m->xy[2 * i] = x + 0.5 + jx;
+            m->xy[2 * i + 1] = y + 0.5 + jy;
+        }
+    }
+    src->samples(src, t, (int)m->npx, m->xy, spp, m->render, mv, dt, kind);
+    m->res->render_s += tdc_sim_now() - t0;
+    m->res->rays += (uint64_t)m->npx * (uint64_t)(spp < 1 ? 1 : spp);
+    m->res->rendered++;
+}
+
+void tdc_sim_render_rows(sim_mode_t *m, tdc_source_t *src, double t, int spp, int parity, uint8_t *tmp)
+{
+    if (src->full_frame) {
+        /* whole-frame renderer: trace the frame, keep the field's rows;
+         * rays are counted for the field only (a renderer restricted to
+         * those rows would trace that many) */
+        tdc_sim_render_full(m, src, t, spp, 0, 0, NULL, 0, TDC_MV_SURFACE);
+        m->res->rays -= m->res->rays ? (uint64_t)m->w * (m->h / 2) : 0;
+        for (int y = 1 - parity; y < m->h; y += 2) {
+            memset(m->render + (size_t)y * m->w * 3, 0, (size_t)m->w * 3);
+        }
+        return;
+    }
+    double t0 = tdc_sim_now();
+    int n = 0;
+    for (int y = parity; y < m->h; y += 2) {
+        for (int x = 0; x < m->w; x++) {
+            m->xy[2 * n] = x + 0.5;
+            m->xy[2 * n + 1] = y + 0.5;
+            n++;
+        }
+    }
+    src->samples(src, t, n, m->xy, spp, tmp, NULL, 0.0, TDC_MV_SURFACE);
+    memset(m->render, 0, m->npx * 3);
+    int k = 0;
+    for (int y = parity; y < m->h; y += 2) {
+        memcpy(m->render + (size_t)y * m->w * 3, tmp + (size_t)k * m->w * 3, (size_t)m->w * 3);
+        k++;
+    }
+    m->res->render_s += tdc_sim_now() - t0;
+    m->res->rays += (uint64_t)n * (uint64_t)(spp < 1 ? 1 : spp);
+    m->res->rendered++;
+}
+
+int tdc_sim_send_full(sim_mode_t *m, uint32_t lf, const uint8_t *rgb)
+{
+    int st = tdc_sim_stage(m, "link FULL packet", tdc_sim_link_full(m->link, m->eye, lf, rgb));
+    if (st == 0) {
+        memcpy(m->wanted, TDC_SIM_LINK_FULL(m), m->npx * 3);
+    }
+    return st;
+}
+
+double tdc_sim_sample8(const uint8_t *img, int w, int h, double x, double y, int c)
+{
+    x = x < 0 ? 0 : (x > w - 1 ? w - 1 : x);
+    y = y < 0 ? 0 : (y > h - 1 ? h - 1 : y);
+    int x0 = (int)x, y0 = (int)y;
+    int x1 = x0 + 1 < w ? x0 + 1 : x0, y1 = y0 + 1 < h ? y0 + 1 : y0;
+    double fx = x - x0, fy = y - y0;
+    double a = img[3 * ((size_t)y0 * w + x0) + c], b = img[3 * ((size_t)y0 * w + x1) + c];
+    double d = img[3 * ((size_t)y1 * w + x0) + c], e = img[3 * ((size_t)y1 * w + x1) + c];
+    return (a + (b - a) * fx) * (1 - fy) + (d + (e - d) * fx) * fy;
+}
+
+uint8_t tdc_sim_to8(double v)
+{
+    v += 0.5;
+    return (uint8_t)(v <= 0 ? 0 : (v >= 255 ? 255 : (int)v));
+}
