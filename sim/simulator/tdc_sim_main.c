@@ -90,6 +90,8 @@ static void usage(FILE *f)
                "LCD firmware stage %s, physical LCD model %s\n",
             p.trm ? "yes" : "NO", p.link ? "yes" : "NO", p.assemble ? "yes" : "NO", p.lcd_fw ? "yes" : "NO",
             p.lcd_phys ? "yes" : "no (built-in fallback)");
+    fprintf(f, "\nexit codes (docs/tools.md): 0 OK, 1 ARGS, 7 FILE, 13 INPUT (malformed image or scene),\n"
+               "14 REFUSED (a stage error or refused configuration: the run is not a result), 17 NOMEM\n");
 }
 
 /* *explicit: 0 when a group ('all', a family) was named. */
@@ -159,6 +161,13 @@ static int parse_num(const char *s, double lo, double hi, double *v, const char 
     return 0;
 }
 
+/* Exit code of a source that could not be opened: FILE when the file
+ * itself could not be read, INPUT when its contents are malformed. */
+static int image_exit(const char *err)
+{
+    return strstr(err, "cannot open") || strstr(err, "No such file") ? TDC_EXIT_FILE : TDC_EXIT_INPUT;
+}
+
 int main(int argc, char **argv)
 {
     enum { O_SPEED = 256, O_ANGLE, O_CUT, O_PERS, O_PURSUIT, O_GAIN, O_EVERY, O_PPD, O_TRMS, O_GTSS, O_STRIP, O_LIST,
@@ -207,7 +216,7 @@ int main(int argc, char **argv)
             int k = tdc_scene_from_name(optarg);
             if (k < 0) {
                 fprintf(stderr, "tdc-sim: unknown scene '%s' (see --help)\n", optarg);
-                return 2;
+                return TDC_EXIT_ARGS;
             }
             cfg.scene.kind = (tdc_scene_kind_t)k;
             break;
@@ -215,7 +224,7 @@ int main(int argc, char **argv)
         case 'm':
             if (optarg[0] == '\0') {
                 fprintf(stderr, "tdc-sim: bad mode list '' (-m needs at least one mode)\n");
-                return 2;
+                return TDC_EXIT_ARGS;
             }
             mode_list = optarg;
             break;
@@ -225,7 +234,7 @@ int main(int argc, char **argv)
         case O_EYES:
             if (strcmp(optarg, "1") != 0 && strcmp(optarg, "2") != 0) {
                 fprintf(stderr, "tdc-sim: bad eyes '%s' (1 or 2)\n", optarg);
-                return 2;
+                return TDC_EXIT_ARGS;
             }
             eyes = optarg[0] - '0';
             break;
@@ -240,13 +249,13 @@ int main(int argc, char **argv)
             break;
         case O_DISP:
             if (parse_num(optarg, -1000, 1000, &v, "disparity")) {
-                return 2;
+                return TDC_EXIT_ARGS;
             }
             disparity = v;
             break;
         case O_IPD:
             if (parse_num(optarg, -10, 10, &v, "ipd")) {
-                return 2;
+                return TDC_EXIT_ARGS;
             }
             ipd = v;
             break;
@@ -255,22 +264,22 @@ int main(int argc, char **argv)
             break;
         case O_ZOOM:
             if (parse_num(optarg, 1e-3, 1e3, &im.zoom, "zoom")) {
-                return 2;
+                return TDC_EXIT_ARGS;
             }
             break;
         case O_ZOOMRATE:
             if (parse_num(optarg, -20, 20, &im.zoom_rate, "zoom-rate")) {
-                return 2;
+                return TDC_EXIT_ARGS;
             }
             break;
         case O_ROTATE:
             if (parse_num(optarg, -3600, 3600, &im.rotate_dps, "rotate")) {
-                return 2;
+                return TDC_EXIT_ARGS;
             }
             break;
         case O_THREADS:
             if (parse_num(optarg, 1, 64, &v, "threads")) {
-                return 2;
+                return TDC_EXIT_ARGS;
             }
             threads = (int)v;
             break;
@@ -281,7 +290,7 @@ int main(int argc, char **argv)
                 cfg.panel = TDC_PANEL_SIM_LCD;
             } else {
                 fprintf(stderr, "tdc-sim: panel must be oled or lcd\n");
-                return 2;
+                return TDC_EXIT_ARGS;
             }
             break;
         case O_PROFILE:
@@ -295,14 +304,14 @@ int main(int argc, char **argv)
             }
             if (k < 0) {
                 fprintf(stderr, "tdc-sim: --lcd-mode '%s': gamma, exact, od17, od33, state or state-pair\n", optarg);
-                return 2;
+                return TDC_EXIT_ARGS;
             }
             cfg.lcd_mode = k;
             break;
         }
         case O_LCDBITS:
             if (parse_num(optarg, 4, 8, &v, "lcd-bits")) {
-                return 2;
+                return TDC_EXIT_ARGS;
             }
             cfg.lcd_bits = (int)v;
             break;
@@ -320,13 +329,13 @@ int main(int argc, char **argv)
             } else {
                 fprintf(stderr, "tdc-sim: --backlight '%s': hold, strobe or strobe:DUTY:PHASE (DUTY + PHASE <= 1)\n",
                         optarg);
-                return 2;
+                return TDC_EXIT_ARGS;
             }
             break;
         }
         case 'r':
             if (parse_num(optarg, 1, 1000, &v, "refresh")) {
-                return 2;
+                return TDC_EXIT_ARGS;
             }
             cfg.refresh_hz = (int)v;
             break;
@@ -334,7 +343,7 @@ int main(int argc, char **argv)
             unsigned w, h; /* overflow-checked: 4294967328x24 is refused, not 32x24 */
             if (tdc_parse_size(optarg, 4096, &w, &h) != 0 || w < 8 || h < 8) {
                 fprintf(stderr, "tdc-sim: bad size '%s' (WxH, 8 .. 4096)\n", optarg);
-                return 2;
+                return TDC_EXIT_ARGS;
             }
             cfg.width = w;
             cfg.height = h;
@@ -343,49 +352,49 @@ int main(int argc, char **argv)
         }
         case 'd':
             if (parse_num(optarg, 1e-3, 1e6, &v, "duration")) {
-                return 2;
+                return TDC_EXIT_ARGS;
             }
             cfg.duration_s = v;
             break;
         case 'n':
             if (parse_num(optarg, 1, 1e8, &v, "frames")) {
-                return 2;
+                return TDC_EXIT_ARGS;
             }
             frames = (long)v;
             break;
         case 'w':
             if (parse_num(optarg, 1, 16, &v, "window")) {
-                return 2;
+                return TDC_EXIT_ARGS;
             }
             cfg.window_frames = (int)v;
             break;
         case O_SPP:
             if (parse_num(optarg, 1, 64, &v, "spp")) {
-                return 2;
+                return TDC_EXIT_ARGS;
             }
             cfg.spp = (int)v;
             break;
         case O_SPEED:
             if (parse_num(optarg, 0, 1e6, &v, "speed")) {
-                return 2;
+                return TDC_EXIT_ARGS;
             }
             cfg.scene.speed = v;
             break;
         case O_ANGLE:
             if (parse_num(optarg, -360, 360, &v, "angle")) {
-                return 2;
+                return TDC_EXIT_ARGS;
             }
             cfg.scene.angle_deg = v;
             break;
         case O_CUT:
             if (parse_num(optarg, 0, 1e6, &v, "cut time")) {
-                return 2;
+                return TDC_EXIT_ARGS;
             }
             cfg.scene.cut_time = v;
             break;
         case O_PERS:
             if (parse_num(optarg, 0.01, 1, &v, "persistence")) {
-                return 2;
+                return TDC_EXIT_ARGS;
             }
             cfg.persistence = v;
             break;
@@ -396,49 +405,49 @@ int main(int argc, char **argv)
                 cfg.scene.pursuit = 0;
             } else {
                 fprintf(stderr, "tdc-sim: --pursuit track|fixate\n");
-                return 2;
+                return TDC_EXIT_ARGS;
             }
             break;
         case O_GAIN:
             if (parse_num(optarg, 0, 1.5, &v, "pursuit gain")) {
-                return 2;
+                return TDC_EXIT_ARGS;
             }
             cfg.pursuit_gain = v;
             break;
         case O_EVERY:
             if (parse_num(optarg, 1, 1e6, &v, "metric-every")) {
-                return 2;
+                return TDC_EXIT_ARGS;
             }
             cfg.metric_every = (int)v;
             break;
         case O_PPD:
             if (parse_num(optarg, 1, 1000, &v, "ppd")) {
-                return 2;
+                return TDC_EXIT_ARGS;
             }
             cfg.flip_ppd = v;
             ppd_given = 1;
             break;
         case O_TRMS:
             if (parse_num(optarg, 0, 1000, &v, "trm-s")) {
-                return 2;
+                return TDC_EXIT_ARGS;
             }
             cfg.trm_s = (int)v;
             break;
         case O_GTSS:
             if (parse_num(optarg, 1, 16, &v, "gt-ss")) {
-                return 2;
+                return TDC_EXIT_ARGS;
             }
             cfg.scene.gt_ss = (int)v;
             break;
         case O_STRIP:
             if (parse_num(optarg, 0, 1e9, &v, "strip-at")) {
-                return 2;
+                return TDC_EXIT_ARGS;
             }
             cfg.strip_at = (int)v;
             break;
         case 'S':
             if (parse_num(optarg, 0, 4294967295.0, &v, "seed")) {
-                return 2;
+                return TDC_EXIT_ARGS;
             }
             cfg.seed = (uint32_t)v;
             break;
@@ -464,20 +473,20 @@ int main(int argc, char **argv)
             return 0;
         default:
             usage(stderr);
-            return 2;
+            return TDC_EXIT_ARGS;
         }
     }
     tdc_par_set_threads(threads);
     if (optind < argc) {
         fprintf(stderr, "tdc-sim: unexpected argument '%s'\n", argv[optind]);
-        return 2;
+        return TDC_EXIT_ARGS;
     }
     /* native geometry from the panel profile unless overridden */
     const tdc_panel_t *prof = tdc_sim_panel_find(cfg.panel_profile, cfg.panel == TDC_PANEL_SIM_LCD);
     if (!prof) {
         fprintf(stderr, "tdc-sim: --profile %s: no such %spanel profile (see make help)\n",
                 cfg.panel_profile ? cfg.panel_profile : "(default)", cfg.panel == TDC_PANEL_SIM_LCD ? "LCD " : "");
-        return 2;
+        return TDC_EXIT_ARGS;
     }
     if (!size_given) {
         cfg.width = prof->width;
@@ -499,19 +508,19 @@ int main(int argc, char **argv)
     const tdc_mode_desc_t *modes[64];
     int nm = 0;
     if (add_modes(mode_list, modes, &nm, 64, &cfg.strict)) {
-        return 2;
+        return TDC_EXIT_ARGS;
     }
     if (!cfg.label) {
         cfg.label = renderer ? renderer : (image ? image : tdc_scene_name(cfg.scene.kind));
     }
     if (cfg.outdir && mkdir_p(cfg.outdir)) {
         fprintf(stderr, "tdc-sim: cannot create '%s': %s\n", cfg.outdir, strerror(errno));
-        return 1;
+        return TDC_EXIT_FILE;
     }
     tdc_source_t *src = NULL;
     if (image && renderer) {
         fprintf(stderr, "tdc-sim: --image and --renderer exclude each other\n");
-        return 2;
+        return TDC_EXIT_ARGS;
     }
     if (image) {
         char err[512];
@@ -521,7 +530,7 @@ int main(int argc, char **argv)
         src = tdc_image_source_open(image, &cfg.scene, &im, err, sizeof(err));
         if (!src) {
             fprintf(stderr, "tdc-sim: --image %s\n", err);
-            return 1;
+            return image_exit(err);
         }
         if (cfg.eyes == 2) {
             /* stereo: as the procedural scenes, the eyes see the photograph
@@ -543,7 +552,7 @@ int main(int argc, char **argv)
                 if (src) {
                     src->destroy(src);
                 }
-                return 1;
+                return image_exit(err);
             }
         }
         cfg.scene.speed = tdc_image_source_max_speed(src, cfg.duration_s); /* evaluation margin */
@@ -559,7 +568,7 @@ int main(int argc, char **argv)
                 if (e) {
                     src->destroy(src);
                 }
-                return 1;
+                return image_exit(err);
             }
             if (e) {
                 cfg.right = s;
@@ -585,7 +594,7 @@ int main(int argc, char **argv)
     }
     if (!src) {
         fprintf(stderr, "tdc-sim: cannot create scene\n");
-        return 1;
+        return TDC_EXIT_NOMEM;
     }
     tdc_sim_result_t *res = calloc((size_t)nm, sizeof(*res));
     FILE *series = NULL;
@@ -640,5 +649,7 @@ int main(int argc, char **argv)
     if (cfg.right) {
         cfg.right->destroy(cfg.right);
     }
-    return rc == 0 ? 0 : 1;
+    /* a stage error, a refused configuration or non-finite output: the
+     * run is not a result (docs/tools.md: REFUSED) */
+    return rc == 0 ? TDC_EXIT_OK : TDC_EXIT_REFUSED;
 }

@@ -144,7 +144,7 @@ base = -s pan -g 32x24 -n 6 -m full
 refresh = 90 2000
 EOF2
 $SWEEP local "$T/onebad.sweep" "$T/onebad" -j 2 --sim "$SIM" 2> "$T/bad.err"; rc=$?
-if [ $rc -eq 3 ] && grep -q 'job 0001 failed: exit 2: tdc-sim: bad refresh' "$T/bad.err" && \
+if [ $rc -eq 3 ] && grep -q 'job 0001 failed: exit 1: tdc-sim: bad refresh' "$T/bad.err" && \
    [ "$(($(wc -l < "$T/onebad/sweep.csv") - 1))" -eq 1 ] && grep -q '| 0001 | refresh=2000 |' "$T/onebad/report.md"; then
     ok "failed job named by merge (exit 3): $(grep 'job 0001' "$T/bad.err")"
 else bad "failing job: exit $rc, $(cat "$T/bad.err")"; fi

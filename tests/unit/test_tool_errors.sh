@@ -42,12 +42,12 @@ printf 'tdc-scene 1\nbogus line\n' > "$t/bad.scene"
 expect 13 "render: bad scene line" "bad.scene:2" -- "$render" --scene "$t/bad.scene"
 expect 7 "render: stream into a missing folder" "" -- "$render" --builtin fence --size 16x8 --stream "$t/no/dir/x.tdcs" --quiet
 
-# ---- tdc-sim's option numbers (its exit codes are its owner's: 2 = usage)
+# ---- tdc-sim: option numbers (ARGS = 1)
 sim=$b/tdc-sim
-expect 2 "sim: -r nan refused as the option" "bad refresh 'nan'" -- "$sim" -r nan
-expect 2 "sim: -r inf refused" "bad refresh 'inf'" -- "$sim" -r inf
-expect 2 "sim: -g 2^32+32 x 24 refused, not 32x24" "bad size '4294967328x24'" -- "$sim" -g 4294967328x24
-expect 2 "sim: -m '' refused as the option" "bad mode list ''" -- "$sim" -m ""
+expect 1 "sim: -r nan refused as the option" "bad refresh 'nan'" -- "$sim" -r nan
+expect 1 "sim: -r inf refused" "bad refresh 'inf'" -- "$sim" -r inf
+expect 1 "sim: -g 2^32+32 x 24 refused, not 32x24" "bad size '4294967328x24'" -- "$sim" -g 4294967328x24
+expect 1 "sim: -m '' refused as the option" "bad mode list ''" -- "$sim" -m ""
 
 # ---- the table generator
 mkdir -p "$t/gen"
