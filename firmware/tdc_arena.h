@@ -53,8 +53,7 @@
 /* Run-time expansion of a layout list: carves `member` of the state `st`
  * from the arena `arena` (both names in scope where the list is expanded).
  * In a dry run the member becomes NULL. */
-#define TDC_ARENA_CARVE(member, type, count)                                                                \
-    st->member = (type *)tdc_arena_take(arena, sizeof(type) * (size_t)(count));
+#define TDC_ARENA_CARVE(member, type, count) st->member = (type *)tdc_arena_take(arena, sizeof(type) * (size_t)(count));
 
 typedef struct {
     uint8_t *base; /* caller's memory; NULL in a dry run (get_size) */

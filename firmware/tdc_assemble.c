@@ -33,12 +33,10 @@ static int tdc_asm_cfg_ok(const tdc_asm_config_t *cfg)
 }
 
 /* The one layout (tdc_assemble.h TDC_ASM_ARENA); NULL views in a dry run. */
-static void tdc_asm_carve(tdc_asm_t *st, const tdc_asm_config_t *cfg, tdc_arena_t *arena)
-{
+static void tdc_asm_carve(tdc_asm_t *st, const tdc_asm_config_t *cfg, tdc_arena_t *arena){
     TDC_ASM_ARENA(TDC_ARENA_CARVE, cfg->width, cfg->height,
                   (size_t)TDC_TILES((uint32_t)cfg->width) * TDC_TILES((uint32_t)cfg->height),
-                  TDC_PATTERN_BYTES(cfg->width, cfg->height))
-}
+                  TDC_PATTERN_BYTES(cfg->width, cfg->height))}
 
 size_t tdc_asm_get_size(const tdc_asm_config_t *cfg)
 {
@@ -275,8 +273,7 @@ static void tdc_asm_hmax_row(const tdc_asm_t *st, uint32_t y, tdc_asm_mvmax_t *o
 #define TDC_ASM_NEW_ODD 2
 #define TDC_ASM_NEW_MIXED 3
 
-static int tdc_asm_new_row(const tdc_asm_t *st, uint32_t y, unsigned pos_h, unsigned pos_b, int have_new,
-                           uint8_t *out)
+static int tdc_asm_new_row(const tdc_asm_t *st, uint32_t y, unsigned pos_h, unsigned pos_b, int have_new, uint8_t *out)
 {
     const uint32_t w = st->cfg.width;
     const unsigned py = (y & 1u) << 1;
@@ -467,7 +464,7 @@ static inline uint8_t tdc_asm_clamp_box_u8(int32_t v, int32_t n, int32_t s1, int
  * box-sum rows among rows y-1, y, y+1 that exist and hold a new pixel
  * (none when no subframe arrived). */
 static TDC_ASM_HOT_INLINE void tdc_asm_clamp_store(uint64_t v, uint32_t x, const uint64_t *const bx[3], int nbx,
-                                       tdc_asm_dyn_count_t *cnt, uint8_t *out)
+                                                   tdc_asm_dyn_count_t *cnt, uint8_t *out)
 {
     const int32_t v0 = (int32_t)(v & 0xFFFFu), v1 = (int32_t)((v >> 16) & 0xFFFFu), v2 = (int32_t)((v >> 32) & 0xFFFFu);
     cnt->reprojected++;
@@ -500,15 +497,15 @@ static TDC_ASM_HOT_INLINE void tdc_asm_clamp_store(uint64_t v, uint32_t x, const
 /* Everything one row of a dynamic frame needs. */
 typedef struct {
     uint32_t y;
-    const uint8_t *prev;       /* previous output frame */
-    const uint8_t *prow;       /* its row y */
-    uint8_t *drow;             /* output row y */
-    uint8_t *win;              /* window masks of row y */
-    const uint8_t *newrow;     /* newness of row y */
-    int has_new;               /* tdc_asm_new_row's result for row y (0: no new pixel) */
-    const uint8_t *rec[2];     /* slot-0 sample rows of row y for even / odd x */
-    const uint64_t *bx[3];     /* box-sum rows among y-1, y, y+1 that hold a new pixel */
-    int nbx;                   /* ... how many */
+    const uint8_t *prev;   /* previous output frame */
+    const uint8_t *prow;   /* its row y */
+    uint8_t *drow;         /* output row y */
+    uint8_t *win;          /* window masks of row y */
+    const uint8_t *newrow; /* newness of row y */
+    int has_new;           /* tdc_asm_new_row's result for row y (0: no new pixel) */
+    const uint8_t *rec[2]; /* slot-0 sample rows of row y for even / odd x */
+    const uint64_t *bx[3]; /* box-sum rows among y-1, y, y+1 that hold a new pixel */
+    int nbx;               /* ... how many */
 } tdc_asm_row_t;
 
 /* (dx, dy) of an MV maximum as one 32-bit word (memory order, so that
@@ -524,8 +521,8 @@ static inline uint32_t tdc_asm_mvmax_word(const tdc_asm_mvmax_t *m)
  * y+1, in that order, first on ties (the longest MV of the 3x3
  * neighbourhood), as a word.  Selects instead of branches: the outcome
  * follows the content and would mispredict at every motion edge. */
-static inline uint32_t tdc_asm_vmax_word(const tdc_asm_mvmax_t *t, const tdc_asm_mvmax_t *m,
-                                         const tdc_asm_mvmax_t *b, uint32_t x)
+static inline uint32_t tdc_asm_vmax_word(const tdc_asm_mvmax_t *t, const tdc_asm_mvmax_t *m, const tdc_asm_mvmax_t *b,
+                                         uint32_t x)
 {
     uint32_t l2 = t[x].l2, wd = tdc_asm_mvmax_word(&t[x]);
     const uint32_t lm = m[x].l2, wm = tdc_asm_mvmax_word(&m[x]);
@@ -567,8 +564,8 @@ static void tdc_asm_window_reset(uint8_t *win, uint32_t xs, uint32_t xe, tdc_asm
  * (clamping) bilinear.  Same integers as the per-pixel definition.
  */
 static TDC_ASM_ALWAYS_INLINE void tdc_asm_dyn_span_body(const tdc_asm_t *st, const tdc_asm_row_t *r, uint32_t xs,
-                                                         uint32_t xe, int32_t dx, int32_t dy, size_t slot_off,
-                                                         tdc_asm_dyn_count_t *cnt)
+                                                        uint32_t xe, int32_t dx, int32_t dy, size_t slot_off,
+                                                        tdc_asm_dyn_count_t *cnt)
 {
     const uint32_t w = st->cfg.width;
     const int32_t h = st->cfg.height;
@@ -747,8 +744,8 @@ static void tdc_asm_dynamic_frame(tdc_asm_t *st, uint32_t frame)
     for (uint32_t r = 0; r < 2u && r < h; r++) {
         rinfo[r] = tdc_asm_row_scan(st, r, &rval[r]);
         has_new[r] = tdc_asm_new_row(st, r, pos_h, pos_b, have_new, st->newring + (size_t)r * w);
-        if (has_new[r]) tdc_asm_box_row(st, r, slot, st->newring + (size_t)r * w, has_new[r],
-                                        st->boxring + (size_t)r * bw);
+        if (has_new[r])
+            tdc_asm_box_row(st, r, slot, st->newring + (size_t)r * w, has_new[r], st->boxring + (size_t)r * bw);
     }
     for (uint32_t y = 0; y < h; y++) {
         if (y >= 1u && y + 1u < h) {
@@ -835,8 +832,7 @@ static void tdc_asm_dynamic_frame(tdc_asm_t *st, uint32_t frame)
                 for (uint32_t xx = xs; xx < x; xx++) {
                     if (nr1[xx]) {
                         win[xx] = (uint8_t)(win[xx] | (1u << slot));
-                        tdc_asm_window_mean(row.rec[xx & 1u] + (size_t)(xx >> 1) * 3u, stride, win[xx],
-                                            drow + xx * 3u);
+                        tdc_asm_window_mean(row.rec[xx & 1u] + (size_t)(xx >> 1) * 3u, stride, win[xx], drow + xx * 3u);
                         averaged++;
                     } else {
                         uint8_t *o = drow + xx * 3u;

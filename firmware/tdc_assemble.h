@@ -68,22 +68,20 @@
  * ordering bits.  Init carves it, get_size() is the same carve as a dry
  * run, TDC_ASM_MEM_BYTES the same list at the build's size.
  */
-#define TDC_ASM_ARENA(X, W, H, TILES, BM)                                                                     \
-    X(frame[0], uint8_t, (size_t)(W) * (H) * 3u) /* output frames, RGB888 */                                  \
-    X(frame[1], uint8_t, (size_t)(W) * (H) * 3u)                                                               \
-    X(samples, uint8_t, (size_t)(TILES) * 48u)   /* 4 slots x 4 positions x RGB888 per tile */                 \
-    X(window, uint8_t, (size_t)(W) * (H))        /* averaging window mask */                                   \
-    X(mv, int16_t, (size_t)(W) * (H) * 2u)       /* motion buffer, (dx, dy) Q4 */                              \
-    X(ring, tdc_asm_mvmax_t, (size_t)(W) * 3u)   /* 3 rows of horizontal 3-maxima */                           \
-    X(newring, uint8_t, (size_t)(W) * 3u)                                                                      \
-    X(boxring, uint64_t, (size_t)(W) * 3u * 2u)  /* 3 rows of box sums and sums of squares */                  \
-    X(pattern, uint8_t, (size_t)(BM))            /* orderings of the cycle */                                  \
+#define TDC_ASM_ARENA(X, W, H, TILES, BM)                                                  \
+    X(frame[0], uint8_t, (size_t)(W) * (H)*3u) /* output frames, RGB888 */                 \
+    X(frame[1], uint8_t, (size_t)(W) * (H)*3u)                                             \
+    X(samples, uint8_t, (size_t)(TILES)*48u) /* 4 slots x 4 positions x RGB888 per tile */ \
+    X(window, uint8_t, (size_t)(W) * (H))    /* averaging window mask */                   \
+    X(mv, int16_t, (size_t)(W) * (H)*2u)     /* motion buffer, (dx, dy) Q4 */              \
+    X(ring, tdc_asm_mvmax_t, (size_t)(W)*3u) /* 3 rows of horizontal 3-maxima */           \
+    X(newring, uint8_t, (size_t)(W)*3u)                                                    \
+    X(boxring, uint64_t, (size_t)(W)*3u * 2u) /* 3 rows of box sums and sums of squares */ \
+    X(pattern, uint8_t, (size_t)(BM))         /* orderings of the cycle */                 \
     X(pattern_next, uint8_t, (size_t)(BM))
 
-#define TDC_ASM_MEM_BYTES(W, H)                                                                               \
-    ((size_t)0 TDC_ASM_ARENA(TDC_ARENA_BLOCK_BYTES, W, H,                                                     \
-                             (size_t)TDC_TILES(W) * TDC_TILES(H),                       \
-                             TDC_PATTERN_BYTES(W, H)))
+#define TDC_ASM_MEM_BYTES(W, H) \
+    ((size_t)0 TDC_ASM_ARENA(TDC_ARENA_BLOCK_BYTES, W, H, (size_t)TDC_TILES(W) * TDC_TILES(H), TDC_PATTERN_BYTES(W, H)))
 
 typedef struct {
     uint16_t width; /* full-res frame size, 1 .. TDC_ASM_MAX_DIM */
@@ -118,22 +116,22 @@ typedef struct {
 typedef struct {
     tdc_asm_config_t cfg;
     uint32_t tiles_x, tiles_y;
-    uint8_t *frame[2];      /* output frames, RGB888, stride width*3 */
-    int cur;                /* index of the last output frame */
-    uint8_t *samples;       /* 16 planes (slot * 4 + tile position) of tiles RGB888:
+    uint8_t *frame[2];     /* output frames, RGB888, stride width*3 */
+    int cur;               /* index of the last output frame */
+    uint8_t *samples;      /* 16 planes (slot * 4 + tile position) of tiles RGB888:
                                last samples, slot = cycle mod 4 */
-    uint8_t *window;        /* per pixel: bit s = slot s holds a sample of the window */
-    int16_t *mv;            /* per pixel (dx, dy) Q4 of its latest sample */
-    tdc_asm_mvmax_t *ring;  /* 3 rows of horizontal 3-maxima */
-    uint8_t *newring;       /* 3 rows: 1 where the pixel is in the newest subframe */
-    uint64_t *boxring;      /* 3 rows x W x 2: horizontal 3-sums of the newest samples
+    uint8_t *window;       /* per pixel: bit s = slot s holds a sample of the window */
+    int16_t *mv;           /* per pixel (dx, dy) Q4 of its latest sample */
+    tdc_asm_mvmax_t *ring; /* 3 rows of horizontal 3-maxima */
+    uint8_t *newring;      /* 3 rows: 1 where the pixel is in the newest subframe */
+    uint64_t *boxring;     /* 3 rows x W x 2: horizontal 3-sums of the newest samples
                                and their count, R | G << 16 | B << 32 | count << 48,
                                and of their squares, R | G << 21 | B << 42 */
-    uint8_t *pattern;       /* orderings of the current cycle */
-    uint8_t *pattern_next;  /* scratch for the next decision */
-    uint32_t mv_nonzero;    /* pixels whose motion-buffer entry is non-zero */
-    uint32_t next_frame;    /* frame index the next assemble must have */
-    int have_subframe;      /* a subframe was ingested for next_frame */
+    uint8_t *pattern;      /* orderings of the current cycle */
+    uint8_t *pattern_next; /* scratch for the next decision */
+    uint32_t mv_nonzero;   /* pixels whose motion-buffer entry is non-zero */
+    uint32_t next_frame;   /* frame index the next assemble must have */
+    int have_subframe;     /* a subframe was ingested for next_frame */
     tdc_asm_stats_t stats;
 } tdc_asm_t;
 

@@ -60,12 +60,12 @@ typedef int32_t tdc_res_t;
  * ------------------------------------------------------------------- */
 static inline int32_t tdc_asr32(int32_t x, unsigned n)
 {
-    return x >= 0 ? (int32_t)((uint32_t)x >> n) : (int32_t)~((uint32_t)~x >> n);
+    return x >= 0 ? (int32_t)((uint32_t)x >> n) : (int32_t) ~((uint32_t)~x >> n);
 }
 
 static inline int64_t tdc_asr64(int64_t x, unsigned n)
 {
-    return x >= 0 ? (int64_t)((uint64_t)x >> n) : (int64_t)~((uint64_t)~x >> n);
+    return x >= 0 ? (int64_t)((uint64_t)x >> n) : (int64_t) ~((uint64_t)~x >> n);
 }
 
 /* Round-half-up shift: floor((x + 2^(n-1)) / 2^n), n >= 1, computed in 64 bits. */

@@ -262,8 +262,8 @@ typedef struct {
     uint32_t inv2_lo;
 } fov_src_t;
 
-static uint32_t compose(const fov_src_t *s, int32_t i, int32_t dx, int32_t dy, uint64_t r2, uint16_t c[3],
-                        uint32_t *iu, uint32_t *jv)
+static uint32_t compose(const fov_src_t *s, int32_t i, int32_t dx, int32_t dy, uint64_t r2, uint16_t c[3], uint32_t *iu,
+                        uint32_t *jv)
 {
     const tdc_fov_geom_t *g = s->g;
     uint32_t b = 256;
@@ -285,7 +285,8 @@ static uint32_t compose(const fov_src_t *s, int32_t i, int32_t dx, int32_t dy, u
         int32_t ls = Q24; /* sigma = 2 where r <= 1 */
         if (rr.l1 > 0) {
             const int64_t lnr = (int64_t)rr.lg_l1 - 24 * Q24 + TDC_FOV_LOG2_LN2_Q24 - Q24;
-            const int64_t s0 = (int64_t)g->log2_w_q24 - (int64_t)rr.nq - 2 * Q24 - g->log2_alpha_q24 - lnr - (rr.l1 / 2);
+            const int64_t s0 =
+                (int64_t)g->log2_w_q24 - (int64_t)rr.nq - 2 * Q24 - g->log2_alpha_q24 - lnr - (rr.l1 / 2);
             if (s0 + s->leta_max <= -Q24) {
                 ls = -Q24; /* clamped whatever eta is (the common case at alpha 4): the same result, no eta */
             } else {
@@ -347,15 +348,13 @@ static uint32_t compose(const fov_src_t *s, int32_t i, int32_t dx, int32_t dy, u
  * ------------------------------------------------------------------- */
 static int fov_config_valid(const tdc_fov_config_t *cfg)
 {
-    return cfg && cfg->width >= TDC_FOV_MIN_SIZE && cfg->height >= TDC_FOV_MIN_SIZE &&
-           cfg->width <= TDC_FOV_MAX_SIZE && cfg->height <= TDC_FOV_MAX_SIZE && cfg->taa <= 1u;
+    return cfg && cfg->width >= TDC_FOV_MIN_SIZE && cfg->height >= TDC_FOV_MIN_SIZE && cfg->width <= TDC_FOV_MAX_SIZE &&
+           cfg->height <= TDC_FOV_MAX_SIZE && cfg->taa <= 1u;
 }
 
 /* The one layout (tdc_fov.h TDC_FOV_ARENA); NULL views in a dry run. */
-static void fov_carve(tdc_fov_t *st, const tdc_fov_config_t *cfg, tdc_arena_t *arena)
-{
-    TDC_FOV_ARENA(TDC_ARENA_CARVE, cfg->width, cfg->height, cfg->taa)
-}
+static void fov_carve(tdc_fov_t *st, const tdc_fov_config_t *cfg,
+                      tdc_arena_t *arena){TDC_FOV_ARENA(TDC_ARENA_CARVE, cfg->width, cfg->height, cfg->taa)}
 
 size_t tdc_fov_get_size(const tdc_fov_config_t *cfg)
 {
@@ -449,8 +448,8 @@ static void finish_row(const tdc_fov_t *st, const fov_rows_t *rw, int32_t y, uin
 }
 
 tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8_t *lp, size_t lp_stride,
-                           const int16_t *mv, size_t mv_stride, const uint8_t *disk, size_t disk_stride,
-                           uint32_t dt_us, uint8_t *out, size_t out_stride)
+                           const int16_t *mv, size_t mv_stride, const uint8_t *disk, size_t disk_stride, uint32_t dt_us,
+                           uint8_t *out, size_t out_stride)
 {
     if (!st || !p || !lp || !disk || !out) {
         return TDC_ERR_ARG;
@@ -460,8 +459,8 @@ tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8
     if (s != TDC_OK) {
         return s;
     }
-    if (lp_stride < (size_t)p->lp_w * 3u || disk_stride < (size_t)g.width * 3u ||
-        out_stride < (size_t)g.width * 3u || (mv && mv_stride < (size_t)p->lp_w * 2u)) {
+    if (lp_stride < (size_t)p->lp_w * 3u || disk_stride < (size_t)g.width * 3u || out_stride < (size_t)g.width * 3u ||
+        (mv && mv_stride < (size_t)p->lp_w * 2u)) {
         return TDC_ERR_ARG;
     }
     fov_src_t src = {&g, lp, lp_stride, disk, disk_stride, 0, (int32_t)g.r_disk_q8 - TDC_FOV_BLEND_Q8, 0, 0, 0};

@@ -53,12 +53,12 @@
 #include "tdc_arena.h"
 #include "tdc_fixed.h"
 
-#define TDC_FOV_MIN_SIZE 4u       /* display and log-polar sides at least this */
+#define TDC_FOV_MIN_SIZE 4u /* display and log-polar sides at least this */
 #define TDC_FOV_MAX_SIZE 8192u
-#define TDC_FOV_ALPHA_MIN_Q8 256u  /* K(x) = x^alpha, alpha in [1, 8], Q8 */
+#define TDC_FOV_ALPHA_MIN_Q8 256u /* K(x) = x^alpha, alpha in [1, 8], Q8 */
 #define TDC_FOV_ALPHA_MAX_Q8 2048u
-#define TDC_FOV_BLEND_Q8 1024      /* the blend band: 4 px, Q8 */
-#define TDC_FOV_REACH 4            /* the kernel reaches 2 sigma <= 4 columns */
+#define TDC_FOV_BLEND_Q8 1024 /* the blend band: 4 px, Q8 */
+#define TDC_FOV_REACH 4       /* the kernel reaches 2 sigma <= 4 columns */
 
 /* Per-frame foveation parameters (the foveated packet's header). */
 typedef struct {
@@ -72,16 +72,16 @@ typedef struct {
 typedef struct {
     uint16_t width, height, lp_w, lp_h;
     int32_t cx_q8, cy_q8;
-    int32_t log2_r2max_q24;   /* log2(R^2), Q24, > 0 */
-    int32_t lg_lr_q24;        /* log2(log2(R^2)) + 24 (the table's scale), Q24 */
-    int32_t log2_w_q24;       /* log2(lp_w), Q24 */
-    int32_t log2_alpha_q24;   /* log2(alpha), Q24 */
-    uint32_t inv_alpha_q24;   /* 2^24 / alpha */
-    uint32_t r_max_q8;        /* R = sqrt(R^2), Q8 (floor) */
-    uint32_t r_disk_q8;       /* r_d = disk * R, Q8 */
-    uint64_t r_disk2_q16;     /* r_d^2: a pixel is in the disk iff |x'|^2 <= r_d^2 */
-    uint16_t l;               /* eq. 4.5: disk rectangle columns [0, l) */
-    uint16_t u0;              /* first column the link carries */
+    int32_t log2_r2max_q24; /* log2(R^2), Q24, > 0 */
+    int32_t lg_lr_q24;      /* log2(log2(R^2)) + 24 (the table's scale), Q24 */
+    int32_t log2_w_q24;     /* log2(lp_w), Q24 */
+    int32_t log2_alpha_q24; /* log2(alpha), Q24 */
+    uint32_t inv_alpha_q24; /* 2^24 / alpha */
+    uint32_t r_max_q8;      /* R = sqrt(R^2), Q8 (floor) */
+    uint32_t r_disk_q8;     /* r_d = disk * R, Q8 */
+    uint64_t r_disk2_q16;   /* r_d^2: a pixel is in the disk iff |x'|^2 <= r_d^2 */
+    uint16_t l;             /* eq. 4.5: disk rectangle columns [0, l) */
+    uint16_t u0;            /* first column the link carries */
 } tdc_fov_geom_t;
 
 /* Checks the parameters against a display of width x height and fills g.
@@ -110,10 +110,10 @@ typedef struct {
  * history frames (ping-pong) and the row scratch, 19 uint16 per display
  * column (2 rows x 8 values + 3 rows of |s - h|); without TAA nothing. */
 #define TDC_FOV_ROW_VALS 19u
-#define TDC_FOV_ARENA(X, W, H, TAA)                                        \
-    X(hist[0], uint16_t, (TAA) ? (size_t)(W) * (size_t)(H) * 3u : 0u)     \
-    X(hist[1], uint16_t, (TAA) ? (size_t)(W) * (size_t)(H) * 3u : 0u)     \
-    X(rows, uint16_t, (TAA) ? (size_t)(W) * TDC_FOV_ROW_VALS : 0u)
+#define TDC_FOV_ARENA(X, W, H, TAA)                                 \
+    X(hist[0], uint16_t, (TAA) ? (size_t)(W) * (size_t)(H)*3u : 0u) \
+    X(hist[1], uint16_t, (TAA) ? (size_t)(W) * (size_t)(H)*3u : 0u) \
+    X(rows, uint16_t, (TAA) ? (size_t)(W)*TDC_FOV_ROW_VALS : 0u)
 /* Compile-time bound for static arenas (an empty layout still reports
  * TDC_ARENA_ALIGN bytes, as get_size does). */
 #define TDC_FOV_MEM_BYTES(W, H, TAA) \
@@ -121,9 +121,9 @@ typedef struct {
 
 typedef struct {
     tdc_fov_config_t cfg;
-    uint16_t *hist[2];   /* Q8 RGB history frames, ping-pong */
-    uint16_t *rows;      /* scratch: 2 rows x 8 values + 3 rows of |s - h| */
-    uint8_t cur;         /* hist[cur] holds the last output */
+    uint16_t *hist[2]; /* Q8 RGB history frames, ping-pong */
+    uint16_t *rows;    /* scratch: 2 rows x 8 values + 3 rows of |s - h| */
+    uint8_t cur;       /* hist[cur] holds the last output */
     uint8_t have_hist;
     uint32_t dt_prev_us;
     int32_t gaze_prev_x_q8, gaze_prev_y_q8;
@@ -150,12 +150,12 @@ void tdc_fov_reset(tdc_fov_t *st);
  *   dt_us: this frame's time, for eq. 4.7 (TAA only; 0 = as the last one).
  * TDC_ERR_ARG / TDC_ERR_SIZE as tdc_fov_geom, or a geometry larger than the config. */
 TDC_MUST_CHECK tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8_t *lp, size_t lp_stride,
-                           const int16_t *mv, size_t mv_stride, const uint8_t *disk, size_t disk_stride,
-                           uint32_t dt_us, uint8_t *out, size_t out_stride);
+                                          const int16_t *mv, size_t mv_stride, const uint8_t *disk, size_t disk_stride,
+                                          uint32_t dt_us, uint8_t *out, size_t out_stride);
 
 /* Building blocks, exported for the tests (each states its error). */
-int32_t tdc_fov_log2_q24(uint64_t x);   /* log2(x) for x >= 1, Q24 */
-int32_t tdc_fov_exp2_q16(int32_t s_q24); /* 2^s in Q16, s in Q24, saturating */
+int32_t tdc_fov_log2_q24(uint64_t x);               /* log2(x) for x >= 1, Q24 */
+int32_t tdc_fov_exp2_q16(int32_t s_q24);            /* 2^s in Q16, s in Q24, saturating */
 uint32_t tdc_fov_turns_q32(int32_t dx, int32_t dy); /* atan2(dy, dx) mod 2pi, Q32 turns */
 
 #endif /* TDC_FOV_H */

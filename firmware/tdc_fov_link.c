@@ -94,8 +94,7 @@ tdc_fov_hdr_err_t tdc_fov_payload_check(const tdc_fov_hdr_t *h, uint32_t len)
 const char *tdc_fov_hdr_err_name(tdc_fov_hdr_err_t e)
 {
     static const char *const n[TDC_FOV_HDR_COUNT] = {
-        "TDC_FOV_HDR_OK",       "TDC_FOV_HDR_ALPHA",    "TDC_FOV_HDR_DELTA",    "TDC_FOV_HDR_DISK",
-        "TDC_FOV_HDR_GAZE",     "TDC_FOV_HDR_BUFFER",   "TDC_FOV_HDR_GEOMETRY", "TDC_FOV_HDR_RESERVED",
-        "TDC_FOV_HDR_PAYLOAD"};
+        "TDC_FOV_HDR_OK",     "TDC_FOV_HDR_ALPHA",    "TDC_FOV_HDR_DELTA",    "TDC_FOV_HDR_DISK",   "TDC_FOV_HDR_GAZE",
+        "TDC_FOV_HDR_BUFFER", "TDC_FOV_HDR_GEOMETRY", "TDC_FOV_HDR_RESERVED", "TDC_FOV_HDR_PAYLOAD"};
     return (unsigned)e < TDC_FOV_HDR_COUNT ? n[e] : "TDC_FOV_HDR_?";
 }

@@ -37,14 +37,14 @@
 /* Why a foveation header was refused (a counter index: 0 = accepted). */
 typedef enum {
     TDC_FOV_HDR_OK = 0,
-    TDC_FOV_HDR_ALPHA,       /* alpha outside [1, 8] */
-    TDC_FOV_HDR_DELTA,       /* delta outside (0, 1] */
-    TDC_FOV_HDR_DISK,        /* disk fraction above 1 */
-    TDC_FOV_HDR_GAZE,        /* gaze more than one screen outside */
-    TDC_FOV_HDR_BUFFER,      /* w, h disagree with delta and the configured panel */
-    TDC_FOV_HDR_GEOMETRY,    /* u0 or the disk count disagree with the parameters */
-    TDC_FOV_HDR_RESERVED,    /* unknown flag or a non-zero reserved byte */
-    TDC_FOV_HDR_PAYLOAD,     /* payload length disagrees with the header */
+    TDC_FOV_HDR_ALPHA,    /* alpha outside [1, 8] */
+    TDC_FOV_HDR_DELTA,    /* delta outside (0, 1] */
+    TDC_FOV_HDR_DISK,     /* disk fraction above 1 */
+    TDC_FOV_HDR_GAZE,     /* gaze more than one screen outside */
+    TDC_FOV_HDR_BUFFER,   /* w, h disagree with delta and the configured panel */
+    TDC_FOV_HDR_GEOMETRY, /* u0 or the disk count disagree with the parameters */
+    TDC_FOV_HDR_RESERVED, /* unknown flag or a non-zero reserved byte */
+    TDC_FOV_HDR_PAYLOAD,  /* payload length disagrees with the header */
     TDC_FOV_HDR_COUNT
 } tdc_fov_hdr_err_t;
 
@@ -52,14 +52,14 @@ typedef struct {
     tdc_fov_params_t p;
     uint16_t delta_q15;
     uint8_t flags;
-    tdc_fov_geom_t g;        /* the geometry of the parameters (valid when accepted) */
-    uint32_t payload_bytes;  /* what must follow */
+    tdc_fov_geom_t g;       /* the geometry of the parameters (valid when accepted) */
+    uint32_t payload_bytes; /* what must follow */
 } tdc_fov_hdr_t;
 
 /* Writes the header of the parameters for a width x height panel (u0, the
  * disk count from the geometry).  Returns TDC_OK or TDC_ERR_ARG. */
 TDC_MUST_CHECK tdc_status_t tdc_fov_hdr_pack(uint8_t out[TDC_FOV_HDR_BYTES], uint16_t width, uint16_t height,
-                              const tdc_fov_params_t *p, uint16_t delta_q15, uint8_t flags);
+                                             const tdc_fov_params_t *p, uint16_t delta_q15, uint8_t flags);
 /* Checks a received header against the configured panel; fills *h.
  * Returns TDC_FOV_HDR_OK or the first reason it is refused. */
 tdc_fov_hdr_err_t tdc_fov_hdr_parse(const uint8_t in[TDC_FOV_HDR_BYTES], uint16_t width, uint16_t height,

@@ -89,8 +89,8 @@ int tdc_lcd_quad_root_q16(int64_t a, int64_t b, int64_t c, uint32_t half_lsb_q16
  * the minimum or the maximum of the quadratic, which is at an end or at
  * the vertex -b / (2a).  steady != 0 evaluates M(v, v), else M(v, u).
  */
-static void nearest_unreachable(const int32_t p[4], uint32_t u_q16, int steady, int64_t a, int64_t b,
-                                uint32_t m_q16, tdc_lcd_solution_t *out)
+static void nearest_unreachable(const int32_t p[4], uint32_t u_q16, int steady, int64_t a, int64_t b, uint32_t m_q16,
+                                tdc_lcd_solution_t *out)
 {
     int64_t cand[3] = {0, V_ONE, -1};
     if (a != 0) {
@@ -234,10 +234,8 @@ static int lcd_config_valid(const tdc_lcd_config_t *cfg)
 
 /* The one layout (tdc_lcd.h TDC_LCD_ARENA); NULL views in a dry run and for
  * the blocks the mode does not use. */
-static void lcd_carve(tdc_lcd_t *st, const tdc_lcd_config_t *cfg, tdc_arena_t *arena)
-{
-    TDC_LCD_ARENA(TDC_ARENA_CARVE, cfg->width, cfg->height, cfg->prev_bits, cfg->mode)
-}
+static void lcd_carve(tdc_lcd_t *st, const tdc_lcd_config_t *cfg, tdc_arena_t *arena){
+    TDC_LCD_ARENA(TDC_ARENA_CARVE, cfg->width, cfg->height, cfg->prev_bits, cfg->mode)}
 
 size_t tdc_lcd_get_size(const tdc_lcd_config_t *cfg)
 {
@@ -270,8 +268,9 @@ tdc_status_t tdc_lcd_init(tdc_lcd_t *st, const tdc_lcd_config_t *cfg, const tdc_
     if (!rate) {
         return TDC_ERR_PANEL;
     }
-    const int16_t *od = cfg->mode == TDC_LCD_MODE_TABLE17 ? rate->od17
-                        : cfg->mode == TDC_LCD_MODE_TABLE33 ? rate->od33 : 0;
+    const int16_t *od = cfg->mode == TDC_LCD_MODE_TABLE17   ? rate->od17
+                        : cfg->mode == TDC_LCD_MODE_TABLE33 ? rate->od33
+                                                            : 0;
     if ((cfg->mode == TDC_LCD_MODE_TABLE17 || cfg->mode == TDC_LCD_MODE_TABLE33) && !od) {
         return TDC_ERR_PANEL;
     }

@@ -50,7 +50,7 @@
 
 #define TDC_LCD_COEF_FRAC 24
 #define TDC_LCD_COEF_MAX ((int32_t)4 << TDC_LCD_COEF_FRAC) /* |p| <= 4 */
-#define TDC_LCD_V_ONE 65536u                                 /* 1.0 in Q16 */
+#define TDC_LCD_V_ONE 65536u                               /* 1.0 in Q16 */
 
 /*
  * Overdrive tables (tdc_overdrive.h): N x N int16, N = 17 or 33.
@@ -82,10 +82,10 @@
 /* One refresh rate's model: coefficients and overdrive tables. */
 typedef struct {
     uint16_t rate_hz;
-    int32_t p_q24[4];     /* p1..p4 in Q24 */
-    const int16_t *od17;  /* 17 x 17 deltas, see above */
-    const int16_t *od33;  /* 33 x 33 deltas */
-    uint8_t st_n;         /* stateful tables: 17 or 33 nodes; 0 = none for this rate */
+    int32_t p_q24[4];    /* p1..p4 in Q24 */
+    const int16_t *od17; /* 17 x 17 deltas, see above */
+    const int16_t *od33; /* 33 x 33 deltas */
+    uint8_t st_n;        /* stateful tables: 17 or 33 nodes; 0 = none for this rate */
     const uint16_t *st_od[3];
     const uint16_t *st_next[3];
     const uint16_t *st_reach[3];
@@ -104,13 +104,13 @@ typedef struct tdc_lcd_profile tdc_lcd_profile_t;
  * ---------------------------------------------------------------- */
 
 typedef enum {
-    TDC_LCD_ROOT = 0,         /* an exact root in range */
-    TDC_LCD_CLAMP_LOW = 1,    /* unreachable: M > m everywhere, darkest M chosen */
-    TDC_LCD_CLAMP_HIGH = 2    /* unreachable: M < m everywhere, brightest M chosen */
+    TDC_LCD_ROOT = 0,      /* an exact root in range */
+    TDC_LCD_CLAMP_LOW = 1, /* unreachable: M > m everywhere, darkest M chosen */
+    TDC_LCD_CLAMP_HIGH = 2 /* unreachable: M < m everywhere, brightest M chosen */
 } tdc_lcd_case_t;
 
 typedef struct {
-    int32_t v_q16;    /* chosen drive, Q16, in [0, 65536] */
+    int32_t v_q16; /* chosen drive, Q16, in [0, 65536] */
     tdc_lcd_case_t kind;
 } tdc_lcd_solution_t;
 
@@ -135,19 +135,18 @@ void tdc_lcd_solve_q16(const int32_t p_q24[4], uint32_t u_q16, uint32_t m_q16, u
                        tdc_lcd_solution_t *out);
 
 /* Steady-state inverse: v with M(v, v) = m (first frame without history). */
-void tdc_lcd_solve_steady_q16(const int32_t p_q24[4], uint32_t m_q16, uint32_t half_lsb_q16,
-                              tdc_lcd_solution_t *out);
+void tdc_lcd_solve_steady_q16(const int32_t p_q24[4], uint32_t m_q16, uint32_t half_lsb_q16, tdc_lcd_solution_t *out);
 
 /* ------------------------------------------------------------------
  * Frame stage.
  * ---------------------------------------------------------------- */
 
 typedef enum {
-    TDC_LCD_MODE_GAMMA = 0,   /* plain gamma inverse: drive = w (no temporal model) */
-    TDC_LCD_MODE_EXACT = 1,   /* exact solve with integer square root */
-    TDC_LCD_MODE_TABLE17 = 2, /* 17 x 17 overdrive table, bilinear */
-    TDC_LCD_MODE_TABLE33 = 3, /* 33 x 33 overdrive table, bilinear */
-    TDC_LCD_MODE_STATEFUL = 4, /* measured transition tables with a per-pixel state estimate */
+    TDC_LCD_MODE_GAMMA = 0,        /* plain gamma inverse: drive = w (no temporal model) */
+    TDC_LCD_MODE_EXACT = 1,        /* exact solve with integer square root */
+    TDC_LCD_MODE_TABLE17 = 2,      /* 17 x 17 overdrive table, bilinear */
+    TDC_LCD_MODE_TABLE33 = 3,      /* 33 x 33 overdrive table, bilinear */
+    TDC_LCD_MODE_STATEFUL = 4,     /* measured transition tables with a per-pixel state estimate */
     TDC_LCD_MODE_STATEFUL_PAIR = 5 /* the same, and the light the first refresh of a pair could not
                                       deliver is carried into the second (the eye fuses the pair) */
 } tdc_lcd_mode_t;
@@ -158,27 +157,27 @@ typedef enum {
 /* Why tdc_lcd_init refused a profile's stateful tables (tdc_lcd_t.table_fault). */
 typedef enum {
     TDC_LCD_TABLE_OK = 0,
-    TDC_LCD_TABLE_MISSING = 1,    /* st_n not 17/33 or a table pointer NULL */
-    TDC_LCD_TABLE_RANGE = 2,      /* an entry above 255 * 16 */
-    TDC_LCD_TABLE_MONOTONE = 3,   /* an st_od row falls as the wanted light rises */
-    TDC_LCD_TABLE_REACH = 4       /* reach lo > hi, or a settled state cannot hold itself */
+    TDC_LCD_TABLE_MISSING = 1,  /* st_n not 17/33 or a table pointer NULL */
+    TDC_LCD_TABLE_RANGE = 2,    /* an entry above 255 * 16 */
+    TDC_LCD_TABLE_MONOTONE = 3, /* an st_od row falls as the wanted light rises */
+    TDC_LCD_TABLE_REACH = 4     /* reach lo > hi, or a settled state cannot hold itself */
 } tdc_lcd_table_fault_t;
 
 typedef struct {
-    uint16_t width;       /* eye size in pixels */
+    uint16_t width; /* eye size in pixels */
     uint16_t height;
-    uint16_t refresh_hz;  /* must be one of the profile's rates */
-    uint8_t mode;         /* tdc_lcd_mode_t */
-    uint8_t prev_bits;    /* 8 = full previous-frame buffers; 4..7 = reduced precision */
+    uint16_t refresh_hz; /* must be one of the profile's rates */
+    uint8_t mode;        /* tdc_lcd_mode_t */
+    uint8_t prev_bits;   /* 8 = full previous-frame buffers; 4..7 = reduced precision */
 } tdc_lcd_config_t;
 
 typedef struct {
     uint32_t frames;
-    uint32_t first_frames;   /* frames solved without history (steady state) */
-    uint64_t roots;          /* pixel-channels with an exact root */
+    uint32_t first_frames; /* frames solved without history (steady state) */
+    uint64_t roots;        /* pixel-channels with an exact root */
     uint64_t clamped_low;
     uint64_t clamped_high;
-    uint64_t residual_added; /* pixel-channels whose unreached light went to rho */
+    uint64_t residual_added;   /* pixel-channels whose unreached light went to rho */
     uint64_t residual_dropped; /* pixel-channels whose unreached light had no rho to go to
                                   (residual NULL: a reduced frame, or TRM keeps no rho) */
 } tdc_lcd_stats_t;
@@ -187,14 +186,14 @@ typedef struct {
     tdc_lcd_config_t cfg;
     const tdc_panel_t *panel;
     const tdc_lcd_rate_t *rate;
-    const int16_t *od;        /* selected table or NULL */
-    uint8_t od_n;             /* 17 or 33 */
+    const int16_t *od; /* selected table or NULL */
+    uint8_t od_n;      /* 17 or 33 */
     uint8_t have_history;
     uint32_t half_lsb_q16;
     /* views into the arena */
-    uint8_t *prev_drive;      /* packed prev_bits per sample, W*H*3 samples */
-    uint8_t *prev_light;      /* packed prev_bits per sample: code of E_{t-1} */
-    uint32_t *m_step_recip;   /* 3 x 256: round(2^32 / (decode[k+1] - decode[k])) */
+    uint8_t *prev_drive;    /* packed prev_bits per sample, W*H*3 samples */
+    uint8_t *prev_light;    /* packed prev_bits per sample: code of E_{t-1} */
+    uint32_t *m_step_recip; /* 3 x 256: round(2^32 / (decode[k+1] - decode[k])) */
     /* stateful mode: views into the arena */
     uint16_t *st_lut;         /* [3][2^prev_bits][256]: drive | next state << 8, from (state, wanted) */
     uint8_t *st_whi, *st_wlo; /* [3][2^prev_bits]: wanted codes above / below are out of reach */
@@ -225,26 +224,26 @@ typedef struct {
  *                the reach limits per state; pair mode: + the debt decode
  *                table and the debt per sample.
  */
-#define TDC_LCD_ARENA(X, W, H, BITS, MODE)                                                                    \
-    X(prev_drive, uint8_t, TDC_LCD_PACKED_BYTES((size_t)(W) * (H) * 3u, BITS)) /* drive (state) of t-1 */     \
-    X(prev_light, uint8_t, TDC_LCD_MODE_IS_STATEFUL(MODE) ? 0u : TDC_LCD_PACKED_BYTES((size_t)(W) * (H) * 3u, BITS))      \
-    X(m_step_recip, uint32_t, TDC_LCD_MODE_IS_STATEFUL(MODE) ? 0u : 3u * 256u) /* 2^32 / decode step */                   \
-    X(st_lut, uint16_t, TDC_LCD_MODE_IS_STATEFUL(MODE) ? (3u << (BITS)) * 256u : 0u) /* drive | next state << 8 */        \
-    X(st_lhi, int32_t, TDC_LCD_MODE_IS_STATEFUL(MODE) ? (3u << (BITS)) : 0u)         /* light at the reach limits */      \
-    X(st_llo, int32_t, TDC_LCD_MODE_IS_STATEFUL(MODE) ? (3u << (BITS)) : 0u)                                               \
-    X(st_whi, uint8_t, TDC_LCD_MODE_IS_STATEFUL(MODE) ? (3u << (BITS)) : 0u)         /* wanted codes beyond are */        \
-    X(st_wlo, uint8_t, TDC_LCD_MODE_IS_STATEFUL(MODE) ? (3u << (BITS)) : 0u)         /* out of reach */                   \
-    X(st_ddec, int32_t, TDC_LCD_PAIR_(MODE) ? 256u : 0u)               /* debt code -> light */             \
-    X(st_debt, int8_t, TDC_LCD_PAIR_(MODE) ? (size_t)(W) * (H) * 3u : 0u) /* light owed, per sample */
+#define TDC_LCD_ARENA(X, W, H, BITS, MODE)                                                                           \
+    X(prev_drive, uint8_t, TDC_LCD_PACKED_BYTES((size_t)(W) * (H)*3u, BITS)) /* drive (state) of t-1 */              \
+    X(prev_light, uint8_t, TDC_LCD_MODE_IS_STATEFUL(MODE) ? 0u : TDC_LCD_PACKED_BYTES((size_t)(W) * (H)*3u, BITS))   \
+    X(m_step_recip, uint32_t, TDC_LCD_MODE_IS_STATEFUL(MODE) ? 0u : 3u * 256u)       /* 2^32 / decode step */        \
+    X(st_lut, uint16_t, TDC_LCD_MODE_IS_STATEFUL(MODE) ? (3u << (BITS)) * 256u : 0u) /* drive | next state << 8 */   \
+    X(st_lhi, int32_t, TDC_LCD_MODE_IS_STATEFUL(MODE) ? (3u << (BITS)) : 0u)         /* light at the reach limits */ \
+    X(st_llo, int32_t, TDC_LCD_MODE_IS_STATEFUL(MODE) ? (3u << (BITS)) : 0u)                                         \
+    X(st_whi, uint8_t, TDC_LCD_MODE_IS_STATEFUL(MODE) ? (3u << (BITS)) : 0u) /* wanted codes beyond are */           \
+    X(st_wlo, uint8_t, TDC_LCD_MODE_IS_STATEFUL(MODE) ? (3u << (BITS)) : 0u) /* out of reach */                      \
+    X(st_ddec, int32_t, TDC_LCD_PAIR_(MODE) ? 256u : 0u)                     /* debt code -> light */                \
+    X(st_debt, int8_t, TDC_LCD_PAIR_(MODE) ? (size_t)(W) * (H)*3u : 0u)      /* light owed, per sample */
 
 /* Compile-time arena bound for a W x H eye in mode MODE with history at B
  * bits per sample (a board sizes its arena for its configured mode and
  * bits), at full precision, and for any mode at full precision. */
 #define TDC_LCD_MEM_BYTES_MODE_BITS(W, H, MODE, B) ((size_t)0 TDC_LCD_ARENA(TDC_ARENA_BLOCK_BYTES, W, H, B, MODE))
 #define TDC_LCD_MEM_BYTES_MODE(W, H, MODE) TDC_LCD_MEM_BYTES_MODE_BITS(W, H, MODE, 8u)
-#define TDC_LCD_MEM_BYTES(W, H)                                                                               \
+#define TDC_LCD_MEM_BYTES(W, H)                                                                                  \
     (TDC_LCD_MEM_BYTES_MODE(W, H, TDC_LCD_MODE_EXACT) > TDC_LCD_MEM_BYTES_MODE(W, H, TDC_LCD_MODE_STATEFUL_PAIR) \
-         ? TDC_LCD_MEM_BYTES_MODE(W, H, TDC_LCD_MODE_EXACT)                                                    \
+         ? TDC_LCD_MEM_BYTES_MODE(W, H, TDC_LCD_MODE_EXACT)                                                      \
          : TDC_LCD_MEM_BYTES_MODE(W, H, TDC_LCD_MODE_STATEFUL_PAIR))
 
 /* Arena bytes for cfg (a dry run of init's layout; 0 when cfg is invalid). */

@@ -197,9 +197,9 @@ static void st_miss(tdc_lcd_t *st, tdc_res_t *residual, size_t s, int32_t miss)
  * (measured on Cortex-M7: 173 instructions per pixel before, see docs/lcd.md).
  */
 typedef struct {
-    const uint16_t *lut;       /* [2^bits][256] */
-    const uint8_t *whi, *wlo;  /* [2^bits] */
-    const int32_t *lhi, *llo;  /* [2^bits] */
+    const uint16_t *lut;      /* [2^bits][256] */
+    const uint8_t *whi, *wlo; /* [2^bits] */
+    const int32_t *lhi, *llo; /* [2^bits] */
     const tdc_gamma_table_t *gt;
 } st_chan_t;
 
@@ -373,8 +373,8 @@ void tdc_lcd_st_frame(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_stride, 
     st_chan_t ch[3];
     for (unsigned c = 0; c < 3u; c++) {
         const size_t k = (size_t)c * nq;
-        ch[c] = (st_chan_t){st->st_lut + k * 256u, st->st_whi + k, st->st_wlo + k, st->st_lhi + k, st->st_llo + k,
-                            &st->panel->gamma[c]};
+        ch[c] = (st_chan_t){st->st_lut + k * 256u, st->st_whi + k, st->st_wlo + k,
+                            st->st_lhi + k,        st->st_llo + k, &st->panel->gamma[c]};
     }
     uint64_t missed = 0;
     if (!st->have_history) {

@@ -227,12 +227,11 @@ static tdc_link_err_t check_header(const tdc_link_decoder_t *dec, uint32_t versi
     case TDC_LINK_KIND_REDUCED:
         ok = trm && b->reduced[eye] != NULL && tdc_link_trm_kind(p->frame_index, eye) == TDC_LINK_KIND_REDUCED;
         break;
-    case TDC_LINK_KIND_SUBFRAME:
-        ok = (sflags & TDC_LINK_STREAM_SUBFRAMES) && b->subframe[eye] != NULL;
-        break;
+    case TDC_LINK_KIND_SUBFRAME: ok = (sflags & TDC_LINK_STREAM_SUBFRAMES) && b->subframe[eye] != NULL; break;
     case TDC_LINK_KIND_MOTION:
-        ok = (flags & TDC_LINK_PKT_MV_PER_SAMPLE) ? ((sflags & TDC_LINK_STREAM_SAMPLE_MV) && b->sample_motion[eye])
-                                                   : ((sflags & TDC_LINK_STREAM_MOTION) && (b->motion[eye] || b->skip_motion));
+        ok = (flags & TDC_LINK_PKT_MV_PER_SAMPLE)
+                 ? ((sflags & TDC_LINK_STREAM_SAMPLE_MV) && b->sample_motion[eye])
+                 : ((sflags & TDC_LINK_STREAM_MOTION) && (b->motion[eye] || b->skip_motion));
         break;
     default: /* PATTERN: with the first subframe of each 4-frame cycle */
         ok = (sflags & TDC_LINK_STREAM_SUBFRAMES) && b->pattern[eye] != NULL && (p->frame_index & 3u) == 0;
@@ -384,8 +383,7 @@ static tdc_link_err_t commit_stream(tdc_link_decoder_t *dec)
     }
     /* The build must have a buffer for every stage the stream uses. */
     for (unsigned e = 0; e < in.eyes; e++) {
-        if (((in.flags & TDC_LINK_STREAM_REDUCED) &&
-             (!b->reduced[e] || (size_t)rw * rh * 3u > b->reduced_bytes)) ||
+        if (((in.flags & TDC_LINK_STREAM_REDUCED) && (!b->reduced[e] || (size_t)rw * rh * 3u > b->reduced_bytes)) ||
             ((in.flags & TDC_LINK_STREAM_SUBFRAMES) && (!b->subframe[e] || !b->pattern[e])) ||
             ((in.flags & TDC_LINK_STREAM_MOTION) && !b->motion[e] && !b->skip_motion) ||
             ((in.flags & TDC_LINK_STREAM_SAMPLE_MV) && !b->sample_motion[e])) {
@@ -419,7 +417,7 @@ static uint32_t count_missing_reduced(const tdc_link_decoder_t *dec, uint32_t fr
         }
     }
     if (to - from > 1u) {
-        const uint64_t a = (uint64_t)from + 1u, b = (uint64_t)to - 1u; /* frames never seen */
+        const uint64_t a = (uint64_t)from + 1u, b = (uint64_t)to - 1u;           /* frames never seen */
         missing += dec->cfg.eyes == 2 ? (b - a + 1u) : ((b + 1u) / 2u - a / 2u); /* odd frames */
     }
     return missing > UINT32_MAX ? UINT32_MAX : (uint32_t)missing;
@@ -436,27 +434,18 @@ static void unpack_pixels(tdc_pixfmt_t fmt, const uint8_t *src, uint32_t w, uint
     (void)stride;
     switch (fmt) {
 #if (TDC_LINK_FORMAT_MASK >> 1) & 1u
-    case TDC_PIXFMT_RGB888:
-        tdc_pixfmt_unpack_rgb888(src, w, h, dst, stride);
-        break;
+    case TDC_PIXFMT_RGB888: tdc_pixfmt_unpack_rgb888(src, w, h, dst, stride); break;
 #endif
 #if (TDC_LINK_FORMAT_MASK >> 2) & 1u
-    case TDC_PIXFMT_RGB565:
-        tdc_pixfmt_unpack_rgb565(src, w, h, dst, stride);
-        break;
+    case TDC_PIXFMT_RGB565: tdc_pixfmt_unpack_rgb565(src, w, h, dst, stride); break;
 #endif
 #if (TDC_LINK_FORMAT_MASK >> 3) & 1u
-    case TDC_PIXFMT_RGB30:
-        tdc_pixfmt_unpack_rgb30(src, w, h, dst, stride);
-        break;
+    case TDC_PIXFMT_RGB30: tdc_pixfmt_unpack_rgb30(src, w, h, dst, stride); break;
 #endif
 #if (TDC_LINK_FORMAT_MASK >> 4) & 1u
-    case TDC_PIXFMT_YCBCR420:
-        tdc_pixfmt_unpack_ycbcr420(src, w, h, dst, stride);
-        break;
+    case TDC_PIXFMT_YCBCR420: tdc_pixfmt_unpack_ycbcr420(src, w, h, dst, stride); break;
 #endif
-    default: /* unreachable: check_header rejected it */
-        break;
+    default: /* unreachable: check_header rejected it */ break;
     }
 }
 
@@ -524,15 +513,11 @@ static void on_payload(tdc_link_decoder_t *dec, uint32_t src_end)
         const tdc_link_buffers_t *b = &dec->buf;
         const uint32_t tx = TDC_TILES(p->width), ty = TDC_TILES(p->height);
         switch (kind) {
-        case TDC_LINK_KIND_FULL:
-            unpack_pixels(fmt, s, p->width, p->height, b->full[eye], b->full_stride);
-            break;
+        case TDC_LINK_KIND_FULL: unpack_pixels(fmt, s, p->width, p->height, b->full[eye], b->full_stride); break;
         case TDC_LINK_KIND_REDUCED:
             unpack_pixels(fmt, s, p->width, p->height, b->reduced[eye], (uint32_t)p->width * 3u);
             break;
-        case TDC_LINK_KIND_SUBFRAME:
-            unpack_pixels(fmt, s, tx, ty, b->subframe[eye], tx * 3u);
-            break;
+        case TDC_LINK_KIND_SUBFRAME: unpack_pixels(fmt, s, tx, ty, b->subframe[eye], tx * 3u); break;
         case TDC_LINK_KIND_MOTION:
             if (p->flags & TDC_LINK_PKT_MV_PER_SAMPLE) {
                 unpack_le16(s, b->sample_motion[eye], (size_t)tx * ty * 2u);
@@ -540,9 +525,7 @@ static void on_payload(tdc_link_decoder_t *dec, uint32_t src_end)
                 unpack_le16(s, b->motion[eye], (size_t)p->width * p->height * 2u);
             }
             break;
-        default: /* PATTERN */
-            memcpy(b->pattern[eye], s, dec->payload_len);
-            break;
+        default: /* PATTERN */ memcpy(b->pattern[eye], s, dec->payload_len); break;
         }
     }
     dec->cnt.packets_ok++;

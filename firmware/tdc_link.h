@@ -72,16 +72,16 @@
 
 /* Staging: the largest payload, a full frame in RGB30 (4 B/px) or the
  * per-pixel motion vectors (4 B/px). */
-#define TDC_LINK_STAGING_BYTES(w, h) ((size_t)(w) * (h) * 4u + TDC_LINK_STREAM_HEADER_BYTES)
+#define TDC_LINK_STAGING_BYTES(w, h) ((size_t)(w) * (h)*4u + TDC_LINK_STREAM_HEADER_BYTES)
 #define TDC_LINK_STAGING_MAX TDC_LINK_STAGING_BYTES(1u, TDC_LINK_MAX_PIXELS)
 
 /* ------------------------------------------------------------------------
  * Decoder.
  * ---------------------------------------------------------------------- */
 typedef struct {
-    uint16_t width;  /* panel size of one eye (must match the stream) */
+    uint16_t width; /* panel size of one eye (must match the stream) */
     uint16_t height;
-    uint8_t eyes;    /* 1 or 2 */
+    uint8_t eyes; /* 1 or 2 */
 } tdc_link_config_t;
 
 /*
@@ -94,14 +94,14 @@ typedef struct {
 typedef struct {
     uint8_t *staging;
     size_t staging_bytes;
-    uint8_t *full[2];         /* RGB888, width x height, rows full_stride bytes apart */
+    uint8_t *full[2]; /* RGB888, width x height, rows full_stride bytes apart */
     uint32_t full_stride;
-    uint8_t *reduced[2];      /* RGB888, rw x rh packed (rw * 3 bytes per row) */
-    size_t reduced_bytes;     /* capacity of each reduced buffer */
-    uint8_t *subframe[2];     /* RGB888 samples, tiles_x x tiles_y packed */
-    int16_t *motion[2];       /* (dx, dy) Q4 per pixel, width x height x 2 */
+    uint8_t *reduced[2];       /* RGB888, rw x rh packed (rw * 3 bytes per row) */
+    size_t reduced_bytes;      /* capacity of each reduced buffer */
+    uint8_t *subframe[2];      /* RGB888 samples, tiles_x x tiles_y packed */
+    int16_t *motion[2];        /* (dx, dy) Q4 per pixel, width x height x 2 */
     int16_t *sample_motion[2]; /* (dx, dy) Q4 per subframe sample, tiles x 2 */
-    uint8_t *pattern[2];      /* 1 bit per tile, row-major, LSB first, 1 = bowtie */
+    uint8_t *pattern[2];       /* 1 bit per tile, row-major, LSB first, 1 = bowtie */
     /* 1: a stream may announce per-pixel MOTION that no stage of this build
      * uses (motion[] NULL): its packets are not staged or stored, their
      * payloads skipped (the header CRC vouches for the length, which must
@@ -116,18 +116,18 @@ typedef enum {
 } tdc_link_event_type_t;
 
 typedef struct {
-    uint8_t type;         /* tdc_link_event_type_t */
-    uint8_t kind;         /* tdc_link_kind_t (0 if unknown) */
+    uint8_t type; /* tdc_link_event_type_t */
+    uint8_t kind; /* tdc_link_kind_t (0 if unknown) */
     uint8_t eye;
-    uint8_t format;       /* tdc_pixfmt_t of pixel packets */
-    uint16_t error;       /* tdc_link_err_t for EV_ERROR */
+    uint8_t format; /* tdc_pixfmt_t of pixel packets */
+    uint16_t error; /* tdc_link_err_t for EV_ERROR */
     uint16_t stream_id;
-    uint16_t width;       /* dimensions of the packet */
+    uint16_t width; /* dimensions of the packet */
     uint16_t height;
-    uint16_t flags;       /* packet flags */
+    uint16_t flags; /* packet flags */
     uint16_t reserved;
     uint32_t frame_index;
-    uint32_t detail;      /* EV_ERROR: garbage bytes / missing reduced frames; else payload bytes */
+    uint32_t detail; /* EV_ERROR: garbage bytes / missing reduced frames; else payload bytes */
 } tdc_link_event_t;
 
 typedef struct {
@@ -135,11 +135,11 @@ typedef struct {
     uint32_t packets_ok;                 /* accepted packets */
     uint32_t packets_skipped;            /* packets of kinds no stage uses (skip_motion), not stored */
     uint32_t packets_by_kind[TDC_LINK_KIND_LAST + 1];
-    uint64_t bytes_in;                   /* all bytes fed */
-    uint64_t garbage_bytes;              /* bytes discarded while hunting for a packet */
-    uint64_t skipped_bytes;              /* payload bytes of rejected packets skipped */
-    uint32_t missing_reduced_frames;     /* reduced frames that never arrived */
-    uint32_t events_dropped;             /* events lost because the queue was full (should be 0) */
+    uint64_t bytes_in;               /* all bytes fed */
+    uint64_t garbage_bytes;          /* bytes discarded while hunting for a packet */
+    uint64_t skipped_bytes;          /* payload bytes of rejected packets skipped */
+    uint32_t missing_reduced_frames; /* reduced frames that never arrived */
+    uint32_t events_dropped;         /* events lost because the queue was full (should be 0) */
 } tdc_link_counters_t;
 
 #define TDC_LINK_EVENT_QUEUE 4
@@ -149,32 +149,32 @@ typedef struct {
     tdc_link_config_t cfg;
     tdc_link_buffers_t buf;
     /* receive state machine */
-    uint8_t state;           /* internal */
-    uint8_t hdr_fill;        /* header bytes collected */
-    uint8_t replay_src;      /* what is being rescanned: none, `replay` (a bad header), staging (a bad payload) */
-    uint8_t hdr_in_staging;  /* the header being collected began inside a staging rescan, at hdr_start */
+    uint8_t state;          /* internal */
+    uint8_t hdr_fill;       /* header bytes collected */
+    uint8_t replay_src;     /* what is being rescanned: none, `replay` (a bad header), staging (a bad payload) */
+    uint8_t hdr_in_staging; /* the header being collected began inside a staging rescan, at hdr_start */
     uint8_t hdr[TDC_LINK_HEADER_BYTES];
     uint8_t replay[TDC_LINK_HEADER_BYTES];
-    uint32_t replay_pos;     /* rescan position / end (bytes of `replay` or staging offsets) */
+    uint32_t replay_pos; /* rescan position / end (bytes of `replay` or staging offsets) */
     uint32_t replay_len;
-    uint32_t replay_gen;     /* bumped whenever a new rescan is set up */
-    uint32_t hdr_start;      /* staging offset of the header's first byte (hdr_in_staging) */
-    uint32_t payload_base;   /* the payload being collected lies at staging + payload_base */
-    uint32_t payload_len;    /* current packet */
+    uint32_t replay_gen;   /* bumped whenever a new rescan is set up */
+    uint32_t hdr_start;    /* staging offset of the header's first byte (hdr_in_staging) */
+    uint32_t payload_base; /* the payload being collected lies at staging + payload_base */
+    uint32_t payload_len;  /* current packet */
     uint32_t payload_fill;
-    uint32_t payload_crc;    /* expected */
-    uint32_t crc_state;      /* running */
-    uint32_t skip_left;      /* payload bytes left to skip of a rejected packet */
-    uint32_t garbage_run;    /* bytes discarded in the current hunt */
-    tdc_link_event_t pkt;    /* parsed header of the current packet */
+    uint32_t payload_crc; /* expected */
+    uint32_t crc_state;   /* running */
+    uint32_t skip_left;   /* payload bytes left to skip of a rejected packet */
+    uint32_t garbage_run; /* bytes discarded in the current hunt */
+    tdc_link_event_t pkt; /* parsed header of the current packet */
     /* stream and sequence state (changed only by accepted packets) */
     uint8_t stream_active;
     uint8_t have_frame;
     uint16_t stream_id;
     tdc_link_stream_info_t stream;
-    uint16_t rw, rh;         /* reduced size of the active stream */
-    uint32_t frame_index;    /* current (newest accepted) frame */
-    uint32_t frame_mask;     /* (kind, eye) slots accepted in frame_index */
+    uint16_t rw, rh;      /* reduced size of the active stream */
+    uint32_t frame_index; /* current (newest accepted) frame */
+    uint32_t frame_mask;  /* (kind, eye) slots accepted in frame_index */
     /* events */
     uint8_t ev_head, ev_count;
     tdc_link_event_t ev[TDC_LINK_EVENT_QUEUE];

@@ -92,14 +92,15 @@ void tdc_pixfmt_pack(tdc_pixfmt_t fmt, const uint8_t *rgb, uint32_t w, uint32_t 
                 }
                 const unsigned sh = 16u + (n == 4u ? 2u : (n == 2u ? 1u : 0u));
                 const int32_t half = (int32_t)1 << (sh - 1u);
-                cb[(size_t)cw * j + i] = sat_u8(128 + tdc_asr32(ENC_CB_R * sr + ENC_CB_G * sg + ENC_CB_B * sb + half, sh));
-                cr[(size_t)cw * j + i] = sat_u8(128 + tdc_asr32(ENC_CR_R * sr + ENC_CR_G * sg + ENC_CR_B * sb + half, sh));
+                cb[(size_t)cw * j + i] =
+                    sat_u8(128 + tdc_asr32(ENC_CB_R * sr + ENC_CB_G * sg + ENC_CB_B * sb + half, sh));
+                cr[(size_t)cw * j + i] =
+                    sat_u8(128 + tdc_asr32(ENC_CR_R * sr + ENC_CR_G * sg + ENC_CR_B * sb + half, sh));
             }
         }
         break;
     }
-    default:
-        break;
+    default: break;
     }
 }
 
@@ -158,11 +159,11 @@ size_t tdc_link_encode_stream(const tdc_link_encoder_t *enc, uint8_t *out, size_
 }
 
 size_t tdc_link_encode_frame(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap, tdc_link_kind_t kind,
-                             uint32_t eye, uint32_t frame, tdc_pixfmt_t fmt, const uint8_t *rgb, uint32_t w,
-                             uint32_t h, uint32_t stride)
+                             uint32_t eye, uint32_t frame, tdc_pixfmt_t fmt, const uint8_t *rgb, uint32_t w, uint32_t h,
+                             uint32_t stride)
 {
-    if ((kind != TDC_LINK_KIND_FULL && kind != TDC_LINK_KIND_REDUCED) || !tdc_pixfmt_valid(fmt) || w == 0 ||
-        h == 0 || w > 65535u || h > 65535u) {
+    if ((kind != TDC_LINK_KIND_FULL && kind != TDC_LINK_KIND_REDUCED) || !tdc_pixfmt_valid(fmt) || w == 0 || h == 0 ||
+        w > 65535u || h > 65535u) {
         return 0;
     }
     const size_t total = tdc_link_packet_bytes(kind, fmt, w, h, 0);
@@ -175,8 +176,8 @@ size_t tdc_link_encode_frame(const tdc_link_encoder_t *enc, uint8_t *out, size_t
     return finish(out, &f, (uint32_t)(total - TDC_LINK_HEADER_BYTES));
 }
 
-size_t tdc_link_encode_subframe(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap, uint32_t eye,
-                                uint32_t frame, tdc_pixfmt_t fmt, const uint8_t *samples, uint32_t w, uint32_t h)
+size_t tdc_link_encode_subframe(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap, uint32_t eye, uint32_t frame,
+                                tdc_pixfmt_t fmt, const uint8_t *samples, uint32_t w, uint32_t h)
 {
     if (!tdc_pixfmt_valid(fmt) || w == 0 || h == 0 || w > 65535u || h > 65535u) {
         return 0;
@@ -192,8 +193,8 @@ size_t tdc_link_encode_subframe(const tdc_link_encoder_t *enc, uint8_t *out, siz
     return finish(out, &f, (uint32_t)(total - TDC_LINK_HEADER_BYTES));
 }
 
-size_t tdc_link_encode_motion(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap, uint32_t eye,
-                              uint32_t frame, const int16_t *mv, uint32_t w, uint32_t h, int per_sample)
+size_t tdc_link_encode_motion(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap, uint32_t eye, uint32_t frame,
+                              const int16_t *mv, uint32_t w, uint32_t h, int per_sample)
 {
     const uint32_t flags = per_sample ? TDC_LINK_PKT_MV_PER_SAMPLE : 0u;
     if (w == 0 || h == 0 || w > 65535u || h > 65535u) {
@@ -213,8 +214,8 @@ size_t tdc_link_encode_motion(const tdc_link_encoder_t *enc, uint8_t *out, size_
     return finish(out, &f, (uint32_t)(total - TDC_LINK_HEADER_BYTES));
 }
 
-size_t tdc_link_encode_pattern(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap, uint32_t eye,
-                               uint32_t frame, const uint8_t *bits, uint32_t w, uint32_t h)
+size_t tdc_link_encode_pattern(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap, uint32_t eye, uint32_t frame,
+                               const uint8_t *bits, uint32_t w, uint32_t h)
 {
     if (w == 0 || h == 0 || w > 65535u || h > 65535u) {
         return 0;

@@ -44,22 +44,22 @@ size_t tdc_link_encode_stream(const tdc_link_encoder_t *enc, uint8_t *out, size_
 /* FULL or REDUCED frame: w x h RGB888 source (rows `stride` bytes apart)
  * packed into `fmt`.  For REDUCED, w x h is the reduced size. */
 size_t tdc_link_encode_frame(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap, tdc_link_kind_t kind,
-                             uint32_t eye, uint32_t frame, tdc_pixfmt_t fmt, const uint8_t *rgb, uint32_t w,
-                             uint32_t h, uint32_t stride);
+                             uint32_t eye, uint32_t frame, tdc_pixfmt_t fmt, const uint8_t *rgb, uint32_t w, uint32_t h,
+                             uint32_t stride);
 
 /* SUBFRAME: tiles_x x tiles_y RGB888 samples (packed, row-major) of a
  * w x h eye (header dimensions are w x h, the full-resolution size). */
-size_t tdc_link_encode_subframe(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap, uint32_t eye,
-                                uint32_t frame, tdc_pixfmt_t fmt, const uint8_t *samples, uint32_t w, uint32_t h);
+size_t tdc_link_encode_subframe(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap, uint32_t eye, uint32_t frame,
+                                tdc_pixfmt_t fmt, const uint8_t *samples, uint32_t w, uint32_t h);
 
 /* MOTION: per_sample = 0: w x h (dx, dy) Q4 pairs; per_sample = 1: one pair
  * per subframe sample (tiles_x x tiles_y).  Header dimensions are w x h. */
-size_t tdc_link_encode_motion(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap, uint32_t eye,
-                              uint32_t frame, const int16_t *mv, uint32_t w, uint32_t h, int per_sample);
+size_t tdc_link_encode_motion(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap, uint32_t eye, uint32_t frame,
+                              const int16_t *mv, uint32_t w, uint32_t h, int per_sample);
 
 /* PATTERN: tile bitmap (TDC_PATTERN_BYTES(w, h) bytes) of a w x h eye. */
-size_t tdc_link_encode_pattern(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap, uint32_t eye,
-                               uint32_t frame, const uint8_t *bits, uint32_t w, uint32_t h);
+size_t tdc_link_encode_pattern(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap, uint32_t eye, uint32_t frame,
+                               const uint8_t *bits, uint32_t w, uint32_t h);
 
 /* Pixel packing from RGB888 (the inverse of firmware/tdc_pixfmt.c). */
 void tdc_pixfmt_pack(tdc_pixfmt_t fmt, const uint8_t *rgb, uint32_t w, uint32_t h, uint32_t stride, uint8_t *out);

@@ -129,8 +129,8 @@ static inline uint8_t tdc_mean_u8(uint32_t sum, unsigned n)
  * < x n / 2^32 stays below 1/n (checked for every x < 2^21 and the top). */
 static inline uint32_t tdc_div_small(uint32_t x, uint32_t n)
 {
-    static const uint32_t recip32[9] = {0, 0, 2147483648u, 1431655766u, 1073741824u,
-                                        858993460u, 715827883u, 613566757u, 536870912u};
+    static const uint32_t recip32[9] = {0,          0,          2147483648u, 1431655766u, 1073741824u,
+                                        858993460u, 715827883u, 613566757u,  536870912u};
     if (n < 1u || n > 8u) return 0;
     if (n == 1u) return x;
     return (uint32_t)(((uint64_t)x * recip32[n]) >> 32);

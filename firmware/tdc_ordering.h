@@ -99,7 +99,8 @@ static inline tdc_ordering_t tdc_ordering_get(const uint8_t *bits, uint32_t tile
 static inline void tdc_ordering_set(uint8_t *bits, uint32_t tile_index, tdc_ordering_t o)
 {
     uint8_t m = (uint8_t)(1u << (tile_index & 7u));
-    bits[tile_index >> 3] = (uint8_t)(o == TDC_ORDER_BOWTIE ? (bits[tile_index >> 3] | m) : (bits[tile_index >> 3] & ~m));
+    bits[tile_index >> 3] =
+        (uint8_t)(o == TDC_ORDER_BOWTIE ? (bits[tile_index >> 3] | m) : (bits[tile_index >> 3] & ~m));
 }
 
 /*

@@ -38,15 +38,15 @@ struct tdc_lcd_profile; /* defined by the LCD stage (tdc_lcd.h) */
 typedef struct {
     const char *name;
     tdc_panel_type_t type;
-    uint16_t width;          /* pixels per eye */
+    uint16_t width; /* pixels per eye */
     uint16_t height;
-    uint8_t eyes;            /* 1 or 2 (side by side) */
-    uint8_t bits;            /* bits per channel of the drive value */
-    uint16_t refresh_hz;     /* nominal refresh */
-    uint16_t ppd_x100;       /* pixels per degree at the view centre x 100 (0: unknown); host
+    uint8_t eyes;                           /* 1 or 2 (side by side) */
+    uint8_t bits;                           /* bits per channel of the drive value */
+    uint16_t refresh_hz;                    /* nominal refresh */
+    uint16_t ppd_x100;                      /* pixels per degree at the view centre x 100 (0: unknown); host
                               * simulator's viewing geometry (FLIP, eye), unused by the firmware */
     uint16_t rates_hz[TDC_PANEL_MAX_RATES]; /* supported refresh rates, 0-terminated */
-    uint32_t gamma_micro[3]; /* per-channel gamma x 1e6: exactly the value the tables came from */
+    uint32_t gamma_micro[3];                /* per-channel gamma x 1e6: exactly the value the tables came from */
     tdc_gamma_table_t gamma[3];
     const struct tdc_lcd_profile *lcd; /* NULL for OLED */
 } tdc_panel_t;

@@ -20,16 +20,11 @@ uint32_t tdc_pixfmt_payload_bytes(tdc_pixfmt_t f, uint32_t w, uint32_t h)
     /* w, h <= 65535: w * h * 4 < 2^34 could overflow 32 bits, so callers
      * bound w * h first (the decoder checks against the panel size). */
     switch (f) {
-    case TDC_PIXFMT_RGB888:
-        return w * h * 3u;
-    case TDC_PIXFMT_RGB565:
-        return w * h * 2u;
-    case TDC_PIXFMT_RGB30:
-        return w * h * 4u;
-    case TDC_PIXFMT_YCBCR420:
-        return w * h + 2u * (((w + 1u) / 2u) * ((h + 1u) / 2u));
-    default:
-        return 0;
+    case TDC_PIXFMT_RGB888: return w * h * 3u;
+    case TDC_PIXFMT_RGB565: return w * h * 2u;
+    case TDC_PIXFMT_RGB30: return w * h * 4u;
+    case TDC_PIXFMT_YCBCR420: return w * h + 2u * (((w + 1u) / 2u) * ((h + 1u) / 2u));
+    default: return 0;
     }
 }
 
@@ -137,19 +132,10 @@ void tdc_pixfmt_unpack_ycbcr420(const uint8_t *src, uint32_t w, uint32_t h, uint
 void tdc_pixfmt_unpack(tdc_pixfmt_t f, const uint8_t *src, uint32_t w, uint32_t h, uint8_t *dst, uint32_t dst_stride)
 {
     switch (f) {
-    case TDC_PIXFMT_RGB888:
-        tdc_pixfmt_unpack_rgb888(src, w, h, dst, dst_stride);
-        break;
-    case TDC_PIXFMT_RGB565:
-        tdc_pixfmt_unpack_rgb565(src, w, h, dst, dst_stride);
-        break;
-    case TDC_PIXFMT_RGB30:
-        tdc_pixfmt_unpack_rgb30(src, w, h, dst, dst_stride);
-        break;
-    case TDC_PIXFMT_YCBCR420:
-        tdc_pixfmt_unpack_ycbcr420(src, w, h, dst, dst_stride);
-        break;
-    default:
-        break;
+    case TDC_PIXFMT_RGB888: tdc_pixfmt_unpack_rgb888(src, w, h, dst, dst_stride); break;
+    case TDC_PIXFMT_RGB565: tdc_pixfmt_unpack_rgb565(src, w, h, dst, dst_stride); break;
+    case TDC_PIXFMT_RGB30: tdc_pixfmt_unpack_rgb30(src, w, h, dst, dst_stride); break;
+    case TDC_PIXFMT_YCBCR420: tdc_pixfmt_unpack_ycbcr420(src, w, h, dst, dst_stride); break;
+    default: break;
     }
 }

@@ -56,8 +56,7 @@ uint32_t tdc_pixfmt_payload_bytes(tdc_pixfmt_t f, uint32_t w, uint32_t h);
 
 /* Unpacks a w x h image in format f from src (exactly
  * tdc_pixfmt_payload_bytes(f, w, h) bytes) to RGB888 at dst. */
-void tdc_pixfmt_unpack(tdc_pixfmt_t f, const uint8_t *src, uint32_t w, uint32_t h, uint8_t *dst,
-                       uint32_t dst_stride);
+void tdc_pixfmt_unpack(tdc_pixfmt_t f, const uint8_t *src, uint32_t w, uint32_t h, uint8_t *dst, uint32_t dst_stride);
 
 void tdc_pixfmt_unpack_rgb888(const uint8_t *src, uint32_t w, uint32_t h, uint8_t *dst, uint32_t dst_stride);
 void tdc_pixfmt_unpack_rgb565(const uint8_t *src, uint32_t w, uint32_t h, uint8_t *dst, uint32_t dst_stride);

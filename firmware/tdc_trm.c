@@ -66,8 +66,7 @@ static void trm_geometry(tdc_trm_t *st, const tdc_trm_config_t *cfg)
 static void trm_carve(tdc_trm_t *st, tdc_arena_t *arena)
 {
     if (!st->passthrough) {
-        TDC_TRM_ARENA(TDC_ARENA_CARVE, st->cfg.width, st->cfg.height, st->rw, st->rh, st->dtaps,
-                      st->cfg.keep_residual)
+        TDC_TRM_ARENA(TDC_ARENA_CARVE, st->cfg.width, st->cfg.height, st->rw, st->rh, st->dtaps, st->cfg.keep_residual)
     }
 }
 
@@ -112,7 +111,7 @@ void tdc_trm_default_config(tdc_trm_config_t *cfg, uint16_t width, uint16_t heig
 static void trm_build_kernels(uint32_t n_in, uint32_t n_out, uint16_t sigma_q8, uint16_t taps, int16_t *first,
                               uint16_t *weights)
 {
-    const int64_t radius_q16 = (int64_t)3 * sigma_q8 * 256;       /* 3 sigma, Q16 */
+    const int64_t radius_q16 = (int64_t)3 * sigma_q8 * 256;     /* 3 sigma, Q16 */
     const uint64_t two_sigma2_q16 = 2ull * sigma_q8 * sigma_q8; /* 2 sigma^2, Q16 */
     for (uint32_t j = 0; j < n_out; j++) {
         /* x = ((2j + 1) n_in / (2 n_out) - 0.5), Q16 */
@@ -358,8 +357,8 @@ static void trm_rowctx(const tdc_trm_t *st, tdc_trm_rowctx_t *k)
 /* beta of full-res row y from codes src and the kept D(I): dst = shown
  * codes, res = rho.  The one place both the full frame and the recompute
  * of rho for a reduced frame run (same kernel: same bytes). */
-static void trm_beta_row(tdc_trm_t *st, const tdc_trm_rowctx_t *k, uint32_t y, const uint32_t *urow,
-                         const uint8_t *src, uint8_t *dst, tdc_res_t *res, tdc_trm_full_counts_t *n)
+static void trm_beta_row(tdc_trm_t *st, const tdc_trm_rowctx_t *k, uint32_t y, const uint32_t *urow, const uint8_t *src,
+                         uint8_t *dst, tdc_res_t *res, tdc_trm_full_counts_t *n)
 {
     (void)y;
     if (st->simd) {
@@ -409,8 +408,8 @@ tdc_status_t tdc_trm_full(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, 
     return TDC_OK;
 }
 
-tdc_status_t tdc_trm_full_seq(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out,
-                              uint32_t out_stride, uint32_t seq)
+tdc_status_t tdc_trm_full_seq(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out, uint32_t out_stride,
+                              uint32_t seq)
 {
     const tdc_status_t r = tdc_trm_full(st, in, in_stride, out, out_stride);
     if (r == TDC_OK && st) {
@@ -548,8 +547,7 @@ tdc_status_t tdc_trm_reduced_seq(tdc_trm_t *st, const uint8_t *in_reduced, uint3
     return trm_reduced(st, in_reduced, in_stride, out, out_stride, paired);
 }
 
-tdc_status_t tdc_trm_downsample(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out,
-                                uint32_t out_stride)
+tdc_status_t tdc_trm_downsample(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out, uint32_t out_stride)
 {
     if (!st || !in || !out || in_stride < 3u * st->cfg.width || out_stride < 3u * st->rw) {
         return TDC_ERR_ARG;

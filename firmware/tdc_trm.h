@@ -34,7 +34,9 @@
 #define TDC_TRM_MAX_SIGMA_Q8 (7 * 128) /* 3.5 px */
 /* Taps of D for sigma (Q8): integer k with |k - x| <= 3 sigma number at
  * most floor(6 sigma) + 1 (22 at the largest sigma, 16 at 2.5 px). */
-#define TDC_TRM_TAPS(sigma_q8) ((((6u * (uint32_t)(sigma_q8)) >> 8) + 1u) > TDC_TRM_MAX_TAPS ? (uint32_t)TDC_TRM_MAX_TAPS : (((6u * (uint32_t)(sigma_q8)) >> 8) + 1u))
+#define TDC_TRM_TAPS(sigma_q8)                                                                 \
+    ((((6u * (uint32_t)(sigma_q8)) >> 8) + 1u) > TDC_TRM_MAX_TAPS ? (uint32_t)TDC_TRM_MAX_TAPS \
+                                                                  : (((6u * (uint32_t)(sigma_q8)) >> 8) + 1u))
 
 /* Entries of the exp(-x) weight table, x = k/256 for k < 17*256 (+1 end). */
 #define TDC_TRM_WEXP_ENTRIES (17u * 256u + 1u)
@@ -66,22 +68,22 @@
  * block: the AVX2 horizontal D pass may read 2 bytes past dx_w (dy_w
  * follows it).
  */
-#define TDC_TRM_ARENA(X, W, H, RW, RH, TAPS, KEEP)                                                            \
-    X(residual, tdc_res_t, (KEEP) ? (size_t)(W) * (H) * 3u : 0u)      /* rho, Q24 linear light (KEEP) */      \
-    X(icodes, uint8_t, (KEEP) ? 0u : (size_t)(W) * (H) * 3u)          /* codes of the last full frame */      \
-    X(rrow, tdc_res_t, (KEEP) ? 0u : (size_t)(W) * 3u)                /* one row of rho, recomputed */        \
-    X(crow, uint8_t, (KEEP) ? 0u : (size_t)(W) * 3u)                  /* one row of codes, discarded */       \
-    X(dprev, tdc_gval_t, (size_t)(RW) * (RH) * 3u)                    /* D(I_t), code Q8 */                    \
-    X(ring, tdc_gval_t, (size_t)(TAPS) * (RW) * 3u)                   /* horizontal D pass, a ring of rows */  \
-    X(urow, uint32_t, (size_t)2u * ((RW) + 1u) * 3u)                  /* two U rows, code Q22 */               \
-    X(dx_first, int16_t, (size_t)(RW))                                /* D kernels */                          \
-    X(dy_first, int16_t, (size_t)(RH))                                                                         \
-    X(dx_w, uint16_t, (size_t)(RW) * (TAPS))                                                                   \
-    X(dy_w, uint16_t, (size_t)(RH) * (TAPS))                                                                   \
-    X(ux_i, uint16_t, (size_t)(W) * 2u)                               /* U tables (index, fraction) */         \
-    X(uy_i, uint16_t, (size_t)(H) * 2u)                                                                        \
-    X(wexp, uint32_t, (size_t)TDC_TRM_WEXP_ENTRIES)                   /* exp(-x) table */                      \
-    X(enc_comb, uint8_t, (size_t)TDC_TRM_SIMD_BYTES)                  /* AVX2 encode index (0 on boards) */
+#define TDC_TRM_ARENA(X, W, H, RW, RH, TAPS, KEEP)                                                     \
+    X(residual, tdc_res_t, (KEEP) ? (size_t)(W) * (H)*3u : 0u) /* rho, Q24 linear light (KEEP) */      \
+    X(icodes, uint8_t, (KEEP) ? 0u : (size_t)(W) * (H)*3u)     /* codes of the last full frame */      \
+    X(rrow, tdc_res_t, (KEEP) ? 0u : (size_t)(W)*3u)           /* one row of rho, recomputed */        \
+    X(crow, uint8_t, (KEEP) ? 0u : (size_t)(W)*3u)             /* one row of codes, discarded */       \
+    X(dprev, tdc_gval_t, (size_t)(RW) * (RH)*3u)               /* D(I_t), code Q8 */                   \
+    X(ring, tdc_gval_t, (size_t)(TAPS) * (RW)*3u)              /* horizontal D pass, a ring of rows */ \
+    X(urow, uint32_t, (size_t)2u * ((RW) + 1u) * 3u)           /* two U rows, code Q22 */              \
+    X(dx_first, int16_t, (size_t)(RW))                         /* D kernels */                         \
+    X(dy_first, int16_t, (size_t)(RH))                                                                 \
+    X(dx_w, uint16_t, (size_t)(RW) * (TAPS))                                                           \
+    X(dy_w, uint16_t, (size_t)(RH) * (TAPS))                                                           \
+    X(ux_i, uint16_t, (size_t)(W)*2u) /* U tables (index, fraction) */                                 \
+    X(uy_i, uint16_t, (size_t)(H)*2u)                                                                  \
+    X(wexp, uint32_t, (size_t)TDC_TRM_WEXP_ENTRIES)  /* exp(-x) table */                               \
+    X(enc_comb, uint8_t, (size_t)TDC_TRM_SIMD_BYTES) /* AVX2 encode index (0 on boards) */
 
 /*
  * Compile-time arena bound for a W x H eye at reduction ratios up to
@@ -90,22 +92,22 @@
  * r and taps, so no smaller configuration needs more), default layout
  * (keep_residual = 0); _KEEP with rho stored.
  */
-#define TDC_TRM_MEM_BYTES(W, H, RNUM, RDEN)                                                                   \
-    ((size_t)0 TDC_TRM_ARENA(TDC_ARENA_BLOCK_BYTES, W, H, TDC_REDUCED_DIM(W, RNUM, RDEN),                 \
+#define TDC_TRM_MEM_BYTES(W, H, RNUM, RDEN)                                               \
+    ((size_t)0 TDC_TRM_ARENA(TDC_ARENA_BLOCK_BYTES, W, H, TDC_REDUCED_DIM(W, RNUM, RDEN), \
                              TDC_REDUCED_DIM(H, RNUM, RDEN), TDC_TRM_TAPS(TDC_TRM_MAX_SIGMA_Q8), 0))
-#define TDC_TRM_MEM_BYTES_KEEP(W, H, RNUM, RDEN)                                                              \
-    ((size_t)0 TDC_TRM_ARENA(TDC_ARENA_BLOCK_BYTES, W, H, TDC_REDUCED_DIM(W, RNUM, RDEN),                 \
+#define TDC_TRM_MEM_BYTES_KEEP(W, H, RNUM, RDEN)                                          \
+    ((size_t)0 TDC_TRM_ARENA(TDC_ARENA_BLOCK_BYTES, W, H, TDC_REDUCED_DIM(W, RNUM, RDEN), \
                              TDC_REDUCED_DIM(H, RNUM, RDEN), TDC_TRM_TAPS(TDC_TRM_MAX_SIGMA_Q8), 1))
 
 typedef struct {
-    uint16_t width;          /* full-res eye size in pixels */
+    uint16_t width; /* full-res eye size in pixels */
     uint16_t height;
-    uint16_t r_num;          /* reduction ratio r = r_num / r_den, 1/4 <= r <= 1 */
+    uint16_t r_num; /* reduction ratio r = r_num / r_den, 1/4 <= r <= 1 */
     uint16_t r_den;
-    uint16_t sigma_q8;       /* Gaussian sigma of D in full-res pixels, Q8 (2.5 = 640) */
-    uint16_t refresh_hz;     /* refresh the stream runs at */
-    uint16_t min_refresh_hz; /* TRM refused below this (paper §9: 90 Hz) */
-    uint32_t s_q8;           /* motion sensitivity s of w = exp(-s c), Q8 */
+    uint16_t sigma_q8;         /* Gaussian sigma of D in full-res pixels, Q8 (2.5 = 640) */
+    uint16_t refresh_hz;       /* refresh the stream runs at */
+    uint16_t min_refresh_hz;   /* TRM refused below this (paper §9: 90 Hz) */
+    uint32_t s_q8;             /* motion sensitivity s of w = exp(-s c), Q8 */
     uint8_t reduced_in_stream; /* 0: stream has no reduced frames -> pass-through */
     /* 0 (default): keep the full frame's codes I_t and D(I_t) and recompute
      * rho = beta - clamp(beta) row by row when the reduced frame arrives
@@ -134,31 +136,31 @@ typedef struct {
     /* configuration, validated */
     tdc_trm_config_t cfg;
     const tdc_panel_t *panel;
-    uint16_t rw, rh;            /* reduced size */
-    uint16_t dtaps;             /* taps per D kernel */
-    uint8_t passthrough;        /* r == 1 or no reduced frames in the stream */
-    uint8_t have_full;          /* a full frame's D(I) and rho are valid */
-    uint32_t full_seq;          /* sequence number of that full frame (tdc_trm_full_seq) */
-    uint8_t simd;               /* row kernels: 1 = AVX2 (host), 0 = portable C */
+    uint16_t rw, rh;     /* reduced size */
+    uint16_t dtaps;      /* taps per D kernel */
+    uint8_t passthrough; /* r == 1 or no reduced frames in the stream */
+    uint8_t have_full;   /* a full frame's D(I) and rho are valid */
+    uint32_t full_seq;   /* sequence number of that full frame (tdc_trm_full_seq) */
+    uint8_t simd;        /* row kernels: 1 = AVX2 (host), 0 = portable C */
     /* views into the arena */
-    tdc_res_t *residual;        /* keep_residual: W*H*3, Q24 linear light; else NULL */
-    uint8_t *icodes;            /* keep_residual = 0: W*H*3 codes of the last full frame */
-    tdc_res_t *rrow;            /* keep_residual = 0: one row of rho (W*3, Q24) */
-    uint8_t *crow;              /* keep_residual = 0: one row of codes (W*3), discarded */
-    tdc_gval_t *dprev;          /* rw*rh*3, D(I_t), code Q8 */
-    tdc_gval_t *ring;           /* dtaps rows of rw*3: horizontal D pass */
-    uint32_t *urow;             /* 2 rows of (rw+1)*3: vertically interpolated U rows, code Q22 */
-    int16_t *dx_first;          /* rw: first full-res column of each D kernel */
-    int16_t *dy_first;          /* rh */
-    uint16_t *dx_w;             /* rw*dtaps: kernel weights Q15, each sums to 32768 */
-    uint16_t *dy_w;             /* rh*dtaps */
-    uint16_t *ux_i;             /* W: left reduced column of U */
-    uint16_t *ux_f;             /* W: bilinear fraction Q14 */
-    uint16_t *uy_i;             /* H */
-    uint16_t *uy_f;             /* H */
-    uint32_t *wexp;             /* TDC_TRM_WEXP_ENTRIES: exp(-k/256) in Q30 */
-    uint8_t *enc_comb;          /* TDC_TRM_SIMD_BYTES: AVX2 encode index (NULL without) */
-    uint8_t enc_one_step;       /* enc_comb needs at most one threshold step */
+    tdc_res_t *residual;  /* keep_residual: W*H*3, Q24 linear light; else NULL */
+    uint8_t *icodes;      /* keep_residual = 0: W*H*3 codes of the last full frame */
+    tdc_res_t *rrow;      /* keep_residual = 0: one row of rho (W*3, Q24) */
+    uint8_t *crow;        /* keep_residual = 0: one row of codes (W*3), discarded */
+    tdc_gval_t *dprev;    /* rw*rh*3, D(I_t), code Q8 */
+    tdc_gval_t *ring;     /* dtaps rows of rw*3: horizontal D pass */
+    uint32_t *urow;       /* 2 rows of (rw+1)*3: vertically interpolated U rows, code Q22 */
+    int16_t *dx_first;    /* rw: first full-res column of each D kernel */
+    int16_t *dy_first;    /* rh */
+    uint16_t *dx_w;       /* rw*dtaps: kernel weights Q15, each sums to 32768 */
+    uint16_t *dy_w;       /* rh*dtaps */
+    uint16_t *ux_i;       /* W: left reduced column of U */
+    uint16_t *ux_f;       /* W: bilinear fraction Q14 */
+    uint16_t *uy_i;       /* H */
+    uint16_t *uy_f;       /* H */
+    uint32_t *wexp;       /* TDC_TRM_WEXP_ENTRIES: exp(-k/256) in Q30 */
+    uint8_t *enc_comb;    /* TDC_TRM_SIMD_BYTES: AVX2 encode index (NULL without) */
+    uint8_t enc_one_step; /* enc_comb needs at most one threshold step */
     tdc_trm_stats_t stats;
 } tdc_trm_t;
 
@@ -191,8 +193,7 @@ void tdc_trm_reset(tdc_trm_t *st);
  * and D(I).  In pass-through mode out = in and nothing else runs.
  */
 TDC_MUST_CHECK
-tdc_status_t tdc_trm_full(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out,
-                          uint32_t out_stride);
+tdc_status_t tdc_trm_full(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out, uint32_t out_stride);
 
 /*
  * Reduced frame: in (rw x rh) -> out (W x H) drive codes.
@@ -226,8 +227,8 @@ int32_t tdc_trm_weight(const tdc_trm_t *st, uint32_t x_q16);
  * (never with stale state), counted in stats.reduced_unpaired, and TDC_OK.
  */
 TDC_MUST_CHECK
-tdc_status_t tdc_trm_full_seq(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out,
-                              uint32_t out_stride, uint32_t seq);
+tdc_status_t tdc_trm_full_seq(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out, uint32_t out_stride,
+                              uint32_t seq);
 TDC_MUST_CHECK
 tdc_status_t tdc_trm_reduced_seq(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t in_stride, uint8_t *out,
                                  uint32_t out_stride, uint32_t seq);

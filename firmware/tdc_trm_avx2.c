@@ -118,7 +118,8 @@ static inline TDC_AVX2 __m256i trm_enc_start(const uint8_t *comb, __m256i l)
 static inline TDC_AVX2 __m256i trm_enc_step(const uint32_t *thr, __m256i k, __m256i l, __m256i *adv)
 {
     const __m256i top = _mm256_set1_epi32(255);
-    const __m256i t = _mm256_i32gather_epi32((const int *)thr, _mm256_min_epi32(_mm256_add_epi32(k, _mm256_set1_epi32(1)), top), 4);
+    const __m256i t =
+        _mm256_i32gather_epi32((const int *)thr, _mm256_min_epi32(_mm256_add_epi32(k, _mm256_set1_epi32(1)), top), 4);
     *adv = _mm256_andnot_si256(_mm256_cmpgt_epi32(t, l), _mm256_cmpgt_epi32(top, k));
     return _mm256_sub_epi32(k, *adv);
 }
@@ -170,13 +171,13 @@ static inline TDC_AVX2 __m256i trm_recip4(__m256i d, int *ok)
                                  _mm256_srli_epi64(_mm256_mul_epu32(_mm256_set1_epi64x(2021161081LL), d), 32));
     for (int it = 0; it < 3; it++) {
         /* e = 1 - d x in Q30 (signed, small); x += floor(x e / 2^30) */
-        const __m256i e = _mm256_sub_epi64(_mm256_set1_epi64x(1LL << 30),
-                                           _mm256_srli_epi64(_mm256_mul_epu32(d, x), 32));
+        const __m256i e =
+            _mm256_sub_epi64(_mm256_set1_epi64x(1LL << 30), _mm256_srli_epi64(_mm256_mul_epu32(d, x), 32));
         const __m256i neg = _mm256_cmpgt_epi64(zero, e);
         const __m256i prod = _mm256_mul_epu32(x, _mm256_blendv_epi8(e, _mm256_sub_epi64(zero, e), neg));
         const __m256i up = _mm256_srli_epi64(prod, 30);
-        const __m256i down = _mm256_sub_epi64(
-            zero, _mm256_srli_epi64(_mm256_add_epi64(prod, _mm256_set1_epi64x((1LL << 30) - 1)), 30));
+        const __m256i down =
+            _mm256_sub_epi64(zero, _mm256_srli_epi64(_mm256_add_epi64(prod, _mm256_set1_epi64x((1LL << 30) - 1)), 30));
         x = _mm256_add_epi64(x, _mm256_blendv_epi8(up, down, neg));
     }
     const __m256i t = _mm256_add_epi64(_mm256_set1_epi64x(1LL << 62), _mm256_srli_epi64(d, 1));
@@ -195,9 +196,9 @@ static inline TDC_AVX2 __m256i trm_recip4(__m256i d, int *ok)
     const __m256i up = _mm256_xor_si256(_mm256_cmpgt_epi64(q, t), _mm256_set1_epi32(-1)); /* (x + 1) d <= t */
     x = _mm256_sub_epi64(x, up);
     p = _mm256_blendv_epi8(p, q, up);
-    const __m256i bad = _mm256_or_si256(
-        _mm256_cmpgt_epi64(p, t),
-        _mm256_xor_si256(_mm256_cmpgt_epi64(_mm256_add_epi64(p, d), t), _mm256_set1_epi32(-1)));
+    const __m256i bad =
+        _mm256_or_si256(_mm256_cmpgt_epi64(p, t),
+                        _mm256_xor_si256(_mm256_cmpgt_epi64(_mm256_add_epi64(p, d), t), _mm256_set1_epi32(-1)));
     if (!_mm256_testz_si256(bad, bad)) {
         *ok = 0;
     }
@@ -242,16 +243,17 @@ static inline TDC_AVX2 __m256i trm_motion_weight8(const tdc_trm_rowctx_t *k, __m
     }
     const __m256i num = _mm256_sllv_epi32(diff, sh); /* diff < den: < 2^32 */
     const __m256i round31 = _mm256_set1_epi64x(1LL << 31);
-    const __m256i ce = _mm256_srli_epi64(
-        _mm256_add_epi64(_mm256_mul_epu32(trm_even(num), trm_recip4(trm_even(dn), ok)), round31), 32);
-    const __m256i co = _mm256_srli_epi64(
-        _mm256_add_epi64(_mm256_mul_epu32(trm_odd(num), trm_recip4(trm_odd(dn), ok)), round31), 32);
+    const __m256i ce =
+        _mm256_srli_epi64(_mm256_add_epi64(_mm256_mul_epu32(trm_even(num), trm_recip4(trm_even(dn), ok)), round31), 32);
+    const __m256i co =
+        _mm256_srli_epi64(_mm256_add_epi64(_mm256_mul_epu32(trm_odd(num), trm_recip4(trm_odd(dn), ok)), round31), 32);
     __m256i c = trm_join(ce, co); /* Q30 */
     c = _mm256_blendv_epi8(c, _mm256_set1_epi32(1 << 30), whole);
     c = _mm256_andnot_si256(den0, c);
     /* s c: Q8 x Q30 -> Q16, rounded, in 64 bits; beyond the table w = 0 */
     const __m256i s = _mm256_set1_epi64x((long long)k->s_q8);
-    const __m256i round21 = _mm256_set1_epi64x(1LL << 21), last = _mm256_set1_epi64x(((long long)TDC_TRM_WEXP_ENTRIES - 1) * 256 - 1);
+    const __m256i round21 = _mm256_set1_epi64x(1LL << 21),
+                  last = _mm256_set1_epi64x(((long long)TDC_TRM_WEXP_ENTRIES - 1) * 256 - 1);
     const __m256i se = _mm256_srli_epi64(_mm256_add_epi64(_mm256_mul_epu32(s, trm_even(c)), round21), 22);
     const __m256i so = _mm256_srli_epi64(_mm256_add_epi64(_mm256_mul_epu32(s, trm_odd(c)), round21), 22);
     const __m256i bige = _mm256_cmpgt_epi64(se, last), bigo = _mm256_cmpgt_epi64(so, last);
@@ -276,15 +278,15 @@ static inline TDC_AVX2 void trm_interleave3(__m256i r, __m256i g, __m256i b, __m
     const __m256i p0 = _mm256_setr_epi32(0, 0, 0, 1, 1, 1, 2, 2);
     const __m256i p1 = _mm256_setr_epi32(2, 3, 3, 3, 4, 4, 4, 5);
     const __m256i p2 = _mm256_setr_epi32(5, 5, 6, 6, 6, 7, 7, 7);
-    o[0] = _mm256_blend_epi32(_mm256_blend_epi32(_mm256_permutevar8x32_epi32(r, p0), _mm256_permutevar8x32_epi32(g, p0),
-                                                 0x92),
-                              _mm256_permutevar8x32_epi32(b, p0), 0x24);
-    o[1] = _mm256_blend_epi32(_mm256_blend_epi32(_mm256_permutevar8x32_epi32(r, p1), _mm256_permutevar8x32_epi32(g, p1),
-                                                 0x24),
-                              _mm256_permutevar8x32_epi32(b, p1), 0x49);
-    o[2] = _mm256_blend_epi32(_mm256_blend_epi32(_mm256_permutevar8x32_epi32(r, p2), _mm256_permutevar8x32_epi32(g, p2),
-                                                 0x49),
-                              _mm256_permutevar8x32_epi32(b, p2), 0x92);
+    o[0] = _mm256_blend_epi32(
+        _mm256_blend_epi32(_mm256_permutevar8x32_epi32(r, p0), _mm256_permutevar8x32_epi32(g, p0), 0x92),
+        _mm256_permutevar8x32_epi32(b, p0), 0x24);
+    o[1] = _mm256_blend_epi32(
+        _mm256_blend_epi32(_mm256_permutevar8x32_epi32(r, p1), _mm256_permutevar8x32_epi32(g, p1), 0x24),
+        _mm256_permutevar8x32_epi32(b, p1), 0x49);
+    o[2] = _mm256_blend_epi32(
+        _mm256_blend_epi32(_mm256_permutevar8x32_epi32(r, p2), _mm256_permutevar8x32_epi32(g, p2), 0x49),
+        _mm256_permutevar8x32_epi32(b, p2), 0x92);
 }
 
 /* Codes (0..255 in 32-bit lanes, one vector per channel) -> 24 RGB bytes. */
@@ -292,8 +294,8 @@ static inline TDC_AVX2 void trm_store_codes(uint8_t *dst, __m256i r, __m256i g, 
 {
     __m256i o[3];
     trm_interleave3(r, g, b, o);
-    const __m256i lowbytes = _mm256_setr_epi8(0, 4, 8, 12, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, 0, 4, 8,
-                                              12, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1);
+    const __m256i lowbytes = _mm256_setr_epi8(0, 4, 8, 12, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, 0, 4, 8, 12,
+                                              -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1);
     const __m256i gather2 = _mm256_setr_epi32(0, 4, 1, 1, 1, 1, 1, 1);
     for (int j = 0; j < 3; j++) {
         const __m256i p = _mm256_permutevar8x32_epi32(_mm256_shuffle_epi8(o[j], lowbytes), gather2);
@@ -317,8 +319,8 @@ static inline TDC_AVX2 trm_step_t trm_step(const tdc_trm_rowctx_t *k, uint32_t x
     return s;
 }
 
-TDC_AVX2 void tdc_trm_full_row_avx2(const tdc_trm_rowctx_t *k, const uint32_t *urow, const uint8_t *src,
-                                    uint8_t *dst, tdc_res_t *res, tdc_trm_full_counts_t *n)
+TDC_AVX2 void tdc_trm_full_row_avx2(const tdc_trm_rowctx_t *k, const uint32_t *urow, const uint8_t *src, uint8_t *dst,
+                                    tdc_res_t *res, tdc_trm_full_counts_t *n)
 {
     const __m256i one = _mm256_set1_epi32(TDC_LIN_ONE), zero = _mm256_setzero_si256();
     uint32_t x = 0, nhi = 0, nlo = 0;
@@ -458,8 +460,8 @@ TDC_AVX2 void tdc_trm_reduced_row_avx2(const tdc_trm_rowctx_t *k, const uint32_t
                 /* alpha + round(w rho / 2^15), split as in the header comment */
                 const __m256i rh = _mm256_srai_epi32(rho[c], 15);
                 const __m256i rl = _mm256_and_si256(rho[c], _mm256_set1_epi32(0x7fff));
-                const __m256i lo = _mm256_srli_epi32(
-                    _mm256_add_epi32(_mm256_mullo_epi32(w[c], rl), _mm256_set1_epi32(1 << 14)), 15);
+                const __m256i lo =
+                    _mm256_srli_epi32(_mm256_add_epi32(_mm256_mullo_epi32(w[c], rl), _mm256_set1_epi32(1 << 14)), 15);
                 const __m256i v = _mm256_add_epi32(alpha[c], _mm256_add_epi32(_mm256_mullo_epi32(w[c], rh), lo));
                 shown[c] = _mm256_min_epi32(_mm256_max_epi32(v, zero), one);
             }
@@ -524,22 +526,23 @@ TDC_AVX2 void tdc_trm_dhoriz_avx2(const uint8_t *row, uint32_t width, const int1
         }
         const __m256i k0 = _mm256_cvtepi16_epi32(_mm_loadu_si128((const __m128i *)(const void *)(first + j)));
         const __m256i pix = _mm256_add_epi32(_mm256_add_epi32(k0, k0), k0); /* byte offset 3 k0 */
-        const __m256i widx = _mm256_mullo_epi32(_mm256_add_epi32(_mm256_set1_epi32((int)j), lane),
-                                                _mm256_set1_epi32((int)taps));
+        const __m256i widx =
+            _mm256_mullo_epi32(_mm256_add_epi32(_mm256_set1_epi32((int)j), lane), _mm256_set1_epi32((int)taps));
         __m256i ar = _mm256_setzero_si256(), ag = ar, ab = ar;
         for (uint32_t t = 0; t < taps; t++) {
             const __m256i off = _mm256_set1_epi32((int)t);
             const __m256i v = _mm256_i32gather_epi32((const int *)(const void *)row,
                                                      _mm256_add_epi32(pix, _mm256_set1_epi32((int)(3u * t))), 1);
-            const __m256i wt = _mm256_and_si256(
-                _mm256_i32gather_epi32((const int *)(const void *)w, _mm256_add_epi32(widx, off), 2),
-                _mm256_set1_epi32(0xffff));
+            const __m256i wt =
+                _mm256_and_si256(_mm256_i32gather_epi32((const int *)(const void *)w, _mm256_add_epi32(widx, off), 2),
+                                 _mm256_set1_epi32(0xffff));
             ar = _mm256_add_epi32(ar, _mm256_mullo_epi32(wt, _mm256_and_si256(v, ff)));
             ag = _mm256_add_epi32(ag, _mm256_mullo_epi32(wt, _mm256_and_si256(_mm256_srli_epi32(v, 8), ff)));
             ab = _mm256_add_epi32(ab, _mm256_mullo_epi32(wt, _mm256_and_si256(_mm256_srli_epi32(v, 16), ff)));
         }
         __m256i o[3];
-        trm_interleave3(_mm256_srli_epi32(_mm256_add_epi32(ar, bias), 7), _mm256_srli_epi32(_mm256_add_epi32(ag, bias), 7),
+        trm_interleave3(_mm256_srli_epi32(_mm256_add_epi32(ar, bias), 7),
+                        _mm256_srli_epi32(_mm256_add_epi32(ag, bias), 7),
                         _mm256_srli_epi32(_mm256_add_epi32(ab, bias), 7), o);
         /* 24 values <= 65280 -> uint16 */
         _mm256_storeu_si256((__m256i *)(void *)(dst + 3u * j),

@@ -24,13 +24,13 @@
 
 /* What a row kernel needs; built per frame from tdc_trm_t. */
 typedef struct {
-    const uint32_t *dec[3];  /* gamma decode, 257 entries, Q24 */
-    const uint32_t *thr[3];  /* encode thresholds, 256 entries, Q24 */
-    const uint16_t *idx[3];  /* encode index, TDC_ENC_INDEX_SIZE entries */
-    const uint16_t *ux;      /* 2 * width: (reduced column, fraction Q14) */
-    const uint32_t *wexp;    /* TDC_TRM_WEXP_ENTRIES: exp(-k/256), Q30 */
-    uint32_t width;          /* full-res pixels in the row */
-    uint32_t s_q8;           /* motion sensitivity s, Q8 */
+    const uint32_t *dec[3]; /* gamma decode, 257 entries, Q24 */
+    const uint32_t *thr[3]; /* encode thresholds, 256 entries, Q24 */
+    const uint16_t *idx[3]; /* encode index, TDC_ENC_INDEX_SIZE entries */
+    const uint16_t *ux;     /* 2 * width: (reduced column, fraction Q14) */
+    const uint32_t *wexp;   /* TDC_TRM_WEXP_ENTRIES: exp(-k/256), Q30 */
+    uint32_t width;         /* full-res pixels in the row */
+    uint32_t s_q8;          /* motion sensitivity s, Q8 */
     /* AVX2 kernels only: per channel a combined encode index (uint8,
      * TDC_TRM_ENC_COMB entries): entry L >> 6 for L < 2^16, entry
      * 1008 + (L >> 12) above; each is the largest code whose threshold is
@@ -62,16 +62,14 @@ typedef struct {
 
 /* Full-res row: beta = 2 lin(I) - lin(U(D(I))), dst = enc(clamp(beta)),
  * res = beta - clamp(beta).  Counts are added to *n. */
-typedef void tdc_trm_full_row_fn(const tdc_trm_rowctx_t *k, const uint32_t *urow, const uint8_t *src,
-                                 uint8_t *dst, tdc_res_t *res, tdc_trm_full_counts_t *n);
+typedef void tdc_trm_full_row_fn(const tdc_trm_rowctx_t *k, const uint32_t *urow, const uint8_t *src, uint8_t *dst,
+                                 tdc_res_t *res, tdc_trm_full_counts_t *n);
 /* Reduced row: alpha = lin(U(i)), w = exp(-s c), dst = enc(clamp(alpha + w rho)). */
-typedef void tdc_trm_reduced_row_fn(const tdc_trm_rowctx_t *k, const uint32_t *urow_a,
-                                    const uint32_t *urow_b, const tdc_res_t *res, uint8_t *dst,
-                                    tdc_trm_reduced_counts_t *n);
+typedef void tdc_trm_reduced_row_fn(const tdc_trm_rowctx_t *k, const uint32_t *urow_a, const uint32_t *urow_b,
+                                    const tdc_res_t *res, uint8_t *dst, tdc_trm_reduced_counts_t *n);
 /* Vertical pass of D: out[i] = (sum_t w[t] rows[t][i] + 2^14) >> 15 for
  * i < n (weights Q15 summing to 32768, values code Q8). */
-typedef void tdc_trm_dvert_fn(const uint16_t *const *rows, const uint16_t *w, uint32_t taps, uint32_t n,
-                              uint16_t *out);
+typedef void tdc_trm_dvert_fn(const uint16_t *const *rows, const uint16_t *w, uint32_t taps, uint32_t n, uint16_t *out);
 
 /* Horizontal pass of D over one full-res row of codes (width pixels, RGB):
  * for each reduced column j < rw the kernel first[j] .. first[j] + taps - 1

@@ -51,8 +51,7 @@ static inline uint32x4_t trm_hlerp4(const uint32_t *urow, uint32x4_t i, uint32x4
     const int32x4_t x = vaddq_s32(v0, vmulq_s32(dh, fs));
     const int32x4_t xh = vshrq_n_s32(x, 6);
     const int32x4_t xl = vsubq_s32(x, vshlq_n_s32(xh, 6));
-    const uint32x4_t z =
-        vreinterpretq_u32_s32(vaddq_n_s32(vaddq_s32(vshlq_n_s32(xl, 14), vmulq_s32(dl, fs)), 1 << 19));
+    const uint32x4_t z = vreinterpretq_u32_s32(vaddq_n_s32(vaddq_s32(vshlq_n_s32(xl, 14), vmulq_s32(dl, fs)), 1 << 19));
     return vreinterpretq_u32_s32(vaddq_s32(xh, vreinterpretq_s32_u32(vshrq_n_u32(z, 20))));
 }
 
@@ -159,8 +158,8 @@ void tdc_trm_reduced_row_mve(const tdc_trm_rowctx_t *k, const uint32_t *urow_a, 
             const uint32x4_t ic = vaddq_n_u32(s.i3, c);
             const uint32x4_t gb = trm_hlerp4(urow_b, ic, s.f);
             const int32x4_t alpha = vreinterpretq_s32_u32(trm_dec4(k->dec[c], gb));
-            const int32x4_t rho = vreinterpretq_s32_u32(
-                vldrwq_gather_shifted_offset_u32((const uint32_t *)(const void *)res, xc));
+            const int32x4_t rho =
+                vreinterpretq_s32_u32(vldrwq_gather_shifted_offset_u32((const uint32_t *)(const void *)res, xc));
             const mve_pred16_t nz = vcmpneq_s32(rho, vdupq_n_s32(0));
             int32x4_t shown = alpha;
             no_res += 4u - trm_lanes(nz);
@@ -191,9 +190,10 @@ void tdc_trm_reduced_row_mve(const tdc_trm_rowctx_t *k, const uint32_t *urow_a, 
                 /* alpha' = alpha + round(w rho / 2^15), split exactly */
                 const int32x4_t rh = vshrq_n_s32(rho, 15);
                 const int32x4_t rl = vsubq_s32(rho, vshlq_n_s32(rh, 15));
-                const int32x4_t add = vaddq_s32(
-                    vmulq_s32(wq, rh),
-                    vreinterpretq_s32_u32(vshrq_n_u32(vreinterpretq_u32_s32(vaddq_n_s32(vmulq_s32(wq, rl), 1 << 14)), 15)));
+                const int32x4_t add =
+                    vaddq_s32(vmulq_s32(wq, rh),
+                              vreinterpretq_s32_u32(
+                                  vshrq_n_u32(vreinterpretq_u32_s32(vaddq_n_s32(vmulq_s32(wq, rl), 1 << 14)), 15)));
                 shown = vpselq_s32(vaddq_s32(alpha, add), alpha, nz);
             }
             shown = trm_clamp_lin(shown);
@@ -228,8 +228,8 @@ void tdc_trm_dvert_mve(const uint16_t *const *rows, const uint16_t *w, uint32_t 
 /* Horizontal pass of D (tdc_trm_kernels.h): 4 reduced columns per step,
  * taps read with gathers at the clamped full-res columns (the C kernel's
  * clamp-to-edge), the last rw % 4 columns by the C kernel. */
-void tdc_trm_dhoriz_mve(const uint8_t *row, uint32_t width, const int16_t *first, const uint16_t *w_all,
-                        uint32_t taps, uint32_t rw, uint16_t *dst)
+void tdc_trm_dhoriz_mve(const uint8_t *row, uint32_t width, const int16_t *first, const uint16_t *w_all, uint32_t taps,
+                        uint32_t rw, uint16_t *dst)
 {
     const int32x4_t wmax = vdupq_n_s32((int32_t)width - 1);
     uint32_t j = 0;

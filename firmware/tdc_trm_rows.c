@@ -78,8 +78,8 @@ static inline uint32_t trm_enc(const trm_gamma_t *g, int32_t lin)
     return k;
 }
 
-void tdc_trm_full_row_c(const tdc_trm_rowctx_t *k, const uint32_t *urow_in, const uint8_t *src_in,
-                        uint8_t *dst_in, tdc_res_t *res_in, tdc_trm_full_counts_t *n)
+void tdc_trm_full_row_c(const tdc_trm_rowctx_t *k, const uint32_t *urow_in, const uint8_t *src_in, uint8_t *dst_in,
+                        tdc_res_t *res_in, tdc_trm_full_counts_t *n)
 {
     const uint32_t *restrict urow = urow_in;
     const uint8_t *restrict src = src_in;
@@ -190,8 +190,8 @@ void tdc_trm_dvert_c(const uint16_t *const *rows, const uint16_t *w, uint32_t ta
 /* Horizontal pass of D over one full-res row (see tdc_trm_kernels.h).
  * Scaling and overflow: sum of weights 2^15 times codes <= 255 < 2^23;
  * result (acc + 2^6) >> 7 is code Q8 <= 65280. */
-void tdc_trm_dhoriz_c(const uint8_t *row, uint32_t width, const int16_t *first, const uint16_t *w_all,
-                      uint32_t taps, uint32_t rw, uint16_t *dst)
+void tdc_trm_dhoriz_c(const uint8_t *row, uint32_t width, const int16_t *first, const uint16_t *w_all, uint32_t taps,
+                      uint32_t rw, uint16_t *dst)
 {
     const int32_t wmax = (int32_t)width - 1;
     for (uint32_t j = 0; j < rw; j++) {

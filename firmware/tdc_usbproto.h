@@ -24,7 +24,7 @@
 
 #include "tdc_crc32.h" /* CRC-32 of images and of the received bytes */
 #include "tdc_status.h"
-#include "tdc_wire.h"   /* little-endian fields */
+#include "tdc_wire.h" /* little-endian fields */
 
 /* pid.codes open-source VID with its *test* PID 0x0001: for development and
  * CI only.  A shipped board must get its own PID from pid.codes. */
@@ -34,10 +34,10 @@
 #define TDC_USB_PROTO_VERSION 1u
 
 /* Interfaces and endpoints of configuration 1. */
-#define TDC_USB_IF_STREAM 0u     /* vendor class 0xFF, subclass 'T', protocol 1 */
-#define TDC_USB_IF_DFU 1u        /* DFU 1.1, DFU mode (0xFE/0x01/0x02) */
-#define TDC_USB_EP_LINK_OUT 0x01u /* bulk OUT: link packets, host -> board */
-#define TDC_USB_EP_STATUS_IN 0x81u /* bulk IN: status reports, board -> host */
+#define TDC_USB_IF_STREAM 0u          /* vendor class 0xFF, subclass 'T', protocol 1 */
+#define TDC_USB_IF_DFU 1u             /* DFU 1.1, DFU mode (0xFE/0x01/0x02) */
+#define TDC_USB_EP_LINK_OUT 0x01u     /* bulk OUT: link packets, host -> board */
+#define TDC_USB_EP_STATUS_IN 0x81u    /* bulk IN: status reports, board -> host */
 #define TDC_USB_STREAM_SUBCLASS 0x54u /* 'T' */
 #define TDC_USB_STREAM_PROTOCOL 0x01u
 
@@ -78,33 +78,55 @@ enum {
 #define TDC_USB_STATUS_MAGIC 0x53434454u /* "TDCS" */
 #define TDC_USB_STATUS_LEN 32u
 enum {
-    TDC_USB_STATUS_OFF_MAGIC = 0,   /* u32 */
-    TDC_USB_STATUS_OFF_SEQ = 4,     /* u32 report sequence number */
-    TDC_USB_STATUS_OFF_DFU = 8,     /* u8 DFU state, u8 DFU status, u16 reserved */
+    TDC_USB_STATUS_OFF_MAGIC = 0,     /* u32 */
+    TDC_USB_STATUS_OFF_SEQ = 4,       /* u32 report sequence number */
+    TDC_USB_STATUS_OFF_DFU = 8,       /* u8 DFU state, u8 DFU status, u16 reserved */
     TDC_USB_STATUS_OFF_RX_XFERS = 12, /* u32 */
     TDC_USB_STATUS_OFF_RX_BYTES = 16, /* u32 low 32 bits */
-    TDC_USB_STATUS_OFF_ERRORS = 20, /* u32 sum of link CRC, malformed, overrun */
-    TDC_USB_STATUS_OFF_FRAMES = 24, /* u32 frames shown */
-    TDC_USB_STATUS_OFF_RX_CRC = 28  /* u32 running CRC-32 of received bytes */
+    TDC_USB_STATUS_OFF_ERRORS = 20,   /* u32 sum of link CRC, malformed, overrun */
+    TDC_USB_STATUS_OFF_FRAMES = 24,   /* u32 frames shown */
+    TDC_USB_STATUS_OFF_RX_CRC = 28    /* u32 running CRC-32 of received bytes */
 };
 
 /* USB DFU 1.1 (DFU_1.1.pdf): requests, states and status codes. */
 enum {
-    TDC_DFU_DETACH = 0, TDC_DFU_DNLOAD = 1, TDC_DFU_UPLOAD = 2, TDC_DFU_GETSTATUS = 3,
-    TDC_DFU_CLRSTATUS = 4, TDC_DFU_GETSTATE = 5, TDC_DFU_ABORT = 6
+    TDC_DFU_DETACH = 0,
+    TDC_DFU_DNLOAD = 1,
+    TDC_DFU_UPLOAD = 2,
+    TDC_DFU_GETSTATUS = 3,
+    TDC_DFU_CLRSTATUS = 4,
+    TDC_DFU_GETSTATE = 5,
+    TDC_DFU_ABORT = 6
 };
 typedef enum {
-    TDC_DFU_STATE_APP_IDLE = 0, TDC_DFU_STATE_APP_DETACH = 1, TDC_DFU_STATE_IDLE = 2,
-    TDC_DFU_STATE_DNLOAD_SYNC = 3, TDC_DFU_STATE_DNBUSY = 4, TDC_DFU_STATE_DNLOAD_IDLE = 5,
-    TDC_DFU_STATE_MANIFEST_SYNC = 6, TDC_DFU_STATE_MANIFEST = 7,
-    TDC_DFU_STATE_MANIFEST_WAIT_RESET = 8, TDC_DFU_STATE_UPLOAD_IDLE = 9, TDC_DFU_STATE_ERROR = 10
+    TDC_DFU_STATE_APP_IDLE = 0,
+    TDC_DFU_STATE_APP_DETACH = 1,
+    TDC_DFU_STATE_IDLE = 2,
+    TDC_DFU_STATE_DNLOAD_SYNC = 3,
+    TDC_DFU_STATE_DNBUSY = 4,
+    TDC_DFU_STATE_DNLOAD_IDLE = 5,
+    TDC_DFU_STATE_MANIFEST_SYNC = 6,
+    TDC_DFU_STATE_MANIFEST = 7,
+    TDC_DFU_STATE_MANIFEST_WAIT_RESET = 8,
+    TDC_DFU_STATE_UPLOAD_IDLE = 9,
+    TDC_DFU_STATE_ERROR = 10
 } tdc_dfu_state_t;
 typedef enum {
-    TDC_DFU_OK = 0x00, TDC_DFU_ERR_TARGET = 0x01, TDC_DFU_ERR_FILE = 0x02,
-    TDC_DFU_ERR_WRITE = 0x03, TDC_DFU_ERR_ERASE = 0x04, TDC_DFU_ERR_CHECK_ERASED = 0x05,
-    TDC_DFU_ERR_PROG = 0x06, TDC_DFU_ERR_VERIFY = 0x07, TDC_DFU_ERR_ADDRESS = 0x08,
-    TDC_DFU_ERR_NOTDONE = 0x09, TDC_DFU_ERR_FIRMWARE = 0x0A, TDC_DFU_ERR_VENDOR = 0x0B,
-    TDC_DFU_ERR_USBR = 0x0C, TDC_DFU_ERR_POR = 0x0D, TDC_DFU_ERR_UNKNOWN = 0x0E,
+    TDC_DFU_OK = 0x00,
+    TDC_DFU_ERR_TARGET = 0x01,
+    TDC_DFU_ERR_FILE = 0x02,
+    TDC_DFU_ERR_WRITE = 0x03,
+    TDC_DFU_ERR_ERASE = 0x04,
+    TDC_DFU_ERR_CHECK_ERASED = 0x05,
+    TDC_DFU_ERR_PROG = 0x06,
+    TDC_DFU_ERR_VERIFY = 0x07,
+    TDC_DFU_ERR_ADDRESS = 0x08,
+    TDC_DFU_ERR_NOTDONE = 0x09,
+    TDC_DFU_ERR_FIRMWARE = 0x0A,
+    TDC_DFU_ERR_VENDOR = 0x0B,
+    TDC_DFU_ERR_USBR = 0x0C,
+    TDC_DFU_ERR_POR = 0x0D,
+    TDC_DFU_ERR_UNKNOWN = 0x0E,
     TDC_DFU_ERR_STALLEDPKT = 0x0F
 } tdc_dfu_status_t;
 #define TDC_DFU_TRANSFER_SIZE 1024u /* wTransferSize of the DFU functional descriptor */
@@ -117,16 +139,16 @@ typedef enum {
 #define TDC_IMAGE_MAGIC 0x46434454u /* "TDCF" */
 #define TDC_IMAGE_HEADER_VERSION 2u
 #define TDC_IMAGE_HEADER_LEN 48u
-#define TDC_IMAGE_BOARD_LEN 16u     /* = TDC_USB_INFO_NAME_LEN; NUL padded, not terminated at 16 */
+#define TDC_IMAGE_BOARD_LEN 16u /* = TDC_USB_INFO_NAME_LEN; NUL padded, not terminated at 16 */
 enum {
-    TDC_IMAGE_OFF_MAGIC = 0,       /* u32 */
-    TDC_IMAGE_OFF_HDR_VERSION = 4, /* u16 = 2 */
-    TDC_IMAGE_OFF_HDR_LEN = 6,     /* u16 = 48 */
-    TDC_IMAGE_OFF_PAYLOAD_LEN = 8, /* u32 payload bytes after the header */
-    TDC_IMAGE_OFF_PAYLOAD_CRC = 12,/* u32 CRC-32 (IEEE 802.3) of the payload */
-    TDC_IMAGE_OFF_FW_VERSION = 16, /* u32 */
-    TDC_IMAGE_OFF_BOARD = 20,      /* char[16] target board name, NUL padded */
-    TDC_IMAGE_OFF_RESERVED = 36    /* 12 bytes, zero */
+    TDC_IMAGE_OFF_MAGIC = 0,        /* u32 */
+    TDC_IMAGE_OFF_HDR_VERSION = 4,  /* u16 = 2 */
+    TDC_IMAGE_OFF_HDR_LEN = 6,      /* u16 = 48 */
+    TDC_IMAGE_OFF_PAYLOAD_LEN = 8,  /* u32 payload bytes after the header */
+    TDC_IMAGE_OFF_PAYLOAD_CRC = 12, /* u32 CRC-32 (IEEE 802.3) of the payload */
+    TDC_IMAGE_OFF_FW_VERSION = 16,  /* u32 */
+    TDC_IMAGE_OFF_BOARD = 20,       /* char[16] target board name, NUL padded */
+    TDC_IMAGE_OFF_RESERVED = 36     /* 12 bytes, zero */
 };
 
 /* Standard DFU file suffix (DFU 1.1 appendix B; what dfu-suffix writes and
@@ -142,18 +164,18 @@ enum {
     TDC_DFU_SUFFIX_OFF_CRC = 12        /* u32: CRC-32 register over the file before it, not inverted */
 };
 typedef enum {
-    TDC_DFU_SUFFIX_NONE = 0,   /* no suffix: the whole file is the image */
-    TDC_DFU_SUFFIX_OK = 1,     /* a valid suffix for vid:pid; the image is the bytes before it */
+    TDC_DFU_SUFFIX_NONE = 0,     /* no suffix: the whole file is the image */
+    TDC_DFU_SUFFIX_OK = 1,       /* a valid suffix for vid:pid; the image is the bytes before it */
     TDC_DFU_SUFFIX_ERR_CRC = -1, /* a suffix whose CRC does not match the file */
     TDC_DFU_SUFFIX_ERR_ID = -2   /* a suffix for another USB device */
 } tdc_dfu_suffix_status_t;
 /* Looks for a suffix at the end of file (len bytes); *image_len gets the
  * bytes before it (len when there is none). */
-tdc_dfu_suffix_status_t tdc_dfu_suffix_check(const uint8_t *file, uint32_t len, uint16_t vid,
-                                             uint16_t pid, uint32_t *image_len);
+tdc_dfu_suffix_status_t tdc_dfu_suffix_check(const uint8_t *file, uint32_t len, uint16_t vid, uint16_t pid,
+                                             uint32_t *image_len);
 /* Writes the 16-byte suffix for file[0..len) (bcdDevice any). */
-void tdc_dfu_suffix_make(uint8_t out[TDC_DFU_SUFFIX_LEN], const uint8_t *file, uint32_t len,
-                         uint16_t vid, uint16_t pid);
+void tdc_dfu_suffix_make(uint8_t out[TDC_DFU_SUFFIX_LEN], const uint8_t *file, uint32_t len, uint16_t vid,
+                         uint16_t pid);
 
 
 /* Results: tdc_status_t (tdc_status.h).  tdc_image_check() returns TDC_OK
@@ -165,10 +187,10 @@ void tdc_dfu_suffix_make(uint8_t out[TDC_DFU_SUFFIX_LEN], const uint8_t *file, u
 /* What the board's link decoder found in one received transfer: counts
  * added to the board counters (a transfer may close several packets). */
 typedef struct {
-    uint32_t crc_errors;  /* packets (or headers) failing their CRC */
-    uint32_t malformed;   /* other rejected packets or discarded garbage */
-    uint32_t overruns;    /* bytes dropped because the receive buffer was full */
-    uint32_t frames;      /* frames completed (shown) */
+    uint32_t crc_errors; /* packets (or headers) failing their CRC */
+    uint32_t malformed;  /* other rejected packets or discarded garbage */
+    uint32_t overruns;   /* bytes dropped because the receive buffer was full */
+    uint32_t frames;     /* frames completed (shown) */
 } tdc_usbp_sink_report_t;
 
 /* The DFU target: an A/B flash region behind two calls so the same state
@@ -185,27 +207,26 @@ typedef struct {
 } tdc_usbp_flash_t;
 
 /* Called with each bulk OUT transfer; *delta arrives zeroed. */
-typedef void (*tdc_usbp_sink_fn)(void *ctx, const uint8_t *data, uint32_t len,
-                                 tdc_usbp_sink_report_t *delta);
+typedef void (*tdc_usbp_sink_fn)(void *ctx, const uint8_t *data, uint32_t len, tdc_usbp_sink_report_t *delta);
 
 typedef struct {
-    const char *board_name;  /* <= 16 chars (TDC_IMAGE_BOARD_LEN), also the image's target */
+    const char *board_name; /* <= 16 chars (TDC_IMAGE_BOARD_LEN), also the image's target */
     const char *panel_name;
-    const char *serial;      /* iSerialNumber, ASCII, <= 31 chars */
-    uint32_t fw_version;     /* major<<16 | minor<<8 | patch */
+    const char *serial;  /* iSerialNumber, ASCII, <= 31 chars */
+    uint32_t fw_version; /* major<<16 | minor<<8 | patch */
     uint16_t panel_width, panel_height;
     uint32_t refresh_mhz;
     uint32_t rx_buffer_bytes;
     uint32_t max_packet_bytes;
     tdc_usbp_flash_t flash;
-    tdc_usbp_sink_fn sink;   /* may be NULL: bytes are only counted */
+    tdc_usbp_sink_fn sink; /* may be NULL: bytes are only counted */
     void *sink_ctx;
 } tdc_usbp_config_t;
 
 typedef struct {
     uint32_t rx_transfers;
     uint64_t rx_bytes;
-    uint32_t rx_crc;         /* running CRC-32 register (pre-inverted) */
+    uint32_t rx_crc; /* running CRC-32 register (pre-inverted) */
     uint32_t link_crc_errors, link_malformed, rx_overruns;
     uint32_t dfu_errors, stalls;
     uint32_t frames_shown;
@@ -219,14 +240,14 @@ typedef struct {
     tdc_dfu_state_t dfu_state;
     tdc_dfu_status_t dfu_status;
     uint16_t dfu_next_block;
-    uint32_t dfu_received;     /* bytes written to the inactive slot in this download */
-    uint32_t dfu_slot_image[2];/* bytes of the checked image each slot holds (0: none / destroyed) */
-    uint8_t dfu_active_slot;   /* the slot the board runs */
-    uint8_t dfu_pending;       /* the inactive slot holds a manifested image: boot it at the next reset */
-    uint8_t dfu_upload_slot;   /* slot an upload in progress reads */
-    uint8_t detach_pending;    /* DFU_DETACH acknowledged: reset (activate) within wDetachTimeOut */
+    uint32_t dfu_received;      /* bytes written to the inactive slot in this download */
+    uint32_t dfu_slot_image[2]; /* bytes of the checked image each slot holds (0: none / destroyed) */
+    uint8_t dfu_active_slot;    /* the slot the board runs */
+    uint8_t dfu_pending;        /* the inactive slot holds a manifested image: boot it at the next reset */
+    uint8_t dfu_upload_slot;    /* slot an upload in progress reads */
+    uint8_t detach_pending;     /* DFU_DETACH acknowledged: reset (activate) within wDetachTimeOut */
     uint32_t dfu_upload_pos;
-    uint8_t reset_pending;     /* RESET_BOARD acknowledged: reset after the status stage */
+    uint8_t reset_pending; /* RESET_BOARD acknowledged: reset after the status stage */
 } tdc_usbp_t;
 
 typedef struct {
@@ -246,9 +267,8 @@ void tdc_usbp_parse_setup(const uint8_t raw[8], tdc_usbp_setup_t *out);
  * reply_cap; *reply_len gets the bytes to send (<= w_length).  Handles the
  * standard GET_DESCRIPTOR requests too (for stacks that forward them). */
 TDC_MUST_CHECK
-tdc_status_t tdc_usbp_control(tdc_usbp_t *s, const tdc_usbp_setup_t *setup,
-                                   const uint8_t *data_out, uint8_t *reply,
-                                   uint32_t reply_cap, uint32_t *reply_len);
+tdc_status_t tdc_usbp_control(tdc_usbp_t *s, const tdc_usbp_setup_t *setup, const uint8_t *data_out, uint8_t *reply,
+                              uint32_t reply_cap, uint32_t *reply_len);
 
 /* One bulk OUT transfer of link packets. */
 void tdc_usbp_bulk_out(tdc_usbp_t *s, const uint8_t *data, uint32_t len);
@@ -281,11 +301,10 @@ uint32_t tdc_usbp_string_descriptor(const tdc_usbp_t *s, uint8_t index, uint8_t 
  * image/len: header + payload as it would be downloaded.  board may be NULL
  * (no board check); slot_bytes 0 = no size limit. */
 TDC_MUST_CHECK
-tdc_status_t tdc_image_check(const uint8_t *image, uint32_t len, const char *board,
-                                   uint32_t slot_bytes);
+tdc_status_t tdc_image_check(const uint8_t *image, uint32_t len, const char *board, uint32_t slot_bytes);
 /* Write a header for payload (payload_len bytes) into hdr. */
-void tdc_image_make_header(uint8_t hdr[TDC_IMAGE_HEADER_LEN], const uint8_t *payload,
-                           uint32_t payload_len, uint32_t fw_version, const char *board);
+void tdc_image_make_header(uint8_t hdr[TDC_IMAGE_HEADER_LEN], const uint8_t *payload, uint32_t payload_len,
+                           uint32_t fw_version, const char *board);
 const char *tdc_dfu_status_name(tdc_dfu_status_t st);
 const char *tdc_dfu_state_name(tdc_dfu_state_t st);
 

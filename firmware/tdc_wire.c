@@ -10,9 +10,9 @@
 const char *tdc_link_err_name(tdc_link_err_t e)
 {
     static const char *const names[TDC_LINK_ERR_COUNT] = {
-        "ok",     "magic",  "garbage", "header-crc", "version", "kind",      "eye",
-        "format", "dimensions", "length", "crc",     "stream",  "order",     "duplicate",
-        "missing-reduced", "unexpected", "stream-header"};
+        "ok",    "magic",     "garbage",         "header-crc", "version",      "kind",
+        "eye",   "format",    "dimensions",      "length",     "crc",          "stream",
+        "order", "duplicate", "missing-reduced", "unexpected", "stream-header"};
     return (unsigned)e < (unsigned)TDC_LINK_ERR_COUNT ? names[e] : "?";
 }
 
@@ -116,19 +116,15 @@ uint32_t tdc_link_payload_bytes(tdc_link_kind_t kind, tdc_pixfmt_t fmt, uint32_t
     if (!k) {
         return 0;
     }
-    const int tiles = k->grid == TDC_LINK_GRID_TILES ||
-                      (k->grid == TDC_LINK_GRID_MV && (pkt_flags & TDC_LINK_PKT_MV_PER_SAMPLE));
+    const int tiles =
+        k->grid == TDC_LINK_GRID_TILES || (k->grid == TDC_LINK_GRID_MV && (pkt_flags & TDC_LINK_PKT_MV_PER_SAMPLE));
     const uint32_t gw = tiles ? TDC_TILES(width) : width;
     const uint32_t gh = tiles ? TDC_TILES(height) : height;
     switch (k->rule) {
-    case TDC_LINK_PAYLOAD_FIXED:
-        return k->unit;
-    case TDC_LINK_PAYLOAD_PIXELS:
-        return tdc_pixfmt_payload_bytes(fmt, gw, gh);
-    case TDC_LINK_PAYLOAD_PER_ELEM:
-        return gw * gh * k->unit;
-    default: /* BITS */
-        return (gw * gh + 7u) / 8u;
+    case TDC_LINK_PAYLOAD_FIXED: return k->unit;
+    case TDC_LINK_PAYLOAD_PIXELS: return tdc_pixfmt_payload_bytes(fmt, gw, gh);
+    case TDC_LINK_PAYLOAD_PER_ELEM: return gw * gh * k->unit;
+    default: /* BITS */ return (gw * gh + 7u) / 8u;
     }
 }
 

@@ -112,11 +112,11 @@ typedef struct {
     uint8_t version; /* TDC_LINK_VERSION */
     uint8_t kind;    /* tdc_link_kind_t */
     uint8_t eye;
-    uint8_t format;  /* tdc_pixfmt_t */
+    uint8_t format; /* tdc_pixfmt_t */
     uint16_t stream_id;
-    uint16_t flags;  /* TDC_LINK_PKT_* */
+    uint16_t flags; /* TDC_LINK_PKT_* */
     uint32_t frame_index;
-    uint16_t width;  /* dimensions of the packet (REDUCED: the reduced size) */
+    uint16_t width; /* dimensions of the packet (REDUCED: the reduced size) */
     uint16_t height;
     uint32_t payload_len;
     uint32_t payload_crc;
@@ -129,22 +129,22 @@ typedef struct {
  * ---------------------------------------------------------------------- */
 typedef enum {
     TDC_LINK_OK = 0,
-    TDC_LINK_ERR_MAGIC = 1,       /* sync lost: a packet boundary does not start with the magic */
-    TDC_LINK_ERR_GARBAGE = 2,     /* bytes between packets discarded while resynchronising */
-    TDC_LINK_ERR_HEADER_CRC = 3,  /* header CRC mismatch (corrupt header or false magic) */
-    TDC_LINK_ERR_VERSION = 4,     /* unsupported protocol version */
-    TDC_LINK_ERR_KIND = 5,        /* unknown packet kind */
-    TDC_LINK_ERR_EYE = 6,         /* eye index >= the panel's eyes */
-    TDC_LINK_ERR_FORMAT = 7,      /* unknown/unsupported pixel format or packet flags */
-    TDC_LINK_ERR_DIMENSIONS = 8,  /* dimensions do not match the panel (or reduced size) */
-    TDC_LINK_ERR_LENGTH = 9,      /* payload length inconsistent with kind/format/size */
-    TDC_LINK_ERR_CRC = 10,        /* payload CRC mismatch */
-    TDC_LINK_ERR_STREAM = 11,     /* no stream header yet, or a different stream id */
-    TDC_LINK_ERR_ORDER = 12,      /* frame index lower than the current frame */
-    TDC_LINK_ERR_DUPLICATE = 13,  /* same frame index, kind and eye accepted already */
+    TDC_LINK_ERR_MAGIC = 1,            /* sync lost: a packet boundary does not start with the magic */
+    TDC_LINK_ERR_GARBAGE = 2,          /* bytes between packets discarded while resynchronising */
+    TDC_LINK_ERR_HEADER_CRC = 3,       /* header CRC mismatch (corrupt header or false magic) */
+    TDC_LINK_ERR_VERSION = 4,          /* unsupported protocol version */
+    TDC_LINK_ERR_KIND = 5,             /* unknown packet kind */
+    TDC_LINK_ERR_EYE = 6,              /* eye index >= the panel's eyes */
+    TDC_LINK_ERR_FORMAT = 7,           /* unknown/unsupported pixel format or packet flags */
+    TDC_LINK_ERR_DIMENSIONS = 8,       /* dimensions do not match the panel (or reduced size) */
+    TDC_LINK_ERR_LENGTH = 9,           /* payload length inconsistent with kind/format/size */
+    TDC_LINK_ERR_CRC = 10,             /* payload CRC mismatch */
+    TDC_LINK_ERR_STREAM = 11,          /* no stream header yet, or a different stream id */
+    TDC_LINK_ERR_ORDER = 12,           /* frame index lower than the current frame */
+    TDC_LINK_ERR_DUPLICATE = 13,       /* same frame index, kind and eye accepted already */
     TDC_LINK_ERR_MISSING_REDUCED = 14, /* a frame whose reduced eye never arrived was passed */
-    TDC_LINK_ERR_UNEXPECTED = 15, /* kind not enabled by the stream header / not due now */
-    TDC_LINK_ERR_STREAM_HEADER = 16, /* stream header contents invalid (flags, r, size) */
+    TDC_LINK_ERR_UNEXPECTED = 15,      /* kind not enabled by the stream header / not due now */
+    TDC_LINK_ERR_STREAM_HEADER = 16,   /* stream header contents invalid (flags, r, size) */
     TDC_LINK_ERR_COUNT = 17
 } tdc_link_err_t;
 
@@ -166,14 +166,14 @@ tdc_link_err_t tdc_link_header_unpack(const uint8_t in[TDC_LINK_HEADER_BYTES], t
  * ---------------------------------------------------------------------- */
 #define TDC_LINK_STREAM_HEADER_BYTES 16u
 
-#define TDC_LINK_STREAM_OFF_FLAGS 0u    /* uint32 TDC_LINK_STREAM_* */
-#define TDC_LINK_STREAM_OFF_R_NUM 4u    /* uint16 */
-#define TDC_LINK_STREAM_OFF_R_DEN 6u    /* uint16 */
-#define TDC_LINK_STREAM_OFF_WIDTH 8u    /* uint16 */
-#define TDC_LINK_STREAM_OFF_HEIGHT 10u  /* uint16 */
-#define TDC_LINK_STREAM_OFF_EYES 12u    /* uint8 */
+#define TDC_LINK_STREAM_OFF_FLAGS 0u     /* uint32 TDC_LINK_STREAM_* */
+#define TDC_LINK_STREAM_OFF_R_NUM 4u     /* uint16 */
+#define TDC_LINK_STREAM_OFF_R_DEN 6u     /* uint16 */
+#define TDC_LINK_STREAM_OFF_WIDTH 8u     /* uint16 */
+#define TDC_LINK_STREAM_OFF_HEIGHT 10u   /* uint16 */
+#define TDC_LINK_STREAM_OFF_EYES 12u     /* uint8 */
 #define TDC_LINK_STREAM_OFF_RESERVED 13u /* uint8, 0 */
-#define TDC_LINK_STREAM_OFF_REFRESH 14u /* uint16 Hz */
+#define TDC_LINK_STREAM_OFF_REFRESH 14u  /* uint16 Hz */
 
 /* Stream header flags: which stages the stream uses, so the controller can
  * skip the others. */
@@ -189,10 +189,10 @@ tdc_link_err_t tdc_link_header_unpack(const uint8_t in[TDC_LINK_HEADER_BYTES], t
 #define TDC_LINK_MV_FRAC_BITS 4
 
 typedef struct {
-    uint32_t flags;      /* TDC_LINK_STREAM_* */
-    uint16_t r_num;      /* TRM ratio r = r_num / r_den; 1/4 <= r < 1 if REDUCED, */
-    uint16_t r_den;      /* else r = 1 (1/1) */
-    uint16_t width;      /* full-resolution size of one eye: must match the panel */
+    uint32_t flags; /* TDC_LINK_STREAM_* */
+    uint16_t r_num; /* TRM ratio r = r_num / r_den; 1/4 <= r < 1 if REDUCED, */
+    uint16_t r_den; /* else r = 1 (1/1) */
+    uint16_t width; /* full-resolution size of one eye: must match the panel */
     uint16_t height;
     uint8_t eyes;        /* 1 or 2: must match the panel */
     uint8_t reserved;    /* 0 */
@@ -212,10 +212,10 @@ void tdc_link_stream_unpack(const uint8_t in[TDC_LINK_STREAM_HEADER_BYTES], tdc_
 /* How a kind's payload length follows from the header (format, w x h,
  * flags): `rule` over the elements of `grid`. */
 typedef enum {
-    TDC_LINK_PAYLOAD_FIXED = 0,   /* always `unit` bytes */
-    TDC_LINK_PAYLOAD_PIXELS = 1,  /* an image of the grid in the packet's pixel format */
+    TDC_LINK_PAYLOAD_FIXED = 0,    /* always `unit` bytes */
+    TDC_LINK_PAYLOAD_PIXELS = 1,   /* an image of the grid in the packet's pixel format */
     TDC_LINK_PAYLOAD_PER_ELEM = 2, /* `unit` bytes per grid element */
-    TDC_LINK_PAYLOAD_BITS = 3     /* 1 bit per grid element, rounded up to bytes */
+    TDC_LINK_PAYLOAD_BITS = 3      /* 1 bit per grid element, rounded up to bytes */
 } tdc_link_payload_rule_t;
 
 typedef enum {
@@ -226,11 +226,11 @@ typedef enum {
 } tdc_link_grid_t;
 
 typedef struct {
-    const char *name;   /* "stream", "full", ... (tools, logs) */
-    uint8_t rule;       /* tdc_link_payload_rule_t */
-    uint8_t grid;       /* tdc_link_grid_t */
-    uint8_t unit;       /* FIXED: payload bytes; PER_ELEM: bytes per element */
-    uint8_t pkt_flags;  /* TDC_LINK_PKT_* a packet of this kind may carry */
+    const char *name;  /* "stream", "full", ... (tools, logs) */
+    uint8_t rule;      /* tdc_link_payload_rule_t */
+    uint8_t grid;      /* tdc_link_grid_t */
+    uint8_t unit;      /* FIXED: payload bytes; PER_ELEM: bytes per element */
+    uint8_t pkt_flags; /* TDC_LINK_PKT_* a packet of this kind may carry */
 } tdc_link_kind_info_t;
 
 /* The row of a kind, NULL for an unknown kind. */
@@ -252,9 +252,9 @@ size_t tdc_link_packet_bytes(tdc_link_kind_t kind, tdc_pixfmt_t fmt, uint32_t wi
 
 /* Pipeline buffer sizes for a w x h eye, one per kind (PATTERN:
  * TDC_PATTERN_BYTES of tdc_geom.h). */
-#define TDC_LINK_FRAME_BYTES(w, h) ((size_t)(w) * (h) * 3u)                          /* RGB888 */
+#define TDC_LINK_FRAME_BYTES(w, h) ((size_t)(w) * (h)*3u) /* RGB888 */
 #define TDC_LINK_SUBFRAME_BYTES(w, h) (TDC_TILE_COUNT(w, h) * 3u)
-#define TDC_LINK_MOTION_COUNT(w, h) ((size_t)(w) * (h) * 2u)                         /* int16s */
+#define TDC_LINK_MOTION_COUNT(w, h) ((size_t)(w) * (h)*2u) /* int16s */
 #define TDC_LINK_SAMPLE_MOTION_COUNT(w, h) (TDC_TILE_COUNT(w, h) * 2u)
 
 #endif /* TDC_WIRE_H */

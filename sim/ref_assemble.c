@@ -13,8 +13,8 @@
 /* ------------------------------------------------------------------------
  * Ordering decision, straight from DESIGN §4.3 / paper eq. 2-5.
  * ---------------------------------------------------------------------- */
-tdc_ordering_t tdc_ref_ordering_decide(double mx, double my, tdc_ordering_t current, uint32_t tile_x,
-                                       uint32_t tile_y, uint32_t frame)
+tdc_ordering_t tdc_ref_ordering_decide(double mx, double my, tdc_ordering_t current, uint32_t tile_x, uint32_t tile_y,
+                                       uint32_t frame)
 {
     if (mx == 0.0 && my == 0.0) return current;
     const double gamma = M_PI / 40.0;
@@ -40,11 +40,11 @@ tdc_ordering_t tdc_ref_ordering_decide(double mx, double my, tdc_ordering_t curr
  * ---------------------------------------------------------------------- */
 struct tdc_ref_asm {
     int w, h, tx, ty;
-    uint8_t *out;       /* last output, 8-bit */
-    double *exact;      /* last output before rounding */
-    uint8_t *samples;   /* per pixel 4 slots RGB */
-    uint8_t *window;    /* slot mask */
-    uint8_t *isnew;     /* traced this frame */
+    uint8_t *out;     /* last output, 8-bit */
+    double *exact;    /* last output before rounding */
+    uint8_t *samples; /* per pixel 4 slots RGB */
+    uint8_t *window;  /* slot mask */
+    uint8_t *isnew;   /* traced this frame */
     int16_t *mv;
     uint8_t *pattern;
     int have_sub;
@@ -78,8 +78,14 @@ void tdc_ref_asm_free(tdc_ref_asm_t *r)
     free(r->pattern), free(r);
 }
 
-const uint8_t *tdc_ref_asm_output(const tdc_ref_asm_t *r) { return r->out; }
-const double *tdc_ref_asm_output_exact(const tdc_ref_asm_t *r) { return r->exact; }
+const uint8_t *tdc_ref_asm_output(const tdc_ref_asm_t *r)
+{
+    return r->out;
+}
+const double *tdc_ref_asm_output_exact(const tdc_ref_asm_t *r)
+{
+    return r->exact;
+}
 
 int tdc_ref_asm_ingest(tdc_ref_asm_t *r, uint32_t frame, const uint8_t *samples, const int16_t *mvs,
                        const uint8_t *pattern_bits)
@@ -220,8 +226,7 @@ int tdc_ref_asm_assemble(tdc_ref_asm_t *r, uint32_t frame)
 /* ------------------------------------------------------------------------
  * Synthetic stream.
  * ---------------------------------------------------------------------- */
-int tdc_scene_init(tdc_scene_t *s, tdc_scene_kind_t kind, int w, int h, int32_t vx_q4, int32_t vy_q4,
-                   uint32_t seed)
+int tdc_scene_init(tdc_scene_t *s, tdc_scene_kind_t kind, int w, int h, int32_t vx_q4, int32_t vy_q4, uint32_t seed)
 {
     memset(s, 0, sizeof(*s));
     s->kind = kind, s->w = w, s->h = h, s->vx_q4 = vx_q4, s->vy_q4 = vy_q4, s->seed = seed;
@@ -262,12 +267,8 @@ static double line_dist(double c, double l0)
 void tdc_scene_color(const tdc_scene_t *s, double x, double y, uint32_t t, double rgb[3])
 {
     switch (s->kind) {
-    case TDC_SCENE_STATIC:
-        scene_texture(x, y, s->seed, rgb);
-        break;
-    case TDC_SCENE_PAN:
-        scene_texture(x - s->vx_q4 / 16.0 * t, y - s->vy_q4 / 16.0 * t, s->seed, rgb);
-        break;
+    case TDC_SCENE_STATIC: scene_texture(x, y, s->seed, rgb); break;
+    case TDC_SCENE_PAN: scene_texture(x - s->vx_q4 / 16.0 * t, y - s->vy_q4 / 16.0 * t, s->seed, rgb); break;
     case TDC_SCENE_LINE:
     case TDC_SCENE_HLINE: {
         int hor = s->kind == TDC_SCENE_HLINE;
@@ -283,11 +284,8 @@ void tdc_scene_mv(const tdc_scene_t *s, int x, int y, uint32_t t, int16_t mv[2])
 {
     mv[0] = mv[1] = 0;
     switch (s->kind) {
-    case TDC_SCENE_STATIC:
-        break;
-    case TDC_SCENE_PAN:
-        mv[0] = (int16_t)-s->vx_q4, mv[1] = (int16_t)-s->vy_q4;
-        break;
+    case TDC_SCENE_STATIC: break;
+    case TDC_SCENE_PAN: mv[0] = (int16_t)-s->vx_q4, mv[1] = (int16_t)-s->vy_q4; break;
     case TDC_SCENE_LINE:
     case TDC_SCENE_HLINE: {
         /* Moving within 1.5 px of a line's centre: wide enough that a

@@ -21,8 +21,8 @@
 /* Ordering decision in double: l_f = |m| - floor|m|, a = atan2 folded,
  * band (0.25, 0.75) shifted by +-0.5 a/(pi/2), random band |a - pi/4| <
  * pi/40 decided by tdc_hash3 (tdc_math.h: the definition of the random choice). */
-tdc_ordering_t tdc_ref_ordering_decide(double mx, double my, tdc_ordering_t current, uint32_t tile_x,
-                                       uint32_t tile_y, uint32_t frame);
+tdc_ordering_t tdc_ref_ordering_decide(double mx, double my, tdc_ordering_t current, uint32_t tile_x, uint32_t tile_y,
+                                       uint32_t frame);
 
 typedef struct tdc_ref_asm tdc_ref_asm_t;
 
@@ -49,15 +49,14 @@ typedef enum {
 typedef struct {
     tdc_scene_kind_t kind;
     int w, h;
-    int32_t vx_q4, vy_q4;   /* scene velocity, Q4 px/frame (MV = -v) */
+    int32_t vx_q4, vy_q4; /* scene velocity, Q4 px/frame (MV = -v) */
     uint32_t seed;
-    int16_t *mvbuf;         /* renderer's full-res motion buffer (like the controller's) */
-    uint8_t *pattern;       /* renderer's orderings */
+    int16_t *mvbuf;   /* renderer's full-res motion buffer (like the controller's) */
+    uint8_t *pattern; /* renderer's orderings */
 } tdc_scene_t;
 
 /* Allocates buffers; all tiles start hourglass, motion zero. */
-int tdc_scene_init(tdc_scene_t *s, tdc_scene_kind_t kind, int w, int h, int32_t vx_q4, int32_t vy_q4,
-                   uint32_t seed);
+int tdc_scene_init(tdc_scene_t *s, tdc_scene_kind_t kind, int w, int h, int32_t vx_q4, int32_t vy_q4, uint32_t seed);
 void tdc_scene_free(tdc_scene_t *s);
 
 /* Colour of the scene at continuous position (x, y) (pixel centres at
@@ -82,10 +81,10 @@ void tdc_scene_subframe(tdc_scene_t *s, uint32_t frame, uint8_t *samples, int16_
  * Error statistics of 8-bit outputs against the reference.
  * ---------------------------------------------------------------------- */
 typedef struct {
-    uint64_t n;          /* samples compared */
-    uint64_t hist[4];    /* |diff| = 0, 1, 2, >= 3 LSB */
-    int max_abs;         /* largest |diff| */
-    double max_exact;    /* largest |fixed - unrounded reference| */
+    uint64_t n;       /* samples compared */
+    uint64_t hist[4]; /* |diff| = 0, 1, 2, >= 3 LSB */
+    int max_abs;      /* largest |diff| */
+    double max_exact; /* largest |fixed - unrounded reference| */
 } tdc_asm_err_t;
 
 /* Accumulates |fixed - ref8| and |fixed - exact| over n bytes. */

@@ -81,7 +81,7 @@ double ref_fov_sigma_u(const ref_fov_geom_t *g, double r, double u)
         return 2.0;
     }
     const double eta = fmax(3 + 0.8 * (r / g->R - 0.1) / 0.05, 0); /* eq. 4.4, display pixels */
-    const double dudr = u / (g->alpha * log(r) * r);                /* d/dr of eq. 2.2 */
+    const double dudr = u / (g->alpha * log(r) * r);               /* d/dr of eq. 2.2 */
     return eta / 4 * dudr;
 }
 
@@ -149,9 +149,8 @@ void ref_fov_free(ref_fov_t *st)
     st->hist = NULL;
 }
 
-void ref_fov_frame(ref_fov_t *st, const ref_fov_params_t *p, const uint8_t *lp, size_t lp_stride,
-                   const int16_t *mv, size_t mv_stride, const uint8_t *disk, size_t disk_stride, uint32_t dt_us,
-                   double *out)
+void ref_fov_frame(ref_fov_t *st, const ref_fov_params_t *p, const uint8_t *lp, size_t lp_stride, const int16_t *mv,
+                   size_t mv_stride, const uint8_t *disk, size_t disk_stride, uint32_t dt_us, double *out)
 {
     const int W = st->width, H = st->height;
     ref_fov_geom_t g;
@@ -177,8 +176,8 @@ void ref_fov_frame(ref_fov_t *st, const ref_fov_params_t *p, const uint8_t *lp, 
         for (int i = 0; i < W; i++) {
             const size_t k = (size_t)j * W + i;
             int iu = 0, jv = 0;
-            bb[k] = compose(&g, lp, lp_stride, disk + (size_t)j * disk_stride + (size_t)i * 3, i, j, s + 3 * k, &iu,
-                            &jv);
+            bb[k] =
+                compose(&g, lp, lp_stride, disk + (size_t)j * disk_stride + (size_t)i * 3, i, j, s + 3 * k, &iu, &jv);
             d[k] = 255;
             if (!st->taa || reject_all || bb[k] <= 0) {
                 continue;
@@ -200,8 +199,10 @@ void ref_fov_frame(ref_fov_t *st, const ref_fov_params_t *p, const uint8_t *lp, 
             double dsum = 0;
             for (int ch = 0; ch < 3; ch++) {
                 const double *hp = st->hist;
-                const double top = hp[((size_t)y0 * W + x0) * 3 + ch] * (1 - fx) + hp[((size_t)y0 * W + x1) * 3 + ch] * fx;
-                const double bot = hp[((size_t)y1 * W + x0) * 3 + ch] * (1 - fx) + hp[((size_t)y1 * W + x1) * 3 + ch] * fx;
+                const double top =
+                    hp[((size_t)y0 * W + x0) * 3 + ch] * (1 - fx) + hp[((size_t)y0 * W + x1) * 3 + ch] * fx;
+                const double bot =
+                    hp[((size_t)y1 * W + x0) * 3 + ch] * (1 - fx) + hp[((size_t)y1 * W + x1) * 3 + ch] * fx;
                 h[3 * k + ch] = top * (1 - fy) + bot * fy;
                 dsum += fabs(s[3 * k + ch] - h[3 * k + ch]);
             }
@@ -226,7 +227,7 @@ void ref_fov_frame(ref_fov_t *st, const ref_fov_params_t *p, const uint8_t *lp, 
                         }
                     }
                 }
-                const double amin = fmin(fmax(sum / cnt / 255, 0.1), 1); /* eq. 4.9 */
+                const double amin = fmin(fmax(sum / cnt / 255, 0.1), 1);             /* eq. 4.9 */
                 const double a = amin + fmax(fmin((1 - amin) * hh[k], 1 - amin), 0); /* eq. 4.10 */
                 const double aeff = 1 - bb[k] * (1 - a); /* phased out inside the disk border */
                 for (int ch = 0; ch < 3; ch++) {

@@ -13,19 +13,19 @@
 #include <stdint.h>
 
 typedef struct {
-    double cx, cy;    /* gaze, display pixels (screen [0, W] x [0, H]) */
-    double alpha;     /* K(x) = x^alpha */
-    double disk;      /* r_d / R */
-    int lp_w, lp_h;   /* log-polar buffer */
+    double cx, cy;  /* gaze, display pixels (screen [0, W] x [0, H]) */
+    double alpha;   /* K(x) = x^alpha */
+    double disk;    /* r_d / R */
+    int lp_w, lp_h; /* log-polar buffer */
 } ref_fov_params_t;
 
 typedef struct {
     int width, height, lp_w, lp_h;
     double cx, cy, alpha;
-    double R, L;      /* farthest corner distance, L = ln R */
-    double r_disk;    /* r_d */
-    int l;            /* eq. 4.5 */
-    int u0;           /* first column carried (same rule as the firmware) */
+    double R, L;   /* farthest corner distance, L = ln R */
+    double r_disk; /* r_d */
+    int l;         /* eq. 4.5 */
+    int u0;        /* first column carried (same rule as the firmware) */
 } ref_fov_geom_t;
 
 void ref_fov_geom(ref_fov_geom_t *g, int width, int height, const ref_fov_params_t *p);
@@ -40,7 +40,7 @@ double ref_fov_sigma_u(const ref_fov_geom_t *g, double r, double u);
 
 typedef struct {
     int width, height, taa;
-    double *hist;      /* W x H x 3 */
+    double *hist; /* W x H x 3 */
     int have_hist;
     uint32_t dt_prev_us;
     double gaze_prev_x, gaze_prev_y;
@@ -50,9 +50,8 @@ int ref_fov_init(ref_fov_t *st, int width, int height, int taa);
 void ref_fov_free(ref_fov_t *st);
 /* Same inputs as tdc_fov_frame (mv: backward Q4 int16 pairs per log-polar
  * sample or NULL); out: W x H x 3 doubles (codes). */
-void ref_fov_frame(ref_fov_t *st, const ref_fov_params_t *p, const uint8_t *lp, size_t lp_stride,
-                   const int16_t *mv, size_t mv_stride, const uint8_t *disk, size_t disk_stride, uint32_t dt_us,
-                   double *out);
+void ref_fov_frame(ref_fov_t *st, const ref_fov_params_t *p, const uint8_t *lp, size_t lp_stride, const int16_t *mv,
+                   size_t mv_stride, const uint8_t *disk, size_t disk_stride, uint32_t dt_us, double *out);
 
 /* eq. 5.1 ray model: samples traced for a frame (log-polar columns [u0, w)
  * plus the disk pixels on the screen) over W*H. */

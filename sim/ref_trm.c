@@ -100,7 +100,7 @@ static double upsample_at(const tdc_ref_trm_t *r, const double *src, int x, int 
     int i0 = (int)floor(u), j0 = (int)floor(v);
     int i1 = i0 + 1 < r->rw ? i0 + 1 : i0, j1 = j0 + 1 < r->rh ? j0 + 1 : j0;
     double fu = u - i0, fv = v - j0;
-#define S(i, j) src[((size_t)(j) * r->rw + (i)) * 3 + c]
+#define S(i, j) src[((size_t)(j)*r->rw + (i)) * 3 + c]
     double a = S(i0, j0) + (S(i1, j0) - S(i0, j0)) * fu;
     double b = S(i0, j1) + (S(i1, j1) - S(i0, j1)) * fu;
 #undef S

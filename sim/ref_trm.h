@@ -21,10 +21,10 @@ typedef struct {
     int w, h, rw, rh;
     double sigma, s;
     double gamma[3];
-    double *rho;    /* w*h*3 */
-    double *dprev;  /* rw*rh*3, gamma domain in [0, 1] */
-    double *tmp;    /* h*rw*3 */
-    double *red;    /* rw*rh*3 */
+    double *rho;   /* w*h*3 */
+    double *dprev; /* rw*rh*3, gamma domain in [0, 1] */
+    double *tmp;   /* h*rw*3 */
+    double *red;   /* rw*rh*3 */
     int have_full;
 } tdc_ref_trm_t;
 

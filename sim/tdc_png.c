@@ -82,8 +82,9 @@ int tdc_png_read(const char *path, tdc_image_t *img, char *err, size_t errlen)
             fseek(f, here, SEEK_SET);
         }
         if (fsize && raw > fsize * 1032u + 4096u) {
-            snprintf(err, errlen, "%s: header claims %dx%d at %d bits (%llu bytes of rows) but the file has only %llu bytes",
-                     path, w, h, depth, (unsigned long long)raw, (unsigned long long)fsize);
+            snprintf(err, errlen,
+                     "%s: header claims %dx%d at %d bits (%llu bytes of rows) but the file has only %llu bytes", path,
+                     w, h, depth, (unsigned long long)raw, (unsigned long long)fsize);
             png_destroy_read_struct(&png, &info, NULL);
             fclose(f);
             return -1;
@@ -140,8 +141,8 @@ int tdc_png_read(const char *path, tdc_image_t *img, char *err, size_t errlen)
     return 0;
 }
 
-int tdc_png_write(const char *path, const void *data, int width, int height, int bits, size_t stride_samples,
-                  char *err, size_t errlen)
+int tdc_png_write(const char *path, const void *data, int width, int height, int bits, size_t stride_samples, char *err,
+                  size_t errlen)
 {
     FILE *f = fopen(path, "wb");
     if (!f) {
@@ -157,8 +158,8 @@ int tdc_png_write(const char *path, const void *data, int width, int height, int
         return -1;
     }
     png_init_io(png, f);
-    png_set_IHDR(png, info, (png_uint_32)width, (png_uint_32)height, bits, PNG_COLOR_TYPE_RGB,
-                 PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    png_set_IHDR(png, info, (png_uint_32)width, (png_uint_32)height, bits, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     png_set_compression_level(png, 3);
     png_write_info(png, info);
     if (bits == 16) {

@@ -10,8 +10,8 @@
 
 typedef struct {
     int width, height;
-    int bits;        /* 8 or 16: bits per channel of `data` */
-    void *data;      /* width*height*3 samples, malloc'd: free with tdc_png_free */
+    int bits;   /* 8 or 16: bits per channel of `data` */
+    void *data; /* width*height*3 samples, malloc'd: free with tdc_png_free */
 } tdc_image_t;
 
 /*
@@ -23,8 +23,8 @@ int tdc_png_read(const char *path, tdc_image_t *img, char *err, size_t errlen);
 
 /* Writes RGB888 (bits = 8) or RGB16 (bits = 16) rows `stride` samples apart.
  * Returns 0, or -1 with a message in err. */
-int tdc_png_write(const char *path, const void *data, int width, int height, int bits, size_t stride_samples,
-                  char *err, size_t errlen);
+int tdc_png_write(const char *path, const void *data, int width, int height, int bits, size_t stride_samples, char *err,
+                  size_t errlen);
 
 /* Converts a 16-bit image to 8 bits in place (round(v * 255 / 65535)). */
 void tdc_png_to8(tdc_image_t *img);

@@ -4,7 +4,7 @@
 
 #define TDC_BOARD_NAME "stm32h747i-disco"
 #define TDC_BOARD_EMULATED 0
-#define TDC_BOARD_CPU_HZ 480000000u  /* after clock set-up: HSE 25 MHz, PLL1 M=5 N=192 P=2 */
+#define TDC_BOARD_CPU_HZ 480000000u /* after clock set-up: HSE 25 MHz, PLL1 M=5 N=192 P=2 */
 #define TDC_BOARD_HSE_HZ 25000000u
 
 /* Peripheral base addresses (RM0399 section 2.3.2). */

@@ -48,11 +48,11 @@ static void pins_fmc(void)
                 continue;
             }
             GPIO(port, 0x00) = (GPIO(port, 0x00) & ~(3u << (2u * pin))) | (2u << (2u * pin)); /* MODER: AF */
-            GPIO(port, 0x08) |= 3u << (2u * pin);                                          /* OSPEEDR: very high */
+            GPIO(port, 0x08) |= 3u << (2u * pin);                                             /* OSPEEDR: very high */
             GPIO(port, 0x0C) = (GPIO(port, 0x0C) & ~(3u << (2u * pin))) | (1u << (2u * pin)); /* PUPDR: up */
-            const uint32_t afr = pin < 8u ? 0x20u : 0x24u;                                  /* AFRL / AFRH */
+            const uint32_t afr = pin < 8u ? 0x20u : 0x24u;                                    /* AFRL / AFRH */
             const uint32_t sh = 4u * (pin & 7u);
-            GPIO(port, afr) = (GPIO(port, afr) & ~(0xFu << sh)) | (12u << sh);              /* AF12 = FMC */
+            GPIO(port, afr) = (GPIO(port, afr) & ~(0xFu << sh)) | (12u << sh); /* AF12 = FMC */
         }
     }
 }
@@ -79,8 +79,9 @@ void tdc_stm32_sdram_init(void)
     (void)RCC(0xD4);
     pins_fmc();
     /* SDCR1 holds SDCLK, RBURST, RPIPE for both banks; SDCR2 the geometry. */
-    const uint32_t common = (2u << 10) | (1u << 12);                   /* SDCLK = HCLK/2, read burst */
-    const uint32_t geometry = (1u << 0) | (1u << 2) | (2u << 4) | (1u << 6) | (3u << 7); /* 9 col, 12 row, 32 bit, 4 banks, CAS 3 */
+    const uint32_t common = (2u << 10) | (1u << 12); /* SDCLK = HCLK/2, read burst */
+    const uint32_t geometry =
+        (1u << 0) | (1u << 2) | (2u << 4) | (1u << 6) | (3u << 7); /* 9 col, 12 row, 32 bit, 4 banks, CAS 3 */
     FMC(0x140) = common | geometry;
     FMC(0x144) = common | geometry;
     /* SDTR: TMRD, TXSR, TRAS, TRC, TWR, TRP, TRCD (each minus one); TRC and
@@ -89,10 +90,10 @@ void tdc_stm32_sdram_init(void)
     FMC(0x148) = timing;
     FMC(0x14C) = timing;
     TDC_REG32(TDC_STM32_FMC + 0x00u) |= 1u << 31; /* FMC_BCR1: FMCEN */
-    sdram_command(1u, 1u, 0u);                     /* clock configuration enable */
-    delay_cycles(100000u);                         /* >= 100 us at 480 MHz */
-    sdram_command(2u, 1u, 0u);                     /* precharge all */
-    sdram_command(3u, 8u, 0u);                     /* 8 auto-refresh cycles */
-    sdram_command(4u, 1u, 0x230u);                 /* mode: burst 1, sequential, CAS 3, single write */
-    FMC(0x154) = 1855u << 1;                       /* FMC_SDRTR: refresh count */
+    sdram_command(1u, 1u, 0u);                    /* clock configuration enable */
+    delay_cycles(100000u);                        /* >= 100 us at 480 MHz */
+    sdram_command(2u, 1u, 0u);                    /* precharge all */
+    sdram_command(3u, 8u, 0u);                    /* 8 auto-refresh cycles */
+    sdram_command(4u, 1u, 0x230u);                /* mode: burst 1, sequential, CAS 3, single write */
+    FMC(0x154) = 1855u << 1;                      /* FMC_SDRTR: refresh count */
 }

@@ -40,8 +40,8 @@ typedef enum {
 
 typedef enum {
     TDC_BOARD_OK = 0,
-    TDC_BOARD_END = 1,            /* transport closed (emulated: end of the stream file) */
-    TDC_BOARD_ERR_IO = -1,        /* transport or panel failure */
+    TDC_BOARD_END = 1,                 /* transport closed (emulated: end of the stream file) */
+    TDC_BOARD_ERR_IO = -1,             /* transport or panel failure */
     TDC_BOARD_ERR_NOT_IMPLEMENTED = -2 /* a stub on this board (see its source) */
 } tdc_board_status_t;
 

@@ -120,7 +120,8 @@ static uint64_t g_mode_arena[FW_EYES][FW_MODE_BYTES / 8u] TDC_EXTRAM;
 #endif
 
 #if TDC_CFG_LCD
-static uint64_t g_lcd_arena[FW_EYES][TDC_LCD_MEM_BYTES_MODE_BITS(FW_W, FW_H, TDC_CFG_LCD_MODE, TDC_CFG_LCD_PREV_BITS) / 8u] TDC_EXTRAM;
+static uint64_t g_lcd_arena[FW_EYES][TDC_LCD_MEM_BYTES_MODE_BITS(FW_W, FW_H, TDC_CFG_LCD_MODE, TDC_CFG_LCD_PREV_BITS) /
+                                     8u] TDC_EXTRAM;
 #endif
 
 /* Transport chunk: what one USB bulk transfer (or semihosting read) brings. */
@@ -133,15 +134,15 @@ typedef enum { MODE_NONE = 0, MODE_PLAIN, MODE_TRM, MODE_ASSEMBLE } fw_mode_t;
 
 static struct {
     tdc_link_decoder_t dec;
-    uint8_t mode;             /* fw_mode_t of the active stream */
-    uint8_t have_frame;       /* a frame is being collected */
-    uint8_t eyes_done;        /* bit e: eye e processed (or tried) for `frame` */
-    uint8_t eyes_updated;     /* bit e: eye e's image changed for `frame` */
-    uint8_t kinds[2];         /* KIND_BIT()s received per eye for `frame` */
+    uint8_t mode;         /* fw_mode_t of the active stream */
+    uint8_t have_frame;   /* a frame is being collected */
+    uint8_t eyes_done;    /* bit e: eye e processed (or tried) for `frame` */
+    uint8_t eyes_updated; /* bit e: eye e's image changed for `frame` */
+    uint8_t kinds[2];     /* KIND_BIT()s received per eye for `frame` */
     uint32_t frame;
-    uint8_t have_last;        /* a frame of this stream was finished ... */
-    uint32_t last_frame;      /* ... and this was its index */
-    uint32_t late_packets;    /* packets for a frame already finished (ignored) */
+    uint8_t have_last;     /* a frame of this stream was finished ... */
+    uint32_t last_frame;   /* ... and this was its index */
+    uint32_t late_packets; /* packets for a frame already finished (ignored) */
     uint32_t frames_shown;
     uint32_t eyes_incomplete; /* eyes that kept their last frame */
     uint32_t frames_dropped;  /* unfinished frames overwritten by a later FULL packet */
@@ -160,8 +161,8 @@ static struct {
 #endif
 #if TDC_CFG_ASSEMBLE
     tdc_asm_t as[FW_EYES];
-    uint32_t asm_skipped;     /* frames behind assembly's counter */
-    uint32_t asm_resyncs;     /* joined mid-stream / too far ahead: assembly restarted at the frame */
+    uint32_t asm_skipped; /* frames behind assembly's counter */
+    uint32_t asm_resyncs; /* joined mid-stream / too far ahead: assembly restarted at the frame */
 #endif
 #if TDC_CFG_LCD
     tdc_lcd_t lcd[FW_EYES];
@@ -288,17 +289,14 @@ static void configure_stream(void)
 static uint32_t kinds_needed(uint32_t eye, uint32_t frame)
 {
     switch (g.mode) {
-    case MODE_TRM:
-        return KIND_BIT(tdc_link_trm_kind(frame, eye));
+    case MODE_TRM: return KIND_BIT(tdc_link_trm_kind(frame, eye));
     case MODE_ASSEMBLE: {
         const tdc_link_stream_info_t *si = tdc_link_stream(&g.dec);
         return KIND_BIT(TDC_LINK_KIND_SUBFRAME) |
                ((si && (si->flags & TDC_LINK_STREAM_SAMPLE_MV)) ? KIND_BIT(TDC_LINK_KIND_MOTION) : 0u);
     }
-    case MODE_PLAIN:
-        return KIND_BIT(TDC_LINK_KIND_FULL);
-    default:
-        return 0u;
+    case MODE_PLAIN: return KIND_BIT(TDC_LINK_KIND_FULL);
+    default: return 0u;
     }
 }
 
@@ -389,8 +387,7 @@ static int process_eye_kinds(uint32_t e, uint32_t frame, uint32_t kinds)
         }
         break;
 #endif
-    default:
-        return 0;
+    default: return 0;
     }
     if (st != TDC_OK) {
         g.stage_errors++;
@@ -680,7 +677,8 @@ int tdc_fw_run(void)
         for (uint32_t e = 0; e < FW_EYES; e++) {
             dropped += g.lcd[e].stats.residual_dropped;
         }
-        log_kv("LCD unreached light dropped (pixel-channels): ", (uint32_t)(dropped > 0xffffffffu ? 0xffffffffu : dropped));
+        log_kv("LCD unreached light dropped (pixel-channels): ",
+               (uint32_t)(dropped > 0xffffffffu ? 0xffffffffu : dropped));
     }
 #endif
     log_kv("time us: ", tdc_board_time_us() - t0);

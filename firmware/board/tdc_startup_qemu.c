@@ -25,8 +25,8 @@ typedef struct {
 __attribute__((section(".vectors"), used)) const tdc_vectors_t tdc_vectors = {
     __stack_top,
     {Reset_Handler, tdc_crt0_default_handler, tdc_crt0_default_handler, tdc_crt0_default_handler,
-     tdc_crt0_default_handler, tdc_crt0_default_handler, 0, 0, 0, 0, tdc_crt0_default_handler,
-     tdc_crt0_default_handler, 0, tdc_crt0_default_handler, tdc_crt0_default_handler},
+     tdc_crt0_default_handler, tdc_crt0_default_handler, 0, 0, 0, 0, tdc_crt0_default_handler, tdc_crt0_default_handler,
+     0, tdc_crt0_default_handler, tdc_crt0_default_handler},
     {tdc_crt0_default_handler},
 };
 
@@ -44,9 +44,9 @@ void Reset_Handler(void)
 
 _Noreturn void tdc_board_fault(uint32_t exception)
 {
-    static const char *const names[16] = {"thread", "reset", "NMI", "HardFault", "MemManage", "BusFault",
-                                          "UsageFault", "?", "?", "?", "?", "SVCall", "DebugMonitor", "?",
-                                          "PendSV", "SysTick"};
+    static const char *const names[16] = {"thread",       "reset", "NMI",    "HardFault", "MemManage", "BusFault",
+                                          "UsageFault",   "?",     "?",      "?",         "?",         "SVCall",
+                                          "DebugMonitor", "?",     "PendSV", "SysTick"};
     tdc_semihost_puts(2, "[" TDC_BOARD_NAME "] fault: ");
     tdc_semihost_puts(2, exception < 16u ? names[exception] : "external interrupt");
     tdc_semihost_puts(2, "\n");

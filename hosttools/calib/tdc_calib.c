@@ -252,8 +252,10 @@ int main(int argc, char **argv)
         return lrc == -2 ? TDC_EXIT_FILE : TDC_EXIT_INPUT;
     }
     if (meas.kind != TDC_MEAS_PAIRS) {
-        fprintf(stderr, "tdc-calib: %s: a transition file; the first file is the pair measurement (Fig. 7), "
-                        "transitions go to --transitions\n", in);
+        fprintf(stderr,
+                "tdc-calib: %s: a transition file; the first file is the pair measurement (Fig. 7), "
+                "transitions go to --transitions\n",
+                in);
         tdc_meas_free(&meas);
         return TDC_EXIT_INPUT;
     }
@@ -261,8 +263,8 @@ int main(int argc, char **argv)
     g_nrows = (int)meas.nrows;
     const int max_code = meas.max_code;
     if (max_code != 255 && max_code != 1023) {
-        fprintf(stderr, "tdc-calib: %s: the largest code measured is %d; need the full-drive rows (255 or 1023)\n",
-                in, max_code);
+        fprintf(stderr, "tdc-calib: %s: the largest code measured is %d; need the full-drive rows (255 or 1023)\n", in,
+                max_code);
         return TDC_EXIT_INPUT;
     }
     g_max = max_code;
@@ -271,8 +273,10 @@ int main(int argc, char **argv)
     for (int i = 0; i < g_nrows; i++) {
         if (rate_index(g_rows[i].rate) < 0) {
             if (g_nr == MAX_RATES) {
-                fprintf(stderr, "tdc-calib: %s:%d: field rate_hz: a %dth refresh rate (%d Hz); a panel profile "
-                                "holds at most %d\n", in, g_rows[i].line, g_nr + 1, g_rows[i].rate, MAX_RATES);
+                fprintf(stderr,
+                        "tdc-calib: %s:%d: field rate_hz: a %dth refresh rate (%d Hz); a panel profile "
+                        "holds at most %d\n",
+                        in, g_rows[i].line, g_nr + 1, g_rows[i].rate, MAX_RATES);
                 return TDC_EXIT_INPUT;
             }
             g_rates[g_nr++] = g_rows[i].rate;
@@ -371,8 +375,8 @@ int main(int argc, char **argv)
         }
         for (int k = 0; k < 4; k++) {
             if (!(fabs(p[r][k]) < 4.0)) {
-                fprintf(stderr, "tdc-calib: rate %d: fitted p%d = %g outside the profile range [-4, 4]\n",
-                        g_rates[r], k + 1, p[r][k]);
+                fprintf(stderr, "tdc-calib: rate %d: fitted p%d = %g outside the profile range [-4, 4]\n", g_rates[r],
+                        k + 1, p[r][k]);
                 return TDC_EXIT_INPUT;
             }
         }
@@ -398,15 +402,14 @@ int main(int argc, char **argv)
     }
     /* Report. */
     printf("tdc-calib: %d measurements, %d-bit, %d rate(s)\n", g_nrows, bits, g_nr);
-    printf("gamma R G B: %.4f %.4f %.4f (static rows; RMSE %.3e %.3e %.3e of white)\n", gamma[0], gamma[1],
-           gamma[2], sqrt(gamma_sse(0, gamma[0]) / (g_nrows / 3.0 / g_nr)),
-           sqrt(gamma_sse(1, gamma[1]) / (g_nrows / 3.0 / g_nr)),
+    printf("gamma R G B: %.4f %.4f %.4f (static rows; RMSE %.3e %.3e %.3e of white)\n", gamma[0], gamma[1], gamma[2],
+           sqrt(gamma_sse(0, gamma[0]) / (g_nrows / 3.0 / g_nr)), sqrt(gamma_sse(1, gamma[1]) / (g_nrows / 3.0 / g_nr)),
            sqrt(gamma_sse(2, gamma[2]) / (g_nrows / 3.0 / g_nr)));
     for (int r = 0; r < g_nr; r++) {
         printf("rate %d Hz: p = %.6f %.6f %.6f %.6f  fit RMSE %.3f %% of white (%.3f codes in M); "
                "plain gamma model %.3f %% (%d rows)\n",
-               g_rates[r], p[r][0], p[r][1], p[r][2], p[r][3], 100.0 * rmse_lum[r], rmse_m[r],
-               100.0 * rmse_plain[r], nfit[r]);
+               g_rates[r], p[r][0], p[r][1], p[r][2], p[r][3], 100.0 * rmse_lum[r], rmse_m[r], 100.0 * rmse_plain[r],
+               nfit[r]);
         if (!(rmse_lum[r] < rmse_plain[r])) {
             printf("rate %d Hz: the temporal model does not fit better than the plain gamma model: "
                    "drive this rate with the plain gamma inverse (tdc_lcd mode GAMMA)\n",
@@ -508,8 +511,8 @@ int main(int argc, char **argv)
     fprintf(f, "\nlcd_p       %.10f %.10f %.10f %.10f\n", q[nominal][0] / 16777216.0, q[nominal][1] / 16777216.0,
             q[nominal][2] / 16777216.0, q[nominal][3] / 16777216.0);
     for (int r = 0; r < g_nr; r++) {
-        fprintf(f, "lcd_p_hz    %d %.10f %.10f %.10f %.10f\n", g_rates[r], q[r][0] / 16777216.0,
-                q[r][1] / 16777216.0, q[r][2] / 16777216.0, q[r][3] / 16777216.0);
+        fprintf(f, "lcd_p_hz    %d %.10f %.10f %.10f %.10f\n", g_rates[r], q[r][0] / 16777216.0, q[r][1] / 16777216.0,
+                q[r][2] / 16777216.0, q[r][3] / 16777216.0);
     }
     fprintf(f, "lcd_table   %d\n", table);
     if (trans) {

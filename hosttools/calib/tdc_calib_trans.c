@@ -22,9 +22,9 @@
 typedef struct {
     int G;
     double max, gamma;
-    double g[257];      /* grid codes */
-    double *Lc, *Ll;    /* light: gamma-encoded code, linear (normalised) [i * G + j] */
-    double *Ec, *El;    /* state at the end, likewise */
+    double g[257];   /* grid codes */
+    double *Lc, *Ll; /* light: gamma-encoded code, linear (normalised) [i * G + j] */
+    double *Ec, *El; /* state at the end, likewise */
 } chan_t;
 
 static double T(const chan_t *c, double code)
@@ -136,8 +136,10 @@ int tdc_st_fit(const tdc_meas_t *m, const char *path, int n, const double *gamma
         return fail(err, errlen, "state tables have 17 or 33 nodes, not %d", n);
     }
     if (m->max_code != 255) {
-        return fail(err, errlen, "%s: the largest code measured is %d; the stateful tables need an 8-bit panel "
-                                 "measured up to 255", path, m->max_code);
+        return fail(err, errlen,
+                    "%s: the largest code measured is %d; the stateful tables need an 8-bit panel "
+                    "measured up to 255",
+                    path, m->max_code);
     }
     out->n = n;
     out->max_code = 255;
@@ -151,8 +153,10 @@ int tdc_st_fit(const tdc_meas_t *m, const char *path, int n, const double *gamma
         }
         if (!seen) {
             if (nr == TDC_ST_MAX_RATES) {
-                return fail(err, errlen, "%s:%d: field rate_hz: a %dth refresh rate (%d Hz); a panel profile holds at "
-                                         "most %d", path, m->rows[k].line, nr + 1, m->rows[k].rate, TDC_ST_MAX_RATES);
+                return fail(err, errlen,
+                            "%s:%d: field rate_hz: a %dth refresh rate (%d Hz); a panel profile holds at "
+                            "most %d",
+                            path, m->rows[k].line, nr + 1, m->rows[k].rate, TDC_ST_MAX_RATES);
             }
             rates[nr++] = m->rows[k].rate;
         }
@@ -186,15 +190,18 @@ int tdc_st_fit(const tdc_meas_t *m, const char *path, int n, const double *gamma
                 G += present[k];
             }
             if (G < MIN_GRID) {
-                fail(err, errlen, "%s: rate %d channel %c: %d distinct codes; a transition grid needs at least %d "
-                                  "(17 x 17 or finer recommended)", path, rates[r], chn, G, MIN_GRID);
+                fail(err, errlen,
+                     "%s: rate %d channel %c: %d distinct codes; a transition grid needs at least %d "
+                     "(17 x 17 or finer recommended)",
+                     path, rates[r], chn, G, MIN_GRID);
                 goto out;
             }
             for (int k = 0; k < G; k++) {
                 const int want = (int)lround(k * 255.0 / (G - 1));
                 if (!present[want]) {
-                    fail(err, errlen, "%s:%d: rate %d channel %c: codes are not the regular %d-code grid "
-                                      "(round(k * 255 / %d)); code %d is missing: wrong grid size?",
+                    fail(err, errlen,
+                         "%s:%d: rate %d channel %c: codes are not the regular %d-code grid "
+                         "(round(k * 255 / %d)); code %d is missing: wrong grid size?",
                          path, first_line, rates[r], chn, G, G - 1, want);
                     goto out;
                 }
@@ -238,9 +245,10 @@ int tdc_st_fit(const tdc_meas_t *m, const char *path, int n, const double *gamma
             for (int i = 0; i < G; i++) {
                 for (int j = 0; j < G; j++) {
                     if (!cnt[(size_t)i * G + j]) {
-                        fail(err, errlen, "%s: rate %d channel %c: transition prev_code %d -> code %d missing (the "
-                                          "%d x %d grid needs every pair)", path, rates[r], chn, (int)c.g[i],
-                             (int)c.g[j], G, G);
+                        fail(err, errlen,
+                             "%s: rate %d channel %c: transition prev_code %d -> code %d missing (the "
+                             "%d x %d grid needs every pair)",
+                             path, rates[r], chn, (int)c.g[i], (int)c.g[j], G, G);
                         free(line_of);
                         goto out;
                     }
@@ -249,8 +257,10 @@ int tdc_st_fit(const tdc_meas_t *m, const char *path, int n, const double *gamma
             const size_t wc = gg - 1;
             const double black = acc[0] / cnt[0], white = acc[4 * wc] / cnt[wc];
             if (!(white > black) || !(black >= -1e-3 * fabs(white))) {
-                fail(err, errlen, "%s:%d: rate %d channel %c: field light_cd_m2: white (255 -> 255) %g must exceed "
-                                  "black (0 -> 0) %g >= 0", path, line_of[wc], rates[r], chn, white, black);
+                fail(err, errlen,
+                     "%s:%d: rate %d channel %c: field light_cd_m2: white (255 -> 255) %g must exceed "
+                     "black (0 -> 0) %g >= 0",
+                     path, line_of[wc], rates[r], chn, white, black);
                 free(line_of);
                 goto out;
             }
@@ -290,12 +300,13 @@ int tdc_st_fit(const tdc_meas_t *m, const char *path, int n, const double *gamma
                     const size_t a = (size_t)i * G + j;
                     const int bad_l = c.Ll[a + 1] < c.Ll[a] - tol, bad_e = c.El[a + 1] < c.El[a] - tol;
                     if (bad_l || bad_e) {
-                        fail(err, errlen, "%s:%d: rate %d channel %c: field %s: falls from %.4f (code %d) to %.4f "
-                                          "(code %d) of white from prev_code %d: not monotonic in the drive beyond "
-                                          "the noise (%.2f %%)", path, line_of[a + 1], rates[r], chn,
-                             bad_l ? "light_cd_m2" : "end_cd_m2", bad_l ? c.Ll[a] : c.El[a],
-                             (int)c.g[j], bad_l ? c.Ll[a + 1] : c.El[a + 1], (int)c.g[j + 1], (int)c.g[i],
-                             100.0 * tol);
+                        fail(err, errlen,
+                             "%s:%d: rate %d channel %c: field %s: falls from %.4f (code %d) to %.4f "
+                             "(code %d) of white from prev_code %d: not monotonic in the drive beyond "
+                             "the noise (%.2f %%)",
+                             path, line_of[a + 1], rates[r], chn, bad_l ? "light_cd_m2" : "end_cd_m2",
+                             bad_l ? c.Ll[a] : c.El[a], (int)c.g[j], bad_l ? c.Ll[a + 1] : c.El[a + 1], (int)c.g[j + 1],
+                             (int)c.g[i], 100.0 * tol);
                         free(line_of);
                         goto out;
                     }
@@ -327,10 +338,11 @@ int tdc_st_fit(const tdc_meas_t *m, const char *path, int n, const double *gamma
                 /* A settled state must reach its own static light (else no
                  * drive ever holds that level). */
                 if (fit->lo[ch][i] > 16.0 * s + 8.0 || fit->hi[ch][i] + 8.0 < 16.0 * s) {
-                    fail(err, errlen, "%s: rate %d channel %c: from the settled state %.1f the reachable light is "
-                                      "%.1f..%.1f (codes): its own static light is out of reach; the measurement "
-                                      "is inconsistent", path, rates[r], chn, s, fit->lo[ch][i] / 16.0,
-                         fit->hi[ch][i] / 16.0);
+                    fail(err, errlen,
+                         "%s: rate %d channel %c: from the settled state %.1f the reachable light is "
+                         "%.1f..%.1f (codes): its own static light is out of reach; the measurement "
+                         "is inconsistent",
+                         path, rates[r], chn, s, fit->lo[ch][i] / 16.0, fit->hi[ch][i] / 16.0);
                     free(line_of);
                     goto out;
                 }
@@ -376,16 +388,19 @@ int tdc_st_fit(const tdc_meas_t *m, const char *path, int n, const double *gamma
             fit->drive_rms[k] = sqrt(fit->drive_rms[k] / cn);
         }
         if (noise_df > 0.0 && sqrt(noise_ss / noise_df) > MAX_NOISE) {
-            fail(err, errlen, "%s: rate %d: run-to-run noise %.2f %% of white exceeds %.0f %%: the measurement is "
-                              "too noisy to fit overdrive tables", path, rates[r], fit->noise_pct, 100.0 * MAX_NOISE);
+            fail(err, errlen,
+                 "%s: rate %d: run-to-run noise %.2f %% of white exceeds %.0f %%: the measurement is "
+                 "too noisy to fit overdrive tables",
+                 path, rates[r], fit->noise_pct, 100.0 * MAX_NOISE);
             goto out;
         }
         for (int k = 0; k < 5; k++) {
             if (fit->light_rms[k] > 100.0 * MAX_CLASS_RMS) {
-                fail(err, errlen, "%s: rate %d: the %d x %d tables miss the measured %s transitions by %.2f %% of "
-                                  "white RMS (limit %.1f %%): refusing a fit that is no better than plain gamma; "
-                                  "measure a finer grid or use 33 nodes", path, rates[r], n, n, k_cls[k],
-                     fit->light_rms[k], 100.0 * MAX_CLASS_RMS);
+                fail(err, errlen,
+                     "%s: rate %d: the %d x %d tables miss the measured %s transitions by %.2f %% of "
+                     "white RMS (limit %.1f %%): refusing a fit that is no better than plain gamma; "
+                     "measure a finer grid or use 33 nodes",
+                     path, rates[r], n, n, k_cls[k], fit->light_rms[k], 100.0 * MAX_CLASS_RMS);
                 goto out;
             }
         }
@@ -409,8 +424,10 @@ void tdc_st_print(const tdc_st_fits_t *fits, FILE *f)
         }
         fprintf(f, "; %.1f %% of (state, wanted) nodes out of reach in one refresh\n", 100.0 * t->unreachable_share);
         for (int k = 0; k < 5; k++) {
-            fprintf(f, "  %-10s %6ld transitions: light RMS %.3f %% of white, drive RMS %.2f codes, state RMS %.3f "
-                       "%%\n", k_cls[k], t->count[k], t->light_rms[k], t->drive_rms[k], t->state_rms[k]);
+            fprintf(f,
+                    "  %-10s %6ld transitions: light RMS %.3f %% of white, drive RMS %.2f codes, state RMS %.3f "
+                    "%%\n",
+                    k_cls[k], t->count[k], t->light_rms[k], t->drive_rms[k], t->state_rms[k]);
         }
     }
 }

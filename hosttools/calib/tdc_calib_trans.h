@@ -48,7 +48,7 @@ typedef struct {
 } tdc_st_fit_t;
 
 typedef struct {
-    int n;       /* table nodes per axis: 17 or 33 */
+    int n; /* table nodes per axis: 17 or 33 */
     int nrates;
     int max_code;
     tdc_st_fit_t rate[TDC_ST_MAX_RATES];

@@ -74,8 +74,8 @@ int tdc_meas_parse(const char *text, size_t len, const char *path, tdc_meas_t *m
             } else if (!strcmp(s, k_hdr_trans)) {
                 m->kind = TDC_MEAS_TRANSITIONS;
             } else {
-                return tdc_meas_errf(err, errlen, "%s:%d: expected the header %s (pairs) or %s (transitions)", path, line,
-                            k_hdr_pairs, k_hdr_trans);
+                return tdc_meas_errf(err, errlen, "%s:%d: expected the header %s (pairs) or %s (transitions)", path,
+                                     line, k_hdr_pairs, k_hdr_trans);
             }
             continue;
         }
@@ -96,13 +96,14 @@ int tdc_meas_parse(const char *text, size_t len, const char *path, tdc_meas_t *m
         }
         if (k != nf) {
             return tdc_meas_errf(err, errlen, "%s:%d: %d fields, expected %d (%s)", path, line, k, nf,
-                        m->kind == TDC_MEAS_PAIRS ? k_hdr_pairs : k_hdr_trans);
+                                 m->kind == TDC_MEAS_PAIRS ? k_hdr_pairs : k_hdr_trans);
         }
         tdc_meas_row_t r = {0};
         int v;
         r.line = line;
         if (tdc_parse_int(fld[0], 1, 1000, &v)) {
-            return tdc_meas_errf(err, errlen, "%s:%d: field %s: '%s' is not an integer in 1..1000", path, line, nm[0], fld[0]);
+            return tdc_meas_errf(err, errlen, "%s:%d: field %s: '%s' is not an integer in 1..1000", path, line, nm[0],
+                                 fld[0]);
         }
         r.rate = v;
         if (strlen(fld[1]) != 1 || !strchr("RGB", fld[1][0])) {
@@ -110,29 +111,31 @@ int tdc_meas_parse(const char *text, size_t len, const char *path, tdc_meas_t *m
         }
         r.ch = fld[1][0] == 'R' ? 0 : fld[1][0] == 'G' ? 1 : 2;
         if (tdc_parse_int(fld[2], 0, 1023, &v)) {
-            return tdc_meas_errf(err, errlen, "%s:%d: field %s: '%s' is not an integer in 0..1023", path, line, nm[2], fld[2]);
+            return tdc_meas_errf(err, errlen, "%s:%d: field %s: '%s' is not an integer in 0..1023", path, line, nm[2],
+                                 fld[2]);
         }
         r.a = v;
         if (tdc_parse_int(fld[3], 0, 1023, &v)) {
-            return tdc_meas_errf(err, errlen, "%s:%d: field %s: '%s' is not an integer in 0..1023", path, line, nm[3], fld[3]);
+            return tdc_meas_errf(err, errlen, "%s:%d: field %s: '%s' is not an integer in 0..1023", path, line, nm[3],
+                                 fld[3]);
         }
         r.b = v;
         int li = 4;
         if (m->kind == TDC_MEAS_TRANSITIONS) {
             if (tdc_parse_int(fld[4], 0, 999, &v)) {
-                return tdc_meas_errf(err, errlen, "%s:%d: field %s: '%s' is not an integer in 0..999", path, line, nm[4],
-                            fld[4]);
+                return tdc_meas_errf(err, errlen, "%s:%d: field %s: '%s' is not an integer in 0..999", path, line,
+                                     nm[4], fld[4]);
             }
             r.run = v;
             li = 5;
         }
         if (tdc_parse_double(fld[li], -1e6, 1e6, &r.lum)) {
-            return tdc_meas_errf(err, errlen, "%s:%d: field %s: '%s' is not a finite number (cd/m^2)", path, line, nm[li],
-                        fld[li]);
+            return tdc_meas_errf(err, errlen, "%s:%d: field %s: '%s' is not a finite number (cd/m^2)", path, line,
+                                 nm[li], fld[li]);
         }
         if (m->kind == TDC_MEAS_TRANSITIONS && tdc_parse_double(fld[6], -1e6, 1e6, &r.end)) {
-            return tdc_meas_errf(err, errlen, "%s:%d: field %s: '%s' is not a finite number (cd/m^2)", path, line, nm[6],
-                        fld[6]);
+            return tdc_meas_errf(err, errlen, "%s:%d: field %s: '%s' is not a finite number (cd/m^2)", path, line,
+                                 nm[6], fld[6]);
         }
         if (m->nrows == TDC_MEAS_MAX_ROWS) {
             return tdc_meas_errf(err, errlen, "%s:%d: more than %d rows", path, line, TDC_MEAS_MAX_ROWS);

@@ -31,10 +31,10 @@ typedef struct {
 } tdc_meas_row_t;
 
 typedef struct {
-    int kind;           /* TDC_MEAS_PAIRS or TDC_MEAS_TRANSITIONS */
+    int kind; /* TDC_MEAS_PAIRS or TDC_MEAS_TRANSITIONS */
     tdc_meas_row_t *rows;
     size_t nrows, cap;
-    int max_code;       /* largest code in the file */
+    int max_code; /* largest code in the file */
 } tdc_meas_t;
 
 /* Parses len bytes of text named `path` (for messages).  0 on success; else

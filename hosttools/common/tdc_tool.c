@@ -13,9 +13,8 @@
 #include <unistd.h>
 
 static const char *const k_exit_names[TDC_EXIT_COUNT] = {
-    "OK",       "ARGS",  "NO_DEVICE",  "AMBIGUOUS", "IO",       "TIMEOUT",
-    "DISCONNECTED", "FILE", "IMAGE",   "INCOMPATIBLE", "DFU",   "VERIFY",
-    "PROTOCOL", "INPUT", "REFUSED",    "NO_LINE",   "BUSY",     "NOMEM"};
+    "OK",           "ARGS", "NO_DEVICE", "AMBIGUOUS", "IO",    "TIMEOUT", "DISCONNECTED", "FILE", "IMAGE",
+    "INCOMPATIBLE", "DFU",  "VERIFY",    "PROTOCOL",  "INPUT", "REFUSED", "NO_LINE",      "BUSY", "NOMEM"};
 
 const char *tdc_exit_name(int code)
 {
@@ -42,8 +41,8 @@ int tdc_fail(int code, const char *cmd, const char *what, const char *why_fmt, .
     va_start(ap, why_fmt);
     vsnprintf(why, sizeof why, why_fmt, ap);
     va_end(ap);
-    fprintf(stderr, "%s: %s%s%s%s%s\n", g_name, cmd ? cmd : "", cmd ? ": " : "", what ? what : "",
-            what ? ": " : "", why);
+    fprintf(stderr, "%s: %s%s%s%s%s\n", g_name, cmd ? cmd : "", cmd ? ": " : "", what ? what : "", what ? ": " : "",
+            why);
     return code;
 }
 
@@ -75,12 +74,10 @@ static int parse_digits(const char *s, const char **end, int allow_hex, uint64_t
             d = (unsigned)(*p - 'A' + 10);
         else
             break;
-        if (d > hi || v > (hi - d) / base)
-            return -1;
+        if (d > hi || v > (hi - d) / base) return -1;
         v = v * base + d;
     }
-    if (p == s)
-        return -1;
+    if (p == s) return -1;
     *end = p;
     *out = v;
     return 0;
@@ -90,8 +87,7 @@ int tdc_parse_u64(const char *s, uint64_t lo, uint64_t hi, uint64_t *out)
 {
     const char *end;
     uint64_t v;
-    if (s == NULL || parse_digits(s, &end, 1, hi, &v) != 0 || *end != '\0' || v < lo)
-        return -1;
+    if (s == NULL || parse_digits(s, &end, 1, hi, &v) != 0 || *end != '\0' || v < lo) return -1;
     *out = v;
     return 0;
 }
@@ -99,25 +95,21 @@ int tdc_parse_u64(const char *s, uint64_t lo, uint64_t hi, uint64_t *out)
 int tdc_parse_u32(const char *s, uint32_t lo, uint32_t hi, uint32_t *out)
 {
     uint64_t v;
-    if (tdc_parse_u64(s, lo, hi, &v) != 0)
-        return -1;
+    if (tdc_parse_u64(s, lo, hi, &v) != 0) return -1;
     *out = (uint32_t)v;
     return 0;
 }
 
 int tdc_parse_int(const char *s, int lo, int hi, int *out)
 {
-    if (s == NULL)
-        return -1;
+    if (s == NULL) return -1;
     int neg = s[0] == '-';
     const char *end;
     uint64_t mag;
-    uint64_t lim = neg ? (uint64_t)-(int64_t)lo : (uint64_t)(hi < 0 ? 0 : hi);
-    if ((neg && lo >= 0) || parse_digits(s + neg, &end, 0, lim, &mag) != 0 || *end != '\0')
-        return -1;
+    uint64_t lim = neg ? (uint64_t) - (int64_t)lo : (uint64_t)(hi < 0 ? 0 : hi);
+    if ((neg && lo >= 0) || parse_digits(s + neg, &end, 0, lim, &mag) != 0 || *end != '\0') return -1;
     int64_t v = neg ? -(int64_t)mag : (int64_t)mag;
-    if (v < lo || v > hi)
-        return -1;
+    if (v < lo || v > hi) return -1;
     *out = (int)v;
     return 0;
 }
@@ -125,12 +117,10 @@ int tdc_parse_int(const char *s, int lo, int hi, int *out)
 int tdc_parse_double_field(const char *s, const char **end, double *out)
 {
     char *e;
-    if (s == NULL)
-        return -1;
+    if (s == NULL) return -1;
     errno = 0;
     double v = strtod(s, &e);
-    if (e == s || errno == ERANGE || !isfinite(v))
-        return -1;
+    if (e == s || errno == ERANGE || !isfinite(v)) return -1;
     *end = e;
     *out = v;
     return 0;
@@ -141,8 +131,8 @@ int tdc_parse_double(const char *s, double lo, double hi, double *out)
     const char *end;
     double v;
     /* strtod skips leading white space; the convention does not. */
-    if (s == NULL || s[0] == ' ' || s[0] == '\t' || tdc_parse_double_field(s, &end, &v) != 0 ||
-        *end != '\0' || !(v >= lo && v <= hi))
+    if (s == NULL || s[0] == ' ' || s[0] == '\t' || tdc_parse_double_field(s, &end, &v) != 0 || *end != '\0' ||
+        !(v >= lo && v <= hi))
         return -1;
     *out = v;
     return 0;
@@ -170,22 +160,17 @@ int tdc_read_line(FILE *f, char *buf, size_t cap, unsigned *lineno)
     size_t n = 0;
     int c, too_long = 0, nul = 0;
     while ((c = getc(f)) != EOF && c != '\n') {
-        if (c == 0)
-            nul = 1;
+        if (c == 0) nul = 1;
         if (n + 1 < cap)
             buf[n++] = (char)c;
         else
             too_long = 1;
     }
-    if (cap > 0)
-        buf[n] = '\0';
-    if (c == EOF && ferror(f))
-        return -2;
-    if (c == EOF && n == 0 && !too_long)
-        return 0;
+    if (cap > 0) buf[n] = '\0';
+    if (c == EOF && ferror(f)) return -2;
+    if (c == EOF && n == 0 && !too_long) return 0;
     (*lineno)++;
-    if (n > 0 && buf[n - 1] == '\r')
-        buf[n - 1] = '\0';
+    if (n > 0 && buf[n - 1] == '\r') buf[n - 1] = '\0';
     return too_long || nul ? -1 : 1;
 }
 
@@ -212,8 +197,7 @@ int tdc_out_commit(tdc_out_t *o)
     bad |= fflush(o->f) != 0;
     bad |= fclose(o->f) != 0;
     o->f = NULL;
-    if (!bad && rename(o->tmp, o->path) == 0)
-        return 0;
+    if (!bad && rename(o->tmp, o->path) == 0) return 0;
     int e = errno ? errno : EIO;
     remove(o->tmp);
     errno = e;
@@ -232,7 +216,6 @@ void tdc_out_abort(tdc_out_t *o)
 int tdc_safe_name(const char *name)
 {
     size_t n = strlen(name);
-    if (n == 0 || n > 128 || strcmp(name, ".") == 0 || strcmp(name, "..") == 0)
-        return 0;
+    if (n == 0 || n > 128 || strcmp(name, ".") == 0 || strcmp(name, "..") == 0) return 0;
     return strspn(name, "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789._-") == n;
 }

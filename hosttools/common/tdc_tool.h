@@ -20,24 +20,24 @@
  * programs.  Keep in step with tdc_exit_name() and docs/tools.md. */
 typedef enum {
     TDC_EXIT_OK = 0,
-    TDC_EXIT_ARGS = 1,          /* bad command line: unknown option, bad value, missing argument */
-    TDC_EXIT_NO_DEVICE = 2,     /* no board (USB) or GPIO chip matches */
-    TDC_EXIT_AMBIGUOUS = 3,     /* more than one board matches: select one */
-    TDC_EXIT_IO = 4,            /* device I/O error (libusb: access, stall, I/O; GPIO request or read) */
-    TDC_EXIT_TIMEOUT = 5,       /* a transfer or an expected event timed out */
-    TDC_EXIT_DISCONNECTED = 6,  /* the board went away mid-operation */
-    TDC_EXIT_FILE = 7,          /* cannot open, read, write or create a file or folder */
-    TDC_EXIT_IMAGE = 8,         /* firmware image malformed: magic, size, CRC, suffix */
-    TDC_EXIT_INCOMPATIBLE = 9,  /* image for another board, or too large for its slot */
-    TDC_EXIT_DFU = 10,          /* the board's DFU reported an error */
-    TDC_EXIT_VERIFY = 11,       /* read-back or received-data check failed */
-    TDC_EXIT_PROTOCOL = 12,     /* the board's reply is malformed */
-    TDC_EXIT_INPUT = 13,        /* an input file's contents are malformed (PNG, CSV, scene, OBJ,
+    TDC_EXIT_ARGS = 1,         /* bad command line: unknown option, bad value, missing argument */
+    TDC_EXIT_NO_DEVICE = 2,    /* no board (USB) or GPIO chip matches */
+    TDC_EXIT_AMBIGUOUS = 3,    /* more than one board matches: select one */
+    TDC_EXIT_IO = 4,           /* device I/O error (libusb: access, stall, I/O; GPIO request or read) */
+    TDC_EXIT_TIMEOUT = 5,      /* a transfer or an expected event timed out */
+    TDC_EXIT_DISCONNECTED = 6, /* the board went away mid-operation */
+    TDC_EXIT_FILE = 7,         /* cannot open, read, write or create a file or folder */
+    TDC_EXIT_IMAGE = 8,        /* firmware image malformed: magic, size, CRC, suffix */
+    TDC_EXIT_INCOMPATIBLE = 9, /* image for another board, or too large for its slot */
+    TDC_EXIT_DFU = 10,         /* the board's DFU reported an error */
+    TDC_EXIT_VERIFY = 11,      /* read-back or received-data check failed */
+    TDC_EXIT_PROTOCOL = 12,    /* the board's reply is malformed */
+    TDC_EXIT_INPUT = 13,       /* an input file's contents are malformed (PNG, CSV, scene, OBJ,
                                    panel profile, .tdcs stream: truncated, corrupt, out of range) */
-    TDC_EXIT_REFUSED = 14,      /* the firmware (a stage) refused the input or the configuration */
-    TDC_EXIT_NO_LINE = 15,      /* no such GPIO line on the chip */
-    TDC_EXIT_BUSY = 16,         /* the GPIO line is in use by another consumer */
-    TDC_EXIT_NOMEM = 17         /* out of memory */
+    TDC_EXIT_REFUSED = 14,     /* the firmware (a stage) refused the input or the configuration */
+    TDC_EXIT_NO_LINE = 15,     /* no such GPIO line on the chip */
+    TDC_EXIT_BUSY = 16,        /* the GPIO line is in use by another consumer */
+    TDC_EXIT_NOMEM = 17        /* out of memory */
 } tdc_exit_t;
 
 #define TDC_EXIT_COUNT 18
@@ -66,7 +66,7 @@ int tdc_fail_option(const char *cmd, const char *opt, const char *val, const cha
  * leave *out alone) when the text is not a number or is outside [lo, hi]. */
 int tdc_parse_u64(const char *s, uint64_t lo, uint64_t hi, uint64_t *out); /* 0x.. accepted */
 int tdc_parse_u32(const char *s, uint32_t lo, uint32_t hi, uint32_t *out);
-int tdc_parse_int(const char *s, int lo, int hi, int *out);                /* optional '-' */
+int tdc_parse_int(const char *s, int lo, int hi, int *out); /* optional '-' */
 /* Finite doubles only: "nan", "inf" and overflow are refused. */
 int tdc_parse_double(const char *s, double lo, double hi, double *out);
 /* "WxH" with 1 <= W, H <= max each. */

@@ -21,12 +21,10 @@ struct tdc_gpio_line {
     char desc[96];
 };
 
-static tdc_gpio_status_t find_line(const char *chip, const char *line, tdc_gpio_line_t **out,
-                                   char *err, int err_cap)
+static tdc_gpio_status_t find_line(const char *chip, const char *line, tdc_gpio_line_t **out, char *err, int err_cap)
 {
     tdc_gpio_line_t *l = calloc(1, sizeof *l);
-    if (l == NULL)
-        return TDC_GPIO_ERR_IO;
+    if (l == NULL) return TDC_GPIO_ERR_IO;
     errno = 0;
     l->chip = gpiod_chip_open_lookup(chip);
     if (l->chip == NULL) {
@@ -39,8 +37,8 @@ static tdc_gpio_status_t find_line(const char *chip, const char *line, tdc_gpio_
     unsigned long off = strtoul(line, &end, 10);
     if (end != line && *end == '\0') {
         if (off >= gpiod_chip_num_lines(l->chip)) {
-            snprintf(err, (size_t)err_cap, "chip %s has %u lines, no offset %lu",
-                     gpiod_chip_name(l->chip), gpiod_chip_num_lines(l->chip), off);
+            snprintf(err, (size_t)err_cap, "chip %s has %u lines, no offset %lu", gpiod_chip_name(l->chip),
+                     gpiod_chip_num_lines(l->chip), off);
             tdc_gpio_close(l);
             return TDC_GPIO_ERR_NO_LINE;
         }
@@ -49,14 +47,13 @@ static tdc_gpio_status_t find_line(const char *chip, const char *line, tdc_gpio_
         l->line = gpiod_chip_find_line(l->chip, line);
     }
     if (l->line == NULL) {
-        snprintf(err, (size_t)err_cap, "no line '%s' on chip %s (%s)", line,
-                 gpiod_chip_name(l->chip), gpiod_chip_label(l->chip));
+        snprintf(err, (size_t)err_cap, "no line '%s' on chip %s (%s)", line, gpiod_chip_name(l->chip),
+                 gpiod_chip_label(l->chip));
         tdc_gpio_close(l);
         return TDC_GPIO_ERR_NO_LINE;
     }
-    snprintf(l->desc, sizeof l->desc, "%s line %u%s%s", gpiod_chip_name(l->chip),
-             gpiod_line_offset(l->line), gpiod_line_name(l->line) ? " " : "",
-             gpiod_line_name(l->line) ? gpiod_line_name(l->line) : "");
+    snprintf(l->desc, sizeof l->desc, "%s line %u%s%s", gpiod_chip_name(l->chip), gpiod_line_offset(l->line),
+             gpiod_line_name(l->line) ? " " : "", gpiod_line_name(l->line) ? gpiod_line_name(l->line) : "");
     if (gpiod_line_is_used(l->line)) {
         snprintf(err, (size_t)err_cap, "%s is in use by '%s'", l->desc,
                  gpiod_line_consumer(l->line) ? gpiod_line_consumer(l->line) : "the kernel");
@@ -75,14 +72,12 @@ static tdc_gpio_status_t request_failed(tdc_gpio_line_t *l, char *err, int err_c
     return e == EBUSY ? TDC_GPIO_ERR_BUSY : TDC_GPIO_ERR_IO;
 }
 
-tdc_gpio_status_t tdc_gpio_open_output(const char *chip, const char *line, int active_low,
-                                       int initial_active, tdc_gpio_line_t **out,
-                                       char *err, int err_cap)
+tdc_gpio_status_t tdc_gpio_open_output(const char *chip, const char *line, int active_low, int initial_active,
+                                       tdc_gpio_line_t **out, char *err, int err_cap)
 {
     tdc_gpio_line_t *l = NULL;
     tdc_gpio_status_t st = find_line(chip, line, &l, err, err_cap);
-    if (st != TDC_GPIO_OK)
-        return st;
+    if (st != TDC_GPIO_OK) return st;
     int flags = active_low ? GPIOD_LINE_REQUEST_FLAG_ACTIVE_LOW : 0;
     if (gpiod_line_request_output_flags(l->line, CONSUMER, flags, initial_active ? 1 : 0) != 0)
         return request_failed(l, err, err_cap);
@@ -90,20 +85,17 @@ tdc_gpio_status_t tdc_gpio_open_output(const char *chip, const char *line, int a
     return TDC_GPIO_OK;
 }
 
-tdc_gpio_status_t tdc_gpio_open_events(const char *chip, const char *line, tdc_gpio_edge_t edge,
-                                       int active_low, tdc_gpio_line_t **out, char *err,
-                                       int err_cap)
+tdc_gpio_status_t tdc_gpio_open_events(const char *chip, const char *line, tdc_gpio_edge_t edge, int active_low,
+                                       tdc_gpio_line_t **out, char *err, int err_cap)
 {
     tdc_gpio_line_t *l = NULL;
     tdc_gpio_status_t st = find_line(chip, line, &l, err, err_cap);
-    if (st != TDC_GPIO_OK)
-        return st;
+    if (st != TDC_GPIO_OK) return st;
     int flags = active_low ? GPIOD_LINE_REQUEST_FLAG_ACTIVE_LOW : 0;
-    int r = edge == TDC_EDGE_RISING ? gpiod_line_request_rising_edge_events_flags(l->line, CONSUMER, flags)
+    int r = edge == TDC_EDGE_RISING    ? gpiod_line_request_rising_edge_events_flags(l->line, CONSUMER, flags)
             : edge == TDC_EDGE_FALLING ? gpiod_line_request_falling_edge_events_flags(l->line, CONSUMER, flags)
-            : gpiod_line_request_both_edges_events_flags(l->line, CONSUMER, flags);
-    if (r != 0)
-        return request_failed(l, err, err_cap);
+                                       : gpiod_line_request_both_edges_events_flags(l->line, CONSUMER, flags);
+    if (r != 0) return request_failed(l, err, err_cap);
     *out = l;
     return TDC_GPIO_OK;
 }
@@ -113,18 +105,14 @@ tdc_gpio_status_t tdc_gpio_set(tdc_gpio_line_t *l, int active)
     return gpiod_line_set_value(l->line, active ? 1 : 0) == 0 ? TDC_GPIO_OK : TDC_GPIO_ERR_IO;
 }
 
-tdc_gpio_status_t tdc_gpio_wait_edge(tdc_gpio_line_t *l, unsigned timeout_ms, uint64_t *ts_ns,
-                                     int *rising)
+tdc_gpio_status_t tdc_gpio_wait_edge(tdc_gpio_line_t *l, unsigned timeout_ms, uint64_t *ts_ns, int *rising)
 {
     struct timespec to = {(time_t)(timeout_ms / 1000u), (long)(timeout_ms % 1000u) * 1000000L};
     int r = gpiod_line_event_wait(l->line, &to);
-    if (r == 0)
-        return TDC_GPIO_ERR_TIMEOUT;
-    if (r < 0)
-        return TDC_GPIO_ERR_IO;
+    if (r == 0) return TDC_GPIO_ERR_TIMEOUT;
+    if (r < 0) return TDC_GPIO_ERR_IO;
     struct gpiod_line_event ev;
-    if (gpiod_line_event_read(l->line, &ev) != 0)
-        return TDC_GPIO_ERR_IO;
+    if (gpiod_line_event_read(l->line, &ev) != 0) return TDC_GPIO_ERR_IO;
     *ts_ns = (uint64_t)ev.ts.tv_sec * 1000000000u + (uint64_t)ev.ts.tv_nsec;
     *rising = ev.event_type == GPIOD_LINE_EVENT_RISING_EDGE;
     return TDC_GPIO_OK;
@@ -137,11 +125,8 @@ const char *tdc_gpio_describe(const tdc_gpio_line_t *l)
 
 void tdc_gpio_close(tdc_gpio_line_t *l)
 {
-    if (l == NULL)
-        return;
-    if (l->line != NULL && gpiod_line_is_requested(l->line))
-        gpiod_line_release(l->line);
-    if (l->chip != NULL)
-        gpiod_chip_close(l->chip);
+    if (l == NULL) return;
+    if (l->line != NULL && gpiod_line_is_requested(l->line)) gpiod_line_release(l->line);
+    if (l->chip != NULL) gpiod_chip_close(l->chip);
     free(l);
 }

@@ -21,8 +21,7 @@ static int cmp_double(const void *a, const void *b)
 
 int tdc_vsync_analyse(const uint64_t *ts_ns, size_t n, double expect_hz, tdc_vsync_stats_t *out)
 {
-    if (ts_ns == NULL || out == NULL || n < 2 || expect_hz < 0)
-        return -1;
+    if (ts_ns == NULL || out == NULL || n < 2 || expect_hz < 0) return -1;
     size_t m = n - 1;
     double *d = malloc(m * sizeof *d), *sorted = malloc(m * sizeof *sorted);
     if (d == NULL || sorted == NULL) {
@@ -40,14 +39,13 @@ int tdc_vsync_analyse(const uint64_t *ts_ns, size_t n, double expect_hz, tdc_vsy
     }
     memcpy(sorted, d, m * sizeof *d);
     qsort(sorted, m, sizeof *sorted, cmp_double);
-    double nominal = expect_hz > 0 ? 1e6 / expect_hz
-                     : (m % 2 ? sorted[m / 2] : 0.5 * (sorted[m / 2 - 1] + sorted[m / 2]));
+    double nominal =
+        expect_hz > 0 ? 1e6 / expect_hz : (m % 2 ? sorted[m / 2] : 0.5 * (sorted[m / 2 - 1] + sorted[m / 2]));
     double frames = 0, elapsed = 0;
     uint32_t missed = 0;
     for (size_t i = 0; i < m; i++) {
         double k = floor(d[i] / nominal + 0.5);
-        if (k < 1)
-            k = 1; /* a spurious early edge still closes one frame */
+        if (k < 1) k = 1; /* a spurious early edge still closes one frame */
         frames += k;
         elapsed += d[i];
         missed += (uint32_t)(k - 1);
@@ -56,8 +54,7 @@ int tdc_vsync_analyse(const uint64_t *ts_ns, size_t n, double expect_hz, tdc_vsy
     double sum2 = 0, lo = INFINITY, hi = -INFINITY;
     for (size_t i = 0; i < m; i++) {
         double k = floor(d[i] / nominal + 0.5);
-        if (k < 1)
-            k = 1;
+        if (k < 1) k = 1;
         double dev = d[i] - k * period;
         sum2 += dev * dev;
         lo = fmin(lo, dev);

@@ -9,13 +9,13 @@
 #include <stdint.h>
 
 typedef struct {
-    size_t edges;             /* timestamps analysed */
-    double period_us;         /* nominal frame period used to count frames, microseconds */
-    double refresh_hz;        /* measured: frames / elapsed time, missed frames included */
-    double jitter_rms_us;     /* RMS of (interval - k * measured period) */
-    double jitter_pp_us;      /* peak-to-peak of the same deviation */
+    size_t edges;         /* timestamps analysed */
+    double period_us;     /* nominal frame period used to count frames, microseconds */
+    double refresh_hz;    /* measured: frames / elapsed time, missed frames included */
+    double jitter_rms_us; /* RMS of (interval - k * measured period) */
+    double jitter_pp_us;  /* peak-to-peak of the same deviation */
     double min_interval_us, max_interval_us;
-    uint32_t missed;          /* frames with no edge (interval ~ k periods, k >= 2) */
+    uint32_t missed; /* frames with no edge (interval ~ k periods, k >= 2) */
 } tdc_vsync_stats_t;
 
 /* ts_ns: n >= 2 increasing kernel timestamps in nanoseconds.  expect_hz > 0:

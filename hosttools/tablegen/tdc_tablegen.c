@@ -67,7 +67,8 @@ void TDC_TABLEGEN_FAIL_HOOK(int code);
 #if defined(__GNUC__)
 __attribute__((format(printf, 3, 4)))
 #endif
-static void die(int code, int line, const char *fmt, ...)
+static void
+die(int code, int line, const char *fmt, ...)
 {
     char why[768], where[300];
     va_list ap;
@@ -209,13 +210,15 @@ static void parse_profile_stream(FILE *f, profile_t *p)
                 die(TDC_EXIT_INPUT, (int)line, "lcd_state_n must be 17 or 33");
             }
         } else if ((!strcmp(k, "lcd_od") || !strcmp(k, "lcd_st") || !strcmp(k, "lcd_reach_lo") ||
-                    !strcmp(k, "lcd_reach_hi")) && n >= 3) {
+                    !strcmp(k, "lcd_reach_hi")) &&
+                   n >= 3) {
             const int row_key = !strcmp(k, "lcd_od") || !strcmp(k, "lcd_st");
             if (!p->st_n) {
                 die(TDC_EXIT_INPUT, (int)line, "%s before lcd_state_n", k);
             }
             if (n != 3 + row_key + p->st_n) {
-                die(TDC_EXIT_INPUT, (int)line, "%s: expected RATE CH%s and %d values", k, row_key ? " ROW" : "", p->st_n);
+                die(TDC_EXIT_INPUT, (int)line, "%s: expected RATE CH%s and %d values", k, row_key ? " ROW" : "",
+                    p->st_n);
             }
             const int ri = st_rate(p, parse_int(tok[1], (int)line, 1, 1000, k), line);
             const int ch = !strcmp(tok[2], "R") ? 0 : !strcmp(tok[2], "G") ? 1 : !strcmp(tok[2], "B") ? 2 : -1;
@@ -223,11 +226,13 @@ static void parse_profile_stream(FILE *f, profile_t *p)
                 die(TDC_EXIT_INPUT, (int)line, "%s: channel must be R, G or B", k);
             }
             const int row = row_key ? parse_int(tok[3], (int)line, 0, p->st_n - 1, k) : 0;
-            const int slot = !strcmp(k, "lcd_od") ? row : !strcmp(k, "lcd_st") ? 33 + row
-                             : !strcmp(k, "lcd_reach_lo") ? 66 : 67;
+            const int slot = !strcmp(k, "lcd_od")         ? row
+                             : !strcmp(k, "lcd_st")       ? 33 + row
+                             : !strcmp(k, "lcd_reach_lo") ? 66
+                                                          : 67;
             if (p->st_seen[ri][ch][slot]) {
-                die(TDC_EXIT_INPUT, (int)line, "%s: rate %s channel %s%s%s given twice", k, tok[1], tok[2], row_key ? " row " : "",
-                    row_key ? tok[3] : "");
+                die(TDC_EXIT_INPUT, (int)line, "%s: rate %s channel %s%s%s given twice", k, tok[1], tok[2],
+                    row_key ? " row " : "", row_key ? tok[3] : "");
             }
             p->st_seen[ri][ch][slot] = 1;
             for (int c = 0; c < p->st_n; c++) {
@@ -249,8 +254,8 @@ static void parse_profile_stream(FILE *f, profile_t *p)
             die(TDC_EXIT_INPUT, (int)line, "unknown key or wrong number of values: '%s'", k);
         }
     }
-    if (!p->name[0] || !p->type[0] || !p->width || !p->height || !p->eyes || !p->bits ||
-        !p->refresh_hz || !p->have_gamma) {
+    if (!p->name[0] || !p->type[0] || !p->width || !p->height || !p->eyes || !p->bits || !p->refresh_hz ||
+        !p->have_gamma) {
         die(TDC_EXIT_INPUT, 0, "profile needs name, type, width, height, eyes, bits, refresh_hz and gamma");
     }
     if (!strcmp(p->type, "lcd") && !p->have_lcd) {
@@ -296,12 +301,13 @@ static void check_state_tables(const profile_t *p)
         for (int ch = 0; ch < 3; ch++) {
             for (int row = 0; row < p->st_n; row++) {
                 if (!p->st_seen[i][ch][row] || !p->st_seen[i][ch][33 + row]) {
-                    die(TDC_EXIT_INPUT, 0, "stateful tables for %d Hz channel %c: lcd_od/lcd_st row %d missing", p->st_rate_hz[i],
-                        "RGB"[ch], row);
+                    die(TDC_EXIT_INPUT, 0, "stateful tables for %d Hz channel %c: lcd_od/lcd_st row %d missing",
+                        p->st_rate_hz[i], "RGB"[ch], row);
                 }
             }
             if (!p->st_seen[i][ch][66] || !p->st_seen[i][ch][67]) {
-                die(TDC_EXIT_INPUT, 0, "stateful tables for %d Hz channel %c: lcd_reach_lo/hi missing", p->st_rate_hz[i], "RGB"[ch]);
+                die(TDC_EXIT_INPUT, 0, "stateful tables for %d Hz channel %c: lcd_reach_lo/hi missing",
+                    p->st_rate_hz[i], "RGB"[ch]);
             }
         }
     }
@@ -540,15 +546,15 @@ int main(int argc, char **argv)
     }
     fprintf(f, "\nconst tdc_panel_t tdc_panel_%s = {\n", id);
     fprintf(f, "    .name = \"%s\",\n    .type = %s,\n", p.name, is_lcd ? "TDC_PANEL_LCD" : "TDC_PANEL_OLED");
-    fprintf(f, "    .width = %d, .height = %d, .eyes = %d, .bits = %d, .refresh_hz = %d,\n", p.width,
-            p.height, p.eyes, p.bits, p.refresh_hz);
+    fprintf(f, "    .width = %d, .height = %d, .eyes = %d, .bits = %d, .refresh_hz = %d,\n", p.width, p.height, p.eyes,
+            p.bits, p.refresh_hz);
     fprintf(f, "    .ppd_x100 = %ldu,\n", lround(p.ppd * 100.0));
     fprintf(f, "    .rates_hz = {");
     for (int i = 0; i < p.nrates; i++) {
         fprintf(f, "%d, ", p.rates[i]);
     }
-    fprintf(f, "0},\n    .gamma_micro = {%ldu, %ldu, %ldu},\n", lround(p.gamma[0] * 1e6),
-            lround(p.gamma[1] * 1e6), lround(p.gamma[2] * 1e6));
+    fprintf(f, "0},\n    .gamma_micro = {%ldu, %ldu, %ldu},\n", lround(p.gamma[0] * 1e6), lround(p.gamma[1] * 1e6),
+            lround(p.gamma[2] * 1e6));
     fprintf(f, "    .gamma = {\n");
     for (int c = 0; c < 3; c++) {
         fprintf(f, "        {%s_decode_%d, %s_enc_thresh_%d, %s_enc_index_%d},\n", id, c, id, c, id, c);
@@ -570,10 +576,10 @@ int main(int argc, char **argv)
     fprintf(f, "/* generated by tdc-tablegen from %s: do not edit */\n", argv[1]);
     fprintf(f, "#ifndef TDC_PANEL_CONFIG_H\n#define TDC_PANEL_CONFIG_H\n");
     fprintf(f, "#define TDC_PANEL_NAME \"%s\"\n#define TDC_PANEL_SYMBOL tdc_panel_%s\n", p.name, id);
-    fprintf(f, "#define TDC_PANEL_WIDTH %d\n#define TDC_PANEL_HEIGHT %d\n#define TDC_PANEL_EYES %d\n",
-            p.width, p.height, p.eyes);
-    fprintf(f, "#define TDC_PANEL_BITS %d\n#define TDC_PANEL_REFRESH_HZ %d\n#define TDC_PANEL_IS_LCD %d\n",
-            p.bits, p.refresh_hz, is_lcd);
+    fprintf(f, "#define TDC_PANEL_WIDTH %d\n#define TDC_PANEL_HEIGHT %d\n#define TDC_PANEL_EYES %d\n", p.width,
+            p.height, p.eyes);
+    fprintf(f, "#define TDC_PANEL_BITS %d\n#define TDC_PANEL_REFRESH_HZ %d\n#define TDC_PANEL_IS_LCD %d\n", p.bits,
+            p.refresh_hz, is_lcd);
     fprintf(f, "#endif\n");
     if (tdc_out_commit(&out) != 0) {
         die(TDC_EXIT_FILE, 0, "cannot write %s: %s", path, strerror(errno));

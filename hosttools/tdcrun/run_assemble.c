@@ -180,11 +180,16 @@ static int read_mv(const char *path, uint32_t tx, uint32_t ty, int16_t *mv, uint
 static int write_stream(const char *dir, const char *kind, int w, int h, int count, double vx, double vy)
 {
     tdc_scene_kind_t k;
-    if (!strcmp(kind, "static")) k = TDC_SCENE_STATIC;
-    else if (!strcmp(kind, "pan")) k = TDC_SCENE_PAN;
-    else if (!strcmp(kind, "lines")) k = TDC_SCENE_LINE;
-    else if (!strcmp(kind, "hlines")) k = TDC_SCENE_HLINE;
-    else return usage_error("unknown stream kind '%s' (static, pan, lines, hlines)", kind);
+    if (!strcmp(kind, "static"))
+        k = TDC_SCENE_STATIC;
+    else if (!strcmp(kind, "pan"))
+        k = TDC_SCENE_PAN;
+    else if (!strcmp(kind, "lines"))
+        k = TDC_SCENE_LINE;
+    else if (!strcmp(kind, "hlines"))
+        k = TDC_SCENE_HLINE;
+    else
+        return usage_error("unknown stream kind '%s' (static, pan, lines, hlines)", kind);
     int32_t vxq = (int32_t)(vx * 16.0 + (vx < 0 ? -0.5 : 0.5)), vyq = (int32_t)(vy * 16.0 + (vy < 0 ? -0.5 : 0.5));
     tdc_scene_t sc;
     if (tdc_scene_init(&sc, k, w, h, vxq, vyq, 1) != 0)
@@ -192,8 +197,9 @@ static int write_stream(const char *dir, const char *kind, int w, int h, int cou
     uint32_t tx = (uint32_t)(w + 1) / 2, ty = (uint32_t)(h + 1) / 2;
     uint8_t *smp = malloc((size_t)tx * ty * 3), *bits = malloc(((size_t)tx * ty + 7) / 8);
     int16_t *mv = malloc((size_t)tx * ty * 4);
-    int rc = smp && bits && mv ? TDC_EXIT_OK
-                               : tdc_fail(TDC_EXIT_NOMEM, "assemble", "--write-stream", "out of memory for %dx%d", w, h);
+    int rc = smp && bits && mv
+                 ? TDC_EXIT_OK
+                 : tdc_fail(TDC_EXIT_NOMEM, "assemble", "--write-stream", "out of memory for %dx%d", w, h);
     for (int f = 0; f < count && rc == TDC_EXIT_OK; f++) {
         char path[4096], err[512];
         tdc_scene_subframe(&sc, (uint32_t)f, smp, mv, bits);
@@ -221,10 +227,14 @@ int tdc_run_assemble_main(int argc, char **argv)
     double vx = 1.5, vy = 0.5;
     enum { OPT_WRITE = 256, OPT_COUNT, OPT_VEL };
     static const struct option opts[] = {
-        {"output", required_argument, 0, 'o'},       {"size", required_argument, 0, 's'},
-        {"quiet", no_argument, 0, 'q'},              {"help", no_argument, 0, 'h'},
-        {"write-stream", required_argument, 0, OPT_WRITE}, {"count", required_argument, 0, OPT_COUNT},
-        {"velocity", required_argument, 0, OPT_VEL}, {0, 0, 0, 0},
+        {"output", required_argument, 0, 'o'},
+        {"size", required_argument, 0, 's'},
+        {"quiet", no_argument, 0, 'q'},
+        {"help", no_argument, 0, 'h'},
+        {"write-stream", required_argument, 0, OPT_WRITE},
+        {"count", required_argument, 0, OPT_COUNT},
+        {"velocity", required_argument, 0, OPT_VEL},
+        {0, 0, 0, 0},
     };
     optind = 1;
     opterr = 0;
@@ -240,7 +250,8 @@ int tdc_run_assemble_main(int argc, char **argv)
         case 'h': printf("%s", k_usage); return TDC_EXIT_OK;
         case OPT_WRITE: stream_kind = optarg; break;
         case OPT_COUNT:
-            if (tdc_parse_int(optarg, 1, 1000000, &count) != 0) return usage_error("--count must be 1..1000000, got '%s'", optarg);
+            if (tdc_parse_int(optarg, 1, 1000000, &count) != 0)
+                return usage_error("--count must be 1..1000000, got '%s'", optarg);
             break;
         case OPT_VEL:
             if (parse_velocity(optarg, &vx, &vy) != 0)
@@ -272,8 +283,9 @@ int tdc_run_assemble_main(int argc, char **argv)
     tdc_png_free(&img);
     if (!w) w = (int)(2 * tx), h = (int)(2 * ty);
     if ((uint32_t)(w + 1) / 2 != tx || (uint32_t)(h + 1) / 2 != ty) {
-        return tdc_fail(TDC_EXIT_INPUT, "assemble", argv[first], "--size %dx%d needs %dx%d subframes, the file is %ux%u",
-                        w, h, (w + 1) / 2, (h + 1) / 2, tx, ty);
+        return tdc_fail(TDC_EXIT_INPUT, "assemble", argv[first],
+                        "--size %dx%d needs %dx%d subframes, the file is %ux%u", w, h, (w + 1) / 2, (h + 1) / 2, tx,
+                        ty);
     }
     if (w > TDC_ASM_MAX_DIM || h > TDC_ASM_MAX_DIM) {
         return tdc_fail(TDC_EXIT_INPUT, "assemble", argv[first], "%dx%d exceeds the stage's %d pixel limit", w, h,
@@ -328,7 +340,8 @@ int tdc_run_assemble_main(int argc, char **argv)
                                             r == 0 && has_bits ? bits : NULL);
             tdc_png_free(&img);
             if (s != TDC_OK) {
-                rc = tdc_fail(TDC_EXIT_REFUSED, "assemble", name, "firmware refused subframe %u: %s", frame, tdc_status_name(s));
+                rc = tdc_fail(TDC_EXIT_REFUSED, "assemble", name, "firmware refused subframe %u: %s", frame,
+                              tdc_status_name(s));
                 break;
             }
         }
@@ -346,8 +359,7 @@ int tdc_run_assemble_main(int argc, char **argv)
             rc = tdc_fail(TDC_EXIT_FILE, "assemble", NULL, "%s", err);
             break;
         }
-        if (!quiet)
-            printf("frame %5u %s -> %s\n", frame, dropped ? "(dropped subframe)" : name, path);
+        if (!quiet) printf("frame %5u %s -> %s\n", frame, dropped ? "(dropped subframe)" : name, path);
     }
     const tdc_asm_stats_t *s = &st.stats;
     char spath[4096];

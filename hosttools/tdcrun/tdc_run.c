@@ -75,9 +75,9 @@ typedef struct {
 
 static const tdc_panel_t *find_panel(const char *name)
 {
-#define MATCH(sym)                   \
-    if (!strcmp(sym.name, name)) {   \
-        return &sym;                 \
+#define MATCH(sym)                 \
+    if (!strcmp(sym.name, name)) { \
+        return &sym;               \
     }
     TDC_PANEL_LIST(MATCH)
 #undef MATCH
@@ -87,8 +87,7 @@ static const tdc_panel_t *find_panel(const char *name)
 static void panel_names(char *buf, size_t n)
 {
     buf[0] = 0;
-#define NAME(sym)                                                         \
-    snprintf(buf + strlen(buf), n - strlen(buf), "%s%s", buf[0] ? ", " : "", sym.name);
+#define NAME(sym) snprintf(buf + strlen(buf), n - strlen(buf), "%s%s", buf[0] ? ", " : "", sym.name);
     TDC_PANEL_LIST(NAME)
 #undef NAME
 }
@@ -105,8 +104,8 @@ static int parse_ratio(const char *s, int *num, int *den)
 {
     uint64_t n, d;
     const char *e;
-    if (tdc_parse_u64_field(s, &e, 1000, &n) != 0 || *e != '/' ||
-        tdc_parse_u64_field(e + 1, &e, 1000, &d) != 0 || *e != '\0' || n < 1 || d < 1) {
+    if (tdc_parse_u64_field(s, &e, 1000, &n) != 0 || *e != '/' || tdc_parse_u64_field(e + 1, &e, 1000, &d) != 0 ||
+        *e != '\0' || n < 1 || d < 1) {
         return -1;
     }
     *num = (int)n;
@@ -221,23 +220,28 @@ static int write_png(const opts_t *o, const char *prefix, int i, const uint8_t *
 int tdc_run_trm_main(int argc, char **argv)
 {
     opts_t o = {NULL, &tdc_panel_htc_vive, 1, 2, 10.0, 2.5, 0, "alternate", 0, 0, 0, 0, NULL, 8, 160, 120, -1};
-    static const struct option longopts[] = {
-        {"out", required_argument, 0, 'o'},   {"panel", required_argument, 0, 'p'},
-        {"ratio", required_argument, 0, 'r'}, {"sensitivity", required_argument, 0, 's'},
-        {"sigma", required_argument, 0, 1},   {"refresh", required_argument, 0, 2},
-        {"frames", required_argument, 0, 'f'}, {"stereo", no_argument, 0, 3},
-        {"perceived", no_argument, 0, 4},     {"builtin", required_argument, 0, 5},
-        {"count", required_argument, 0, 6},   {"size", required_argument, 0, 7},
-        {"quiet", no_argument, 0, 'q'},       {"help", no_argument, 0, 'h'},
-        {"save-input", no_argument, 0, 8},    {"kernels", required_argument, 0, 9},
-        {0, 0, 0, 0}};
+    static const struct option longopts[] = {{"out", required_argument, 0, 'o'},
+                                             {"panel", required_argument, 0, 'p'},
+                                             {"ratio", required_argument, 0, 'r'},
+                                             {"sensitivity", required_argument, 0, 's'},
+                                             {"sigma", required_argument, 0, 1},
+                                             {"refresh", required_argument, 0, 2},
+                                             {"frames", required_argument, 0, 'f'},
+                                             {"stereo", no_argument, 0, 3},
+                                             {"perceived", no_argument, 0, 4},
+                                             {"builtin", required_argument, 0, 5},
+                                             {"count", required_argument, 0, 6},
+                                             {"size", required_argument, 0, 7},
+                                             {"quiet", no_argument, 0, 'q'},
+                                             {"help", no_argument, 0, 'h'},
+                                             {"save-input", no_argument, 0, 8},
+                                             {"kernels", required_argument, 0, 9},
+                                             {0, 0, 0, 0}};
     int c;
     opterr = 0;
     while ((c = getopt_long(argc, argv, ":o:p:r:s:f:qh", longopts, NULL)) != -1) {
         switch (c) {
-        case 'o':
-            o.out = optarg;
-            break;
+        case 'o': o.out = optarg; break;
         case 'p':
             o.panel = find_panel(optarg);
             if (!o.panel) {
@@ -251,8 +255,7 @@ int tdc_run_trm_main(int argc, char **argv)
         case 'r':
             if (!strcmp(optarg, "1")) {
                 o.r_num = o.r_den = 1;
-            } else if (parse_ratio(optarg, &o.r_num, &o.r_den) != 0 || o.r_num > o.r_den ||
-                       4 * o.r_num < o.r_den) {
+            } else if (parse_ratio(optarg, &o.r_num, &o.r_den) != 0 || o.r_num > o.r_den || 4 * o.r_num < o.r_den) {
                 return usage_error("--ratio must be N/D with 1/4 <= N/D <= 1, got '%s'", optarg);
             }
             break;
@@ -280,12 +283,8 @@ int tdc_run_trm_main(int argc, char **argv)
                 }
             }
             break;
-        case 3:
-            o.stereo = 1;
-            break;
-        case 4:
-            o.perceived = 1;
-            break;
+        case 3: o.stereo = 1; break;
+        case 4: o.perceived = 1; break;
         case 5: {
             int ok = 0;
             for (int k = 0; k < TDC_CONTENT_COUNT; k++) {
@@ -311,12 +310,8 @@ int tdc_run_trm_main(int argc, char **argv)
             o.bh = (int)bh;
             break;
         }
-        case 'q':
-            o.quiet = 1;
-            break;
-        case 8:
-            o.save_input = 1;
-            break;
+        case 'q': o.quiet = 1; break;
+        case 8: o.save_input = 1; break;
         case 9:
             if (!strcmp(optarg, "auto")) {
                 o.kernels = -1;
@@ -337,10 +332,8 @@ int tdc_run_trm_main(int argc, char **argv)
             printf(k_usage, names);
             return TDC_EXIT_OK;
         }
-        case ':':
-            return usage_error("option '%s' needs a value", argv[optind - 1]);
-        default:
-            return usage_error("unknown option '%s'", argv[optind - 1]);
+        case ':': return usage_error("option '%s' needs a value", argv[optind - 1]);
+        default: return usage_error("unknown option '%s'", argv[optind - 1]);
         }
     }
     if (!o.out) {
@@ -381,11 +374,13 @@ static int run_trm(const opts_t *po, char **files, int nframes)
     const int W = first.width, H = first.height;
     tdc_png_free(&first);
     if (o.stereo && (W & 1)) {
-        return tdc_fail(TDC_EXIT_INPUT, NULL, files[0], "stereo frames need an even width (two eyes side by side), got %d", W);
+        return tdc_fail(TDC_EXIT_INPUT, NULL, files[0],
+                        "stereo frames need an even width (two eyes side by side), got %d", W);
     }
     const int EW = W / eyes;
     if (EW > 8192 || H > 8192) {
-        return tdc_fail(TDC_EXIT_INPUT, NULL, o.builtin ? o.builtin : files[0], "frames of %dx%d exceed 8192x8192", W, H);
+        return tdc_fail(TDC_EXIT_INPUT, NULL, o.builtin ? o.builtin : files[0], "frames of %dx%d exceed 8192x8192", W,
+                        H);
     }
     tdc_trm_config_t cfg;
     tdc_trm_default_config(&cfg, (uint16_t)EW, (uint16_t)H, (uint16_t)(o.refresh ? o.refresh : o.panel->refresh_hz));
@@ -471,8 +466,9 @@ static int run_trm(const opts_t *po, char **files, int nframes)
                     rstride = (uint32_t)rw * 3;
                 } else {
                     if (img.width != rw || img.height != rh) {
-                        rc = tdc_fail(TDC_EXIT_INPUT, NULL, name, "reduced frame is %dx%d, expected %dx%d (r = %d/%d of %dx%d)",
-                                      img.width, img.height, rw, rh, o.r_num, o.r_den, W, H);
+                        rc = tdc_fail(TDC_EXIT_INPUT, NULL, name,
+                                      "reduced frame is %dx%d, expected %dx%d (r = %d/%d of %dx%d)", img.width,
+                                      img.height, rw, rh, o.r_num, o.r_den, W, H);
                         break;
                     }
                     rsrc = img.data;

@@ -33,10 +33,8 @@ tdc_exit_t tdc_usb_get_info(tdc_board_t *b, board_info_t *bi);
 
 /* tdc_usb_dfu.c */
 tdc_exit_t tdc_usb_read_file(const char *path, const char *op, uint8_t **data, uint32_t *len);
-tdc_exit_t tdc_usb_load_image(const char *path, uint16_t vid, uint16_t pid, uint8_t **image,
-                              uint32_t *image_len);
-tdc_exit_t tdc_usb_cmd_flash(tdc_board_t *b, const opts_t *o, const char *path, const uint8_t *img,
-                             uint32_t len);
+tdc_exit_t tdc_usb_load_image(const char *path, uint16_t vid, uint16_t pid, uint8_t **image, uint32_t *image_len);
+tdc_exit_t tdc_usb_cmd_flash(tdc_board_t *b, const opts_t *o, const char *path, const uint8_t *img, uint32_t len);
 tdc_exit_t tdc_usb_cmd_mkimage(const opts_t *o, const char *in, const char *out);
 
 #endif

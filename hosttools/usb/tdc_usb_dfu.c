@@ -22,8 +22,7 @@ tdc_exit_t tdc_usb_read_file(const char *path, const char *op, uint8_t **data, u
         return TDC_EXIT_FILE;
     }
     long sz = -1;
-    if (fseek(f, 0, SEEK_END) == 0)
-        sz = ftell(f);
+    if (fseek(f, 0, SEEK_END) == 0) sz = ftell(f);
     if (sz < 0 || sz > (64L << 20)) {
         fprintf(stderr, "tdc-usb: %s: %s: not a regular file or larger than 64 MiB\n", op, path);
         fclose(f);
@@ -47,12 +46,10 @@ static uint16_t dfu_transfer_size(tdc_board_t *b)
 {
     struct libusb_config_descriptor *cd = NULL;
     uint16_t size = TDC_DFU_TRANSFER_SIZE;
-    if (libusb_get_active_config_descriptor(libusb_get_device(b->h), &cd) != 0)
-        return size;
+    if (libusb_get_active_config_descriptor(libusb_get_device(b->h), &cd) != 0) return size;
     for (int i = 0; i < cd->bNumInterfaces; i++) {
         const struct libusb_interface_descriptor *id = &cd->interface[i].altsetting[0];
-        if (id->bInterfaceClass != 0xFE || id->bInterfaceSubClass != 0x01)
-            continue;
+        if (id->bInterfaceClass != 0xFE || id->bInterfaceSubClass != 0x01) continue;
         size = tdc_usb_dfu_transfer_size(id->extra, id->extra_length, size);
     }
     libusb_free_config_descriptor(cd);
@@ -62,9 +59,8 @@ static uint16_t dfu_transfer_size(tdc_board_t *b)
 static tdc_exit_t dfu_getstatus(tdc_board_t *b, uint8_t st[6])
 {
     int got = 0;
-    tdc_exit_t e = tdc_usb_ctrl_in(b, "DFU_GETSTATUS", LIBUSB_REQUEST_TYPE_CLASS |
-                                   LIBUSB_RECIPIENT_INTERFACE, TDC_DFU_GETSTATUS, 0,
-                                   TDC_USB_IF_DFU, st, 6, &got);
+    tdc_exit_t e = tdc_usb_ctrl_in(b, "DFU_GETSTATUS", LIBUSB_REQUEST_TYPE_CLASS | LIBUSB_RECIPIENT_INTERFACE,
+                                   TDC_DFU_GETSTATUS, 0, TDC_USB_IF_DFU, st, 6, &got);
     if (e == TDC_EXIT_OK && got != 6) {
         fprintf(stderr, "tdc-usb: flash: DFU_GETSTATUS returned %d bytes, not 6\n", got);
         return TDC_EXIT_PROTOCOL;
@@ -80,16 +76,13 @@ static tdc_exit_t dfu_wait(tdc_board_t *b, uint8_t want, const char *step)
     for (;;) {
         uint8_t st[6];
         tdc_exit_t e = dfu_getstatus(b, st);
-        if (e != TDC_EXIT_OK)
-            return e;
+        if (e != TDC_EXIT_OK) return e;
         if (st[4] == TDC_DFU_STATE_ERROR || st[0] != TDC_DFU_OK) {
-            fprintf(stderr, "tdc-usb: flash: board rejected the %s: DFU status %s, state %s\n",
-                    step, tdc_dfu_status_name((tdc_dfu_status_t)st[0]),
-                    tdc_dfu_state_name((tdc_dfu_state_t)st[4]));
+            fprintf(stderr, "tdc-usb: flash: board rejected the %s: DFU status %s, state %s\n", step,
+                    tdc_dfu_status_name((tdc_dfu_status_t)st[0]), tdc_dfu_state_name((tdc_dfu_state_t)st[4]));
             return TDC_EXIT_DFU;
         }
-        if (st[4] == want)
-            return TDC_EXIT_OK;
+        if (st[4] == want) return TDC_EXIT_OK;
         if (tdc_usb_now_s() > deadline) {
             fprintf(stderr, "tdc-usb: flash: board still in %s after %u ms during the %s\n",
                     tdc_dfu_state_name((tdc_dfu_state_t)st[4]), DFU_STATUS_DEADLINE_MS, step);
@@ -104,14 +97,12 @@ static tdc_exit_t dfu_wait(tdc_board_t *b, uint8_t want, const char *step)
 /* Reads the image and checks it on the host, before any board is touched.
  * A standard DFU suffix (dfu-suffix, tdc-usb mkimage) is checked and
  * stripped, as dfu-util does: the board receives the image without it. */
-tdc_exit_t tdc_usb_load_image(const char *path, uint16_t vid, uint16_t pid, uint8_t **image,
-                              uint32_t *image_len)
+tdc_exit_t tdc_usb_load_image(const char *path, uint16_t vid, uint16_t pid, uint8_t **image, uint32_t *image_len)
 {
     uint8_t *img = NULL;
     uint32_t len = 0;
     tdc_exit_t e = tdc_usb_read_file(path, "flash", &img, &len);
-    if (e != TDC_EXIT_OK)
-        return e;
+    if (e != TDC_EXIT_OK) return e;
     uint32_t file_len = len;
     tdc_dfu_suffix_status_t ss = tdc_dfu_suffix_check(img, file_len, vid, pid, &len);
     if (ss == TDC_DFU_SUFFIX_ERR_CRC || ss == TDC_DFU_SUFFIX_ERR_ID) {
@@ -119,16 +110,14 @@ tdc_exit_t tdc_usb_load_image(const char *path, uint16_t vid, uint16_t pid, uint
         if (ss == TDC_DFU_SUFFIX_ERR_CRC)
             fprintf(stderr, "tdc-usb: flash: %s: DFU suffix CRC does not match the file\n", path);
         else
-            fprintf(stderr, "tdc-usb: flash: %s: DFU suffix is for USB %04x:%04x, the board is %04x:%04x\n",
-                    path, tdc_get_le16(sx + TDC_DFU_SUFFIX_OFF_VID), tdc_get_le16(sx + TDC_DFU_SUFFIX_OFF_PID),
-                    vid, pid);
+            fprintf(stderr, "tdc-usb: flash: %s: DFU suffix is for USB %04x:%04x, the board is %04x:%04x\n", path,
+                    tdc_get_le16(sx + TDC_DFU_SUFFIX_OFF_VID), tdc_get_le16(sx + TDC_DFU_SUFFIX_OFF_PID), vid, pid);
         free(img);
         return ss == TDC_DFU_SUFFIX_ERR_CRC ? TDC_EXIT_IMAGE : TDC_EXIT_INCOMPATIBLE;
     }
     tdc_status_t is = tdc_image_check(img, len, NULL, 0);
     if (is != TDC_OK) {
-        fprintf(stderr, "tdc-usb: flash: %s: %s (file %u bytes", path, tdc_status_text(is),
-                len);
+        fprintf(stderr, "tdc-usb: flash: %s: %s (file %u bytes", path, tdc_status_text(is), len);
         if (len >= TDC_IMAGE_HEADER_LEN && is != TDC_ERR_IMAGE_MAGIC)
             fprintf(stderr, ", header says %u + %u bytes", TDC_IMAGE_HEADER_LEN,
                     tdc_get_le32(img + TDC_IMAGE_OFF_PAYLOAD_LEN));
@@ -141,73 +130,68 @@ tdc_exit_t tdc_usb_load_image(const char *path, uint16_t vid, uint16_t pid, uint
     return TDC_EXIT_OK;
 }
 
-tdc_exit_t tdc_usb_cmd_flash(tdc_board_t *b, const opts_t *o, const char *path, const uint8_t *img,
-                            uint32_t len)
+tdc_exit_t tdc_usb_cmd_flash(tdc_board_t *b, const opts_t *o, const char *path, const uint8_t *img, uint32_t len)
 {
     board_info_t bi;
     tdc_exit_t e = tdc_usb_claim(b, TDC_USB_IF_STREAM);
-    if (e == TDC_EXIT_OK)
-        e = tdc_usb_get_info(b, &bi);
+    if (e == TDC_EXIT_OK) e = tdc_usb_get_info(b, &bi);
     if (e == TDC_EXIT_OK) {
         tdc_status_t is = tdc_image_check(img, len, bi.board, bi.slot);
         if (is != TDC_OK) {
             char target[TDC_IMAGE_BOARD_LEN + 1] = "";
             memcpy(target, img + TDC_IMAGE_OFF_BOARD, TDC_IMAGE_BOARD_LEN);
-            fprintf(stderr, "tdc-usb: flash: %s: %s (image %u bytes for board '%s'; board '%s' "
-                            "has a %u-byte slot)\n", path, tdc_status_text(is), len,
-                    target, bi.board, bi.slot);
+            fprintf(stderr,
+                    "tdc-usb: flash: %s: %s (image %u bytes for board '%s'; board '%s' "
+                    "has a %u-byte slot)\n",
+                    path, tdc_status_text(is), len, target, bi.board, bi.slot);
             e = TDC_EXIT_INCOMPATIBLE;
         }
     }
-    if (e == TDC_EXIT_OK)
-        e = tdc_usb_claim(b, TDC_USB_IF_DFU);
+    if (e == TDC_EXIT_OK) e = tdc_usb_claim(b, TDC_USB_IF_DFU);
     /* Bring the DFU interface to dfuIDLE. */
     uint8_t st[6];
-    if (e == TDC_EXIT_OK)
-        e = dfu_getstatus(b, st);
+    if (e == TDC_EXIT_OK) e = dfu_getstatus(b, st);
     if (e == TDC_EXIT_OK && st[4] == TDC_DFU_STATE_ERROR)
-        e = tdc_usb_ctrl_out(b, "DFU_CLRSTATUS", LIBUSB_REQUEST_TYPE_CLASS |
-                             LIBUSB_RECIPIENT_INTERFACE, TDC_DFU_CLRSTATUS, 0, TDC_USB_IF_DFU, NULL, 0);
+        e = tdc_usb_ctrl_out(b, "DFU_CLRSTATUS", LIBUSB_REQUEST_TYPE_CLASS | LIBUSB_RECIPIENT_INTERFACE,
+                             TDC_DFU_CLRSTATUS, 0, TDC_USB_IF_DFU, NULL, 0);
     else if (e == TDC_EXIT_OK && st[4] != TDC_DFU_STATE_IDLE)
-        e = tdc_usb_ctrl_out(b, "DFU_ABORT", LIBUSB_REQUEST_TYPE_CLASS | LIBUSB_RECIPIENT_INTERFACE,
-                             TDC_DFU_ABORT, 0, TDC_USB_IF_DFU, NULL, 0);
+        e = tdc_usb_ctrl_out(b, "DFU_ABORT", LIBUSB_REQUEST_TYPE_CLASS | LIBUSB_RECIPIENT_INTERFACE, TDC_DFU_ABORT, 0,
+                             TDC_USB_IF_DFU, NULL, 0);
     uint16_t xfer = dfu_transfer_size(b);
     double t0 = tdc_usb_now_s();
     uint16_t block = 0;
     for (uint32_t off = 0; e == TDC_EXIT_OK && off < len; off += xfer, block++) {
         uint16_t n = (uint16_t)(len - off < xfer ? len - off : xfer);
-        e = tdc_usb_ctrl_out(b, "DFU_DNLOAD", LIBUSB_REQUEST_TYPE_CLASS | LIBUSB_RECIPIENT_INTERFACE,
-                             TDC_DFU_DNLOAD, block, TDC_USB_IF_DFU, img + off, n);
-        if (e == TDC_EXIT_OK)
-            e = dfu_wait(b, TDC_DFU_STATE_DNLOAD_IDLE, "download");
+        e = tdc_usb_ctrl_out(b, "DFU_DNLOAD", LIBUSB_REQUEST_TYPE_CLASS | LIBUSB_RECIPIENT_INTERFACE, TDC_DFU_DNLOAD,
+                             block, TDC_USB_IF_DFU, img + off, n);
+        if (e == TDC_EXIT_OK) e = dfu_wait(b, TDC_DFU_STATE_DNLOAD_IDLE, "download");
         tdc_usb_progress(o, "flash", off + n, len, t0);
     }
     tdc_usb_progress_end(o);
     if (e == TDC_EXIT_OK) /* zero-length DNLOAD: end of image, manifest */
-        e = tdc_usb_ctrl_out(b, "DFU_DNLOAD (end)", LIBUSB_REQUEST_TYPE_CLASS |
-                             LIBUSB_RECIPIENT_INTERFACE, TDC_DFU_DNLOAD, block, TDC_USB_IF_DFU, NULL, 0);
+        e = tdc_usb_ctrl_out(b, "DFU_DNLOAD (end)", LIBUSB_REQUEST_TYPE_CLASS | LIBUSB_RECIPIENT_INTERFACE,
+                             TDC_DFU_DNLOAD, block, TDC_USB_IF_DFU, NULL, 0);
+    if (e == TDC_EXIT_OK) e = dfu_wait(b, TDC_DFU_STATE_IDLE, "image (manifestation: size and CRC check on the board)");
     if (e == TDC_EXIT_OK)
-        e = dfu_wait(b, TDC_DFU_STATE_IDLE, "image (manifestation: size and CRC check on the board)");
-    if (e == TDC_EXIT_OK)
-        printf("downloaded %u bytes in %.3f s, board checked size and CRC-32 %08x\n", len,
-               tdc_usb_now_s() - t0, tdc_get_le32(img + TDC_IMAGE_OFF_PAYLOAD_CRC));
+        printf("downloaded %u bytes in %.3f s, board checked size and CRC-32 %08x\n", len, tdc_usb_now_s() - t0,
+               tdc_get_le32(img + TDC_IMAGE_OFF_PAYLOAD_CRC));
     if (e == TDC_EXIT_OK && o->verify) {
         uint8_t *back = malloc((size_t)len + xfer);
         uint32_t got_total = 0;
         for (block = 0; e == TDC_EXIT_OK && back != NULL; block++) {
             int got = 0;
-            e = tdc_usb_ctrl_in(b, "DFU_UPLOAD", LIBUSB_REQUEST_TYPE_CLASS | LIBUSB_RECIPIENT_INTERFACE,
-                                TDC_DFU_UPLOAD, block, TDC_USB_IF_DFU, back + got_total, xfer, &got);
+            e = tdc_usb_ctrl_in(b, "DFU_UPLOAD", LIBUSB_REQUEST_TYPE_CLASS | LIBUSB_RECIPIENT_INTERFACE, TDC_DFU_UPLOAD,
+                                block, TDC_USB_IF_DFU, back + got_total, xfer, &got);
             got_total += (uint32_t)got;
-            if (got < xfer || got_total > len)
-                break;
+            if (got < xfer || got_total > len) break;
         }
         if (e == TDC_EXIT_OK && (back == NULL || got_total != len || memcmp(back, img, len) != 0)) {
             uint32_t first = 0;
-            while (back != NULL && first < len && first < got_total && back[first] == img[first])
-                first++;
-            fprintf(stderr, "tdc-usb: flash: verify failed: read back %u of %u bytes, first "
-                            "difference at byte %u\n", got_total, len, first);
+            while (back != NULL && first < len && first < got_total && back[first] == img[first]) first++;
+            fprintf(stderr,
+                    "tdc-usb: flash: verify failed: read back %u of %u bytes, first "
+                    "difference at byte %u\n",
+                    got_total, len, first);
             e = TDC_EXIT_VERIFY;
         } else if (e == TDC_EXIT_OK) {
             printf("verified %u bytes read back\n", got_total);
@@ -216,9 +200,9 @@ tdc_exit_t tdc_usb_cmd_flash(tdc_board_t *b, const opts_t *o, const char *path, 
     }
     if (e == TDC_EXIT_OK && o->reset) {
         libusb_release_interface(b->h, TDC_USB_IF_DFU);
-        int r = libusb_control_transfer(b->h, LIBUSB_ENDPOINT_OUT | LIBUSB_REQUEST_TYPE_VENDOR |
-                                        LIBUSB_RECIPIENT_INTERFACE, TDC_USB_REQ_RESET_BOARD, 0,
-                                        TDC_USB_IF_STREAM, NULL, 0, b->timeout_ms);
+        int r =
+            libusb_control_transfer(b->h, LIBUSB_ENDPOINT_OUT | LIBUSB_REQUEST_TYPE_VENDOR | LIBUSB_RECIPIENT_INTERFACE,
+                                    TDC_USB_REQ_RESET_BOARD, 0, TDC_USB_IF_STREAM, NULL, 0, b->timeout_ms);
         /* A board may drop off the bus before the status stage completes. */
         if (r < 0 && r != LIBUSB_ERROR_NO_DEVICE && r != LIBUSB_ERROR_PIPE && r != LIBUSB_ERROR_IO)
             e = tdc_usb_fail(b, "reset request", r);
@@ -231,16 +215,14 @@ tdc_exit_t tdc_usb_cmd_flash(tdc_board_t *b, const opts_t *o, const char *path, 
 /* ------------------------------------------------------------------ */
 tdc_exit_t tdc_usb_cmd_mkimage(const opts_t *o, const char *in, const char *out)
 {
-    if (o->board == NULL)
-        return tdc_fail(TDC_EXIT_ARGS, "mkimage", "--board", "a board name is required");
+    if (o->board == NULL) return tdc_fail(TDC_EXIT_ARGS, "mkimage", "--board", "a board name is required");
     if (o->board[0] == '\0' || strlen(o->board) > TDC_IMAGE_BOARD_LEN)
         return tdc_fail(TDC_EXIT_ARGS, "mkimage", "--board", "'%s' does not fit the image header's %u characters",
                         o->board, TDC_IMAGE_BOARD_LEN);
     uint8_t *payload = NULL;
     uint32_t len = 0;
     tdc_exit_t e = tdc_usb_read_file(in, "mkimage", &payload, &len);
-    if (e != TDC_EXIT_OK)
-        return e;
+    if (e != TDC_EXIT_OK) return e;
     if (len > (64u << 20) - TDC_IMAGE_HEADER_LEN - TDC_DFU_SUFFIX_LEN) {
         free(payload);
         return tdc_fail(TDC_EXIT_FILE, "mkimage", in, "larger than 64 MiB");
@@ -266,8 +248,7 @@ tdc_exit_t tdc_usb_cmd_mkimage(const opts_t *o, const char *in, const char *out)
         tdc_out_abort(&w);
         return tdc_fail(TDC_EXIT_FILE, "mkimage", out, "cannot write: %s", strerror(err));
     }
-    printf("%s: %u + %u bytes + %u-byte DFU suffix (%04x:%04x), board %s, CRC-32 %08x\n", out,
-           TDC_IMAGE_HEADER_LEN, len, TDC_DFU_SUFFIX_LEN, o->sel.vid, o->sel.pid, o->board, crc);
+    printf("%s: %u + %u bytes + %u-byte DFU suffix (%04x:%04x), board %s, CRC-32 %08x\n", out, TDC_IMAGE_HEADER_LEN,
+           len, TDC_DFU_SUFFIX_LEN, o->sel.vid, o->sel.pid, o->board, crc);
     return TDC_EXIT_OK;
 }
-

@@ -7,7 +7,8 @@
 
 int tdc_usb_parse_info(const uint8_t *raw, int got, board_info_t *bi)
 {
-    if (raw == NULL || got < (int)TDC_USB_INFO_LEN || tdc_get_le32(raw + TDC_USB_INFO_OFF_MAGIC) != TDC_USB_INFO_MAGIC ||
+    if (raw == NULL || got < (int)TDC_USB_INFO_LEN ||
+        tdc_get_le32(raw + TDC_USB_INFO_OFF_MAGIC) != TDC_USB_INFO_MAGIC ||
         tdc_get_le16(raw + TDC_USB_INFO_OFF_PROTO) != TDC_USB_PROTO_VERSION)
         return -1;
     memset(bi, 0, sizeof *bi);
@@ -39,18 +40,15 @@ uint16_t tdc_usb_dfu_transfer_size(const uint8_t *x, int len, uint16_t dflt)
     /* each descriptor: bLength >= 2 and inside the buffer (a 7-byte DFU 1.0
      * descriptor at the end counts: the old loop wanted 9 bytes left) */
     for (int k = 0; x != NULL && k + 2 <= len && x[k] >= 2 && k + x[k] <= len; k += x[k])
-        if (x[k + 1] == 0x21 && x[k] >= 7)
-            size = (uint16_t)(x[k + 5] | (x[k + 6] << 8));
+        if (x[k + 1] == 0x21 && x[k] >= 7) size = (uint16_t)(x[k + 5] | (x[k + 6] << 8));
     return size >= 64 && size <= 4096 ? size : dflt;
 }
 
 int tdc_usb_string_decode(const uint8_t *buf, int r, char *out, int cap)
 {
-    if (cap < 1)
-        return -1;
+    if (cap < 1) return -1;
     out[0] = '\0';
-    if (buf == NULL || r < 2 || buf[1] != 0x03 || buf[0] > r || buf[0] < 2)
-        return -1;
+    if (buf == NULL || r < 2 || buf[1] != 0x03 || buf[0] > r || buf[0] < 2) return -1;
     int n = 0;
     for (int i = 2; i + 1 < buf[0] && n + 1 < cap; i += 2)
         out[n++] = buf[i + 1] == 0 && buf[i] >= 0x20 && buf[i] < 0x7F ? (char)buf[i] : '?';
@@ -60,8 +58,7 @@ int tdc_usb_string_decode(const uint8_t *buf, int r, char *out, int cap)
 
 int tdc_usb_parse_status(const uint8_t *st, int got, tdc_usb_status_t *out)
 {
-    if (st == NULL || got < (int)TDC_USB_STATUS_LEN || tdc_get_le32(st) != TDC_USB_STATUS_MAGIC)
-        return -1;
+    if (st == NULL || got < (int)TDC_USB_STATUS_LEN || tdc_get_le32(st) != TDC_USB_STATUS_MAGIC) return -1;
     out->seq = tdc_get_le32(st + TDC_USB_STATUS_OFF_SEQ);
     out->errors = tdc_get_le32(st + TDC_USB_STATUS_OFF_ERRORS);
     out->frames = tdc_get_le32(st + TDC_USB_STATUS_OFF_FRAMES);

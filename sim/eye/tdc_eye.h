@@ -26,18 +26,18 @@
 #include "simulator/tdc_sim_scene.h"
 
 typedef struct {
-    double t0, t1;     /* emission interval, seconds */
-    const double *lin; /* W*H*3 linear light during the interval, or NULL and: */
+    double t0, t1;        /* emission interval, seconds */
+    const double *lin;    /* W*H*3 linear light during the interval, or NULL and: */
     const uint8_t *codes; /* W*H*3 drive codes whose light is lut[256 * channel + code] */
     const double *lut;
 } tdc_eye_slice_t;
 
 typedef struct {
     int width, height;
-    double window_s;    /* fused window T, seconds (e.g. 2 frames at 90 Hz) */
-    double norm;        /* 1 / duty cycle */
-    double max_step_px; /* largest retinal shift between sub-steps (0.5) */
-    double pursuit_gain;/* fraction of the target velocity the eye tracks (1: perfect SPEM) */
+    double window_s;     /* fused window T, seconds (e.g. 2 frames at 90 Hz) */
+    double norm;         /* 1 / duty cycle */
+    double max_step_px;  /* largest retinal shift between sub-steps (0.5) */
+    double pursuit_gain; /* fraction of the target velocity the eye tracks (1: perfect SPEM) */
 } tdc_eye_cfg_t;
 
 /* Perceived image at t_end from n slices (any order; parts outside the

@@ -301,8 +301,10 @@ static tdc_source_t *create(int iw, int ih, const tdc_scene_params_t *p, const t
     }
     if (!(mm.zoom > 1e-3 && mm.zoom < 1e3) || !isfinite(mm.zoom_rate) || fabs(mm.zoom_rate) > 20.0 ||
         !isfinite(mm.rotate_dps) || fabs(mm.rotate_dps) > 3600.0) {
-        snprintf(err, errlen, "image motion out of range: zoom %g (1e-3 .. 1e3), zoom rate %g (|r| <= 20 /s), "
-                 "rotation %g (|w| <= 3600 deg/s)", mm.zoom, mm.zoom_rate, mm.rotate_dps);
+        snprintf(err, errlen,
+                 "image motion out of range: zoom %g (1e-3 .. 1e3), zoom rate %g (|r| <= 20 /s), "
+                 "rotation %g (|w| <= 3600 deg/s)",
+                 mm.zoom, mm.zoom_rate, mm.rotate_dps);
         return NULL;
     }
     if (isnan(mm.cx)) {

@@ -43,10 +43,10 @@
 #include "simulator/tdc_sim_scene.h"
 
 typedef struct {
-    double zoom;        /* z0: screen pixels per texel at t = 0 (> 0; default 1) */
-    double zoom_rate;   /* d ln z / dt, 1/s (0: no zoom) */
-    double rotate_dps;  /* degrees per second (0: no rotation) */
-    double cx, cy;      /* c0: image point at the screen centre at t = 0; NAN: the image centre */
+    double zoom;       /* z0: screen pixels per texel at t = 0 (> 0; default 1) */
+    double zoom_rate;  /* d ln z / dt, 1/s (0: no zoom) */
+    double rotate_dps; /* degrees per second (0: no rotation) */
+    double cx, cy;     /* c0: image point at the screen centre at t = 0; NAN: the image centre */
 } tdc_image_motion_t;
 
 void tdc_image_motion_default(tdc_image_motion_t *m);

@@ -60,8 +60,7 @@ static inline int tdc_lcdm_quad_root(double a, double b, double c, double h, dou
 }
 
 /* Unreachable: nearest of {0, 1, vertex}; steady evaluates M(v, v). */
-static inline double tdc_lcdm_nearest(const double p[4], double u, int steady, double a, double b, double m,
-                                      int *kind)
+static inline double tdc_lcdm_nearest(const double p[4], double u, int steady, double a, double b, double m, int *kind)
 {
     double cand[3] = {0.0, 1.0, -1.0};
     if (a != 0.0) {

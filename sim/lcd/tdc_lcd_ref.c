@@ -27,8 +27,8 @@ void tdc_lcd_ref_free(tdc_lcd_ref_t *r)
     memset(r, 0, sizeof *r);
 }
 
-void tdc_lcd_ref_frame(tdc_lcd_ref_t *r, const uint8_t *wanted, uint8_t *drive, double *residual_add,
-                       double *v_out, int *kind_out)
+void tdc_lcd_ref_frame(tdc_lcd_ref_t *r, const uint8_t *wanted, uint8_t *drive, double *residual_add, double *v_out,
+                       int *kind_out)
 {
     const double h = 0.5 / 255.0;
     for (size_t i = 0; i < r->n; i++) {

@@ -28,7 +28,7 @@ void tdc_lcd_ref_free(tdc_lcd_ref_t *r);
  * residual_add (may be NULL) receives the unreached light (linear, not
  * accumulated: set per sub-pixel, 0 where reachable); v_out (may be NULL)
  * the continuous drive (0..1); kind_out (may be NULL) the case. */
-void tdc_lcd_ref_frame(tdc_lcd_ref_t *r, const uint8_t *wanted, uint8_t *drive, double *residual_add,
-                       double *v_out, int *kind_out);
+void tdc_lcd_ref_frame(tdc_lcd_ref_t *r, const uint8_t *wanted, uint8_t *drive, double *residual_add, double *v_out,
+                       int *kind_out);
 
 #endif

@@ -32,15 +32,15 @@
 
 typedef struct {
     char name[64];
-    double gamma[3];     /* static response T(v) = v^gamma per channel */
-    double black;        /* black level as a fraction of white (LCD leakage) */
-    double peak_cd[3];   /* luminance of each primary at full drive, cd/m^2 */
-    int nlev;            /* tau table size */
+    double gamma[3];                                       /* static response T(v) = v^gamma per channel */
+    double black;                                          /* black level as a fraction of white (LCD leakage) */
+    double peak_cd[3];                                     /* luminance of each primary at full drive, cd/m^2 */
+    int nlev;                                              /* tau table size */
     double lev[TDC_LCDSIM_MAX_LEV];                        /* drive levels, 0..1, increasing */
     double tau_ms[TDC_LCDSIM_MAX_LEV][TDC_LCDSIM_MAX_LEV]; /* [from][to] */
-    int strobe;          /* 0 constant backlight, 1 strobed */
-    double strobe_duty;  /* fraction of the refresh the backlight is on */
-    double strobe_phase; /* start of the flash as a fraction of the refresh */
+    int strobe;                                            /* 0 constant backlight, 1 strobed */
+    double strobe_duty;                                    /* fraction of the refresh the backlight is on */
+    double strobe_phase;                                   /* start of the flash as a fraction of the refresh */
 } tdc_lcdsim_panel_t;
 
 /* Loads a .lcdsim file; 0 on success, else -1 with a message in err. */
@@ -55,11 +55,11 @@ double tdc_lcdsim_step_exact(double x0, double target, double tau, double h, dou
 
 typedef struct {
     const tdc_lcdsim_panel_t *panel;
-    size_t n;           /* sub-pixels (W*H*3 interleaved, channel = index % 3) */
-    double *x;          /* transmittance state */
-    uint8_t *prev;      /* previous drive codes */
+    size_t n;      /* sub-pixels (W*H*3 interleaved, channel = index % 3) */
+    double *x;     /* transmittance state */
+    uint8_t *prev; /* previous drive codes */
     int have_prev;
-    int substeps;       /* exact sub-steps per refresh (>= 1; time-resolved use) */
+    int substeps; /* exact sub-steps per refresh (>= 1; time-resolved use) */
 } tdc_lcdsim_t;
 
 /* Allocates the state for n sub-pixels; the panel starts dark (x = 0). */

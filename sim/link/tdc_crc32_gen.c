@@ -41,7 +41,8 @@ int main(int argc, char **argv)
     for (int j = 0; j < 8; j++) {
         fprintf(f, "  {\n");
         for (int k = 0; k < 256; k++) {
-            fprintf(f, "%s0x%08Xu,%s", k % 6 == 0 ? "    " : " ", (unsigned)t[j][k], k % 6 == 5 || k == 255 ? "\n" : "");
+            fprintf(f, "%s0x%08Xu,%s", k % 6 == 0 ? "    " : " ", (unsigned)t[j][k],
+                    k % 6 == 5 || k == 255 ? "\n" : "");
         }
         fprintf(f, "  },\n");
     }

@@ -57,8 +57,8 @@ long tdc_link_file_read_packet(tdc_link_file_t *lf, uint8_t *buf, size_t cap, td
     }
     const tdc_link_err_t e = tdc_link_header_unpack(buf, hdr);
     if (e != TDC_LINK_OK) {
-        fprintf(stderr, "tdcs: '%s': bad %s at byte %llu\n", lf->path,
-                e == TDC_LINK_ERR_MAGIC ? "magic" : "header CRC", (unsigned long long)lf->bytes);
+        fprintf(stderr, "tdcs: '%s': bad %s at byte %llu\n", lf->path, e == TDC_LINK_ERR_MAGIC ? "magic" : "header CRC",
+                (unsigned long long)lf->bytes);
         return -1;
     }
     if ((size_t)hdr->payload_len > cap - TDC_LINK_HEADER_BYTES) {
@@ -144,11 +144,11 @@ int tdc_link_file_check(const char *path, FILE *log, int verbose, tdc_link_file_
     b.reduced_bytes = TDC_LINK_FRAME_BYTES(w, h);
     uint8_t *mem[16];
     size_t nmem = 0;
-#define TDCS_ALLOC(dst, type, bytes)                        \
-    do {                                                    \
-        mem[nmem] = calloc(1, (bytes));                     \
-        (dst) = (type)(void *)mem[nmem];                    \
-        nmem++;                                             \
+#define TDCS_ALLOC(dst, type, bytes)     \
+    do {                                 \
+        mem[nmem] = calloc(1, (bytes));  \
+        (dst) = (type)(void *)mem[nmem]; \
+        nmem++;                          \
     } while (0)
     TDCS_ALLOC(b.staging, uint8_t *, b.staging_bytes);
     for (unsigned e = 0; e < in.eyes; e++) {
@@ -181,11 +181,12 @@ int tdc_link_file_check(const char *path, FILE *log, int verbose, tdc_link_file_
             pos += tdc_link_feed(dec, chunk + pos, (size_t)got - pos, &ev);
             if (ev.type == TDC_LINK_EV_ERROR && log) {
                 fprintf(log, "error %-15s frame %u kind %s eye %u detail %u (at byte ~%llu)\n",
-                        tdc_link_err_name((tdc_link_err_t)ev.error), ev.frame_index, tdc_link_kind_name(ev.kind), ev.eye,
-                        ev.detail, (unsigned long long)(dec->cnt.bytes_in));
+                        tdc_link_err_name((tdc_link_err_t)ev.error), ev.frame_index, tdc_link_kind_name(ev.kind),
+                        ev.eye, ev.detail, (unsigned long long)(dec->cnt.bytes_in));
             } else if (ev.type == TDC_LINK_EV_PACKET && log && verbose) {
-                fprintf(log, "packet %-8s frame %u eye %u %ux%u format %u flags %u payload %u\n", tdc_link_kind_name(ev.kind),
-                        ev.frame_index, ev.eye, ev.width, ev.height, ev.format, ev.flags, ev.detail);
+                fprintf(log, "packet %-8s frame %u eye %u %ux%u format %u flags %u payload %u\n",
+                        tdc_link_kind_name(ev.kind), ev.frame_index, ev.eye, ev.width, ev.height, ev.format, ev.flags,
+                        ev.detail);
             }
         }
     }

@@ -47,9 +47,9 @@ int tdc_link_file_close(tdc_link_file_t *lf);
 typedef struct {
     tdc_link_stream_info_t stream; /* first stream header of the file */
     uint16_t stream_id;
-    tdc_link_counters_t counters;  /* of a decoder fed the whole file */
+    tdc_link_counters_t counters; /* of a decoder fed the whole file */
     uint64_t bytes;
-    uint32_t truncated_bytes;      /* bytes of an unfinished packet (or garbage) at the end of the file */
+    uint32_t truncated_bytes; /* bytes of an unfinished packet (or garbage) at the end of the file */
 } tdc_link_file_summary_t;
 
 /* Decodes a whole .tdcs file with the firmware decoder, sized from the

@@ -92,9 +92,8 @@ size_t tdc_link_gen_stream(uint8_t *out, size_t cap, const tdc_link_gen_opts_t *
     }
     tdc_link_encoder_t enc;
     tdc_link_encoder_init(&enc, o->stream_id, in);
-    if (o->with_stream_header &&
-        !add(out, cap, &pos, tdc_link_encode_stream(&enc, out + pos, cap - pos), pk, pk_cap, &count,
-             TDC_LINK_KIND_STREAM, 0, 0, 0)) {
+    if (o->with_stream_header && !add(out, cap, &pos, tdc_link_encode_stream(&enc, out + pos, cap - pos), pk, pk_cap,
+                                      &count, TDC_LINK_KIND_STREAM, 0, 0, 0)) {
         return 0;
     }
     int16_t *mv = (int16_t *)(void *)scratch; /* scratch is used for one thing at a time */
@@ -111,14 +110,14 @@ size_t tdc_link_gen_stream(uint8_t *out, size_t cap, const tdc_link_gen_opts_t *
                 }
                 tdc_link_gen_rgb(scratch, tx, ty, f, e, o->seed);
                 if (!add(out, cap, &pos,
-                         tdc_link_encode_subframe(&enc, out + pos, cap - pos, e, f, o->fmt, scratch, w, h), pk,
-                         pk_cap, &count, TDC_LINK_KIND_SUBFRAME, e, 0, f)) {
+                         tdc_link_encode_subframe(&enc, out + pos, cap - pos, e, f, o->fmt, scratch, w, h), pk, pk_cap,
+                         &count, TDC_LINK_KIND_SUBFRAME, e, 0, f)) {
                     return 0;
                 }
                 if (fl & TDC_LINK_STREAM_SAMPLE_MV) {
                     tdc_link_gen_mv(mv, (size_t)tx * ty * 2u, f, e, o->seed ^ 0x5A5Au);
-                    if (!add(out, cap, &pos, tdc_link_encode_motion(&enc, out + pos, cap - pos, e, f, mv, w, h, 1),
-                             pk, pk_cap, &count, TDC_LINK_KIND_MOTION, e, TDC_LINK_PKT_MV_PER_SAMPLE, f)) {
+                    if (!add(out, cap, &pos, tdc_link_encode_motion(&enc, out + pos, cap - pos, e, f, mv, w, h, 1), pk,
+                             pk_cap, &count, TDC_LINK_KIND_MOTION, e, TDC_LINK_PKT_MV_PER_SAMPLE, f)) {
                         return 0;
                     }
                 }

@@ -21,7 +21,7 @@ typedef struct {
     uint32_t first_frame;
     uint32_t frames;
     uint32_t seed;
-    int with_stream_header;      /* 1: begin with the STREAM packet */
+    int with_stream_header; /* 1: begin with the STREAM packet */
 } tdc_link_gen_opts_t;
 
 typedef struct {
@@ -39,7 +39,7 @@ void tdc_link_gen_opts_plain(tdc_link_gen_opts_t *o, uint16_t stream_id, uint16_
 
 /* Scratch bytes tdc_link_gen_stream needs for a w x h eye (4-byte aligned:
  * it also holds int16 motion vectors). */
-#define TDC_LINK_GEN_SCRATCH_BYTES(w, h) ((size_t)(w) * (h) * 4u)
+#define TDC_LINK_GEN_SCRATCH_BYTES(w, h) ((size_t)(w) * (h)*4u)
 
 /* Source content the generator encodes: RGB888 of (frame, eye) at w x h
  * (stride w * 3), and motion vectors (Q4 pairs) for `count` vectors. */

@@ -65,8 +65,8 @@ int tdc_panel_sim_lcd_backlight(tdc_panel_sim_t *p, int strobe, double duty, dou
 {
 #if TDC_SIM_HAVE_LCD_PHYS
     lcdsim_ext_t *e = p ? (lcdsim_ext_t *)p->ext : NULL;
-    if (!e || p->kind != TDC_PANEL_SIM_LCD || (strobe && !(duty > 0.0 && duty <= 1.0 && phase >= 0.0 &&
-                                                           phase + duty <= 1.0 + 1e-12))) {
+    if (!e || p->kind != TDC_PANEL_SIM_LCD ||
+        (strobe && !(duty > 0.0 && duty <= 1.0 && phase >= 0.0 && phase + duty <= 1.0 + 1e-12))) {
         return -1;
     }
     e->panel.strobe = strobe != 0;

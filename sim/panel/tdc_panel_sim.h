@@ -29,13 +29,13 @@ typedef struct {
     tdc_panel_sim_kind_t kind;
     int width, height;
     double gamma[3];
-    double persistence;  /* OLED: fraction of the frame emitting (0, 1] */
-    double tau_rise_s;   /* LCD fallback: time constants */
+    double persistence; /* OLED: fraction of the frame emitting (0, 1] */
+    double tau_rise_s;  /* LCD fallback: time constants */
     double tau_fall_s;
-    const char *model;   /* description for reports */
-    double *state;       /* LCD: current light per sample (W*H*3) */
+    const char *model; /* description for reports */
+    double *state;     /* LCD: current light per sample (W*H*3) */
     double *slice_buf[TDC_PANEL_SIM_MAX_SLICES];
-    void *ext;           /* physical LCD model from sim/lcd, when linked */
+    void *ext; /* physical LCD model from sim/lcd, when linked */
 } tdc_panel_sim_t;
 
 /* Returns 0, or -1 (bad arguments / allocation). */

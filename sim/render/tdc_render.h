@@ -57,27 +57,27 @@ typedef enum {
 
 /* Foveation of the FOVEATED mode (per frame: the gaze moves). */
 typedef struct {
-    double gaze_x, gaze_y;  /* display pixels; rounded to Q8 like the link header */
-    double alpha;           /* K(x) = x^alpha, [1, 8], default 4 */
-    double delta;           /* buffer downscale, default 0.555: quantised up to Q15 like the link header,
+    double gaze_x, gaze_y; /* display pixels; rounded to Q8 like the link header */
+    double alpha;          /* K(x) = x^alpha, [1, 8], default 4 */
+    double delta;          /* buffer downscale, default 0.555: quantised up to Q15 like the link header,
                                w = floor(delta_q15 W / 2^15) (tdc_fov_lp_size) */
-    double disk;            /* disk radius / distance to the farthest corner, [0, 1]; default 0.12443 */
-    double jx, jy;          /* sub-sample jitter of the log-polar samples (Halton 2,3 where TAA follows) */
+    double disk;           /* disk radius / distance to the farthest corner, [0, 1]; default 0.12443 */
+    double jx, jy;         /* sub-sample jitter of the log-polar samples (Halton 2,3 where TAA follows) */
 } tdc_render_fov_t;
 
 typedef struct {
-    int width, height;      /* output size; 0 = the scene's resolution */
-    int threads;            /* worker threads (pthreads), >= 1 */
-    uint32_t seed;          /* all randomness (jitter, light samples) derives from it */
-    int max_bounces;        /* mirror bounces, 0..3 (default 3) */
-    int reflect_mv;         /* reflected MVs for mirror hits (TDRT §3.1.2), default 1 */
-    int shadow_mv;          /* shadow MVs (Zeng §4.1), default 0 */
-    int dual_mv;            /* dual MVs for disocclusions (Zeng §4.3), default 0 */
-    double reduced_factor;  /* r of REDUCED frames, (0, 1], default 0.5 */
-    int reduced_ss;         /* supersamples per reduced pixel per axis, default 2 */
-    double reduced_sigma;   /* Gaussian resolve sigma in full-res px, default 2.5 (TRM §4.3) */
-    int gt_samples;         /* N of GROUND_TRUTH, default 64 */
-    int record_rays;        /* keep every traced ray of the last frame (benchmark) */
+    int width, height;     /* output size; 0 = the scene's resolution */
+    int threads;           /* worker threads (pthreads), >= 1 */
+    uint32_t seed;         /* all randomness (jitter, light samples) derives from it */
+    int max_bounces;       /* mirror bounces, 0..3 (default 3) */
+    int reflect_mv;        /* reflected MVs for mirror hits (TDRT §3.1.2), default 1 */
+    int shadow_mv;         /* shadow MVs (Zeng §4.1), default 0 */
+    int dual_mv;           /* dual MVs for disocclusions (Zeng §4.3), default 0 */
+    double reduced_factor; /* r of REDUCED frames, (0, 1], default 0.5 */
+    int reduced_ss;        /* supersamples per reduced pixel per axis, default 2 */
+    double reduced_sigma;  /* Gaussian resolve sigma in full-res px, default 2.5 (TRM §4.3) */
+    int gt_samples;        /* N of GROUND_TRUTH, default 64 */
+    int record_rays;       /* keep every traced ray of the last frame (benchmark) */
 } tdc_render_config_t;
 
 /* Caller-owned outputs; any pointer may be NULL (that output is not
@@ -87,50 +87,50 @@ typedef struct {
  * if `mv` is NULL: they feed the MV history that drives the subframe
  * orderings and pixel classes.  Shadow and dual MVs only with their option. */
 typedef struct {
-    float *rgb;             /* n x 3 linear RGB */
-    int16_t *mv;            /* n x 2 Q4 backward MVs (primary, or reflected for mirror hits) */
-    float *mv_f;            /* n x 2 the same in float px (before rounding) */
-    int16_t *mv_shadow;     /* n x 2 Q4 shadow MVs (= mv where not in a tracked shadow) */
-    float *shadow_weight;   /* n: Zeng eq. 4 falloff G(theta - pi/2; 0, 0.1), 0 where no shadow MV */
-    int16_t *mv_dual;       /* n x 2 Q4 dual MVs (= mv where not disoccluded) */
-    float *depth;           /* n: camera-space depth of the primary hit, INFINITY for misses */
+    float *rgb;           /* n x 3 linear RGB */
+    int16_t *mv;          /* n x 2 Q4 backward MVs (primary, or reflected for mirror hits) */
+    float *mv_f;          /* n x 2 the same in float px (before rounding) */
+    int16_t *mv_shadow;   /* n x 2 Q4 shadow MVs (= mv where not in a tracked shadow) */
+    float *shadow_weight; /* n: Zeng eq. 4 falloff G(theta - pi/2; 0, 0.1), 0 where no shadow MV */
+    int16_t *mv_dual;     /* n x 2 Q4 dual MVs (= mv where not disoccluded) */
+    float *depth;         /* n: camera-space depth of the primary hit, INFINITY for misses */
 } tdc_render_out_t;
 
 typedef enum {
-    TDC_STAGE_SCENE = 0,    /* animation + Embree instance update/commit */
-    TDC_STAGE_PRIMARY,      /* primary rays */
-    TDC_STAGE_SHADE,        /* textures + direct light + shadow rays */
-    TDC_STAGE_REFLECT,      /* mirror bounces (rays, shading of reflected hits) */
-    TDC_STAGE_MV,           /* primary motion vectors */
-    TDC_STAGE_MV_REFLECT,   /* reflected motion vectors */
-    TDC_STAGE_MV_SHADOW,    /* shadow motion vectors (+ previous-frame rays for the falloff) */
-    TDC_STAGE_MV_DUAL,      /* dual motion vectors (+ previous-frame rays) */
-    TDC_STAGE_RESOLVE,      /* Gaussian resolve (reduced) / sample averaging (ground truth) */
-    TDC_STAGE_ORDERING,     /* tile-ordering update (subframes, frame = 0 mod 4) */
+    TDC_STAGE_SCENE = 0,  /* animation + Embree instance update/commit */
+    TDC_STAGE_PRIMARY,    /* primary rays */
+    TDC_STAGE_SHADE,      /* textures + direct light + shadow rays */
+    TDC_STAGE_REFLECT,    /* mirror bounces (rays, shading of reflected hits) */
+    TDC_STAGE_MV,         /* primary motion vectors */
+    TDC_STAGE_MV_REFLECT, /* reflected motion vectors */
+    TDC_STAGE_MV_SHADOW,  /* shadow motion vectors (+ previous-frame rays for the falloff) */
+    TDC_STAGE_MV_DUAL,    /* dual motion vectors (+ previous-frame rays) */
+    TDC_STAGE_RESOLVE,    /* Gaussian resolve (reduced) / sample averaging (ground truth) */
+    TDC_STAGE_ORDERING,   /* tile-ordering update (subframes, frame = 0 mod 4) */
     TDC_STAGE_COUNT
 } tdc_render_stage_t;
 
 typedef enum { TDC_RAY_PRIMARY = 0, TDC_RAY_SHADOW, TDC_RAY_REFLECT, TDC_RAY_MV, TDC_RAY_KIND_COUNT } tdc_ray_kind_t;
 
 typedef struct {
-    double ms[TDC_STAGE_COUNT];     /* CPU milliseconds per stage, summed over threads */
-    int ran[TDC_STAGE_COUNT];       /* 1 if the stage ran this frame, 0 if skipped */
+    double ms[TDC_STAGE_COUNT]; /* CPU milliseconds per stage, summed over threads */
+    int ran[TDC_STAGE_COUNT];   /* 1 if the stage ran this frame, 0 if skipped */
     uint64_t rays[TDC_RAY_KIND_COUNT];
-    double wall_ms;                 /* whole call, wall clock */
-    int out_w, out_h;               /* output size of the mode */
-    int frame_static;               /* nothing moved between frame - 1 and frame */
+    double wall_ms;   /* whole call, wall clock */
+    int out_w, out_h; /* output size of the mode */
+    int frame_static; /* nothing moved between frame - 1 and frame */
 } tdc_render_stats_t;
 
 /* What the scene needs (detected at open); stages it does not need are skipped. */
 typedef struct {
-    int mirrors;          /* a visible object has a mirror material -> reflection rays/MVs */
-    int motion;           /* something moves (camera, object or light) -> MV work */
+    int mirrors; /* a visible object has a mirror material -> reflection rays/MVs */
+    int motion;  /* something moves (camera, object or light) -> MV work */
     int camera_moves;
     int objects_move;
-    int moving_blocker;   /* lit scene and an object or light moves -> shadow MVs useful */
-    int lights;           /* point/rect lights present -> shadow rays */
+    int moving_blocker; /* lit scene and an object or light moves -> shadow MVs useful */
+    int lights;         /* point/rect lights present -> shadow rays */
     int area_lights;
-    uint64_t triangles;   /* triangles + quads*2 over all objects */
+    uint64_t triangles; /* triangles + quads*2 over all objects */
 } tdc_render_features_t;
 
 typedef struct tdc_render tdc_render_t;
@@ -168,22 +168,22 @@ const int16_t *tdc_render_mv_history(const tdc_render_t *r);
 
 /* One ray through image position (x, y) of `frame`, for tests and tools. */
 typedef struct {
-    int hit;                /* primary ray hit an object */
-    int obj;                /* object index */
-    double q[3];            /* hit point in the object's local space */
+    int hit;     /* primary ray hit an object */
+    int obj;     /* object index */
+    double q[3]; /* hit point in the object's local space */
     double world[3];
-    double mv[2];           /* the MV the renderer outputs (float px) */
-    int mirror_hit;         /* primary surface is a mirror and a reflected object was hit */
-    int refl_obj;           /* last reflected non-mirror object */
+    double mv[2];   /* the MV the renderer outputs (float px) */
+    int mirror_hit; /* primary surface is a mirror and a reflected object was hit */
+    int refl_obj;   /* last reflected non-mirror object */
     double refl_q[3];
-    int in_shadow;          /* a light (sample) is blocked: the first such one is tracked */
+    int in_shadow; /* a light (sample) is blocked: the first such one is tracked */
     int blocker_obj;
     double blocker_q[3];
     double shadow_mv[2];
     double shadow_weight;
     double dual_mv[2];
     int disoccluded;
-    double rgb[3];          /* linear radiance of the sample */
+    double rgb[3]; /* linear radiance of the sample */
 } tdc_render_probe_t;
 int tdc_render_probe(tdc_render_t *r, uint32_t frame, double x, double y, tdc_render_probe_t *p);
 
@@ -204,12 +204,12 @@ int tdc_render_write_png(const char *path, const float *lin, int w, int h, char 
 /* Rays of the last frame rendered with record_rays (benchmark replay). */
 typedef struct {
     float org[3], tnear;
-    float dir[3], tfar;     /* tfar: the ray's original extent */
-    uint32_t kind;          /* tdc_ray_kind_t */
-    uint32_t flags;         /* TDC_RAY_PREV_FRAME, TDC_RAY_OCCLUSION */
+    float dir[3], tfar; /* tfar: the ray's original extent */
+    uint32_t kind;      /* tdc_ray_kind_t */
+    uint32_t flags;     /* TDC_RAY_PREV_FRAME, TDC_RAY_OCCLUSION */
 } tdc_render_ray_t;
-#define TDC_RAY_PREV_FRAME 1u  /* traced in the previous frame's scene (MV rays) */
-#define TDC_RAY_OCCLUSION 2u   /* rtcOccluded1 query (else rtcIntersect1) */
+#define TDC_RAY_PREV_FRAME 1u /* traced in the previous frame's scene (MV rays) */
+#define TDC_RAY_OCCLUSION 2u  /* rtcOccluded1 query (else rtcIntersect1) */
 const tdc_render_ray_t *tdc_render_recorded_rays(const tdc_render_t *r, size_t *count);
 /* The committed Embree scene (RTCScene) of `frame`, for bare-Embree comparisons. */
 void *tdc_render_embree_scene(tdc_render_t *r, uint32_t frame);

@@ -25,7 +25,6 @@ void tdc_render_default_config(tdc_render_config_t *cfg)
 }
 
 
-
 /* Inverse of a 3x4 affine matrix; also the normal matrix (inverse transpose of the 3x3). */
 static void invert_affine(const double m[12], double inv[12], double nm[9])
 {
@@ -71,8 +70,6 @@ static void make_cam(const tdc_scene_t *s, double t, int w, int h, rcam_t *c)
     c->kx = 0.5 * w / (c->tan_half * c->aspect);
     c->ky = 0.5 * h / c->tan_half;
 }
-
-
 
 
 const rframe_t *tdc_r_frame(tdc_render_t *r, long frame)
@@ -234,9 +231,7 @@ void tdc_render_output_size(const tdc_render_t *r, tdc_render_mode_t mode, int *
         *w = r->fov_n;
         *h = 1;
         break;
-    default:
-        *w = r->W;
-        *h = r->H;
+    default: *w = r->W; *h = r->H;
     }
 }
 
@@ -247,12 +242,27 @@ int tdc_render_set_threads(tdc_render_t *r, int threads)
     return 0;
 }
 
-void tdc_render_set_record(tdc_render_t *r, int on) { r->cfg.record_rays = on != 0; }
+void tdc_render_set_record(tdc_render_t *r, int on)
+{
+    r->cfg.record_rays = on != 0;
+}
 
-void tdc_render_get_features(const tdc_render_t *r, tdc_render_features_t *f) { *f = r->feat; }
-const tdc_scene_t *tdc_render_scene(const tdc_render_t *r) { return r->scene; }
-const uint8_t *tdc_render_pattern_bits(const tdc_render_t *r) { return r->pattern; }
-const int16_t *tdc_render_mv_history(const tdc_render_t *r) { return r->mv_hist; }
+void tdc_render_get_features(const tdc_render_t *r, tdc_render_features_t *f)
+{
+    *f = r->feat;
+}
+const tdc_scene_t *tdc_render_scene(const tdc_render_t *r)
+{
+    return r->scene;
+}
+const uint8_t *tdc_render_pattern_bits(const tdc_render_t *r)
+{
+    return r->pattern;
+}
+const int16_t *tdc_render_mv_history(const tdc_render_t *r)
+{
+    return r->mv_hist;
+}
 
 void tdc_render_set_pattern_bits(tdc_render_t *r, const uint8_t *bits)
 {
@@ -264,8 +274,8 @@ int tdc_r_update_motion(tdc_render_t *r, long frame)
     const rframe_t *a = tdc_r_frame(r, frame);
     const rframe_t *b = tdc_r_frame(r, frame - 1);
     int any = 0;
-    r->cam_moved = memcmp(a->cam.pos, b->cam.pos, sizeof a->cam.pos) || memcmp(a->cam.fwd, b->cam.fwd, sizeof a->cam.fwd) ||
-                   a->cam.tan_half != b->cam.tan_half;
+    r->cam_moved = memcmp(a->cam.pos, b->cam.pos, sizeof a->cam.pos) ||
+                   memcmp(a->cam.fwd, b->cam.fwd, sizeof a->cam.fwd) || a->cam.tan_half != b->cam.tan_half;
     any |= r->cam_moved;
     for (int i = 0; i < r->scene->nobjects; i++) {
         r->obj_same_m[i] = memcmp(a->m[i], b->m[i], sizeof a->m[i]) == 0;
@@ -292,7 +302,10 @@ int tdc_render_frame_static(tdc_render_t *r, uint32_t frame)
     return !tdc_r_update_motion(r, (long)frame);
 }
 
-void *tdc_render_embree_scene(tdc_render_t *r, uint32_t frame) { return tdc_r_top(r, (long)frame); }
+void *tdc_render_embree_scene(tdc_render_t *r, uint32_t frame)
+{
+    return tdc_r_top(r, (long)frame);
+}
 
 const tdc_render_ray_t *tdc_render_recorded_rays(const tdc_render_t *r, size_t *count)
 {
@@ -302,9 +315,8 @@ const tdc_render_ray_t *tdc_render_recorded_rays(const tdc_render_t *r, size_t *
 
 const char *tdc_render_stage_name(tdc_render_stage_t s)
 {
-    static const char *const n[TDC_STAGE_COUNT] = {"scene",     "primary",   "shade",   "reflect",
-                                                   "mv",        "mv-reflect", "mv-shadow", "mv-dual",
-                                                   "resolve",   "ordering"};
+    static const char *const n[TDC_STAGE_COUNT] = {"scene",      "primary",   "shade",   "reflect", "mv",
+                                                   "mv-reflect", "mv-shadow", "mv-dual", "resolve", "ordering"};
     return (unsigned)s < TDC_STAGE_COUNT ? n[s] : "?";
 }
 

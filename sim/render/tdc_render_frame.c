@@ -18,18 +18,18 @@ typedef struct {
     tdc_render_t *r;
     tdc_render_mode_t mode;
     uint32_t frame;
-    int sw, sh;              /* slot grid */
-    int spp;                 /* samples per slot */
-    int tile, tile_h;        /* tile width and height in slots */
+    int sw, sh;       /* slot grid */
+    int spp;          /* samples per slot */
+    int tile, tile_h; /* tile width and height in slots */
     int ntx, nty;
     /* atomic work counter on a cache line of its own: each add would
      * otherwise take the line holding the fields the other thread reads */
     _Alignas(64) int next;
     char next_pad[60];
-    int32_t jx, jy;          /* subframe static jitter, Q4 */
+    int32_t jx, jy; /* subframe static jitter, Q4 */
     int do_reflect, do_mv, do_mv_reflect, do_mv_shadow, do_mv_dual, frame_static;
     const tdc_render_out_t *out;
-    float *ss;               /* reduced: supersample buffer sw*sh*3; GT: accumulation target */
+    float *ss; /* reduced: supersample buffer sw*sh*3; GT: accumulation target */
     int record;
 } job_t;
 
@@ -142,8 +142,7 @@ static int place_samples(job_t *jb, int tx, int ty, rsample_t *s)
                 s[n].k = 0;
                 n++;
                 break;
-            case TDC_RENDER_FOVEATED: /* placed above */
-                break;
+            case TDC_RENDER_FOVEATED: /* placed above */ break;
             case TDC_RENDER_GROUND_TRUTH: {
                 int N = jb->spp, g = (int)floor(sqrt((double)N));
                 for (int k = 0; k < N; k++) {
@@ -180,16 +179,22 @@ static int place_samples(job_t *jb, int tx, int ty, rsample_t *s)
  * with the ticks per ms of the whole worker span (wall clock). */
 #if defined(__x86_64__) || defined(__i386__)
 #include <x86intrin.h>
-static inline uint64_t stamp(void) { return __rdtsc(); }
+static inline uint64_t stamp(void)
+{
+    return __rdtsc();
+}
 #else
-static inline uint64_t stamp(void) { return (uint64_t)(tdc_r_now_ms() * 1e6); } /* ns */
+static inline uint64_t stamp(void)
+{
+    return (uint64_t)(tdc_r_now_ms() * 1e6);
+} /* ns */
 #endif
-#define TIMED(th, stage, call)                                                                                         \
-    do {                                                                                                               \
-        call;                                                                                                          \
-        uint64_t t1_ = stamp();                                                                                        \
-        (th)->ticks[stage] += t1_ - t_;                                                                                \
-        t_ = t1_;                                                                                                      \
+#define TIMED(th, stage, call)          \
+    do {                                \
+        call;                           \
+        uint64_t t1_ = stamp();         \
+        (th)->ticks[stage] += t1_ - t_; \
+        t_ = t1_;                       \
     } while (0)
 
 static void write_outputs(job_t *jb, const rsample_t *s, int n)
@@ -592,8 +597,10 @@ int tdc_render_project(tdc_render_t *r, uint32_t frame, int obj, const double q[
 {
     const rframe_t *f = tdc_r_frame(r, (long)frame);
     double w[3];
-    if (obj >= 0) tdc_r_xform_point(f->m[obj], q, w);
-    else memcpy(w, q, sizeof w);
+    if (obj >= 0)
+        tdc_r_xform_point(f->m[obj], q, w);
+    else
+        memcpy(w, q, sizeof w);
     return tdc_r_project(&f->cam, w, x, y);
 }
 

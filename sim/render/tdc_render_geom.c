@@ -13,10 +13,10 @@
 #include "tdc_render_internal.h"
 
 typedef struct {
-    float *v;         /* xyz */
+    float *v; /* xyz */
     unsigned nv, cv;
-    unsigned *ix;     /* 3 or 4 per primitive */
-    unsigned ni, ci;  /* index count */
+    unsigned *ix;    /* 3 or 4 per primitive */
+    unsigned ni, ci; /* index count */
 } meshbuf_t;
 
 static int mb_vertex(meshbuf_t *m, double x, double y, double z)
@@ -51,11 +51,13 @@ static int mb_index(meshbuf_t *m, unsigned i)
 /* An axis-aligned box as 6 quads (outward winding). */
 static int mb_box(meshbuf_t *m, double cx, double cy, double cz, double sx, double sy, double sz)
 {
-    static const int corner[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+    static const int corner[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                                     {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
     static const int face[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 4, 7, 3}, {1, 2, 6, 5}, {0, 1, 5, 4}, {3, 7, 6, 2}};
     unsigned base = m->nv;
     for (int i = 0; i < 8; i++)
-        if (mb_vertex(m, cx + (corner[i][0] - 0.5) * sx, cy + (corner[i][1] - 0.5) * sy, cz + (corner[i][2] - 0.5) * sz) < 0)
+        if (mb_vertex(m, cx + (corner[i][0] - 0.5) * sx, cy + (corner[i][1] - 0.5) * sy,
+                      cz + (corner[i][2] - 0.5) * sz) < 0)
             return -1;
     for (int f = 0; f < 6; f++)
         for (int k = 0; k < 4; k++)
@@ -214,9 +216,7 @@ int tdc_r_build_object(tdc_render_t *r, int i, char *err, size_t errlen)
             return -1;
         }
         break;
-    default:
-        snprintf(err, errlen, "object %s: unknown shape", o->name);
-        return -1;
+    default: snprintf(err, errlen, "object %s: unknown shape", o->name); return -1;
     }
     if (rc) {
         free(m.v);

@@ -15,7 +15,7 @@
 /* Camera of one frame: pinhole, y down in the image. */
 typedef struct {
     double pos[3], fwd[3], right[3], up[3];
-    double tan_half, aspect;  /* tan(fov/2), W/H */
+    double tan_half, aspect; /* tan(fov/2), W/H */
     int w, h;
     /* precomputed: image (x, y) -> screen-plane (sx, sy) = (x ax + bx, y ay + by),
      * and back: x = u kx + w/2, y = h/2 - v ky for u, v = plane coordinates / depth */
@@ -24,18 +24,18 @@ typedef struct {
 
 /* Everything that depends on the frame time. */
 typedef struct {
-    long frame;               /* -1 = invalid */
+    long frame; /* -1 = invalid */
     double t;
     rcam_t cam;
-    double m[TDC_SCENE_MAX_OBJECTS][12];     /* object -> world */
-    double minv[TDC_SCENE_MAX_OBJECTS][12];  /* world -> object */
-    double nm[TDC_SCENE_MAX_OBJECTS][9];     /* normal matrix (inverse transpose of the 3x3) */
+    double m[TDC_SCENE_MAX_OBJECTS][12];    /* object -> world */
+    double minv[TDC_SCENE_MAX_OBJECTS][12]; /* world -> object */
+    double nm[TDC_SCENE_MAX_OBJECTS][9];    /* normal matrix (inverse transpose of the 3x3) */
     double light_pos[TDC_SCENE_MAX_LIGHTS][3];
 } rframe_t;
 
 /* Per-object data the shader needs. */
 typedef struct {
-    RTCScene scene;           /* the object's geometry in local space */
+    RTCScene scene; /* the object's geometry in local space */
     int animated;
     uint64_t prims;
 } robj_t;
@@ -43,17 +43,17 @@ typedef struct {
 typedef struct {
     RTCScene top;
     RTCGeometry inst[TDC_SCENE_MAX_OBJECTS];
-    long frame;               /* frame the instances are committed for, -1 none */
+    long frame; /* frame the instances are committed for, -1 none */
 } rtop_t;
 
 /* Per-material texture data prepared at open (tdc_r_tex_prepare): the
  * glyph of every character position of a text texture, so the per-sample
  * lookup needs neither strlen() nor the character switch. */
 typedef struct {
-    long text_len1;           /* strlen(text) + 1: the text repeats with one space */
-    double text_cell6;        /* 6 * (scale / 8): glyph cell width */
-    uint64_t text_mod_m;      /* floor((2^64 - 1) / text_len1) + 1: remainder by multiplication */
-    long text_mod_k;          /* smallest multiple of text_len1 >= 2^30 */
+    long text_len1;      /* strlen(text) + 1: the text repeats with one space */
+    double text_cell6;   /* 6 * (scale / 8): glyph cell width */
+    uint64_t text_mod_m; /* floor((2^64 - 1) / text_len1) + 1: remainder by multiplication */
+    long text_mod_k;     /* smallest multiple of text_len1 >= 2^30 */
     /* 5x7 glyph rows (bit 4 = leftmost column) of each character position,
      * row 7 = 0 (the gap row), so the lookup needs no range test */
     unsigned char rows[TDC_SCENE_TEXT_LEN + 1][8];
@@ -68,7 +68,7 @@ struct tdc_render {
     robj_t obj[TDC_SCENE_MAX_OBJECTS];
     rtex_t tex[TDC_SCENE_MAX_MATERIALS];
     rtop_t top[2];
-    rframe_t fr[2];           /* cache of evaluated frames */
+    rframe_t fr[2]; /* cache of evaluated frames */
     /* motion between the frame being rendered and the previous one: pixels
      * of unmoved objects under an unmoved camera get MV = 0 without math */
     int cam_moved;
@@ -86,14 +86,14 @@ struct tdc_render {
      * cylinder): the shade pass computes them in a loop of their own */
     uint8_t obj_uv_first[TDC_SCENE_MAX_OBJECTS];
     int any_uv_first;
-    int16_t *mv_hist;         /* W*H*2 */
-    int16_t *mv_hist_prev;    /* snapshot at the start of a subframe (pixel classes) */
-    uint8_t *pattern;         /* ordering bits */
-    void *sbuf[64];           /* per-thread sample buffers, kept between frames */
-    size_t sbuf_cap[64];      /* in samples */
-    float *fov_xy;            /* FOVEATED: sample positions, fov_n x 2 */
-    int fov_n, fov_lp;        /* samples, of which log-polar */
-    tdc_render_ray_t *rec;    /* recorded rays (merged) */
+    int16_t *mv_hist;      /* W*H*2 */
+    int16_t *mv_hist_prev; /* snapshot at the start of a subframe (pixel classes) */
+    uint8_t *pattern;      /* ordering bits */
+    void *sbuf[64];        /* per-thread sample buffers, kept between frames */
+    size_t sbuf_cap[64];   /* in samples */
+    float *fov_xy;         /* FOVEATED: sample positions, fov_n x 2 */
+    int fov_n, fov_lp;     /* samples, of which log-polar */
+    tdc_render_ray_t *rec; /* recorded rays (merged) */
     size_t nrec;
 };
 

@@ -22,23 +22,22 @@
 
 static void usage(void)
 {
-    fprintf(stderr,
-            "usage: tdc-render (--scene FILE | --builtin NAME) [options]\n"
-            "       tdc-render --list | --print-scene NAME\n"
-            "options:\n"
-            "  --mode full|reduced|subframe|gt|trm   (trm: full and reduced frames alternate)\n"
-            "  --frames A:B         frames A..B-1 (default 0:1)\n"
-            "  --size WxH           output size (default: the scene's)\n"
-            "  --threads N          worker threads (default 2)\n"
-            "  --seed S             random seed (default 1)\n"
-            "  --gt-samples N       ground-truth samples per pixel (default 64)\n"
-            "  --reduced-factor R   r of reduced frames (default 0.5)\n"
-            "  --shadow-mv --dual-mv --no-reflect-mv --bounces N\n"
-            "  --png DIR            write DIR/<scene>-<mode>-<frame>.png (+ -mv.png for motion)\n"
-            "  --stream FILE        write a .tdcs link stream (full, reduced, subframe, trm)\n"
-            "  --quiet              no per-frame lines\n"
-            "exit codes (docs/tools.md): 0 OK, 1 ARGS, 7 FILE, 13 INPUT (scene), 14 REFUSED (renderer\n"
-            "  or link encoder), 17 NOMEM\n");
+    fprintf(stderr, "usage: tdc-render (--scene FILE | --builtin NAME) [options]\n"
+                    "       tdc-render --list | --print-scene NAME\n"
+                    "options:\n"
+                    "  --mode full|reduced|subframe|gt|trm   (trm: full and reduced frames alternate)\n"
+                    "  --frames A:B         frames A..B-1 (default 0:1)\n"
+                    "  --size WxH           output size (default: the scene's)\n"
+                    "  --threads N          worker threads (default 2)\n"
+                    "  --seed S             random seed (default 1)\n"
+                    "  --gt-samples N       ground-truth samples per pixel (default 64)\n"
+                    "  --reduced-factor R   r of reduced frames (default 0.5)\n"
+                    "  --shadow-mv --dual-mv --no-reflect-mv --bounces N\n"
+                    "  --png DIR            write DIR/<scene>-<mode>-<frame>.png (+ -mv.png for motion)\n"
+                    "  --stream FILE        write a .tdcs link stream (full, reduced, subframe, trm)\n"
+                    "  --quiet              no per-frame lines\n"
+                    "exit codes (docs/tools.md): 0 OK, 1 ARGS, 7 FILE, 13 INPUT (scene), 14 REFUSED (renderer\n"
+                    "  or link encoder), 17 NOMEM\n");
 }
 
 static int parse_int(const char *s, int lo, int hi, int *out)
@@ -91,15 +90,24 @@ int main(int argc, char **argv)
             }
             fputs(t, stdout);
             return 0;
-        } else if (!strcmp(a, "--scene") && v) scene_file = argv[++i];
-        else if (!strcmp(a, "--builtin") && v) builtin = argv[++i];
-        else if (!strcmp(a, "--mode") && v) mode_s = argv[++i];
-        else if (!strcmp(a, "--png") && v) png_dir = argv[++i];
-        else if (!strcmp(a, "--stream") && v) stream_path = argv[++i];
-        else if (!strcmp(a, "--quiet")) quiet = 1;
-        else if (!strcmp(a, "--shadow-mv")) cfg.shadow_mv = 1;
-        else if (!strcmp(a, "--dual-mv")) cfg.dual_mv = 1;
-        else if (!strcmp(a, "--no-reflect-mv")) cfg.reflect_mv = 0;
+        } else if (!strcmp(a, "--scene") && v)
+            scene_file = argv[++i];
+        else if (!strcmp(a, "--builtin") && v)
+            builtin = argv[++i];
+        else if (!strcmp(a, "--mode") && v)
+            mode_s = argv[++i];
+        else if (!strcmp(a, "--png") && v)
+            png_dir = argv[++i];
+        else if (!strcmp(a, "--stream") && v)
+            stream_path = argv[++i];
+        else if (!strcmp(a, "--quiet"))
+            quiet = 1;
+        else if (!strcmp(a, "--shadow-mv"))
+            cfg.shadow_mv = 1;
+        else if (!strcmp(a, "--dual-mv"))
+            cfg.dual_mv = 1;
+        else if (!strcmp(a, "--no-reflect-mv"))
+            cfg.reflect_mv = 0;
         else if (!strcmp(a, "--frames") && v) {
             if (parse_frames(argv[++i], &f0, &f1) != 0)
                 return tdc_fail_option(NULL, a, argv[i], "want A:B with 0 <= A < B <= 10000000");
@@ -134,10 +142,14 @@ int main(int argc, char **argv)
     }
     int trm = 0;
     tdc_render_mode_t mode;
-    if (!strcmp(mode_s, "full")) mode = TDC_RENDER_FULL;
-    else if (!strcmp(mode_s, "reduced")) mode = TDC_RENDER_REDUCED;
-    else if (!strcmp(mode_s, "subframe")) mode = TDC_RENDER_SUBFRAME;
-    else if (!strcmp(mode_s, "gt")) mode = TDC_RENDER_GROUND_TRUTH;
+    if (!strcmp(mode_s, "full"))
+        mode = TDC_RENDER_FULL;
+    else if (!strcmp(mode_s, "reduced"))
+        mode = TDC_RENDER_REDUCED;
+    else if (!strcmp(mode_s, "subframe"))
+        mode = TDC_RENDER_SUBFRAME;
+    else if (!strcmp(mode_s, "gt"))
+        mode = TDC_RENDER_GROUND_TRUTH;
     else if (!strcmp(mode_s, "trm")) {
         mode = TDC_RENDER_FULL;
         trm = 1;
@@ -186,8 +198,8 @@ int main(int argc, char **argv)
     tdc_render_output_size(r, TDC_RENDER_FULL, &W, &H);
     printf("scene %s: %dx%d, %d objects, %llu triangles, features: mirrors=%d motion=%d (camera %d, objects %d) "
            "moving-blocker=%d lights=%d area-lights=%d\n",
-           scene->name, W, H, scene->nobjects, (unsigned long long)ft.triangles, ft.mirrors, ft.motion,
-           ft.camera_moves, ft.objects_move, ft.moving_blocker, ft.lights, ft.area_lights);
+           scene->name, W, H, scene->nobjects, (unsigned long long)ft.triangles, ft.mirrors, ft.motion, ft.camera_moves,
+           ft.objects_move, ft.moving_blocker, ft.lights, ft.area_lights);
     if (png_dir && mkdir(png_dir, 0777) != 0 && errno != EEXIST) {
         rc = tdc_fail(TDC_EXIT_FILE, NULL, png_dir, "cannot create the output folder: %s", strerror(errno));
         goto done;

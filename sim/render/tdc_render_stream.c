@@ -89,9 +89,15 @@ tdc_render_stream_t *tdc_render_stream_create(const char *path, tdc_render_t *r,
     return s;
 }
 
-uint32_t tdc_render_stream_flags(const tdc_render_stream_t *s) { return s->enc.info.flags; }
+uint32_t tdc_render_stream_flags(const tdc_render_stream_t *s)
+{
+    return s->enc.info.flags;
+}
 
-static int put(tdc_render_stream_t *s, size_t n) { return n && tdc_link_file_write(&s->lf, s->pkt, n) == 0 ? 0 : -1; }
+static int put(tdc_render_stream_t *s, size_t n)
+{
+    return n && tdc_link_file_write(&s->lf, s->pkt, n) == 0 ? 0 : -1;
+}
 
 int tdc_render_stream_frame(tdc_render_stream_t *s, uint32_t frame, tdc_render_mode_t mode, const float *rgb,
                             const int16_t *mv)
@@ -103,21 +109,21 @@ int tdc_render_stream_frame(tdc_render_stream_t *s, uint32_t frame, tdc_render_m
     switch (mode) {
     case TDC_RENDER_SUBFRAME:
         if ((frame & 3u) == 0)
-            rc |= put(s, tdc_link_encode_pattern(&s->enc, s->pkt, s->cap, 0, frame, tdc_render_pattern_bits(s->r), W, H));
+            rc |=
+                put(s, tdc_link_encode_pattern(&s->enc, s->pkt, s->cap, 0, frame, tdc_render_pattern_bits(s->r), W, H));
         rc |= put(s, tdc_link_encode_subframe(&s->enc, s->pkt, s->cap, 0, frame, TDC_PIXFMT_RGB888, s->rgb8, W, H));
         if (s->motion && mv) rc |= put(s, tdc_link_encode_motion(&s->enc, s->pkt, s->cap, 0, frame, mv, W, H, 1));
         break;
     case TDC_RENDER_FULL:
     case TDC_RENDER_REDUCED:
-        rc |= put(s, tdc_link_encode_frame(&s->enc, s->pkt, s->cap,
-                                           mode == TDC_RENDER_REDUCED ? TDC_LINK_KIND_REDUCED : TDC_LINK_KIND_FULL, 0,
-                                           frame, TDC_PIXFMT_RGB888, s->rgb8, (uint32_t)w, (uint32_t)h,
-                                           (uint32_t)w * 3));
+        rc |=
+            put(s, tdc_link_encode_frame(&s->enc, s->pkt, s->cap,
+                                         mode == TDC_RENDER_REDUCED ? TDC_LINK_KIND_REDUCED : TDC_LINK_KIND_FULL, 0,
+                                         frame, TDC_PIXFMT_RGB888, s->rgb8, (uint32_t)w, (uint32_t)h, (uint32_t)w * 3));
         if (s->motion && mv && mode == TDC_RENDER_FULL)
             rc |= put(s, tdc_link_encode_motion(&s->enc, s->pkt, s->cap, 0, frame, mv, W, H, 0));
         break;
-    default:
-        return -1;
+    default: return -1;
     }
     return rc ? -1 : 0;
 }

@@ -125,9 +125,7 @@ static void uv_of(const tdc_object_t *o, const double q[3], const double n[3], d
         *u = atan2(q[0], q[2]) * o->p[0];
         *v = q[1];
         return;
-    default:
-        *u = q[0];
-        *v = q[2];
+    default: *u = q[0]; *v = q[2];
     }
 }
 
@@ -260,8 +258,7 @@ static inline __attribute__((always_inline)) void tex_color(const tdc_render_t *
             }
             return;
         }
-        default:
-            break;
+        default: break;
         }
     }
     out[0] = c[0];

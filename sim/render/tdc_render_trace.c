@@ -50,7 +50,10 @@ double tdc_r_rand(uint32_t seed, uint32_t frame, uint32_t dst, uint32_t k, uint3
     return (h >> 8) * (1.0 / 16777216.0);
 }
 
-static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static double dot3(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 
 /* Element-wise copy of a 3-vector that was just written element by element:
  * memcpy's 16-byte load of it would stall on store forwarding. */
@@ -105,7 +108,7 @@ static inline void set_ray(struct RTCRay *ray, const double o[3], const double d
 
 /* Closest hit; returns the object index or -1. */
 static inline int intersect(rthread_t *t, int prevf, const double o[3], const double d[3], double tnear, double tfar,
-                     uint32_t kind, struct RTCRayHit *rh)
+                            uint32_t kind, struct RTCRayHit *rh)
 {
     set_ray(&rh->ray, o, d, tnear, tfar);
     rh->hit.geomID = RTC_INVALID_GEOMETRY_ID;
@@ -133,9 +136,9 @@ static inline int occluded(rthread_t *t, const double o[3], const double d[3], d
  * the same triangle, and the same object with the same normal bits gives the
  * same (deterministic) result without the square root and division. */
 typedef struct {
-    int obj;                /* -1: empty */
-    uint32_t ng[3];         /* bits of Embree's raw normal */
-    double n[3];            /* tdc_r_xform_normal of it (before facing the ray) */
+    int obj;        /* -1: empty */
+    uint32_t ng[3]; /* bits of Embree's raw normal */
+    double n[3];    /* tdc_r_xform_normal of it (before facing the ray) */
 } wncache_t;
 
 static inline __attribute__((always_inline)) void surface(const rframe_t *f, float tt_f, const float ng[3], int obj,
@@ -245,8 +248,8 @@ static void shade_direct(rthread_t *t, int obj, const double P[3], const double 
             if (!blocked) {
 #if defined(__SSE2__)
                 double q[2];
-                _mm_storeu_pd(q, _mm_div_pd(_mm_mul_pd(_mm_loadu_pd(l->intensity), _mm_set1_pd(c)),
-                                            _mm_set1_pd(d * d)));
+                _mm_storeu_pd(q,
+                              _mm_div_pd(_mm_mul_pd(_mm_loadu_pd(l->intensity), _mm_set1_pd(c)), _mm_set1_pd(d * d)));
                 e[0] += q[0];
                 e[1] += q[1];
                 e[2] += l->intensity[2] * c / (d * d);
@@ -315,7 +318,10 @@ static void shade_direct(rthread_t *t, int obj, const double P[3], const double 
 
 /* Random numbers are keyed by the pixel (not the output slot), so a pixel
  * gets the same light samples in full frames, subframes and probes. */
-static uint32_t rng_key(const rsample_t *a) { return (uint32_t)a->py * 65536u + (uint32_t)a->px; }
+static uint32_t rng_key(const rsample_t *a)
+{
+    return (uint32_t)a->py * 65536u + (uint32_t)a->px;
+}
 
 void tdc_r_pass_primary(rthread_t *t, rsample_t *s, int n)
 {
@@ -484,8 +490,8 @@ static inline __attribute__((always_inline)) void xform_both(const rthread_t *t,
 
 /* Current and previous screen position of object point q of object obj
  * (the products as in tdc_r_xform_point). */
-static inline __attribute__((always_inline)) int track_point(const rthread_t *t, int obj, const double q[3],
-                                                             double *xc, double *yc, double *xp, double *yp)
+static inline __attribute__((always_inline)) int track_point(const rthread_t *t, int obj, const double q[3], double *xc,
+                                                             double *yc, double *xp, double *yp)
 {
     double c[3], p[3];
     xform_both(t, obj, q, c, p);
@@ -518,8 +524,7 @@ static inline void track_dirs(const rthread_t *t, const rsample_t *a, double dc[
  * test (the caller tests z): every lane does the same IEEE operations in
  * the same order as the scalar function (SSE2 mul/add/sub/div are
  * correctly rounded per lane, no FMA), so the results are bit-identical. */
-static inline void project_dir2(const rcam_t *c, __m128d d0, __m128d d1, __m128d d2, __m128d *x, __m128d *y,
-                                __m128d *z)
+static inline void project_dir2(const rcam_t *c, __m128d d0, __m128d d1, __m128d d2, __m128d *x, __m128d *y, __m128d *z)
 {
     __m128d zz = _mm_add_pd(_mm_add_pd(_mm_mul_pd(d0, _mm_set1_pd(c->fwd[0])), _mm_mul_pd(d1, _mm_set1_pd(c->fwd[1]))),
                             _mm_mul_pd(d2, _mm_set1_pd(c->fwd[2])));
@@ -528,10 +533,10 @@ static inline void project_dir2(const rcam_t *c, __m128d d0, __m128d d1, __m128d
         _mm_add_pd(_mm_add_pd(_mm_mul_pd(d0, _mm_set1_pd(c->right[0])), _mm_mul_pd(d1, _mm_set1_pd(c->right[1]))),
                    _mm_mul_pd(d2, _mm_set1_pd(c->right[2]))),
         iz);
-    __m128d v = _mm_mul_pd(
-        _mm_add_pd(_mm_add_pd(_mm_mul_pd(d0, _mm_set1_pd(c->up[0])), _mm_mul_pd(d1, _mm_set1_pd(c->up[1]))),
-                   _mm_mul_pd(d2, _mm_set1_pd(c->up[2]))),
-        iz);
+    __m128d v =
+        _mm_mul_pd(_mm_add_pd(_mm_add_pd(_mm_mul_pd(d0, _mm_set1_pd(c->up[0])), _mm_mul_pd(d1, _mm_set1_pd(c->up[1]))),
+                              _mm_mul_pd(d2, _mm_set1_pd(c->up[2]))),
+                   iz);
     *x = _mm_add_pd(_mm_mul_pd(u, _mm_set1_pd(c->kx)), _mm_set1_pd(0.5 * c->w));
     *y = _mm_sub_pd(_mm_set1_pd(0.5 * c->h), _mm_mul_pd(v, _mm_set1_pd(c->ky)));
     *z = zz;
@@ -618,8 +623,7 @@ void tdc_r_pass_mv(rthread_t *t, rsample_t *s, int n)
  * (P, n): V -= 2 ((V - P) . n) n. */
 static inline void mirror_reflect(double V[3], const double P[3], const double nrm[3], int dir_only)
 {
-    double dd = dir_only ? dot3(V, nrm)
-                         : (V[0] - P[0]) * nrm[0] + (V[1] - P[1]) * nrm[1] + (V[2] - P[2]) * nrm[2];
+    double dd = dir_only ? dot3(V, nrm) : (V[0] - P[0]) * nrm[0] + (V[1] - P[1]) * nrm[1] + (V[2] - P[2]) * nrm[2];
     for (int c = 0; c < 3; c++) V[c] -= 2 * dd * nrm[c];
 }
 
@@ -631,9 +635,9 @@ static inline void mirror_reflect(double V[3], const double P[3], const double n
  * bits give the same (deterministic) normalised normals without the square
  * root and division again. */
 typedef struct {
-    int o;                  /* -1: empty */
-    uint64_t nq[3];         /* bits of the raw object-space normal */
-    double nc[3], np[3];    /* current / previous world normal */
+    int o;               /* -1: empty */
+    uint64_t nq[3];      /* bits of the raw object-space normal */
+    double nc[3], np[3]; /* current / previous world normal */
 } ncache_t;
 
 static inline void plane_normals(const rthread_t *t, ncache_t *nc_, int o, const double nq[3], double nc[3],
@@ -643,8 +647,10 @@ static inline void plane_normals(const rthread_t *t, ncache_t *nc_, int o, const
     memcpy(b, nq, sizeof b);
     if (nc_->o != o || nc_->nq[0] != b[0] || nc_->nq[1] != b[1] || nc_->nq[2] != b[2]) {
         tdc_r_xform_normal(t->cur->nm[o], nq, nc_->nc);
-        if (t->r->obj_same_m[o]) copy3(nc_->np, nc_->nc); /* unused: the same plane is taken */
-        else tdc_r_xform_normal(t->prev->nm[o], nq, nc_->np);
+        if (t->r->obj_same_m[o])
+            copy3(nc_->np, nc_->nc); /* unused: the same plane is taken */
+        else
+            tdc_r_xform_normal(t->prev->nm[o], nq, nc_->np);
         nc_->o = o;
         nc_->nq[0] = b[0];
         nc_->nq[1] = b[1];
@@ -686,8 +692,10 @@ void tdc_r_pass_mv_reflect(rthread_t *t, rsample_t *s, int n)
             memcpy(Vp, a->rdir, sizeof Vp);
         } else {
             tdc_r_xform_point(t->cur->m[a->robj], a->rQ, Vc);
-            if (t->r->obj_same_m[a->robj]) copy3(Vp, Vc);
-            else tdc_r_xform_point(t->prev->m[a->robj], a->rQ, Vp);
+            if (t->r->obj_same_m[a->robj])
+                copy3(Vp, Vc);
+            else
+                tdc_r_xform_point(t->prev->m[a->robj], a->rQ, Vp);
         }
         mirror_chain2(t, a, Vc, Vp, dir_only, &ncache);
 #if defined(__SSE2__)
@@ -700,21 +708,18 @@ void tdc_r_pass_mv_reflect(rthread_t *t, rsample_t *s, int n)
                 d[c] = _mm_set_pd(Vp[c], Vc[c]);
                 if (!dir_only) d[c] = _mm_sub_pd(d[c], _mm_set_pd(cp->pos[c], cc->pos[c]));
             }
-            __m128d z = _mm_add_pd(
-                _mm_add_pd(_mm_mul_pd(d[0], _mm_set_pd(cp->fwd[0], cc->fwd[0])),
-                           _mm_mul_pd(d[1], _mm_set_pd(cp->fwd[1], cc->fwd[1]))),
-                _mm_mul_pd(d[2], _mm_set_pd(cp->fwd[2], cc->fwd[2])));
+            __m128d z = _mm_add_pd(_mm_add_pd(_mm_mul_pd(d[0], _mm_set_pd(cp->fwd[0], cc->fwd[0])),
+                                              _mm_mul_pd(d[1], _mm_set_pd(cp->fwd[1], cc->fwd[1]))),
+                                   _mm_mul_pd(d[2], _mm_set_pd(cp->fwd[2], cc->fwd[2])));
             __m128d iz = _mm_div_pd(_mm_set1_pd(1.0), z);
-            __m128d u = _mm_mul_pd(
-                _mm_add_pd(_mm_add_pd(_mm_mul_pd(d[0], _mm_set_pd(cp->right[0], cc->right[0])),
-                                      _mm_mul_pd(d[1], _mm_set_pd(cp->right[1], cc->right[1]))),
-                           _mm_mul_pd(d[2], _mm_set_pd(cp->right[2], cc->right[2]))),
-                iz);
-            __m128d v = _mm_mul_pd(
-                _mm_add_pd(_mm_add_pd(_mm_mul_pd(d[0], _mm_set_pd(cp->up[0], cc->up[0])),
-                                      _mm_mul_pd(d[1], _mm_set_pd(cp->up[1], cc->up[1]))),
-                           _mm_mul_pd(d[2], _mm_set_pd(cp->up[2], cc->up[2]))),
-                iz);
+            __m128d u = _mm_mul_pd(_mm_add_pd(_mm_add_pd(_mm_mul_pd(d[0], _mm_set_pd(cp->right[0], cc->right[0])),
+                                                         _mm_mul_pd(d[1], _mm_set_pd(cp->right[1], cc->right[1]))),
+                                              _mm_mul_pd(d[2], _mm_set_pd(cp->right[2], cc->right[2]))),
+                                   iz);
+            __m128d v = _mm_mul_pd(_mm_add_pd(_mm_add_pd(_mm_mul_pd(d[0], _mm_set_pd(cp->up[0], cc->up[0])),
+                                                         _mm_mul_pd(d[1], _mm_set_pd(cp->up[1], cc->up[1]))),
+                                              _mm_mul_pd(d[2], _mm_set_pd(cp->up[2], cc->up[2]))),
+                                   iz);
             __m128d x = _mm_add_pd(_mm_mul_pd(u, _mm_set_pd(cp->kx, cc->kx)), _mm_set_pd(0.5 * cp->w, 0.5 * cc->w));
             __m128d y = _mm_sub_pd(_mm_set_pd(0.5 * cp->h, 0.5 * cc->h), _mm_mul_pd(v, _mm_set_pd(cp->ky, cc->ky)));
             double zz[2], xx[2], yy[2];
@@ -729,7 +734,8 @@ void tdc_r_pass_mv_reflect(rthread_t *t, rsample_t *s, int n)
         }
 #else
         if (dir_only)
-            ok = tdc_r_project_dir(&t->cur->cam, Vc, &xc, &yc) == 0 && tdc_r_project_dir(&t->prev->cam, Vp, &xp, &yp) == 0;
+            ok = tdc_r_project_dir(&t->cur->cam, Vc, &xc, &yc) == 0 &&
+                 tdc_r_project_dir(&t->prev->cam, Vp, &xp, &yp) == 0;
         else
             ok = tdc_r_project(&t->cur->cam, Vc, &xc, &yc) == 0 && tdc_r_project(&t->prev->cam, Vp, &xp, &yp) == 0;
 #endif
@@ -811,8 +817,10 @@ void tdc_r_pass_mv_dual(rthread_t *t, rsample_t *s, int n)
         double W[3], d[3];
         int o = prev_visible(t, y[0], y[1], W, d);
         int same;
-        if (a->obj < 0) same = o < 0;
-        else if (o != a->obj) same = 0;
+        if (a->obj < 0)
+            same = o < 0;
+        else if (o != a->obj)
+            same = 0;
         else {
             double sp[3];
             tdc_r_xform_point(t->prev->m[a->obj], a->Q, sp);

@@ -12,31 +12,31 @@
  * come first and fill 4 cache lines; shadow, dual and mirror-chain fields
  * follow and are only touched by the passes that need them. */
 typedef struct {
-    _Alignas(64) float x;   /* image position, full-res px (every sample starts a cache line) */
+    _Alignas(64) float x; /* image position, full-res px (every sample starts a cache line) */
     float y;
-    uint32_t dst, k;        /* output slot, sample index within the slot (GT) */
-    int px, py;             /* full-res pixel (MV history) */
-    int obj;                /* primary hit object, -1 = miss */
+    uint32_t dst, k;                          /* output slot, sample index within the slot (GT) */
+    int px, py;                               /* full-res pixel (MV history) */
+    int obj;                                  /* primary hit object, -1 = miss */
     int in_shadow, nmir, mv_valid, refl_used; /* flags: tracked shadow, mirror chain length, MV */
-    float hit_t, hit_ng[3]; /* Embree's primary hit: ray parameter, raw object-space normal */
-    double dir[3];          /* primary direction (not normalised, see tdc_r_cam_ray) */
-    double P[3], Q[3];      /* hit: world, object space */
-    double N[3], NQ[3];     /* normal: world (facing the ray), object space (raw) */
+    float hit_t, hit_ng[3];                   /* Embree's primary hit: ray parameter, raw object-space normal */
+    double dir[3];                            /* primary direction (not normalised, see tdc_r_cam_ray) */
+    double P[3], Q[3];                        /* hit: world, object space */
+    double N[3], NQ[3];                       /* normal: world (facing the ray), object space (raw) */
     double depth;
     double col[3];
     double mirror;
-    double mv[2];           /* motion vector (float px) */
-    double xc, yc;          /* current-frame projection of the hit (= x, y up to rounding) */
-    double tu, tv;          /* texture coordinates of an unlit textured primary hit (shade pass) */
+    double mv[2];  /* motion vector (float px) */
+    double xc, yc; /* current-frame projection of the hit (= x, y up to rounding) */
+    double tu, tv; /* texture coordinates of an unlit textured primary hit (shade pass) */
     /* rarely used: shadow and dual MVs, shadow tracking, mirror chain */
     double mvs[2], sw, mvd[2];
     int disocc;
     int blk_obj, blk_light; /* shadow tracking (first blocked light sample) */
     double BQ[3];
-    double loff[3];         /* blocked light sample - light position (0 for point lights) */
+    double loff[3]; /* blocked light sample - light position (0 for point lights) */
     int mobj[TDC_R_MAX_BOUNCES];
     double mQ[TDC_R_MAX_BOUNCES][3], mNQ[TDC_R_MAX_BOUNCES][3];
-    int robj;               /* final reflected object, -1 = miss */
+    int robj; /* final reflected object, -1 = miss */
     double rQ[3], rdir[3];
 } rsample_t;
 
@@ -46,9 +46,9 @@ typedef struct {
     RTCScene top, top_prev;
     struct RTCIntersectContext ctx;
     uint32_t frame;
-    int gt;                 /* ground truth: one light sample per pixel sample, stratified by k */
+    int gt; /* ground truth: one light sample per pixel sample, stratified by k */
     uint32_t spp;
-    int track_blockers;     /* shadow rays return the blocker (shadow MVs) */
+    int track_blockers;              /* shadow rays return the blocker (shadow MVs) */
     uint64_t ticks[TDC_STAGE_COUNT]; /* stage time in stamp() ticks (tdc_render_frame.c) */
     uint64_t rays[TDC_RAY_KIND_COUNT];
     int record;

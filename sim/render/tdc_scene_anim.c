@@ -10,7 +10,7 @@
 /* Index i and weight w so that value = (1 - w) key[i] + w key[i + 1]. */
 static void bracket(const double *times, size_t stride, int n, double t, int *i, double *w)
 {
-#define T(k) (*(const double *)((const char *)times + (size_t)(k) * stride))
+#define T(k) (*(const double *)((const char *)times + (size_t)(k)*stride))
     if (n <= 1 || t <= T(0)) {
         *i = 0;
         *w = 0;
@@ -28,7 +28,10 @@ static void bracket(const double *times, size_t stride, int n, double t, int *i,
 #undef T
 }
 
-static double lerp(double a, double b, double w) { return a + (b - a) * w; }
+static double lerp(double a, double b, double w)
+{
+    return a + (b - a) * w;
+}
 
 void tdc_scene_object_matrix(const tdc_object_t *o, double t, double m[12])
 {
@@ -43,9 +46,15 @@ void tdc_scene_object_matrix(const tdc_object_t *o, double t, double m[12])
     }
     double cx = cos(r[0]), sx = sin(r[0]), cy = cos(r[1]), sy = sin(r[1]), cz = cos(r[2]), sz = sin(r[2]);
     /* R = Rz * Ry * Rx */
-    double R[9] = {cz * cy, cz * sy * sx - sz * cx, cz * sy * cx + sz * sx,
-                   sz * cy, sz * sy * sx + cz * cx, sz * sy * cx - cz * sx,
-                   -sy,     cy * sx,                cy * cx};
+    double R[9] = {cz * cy,
+                   cz * sy * sx - sz * cx,
+                   cz * sy * cx + sz * sx,
+                   sz * cy,
+                   sz * sy * sx + cz * cx,
+                   sz * sy * cx - cz * sx,
+                   -sy,
+                   cy * sx,
+                   cy * cx};
     for (int row = 0; row < 3; row++) {
         for (int col = 0; col < 3; col++) m[row * 4 + col] = R[row * 3 + col] * s;
         m[row * 4 + 3] = p[row];

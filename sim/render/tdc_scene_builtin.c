@@ -18,52 +18,50 @@
 #include <stdio.h>
 #include <string.h>
 
-static const char scene_discs[] =
-    "tdc-scene 1\n"
-    "name discs\n"
-    "resolution 640 360\n"
-    "fps 240\n"
-    "duration 2\n"
-    "background 0 0 0\n"
-    "ambient 0 0 0\n"
-    "material white unlit diffuse 1 1 1\n"
-    "material grey unlit diffuse 0.2 0.2 0.2\n"
-    "camera 0 pos 0 0 10 look 0 0 0 fov 30\n"
-    "object d1 disc radius 0.35 segments 96 material white pos -3.5 1.2 0\n"
-    "key d1 0 pos -3.5 1.2 0\n"
-    "key d1 2 pos 3.5 1.2 0\n"
-    "object d2 disc radius 0.2 segments 96 material white pos 3.5 0 0\n"
-    "key d2 0 pos 3.5 0 0\n"
-    "key d2 2 pos -3.5 0 0\n"
-    "object d3 disc radius 0.5 segments 96 material white pos -2 -1.4 0\n"
-    "key d3 0 pos -2 -1.4 0\n"
-    "key d3 2 pos 2 -0.6 0\n"
-    "object d4 disc radius 0.25 segments 96 material grey pos 0 0 -0.01\n";
+static const char scene_discs[] = "tdc-scene 1\n"
+                                  "name discs\n"
+                                  "resolution 640 360\n"
+                                  "fps 240\n"
+                                  "duration 2\n"
+                                  "background 0 0 0\n"
+                                  "ambient 0 0 0\n"
+                                  "material white unlit diffuse 1 1 1\n"
+                                  "material grey unlit diffuse 0.2 0.2 0.2\n"
+                                  "camera 0 pos 0 0 10 look 0 0 0 fov 30\n"
+                                  "object d1 disc radius 0.35 segments 96 material white pos -3.5 1.2 0\n"
+                                  "key d1 0 pos -3.5 1.2 0\n"
+                                  "key d1 2 pos 3.5 1.2 0\n"
+                                  "object d2 disc radius 0.2 segments 96 material white pos 3.5 0 0\n"
+                                  "key d2 0 pos 3.5 0 0\n"
+                                  "key d2 2 pos -3.5 0 0\n"
+                                  "object d3 disc radius 0.5 segments 96 material white pos -2 -1.4 0\n"
+                                  "key d3 0 pos -2 -1.4 0\n"
+                                  "key d3 2 pos 2 -0.6 0\n"
+                                  "object d4 disc radius 0.25 segments 96 material grey pos 0 0 -0.01\n";
 
-static const char scene_text[] =
-    "tdc-scene 1\n"
-    "name text\n"
-    "resolution 640 360\n"
-    "fps 240\n"
-    "duration 2\n"
-    "background 0 0 0\n"
-    "material page unlit diffuse 0.9 0.9 0.9 text \"TEMPORALLY DENSE DISPLAY CONTROLLER 0123456789 - READ ME!\" 0.2 0.02 0.02 0.02\n"
-    "camera 0 pos 0 0 6 look 0 0 0 fov 30\n"
-    "object page rect size 16 2.4 material page pos 4 0 0\n"
-    "key page 0 pos 4 0 0\n"
-    "key page 2 pos -4 0 0\n";
+static const char scene_text[] = "tdc-scene 1\n"
+                                 "name text\n"
+                                 "resolution 640 360\n"
+                                 "fps 240\n"
+                                 "duration 2\n"
+                                 "background 0 0 0\n"
+                                 "material page unlit diffuse 0.9 0.9 0.9 text \"TEMPORALLY DENSE DISPLAY CONTROLLER "
+                                 "0123456789 - READ ME!\" 0.2 0.02 0.02 0.02\n"
+                                 "camera 0 pos 0 0 6 look 0 0 0 fov 30\n"
+                                 "object page rect size 16 2.4 material page pos 4 0 0\n"
+                                 "key page 0 pos 4 0 0\n"
+                                 "key page 2 pos -4 0 0\n";
 
-static const char scene_panorama[] =
-    "tdc-scene 1\n"
-    "name panorama\n"
-    "resolution 640 360\n"
-    "fps 240\n"
-    "duration 2\n"
-    "background 0.35 0.5 0.8\n"
-    "material city unlit diffuse 0.3 0.3 0.33 skyline 0.8 0.35 0.5 0.8\n"
-    "camera 0 pos 0 0 0 yaw -20 pitch 0 fov 50\n"
-    "camera 2 yaw 20\n"
-    "object drum cylinder radius 10 height 12 segments 256 material city pos 0 -6 0\n";
+static const char scene_panorama[] = "tdc-scene 1\n"
+                                     "name panorama\n"
+                                     "resolution 640 360\n"
+                                     "fps 240\n"
+                                     "duration 2\n"
+                                     "background 0.35 0.5 0.8\n"
+                                     "material city unlit diffuse 0.3 0.3 0.33 skyline 0.8 0.35 0.5 0.8\n"
+                                     "camera 0 pos 0 0 0 yaw -20 pitch 0 fov 50\n"
+                                     "camera 2 yaw 20\n"
+                                     "object drum cylinder radius 10 height 12 segments 256 material city pos 0 -6 0\n";
 
 static const char scene_room[] =
     "tdc-scene 1\n"
@@ -108,29 +106,28 @@ static const char scene_room[] =
     "light lamp point pos 0 2.8 0 intensity 5 5 4.6\n"
     "light window rect pos -3.9 1.8 -1 u 0 0 1.2 v 0 0.8 0 intensity 2 2.2 2.5 samples 2\n";
 
-static const char scene_mirror[] =
-    "tdc-scene 1\n"
-    "name mirror\n"
-    "resolution 640 360\n"
-    "fps 240\n"
-    "duration 2\n"
-    "background 0.3 0.4 0.6\n"
-    "ambient 0.1 0.1 0.1\n"
-    "material floor diffuse 0.05 0.05 0.05 mirror 0.9\n"
-    "material ball diffuse 0.9 0.2 0.1 checker 0.25 0.95 0.95 0.9\n"
-    "material cube diffuse 0.1 0.3 0.9\n"
-    "material wall diffuse 0.8 0.8 0.8 stripes 0.5 0.2 0.2 0.2\n"
-    "camera 0 pos 0 1.6 5 look 0 0.4 0 fov 45\n"
-    "object floor rect size 10 10 material floor rot -90 0 0\n"
-    "object wall rect size 10 4 material wall pos 0 2 -4\n"
-    "object ball sphere radius 0.5 material ball pos -2.5 0.7 0\n"
-    "key ball 0 pos -2.5 0.7 0 rot 0 0 0\n"
-    "key ball 1 pos 0 1.2 0.5 rot 0 0 -180\n"
-    "key ball 2 pos 2.5 0.7 0 rot 0 0 -360\n"
-    "object cube box size 0.6 0.6 0.6 material cube pos 1.5 0.5 -1.5\n"
-    "key cube 0 rot 0 0 0\n"
-    "key cube 2 rot 0 180 0\n"
-    "light sun point pos 2 6 4 intensity 50 50 48\n";
+static const char scene_mirror[] = "tdc-scene 1\n"
+                                   "name mirror\n"
+                                   "resolution 640 360\n"
+                                   "fps 240\n"
+                                   "duration 2\n"
+                                   "background 0.3 0.4 0.6\n"
+                                   "ambient 0.1 0.1 0.1\n"
+                                   "material floor diffuse 0.05 0.05 0.05 mirror 0.9\n"
+                                   "material ball diffuse 0.9 0.2 0.1 checker 0.25 0.95 0.95 0.9\n"
+                                   "material cube diffuse 0.1 0.3 0.9\n"
+                                   "material wall diffuse 0.8 0.8 0.8 stripes 0.5 0.2 0.2 0.2\n"
+                                   "camera 0 pos 0 1.6 5 look 0 0.4 0 fov 45\n"
+                                   "object floor rect size 10 10 material floor rot -90 0 0\n"
+                                   "object wall rect size 10 4 material wall pos 0 2 -4\n"
+                                   "object ball sphere radius 0.5 material ball pos -2.5 0.7 0\n"
+                                   "key ball 0 pos -2.5 0.7 0 rot 0 0 0\n"
+                                   "key ball 1 pos 0 1.2 0.5 rot 0 0 -180\n"
+                                   "key ball 2 pos 2.5 0.7 0 rot 0 0 -360\n"
+                                   "object cube box size 0.6 0.6 0.6 material cube pos 1.5 0.5 -1.5\n"
+                                   "key cube 0 rot 0 0 0\n"
+                                   "key cube 2 rot 0 180 0\n"
+                                   "light sun point pos 2 6 4 intensity 50 50 48\n";
 
 static const char scene_fence[] =
     "tdc-scene 1\n"
@@ -149,26 +146,25 @@ static const char scene_fence[] =
     "key fence 2 pos 0.8 0.3 -1\n"
     "light lamp point pos 0 3 -3.5 intensity 20 20 19\n";
 
-static const char scene_bigmesh[] =
-    "tdc-scene 1\n"
-    "name bigmesh\n"
-    "resolution 640 360\n"
-    "fps 240\n"
-    "duration 2\n"
-    "background 0.5 0.65 0.9\n"
-    "ambient 0.1 0.1 0.1\n"
-    "material terrain diffuse 0.35 0.55 0.2 checker 2 0.3 0.45 0.18\n"
-    "camera 0 pos 0 7 20 yaw -15 pitch -18 fov 50\n"
-    "camera 2 yaw 15\n"
-    "object land heightfield size 40 40 cells 512 amplitude 1.5 material terrain\n"
-    "light sun point pos 10 30 10 intensity 1100 1050 1000\n";
+static const char scene_bigmesh[] = "tdc-scene 1\n"
+                                    "name bigmesh\n"
+                                    "resolution 640 360\n"
+                                    "fps 240\n"
+                                    "duration 2\n"
+                                    "background 0.5 0.65 0.9\n"
+                                    "ambient 0.1 0.1 0.1\n"
+                                    "material terrain diffuse 0.35 0.55 0.2 checker 2 0.3 0.45 0.18\n"
+                                    "camera 0 pos 0 7 20 yaw -15 pitch -18 fov 50\n"
+                                    "camera 2 yaw 15\n"
+                                    "object land heightfield size 40 40 cells 512 amplitude 1.5 material terrain\n"
+                                    "light sun point pos 10 30 10 intensity 1100 1050 1000\n";
 
 const char *const tdc_scene_builtin_names[] = {"discs", "text", "panorama", "room", "mirror", "fence", "bigmesh"};
 const int tdc_scene_builtin_count = 7;
 
 const char *tdc_scene_builtin_text(const char *name)
 {
-    static const char *const texts[] = {scene_discs, scene_text,   scene_panorama, scene_room,
+    static const char *const texts[] = {scene_discs,  scene_text,  scene_panorama, scene_room,
                                         scene_mirror, scene_fence, scene_bigmesh};
     for (int i = 0; i < tdc_scene_builtin_count; i++)
         if (!strcmp(name, tdc_scene_builtin_names[i])) return texts[i];

@@ -96,7 +96,8 @@ static int integer(pctx_t *c, char **tok, int ntok, int i, int lo, int hi, int *
 static int name_ok(pctx_t *c, const char *what, const char *s)
 {
     size_t n = strlen(s);
-    if (n == 0 || n >= TDC_SCENE_NAME_LEN) return fail(c, "%s name must be 1..%d characters", what, TDC_SCENE_NAME_LEN - 1);
+    if (n == 0 || n >= TDC_SCENE_NAME_LEN)
+        return fail(c, "%s name must be 1..%d characters", what, TDC_SCENE_NAME_LEN - 1);
     for (size_t i = 0; i < n; i++)
         if (!isalnum((unsigned char)s[i]) && s[i] != '_' && s[i] != '-' && s[i] != '.')
             return fail(c, "%s name '%s' may only contain letters, digits, '_', '-', '.'", what, s);
@@ -136,7 +137,8 @@ static int parse_material(pctx_t *c, tdc_scene_t *s, char **tok, int n)
     if (n < 2) return fail(c, "material needs a name");
     if (name_ok(c, "material", tok[1]) < 0) return -1;
     if (find_material(s, tok[1]) >= 0) return fail(c, "material '%s' defined twice", tok[1]);
-    if (s->nmaterials == TDC_SCENE_MAX_MATERIALS) return fail(c, "too many materials (max %d)", TDC_SCENE_MAX_MATERIALS);
+    if (s->nmaterials == TDC_SCENE_MAX_MATERIALS)
+        return fail(c, "too many materials (max %d)", TDC_SCENE_MAX_MATERIALS);
     tdc_material_t *m = &s->materials[s->nmaterials];
     memset(m, 0, sizeof *m);
     strcpy(m->name, tok[1]);
@@ -164,7 +166,9 @@ static int parse_material(pctx_t *c, tdc_scene_t *s, char **tok, int n)
                 at++;
                 m->tex = TDC_TEX_TEXT;
             } else {
-                m->tex = !strcmp(k, "checker") ? TDC_TEX_CHECKER : !strcmp(k, "stripes") ? TDC_TEX_STRIPES : TDC_TEX_SKYLINE;
+                m->tex = !strcmp(k, "checker")   ? TDC_TEX_CHECKER
+                         : !strcmp(k, "stripes") ? TDC_TEX_STRIPES
+                                                 : TDC_TEX_SKYLINE;
             }
             if (num(c, tok, n, at, &m->tex_scale) < 0) return -1;
             if (!(m->tex_scale > 0)) return fail(c, "texture scale must be > 0");
@@ -192,7 +196,12 @@ static int parse_object(pctx_t *c, tdc_scene_t *s, char **tok, int n, const char
     o->material = -1;
     o->nkeys = 1;
     o->keys[0].scale = 1.0;
-    static const struct { const char *name; tdc_shape_t shape; const char *req[4]; int defseg; } shapes[] = {
+    static const struct {
+        const char *name;
+        tdc_shape_t shape;
+        const char *req[4];
+        int defseg;
+    } shapes[] = {
         {"sphere", TDC_SHAPE_SPHERE, {"radius"}, 0},
         {"rect", TDC_SHAPE_RECT, {"size2"}, 0},
         {"box", TDC_SHAPE_BOX, {"size3"}, 0},
@@ -214,7 +223,8 @@ static int parse_object(pctx_t *c, tdc_scene_t *s, char **tok, int n, const char
         int slot = -1;
         for (int r = 0; r < 4 && shapes[si].req[r]; r++) {
             const char *req = shapes[si].req[r];
-            if (!strcmp(req, k) || (!strncmp(req, "size", 4) && !strcmp(k, "size")) || (!strcmp(req, "path") && !strcmp(k, "file")))
+            if (!strcmp(req, k) || (!strncmp(req, "size", 4) && !strcmp(k, "size")) ||
+                (!strcmp(req, "path") && !strcmp(k, "file")))
                 slot = r;
         }
         if (slot >= 0) {
@@ -223,8 +233,10 @@ static int parse_object(pctx_t *c, tdc_scene_t *s, char **tok, int n, const char
                 if (i + 1 >= n) return fail(c, "missing file name after '%s'", k);
                 const char *f = tok[i + 1];
                 int w;
-                if (f[0] == '/' || !base_dir) w = snprintf(o->path, sizeof o->path, "%s", f);
-                else w = snprintf(o->path, sizeof o->path, "%s/%s", base_dir, f);
+                if (f[0] == '/' || !base_dir)
+                    w = snprintf(o->path, sizeof o->path, "%s", f);
+                else
+                    w = snprintf(o->path, sizeof o->path, "%s/%s", base_dir, f);
                 if (w < 0 || (size_t)w >= sizeof o->path) return fail(c, "mesh path too long");
                 i += 2;
             } else if (!strcmp(req, "size2") || !strcmp(req, "size3")) {
@@ -270,7 +282,10 @@ static int parse_object(pctx_t *c, tdc_scene_t *s, char **tok, int n, const char
     for (int r = 0; r < 4 && shapes[si].req[r]; r++)
         if (!have[r]) {
             const char *req = shapes[si].req[r];
-            return fail(c, "%s needs '%s'", tok[2], !strncmp(req, "size", 4) ? "size" : !strcmp(req, "path") ? "file" : req);
+            return fail(c, "%s needs '%s'", tok[2],
+                        !strncmp(req, "size", 4) ? "size"
+                        : !strcmp(req, "path")   ? "file"
+                                                 : req);
         }
     if (o->material < 0) return fail(c, "object '%s' needs a material", o->name);
     if (o->shape == TDC_SHAPE_HEIGHTFIELD && o->segments > 2048) return fail(c, "heightfield cells must be <= 2048");
@@ -293,7 +308,8 @@ static int parse_key(pctx_t *c, tdc_scene_t *s, char **tok, int n, int *keyed)
     } else {
         k = o->keys[o->nkeys - 1];
         if (!(t > k.t)) return fail(c, "key times of '%s' must increase (%g after %g)", o->name, t, k.t);
-        if (o->nkeys == TDC_SCENE_MAX_KEYS) return fail(c, "too many keys for '%s' (max %d)", o->name, TDC_SCENE_MAX_KEYS);
+        if (o->nkeys == TDC_SCENE_MAX_KEYS)
+            return fail(c, "too many keys for '%s' (max %d)", o->name, TDC_SCENE_MAX_KEYS);
     }
     k.t = t;
     for (int i = 3; i < n;) {
@@ -332,9 +348,12 @@ static int parse_light(pctx_t *c, tdc_scene_t *s, char **tok, int n)
     tdc_light_t *l = &s->lights[s->nlights];
     memset(l, 0, sizeof *l);
     strcpy(l->name, tok[1]);
-    if (!strcmp(tok[2], "point")) l->kind = TDC_LIGHT_POINT;
-    else if (!strcmp(tok[2], "rect")) l->kind = TDC_LIGHT_RECT;
-    else return fail(c, "unknown light kind '%s' (point, rect)", tok[2]);
+    if (!strcmp(tok[2], "point"))
+        l->kind = TDC_LIGHT_POINT;
+    else if (!strcmp(tok[2], "rect"))
+        l->kind = TDC_LIGHT_RECT;
+    else
+        return fail(c, "unknown light kind '%s' (point, rect)", tok[2]);
     l->samples = 4;
     l->nkeys = 1;
     int have_pos = 0, have_i = 0, have_u = 0, have_v = 0;
@@ -391,7 +410,8 @@ static int parse_camera(pctx_t *c, tdc_scene_t *s, char **tok, int n)
     if (n < 2) return fail(c, "camera needs a time");
     if (s->ncamkeys == TDC_SCENE_MAX_KEYS) return fail(c, "too many camera keys (max %d)", TDC_SCENE_MAX_KEYS);
     tdc_camera_key_t k;
-    if (s->ncamkeys) k = s->cam[s->ncamkeys - 1];
+    if (s->ncamkeys)
+        k = s->cam[s->ncamkeys - 1];
     else {
         memset(&k, 0, sizeof k);
         k.fov = 45 * DEG;
@@ -413,7 +433,8 @@ static int parse_camera(pctx_t *c, tdc_scene_t *s, char **tok, int n)
         } else if (!strcmp(kw, "yaw") || !strcmp(kw, "pitch") || !strcmp(kw, "fov")) {
             double v;
             if (num(c, tok, n, i + 1, &v) < 0) return -1;
-            if (kw[0] == 'y') k.yaw = v * DEG;
+            if (kw[0] == 'y')
+                k.yaw = v * DEG;
             else if (kw[0] == 'p') {
                 if (fabs(v) >= 89.9) return fail(c, "pitch must be within (-89.9, 89.9) degrees");
                 k.pitch = v * DEG;
@@ -487,29 +508,41 @@ tdc_scene_status_t tdc_scene_parse(const char *text, const char *src_name, const
             last_line = c.line;
             const char *k = tok[0];
             if (!header) {
-                if (strcmp(k, "tdc-scene") || n != 2 || strcmp(tok[1], "1")) fail(&c, "first line must be 'tdc-scene 1'");
+                if (strcmp(k, "tdc-scene") || n != 2 || strcmp(tok[1], "1"))
+                    fail(&c, "first line must be 'tdc-scene 1'");
                 header = 1;
             } else if (!strcmp(k, "name")) {
-                if (n != 2 || strlen(tok[1]) >= sizeof s->name) fail(&c, "usage: name NAME (< 64 characters)");
-                else if (strspn(tok[1], "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_-.") != strlen(tok[1]) ||
+                if (n != 2 || strlen(tok[1]) >= sizeof s->name)
+                    fail(&c, "usage: name NAME (< 64 characters)");
+                else if (strspn(tok[1], "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_-.") !=
+                             strlen(tok[1]) ||
                          !strcmp(tok[1], ".") || !strcmp(tok[1], ".."))
                     /* it names output files (tdc-render --png DIR/<name>-...): no '/', not '..' */
-                    fail(&c, "scene name '%s' may only contain letters, digits, '_', '-', '.' (not '.' or '..')", tok[1]);
-                else strcpy(s->name, tok[1]);
+                    fail(&c, "scene name '%s' may only contain letters, digits, '_', '-', '.' (not '.' or '..')",
+                         tok[1]);
+                else
+                    strcpy(s->name, tok[1]);
             } else if (!strcmp(k, "resolution")) {
-                if (n != 3) fail(&c, "usage: resolution W H");
-                else if (integer(&c, tok, n, 1, 1, 16384, &s->width) == 0) integer(&c, tok, n, 2, 1, 16384, &s->height);
+                if (n != 3)
+                    fail(&c, "usage: resolution W H");
+                else if (integer(&c, tok, n, 1, 1, 16384, &s->width) == 0)
+                    integer(&c, tok, n, 2, 1, 16384, &s->height);
             } else if (!strcmp(k, "fps") || !strcmp(k, "duration")) {
                 double v;
-                if (n != 2) fail(&c, "usage: %s VALUE", k);
+                if (n != 2)
+                    fail(&c, "usage: %s VALUE", k);
                 else if (num(&c, tok, n, 1, &v) == 0) {
-                    if (!(v > 0)) fail(&c, "%s must be > 0", k);
-                    else *(k[0] == 'f' ? &s->fps : &s->duration) = v;
+                    if (!(v > 0))
+                        fail(&c, "%s must be > 0", k);
+                    else
+                        *(k[0] == 'f' ? &s->fps : &s->duration) = v;
                 }
             } else if (!strcmp(k, "background") || !strcmp(k, "ambient")) {
                 double *d = k[0] == 'b' ? s->background : s->ambient;
-                if (n != 4) fail(&c, "usage: %s R G B", k);
-                else if (nums(&c, tok, n, 1, 3, d) == 0) nonneg3(&c, d, k);
+                if (n != 4)
+                    fail(&c, "usage: %s R G B", k);
+                else if (nums(&c, tok, n, 1, 3, d) == 0)
+                    nonneg3(&c, d, k);
             } else if (!strcmp(k, "material")) {
                 parse_material(&c, s, tok, n);
             } else if (!strcmp(k, "object")) {

@@ -94,8 +94,9 @@ void tdc_report_csv(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_result_t
             snprintf(per_eye, sizeof(per_eye), "%.3f,%.3f,%.5f,%.5f,%.5f,%.5f", x->eye_psnr[0], x->eye_psnr[1],
                      x->eye_ssim[0], x->eye_ssim[1], x->eye_flip[0], x->eye_flip[1]);
         }
-        fprintf(f, "%s,%s,%s,%s,%d,%d,%d,%d,%.3f,%.3f,%.5f,%.5f,%.5f,%.3f,%.0f,%.4f,%.0f,%.4f,%.2f,%.2f,%llu,%u,%u,%d,%d,"
-                   "%d,%s,\"%s\"\n",
+        fprintf(f,
+                "%s,%s,%s,%s,%d,%d,%d,%d,%.3f,%.3f,%.5f,%.5f,%.5f,%.3f,%.0f,%.4f,%.0f,%.4f,%.2f,%.2f,%llu,%u,%u,%d,%d,"
+                "%d,%s,\"%s\"\n",
                 cfg->label ? cfg->label : "run", tdc_scene_name(cfg->scene.kind), panel_name(cfg), x->desc->name,
                 x->display_hz, cfg->width, cfg->height, x->evals, x->psnr, x->evals ? x->psnr_min : 0.0, x->ssim,
                 x->flip, x->flip_max, x->flicker, x->rays / T, x->rays / T / full_rays, x->link_bytes / T,
@@ -111,8 +112,9 @@ void tdc_report_markdown(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_res
     double full_rays = (double)cfg->width * cfg->height * (cfg->spp > 0 ? cfg->spp : (cfg->refresh_hz >= 200 ? 1 : 4)) *
                        cfg->refresh_hz * eyes;
     double full_bytes = (double)cfg->width * cfg->height * 3.0 * cfg->refresh_hz * eyes;
-    fprintf(f, "| mode | Hz | PSNR dB | SSIM | FLIP | flicker | rays vs full | link vs full | link MB/s | fw us/frame | "
-               "render us/frame |\n");
+    fprintf(f,
+            "| mode | Hz | PSNR dB | SSIM | FLIP | flicker | rays vs full | link vs full | link MB/s | fw us/frame | "
+            "render us/frame |\n");
     fprintf(f, "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
     for (int i = 0; i < n; i++) {
         const tdc_sim_result_t *x = &r[i];
@@ -128,8 +130,9 @@ void tdc_report_markdown(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_res
     }
     if (eyes == 2) {
         /* stereo: the table above is both eyes (mean figures, the pair's rays and link bytes) */
-        fprintf(f, "\nPer eye (left = eye 0, right = eye 1):\n\n| mode | PSNR L | PSNR R | SSIM L | SSIM R | FLIP L | "
-                   "FLIP R | flicker L | flicker R |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+        fprintf(f,
+                "\nPer eye (left = eye 0, right = eye 1):\n\n| mode | PSNR L | PSNR R | SSIM L | SSIM R | FLIP L | "
+                "FLIP R | flicker L | flicker R |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
         for (int i = 0; i < n; i++) {
             const tdc_sim_result_t *x = &r[i];
             if (x->available) {

@@ -60,30 +60,30 @@ typedef struct {
 typedef struct {
     tdc_scene_params_t scene;
     int width, height;
-    int eyes;             /* 1, or 2: stereo (TRM §7.2), eye 1's view from `right` */
-    tdc_source_t *right;  /* eye 1's source (its own camera) when eyes == 2 */
+    int eyes;               /* 1, or 2: stereo (TRM §7.2), eye 1's view from `right` */
+    tdc_source_t *right;    /* eye 1's source (its own camera) when eyes == 2 */
     tdc_sim_times_t *times; /* optional: receives the stage breakdown */
-    int refresh_hz;       /* run clock: display rate of the modes without a fixed rate */
-    int window_frames;    /* fused window in frames of the run clock (0: 2 below 200 Hz, else 4) */
+    int refresh_hz;         /* run clock: display rate of the modes without a fixed rate */
+    int window_frames;      /* fused window in frames of the run clock (0: 2 below 200 Hz, else 4) */
     double duration_s;
-    int spp;              /* rays per pixel of full frames (0: 4 below 200 Hz, else 1) */
+    int spp; /* rays per pixel of full frames (0: 4 below 200 Hz, else 1) */
     tdc_panel_sim_kind_t panel;
-    const char *panel_profile; /* firmware panel profile name (gamma, LCD model), NULL = htc-vive / first LCD */
-    int lcd_mode;         /* LCD firmware inverse (tdc_lcd_mode_t; default exact), docs/lcd.md */
-    int lcd_bits;         /* LCD history / state bits (4..8, default 8) */
-    int backlight;        /* LCD backlight: -1 as the panel's sim file, 0 hold (constant), 1 strobed */
+    const char *panel_profile;        /* firmware panel profile name (gamma, LCD model), NULL = htc-vive / first LCD */
+    int lcd_mode;                     /* LCD firmware inverse (tdc_lcd_mode_t; default exact), docs/lcd.md */
+    int lcd_bits;                     /* LCD history / state bits (4..8, default 8) */
+    int backlight;                    /* LCD backlight: -1 as the panel's sim file, 0 hold (constant), 1 strobed */
     double strobe_duty, strobe_phase; /* backlight 1: flash duty and phase (fractions of the refresh) */
-    double persistence;   /* OLED duty */
+    double persistence;               /* OLED duty */
     double pursuit_gain;
-    int metric_every;     /* evaluate every k-th instant (1 = all) */
+    int metric_every; /* evaluate every k-th instant (1 = all) */
     double flip_ppd;
-    int trm_s;            /* TRM motion sensitivity s (0: firmware default) */
-    int progress;         /* progress bar on stderr */
-    int strip_at;         /* evaluation index for the picture strip (-1: middle) */
+    int trm_s;    /* TRM motion sensitivity s (0: firmware default) */
+    int progress; /* progress bar on stderr */
+    int strip_at; /* evaluation index for the picture strip (-1: middle) */
     uint32_t seed;
-    int strict;           /* 1: a mode a firmware stage refuses is an error, not a note */
-    const char *outdir;   /* NULL: no files */
-    const char *label;    /* run label for the report */
+    int strict;         /* 1: a mode a firmware stage refuses is an error, not a note */
+    const char *outdir; /* NULL: no files */
+    const char *label;  /* run label for the report */
 } tdc_sim_config_t;
 
 void tdc_sim_default_config(tdc_sim_config_t *c);
@@ -96,25 +96,25 @@ const tdc_panel_t *tdc_sim_panel_find(const char *name, int want_lcd);
 typedef struct {
     const tdc_mode_desc_t *desc;
     int display_hz;
-    int available;          /* 0: a part it needs is missing or a stage refused (see note) */
-    int refused;            /* a firmware stage refused the configuration: its status (< 0), else 0 */
+    int available; /* 0: a part it needs is missing or a stage refused (see note) */
+    int refused;   /* a firmware stage refused the configuration: its status (< 0), else 0 */
     char note[256];
     /* perceived error, means over evaluated instants */
     double psnr, ssim, flip, flicker;
     double psnr_min, flip_max;
     int evals;
-    int eyes;                /* 1 or 2; the figures above are the mean of the eyes */
+    int eyes; /* 1 or 2; the figures above are the mean of the eyes */
     double eye_psnr[2], eye_ssim[2], eye_flip[2], eye_flicker[2];
     /* cost */
-    uint64_t rays;          /* primary rays traced (samples x spp) */
-    uint64_t link_bytes;    /* bytes on the link (packets incl. headers; stereo: both eyes' stream) */
-    uint64_t frames;        /* display refreshes */
-    uint64_t rendered;      /* frames/subframes the renderer produced */
-    double fw_s, render_s;  /* seconds in firmware (decode + stages), in the renderer (+ encoder) */
+    uint64_t rays;         /* primary rays traced (samples x spp) */
+    uint64_t link_bytes;   /* bytes on the link (packets incl. headers; stereo: both eyes' stream) */
+    uint64_t frames;       /* display refreshes */
+    uint64_t rendered;     /* frames/subframes the renderer produced */
+    double fw_s, render_s; /* seconds in firmware (decode + stages), in the renderer (+ encoder) */
     uint32_t link_errors;
-    uint32_t resets;        /* stream resets (scene cuts) */
-    double sim_s;           /* duration simulated */
-    int nonfinite;          /* any NaN/Inf seen in a perceived image */
+    uint32_t resets; /* stream resets (scene cuts) */
+    double sim_s;    /* duration simulated */
+    int nonfinite;   /* any NaN/Inf seen in a perceived image */
 } tdc_sim_result_t;
 
 /* Runs the given modes; results[i] for modes[i].  Writes per-instant rows

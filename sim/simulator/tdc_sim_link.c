@@ -92,8 +92,8 @@ int tdc_sim_link_init(tdc_sim_link_t *l, int w, int h, int eyes, uint32_t flags,
         l->pattern[e] = sub ? calloc(TDC_PATTERN_BYTES(w, h) + 1, 1) : NULL;
         l->motion[e] = (flags & TDC_SIM_LINK_MOTION) ? calloc(TDC_LINK_MOTION_COUNT(w, h), sizeof(int16_t)) : NULL;
         l->sample_motion[e] = sub ? calloc(TDC_LINK_SAMPLE_MOTION_COUNT(w, h), sizeof(int16_t)) : NULL;
-        if (!l->full[e] || (red && !l->reduced[e]) || (sub && (!l->subframe[e] || !l->pattern[e] ||
-                                                              !l->sample_motion[e]))) {
+        if (!l->full[e] || (red && !l->reduced[e]) ||
+            (sub && (!l->subframe[e] || !l->pattern[e] || !l->sample_motion[e]))) {
             tdc_sim_link_free(l);
             return -1;
         }
@@ -188,8 +188,8 @@ int tdc_sim_link_full(tdc_sim_link_t *l, int eye, uint32_t frame, const uint8_t 
 #if TDC_SIM_HAVE_LINK
     link_priv_t *p = l->priv;
     double t0 = now_s();
-    size_t n = tdc_link_encode_frame(&p->enc, p->pkt, p->cap, TDC_LINK_KIND_FULL, (uint32_t)eye, frame, TDC_PIXFMT_RGB888, rgb,
-                                     (uint32_t)l->w, (uint32_t)l->h, (uint32_t)l->w * 3u);
+    size_t n = tdc_link_encode_frame(&p->enc, p->pkt, p->cap, TDC_LINK_KIND_FULL, (uint32_t)eye, frame,
+                                     TDC_PIXFMT_RGB888, rgb, (uint32_t)l->w, (uint32_t)l->h, (uint32_t)l->w * 3u);
     l->encode_s += now_s() - t0;
     return feed(l, n, TDC_LINK_KIND_FULL);
 #else
@@ -208,8 +208,8 @@ int tdc_sim_link_reduced(tdc_sim_link_t *l, int eye, uint32_t frame, const uint8
 #if TDC_SIM_HAVE_LINK
     link_priv_t *p = l->priv;
     double t0 = now_s();
-    size_t n = tdc_link_encode_frame(&p->enc, p->pkt, p->cap, TDC_LINK_KIND_REDUCED, (uint32_t)eye, frame, TDC_PIXFMT_RGB888,
-                                     rgb, (uint32_t)l->rw, (uint32_t)l->rh, (uint32_t)l->rw * 3u);
+    size_t n = tdc_link_encode_frame(&p->enc, p->pkt, p->cap, TDC_LINK_KIND_REDUCED, (uint32_t)eye, frame,
+                                     TDC_PIXFMT_RGB888, rgb, (uint32_t)l->rw, (uint32_t)l->rh, (uint32_t)l->rw * 3u);
     l->encode_s += now_s() - t0;
     (void)bytes;
     return feed(l, n, TDC_LINK_KIND_REDUCED);
@@ -231,18 +231,20 @@ int tdc_sim_link_subframe(tdc_sim_link_t *l, int eye, uint32_t frame, const uint
     double t0 = now_s();
     size_t n;
     if (pattern) {
-        n = tdc_link_encode_pattern(&p->enc, p->pkt, p->cap, (uint32_t)eye, frame, pattern, (uint32_t)l->w, (uint32_t)l->h);
+        n = tdc_link_encode_pattern(&p->enc, p->pkt, p->cap, (uint32_t)eye, frame, pattern, (uint32_t)l->w,
+                                    (uint32_t)l->h);
         l->encode_s += now_s() - t0;
         rc |= feed(l, n, TDC_LINK_KIND_PATTERN);
         t0 = now_s();
     }
-    n = tdc_link_encode_subframe(&p->enc, p->pkt, p->cap, (uint32_t)eye, frame, TDC_PIXFMT_RGB888, samples, (uint32_t)l->w,
-                                 (uint32_t)l->h);
+    n = tdc_link_encode_subframe(&p->enc, p->pkt, p->cap, (uint32_t)eye, frame, TDC_PIXFMT_RGB888, samples,
+                                 (uint32_t)l->w, (uint32_t)l->h);
     l->encode_s += now_s() - t0;
     rc |= feed(l, n, TDC_LINK_KIND_SUBFRAME);
     if (mv) {
         t0 = now_s();
-        n = tdc_link_encode_motion(&p->enc, p->pkt, p->cap, (uint32_t)eye, frame, mv, (uint32_t)l->w, (uint32_t)l->h, 1);
+        n = tdc_link_encode_motion(&p->enc, p->pkt, p->cap, (uint32_t)eye, frame, mv, (uint32_t)l->w, (uint32_t)l->h,
+                                   1);
         l->encode_s += now_s() - t0;
         rc |= feed(l, n, TDC_LINK_KIND_MOTION);
     }

@@ -13,15 +13,15 @@
 #include <stddef.h>
 
 typedef struct {
-    int real;               /* 1: encoder + decoder in the path */
+    int real; /* 1: encoder + decoder in the path */
     int w, h, rw, rh;
-    int eyes;               /* 1, or 2: one stereo stream, packets carry the eye */
+    int eyes; /* 1, or 2: one stereo stream, packets carry the eye */
     uint32_t flags;
     uint16_t r_num, r_den, hz;
     uint16_t stream_id;
-    uint64_t bytes;         /* on the wire */
+    uint64_t bytes; /* on the wire */
     uint32_t packets;
-    uint32_t errors;        /* decoder errors (should be 0) */
+    uint32_t errors; /* decoder errors (should be 0) */
     double decode_s, encode_s;
     /* decoded buffers per eye (what the firmware reads) */
     uint8_t *full[2], *reduced[2], *subframe[2], *pattern[2];

@@ -20,74 +20,75 @@ static void usage(FILE *f)
 {
     int n;
     const tdc_mode_desc_t *const *m = tdc_sim_modes(&n);
-    fprintf(f,
-            "usage: tdc-sim [options]\n"
-            "Simulates display modes through the whole data path (renderer -> link encoder ->\n"
-            "firmware via the link decoder -> panel -> eye -> metrics vs ground truth).\n\n"
-            "  -R, --renderer SCENE    use the Embree renderer (sim/render): a built-in renderer scene\n"
-            "                          (discs text panorama room mirror fence bigmesh) or a scene file\n"
-            "      --threads N         threads of the renderer and of the simulator's own stages (source,\n"
-            "                          eye, metrics; default 2); results do not depend on it\n"
-            "      --image FILE        pan/zoom/rotate across a photograph (PNG or JPEG; exact area-sampled\n"
-            "                          ground truth); pan from --speed/--angle (default 0), with\n"
-            "      --zoom Z            screen pixels per image pixel at t = 0 (default 1)\n"
-            "      --zoom-rate R       d ln(zoom)/dt in 1/s (default 0)\n"
-            "      --rotate DEG_PER_S  rotation speed (default 0)\n"
-            "  -s, --scene NAME        built-in procedural scene (default pan):");
+    fprintf(f, "usage: tdc-sim [options]\n"
+               "Simulates display modes through the whole data path (renderer -> link encoder ->\n"
+               "firmware via the link decoder -> panel -> eye -> metrics vs ground truth).\n\n"
+               "  -R, --renderer SCENE    use the Embree renderer (sim/render): a built-in renderer scene\n"
+               "                          (discs text panorama room mirror fence bigmesh) or a scene file\n"
+               "      --threads N         threads of the renderer and of the simulator's own stages (source,\n"
+               "                          eye, metrics; default 2); results do not depend on it\n"
+               "      --image FILE        pan/zoom/rotate across a photograph (PNG or JPEG; exact area-sampled\n"
+               "                          ground truth); pan from --speed/--angle (default 0), with\n"
+               "      --zoom Z            screen pixels per image pixel at t = 0 (default 1)\n"
+               "      --zoom-rate R       d ln(zoom)/dt in 1/s (default 0)\n"
+               "      --rotate DEG_PER_S  rotation speed (default 0)\n"
+               "  -s, --scene NAME        built-in procedural scene (default pan):");
     for (int i = 0; i < TDC_SCENE_COUNT; i++) {
         fprintf(f, " %s", tdc_scene_name((tdc_scene_kind_t)i));
     }
-    fprintf(f, "\n"
-               "  -m, --mode LIST         comma-separated modes, or 'all', 'trm-family' (90 Hz comparison),\n"
-               "                          'asm-family' (240 Hz comparison); default trm-family\n"
-               "  -p, --panel oled|lcd    panel simulation (default oled)\n"
-               "      --profile NAME      firmware panel profile (default htc-vive, or the first LCD profile)\n"
-               "      --lcd-mode M        LCD inverse: gamma, exact (default), od17, od33, state, state-pair\n"
-               "      --lcd-bits N        LCD history / state bits 4..8 (default 8)\n"
-               "      --backlight B       LCD backlight: hold, strobe or strobe:DUTY:PHASE (default: the panel's)\n"
-               "  -r, --refresh HZ        run clock / display refresh (default 90)\n"
-               "  -g, --size WxH          resolution of one eye (default: the panel profile's, e.g.\n"
-               "                          1080x1200 for htc-vive); a smaller size is a window of the panel\n"
-               "                          at its native pixel density\n"
-               "      --eyes 1|2          eyes (default: the profile's; htc-vive and rift-cv1 have 2)\n"
-               "      --stereo, --mono    --eyes 2, --eyes 1.  Stereo (TRM §7.2): both eyes through one\n"
-               "                          stereo link stream and the firmware per eye; TRM modes send one\n"
-               "                          eye full and the other reduced, swapped every frame\n"
-               "      --disparity PX      procedural / --image stereo: the eyes' views differ by PX pixels (default 4)\n"
-               "      --ipd M             renderer stereo: camera offset between the eyes in scene units\n"
-               "                          (default 0.063)\n"
-               "  -d, --duration S        simulated seconds (default 0.5)\n"
-               "  -n, --frames N          simulated refreshes (overrides --duration)\n"
-               "  -w, --window N          fused window in refreshes (default 2 below 200 Hz, else 4)\n"
-               "      --spp N             rays per pixel of full frames (default 4 below 200 Hz, else 1)\n"
-               "      --speed PX_PER_S    main motion speed (default: the scene's)\n"
-               "      --angle DEG         main motion direction (default 0 = +x)\n"
-               "      --cut-time S        scene 'cut': time of the cut (default duration / 2)\n"
-               "      --persistence F     OLED duty cycle (default 0.2 below 200 Hz, else 1 = hold)\n"
-               "      --pursuit track|fixate  eye tracks the main motion or fixates (default track)\n"
-               "      --pursuit-gain G    smooth-pursuit gain (default 1)\n"
-               "      --metric-every K    evaluate every K-th refresh (default 1)\n"
-               "      --ppd X             pixels per degree of the view (FLIP; default: the profile's, e.g.\n"
-               "                          11.4 for htc-vive; 67.02, FLIP's desktop default, for profiles\n"
-               "                          without one)\n"
-               "      --trm-s S           TRM motion sensitivity s (default: firmware default)\n"
-               "      --gt-ss N           ground-truth supersampling N x N (default 4)\n"
-               "      --strip-at K        evaluation index of the picture strips (default middle)\n"
-               "  -S, --seed N            scene seed (default 1)\n"
-               "  -o, --out DIR           output folder: summary.csv, summary.md, series.csv, strip_*.png\n"
-               "  -l, --label TEXT        run label in the report\n"
-               "  -q, --quiet             no progress bar\n"
-               "      --times             print the wall seconds per stage (source, link, firmware, panel,\n"
-               "                          eye, metrics) on stderr\n"
-               "      --list              list the modes\n"
-               "  -h, --help              this help\n\nmodes:\n");
+    fprintf(f,
+            "\n"
+            "  -m, --mode LIST         comma-separated modes, or 'all', 'trm-family' (90 Hz comparison),\n"
+            "                          'asm-family' (240 Hz comparison); default trm-family\n"
+            "  -p, --panel oled|lcd    panel simulation (default oled)\n"
+            "      --profile NAME      firmware panel profile (default htc-vive, or the first LCD profile)\n"
+            "      --lcd-mode M        LCD inverse: gamma, exact (default), od17, od33, state, state-pair\n"
+            "      --lcd-bits N        LCD history / state bits 4..8 (default 8)\n"
+            "      --backlight B       LCD backlight: hold, strobe or strobe:DUTY:PHASE (default: the panel's)\n"
+            "  -r, --refresh HZ        run clock / display refresh (default 90)\n"
+            "  -g, --size WxH          resolution of one eye (default: the panel profile's, e.g.\n"
+            "                          1080x1200 for htc-vive); a smaller size is a window of the panel\n"
+            "                          at its native pixel density\n"
+            "      --eyes 1|2          eyes (default: the profile's; htc-vive and rift-cv1 have 2)\n"
+            "      --stereo, --mono    --eyes 2, --eyes 1.  Stereo (TRM §7.2): both eyes through one\n"
+            "                          stereo link stream and the firmware per eye; TRM modes send one\n"
+            "                          eye full and the other reduced, swapped every frame\n"
+            "      --disparity PX      procedural / --image stereo: the eyes' views differ by PX pixels (default 4)\n"
+            "      --ipd M             renderer stereo: camera offset between the eyes in scene units\n"
+            "                          (default 0.063)\n"
+            "  -d, --duration S        simulated seconds (default 0.5)\n"
+            "  -n, --frames N          simulated refreshes (overrides --duration)\n"
+            "  -w, --window N          fused window in refreshes (default 2 below 200 Hz, else 4)\n"
+            "      --spp N             rays per pixel of full frames (default 4 below 200 Hz, else 1)\n"
+            "      --speed PX_PER_S    main motion speed (default: the scene's)\n"
+            "      --angle DEG         main motion direction (default 0 = +x)\n"
+            "      --cut-time S        scene 'cut': time of the cut (default duration / 2)\n"
+            "      --persistence F     OLED duty cycle (default 0.2 below 200 Hz, else 1 = hold)\n"
+            "      --pursuit track|fixate  eye tracks the main motion or fixates (default track)\n"
+            "      --pursuit-gain G    smooth-pursuit gain (default 1)\n"
+            "      --metric-every K    evaluate every K-th refresh (default 1)\n"
+            "      --ppd X             pixels per degree of the view (FLIP; default: the profile's, e.g.\n"
+            "                          11.4 for htc-vive; 67.02, FLIP's desktop default, for profiles\n"
+            "                          without one)\n"
+            "      --trm-s S           TRM motion sensitivity s (default: firmware default)\n"
+            "      --gt-ss N           ground-truth supersampling N x N (default 4)\n"
+            "      --strip-at K        evaluation index of the picture strips (default middle)\n"
+            "  -S, --seed N            scene seed (default 1)\n"
+            "  -o, --out DIR           output folder: summary.csv, summary.md, series.csv, strip_*.png\n"
+            "  -l, --label TEXT        run label in the report\n"
+            "  -q, --quiet             no progress bar\n"
+            "      --times             print the wall seconds per stage (source, link, firmware, panel,\n"
+            "                          eye, metrics) on stderr\n"
+            "      --list              list the modes\n"
+            "  -h, --help              this help\n\nmodes:\n");
     for (int i = 0; i < n; i++) {
         fprintf(f, "  %-18s %s%s\n", m[i]->name, m[i]->what, m[i]->fixed_hz ? " (fixed rate)" : "");
     }
     tdc_sim_parts_t p;
     tdc_sim_parts(&p);
-    fprintf(f, "\nparts in this build: TRM firmware %s, link encoder+decoder %s, assembly firmware %s,\n"
-               "LCD firmware stage %s, physical LCD model %s\n",
+    fprintf(f,
+            "\nparts in this build: TRM firmware %s, link encoder+decoder %s, assembly firmware %s,\n"
+            "LCD firmware stage %s, physical LCD model %s\n",
             p.trm ? "yes" : "NO", p.link ? "yes" : "NO", p.assemble ? "yes" : "NO", p.lcd_fw ? "yes" : "NO",
             p.lcd_phys ? "yes" : "no (built-in fallback)");
     fprintf(f, "\nexit codes (docs/tools.md): 0 OK, 1 ARGS, 7 FILE, 13 INPUT (malformed image or scene),\n"
@@ -98,11 +99,17 @@ static void usage(FILE *f)
 static int add_modes(const char *list, const tdc_mode_desc_t **out, int *n, int cap, int *explicit)
 {
     *explicit = 1;
-    static const char *const trm_family[] = {"full", "half", "interlace", "bfi", "ncsfi", "trm50", "trm40",
-                                             "trm25", "asw"};
-    static const char *const asm_family[] = {"full",         "full60",           "taa60",          "asm-hourglass",
-                                             "asm-bowtie",   "asm-adaptive",     "asm-hourglass-smv",
-                                             "asm-bowtie-smv", "asm-adaptive-smv"};
+    static const char *const trm_family[] = {"full",  "half",  "interlace", "bfi", "ncsfi",
+                                             "trm50", "trm40", "trm25",     "asw"};
+    static const char *const asm_family[] = {"full",
+                                             "full60",
+                                             "taa60",
+                                             "asm-hourglass",
+                                             "asm-bowtie",
+                                             "asm-adaptive",
+                                             "asm-hourglass-smv",
+                                             "asm-bowtie-smv",
+                                             "asm-adaptive-smv"};
     char buf[1024];
     snprintf(buf, sizeof(buf), "%s", list);
     for (char *tok = strtok(buf, ","); tok; tok = strtok(NULL, ",")) {
@@ -170,32 +177,79 @@ static int image_exit(const char *err)
 
 int main(int argc, char **argv)
 {
-    enum { O_SPEED = 256, O_ANGLE, O_CUT, O_PERS, O_PURSUIT, O_GAIN, O_EVERY, O_PPD, O_TRMS, O_GTSS, O_STRIP, O_LIST,
-           O_SPP, O_PROFILE, O_THREADS, O_EYES, O_STEREO, O_MONO, O_DISP, O_IPD, O_TIMES,
-           O_IMAGE, O_ZOOM, O_ZOOMRATE, O_ROTATE, O_LCDMODE, O_LCDBITS, O_BACKLIGHT };
-    static const struct option opts[] = {
-        {"scene", required_argument, 0, 's'},   {"mode", required_argument, 0, 'm'},
-        {"panel", required_argument, 0, 'p'},   {"profile", required_argument, 0, O_PROFILE},
-        {"refresh", required_argument, 0, 'r'}, {"size", required_argument, 0, 'g'},
-        {"duration", required_argument, 0, 'd'}, {"frames", required_argument, 0, 'n'},
-        {"window", required_argument, 0, 'w'},  {"spp", required_argument, 0, O_SPP},
-        {"speed", required_argument, 0, O_SPEED}, {"angle", required_argument, 0, O_ANGLE},
-        {"cut-time", required_argument, 0, O_CUT}, {"persistence", required_argument, 0, O_PERS},
-        {"pursuit", required_argument, 0, O_PURSUIT}, {"pursuit-gain", required_argument, 0, O_GAIN},
-        {"metric-every", required_argument, 0, O_EVERY}, {"ppd", required_argument, 0, O_PPD},
-        {"trm-s", required_argument, 0, O_TRMS}, {"gt-ss", required_argument, 0, O_GTSS},
-        {"strip-at", required_argument, 0, O_STRIP}, {"seed", required_argument, 0, 'S'},
-        {"out", required_argument, 0, 'o'},     {"label", required_argument, 0, 'l'},
-        {"quiet", no_argument, 0, 'q'},         {"list", no_argument, 0, O_LIST},
-        {"renderer", required_argument, 0, 'R'}, {"threads", required_argument, 0, O_THREADS},
-        {"eyes", required_argument, 0, O_EYES}, {"stereo", no_argument, 0, O_STEREO},
-        {"mono", no_argument, 0, O_MONO},       {"disparity", required_argument, 0, O_DISP},
-        {"ipd", required_argument, 0, O_IPD},   {"times", no_argument, 0, O_TIMES},
-        {"image", required_argument, 0, O_IMAGE}, {"zoom", required_argument, 0, O_ZOOM},
-        {"zoom-rate", required_argument, 0, O_ZOOMRATE}, {"rotate", required_argument, 0, O_ROTATE},
-        {"lcd-mode", required_argument, 0, O_LCDMODE}, {"lcd-bits", required_argument, 0, O_LCDBITS},
-        {"backlight", required_argument, 0, O_BACKLIGHT},
-        {"help", no_argument, 0, 'h'},          {0, 0, 0, 0}};
+    enum {
+        O_SPEED = 256,
+        O_ANGLE,
+        O_CUT,
+        O_PERS,
+        O_PURSUIT,
+        O_GAIN,
+        O_EVERY,
+        O_PPD,
+        O_TRMS,
+        O_GTSS,
+        O_STRIP,
+        O_LIST,
+        O_SPP,
+        O_PROFILE,
+        O_THREADS,
+        O_EYES,
+        O_STEREO,
+        O_MONO,
+        O_DISP,
+        O_IPD,
+        O_TIMES,
+        O_IMAGE,
+        O_ZOOM,
+        O_ZOOMRATE,
+        O_ROTATE,
+        O_LCDMODE,
+        O_LCDBITS,
+        O_BACKLIGHT
+    };
+    static const struct option opts[] = {{"scene", required_argument, 0, 's'},
+                                         {"mode", required_argument, 0, 'm'},
+                                         {"panel", required_argument, 0, 'p'},
+                                         {"profile", required_argument, 0, O_PROFILE},
+                                         {"refresh", required_argument, 0, 'r'},
+                                         {"size", required_argument, 0, 'g'},
+                                         {"duration", required_argument, 0, 'd'},
+                                         {"frames", required_argument, 0, 'n'},
+                                         {"window", required_argument, 0, 'w'},
+                                         {"spp", required_argument, 0, O_SPP},
+                                         {"speed", required_argument, 0, O_SPEED},
+                                         {"angle", required_argument, 0, O_ANGLE},
+                                         {"cut-time", required_argument, 0, O_CUT},
+                                         {"persistence", required_argument, 0, O_PERS},
+                                         {"pursuit", required_argument, 0, O_PURSUIT},
+                                         {"pursuit-gain", required_argument, 0, O_GAIN},
+                                         {"metric-every", required_argument, 0, O_EVERY},
+                                         {"ppd", required_argument, 0, O_PPD},
+                                         {"trm-s", required_argument, 0, O_TRMS},
+                                         {"gt-ss", required_argument, 0, O_GTSS},
+                                         {"strip-at", required_argument, 0, O_STRIP},
+                                         {"seed", required_argument, 0, 'S'},
+                                         {"out", required_argument, 0, 'o'},
+                                         {"label", required_argument, 0, 'l'},
+                                         {"quiet", no_argument, 0, 'q'},
+                                         {"list", no_argument, 0, O_LIST},
+                                         {"renderer", required_argument, 0, 'R'},
+                                         {"threads", required_argument, 0, O_THREADS},
+                                         {"eyes", required_argument, 0, O_EYES},
+                                         {"stereo", no_argument, 0, O_STEREO},
+                                         {"mono", no_argument, 0, O_MONO},
+                                         {"disparity", required_argument, 0, O_DISP},
+                                         {"ipd", required_argument, 0, O_IPD},
+                                         {"times", no_argument, 0, O_TIMES},
+                                         {"image", required_argument, 0, O_IMAGE},
+                                         {"zoom", required_argument, 0, O_ZOOM},
+                                         {"zoom-rate", required_argument, 0, O_ZOOMRATE},
+                                         {"rotate", required_argument, 0, O_ROTATE},
+                                         {"lcd-mode", required_argument, 0, O_LCDMODE},
+                                         {"lcd-bits", required_argument, 0, O_LCDBITS},
+                                         {"backlight", required_argument, 0, O_BACKLIGHT},
+                                         {"help", no_argument, 0, 'h'},
+                                         {0, 0, 0, 0}};
     tdc_sim_config_t cfg;
     tdc_sim_default_config(&cfg);
     const char *mode_list = "trm-family";
@@ -228,9 +282,7 @@ int main(int argc, char **argv)
             }
             mode_list = optarg;
             break;
-        case 'R':
-            renderer = optarg;
-            break;
+        case 'R': renderer = optarg; break;
         case O_EYES:
             if (strcmp(optarg, "1") != 0 && strcmp(optarg, "2") != 0) {
                 fprintf(stderr, "tdc-sim: bad eyes '%s' (1 or 2)\n", optarg);
@@ -238,15 +290,9 @@ int main(int argc, char **argv)
             }
             eyes = optarg[0] - '0';
             break;
-        case O_STEREO:
-            eyes = 2;
-            break;
-        case O_TIMES:
-            cfg.times = &times;
-            break;
-        case O_MONO:
-            eyes = 1;
-            break;
+        case O_STEREO: eyes = 2; break;
+        case O_TIMES: cfg.times = &times; break;
+        case O_MONO: eyes = 1; break;
         case O_DISP:
             if (parse_num(optarg, -1000, 1000, &v, "disparity")) {
                 return TDC_EXIT_ARGS;
@@ -259,9 +305,7 @@ int main(int argc, char **argv)
             }
             ipd = v;
             break;
-        case O_IMAGE:
-            image = optarg;
-            break;
+        case O_IMAGE: image = optarg; break;
         case O_ZOOM:
             if (parse_num(optarg, 1e-3, 1e3, &im.zoom, "zoom")) {
                 return TDC_EXIT_ARGS;
@@ -293,9 +337,7 @@ int main(int argc, char **argv)
                 return TDC_EXIT_ARGS;
             }
             break;
-        case O_PROFILE:
-            cfg.panel_profile = optarg;
-            break;
+        case O_PROFILE: cfg.panel_profile = optarg; break;
         case O_LCDMODE: {
             static const char *const names[] = {"gamma", "exact", "od17", "od33", "state", "state-pair"};
             int k = -1;
@@ -320,9 +362,8 @@ int main(int argc, char **argv)
             char extra;
             if (strcmp(optarg, "hold") == 0) {
                 cfg.backlight = 0;
-            } else if (strcmp(optarg, "strobe") == 0 ||
-                       (sscanf(optarg, "strobe:%lf:%lf%c", &d, &ph, &extra) == 2 && d > 0.0 && d <= 1.0 &&
-                        ph >= 0.0 && ph + d <= 1.0)) {
+            } else if (strcmp(optarg, "strobe") == 0 || (sscanf(optarg, "strobe:%lf:%lf%c", &d, &ph, &extra) == 2 &&
+                                                         d > 0.0 && d <= 1.0 && ph >= 0.0 && ph + d <= 1.0)) {
                 cfg.backlight = 1;
                 cfg.strobe_duty = d;
                 cfg.strobe_phase = ph;
@@ -451,15 +492,9 @@ int main(int argc, char **argv)
             }
             cfg.seed = (uint32_t)v;
             break;
-        case 'o':
-            cfg.outdir = optarg;
-            break;
-        case 'l':
-            cfg.label = optarg;
-            break;
-        case 'q':
-            cfg.progress = 0;
-            break;
+        case 'o': cfg.outdir = optarg; break;
+        case 'l': cfg.label = optarg; break;
+        case 'q': cfg.progress = 0; break;
         case O_LIST: {
             int n;
             const tdc_mode_desc_t *const *m = tdc_sim_modes(&n);
@@ -468,12 +503,8 @@ int main(int argc, char **argv)
             }
             return 0;
         }
-        case 'h':
-            usage(stdout);
-            return 0;
-        default:
-            usage(stderr);
-            return TDC_EXIT_ARGS;
+        case 'h': usage(stdout); return 0;
+        default: usage(stderr); return TDC_EXIT_ARGS;
         }
     }
     tdc_par_set_threads(threads);
@@ -559,10 +590,10 @@ int main(int argc, char **argv)
     } else if (renderer) {
         char err[256];
         for (int e = 0; e < cfg.eyes; e++) {
-            tdc_source_t *s = tdc_sim_render_source(renderer, cfg.width, cfg.height, cfg.refresh_hz,
-                                                    cfg.scene.gt_ss > 0 ? cfg.scene.gt_ss * cfg.scene.gt_ss : 16,
-                                                    threads, cfg.eyes == 2 ? (e ? 0.5 : -0.5) * ipd : 0.0, err,
-                                                    sizeof(err));
+            tdc_source_t *s =
+                tdc_sim_render_source(renderer, cfg.width, cfg.height, cfg.refresh_hz,
+                                      cfg.scene.gt_ss > 0 ? cfg.scene.gt_ss * cfg.scene.gt_ss : 16, threads,
+                                      cfg.eyes == 2 ? (e ? 0.5 : -0.5) * ipd : 0.0, err, sizeof(err));
             if (!s) {
                 fprintf(stderr, "tdc-sim: renderer: %s\n", err);
                 if (e) {
@@ -631,8 +662,7 @@ int main(int argc, char **argv)
                         "refreshes.\n\n",
                         cfg.label, tdc_scene_name(cfg.scene.kind), cfg.panel == TDC_PANEL_SIM_LCD ? "LCD" : "OLED",
                         cfg.refresh_hz, cfg.eyes == 2 ? "stereo 2x" : "", cfg.width, cfg.height, cfg.flip_ppd,
-                        cfg.duration_s,
-                        cfg.window_frames > 0 ? cfg.window_frames : (cfg.refresh_hz >= 200 ? 4 : 2));
+                        cfg.duration_s, cfg.window_frames > 0 ? cfg.window_frames : (cfg.refresh_hz >= 200 ? 4 : 2));
                 tdc_report_markdown(f, &cfg, res, nm);
                 fclose(f);
             }

@@ -35,8 +35,8 @@ int tdc_sim_stage(sim_mode_t *m, const char *stage, int status)
             snprintf(eye, sizeof(eye), " eye %d", m->eye);
         }
         int fw = strncmp(stage, "tdc_", 4) == 0;
-        fprintf(stderr, "tdc-sim: mode %s: frame %u%s: stage %s: %s (%s)\n", m->d->name, (unsigned)m->frame, eye,
-                stage, fw ? tdc_status_name((tdc_status_t)status) : "failed",
+        fprintf(stderr, "tdc-sim: mode %s: frame %u%s: stage %s: %s (%s)\n", m->d->name, (unsigned)m->frame, eye, stage,
+                fw ? tdc_status_name((tdc_status_t)status) : "failed",
                 fw ? tdc_status_text((tdc_status_t)status) : "returned an error");
     }
     m->failed = 1;

@@ -137,9 +137,9 @@ static int asm_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32
     if (src->subframe) {
         uint64_t rays = 0;
         double t1 = tdc_sim_now();
-        rc = tdc_sim_stage(m, "renderer subframe",
-                           src->subframe(src, m->slot, m->d->shadow_mv, lf, t, m->fs, st->sub, st->submv,
-                                         st->pattern, &rays));
+        rc = tdc_sim_stage(
+            m, "renderer subframe",
+            src->subframe(src, m->slot, m->d->shadow_mv, lf, t, m->fs, st->sub, st->submv, st->pattern, &rays));
         r->render_s += tdc_sim_now() - t1;
         r->rays += rays;
         r->rendered++;

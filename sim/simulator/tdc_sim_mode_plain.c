@@ -43,7 +43,7 @@ static int plain_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint
     if (!even && m->d->variant != PLAIN_FULL) {
         if (m->d->variant == PLAIN_BFI) {
             memset(m->wanted, 0, m->npx * 3); /* the controller inserts black */
-        } /* HALF: the controller repeats the last frame */
+        }                                     /* HALF: the controller repeats the last frame */
         return 0;
     }
     tdc_sim_render_full(m, src, t, spp, 0, 0, NULL, 0, TDC_MV_SURFACE);

@@ -117,7 +117,8 @@ static int trm_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32
     if (m->d->variant == TRM_NCSFI) {
         /* the blurred frame comes from the same rendered frame */
         t0 = tdc_sim_now();
-        rc = tdc_sim_stage(m, "tdc_trm_downsample", tdc_trm_downsample(&st->trm, TDC_SIM_LINK_FULL(m), w3, st->reduced, rw3));
+        rc = tdc_sim_stage(m, "tdc_trm_downsample",
+                           tdc_trm_downsample(&st->trm, TDC_SIM_LINK_FULL(m), w3, st->reduced, rw3));
         if (rc == 0) {
             rc = tdc_sim_stage(m, "tdc_trm_reduced", tdc_trm_reduced(&st->trm, st->reduced, rw3, m->wanted, w3));
         }

@@ -77,8 +77,8 @@ static void taa_resolve(sim_mode_t *m, warp_state_t *st)
                         hi = v > hi ? v : hi;
                     }
                 }
-                double hv = tdc_sim_sample8(st->hist, m->w, m->h, x + st->mv[2 * i] / 16.0,
-                                            y + st->mv[2 * i + 1] / 16.0, c);
+                double hv =
+                    tdc_sim_sample8(st->hist, m->w, m->h, x + st->mv[2 * i] / 16.0, y + st->mv[2 * i + 1] / 16.0, c);
                 hv = hv < lo ? lo : (hv > hi ? hi : hv);
                 st->tmp[3 * i + c] = tdc_sim_to8(0.9 * hv + 0.1 * cur);
             }
@@ -93,7 +93,7 @@ static int warp_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint3
     warp_state_t *st = m->fam;
     double t0;
     if (m->d->variant == WARP_TAA) {
-        static const double halton[8][2] = {{0.0, -0.1667}, {-0.25, 0.1667}, {0.25, -0.3889}, {-0.375, -0.0556},
+        static const double halton[8][2] = {{0.0, -0.1667},  {-0.25, 0.1667},   {0.25, -0.3889}, {-0.375, -0.0556},
                                             {0.125, 0.2778}, {-0.125, -0.2778}, {0.375, 0.0556}, {-0.4375, 0.3889}};
         tdc_sim_render_full(m, src, t, 1, halton[lf & 7u][0], halton[lf & 7u][1], st->mv, m->fs, TDC_MV_SURFACE);
         t0 = tdc_sim_now();

@@ -16,15 +16,15 @@
 
 typedef struct {
     tdc_render_t *r;
-    tdc_scene_t *scene;          /* kept to open per-mode subframe renderers */
+    tdc_scene_t *scene; /* kept to open per-mode subframe renderers */
     tdc_render_config_t cfg;
     tdc_render_t *sub[RS_SLOTS]; /* subframe renderers (own MV history, orderings) */
     float *sub_lin;
     int16_t *sub_mv, *sub_mvs, *sub_mvd;
     int clock_hz;
-    float *lin;        /* W*H*3 */
+    float *lin; /* W*H*3 */
     int16_t *mv;
-    double *gt;        /* cached ground truth */
+    double *gt; /* cached ground truth */
     long gt_frame;
     long v_frame;
     double v[2];

@@ -50,7 +50,7 @@ static double wall_now(void)
 /* What one evaluation instant needs, shared by every mode (modes are
  * evaluated one after another, so one set of buffers serves all). */
 typedef struct {
-    double *gt;                 /* ground truth of the eye being evaluated (cropped at once) */
+    double *gt;                   /* ground truth of the eye being evaluated (cropped at once) */
     double *crop_g[2], *enc_g[2]; /* per eye: the ground truth's crop, encoded */
     double *scratch, *perc, *crop_p, *enc_p, *err, *flipmap, *rows;
     double *xy; /* sample positions (render calls are sequential too) */
@@ -98,8 +98,7 @@ static int eval_alloc(sim_eval_t *e, int w, int h, int eyes)
  * Mode set-up: what every mode shares, then its family and the LCD stage.
  * ------------------------------------------------------------------- */
 static int mode_init(sim_mode_t *m, const tdc_mode_desc_t *d, tdc_sim_result_t *res, const tdc_sim_setup_t *s,
-                     const double gamma[3], double window_s, int eye, sim_mode_t *eye0, double *xy,
-                     double *scratch)
+                     const double gamma[3], double window_s, int eye, sim_mode_t *eye0, double *xy, double *scratch)
 {
     const tdc_sim_config_t *cfg = s->cfg;
     memset(m, 0, sizeof(*m));
@@ -154,15 +153,15 @@ static int mode_init(sim_mode_t *m, const tdc_mode_desc_t *d, tdc_sim_result_t *
     }
     if (eye == 0) {
         m->link = &m->link_own;
-        if (tdc_sim_link_init(m->link, m->w, m->h, s->eyes, d->link_flags, d->r_num, d->r_den, (uint16_t)m->hz) !=
-            0) {
+        if (tdc_sim_link_init(m->link, m->w, m->h, s->eyes, d->link_flags, d->r_num, d->r_den, (uint16_t)m->hz) != 0) {
             if (!m->link->full[0]) {
                 return -1;
             }
             tdc_sim_note(m, "link stream header rejected");
         }
         if (!m->link->real) {
-            tdc_sim_note(m, "link: payload copied, bytes = payload + 32-byte header (encoder/decoder not in this build)");
+            tdc_sim_note(m,
+                         "link: payload copied, bytes = payload + 32-byte header (encoder/decoder not in this build)");
         }
     } else {
         m->link = eye0->link;
@@ -452,8 +451,8 @@ int tdc_sim_run(const tdc_sim_config_t *cfg, tdc_source_t *src, const tdc_mode_d
         return -1;
     }
     int rc = 0;
-    tdc_sim_setup_t setup = {cfg, eyes, lcd_panel ? lcd_panel : fw_panel, lcd_panel, src->full_frame != NULL,
-                             src->subframe != NULL};
+    tdc_sim_setup_t setup = {
+        cfg, eyes, lcd_panel ? lcd_panel : fw_panel, lcd_panel, src->full_frame != NULL, src->subframe != NULL};
     for (int i = 0; i < nmodes; i++) {
         for (int e = 0; e < eyes; e++) {
             sim_mode_t *m = &ms[i * eyes + e];

@@ -81,16 +81,11 @@ double tdc_scene_default_speed(tdc_scene_kind_t k)
     switch (k) {
     case TDC_SCENE_STATIC:
     case TDC_SCENE_BLACK:
-    case TDC_SCENE_WHITE:
-        return 0.0;
-    case TDC_SCENE_THIN:
-        return 330.0; /* 1.375 px/frame at 240 Hz: fractional motion */
-    case TDC_SCENE_FENCE:
-        return 270.0;
-    case TDC_SCENE_DISCS:
-        return 600.0;
-    default:
-        return 450.0;
+    case TDC_SCENE_WHITE: return 0.0;
+    case TDC_SCENE_THIN: return 330.0; /* 1.375 px/frame at 240 Hz: fractional motion */
+    case TDC_SCENE_FENCE: return 270.0;
+    case TDC_SCENE_DISCS: return 600.0;
+    default: return 450.0;
     }
 }
 
@@ -101,7 +96,7 @@ typedef struct {
 
 typedef struct {
     tdc_scene_params_t p;
-    double vx, vy;          /* main motion, px/s */
+    double vx, vy;         /* main motion, px/s */
     code_table_t codes[3]; /* drive-code decision levels per channel */
 } scene_ctx_t;
 
@@ -237,7 +232,7 @@ static void tex_floor(double x, double y, uint32_t seed, double c[3])
 #define N_DISCS 6
 static int disc_at(const scene_ctx_t *sc, double x, double y, double t, double c[3])
 {
-    static const double cols[N_DISCS][3] = {{0.9, 0.2, 0.1}, {0.1, 0.8, 0.2}, {0.15, 0.3, 0.95},
+    static const double cols[N_DISCS][3] = {{0.9, 0.2, 0.1},  {0.1, 0.8, 0.2}, {0.15, 0.3, 0.95},
                                             {0.95, 0.9, 0.2}, {0.9, 0.9, 0.9}, {0.8, 0.2, 0.8}};
     double w = sc->p.width, h = sc->p.height;
     double pw = w + 40.0, ph = h + 40.0;
@@ -266,15 +261,9 @@ void tdc_scene_radiance(const tdc_source_t *s, double x, double y, double t, dou
     x += sc->p.shift_x; /* stereo: this eye's view */
     double u = x - sc->vx * t, v = y - sc->vy * t;
     switch (sc->p.kind) {
-    case TDC_SCENE_STATIC:
-        tex_pan(x, y, sc->p.seed, rgb);
-        break;
-    case TDC_SCENE_PAN:
-        tex_pan(u, v, sc->p.seed, rgb);
-        break;
-    case TDC_SCENE_TEXT:
-        tex_text(u, v, sc->p.seed, rgb);
-        break;
+    case TDC_SCENE_STATIC: tex_pan(x, y, sc->p.seed, rgb); break;
+    case TDC_SCENE_PAN: tex_pan(u, v, sc->p.seed, rgb); break;
+    case TDC_SCENE_TEXT: tex_text(u, v, sc->p.seed, rgb); break;
     case TDC_SCENE_THIN:
         /* parallax: the lower half (foreground) moves at 8/11 of the pan
          * (330 -> 240 px/s), so its fractional motion per frame differs */
@@ -299,12 +288,8 @@ void tdc_scene_radiance(const tdc_source_t *s, double x, double y, double t, dou
         }
         break;
     }
-    case TDC_SCENE_BLACK:
-        rgb[0] = rgb[1] = rgb[2] = 0.0;
-        break;
-    case TDC_SCENE_WHITE:
-        rgb[0] = rgb[1] = rgb[2] = 1.0;
-        break;
+    case TDC_SCENE_BLACK: rgb[0] = rgb[1] = rgb[2] = 0.0; break;
+    case TDC_SCENE_WHITE: rgb[0] = rgb[1] = rgb[2] = 1.0; break;
     case TDC_SCENE_CUT:
         if (t < sc->p.cut_time) {
             tex_pan(u, v, sc->p.seed, rgb);
@@ -312,9 +297,7 @@ void tdc_scene_radiance(const tdc_source_t *s, double x, double y, double t, dou
             tex_text(u, v, sc->p.seed + 1u, rgb);
         }
         break;
-    default:
-        rgb[0] = rgb[1] = rgb[2] = 0.0;
-        break;
+    default: rgb[0] = rgb[1] = rgb[2] = 0.0; break;
     }
 }
 
@@ -352,8 +335,7 @@ static void scene_velocity(const scene_ctx_t *sc, double x, double y, double t, 
             v[1] = sc->vy;
         }
         break;
-    default:
-        break;
+    default: break;
     }
 }
 
@@ -441,8 +423,8 @@ static void src_samples(tdc_source_t *s, double t, int n, const double *xy, int 
  * ------------------------------------------------------------------- */
 typedef struct {
     double s53, s67, c67, sa, ca, g3, u;
-    int32_t cu;  /* floor(u / 5): dot cell */
-    uint8_t p8;  /* floor(u / 8) & 1 */
+    int32_t cu;   /* floor(u / 5): dot cell */
+    uint8_t p8;   /* floor(u / 8) & 1 */
     uint8_t line; /* floor(u) == 0 mod 23 */
 } pan_col_t;
 
@@ -450,9 +432,7 @@ typedef struct {
 static int pan_like(const scene_ctx_t *sc, double t, double *du, double *dv)
 {
     switch (sc->p.kind) {
-    case TDC_SCENE_STATIC:
-        *du = *dv = 0.0;
-        return 1;
+    case TDC_SCENE_STATIC: *du = *dv = 0.0; return 1;
     case TDC_SCENE_PAN:
         *du = sc->vx * t;
         *dv = sc->vy * t;
@@ -461,8 +441,7 @@ static int pan_like(const scene_ctx_t *sc, double t, double *du, double *dv)
         *du = sc->vx * t;
         *dv = sc->vy * t;
         return t < sc->p.cut_time;
-    default:
-        return 0;
+    default: return 0;
     }
 }
 

@@ -31,7 +31,7 @@ typedef enum {
     TDC_SCENE_FENCE,      /* static floor, moving fence shadow (shadow MVs) */
     TDC_SCENE_BLACK,
     TDC_SCENE_WHITE,
-    TDC_SCENE_CUT,        /* pan scene, then a cut to the text scene (stream reset) */
+    TDC_SCENE_CUT, /* pan scene, then a cut to the text scene (stream reset) */
     TDC_SCENE_COUNT
 } tdc_scene_kind_t;
 
@@ -46,16 +46,16 @@ typedef struct tdc_source tdc_source_t;
 struct tdc_source {
     const char *name;
     int width, height;
-    double gamma[3];   /* panel gamma used to encode drive codes */
-    int gt_ss;         /* ground-truth supersampling: gt_ss x gt_ss samples per pixel */
-    int rigid;         /* 1: all content moves with the pursuit velocity (GT needs one sample in time) */
+    double gamma[3]; /* panel gamma used to encode drive codes */
+    int gt_ss;       /* ground-truth supersampling: gt_ss x gt_ss samples per pixel */
+    int rigid;       /* 1: all content moves with the pursuit velocity (GT needs one sample in time) */
     void *ctx;
     /* n samples at (xy[2i], xy[2i+1]) at time t.  spp > 1: each sample is the
      * mean of spp stratified rays within its pixel (MSAA-like; xy is then the
      * pixel's corner + 0.5).  rgb: n*3 codes.  mv (optional, may be NULL):
      * n*2 backward MVs in Q4 over dt seconds. */
-    void (*samples)(tdc_source_t *s, double t, int n, const double *xy, int spp, uint8_t *rgb, int16_t *mv,
-                    double dt, tdc_mv_kind_t kind);
+    void (*samples)(tdc_source_t *s, double t, int n, const double *xy, int spp, uint8_t *rgb, int16_t *mv, double dt,
+                    tdc_mv_kind_t kind);
     /* Linear light W*H*3 (double) of the scene at time t, every pixel
      * sampled at (x + ox, y + oy) shifted by (ox, oy) pixels. */
     void (*ground_truth)(tdc_source_t *s, double t, double ox, double oy, double *lin);
@@ -87,13 +87,13 @@ struct tdc_source {
 typedef struct {
     tdc_scene_kind_t kind;
     int width, height;
-    double speed;      /* px/s of the main motion; < 0: scene default */
-    double angle_deg;  /* direction of the main motion (0 = +x) */
-    double cut_time;   /* TDC_SCENE_CUT: seconds */
+    double speed;     /* px/s of the main motion; < 0: scene default */
+    double angle_deg; /* direction of the main motion (0 = +x) */
+    double cut_time;  /* TDC_SCENE_CUT: seconds */
     uint32_t seed;
-    int pursuit;       /* 1: eye tracks the main motion, 0: fixation */
-    int gt_ss;         /* 0: default 4 */
-    double shift_x;    /* this eye's view: the scene seen shifted by shift_x px (stereo disparity) */
+    int pursuit;    /* 1: eye tracks the main motion, 0: fixation */
+    int gt_ss;      /* 0: default 4 */
+    double shift_x; /* this eye's view: the scene seen shifted by shift_x px (stereo disparity) */
 } tdc_scene_params_t;
 
 const char *tdc_scene_name(tdc_scene_kind_t k);

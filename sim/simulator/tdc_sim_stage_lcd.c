@@ -59,8 +59,8 @@ static int lcd_init(sim_mode_t *m, const tdc_sim_setup_t *s)
     snprintf(path, sizeof(path), "sim/lcd/panels/%s.lcdsim", s->lcd_panel ? s->lcd_panel->name : "pg279q");
     if (tdc_panel_sim_use_lcdsim(&m->panel, path, err, sizeof(err)) != 0) {
         tdc_sim_note(m, err);
-    } else if (s->cfg->backlight >= 0 && tdc_panel_sim_lcd_backlight(&m->panel, s->cfg->backlight,
-                                                                     s->cfg->strobe_duty, s->cfg->strobe_phase) != 0) {
+    } else if (s->cfg->backlight >= 0 && tdc_panel_sim_lcd_backlight(&m->panel, s->cfg->backlight, s->cfg->strobe_duty,
+                                                                     s->cfg->strobe_phase) != 0) {
         tdc_sim_note(m, "LCD backlight timing refused: the panel's own is used");
     }
     tdc_sim_note(m, m->panel.model);

@@ -49,7 +49,9 @@ static uint32_t g_pkt_len[BENCH_FRAMES];
 static uint8_t g_staging[TDC_LINK_STAGING_BYTES(BENCH_W, BENCH_H)] TDC_EXTRAM;
 static uint64_t g_arena[(TDC_ASM_MEM_BYTES(BENCH_W, BENCH_H) > TDC_TRM_MEM_BYTES(BENCH_W, BENCH_H, 1, 2)
                              ? TDC_ASM_MEM_BYTES(BENCH_W, BENCH_H)
-                             : TDC_TRM_MEM_BYTES(BENCH_W, BENCH_H, 1, 2)) / 8u + 1u] TDC_EXTRAM;
+                             : TDC_TRM_MEM_BYTES(BENCH_W, BENCH_H, 1, 2)) /
+                            8u +
+                        1u] TDC_EXTRAM;
 static uint64_t g_lcd_arena[TDC_LCD_MEM_BYTES(BENCH_W, BENCH_H) / 8u] TDC_EXTRAM;
 static uint8_t g_samples[RW * RH * 3u];
 /* foveated remap: log-polar buffer 0.555 W x 0.555 H, its motion vectors, TAA arena */
@@ -68,8 +70,7 @@ static tdc_lcd_t g_lcd;
 
 static const tdc_panel_t *const k_panels[] = {
 #define PANEL_PTR(sym) &sym,
-    TDC_PANEL_LIST(PANEL_PTR)
-};
+    TDC_PANEL_LIST(PANEL_PTR)};
 
 static void report(const char *label, uint32_t pixels)
 {
@@ -291,8 +292,8 @@ static void bench_fov(uint8_t taa, const char *label)
     if (tdc_fov_init(&g_fov, &cfg, g_fov_arena, sizeof g_fov_arena) != TDC_OK) {
         fail("fov init");
     }
-    const tdc_fov_params_t p = {(int32_t)(BENCH_W * 110u), (int32_t)(BENCH_H * 140u), 1024u, 4077u, (uint16_t)FOV_LW,
-                                (uint16_t)FOV_LH};
+    const tdc_fov_params_t p = {(int32_t)(BENCH_W * 110u), (int32_t)(BENCH_H * 140u), 1024u, 4077u,
+                                (uint16_t)FOV_LW,          (uint16_t)FOV_LH};
     tdc_content_frame(TDC_CONTENT_TEXT, 0u, 1u, g_fov_lp, (int)FOV_LW, (int)FOV_LH, (int)(FOV_LW * 3u));
     for (uint32_t k = 0; k < FOV_LW * FOV_LH; k++) {
         g_fov_mv[2u * k] = -24; /* a 1.5 px pan: backward MV */

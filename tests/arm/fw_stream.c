@@ -83,8 +83,7 @@ int main(int argc, char **argv)
         return 2;
     }
     tdc_link_stream_info_t info = {0};
-    info.flags = trm ? TDC_LINK_STREAM_REDUCED
-                     : sub ? (TDC_LINK_STREAM_SUBFRAMES | TDC_LINK_STREAM_SAMPLE_MV) : 0u;
+    info.flags = trm ? TDC_LINK_STREAM_REDUCED : sub ? (TDC_LINK_STREAM_SUBFRAMES | TDC_LINK_STREAM_SAMPLE_MV) : 0u;
     if (v_motion) {
         info.flags |= TDC_LINK_STREAM_MOTION;
     }
@@ -175,8 +174,8 @@ int main(int argc, char **argv)
                             }
                         }
                     }
-                    size_t n = tdc_link_encode_frame(&enc, g_pkt, g_cap, TDC_LINK_KIND_REDUCED, e, f,
-                                                     TDC_PIXFMT_RGB888, red, rw, rh, rw * 3u);
+                    size_t n = tdc_link_encode_frame(&enc, g_pkt, g_cap, TDC_LINK_KIND_REDUCED, e, f, TDC_PIXFMT_RGB888,
+                                                     red, rw, rh, rw * 3u);
                     if ((v_resend || v_resend_ref) && f == 3 && e == 0) {
                         g_pkt[TDC_LINK_HEADER_BYTES + 10u] ^= 0x40u; /* payload CRC must catch it */
                     }
@@ -218,14 +217,14 @@ int main(int argc, char **argv)
         if (v_future && f == 0) {
             /* valid header CRC, far-future frame index, bad payload CRC */
             tdc_content_frame(eye_content(0), 0, 11u, rgb, (int)w, (int)h, (int)(w * 3u));
-            size_t n = tdc_link_encode_frame(&enc, g_pkt, g_cap, TDC_LINK_KIND_FULL, 0, 0x7FFFFFF0u,
-                                             TDC_PIXFMT_RGB888, rgb, w, h, w * 3u);
+            size_t n = tdc_link_encode_frame(&enc, g_pkt, g_cap, TDC_LINK_KIND_FULL, 0, 0x7FFFFFF0u, TDC_PIXFMT_RGB888,
+                                             rgb, w, h, w * 3u);
             g_pkt[TDC_LINK_HEADER_BYTES + 7u] ^= 0x01u;
             put(n, "far-future frame (bad payload)");
             if (eyes == 2) {
                 /* and the other eye's packet of that frame: every eye of it "lost" */
-                n = tdc_link_encode_frame(&enc, g_pkt, g_cap, TDC_LINK_KIND_REDUCED, 1, 0x7FFFFFF0u,
-                                          TDC_PIXFMT_RGB888, rgb, rw, rh, rw * 3u);
+                n = tdc_link_encode_frame(&enc, g_pkt, g_cap, TDC_LINK_KIND_REDUCED, 1, 0x7FFFFFF0u, TDC_PIXFMT_RGB888,
+                                          rgb, rw, rh, rw * 3u);
                 g_pkt[TDC_LINK_HEADER_BYTES + 7u] ^= 0x01u;
                 put(n, "far-future reduced frame (bad payload)");
             }

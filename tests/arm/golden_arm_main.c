@@ -51,17 +51,16 @@ int main(void)
 {
     tdc_golden_ctx_t ctx = {write_semihost, 0, 0};
     uint32_t stages = 0, silent = 0;
-#define RUN(stage)                                                         \
-    {                                                                      \
-        uint32_t before = ctx.lines;                                       \
-        tdc_golden_##stage(&ctx);                                          \
-        stages++;                                                          \
-        if (ctx.lines == before) {                                         \
-            flush_out();                                                   \
-            tdc_semihost_puts(2, "[" TDC_BOARD_NAME "] golden stage " #stage \
-                                 " wrote no checksum\n");                  \
-            silent++;                                                      \
-        }                                                                  \
+#define RUN(stage)                                                                                    \
+    {                                                                                                 \
+        uint32_t before = ctx.lines;                                                                  \
+        tdc_golden_##stage(&ctx);                                                                     \
+        stages++;                                                                                     \
+        if (ctx.lines == before) {                                                                    \
+            flush_out();                                                                              \
+            tdc_semihost_puts(2, "[" TDC_BOARD_NAME "] golden stage " #stage " wrote no checksum\n"); \
+            silent++;                                                                                 \
+        }                                                                                             \
     }
     TDC_GOLDEN_LIST(RUN)
     flush_out();

@@ -136,8 +136,7 @@ int main(int argc, char **argv)
         double bound = bw / cases[i].bytes / 1e6;
         printf("  %-38s %7.2f ms/frame  %8.1f Mpixel/s  (%5.1f fps; 240 Hz needs %.0f Mpixel/s)  "
                "bound %.2f B/px -> %.0f Mpixel/s  fraction %.1f %%\n",
-               cases[i].name, t * 1e3, mpx, 1.0 / t, 240.0 * BW * BH / 1e6, cases[i].bytes, bound,
-               100.0 * mpx / bound);
+               cases[i].name, t * 1e3, mpx, 1.0 / t, 240.0 * BW * BH / 1e6, cases[i].bytes, bound, 100.0 * mpx / bound);
         printf("  %-38s counters (last run): reprojected %llu clamp boxes %llu clamp changed %llu static frames %u "
                "static rows %llu\n",
                "", (unsigned long long)stats.reprojected, (unsigned long long)stats.clamp_boxes,

@@ -46,12 +46,11 @@ static int costs(void)
 {
     const tdc_panel_t *panels[] = {
 #define P(sym) &sym,
-        TDC_PANEL_LIST(P)
-    };
+        TDC_PANEL_LIST(P)};
     int miss = 0;
     printf("rays and link bytes against full rate (alpha 4, delta 0.555, disk 12.443 %%); goal <= 35 %% each\n");
-    printf("%-10s %-10s %-10s %7s %7s %9s %10s %9s %9s %9s\n", "panel", "size", "gaze", "l", "u0", "disk px",
-           "rays", "rays %", "fov B %", "taa B %");
+    printf("%-10s %-10s %-10s %7s %7s %9s %10s %9s %9s %9s\n", "panel", "size", "gaze", "l", "u0", "disk px", "rays",
+           "rays %", "fov B %", "taa B %");
     for (unsigned k = 0; k < sizeof panels / sizeof panels[0]; k++) {
         const int W = panels[k]->width, H = panels[k]->height;
         static const double gz[][2] = {{0.5, 0.5}, {0.3, 0.4}};
@@ -85,8 +84,9 @@ static int costs(void)
         const double ours = ((double)(fg.lp_w - fg.u0) * fg.lp_h + tdc_fov_disk_pixels(&fg)) / (1920.0 * 1080);
         if (ours < best) best = ours, best_x = x;
         if (i % 5 == 0 || fabs(x - 0.125) < 1e-9) {
-            printf("  disk %5.1f %%: l = %4u, rays %6.2f %% (eq. 5.1, columns from l), %6.2f %% (columns from u0 = %u)\n",
-                   100 * x, fg.l, 100 * thesis, 100 * ours, fg.u0);
+            printf(
+                "  disk %5.1f %%: l = %4u, rays %6.2f %% (eq. 5.1, columns from l), %6.2f %% (columns from u0 = %u)\n",
+                100 * x, fg.l, 100 * thesis, 100 * ours, fg.u0);
         }
     }
     printf("  lowest ray share %.2f %% at disk %.1f %% (thesis: 10-20 %%, 12.443 %% observed)\n", 100 * best,
@@ -131,7 +131,8 @@ static void throughput(void)
         double best = 1e30;
         for (int r = 0; r < 5; r++) {
             const double t0 = now_s();
-            TDC_MUST(tdc_fov_frame(&st, &p, lp, (size_t)p.lp_w * 3, mv, (size_t)p.lp_w * 2, dk, W * 3, 11111, out, W * 3));
+            TDC_MUST(
+                tdc_fov_frame(&st, &p, lp, (size_t)p.lp_w * 3, mv, (size_t)p.lp_w * 2, dk, W * 3, 11111, out, W * 3));
             const double t = now_s() - t0;
             best = t < best ? t : best;
         }

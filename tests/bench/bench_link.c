@@ -76,8 +76,8 @@ int main(int argc, char **argv)
     printf("%-9s %10s %10s %10s %11s %8s\n", "format", "packet B", "link MB/s", "Mpixel/s", "memcpy MB/s", "ratio");
     int fail = 0;
     for (int f = TDC_PIXFMT_RGB888; f < TDC_PIXFMT_COUNT; f++) {
-        const size_t n = tdc_link_encode_frame(&enc, pkt, sizeof pkt, TDC_LINK_KIND_FULL, 0, 0, (tdc_pixfmt_t)f, src,
-                                               w, h, w * 3u);
+        const size_t n =
+            tdc_link_encode_frame(&enc, pkt, sizeof pkt, TDC_LINK_KIND_FULL, 0, 0, (tdc_pixfmt_t)f, src, w, h, w * 3u);
         static tdc_link_decoder_t dec;
         tdc_link_config_t cfg = {(uint16_t)w, (uint16_t)h, 1};
         tdc_link_buffers_t b;

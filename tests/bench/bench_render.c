@@ -62,14 +62,14 @@ static void *replay_main(void *arg)
         const tdc_render_ray_t *r = &p->rays[i];
         RTCScene sc = (r->flags & TDC_RAY_PREV_FRAME) ? p->prev : p->cur;
         if (r->flags & TDC_RAY_OCCLUSION) {
-            struct RTCRay ray = {r->org[0], r->org[1], r->org[2], r->tnear, r->dir[0], r->dir[1], r->dir[2], 0,
-                                 r->tfar,   0xFFFFFFFFu, 0,        0};
+            struct RTCRay ray = {r->org[0], r->org[1], r->org[2], r->tnear,    r->dir[0], r->dir[1],
+                                 r->dir[2], 0,         r->tfar,   0xFFFFFFFFu, 0,         0};
             rtcOccluded1(sc, &ctx, &ray);
             hits += ray.tfar < 0;
         } else {
             struct RTCRayHit rh;
-            rh.ray = (struct RTCRay){r->org[0], r->org[1], r->org[2], r->tnear, r->dir[0], r->dir[1], r->dir[2], 0,
-                                     r->tfar,   0xFFFFFFFFu, 0,        0};
+            rh.ray = (struct RTCRay){r->org[0], r->org[1], r->org[2], r->tnear,    r->dir[0], r->dir[1],
+                                     r->dir[2], 0,         r->tfar,   0xFFFFFFFFu, 0,         0};
             rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
             rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
             rtcIntersect1(sc, &ctx, &rh);
@@ -124,8 +124,8 @@ static double packet_probe(const tdc_render_ray_t *rays, size_t n, RTCScene sc, 
     double c0 = cpu_ms();
     for (size_t i = 0; i < n; i++) {
         const tdc_render_ray_t *r = &rays[i];
-        h1[i].ray = (struct RTCRay){r->org[0], r->org[1], r->org[2], r->tnear, r->dir[0], r->dir[1], r->dir[2], 0,
-                                    r->tfar,   0xFFFFFFFFu, 0,        0};
+        h1[i].ray = (struct RTCRay){r->org[0], r->org[1], r->org[2], r->tnear,    r->dir[0], r->dir[1],
+                                    r->dir[2], 0,         r->tfar,   0xFFFFFFFFu, 0,         0};
         h1[i].hit.geomID = RTC_INVALID_GEOMETRY_ID;
         h1[i].hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
         rtcIntersect1(sc, &ctx1, &h1[i]);
@@ -175,9 +175,8 @@ static double packet_probe(const tdc_render_ray_t *rays, size_t n, RTCScene sc, 
         uint32_t id = hit ? h1[i].hit.instID[0] : RTC_INVALID_GEOMETRY_ID;
         memcpy(&a[4], &id, sizeof id);
         d += memcmp(a, h16[i], sizeof a) != 0;
-        v += memcmp(&a[4], &h16[i][4], sizeof id) != 0 || a[0] < h16[i][0] || a[0] > h16[i][0] ||
-             a[1] < h16[i][1] || a[1] > h16[i][1] || a[2] < h16[i][2] || a[2] > h16[i][2] || a[3] < h16[i][3] ||
-             a[3] > h16[i][3];
+        v += memcmp(&a[4], &h16[i][4], sizeof id) != 0 || a[0] < h16[i][0] || a[0] > h16[i][0] || a[1] < h16[i][1] ||
+             a[1] > h16[i][1] || a[2] < h16[i][2] || a[2] > h16[i][2] || a[3] < h16[i][3] || a[3] > h16[i][3];
     }
     free(h1);
     free(h16);
@@ -208,8 +207,8 @@ int main(int argc, char **argv)
            "bare = one rtcIntersect1/rtcOccluded1 call per recorded ray (as the renderer calls Embree), same scene,\n"
            "same threads; primary = the primary stage against its primary rays alone\n",
            BW, BH, FRAME, reps);
-    printf("%-9s %3s %8s %8s | %8s %8s %6s | %8s %8s %6s | %8s\n", "scene", "thr", "rays", "primary", "total",
-           "bare", "ratio", "primary", "bare", "ratio", "frame ms");
+    printf("%-9s %3s %8s %8s | %8s %8s %6s | %8s %8s %6s | %8s\n", "scene", "thr", "rays", "primary", "total", "bare",
+           "ratio", "primary", "bare", "ratio", "frame ms");
     double worst = 1e9;
     char verdict[2048] = "";
     size_t vlen = 0;
@@ -295,8 +294,10 @@ int main(int argc, char **argv)
         /* stages of the 2-thread frame: skipped ones are not entered */
         printf("          stages (CPU ms):");
         for (int k = 0; k < TDC_STAGE_COUNT; k++) {
-            if (s2.ran[k]) printf(" %s %.1f", tdc_render_stage_name((tdc_render_stage_t)k), s2.ms[k]);
-            else printf(" %s -", tdc_render_stage_name((tdc_render_stage_t)k));
+            if (s2.ran[k])
+                printf(" %s %.1f", tdc_render_stage_name((tdc_render_stage_t)k), s2.ms[k]);
+            else
+                printf(" %s -", tdc_render_stage_name((tdc_render_stage_t)k));
         }
         printf("\n");
         /* subframe vs full frame (2 threads) */

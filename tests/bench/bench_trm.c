@@ -123,9 +123,9 @@ int main(int argc, char **argv)
     }
     const tdc_trm_stats_t *s = &trm.stats;
     printf("  counters: full %u reduced %u pass-through %u; weights computed %llu, skipped (c = 0) %llu, "
-           "no residual %llu\n", s->full_frames, s->reduced_frames, s->passthrough_frames,
-           (unsigned long long)s->weight_computed, (unsigned long long)s->weight_skipped,
-           (unsigned long long)s->residual_skipped);
+           "no residual %llu\n",
+           s->full_frames, s->reduced_frames, s->passthrough_frames, (unsigned long long)s->weight_computed,
+           (unsigned long long)s->weight_skipped, (unsigned long long)s->residual_skipped);
     /* elision: r = 1 does no TRM work at all */
     cfg.r_num = cfg.r_den = 1;
     free(mem);

@@ -92,12 +92,12 @@ uint32_t checkasm_runs(uint32_t dflt)
 
 /* ---- mismatches ---- */
 
-#define DIFF_BODY                                                                                               \
-    for (size_t i = 0; i < n; i++) {                                                                            \
-        if (a[i] != b[i]) {                                                                                     \
-            return g.last_index = (long)i;                                                                      \
-        }                                                                                                       \
-    }                                                                                                           \
+#define DIFF_BODY                          \
+    for (size_t i = 0; i < n; i++) {       \
+        if (a[i] != b[i]) {                \
+            return g.last_index = (long)i; \
+        }                                  \
+    }                                      \
     return -1;
 
 long checkasm_diff_u8(const uint8_t *a, const uint8_t *b, size_t n)

@@ -51,13 +51,15 @@ typedef struct {
 /* One registration: an optimised kernel beside its reference. */
 struct checkasm_kernel {
     const checkasm_family_t *family;
-    const char *isa;         /* "avx2", "avx512", "mve" */
-    int (*available)(void);  /* 1: built in and runnable on this CPU */
+    const char *isa;        /* "avx2", "avx512", "mve" */
+    int (*available)(void); /* 1: built in and runnable on this CPU */
     checkasm_fn_t ref, opt;
 };
 
-#define CHECKASM_KERNEL(family, isa, available, ref, opt)                                                       \
-    {(family), (isa), (available), (checkasm_fn_t)(ref), (checkasm_fn_t)(opt)}
+#define CHECKASM_KERNEL(family, isa, available, ref, opt)                        \
+    {                                                                            \
+        (family), (isa), (available), (checkasm_fn_t)(ref), (checkasm_fn_t)(opt) \
+    }
 
 /* The pair's two sides as their real type (T: a function type). */
 #define CHECKASM_REF(T, k) ((T *)(k)->ref)
@@ -112,10 +114,10 @@ checkasm_fn_t checkasm_bench_fn(const checkasm_bench_t *b);
 /* Times `call` (which calls f, a T *) for the reference and the optimised
  * side, best of 50 batches of 20 calls each (short batches: a loaded machine
  * still gives undisturbed ones), and prints ns per unit and the speed-up. */
-#define CHECKASM_BENCH(k, label, units, T, f, call)                                                             \
-    for (checkasm_bench_t cb_ = checkasm_bench_start((k), (label), (units)); checkasm_bench_step(&cb_);) {     \
-        T *const f = (T *)checkasm_bench_fn(&cb_);                                                              \
-        call;                                                                                                   \
+#define CHECKASM_BENCH(k, label, units, T, f, call)                                                        \
+    for (checkasm_bench_t cb_ = checkasm_bench_start((k), (label), (units)); checkasm_bench_step(&cb_);) { \
+        T *const f = (T *)checkasm_bench_fn(&cb_);                                                         \
+        call;                                                                                              \
     }
 
 /* ---- the run ---- */

@@ -135,7 +135,8 @@ static void describe_sample(char *buf, size_t cap, uint32_t width, long i)
         return;
     }
     const uint32_t j = ux[2u * x];
-    snprintf(buf, cap, "pixel %u channel %u: src %u, ux (%u, frac %u), urow_a[%u] %u, [%u] %u, urow_b %u, %u, rho in %d",
+    snprintf(buf, cap,
+             "pixel %u channel %u: src %u, ux (%u, frac %u), urow_a[%u] %u, [%u] %u, urow_b %u, %u, rho in %d",
              (unsigned)x, (unsigned)c, src[i], (unsigned)j, ux[2u * x + 1u], (unsigned)(3u * j + c),
              (unsigned)urow_a[3u * j + c], (unsigned)(3u * (j + 1u) + c), (unsigned)urow_a[3u * (j + 1u) + c],
              (unsigned)urow_b[3u * j + c], (unsigned)urow_b[3u * (j + 1u) + c], (int)res_in[i]);
@@ -162,9 +163,9 @@ static void check_full_row(const checkasm_kernel_t *kr)
         char where[256];
         if (i >= 0) {
             describe_sample(where, sizeof where, r.width, i);
-            checkasm_fail("row %u width %u panel %s mode %u: sample %ld: code %u vs %u, rho %d vs %d; %s", (unsigned)row,
-                          (unsigned)r.width, panels[r.panel]->name, (unsigned)r.mode, i, dst_c[i], dst_v[i], (int)res_c[i],
-                          (int)res_v[i], where);
+            checkasm_fail("row %u width %u panel %s mode %u: sample %ld: code %u vs %u, rho %d vs %d; %s",
+                          (unsigned)row, (unsigned)r.width, panels[r.panel]->name, (unsigned)r.mode, i, dst_c[i],
+                          dst_v[i], (int)res_c[i], (int)res_v[i], where);
         } else if (nc.hi != nv.hi || nc.lo != nv.lo) {
             checkasm_fail("row %u width %u: clamp counts hi %u vs %u, lo %u vs %u", (unsigned)row, (unsigned)r.width,
                           (unsigned)nc.hi, (unsigned)nv.hi, (unsigned)nc.lo, (unsigned)nv.lo);
@@ -238,9 +239,9 @@ static void check_dvert(const checkasm_kernel_t *kr)
         const long i = checkasm_diff_u16(dout_c, dout_v, 3u * MAXW);
         if (i >= 0) {
             checkasm_fail("run %u n %u taps %u: out[%ld] %u vs %u%s; rows[0..2][i] %u %u %u, w[0..2] %u %u %u",
-                          (unsigned)run, (unsigned)n, (unsigned)taps, i, dout_c[i], dout_v[i], (uint32_t)i >= n ? " (past n)" : "", drows[0][i],
-                          taps > 1u ? drows[1][i] : 0u, taps > 2u ? drows[2][i] : 0u, w[0], taps > 1u ? w[1] : 0u,
-                          taps > 2u ? w[2] : 0u);
+                          (unsigned)run, (unsigned)n, (unsigned)taps, i, dout_c[i], dout_v[i],
+                          (uint32_t)i >= n ? " (past n)" : "", drows[0][i], taps > 1u ? drows[1][i] : 0u,
+                          taps > 2u ? drows[2][i] : 0u, w[0], taps > 1u ? w[1] : 0u, taps > 2u ? w[2] : 0u);
         }
     }
 }
@@ -277,8 +278,8 @@ static void check_dhoriz(const checkasm_kernel_t *kr)
             const uint32_t j = (uint32_t)i / 3u;
             checkasm_fail("run %u width %u rw %u taps %u: out[%ld] (column %u channel %u) %u vs %u%s; kernel first %d",
                           (unsigned)run, (unsigned)width, (unsigned)rw, (unsigned)taps, i, (unsigned)j,
-                          (unsigned)((uint32_t)i % 3u), dout_c[i], dout_v[i],
-                          j >= rw ? " (past rw)" : "", j < rw ? hfirst[j] : 0);
+                          (unsigned)((uint32_t)i % 3u), dout_c[i], dout_v[i], j >= rw ? " (past rw)" : "",
+                          j < rw ? hfirst[j] : 0);
         }
     }
 }
@@ -338,8 +339,7 @@ static const checkasm_family_t trm_dhoriz = {"trm_dhoriz", check_dhoriz, bench_d
 
 static const checkasm_kernel_t g_trm_kernels[] = {
     CHECKASM_KERNEL(&trm_full_row, "avx2", tdc_trm_avx2_available, tdc_trm_full_row_c, tdc_trm_full_row_avx2),
-    CHECKASM_KERNEL(&trm_reduced_row, "avx2", tdc_trm_avx2_available, tdc_trm_reduced_row_c,
-                    tdc_trm_reduced_row_avx2),
+    CHECKASM_KERNEL(&trm_reduced_row, "avx2", tdc_trm_avx2_available, tdc_trm_reduced_row_c, tdc_trm_reduced_row_avx2),
     CHECKASM_KERNEL(&trm_dvert, "avx2", tdc_trm_avx2_available, tdc_trm_dvert_c, tdc_trm_dvert_avx2),
     CHECKASM_KERNEL(&trm_dhoriz, "avx2", tdc_trm_avx2_available, tdc_trm_dhoriz_c, tdc_trm_dhoriz_avx2),
 };

@@ -71,16 +71,11 @@ static uint32_t urow_value(uint32_t mode, uint32_t i)
 {
     const uint32_t top = 65280u << 14;
     switch (mode) {
-    case 0:
-        return rnd() % (top + 1u);
-    case 1:
-        return 0u;
-    case 2:
-        return top;
-    case 3:
-        return (i / 3u) & 1u ? top : 0u;
-    default:
-        return (rnd() & 0xff00u) << 14; /* whole codes */
+    case 0: return rnd() % (top + 1u);
+    case 1: return 0u;
+    case 2: return top;
+    case 3: return (i / 3u) & 1u ? top : 0u;
+    default: return (rnd() & 0xff00u) << 14; /* whole codes */
     }
 }
 
@@ -120,7 +115,7 @@ int main(void)
                     g_ua[i] = urow_value(mode, i);
                     const uint32_t r = rnd() % 4u;
                     /* U(i) equal to U(D(I)), half a code off, or unrelated */
-                    g_ub[i] = r == 0u ? g_ua[i]
+                    g_ub[i] = r == 0u   ? g_ua[i]
                               : r == 1u ? (g_ua[i] >= (1u << 13) ? g_ua[i] - (1u << 13) : g_ua[i] + (1u << 13))
                                         : urow_value(mode, i);
                 }
@@ -128,8 +123,10 @@ int main(void)
                     const uint32_t r = rnd();
                     g_src[i] = (uint8_t)(mode == 1u ? 0u : mode == 2u ? 255u : r);
                     const uint32_t q = (r >> 8) % 6u;
-                    g_rho[i] = q == 0u ? 0 : q == 1u ? TDC_LIN_ONE : q == 2u ? -TDC_LIN_ONE
-                               : (int32_t)((r >> 3) % (2u * TDC_LIN_ONE + 1u)) - TDC_LIN_ONE;
+                    g_rho[i] = q == 0u   ? 0
+                               : q == 1u ? TDC_LIN_ONE
+                               : q == 2u ? -TDC_LIN_ONE
+                                         : (int32_t)((r >> 3) % (2u * TDC_LIN_ONE + 1u)) - TDC_LIN_ONE;
                 }
                 /* full row */
                 memset(g_dc, 0xa5, sizeof g_dc);

@@ -62,7 +62,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     tdc_fov_params_t q = h.p;
     for (int f = 0; f < 2; f++) {
         if (tdc_fov_frame(&st, &q, g_lp, (size_t)h.g.lp_w * 3, taa ? g_mv : NULL, (size_t)h.g.lp_w * 2, g_img, FW * 3,
-                          (uint32_t)(1000u + data[0] * 100u), g_img, FW * 3) != TDC_OK && f == 0) {
+                          (uint32_t)(1000u + data[0] * 100u), g_img, FW * 3) != TDC_OK &&
+            f == 0) {
             __builtin_trap(); /* the header was accepted: the stage must take it */
         }
         q.gaze_x_q8 += data[1] - 128;

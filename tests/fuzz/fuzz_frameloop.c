@@ -57,10 +57,8 @@ tdc_board_status_t tdc_board_transport_read(uint8_t *buf, uint32_t cap, uint32_t
     }
     g_chunk_seed = g_chunk_seed * 1103515245u + 12345u;
     size_t n = 1u + (g_chunk_seed >> 16) % 700u;
-    if (n > cap)
-        n = cap;
-    if (n > total - g_in_pos)
-        n = total - g_in_pos;
+    if (n > cap) n = cap;
+    if (n > total - g_in_pos) n = total - g_in_pos;
     for (size_t i = 0; i < n; i++, g_in_pos++)
         buf[i] = g_in_pos < g_in_len ? g_in[g_in_pos] : g_tail[g_in_pos - g_in_len];
     *got = (uint32_t)n;
@@ -71,8 +69,7 @@ tdc_board_status_t tdc_board_panel_show(const uint8_t *fb, uint32_t stride, uint
                                         uint32_t frame_index)
 {
     (void)frame_index;
-    if (stride != FW_STRIDE || width != FW_EYES * FW_W || height != FW_H)
-        abort();
+    if (stride != FW_STRIDE || width != FW_EYES * FW_W || height != FW_H) abort();
     int valid = 1;
     for (uint32_t e = 0; e < FW_EYES; e++) {
         uint8_t now[FW_W * FW_H * 3u];
@@ -117,17 +114,16 @@ static void make_tail(void)
     si.r_den = 1;
     si.refresh_hz = 90;
     for (uint32_t e = 0; e < FW_EYES; e++)
-        for (uint32_t i = 0; i < FW_W * FW_H * 3u; i++)
-            g_valid[e][i] = (uint8_t)(i * 37u + e * 101u + 7u);
+        for (uint32_t i = 0; i < FW_W * FW_H * 3u; i++) g_valid[e][i] = (uint8_t)(i * 37u + e * 101u + 7u);
     g_tail_len = 0;
     for (uint16_t copy = 0; copy < 3; copy++) {
         tdc_link_encoder_t enc;
         tdc_link_encoder_init(&enc, (uint16_t)(0x7A00u + copy), &si);
         g_tail_len += tdc_link_encode_stream(&enc, g_tail + g_tail_len, sizeof g_tail - g_tail_len);
         for (uint32_t e = 0; e < FW_EYES; e++)
-            g_tail_len += tdc_link_encode_frame(&enc, g_tail + g_tail_len, sizeof g_tail - g_tail_len,
-                                                TDC_LINK_KIND_FULL, e, 0, TDC_PIXFMT_RGB888, g_valid[e], FW_W, FW_H,
-                                                FW_W * 3u);
+            g_tail_len +=
+                tdc_link_encode_frame(&enc, g_tail + g_tail_len, sizeof g_tail - g_tail_len, TDC_LINK_KIND_FULL, e, 0,
+                                      TDC_PIXFMT_RGB888, g_valid[e], FW_W, FW_H, FW_W * 3u);
     }
 }
 
@@ -148,7 +144,6 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     g_chunk_seed = size ? data[0] : 0;
     g_have_shown = g_last_is_valid = 0;
     (void)tdc_fw_run();
-    if (!g_last_is_valid)
-        abort(); /* invariant 1: the valid frame after the garbage was not shown last */
+    if (!g_last_is_valid) abort(); /* invariant 1: the valid frame after the garbage was not shown last */
     return 0;
 }

@@ -28,8 +28,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     static profile_t p;
     g_path = "fuzz.panel";
     g_in = fmemopen((void *)data, size ? size : 1, "r");
-    if (g_in == NULL)
-        return 0;
+    if (g_in == NULL) return 0;
     if (size == 0) {
         fclose(g_in);
         return 0;
@@ -44,21 +43,17 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     g_in = NULL;
     /* accepted: check what the generator and the firmware rely on */
     for (const char *c = p.name; *c; c++)
-        if (!(isalnum((unsigned char)*c) || *c == '-'))
-            abort();
-    if (!p.name[0] || p.width < 1 || p.width > 8192 || p.height < 1 || p.height > 8192 || p.eyes < 1 ||
-        p.eyes > 2 || p.bits < 6 || p.bits > 10 || p.refresh_hz < 1 || p.refresh_hz > 1000 ||
-        p.nrates < 1 || p.nrates >= TDC_PANEL_MAX_RATES)
+        if (!(isalnum((unsigned char)*c) || *c == '-')) abort();
+    if (!p.name[0] || p.width < 1 || p.width > 8192 || p.height < 1 || p.height > 8192 || p.eyes < 1 || p.eyes > 2 ||
+        p.bits < 6 || p.bits > 10 || p.refresh_hz < 1 || p.refresh_hz > 1000 || p.nrates < 1 ||
+        p.nrates >= TDC_PANEL_MAX_RATES)
         abort();
     for (int c = 0; c < 3; c++)
-        if (!(p.gamma[c] >= 1.0 && p.gamma[c] <= 4.0))
-            abort();
+        if (!(p.gamma[c] >= 1.0 && p.gamma[c] <= 4.0)) abort();
     for (int i = 0; i < p.n_lcd_rate_p; i++) {
         int found = 0;
-        for (int r = 0; r < p.nrates; r++)
-            found |= p.rates[r] == p.lcd_rate_hz[i];
-        if (!found)
-            abort();
+        for (int r = 0; r < p.nrates; r++) found |= p.rates[r] == p.lcd_rate_hz[i];
+        if (!found) abort();
     }
     return 0;
 }

@@ -30,16 +30,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     static int fd = -1;
     static char path[64];
     char err[512];
-    if (size < 1 || size - 1 >= sizeof text)
-        return 0;
+    if (size < 1 || size - 1 >= sizeof text) return 0;
     if ((data[0] & 1u) == 0) {
         memcpy(text, data + 1, size - 1);
         text[size - 1] = '\0';
         err[0] = '\0';
         tdc_scene_status_t st = tdc_scene_parse(text, "fuzz.scene", NULL, &sc, err, sizeof err);
         if (st != TDC_SCENE_OK) {
-            if (err[0] == '\0')
-                abort();
+            if (err[0] == '\0') abort();
             return 0;
         }
         if (sc.nmaterials < 0 || sc.nmaterials > TDC_SCENE_MAX_MATERIALS || sc.nobjects < 0 ||
@@ -50,27 +48,22 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         if (n == 0 || n >= sizeof sc.name || strchr(sc.name, '/') || !strcmp(sc.name, "..") || !strcmp(sc.name, "."))
             abort();
         for (int i = 0; i < sc.nobjects; i++)
-            if (sc.objects[i].material < 0 || sc.objects[i].material >= sc.nmaterials)
-                abort();
+            if (sc.objects[i].material < 0 || sc.objects[i].material >= sc.nmaterials) abort();
         return 0;
     }
     if (fd < 0) {
         fd = memfd_create("fuzz.obj", 0);
-        if (fd < 0)
-            abort();
+        if (fd < 0) abort();
         snprintf(path, sizeof path, "/proc/self/fd/%d", fd);
     }
-    if (ftruncate(fd, 0) != 0 || pwrite(fd, data + 1, size - 1, 0) != (ssize_t)(size - 1))
-        abort();
+    if (ftruncate(fd, 0) != 0 || pwrite(fd, data + 1, size - 1, 0) != (ssize_t)(size - 1)) abort();
     meshbuf_t m;
     memset(&m, 0, sizeof m);
     err[0] = '\0';
     if (load_obj(path, &m, err, sizeof err) == 0) {
-        if (m.ni == 0 || m.ni % 3u != 0)
-            abort();
+        if (m.ni == 0 || m.ni % 3u != 0) abort();
         for (unsigned i = 0; i < m.ni; i++)
-            if (m.ix[i] >= m.nv)
-                abort();
+            if (m.ix[i] >= m.nv) abort();
     } else if (err[0] == '\0') {
         abort();
     }

@@ -28,38 +28,30 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     static uint8_t buf[1 << 16];
     if (fd < 0) {
         fd = memfd_create("fuzz.tdcs", 0);
-        if (fd < 0)
-            abort();
+        if (fd < 0) abort();
         snprintf(path, sizeof path, "/proc/self/fd/%d", fd);
     }
-    if (ftruncate(fd, 0) != 0 || pwrite(fd, data, size, 0) != (ssize_t)size)
-        abort();
+    if (ftruncate(fd, 0) != 0 || pwrite(fd, data, size, 0) != (ssize_t)size) abort();
     tdc_link_file_t lf;
     if (tdc_link_file_open(&lf, path) == 0) {
         uint64_t total = 0;
         for (;;) {
             tdc_link_header_t f;
             long n = tdc_link_file_read_packet(&lf, buf, sizeof buf, &f);
-            if (n <= 0)
-                break;
-            if ((size_t)n > sizeof buf || f.payload_len > (uint32_t)n)
-                abort();
+            if (n <= 0) break;
+            if ((size_t)n > sizeof buf || f.payload_len > (uint32_t)n) abort();
             total += (uint64_t)n;
-            if (total > size)
-                abort();
+            if (total > size) abort();
         }
         tdc_link_file_close(&lf);
     }
     tdc_link_file_summary_t s;
     const int rc = tdc_link_file_check(path, NULL, 0, &s);
-    if (rc < -1 || rc > 1)
-        abort();
+    if (rc < -1 || rc > 1) abort();
     if (rc == 0) {
-        if (s.truncated_bytes != 0 || s.bytes != size)
-            abort();
+        if (s.truncated_bytes != 0 || s.bytes != size) abort();
         for (int e = 1; e < TDC_LINK_ERR_COUNT; e++)
-            if (s.counters.errors[e] != 0)
-                abort();
+            if (s.counters.errors[e] != 0) abort();
     }
     return 0;
 }

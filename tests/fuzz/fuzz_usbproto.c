@@ -39,8 +39,7 @@ static int fail_write;
 static int fw(void *ctx, uint32_t off, const uint8_t *d, uint32_t n)
 {
     (void)ctx;
-    if (fail_write || (uint64_t)off + n > 2u * SLOT)
-        return -1;
+    if (fail_write || (uint64_t)off + n > 2u * SLOT) return -1;
     memcpy(flash + off, d, n);
     return 0;
 }
@@ -48,8 +47,7 @@ static int fw(void *ctx, uint32_t off, const uint8_t *d, uint32_t n)
 static int fr(void *ctx, uint32_t off, uint8_t *d, uint32_t n)
 {
     (void)ctx;
-    if ((uint64_t)off + n > 2u * SLOT)
-        return -1;
+    if ((uint64_t)off + n > 2u * SLOT) return -1;
     memcpy(d, flash + off, n);
     return 0;
 }
@@ -90,17 +88,12 @@ static void control(const uint8_t *raw, uint8_t capsel, const uint8_t *data)
     }
     uint32_t n = 0xDEADu;
     tdc_status_t r = tdc_usbp_control(&s, &st, data, cap ? reply : NULL, cap, &n);
-    if (r != TDC_OK && r != TDC_ERR_STALL && r != TDC_ERR_ARG)
-        abort();
-    if (r == TDC_OK && (n > st.w_length || n > cap))
-        abort();
-    if (r == TDC_ERR_ARG && (s.dfu_state != st0 || s.dfu_status != ss0))
-        abort();
+    if (r != TDC_OK && r != TDC_ERR_STALL && r != TDC_ERR_ARG) abort();
+    if (r == TDC_OK && (n > st.w_length || n > cap)) abort();
+    if (r == TDC_ERR_ARG && (s.dfu_state != st0 || s.dfu_status != ss0)) abort();
     if (r == TDC_OK && (st.bm_request_type & 0xE0u) == 0xA0u && st.b_request == TDC_DFU_UPLOAD &&
-        (st.w_index & 0xFFu) == TDC_USB_IF_DFU &&
-        (st0 == TDC_DFU_STATE_IDLE || st0 == TDC_DFU_STATE_UPLOAD_IDLE)) {
-        if (upload_off + n > upload_len || memcmp(reply, upload_src + upload_off, n) != 0)
-            abort();
+        (st.w_index & 0xFFu) == TDC_USB_IF_DFU && (st0 == TDC_DFU_STATE_IDLE || st0 == TDC_DFU_STATE_UPLOAD_IDLE)) {
+        if (upload_off + n > upload_len || memcmp(reply, upload_src + upload_off, n) != 0) abort();
         upload_off += n;
     }
     (void)tdc_usbp_take_reset(&s);
@@ -115,39 +108,37 @@ static void bus_reset(void)
             abort(); /* booted something that is not a checked image */
         memcpy(shadow, img, SLOT);
     }
-    if (s.dfu_state != TDC_DFU_STATE_IDLE || s.dfu_status != TDC_DFU_OK)
-        abort();
+    if (s.dfu_state != TDC_DFU_STATE_IDLE || s.dfu_status != TDC_DFU_OK) abort();
 }
 
 static void full_download(uint32_t payload, const char *board, const uint8_t *src, size_t avail)
 {
     static uint8_t img[SLOT + 2048];
-    if (payload + TDC_IMAGE_HEADER_LEN > sizeof img)
-        payload = (uint32_t)sizeof img - TDC_IMAGE_HEADER_LEN;
-    for (uint32_t i = 0; i < payload; i++)
-        img[TDC_IMAGE_HEADER_LEN + i] = i < avail ? src[i] : (uint8_t)i;
+    if (payload + TDC_IMAGE_HEADER_LEN > sizeof img) payload = (uint32_t)sizeof img - TDC_IMAGE_HEADER_LEN;
+    for (uint32_t i = 0; i < payload; i++) img[TDC_IMAGE_HEADER_LEN + i] = i < avail ? src[i] : (uint8_t)i;
     tdc_image_make_header(img, img + TDC_IMAGE_HEADER_LEN, payload, 0x010203u, board);
     const uint32_t len = payload + TDC_IMAGE_HEADER_LEN;
     uint8_t raw[8], status[6];
     uint32_t n;
     uint16_t block = 0;
     for (uint32_t off = 0;; off += TDC_DFU_TRANSFER_SIZE, block++) {
-        const uint16_t k = (uint16_t)(off >= len ? 0 : (len - off < TDC_DFU_TRANSFER_SIZE ? len - off : TDC_DFU_TRANSFER_SIZE));
-        raw[0] = 0x21; raw[1] = TDC_DFU_DNLOAD; tdc_put_le16(raw + 2, block); tdc_put_le16(raw + 4, 1);
+        const uint16_t k =
+            (uint16_t)(off >= len ? 0 : (len - off < TDC_DFU_TRANSFER_SIZE ? len - off : TDC_DFU_TRANSFER_SIZE));
+        raw[0] = 0x21;
+        raw[1] = TDC_DFU_DNLOAD;
+        tdc_put_le16(raw + 2, block);
+        tdc_put_le16(raw + 4, 1);
         tdc_put_le16(raw + 6, k);
         tdc_usbp_setup_t st;
         tdc_usbp_parse_setup(raw, &st);
-        if (tdc_usbp_control(&s, &st, img + (off < len ? off : 0), NULL, 0, &n) != TDC_OK)
-            return;
+        if (tdc_usbp_control(&s, &st, img + (off < len ? off : 0), NULL, 0, &n) != TDC_OK) return;
         check_state();
         for (int i = 0; i < 2; i++) { /* GETSTATUS (twice: manifest, then idle) */
             tdc_usbp_setup_t g = {0xA1, TDC_DFU_GETSTATUS, 0, 1, 6};
-            if (tdc_usbp_control(&s, &g, NULL, status, sizeof status, &n) != TDC_OK)
-                return;
+            if (tdc_usbp_control(&s, &g, NULL, status, sizeof status, &n) != TDC_OK) return;
             check_state();
         }
-        if (k == 0)
-            break;
+        if (k == 0) break;
     }
 }
 
@@ -157,26 +148,29 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     memcpy(shadow, flash, SLOT);
     fail_write = 0;
     upload_len = upload_off = 0;
-    tdc_usbp_config_t cfg = {.board_name = BOARD, .panel_name = "htc-vive", .serial = "F1",
-                             .fw_version = 0x000100u, .panel_width = 2160, .panel_height = 1200,
-                             .refresh_mhz = 90000u, .rx_buffer_bytes = 8192u, .max_packet_bytes = 8192u,
+    tdc_usbp_config_t cfg = {.board_name = BOARD,
+                             .panel_name = "htc-vive",
+                             .serial = "F1",
+                             .fw_version = 0x000100u,
+                             .panel_width = 2160,
+                             .panel_height = 1200,
+                             .refresh_mhz = 90000u,
+                             .rx_buffer_bytes = 8192u,
+                             .max_packet_bytes = 8192u,
                              .flash = {fw, fr, NULL, SLOT}};
-    if (tdc_usbp_init(&s, &cfg) != TDC_OK)
-        abort();
+    if (tdc_usbp_init(&s, &cfg) != TDC_OK) abort();
     size_t p = 0;
     while (p < size) {
         const uint8_t op = data[p++];
         switch (op % 6u) {
         case 0: {
             uint8_t raw[8] = {0};
-            for (int i = 0; i < 8 && p < size; i++)
-                raw[i] = data[p++];
+            for (int i = 0; i < 8 && p < size; i++) raw[i] = data[p++];
             const uint8_t capsel = p < size ? data[p++] : 0;
             const uint16_t wlen = tdc_get_le16(raw + 6);
             static uint8_t out[65536];
             size_t k = wlen;
-            if (k > size - p)
-                k = size - p;
+            if (k > size - p) k = size - p;
             memcpy(out, data + p, k);
             memset(out + k, 0, (size_t)wlen - k);
             p += k;
@@ -198,12 +192,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                 abort();
             break;
         }
-        case 3:
-            bus_reset();
-            break;
-        case 4:
-            fail_write ^= 1;
-            break;
+        case 3: bus_reset(); break;
+        case 4: fail_write ^= 1; break;
         default: {
             const uint32_t payload = (p < size ? data[p++] : 0) * 8u;
             const uint8_t b = p < size ? data[p++] : 0;

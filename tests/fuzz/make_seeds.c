@@ -55,7 +55,7 @@ int main(int argc, char **argv)
             o.frames = 3;
             o.seed = (uint32_t)(fmt * 31 + mode);
             o.with_stream_header = 1;
-            if (mode == 0) {        /* TRM stream with motion */
+            if (mode == 0) { /* TRM stream with motion */
                 o.info.flags = TDC_LINK_STREAM_REDUCED | TDC_LINK_STREAM_MOTION;
                 o.info.r_num = 1;
                 o.info.r_den = 2;
@@ -64,12 +64,13 @@ int main(int argc, char **argv)
                                TDC_LINK_STREAM_MIRRORS;
                 o.info.r_num = o.info.r_den = 1;
                 o.frames = 5;
-            } else {                /* plain full frames */
+            } else { /* plain full frames */
                 o.info.r_num = o.info.r_den = 1;
             }
             uint32_t npk = 0;
             static tdc_link_gen_packet_t pk[64];
-            const size_t n = tdc_link_gen_stream(stream, sizeof stream, &o, (uint8_t *)scratch, sizeof scratch, pk, 64, &npk);
+            const size_t n =
+                tdc_link_gen_stream(stream, sizeof stream, &o, (uint8_t *)scratch, sizeof scratch, pk, 64, &npk);
             if (!n) {
                 fprintf(stderr, "make_seeds: generation failed\n");
                 return 1;
@@ -80,8 +81,8 @@ int main(int argc, char **argv)
                 tdc_link_gen_opts_t om = o;
                 om.info.eyes = 1;
                 static uint8_t mono[1 << 18];
-                const size_t nm = tdc_link_gen_stream(mono, sizeof mono, &om, (uint8_t *)scratch, sizeof scratch,
-                                                      NULL, 0, NULL);
+                const size_t nm =
+                    tdc_link_gen_stream(mono, sizeof mono, &om, (uint8_t *)scratch, sizeof scratch, NULL, 0, NULL);
                 if (!nm) {
                     fprintf(stderr, "make_seeds: generation failed\n");
                     return 1;

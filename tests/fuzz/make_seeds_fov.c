@@ -25,8 +25,8 @@ int main(int argc, char **argv)
             for (int d = 0; d < 3; d++) {
                 if (g != 0 && a != 1) continue;
                 const uint8_t flags = (uint8_t)((g + a + d) & 1);
-                tdc_fov_params_t p = {gz[g][0], gz[g][1], alpha[a], disk[d], tdc_fov_lp_size(18187, 48),
-                                      tdc_fov_lp_size(18187, 32)};
+                tdc_fov_params_t p = {
+                    gz[g][0], gz[g][1], alpha[a], disk[d], tdc_fov_lp_size(18187, 48), tdc_fov_lp_size(18187, 32)};
                 if (tdc_fov_hdr_pack(buf, 48, 32, &p, 18187, flags) != TDC_OK) {
                     fprintf(stderr, "make_seeds_fov: pack refused\n");
                     return 1;
@@ -38,14 +38,16 @@ int main(int argc, char **argv)
                 }
                 for (uint32_t i = 0; i < h.payload_bytes; i++) {
                     rng ^= rng << 13, rng ^= rng >> 17, rng ^= rng << 5;
-                    buf[TDC_FOV_HDR_BYTES + i] = (uint8_t)(flags && i >= h.payload_bytes - 4u * (uint32_t)(h.g.lp_w - h.g.u0) * h.g.lp_h
-                                                               ? (rng & 0x1Fu) /* small motion vectors */
-                                                               : rng >> 24);
+                    buf[TDC_FOV_HDR_BYTES + i] =
+                        (uint8_t)(flags && i >= h.payload_bytes - 4u * (uint32_t)(h.g.lp_w - h.g.u0) * h.g.lp_h
+                                      ? (rng & 0x1Fu) /* small motion vectors */
+                                      : rng >> 24);
                 }
                 char path[512];
                 snprintf(path, sizeof path, "%s/fov-g%d-a%u-d%u%s", argv[1], g, alpha[a], disk[d], flags ? "-mv" : "");
                 FILE *f = fopen(path, "wb");
-                if (!f || fwrite(buf, 1, TDC_FOV_HDR_BYTES + h.payload_bytes, f) != TDC_FOV_HDR_BYTES + h.payload_bytes) {
+                if (!f ||
+                    fwrite(buf, 1, TDC_FOV_HDR_BYTES + h.payload_bytes, f) != TDC_FOV_HDR_BYTES + h.payload_bytes) {
                     fprintf(stderr, "make_seeds_fov: cannot write %s\n", path);
                     return 1;
                 }

@@ -30,8 +30,7 @@ uint64_t tdc_fnv1a64(uint64_t h, const void *data, size_t n);
 #define TDC_GOLDEN_FAILED 0u
 
 /* Formats and writes "stage/vector frame %016x\n". */
-void tdc_golden_emit(tdc_golden_ctx_t *ctx, const char *stage, const char *vector, uint32_t frame,
-                     uint64_t checksum);
+void tdc_golden_emit(tdc_golden_ctx_t *ctx, const char *stage, const char *vector, uint32_t frame, uint64_t checksum);
 
 /* Vector-name builders (no stdio): append s / decimal v at o, return the
  * new end.  The caller's buffer must hold the whole name. */

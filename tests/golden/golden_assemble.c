@@ -29,9 +29,9 @@ typedef struct {
     tdc_content_t content;
     uint16_t w, h;
     uint16_t frames;
-    int16_t mvx, mvy;     /* backward MV of the content, Q4 */
-    uint8_t random_mv;    /* random per-sample MVs instead */
-    uint8_t drop_mod;     /* drop the subframe when frame % drop_mod == drop_mod-1 (0: never) */
+    int16_t mvx, mvy;  /* backward MV of the content, Q4 */
+    uint8_t random_mv; /* random per-sample MVs instead */
+    uint8_t drop_mod;  /* drop the subframe when frame % drop_mod == drop_mod-1 (0: never) */
 } asm_vector_t;
 
 static const asm_vector_t vectors[] = {
@@ -78,7 +78,8 @@ static void run_vector(tdc_golden_ctx_t *ctx, const asm_vector_t *v)
                 int16_t mx = v->random_mv ? random_mv(&rng) : v->mvx;
                 int16_t my = v->random_mv ? random_mv(&rng) : v->mvy;
                 uint32_t sx = x < v->w ? x : v->w - 1u, sy = y < v->h ? y : v->h - 1u;
-                for (int c = 0; c < 3; c++) g_samples[ti * 3u + (uint32_t)c] = g_frame[(sy * v->w + sx) * 3u + (uint32_t)c];
+                for (int c = 0; c < 3; c++)
+                    g_samples[ti * 3u + (uint32_t)c] = g_frame[(sy * v->w + sx) * 3u + (uint32_t)c];
                 g_mvs[ti * 2u] = mx;
                 g_mvs[ti * 2u + 1u] = my;
                 if (x < v->w && y < v->h) {

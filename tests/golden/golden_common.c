@@ -14,8 +14,7 @@ uint64_t tdc_fnv1a64(uint64_t h, const void *data, size_t n)
     return h;
 }
 
-void tdc_golden_emit(tdc_golden_ctx_t *ctx, const char *stage, const char *vector, uint32_t frame,
-                     uint64_t checksum)
+void tdc_golden_emit(tdc_golden_ctx_t *ctx, const char *stage, const char *vector, uint32_t frame, uint64_t checksum)
 {
     char line[160];
     char *name_end = line + sizeof line - 32; /* room for frame + hex + newline */

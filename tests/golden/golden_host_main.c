@@ -19,10 +19,10 @@ int main(int argc, char **argv)
 {
     tdc_golden_ctx_t ctx = {write_stdout, NULL, 0};
     int ran = 0;
-#define RUN(stage)                                           \
-    if (argc < 2 || !strcmp(argv[1], #stage)) {              \
-        tdc_golden_##stage(&ctx);                            \
-        ran++;                                               \
+#define RUN(stage)                              \
+    if (argc < 2 || !strcmp(argv[1], #stage)) { \
+        tdc_golden_##stage(&ctx);               \
+        ran++;                                  \
     }
     TDC_GOLDEN_LIST(RUN)
     if (!ran) {

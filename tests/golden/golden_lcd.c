@@ -72,14 +72,19 @@ static void run_vector(tdc_golden_ctx_t *ctx, const lcd_vector_t *v)
 void tdc_golden_lcd(tdc_golden_ctx_t *ctx);
 void tdc_golden_lcd(tdc_golden_ctx_t *ctx)
 {
-    static const tdc_content_t contents[] = {TDC_CONTENT_TEXT, TDC_CONTENT_EDGE, TDC_CONTENT_NOISE,
-                                             TDC_CONTENT_FLASH, TDC_CONTENT_GRADIENT};
+    static const tdc_content_t contents[] = {TDC_CONTENT_TEXT, TDC_CONTENT_EDGE, TDC_CONTENT_NOISE, TDC_CONTENT_FLASH,
+                                             TDC_CONTENT_GRADIENT};
     static const struct {
         uint8_t mode, bits;
-    } modes[] = {{TDC_LCD_MODE_EXACT, 8}, {TDC_LCD_MODE_TABLE17, 8}, {TDC_LCD_MODE_TABLE33, 8},
-                 {TDC_LCD_MODE_EXACT, 6}, {TDC_LCD_MODE_TABLE33, 5},
+    } modes[] = {{TDC_LCD_MODE_EXACT, 8},
+                 {TDC_LCD_MODE_TABLE17, 8},
+                 {TDC_LCD_MODE_TABLE33, 8},
+                 {TDC_LCD_MODE_EXACT, 6},
+                 {TDC_LCD_MODE_TABLE33, 5},
                  /* stateful measured tables (issue 18): new vectors, the ones above unchanged */
-                 {TDC_LCD_MODE_STATEFUL, 8}, {TDC_LCD_MODE_STATEFUL, 6}, {TDC_LCD_MODE_STATEFUL_PAIR, 8},
+                 {TDC_LCD_MODE_STATEFUL, 8},
+                 {TDC_LCD_MODE_STATEFUL, 6},
+                 {TDC_LCD_MODE_STATEFUL_PAIR, 8},
                  {TDC_LCD_MODE_STATEFUL_PAIR, 5}};
     static const struct {
         const tdc_panel_t *panel;

@@ -91,24 +91,15 @@ static void run(tdc_golden_ctx_t *ctx, const char *vector, size_t n, size_t chun
             uint64_t h = fold_u32(fold_u32(fold_u32(pending, ev.kind), ev.eye), ev.frame_index);
             const uint32_t tiles = TDC_TILES(LW) * TDC_TILES(LH);
             switch (ev.kind) {
-            case TDC_LINK_KIND_FULL:
-                h = tdc_fnv1a64(h, g_full[e], sizeof g_full[e]);
-                break;
-            case TDC_LINK_KIND_REDUCED:
-                h = tdc_fnv1a64(h, g_reduced[e], (size_t)ev.width * ev.height * 3u);
-                break;
-            case TDC_LINK_KIND_SUBFRAME:
-                h = tdc_fnv1a64(h, g_sub[e], sizeof g_sub[e]);
-                break;
+            case TDC_LINK_KIND_FULL: h = tdc_fnv1a64(h, g_full[e], sizeof g_full[e]); break;
+            case TDC_LINK_KIND_REDUCED: h = tdc_fnv1a64(h, g_reduced[e], (size_t)ev.width * ev.height * 3u); break;
+            case TDC_LINK_KIND_SUBFRAME: h = tdc_fnv1a64(h, g_sub[e], sizeof g_sub[e]); break;
             case TDC_LINK_KIND_MOTION:
                 h = (ev.flags & TDC_LINK_PKT_MV_PER_SAMPLE) ? fold_i16s(h, g_smv[e], (size_t)tiles * 2u)
-                                                             : fold_i16s(h, g_mv[e], (size_t)LW * LH * 2u);
+                                                            : fold_i16s(h, g_mv[e], (size_t)LW * LH * 2u);
                 break;
-            case TDC_LINK_KIND_PATTERN:
-                h = tdc_fnv1a64(h, g_pat[e], sizeof g_pat[e]);
-                break;
-            default:
-                break;
+            case TDC_LINK_KIND_PATTERN: h = tdc_fnv1a64(h, g_pat[e], sizeof g_pat[e]); break;
+            default: break;
             }
             tdc_golden_emit(ctx, "link", vector, line++, h);
             pending = TDC_FNV64_INIT;

@@ -92,7 +92,12 @@ void tdc_golden_trm(tdc_golden_ctx_t *ctx)
     for (unsigned c = 0; c < sizeof contents / sizeof contents[0]; c++) {
         for (unsigned s = 0; s < 3u; s++) {
             for (unsigned r = 0; r < 3u; r++) {
-                trm_vector_t v = {contents[c], sizes[s][0], sizes[s][1], ratios[r][0], ratios[r][1], 2560u,
+                trm_vector_t v = {contents[c],
+                                  sizes[s][0],
+                                  sizes[s][1],
+                                  ratios[r][0],
+                                  ratios[r][1],
+                                  2560u,
                                   ((c + s + r) & 1u) ? &tdc_panel_rift_cv1 : &tdc_panel_htc_vive};
                 run_vector(ctx, &v);
             }

@@ -3,9 +3,8 @@
 
 #include "tdc_math.h"
 
-static const char *const k_names[TDC_CONTENT_COUNT] = {
-    "edge", "text", "noise", "black", "white", "primaries", "checker", "flash", "gradient"
-};
+static const char *const k_names[TDC_CONTENT_COUNT] = {"edge",      "text",    "noise", "black",   "white",
+                                                       "primaries", "checker", "flash", "gradient"};
 
 const char *tdc_content_name(tdc_content_t c)
 {
@@ -62,16 +61,11 @@ void tdc_content_frame(tdc_content_t c, uint32_t t, uint32_t seed, uint8_t *rgb,
                 put(p, (uint8_t)v, (uint8_t)(v >> 8), (uint8_t)(v >> 16));
                 break;
             }
-            case TDC_CONTENT_BLACK:
-                put(p, 0, 0, 0);
-                break;
-            case TDC_CONTENT_WHITE:
-                put(p, 255, 255, 255);
-                break;
+            case TDC_CONTENT_BLACK: put(p, 0, 0, 0); break;
+            case TDC_CONTENT_WHITE: put(p, 255, 255, 255); break;
             case TDC_CONTENT_PRIMARIES: {
-                static const uint8_t bars[8][3] = {{255, 0, 0},     {0, 255, 0},   {0, 0, 255},
-                                                   {0, 255, 255},   {255, 0, 255}, {255, 255, 0},
-                                                   {255, 255, 255}, {0, 0, 0}};
+                static const uint8_t bars[8][3] = {{255, 0, 0},   {0, 255, 0},   {0, 0, 255},     {0, 255, 255},
+                                                   {255, 0, 255}, {255, 255, 0}, {255, 255, 255}, {0, 0, 0}};
                 int b = (int)((long)x * 8 / w);
                 put(p, bars[b][0], bars[b][1], bars[b][2]);
                 break;
@@ -95,9 +89,7 @@ void tdc_content_frame(tdc_content_t c, uint32_t t, uint32_t seed, uint8_t *rgb,
                 put(p, (uint8_t)(v & 255u), (uint8_t)((v * 3u / 4u) & 255u), (uint8_t)(255u - (v & 255u)));
                 break;
             }
-            default:
-                put(p, 0, 0, 0);
-                break;
+            default: put(p, 0, 0, 0); break;
             }
         }
     }

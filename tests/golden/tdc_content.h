@@ -9,15 +9,15 @@
 #include <stdint.h>
 
 typedef enum {
-    TDC_CONTENT_EDGE = 0,   /* high-contrast vertical edge moving 3 px/frame */
-    TDC_CONTENT_TEXT,       /* glyph-like strokes scrolling up 2 px/frame */
-    TDC_CONTENT_NOISE,      /* uniform noise, new every frame */
+    TDC_CONTENT_EDGE = 0, /* high-contrast vertical edge moving 3 px/frame */
+    TDC_CONTENT_TEXT,     /* glyph-like strokes scrolling up 2 px/frame */
+    TDC_CONTENT_NOISE,    /* uniform noise, new every frame */
     TDC_CONTENT_BLACK,
     TDC_CONTENT_WHITE,
-    TDC_CONTENT_PRIMARIES,  /* static bars: R G B C M Y W K */
-    TDC_CONTENT_CHECKER,    /* static 1-pixel checkerboard, black/white */
-    TDC_CONTENT_FLASH,      /* whole frame alternating black/white every frame */
-    TDC_CONTENT_GRADIENT,   /* smooth diagonal ramp panning 1 px/frame */
+    TDC_CONTENT_PRIMARIES, /* static bars: R G B C M Y W K */
+    TDC_CONTENT_CHECKER,   /* static 1-pixel checkerboard, black/white */
+    TDC_CONTENT_FLASH,     /* whole frame alternating black/white every frame */
+    TDC_CONTENT_GRADIENT,  /* smooth diagonal ramp panning 1 px/frame */
     TDC_CONTENT_COUNT
 } tdc_content_t;
 

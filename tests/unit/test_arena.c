@@ -332,8 +332,7 @@ static void asm_one(uint32_t w, uint32_t h, int init, int frames)
     assert_int_equal(tdc_asm_init(st, &c, a.mem, n - 1), TDC_ERR_SIZE);
     assert_int_equal(tdc_asm_init(st, &c, a.mem, n), TDC_OK);
     walk_t wk = {a.mem, 0, "assembly"};
-    TDC_ASM_ARENA(WALK, c.width, c.height, (size_t)st->tiles_x * st->tiles_y,
-                  TDC_PATTERN_BYTES(c.width, c.height))
+    TDC_ASM_ARENA(WALK, c.width, c.height, (size_t)st->tiles_x * st->tiles_y, TDC_PATTERN_BYTES(c.width, c.height))
     walk_end(&wk, n);
     arena_check_guard(&a, "assembly init");
     if (frames) {
@@ -406,10 +405,11 @@ static void fov_one(uint32_t w, uint32_t h, int taa, int init, int frames)
         for (size_t i = 0; i < (size_t)lw * lh * 2u; i++) mv[i] = (int16_t)((int)(i % 41u) - 20);
         for (size_t i = 0; i < (size_t)w * h * 3u; i++) img[i] = (uint8_t)(i * 7u);
         for (int f = 0; f < 3; f++) {
-            const tdc_fov_params_t p = {(int32_t)(w * 100u + 50u * (uint32_t)f), (int32_t)(h * 140u), 1024, 4077, lw, lh};
-            assert_int_equal(tdc_fov_frame(st, &p, lp, (size_t)lw * 3u, mv, (size_t)lw * 2u, img, w * 3u, 11111, img,
-                                           w * 3u),
-                             TDC_OK);
+            const tdc_fov_params_t p = {
+                (int32_t)(w * 100u + 50u * (uint32_t)f), (int32_t)(h * 140u), 1024, 4077, lw, lh};
+            assert_int_equal(
+                tdc_fov_frame(st, &p, lp, (size_t)lw * 3u, mv, (size_t)lw * 2u, img, w * 3u, 11111, img, w * 3u),
+                TDC_OK);
         }
         arena_check_guard(&a, "fov frames");
         free(lp);
@@ -478,11 +478,8 @@ static void test_carver(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_carver),
-        cmocka_unit_test(test_trm_arena),
-        cmocka_unit_test(test_lcd_arena),
-        cmocka_unit_test(test_asm_arena),
-        cmocka_unit_test(test_fov_arena),
+        cmocka_unit_test(test_carver),    cmocka_unit_test(test_trm_arena), cmocka_unit_test(test_lcd_arena),
+        cmocka_unit_test(test_asm_arena), cmocka_unit_test(test_fov_arena),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

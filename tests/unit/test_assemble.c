@@ -111,8 +111,8 @@ static void test_static_converges_in_16(void **state)
             for (size_t i = 0; i < (size_t)W * H * 3; i++) differ_at_15 += o[i] != want[i];
         if (f >= 15) assert_memory_equal(o, want, (size_t)W * H * 3);
     }
-    printf("static: frame 15 exact mean of 4 jittered samples at all %d pixels; at frame 14 %zu bytes not yet\n",
-           W * H, differ_at_15);
+    printf("static: frame 15 exact mean of 4 jittered samples at all %d pixels; at frame 14 %zu bytes not yet\n", W * H,
+           differ_at_15);
     assert_true(differ_at_15 > 0); /* the 4th sample matters: the test can fail */
     /* stage elision: a static stream does no reprojection and no clamp work */
     assert_int_equal(r.st.stats.reprojected, 0);
@@ -351,7 +351,8 @@ static void check_lines(int horizontal, int32_t v_q4)
         /* every line sample traced this frame is shown as traced */
         for (int ty = 0; ty < (H + 1) / 2; ty++)
             for (int tx = 0; tx < (W + 1) / 2; tx++) {
-                unsigned pos = tdc_ordering_pixel(tdc_ordering_get(tdc_asm_pattern(&r.st), (uint32_t)(ty * (W / 2) + tx)), f);
+                unsigned pos =
+                    tdc_ordering_pixel(tdc_ordering_get(tdc_asm_pattern(&r.st), (uint32_t)(ty * (W / 2) + tx)), f);
                 int x = 2 * tx + (int)(pos & 1u), y = 2 * ty + (int)(pos >> 1);
                 const uint8_t *smp = r.samples + ((size_t)ty * (W / 2) + tx) * 3;
                 if (smp[2] == 250) {
@@ -369,8 +370,8 @@ static void check_lines(int horizontal, int32_t v_q4)
     printf("lines %s %+.3f px/frame: %ld traced line samples all shown; per row crossing: mean peak %.1f, "
            ">= 170 in %.1f %% of frames and in %.1f %% of 4-frame windows; brightest pixel >= 2.5 px from a line %d "
            "(line 250, background 90)\n",
-           horizontal ? "horizontal" : "vertical", v_q4 / 16.0, traced, sum_peak / crossings, 100.0 * visible / crossings,
-           100.0 * windows_visible / windows, max_far);
+           horizontal ? "horizontal" : "vertical", v_q4 / 16.0, traced, sum_peak / crossings,
+           100.0 * visible / crossings, 100.0 * windows_visible / windows, max_far);
     /* A 1-px line is traced at a given pixel once per 4 frames, and an old
      * line pixel survives the clamp only when a newest neighbour also saw
      * the line, so per frame it shows at part of its rows (paper Fig. 8);

@@ -27,7 +27,7 @@
 static void test_long_pan(void **state)
 {
     (void)state;
-    static const int32_t vel[][2] = {{24, 0}, {0, 0},     {-40, 13}, {16, 16}, {0, -37}, {-3, 1},
+    static const int32_t vel[][2] = {{24, 0},  {0, 0},     {-40, 13}, {16, 16}, {0, -37},   {-3, 1},
                                      {200, 0}, {32767, 0}, {5, -56},  {0, 0},   {-18, -18}, {90, 45}};
     const size_t nv = sizeof(vel) / sizeof(vel[0]);
     tdc_asm_config_t cfg = {W, H};

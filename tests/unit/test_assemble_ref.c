@@ -75,10 +75,10 @@ static void run_scenario(const scenario_t *sc, int w, int h, int frames, tdc_asm
     }
     printf("  %-24s within 1 LSB %9.5f %%  max %d LSB  (0:%llu 1:%llu 2:%llu >2:%llu)  max vs exact %.3f  "
            "reproj %llu clamp %llu pattern disagree %u/%u\n",
-           sc->name, 100.0 * (double)(e.hist[0] + e.hist[1]) / (double)e.n, e.max_abs,
-           (unsigned long long)e.hist[0], (unsigned long long)e.hist[1], (unsigned long long)e.hist[2],
-           (unsigned long long)e.hist[3], e.max_exact, (unsigned long long)st.stats.reprojected,
-           (unsigned long long)st.stats.clamp_boxes, st.stats.pattern_disagreements, st.stats.pattern_checks);
+           sc->name, 100.0 * (double)(e.hist[0] + e.hist[1]) / (double)e.n, e.max_abs, (unsigned long long)e.hist[0],
+           (unsigned long long)e.hist[1], (unsigned long long)e.hist[2], (unsigned long long)e.hist[3], e.max_exact,
+           (unsigned long long)st.stats.reprojected, (unsigned long long)st.stats.clamp_boxes,
+           st.stats.pattern_disagreements, st.stats.pattern_checks);
     assert_int_equal(st.stats.pattern_disagreements, 0);
     total->n += e.n;
     for (int i = 0; i < 4; i++) total->hist[i] += e.hist[i];
@@ -95,12 +95,13 @@ static void test_fixed_vs_float(void **state)
     tdc_asm_err_t total;
     memset(&total, 0, sizeof(total));
     printf("assembly fixed vs double reference, 67x45, 48 frames per stream:\n");
-    for (size_t i = 0; i < sizeof(scenarios) / sizeof(scenarios[0]); i++) run_scenario(&scenarios[i], 67, 45, 48, &total);
+    for (size_t i = 0; i < sizeof(scenarios) / sizeof(scenarios[0]); i++)
+        run_scenario(&scenarios[i], 67, 45, 48, &total);
     double share = (double)(total.hist[0] + total.hist[1]) / (double)total.n;
     printf("assembly error report: %llu output bytes, %.4f %% within 1 LSB (target >= 99.9 %%), "
            "%.4f %% exact, max %d LSB (target <= 2), max vs unrounded reference %.3f LSB\n",
-           (unsigned long long)total.n, 100.0 * share, 100.0 * (double)total.hist[0] / (double)total.n,
-           total.max_abs, total.max_exact);
+           (unsigned long long)total.n, 100.0 * share, 100.0 * (double)total.hist[0] / (double)total.n, total.max_abs,
+           total.max_exact);
     assert_true(share >= 0.999);
     assert_true(total.max_abs <= 2);
 }

@@ -23,8 +23,14 @@
 #include "golden/golden.h"
 
 static uint32_t g_rng = 12345u;
-static uint32_t rnd(void) { return tdc_golden_rand(&g_rng); }
-static double rndu(void) { return (rnd() >> 8) / 16777216.0; }
+static uint32_t rnd(void)
+{
+    return tdc_golden_rand(&g_rng);
+}
+static double rndu(void)
+{
+    return (rnd() >> 8) / 16777216.0;
+}
 
 static void test_building_blocks(void **state)
 {
@@ -44,8 +50,8 @@ static void test_building_blocks(void **state)
         double d = fabs(tdc_fov_turns_q32(dx, dy) / 4294967296.0 - a);
         e_atan = fmax(e_atan, fmin(d, 1 - d));
     }
-    printf("log2 max error %.3g, exp2 error %.3g of max(2e-6 relative, 1 LSB), atan max error %.3g turns\n", e_log, e_exp,
-           e_atan);
+    printf("log2 max error %.3g, exp2 error %.3g of max(2e-6 relative, 1 LSB), atan max error %.3g turns\n", e_log,
+           e_exp, e_atan);
     assert_true(e_log < 3.5e-6);
     assert_true(e_exp <= 1.0);
     assert_true(e_atan < 3e-7);
@@ -123,7 +129,7 @@ static void test_disk_rectangle(void **state)
     for (int c = 0; c < 400; c++) {
         const int Wd = 16 + (int)(rnd() % 300), Hd = 16 + (int)(rnd() % 200);
         ref_fov_params_t rp = {rndu() * 3 * Wd - Wd, rndu() * 3 * Hd - Hd, 1 + rndu() * 7, rndu(),
-                               (int)(Wd * 0.555), (int)(Hd * 0.555)};
+                               (int)(Wd * 0.555),    (int)(Hd * 0.555)};
         if (c % 10 == 0) {
             rp.disk = c % 20 ? 0 : 1;
         }
@@ -169,8 +175,8 @@ static void test_disk_rectangle(void **state)
         }
         assert_int_equal(n, tdc_fov_disk_pixels(&fg));
     }
-    printf("eq. 4.5: %d configurations exact, %d differ by the rounding of a value within 1e-4 of an integer\n", checked,
-           near_int);
+    printf("eq. 4.5: %d configurations exact, %d differ by the rounding of a value within 1e-4 of an integer\n",
+           checked, near_int);
     assert_true(near_int * 50 < checked);
 }
 
@@ -396,8 +402,10 @@ static void test_long_run(void **state)
         } else {
             fp.gaze_x_q8 += (int32_t)(rnd() % 65) - 32;
             fp.gaze_y_q8 += (int32_t)(rnd() % 65) - 32;
-            fp.gaze_x_q8 = fp.gaze_x_q8 < -W * 256 ? -W * 256 : (fp.gaze_x_q8 > 2 * W * 256 ? 2 * W * 256 : fp.gaze_x_q8);
-            fp.gaze_y_q8 = fp.gaze_y_q8 < -H * 256 ? -H * 256 : (fp.gaze_y_q8 > 2 * H * 256 ? 2 * H * 256 : fp.gaze_y_q8);
+            fp.gaze_x_q8 =
+                fp.gaze_x_q8 < -W * 256 ? -W * 256 : (fp.gaze_x_q8 > 2 * W * 256 ? 2 * W * 256 : fp.gaze_x_q8);
+            fp.gaze_y_q8 =
+                fp.gaze_y_q8 < -H * 256 ? -H * 256 : (fp.gaze_y_q8 > 2 * H * 256 ? 2 * H * 256 : fp.gaze_y_q8);
         }
         if (f % 1000 == 0) {
             fp.alpha_q8 = (uint16_t)(256 + rnd() % 1793);

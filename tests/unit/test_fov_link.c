@@ -30,7 +30,8 @@ static void test_round_trip(void **state)
         const uint16_t W = sizes[s][0], H = sizes[s][1];
         for (int k = 0; k < 3; k++) {
             const uint16_t delta = k == 2 ? 32768 : 18187; /* 0.555, quantised up */
-            tdc_fov_params_t p = {W * 128 + 77 * k, H * 100, (uint16_t)(256 + 700 * k), (uint16_t)(4077 * k),
+            tdc_fov_params_t p = {W * 128 + 77 * k,          H * 100,
+                                  (uint16_t)(256 + 700 * k), (uint16_t)(4077 * k),
                                   tdc_fov_lp_size(delta, W), tdc_fov_lp_size(delta, H)};
             uint8_t hdr[TDC_FOV_HDR_BYTES];
             assert_int_equal(tdc_fov_hdr_pack(hdr, W, H, &p, delta, (uint8_t)(k & 1)), TDC_OK);
@@ -67,13 +68,19 @@ static void test_named_rejections(void **state)
         uint32_t v;
         tdc_fov_hdr_err_t want;
     } cases[] = {
-        {8, 2, 255, TDC_FOV_HDR_ALPHA},        {8, 2, 2049, TDC_FOV_HDR_ALPHA},
-        {10, 2, 0, TDC_FOV_HDR_DELTA},         {10, 2, 32769, TDC_FOV_HDR_DELTA},
-        {12, 2, 32769, TDC_FOV_HDR_DISK},      {0, 4, 2 * 1080 * 256 + 1, TDC_FOV_HDR_GAZE},
+        {8, 2, 255, TDC_FOV_HDR_ALPHA},
+        {8, 2, 2049, TDC_FOV_HDR_ALPHA},
+        {10, 2, 0, TDC_FOV_HDR_DELTA},
+        {10, 2, 32769, TDC_FOV_HDR_DELTA},
+        {12, 2, 32769, TDC_FOV_HDR_DISK},
+        {0, 4, 2 * 1080 * 256 + 1, TDC_FOV_HDR_GAZE},
         {4, 4, 0xFFFFFFFFu - 1200 * 256, TDC_FOV_HDR_GAZE}, /* -1200 px - 1 Q8 */
-        {14, 2, 600, TDC_FOV_HDR_BUFFER},      {16, 2, 665, TDC_FOV_HDR_BUFFER},
-        {18, 2, 0, TDC_FOV_HDR_GEOMETRY},      {20, 4, 1, TDC_FOV_HDR_GEOMETRY},
-        {24, 1, 2, TDC_FOV_HDR_RESERVED},      {31, 1, 1, TDC_FOV_HDR_RESERVED},
+        {14, 2, 600, TDC_FOV_HDR_BUFFER},
+        {16, 2, 665, TDC_FOV_HDR_BUFFER},
+        {18, 2, 0, TDC_FOV_HDR_GEOMETRY},
+        {20, 4, 1, TDC_FOV_HDR_GEOMETRY},
+        {24, 1, 2, TDC_FOV_HDR_RESERVED},
+        {31, 1, 1, TDC_FOV_HDR_RESERVED},
     };
     for (unsigned c = 0; c < sizeof cases / sizeof cases[0]; c++) {
         memcpy(b, good, sizeof b);
@@ -117,7 +124,8 @@ static void test_bit_flips(void **state)
         assert_int_equal(h.payload_bytes, tdc_fov_payload_bytes(&h.g, h.flags & 1));
     }
     printf("single-bit flips of a header: %d refused, %d accepted as another valid header (the packet CRC "
-           "catches those)\n", refused, accepted);
+           "catches those)\n",
+           refused, accepted);
     assert_true(refused > accepted);
 }
 

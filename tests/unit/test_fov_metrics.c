@@ -50,7 +50,10 @@ static void test_eccentricity(void **state)
                 n += on;
             }
         const double v = tdc_ecc_weighted_mean(m, W, H, 50, 50, 20) / ((double)n / (W * H));
-        if (pass) far = v; else near = v;
+        if (pass)
+            far = v;
+        else
+            near = v;
     }
     printf("per-pixel weight of a foveal error / a peripheral one: %.2f\n", near / far);
     assert_true(near > 2 * far);

@@ -64,9 +64,9 @@ static void run_case(const char *name, double cx, double cy, double alpha, doubl
             mv[2 * k] = (int16_t)lround(-1.3 * 16); /* the pan moves +1.3 px x: backward MV -1.3 px */
             mv[2 * k + 1] = 0;
         }
-        assert_int_equal(tdc_fov_frame(&st, &fp, lp, (size_t)rp.lp_w * 3, mv, (size_t)rp.lp_w * 2, dk, W * 3, 11111,
-                                       out, W * 3),
-                         TDC_OK);
+        assert_int_equal(
+            tdc_fov_frame(&st, &fp, lp, (size_t)rp.lp_w * 3, mv, (size_t)rp.lp_w * 2, dk, W * 3, 11111, out, W * 3),
+            TDC_OK);
         ref_fov_frame(&rs, &rp, lp, (size_t)rp.lp_w * 3, mv, (size_t)rp.lp_w * 2, dk, W * 3, 11111, ref);
         for (int k = 0; k < W * H * 3; k++) {
             const double e = fabs(out[k] - ref[k]);
@@ -77,8 +77,8 @@ static void run_case(const char *name, double cx, double cy, double alpha, doubl
     }
     const double share = 100.0 * (double)in1 / (double)n;
     const int ok = share >= 99.9 && maxe <= 2.0;
-    printf("  %-22s alpha %.0f disk %6.3f %s: max %.3f LSB, within 1 LSB %.4f %%  l=%d u0=%d  %s\n", name, alpha,
-           disk, taa ? "taa" : "   ", maxe, share, g.l, g.u0, ok ? "ok" : "FAIL");
+    printf("  %-22s alpha %.0f disk %6.3f %s: max %.3f LSB, within 1 LSB %.4f %%  l=%d u0=%d  %s\n", name, alpha, disk,
+           taa ? "taa" : "   ", maxe, share, g.l, g.u0, ok ? "ok" : "FAIL");
     g_fail |= !ok;
     g_worst_max = maxe > g_worst_max ? maxe : g_worst_max;
     g_worst_share = share < g_worst_share ? share : g_worst_share;
@@ -97,8 +97,9 @@ static void test_fixed_vs_double(void **state)
     static const struct {
         const char *name;
         double cx, cy;
-    } gz[] = {{"centre", W / 2.0, H / 2.0},   {"off-centre", 37.3, 61.7},   {"corner TL", 0, 0},
-              {"corner TR", W, 0},           {"corner BL", 0, H},          {"corner BR", W, H},
+    } gz[] = {{"centre", W / 2.0, H / 2.0},  {"off-centre", 37.3, 61.7},
+              {"corner TL", 0, 0},           {"corner TR", W, 0},
+              {"corner BL", 0, H},           {"corner BR", W, H},
               {"outside left", -70.5, 40.0}, {"outside BR", W + 90.25, H + 60.0}};
     static const double alphas[] = {1, 4, 8};
     static const double disks[] = {0, 0.12443, 0.4, 1};

@@ -114,9 +114,9 @@ static void test_aligned_and_box_means(void **state)
     for (int y = 0; y < IH / 2; y++) {
         for (int x = 0; x < IW / 2; x++) {
             for (int k = 0; k < 3; k++) {
-                double e = 0.25 * (img[3 * ((2 * y) * IW + 2 * x) + k] + img[3 * ((2 * y) * IW + 2 * x + 1) + k] +
-                                   img[3 * ((2 * y + 1) * IW + 2 * x) + k] +
-                                   img[3 * ((2 * y + 1) * IW + 2 * x + 1) + k]);
+                double e =
+                    0.25 * (img[3 * ((2 * y) * IW + 2 * x) + k] + img[3 * ((2 * y) * IW + 2 * x + 1) + k] +
+                            img[3 * ((2 * y + 1) * IW + 2 * x) + k] + img[3 * ((2 * y + 1) * IW + 2 * x + 1) + k]);
                 assert_true(fabs(gt[3 * (y * (IW / 2) + x) + k] - e) < 1e-12);
             }
         }
@@ -268,7 +268,8 @@ static void test_samples_and_mvs(void **state)
         double px = x + mv[2 * i] / 16.0, py = y + mv[2 * i + 1] / 16.0;
         double q2x = Ap[0] * px + Ap[1] * py + bp[0], q2y = Ap[2] * px + Ap[3] * py + bp[1];
         /* Q4 rounding: <= 1/32 px per axis, times the texels per pixel */
-        assert_true(hypot(q2x - qx, q2y - qy) <= (1.0 / 32.0) * sqrt(2.0) / (m.zoom * exp(m.zoom_rate * (t - dt))) + 1e-9);
+        assert_true(hypot(q2x - qx, q2y - qy) <=
+                    (1.0 / 32.0) * sqrt(2.0) / (m.zoom * exp(m.zoom_rate * (t - dt))) + 1e-9);
     }
     /* pursuit: velocity of the content at the screen centre, by differences */
     double v[2], c0x = 0.5 * W, c0y = 0.5 * H, h = 1e-5;
@@ -403,10 +404,8 @@ static void test_read_and_bad_input(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_constant_image),
-        cmocka_unit_test(test_aligned_and_box_means),
-        cmocka_unit_test(test_exact_against_clipping),
-        cmocka_unit_test(test_samples_and_mvs),
+        cmocka_unit_test(test_constant_image),         cmocka_unit_test(test_aligned_and_box_means),
+        cmocka_unit_test(test_exact_against_clipping), cmocka_unit_test(test_samples_and_mvs),
         cmocka_unit_test(test_read_and_bad_input),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

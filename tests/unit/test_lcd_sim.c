@@ -224,10 +224,8 @@ static void test_shipped_panels(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_exact_all_stiffness),
-        cmocka_unit_test(test_euler_fails_on_stiff_end),
-        cmocka_unit_test(test_frame_sim_closed_form),
-        cmocka_unit_test(test_symmetric_tau_no_pair_deviation),
+        cmocka_unit_test(test_exact_all_stiffness),   cmocka_unit_test(test_euler_fails_on_stiff_end),
+        cmocka_unit_test(test_frame_sim_closed_form), cmocka_unit_test(test_symmetric_tau_no_pair_deviation),
         cmocka_unit_test(test_shipped_panels),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -152,7 +152,8 @@ static void check_pairs(const int32_t q[4], const double dq[4], int bits, solve_
                 if (md < lo2 - eps || md > hi2 + eps || (md > lo + eps && md < hi - eps)) {
                     st->kind_mismatch++;
                     if (st->kind_mismatch <= 3) {
-                        printf("  kind mismatch: u %u m %u fw v %d kind %d, ref v %.6f kind %d, range [%.6f, %.6f] md %.6f\n",
+                        printf("  kind mismatch: u %u m %u fw v %d kind %d, ref v %.6f kind %d, range [%.6f, %.6f] md "
+                               "%.6f\n",
                                uc, mc, s.v_q16, (int)s.kind, vref, kind_ref, lo, hi, md);
                     }
                 }
@@ -199,18 +200,18 @@ static void test_exact_profiles(void **state)
 {
     (void)state;
     int seen = 0;
-#define RUN_PANEL(pn)                                                                                          \
-    if ((pn).type == TDC_PANEL_LCD) {                                                                          \
-        for (unsigned r = 0; r < (pn).lcd->nrates; r++) {                                                      \
-            double dp[4];                                                                                      \
-            char nm[64];                                                                                       \
-            for (int c = 0; c < 4; c++) {                                                                      \
-                dp[c] = (pn).lcd->rate[r].p_q24[c] / (double)(1 << TDC_LCD_COEF_FRAC);                         \
-            }                                                                                                  \
-            snprintf(nm, sizeof nm, "%s @%u Hz", (pn).name, (unsigned)(pn).lcd->rate[r].rate_hz);              \
-            run_solve(nm, dp, 8);                                                                              \
-            seen++;                                                                                            \
-        }                                                                                                      \
+#define RUN_PANEL(pn)                                                                             \
+    if ((pn).type == TDC_PANEL_LCD) {                                                             \
+        for (unsigned r = 0; r < (pn).lcd->nrates; r++) {                                         \
+            double dp[4];                                                                         \
+            char nm[64];                                                                          \
+            for (int c = 0; c < 4; c++) {                                                         \
+                dp[c] = (pn).lcd->rate[r].p_q24[c] / (double)(1 << TDC_LCD_COEF_FRAC);            \
+            }                                                                                     \
+            snprintf(nm, sizeof nm, "%s @%u Hz", (pn).name, (unsigned)(pn).lcd->rate[r].rate_hz); \
+            run_solve(nm, dp, 8);                                                                 \
+            seen++;                                                                               \
+        }                                                                                         \
     }
     TDC_PANEL_LIST(RUN_PANEL)
 #undef RUN_PANEL
@@ -349,21 +350,21 @@ static void test_generated_tables_match(void **state)
     (void)state;
     int seen = 0;
     static short t[33 * 33];
-#define CHECK_PANEL(pn)                                                                                        \
-    if ((pn).type == TDC_PANEL_LCD) {                                                                          \
-        for (unsigned r = 0; r < (pn).lcd->nrates; r++) {                                                      \
-            double dp[4];                                                                                      \
-            for (int c = 0; c < 4; c++) {                                                                      \
-                dp[c] = (pn).lcd->rate[r].p_q24[c] / (double)(1 << TDC_LCD_COEF_FRAC);                         \
-            }                                                                                                  \
-            tdc_lcdm_make_od(dp, 17, (pn).bits, t);                                                            \
-            assert_memory_equal(t, (pn).lcd->rate[r].od17, sizeof(short) * 17 * 17);                           \
-            tdc_lcdm_make_od(dp, 33, (pn).bits, t);                                                            \
-            assert_memory_equal(t, (pn).lcd->rate[r].od33, sizeof(short) * 33 * 33);                           \
-            seen++;                                                                                            \
-        }                                                                                                      \
-    } else {                                                                                                   \
-        assert_null((pn).lcd);                                                                                 \
+#define CHECK_PANEL(pn)                                                                \
+    if ((pn).type == TDC_PANEL_LCD) {                                                  \
+        for (unsigned r = 0; r < (pn).lcd->nrates; r++) {                              \
+            double dp[4];                                                              \
+            for (int c = 0; c < 4; c++) {                                              \
+                dp[c] = (pn).lcd->rate[r].p_q24[c] / (double)(1 << TDC_LCD_COEF_FRAC); \
+            }                                                                          \
+            tdc_lcdm_make_od(dp, 17, (pn).bits, t);                                    \
+            assert_memory_equal(t, (pn).lcd->rate[r].od17, sizeof(short) * 17 * 17);   \
+            tdc_lcdm_make_od(dp, 33, (pn).bits, t);                                    \
+            assert_memory_equal(t, (pn).lcd->rate[r].od33, sizeof(short) * 33 * 33);   \
+            seen++;                                                                    \
+        }                                                                              \
+    } else {                                                                           \
+        assert_null((pn).lcd);                                                         \
     }
     TDC_PANEL_LIST(CHECK_PANEL)
 #undef CHECK_PANEL
@@ -411,8 +412,8 @@ static void test_packing(void **state)
         }
         /* rounding quantiser: at most half a step of 255 / (2^b - 1) */
         assert_true(maxerr <= (int)(255 / ((1u << b) - 1u) / 2 + 1));
-        printf("previous-frame buffer %u bits: max round-trip error %d codes, %.1f %% of the 8-bit memory\n", b,
-               maxerr, 100.0 * b / 8.0);
+        printf("previous-frame buffer %u bits: max round-trip error %d codes, %.1f %% of the 8-bit memory\n", b, maxerr,
+               100.0 * b / 8.0);
     }
 }
 

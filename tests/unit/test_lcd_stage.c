@@ -85,15 +85,15 @@ static void test_init_errors(void **state)
     assert_int_equal(out[0], 0x5a);
     /* every shipped LCD profile initialises at every rate and mode */
     int seen = 0;
-#define TRY(pn)                                                                                                \
-    if ((pn).type == TDC_PANEL_LCD) {                                                                          \
-        for (unsigned r = 0; r < (pn).lcd->nrates; r++) {                                                      \
-            for (int m = 0; m <= TDC_LCD_MODE_TABLE33; m++) {                                                  \
-                tdc_lcd_config_t cc = cfg_for((tdc_lcd_mode_t)m, 6, (pn).lcd->rate[r].rate_hz);                \
-                assert_int_equal(tdc_lcd_init(&st, &cc, &(pn), g_arena, sizeof g_arena), TDC_OK);              \
-                seen++;                                                                                        \
-            }                                                                                                  \
-        }                                                                                                      \
+#define TRY(pn)                                                                                   \
+    if ((pn).type == TDC_PANEL_LCD) {                                                             \
+        for (unsigned r = 0; r < (pn).lcd->nrates; r++) {                                         \
+            for (int m = 0; m <= TDC_LCD_MODE_TABLE33; m++) {                                     \
+                tdc_lcd_config_t cc = cfg_for((tdc_lcd_mode_t)m, 6, (pn).lcd->rate[r].rate_hz);   \
+                assert_int_equal(tdc_lcd_init(&st, &cc, &(pn), g_arena, sizeof g_arena), TDC_OK); \
+                seen++;                                                                           \
+            }                                                                                     \
+        }                                                                                         \
     }
     TDC_PANEL_LIST(TRY)
 #undef TRY
@@ -338,12 +338,9 @@ static void test_in_place_and_gamma_mode(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_init_errors),
-        cmocka_unit_test(test_first_frame_and_reset),
-        cmocka_unit_test(test_vs_reference),
-        cmocka_unit_test(test_residual_unreachable),
-        cmocka_unit_test(test_reduced_precision),
-        cmocka_unit_test(test_in_place_and_gamma_mode),
+        cmocka_unit_test(test_init_errors),       cmocka_unit_test(test_first_frame_and_reset),
+        cmocka_unit_test(test_vs_reference),      cmocka_unit_test(test_residual_unreachable),
+        cmocka_unit_test(test_reduced_precision), cmocka_unit_test(test_in_place_and_gamma_mode),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -263,8 +263,8 @@ static void test_pair_carry(void **state)
         assert_int_equal(tdc_lcd_frame(&ss, in, W * 3, os, W * 3, rs), TDC_OK);
         for (size_t i = 0; i < N; i++) {
             assert_int_equal(op[i], 255);
-            assert_int_equal(rp[i], 0);  /* owed to the second refresh, not to rho */
-            assert_true(rs[i] > 0);      /* the per-refresh mode puts it into rho */
+            assert_int_equal(rp[i], 0); /* owed to the second refresh, not to rho */
+            assert_true(rs[i] > 0);     /* the per-refresh mode puts it into rho */
             assert_true(sp.st_debt[i] > 0);
         }
         /* frame 3 (second): mid grey; the pair mode drives brighter to pay */

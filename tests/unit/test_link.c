@@ -38,9 +38,7 @@ static void expected_rgb(tdc_pixfmt_t fmt, const uint8_t *s, uint32_t w, uint32_
             const uint8_t *p = s + 3u * (w * y + x);
             uint8_t *o = out + 3u * (w * y + x);
             switch (fmt) {
-            case TDC_PIXFMT_RGB888:
-                memcpy(o, p, 3);
-                break;
+            case TDC_PIXFMT_RGB888: memcpy(o, p, 3); break;
             case TDC_PIXFMT_RGB565: { /* 5/6/5-bit round, then bit replication */
                 const unsigned r5 = (p[0] * 31u + 127u) / 255u, g6 = (p[1] * 63u + 127u) / 255u,
                                b5 = (p[2] * 31u + 127u) / 255u;
@@ -49,9 +47,7 @@ static void expected_rgb(tdc_pixfmt_t fmt, const uint8_t *s, uint32_t w, uint32_
                 o[2] = (uint8_t)(b5 << 3 | b5 >> 2);
                 break;
             }
-            case TDC_PIXFMT_RGB30: /* 8 -> 10 -> 8 bits is lossless */
-                memcpy(o, p, 3);
-                break;
+            case TDC_PIXFMT_RGB30: /* 8 -> 10 -> 8 bits is lossless */ memcpy(o, p, 3); break;
             default: { /* nearest chroma of the pixel's 2x2 block */
                 const uint8_t yv = packed[w * y + x];
                 const uint8_t cb = packed[w * h + cw * (y / 2u) + x / 2u];
@@ -95,7 +91,8 @@ static void round_trip_frames(uint16_t w, uint16_t h, uint8_t eyes, uint16_t rn,
         o.with_stream_header = 1;
         tdc_link_gen_packet_t pk[64];
         uint32_t npk = 0;
-        const size_t n = tdc_link_gen_stream(stream, sizeof stream, &o, (uint8_t *)scratch, sizeof scratch, pk, 64, &npk);
+        const size_t n =
+            tdc_link_gen_stream(stream, sizeof stream, &o, (uint8_t *)scratch, sizeof scratch, pk, 64, &npk);
         assert_true(n > 0);
         assert_int_equal(lt_init(&rig, w, h, eyes), TDC_OK);
         const uint32_t rw = TDC_REDUCED_DIM(w, rn, rd), rh = TDC_REDUCED_DIM(h, rn, rd);
@@ -160,7 +157,8 @@ static void round_trip_subframes(uint16_t w, uint16_t h, uint8_t eyes)
         o.with_stream_header = 1;
         tdc_link_gen_packet_t pk[128];
         uint32_t npk = 0;
-        const size_t n = tdc_link_gen_stream(stream, sizeof stream, &o, (uint8_t *)scratch, sizeof scratch, pk, 128, &npk);
+        const size_t n =
+            tdc_link_gen_stream(stream, sizeof stream, &o, (uint8_t *)scratch, sizeof scratch, pk, 128, &npk);
         assert_true(n > 0);
         assert_int_equal(lt_init(&rig, w, h, eyes), TDC_OK);
         uint32_t seen[TDC_LINK_KIND_LAST + 1] = {0};
@@ -235,8 +233,8 @@ static void test_round_trip_full_only_and_stride(void **state)
         rig.nev = 0;
         size_t n = tdc_link_encode_stream(&enc, stream, sizeof stream);
         tdc_link_gen_rgb(src, w, h, 5, 0, 1);
-        n += tdc_link_encode_frame(&enc, stream + n, sizeof stream - n, TDC_LINK_KIND_FULL, 0, 5, all_fmts[fi], src,
-                                   w, h, w * 3u);
+        n += tdc_link_encode_frame(&enc, stream + n, sizeof stream - n, TDC_LINK_KIND_FULL, 0, 5, all_fmts[fi], src, w,
+                                   h, w * 3u);
         lt_feed(&rig, stream, n, 0, 0);
         assert_int_equal(lt_count(&rig, 0, TDC_LINK_EV_PACKET, 0), 2);
         expected_rgb(all_fmts[fi], src, w, h, expect);
@@ -265,8 +263,8 @@ static void test_round_trip_full_only_and_stride(void **state)
 typedef struct {
     tdc_link_err_t code;
     const char *what;
-    int accepts_packet;      /* the packet itself is valid (missing reduced) */
-    uint32_t allowed_extra;  /* bitmask of other codes that may accompany it */
+    int accepts_packet;     /* the packet itself is valid (missing reduced) */
+    uint32_t allowed_extra; /* bitmask of other codes that may accompany it */
     size_t (*make)(uint8_t *out, size_t cap);
 } bad_case_t;
 
@@ -301,14 +299,39 @@ static size_t good_with(uint8_t *out, size_t cap, void (*edit)(tdc_link_header_t
     return tdc_link_encode_raw(out, cap, &f, pkt2 + TDC_LINK_HEADER_BYTES, f.payload_len);
 }
 
-static void ed_version(tdc_link_header_t *f) { f->version = 2; }
-static void ed_kind(tdc_link_header_t *f) { f->kind = 9; }
-static void ed_eye(tdc_link_header_t *f) { f->eye = 2; }
-static void ed_format(tdc_link_header_t *f) { f->format = 7; }
-static void ed_dims(tdc_link_header_t *f) { f->width = MW + 2; }
-static void ed_stream(tdc_link_header_t *f) { f->stream_id = 43; }
-static void ed_order(tdc_link_header_t *f) { f->frame_index = 0; }
-static void ed_dup(tdc_link_header_t *f) { f->frame_index = 1; f->eye = 1; }
+static void ed_version(tdc_link_header_t *f)
+{
+    f->version = 2;
+}
+static void ed_kind(tdc_link_header_t *f)
+{
+    f->kind = 9;
+}
+static void ed_eye(tdc_link_header_t *f)
+{
+    f->eye = 2;
+}
+static void ed_format(tdc_link_header_t *f)
+{
+    f->format = 7;
+}
+static void ed_dims(tdc_link_header_t *f)
+{
+    f->width = MW + 2;
+}
+static void ed_stream(tdc_link_header_t *f)
+{
+    f->stream_id = 43;
+}
+static void ed_order(tdc_link_header_t *f)
+{
+    f->frame_index = 0;
+}
+static void ed_dup(tdc_link_header_t *f)
+{
+    f->frame_index = 1;
+    f->eye = 1;
+}
 
 static size_t mk_magic(uint8_t *out, size_t cap)
 {
@@ -332,11 +355,26 @@ static size_t mk_header_crc(uint8_t *out, size_t cap)
     out[TDC_LINK_OFF_WIDTH] ^= 1; /* header CRC not updated */
     return good_len;
 }
-static size_t mk_version(uint8_t *out, size_t cap) { return good_with(out, cap, ed_version); }
-static size_t mk_kind(uint8_t *out, size_t cap) { return good_with(out, cap, ed_kind); }
-static size_t mk_eye(uint8_t *out, size_t cap) { return good_with(out, cap, ed_eye); }
-static size_t mk_format(uint8_t *out, size_t cap) { return good_with(out, cap, ed_format); }
-static size_t mk_dims(uint8_t *out, size_t cap) { return good_with(out, cap, ed_dims); }
+static size_t mk_version(uint8_t *out, size_t cap)
+{
+    return good_with(out, cap, ed_version);
+}
+static size_t mk_kind(uint8_t *out, size_t cap)
+{
+    return good_with(out, cap, ed_kind);
+}
+static size_t mk_eye(uint8_t *out, size_t cap)
+{
+    return good_with(out, cap, ed_eye);
+}
+static size_t mk_format(uint8_t *out, size_t cap)
+{
+    return good_with(out, cap, ed_format);
+}
+static size_t mk_dims(uint8_t *out, size_t cap)
+{
+    return good_with(out, cap, ed_dims);
+}
 static size_t mk_length(uint8_t *out, size_t cap)
 {
     tdc_link_header_t f;
@@ -350,9 +388,18 @@ static size_t mk_crc(uint8_t *out, size_t cap)
     out[TDC_LINK_HEADER_BYTES + 100] ^= 0x40; /* payload corrupted in transit */
     return good_len;
 }
-static size_t mk_stream(uint8_t *out, size_t cap) { return good_with(out, cap, ed_stream); }
-static size_t mk_order(uint8_t *out, size_t cap) { return good_with(out, cap, ed_order); }
-static size_t mk_dup(uint8_t *out, size_t cap) { return good_with(out, cap, ed_dup); }
+static size_t mk_stream(uint8_t *out, size_t cap)
+{
+    return good_with(out, cap, ed_stream);
+}
+static size_t mk_order(uint8_t *out, size_t cap)
+{
+    return good_with(out, cap, ed_order);
+}
+static size_t mk_dup(uint8_t *out, size_t cap)
+{
+    return good_with(out, cap, ed_dup);
+}
 static size_t mk_missing(uint8_t *out, size_t cap)
 {
     /* Frame 3 eye 1 (a full slot) arrives after frame 1: frame 2, whose
@@ -399,7 +446,8 @@ static void run_bad_case(const bad_case_t *c, int chunk)
 {
     assert_int_equal(lt_init(&rig, MW, MH, 2), TDC_OK);
     assert_int_equal(lt_feed(&rig, stream, base_len, chunk, 11), base_len);
-    assert_int_equal(lt_count(&rig, 0, TDC_LINK_EV_PACKET, 0), 1 + 2 * 2 * 2); /* header + 2 frames x 2 eyes x (pix + mv) */
+    assert_int_equal(lt_count(&rig, 0, TDC_LINK_EV_PACKET, 0),
+                     1 + 2 * 2 * 2); /* header + 2 frames x 2 eyes x (pix + mv) */
     const uint32_t base_ok = tdc_link_counters(&rig.dec)->packets_ok;
     const uint64_t shown = lt_fnv(0xcbf29ce484222325ULL, rig.full, sizeof rig.full);
     const uint64_t all = lt_hash_all(&rig);
@@ -587,8 +635,8 @@ static void test_garbage_and_resync(void **state)
         r += pl;
         memcpy(stream2 + r, tmp + 300, a - 300 - pl); /* keep the total = a: the frame's length still matches */
         r += a - 300 - pl;
-        const size_t sub = tdc_link_encode_subframe(&e1, stream2 + r, sizeof stream2 - r, 0, 0, TDC_PIXFMT_RGB565,
-                                                    src, MW, MH);
+        const size_t sub =
+            tdc_link_encode_subframe(&e1, stream2 + r, sizeof stream2 - r, 0, 0, TDC_PIXFMT_RGB565, src, MW, MH);
         r += sub;
         for (int chunk = 0; chunk < 3; chunk++) {
             assert_int_equal(lt_init(&rig, MW, MH, 1), TDC_OK);
@@ -860,7 +908,8 @@ static void test_pattern_only_at_cycle_start(void **state)
     assert_int_equal(lt_init(&rig, 9, 7, 1), TDC_OK);
     size_t n = tdc_link_encode_stream(&enc, stream, sizeof stream);
     uint8_t bits[4] = {0xFF, 0xFF, 0xFF, 0xFF};
-    n += tdc_link_encode_pattern(&enc, stream + n, sizeof stream - n, 0, 1, bits, 9, 7); /* frame 1: not a cycle start */
+    n +=
+        tdc_link_encode_pattern(&enc, stream + n, sizeof stream - n, 0, 1, bits, 9, 7); /* frame 1: not a cycle start */
     n += tdc_link_encode_pattern(&enc, stream + n, sizeof stream - n, 0, 4, bits, 9, 7);
     lt_feed(&rig, stream, n, 0, 0);
     assert_int_equal(tdc_link_error_count(&rig.dec, TDC_LINK_ERR_UNEXPECTED), 1);
@@ -903,9 +952,10 @@ static void test_init_errors(void **state)
     assert_true(TDC_LINK_MAX_WIDTH >= 1920 && TDC_LINK_MAX_HEIGHT >= 1600);
     /* Encoder refuses what does not fit. */
     tdc_link_gen_rgb(src, 8, 8, 0, 0, 0);
-    assert_int_equal(tdc_link_encode_frame(&menc, pkt, 100, TDC_LINK_KIND_FULL, 0, 0, TDC_PIXFMT_RGB888, src, 8, 8, 24), 0);
-    assert_int_equal(tdc_link_encode_frame(&menc, pkt, sizeof pkt, TDC_LINK_KIND_FULL, 0, 0, (tdc_pixfmt_t)9, src, 8, 8, 24),
+    assert_int_equal(tdc_link_encode_frame(&menc, pkt, 100, TDC_LINK_KIND_FULL, 0, 0, TDC_PIXFMT_RGB888, src, 8, 8, 24),
                      0);
+    assert_int_equal(
+        tdc_link_encode_frame(&menc, pkt, sizeof pkt, TDC_LINK_KIND_FULL, 0, 0, (tdc_pixfmt_t)9, src, 8, 8, 24), 0);
     assert_int_equal(tdc_link_packet_bytes(TDC_LINK_KIND_FULL, TDC_PIXFMT_YCBCR420, 3, 3, 0), 32u + 9u + 2u * 4u);
     /* Sizes whose payload would not fit 32 bits are refused, not wrapped. */
     assert_int_equal(tdc_link_packet_bytes(TDC_LINK_KIND_FULL, TDC_PIXFMT_RGB30, 65535, 65535, 0), 0);

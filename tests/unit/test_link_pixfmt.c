@@ -209,12 +209,9 @@ static void test_payload_sizes(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_crc32_tables_and_check_value),
-        cmocka_unit_test(test_ycbcr_to_rgb_vs_reference),
-        cmocka_unit_test(test_ycbcr420_unpack_equals_pointwise),
-        cmocka_unit_test(test_rgb30_and_rgb565_vs_reference),
-        cmocka_unit_test(test_rgb_to_ycbcr_vs_reference),
-        cmocka_unit_test(test_payload_sizes),
+        cmocka_unit_test(test_crc32_tables_and_check_value),     cmocka_unit_test(test_ycbcr_to_rgb_vs_reference),
+        cmocka_unit_test(test_ycbcr420_unpack_equals_pointwise), cmocka_unit_test(test_rgb30_and_rgb565_vs_reference),
+        cmocka_unit_test(test_rgb_to_ycbcr_vs_reference),        cmocka_unit_test(test_payload_sizes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -61,7 +61,9 @@ static void test_recip(void **state)
     uint32_t nchecked = 0;
     for (uint64_t d = 1ULL << 31; d < (1ULL << 32); d += 4099u) {
         for (int j = 0; j < 2; j++) {
-            x ^= x << 13; x ^= x >> 7; x ^= x << 17;
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
             const uint32_t dd = j == 0 ? (uint32_t)d : (uint32_t)(x >> 32) | 0x80000000u;
             const uint32_t exact = (uint32_t)(((1ULL << 62) + (dd >> 1)) / dd);
             if (tdc_recip_norm_q30_newton(dd) != exact || tdc_recip_norm_q30(dd) != exact ||
@@ -72,7 +74,8 @@ static void test_recip(void **state)
             nchecked++;
         }
     }
-    printf("recip_norm_q30: divide, 32-bit long division and Newton paths equal the exact floor on %u inputs\n", nchecked);
+    printf("recip_norm_q30: divide, 32-bit long division and Newton paths equal the exact floor on %u inputs\n",
+           nchecked);
     printf("recip_norm_q30: max error %.4f LSB (Q30), bound 1\n", max_err);
     assert_true(max_err <= 1.0);
 }
@@ -159,7 +162,9 @@ static void test_isqrt(void **state)
     }
     uint64_t z = 0x9e3779b97f4a7c15ull;
     for (int i = 0; i < 2000000; i++) {
-        z ^= z << 13; z ^= z >> 7; z ^= z << 17;
+        z ^= z << 13;
+        z ^= z >> 7;
+        z ^= z << 17;
         const uint64_t x = i < 100000 ? (0xfffffffbull << 32) + (z >> 31) /* around the top range */
                                       : z >> (z & 63u);
         const uint64_t r = tdc_isqrt64(x);
@@ -168,8 +173,8 @@ static void test_isqrt(void **state)
         }
         nchecked++;
     }
-    printf("isqrt64: Newton and digit method exact on %u structured and random inputs (TDC_HW_DIV64 = %d)\n",
-           nchecked, TDC_HW_DIV64);
+    printf("isqrt64: Newton and digit method exact on %u structured and random inputs (TDC_HW_DIV64 = %d)\n", nchecked,
+           TDC_HW_DIV64);
 }
 
 /* The Cortex-M long division against the host's divide. */
@@ -179,7 +184,9 @@ static void test_udiv64_32(void **state)
     uint64_t z = 0x2545f4914f6cdd1dull;
     uint32_t n = 0;
     for (int i = 0; i < 3000000; i++) {
-        z ^= z << 13; z ^= z >> 7; z ^= z << 17;
+        z ^= z << 13;
+        z ^= z >> 7;
+        z ^= z << 17;
         uint32_t v = (uint32_t)(z >> 32) >> (z & 31u);
         if (v == 0u) {
             v = 1u;
@@ -270,7 +277,8 @@ static void check_panel(const tdc_panel_t *p)
     }
     const double bound = gmax * (gmax - 1.0) / 8.0 / ((double)maxc * maxc) + ldexp(1.5, -24);
     printf("%s: decode interpolation max error %.3g of full scale (bound %.3g), encode exact, "
-           "max forward scan %u codes (bound 8)\n", p->name, max_interp, bound, max_scan);
+           "max forward scan %u codes (bound 8)\n",
+           p->name, max_interp, bound, max_scan);
     assert_true(max_interp <= bound);
     assert_true(max_scan <= 8u);
 }
@@ -289,7 +297,11 @@ static void test_helper_checksum(void **state)
 {
     (void)state;
     uint64_t h = 0xcbf29ce484222325ULL;
-#define MIX(v) do { h ^= (uint32_t)(v); h *= 0x100000001b3ULL; } while (0)
+#define MIX(v)                 \
+    do {                       \
+        h ^= (uint32_t)(v);    \
+        h *= 0x100000001b3ULL; \
+    } while (0)
     for (uint32_t x = 0; x < (1u << 20); x += 3u) {
         MIX(tdc_exp_neg_q16(x));
     }
@@ -357,12 +369,18 @@ static void test_hash3(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_shifts),     cmocka_unit_test(test_exp_neg),
-        cmocka_unit_test(test_recip),      cmocka_unit_test(test_div_q15),
-        cmocka_unit_test(test_isqrt),      cmocka_unit_test(test_udiv64_32),      cmocka_unit_test(test_gamma_tables),
+        cmocka_unit_test(test_shifts),
+        cmocka_unit_test(test_exp_neg),
+        cmocka_unit_test(test_recip),
+        cmocka_unit_test(test_div_q15),
+        cmocka_unit_test(test_isqrt),
+        cmocka_unit_test(test_udiv64_32),
+        cmocka_unit_test(test_gamma_tables),
         cmocka_unit_test(test_helper_checksum),
-        cmocka_unit_test(test_mean_u8_exhaustive), cmocka_unit_test(test_sqrt_q8),
-        cmocka_unit_test(test_div_small),   cmocka_unit_test(test_hash3),
+        cmocka_unit_test(test_mean_u8_exhaustive),
+        cmocka_unit_test(test_sqrt_q8),
+        cmocka_unit_test(test_div_small),
+        cmocka_unit_test(test_hash3),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -114,8 +114,8 @@ static void test_psnr_ssim_vs_skimage(void **state)
         size_t n = 3 * (size_t)p[k].w * p[k].h;
         double mps = tdc_psnr(p[k].a, p[k].b, n, 1.0);
         double mss = tdc_ssim(p[k].a, p[k].b, p[k].w, p[k].h, 1.0);
-        printf("pair %d (%dx%d): PSNR ours %.9f skimage %.9f | SSIM ours %.9f skimage %.9f\n", k, p[k].w, p[k].h,
-               mps, ps, mss, ss);
+        printf("pair %d (%dx%d): PSNR ours %.9f skimage %.9f | SSIM ours %.9f skimage %.9f\n", k, p[k].w, p[k].h, mps,
+               ps, mss, ss);
         assert_true(fabs(mps - ps) < 1e-6);
         assert_true(fabs(mss - ss) < 1e-6);
         free(p[k].a);
@@ -296,8 +296,8 @@ static void test_flip_vs_nvlabs(void **state)
                 rmean += ref[i] / (double)n;
                 maxd = fmax(maxd, fabs(map[i] - ref[i]));
             }
-            printf("FLIP pair %d at %.1f ppd: ours %.7f flip v1.6 %.7f, max per-pixel difference %.2e\n", k,
-                   ppds[q], mean, rmean, maxd);
+            printf("FLIP pair %d at %.1f ppd: ours %.7f flip v1.6 %.7f, max per-pixel difference %.2e\n", k, ppds[q],
+                   mean, rmean, maxd);
             assert_true(maxd < 2e-4);
             assert_true(fabs(mean - rmean) < 5e-5);
             free(ref);

@@ -122,19 +122,21 @@ static void test_decision_matches_reference(void **st)
     for (int my = -700; my <= 700; my += 1)
         for (int mx = -700; mx <= 700; mx += 1) {
             if (!mx && !my) continue;
-            tdc_ordering_t f = tdc_ordering_decide(mx, my, TDC_ORDER_HOURGLASS, (uint32_t)mx & 63u,
-                                                   (uint32_t)my & 63u, 8);
-            tdc_ordering_t r = tdc_ref_ordering_decide(mx / 16.0, my / 16.0, TDC_ORDER_HOURGLASS,
-                                                       (uint32_t)mx & 63u, (uint32_t)my & 63u, 8);
+            tdc_ordering_t f =
+                tdc_ordering_decide(mx, my, TDC_ORDER_HOURGLASS, (uint32_t)mx & 63u, (uint32_t)my & 63u, 8);
+            tdc_ordering_t r = tdc_ref_ordering_decide(mx / 16.0, my / 16.0, TDC_ORDER_HOURGLASS, (uint32_t)mx & 63u,
+                                                       (uint32_t)my & 63u, 8);
             total++;
             if (f == r) {
                 agree++;
             } else {
-                if (!near_boundary(mx, my)) fail_msg("decision differs from double away from a boundary: m = (%d, %d)/16", mx, my);
+                if (!near_boundary(mx, my))
+                    fail_msg("decision differs from double away from a boundary: m = (%d, %d)/16", mx, my);
                 boundary++;
             }
         }
-    printf("ordering: fixed vs double decision agree in %ld of %ld vectors (%.4f %%), %ld differ within 2^-11 of a band edge\n",
+    printf("ordering: fixed vs double decision agree in %ld of %ld vectors (%.4f %%), %ld differ within 2^-11 of a "
+           "band edge\n",
            agree, total, 100.0 * agree / total, boundary);
     assert_true(agree * 1000 >= total * 999);
 }
@@ -188,10 +190,10 @@ static void test_diagonal_hashed(void **st)
     (void)st;
     /* a = 45 deg and just inside / outside gamma = pi/40 (4.5 deg). */
     assert_true(tdc_ordering_in_random_band(100, 100));
-    assert_true(tdc_ordering_in_random_band(-100, 90));  /* 42.0 deg */
-    assert_true(tdc_ordering_in_random_band(86, -100));  /* 49.3 deg */
-    assert_false(tdc_ordering_in_random_band(100, 80));  /* 38.7 deg */
-    assert_false(tdc_ordering_in_random_band(80, 100));  /* 51.3 deg */
+    assert_true(tdc_ordering_in_random_band(-100, 90));   /* 42.0 deg */
+    assert_true(tdc_ordering_in_random_band(86, -100));   /* 49.3 deg */
+    assert_false(tdc_ordering_in_random_band(100, 80));   /* 38.7 deg */
+    assert_false(tdc_ordering_in_random_band(80, 100));   /* 51.3 deg */
     assert_false(tdc_ordering_in_random_band(1000, 854)); /* 40.49 deg < 40.5 */
     assert_true(tdc_ordering_in_random_band(1000, 855));  /* 40.53 deg */
     int bowtie = 0, n = 0, changed = 0;
@@ -227,7 +229,7 @@ static void test_update_neighbourhood(void **st)
     uint8_t bits[TDC_PATTERN_BYTES(W, H) + 1];
     memset(mv, 0, sizeof(mv));
     memset(bits, 0, sizeof(bits));
-    bits[sizeof(bits) - 1] = 0xA5; /* guard */
+    bits[sizeof(bits) - 1] = 0xA5;            /* guard */
     bits[TDC_PATTERN_BYTES(W, H) - 1] = 0xF8; /* padding bits set: 35 tiles -> bits 3..7 of byte 4 */
     /* pixel (8, 4) = tile (4, 2): horizontal 3.5 px -> hourglass; a shorter
      * vector (1.0 px, -> bowtie) at pixel (12, 8) = tile (6, 4). */
@@ -268,7 +270,8 @@ static void naive_update(const int16_t *mv, int w, int h, uint8_t *bits, uint32_
                     if (l2 > best) best = l2, bx = dx, by = dy;
                 }
             uint32_t ti = (uint32_t)(ty * tx_n + tx);
-            tdc_ordering_set(bits, ti, tdc_ordering_decide(bx, by, tdc_ordering_get(bits, ti), (uint32_t)tx, (uint32_t)ty, frame));
+            tdc_ordering_set(
+                bits, ti, tdc_ordering_decide(bx, by, tdc_ordering_get(bits, ti), (uint32_t)tx, (uint32_t)ty, frame));
         }
 }
 
@@ -278,8 +281,8 @@ static void naive_update(const int16_t *mv, int w, int h, uint8_t *bits, uint32_
 static void test_update_matches_definition(void **st)
 {
     (void)st;
-    static const int16_t vals[][2] = {{0, 0}, {3, 4}, {4, 3}, {5, 0}, {0, -5}, {-4, 3}, {56, 0}, {0, 56},
-                                      {40, 40}, {-32768, 0}, {32767, 32767}, {18, -7}};
+    static const int16_t vals[][2] = {{0, 0},  {3, 4},  {4, 3},   {5, 0},      {0, -5},        {-4, 3},
+                                      {56, 0}, {0, 56}, {40, 40}, {-32768, 0}, {32767, 32767}, {18, -7}};
     uint32_t rng = 12345;
     const int sizes[][2] = {{1, 1}, {2, 3}, {7, 5}, {13, 9}, {32, 17}, {41, 40}};
     for (size_t si = 0; si < sizeof(sizes) / sizeof(sizes[0]); si++) {

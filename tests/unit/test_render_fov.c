@@ -60,7 +60,7 @@ static void run_scene(const char *name)
         int nlp, nd;
         assert_int_equal(tdc_render_set_foveation(r, &fv, &nlp, &nd), 0);
         tdc_fov_params_t p = {(int32_t)lround(fv.gaze_x * 256), (int32_t)lround(fv.gaze_y * 256), 1024, 4077,
-                              (uint16_t)(W * 555 / 1000), (uint16_t)(H * 555 / 1000)};
+                              (uint16_t)(W * 555 / 1000),       (uint16_t)(H * 555 / 1000)};
         tdc_fov_geom_t g;
         assert_int_equal(tdc_fov_geom(&g, W, H, &p), TDC_OK);
         assert_int_equal(nlp, (g.lp_w - g.u0) * g.lp_h);
@@ -88,7 +88,8 @@ static void run_scene(const char *name)
         for (int t = 0; t < 40; t++) {
             const int j = (t * 7) % g.lp_h, i = g.u0 + (t * 13) % (g.lp_w - g.u0);
             const double rad = exp(L * pow(fmax(i + fv.jx, 0) / g.lp_w, 4.0)), th = 2 * M_PI * (j + fv.jy) / g.lp_h;
-            const float x = (float)(p.gaze_x_q8 / 256.0 + rad * cos(th)), y = (float)(p.gaze_y_q8 / 256.0 + rad * sin(th));
+            const float x = (float)(p.gaze_x_q8 / 256.0 + rad * cos(th)),
+                        y = (float)(p.gaze_y_q8 / 256.0 + rad * sin(th));
             if (x < 0 || y < 0 || x >= W || y >= H) {
                 continue; /* off screen: the renderer keys its random numbers by the clamped pixel, a probe does not */
             }
@@ -96,7 +97,8 @@ static void run_scene(const char *name)
             tdc_render_probe(r, f, x, y, &pr);
             const float *sv = &samp[3 * ((size_t)j * (g.lp_w - g.u0) + (size_t)(i - g.u0))];
             for (int c = 0; c < 3; c++) {
-                if (!(fabs(sv[c] - pr.rgb[c]) < 1e-5)) fail_msg("sample (%d, %d) at (%g, %g): %g vs probe %g", i, j, x, y, sv[c], pr.rgb[c]);
+                if (!(fabs(sv[c] - pr.rgb[c]) < 1e-5))
+                    fail_msg("sample (%d, %d) at (%g, %g): %g vs probe %g", i, j, x, y, sv[c], pr.rgb[c]);
             }
         }
         /* remap: the link payload into the stage's buffers */

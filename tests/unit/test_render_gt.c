@@ -43,23 +43,23 @@ static tdc_render_t *open_cfg(const char *text, int threads, uint32_t seed, int 
 }
 
 /* Edges, texture, an area light (random light samples) and motion. */
-static const char scene_mix[] =
-    "tdc-scene 1\n"
-    "fps 8\n"
-    "material floor diffuse 0.7 0.7 0.7 checker 0.37 0.2 0.2 0.2\n"
-    "material ball diffuse 0.9 0.3 0.1\n"
-    "material glass diffuse 0 0 0 mirror 0.8\n"
-    "camera 0 pos 0 2 6 look 0 0.5 0 fov 45\n"
-    "camera 1 pos 0.4 2 6 look 0 0.5 0\n"
-    "object floor rect size 20 20 material floor rot -90 0 0\n"
-    "object glass rect size 2 1.5 material glass pos 0 0.75 -2\n"
-    "object ball sphere radius 0.7 material ball pos -1 0.8 0\n"
-    "key ball 0 pos -1 0.8 0\n"
-    "key ball 1 pos 1 0.8 0\n"
-    "light l point pos 2 6 4 intensity 50 50 50\n"
-    "light a rect pos -2 3 2 u 1 0 0 v 0 0 1 intensity 5 5 5 samples 3\n";
+static const char scene_mix[] = "tdc-scene 1\n"
+                                "fps 8\n"
+                                "material floor diffuse 0.7 0.7 0.7 checker 0.37 0.2 0.2 0.2\n"
+                                "material ball diffuse 0.9 0.3 0.1\n"
+                                "material glass diffuse 0 0 0 mirror 0.8\n"
+                                "camera 0 pos 0 2 6 look 0 0.5 0 fov 45\n"
+                                "camera 1 pos 0.4 2 6 look 0 0.5 0\n"
+                                "object floor rect size 20 20 material floor rot -90 0 0\n"
+                                "object glass rect size 2 1.5 material glass pos 0 0.75 -2\n"
+                                "object ball sphere radius 0.7 material ball pos -1 0.8 0\n"
+                                "key ball 0 pos -1 0.8 0\n"
+                                "key ball 1 pos 1 0.8 0\n"
+                                "light l point pos 2 6 4 intensity 50 50 50\n"
+                                "light a rect pos -2 3 2 u 1 0 0 v 0 0 1 intensity 5 5 5 samples 3\n";
 
-static void render(tdc_render_t *r, uint32_t f, tdc_render_mode_t m, float *rgb, int16_t *mv, int16_t *mvs, int16_t *mvd)
+static void render(tdc_render_t *r, uint32_t f, tdc_render_mode_t m, float *rgb, int16_t *mv, int16_t *mvs,
+                   int16_t *mvd)
 {
     tdc_render_out_t out = {0};
     out.rgb = rgb;
@@ -104,15 +104,14 @@ static void test_same_seed_same_bytes(void **state)
 }
 
 /* Hard edges only (no random light samples): discs and a checker, unlit. */
-static const char scene_edges[] =
-    "tdc-scene 1\n"
-    "background 0 0 0\n"
-    "material w unlit diffuse 1 1 1\n"
-    "material c unlit diffuse 0.1 0.1 0.1 checker 0.23 0.9 0.6 0.3\n"
-    "camera 0 pos 0 0 10 look 0 0 0 fov 30\n"
-    "object back rect size 3 2 material c pos 0.7 0.4 -1 rot 0 0 17\n"
-    "object d1 disc radius 0.9 segments 64 material w pos -1 -0.3 0\n"
-    "object d2 sphere radius 0.5 material w pos 1.3 -0.6 0.5\n";
+static const char scene_edges[] = "tdc-scene 1\n"
+                                  "background 0 0 0\n"
+                                  "material w unlit diffuse 1 1 1\n"
+                                  "material c unlit diffuse 0.1 0.1 0.1 checker 0.23 0.9 0.6 0.3\n"
+                                  "camera 0 pos 0 0 10 look 0 0 0 fov 30\n"
+                                  "object back rect size 3 2 material c pos 0.7 0.4 -1 rot 0 0 17\n"
+                                  "object d1 disc radius 0.9 segments 64 material w pos -1 -0.3 0\n"
+                                  "object d2 sphere radius 0.5 material w pos 1.3 -0.6 0.5\n";
 
 static double rms(const float *a, const float *b, size_t n)
 {
@@ -159,11 +158,10 @@ static void test_ground_truth_convergence(void **state)
 /* Vertical stripes of period 2.5 full-res px: resolved at full resolution,
  * above the Nyquist limit of r = 1/2 (4 px).  The prefiltered reduced frame
  * must come out near the mean instead of a beat pattern. */
-static const char scene_stripes[] =
-    "tdc-scene 1\n"
-    "material s unlit diffuse 1 1 1 stripes 0.04466 0 0 0\n"
-    "camera 0 pos 0 0 1 look 0 0 0 fov 30\n"
-    "object wall rect size 4 4 material s\n";
+static const char scene_stripes[] = "tdc-scene 1\n"
+                                    "material s unlit diffuse 1 1 1 stripes 0.04466 0 0 0\n"
+                                    "camera 0 pos 0 0 1 look 0 0 0 fov 30\n"
+                                    "object wall rect size 4 4 material s\n";
 
 static void test_reduced_prefiltered(void **state)
 {
@@ -196,8 +194,8 @@ static void test_reduced_prefiltered(void **state)
     printf("stripes (2.5 px period): full frame range [%.2f, %.2f] mean %.3f; reduced interior range [%.3f, %.3f] "
            "mean %.3f\n",
            fmin, fmax, fmean, rmin, rmax, rmean);
-    assert_true(fmax - fmin > 0.9);   /* the content has full contrast at full resolution */
-    assert_true(rmax - rmin < 0.05);  /* prefiltered: no beat pattern at r = 1/2 */
+    assert_true(fmax - fmin > 0.9);  /* the content has full contrast at full resolution */
+    assert_true(rmax - rmin < 0.05); /* prefiltered: no beat pattern at r = 1/2 */
     assert_true(fabs(rmean - fmean) < 0.03);
     tdc_render_close(r);
 }
@@ -214,8 +212,10 @@ static void test_subframe_positions(void **state)
         uint8_t bits[TDC_PATTERN_BYTES(W, H)];
         static int16_t hist[W * H * 2];
         memcpy(hist, tdc_render_mv_history(r), sizeof hist);
-        if ((f & 3) == 0) tdc_ordering_update(hist, W, H, (memcpy(bits, tdc_render_pattern_bits(r), sizeof bits), bits), f);
-        else memcpy(bits, tdc_render_pattern_bits(r), sizeof bits);
+        if ((f & 3) == 0)
+            tdc_ordering_update(hist, W, H, (memcpy(bits, tdc_render_pattern_bits(r), sizeof bits), bits), f);
+        else
+            memcpy(bits, tdc_render_pattern_bits(r), sizeof bits);
         tdc_render_stats_t st, stf;
         tdc_render_out_t out = {0};
         out.rgb = sub;

@@ -84,16 +84,15 @@ static double reproject_err(tdc_render_t *r, uint32_t f, int mode, int use_zero_
     return maxe;
 }
 
-static const char scene_pan[] =
-    "tdc-scene 1\n"
-    "fps 8\n"
-    "material wall diffuse 0.8 0.8 0.8 checker 0.3 0.1 0.1 0.1\n"
-    "material ball diffuse 0.9 0.3 0.1\n"
-    "camera 0 pos -0.5 1 5 yaw -5 pitch -3 fov 50\n"
-    "camera 1 pos 0.5 1.2 5 yaw 5 pitch 2 fov 50\n"
-    "object wall rect size 20 10 material wall pos 0 1 -2\n"
-    "object ball sphere radius 0.6 material ball pos 0.3 1 0\n"
-    "light l point pos 0 5 5 intensity 30 30 30\n";
+static const char scene_pan[] = "tdc-scene 1\n"
+                                "fps 8\n"
+                                "material wall diffuse 0.8 0.8 0.8 checker 0.3 0.1 0.1 0.1\n"
+                                "material ball diffuse 0.9 0.3 0.1\n"
+                                "camera 0 pos -0.5 1 5 yaw -5 pitch -3 fov 50\n"
+                                "camera 1 pos 0.5 1.2 5 yaw 5 pitch 2 fov 50\n"
+                                "object wall rect size 20 10 material wall pos 0 1 -2\n"
+                                "object ball sphere radius 0.6 material ball pos 0.3 1 0\n"
+                                "light l point pos 0 5 5 intensity 30 30 30\n";
 
 static void test_mv_camera_pan(void **state)
 {
@@ -110,21 +109,20 @@ static void test_mv_camera_pan(void **state)
     tdc_render_close(r);
 }
 
-static const char scene_object[] =
-    "tdc-scene 1\n"
-    "fps 8\n"
-    "material floor diffuse 0.7 0.7 0.7 checker 0.5 0.2 0.2 0.2\n"
-    "material ball diffuse 0.9 0.3 0.1 checker 0.2 0.1 0.1 0.9\n"
-    "material cube diffuse 0.1 0.3 0.9 stripes 0.1 0.9 0.9 0.9\n"
-    "camera 0 pos 0 2 6 look 0 0.5 0 fov 45\n"
-    "object floor rect size 20 20 material floor rot -90 0 0\n"
-    "object ball sphere radius 0.7 material ball pos -1.5 0.8 0\n"
-    "key ball 0 pos -1.5 0.8 0 rot 0 0 0\n"
-    "key ball 1 pos 1.5 1.2 0.5 rot 30 0 -180 scale 1.3\n"
-    "object cube box size 0.8 0.8 0.8 material cube pos 1 0.5 -1\n"
-    "key cube 0 rot 0 0 0\n"
-    "key cube 1 pos 0 0.7 -1 rot 20 90 10\n"
-    "light l point pos 2 6 4 intensity 50 50 50\n";
+static const char scene_object[] = "tdc-scene 1\n"
+                                   "fps 8\n"
+                                   "material floor diffuse 0.7 0.7 0.7 checker 0.5 0.2 0.2 0.2\n"
+                                   "material ball diffuse 0.9 0.3 0.1 checker 0.2 0.1 0.1 0.9\n"
+                                   "material cube diffuse 0.1 0.3 0.9 stripes 0.1 0.9 0.9 0.9\n"
+                                   "camera 0 pos 0 2 6 look 0 0.5 0 fov 45\n"
+                                   "object floor rect size 20 20 material floor rot -90 0 0\n"
+                                   "object ball sphere radius 0.7 material ball pos -1.5 0.8 0\n"
+                                   "key ball 0 pos -1.5 0.8 0 rot 0 0 0\n"
+                                   "key ball 1 pos 1.5 1.2 0.5 rot 30 0 -180 scale 1.3\n"
+                                   "object cube box size 0.8 0.8 0.8 material cube pos 1 0.5 -1\n"
+                                   "key cube 0 rot 0 0 0\n"
+                                   "key cube 1 pos 0 0.7 -1 rot 20 90 10\n"
+                                   "light l point pos 2 6 4 intensity 50 50 50\n";
 
 static void test_mv_object_motion(void **state)
 {
@@ -139,18 +137,17 @@ static void test_mv_object_motion(void **state)
     tdc_render_close(r);
 }
 
-static const char scene_mirror[] =
-    "tdc-scene 1\n"
-    "fps 8\n"
-    "background 0.3 0.4 0.6\n"
-    "material floor diffuse 0 0 0 mirror 1\n"
-    "material ball diffuse 0.9 0.3 0.1 checker 0.2 0.1 0.1 0.9\n"
-    "camera 0 pos 0 1.5 5 look 0 0 0 fov 50\n"
-    "camera 1 pos 0.3 1.6 5 look 0 0 0\n"
-    "object floor rect size 30 30 material floor rot -90 0 0\n"
-    "object ball sphere radius 0.8 material ball pos -2 1 -1\n"
-    "key ball 0 pos -2 1 -1 rot 0 0 0\n"
-    "key ball 1 pos 2 1.3 0 rot 0 40 -90\n";
+static const char scene_mirror[] = "tdc-scene 1\n"
+                                   "fps 8\n"
+                                   "background 0.3 0.4 0.6\n"
+                                   "material floor diffuse 0 0 0 mirror 1\n"
+                                   "material ball diffuse 0.9 0.3 0.1 checker 0.2 0.1 0.1 0.9\n"
+                                   "camera 0 pos 0 1.5 5 look 0 0 0 fov 50\n"
+                                   "camera 1 pos 0.3 1.6 5 look 0 0 0\n"
+                                   "object floor rect size 30 30 material floor rot -90 0 0\n"
+                                   "object ball sphere radius 0.8 material ball pos -2 1 -1\n"
+                                   "key ball 0 pos -2 1 -1 rot 0 0 0\n"
+                                   "key ball 1 pos 2 1.3 0 rot 0 40 -90\n";
 
 static void test_mv_mirror(void **state)
 {
@@ -292,16 +289,15 @@ static void test_shadow_mv_area_light(void **state)
     tdc_render_close(r);
 }
 
-static const char scene_disocc[] =
-    "tdc-scene 1\n"
-    "fps 8\n"
-    "material ground diffuse 0.8 0.8 0.8 checker 0.3 0.2 0.2 0.2\n"
-    "material box diffuse 0.2 0.3 0.9\n"
-    "camera 0 pos 0 0 5 look 0 0 0 fov 40\n"
-    "object wall rect size 20 20 material ground\n"
-    "object box box size 1 1 0.2 material box pos -0.5 0 1\n"
-    "key box 0 pos -0.5 0 1\n"
-    "key box 1 pos 0.5 0 1\n";
+static const char scene_disocc[] = "tdc-scene 1\n"
+                                   "fps 8\n"
+                                   "material ground diffuse 0.8 0.8 0.8 checker 0.3 0.2 0.2 0.2\n"
+                                   "material box diffuse 0.2 0.3 0.9\n"
+                                   "camera 0 pos 0 0 5 look 0 0 0 fov 40\n"
+                                   "object wall rect size 20 20 material ground\n"
+                                   "object box box size 1 1 0.2 material box pos -0.5 0 1\n"
+                                   "key box 0 pos -0.5 0 1\n"
+                                   "key box 1 pos 0.5 0 1\n";
 
 static void test_dual_mv_disocclusion(void **state)
 {
@@ -325,13 +321,12 @@ static void test_dual_mv_disocclusion(void **state)
     tdc_render_close(r);
 }
 
-static const char scene_static[] =
-    "tdc-scene 1\n"
-    "fps 8\n"
-    "material m diffuse 0.5 0.5 0.5 checker 0.2 0.1 0.1 0.1\n"
-    "camera 0 pos 0 0 5 look 0 0 0\n"
-    "object wall rect size 20 20 material m\n"
-    "light l point pos 0 0 4 intensity 10 10 10\n";
+static const char scene_static[] = "tdc-scene 1\n"
+                                   "fps 8\n"
+                                   "material m diffuse 0.5 0.5 0.5 checker 0.2 0.1 0.1 0.1\n"
+                                   "camera 0 pos 0 0 5 look 0 0 0\n"
+                                   "object wall rect size 20 20 material m\n"
+                                   "light l point pos 0 0 4 intensity 10 10 10\n";
 
 static void test_static_scene_skips_mv(void **state)
 {

@@ -166,7 +166,8 @@ static void test_file_errors(void **state)
     assert_int_equal(tdc_scene_load(path, &sc, err, sizeof err), TDC_SCENE_ERR_SYNTAX);
     assert_non_null(strstr(err, "NUL"));
     /* OBJ problems surface when the renderer builds the mesh */
-    const char *scene = "tdc-scene 1\nmaterial m\ncamera 0 pos 0 0 5\nobject a mesh file /tmp/tdc_missing.obj material m\n";
+    const char *scene =
+        "tdc-scene 1\nmaterial m\ncamera 0 pos 0 0 5\nobject a mesh file /tmp/tdc_missing.obj material m\n";
     assert_int_equal(tdc_scene_parse(scene, "s", NULL, &sc, err, sizeof err), TDC_SCENE_OK);
     tdc_render_config_t cfg;
     tdc_render_default_config(&cfg);
@@ -176,7 +177,8 @@ static void test_file_errors(void **state)
     assert_non_null(strstr(err, "cannot open mesh"));
     write_file(path, "v 0 0 0\nv 1 0 0\nf 1 2 7\n", 24);
     char text[256];
-    snprintf(text, sizeof text, "tdc-scene 1\nmaterial m\ncamera 0 pos 0 0 5\nobject a mesh file %s material m\n", path);
+    snprintf(text, sizeof text, "tdc-scene 1\nmaterial m\ncamera 0 pos 0 0 5\nobject a mesh file %s material m\n",
+             path);
     assert_int_equal(tdc_scene_parse(text, "s", NULL, &sc, err, sizeof err), TDC_SCENE_OK);
     assert_null(tdc_render_open(&sc, &cfg, err, sizeof err));
     assert_non_null(strstr(err, ":3: face index 7 out of range"));
@@ -208,7 +210,7 @@ static void test_keyframes(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_example_file), cmocka_unit_test(test_builtins), cmocka_unit_test(test_parser_errors),
+        cmocka_unit_test(test_example_file), cmocka_unit_test(test_builtins),  cmocka_unit_test(test_parser_errors),
         cmocka_unit_test(test_file_errors),  cmocka_unit_test(test_keyframes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -227,9 +227,12 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_code_slices_equal_light),
-        cmocka_unit_test(test_eye_steady),   cmocka_unit_test(test_eye_talbot_plateau),
-        cmocka_unit_test(test_eye_pursuit),  cmocka_unit_test(test_panel_oled),
-        cmocka_unit_test(test_panel_lcd),    cmocka_unit_test(test_scene_motion),
+        cmocka_unit_test(test_eye_steady),
+        cmocka_unit_test(test_eye_talbot_plateau),
+        cmocka_unit_test(test_eye_pursuit),
+        cmocka_unit_test(test_panel_oled),
+        cmocka_unit_test(test_panel_lcd),
+        cmocka_unit_test(test_scene_motion),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

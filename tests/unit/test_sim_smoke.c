@@ -102,8 +102,8 @@ static void test_static_trm_equals_full(void **state)
 static void test_asm_family(void **state)
 {
     (void)state;
-    static const char *const m[] = {"full", "full60", "taa60", "asm-hourglass", "asm-bowtie", "asm-adaptive",
-                                    "asm-adaptive-smv"};
+    static const char *const m[] = {"full",       "full60",       "taa60",           "asm-hourglass",
+                                    "asm-bowtie", "asm-adaptive", "asm-adaptive-smv"};
     tdc_sim_result_t r[7];
     assert_int_equal(run(TDC_SCENE_FENCE, 240, 16, m, 7, r, TDC_PANEL_SIM_OLED, -1.0), 0);
     check_sane(r, 7);
@@ -289,14 +289,10 @@ static void test_stereo(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_trm_family_pan),
-        cmocka_unit_test(test_static_trm_equals_full),
-        cmocka_unit_test(test_asm_family),
-        cmocka_unit_test(test_extremes),
-        cmocka_unit_test(test_stage_error_ends_run),
-        cmocka_unit_test(test_refused_rate),
-        cmocka_unit_test(test_threads_same_digits),
-        cmocka_unit_test(test_stereo),
+        cmocka_unit_test(test_trm_family_pan),       cmocka_unit_test(test_static_trm_equals_full),
+        cmocka_unit_test(test_asm_family),           cmocka_unit_test(test_extremes),
+        cmocka_unit_test(test_stage_error_ends_run), cmocka_unit_test(test_refused_rate),
+        cmocka_unit_test(test_threads_same_digits),  cmocka_unit_test(test_stereo),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -16,7 +16,10 @@
 
 /* Every code, as the enum spells it (kept by hand: the test is that the
  * functions agree with this list). */
-#define S(x) {x, #x}
+#define S(x)  \
+    {         \
+        x, #x \
+    }
 static const struct {
     tdc_status_t st;
     const char *name;

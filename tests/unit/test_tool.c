@@ -23,8 +23,7 @@ static void test_exit_names(void **state)
     (void)state;
     for (int i = 0; i < TDC_EXIT_COUNT; i++) {
         assert_string_not_equal(tdc_exit_name(i), "?");
-        for (int j = 0; j < i; j++)
-            assert_string_not_equal(tdc_exit_name(i), tdc_exit_name(j));
+        for (int j = 0; j < i; j++) assert_string_not_equal(tdc_exit_name(i), tdc_exit_name(j));
     }
     assert_string_equal(tdc_exit_name(TDC_EXIT_OK), "OK");
     assert_string_equal(tdc_exit_name(TDC_EXIT_ARGS), "ARGS");
@@ -50,8 +49,7 @@ static void test_u64(void **state)
     assert_int_equal(v, 0x1209);
     assert_int_equal(tdc_parse_u64("0x10000", 0, 0xFFFF, &v), -1);
     const char *bad[] = {"", "-1", "+1", " 1", "1 ", "1x", "0x", "x1", "1.5", "nan", NULL};
-    for (int i = 0; bad[i]; i++)
-        assert_int_equal(tdc_parse_u64(bad[i], 0, UINT64_MAX, &v), -1);
+    for (int i = 0; bad[i]; i++) assert_int_equal(tdc_parse_u64(bad[i], 0, UINT64_MAX, &v), -1);
     assert_int_equal(tdc_parse_u64(NULL, 0, 1, &v), -1);
     assert_int_equal(tdc_parse_u64("5", 6, 9, &v), -1); /* below lo */
     assert_int_equal(tdc_parse_u64("9", 0, 5, &v), -1); /* a single digit above hi */
@@ -86,8 +84,7 @@ static void test_double(void **state)
     assert_int_equal(tdc_parse_double("2.5", 0, 10, &d), 0);
     assert_true(d == 2.5);
     const char *bad[] = {"nan", "NaN", "inf", "-inf", "1e999", "", " 1", "1 ", "1,5", "11", NULL};
-    for (int i = 0; bad[i]; i++)
-        assert_int_equal(tdc_parse_double(bad[i], 0, 10, &d), -1);
+    for (int i = 0; bad[i]; i++) assert_int_equal(tdc_parse_double(bad[i], 0, 10, &d), -1);
     const char *end;
     assert_int_equal(tdc_parse_double_field("0.25,7", &end, &d), 0);
     assert_true(d == 0.25);
@@ -106,8 +103,7 @@ static void test_size(void **state)
     assert_int_equal(tdc_parse_size("4294967312x16", 8192, &w, &h), -1);
     assert_int_equal(tdc_parse_size("4294967328x24", 8192, &w, &h), -1);
     const char *bad[] = {"0x16", "16x0", "16", "16x", "x16", "16x16x", "-1x4", "16 x16", "8193x1", NULL};
-    for (int i = 0; bad[i]; i++)
-        assert_int_equal(tdc_parse_size(bad[i], 8192, &w, &h), -1);
+    for (int i = 0; bad[i]; i++) assert_int_equal(tdc_parse_size(bad[i], 8192, &w, &h), -1);
 }
 
 static void test_field(void **state)
@@ -187,17 +183,20 @@ static void test_safe_name(void **state)
     assert_true(tdc_safe_name("room"));
     assert_true(tdc_safe_name("a.b-c_1"));
     const char *bad[] = {"", ".", "..", "../escaped", "a/b", "/abs", "sp ace", "a\\b", NULL};
-    for (int i = 0; bad[i]; i++)
-        assert_false(tdc_safe_name(bad[i]));
+    for (int i = 0; bad[i]; i++) assert_false(tdc_safe_name(bad[i]));
 }
 
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_exit_names),     cmocka_unit_test(test_u64),
-        cmocka_unit_test(test_u32_and_int_do_not_wrap), cmocka_unit_test(test_double),
-        cmocka_unit_test(test_size),           cmocka_unit_test(test_field),
-        cmocka_unit_test(test_read_line),      cmocka_unit_test(test_out_keeps_old_until_commit),
+        cmocka_unit_test(test_exit_names),
+        cmocka_unit_test(test_u64),
+        cmocka_unit_test(test_u32_and_int_do_not_wrap),
+        cmocka_unit_test(test_double),
+        cmocka_unit_test(test_size),
+        cmocka_unit_test(test_field),
+        cmocka_unit_test(test_read_line),
+        cmocka_unit_test(test_out_keeps_old_until_commit),
         cmocka_unit_test(test_safe_name),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -236,10 +236,14 @@ static void test_weight_accuracy(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_config_errors),       cmocka_unit_test(test_refuses_low_refresh),
-        cmocka_unit_test(test_call_order_keeps_last_frame), cmocka_unit_test(test_arena_bound),
-        cmocka_unit_test(test_passthrough_elision), cmocka_unit_test(test_static_pair_skips_weight),
-        cmocka_unit_test(test_stereo_alternation),  cmocka_unit_test(test_weight_accuracy),
+        cmocka_unit_test(test_config_errors),
+        cmocka_unit_test(test_refuses_low_refresh),
+        cmocka_unit_test(test_call_order_keeps_last_frame),
+        cmocka_unit_test(test_arena_bound),
+        cmocka_unit_test(test_passthrough_elision),
+        cmocka_unit_test(test_static_pair_skips_weight),
+        cmocka_unit_test(test_stereo_alternation),
+        cmocka_unit_test(test_weight_accuracy),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -77,10 +77,8 @@ static void test_recompute_equals_stored(void **state)
                         } else {
                             assert_int_equal(tdc_trm_downsample(a, in, (uint32_t)w * 3, red, (uint32_t)a->rw * 3),
                                              TDC_OK);
-                            assert_int_equal(tdc_trm_reduced(a, red, (uint32_t)a->rw * 3, oa, (uint32_t)w * 3),
-                                             TDC_OK);
-                            assert_int_equal(tdc_trm_reduced(b, red, (uint32_t)b->rw * 3, ob, (uint32_t)w * 3),
-                                             TDC_OK);
+                            assert_int_equal(tdc_trm_reduced(a, red, (uint32_t)a->rw * 3, oa, (uint32_t)w * 3), TDC_OK);
+                            assert_int_equal(tdc_trm_reduced(b, red, (uint32_t)b->rw * 3, ob, (uint32_t)w * 3), TDC_OK);
                         }
                         assert_memory_equal(oa, ob, n);
                         for (uint32_t y = 0; y < (uint32_t)h; y++) {
@@ -182,8 +180,8 @@ static void loss_deliver(loss_t *L, tdc_content_t content, uint32_t seq, uint32_
             L->ref_have = 0;
             L->unpaired++;
             /* and exactly what a stage without any state shows */
-            assert_int_equal(
-                tdc_trm_reduced_seq(L->fresh, L->red, (uint32_t)L->fw->rw * 3, L->out_fresh, st, seq), TDC_OK);
+            assert_int_equal(tdc_trm_reduced_seq(L->fresh, L->red, (uint32_t)L->fw->rw * 3, L->out_fresh, st, seq),
+                             TDC_OK);
             assert_memory_equal(L->out_fw, L->out_fresh, (size_t)L->w * L->h * 3);
         }
         if (L->ref.have_full == 0) {

@@ -40,8 +40,8 @@ static void report(const char *stage, const char *content, const char *ratio, co
 {
     double share = e->n ? 100.0 * (double)e->within1 / (double)e->n : 100.0;
     int ok = share >= 99.9 && e->max_err <= 2.0;
-    printf("  %-8s %-10s r=%-4s max %6.3f LSB  within 1 LSB %8.4f %%  %s\n", stage, content, ratio, e->max_err,
-           share, ok ? "ok" : "FAIL");
+    printf("  %-8s %-10s r=%-4s max %6.3f LSB  within 1 LSB %8.4f %%  %s\n", stage, content, ratio, e->max_err, share,
+           ok ? "ok" : "FAIL");
     g_fail |= !ok;
 }
 
@@ -106,8 +106,8 @@ static void run_case(tdc_content_t content, int w, int h, int rn, int rd, const 
 static void test_fixed_vs_float(void **state)
 {
     (void)state;
-    static const tdc_content_t contents[] = {TDC_CONTENT_EDGE,  TDC_CONTENT_TEXT,      TDC_CONTENT_NOISE,
-                                             TDC_CONTENT_BLACK, TDC_CONTENT_WHITE,     TDC_CONTENT_PRIMARIES,
+    static const tdc_content_t contents[] = {TDC_CONTENT_EDGE,    TDC_CONTENT_TEXT,    TDC_CONTENT_NOISE,
+                                             TDC_CONTENT_BLACK,   TDC_CONTENT_WHITE,   TDC_CONTENT_PRIMARIES,
                                              TDC_CONTENT_CHECKER, TDC_CONTENT_GRADIENT};
     printf("fixed-point TRM vs double reference (htc-vive, 97x67, s=10, sigma=2.5):\n");
     for (size_t i = 0; i < sizeof contents / sizeof contents[0]; i++) {

@@ -133,7 +133,7 @@ static void check_eq3(tdc_content_t content, uint16_t rn, uint16_t rd, int *wors
 static void test_static_pair_eq3(void **state)
 {
     (void)state;
-    static const tdc_content_t cs[] = {TDC_CONTENT_TEXT, TDC_CONTENT_GRADIENT, TDC_CONTENT_NOISE,
+    static const tdc_content_t cs[] = {TDC_CONTENT_TEXT, TDC_CONTENT_GRADIENT,  TDC_CONTENT_NOISE,
                                        TDC_CONTENT_EDGE, TDC_CONTENT_PRIMARIES, TDC_CONTENT_CHECKER};
     static const uint16_t rs[][2] = {{1, 2}, {2, 5}, {1, 4}};
     for (size_t i = 0; i < sizeof cs / sizeof cs[0]; i++) {
@@ -183,7 +183,8 @@ static void test_s_limits(void **state)
         differ_total += differ;
     }
     printf("s limits: huge s differs from alpha-only at %zu pixel-channels (all static), "
-           "s = 0 vs huge s differ at %zu\n", differ_total, s_effect);
+           "s = 0 vs huge s differ at %zu\n",
+           differ_total, s_effect);
     assert_true(s_effect > 0); /* s matters on moving content: the test can fail */
     trm_fix_close(&zero_s);
     trm_fix_close(&huge_s);
@@ -270,8 +271,8 @@ static void test_long_moving_edge(void **state)
         }
     }
     hi = f.trm.stats.clamped_high + f.trm.stats.clamped_low;
-    printf("moving edge 1e5 frames: %llu clamped pixel-channels, weights computed %llu\n",
-           (unsigned long long)hi, (unsigned long long)f.trm.stats.weight_computed);
+    printf("moving edge 1e5 frames: %llu clamped pixel-channels, weights computed %llu\n", (unsigned long long)hi,
+           (unsigned long long)f.trm.stats.weight_computed);
     assert_true(hi > 0); /* the edge does overshoot: the test exercises clamping */
     trm_fix_close(&f);
 }

@@ -80,7 +80,7 @@ static void test_header_pack_unpack(void **state)
     uint8_t b[TDC_LINK_HEADER_BYTES];
     memset(b, 0x55, sizeof b);
     tdc_link_header_pack(b, &h);
-    const uint8_t want[28] = {'T', 'D', 'C', 'L', 1, 2, 1, 4, 0xEF, 0xBE, 0x01, 0x00, 0x04, 0x03,
+    const uint8_t want[28] = {'T',  'D',  'C',  'L',  1,    2,    1,    4,    0xEF, 0xBE, 0x01, 0x00, 0x04, 0x03,
                               0x02, 0x01, 0xA0, 0x05, 0x40, 0x06, 0xEF, 0xCD, 0xAB, 0x00, 0x0D, 0xF0, 0xFE, 0xCA};
     assert_memory_equal(b, want, sizeof want);
     assert_int_equal(tdc_get_le32(b + TDC_LINK_OFF_HEADER_CRC), tdc_crc32(b, 28));
@@ -173,9 +173,9 @@ static void test_payload_sizes(void **state)
             assert_int_equal(tdc_link_payload_bytes(TDC_LINK_KIND_FULL, TDC_PIXFMT_RGB888, w, h, 0), w * h * 3u);
             assert_int_equal(tdc_link_payload_bytes(TDC_LINK_KIND_FULL, TDC_PIXFMT_NONE, w, h, 0), 0);
             assert_int_equal(tdc_link_payload_bytes(TDC_LINK_KIND_MOTION, TDC_PIXFMT_NONE, w, h, 0), w * h * 4u);
-            assert_int_equal(tdc_link_payload_bytes(TDC_LINK_KIND_MOTION, TDC_PIXFMT_NONE, w, h,
-                                                    TDC_LINK_PKT_MV_PER_SAMPLE),
-                             tx * ty * 4u);
+            assert_int_equal(
+                tdc_link_payload_bytes(TDC_LINK_KIND_MOTION, TDC_PIXFMT_NONE, w, h, TDC_LINK_PKT_MV_PER_SAMPLE),
+                tx * ty * 4u);
             assert_int_equal(tdc_link_payload_bytes(TDC_LINK_KIND_PATTERN, TDC_PIXFMT_NONE, w, h, 0),
                              (tx * ty + 7u) / 8u);
             /* The buffer-size macros agree with the payload of their kind. */
@@ -185,9 +185,9 @@ static void test_payload_sizes(void **state)
                              tdc_link_payload_bytes(TDC_LINK_KIND_SUBFRAME, TDC_PIXFMT_RGB888, w, h, 0));
             assert_int_equal(TDC_LINK_MOTION_COUNT(w, h) * 2u,
                              tdc_link_payload_bytes(TDC_LINK_KIND_MOTION, TDC_PIXFMT_NONE, w, h, 0));
-            assert_int_equal(TDC_LINK_SAMPLE_MOTION_COUNT(w, h) * 2u,
-                             tdc_link_payload_bytes(TDC_LINK_KIND_MOTION, TDC_PIXFMT_NONE, w, h,
-                                                    TDC_LINK_PKT_MV_PER_SAMPLE));
+            assert_int_equal(
+                TDC_LINK_SAMPLE_MOTION_COUNT(w, h) * 2u,
+                tdc_link_payload_bytes(TDC_LINK_KIND_MOTION, TDC_PIXFMT_NONE, w, h, TDC_LINK_PKT_MV_PER_SAMPLE));
             assert_int_equal(TDC_PATTERN_BYTES(w, h),
                              tdc_link_payload_bytes(TDC_LINK_KIND_PATTERN, TDC_PIXFMT_NONE, w, h, 0));
             assert_int_equal(tdc_link_packet_bytes(TDC_LINK_KIND_PATTERN, TDC_PIXFMT_NONE, w, h, 0),
@@ -205,10 +205,8 @@ static void test_payload_sizes(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_le_fields),
-        cmocka_unit_test(test_header_pack_unpack),
-        cmocka_unit_test(test_stream_pack_unpack),
-        cmocka_unit_test(test_kind_table),
+        cmocka_unit_test(test_le_fields),          cmocka_unit_test(test_header_pack_unpack),
+        cmocka_unit_test(test_stream_pack_unpack), cmocka_unit_test(test_kind_table),
         cmocka_unit_test(test_payload_sizes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

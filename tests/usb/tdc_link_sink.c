@@ -7,8 +7,7 @@
 
 int tdc_link_sink_init(tdc_link_sink_t *s, uint16_t w, uint16_t h)
 {
-    if (w == 0 || h == 0 || w > TDC_LINK_SINK_MAX_W || h > TDC_LINK_SINK_MAX_H)
-        return -1;
+    if (w == 0 || h == 0 || w > TDC_LINK_SINK_MAX_W || h > TDC_LINK_SINK_MAX_H) return -1;
     tdc_link_buffers_t b;
     memset(&b, 0, sizeof b);
     b.staging = s->staging;
@@ -32,8 +31,7 @@ void tdc_link_sink_feed(void *ctx, const uint8_t *data, uint32_t len, tdc_usbp_s
     for (;;) {
         tdc_link_event_t ev;
         off += tdc_link_feed(&s->dec, data + off, len - off, &ev);
-        if (ev.type == TDC_LINK_EV_NONE)
-            break; /* every byte of this transfer consumed, no event pending */
+        if (ev.type == TDC_LINK_EV_NONE) break; /* every byte of this transfer consumed, no event pending */
         if (ev.type == TDC_LINK_EV_ERROR) {
             if (ev.error == TDC_LINK_ERR_CRC || ev.error == TDC_LINK_ERR_HEADER_CRC)
                 d->crc_errors++;

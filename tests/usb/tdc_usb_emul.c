@@ -65,12 +65,10 @@ int emul_board_attach_link_decoder(emul_board_t *b, uint16_t w, uint16_t h)
 static int emul_flash_write(void *ctx, uint32_t offset, const uint8_t *data, uint32_t len)
 {
     emul_board_t *b = ctx;
-    if ((uint64_t)offset + len > 2u * (uint64_t)b->slot_bytes)
-        return -1;
+    if ((uint64_t)offset + len > 2u * (uint64_t)b->slot_bytes) return -1;
     memcpy(b->slot + offset, data, len);
     const uint32_t in_slot = offset % b->slot_bytes, base = offset - in_slot;
-    if (b->fault == EMUL_FAULT_CORRUPT_FLASH && b->fault_after >= in_slot &&
-        b->fault_after < in_slot + len)
+    if (b->fault == EMUL_FAULT_CORRUPT_FLASH && b->fault_after >= in_slot && b->fault_after < in_slot + len)
         b->slot[base + b->fault_after] ^= 0x10u;
     return 0;
 }
@@ -78,8 +76,7 @@ static int emul_flash_write(void *ctx, uint32_t offset, const uint8_t *data, uin
 static int emul_flash_read(void *ctx, uint32_t offset, uint8_t *data, uint32_t len)
 {
     emul_board_t *b = ctx;
-    if ((uint64_t)offset + len > 2u * (uint64_t)b->slot_bytes)
-        return -1;
+    if ((uint64_t)offset + len > 2u * (uint64_t)b->slot_bytes) return -1;
     memcpy(data, b->slot + offset, len);
     return 0;
 }
@@ -99,12 +96,11 @@ static void board_reboot(emul_board_t *b)
 static void urb_finish(emul_board_t *b, UMockdevIoctlData *urb_data, int status, int actual)
 {
     /* through _update() so umockdev knows the copy is dirty and flushes it */
-    umockdev_ioctl_data_update(urb_data, G_STRUCT_OFFSET(struct usbdevfs_urb, status),
-                               (guint8 *)&status, sizeof status);
-    umockdev_ioctl_data_update(urb_data, G_STRUCT_OFFSET(struct usbdevfs_urb, actual_length),
-                               (guint8 *)&actual, sizeof actual);
-    if (b->n_done < EMUL_MAX_URBS)
-        b->done[b->n_done++] = g_object_ref(urb_data);
+    umockdev_ioctl_data_update(urb_data, G_STRUCT_OFFSET(struct usbdevfs_urb, status), (guint8 *)&status,
+                               sizeof status);
+    umockdev_ioctl_data_update(urb_data, G_STRUCT_OFFSET(struct usbdevfs_urb, actual_length), (guint8 *)&actual,
+                               sizeof actual);
+    if (b->n_done < EMUL_MAX_URBS) b->done[b->n_done++] = g_object_ref(urb_data);
 }
 
 /* Runs one submitted urb through the firmware.  Returns 0 if answered,
@@ -124,17 +120,14 @@ static int urb_run(emul_board_t *b, UMockdevIoctlData *urb_data, UMockdevIoctlDa
             return 0;
         }
         tdc_usbp_parse_setup(data, &setup);
-        int is_info = (setup.bm_request_type & 0x60u) == 0x40u &&
-                      setup.b_request == TDC_USB_REQ_BOARD_INFO;
-        if (is_info && b->fault == EMUL_FAULT_HANG_INFO)
-            return 1;
+        int is_info = (setup.bm_request_type & 0x60u) == 0x40u && setup.b_request == TDC_USB_REQ_BOARD_INFO;
+        if (is_info && b->fault == EMUL_FAULT_HANG_INFO) return 1;
         if ((setup.bm_request_type & 0xE0u) == 0x80u && setup.b_request == 0x00u) {
             /* standard GET_STATUS (lsusb -v asks): the device's USB stack
              * answers it, not the protocol code: bus powered, no remote wake */
             uint8_t zero[2] = {0, 0};
             int n = setup.w_length < 2 ? setup.w_length : 2;
-            if (n > len - 8)
-                n = len - 8;
+            if (n > len - 8) n = len - 8;
             umockdev_ioctl_data_update(buf, 8, zero, n);
             urb_finish(b, urb_data, 0, n);
             return 0;
@@ -148,15 +141,13 @@ static int urb_run(emul_board_t *b, UMockdevIoctlData *urb_data, UMockdevIoctlDa
             urb_finish(b, urb_data, -EPIPE, 0);
             return 0;
         }
-        tdc_status_t r = tdc_usbp_control(&b->proto, &setup, data + 8, reply,
-                                               (uint32_t)sizeof reply, &reply_len);
+        tdc_status_t r = tdc_usbp_control(&b->proto, &setup, data + 8, reply, (uint32_t)sizeof reply, &reply_len);
         if (r != TDC_OK) {
             urb_finish(b, urb_data, -EPIPE, 0);
             return 0;
         }
         if (setup.bm_request_type & 0x80u) {
-            if ((int)reply_len > len - 8)
-                reply_len = (uint32_t)(len - 8);
+            if ((int)reply_len > len - 8) reply_len = (uint32_t)(len - 8);
             umockdev_ioctl_data_update(buf, 8, reply, (int)reply_len);
             urb_finish(b, urb_data, 0, (int)reply_len);
         } else {
@@ -170,24 +161,21 @@ static int urb_run(emul_board_t *b, UMockdevIoctlData *urb_data, UMockdevIoctlDa
     }
     if (urb->type == USBDEVFS_URB_TYPE_BULK && urb->endpoint == TDC_USB_EP_LINK_OUT) {
         b->bulk_out_count++;
-        if (b->fault == EMUL_FAULT_HANG_BULK && b->bulk_out_count >= b->fault_after)
-            return 1;
+        if (b->fault == EMUL_FAULT_HANG_BULK && b->bulk_out_count >= b->fault_after) return 1;
         if (b->fault == EMUL_FAULT_STALL_BULK && b->bulk_out_count >= b->fault_after) {
             urb_finish(b, urb_data, -EPIPE, 0);
             return 0;
         }
         tdc_usbp_bulk_out(&b->proto, data, (uint32_t)len);
         urb_finish(b, urb_data, 0, len);
-        if (b->fault == EMUL_FAULT_UNPLUG && b->bulk_out_count >= b->fault_after)
-            b->gone = 1;
+        if (b->fault == EMUL_FAULT_UNPLUG && b->bulk_out_count >= b->fault_after) b->gone = 1;
         return 0;
     }
     if (urb->type == USBDEVFS_URB_TYPE_BULK && urb->endpoint == TDC_USB_EP_STATUS_IN) {
         uint8_t rep[TDC_USB_STATUS_LEN];
         tdc_usbp_status_report(&b->proto, rep);
         int n = len < (int)sizeof rep ? len : (int)sizeof rep;
-        if (n > 0)
-            umockdev_ioctl_data_update(buf, 0, rep, n);
+        if (n > 0) umockdev_ioctl_data_update(buf, 0, rep, n);
         urb_finish(b, urb_data, 0, n);
         return 0;
     }
@@ -197,16 +185,14 @@ static int urb_run(emul_board_t *b, UMockdevIoctlData *urb_data, UMockdevIoctlDa
 
 static UMockdevIoctlData *pop_first(UMockdevIoctlData **list, int *n)
 {
-    if (*n == 0)
-        return NULL;
+    if (*n == 0) return NULL;
     UMockdevIoctlData *d = list[0];
     memmove(list, list + 1, (size_t)(*n - 1) * sizeof list[0]);
     (*n)--;
     return d;
 }
 
-static gboolean emul_handle_ioctl(UMockdevIoctlBase *handler, UMockdevIoctlClient *client,
-                                  gpointer user_data)
+static gboolean emul_handle_ioctl(UMockdevIoctlBase *handler, UMockdevIoctlClient *client, gpointer user_data)
 {
     emul_board_t *b = user_data;
     UMockdevIoctlData *arg = umockdev_ioctl_client_get_arg(client);
@@ -214,8 +200,8 @@ static gboolean emul_handle_ioctl(UMockdevIoctlBase *handler, UMockdevIoctlClien
     (void)handler;
 
     pthread_mutex_lock(&b->lock);
-    if (b->gone && request != USBDEVFS_REAPURBNDELAY && request != USBDEVFS_REAPURB &&
-        request != USBDEVFS_DISCARDURB && request != USBDEVFS_RELEASEINTERFACE) {
+    if (b->gone && request != USBDEVFS_REAPURBNDELAY && request != USBDEVFS_REAPURB && request != USBDEVFS_DISCARDURB &&
+        request != USBDEVFS_RELEASEINTERFACE) {
         pthread_mutex_unlock(&b->lock);
         umockdev_ioctl_client_complete(client, -1, ENODEV);
         return TRUE;
@@ -223,28 +209,26 @@ static gboolean emul_handle_ioctl(UMockdevIoctlBase *handler, UMockdevIoctlClien
     switch (request) {
     case USBDEVFS_GET_CAPABILITIES: {
         UMockdevIoctlData *d = umockdev_ioctl_data_resolve(arg, 0, sizeof(uint32_t), NULL);
-        uint32_t caps = USBDEVFS_CAP_BULK_CONTINUATION | USBDEVFS_CAP_NO_PACKET_SIZE_LIM |
-                        USBDEVFS_CAP_ZERO_PACKET | USBDEVFS_CAP_REAP_AFTER_DISCONNECT;
-        if (d != NULL)
-            umockdev_ioctl_data_update(d, 0, (guint8 *)&caps, sizeof caps);
+        uint32_t caps = USBDEVFS_CAP_BULK_CONTINUATION | USBDEVFS_CAP_NO_PACKET_SIZE_LIM | USBDEVFS_CAP_ZERO_PACKET |
+                        USBDEVFS_CAP_REAP_AFTER_DISCONNECT;
+        if (d != NULL) umockdev_ioctl_data_update(d, 0, (guint8 *)&caps, sizeof caps);
         umockdev_ioctl_client_complete(client, 0, 0);
         break;
     }
-    case USBDEVFS_GETDRIVER: /* no kernel driver bound */
-        umockdev_ioctl_client_complete(client, -1, ENODATA);
-        break;
+    case USBDEVFS_GETDRIVER: /* no kernel driver bound */ umockdev_ioctl_client_complete(client, -1, ENODATA); break;
     case USBDEVFS_RESET: /* libusb_reset_device(): a USB bus reset (dfu-util -R) */
         board_reboot(b);
         umockdev_ioctl_client_complete(client, 0, 0);
         break;
-    case USBDEVFS_CLAIMINTERFACE: case USBDEVFS_RELEASEINTERFACE: case USBDEVFS_SETINTERFACE:
-    case USBDEVFS_CLEAR_HALT: case USBDEVFS_RESETEP:
-    case USBDEVFS_SETCONFIGURATION: case USBDEVFS_DISCONNECT_CLAIM:
-        umockdev_ioctl_client_complete(client, 0, 0);
-        break;
+    case USBDEVFS_CLAIMINTERFACE:
+    case USBDEVFS_RELEASEINTERFACE:
+    case USBDEVFS_SETINTERFACE:
+    case USBDEVFS_CLEAR_HALT:
+    case USBDEVFS_RESETEP:
+    case USBDEVFS_SETCONFIGURATION:
+    case USBDEVFS_DISCONNECT_CLAIM: umockdev_ioctl_client_complete(client, 0, 0); break;
     case USBDEVFS_SUBMITURB: {
-        UMockdevIoctlData *urb_data =
-            umockdev_ioctl_data_resolve(arg, 0, sizeof(struct usbdevfs_urb), NULL);
+        UMockdevIoctlData *urb_data = umockdev_ioctl_data_resolve(arg, 0, sizeof(struct usbdevfs_urb), NULL);
         if (urb_data == NULL) {
             umockdev_ioctl_client_complete(client, -1, EFAULT);
             break;
@@ -277,21 +261,18 @@ static gboolean emul_handle_ioctl(UMockdevIoctlBase *handler, UMockdevIoctlClien
         gulong addr = (gulong) * (void **)arg->data;
         int found = -1;
         for (int i = 0; i < b->n_flying; i++)
-            if (b->flying[i]->client_addr == addr)
-                found = i;
+            if (b->flying[i]->client_addr == addr) found = i;
         if (found < 0) {
             umockdev_ioctl_client_complete(client, -1, EINVAL);
             break;
         }
         UMockdevIoctlData *urb_data = b->flying[found];
-        memmove(b->flying + found, b->flying + found + 1,
-                (size_t)(b->n_flying - found - 1) * sizeof b->flying[0]);
+        memmove(b->flying + found, b->flying + found + 1, (size_t)(b->n_flying - found - 1) * sizeof b->flying[0]);
         b->n_flying--;
         int st = -ENOENT, zero = 0;
-        umockdev_ioctl_data_update(urb_data, G_STRUCT_OFFSET(struct usbdevfs_urb, status),
-                                   (guint8 *)&st, sizeof st);
-        umockdev_ioctl_data_update(urb_data, G_STRUCT_OFFSET(struct usbdevfs_urb, actual_length),
-                                   (guint8 *)&zero, sizeof zero);
+        umockdev_ioctl_data_update(urb_data, G_STRUCT_OFFSET(struct usbdevfs_urb, status), (guint8 *)&st, sizeof st);
+        umockdev_ioctl_data_update(urb_data, G_STRUCT_OFFSET(struct usbdevfs_urb, actual_length), (guint8 *)&zero,
+                                   sizeof zero);
         if (b->n_done < EMUL_MAX_URBS)
             b->done[b->n_done++] = urb_data; /* reference moves */
         else
@@ -300,8 +281,7 @@ static gboolean emul_handle_ioctl(UMockdevIoctlBase *handler, UMockdevIoctlClien
         break;
     }
     default:
-        if (getenv("TDC_EMUL_DEBUG") != NULL)
-            fprintf(stderr, "emul: unhandled ioctl 0x%lx\n", (unsigned long)request);
+        if (getenv("TDC_EMUL_DEBUG") != NULL) fprintf(stderr, "emul: unhandled ioctl 0x%lx\n", (unsigned long)request);
         umockdev_ioctl_client_complete(client, -1, ENOTTY);
         break;
     }
@@ -314,16 +294,13 @@ static void hex_append(char *dst, size_t cap, const uint8_t *p, uint32_t n)
     size_t len = strlen(dst);
     /* two digits and the NUL must fit: len + 2 < cap (it was len + 3, which
      * dropped the last byte of a buffer sized 2n + 1: issue 19) */
-    for (uint32_t i = 0; i < n && len + 2 < cap; i++, len += 2)
-        snprintf(dst + len, cap - len, "%02x", p[i]);
+    for (uint32_t i = 0; i < n && len + 2 < cap; i++, len += 2) snprintf(dst + len, cap - len, "%02x", p[i]);
 }
 
-emul_board_t *emul_board_add(UMockdevTestbed *tb, int bus, int dev, const char *serial,
-                             uint32_t slot_bytes)
+emul_board_t *emul_board_add(UMockdevTestbed *tb, int bus, int dev, const char *serial, uint32_t slot_bytes)
 {
     emul_board_t *b = calloc(1, sizeof *b);
-    if (b == NULL)
-        return NULL;
+    if (b == NULL) return NULL;
     b->tb = tb;
     b->slot = calloc(2, slot_bytes); /* A/B */
     b->slot_bytes = slot_bytes;
@@ -331,11 +308,16 @@ emul_board_t *emul_board_add(UMockdevTestbed *tb, int bus, int dev, const char *
     snprintf(b->devnode, sizeof b->devnode, "/dev/bus/usb/%03d/%03d", bus, dev);
     snprintf(b->serial, sizeof b->serial, "%s", serial);
 
-    tdc_usbp_config_t cfg = {
-        .board_name = "emul", .panel_name = "htc-vive", .serial = b->serial,
-        .fw_version = 0x000100u, .panel_width = 2160, .panel_height = 1200,
-        .refresh_mhz = 90000u, .rx_buffer_bytes = 16384u, .max_packet_bytes = 16384u,
-        .flash = {emul_flash_write, emul_flash_read, b, slot_bytes}};
+    tdc_usbp_config_t cfg = {.board_name = "emul",
+                             .panel_name = "htc-vive",
+                             .serial = b->serial,
+                             .fw_version = 0x000100u,
+                             .panel_width = 2160,
+                             .panel_height = 1200,
+                             .refresh_mhz = 90000u,
+                             .rx_buffer_bytes = 16384u,
+                             .max_packet_bytes = 16384u,
+                             .flash = {emul_flash_write, emul_flash_read, b, slot_bytes}};
     if (tdc_usbp_init(&b->proto, &cfg) != TDC_OK) {
         fprintf(stderr, "tdc_usb_emul: board protocol init failed\n");
         emul_board_free(b);
@@ -365,8 +347,7 @@ emul_board_t *emul_board_add(UMockdevTestbed *tb, int bus, int dev, const char *
              "A: busnum=%d\\n\nA: devnum=%d\\n\nA: bConfigurationValue=1\\n\n"
              "A: speed=480\\n\nA: serial=%s\\n\nA: idVendor=%04x\\n\nA: idProduct=%04x\\n\n"
              "H: descriptors=%s\n",
-             bus, bus, dev, bus, dev, bus, dev, bus, dev, serial, bus, dev, serial,
-             TDC_USB_VID, TDC_USB_PID, hex);
+             bus, bus, dev, bus, dev, bus, dev, bus, dev, serial, bus, dev, serial, TDC_USB_VID, TDC_USB_PID, hex);
     GError *err = NULL;
     if (!umockdev_testbed_add_from_string(tb, rec, &err)) {
         fprintf(stderr, "emul: add_from_string: %s\n", err != NULL ? err->message : "?");
@@ -411,16 +392,13 @@ void emul_board_stats(emul_board_t *b, emul_board_stats_t *out)
 
 void emul_board_free(emul_board_t *b)
 {
-    if (b == NULL)
-        return;
+    if (b == NULL) return;
     if (b->handler != NULL) {
         umockdev_testbed_detach_ioctl(b->tb, b->devnode, NULL);
         g_object_unref(b->handler);
     }
-    for (int i = 0; i < b->n_done; i++)
-        g_object_unref(b->done[i]);
-    for (int i = 0; i < b->n_flying; i++)
-        g_object_unref(b->flying[i]);
+    for (int i = 0; i < b->n_done; i++) g_object_unref(b->done[i]);
+    for (int i = 0; i < b->n_flying; i++) g_object_unref(b->flying[i]);
     pthread_mutex_destroy(&b->lock);
     free(b->sink);
     free(b->slot);

@@ -33,8 +33,7 @@ typedef struct emul_board emul_board_t;
 
 /* Adds a board at /dev/bus/usb/<bus>/<dev> with the given serial.
  * slot_bytes: size of each of its two DFU flash slots (A/B). */
-emul_board_t *emul_board_add(UMockdevTestbed *tb, int bus, int dev, const char *serial,
-                             uint32_t slot_bytes);
+emul_board_t *emul_board_add(UMockdevTestbed *tb, int bus, int dev, const char *serial, uint32_t slot_bytes);
 /* Feeds every bulk OUT byte to the firmware's link decoder (tdc_link.h)
  * for a w x h mono panel, so the board's error counters and frame count
  * are the decoder's verdicts.  Returns 0, or -1 if the decoder refused. */
@@ -45,15 +44,15 @@ void emul_board_free(emul_board_t *b);
 /* Snapshot of what the board saw (thread-safe). */
 typedef struct {
     uint64_t rx_bytes;
-    uint32_t rx_transfers, rx_crc;   /* CRC-32 of every byte received */
-    uint32_t image_bytes;            /* bytes of the image an UPLOAD returns (newest good one) */
-    uint32_t slot_crc;               /* CRC-32 of those bytes in their slot */
-    int active_slot;                 /* the slot the board runs (A/B) */
-    uint32_t active_bytes;           /* bytes of the image in it (0: the factory firmware) */
-    uint32_t active_crc;             /* CRC-32 of those bytes */
-    int pending;                     /* a manifested image waits for the next reset */
-    uint32_t fw_version;             /* of the running firmware (from the image after activation) */
-    int resets, activations;         /* board restarts; those that switched slots */
+    uint32_t rx_transfers, rx_crc; /* CRC-32 of every byte received */
+    uint32_t image_bytes;          /* bytes of the image an UPLOAD returns (newest good one) */
+    uint32_t slot_crc;             /* CRC-32 of those bytes in their slot */
+    int active_slot;               /* the slot the board runs (A/B) */
+    uint32_t active_bytes;         /* bytes of the image in it (0: the factory firmware) */
+    uint32_t active_crc;           /* CRC-32 of those bytes */
+    int pending;                   /* a manifested image waits for the next reset */
+    uint32_t fw_version;           /* of the running firmware (from the image after activation) */
+    int resets, activations;       /* board restarts; those that switched slots */
     int reset_requested;
     int dfu_state, dfu_status;
 } emul_board_stats_t;

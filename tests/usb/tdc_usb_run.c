@@ -40,8 +40,7 @@ static void slurp(const char *path, char *dst, size_t cap)
     FILE *f = fopen(path, "rb");
     size_t n = f != NULL ? fread(dst, 1, cap - 1, f) : 0;
     dst[n] = '\0';
-    if (f != NULL)
-        fclose(f);
+    if (f != NULL) fclose(f);
 }
 
 /* Runs prog (tdc-usb, or a standard client: dfu-util, lsusb) with the
@@ -52,8 +51,7 @@ void run_prog_in(run_t *r, const char *prog, const char *const *args, const char
     const char *argv[32];
     int n = 0;
     argv[n++] = prog;
-    for (int i = 0; args[i] != NULL && n < 31; i++)
-        argv[n++] = args[i];
+    for (int i = 0; args[i] != NULL && n < 31; i++) argv[n++] = args[i];
     argv[n] = NULL;
 
     /* Environment prepared before fork: the umockdev worker thread makes
@@ -64,8 +62,7 @@ void run_prog_in(run_t *r, const char *prog, const char *const *args, const char
     char *envp[256];
     int ne = 0;
     for (char **e = environ; *e != NULL && ne < 250; e++)
-        if (strncmp(*e, "LD_PRELOAD=", 11) != 0 && strncmp(*e, "ASAN_OPTIONS=", 13) != 0)
-            envp[ne++] = *e;
+        if (strncmp(*e, "LD_PRELOAD=", 11) != 0 && strncmp(*e, "ASAN_OPTIONS=", 13) != 0) envp[ne++] = *e;
     envp[ne++] = preload;
     envp[ne++] = asan;
     envp[ne] = NULL;
@@ -112,11 +109,9 @@ void run_prog_in(run_t *r, const char *prog, const char *const *args, const char
     slurp(out_path, r->out, sizeof r->out);
     slurp(err_path, r->err, sizeof r->err);
     printf("  $ %s", strrchr(prog, '/') != NULL ? strrchr(prog, '/') + 1 : prog);
-    for (int i = 1; argv[i] != NULL; i++)
-        printf(" %s", argv[i]);
+    for (int i = 1; argv[i] != NULL; i++) printf(" %s", argv[i]);
     printf("  -> exit %d in %.2f s\n", r->status, r->secs);
-    if (r->err[0] != '\0')
-        printf("    stderr: %s", r->err);
+    if (r->err[0] != '\0') printf("    stderr: %s", r->err);
 }
 
 void run_tool_in(run_t *r, const char *const *args, const char *in_path)
@@ -134,9 +129,8 @@ void expect(const run_t *r, int status, const char *in_out, const char *in_err)
     if (r->status != status || (in_out != NULL && strstr(r->out, in_out) == NULL) ||
         (in_err != NULL && strstr(r->err, in_err) == NULL)) {
         print_error("expected exit %d, stdout with '%s', stderr with '%s'\n"
-                    "got exit %d\n--- stdout\n%s--- stderr\n%s", status,
-                    in_out != NULL ? in_out : "", in_err != NULL ? in_err : "", r->status,
-                    r->out, r->err);
+                    "got exit %d\n--- stdout\n%s--- stderr\n%s",
+                    status, in_out != NULL ? in_out : "", in_err != NULL ? in_err : "", r->status, r->out, r->err);
         fail();
     }
     assert_true(r->secs < CHILD_DEADLINE_S);
@@ -150,13 +144,11 @@ uint32_t ref_crc32(const uint8_t *p, size_t n)
     if (table[1] == 0)
         for (uint32_t i = 0; i < 256; i++) {
             uint32_t c = i;
-            for (int k = 0; k < 8; k++)
-                c = c & 1 ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+            for (int k = 0; k < 8; k++) c = c & 1 ? 0xEDB88320u ^ (c >> 1) : c >> 1;
             table[i] = c;
         }
     uint32_t c = 0xFFFFFFFFu;
-    for (size_t i = 0; i < n; i++)
-        c = table[(c ^ p[i]) & 0xFFu] ^ (c >> 8);
+    for (size_t i = 0; i < n; i++) c = table[(c ^ p[i]) & 0xFFu] ^ (c >> 8);
     return ~c;
 }
 
@@ -191,8 +183,7 @@ int setup_none(void **state)
 
 int setup_one(void **state)
 {
-    if (setup_none(state) != 0)
-        return -1;
+    if (setup_none(state) != 0) return -1;
     fixture_t *f = *state;
     f->board[0] = emul_board_add(f->tb, 1, 2, "TDC-A", SLOT_BYTES);
     return f->board[0] != NULL ? 0 : -1;
@@ -200,8 +191,7 @@ int setup_one(void **state)
 
 int setup_two(void **state)
 {
-    if (setup_one(state) != 0)
-        return -1;
+    if (setup_one(state) != 0) return -1;
     fixture_t *f = *state;
     f->board[1] = emul_board_add(f->tb, 1, 3, "TDC-B", SLOT_BYTES);
     return f->board[1] != NULL ? 0 : -1;
@@ -210,8 +200,7 @@ int setup_two(void **state)
 int teardown(void **state)
 {
     fixture_t *f = *state;
-    for (int i = 0; i < 2; i++)
-        emul_board_free(f->board[i]);
+    for (int i = 0; i < 2; i++) emul_board_free(f->board[i]);
     g_object_unref(f->tb);
     free(f);
     return 0;
@@ -226,8 +215,7 @@ uint8_t *make_image(const char *board, size_t payload, const char *img_path, siz
     write_file(bin, p, payload);
     free(p);
     run_t r;
-    run_tool(&r, (const char *[]){"mkimage", "--board", board, "--fw-version", "1.2.3", bin,
-                                  img_path, NULL});
+    run_tool(&r, (const char *[]){"mkimage", "--board", board, "--fw-version", "1.2.3", bin, img_path, NULL});
     expect(&r, 0, "CRC-32", NULL);
     FILE *f = fopen(img_path, "rb");
     assert_non_null(f);
@@ -237,4 +225,3 @@ uint8_t *make_image(const char *board, size_t payload, const char *img_path, siz
     assert_int_equal(*len, payload + TDC_IMAGE_HEADER_LEN);
     return img;
 }
-

@@ -21,7 +21,7 @@
 #define SLOT_BYTES 65536u
 
 typedef struct {
-    int status;        /* exit code, or 128+signal, or -1 if killed for hanging */
+    int status; /* exit code, or 128+signal, or -1 if killed for hanging */
     double secs;
     char out[16384], err[16384];
 } run_t;

@@ -23,16 +23,13 @@
 
 /* n edges at refresh hz, deterministic jitter of +-amp_ns (triangle wave),
  * edges listed in drop[] left out (missed frames). */
-static size_t make_edges(uint64_t *ts, size_t n, double hz, int64_t amp_ns, const size_t *drop,
-                         size_t ndrop)
+static size_t make_edges(uint64_t *ts, size_t n, double hz, int64_t amp_ns, const size_t *drop, size_t ndrop)
 {
     size_t k = 0;
     for (size_t i = 0; i < n; i++) {
         int skip = 0;
-        for (size_t j = 0; j < ndrop; j++)
-            skip |= drop[j] == i;
-        if (skip)
-            continue;
+        for (size_t j = 0; j < ndrop; j++) skip |= drop[j] == i;
+        if (skip) continue;
         int64_t tri = (int64_t)(i % 4) - 1; /* -1, 0, 1, 2 -> mean 0.5 */
         ts[k++] = (uint64_t)(1000000000.0 + (double)i * 1e9 / hz) + (uint64_t)(amp_ns * (tri + 1));
     }
@@ -128,6 +125,5 @@ int main(void)
         cmocka_unit_test(test_bad_input),
         cmocka_unit_test(test_cli_errors),
     };
-    return cmocka_run_group_tests_name("tdc-gpio vsync statistics and error paths", tests, NULL,
-                                       NULL);
+    return cmocka_run_group_tests_name("tdc-gpio vsync statistics and error paths", tests, NULL, NULL);
 }

@@ -66,15 +66,24 @@ static void test_descriptors_lsusb(void **state)
     /* lsusb aligns with runs of blanks: compare with each run squeezed to one */
     char *o = r.out, *w = r.out;
     for (; *o != '\0'; o++)
-        if (!((*o == ' ' || *o == '\t') && w > r.out && w[-1] == ' '))
-            *w++ = *o == '\t' ? ' ' : *o;
+        if (!((*o == ' ' || *o == '\t') && w > r.out && w[-1] == ' ')) *w++ = *o == '\t' ? ' ' : *o;
     *w = '\0';
-    static const char *const want[] = {
-        "bcdDevice 0.01", "idVendor 0x1209", "idProduct 0x0001",
-        "bInterfaceClass 254 Application Specific Interface", "bInterfaceSubClass 1 Device Firmware Update",
-        "Device Firmware Upgrade Interface Descriptor:", "bDescriptorType 33", "bmAttributes 7",
-        "Will Not Detach", "Manifestation Tolerant", "Upload Supported", "Download Supported",
-        "wDetachTimeout 1000 milliseconds", "wTransferSize 1024 bytes", "bcdDFUVersion 1.10", NULL};
+    static const char *const want[] = {"bcdDevice 0.01",
+                                       "idVendor 0x1209",
+                                       "idProduct 0x0001",
+                                       "bInterfaceClass 254 Application Specific Interface",
+                                       "bInterfaceSubClass 1 Device Firmware Update",
+                                       "Device Firmware Upgrade Interface Descriptor:",
+                                       "bDescriptorType 33",
+                                       "bmAttributes 7",
+                                       "Will Not Detach",
+                                       "Manifestation Tolerant",
+                                       "Upload Supported",
+                                       "Download Supported",
+                                       "wDetachTimeout 1000 milliseconds",
+                                       "wTransferSize 1024 bytes",
+                                       "bcdDFUVersion 1.10",
+                                       NULL};
     for (int i = 0; want[i] != NULL; i++) {
         if (strstr(r.out, want[i]) == NULL) {
             fprintf(stderr, "lsusb -v has no '%s':\n%s", want[i], r.out);
@@ -305,7 +314,6 @@ int main(void)
     int failed = cmocka_run_group_tests_name("dfu-util and lsusb against the emulated board", tests, NULL, NULL);
     char cmd[160];
     snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);
-    if (system(cmd) != 0)
-        fprintf(stderr, "could not remove %s\n", tmpdir);
+    if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", tmpdir);
     return failed != 0;
 }

@@ -135,8 +135,7 @@ static void test_stream_link_decoder(void **state)
      * transfers, like a real decoder) with one flipped payload bit in frame
      * packet 5: one CRC error, one frame lost, the rest shown. */
     o.stream_id = 8;
-    assert_int_equal(tdc_link_gen_stream(stream, sizeof stream, &o, scratch, sizeof scratch, pk, 64,
-                                         &npk), n);
+    assert_int_equal(tdc_link_gen_stream(stream, sizeof stream, &o, scratch, sizeof scratch, pk, 64, &npk), n);
     stream[pk[5].offset + TDC_LINK_HEADER_BYTES + 17] ^= 0x04u;
     write_file(path, stream, n);
     run_tool(&r, (const char *[]){"stream", "--chunk", "1000", path, NULL});
@@ -144,8 +143,7 @@ static void test_stream_link_decoder(void **state)
     assert_non_null(strstr(r.out, "frames 11"));
 }
 
-static void stream_fault(fixture_t *f, emul_fault_t fault, uint32_t after, int code,
-                         const char *msg)
+static void stream_fault(fixture_t *f, emul_fault_t fault, uint32_t after, int code, const char *msg)
 {
     uint8_t *data = random_bytes(100000, 3);
     char path[128];
@@ -313,11 +311,9 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_flash_bad_images, setup_one, teardown),
         cmocka_unit_test_setup_teardown(test_flash_board_rejects, setup_one, teardown),
     };
-    int failed = cmocka_run_group_tests_name("tdc-usb against emulated boards (umockdev)", tests,
-                                             NULL, NULL);
+    int failed = cmocka_run_group_tests_name("tdc-usb against emulated boards (umockdev)", tests, NULL, NULL);
     char cmd[160];
     snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);
-    if (system(cmd) != 0)
-        fprintf(stderr, "could not remove %s\n", tmpdir);
+    if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", tmpdir);
     return failed != 0;
 }

@@ -21,8 +21,7 @@ static int fail_write;
 static int fw(void *ctx, uint32_t off, const uint8_t *d, uint32_t n)
 {
     (void)ctx;
-    if (fail_write || off + n > 2 * SLOT)
-        return -1;
+    if (fail_write || off + n > 2 * SLOT) return -1;
     memcpy(slot + off, d, n);
     return 0;
 }
@@ -30,8 +29,7 @@ static int fw(void *ctx, uint32_t off, const uint8_t *d, uint32_t n)
 static int fr(void *ctx, uint32_t off, uint8_t *d, uint32_t n)
 {
     (void)ctx;
-    if (off + n > 2 * SLOT)
-        return -1;
+    if (off + n > 2 * SLOT) return -1;
     memcpy(d, slot + off, n);
     return 0;
 }
@@ -43,18 +41,23 @@ static int setup(void **state)
     (void)state;
     memset(slot, 0xFF, sizeof slot);
     fail_write = 0;
-    tdc_usbp_config_t cfg = {.board_name = "testboard", .panel_name = "htc-vive", .serial = "S1",
-                             .fw_version = 0x010203u, .panel_width = 2160, .panel_height = 1200,
-                             .refresh_mhz = 90000u, .rx_buffer_bytes = 8192u,
-                             .max_packet_bytes = 8192u, .flash = {fw, fr, NULL, SLOT}};
+    tdc_usbp_config_t cfg = {.board_name = "testboard",
+                             .panel_name = "htc-vive",
+                             .serial = "S1",
+                             .fw_version = 0x010203u,
+                             .panel_width = 2160,
+                             .panel_height = 1200,
+                             .refresh_mhz = 90000u,
+                             .rx_buffer_bytes = 8192u,
+                             .max_packet_bytes = 8192u,
+                             .flash = {fw, fr, NULL, SLOT}};
     return tdc_usbp_init(&s, &cfg) == TDC_OK ? 0 : -1;
 }
 
 static uint8_t reply[TDC_DFU_TRANSFER_SIZE];
 static uint32_t rlen;
 
-static tdc_status_t req(uint8_t type, uint8_t r, uint16_t value, uint16_t index,
-                             uint16_t len, const uint8_t *data)
+static tdc_status_t req(uint8_t type, uint8_t r, uint16_t value, uint16_t index, uint16_t len, const uint8_t *data)
 {
     tdc_usbp_setup_t st = {type, r, value, index, len};
     return tdc_usbp_control(&s, &st, data, reply, sizeof reply, &rlen);
@@ -81,8 +84,7 @@ static void getstatus(uint8_t *status, uint8_t *state)
 static uint8_t image[SLOT];
 static uint32_t make_image(uint32_t payload, const char *board)
 {
-    for (uint32_t i = 0; i < payload; i++)
-        image[TDC_IMAGE_HEADER_LEN + i] = (uint8_t)(i * 7u + 3u);
+    for (uint32_t i = 0; i < payload; i++) image[TDC_IMAGE_HEADER_LEN + i] = (uint8_t)(i * 7u + 3u);
     tdc_image_make_header(image, image + TDC_IMAGE_HEADER_LEN, payload, 0x010203u, board);
     return payload + TDC_IMAGE_HEADER_LEN;
 }
@@ -100,8 +102,7 @@ static void download(uint32_t len, uint32_t bs, uint8_t *status, uint8_t *state)
     assert_int_equal(req(DFU_OUT, TDC_DFU_DNLOAD, block, 1, 0, NULL), TDC_OK);
     assert_int_equal(dfu_state(), TDC_DFU_STATE_MANIFEST_SYNC);
     getstatus(status, state);
-    if (*state == TDC_DFU_STATE_MANIFEST)
-        getstatus(status, state);
+    if (*state == TDC_DFU_STATE_MANIFEST) getstatus(status, state);
 }
 
 static void test_descriptors(void **state)
@@ -122,9 +123,9 @@ static void test_descriptors(void **state)
     }
     assert_int_equal(off, TDC_USB_CONFIG_DESC_LEN);
     assert_int_equal(n, 6);
-    assert_int_equal(tdc_get_le16(c + 18 + 4), 512);            /* HS bulk OUT */
+    assert_int_equal(tdc_get_le16(c + 18 + 4), 512); /* HS bulk OUT */
     tdc_usbp_config_descriptor(c, 0);
-    assert_int_equal(tdc_get_le16(c + 18 + 4), 64);             /* FS bulk OUT */
+    assert_int_equal(tdc_get_le16(c + 18 + 4), 64);                    /* FS bulk OUT */
     assert_int_equal(tdc_get_le16(c + 41 + 5), TDC_DFU_TRANSFER_SIZE); /* wTransferSize */
     /* the whole DFU functional descriptor (DFU 1.1 table 4.2) */
     assert_memory_equal(c + 41, ((uint8_t[]){9, 0x21, 0x07, 0xE8, 0x03, 0x00, 0x04, 0x10, 0x01}), 9);
@@ -143,8 +144,7 @@ static void test_board_info_and_counters(void **state)
 {
     (void)state;
     uint8_t data[100];
-    for (int i = 0; i < 100; i++)
-        data[i] = (uint8_t)i;
+    for (int i = 0; i < 100; i++) data[i] = (uint8_t)i;
     tdc_usbp_bulk_out(&s, data, 100);
     tdc_usbp_bulk_out(&s, data, 40);
     assert_int_equal(req(0xC1, TDC_USB_REQ_BOARD_INFO, 0, 0, 255, NULL), TDC_OK);
@@ -200,8 +200,7 @@ static void test_dfu_download_upload(void **state)
         assert_int_equal(req(DFU_IN, TDC_DFU_UPLOAD, b, 1, 1000, NULL), TDC_OK);
         memcpy(back + got, reply, rlen);
         got += rlen;
-        if (rlen < 1000)
-            break;
+        if (rlen < 1000) break;
         assert_int_equal(dfu_state(), TDC_DFU_STATE_UPLOAD_IDLE);
     }
     assert_int_equal(got, len);
@@ -360,8 +359,7 @@ static uint32_t upload_all(uint8_t *back)
         assert_int_equal(req(DFU_IN, TDC_DFU_UPLOAD, b, 1, 1024, NULL), TDC_OK);
         memcpy(back + got, reply, rlen);
         got += rlen;
-        if (rlen < 1024)
-            return got;
+        if (rlen < 1024) return got;
     }
 }
 
@@ -381,8 +379,7 @@ static void test_activation(void **state)
     assert_int_equal(s.dfu_active_slot, 1);
     assert_int_equal(tdc_usbp_bus_reset(&s), 0); /* a second reset changes nothing */
     /* a raw binary (no header) goes to slot 0 and is rejected at manifestation */
-    for (uint32_t i = 0; i < 2000; i++)
-        image[i] = (uint8_t)(i * 13u);
+    for (uint32_t i = 0; i < 2000; i++) image[i] = (uint8_t)(i * 13u);
     download(2000, 1024, &status, &st);
     assert_int_equal(st, TDC_DFU_STATE_ERROR);
     assert_int_equal(status, TDC_DFU_ERR_FILE);

@@ -45,8 +45,7 @@ static tdc_link_sink_t link_sink; /* the firmware link decoder, 32x24 mono */
 static int flash_write(void *ctx, uint32_t off, const uint8_t *d, uint32_t n)
 {
     (void)ctx;
-    if ((uint64_t)off + n > 2u * SLOT_BYTES)
-        return -1;
+    if ((uint64_t)off + n > 2u * SLOT_BYTES) return -1;
     memcpy(slot + off, d, n);
     return 0;
 }
@@ -54,8 +53,7 @@ static int flash_write(void *ctx, uint32_t off, const uint8_t *d, uint32_t n)
 static int flash_read(void *ctx, uint32_t off, uint8_t *d, uint32_t n)
 {
     (void)ctx;
-    if ((uint64_t)off + n > 2u * SLOT_BYTES)
-        return -1;
+    if ((uint64_t)off + n > 2u * SLOT_BYTES) return -1;
     memcpy(d, slot + off, n);
     return 0;
 }
@@ -68,9 +66,9 @@ static void board_reboot(const char *why)
     if (tdc_usbp_bus_reset(&proto)) {
         const uint8_t *hdr = slot + (size_t)proto.dfu_active_slot * SLOT_BYTES;
         proto.cfg.fw_version = tdc_get_le32(hdr + TDC_IMAGE_OFF_FW_VERSION);
-        printf("tdc_ffs_board: %s: activated slot %u, firmware %u.%u.%u, %u bytes\n", why,
-               proto.dfu_active_slot, proto.cfg.fw_version >> 16, (proto.cfg.fw_version >> 8) & 0xFFu,
-               proto.cfg.fw_version & 0xFFu, tdc_usbp_slot_image(&proto, proto.dfu_active_slot));
+        printf("tdc_ffs_board: %s: activated slot %u, firmware %u.%u.%u, %u bytes\n", why, proto.dfu_active_slot,
+               proto.cfg.fw_version >> 16, (proto.cfg.fw_version >> 8) & 0xFFu, proto.cfg.fw_version & 0xFFu,
+               tdc_usbp_slot_image(&proto, proto.dfu_active_slot));
         fflush(stdout);
     }
 }
@@ -129,14 +127,12 @@ static void *bulk_out_thread(void *arg)
         int fd = open_ep("ep1", O_RDWR);
         while (fd >= 0) {
             ssize_t n = read(fd, buf, sizeof buf);
-            if (n < 0)
-                break; /* disabled / unbound: reopen */
+            if (n < 0) break; /* disabled / unbound: reopen */
             pthread_mutex_lock(&lock);
             tdc_usbp_bulk_out(&proto, buf, (uint32_t)n);
             pthread_mutex_unlock(&lock);
         }
-        if (fd >= 0)
-            close(fd);
+        if (fd >= 0) close(fd);
         usleep(20000);
     }
     return NULL;
@@ -153,11 +149,9 @@ static void *bulk_in_thread(void *arg)
             pthread_mutex_lock(&lock);
             tdc_usbp_status_report(&proto, rep);
             pthread_mutex_unlock(&lock);
-            if (write(fd, rep, sizeof rep) < 0)
-                break;
+            if (write(fd, rep, sizeof rep) < 0) break;
         }
-        if (fd >= 0)
-            close(fd);
+        if (fd >= 0) close(fd);
         usleep(20000);
     }
     return NULL;
@@ -166,24 +160,21 @@ static void *bulk_in_thread(void *arg)
 static void handle_setup(int ep0, const struct usb_ctrlrequest *c)
 {
     static uint8_t data[4096], reply[4096];
-    tdc_usbp_setup_t s = {c->bRequestType, c->bRequest, le16toh(c->wValue), le16toh(c->wIndex),
-                          le16toh(c->wLength)};
+    tdc_usbp_setup_t s = {c->bRequestType, c->bRequest, le16toh(c->wValue), le16toh(c->wIndex), le16toh(c->wLength)};
     uint32_t len = 0;
     if (s.bm_request_type & 0x80u) {
         pthread_mutex_lock(&lock);
         tdc_status_t r = tdc_usbp_control(&proto, &s, NULL, reply, sizeof reply, &len);
         pthread_mutex_unlock(&lock);
         if (r == TDC_OK) {
-            if (write(ep0, reply, len) < 0)
-                perror("tdc_ffs_board: ep0 write");
+            if (write(ep0, reply, len) < 0) perror("tdc_ffs_board: ep0 write");
         } else if (read(ep0, NULL, 0) < 0 && errno != EL2HLT) { /* wrong direction = stall */
             perror("tdc_ffs_board: ep0 stall");
         }
         return;
     }
     if (s.w_length > sizeof data) {
-        if (write(ep0, NULL, 0) < 0 && errno != EL2HLT)
-            perror("tdc_ffs_board: ep0 stall");
+        if (write(ep0, NULL, 0) < 0 && errno != EL2HLT) perror("tdc_ffs_board: ep0 stall");
         return;
     }
     /* OUT: the data stage is read first (reading acks the status stage), so
@@ -196,13 +187,11 @@ static void handle_setup(int ep0, const struct usb_ctrlrequest *c)
     pthread_mutex_lock(&lock);
     tdc_status_t r = tdc_usbp_control(&proto, &s, data, reply, sizeof reply, &len);
     int reset = tdc_usbp_take_reset(&proto);
-    if (reset)
-        board_reboot("RESET_BOARD");
+    if (reset) board_reboot("RESET_BOARD");
     pthread_mutex_unlock(&lock);
     if (s.w_length == 0) {
         if (r == TDC_OK) {
-            if (read(ep0, NULL, 0) < 0)
-                perror("tdc_ffs_board: ep0 ack");
+            if (read(ep0, NULL, 0) < 0) perror("tdc_ffs_board: ep0 ack");
         } else if (write(ep0, NULL, 0) < 0 && errno != EL2HLT) {
             perror("tdc_ffs_board: ep0 stall");
         }
@@ -220,12 +209,18 @@ int main(int argc, char **argv)
         return 1;
     }
     snprintf(dir, sizeof dir, "%s", argv[1]);
-    tdc_usbp_config_t cfg = {
-        .board_name = "vm-gadget", .panel_name = "vm-32x24", .serial = argv[2],
-        .fw_version = 0x000100u, .panel_width = 32, .panel_height = 24,
-        .refresh_mhz = 90000u, .rx_buffer_bytes = 16384u, .max_packet_bytes = 65536u,
-        .flash = {flash_write, flash_read, NULL, SLOT_BYTES},
-        .sink = tdc_link_sink_feed, .sink_ctx = &link_sink};
+    tdc_usbp_config_t cfg = {.board_name = "vm-gadget",
+                             .panel_name = "vm-32x24",
+                             .serial = argv[2],
+                             .fw_version = 0x000100u,
+                             .panel_width = 32,
+                             .panel_height = 24,
+                             .refresh_mhz = 90000u,
+                             .rx_buffer_bytes = 16384u,
+                             .max_packet_bytes = 65536u,
+                             .flash = {flash_write, flash_read, NULL, SLOT_BYTES},
+                             .sink = tdc_link_sink_feed,
+                             .sink_ctx = &link_sink};
     if (tdc_link_sink_init(&link_sink, 32, 24) != 0) {
         fprintf(stderr, "tdc_ffs_board: link decoder init failed\n");
         return 1;
@@ -249,8 +244,7 @@ int main(int argc, char **argv)
         struct usb_functionfs_event ev[4];
         ssize_t n = read(ep0, ev, sizeof ev);
         if (n < 0) {
-            if (errno == EINTR || errno == EAGAIN)
-                continue;
+            if (errno == EINTR || errno == EAGAIN) continue;
             perror("tdc_ffs_board: ep0 events");
             usleep(20000);
             continue;

@@ -26,8 +26,7 @@ static int write_stream(const char *dir, const char *name, uint16_t id, int dama
         fprintf(stderr, "tdc_vm_mkstream: generator failed\n");
         return -1;
     }
-    if (damage)
-        out[pk[5].offset + TDC_LINK_HEADER_BYTES + 17] ^= 0x04u;
+    if (damage) out[pk[5].offset + TDC_LINK_HEADER_BYTES + 17] ^= 0x04u;
     char path[512];
     snprintf(path, sizeof path, "%s/%s", dir, name);
     FILE *f = fopen(path, "wb");

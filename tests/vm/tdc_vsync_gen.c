@@ -50,8 +50,7 @@ int main(int argc, char **argv)
     for (long i = 0; i < pulses; i++) {
         add_ns(&t, half);
         clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &t, NULL);
-        if (!(skip > 0 && i % skip == skip - 1))
-            set_pull(argv[1], "pull-up");
+        if (!(skip > 0 && i % skip == skip - 1)) set_pull(argv[1], "pull-up");
         add_ns(&t, half);
         clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &t, NULL);
         set_pull(argv[1], "pull-down");
