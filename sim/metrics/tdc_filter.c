@@ -18,54 +18,84 @@ static int edge_index(int i, int n, tdc_edge_t e)
     return i < n ? i : period - 1 - i;
 }
 
-/* One body for both precisions: T the element type. */
-#define SEP_FILTER_BODY(T)                                                            \
-    if (w < 1 || h < 1 || w > TDC_FILTER_MAX_W || r < 0 || r > TDC_FILTER_MAX_R) {    \
-        return -1;                                                                    \
-    }                                                                                 \
-    const int kn = 2 * r + 1;                                                         \
-    TDC_PAR_FOR((size_t)w *h)                                                         \
-    for (int y = 0; y < h; y++) {                                                     \
-        T pad[TDC_FILTER_MAX_W + 2 * TDC_FILTER_MAX_R];                               \
-        const T *row = in + (size_t)y * w;                                            \
-        for (int i = 0; i < w + 2 * r; i++) {                                         \
-            int s = i - r;                                                            \
-            pad[i] = row[s >= 0 && s < w ? s : edge_index(s, w, edge)];               \
-        }                                                                             \
-        T *o = tmp + (size_t)y * w;                                                   \
-        for (int x = 0; x < w; x++) {                                                 \
-            o[x] = 0;                                                                 \
-        }                                                                             \
-        for (int j = 0; j < kn; j++) {                                                \
-            const T k = kx[j], *p = pad + j;                                          \
-            for (int x = 0; x < w; x++) {                                             \
-                o[x] += k * p[x];                                                     \
-            }                                                                         \
-        }                                                                             \
-    }                                                                                 \
-    TDC_PAR_FOR((size_t)w *h)                                                         \
-    for (int y = 0; y < h; y++) {                                                     \
-        T *o = out + (size_t)y * w;                                                   \
-        for (int x = 0; x < w; x++) {                                                 \
-            o[x] = 0;                                                                 \
-        }                                                                             \
-        for (int j = 0; j < kn; j++) {                                                \
-            const T k = ky[j], *p = tmp + (size_t)edge_index(y + j - r, h, edge) * w; \
-            for (int x = 0; x < w; x++) {                                             \
-                o[x] += k * p[x];                                                     \
-            }                                                                         \
-        }                                                                             \
-    }                                                                                 \
+/*
+ * The row kernel of both passes: o[x] = sum_j k[j] * src[j][x], j ascending
+ * (horizontal: src[j] = the padded row + j; vertical: src[j] = row y + j - r
+ * of the horizontal result).  Tap index outside, pixel index inside: the
+ * inner loop is element-wise (no reassociation), so the vector and scalar
+ * code give the same bits.  `omp simd` vectorises it whatever gcc's -O2 cost
+ * model says; on x86-64 gcc also builds an AVX2 clone, picked at load time
+ * (the "default" clone is the plain C fallback).  Measured on 640x480 stereo
+ * (perf, 1 thread): the filters fell from 31 % to ~13 % of the run's CPU.
+ */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__)
+#define TDC_FILTER_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define TDC_FILTER_CLONES
+#endif
+#ifdef _OPENMP
+#define TDC_FILTER_SIMD _Pragma("omp simd")
+#else
+#define TDC_FILTER_SIMD
+#endif
+
+#define ROW_KERNEL(T, NAME)                                                                              \
+    TDC_FILTER_CLONES static void NAME(T *restrict o, const T *const *src, const T *restrict k, int kn, int w) \
+    {                                                                                                    \
+        TDC_FILTER_SIMD                                                                                  \
+        for (int x = 0; x < w; x++) {                                                                    \
+            o[x] = 0;                                                                                    \
+        }                                                                                                \
+        for (int j = 0; j < kn; j++) {                                                                   \
+            const T kj = k[j];                                                                           \
+            const T *restrict p = src[j];                                                                \
+            TDC_FILTER_SIMD                                                                              \
+            for (int x = 0; x < w; x++) {                                                                \
+                o[x] += kj * p[x];                                                                       \
+            }                                                                                            \
+        }                                                                                                \
+    }
+ROW_KERNEL(float, row_kernel_f)
+ROW_KERNEL(double, row_kernel_d)
+
+/* One body for both precisions: T the element type, RK its row kernel. */
+#define SEP_FILTER_BODY(T, RK)                                                     \
+    if (w < 1 || h < 1 || w > TDC_FILTER_MAX_W || r < 0 || r > TDC_FILTER_MAX_R) { \
+        return -1;                                                                 \
+    }                                                                              \
+    const int kn = 2 * r + 1;                                                      \
+    TDC_PAR_FOR((size_t)w *h)                                                      \
+    for (int y = 0; y < h; y++) {                                                  \
+        T pad[TDC_FILTER_MAX_W + 2 * TDC_FILTER_MAX_R];                            \
+        const T *src[2 * TDC_FILTER_MAX_R + 1];                                    \
+        const T *row = in + (size_t)y * w;                                         \
+        for (int i = 0; i < w + 2 * r; i++) {                                      \
+            int s = i - r;                                                         \
+            pad[i] = row[s >= 0 && s < w ? s : edge_index(s, w, edge)];            \
+        }                                                                          \
+        for (int j = 0; j < kn; j++) {                                             \
+            src[j] = pad + j;                                                      \
+        }                                                                          \
+        RK(tmp + (size_t)y * w, src, kx, kn, w);                                   \
+    }                                                                              \
+    TDC_PAR_FOR((size_t)w *h)                                                      \
+    for (int y = 0; y < h; y++) {                                                  \
+        const T *src[2 * TDC_FILTER_MAX_R + 1];                                    \
+        for (int j = 0; j < kn; j++) {                                             \
+            src[j] = tmp + (size_t)edge_index(y + j - r, h, edge) * w;             \
+        }                                                                          \
+        RK(out + (size_t)y * w, src, ky, kn, w);                                   \
+    }                                                                              \
     return 0;
 
 int tdc_sep_filter_f(const float *in, float *out, float *tmp, int w, int h, const float *kx, const float *ky, int r,
                      tdc_edge_t edge)
 {
-    SEP_FILTER_BODY(float)
+    SEP_FILTER_BODY(float, row_kernel_f)
 }
 
 int tdc_sep_filter_d(const double *in, double *out, double *tmp, int w, int h, const double *kx, const double *ky,
                      int r, tdc_edge_t edge)
 {
-    SEP_FILTER_BODY(double)
+    SEP_FILTER_BODY(double, row_kernel_d)
 }

@@ -233,22 +233,60 @@ static int flip_features(const float *y, int w, int h, double ppd, float *edge, 
     return 0;
 }
 
-double tdc_flip(const double *ref, const double *test, int w, int h, double ppd, double *map)
+/* The per-image half of FLIP: L*a*b* of the prefiltered image (3 floats per
+ * pixel) and its edge and point feature magnitudes (1 each); work: 9 floats
+ * per pixel. */
+static int flip_image(const double *lin, int w, int h, double ppd, float *lab, float *edge, float *point, float *work)
+{
+    size_t n = (size_t)w * h;
+    float *yf = work + 8 * n;
+    return flip_color_prepare(lin, w, h, ppd, lab, yf, work) || flip_features(yf, w, h, ppd, edge, point, work);
+}
+
+int tdc_flip_prepare(tdc_flip_ref_t *ref, const double *lin, int w, int h, double ppd)
+{
+    size_t n = (size_t)w * h;
+    if (w < 1 || h < 1 || w > TDC_FILTER_MAX_W) {
+        return -1;
+    }
+    if (!ref->buf || ref->cap < n) {
+        free(ref->buf);
+        ref->buf = malloc(sizeof(float) * 5 * n);
+        ref->cap = ref->buf ? n : 0;
+    }
+    float *work = malloc(sizeof(float) * 9 * n);
+    if (!ref->buf || !work) {
+        free(work);
+        return -1;
+    }
+    ref->w = w;
+    ref->h = h;
+    ref->ppd = ppd;
+    int bad = flip_image(lin, w, h, ppd, ref->buf, ref->buf + 3 * n, ref->buf + 4 * n, work);
+    free(work);
+    return bad ? -1 : 0;
+}
+
+void tdc_flip_ref_free(tdc_flip_ref_t *ref)
+{
+    free(ref->buf);
+    memset(ref, 0, sizeof(*ref));
+}
+
+double tdc_flip_vs(const tdc_flip_ref_t *ref, const double *test, double *map)
 {
     const double qc = 0.7, pc = 0.4, pt = 0.95, qf = 0.5;
+    const int w = ref->w, h = ref->h;
     size_t n = (size_t)w * h;
-    /* lab r/t 6, y r/t 2, features 4, work 8 floats per pixel; row sums */
-    float *mem = malloc(sizeof(float) * n * 20 + sizeof(double) * (size_t)h);
-    if (!mem || w > TDC_FILTER_MAX_W) {
-        free(mem);
+    /* lab t 3, features t 2, work 9 floats per pixel; row sums */
+    float *mem = malloc(sizeof(float) * n * 14 + sizeof(double) * (size_t)h);
+    if (!mem) {
         return -1.0;
     }
-    float *lab_r = mem, *lab_t = mem + 3 * n, *y_r = mem + 6 * n, *y_t = mem + 7 * n;
-    float *e_r = mem + 8 * n, *p_r = mem + 9 * n, *e_t = mem + 10 * n, *p_t = mem + 11 * n;
-    float *work = mem + 12 * n;
-    double *rows = (double *)(void *)(mem + 20 * n);
-    if (flip_color_prepare(ref, w, h, ppd, lab_r, y_r, work) || flip_color_prepare(test, w, h, ppd, lab_t, y_t, work) ||
-        flip_features(y_r, w, h, ppd, e_r, p_r, work) || flip_features(y_t, w, h, ppd, e_t, p_t, work)) {
+    const float *lab_r = ref->buf, *e_r = ref->buf + 3 * n, *p_r = ref->buf + 4 * n;
+    float *lab_t = mem, *e_t = mem + 3 * n, *p_t = mem + 4 * n, *work = mem + 5 * n;
+    double *rows = (double *)(void *)(mem + 14 * n);
+    if (flip_image(test, w, h, ref->ppd, lab_t, e_t, p_t, work)) {
         free(mem);
         return -1.0;
     }
@@ -289,4 +327,12 @@ double tdc_flip(const double *ref, const double *test, int w, int h, double ppd,
     double sum = tdc_par_sum_rows(rows, h);
     free(mem);
     return n ? sum / (double)n : 0.0;
+}
+
+double tdc_flip(const double *ref, const double *test, int w, int h, double ppd, double *map)
+{
+    tdc_flip_ref_t r = {0};
+    double v = tdc_flip_prepare(&r, ref, w, h, ppd) ? -1.0 : tdc_flip_vs(&r, test, map);
+    tdc_flip_ref_free(&r);
+    return v;
 }
