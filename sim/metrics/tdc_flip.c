@@ -37,6 +37,7 @@
 #include <string.h>
 
 #include "metrics/tdc_filter.h"
+#include "metrics/tdc_powtab.h"
 #include "tdc_par.h"
 
 #define PI 3.14159265358979323846
@@ -74,17 +75,18 @@ static void ycxcz_to_rgb(const double *c, double *rgb)
     mat3(k_xyz2rgb, xyz, rgb);
 }
 
-static double lab_f(double t)
+/* cbrt by table (tdc_powtab.h: 7e-9 relative, below the float L*a*b* kept) */
+static double lab_f(const tdc_powtab_t *cb, double t)
 {
     const double d = 6.0 / 29.0;
-    return t > d * d * d ? cbrt(t) : t / (3.0 * d * d) + 4.0 / 29.0;
+    return t > d * d * d ? tdc_powtab(cb, t) : t / (3.0 * d * d) + 4.0 / 29.0;
 }
 
-static void rgb_to_lab_hunt(const double *rgb, double *lab)
+static void rgb_to_lab_hunt(const tdc_powtab_t *cb, const double *rgb, double *lab)
 {
     double xyz[3];
     mat3(k_rgb2xyz, rgb, xyz);
-    double fx = lab_f(xyz[0] / XN), fy = lab_f(xyz[1] / YN), fz = lab_f(xyz[2] / ZN);
+    double fx = lab_f(cb, xyz[0] / XN), fy = lab_f(cb, xyz[1] / YN), fz = lab_f(cb, xyz[2] / ZN);
     double L = 116.0 * fy - 16.0;
     lab[0] = L;
     lab[1] = 0.01 * L * 500.0 * (fx - fy);
@@ -112,6 +114,7 @@ static int flip_color_prepare(const double *lin, int w, int h, double ppd, float
         return -1;
     }
     size_t n = (size_t)w * h;
+    const tdc_powtab_t *cb = tdc_powtab_metrics(TDC_POWTAB_CBRT);
     float *plane[3] = {work, work + n, work + 2 * n};
     float *filt[3] = {work + 3 * n, work + 4 * n, work + 5 * n};
     float *f2 = work + 6 * n, *tmp = work + 7 * n;
@@ -170,7 +173,7 @@ static int flip_color_prepare(const double *lin, int w, int h, double ppd, float
             for (int k = 0; k < 3; k++) {
                 rgb[k] = rgb[k] < 0.0 ? 0.0 : (rgb[k] > 1.0 ? 1.0 : rgb[k]);
             }
-            rgb_to_lab_hunt(rgb, lab);
+            rgb_to_lab_hunt(cb, rgb, lab);
             lab_out[3 * i] = (float)lab[0];
             lab_out[3 * i + 1] = (float)lab[1];
             lab_out[3 * i + 2] = (float)lab[2];
@@ -291,17 +294,18 @@ double tdc_flip_vs(const tdc_flip_ref_t *ref, const double *test, double *map)
         return -1.0;
     }
     const double green[3] = {0.0, 1.0, 0.0}, blue[3] = {0.0, 0.0, 1.0};
+    const tdc_powtab_t *cb = tdc_powtab_metrics(TDC_POWTAB_CBRT), *pq = tdc_powtab_metrics(TDC_POWTAB_HYAB);
     double lg[3], lb[3];
-    rgb_to_lab_hunt(green, lg);
-    rgb_to_lab_hunt(blue, lb);
-    const double cmax = pow(hyab(lg, lb), qc);
+    rgb_to_lab_hunt(cb, green, lg);
+    rgb_to_lab_hunt(cb, blue, lb);
+    const double cmax = tdc_powtab(pq, hyab(lg, lb)); /* ^qc, qc = 0.7 */
     TDC_PAR_FOR((size_t)w * h)
     for (int y = 0; y < h; y++) {
         double sum = 0.0;
         for (size_t i = (size_t)y * w; i < (size_t)(y + 1) * w; i++) {
             double lr[3] = {lab_r[3 * i], lab_r[3 * i + 1], lab_r[3 * i + 2]};
             double lt[3] = {lab_t[3 * i], lab_t[3 * i + 1], lab_t[3 * i + 2]};
-            double dc = pow(hyab(lr, lt), qc);
+            double dc = tdc_powtab(pq, hyab(lr, lt)); /* ^qc */
             if (dc < pc * cmax) {
                 dc = pt / (pc * cmax) * dc;
             } else {
@@ -323,7 +327,7 @@ double tdc_flip_vs(const tdc_flip_ref_t *ref, const double *test, double *map)
         }
         rows[y] = sum;
     }
-    (void)qf;
+    (void)qf, (void)qc; /* qc is the HYAB table's exponent */
     double sum = tdc_par_sum_rows(rows, h);
     free(mem);
     return n ? sum / (double)n : 0.0;
