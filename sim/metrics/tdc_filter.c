@@ -23,33 +23,20 @@ static int edge_index(int i, int n, tdc_edge_t e)
  * (horizontal: src[j] = the padded row + j; vertical: src[j] = row y + j - r
  * of the horizontal result).  Tap index outside, pixel index inside: the
  * inner loop is element-wise (no reassociation), so the vector and scalar
- * code give the same bits.  `omp simd` vectorises it whatever gcc's -O2 cost
- * model says; on x86-64 gcc also builds an AVX2 clone, picked at load time
- * (the "default" clone is the plain C fallback).  Measured on 640x480 stereo
+ * code give the same bits (TDC_SIMD, TDC_SIMD_CLONES: tdc_par.h).  Measured on 640x480 stereo
  * (perf, 1 thread): the filters fell from 31 % to ~13 % of the run's CPU.
  */
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__)
-#define TDC_FILTER_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define TDC_FILTER_CLONES
-#endif
-#ifdef _OPENMP
-#define TDC_FILTER_SIMD _Pragma("omp simd")
-#else
-#define TDC_FILTER_SIMD
-#endif
-
 #define ROW_KERNEL(T, NAME)                                                                              \
-    TDC_FILTER_CLONES static void NAME(T *restrict o, const T *const *src, const T *restrict k, int kn, int w) \
+    TDC_SIMD_CLONES static void NAME(T *restrict o, const T *const *src, const T *restrict k, int kn, int w) \
     {                                                                                                    \
-        TDC_FILTER_SIMD                                                                                  \
+        TDC_SIMD                                                                                  \
         for (int x = 0; x < w; x++) {                                                                    \
             o[x] = 0;                                                                                    \
         }                                                                                                \
         for (int j = 0; j < kn; j++) {                                                                   \
             const T kj = k[j];                                                                           \
             const T *restrict p = src[j];                                                                \
-            TDC_FILTER_SIMD                                                                              \
+            TDC_SIMD                                                                              \
             for (int x = 0; x < w; x++) {                                                                \
                 o[x] += kj * p[x];                                                                       \
             }                                                                                            \

@@ -246,7 +246,12 @@ static int flip_image(const double *lin, int w, int h, double ppd, float *lab, f
     return flip_color_prepare(lin, w, h, ppd, lab, yf, work) || flip_features(yf, w, h, ppd, edge, point, work);
 }
 
-int tdc_flip_prepare(tdc_flip_ref_t *ref, const double *lin, int w, int h, double ppd)
+size_t tdc_flip_work_bytes(int w, int h)
+{
+    return sizeof(float) * (size_t)w * h * 14 + sizeof(double) * (size_t)h;
+}
+
+int tdc_flip_prepare(tdc_flip_ref_t *ref, const double *lin, int w, int h, double ppd, void *work)
 {
     size_t n = (size_t)w * h;
     if (w < 1 || h < 1 || w > TDC_FILTER_MAX_W) {
@@ -257,16 +262,16 @@ int tdc_flip_prepare(tdc_flip_ref_t *ref, const double *lin, int w, int h, doubl
         ref->buf = malloc(sizeof(float) * 5 * n);
         ref->cap = ref->buf ? n : 0;
     }
-    float *work = malloc(sizeof(float) * 9 * n);
-    if (!ref->buf || !work) {
-        free(work);
+    float *own = work ? NULL : malloc(tdc_flip_work_bytes(w, h));
+    if (!ref->buf || (!work && !own)) {
+        free(own);
         return -1;
     }
     ref->w = w;
     ref->h = h;
     ref->ppd = ppd;
-    int bad = flip_image(lin, w, h, ppd, ref->buf, ref->buf + 3 * n, ref->buf + 4 * n, work);
-    free(work);
+    int bad = flip_image(lin, w, h, ppd, ref->buf, ref->buf + 3 * n, ref->buf + 4 * n, work ? (float *)work : own);
+    free(own);
     return bad ? -1 : 0;
 }
 
@@ -276,21 +281,22 @@ void tdc_flip_ref_free(tdc_flip_ref_t *ref)
     memset(ref, 0, sizeof(*ref));
 }
 
-double tdc_flip_vs(const tdc_flip_ref_t *ref, const double *test, double *map)
+double tdc_flip_vs(const tdc_flip_ref_t *ref, const double *test, double *map, void *work)
 {
     const double qc = 0.7, pc = 0.4, pt = 0.95, qf = 0.5;
     const int w = ref->w, h = ref->h;
     size_t n = (size_t)w * h;
     /* lab t 3, features t 2, work 9 floats per pixel; row sums */
-    float *mem = malloc(sizeof(float) * n * 14 + sizeof(double) * (size_t)h);
+    float *own = work ? NULL : malloc(tdc_flip_work_bytes(w, h));
+    float *mem = work ? (float *)work : own;
     if (!mem) {
         return -1.0;
     }
     const float *lab_r = ref->buf, *e_r = ref->buf + 3 * n, *p_r = ref->buf + 4 * n;
-    float *lab_t = mem, *e_t = mem + 3 * n, *p_t = mem + 4 * n, *work = mem + 5 * n;
+    float *lab_t = mem, *e_t = mem + 3 * n, *p_t = mem + 4 * n, *fw = mem + 5 * n;
     double *rows = (double *)(void *)(mem + 14 * n);
-    if (flip_image(test, w, h, ref->ppd, lab_t, e_t, p_t, work)) {
-        free(mem);
+    if (flip_image(test, w, h, ref->ppd, lab_t, e_t, p_t, fw)) {
+        free(own);
         return -1.0;
     }
     const double green[3] = {0.0, 1.0, 0.0}, blue[3] = {0.0, 0.0, 1.0};
@@ -329,14 +335,14 @@ double tdc_flip_vs(const tdc_flip_ref_t *ref, const double *test, double *map)
     }
     (void)qf, (void)qc; /* qc is the HYAB table's exponent */
     double sum = tdc_par_sum_rows(rows, h);
-    free(mem);
+    free(own);
     return n ? sum / (double)n : 0.0;
 }
 
 double tdc_flip(const double *ref, const double *test, int w, int h, double ppd, double *map)
 {
     tdc_flip_ref_t r = {0};
-    double v = tdc_flip_prepare(&r, ref, w, h, ppd) ? -1.0 : tdc_flip_vs(&r, test, map);
+    double v = tdc_flip_prepare(&r, ref, w, h, ppd, NULL) ? -1.0 : tdc_flip_vs(&r, test, map, NULL);
     tdc_flip_ref_free(&r);
     return v;
 }

@@ -97,7 +97,12 @@ static int ssim_ref_planes(const double *b, int w, int h, double *buf, double *w
     return bad;
 }
 
-int tdc_ssim_prepare(tdc_ssim_ref_t *ref, const double *b, int w, int h)
+size_t tdc_ssim_work_bytes(int w, int h)
+{
+    return sizeof(double) * ((size_t)w * h * 7 + (size_t)h);
+}
+
+int tdc_ssim_prepare(tdc_ssim_ref_t *ref, const double *b, int w, int h, void *work)
 {
     size_t n = (size_t)w * h;
     if (w < 1 || h < 1) {
@@ -108,16 +113,16 @@ int tdc_ssim_prepare(tdc_ssim_ref_t *ref, const double *b, int w, int h)
         ref->buf = malloc(sizeof(double) * 6 * n);
         ref->cap = ref->buf ? n : 0;
     }
-    double *work = malloc(sizeof(double) * 2 * n);
-    if (!ref->buf || !work) {
-        free(work);
+    double *own = work ? NULL : malloc(tdc_ssim_work_bytes(w, h));
+    if (!ref->buf || (!work && !own)) {
+        free(own);
         return -1;
     }
     ref->b = b;
     ref->w = w;
     ref->h = h;
-    int bad = ssim_ref_planes(b, w, h, ref->buf, work);
-    free(work);
+    int bad = ssim_ref_planes(b, w, h, ref->buf, work ? (double *)work : own);
+    free(own);
     return bad ? -1 : 0;
 }
 
@@ -127,14 +132,15 @@ void tdc_ssim_ref_free(tdc_ssim_ref_t *ref)
     memset(ref, 0, sizeof(*ref));
 }
 
-double tdc_ssim_vs(const tdc_ssim_ref_t *ref, const double *a, double data_range)
+double tdc_ssim_vs(const tdc_ssim_ref_t *ref, const double *a, double data_range, void *work)
 {
     double k[2 * SSIM_R + 1];
     ssim_kernel(k);
     const int w = ref->w, h = ref->h, r = SSIM_R;
     const double *b = ref->b;
     size_t n = (size_t)w * h;
-    double *buf = malloc(sizeof(double) * (n * 7 + (size_t)h));
+    double *own = work ? NULL : malloc(tdc_ssim_work_bytes(w, h));
+    double *buf = work ? (double *)work : own;
     if (!buf) {
         return -1.0;
     }
@@ -177,14 +183,14 @@ double tdc_ssim_vs(const tdc_ssim_ref_t *ref, const double *a, double data_range
         double s = h > 2 * pad ? tdc_par_sum_rows(rows + pad, h - 2 * pad) : 0.0;
         total += cnt ? s / (double)cnt : 1.0;
     }
-    free(buf);
+    free(own);
     return bad ? -1.0 : total / 3.0;
 }
 
 double tdc_ssim(const double *a, const double *b, int w, int h, double data_range)
 {
     tdc_ssim_ref_t ref = {0};
-    double v = tdc_ssim_prepare(&ref, b, w, h) ? -1.0 : tdc_ssim_vs(&ref, a, data_range);
+    double v = tdc_ssim_prepare(&ref, b, w, h, NULL) ? -1.0 : tdc_ssim_vs(&ref, a, data_range, NULL);
     tdc_ssim_ref_free(&ref);
     return v;
 }

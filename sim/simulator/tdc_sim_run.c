@@ -59,6 +59,7 @@ typedef struct {
     double *scratch, *perc, *crop_p, *enc_p, *err, *flipmap, *rows;
     double *xy;   /* sample positions (render calls are sequential too) */
     char *series; /* one series line per mode and eye, written in mode order */
+    void *mwork;  /* the metrics' scratch (SSIM and FLIP in turn), kept across calls */
 } sim_eval_t;
 
 #define SERIES_LINE 192
@@ -70,6 +71,7 @@ static void eval_free(sim_eval_t *e)
     tdc_ssim_ref_free(&e->ssim_g);
     tdc_flip_ref_free(&e->flip_g);
     free(e->series);
+    free(e->mwork);
     free(e->gt);
     free(e->scratch);
     free(e->perc);
@@ -89,6 +91,8 @@ static int eval_alloc(sim_eval_t *e, int w, int h, int nseries)
     bad |= !(e->crop_g = malloc(sizeof(double) * n3));
     bad |= !(e->enc_g = malloc(sizeof(double) * n3));
     bad |= !(e->series = calloc((size_t)nseries, SERIES_LINE));
+    size_t ws = tdc_ssim_work_bytes(w, h), wf = tdc_flip_work_bytes(w, h);
+    bad |= !(e->mwork = malloc(ws > wf ? ws : wf));
     bad |= !(e->gt = malloc(sizeof(double) * n3));
     bad |= !(e->scratch = malloc(sizeof(double) * n3));
     bad |= !(e->perc = malloc(sizeof(double) * n3));
@@ -353,8 +357,8 @@ static void eval_mode_eye(sim_mode_t *m, sim_eval_t *ev, const tdc_eye_cfg_t *ec
     tdc_metrics_encode(ev->crop_p, ev->enc_p, cn);
     const double *enc_g = ev->enc_g, *crop_g = ev->crop_g;
     double psnr = tdc_psnr(ev->enc_p, enc_g, cn, 1.0);
-    double ssim = tdc_ssim_vs(&ev->ssim_g, ev->enc_p, 1.0);
-    double flip = tdc_flip_vs(&ev->flip_g, ev->crop_p, ev->flipmap);
+    double ssim = tdc_ssim_vs(&ev->ssim_g, ev->enc_p, 1.0, ev->mwork);
+    double flip = tdc_flip_vs(&ev->flip_g, ev->crop_p, ev->flipmap, ev->mwork);
     if (psnr < 0.0 || ssim < -1.0 || flip < 0.0) {
         tdc_sim_stage(m, "metrics (out of memory or size beyond the filters)", -1);
         return;
@@ -539,8 +543,8 @@ int tdc_sim_run(const tdc_sim_config_t *cfg, tdc_source_t *src, const tdc_mode_d
             double w1 = wall_now();
             crop_copy(ev.gt, w, margin, margin, cw, ch, ev.crop_g);
             tdc_metrics_encode(ev.crop_g, ev.enc_g, (size_t)cw * ch * 3);
-            if (tdc_ssim_prepare(&ev.ssim_g, ev.enc_g, cw, ch) ||
-                tdc_flip_prepare(&ev.flip_g, ev.crop_g, cw, ch, cfg->flip_ppd)) {
+            if (tdc_ssim_prepare(&ev.ssim_g, ev.enc_g, cw, ch, ev.mwork) ||
+                tdc_flip_prepare(&ev.flip_g, ev.crop_g, cw, ch, cfg->flip_ppd, ev.mwork)) {
                 fprintf(stderr, "tdc-sim: metrics of the ground truth: out of memory or size beyond the filters\n");
                 rc = -1;
                 break;
