@@ -33,11 +33,25 @@ double tdc_eye_bilinear(const double *img, int w, int h, double x, double y, int
  * fy), k = 3x + c over the row's 3w values (the expression of
  * tdc_eye_bilinear, element-wise, so every clone gives the same bits). */
 TDC_SIMD_CLONES static void acc_row(double *restrict o, const double *r0, const double *r1, const int *restrict idx0,
-                                    const int *restrict idx1, const double *restrict fx, double fy, double wgt, int n)
+                                    const int *restrict idx1, const double *restrict fx, double fy, double wgt, int k0,
+                                    int k1)
 {
     TDC_SIMD
-    for (int k = 0; k < n; k++) {
+    for (int k = k0; k < k1; k++) {
         double a = r0[idx0[k]], b = r0[idx1[k]], d = r1[idx0[k]], e = r1[idx1[k]];
+        o[k] += wgt * ((a + (b - a) * fx[k]) * (1.0 - fy) + (d + (e - d) * fx[k]) * fy);
+    }
+}
+
+/* The same where idx0[k] = k + off and idx1[k] = k + off + 3 (no clamping:
+ * every column but a few at the edges): contiguous loads instead of gathers. */
+TDC_SIMD_CLONES static void acc_row_in(double *restrict o, const double *r0, const double *r1, int off,
+                                       const double *restrict fx, double fy, double wgt, int k0, int k1)
+{
+    const double *ra = r0 + off, *rb = r0 + off + 3, *rd = r1 + off, *re = r1 + off + 3;
+    TDC_SIMD
+    for (int k = k0; k < k1; k++) {
+        double a = ra[k], b = rb[k], d = rd[k], e = re[k];
         o[k] += wgt * ((a + (b - a) * fx[k]) * (1.0 - fy) + (d + (e - d) * fx[k]) * fy);
     }
 }
@@ -73,7 +87,8 @@ static const double *slice_row(const tdc_eye_slice_t *sl, size_t row, int n, dou
  * pixel, so the clamped source columns and their weights are computed once
  * per call (the same expressions as tdc_eye_bilinear, so the same values,
  * spread to the 3 channels of each pixel), and rows run in parallel: each
- * decodes its two source rows once (codes) and runs a vectorised row kernel.
+ * decodes its two source rows once (codes) and runs a vectorised row kernel
+ * (contiguous loads away from the clamped edges).
  * 1440x1600 stereo TRM (perf, 1 thread): 11 % of the run before, ~4 % after. */
 static int accumulate_shifted(double *out, const tdc_eye_slice_t *sl, int w, int h, double sx, double sy, double wgt)
 {
@@ -109,6 +124,24 @@ static int accumulate_shifted(double *out, const tdc_eye_slice_t *sl, int w, int
             fxs[3 * x + c] = fx;
         }
     }
+    /* the unclamped run [kb, ke): idx0[k] = k + off, idx1[k] = k + off + 3,
+     * checked value by value (the rounding of x + sx decides, not floor(sx)) */
+    int off = 3 * (int)fsx, kb = 0, ke = 0;
+    if (!integer) {
+        while (kb < n3 && !(idx0[kb] == kb + off && idx1[kb] == kb + off + 3)) {
+            kb++;
+        }
+        ke = kb;
+        while (ke < n3 && idx0[ke] == ke + off && idx1[ke] == ke + off + 3) {
+            ke++;
+        }
+        for (int k = ke; k < n3; k++) {
+            if (idx0[k] == k + off && idx1[k] == k + off + 3) {
+                kb = ke = 0; /* not one run: gathers everywhere */
+                break;
+            }
+        }
+    }
     int bad = 0;
     TDC_PAR_FOR((size_t)w * h)
     for (int y = 0; y < h; y++) {
@@ -130,7 +163,9 @@ static int accumulate_shifted(double *out, const tdc_eye_slice_t *sl, int w, int
             double fy = ys - y0;
             const double *r0 = slice_row(sl, 3 * (size_t)y0 * w, n3, buf);
             const double *r1 = slice_row(sl, 3 * (size_t)y1 * w, n3, buf ? buf + n3 : NULL);
-            acc_row(o, r0, r1, idx0, idx1, fxs, fy, wgt, n3);
+            acc_row(o, r0, r1, idx0, idx1, fxs, fy, wgt, 0, kb);
+            acc_row_in(o, r0, r1, off, fxs, fy, wgt, kb, ke);
+            acc_row(o, r0, r1, idx0, idx1, fxs, fy, wgt, ke, n3);
         }
         free(buf);
     }
