@@ -500,37 +500,45 @@ static void pan_row(const pan_col_t *cols, int n, double v, uint32_t seed, doubl
     double cy = cv * 5.0 + 2.5;
     int32_t last_cu = INT32_MIN;
     int dot_cell = 0;
-    for (int q = 0; q < n; q++) {
-        const pan_col_t *c = &cols[q];
-        double r = 0.30 + 0.22 * c->s53 * c41;
-        double gg = 0.30 + 0.20 * (c->s67 * c67 + c->c67 * s67); /* sin(a + b) */
-        double b = 0.30 + 0.22 * (c->ca * cb + c->sa * sb);      /* cos(a - b) */
-        double d = (c->p8 ^ p8) ? 0.12 : -0.08;
-        if (band) {
-            d += 0.18 * c->g3;
-        }
-        r = clamp01(r + d);
-        gg = clamp01(gg + d);
-        b = clamp01(b + d);
-        if (c->line) {
-            r = gg = b = 0.85;
-        }
-        if (c->cu != last_cu) {
-            last_cu = c->cu;
-            dot_cell = (hash2(c->cu, cv, seed) & 31u) == 0u;
-        }
-        if (dot_cell) {
-            double cx = c->cu * 5.0 + 2.5;
-            if ((c->u - cx) * (c->u - cx) + (v - cy) * (v - cy) < 1.2) {
-                r = 1.0;
-                gg = 0.9;
-                b = 0.3;
+    /* a pixel's g samples summed in registers, in sample order (the same
+     * sums as adding each into acc in turn, without the store-to-load chain) */
+    for (int px = 0; px < n / g; px++) {
+        double *o = acc + 3 * px;
+        double s0 = o[0], s1 = o[1], s2 = o[2];
+        for (int q = px * g; q < (px + 1) * g; q++) {
+            const pan_col_t *c = &cols[q];
+            double r = 0.30 + 0.22 * c->s53 * c41;
+            double gg = 0.30 + 0.20 * (c->s67 * c67 + c->c67 * s67); /* sin(a + b) */
+            double b = 0.30 + 0.22 * (c->ca * cb + c->sa * sb);      /* cos(a - b) */
+            double d = (c->p8 ^ p8) ? 0.12 : -0.08;
+            if (band) {
+                d += 0.18 * c->g3;
             }
+            r = clamp01(r + d);
+            gg = clamp01(gg + d);
+            b = clamp01(b + d);
+            if (c->line) {
+                r = gg = b = 0.85;
+            }
+            if (c->cu != last_cu) {
+                last_cu = c->cu;
+                dot_cell = (hash2(c->cu, cv, seed) & 31u) == 0u;
+            }
+            if (dot_cell) {
+                double cx = c->cu * 5.0 + 2.5;
+                if ((c->u - cx) * (c->u - cx) + (v - cy) * (v - cy) < 1.2) {
+                    r = 1.0;
+                    gg = 0.9;
+                    b = 0.3;
+                }
+            }
+            s0 += r;
+            s1 += gg;
+            s2 += b;
         }
-        double *o = acc + 3 * (q / g);
-        o[0] += r;
-        o[1] += gg;
-        o[2] += b;
+        o[0] = s0;
+        o[1] = s1;
+        o[2] = s2;
     }
 }
 
