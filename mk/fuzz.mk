@@ -27,7 +27,7 @@ FUZZ_LIBS_panel := -lm
 # the .tdcs reader with a small compiled maximum (a 96 x 64 board)
 FUZZ_SRCS_tdcs := tests/fuzz/fuzz_tdcs.c sim/link/tdc_link_file.c firmware/tdc_link_encode.c $(LINK_FW_SRCS)
 FUZZ_CFLAGS_tdcs := -DTDC_PANEL_WIDTH=96 -DTDC_PANEL_HEIGHT=64
-FUZZ_SRCS_scene := tests/fuzz/fuzz_scene.c sim/render/tdc_scene_parse.c
+FUZZ_SRCS_scene := tests/fuzz/fuzz_scene.c sim/render/tdc_scene_parse.c hosttools/common/tdc_tool.c
 FUZZ_DEPS_scene := sim/render/tdc_render_geom.c
 FUZZ_CFLAGS_scene := -Isim/render
 FUZZ_LIBS_scene := -lembree3 -lm
