@@ -5,28 +5,12 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "tdc_bilinear.h"
 #include "tdc_par.h"
 
 double tdc_eye_bilinear(const double *img, int w, int h, double x, double y, int c)
 {
-    if (x < 0.0) {
-        x = 0.0;
-    }
-    if (y < 0.0) {
-        y = 0.0;
-    }
-    if (x > w - 1) {
-        x = w - 1;
-    }
-    if (y > h - 1) {
-        y = h - 1;
-    }
-    int x0 = (int)x, y0 = (int)y;
-    int x1 = x0 + 1 < w ? x0 + 1 : x0, y1 = y0 + 1 < h ? y0 + 1 : y0;
-    double fx = x - x0, fy = y - y0;
-    double a = img[3 * ((size_t)y0 * w + x0) + c], b = img[3 * ((size_t)y0 * w + x1) + c];
-    double d = img[3 * ((size_t)y1 * w + x0) + c], e = img[3 * ((size_t)y1 * w + x1) + c];
-    return (a + (b - a) * fx) * (1.0 - fy) + (d + (e - d) * fx) * fy;
+    return tdc_bilinear_d(img, w, h, 3, x, y, c);
 }
 
 /* One output row: o[k] += wgt * bilinear(r0, r1 at idx0[k], idx1[k], fx[k],

@@ -15,6 +15,7 @@
 #include "simulator/tdc_sim.h"
 #include "simulator/tdc_sim_link.h"
 #include "simulator/tdc_sim_mode.h"
+#include "tdc_bilinear.h"
 #include "tdc_panels.h"
 #include "tdc_par.h"
 
@@ -317,20 +318,6 @@ static void progress(double frac, const char *label)
     fflush(stderr);
 }
 
-/* tdc_eye_bilinear of a float image (the last instant's error, kept in
- * single precision: 4 bytes per sample per mode and eye instead of 8). */
-static double bilinear_f(const float *img, int w, int h, double x, double y, int c)
-{
-    x = x < 0.0 ? 0.0 : (x > w - 1 ? w - 1 : x);
-    y = y < 0.0 ? 0.0 : (y > h - 1 ? h - 1 : y);
-    int x0 = (int)x, y0 = (int)y;
-    int x1 = x0 + 1 < w ? x0 + 1 : x0, y1 = y0 + 1 < h ? y0 + 1 : y0;
-    double fx = x - x0, fy = y - y0;
-    double a = img[3 * ((size_t)y0 * w + x0) + c], b = img[3 * ((size_t)y0 * w + x1) + c];
-    double d = img[3 * ((size_t)y1 * w + x0) + c], e = img[3 * ((size_t)y1 * w + x1) + c];
-    return (a + (b - a) * fx) * (1.0 - fy) + (d + (e - d) * fx) * fy;
-}
-
 /* Perceived error of one mode's eye at te against that eye's ground truth
  * (already cropped and encoded in ev); accumulates into m. */
 static void eval_mode_eye(sim_mode_t *m, sim_eval_t *ev, const tdc_eye_cfg_t *ec, const tdc_sim_config_t *cfg, long j,
@@ -384,7 +371,7 @@ static void eval_mode_eye(sim_mode_t *m, sim_eval_t *ev, const tdc_eye_cfg_t *ec
             double se = 0.0;
             for (int x = 0; x < cw; x++) {
                 for (int c = 0; c < 3; c++) {
-                    double pe = bilinear_f(m->err_prev, cw, ch, x + sx, y + sy, c);
+                    double pe = tdc_bilinear_f(m->err_prev, cw, ch, 3, x + sx, y + sy, c);
                     double d = ev->err[3 * ((size_t)y * cw + x) + c] - pe;
                     se += d * d;
                 }
