@@ -92,8 +92,8 @@ double tdc_scene_default_speed(tdc_scene_kind_t k)
 #define CODE_BUCKETS 4096
 typedef struct {
     double gamma;
-    double level[256];               /* level[k] = ((k - 0.5) / 255)^gamma, level[0] = -1 */
-    uint8_t lo[CODE_BUCKETS + 1];    /* largest k with level[k] <= i / CODE_BUCKETS */
+    double level[256];            /* level[k] = ((k - 0.5) / 255)^gamma, level[0] = -1 */
+    uint8_t lo[CODE_BUCKETS + 1]; /* largest k with level[k] <= i / CODE_BUCKETS */
 } code_table_t;
 
 typedef struct {
