@@ -33,6 +33,7 @@ typedef struct {
     double diffuse[3]; /* albedo (linear), or radiance when unlit */
     double color2[3];  /* second texture colour */
     double mirror;     /* reflectivity 0..1 (0 = no reflection ray) */
+    double roughness;  /* GGX alpha of the reflection lobe, [0, 1]: 0 = perfect mirror (Zeng §4.2) */
     int unlit;         /* 1: radiance = texture colour, no lighting, no shadows */
     tdc_tex_kind_t tex;
     double tex_scale; /* world units (object space) */
