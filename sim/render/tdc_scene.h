@@ -123,7 +123,7 @@ tdc_scene_status_t tdc_scene_parse(const char *text, const char *src_name, const
                                    char *err, size_t errlen);
 /* Reads and parses a scene file. */
 tdc_scene_status_t tdc_scene_load(const char *path, tdc_scene_t *s, char *err, size_t errlen);
-/* Built-in scenes (discs, text, panorama, room, mirror, fence, bigmesh). */
+/* Built-in scenes (discs, text, panorama, room, mirror, fence, bigmesh, glossy, blocker). */
 tdc_scene_status_t tdc_scene_builtin(const char *name, tdc_scene_t *s, char *err, size_t errlen);
 /* The text of a built-in scene (NULL if unknown), and the list of names. */
 const char *tdc_scene_builtin_text(const char *name);
