@@ -22,6 +22,7 @@
 #include <string.h>
 
 #include "render/tdc_render.h"
+#include "render/tdc_render_trace.h"
 
 #define W 64
 #define H 48
@@ -543,6 +544,183 @@ static void test_glossy_mv_vs_brute_force(void **state)
     tdc_render_close(r);
 }
 
+/* GGX sampler (tdc_r_ggx_sample): the mean weight is the directional
+ * albedo of the Smith-GGX lobe, the integral of D(m) G1(v) G1(l) / (4 cos_o)
+ * over the hemisphere of l (by quadrature here); small roughness sends the
+ * sample to the mirror direction. */
+static double ggx_d(double cm, double a)
+{
+    double c2 = cm * cm, t = c2 * (a * a - 1) + 1;
+    return a * a / (M_PI * t * t);
+}
+
+static double ggx_g1(double c, double a)
+{
+    double t2 = (1 - c * c) / (c * c);
+    return 2 / (1 + sqrt(1 + a * a * t2));
+}
+
+static void test_ggx_sampler(void **state)
+{
+    (void)state;
+    const double alphas[3] = {0.05, 0.3, 0.8}, views[3] = {0, 60, 80};
+    const double N[3] = {0, 0, 1};
+    double prev_mir[3] = {1, 1, 1};
+    for (int ia = 0; ia < 3; ia++)
+        for (int iv = 0; iv < 3; iv++) {
+            double a = alphas[ia], th = views[iv] * M_PI / 180;
+            double wo[3] = {sin(th), 0, cos(th)}, d[3] = {-wo[0], -wo[1], -wo[2]};
+            /* quadrature over the hemisphere of l (cos-theta, phi grid) */
+            double q = 0;
+            const int nt = 2000, np = 400;
+            for (int i = 0; i < nt; i++) {
+                double cl = (i + 0.5) / nt, sl = sqrt(1 - cl * cl);
+                for (int j = 0; j < np; j++) {
+                    double ph = 2 * M_PI * (j + 0.5) / np;
+                    double l[3] = {sl * cos(ph), sl * sin(ph), cl};
+                    double h[3] = {l[0] + wo[0], l[1] + wo[1], l[2] + wo[2]};
+                    double hl = sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+                    double cm = h[2] / hl;
+                    q += ggx_d(cm, a) * ggx_g1(wo[2], a) * ggx_g1(cl, a) / (4 * wo[2]) * (1.0 / nt) *
+                         (2 * M_PI / np);
+                }
+            }
+            double sum = 0, mir = 0;
+            const int ns = 200000;
+            for (int k = 0; k < ns; k++) {
+                double u1 = (k + 0.5) / ns, u2 = fmod(k * 0.6180339887498949, 1.0), out[3];
+                double w = tdc_r_ggx_sample(d, N, a, u1, u2, out);
+                assert_true(w >= 0 && w <= 1);
+                if (w > 0) {
+                    assert_true(fabs(out[0] * out[0] + out[1] * out[1] + out[2] * out[2] - 1) < 1e-9);
+                    assert_true(out[2] > 0);
+                    mir += out[0] * -wo[0] + out[1] * -wo[1] + out[2] * wo[2]; /* cos to the mirror direction */
+                }
+                sum += w;
+            }
+            double mean = sum / ns;
+            printf("GGX alpha %.2f view %2.0f deg: mean weight %.4f, quadrature albedo %.4f, mean cos to the mirror "
+                   "direction %.4f\n",
+                   a, views[iv], mean, q, mir / ns);
+            /* the sampled estimator's mean is the lobe's albedo */
+            assert_true(fabs(mean - q) < 0.01 + 0.01 * q);
+            /* near the mirror direction for a small alpha (GGX's long tail
+             * keeps the mean cosine at 0.976 for alpha 0.05), farther for larger */
+            if (a < 0.1) assert_true(mir / ns > 0.95);
+            if (ia > 0) assert_true(mir / ns < prev_mir[iv]);
+            prev_mir[iv] = mir / ns;
+        }
+}
+
+static int16_t q4ref(double v)
+{
+    double f = floor(v * 16 + 0.5);
+    return (int16_t)(f > 32767 ? 32767 : f < -32767 ? -32767 : f);
+}
+
+/* Layers (Zeng §4): vis * shade + refl is the frame, in-shadow pixels are
+ * the splatting sources, the layer vectors are the probe's, and asking for
+ * layers changes no pixel of the frame. */
+static void check_layers(const char *text, int want_refl)
+{
+    tdc_render_t *r = open_text(text, 1, 1);
+    const uint32_t f = 5;
+    static float rgb[W * H * 3], rgb0[W * H * 3], sh[W * H * 3], vis[W * H], refl[W * H * 3];
+    static int16_t ms[W * H * 2], mr[W * H * 2];
+    static uint8_t src[W * H];
+    tdc_render_out_t o0 = {0}, o = {0};
+    o0.rgb = rgb0;
+    assert_int_equal(tdc_render_frame(r, f, TDC_RENDER_FULL, &o0, NULL), 0);
+    o.rgb = rgb;
+    o.shade = sh;
+    o.vis = vis;
+    o.refl = refl;
+    o.mv_surf = ms;
+    o.mv_refl = mr;
+    o.shadow_src = src;
+    assert_int_equal(tdc_render_frame(r, f, TDC_RENDER_FULL, &o, NULL), 0);
+    assert_memory_equal(rgb, rgb0, sizeof rgb);
+    double maxe = 0;
+    int shadowed = 0, reflective = 0, mvr_checked = 0;
+    for (int i = 0; i < W * H; i++) {
+        for (int c = 0; c < 3; c++) {
+            double e = fabs(vis[i] * sh[3 * i + c] + refl[3 * i + c] - rgb[3 * i + c]) / (rgb[3 * i + c] + 1e-3);
+            if (e > maxe) maxe = e;
+        }
+        assert_true(vis[i] >= 0 && vis[i] <= 1);
+        tdc_render_probe_t p;
+        tdc_render_probe(r, f, i % W + 0.5, i / W + 0.5, &p);
+        assert_int_equal(src[i], p.in_shadow);
+        if (p.in_shadow) { /* a blocked light: less than all of the light (unless nothing is shaded locally) */
+            shadowed++;
+            if (sh[3 * i] + sh[3 * i + 1] + sh[3 * i + 2] > 1e-6) assert_true(vis[i] < 1);
+        }
+        if (refl[3 * i] + refl[3 * i + 1] + refl[3 * i + 2] > 0) reflective++;
+        if (p.refl_mv_ok) {
+            assert_int_equal(mr[2 * i], q4ref(p.refl_mv[0]));
+            assert_int_equal(mr[2 * i + 1], q4ref(p.refl_mv[1]));
+            mvr_checked++;
+        } else {
+            assert_int_equal(mr[2 * i], ms[2 * i]);
+            assert_int_equal(mr[2 * i + 1], ms[2 * i + 1]);
+        }
+    }
+    printf("layers: max relative |vis shade + refl - rgb| %.2e; %d in-shadow (splat source) pixels, %d with a "
+           "reflection layer, %d reflected vectors = probe\n",
+           maxe, shadowed, reflective, mvr_checked);
+    assert_true(maxe < 0.02); /* the lights' colour: 20 20 19 (fence), 50 50 48 (glossy) */
+    if (want_refl) {
+        assert_true(reflective > W * H / 10);
+        assert_true(mvr_checked > W * H / 10);
+    } else {
+        assert_true(shadowed > 50);
+    }
+    tdc_render_close(r);
+}
+
+static void test_layers(void **state)
+{
+    (void)state;
+    check_layers(scene_fence, 0);
+    char text[2048];
+    snprintf(text, sizeof text, "%slight sun point pos 2 6 4 intensity 50 50 48\n", scene_glossy);
+    check_layers(text, 1);
+}
+
+/* Dual-MV culling: under a still camera the pass skips the previous-frame
+ * ray outside the moving objects' previous screen rectangles; every dual
+ * MV of the frame equals the probe's (which traces every ray). */
+static void test_dual_mv_culling(void **state)
+{
+    (void)state;
+    tdc_render_t *r = open_text(scene_disocc, 0, 1);
+    static int16_t mvd[W * H * 2];
+    tdc_render_out_t o = {0};
+    o.mv_dual = mvd;
+    tdc_render_stats_t st;
+    const uint32_t f = 5;
+    assert_int_equal(tdc_render_frame(r, f, TDC_RENDER_FULL, &o, &st), 0);
+    int dis = 0;
+    for (int i = 0; i < W * H; i++) {
+        tdc_render_probe_t p;
+        tdc_render_probe(r, f, i % W + 0.5, i / W + 0.5, &p);
+        assert_int_equal(mvd[2 * i], q4ref(p.dual_mv[0]));
+        assert_int_equal(mvd[2 * i + 1], q4ref(p.dual_mv[1]));
+        dis += p.disoccluded;
+    }
+    printf("dual culling: %llu of %d samples without a ray, %llu previous-frame rays; %d disoccluded, all = probe\n",
+           (unsigned long long)st.dual_culled, W * H, (unsigned long long)st.rays[TDC_RAY_MV], dis);
+    assert_true(dis > 0);
+    assert_true(st.dual_culled > (uint64_t)(W * H / 2));
+    assert_true(st.rays[TDC_RAY_MV] + st.dual_culled == (uint64_t)(W * H));
+    tdc_render_close(r);
+    /* a moving camera: no culling */
+    r = open_text(scene_pan, 0, 1);
+    assert_int_equal(tdc_render_frame(r, f, TDC_RENDER_FULL, &o, &st), 0);
+    assert_true(st.dual_culled == 0);
+    tdc_render_close(r);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -556,6 +734,9 @@ int main(void)
         cmocka_unit_test(test_static_scene_skips_mv),
         cmocka_unit_test(test_frame_mv_matches_probe),
         cmocka_unit_test(test_glossy_mv_vs_brute_force),
+        cmocka_unit_test(test_ggx_sampler),
+        cmocka_unit_test(test_layers),
+        cmocka_unit_test(test_dual_mv_culling),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
