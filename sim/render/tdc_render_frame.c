@@ -448,6 +448,7 @@ static void dual_rects(tdc_render_t *r, long frame, job_t *jb)
             if (y < y0) y0 = y;
             if (y > y1) y1 = y;
         }
+        if (!(x1 - x0 < 1e7 && y1 - y0 < 1e7)) return; /* near the camera plane: keep the float casts in range */
         jb->dual_rect[nr][0] = (float)(x0 - 2);
         jb->dual_rect[nr][1] = (float)(y0 - 2);
         jb->dual_rect[nr][2] = (float)(x1 + 2);
