@@ -384,17 +384,16 @@ static void test_frame_mv_matches_probe(void **state)
 /* ---- glossy reflections (Zeng §4.2, eq. 5) ---- */
 
 #define GLOSSY_ALPHA 0.06
-static const char scene_glossy[] = "tdc-scene 1\n"
-                                   "fps 8\n"
-                                   "background 0.3 0.4 0.6\n"
-                                   "material floor diffuse 0 0 0 mirror 1 roughness 0.06\n"
-                                   "material ball diffuse 0.9 0.3 0.1 checker 0.2 0.1 0.1 0.9\n"
-                                   "camera 0 pos 0 1.5 5 look 0 0 0 fov 50\n"
-                                   "camera 1 pos 0.3 1.6 5 look 0 0 0\n"
-                                   "object floor rect size 30 30 material floor rot -90 0 0\n"
-                                   "object ball sphere radius 0.8 material ball pos -2 1 -1\n"
-                                   "key ball 0 pos -2 1 -1 rot 0 0 0\n"
-                                   "key ball 1 pos 2 1.3 0 rot 0 40 -90\n";
+/* scene_mirror with a glossy floor: the reflector of test_mv_mirror */
+static char scene_glossy[1024];
+static const char *glossy_text(void)
+{
+    const char *m = strstr(scene_mirror, "mirror 1\n");
+    assert_non_null(m);
+    snprintf(scene_glossy, sizeof scene_glossy, "%.*smirror 1 roughness %.2f%s", (int)(m - scene_mirror), scene_mirror,
+             GLOSSY_ALPHA, m + strlen("mirror 1"));
+    return scene_glossy;
+}
 
 /* World position at time t of a point q of object obj (the scene's own keys). */
 static void world_at(const tdc_scene_t *sc, int obj, double t, const double q[3], double w[3])
@@ -453,7 +452,7 @@ static int specular_pixel(tdc_render_t *r, uint32_t fp, const double cam[3], con
 static void test_glossy_mv_vs_brute_force(void **state)
 {
     (void)state;
-    tdc_render_t *r = open_text(scene_glossy, 0, 0);
+    tdc_render_t *r = open_text(glossy_text(), 0, 0);
     const tdc_scene_t *sc = tdc_render_scene(r);
     const uint32_t f = 5;
     const double tp = (f - 1) / sc->fps;
@@ -683,7 +682,7 @@ static void test_layers(void **state)
     (void)state;
     check_layers(scene_fence, 0);
     char text[2048];
-    snprintf(text, sizeof text, "%slight sun point pos 2 6 4 intensity 50 50 48\n", scene_glossy);
+    snprintf(text, sizeof text, "%slight sun point pos 2 6 4 intensity 50 50 48\n", glossy_text());
     check_layers(text, 1);
 }
 
