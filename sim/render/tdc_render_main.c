@@ -35,6 +35,7 @@ static void usage(void)
                     "  --shadow-mv --dual-mv --no-reflect-mv --bounces N\n"
                     "  --png DIR            write DIR/<scene>-<mode>-<frame>.png (+ -mv.png for motion)\n"
                     "  --layers             with --png: also the layers -shade, -vis, -refl, -mv-refl (Zeng §4)\n"
+                    "  --indirect [--indirect-reuse]  one diffuse bounce per pixel [6-cone reuse over frames, §4.3]\n"
                     "  --stream FILE        write a .tdcs link stream (full, reduced, subframe, trm)\n"
                     "  --quiet              no per-frame lines\n"
                     "exit codes (docs/tools.md): 0 OK, 1 ARGS, 7 FILE, 13 INPUT (scene), 14 REFUSED (renderer\n"
@@ -109,6 +110,10 @@ int main(int argc, char **argv)
             cfg.dual_mv = 1;
         else if (!strcmp(a, "--layers"))
             layers = 1;
+        else if (!strcmp(a, "--indirect"))
+            cfg.indirect = 1;
+        else if (!strcmp(a, "--indirect-reuse"))
+            cfg.indirect = cfg.indirect_reuse = 1;
         else if (!strcmp(a, "--no-reflect-mv"))
             cfg.reflect_mv = 0;
         else if (!strcmp(a, "--frames") && v) {
@@ -168,7 +173,7 @@ int main(int argc, char **argv)
     int rc = TDC_EXIT_OK;
     tdc_render_t *r = NULL;
     tdc_render_stream_t *stream = NULL;
-    float *rgb = NULL, *vis = NULL, *lsh = NULL, *lvis = NULL, *lrefl = NULL;
+    float *rgb = NULL, *vis = NULL, *lsh = NULL, *lvis = NULL, *lrefl = NULL, *lind = NULL;
     int16_t *mv = NULL, *mvs = NULL, *mvd = NULL, *mvr = NULL;
     tdc_scene_t *scene = malloc(sizeof *scene);
     if (!scene) return tdc_fail(TDC_EXIT_NOMEM, NULL, "scene", "out of memory");
@@ -217,8 +222,9 @@ int main(int argc, char **argv)
     lsh = malloc(npix * 3 * sizeof(float));
     lvis = malloc(npix * 3 * sizeof(float)); /* grey for the PNG */
     lrefl = malloc(npix * 3 * sizeof(float));
+    lind = malloc(npix * 3 * sizeof(float));
     mvr = malloc(npix * 2 * sizeof(int16_t));
-    if (!rgb || !vis || !mv || !mvs || !mvd || !lsh || !lvis || !lrefl || !mvr) {
+    if (!rgb || !vis || !mv || !mvs || !mvd || !lsh || !lvis || !lrefl || !lind || !mvr) {
         rc = tdc_fail(TDC_EXIT_NOMEM, NULL, "frame buffers", "out of memory for %dx%d", W, H);
         goto done;
     }
@@ -250,6 +256,7 @@ int main(int argc, char **argv)
                                 .shade = lay ? lsh : NULL,
                                 .vis = lay ? lvis : NULL,
                                 .refl = lay ? lrefl : NULL,
+                                .indirect = lay && cfg.indirect ? lind : NULL,
                                 .mv_refl = lay ? mvr : NULL};
         tdc_render_stats_t s;
         if (tdc_render_frame(r, (uint32_t)f, m, &out, &s) < 0) {
@@ -277,9 +284,9 @@ int main(int argc, char **argv)
             if (lay) {
                 size_t np = (size_t)s.out_w * s.out_h;
                 for (size_t i = np; i-- > 0;) lvis[3 * i] = lvis[3 * i + 1] = lvis[3 * i + 2] = lvis[i];
-                const float *img[3] = {lsh, lvis, lrefl};
-                const char *suffix[3] = {"shade", "vis", "refl"};
-                for (int k = 0; k < 3; k++) {
+                const float *img[4] = {lsh, lvis, lrefl, lind};
+                const char *suffix[4] = {"shade", "vis", "refl", "indirect"};
+                for (int k = 0; k < (cfg.indirect ? 4 : 3); k++) {
                     snprintf(path, sizeof path, "%s/%s-%s-%04d-%s.png", png_dir, scene->name, tdc_render_mode_name(m),
                              f, suffix[k]);
                     if (tdc_render_write_png(path, img[k], s.out_w, s.out_h, err, sizeof err) < 0)
@@ -346,6 +353,7 @@ done:
     free(lsh);
     free(lvis);
     free(lrefl);
+    free(lind);
     free(mvr);
     return rc;
 }
