@@ -169,6 +169,12 @@ void tdc_render_output_size(const tdc_render_t *r, tdc_render_mode_t mode, int *
  * parameters the firmware would refuse (alpha, disk, gaze more than one
  * screen outside).  *lp_samples / *disk_pixels (may be NULL): the counts. */
 int tdc_render_set_foveation(tdc_render_t *r, const tdc_render_fov_t *f, int *lp_samples, int *disk_pixels);
+/* Sets the positions (image px, x y pairs, n >= 1) the following FOVEATED
+ * frames trace instead of the foveation's: any sample set, e.g. the
+ * simulator's subframe positions for layered sources.  Outputs per sample
+ * as for FOVEATED, plus the layers and the shadow and dual MVs.  0, or -1
+ * for a bad argument (positions beyond 1e6 px). */
+int tdc_render_set_samples(tdc_render_t *r, const double *xy, int n);
 /* Halton(2,3) jitter of frame f in [-0.5, 0.5)^2 (the thesis's sub-pixel jitter, §4.3.2). */
 void tdc_render_halton(uint32_t f, double *jx, double *jy);
 void tdc_render_get_features(const tdc_render_t *r, tdc_render_features_t *f);

@@ -201,7 +201,9 @@ static inline uint64_t stamp(void)
         t_ = t1_;                       \
     } while (0)
 
-/* The layer outputs of FULL and SUBFRAME samples (Zeng §4). */
+static void write_rare(job_t *jb, const rsample_t *s, int n, int depth);
+
+/* The layer outputs of FULL, SUBFRAME and FOVEATED samples (Zeng §4). */
 static void write_layers(job_t *jb, const rsample_t *s, int n)
 {
     const tdc_render_out_t *o = jb->out;
@@ -265,6 +267,9 @@ static void write_outputs(job_t *jb, const rsample_t *s, int n)
             }
             if (o->depth) o->depth[a->dst] = (float)a->depth;
         }
+        /* layers, shadow and dual MVs of the samples (tdc_render_set_samples) */
+        if (jb->do_layers) write_layers(jb, s, n);
+        if (o->mv_shadow || o->shadow_weight || o->mv_dual || o->mv_f) write_rare(jb, s, n, 0);
         return;
     }
     /* the common outputs in a loop of their own, without per-sample tests */
@@ -304,10 +309,17 @@ static void write_outputs(job_t *jb, const rsample_t *s, int n)
     }
     if (jb->do_layers) write_layers(jb, s, n);
     if (!o->depth && !o->mv_f && !o->mv_shadow && !o->shadow_weight && !o->mv_dual) return;
+    write_rare(jb, s, n, 1);
+}
+
+/* Depth, float MVs, shadow MVs and weights, dual MVs. */
+static void write_rare(job_t *jb, const rsample_t *s, int n, int depth)
+{
+    const tdc_render_out_t *o = jb->out;
     for (int i = 0; i < n; i++) {
         const rsample_t *a = &s[i];
         size_t d = a->dst;
-        if (o->depth) o->depth[d] = (float)a->depth;
+        if (o->depth && depth) o->depth[d] = (float)a->depth;
         int16_t m0 = 0, m1 = 0;
         if (jb->do_mv) {
             m0 = q4(a->mv[0]);
@@ -487,7 +499,7 @@ int tdc_render_frame(tdc_render_t *r, uint32_t frame, tdc_render_mode_t mode, co
     jb.frame_static = st.frame_static;
     jb.do_reflect = r->feat.mirrors && r->cfg.max_bounces > 0;
     jb.do_mv = mv_mode && !st.frame_static;
-    jb.do_layers = (mode == TDC_RENDER_FULL || mode == TDC_RENDER_SUBFRAME) &&
+    jb.do_layers = (mode == TDC_RENDER_FULL || mode == TDC_RENDER_SUBFRAME || mode == TDC_RENDER_FOVEATED) &&
                    (out->shade || out->vis || out->refl || out->mv_surf || out->mv_refl || out->shadow_src ||
                     out->indirect);
     jb.do_indirect = r->cfg.indirect && r->feat.lights;
