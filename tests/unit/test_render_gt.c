@@ -24,7 +24,17 @@
 
 static tdc_scene_t sc;
 
+static tdc_render_t *open_with(const char *text, int threads, uint32_t seed, int gt_samples, int indirect,
+                               int reuse);
+
 static tdc_render_t *open_cfg(const char *text, int threads, uint32_t seed, int gt_samples)
+{
+    return open_with(text, threads, seed, gt_samples, 0, 0);
+}
+
+/* shadow and dual MVs on; indirect: the diffuse bounce, reuse: its cone reuse */
+static tdc_render_t *open_with(const char *text, int threads, uint32_t seed, int gt_samples, int indirect,
+                               int reuse)
 {
     char err[256];
     tdc_scene_status_t st = tdc_scene_parse(text, "t", NULL, &sc, err, sizeof err);
@@ -37,6 +47,8 @@ static tdc_render_t *open_cfg(const char *text, int threads, uint32_t seed, int 
     cfg.seed = seed;
     cfg.gt_samples = gt_samples;
     cfg.shadow_mv = cfg.dual_mv = 1;
+    cfg.indirect = indirect;
+    cfg.indirect_reuse = reuse;
     tdc_render_t *r = tdc_render_open(&sc, &cfg, err, sizeof err);
     if (!r) fail_msg("%s", err);
     return r;
@@ -320,20 +332,7 @@ static const char scene_bounce[] = "tdc-scene 1\n"
 
 static tdc_render_t *open_bounce(int threads, uint32_t seed, int reuse)
 {
-    char err[256];
-    if (tdc_scene_parse(scene_bounce, "t", NULL, &sc, err, sizeof err) != TDC_SCENE_OK) fail_msg("%s", err);
-    tdc_render_config_t cfg;
-    tdc_render_default_config(&cfg);
-    cfg.width = W;
-    cfg.height = H;
-    cfg.threads = threads;
-    cfg.seed = seed;
-    cfg.indirect = 1;
-    cfg.indirect_reuse = reuse;
-    cfg.dual_mv = 1;
-    tdc_render_t *r = tdc_render_open(&sc, &cfg, err, sizeof err);
-    if (!r) fail_msg("%s", err);
-    return r;
+    return open_with(scene_bounce, threads, seed, 9, 1, reuse);
 }
 
 static void test_indirect_cone_reuse(void **state)
