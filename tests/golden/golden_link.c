@@ -107,8 +107,13 @@ static void run(tdc_golden_ctx_t *ctx, const char *vector, size_t n, size_t chun
     }
     const tdc_link_counters_t *k = tdc_link_counters(&g_dec);
     uint64_t h = pending;
+    /* Codes up to STREAM_HEADER (those the vectors were recorded with); a
+     * later code is folded only when it occurred, so the checksums of these
+     * streams do not change when a kind adds a code (FOVEATION). */
     for (int i = 0; i < TDC_LINK_ERR_COUNT; i++) {
-        h = fold_u32(h, k->errors[i]);
+        if (i <= TDC_LINK_ERR_STREAM_HEADER || k->errors[i]) {
+            h = fold_u32(h, k->errors[i]);
+        }
     }
     h = fold_u32(fold_u32(fold_u32(h, k->packets_ok), (uint32_t)k->garbage_bytes), k->missing_reduced_frames);
     tdc_golden_emit(ctx, "link", vector, 9999, h);

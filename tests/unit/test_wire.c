@@ -133,7 +133,7 @@ static void test_stream_pack_unpack(void **state)
 static void test_kind_table(void **state)
 {
     (void)state;
-    static const char *const names[] = {"stream", "full", "reduced", "subframe", "motion", "pattern"};
+    static const char *const names[] = {"stream", "full", "reduced", "subframe", "motion", "pattern", "foveated"};
     for (uint32_t k = TDC_LINK_KIND_FIRST; k <= TDC_LINK_KIND_LAST; k++) {
         const tdc_link_kind_info_t *ki = tdc_link_kind_info(k);
         assert_non_null(ki);
