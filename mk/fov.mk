@@ -45,3 +45,9 @@ fuzz-seeds-fov: $(BUILD)/fuzz/make_seeds_fov
 	@mkdir -p tests/fuzz/corpus-fov
 	$(BUILD)/fuzz/make_seeds_fov tests/fuzz/corpus-fov
 .PHONY: fuzz-seeds-fov
+
+# The simulator's fov modes (sim/simulator/tdc_sim_mode_fov.c), gaze schedules and tracker
+TESTS += $(B)/tests/unit/test_sim_fov
+$(B)/tests/unit/test_sim_fov: $(B)/tests/unit/test_sim_fov.o $$(SIMXLIB) $$(SIMLIB) $$(FWLIB)
+	$(CC) $(HOST_LDFLAGS) $(SIM_OMP) $^ -o $@ $(HOST_LIBS)
+$(B)/tests/unit/test_sim_fov.o: $(GEN)/tdc_sim_features.h
