@@ -61,6 +61,15 @@ size_t tdc_link_encode_motion(const tdc_link_encoder_t *enc, uint8_t *out, size_
 size_t tdc_link_encode_pattern(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap, uint32_t eye, uint32_t frame,
                                const uint8_t *bits, uint32_t w, uint32_t h);
 
+/* LAYERS (tdc_layer_link.h): the planes of src for the layer set `flags`
+ * (TDC_LAYER_PKT_*), vector kind mv_kind[t - 1] of each present type t, of a
+ * w x h eye.  0 if src lacks a plane the flags name or a kind is invalid.
+ * Values are sent as they are (a sentinel vector or a weight above 1 goes
+ * out and is refused by the decoder: tests use that). */
+size_t tdc_link_encode_layers(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap, uint32_t eye, uint32_t frame,
+                              const tdc_layer_frame_t *src, uint32_t flags, const uint8_t mv_kind[TDC_LAYER_MAX],
+                              uint32_t w, uint32_t h);
+
 /* FOVEATED: the foveation header of p (delta_q15, TDC_FOV_FLAG_MV if mv)
  * for the encoder's w x h eye, then the samples in payload order
  * (tdc_fov_link.h: samples = the lp samples of columns [u0, lp_w), rows

@@ -31,6 +31,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "eye/tdc_eye_temporal.h"
 #include "panel/tdc_panel_sim.h"
 #include "simulator/tdc_sim.h"
 #include "simulator/tdc_sim_gaze.h"
@@ -107,6 +108,10 @@ struct sim_mode {
     int have_err_prev;
     double sum_psnr, sum_ssim, sum_flip, sum_flicker;
     int n_flicker;
+    /* temporal visibility model (cfg->temporal): filter state, sum of terr */
+    tdc_eye_temporal_t *temporal;
+    double sum_terr;
+    int n_terr;
     /* the run's gaze (where the fovea is) and the sums of the gaze metrics */
     const tdc_sim_gaze_t *gaze;
     double sum_flip_ecc, sum_flip_fovea, sum_flip_periph, sum_flip_wmed, sum_flicker_periph;

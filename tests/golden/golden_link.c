@@ -111,7 +111,9 @@ static void run(tdc_golden_ctx_t *ctx, const char *vector, size_t n, size_t chun
      * later code is folded only when it occurred, so the checksums of these
      * streams do not change when a kind adds a code (FOVEATION). */
     for (int i = 0; i < TDC_LINK_ERR_COUNT; i++) {
-        if (i <= TDC_LINK_ERR_STREAM_HEADER || k->errors[i]) {
+        /* codes added after these vectors were recorded fold in only when
+         * they occur, so the checked-in checksums stay valid */
+        if (i < TDC_LINK_ERR_LAYERS || k->errors[i]) {
             h = fold_u32(h, k->errors[i]);
         }
     }
