@@ -8,6 +8,12 @@
 #include "tdc_sim_features.h"
 #include "tdc_wire.h" /* packet sizes, also for the accounting without the link */
 
+/* the simulator's stream flags are the wire's */
+_Static_assert(TDC_SIM_LINK_REDUCED == TDC_LINK_STREAM_REDUCED && TDC_SIM_LINK_SUBFRAMES == TDC_LINK_STREAM_SUBFRAMES &&
+                   TDC_SIM_LINK_MOTION == TDC_LINK_STREAM_MOTION && TDC_SIM_LINK_SAMPLE_MV == TDC_LINK_STREAM_SAMPLE_MV &&
+                   TDC_SIM_LINK_FOVEATED == TDC_LINK_STREAM_FOVEATED,
+               "TDC_SIM_LINK_* differ from TDC_LINK_STREAM_*");
+
 #if TDC_SIM_HAVE_LINK
 #include "tdc_link_encode.h"
 #include "tdc_link.h"

@@ -38,7 +38,7 @@ typedef struct {
 #define TDC_SIM_LINK_SUBFRAMES 0x0002u
 #define TDC_SIM_LINK_MOTION 0x0004u
 #define TDC_SIM_LINK_SAMPLE_MV 0x0010u
-#define TDC_SIM_LINK_FOVEATED 0x0020u
+#define TDC_SIM_LINK_FOVEATED 0x0040u
 
 int tdc_sim_link_init(tdc_sim_link_t *l, int w, int h, int eyes, uint32_t flags, uint16_t r_num, uint16_t r_den,
                       uint16_t hz);

@@ -451,6 +451,17 @@ static void eval_mode_eye(sim_mode_t *m, sim_eval_t *ev, const tdc_eye_cfg_t *ec
         char name[96];
         snprintf(name, sizeof(name), "%s%s", r->desc->name, m->eyes == 2 ? (m->eye ? "_R" : "_L") : "");
         tdc_report_strip(cfg->outdir, name, m->out, ev->crop_p, crop_g, ev->flipmap, w, h, cw, ch, margin);
+        if (m->eye == 0) {
+            /* where the eye looked at the strip's instant (crop coordinates), for the fovea crops */
+            char gp[1100];
+            snprintf(gp, sizeof(gp), "%s/strip_gaze.json", cfg->outdir);
+            FILE *gf = fopen(gp, "w");
+            if (gf) {
+                fprintf(gf, "{\"x\": %.3f, \"y\": %.3f, \"r\": %.3f, \"width\": %d, \"height\": %d}\n", gx, gy, rf, cw,
+                        ch);
+                fclose(gf);
+            }
+        }
     }
     if (tm) {
         tm->eye_s += w1 - w0;
@@ -522,21 +533,21 @@ int tdc_sim_run(const tdc_sim_config_t *cfg, tdc_source_t *src, const tdc_mode_d
         }
     }
     /* the gaze (where the fovea is), for the fov modes and every mode's gaze metrics */
-    tdc_sim_gaze_t gaze;
-    memset(&gaze, 0, sizeof(gaze));
-    gaze.schedule = cfg->gaze;
-    gaze.at_x = cfg->gaze_at_x;
-    gaze.at_y = cfg->gaze_at_y;
-    gaze.latency_ms = cfg->gaze_latency_ms;
-    gaze.noise_deg = cfg->gaze_noise_deg;
-    gaze.ppd = cfg->flip_ppd;
-    gaze.seed = cfg->seed;
-    if (rc == 0 && tdc_sim_gaze_init(&gaze, src, w, h, R, cfg->duration_s)) {
+    tdc_sim_gaze_t fovea; /* the gaze point's table (main's `gaze` below: the pursuit shift) */
+    memset(&fovea, 0, sizeof(fovea));
+    fovea.schedule = cfg->gaze;
+    fovea.at_x = cfg->gaze_at_x;
+    fovea.at_y = cfg->gaze_at_y;
+    fovea.latency_ms = cfg->gaze_latency_ms;
+    fovea.noise_deg = cfg->gaze_noise_deg;
+    fovea.ppd = cfg->flip_ppd;
+    fovea.seed = cfg->seed;
+    if (rc == 0 && tdc_sim_gaze_init(&fovea, src, w, h, R, cfg->duration_s)) {
         fprintf(stderr, "tdc-sim: out of memory for the gaze table\n");
         rc = -1;
     }
     for (int k = 0; k < nmodes * eyes; k++) {
-        ms[k].gaze = &gaze;
+        ms[k].gaze = &fovea;
     }
     long total = (long)floor(cfg->duration_s * R + 1e-9);
     long nevals = total - (wf - 1);
@@ -664,7 +675,7 @@ int tdc_sim_run(const tdc_sim_config_t *cfg, tdc_source_t *src, const tdc_mode_d
     }
     free(ms);
     eval_free(&ev);
-    tdc_sim_gaze_free(&gaze);
+    tdc_sim_gaze_free(&fovea);
     if (tm) {
         tm->total_s = wall_now() - wall0;
     }
