@@ -381,7 +381,8 @@ tdc_source_t *tdc_sim_render_source(const char *name, int w, int h, int clock_hz
     s->subframe = rs_subframe;
     s->foveated = rs_foveated;
     s->note = "Embree renderer: full frames at 1 ray per pixel centre; reduced frames are full renders prefiltered "
-              "by the TRM stage's D; subframes traced by the renderer with its own adaptive orderings";
+              "by the TRM stage's D; subframes traced by the renderer with its own adaptive orderings; foveated frames "
+              "traced by its FOVEATED mode";
     return s;
 }
 
