@@ -228,7 +228,8 @@ size_t tdc_lcd_cfg_history_bytes(const tdc_lcd_config_t *cfg)
 
 static int lcd_config_valid(const tdc_lcd_config_t *cfg)
 {
-    return cfg && cfg->width != 0 && cfg->height != 0 && cfg->mode <= TDC_LCD_MODE_STATEFUL_PAIR &&
+    return cfg && cfg->width != 0 && cfg->height != 0 && cfg->width <= TDC_LCD_MAX_DIM &&
+           cfg->height <= TDC_LCD_MAX_DIM && cfg->mode <= TDC_LCD_MODE_STATEFUL_PAIR &&
            cfg->prev_bits >= 4 && cfg->prev_bits <= 8;
 }
 

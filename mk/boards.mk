@@ -22,6 +22,10 @@ ARM_SIZE := $(ARM_CROSS)size
 ARM_OBJCOPY := $(ARM_CROSS)objcopy
 ARM_OPT ?= -O2
 QEMU_TIMEOUT ?= 300
+# The instruction-counting TCG plugin (make bench-arm, below): defined before
+# the first rule that names it as a prerequisite (arm-bench, arm-loop-cost),
+# since prerequisites are expanded when make reads the rule.
+INSN_PLUGIN := $(BUILD)/tools/tdc-insn-count.so
 
 ARM_BOARDS := $(filter-out host,$(BOARDS))
 # Emulated boards: those whose board.mk names a QEMU machine.
@@ -370,7 +374,6 @@ test-arm:
 # the Cortex-M7 (mps2-an500) and Cortex-M55 (mps3-an547) under QEMU, counted
 # by a TCG plugin built here against the plugin API of Debian's QEMU.
 # ---------------------------------------------------------------------------
-INSN_PLUGIN := $(BUILD)/tools/tdc-insn-count.so
 $(INSN_PLUGIN): tests/arm/tdc_insn_plugin.c | $(BUILD)/tools
 	gcc -std=c11 -Wall -Wextra -Werror -O2 -shared -fPIC $< -o $@
 
