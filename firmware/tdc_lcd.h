@@ -202,8 +202,13 @@ typedef struct {
     int32_t *st_ddec;         /* STATEFUL_PAIR [256]: debt code (as uint8) -> light, Q24 */
     uint8_t st_phase;         /* STATEFUL_PAIR: 0 = first refresh of a pair (even frame since reset) */
     uint8_t table_fault;      /* tdc_lcd_table_fault_t of the last refused init */
-    uint8_t q_enc[256];       /* 8-bit code -> prev_bits code (rounded) */
-    uint8_t q_dec[256];       /* prev_bits code -> 8-bit code */
+    /* stateful, 8-bit state without debt: the hot run (tdc_lcd_kernels.h),
+     * C or AVX2, chosen at init */
+    void (*st_run8)(const uint16_t *lut, const uint8_t *whi, const uint8_t *wlo, const uint8_t *in, uint8_t *out,
+                    uint8_t *state, uint32_t i, uint32_t w3,
+                    void (*miss)(void *ctx, uint32_t s, uint32_t q, uint32_t w), void *ctx);
+    uint8_t q_enc[256]; /* 8-bit code -> prev_bits code (rounded) */
+    uint8_t q_dec[256]; /* prev_bits code -> 8-bit code */
     tdc_lcd_stats_t stats;
 } tdc_lcd_t;
 
@@ -216,9 +221,9 @@ typedef struct {
  * 10 bytes < 2^20) < 2^32.  Checked below in 64-bit arithmetic; 8192 is
  * also TRM's bound (tdc_trm.c). */
 #define TDC_LCD_MAX_DIM 8192u
-_Static_assert((uint64_t)TDC_LCD_MAX_DIM * TDC_LCD_MAX_DIM * 3u * 8u <= 0xFFFFFFFFu,
+_Static_assert((uint64_t)TDC_LCD_MAX_DIM *TDC_LCD_MAX_DIM * 3u * 8u <= 0xFFFFFFFFu,
                "LCD: packed history size must not wrap a 32-bit size_t");
-_Static_assert((uint64_t)TDC_LCD_MAX_DIM * TDC_LCD_MAX_DIM * 6u + (1u << 20) <= 0xFFFFFFFFu,
+_Static_assert((uint64_t)TDC_LCD_MAX_DIM *TDC_LCD_MAX_DIM * 6u + (1u << 20) <= 0xFFFFFFFFu,
                "LCD: arena size must not wrap a 32-bit size_t");
 
 /* Bytes of a packed previous-frame buffer of n samples at b bits (+1 slack). */
@@ -280,6 +285,11 @@ size_t tdc_lcd_get_size(const tdc_lcd_config_t *cfg);
 TDC_MUST_CHECK
 tdc_status_t tdc_lcd_init(tdc_lcd_t *st, const tdc_lcd_config_t *cfg, const tdc_panel_t *panel, void *mem,
                           size_t mem_bytes);
+
+/* 0: the portable C run of the stateful inverse even where AVX2 is
+ * available (benchmarks compare both; init picks AVX2 when the CPU has it).
+ * The output is the same either way (tests/checkasm/checkasm_lcd.c). */
+void tdc_lcd_set_simd(tdc_lcd_t *st, int enable);
 
 /* Stream reset: the next frame has no history. */
 void tdc_lcd_reset(tdc_lcd_t *st);

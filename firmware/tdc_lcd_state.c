@@ -31,6 +31,7 @@
  */
 #include "tdc_gamma.h"
 #include "tdc_lcd.h"
+#include "tdc_lcd_kernels.h"
 #include "tdc_overdrive.h"
 
 #define ST_MAX (255u << TDC_LCD_ST_FRAC) /* largest Q4 code */
@@ -302,11 +303,68 @@ static ST_ALWAYS_INLINE uint32_t st_row8(tdc_lcd_t *st, const st_chan_t ch[3], c
     return nmiss;
 }
 
-/* st_row8 specialised (the debt tests vanish from the plain loop). */
+/* The hot run of the plain 8-bit path (tdc_lcd_kernels.h): st_row8's loop
+ * with the out-of-reach sub-pixels handed to miss(). */
+static inline int run8_miss(uint32_t e, uint32_t q, uint32_t w, const uint8_t *whi, const uint8_t *wlo)
+{
+    return ((e + 1u) & 255u) <= 1u && (w > whi[q] || w < wlo[q]);
+}
+
+void tdc_lcd_st_run8_c(const uint16_t *lut, const uint8_t *whi, const uint8_t *wlo, const uint8_t *in, uint8_t *out,
+                       uint8_t *state, uint32_t i, uint32_t w3, tdc_lcd_st_miss_fn *miss, void *ctx)
+{
+    for (; i + 3u <= w3; i += 3u) {
+        const uint32_t w0 = in[i], w1 = in[i + 1u], w2 = in[i + 2u];
+        const uint32_t q0 = state[i], q1 = state[i + 1u], q2 = state[i + 2u];
+        const uint32_t e0 = lut[(q0 << 8) | w0];
+        const uint32_t e1 = lut[65536u + ((q1 << 8) | w1)];
+        const uint32_t e2 = lut[131072u + ((q2 << 8) | w2)];
+        if ((((e0 + 1u) & 255u) <= 1u) | (((e1 + 1u) & 255u) <= 1u) | (((e2 + 1u) & 255u) <= 1u)) {
+            if (run8_miss(e0, q0, w0, whi, wlo)) {
+                miss(ctx, i, q0, w0);
+            }
+            if (run8_miss(e1, q1, w1, whi + 256, wlo + 256)) {
+                miss(ctx, i + 1u, q1, w1);
+            }
+            if (run8_miss(e2, q2, w2, whi + 512, wlo + 512)) {
+                miss(ctx, i + 2u, q2, w2);
+            }
+        }
+        out[i] = (uint8_t)e0;
+        out[i + 1u] = (uint8_t)e1;
+        out[i + 2u] = (uint8_t)e2;
+        state[i] = (uint8_t)(e0 >> 8);
+        state[i + 1u] = (uint8_t)(e1 >> 8);
+        state[i + 2u] = (uint8_t)(e2 >> 8);
+    }
+}
+
+/* What st_row8 does for a sub-pixel out of reach (no debt). */
+typedef struct {
+    tdc_lcd_t *st;
+    const st_chan_t *ch;
+    tdc_res_t *residual;
+    size_t s0;
+    uint32_t nmiss;
+} run8_ctx_t;
+
+static void run8_on_miss(void *ctx, uint32_t s, uint32_t q, uint32_t w)
+{
+    run8_ctx_t *r = (run8_ctx_t *)ctx;
+    const st_chan_t *k = &r->ch[s % 3u];
+    const int32_t m = st_out_of_reach(k, q, w, (int32_t)k->gt->decode[w]);
+    r->nmiss++;
+    st_miss(r->st, r->residual, r->s0 + s, m);
+}
+
+/* st_row8 without debt, through the run (C or AVX2, st->st_run8): same
+ * bytes, residual and counts. */
 static uint32_t st_row8_plain(tdc_lcd_t *st, const st_chan_t ch[3], const uint8_t *in, uint8_t *out, uint8_t *state,
                               uint32_t w3, size_t s0, tdc_res_t *residual)
 {
-    return st_row8(st, ch, in, out, state, 0, 0, w3, s0, residual);
+    run8_ctx_t ctx = {st, ch, residual, s0, 0};
+    st->st_run8(ch[0].lut, ch[0].whi, ch[0].wlo, in, out, state, 0, w3, run8_on_miss, &ctx);
+    return ctx.nmiss;
 }
 
 static uint32_t st_row8_pair(tdc_lcd_t *st, const st_chan_t ch[3], const uint8_t *in, uint8_t *out, uint8_t *state,

@@ -159,7 +159,7 @@ $(BA)/harness-check: $(BA)/tdc_harness.elf tests/arm/test_harness.sh
 
 # Helium boards: the checkasm core (tests/checkasm/, the host's registry and
 # inputs) in QEMU, which checks the MVE row kernels against the C kernels.
-ARM_CHECKASM_SRCS = tests/arm/checkasm_arm_main.c tests/checkasm/checkasm.c tests/checkasm/checkasm_trm.c
+ARM_CHECKASM_SRCS = tests/arm/checkasm_arm_main.c tests/checkasm/checkasm.c tests/checkasm/checkasm_trm.c tests/checkasm/checkasm_lcd.c
 ARM_CHECKASM_OBJS = $(patsubst %.c,$(BA)/%.o,$(ARM_BOARD_SRCS) $(ARM_CHECKASM_SRCS))
 $(patsubst %.c,$(BA)/%.o,$(ARM_CHECKASM_SRCS)): ARM_TEST_CFLAGS += -DCHECKASM_NO_MAIN
 $(BA)/checkasm_mve.elf: $$(ARM_CHECKASM_OBJS) $(BA)/libtdcfw.a $(ARM_LDDEPS)
