@@ -204,11 +204,10 @@ typedef struct {
     uint8_t table_fault;      /* tdc_lcd_table_fault_t of the last refused init */
     /* stateful, 8-bit state without debt: the hot run (tdc_lcd_kernels.h),
      * C or AVX2, chosen at init */
-    void (*st_run8)(const uint16_t *lut, const uint8_t *whi, const uint8_t *wlo, const uint8_t *in, uint8_t *out,
-                    uint8_t *state, uint32_t i, uint32_t w3,
-                    void (*miss)(void *ctx, uint32_t s, uint32_t q, uint32_t w), void *ctx);
-    uint8_t q_enc[256]; /* 8-bit code -> prev_bits code (rounded) */
-    uint8_t q_dec[256]; /* prev_bits code -> 8-bit code */
+    uint32_t (*st_run8)(const uint16_t *lut, const uint8_t *in, uint8_t *out, uint8_t *state, uint32_t i, uint32_t w3);
+    uint8_t st_run8_rest; /* rows left without the run (it stopped at most steps of a recent row) */
+    uint8_t q_enc[256];   /* 8-bit code -> prev_bits code (rounded) */
+    uint8_t q_dec[256];   /* prev_bits code -> 8-bit code */
     tdc_lcd_stats_t stats;
 } tdc_lcd_t;
 

@@ -9,11 +9,10 @@
  * the three vectors is fixed because a step starts on a pixel), three
  * 32-bit gathers of the 16-bit entries (the high half, the next entry, is
  * masked off), drive = byte 0 and next state = byte 1 of each lane packed
- * back to bytes.  Where a drive is 0 or 255 the reach limits are gathered
- * too, and each sub-pixel out of reach goes to miss() with its old state,
- * in ascending order, before the step is stored, as in the C run.  Integer only
- * (tests/rules/check_simd_nofloat.sh); other targets get 0 from
- * tdc_lcd_avx2_available() and the C run behind the AVX2 name.
+ * back to bytes.  A step with a drive of 0 or 255 is left to the caller, as
+ * the C run does.  Integer only (tests/rules/check_simd_nofloat.sh); other
+ * targets get 0 from tdc_lcd_avx2_available() and the C run behind the AVX2
+ * name.
  */
 #include "tdc_lcd_kernels.h"
 
@@ -29,21 +28,13 @@ int tdc_lcd_avx2_available(void)
     return __builtin_cpu_supports("avx2");
 }
 
-/* One vector of 8 sub-pixels: wanted codes, states, the lookups (channel
- * pattern chan: c per lane). */
-typedef struct {
-    __m256i w, q, e;
-} run8_vec_t;
-
-static inline TDC_AVX2 run8_vec_t run8_lookup(const uint16_t *lut, const uint8_t *in, const uint8_t *state,
-                                              __m256i chan)
+/* Lookups of 8 sub-pixels (chan: c * 65536 per lane). */
+static inline TDC_AVX2 __m256i run8_lookup(const uint16_t *lut, const uint8_t *in, const uint8_t *state, __m256i chan)
 {
-    run8_vec_t v;
-    v.w = _mm256_cvtepu8_epi32(_mm_loadl_epi64((const __m128i *)(const void *)in));
-    v.q = _mm256_cvtepu8_epi32(_mm_loadl_epi64((const __m128i *)(const void *)state));
-    const __m256i idx = _mm256_add_epi32(_mm256_or_si256(_mm256_slli_epi32(v.q, 8), v.w), _mm256_slli_epi32(chan, 16));
-    v.e = _mm256_and_si256(_mm256_i32gather_epi32((const int *)(const void *)lut, idx, 2), _mm256_set1_epi32(0xffff));
-    return v;
+    const __m256i w = _mm256_cvtepu8_epi32(_mm_loadl_epi64((const __m128i *)(const void *)in));
+    const __m256i q = _mm256_cvtepu8_epi32(_mm_loadl_epi64((const __m128i *)(const void *)state));
+    const __m256i idx = _mm256_add_epi32(_mm256_or_si256(_mm256_slli_epi32(q, 8), w), chan);
+    return _mm256_and_si256(_mm256_i32gather_epi32((const int *)(const void *)lut, idx, 2), _mm256_set1_epi32(0xffff));
 }
 
 /* Byte b of each 32-bit lane of e, as 8 bytes. */
@@ -57,58 +48,37 @@ static inline TDC_AVX2 __m128i run8_bytes(__m256i e, int b)
     return _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(s, _mm256_setr_epi32(0, 4, 1, 1, 1, 1, 1, 1)));
 }
 
-/* Lanes whose drive (byte 0) is 0 or 255, as an 8-bit mask. */
-static inline TDC_AVX2 uint32_t run8_edges(__m256i e)
+/* All-ones lanes where the drive (byte 0) is 0 or 255. */
+static inline TDC_AVX2 __m256i run8_edges(__m256i e)
 {
     const __m256i d = _mm256_and_si256(e, _mm256_set1_epi32(0xff));
-    const __m256i m =
-        _mm256_or_si256(_mm256_cmpeq_epi32(d, _mm256_setzero_si256()), _mm256_cmpeq_epi32(d, _mm256_set1_epi32(0xff)));
-    return (uint32_t)_mm256_movemask_ps(_mm256_castsi256_ps(m));
+    return _mm256_or_si256(_mm256_cmpeq_epi32(d, _mm256_setzero_si256()),
+                           _mm256_cmpeq_epi32(d, _mm256_set1_epi32(0xff)));
 }
 
-/* Lanes out of reach (w > whi[c][q] or w < wlo[c][q]), as an 8-bit mask:
- * byte gathers as 32-bit loads ending at the byte (base - 3, top byte). */
-static inline TDC_AVX2 uint32_t run8_reach(const run8_vec_t *v, __m256i chan, const uint8_t *whi, const uint8_t *wlo)
+TDC_AVX2 uint32_t tdc_lcd_st_run8_avx2(const uint16_t *lut, const uint8_t *in, uint8_t *out, uint8_t *state, uint32_t i,
+                                       uint32_t w3)
 {
-    const __m256i idx = _mm256_add_epi32(v->q, _mm256_slli_epi32(chan, 8));
-    const __m256i hi = _mm256_srli_epi32(_mm256_i32gather_epi32((const int *)(const void *)(whi - 3), idx, 1), 24);
-    const __m256i lo = _mm256_srli_epi32(_mm256_i32gather_epi32((const int *)(const void *)(wlo - 3), idx, 1), 24);
-    const __m256i m = _mm256_or_si256(_mm256_cmpgt_epi32(v->w, hi), _mm256_cmpgt_epi32(lo, v->w));
-    return (uint32_t)_mm256_movemask_ps(_mm256_castsi256_ps(m));
-}
-
-TDC_AVX2 void tdc_lcd_st_run8_avx2(const uint16_t *lut, const uint8_t *whi, const uint8_t *wlo, const uint8_t *in,
-                                   uint8_t *out, uint8_t *state, uint32_t i, uint32_t w3, tdc_lcd_st_miss_fn *miss,
-                                   void *ctx)
-{
-    /* channel of each lane for the vectors at sub-pixels 0, 8, 16 of a step */
-    const __m256i c0 = _mm256_setr_epi32(0, 1, 2, 0, 1, 2, 0, 1);
-    const __m256i c1 = _mm256_setr_epi32(2, 0, 1, 2, 0, 1, 2, 0);
-    const __m256i c2 = _mm256_setr_epi32(1, 2, 0, 1, 2, 0, 1, 2);
-    for (; i + 24u <= w3; i += 24u) {
-        const run8_vec_t v0 = run8_lookup(lut, in + i, state + i, c0);
-        const run8_vec_t v1 = run8_lookup(lut, in + i + 8u, state + i + 8u, c1);
-        const run8_vec_t v2 = run8_lookup(lut, in + i + 16u, state + i + 16u, c2);
-        const uint32_t edges = run8_edges(v0.e) | run8_edges(v1.e) << 8 | run8_edges(v2.e) << 16;
-        if (edges != 0u) {
-            /* only a drive of 0 or 255 can be out of reach; in ascending s, old state */
-            uint32_t m = edges & (run8_reach(&v0, c0, whi, wlo) | run8_reach(&v1, c1, whi, wlo) << 8 |
-                                  run8_reach(&v2, c2, whi, wlo) << 16);
-            while (m != 0u) {
-                const uint32_t s = i + (uint32_t)__builtin_ctz(m);
-                miss(ctx, s, state[s], in[s]);
-                m &= m - 1u;
-            }
+    /* c * 65536 of each lane for the vectors at sub-pixels 0, 8, 16 of a step */
+    const __m256i c0 = _mm256_setr_epi32(0, 65536, 131072, 0, 65536, 131072, 0, 65536);
+    const __m256i c1 = _mm256_setr_epi32(131072, 0, 65536, 131072, 0, 65536, 131072, 0);
+    const __m256i c2 = _mm256_setr_epi32(65536, 131072, 0, 65536, 131072, 0, 65536, 131072);
+    for (; i + TDC_LCD_RUN8_STEP <= w3; i += TDC_LCD_RUN8_STEP) {
+        const __m256i e0 = run8_lookup(lut, in + i, state + i, c0);
+        const __m256i e1 = run8_lookup(lut, in + i + 8u, state + i + 8u, c1);
+        const __m256i e2 = run8_lookup(lut, in + i + 16u, state + i + 16u, c2);
+        const __m256i edges = _mm256_or_si256(_mm256_or_si256(run8_edges(e0), run8_edges(e1)), run8_edges(e2));
+        if (!_mm256_testz_si256(edges, edges)) {
+            return i; /* a drive of 0 or 255: the caller's full loop takes this step */
         }
-        _mm_storel_epi64((__m128i *)(void *)(out + i), run8_bytes(v0.e, 0));
-        _mm_storel_epi64((__m128i *)(void *)(out + i + 8u), run8_bytes(v1.e, 0));
-        _mm_storel_epi64((__m128i *)(void *)(out + i + 16u), run8_bytes(v2.e, 0));
-        _mm_storel_epi64((__m128i *)(void *)(state + i), run8_bytes(v0.e, 1));
-        _mm_storel_epi64((__m128i *)(void *)(state + i + 8u), run8_bytes(v1.e, 1));
-        _mm_storel_epi64((__m128i *)(void *)(state + i + 16u), run8_bytes(v2.e, 1));
+        _mm_storel_epi64((__m128i *)(void *)(out + i), run8_bytes(e0, 0));
+        _mm_storel_epi64((__m128i *)(void *)(out + i + 8u), run8_bytes(e1, 0));
+        _mm_storel_epi64((__m128i *)(void *)(out + i + 16u), run8_bytes(e2, 0));
+        _mm_storel_epi64((__m128i *)(void *)(state + i), run8_bytes(e0, 1));
+        _mm_storel_epi64((__m128i *)(void *)(state + i + 8u), run8_bytes(e1, 1));
+        _mm_storel_epi64((__m128i *)(void *)(state + i + 16u), run8_bytes(e2, 1));
     }
-    /* the last pixels: the C run on the rest of the row */
-    tdc_lcd_st_run8_c(lut, whi, wlo, in, out, state, i, w3, miss, ctx);
+    return i < w3 ? i : w3;
 }
 
 #else /* no AVX2 on this target: the C run behind the same name */
@@ -118,10 +88,10 @@ int tdc_lcd_avx2_available(void)
     return 0;
 }
 
-void tdc_lcd_st_run8_avx2(const uint16_t *lut, const uint8_t *whi, const uint8_t *wlo, const uint8_t *in, uint8_t *out,
-                          uint8_t *state, uint32_t i, uint32_t w3, tdc_lcd_st_miss_fn *miss, void *ctx)
+uint32_t tdc_lcd_st_run8_avx2(const uint16_t *lut, const uint8_t *in, uint8_t *out, uint8_t *state, uint32_t i,
+                              uint32_t w3)
 {
-    tdc_lcd_st_run8_c(lut, whi, wlo, in, out, state, i, w3, miss, ctx);
+    return tdc_lcd_st_run8_c(lut, in, out, state, i, w3);
 }
 
 #endif

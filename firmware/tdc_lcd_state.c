@@ -303,68 +303,61 @@ static ST_ALWAYS_INLINE uint32_t st_row8(tdc_lcd_t *st, const st_chan_t ch[3], c
     return nmiss;
 }
 
-/* The hot run of the plain 8-bit path (tdc_lcd_kernels.h): st_row8's loop
- * with the out-of-reach sub-pixels handed to miss(). */
-static inline int run8_miss(uint32_t e, uint32_t q, uint32_t w, const uint8_t *whi, const uint8_t *wlo)
+/* The run (tdc_lcd_kernels.h) in portable C: the reference of the AVX2 run
+ * (tests/checkasm/checkasm_lcd.c).  The boards do not use it: st_row8 alone
+ * is what they run (65.7 instructions per pixel on the Cortex-M7). */
+uint32_t tdc_lcd_st_run8_c(const uint16_t *lut, const uint8_t *in, uint8_t *out, uint8_t *state, uint32_t i,
+                           uint32_t w3)
 {
-    return ((e + 1u) & 255u) <= 1u && (w > whi[q] || w < wlo[q]);
-}
-
-void tdc_lcd_st_run8_c(const uint16_t *lut, const uint8_t *whi, const uint8_t *wlo, const uint8_t *in, uint8_t *out,
-                       uint8_t *state, uint32_t i, uint32_t w3, tdc_lcd_st_miss_fn *miss, void *ctx)
-{
-    for (; i + 3u <= w3; i += 3u) {
-        const uint32_t w0 = in[i], w1 = in[i + 1u], w2 = in[i + 2u];
-        const uint32_t q0 = state[i], q1 = state[i + 1u], q2 = state[i + 2u];
-        const uint32_t e0 = lut[(q0 << 8) | w0];
-        const uint32_t e1 = lut[65536u + ((q1 << 8) | w1)];
-        const uint32_t e2 = lut[131072u + ((q2 << 8) | w2)];
-        if ((((e0 + 1u) & 255u) <= 1u) | (((e1 + 1u) & 255u) <= 1u) | (((e2 + 1u) & 255u) <= 1u)) {
-            if (run8_miss(e0, q0, w0, whi, wlo)) {
-                miss(ctx, i, q0, w0);
-            }
-            if (run8_miss(e1, q1, w1, whi + 256, wlo + 256)) {
-                miss(ctx, i + 1u, q1, w1);
-            }
-            if (run8_miss(e2, q2, w2, whi + 512, wlo + 512)) {
-                miss(ctx, i + 2u, q2, w2);
-            }
+    for (; i + TDC_LCD_RUN8_STEP <= w3; i += TDC_LCD_RUN8_STEP) {
+        uint16_t e[TDC_LCD_RUN8_STEP];
+        uint32_t edge = 0;
+        for (uint32_t k = 0; k < TDC_LCD_RUN8_STEP; k++) {
+            e[k] = lut[(k % 3u) * 65536u + ((uint32_t)state[i + k] << 8 | in[i + k])];
+            edge |= ((e[k] + 1u) & 255u) <= 1u;
         }
-        out[i] = (uint8_t)e0;
-        out[i + 1u] = (uint8_t)e1;
-        out[i + 2u] = (uint8_t)e2;
-        state[i] = (uint8_t)(e0 >> 8);
-        state[i + 1u] = (uint8_t)(e1 >> 8);
-        state[i + 2u] = (uint8_t)(e2 >> 8);
+        if (edge) {
+            return i;
+        }
+        for (uint32_t k = 0; k < TDC_LCD_RUN8_STEP; k++) {
+            out[i + k] = (uint8_t)e[k];
+            state[i + k] = (uint8_t)(e[k] >> 8);
+        }
     }
+    return i < w3 ? i : w3; /* the tail, for the caller's loop */
 }
 
-/* What st_row8 does for a sub-pixel out of reach (no debt). */
-typedef struct {
-    tdc_lcd_t *st;
-    const st_chan_t *ch;
-    tdc_res_t *residual;
-    size_t s0;
-    uint32_t nmiss;
-} run8_ctx_t;
-
-static void run8_on_miss(void *ctx, uint32_t s, uint32_t q, uint32_t w)
-{
-    run8_ctx_t *r = (run8_ctx_t *)ctx;
-    const st_chan_t *k = &r->ch[s % 3u];
-    const int32_t m = st_out_of_reach(k, q, w, (int32_t)k->gt->decode[w]);
-    r->nmiss++;
-    st_miss(r->st, r->residual, r->s0 + s, m);
-}
-
-/* st_row8 without debt, through the run (C or AVX2, st->st_run8): same
- * bytes, residual and counts. */
+/* st_row8 without debt; with the AVX2 run where init chose it: its steps
+ * without a drive of 0 or 255, st_row8 for the others and the row's tail
+ * (same bytes, residual and counts: checkasm_lcd.c, the golden vectors). */
 static uint32_t st_row8_plain(tdc_lcd_t *st, const st_chan_t ch[3], const uint8_t *in, uint8_t *out, uint8_t *state,
                               uint32_t w3, size_t s0, tdc_res_t *residual)
 {
-    run8_ctx_t ctx = {st, ch, residual, s0, 0};
-    st->st_run8(ch[0].lut, ch[0].whi, ch[0].wlo, in, out, state, 0, w3, run8_on_miss, &ctx);
-    return ctx.nmiss;
+    if (st->st_run8 == tdc_lcd_st_run8_c) {
+        return st_row8(st, ch, in, out, state, 0, 0, w3, s0, residual); /* boards, and hosts without AVX2 */
+    }
+    if (st->st_run8_rest) {
+        /* the run stopped at most steps of a recent row: its gathers are
+         * wasted there (moving text, docs/lcd.md), so st_row8 alone for a
+         * few rows, then the run is tried again */
+        st->st_run8_rest--;
+        return st_row8(st, ch, in, out, state, 0, 0, w3, s0, residual);
+    }
+    uint32_t nmiss = 0, stops = 0;
+    for (uint32_t i = 0; i < w3;) {
+        i = st->st_run8(ch[0].lut, in, out, state, i, w3);
+        if (i >= w3) {
+            break;
+        }
+        const uint32_t n = w3 - i < TDC_LCD_RUN8_STEP ? w3 - i : TDC_LCD_RUN8_STEP;
+        nmiss += st_row8(st, ch, in + i, out + i, state + i, 0, 0, n, s0 + i, residual);
+        i += n;
+        stops++;
+    }
+    if (4u * stops * TDC_LCD_RUN8_STEP > w3) {
+        st->st_run8_rest = 8u; /* over a quarter of the steps stopped */
+    }
+    return nmiss;
 }
 
 static uint32_t st_row8_pair(tdc_lcd_t *st, const st_chan_t ch[3], const uint8_t *in, uint8_t *out, uint8_t *state,

@@ -244,7 +244,10 @@ static void bench_lcd(void)
 {
     const tdc_panel_t *lcd = NULL;
     for (unsigned i = 0; i < sizeof k_panels / sizeof k_panels[0]; i++) {
-        if (k_panels[i]->type == TDC_PANEL_LCD && !lcd) {
+        /* the first LCD profile with the stateful tables (lcd-240): the
+         * board's own disco-dsi profile (first by name) has none, and taking
+         * it silently dropped the stateful rows and moved the others */
+        if (k_panels[i]->type == TDC_PANEL_LCD && k_panels[i]->lcd && k_panels[i]->lcd->rate[0].st_n && !lcd) {
             lcd = k_panels[i];
         }
     }

@@ -2,11 +2,10 @@
  * checkasm_lcd.c - checkasm module of the LCD stage: the stateful inverse's
  * hot run (tdc_lcd_kernels.h), optimised versions against the portable C
  * run, bit for bit: drive and state rows (nothing written outside the
- * run's sub-pixels) and the sub-pixels out of reach it reports (position,
- * old state, wanted code, order).
+ * run's steps) and the steps it stops at.
  *
  * Inputs: a dense lookup with drives in 1..254 except a share of 0 / 255
- * entries (some of them out of reach by the reach limits, some not), random
+ * entries, random
  * wanted codes and states with runs of the extremes (black, white), every
  * width 1..64 pixels and then random ones, and every start pixel of the
  * first rows.
@@ -18,17 +17,13 @@
 
 #define LMAXW 1440u /* pixels per row */
 
-/* 2 bytes of padding after the lookup, 3 before each reach table
- * (tdc_lcd_kernels.h: the AVX2 gathers read them) */
+/* padding after the lookup (tdc_lcd_kernels.h: the AVX2 gathers read 2 bytes past an entry) */
 static uint16_t g_lut_pad[3u * 65536u + 8u] CHECKASM_BIG;
-static uint8_t g_whi_pad[8u + 3u * 256u], g_wlo_pad[8u + 3u * 256u];
 static uint8_t g_in[3u * LMAXW] CHECKASM_BIG, g_st0[3u * LMAXW] CHECKASM_BIG;
 static uint8_t g_out_c[3u * LMAXW] CHECKASM_BIG, g_out_v[3u * LMAXW] CHECKASM_BIG;
 static uint8_t g_st_c[3u * LMAXW] CHECKASM_BIG, g_st_v[3u * LMAXW] CHECKASM_BIG;
 
 #define LUT (g_lut_pad)
-#define WHI (g_whi_pad + 8u)
-#define WLO (g_wlo_pad + 8u)
 
 /* edge_share: 1 in edge_share lookup entries is a drive of 0 or 255. */
 static void make_tables(uint32_t edge_share)
@@ -39,12 +34,6 @@ static void make_tables(uint32_t edge_share)
             d = checkasm_rand_below(2u) ? 255u : 0u;
         }
         g_lut_pad[k] = (uint16_t)(d | checkasm_rand_below(256u) << 8);
-    }
-    for (uint32_t k = 0; k < sizeof g_whi_pad; k++) {
-        /* reach limits: mostly wide, sometimes narrow */
-        const int narrow = checkasm_rand_below(4u) == 0u;
-        g_whi_pad[k] = (uint8_t)(narrow ? 128u + checkasm_rand_below(128u) : 255u);
-        g_wlo_pad[k] = (uint8_t)(narrow ? checkasm_rand_below(128u) : 0u);
     }
 }
 
@@ -63,43 +52,23 @@ static void make_row(uint32_t w3)
     }
 }
 
-/* The misses a run reported, in order. */
-typedef struct {
-    uint32_t n, s[3u * LMAXW], q[3u * LMAXW], w[3u * LMAXW];
-} misses_t;
-static misses_t g_miss_c CHECKASM_BIG, g_miss_v CHECKASM_BIG;
-
-static void on_miss(void *ctx, uint32_t s, uint32_t q, uint32_t w)
-{
-    misses_t *m = (misses_t *)ctx;
-    if (m->n < 3u * LMAXW) {
-        m->s[m->n] = s;
-        m->q[m->n] = q;
-        m->w[m->n] = w;
-    }
-    m->n++;
-}
-
+/* The stage's loop: run, leave the step it stops at (the stage's full loop
+ * takes it) and run on; both sides must stop at the same steps. */
 static int run_both(const checkasm_kernel_t *kr, uint32_t w3, uint32_t start, uint32_t run)
 {
     memcpy(g_st_c, g_st0, w3);
     memcpy(g_st_v, g_st0, w3);
     memset(g_out_c, 0xA5, sizeof g_out_c);
     memset(g_out_v, 0xA5, sizeof g_out_v);
-    g_miss_c.n = g_miss_v.n = 0;
-    CHECKASM_REF(tdc_lcd_st_run8_fn, kr)(LUT, WHI, WLO, g_in, g_out_c, g_st_c, start, w3, on_miss, &g_miss_c);
-    CHECKASM_OPT(tdc_lcd_st_run8_fn, kr)(LUT, WHI, WLO, g_in, g_out_v, g_st_v, start, w3, on_miss, &g_miss_v);
     const unsigned wd = (unsigned)(w3 / 3u);
-    if (g_miss_c.n != g_miss_v.n) {
-        return checkasm_fail("run %u width %u start %u: %u vs %u sub-pixels out of reach", (unsigned)run, wd,
-                             (unsigned)start, (unsigned)g_miss_c.n, (unsigned)g_miss_v.n);
-    }
-    for (uint32_t k = 0; k < g_miss_c.n; k++) {
-        if (g_miss_c.s[k] != g_miss_v.s[k] || g_miss_c.q[k] != g_miss_v.q[k] || g_miss_c.w[k] != g_miss_v.w[k]) {
-            return checkasm_fail("run %u width %u: miss %u at s %u q %u w %u vs s %u q %u w %u", (unsigned)run, wd,
-                                 (unsigned)k, (unsigned)g_miss_c.s[k], (unsigned)g_miss_c.q[k], (unsigned)g_miss_c.w[k],
-                                 (unsigned)g_miss_v.s[k], (unsigned)g_miss_v.q[k], (unsigned)g_miss_v.w[k]);
+    for (uint32_t i = start; i < w3; i += TDC_LCD_RUN8_STEP) {
+        const uint32_t a = CHECKASM_REF(tdc_lcd_st_run8_fn, kr)(LUT, g_in, g_out_c, g_st_c, i, w3);
+        const uint32_t b = CHECKASM_OPT(tdc_lcd_st_run8_fn, kr)(LUT, g_in, g_out_v, g_st_v, i, w3);
+        if (a != b) {
+            return checkasm_fail("run %u width %u from %u: stops at %u vs %u", (unsigned)run, wd, (unsigned)i,
+                                 (unsigned)a, (unsigned)b);
         }
+        i = a;
     }
     long k = checkasm_diff_u8(g_out_c, g_out_v, sizeof g_out_c);
     if (k < 0) {
@@ -146,8 +115,9 @@ static void bench_run8(const checkasm_kernel_t *kr)
     }
     CHECKASM_BENCH(kr, "1440 px, 1/4096 edges", LMAXW, tdc_lcd_st_run8_fn, f, {
         memcpy(g_st_c, g_st0, w3);
-        g_miss_c.n = 0;
-        f(LUT, WHI, WLO, g_in, g_out_c, g_st_c, 0, w3, on_miss, &g_miss_c);
+        for (uint32_t i = 0; i < w3; i += TDC_LCD_RUN8_STEP) {
+            i = f(LUT, g_in, g_out_c, g_st_c, i, w3);
+        }
     });
 }
 
