@@ -183,7 +183,8 @@ static tdc_link_err_t check_header(const tdc_link_decoder_t *dec, uint32_t versi
     if (version != TDC_LINK_VERSION) {
         return TDC_LINK_ERR_VERSION;
     }
-    if (kind < TDC_LINK_KIND_FIRST || kind > TDC_LINK_KIND_LAST) {
+    const tdc_link_kind_info_t *ki = tdc_link_kind_info(kind);
+    if (!ki) {
         return TDC_LINK_ERR_KIND;
     }
     if (kind == TDC_LINK_KIND_STREAM) {
@@ -207,8 +208,7 @@ static tdc_link_err_t check_header(const tdc_link_decoder_t *dec, uint32_t versi
     if (eye >= dec->cfg.eyes) {
         return TDC_LINK_ERR_EYE;
     }
-    const tdc_link_kind_info_t *ki = tdc_link_kind_info(kind);
-    if ((flags & ~(uint32_t)ki->pkt_flags) != 0) {
+    if ((flags & ~(uint32_t)ki->pkt_flags) != 0 || (kind == TDC_LINK_KIND_LAYERS && !tdc_layer_flags_valid(flags))) {
         return TDC_LINK_ERR_FORMAT;
     }
     const int pixel_kind = ki->rule == TDC_LINK_PAYLOAD_PIXELS;
@@ -233,6 +233,9 @@ static tdc_link_err_t check_header(const tdc_link_decoder_t *dec, uint32_t versi
         ok = (flags & TDC_LINK_PKT_MV_PER_SAMPLE)
                  ? ((sflags & TDC_LINK_STREAM_SAMPLE_MV) && b->sample_motion[eye])
                  : ((sflags & TDC_LINK_STREAM_MOTION) && (b->motion[eye] || b->skip_motion));
+        break;
+    case TDC_LINK_KIND_LAYERS:
+        ok = (sflags & TDC_LINK_STREAM_LAYERS) && tdc_layer_frame_accepts(b->layers[eye], flags);
         break;
     default: /* PATTERN: with the first subframe of each 4-frame cycle */
         ok = (sflags & TDC_LINK_STREAM_SUBFRAMES) && b->pattern[eye] != NULL && (p->frame_index & 3u) == 0;
@@ -379,7 +382,7 @@ static tdc_link_err_t commit_stream(tdc_link_decoder_t *dec)
     } else if (in.r_num != in.r_den) {
         return TDC_LINK_ERR_STREAM_HEADER; /* r must be 1 without reduced frames */
     }
-    if ((in.flags & TDC_LINK_STREAM_SAMPLE_MV) && !(in.flags & TDC_LINK_STREAM_SUBFRAMES)) {
+    if ((in.flags & (TDC_LINK_STREAM_SAMPLE_MV | TDC_LINK_STREAM_LAYERS)) && !(in.flags & TDC_LINK_STREAM_SUBFRAMES)) {
         return TDC_LINK_ERR_STREAM_HEADER;
     }
     /* The build must have a buffer for every stage the stream uses. */
@@ -387,7 +390,8 @@ static tdc_link_err_t commit_stream(tdc_link_decoder_t *dec)
         if (((in.flags & TDC_LINK_STREAM_REDUCED) && (!b->reduced[e] || (size_t)rw * rh * 3u > b->reduced_bytes)) ||
             ((in.flags & TDC_LINK_STREAM_SUBFRAMES) && (!b->subframe[e] || !b->pattern[e])) ||
             ((in.flags & TDC_LINK_STREAM_MOTION) && !b->motion[e] && !b->skip_motion) ||
-            ((in.flags & TDC_LINK_STREAM_SAMPLE_MV) && !b->sample_motion[e])) {
+            ((in.flags & TDC_LINK_STREAM_SAMPLE_MV) && !b->sample_motion[e]) ||
+            ((in.flags & TDC_LINK_STREAM_LAYERS) && !b->layers[e])) {
             return TDC_LINK_ERR_STREAM_HEADER;
         }
     }
@@ -485,6 +489,17 @@ static void on_payload(tdc_link_decoder_t *dec, uint32_t src_end)
             return;
         }
     } else {
+        if (kind == TDC_LINK_KIND_LAYERS) {
+            /* contents the header cannot vouch for: refused before the
+             * sequence advances or anything is written */
+            const tdc_layer_err_t le = tdc_layer_payload_check(dec->buf.staging + dec->payload_base, dec->payload_len,
+                                                               p->flags, p->width, p->height);
+            if (le != TDC_LAYER_OK) {
+                dec->cnt.layer_errors[le]++;
+                push_error(dec, TDC_LINK_ERR_LAYERS, 1, (uint32_t)le);
+                return;
+            }
+        }
         /* Sequence: advancing to a newer frame closes the current one. */
         if (!dec->have_frame || p->frame_index > dec->frame_index) {
             if (dec->have_frame && (dec->stream.flags & TDC_LINK_STREAM_REDUCED)) {
@@ -537,6 +552,7 @@ static void on_payload(tdc_link_decoder_t *dec, uint32_t src_end)
                 unpack_le16(s, b->motion[eye], (size_t)p->width * p->height * 2u);
             }
             break;
+        case TDC_LINK_KIND_LAYERS: tdc_layer_unpack(s, p->flags, p->width, p->height, b->layers[eye]); break;
         default: /* PATTERN */ memcpy(b->pattern[eye], s, dec->payload_len); break;
         }
     }

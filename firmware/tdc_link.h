@@ -36,6 +36,7 @@
 #include <stdint.h>
 
 #include "tdc_fixed.h"
+#include "tdc_layer_link.h"
 #include "tdc_pixfmt.h"
 #include "tdc_wire.h"
 
@@ -74,6 +75,10 @@
  * per-pixel motion vectors (4 B/px). */
 #define TDC_LINK_STAGING_BYTES(w, h) ((size_t)(w) * (h)*4u + TDC_LINK_STREAM_HEADER_BYTES)
 #define TDC_LINK_STAGING_MAX TDC_LINK_STAGING_BYTES(1u, TDC_LINK_MAX_PIXELS)
+/* Staging for a build that takes layered subframes: the largest LAYERS
+ * payload (all four layers + falloff: 16 + 28 bytes per tile = 7 B/px)
+ * exceeds TDC_LINK_STAGING_BYTES. */
+#define TDC_LINK_STAGING_LAYERS_BYTES(w, h) ((size_t)TDC_LAYER_HDR_BYTES + TDC_TILE_COUNT(w, h) * 28u)
 
 /* ------------------------------------------------------------------------
  * Decoder.
@@ -102,6 +107,7 @@ typedef struct {
     int16_t *motion[2];        /* (dx, dy) Q4 per pixel, width x height x 2 */
     int16_t *sample_motion[2]; /* (dx, dy) Q4 per subframe sample, tiles x 2 */
     uint8_t *pattern[2];       /* 1 bit per tile, row-major, LSB first, 1 = bowtie */
+    tdc_layer_frame_t *layers[2]; /* layered subframes (tdc_layer_link.h); NULL: not in this build */
     /* 1: a stream may announce per-pixel MOTION that no stage of this build
      * uses (motion[] NULL): its packets are not staged or stored, their
      * payloads skipped (the header CRC vouches for the length, which must
@@ -148,6 +154,7 @@ typedef struct {
     uint64_t skipped_bytes;          /* payload bytes of rejected packets skipped */
     uint32_t missing_reduced_frames; /* reduced frames that never arrived */
     uint32_t events_dropped;         /* events lost because the queue was full (should be 0) */
+    uint32_t layer_errors[TDC_LAYER_ERR_N]; /* TDC_LINK_ERR_LAYERS by reason (index 0 unused) */
 } tdc_link_counters_t;
 
 #define TDC_LINK_EVENT_QUEUE 4

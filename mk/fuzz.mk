@@ -12,7 +12,7 @@ FUZZ_SMOKE_SECONDS ?= 8
 FUZZ_DIR := $(BUILD)/fuzz
 FUZZ_FLAGS := -std=c11 -D_GNU_SOURCE -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
               -Ifirmware -I$(GEN) -Isim -Ihosttools/common
-LINK_FW_SRCS := firmware/tdc_wire.c firmware/tdc_link.c firmware/tdc_pixfmt.c firmware/tdc_crc32.c
+LINK_FW_SRCS := firmware/tdc_wire.c firmware/tdc_link.c firmware/tdc_pixfmt.c firmware/tdc_crc32.c firmware/tdc_layer_link.c
 
 # name: harness + sources [+ flags, libraries]
 FUZZ_ALL := link usbproto usbreply panel tdcs scene frameloop meas fov
