@@ -26,7 +26,7 @@
 #include "tdc_trm_gaze.h"
 #endif
 
-enum { TRM_TRM, TRM_NCSFI, TRM_REDUCED_ONLY, TRM_GAZE };
+enum { TRM_TRM, TRM_NCSFI, TRM_REDUCED_ONLY, TRM_GAZE, TRM_RENDER_PRE, TRM_RENDER_POINT };
 
 #define F &tdc_sim_family_trm
 #define R TDC_SIM_LINK_REDUCED
@@ -40,6 +40,12 @@ static const tdc_mode_desc_t k_modes[] = {
     {"trm75", F, TRM_TRM, R, 3, 4, 0, 0, 0, "TRM, every other frame at r = 3/4"},
     {"reduced50", F, TRM_REDUCED_ONLY, R, 1, 2, 0, 0, 0,
      "every other frame at r = 1/2, upsampled, no compensation (full frames unsharpened, no residual)"},
+    {"trm50r", F, TRM_RENDER_PRE, R, 1, 2, 0, 0, 0,
+     "TRM r = 1/2, reduced frames traced by the renderer (REDUCED: 2x2 rays per pixel, Gaussian resolve; -R only)"},
+    {"trm25r", F, TRM_RENDER_PRE, R, 1, 4, 0, 0, 0,
+     "TRM r = 1/4, reduced frames traced by the renderer (REDUCED: 2x2 rays per pixel, Gaussian resolve; -R only)"},
+    {"trm50p", F, TRM_RENDER_POINT, R, 1, 2, 0, 0, 0,
+     "TRM r = 1/2, reduced frames point-sampled by the renderer (1 ray per reduced pixel, no prefilter; -R only)"},
     {"trm50g", F, TRM_GAZE, R, 1, 2, 0, 0, 0,
      "gaze-aware TRM r = 1/2: compensation falls where retinal motion (MV - gaze) is large (tdc_trm_gaze.h)"},
 };
@@ -99,6 +105,11 @@ static int trm_init(sim_mode_t *m, const tdc_sim_setup_t *s)
         return 0;
     }
     m->residual = trm_residual;
+    if ((m->d->variant == TRM_RENDER_PRE || m->d->variant == TRM_RENDER_POINT) && !s->src_full_frame) {
+        tdc_sim_note(m, "needs a renderer that traces reduced frames (-R SCENE)");
+        m->res->available = 0;
+        return 0;
+    }
     if (m->d->variant == TRM_GAZE) {
         st->pursuit_gain = s->cfg->pursuit_gain;
         tdc_trm_gaze_config_t gc;
@@ -151,8 +162,9 @@ static int trm_gaze_update(sim_mode_t *m, trm_state_t *st, tdc_source_t *src, do
     for (int c = 0; c < 2; c++) {
         g[c] = g[c] > 32767.0 ? 32767.0 : (g[c] < -32767.0 ? -32767.0 : g[c]);
     }
-    return tdc_sim_stage(m, "tdc_trm_gaze_update",
-                         tdc_trm_gaze_update(&st->gaze, st->tile_mv, tx * ty, (int16_t)lround(g[0]), (int16_t)lround(g[1])));
+    return tdc_sim_stage(
+        m, "tdc_trm_gaze_update",
+        tdc_trm_gaze_update(&st->gaze, st->tile_mv, tx * ty, (int16_t)lround(g[0]), (int16_t)lround(g[1])));
 }
 
 /* The full-resolution frame of a pair: render, send over the link, run the
@@ -209,17 +221,34 @@ static int trm_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32
         r->fw_s += tdc_sim_now() - t0;
         return rc;
     }
-    /* Renderer: full-res render prefiltered by D (TRM §4.3); its cost is
+    if (m->d->variant == TRM_RENDER_PRE || m->d->variant == TRM_RENDER_POINT) {
+        /* the renderer's own reduced frame (TRM §4.3): supersampled and
+         * Gaussian-resolved (TRM's sigma 2.5 full-res px), or point-sampled
+         * (one ray per reduced pixel, a resolve too narrow to reach a
+         * neighbour: the naive, aliased frame §4.3 warns of) */
+        int pre = m->d->variant == TRM_RENDER_PRE;
+        uint64_t rays = 0;
+        t0 = tdc_sim_now();
+        rc = src->reduced_frame ? src->reduced_frame(src, m->slot, t, (double)m->d->r_num / m->d->r_den, pre ? 2 : 1,
+                                                     pre ? 2.5 : 0.05, st->trm.rw, st->trm.rh, st->reduced, &rays)
+                                : -1;
+        r->render_s += tdc_sim_now() - t0;
+        r->rays += rays;
+        r->rendered++;
+        rc = tdc_sim_stage(m, "renderer REDUCED frame", rc ? TDC_ERR_SIZE : 0);
+    } else {
+        /* Renderer: full-res render prefiltered by D (TRM §4.3); its cost is
      * counted as the reduced frame's rays (a renderer traces the reduced
      * target with MSAA). */
-    uint64_t rays0 = r->rays;
-    tdc_sim_render_full(m, src, t, spp, 0, 0, NULL, 0, TDC_MV_SURFACE);
-    uint64_t traced = r->rays - rays0;
-    r->rays = rays0 + traced * ((uint64_t)st->trm.rw * st->trm.rh) / m->npx;
-    t0 = tdc_sim_now();
-    rc = tdc_sim_stage(m, "renderer prefilter (tdc_trm_downsample)",
-                       tdc_trm_downsample(&st->trm_r, m->render, w3, st->reduced, (uint32_t)st->trm_r.rw * 3u));
-    r->render_s += tdc_sim_now() - t0;
+        uint64_t rays0 = r->rays;
+        tdc_sim_render_full(m, src, t, spp, 0, 0, NULL, 0, TDC_MV_SURFACE);
+        uint64_t traced = r->rays - rays0;
+        r->rays = rays0 + traced * ((uint64_t)st->trm.rw * st->trm.rh) / m->npx;
+        t0 = tdc_sim_now();
+        rc = tdc_sim_stage(m, "renderer prefilter (tdc_trm_downsample)",
+                           tdc_trm_downsample(&st->trm_r, m->render, w3, st->reduced, (uint32_t)st->trm_r.rw * 3u));
+        r->render_s += tdc_sim_now() - t0;
+    }
     if (rc == 0) {
         rc = tdc_sim_stage(m, "link REDUCED packet", tdc_sim_link_reduced(m->link, m->eye, lf, st->reduced));
     }
