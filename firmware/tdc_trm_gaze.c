@@ -154,16 +154,7 @@ void tdc_trm_gaze_full_row(const tdc_trm_rowctx_t *k, const tdc_trm_gaze_t *g, u
             const tdc_lin_t li = (tdc_lin_t)gm[c].dec[src[3u * x + c]];
             /* k = 32768: li + (li - lu) = 2 li - lu exactly, TRM's beta */
             const int32_t beta = li + (int32_t)tdc_rshr_round64(kq * (int64_t)(li - lu), 15);
-            int32_t shown = beta;
-            if (beta > TDC_LIN_ONE) {
-                shown = TDC_LIN_ONE;
-                nhi++;
-            } else if (beta < 0) {
-                shown = 0;
-                nlo++;
-            }
-            res[3u * x + c] = beta - shown;
-            dst[3u * x + c] = (uint8_t)tdc_trm_enc(&gm[c], shown);
+            tdc_trm_put_beta(&gm[c], beta, &res[3u * x + c], &dst[3u * x + c], &nhi, &nlo);
         }
     }
     n->hi += nhi;

@@ -210,4 +210,22 @@ static inline uint32_t tdc_trm_enc(const tdc_trm_gamma_t *g, int32_t lin)
     return k;
 }
 
+/* One pixel-channel of a full row from its beta (Q24, in [-1, 2]): shown =
+ * clamp(beta, 0, 1) encoded into *dst, rho = beta - shown into *res,
+ * clamps counted. */
+static inline void tdc_trm_put_beta(const tdc_trm_gamma_t *g, int32_t beta, tdc_res_t *res, uint8_t *dst, uint32_t *nhi,
+                                    uint32_t *nlo)
+{
+    int32_t shown = beta;
+    if (beta > TDC_LIN_ONE) {
+        shown = TDC_LIN_ONE;
+        (*nhi)++;
+    } else if (beta < 0) {
+        shown = 0;
+        (*nlo)++;
+    }
+    *res = beta - shown; /* rho, Q24 (see tdc_res_t) */
+    *dst = (uint8_t)tdc_trm_enc(g, shown);
+}
+
 #endif /* TDC_TRM_KERNELS_H */

@@ -52,18 +52,7 @@ void tdc_trm_full_row_c(const tdc_trm_rowctx_t *k, const uint32_t *urow_in, cons
             const tdc_lin_t lu = tdc_trm_dec_q16(&g[c], tdc_trm_hlerp(urow, i0 + c, f));
             const tdc_lin_t li = (tdc_lin_t)g[c].dec[src[3u * x + c]];
             /* beta = 2 LI - Lu in [-1, 2] (Q24): no overflow in int32 */
-            const int32_t beta = 2 * li - lu;
-            int32_t shown = beta;
-            if (beta > TDC_LIN_ONE) {
-                shown = TDC_LIN_ONE;
-                nhi++;
-            } else if (beta < 0) {
-                shown = 0;
-                nlo++;
-            }
-            /* rho = beta - shown, Q24 (see tdc_res_t) */
-            res[3u * x + c] = beta - shown;
-            dst[3u * x + c] = (uint8_t)tdc_trm_enc(&g[c], shown);
+            tdc_trm_put_beta(&g[c], 2 * li - lu, &res[3u * x + c], &dst[3u * x + c], &nhi, &nlo);
         }
     }
     n->hi += nhi;

@@ -7,6 +7,7 @@
  * Freestanding, static buffers.
  */
 #include "golden.h"
+#include "golden_trm.h"
 #include "tdc_content.h"
 #include "tdc_panels.h"
 #include "tdc_trm.h"
@@ -100,24 +101,11 @@ static void run_vector(tdc_golden_ctx_t *ctx, const gaze_vector_t *v)
     const uint32_t stride = 3u * v->w;
     for (uint32_t t = 0; t < 6u; t++) {
         tdc_content_frame(v->content, t, 11u, g_in, v->w, v->h, (int)stride);
-        uint64_t h = TDC_FNV64_INIT;
         int ok = 1;
         if ((t & 1u) == 0u) {
             ok &= tdc_trm_gaze_update(&gaze, g_mv, gaze.tx * gaze.ty, gx, gy) == TDC_OK;
-            ok &= tdc_trm_full(&trm, g_in, stride, g_out, stride) == TDC_OK;
-            h = tdc_fnv1a64(h, g_out, (size_t)stride * v->h);
-            for (uint32_t y = 0; y < v->h; y++) {
-                if (tdc_trm_residual_row(&trm, y, g_rho_row) != TDC_OK) {
-                    h = 0;
-                }
-                h = tdc_fnv1a64(h, g_rho_row, sizeof(tdc_res_t) * stride);
-            }
-        } else {
-            ok &= tdc_trm_downsample(&trm, g_in, stride, g_red, 3u * trm.rw) == TDC_OK;
-            h = tdc_fnv1a64(h, g_red, (size_t)3u * trm.rw * trm.rh);
-            ok &= tdc_trm_reduced(&trm, g_red, 3u * trm.rw, g_out, stride) == TDC_OK;
-            h = tdc_fnv1a64(h, g_out, (size_t)stride * v->h);
         }
+        const uint64_t h = tdc_golden_trm_step(&trm, t, g_in, g_out, g_red, g_rho_row, v->w, v->h, &ok);
         tdc_golden_emit(ctx, "trmgaze", name, t, ok ? h : TDC_GOLDEN_FAILED);
     }
 }
