@@ -31,6 +31,7 @@ import glob
 import importlib.util
 import json
 import os
+import shutil
 import subprocess
 import sys
 import time
@@ -368,6 +369,16 @@ def main(argv):
             if not j.isdigit() or int(j) < 1:
                 print("tdc-experiments: -j '%s': a positive number" % j, file=sys.stderr)
                 return EXIT_USAGE
+            if not os.access(sim, os.X_OK):
+                print("tdc-experiments: tdc-sim not found at %s (make, or --sim PATH)" % sim, file=sys.stderr)
+                return EXIT_USAGE
+            # the jobs run a copy: a rebuild of tdc-sim during a long run
+            # must not make the jobs started meanwhile fail (or mix builds)
+            os.makedirs(os.path.join(out, ".bin"), exist_ok=True)
+            copy = os.path.join(out, ".bin", "tdc-sim")
+            shutil.copy2(sim, copy + ".tmp")
+            os.replace(copy + ".tmp", copy)
+            sim = copy
             rc = EXIT_OK
             for g in sel:
                 try:

@@ -1,6 +1,7 @@
 """TRM under imperfect smooth pursuit (gain 0.8-1)."""
 SWEEP = "gain"
 GAINS = ["0.8", "0.9", "0.95", "1"]
+GAZE_TOL_FLIP, GAZE_TOL_TERR = 0.005, 0.25  # as trm-fixation
 
 
 def claims(exp):
@@ -14,16 +15,23 @@ def claims(exp):
                                                          for m in ("full", "reduced50", "trm50", "trm50g")),
                                            " | ".join(exp.stats.fmt_ms(exp.stats.summary(t[m]), 2)
                                                       for m in ("trm50", "reduced50", "trm50g"))))
-        # gaze-aware TRM: at every gain not worse than the better of TRM and reduced-only beyond the spread
-        for col, vals in (("FLIP", v), ("terr", t)):
-            best = "trm50" if exp.stats.mean(vals["trm50"]) <= exp.stats.mean(vals["reduced50"]) else "reduced50"
-            c = exp.stats.compare(vals["trm50g"], vals[best], higher_is_better=False)
-            ok = c["verdict"] != "B beats A"
-            exp.claim("tdc (beyond the paper)", "gain %s: gaze-aware TRM not worse than the better of TRM / reduced-only (%s)" % (g, col),
-                      "not worse", "%s trm50g - %s %s" % (col, best, exp.stats.fmt(c["diff"], 4)),
+        # gaze-aware TRM (issue 15): under pursuit - every gain here - within the stated tolerance of
+        # plain TRM, and never worse than reduced-only frames beyond the spread
+        for col, vals, tol in (("FLIP", v, GAZE_TOL_FLIP), ("terr", t, GAZE_TOL_TERR)):
+            c = exp.stats.compare(vals["trm50g"], vals["trm50"], higher_is_better=False)
+            ok = c["diff"] <= tol
+            exp.claim("tdc (beyond the paper)", "gain %s: gaze-aware TRM within %s of TRM (%s)" % (g, tol, col),
+                      "within %s" % tol, "%s trm50g - trm50 %s" % (col, exp.stats.fmt(c["diff"], 4)),
                       "agree" if ok else "disagree",
-                      c["verdict"].replace("A", "trm50g").replace("B", best) + ("" if ok else ": the ramp (k = 1 below "
-                      "0.5 px/frame, 0 from 2 px/frame) weakens TRM where a lagging eye still profits from it"),
+                      c["verdict"].replace("A", "trm50g").replace("B", "trm50") + (
+                          "" if c["diff"] <= c["spread"] else ": the eye's slip (%.2f px/frame) is inside the ramp, "
+                          "so k < 1 there" % ((1 - float(g)) * 4.25)),
+                      spread=exp.stats.fmt(c["spread"], 4), n=c["n"], run="%s/%s gain=%s" % (exp.group, SWEEP, g))
+            c = exp.stats.compare(vals["trm50g"], vals["reduced50"], higher_is_better=False)
+            exp.claim("tdc (beyond the paper)", "gain %s: gaze-aware TRM not worse than reduced-only (%s)" % (g, col),
+                      "never worse", "%s trm50g - reduced50 %s" % (col, exp.stats.fmt(c["diff"], 4)),
+                      "agree" if c["verdict"] != "B beats A" else "disagree",
+                      c["verdict"].replace("A", "trm50g").replace("B", "reduced50"),
                       spread=exp.stats.fmt(c["spread"], 4), n=c["n"], run="%s/%s gain=%s" % (exp.group, SWEEP, g))
         if g == "1":
             continue
