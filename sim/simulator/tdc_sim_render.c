@@ -240,6 +240,9 @@ static int rs_reduced(tdc_source_t *s, int slot, double t, double r, int ss, dou
     if (ow != rw || oh != rh) {
         return -1; /* the link's reduced size (TDC_REDUCED_DIM) rounds otherwise */
     }
+    if (!rgb) {
+        return 0; /* prepared: the renderer is open (its BVH build is not a frame's cost) */
+    }
     tdc_render_out_t out;
     memset(&out, 0, sizeof(out));
     out.rgb = c->lin; /* W x H floats: room for the reduced frame */

@@ -83,8 +83,9 @@ struct tdc_source {
     /* Optional: a renderer that traces reduced frames itself (TRM §4.3):
      * rw x rh drive codes at ratio r, ss x ss rays per reduced pixel
      * resolved with a Gaussian of sigma full-res px (ss 1 and a tiny sigma:
-     * point sampling, aliased).  slot: one renderer per mode.  0, or -1
-     * (the renderer's reduced size is not rw x rh, or it failed). */
+     * point sampling, aliased).  slot: one renderer per mode.  rgb NULL:
+     * only open that renderer (untimed set-up).  0, or -1 (the renderer's
+     * reduced size is not rw x rh, or it failed). */
     int (*reduced_frame)(tdc_source_t *s, int slot, double t, double r, int ss, double sigma, int rw, int rh,
                          uint8_t *rgb, uint64_t *rays);
     const char *note; /* what this source does not support, for reports */
