@@ -36,6 +36,7 @@ FUZZ_LIBS_scene := -lembree3 -lm
 # the board frame loop for a 16 x 8 stereo OLED panel with TRM and tile assembly
 FUZZ_SRCS_frameloop := tests/fuzz/fuzz_frameloop.c $(LINK_FW_SRCS) firmware/tdc_assemble.c \
                        firmware/tdc_ordering.c firmware/tdc_trm.c firmware/tdc_trm_rows.c firmware/tdc_trm_avx2.c \
+                       firmware/tdc_trm_gaze.c \
                        $(GEN)/tdc_panel_htc-vive.c firmware/tdc_link_encode.c
 FUZZ_DEPS_frameloop := firmware/board/tdc_main.c
 FUZZ_CFLAGS_frameloop := -Ifirmware/board -DTDC_PANEL_NAME='"fuzz"' -DTDC_PANEL_SYMBOL=tdc_panel_htc_vive \

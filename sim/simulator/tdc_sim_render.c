@@ -19,6 +19,7 @@ typedef struct {
     tdc_scene_t *scene; /* kept to open per-mode subframe renderers */
     tdc_render_config_t cfg;
     tdc_render_t *sub[RS_SLOTS]; /* subframe renderers (own MV history, orderings) */
+    tdc_render_t *red[RS_SLOTS]; /* reduced-frame renderers (own r, supersampling, resolve) */
     float *sub_lin;
     int16_t *sub_mv, *sub_mvs, *sub_mvd;
     tdc_render_t *fov;  /* the FOVEATED renderer (samples, not pixels: its own instance) */
@@ -219,6 +220,47 @@ static int rs_subframe(tdc_source_t *s, int slot, int shadow, uint32_t frame, do
     return 0;
 }
 
+static int rs_reduced(tdc_source_t *s, int slot, double t, double r, int ss, double sigma, int rw, int rh, uint8_t *rgb,
+                      uint64_t *rays)
+{
+    rsrc_t *c = s->ctx;
+    if (slot < 0 || slot >= RS_SLOTS) {
+        return -1;
+    }
+    if (!c->red[slot]) {
+        tdc_render_config_t cfg = c->cfg;
+        cfg.reduced_factor = r;
+        cfg.reduced_ss = ss;
+        cfg.reduced_sigma = sigma;
+        char err[256];
+        c->red[slot] = tdc_render_open(c->scene, &cfg, err, sizeof(err));
+        if (!c->red[slot]) {
+            return -1;
+        }
+    }
+    int ow, oh;
+    tdc_render_output_size(c->red[slot], TDC_RENDER_REDUCED, &ow, &oh);
+    if (ow != rw || oh != rh) {
+        return -1; /* the link's reduced size (TDC_REDUCED_DIM) rounds otherwise */
+    }
+    if (!rgb) {
+        return 0; /* prepared: the renderer is open (its BVH build is not a frame's cost) */
+    }
+    tdc_render_out_t out;
+    memset(&out, 0, sizeof(out));
+    out.rgb = c->lin; /* W x H floats: room for the reduced frame */
+    tdc_render_stats_t st;
+    if (tdc_render_frame(c->red[slot], (uint32_t)frame_of(c, t), TDC_RENDER_REDUCED, &out, &st) != 0) {
+        return -1;
+    }
+    for (size_t i = 0; i < 3 * (size_t)rw * rh; i++) {
+        double l = c->lin[i] < 0.0f ? 0.0 : (c->lin[i] > 1.0f ? 1.0 : (double)c->lin[i]);
+        rgb[i] = (uint8_t)(255.0 * pow(l, 1.0 / s->gamma[i % 3]) + 0.5);
+    }
+    *rays = st.rays[TDC_RAY_PRIMARY];
+    return 0;
+}
+
 static int rs_foveated(tdc_source_t *s, const tdc_fov_sampling_t *f, double t, double dt, uint8_t *rgb, int16_t *mv,
                        uint64_t *rays)
 {
@@ -286,6 +328,9 @@ static void rs_destroy(tdc_source_t *s)
         for (int i = 0; i < RS_SLOTS; i++) {
             if (c->sub[i]) {
                 tdc_render_close(c->sub[i]);
+            }
+            if (c->red[i]) {
+                tdc_render_close(c->red[i]);
             }
         }
         free(c->scene);
@@ -379,10 +424,11 @@ tdc_source_t *tdc_sim_render_source(const char *name, int w, int h, int clock_hz
     s->destroy = rs_destroy;
     s->full_frame = rs_full;
     s->subframe = rs_subframe;
+    s->reduced_frame = rs_reduced;
     s->foveated = rs_foveated;
     s->note = "Embree renderer: full frames at 1 ray per pixel centre; reduced frames are full renders prefiltered "
-              "by the TRM stage's D; subframes traced by the renderer with its own adaptive orderings; foveated frames "
-              "traced by its FOVEATED mode";
+              "by the TRM stage's D (trmXXr/trm50p: the renderer's own REDUCED frames); subframes traced by the "
+              "renderer with its own adaptive orderings; foveated frames traced by its FOVEATED mode";
     return s;
 }
 

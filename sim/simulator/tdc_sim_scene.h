@@ -87,6 +87,14 @@ struct tdc_source {
      * Returns 0. */
     int (*subframe)(tdc_source_t *s, int slot, int shadow, uint32_t frame, double t, double dt, uint8_t *samples,
                     int16_t *mv, uint8_t *pattern, uint64_t *rays);
+    /* Optional: a renderer that traces reduced frames itself (TRM §4.3):
+     * rw x rh drive codes at ratio r, ss x ss rays per reduced pixel
+     * resolved with a Gaussian of sigma full-res px (ss 1 and a tiny sigma:
+     * point sampling, aliased).  slot: one renderer per mode.  rgb NULL:
+     * only open that renderer (untimed set-up).  0, or -1 (the renderer's
+     * reduced size is not rw x rh, or it failed). */
+    int (*reduced_frame)(tdc_source_t *s, int slot, double t, double r, int ss, double sigma, int rw, int rh,
+                         uint8_t *rgb, uint64_t *rays);
     /* Optional: a renderer that traces foveated frames itself (the Embree
      * renderer's FOVEATED mode, thesis §4.2): the samples of f in the
      * firmware's payload order (kernel log-polar columns [u0, w), then the
