@@ -12,6 +12,8 @@
 #include <stdint.h>
 #include <stddef.h>
 
+#include "tdc_layer_link.h" /* tdc_layer_frame_t */
+
 typedef struct {
     int real; /* 1: encoder + decoder in the path */
     int w, h, rw, rh;
@@ -26,6 +28,7 @@ typedef struct {
     /* decoded buffers per eye (what the firmware reads) */
     uint8_t *full[2], *reduced[2], *subframe[2], *pattern[2];
     int16_t *motion[2], *sample_motion[2];
+    tdc_layer_frame_t *layers[2]; /* LAYERS streams: every plane of the four types + falloff */
     void *priv;
 } tdc_sim_link_t;
 
@@ -34,6 +37,7 @@ typedef struct {
 #define TDC_SIM_LINK_SUBFRAMES 0x0002u
 #define TDC_SIM_LINK_MOTION 0x0004u
 #define TDC_SIM_LINK_SAMPLE_MV 0x0010u
+#define TDC_SIM_LINK_LAYERS 0x0020u
 
 int tdc_sim_link_init(tdc_sim_link_t *l, int w, int h, int eyes, uint32_t flags, uint16_t r_num, uint16_t r_den,
                       uint16_t hz);
@@ -45,6 +49,10 @@ int tdc_sim_link_full(tdc_sim_link_t *l, int eye, uint32_t frame, const uint8_t 
 int tdc_sim_link_reduced(tdc_sim_link_t *l, int eye, uint32_t frame, const uint8_t *rgb);
 int tdc_sim_link_subframe(tdc_sim_link_t *l, int eye, uint32_t frame, const uint8_t *samples, const int16_t *mv,
                           const uint8_t *pattern);
+/* A layered subframe (LAYERS packet: the planes src->present names, vector
+ * kinds from src->hdr) and, with pattern, the cycle's PATTERN packet. */
+int tdc_sim_link_layers(tdc_sim_link_t *l, int eye, uint32_t frame, const tdc_layer_frame_t *src,
+                        const uint8_t *pattern);
 /* Bytes of a payload sent without a packet kind of its own (interlaced
  * rows): counted as payload + header, not decoded. */
 void tdc_sim_link_count_raw(tdc_sim_link_t *l, size_t payload);

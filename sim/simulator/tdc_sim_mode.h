@@ -48,6 +48,7 @@ typedef struct {
     const tdc_panel_t *lcd_panel; /* LCD profile, NULL without an LCD panel */
     int src_full_frame;           /* the source traces whole frames (Embree) */
     int src_subframe;             /* the source traces subframes itself */
+    int src_layers;               /* the source has layer outputs (tdc_source_t.layers) */
 } tdc_sim_setup_t;
 
 struct tdc_sim_family {
@@ -113,6 +114,7 @@ extern const tdc_sim_family_t tdc_sim_family_plain;
 extern const tdc_sim_family_t tdc_sim_family_trm;
 extern const tdc_sim_family_t tdc_sim_family_warp;
 extern const tdc_sim_family_t tdc_sim_family_asm;
+extern const tdc_sim_family_t tdc_sim_family_layers;
 extern const tdc_sim_family_t tdc_sim_stage_lcd;
 
 /* ---- helpers shared by the families (tdc_sim_mode.c) ---- */

@@ -43,6 +43,11 @@ typedef enum {
 
 typedef struct tdc_source tdc_source_t;
 
+/* Layered samples (issue 16, firmware/tdc_layer_link.h): a source fills a
+ * tdc_layer_frame_t whose planes hold n samples (value[t - 1], mv[t - 1],
+ * falloff), its present set and its header's count / types / vector kinds. */
+struct tdc_layer_frame;
+
 struct tdc_source {
     const char *name;
     int width, height;
@@ -80,6 +85,14 @@ struct tdc_source {
      * Returns 0. */
     int (*subframe)(tdc_source_t *s, int slot, int shadow, uint32_t frame, double t, double dt, uint8_t *samples,
                     int16_t *mv, uint8_t *pattern, uint64_t *rays);
+    /* Optional (NULL: no layers): layered samples at the n positions xy at
+     * time t, vectors over dt.  zeng = 1: temporally reliable vectors
+     * (Zeng §4: shadow vectors for in-shadow samples, glossy vectors, ...),
+     * zeng = 0: every layer with the ordinary surface vector.  The source
+     * fills the layers it has (at least SHADING: a scene without shadows
+     * or reflections sends one layer).  Returns 0, or -1. */
+    int (*layers)(tdc_source_t *s, double t, int n, const double *xy, double dt, int zeng,
+                  struct tdc_layer_frame *out);
     const char *note; /* what this source does not support, for reports */
 };
 

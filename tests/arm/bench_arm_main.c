@@ -314,14 +314,15 @@ static void bench_fov(uint8_t taa, const char *label)
     report(label, BENCH_PX);
 }
 
-/* Layered tile assembly (tdc_layers.h) at LAYER_W x LAYER_H (its arena is
- * 48-94 B/px: the 640 x 360 frame of the other stages would not fit the
- * boards' external RAM with every layer), on the layered test stream:
+/* Layered tile assembly (tdc_layers.h) at LAYER_W x LAYER_H in the arena the
+ * TRM and assembly benchmarks use (its 94 B/px with every layer would not
+ * fit the boards' external RAM at 640 x 360), on the layered test stream:
  * 8 frames warm the history, the next 4 are measured. */
-#define LAYER_W 160u
-#define LAYER_H 96u
+#define LAYER_W 320u
+#define LAYER_H 160u
 #define LAYER_T ((LAYER_W / 2u) * (LAYER_H / 2u))
-static uint64_t g_lasm_arena[TDC_LASM_MEM_BYTES(LAYER_W, LAYER_H) / 8u + 1u] TDC_EXTRAM;
+#define g_lasm_arena g_arena
+_Static_assert(TDC_LASM_MEM_BYTES(LAYER_W, LAYER_H) <= sizeof g_arena, "layered arena in the shared bench arena");
 static uint8_t g_lval[TDC_LAYER_MAX][LAYER_T * 3u];
 static int16_t g_lmv[TDC_LAYER_MAX][LAYER_T * 2u];
 static uint16_t g_lw[LAYER_T];
