@@ -117,7 +117,7 @@ tdc_status_t tdc_link_decoder_init(tdc_link_decoder_t *dec, const tdc_link_confi
         return TDC_ERR_SIZE;
     }
     for (unsigned e = 0; e < cfg->eyes; e++) {
-        if (buffers->full[e] && buffers->full_stride < (uint32_t)cfg->width * 3u) {
+        if (buffers->full[e] && !buffers->defer_full && buffers->full_stride < (uint32_t)cfg->width * 3u) {
             return TDC_ERR_SIZE;
         }
     }
@@ -147,6 +147,7 @@ void tdc_link_decoder_resync(tdc_link_decoder_t *dec)
     dec->hdr_in_staging = 0;
     dec->payload_base = 0;
     dec->skip_left = 0;
+    dec->staged_full = 0;
     set_state(dec, ST_HUNT, 0);
 }
 
@@ -222,7 +223,7 @@ static tdc_link_err_t check_header(const tdc_link_decoder_t *dec, uint32_t versi
     int ok;
     switch (kind) {
     case TDC_LINK_KIND_FULL:
-        ok = b->full[eye] != NULL && (!trm || tdc_link_trm_kind(p->frame_index, eye) == TDC_LINK_KIND_FULL);
+        ok = (b->full[eye] != NULL || b->defer_full) && (!trm || tdc_link_trm_kind(p->frame_index, eye) == TDC_LINK_KIND_FULL);
         break;
     case TDC_LINK_KIND_REDUCED:
         ok = trm && b->reduced[eye] != NULL && tdc_link_trm_kind(p->frame_index, eye) == TDC_LINK_KIND_REDUCED;
@@ -528,7 +529,18 @@ static void on_payload(tdc_link_decoder_t *dec, uint32_t src_end)
         const tdc_link_buffers_t *b = &dec->buf;
         const uint32_t tx = TDC_TILES(p->width), ty = TDC_TILES(p->height);
         switch (kind) {
-        case TDC_LINK_KIND_FULL: unpack_pixels(fmt, s, p->width, p->height, b->full[eye], b->full_stride); break;
+        case TDC_LINK_KIND_FULL:
+            if (b->defer_full) {
+                /* left in staging for tdc_link_unpack_full() */
+                dec->staged_full = 1;
+                dec->staged_fmt = (uint8_t)fmt;
+                dec->staged_w = p->width;
+                dec->staged_h = p->height;
+                dec->staged_base = dec->payload_base;
+            } else {
+                unpack_pixels(fmt, s, p->width, p->height, b->full[eye], b->full_stride);
+            }
+            break;
         case TDC_LINK_KIND_REDUCED:
             unpack_pixels(fmt, s, p->width, p->height, b->reduced[eye], (uint32_t)p->width * 3u);
             break;
@@ -560,6 +572,11 @@ static void on_payload(tdc_link_decoder_t *dec, uint32_t src_end)
 static size_t step(tdc_link_decoder_t *dec, const uint8_t *p, size_t n, uint32_t src_off)
 {
     size_t i = 0;
+    if (n) {
+        /* bytes are processed: a deferred FULL payload may be overwritten
+         * (step() runs only once every event was returned) */
+        dec->staged_full = 0;
+    }
     while (i < n && dec->ev_count == 0) {
         switch (dec->state & ST_MASK) {
         case ST_HUNT: {
@@ -654,6 +671,22 @@ static size_t step(tdc_link_decoder_t *dec, const uint8_t *p, size_t n, uint32_t
         }
     }
     return i;
+}
+
+tdc_status_t tdc_link_unpack_full(const tdc_link_decoder_t *dec, uint8_t *dst, uint32_t stride)
+{
+    if (!dec || !dst) {
+        return TDC_ERR_ARG;
+    }
+    if (!dec->staged_full) {
+        return TDC_ERR_STATE;
+    }
+    if (stride < (uint32_t)dec->staged_w * 3u) {
+        return TDC_ERR_ARG;
+    }
+    unpack_pixels((tdc_pixfmt_t)dec->staged_fmt, dec->buf.staging + dec->staged_base, dec->staged_w, dec->staged_h, dst,
+                  stride);
+    return TDC_OK;
 }
 
 static int pop_event(tdc_link_decoder_t *dec, tdc_link_event_t *ev)

@@ -113,6 +113,14 @@ typedef struct {
      * payloads skipped (the header CRC vouches for the length, which must
      * be the expected one) and counted in packets_skipped -- not errors. */
     uint8_t skip_motion;
+    /* 1: FULL packets are validated and accepted but not unpacked (full[]
+     * may then be NULL): the payload stays in `staging` until the next
+     * tdc_link_feed() call that processes bytes, and the caller unpacks it
+     * with tdc_link_unpack_full() where and if it wants.  A frame loop
+     * sets this so that a packet it does not use (another mode's kind, a
+     * later frame, a late resend) never touches the frame buffer being
+     * shown (firmware/board/tdc_main.c; fuzz finding F1). */
+    uint8_t defer_full;
 } tdc_link_buffers_t;
 
 typedef enum {
@@ -182,6 +190,11 @@ typedef struct {
     uint16_t rw, rh;      /* reduced size of the active stream */
     uint32_t frame_index; /* current (newest accepted) frame */
     uint32_t frame_mask;  /* (kind, eye) slots accepted in frame_index */
+    /* defer_full: the FULL packet whose payload waits in staging */
+    uint8_t staged_full; /* 1 from its acceptance until bytes are processed again */
+    uint8_t staged_fmt;
+    uint16_t staged_w, staged_h;
+    uint32_t staged_base;
     /* events */
     uint8_t ev_head, ev_count;
     tdc_link_event_t ev[TDC_LINK_EVENT_QUEUE];
@@ -200,6 +213,15 @@ tdc_status_t tdc_link_decoder_init(tdc_link_decoder_t *dec, const tdc_link_confi
  * bytes were consumed without one).  Call again with the rest.  Queued
  * events are returned first, consuming 0 bytes. */
 size_t tdc_link_feed(tdc_link_decoder_t *dec, const uint8_t *bytes, size_t n, tdc_link_event_t *ev);
+
+/* defer_full: unpacks the FULL packet just returned by tdc_link_feed()
+ * (before the next feed call) as RGB888 into dst, rows stride bytes apart
+ * (stride >= width * 3).  TDC_ERR_STATE if no accepted FULL payload is
+ * waiting in staging (none was, or bytes were processed since), TDC_ERR_ARG
+ * for a NULL dst or a short stride.  The payload stays valid: a second call
+ * unpacks the same frame again. */
+TDC_MUST_CHECK
+tdc_status_t tdc_link_unpack_full(const tdc_link_decoder_t *dec, uint8_t *dst, uint32_t stride);
 
 /* Drops any partly received packet and hunts for the next magic (e.g. after
  * a USB disconnect); stream, sequence, counters and buffers are kept.  The
