@@ -253,6 +253,25 @@ int tdc_sim_link_reduced(tdc_sim_link_t *l, int eye, uint32_t frame, const uint8
 #endif
 }
 
+/* A PATTERN packet (the cycle's tile orderings); 0 when accepted. */
+static int send_pattern(tdc_sim_link_t *l, int eye, uint32_t frame, const uint8_t *pattern)
+{
+#if TDC_SIM_HAVE_LINK
+    link_priv_t *p = l->priv;
+    const double t0 = now_s();
+    const size_t n = tdc_link_encode_pattern(&p->enc, p->pkt, p->cap, (uint32_t)eye, frame, pattern, (uint32_t)l->w,
+                                             (uint32_t)l->h);
+    l->encode_s += now_s() - t0;
+    return feed(l, n, TDC_LINK_KIND_PATTERN);
+#else
+    (void)frame;
+    memcpy(l->pattern[eye], pattern, TDC_PATTERN_BYTES(l->w, l->h));
+    l->bytes += TDC_LINK_HEADER_BYTES + TDC_PATTERN_BYTES(l->w, l->h);
+    l->packets++;
+    return 0;
+#endif
+}
+
 int tdc_sim_link_subframe(tdc_sim_link_t *l, int eye, uint32_t frame, const uint8_t *samples, const int16_t *mv,
                           const uint8_t *pattern)
 {
@@ -262,10 +281,7 @@ int tdc_sim_link_subframe(tdc_sim_link_t *l, int eye, uint32_t frame, const uint
     double t0 = now_s();
     size_t n;
     if (pattern) {
-        n = tdc_link_encode_pattern(&p->enc, p->pkt, p->cap, (uint32_t)eye, frame, pattern, (uint32_t)l->w,
-                                    (uint32_t)l->h);
-        l->encode_s += now_s() - t0;
-        rc |= feed(l, n, TDC_LINK_KIND_PATTERN);
+        rc |= send_pattern(l, eye, frame, pattern);
         t0 = now_s();
     }
     n = tdc_link_encode_subframe(&p->enc, p->pkt, p->cap, (uint32_t)eye, frame, TDC_PIXFMT_RGB888, samples,
@@ -285,9 +301,7 @@ int tdc_sim_link_subframe(tdc_sim_link_t *l, int eye, uint32_t frame, const uint
     l->bytes += TDC_LINK_HEADER_BYTES + TDC_LINK_SUBFRAME_BYTES(l->w, l->h);
     l->packets++;
     if (pattern) {
-        memcpy(l->pattern[eye], pattern, TDC_PATTERN_BYTES(l->w, l->h));
-        l->bytes += TDC_LINK_HEADER_BYTES + TDC_PATTERN_BYTES(l->w, l->h);
-        l->packets++;
+        send_pattern(l, eye, frame, pattern);
     }
     if (mv) {
         memcpy(l->sample_motion[eye], mv, TDC_LINK_SAMPLE_MOTION_COUNT(l->w, l->h) * sizeof(int16_t));
@@ -313,10 +327,7 @@ int tdc_sim_link_layers(tdc_sim_link_t *l, int eye, uint32_t frame, const tdc_la
     size_t n;
     (void)tiles;
     if (pattern) {
-        n = tdc_link_encode_pattern(&p->enc, p->pkt, p->cap, (uint32_t)eye, frame, pattern, (uint32_t)l->w,
-                                    (uint32_t)l->h);
-        l->encode_s += now_s() - t0;
-        rc |= feed(l, n, TDC_LINK_KIND_PATTERN);
+        rc |= send_pattern(l, eye, frame, pattern);
         t0 = now_s();
     }
     uint8_t kinds[TDC_LAYER_MAX] = {0, 0, 0, 0};
@@ -345,9 +356,7 @@ int tdc_sim_link_layers(tdc_sim_link_t *l, int eye, uint32_t frame, const tdc_la
     l->bytes += TDC_LINK_HEADER_BYTES + tdc_layer_payload_bytes(flags, (uint32_t)tiles);
     l->packets++;
     if (pattern) {
-        memcpy(l->pattern[eye], pattern, TDC_PATTERN_BYTES(l->w, l->h));
-        l->bytes += TDC_LINK_HEADER_BYTES + TDC_PATTERN_BYTES(l->w, l->h);
-        l->packets++;
+        send_pattern(l, eye, frame, pattern);
     }
     return 0;
 #endif

@@ -150,6 +150,16 @@ int tdc_sim_send_full(sim_mode_t *m, uint32_t lf, const uint8_t *rgb);
 #define TDC_SIM_LINK_FULL(m) ((m)->link->full[(m)->eye])
 #define TDC_SIM_LINK_REDUCED_BUF(m) ((m)->link->reduced[(m)->eye])
 
+/* Renderer side of a tile-ordered subframe (assembly families): the sample
+ * positions of subframe lf under the tile orderings `pattern` into m->xy,
+ * each tile's pixel of the subframe, jittered (tdc_jitter_offset_q4) where
+ * the (2 radius + 1)^2 neighbourhood of the renderer's motion buffer mvbuf
+ * is static (radius 1: the controller's 3x3 rule; more where the controller
+ * splats vectors further); returns the sample count.  keep_mv stores each sample's vector mv[2i..]
+ * at its pixel of mvbuf (each pixel keeps its latest sample's vector). */
+int tdc_sim_subframe_xy(sim_mode_t *m, const int16_t *mvbuf, const uint8_t *pattern, uint32_t lf, int radius);
+void tdc_sim_subframe_keep_mv(sim_mode_t *m, int16_t *mvbuf, int n, const int16_t *mv);
+
 /* Bilinear sample of an RGB888 image at pixel-centre coordinates. */
 double tdc_sim_sample8(const uint8_t *img, int w, int h, double x, double y, int c);
 uint8_t tdc_sim_to8(double v);
