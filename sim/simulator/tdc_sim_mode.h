@@ -160,8 +160,7 @@ int tdc_sim_send_full(sim_mode_t *m, uint32_t lf, const uint8_t *rgb);
 int tdc_sim_subframe_xy(sim_mode_t *m, const int16_t *mvbuf, const uint8_t *pattern, uint32_t lf, int radius);
 void tdc_sim_subframe_keep_mv(sim_mode_t *m, int16_t *mvbuf, int n, const int16_t *mv);
 
-/* Bilinear sample of an RGB888 image at pixel-centre coordinates. */
-double tdc_sim_sample8(const uint8_t *img, int w, int h, double x, double y, int c);
+/* Rounds and clamps to a code (bilinear samples of codes: tdc_bilinear_u8). */
 uint8_t tdc_sim_to8(double v);
 
 #endif
