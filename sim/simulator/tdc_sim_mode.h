@@ -50,6 +50,7 @@ typedef struct {
     int src_full_frame;           /* the source traces whole frames (Embree) */
     int src_subframe;             /* the source traces subframes itself */
     int src_layers;               /* the source has layer outputs (tdc_source_t.layers) */
+    int src_layered_subframe;     /* ... or traces layered subframes itself (tdc_source_t.layered_subframe) */
 } tdc_sim_setup_t;
 
 struct tdc_sim_family {

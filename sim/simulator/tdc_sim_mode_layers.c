@@ -54,12 +54,13 @@ typedef struct {
     uint16_t *falloff;
 } lasm_state_t;
 
-static tdc_lasm_config_t lasm_config(const sim_mode_t *m, const tdc_panel_t *panel)
+static tdc_lasm_config_t lasm_config(const sim_mode_t *m, const tdc_panel_t *panel, int glossy)
 {
     const int v = m->d->variant;
     tdc_lasm_config_t c = {(uint16_t)m->w,
                            (uint16_t)m->h,
-                           (uint16_t)(TDC_LAYER_PKT_TYPE(TDC_LAYER_SHADING) | TDC_LAYER_PKT_TYPE(TDC_LAYER_VISIBILITY)),
+                           (uint16_t)(TDC_LAYER_PKT_TYPE(TDC_LAYER_SHADING) | TDC_LAYER_PKT_TYPE(TDC_LAYER_VISIBILITY) |
+                                      (glossy ? TDC_LAYER_PKT_TYPE(TDC_LAYER_GLOSSY) : 0u)),
                            (uint8_t)(v == V_ORDINARY || v == V_ZENG_TDRT ? TDC_LASM_CLAMP_TDRT : TDC_LASM_CLAMP_ZENG),
                            (uint8_t)(v == V_ZENG_CLEAN),
                            (uint8_t)(v == V_ORDINARY ? 0 : 2),
@@ -73,7 +74,7 @@ static int lasm_init(sim_mode_t *m, const tdc_sim_setup_t *s)
 {
     /* the source must hand out layers (the procedural scenes do; a renderer
      * without layer outputs cannot run these modes) */
-    if (!s->src_layers) {
+    if (!s->src_layers && !s->src_layered_subframe) {
         tdc_sim_note(m, "this source has no layer outputs (tdc_source_t.layers)");
         m->res->available = 0;
         return 0;
@@ -97,7 +98,8 @@ static int lasm_init(sim_mode_t *m, const tdc_sim_setup_t *s)
         ok = ok && st->val[t] && st->mv[t];
     }
     st->lf.falloff = st->falloff;
-    const tdc_lasm_config_t c = lasm_config(m, s->fw_panel);
+    /* a renderer's layered subframes may carry a glossy layer */
+    const tdc_lasm_config_t c = lasm_config(m, s->fw_panel, s->src_layered_subframe);
     st->bytes = tdc_lasm_get_size(&c);
     st->mem = st->bytes ? aligned_alloc(8, (st->bytes + 7) & ~(size_t)7) : NULL;
     if (!ok || (st->bytes && !st->mem)) {
@@ -160,7 +162,19 @@ static int lasm_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint3
 {
     (void)spp; /* one ray per sample */
     lasm_state_t *st = m->fam;
-    int rc = lasm_subframe(m, st, src, t, lf);
+    int rc;
+    if (src->layered_subframe) {
+        uint64_t rays = 0;
+        const double t1 = tdc_sim_now();
+        rc = tdc_sim_stage(m, "renderer layered subframe",
+                           src->layered_subframe(src, m->slot, m->d->variant != V_ORDINARY, lf, t, m->fs, &st->lf,
+                                                 st->pattern, &rays));
+        m->res->render_s += tdc_sim_now() - t1;
+        m->res->rays += rays;
+        m->res->rendered++;
+    } else {
+        rc = lasm_subframe(m, st, src, t, lf);
+    }
     if (rc) {
         return rc;
     }

@@ -93,6 +93,12 @@ struct tdc_source {
      * or reflections sends one layer).  Returns 0, or -1. */
     int (*layers)(tdc_source_t *s, double t, int n, const double *xy, double dt, int zeng,
                   struct tdc_layer_frame *out);
+    /* Optional: a renderer that traces subframes itself (as `subframe`)
+     * with layer outputs: the layered samples of every tile of subframe
+     * `frame` into out (planes hold tiles samples), its orderings into
+     * pattern; zeng as for `layers`.  Returns 0. */
+    int (*layered_subframe)(tdc_source_t *s, int slot, int zeng, uint32_t frame, double t, double dt,
+                            struct tdc_layer_frame *out, uint8_t *pattern, uint64_t *rays);
     const char *note; /* what this source does not support, for reports */
 };
 
