@@ -13,6 +13,7 @@
 #include <stddef.h>
 
 #include "tdc_layer_link.h" /* tdc_layer_frame_t */
+#include "tdc_fov_link.h"
 
 typedef struct {
     int real; /* 1: encoder + decoder in the path */
@@ -29,6 +30,8 @@ typedef struct {
     uint8_t *full[2], *reduced[2], *subframe[2], *pattern[2];
     int16_t *motion[2], *sample_motion[2];
     tdc_layer_frame_t *layers[2]; /* LAYERS streams: every plane of the four types + falloff */
+    uint8_t *fov_lp[2]; /* FOVEATED: the log-polar samples (lp_w x lp_h RGB8) */
+    int16_t *fov_mv[2]; /* their motion vectors */
     void *priv;
 } tdc_sim_link_t;
 
@@ -38,6 +41,7 @@ typedef struct {
 #define TDC_SIM_LINK_MOTION 0x0004u
 #define TDC_SIM_LINK_SAMPLE_MV 0x0010u
 #define TDC_SIM_LINK_LAYERS 0x0020u
+#define TDC_SIM_LINK_FOVEATED 0x0040u
 
 int tdc_sim_link_init(tdc_sim_link_t *l, int w, int h, int eyes, uint32_t flags, uint16_t r_num, uint16_t r_den,
                       uint16_t hz);
@@ -53,6 +57,13 @@ int tdc_sim_link_subframe(tdc_sim_link_t *l, int eye, uint32_t frame, const uint
  * kinds from src->hdr) and, with pattern, the cycle's PATTERN packet. */
 int tdc_sim_link_layers(tdc_sim_link_t *l, int eye, uint32_t frame, const tdc_layer_frame_t *src,
                         const uint8_t *pattern);
+/* FOVEATED packet (the link decoder's kind 7): the foveation header of p
+ * and the samples in payload order (tdc_fov_link.h), vectors if mv; the
+ * decoder puts the disk pixels into full[eye], the rest into fov_lp/fov_mv.
+ * 0 when accepted; then *hdr (if not NULL) is the decoder's parsed header.
+ * Needs the link in the build (-1 without). */
+int tdc_sim_link_foveated(tdc_sim_link_t *l, int eye, uint32_t frame, const tdc_fov_params_t *p, uint16_t delta_q15,
+                          const uint8_t *samples, const int16_t *mv, tdc_fov_hdr_t *hdr);
 /* Bytes of a payload sent without a packet kind of its own (interlaced
  * rows): counted as payload + header, not decoded. */
 void tdc_sim_link_count_raw(tdc_sim_link_t *l, size_t payload);

@@ -47,6 +47,12 @@ typedef struct tdc_source tdc_source_t;
  * tdc_layer_frame_t whose planes hold n samples (value[t - 1], mv[t - 1],
  * falloff), its present set and its header's count / types / vector kinds. */
 struct tdc_layer_frame;
+/* Foveated sampling of one frame (the fov modes; tdc_render_fov_t's fields). */
+typedef struct {
+    double gaze_x, gaze_y; /* display pixels */
+    double alpha, delta, disk;
+    double jx, jy; /* jitter of the log-polar samples (Halton where TAA follows) */
+} tdc_fov_sampling_t;
 
 struct tdc_source {
     const char *name;
@@ -99,6 +105,13 @@ struct tdc_source {
      * pattern; zeng as for `layers`.  Returns 0. */
     int (*layered_subframe)(tdc_source_t *s, int slot, int zeng, uint32_t frame, double t, double dt,
                             struct tdc_layer_frame *out, uint8_t *pattern, uint64_t *rays);
+    /* Optional: a renderer that traces foveated frames itself (the Embree
+     * renderer's FOVEATED mode, thesis §4.2): the samples of f in the
+     * firmware's payload order (kernel log-polar columns [u0, w), then the
+     * disk), codes; MVs over dt if mv != NULL; *rays = primary rays traced.
+     * NULL: the fov modes trace their positions with samples().  Returns 0. */
+    int (*foveated)(tdc_source_t *s, const tdc_fov_sampling_t *f, double t, double dt, uint8_t *rgb, int16_t *mv,
+                    uint64_t *rays);
     const char *note; /* what this source does not support, for reports */
 };
 
