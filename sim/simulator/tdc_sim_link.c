@@ -374,6 +374,9 @@ int tdc_sim_link_layers(tdc_sim_link_t *l, int eye, uint32_t frame, const tdc_la
         send_pattern(l, eye, frame, pattern);
     }
     return 0;
+#endif
+}
+
 int tdc_sim_link_foveated(tdc_sim_link_t *l, int eye, uint32_t frame, const tdc_fov_params_t *fp, uint16_t delta_q15,
                           const uint8_t *samples, const int16_t *mv, tdc_fov_hdr_t *hdr)
 {
