@@ -511,7 +511,8 @@ int tdc_sim_run(const tdc_sim_config_t *cfg, tdc_source_t *src, const tdc_mode_d
     }
     int rc = 0;
     tdc_sim_setup_t setup = {
-        cfg, eyes, lcd_panel ? lcd_panel : fw_panel, lcd_panel, src->full_frame != NULL, src->subframe != NULL};
+        cfg, eyes, lcd_panel ? lcd_panel : fw_panel, lcd_panel, src->full_frame != NULL, src->subframe != NULL,
+        src->layers != NULL, src->layered_subframe != NULL};
     for (int i = 0; i < nmodes; i++) {
         for (int e = 0; e < eyes; e++) {
             sim_mode_t *m = &ms[i * eyes + e];
