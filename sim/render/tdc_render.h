@@ -143,6 +143,9 @@ void tdc_render_close(tdc_render_t *r);
 int tdc_render_set_threads(tdc_render_t *r, int threads);
 /* Turns ray recording (benchmark) on or off for the following frames. */
 void tdc_render_set_record(tdc_render_t *r, int on);
+/* Sub-pixel offset (px, |j| <= 0.5) of every FULL sample of the following
+ * frames: TAA's per-frame jitter.  Default 0 (pixel centres). */
+void tdc_render_set_jitter(tdc_render_t *r, double jx, double jy);
 
 /* Renders frame `frame` in `mode`.  Returns 0, or -1 on a bad argument. */
 int tdc_render_frame(tdc_render_t *r, uint32_t frame, tdc_render_mode_t mode, const tdc_render_out_t *out,

@@ -247,6 +247,12 @@ void tdc_render_set_record(tdc_render_t *r, int on)
     r->cfg.record_rays = on != 0;
 }
 
+void tdc_render_set_jitter(tdc_render_t *r, double jx, double jy)
+{
+    r->full_jx = (float)(jx < -0.5 ? -0.5 : (jx > 0.5 ? 0.5 : jx));
+    r->full_jy = (float)(jy < -0.5 ? -0.5 : (jy > 0.5 ? 0.5 : jy));
+}
+
 void tdc_render_get_features(const tdc_render_t *r, tdc_render_features_t *f)
 {
     *f = r->feat;

@@ -77,8 +77,8 @@ static int place_samples(job_t *jb, int tx, int ty, rsample_t *s)
     if (jb->mode == TDC_RENDER_FULL) { /* the common case without the per-slot switch */
         for (int sy = y0; sy < y1; sy++)
             for (int sx = x0; sx < x1; sx++) {
-                s[n].x = sx + 0.5f;
-                s[n].y = sy + 0.5f;
+                s[n].x = sx + 0.5f + r->full_jx;
+                s[n].y = sy + 0.5f + r->full_jy;
                 s[n].px = sx;
                 s[n].py = sy;
                 s[n].dst = (uint32_t)sy * (uint32_t)jb->sw + (uint32_t)sx;

@@ -62,6 +62,7 @@ typedef struct {
 struct tdc_render {
     tdc_scene_t *scene;
     tdc_render_config_t cfg;
+    float full_jx, full_jy; /* FULL sample offset (tdc_render_set_jitter) */
     int W, H;
     tdc_render_features_t feat;
     RTCDevice dev;

@@ -84,6 +84,11 @@ static int rs_full(tdc_source_t *s, double t, double dt, uint8_t *rgb, int16_t *
     return 0;
 }
 
+static void rs_jitter(tdc_source_t *s, double jx, double jy)
+{
+    tdc_render_set_jitter(((rsrc_t *)s->ctx)->r, jx, jy);
+}
+
 static void rs_ground_truth(tdc_source_t *s, double t, double ox, double oy, double *lin)
 {
     rsrc_t *c = s->ctx;
@@ -327,8 +332,9 @@ tdc_source_t *tdc_sim_render_source(const char *name, int w, int h, int clock_hz
     s->cut = rs_cut;
     s->destroy = rs_destroy;
     s->full_frame = rs_full;
+    s->jitter = rs_jitter;
     s->subframe = rs_subframe;
-    s->note = "Embree renderer: full frames at 1 ray per pixel centre; reduced frames are full renders prefiltered "
+    s->note = "Embree renderer: full frames at 1 ray per pixel centre (TAA: + its jitter); reduced frames are full renders prefiltered "
               "by the TRM stage's D; subframes traced by the renderer with its own adaptive orderings";
     return s;
 }

@@ -81,6 +81,9 @@ struct tdc_source {
     int (*subframe)(tdc_source_t *s, int slot, int shadow, uint32_t frame, double t, double dt, uint8_t *samples,
                     int16_t *mv, uint8_t *pattern, uint64_t *rays);
     const char *note; /* what this source does not support, for reports */
+    /* Optional, with full_frame: the sub-pixel offset of the following
+     * full frames' samples (TAA jitter); NULL: always pixel centres. */
+    void (*jitter)(tdc_source_t *s, double jx, double jy);
 };
 
 /* Parameters of the built-in scenes. */
