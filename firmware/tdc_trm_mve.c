@@ -2,9 +2,9 @@
  * tdc_trm_mve.c - TRM's full-res and reduced row kernels with Arm Helium
  * (M-profile Vector Extension, integer only) for Cortex-M55 boards.  They
  * produce the same bytes as the portable C kernels in tdc_trm_rows.c
- * (tests/checkasm/checkasm_trm_mve.c checks that under QEMU mps3-an547 on
- * random rows, extremes and every width 1..64; the golden vectors run
- * through them on that board).
+ * (the checkasm core, tests/checkasm/checkasm_trm.c, checks that under QEMU
+ * mps3-an547 on random rows, extremes and every width 1..64; the golden
+ * vectors run through them on that board).
  *
  * Built only where the board says so (BOARD_MVE := 1 in its board.mk: the
  * object gets -mcpu=cortex-m55+nofp -mfloat-abi=softfp, which enables the

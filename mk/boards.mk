@@ -153,11 +153,13 @@ $(BA)/harness-check: $(BA)/tdc_harness.elf tests/arm/test_harness.sh
 	    "$(BOARD)" "$(BA)/tdc_harness.elf" "$(BOARD_QEMU)" > $@
 	@chmod +x $@
 
-# Helium boards: the MVE row kernels against the C kernels in QEMU
-# (tests/checkasm/checkasm_trm_mve.c).
-ARM_CHECKASM_OBJS = $(patsubst %.c,$(BA)/%.o,$(ARM_BOARD_SRCS) tests/checkasm/checkasm_trm_mve.c)
+# Helium boards: the checkasm core (tests/checkasm/, the host's registry and
+# inputs) in QEMU, which checks the MVE row kernels against the C kernels.
+ARM_CHECKASM_SRCS = tests/arm/checkasm_arm_main.c tests/checkasm/checkasm.c tests/checkasm/checkasm_trm.c
+ARM_CHECKASM_OBJS = $(patsubst %.c,$(BA)/%.o,$(ARM_BOARD_SRCS) $(ARM_CHECKASM_SRCS))
+$(patsubst %.c,$(BA)/%.o,$(ARM_CHECKASM_SRCS)): ARM_TEST_CFLAGS += -DCHECKASM_NO_MAIN
 $(BA)/checkasm_mve.elf: $$(ARM_CHECKASM_OBJS) $(BA)/libtdcfw.a $(ARM_LDDEPS)
-	$(call ARM_LINK,the Helium checkasm runner)
+	$(call ARM_LINK,the checkasm core (Helium kernels))
 $(BA)/checkasm-mve: $(BA)/checkasm_mve.elf tests/arm/run_checkasm_qemu.sh
 	@printf '#!/bin/sh\nexec tests/arm/run_checkasm_qemu.sh "%s" %s "%s" %s\n' \
 	    "$(BOARD)" "$(QEMU_TIMEOUT)" "$(BA)/checkasm_mve.elf" "$(BOARD_QEMU)" > $@

@@ -6,8 +6,10 @@
 #define _POSIX_C_SOURCE 200809L
 #include <time.h>
 #define CHECKASM_HAVE_TIMER 1
+#define CHECKASM_HOST_STDIO 1
 #else
 #define CHECKASM_HAVE_TIMER 0
+#define CHECKASM_HOST_STDIO 0
 #endif
 
 #include "checkasm.h"
@@ -38,6 +40,34 @@ static struct {
     int quiet; /* the core's self-test: count failures, print nothing */
     long last_index;
 } g = {DEFAULT_SEED, 1, 0, NULL, "", 0, 0, 0, -1};
+
+/* ---- output: one formatted line at a time through checkasm_write() ----
+ * (formatted into a static buffer with vsnprintf, which newlib nano does
+ * without the heap its stdio streams would need; the Cortex-M harness
+ * provides checkasm_write() by semihosting, hosts write to stdout). */
+#if CHECKASM_HOST_STDIO
+void checkasm_write(const char *s, size_t n)
+{
+    fwrite(s, 1, n, stdout);
+}
+#endif
+
+static void vout(const char *fmt, va_list ap)
+{
+    static char buf[1024];
+    const int n = vsnprintf(buf, sizeof buf, fmt, ap);
+    if (n > 0) {
+        checkasm_write(buf, (size_t)n < sizeof buf ? (size_t)n : sizeof buf - 1u);
+    }
+}
+
+static void out(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vout(fmt, ap);
+    va_end(ap);
+}
 
 /* 64-bit numbers as text without printf's 64-bit conversions (newlib
  * nano has none): hex with base 16, decimal with base 10. */
@@ -121,12 +151,12 @@ int checkasm_fail(const char *fmt, ...)
         if (!g.quiet) {
             char hex[24];
             const char *seed = u64_text(g.seed, 16u, hex);
-            printf("checkasm: FAIL %s (replay: checkasm --seed 0x%s %s):\n  ", g.cur_name, seed, g.cur_name);
+            out("checkasm: FAIL %s (replay: checkasm --seed 0x%s %s):\n  ", g.cur_name, seed, g.cur_name);
             va_list ap;
             va_start(ap, fmt);
-            vprintf(fmt, ap);
+            vout(fmt, ap);
             va_end(ap);
-            printf("\n");
+            out("\n");
         }
     }
     return 1;
@@ -174,14 +204,14 @@ checkasm_fn_t checkasm_bench_fn(const checkasm_bench_t *b)
 static void print_centi(uint64_t x)
 {
     char dec[24];
-    printf("%8s.%02u", u64_text(x / 100u, 10u, dec), (unsigned)(x % 100u));
+    out("%8s.%02u", u64_text(x / 100u, 10u, dec), (unsigned)(x % 100u));
 }
 
 int checkasm_bench_step(checkasm_bench_t *b)
 {
     uint64_t now;
     if (!timer_ns(&now)) {
-        printf("  %-24s %-38s no timer on this target: not timed\n", g.cur_name, b->label);
+        out("  %-24s %-38s no timer on this target: not timed\n", g.cur_name, b->label);
         return 0;
     }
     if (b->call == BENCH_CALLS) {
@@ -193,11 +223,11 @@ int checkasm_bench_step(checkasm_bench_t *b)
             if (++b->side == 2) {
                 /* ns per unit x 100, and the speed-up x 100 */
                 const uint64_t per = (uint64_t)BENCH_CALLS * b->units;
-                printf("  %-24s %-38s", g.cur_name, b->label);
+                out("  %-24s %-38s", g.cur_name, b->label);
                 print_centi(b->best[0] * 100u / per);
                 print_centi(b->best[1] * 100u / per);
                 print_centi(b->best[1] ? b->best[0] * 100u / b->best[1] : 0u);
-                printf("x\n");
+                out("x\n");
                 return 0;
             }
         }
@@ -255,7 +285,7 @@ static int selftest(void)
     g.failures -= (unsigned)g.cur_failed;
     g.quiet = 0;
     if (!ok) {
-        printf("checkasm: FAIL the core's self-test: a mismatch planted at index %zu was %s\n", g_plant,
+        out("checkasm: FAIL the core's self-test: a mismatch planted at index %lu was %s\n", (unsigned long)g_plant,
                g.cur_failed ? "reported at another index" : "not reported");
     }
     return ok;
@@ -311,7 +341,7 @@ static int selected(const checkasm_kernel_t *k, const char *name, char **pats, i
 static int usage(int status)
 {
     char hex[24];
-    printf("usage: checkasm [--seed N] [--runs N] [--bench] [--list] [PATTERN...]\n"
+    out("usage: checkasm [--seed N] [--runs N] [--bench] [--list] [PATTERN...]\n"
            "  checks every registered optimised kernel against its C reference, bit for bit\n"
            "  --seed N   RNG seed (default 0x%s); each kernel reseeds from it and its name\n"
            "  --runs N   inputs per kernel (default: each family's own)\n"
@@ -338,7 +368,7 @@ int checkasm_main(int argc, char **argv)
         } else if ((strcmp(argv[i], "--seed") == 0 || strcmp(argv[i], "--runs") == 0) && i + 1 < argc) {
             const unsigned long long v = strtoull(argv[i + 1], &end, 0);
             if (!end || *end || end == argv[i + 1]) {
-                printf("checkasm: %s: not a number: '%s'\n", argv[i], argv[i + 1]);
+                out("checkasm: %s: not a number: '%s'\n", argv[i], argv[i + 1]);
                 return usage(2);
             }
             if (argv[i][2] == 's') {
@@ -348,7 +378,7 @@ int checkasm_main(int argc, char **argv)
             }
             i++;
         } else if (argv[i][0] == '-') {
-            printf("checkasm: unknown option '%s'\n", argv[i]);
+            out("checkasm: unknown option '%s'\n", argv[i]);
             return usage(2);
         } else {
             pats[npats++] = argv[i]; /* compacted in place: npats <= i */
@@ -361,7 +391,7 @@ int checkasm_main(int argc, char **argv)
                 const checkasm_kernel_t *k = &g_modules[m]->kernels[j];
                 kernel_name(k, name, sizeof name);
                 if (selected(k, name, pats, npats)) {
-                    printf("%-30s module %-6s family %-20s isa %-8s %s\n", name, g_modules[m]->name, k->family->name,
+                    out("%-30s module %-6s family %-20s isa %-8s %s\n", name, g_modules[m]->name, k->family->name,
                            k->isa, k->available() ? "runs here" : "not available here");
                 }
             }
@@ -372,7 +402,7 @@ int checkasm_main(int argc, char **argv)
         return 1;
     }
     char hex[24];
-    printf("checkasm: seed 0x%s\n", u64_text(g.seed, 16u, hex));
+    out("checkasm: seed 0x%s\n", u64_text(g.seed, 16u, hex));
     unsigned checked = 0, skipped = 0, matched = 0;
     for (size_t m = 0; m < NMODULES; m++) {
         for (size_t j = 0; j < g_modules[m]->count; j++) {
@@ -383,7 +413,7 @@ int checkasm_main(int argc, char **argv)
             }
             matched++;
             if (!k->available()) {
-                printf("checkasm: %-28s not available on this build/CPU: skipped\n", name);
+                out("checkasm: %-28s not available on this build/CPU: skipped\n", name);
                 skipped++;
                 continue;
             }
@@ -393,19 +423,19 @@ int checkasm_main(int argc, char **argv)
             rng_seed_for(name);
             k->family->check(k);
             checked++;
-            printf("checkasm: %-28s %s\n", name, g.cur_failed ? "FAILED" : "ok (bit-exact)");
+            out("checkasm: %-28s %s\n", name, g.cur_failed ? "FAILED" : "ok (bit-exact)");
         }
     }
     if (npats > 0 && matched == 0) {
-        printf("checkasm: no registered kernel matches the pattern(s) (see --list)\n");
+        out("checkasm: no registered kernel matches the pattern(s) (see --list)\n");
         return 2;
     }
-    printf("checkasm: %u kernels checked, %u failed, %u not available here\n", checked, g.failures, skipped);
+    out("checkasm: %u kernels checked, %u failed, %u not available here\n", checked, g.failures, skipped);
     if (g.failures || !bench) {
         return g.failures ? 1 : 0;
     }
-    printf("checkasm --bench: best of %u x %u calls, ns per unit (pixel unless named)\n", BENCH_REPS, BENCH_CALLS);
-    printf("  %-24s %-38s %11s %11s %11s\n", "kernel", "input", "C", "optimised", "speed-up");
+    out("checkasm --bench: best of %u x %u calls, ns per unit (pixel unless named)\n", BENCH_REPS, BENCH_CALLS);
+    out("  %-24s %-38s %11s %11s %11s\n", "kernel", "input", "C", "optimised", "speed-up");
     for (size_t m = 0; m < NMODULES; m++) {
         for (size_t j = 0; j < g_modules[m]->count; j++) {
             const checkasm_kernel_t *k = &g_modules[m]->kernels[j];

@@ -25,7 +25,8 @@
  * word selects every pair whose name contains it (`checkasm dhoriz`).
  *
  * Plain C11 with stdio only: builds for the Cortex-M targets too (their
- * harness calls checkasm_main() with fixed arguments); the benchmark timer
+ * harness, tests/arm/checkasm_arm_main.c, calls checkasm_main() with the
+ * arguments QEMU was given and provides checkasm_write()); the timer
  * is the one optional part (POSIX clock_gettime on hosts; without a timer
  * --bench says so and only checks).  No floating point: times are integer
  * nanoseconds.
@@ -35,6 +36,16 @@
 
 #include <stddef.h>
 #include <stdint.h>
+
+/* Large input/output buffers of a family: on the Cortex-M boards in the
+ * external RAM region (the boards' TDC_EXTRAM section, zeroed by crt0), as
+ * the tightly coupled data RAM holds 512 KiB; plain .bss on hosts. */
+#if defined(__arm__)
+#include "tdc_crt0.h"
+#define CHECKASM_BIG TDC_EXTRAM
+#else
+#define CHECKASM_BIG
+#endif
 
 /* Any kernel, stored type-erased; its family casts it back to its type. */
 typedef void (*checkasm_fn_t)(void);
@@ -119,6 +130,11 @@ checkasm_fn_t checkasm_bench_fn(const checkasm_bench_t *b);
         T *const f = (T *)checkasm_bench_fn(&cb_);                                                         \
         call;                                                                                              \
     }
+
+/* ---- output ----
+ * Every line the core prints goes through this: the host build writes to
+ * stdout, a target without stdio streams provides it (semihosting). */
+void checkasm_write(const char *s, size_t n);
 
 /* ---- the run ---- */
 /* Parses the options above and runs; 0 when every pair agreed, 1 when one

@@ -28,9 +28,10 @@ static uint32_t urow_a[3u * URW], urow_b[3u * URW];
 static uint8_t src[3u * MAXW];
 static int32_t res_in[3u * MAXW], res_c[3u * MAXW], res_v[3u * MAXW];
 static uint8_t dst_c[3u * MAXW], dst_v[3u * MAXW];
-static uint16_t drows[TDC_TRM_MAX_TAPS][3u * MAXW], dout_c[3u * MAXW], dout_v[3u * MAXW];
+static CHECKASM_BIG uint16_t drows[TDC_TRM_MAX_TAPS][3u * MAXW];
+static uint16_t dout_c[3u * MAXW], dout_v[3u * MAXW];
 static int16_t hfirst[MAXW];
-static uint16_t hw[MAXW * TDC_TRM_MAX_TAPS + 8u];
+static CHECKASM_BIG uint16_t hw[MAXW * TDC_TRM_MAX_TAPS + 8u];
 
 static const tdc_panel_t *const panels[] = {&tdc_panel_htc_vive, &tdc_panel_rift_cv1, &tdc_panel_pg279q};
 #define NPANELS 3u
@@ -228,7 +229,9 @@ static void check_dvert(const checkasm_kernel_t *kr)
 {
     const uint32_t runs = checkasm_runs(750u);
     for (uint32_t run = 0; run < runs && !checkasm_failed(); run++) {
-        const uint32_t n = 1u + checkasm_rand_below(3u * MAXW), taps = 1u + checkasm_rand_below(TDC_TRM_MAX_TAPS);
+        /* the first 64 runs: every length 1..64 (vector bodies and every tail) */
+        const uint32_t n = run < 64u ? run + 1u : 1u + checkasm_rand_below(3u * MAXW);
+        const uint32_t taps = 1u + checkasm_rand_below(TDC_TRM_MAX_TAPS);
         uint16_t w[TDC_TRM_MAX_TAPS];
         const uint16_t *rows[TDC_TRM_MAX_TAPS];
         make_dvert(n, taps, w, rows);
@@ -266,7 +269,9 @@ static void check_dhoriz(const checkasm_kernel_t *kr)
 {
     const uint32_t runs = checkasm_runs(750u);
     for (uint32_t run = 0; run < runs && !checkasm_failed(); run++) {
-        const uint32_t width = 1u + checkasm_rand_below(MAXW), taps = 1u + checkasm_rand_below(TDC_TRM_MAX_TAPS);
+        /* the first 64 runs: every width 1..64 (vector bodies and every tail) */
+        const uint32_t width = run < 64u ? run + 1u : 1u + checkasm_rand_below(MAXW);
+        const uint32_t taps = 1u + checkasm_rand_below(TDC_TRM_MAX_TAPS);
         const uint32_t rw = 1u + checkasm_rand_below(width);
         make_dhoriz(width, taps, rw);
         memset(dout_c, 0, sizeof dout_c);
@@ -337,11 +342,27 @@ static const checkasm_family_t trm_reduced_row = {"trm_reduced_row", check_reduc
 static const checkasm_family_t trm_dvert = {"trm_dvert", check_dvert, bench_dvert};
 static const checkasm_family_t trm_dhoriz = {"trm_dhoriz", check_dhoriz, bench_dhoriz};
 
+#if defined(TDC_TRM_MVE)
+/* Built with TDC_TRM_MVE only for Cortex-M55 images, whose start-up enables
+ * the MVE unit (CP10/CP11): always runnable there. */
+static int mve_available(void)
+{
+    return 1;
+}
+#endif
+
 static const checkasm_kernel_t g_trm_kernels[] = {
     CHECKASM_KERNEL(&trm_full_row, "avx2", tdc_trm_avx2_available, tdc_trm_full_row_c, tdc_trm_full_row_avx2),
     CHECKASM_KERNEL(&trm_reduced_row, "avx2", tdc_trm_avx2_available, tdc_trm_reduced_row_c, tdc_trm_reduced_row_avx2),
     CHECKASM_KERNEL(&trm_dvert, "avx2", tdc_trm_avx2_available, tdc_trm_dvert_c, tdc_trm_dvert_avx2),
     CHECKASM_KERNEL(&trm_dhoriz, "avx2", tdc_trm_avx2_available, tdc_trm_dhoriz_c, tdc_trm_dhoriz_avx2),
+#if defined(TDC_TRM_MVE)
+    /* Helium boards (BOARD_MVE): run under QEMU by tests/arm/checkasm_arm_main.c */
+    CHECKASM_KERNEL(&trm_full_row, "mve", mve_available, tdc_trm_full_row_c, tdc_trm_full_row_mve),
+    CHECKASM_KERNEL(&trm_reduced_row, "mve", mve_available, tdc_trm_reduced_row_c, tdc_trm_reduced_row_mve),
+    CHECKASM_KERNEL(&trm_dvert, "mve", mve_available, tdc_trm_dvert_c, tdc_trm_dvert_mve),
+    CHECKASM_KERNEL(&trm_dhoriz, "mve", mve_available, tdc_trm_dhoriz_c, tdc_trm_dhoriz_mve),
+#endif
 };
 
 const checkasm_module_t checkasm_trm = {"trm", g_trm_kernels, sizeof g_trm_kernels / sizeof g_trm_kernels[0]};

@@ -286,6 +286,51 @@ static void test_stereo(void **state)
     l->destroy(l);
 }
 
+/* Stereo TRM on a symmetric scene (both eyes see the same view): the eyes
+ * differ only in the phase of the full/reduced alternation, so their figures
+ * must agree.  Tolerances: PSNR 0.1 dB, SSIM 0.002, FLIP 2 %, flicker 15 %
+ * (measured: trm50 L/R PSNR 22.851/22.842, FLIP 0.2095/0.2085, flicker
+ * 11.28/11.31).  Fails on the old path, where eye 1's first frame (reduced,
+ * by the link's schedule, with no full frame before it) went to
+ * tdc_trm_reduced, which refused it, and the eye stayed black for a frame:
+ * trm50 R PSNR 21.994 (0.86 dB below L), FLIP 0.2447, flicker 14.69. */
+static void test_stereo_symmetric(void **state)
+{
+    (void)state;
+    tdc_sim_config_t cfg;
+    tdc_sim_default_config(&cfg);
+    cfg.scene.kind = TDC_SCENE_PAN;
+    cfg.width = cfg.scene.width = 48;
+    cfg.height = cfg.scene.height = 40;
+    cfg.duration_s = 12.0 / 90;
+    cfg.progress = 0;
+    cfg.flip_ppd = 11.4;
+    cfg.scene.gt_ss = 2;
+    const tdc_mode_desc_t *modes[3] = {tdc_sim_mode_find("full"), tdc_sim_mode_find("trm50"),
+                                       tdc_sim_mode_find("trm25")};
+    tdc_sim_result_t st[3];
+    tdc_source_t *l = tdc_scene_create(&cfg.scene, NULL);
+    tdc_source_t *r = tdc_scene_create(&cfg.scene, NULL);
+    cfg.eyes = 2;
+    cfg.right = r;
+    assert_int_equal(tdc_sim_run(&cfg, l, modes, 3, st, NULL), 0);
+    check_sane(st, 3);
+    for (int i = 0; i < 3; i++) {
+        if (!st[i].available) {
+            continue;
+        }
+        printf("  %-6s L/R: PSNR %.3f %.3f SSIM %.4f %.4f FLIP %.4f %.4f flicker %.3f %.3f\n", st[i].desc->name,
+               st[i].eye_psnr[0], st[i].eye_psnr[1], st[i].eye_ssim[0], st[i].eye_ssim[1], st[i].eye_flip[0],
+               st[i].eye_flip[1], st[i].eye_flicker[0], st[i].eye_flicker[1]);
+        assert_true(fabs(st[i].eye_psnr[0] - st[i].eye_psnr[1]) < 0.1);
+        assert_true(fabs(st[i].eye_ssim[0] - st[i].eye_ssim[1]) < 0.002);
+        assert_true(fabs(st[i].eye_flip[0] - st[i].eye_flip[1]) < 0.02 * st[i].eye_flip[0]);
+        assert_true(fabs(st[i].eye_flicker[0] - st[i].eye_flicker[1]) < 0.15 * st[i].eye_flicker[0]);
+    }
+    r->destroy(r);
+    l->destroy(l);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -293,6 +338,7 @@ int main(void)
         cmocka_unit_test(test_asm_family),           cmocka_unit_test(test_extremes),
         cmocka_unit_test(test_stage_error_ends_run), cmocka_unit_test(test_refused_rate),
         cmocka_unit_test(test_threads_same_digits),  cmocka_unit_test(test_stereo),
+        cmocka_unit_test(test_stereo_symmetric),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
