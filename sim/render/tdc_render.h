@@ -146,6 +146,8 @@ void tdc_render_set_record(tdc_render_t *r, int on);
 /* Sub-pixel offset (px, |j| <= 0.5) of every FULL sample of the following
  * frames: TAA's per-frame jitter.  Default 0 (pixel centres). */
 void tdc_render_set_jitter(tdc_render_t *r, double jx, double jy);
+/* Reflected MVs at mirror hits (TDRT §3.1.2) on or off for the following frames (cfg.reflect_mv). */
+void tdc_render_set_reflect_mv(tdc_render_t *r, int on);
 
 /* Renders frame `frame` in `mode`.  Returns 0, or -1 on a bad argument. */
 int tdc_render_frame(tdc_render_t *r, uint32_t frame, tdc_render_mode_t mode, const tdc_render_out_t *out,

@@ -253,6 +253,11 @@ void tdc_render_set_jitter(tdc_render_t *r, double jx, double jy)
     r->full_jy = (float)(jy < -0.5 ? -0.5 : (jy > 0.5 ? 0.5 : jy));
 }
 
+void tdc_render_set_reflect_mv(tdc_render_t *r, int on)
+{
+    r->cfg.reflect_mv = on != 0;
+}
+
 void tdc_render_get_features(const tdc_render_t *r, tdc_render_features_t *f)
 {
     *f = r->feat;
