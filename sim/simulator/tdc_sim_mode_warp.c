@@ -23,6 +23,8 @@ static const tdc_mode_desc_t k_modes[] = {
      "half rate, in-between frame warped by motion block-matched on the last two decoded frames"},
     {"taa60", F, WARP_TAA, 0, 1, 1, 60, 0, 0, "60 Hz, jittered 1 spp with TAA (reprojection, clamp, blend 0.1)"},
     {"taa", F, WARP_TAA, 0, 1, 1, 0, 0, 0, "the run's refresh, jittered 1 spp with TAA (as taa60)"},
+    {"taa120", F, WARP_TAA, 0, 1, 1, 120, 0, 0, "120 Hz, jittered 1 spp with TAA (as taa60)"},
+    {"taa80", F, WARP_TAA, 0, 1, 1, 80, 0, 0, "80 Hz, jittered 1 spp with TAA (as taa60)"},
 };
 #undef F
 
