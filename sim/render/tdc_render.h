@@ -78,6 +78,8 @@ typedef struct {
     double reduced_sigma;  /* Gaussian resolve sigma in full-res px, default 2.5 (TRM §4.3) */
     int gt_samples;        /* N of GROUND_TRUTH, default 64 */
     int record_rays;       /* keep every traced ray of the last frame (benchmark) */
+    int tex_filter;        /* box-filter textures over each sample's ray-cone footprint (TDRT §3.1.1,
+                              [AMNA*19]), default 1; 0: point-sampled as before */
 } tdc_render_config_t;
 
 /* Caller-owned outputs; any pointer may be NULL (that output is not

@@ -18,6 +18,7 @@ void tdc_render_default_config(tdc_render_config_t *cfg)
     cfg->seed = 1;
     cfg->max_bounces = 3;
     cfg->reflect_mv = 1;
+    cfg->tex_filter = 1;
     cfg->reduced_factor = 0.5;
     cfg->reduced_ss = 2;
     cfg->reduced_sigma = 2.5;

@@ -487,6 +487,7 @@ int tdc_render_frame(tdc_render_t *r, uint32_t frame, tdc_render_mode_t mode, co
     for (int i = 0; i < nth; i++) {
         w[i].job = &jb;
         init_thread(&w[i].th, r, frame, mode == TDC_RENDER_GROUND_TRUTH, jb.spp, jb.record, jb.do_mv_shadow);
+        w[i].th.cone = tdc_r_sample_cone(r, mode, jb.sw, jb.spp, w[i].th.cur->cam.tan_half);
         if (r->sbuf_cap[i] < cap) { /* kept between frames: no page faults per frame */
             free(r->sbuf[i]);
             /* cache-line aligned: the hot fields of a sample are 4 whole lines */
@@ -561,6 +562,7 @@ int tdc_render_probe(tdc_render_t *r, uint32_t frame, double x, double y, tdc_re
     tdc_r_top(r, (long)frame - 1);
     rthread_t th;
     init_thread(&th, r, frame, 0, 1, 0, 1);
+    th.cone = tdc_r_sample_cone(r, TDC_RENDER_FULL, r->W, 1, th.cur->cam.tan_half); /* what a frame's sample sees */
     rsample_t s;
     memset(&s, 0, sizeof s);
     s.x = (float)x;

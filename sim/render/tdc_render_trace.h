@@ -49,6 +49,8 @@ typedef struct {
     int gt; /* ground truth: one light sample per pixel sample, stratified by k */
     uint32_t spp;
     int track_blockers;              /* shadow rays return the blocker (shadow MVs) */
+    double cone;                     /* ray-cone spread angle of one sample, rad (0: point-sampled textures) */
+    double tex_fw;                   /* texture footprint of the surface being shaded (tdc_r_tex_footprint) */
     uint64_t ticks[TDC_STAGE_COUNT]; /* stage time in stamp() ticks (tdc_render_frame.c) */
     uint64_t rays[TDC_RAY_KIND_COUNT];
     int record;
