@@ -117,7 +117,7 @@ tdc_status_t tdc_link_decoder_init(tdc_link_decoder_t *dec, const tdc_link_confi
         return TDC_ERR_SIZE;
     }
     for (unsigned e = 0; e < cfg->eyes; e++) {
-        if (buffers->full[e] && buffers->full_stride < (uint32_t)cfg->width * 3u) {
+        if (buffers->full[e] && !buffers->defer_full && buffers->full_stride < (uint32_t)cfg->width * 3u) {
             return TDC_ERR_SIZE;
         }
     }
@@ -147,6 +147,7 @@ void tdc_link_decoder_resync(tdc_link_decoder_t *dec)
     dec->hdr_in_staging = 0;
     dec->payload_base = 0;
     dec->skip_left = 0;
+    dec->staged_full = 0;
     set_state(dec, ST_HUNT, 0);
 }
 
@@ -182,7 +183,8 @@ static tdc_link_err_t check_header(const tdc_link_decoder_t *dec, uint32_t versi
     if (version != TDC_LINK_VERSION) {
         return TDC_LINK_ERR_VERSION;
     }
-    if (kind < TDC_LINK_KIND_FIRST || kind > TDC_LINK_KIND_LAST) {
+    const tdc_link_kind_info_t *ki = tdc_link_kind_info(kind);
+    if (!ki) {
         return TDC_LINK_ERR_KIND;
     }
     if (kind == TDC_LINK_KIND_STREAM) {
@@ -206,8 +208,7 @@ static tdc_link_err_t check_header(const tdc_link_decoder_t *dec, uint32_t versi
     if (eye >= dec->cfg.eyes) {
         return TDC_LINK_ERR_EYE;
     }
-    const tdc_link_kind_info_t *ki = tdc_link_kind_info(kind);
-    if ((flags & ~(uint32_t)ki->pkt_flags) != 0) {
+    if ((flags & ~(uint32_t)ki->pkt_flags) != 0 || (kind == TDC_LINK_KIND_LAYERS && !tdc_layer_flags_valid(flags))) {
         return TDC_LINK_ERR_FORMAT;
     }
     const int pixel_kind = ki->rule == TDC_LINK_PAYLOAD_PIXELS;
@@ -222,7 +223,7 @@ static tdc_link_err_t check_header(const tdc_link_decoder_t *dec, uint32_t versi
     int ok;
     switch (kind) {
     case TDC_LINK_KIND_FULL:
-        ok = b->full[eye] != NULL && (!trm || tdc_link_trm_kind(p->frame_index, eye) == TDC_LINK_KIND_FULL);
+        ok = (b->full[eye] != NULL || b->defer_full) && (!trm || tdc_link_trm_kind(p->frame_index, eye) == TDC_LINK_KIND_FULL);
         break;
     case TDC_LINK_KIND_REDUCED:
         ok = trm && b->reduced[eye] != NULL && tdc_link_trm_kind(p->frame_index, eye) == TDC_LINK_KIND_REDUCED;
@@ -232,6 +233,9 @@ static tdc_link_err_t check_header(const tdc_link_decoder_t *dec, uint32_t versi
         ok = (flags & TDC_LINK_PKT_MV_PER_SAMPLE)
                  ? ((sflags & TDC_LINK_STREAM_SAMPLE_MV) && b->sample_motion[eye])
                  : ((sflags & TDC_LINK_STREAM_MOTION) && (b->motion[eye] || b->skip_motion));
+        break;
+    case TDC_LINK_KIND_LAYERS:
+        ok = (sflags & TDC_LINK_STREAM_LAYERS) && tdc_layer_frame_accepts(b->layers[eye], flags);
         break;
     default: /* PATTERN: with the first subframe of each 4-frame cycle */
         ok = (sflags & TDC_LINK_STREAM_SUBFRAMES) && b->pattern[eye] != NULL && (p->frame_index & 3u) == 0;
@@ -378,7 +382,7 @@ static tdc_link_err_t commit_stream(tdc_link_decoder_t *dec)
     } else if (in.r_num != in.r_den) {
         return TDC_LINK_ERR_STREAM_HEADER; /* r must be 1 without reduced frames */
     }
-    if ((in.flags & TDC_LINK_STREAM_SAMPLE_MV) && !(in.flags & TDC_LINK_STREAM_SUBFRAMES)) {
+    if ((in.flags & (TDC_LINK_STREAM_SAMPLE_MV | TDC_LINK_STREAM_LAYERS)) && !(in.flags & TDC_LINK_STREAM_SUBFRAMES)) {
         return TDC_LINK_ERR_STREAM_HEADER;
     }
     /* The build must have a buffer for every stage the stream uses. */
@@ -386,7 +390,8 @@ static tdc_link_err_t commit_stream(tdc_link_decoder_t *dec)
         if (((in.flags & TDC_LINK_STREAM_REDUCED) && (!b->reduced[e] || (size_t)rw * rh * 3u > b->reduced_bytes)) ||
             ((in.flags & TDC_LINK_STREAM_SUBFRAMES) && (!b->subframe[e] || !b->pattern[e])) ||
             ((in.flags & TDC_LINK_STREAM_MOTION) && !b->motion[e] && !b->skip_motion) ||
-            ((in.flags & TDC_LINK_STREAM_SAMPLE_MV) && !b->sample_motion[e])) {
+            ((in.flags & TDC_LINK_STREAM_SAMPLE_MV) && !b->sample_motion[e]) ||
+            ((in.flags & TDC_LINK_STREAM_LAYERS) && !b->layers[e])) {
             return TDC_LINK_ERR_STREAM_HEADER;
         }
     }
@@ -484,6 +489,17 @@ static void on_payload(tdc_link_decoder_t *dec, uint32_t src_end)
             return;
         }
     } else {
+        if (kind == TDC_LINK_KIND_LAYERS) {
+            /* contents the header cannot vouch for: refused before the
+             * sequence advances or anything is written */
+            const tdc_layer_err_t le = tdc_layer_payload_check(dec->buf.staging + dec->payload_base, dec->payload_len,
+                                                               p->flags, p->width, p->height);
+            if (le != TDC_LAYER_OK) {
+                dec->cnt.layer_errors[le]++;
+                push_error(dec, TDC_LINK_ERR_LAYERS, 1, (uint32_t)le);
+                return;
+            }
+        }
         /* Sequence: advancing to a newer frame closes the current one. */
         if (!dec->have_frame || p->frame_index > dec->frame_index) {
             if (dec->have_frame && (dec->stream.flags & TDC_LINK_STREAM_REDUCED)) {
@@ -513,7 +529,18 @@ static void on_payload(tdc_link_decoder_t *dec, uint32_t src_end)
         const tdc_link_buffers_t *b = &dec->buf;
         const uint32_t tx = TDC_TILES(p->width), ty = TDC_TILES(p->height);
         switch (kind) {
-        case TDC_LINK_KIND_FULL: unpack_pixels(fmt, s, p->width, p->height, b->full[eye], b->full_stride); break;
+        case TDC_LINK_KIND_FULL:
+            if (b->defer_full) {
+                /* left in staging for tdc_link_unpack_full() */
+                dec->staged_full = 1;
+                dec->staged_fmt = (uint8_t)fmt;
+                dec->staged_w = p->width;
+                dec->staged_h = p->height;
+                dec->staged_base = dec->payload_base;
+            } else {
+                unpack_pixels(fmt, s, p->width, p->height, b->full[eye], b->full_stride);
+            }
+            break;
         case TDC_LINK_KIND_REDUCED:
             unpack_pixels(fmt, s, p->width, p->height, b->reduced[eye], (uint32_t)p->width * 3u);
             break;
@@ -525,6 +552,7 @@ static void on_payload(tdc_link_decoder_t *dec, uint32_t src_end)
                 unpack_le16(s, b->motion[eye], (size_t)p->width * p->height * 2u);
             }
             break;
+        case TDC_LINK_KIND_LAYERS: tdc_layer_unpack(s, p->flags, p->width, p->height, b->layers[eye]); break;
         default: /* PATTERN */ memcpy(b->pattern[eye], s, dec->payload_len); break;
         }
     }
@@ -544,6 +572,11 @@ static void on_payload(tdc_link_decoder_t *dec, uint32_t src_end)
 static size_t step(tdc_link_decoder_t *dec, const uint8_t *p, size_t n, uint32_t src_off)
 {
     size_t i = 0;
+    if (n) {
+        /* bytes are processed: a deferred FULL payload may be overwritten
+         * (step() runs only once every event was returned) */
+        dec->staged_full = 0;
+    }
     while (i < n && dec->ev_count == 0) {
         switch (dec->state & ST_MASK) {
         case ST_HUNT: {
@@ -638,6 +671,22 @@ static size_t step(tdc_link_decoder_t *dec, const uint8_t *p, size_t n, uint32_t
         }
     }
     return i;
+}
+
+tdc_status_t tdc_link_unpack_full(const tdc_link_decoder_t *dec, uint8_t *dst, uint32_t stride)
+{
+    if (!dec || !dst) {
+        return TDC_ERR_ARG;
+    }
+    if (!dec->staged_full) {
+        return TDC_ERR_STATE;
+    }
+    if (stride < (uint32_t)dec->staged_w * 3u) {
+        return TDC_ERR_ARG;
+    }
+    unpack_pixels((tdc_pixfmt_t)dec->staged_fmt, dec->buf.staging + dec->staged_base, dec->staged_w, dec->staged_h, dst,
+                  stride);
+    return TDC_OK;
 }
 
 static int pop_event(tdc_link_decoder_t *dec, tdc_link_event_t *ev)

@@ -36,6 +36,7 @@
 #include <stdint.h>
 
 #include "tdc_fixed.h"
+#include "tdc_layer_link.h"
 #include "tdc_pixfmt.h"
 #include "tdc_wire.h"
 
@@ -74,6 +75,10 @@
  * per-pixel motion vectors (4 B/px). */
 #define TDC_LINK_STAGING_BYTES(w, h) ((size_t)(w) * (h)*4u + TDC_LINK_STREAM_HEADER_BYTES)
 #define TDC_LINK_STAGING_MAX TDC_LINK_STAGING_BYTES(1u, TDC_LINK_MAX_PIXELS)
+/* Staging for a build that takes layered subframes: the largest LAYERS
+ * payload (all four layers + falloff: 16 + 28 bytes per tile = 7 B/px)
+ * exceeds TDC_LINK_STAGING_BYTES. */
+#define TDC_LINK_STAGING_LAYERS_BYTES(w, h) ((size_t)TDC_LAYER_HDR_BYTES + TDC_TILE_COUNT(w, h) * 28u)
 
 /* ------------------------------------------------------------------------
  * Decoder.
@@ -102,11 +107,20 @@ typedef struct {
     int16_t *motion[2];        /* (dx, dy) Q4 per pixel, width x height x 2 */
     int16_t *sample_motion[2]; /* (dx, dy) Q4 per subframe sample, tiles x 2 */
     uint8_t *pattern[2];       /* 1 bit per tile, row-major, LSB first, 1 = bowtie */
+    tdc_layer_frame_t *layers[2]; /* layered subframes (tdc_layer_link.h); NULL: not in this build */
     /* 1: a stream may announce per-pixel MOTION that no stage of this build
      * uses (motion[] NULL): its packets are not staged or stored, their
      * payloads skipped (the header CRC vouches for the length, which must
      * be the expected one) and counted in packets_skipped -- not errors. */
     uint8_t skip_motion;
+    /* 1: FULL packets are validated and accepted but not unpacked (full[]
+     * may then be NULL): the payload stays in `staging` until the next
+     * tdc_link_feed() call that processes bytes, and the caller unpacks it
+     * with tdc_link_unpack_full() where and if it wants.  A frame loop
+     * sets this so that a packet it does not use (another mode's kind, a
+     * later frame, a late resend) never touches the frame buffer being
+     * shown (firmware/board/tdc_main.c; fuzz finding F1). */
+    uint8_t defer_full;
 } tdc_link_buffers_t;
 
 typedef enum {
@@ -140,6 +154,7 @@ typedef struct {
     uint64_t skipped_bytes;          /* payload bytes of rejected packets skipped */
     uint32_t missing_reduced_frames; /* reduced frames that never arrived */
     uint32_t events_dropped;         /* events lost because the queue was full (should be 0) */
+    uint32_t layer_errors[TDC_LAYER_ERR_N]; /* TDC_LINK_ERR_LAYERS by reason (index 0 unused) */
 } tdc_link_counters_t;
 
 #define TDC_LINK_EVENT_QUEUE 4
@@ -175,6 +190,11 @@ typedef struct {
     uint16_t rw, rh;      /* reduced size of the active stream */
     uint32_t frame_index; /* current (newest accepted) frame */
     uint32_t frame_mask;  /* (kind, eye) slots accepted in frame_index */
+    /* defer_full: the FULL packet whose payload waits in staging */
+    uint8_t staged_full; /* 1 from its acceptance until bytes are processed again */
+    uint8_t staged_fmt;
+    uint16_t staged_w, staged_h;
+    uint32_t staged_base;
     /* events */
     uint8_t ev_head, ev_count;
     tdc_link_event_t ev[TDC_LINK_EVENT_QUEUE];
@@ -193,6 +213,15 @@ tdc_status_t tdc_link_decoder_init(tdc_link_decoder_t *dec, const tdc_link_confi
  * bytes were consumed without one).  Call again with the rest.  Queued
  * events are returned first, consuming 0 bytes. */
 size_t tdc_link_feed(tdc_link_decoder_t *dec, const uint8_t *bytes, size_t n, tdc_link_event_t *ev);
+
+/* defer_full: unpacks the FULL packet just returned by tdc_link_feed()
+ * (before the next feed call) as RGB888 into dst, rows stride bytes apart
+ * (stride >= width * 3).  TDC_ERR_STATE if no accepted FULL payload is
+ * waiting in staging (none was, or bytes were processed since), TDC_ERR_ARG
+ * for a NULL dst or a short stride.  The payload stays valid: a second call
+ * unpacks the same frame again. */
+TDC_MUST_CHECK
+tdc_status_t tdc_link_unpack_full(const tdc_link_decoder_t *dec, uint8_t *dst, uint32_t stride);
 
 /* Drops any partly received packet and hunts for the next magic (e.g. after
  * a USB disconnect); stream, sequence, counters and buffers are kept.  The

@@ -235,3 +235,43 @@ size_t tdc_link_encode_pattern(const tdc_link_encoder_t *enc, uint8_t *out, size
     fields(enc, &f, TDC_LINK_KIND_PATTERN, eye, frame, TDC_PIXFMT_NONE, w, h, 0);
     return finish(out, &f, (uint32_t)(total - TDC_LINK_HEADER_BYTES));
 }
+
+size_t tdc_link_encode_layers(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap, uint32_t eye, uint32_t frame,
+                              const tdc_layer_frame_t *src, uint32_t flags, const uint8_t mv_kind[TDC_LAYER_MAX],
+                              uint32_t w, uint32_t h)
+{
+    if (!out || !src || !mv_kind || w == 0 || h == 0 || w > 65535u || h > 65535u ||
+        !tdc_layer_frame_accepts(src, flags)) {
+        return 0;
+    }
+    const size_t total = tdc_link_packet_bytes(TDC_LINK_KIND_LAYERS, TDC_PIXFMT_NONE, w, h, flags);
+    if (total == 0 || cap < total) {
+        return 0;
+    }
+    uint8_t *p = out + TDC_LINK_HEADER_BYTES;
+    if (tdc_layer_hdr_pack(p, flags, mv_kind, w, h) != 0) {
+        return 0;
+    }
+    p += TDC_LAYER_HDR_BYTES;
+    const uint32_t tiles = (uint32_t)TDC_TILES(w) * TDC_TILES(h);
+    for (uint32_t t = 1; t <= TDC_LAYER_MAX; t++) {
+        if (!(flags & TDC_LAYER_PKT_TYPE(t))) {
+            continue;
+        }
+        const uint32_t nb = tiles * tdc_layer_value_bytes(t);
+        memcpy(p, src->value[t - 1u], nb);
+        p += nb;
+        for (uint32_t k = 0; k < 2u * tiles; k++) {
+            tdc_put_le16s(p + 2u * k, src->mv[t - 1u][k]);
+        }
+        p += (size_t)tiles * 4u;
+    }
+    if (flags & TDC_LAYER_PKT_FALLOFF) {
+        for (uint32_t k = 0; k < tiles; k++) {
+            tdc_put_le16(p + 2u * k, src->falloff[k]);
+        }
+    }
+    tdc_link_header_t f;
+    fields(enc, &f, TDC_LINK_KIND_LAYERS, eye, frame, TDC_PIXFMT_NONE, w, h, flags);
+    return finish(out, &f, (uint32_t)(total - TDC_LINK_HEADER_BYTES));
+}

@@ -61,6 +61,15 @@ size_t tdc_link_encode_motion(const tdc_link_encoder_t *enc, uint8_t *out, size_
 size_t tdc_link_encode_pattern(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap, uint32_t eye, uint32_t frame,
                                const uint8_t *bits, uint32_t w, uint32_t h);
 
+/* LAYERS (tdc_layer_link.h): the planes of src for the layer set `flags`
+ * (TDC_LAYER_PKT_*), vector kind mv_kind[t - 1] of each present type t, of a
+ * w x h eye.  0 if src lacks a plane the flags name or a kind is invalid.
+ * Values are sent as they are (a sentinel vector or a weight above 1 goes
+ * out and is refused by the decoder: tests use that). */
+size_t tdc_link_encode_layers(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap, uint32_t eye, uint32_t frame,
+                              const tdc_layer_frame_t *src, uint32_t flags, const uint8_t mv_kind[TDC_LAYER_MAX],
+                              uint32_t w, uint32_t h);
+
 /* Pixel packing from RGB888 (the inverse of firmware/tdc_pixfmt.c). */
 void tdc_pixfmt_pack(tdc_pixfmt_t fmt, const uint8_t *rgb, uint32_t w, uint32_t h, uint32_t stride, uint8_t *out);
 /* RGB888 -> BT.709 full-range YCbCr in Q16 integer arithmetic (chroma from

@@ -6,13 +6,14 @@
 #include "tdc_wire.h"
 
 #include "tdc_crc32.h"
+#include "tdc_layer_link.h"
 
 const char *tdc_link_err_name(tdc_link_err_t e)
 {
     static const char *const names[TDC_LINK_ERR_COUNT] = {
         "ok",    "magic",     "garbage",         "header-crc", "version",      "kind",
         "eye",   "format",    "dimensions",      "length",     "crc",          "stream",
-        "order", "duplicate", "missing-reduced", "unexpected", "stream-header"};
+        "order", "duplicate", "missing-reduced", "unexpected", "stream-header", "layers"};
     return (unsigned)e < (unsigned)TDC_LINK_ERR_COUNT ? names[e] : "?";
 }
 
@@ -96,11 +97,15 @@ static const tdc_link_kind_info_t kinds[TDC_LINK_KIND_LAST + 1] = {
     /* (dx, dy) int16 LE per pixel, or per tile with MV_PER_SAMPLE */
     [TDC_LINK_KIND_MOTION] = {"motion", TDC_LINK_PAYLOAD_PER_ELEM, TDC_LINK_GRID_MV, 4u, TDC_LINK_PKT_MV_PER_SAMPLE},
     [TDC_LINK_KIND_PATTERN] = {"pattern", TDC_LINK_PAYLOAD_BITS, TDC_LINK_GRID_TILES, 0u, 0u},
+    /* layer header + per layer value and vector planes (+ falloff), flags = the layer set */
+    [TDC_LINK_KIND_LAYERS] = {"layers", TDC_LINK_PAYLOAD_LAYERS, TDC_LINK_GRID_TILES, 0u, TDC_LAYER_PKT_KNOWN},
 };
 
 const tdc_link_kind_info_t *tdc_link_kind_info(uint32_t kind)
 {
-    return kind >= TDC_LINK_KIND_FIRST && kind <= TDC_LINK_KIND_LAST ? &kinds[kind] : (const tdc_link_kind_info_t *)0;
+    /* a value without a row (7, kept for the foveated kind) is unknown */
+    return kind >= TDC_LINK_KIND_FIRST && kind <= TDC_LINK_KIND_LAST && kinds[kind].name ? &kinds[kind]
+                                                                                          : (const tdc_link_kind_info_t *)0;
 }
 
 const char *tdc_link_kind_name(uint32_t kind)
@@ -124,6 +129,7 @@ uint32_t tdc_link_payload_bytes(tdc_link_kind_t kind, tdc_pixfmt_t fmt, uint32_t
     case TDC_LINK_PAYLOAD_FIXED: return k->unit;
     case TDC_LINK_PAYLOAD_PIXELS: return tdc_pixfmt_payload_bytes(fmt, gw, gh);
     case TDC_LINK_PAYLOAD_PER_ELEM: return gw * gh * k->unit;
+    case TDC_LINK_PAYLOAD_LAYERS: return tdc_layer_payload_bytes(pkt_flags, gw * gh);
     default: /* BITS */ return (gw * gh + 7u) / 8u;
     }
 }

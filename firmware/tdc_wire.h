@@ -98,8 +98,10 @@ typedef enum {
     TDC_LINK_KIND_SUBFRAME = 4, /* one sample per 2x2 tile (tile-ordered assembly) */
     TDC_LINK_KIND_MOTION = 5,   /* motion vectors, int16 (dx, dy) Q4 pairs */
     TDC_LINK_KIND_PATTERN = 6,  /* tile-ordering bitmap, 1 bit per tile */
+    /* 7: left for the foveated kind (docs/foveation.md) */
+    TDC_LINK_KIND_LAYERS = 8, /* layered subframe: per-sample layers + own vectors (tdc_layer_link.h) */
     TDC_LINK_KIND_FIRST = TDC_LINK_KIND_STREAM,
-    TDC_LINK_KIND_LAST = TDC_LINK_KIND_PATTERN
+    TDC_LINK_KIND_LAST = TDC_LINK_KIND_LAYERS
 } tdc_link_kind_t;
 
 /* Per-packet flags (header `flags`). */
@@ -145,7 +147,8 @@ typedef enum {
     TDC_LINK_ERR_MISSING_REDUCED = 14, /* a frame whose reduced eye never arrived was passed */
     TDC_LINK_ERR_UNEXPECTED = 15,      /* kind not enabled by the stream header / not due now */
     TDC_LINK_ERR_STREAM_HEADER = 16,   /* stream header contents invalid (flags, r, size) */
-    TDC_LINK_ERR_COUNT = 17
+    TDC_LINK_ERR_LAYERS = 17,          /* layered payload refused (reason: tdc_layer_err_t, counted apart) */
+    TDC_LINK_ERR_COUNT = 18
 } tdc_link_err_t;
 
 /* Short name of an error code ("crc", "magic", ...; "?" if out of range). */
@@ -182,7 +185,8 @@ tdc_link_err_t tdc_link_header_unpack(const uint8_t in[TDC_LINK_HEADER_BYTES], t
 #define TDC_LINK_STREAM_MOTION 0x0004u    /* per-pixel motion vectors are sent */
 #define TDC_LINK_STREAM_MIRRORS 0x0008u   /* motion vectors include mirror reflections */
 #define TDC_LINK_STREAM_SAMPLE_MV 0x0010u /* subframe samples carry their own motion vectors */
-#define TDC_LINK_STREAM_KNOWN 0x001Fu
+#define TDC_LINK_STREAM_LAYERS 0x0020u    /* layered subframes (LAYERS packets; needs SUBFRAMES) */
+#define TDC_LINK_STREAM_KNOWN 0x003Fu
 
 /* Motion vectors: Q4 (1/16 px), range +-2047.9375 px, BACKWARD (the point
  * now at p was at p + mv in the previous frame). */
@@ -215,7 +219,8 @@ typedef enum {
     TDC_LINK_PAYLOAD_FIXED = 0,    /* always `unit` bytes */
     TDC_LINK_PAYLOAD_PIXELS = 1,   /* an image of the grid in the packet's pixel format */
     TDC_LINK_PAYLOAD_PER_ELEM = 2, /* `unit` bytes per grid element */
-    TDC_LINK_PAYLOAD_BITS = 3      /* 1 bit per grid element, rounded up to bytes */
+    TDC_LINK_PAYLOAD_BITS = 3,     /* 1 bit per grid element, rounded up to bytes */
+    TDC_LINK_PAYLOAD_LAYERS = 4    /* layered: from the packet flags (tdc_layer_payload_bytes) */
 } tdc_link_payload_rule_t;
 
 typedef enum {

@@ -12,7 +12,7 @@ FUZZ_SMOKE_SECONDS ?= 8
 FUZZ_DIR := $(BUILD)/fuzz
 FUZZ_FLAGS := -std=c11 -D_GNU_SOURCE -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
               -Ifirmware -I$(GEN) -Isim -Ihosttools/common
-LINK_FW_SRCS := firmware/tdc_wire.c firmware/tdc_link.c firmware/tdc_pixfmt.c firmware/tdc_crc32.c
+LINK_FW_SRCS := firmware/tdc_wire.c firmware/tdc_link.c firmware/tdc_pixfmt.c firmware/tdc_crc32.c firmware/tdc_layer_link.c
 
 # name: harness + sources [+ flags, libraries]
 FUZZ_ALL := link usbproto usbreply panel tdcs scene frameloop meas fov
@@ -27,7 +27,7 @@ FUZZ_LIBS_panel := -lm
 # the .tdcs reader with a small compiled maximum (a 96 x 64 board)
 FUZZ_SRCS_tdcs := tests/fuzz/fuzz_tdcs.c sim/link/tdc_link_file.c firmware/tdc_link_encode.c $(LINK_FW_SRCS)
 FUZZ_CFLAGS_tdcs := -DTDC_PANEL_WIDTH=96 -DTDC_PANEL_HEIGHT=64
-FUZZ_SRCS_scene := tests/fuzz/fuzz_scene.c sim/render/tdc_scene_parse.c
+FUZZ_SRCS_scene := tests/fuzz/fuzz_scene.c sim/render/tdc_scene_parse.c hosttools/common/tdc_tool.c
 FUZZ_DEPS_scene := sim/render/tdc_render_geom.c
 FUZZ_CFLAGS_scene := -Isim/render
 FUZZ_LIBS_scene := -lembree3 -lm
@@ -39,8 +39,6 @@ FUZZ_DEPS_frameloop := firmware/board/tdc_main.c
 FUZZ_CFLAGS_frameloop := -Ifirmware/board -DTDC_PANEL_NAME='"fuzz"' -DTDC_PANEL_SYMBOL=tdc_panel_htc_vive \
     -DTDC_PANEL_WIDTH=16 -DTDC_PANEL_HEIGHT=8 -DTDC_PANEL_EYES=2 -DTDC_PANEL_BITS=8 -DTDC_PANEL_REFRESH_HZ=90 \
     -DTDC_PANEL_IS_LCD=0 -DTDC_CFG_TRM=1 -DTDC_CFG_ASSEMBLE=1 -DTDC_FW_NO_MAIN
-# known findings a smoke run does not stop on (docs/fuzzing.md); make fuzz checks everything
-FUZZ_SMOKE_ENV_frameloop := TDC_FUZZ_KNOWN=F1
 FUZZ_CORPUS_link := tests/fuzz/corpus
 # the LCD measurement reader and the transition fit's checks (hosttools/calib)
 FUZZ_SRCS_meas := tests/fuzz/fuzz_meas.c hosttools/calib/tdc_meas.c hosttools/calib/tdc_calib_trans.c \
@@ -73,7 +71,14 @@ fuzz: $(foreach t,$(FUZZ_TARGETS),$(FUZZ_DIR)/fuzz_$(t))
 	        grep -E '^(stat::|SUMMARY|==[0-9]+==|Done )|ERROR|crash-|leak|INITED|DONE' || true; \
 	done
 
-fuzz-smoke: $(foreach t,$(FUZZ_ALL),$(FUZZ_DIR)/fuzz-smoke-$(t))
+# Regression: every finding of a target (tests/fuzz/findings/<target>-*) replayed
+# through its harness, which must not abort (F1: frameloop-kept-eye-overwritten*).
+FUZZ_FINDING_TARGETS := $(sort $(foreach f,$(wildcard tests/fuzz/findings/*),$(firstword $(subst -, ,$(notdir $(f))))))
+$(FUZZ_DIR)/fuzz-findings-%: $(FUZZ_DIR)/fuzz_% mk/fuzz.mk $(wildcard tests/fuzz/findings/*)
+	@printf '#!/bin/sh\nexec %s -runs=1 %s\n' "$<" "$(wildcard tests/fuzz/findings/$*-*)" > $@
+	@chmod +x $@
+
+fuzz-smoke: $(foreach t,$(FUZZ_ALL),$(FUZZ_DIR)/fuzz-smoke-$(t)) $(foreach t,$(FUZZ_FINDING_TARGETS),$(FUZZ_DIR)/fuzz-findings-$(t))
 	@tests/run_tests.sh "clang-fuzz" $^
 
 FUZZ_SEEDS_BIN := $(FUZZ_DIR)/make_seeds

@@ -10,11 +10,11 @@
  * fails at link time (see mk/boards.mk, docs/boards.md).
  *
  * Buffers (all eyes; W x H per eye, E eyes):
- *   frame buffer   E*W*H*3   RGB888 drive codes, eyes side by side; FULL
- *                            packets are unpacked straight into it and TRM
+ *   frame buffer   E*W*H*3   RGB888 drive codes, eyes side by side; TRM
  *                            and the LCD inverse work on it in place
- *   link staging   TDC_LINK_STAGING_BYTES(W, H)   one payload, checked
- *                            before anything is unpacked
+ *   link staging   W*H*(3 or 4) + 16   one payload, checked before anything
+ *                            is unpacked; a FULL payload waits there until
+ *                            the loop decides it updates its eye (defer_full)
  *   reduced        E * reduced frame (TRM, r <= TDC_CFG_R_NUM/TDC_CFG_R_DEN)
  *   subframe, sample motion, pattern bits   per eye (assembly)
  *   mode arena     per eye max(TRM arena, assembly arena): a stream uses
@@ -27,9 +27,18 @@
  * bad payload CRC (the eye keeps its last image: rejected packets never
  * touch the frame buffer, tdc_link.h).  If a packet of a later frame
  * arrives first, the unfinished frame is completed with what arrived and
- * shown, unless that packet is a FULL frame: the decoder has then already
- * unpacked it into the frame buffer, the unfinished frame is no longer
- * intact, and it is dropped (counted).
+ * shown.
+ *
+ * The frame buffer changes only for an eye the loop counts as updated for
+ * the frame it shows next (a kept eye shows exactly its last shown image,
+ * fuzz invariant 2 of tests/fuzz/fuzz_frameloop.c): the decoder leaves FULL
+ * payloads in staging (defer_full) and the loop unpacks one only when it
+ * processes that eye -- never a FULL packet no mode of the stream uses (an
+ * assembly stream), never before the unfinished frame is shown.  This costs
+ * no memory; before it (fuzz finding F1) the decoder unpacked every FULL
+ * packet into the frame buffer on arrival.  What it does not give is an
+ * atomic swap on scan-out hardware: the eye being updated is processed in
+ * the buffer the LTDC reads (docs/boards.md, "Frame buffer and scan-out").
  */
 #include <string.h>
 
@@ -145,11 +154,12 @@ static struct {
     uint32_t late_packets; /* packets for a frame already finished (ignored) */
     uint32_t frames_shown;
     uint32_t eyes_incomplete; /* eyes that kept their last frame */
-    uint32_t frames_dropped;  /* unfinished frames overwritten by a later FULL packet */
+    uint32_t unused_full;     /* FULL packets no mode of the stream uses (left in staging, never unpacked) */
     uint32_t stage_errors;    /* a stage refused a frame (status != TDC_OK) */
     uint32_t unsupported;     /* streams this build cannot run */
     uint32_t stream_repeats;  /* identical stream headers (late-joiner copies): no-ops */
-    uint32_t late_full;       /* FULL packets of a finished frame: unpacked by the decoder, so processed */
+    uint32_t late_full;       /* FULL packets of a finished frame: processed, shown with the next frame */
+    uint8_t pending_updated;  /* eyes a late FULL updated since the last show: updated in the next one */
     uint8_t have_rej;         /* a pixel packet of a frame not started yet was rejected ... */
     uint32_t rej_frame;       /* ... for this frame ... */
     uint8_t rej_kinds[2];     /* ... these kinds, per eye (applied only if a good packet starts it) */
@@ -402,6 +412,20 @@ static int process_eye_kinds(uint32_t e, uint32_t frame, uint32_t kinds)
     return 1;
 }
 
+/* The FULL packet tdc_link_feed() just returned, for eye e: unpacked from
+ * staging into the eye's part of the frame buffer, then processed.  Returns
+ * 1 if the frame buffer changed (a stage error after the unpack is counted
+ * by process_eye_kinds and still leaves the eye changed). */
+static int process_full(uint32_t e, uint32_t frame)
+{
+    if (tdc_link_unpack_full(&g.dec, g_fb + (size_t)e * FW_W * 3u, FW_STRIDE) != TDC_OK) {
+        g.stage_errors++;
+        return 0;
+    }
+    (void)process_eye_kinds(e, frame, KIND_BIT(TDC_LINK_KIND_FULL));
+    return 1;
+}
+
 static int process_eye(uint32_t e, uint32_t frame)
 {
     return process_eye_kinds(e, frame, g.kinds[e]);
@@ -416,8 +440,10 @@ static void show_frame(void)
 
 /* Ends the frame being collected: eyes still missing something are
  * processed with what arrived (or keep their last image); the frame is shown
- * if any eye changed and may_show (see the top of this file). */
-static void finish_frame(int may_show)
+ * if any eye changed.  A FULL packet is processed on arrival (its payload
+ * is in staging only until the next feed), so only assembly eyes are left
+ * here. */
+static void finish_frame(void)
 {
     if (!g.have_frame) {
         return;
@@ -425,12 +451,8 @@ static void finish_frame(int may_show)
     g.have_frame = 0;
     g.have_last = 1;
     g.last_frame = g.frame;
-    if (!may_show) {
-        g.frames_dropped++;
-        return;
-    }
     for (uint32_t e = 0; e < FW_EYES; e++) {
-        if (!(g.eyes_done & (1u << e)) && g.kinds[e] && process_eye(e, g.frame)) {
+        if (!(g.eyes_done & (1u << e)) && (g.kinds[e] & ~KIND_BIT(TDC_LINK_KIND_FULL)) && process_eye(e, g.frame)) {
             g.eyes_updated = (uint8_t)(g.eyes_updated | (1u << e));
         }
         if (!(g.eyes_updated & (1u << e))) {
@@ -442,13 +464,14 @@ static void finish_frame(int may_show)
     }
 }
 
-static void start_frame(uint32_t frame, int may_show_previous)
+static void start_frame(uint32_t frame)
 {
-    finish_frame(may_show_previous);
+    finish_frame();
     g.have_frame = 1;
     g.frame = frame;
     g.eyes_done = 0;
-    g.eyes_updated = 0;
+    g.eyes_updated = g.pending_updated; /* a late FULL's eye: changed since the last show */
+    g.pending_updated = 0;
     g.kinds[0] = g.kinds[1] = 0;
     if (g.have_rej && g.rej_frame == frame) {
         /* rejected earlier for this frame: those eyes keep their image */
@@ -467,7 +490,7 @@ static void eye_done(uint32_t e)
 {
     g.eyes_done = (uint8_t)(g.eyes_done | (1u << e));
     if (g.eyes_done == (1u << FW_EYES) - 1u) {
-        finish_frame(1); /* every eye had what it needs (or lost it): show now */
+        finish_frame(); /* every eye had what it needs (or lost it): show now */
     }
 }
 
@@ -502,15 +525,15 @@ static void on_rejected(const tdc_link_event_t *ev)
     }
 }
 
-/* A FULL packet the decoder accepted for an eye the loop had already
- * finished (rejected first, then resent intact): the decoder has unpacked
- * it into the frame buffer, so it is processed now -- the eye must never
- * show a raw, unprocessed image -- and shown with the next frame. */
+/* A FULL packet the decoder accepted for an eye of the frame the loop
+ * finished last (rejected first, then resent intact): processed now, so TRM
+ * pairs the next reduced frame with it, and shown with the next frame, in
+ * which that eye counts as updated (pending_updated). */
 static void late_full(uint32_t e, uint32_t frame)
 {
     g.late_full++;
-    if (kinds_needed(e, frame) & KIND_BIT(TDC_LINK_KIND_FULL)) {
-        (void)process_eye_kinds(e, frame, KIND_BIT(TDC_LINK_KIND_FULL));
+    if ((kinds_needed(e, frame) & KIND_BIT(TDC_LINK_KIND_FULL)) && process_full(e, frame)) {
+        g.pending_updated = (uint8_t)(g.pending_updated | (1u << e));
     }
 }
 
@@ -529,7 +552,7 @@ static void on_packet(const tdc_link_event_t *ev)
             g.stream_repeats++; /* the late joiners' copy: nothing changes */
             return;
         }
-        finish_frame(1);
+        finish_frame();
         configure_stream();
         return;
     }
@@ -544,21 +567,26 @@ static void on_packet(const tdc_link_event_t *ev)
         }
         return;
     }
-    if (!g.have_frame || ev->frame_index != g.frame) {
-        start_frame(ev->frame_index, ev->kind != TDC_LINK_KIND_FULL);
-    }
     const uint32_t e = ev->eye;
-    if ((g.eyes_done & (1u << e)) && ev->kind == TDC_LINK_KIND_FULL &&
-        (kinds_needed(e, g.frame) & KIND_BIT(TDC_LINK_KIND_FULL))) {
-        /* rejected first, resent intact before the frame finished: now in
-         * the frame buffer, so processed and part of this frame */
-        g.kinds[e] = (uint8_t)(g.kinds[e] | KIND_BIT(ev->kind));
-        if (process_eye(e, g.frame)) {
+    if (ev->kind == TDC_LINK_KIND_FULL && !(kinds_needed(e, ev->frame_index) & KIND_BIT(TDC_LINK_KIND_FULL))) {
+        g.unused_full++; /* e.g. in an assembly stream: left in staging, time not moved */
+        return;
+    }
+    if (!g.have_frame || ev->frame_index != g.frame) {
+        start_frame(ev->frame_index);
+    }
+    g.kinds[e] = (uint8_t)(g.kinds[e] | KIND_BIT(ev->kind));
+    if (ev->kind == TDC_LINK_KIND_FULL) {
+        /* the eye's whole need (plain, TRM's full slot); also when it was
+         * rejected first and resent intact before the frame finished */
+        if (process_full(e, g.frame)) {
             g.eyes_updated = (uint8_t)(g.eyes_updated | (1u << e));
+        }
+        if (!(g.eyes_done & (1u << e))) {
+            eye_done(e);
         }
         return;
     }
-    g.kinds[e] = (uint8_t)(g.kinds[e] | KIND_BIT(ev->kind));
     const uint32_t need = kinds_needed(e, g.frame);
     if (!(g.eyes_done & (1u << e)) && need && (g.kinds[e] & need) == need) {
         if (process_eye(e, g.frame)) {
@@ -575,9 +603,8 @@ static void decoder_init(void)
     b.staging = g_staging;
     b.staging_bytes = sizeof g_staging;
     b.skip_motion = 1; /* per-pixel motion: sent by the renderer, used by no stage here */
-    b.full_stride = FW_STRIDE;
+    b.defer_full = 1;  /* FULL payloads unpacked by process_full(), only for an eye being updated */
     for (uint32_t e = 0; e < FW_EYES; e++) {
-        b.full[e] = g_fb + (size_t)e * FW_W * 3u;
 #if TDC_CFG_TRM
         b.reduced[e] = g_reduced[e];
 #endif
@@ -642,7 +669,7 @@ int tdc_fw_run(void)
             on_rejected(&ev);
         }
     }
-    finish_frame(1);
+    finish_frame();
     const tdc_link_counters_t *c = tdc_link_counters(&g.dec);
     uint32_t errors = 0;
     for (unsigned i = 1; i < TDC_LINK_ERR_COUNT; i++) {
@@ -652,7 +679,7 @@ int tdc_fw_run(void)
     log_kv("packets/bytes rejected: ", errors);
     log_kv("frames shown: ", g.frames_shown);
     log_kv("eyes kept (incomplete): ", g.eyes_incomplete);
-    log_kv("frames dropped (overwritten): ", g.frames_dropped);
+    log_kv("full packets unused (never unpacked): ", g.unused_full);
     log_kv("late packets (ignored): ", g.late_packets);
     log_kv("stage errors: ", g.stage_errors);
     log_kv("unsupported streams: ", g.unsupported);

@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "tdc_render_internal.h"
+#include "tdc_tool.h"
 
 typedef struct {
     float *v; /* xyz */
@@ -73,23 +74,29 @@ static double terrain_height(double x, double z, double amp)
 }
 
 /* Reads the v and f lines of an OBJ file; polygons are fan-triangulated,
- * negative (relative) indices are accepted. */
-static int load_obj(const char *path, meshbuf_t *m, char *err, size_t errlen)
+ * negative (relative) indices are accepted.  Lines are read whole
+ * (tdc_read_line): one longer than OBJ_LINE_MAX - 1 bytes or with a NUL is
+ * refused with its line number, never split and its tail parsed as a line
+ * of its own (a 64-vertex face "f v/vt/vn ..." with 7-digit indices is
+ * about 1.5 KB, so the old 1024-byte fgets split legal lines too). */
+#define OBJ_LINE_MAX 4096
+static int obj_lines(FILE *f, char *line, const char *path, meshbuf_t *m, char *err, size_t errlen)
 {
-    FILE *f = fopen(path, "r");
-    if (!f) {
-        snprintf(err, errlen, "%s: cannot open mesh", path);
-        return -1;
-    }
-    char line[1024];
-    int ln = 0;
-    while (fgets(line, sizeof line, f)) {
-        ln++;
+    unsigned ln = 0;
+    int got;
+    while ((got = tdc_read_line(f, line, OBJ_LINE_MAX, &ln)) != 0) {
+        if (got < 0) {
+            if (got == -2)
+                snprintf(err, errlen, "%s: read error", path);
+            else
+                snprintf(err, errlen, "%s:%u: line longer than %d bytes or with a NUL byte", path, ln,
+                         OBJ_LINE_MAX - 1);
+            return -1;
+        }
         if (line[0] == 'v' && line[1] == ' ') {
             double x, y, z;
             if (sscanf(line + 2, "%lf %lf %lf", &x, &y, &z) != 3 || !isfinite(x) || !isfinite(y) || !isfinite(z)) {
-                snprintf(err, errlen, "%s:%d: bad vertex", path, ln);
-                fclose(f);
+                snprintf(err, errlen, "%s:%u: bad vertex", path, ln);
                 return -1;
             }
             if (mb_vertex(m, x, y, z) < 0) goto nomem;
@@ -103,14 +110,12 @@ static int load_obj(const char *path, meshbuf_t *m, char *err, size_t errlen)
                 char *end;
                 long v = strtol(p, &end, 10);
                 if (end == p || v == 0 || n == 64) {
-                    snprintf(err, errlen, "%s:%d: bad face", path, ln);
-                    fclose(f);
+                    snprintf(err, errlen, "%s:%u: bad face", path, ln);
                     return -1;
                 }
                 if (v < 0) v = (long)m->nv + v + 1;
                 if (v < 1 || v > (long)m->nv) {
-                    snprintf(err, errlen, "%s:%d: face index %ld out of range (1..%u)", path, ln, v, m->nv);
-                    fclose(f);
+                    snprintf(err, errlen, "%s:%u: face index %ld out of range (1..%u)", path, ln, v, m->nv);
                     return -1;
                 }
                 idx[n++] = (unsigned)(v - 1);
@@ -118,24 +123,39 @@ static int load_obj(const char *path, meshbuf_t *m, char *err, size_t errlen)
                 while (*p && *p != ' ' && *p != '\t' && *p != '\n' && *p != '\r') p++; /* skip /vt/vn */
             }
             if (n < 3) {
-                snprintf(err, errlen, "%s:%d: face with fewer than 3 vertices", path, ln);
-                fclose(f);
+                snprintf(err, errlen, "%s:%u: face with fewer than 3 vertices", path, ln);
                 return -1;
             }
             for (int k = 1; k + 1 < n; k++)
                 if (mb_index(m, idx[0]) < 0 || mb_index(m, idx[k]) < 0 || mb_index(m, idx[k + 1]) < 0) goto nomem;
         }
     }
-    fclose(f);
     if (m->ni == 0) {
         snprintf(err, errlen, "%s: no faces", path);
         return -1;
     }
     return 0;
 nomem:
-    fclose(f);
     snprintf(err, errlen, "%s: out of memory", path);
     return -1;
+}
+
+static int load_obj(const char *path, meshbuf_t *m, char *err, size_t errlen)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) {
+        snprintf(err, errlen, "%s: cannot open mesh", path);
+        return -1;
+    }
+    char *line = malloc(OBJ_LINE_MAX);
+    int rc = -1;
+    if (line)
+        rc = obj_lines(f, line, path, m, err, errlen);
+    else
+        snprintf(err, errlen, "%s: out of memory", path);
+    free(line);
+    fclose(f);
+    return rc;
 }
 
 int tdc_r_build_object(tdc_render_t *r, int i, char *err, size_t errlen)

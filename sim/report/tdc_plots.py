@@ -238,7 +238,8 @@ with open(os.path.join(out, "index.md"), "w") as f:
             "frame-to-frame change of the motion-compensated error in code values; costs relative to full rate "
             "at the run's refresh; firmware and renderer times are host CPU microseconds per refresh.\n\n")
     f.write("Other parts of `make demo`: [TRM on built-in contents, fixed point vs reference](trm/index.md) "
-            "(`make demo-trm`).\n\n")
+            "(`make demo-trm`); [the papers' experiments: paper vs tdc](experiments.md) (`make experiments`, "
+            "docs/experiments.md).\n\n")
     log = os.path.join(out, "demo.log")
     if os.path.isfile(log):
         f.write("Runs (wall seconds on this machine, shared with other jobs):\n\n")

@@ -79,7 +79,7 @@ void tdc_report_csv(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_result_t
         fprintf(f, "run,scene,panel,mode,display_hz,width,height,evals,psnr_db,psnr_min_db,ssim,flip,flip_max,"
                    "flicker,rays_per_s,rays_vs_full,link_bytes_per_s,link_vs_full,fw_us_per_frame,"
                    "render_us_per_frame,frames,resets,link_errors,nonfinite,available,eyes,psnr_eye0_db,psnr_eye1_db,"
-                   "ssim_eye0,ssim_eye1,flip_eye0,flip_eye1,note\n");
+                   "ssim_eye0,ssim_eye1,flip_eye0,flip_eye1,terr,note\n");
     }
     const int eyes = cfg->eyes == 2 ? 2 : 1;
     double full_rays = (double)cfg->width * cfg->height * (cfg->spp > 0 ? cfg->spp : (cfg->refresh_hz >= 200 ? 1 : 4)) *
@@ -89,20 +89,23 @@ void tdc_report_csv(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_result_t
         const tdc_sim_result_t *x = &r[i];
         double T = x->sim_s > 0 ? x->sim_s : 1.0;
         double fr = x->frames ? (double)x->frames : 1.0;
-        char per_eye[160] = ",,,,,";
+        char per_eye[160] = ",,,,,", terr[32] = "";
+        if (cfg->temporal && isfinite(x->terr)) {
+            snprintf(terr, sizeof(terr), "%.3f", x->terr); /* temporal visibility model (--temporal) */
+        }
         if (eyes == 2) {
             snprintf(per_eye, sizeof(per_eye), "%.3f,%.3f,%.5f,%.5f,%.5f,%.5f", x->eye_psnr[0], x->eye_psnr[1],
                      x->eye_ssim[0], x->eye_ssim[1], x->eye_flip[0], x->eye_flip[1]);
         }
         fprintf(f,
                 "%s,%s,%s,%s,%d,%d,%d,%d,%.3f,%.3f,%.5f,%.5f,%.5f,%.3f,%.0f,%.4f,%.0f,%.4f,%.2f,%.2f,%llu,%u,%u,%d,%d,"
-                "%d,%s,\"%s\"\n",
+                "%d,%s,%s,\"%s\"\n",
                 cfg->label ? cfg->label : "run", tdc_scene_name(cfg->scene.kind), panel_name(cfg), x->desc->name,
                 x->display_hz, cfg->width, cfg->height, x->evals, x->psnr, x->evals ? x->psnr_min : 0.0, x->ssim,
                 x->flip, x->flip_max, x->flicker, x->rays / T, x->rays / T / full_rays, x->link_bytes / T,
                 x->link_bytes / T / full_bytes, 1e6 * x->fw_s / fr, 1e6 * x->render_s / fr,
                 (unsigned long long)x->frames, x->resets, x->link_errors, x->nonfinite, x->available, eyes, per_eye,
-                x->note);
+                terr, x->note);
     }
 }
 

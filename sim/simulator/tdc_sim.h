@@ -76,6 +76,7 @@ typedef struct {
     double persistence;               /* OLED duty */
     double pursuit_gain;
     int metric_every; /* evaluate every k-th instant (1 = all) */
+    int temporal;     /* 1: temporal visibility model (eye/tdc_eye_temporal.h): terr */
     double flip_ppd;
     int trm_s;    /* TRM motion sensitivity s (0: firmware default) */
     int progress; /* progress bar on stderr */
@@ -102,6 +103,8 @@ typedef struct {
     /* perceived error, means over evaluated instants */
     double psnr, ssim, flip, flicker;
     double psnr_min, flip_max;
+    double terr;        /* temporally filtered error, RMS code values (cfg.temporal; else NAN) */
+    double eye_terr[2];
     int evals;
     int eyes; /* 1 or 2; the figures above are the mean of the eyes */
     double eye_psnr[2], eye_ssim[2], eye_flip[2], eye_flicker[2];

@@ -71,6 +71,8 @@ static void usage(FILE *f)
             "      --persistence F     OLED duty cycle (default 0.2 below 200 Hz, else 1 = hold)\n"
             "      --pursuit track|fixate  eye tracks the main motion or fixates (default track)\n"
             "      --pursuit-gain G    smooth-pursuit gain (default 1)\n"
+            "      --temporal          temporal visibility model: the retinal error through a temporal CSF\n"
+            "                          (Watson 1986 band-pass, sim/eye/tdc_eye_temporal.h): column terr\n"
             "      --metric-every K    evaluate every K-th refresh (default 1)\n"
             "      --ppd X             pixels per degree of the view (FLIP; default: the profile's, e.g.\n"
             "                          11.4 for htc-vive; 67.02, FLIP's desktop default, for profiles\n"
@@ -189,6 +191,7 @@ int main(int argc, char **argv)
         O_PERS,
         O_PURSUIT,
         O_GAIN,
+        O_TEMPORAL,
         O_EVERY,
         O_PPD,
         O_TRMS,
@@ -230,6 +233,7 @@ int main(int argc, char **argv)
                                          {"persistence", required_argument, 0, O_PERS},
                                          {"pursuit", required_argument, 0, O_PURSUIT},
                                          {"pursuit-gain", required_argument, 0, O_GAIN},
+                                         {"temporal", no_argument, 0, O_TEMPORAL},
                                          {"metric-every", required_argument, 0, O_EVERY},
                                          {"ppd", required_argument, 0, O_PPD},
                                          {"trm-s", required_argument, 0, O_TRMS},
@@ -476,6 +480,9 @@ int main(int argc, char **argv)
                 return TDC_EXIT_ARGS;
             }
             cfg.pursuit_gain = v;
+            break;
+        case O_TEMPORAL:
+            cfg.temporal = 1;
             break;
         case O_EVERY:
             if (parse_num(optarg, 1, 1e6, &v, "metric-every")) {

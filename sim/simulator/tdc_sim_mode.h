@@ -31,6 +31,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "eye/tdc_eye_temporal.h"
 #include "panel/tdc_panel_sim.h"
 #include "simulator/tdc_sim.h"
 #include "simulator/tdc_sim_link.h"
@@ -106,6 +107,10 @@ struct sim_mode {
     int have_err_prev;
     double sum_psnr, sum_ssim, sum_flip, sum_flicker;
     int n_flicker;
+    /* temporal visibility model (cfg->temporal): filter state, sum of terr */
+    tdc_eye_temporal_t *temporal;
+    double sum_terr;
+    int n_terr;
 };
 
 /* The families (tdc_sim_mode_*.c) and the LCD output stage. */

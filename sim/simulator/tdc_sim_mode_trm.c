@@ -8,6 +8,10 @@
  *          + residual-corrected by tdc_trm_reduced.
  *   ncsfi  half rate; the sharpened + blurred pair comes from one rendered
  *          frame, the residual always added (s = 0: w = 1).
+ *   reduced50  the same stream as trm50 without TRM's compensation: full
+ *          frames shown as rendered, reduced frames as U(i) alone (the
+ *          firmware's unpaired path, tdc_trm_reduced_seq) - what TRM's
+ *          sharpening and residual are measured against (issue 15).
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -20,7 +24,7 @@
 #include "tdc_trm.h"
 #endif
 
-enum { TRM_TRM, TRM_NCSFI };
+enum { TRM_TRM, TRM_NCSFI, TRM_REDUCED_ONLY };
 
 #define F &tdc_sim_family_trm
 #define R TDC_SIM_LINK_REDUCED
@@ -30,6 +34,10 @@ static const tdc_mode_desc_t k_modes[] = {
     {"trm50", F, TRM_TRM, R, 1, 2, 0, 0, 0, "TRM, every other frame at r = 1/2"},
     {"trm40", F, TRM_TRM, R, 2, 5, 0, 0, 0, "TRM, every other frame at r = 0.4"},
     {"trm25", F, TRM_TRM, R, 1, 4, 0, 0, 0, "TRM, every other frame at r = 1/4"},
+    {"trm60", F, TRM_TRM, R, 3, 5, 0, 0, 0, "TRM, every other frame at r = 0.6"},
+    {"trm75", F, TRM_TRM, R, 3, 4, 0, 0, 0, "TRM, every other frame at r = 3/4"},
+    {"reduced50", F, TRM_REDUCED_ONLY, R, 1, 2, 0, 0, 0,
+     "every other frame at r = 1/2, upsampled, no compensation (full frames unsharpened, no residual)"},
 };
 #undef F
 #undef R
@@ -111,6 +119,14 @@ static int trm_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32
      * f + e even, i.e. one eye full and the other reduced, swapped every
      * frame (the firmware's and the link's rule) */
     int full = m->d->variant == TRM_NCSFI ? (lf & 1u) == 0u : tdc_trm_stereo_eye_is_full(lf, m->eye);
+    if (full && m->d->variant == TRM_REDUCED_ONLY) {
+        tdc_sim_render_full(m, src, t, spp, 0, 0, NULL, 0, TDC_MV_SURFACE);
+        int rc = tdc_sim_stage(m, "link FULL packet", tdc_sim_link_full(m->link, m->eye, lf, m->render));
+        if (rc == 0) {
+            memcpy(m->wanted, TDC_SIM_LINK_FULL(m), m->npx * 3); /* shown as rendered */
+        }
+        return rc;
+    }
     if (full) {
         return trm_full_frame(m, st, src, t, spp, lf);
     }
@@ -148,7 +164,9 @@ static int trm_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32
          * boards' path shows it upsampled without residual (counted as
          * unpaired); tdc_trm_reduced refused it and left the eye black for
          * a frame: on a 12-frame 48x40 pan the right eye scored 0.86 dB PSNR
-         * below the left and 1.3x its flicker (test_stereo_symmetric). */
+         * below the left and 1.3x its flicker (test_stereo_symmetric).
+         * reduced50 never gives the stage a full frame: every reduced
+         * frame takes that unpaired path, alpha = lin(U(i)) alone. */
         rc = tdc_trm_reduced_seq(&st->trm, TDC_SIM_LINK_REDUCED_BUF(m), rw3, m->wanted, w3, lf);
         r->fw_s += tdc_sim_now() - t0;
         rc = tdc_sim_stage(m, "tdc_trm_reduced_seq", rc);

@@ -151,6 +151,7 @@ static int mode_init(sim_mode_t *m, const tdc_mode_desc_t *d, tdc_sim_result_t *
     if (!m->render || !m->wanted || !m->out || !m->err_prev) {
         return -1;
     }
+
     if (eye == 0) {
         m->link = &m->link_own;
         if (tdc_sim_link_init(m->link, m->w, m->h, s->eyes, d->link_flags, d->r_num, d->r_den, (uint16_t)m->hz) != 0) {
@@ -188,6 +189,10 @@ static void mode_free(sim_mode_t *m)
     free(m->wanted);
     free(m->out);
     free(m->err_prev);
+    if (m->temporal) {
+        tdc_eye_temporal_free(m->temporal);
+        free(m->temporal);
+    }
     if (m->link == &m->link_own) {
         tdc_sim_link_free(m->link);
     }
@@ -318,8 +323,8 @@ static double bilinear_f(const float *img, int w, int h, double x, double y, int
 /* Perceived error of one mode's eye at te against that eye's ground truth
  * (already cropped and encoded in ev); accumulates into m. */
 static void eval_mode_eye(sim_mode_t *m, sim_eval_t *ev, const tdc_eye_cfg_t *ec, const tdc_sim_config_t *cfg, long j,
-                          double te, double prev_te, const double v[2], int margin, int cw, int ch, int strip_at,
-                          FILE *series, tdc_sim_times_t *tm)
+                          double te, double prev_te, const double v[2], const double gaze[2], int margin, int cw, int ch,
+                          int strip_at, FILE *series, tdc_sim_times_t *tm)
 {
     tdc_sim_result_t *r = m->res;
     int w = m->w, h = m->h;
@@ -386,6 +391,25 @@ static void eval_mode_eye(sim_mode_t *m, sim_eval_t *ev, const tdc_eye_cfg_t *ec
         }
     }
     m->have_err_prev = 1;
+    if (cfg->temporal && !m->temporal) {
+        /* on the evaluated interior, sampled at the evaluation rate */
+        tdc_tcsf_t tp;
+        tdc_tcsf_default(&tp);
+        double rate = (double)cfg->refresh_hz / (cfg->metric_every > 1 ? cfg->metric_every : 1);
+        m->temporal = calloc(1, sizeof(*m->temporal));
+        if (!m->temporal || tdc_eye_temporal_init(m->temporal, &tp, rate, cw, ch)) {
+            tdc_sim_stage(m, "temporal visibility model (out of memory)", -1);
+            return;
+        }
+    }
+    if (m->temporal) {
+        /* the error in retinal coordinates through the temporal CSF */
+        double te_rms = tdc_eye_temporal_push(m->temporal, ev->err, gaze[0], gaze[1]);
+        if (te_rms >= 0.0) {
+            m->sum_terr += te_rms;
+            m->n_terr++;
+        }
+    }
     m->sum_psnr += psnr;
     m->sum_ssim += ssim;
     m->sum_flip += flip;
@@ -496,7 +520,7 @@ int tdc_sim_run(const tdc_sim_config_t *cfg, tdc_source_t *src, const tdc_mode_d
     if (series) {
         fprintf(series, "mode,eval,t,psnr,ssim,flip,flicker\n");
     }
-    double prev_te = 0.0;
+    double prev_te = 0.0, gaze[2] = {0.0, 0.0};
     for (long j = 0; j < nevals && rc == 0; j++) {
         double te = (double)(j + wf) / R;
         for (int i = 0; i < nmodes; i++) {
@@ -524,6 +548,10 @@ int tdc_sim_run(const tdc_sim_config_t *cfg, tdc_source_t *src, const tdc_mode_d
         }
         double v[2];
         src->pursuit(src, te, v);
+        /* where the pursuing eye looks, cumulative over the evaluated
+         * instants (the temporal model's retinal coordinates) */
+        gaze[0] += v[0] * cfg->pursuit_gain * (te - prev_te);
+        gaze[1] += v[1] * cfg->pursuit_gain * (te - prev_te);
         for (int e = 0; e < eyes; e++) {
             double w0 = wall_now();
             tdc_eye_ground_truth(&ec, srcs[e], te, v, gt_steps, ev.gt, ev.scratch);
@@ -541,7 +569,7 @@ int tdc_sim_run(const tdc_sim_config_t *cfg, tdc_source_t *src, const tdc_mode_d
             }
             for (int e = 0; e < eyes && rc == 0; e++) {
                 sim_mode_t *m = &ms[i * eyes + e];
-                eval_mode_eye(m, &ev, &ec, cfg, j, te, prev_te, v, margin, cw, ch, strip_at, series, tm);
+                eval_mode_eye(m, &ev, &ec, cfg, j, te, prev_te, v, gaze, margin, cw, ch, strip_at, series, tm);
                 rc = m->failed ? -1 : 0;
             }
             results[i].evals++;
@@ -565,6 +593,7 @@ int tdc_sim_run(const tdc_sim_config_t *cfg, tdc_source_t *src, const tdc_mode_d
                 r->eye_flip[e] = m->sum_flip / r->evals;
             }
             r->eye_flicker[e] = m->n_flicker ? m->sum_flicker / m->n_flicker : 0.0;
+            r->eye_terr[e] = m->n_terr ? m->sum_terr / m->n_terr : NAN;
             sp += r->eye_psnr[e];
             ss += r->eye_ssim[e];
             sf += r->eye_flip[e];
@@ -575,6 +604,7 @@ int tdc_sim_run(const tdc_sim_config_t *cfg, tdc_source_t *src, const tdc_mode_d
         r->ssim = ss / eyes;
         r->flip = sf / eyes;
         r->flicker = sk / eyes;
+        r->terr = eyes == 2 ? 0.5 * (r->eye_terr[0] + r->eye_terr[1]) : r->eye_terr[0];
         sim_mode_t *m0 = &ms[i * eyes];
         r->link_bytes = m0->link ? m0->link->bytes : 0;
         r->link_errors += m0->link ? m0->link->errors : 0;

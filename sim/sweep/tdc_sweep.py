@@ -20,6 +20,7 @@ Sweep file: one `key = value` per line, '#' starts a comment.
     panel   = oled lcd:NAME .. axis: -p oled | -p lcd --profile NAME
     seed    = N N ...          axis: -S N
     scene / image / size       axes: -s NAME / --image FILE / -g WxH
+    pursuit / gain / renderer  axes: --pursuit track|fixate / --pursuit-gain G / -R SCENE
     NAME    = V V ...          any other axis: only substituted for {NAME}
 Values are separated by white space.  Jobs are the Cartesian product of the
 axes in file order, the last axis varying fastest; job i is the same
@@ -50,7 +51,8 @@ import time
 EXIT_OK, EXIT_BAD_SWEEP, EXIT_USAGE, EXIT_JOBS_FAILED, EXIT_ENGINE = 0, 1, 2, 3, 4
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 OPTION_AXES = {"modes": ["-m"], "refresh": ["-r"], "speed": ["--speed"], "seed": ["-S"],
-               "scene": ["-s"], "image": ["--image"], "size": ["-g"]}
+               "scene": ["-s"], "image": ["--image"], "size": ["-g"],
+               "pursuit": ["--pursuit"], "gain": ["--pursuit-gain"], "renderer": ["-R"]}
 # Columns that measure time (CPU or wall): kept out of sweep.csv so that it is
 # the same bytes from every engine; they go to timings.csv.
 def is_time_column(name):

@@ -242,15 +242,6 @@ static void bench_assemble(int moving, const char *label)
 
 static void bench_lcd(void)
 {
-    const tdc_panel_t *lcd = NULL;
-    for (unsigned i = 0; i < sizeof k_panels / sizeof k_panels[0]; i++) {
-        if (k_panels[i]->type == TDC_PANEL_LCD && !lcd) {
-            lcd = k_panels[i];
-        }
-    }
-    if (!lcd) {
-        return;
-    }
     static const struct {
         uint8_t mode;
         const char *label;
@@ -259,6 +250,21 @@ static void bench_lcd(void)
                  {TDC_LCD_MODE_TABLE33, "LCD inverse, 33x33 table (moving text)"},
                  {TDC_LCD_MODE_STATEFUL, "LCD inverse, stateful tables (moving text)"},
                  {TDC_LCD_MODE_STATEFUL_PAIR, "LCD inverse, stateful pair-fused, mean of a pair (moving text)"}};
+    /* Every mode on one profile: the first LCD profile (TDC_PANEL_LIST
+     * order) with the transition tables, i.e. every mode's tables (pg279q;
+     * disco-dsi, first in the list, has neither those nor 33x33). */
+    const tdc_panel_t *lcd = NULL;
+    for (unsigned i = 0; i < sizeof k_panels / sizeof k_panels[0] && !lcd; i++) {
+        const tdc_lcd_config_t cfg = {(uint16_t)BENCH_W, (uint16_t)BENCH_H, k_panels[i]->refresh_hz,
+                                      TDC_LCD_MODE_STATEFUL_PAIR, 8u};
+        if (k_panels[i]->type == TDC_PANEL_LCD &&
+            tdc_lcd_init(&g_lcd, &cfg, k_panels[i], g_lcd_arena, sizeof g_lcd_arena) == TDC_OK) {
+            lcd = k_panels[i];
+        }
+    }
+    if (!lcd) {
+        return;
+    }
     make_inputs(TDC_CONTENT_TEXT);
     for (unsigned m = 0; m < sizeof modes / sizeof modes[0]; m++) {
         const tdc_lcd_config_t cfg = {(uint16_t)BENCH_W, (uint16_t)BENCH_H, lcd->refresh_hz, modes[m].mode, 8u};

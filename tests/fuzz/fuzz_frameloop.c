@@ -12,13 +12,12 @@
  *   2. a kept eye shows exactly its last shown image: when a frame is shown
  *      and an eye was not updated for it, that eye's pixels equal what it
  *      showed the time before.
- * Findings are reported, not fixed here: tdc_main.c belongs to the board
- * work (issue 19 / the board issue).  Known finding F1 (docs/fuzzing.md,
- * tests/fuzz/findings/frameloop-kept-eye-overwritten): a FULL packet of a
- * later frame is unpacked straight into the frame buffer being shown, so
- * the frame it ends shows that eye's new pixels while the loop counts the
- * eye as kept.  TDC_FUZZ_KNOWN=F1 in the environment turns invariant 2 off
- * (make test's smoke run, until the frame-loop fix is merged).
+ * Finding F1 (docs/fuzzing.md, tests/fuzz/findings/frameloop-kept-eye-
+ * overwritten*, replayed by make test): the decoder unpacked every FULL
+ * packet straight into the frame buffer being shown, so a kept eye showed
+ * new pixels; fixed by leaving FULL payloads in staging until the loop
+ * updates that eye (defer_full, tdc_link.h).  TDC_FUZZ_KNOWN=F1 in the
+ * environment still turns invariant 2 off, to look past it on an old loop.
  */
 #include <stdint.h>
 #include <stdlib.h>

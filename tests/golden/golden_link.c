@@ -108,7 +108,11 @@ static void run(tdc_golden_ctx_t *ctx, const char *vector, size_t n, size_t chun
     const tdc_link_counters_t *k = tdc_link_counters(&g_dec);
     uint64_t h = pending;
     for (int i = 0; i < TDC_LINK_ERR_COUNT; i++) {
-        h = fold_u32(h, k->errors[i]);
+        /* codes added after these vectors were recorded fold in only when
+         * they occur, so the checked-in checksums stay valid */
+        if (i < TDC_LINK_ERR_LAYERS || k->errors[i]) {
+            h = fold_u32(h, k->errors[i]);
+        }
     }
     h = fold_u32(fold_u32(fold_u32(h, k->packets_ok), (uint32_t)k->garbage_bytes), k->missing_reduced_frames);
     tdc_golden_emit(ctx, "link", vector, 9999, h);

@@ -252,6 +252,75 @@ static void test_round_trip_full_only_and_stride(void **state)
     }
 }
 
+/* defer_full (the board loop, fuzz finding F1): a FULL packet is accepted
+ * without touching any pipeline buffer; tdc_link_unpack_full() unpacks it
+ * exactly as the direct path would, until bytes are processed again. */
+static void test_defer_full(void **state)
+{
+    (void)state;
+    const uint16_t w = 13, h = 9;
+    for (size_t fi = 0; fi < 4; fi++) {
+        tdc_link_encoder_t enc;
+        tdc_link_stream_info_t in = info_of(0, w, h, 2, 1, 1);
+        tdc_link_encoder_init(&enc, 1, &in);
+        static uint8_t panel[2 * 13 * 3 * 9];
+        memset(panel, 0xEE, sizeof panel);
+        tdc_link_config_t cfg = {w, h, 2};
+        tdc_link_buffers_t b;
+        memset(&b, 0, sizeof b);
+        b.staging = rig.staging;
+        b.staging_bytes = sizeof rig.staging;
+        b.defer_full = 1; /* full[] NULL: allowed */
+        assert_int_equal(tdc_link_decoder_init(&rig.dec, &cfg, &b), TDC_OK);
+        assert_int_equal(tdc_link_unpack_full(&rig.dec, panel, 2u * w * 3u), TDC_ERR_STATE); /* nothing yet */
+        size_t n = tdc_link_encode_stream(&enc, stream, sizeof stream);
+        const size_t first = n;
+        tdc_link_gen_rgb(src, w, h, 5, 1, 1);
+        n += tdc_link_encode_frame(&enc, stream + n, sizeof stream - n, TDC_LINK_KIND_FULL, 1, 5, all_fmts[fi], src, w,
+                                   h, w * 3u);
+        tdc_link_event_t ev;
+        assert_int_equal(tdc_link_feed(&rig.dec, stream, first, &ev), first); /* stream header */
+        assert_int_equal(ev.type, TDC_LINK_EV_PACKET);
+        assert_int_equal(tdc_link_feed(&rig.dec, stream + first, n - first, &ev), n - first);
+        assert_int_equal(ev.type, TDC_LINK_EV_PACKET);
+        assert_int_equal(ev.kind, TDC_LINK_KIND_FULL);
+        for (size_t i = 0; i < sizeof panel; i++) {
+            assert_int_equal(panel[i], 0xEE); /* accepted, nothing written */
+        }
+        assert_int_equal(tdc_link_unpack_full(&rig.dec, panel + w * 3u, w * 3u - 1u), TDC_ERR_ARG); /* short stride */
+        assert_int_equal(tdc_link_unpack_full(&rig.dec, NULL, 2u * w * 3u), TDC_ERR_ARG);
+        for (int twice = 0; twice < 2; twice++) {
+            assert_int_equal(tdc_link_unpack_full(&rig.dec, panel + w * 3u, 2u * w * 3u), TDC_OK);
+        }
+        expected_rgb(all_fmts[fi], src, w, h, expect);
+        for (uint32_t y = 0; y < h; y++) {
+            assert_memory_equal(panel + (size_t)y * 2u * w * 3u + w * 3u, expect + (size_t)y * w * 3u, (size_t)w * 3u);
+            for (uint32_t x = 0; x < (uint32_t)w * 3u; x++) {
+                assert_int_equal(panel[(size_t)y * 2u * w * 3u + x], 0xEE); /* eye 0 untouched */
+            }
+        }
+        /* a feed with no bytes (returns nothing queued) keeps it; bytes end it */
+        assert_int_equal(tdc_link_feed(&rig.dec, stream, 0, &ev), 0);
+        assert_int_equal(tdc_link_unpack_full(&rig.dec, panel + w * 3u, 2u * w * 3u), TDC_OK);
+        assert_int_equal(tdc_link_feed(&rig.dec, stream, 3, &ev), 3);
+        assert_int_equal(tdc_link_unpack_full(&rig.dec, panel + w * 3u, 2u * w * 3u), TDC_ERR_STATE);
+        tdc_link_decoder_resync(&rig.dec);
+        /* a rejected FULL packet (bad payload CRC) leaves nothing to unpack */
+        n = tdc_link_encode_frame(&enc, stream, sizeof stream, TDC_LINK_KIND_FULL, 0, 6, all_fmts[fi], src, w, h,
+                                  w * 3u);
+        stream[TDC_LINK_HEADER_BYTES + 5u] ^= 0x10u;
+        size_t used = 0;
+        int rejected = 0;
+        while (used < n) {
+            used += tdc_link_feed(&rig.dec, stream + used, n - used, &ev);
+            rejected |= ev.type == TDC_LINK_EV_ERROR && ev.error == TDC_LINK_ERR_CRC;
+            assert_int_not_equal(ev.type, TDC_LINK_EV_PACKET);
+        }
+        assert_true(rejected);
+        assert_int_equal(tdc_link_unpack_full(&rig.dec, panel, 2u * w * 3u), TDC_ERR_STATE);
+    }
+}
+
 /* ------------------------------------------------------------------------
  * Malformed packets: one per error code.
  * Baseline: stereo 37x23 TRM stream (r = 1/2, motion), frames 0 and 1
@@ -516,7 +585,8 @@ static void test_malformed_table(void **state)
         covered |= B(bad_cases[i].code);
         assert_string_equal(tdc_link_err_name(bad_cases[i].code), bad_cases[i].what);
     }
-    assert_int_equal(covered, ((1u << TDC_LINK_ERR_COUNT) - 1u) & ~1u);
+    /* LAYERS needs a layered stream: its cases are tests/unit/test_layer_link.c */
+    assert_int_equal(covered, ((1u << TDC_LINK_ERR_COUNT) - 1u) & ~1u & ~B(TDC_LINK_ERR_LAYERS));
     const int chunks[] = {0, 1, 7, -40};
     for (size_t ci = 0; ci < 4; ci++) {
         for (size_t i = 0; i < sizeof bad_cases / sizeof bad_cases[0]; i++) {
@@ -970,6 +1040,7 @@ int main(void)
         cmocka_unit_test(test_round_trip_trm_odd_sizes),
         cmocka_unit_test(test_round_trip_subframes_odd_sizes),
         cmocka_unit_test(test_round_trip_full_only_and_stride),
+        cmocka_unit_test(test_defer_full),
         cmocka_unit_test(test_malformed_table),
         cmocka_unit_test(test_garbage_and_resync),
         cmocka_unit_test(test_resync_after_cut),

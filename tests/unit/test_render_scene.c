@@ -182,6 +182,34 @@ static void test_file_errors(void **state)
     assert_int_equal(tdc_scene_parse(text, "s", NULL, &sc, err, sizeof err), TDC_SCENE_OK);
     assert_null(tdc_render_open(&sc, &cfg, err, sizeof err));
     assert_non_null(strstr(err, ":3: face index 7 out of range"));
+    /* a comment line over the reader's 4095 bytes whose tail, at 5 x 1023
+     * bytes (where the old 1024-byte fgets split it), reads as a face:
+     * refused with its line number, never split into a line "f 1 2 9" */
+    {
+        static char obj[8000];
+        size_t n = (size_t)snprintf(obj, sizeof obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+        const size_t start = n;
+        obj[n++] = '#';
+        while (n < start + 5u * 1023u) obj[n++] = ' ';
+        n += (size_t)snprintf(obj + n, sizeof obj - n, "f 1 2 9\nf 1 2 3\n");
+        write_file(path, obj, n);
+        assert_null(tdc_render_open(&sc, &cfg, err, sizeof err));
+        assert_non_null(strstr(err, ":4: line longer than 4095 bytes"));
+        /* a legal face line over the old 1024-byte limit: 64 vertices */
+        n = 0;
+        for (int k = 0; k < 64; k++)
+            n += (size_t)snprintf(obj + n, sizeof obj - n, "v %d %d 0.000000000000\n", k % 8, k / 8);
+        const size_t face = n;
+        n += (size_t)snprintf(obj + n, sizeof obj - n, "f");
+        for (int k = 0; k < 64; k++)
+            n += (size_t)snprintf(obj + n, sizeof obj - n, " %d/%d/%d", k + 1, 1000000, 1000000);
+        assert_true(n - face > 1024); /* the face line alone: 1089 bytes */
+        n += (size_t)snprintf(obj + n, sizeof obj - n, "\n");
+        write_file(path, obj, n);
+        tdc_render_t *r = tdc_render_open(&sc, &cfg, err, sizeof err);
+        assert_non_null(r);
+        tdc_render_close(r);
+    }
     remove(path);
     /* bad configuration */
     cfg.threads = 0;

@@ -1,0 +1,107 @@
+#!/bin/sh
+# test_experiments.sh TDC_SIM - the experiment framework (issue 15,
+# docs/experiments.md) on a temporary group folder:
+#   1. the statistics helper: "A beats B" only beyond the spread of the
+#      paired differences, a tie inside it, too few seeds below 5;
+#   2. a group of two 5-seed sweeps at 32x32 with per-scale lines: run on GNU
+#      parallel, claims.csv with the claim columns, the report table and the
+#      docs/results.md block between its markers (rewritten, not appended);
+#   3. refusals: an unknown group (exit 1), a claims script that raises
+#      (exit 3, named), a bad scale (exit 2), a malformed scale key (exit 1).
+set -u
+SIM=$(readlink -f "$1")
+EXP="/usr/bin/python3 $(pwd)/sim/experiments/tdc_experiments.py"
+T=$(mktemp -d /tmp/tdc_exp_test.XXXXXX)
+trap 'rm -rf "$T"' EXIT
+fail=0
+ok() { echo "ok: $*"; }
+bad() { echo "FAIL: $*"; fail=1; }
+
+# 1. statistics
+if PYTHONPATH=sim/experiments /usr/bin/python3 - <<'PY'
+import tdc_stats as s
+a = [30.0, 31.0, 32.0, 31.5, 30.5]
+b = [x - 1.0 for x in a]                     # paired: 1 dB better on every seed
+assert s.compare(a, b)["verdict"] == "A beats B", s.compare(a, b)
+noisy = [30.0, 33.0, 29.0, 32.5, 29.5]       # mean 30.8 vs 31.0, differences spread ~2 dB
+assert s.compare(noisy, a)["verdict"] == "tie", s.compare(noisy, a)
+assert s.compare(a[:4], b[:4])["verdict"] == "too few seeds"
+lo = [0.1, 0.11, 0.12, 0.1, 0.11]            # lower is better (FLIP)
+assert s.compare(lo, [x + 0.05 for x in lo], higher_is_better=False)["verdict"] == "A beats B"
+assert s.compare(lo, [x + 0.05 for x in lo], higher_is_better=True)["verdict"] == "B beats A"
+assert not s.beats(noisy, a) and s.beats(a, b)
+assert abs(s.spread([1.0, 2.0, 3.0]) - 1.0) < 1e-12 and s.spread([5.0]) == 0.0
+u = s.compare([1, 2, 3, 4, 5], [0, 1, 2, 3, 4, 5], paired=False)   # unpaired: spread_a + spread_b
+assert u["verdict"] == "tie" and abs(u["spread"] - (s.spread([1, 2, 3, 4, 5]) + s.spread([0, 1, 2, 3, 4, 5]))) < 1e-12
+PY
+then ok "statistics: beats only beyond the spread, ties, too few seeds"; else bad "statistics helper"; fi
+
+# 2. a group
+G=$T/groups
+mkdir -p "$G/toy" "$G/broken"
+cat > "$G/toy/moving.sweep" <<'SW'
+name  = toy
+base  = -s pan -g 48x48 -n 8
+demo.base = -s pan -g 32x32 -n 6
+modes = full,half,trm50
+seed  = 1 2 3 4 5
+SW
+cat > "$G/toy/static.sweep" <<'SW'
+name  = toy static
+base  = -s static -g 32x32 -n 6
+modes = full,trm50
+seed  = 1 2 3 4 5
+SW
+cat > "$G/toy/claims.py" <<'PY'
+def claims(exp):
+    rows = exp.rows("moving")
+    assert all(r["size"] if "size" in r else True for r in rows)
+    full = exp.values(rows, "psnr_db", mode="full")
+    half = exp.values(rows, "psnr_db", mode="half")
+    c = exp.stats.compare(full, half)
+    exp.claim("toy paper", "full beats half", "yes", "%.2f dB" % c["diff"],
+              "agree" if c["verdict"] == "A beats B" else "disagree", c["verdict"],
+              spread="%.3f" % c["spread"], n=c["n"])
+    st = exp.rows("static")
+    d = exp.stats.compare(exp.values(st, "psnr_db", mode="trm50"), exp.values(st, "psnr_db", mode="full"))
+    exp.claim("toy paper", "static TRM = full", "identical", "%.3f dB" % d["diff"], "disagree", "a reason, with | pipe")
+    exp.write_extra("| a | b |\n| --- | --- |\n| 1 | 2 |\n")
+PY
+cp "$G/toy/moving.sweep" "$G/broken/x.sweep"
+printf 'def claims(exp):\n    raise RuntimeError("deliberate")\n' > "$G/broken/claims.py"
+export TDC_EXPERIMENTS_DIR=$G
+O=$T/out
+$EXP list --scale demo > "$T/list.txt" 2>&1
+if grep -q "toy .*moving.sweep .* 5 jobs" "$T/list.txt"; then ok "list: $(grep toy "$T/list.txt" | head -1)"; else bad "list: $(cat "$T/list.txt")"; fi
+$EXP run toy --scale demo --out "$O" -j 2 --sim "$SIM" > "$T/run.txt" 2>&1; rc=$?
+if [ $rc -eq 0 ] && [ -f "$O/toy/claims.csv" ] && grep -q -- "-g 32x32" "$O/toy/moving.sweep"; then
+    ok "run: 10 jobs at scale demo, $(grep -c . "$O/toy/moving/sweep.csv") rows in moving/sweep.csv"
+else bad "run exit $rc: $(tail -3 "$T/run.txt")"; fi
+if head -1 "$O/toy/claims.csv" | grep -qx "group,paper,claim,paper_value,tdc_value,spread,n,run,verdict,why" \
+    && grep -q "^toy,toy paper,full beats half,yes,.*,5,toy (scale demo),agree," "$O/toy/claims.csv"; then
+    ok "claims.csv: $(sed -n 2p "$O/toy/claims.csv")"
+else bad "claims.csv: $(cat "$O/toy/claims.csv" 2>/dev/null)"; fi
+printf '# results\n\ntext before\n' > "$T/results.md"
+$EXP report --out "$O" --report "$T/rep/experiments.md" --results "$T/results.md" > "$T/rep.txt" 2>&1
+$EXP report --out "$O" --report "$T/rep/experiments.md" --results "$T/results.md" >> "$T/rep.txt" 2>&1; rc=$?
+if [ $rc -eq 0 ] && grep -q "| toy paper | full beats half | yes |" "$T/rep/experiments.md" \
+    && grep -q 'a reason, with \\| pipe' "$T/rep/experiments.md" && grep -q "| 1 | 2 |" "$T/rep/experiments.md" \
+    && grep -q "^| toy | demo | 10 |" "$T/rep/experiments.md" \
+    && [ "$(grep -c 'experiments:begin' "$T/results.md")" = 1 ] && grep -q "text before" "$T/results.md" \
+    && grep -q "static TRM = full\*\* (disagree)" "$T/results.md"; then
+    ok "report: the paper-vs-tdc table, the group's extra table, one results.md block with the disagreement"
+else bad "report exit $rc: $(cat "$T/rep.txt"; cat "$T/results.md")"; fi
+
+# 3. refusals
+$EXP run nosuch --out "$O" --sim "$SIM" > /dev/null 2> "$T/e1.txt"; rc=$?
+[ $rc -eq 1 ] && grep -q "unknown group 'nosuch'" "$T/e1.txt" && ok "unknown group: exit 1, $(cat "$T/e1.txt")" || bad "unknown group exit $rc"
+$EXP run broken --scale demo --out "$O" -j 2 --sim "$SIM" > /dev/null 2> "$T/e2.txt"; rc=$?
+[ $rc -eq 3 ] && grep -q "broken/claims.py raised" "$T/e2.txt" && grep -q deliberate "$T/e2.txt" \
+    && ok "raising claims script: exit 3, named" || bad "raising claims exit $rc: $(cat "$T/e2.txt")"
+$EXP run toy --scale huge --out "$O" > /dev/null 2> "$T/e3.txt"; rc=$?
+[ $rc -eq 2 ] && ok "bad scale: exit 2" || bad "bad scale exit $rc"
+printf 'name = x\nbase = -n 2\nhuge.base = -n 3\nmodes = full\n' > "$G/broken/x.sweep"
+$EXP list broken > /dev/null 2> "$T/e4.txt"; rc=$?
+[ $rc -eq 1 ] && grep -q "line 3: scale 'huge'" "$T/e4.txt" && ok "malformed scale key: exit 1, $(cat "$T/e4.txt")" \
+    || bad "malformed scale key exit $rc: $(cat "$T/e4.txt")"
+exit $fail
