@@ -188,7 +188,8 @@ double tdc_r_sample_cone(const tdc_render_t *r, int mode, int sw, int spp, doubl
  * normal n hit along d: cone dist / |cos| (the longer axis of the ellipse,
  * as mip-mapping's isotropic LOD), |cos| floored at 1/16 (grazing hits).
  * minv (world -> object 3x4, or NULL): n is in object space (the raw
- * normal every hit has; unlit hits have no world normal), d is taken there. */
+ * normal every hit has; unlit hits have no world normal), d is taken there
+ * and the width scaled to object lengths (cube root of |det minv|). */
 double tdc_r_tex_footprint(double cone, double dist, const double d[3], const double n[3], const double *minv);
 
 #endif

@@ -348,13 +348,18 @@ double tdc_r_sample_cone(const tdc_render_t *r, int mode, int sw, int spp, doubl
 
 double tdc_r_tex_footprint(double cone, double dist, const double dw[3], const double n[3], const double *minv)
 {
-    double dq[3];
+    double dq[3], scale = 1.0;
     const double *d = dw;
     if (minv) {
         for (int i = 0; i < 3; i++) dq[i] = minv[4 * i] * dw[0] + minv[4 * i + 1] * dw[1] + minv[4 * i + 2] * dw[2];
         d = dq;
+        /* object lengths per world length: the geometric mean of the inverse scales (objects are T R S) */
+        double det = minv[0] * (minv[5] * minv[10] - minv[6] * minv[9]) -
+                     minv[1] * (minv[4] * minv[10] - minv[6] * minv[8]) +
+                     minv[2] * (minv[4] * minv[9] - minv[5] * minv[8]);
+        scale = cbrt(fabs(det));
     }
     double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2], nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
     double c = fabs(d[0] * n[0] + d[1] * n[1] + d[2] * n[2]) / sqrt(dd * nn + 1e-300);
-    return cone * dist / (c > 1.0 / 16 ? c : 1.0 / 16);
+    return scale * cone * dist / (c > 1.0 / 16 ? c : 1.0 / 16);
 }

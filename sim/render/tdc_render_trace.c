@@ -427,7 +427,7 @@ void tdc_r_pass_reflect(rthread_t *t, rsample_t *s, int n)
             }
             surface_rh(t->cur, &rh, h, O, d, P, Q, N, NQ, &wc);
             dist += rh.ray.tfar * sqrt(dot3(d, d));
-            t->tex_fw = t->cone > 0 ? tdc_r_tex_footprint(t->cone, dist, d, N, NULL) : 0;
+            t->tex_fw = t->cone > 0 ? tdc_r_tex_footprint(t->cone, dist, d, NQ, t->cur->minv[h]) : 0;
             double loc[3];
             shade_direct(t, h, P, Q, N, NQ, rng_key(a), a->k, 4u * (uint32_t)(b + 1), NULL, loc);
             double m2 = sc->materials[sc->objects[h].material].mirror;

@@ -135,6 +135,9 @@ static void test_footprint(void **state)
     const double minv[12] = {1, 0, 0, 0, 0, 0, -1, 0, 0, 1, 0, 0};
     const double ny[3] = {0, 1, 0};
     assert_true(fabs(tdc_r_tex_footprint(0.01, 5, d, ny, minv) - 0.05) < 1e-12);
+    /* scaled 2x: half the object length per world length */
+    const double minv2[12] = {0.5, 0, 0, 0, 0, 0.5, 0, 0, 0, 0, 0.5, 0};
+    assert_true(fabs(tdc_r_tex_footprint(0.01, 5, d, n, minv2) - 0.025) < 1e-12);
 }
 
 /* A checker seen only in a planar mirror: reflected hits filter over the
