@@ -50,6 +50,17 @@ static void render(tdc_render_t *r, tdc_render_mode_t mode, float *rgb)
     assert_int_equal(tdc_render_frame(r, 1, mode, &out, &st), 0);
 }
 
+/* A full frame of the scene filtered (f1) and point-sampled (f0). */
+static void render_both(const char *text, float *f1, float *f0)
+{
+    tdc_render_t *r = open_scene(text, 1);
+    render(r, TDC_RENDER_FULL, f1);
+    tdc_render_close(r);
+    r = open_scene(text, 0);
+    render(r, TDC_RENDER_FULL, f0);
+    tdc_render_close(r);
+}
+
 /* mean and standard deviation of the red channel over the whole frame */
 static void stats(const float *rgb, double *mean, double *sd)
 {
@@ -75,12 +86,9 @@ static void test_minified_checker_mean(void **state)
     static float f1[W * H * 3], f0[W * H * 3], gt[W * H * 3];
     char text[512];
     snprintf(text, sizeof text, scene_fmt, 0.0107); /* 8 checks per pixel */
+    render_both(text, f1, f0);
     tdc_render_t *r = open_scene(text, 1);
-    render(r, TDC_RENDER_FULL, f1);
     render(r, TDC_RENDER_GROUND_TRUTH, gt);
-    tdc_render_close(r);
-    r = open_scene(text, 0);
-    render(r, TDC_RENDER_FULL, f0);
     tdc_render_close(r);
     double m1, s1, m0, s0, mg, sg;
     stats(f1, &m1, &s1);
@@ -104,12 +112,7 @@ static void test_magnified_checker_sharp(void **state)
     static float f1[W * H * 3], f0[W * H * 3];
     char text[512];
     snprintf(text, sizeof text, scene_fmt, 1.0); /* 11.6 px per check */
-    tdc_render_t *r = open_scene(text, 1);
-    render(r, TDC_RENDER_FULL, f1);
-    tdc_render_close(r);
-    r = open_scene(text, 0);
-    render(r, TDC_RENDER_FULL, f0);
-    tdc_render_close(r);
+    render_both(text, f1, f0);
     int same = 0, lo = 0, hi = 0;
     for (int i = 0; i < W * H; i++) {
         same += fabsf(f1[3 * i] - f0[3 * i]) < 1e-6f;
@@ -154,12 +157,7 @@ static void test_mirror_footprint(void **state)
 {
     (void)state;
     static float f1[W * H * 3], f0[W * H * 3];
-    tdc_render_t *r = open_scene(scene_mirror, 1);
-    render(r, TDC_RENDER_FULL, f1);
-    tdc_render_close(r);
-    r = open_scene(scene_mirror, 0);
-    render(r, TDC_RENDER_FULL, f0);
-    tdc_render_close(r);
+    render_both(scene_mirror, f1, f0);
     double m1, s1, m0, s0;
     stats(f1, &m1, &s1);
     stats(f0, &m0, &s0);

@@ -59,18 +59,13 @@ def claims(exp):
             if angle not in angles:
                 continue
             bt_band = out if hg_band is mid else mid
-            if hg_band:
-                compare_claim(exp, rows, "asm-hourglass", "asm-bowtie", angle, hg_band, col, label, d,
-                              "TDRT §3.2.3 %s" % what,
-                              "%s motion, l_f in {%s}: hourglass beats bowtie" % (
-                                  MOTION[angle], ", ".join(sorted({"%.3f" % frac(s) for s in hg_band}))),
-                              "hourglass chosen")
-            if bt_band:
-                compare_claim(exp, rows, "asm-bowtie", "asm-hourglass", angle, bt_band, col, label, d,
-                              "TDRT §3.2.3 %s" % what,
-                              "%s motion, l_f in {%s}: bowtie beats hourglass" % (
-                                  MOTION[angle], ", ".join(sorted({"%.3f" % frac(s) for s in bt_band}))),
-                              "bowtie chosen")
+            for win, lose, band in (("hourglass", "bowtie", hg_band), ("bowtie", "hourglass", bt_band)):
+                if band:
+                    compare_claim(exp, rows, "asm-" + win, "asm-" + lose, angle, band, col, label, d,
+                                  "TDRT §3.2.3 %s" % what,
+                                  "%s motion, l_f in {%s}: %s beats %s" % (
+                                      MOTION[angle], ", ".join(sorted({"%.3f" % frac(s) for s in band})), win, lose),
+                                  "%s chosen" % win)
         # Fig. 10 right: the adaptive decision function against either fixed ordering, per motion
         for angle in angles:
             for fixed in ("asm-hourglass", "asm-bowtie"):
