@@ -5,98 +5,158 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "tdc_bilinear.h"
 #include "tdc_par.h"
 
 double tdc_eye_bilinear(const double *img, int w, int h, double x, double y, int c)
 {
-    if (x < 0.0) {
-        x = 0.0;
+    return tdc_bilinear_d(img, w, h, 3, x, y, c);
+}
+
+/* One output row: o[k] += wgt * bilinear(r0, r1 at idx0[k], idx1[k], fx[k],
+ * fy), k = 3x + c over the row's 3w values (the expression of
+ * tdc_eye_bilinear, element-wise, so every clone gives the same bits). */
+TDC_SIMD_CLONES static void acc_row(double *restrict o, const double *r0, const double *r1, const int *restrict idx0,
+                                    const int *restrict idx1, const double *restrict fx, double fy, double wgt, int k0,
+                                    int k1)
+{
+    TDC_SIMD
+    for (int k = k0; k < k1; k++) {
+        double a = r0[idx0[k]], b = r0[idx1[k]], d = r1[idx0[k]], e = r1[idx1[k]];
+        o[k] += wgt * ((a + (b - a) * fx[k]) * (1.0 - fy) + (d + (e - d) * fx[k]) * fy);
     }
-    if (y < 0.0) {
-        y = 0.0;
+}
+
+/* The same where idx0[k] = k + off and idx1[k] = k + off + 3 (no clamping:
+ * every column but a few at the edges): contiguous loads instead of gathers. */
+TDC_SIMD_CLONES static void acc_row_in(double *restrict o, const double *r0, const double *r1, int off,
+                                       const double *restrict fx, double fy, double wgt, int k0, int k1)
+{
+    const double *ra = r0 + off, *rb = r0 + off + 3, *rd = r1 + off, *re = r1 + off + 3;
+    TDC_SIMD
+    for (int k = k0; k < k1; k++) {
+        double a = ra[k], b = rb[k], d = rd[k], e = re[k];
+        o[k] += wgt * ((a + (b - a) * fx[k]) * (1.0 - fy) + (d + (e - d) * fx[k]) * fy);
     }
-    if (x > w - 1) {
-        x = w - 1;
+}
+
+TDC_SIMD_CLONES static void acc_row_int(double *restrict o, const double *r0, const int *restrict idx0, double wgt,
+                                        int n)
+{
+    TDC_SIMD
+    for (int k = 0; k < n; k++) {
+        o[k] += wgt * r0[idx0[k]];
     }
-    if (y > h - 1) {
-        y = h - 1;
+}
+
+/* Row `row` (3w values) of a slice as linear light: the slice's own row, or
+ * the codes' row decoded through lut into buf. */
+static const double *slice_row(const tdc_eye_slice_t *sl, size_t row, int n, double *buf)
+{
+    if (sl->lin) {
+        return sl->lin + row;
     }
-    int x0 = (int)x, y0 = (int)y;
-    int x1 = x0 + 1 < w ? x0 + 1 : x0, y1 = y0 + 1 < h ? y0 + 1 : y0;
-    double fx = x - x0, fy = y - y0;
-    double a = img[3 * ((size_t)y0 * w + x0) + c], b = img[3 * ((size_t)y0 * w + x1) + c];
-    double d = img[3 * ((size_t)y1 * w + x0) + c], e = img[3 * ((size_t)y1 * w + x1) + c];
-    return (a + (b - a) * fx) * (1.0 - fy) + (d + (e - d) * fx) * fy;
+    const uint8_t *c = sl->codes + row;
+    const double *lut = sl->lut;
+    for (int k = 0; k < n; k += 3) {
+        buf[k] = lut[c[k]];
+        buf[k + 1] = lut[256 + c[k + 1]];
+        buf[k + 2] = lut[512 + c[k + 2]];
+    }
+    return buf;
 }
 
 /* out += wgt * img shifted by (sx, sy): out(x) += wgt * img(x + s), img the
  * slice's light (lin, or lut[] of codes).  The shift is the same for every
  * pixel, so the clamped source columns and their weights are computed once
- * per call (the same expressions as tdc_eye_bilinear, so the same values)
- * and rows run in parallel. */
-#define PIX(row, i, c) (lin ? lin[(row) + (i) + (c)] : lut[256 * (c) + codes[(row) + (i) + (c)]])
+ * per call (the same expressions as tdc_eye_bilinear, so the same values,
+ * spread to the 3 channels of each pixel), and rows run in parallel: each
+ * decodes its two source rows once (codes) and runs a vectorised row kernel
+ * (contiguous loads away from the clamped edges).
+ * 1440x1600 stereo TRM (perf, 1 thread): 11 % of the run before, ~4 % after. */
 static int accumulate_shifted(double *out, const tdc_eye_slice_t *sl, int w, int h, double sx, double sy, double wgt)
 {
-    const double *lin = sl->lin, *lut = sl->lut;
-    const uint8_t *codes = sl->codes;
+    const int n3 = 3 * w;
     double fsx = floor(sx), fsy = floor(sy);
-    int *col = malloc(sizeof(int) * 2 * (size_t)w);
-    double *fxs = malloc(sizeof(double) * (size_t)w);
-    if (!col || !fxs) {
-        free(col);
+    int *idx = malloc(sizeof(int) * 2 * (size_t)n3);
+    double *fxs = malloc(sizeof(double) * (size_t)n3);
+    if (!idx || !fxs) {
+        free(idx);
         free(fxs);
         return -1;
     }
+    int *idx0 = idx, *idx1 = idx + n3;
     int integer = sx == fsx && sy == fsy;
     for (int x = 0; x < w; x++) {
+        int i0, i1;
+        double fx;
         if (integer) {
             int ix = (int)fsx, xx = x + ix < 0 ? 0 : (x + ix >= w ? w - 1 : x + ix);
-            col[2 * x] = col[2 * x + 1] = 3 * xx;
-            fxs[x] = 0.0;
-            continue;
+            i0 = i1 = 3 * xx;
+            fx = 0.0;
+        } else {
+            double xs = x + sx;
+            xs = xs < 0.0 ? 0.0 : (xs > w - 1 ? w - 1 : xs);
+            int x0 = (int)xs;
+            i0 = 3 * x0;
+            i1 = 3 * (x0 + 1 < w ? x0 + 1 : x0);
+            fx = xs - x0;
         }
-        double xs = x + sx;
-        xs = xs < 0.0 ? 0.0 : (xs > w - 1 ? w - 1 : xs);
-        int x0 = (int)xs;
-        col[2 * x] = 3 * x0;
-        col[2 * x + 1] = 3 * (x0 + 1 < w ? x0 + 1 : x0);
-        fxs[x] = xs - x0;
+        for (int c = 0; c < 3; c++) {
+            idx0[3 * x + c] = i0 + c;
+            idx1[3 * x + c] = i1 + c;
+            fxs[3 * x + c] = fx;
+        }
     }
+    /* the unclamped run [kb, ke): idx0[k] = k + off, idx1[k] = k + off + 3,
+     * checked value by value (the rounding of x + sx decides, not floor(sx)) */
+    int off = 3 * (int)fsx, kb = 0, ke = 0;
+    if (!integer) {
+        while (kb < n3 && !(idx0[kb] == kb + off && idx1[kb] == kb + off + 3)) {
+            kb++;
+        }
+        ke = kb;
+        while (ke < n3 && idx0[ke] == ke + off && idx1[ke] == ke + off + 3) {
+            ke++;
+        }
+        for (int k = ke; k < n3; k++) {
+            if (idx0[k] == k + off && idx1[k] == k + off + 3) {
+                kb = ke = 0; /* not one run: gathers everywhere */
+                break;
+            }
+        }
+    }
+    int bad = 0;
     TDC_PAR_FOR((size_t)w * h)
     for (int y = 0; y < h; y++) {
         double *o = out + 3 * (size_t)y * w;
+        double *buf = sl->lin ? NULL : malloc(sizeof(double) * 2 * (size_t)n3);
+        if (!sl->lin && !buf) {
+            bad = 1; /* benign race: every writer stores 1 */
+            continue;
+        }
         if (integer) {
             /* integer shift: plain copy with clamping */
             int iy = (int)fsy, yy = y + iy < 0 ? 0 : (y + iy >= h ? h - 1 : y + iy);
-            size_t r0 = 3 * (size_t)yy * w;
-            for (int x = 0; x < w; x++) {
-                int i0 = col[2 * x];
-                o[3 * x] += wgt * PIX(r0, i0, 0);
-                o[3 * x + 1] += wgt * PIX(r0, i0, 1);
-                o[3 * x + 2] += wgt * PIX(r0, i0, 2);
-            }
-            continue;
+            acc_row_int(o, slice_row(sl, 3 * (size_t)yy * w, n3, buf), idx0, wgt, n3);
+        } else {
+            double ys = y + sy;
+            ys = ys < 0.0 ? 0.0 : (ys > h - 1 ? h - 1 : ys);
+            int y0 = (int)ys;
+            int y1 = y0 + 1 < h ? y0 + 1 : y0;
+            double fy = ys - y0;
+            const double *r0 = slice_row(sl, 3 * (size_t)y0 * w, n3, buf);
+            const double *r1 = slice_row(sl, 3 * (size_t)y1 * w, n3, buf ? buf + n3 : NULL);
+            acc_row(o, r0, r1, idx0, idx1, fxs, fy, wgt, 0, kb);
+            acc_row_in(o, r0, r1, off, fxs, fy, wgt, kb, ke);
+            acc_row(o, r0, r1, idx0, idx1, fxs, fy, wgt, ke, n3);
         }
-        double ys = y + sy;
-        ys = ys < 0.0 ? 0.0 : (ys > h - 1 ? h - 1 : ys);
-        int y0 = (int)ys;
-        int y1 = y0 + 1 < h ? y0 + 1 : y0;
-        double fy = ys - y0;
-        size_t r0 = 3 * (size_t)y0 * w, r1 = 3 * (size_t)y1 * w;
-        for (int x = 0; x < w; x++) {
-            int i0 = col[2 * x], i1 = col[2 * x + 1];
-            double fx = fxs[x];
-            for (int c = 0; c < 3; c++) {
-                double a = PIX(r0, i0, c), b = PIX(r0, i1, c), d = PIX(r1, i0, c), e = PIX(r1, i1, c);
-                o[3 * x + c] += wgt * ((a + (b - a) * fx) * (1.0 - fy) + (d + (e - d) * fx) * fy);
-            }
-        }
+        free(buf);
     }
-    free(col);
+    free(idx);
     free(fxs);
-    return 0;
+    return bad ? -1 : 0;
 }
-#undef PIX
 
 int tdc_eye_perceive(const tdc_eye_cfg_t *cfg, const tdc_eye_slice_t *slices, int n, double t_end, const double v[2],
                      double *out)

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "tdc_bilinear.h"
 #include "tdc_par.h"
 
 void tdc_tcsf_default(tdc_tcsf_t *p)
@@ -140,19 +141,6 @@ void tdc_eye_temporal_free(tdc_eye_temporal_t *t)
     t->rows = NULL;
 }
 
-/* Bilinear lookup in one float plane, edges clamped (as tdc_eye_bilinear). */
-static double plane_bilinear(const float *img, int w, int h, double x, double y)
-{
-    x = x < 0.0 ? 0.0 : (x > w - 1 ? w - 1 : x);
-    y = y < 0.0 ? 0.0 : (y > h - 1 ? h - 1 : y);
-    int x0 = (int)x, y0 = (int)y;
-    int x1 = x0 + 1 < w ? x0 + 1 : x0, y1 = y0 + 1 < h ? y0 + 1 : y0;
-    double fx = x - x0, fy = y - y0;
-    double a = img[(size_t)y0 * w + x0], b = img[(size_t)y0 * w + x1];
-    double d = img[(size_t)y1 * w + x0], e = img[(size_t)y1 * w + x1];
-    return (a + (b - a) * fx) * (1.0 - fy) + (d + (e - d) * fx) * fy;
-}
-
 double tdc_eye_temporal_push(tdc_eye_temporal_t *t, const double *err, double gx, double gy)
 {
     const int w = t->w, h = t->h;
@@ -187,7 +175,7 @@ double tdc_eye_temporal_push(tdc_eye_temporal_t *t, const double *err, double gx
                 double dx = t->gx[s] - gx, dy = t->gy[s] - gy;
                 const float *img = t->ring + (size_t)s * np;
                 f += t->taps[i] * (dx == 0.0 && dy == 0.0 ? img[(size_t)y * w + x]
-                                                          : plane_bilinear(img, w, h, x + dx, y + dy));
+                                                          : tdc_bilinear_f(img, w, h, 1, x + dx, y + dy, 0));
             }
             se += f * f;
         }

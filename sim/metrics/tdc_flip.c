@@ -37,6 +37,7 @@
 #include <string.h>
 
 #include "metrics/tdc_filter.h"
+#include "metrics/tdc_powtab.h"
 #include "tdc_par.h"
 
 #define PI 3.14159265358979323846
@@ -74,17 +75,18 @@ static void ycxcz_to_rgb(const double *c, double *rgb)
     mat3(k_xyz2rgb, xyz, rgb);
 }
 
-static double lab_f(double t)
+/* cbrt by table (tdc_powtab.h: 7e-9 relative, below the float L*a*b* kept) */
+static double lab_f(const tdc_powtab_t *cb, double t)
 {
     const double d = 6.0 / 29.0;
-    return t > d * d * d ? cbrt(t) : t / (3.0 * d * d) + 4.0 / 29.0;
+    return t > d * d * d ? tdc_powtab(cb, t) : t / (3.0 * d * d) + 4.0 / 29.0;
 }
 
-static void rgb_to_lab_hunt(const double *rgb, double *lab)
+static void rgb_to_lab_hunt(const tdc_powtab_t *cb, const double *rgb, double *lab)
 {
     double xyz[3];
     mat3(k_rgb2xyz, rgb, xyz);
-    double fx = lab_f(xyz[0] / XN), fy = lab_f(xyz[1] / YN), fz = lab_f(xyz[2] / ZN);
+    double fx = lab_f(cb, xyz[0] / XN), fy = lab_f(cb, xyz[1] / YN), fz = lab_f(cb, xyz[2] / ZN);
     double L = 116.0 * fy - 16.0;
     lab[0] = L;
     lab[1] = 0.01 * L * 500.0 * (fx - fy);
@@ -112,6 +114,7 @@ static int flip_color_prepare(const double *lin, int w, int h, double ppd, float
         return -1;
     }
     size_t n = (size_t)w * h;
+    const tdc_powtab_t *cb = tdc_powtab_metrics(TDC_POWTAB_CBRT);
     float *plane[3] = {work, work + n, work + 2 * n};
     float *filt[3] = {work + 3 * n, work + 4 * n, work + 5 * n};
     float *f2 = work + 6 * n, *tmp = work + 7 * n;
@@ -170,7 +173,7 @@ static int flip_color_prepare(const double *lin, int w, int h, double ppd, float
             for (int k = 0; k < 3; k++) {
                 rgb[k] = rgb[k] < 0.0 ? 0.0 : (rgb[k] > 1.0 ? 1.0 : rgb[k]);
             }
-            rgb_to_lab_hunt(rgb, lab);
+            rgb_to_lab_hunt(cb, rgb, lab);
             lab_out[3 * i] = (float)lab[0];
             lab_out[3 * i + 1] = (float)lab[1];
             lab_out[3 * i + 2] = (float)lab[2];
@@ -233,37 +236,82 @@ static int flip_features(const float *y, int w, int h, double ppd, float *edge, 
     return 0;
 }
 
-double tdc_flip(const double *ref, const double *test, int w, int h, double ppd, double *map)
+/* The per-image half of FLIP: L*a*b* of the prefiltered image (3 floats per
+ * pixel) and its edge and point feature magnitudes (1 each); work: 9 floats
+ * per pixel. */
+static int flip_image(const double *lin, int w, int h, double ppd, float *lab, float *edge, float *point, float *work)
+{
+    size_t n = (size_t)w * h;
+    float *yf = work + 8 * n;
+    return flip_color_prepare(lin, w, h, ppd, lab, yf, work) || flip_features(yf, w, h, ppd, edge, point, work);
+}
+
+size_t tdc_flip_work_bytes(int w, int h)
+{
+    return sizeof(float) * (size_t)w * h * 14 + sizeof(double) * (size_t)h;
+}
+
+int tdc_flip_prepare(tdc_flip_ref_t *ref, const double *lin, int w, int h, double ppd, void *work)
+{
+    size_t n = (size_t)w * h;
+    if (w < 1 || h < 1 || w > TDC_FILTER_MAX_W) {
+        return -1;
+    }
+    if (!ref->buf || ref->cap < n) {
+        free(ref->buf);
+        ref->buf = malloc(sizeof(float) * 5 * n);
+        ref->cap = ref->buf ? n : 0;
+    }
+    float *own = work ? NULL : malloc(tdc_flip_work_bytes(w, h));
+    if (!ref->buf || (!work && !own)) {
+        free(own);
+        return -1;
+    }
+    ref->w = w;
+    ref->h = h;
+    ref->ppd = ppd;
+    int bad = flip_image(lin, w, h, ppd, ref->buf, ref->buf + 3 * n, ref->buf + 4 * n, work ? (float *)work : own);
+    free(own);
+    return bad ? -1 : 0;
+}
+
+void tdc_flip_ref_free(tdc_flip_ref_t *ref)
+{
+    free(ref->buf);
+    memset(ref, 0, sizeof(*ref));
+}
+
+double tdc_flip_vs(const tdc_flip_ref_t *ref, const double *test, double *map, void *work)
 {
     const double qc = 0.7, pc = 0.4, pt = 0.95, qf = 0.5;
+    const int w = ref->w, h = ref->h;
     size_t n = (size_t)w * h;
-    /* lab r/t 6, y r/t 2, features 4, work 8 floats per pixel; row sums */
-    float *mem = malloc(sizeof(float) * n * 20 + sizeof(double) * (size_t)h);
-    if (!mem || w > TDC_FILTER_MAX_W) {
-        free(mem);
+    /* lab t 3, features t 2, work 9 floats per pixel; row sums */
+    float *own = work ? NULL : malloc(tdc_flip_work_bytes(w, h));
+    float *mem = work ? (float *)work : own;
+    if (!mem) {
         return -1.0;
     }
-    float *lab_r = mem, *lab_t = mem + 3 * n, *y_r = mem + 6 * n, *y_t = mem + 7 * n;
-    float *e_r = mem + 8 * n, *p_r = mem + 9 * n, *e_t = mem + 10 * n, *p_t = mem + 11 * n;
-    float *work = mem + 12 * n;
-    double *rows = (double *)(void *)(mem + 20 * n);
-    if (flip_color_prepare(ref, w, h, ppd, lab_r, y_r, work) || flip_color_prepare(test, w, h, ppd, lab_t, y_t, work) ||
-        flip_features(y_r, w, h, ppd, e_r, p_r, work) || flip_features(y_t, w, h, ppd, e_t, p_t, work)) {
-        free(mem);
+    const float *lab_r = ref->buf, *e_r = ref->buf + 3 * n, *p_r = ref->buf + 4 * n;
+    float *lab_t = mem, *e_t = mem + 3 * n, *p_t = mem + 4 * n, *fw = mem + 5 * n;
+    double *rows = (double *)(void *)(mem + 14 * n);
+    if (flip_image(test, w, h, ref->ppd, lab_t, e_t, p_t, fw)) {
+        free(own);
         return -1.0;
     }
     const double green[3] = {0.0, 1.0, 0.0}, blue[3] = {0.0, 0.0, 1.0};
+    const tdc_powtab_t *cb = tdc_powtab_metrics(TDC_POWTAB_CBRT), *pq = tdc_powtab_metrics(TDC_POWTAB_HYAB);
     double lg[3], lb[3];
-    rgb_to_lab_hunt(green, lg);
-    rgb_to_lab_hunt(blue, lb);
-    const double cmax = pow(hyab(lg, lb), qc);
+    rgb_to_lab_hunt(cb, green, lg);
+    rgb_to_lab_hunt(cb, blue, lb);
+    const double cmax = tdc_powtab(pq, hyab(lg, lb)); /* ^qc, qc = 0.7 */
     TDC_PAR_FOR((size_t)w * h)
     for (int y = 0; y < h; y++) {
         double sum = 0.0;
         for (size_t i = (size_t)y * w; i < (size_t)(y + 1) * w; i++) {
             double lr[3] = {lab_r[3 * i], lab_r[3 * i + 1], lab_r[3 * i + 2]};
             double lt[3] = {lab_t[3 * i], lab_t[3 * i + 1], lab_t[3 * i + 2]};
-            double dc = pow(hyab(lr, lt), qc);
+            double dc = tdc_powtab(pq, hyab(lr, lt)); /* ^qc */
             if (dc < pc * cmax) {
                 dc = pt / (pc * cmax) * dc;
             } else {
@@ -285,8 +333,16 @@ double tdc_flip(const double *ref, const double *test, int w, int h, double ppd,
         }
         rows[y] = sum;
     }
-    (void)qf;
+    (void)qf, (void)qc; /* qc is the HYAB table's exponent */
     double sum = tdc_par_sum_rows(rows, h);
-    free(mem);
+    free(own);
     return n ? sum / (double)n : 0.0;
+}
+
+double tdc_flip(const double *ref, const double *test, int w, int h, double ppd, double *map)
+{
+    tdc_flip_ref_t r = {0};
+    double v = tdc_flip_prepare(&r, ref, w, h, ppd, NULL) ? -1.0 : tdc_flip_vs(&r, test, map, NULL);
+    tdc_flip_ref_free(&r);
+    return v;
 }

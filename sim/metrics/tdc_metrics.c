@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "metrics/tdc_filter.h"
+#include "metrics/tdc_powtab.h"
 #include "tdc_par.h"
 
 double tdc_psnr(const double *a, const double *b, size_t n, double peak)
@@ -39,6 +40,7 @@ double tdc_psnr(const double *a, const double *b, size_t n, double peak)
 
 void tdc_metrics_encode(const double *lin, double *enc, size_t n)
 {
+    const tdc_powtab_t *t = tdc_powtab_metrics(TDC_POWTAB_ENCODE);
     const size_t chunk = 4096;
     int nrows = (int)((n + chunk - 1) / chunk);
     TDC_PAR_FOR(n)
@@ -46,52 +48,122 @@ void tdc_metrics_encode(const double *lin, double *enc, size_t n)
         size_t i0 = (size_t)r * chunk, i1 = i0 + chunk < n ? i0 + chunk : n;
         for (size_t i = i0; i < i1; i++) {
             double v = lin[i] < 0.0 ? 0.0 : (lin[i] > 1.0 ? 1.0 : lin[i]);
-            enc[i] = pow(v, 1.0 / 2.2);
+            enc[i] = tdc_powtab(t, v); /* v^(1/2.2) within 7.5e-9 relative */
         }
     }
 }
 
-double tdc_ssim(const double *a, const double *b, int w, int h, double data_range)
+/* SSIM's Gaussian window: 11 taps (sigma 1.5, truncate 3.5, as scipy.ndimage). */
+#define SSIM_R 5
+static void ssim_kernel(double k[2 * SSIM_R + 1])
 {
-    const double sigma = 1.5, truncate = 3.5;
-    const int r = (int)(truncate * sigma + 0.5); /* 5, as scipy.ndimage */
-    double k[32];
+    const double sigma = 1.5;
     double ks = 0.0;
-    for (int j = -r; j <= r; j++) {
-        k[j + r] = exp(-0.5 * j * j / (sigma * sigma));
-        ks += k[j + r];
+    for (int j = -SSIM_R; j <= SSIM_R; j++) {
+        k[j + SSIM_R] = exp(-0.5 * j * j / (sigma * sigma));
+        ks += k[j + SSIM_R];
     }
-    for (int j = 0; j <= 2 * r; j++) {
+    for (int j = 0; j <= 2 * SSIM_R; j++) {
         k[j] /= ks;
     }
+}
+
+/* The filtered planes of b per channel c: mean mu_b (buf + 2cn) and mean
+ * of b^2 (buf + (2c+1)n); work: 2n scratch. */
+static int ssim_ref_planes(const double *b, int w, int h, double *buf, double *work)
+{
+    double k[2 * SSIM_R + 1];
+    ssim_kernel(k);
     size_t n = (size_t)w * h;
-    double *buf = malloc(sizeof(double) * (n * 11 + (size_t)h));
+    double *y = work, *tmp = work + n;
+    int bad = 0;
+    for (int c = 0; c < 3 && !bad; c++) {
+        double *uy = buf + 2 * c * n, *uyy = buf + (2 * c + 1) * n;
+        TDC_PAR_FOR((size_t)w * h)
+        for (int yr = 0; yr < h; yr++) {
+            for (size_t i = (size_t)yr * w; i < (size_t)(yr + 1) * w; i++) {
+                y[i] = b[3 * i + c];
+            }
+        }
+        bad |= tdc_sep_filter_d(y, uy, tmp, w, h, k, k, SSIM_R, TDC_EDGE_REFLECT);
+        TDC_PAR_FOR((size_t)w * h)
+        for (int yr = 0; yr < h; yr++) {
+            for (size_t i = (size_t)yr * w; i < (size_t)(yr + 1) * w; i++) {
+                y[i] *= y[i];
+            }
+        }
+        bad |= tdc_sep_filter_d(y, uyy, tmp, w, h, k, k, SSIM_R, TDC_EDGE_REFLECT);
+    }
+    return bad;
+}
+
+size_t tdc_ssim_work_bytes(int w, int h)
+{
+    return sizeof(double) * ((size_t)w * h * 7 + (size_t)h);
+}
+
+int tdc_ssim_prepare(tdc_ssim_ref_t *ref, const double *b, int w, int h, void *work)
+{
+    size_t n = (size_t)w * h;
+    if (w < 1 || h < 1) {
+        return -1;
+    }
+    if (!ref->buf || ref->cap < n) {
+        free(ref->buf);
+        ref->buf = malloc(sizeof(double) * 6 * n);
+        ref->cap = ref->buf ? n : 0;
+    }
+    double *own = work ? NULL : malloc(tdc_ssim_work_bytes(w, h));
+    if (!ref->buf || (!work && !own)) {
+        free(own);
+        return -1;
+    }
+    ref->b = b;
+    ref->w = w;
+    ref->h = h;
+    int bad = ssim_ref_planes(b, w, h, ref->buf, work ? (double *)work : own);
+    free(own);
+    return bad ? -1 : 0;
+}
+
+void tdc_ssim_ref_free(tdc_ssim_ref_t *ref)
+{
+    free(ref->buf);
+    memset(ref, 0, sizeof(*ref));
+}
+
+double tdc_ssim_vs(const tdc_ssim_ref_t *ref, const double *a, double data_range, void *work)
+{
+    double k[2 * SSIM_R + 1];
+    ssim_kernel(k);
+    const int w = ref->w, h = ref->h, r = SSIM_R;
+    const double *b = ref->b;
+    size_t n = (size_t)w * h;
+    double *own = work ? NULL : malloc(tdc_ssim_work_bytes(w, h));
+    double *buf = work ? (double *)work : own;
     if (!buf) {
         return -1.0;
     }
-    double *x = buf, *y = buf + n, *xx = buf + 2 * n, *yy = buf + 3 * n, *xy = buf + 4 * n;
-    double *ux = buf + 5 * n, *uy = buf + 6 * n, *uxx = buf + 7 * n, *uyy = buf + 8 * n, *uxy = buf + 9 * n;
-    double *tmp = buf + 10 * n, *rows = buf + 11 * n;
+    double *x = buf, *xx = buf + n, *xy = buf + 2 * n;
+    double *ux = buf + 3 * n, *uxx = buf + 4 * n, *uxy = buf + 5 * n;
+    double *tmp = buf + 6 * n, *rows = buf + 7 * n;
     const double c1 = (0.01 * data_range) * (0.01 * data_range);
     const double c2 = (0.03 * data_range) * (0.03 * data_range);
     const int pad = r; /* (win_size - 1) / 2 with win_size = 2r + 1 */
     double total = 0.0;
     int bad = 0;
     for (int c = 0; c < 3 && !bad; c++) {
+        const double *uy = ref->buf + 2 * c * n, *uyy = ref->buf + (2 * c + 1) * n;
         TDC_PAR_FOR((size_t)w * h)
         for (int yr = 0; yr < h; yr++) {
             for (size_t i = (size_t)yr * w; i < (size_t)(yr + 1) * w; i++) {
                 x[i] = a[3 * i + c];
-                y[i] = b[3 * i + c];
                 xx[i] = x[i] * x[i];
-                yy[i] = y[i] * y[i];
-                xy[i] = x[i] * y[i];
+                xy[i] = x[i] * b[3 * i + c];
             }
         }
         bad |= tdc_sep_filter_d(x, ux, tmp, w, h, k, k, r, TDC_EDGE_REFLECT);
-        bad |= tdc_sep_filter_d(y, uy, tmp, w, h, k, k, r, TDC_EDGE_REFLECT);
         bad |= tdc_sep_filter_d(xx, uxx, tmp, w, h, k, k, r, TDC_EDGE_REFLECT);
-        bad |= tdc_sep_filter_d(yy, uyy, tmp, w, h, k, k, r, TDC_EDGE_REFLECT);
         bad |= tdc_sep_filter_d(xy, uxy, tmp, w, h, k, k, r, TDC_EDGE_REFLECT);
         TDC_PAR_FOR((size_t)w * h)
         for (int yy0 = pad; yy0 < h - pad; yy0++) {
@@ -111,6 +183,14 @@ double tdc_ssim(const double *a, const double *b, int w, int h, double data_rang
         double s = h > 2 * pad ? tdc_par_sum_rows(rows + pad, h - 2 * pad) : 0.0;
         total += cnt ? s / (double)cnt : 1.0;
     }
-    free(buf);
+    free(own);
     return bad ? -1.0 : total / 3.0;
+}
+
+double tdc_ssim(const double *a, const double *b, int w, int h, double data_range)
+{
+    tdc_ssim_ref_t ref = {0};
+    double v = tdc_ssim_prepare(&ref, b, w, h, NULL) ? -1.0 : tdc_ssim_vs(&ref, a, data_range, NULL);
+    tdc_ssim_ref_free(&ref);
+    return v;
 }

@@ -69,7 +69,7 @@ typedef struct {
     int width, height;     /* output size; 0 = the scene's resolution */
     int threads;           /* worker threads (pthreads), >= 1 */
     uint32_t seed;         /* all randomness (jitter, light samples) derives from it */
-    int max_bounces;       /* mirror bounces, 0..3 (default 3) */
+    int max_bounces;       /* mirror / glossy bounces, 0..3 (default 3) */
     int reflect_mv;        /* reflected MVs for mirror hits (TDRT §3.1.2), default 1 */
     int shadow_mv;         /* shadow MVs (Zeng §4.1), default 0 */
     int dual_mv;           /* dual MVs for disocclusions (Zeng §4.3), default 0 */
@@ -96,6 +96,17 @@ typedef struct {
     float *shadow_weight; /* n: Zeng eq. 4 falloff G(theta - pi/2; 0, 0.1), 0 where no shadow MV */
     int16_t *mv_dual;     /* n x 2 Q4 dual MVs (= mv where not disoccluded) */
     float *depth;         /* n: camera-space depth of the primary hit, INFINITY for misses */
+    /* Layers (Zeng §4: the frame as separate components, each reused with
+     * its own vector; FULL and SUBFRAME).  rgb = vis * shade + refl: exact
+     * for grey lights; with coloured lights vis is the luminance ratio and
+     * the recombination is off by the lights' colour difference. */
+    float *shade;        /* n x 3: local radiance without shadows ((1 - k) base (ambient + all light samples)) */
+    float *vis;          /* n: visibility, luminance of shadowed / unshadowed local radiance, [0, 1] (1 unlit, sky) */
+    float *refl;         /* n x 3: reflection / glossy layer (k times the reflected radiance, 0 if not reflective) */
+    int16_t *mv_surf;    /* n x 2 Q4: primary surface MV (never the reflected one) */
+    int16_t *mv_refl;    /* n x 2 Q4: reflected MV (mirror: TDRT §3.1.2; glossy: stochastic, Zeng eq. 5),
+                             = mv_surf where there is no reflected hit */
+    uint8_t *shadow_src; /* n: 1 = a tracked shadow (blocker and shadow MV valid): shadow-splatting source (§4.1) */
 } tdc_render_out_t;
 
 typedef enum {
@@ -121,6 +132,7 @@ typedef struct {
     double wall_ms;   /* whole call, wall clock */
     int out_w, out_h; /* output size of the mode */
     int frame_static; /* nothing moved between frame - 1 and frame */
+    uint64_t dual_culled; /* samples the dual pass decided without a ray (still camera, outside moving objects) */
 } tdc_render_stats_t;
 
 /* What the scene needs (detected at open); stages it does not need are skipped. */
@@ -191,6 +203,13 @@ typedef struct {
     double dual_mv[2];
     int disoccluded;
     double rgb[3]; /* linear radiance of the sample */
+    /* reflected / glossy MV (the layers' mv_refl): refl_mv_ok = 1 when the
+     * sample has one; for glossy surfaces refl_mv is the stochastic eq. 5
+     * sample, refl_mu its centre (the previous virtual image, as an MV) and
+     * refl_axes the two image half-axes (x, y, x, y) of its Gaussian */
+    int refl_mv_ok;
+    double refl_mv[2], refl_mu[2], refl_axes[4];
+    double shade[3], vis, refl[3]; /* layers */
 } tdc_render_probe_t;
 int tdc_render_probe(tdc_render_t *r, uint32_t frame, double x, double y, tdc_render_probe_t *p);
 

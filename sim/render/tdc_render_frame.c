@@ -27,7 +27,9 @@ typedef struct {
     _Alignas(64) int next;
     char next_pad[60];
     int32_t jx, jy; /* subframe static jitter, Q4 */
-    int do_reflect, do_mv, do_mv_reflect, do_mv_shadow, do_mv_dual, frame_static;
+    int do_reflect, do_mv, do_mv_reflect, do_mv_shadow, do_mv_dual, frame_static, do_layers;
+    int ndual_rect; /* dual-MV culling rectangles (rthread_t), -1 = none */
+    float dual_rect[TDC_SCENE_MAX_OBJECTS][4];
     const tdc_render_out_t *out;
     float *ss; /* reduced: supersample buffer sw*sh*3; GT: accumulation target */
     int record;
@@ -197,6 +199,39 @@ static inline uint64_t stamp(void)
         t_ = t1_;                       \
     } while (0)
 
+/* The layer outputs of FULL and SUBFRAME samples (Zeng §4). */
+static void write_layers(job_t *jb, const rsample_t *s, int n)
+{
+    const tdc_render_out_t *o = jb->out;
+    for (int i = 0; i < n; i++) {
+        const rsample_t *a = &s[i];
+        size_t d = a->dst;
+        if (o->shade)
+            for (int c = 0; c < 3; c++) o->shade[d * 3 + c] = (float)a->lshade[c];
+        if (o->vis) o->vis[d] = (float)a->vis;
+        if (o->refl)
+            for (int c = 0; c < 3; c++) o->refl[d * 3 + c] = (float)a->refl[c];
+        /* the primary MV (mv holds the reflected one where refl_used) */
+        double ms0 = 0, ms1 = 0, mr0 = 0, mr1 = 0;
+        if (jb->do_mv) {
+            ms0 = a->refl_used ? a->mvsurf[0] : a->mv[0];
+            ms1 = a->refl_used ? a->mvsurf[1] : a->mv[1];
+            int rok = jb->do_mv_reflect && a->mvr_ok;
+            mr0 = rok ? a->mvr[0] : ms0;
+            mr1 = rok ? a->mvr[1] : ms1;
+        }
+        if (o->mv_surf) {
+            o->mv_surf[d * 2] = q4(ms0);
+            o->mv_surf[d * 2 + 1] = q4(ms1);
+        }
+        if (o->mv_refl) {
+            o->mv_refl[d * 2] = q4(mr0);
+            o->mv_refl[d * 2 + 1] = q4(mr1);
+        }
+        if (o->shadow_src) o->shadow_src[d] = (uint8_t)(jb->do_mv_shadow && a->in_shadow);
+    }
+}
+
 static void write_outputs(job_t *jb, const rsample_t *s, int n)
 {
     tdc_render_t *r = jb->r;
@@ -263,6 +298,7 @@ static void write_outputs(job_t *jb, const rsample_t *s, int n)
             if (mv) mv[(size_t)a->dst * 2] = mv[(size_t)a->dst * 2 + 1] = 0;
         }
     }
+    if (jb->do_layers) write_layers(jb, s, n);
     if (!o->depth && !o->mv_f && !o->mv_shadow && !o->shadow_weight && !o->mv_dual) return;
     for (int i = 0; i < n; i++) {
         const rsample_t *a = &s[i];
@@ -384,6 +420,42 @@ static void init_thread(rthread_t *th, tdc_render_t *r, uint32_t frame, int gt, 
     th->spp = (uint32_t)spp;
     th->record = record;
     th->track_blockers = track;
+    th->ndual_rect = -1;
+}
+
+/* Dual-MV culling (tdc_r_pass_mv_dual): under a still camera, the screen
+ * rectangle of every moving object's previous-frame bounds (its Embree
+ * bounds' 8 corners through the previous matrix, projected), grown by 2 px
+ * for the float instance transform and rounding.  A moving object partly
+ * behind the camera disables the culling (ndual_rect stays -1). */
+static void dual_rects(tdc_render_t *r, long frame, job_t *jb)
+{
+    if (r->cam_moved) return;
+    const rframe_t *p = tdc_r_frame(r, frame - 1);
+    int nr = 0;
+    for (int i = 0; i < r->scene->nobjects; i++) {
+        if (!r->obj_moved[i]) continue;
+        struct RTCBounds b;
+        rtcGetSceneBounds(r->obj[i].scene, &b);
+        double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+        for (int k = 0; k < 8; k++) {
+            double q[3] = {k & 1 ? b.upper_x : b.lower_x, k & 2 ? b.upper_y : b.lower_y, k & 4 ? b.upper_z : b.lower_z};
+            double w[3], x, y;
+            tdc_r_xform_point(p->m[i], q, w);
+            if (tdc_r_project(&p->cam, w, &x, &y) < 0 || !isfinite(x) || !isfinite(y)) return;
+            if (x < x0) x0 = x;
+            if (x > x1) x1 = x;
+            if (y < y0) y0 = y;
+            if (y > y1) y1 = y;
+        }
+        if (!(x1 - x0 < 1e7 && y1 - y0 < 1e7)) return; /* near the camera plane: keep the float casts in range */
+        jb->dual_rect[nr][0] = (float)(x0 - 2);
+        jb->dual_rect[nr][1] = (float)(y0 - 2);
+        jb->dual_rect[nr][2] = (float)(x1 + 2);
+        jb->dual_rect[nr][3] = (float)(y1 + 2);
+        nr++;
+    }
+    jb->ndual_rect = nr;
 }
 
 int tdc_render_frame(tdc_render_t *r, uint32_t frame, tdc_render_mode_t mode, const tdc_render_out_t *out,
@@ -410,7 +482,9 @@ int tdc_render_frame(tdc_render_t *r, uint32_t frame, tdc_render_mode_t mode, co
     jb.frame_static = st.frame_static;
     jb.do_reflect = r->feat.mirrors && r->cfg.max_bounces > 0;
     jb.do_mv = mv_mode && !st.frame_static;
-    jb.do_mv_reflect = jb.do_mv && jb.do_reflect && r->cfg.reflect_mv;
+    jb.do_layers = (mode == TDC_RENDER_FULL || mode == TDC_RENDER_SUBFRAME) &&
+                   (out->shade || out->vis || out->refl || out->mv_surf || out->mv_refl || out->shadow_src);
+    jb.do_mv_reflect = jb.do_mv && jb.do_reflect && (r->cfg.reflect_mv || jb.do_layers);
     jb.do_mv_shadow = jb.do_mv && r->cfg.shadow_mv && r->feat.moving_blocker;
     jb.do_mv_dual = jb.do_mv && r->cfg.dual_mv;
 
@@ -419,6 +493,8 @@ int tdc_render_frame(tdc_render_t *r, uint32_t frame, tdc_render_mode_t mode, co
     if (jb.do_mv_shadow || jb.do_mv_dual) tdc_r_top(r, (long)frame - 1);
     tdc_r_frame(r, (long)frame);
     tdc_r_frame(r, (long)frame - 1);
+    jb.ndual_rect = -1;
+    if (jb.do_mv_dual) dual_rects(r, (long)frame, &jb);
     st.ms[TDC_STAGE_SCENE] = tdc_r_now_ms() - t0;
     st.ran[TDC_STAGE_SCENE] = 1;
 
@@ -488,6 +564,9 @@ int tdc_render_frame(tdc_render_t *r, uint32_t frame, tdc_render_mode_t mode, co
         w[i].job = &jb;
         init_thread(&w[i].th, r, frame, mode == TDC_RENDER_GROUND_TRUTH, jb.spp, jb.record, jb.do_mv_shadow);
         w[i].th.cone = tdc_r_sample_cone(r, mode, jb.sw, jb.spp, w[i].th.cur->cam.tan_half);
+        w[i].th.layers = jb.do_layers;
+        w[i].th.ndual_rect = jb.ndual_rect;
+        if (jb.ndual_rect > 0) memcpy(w[i].th.dual_rect, jb.dual_rect, (size_t)jb.ndual_rect * sizeof jb.dual_rect[0]);
         if (r->sbuf_cap[i] < cap) { /* kept between frames: no page faults per frame */
             free(r->sbuf[i]);
             /* cache-line aligned: the hot fields of a sample are 4 whole lines */
@@ -525,6 +604,7 @@ int tdc_render_frame(tdc_render_t *r, uint32_t frame, tdc_render_mode_t mode, co
     for (int i = 0; i < nth; i++) {
         for (int s = 0; s < TDC_STAGE_COUNT; s++) st.ms[s] += (double)w[i].th.ticks[s] * ms_per_tick;
         for (int k = 0; k < TDC_RAY_KIND_COUNT; k++) st.rays[k] += w[i].th.rays[k];
+        st.dual_culled += w[i].th.dual_culled;
         free(w[i].th.rec);
     }
     free(w);
@@ -563,6 +643,7 @@ int tdc_render_probe(tdc_render_t *r, uint32_t frame, double x, double y, tdc_re
     rthread_t th;
     init_thread(&th, r, frame, 0, 1, 0, 1);
     th.cone = tdc_r_sample_cone(r, TDC_RENDER_FULL, r->W, 1, th.cur->cam.tan_half); /* what a frame's sample sees */
+    th.layers = 1;
     rsample_t s;
     memset(&s, 0, sizeof s);
     s.x = (float)x;
@@ -573,7 +654,7 @@ int tdc_render_probe(tdc_render_t *r, uint32_t frame, double x, double y, tdc_re
     tdc_r_pass_shade(&th, &s, 1);
     if (r->feat.mirrors && r->cfg.max_bounces > 0) tdc_r_pass_reflect(&th, &s, 1);
     tdc_r_pass_mv(&th, &s, 1);
-    if (r->cfg.reflect_mv) tdc_r_pass_mv_reflect(&th, &s, 1);
+    tdc_r_pass_mv_reflect(&th, &s, 1); /* reflect_mv = 0 only keeps it out of mv */
     tdc_r_pass_mv_shadow(&th, &s, 1);
     tdc_r_pass_mv_dual(&th, &s, 1);
     p->hit = s.obj >= 0;
@@ -592,6 +673,17 @@ int tdc_render_probe(tdc_render_t *r, uint32_t frame, double x, double y, tdc_re
     memcpy(p->dual_mv, s.mvd, sizeof p->dual_mv);
     p->disoccluded = s.disocc;
     memcpy(p->rgb, s.col, sizeof p->rgb);
+    p->refl_mv_ok = s.mvr_ok;
+    if (s.mvr_ok) {
+        memcpy(p->refl_mv, s.mvr, sizeof p->refl_mv);
+        memcpy(p->refl_mu, s.mvr_mu, sizeof p->refl_mu);
+        memcpy(p->refl_axes, s.mvr_ax, sizeof p->refl_axes);
+    } else {
+        memcpy(p->refl_mv, s.refl_used ? s.mvsurf : s.mv, sizeof p->refl_mv);
+    }
+    memcpy(p->shade, s.lshade, sizeof p->shade);
+    p->vis = s.vis;
+    memcpy(p->refl, s.refl, sizeof p->refl);
     return 0;
 }
 

@@ -34,6 +34,7 @@ static void usage(void)
                     "  --reduced-factor R   r of reduced frames (default 0.5)\n"
                     "  --shadow-mv --dual-mv --no-reflect-mv --bounces N\n"
                     "  --png DIR            write DIR/<scene>-<mode>-<frame>.png (+ -mv.png for motion)\n"
+                    "  --layers             with --png: also the layers -shade, -vis, -refl, -mv-refl (Zeng §4)\n"
                     "  --stream FILE        write a .tdcs link stream (full, reduced, subframe, trm)\n"
                     "  --quiet              no per-frame lines\n"
                     "exit codes (docs/tools.md): 0 OK, 1 ARGS, 7 FILE, 13 INPUT (scene), 14 REFUSED (renderer\n"
@@ -74,7 +75,7 @@ int main(int argc, char **argv)
 {
     tdc_tool_set_name("tdc-render");
     const char *scene_file = NULL, *builtin = NULL, *png_dir = NULL, *stream_path = NULL, *mode_s = "full";
-    int f0 = 0, f1 = 1, quiet = 0, w = 0, h = 0;
+    int f0 = 0, f1 = 1, quiet = 0, layers = 0, w = 0, h = 0;
     tdc_render_config_t cfg;
     tdc_render_default_config(&cfg);
     for (int i = 1; i < argc; i++) {
@@ -106,6 +107,8 @@ int main(int argc, char **argv)
             cfg.shadow_mv = 1;
         else if (!strcmp(a, "--dual-mv"))
             cfg.dual_mv = 1;
+        else if (!strcmp(a, "--layers"))
+            layers = 1;
         else if (!strcmp(a, "--no-reflect-mv"))
             cfg.reflect_mv = 0;
         else if (!strcmp(a, "--frames") && v) {
@@ -165,8 +168,8 @@ int main(int argc, char **argv)
     int rc = TDC_EXIT_OK;
     tdc_render_t *r = NULL;
     tdc_render_stream_t *stream = NULL;
-    float *rgb = NULL, *vis = NULL;
-    int16_t *mv = NULL, *mvs = NULL, *mvd = NULL;
+    float *rgb = NULL, *vis = NULL, *lsh = NULL, *lvis = NULL, *lrefl = NULL;
+    int16_t *mv = NULL, *mvs = NULL, *mvd = NULL, *mvr = NULL;
     tdc_scene_t *scene = malloc(sizeof *scene);
     if (!scene) return tdc_fail(TDC_EXIT_NOMEM, NULL, "scene", "out of memory");
     tdc_scene_status_t st = scene_file ? tdc_scene_load(scene_file, scene, err, sizeof err)
@@ -211,7 +214,11 @@ int main(int argc, char **argv)
     mv = malloc(npix * 2 * sizeof(int16_t));
     mvs = malloc(npix * 2 * sizeof(int16_t));
     mvd = malloc(npix * 2 * sizeof(int16_t));
-    if (!rgb || !vis || !mv || !mvs || !mvd) {
+    lsh = malloc(npix * 3 * sizeof(float));
+    lvis = malloc(npix * 3 * sizeof(float)); /* grey for the PNG */
+    lrefl = malloc(npix * 3 * sizeof(float));
+    mvr = malloc(npix * 2 * sizeof(int16_t));
+    if (!rgb || !vis || !mv || !mvs || !mvd || !lsh || !lvis || !lrefl || !mvr) {
         rc = tdc_fail(TDC_EXIT_NOMEM, NULL, "frame buffers", "out of memory for %dx%d", W, H);
         goto done;
     }
@@ -235,7 +242,15 @@ int main(int argc, char **argv)
     for (int f = f0; f < f1 && !rc; f++) {
         tdc_render_mode_t m = mode;
         if (trm) m = tdc_link_trm_kind((uint32_t)f, 0) == TDC_LINK_KIND_REDUCED ? TDC_RENDER_REDUCED : TDC_RENDER_FULL;
-        tdc_render_out_t out = {rgb, mv, NULL, cfg.shadow_mv ? mvs : NULL, NULL, cfg.dual_mv ? mvd : NULL, NULL};
+        int lay = layers && png_dir && (m == TDC_RENDER_FULL || m == TDC_RENDER_SUBFRAME);
+        tdc_render_out_t out = {.rgb = rgb,
+                                .mv = mv,
+                                .mv_shadow = cfg.shadow_mv ? mvs : NULL,
+                                .mv_dual = cfg.dual_mv ? mvd : NULL,
+                                .shade = lay ? lsh : NULL,
+                                .vis = lay ? lvis : NULL,
+                                .refl = lay ? lrefl : NULL,
+                                .mv_refl = lay ? mvr : NULL};
         tdc_render_stats_t s;
         if (tdc_render_frame(r, (uint32_t)f, m, &out, &s) < 0) {
             rc = tdc_fail(TDC_EXIT_REFUSED, NULL, "renderer", "frame %d failed", f);
@@ -259,6 +274,25 @@ int main(int argc, char **argv)
             snprintf(path, sizeof path, "%s/%s-%s-%04d.png", png_dir, scene->name, tdc_render_mode_name(m), f);
             if (tdc_render_write_png(path, rgb, s.out_w, s.out_h, err, sizeof err) < 0)
                 rc = tdc_fail(TDC_EXIT_FILE, NULL, NULL, "%s", err);
+            if (lay) {
+                size_t np = (size_t)s.out_w * s.out_h;
+                for (size_t i = np; i-- > 0;) lvis[3 * i] = lvis[3 * i + 1] = lvis[3 * i + 2] = lvis[i];
+                const float *img[3] = {lsh, lvis, lrefl};
+                const char *suffix[3] = {"shade", "vis", "refl"};
+                for (int k = 0; k < 3; k++) {
+                    snprintf(path, sizeof path, "%s/%s-%s-%04d-%s.png", png_dir, scene->name, tdc_render_mode_name(m),
+                             f, suffix[k]);
+                    if (tdc_render_write_png(path, img[k], s.out_w, s.out_h, err, sizeof err) < 0)
+                        rc = tdc_fail(TDC_EXIT_FILE, NULL, NULL, "%s", err);
+                }
+                if (ft.motion) {
+                    mv_to_rgb(mvr, np, vis);
+                    snprintf(path, sizeof path, "%s/%s-%s-%04d-mv-refl.png", png_dir, scene->name,
+                             tdc_render_mode_name(m), f);
+                    if (tdc_render_write_png(path, vis, s.out_w, s.out_h, err, sizeof err) < 0)
+                        rc = tdc_fail(TDC_EXIT_FILE, NULL, NULL, "%s", err);
+                }
+            }
             if ((m == TDC_RENDER_FULL || m == TDC_RENDER_SUBFRAME) && ft.motion) {
                 const int16_t *src[3] = {mv, cfg.shadow_mv ? mvs : NULL, cfg.dual_mv ? mvd : NULL};
                 const char *suffix[3] = {"mv", "mv-shadow", "mv-dual"};
@@ -309,5 +343,9 @@ done:
     free(mv);
     free(mvs);
     free(mvd);
+    free(lsh);
+    free(lvis);
+    free(lrefl);
+    free(mvr);
     return rc;
 }

@@ -194,7 +194,8 @@ static double offset_eps(const double P[3])
 /* Local (direct) radiance at a surface; optionally records the first
  * blocked point light's blocker into s. */
 static void shade_direct(rthread_t *t, int obj, const double P[3], const double Q[3], const double N[3],
-                         const double NQ[3], uint32_t dst, uint32_t k, uint32_t salt, rsample_t *track, double out[3])
+                         const double NQ[3], uint32_t dst, uint32_t k, uint32_t salt, rsample_t *track, double out[3],
+                         double *unshadowed)
 {
     const tdc_render_t *r = t->r;
     const tdc_scene_t *sc = r->scene;
@@ -202,11 +203,15 @@ static void shade_direct(rthread_t *t, int obj, const double P[3], const double 
     const tdc_material_t *m = &sc->materials[o->material];
     if (m->unlit) { /* straight into out: a copy through base[] stalled on store forwarding */
         tdc_r_base_color(r, o, Q, NQ, t->tex_fw, out);
+        if (unshadowed) copy3(unshadowed, out);
         return;
     }
     double base[3];
     tdc_r_base_color(r, o, Q, NQ, t->tex_fw, base);
     double e[3] = {sc->ambient[0], sc->ambient[1], sc->ambient[2]};
+    /* layers: the same sums without the visibility term (eu: every light
+     * sample counted, blocked or not); e itself is computed as before */
+    double eu[3] = {e[0], e[1], e[2]};
     double eps = offset_eps(P);
     double O[3] = {P[0] + N[0] * eps, P[1] + N[1] * eps, P[2] + N[2] * eps};
     for (int li = 0; li < sc->nlights; li++) {
@@ -228,6 +233,8 @@ static void shade_direct(rthread_t *t, int obj, const double P[3], const double 
 #endif
             double c = dot3(N, L);
             if (c <= 0) continue;
+            if (unshadowed)
+                for (int i = 0; i < 3; i++) eu[i] += l->intensity[i] * c / (d * d);
             int blocked;
             if (track && t->track_blockers && !track->in_shadow) {
                 struct RTCRayHit rh;
@@ -289,6 +296,8 @@ static void shade_direct(rthread_t *t, int obj, const double P[3], const double 
                 for (int i = 0; i < 3; i++) L[i] /= d;
                 double c = dot3(N, L), cl = fabs(dot3(ln, L));
                 if (c <= 0) continue;
+                if (unshadowed)
+                    for (int i = 0; i < 3; i++) eu[i] += l->intensity[i] * c * cl / (d * d) / ns;
                 if (track && t->track_blockers && !track->in_shadow) {
                     /* shadow MVs: the first blocked light sample keeps its
                      * blocker and its offset on the (translating) light */
@@ -314,6 +323,8 @@ static void shade_direct(rthread_t *t, int obj, const double P[3], const double 
         }
     }
     for (int i = 0; i < 3; i++) out[i] = base[i] * e[i];
+    if (unshadowed)
+        for (int i = 0; i < 3; i++) unshadowed[i] = base[i] * eu[i];
 }
 
 /* Random numbers are keyed by the pixel (not the output slot), so a pixel
@@ -321,6 +332,21 @@ static void shade_direct(rthread_t *t, int obj, const double P[3], const double 
 static uint32_t rng_key(const rsample_t *a)
 {
     return (uint32_t)a->py * 65536u + (uint32_t)a->px;
+}
+
+/* Layers of a shaded primary sample (Zeng §4: shading without shadows,
+ * visibility, reflection): lshade = unshadowed local radiance scaled like
+ * col by (1 - k), vis = luminance of the shadowed over the unshadowed local
+ * radiance (1 where nothing is lit), so col = vis * lshade exactly for
+ * grey lights and up to the lights' colour differences otherwise; refl
+ * starts at 0 and collects what the reflect pass adds to col. */
+static void layer_split(rsample_t *a)
+{
+    double lu = 0.2126 * a->lshade[0] + 0.7152 * a->lshade[1] + 0.0722 * a->lshade[2];
+    double ls = 0.2126 * a->col[0] + 0.7152 * a->col[1] + 0.0722 * a->col[2];
+    double v = lu > 0 ? ls / lu : 1;
+    a->vis = v < 0 ? 0 : v > 1 ? 1 : v;
+    a->refl[0] = a->refl[1] = a->refl[2] = 0;
 }
 
 void tdc_r_pass_primary(rthread_t *t, rsample_t *s, int n)
@@ -372,6 +398,11 @@ void tdc_r_pass_shade(rthread_t *t, rsample_t *s, int n)
         rsample_t *a = &s[i];
         if (a->obj < 0) {
             memcpy(a->col, sc->background, sizeof a->col);
+            if (t->layers) {
+                a->rough = 0;
+                copy3(a->lshade, a->col);
+                layer_split(a);
+            }
             continue;
         }
         const tdc_object_t *o = &sc->objects[a->obj];
@@ -384,11 +415,74 @@ void tdc_r_pass_shade(rthread_t *t, rsample_t *s, int n)
         else if (m->unlit) /* the texture colour: no call into the lighting code */
             tdc_r_base_color(t->r, o, a->Q, a->NQ, t->tex_fw, a->col);
         else
-            shade_direct(t, a->obj, a->P, a->Q, a->N, a->NQ, rng_key(a), a->k, 0, a, a->col);
+            shade_direct(t, a->obj, a->P, a->Q, a->N, a->NQ, rng_key(a), a->k, 0, a, a->col,
+                         t->layers ? a->lshade : NULL);
         a->mirror = t->r->cfg.max_bounces > 0 ? m->mirror : 0;
+        a->rough = m->roughness;
+        if (t->layers && (uv_first[a->obj] || m->unlit)) copy3(a->lshade, a->col);
         if (a->mirror > 0)
             for (int c = 0; c < 3; c++) a->col[c] *= 1 - a->mirror;
+        if (t->layers) {
+            if (a->mirror > 0)
+                for (int c = 0; c < 3; c++) a->lshade[c] *= 1 - a->mirror;
+            layer_split(a);
+        }
     }
+}
+
+/* GGX (Trowbridge-Reitz) reflection, importance-sampled by the visible
+ * normals (Heitz 2018, "Sampling the GGX distribution of visible normals"):
+ * d = incoming direction (any length), N = unit normal facing the viewer,
+ * alpha = roughness, (u1, u2) in [0, 1)^2.  Writes the unit reflected
+ * direction to out (may alias d) and returns the estimator's weight
+ * f cos / pdf = G1(l) (Smith, separable; no Fresnel: the material's k
+ * scales it), or 0 when the sampled direction is below the surface. */
+double tdc_r_ggx_sample(const double d[3], const double N[3], double alpha, double u1, double u2, double out[3])
+{
+    double dl = sqrt(dot3(d, d));
+    double wo[3] = {-d[0] / dl, -d[1] / dl, -d[2] / dl};
+    /* tangent frame around N (Duff et al. 2017, branchless ONB) */
+    double sg = N[2] >= 0 ? 1.0 : -1.0, aa = -1.0 / (sg + N[2]), bb = N[0] * N[1] * aa;
+    double T[3] = {1 + sg * N[0] * N[0] * aa, sg * bb, -sg * N[0]};
+    double B[3] = {bb, sg + N[1] * N[1] * aa, -N[1]};
+    double vx = dot3(wo, T), vy = dot3(wo, B), vz = dot3(wo, N);
+    if (!(vz > 0)) return 0;
+    /* the view direction stretched to the unit-roughness configuration */
+    double hx = alpha * vx, hy = alpha * vy, hz = vz, hl = sqrt(hx * hx + hy * hy + hz * hz);
+    hx /= hl;
+    hy /= hl;
+    hz /= hl;
+    double lensq = hx * hx + hy * hy;
+    double t1x = 1, t1y = 0, t1z = 0;
+    if (lensq > 0) {
+        double il = 1 / sqrt(lensq);
+        t1x = -hy * il;
+        t1y = hx * il;
+    }
+    double t2x = hy * t1z - hz * t1y, t2y = hz * t1x - hx * t1z, t2z = hx * t1y - hy * t1x;
+    double rr = sqrt(u1), phi = 2 * M_PI * u2;
+    double p1 = rr * cos(phi), p2 = rr * sin(phi), sm = 0.5 * (1 + hz);
+    p2 = (1 - sm) * sqrt(1 - p1 * p1) + sm * p2;
+    double p3 = 1 - p1 * p1 - p2 * p2;
+    p3 = p3 > 0 ? sqrt(p3) : 0;
+    double nx = p1 * t1x + p2 * t2x + p3 * hx, ny = p1 * t1y + p2 * t2y + p3 * hy, nz = p1 * t1z + p2 * t2z + p3 * hz;
+    /* back to the roughness-alpha configuration: the microfacet normal */
+    double mx = alpha * nx, my = alpha * ny, mz = nz > 0 ? nz : 0, ml = sqrt(mx * mx + my * my + mz * mz);
+    if (!(ml > 0)) return 0;
+    mx /= ml;
+    my /= ml;
+    mz /= ml;
+    double m[3] = {mx * T[0] + my * B[0] + mz * N[0], mx * T[1] + my * B[1] + mz * N[1],
+                   mx * T[2] + my * B[2] + mz * N[2]};
+    double om = dot3(wo, m);
+    double l[3] = {2 * om * m[0] - wo[0], 2 * om * m[1] - wo[1], 2 * om * m[2] - wo[2]};
+    double lz = dot3(l, N);
+    if (!(lz > 0)) return 0;
+    /* G1(l) = 1 / (1 + Lambda(l)), Lambda = (sqrt(1 + alpha^2 tan^2) - 1) / 2 */
+    double t2 = (1 - lz * lz) / (lz * lz);
+    double g1 = 2 / (1 + sqrt(1 + alpha * alpha * t2));
+    copy3(out, l);
+    return g1;
 }
 
 void tdc_r_pass_reflect(rthread_t *t, rsample_t *s, int n)
@@ -413,8 +507,23 @@ void tdc_r_pass_reflect(rthread_t *t, rsample_t *s, int n)
             copy3(a->mQ[b], Q);
             copy3(a->mNQ[b], NQ);
             a->nmir = b + 1;
-            double dn = dot3(d, N);
-            for (int c = 0; c < 3; c++) d[c] -= 2 * dn * N[c];
+            double rough = b ? sc->materials[sc->objects[obj].material].roughness : a->rough;
+            if (rough > 0) {
+                /* glossy: one importance-sampled GGX direction (1 secondary
+                 * ray per pixel, Zeng §4.2), weight G1 of the sampled side */
+                uint32_t dim = 2u + 4u * (uint32_t)b;
+                double u1 = tdc_r_rand(t->r->cfg.seed, t->frame, rng_key(a), a->k, dim);
+                double u2 = tdc_r_rand(t->r->cfg.seed, t->frame, rng_key(a), a->k, dim + 1);
+                double g = tdc_r_ggx_sample(d, N, rough, u1, u2, d);
+                if (!(g > 0)) { /* sampled below the surface: the lobe's lost energy, no reflected hit */
+                    a->nmir = 0;
+                    break;
+                }
+                thr *= g;
+            } else {
+                double dn = dot3(d, N);
+                for (int c = 0; c < 3; c++) d[c] -= 2 * dn * N[c];
+            }
             /* start exactly at the mirror point (so the reflected MV geometry is
              * exact) and skip self-hits with tnear instead of a normal offset */
             double O[3] = {P[0], P[1], P[2]};
@@ -422,6 +531,8 @@ void tdc_r_pass_reflect(rthread_t *t, rsample_t *s, int n)
             int h = intersect(t, 0, O, d, offset_eps(P), INFINITY, TDC_RAY_REFLECT, &rh);
             if (h < 0) {
                 for (int c = 0; c < 3; c++) a->col[c] += thr * sc->background[c];
+                if (t->layers)
+                    for (int c = 0; c < 3; c++) a->refl[c] += thr * sc->background[c];
                 copy3(a->rdir, d);
                 break;
             }
@@ -429,15 +540,19 @@ void tdc_r_pass_reflect(rthread_t *t, rsample_t *s, int n)
             dist += rh.ray.tfar * sqrt(dot3(d, d));
             t->tex_fw = t->cone > 0 ? tdc_r_tex_footprint(t->cone, dist, d, NQ, t->cur->minv[h]) : 0;
             double loc[3];
-            shade_direct(t, h, P, Q, N, NQ, rng_key(a), a->k, 4u * (uint32_t)(b + 1), NULL, loc);
+            shade_direct(t, h, P, Q, N, NQ, rng_key(a), a->k, 4u * (uint32_t)(b + 1), NULL, loc, NULL);
             double m2 = sc->materials[sc->objects[h].material].mirror;
             obj = h;
             if (m2 > 0 && b + 1 < maxb) {
                 for (int c = 0; c < 3; c++) a->col[c] += thr * (1 - m2) * loc[c];
+                if (t->layers)
+                    for (int c = 0; c < 3; c++) a->refl[c] += thr * (1 - m2) * loc[c];
                 thr *= m2;
                 continue;
             }
             for (int c = 0; c < 3; c++) a->col[c] += thr * loc[c];
+            if (t->layers)
+                for (int c = 0; c < 3; c++) a->refl[c] += thr * loc[c];
             a->robj = h;
             copy3(a->rQ, Q);
             break;
@@ -685,12 +800,81 @@ static void mirror_chain2(const rthread_t *t, const rsample_t *a, double Vc[3], 
     }
 }
 
+/* Stochastic glossy MV (Zeng §4.2, eq. 5): the previous virtual image Vp
+ * of the reflected hit is seen through the previous primary plane (Pp, np)
+ * at s^C (projection mu = (xp, yp)); the pixels around it that reflect the
+ * same hit form a Gaussian region, found by intersecting the lobe with the
+ * plane: a cone of angular sigma sqrt(2) alpha (GGX's slope sigma alpha /
+ * sqrt(2), doubled by the reflection) around the line Vp -> s^C, its apex
+ * at d_h d_c / (d_h + d_c) before s^C (d_h: virtual image to s^C, d_c: s^C
+ * to the camera; the paper's apex at the virtual image is the d_c >> d_h
+ * limit: a pixel's reflected direction turns by the offset over d_h plus
+ * the offset over d_c).  The four axis endpoints are projected; their
+ * half-differences are the image half-axes (mvr_ax); the MV is mu +
+ * g1 ax1 + g2 ax2 - x with g1, g2 standard normal (Box-Muller from the
+ * sample's random numbers).  0 if the region cannot be formed. */
+static int glossy_region(const rthread_t *t, const rsample_t *a, const double Vp[3], double ax[4])
+{
+    const rframe_t *p = t->prev;
+    const rcam_t *cp = &p->cam;
+    int o = a->mobj[0];
+    double Pp[3], np[3];
+    tdc_r_xform_point(p->m[o], a->mQ[0], Pp);
+    tdc_r_xform_normal(p->nm[o], a->mNQ[0], np);
+    /* s^C: the line camera -> Vp through the plane */
+    double dv[3] = {Vp[0] - cp->pos[0], Vp[1] - cp->pos[1], Vp[2] - cp->pos[2]};
+    double den = dot3(dv, np);
+    if (!(fabs(den) > 1e-12 * sqrt(dot3(dv, dv)))) return 0;
+    double tt = ((Pp[0] - cp->pos[0]) * np[0] + (Pp[1] - cp->pos[1]) * np[1] + (Pp[2] - cp->pos[2]) * np[2]) / den;
+    if (!(tt > 0 && tt < 1)) return 0; /* the virtual image is not behind the reflector */
+    double sC[3] = {cp->pos[0] + tt * dv[0], cp->pos[1] + tt * dv[1], cp->pos[2] + tt * dv[2]};
+    double dc = tt * sqrt(dot3(dv, dv)), dh = (1 - tt) * sqrt(dot3(dv, dv));
+    double ua[3] = {-dv[0], -dv[1], -dv[2]}; /* cone axis: from the virtual image toward s^C and the camera */
+    double ul = sqrt(dot3(ua, ua));
+    for (int c = 0; c < 3; c++) ua[c] /= ul;
+    double deff = dh * dc / (dh + dc);
+    double A[3] = {sC[0] - deff * ua[0], sC[1] - deff * ua[1], sC[2] - deff * ua[2]};
+    /* e2 in the plane, across the axis; e1 across the axis in the plane of
+     * the axis and the normal (the major axis of the footprint) */
+    double e2[3] = {ua[1] * np[2] - ua[2] * np[1], ua[2] * np[0] - ua[0] * np[2], ua[0] * np[1] - ua[1] * np[0]};
+    double l2 = sqrt(dot3(e2, e2));
+    if (!(l2 > 1e-9)) { /* looking straight down the normal: any perpendicular pair */
+        double h[3] = {fabs(ua[0]) < 0.9 ? 1 : 0, fabs(ua[0]) < 0.9 ? 0 : 1, 0};
+        e2[0] = ua[1] * h[2] - ua[2] * h[1];
+        e2[1] = ua[2] * h[0] - ua[0] * h[2];
+        e2[2] = ua[0] * h[1] - ua[1] * h[0];
+        l2 = sqrt(dot3(e2, e2));
+    }
+    for (int c = 0; c < 3; c++) e2[c] /= l2;
+    double e1[3] = {e2[1] * ua[2] - e2[2] * ua[1], e2[2] * ua[0] - e2[0] * ua[2], e2[0] * ua[1] - e2[1] * ua[0]};
+    double tn = tan(sqrt(2.0) * a->rough);
+    double img[4][2];
+    for (int k = 0; k < 4; k++) {
+        const double *e = k < 2 ? e1 : e2;
+        double sg = k & 1 ? -tn : tn;
+        double dr[3] = {ua[0] + sg * e[0], ua[1] + sg * e[1], ua[2] + sg * e[2]};
+        double dd = dot3(dr, np);
+        if (!(fabs(dd) > 1e-12)) return 0;
+        double u = ((Pp[0] - A[0]) * np[0] + (Pp[1] - A[1]) * np[1] + (Pp[2] - A[2]) * np[2]) / dd;
+        if (!(u > 0)) return 0; /* the lobe edge runs along the plane (grazing) */
+        double X[3] = {A[0] + u * dr[0], A[1] + u * dr[1], A[2] + u * dr[2]};
+        if (tdc_r_project(cp, X, &img[k][0], &img[k][1]) < 0) return 0;
+    }
+    ax[0] = 0.5 * (img[0][0] - img[1][0]);
+    ax[1] = 0.5 * (img[0][1] - img[1][1]);
+    ax[2] = 0.5 * (img[2][0] - img[3][0]);
+    ax[3] = 0.5 * (img[2][1] - img[3][1]);
+    return 1;
+}
+
 void tdc_r_pass_mv_reflect(rthread_t *t, rsample_t *s, int n)
 {
     ncache_t ncache = {.o = -1};
+    int subst = t->r->cfg.reflect_mv; /* the single-layer MV takes the reflected one where k >= 0.5 */
     for (int i = 0; i < n; i++) {
         rsample_t *a = &s[i];
-        if (a->nmir == 0 || a->mirror < 0.5) continue;
+        a->mvr_ok = 0;
+        if (a->nmir == 0 || (a->mirror < 0.5 && !t->layers)) continue;
         double Vc[3], Vp[3], xc, yc, xp, yp;
         int dir_only = a->robj < 0, ok;
         if (dir_only) {
@@ -746,8 +930,27 @@ void tdc_r_pass_mv_reflect(rthread_t *t, rsample_t *s, int n)
             ok = tdc_r_project(&t->cur->cam, Vc, &xc, &yc) == 0 && tdc_r_project(&t->prev->cam, Vp, &xp, &yp) == 0;
 #endif
         if (!ok) continue; /* virtual image behind a camera: keep the primary MV */
-        a->mv[0] = xp - xc;
-        a->mv[1] = yp - yc;
+        if (a->rough > 0 && !dir_only) {
+            if (!glossy_region(t, a, Vp, a->mvr_ax)) continue;
+            double u1 = tdc_r_rand(t->r->cfg.seed, t->frame, rng_key(a), a->k, 14);
+            double u2 = tdc_r_rand(t->r->cfg.seed, t->frame, rng_key(a), a->k, 15);
+            double rr = sqrt(-2 * log(1 - u1)), g1 = rr * cos(2 * M_PI * u2), g2 = rr * sin(2 * M_PI * u2);
+            a->mvr_mu[0] = xp - a->xc;
+            a->mvr_mu[1] = yp - a->yc;
+            a->mvr[0] = a->mvr_mu[0] + g1 * a->mvr_ax[0] + g2 * a->mvr_ax[2];
+            a->mvr[1] = a->mvr_mu[1] + g1 * a->mvr_ax[1] + g2 * a->mvr_ax[3];
+        } else {
+            /* mirror (or a glossy reflection of the sky: directions only, no region) */
+            a->mvr[0] = a->mvr_mu[0] = xp - xc;
+            a->mvr[1] = a->mvr_mu[1] = yp - yc;
+            a->mvr_ax[0] = a->mvr_ax[1] = a->mvr_ax[2] = a->mvr_ax[3] = 0;
+        }
+        a->mvr_ok = 1;
+        if (!subst || a->mirror < 0.5) continue;
+        a->mvsurf[0] = a->mv[0];
+        a->mvsurf[1] = a->mv[1];
+        a->mv[0] = a->mvr[0];
+        a->mv[1] = a->mvr[1];
         a->refl_used = 1;
     }
 }
@@ -816,6 +1019,23 @@ void tdc_r_pass_mv_dual(rthread_t *t, rsample_t *s, int n)
         a->mvd[1] = a->mv[1];
         a->disocc = 0;
         if (!a->mv_valid) continue;
+        if (t->ndual_rect >= 0 && (a->obj < 0 || !t->r->obj_moved[a->obj])) {
+            /* still camera, still surface (or sky): the previous ray at y = x
+             * is this sample's primary ray in a scene whose still objects are
+             * unchanged, so it sees the same point unless a moving object
+             * covered the pixel; outside their previous screen rectangles it
+             * did not, and the ray would only confirm "same" */
+            float px = a->x, py = a->y;
+            int inside = 0;
+            for (int k = 0; k < t->ndual_rect && !inside; k++) {
+                const float *b = t->dual_rect[k];
+                inside = px >= b[0] && px <= b[2] && py >= b[1] && py <= b[3];
+            }
+            if (!inside) {
+                t->dual_culled++;
+                continue;
+            }
+        }
         double y[2] = {a->xc + a->mv[0], a->yc + a->mv[1]};
         if (a->refl_used) { /* dual MVs are for primary visibility: use the primary correspondence */
             if (a->obj < 0 || track_point(t, a->obj, a->Q, &a->xc, &a->yc, &y[0], &y[1]) < 0) continue;

@@ -38,6 +38,14 @@ typedef struct {
     double mQ[TDC_R_MAX_BOUNCES][3], mNQ[TDC_R_MAX_BOUNCES][3];
     int robj; /* final reflected object, -1 = miss */
     double rQ[3], rdir[3];
+    /* glossy reflection (Zeng §4.2): GGX alpha of the primary surface, the
+     * reflected / stochastic glossy MV (eq. 5) with its centre and the image
+     * half-axes of its Gaussian, and the primary MV it may replace in mv */
+    double rough;
+    double mvr[2], mvr_mu[2], mvr_ax[4], mvsurf[2];
+    int mvr_ok;
+    /* layers (Zeng §4): unshadowed local shading, visibility, reflection */
+    double lshade[3], vis, refl[3];
 } rsample_t;
 
 typedef struct {
@@ -51,6 +59,14 @@ typedef struct {
     int track_blockers;              /* shadow rays return the blocker (shadow MVs) */
     double cone;                     /* ray-cone spread angle of one sample, rad (0: point-sampled textures) */
     double tex_fw;                   /* texture footprint of the surface being shaded (tdc_r_tex_footprint) */
+    int layers;                      /* fill the layer fields (unshadowed shading, visibility, reflection, mvr) */
+    /* dual MVs under a still camera: screen rectangles (x0, y0, x1, y1) of
+     * the moving objects in the previous frame; a still surface whose pixel
+     * is outside all of them cannot have been occluded (no ray).  ndual_rect
+     * < 0: no culling (camera moved, or a moving object behind the camera) */
+    int ndual_rect;
+    float dual_rect[TDC_SCENE_MAX_OBJECTS][4];
+    uint64_t dual_culled; /* samples the rectangles spared a ray */
     uint64_t ticks[TDC_STAGE_COUNT]; /* stage time in stamp() ticks (tdc_render_frame.c) */
     uint64_t rays[TDC_RAY_KIND_COUNT];
     int record;
@@ -65,6 +81,7 @@ void tdc_r_pass_mv(rthread_t *t, rsample_t *s, int n);
 void tdc_r_pass_mv_reflect(rthread_t *t, rsample_t *s, int n);
 void tdc_r_pass_mv_shadow(rthread_t *t, rsample_t *s, int n);
 void tdc_r_pass_mv_dual(rthread_t *t, rsample_t *s, int n);
+double tdc_r_ggx_sample(const double d[3], const double N[3], double alpha, double u1, double u2, double out[3]);
 double tdc_r_rand(uint32_t seed, uint32_t frame, uint32_t dst, uint32_t k, uint32_t dim);
 double tdc_r_now_ms(void);
 

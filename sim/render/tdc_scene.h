@@ -33,6 +33,7 @@ typedef struct {
     double diffuse[3]; /* albedo (linear), or radiance when unlit */
     double color2[3];  /* second texture colour */
     double mirror;     /* reflectivity 0..1 (0 = no reflection ray) */
+    double roughness;  /* GGX alpha of the reflection lobe, [0, 1]: 0 = perfect mirror (Zeng §4.2) */
     int unlit;         /* 1: radiance = texture colour, no lighting, no shadows */
     tdc_tex_kind_t tex;
     double tex_scale; /* world units (object space) */
@@ -122,7 +123,7 @@ tdc_scene_status_t tdc_scene_parse(const char *text, const char *src_name, const
                                    char *err, size_t errlen);
 /* Reads and parses a scene file. */
 tdc_scene_status_t tdc_scene_load(const char *path, tdc_scene_t *s, char *err, size_t errlen);
-/* Built-in scenes (discs, text, panorama, room, mirror, fence, bigmesh). */
+/* Built-in scenes (discs, text, panorama, room, mirror, fence, bigmesh, glossy, blocker). */
 tdc_scene_status_t tdc_scene_builtin(const char *name, tdc_scene_t *s, char *err, size_t errlen);
 /* The text of a built-in scene (NULL if unknown), and the list of names. */
 const char *tdc_scene_builtin_text(const char *name);

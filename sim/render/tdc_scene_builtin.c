@@ -12,6 +12,12 @@
  *   fence     fence moving in front of a light, its shadow moving over a
  *             static floor (Zeng et al. Fig. 1/10)
  *   bigmesh   generated heightfield of 524288 triangles, camera pan (throughput)
+ *   glossy    glossy (GGX, roughness 0.08) checkered floor reflecting a moving
+ *             ball and a turning cube, still camera (Zeng §4.2, Fig. 11)
+ *   blocker   a block moving and turning under a small area light (one
+ *             shadow ray per pixel) over a textured floor, in front of a
+ *             striped wall, still camera: a moving soft shadow and
+ *             disocclusions (Zeng §4.1, §4.3)
  */
 #include "tdc_scene.h"
 
@@ -159,13 +165,55 @@ static const char scene_bigmesh[] = "tdc-scene 1\n"
                                     "object land heightfield size 40 40 cells 512 amplitude 1.5 material terrain\n"
                                     "light sun point pos 10 30 10 intensity 1100 1050 1000\n";
 
-const char *const tdc_scene_builtin_names[] = {"discs", "text", "panorama", "room", "mirror", "fence", "bigmesh"};
-const int tdc_scene_builtin_count = 7;
+static const char scene_glossy[] = "tdc-scene 1\n"
+                                   "name glossy\n"
+                                   "resolution 640 360\n"
+                                   "fps 240\n"
+                                   "duration 2\n"
+                                   "background 0.3 0.4 0.6\n"
+                                   "ambient 0.1 0.1 0.1\n"
+                                   "material floor diffuse 0.3 0.3 0.3 checker 0.5 0.12 0.12 0.12 mirror 0.6 roughness 0.08\n"
+                                   "material ball diffuse 0.9 0.2 0.1 checker 0.25 0.95 0.95 0.9\n"
+                                   "material cube diffuse 0.1 0.3 0.9\n"
+                                   "material wall diffuse 0.8 0.8 0.8 stripes 0.5 0.2 0.2 0.2\n"
+                                   "camera 0 pos 0 1.6 5 look 0 0.4 0 fov 45\n"
+                                   "object floor rect size 10 10 material floor rot -90 0 0\n"
+                                   "object wall rect size 10 4 material wall pos 0 2 -4\n"
+                                   "object ball sphere radius 0.5 material ball pos -2.5 0.7 0\n"
+                                   "key ball 0 pos -2.5 0.7 0 rot 0 0 0\n"
+                                   "key ball 1 pos 0 1.2 0.5 rot 0 0 -180\n"
+                                   "key ball 2 pos 2.5 0.7 0 rot 0 0 -360\n"
+                                   "object cube box size 0.6 0.6 0.6 material cube pos 1.5 0.5 -1.5\n"
+                                   "key cube 0 rot 0 0 0\n"
+                                   "key cube 2 rot 0 180 0\n"
+                                   "light sun point pos 2 6 4 intensity 50 50 48\n";
+
+static const char scene_blocker[] = "tdc-scene 1\n"
+                                    "name blocker\n"
+                                    "resolution 640 360\n"
+                                    "fps 240\n"
+                                    "duration 2\n"
+                                    "background 0.05 0.05 0.08\n"
+                                    "ambient 0.1 0.1 0.1\n"
+                                    "material ground diffuse 0.8 0.8 0.78 checker 0.5 0.45 0.45 0.43\n"
+                                    "material wall diffuse 0.7 0.7 0.7 stripes 0.4 0.35 0.35 0.35\n"
+                                    "material block diffuse 0.2 0.5 0.8\n"
+                                    "camera 0 pos 0 3 6 look 0 0.6 0 fov 45\n"
+                                    "object floor rect size 12 12 material ground rot -90 0 0\n"
+                                    "object wall rect size 12 4 material wall pos 0 2 -3\n"
+                                    "object block box size 0.8 0.8 0.8 material block pos -2 1 0.5\n"
+                                    "key block 0 pos -2 1 0.5 rot 0 0 0\n"
+                                    "key block 2 pos 2 1 0.5 rot 0 90 0\n"
+                                    "light panel rect pos 0 4 1 u 0.6 0 0 v 0 0 0.6 intensity 30 30 29 samples 1\n";
+
+const char *const tdc_scene_builtin_names[] = {"discs",  "text",  "panorama", "room",   "mirror",
+                                               "fence",  "bigmesh", "glossy", "blocker"};
+const int tdc_scene_builtin_count = 9;
 
 const char *tdc_scene_builtin_text(const char *name)
 {
-    static const char *const texts[] = {scene_discs,  scene_text,  scene_panorama, scene_room,
-                                        scene_mirror, scene_fence, scene_bigmesh};
+    static const char *const texts[] = {scene_discs, scene_text,    scene_panorama, scene_room,   scene_mirror,
+                                        scene_fence, scene_bigmesh, scene_glossy,   scene_blocker};
     for (int i = 0; i < tdc_scene_builtin_count; i++)
         if (!strcmp(name, tdc_scene_builtin_names[i])) return texts[i];
     return NULL;
@@ -175,7 +223,7 @@ tdc_scene_status_t tdc_scene_builtin(const char *name, tdc_scene_t *s, char *err
 {
     const char *text = tdc_scene_builtin_text(name);
     if (!text) {
-        snprintf(err, errlen, "unknown built-in scene '%s' (discs text panorama room mirror fence bigmesh)", name);
+        snprintf(err, errlen, "unknown built-in scene '%s' (discs text panorama room mirror fence bigmesh glossy blocker)", name);
         return TDC_SCENE_ERR_UNKNOWN;
     }
     char src[64];

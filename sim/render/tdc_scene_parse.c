@@ -130,7 +130,7 @@ static int nonneg3(pctx_t *c, const double *v, const char *what)
     return 0;
 }
 
-/* material NAME [diffuse R G B] [mirror K] [unlit] [checker|stripes S R G B]
+/* material NAME [diffuse R G B] [mirror K [roughness A]] [unlit] [checker|stripes S R G B]
  *          [text "STR" S R G B] [skyline S R G B] */
 static int parse_material(pctx_t *c, tdc_scene_t *s, char **tok, int n)
 {
@@ -151,6 +151,11 @@ static int parse_material(pctx_t *c, tdc_scene_t *s, char **tok, int n)
         } else if (!strcmp(k, "mirror")) {
             if (num(c, tok, n, i + 1, &m->mirror) < 0) return -1;
             if (m->mirror < 0 || m->mirror > 1) return fail(c, "mirror reflectivity must be in [0, 1]");
+            i += 2;
+        } else if (!strcmp(k, "roughness")) {
+            /* GGX alpha of the reflection lobe; needs a reflectivity (checked below) */
+            if (num(c, tok, n, i + 1, &m->roughness) < 0) return -1;
+            if (!(m->roughness >= 0 && m->roughness <= 1)) return fail(c, "roughness must be in [0, 1]");
             i += 2;
         } else if (!strcmp(k, "unlit")) {
             m->unlit = 1;
@@ -178,6 +183,7 @@ static int parse_material(pctx_t *c, tdc_scene_t *s, char **tok, int n)
             return fail(c, "unknown material attribute '%s'", k);
         }
     }
+    if (m->roughness > 0 && !(m->mirror > 0)) return fail(c, "roughness needs a reflectivity (mirror K > 0)");
     s->nmaterials++;
     return 0;
 }

@@ -25,7 +25,7 @@ static void usage(FILE *f)
                "Simulates display modes through the whole data path (renderer -> link encoder ->\n"
                "firmware via the link decoder -> panel -> eye -> metrics vs ground truth).\n\n"
                "  -R, --renderer SCENE    use the Embree renderer (sim/render): a built-in renderer scene\n"
-               "                          (discs text panorama room mirror fence bigmesh) or a scene file\n"
+               "                          (discs text panorama room mirror fence bigmesh glossy blocker) or a scene file\n"
                "      --threads N         threads of the renderer and of the simulator's own stages (source,\n"
                "                          eye, metrics; default 2); results do not depend on it\n"
                "      --image FILE        pan/zoom/rotate across a photograph (PNG or JPEG; exact area-sampled\n"

@@ -133,18 +133,6 @@ int tdc_sim_send_full(sim_mode_t *m, uint32_t lf, const uint8_t *rgb)
     return st;
 }
 
-double tdc_sim_sample8(const uint8_t *img, int w, int h, double x, double y, int c)
-{
-    x = x < 0 ? 0 : (x > w - 1 ? w - 1 : x);
-    y = y < 0 ? 0 : (y > h - 1 ? h - 1 : y);
-    int x0 = (int)x, y0 = (int)y;
-    int x1 = x0 + 1 < w ? x0 + 1 : x0, y1 = y0 + 1 < h ? y0 + 1 : y0;
-    double fx = x - x0, fy = y - y0;
-    double a = img[3 * ((size_t)y0 * w + x0) + c], b = img[3 * ((size_t)y0 * w + x1) + c];
-    double d = img[3 * ((size_t)y1 * w + x0) + c], e = img[3 * ((size_t)y1 * w + x1) + c];
-    return (a + (b - a) * fx) * (1 - fy) + (d + (e - d) * fx) * fy;
-}
-
 uint8_t tdc_sim_to8(double v)
 {
     v += 0.5;

@@ -148,8 +148,7 @@ int tdc_sim_send_full(sim_mode_t *m, uint32_t lf, const uint8_t *rgb);
 #define TDC_SIM_LINK_FULL(m) ((m)->link->full[(m)->eye])
 #define TDC_SIM_LINK_REDUCED_BUF(m) ((m)->link->reduced[(m)->eye])
 
-/* Bilinear sample of an RGB888 image at pixel-centre coordinates. */
-double tdc_sim_sample8(const uint8_t *img, int w, int h, double x, double y, int c);
+/* Rounds and clamps to a code (bilinear samples of codes: tdc_bilinear_u8). */
 uint8_t tdc_sim_to8(double v);
 
 #endif

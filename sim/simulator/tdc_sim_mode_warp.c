@@ -13,6 +13,7 @@
 
 #include "simulator/tdc_sim_blockmatch.h"
 #include "simulator/tdc_sim_mode.h"
+#include "tdc_bilinear.h"
 
 enum { WARP_ASW, WARP_TAA, WARP_ASW_EST };
 
@@ -66,7 +67,7 @@ static void warp_by_mv(const sim_mode_t *m, const uint8_t *src, const int16_t *m
             size_t i = (size_t)y * m->w + x;
             double sx = x + mv[2 * i] / 16.0, sy = y + mv[2 * i + 1] / 16.0;
             for (int c = 0; c < 3; c++) {
-                dst[3 * i + c] = tdc_sim_to8(tdc_sim_sample8(src, m->w, m->h, sx, sy, c));
+                dst[3 * i + c] = tdc_sim_to8(tdc_bilinear_u8(src, m->w, m->h, 3, sx, sy, c));
             }
         }
     }
@@ -96,7 +97,7 @@ static void taa_resolve(sim_mode_t *m, warp_state_t *st)
                     }
                 }
                 double hv =
-                    tdc_sim_sample8(st->hist, m->w, m->h, x + st->mv[2 * i] / 16.0, y + st->mv[2 * i + 1] / 16.0, c);
+                    tdc_bilinear_u8(st->hist, m->w, m->h, 3, x + st->mv[2 * i] / 16.0, y + st->mv[2 * i + 1] / 16.0, c);
                 hv = hv < lo ? lo : (hv > hi ? hi : hv);
                 st->tmp[3 * i + c] = tdc_sim_to8(0.9 * hv + 0.1 * cur);
             }

@@ -15,6 +15,7 @@
 #include "simulator/tdc_sim.h"
 #include "simulator/tdc_sim_link.h"
 #include "simulator/tdc_sim_mode.h"
+#include "tdc_bilinear.h"
 #include "tdc_panels.h"
 #include "tdc_par.h"
 
@@ -50,18 +51,28 @@ static double wall_now(void)
 /* What one evaluation instant needs, shared by every mode (modes are
  * evaluated one after another, so one set of buffers serves all). */
 typedef struct {
-    double *gt;                   /* ground truth of the eye being evaluated (cropped at once) */
-    double *crop_g[2], *enc_g[2]; /* per eye: the ground truth's crop, encoded */
+    double *gt;             /* ground truth of the eye being evaluated (cropped at once) */
+    double *crop_g, *enc_g; /* that eye's ground truth: crop, encoded */
+    /* the ground truth's half of SSIM and FLIP, computed once per eye and
+     * instant and shared by every mode (eyes are evaluated one after another) */
+    tdc_ssim_ref_t ssim_g;
+    tdc_flip_ref_t flip_g;
     double *scratch, *perc, *crop_p, *enc_p, *err, *flipmap, *rows;
-    double *xy; /* sample positions (render calls are sequential too) */
+    double *xy;   /* sample positions (render calls are sequential too) */
+    char *series; /* one series line per mode and eye, written in mode order */
+    void *mwork;  /* the metrics' scratch (SSIM and FLIP in turn), kept across calls */
 } sim_eval_t;
+
+#define SERIES_LINE 192
 
 static void eval_free(sim_eval_t *e)
 {
-    for (int k = 0; k < 2; k++) {
-        free(e->crop_g[k]);
-        free(e->enc_g[k]);
-    }
+    free(e->crop_g);
+    free(e->enc_g);
+    tdc_ssim_ref_free(&e->ssim_g);
+    tdc_flip_ref_free(&e->flip_g);
+    free(e->series);
+    free(e->mwork);
     free(e->gt);
     free(e->scratch);
     free(e->perc);
@@ -73,15 +84,16 @@ static void eval_free(sim_eval_t *e)
     free(e->xy);
 }
 
-static int eval_alloc(sim_eval_t *e, int w, int h, int eyes)
+static int eval_alloc(sim_eval_t *e, int w, int h, int nseries)
 {
     size_t n3 = (size_t)w * h * 3;
     memset(e, 0, sizeof(*e));
     int bad = 0;
-    for (int k = 0; k < eyes; k++) {
-        bad |= !(e->crop_g[k] = malloc(sizeof(double) * n3));
-        bad |= !(e->enc_g[k] = malloc(sizeof(double) * n3));
-    }
+    bad |= !(e->crop_g = malloc(sizeof(double) * n3));
+    bad |= !(e->enc_g = malloc(sizeof(double) * n3));
+    bad |= !(e->series = calloc((size_t)nseries, SERIES_LINE));
+    size_t ws = tdc_ssim_work_bytes(w, h), wf = tdc_flip_work_bytes(w, h);
+    bad |= !(e->mwork = malloc(ws > wf ? ws : wf));
     bad |= !(e->gt = malloc(sizeof(double) * n3));
     bad |= !(e->scratch = malloc(sizeof(double) * n3));
     bad |= !(e->perc = malloc(sizeof(double) * n3));
@@ -306,25 +318,11 @@ static void progress(double frac, const char *label)
     fflush(stderr);
 }
 
-/* tdc_eye_bilinear of a float image (the last instant's error, kept in
- * single precision: 4 bytes per sample per mode and eye instead of 8). */
-static double bilinear_f(const float *img, int w, int h, double x, double y, int c)
-{
-    x = x < 0.0 ? 0.0 : (x > w - 1 ? w - 1 : x);
-    y = y < 0.0 ? 0.0 : (y > h - 1 ? h - 1 : y);
-    int x0 = (int)x, y0 = (int)y;
-    int x1 = x0 + 1 < w ? x0 + 1 : x0, y1 = y0 + 1 < h ? y0 + 1 : y0;
-    double fx = x - x0, fy = y - y0;
-    double a = img[3 * ((size_t)y0 * w + x0) + c], b = img[3 * ((size_t)y0 * w + x1) + c];
-    double d = img[3 * ((size_t)y1 * w + x0) + c], e = img[3 * ((size_t)y1 * w + x1) + c];
-    return (a + (b - a) * fx) * (1.0 - fy) + (d + (e - d) * fx) * fy;
-}
-
 /* Perceived error of one mode's eye at te against that eye's ground truth
  * (already cropped and encoded in ev); accumulates into m. */
 static void eval_mode_eye(sim_mode_t *m, sim_eval_t *ev, const tdc_eye_cfg_t *ec, const tdc_sim_config_t *cfg, long j,
                           double te, double prev_te, const double v[2], const double gaze[2], int margin, int cw, int ch,
-                          int strip_at, FILE *series, tdc_sim_times_t *tm)
+                          int strip_at, char *series, tdc_sim_times_t *tm)
 {
     tdc_sim_result_t *r = m->res;
     int w = m->w, h = m->h;
@@ -349,10 +347,10 @@ static void eval_mode_eye(sim_mode_t *m, sim_eval_t *ev, const tdc_eye_cfg_t *ec
     r->nonfinite |= nonfinite;
     crop_copy(ev->perc, w, margin, margin, cw, ch, ev->crop_p);
     tdc_metrics_encode(ev->crop_p, ev->enc_p, cn);
-    const double *enc_g = ev->enc_g[m->eye], *crop_g = ev->crop_g[m->eye];
+    const double *enc_g = ev->enc_g, *crop_g = ev->crop_g;
     double psnr = tdc_psnr(ev->enc_p, enc_g, cn, 1.0);
-    double ssim = tdc_ssim(ev->enc_p, enc_g, cw, ch, 1.0);
-    double flip = tdc_flip(crop_g, ev->crop_p, cw, ch, cfg->flip_ppd, ev->flipmap);
+    double ssim = tdc_ssim_vs(&ev->ssim_g, ev->enc_p, 1.0, ev->mwork);
+    double flip = tdc_flip_vs(&ev->flip_g, ev->crop_p, ev->flipmap, ev->mwork);
     if (psnr < 0.0 || ssim < -1.0 || flip < 0.0) {
         tdc_sim_stage(m, "metrics (out of memory or size beyond the filters)", -1);
         return;
@@ -373,7 +371,7 @@ static void eval_mode_eye(sim_mode_t *m, sim_eval_t *ev, const tdc_eye_cfg_t *ec
             double se = 0.0;
             for (int x = 0; x < cw; x++) {
                 for (int c = 0; c < 3; c++) {
-                    double pe = bilinear_f(m->err_prev, cw, ch, x + sx, y + sy, c);
+                    double pe = tdc_bilinear_f(m->err_prev, cw, ch, 3, x + sx, y + sy, c);
                     double d = ev->err[3 * ((size_t)y * cw + x) + c] - pe;
                     se += d * d;
                 }
@@ -418,8 +416,8 @@ static void eval_mode_eye(sim_mode_t *m, sim_eval_t *ev, const tdc_eye_cfg_t *ec
     static const char *const eye_tag[2] = {".L", ".R"};
     const char *tag = m->eyes == 2 ? eye_tag[m->eye] : "";
     if (series) {
-        fprintf(series, "%s%s,%ld,%.6f,%.4f,%.6f,%.6f,%s%.4f\n", r->desc->name, tag, j, te, psnr, ssim, flip,
-                isnan(flick) ? "" : "", isnan(flick) ? 0.0 : flick);
+        snprintf(series, SERIES_LINE, "%s%s,%ld,%.6f,%.4f,%.6f,%.6f,%s%.4f\n", r->desc->name, tag, j, te, psnr, ssim,
+                 flip, isnan(flick) ? "" : "", isnan(flick) ? 0.0 : flick);
     }
     if (j == strip_at && cfg->outdir) {
         char name[96];
@@ -468,7 +466,7 @@ int tdc_sim_run(const tdc_sim_config_t *cfg, tdc_source_t *src, const tdc_mode_d
     }
     sim_mode_t *ms = calloc((size_t)nmodes * eyes, sizeof(sim_mode_t));
     sim_eval_t ev;
-    if (!ms || eval_alloc(&ev, w, h, eyes)) {
+    if (!ms || eval_alloc(&ev, w, h, nmodes * eyes)) {
         fprintf(stderr, "tdc-sim: out of memory for %dx%d x %d eye(s)\n", w, h, eyes);
         free(ms);
         eval_free(&ev);
@@ -552,25 +550,43 @@ int tdc_sim_run(const tdc_sim_config_t *cfg, tdc_source_t *src, const tdc_mode_d
          * instants (the temporal model's retinal coordinates) */
         gaze[0] += v[0] * cfg->pursuit_gain * (te - prev_te);
         gaze[1] += v[1] * cfg->pursuit_gain * (te - prev_te);
-        for (int e = 0; e < eyes; e++) {
+        /* eye by eye: its ground truth and the ground truth's half of the
+         * metrics once, then every mode against it */
+        for (int e = 0; e < eyes && rc == 0; e++) {
             double w0 = wall_now();
             tdc_eye_ground_truth(&ec, srcs[e], te, v, gt_steps, ev.gt, ev.scratch);
             double w1 = wall_now();
-            crop_copy(ev.gt, w, margin, margin, cw, ch, ev.crop_g[e]);
-            tdc_metrics_encode(ev.crop_g[e], ev.enc_g[e], (size_t)cw * ch * 3);
+            crop_copy(ev.gt, w, margin, margin, cw, ch, ev.crop_g);
+            tdc_metrics_encode(ev.crop_g, ev.enc_g, (size_t)cw * ch * 3);
+            if (tdc_ssim_prepare(&ev.ssim_g, ev.enc_g, cw, ch, ev.mwork) ||
+                tdc_flip_prepare(&ev.flip_g, ev.crop_g, cw, ch, cfg->flip_ppd, ev.mwork)) {
+                fprintf(stderr, "tdc-sim: metrics of the ground truth: out of memory or size beyond the filters\n");
+                rc = -1;
+                break;
+            }
             if (tm) {
                 tm->source_s += w1 - w0;
                 tm->metrics_s += wall_now() - w1;
             }
+            for (int i = 0; i < nmodes && rc == 0; i++) {
+                if (!results[i].available) {
+                    continue;
+                }
+                sim_mode_t *m = &ms[i * eyes + e];
+                char *line = series ? ev.series + (size_t)(i * eyes + e) * SERIES_LINE : NULL;
+                if (line) {
+                    line[0] = 0;
+                }
+                eval_mode_eye(m, &ev, &ec, cfg, j, te, prev_te, v, gaze, margin, cw, ch, strip_at, line, tm);
+                rc = m->failed ? -1 : 0;
+            }
         }
-        for (int i = 0; i < nmodes && rc == 0; i++) {
+        for (int i = 0; i < nmodes; i++) {
             if (!results[i].available) {
                 continue;
             }
-            for (int e = 0; e < eyes && rc == 0; e++) {
-                sim_mode_t *m = &ms[i * eyes + e];
-                eval_mode_eye(m, &ev, &ec, cfg, j, te, prev_te, v, gaze, margin, cw, ch, strip_at, series, tm);
-                rc = m->failed ? -1 : 0;
+            for (int e = 0; e < eyes && series; e++) {
+                fputs(ev.series + (size_t)(i * eyes + e) * SERIES_LINE, series);
             }
             results[i].evals++;
         }

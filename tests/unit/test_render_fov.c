@@ -52,7 +52,7 @@ static void run_scene(const char *name)
     uint8_t *lp = malloc(W * H * 3), *disk = malloc(W * H * 3), *out = malloc(W * H * 3), *ref = malloc(W * H * 3);
     uint8_t *code = malloc(W * H * 3);
     for (uint32_t f = 3; f < 6; f++) {
-        tdc_render_out_t o = {full, fmv, NULL, NULL, NULL, NULL, NULL};
+        tdc_render_out_t o = {.rgb = full, .mv = fmv};
         tdc_render_stats_t st;
         assert_int_equal(tdc_render_frame(r, f, TDC_RENDER_FULL, &o, &st), 0);
         tdc_render_fov_t fv = {W * (0.3 + 0.15 * (f - 3)), H * (0.6 - 0.1 * (f - 3)), 4, 0.555, 0.12443, 0, 0};
@@ -69,7 +69,7 @@ static void run_scene(const char *name)
         tdc_render_output_size(r, TDC_RENDER_FOVEATED, &ow, &oh);
         assert_int_equal(ow, nlp + nd);
         assert_int_equal(oh, 1);
-        tdc_render_out_t so = {samp, smv, NULL, NULL, NULL, NULL, NULL};
+        tdc_render_out_t so = {.rgb = samp, .mv = smv};
         assert_int_equal(tdc_render_frame(r, f, TDC_RENDER_FOVEATED, &so, &st), 0);
         assert_int_equal(st.rays[TDC_RAY_PRIMARY], (uint64_t)(nlp + nd));
         /* disk samples == FULL pixels, bit for bit */

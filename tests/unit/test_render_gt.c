@@ -103,6 +103,56 @@ static void test_same_seed_same_bytes(void **state)
     tdc_render_close(r2);
 }
 
+/* Glossy reflections and layers (issue 16): one GGX sample per pixel and
+ * the stochastic glossy MVs are keyed by the seed, so 1 and 2 threads give
+ * the same bytes of every layer, and another seed other bytes. */
+static void render_layers(tdc_render_t *r, uint32_t f, tdc_render_mode_t m, float *rgb, float *sh, float *vis,
+                          float *refl, int16_t *mr, int16_t *ms, uint8_t *src)
+{
+    tdc_render_out_t out = {0};
+    out.rgb = rgb;
+    out.shade = sh;
+    out.vis = vis;
+    out.refl = refl;
+    out.mv_refl = mr;
+    out.mv_surf = ms;
+    out.shadow_src = src;
+    assert_int_equal(tdc_render_frame(r, f, m, &out, NULL), 0);
+}
+
+static void test_glossy_layers_deterministic(void **state)
+{
+    (void)state;
+    char text[2048];
+    const char *g = strstr(scene_mix, "mirror 0.8\n");
+    assert_non_null(g);
+    snprintf(text, sizeof text, "%.*smirror 0.8 roughness 0.2%s", (int)(g - scene_mix), scene_mix,
+             g + strlen("mirror 0.8"));
+    static float a[6][W * H * 3], b[6][W * H * 3];
+    static int16_t am[2][W * H * 2], bm[2][W * H * 2];
+    static uint8_t as[W * H], bs[W * H];
+    const tdc_render_mode_t modes[] = {TDC_RENDER_FULL, TDC_RENDER_SUBFRAME};
+    for (int i = 0; i < 2; i++) {
+        tdc_render_t *r1 = open_cfg(text, 1, 7, 9), *r2 = open_cfg(text, 2, 7, 9);
+        for (uint32_t f = 2; f < 5; f++) {
+            render_layers(r1, f, modes[i], a[0], a[1], a[2], a[3], am[0], am[1], as);
+            render_layers(r2, f, modes[i], b[0], b[1], b[2], b[3], bm[0], bm[1], bs);
+            for (int k = 0; k < 4; k++) assert_memory_equal(a[k], b[k], sizeof a[k]);
+            for (int k = 0; k < 2; k++) assert_memory_equal(am[k], bm[k], sizeof am[k]);
+            assert_memory_equal(as, bs, sizeof as);
+        }
+        tdc_render_close(r1);
+        tdc_render_close(r2);
+    }
+    tdc_render_t *r1 = open_cfg(text, 2, 7, 9), *r2 = open_cfg(text, 2, 8, 9);
+    render_layers(r1, 3, TDC_RENDER_FULL, a[0], a[1], a[2], a[3], am[0], am[1], as);
+    render_layers(r2, 3, TDC_RENDER_FULL, b[0], b[1], b[2], b[3], bm[0], bm[1], bs);
+    assert_true(memcmp(a[3], b[3], sizeof a[3]) != 0);   /* the glossy layer's GGX samples */
+    assert_true(memcmp(am[0], bm[0], sizeof am[0]) != 0); /* the stochastic glossy MVs */
+    tdc_render_close(r1);
+    tdc_render_close(r2);
+}
+
 /* Hard edges only (no random light samples): discs and a checker, unlit. */
 static const char scene_edges[] = "tdc-scene 1\n"
                                   "background 0 0 0\n"
@@ -258,6 +308,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_same_seed_same_bytes),
+        cmocka_unit_test(test_glossy_layers_deterministic),
         cmocka_unit_test(test_ground_truth_convergence),
         cmocka_unit_test(test_reduced_prefiltered),
         cmocka_unit_test(test_subframe_positions),

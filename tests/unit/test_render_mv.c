@@ -4,7 +4,11 @@
  *   in the previous frame within 0.01 px, for a camera pan, object motion and
  *   a mirror reflection (TDRT §3.1.2); shadow MVs (Zeng §4.1) follow a
  *   moving shadow over a static receiver; dual MVs (Zeng §4.3) send
- *   disoccluded pixels to the background; static scenes skip MV work.
+ *   disoccluded pixels to the background; static scenes skip MV work;
+ *   stochastic glossy MVs (Zeng eq. 5) against a brute-force search of the
+ *   previous frame for the pixel whose specular reflection sees the same
+ *   point, and their Gaussian against the brute-force lobe footprint;
+ *   layers recombine to the frame; dual-MV culling changes no vector.
  * Tiny resolutions: each case traces a few thousand rays.
  */
 #include <setjmp.h>
@@ -18,6 +22,7 @@
 #include <string.h>
 
 #include "render/tdc_render.h"
+#include "render/tdc_render_trace.h"
 
 #define W 64
 #define H 48
@@ -376,6 +381,345 @@ static void test_frame_mv_matches_probe(void **state)
     tdc_render_close(r);
 }
 
+/* ---- glossy reflections (Zeng §4.2, eq. 5) ---- */
+
+#define GLOSSY_ALPHA 0.06
+/* scene_mirror with a glossy floor: the reflector of test_mv_mirror */
+static char scene_glossy[1024];
+static const char *glossy_text(void)
+{
+    const char *m = strstr(scene_mirror, "mirror 1\n");
+    assert_non_null(m);
+    snprintf(scene_glossy, sizeof scene_glossy, "%.*smirror 1 roughness %.2f%s", (int)(m - scene_mirror), scene_mirror,
+             GLOSSY_ALPHA, m + strlen("mirror 1"));
+    return scene_glossy;
+}
+
+/* World position at time t of a point q of object obj (the scene's own keys). */
+static void world_at(const tdc_scene_t *sc, int obj, double t, const double q[3], double w[3])
+{
+    double m[12];
+    tdc_scene_object_matrix(&sc->objects[obj], t, m);
+    for (int i = 0; i < 3; i++) w[i] = m[4 * i] * q[0] + m[4 * i + 1] * q[1] + m[4 * i + 2] * q[2] + m[4 * i + 3];
+}
+
+/* Angle between the specular reflection (floor normal +y) of the view ray
+ * camera -> floor point s and the direction from s to the point h. */
+static double refl_angle(const double cam[3], const double s[3], const double h[3])
+{
+    double v[3] = {s[0] - cam[0], -(s[1] - cam[1]), s[2] - cam[2]}; /* mirrored by the y = 0 plane */
+    double d[3] = {h[0] - s[0], h[1] - s[1], h[2] - s[2]};
+    double c = (v[0] * d[0] + v[1] * d[1] + v[2] * d[2]) / sqrt((v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) *
+                                                               (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
+    return acos(c > 1 ? 1 : c < -1 ? -1 : c);
+}
+
+/* Brute force: the previous-frame image position whose specular reflection
+ * sees the world point h (min angle over all pixel centres, then a
+ * shrinking 3x3 search down to 1/512 px, each step a probe of the floor). */
+static int specular_pixel(tdc_render_t *r, uint32_t fp, const double cam[3], const double (*fl)[3], const int *onfl,
+                          const double h[3], double *bx, double *by)
+{
+    double best = 1e9;
+    for (int i = 0; i < W * H; i++) {
+        if (!onfl[i]) continue;
+        double a = refl_angle(cam, fl[i], h);
+        if (a < best) {
+            best = a;
+            *bx = i % W + 0.5;
+            *by = i / W + 0.5;
+        }
+    }
+    if (best > 0.5) return -1;
+    for (double step = 0.5; step > 1.0 / 512; step *= 0.5) {
+        double cx = *bx, cy = *by;
+        for (int j = -1; j <= 1; j++)
+            for (int i = -1; i <= 1; i++) {
+                tdc_render_probe_t p;
+                tdc_render_probe(r, fp, cx + i * step, cy + j * step, &p);
+                if (!p.hit || p.obj != 0) continue;
+                double a = refl_angle(cam, p.world, h);
+                if (a < best) {
+                    best = a;
+                    *bx = cx + i * step;
+                    *by = cy + j * step;
+                }
+            }
+    }
+    return 0;
+}
+
+static void test_glossy_mv_vs_brute_force(void **state)
+{
+    (void)state;
+    tdc_render_t *r = open_text(glossy_text(), 0, 0);
+    const tdc_scene_t *sc = tdc_render_scene(r);
+    const uint32_t f = 5;
+    const double tp = (f - 1) / sc->fps;
+    tdc_camera_key_t ck;
+    tdc_scene_camera_at(sc, tp, &ck);
+    /* the previous frame's floor points at every pixel centre */
+    static double fl[W * H][3];
+    static int onfl[W * H];
+    for (int i = 0; i < W * H; i++) {
+        tdc_render_probe_t p;
+        tdc_render_probe(r, f - 1, i % W + 0.5, i / W + 0.5, &p);
+        onfl[i] = p.hit && p.obj == 0;
+        memcpy(fl[i], p.world, sizeof fl[i]);
+    }
+    int n = 0, nsig = 0;
+    double maxc = 0, se_g = 0, se_o = 0, se_c = 0, gg = 0, gm[2] = {0, 0}, tr_ratio_min = 1e9, tr_ratio_max = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            tdc_render_probe_t a;
+            tdc_render_probe(r, f, x + 0.5, y + 0.5, &a);
+            if (!a.hit || a.obj != 0 || !a.refl_mv_ok || a.refl_obj != 1) continue; /* the ball seen in the floor */
+            double h[3], bx = 0, by = 0;
+            world_at(sc, 1, tp, a.refl_q, h);
+            if (specular_pixel(r, f - 1, ck.pos, (const double(*)[3])fl, onfl, h, &bx, &by) < 0) continue;
+            double px = x + 0.5, py = y + 0.5;
+            double ec = hypot(px + a.refl_mu[0] - bx, py + a.refl_mu[1] - by); /* centre of eq. 5 */
+            if (ec > maxc) maxc = ec;
+            double ex = px + a.refl_mv[0] - bx, ey = py + a.refl_mv[1] - by; /* the stochastic vector */
+            se_g += ex * ex + ey * ey;
+            se_c += ec * ec;
+            /* ordinary reprojection: the floor point's own motion (camera pan) */
+            double xs, ys;
+            assert_int_equal(tdc_render_project(r, f - 1, 0, a.q, &xs, &ys), 0);
+            double ox = xs - bx, oy = ys - by;
+            se_o += ox * ox + oy * oy;
+            /* the residual in the Gaussian's own axes: standard normal */
+            double a11 = a.refl_axes[0], a21 = a.refl_axes[1], a12 = a.refl_axes[2], a22 = a.refl_axes[3];
+            double det = a11 * a22 - a12 * a21;
+            assert_true(fabs(det) > 1e-12);
+            double rx = ex - (px + a.refl_mu[0] - bx), ry = ey - (py + a.refl_mu[1] - by);
+            double g1 = (a22 * rx - a12 * ry) / det, g2 = (-a21 * rx + a11 * ry) / det;
+            gg += g1 * g1 + g2 * g2;
+            gm[0] += g1;
+            gm[1] += g2;
+            n++;
+            /* every 16th: the Gaussian against the brute-force lobe footprint,
+             * the angle-weighted covariance of previous positions on a fine
+             * grid (weight exp(-theta^2 / (2 sigma^2)), sigma = sqrt(2) alpha) */
+            if (n % 16 == 1) {
+                double sg = sqrt(2.0) * GLOSSY_ALPHA, sw = 0, m1[2] = {0, 0}, m2[3] = {0, 0, 0};
+                double ext = 4 * (fabs(a11) + fabs(a12) + fabs(a21) + fabs(a22)) + 0.5, st = ext / 40;
+                for (double v = -ext; v <= ext; v += st)
+                    for (double u = -ext; u <= ext; u += st) {
+                        tdc_render_probe_t p;
+                        tdc_render_probe(r, f - 1, bx + u, by + v, &p);
+                        if (!p.hit || p.obj != 0) continue;
+                        double th = refl_angle(ck.pos, p.world, h), w = exp(-th * th / (2 * sg * sg));
+                        sw += w;
+                        m1[0] += w * u;
+                        m1[1] += w * v;
+                        m2[0] += w * u * u;
+                        m2[1] += w * u * v;
+                        m2[2] += w * v * v;
+                    }
+                double cu = m1[0] / sw, cv = m1[1] / sw;
+                double tr_bf = m2[0] / sw - cu * cu + m2[2] / sw - cv * cv;
+                double tr = a11 * a11 + a21 * a21 + a12 * a12 + a22 * a22;
+                double ratio = tr / tr_bf;
+                if (ratio < tr_ratio_min) tr_ratio_min = ratio;
+                if (ratio > tr_ratio_max) tr_ratio_max = ratio;
+                nsig++;
+            }
+        }
+    double rms_g = sqrt(se_g / n), rms_o = sqrt(se_o / n), rms_c = sqrt(se_c / n);
+    printf("glossy MVs (alpha %.2f): %d reflected pixels; centre (eq. 5 mean) vs brute force: max %.3f rms %.3f px; "
+           "stochastic vector rms %.3f px; ordinary floor vector rms %.3f px; residual in the Gaussian's axes: "
+           "E[g^2] %.3f (2 = standard), mean (%.3f, %.3f); covariance trace / brute-force lobe footprint %.2f..%.2f "
+           "over %d pixels\n",
+           GLOSSY_ALPHA, n, maxc, rms_c, rms_g, rms_o, gg / n, gm[0] / n, gm[1] / n, tr_ratio_min, tr_ratio_max, nsig);
+    assert_true(n > 100);
+    assert_true(maxc < 0.05);                          /* planar reflector: the centre is exact */
+    assert_true(gg / n > 1.6 && gg / n < 2.4);         /* the vector spreads by its own covariance */
+    assert_true(fabs(gm[0] / n) < 0.25 && fabs(gm[1] / n) < 0.25);
+    /* the covariance is the lobe's footprint (measured 0.64..0.98; the
+     * paper's apex at the virtual image gave 0.98..3.75) */
+    assert_true(tr_ratio_min > 0.5 && tr_ratio_max < 1.5);
+    assert_true(rms_o > 2 * rms_g); /* ordinary reprojection misses by far more (measured 6.4 vs 2.5 px) */
+    tdc_render_close(r);
+}
+
+/* GGX sampler (tdc_r_ggx_sample): the mean weight is the directional
+ * albedo of the Smith-GGX lobe, the integral of D(m) G1(v) G1(l) / (4 cos_o)
+ * over the hemisphere of l (by quadrature here); small roughness sends the
+ * sample to the mirror direction. */
+static double ggx_d(double cm, double a)
+{
+    double c2 = cm * cm, t = c2 * (a * a - 1) + 1;
+    return a * a / (M_PI * t * t);
+}
+
+static double ggx_g1(double c, double a)
+{
+    double t2 = (1 - c * c) / (c * c);
+    return 2 / (1 + sqrt(1 + a * a * t2));
+}
+
+static void test_ggx_sampler(void **state)
+{
+    (void)state;
+    const double alphas[3] = {0.05, 0.3, 0.8}, views[3] = {0, 60, 80};
+    const double N[3] = {0, 0, 1};
+    double prev_mir[3] = {1, 1, 1};
+    for (int ia = 0; ia < 3; ia++)
+        for (int iv = 0; iv < 3; iv++) {
+            double a = alphas[ia], th = views[iv] * M_PI / 180;
+            double wo[3] = {sin(th), 0, cos(th)}, d[3] = {-wo[0], -wo[1], -wo[2]};
+            /* quadrature over the hemisphere of l (cos-theta, phi grid) */
+            double q = 0;
+            const int nt = 2000, np = 400;
+            for (int i = 0; i < nt; i++) {
+                double cl = (i + 0.5) / nt, sl = sqrt(1 - cl * cl);
+                for (int j = 0; j < np; j++) {
+                    double ph = 2 * M_PI * (j + 0.5) / np;
+                    double l[3] = {sl * cos(ph), sl * sin(ph), cl};
+                    double h[3] = {l[0] + wo[0], l[1] + wo[1], l[2] + wo[2]};
+                    double hl = sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+                    double cm = h[2] / hl;
+                    q += ggx_d(cm, a) * ggx_g1(wo[2], a) * ggx_g1(cl, a) / (4 * wo[2]) * (1.0 / nt) *
+                         (2 * M_PI / np);
+                }
+            }
+            double sum = 0, mir = 0;
+            const int ns = 200000;
+            for (int k = 0; k < ns; k++) {
+                double u1 = (k + 0.5) / ns, u2 = fmod(k * 0.6180339887498949, 1.0), out[3];
+                double w = tdc_r_ggx_sample(d, N, a, u1, u2, out);
+                assert_true(w >= 0 && w <= 1);
+                if (w > 0) {
+                    assert_true(fabs(out[0] * out[0] + out[1] * out[1] + out[2] * out[2] - 1) < 1e-9);
+                    assert_true(out[2] > 0);
+                    mir += out[0] * -wo[0] + out[1] * -wo[1] + out[2] * wo[2]; /* cos to the mirror direction */
+                }
+                sum += w;
+            }
+            double mean = sum / ns;
+            printf("GGX alpha %.2f view %2.0f deg: mean weight %.4f, quadrature albedo %.4f, mean cos to the mirror "
+                   "direction %.4f\n",
+                   a, views[iv], mean, q, mir / ns);
+            /* the sampled estimator's mean is the lobe's albedo */
+            assert_true(fabs(mean - q) < 0.01 + 0.01 * q);
+            /* near the mirror direction for a small alpha (GGX's long tail
+             * keeps the mean cosine at 0.976 for alpha 0.05), farther for larger */
+            if (a < 0.1) assert_true(mir / ns > 0.95);
+            if (ia > 0) assert_true(mir / ns < prev_mir[iv]);
+            prev_mir[iv] = mir / ns;
+        }
+}
+
+static int16_t q4ref(double v)
+{
+    double f = floor(v * 16 + 0.5);
+    return (int16_t)(f > 32767 ? 32767 : f < -32767 ? -32767 : f);
+}
+
+/* Layers (Zeng §4): vis * shade + refl is the frame, in-shadow pixels are
+ * the splatting sources, the layer vectors are the probe's, and asking for
+ * layers changes no pixel of the frame. */
+static void check_layers(const char *text, int want_refl)
+{
+    tdc_render_t *r = open_text(text, 1, 1);
+    const uint32_t f = 5;
+    static float rgb[W * H * 3], rgb0[W * H * 3], sh[W * H * 3], vis[W * H], refl[W * H * 3];
+    static int16_t ms[W * H * 2], mr[W * H * 2];
+    static uint8_t src[W * H];
+    tdc_render_out_t o0 = {0}, o = {0};
+    o0.rgb = rgb0;
+    assert_int_equal(tdc_render_frame(r, f, TDC_RENDER_FULL, &o0, NULL), 0);
+    o.rgb = rgb;
+    o.shade = sh;
+    o.vis = vis;
+    o.refl = refl;
+    o.mv_surf = ms;
+    o.mv_refl = mr;
+    o.shadow_src = src;
+    assert_int_equal(tdc_render_frame(r, f, TDC_RENDER_FULL, &o, NULL), 0);
+    assert_memory_equal(rgb, rgb0, sizeof rgb);
+    double maxe = 0;
+    int shadowed = 0, reflective = 0, mvr_checked = 0;
+    for (int i = 0; i < W * H; i++) {
+        for (int c = 0; c < 3; c++) {
+            double e = fabs(vis[i] * sh[3 * i + c] + refl[3 * i + c] - rgb[3 * i + c]) / (rgb[3 * i + c] + 1e-3);
+            if (e > maxe) maxe = e;
+        }
+        assert_true(vis[i] >= 0 && vis[i] <= 1);
+        tdc_render_probe_t p;
+        tdc_render_probe(r, f, i % W + 0.5, i / W + 0.5, &p);
+        assert_int_equal(src[i], p.in_shadow);
+        if (p.in_shadow) { /* a blocked light: less than all of the light (unless nothing is shaded locally) */
+            shadowed++;
+            if (sh[3 * i] + sh[3 * i + 1] + sh[3 * i + 2] > 1e-6) assert_true(vis[i] < 1);
+        }
+        if (refl[3 * i] + refl[3 * i + 1] + refl[3 * i + 2] > 0) reflective++;
+        if (p.refl_mv_ok) {
+            assert_int_equal(mr[2 * i], q4ref(p.refl_mv[0]));
+            assert_int_equal(mr[2 * i + 1], q4ref(p.refl_mv[1]));
+            mvr_checked++;
+        } else {
+            assert_int_equal(mr[2 * i], ms[2 * i]);
+            assert_int_equal(mr[2 * i + 1], ms[2 * i + 1]);
+        }
+    }
+    printf("layers: max relative |vis shade + refl - rgb| %.2e; %d in-shadow (splat source) pixels, %d with a "
+           "reflection layer, %d reflected vectors = probe\n",
+           maxe, shadowed, reflective, mvr_checked);
+    assert_true(maxe < 0.02); /* the lights' colour: 20 20 19 (fence), 50 50 48 (glossy) */
+    if (want_refl) {
+        assert_true(reflective > W * H / 10);
+        assert_true(mvr_checked > W * H / 10);
+    } else {
+        assert_true(shadowed > 50);
+    }
+    tdc_render_close(r);
+}
+
+static void test_layers(void **state)
+{
+    (void)state;
+    check_layers(scene_fence, 0);
+    char text[2048];
+    snprintf(text, sizeof text, "%slight sun point pos 2 6 4 intensity 50 50 48\n", glossy_text());
+    check_layers(text, 1);
+}
+
+/* Dual-MV culling: under a still camera the pass skips the previous-frame
+ * ray outside the moving objects' previous screen rectangles; every dual
+ * MV of the frame equals the probe's (which traces every ray). */
+static void test_dual_mv_culling(void **state)
+{
+    (void)state;
+    tdc_render_t *r = open_text(scene_disocc, 0, 1);
+    static int16_t mvd[W * H * 2];
+    tdc_render_out_t o = {0};
+    o.mv_dual = mvd;
+    tdc_render_stats_t st;
+    const uint32_t f = 5;
+    assert_int_equal(tdc_render_frame(r, f, TDC_RENDER_FULL, &o, &st), 0);
+    int dis = 0;
+    for (int i = 0; i < W * H; i++) {
+        tdc_render_probe_t p;
+        tdc_render_probe(r, f, i % W + 0.5, i / W + 0.5, &p);
+        assert_int_equal(mvd[2 * i], q4ref(p.dual_mv[0]));
+        assert_int_equal(mvd[2 * i + 1], q4ref(p.dual_mv[1]));
+        dis += p.disoccluded;
+    }
+    printf("dual culling: %llu of %d samples without a ray, %llu previous-frame rays; %d disoccluded, all = probe\n",
+           (unsigned long long)st.dual_culled, W * H, (unsigned long long)st.rays[TDC_RAY_MV], dis);
+    assert_true(dis > 0);
+    assert_true(st.dual_culled > (uint64_t)(W * H / 2));
+    assert_true(st.rays[TDC_RAY_MV] + st.dual_culled == (uint64_t)(W * H));
+    tdc_render_close(r);
+    /* a moving camera: no culling */
+    r = open_text(scene_pan, 0, 1);
+    assert_int_equal(tdc_render_frame(r, f, TDC_RENDER_FULL, &o, &st), 0);
+    assert_true(st.dual_culled == 0);
+    tdc_render_close(r);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -388,6 +732,10 @@ int main(void)
         cmocka_unit_test(test_dual_mv_disocclusion),
         cmocka_unit_test(test_static_scene_skips_mv),
         cmocka_unit_test(test_frame_mv_matches_probe),
+        cmocka_unit_test(test_glossy_mv_vs_brute_force),
+        cmocka_unit_test(test_ggx_sampler),
+        cmocka_unit_test(test_layers),
+        cmocka_unit_test(test_dual_mv_culling),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
