@@ -91,6 +91,53 @@ tdc_fov_hdr_err_t tdc_fov_payload_check(const tdc_fov_hdr_t *h, uint32_t len)
     return len == h->payload_bytes ? TDC_FOV_HDR_OK : TDC_FOV_HDR_PAYLOAD;
 }
 
+void tdc_fov_unpack(const tdc_fov_hdr_t *h, const uint8_t *payload, uint8_t *lp, size_t lp_stride, int16_t *mv,
+                    size_t mv_stride, uint8_t *disk, size_t disk_stride)
+{
+    const tdc_fov_geom_t *g = &h->g;
+    const uint32_t cols = (uint32_t)(g->lp_w - g->u0);
+    const uint8_t *s = payload;
+    for (uint32_t j = 0; j < g->lp_h; j++) {
+        uint8_t *d = lp + (size_t)j * lp_stride + (size_t)g->u0 * 3u;
+        for (uint32_t k = 0; k < cols * 3u; k++) {
+            d[k] = s[k];
+        }
+        s += (size_t)cols * 3u;
+    }
+    for (int32_t j = 0; j < (int32_t)g->height; j++) {
+        int32_t x0;
+        const uint32_t span = tdc_fov_disk_span(g, j, &x0);
+        uint8_t *d = disk + (size_t)j * disk_stride + (size_t)x0 * 3u;
+        for (uint32_t k = 0; k < span * 3u; k++) {
+            d[k] = s[k];
+        }
+        s += (size_t)span * 3u;
+    }
+    if (h->flags & TDC_FOV_FLAG_MV) {
+        for (uint32_t j = 0; j < g->lp_h; j++) {
+            int16_t *d = mv + (size_t)j * mv_stride + (size_t)g->u0 * 2u;
+            for (uint32_t k = 0; k < cols * 2u; k++) {
+                d[k] = tdc_get_le16s(s + 2u * k);
+            }
+            s += (size_t)cols * 4u;
+        }
+    }
+}
+
+void tdc_fov_pack_payload(const tdc_fov_geom_t *g, const uint8_t *samples, const int16_t *mv, uint8_t *out)
+{
+    const uint32_t lp = (uint32_t)(g->lp_w - g->u0) * g->lp_h;
+    const size_t rgb = 3u * ((size_t)lp + tdc_fov_disk_pixels(g));
+    for (size_t k = 0; k < rgb; k++) {
+        out[k] = samples[k];
+    }
+    if (mv) {
+        for (size_t k = 0; k < 2u * (size_t)lp; k++) {
+            tdc_put_le16s(out + rgb + 2u * k, mv[k]);
+        }
+    }
+}
+
 const char *tdc_fov_hdr_err_name(tdc_fov_hdr_err_t e)
 {
     static const char *const n[TDC_FOV_HDR_COUNT] = {

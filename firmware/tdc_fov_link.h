@@ -71,6 +71,22 @@ uint16_t tdc_fov_lp_size(uint16_t delta_q15, uint16_t n);
 tdc_fov_hdr_err_t tdc_fov_payload_check(const tdc_fov_hdr_t *h, uint32_t len);
 /* Payload bytes of a geometry with or without motion vectors. */
 uint32_t tdc_fov_payload_bytes(const tdc_fov_geom_t *g, int with_mv);
+/* The payload after the foveation header of an accepted header h (len =
+ * h->payload_bytes, checked by the caller) into the stage's buffers: the
+ * log-polar samples into lp (rows lp_stride bytes apart, columns [u0, lp_w)
+ * written, the others left alone), their motion vectors into mv (int16
+ * pairs, rows mv_stride int16 apart; only read with TDC_FOV_FLAG_MV, mv may
+ * be NULL without it), the disk pixels into disk (a W x H RGB8 frame, rows
+ * disk_stride bytes apart; only the disk spans written).  The link decoder
+ * calls it after the packet CRC matched; bounds are the caller's (lp holds
+ * lp_h rows of lp_w samples, mv likewise, disk the panel). */
+void tdc_fov_unpack(const tdc_fov_hdr_t *h, const uint8_t *payload, uint8_t *lp, size_t lp_stride, int16_t *mv,
+                    size_t mv_stride, uint8_t *disk, size_t disk_stride);
+/* The inverse, for the sender: payload bytes after the header from the
+ * samples in payload order (samples: lp samples then disk pixels, RGB8
+ * packed; mv: one int16 pair per lp sample, or NULL without
+ * TDC_FOV_FLAG_MV).  Writes tdc_fov_payload_bytes(g, mv != NULL) bytes. */
+void tdc_fov_pack_payload(const tdc_fov_geom_t *g, const uint8_t *samples, const int16_t *mv, uint8_t *out);
 /* "TDC_FOV_HDR_ALPHA"; "TDC_FOV_HDR_?" outside the enum. */
 const char *tdc_fov_hdr_err_name(tdc_fov_hdr_err_t e);
 

@@ -3,6 +3,7 @@
  * frame stage.  Model, cases and formats: tdc_lcd.h.
  */
 #include "tdc_lcd.h"
+#include "tdc_lcd_kernels.h"
 
 #include "tdc_gamma.h"
 #include "tdc_math.h"
@@ -228,14 +229,23 @@ size_t tdc_lcd_cfg_history_bytes(const tdc_lcd_config_t *cfg)
 
 static int lcd_config_valid(const tdc_lcd_config_t *cfg)
 {
-    return cfg && cfg->width != 0 && cfg->height != 0 && cfg->mode <= TDC_LCD_MODE_STATEFUL_PAIR &&
-           cfg->prev_bits >= 4 && cfg->prev_bits <= 8;
+    return cfg && cfg->width != 0 && cfg->height != 0 && cfg->width <= TDC_LCD_MAX_DIM &&
+           cfg->height <= TDC_LCD_MAX_DIM && cfg->mode <= TDC_LCD_MODE_STATEFUL_PAIR && cfg->prev_bits >= 4 &&
+           cfg->prev_bits <= 8;
 }
 
 /* The one layout (tdc_lcd.h TDC_LCD_ARENA); NULL views in a dry run and for
  * the blocks the mode does not use. */
-static void lcd_carve(tdc_lcd_t *st, const tdc_lcd_config_t *cfg, tdc_arena_t *arena){
-    TDC_LCD_ARENA(TDC_ARENA_CARVE, cfg->width, cfg->height, cfg->prev_bits, cfg->mode)}
+static void lcd_carve(tdc_lcd_t *st, const tdc_lcd_config_t *cfg, tdc_arena_t *arena)
+{
+    TDC_LCD_ARENA(TDC_ARENA_CARVE, cfg->width, cfg->height, cfg->prev_bits, cfg->mode)
+}
+
+void tdc_lcd_set_simd(tdc_lcd_t *st, int enable)
+{
+    st->st_run8 = enable && tdc_lcd_avx2_available() ? tdc_lcd_st_run8_avx2 : tdc_lcd_st_run8_c;
+    st->st_run8_rest = 0;
+}
 
 size_t tdc_lcd_get_size(const tdc_lcd_config_t *cfg)
 {
@@ -295,6 +305,7 @@ tdc_status_t tdc_lcd_init(tdc_lcd_t *st, const tdc_lcd_config_t *cfg, const tdc_
     st->stats = (tdc_lcd_stats_t){0};
     st->have_history = 0;
     st->st_phase = 0;
+    tdc_lcd_set_simd(st, 1);
     if (TDC_LCD_MODE_IS_STATEFUL(cfg->mode)) {
         tdc_lcd_st_build(st);
         return TDC_OK;

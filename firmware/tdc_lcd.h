@@ -202,10 +202,28 @@ typedef struct {
     int32_t *st_ddec;         /* STATEFUL_PAIR [256]: debt code (as uint8) -> light, Q24 */
     uint8_t st_phase;         /* STATEFUL_PAIR: 0 = first refresh of a pair (even frame since reset) */
     uint8_t table_fault;      /* tdc_lcd_table_fault_t of the last refused init */
-    uint8_t q_enc[256];       /* 8-bit code -> prev_bits code (rounded) */
-    uint8_t q_dec[256];       /* prev_bits code -> 8-bit code */
+    /* stateful, 8-bit state without debt: the hot run (tdc_lcd_kernels.h),
+     * C or AVX2, chosen at init */
+    uint32_t (*st_run8)(const uint16_t *lut, const uint8_t *in, uint8_t *out, uint8_t *state, uint32_t i, uint32_t w3);
+    uint8_t st_run8_rest; /* rows left without the run (it stopped at most steps of a recent row) */
+    uint8_t q_enc[256];   /* 8-bit code -> prev_bits code (rounded) */
+    uint8_t q_dec[256];   /* prev_bits code -> 8-bit code */
     tdc_lcd_stats_t stats;
 } tdc_lcd_t;
+
+/* Largest eye width and height the stage accepts (get_size 0, init
+ * TDC_ERR_ARG beyond), so every arena size is exact in a 32-bit size_t
+ * (Cortex-M).  Scaling and overflow: n = W*H*3 samples <= 201,326,592; the
+ * packed-buffer product n * bits <= 1,610,612,736 < 2^32; the largest arena
+ * (two packed 8-bit buffers, or state + debt at 1 B each) is 6 B/px =
+ * 402,653,184 bytes plus the tables (stateful: 3 * 2^8 * 256 * 2 + 3 * 2^8 *
+ * 10 bytes < 2^20) < 2^32.  Checked below in 64-bit arithmetic; 8192 is
+ * also TRM's bound (tdc_trm.c). */
+#define TDC_LCD_MAX_DIM 8192u
+_Static_assert((uint64_t)TDC_LCD_MAX_DIM *TDC_LCD_MAX_DIM * 3u * 8u <= 0xFFFFFFFFu,
+               "LCD: packed history size must not wrap a 32-bit size_t");
+_Static_assert((uint64_t)TDC_LCD_MAX_DIM *TDC_LCD_MAX_DIM * 6u + (1u << 20) <= 0xFFFFFFFFu,
+               "LCD: arena size must not wrap a 32-bit size_t");
 
 /* Bytes of a packed previous-frame buffer of n samples at b bits (+1 slack). */
 #define TDC_LCD_PACKED_BYTES(n, b) ((((size_t)(n) * (b)) + 7u) / 8u + 1u)
@@ -246,14 +264,16 @@ typedef struct {
          ? TDC_LCD_MEM_BYTES_MODE(W, H, TDC_LCD_MODE_EXACT)                                                      \
          : TDC_LCD_MEM_BYTES_MODE(W, H, TDC_LCD_MODE_STATEFUL_PAIR))
 
-/* Arena bytes for cfg (a dry run of init's layout; 0 when cfg is invalid). */
+/* Arena bytes for cfg (a dry run of init's layout; 0 when cfg is invalid,
+ * e.g. wider or taller than TDC_LCD_MAX_DIM). */
 size_t tdc_lcd_get_size(const tdc_lcd_config_t *cfg);
 
 /*
  * mem: caller-owned arena of tdc_lcd_get_size() bytes, aligned to
  * TDC_ARENA_ALIGN (8, tdc_arena.h; a static buffer of TDC_LCD_MEM_BYTES on a
  * board).
- * Errors: TDC_ERR_ARG (null, misaligned, bad mode or prev_bits), TDC_ERR_PANEL (not an
+ * Errors: TDC_ERR_ARG (null, misaligned, bad mode or prev_bits, a side over
+ * TDC_LCD_MAX_DIM), TDC_ERR_PANEL (not an
  * LCD profile, not 8-bit, or refresh_hz not one of its rates, or the table
  * the mode needs is absent or, for STATEFUL, fails validation: st->table_fault
  * says why), TDC_ERR_SIZE (arena too small).
@@ -264,6 +284,11 @@ size_t tdc_lcd_get_size(const tdc_lcd_config_t *cfg);
 TDC_MUST_CHECK
 tdc_status_t tdc_lcd_init(tdc_lcd_t *st, const tdc_lcd_config_t *cfg, const tdc_panel_t *panel, void *mem,
                           size_t mem_bytes);
+
+/* 0: the portable C run of the stateful inverse even where AVX2 is
+ * available (benchmarks compare both; init picks AVX2 when the CPU has it).
+ * The output is the same either way (tests/checkasm/checkasm_lcd.c). */
+void tdc_lcd_set_simd(tdc_lcd_t *st, int enable);
 
 /* Stream reset: the next frame has no history. */
 void tdc_lcd_reset(tdc_lcd_t *st);

@@ -31,6 +31,7 @@
  */
 #include "tdc_gamma.h"
 #include "tdc_lcd.h"
+#include "tdc_lcd_kernels.h"
 #include "tdc_overdrive.h"
 
 #define ST_MAX (255u << TDC_LCD_ST_FRAC) /* largest Q4 code */
@@ -302,11 +303,61 @@ static ST_ALWAYS_INLINE uint32_t st_row8(tdc_lcd_t *st, const st_chan_t ch[3], c
     return nmiss;
 }
 
-/* st_row8 specialised (the debt tests vanish from the plain loop). */
+/* The run (tdc_lcd_kernels.h) in portable C: the reference of the AVX2 run
+ * (tests/checkasm/checkasm_lcd.c).  The boards do not use it: st_row8 alone
+ * is what they run (65.7 instructions per pixel on the Cortex-M7). */
+uint32_t tdc_lcd_st_run8_c(const uint16_t *lut, const uint8_t *in, uint8_t *out, uint8_t *state, uint32_t i,
+                           uint32_t w3)
+{
+    for (; i + TDC_LCD_RUN8_STEP <= w3; i += TDC_LCD_RUN8_STEP) {
+        uint16_t e[TDC_LCD_RUN8_STEP];
+        uint32_t edge = 0;
+        for (uint32_t k = 0; k < TDC_LCD_RUN8_STEP; k++) {
+            e[k] = lut[(k % 3u) * 65536u + ((uint32_t)state[i + k] << 8 | in[i + k])];
+            edge |= ((e[k] + 1u) & 255u) <= 1u;
+        }
+        if (edge) {
+            return i;
+        }
+        for (uint32_t k = 0; k < TDC_LCD_RUN8_STEP; k++) {
+            out[i + k] = (uint8_t)e[k];
+            state[i + k] = (uint8_t)(e[k] >> 8);
+        }
+    }
+    return i < w3 ? i : w3; /* the tail, for the caller's loop */
+}
+
+/* st_row8 without debt; with the AVX2 run where init chose it: its steps
+ * without a drive of 0 or 255, st_row8 for the others and the row's tail
+ * (same bytes, residual and counts: checkasm_lcd.c, the golden vectors). */
 static uint32_t st_row8_plain(tdc_lcd_t *st, const st_chan_t ch[3], const uint8_t *in, uint8_t *out, uint8_t *state,
                               uint32_t w3, size_t s0, tdc_res_t *residual)
 {
-    return st_row8(st, ch, in, out, state, 0, 0, w3, s0, residual);
+    if (st->st_run8 == tdc_lcd_st_run8_c) {
+        return st_row8(st, ch, in, out, state, 0, 0, w3, s0, residual); /* boards, and hosts without AVX2 */
+    }
+    if (st->st_run8_rest) {
+        /* the run stopped at most steps of a recent row: its gathers are
+         * wasted there (moving text, docs/lcd.md), so st_row8 alone for a
+         * few rows, then the run is tried again */
+        st->st_run8_rest--;
+        return st_row8(st, ch, in, out, state, 0, 0, w3, s0, residual);
+    }
+    uint32_t nmiss = 0, stops = 0;
+    for (uint32_t i = 0; i < w3;) {
+        i = st->st_run8(ch[0].lut, in, out, state, i, w3);
+        if (i >= w3) {
+            break;
+        }
+        const uint32_t n = w3 - i < TDC_LCD_RUN8_STEP ? w3 - i : TDC_LCD_RUN8_STEP;
+        nmiss += st_row8(st, ch, in + i, out + i, state + i, 0, 0, n, s0 + i, residual);
+        i += n;
+        stops++;
+    }
+    if (4u * stops * TDC_LCD_RUN8_STEP > w3) {
+        st->st_run8_rest = 8u; /* over a quarter of the steps stopped */
+    }
+    return nmiss;
 }
 
 static uint32_t st_row8_pair(tdc_lcd_t *st, const st_chan_t ch[3], const uint8_t *in, uint8_t *out, uint8_t *state,

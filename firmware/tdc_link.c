@@ -46,6 +46,9 @@ static const uint8_t tdc_link_magic_bytes[4] = {'T', 'D', 'C', 'L'};
 /* Duplicate-detection slot of a packet within one frame index. */
 static uint32_t slot_bit(uint32_t kind, uint32_t eye, uint32_t flags)
 {
+    if (kind == TDC_LINK_KIND_FOVEATED) {
+        kind = TDC_LINK_KIND_FULL; /* one picture per eye and frame: FULL or FOVEATED */
+    }
     if (kind == TDC_LINK_KIND_MOTION && (flags & TDC_LINK_PKT_MV_PER_SAMPLE)) {
         return 1u << (14u + eye);
     }
@@ -166,6 +169,11 @@ const tdc_link_stream_info_t *tdc_link_stream(const tdc_link_decoder_t *dec)
     return dec->stream_active ? &dec->stream : NULL;
 }
 
+const tdc_fov_hdr_t *tdc_link_fov(const tdc_link_decoder_t *dec, uint32_t eye)
+{
+    return eye < 2u && ((dec->fov_valid >> eye) & 1u) ? &dec->fov[eye] : NULL;
+}
+
 void tdc_link_reduced_size(const tdc_link_decoder_t *dec, uint32_t *rw, uint32_t *rh)
 {
     *rw = dec->rw;
@@ -212,7 +220,9 @@ static tdc_link_err_t check_header(const tdc_link_decoder_t *dec, uint32_t versi
         return TDC_LINK_ERR_FORMAT;
     }
     const int pixel_kind = ki->rule == TDC_LINK_PAYLOAD_PIXELS;
-    if (pixel_kind ? (!tdc_pixfmt_valid(fmt) || !((TDC_LINK_FORMAT_MASK >> fmt) & 1u)) : fmt != TDC_PIXFMT_NONE) {
+    if (kind == TDC_LINK_KIND_FOVEATED ? fmt != TDC_PIXFMT_RGB888 /* the samples: RGB8 only */
+        : pixel_kind ? (!tdc_pixfmt_valid(fmt) || !((TDC_LINK_FORMAT_MASK >> fmt) & 1u))
+                     : fmt != TDC_PIXFMT_NONE) {
         return TDC_LINK_ERR_FORMAT;
     }
 
@@ -234,6 +244,9 @@ static tdc_link_err_t check_header(const tdc_link_decoder_t *dec, uint32_t versi
                  ? ((sflags & TDC_LINK_STREAM_SAMPLE_MV) && b->sample_motion[eye])
                  : ((sflags & TDC_LINK_STREAM_MOTION) && (b->motion[eye] || b->skip_motion));
         break;
+    case TDC_LINK_KIND_FOVEATED:
+        ok = (sflags & TDC_LINK_STREAM_FOVEATED) && b->fov_lp[eye] != NULL && b->full[eye] != NULL;
+        break;
     case TDC_LINK_KIND_LAYERS:
         ok = (sflags & TDC_LINK_STREAM_LAYERS) && tdc_layer_frame_accepts(b->layers[eye], flags);
         break;
@@ -254,7 +267,9 @@ static tdc_link_err_t check_header(const tdc_link_decoder_t *dec, uint32_t versi
      * expected length cannot wrap. */
     const uint32_t want_len =
         tdc_link_payload_bytes((tdc_link_kind_t)kind, (tdc_pixfmt_t)fmt, p->width, p->height, flags);
-    if (payload_len != want_len) {
+    /* STATED (FOVEATED): at least its kind header; the exact length is
+     * checked against that header once the payload CRC vouches for it. */
+    if (ki->rule == TDC_LINK_PAYLOAD_STATED ? payload_len < TDC_FOV_HDR_BYTES : payload_len != want_len) {
         return TDC_LINK_ERR_LENGTH;
     }
     if (kind == TDC_LINK_KIND_MOTION && !(flags & TDC_LINK_PKT_MV_PER_SAMPLE) && !b->motion[eye]) {
@@ -385,13 +400,20 @@ static tdc_link_err_t commit_stream(tdc_link_decoder_t *dec)
     if ((in.flags & (TDC_LINK_STREAM_SAMPLE_MV | TDC_LINK_STREAM_LAYERS)) && !(in.flags & TDC_LINK_STREAM_SUBFRAMES)) {
         return TDC_LINK_ERR_STREAM_HEADER;
     }
+    /* Foveated frames replace FULL ones; with reduced frames or subframes
+     * (which frame is foveated) nothing is defined yet. */
+    if ((in.flags & TDC_LINK_STREAM_FOVEATED) &&
+        (in.flags & (TDC_LINK_STREAM_REDUCED | TDC_LINK_STREAM_SUBFRAMES))) {
+        return TDC_LINK_ERR_STREAM_HEADER;
+    }
     /* The build must have a buffer for every stage the stream uses. */
     for (unsigned e = 0; e < in.eyes; e++) {
         if (((in.flags & TDC_LINK_STREAM_REDUCED) && (!b->reduced[e] || (size_t)rw * rh * 3u > b->reduced_bytes)) ||
             ((in.flags & TDC_LINK_STREAM_SUBFRAMES) && (!b->subframe[e] || !b->pattern[e])) ||
             ((in.flags & TDC_LINK_STREAM_MOTION) && !b->motion[e] && !b->skip_motion) ||
             ((in.flags & TDC_LINK_STREAM_SAMPLE_MV) && !b->sample_motion[e]) ||
-            ((in.flags & TDC_LINK_STREAM_LAYERS) && !b->layers[e])) {
+            ((in.flags & TDC_LINK_STREAM_LAYERS) && !b->layers[e]) ||
+            ((in.flags & TDC_LINK_STREAM_FOVEATED) && (!b->fov_lp[e] || !b->full[e]))) {
             return TDC_LINK_ERR_STREAM_HEADER;
         }
     }
@@ -406,6 +428,32 @@ static tdc_link_err_t commit_stream(tdc_link_decoder_t *dec)
         dec->have_frame = 0;
         dec->frame_mask = 0;
         dec->frame_index = 0;
+        dec->fov_valid = 0;
+    }
+    return TDC_LINK_OK;
+}
+
+/* A FOVEATED payload whose CRC matched: its foveation header against the
+ * configured panel, the length it states, this build's buffers.  Nothing
+ * is written; *h is the parsed header on TDC_LINK_OK. */
+static tdc_link_err_t check_foveated(tdc_link_decoder_t *dec, uint32_t eye, tdc_fov_hdr_t *h)
+{
+    const uint8_t *s = dec->buf.staging + dec->payload_base;
+    tdc_fov_hdr_err_t r = tdc_fov_hdr_parse(s, dec->cfg.width, dec->cfg.height, h);
+    if (r == TDC_FOV_HDR_OK) {
+        r = tdc_fov_payload_check(h, dec->payload_len - TDC_FOV_HDR_BYTES);
+    }
+    if (r != TDC_FOV_HDR_OK) {
+        dec->cnt.fov_refused[r]++;
+        return TDC_LINK_ERR_FOVEATION;
+    }
+    const tdc_link_buffers_t *b = &dec->buf;
+    const size_t lp = (size_t)h->p.lp_w * h->p.lp_h;
+    if ((h->flags & TDC_FOV_FLAG_MV) && !b->fov_mv[eye]) {
+        return TDC_LINK_ERR_UNEXPECTED; /* vectors for a build without the TAA buffer */
+    }
+    if (lp * 3u > b->fov_lp_bytes || ((h->flags & TDC_FOV_FLAG_MV) && lp * 2u > b->fov_mv_count)) {
+        return TDC_LINK_ERR_LENGTH; /* a larger delta than this build's buffers hold */
     }
     return TDC_LINK_OK;
 }
@@ -489,6 +537,15 @@ static void on_payload(tdc_link_decoder_t *dec, uint32_t src_end)
             return;
         }
     } else {
+        tdc_fov_hdr_t fh;
+        memset(&fh, 0, sizeof fh);
+        if (kind == TDC_LINK_KIND_FOVEATED) {
+            const tdc_link_err_t e = check_foveated(dec, eye, &fh);
+            if (e != TDC_LINK_OK) {
+                push_error(dec, e, 1, dec->payload_len);
+                return;
+            }
+        }
         if (kind == TDC_LINK_KIND_LAYERS) {
             /* contents the header cannot vouch for: refused before the
              * sequence advances or anything is written */
@@ -551,6 +608,12 @@ static void on_payload(tdc_link_decoder_t *dec, uint32_t src_end)
             } else {
                 unpack_le16(s, b->motion[eye], (size_t)p->width * p->height * 2u);
             }
+            break;
+        case TDC_LINK_KIND_FOVEATED:
+            tdc_fov_unpack(&fh, s + TDC_FOV_HDR_BYTES, b->fov_lp[eye], (size_t)fh.p.lp_w * 3u, b->fov_mv[eye],
+                           (size_t)fh.p.lp_w * 2u, b->full[eye], b->full_stride);
+            dec->fov[eye] = fh;
+            dec->fov_valid |= (uint8_t)(1u << eye);
             break;
         case TDC_LINK_KIND_LAYERS: tdc_layer_unpack(s, p->flags, p->width, p->height, b->layers[eye]); break;
         default: /* PATTERN */ memcpy(b->pattern[eye], s, dec->payload_len); break;

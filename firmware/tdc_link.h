@@ -37,6 +37,7 @@
 
 #include "tdc_fixed.h"
 #include "tdc_layer_link.h"
+#include "tdc_fov_link.h"
 #include "tdc_pixfmt.h"
 #include "tdc_wire.h"
 
@@ -121,6 +122,17 @@ typedef struct {
      * later frame, a late resend) never touches the frame buffer being
      * shown (firmware/board/tdc_main.c; fuzz finding F1). */
     uint8_t defer_full;
+    /* FOVEATED packets (stream flag TDC_LINK_STREAM_FOVEATED, tdc_fov_link.h):
+     * the kernel log-polar samples, lp_w x lp_h RGB888 with rows lp_w * 3
+     * bytes apart (columns [u0, lp_w) written), at most fov_lp_bytes; their
+     * motion vectors (TAA streams), int16 pairs with rows lp_w * 2 apart, at
+     * most fov_mv_count int16s (NULL: packets with vectors are refused); the
+     * disk pixels go into full[eye] (the stage reads each before it writes
+     * it).  fov_lp NULL: the build has no foveation stage. */
+    uint8_t *fov_lp[2];
+    size_t fov_lp_bytes;
+    int16_t *fov_mv[2];
+    size_t fov_mv_count;
 } tdc_link_buffers_t;
 
 typedef enum {
@@ -155,6 +167,7 @@ typedef struct {
     uint32_t missing_reduced_frames; /* reduced frames that never arrived */
     uint32_t events_dropped;         /* events lost because the queue was full (should be 0) */
     uint32_t layer_errors[TDC_LAYER_ERR_N]; /* TDC_LINK_ERR_LAYERS by reason (index 0 unused) */
+    uint32_t fov_refused[TDC_FOV_HDR_COUNT]; /* TDC_LINK_ERR_FOVEATION by reason (index 0 unused) */
 } tdc_link_counters_t;
 
 #define TDC_LINK_EVENT_QUEUE 4
@@ -195,6 +208,8 @@ typedef struct {
     uint8_t staged_fmt;
     uint16_t staged_w, staged_h;
     uint32_t staged_base;
+    uint8_t fov_valid;    /* bit e: fov[e] holds eye e's last accepted foveation header */
+    tdc_fov_hdr_t fov[2];
     /* events */
     uint8_t ev_head, ev_count;
     tdc_link_event_t ev[TDC_LINK_EVENT_QUEUE];
@@ -234,6 +249,11 @@ uint32_t tdc_link_error_count(const tdc_link_decoder_t *dec, tdc_link_err_t e);
 
 /* Active stream header, or NULL before the first accepted STREAM packet. */
 const tdc_link_stream_info_t *tdc_link_stream(const tdc_link_decoder_t *dec);
+
+/* The foveation header (stage parameters, geometry) of eye's last accepted
+ * FOVEATED packet in the active stream, NULL if none: read it on that
+ * packet's event, before feeding more bytes. */
+const tdc_fov_hdr_t *tdc_link_fov(const tdc_link_decoder_t *dec, uint32_t eye);
 
 /* Reduced-frame size of the active stream (0 x 0 without reduced frames). */
 void tdc_link_reduced_size(const tdc_link_decoder_t *dec, uint32_t *rw, uint32_t *rh);

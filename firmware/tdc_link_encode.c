@@ -275,3 +275,28 @@ size_t tdc_link_encode_layers(const tdc_link_encoder_t *enc, uint8_t *out, size_
     fields(enc, &f, TDC_LINK_KIND_LAYERS, eye, frame, TDC_PIXFMT_NONE, w, h, flags);
     return finish(out, &f, (uint32_t)(total - TDC_LINK_HEADER_BYTES));
 }
+
+size_t tdc_link_encode_foveated(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap, uint32_t eye, uint32_t frame,
+                                const tdc_fov_params_t *p, uint16_t delta_q15, const uint8_t *samples,
+                                const int16_t *mv, tdc_fov_geom_t *g)
+{
+    const uint16_t w = enc->info.width, h = enc->info.height;
+    tdc_fov_geom_t geom;
+    uint8_t fh[TDC_FOV_HDR_BYTES];
+    if (!out || !p || !samples || tdc_fov_geom(&geom, w, h, p) != TDC_OK ||
+        tdc_fov_hdr_pack(fh, w, h, p, delta_q15, mv ? TDC_FOV_FLAG_MV : 0u) != TDC_OK) {
+        return 0;
+    }
+    const uint32_t n = TDC_FOV_HDR_BYTES + tdc_fov_payload_bytes(&geom, mv != NULL);
+    if (cap < (size_t)TDC_LINK_HEADER_BYTES + n) {
+        return 0;
+    }
+    memcpy(out + TDC_LINK_HEADER_BYTES, fh, TDC_FOV_HDR_BYTES);
+    tdc_fov_pack_payload(&geom, samples, mv, out + TDC_LINK_HEADER_BYTES + TDC_FOV_HDR_BYTES);
+    if (g) {
+        *g = geom;
+    }
+    tdc_link_header_t f;
+    fields(enc, &f, TDC_LINK_KIND_FOVEATED, eye, frame, TDC_PIXFMT_RGB888, w, h, 0);
+    return finish(out, &f, n);
+}

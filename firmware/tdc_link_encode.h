@@ -70,6 +70,16 @@ size_t tdc_link_encode_layers(const tdc_link_encoder_t *enc, uint8_t *out, size_
                               const tdc_layer_frame_t *src, uint32_t flags, const uint8_t mv_kind[TDC_LAYER_MAX],
                               uint32_t w, uint32_t h);
 
+/* FOVEATED: the foveation header of p (delta_q15, TDC_FOV_FLAG_MV if mv)
+ * for the encoder's w x h eye, then the samples in payload order
+ * (tdc_fov_link.h: samples = the lp samples of columns [u0, lp_w), rows
+ * j = 0..lp_h-1, then the disk pixels row by row, RGB888 packed; mv = one
+ * (dx, dy) Q4 pair per lp sample or NULL).  0 if p is refused by
+ * tdc_fov_hdr_pack or cap is too small; *g (if not NULL) gets the geometry. */
+size_t tdc_link_encode_foveated(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap, uint32_t eye, uint32_t frame,
+                                const tdc_fov_params_t *p, uint16_t delta_q15, const uint8_t *samples,
+                                const int16_t *mv, tdc_fov_geom_t *g);
+
 /* Pixel packing from RGB888 (the inverse of firmware/tdc_pixfmt.c). */
 void tdc_pixfmt_pack(tdc_pixfmt_t fmt, const uint8_t *rgb, uint32_t w, uint32_t h, uint32_t stride, uint8_t *out);
 /* RGB888 -> BT.709 full-range YCbCr in Q16 integer arithmetic (chroma from

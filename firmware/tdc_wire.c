@@ -13,7 +13,7 @@ const char *tdc_link_err_name(tdc_link_err_t e)
     static const char *const names[TDC_LINK_ERR_COUNT] = {
         "ok",    "magic",     "garbage",         "header-crc", "version",      "kind",
         "eye",   "format",    "dimensions",      "length",     "crc",          "stream",
-        "order", "duplicate", "missing-reduced", "unexpected", "stream-header", "layers"};
+        "order", "duplicate", "missing-reduced", "unexpected", "stream-header", "layers", "foveation"};
     return (unsigned)e < (unsigned)TDC_LINK_ERR_COUNT ? names[e] : "?";
 }
 
@@ -97,6 +97,8 @@ static const tdc_link_kind_info_t kinds[TDC_LINK_KIND_LAST + 1] = {
     /* (dx, dy) int16 LE per pixel, or per tile with MV_PER_SAMPLE */
     [TDC_LINK_KIND_MOTION] = {"motion", TDC_LINK_PAYLOAD_PER_ELEM, TDC_LINK_GRID_MV, 4u, TDC_LINK_PKT_MV_PER_SAMPLE},
     [TDC_LINK_KIND_PATTERN] = {"pattern", TDC_LINK_PAYLOAD_BITS, TDC_LINK_GRID_TILES, 0u, 0u},
+    /* RGB888 samples; the 32-byte foveation header states the rest */
+    [TDC_LINK_KIND_FOVEATED] = {"foveated", TDC_LINK_PAYLOAD_STATED, TDC_LINK_GRID_NONE, 0u, 0u},
     /* layer header + per layer value and vector planes (+ falloff), flags = the layer set */
     [TDC_LINK_KIND_LAYERS] = {"layers", TDC_LINK_PAYLOAD_LAYERS, TDC_LINK_GRID_TILES, 0u, TDC_LAYER_PKT_KNOWN},
 };
@@ -130,7 +132,8 @@ uint32_t tdc_link_payload_bytes(tdc_link_kind_t kind, tdc_pixfmt_t fmt, uint32_t
     case TDC_LINK_PAYLOAD_PIXELS: return tdc_pixfmt_payload_bytes(fmt, gw, gh);
     case TDC_LINK_PAYLOAD_PER_ELEM: return gw * gh * k->unit;
     case TDC_LINK_PAYLOAD_LAYERS: return tdc_layer_payload_bytes(pkt_flags, gw * gh);
-    default: /* BITS */ return (gw * gh + 7u) / 8u;
+    case TDC_LINK_PAYLOAD_BITS: return (gw * gh + 7u) / 8u;
+    default: /* STATED: not a function of the packet header */ return 0;
     }
 }
 

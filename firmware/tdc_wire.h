@@ -16,7 +16,7 @@
  *   5. The decoder's rejection reasons (tdc_link_err_t), which also name
  *      what header unpacking found.
  *
- * Adding a packet kind (e.g. foveated or layered subframes): a value in
+ * Adding a packet kind (e.g. layered subframes): a value in
  * tdc_link_kind_t, a row in the kind table of tdc_wire.c (name, payload
  * rule, grid), and its accept/unpack case in the decoder.
  */
@@ -98,7 +98,7 @@ typedef enum {
     TDC_LINK_KIND_SUBFRAME = 4, /* one sample per 2x2 tile (tile-ordered assembly) */
     TDC_LINK_KIND_MOTION = 5,   /* motion vectors, int16 (dx, dy) Q4 pairs */
     TDC_LINK_KIND_PATTERN = 6,  /* tile-ordering bitmap, 1 bit per tile */
-    /* 7: left for the foveated kind (docs/foveation.md) */
+    TDC_LINK_KIND_FOVEATED = 7, /* kernel log-polar buffer + foveal disk (tdc_fov_link.h) */
     TDC_LINK_KIND_LAYERS = 8, /* layered subframe: per-sample layers + own vectors (tdc_layer_link.h) */
     TDC_LINK_KIND_FIRST = TDC_LINK_KIND_STREAM,
     TDC_LINK_KIND_LAST = TDC_LINK_KIND_LAYERS
@@ -148,7 +148,8 @@ typedef enum {
     TDC_LINK_ERR_UNEXPECTED = 15,      /* kind not enabled by the stream header / not due now */
     TDC_LINK_ERR_STREAM_HEADER = 16,   /* stream header contents invalid (flags, r, size) */
     TDC_LINK_ERR_LAYERS = 17,          /* layered payload refused (reason: tdc_layer_err_t, counted apart) */
-    TDC_LINK_ERR_COUNT = 18
+    TDC_LINK_ERR_FOVEATION = 18,       /* foveation header refused (reason: counters' fov_refused) */
+    TDC_LINK_ERR_COUNT = 19
 } tdc_link_err_t;
 
 /* Short name of an error code ("crc", "magic", ...; "?" if out of range). */
@@ -186,7 +187,8 @@ tdc_link_err_t tdc_link_header_unpack(const uint8_t in[TDC_LINK_HEADER_BYTES], t
 #define TDC_LINK_STREAM_MIRRORS 0x0008u   /* motion vectors include mirror reflections */
 #define TDC_LINK_STREAM_SAMPLE_MV 0x0010u /* subframe samples carry their own motion vectors */
 #define TDC_LINK_STREAM_LAYERS 0x0020u    /* layered subframes (LAYERS packets; needs SUBFRAMES) */
-#define TDC_LINK_STREAM_KNOWN 0x003Fu
+#define TDC_LINK_STREAM_FOVEATED 0x0040u  /* FOVEATED packets (kernel log-polar + disk) may replace FULL ones */
+#define TDC_LINK_STREAM_KNOWN 0x007Fu
 
 /* Motion vectors: Q4 (1/16 px), range +-2047.9375 px, BACKWARD (the point
  * now at p was at p + mv in the previous frame). */
@@ -220,7 +222,10 @@ typedef enum {
     TDC_LINK_PAYLOAD_PIXELS = 1,   /* an image of the grid in the packet's pixel format */
     TDC_LINK_PAYLOAD_PER_ELEM = 2, /* `unit` bytes per grid element */
     TDC_LINK_PAYLOAD_BITS = 3,     /* 1 bit per grid element, rounded up to bytes */
-    TDC_LINK_PAYLOAD_LAYERS = 4    /* layered: from the packet flags (tdc_layer_payload_bytes) */
+    TDC_LINK_PAYLOAD_LAYERS = 4,   /* layered: from the packet flags (tdc_layer_payload_bytes) */
+    TDC_LINK_PAYLOAD_STATED = 5    /* stated by a kind header at the payload's start (FOVEATED:
+                                      tdc_fov_link.h), checked after the payload CRC;
+                                      tdc_link_payload_bytes() returns 0 */
 } tdc_link_payload_rule_t;
 
 typedef enum {

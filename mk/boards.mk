@@ -22,6 +22,10 @@ ARM_SIZE := $(ARM_CROSS)size
 ARM_OBJCOPY := $(ARM_CROSS)objcopy
 ARM_OPT ?= -O2
 QEMU_TIMEOUT ?= 300
+# The instruction-counting TCG plugin (make bench-arm, below): defined before
+# the first rule that names it as a prerequisite (arm-bench, arm-loop-cost),
+# since prerequisites are expanded when make reads the rule.
+INSN_PLUGIN := $(BUILD)/tools/tdc-insn-count.so
 
 ARM_BOARDS := $(filter-out host,$(BOARDS))
 # Emulated boards: those whose board.mk names a QEMU machine.
@@ -155,7 +159,7 @@ $(BA)/harness-check: $(BA)/tdc_harness.elf tests/arm/test_harness.sh
 
 # Helium boards: the checkasm core (tests/checkasm/, the host's registry and
 # inputs) in QEMU, which checks the MVE row kernels against the C kernels.
-ARM_CHECKASM_SRCS = tests/arm/checkasm_arm_main.c tests/checkasm/checkasm.c tests/checkasm/checkasm_trm.c
+ARM_CHECKASM_SRCS = tests/arm/checkasm_arm_main.c tests/checkasm/checkasm.c tests/checkasm/checkasm_trm.c tests/checkasm/checkasm_lcd.c
 ARM_CHECKASM_OBJS = $(patsubst %.c,$(BA)/%.o,$(ARM_BOARD_SRCS) $(ARM_CHECKASM_SRCS))
 $(patsubst %.c,$(BA)/%.o,$(ARM_CHECKASM_SRCS)): ARM_TEST_CFLAGS += -DCHECKASM_NO_MAIN
 $(BA)/checkasm_mve.elf: $$(ARM_CHECKASM_OBJS) $(BA)/libtdcfw.a $(ARM_LDDEPS)
@@ -370,7 +374,6 @@ test-arm:
 # the Cortex-M7 (mps2-an500) and Cortex-M55 (mps3-an547) under QEMU, counted
 # by a TCG plugin built here against the plugin API of Debian's QEMU.
 # ---------------------------------------------------------------------------
-INSN_PLUGIN := $(BUILD)/tools/tdc-insn-count.so
 $(INSN_PLUGIN): tests/arm/tdc_insn_plugin.c | $(BUILD)/tools
 	gcc -std=c11 -Wall -Wextra -Werror -O2 -shared -fPIC $< -o $@
 

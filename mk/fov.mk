@@ -27,6 +27,9 @@ $(foreach t,$(FOV_TESTS),$(B)/tests/unit/$(t)): $(B)/tests/unit/%: $(B)/tests/un
 	$(CC) $(HOST_LDFLAGS) $^ -o $@ $(HOST_LIBS)
 $(B)/tests/unit/test_fov.o $(B)/tests/unit/test_fov_ref.o: $(GEN)/tdc_fov_tables.h
 
+# the FOVEATED kind in the link decoder (docs/link-protocol.md)
+TESTS += $(B)/tests/unit/test_link_fov
+
 GOLDEN_STAGES += fov
 
 # make bench: rays and link bytes vs full rate per panel, eq. 5.1 curve, remap
@@ -42,3 +45,9 @@ fuzz-seeds-fov: $(BUILD)/fuzz/make_seeds_fov
 	@mkdir -p tests/fuzz/corpus-fov
 	$(BUILD)/fuzz/make_seeds_fov tests/fuzz/corpus-fov
 .PHONY: fuzz-seeds-fov
+
+# The simulator's fov modes (sim/simulator/tdc_sim_mode_fov.c), gaze schedules and tracker
+TESTS += $(B)/tests/unit/test_sim_fov
+$(B)/tests/unit/test_sim_fov: $(B)/tests/unit/test_sim_fov.o $$(SIMXLIB) $$(SIMLIB) $$(FWLIB)
+	$(CC) $(HOST_LDFLAGS) $(SIM_OMP) $^ -o $@ $(HOST_LIBS)
+$(B)/tests/unit/test_sim_fov.o: $(GEN)/tdc_sim_features.h

@@ -12,7 +12,9 @@ FUZZ_SMOKE_SECONDS ?= 8
 FUZZ_DIR := $(BUILD)/fuzz
 FUZZ_FLAGS := -std=c11 -D_GNU_SOURCE -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
               -Ifirmware -I$(GEN) -Isim -Ihosttools/common
-LINK_FW_SRCS := firmware/tdc_wire.c firmware/tdc_link.c firmware/tdc_pixfmt.c firmware/tdc_crc32.c firmware/tdc_layer_link.c
+# the link decoder and what it calls (FOVEATED packets: the foveation header and geometry)
+LINK_FW_SRCS := firmware/tdc_wire.c firmware/tdc_link.c firmware/tdc_pixfmt.c firmware/tdc_crc32.c firmware/tdc_layer_link.c \
+                firmware/tdc_fov.c firmware/tdc_fov_link.c firmware/tdc_math.c
 
 # name: harness + sources [+ flags, libraries]
 FUZZ_ALL := link usbproto usbreply panel tdcs scene frameloop meas fov
@@ -32,7 +34,7 @@ FUZZ_DEPS_scene := sim/render/tdc_render_geom.c
 FUZZ_CFLAGS_scene := -Isim/render
 FUZZ_LIBS_scene := -lembree3 -lm
 # the board frame loop for a 16 x 8 stereo OLED panel with TRM and tile assembly
-FUZZ_SRCS_frameloop := tests/fuzz/fuzz_frameloop.c $(LINK_FW_SRCS) firmware/tdc_assemble.c firmware/tdc_math.c \
+FUZZ_SRCS_frameloop := tests/fuzz/fuzz_frameloop.c $(LINK_FW_SRCS) firmware/tdc_assemble.c \
                        firmware/tdc_ordering.c firmware/tdc_trm.c firmware/tdc_trm_rows.c firmware/tdc_trm_avx2.c \
                        $(GEN)/tdc_panel_htc-vive.c firmware/tdc_link_encode.c
 FUZZ_DEPS_frameloop := firmware/board/tdc_main.c
@@ -47,11 +49,10 @@ FUZZ_LIBS_meas := -lm
 # the foveated packet's kind-specific path: header, payload length, unpack, the stage with TAA
 # (seeds: make fuzz-seeds-fov, mk/fov.mk)
 FUZZ_SRCS_fov := tests/fuzz/fuzz_fov.c firmware/tdc_fov.c firmware/tdc_fov_link.c firmware/tdc_math.c
-FUZZ_DEPS_fov := $(GEN)/tdc_fov_tables.h
 
 define fuzz_target
 $(FUZZ_DIR)/fuzz_$(1): $(FUZZ_SRCS_$(1)) $(FUZZ_DEPS_$(1)) $(wildcard firmware/*.h sim/link/*.h sim/render/*.h) \
-                       $(GEN)/tdc_crc32_tables.h $(GEN)/tdc_panels.h
+                       $(GEN)/tdc_crc32_tables.h $(GEN)/tdc_fov_tables.h $(GEN)/tdc_panels.h
 	@mkdir -p $$(@D)
 	$(FUZZ_CC) $(FUZZ_FLAGS) $(FUZZ_CFLAGS_$(1)) $(FUZZ_SRCS_$(1)) -o $$@ $(FUZZ_LIBS_$(1))
 $(FUZZ_DIR)/fuzz-smoke-$(1): $(FUZZ_DIR)/fuzz_$(1) tests/fuzz/smoke.sh mk/fuzz.mk
@@ -82,7 +83,8 @@ fuzz-smoke: $(foreach t,$(FUZZ_ALL),$(FUZZ_DIR)/fuzz-smoke-$(t)) $(foreach t,$(F
 	@tests/run_tests.sh "clang-fuzz" $^
 
 FUZZ_SEEDS_BIN := $(FUZZ_DIR)/make_seeds
-$(FUZZ_SEEDS_BIN): tests/fuzz/make_seeds.c sim/link/tdc_link_gen.c firmware/tdc_link_encode.c $(LINK_FW_SRCS) $(GEN)/tdc_crc32_tables.h
+$(FUZZ_SEEDS_BIN): tests/fuzz/make_seeds.c sim/link/tdc_link_gen.c firmware/tdc_link_encode.c $(LINK_FW_SRCS) $(GEN)/tdc_crc32_tables.h \
+                   $(GEN)/tdc_fov_tables.h
 	@mkdir -p $(@D)
 	gcc -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror -O2 -Ifirmware -Isim -I$(GEN) $(filter %.c,$^) -o $@
 fuzz-seeds: $(FUZZ_SEEDS_BIN)

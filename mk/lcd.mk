@@ -3,7 +3,7 @@
 #
 # FW_LCD_SRCS: firmware sources only LCD panels need.  Host builds link them
 # (FW_SRCS); board builds for OLED panels leave them out (mk/boards.mk).
-FW_LCD_SRCS := firmware/tdc_lcd.c firmware/tdc_lcd_state.c firmware/tdc_overdrive.c
+FW_LCD_SRCS := firmware/tdc_lcd.c firmware/tdc_lcd_state.c firmware/tdc_overdrive.c firmware/tdc_lcd_avx2.c
 FW_SRCS += $(FW_LCD_SRCS)
 SIM_SRCS += sim/lcd/tdc_lcdsim.c sim/lcd/tdc_lcd_ref.c
 
@@ -89,3 +89,6 @@ TESTS += $(B)/tests/unit/test_lcd_sim_modes
 endif
 
 # The measurement reader is fuzzed as target "meas" of mk/fuzz.mk (tests/fuzz/fuzz_meas.c).
+# The AVX2 run of the stateful inverse (firmware/tdc_lcd_avx2.c): built with
+# vector registers; its machine code is checked for floating point instead.
+$(B)/firmware/tdc_lcd_avx2.o: FW_CFLAGS := $(filter-out -mgeneral-regs-only,$(FW_CFLAGS))

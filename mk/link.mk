@@ -15,8 +15,8 @@ $(B)/firmware/tdc_crc32.o: $(GEN)/tdc_crc32_tables.h
 FW_SRCS += firmware/tdc_crc32.c firmware/tdc_pixfmt.c firmware/tdc_wire.c firmware/tdc_link.c firmware/tdc_link_encode.c firmware/tdc_layer_link.c
 SIM_SRCS += sim/link/tdc_link_file.c sim/link/tdc_pixfmt_ref.c sim/link/tdc_link_gen.c
 
-# Fuzzing of the decoder (and of every other parser): mk/fuzz.mk.
-LINK_FW_SRCS := firmware/tdc_wire.c firmware/tdc_link.c firmware/tdc_pixfmt.c firmware/tdc_crc32.c firmware/tdc_layer_link.c
+# Fuzzing of the decoder (and of every other parser), and the decoder's
+# source list LINK_FW_SRCS: mk/fuzz.mk.
 
 # ---------------------------------------------------------------------------
 # Tests, golden vectors, benchmark.

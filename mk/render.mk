@@ -4,7 +4,7 @@ DEPS_PKGS += libembree-dev
 RENDER_SRCS := sim/render/tdc_scene_parse.c sim/render/tdc_scene_anim.c sim/render/tdc_scene_builtin.c \
                sim/render/tdc_render_core.c sim/render/tdc_render_geom.c sim/render/tdc_render_texture.c \
                sim/render/tdc_render_trace.c sim/render/tdc_render_frame.c sim/render/tdc_render_stream.c \
-               sim/render/tdc_render_fov.c
+               sim/render/tdc_render_fov.c sim/render/tdc_render_cones.c sim/render/tdc_render_indirect.c
 RENDER_OBJS = $(patsubst %.c,$(B)/%.o,$(RENDER_SRCS))
 RENDERLIB = $(B)/libtdcrender.a
 RENDER_LDLIBS := -lembree3
@@ -17,7 +17,7 @@ HOST_PROGS += $(B)/tdc-render
 $(B)/tdc-render: $(B)/sim/render/tdc_render_main.o $(B)/libtdcrender.a $(SIMLIB) $(FWLIB)
 	$(CC) $(HOST_LDFLAGS) $< -o $@ $(RENDERLIB) $(SIMLIB) $(FWLIB) $(RENDER_LDLIBS) $(HOST_LIBS)
 
-RENDER_TESTS := test_render_scene test_render_mv test_render_gt test_render_stream test_render_fov test_render_texture
+RENDER_TESTS := test_render_scene test_render_mv test_render_gt test_render_stream test_render_fov test_render_cones test_render_texture
 TESTS += $(foreach t,$(RENDER_TESTS),$(B)/tests/unit/$(t))
 BENCHES += $(B)/tests/bench/bench_render
 # test_render_hash: output hash of every built-in/mode (a tool for pixel-identical optimisations, not in TESTS)

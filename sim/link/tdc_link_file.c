@@ -140,9 +140,13 @@ int tdc_link_file_check(const char *path, FILE *log, int verbose, tdc_link_file_
     tdc_link_buffers_t b;
     memset(&b, 0, sizeof b);
     b.staging_bytes = TDC_LINK_STAGING_BYTES(w, h);
+    if ((in.flags & TDC_LINK_STREAM_LAYERS) && TDC_LINK_STAGING_LAYERS_BYTES(w, h) > b.staging_bytes)
+        b.staging_bytes = TDC_LINK_STAGING_LAYERS_BYTES(w, h); /* layered subframes: up to 7 B/px */
+    tdc_layer_frame_t lay[2];
+    memset(lay, 0, sizeof lay);
     b.full_stride = (uint32_t)(w * 3u);
     b.reduced_bytes = TDC_LINK_FRAME_BYTES(w, h);
-    uint8_t *mem[16];
+    uint8_t *mem[16 + 2 * (2 * TDC_LAYER_MAX + 1)];
     size_t nmem = 0;
 #define TDCS_ALLOC(dst, type, bytes)     \
     do {                                 \
@@ -158,6 +162,14 @@ int tdc_link_file_check(const char *path, FILE *log, int verbose, tdc_link_file_
         TDCS_ALLOC(b.motion[e], int16_t *, TDC_LINK_MOTION_COUNT(w, h) * 2u);
         TDCS_ALLOC(b.sample_motion[e], int16_t *, TDC_LINK_SAMPLE_MOTION_COUNT(w, h) * 2u);
         TDCS_ALLOC(b.pattern[e], uint8_t *, TDC_PATTERN_BYTES(w, h));
+        if (in.flags & TDC_LINK_STREAM_LAYERS) { /* every layer type and the falloff plane */
+            for (uint32_t t = 1; t <= TDC_LAYER_MAX; t++) {
+                TDCS_ALLOC(lay[e].value[t - 1], uint8_t *, TDC_TILE_COUNT(w, h) * tdc_layer_value_bytes(t));
+                TDCS_ALLOC(lay[e].mv[t - 1], int16_t *, TDC_TILE_COUNT(w, h) * 2u * sizeof(int16_t));
+            }
+            TDCS_ALLOC(lay[e].falloff, uint16_t *, TDC_TILE_COUNT(w, h) * sizeof(uint16_t));
+            b.layers[e] = &lay[e];
+        }
     }
 #undef TDCS_ALLOC
     static uint8_t chunk[65536];

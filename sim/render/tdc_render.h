@@ -80,6 +80,8 @@ typedef struct {
     int record_rays;       /* keep every traced ray of the last frame (benchmark) */
     int tex_filter;        /* box-filter textures over each sample's ray-cone footprint (TDRT §3.1.1,
                               [AMNA*19]), default 1; 0: point-sampled as before */
+    int indirect;          /* one diffuse indirect bounce per sample, 6-cone record (Zeng §4.3), default 0 */
+    int indirect_reuse;    /* FULL frames: reuse the previous frame's cones at the dual MV (eqs. 9-11), default 0 */
 } tdc_render_config_t;
 
 /* Caller-owned outputs; any pointer may be NULL (that output is not
@@ -107,6 +109,7 @@ typedef struct {
     int16_t *mv_refl;    /* n x 2 Q4: reflected MV (mirror: TDRT §3.1.2; glossy: stochastic, Zeng eq. 5),
                              = mv_surf where there is no reflected hit */
     uint8_t *shadow_src; /* n: 1 = a tracked shadow (blocker and shadow MV valid): shadow-splatting source (§4.1) */
+    float *indirect;     /* n x 3: diffuse indirect layer (option indirect; rgb = vis shade + refl + indirect) */
 } tdc_render_out_t;
 
 typedef enum {
@@ -120,6 +123,7 @@ typedef enum {
     TDC_STAGE_MV_DUAL,    /* dual motion vectors (+ previous-frame rays) */
     TDC_STAGE_RESOLVE,    /* Gaussian resolve (reduced) / sample averaging (ground truth) */
     TDC_STAGE_ORDERING,   /* tile-ordering update (subframes, frame = 0 mod 4) */
+    TDC_STAGE_INDIRECT,   /* option indirect: diffuse bounce, cones, reuse (its rays count as reflect rays) */
     TDC_STAGE_COUNT
 } tdc_render_stage_t;
 
@@ -172,6 +176,12 @@ void tdc_render_output_size(const tdc_render_t *r, tdc_render_mode_t mode, int *
  * parameters the firmware would refuse (alpha, disk, gaze more than one
  * screen outside).  *lp_samples / *disk_pixels (may be NULL): the counts. */
 int tdc_render_set_foveation(tdc_render_t *r, const tdc_render_fov_t *f, int *lp_samples, int *disk_pixels);
+/* Sets the positions (image px, x y pairs, n >= 1) the following FOVEATED
+ * frames trace instead of the foveation's: any sample set, e.g. the
+ * simulator's subframe positions for layered sources.  Outputs per sample
+ * as for FOVEATED, plus the layers and the shadow and dual MVs.  0, or -1
+ * for a bad argument (positions beyond 1e6 px). */
+int tdc_render_set_samples(tdc_render_t *r, const double *xy, int n);
 /* Halton(2,3) jitter of frame f in [-0.5, 0.5)^2 (the thesis's sub-pixel jitter, §4.3.2). */
 void tdc_render_halton(uint32_t f, double *jx, double *jy);
 void tdc_render_get_features(const tdc_render_t *r, tdc_render_features_t *f);
@@ -210,6 +220,7 @@ typedef struct {
     int refl_mv_ok;
     double refl_mv[2], refl_mu[2], refl_axes[4];
     double shade[3], vis, refl[3]; /* layers */
+    double indirect[3];            /* option indirect, without reuse */
 } tdc_render_probe_t;
 int tdc_render_probe(tdc_render_t *r, uint32_t frame, double x, double y, tdc_render_probe_t *p);
 

@@ -150,6 +150,7 @@ tdc_render_t *tdc_render_open(const tdc_scene_t *scene, const tdc_render_config_
     r->W = cfg->width ? cfg->width : scene->width;
     r->H = cfg->height ? cfg->height : scene->height;
     r->fr[0].frame = r->fr[1].frame = -1000;
+    r->cone_frame = -2; /* no cone history */
     r->mv_hist = calloc((size_t)r->W * r->H * 2, sizeof(int16_t));
     r->mv_hist_prev = calloc((size_t)r->W * r->H * 2, sizeof(int16_t));
     r->pattern = calloc(TDC_PATTERN_BYTES(r->W, r->H), 1);
@@ -211,6 +212,8 @@ void tdc_render_close(tdc_render_t *r)
     free(r->pattern);
     free(r->rec);
     free(r->fov_xy);
+    free(r->cone_hist[0]);
+    free(r->cone_hist[1]);
     for (int i = 0; i < 64; i++) free(r->sbuf[i]);
     free(r);
 }
@@ -327,8 +330,9 @@ const tdc_render_ray_t *tdc_render_recorded_rays(const tdc_render_t *r, size_t *
 
 const char *tdc_render_stage_name(tdc_render_stage_t s)
 {
-    static const char *const n[TDC_STAGE_COUNT] = {"scene",      "primary",   "shade",   "reflect", "mv",
-                                                   "mv-reflect", "mv-shadow", "mv-dual", "resolve", "ordering"};
+    static const char *const n[TDC_STAGE_COUNT] = {"scene",   "primary", "shade",    "reflect",
+                                                   "mv",      "mv-reflect", "mv-shadow", "mv-dual",
+                                                   "resolve", "ordering", "indirect"};
     return (unsigned)s < TDC_STAGE_COUNT ? n[s] : "?";
 }
 

@@ -69,3 +69,17 @@ int tdc_render_set_foveation(tdc_render_t *r, const tdc_render_fov_t *f, int *lp
     if (disk_pixels) *disk_pixels = nd;
     return 0;
 }
+
+int tdc_render_set_samples(tdc_render_t *r, const double *xy, int n)
+{
+    if (!r || !xy || n < 1 || n > 64 * 1024 * 1024) return -1;
+    for (int i = 0; i < 2 * n; i++)
+        if (!(fabs(xy[i]) < 1e6)) return -1;
+    float *p = realloc(r->fov_xy, (size_t)n * 2 * sizeof(float));
+    if (!p) return -1;
+    r->fov_xy = p;
+    for (int i = 0; i < 2 * n; i++) p[i] = (float)xy[i];
+    r->fov_n = n;
+    r->fov_lp = 0;
+    return 0;
+}

@@ -27,7 +27,9 @@ typedef struct {
     _Alignas(64) int next;
     char next_pad[60];
     int32_t jx, jy; /* subframe static jitter, Q4 */
-    int do_reflect, do_mv, do_mv_reflect, do_mv_shadow, do_mv_dual, frame_static, do_layers;
+    int do_reflect, do_mv, do_mv_reflect, do_mv_shadow, do_mv_dual, frame_static, do_layers, do_indirect;
+    float *cone_cur;
+    const float *cone_prev;
     int ndual_rect; /* dual-MV culling rectangles (rthread_t), -1 = none */
     float dual_rect[TDC_SCENE_MAX_OBJECTS][4];
     const tdc_render_out_t *out;
@@ -199,7 +201,9 @@ static inline uint64_t stamp(void)
         t_ = t1_;                       \
     } while (0)
 
-/* The layer outputs of FULL and SUBFRAME samples (Zeng §4). */
+static void write_rare(job_t *jb, const rsample_t *s, int n, int depth);
+
+/* The layer outputs of FULL, SUBFRAME and FOVEATED samples (Zeng §4). */
 static void write_layers(job_t *jb, const rsample_t *s, int n)
 {
     const tdc_render_out_t *o = jb->out;
@@ -229,6 +233,8 @@ static void write_layers(job_t *jb, const rsample_t *s, int n)
             o->mv_refl[d * 2 + 1] = q4(mr1);
         }
         if (o->shadow_src) o->shadow_src[d] = (uint8_t)(jb->do_mv_shadow && a->in_shadow);
+        if (o->indirect)
+            for (int c = 0; c < 3; c++) o->indirect[d * 3 + c] = jb->do_indirect ? (float)a->ind[c] : 0.0f;
     }
 }
 
@@ -261,6 +267,9 @@ static void write_outputs(job_t *jb, const rsample_t *s, int n)
             }
             if (o->depth) o->depth[a->dst] = (float)a->depth;
         }
+        /* layers, shadow and dual MVs of the samples (tdc_render_set_samples) */
+        if (jb->do_layers) write_layers(jb, s, n);
+        if (o->mv_shadow || o->shadow_weight || o->mv_dual || o->mv_f) write_rare(jb, s, n, 0);
         return;
     }
     /* the common outputs in a loop of their own, without per-sample tests */
@@ -300,10 +309,17 @@ static void write_outputs(job_t *jb, const rsample_t *s, int n)
     }
     if (jb->do_layers) write_layers(jb, s, n);
     if (!o->depth && !o->mv_f && !o->mv_shadow && !o->shadow_weight && !o->mv_dual) return;
+    write_rare(jb, s, n, 1);
+}
+
+/* Depth, float MVs, shadow MVs and weights, dual MVs. */
+static void write_rare(job_t *jb, const rsample_t *s, int n, int depth)
+{
+    const tdc_render_out_t *o = jb->out;
     for (int i = 0; i < n; i++) {
         const rsample_t *a = &s[i];
         size_t d = a->dst;
-        if (o->depth) o->depth[d] = (float)a->depth;
+        if (o->depth && depth) o->depth[d] = (float)a->depth;
         int16_t m0 = 0, m1 = 0;
         if (jb->do_mv) {
             m0 = q4(a->mv[0]);
@@ -353,6 +369,7 @@ static void *worker_main(void *arg)
         if (jb->do_mv_reflect) TIMED(th, TDC_STAGE_MV_REFLECT, tdc_r_pass_mv_reflect(th, s, n));
         if (jb->do_mv_shadow) TIMED(th, TDC_STAGE_MV_SHADOW, tdc_r_pass_mv_shadow(th, s, n));
         if (jb->do_mv_dual) TIMED(th, TDC_STAGE_MV_DUAL, tdc_r_pass_mv_dual(th, s, n));
+        if (jb->do_indirect) TIMED(th, TDC_STAGE_INDIRECT, tdc_r_pass_indirect(th, s, n));
         write_outputs(jb, s, n);
     }
     return NULL;
@@ -482,8 +499,10 @@ int tdc_render_frame(tdc_render_t *r, uint32_t frame, tdc_render_mode_t mode, co
     jb.frame_static = st.frame_static;
     jb.do_reflect = r->feat.mirrors && r->cfg.max_bounces > 0;
     jb.do_mv = mv_mode && !st.frame_static;
-    jb.do_layers = (mode == TDC_RENDER_FULL || mode == TDC_RENDER_SUBFRAME) &&
-                   (out->shade || out->vis || out->refl || out->mv_surf || out->mv_refl || out->shadow_src);
+    jb.do_layers = (mode == TDC_RENDER_FULL || mode == TDC_RENDER_SUBFRAME || mode == TDC_RENDER_FOVEATED) &&
+                   (out->shade || out->vis || out->refl || out->mv_surf || out->mv_refl || out->shadow_src ||
+                    out->indirect);
+    jb.do_indirect = r->cfg.indirect && r->feat.lights;
     jb.do_mv_reflect = jb.do_mv && jb.do_reflect && (r->cfg.reflect_mv || jb.do_layers);
     jb.do_mv_shadow = jb.do_mv && r->cfg.shadow_mv && r->feat.moving_blocker;
     jb.do_mv_dual = jb.do_mv && r->cfg.dual_mv;
@@ -495,6 +514,14 @@ int tdc_render_frame(tdc_render_t *r, uint32_t frame, tdc_render_mode_t mode, co
     tdc_r_frame(r, (long)frame - 1);
     jb.ndual_rect = -1;
     if (jb.do_mv_dual) dual_rects(r, (long)frame, &jb);
+    int reuse = jb.do_indirect && r->cfg.indirect_reuse && mode == TDC_RENDER_FULL;
+    if (reuse) { /* the cone history of two frames, allocated on first use */
+        size_t nf = (size_t)r->W * r->H * TDC_R_CONE_FLOATS;
+        for (int k = 0; k < 2; k++)
+            if (!r->cone_hist[k] && !(r->cone_hist[k] = calloc(nf, sizeof(float)))) return -1;
+        jb.cone_cur = r->cone_hist[frame & 1u];
+        jb.cone_prev = r->cone_frame == (long)frame - 1 ? r->cone_hist[(frame - 1) & 1u] : NULL;
+    }
     st.ms[TDC_STAGE_SCENE] = tdc_r_now_ms() - t0;
     st.ran[TDC_STAGE_SCENE] = 1;
 
@@ -565,6 +592,10 @@ int tdc_render_frame(tdc_render_t *r, uint32_t frame, tdc_render_mode_t mode, co
         init_thread(&w[i].th, r, frame, mode == TDC_RENDER_GROUND_TRUTH, jb.spp, jb.record, jb.do_mv_shadow);
         w[i].th.cone = tdc_r_sample_cone(r, mode, jb.sw, jb.spp, w[i].th.cur->cam.tan_half);
         w[i].th.layers = jb.do_layers;
+        w[i].th.have_mv = jb.do_mv;
+        w[i].th.have_dual = jb.do_mv_dual;
+        w[i].th.cone_cur = jb.cone_cur;
+        w[i].th.cone_prev = jb.cone_prev;
         w[i].th.ndual_rect = jb.ndual_rect;
         if (jb.ndual_rect > 0) memcpy(w[i].th.dual_rect, jb.dual_rect, (size_t)jb.ndual_rect * sizeof jb.dual_rect[0]);
         if (r->sbuf_cap[i] < cap) { /* kept between frames: no page faults per frame */
@@ -618,6 +649,8 @@ int tdc_render_frame(tdc_render_t *r, uint32_t frame, tdc_render_mode_t mode, co
     st.ran[TDC_STAGE_MV_REFLECT] = jb.do_mv_reflect;
     st.ran[TDC_STAGE_MV_SHADOW] = jb.do_mv_shadow;
     st.ran[TDC_STAGE_MV_DUAL] = jb.do_mv_dual;
+    st.ran[TDC_STAGE_INDIRECT] = jb.do_indirect;
+    if (reuse) r->cone_frame = (long)frame;
 
     if (mode == TDC_RENDER_REDUCED) {
         t0 = tdc_r_now_ms();
@@ -657,6 +690,9 @@ int tdc_render_probe(tdc_render_t *r, uint32_t frame, double x, double y, tdc_re
     tdc_r_pass_mv_reflect(&th, &s, 1); /* reflect_mv = 0 only keeps it out of mv */
     tdc_r_pass_mv_shadow(&th, &s, 1);
     tdc_r_pass_mv_dual(&th, &s, 1);
+    th.have_mv = th.have_dual = 1;
+    if (r->cfg.indirect && r->feat.lights) tdc_r_pass_indirect(&th, &s, 1);
+    memcpy(p->indirect, s.ind, sizeof p->indirect);
     p->hit = s.obj >= 0;
     p->obj = s.obj;
     memcpy(p->q, s.Q, sizeof p->q);

@@ -96,7 +96,14 @@ struct tdc_render {
     int fov_n, fov_lp;     /* samples, of which log-polar */
     tdc_render_ray_t *rec; /* recorded rays (merged) */
     size_t nrec;
+    /* option indirect_reuse: per-pixel 6-cone history of two frames
+     * (TDC_R_CONE_FLOATS each), cone_frame = the frame in cone_hist[frame & 1] */
+    float *cone_hist[2];
+    long cone_frame;
 };
+
+/* per-pixel cone record: 6 x RGB mean radiance, 6 weights, the normal */
+#define TDC_R_CONE_FLOATS 27
 
 /* Geometry (tdc_render_geom.c): builds obj's local Embree scene. */
 int tdc_r_build_object(tdc_render_t *r, int i, char *err, size_t errlen);
@@ -132,6 +139,19 @@ static inline void tdc_r_xform_normal(const double nm[9], const double n[3], dou
     out[0] = x * il;
     out[1] = y * il;
     out[2] = z * il;
+}
+
+/* Tangent frame of a unit normal (Duff et al. 2017, branchless): T, B, n
+ * orthonormal, depending only on n (GGX sampling, indirect bounce, cones). */
+static inline void tdc_r_onb(const double n[3], double t[3], double b[3])
+{
+    double sg = n[2] >= 0 ? 1.0 : -1.0, aa = -1.0 / (sg + n[2]), bb = n[0] * n[1] * aa;
+    t[0] = 1 + sg * n[0] * n[0] * aa;
+    t[1] = sg * bb;
+    t[2] = -sg * n[0];
+    b[0] = bb;
+    b[1] = sg + n[1] * n[1] * aa;
+    b[2] = -n[1];
 }
 
 static inline void tdc_r_cam_ray(const rcam_t *c, double x, double y, double dir[3])

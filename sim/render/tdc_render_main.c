@@ -34,7 +34,9 @@ static void usage(void)
                     "  --reduced-factor R   r of reduced frames (default 0.5)\n"
                     "  --shadow-mv --dual-mv --no-reflect-mv --bounces N\n"
                     "  --png DIR            write DIR/<scene>-<mode>-<frame>.png (+ -mv.png for motion)\n"
-                    "  --layers             with --png: also the layers -shade, -vis, -refl, -mv-refl (Zeng §4)\n"
+                    "  --layers             with --png: also the layers -shade, -vis, -refl, -mv-refl (Zeng §4);\n"
+                    "                       with --mode subframe --stream: a layered stream (LAYERS packets)\n"
+                    "  --indirect [--indirect-reuse]  one diffuse bounce per pixel [6-cone reuse over frames, §4.3]\n"
                     "  --stream FILE        write a .tdcs link stream (full, reduced, subframe, trm)\n"
                     "  --quiet              no per-frame lines\n"
                     "exit codes (docs/tools.md): 0 OK, 1 ARGS, 7 FILE, 13 INPUT (scene), 14 REFUSED (renderer\n"
@@ -109,6 +111,10 @@ int main(int argc, char **argv)
             cfg.dual_mv = 1;
         else if (!strcmp(a, "--layers"))
             layers = 1;
+        else if (!strcmp(a, "--indirect"))
+            cfg.indirect = 1;
+        else if (!strcmp(a, "--indirect-reuse"))
+            cfg.indirect = cfg.indirect_reuse = 1;
         else if (!strcmp(a, "--no-reflect-mv"))
             cfg.reflect_mv = 0;
         else if (!strcmp(a, "--frames") && v) {
@@ -168,8 +174,10 @@ int main(int argc, char **argv)
     int rc = TDC_EXIT_OK;
     tdc_render_t *r = NULL;
     tdc_render_stream_t *stream = NULL;
-    float *rgb = NULL, *vis = NULL, *lsh = NULL, *lvis = NULL, *lrefl = NULL;
-    int16_t *mv = NULL, *mvs = NULL, *mvd = NULL, *mvr = NULL;
+    float *rgb = NULL, *vis = NULL, *lsh = NULL, *lvis = NULL, *lrefl = NULL, *lind = NULL;
+    int16_t *mv = NULL, *mvs = NULL, *mvd = NULL, *mvr = NULL, *msurf = NULL;
+    float *lsw = NULL;
+    uint8_t *lsrc = NULL;
     tdc_scene_t *scene = malloc(sizeof *scene);
     if (!scene) return tdc_fail(TDC_EXIT_NOMEM, NULL, "scene", "out of memory");
     tdc_scene_status_t st = scene_file ? tdc_scene_load(scene_file, scene, err, sizeof err)
@@ -217,14 +225,20 @@ int main(int argc, char **argv)
     lsh = malloc(npix * 3 * sizeof(float));
     lvis = malloc(npix * 3 * sizeof(float)); /* grey for the PNG */
     lrefl = malloc(npix * 3 * sizeof(float));
+    lind = malloc(npix * 3 * sizeof(float));
     mvr = malloc(npix * 2 * sizeof(int16_t));
-    if (!rgb || !vis || !mv || !mvs || !mvd || !lsh || !lvis || !lrefl || !mvr) {
+    msurf = malloc(npix * 2 * sizeof(int16_t));
+    lsw = malloc(npix * sizeof(float));
+    lsrc = malloc(npix);
+    if (!rgb || !vis || !mv || !mvs || !mvd || !lsh || !lvis || !lrefl || !lind || !mvr || !msurf || !lsw || !lsrc) {
         rc = tdc_fail(TDC_EXIT_NOMEM, NULL, "frame buffers", "out of memory for %dx%d", W, H);
         goto done;
     }
+    int lstream = stream_path && layers && mode == TDC_RENDER_SUBFRAME && !trm;
     if (stream_path) {
         stream = tdc_render_stream_create(stream_path, r,
-                                          trm || mode == TDC_RENDER_REDUCED ? TDC_RSTREAM_TRM
+                                          lstream                           ? TDC_RSTREAM_LAYERS
+                                          : trm || mode == TDC_RENDER_REDUCED ? TDC_RSTREAM_TRM
                                           : mode == TDC_RENDER_SUBFRAME     ? TDC_RSTREAM_SUBFRAMES
                                                                             : TDC_RSTREAM_FULL,
                                           err, sizeof err);
@@ -242,20 +256,26 @@ int main(int argc, char **argv)
     for (int f = f0; f < f1 && !rc; f++) {
         tdc_render_mode_t m = mode;
         if (trm) m = tdc_link_trm_kind((uint32_t)f, 0) == TDC_LINK_KIND_REDUCED ? TDC_RENDER_REDUCED : TDC_RENDER_FULL;
-        int lay = layers && png_dir && (m == TDC_RENDER_FULL || m == TDC_RENDER_SUBFRAME);
+        int lay = layers && (png_dir || lstream) && (m == TDC_RENDER_FULL || m == TDC_RENDER_SUBFRAME);
         tdc_render_out_t out = {.rgb = rgb,
                                 .mv = mv,
-                                .mv_shadow = cfg.shadow_mv ? mvs : NULL,
+                                .mv_shadow = cfg.shadow_mv || lstream ? mvs : NULL,
+                                .shadow_weight = lstream ? lsw : NULL,
                                 .mv_dual = cfg.dual_mv ? mvd : NULL,
                                 .shade = lay ? lsh : NULL,
                                 .vis = lay ? lvis : NULL,
                                 .refl = lay ? lrefl : NULL,
-                                .mv_refl = lay ? mvr : NULL};
+                                .indirect = lay && cfg.indirect ? lind : NULL,
+                                .mv_surf = lstream ? msurf : NULL,
+                                .mv_refl = lay ? mvr : NULL,
+                                .shadow_src = lstream ? lsrc : NULL};
         tdc_render_stats_t s;
         if (tdc_render_frame(r, (uint32_t)f, m, &out, &s) < 0) {
             rc = tdc_fail(TDC_EXIT_REFUSED, NULL, "renderer", "frame %d failed", f);
             break;
         }
+        if (lstream && tdc_render_stream_layers(stream, (uint32_t)f, &out) < 0)
+            rc = tdc_fail(TDC_EXIT_FILE, NULL, stream_path, "link encoder or file rejected the layers of frame %d", f);
         uint64_t rays = 0;
         for (int k = 0; k < TDC_RAY_KIND_COUNT; k++) {
             rays += s.rays[k];
@@ -277,9 +297,9 @@ int main(int argc, char **argv)
             if (lay) {
                 size_t np = (size_t)s.out_w * s.out_h;
                 for (size_t i = np; i-- > 0;) lvis[3 * i] = lvis[3 * i + 1] = lvis[3 * i + 2] = lvis[i];
-                const float *img[3] = {lsh, lvis, lrefl};
-                const char *suffix[3] = {"shade", "vis", "refl"};
-                for (int k = 0; k < 3; k++) {
+                const float *img[4] = {lsh, lvis, lrefl, lind};
+                const char *suffix[4] = {"shade", "vis", "refl", "indirect"};
+                for (int k = 0; k < (cfg.indirect ? 4 : 3); k++) {
                     snprintf(path, sizeof path, "%s/%s-%s-%04d-%s.png", png_dir, scene->name, tdc_render_mode_name(m),
                              f, suffix[k]);
                     if (tdc_render_write_png(path, img[k], s.out_w, s.out_h, err, sizeof err) < 0)
@@ -306,7 +326,7 @@ int main(int argc, char **argv)
                 }
             }
         }
-        if (stream && tdc_render_stream_frame(stream, (uint32_t)f, m, rgb, mv) < 0) {
+        if (stream && !lstream && tdc_render_stream_frame(stream, (uint32_t)f, m, rgb, mv) < 0) {
             rc = tdc_fail(TDC_EXIT_FILE, NULL, stream_path, "link encoder or file rejected a packet of frame %d", f);
         }
     }
@@ -346,6 +366,10 @@ done:
     free(lsh);
     free(lvis);
     free(lrefl);
+    free(lind);
     free(mvr);
+    free(msurf);
+    free(lsw);
+    free(lsrc);
     return rc;
 }

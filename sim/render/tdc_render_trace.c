@@ -329,10 +329,7 @@ static void shade_direct(rthread_t *t, int obj, const double P[3], const double 
 
 /* Random numbers are keyed by the pixel (not the output slot), so a pixel
  * gets the same light samples in full frames, subframes and probes. */
-static uint32_t rng_key(const rsample_t *a)
-{
-    return (uint32_t)a->py * 65536u + (uint32_t)a->px;
-}
+#define rng_key tdc_r_rng_key
 
 /* Layers of a shaded primary sample (Zeng §4: shading without shadows,
  * visibility, reflection): lshade = unshadowed local radiance scaled like
@@ -441,10 +438,8 @@ double tdc_r_ggx_sample(const double d[3], const double N[3], double alpha, doub
 {
     double dl = sqrt(dot3(d, d));
     double wo[3] = {-d[0] / dl, -d[1] / dl, -d[2] / dl};
-    /* tangent frame around N (Duff et al. 2017, branchless ONB) */
-    double sg = N[2] >= 0 ? 1.0 : -1.0, aa = -1.0 / (sg + N[2]), bb = N[0] * N[1] * aa;
-    double T[3] = {1 + sg * N[0] * N[0] * aa, sg * bb, -sg * N[0]};
-    double B[3] = {bb, sg + N[1] * N[1] * aa, -N[1]};
+    double T[3], B[3];
+    tdc_r_onb(N, T, B);
     double vx = dot3(wo, T), vy = dot3(wo, B), vz = dot3(wo, N);
     if (!(vz > 0)) return 0;
     /* the view direction stretched to the unit-roughness configuration */
@@ -483,6 +478,23 @@ double tdc_r_ggx_sample(const double d[3], const double N[3], double alpha, doub
     double g1 = 2 / (1 + sqrt(1 + alpha * alpha * t2));
     copy3(out, l);
     return g1;
+}
+
+void tdc_r_trace_local(rthread_t *t, const double P[3], const double N[3], const double d[3], const rsample_t *a,
+                       uint32_t salt, double L[3])
+{
+    double eps = offset_eps(P);
+    double O[3] = {P[0] + N[0] * eps, P[1] + N[1] * eps, P[2] + N[2] * eps};
+    struct RTCRayHit rh;
+    int h = intersect(t, 0, O, d, 0, INFINITY, TDC_RAY_REFLECT, &rh);
+    if (h < 0) {
+        copy3(L, t->r->scene->background);
+        return;
+    }
+    double P2[3], Q2[3], N2[3], NQ2[3];
+    wncache_t wc = {.obj = -1};
+    surface_rh(t->cur, &rh, h, O, d, P2, Q2, N2, NQ2, &wc);
+    shade_direct(t, h, P2, Q2, N2, NQ2, rng_key(a), a->k, salt, NULL, L, NULL);
 }
 
 void tdc_r_pass_reflect(rthread_t *t, rsample_t *s, int n)

@@ -46,6 +46,7 @@ typedef struct {
     int mvr_ok;
     /* layers (Zeng §4): unshadowed local shading, visibility, reflection */
     double lshade[3], vis, refl[3];
+    double ind[3]; /* option indirect: the diffuse indirect light added to col */
 } rsample_t;
 
 typedef struct {
@@ -67,6 +68,9 @@ typedef struct {
     int ndual_rect;
     float dual_rect[TDC_SCENE_MAX_OBJECTS][4];
     uint64_t dual_culled; /* samples the rectangles spared a ray */
+    int have_mv, have_dual;         /* the MV / dual passes ran (indirect reuse follows mv / mvd) */
+    float *cone_cur;                /* indirect_reuse: this frame's cone history (W x H), or NULL */
+    const float *cone_prev;         /* the previous frame's, or NULL (no history) */
     uint64_t ticks[TDC_STAGE_COUNT]; /* stage time in stamp() ticks (tdc_render_frame.c) */
     uint64_t rays[TDC_RAY_KIND_COUNT];
     int record;
@@ -81,6 +85,17 @@ void tdc_r_pass_mv(rthread_t *t, rsample_t *s, int n);
 void tdc_r_pass_mv_reflect(rthread_t *t, rsample_t *s, int n);
 void tdc_r_pass_mv_shadow(rthread_t *t, rsample_t *s, int n);
 void tdc_r_pass_mv_dual(rthread_t *t, rsample_t *s, int n);
+void tdc_r_pass_indirect(rthread_t *t, rsample_t *s, int n);
+/* Random-number key of a sample: its pixel (same light samples in every mode and in probes). */
+static inline uint32_t tdc_r_rng_key(const rsample_t *a)
+{
+    return (uint32_t)a->py * 65536u + (uint32_t)a->px;
+}
+/* One secondary ray from surface point P (normal N facing the ray's side)
+ * along d: the local (direct) radiance of what it hits, with shadow rays
+ * (random salt), or the background.  Counted as a reflect ray. */
+void tdc_r_trace_local(rthread_t *t, const double P[3], const double N[3], const double d[3], const rsample_t *a,
+                       uint32_t salt, double L[3]);
 double tdc_r_ggx_sample(const double d[3], const double N[3], double alpha, double u1, double u2, double out[3]);
 double tdc_r_rand(uint32_t seed, uint32_t frame, uint32_t dst, uint32_t k, uint32_t dim);
 double tdc_r_now_ms(void);

@@ -112,6 +112,23 @@ static const char scene_room[] =
     "light lamp point pos 0 2.8 0 intensity 5 5 4.6\n"
     "light window rect pos -3.9 1.8 -1 u 0 0 1.2 v 0 0.8 0 intensity 2 2.2 2.5 samples 2\n";
 
+/* The stage of `mirror` and `glossy` (everything but the floor material). */
+#define MIRROR_STAGE                                                                                                   \
+    "material ball diffuse 0.9 0.2 0.1 checker 0.25 0.95 0.95 0.9\n"                                                   \
+    "material cube diffuse 0.1 0.3 0.9\n"                                                                              \
+    "material wall diffuse 0.8 0.8 0.8 stripes 0.5 0.2 0.2 0.2\n"                                                      \
+    "camera 0 pos 0 1.6 5 look 0 0.4 0 fov 45\n"                                                                       \
+    "object floor rect size 10 10 material floor rot -90 0 0\n"                                                        \
+    "object wall rect size 10 4 material wall pos 0 2 -4\n"                                                            \
+    "object ball sphere radius 0.5 material ball pos -2.5 0.7 0\n"                                                     \
+    "key ball 0 pos -2.5 0.7 0 rot 0 0 0\n"                                                                            \
+    "key ball 1 pos 0 1.2 0.5 rot 0 0 -180\n"                                                                          \
+    "key ball 2 pos 2.5 0.7 0 rot 0 0 -360\n"                                                                          \
+    "object cube box size 0.6 0.6 0.6 material cube pos 1.5 0.5 -1.5\n"                                                \
+    "key cube 0 rot 0 0 0\n"                                                                                           \
+    "key cube 2 rot 0 180 0\n"                                                                                         \
+    "light sun point pos 2 6 4 intensity 50 50 48\n"
+
 static const char scene_mirror[] = "tdc-scene 1\n"
                                    "name mirror\n"
                                    "resolution 640 360\n"
@@ -120,20 +137,7 @@ static const char scene_mirror[] = "tdc-scene 1\n"
                                    "background 0.3 0.4 0.6\n"
                                    "ambient 0.1 0.1 0.1\n"
                                    "material floor diffuse 0.05 0.05 0.05 mirror 0.9\n"
-                                   "material ball diffuse 0.9 0.2 0.1 checker 0.25 0.95 0.95 0.9\n"
-                                   "material cube diffuse 0.1 0.3 0.9\n"
-                                   "material wall diffuse 0.8 0.8 0.8 stripes 0.5 0.2 0.2 0.2\n"
-                                   "camera 0 pos 0 1.6 5 look 0 0.4 0 fov 45\n"
-                                   "object floor rect size 10 10 material floor rot -90 0 0\n"
-                                   "object wall rect size 10 4 material wall pos 0 2 -4\n"
-                                   "object ball sphere radius 0.5 material ball pos -2.5 0.7 0\n"
-                                   "key ball 0 pos -2.5 0.7 0 rot 0 0 0\n"
-                                   "key ball 1 pos 0 1.2 0.5 rot 0 0 -180\n"
-                                   "key ball 2 pos 2.5 0.7 0 rot 0 0 -360\n"
-                                   "object cube box size 0.6 0.6 0.6 material cube pos 1.5 0.5 -1.5\n"
-                                   "key cube 0 rot 0 0 0\n"
-                                   "key cube 2 rot 0 180 0\n"
-                                   "light sun point pos 2 6 4 intensity 50 50 48\n";
+                                   MIRROR_STAGE;
 
 static const char scene_fence[] =
     "tdc-scene 1\n"
@@ -173,20 +177,7 @@ static const char scene_glossy[] = "tdc-scene 1\n"
                                    "background 0.3 0.4 0.6\n"
                                    "ambient 0.1 0.1 0.1\n"
                                    "material floor diffuse 0.3 0.3 0.3 checker 0.5 0.12 0.12 0.12 mirror 0.6 roughness 0.08\n"
-                                   "material ball diffuse 0.9 0.2 0.1 checker 0.25 0.95 0.95 0.9\n"
-                                   "material cube diffuse 0.1 0.3 0.9\n"
-                                   "material wall diffuse 0.8 0.8 0.8 stripes 0.5 0.2 0.2 0.2\n"
-                                   "camera 0 pos 0 1.6 5 look 0 0.4 0 fov 45\n"
-                                   "object floor rect size 10 10 material floor rot -90 0 0\n"
-                                   "object wall rect size 10 4 material wall pos 0 2 -4\n"
-                                   "object ball sphere radius 0.5 material ball pos -2.5 0.7 0\n"
-                                   "key ball 0 pos -2.5 0.7 0 rot 0 0 0\n"
-                                   "key ball 1 pos 0 1.2 0.5 rot 0 0 -180\n"
-                                   "key ball 2 pos 2.5 0.7 0 rot 0 0 -360\n"
-                                   "object cube box size 0.6 0.6 0.6 material cube pos 1.5 0.5 -1.5\n"
-                                   "key cube 0 rot 0 0 0\n"
-                                   "key cube 2 rot 0 180 0\n"
-                                   "light sun point pos 2 6 4 intensity 50 50 48\n";
+                                   MIRROR_STAGE;
 
 static const char scene_blocker[] = "tdc-scene 1\n"
                                     "name blocker\n"

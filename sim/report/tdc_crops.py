@@ -17,7 +17,13 @@ one.  It writes
                          per mode, the crop window outlined in the first
     RUNDIR/crops.json    the window and the modes, for the report
 and, unless --keep-strips, deletes the full-size strips (at 1920x1080 each is
-several MB)."""
+several MB).
+
+Foveated runs (RUNDIR/strip_gaze.json, written by tdc-sim at the strip's
+instant: the true gaze and the foveal disk radius in panel pixels): two
+windows per mode, the fovea (centred on the gaze) and the periphery (the
+largest FLIP outside the disk), ground truth | perceived | FLIP each; the
+downscaled frames show the gaze (cross) and the disk (circle)."""
 import json
 import os
 import sys
@@ -76,22 +82,42 @@ def main(argv):
     P = {m: panels(os.path.join(run, "strip_%s.png" % m)) for m in modes}
     others = [m for m in modes if m != "full"] or modes
     err = sum(heat_to_error(P[m][3]) for m in others)
+    gz = None
+    gzp = os.path.join(run, "strip_gaze.json")
+    if os.path.isfile(gzp):
+        gz = json.load(open(gzp))
+        sc0 = P[modes[0]][1].shape[1] / max(1, gz["width"])  # panel magnification
+        gx, gy, gr = gz["x"] * sc0, gz["y"] * sc0, gz["r"] * sc0
+        yy, xx = np.mgrid[0:err.shape[0], 0:err.shape[1]]
+        err = np.where((xx + 0.5 - gx) ** 2 + (yy + 0.5 - gy) ** 2 > gr * gr, err, 0.0)
     x, y, n = best_window(err, crop)
+    wins = [(x, y)]
+    titles = ("ground truth", "perceived", "FLIP error")
+    if gz:
+        fx = int(min(max(gx - n / 2, 0), err.shape[1] - n))
+        fy = int(min(max(gy - n / 2, 0), err.shape[0] - n))
+        wins = [(fx, fy), (x, y)]
+        titles = ("fovea: ground truth", "perceived", "FLIP", "periphery: ground truth", "perceived", "FLIP")
     gap, lab = 4, 110
+    ncol = 3 * len(wins)
+    wd = lab + ncol * n + (ncol - 1) * gap + (len(wins) - 1) * 3 * gap
     rows = []
     for m in modes:
-        gt, pe, fl = (P[m][k][y:y + n, x:x + n] for k in (2, 1, 3))
-        row = np.full((n, lab + 3 * n + 2 * gap, 3), 255, np.uint8)
-        row[:, lab:lab + n], row[:, lab + n + gap:lab + 2 * n + gap], row[:, lab + 2 * n + 2 * gap:] = gt, pe, fl
+        row = np.full((n, wd, 3), 255, np.uint8)
+        for w_i, (wx, wy) in enumerate(wins):
+            for k, src in enumerate((2, 1, 3)):
+                c = w_i * 3 + k
+                x0 = lab + c * (n + gap) + w_i * 3 * gap
+                row[:, x0:x0 + n] = P[m][src][wy:wy + n, wx:wx + n]
         rows.append(row)
     head = 14
-    grid = np.full((head + len(rows) * (n + gap) - gap, lab + 3 * n + 2 * gap, 3), 255, np.uint8)
+    grid = np.full((head + len(rows) * (n + gap) - gap, wd, 3), 255, np.uint8)
     for i, r in enumerate(rows):
         grid[head + i * (n + gap):head + i * (n + gap) + n] = r
     im = Image.fromarray(grid)
     d = ImageDraw.Draw(im)
-    for k, t in enumerate(("ground truth", "perceived", "FLIP error")):
-        d.text((lab + k * (n + gap) + 2, 1), t, fill=(0, 0, 0))
+    for k, t in enumerate(titles):
+        d.text((lab + k * (n + gap) + (k // 3) * 3 * gap + 2, 1), t, fill=(0, 0, 0))
     for i, m in enumerate(modes):
         d.text((2, head + i * (n + gap) + n // 2 - 6), m, fill=(0, 0, 0))
     im.save(os.path.join(run, "crops.png"), optimize=True)
@@ -100,9 +126,17 @@ def main(argv):
     sc = min(1.0, thumb / w)
     first = downscale(P[modes[0]][2], thumb)
     d = ImageDraw.Draw(first)
-    d.rectangle([x * sc, y * sc, (x + n) * sc, (y + n) * sc], outline=(255, 0, 0), width=2)
+    for wx, wy in wins:
+        d.rectangle([wx * sc, wy * sc, (wx + n) * sc, (wy + n) * sc], outline=(255, 0, 0), width=2)
     thumbs.append(first)
     thumbs += [downscale(P[m][1], thumb) for m in modes]
+    if gz:
+        for t in thumbs:  # the gaze and the foveal disk
+            d = ImageDraw.Draw(t)
+            cx, cy, rr = gx * sc, gy * sc, gr * sc
+            d.ellipse([cx - rr, cy - rr, cx + rr, cy + rr], outline=(0, 255, 255), width=1)
+            d.line([cx - 5, cy, cx + 5, cy], fill=(0, 255, 255), width=1)
+            d.line([cx, cy - 5, cx, cy + 5], fill=(0, 255, 255), width=1)
     tw, th = thumbs[0].size
     cols = 3
     nr = (len(thumbs) + cols - 1) // cols
@@ -111,8 +145,11 @@ def main(argv):
         sheet.paste(t, ((i % cols) * (tw + gap), (i // cols) * (th + gap)))
     sheet.save(os.path.join(run, "frames.png"), optimize=True)
     with open(os.path.join(run, "crops.json"), "w") as f:
-        json.dump({"x": x, "y": y, "n": n, "width": int(w), "height": int(h), "thumb_scale": sc,
-                   "modes": modes, "picked_by": "max FLIP summed over " + ",".join(others)}, f)
+        j = {"x": x, "y": y, "n": n, "width": int(w), "height": int(h), "thumb_scale": sc,
+             "modes": modes, "picked_by": "max FLIP summed over " + ",".join(others)}
+        if gz:
+            j["fovea"] = {"x": wins[0][0], "y": wins[0][1], "gaze": [gx, gy], "r": gr}
+        json.dump(j, f)
     if "--keep-strips" not in argv:
         for s in strips:
             os.remove(os.path.join(run, s))

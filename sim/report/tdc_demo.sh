@@ -44,18 +44,29 @@ stiff-fast|-s pan -r 90 --speed 20000 -m trm-family -n 27
 stiff-black|-s black -r 90 -m trm-family -n 18
 stiff-black240|-s black -r 240 -m asm-family -d 0.05
 stiff-white|-s white -r 90 -m trm-family -n 18
-stiff-white240|-s white -r 240 -m asm-family -d 0.05'
+stiff-white240|-s white -r 240 -m asm-family -d 0.05
+fov-disk-05|-s pan -r 90 -g 480x540 -m fov-taa --fov-disk 0.05 -n 8
+fov-disk-12|-s pan -r 90 -g 480x540 -m full,fov-taa --fov-disk 0.12443 -n 8
+fov-disk-20|-s pan -r 90 -g 480x540 -m fov-taa --fov-disk 0.2 -n 8
+fov-disk-30|-s pan -r 90 -g 480x540 -m fov-taa --fov-disk 0.3 -n 8
+fov-alpha-1|-s pan -r 90 -g 480x540 -m fov-taa --fov-alpha 1 -n 8
+fov-alpha-8|-s pan -r 90 -g 480x540 -m fov-taa --fov-alpha 8 -n 8
+fov-render|-R panorama -r 90 -g 540x600 -m full,fov,fov-taa -n 12 --gaze saccade --gaze-latency 20 --gaze-noise 0.3'
 
 # Headset scale: photographs (thin grass stalks, leaf veins, dandelion
 # filaments) and Embree scenes (text, panorama), TRM at 90 Hz on the
-# headset eye, assembly at 1920x1080 / 240 Hz.
+# headset eye, assembly at 1920x1080 / 240 Hz, foveation (fov, fov-taa) on
+# the HTC Vive eye (1080x1200); the fov-disk-* / fov-alpha-* runs are the
+# disk-fraction and alpha comparison (eq. 5.1) at 480x540, fov-render the
+# Embree renderer's own foveated frames with saccades and a late, noisy
+# eye tracker (sim/report/tdc_fov_report.py).
 case $SCALE in
 headset)
     EYE="-g 1440x1600 --stereo"; TN=24; TM=full,half,ncsfi,trm50,trm25,asw; TM2=full,trm50,trm25
-    AN=48; AM=full,full60,taa60,asm-hourglass,asm-bowtie,asm-adaptive; AM2=full,taa60,asm-adaptive ;;
+    AN=48; AM=full,full60,taa60,asm-hourglass,asm-bowtie,asm-adaptive; AM2=full,taa60,asm-adaptive; FN=24 ;;
 today)
     EYE="-g 1440x1600"; TN=6; TM=full,half,trm50; TM2=full,trm50
-    AN=10; AM=full,taa60,asm-adaptive; AM2=full,asm-adaptive ;;
+    AN=10; AM=full,taa60,asm-adaptive; AM2=full,asm-adaptive; FN=8 ;;
 *)
     echo "tdc_demo.sh: DEMO_SCALE '$SCALE': headset or today" >&2; exit 2 ;;
 esac
@@ -63,7 +74,8 @@ HS="hs-trm-dune|--image $PH/Dune.jpg --zoom 1.6 --speed 300 --angle 10 -r 90 $EY
 hs-trm-wings|--image $PH/TwoWings.jpg --zoom 1.0 --zoom-rate 0.6 --rotate 12 --speed 150 -r 90 $EYE -m $TM2 -n $TN
 hs-render-panorama|-R panorama -r 90 $EYE -m $TM2 -n $TN
 hs-asm-blinds|--image $PH/Blinds.jpg --speed 330 --angle 90 -r 240 -g 1920x1080 -m $AM -n $AN
-hs-render-text|-R text -r 240 -g 1920x1080 -m $AM2 -n $AN"
+hs-render-text|-R text -r 240 -g 1920x1080 -m $AM2 -n $AN
+hs-fov-dune|--image $PH/Dune.jpg --zoom 1.6 --speed 300 --angle 10 -r 90 -g 1080x1200 -m full,fov,fov-taa -n $FN"
 [ -r "$PH/Dune.jpg" ] || { echo "tdc_demo.sh: photographs missing in $PH (make deps installs mate-backgrounds)" >&2; exit 1; }
 
 # long runs first (better packing on the job slots); DEMO_ONLY=REGEX keeps matching runs

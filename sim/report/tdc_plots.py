@@ -17,7 +17,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 out = sys.argv[1]
 secs = sys.argv[2] if len(sys.argv) > 2 else "?"
 
-ORDER = ["hs-trm-dune", "hs-trm-wings", "hs-render-panorama", "hs-asm-blinds", "hs-render-text", "trm-pan", "trm-discs", "trm-static", "trm-lcd", "ncsfi-slow", "ncsfi-fast", "asm-thin", "asm-fence",
+ORDER = ["hs-trm-dune", "hs-trm-wings", "hs-render-panorama", "hs-asm-blinds", "hs-render-text", "hs-fov-dune",
+         "hs-fov-render", "trm-pan", "trm-discs", "trm-static", "trm-lcd", "ncsfi-slow", "ncsfi-fast", "asm-thin", "asm-fence",
          "asm-pan", "render-panorama", "render-fence", "stiff-long", "stiff-cut", "stiff-cut240", "stiff-fast", "stiff-black", "stiff-white",
          "stiff-black240", "stiff-white240"]
 DESC = {
@@ -31,6 +32,12 @@ DESC = {
                      "330 px/s (1.375 px per refresh), hold display.",
     "hs-render-text": "1920x1080 / 240 Hz, Embree renderer, scene `text` (scrolling text: 1-px strokes); the renderer "
                       "traces the subframes with its adaptive orderings.",
+    "hs-fov-dune": "Headset eye (1080x1200, 90 Hz OLED, 11.4 px/deg), photograph `Dune.jpg` panned at 300 px/s: "
+                   "full rate against the foveated modes (alpha 4, delta 0.555, 12.443 % disk); the gaze follows "
+                   "the pursued motion from the centre and jumps back when it leaves the central half.",
+    "hs-fov-render": "Headset eye, Embree renderer, scene `panorama`: the renderer traces the foveated frames "
+                     "itself; gaze saccades between four points (250 ms fixations), eye tracker 20 ms late with "
+                     "0.3 deg noise.",
     "trm-pan": "Panned panorama-like texture, 450 px/s, 90 Hz OLED (HTC Vive gammas, 20 % persistence), eye tracking.",
     "trm-discs": "Discs moving at 600 px/s over a static grid, 90 Hz OLED, eye tracking the discs.",
     "trm-static": "Static detailed pattern: TRM eq. 3 (perceived identical to full rate).",
@@ -248,6 +255,12 @@ with open(os.path.join(out, "index.md"), "w") as f:
         f.write("\n")
     f.write("## Paper checks\n\n")
     f.write(open(os.path.join(out, "checks.md")).read())
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    from tdc_fov_report import fov_section  # noqa: E402
+    fs = fov_section(out)
+    if fs:
+        open(os.path.join(out, "foveation.md"), "w").write(fs)
+        f.write("\n" + fs)
     for n in names:
         f.write(f"\n## {n}\n\n{DESC.get(n, '')}\n\n")
         md = os.path.join(out, n, "summary.md")
@@ -265,12 +278,19 @@ with open(os.path.join(out, "index.md"), "w") as f:
             if os.path.isfile(cj):
                 import json
                 c = json.load(open(cj))
-                f.write(f"1:1 crops at the middle of the run: the {c['n']}x{c['n']} window at ({c['x']}, {c['y']}) of "
-                        f"the {c['width']}x{c['height']} evaluated interior where the FLIP error of the reduced modes "
-                        "is largest (the same window for every mode): perceived ground truth | perceived | FLIP "
-                        "error map\n\n")
+                if "fovea" in c:
+                    fv = c["fovea"]
+                    f.write(f"1:1 crops at the middle of the run, the same windows for every mode: the fovea "
+                            f"({c['n']}x{c['n']} around the true gaze at ({fv['gaze'][0]:.0f}, {fv['gaze'][1]:.0f}), "
+                            f"disk radius {fv['r']:.0f} px) and the periphery (the window at ({c['x']}, {c['y']}) "
+                            "with the largest FLIP outside the disk): ground truth | perceived | FLIP, each\n\n")
+                else:
+                    f.write(f"1:1 crops at the middle of the run: the {c['n']}x{c['n']} window at ({c['x']}, {c['y']}) of "
+                            f"the {c['width']}x{c['height']} evaluated interior where the FLIP error of the reduced modes "
+                            "is largest (the same window for every mode): perceived ground truth | perceived | FLIP "
+                            "error map\n\n")
                 f.write(f"![crops]({n}/crops.png)\n\n")
-                f.write("Full frames, downscaled: the ground truth with the crop window in red, then the perceived "
+                f.write("Full frames, downscaled (foveated runs: the gaze and the disk in cyan): the ground truth with the crop window(s) in red, then the perceived "
                         "frame of each mode in the order above\n\n")
                 f.write(f"![frames]({n}/frames.png)\n\n")
             elif strips:

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "simulator/tdc_sim_gaze.h"
 #include "tdc_png.h"
 
 static uint8_t enc8(double lin)
@@ -145,6 +146,13 @@ void tdc_report_markdown(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_res
             }
         }
     }
+    int fov = 0;
+    for (int i = 0; i < n; i++) {
+        fov |= r[i].available && r[i].foveated;
+    }
+    if (fov) {
+        tdc_report_foveation(f, cfg, r, n, 0);
+    }
     int any = 0;
     for (int i = 0; i < n; i++) {
         if (r[i].note[0]) {
@@ -153,6 +161,46 @@ void tdc_report_markdown(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_res
                 any = 1;
             }
             fprintf(f, "- `%s`: %s\n", r[i].desc->name, r[i].note);
+        }
+    }
+}
+
+void tdc_report_foveation(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_result_t *r, int n, int csv)
+{
+    const int eyes = cfg->eyes == 2 ? 2 : 1;
+    double full_rays = (double)cfg->width * cfg->height * (cfg->spp > 0 ? cfg->spp : (cfg->refresh_hz >= 200 ? 1 : 4)) *
+                       cfg->refresh_hz * eyes;
+    double full_bytes = (double)cfg->width * cfg->height * 3.0 * cfg->refresh_hz * eyes;
+    if (csv) {
+        fprintf(f, "run,mode,gaze,latency_ms,noise_deg,alpha,delta,disk,rays_vs_full,link_vs_full,flip,flip_fovea,"
+                   "flip_periphery,flip_ecc,flip_wmedian,flicker,flicker_periphery\n");
+    } else {
+        fprintf(f,
+                "\nFoveation (gaze `%s`, tracker latency %.0f ms, noise %.2f deg; alpha %.2f, delta %.3f, disk %.4f of "
+                "the distance to the farthest corner, which is also the foveal region below; FLIP weighted by "
+                "eccentricity 2.3/(2.3 + e deg) around the true gaze; weighted median as the thesis's Tables "
+                "5.1-5.3):\n\n| mode | rays vs full | link vs full | FLIP | FLIP fovea | FLIP periphery | FLIP ecc | "
+                "FLIP w-median | flicker | flicker periphery |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | "
+                "---: | ---: |\n",
+                tdc_sim_gaze_name(cfg->gaze), cfg->gaze_latency_ms, cfg->gaze_noise_deg, cfg->fov_alpha, cfg->fov_delta,
+                cfg->fov_disk);
+    }
+    for (int i = 0; i < n; i++) {
+        const tdc_sim_result_t *x = &r[i];
+        if (!x->available) {
+            continue;
+        }
+        double T = x->sim_s > 0 ? x->sim_s : 1.0;
+        if (csv) {
+            fprintf(f, "%s,%s,%s,%.1f,%.3f,%.3f,%.4f,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f,%.3f,%.3f\n",
+                    cfg->label ? cfg->label : "run", x->desc->name, tdc_sim_gaze_name(cfg->gaze), cfg->gaze_latency_ms,
+                    cfg->gaze_noise_deg, cfg->fov_alpha, cfg->fov_delta, cfg->fov_disk, x->rays / T / full_rays,
+                    x->link_bytes / T / full_bytes, x->flip, x->flip_fovea, x->flip_periph, x->flip_ecc,
+                    x->flip_wmedian, x->flicker, x->flicker_periph);
+        } else {
+            fprintf(f, "| %s | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %.2f | %.2f |\n", x->desc->name,
+                    x->rays / T / full_rays, x->link_bytes / T / full_bytes, x->flip, x->flip_fovea, x->flip_periph,
+                    x->flip_ecc, x->flip_wmedian, x->flicker, x->flicker_periph);
         }
     }
 }

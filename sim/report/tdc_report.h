@@ -22,5 +22,9 @@ void tdc_report_csv(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_result_t
 
 /* Markdown table of one run. */
 void tdc_report_markdown(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_result_t *r, int n);
+/* The foveation figures of every available mode (gaze metrics, rays and
+ * link bytes vs full rate): a markdown table (printed by
+ * tdc_report_markdown when a foveated mode ran) or CSV with a header. */
+void tdc_report_foveation(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_result_t *r, int n, int csv);
 
 #endif

@@ -83,6 +83,14 @@ typedef struct {
     int strip_at; /* evaluation index for the picture strip (-1: middle) */
     uint32_t seed;
     int strict;         /* 1: a mode a firmware stage refuses is an error, not a note */
+    /* foveation (issue 14, tdc_sim_gaze.h): gaze schedule, eye tracker, stream parameters */
+    int gaze;                 /* tdc_gaze_schedule_t: pursuit (default), fixed, saccade */
+    double gaze_at_x, gaze_at_y; /* fixed: the point (< 0: the centre) */
+    double gaze_latency_ms;   /* tracker latency */
+    double gaze_noise_deg;    /* tracker noise, sigma per axis */
+    double fov_alpha;         /* K(x) = x^alpha of the fov modes (default 4) */
+    double fov_delta;         /* buffer downscale (default 0.555) */
+    double fov_disk;          /* disk fraction (default 0.12443) */
     const char *outdir; /* NULL: no files */
     const char *label;  /* run label for the report */
 } tdc_sim_config_t;
@@ -118,6 +126,12 @@ typedef struct {
     uint32_t resets; /* stream resets (scene cuts) */
     double sim_s;    /* duration simulated */
     int nonfinite;   /* any NaN/Inf seen in a perceived image */
+    /* around the true gaze (every mode; tdc_fov_metrics.h): FLIP weighted by
+     * eccentricity, FLIP inside the foveal disk (the fov modes' disk
+     * fraction of the distance to the farthest corner) and outside it,
+     * FLIP's weighted median (thesis Tables 5.1-5.3), flicker outside the disk */
+    double flip_ecc, flip_fovea, flip_periph, flip_wmedian, flicker_periph;
+    int foveated; /* the mode foveates (fov family) */
 } tdc_sim_result_t;
 
 /* Runs the given modes; results[i] for modes[i].  Writes per-instant rows

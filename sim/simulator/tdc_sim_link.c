@@ -8,6 +8,12 @@
 #include "tdc_sim_features.h"
 #include "tdc_wire.h" /* packet sizes, also for the accounting without the link */
 
+/* the simulator's stream flags are the wire's */
+_Static_assert(TDC_SIM_LINK_REDUCED == TDC_LINK_STREAM_REDUCED && TDC_SIM_LINK_SUBFRAMES == TDC_LINK_STREAM_SUBFRAMES &&
+                   TDC_SIM_LINK_MOTION == TDC_LINK_STREAM_MOTION && TDC_SIM_LINK_SAMPLE_MV == TDC_LINK_STREAM_SAMPLE_MV &&
+                   TDC_SIM_LINK_FOVEATED == TDC_LINK_STREAM_FOVEATED,
+               "TDC_SIM_LINK_* differ from TDC_LINK_STREAM_*");
+
 #if TDC_SIM_HAVE_LINK
 #include "tdc_link_encode.h"
 #include "tdc_link.h"
@@ -92,7 +98,10 @@ int tdc_sim_link_init(tdc_sim_link_t *l, int w, int h, int eyes, uint32_t flags,
         l->pattern[e] = sub ? calloc(TDC_PATTERN_BYTES(w, h) + 1, 1) : NULL;
         l->motion[e] = (flags & TDC_SIM_LINK_MOTION) ? calloc(TDC_LINK_MOTION_COUNT(w, h), sizeof(int16_t)) : NULL;
         l->sample_motion[e] = sub ? calloc(TDC_LINK_SAMPLE_MOTION_COUNT(w, h), sizeof(int16_t)) : NULL;
-        if (!l->full[e] || (red && !l->reduced[e]) ||
+        const int fov = (flags & TDC_SIM_LINK_FOVEATED) != 0; /* delta <= 1: lp_w x lp_h <= w x h */
+        l->fov_lp[e] = fov ? calloc(TDC_LINK_FRAME_BYTES(w, h), 1) : NULL;
+        l->fov_mv[e] = fov ? calloc(TDC_LINK_MOTION_COUNT(w, h), sizeof(int16_t)) : NULL;
+        if (!l->full[e] || (red && !l->reduced[e]) || (fov && (!l->fov_lp[e] || !l->fov_mv[e])) ||
             (sub && (!l->subframe[e] || !l->pattern[e] || !l->sample_motion[e]))) {
             tdc_sim_link_free(l);
             return -1;
@@ -123,7 +132,11 @@ int tdc_sim_link_init(tdc_sim_link_t *l, int w, int h, int eyes, uint32_t flags,
         p->buf.motion[e] = l->motion[e];
         p->buf.sample_motion[e] = l->sample_motion[e];
         p->buf.pattern[e] = l->pattern[e];
+        p->buf.fov_lp[e] = l->fov_lp[e];
+        p->buf.fov_mv[e] = l->fov_mv[e];
     }
+    p->buf.fov_lp_bytes = TDC_LINK_FRAME_BYTES(w, h);
+    p->buf.fov_mv_count = TDC_LINK_MOTION_COUNT(w, h);
     tdc_link_config_t cfg = {(uint16_t)w, (uint16_t)h, (uint8_t)l->eyes};
     if (tdc_link_decoder_init(&p->dec, &cfg, &p->buf) != TDC_OK) {
         tdc_sim_link_free(l);
@@ -152,8 +165,10 @@ void tdc_sim_link_free(tdc_sim_link_t *l)
         free(l->pattern[e]);
         free(l->motion[e]);
         free(l->sample_motion[e]);
-        l->full[e] = l->reduced[e] = l->subframe[e] = l->pattern[e] = NULL;
-        l->motion[e] = l->sample_motion[e] = NULL;
+        free(l->fov_lp[e]);
+        free(l->fov_mv[e]);
+        l->full[e] = l->reduced[e] = l->subframe[e] = l->pattern[e] = l->fov_lp[e] = NULL;
+        l->motion[e] = l->sample_motion[e] = l->fov_mv[e] = NULL;
     }
 }
 
@@ -265,6 +280,34 @@ int tdc_sim_link_subframe(tdc_sim_link_t *l, int eye, uint32_t frame, const uint
     }
 #endif
     return rc ? -1 : 0;
+}
+
+int tdc_sim_link_foveated(tdc_sim_link_t *l, int eye, uint32_t frame, const tdc_fov_params_t *fp, uint16_t delta_q15,
+                          const uint8_t *samples, const int16_t *mv, tdc_fov_hdr_t *hdr)
+{
+#if TDC_SIM_HAVE_LINK
+    link_priv_t *p = l->priv;
+    double t0 = now_s();
+    size_t n = tdc_link_encode_foveated(&p->enc, p->pkt, p->cap, (uint32_t)eye, frame, fp, delta_q15, samples, mv,
+                                        NULL);
+    l->encode_s += now_s() - t0;
+    const int rc = feed(l, n, TDC_LINK_KIND_FOVEATED);
+    const tdc_fov_hdr_t *h = tdc_link_fov(&p->dec, (uint32_t)eye);
+    if (rc == 0 && hdr && h) {
+        *hdr = *h;
+    }
+    return rc == 0 && h ? 0 : -1;
+#else
+    (void)l;
+    (void)eye;
+    (void)frame;
+    (void)fp;
+    (void)delta_q15;
+    (void)samples;
+    (void)mv;
+    (void)hdr;
+    return -1;
+#endif
 }
 
 void tdc_sim_link_count_raw(tdc_sim_link_t *l, size_t payload)

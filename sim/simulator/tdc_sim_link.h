@@ -12,6 +12,8 @@
 #include <stdint.h>
 #include <stddef.h>
 
+#include "tdc_fov_link.h"
+
 typedef struct {
     int real; /* 1: encoder + decoder in the path */
     int w, h, rw, rh;
@@ -26,6 +28,8 @@ typedef struct {
     /* decoded buffers per eye (what the firmware reads) */
     uint8_t *full[2], *reduced[2], *subframe[2], *pattern[2];
     int16_t *motion[2], *sample_motion[2];
+    uint8_t *fov_lp[2]; /* FOVEATED: the log-polar samples (lp_w x lp_h RGB8) */
+    int16_t *fov_mv[2]; /* their motion vectors */
     void *priv;
 } tdc_sim_link_t;
 
@@ -34,6 +38,7 @@ typedef struct {
 #define TDC_SIM_LINK_SUBFRAMES 0x0002u
 #define TDC_SIM_LINK_MOTION 0x0004u
 #define TDC_SIM_LINK_SAMPLE_MV 0x0010u
+#define TDC_SIM_LINK_FOVEATED 0x0040u
 
 int tdc_sim_link_init(tdc_sim_link_t *l, int w, int h, int eyes, uint32_t flags, uint16_t r_num, uint16_t r_den,
                       uint16_t hz);
@@ -45,6 +50,13 @@ int tdc_sim_link_full(tdc_sim_link_t *l, int eye, uint32_t frame, const uint8_t 
 int tdc_sim_link_reduced(tdc_sim_link_t *l, int eye, uint32_t frame, const uint8_t *rgb);
 int tdc_sim_link_subframe(tdc_sim_link_t *l, int eye, uint32_t frame, const uint8_t *samples, const int16_t *mv,
                           const uint8_t *pattern);
+/* FOVEATED packet (the link decoder's kind 7): the foveation header of p
+ * and the samples in payload order (tdc_fov_link.h), vectors if mv; the
+ * decoder puts the disk pixels into full[eye], the rest into fov_lp/fov_mv.
+ * 0 when accepted; then *hdr (if not NULL) is the decoder's parsed header.
+ * Needs the link in the build (-1 without). */
+int tdc_sim_link_foveated(tdc_sim_link_t *l, int eye, uint32_t frame, const tdc_fov_params_t *p, uint16_t delta_q15,
+                          const uint8_t *samples, const int16_t *mv, tdc_fov_hdr_t *hdr);
 /* Bytes of a payload sent without a packet kind of its own (interlaced
  * rows): counted as payload + header, not decoded. */
 void tdc_sim_link_count_raw(tdc_sim_link_t *l, size_t payload);

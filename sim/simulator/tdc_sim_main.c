@@ -14,6 +14,7 @@
 #include "tdc_tool.h"
 #include "report/tdc_report.h"
 #include "simulator/tdc_sim.h"
+#include "simulator/tdc_sim_gaze.h"
 #include "simulator/tdc_sim_render.h"
 #include "tdc_par.h"
 
@@ -78,6 +79,15 @@ static void usage(FILE *f)
             "                          11.4 for htc-vive; 67.02, FLIP's desktop default, for profiles\n"
             "                          without one)\n"
             "      --trm-s S           TRM motion sensitivity s (default: firmware default)\n"
+            "      --gaze pursuit|fixed|saccade  where the eye looks (foveated modes and the gaze\n"
+            "                          metrics; default pursuit: follows the pursued motion from the centre)\n"
+            "      --gaze-at X,Y       --gaze fixed: that point in pixels (default the centre)\n"
+            "      --gaze-latency MS   eye-tracker latency (default 0)\n"
+            "      --gaze-noise DEG    eye-tracker noise, sigma per axis in degrees (default 0)\n"
+            "      --fov-alpha A       fov modes: K(x) = x^A, 1..8 (default 4)\n"
+            "      --fov-delta D       fov modes: log-polar buffer downscale, (0, 1] (default 0.555)\n"
+            "      --fov-disk F        fov modes: disk radius / distance to the farthest corner, 0..1\n"
+            "                          (default 0.12443); also the foveal region of the gaze metrics\n"
             "      --gt-ss N           ground-truth supersampling N x N (default 4)\n"
             "      --strip-at K        evaluation index of the picture strips (default middle)\n"
             "  -S, --seed N            scene seed (default 1)\n"
@@ -215,7 +225,14 @@ int main(int argc, char **argv)
         O_ROTATE,
         O_LCDMODE,
         O_LCDBITS,
-        O_BACKLIGHT
+        O_BACKLIGHT,
+        O_GAZE,
+        O_GAZE_AT,
+        O_GAZE_LAT,
+        O_GAZE_NOISE,
+        O_FOV_ALPHA,
+        O_FOV_DELTA,
+        O_FOV_DISK
     };
     static const struct option opts[] = {{"scene", required_argument, 0, 's'},
                                          {"mode", required_argument, 0, 'm'},
@@ -261,6 +278,13 @@ int main(int argc, char **argv)
                                          {"lcd-mode", required_argument, 0, O_LCDMODE},
                                          {"lcd-bits", required_argument, 0, O_LCDBITS},
                                          {"backlight", required_argument, 0, O_BACKLIGHT},
+                                         {"gaze", required_argument, 0, O_GAZE},
+                                         {"gaze-at", required_argument, 0, O_GAZE_AT},
+                                         {"gaze-latency", required_argument, 0, O_GAZE_LAT},
+                                         {"gaze-noise", required_argument, 0, O_GAZE_NOISE},
+                                         {"fov-alpha", required_argument, 0, O_FOV_ALPHA},
+                                         {"fov-delta", required_argument, 0, O_FOV_DELTA},
+                                         {"fov-disk", required_argument, 0, O_FOV_DISK},
                                          {"help", no_argument, 0, 'h'},
                                          {0, 0, 0, 0}};
     tdc_sim_config_t cfg;
@@ -490,6 +514,60 @@ int main(int argc, char **argv)
             }
             cfg.metric_every = (int)v;
             break;
+        case O_GAZE: {
+            const int k = tdc_sim_gaze_from_name(optarg);
+            if (k < 0) {
+                fprintf(stderr, "tdc-sim: bad gaze '%s' (pursuit, fixed or saccade)\n", optarg);
+                return TDC_EXIT_ARGS;
+            }
+            cfg.gaze = k;
+            break;
+        }
+        case O_GAZE_AT: {
+            char *comma = strchr(optarg, ',');
+            if (!comma) {
+                fprintf(stderr, "tdc-sim: bad gaze-at '%s' (X,Y in pixels)\n", optarg);
+                return TDC_EXIT_ARGS;
+            }
+            *comma = '\0';
+            double y;
+            if (parse_num(optarg, 0, 65535, &v, "gaze-at x") || parse_num(comma + 1, 0, 65535, &y, "gaze-at y")) {
+                return TDC_EXIT_ARGS;
+            }
+            cfg.gaze_at_x = v;
+            cfg.gaze_at_y = y;
+            break;
+        }
+        case O_GAZE_LAT:
+            if (parse_num(optarg, 0, 1000, &v, "gaze-latency")) {
+                return TDC_EXIT_ARGS;
+            }
+            cfg.gaze_latency_ms = v;
+            break;
+        case O_GAZE_NOISE:
+            if (parse_num(optarg, 0, 30, &v, "gaze-noise")) {
+                return TDC_EXIT_ARGS;
+            }
+            cfg.gaze_noise_deg = v;
+            break;
+        case O_FOV_ALPHA:
+            if (parse_num(optarg, 1, 8, &v, "fov-alpha")) {
+                return TDC_EXIT_ARGS;
+            }
+            cfg.fov_alpha = v;
+            break;
+        case O_FOV_DELTA:
+            if (parse_num(optarg, 0.01, 1, &v, "fov-delta")) {
+                return TDC_EXIT_ARGS;
+            }
+            cfg.fov_delta = v;
+            break;
+        case O_FOV_DISK:
+            if (parse_num(optarg, 0, 1, &v, "fov-disk")) {
+                return TDC_EXIT_ARGS;
+            }
+            cfg.fov_disk = v;
+            break;
         case O_PPD:
             if (parse_num(optarg, 1, 1000, &v, "ppd")) {
                 return TDC_EXIT_ARGS;
@@ -682,6 +760,12 @@ int main(int argc, char **argv)
             FILE *f = fopen(path, "w");
             if (f) {
                 tdc_report_csv(f, &cfg, res, nm, 1);
+                fclose(f);
+            }
+            snprintf(path, sizeof(path), "%s/foveation.csv", cfg.outdir);
+            f = fopen(path, "w");
+            if (f) {
+                tdc_report_foveation(f, &cfg, res, nm, 1);
                 fclose(f);
             }
             snprintf(path, sizeof(path), "%s/summary.md", cfg.outdir);

@@ -34,6 +34,7 @@
 #include "eye/tdc_eye_temporal.h"
 #include "panel/tdc_panel_sim.h"
 #include "simulator/tdc_sim.h"
+#include "simulator/tdc_sim_gaze.h"
 #include "simulator/tdc_sim_link.h"
 #include "tdc_panels.h"
 
@@ -111,6 +112,9 @@ struct sim_mode {
     tdc_eye_temporal_t *temporal;
     double sum_terr;
     int n_terr;
+    /* the run's gaze (where the fovea is) and the sums of the gaze metrics */
+    const tdc_sim_gaze_t *gaze;
+    double sum_flip_ecc, sum_flip_fovea, sum_flip_periph, sum_flip_wmed, sum_flicker_periph;
 };
 
 /* The families (tdc_sim_mode_*.c) and the LCD output stage. */
@@ -118,6 +122,7 @@ extern const tdc_sim_family_t tdc_sim_family_plain;
 extern const tdc_sim_family_t tdc_sim_family_trm;
 extern const tdc_sim_family_t tdc_sim_family_warp;
 extern const tdc_sim_family_t tdc_sim_family_asm;
+extern const tdc_sim_family_t tdc_sim_family_fov;
 extern const tdc_sim_family_t tdc_sim_stage_lcd;
 
 /* ---- helpers shared by the families (tdc_sim_mode.c) ---- */

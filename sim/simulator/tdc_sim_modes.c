@@ -12,6 +12,7 @@ static const tdc_sim_family_t *const k_families[] = {
     &tdc_sim_family_trm,
     &tdc_sim_family_warp,
     &tdc_sim_family_asm,
+    &tdc_sim_family_fov,
 };
 
 #define MAX_MODES 64
@@ -78,4 +79,9 @@ void tdc_sim_default_config(tdc_sim_config_t *c)
     c->progress = 1;
     c->strip_at = -1;
     c->seed = 1;
+    c->gaze = 0; /* TDC_GAZE_PURSUIT */
+    c->gaze_at_x = c->gaze_at_y = -1.0;
+    c->fov_alpha = 4.0;
+    c->fov_delta = 0.555;
+    c->fov_disk = 0.12443;
 }

@@ -21,6 +21,9 @@ typedef struct {
     tdc_render_t *sub[RS_SLOTS]; /* subframe renderers (own MV history, orderings) */
     float *sub_lin;
     int16_t *sub_mv, *sub_mvs, *sub_mvd;
+    tdc_render_t *fov;  /* the FOVEATED renderer (samples, not pixels: its own instance) */
+    float *fov_lin;     /* up to 2 W H samples (the log-polar buffer + the disk) */
+    int16_t *fov_mv;
     int clock_hz;
     float *lin; /* W*H*3 */
     int16_t *mv;
@@ -230,6 +233,49 @@ static int rs_subframe(tdc_source_t *s, int slot, int shadow, uint32_t frame, do
     return 0;
 }
 
+static int rs_foveated(tdc_source_t *s, const tdc_fov_sampling_t *f, double t, double dt, uint8_t *rgb, int16_t *mv,
+                       uint64_t *rays)
+{
+    rsrc_t *c = s->ctx;
+    const size_t cap = 2 * (size_t)s->width * s->height;
+    if (!c->fov) {
+        char err[256];
+        c->fov = tdc_render_open(c->scene, &c->cfg, err, sizeof(err));
+        c->fov_lin = malloc(sizeof(float) * 3 * cap);
+        c->fov_mv = malloc(sizeof(int16_t) * 2 * cap);
+        if (!c->fov || !c->fov_lin || !c->fov_mv) {
+            return -1;
+        }
+    }
+    const tdc_render_fov_t rf = {f->gaze_x, f->gaze_y, f->alpha, f->delta, f->disk, f->jx, f->jy};
+    int nlp = 0, nd = 0;
+    if (tdc_render_set_foveation(c->fov, &rf, &nlp, &nd) != 0 || (size_t)nlp + (size_t)nd > cap) {
+        return -1;
+    }
+    tdc_render_out_t out;
+    memset(&out, 0, sizeof(out));
+    out.rgb = c->fov_lin;
+    out.mv = mv ? c->fov_mv : NULL;
+    tdc_render_stats_t st;
+    if (tdc_render_frame(c->fov, (uint32_t)frame_of(c, t), TDC_RENDER_FOVEATED, &out, &st) != 0) {
+        return -1;
+    }
+    const size_t n = (size_t)nlp + (size_t)nd;
+    for (size_t i = 0; i < 3 * n; i++) {
+        double l = c->fov_lin[i] < 0.0f ? 0.0 : (c->fov_lin[i] > 1.0f ? 1.0 : (double)c->fov_lin[i]);
+        rgb[i] = (uint8_t)(255.0 * pow(l, 1.0 / s->gamma[i % 3]) + 0.5);
+    }
+    if (mv) {
+        double k = dt * c->clock_hz; /* renderer MVs span one clock frame */
+        for (size_t i = 0; i < 2 * n; i++) {
+            double q = floor(c->fov_mv[i] * k + 0.5);
+            mv[i] = (int16_t)(q > 32767 ? 32767 : (q < -32767 ? -32767 : q));
+        }
+    }
+    *rays = st.rays[TDC_RAY_PRIMARY];
+    return 0;
+}
+
 static int rs_cut(tdc_source_t *s, double t0, double t1)
 {
     (void)s;
@@ -246,6 +292,11 @@ static void rs_destroy(tdc_source_t *s)
     rsrc_t *c = s->ctx;
     if (c) {
         tdc_render_close(c->r);
+        if (c->fov) {
+            tdc_render_close(c->fov);
+        }
+        free(c->fov_lin);
+        free(c->fov_mv);
         for (int i = 0; i < RS_SLOTS; i++) {
             if (c->sub[i]) {
                 tdc_render_close(c->sub[i]);
@@ -343,8 +394,10 @@ tdc_source_t *tdc_sim_render_source(const char *name, int w, int h, int clock_hz
     s->full_frame = rs_full;
     s->jitter = rs_jitter;
     s->subframe = rs_subframe;
+    s->foveated = rs_foveated;
     s->note = "Embree renderer: full frames at 1 ray per pixel centre (TAA: + its jitter); reduced frames are full renders prefiltered "
-              "by the TRM stage's D; subframes traced by the renderer with its own adaptive orderings";
+              "by the TRM stage's D; subframes traced by the renderer with its own adaptive orderings; foveated frames "
+              "traced by its FOVEATED mode";
     return s;
 }
 

@@ -10,6 +10,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "metrics/tdc_fov_metrics.h"
 #include "metrics/tdc_metrics.h"
 #include "report/tdc_report.h"
 #include "simulator/tdc_sim.h"
@@ -58,6 +59,7 @@ typedef struct {
     tdc_ssim_ref_t ssim_g;
     tdc_flip_ref_t flip_g;
     double *scratch, *perc, *crop_p, *enc_p, *err, *flipmap, *rows;
+    double *rows_out, *rows_n; /* flicker outside the foveal disk: per-row sums and counts */
     double *xy;   /* sample positions (render calls are sequential too) */
     char *series; /* one series line per mode and eye, written in mode order */
     void *mwork;  /* the metrics' scratch (SSIM and FLIP in turn), kept across calls */
@@ -81,6 +83,8 @@ static void eval_free(sim_eval_t *e)
     free(e->err);
     free(e->flipmap);
     free(e->rows);
+    free(e->rows_out);
+    free(e->rows_n);
     free(e->xy);
 }
 
@@ -102,6 +106,8 @@ static int eval_alloc(sim_eval_t *e, int w, int h, int nseries)
     bad |= !(e->err = malloc(sizeof(double) * n3));
     bad |= !(e->flipmap = malloc(sizeof(double) * (size_t)w * h));
     bad |= !(e->rows = malloc(sizeof(double) * (size_t)h));
+    bad |= !(e->rows_out = malloc(sizeof(double) * (size_t)h));
+    bad |= !(e->rows_n = malloc(sizeof(double) * (size_t)h));
     bad |= !(e->xy = malloc(sizeof(double) * 2 * (size_t)w * h));
     return bad ? -1 : 0;
 }
@@ -361,6 +367,15 @@ static void eval_mode_eye(sim_mode_t *m, sim_eval_t *ev, const tdc_eye_cfg_t *ec
             ev->err[k] = ev->enc_p[k] - enc_g[k];
         }
     }
+    /* around the true gaze (crop coordinates): the foveal disk is the fov
+     * modes' disk fraction of the distance to the farthest screen corner */
+    double gz[2];
+    tdc_sim_gaze_true(m->gaze, te, gz);
+    const double gx = gz[0] - margin, gy = gz[1] - margin, rf = cfg->fov_disk * tdc_sim_gaze_rmax(m->gaze, gz);
+    m->sum_flip_ecc += tdc_ecc_weighted_mean(ev->flipmap, cw, ch, gx, gy, cfg->flip_ppd);
+    m->sum_flip_fovea += tdc_disk_mean(ev->flipmap, cw, ch, gx, gy, rf, 1);
+    m->sum_flip_periph += tdc_disk_mean(ev->flipmap, cw, ch, gx, gy, rf, 0);
+    m->sum_flip_wmed += tdc_flip_weighted_median(ev->flipmap, (size_t)cw * ch);
     double flick = NAN;
     if (m->have_err_prev) {
         /* frame-to-frame change of the motion-compensated error: the
@@ -368,17 +383,28 @@ static void eval_mode_eye(sim_mode_t *m, sim_eval_t *ev, const tdc_eye_cfg_t *ec
         double sx = -v[0] * cfg->pursuit_gain * (te - prev_te), sy = -v[1] * cfg->pursuit_gain * (te - prev_te);
         TDC_PAR_FOR((size_t)cw * ch)
         for (int y = 0; y < ch; y++) {
-            double se = 0.0;
+            double se = 0.0, so = 0.0, no = 0.0;
             for (int x = 0; x < cw; x++) {
+                double sp = 0.0;
                 for (int c = 0; c < 3; c++) {
                     double pe = tdc_bilinear_f(m->err_prev, cw, ch, 3, x + sx, y + sy, c);
                     double d = ev->err[3 * ((size_t)y * cw + x) + c] - pe;
-                    se += d * d;
+                    sp += d * d;
+                }
+                se += sp;
+                const double dx = x + 0.5 - gx, dy = y + 0.5 - gy;
+                if (dx * dx + dy * dy > rf * rf) {
+                    so += sp;
+                    no += 3.0;
                 }
             }
             ev->rows[y] = se;
+            ev->rows_out[y] = so;
+            ev->rows_n[y] = no;
         }
         flick = 255.0 * sqrt(tdc_par_sum_rows(ev->rows, ch) / (double)cn);
+        const double n_out = tdc_par_sum_rows(ev->rows_n, ch);
+        m->sum_flicker_periph += n_out > 0 ? 255.0 * sqrt(tdc_par_sum_rows(ev->rows_out, ch) / n_out) : 0.0;
         m->sum_flicker += flick;
         m->n_flicker++;
     }
@@ -423,6 +449,17 @@ static void eval_mode_eye(sim_mode_t *m, sim_eval_t *ev, const tdc_eye_cfg_t *ec
         char name[96];
         snprintf(name, sizeof(name), "%s%s", r->desc->name, m->eyes == 2 ? (m->eye ? "_R" : "_L") : "");
         tdc_report_strip(cfg->outdir, name, m->out, ev->crop_p, crop_g, ev->flipmap, w, h, cw, ch, margin);
+        if (m->eye == 0) {
+            /* where the eye looked at the strip's instant (crop coordinates), for the fovea crops */
+            char gp[1100];
+            snprintf(gp, sizeof(gp), "%s/strip_gaze.json", cfg->outdir);
+            FILE *gf = fopen(gp, "w");
+            if (gf) {
+                fprintf(gf, "{\"x\": %.3f, \"y\": %.3f, \"r\": %.3f, \"width\": %d, \"height\": %d}\n", gx, gy, rf, cw,
+                        ch);
+                fclose(gf);
+            }
+        }
     }
     if (tm) {
         tm->eye_s += w1 - w0;
@@ -492,6 +529,23 @@ int tdc_sim_run(const tdc_sim_config_t *cfg, tdc_source_t *src, const tdc_mode_d
                     w, h, results[i].note);
             rc = -1;
         }
+    }
+    /* the gaze (where the fovea is), for the fov modes and every mode's gaze metrics */
+    tdc_sim_gaze_t fovea; /* the gaze point's table (main's `gaze` below: the pursuit shift) */
+    memset(&fovea, 0, sizeof(fovea));
+    fovea.schedule = cfg->gaze;
+    fovea.at_x = cfg->gaze_at_x;
+    fovea.at_y = cfg->gaze_at_y;
+    fovea.latency_ms = cfg->gaze_latency_ms;
+    fovea.noise_deg = cfg->gaze_noise_deg;
+    fovea.ppd = cfg->flip_ppd;
+    fovea.seed = cfg->seed;
+    if (rc == 0 && tdc_sim_gaze_init(&fovea, src, w, h, R, cfg->duration_s)) {
+        fprintf(stderr, "tdc-sim: out of memory for the gaze table\n");
+        rc = -1;
+    }
+    for (int k = 0; k < nmodes * eyes; k++) {
+        ms[k].gaze = &fovea;
     }
     long total = (long)floor(cfg->duration_s * R + 1e-9);
     long nevals = total - (wf - 1);
@@ -607,7 +661,13 @@ int tdc_sim_run(const tdc_sim_config_t *cfg, tdc_source_t *src, const tdc_mode_d
                 r->eye_psnr[e] = m->sum_psnr / r->evals;
                 r->eye_ssim[e] = m->sum_ssim / r->evals;
                 r->eye_flip[e] = m->sum_flip / r->evals;
+                /* gaze metrics: the mean of the eyes */
+                r->flip_ecc += m->sum_flip_ecc / r->evals / eyes;
+                r->flip_fovea += m->sum_flip_fovea / r->evals / eyes;
+                r->flip_periph += m->sum_flip_periph / r->evals / eyes;
+                r->flip_wmedian += m->sum_flip_wmed / r->evals / eyes;
             }
+            r->flicker_periph += m->n_flicker ? m->sum_flicker_periph / m->n_flicker / eyes : 0.0;
             r->eye_flicker[e] = m->n_flicker ? m->sum_flicker / m->n_flicker : 0.0;
             r->eye_terr[e] = m->n_terr ? m->sum_terr / m->n_terr : NAN;
             sp += r->eye_psnr[e];
@@ -631,6 +691,7 @@ int tdc_sim_run(const tdc_sim_config_t *cfg, tdc_source_t *src, const tdc_mode_d
     }
     free(ms);
     eval_free(&ev);
+    tdc_sim_gaze_free(&fovea);
     if (tm) {
         tm->total_s = wall_now() - wall0;
     }

@@ -43,6 +43,13 @@ typedef enum {
 
 typedef struct tdc_source tdc_source_t;
 
+/* Foveated sampling of one frame (the fov modes; tdc_render_fov_t's fields). */
+typedef struct {
+    double gaze_x, gaze_y; /* display pixels */
+    double alpha, delta, disk;
+    double jx, jy; /* jitter of the log-polar samples (Halton where TAA follows) */
+} tdc_fov_sampling_t;
+
 struct tdc_source {
     const char *name;
     int width, height;
@@ -80,6 +87,13 @@ struct tdc_source {
      * Returns 0. */
     int (*subframe)(tdc_source_t *s, int slot, int shadow, uint32_t frame, double t, double dt, uint8_t *samples,
                     int16_t *mv, uint8_t *pattern, uint64_t *rays);
+    /* Optional: a renderer that traces foveated frames itself (the Embree
+     * renderer's FOVEATED mode, thesis §4.2): the samples of f in the
+     * firmware's payload order (kernel log-polar columns [u0, w), then the
+     * disk), codes; MVs over dt if mv != NULL; *rays = primary rays traced.
+     * NULL: the fov modes trace their positions with samples().  Returns 0. */
+    int (*foveated)(tdc_source_t *s, const tdc_fov_sampling_t *f, double t, double dt, uint8_t *rgb, int16_t *mv,
+                    uint64_t *rays);
     const char *note; /* what this source does not support, for reports */
     /* Optional, with full_frame: the sub-pixel offset of the following
      * full frames' samples (TAA jitter); NULL: always pixel centres. */

@@ -21,8 +21,9 @@
 
 /* ---- the modules: one line per firmware stage with optimised kernels ---- */
 extern const checkasm_module_t checkasm_trm;
+extern const checkasm_module_t checkasm_lcd;
 
-static const checkasm_module_t *const g_modules[] = {&checkasm_trm};
+static const checkasm_module_t *const g_modules[] = {&checkasm_trm, &checkasm_lcd};
 #define NMODULES (sizeof g_modules / sizeof g_modules[0])
 
 #define BENCH_CALLS 20u

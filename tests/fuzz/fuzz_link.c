@@ -5,7 +5,8 @@
  *
  * Input: byte 0 selects the chunking (bits 0..4: seed of the chunk sizes,
  * 0 = whole input at once), the panel and build (bit 5: 0 = stereo with
- * every buffer, 1 = mono without subframe/pattern/per-sample-motion buffers),
+ * every buffer, 1 = mono without subframe/pattern/per-sample-motion buffers
+ * and without the foveated motion-vector buffer),
  * random tdc_link_decoder_resync() calls between chunks (bit 6) and whether
  * CRCs are repaired first (bit 7):
  * mutated packets almost never keep a valid CRC, so half of the runs
@@ -15,7 +16,10 @@
  *
  * Checked on every event, beyond the sanitizers:
  *  - a buffer changes only with an accepted packet of its kind and eye
- *    (a rejected packet never touches frame state);
+ *    (a rejected packet never touches frame state; FOVEATED writes the
+ *    full frame, the log-polar buffer and its vectors);
+ *  - an accepted FOVEATED packet leaves a foveation header whose geometry
+ *    the stage accepts; the refusal reasons add up to the FOVEATION errors;
  *  - error counters equal the error events seen, packets_ok the packet events;
  *  - no event is ever dropped; every byte is consumed.
  */
@@ -36,10 +40,17 @@ static uint8_t subframe[2][TDC_LINK_SUBFRAME_BYTES(FW, FH)];
 static int16_t motion[2][TDC_LINK_MOTION_COUNT(FW, FH)];
 static int16_t sample_motion[2][TDC_LINK_SAMPLE_MOTION_COUNT(FW, FH)];
 static uint8_t pattern[2][TDC_PATTERN_BYTES(FW, FH)];
+static uint8_t fov_lp[2][TDC_LINK_FRAME_BYTES(FW, FH)];
+static int16_t fov_mv[2][TDC_LINK_MOTION_COUNT(FW, FH)];
 static uint8_t work[1 << 20];
 
-/* Every pipeline buffer, by slot (kind, or KIND_LAST + 1 for per-sample
- * motion) and eye, and a copy of what it held after its last accepted
+/* Slots beyond the kinds: per-sample motion, the foveated buffers. */
+#define SLOT_SAMPLE_MV (TDC_LINK_KIND_LAST + 1u)
+#define SLOT_FOV_LP (TDC_LINK_KIND_LAST + 2u)
+#define SLOT_FOV_MV (TDC_LINK_KIND_LAST + 3u)
+#define SLOTS (TDC_LINK_KIND_LAST + 4u)
+
+/* Every pipeline buffer, by slot (kind, or one of the SLOT_*) and eye, and a copy of what it held after its last accepted
  * packet. */
 static uint8_t *slot_ptr(unsigned slot, unsigned e, size_t *n)
 {
@@ -49,12 +60,14 @@ static uint8_t *slot_ptr(unsigned slot, unsigned e, size_t *n)
     case TDC_LINK_KIND_SUBFRAME: *n = sizeof subframe[e]; return subframe[e];
     case TDC_LINK_KIND_MOTION: *n = sizeof motion[e]; return (uint8_t *)motion[e];
     case TDC_LINK_KIND_PATTERN: *n = sizeof pattern[e]; return pattern[e];
-    case TDC_LINK_KIND_LAST + 1: *n = sizeof sample_motion[e]; return (uint8_t *)sample_motion[e];
+    case SLOT_SAMPLE_MV: *n = sizeof sample_motion[e]; return (uint8_t *)sample_motion[e];
+    case SLOT_FOV_LP: *n = sizeof fov_lp[e]; return fov_lp[e];
+    case SLOT_FOV_MV: *n = sizeof fov_mv[e]; return (uint8_t *)fov_mv[e];
     default: *n = 0; return NULL;
     }
 }
 
-static uint8_t snap[TDC_LINK_KIND_LAST + 2][2][TDC_LINK_STAGING_BYTES(FW, FH)];
+static uint8_t snap[SLOTS][2][TDC_LINK_STAGING_BYTES(FW, FH)];
 
 static void take_snap(unsigned slot, unsigned e)
 {
@@ -123,11 +136,15 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         b.motion[e] = motion[e];
         b.sample_motion[e] = mono ? NULL : sample_motion[e];
         b.pattern[e] = mono ? NULL : pattern[e];
+        b.fov_lp[e] = fov_lp[e];
+        b.fov_mv[e] = mono ? NULL : fov_mv[e];
     }
+    b.fov_lp_bytes = sizeof fov_lp[0];
+    b.fov_mv_count = sizeof fov_mv[0] / sizeof fov_mv[0][0];
     if (tdc_link_decoder_init(&dec, &cfg, &b) != TDC_OK) {
         abort();
     }
-    for (unsigned k = 1; k <= TDC_LINK_KIND_LAST + 1; k++) {
+    for (unsigned k = 1; k < SLOTS; k++) {
         for (unsigned e = 0; e < 2; e++) {
             take_snap(k, e);
         }
@@ -176,15 +193,27 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             if (ev.kind < TDC_LINK_KIND_FIRST || ev.kind > TDC_LINK_KIND_LAST || ev.eye >= cfg.eyes) {
                 abort();
             }
-            const unsigned slot = (ev.kind == TDC_LINK_KIND_MOTION && (ev.flags & TDC_LINK_PKT_MV_PER_SAMPLE))
-                                      ? TDC_LINK_KIND_LAST + 1u
-                                      : ev.kind;
-            take_snap(slot, ev.eye);
+            if (ev.kind == TDC_LINK_KIND_FOVEATED) {
+                const tdc_fov_hdr_t *fh = tdc_link_fov(&dec, ev.eye);
+                tdc_fov_geom_t g;
+                if (!fh || tdc_fov_geom(&g, FW, FH, &fh->p) != TDC_OK || g.l != fh->g.l || g.u0 != fh->g.u0 ||
+                    g.r_disk2_q16 != fh->g.r_disk2_q16 || g.log2_r2max_q24 != fh->g.log2_r2max_q24) {
+                    abort();
+                }
+                take_snap(TDC_LINK_KIND_FULL, ev.eye); /* the disk pixels */
+                take_snap(SLOT_FOV_LP, ev.eye);
+                take_snap(SLOT_FOV_MV, ev.eye);
+            } else {
+                const unsigned slot =
+                    (ev.kind == TDC_LINK_KIND_MOTION && (ev.flags & TDC_LINK_PKT_MV_PER_SAMPLE)) ? SLOT_SAMPLE_MV
+                                                                                                 : ev.kind;
+                take_snap(slot, ev.eye);
+            }
         }
         /* Only the slot of an accepted packet may have changed.  Checked
          * once the events of this call are all delivered: a commit can
          * queue MISSING_REDUCED before its own PACKET event. */
-        for (unsigned k = 1; dec.ev_count == 0 && k <= TDC_LINK_KIND_LAST + 1; k++) {
+        for (unsigned k = 1; dec.ev_count == 0 && k < SLOTS; k++) {
             for (unsigned e = 0; e < 2; e++) {
                 if (snap_differs(k, e)) {
                     abort();
@@ -199,6 +228,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         }
     }
     if (c->packets_ok != ok_events || c->events_dropped != 0 || c->bytes_in != n) {
+        abort();
+    }
+    uint32_t refused = 0;
+    for (unsigned r = 1; r < TDC_FOV_HDR_COUNT; r++) {
+        refused += c->fov_refused[r];
+    }
+    if (refused != c->errors[TDC_LINK_ERR_FOVEATION] || c->fov_refused[0] != 0) {
         abort();
     }
     return 0;

@@ -2,7 +2,8 @@
  * make_seeds.c - writes the libFuzzer seed corpus for fuzz_link.c
  * (tests/fuzz/corpus/): valid streams for the harness's 19 x 13 stereo
  * panel in every pixel format and stream mode (and the mono variants for
- * the harness's mono build), plus damaged variants.
+ * the harness's mono build), plus damaged variants; foveated streams
+ * (stereo with motion vectors, mono without) with damaged variants.
  * Byte 0 of each file is the harness's mode byte (chunking, CRC repair).
  * Usage: make_seeds OUTDIR      (mk/link.mk: make fuzz-seeds)
  */
@@ -10,6 +11,7 @@
 #include <string.h>
 
 #include "link/tdc_link_gen.h"
+#include "tdc_link_encode.h"
 
 static uint8_t stream[1 << 18];
 static uint32_t scratch[19 * 13];
@@ -30,6 +32,74 @@ static int write_seed(const char *dir, const char *name, uint8_t mode, const uin
     bad |= fclose(f) != 0;
     if (bad) {
         perror(path);
+    }
+    return bad;
+}
+
+/* Foveated streams for the 19 x 13 panel: 4 frames, the gaze moving, alpha
+ * and the disk changing; stereo with vectors, mono without (the harness's
+ * mono build has no vector buffer); damaged: a flipped foveation-header
+ * byte with the CRCs repaired by the harness (mode bit 7), a cut packet. */
+static int foveated_seeds(const char *dir)
+{
+    static uint8_t samples[19 * 13 * 6];
+    static int16_t mv[19 * 13 * 2];
+    for (size_t i = 0; i < sizeof samples; i++) {
+        samples[i] = (uint8_t)(i * 37u + 11u);
+    }
+    for (size_t i = 0; i < sizeof mv / sizeof mv[0]; i++) {
+        mv[i] = (int16_t)((int)(i * 13u % 97u) - 48);
+    }
+    int bad = 0;
+    for (int eyes = 1; eyes <= 2; eyes++) {
+        tdc_link_stream_info_t in;
+        memset(&in, 0, sizeof in);
+        in.flags = TDC_LINK_STREAM_FOVEATED;
+        in.r_num = in.r_den = 1;
+        in.width = 19;
+        in.height = 13;
+        in.eyes = (uint8_t)eyes;
+        in.refresh_hz = 90;
+        tdc_link_encoder_t enc;
+        tdc_link_encoder_init(&enc, 21, &in);
+        size_t n = tdc_link_encode_stream(&enc, stream, sizeof stream), second = 0;
+        for (uint32_t f = 0; f < 4; f++) {
+            for (uint32_t e = 0; e < (uint32_t)eyes; e++) {
+                tdc_fov_params_t p;
+                memset(&p, 0, sizeof p);
+                p.gaze_x_q8 = (int32_t)(f * 1100u + e * 300u);
+                p.gaze_y_q8 = 1600 + (int32_t)f * 400;
+                p.alpha_q8 = (uint16_t)(256u + 512u * f);
+                p.disk_q15 = (uint16_t)(f * 3000u);
+                p.lp_w = tdc_fov_lp_size(18187, 19);
+                p.lp_h = tdc_fov_lp_size(18187, 13);
+                if (f == 1 && e == 0) {
+                    second = n;
+                }
+                const size_t k = tdc_link_encode_foveated(&enc, stream + n, sizeof stream - n, e, f, &p, 18187,
+                                                          samples, eyes == 2 ? mv : NULL, NULL);
+                if (!k) {
+                    fprintf(stderr, "make_seeds: foveated encoding failed\n");
+                    return 1;
+                }
+                n += k;
+            }
+        }
+        const uint8_t mono = eyes == 1 ? 0x20 : 0;
+        char name[96];
+        snprintf(name, sizeof name, "fov-%s-whole", eyes == 1 ? "mono" : "stereo");
+        bad |= write_seed(dir, name, mono, stream, n);
+        snprintf(name, sizeof name, "fov-%s-chunked", eyes == 1 ? "mono" : "stereo");
+        bad |= write_seed(dir, name, (uint8_t)(mono | 0x07), stream, n);
+        static uint8_t d[1 << 18];
+        memcpy(d, stream, n);
+        d[second + TDC_LINK_HEADER_BYTES + 8] ^= 0x08; /* alpha */
+        snprintf(name, sizeof name, "fov-%s-alpha-repair", eyes == 1 ? "mono" : "stereo");
+        bad |= write_seed(dir, name, (uint8_t)(mono | 0x80), d, n);
+        memcpy(d, stream, second + 50);
+        memcpy(d + second + 50, stream + second + 90, n - second - 90);
+        snprintf(name, sizeof name, "fov-%s-cut", eyes == 1 ? "mono" : "stereo");
+        bad |= write_seed(dir, name, (uint8_t)(mono | 0x03), d, n - 40);
     }
     return bad;
 }
@@ -129,5 +199,6 @@ int main(int argc, char **argv)
             }
         }
     }
+    bad |= foveated_seeds(argv[1]);
     return bad;
 }

@@ -12,6 +12,7 @@
 #include "golden.h"
 
 #include "../../sim/link/tdc_link_gen.c"
+#include "tdc_crc32.h"
 
 #define LW 45
 #define LH 27
@@ -23,6 +24,8 @@ static uint8_t g_sub[2][TDC_LINK_SUBFRAME_BYTES(LW, LH)];
 static int16_t g_mv[2][TDC_LINK_MOTION_COUNT(LW, LH)];
 static int16_t g_smv[2][TDC_LINK_SAMPLE_MOTION_COUNT(LW, LH)];
 static uint8_t g_pat[2][TDC_PATTERN_BYTES(LW, LH)];
+static uint8_t g_fov_lp[2][TDC_LINK_FRAME_BYTES(LW, LH)]; /* FOVEATED: delta <= 1 */
+static int16_t g_fov_mv[2][TDC_LINK_MOTION_COUNT(LW, LH)];
 static uint32_t g_scratch[LW * LH];
 static uint8_t g_stream[72 * 1024];
 static tdc_link_decoder_t g_dec;
@@ -41,6 +44,8 @@ static void init_decoder(void)
     b.staging_bytes = sizeof g_staging;
     b.full_stride = LW * 3u;
     b.reduced_bytes = sizeof g_reduced[0];
+    b.fov_lp_bytes = sizeof g_fov_lp[0];
+    b.fov_mv_count = sizeof g_fov_mv[0] / sizeof g_fov_mv[0][0];
     for (int e = 0; e < 2; e++) {
         b.full[e] = g_full[e];
         b.reduced[e] = g_reduced[e];
@@ -48,9 +53,15 @@ static void init_decoder(void)
         b.motion[e] = g_mv[e];
         b.sample_motion[e] = g_smv[e];
         b.pattern[e] = g_pat[e];
+        b.fov_lp[e] = g_fov_lp[e];
+        b.fov_mv[e] = g_fov_mv[e];
         for (size_t i = 0; i < sizeof g_full[e]; i++) {
             g_full[e][i] = 0;
             g_reduced[e][i] = 0;
+            g_fov_lp[e][i] = 0;
+        }
+        for (size_t i = 0; i < sizeof g_fov_mv[e] / sizeof g_fov_mv[e][0]; i++) {
+            g_fov_mv[e][i] = 0;
         }
     }
     g_dec_ok = tdc_link_decoder_init(&g_dec, &cfg, &b) == TDC_OK;
@@ -92,6 +103,14 @@ static void run(tdc_golden_ctx_t *ctx, const char *vector, size_t n, size_t chun
             const uint32_t tiles = TDC_TILES(LW) * TDC_TILES(LH);
             switch (ev.kind) {
             case TDC_LINK_KIND_FULL: h = tdc_fnv1a64(h, g_full[e], sizeof g_full[e]); break;
+            case TDC_LINK_KIND_FOVEATED: { /* the disk in the frame, the log-polar samples, vectors, geometry */
+                const tdc_fov_hdr_t *fh = tdc_link_fov(&g_dec, e);
+                h = tdc_fnv1a64(h, g_full[e], sizeof g_full[e]);
+                h = tdc_fnv1a64(h, g_fov_lp[e], sizeof g_fov_lp[e]);
+                h = fold_i16s(h, g_fov_mv[e], sizeof g_fov_mv[e] / sizeof g_fov_mv[e][0]);
+                h = fh ? fold_u32(fold_u32(h, fh->g.l), fh->g.u0) : TDC_GOLDEN_FAILED;
+                break;
+            }
             case TDC_LINK_KIND_REDUCED: h = tdc_fnv1a64(h, g_reduced[e], (size_t)ev.width * ev.height * 3u); break;
             case TDC_LINK_KIND_SUBFRAME: h = tdc_fnv1a64(h, g_sub[e], sizeof g_sub[e]); break;
             case TDC_LINK_KIND_MOTION:
@@ -107,6 +126,9 @@ static void run(tdc_golden_ctx_t *ctx, const char *vector, size_t n, size_t chun
     }
     const tdc_link_counters_t *k = tdc_link_counters(&g_dec);
     uint64_t h = pending;
+    /* Codes up to STREAM_HEADER (those the vectors were recorded with); a
+     * later code is folded only when it occurred, so the checksums of these
+     * streams do not change when a kind adds a code (FOVEATION). */
     for (int i = 0; i < TDC_LINK_ERR_COUNT; i++) {
         /* codes added after these vectors were recorded fold in only when
          * they occur, so the checked-in checksums stay valid */
@@ -125,6 +147,55 @@ static size_t gen(uint32_t flags, tdc_pixfmt_t fmt, uint32_t frames, uint32_t se
     o.info.flags = flags;
     o.info.r_den = (flags & TDC_LINK_STREAM_REDUCED) ? 2 : 1; /* r = 1/2 with reduced frames */
     return tdc_link_gen_stream(g_stream, sizeof g_stream, &o, (uint8_t *)g_scratch, sizeof g_scratch, NULL, 0, NULL);
+}
+
+/* The foveated stream of tdc_golden_link (samples from tdc_link_gen's
+ * picture of each frame and eye, vectors a fixed pattern). */
+static size_t gen_foveated(int damaged)
+{
+    tdc_link_stream_info_t in;
+    for (size_t i = 0; i < sizeof in; i++) {
+        ((uint8_t *)&in)[i] = 0;
+    }
+    in.flags = TDC_LINK_STREAM_FOVEATED;
+    in.r_num = in.r_den = 1;
+    in.width = LW;
+    in.height = LH;
+    in.eyes = 2;
+    in.refresh_hz = 90;
+    tdc_link_encoder_t enc;
+    tdc_link_encoder_init(&enc, 0x2F, &in);
+    size_t n = tdc_link_encode_stream(&enc, g_stream, sizeof g_stream);
+    static const uint16_t alpha[3] = {256, 1024, 2048}, disk[4] = {0, 4077, 12000, 32768};
+    static uint8_t samples[2 * LW * LH * 3];
+    static int16_t mv[LW * LH * 2];
+    for (uint32_t f = 0; f < 6; f++) {
+        for (uint32_t e = 0; e < 2; e++) {
+            tdc_fov_params_t p;
+            p.gaze_x_q8 = (int32_t)(f * 2900u + e * 700u) - 1500;
+            p.gaze_y_q8 = 3000 + (int32_t)(f * 900u);
+            p.alpha_q8 = alpha[(f + e) % 3u];
+            p.disk_q15 = disk[f % 4u];
+            p.lp_w = tdc_fov_lp_size(18187, LW);
+            p.lp_h = tdc_fov_lp_size(18187, LH);
+            tdc_link_gen_rgb(samples, LW, 2u * LH, f, e, 77u);
+            for (size_t i = 0; i < sizeof mv / sizeof mv[0]; i++) {
+                mv[i] = (int16_t)((int32_t)((i * 37u + f * 11u + e) % 257u) - 128);
+            }
+            const size_t at = n;
+            n += tdc_link_encode_foveated(&enc, g_stream + n, sizeof g_stream - n, e, f, &p, 18187, samples,
+                                          (f & 1u) ? mv : NULL, NULL);
+            if (damaged && f == 2 && e == 1) {
+                /* alpha 9.0 in the foveation header, both CRCs recomputed */
+                tdc_link_header_t hh;
+                (void)tdc_link_header_unpack(g_stream + at, &hh);
+                g_stream[at + TDC_LINK_HEADER_BYTES + 9] = 9;
+                hh.payload_crc = tdc_crc32(g_stream + at + TDC_LINK_HEADER_BYTES, hh.payload_len);
+                tdc_link_header_pack(g_stream + at, &hh);
+            }
+        }
+    }
+    return n;
 }
 
 static void name2(char *out, const char *a, const char *b)
@@ -166,4 +237,13 @@ void tdc_golden_link(tdc_golden_ctx_t *ctx)
     }
     init_decoder();
     run(ctx, "damaged", n + tail, 7);
+    /* Foveated stream (kind 7), stereo: the gaze moving over and off the
+     * screen, alpha 1/4/8, disks 0..1, vectors on odd frames; then the same
+     * with one packet's alpha out of range (CRC valid: refused by the
+     * foveation header) fed 5 bytes at a time. */
+    for (int damaged = 0; damaged < 2; damaged++) {
+        init_decoder();
+        n = gen_foveated(damaged);
+        run(ctx, damaged ? "foveated-refused" : "foveated", n, damaged ? 5 : 4096);
+    }
 }

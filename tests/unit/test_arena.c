@@ -306,8 +306,19 @@ static void test_lcd_arena(void **state)
             lcd_one(is_lcd ? g_panels[p] : lcd, g_panels[p]->width, g_panels[p]->height, b, b == 8 || b == 5, 0);
         }
     }
-    lcd_one(lcd, 65535, 65535, 8, 0, 0);
-    lcd_one(lcd, 1, 65535, 4, 0, 0);
+    lcd_one(lcd, TDC_LCD_MAX_DIM, TDC_LCD_MAX_DIM, 8, 0, 0);
+    lcd_one(lcd, 1, TDC_LCD_MAX_DIM, 4, 0, 0);
+    /* beyond the bound: refused by get_size and init (a 32-bit size_t would
+     * wrap at 65535 x 65535: 12.9 G samples) */
+    for (unsigned k = 0; k < 3; k++) {
+        const uint16_t big[3][2] = {{TDC_LCD_MAX_DIM + 1u, 1}, {1, TDC_LCD_MAX_DIM + 1u}, {65535, 65535}};
+        for (unsigned m = TDC_LCD_MODE_GAMMA; m <= TDC_LCD_MODE_STATEFUL_PAIR; m++) {
+            const tdc_lcd_config_t cb = {big[k][0], big[k][1], lcd->lcd->rate[0].rate_hz, (uint8_t)m, 8};
+            tdc_lcd_t sb;
+            assert_int_equal(tdc_lcd_get_size(&cb), 0);
+            assert_int_equal(tdc_lcd_init(&sb, &cb, lcd, g_static_lcd, sizeof g_static_lcd), TDC_ERR_ARG);
+        }
+    }
     const tdc_lcd_config_t c = {64, 48, lcd->lcd->rate[0].rate_hz, TDC_LCD_MODE_EXACT, 8};
     tdc_lcd_t st;
     assert_int_equal(tdc_lcd_init(&st, &c, lcd, g_static_lcd, sizeof g_static_lcd), TDC_OK);

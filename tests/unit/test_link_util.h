@@ -25,6 +25,8 @@ typedef struct {
     int16_t motion[2][TDC_LINK_MOTION_COUNT(LT_MAX_W, LT_MAX_H)];
     int16_t sample_motion[2][TDC_LINK_SAMPLE_MOTION_COUNT(LT_MAX_W, LT_MAX_H)];
     uint8_t pattern[2][TDC_PATTERN_BYTES(LT_MAX_W, LT_MAX_H)];
+    uint8_t fov_lp[2][TDC_LINK_FRAME_BYTES(LT_MAX_W, LT_MAX_H)]; /* delta <= 1: lp_w x lp_h <= W x H */
+    int16_t fov_mv[2][TDC_LINK_MOTION_COUNT(LT_MAX_W, LT_MAX_H)];
     tdc_link_decoder_t dec;
     tdc_link_event_t ev[LT_MAX_EVENTS];
     uint32_t nev;
@@ -48,6 +50,8 @@ static inline int lt_init(lt_rig_t *r, uint16_t w, uint16_t h, uint8_t eyes)
     memset(r->motion, 0x44, sizeof r->motion);
     memset(r->sample_motion, 0x55, sizeof r->sample_motion);
     memset(r->pattern, 0x66, sizeof r->pattern);
+    memset(r->fov_lp, 0x77, sizeof r->fov_lp);
+    memset(r->fov_mv, 0x88, sizeof r->fov_mv);
     tdc_link_config_t cfg = {w, h, eyes};
     tdc_link_buffers_t b;
     memset(&b, 0, sizeof b);
@@ -55,6 +59,8 @@ static inline int lt_init(lt_rig_t *r, uint16_t w, uint16_t h, uint8_t eyes)
     b.staging_bytes = sizeof r->staging;
     b.full_stride = (uint32_t)w * 3u;
     b.reduced_bytes = sizeof r->reduced[0];
+    b.fov_lp_bytes = sizeof r->fov_lp[0];
+    b.fov_mv_count = sizeof r->fov_mv[0] / sizeof r->fov_mv[0][0];
     for (int e = 0; e < 2; e++) {
         b.full[e] = r->full[e];
         b.reduced[e] = r->reduced[e];
@@ -62,6 +68,8 @@ static inline int lt_init(lt_rig_t *r, uint16_t w, uint16_t h, uint8_t eyes)
         b.motion[e] = r->motion[e];
         b.sample_motion[e] = r->sample_motion[e];
         b.pattern[e] = r->pattern[e];
+        b.fov_lp[e] = r->fov_lp[e];
+        b.fov_mv[e] = r->fov_mv[e];
     }
     r->nev = 0;
     return tdc_link_decoder_init(&r->dec, &cfg, &b);
@@ -77,6 +85,8 @@ static inline uint64_t lt_hash_all(const lt_rig_t *r)
     h = lt_fnv(h, r->motion, sizeof r->motion);
     h = lt_fnv(h, r->sample_motion, sizeof r->sample_motion);
     h = lt_fnv(h, r->pattern, sizeof r->pattern);
+    h = lt_fnv(h, r->fov_lp, sizeof r->fov_lp);
+    h = lt_fnv(h, r->fov_mv, sizeof r->fov_mv);
     return h;
 }
 

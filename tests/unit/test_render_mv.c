@@ -686,6 +686,52 @@ static void test_layers(void **state)
     check_layers(text, 1);
 }
 
+/* tdc_render_set_samples: a FOVEATED frame at given positions (here every
+ * 7th pixel centre) gives, sample for sample, the FULL frame's layers and
+ * shadow, dual and reflected vectors there. */
+static void test_samples_at_positions(void **state)
+{
+    (void)state;
+    char text[2048];
+    snprintf(text, sizeof text, "%slight sun point pos 2 6 4 intensity 50 50 48\n", glossy_text());
+    tdc_render_t *r = open_text(text, 1, 1);
+    const uint32_t f = 5;
+    static float rgb[W * H * 3], sh[W * H * 3], vis[W * H], refl[W * H * 3], sw[W * H];
+    static int16_t mv[W * H * 2], mr[W * H * 2], ms[W * H * 2], md[W * H * 2];
+    static float srgb[W * H * 3], ssh[W * H * 3], svis[W * H], srefl[W * H * 3], ssw[W * H];
+    static int16_t smv[W * H * 2], smr[W * H * 2], sms[W * H * 2], smd[W * H * 2];
+    static double xy[W * H * 2];
+    tdc_render_out_t o = {.rgb = rgb, .mv = mv, .mv_shadow = ms, .shadow_weight = sw, .mv_dual = md,
+                          .shade = sh, .vis = vis, .refl = refl, .mv_refl = mr};
+    assert_int_equal(tdc_render_frame(r, f, TDC_RENDER_FULL, &o, NULL), 0);
+    int n = 0;
+    static int idx[W * H];
+    for (int i = 0; i < W * H; i += 7) {
+        xy[2 * n] = i % W + 0.5;
+        xy[2 * n + 1] = i / W + 0.5;
+        idx[n++] = i;
+    }
+    assert_int_equal(tdc_render_set_samples(r, xy, n), 0);
+    tdc_render_out_t so = {.rgb = srgb, .mv = smv, .mv_shadow = sms, .shadow_weight = ssw, .mv_dual = smd,
+                           .shade = ssh, .vis = svis, .refl = srefl, .mv_refl = smr};
+    assert_int_equal(tdc_render_frame(r, f, TDC_RENDER_FOVEATED, &so, NULL), 0);
+    for (int k = 0; k < n; k++) {
+        int i = idx[k];
+        assert_memory_equal(&srgb[3 * k], &rgb[3 * i], 12);
+        assert_memory_equal(&ssh[3 * k], &sh[3 * i], 12);
+        assert_memory_equal(&srefl[3 * k], &refl[3 * i], 12);
+        assert_true(svis[k] == vis[i] && ssw[k] == sw[i]);
+        assert_memory_equal(&smv[2 * k], &mv[2 * i], 4);
+        assert_memory_equal(&smr[2 * k], &mr[2 * i], 4);
+        assert_memory_equal(&sms[2 * k], &ms[2 * i], 4);
+        assert_memory_equal(&smd[2 * k], &md[2 * i], 4);
+    }
+    double bad[2] = {NAN, 1};
+    assert_int_equal(tdc_render_set_samples(r, bad, 1), -1);
+    assert_int_equal(tdc_render_set_samples(r, xy, 0), -1);
+    tdc_render_close(r);
+}
+
 /* Dual-MV culling: under a still camera the pass skips the previous-frame
  * ray outside the moving objects' previous screen rectangles; every dual
  * MV of the frame equals the probe's (which traces every ray). */
@@ -736,6 +782,7 @@ int main(void)
         cmocka_unit_test(test_ggx_sampler),
         cmocka_unit_test(test_layers),
         cmocka_unit_test(test_dual_mv_culling),
+        cmocka_unit_test(test_samples_at_positions),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -24,9 +24,14 @@
 #define TY ((H + 1) / 2)
 
 static tdc_scene_t sc;
-static uint8_t staging[TDC_LINK_STAGING_BYTES(W, H)];
+static uint8_t staging[TDC_LINK_STAGING_LAYERS_BYTES(W, H) + TDC_LINK_STAGING_BYTES(W, H)];
 static uint8_t dfull[W * H * 3], dred[W * H * 3], dsub[TX * TY * 3], dpat[TDC_PATTERN_BYTES(W, H)];
 static int16_t dmv[W * H * 2], dsmv[TX * TY * 2];
+/* the decoder's layer planes (layered streams) */
+static uint8_t dlval[TDC_LAYER_MAX][TX * TY * 3];
+static int16_t dlmv[TDC_LAYER_MAX][TX * TY * 2];
+static uint16_t dlw[TX * TY];
+static tdc_layer_frame_t dlayers;
 
 /* Feeds the whole file; returns packets accepted, counts per kind. */
 static uint32_t decode_file(const char *path, uint32_t by_kind[TDC_LINK_KIND_LAST + 1], uint32_t *errors)
@@ -45,6 +50,12 @@ static uint32_t decode_file(const char *path, uint32_t by_kind[TDC_LINK_KIND_LAS
     b.motion[0] = dmv;
     b.sample_motion[0] = dsmv;
     b.pattern[0] = dpat;
+    for (int t = 0; t < TDC_LAYER_MAX; t++) {
+        dlayers.value[t] = dlval[t];
+        dlayers.mv[t] = dlmv[t];
+    }
+    dlayers.falloff = dlw;
+    b.layers[0] = &dlayers;
     assert_int_equal(tdc_link_decoder_init(&dec, &cfg, &b), TDC_OK);
     FILE *f = fopen(path, "rb");
     assert_non_null(f);
@@ -206,6 +217,107 @@ static void test_static_stream(void **state)
     tdc_render_close(r);
 }
 
+/* Layered subframes (issue 16): one LAYERS packet per subframe with the
+ * layers the scene needs; every packet accepted by the firmware decoder,
+ * the decoded planes of the last frame are the renderer's layers. */
+static void layered(const char *scene, int frames, uint32_t want_set, int indirect)
+{
+    char path[] = "/tmp/tdc_rstream_XXXXXX";
+    int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    close(fd);
+    char err[256];
+    assert_int_equal(tdc_scene_builtin(scene, &sc, err, sizeof err), TDC_SCENE_OK);
+    tdc_render_config_t cfg;
+    tdc_render_default_config(&cfg);
+    cfg.width = W;
+    cfg.height = H;
+    cfg.shadow_mv = cfg.dual_mv = 1;
+    cfg.indirect = indirect;
+    tdc_render_t *r = tdc_render_open(&sc, &cfg, err, sizeof err);
+    assert_non_null(r);
+    tdc_render_stream_t *s = tdc_render_stream_create(path, r, TDC_RSTREAM_LAYERS, err, sizeof err);
+    if (!s) fail_msg("%s", err);
+    uint32_t set = tdc_render_stream_layer_set(s), flags = tdc_render_stream_flags(s);
+    assert_int_equal(set, want_set);
+    assert_true((flags & TDC_LINK_STREAM_LAYERS) && (flags & TDC_LINK_STREAM_SUBFRAMES));
+    static float rgb[TX * TY * 3], sh[TX * TY * 3], vis[TX * TY], refl[TX * TY * 3], ind[TX * TY * 3], sw[TX * TY];
+    static int16_t mv[TX * TY * 2], msf[TX * TY * 2], mrf[TX * TY * 2], msh[TX * TY * 2], mdu[TX * TY * 2];
+    static uint8_t src[TX * TY];
+    tdc_render_out_t out = {.rgb = rgb,
+                            .mv = mv,
+                            .mv_shadow = msh,
+                            .shadow_weight = sw,
+                            .mv_dual = mdu,
+                            .shade = sh,
+                            .vis = vis,
+                            .refl = refl,
+                            .mv_surf = msf,
+                            .mv_refl = mrf,
+                            .shadow_src = src,
+                            .indirect = ind};
+    for (int f = 0; f < frames; f++) {
+        assert_int_equal(tdc_render_frame(r, 200 + (uint32_t)f, TDC_RENDER_SUBFRAME, &out, NULL), 0);
+        assert_int_equal(tdc_render_stream_layers(s, 200 + (uint32_t)f, &out), 0);
+    }
+    uint32_t np;
+    uint64_t nb;
+    assert_int_equal(tdc_render_stream_close(s, &np, &nb), 0);
+    uint32_t kinds[TDC_LINK_KIND_LAST + 1], errors;
+    uint32_t ok = decode_file(path, kinds, &errors);
+    printf("%-8s layered: layer set 0x%02x, %u packets, %llu bytes (%.2f B per sample per frame); decoder accepted "
+           "%u, errors %u\n",
+           scene, set, np, (unsigned long long)nb, (double)nb / (frames * TX * TY), ok, errors);
+    assert_int_equal(errors, 0);
+    assert_int_equal(ok, np);
+    assert_int_equal(kinds[TDC_LINK_KIND_LAYERS], frames);
+    assert_int_equal(kinds[TDC_LINK_KIND_SUBFRAME] + kinds[TDC_LINK_KIND_MOTION], 0);
+    /* the last frame's planes */
+    const int n = TX * TY;
+    static uint8_t e8[TX * TY * 3];
+    if (set & TDC_LAYER_PKT_TYPE(TDC_LAYER_VISIBILITY)) {
+        tdc_render_linear_to_rgb888(sh, n, e8);
+        assert_memory_equal(dlval[TDC_LAYER_SHADING - 1], e8, n * 3);
+        int shadowed = 0;
+        for (int i = 0; i < n; i++) {
+            assert_int_equal(dlval[TDC_LAYER_VISIBILITY - 1][i], (int)(vis[i] * 255 + 0.5f));
+            const int16_t *want = src[i] ? &msh[2 * i] : &msf[2 * i];
+            assert_int_equal(dlmv[TDC_LAYER_VISIBILITY - 1][2 * i], want[0]);
+            assert_int_equal(dlmv[TDC_LAYER_VISIBILITY - 1][2 * i + 1], want[1]);
+            assert_true(dlw[i] <= 32768 && (src[i] || dlw[i] == 32768));
+            shadowed += src[i];
+        }
+        assert_true(shadowed > 0);
+    }
+    if (set & TDC_LAYER_PKT_TYPE(TDC_LAYER_GLOSSY)) {
+        tdc_render_linear_to_rgb888(refl, n, e8);
+        assert_memory_equal(dlval[TDC_LAYER_GLOSSY - 1], e8, n * 3);
+        assert_memory_equal(dlmv[TDC_LAYER_GLOSSY - 1], mrf, n * 4);
+    }
+    if (set & TDC_LAYER_PKT_TYPE(TDC_LAYER_INDIRECT)) {
+        tdc_render_linear_to_rgb888(ind, n, e8);
+        assert_memory_equal(dlval[TDC_LAYER_INDIRECT - 1], e8, n * 3);
+    }
+    if (set == TDC_LAYER_PKT_TYPE(TDC_LAYER_SHADING)) { /* one layer: the frame itself */
+        tdc_render_linear_to_rgb888(rgb, n, e8);
+        assert_memory_equal(dlval[TDC_LAYER_SHADING - 1], e8, n * 3);
+    }
+    remove(path);
+    tdc_render_close(r);
+}
+
+static void test_layered_streams(void **state)
+{
+    (void)state;
+    const uint32_t SH = TDC_LAYER_PKT_TYPE(TDC_LAYER_SHADING), VI = TDC_LAYER_PKT_TYPE(TDC_LAYER_VISIBILITY),
+                   GL = TDC_LAYER_PKT_TYPE(TDC_LAYER_GLOSSY), IN = TDC_LAYER_PKT_TYPE(TDC_LAYER_INDIRECT),
+                   FO = TDC_LAYER_PKT_FALLOFF;
+    layered("blocker", 5, SH | VI | FO, 0);
+    layered("glossy", 5, SH | VI | FO | GL, 0);
+    layered("blocker", 3, SH | VI | FO | IN, 1);
+    layered("discs", 5, SH, 0); /* no shadows, no reflections: one layer */
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -213,6 +325,7 @@ int main(void)
         cmocka_unit_test(test_trm_stream),
         cmocka_unit_test(test_subframe_stream),
         cmocka_unit_test(test_static_stream),
+        cmocka_unit_test(test_layered_streams),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

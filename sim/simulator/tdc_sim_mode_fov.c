@@ -1,0 +1,202 @@
+/*
+ * tdc_sim_mode_fov.c - foveated streams (issue 14, DESIGN §4.5): the
+ * renderer traces the kernel log-polar buffer (alpha, delta) and the
+ * uniformly sampled foveal disk (a fraction of the distance to the farthest
+ * corner) around the gaze the eye tracker reports; the packet goes over the
+ * link as a FOVEATED packet (encoder -> firmware decoder); the controller
+ * rebuilds the frame with the firmware stage tdc_fov (remap, radial blur,
+ * disk blend) and, in fov-taa, peripheral TAA (thesis eqs. 4.7-4.10,
+ * Halton(2,3) jitter of the log-polar samples, motion vectors sent).
+ *
+ * Parameters: tdc-sim --fov-alpha (4), --fov-delta (0.555), --fov-disk
+ * (0.12443, the thesis's measured optimum); gaze and tracker:
+ * tdc_sim_gaze.h (--gaze, --gaze-latency, --gaze-noise).
+ *
+ * Samples: a source with its own foveated mode (the Embree renderer) traces
+ * them itself; the others (procedural scenes, photographs) are sampled at
+ * the positions of the exact inverse of eq. 2.2 (sim/ref_fov.c) and the
+ * disk pixel centres, spp rays each like the full-rate modes.  Rays are
+ * counted exactly (samples x spp, or the renderer's count).
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ref_fov.h"
+#include "simulator/tdc_sim_mode.h"
+#include "tdc_fov.h"
+#include "tdc_fov_link.h"
+#include "tdc_sim_features.h"
+
+enum { FOV_PLAIN, FOV_TAA };
+
+#define F &tdc_sim_family_fov
+#define L TDC_SIM_LINK_FOVEATED
+static const tdc_mode_desc_t k_modes[] = {
+    {"fov", F, FOV_PLAIN, L, 1, 1, 0, 0, 0,
+     "kernel log-polar foveation (thesis), alpha 4, delta 0.555, 12.443 % disk, FOVEATED packets, firmware remap"},
+    {"fov-taa", F, FOV_TAA, L, 1, 1, 0, 0, 0,
+     "fov + peripheral TAA (thesis eqs. 4.7-4.10, phased out after the disk border), Halton jitter, vectors sent"},
+};
+#undef L
+#undef F
+
+typedef struct {
+    tdc_fov_t st;
+    void *arena;
+    uint8_t *samp; /* samples in payload order */
+    int16_t *smv;
+    double *xy;
+    uint16_t alpha_q8, delta_q15, disk_q15;
+    double last_t;
+    int have_t;
+} fov_state_t;
+
+static int fov_init(sim_mode_t *m, const tdc_sim_setup_t *s)
+{
+    const tdc_sim_config_t *cfg = s->cfg;
+    m->res->foveated = 1;
+    if (!TDC_SIM_HAVE_LINK) {
+        m->res->available = 0;
+        tdc_sim_note(m, "needs the link decoder (FOVEATED packets), not in this build");
+        return 0;
+    }
+    fov_state_t *st = calloc(1, sizeof *st);
+    if (!st) {
+        return -1;
+    }
+    m->fam = st;
+    /* the link header's quantisation: alpha Q8, delta Q15 rounded up (so
+     * that the buffer is floor(0.555 W) at every size here), disk Q15 */
+    st->alpha_q8 = (uint16_t)lround(cfg->fov_alpha * 256.0);
+    st->delta_q15 = (uint16_t)ceil(cfg->fov_delta * 32768.0 - 1e-9);
+    st->disk_q15 = (uint16_t)lround(cfg->fov_disk * 32768.0);
+    const tdc_fov_config_t fc = {(uint16_t)m->w, (uint16_t)m->h, (uint8_t)(m->d->variant == FOV_TAA)};
+    const size_t n = tdc_fov_get_size(&fc);
+    if (!n || !(cfg->fov_delta > 0 && cfg->fov_delta <= 1)) {
+        tdc_sim_refuse(m, "fov init (size or delta)", TDC_ERR_SIZE);
+        return 0;
+    }
+    st->arena = aligned_alloc(8, (n + 7) & ~(size_t)7);
+    const size_t lpn = (size_t)tdc_fov_lp_size(st->delta_q15, (uint16_t)m->w) *
+                       tdc_fov_lp_size(st->delta_q15, (uint16_t)m->h);
+    st->samp = malloc((lpn + m->npx) * 3);
+    st->smv = malloc((lpn + m->npx) * 2 * sizeof(int16_t));
+    st->xy = malloc((lpn + m->npx) * 2 * sizeof(double));
+    if (!st->arena || !st->samp || !st->smv || !st->xy) {
+        return -1;
+    }
+    const int rc = tdc_fov_init(&st->st, &fc, st->arena, n);
+    if (rc != TDC_OK) {
+        tdc_sim_refuse(m, "fov init", rc);
+    }
+    return 0;
+}
+
+static int fov_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32_t lf)
+{
+    fov_state_t *st = m->fam;
+    const int taa = m->d->variant == FOV_TAA;
+    const double dt = st->have_t ? t - st->last_t : m->fs;
+    st->last_t = t;
+    st->have_t = 1;
+    /* where the tracker says the eye looks (within a screen of it: the link's rule) */
+    double gz[2];
+    tdc_sim_gaze_tracked(m->gaze, t, m->frame, m->eye, gz);
+    gz[0] = fmin(fmax(gz[0], -0.99 * m->w), 1.99 * m->w);
+    gz[1] = fmin(fmax(gz[1], -0.99 * m->h), 1.99 * m->h);
+    const tdc_fov_params_t p = {(int32_t)lround(gz[0] * 256),
+                                (int32_t)lround(gz[1] * 256),
+                                st->alpha_q8,
+                                st->disk_q15,
+                                tdc_fov_lp_size(st->delta_q15, (uint16_t)m->w),
+                                tdc_fov_lp_size(st->delta_q15, (uint16_t)m->h)};
+    tdc_fov_geom_t g;
+    int rc = tdc_fov_geom(&g, (uint16_t)m->w, (uint16_t)m->h, &p);
+    if (tdc_sim_stage(m, "fov geometry", rc)) {
+        return rc;
+    }
+    double jx = 0, jy = 0;
+    if (taa) { /* Halton(2,3) jitter of the log-polar samples (thesis §4.3.2) */
+        double hx = 0, hy = 0;
+        for (uint32_t k = m->frame + 1, b = 2; k; k /= 2, b *= 2) hx += (double)(k % 2) / b;
+        for (uint32_t k = m->frame + 1, b = 3; k; k /= 3, b *= 3) hy += (double)(k % 3) / b;
+        jx = hx - 0.5;
+        jy = hy - 0.5;
+    }
+    const size_t nlp = (size_t)(g.lp_w - g.u0) * g.lp_h, n = nlp + tdc_fov_disk_pixels(&g);
+    double t0 = tdc_sim_now();
+    if (src->foveated) {
+        const tdc_fov_sampling_t fs = {p.gaze_x_q8 / 256.0, p.gaze_y_q8 / 256.0, p.alpha_q8 / 256.0,
+                                       st->delta_q15 / 32768.0, p.disk_q15 / 32768.0, jx, jy};
+        uint64_t rays = 0;
+        rc = src->foveated(src, &fs, t, dt, st->samp, taa ? st->smv : NULL, &rays);
+        if (tdc_sim_stage(m, "renderer (foveated frame)", rc ? TDC_ERR_ARG : TDC_OK)) {
+            return TDC_ERR_ARG;
+        }
+        m->res->rays += rays;
+    } else {
+        /* the exact inverse of eq. 2.2 for the log-polar samples, then the disk pixel centres */
+        const ref_fov_params_t rp = {p.gaze_x_q8 / 256.0, p.gaze_y_q8 / 256.0, p.alpha_q8 / 256.0,
+                                     p.disk_q15 / 32768.0, g.lp_w, g.lp_h};
+        ref_fov_geom_t rg;
+        ref_fov_geom(&rg, m->w, m->h, &rp);
+        size_t k = 0;
+        for (int j = 0; j < g.lp_h; j++) {
+            for (int i = g.u0; i < g.lp_w; i++, k++) {
+                ref_fov_from_lp(&rg, fmax(i + jx, 0.0), j + jy, &st->xy[2 * k], &st->xy[2 * k + 1]);
+            }
+        }
+        for (int j = 0; j < m->h; j++) {
+            int32_t x0;
+            const uint32_t span = tdc_fov_disk_span(&g, j, &x0);
+            for (uint32_t i = 0; i < span; i++, k++) {
+                st->xy[2 * k] = x0 + (int32_t)i + 0.5;
+                st->xy[2 * k + 1] = j + 0.5;
+            }
+        }
+        src->samples(src, t, (int)n, st->xy, spp, st->samp, taa ? st->smv : NULL, dt, TDC_MV_SURFACE);
+        m->res->rays += (uint64_t)n * (uint64_t)(spp > 0 ? spp : 1);
+    }
+    m->res->render_s += tdc_sim_now() - t0;
+    m->res->rendered++;
+    /* over the link: the decoder checks and unpacks (disk into its full
+     * buffer, the rest into the log-polar buffers) */
+    tdc_fov_hdr_t h;
+    if (tdc_sim_link_foveated(m->link, m->eye, lf, &p, st->delta_q15, st->samp, taa ? st->smv : NULL, &h) != 0) {
+        return tdc_sim_stage(m, "link FOVEATED packet", TDC_ERR_ARG);
+    }
+    t0 = tdc_sim_now();
+    const int e = m->eye;
+    rc = tdc_fov_frame(&st->st, &h.p, m->link->fov_lp[e], (size_t)h.p.lp_w * 3, taa ? m->link->fov_mv[e] : NULL,
+                       (size_t)h.p.lp_w * 2, m->link->full[e], (size_t)m->w * 3, (uint32_t)lround(dt * 1e6), m->wanted,
+                       (size_t)m->w * 3);
+    m->res->fw_s += tdc_sim_now() - t0;
+    return tdc_sim_stage(m, "fov frame", rc);
+}
+
+static void fov_reset(sim_mode_t *m)
+{
+    fov_state_t *st = m->fam;
+    if (st) {
+        tdc_fov_reset(&st->st);
+        st->have_t = 0;
+    }
+}
+
+static void fov_free(sim_mode_t *m)
+{
+    fov_state_t *st = m->fam;
+    if (st) {
+        free(st->arena);
+        free(st->samp);
+        free(st->smv);
+        free(st->xy);
+        free(st);
+    }
+    m->fam = NULL;
+}
+
+const tdc_sim_family_t tdc_sim_family_fov = {
+    "fov", k_modes, (int)(sizeof(k_modes) / sizeof(k_modes[0])), fov_init, fov_frame, fov_reset, fov_free,
+};

@@ -1,0 +1,260 @@
+/*
+ * test_sim_fov.c - the simulator's foveated modes (issue 14 item 5): fov and
+ * fov-taa run end to end (renderer -> FOVEATED packets through the firmware
+ * decoder -> the firmware stage -> panel -> eye -> metrics) on a procedural
+ * scene, mono and stereo; rays and link bytes are exactly the geometry's;
+ * the foveal region is perceived better than the periphery, and a tracker
+ * latency moves the fovea off the gaze (foveal FLIP rises); the gaze
+ * schedules and the tracker's latency and noise are what they claim; a
+ * configuration the stage refuses is refused, not run.
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "simulator/tdc_sim.h"
+#include "simulator/tdc_sim_gaze.h"
+#include "tdc_fov.h"
+#include "tdc_fov_link.h"
+#include "tdc_sim_features.h"
+
+#define W 96
+#define H 72
+
+static void config(tdc_sim_config_t *cfg, int frames)
+{
+    tdc_sim_default_config(cfg);
+    cfg->scene.kind = TDC_SCENE_PAN;
+    cfg->width = cfg->scene.width = W;
+    cfg->height = cfg->scene.height = H;
+    cfg->refresh_hz = 90;
+    cfg->duration_s = (double)frames / 90;
+    cfg->progress = 0;
+    cfg->flip_ppd = 20.0;
+    cfg->scene.gt_ss = 2;
+    cfg->eyes = 1;
+}
+
+static int run(tdc_sim_config_t *cfg, const char *const *names, int n, tdc_sim_result_t *res)
+{
+    const tdc_mode_desc_t *modes[8];
+    for (int i = 0; i < n; i++) {
+        modes[i] = tdc_sim_mode_find(names[i]);
+        assert_non_null(modes[i]);
+    }
+    tdc_source_t *src = tdc_scene_create(&cfg->scene, NULL);
+    assert_non_null(src);
+    tdc_source_t *right = NULL;
+    if (cfg->eyes == 2) {
+        tdc_scene_params_t sp = cfg->scene;
+        sp.shift_x = 2.0;
+        right = cfg->right = tdc_scene_create(&sp, NULL);
+    }
+    int rc = tdc_sim_run(cfg, src, modes, n, res, NULL);
+    src->destroy(src);
+    if (right) {
+        right->destroy(right);
+    }
+    return rc;
+}
+
+static void print(const tdc_sim_result_t *r, int n)
+{
+    for (int i = 0; i < n; i++) {
+        printf("  %-8s avail %d FLIP %.4f fovea %.4f periph %.4f ecc %.4f wmed %.4f flicker %.2f/%.2f rays %llu "
+               "bytes %llu %s\n",
+               r[i].desc->name, r[i].available, r[i].flip, r[i].flip_fovea, r[i].flip_periph, r[i].flip_ecc,
+               r[i].flip_wmedian, r[i].flicker, r[i].flicker_periph, (unsigned long long)r[i].rays,
+               (unsigned long long)r[i].link_bytes, r[i].note);
+    }
+}
+
+/* Fixed gaze at the centre: every frame has the same geometry, so rays and
+ * bytes are known exactly. */
+static void test_modes_exact_costs(void **state)
+{
+    (void)state;
+    if (!TDC_SIM_HAVE_LINK) {
+        skip();
+    }
+    for (int eyes = 1; eyes <= 2; eyes++) {
+        tdc_sim_config_t cfg;
+        config(&cfg, 12);
+        cfg.eyes = eyes;
+        cfg.gaze = TDC_GAZE_FIXED;
+        static const char *const m[] = {"full", "fov", "fov-taa"};
+        tdc_sim_result_t r[3];
+        assert_int_equal(run(&cfg, m, 3, r), 0);
+        print(r, 3);
+        const tdc_fov_params_t p = {W * 128, H * 128, 1024, 4077, tdc_fov_lp_size(18187, W), tdc_fov_lp_size(18187, H)};
+        tdc_fov_geom_t g;
+        assert_int_equal(tdc_fov_geom(&g, W, H, &p), TDC_OK);
+        const uint64_t nlp = (uint64_t)(g.lp_w - g.u0) * g.lp_h, nd = tdc_fov_disk_pixels(&g);
+        for (int i = 0; i < 3; i++) {
+            assert_true(r[i].available);
+            assert_int_equal(r[i].link_errors, 0);
+            assert_false(r[i].nonfinite);
+            assert_true(r[i].evals > 0);
+            assert_true(r[i].flip > 0 && r[i].flip < 1);
+            assert_int_equal(r[i].foveated, i > 0);
+        }
+        const uint64_t frames = r[1].frames * (uint64_t)eyes; /* pictures */
+        assert_int_equal(r[1].rays, frames * (nlp + nd) * 4u);  /* spp 4 below 200 Hz, like full */
+        assert_int_equal(r[2].rays, r[1].rays);
+        assert_int_equal(r[0].rays, frames * W * H * 4u);
+        const uint64_t stream = 32u + 16u;
+        assert_int_equal(r[1].link_bytes, stream + frames * (32u + TDC_FOV_HDR_BYTES + tdc_fov_payload_bytes(&g, 0)));
+        assert_int_equal(r[2].link_bytes, stream + frames * (32u + TDC_FOV_HDR_BYTES + tdc_fov_payload_bytes(&g, 1)));
+        /* the disk is traced at full rate, the periphery is not */
+        for (int i = 1; i < 3; i++) {
+            assert_true(r[i].flip_fovea < r[i].flip_periph);
+            assert_true(r[i].flip_periph > r[0].flip_periph);
+        }
+    }
+}
+
+/* Saccades with a tracker latency: for `latency` after each jump the fovea
+ * is still at the last fixation, so the region around the true gaze is
+ * served by the periphery and its FLIP rises. */
+static void test_latency_moves_the_fovea(void **state)
+{
+    (void)state;
+    if (!TDC_SIM_HAVE_LINK) {
+        skip();
+    }
+    static const char *const m[] = {"fov"};
+    tdc_sim_result_t r0, r1;
+    tdc_sim_config_t cfg;
+    config(&cfg, 63); /* 0.7 s: two jumps */
+    cfg.gaze = TDC_GAZE_SACCADE;
+    cfg.fov_disk = 0.25;
+    assert_int_equal(run(&cfg, m, 1, &r0), 0);
+    cfg.gaze_latency_ms = 100.0;
+    assert_int_equal(run(&cfg, m, 1, &r1), 0);
+    print(&r0, 1);
+    print(&r1, 1);
+    assert_true(r1.flip_fovea > r0.flip_fovea + 0.02);
+    assert_int_equal(r1.rays > 0, 1);
+}
+
+/* A configuration the stage refuses is not run (refused, noted). */
+static void test_refused(void **state)
+{
+    (void)state;
+    if (!TDC_SIM_HAVE_LINK) {
+        skip();
+    }
+    static const char *const m[] = {"full", "fov-taa"};
+    tdc_sim_result_t r[2];
+    tdc_sim_config_t cfg;
+    config(&cfg, 6);
+    cfg.fov_delta = 1.5;
+    assert_int_equal(run(&cfg, m, 2, r), 0);
+    assert_true(r[0].available);
+    assert_false(r[1].available);
+    assert_true(r[1].refused != 0);
+    cfg.strict = 1;
+    assert_int_equal(run(&cfg, m, 2, r), -1);
+}
+
+/* ---- the gaze schedules and the tracker ---- */
+static void const_pursuit(tdc_source_t *s, double t, double v[2])
+{
+    (void)s;
+    (void)t;
+    v[0] = 100.0;
+    v[1] = -50.0;
+}
+
+static void test_gaze_schedules(void **state)
+{
+    (void)state;
+    tdc_source_t src;
+    memset(&src, 0, sizeof src);
+    src.pursuit = const_pursuit;
+    tdc_sim_gaze_t g;
+    memset(&g, 0, sizeof g);
+    g.schedule = TDC_GAZE_PURSUIT;
+    g.ppd = 10.0;
+    assert_int_equal(tdc_sim_gaze_init(&g, &src, 400, 300, 100.0, 2.0), 0);
+    double a[2], b[2];
+    /* pursuit: centre + v t while in the central half (100 px / 100 px/s = 1 s in x) */
+    tdc_sim_gaze_true(&g, 0.5, a);
+    assert_true(fabs(a[0] - (200.0 + 50.0)) < 0.6 && fabs(a[1] - (150.0 - 25.0)) < 0.6);
+    /* y leaves the central half (75 px) after 1.5 s, x (100 px) after 1 s: a saccade to the centre at 1 s */
+    tdc_sim_gaze_true(&g, 1.01, a);
+    assert_true(fabs(a[0] - 200.0) < 2.0 && fabs(a[1] - 150.0) < 2.0);
+    /* latency: the tracked gaze is the true gaze of t - latency */
+    g.latency_ms = 40.0;
+    tdc_sim_gaze_tracked(&g, 0.7, 3, 0, a);
+    tdc_sim_gaze_true(&g, 0.66, b);
+    assert_true(a[0] == b[0] && a[1] == b[1]);
+    /* noise: zero mean, sigma = noise deg x ppd per axis, per frame and eye */
+    g.latency_ms = 0.0;
+    g.noise_deg = 0.5;
+    g.seed = 7;
+    tdc_sim_gaze_true(&g, 0.3, b);
+    double sx = 0, sy = 0, sxx = 0, syy = 0;
+    const int n = 20000;
+    for (int k = 0; k < n; k++) {
+        tdc_sim_gaze_tracked(&g, 0.3, (uint32_t)k, k & 1, a);
+        const double dx = a[0] - b[0], dy = a[1] - b[1];
+        sx += dx;
+        sy += dy;
+        sxx += dx * dx;
+        syy += dy * dy;
+    }
+    printf("  noise: mean %.3f %.3f sd %.3f %.3f (want 0, 5)\n", sx / n, sy / n, sqrt(sxx / n), sqrt(syy / n));
+    assert_true(fabs(sx / n) < 0.15 && fabs(sy / n) < 0.15);
+    assert_true(fabs(sqrt(sxx / n) - 5.0) < 0.15 && fabs(sqrt(syy / n) - 5.0) < 0.15);
+    tdc_sim_gaze_tracked(&g, 0.3, 11, 0, a);
+    tdc_sim_gaze_tracked(&g, 0.3, 11, 1, b);
+    assert_true(a[0] != b[0]); /* the eyes' trackers are independent */
+    tdc_sim_gaze_free(&g);
+    /* fixed, saccade */
+    memset(&g, 0, sizeof g);
+    g.schedule = TDC_GAZE_FIXED;
+    g.at_x = 30;
+    g.at_y = 40;
+    assert_int_equal(tdc_sim_gaze_init(&g, NULL, 400, 300, 90.0, 1.0), 0);
+    tdc_sim_gaze_true(&g, 0.9, a);
+    assert_true(a[0] == 30 && a[1] == 40);
+    assert_true(fabs(tdc_sim_gaze_rmax(&g, a) - hypot(370, 260)) < 1e-9);
+    tdc_sim_gaze_free(&g);
+    memset(&g, 0, sizeof g);
+    g.schedule = TDC_GAZE_SACCADE;
+    assert_int_equal(tdc_sim_gaze_init(&g, NULL, 400, 300, 90.0, 1.0), 0);
+    double prev[2] = {-1, -1};
+    int jumps = 0;
+    for (double t = 0; t < 1.0; t += 0.01) {
+        tdc_sim_gaze_true(&g, t, a);
+        if (prev[0] >= 0 && (a[0] != prev[0] || a[1] != prev[1])) {
+            jumps++;
+            assert_true(hypot(a[0] - prev[0], a[1] - prev[1]) > 50.0);
+        }
+        prev[0] = a[0];
+        prev[1] = a[1];
+    }
+    assert_int_equal(jumps, 3); /* 250 ms fixations */
+    tdc_sim_gaze_free(&g);
+    assert_int_equal(tdc_sim_gaze_from_name("saccade"), TDC_GAZE_SACCADE);
+    assert_int_equal(tdc_sim_gaze_from_name("blink"), -1);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_modes_exact_costs),
+        cmocka_unit_test(test_latency_moves_the_fovea),
+        cmocka_unit_test(test_refused),
+        cmocka_unit_test(test_gaze_schedules),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
