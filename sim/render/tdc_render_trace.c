@@ -494,6 +494,7 @@ void tdc_r_trace_local(rthread_t *t, const double P[3], const double N[3], const
     double P2[3], Q2[3], N2[3], NQ2[3];
     wncache_t wc = {.obj = -1};
     surface_rh(t->cur, &rh, h, O, d, P2, Q2, N2, NQ2, &wc);
+    t->tex_fw = 0; /* a diffuse bounce: its Monte Carlo estimate averages the texture (point-sampled as before) */
     shade_direct(t, h, P2, Q2, N2, NQ2, rng_key(a), a->k, salt, NULL, L, NULL);
 }
 
