@@ -153,7 +153,7 @@ typedef struct {
  * take that layer type (its packets are TDC_LINK_ERR_UNEXPECTED).
  * `present` = the packet flags of the last accepted packet.
  */
-typedef struct {
+typedef struct tdc_layer_frame {
     tdc_layer_hdr_t hdr;
     uint16_t present;
     uint8_t *value[TDC_LAYER_MAX]; /* type t: tiles * tdc_layer_value_bytes(t) */

@@ -16,6 +16,7 @@ const char *tdc_status_name(tdc_status_t st)
     case TDC_ERR_RATIO: return "TDC_ERR_RATIO";
     case TDC_ERR_PANEL: return "TDC_ERR_PANEL";
     case TDC_ERR_FRAME: return "TDC_ERR_FRAME";
+    case TDC_ERR_LAYER: return "TDC_ERR_LAYER";
     case TDC_ERR_STALL: return "TDC_ERR_STALL";
     case TDC_ERR_IMAGE_SHORT: return "TDC_ERR_IMAGE_SHORT";
     case TDC_ERR_IMAGE_MAGIC: return "TDC_ERR_IMAGE_MAGIC";
@@ -39,6 +40,7 @@ const char *tdc_status_text(tdc_status_t st)
     case TDC_ERR_RATIO: return "reduction ratio outside [1/4, 1]";
     case TDC_ERR_PANEL: return "panel profile lacks what the stage needs";
     case TDC_ERR_FRAME: return "frame out of sequence";
+    case TDC_ERR_LAYER: return "layer not kept by the stage or of another size";
     case TDC_ERR_STALL: return "request refused (endpoint stalled)";
     /* The image texts are what tdc-usb prints (tests/usb, tests/vm match them). */
     case TDC_ERR_IMAGE_SHORT: return "shorter than the 48-byte image header";

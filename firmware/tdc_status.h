@@ -40,6 +40,7 @@ typedef enum {
     TDC_ERR_RATIO = -5,       /* reduction ratio outside [1/4, 1] */
     TDC_ERR_PANEL = -6,       /* panel profile lacks what the stage needs */
     TDC_ERR_FRAME = -7,       /* tile assembly: ingest/assemble for a frame out of sequence */
+    TDC_ERR_LAYER = -8,       /* layered assembly: a layer the stage does not keep, or its size disagrees */
 
     /* USB protocol (-20 .. -29). */
     TDC_ERR_STALL = -20, /* request refused: the endpoint is stalled (counted) */

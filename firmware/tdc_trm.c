@@ -360,7 +360,10 @@ static void trm_rowctx(const tdc_trm_t *st, tdc_trm_rowctx_t *k)
 static void trm_beta_row(tdc_trm_t *st, const tdc_trm_rowctx_t *k, uint32_t y, const uint32_t *urow, const uint8_t *src,
                          uint8_t *dst, tdc_res_t *res, tdc_trm_full_counts_t *n)
 {
-    (void)y;
+    if (st->gaze && tdc_trm_gaze_row_active(st->gaze, y)) {
+        tdc_trm_gaze_full_row(k, st->gaze, y, urow, src, dst, res, n); /* tdc_trm_gaze.h */
+        return;
+    }
     if (st->simd) {
         tdc_trm_full_row_avx2(k, urow, src, dst, res, n);
     } else {

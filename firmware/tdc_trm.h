@@ -132,6 +132,9 @@ typedef struct {
                                     frame (sequence number - 1) was lost or out of order */
 } tdc_trm_stats_t;
 
+/* Gaze-aware compensation strength (tdc_trm_gaze.h); NULL: plain TRM. */
+typedef struct tdc_trm_gaze tdc_trm_gaze_t;
+
 typedef struct {
     /* configuration, validated */
     tdc_trm_config_t cfg;
@@ -161,6 +164,7 @@ typedef struct {
     uint32_t *wexp;       /* TDC_TRM_WEXP_ENTRIES: exp(-k/256) in Q30 */
     uint8_t *enc_comb;    /* TDC_TRM_SIMD_BYTES: AVX2 encode index (NULL without) */
     uint8_t enc_one_step; /* enc_comb needs at most one threshold step */
+    const tdc_trm_gaze_t *gaze; /* tdc_trm_set_gaze(); NULL (init's default): today's bytes */
     tdc_trm_stats_t stats;
 } tdc_trm_t;
 

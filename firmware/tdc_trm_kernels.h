@@ -155,4 +155,77 @@ static inline int32_t tdc_trm_motion_weight_q15(const tdc_trm_rowctx_t *k, tdc_l
     return tdc_trm_weight_q15(k->wexp, sc);
 }
 
+/* Gaze-aware TRM (tdc_trm_gaze.c): whether row y has a tile with k < 1,
+ * and the full row with beta = I + k (I - U D I) (C only: it runs only
+ * where the eye does not track the content). */
+int tdc_trm_gaze_row_active(const tdc_trm_gaze_t *g, uint32_t y);
+void tdc_trm_gaze_full_row(const tdc_trm_rowctx_t *k, const tdc_trm_gaze_t *g, uint32_t y, const uint32_t *urow,
+                           const uint8_t *src, uint8_t *dst, tdc_res_t *res, tdc_trm_full_counts_t *n);
+
+/* ---- per-pixel helpers of the C row kernels (tdc_trm_rows.c) and the
+ * gaze-aware full row (tdc_trm_gaze.c): one definition ---- */
+
+/* Horizontal lerp of a vertically interpolated row (code Q22) between
+ * samples i and i + 3 (the next pixel, same channel): code Q16.
+ * Scaling: |v1 - v0| < 2^30 times f < 2^14 needs 64 bits; rounded once. */
+static inline uint32_t tdc_trm_hlerp(const uint32_t *restrict urow, uint32_t i, uint32_t f_q14)
+{
+    const int64_t v0 = urow[i], v1 = urow[i + 3u];
+    return (uint32_t)tdc_rshr_round64(v0 * (1 << 14) + (v1 - v0) * (int64_t)f_q14, 20);
+}
+
+/* One channel's gamma tables as restrict-qualified locals: the byte stores
+ * of the output frame may alias anything, so without these the compiler
+ * reloads every table pointer after each store. */
+typedef struct {
+    const uint32_t *restrict dec;
+    const uint32_t *restrict thr;
+    const uint16_t *restrict idx;
+} tdc_trm_gamma_t;
+
+static inline void tdc_trm_gamma_locals(const tdc_trm_rowctx_t *k, tdc_trm_gamma_t g[3])
+{
+    for (int c = 0; c < 3; c++) {
+        g[c].dec = k->dec[c];
+        g[c].thr = k->thr[c];
+        g[c].idx = k->idx[c];
+    }
+}
+
+/* As tdc_gamma_decode_q16. */
+static inline tdc_lin_t tdc_trm_dec_q16(const tdc_trm_gamma_t *g, uint32_t g_q16)
+{
+    const uint32_t k = g_q16 >> 16, f = (g_q16 >> 4) & 0xfffu;
+    const uint32_t a = g->dec[k], b = g->dec[k + 1u];
+    return (tdc_lin_t)(a + (((b - a) * f + 0x800u) >> 12));
+}
+
+/* As tdc_gamma_encode; lin already clamped to [0, 2^24] by the caller. */
+static inline uint32_t tdc_trm_enc(const tdc_trm_gamma_t *g, int32_t lin)
+{
+    uint32_t k = g->idx[(uint32_t)lin >> (TDC_LIN_FRAC - TDC_ENC_INDEX_BITS)];
+    while (k < 255u && (uint32_t)lin >= g->thr[k + 1u]) {
+        k++;
+    }
+    return k;
+}
+
+/* One pixel-channel of a full row from its beta (Q24, in [-1, 2]): shown =
+ * clamp(beta, 0, 1) encoded into *dst, rho = beta - shown into *res,
+ * clamps counted. */
+static inline void tdc_trm_put_beta(const tdc_trm_gamma_t *g, int32_t beta, tdc_res_t *res, uint8_t *dst, uint32_t *nhi,
+                                    uint32_t *nlo)
+{
+    int32_t shown = beta;
+    if (beta > TDC_LIN_ONE) {
+        shown = TDC_LIN_ONE;
+        (*nhi)++;
+    } else if (beta < 0) {
+        shown = 0;
+        (*nlo)++;
+    }
+    *res = beta - shown; /* rho, Q24 (see tdc_res_t) */
+    *dst = (uint8_t)tdc_trm_enc(g, shown);
+}
+
 #endif /* TDC_TRM_KERNELS_H */

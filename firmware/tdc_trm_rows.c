@@ -33,51 +33,6 @@ void tdc_trm_wexp_build(uint32_t *wexp)
 /* Half an output code in code Q16: the quantisation of a reduced frame. */
 #define TDC_TRM_HALF_CODE_Q16 (1u << 15)
 
-/* Horizontal lerp of a vertically interpolated row (code Q22) between
- * samples i and i + 3 (the next pixel, same channel): code Q16.
- * Scaling: |v1 - v0| < 2^30 times f < 2^14 needs 64 bits; rounded once. */
-static inline uint32_t trm_hlerp(const uint32_t *restrict urow, uint32_t i, uint32_t f_q14)
-{
-    const int64_t v0 = urow[i], v1 = urow[i + 3u];
-    return (uint32_t)tdc_rshr_round64(v0 * (1 << 14) + (v1 - v0) * (int64_t)f_q14, 20);
-}
-
-/* One channel's gamma tables as restrict-qualified locals: the byte stores
- * of the output frame may alias anything, so without these the compiler
- * reloads every table pointer after each store. */
-typedef struct {
-    const uint32_t *restrict dec;
-    const uint32_t *restrict thr;
-    const uint16_t *restrict idx;
-} trm_gamma_t;
-
-static void trm_gamma_locals(const tdc_trm_rowctx_t *k, trm_gamma_t g[3])
-{
-    for (int c = 0; c < 3; c++) {
-        g[c].dec = k->dec[c];
-        g[c].thr = k->thr[c];
-        g[c].idx = k->idx[c];
-    }
-}
-
-/* As tdc_gamma_decode_q16. */
-static inline tdc_lin_t trm_dec_q16(const trm_gamma_t *g, uint32_t g_q16)
-{
-    const uint32_t k = g_q16 >> 16, f = (g_q16 >> 4) & 0xfffu;
-    const uint32_t a = g->dec[k], b = g->dec[k + 1u];
-    return (tdc_lin_t)(a + (((b - a) * f + 0x800u) >> 12));
-}
-
-/* As tdc_gamma_encode; lin already clamped to [0, 2^24] by the caller. */
-static inline uint32_t trm_enc(const trm_gamma_t *g, int32_t lin)
-{
-    uint32_t k = g->idx[(uint32_t)lin >> (TDC_LIN_FRAC - TDC_ENC_INDEX_BITS)];
-    while (k < 255u && (uint32_t)lin >= g->thr[k + 1u]) {
-        k++;
-    }
-    return k;
-}
-
 void tdc_trm_full_row_c(const tdc_trm_rowctx_t *k, const uint32_t *urow_in, const uint8_t *src_in, uint8_t *dst_in,
                         tdc_res_t *res_in, tdc_trm_full_counts_t *n)
 {
@@ -86,29 +41,18 @@ void tdc_trm_full_row_c(const tdc_trm_rowctx_t *k, const uint32_t *urow_in, cons
     uint8_t *restrict dst = dst_in;
     tdc_res_t *restrict res = res_in;
     const uint16_t *restrict ux = k->ux;
-    trm_gamma_t g[3];
-    trm_gamma_locals(k, g);
+    tdc_trm_gamma_t g[3];
+    tdc_trm_gamma_locals(k, g);
     const uint32_t w = k->width;
     uint32_t nhi = 0, nlo = 0;
     for (uint32_t x = 0; x < w; x++) {
         const uint32_t i0 = 3u * ux[2u * x], f = ux[2u * x + 1u];
 #pragma GCC unroll 3
         for (uint32_t c = 0; c < 3u; c++) {
-            const tdc_lin_t lu = trm_dec_q16(&g[c], trm_hlerp(urow, i0 + c, f));
+            const tdc_lin_t lu = tdc_trm_dec_q16(&g[c], tdc_trm_hlerp(urow, i0 + c, f));
             const tdc_lin_t li = (tdc_lin_t)g[c].dec[src[3u * x + c]];
             /* beta = 2 LI - Lu in [-1, 2] (Q24): no overflow in int32 */
-            const int32_t beta = 2 * li - lu;
-            int32_t shown = beta;
-            if (beta > TDC_LIN_ONE) {
-                shown = TDC_LIN_ONE;
-                nhi++;
-            } else if (beta < 0) {
-                shown = 0;
-                nlo++;
-            }
-            /* rho = beta - shown, Q24 (see tdc_res_t) */
-            res[3u * x + c] = beta - shown;
-            dst[3u * x + c] = (uint8_t)trm_enc(&g[c], shown);
+            tdc_trm_put_beta(&g[c], 2 * li - lu, &res[3u * x + c], &dst[3u * x + c], &nhi, &nlo);
         }
     }
     n->hi += nhi;
@@ -123,22 +67,22 @@ void tdc_trm_reduced_row_c(const tdc_trm_rowctx_t *k, const uint32_t *urow_a_in,
     const tdc_res_t *restrict res = res_in;
     uint8_t *restrict dst = dst_in;
     const uint16_t *restrict ux = k->ux;
-    trm_gamma_t g[3];
-    trm_gamma_locals(k, g);
+    tdc_trm_gamma_t g[3];
+    tdc_trm_gamma_locals(k, g);
     const uint32_t w = k->width;
     uint32_t computed = 0, skipped = 0, no_res = 0;
     for (uint32_t x = 0; x < w; x++) {
         const uint32_t i0 = 3u * ux[2u * x], f = ux[2u * x + 1u];
 #pragma GCC unroll 3
         for (uint32_t c = 0; c < 3u; c++) {
-            const uint32_t gb = trm_hlerp(urow_b, i0 + c, f);
-            const tdc_lin_t alpha = trm_dec_q16(&g[c], gb);
+            const uint32_t gb = tdc_trm_hlerp(urow_b, i0 + c, f);
+            const tdc_lin_t alpha = tdc_trm_dec_q16(&g[c], gb);
             const int32_t rho = res[3u * x + c];
             int32_t shown = alpha;
             if (rho == 0) {
                 no_res++; /* nothing to add: the weight is not needed */
             } else {
-                uint32_t ga = trm_hlerp(urow_a, i0 + c, f);
+                uint32_t ga = tdc_trm_hlerp(urow_a, i0 + c, f);
                 int32_t w_q15;
                 /* Motion test at the link's precision: the reduced frame
                  * arrives in whole codes, so U(D(I_t)) is first moved half
@@ -156,7 +100,7 @@ void tdc_trm_reduced_row_c(const tdc_trm_rowctx_t *k, const uint32_t *urow_a_in,
                     w_q15 = 32768; /* c = 0 known: static, exp(0) = 1 */
                     skipped++;
                 } else {
-                    w_q15 = tdc_trm_motion_weight_q15(k, trm_dec_q16(&g[c], ga), alpha);
+                    w_q15 = tdc_trm_motion_weight_q15(k, tdc_trm_dec_q16(&g[c], ga), alpha);
                     computed++;
                 }
                 /* alpha' = alpha + w rho: Q15 * Q24 -> Q24; w <= 2^15 and
@@ -166,7 +110,7 @@ void tdc_trm_reduced_row_c(const tdc_trm_rowctx_t *k, const uint32_t *urow_a_in,
                 shown = alpha + (int32_t)tdc_rshr_round64((int64_t)w_q15 * rho, 15);
             }
             shown = shown < 0 ? 0 : (shown > TDC_LIN_ONE ? TDC_LIN_ONE : shown);
-            dst[3u * x + c] = (uint8_t)trm_enc(&g[c], shown);
+            dst[3u * x + c] = (uint8_t)tdc_trm_enc(&g[c], shown);
         }
     }
     n->computed += computed;

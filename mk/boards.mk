@@ -134,7 +134,8 @@ $(BA)/image-rules-selftest: $(BA)/bad_rules.elf tests/arm/test_image_rules.sh
 
 # Cost per pixel on the target: bench image (tests/arm/bench_arm_main.c).
 # (The link encoder it uses is firmware/tdc_link_encode.c, in libtdcfw.a.)
-ARM_BENCH_OBJS = $(patsubst %.c,$(BA)/%.o,$(ARM_BOARD_SRCS) tests/arm/bench_arm_main.c tests/golden/tdc_content.c)
+ARM_BENCH_OBJS = $(patsubst %.c,$(BA)/%.o,$(ARM_BOARD_SRCS) tests/arm/bench_arm_main.c tests/golden/tdc_content.c \
+                   tests/golden/tdc_layer_content.c)
 $(BA)/tdc_bench.elf: $$(ARM_BENCH_OBJS) $(BA)/libtdcfw.a $(ARM_LDDEPS)
 	$(call ARM_LINK,the bench image)
 $(BA)/bench.tsv: $(BA)/tdc_bench.elf $(INSN_PLUGIN) tests/arm/bench_arm.sh

@@ -17,7 +17,7 @@ LINK_FW_SRCS := firmware/tdc_wire.c firmware/tdc_link.c firmware/tdc_pixfmt.c fi
                 firmware/tdc_fov.c firmware/tdc_fov_link.c firmware/tdc_math.c
 
 # name: harness + sources [+ flags, libraries]
-FUZZ_ALL := link usbproto usbreply panel tdcs scene frameloop meas fov
+FUZZ_ALL := link usbproto usbreply panel tdcs scene frameloop meas fov layers
 FUZZ_TARGETS ?= $(FUZZ_ALL)
 FUZZ_SRCS_link := tests/fuzz/fuzz_link.c $(LINK_FW_SRCS)
 FUZZ_SRCS_usbproto := tests/fuzz/fuzz_usbproto.c firmware/tdc_usbproto.c firmware/tdc_crc32.c
@@ -36,6 +36,7 @@ FUZZ_LIBS_scene := -lembree3 -lm
 # the board frame loop for a 16 x 8 stereo OLED panel with TRM and tile assembly
 FUZZ_SRCS_frameloop := tests/fuzz/fuzz_frameloop.c $(LINK_FW_SRCS) firmware/tdc_assemble.c \
                        firmware/tdc_ordering.c firmware/tdc_trm.c firmware/tdc_trm_rows.c firmware/tdc_trm_avx2.c \
+                       firmware/tdc_trm_gaze.c \
                        $(GEN)/tdc_panel_htc-vive.c firmware/tdc_link_encode.c
 FUZZ_DEPS_frameloop := firmware/board/tdc_main.c
 FUZZ_CFLAGS_frameloop := -Ifirmware/board -DTDC_PANEL_NAME='"fuzz"' -DTDC_PANEL_SYMBOL=tdc_panel_htc_vive \
@@ -49,6 +50,9 @@ FUZZ_LIBS_meas := -lm
 # the foveated packet's kind-specific path: header, payload length, unpack, the stage with TAA
 # (seeds: make fuzz-seeds-fov, mk/fov.mk)
 FUZZ_SRCS_fov := tests/fuzz/fuzz_fov.c firmware/tdc_fov.c firmware/tdc_fov_link.c firmware/tdc_math.c
+FUZZ_DEPS_fov := $(GEN)/tdc_fov_tables.h
+# the layered subframe kind through the decoder (seeds: tests/fuzz/corpus-layers)
+FUZZ_SRCS_layers := tests/fuzz/fuzz_layers.c $(LINK_FW_SRCS) firmware/tdc_link_encode.c
 
 define fuzz_target
 $(FUZZ_DIR)/fuzz_$(1): $(FUZZ_SRCS_$(1)) $(FUZZ_DEPS_$(1)) $(wildcard firmware/*.h sim/link/*.h sim/render/*.h) \

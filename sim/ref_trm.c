@@ -122,7 +122,9 @@ void tdc_ref_trm_full(tdc_ref_trm_t *r, const uint8_t *in, uint8_t *out_codes, d
                 size_t i = ((size_t)y * r->w + x) * 3 + c;
                 double li = pow(in[i] / 255.0, r->gamma[c]);
                 double lu = pow(upsample_at(r, r->dprev, x, y, c), r->gamma[c]);
-                double beta = 2.0 * li - lu;
+                /* gaze-aware TRM (ref_trm_gaze.h): beta = I + k (I - U D I) */
+                double k = r->strength ? r->strength[(size_t)y * r->w + x] : 1.0;
+                double beta = r->strength ? li + k * (li - lu) : 2.0 * li - lu;
                 double shown = beta < 0 ? 0 : (beta > 1 ? 1 : beta);
                 r->rho[i] = beta - shown;
                 out_codes[i] = encode(shown, r->gamma[c]);

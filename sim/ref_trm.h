@@ -26,6 +26,9 @@ typedef struct {
     double *tmp;   /* h*rw*3 */
     double *red;   /* rw*rh*3 */
     int have_full;
+    /* gaze-aware TRM: compensation strength k per pixel (w*h, caller-owned,
+     * ref_trm_gaze.h), NULL = 1 (plain TRM): beta = I + k (I - U D I) */
+    const double *strength;
 } tdc_ref_trm_t;
 
 int tdc_ref_trm_init(tdc_ref_trm_t *r, int w, int h, int r_num, int r_den, double sigma, double s,

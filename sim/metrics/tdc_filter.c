@@ -34,37 +34,37 @@ static int edge_index(int i, int n, tdc_edge_t e)
  * k[1] src[1] + ... in tap order either way, so the bits are the same. */
 typedef float tdc_vf __attribute__((vector_size(32), aligned(4)));
 typedef double tdc_vd __attribute__((vector_size(32), aligned(8)));
-#define ROW_KERNEL(T, V, NAME)                                                                                  \
-    TDC_SIMD_CLONES static void NAME(T *restrict o, const T *const *src, const T *restrict k, int kn, int w)    \
-    {                                                                                                           \
-        const int L = (int)(sizeof(V) / sizeof(T));                                                             \
-        int x0 = 0;                                                                                             \
-        for (; x0 + 4 * L <= w; x0 += 4 * L) {                                                                  \
-            V a0 = {0}, a1 = {0}, a2 = {0}, a3 = {0};                                                           \
-            for (int j = 0; j < kn; j++) {                                                                      \
-                const V kj = (V){0} + k[j];                                                                     \
-                const V *p = (const V *)(const void *)(src[j] + x0);                                            \
-                a0 += kj * p[0];                                                                                \
-                a1 += kj * p[1];                                                                                \
-                a2 += kj * p[2];                                                                                \
-                a3 += kj * p[3];                                                                                \
-            }                                                                                                   \
-            V *q = (V *)(void *)(o + x0);                                                                       \
-            q[0] = a0;                                                                                          \
-            q[1] = a1;                                                                                          \
-            q[2] = a2;                                                                                          \
-            q[3] = a3;                                                                                          \
-        }                                                                                                       \
-        for (int x = x0; x < w; x++) {                                                                          \
-            o[x] = 0;                                                                                           \
-        }                                                                                                       \
-        for (int j = 0; j < kn; j++) {                                                                          \
-            const T kj = k[j];                                                                                  \
-            const T *restrict p = src[j];                                                                       \
-            for (int x = x0; x < w; x++) {                                                                      \
-                o[x] += kj * p[x];                                                                              \
-            }                                                                                                   \
-        }                                                                                                       \
+#define ROW_KERNEL(T, V, NAME)                                                                               \
+    TDC_SIMD_CLONES static void NAME(T *restrict o, const T *const *src, const T *restrict k, int kn, int w) \
+    {                                                                                                        \
+        const int L = (int)(sizeof(V) / sizeof(T));                                                          \
+        int x0 = 0;                                                                                          \
+        for (; x0 + 4 * L <= w; x0 += 4 * L) {                                                               \
+            V a0 = {0}, a1 = {0}, a2 = {0}, a3 = {0};                                                        \
+            for (int j = 0; j < kn; j++) {                                                                   \
+                const V kj = (V){0} + k[j];                                                                  \
+                const V *p = (const V *)(const void *)(src[j] + x0);                                         \
+                a0 += kj * p[0];                                                                             \
+                a1 += kj * p[1];                                                                             \
+                a2 += kj * p[2];                                                                             \
+                a3 += kj * p[3];                                                                             \
+            }                                                                                                \
+            V *q = (V *)(void *)(o + x0);                                                                    \
+            q[0] = a0;                                                                                       \
+            q[1] = a1;                                                                                       \
+            q[2] = a2;                                                                                       \
+            q[3] = a3;                                                                                       \
+        }                                                                                                    \
+        for (int x = x0; x < w; x++) {                                                                       \
+            o[x] = 0;                                                                                        \
+        }                                                                                                    \
+        for (int j = 0; j < kn; j++) {                                                                       \
+            const T kj = k[j];                                                                               \
+            const T *restrict p = src[j];                                                                    \
+            for (int x = x0; x < w; x++) {                                                                   \
+                o[x] += kj * p[x];                                                                           \
+            }                                                                                                \
+        }                                                                                                    \
     }
 ROW_KERNEL(float, tdc_vf, row_kernel_f)
 ROW_KERNEL(double, tdc_vd, row_kernel_d)

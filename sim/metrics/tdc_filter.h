@@ -17,7 +17,22 @@ typedef enum {
     TDC_EDGE_REFLECT    /* half-sample symmetric (scipy.ndimage 'reflect', SSIM) */
 } tdc_edge_t;
 
+#include <stdlib.h>
+
 #define TDC_FILTER_MAX_W 4096
+
+/* A buffer kept across calls (the metrics' reference planes): buf as it
+ * is, or grown to `bytes` when smaller (*cap in bytes); NULL out of memory
+ * (the old buffer freed). */
+static inline void *tdc_metrics_reserve(void *buf, size_t *cap, size_t bytes)
+{
+    if (!buf || *cap < bytes) {
+        free(buf);
+        buf = malloc(bytes);
+        *cap = buf ? bytes : 0;
+    }
+    return buf;
+}
 #define TDC_FILTER_MAX_R 256
 
 /* tmp: w*h scratch.  Returns 0, or -1 if w or r exceeds the limits above. */

@@ -257,11 +257,7 @@ int tdc_flip_prepare(tdc_flip_ref_t *ref, const double *lin, int w, int h, doubl
     if (w < 1 || h < 1 || w > TDC_FILTER_MAX_W) {
         return -1;
     }
-    if (!ref->buf || ref->cap < n) {
-        free(ref->buf);
-        ref->buf = malloc(sizeof(float) * 5 * n);
-        ref->cap = ref->buf ? n : 0;
-    }
+    ref->buf = tdc_metrics_reserve(ref->buf, &ref->cap, sizeof(float) * 5 * n);
     float *own = work ? NULL : malloc(tdc_flip_work_bytes(w, h));
     if (!ref->buf || (!work && !own)) {
         free(own);

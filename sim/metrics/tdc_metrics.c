@@ -108,11 +108,7 @@ int tdc_ssim_prepare(tdc_ssim_ref_t *ref, const double *b, int w, int h, void *w
     if (w < 1 || h < 1) {
         return -1;
     }
-    if (!ref->buf || ref->cap < n) {
-        free(ref->buf);
-        ref->buf = malloc(sizeof(double) * 6 * n);
-        ref->cap = ref->buf ? n : 0;
-    }
+    ref->buf = tdc_metrics_reserve(ref->buf, &ref->cap, sizeof(double) * 6 * n);
     double *own = work ? NULL : malloc(tdc_ssim_work_bytes(w, h));
     if (!ref->buf || (!work && !own)) {
         free(own);

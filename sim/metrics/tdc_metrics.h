@@ -51,7 +51,7 @@ typedef struct {
     const double *b;
     int w, h;
     double *buf;
-    size_t cap;
+    size_t cap; /* bytes */
 } tdc_ssim_ref_t;
 size_t tdc_ssim_work_bytes(int w, int h);
 int tdc_ssim_prepare(tdc_ssim_ref_t *ref, const double *b, int w, int h, void *work);
@@ -71,7 +71,7 @@ typedef struct {
     int w, h;
     double ppd;
     float *buf;
-    size_t cap;
+    size_t cap; /* bytes */
 } tdc_flip_ref_t;
 size_t tdc_flip_work_bytes(int w, int h);
 int tdc_flip_prepare(tdc_flip_ref_t *ref, const double *lin, int w, int h, double ppd, void *work);

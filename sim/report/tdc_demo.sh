@@ -18,6 +18,9 @@ SIM=$1
 OUT=${2:-report}
 SCALE=${DEMO_SCALE:-today}
 JOBS=${DEMO_JOBS:-$(nproc)}
+# runs share the cores: idle OpenMP threads sleep instead of spinning
+# (tests/bench/bench_sim.sh: 2.6x less wall time under load)
+export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-passive}"
 PH=${DEMO_PHOTOS:-/usr/share/backgrounds/mate/nature}
 mkdir -p "$OUT"
 start=$(date +%s)
@@ -34,6 +37,7 @@ ncsfi-slow|-s pan -r 90 --speed 150 -m full,ncsfi,trm50 -n 36 -g 192x96
 ncsfi-fast|-s pan -r 90 --speed 1800 -m full,ncsfi,trm50 -n 36 -g 192x96
 asm-thin|-s thin -r 240 -m full,asm-hourglass,asm-bowtie,asm-adaptive -d 0.3
 asm-fence|-s fence -r 240 -m asm-family -d 0.25
+lasm-fence|-s fence -r 240 -g 160x120 -m asm-adaptive,asm-adaptive-smv,lasm-ordinary,lasm-zeng,lasm-zeng-tdrt,lasm-zeng-clean -d 0.25
 asm-pan|-s pan -r 240 -m asm-family -d 0.25
 render-panorama|-R panorama -r 90 -m trm-family -n 36
 render-fence|-R fence -r 240 -m full,full60,taa60,asm-adaptive,asm-adaptive-smv -d 0.2

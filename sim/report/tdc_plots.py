@@ -18,7 +18,7 @@ out = sys.argv[1]
 secs = sys.argv[2] if len(sys.argv) > 2 else "?"
 
 ORDER = ["hs-trm-dune", "hs-trm-wings", "hs-render-panorama", "hs-asm-blinds", "hs-render-text", "hs-fov-dune",
-         "hs-fov-render", "trm-pan", "trm-discs", "trm-static", "trm-lcd", "ncsfi-slow", "ncsfi-fast", "asm-thin", "asm-fence",
+         "hs-fov-render", "trm-pan", "trm-discs", "trm-static", "trm-lcd", "ncsfi-slow", "ncsfi-fast", "asm-thin", "asm-fence", "lasm-fence",
          "asm-pan", "render-panorama", "render-fence", "stiff-long", "stiff-cut", "stiff-cut240", "stiff-fast", "stiff-black", "stiff-white",
          "stiff-black240", "stiff-white240"]
 DESC = {
@@ -46,6 +46,9 @@ DESC = {
     "ncsfi-fast": "NCSFI vs TRM at a high angular velocity (1800 px/s, 20 px/frame).",
     "asm-thin": "Room with thin vertical features under a horizontal pan (330 px/s = 1.375 px/frame), 240 Hz hold display.",
     "asm-fence": "Static floor with a moving fence shadow (270 px/s), 240 Hz: surface MVs vs shadow + dual MVs.",
+    "lasm-fence": "The fence in layers (docs/layers.md, 160x120, 240 Hz): shading and visibility sent separately, "
+                  "each reprojected with its own vector and recombined; ordinary vectors vs Zeng's (splatted "
+                  "shadow vectors), 1 / 3 sigma clamp, clean-up.",
     "asm-pan": "Panned texture at 240 Hz: tile-ordered assembly vs full rate, 60 Hz and TAA.",
     "render-panorama": "Embree renderer (sim/render, built-in scene `panorama`: camera yawing over a skyline drum), "
                        "1 ray per pixel centre, ground truth 16 rays per pixel, 90 Hz OLED.",
@@ -205,6 +208,12 @@ if a and s:
     ok = fnum(s["flip"]) < fnum(a["flip"]) and fnum(s["psnr_db"]) > fnum(a["psnr_db"])
     check("... and with the Embree renderer's fence scene (renderer shadow + dual MVs)", ok,
           f"asm-adaptive: PSNR {fnum(a['psnr_db']):.2f} dB, FLIP {fnum(a['flip']):.4f}; with shadow MVs: "
+          f"PSNR {fnum(s['psnr_db']):.2f} dB, FLIP {fnum(s['flip']):.4f}")
+a, s = row("lasm-fence", "lasm-ordinary"), row("lasm-fence", "lasm-zeng")
+if a and s:
+    ok = fnum(s["flip"]) < fnum(a["flip"]) and fnum(s["psnr_db"]) > fnum(a["psnr_db"])
+    check("... and per component (Zeng §4: layers, each with its own vector)", ok,
+          f"lasm-ordinary: PSNR {fnum(a['psnr_db']):.2f} dB, FLIP {fnum(a['flip']):.4f}; lasm-zeng: "
           f"PSNR {fnum(s['psnr_db']):.2f} dB, FLIP {fnum(s['flip']):.4f}")
 # 6. NCSFI ghosts more than TRM at high angular velocity
 ns, ts = row("ncsfi-slow", "ncsfi"), row("ncsfi-slow", "trm50")

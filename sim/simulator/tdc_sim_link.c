@@ -91,6 +91,8 @@ int tdc_sim_link_init(tdc_sim_link_t *l, int w, int h, int eyes, uint32_t flags,
     l->rh = (int)TDC_REDUCED_DIM(h, l->r_num, l->r_den);
     /* only the buffers of the stream's packet kinds */
     int sub = (flags & TDC_SIM_LINK_SUBFRAMES) != 0, red = (flags & TDC_SIM_LINK_REDUCED) != 0;
+    const int lay = (flags & TDC_SIM_LINK_LAYERS) != 0;
+    const size_t tiles = TDC_TILE_COUNT(w, h);
     for (int e = 0; e < l->eyes; e++) {
         l->full[e] = calloc(TDC_LINK_FRAME_BYTES(w, h), 1);
         l->reduced[e] = red ? calloc(TDC_LINK_FRAME_BYTES(l->rw, l->rh), 1) : NULL;
@@ -98,10 +100,25 @@ int tdc_sim_link_init(tdc_sim_link_t *l, int w, int h, int eyes, uint32_t flags,
         l->pattern[e] = sub ? calloc(TDC_PATTERN_BYTES(w, h) + 1, 1) : NULL;
         l->motion[e] = (flags & TDC_SIM_LINK_MOTION) ? calloc(TDC_LINK_MOTION_COUNT(w, h), sizeof(int16_t)) : NULL;
         l->sample_motion[e] = sub ? calloc(TDC_LINK_SAMPLE_MOTION_COUNT(w, h), sizeof(int16_t)) : NULL;
+        int lay_ok = 1;
+        if (lay) {
+            tdc_layer_frame_t *lf = calloc(1, sizeof(*lf));
+            l->layers[e] = lf;
+            lay_ok = lf != NULL;
+            for (unsigned t = 0; lf && t < TDC_LAYER_MAX; t++) {
+                lf->value[t] = calloc(tiles * 3u, 1);
+                lf->mv[t] = calloc(tiles * 2u, sizeof(int16_t));
+                lay_ok = lay_ok && lf->value[t] && lf->mv[t];
+            }
+            if (lf) {
+                lf->falloff = calloc(tiles, sizeof(uint16_t));
+                lay_ok = lay_ok && lf->falloff;
+            }
+        }
         const int fov = (flags & TDC_SIM_LINK_FOVEATED) != 0; /* delta <= 1: lp_w x lp_h <= w x h */
         l->fov_lp[e] = fov ? calloc(TDC_LINK_FRAME_BYTES(w, h), 1) : NULL;
         l->fov_mv[e] = fov ? calloc(TDC_LINK_MOTION_COUNT(w, h), sizeof(int16_t)) : NULL;
-        if (!l->full[e] || (red && !l->reduced[e]) || (fov && (!l->fov_lp[e] || !l->fov_mv[e])) ||
+        if (!l->full[e] || (red && !l->reduced[e]) || (fov && (!l->fov_lp[e] || !l->fov_mv[e])) || !lay_ok ||
             (sub && (!l->subframe[e] || !l->pattern[e] || !l->sample_motion[e]))) {
             tdc_sim_link_free(l);
             return -1;
@@ -114,15 +131,19 @@ int tdc_sim_link_init(tdc_sim_link_t *l, int w, int h, int eyes, uint32_t flags,
         return -1;
     }
     l->priv = p;
-    p->cap = TDC_LINK_STAGING_BYTES(w, h) + TDC_LINK_HEADER_BYTES; /* the largest packet */
+    size_t stage = TDC_LINK_STAGING_BYTES(w, h);
+    if (lay && TDC_LINK_STAGING_LAYERS_BYTES(w, h) > stage) {
+        stage = TDC_LINK_STAGING_LAYERS_BYTES(w, h);
+    }
+    p->cap = stage + TDC_LINK_HEADER_BYTES; /* the largest packet */
     p->pkt = malloc(p->cap);
-    p->staging = malloc(TDC_LINK_STAGING_BYTES(w, h));
+    p->staging = malloc(stage);
     if (!p->pkt || !p->staging) {
         tdc_sim_link_free(l);
         return -1;
     }
     p->buf.staging = p->staging;
-    p->buf.staging_bytes = TDC_LINK_STAGING_BYTES(w, h);
+    p->buf.staging_bytes = stage;
     p->buf.full_stride = (uint32_t)w * 3u;
     p->buf.reduced_bytes = TDC_LINK_FRAME_BYTES(l->rw, l->rh);
     for (int e = 0; e < l->eyes; e++) {
@@ -132,6 +153,7 @@ int tdc_sim_link_init(tdc_sim_link_t *l, int w, int h, int eyes, uint32_t flags,
         p->buf.motion[e] = l->motion[e];
         p->buf.sample_motion[e] = l->sample_motion[e];
         p->buf.pattern[e] = l->pattern[e];
+        p->buf.layers[e] = l->layers[e];
         p->buf.fov_lp[e] = l->fov_lp[e];
         p->buf.fov_mv[e] = l->fov_mv[e];
     }
@@ -165,6 +187,15 @@ void tdc_sim_link_free(tdc_sim_link_t *l)
         free(l->pattern[e]);
         free(l->motion[e]);
         free(l->sample_motion[e]);
+        if (l->layers[e]) {
+            for (unsigned t = 0; t < TDC_LAYER_MAX; t++) {
+                free(l->layers[e]->value[t]);
+                free(l->layers[e]->mv[t]);
+            }
+            free(l->layers[e]->falloff);
+            free(l->layers[e]);
+            l->layers[e] = NULL;
+        }
         free(l->fov_lp[e]);
         free(l->fov_mv[e]);
         l->full[e] = l->reduced[e] = l->subframe[e] = l->pattern[e] = l->fov_lp[e] = NULL;
@@ -237,6 +268,25 @@ int tdc_sim_link_reduced(tdc_sim_link_t *l, int eye, uint32_t frame, const uint8
 #endif
 }
 
+/* A PATTERN packet (the cycle's tile orderings); 0 when accepted. */
+static int send_pattern(tdc_sim_link_t *l, int eye, uint32_t frame, const uint8_t *pattern)
+{
+#if TDC_SIM_HAVE_LINK
+    link_priv_t *p = l->priv;
+    const double t0 = now_s();
+    const size_t n = tdc_link_encode_pattern(&p->enc, p->pkt, p->cap, (uint32_t)eye, frame, pattern, (uint32_t)l->w,
+                                             (uint32_t)l->h);
+    l->encode_s += now_s() - t0;
+    return feed(l, n, TDC_LINK_KIND_PATTERN);
+#else
+    (void)frame;
+    memcpy(l->pattern[eye], pattern, TDC_PATTERN_BYTES(l->w, l->h));
+    l->bytes += TDC_LINK_HEADER_BYTES + TDC_PATTERN_BYTES(l->w, l->h);
+    l->packets++;
+    return 0;
+#endif
+}
+
 int tdc_sim_link_subframe(tdc_sim_link_t *l, int eye, uint32_t frame, const uint8_t *samples, const int16_t *mv,
                           const uint8_t *pattern)
 {
@@ -246,10 +296,7 @@ int tdc_sim_link_subframe(tdc_sim_link_t *l, int eye, uint32_t frame, const uint
     double t0 = now_s();
     size_t n;
     if (pattern) {
-        n = tdc_link_encode_pattern(&p->enc, p->pkt, p->cap, (uint32_t)eye, frame, pattern, (uint32_t)l->w,
-                                    (uint32_t)l->h);
-        l->encode_s += now_s() - t0;
-        rc |= feed(l, n, TDC_LINK_KIND_PATTERN);
+        rc |= send_pattern(l, eye, frame, pattern);
         t0 = now_s();
     }
     n = tdc_link_encode_subframe(&p->enc, p->pkt, p->cap, (uint32_t)eye, frame, TDC_PIXFMT_RGB888, samples,
@@ -269,9 +316,7 @@ int tdc_sim_link_subframe(tdc_sim_link_t *l, int eye, uint32_t frame, const uint
     l->bytes += TDC_LINK_HEADER_BYTES + TDC_LINK_SUBFRAME_BYTES(l->w, l->h);
     l->packets++;
     if (pattern) {
-        memcpy(l->pattern[eye], pattern, TDC_PATTERN_BYTES(l->w, l->h));
-        l->bytes += TDC_LINK_HEADER_BYTES + TDC_PATTERN_BYTES(l->w, l->h);
-        l->packets++;
+        send_pattern(l, eye, frame, pattern);
     }
     if (mv) {
         memcpy(l->sample_motion[eye], mv, TDC_LINK_SAMPLE_MOTION_COUNT(l->w, l->h) * sizeof(int16_t));
@@ -280,6 +325,56 @@ int tdc_sim_link_subframe(tdc_sim_link_t *l, int eye, uint32_t frame, const uint
     }
 #endif
     return rc ? -1 : 0;
+}
+
+int tdc_sim_link_layers(tdc_sim_link_t *l, int eye, uint32_t frame, const tdc_layer_frame_t *src,
+                        const uint8_t *pattern)
+{
+    const uint32_t flags = src->present;
+    const size_t tiles = TDC_TILE_COUNT(l->w, l->h);
+    if (!l->layers[eye]) {
+        return -1;
+    }
+#if TDC_SIM_HAVE_LINK
+    link_priv_t *p = l->priv;
+    int rc = 0;
+    double t0 = now_s();
+    size_t n;
+    (void)tiles;
+    if (pattern) {
+        rc |= send_pattern(l, eye, frame, pattern);
+        t0 = now_s();
+    }
+    uint8_t kinds[TDC_LAYER_MAX] = {0, 0, 0, 0};
+    for (unsigned i = 0; i < src->hdr.count && i < TDC_LAYER_MAX; i++) {
+        kinds[src->hdr.type[i] - 1u] = src->hdr.mv_kind[i];
+    }
+    n = tdc_link_encode_layers(&p->enc, p->pkt, p->cap, (uint32_t)eye, frame, src, flags, kinds, (uint32_t)l->w,
+                               (uint32_t)l->h);
+    l->encode_s += now_s() - t0;
+    rc |= feed(l, n, TDC_LINK_KIND_LAYERS);
+    return rc ? -1 : 0;
+#else
+    (void)frame;
+    tdc_layer_frame_t *d = l->layers[eye];
+    for (unsigned t = 1; t <= TDC_LAYER_MAX; t++) {
+        if (flags & TDC_LAYER_PKT_TYPE(t)) {
+            memcpy(d->value[t - 1u], src->value[t - 1u], tiles * tdc_layer_value_bytes(t));
+            memcpy(d->mv[t - 1u], src->mv[t - 1u], tiles * 4u);
+        }
+    }
+    if (flags & TDC_LAYER_PKT_FALLOFF) {
+        memcpy(d->falloff, src->falloff, tiles * 2u);
+    }
+    d->hdr = src->hdr;
+    d->present = (uint16_t)flags;
+    l->bytes += TDC_LINK_HEADER_BYTES + tdc_layer_payload_bytes(flags, (uint32_t)tiles);
+    l->packets++;
+    if (pattern) {
+        send_pattern(l, eye, frame, pattern);
+    }
+    return 0;
+#endif
 }
 
 int tdc_sim_link_foveated(tdc_sim_link_t *l, int eye, uint32_t frame, const tdc_fov_params_t *fp, uint16_t delta_q15,

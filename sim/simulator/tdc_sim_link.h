@@ -12,6 +12,7 @@
 #include <stdint.h>
 #include <stddef.h>
 
+#include "tdc_layer_link.h" /* tdc_layer_frame_t */
 #include "tdc_fov_link.h"
 
 typedef struct {
@@ -28,6 +29,7 @@ typedef struct {
     /* decoded buffers per eye (what the firmware reads) */
     uint8_t *full[2], *reduced[2], *subframe[2], *pattern[2];
     int16_t *motion[2], *sample_motion[2];
+    tdc_layer_frame_t *layers[2]; /* LAYERS streams: every plane of the four types + falloff */
     uint8_t *fov_lp[2]; /* FOVEATED: the log-polar samples (lp_w x lp_h RGB8) */
     int16_t *fov_mv[2]; /* their motion vectors */
     void *priv;
@@ -38,6 +40,7 @@ typedef struct {
 #define TDC_SIM_LINK_SUBFRAMES 0x0002u
 #define TDC_SIM_LINK_MOTION 0x0004u
 #define TDC_SIM_LINK_SAMPLE_MV 0x0010u
+#define TDC_SIM_LINK_LAYERS 0x0020u
 #define TDC_SIM_LINK_FOVEATED 0x0040u
 
 int tdc_sim_link_init(tdc_sim_link_t *l, int w, int h, int eyes, uint32_t flags, uint16_t r_num, uint16_t r_den,
@@ -50,6 +53,10 @@ int tdc_sim_link_full(tdc_sim_link_t *l, int eye, uint32_t frame, const uint8_t 
 int tdc_sim_link_reduced(tdc_sim_link_t *l, int eye, uint32_t frame, const uint8_t *rgb);
 int tdc_sim_link_subframe(tdc_sim_link_t *l, int eye, uint32_t frame, const uint8_t *samples, const int16_t *mv,
                           const uint8_t *pattern);
+/* A layered subframe (LAYERS packet: the planes src->present names, vector
+ * kinds from src->hdr) and, with pattern, the cycle's PATTERN packet. */
+int tdc_sim_link_layers(tdc_sim_link_t *l, int eye, uint32_t frame, const tdc_layer_frame_t *src,
+                        const uint8_t *pattern);
 /* FOVEATED packet (the link decoder's kind 7): the foveation header of p
  * and the samples in payload order (tdc_fov_link.h), vectors if mv; the
  * decoder puts the disk pixels into full[eye], the rest into fov_lp/fov_mv.

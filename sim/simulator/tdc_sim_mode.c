@@ -5,7 +5,11 @@
 #include <string.h>
 #include <time.h>
 
+#include "tdc_sim_features.h"
 #include "tdc_status.h"
+#if TDC_SIM_HAVE_ASM
+#include "tdc_ordering.h"
+#endif
 
 double tdc_sim_now(void)
 {
@@ -138,3 +142,51 @@ uint8_t tdc_sim_to8(double v)
     v += 0.5;
     return (uint8_t)(v <= 0 ? 0 : (v >= 255 ? 255 : (int)v));
 }
+
+#if TDC_SIM_HAVE_ASM
+int tdc_sim_subframe_xy(sim_mode_t *m, const int16_t *mvbuf, const uint8_t *pattern, uint32_t lf, int radius)
+{
+    const int tx = (m->w + 1) / 2, ty = (m->h + 1) / 2;
+    int32_t jx, jy;
+    tdc_jitter_offset_q4(lf, &jx, &jy);
+    int n = 0;
+    static const int pos_x[4] = {0, 1, 0, 1}, pos_y[4] = {0, 0, 1, 1};
+    for (int y = 0; y < ty; y++) {
+        for (int x = 0; x < tx; x++, n++) {
+            tdc_ordering_t o = tdc_ordering_get(pattern, (uint32_t)n);
+            unsigned pos = tdc_ordering_pixel(o, lf & 3u);
+            int px = 2 * x + pos_x[pos], py = 2 * y + pos_y[pos];
+            px = px >= m->w ? m->w - 1 : px;
+            py = py >= m->h ? m->h - 1 : py;
+            int dyn = 0;
+            for (int dy = -radius; dy <= radius && !dyn; dy++) {
+                for (int dx = -radius; dx <= radius; dx++) {
+                    int xx = px + dx, yy = py + dy;
+                    if (xx >= 0 && yy >= 0 && xx < m->w && yy < m->h) {
+                        const int16_t *v = mvbuf + 2 * ((size_t)yy * m->w + xx);
+                        if (v[0] || v[1]) {
+                            dyn = 1;
+                            break;
+                        }
+                    }
+                }
+            }
+            m->xy[2 * n] = px + 0.5 + (dyn ? 0.0 : jx / 16.0);
+            m->xy[2 * n + 1] = py + 0.5 + (dyn ? 0.0 : jy / 16.0);
+        }
+    }
+    return n;
+}
+
+void tdc_sim_subframe_keep_mv(sim_mode_t *m, int16_t *mvbuf, int n, const int16_t *mv)
+{
+    for (int i = 0; i < n; i++) {
+        int px = (int)m->xy[2 * i], py = (int)m->xy[2 * i + 1];
+        px = px < 0 ? 0 : (px >= m->w ? m->w - 1 : px);
+        py = py < 0 ? 0 : (py >= m->h ? m->h - 1 : py);
+        int16_t *v = mvbuf + 2 * ((size_t)py * m->w + px);
+        v[0] = mv[2 * i];
+        v[1] = mv[2 * i + 1];
+    }
+}
+#endif

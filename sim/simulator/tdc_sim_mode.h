@@ -50,6 +50,8 @@ typedef struct {
     const tdc_panel_t *lcd_panel; /* LCD profile, NULL without an LCD panel */
     int src_full_frame;           /* the source traces whole frames (Embree) */
     int src_subframe;             /* the source traces subframes itself */
+    int src_layers;               /* the source has layer outputs (tdc_source_t.layers) */
+    int src_layered_subframe;     /* ... or traces layered subframes itself (tdc_source_t.layered_subframe) */
 } tdc_sim_setup_t;
 
 struct tdc_sim_family {
@@ -122,6 +124,7 @@ extern const tdc_sim_family_t tdc_sim_family_plain;
 extern const tdc_sim_family_t tdc_sim_family_trm;
 extern const tdc_sim_family_t tdc_sim_family_warp;
 extern const tdc_sim_family_t tdc_sim_family_asm;
+extern const tdc_sim_family_t tdc_sim_family_layers;
 extern const tdc_sim_family_t tdc_sim_family_fov;
 extern const tdc_sim_family_t tdc_sim_stage_lcd;
 
@@ -152,6 +155,16 @@ int tdc_sim_send_full(sim_mode_t *m, uint32_t lf, const uint8_t *rgb);
 /* The decoded buffers of this eye. */
 #define TDC_SIM_LINK_FULL(m) ((m)->link->full[(m)->eye])
 #define TDC_SIM_LINK_REDUCED_BUF(m) ((m)->link->reduced[(m)->eye])
+
+/* Renderer side of a tile-ordered subframe (assembly families): the sample
+ * positions of subframe lf under the tile orderings `pattern` into m->xy,
+ * each tile's pixel of the subframe, jittered (tdc_jitter_offset_q4) where
+ * the (2 radius + 1)^2 neighbourhood of the renderer's motion buffer mvbuf
+ * is static (radius 1: the controller's 3x3 rule; more where the controller
+ * splats vectors further); returns the sample count.  keep_mv stores each sample's vector mv[2i..]
+ * at its pixel of mvbuf (each pixel keeps its latest sample's vector). */
+int tdc_sim_subframe_xy(sim_mode_t *m, const int16_t *mvbuf, const uint8_t *pattern, uint32_t lf, int radius);
+void tdc_sim_subframe_keep_mv(sim_mode_t *m, int16_t *mvbuf, int n, const int16_t *mv);
 
 /* Rounds and clamps to a code (bilinear samples of codes: tdc_bilinear_u8). */
 uint8_t tdc_sim_to8(double v);

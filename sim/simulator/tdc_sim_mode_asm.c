@@ -86,43 +86,9 @@ static void asm_subframe(sim_mode_t *m, asm_state_t *st, tdc_source_t *src, doub
             memset(st->pattern, m->d->ordering ? 0xFF : 0x00, nb);
         }
     }
-    int32_t jx, jy;
-    tdc_jitter_offset_q4(lf, &jx, &jy);
-    int n = 0;
-    static const int pos_x[4] = {0, 1, 0, 1}, pos_y[4] = {0, 0, 1, 1};
-    for (int y = 0; y < ty; y++) {
-        for (int x = 0; x < tx; x++, n++) {
-            tdc_ordering_t o = tdc_ordering_get(st->pattern, (uint32_t)n);
-            unsigned pos = tdc_ordering_pixel(o, lf & 3u);
-            int px = 2 * x + pos_x[pos], py = 2 * y + pos_y[pos];
-            px = px >= m->w ? m->w - 1 : px;
-            py = py >= m->h ? m->h - 1 : py;
-            int dyn = 0;
-            for (int dy = -1; dy <= 1 && !dyn; dy++) {
-                for (int dx = -1; dx <= 1; dx++) {
-                    int xx = px + dx, yy = py + dy;
-                    if (xx >= 0 && yy >= 0 && xx < m->w && yy < m->h) {
-                        const int16_t *v = st->mvbuf + 2 * ((size_t)yy * m->w + xx);
-                        if (v[0] || v[1]) {
-                            dyn = 1;
-                            break;
-                        }
-                    }
-                }
-            }
-            m->xy[2 * n] = px + 0.5 + (dyn ? 0.0 : jx / 16.0);
-            m->xy[2 * n + 1] = py + 0.5 + (dyn ? 0.0 : jy / 16.0);
-        }
-    }
+    const int n = tdc_sim_subframe_xy(m, st->mvbuf, st->pattern, lf, 1);
     src->samples(src, t, n, m->xy, 1, st->sub, st->submv, m->fs, m->d->shadow_mv ? TDC_MV_SHADOW : TDC_MV_SURFACE);
-    for (int i = 0; i < n; i++) {
-        int px = (int)m->xy[2 * i], py = (int)m->xy[2 * i + 1];
-        px = px < 0 ? 0 : (px >= m->w ? m->w - 1 : px);
-        py = py < 0 ? 0 : (py >= m->h ? m->h - 1 : py);
-        int16_t *v = st->mvbuf + 2 * ((size_t)py * m->w + px);
-        v[0] = st->submv[2 * i];
-        v[1] = st->submv[2 * i + 1];
-    }
+    tdc_sim_subframe_keep_mv(m, st->mvbuf, n, st->submv);
     m->res->render_s += tdc_sim_now() - t0;
     m->res->rays += (uint64_t)n;
     m->res->rendered++;

@@ -13,6 +13,7 @@
  *          firmware's unpaired path, tdc_trm_reduced_seq) - what TRM's
  *          sharpening and residual are measured against (issue 15).
  */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -22,9 +23,10 @@
 
 #if TDC_SIM_HAVE_TRM
 #include "tdc_trm.h"
+#include "tdc_trm_gaze.h"
 #endif
 
-enum { TRM_TRM, TRM_NCSFI, TRM_REDUCED_ONLY };
+enum { TRM_TRM, TRM_NCSFI, TRM_REDUCED_ONLY, TRM_GAZE, TRM_RENDER_PRE, TRM_RENDER_POINT };
 
 #define F &tdc_sim_family_trm
 #define R TDC_SIM_LINK_REDUCED
@@ -38,6 +40,14 @@ static const tdc_mode_desc_t k_modes[] = {
     {"trm75", F, TRM_TRM, R, 3, 4, 0, 0, 0, "TRM, every other frame at r = 3/4"},
     {"reduced50", F, TRM_REDUCED_ONLY, R, 1, 2, 0, 0, 0,
      "every other frame at r = 1/2, upsampled, no compensation (full frames unsharpened, no residual)"},
+    {"trm50r", F, TRM_RENDER_PRE, R, 1, 2, 0, 0, 0,
+     "TRM r = 1/2, reduced frames traced by the renderer (REDUCED: 2x2 rays per pixel, Gaussian resolve; -R only)"},
+    {"trm25r", F, TRM_RENDER_PRE, R, 1, 4, 0, 0, 0,
+     "TRM r = 1/4, reduced frames traced by the renderer (REDUCED: 2x2 rays per pixel, Gaussian resolve; -R only)"},
+    {"trm50p", F, TRM_RENDER_POINT, R, 1, 2, 0, 0, 0,
+     "TRM r = 1/2, reduced frames point-sampled by the renderer (1 ray per reduced pixel, no prefilter; -R only)"},
+    {"trm50g", F, TRM_GAZE, R, 1, 2, 0, 0, 0,
+     "gaze-aware TRM r = 1/2: compensation falls where retinal motion (MV - gaze) is large (tdc_trm_gaze.h)"},
 };
 #undef F
 #undef R
@@ -48,6 +58,12 @@ typedef struct {
     tdc_trm_t trm_r; /* the renderer's prefilter D (same configuration) */
     void *mem, *mem_r;
     uint8_t *reduced; /* the renderer's reduced frame */
+    /* trm50g: the gaze stage, the renderer's per-pixel MVs and their tile means */
+    tdc_trm_gaze_t gaze;
+    void *mem_g;
+    int16_t *mv, *tile_mv;
+    double pursuit_gain; /* the eye model's, for the eye tracker's velocity */
+    int red_open;        /* trm50r/p: the renderer's reduced-frame instance is open */
 } trm_state_t;
 
 static int32_t *trm_residual(sim_mode_t *m)
@@ -90,14 +106,77 @@ static int trm_init(sim_mode_t *m, const tdc_sim_setup_t *s)
         return 0;
     }
     m->residual = trm_residual;
+    if ((m->d->variant == TRM_RENDER_PRE || m->d->variant == TRM_RENDER_POINT) && !s->src_full_frame) {
+        tdc_sim_note(m, "needs a renderer that traces reduced frames (-R SCENE)");
+        m->res->available = 0;
+        return 0;
+    }
+    if (m->d->variant == TRM_GAZE) {
+        st->pursuit_gain = s->cfg->pursuit_gain;
+        tdc_trm_gaze_config_t gc;
+        tdc_trm_gaze_default_config(&gc, (uint16_t)m->w, (uint16_t)m->h);
+        size_t ng = tdc_trm_gaze_get_size(&gc);
+        st->mem_g = malloc(ng);
+        st->mv = malloc(sizeof(int16_t) * 2 * m->npx);
+        st->tile_mv = malloc(sizeof(int16_t) * 2 * (size_t)TDC_TRM_GAZE_TILES_X(m->w, gc.tile) *
+                             TDC_TRM_GAZE_TILES_Y(m->h, gc.tile));
+        if (!st->mem_g || !st->mv || !st->tile_mv) {
+            return -1;
+        }
+        tdc_status_t sg = tdc_trm_gaze_init(&st->gaze, &gc, st->mem_g, ng);
+        if (sg == TDC_OK) {
+            sg = tdc_trm_set_gaze(&st->trm, &st->gaze);
+        }
+        if (sg != TDC_OK) {
+            tdc_sim_refuse(m, "TRM gaze stage", sg);
+        }
+    }
     return 0;
+}
+
+/* trm50g: the tile motion vectors (content motion over one frame, Q4: the
+ * renderer's backward MVs negated, averaged per tile) and the eye tracker's
+ * gaze velocity (the pursuit the eye model applies), into the gaze stage
+ * before the full frame; the MOTION packet's bytes are counted on the link. */
+static int trm_gaze_update(sim_mode_t *m, trm_state_t *st, tdc_source_t *src, double t)
+{
+    const uint32_t tile = st->gaze.cfg.tile, tx = st->gaze.tx, ty = st->gaze.ty;
+    for (uint32_t j = 0; j < ty; j++) {
+        for (uint32_t i = 0; i < tx; i++) {
+            double sx = 0.0, sy = 0.0;
+            int n = 0;
+            for (uint32_t y = j * tile; y < (j + 1) * tile && y < (uint32_t)m->h; y++) {
+                for (uint32_t x = i * tile; x < (i + 1) * tile && x < (uint32_t)m->w; x++) {
+                    sx -= st->mv[2 * ((size_t)y * m->w + x)];
+                    sy -= st->mv[2 * ((size_t)y * m->w + x) + 1];
+                    n++;
+                }
+            }
+            st->tile_mv[2 * (j * tx + i)] = (int16_t)lround(sx / n);
+            st->tile_mv[2 * (j * tx + i) + 1] = (int16_t)lround(sy / n);
+        }
+    }
+    tdc_sim_link_count_raw(m->link, (size_t)tx * ty * 4);
+    double v[2];
+    src->pursuit(src, t, v);
+    double g[2] = {16.0 * v[0] * st->pursuit_gain * m->fs, 16.0 * v[1] * st->pursuit_gain * m->fs};
+    for (int c = 0; c < 2; c++) {
+        g[c] = g[c] > 32767.0 ? 32767.0 : (g[c] < -32767.0 ? -32767.0 : g[c]);
+    }
+    return tdc_sim_stage(
+        m, "tdc_trm_gaze_update",
+        tdc_trm_gaze_update(&st->gaze, st->tile_mv, tx * ty, (int16_t)lround(g[0]), (int16_t)lround(g[1])));
 }
 
 /* The full-resolution frame of a pair: render, send over the link, run the
  * firmware's full-frame step on what the decoder got. */
 static int trm_full_frame(sim_mode_t *m, trm_state_t *st, tdc_source_t *src, double t, int spp, uint32_t lf)
 {
-    tdc_sim_render_full(m, src, t, spp, 0, 0, NULL, 0, TDC_MV_SURFACE);
+    int gz = m->d->variant == TRM_GAZE;
+    tdc_sim_render_full(m, src, t, spp, 0, 0, gz ? st->mv : NULL, gz ? m->fs : 0, TDC_MV_SURFACE);
+    if (gz && trm_gaze_update(m, st, src, t)) {
+        return -1;
+    }
     int rc = tdc_sim_stage(m, "link FULL packet", tdc_sim_link_full(m->link, m->eye, lf, m->render));
     if (rc) {
         return rc;
@@ -143,17 +222,40 @@ static int trm_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32
         r->fw_s += tdc_sim_now() - t0;
         return rc;
     }
-    /* Renderer: full-res render prefiltered by D (TRM §4.3); its cost is
+    if (m->d->variant == TRM_RENDER_PRE || m->d->variant == TRM_RENDER_POINT) {
+        /* the renderer's own reduced frame (TRM §4.3): supersampled and
+         * Gaussian-resolved (TRM's sigma 2.5 full-res px), or point-sampled
+         * (one ray per reduced pixel, a resolve too narrow to reach a
+         * neighbour: the naive, aliased frame §4.3 warns of) */
+        int pre = m->d->variant == TRM_RENDER_PRE;
+        uint64_t rays = 0;
+        const double rr = (double)m->d->r_num / m->d->r_den, sig = pre ? 2.5 : 0.05;
+        if (src->reduced_frame && !st->red_open) {
+            /* open the renderer instance untimed: its set-up (a BVH build:
+             * seconds on bigmesh) is not a frame's cost */
+            st->red_open = src->reduced_frame(src, m->slot, t, rr, pre ? 2 : 1, sig, st->trm.rw, st->trm.rh, NULL, &rays) == 0;
+        }
+        t0 = tdc_sim_now();
+        rc = src->reduced_frame ? src->reduced_frame(src, m->slot, t, rr, pre ? 2 : 1, sig, st->trm.rw, st->trm.rh,
+                                                     st->reduced, &rays)
+                                : -1;
+        r->render_s += tdc_sim_now() - t0;
+        r->rays += rays;
+        r->rendered++;
+        rc = tdc_sim_stage(m, "renderer REDUCED frame", rc ? TDC_ERR_SIZE : 0);
+    } else {
+        /* Renderer: full-res render prefiltered by D (TRM §4.3); its cost is
      * counted as the reduced frame's rays (a renderer traces the reduced
      * target with MSAA). */
-    uint64_t rays0 = r->rays;
-    tdc_sim_render_full(m, src, t, spp, 0, 0, NULL, 0, TDC_MV_SURFACE);
-    uint64_t traced = r->rays - rays0;
-    r->rays = rays0 + traced * ((uint64_t)st->trm.rw * st->trm.rh) / m->npx;
-    t0 = tdc_sim_now();
-    rc = tdc_sim_stage(m, "renderer prefilter (tdc_trm_downsample)",
-                       tdc_trm_downsample(&st->trm_r, m->render, w3, st->reduced, (uint32_t)st->trm_r.rw * 3u));
-    r->render_s += tdc_sim_now() - t0;
+        uint64_t rays0 = r->rays;
+        tdc_sim_render_full(m, src, t, spp, 0, 0, NULL, 0, TDC_MV_SURFACE);
+        uint64_t traced = r->rays - rays0;
+        r->rays = rays0 + traced * ((uint64_t)st->trm.rw * st->trm.rh) / m->npx;
+        t0 = tdc_sim_now();
+        rc = tdc_sim_stage(m, "renderer prefilter (tdc_trm_downsample)",
+                           tdc_trm_downsample(&st->trm_r, m->render, w3, st->reduced, (uint32_t)st->trm_r.rw * 3u));
+        r->render_s += tdc_sim_now() - t0;
+    }
     if (rc == 0) {
         rc = tdc_sim_stage(m, "link REDUCED packet", tdc_sim_link_reduced(m->link, m->eye, lf, st->reduced));
     }
@@ -190,6 +292,9 @@ static void trm_free(sim_mode_t *m)
         free(st->mem);
         free(st->mem_r);
         free(st->reduced);
+        free(st->mem_g);
+        free(st->mv);
+        free(st->tile_mv);
         free(st);
     }
     m->fam = NULL;

@@ -12,6 +12,7 @@ static const tdc_sim_family_t *const k_families[] = {
     &tdc_sim_family_trm,
     &tdc_sim_family_warp,
     &tdc_sim_family_asm,
+    &tdc_sim_family_layers,
     &tdc_sim_family_fov,
 };
 

@@ -11,6 +11,7 @@
 #if TDC_SIM_HAVE_RENDER
 #include "render/tdc_render.h"
 #include "render/tdc_scene.h"
+#include "tdc_layer_link.h"
 
 #define RS_SLOTS 64 /* one per mode of a run (tdc-sim takes up to 64) */
 
@@ -19,8 +20,13 @@ typedef struct {
     tdc_scene_t *scene; /* kept to open per-mode subframe renderers */
     tdc_render_config_t cfg;
     tdc_render_t *sub[RS_SLOTS]; /* subframe renderers (own MV history, orderings) */
+    tdc_render_t *red[RS_SLOTS]; /* reduced-frame renderers (own r, supersampling, resolve) */
     float *sub_lin;
     int16_t *sub_mv, *sub_mvs, *sub_mvd;
+    /* layer outputs of a subframe (rs_layered) */
+    float *l_shade, *l_vis, *l_refl, *l_w;
+    int16_t *l_mvsurf, *l_mvrefl;
+    uint8_t *l_src;
     tdc_render_t *fov;  /* the FOVEATED renderer (samples, not pixels: its own instance) */
     float *fov_lin;     /* up to 2 W H samples (the log-polar buffer + the disk) */
     int16_t *fov_mv;
@@ -233,6 +239,47 @@ static int rs_subframe(tdc_source_t *s, int slot, int shadow, uint32_t frame, do
     return 0;
 }
 
+static int rs_reduced(tdc_source_t *s, int slot, double t, double r, int ss, double sigma, int rw, int rh, uint8_t *rgb,
+                      uint64_t *rays)
+{
+    rsrc_t *c = s->ctx;
+    if (slot < 0 || slot >= RS_SLOTS) {
+        return -1;
+    }
+    if (!c->red[slot]) {
+        tdc_render_config_t cfg = c->cfg;
+        cfg.reduced_factor = r;
+        cfg.reduced_ss = ss;
+        cfg.reduced_sigma = sigma;
+        char err[256];
+        c->red[slot] = tdc_render_open(c->scene, &cfg, err, sizeof(err));
+        if (!c->red[slot]) {
+            return -1;
+        }
+    }
+    int ow, oh;
+    tdc_render_output_size(c->red[slot], TDC_RENDER_REDUCED, &ow, &oh);
+    if (ow != rw || oh != rh) {
+        return -1; /* the link's reduced size (TDC_REDUCED_DIM) rounds otherwise */
+    }
+    if (!rgb) {
+        return 0; /* prepared: the renderer is open (its BVH build is not a frame's cost) */
+    }
+    tdc_render_out_t out;
+    memset(&out, 0, sizeof(out));
+    out.rgb = c->lin; /* W x H floats: room for the reduced frame */
+    tdc_render_stats_t st;
+    if (tdc_render_frame(c->red[slot], (uint32_t)frame_of(c, t), TDC_RENDER_REDUCED, &out, &st) != 0) {
+        return -1;
+    }
+    for (size_t i = 0; i < 3 * (size_t)rw * rh; i++) {
+        double l = c->lin[i] < 0.0f ? 0.0 : (c->lin[i] > 1.0f ? 1.0 : (double)c->lin[i]);
+        rgb[i] = (uint8_t)(255.0 * pow(l, 1.0 / s->gamma[i % 3]) + 0.5);
+    }
+    *rays = st.rays[TDC_RAY_PRIMARY];
+    return 0;
+}
+
 static int rs_foveated(tdc_source_t *s, const tdc_fov_sampling_t *f, double t, double dt, uint8_t *rgb, int16_t *mv,
                        uint64_t *rays)
 {
@@ -284,6 +331,106 @@ static int rs_cut(tdc_source_t *s, double t0, double t1)
     return 0;
 }
 
+/* Layered subframe (tdc_source_t.layered_subframe, issue 16): the
+ * renderer's layer outputs of a SUBFRAME (its own adaptive orderings) as
+ * SHADING (shade, mv_surf), VISIBILITY (vis; zeng: mv_shadow, which is the
+ * surface vector outside tracked shadows, and the eq. 4 weight as falloff)
+ * and GLOSSY (refl; zeng: mv_refl, the mirror / stochastic glossy vector)
+ * planes.  Codes with the source gamma; vectors scaled from the renderer's
+ * frame to dt like rs_subframe. */
+static int16_t rs_scale_mv(int16_t v, double k)
+{
+    double q = floor(v * k + 0.5);
+    return (int16_t)(q > 32767 ? 32767 : (q < -32767 ? -32767 : q));
+}
+
+static uint8_t rs_code(float v, double gamma)
+{
+    double l = v < 0.0f ? 0.0 : (v > 1.0f ? 1.0 : (double)v);
+    return (uint8_t)(255.0 * pow(l, 1.0 / gamma) + 0.5);
+}
+
+static int rs_layered(tdc_source_t *s, int slot, int zeng, uint32_t frame, double t, double dt,
+                      struct tdc_layer_frame *lf, uint8_t *pattern, uint64_t *rays)
+{
+    rsrc_t *c = s->ctx;
+    if (slot < 0 || slot >= RS_SLOTS) {
+        return -1;
+    }
+    if (!c->sub[slot]) {
+        tdc_render_config_t cfg = c->cfg;
+        cfg.shadow_mv = 1; /* the layers need the shadow vectors and weights either way */
+        cfg.dual_mv = 0;
+        char err[256];
+        c->sub[slot] = tdc_render_open(c->scene, &cfg, err, sizeof(err));
+        if (!c->sub[slot]) {
+            return -1;
+        }
+    }
+    long f = frame_of(c, t);
+    if ((uint32_t)f % 4u != frame % 4u) {
+        return -1;
+    }
+    tdc_render_out_t out;
+    memset(&out, 0, sizeof(out));
+    out.rgb = c->sub_lin;
+    out.mv = c->sub_mv;
+    out.mv_shadow = c->sub_mvs;
+    out.shadow_weight = c->l_w;
+    out.shade = c->l_shade;
+    out.vis = c->l_vis;
+    out.refl = c->l_refl;
+    out.mv_surf = c->l_mvsurf;
+    out.mv_refl = c->l_mvrefl;
+    out.shadow_src = c->l_src;
+    tdc_render_stats_t st;
+    if (tdc_render_frame(c->sub[slot], (uint32_t)f, TDC_RENDER_SUBFRAME, &out, &st) != 0) {
+        return -1;
+    }
+    const size_t n = (size_t)st.out_w * st.out_h;
+    const double k = dt * c->clock_hz;
+    int glossy = 0;
+    for (size_t i = 0; i < 3 * n && !glossy; i++) {
+        glossy = c->l_refl[i] > 0.0f;
+    }
+    for (size_t i = 0; i < n; i++) {
+        for (int j = 0; j < 3; j++) {
+            lf->value[0][3 * i + j] = rs_code(c->l_shade[3 * i + j], s->gamma[j]);
+            lf->value[2][3 * i + j] = rs_code(c->l_refl[3 * i + j], s->gamma[j]);
+        }
+        const double v = c->l_vis[i] < 0.0f ? 0.0 : (c->l_vis[i] > 1.0f ? 1.0 : (double)c->l_vis[i]);
+        lf->value[1][i] = (uint8_t)(255.0 * v + 0.5);
+        const int16_t *vs = zeng ? c->sub_mvs + 2 * i : c->l_mvsurf + 2 * i;
+        const int16_t *vg = zeng ? c->l_mvrefl + 2 * i : c->l_mvsurf + 2 * i;
+        for (int j = 0; j < 2; j++) {
+            lf->mv[0][2 * i + j] = rs_scale_mv(c->l_mvsurf[2 * i + j], k);
+            lf->mv[1][2 * i + j] = rs_scale_mv(vs[j], k);
+            lf->mv[2][2 * i + j] = rs_scale_mv(vg[j], k);
+        }
+        const double g = c->l_src[i] ? (double)c->l_w[i] : 1.0;
+        lf->falloff[i] = (uint16_t)(g <= 0.0 ? 0 : (g >= 1.0 ? 32768 : (int)(g * 32768.0 + 0.5)));
+    }
+    lf->present = (uint16_t)(TDC_LAYER_PKT_TYPE(TDC_LAYER_SHADING) | TDC_LAYER_PKT_TYPE(TDC_LAYER_VISIBILITY) |
+                             TDC_LAYER_PKT_FALLOFF | (glossy ? TDC_LAYER_PKT_TYPE(TDC_LAYER_GLOSSY) : 0u));
+    memset(&lf->hdr, 0, sizeof(lf->hdr));
+    lf->hdr.version = TDC_LAYER_LAYOUT_VERSION;
+    lf->hdr.count = (uint8_t)(glossy ? 3 : 2);
+    lf->hdr.type[0] = TDC_LAYER_SHADING;
+    lf->hdr.mv_kind[0] = TDC_LAYER_MV_SURFACE;
+    lf->hdr.type[1] = TDC_LAYER_VISIBILITY;
+    lf->hdr.mv_kind[1] = zeng ? TDC_LAYER_MV_SHADOW : TDC_LAYER_MV_SURFACE;
+    if (glossy) {
+        lf->hdr.type[2] = TDC_LAYER_GLOSSY;
+        lf->hdr.mv_kind[2] = zeng ? TDC_LAYER_MV_GLOSSY : TDC_LAYER_MV_SURFACE;
+    }
+    lf->hdr.flags = 1;
+    lf->hdr.tiles_x = (uint16_t)((s->width + 1) / 2);
+    lf->hdr.tiles_y = (uint16_t)((s->height + 1) / 2);
+    memcpy(pattern, tdc_render_pattern_bits(c->sub[slot]), ((size_t)n + 7) / 8);
+    *rays = st.rays[TDC_RAY_PRIMARY];
+    return 0;
+}
+
 static void rs_destroy(tdc_source_t *s)
 {
     if (!s) {
@@ -301,12 +448,22 @@ static void rs_destroy(tdc_source_t *s)
             if (c->sub[i]) {
                 tdc_render_close(c->sub[i]);
             }
+            if (c->red[i]) {
+                tdc_render_close(c->red[i]);
+            }
         }
         free(c->scene);
         free(c->sub_lin);
         free(c->sub_mv);
         free(c->sub_mvs);
         free(c->sub_mvd);
+        free(c->l_shade);
+        free(c->l_vis);
+        free(c->l_refl);
+        free(c->l_w);
+        free(c->l_mvsurf);
+        free(c->l_mvrefl);
+        free(c->l_src);
         free(c->lin);
         free(c->mv);
         free(c->gt);
@@ -368,6 +525,13 @@ tdc_source_t *tdc_sim_render_source(const char *name, int w, int h, int clock_hz
     c->sub_mv = malloc(sizeof(int16_t) * 2 * tiles);
     c->sub_mvs = malloc(sizeof(int16_t) * 2 * tiles);
     c->sub_mvd = malloc(sizeof(int16_t) * 2 * tiles);
+    c->l_shade = malloc(sizeof(float) * 3 * tiles);
+    c->l_vis = malloc(sizeof(float) * tiles);
+    c->l_refl = malloc(sizeof(float) * 3 * tiles);
+    c->l_w = malloc(sizeof(float) * tiles);
+    c->l_mvsurf = malloc(sizeof(int16_t) * 2 * tiles);
+    c->l_mvrefl = malloc(sizeof(int16_t) * 2 * tiles);
+    c->l_src = malloc(tiles);
     c->clock_hz = clock_hz;
     c->lin = malloc(sizeof(float) * 3 * (size_t)w * h);
     c->mv = malloc(sizeof(int16_t) * 2 * (size_t)w * h);
@@ -375,7 +539,8 @@ tdc_source_t *tdc_sim_render_source(const char *name, int w, int h, int clock_hz
     c->gt_frame = -1;
     c->v_frame = -1;
     s->ctx = c;
-    if (!c->lin || !c->mv || !c->gt || !c->sub_lin || !c->sub_mv || !c->sub_mvs || !c->sub_mvd) {
+    if (!c->lin || !c->mv || !c->gt || !c->sub_lin || !c->sub_mv || !c->sub_mvs || !c->sub_mvd || !c->l_shade ||
+        !c->l_vis || !c->l_refl || !c->l_w || !c->l_mvsurf || !c->l_mvrefl || !c->l_src) {
         rs_destroy(s);
         snprintf(err, errlen, "out of memory");
         return NULL;
@@ -394,10 +559,12 @@ tdc_source_t *tdc_sim_render_source(const char *name, int w, int h, int clock_hz
     s->full_frame = rs_full;
     s->jitter = rs_jitter;
     s->subframe = rs_subframe;
+    s->reduced_frame = rs_reduced;
+    s->layered_subframe = rs_layered;
     s->foveated = rs_foveated;
     s->note = "Embree renderer: full frames at 1 ray per pixel centre (TAA: + its jitter); reduced frames are full renders prefiltered "
-              "by the TRM stage's D; subframes traced by the renderer with its own adaptive orderings; foveated frames "
-              "traced by its FOVEATED mode";
+              "by the TRM stage's D (trmXXr/trm50p: the renderer's own REDUCED frames); subframes traced by the "
+              "renderer with its own adaptive orderings; foveated frames traced by its FOVEATED mode";
     return s;
 }
 

@@ -327,8 +327,8 @@ static void progress(double frac, const char *label)
 /* Perceived error of one mode's eye at te against that eye's ground truth
  * (already cropped and encoded in ev); accumulates into m. */
 static void eval_mode_eye(sim_mode_t *m, sim_eval_t *ev, const tdc_eye_cfg_t *ec, const tdc_sim_config_t *cfg, long j,
-                          double te, double prev_te, const double v[2], const double gaze[2], int margin, int cw, int ch,
-                          int strip_at, char *series, tdc_sim_times_t *tm)
+                          double te, double prev_te, const double v[2], const double gaze[2], int margin, int cw,
+                          int ch, int strip_at, char *series, tdc_sim_times_t *tm)
 {
     tdc_sim_result_t *r = m->res;
     int w = m->w, h = m->h;
@@ -511,7 +511,8 @@ int tdc_sim_run(const tdc_sim_config_t *cfg, tdc_source_t *src, const tdc_mode_d
     }
     int rc = 0;
     tdc_sim_setup_t setup = {
-        cfg, eyes, lcd_panel ? lcd_panel : fw_panel, lcd_panel, src->full_frame != NULL, src->subframe != NULL};
+        cfg, eyes, lcd_panel ? lcd_panel : fw_panel, lcd_panel, src->full_frame != NULL, src->subframe != NULL,
+        src->layers != NULL, src->layered_subframe != NULL};
     for (int i = 0; i < nmodes; i++) {
         for (int e = 0; e < eyes; e++) {
             sim_mode_t *m = &ms[i * eyes + e];

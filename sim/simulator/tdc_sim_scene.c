@@ -12,6 +12,7 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "tdc_layer_link.h"
 #include "tdc_math.h"
 #include "tdc_par.h"
 #include "simulator/tdc_sim_codes.h"
@@ -92,8 +93,8 @@ double tdc_scene_default_speed(tdc_scene_kind_t k)
 #define CODE_BUCKETS 4096
 typedef struct {
     double gamma;
-    double level[256];               /* level[k] = ((k - 0.5) / 255)^gamma, level[0] = -1 */
-    uint8_t lo[CODE_BUCKETS + 1];    /* largest k with level[k] <= i / CODE_BUCKETS */
+    double level[256];            /* level[k] = ((k - 0.5) / 255)^gamma, level[0] = -1 */
+    uint8_t lo[CODE_BUCKETS + 1]; /* largest k with level[k] <= i / CODE_BUCKETS */
 } code_table_t;
 
 typedef struct {
@@ -424,6 +425,62 @@ static void src_samples(tdc_source_t *s, double t, int n, const double *xy, int 
     }
 }
 
+/* Layered samples (tdc_source_t.layers).  The fence is exact in layers:
+ * shading = the floor, visibility = 1 - 0.8 shadow, the shadow vector = the
+ * bars' motion where a sample is in shadow now (Zeng eq. 3 on a plane: the
+ * renderer does not splat, the controller does, §4.1), falloff G = 1 (a
+ * planar receiver).  Every other scene is one SHADING layer (its colour and
+ * surface vectors). */
+static int src_layers(tdc_source_t *s, double t, int n, const double *xy, double dt, int zeng,
+                      struct tdc_layer_frame *out)
+{
+    scene_ctx_t *sc = (scene_ctx_t *)s->ctx;
+    const int fence = sc->p.kind == TDC_SCENE_FENCE;
+    for (int k = 0; k < 3; k++) {
+        code_table_init(&sc->codes[k], s->gamma[k]);
+    }
+    const code_table_t *ct = sc->codes;
+    for (int i = 0; i < n; i++) {
+        double x = xy[2 * i], y = xy[2 * i + 1], c[3], v[2];
+        if (fence) {
+            tex_floor(x + sc->p.shift_x, y, sc->p.seed, c);
+        } else {
+            tdc_scene_radiance(s, x, y, t, c);
+        }
+        for (int k = 0; k < 3; k++) {
+            out->value[0][3 * i + k] = encode_code(&ct[k], c[k]);
+        }
+        scene_velocity(sc, x, y, t, dt, TDC_MV_SURFACE, v);
+        out->mv[0][2 * i] = tdc_sim_mv_q4(-v[0] * dt);
+        out->mv[0][2 * i + 1] = tdc_sim_mv_q4(-v[1] * dt);
+        if (fence) {
+            const double sh = fence_shadow(sc, x + sc->p.shift_x, t);
+            out->value[1][i] = (uint8_t)floor(255.0 * (1.0 - 0.8 * sh) + 0.5);
+            const int moving = zeng && sh > 0.0;
+            out->mv[1][2 * i] = moving ? tdc_sim_mv_q4(-sc->vx * dt) : 0;
+            out->mv[1][2 * i + 1] = moving ? tdc_sim_mv_q4(-sc->vy * dt) : 0;
+            out->falloff[i] = TDC_LAYER_W_ONE;
+        }
+    }
+    out->present = (uint16_t)(TDC_LAYER_PKT_TYPE(TDC_LAYER_SHADING) |
+                              (fence ? TDC_LAYER_PKT_TYPE(TDC_LAYER_VISIBILITY) | TDC_LAYER_PKT_FALLOFF : 0u));
+    out->hdr.version = TDC_LAYER_LAYOUT_VERSION;
+    out->hdr.count = (uint8_t)(fence ? 2 : 1);
+    memset(out->hdr.type, 0, sizeof out->hdr.type);
+    memset(out->hdr.mv_kind, 0, sizeof out->hdr.mv_kind);
+    out->hdr.type[0] = TDC_LAYER_SHADING;
+    out->hdr.mv_kind[0] = TDC_LAYER_MV_SURFACE;
+    if (fence) {
+        out->hdr.type[1] = TDC_LAYER_VISIBILITY;
+        out->hdr.mv_kind[1] = zeng ? TDC_LAYER_MV_SHADOW : TDC_LAYER_MV_SURFACE;
+    }
+    out->hdr.flags = fence ? 1u : 0u;
+    out->hdr.reserved = 0;
+    out->hdr.tiles_x = (uint16_t)((sc->p.width + 1) / 2);
+    out->hdr.tiles_y = (uint16_t)((sc->p.height + 1) / 2);
+    return 0;
+}
+
 /* ---------------------------------------------------------------------
  * Regular grids (full frames, ground truth): every pixel of a W x H frame,
  * g x g box samples at (x + ox + (k + 0.5) / g, y + oy + (j + 0.5) / g).
@@ -698,5 +755,6 @@ tdc_source_t *tdc_scene_create(const tdc_scene_params_t *p, const double gamma[3
     s->pursuit = src_pursuit;
     s->cut = src_cut;
     s->destroy = src_destroy;
+    s->layers = src_layers;
     return s;
 }

@@ -43,6 +43,10 @@ typedef enum {
 
 typedef struct tdc_source tdc_source_t;
 
+/* Layered samples (issue 16, firmware/tdc_layer_link.h): a source fills a
+ * tdc_layer_frame_t whose planes hold n samples (value[t - 1], mv[t - 1],
+ * falloff), its present set and its header's count / types / vector kinds. */
+struct tdc_layer_frame;
 /* Foveated sampling of one frame (the fov modes; tdc_render_fov_t's fields). */
 typedef struct {
     double gaze_x, gaze_y; /* display pixels */
@@ -87,6 +91,28 @@ struct tdc_source {
      * Returns 0. */
     int (*subframe)(tdc_source_t *s, int slot, int shadow, uint32_t frame, double t, double dt, uint8_t *samples,
                     int16_t *mv, uint8_t *pattern, uint64_t *rays);
+    /* Optional: a renderer that traces reduced frames itself (TRM §4.3):
+     * rw x rh drive codes at ratio r, ss x ss rays per reduced pixel
+     * resolved with a Gaussian of sigma full-res px (ss 1 and a tiny sigma:
+     * point sampling, aliased).  slot: one renderer per mode.  rgb NULL:
+     * only open that renderer (untimed set-up).  0, or -1 (the renderer's
+     * reduced size is not rw x rh, or it failed). */
+    int (*reduced_frame)(tdc_source_t *s, int slot, double t, double r, int ss, double sigma, int rw, int rh,
+                         uint8_t *rgb, uint64_t *rays);
+    /* Optional (NULL: no layers): layered samples at the n positions xy at
+     * time t, vectors over dt.  zeng = 1: temporally reliable vectors
+     * (Zeng §4: shadow vectors for in-shadow samples, glossy vectors, ...),
+     * zeng = 0: every layer with the ordinary surface vector.  The source
+     * fills the layers it has (at least SHADING: a scene without shadows
+     * or reflections sends one layer).  Returns 0, or -1. */
+    int (*layers)(tdc_source_t *s, double t, int n, const double *xy, double dt, int zeng,
+                  struct tdc_layer_frame *out);
+    /* Optional: a renderer that traces subframes itself (as `subframe`)
+     * with layer outputs: the layered samples of every tile of subframe
+     * `frame` into out (planes hold tiles samples), its orderings into
+     * pattern; zeng as for `layers`.  Returns 0. */
+    int (*layered_subframe)(tdc_source_t *s, int slot, int zeng, uint32_t frame, double t, double dt,
+                            struct tdc_layer_frame *out, uint8_t *pattern, uint64_t *rays);
     /* Optional: a renderer that traces foveated frames itself (the Embree
      * renderer's FOVEATED mode, thesis §4.2): the samples of f in the
      * firmware's payload order (kernel log-polar columns [u0, w), then the

@@ -20,6 +20,8 @@
 #include "tdc_content.h"
 #include "tdc_crt0.h"
 #include "tdc_fov.h"
+#include "tdc_layer_content.h"
+#include "tdc_layers.h"
 #include "tdc_lcd.h"
 #include "tdc_link.h"
 #include "tdc_link_encode.h"
@@ -318,7 +320,52 @@ static void bench_fov(uint8_t taa, const char *label)
     report(label, BENCH_PX);
 }
 
-/* Group from QEMU's -append (last word): link, trm, assemble, lcd, fov; anything
+/* Layered tile assembly (tdc_layers.h) at LAYER_W x LAYER_H in the arena the
+ * TRM and assembly benchmarks use (its 94 B/px with every layer would not
+ * fit the boards' external RAM at 640 x 360), on the layered test stream:
+ * 8 frames warm the history, the next 4 are measured. */
+#define LAYER_W 320u
+#define LAYER_H 160u
+#define LAYER_T ((LAYER_W / 2u) * (LAYER_H / 2u))
+#define g_lasm_arena g_arena
+_Static_assert(TDC_LASM_MEM_BYTES(LAYER_W, LAYER_H) <= sizeof g_arena, "layered arena in the shared bench arena");
+static uint8_t g_lval[TDC_LAYER_MAX][LAYER_T * 3u];
+static int16_t g_lmv[TDC_LAYER_MAX][LAYER_T * 2u];
+static uint16_t g_lw[LAYER_T];
+static uint8_t g_lpat[TDC_PATTERN_BYTES(LAYER_W, LAYER_H)];
+static tdc_lasm_t g_lasm;
+
+static void bench_layers(uint16_t layers, uint8_t k, uint8_t cleanup, uint8_t splat, int16_t sh_v, const char *label)
+{
+    const tdc_lasm_config_t cfg = {(uint16_t)LAYER_W, (uint16_t)LAYER_H, (uint16_t)(layers & TDC_LAYER_PKT_TYPES),
+                                   k, cleanup, splat, 0, 3277, &tdc_panel_htc_vive};
+    if (tdc_lasm_init(&g_lasm, &cfg, g_lasm_arena, sizeof g_lasm_arena) != TDC_OK) {
+        fail("layered assembly init");
+    }
+    const tdc_lcontent_t c = {(uint16_t)LAYER_W, (uint16_t)LAYER_H, layers, sh_v, 8, 18, -30, 10, 1, 0, 1u};
+    tdc_layer_frame_t lf;
+    memset(&lf, 0, sizeof lf);
+    for (unsigned t = 0; t < TDC_LAYER_MAX; t++) {
+        lf.value[t] = g_lval[t];
+        lf.mv[t] = g_lmv[t];
+    }
+    lf.falloff = g_lw;
+    for (uint32_t f = 0; f < 12u; f++) {
+        tdc_layer_content_subframe(&c, f, g_lpat, &lf);
+        if (f >= 8u) {
+            tdc_bench_mark();
+        }
+        if (tdc_lasm_ingest(&g_lasm, f, &lf, g_lpat) != TDC_OK || tdc_lasm_assemble(&g_lasm, f) != TDC_OK) {
+            fail("layered assembly");
+        }
+        if (f >= 8u) {
+            tdc_bench_mark();
+            report(label, LAYER_W * LAYER_H);
+        }
+    }
+}
+
+/* Group from QEMU's -append (last word): link, trm, assemble, lcd, fov, layers; anything
  * else runs all (make profile-arm runs one group under the profiler). */
 static int want(const char *group)
 {
@@ -335,7 +382,7 @@ static int want(const char *group)
             }
         }
     }
-    static const char *const groups[] = {"link", "trm", "assemble", "lcd", "fov"};
+    static const char *const groups[] = {"link", "trm", "assemble", "lcd", "fov", "layers"};
     int known = 0;
     for (unsigned i = 0; i < sizeof groups / sizeof groups[0]; i++) {
         known |= !strcmp(word, groups[i]);
@@ -363,6 +410,14 @@ int main(void)
     if (want("assemble")) {
         bench_assemble(0, "tile assembly, static (4x SSAA window)");
         bench_assemble(1, "tile assembly, dynamic (reprojection + clamp)");
+    }
+    if (want("layers")) {
+        const uint16_t sh = TDC_LAYER_PKT_TYPE(TDC_LAYER_SHADING), vi = TDC_LAYER_PKT_TYPE(TDC_LAYER_VISIBILITY);
+        const uint16_t all = 0xFu | TDC_LAYER_PKT_FALLOFF;
+        bench_layers(sh, 1, 0, 0, 24, "layered assembly, one layer (pan)");
+        bench_layers(sh | vi | TDC_LAYER_PKT_FALLOFF, 3, 0, 2, 0, "layered assembly, fence (shadow MVs, splat)");
+        bench_layers(sh | vi | TDC_LAYER_PKT_FALLOFF, 3, 1, 2, 0, "layered assembly, fence + clean-up");
+        bench_layers(all, 3, 1, 2, 24, "layered assembly, all 4 layers + clean-up");
     }
     if (want("lcd")) {
         bench_lcd();

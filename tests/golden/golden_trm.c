@@ -5,6 +5,7 @@
  * in the residual so rho is pinned too).  Freestanding, static buffers.
  */
 #include "golden.h"
+#include "golden_trm.h"
 #include "tdc_content.h"
 #include "tdc_panels.h"
 #include "tdc_trm.h"
@@ -24,6 +25,36 @@ typedef struct {
     uint32_t s_q8;
     const tdc_panel_t *panel;
 } trm_vector_t;
+
+/* One frame of a full/reduced pair through a TRM stage, hashed: a full frame
+ * (t even) folds in the drive codes and the recomputed rho, a reduced frame
+ * the renderer's reduced input and the drive codes.  *ok &= every call
+ * succeeded.  Shared with golden_trmgaze.c. */
+uint64_t tdc_golden_trm_step(tdc_trm_t *trm, uint32_t t, const uint8_t *in, uint8_t *out, uint8_t *red, tdc_res_t *rho_row,
+                             uint32_t w, uint32_t h, int *ok)
+{
+    const uint32_t stride = 3u * w;
+    uint64_t hh = TDC_FNV64_INIT;
+    if ((t & 1u) == 0u) {
+        *ok &= tdc_trm_full(trm, in, stride, out, stride) == TDC_OK;
+        hh = tdc_fnv1a64(hh, out, (size_t)stride * h);
+        /* rho as the reduced frame will use it: recomputed from the kept
+         * codes row by row (the stage stores no rho), hashed in the same
+         * byte order as the stored buffer was */
+        for (uint32_t y = 0; y < h; y++) {
+            if (tdc_trm_residual_row(trm, y, rho_row) != TDC_OK) {
+                hh = 0; /* shows as a mismatch */
+            }
+            hh = tdc_fnv1a64(hh, rho_row, sizeof(tdc_res_t) * stride);
+        }
+    } else {
+        *ok &= tdc_trm_downsample(trm, in, stride, red, 3u * trm->rw) == TDC_OK;
+        hh = tdc_fnv1a64(hh, red, (size_t)3u * trm->rw * trm->rh);
+        *ok &= tdc_trm_reduced(trm, red, 3u * trm->rw, out, stride) == TDC_OK;
+        hh = tdc_fnv1a64(hh, out, (size_t)stride * h);
+    }
+    return hh;
+}
 
 static void run_vector(tdc_golden_ctx_t *ctx, const trm_vector_t *v)
 {
@@ -56,26 +87,8 @@ static void run_vector(tdc_golden_ctx_t *ctx, const trm_vector_t *v)
     const uint32_t stride = 3u * v->w;
     for (uint32_t t = 0; t < 6u; t++) {
         tdc_content_frame(v->content, t, 11u, g_in, v->w, v->h, (int)stride);
-        uint64_t h = TDC_FNV64_INIT;
         int ok = 1;
-        if ((t & 1u) == 0u) {
-            ok &= tdc_trm_full(&trm, g_in, stride, g_out, stride) == TDC_OK;
-            h = tdc_fnv1a64(h, g_out, (size_t)stride * v->h);
-            /* rho as the reduced frame will use it: recomputed from the
-             * kept codes row by row (the stage stores no rho), hashed in
-             * the same byte order as the stored buffer was */
-            for (uint32_t y = 0; y < v->h; y++) {
-                if (tdc_trm_residual_row(&trm, y, g_rho_row) != TDC_OK) {
-                    h = 0; /* shows as a mismatch */
-                }
-                h = tdc_fnv1a64(h, g_rho_row, sizeof(tdc_res_t) * stride);
-            }
-        } else {
-            ok &= tdc_trm_downsample(&trm, g_in, stride, g_red, 3u * trm.rw) == TDC_OK;
-            h = tdc_fnv1a64(h, g_red, (size_t)3u * trm.rw * trm.rh);
-            ok &= tdc_trm_reduced(&trm, g_red, 3u * trm.rw, g_out, stride) == TDC_OK;
-            h = tdc_fnv1a64(h, g_out, (size_t)stride * v->h);
-        }
+        const uint64_t h = tdc_golden_trm_step(&trm, t, g_in, g_out, g_red, g_rho_row, v->w, v->h, &ok);
         tdc_golden_emit(ctx, "trm", name, t, ok ? h : TDC_GOLDEN_FAILED);
     }
 }

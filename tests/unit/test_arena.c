@@ -25,6 +25,7 @@
 #include "tdc_arena.h"
 #include "tdc_assemble.h"
 #include "tdc_fov.h"
+#include "tdc_layers.h"
 #include "tdc_lcd.h"
 #include "tdc_panels.h"
 #include "tdc_trm.h"
@@ -486,9 +487,87 @@ static void test_carver(void **state)
     assert_int_equal(tdc_arena_size(&a), 0);
 }
 
+/* ------------------------------------------------- layered assembly */
+
+static void lasm_one(uint32_t w, uint32_t h, uint16_t layers, int init, int frames)
+{
+    const tdc_lasm_config_t c = {(uint16_t)w, (uint16_t)h, layers, 3, 1, 2, 0, 3277, &tdc_panel_htc_vive};
+    const size_t n = tdc_lasm_get_size(&c), bound = TDC_LASM_MEM_BYTES((size_t)w, (size_t)h);
+    if (n == 0 || n % TDC_ARENA_ALIGN != 0 || n > bound || (layers == 0xFu && n != bound)) {
+        fail_msg("layered assembly %ux%u layers 0x%x: get_size %zu, bound %zu", w, h, layers, n, bound);
+    }
+    if (!init) {
+        return;
+    }
+    arena_t a;
+    arena_new(&a, n);
+    tdc_lasm_t ls, *st = &ls;
+    assert_int_equal(tdc_lasm_init(st, &c, a.mem + 4, n), TDC_ERR_ARG);
+    assert_int_equal(tdc_lasm_init(st, &c, a.mem, n - 1), TDC_ERR_SIZE);
+    assert_int_equal(tdc_lasm_init(st, &c, a.mem, n), TDC_OK);
+    walk_t wk = {a.mem, 0, "layered assembly"};
+    TDC_LASM_ARENA(WALK, c.width, c.height, TDC_PATTERN_BYTES(c.width, c.height), st->ch[0], st->ch[1], st->ch[2],
+                   st->ch[3])
+    walk_end(&wk, n);
+    arena_check_guard(&a, "layered assembly init");
+    if (frames) {
+        const size_t tiles = TDC_TILE_COUNT(w, h);
+        tdc_layer_frame_t lf;
+        memset(&lf, 0, sizeof lf);
+        lf.present = layers;
+        lf.hdr.tiles_x = (uint16_t)TDC_TILES(w);
+        lf.hdr.tiles_y = (uint16_t)TDC_TILES(h);
+        for (unsigned t = 1; t <= TDC_LAYER_MAX; t++) {
+            lf.value[t - 1] = malloc(tiles * 3u);
+            lf.mv[t - 1] = malloc(tiles * 4u);
+            if (layers & TDC_LAYER_PKT_TYPE(t)) {
+                lf.hdr.type[lf.hdr.count] = (uint8_t)t;
+                lf.hdr.mv_kind[lf.hdr.count++] = t == TDC_LAYER_VISIBILITY ? TDC_LAYER_MV_SHADOW : TDC_LAYER_MV_SURFACE;
+            }
+        }
+        for (uint32_t f = 0; f < 9; f++) {
+            for (unsigned t = 0; t < TDC_LAYER_MAX; t++) {
+                for (size_t i = 0; i < tiles * 3u; i++) {
+                    lf.value[t][i] = (uint8_t)(i * 13u + f * 50u + t);
+                }
+                for (size_t i = 0; i < tiles * 2u; i++) {
+                    lf.mv[t][i] = (int16_t)(f < 4 ? 0 : (int)((i * 7u + t) % 61u) - 30);
+                }
+            }
+            assert_int_equal(tdc_lasm_ingest(st, f, &lf, NULL), TDC_OK);
+            assert_int_equal(tdc_lasm_assemble(st, f), TDC_OK);
+        }
+        arena_check_guard(&a, "layered assembly frames");
+        for (unsigned t = 0; t < TDC_LAYER_MAX; t++) {
+            free(lf.value[t]);
+            free(lf.mv[t]);
+        }
+    }
+    free(a.mem);
+}
+
+static void test_lasm_arena(void **state)
+{
+    (void)state;
+    static const uint32_t small[][2] = {{1, 1}, {1, 5}, {3, 1}, {33, 17}, {64, 48}};
+    static const uint16_t sets[] = {0x1u, 0x3u, 0x5u, 0xFu};
+    for (unsigned i = 0; i < sizeof small / sizeof small[0]; i++) {
+        for (unsigned k = 0; k < sizeof sets / sizeof sets[0]; k++) {
+            lasm_one(small[i][0], small[i][1], sets[k], 1, 1);
+        }
+    }
+    for (unsigned p = 0; p < NPANELS; p++) {
+        lasm_one(g_panels[p]->width, g_panels[p]->height, 0x3u, 0, 0);
+        lasm_one(g_panels[p]->width, g_panels[p]->height, 0xFu, 0, 0);
+    }
+    lasm_one(TDC_LASM_MAX_DIM, TDC_LASM_MAX_DIM, 0xFu, 0, 0);
+    lasm_one(1, TDC_LASM_MAX_DIM, 0x1u, 0, 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_lasm_arena),
         cmocka_unit_test(test_carver),    cmocka_unit_test(test_trm_arena), cmocka_unit_test(test_lcd_arena),
         cmocka_unit_test(test_asm_arena), cmocka_unit_test(test_fov_arena),
     };

@@ -342,10 +342,8 @@ static void test_flip_vs_nvlabs(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_psnr_ssim_vs_skimage),
-        cmocka_unit_test(test_psnr_identical_capped),
-        cmocka_unit_test(test_powtab_accuracy),
-        cmocka_unit_test(test_flip_properties),
+        cmocka_unit_test(test_psnr_ssim_vs_skimage), cmocka_unit_test(test_psnr_identical_capped),
+        cmocka_unit_test(test_powtab_accuracy),      cmocka_unit_test(test_flip_properties),
         cmocka_unit_test(test_flip_vs_nvlabs),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -115,6 +115,26 @@ static void test_asm_family(void **state)
 #endif
 }
 
+/* The layered modes (docs/layers.md) run end to end over the LAYERS link
+ * kind; on the fence Zeng's vectors beat the ordinary ones. */
+static void test_layers_family(void **state)
+{
+    (void)state;
+    static const char *const m[] = {"full", "lasm-ordinary", "lasm-zeng", "lasm-zeng-tdrt", "lasm-zeng-clean"};
+    tdc_sim_result_t r[5];
+    assert_int_equal(run(TDC_SCENE_FENCE, 240, 16, m, 5, r, TDC_PANEL_SIM_OLED, -1.0), 0);
+    check_sane(r, 5);
+#if TDC_SIM_HAVE_ASM
+    for (int i = 1; i < 5; i++) {
+        assert_true(r[i].available);
+        assert_int_equal(r[i].link_errors, 0);
+        assert_true(fabs((double)r[i].rays / (double)r[0].rays - 0.25) < 1e-9);
+    }
+    assert_true(r[2].psnr > r[1].psnr + 3.0);
+    assert_true(r[2].flip < r[1].flip);
+#endif
+}
+
 static void test_extremes(void **state)
 {
     (void)state;
@@ -335,7 +355,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_trm_family_pan),       cmocka_unit_test(test_static_trm_equals_full),
-        cmocka_unit_test(test_asm_family),           cmocka_unit_test(test_extremes),
+        cmocka_unit_test(test_asm_family),           cmocka_unit_test(test_layers_family), cmocka_unit_test(test_extremes),
         cmocka_unit_test(test_stage_error_ends_run), cmocka_unit_test(test_refused_rate),
         cmocka_unit_test(test_threads_same_digits),  cmocka_unit_test(test_stereo),
         cmocka_unit_test(test_stereo_symmetric),

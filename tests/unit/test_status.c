@@ -32,6 +32,7 @@ static const struct {
     S(TDC_ERR_RATIO),
     S(TDC_ERR_PANEL),
     S(TDC_ERR_FRAME),
+    S(TDC_ERR_LAYER),
     S(TDC_ERR_STALL),
     S(TDC_ERR_IMAGE_SHORT),
     S(TDC_ERR_IMAGE_MAGIC),
