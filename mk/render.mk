@@ -17,7 +17,7 @@ HOST_PROGS += $(B)/tdc-render
 $(B)/tdc-render: $(B)/sim/render/tdc_render_main.o $(B)/libtdcrender.a $(SIMLIB) $(FWLIB)
 	$(CC) $(HOST_LDFLAGS) $< -o $@ $(RENDERLIB) $(SIMLIB) $(FWLIB) $(RENDER_LDLIBS) $(HOST_LIBS)
 
-RENDER_TESTS := test_render_scene test_render_mv test_render_gt test_render_stream test_render_fov test_render_cones
+RENDER_TESTS := test_render_scene test_render_mv test_render_gt test_render_stream test_render_fov test_render_cones test_render_texture
 TESTS += $(foreach t,$(RENDER_TESTS),$(B)/tests/unit/$(t))
 BENCHES += $(B)/tests/bench/bench_render
 # test_render_hash: output hash of every built-in/mode (a tool for pixel-identical optimisations, not in TESTS)

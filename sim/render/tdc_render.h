@@ -78,6 +78,8 @@ typedef struct {
     double reduced_sigma;  /* Gaussian resolve sigma in full-res px, default 2.5 (TRM §4.3) */
     int gt_samples;        /* N of GROUND_TRUTH, default 64 */
     int record_rays;       /* keep every traced ray of the last frame (benchmark) */
+    int tex_filter;        /* box-filter textures over each sample's ray-cone footprint (TDRT §3.1.1,
+                              [AMNA*19]), default 1; 0: point-sampled as before */
     int indirect;          /* one diffuse indirect bounce per sample, 6-cone record (Zeng §4.3), default 0 */
     int indirect_reuse;    /* FULL frames: reuse the previous frame's cones at the dual MV (eqs. 9-11), default 0 */
 } tdc_render_config_t;
@@ -159,6 +161,11 @@ void tdc_render_close(tdc_render_t *r);
 int tdc_render_set_threads(tdc_render_t *r, int threads);
 /* Turns ray recording (benchmark) on or off for the following frames. */
 void tdc_render_set_record(tdc_render_t *r, int on);
+/* Sub-pixel offset (px, |j| <= 0.5) of every FULL sample of the following
+ * frames: TAA's per-frame jitter.  Default 0 (pixel centres). */
+void tdc_render_set_jitter(tdc_render_t *r, double jx, double jy);
+/* Reflected MVs at mirror hits (TDRT §3.1.2) on or off for the following frames (cfg.reflect_mv). */
+void tdc_render_set_reflect_mv(tdc_render_t *r, int on);
 
 /* Renders frame `frame` in `mode`.  Returns 0, or -1 on a bad argument. */
 int tdc_render_frame(tdc_render_t *r, uint32_t frame, tdc_render_mode_t mode, const tdc_render_out_t *out,

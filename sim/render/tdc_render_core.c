@@ -18,6 +18,7 @@ void tdc_render_default_config(tdc_render_config_t *cfg)
     cfg->seed = 1;
     cfg->max_bounces = 3;
     cfg->reflect_mv = 1;
+    cfg->tex_filter = 1;
     cfg->reduced_factor = 0.5;
     cfg->reduced_ss = 2;
     cfg->reduced_sigma = 2.5;
@@ -248,6 +249,17 @@ int tdc_render_set_threads(tdc_render_t *r, int threads)
 void tdc_render_set_record(tdc_render_t *r, int on)
 {
     r->cfg.record_rays = on != 0;
+}
+
+void tdc_render_set_jitter(tdc_render_t *r, double jx, double jy)
+{
+    r->full_jx = (float)(jx < -0.5 ? -0.5 : (jx > 0.5 ? 0.5 : jx));
+    r->full_jy = (float)(jy < -0.5 ? -0.5 : (jy > 0.5 ? 0.5 : jy));
+}
+
+void tdc_render_set_reflect_mv(tdc_render_t *r, int on)
+{
+    r->cfg.reflect_mv = on != 0;
 }
 
 void tdc_render_get_features(const tdc_render_t *r, tdc_render_features_t *f)

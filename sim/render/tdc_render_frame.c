@@ -81,8 +81,8 @@ static int place_samples(job_t *jb, int tx, int ty, rsample_t *s)
     if (jb->mode == TDC_RENDER_FULL) { /* the common case without the per-slot switch */
         for (int sy = y0; sy < y1; sy++)
             for (int sx = x0; sx < x1; sx++) {
-                s[n].x = sx + 0.5f;
-                s[n].y = sy + 0.5f;
+                s[n].x = sx + 0.5f + r->full_jx;
+                s[n].y = sy + 0.5f + r->full_jy;
                 s[n].px = sx;
                 s[n].py = sy;
                 s[n].dst = (uint32_t)sy * (uint32_t)jb->sw + (uint32_t)sx;
@@ -590,6 +590,7 @@ int tdc_render_frame(tdc_render_t *r, uint32_t frame, tdc_render_mode_t mode, co
     for (int i = 0; i < nth; i++) {
         w[i].job = &jb;
         init_thread(&w[i].th, r, frame, mode == TDC_RENDER_GROUND_TRUTH, jb.spp, jb.record, jb.do_mv_shadow);
+        w[i].th.cone = tdc_r_sample_cone(r, mode, jb.sw, jb.spp, w[i].th.cur->cam.tan_half);
         w[i].th.layers = jb.do_layers;
         w[i].th.have_mv = jb.do_mv;
         w[i].th.have_dual = jb.do_mv_dual;
@@ -674,6 +675,7 @@ int tdc_render_probe(tdc_render_t *r, uint32_t frame, double x, double y, tdc_re
     tdc_r_top(r, (long)frame - 1);
     rthread_t th;
     init_thread(&th, r, frame, 0, 1, 0, 1);
+    th.cone = tdc_r_sample_cone(r, TDC_RENDER_FULL, r->W, 1, th.cur->cam.tan_half); /* what a frame's sample sees */
     th.layers = 1;
     rsample_t s;
     memset(&s, 0, sizeof s);

@@ -62,6 +62,7 @@ typedef struct {
 struct tdc_render {
     tdc_scene_t *scene;
     tdc_render_config_t cfg;
+    float full_jx, full_jy; /* FULL sample offset (tdc_render_set_jitter) */
     int W, H;
     tdc_render_features_t feat;
     RTCDevice dev;
@@ -186,13 +187,29 @@ static inline int tdc_r_project(const rcam_t *c, const double p[3], double *x, d
 }
 
 /* Textures (tdc_render_texture.c): per-material tables at open; base
- * colour at a local point. */
+ * colour at a local point, box-filtered over a footprint fw (object-space
+ * length; 0 = point-sampled). */
 void tdc_r_tex_prepare(tdc_render_t *r);
-void tdc_r_base_color(const tdc_render_t *r, const tdc_object_t *o, const double q[3], const double nq[3],
+void tdc_r_base_color(const tdc_render_t *r, const tdc_object_t *o, const double q[3], const double nq[3], double fw,
                       double out[3]);
 /* The two halves of tdc_r_base_color for a textured material: texture
  * coordinates of a local point, then the colour at (u, v). */
 void tdc_r_tex_uv(const tdc_object_t *o, const double q[3], const double nq[3], double *u, double *v);
-void tdc_r_tex_color(const tdc_render_t *r, const tdc_object_t *o, double u, double v, double out[3]);
+void tdc_r_tex_color(const tdc_render_t *r, const tdc_object_t *o, double u, double v, double fw, double out[3]);
+/* Ray cones (TDRT §3.1.1 uses ray differentials for texture filtering; the
+ * cone formulation of [AMNA*19]): the spread angle of one sample of a mode
+ * with sw samples across the width and spp samples per slot (a pixel's
+ * angle 2 tan(fov/2) / H, times the sample spacing in pixels: 1 for full
+ * frames and subframes, W / sw for reduced frames' supersamples,
+ * 1 / sqrt(spp) for the ground truth's), 0 with cfg.tex_filter off. */
+double tdc_r_sample_cone(const tdc_render_t *r, int mode, int sw, int spp, double tan_half);
+/* The footprint of a cone of angle `cone` after `dist` world units (summed
+ * over mirror bounces: planar mirrors keep the spread) on a surface of
+ * normal n hit along d: cone dist / |cos| (the longer axis of the ellipse,
+ * as mip-mapping's isotropic LOD), |cos| floored at 1/16 (grazing hits).
+ * minv (world -> object 3x4, or NULL): n is in object space (the raw
+ * normal every hit has; unlit hits have no world normal), d is taken there
+ * and the width scaled to object lengths (cube root of |det minv|). */
+double tdc_r_tex_footprint(double cone, double dist, const double d[3], const double n[3], const double *minv);
 
 #endif

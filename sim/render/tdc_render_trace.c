@@ -202,12 +202,12 @@ static void shade_direct(rthread_t *t, int obj, const double P[3], const double 
     const tdc_object_t *o = &sc->objects[obj];
     const tdc_material_t *m = &sc->materials[o->material];
     if (m->unlit) { /* straight into out: a copy through base[] stalled on store forwarding */
-        tdc_r_base_color(r, o, Q, NQ, out);
+        tdc_r_base_color(r, o, Q, NQ, t->tex_fw, out);
         if (unshadowed) copy3(unshadowed, out);
         return;
     }
     double base[3];
-    tdc_r_base_color(r, o, Q, NQ, base);
+    tdc_r_base_color(r, o, Q, NQ, t->tex_fw, base);
     double e[3] = {sc->ambient[0], sc->ambient[1], sc->ambient[2]};
     /* layers: the same sums without the visibility term (eu: every light
      * sample counted, blocked or not); e itself is computed as before */
@@ -404,10 +404,13 @@ void tdc_r_pass_shade(rthread_t *t, rsample_t *s, int n)
         }
         const tdc_object_t *o = &sc->objects[a->obj];
         const tdc_material_t *m = &sc->materials[o->material];
+        t->tex_fw = t->cone > 0 ? tdc_r_tex_footprint(t->cone, a->hit_t * sqrt(dot3(a->dir, a->dir)), a->dir, a->NQ,
+                                                      t->cur->minv[a->obj])
+                                : 0;
         if (uv_first[a->obj]) /* the texture colour at the coordinates computed above */
-            tdc_r_tex_color(t->r, o, a->tu, a->tv, a->col);
+            tdc_r_tex_color(t->r, o, a->tu, a->tv, t->tex_fw, a->col);
         else if (m->unlit) /* the texture colour: no call into the lighting code */
-            tdc_r_base_color(t->r, o, a->Q, a->NQ, a->col);
+            tdc_r_base_color(t->r, o, a->Q, a->NQ, t->tex_fw, a->col);
         else
             shade_direct(t, a->obj, a->P, a->Q, a->N, a->NQ, rng_key(a), a->k, 0, a, a->col,
                          t->layers ? a->lshade : NULL);
@@ -491,6 +494,7 @@ void tdc_r_trace_local(rthread_t *t, const double P[3], const double N[3], const
     double P2[3], Q2[3], N2[3], NQ2[3];
     wncache_t wc = {.obj = -1};
     surface_rh(t->cur, &rh, h, O, d, P2, Q2, N2, NQ2, &wc);
+    t->tex_fw = 0; /* a diffuse bounce: its Monte Carlo estimate averages the texture (point-sampled as before) */
     shade_direct(t, h, P2, Q2, N2, NQ2, rng_key(a), a->k, salt, NULL, L, NULL);
 }
 
@@ -510,6 +514,7 @@ void tdc_r_pass_reflect(rthread_t *t, rsample_t *s, int n)
         memcpy(NQ, a->NQ, sizeof NQ);
         memcpy(d, a->dir, sizeof d);
         a->robj = -1;
+        double dist = a->hit_t * sqrt(dot3(d, d)); /* ray-cone length so far (texture footprint) */
         for (int b = 0; b < maxb; b++) {
             a->mobj[b] = obj;
             copy3(a->mQ[b], Q);
@@ -545,6 +550,8 @@ void tdc_r_pass_reflect(rthread_t *t, rsample_t *s, int n)
                 break;
             }
             surface_rh(t->cur, &rh, h, O, d, P, Q, N, NQ, &wc);
+            dist += rh.ray.tfar * sqrt(dot3(d, d));
+            t->tex_fw = t->cone > 0 ? tdc_r_tex_footprint(t->cone, dist, d, NQ, t->cur->minv[h]) : 0;
             double loc[3];
             shade_direct(t, h, P, Q, N, NQ, rng_key(a), a->k, 4u * (uint32_t)(b + 1), NULL, loc, NULL);
             double m2 = sc->materials[sc->objects[h].material].mirror;

@@ -58,6 +58,8 @@ typedef struct {
     int gt; /* ground truth: one light sample per pixel sample, stratified by k */
     uint32_t spp;
     int track_blockers;              /* shadow rays return the blocker (shadow MVs) */
+    double cone;                     /* ray-cone spread angle of one sample, rad (0: point-sampled textures) */
+    double tex_fw;                   /* texture footprint of the surface being shaded (tdc_r_tex_footprint) */
     int layers;                      /* fill the layer fields (unshadowed shading, visibility, reflection, mvr) */
     /* dual MVs under a still camera: screen rectangles (x0, y0, x1, y1) of
      * the moving objects in the previous frame; a still surface whose pixel

@@ -4,6 +4,7 @@
  */
 #include <errno.h>
 #include <getopt.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -57,6 +58,10 @@ static void usage(FILE *f)
             "      --disparity PX      procedural / --image stereo: the eyes' views differ by PX pixels (default 4)\n"
             "      --ipd M             renderer stereo: camera offset between the eyes in scene units\n"
             "                          (default 0.063)\n"
+            "      --start-frame N     renderer: the run starts at the scene's frame N (a multiple of 4;\n"
+            "                          default 0): another stretch of the animation, another content\n"
+            "      --no-reflect-mv     renderer: primary MVs at mirror hits instead of reflected MVs\n"
+            "                          (TDRT §3.1.2, Figs. 5-6)\n"
             "  -d, --duration S        simulated seconds (default 0.5)\n"
             "  -n, --frames N          simulated refreshes (overrides --duration)\n"
             "  -w, --window N          fused window in refreshes (default 2 below 200 Hz, else 4)\n"
@@ -211,6 +216,8 @@ int main(int argc, char **argv)
         O_MONO,
         O_DISP,
         O_IPD,
+        O_START,
+        O_NOREFLMV,
         O_TIMES,
         O_IMAGE,
         O_ZOOM,
@@ -261,6 +268,8 @@ int main(int argc, char **argv)
                                          {"mono", no_argument, 0, O_MONO},
                                          {"disparity", required_argument, 0, O_DISP},
                                          {"ipd", required_argument, 0, O_IPD},
+                                         {"start-frame", required_argument, 0, O_START},
+                                         {"no-reflect-mv", no_argument, 0, O_NOREFLMV},
                                          {"times", no_argument, 0, O_TIMES},
                                          {"image", required_argument, 0, O_IMAGE},
                                          {"zoom", required_argument, 0, O_ZOOM},
@@ -289,6 +298,8 @@ int main(int argc, char **argv)
     int size_given = 0, ppd_given = 0, eyes = 0;
     tdc_sim_times_t times;
     double disparity = 4.0, ipd = 0.063;
+    long start_frame = 0;
+    int reflect_mv = 1;
     long frames = -1;
     double v;
     int c;
@@ -333,6 +344,17 @@ int main(int argc, char **argv)
             }
             ipd = v;
             break;
+        case O_START:
+            if (parse_num(optarg, 0, 1e6, &v, "start-frame")) {
+                return TDC_EXIT_ARGS;
+            }
+            if (v != floor(v) || fmod(v, 4.0) != 0.0) {
+                fprintf(stderr, "tdc-sim: --start-frame: %s is not a multiple of 4 (the subframe cycle)\n", optarg);
+                return TDC_EXIT_ARGS;
+            }
+            start_frame = (long)v;
+            break;
+        case O_NOREFLMV: reflect_mv = 0; break;
         case O_IMAGE: image = optarg; break;
         case O_ZOOM:
             if (parse_num(optarg, 1e-3, 1e3, &im.zoom, "zoom")) {
@@ -686,6 +708,7 @@ int main(int argc, char **argv)
                 }
                 return image_exit(err);
             }
+            tdc_sim_render_options(s, start_frame, reflect_mv);
             if (e) {
                 cfg.right = s;
             } else {

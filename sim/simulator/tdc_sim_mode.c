@@ -64,6 +64,9 @@ void tdc_sim_render_full(sim_mode_t *m, tdc_source_t *src, double t, int spp, do
         uint64_t rays = 0;
         double ms = 0.0;
         double t1 = tdc_sim_now();
+        if (src->jitter) {
+            src->jitter(src, jx, jy);
+        }
         src->full_frame(src, t, mv ? dt : 0.0, m->render, mv, &rays, &ms);
         m->res->render_s += tdc_sim_now() - t1;
         m->res->rays += rays;

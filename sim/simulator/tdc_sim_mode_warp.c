@@ -1,7 +1,9 @@
 /*
  * tdc_sim_mode_warp.c - the GPU-side reprojection baselines: ASW-style
- * extrapolation (half rate, the in-between frame warped by the motion
- * vectors) and TAA (jittered 1 spp, history reprojected by the MVs, clamped
+ * extrapolation (half rate, the in-between frame warped by the renderer's
+ * exact motion vectors, `asw`, or by motion block-matched between the last
+ * two decoded frames, `asw-est`, as a compositor without the renderer's
+ * vectors must: tdc_sim_blockmatch.h) and TAA (jittered 1 spp, history reprojected by the MVs, clamped
  * to the current 3x3 neighbourhood, blended 0.9 / 0.1).  Both run on the
  * renderer side (their time counts as render time); the link carries full
  * frames.
@@ -9,15 +11,21 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "simulator/tdc_sim_blockmatch.h"
 #include "simulator/tdc_sim_mode.h"
 #include "tdc_bilinear.h"
 
-enum { WARP_ASW, WARP_TAA };
+enum { WARP_ASW, WARP_TAA, WARP_ASW_EST };
 
 #define F &tdc_sim_family_warp
 static const tdc_mode_desc_t k_modes[] = {
     {"asw", F, WARP_ASW, 0, 1, 1, 0, 0, 0, "half rate, in-between frame warped by motion vectors (ASW style)"},
+    {"asw-est", F, WARP_ASW_EST, 0, 1, 1, 0, 0, 0,
+     "half rate, in-between frame warped by motion block-matched on the last two decoded frames"},
     {"taa60", F, WARP_TAA, 0, 1, 1, 60, 0, 0, "60 Hz, jittered 1 spp with TAA (reprojection, clamp, blend 0.1)"},
+    {"taa", F, WARP_TAA, 0, 1, 1, 0, 0, 0, "the run's refresh, jittered 1 spp with TAA (as taa60)"},
+    {"taa120", F, WARP_TAA, 0, 1, 1, 120, 0, 0, "120 Hz, jittered 1 spp with TAA (as taa60)"},
+    {"taa80", F, WARP_TAA, 0, 1, 1, 80, 0, 0, "80 Hz, jittered 1 spp with TAA (as taa60)"},
 };
 #undef F
 
@@ -25,6 +33,10 @@ typedef struct {
     uint8_t *hist, *tmp; /* last frame / TAA history; the warped or resolved frame */
     int16_t *mv;         /* backward MVs of the last rendered frame, Q4 */
     int have_hist;
+    /* asw-est: the decoded frame before the last one, and the estimator */
+    uint8_t *prev;
+    int have_prev;
+    tdc_bm_t bm;
 } warp_state_t;
 
 static int warp_init(sim_mode_t *m, const tdc_sim_setup_t *s)
@@ -38,6 +50,12 @@ static int warp_init(sim_mode_t *m, const tdc_sim_setup_t *s)
     st->hist = calloc(m->npx * 3, 1);
     st->tmp = calloc(m->npx * 3, 1);
     st->mv = calloc(m->npx * 2, sizeof(int16_t));
+    if (m->d->variant == WARP_ASW_EST) {
+        st->prev = calloc(m->npx * 3, 1);
+        if (!st->prev || tdc_bm_init(&st->bm, m->w, m->h) != 0) {
+            return -1;
+        }
+    }
     return st->hist && st->tmp && st->mv ? 0 : -1;
 }
 
@@ -102,6 +120,29 @@ static int warp_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint3
         m->res->render_s += tdc_sim_now() - t0;
         return tdc_sim_send_full(m, lf, st->hist);
     }
+    if (m->d->variant == WARP_ASW_EST) {
+        if ((lf & 1u) == 0u || !st->have_hist) {
+            /* no motion vectors asked of the renderer: the compositor has none */
+            tdc_sim_render_full(m, src, t, spp, 0, 0, NULL, 0, TDC_MV_SURFACE);
+            int rc = tdc_sim_send_full(m, lf, m->render);
+            if (st->have_hist) {
+                memcpy(st->prev, st->hist, m->npx * 3);
+                st->have_prev = 1;
+            }
+            memcpy(st->hist, TDC_SIM_LINK_FULL(m), m->npx * 3); /* the decoded frame */
+            st->have_hist = 1;
+            return rc;
+        }
+        if (!st->have_prev) { /* one frame so far: nothing to match, repeat it */
+            return tdc_sim_send_full(m, lf, st->hist);
+        }
+        t0 = tdc_sim_now();
+        /* two frames apart: half the vector extrapolates one frame */
+        tdc_bm_estimate(&st->bm, st->prev, st->hist, 0.5, st->mv);
+        warp_by_mv(m, st->hist, st->mv, st->tmp);
+        m->res->render_s += tdc_sim_now() - t0; /* the compositor's GPU time */
+        return tdc_sim_send_full(m, lf, st->tmp);
+    }
     if ((lf & 1u) == 0u || !st->have_hist) {
         tdc_sim_render_full(m, src, t, spp, 0, 0, st->mv, m->fs, TDC_MV_SURFACE);
         memcpy(st->hist, m->render, m->npx * 3);
@@ -117,6 +158,7 @@ static int warp_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint3
 static void warp_reset(sim_mode_t *m)
 {
     ((warp_state_t *)m->fam)->have_hist = 0;
+    ((warp_state_t *)m->fam)->have_prev = 0;
 }
 
 static void warp_free(sim_mode_t *m)
@@ -126,6 +168,8 @@ static void warp_free(sim_mode_t *m)
         free(st->hist);
         free(st->tmp);
         free(st->mv);
+        free(st->prev);
+        tdc_bm_free(&st->bm);
         free(st);
     }
     m->fam = NULL;

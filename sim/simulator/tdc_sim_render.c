@@ -37,12 +37,13 @@ typedef struct {
     long gt_frame;
     long v_frame;
     double v[2];
+    long f0; /* scene frame of run time 0 (tdc_sim_render_options) */
 } rsrc_t;
 
 static long frame_of(const rsrc_t *c, double t)
 {
     double f = floor(t * c->clock_hz + 1e-9);
-    return f < 0 ? 0 : (long)f;
+    return (f < 0 ? 0 : (long)f) + c->f0;
 }
 
 static void rs_pursuit(tdc_source_t *s, double t, double v[2])
@@ -93,6 +94,19 @@ static int rs_full(tdc_source_t *s, double t, double dt, uint8_t *rgb, int16_t *
     return 0;
 }
 
+void tdc_sim_render_options(tdc_source_t *s, long start_frame, int reflect_mv)
+{
+    rsrc_t *c = s->ctx;
+    c->f0 = start_frame;
+    c->cfg.reflect_mv = reflect_mv ? 1 : 0;
+    tdc_render_set_reflect_mv(c->r, c->cfg.reflect_mv);
+}
+
+static void rs_jitter(tdc_source_t *s, double jx, double jy)
+{
+    tdc_render_set_jitter(((rsrc_t *)s->ctx)->r, jx, jy);
+}
+
 static void rs_ground_truth(tdc_source_t *s, double t, double ox, double oy, double *lin)
 {
     rsrc_t *c = s->ctx;
@@ -113,7 +127,7 @@ static void rs_ground_truth(tdc_source_t *s, double t, double ox, double oy, dou
      * v (t - f/clock) since */
     double v[2];
     rs_pursuit(s, t, v);
-    double dtf = t - (double)f / c->clock_hz;
+    double dtf = t - (double)(f - c->f0) / c->clock_hz;
     ox -= v[0] * dtf;
     oy -= v[1] * dtf;
     for (int y = 0; y < h; y++) {
@@ -543,17 +557,23 @@ tdc_source_t *tdc_sim_render_source(const char *name, int w, int h, int clock_hz
     s->cut = rs_cut;
     s->destroy = rs_destroy;
     s->full_frame = rs_full;
+    s->jitter = rs_jitter;
     s->subframe = rs_subframe;
     s->reduced_frame = rs_reduced;
     s->layered_subframe = rs_layered;
     s->foveated = rs_foveated;
-    s->note = "Embree renderer: full frames at 1 ray per pixel centre; reduced frames are full renders prefiltered "
+    s->note = "Embree renderer: full frames at 1 ray per pixel centre (TAA: + its jitter); reduced frames are full renders prefiltered "
               "by the TRM stage's D (trmXXr/trm50p: the renderer's own REDUCED frames); subframes traced by the "
               "renderer with its own adaptive orderings; foveated frames traced by its FOVEATED mode";
     return s;
 }
 
 #else
+
+void tdc_sim_render_options(tdc_source_t *s, long start_frame, int reflect_mv)
+{
+    (void)s, (void)start_frame, (void)reflect_mv;
+}
 
 tdc_source_t *tdc_sim_render_source(const char *name, int w, int h, int clock_hz, int gt_samples, int threads,
                                     double eye_x, char *err, size_t errlen)

@@ -121,6 +121,9 @@ struct tdc_source {
     int (*foveated)(tdc_source_t *s, const tdc_fov_sampling_t *f, double t, double dt, uint8_t *rgb, int16_t *mv,
                     uint64_t *rays);
     const char *note; /* what this source does not support, for reports */
+    /* Optional, with full_frame: the sub-pixel offset of the following
+     * full frames' samples (TAA jitter); NULL: always pixel centres. */
+    void (*jitter)(tdc_source_t *s, double jx, double jy);
 };
 
 /* Parameters of the built-in scenes. */
