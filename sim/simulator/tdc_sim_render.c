@@ -179,26 +179,36 @@ static void rs_samples(tdc_source_t *s, double t, int n, const double *xy, int s
     free(fmv);
 }
 
-static int rs_subframe(tdc_source_t *s, int slot, int shadow, uint32_t frame, double t, double dt, uint8_t *samples,
-                       int16_t *mv, uint8_t *pattern, uint64_t *rays)
+/* The subframe renderer of one mode's slot, opened on first use with the
+ * given vector passes (its MV history and orderings are the mode's own);
+ * then the subframe's frame index at t, or -1 (bad slot, open failed, or t
+ * not at subframe `frame` of the renderer's 4-cycle). */
+static long rs_sub_frame(rsrc_t *c, int slot, int shadow_mv, int dual_mv, uint32_t frame, double t)
 {
-    rsrc_t *c = s->ctx;
     if (slot < 0 || slot >= RS_SLOTS) {
         return -1;
     }
     if (!c->sub[slot]) {
         tdc_render_config_t cfg = c->cfg;
-        cfg.shadow_mv = shadow ? 1 : 0;
-        cfg.dual_mv = shadow ? 1 : 0;
+        cfg.shadow_mv = shadow_mv;
+        cfg.dual_mv = dual_mv;
         char err[256];
         c->sub[slot] = tdc_render_open(c->scene, &cfg, err, sizeof(err));
         if (!c->sub[slot]) {
             return -1;
         }
     }
-    long f = frame_of(c, t);
-    if ((uint32_t)f % 4u != frame % 4u) {
-        return -1; /* the renderer's cycle follows its frame index */
+    const long f = frame_of(c, t);
+    return (uint32_t)f % 4u == frame % 4u ? f : -1; /* the renderer's cycle follows its frame index */
+}
+
+static int rs_subframe(tdc_source_t *s, int slot, int shadow, uint32_t frame, double t, double dt, uint8_t *samples,
+                       int16_t *mv, uint8_t *pattern, uint64_t *rays)
+{
+    rsrc_t *c = s->ctx;
+    const long f = rs_sub_frame(c, slot, shadow ? 1 : 0, shadow ? 1 : 0, frame, t);
+    if (f < 0) {
+        return -1;
     }
     tdc_render_out_t out;
     memset(&out, 0, sizeof(out));
@@ -354,21 +364,9 @@ static int rs_layered(tdc_source_t *s, int slot, int zeng, uint32_t frame, doubl
                       struct tdc_layer_frame *lf, uint8_t *pattern, uint64_t *rays)
 {
     rsrc_t *c = s->ctx;
-    if (slot < 0 || slot >= RS_SLOTS) {
-        return -1;
-    }
-    if (!c->sub[slot]) {
-        tdc_render_config_t cfg = c->cfg;
-        cfg.shadow_mv = 1; /* the layers need the shadow vectors and weights either way */
-        cfg.dual_mv = 0;
-        char err[256];
-        c->sub[slot] = tdc_render_open(c->scene, &cfg, err, sizeof(err));
-        if (!c->sub[slot]) {
-            return -1;
-        }
-    }
-    long f = frame_of(c, t);
-    if ((uint32_t)f % 4u != frame % 4u) {
+    /* the layers need the shadow vectors and weights either way */
+    const long f = rs_sub_frame(c, slot, 1, 0, frame, t);
+    if (f < 0) {
         return -1;
     }
     tdc_render_out_t out;
