@@ -183,20 +183,27 @@ static void rs_samples(tdc_source_t *s, double t, int n, const double *xy, int s
  * given vector passes (its MV history and orderings are the mode's own);
  * then the subframe's frame index at t, or -1 (bad slot, open failed, or t
  * not at subframe `frame` of the renderer's 4-cycle). */
-static long rs_sub_frame(rsrc_t *c, int slot, int shadow_mv, int dual_mv, uint32_t frame, double t)
+/* Renderer `slot` of a per-mode set (set[RS_SLOTS]), opened with cfg on
+ * first use; NULL for a bad slot or when the open failed. */
+static tdc_render_t *rs_slot(rsrc_t *c, tdc_render_t **set, int slot, const tdc_render_config_t *cfg)
 {
     if (slot < 0 || slot >= RS_SLOTS) {
-        return -1;
+        return NULL;
     }
-    if (!c->sub[slot]) {
-        tdc_render_config_t cfg = c->cfg;
-        cfg.shadow_mv = shadow_mv;
-        cfg.dual_mv = dual_mv;
+    if (!set[slot]) {
         char err[256];
-        c->sub[slot] = tdc_render_open(c->scene, &cfg, err, sizeof(err));
-        if (!c->sub[slot]) {
-            return -1;
-        }
+        set[slot] = tdc_render_open(c->scene, cfg, err, sizeof(err));
+    }
+    return set[slot];
+}
+
+static long rs_sub_frame(rsrc_t *c, int slot, int shadow_mv, int dual_mv, uint32_t frame, double t)
+{
+    tdc_render_config_t cfg = c->cfg;
+    cfg.shadow_mv = shadow_mv;
+    cfg.dual_mv = dual_mv;
+    if (!rs_slot(c, c->sub, slot, &cfg)) {
+        return -1;
     }
     const long f = frame_of(c, t);
     return (uint32_t)f % 4u == frame % 4u ? f : -1; /* the renderer's cycle follows its frame index */
@@ -253,19 +260,12 @@ static int rs_reduced(tdc_source_t *s, int slot, double t, double r, int ss, dou
                       uint64_t *rays)
 {
     rsrc_t *c = s->ctx;
-    if (slot < 0 || slot >= RS_SLOTS) {
+    tdc_render_config_t cfg = c->cfg;
+    cfg.reduced_factor = r;
+    cfg.reduced_ss = ss;
+    cfg.reduced_sigma = sigma;
+    if (!rs_slot(c, c->red, slot, &cfg)) {
         return -1;
-    }
-    if (!c->red[slot]) {
-        tdc_render_config_t cfg = c->cfg;
-        cfg.reduced_factor = r;
-        cfg.reduced_ss = ss;
-        cfg.reduced_sigma = sigma;
-        char err[256];
-        c->red[slot] = tdc_render_open(c->scene, &cfg, err, sizeof(err));
-        if (!c->red[slot]) {
-            return -1;
-        }
     }
     int ow, oh;
     tdc_render_output_size(c->red[slot], TDC_RENDER_REDUCED, &ow, &oh);
