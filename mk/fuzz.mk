@@ -11,6 +11,7 @@ FUZZ_SECONDS ?= 600
 FUZZ_SMOKE_SECONDS ?= 8
 FUZZ_DIR := $(BUILD)/fuzz
 FUZZ_FLAGS := -std=c11 -D_GNU_SOURCE -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
+              -fsanitize-coverage-ignorelist=tests/fuzz/nocov.txt \
               -Ifirmware -I$(GEN) -Isim -Ihosttools/common
 # the link decoder and what it calls (FOVEATED packets: the foveation header and geometry)
 LINK_FW_SRCS := firmware/tdc_wire.c firmware/tdc_link.c firmware/tdc_pixfmt.c firmware/tdc_crc32.c firmware/tdc_layer_link.c \
@@ -56,7 +57,7 @@ FUZZ_SRCS_layers := tests/fuzz/fuzz_layers.c $(LINK_FW_SRCS) firmware/tdc_link_e
 
 define fuzz_target
 $(FUZZ_DIR)/fuzz_$(1): $(FUZZ_SRCS_$(1)) $(FUZZ_DEPS_$(1)) $(wildcard firmware/*.h sim/link/*.h sim/render/*.h) \
-                       $(GEN)/tdc_crc32_tables.h $(GEN)/tdc_fov_tables.h $(GEN)/tdc_panels.h
+                       $(GEN)/tdc_crc32_tables.h $(GEN)/tdc_fov_tables.h $(GEN)/tdc_panels.h tests/fuzz/nocov.txt
 	@mkdir -p $$(@D)
 	$(FUZZ_CC) $(FUZZ_FLAGS) $(FUZZ_CFLAGS_$(1)) $(FUZZ_SRCS_$(1)) -o $$@ $(FUZZ_LIBS_$(1))
 $(FUZZ_DIR)/fuzz-smoke-$(1): $(FUZZ_DIR)/fuzz_$(1) tests/fuzz/smoke.sh mk/fuzz.mk
