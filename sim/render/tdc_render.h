@@ -166,6 +166,10 @@ void tdc_render_set_record(tdc_render_t *r, int on);
 void tdc_render_set_jitter(tdc_render_t *r, double jx, double jy);
 /* Reflected MVs at mirror hits (TDRT §3.1.2) on or off for the following frames (cfg.reflect_mv). */
 void tdc_render_set_reflect_mv(tdc_render_t *r, int on);
+/* Seed of every random number of the following frames (cfg.seed): glossy
+ * lobe samples, area-light samples, ground-truth and reduced-frame
+ * stratification, the indirect bounce. */
+void tdc_render_set_seed(tdc_render_t *r, uint32_t seed);
 
 /* Renders frame `frame` in `mode`.  Returns 0, or -1 on a bad argument. */
 int tdc_render_frame(tdc_render_t *r, uint32_t frame, tdc_render_mode_t mode, const tdc_render_out_t *out,

@@ -262,6 +262,11 @@ void tdc_render_set_reflect_mv(tdc_render_t *r, int on)
     r->cfg.reflect_mv = on != 0;
 }
 
+void tdc_render_set_seed(tdc_render_t *r, uint32_t seed)
+{
+    r->cfg.seed = seed;
+}
+
 void tdc_render_get_features(const tdc_render_t *r, tdc_render_features_t *f)
 {
     *f = r->feat;

@@ -708,7 +708,7 @@ int main(int argc, char **argv)
                 }
                 return image_exit(err);
             }
-            tdc_sim_render_options(s, start_frame, reflect_mv);
+            tdc_sim_render_options(s, start_frame, reflect_mv, cfg.seed);
             if (e) {
                 cfg.right = s;
             } else {

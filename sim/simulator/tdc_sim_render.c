@@ -55,8 +55,12 @@ static void rs_pursuit(tdc_source_t *s, double t, double v[2])
         memset(&p, 0, sizeof(p));
         c->v[0] = c->v[1] = 0.0;
         if (tdc_render_probe(c->r, (uint32_t)(f < 1 ? 1 : f), s->width * 0.5, s->height * 0.5, &p) == 0 && p.hit) {
-            c->v[0] = -p.mv[0] * c->clock_hz;
-            c->v[1] = -p.mv[1] * c->clock_hz;
+            /* a glossy hit's MV is one stochastic sample of eq. 5 (a
+             * different one per seed, up to tens of px): the eye follows
+             * its centre, the previous virtual image (= the MV at mirrors) */
+            const int gl = p.refl_mv_ok && p.mv[0] == p.refl_mv[0] && p.mv[1] == p.refl_mv[1];
+            c->v[0] = -(gl ? p.refl_mu[0] : p.mv[0]) * c->clock_hz;
+            c->v[1] = -(gl ? p.refl_mu[1] : p.mv[1]) * c->clock_hz;
         }
         c->v_frame = f;
     }
@@ -94,12 +98,16 @@ static int rs_full(tdc_source_t *s, double t, double dt, uint8_t *rgb, int16_t *
     return 0;
 }
 
-void tdc_sim_render_options(tdc_source_t *s, long start_frame, int reflect_mv)
+void tdc_sim_render_options(tdc_source_t *s, long start_frame, int reflect_mv, uint32_t seed)
 {
     rsrc_t *c = s->ctx;
     c->f0 = start_frame;
     c->cfg.reflect_mv = reflect_mv ? 1 : 0;
     tdc_render_set_reflect_mv(c->r, c->cfg.reflect_mv);
+    /* the per-mode renderers (rs_slot) open later from c->cfg */
+    c->cfg.seed = seed;
+    tdc_render_set_seed(c->r, seed);
+    c->gt_frame = -1;
 }
 
 static void rs_jitter(tdc_source_t *s, double jx, double jy)
@@ -568,9 +576,9 @@ tdc_source_t *tdc_sim_render_source(const char *name, int w, int h, int clock_hz
 
 #else
 
-void tdc_sim_render_options(tdc_source_t *s, long start_frame, int reflect_mv)
+void tdc_sim_render_options(tdc_source_t *s, long start_frame, int reflect_mv, uint32_t seed)
 {
-    (void)s, (void)start_frame, (void)reflect_mv;
+    (void)s, (void)start_frame, (void)reflect_mv, (void)seed;
 }
 
 tdc_source_t *tdc_sim_render_source(const char *name, int w, int h, int clock_hz, int gt_samples, int threads,

@@ -20,8 +20,10 @@
 tdc_source_t *tdc_sim_render_source(const char *name, int w, int h, int clock_hz, int gt_samples, int threads,
                                     double eye_x, char *err, size_t errlen);
 /* Before the first frame: time 0 of the run is the scene's frame start_frame
- * (a multiple of 4, so the subframe cycle stays aligned), and reflected MVs
- * at mirror hits on (1, the default) or off (primary MVs, TDRT Fig. 6 left). */
-void tdc_sim_render_options(tdc_source_t *s, long start_frame, int reflect_mv);
+ * (a multiple of 4, so the subframe cycle stays aligned), reflected MVs
+ * at mirror hits on (1, the default) or off (primary MVs, TDRT Fig. 6 left),
+ * and the renderer's seed (tdc-sim -S: every random number of the renderer,
+ * i.e. glossy and area-light samples and the ground truth's stratification). */
+void tdc_sim_render_options(tdc_source_t *s, long start_frame, int reflect_mv, uint32_t seed);
 
 #endif

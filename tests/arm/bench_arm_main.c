@@ -329,9 +329,11 @@ static void bench_fov(uint8_t taa, const char *label)
 #define LAYER_T ((LAYER_W / 2u) * (LAYER_H / 2u))
 #define g_lasm_arena g_arena
 _Static_assert(TDC_LASM_MEM_BYTES(LAYER_W, LAYER_H) <= sizeof g_arena, "layered arena in the shared bench arena");
-static uint8_t g_lval[TDC_LAYER_MAX][LAYER_T * 3u];
-static int16_t g_lmv[TDC_LAYER_MAX][LAYER_T * 2u];
-static uint16_t g_lw[LAYER_T];
+/* the layered samples (383 KiB) in external RAM: in the DTCM they overflowed
+ * the M55's 512 KiB (mps3-an547 bench image did not link) */
+static uint8_t g_lval[TDC_LAYER_MAX][LAYER_T * 3u] TDC_EXTRAM;
+static int16_t g_lmv[TDC_LAYER_MAX][LAYER_T * 2u] TDC_EXTRAM;
+static uint16_t g_lw[LAYER_T] TDC_EXTRAM;
 static uint8_t g_lpat[TDC_PATTERN_BYTES(LAYER_W, LAYER_H)];
 static tdc_lasm_t g_lasm;
 
