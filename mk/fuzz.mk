@@ -15,6 +15,7 @@ FUZZ_FLAGS := -std=c11 -D_GNU_SOURCE -g -O1 -fsanitize=fuzzer,address,undefined 
               -Ifirmware -I$(GEN) -Isim -Ihosttools/common
 # the link decoder and what it calls (FOVEATED packets: the foveation header and geometry)
 LINK_FW_SRCS := firmware/tdc_wire.c firmware/tdc_link.c firmware/tdc_pixfmt.c firmware/tdc_crc32.c firmware/tdc_layer_link.c \
+                firmware/tdc_band_link.c \
                 firmware/tdc_fov.c firmware/tdc_fov_link.c firmware/tdc_math.c
 
 # name: harness + sources [+ flags, libraries]
