@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""tdc_crops.py RUNDIR [--crop N] [--thumb W] [--keep-strips]
+"""tdc_crops.py RUNDIR [--crop N] [--thumb W] [--pick-diff A,B] [--keep-strips]
 
 Picture strips of a large tdc-sim run as a report can show them: 1:1 crops
 where the artefacts are, plus downscaled full frames.
@@ -11,7 +11,9 @@ above).  For every run this picks ONE window of N x N panel pixels (default
 192), the same for every mode so the modes compare side by side: the window
 with the largest FLIP error summed over the modes other than `full` (the
 artefacts the reduced modes add), or over all modes when `full` is the only
-one.  It writes
+one; with --pick-diff A,B the window where the perceived frames of modes A
+and B differ most (summed absolute difference: e.g. the shadow or the
+reflection region, where two kinds of motion vectors part).  It writes
     RUNDIR/crops.png     one row per mode: ground truth | perceived | FLIP, 1:1
     RUNDIR/frames.png    full perceived frames downscaled to W px (default 480)
                          per mode, the crop window outlined in the first
@@ -82,9 +84,17 @@ def main(argv):
     P = {m: panels(os.path.join(run, "strip_%s.png" % m)) for m in modes}
     others = [m for m in modes if m != "full"] or modes
     err = sum(heat_to_error(P[m][3]) for m in others)
+    picked_by = "max FLIP summed over " + ",".join(others)
+    if "--pick-diff" in argv:
+        pa, pb = argv[argv.index("--pick-diff") + 1].split(",")
+        if pa not in P or pb not in P:
+            print("tdc_crops: %s: --pick-diff %s,%s: no such strips" % (run, pa, pb), file=sys.stderr)
+            return 1
+        err = np.abs(P[pa][1].astype(np.float64) - P[pb][1].astype(np.float64)).sum(axis=2)
+        picked_by = "largest difference between the perceived frames of %s and %s" % (pa, pb)
     gz = None
     gzp = os.path.join(run, "strip_gaze.json")
-    if os.path.isfile(gzp):
+    if os.path.isfile(gzp) and "--pick-diff" not in argv:  # a region of interest instead of the gaze
         gz = json.load(open(gzp))
         sc0 = P[modes[0]][1].shape[1] / max(1, gz["width"])  # panel magnification
         gx, gy, gr = gz["x"] * sc0, gz["y"] * sc0, gz["r"] * sc0
@@ -146,7 +156,7 @@ def main(argv):
     sheet.save(os.path.join(run, "frames.png"), optimize=True)
     with open(os.path.join(run, "crops.json"), "w") as f:
         j = {"x": x, "y": y, "n": n, "width": int(w), "height": int(h), "thumb_scale": sc,
-             "modes": modes, "picked_by": "max FLIP summed over " + ",".join(others)}
+             "modes": modes, "picked_by": picked_by}
         if gz:
             j["fovea"] = {"x": wins[0][0], "y": wins[0][1], "gaze": [gx, gy], "r": gr}
         json.dump(j, f)

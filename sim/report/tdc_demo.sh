@@ -41,6 +41,8 @@ lasm-fence|-s fence -r 240 -g 160x120 -m asm-adaptive,asm-adaptive-smv,lasm-ordi
 asm-pan|-s pan -r 240 -m asm-family -d 0.25
 render-panorama|-R panorama -r 90 -m trm-family -n 36
 render-fence|-R fence -r 240 -m full,full60,taa60,asm-adaptive,asm-adaptive-smv -d 0.2
+lasm-render-fence|-R fence -r 240 -g 160x120 -m full,asm-adaptive-smv,lasm-ordinary,lasm-zeng,lasm-zeng-clean -d 0.2
+lasm-render-glossy|-R glossy -r 240 -g 160x120 --gt-ss 8 -m full,lasm-ordinary,lasm-zeng,lasm-zeng-clean -d 0.2
 stiff-long|-s pan -r 90 -g 16x16 -n 100000 --metric-every 1000 -m full,trm50 --gt-ss 2
 stiff-cut|-s cut -r 90 -m trm-family -n 36
 stiff-cut240|-s cut -r 240 -m full,asm-adaptive,taa60 -d 0.2

@@ -11,7 +11,12 @@ t0=$(date +%s)
 # shellcheck disable=SC2086
 if /usr/bin/time -o "$OUT/$name/time.txt" -f '%U %S %M' \
         "$SIM" -l "$name" -o "$OUT/$name" -g 128x96 --mono $args > "$OUT/$name/stdout.txt" 2> "$OUT/$name/stderr.txt"; then
-    case $name in hs-*|fov-render) /usr/bin/python3 sim/report/tdc_crops.py "$OUT/$name" >> "$OUT/$name/stderr.txt" 2>&1 ;; esac
+    case $name in
+    hs-*|fov-render) /usr/bin/python3 sim/report/tdc_crops.py "$OUT/$name" >> "$OUT/$name/stderr.txt" 2>&1 ;;
+    # the layered runs: the window where ordinary and Zeng vectors part (shadow, reflection)
+    lasm-render-*) /usr/bin/python3 sim/report/tdc_crops.py "$OUT/$name" --crop 160 --pick-diff lasm-ordinary,lasm-zeng \
+                   >> "$OUT/$name/stderr.txt" 2>&1 ;;
+    esac
     cpu=$(awk '{printf "%.0f s CPU, %.2f GB peak", $1 + $2, $3 / 1048576}' "$OUT/$name/time.txt")
     echo "$name ok ($(( $(date +%s) - t0 )) s wall, $cpu): tdc-sim $args" >> "$OUT/demo.log"
 else

@@ -18,7 +18,7 @@ out = sys.argv[1]
 secs = sys.argv[2] if len(sys.argv) > 2 else "?"
 
 ORDER = ["hs-trm-dune", "hs-trm-wings", "hs-render-panorama", "hs-asm-blinds", "hs-render-text", "hs-fov-dune",
-         "hs-fov-render", "trm-pan", "trm-discs", "trm-static", "trm-lcd", "ncsfi-slow", "ncsfi-fast", "asm-thin", "asm-fence", "lasm-fence",
+         "hs-fov-render", "trm-pan", "trm-discs", "trm-static", "trm-lcd", "ncsfi-slow", "ncsfi-fast", "asm-thin", "asm-fence", "lasm-fence", "lasm-render-fence", "lasm-render-glossy",
          "asm-pan", "render-panorama", "render-fence", "stiff-long", "stiff-cut", "stiff-cut240", "stiff-fast", "stiff-black", "stiff-white",
          "stiff-black240", "stiff-white240"]
 DESC = {
@@ -49,6 +49,12 @@ DESC = {
     "lasm-fence": "The fence in layers (docs/layers.md, 160x120, 240 Hz): shading and visibility sent separately, "
                   "each reprojected with its own vector and recombined; ordinary vectors vs Zeng's (splatted "
                   "shadow vectors), 1 / 3 sigma clamp, clean-up.",
+    "lasm-render-fence": "The Embree fence in layers (160x120, 240 Hz, docs/layers.md): the renderer's shading, "
+                         "visibility (eq. 4 falloff) and vectors; ordinary vs Zeng's shadow vectors, the clean-up; "
+                         "the crops show the shadow region (where the two kinds of vectors part).",
+    "lasm-render-glossy": "The Embree glossy floor in layers (GGX roughness 0.08, 160x120, 240 Hz, 64-ray ground "
+                          "truth): ordinary vs stochastic glossy vectors (Zeng eq. 5); the crops show the reflection "
+                          "region where the two part. 5-seed figures: the zeng-layers experiment group.",
     "asm-pan": "Panned texture at 240 Hz: tile-ordered assembly vs full rate, 60 Hz and TAA.",
     "render-panorama": "Embree renderer (sim/render, built-in scene `panorama`: camera yawing over a skyline drum), "
                        "1 ray per pixel centre, ground truth 16 rays per pixel, 90 Hz OLED.",
@@ -294,10 +300,11 @@ with open(os.path.join(out, "index.md"), "w") as f:
                             f"disk radius {fv['r']:.0f} px) and the periphery (the window at ({c['x']}, {c['y']}) "
                             "with the largest FLIP outside the disk): ground truth | perceived | FLIP, each\n\n")
                 else:
-                    f.write(f"1:1 crops at the middle of the run: the {c['n']}x{c['n']} window at ({c['x']}, {c['y']}) of "
-                            f"the {c['width']}x{c['height']} evaluated interior where the FLIP error of the reduced modes "
-                            "is largest (the same window for every mode): perceived ground truth | perceived | FLIP "
-                            "error map\n\n")
+                    where = ("where the FLIP error of the reduced modes is largest"
+                             if c.get("picked_by", "").startswith("max FLIP") else "with the " + c["picked_by"])
+                    f.write(f"1:1 crops of the strip panels at the middle of the run: the {c['n']}x{c['n']} "
+                            f"window at ({c['x']}, {c['y']}) of the {c['width']}x{c['height']} evaluated interior {where} "
+                            "(the same window for every mode): perceived ground truth | perceived | FLIP error map\n\n")
                 f.write(f"![crops]({n}/crops.png)\n\n")
                 f.write("Full frames, downscaled (foveated runs: the gaze and the disk in cyan): the ground truth with the crop window(s) in red, then the perceived "
                         "frame of each mode in the order above\n\n")
