@@ -205,6 +205,12 @@ static struct {
     uint32_t bands;         /* row bands taken */
     uint32_t band_drops;    /* pictures dropped whole (a bad or missing band): the eye kept its image */
     uint32_t eye_copies;    /* kept eyes copied front -> back before a swap */
+    uint8_t bopen[2];       /* eye's picture in flight has its stages open */
+    uint32_t bfinal[2];     /* ... and this many output rows (from the top) final */
+    uint32_t lcd_resets;    /* LCD history reset: a picture dropped after LCD rows ran */
+    uint32_t held_max[2];   /* rows a band leaves not final (FULL, REDUCED: full-res rows) */
+    uint64_t held_sum[2];
+    uint32_t held_n[2];
 #endif
 #if TDC_CFG_TRM
     tdc_trm_t trm[FW_EYES];
@@ -560,6 +566,121 @@ static void eye_done(uint32_t e)
     }
 }
 
+#if TDC_CFG_BANDS
+/* Marks around the work a band's event starts (its decode to the back
+ * buffer and the stages it lets run): the latency from its last byte to
+ * its pixels being final, counted on Cortex-M by the QEMU plugin
+ * (tests/arm/band_latency.sh). */
+void tdc_fw_band_in(void);
+void tdc_fw_band_out(void);
+__attribute__((noinline, used)) void tdc_fw_band_in(void)
+{
+    __asm__ volatile("" ::: "memory");
+}
+__attribute__((noinline, used)) void tdc_fw_band_out(void)
+{
+    __asm__ volatile("" ::: "memory");
+}
+
+/* Eye e's picture in flight was dropped: rows the LCD inverse already ran
+ * hold that picture's history, so the eye's LCD starts again without
+ * history (never from a mixed one); TRM's kept state was invalidated when
+ * the full frame began (tdc_trm_full_begin), a reduced frame keeps none. */
+static void band_abandon(uint32_t e)
+{
+    if (e >= FW_EYES || !g.bopen[e]) {
+        return;
+    }
+    g.bopen[e] = 0;
+#if TDC_CFG_LCD
+    if (g.lcd_ok && g.bfinal[e] > 0u) {
+        tdc_lcd_reset(&g.lcd[e]);
+        g.lcd_resets++;
+    }
+#endif
+}
+
+/* The stages a band lets run, in the eye's part of the back buffer: TRM's
+ * full-res path (D rows as its kernel rows arrive, then the output rows
+ * whose U rows are done) or reduced path (output rows whose reduced rows
+ * are there), then the LCD inverse on the rows that became final.  The
+ * last band closes the frame of each stage and completes the eye. */
+static void band_stages(uint32_t e, uint32_t kind, const tdc_band_hdr_t *bh)
+{
+    uint8_t *fb = FB_BACK + (size_t)e * FW_W * 3u;
+    const int last = bh->index + 1u == bh->count;
+    const uint32_t avail = (uint32_t)bh->first_row + bh->rows;
+    uint32_t done = avail, covered = avail; /* output rows final; output rows the arrived rows cover */
+    tdc_status_t st = TDC_OK;
+    tdc_res_t *residual = NULL;
+    if (bh->index == 0u) {
+        g.bopen[e] = 1;
+        g.bfinal[e] = 0;
+    }
+    switch (g.mode) {
+    case MODE_PLAIN:
+        break;
+#if TDC_CFG_TRM
+    case MODE_TRM: {
+        tdc_trm_t *t = &g.trm[e];
+        if (kind == TDC_LINK_KIND_FULL) {
+            if (bh->index == 0u) {
+                st = tdc_trm_full_begin(t, fb, FW_STRIDE, fb, FW_STRIDE); /* in place: D reads a row before it is written */
+            }
+            if (st == TDC_OK) {
+                st = last ? tdc_trm_full_end(t, g.frame) : tdc_trm_full_rows(t, avail, &done);
+            }
+        } else {
+            uint32_t rw = 0, rh = 0;
+            tdc_link_reduced_size(&g.dec, &rw, &rh);
+            if (bh->index == 0u) {
+                st = tdc_trm_reduced_begin(t, g_reduced[e], rw * 3u, fb, FW_STRIDE, g.frame);
+            }
+            if (st == TDC_OK) {
+                st = last ? tdc_trm_reduced_end(t) : tdc_trm_reduced_rows(t, avail, &done);
+            }
+            covered = rh ? (uint32_t)(((uint64_t)avail * FW_H) / rh) : FW_H;
+        }
+        residual = tdc_trm_residual(t);
+        break;
+    }
+#endif
+    default: st = TDC_ERR_STATE; break;
+    }
+    if (last) {
+        done = covered = FW_H;
+    }
+    if (st != TDC_OK) {
+        g.stage_errors++;
+        band_abandon(e);
+        eye_done(e);
+        return;
+    }
+#if TDC_CFG_LCD
+    if (g.lcd_ok && done > g.bfinal[e] &&
+        tdc_lcd_rows(&g.lcd[e], fb, FW_STRIDE, fb, FW_STRIDE, residual, g.bfinal[e], done) != TDC_OK) {
+        g.stage_errors++;
+    }
+#endif
+    (void)residual;
+    g.bfinal[e] = done;
+    const uint32_t k = kind == TDC_LINK_KIND_FULL ? 0u : 1u, held = covered > done ? covered - done : 0u;
+    g.held_max[k] = held > g.held_max[k] ? held : g.held_max[k];
+    g.held_sum[k] += held;
+    g.held_n[k]++;
+    if (last) {
+#if TDC_CFG_LCD
+        if (g.lcd_ok) {
+            tdc_lcd_frame_done(&g.lcd[e]);
+        }
+#endif
+        g.bopen[e] = 0;
+        g.eyes_updated = (uint8_t)(g.eyes_updated | (1u << e));
+        eye_done(e);
+    }
+}
+#endif
+
 /* A pixel packet of the current or a later frame failed its payload CRC:
  * that eye keeps its image for this frame.  A rejected packet never moves
  * the loop's notion of time (its frame index is not trusted: only the
@@ -575,6 +696,7 @@ static void on_rejected(const tdc_link_event_t *ev)
 #if TDC_CFG_BANDS
     if (ev->error == TDC_LINK_ERR_BAND_DROPPED) {
         g.band_drops++;
+        band_abandon(ev->eye);
     }
 #endif
     if (g.mode == MODE_NONE || !lost || ev->eye >= FW_EYES ||
@@ -614,29 +736,26 @@ static void late_full(uint32_t e, uint32_t frame)
 
 /* A row band of the current frame (FULL or REDUCED, due for its eye): a
  * FULL band is unpacked at its rows of the eye's part of the back buffer
- * (the decoder wrote a REDUCED band into g_reduced itself); the picture's
- * last band completes the eye, which is then processed like a whole
- * packet. */
+ * (the decoder wrote a REDUCED band into g_reduced itself), then the
+ * stages run on what it completes (band_stages). */
 static void on_band(const tdc_link_event_t *ev)
 {
 #if TDC_CFG_BANDS
     const uint32_t e = ev->eye;
     const tdc_band_hdr_t *bh = tdc_link_band(&g.dec, e);
+    tdc_fw_band_in();
     g.bands++;
-    if (!bh || (g.eyes_done & (1u << e))) {
+    if (!bh || (g.eyes_done & (1u << e)) || (bh->index > 0u && !g.bopen[e])) {
         return;
     }
     if (ev->kind == TDC_LINK_KIND_FULL && tdc_link_unpack_full(&g.dec, FB_BACK + (size_t)e * FW_W * 3u, FW_STRIDE) != TDC_OK) {
         g.stage_errors++;
         return;
     }
-    if (bh->index + 1u == bh->count) {
-        g.kinds[e] = (uint8_t)(g.kinds[e] | KIND_BIT(ev->kind));
-        if (process_eye_kinds(e, g.frame, KIND_BIT(ev->kind))) {
-            g.eyes_updated = (uint8_t)(g.eyes_updated | (1u << e));
-        }
-        eye_done(e);
-    }
+    /* (g.kinds stays clear: finish_frame must never run an eye's stages
+     * on a picture whose bands did not all come) */
+    band_stages(e, ev->kind, bh);
+    tdc_fw_band_out();
 #else
     (void)ev; /* configure_stream refuses band streams without a back buffer */
 #endif
@@ -801,6 +920,13 @@ int tdc_fw_run(void)
     log_kv("row bands: ", g.bands);
     log_kv("pictures dropped (bad or missing band): ", g.band_drops);
     log_kv("kept eyes copied before a swap: ", g.eye_copies);
+    log_kv("LCD history resets (picture dropped after its first LCD rows): ", g.lcd_resets);
+    log_kv("rows a FULL band leaves not final, max: ", g.held_max[0]);
+    log_kv("rows a FULL band leaves not final, mean x100: ",
+           g.held_n[0] ? (uint32_t)(g.held_sum[0] * 100u / g.held_n[0]) : 0u);
+    log_kv("rows a REDUCED band leaves not final, max: ", g.held_max[1]);
+    log_kv("rows a REDUCED band leaves not final, mean x100: ",
+           g.held_n[1] ? (uint32_t)(g.held_sum[1] * 100u / g.held_n[1]) : 0u);
 #endif
 #if TDC_CFG_TRM
     if (g.mode == MODE_TRM) {
