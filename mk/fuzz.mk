@@ -19,7 +19,7 @@ LINK_FW_SRCS := firmware/tdc_wire.c firmware/tdc_link.c firmware/tdc_pixfmt.c fi
                 firmware/tdc_fov.c firmware/tdc_fov_link.c firmware/tdc_math.c
 
 # name: harness + sources [+ flags, libraries]
-FUZZ_ALL := link usbproto usbreply panel tdcs scene frameloop meas fov layers
+FUZZ_ALL := link usbproto usbreply panel tdcs scene frameloop meas fov layers bands
 FUZZ_TARGETS ?= $(FUZZ_ALL)
 FUZZ_SRCS_link := tests/fuzz/fuzz_link.c $(LINK_FW_SRCS)
 FUZZ_SRCS_usbproto := tests/fuzz/fuzz_usbproto.c firmware/tdc_usbproto.c firmware/tdc_crc32.c
@@ -57,6 +57,8 @@ FUZZ_SRCS_fov := tests/fuzz/fuzz_fov.c firmware/tdc_fov.c firmware/tdc_fov_link.
 FUZZ_DEPS_fov := $(GEN)/tdc_fov_tables.h
 # the layered subframe kind through the decoder (seeds: tests/fuzz/corpus-layers)
 FUZZ_SRCS_layers := tests/fuzz/fuzz_layers.c $(LINK_FW_SRCS) firmware/tdc_link_encode.c
+# the row-band mode through the decoder, with a model of each eye's picture in flight (seeds: tests/fuzz/corpus-bands)
+FUZZ_SRCS_bands := tests/fuzz/fuzz_bands.c $(LINK_FW_SRCS) firmware/tdc_link_encode.c
 
 define fuzz_target
 $(FUZZ_DIR)/fuzz_$(1): $(FUZZ_SRCS_$(1)) $(FUZZ_DEPS_$(1)) $(wildcard firmware/*.h sim/link/*.h sim/render/*.h) \
