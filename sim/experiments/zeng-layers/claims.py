@@ -56,7 +56,7 @@ GLOSSY_WHY = ("the glossy scene's camera is still and most of the floor reflects
               "vectors are zero, so the assembly keeps those pixels static and averages the 1-spp GGX layer over "
               "the 4-sample window, while the eq. 5 vectors (mean |m| 8.7 px at 128x96, 72 % of the glossy "
               "samples non-zero) make the floor dynamic: each pixel is one reprojected 1-spp sample, clamped to "
-              "the 1-3 neighbours traced in the same refresh (docs/layers.md, 'Glossy floor'); Zeng's Fig. 11 "
+              "the 1-4 neighbours traced in the same refresh (docs/layers.md, 'Glossy goal: not met'); Zeng's Fig. 11 "
               "compares under TAA (exponential accumulation for both) with a moving camera")
 
 
