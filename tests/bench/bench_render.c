@@ -80,6 +80,30 @@ static struct RTCRay bare_ray(const tdc_render_ray_t *r)
                            r->dir[2], 0,         r->tfar,   0xFFFFFFFFu, 0,         0};
 }
 
+/* Packet q of the m <= 16 recorded rays r[0..m) (lanes beyond m inactive,
+ * holding a copy of r[0]), hits cleared. */
+static void fill16(struct RTCRayHit16 *q, int valid[16], const tdc_render_ray_t *r, size_t m)
+{
+    for (int k = 0; k < 16; k++) {
+        const tdc_render_ray_t *a = &r[(size_t)k < m ? (size_t)k : 0];
+        valid[k] = (size_t)k < m ? -1 : 0;
+        q->ray.org_x[k] = a->org[0];
+        q->ray.org_y[k] = a->org[1];
+        q->ray.org_z[k] = a->org[2];
+        q->ray.tnear[k] = a->tnear;
+        q->ray.dir_x[k] = a->dir[0];
+        q->ray.dir_y[k] = a->dir[1];
+        q->ray.dir_z[k] = a->dir[2];
+        q->ray.time[k] = 0;
+        q->ray.tfar[k] = a->tfar;
+        q->ray.mask[k] = 0xFFFFFFFFu;
+        q->ray.id[k] = 0;
+        q->ray.flags[k] = 0;
+        q->hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+        q->hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+    }
+}
+
 static void *replay_main(void *arg)
 {
     replay_t *p = arg;
@@ -112,24 +136,7 @@ static void *replay_main(void *arg)
         } else if (p->how == BARE_PACKET16) {
             _Alignas(64) int valid[16];
             _Alignas(64) struct RTCRayHit16 q;
-            for (int k = 0; k < 16; k++) {
-                const tdc_render_ray_t *a = &p->rays[i + ((size_t)k < m ? (size_t)k : 0)];
-                valid[k] = (size_t)k < m ? -1 : 0;
-                q.ray.org_x[k] = a->org[0];
-                q.ray.org_y[k] = a->org[1];
-                q.ray.org_z[k] = a->org[2];
-                q.ray.tnear[k] = a->tnear;
-                q.ray.dir_x[k] = a->dir[0];
-                q.ray.dir_y[k] = a->dir[1];
-                q.ray.dir_z[k] = a->dir[2];
-                q.ray.time[k] = 0;
-                q.ray.tfar[k] = a->tfar;
-                q.ray.mask[k] = 0xFFFFFFFFu;
-                q.ray.id[k] = 0;
-                q.ray.flags[k] = 0;
-                q.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
-                q.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
-            }
+            fill16(&q, valid, &p->rays[i], m);
             if (occ) {
                 rtcOccluded16(valid, sc, &ctx, &q.ray);
                 for (size_t k = 0; k < m; k++) hits += q.ray.tfar[k] < 0;
@@ -212,26 +219,8 @@ static double packet_probe(const tdc_render_ray_t *rays, size_t n, RTCScene sc, 
     c0 = cpu_ms();
     for (size_t i = 0; i < n; i += 16) {
         _Alignas(64) int valid[16];
-        struct RTCRayHit16 p;
-        for (int k = 0; k < 16; k++) {
-            size_t j = i + (size_t)k < n ? i + (size_t)k : n - 1;
-            const tdc_render_ray_t *r = &rays[j];
-            valid[k] = i + (size_t)k < n ? -1 : 0;
-            p.ray.org_x[k] = r->org[0];
-            p.ray.org_y[k] = r->org[1];
-            p.ray.org_z[k] = r->org[2];
-            p.ray.tnear[k] = r->tnear;
-            p.ray.dir_x[k] = r->dir[0];
-            p.ray.dir_y[k] = r->dir[1];
-            p.ray.dir_z[k] = r->dir[2];
-            p.ray.time[k] = 0;
-            p.ray.tfar[k] = r->tfar;
-            p.ray.mask[k] = 0xFFFFFFFFu;
-            p.ray.id[k] = 0;
-            p.ray.flags[k] = 0;
-            p.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
-            p.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
-        }
+        _Alignas(64) struct RTCRayHit16 p;
+        fill16(&p, valid, &rays[i], n - i < 16 ? n - i : 16);
         rtcIntersect16(valid, sc, &ctx16, &p);
         for (int k = 0; k < 16 && i + (size_t)k < n; k++) {
             float *o = h16[i + (size_t)k];
