@@ -333,19 +333,43 @@ void tdc_lcd_reset(tdc_lcd_t *st)
 tdc_status_t tdc_lcd_frame(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_stride, uint8_t *drive,
                            uint32_t out_stride, tdc_res_t *residual)
 {
-    if (!st || !wanted || !drive || in_stride < st->cfg.width * 3u || out_stride < st->cfg.width * 3u) {
+    const tdc_status_t r = tdc_lcd_rows(st, wanted, in_stride, drive, out_stride, residual, 0, st ? st->cfg.height : 0u);
+    if (r == TDC_OK) {
+        tdc_lcd_frame_done(st);
+    }
+    return r;
+}
+
+void tdc_lcd_frame_done(tdc_lcd_t *st)
+{
+    st->stats.frames++;
+    if (st->cfg.mode == TDC_LCD_MODE_GAMMA) {
+        return; /* no history */
+    }
+    if (!st->have_history) {
+        st->stats.first_frames++;
+    }
+    st->have_history = 1;
+    if (TDC_LCD_MODE_IS_STATEFUL(st->cfg.mode)) {
+        st->st_phase ^= 1u;
+    }
+}
+
+tdc_status_t tdc_lcd_rows(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_stride, uint8_t *drive,
+                          uint32_t out_stride, tdc_res_t *residual, uint32_t y0, uint32_t y1)
+{
+    if (!st || !wanted || !drive || in_stride < st->cfg.width * 3u || out_stride < st->cfg.width * 3u ||
+        y0 > y1 || y1 > st->cfg.height) {
         return TDC_ERR_ARG;
     }
     const uint32_t w3 = st->cfg.width * 3u;
-    const uint32_t h = st->cfg.height;
-    st->stats.frames++;
     if (TDC_LCD_MODE_IS_STATEFUL(st->cfg.mode)) {
-        tdc_lcd_st_frame(st, wanted, in_stride, drive, out_stride, residual);
+        tdc_lcd_st_rows(st, wanted, in_stride, drive, out_stride, residual, y0, y1);
         return TDC_OK;
     }
     if (st->cfg.mode == TDC_LCD_MODE_GAMMA) {
         /* Plain gamma inverse: the wanted code is the drive; no history needed. */
-        for (uint32_t y = 0; y < h; y++) {
+        for (uint32_t y = y0; y < y1; y++) {
             const uint8_t *in = wanted + (size_t)y * in_stride;
             uint8_t *out = drive + (size_t)y * out_stride;
             if (in != out) {
@@ -361,10 +385,7 @@ tdc_status_t tdc_lcd_frame(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_str
     const int first = !st->have_history;
     const uint32_t half = st->half_lsb_q16;
     uint64_t n_root = 0, n_low = 0, n_high = 0, n_res = 0, n_drop = 0;
-    if (first) {
-        st->stats.first_frames++;
-    }
-    for (uint32_t y = 0; y < h; y++) {
+    for (uint32_t y = y0; y < y1; y++) {
         const uint8_t *in = wanted + (size_t)y * in_stride;
         uint8_t *out = drive + (size_t)y * out_stride;
         size_t s = (size_t)y * w3;
@@ -438,7 +459,6 @@ tdc_status_t tdc_lcd_frame(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_str
             ch = ch == 2u ? 0u : ch + 1u;
         }
     }
-    st->have_history = 1;
     st->stats.roots += n_root;
     st->stats.clamped_low += n_low;
     st->stats.clamped_high += n_high;

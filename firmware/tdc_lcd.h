@@ -303,6 +303,21 @@ TDC_MUST_CHECK
 tdc_status_t tdc_lcd_frame(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_stride, uint8_t *drive,
                            uint32_t out_stride, tdc_res_t *residual);
 
+/*
+ * Rows in flight (issue 17 item 2): the frame of tdc_lcd_frame in pieces.
+ * tdc_lcd_rows runs rows [y0, y1) of the current frame (wanted, drive and
+ * residual are the frame's, not the rows'; rows are independent, any order,
+ * each once); tdc_lcd_frame_done closes it (the history then is this
+ * frame's).  tdc_lcd_frame = rows [0, H) + done: the same bytes.  A frame
+ * abandoned mid-way (its picture dropped) leaves the rows it ran with the
+ * new history: the caller then calls tdc_lcd_reset (the next frame starts
+ * without history, never from a mixed one).
+ */
+TDC_MUST_CHECK
+tdc_status_t tdc_lcd_rows(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_stride, uint8_t *drive,
+                          uint32_t out_stride, tdc_res_t *residual, uint32_t y0, uint32_t y1);
+void tdc_lcd_frame_done(tdc_lcd_t *st);
+
 /* Bytes of both previous-frame buffers for a W x H eye at prev_bits. */
 size_t tdc_lcd_history_bytes(uint32_t width, uint32_t height, unsigned prev_bits);
 
@@ -315,7 +330,7 @@ size_t tdc_lcd_cfg_history_bytes(const tdc_lcd_config_t *cfg);
  * tdc_lcd_frame: table validation, the dense lookup build, one frame. */
 tdc_lcd_table_fault_t tdc_lcd_st_validate(const tdc_lcd_rate_t *rate);
 void tdc_lcd_st_build(tdc_lcd_t *st);
-void tdc_lcd_st_frame(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_stride, uint8_t *drive, uint32_t out_stride,
-                      tdc_res_t *residual);
+void tdc_lcd_st_rows(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_stride, uint8_t *drive, uint32_t out_stride,
+                     tdc_res_t *residual, uint32_t y0, uint32_t y1);
 
 #endif /* TDC_LCD_H */

@@ -410,10 +410,10 @@ static uint32_t st_row_general(tdc_lcd_t *st, const st_chan_t ch[3], const uint8
     return nmiss;
 }
 
-void tdc_lcd_st_frame(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_stride, uint8_t *drive, uint32_t out_stride,
-                      tdc_res_t *residual)
+void tdc_lcd_st_rows(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_stride, uint8_t *drive, uint32_t out_stride,
+                     tdc_res_t *residual, uint32_t y0, uint32_t y1)
 {
-    const uint32_t w3 = st->cfg.width * 3u, h = st->cfg.height;
+    const uint32_t w3 = st->cfg.width * 3u;
     const unsigned bits = st->cfg.prev_bits;
     const uint32_t nq = 1u << bits;
     uint8_t *state = st->prev_drive;
@@ -428,10 +428,7 @@ void tdc_lcd_st_frame(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_stride, 
                             st->st_lhi + k,        st->st_llo + k, &st->panel->gamma[c]};
     }
     uint64_t missed = 0;
-    if (!st->have_history) {
-        st->stats.first_frames++;
-    }
-    for (uint32_t y = 0; y < h; y++) {
+    for (uint32_t y = y0; y < y1; y++) {
         const uint8_t *in = wanted + (size_t)y * in_stride;
         uint8_t *out = drive + (size_t)y * out_stride;
         const size_t s0 = (size_t)y * w3;
@@ -459,8 +456,6 @@ void tdc_lcd_st_frame(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_stride, 
         }
     }
     if (st->have_history) {
-        st->stats.roots += (uint64_t)w3 * h - missed;
+        st->stats.roots += (uint64_t)w3 * (y1 - y0) - missed;
     }
-    st->have_history = 1;
-    st->st_phase ^= 1u;
 }

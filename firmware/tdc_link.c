@@ -120,7 +120,7 @@ tdc_status_t tdc_link_decoder_init(tdc_link_decoder_t *dec, const tdc_link_confi
         return TDC_ERR_SIZE;
     }
     for (unsigned e = 0; e < cfg->eyes; e++) {
-        if (buffers->full[e] && !buffers->defer_full && buffers->full_stride < (uint32_t)cfg->width * 3u) {
+        if (buffers->full[e] && buffers->full_stride < (uint32_t)cfg->width * 3u) {
             return TDC_ERR_SIZE;
         }
     }
@@ -172,6 +172,11 @@ const tdc_link_stream_info_t *tdc_link_stream(const tdc_link_decoder_t *dec)
 const tdc_fov_hdr_t *tdc_link_fov(const tdc_link_decoder_t *dec, uint32_t eye)
 {
     return eye < 2u && ((dec->fov_valid >> eye) & 1u) ? &dec->fov[eye] : NULL;
+}
+
+const tdc_band_hdr_t *tdc_link_band(const tdc_link_decoder_t *dec, uint32_t eye)
+{
+    return eye < 2u && ((dec->band_valid >> eye) & 1u) ? &dec->band[eye] : NULL;
 }
 
 void tdc_link_reduced_size(const tdc_link_decoder_t *dec, uint32_t *rw, uint32_t *rh)
@@ -230,13 +235,18 @@ static tdc_link_err_t check_header(const tdc_link_decoder_t *dec, uint32_t versi
     const uint32_t sflags = dec->stream.flags;
     const int trm = (sflags & TDC_LINK_STREAM_REDUCED) != 0;
     const tdc_link_buffers_t *b = &dec->buf;
+    /* a BANDS stream sends every picture as row bands, any other none */
+    const int band = (kind == TDC_LINK_KIND_FULL || kind == TDC_LINK_KIND_REDUCED) && (flags & TDC_LINK_PKT_BAND);
+    const int banded = band == ((sflags & TDC_LINK_STREAM_BANDS) != 0);
     int ok;
     switch (kind) {
     case TDC_LINK_KIND_FULL:
-        ok = (b->full[eye] != NULL || b->defer_full) && (!trm || tdc_link_trm_kind(p->frame_index, eye) == TDC_LINK_KIND_FULL);
+        ok = banded && (b->full[eye] != NULL || b->defer_full) &&
+             (!trm || tdc_link_trm_kind(p->frame_index, eye) == TDC_LINK_KIND_FULL);
         break;
     case TDC_LINK_KIND_REDUCED:
-        ok = trm && b->reduced[eye] != NULL && tdc_link_trm_kind(p->frame_index, eye) == TDC_LINK_KIND_REDUCED;
+        ok = banded && trm && b->reduced[eye] != NULL &&
+             tdc_link_trm_kind(p->frame_index, eye) == TDC_LINK_KIND_REDUCED;
         break;
     case TDC_LINK_KIND_SUBFRAME: ok = (sflags & TDC_LINK_STREAM_SUBFRAMES) && b->subframe[eye] != NULL; break;
     case TDC_LINK_KIND_MOTION:
@@ -269,7 +279,11 @@ static tdc_link_err_t check_header(const tdc_link_decoder_t *dec, uint32_t versi
         tdc_link_payload_bytes((tdc_link_kind_t)kind, (tdc_pixfmt_t)fmt, p->width, p->height, flags);
     /* STATED (FOVEATED): at least its kind header; the exact length is
      * checked against that header once the payload CRC vouches for it. */
-    if (ki->rule == TDC_LINK_PAYLOAD_STATED ? payload_len < TDC_FOV_HDR_BYTES : payload_len != want_len) {
+    /* A band: its header and at least one row, at most the picture; the
+     * exact length follows from the band header (tdc_band_hdr_parse). */
+    if (band ? payload_len <= TDC_BAND_HDR_BYTES || payload_len - TDC_BAND_HDR_BYTES > want_len
+        : ki->rule == TDC_LINK_PAYLOAD_STATED ? payload_len < TDC_FOV_HDR_BYTES
+                                              : payload_len != want_len) {
         return TDC_LINK_ERR_LENGTH;
     }
     if (kind == TDC_LINK_KIND_MOTION && !(flags & TDC_LINK_PKT_MV_PER_SAMPLE) && !b->motion[eye]) {
@@ -287,6 +301,89 @@ static tdc_link_err_t check_header(const tdc_link_decoder_t *dec, uint32_t versi
         }
     }
     return TDC_LINK_OK;
+}
+
+/* ------------------------------------------------------------------------
+ * Row bands (tdc_band_link.h).
+ * ---------------------------------------------------------------------- */
+static int is_band(const tdc_link_decoder_t *dec)
+{
+    const tdc_link_event_t *p = &dec->pkt;
+    return (p->kind == TDC_LINK_KIND_FULL || p->kind == TDC_LINK_KIND_REDUCED) && (p->flags & TDC_LINK_PKT_BAND) &&
+           p->eye < dec->cfg.eyes && dec->stream_active && p->stream_id == dec->stream_id &&
+           (dec->stream.flags & TDC_LINK_STREAM_BANDS);
+}
+
+/* Eye e's picture (kind, frame) is dropped whole: its event, counted once. */
+static void band_drop_event(tdc_link_decoder_t *dec, uint32_t e, uint32_t kind, uint32_t frame, tdc_band_drop_t why)
+{
+    tdc_link_event_t ev;
+    memset(&ev, 0, sizeof ev);
+    ev.type = TDC_LINK_EV_ERROR;
+    ev.error = TDC_LINK_ERR_BAND_DROPPED;
+    ev.kind = (uint8_t)kind;
+    ev.eye = (uint8_t)e;
+    ev.stream_id = dec->stream_id;
+    ev.flags = TDC_LINK_PKT_BAND;
+    ev.frame_index = frame;
+    ev.detail = (uint32_t)why;
+    dec->cnt.errors[TDC_LINK_ERR_BAND_DROPPED]++;
+    dec->cnt.band_drops[why]++;
+    push_event(dec, &ev);
+}
+
+/* The current packet, a band (its header CRC vouches for kind, eye and
+ * frame), was refused (CRC, a link check, a band reason other than FRAME
+ * and DROPPED): the picture it names is dropped -- the one in flight, or,
+ * if none is and may_start (not a band of a past frame or a complete
+ * picture: ORDER, DUPLICATE), that picture from its start (its later
+ * bands are DROPPED).  A
+ * bad band naming another picture than the one in flight leaves that one
+ * alone. */
+static void band_bad(tdc_link_decoder_t *dec, tdc_band_drop_t why, int may_start)
+{
+    if (!is_band(dec)) {
+        return;
+    }
+    const tdc_link_event_t *p = &dec->pkt;
+    tdc_band_seq_t *s = &dec->band_seq[p->eye];
+    if (s->state == TDC_BAND_OPEN && tdc_band_seq_is(s, p->kind, p->frame_index)) {
+        s->state = TDC_BAND_DEAD;
+    } else if (s->state == TDC_BAND_IDLE && may_start) {
+        memset(s, 0, sizeof *s);
+        s->state = TDC_BAND_DEAD;
+        s->kind = p->kind;
+        s->frame = p->frame_index;
+    } else {
+        return;
+    }
+    band_drop_event(dec, p->eye, p->kind, p->frame_index, why);
+}
+
+/* A new stream: pictures in flight never complete. */
+static void band_reset(tdc_link_decoder_t *dec)
+{
+    for (uint32_t e = 0; e < dec->cfg.eyes; e++) {
+        tdc_band_seq_t *s = &dec->band_seq[e];
+        if (s->state == TDC_BAND_OPEN) {
+            band_drop_event(dec, e, s->kind, s->frame, TDC_BAND_DROP_MISSING);
+        }
+        memset(s, 0, sizeof *s);
+    }
+    dec->band_valid = 0;
+}
+
+/* A band whose payload CRC matched: its header and its place in the eye's
+ * picture.  Nothing is written; *h is the parsed header on TDC_BAND_OK. */
+static tdc_band_err_t check_band(tdc_link_decoder_t *dec, tdc_band_hdr_t *h)
+{
+    const tdc_link_event_t *p = &dec->pkt;
+    tdc_band_err_t r = tdc_band_hdr_parse(dec->buf.staging + dec->payload_base, (tdc_pixfmt_t)p->format, p->width,
+                                          p->height, dec->payload_len, h);
+    if (r == TDC_BAND_OK) {
+        r = tdc_band_seq_check(&dec->band_seq[p->eye], p->kind, p->frame_index, p->format, h);
+    }
+    return r;
 }
 
 /* A complete header is in dec->hdr; its last byte was at staging offset
@@ -350,6 +447,10 @@ static void on_header(tdc_link_decoder_t *dec, uint32_t end_off)
     }
     if (e != TDC_LINK_OK) {
         push_error(dec, e, 1, dec->payload_len);
+        if (e != TDC_LINK_ERR_STREAM && e != TDC_LINK_ERR_EYE) {
+            /* a band of its picture refused */
+            band_bad(dec, TDC_BAND_DROP_REFUSED, e != TDC_LINK_ERR_ORDER && e != TDC_LINK_ERR_DUPLICATE);
+        }
         /* The header is intact (CRC), so its length is what was sent: skip
          * the payload.  A length beyond anything we could accept is not
          * trusted: hunt instead. */
@@ -429,6 +530,7 @@ static tdc_link_err_t commit_stream(tdc_link_decoder_t *dec)
         dec->frame_mask = 0;
         dec->frame_index = 0;
         dec->fov_valid = 0;
+        band_reset(dec);
     }
     return TDC_LINK_OK;
 }
@@ -518,6 +620,7 @@ static void on_payload(tdc_link_decoder_t *dec, uint32_t src_end)
     dec->hdr_fill = 0;
     if (tdc_crc32_final(dec->crc_state) != dec->payload_crc) {
         push_error(dec, TDC_LINK_ERR_CRC, 1, dec->payload_len);
+        band_bad(dec, TDC_BAND_DROP_CRC, 1);
         /* Rescan the payload for a packet start; inside a staging rescan
          * the rest of that rescan follows it contiguously. */
         dec->replay_gen++;
@@ -539,6 +642,26 @@ static void on_payload(tdc_link_decoder_t *dec, uint32_t src_end)
     } else {
         tdc_fov_hdr_t fh;
         memset(&fh, 0, sizeof fh);
+        tdc_band_hdr_t bh;
+        memset(&bh, 0, sizeof bh);
+        /* check_header: a band is FULL or REDUCED of a BANDS stream */
+        const int band = (kind == TDC_LINK_KIND_FULL || kind == TDC_LINK_KIND_REDUCED) && (p->flags & TDC_LINK_PKT_BAND);
+        if (band) {
+            const tdc_band_err_t be = check_band(dec, &bh);
+            if (be != TDC_BAND_OK) {
+                dec->cnt.band_errors[be]++;
+                push_error(dec, TDC_LINK_ERR_BAND, 1, (uint32_t)be);
+                if (be != TDC_BAND_ERR_FRAME && be != TDC_BAND_ERR_DROPPED) {
+                    band_bad(dec, TDC_BAND_DROP_REFUSED, 1);
+                }
+                return;
+            }
+            tdc_band_seq_t *bs = &dec->band_seq[eye];
+            if (bh.index == 0 && bs->state == TDC_BAND_OPEN) {
+                /* the eye's next picture starts: the one in flight lost its last band */
+                band_drop_event(dec, eye, bs->kind, bs->frame, TDC_BAND_DROP_MISSING);
+            }
+        }
         if (kind == TDC_LINK_KIND_FOVEATED) {
             const tdc_link_err_t e = check_foveated(dec, eye, &fh);
             if (e != TDC_LINK_OK) {
@@ -579,9 +702,21 @@ static void on_payload(tdc_link_decoder_t *dec, uint32_t src_end)
             dec->frame_index = p->frame_index;
             dec->frame_mask = 0;
         }
-        dec->frame_mask |= slot_bit(kind, eye, p->flags);
+        /* a banded picture fills its slot with its last band */
+        if (!band || tdc_band_seq_accept(&dec->band_seq[eye], kind, p->frame_index, p->format, &bh)) {
+            dec->frame_mask |= slot_bit(kind, eye, p->flags);
+        }
 
         const uint8_t *s = dec->buf.staging + dec->payload_base;
+        uint32_t rows = p->height, row0 = 0;
+        if (band) {
+            s += TDC_BAND_HDR_BYTES;
+            rows = bh.rows;
+            row0 = bh.first_row;
+            dec->band[eye] = bh;
+            dec->band_valid |= (uint8_t)(1u << eye);
+            dec->cnt.bands_ok++;
+        }
         const tdc_pixfmt_t fmt = (tdc_pixfmt_t)p->format;
         const tdc_link_buffers_t *b = &dec->buf;
         const uint32_t tx = TDC_TILES(p->width), ty = TDC_TILES(p->height);
@@ -592,14 +727,16 @@ static void on_payload(tdc_link_decoder_t *dec, uint32_t src_end)
                 dec->staged_full = 1;
                 dec->staged_fmt = (uint8_t)fmt;
                 dec->staged_w = p->width;
-                dec->staged_h = p->height;
-                dec->staged_base = dec->payload_base;
+                dec->staged_h = (uint16_t)rows;
+                dec->staged_row = (uint16_t)row0;
+                dec->staged_base = dec->payload_base + (band ? TDC_BAND_HDR_BYTES : 0u);
             } else {
-                unpack_pixels(fmt, s, p->width, p->height, b->full[eye], b->full_stride);
+                unpack_pixels(fmt, s, p->width, rows, b->full[eye] + (size_t)row0 * b->full_stride, b->full_stride);
             }
             break;
         case TDC_LINK_KIND_REDUCED:
-            unpack_pixels(fmt, s, p->width, p->height, b->reduced[eye], (uint32_t)p->width * 3u);
+            unpack_pixels(fmt, s, p->width, rows, b->reduced[eye] + (size_t)row0 * p->width * 3u,
+                          (uint32_t)p->width * 3u);
             break;
         case TDC_LINK_KIND_SUBFRAME: unpack_pixels(fmt, s, tx, ty, b->subframe[eye], tx * 3u); break;
         case TDC_LINK_KIND_MOTION:
@@ -747,8 +884,8 @@ tdc_status_t tdc_link_unpack_full(const tdc_link_decoder_t *dec, uint8_t *dst, u
     if (stride < (uint32_t)dec->staged_w * 3u) {
         return TDC_ERR_ARG;
     }
-    unpack_pixels((tdc_pixfmt_t)dec->staged_fmt, dec->buf.staging + dec->staged_base, dec->staged_w, dec->staged_h, dst,
-                  stride);
+    unpack_pixels((tdc_pixfmt_t)dec->staged_fmt, dec->buf.staging + dec->staged_base, dec->staged_w, dec->staged_h,
+                  dst + (size_t)dec->staged_row * stride, stride);
     return TDC_OK;
 }
 

@@ -35,6 +35,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "tdc_band_link.h"
 #include "tdc_fixed.h"
 #include "tdc_layer_link.h"
 #include "tdc_fov_link.h"
@@ -80,6 +81,10 @@
  * payload (all four layers + falloff: 16 + 28 bytes per tile = 7 B/px)
  * exceeds TDC_LINK_STAGING_BYTES. */
 #define TDC_LINK_STAGING_LAYERS_BYTES(w, h) ((size_t)TDC_LAYER_HDR_BYTES + TDC_TILE_COUNT(w, h) * 28u)
+/* Staging for a build that takes FULL and REDUCED pictures only as row
+ * bands (stream flag BANDS) of at most `rows` rows, bpp bytes per pixel
+ * in the widest compiled-in format: one band, not a frame (tdc_band_link.h). */
+#define TDC_LINK_STAGING_BAND_BYTES(w, rows, bpp) ((size_t)TDC_BAND_HDR_BYTES + (size_t)(w) * (rows) * (bpp))
 
 /* ------------------------------------------------------------------------
  * Decoder.
@@ -114,7 +119,7 @@ typedef struct {
      * payloads skipped (the header CRC vouches for the length, which must
      * be the expected one) and counted in packets_skipped -- not errors. */
     uint8_t skip_motion;
-    /* 1: FULL packets are validated and accepted but not unpacked (full[]
+    /* 1: FULL packets (and FULL row bands) are validated and accepted but not unpacked (full[]
      * may then be NULL): the payload stays in `staging` until the next
      * tdc_link_feed() call that processes bytes, and the caller unpacks it
      * with tdc_link_unpack_full() where and if it wants.  A frame loop
@@ -168,6 +173,9 @@ typedef struct {
     uint32_t events_dropped;         /* events lost because the queue was full (should be 0) */
     uint32_t layer_errors[TDC_LAYER_ERR_N]; /* TDC_LINK_ERR_LAYERS by reason (index 0 unused) */
     uint32_t fov_refused[TDC_FOV_HDR_COUNT]; /* TDC_LINK_ERR_FOVEATION by reason (index 0 unused) */
+    uint32_t band_errors[TDC_BAND_ERR_N];    /* TDC_LINK_ERR_BAND by reason (index 0 unused) */
+    uint32_t band_drops[TDC_BAND_DROP_N];    /* TDC_LINK_ERR_BAND_DROPPED by reason (index 0 unused) */
+    uint32_t bands_ok;                       /* accepted row bands (each also in packets_ok) */
 } tdc_link_counters_t;
 
 #define TDC_LINK_EVENT_QUEUE 4
@@ -210,6 +218,13 @@ typedef struct {
     uint32_t staged_base;
     uint8_t fov_valid;    /* bit e: fov[e] holds eye e's last accepted foveation header */
     tdc_fov_hdr_t fov[2];
+    /* row bands (stream flag BANDS): per eye the picture in flight and the
+     * header of its last accepted band; the FULL band waiting in staging
+     * (defer_full) starts at row staged_row */
+    uint8_t band_valid; /* bit e: band[e] holds eye e's last accepted band */
+    uint16_t staged_row;
+    tdc_band_seq_t band_seq[2];
+    tdc_band_hdr_t band[2];
     /* events */
     uint8_t ev_head, ev_count;
     tdc_link_event_t ev[TDC_LINK_EVENT_QUEUE];
@@ -231,7 +246,8 @@ size_t tdc_link_feed(tdc_link_decoder_t *dec, const uint8_t *bytes, size_t n, td
 
 /* defer_full: unpacks the FULL packet just returned by tdc_link_feed()
  * (before the next feed call) as RGB888 into dst, rows stride bytes apart
- * (stride >= width * 3).  TDC_ERR_STATE if no accepted FULL payload is
+ * (stride >= width * 3).  For a FULL row band dst is the picture's first
+ * row: the band's rows go to dst + first_row * stride.  TDC_ERR_STATE if no accepted FULL payload is
  * waiting in staging (none was, or bytes were processed since), TDC_ERR_ARG
  * for a NULL dst or a short stride.  The payload stays valid: a second call
  * unpacks the same frame again. */
@@ -254,6 +270,10 @@ const tdc_link_stream_info_t *tdc_link_stream(const tdc_link_decoder_t *dec);
  * FOVEATED packet in the active stream, NULL if none: read it on that
  * packet's event, before feeding more bytes. */
 const tdc_fov_hdr_t *tdc_link_fov(const tdc_link_decoder_t *dec, uint32_t eye);
+
+/* The header of eye's last accepted row band (index, count, rows) in the
+ * active stream, NULL if none: read it on that band's event. */
+const tdc_band_hdr_t *tdc_link_band(const tdc_link_decoder_t *dec, uint32_t eye);
 
 /* Reduced-frame size of the active stream (0 x 0 without reduced frames). */
 void tdc_link_reduced_size(const tdc_link_decoder_t *dec, uint32_t *rw, uint32_t *rh);

@@ -176,6 +176,31 @@ size_t tdc_link_encode_frame(const tdc_link_encoder_t *enc, uint8_t *out, size_t
     return finish(out, &f, (uint32_t)(total - TDC_LINK_HEADER_BYTES));
 }
 
+size_t tdc_link_encode_band(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap, tdc_link_kind_t kind,
+                            uint32_t eye, uint32_t frame, tdc_pixfmt_t fmt, const uint8_t *rgb, uint32_t w, uint32_t h,
+                            uint32_t stride, uint32_t band_rows, uint32_t index)
+{
+    if ((kind != TDC_LINK_KIND_FULL && kind != TDC_LINK_KIND_REDUCED) || !tdc_pixfmt_valid(fmt) ||
+        tdc_link_packet_bytes(kind, fmt, w, h, 0) == 0 || !out || !rgb) {
+        return 0;
+    }
+    uint8_t bh[TDC_BAND_HDR_BYTES];
+    if (tdc_band_hdr_pack(bh, index, band_rows, h, fmt) != 0) {
+        return 0;
+    }
+    const uint32_t first = tdc_get_le16(bh + 8), rows = tdc_get_le16(bh + 10);
+    const uint32_t len = tdc_band_payload_bytes(fmt, w, rows);
+    if (cap < (size_t)TDC_LINK_HEADER_BYTES + len) {
+        return 0;
+    }
+    memcpy(out + TDC_LINK_HEADER_BYTES, bh, TDC_BAND_HDR_BYTES);
+    tdc_pixfmt_pack(fmt, rgb + (size_t)first * stride, w, rows, stride,
+                    out + TDC_LINK_HEADER_BYTES + TDC_BAND_HDR_BYTES);
+    tdc_link_header_t f;
+    fields(enc, &f, kind, eye, frame, fmt, w, h, TDC_LINK_PKT_BAND);
+    return finish(out, &f, len);
+}
+
 size_t tdc_link_encode_subframe(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap, uint32_t eye, uint32_t frame,
                                 tdc_pixfmt_t fmt, const uint8_t *samples, uint32_t w, uint32_t h)
 {

@@ -47,6 +47,15 @@ size_t tdc_link_encode_frame(const tdc_link_encoder_t *enc, uint8_t *out, size_t
                              uint32_t eye, uint32_t frame, tdc_pixfmt_t fmt, const uint8_t *rgb, uint32_t w, uint32_t h,
                              uint32_t stride);
 
+/* One row band (tdc_band_link.h) of a FULL or REDUCED picture: band
+ * `index` of the w x h RGB888 picture rgb (rows `stride` apart; the whole
+ * picture, the band's rows are taken from it) in bands of band_rows, packed
+ * into fmt, with packet flag TDC_LINK_PKT_BAND.  0 for an invalid band
+ * geometry (tdc_band_hdr_pack) or a short cap. */
+size_t tdc_link_encode_band(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap, tdc_link_kind_t kind,
+                            uint32_t eye, uint32_t frame, tdc_pixfmt_t fmt, const uint8_t *rgb, uint32_t w, uint32_t h,
+                            uint32_t stride, uint32_t band_rows, uint32_t index);
+
 /* SUBFRAME: tiles_x x tiles_y RGB888 samples (packed, row-major) of a
  * w x h eye (header dimensions are w x h, the full-resolution size). */
 size_t tdc_link_encode_subframe(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap, uint32_t eye, uint32_t frame,

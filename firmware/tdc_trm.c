@@ -237,18 +237,25 @@ static int32_t clampi(int32_t v, int32_t lo, int32_t hi)
     return v < lo ? lo : (v > hi ? hi : v);
 }
 
-/* Full D: in (W x H codes) -> dst (rw x rh x 3, code Q8).
+/* D: in (W x H codes) -> dst (rw x rh x 3, code Q8), the rows *jy_done..
+ * whose kernel lies within the first `avail` input rows; *loaded = highest
+ * full-res row in the ring (-1 before the first).  Rows are taken in order
+ * whatever avail is, so the result does not depend on how they arrive.
  * Vertical pass scaling: 2^15 * 65280 < 2^31; (acc + 2^14) >> 15. */
-static void trm_apply_d(tdc_trm_t *st, const uint8_t *in, uint32_t stride, tdc_gval_t *dst, uint8_t *out8,
-                        uint32_t out8_stride)
+static void trm_d_rows(tdc_trm_t *st, const uint8_t *in, uint32_t stride, tdc_gval_t *dst, uint8_t *out8,
+                       uint32_t out8_stride, uint32_t avail, int32_t *loaded_io, uint32_t *jy_done)
 {
     const int32_t hmax = (int32_t)st->cfg.height - 1;
     const uint32_t taps = st->dtaps;
     const uint32_t rw3 = 3u * st->rw;
-    int32_t loaded = -1; /* highest full-res row in the ring */
-    for (uint32_t jy = 0; jy < st->rh; jy++) {
+    int32_t loaded = *loaded_io; /* highest full-res row in the ring */
+    uint32_t jy = *jy_done;
+    for (; jy < st->rh; jy++) {
         const int32_t k0 = st->dy_first[jy];
         const int32_t need = clampi(k0 + (int32_t)taps - 1, 0, hmax);
+        if ((uint32_t)need >= avail) {
+            break; /* its last input row has not arrived */
+        }
         while (loaded < need) {
             loaded++;
             const uint8_t *row = in + (size_t)loaded * stride;
@@ -282,6 +289,25 @@ static void trm_apply_d(tdc_trm_t *st, const uint8_t *in, uint32_t stride, tdc_g
             }
         }
     }
+    *loaded_io = loaded;
+    *jy_done = jy;
+}
+
+/* The whole D at once. */
+static void trm_apply_d(tdc_trm_t *st, const uint8_t *in, uint32_t stride, tdc_gval_t *dst, uint8_t *out8,
+                        uint32_t out8_stride)
+{
+    int32_t loaded = -1;
+    uint32_t jy = 0;
+    trm_d_rows(st, in, stride, dst, out8, out8_stride, st->cfg.height, &loaded, &jy);
+}
+
+/* The reduced row below the one U of full-res row y reads first (the last
+ * reduced row U(row y) needs). */
+static uint32_t trm_u_last(const tdc_trm_t *st, uint32_t y)
+{
+    const uint32_t i0 = st->uy_i[2u * y];
+    return i0 + 1u < st->rh ? i0 + 1u : i0;
 }
 
 /* ---------------------------------------------------------------------
@@ -327,17 +353,6 @@ static void trm_u_row_codes(const tdc_trm_t *st, const uint8_t *src, uint32_t st
  * Frames
  * ------------------------------------------------------------------- */
 
-static void trm_copy(const tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out, uint32_t out_stride)
-{
-    for (uint32_t y = 0; y < st->cfg.height; y++) {
-        const uint8_t *s = in + (size_t)y * in_stride;
-        uint8_t *d = out + (size_t)y * out_stride;
-        for (uint32_t i = 0; i < 3u * st->cfg.width; i++) {
-            d[i] = s[i];
-        }
-    }
-}
-
 void tdc_trm_set_simd(tdc_trm_t *st, int enable)
 {
     st->simd = (uint8_t)(enable && tdc_trm_avx2_available() && st->enc_comb != NULL);
@@ -371,54 +386,107 @@ static void trm_beta_row(tdc_trm_t *st, const tdc_trm_rowctx_t *k, uint32_t y, c
     }
 }
 
-tdc_status_t tdc_trm_full(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out, uint32_t out_stride)
+tdc_status_t tdc_trm_full_begin(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out,
+                                uint32_t out_stride)
 {
     if (!st || !in || !out || in_stride < 3u * st->cfg.width || out_stride < 3u * st->cfg.width) {
         return TDC_ERR_ARG;
     }
-    if (st->passthrough) {
-        trm_copy(st, in, in_stride, out, out_stride);
-        st->stats.passthrough_frames++;
-        return TDC_OK;
+    memset(&st->inc, 0, sizeof st->inc);
+    st->inc.kind = 1;
+    st->inc.in = in;
+    st->inc.out = out;
+    st->inc.in_stride = in_stride;
+    st->inc.out_stride = out_stride;
+    st->inc.loaded = -1;
+    if (!st->passthrough) {
+        st->have_full = 0; /* D(I) and the kept codes are being replaced */
     }
-    trm_apply_d(st, in, in_stride, st->dprev, NULL, 0);
-    tdc_trm_rowctx_t k;
-    trm_rowctx(st, &k);
-    const uint32_t w = st->cfg.width, w3 = 3u * w;
-    uint64_t hi = 0, lo = 0;
-    for (uint32_t y = 0; y < st->cfg.height; y++) {
-        tdc_trm_full_counts_t n = {0, 0};
-        trm_u_row(st, st->dprev, y, st->urow);
-        const uint8_t *src = in + (size_t)y * in_stride;
-        tdc_res_t *res = st->rrow;
-        if (st->icodes) {
-            /* keep I_t (in may be out: copy before the row is overwritten);
-             * rho of this row is not kept, it is recomputed when needed */
-            uint8_t *keep = st->icodes + (size_t)y * w3;
-            memcpy(keep, src, w3);
-            src = keep;
-        } else {
-            res = &st->residual[(size_t)y * w3];
-        }
-        trm_beta_row(st, &k, y, st->urow, src, out + (size_t)y * out_stride, res, &n);
-        hi += n.hi;
-        lo += n.lo;
-    }
-    st->stats.clamped_high += hi;
-    st->stats.clamped_low += lo;
-    st->stats.full_frames++;
-    st->have_full = 1;
     return TDC_OK;
+}
+
+tdc_status_t tdc_trm_full_rows(tdc_trm_t *st, uint32_t avail, uint32_t *done)
+{
+    if (!st || st->inc.kind != 1u) {
+        return TDC_ERR_STATE;
+    }
+    const uint32_t h = st->cfg.height, w3 = 3u * st->cfg.width;
+    avail = avail < h ? avail : h;
+    uint32_t y = st->inc.y;
+    if (st->passthrough) {
+        for (; y < avail; y++) {
+            const uint8_t *src = st->inc.in + (size_t)y * st->inc.in_stride;
+            uint8_t *dst = st->inc.out + (size_t)y * st->inc.out_stride;
+            for (uint32_t i = 0; i < w3; i++) {
+                dst[i] = src[i];
+            }
+        }
+    } else {
+        trm_d_rows(st, st->inc.in, st->inc.in_stride, st->dprev, NULL, 0, avail, &st->inc.loaded, &st->inc.dy);
+        tdc_trm_rowctx_t k;
+        trm_rowctx(st, &k);
+        /* row y: arrived, no longer needed by D (in may be out), its U rows done */
+        for (; y < avail && (st->inc.loaded >= (int32_t)y || st->inc.dy == st->rh) && trm_u_last(st, y) < st->inc.dy;
+             y++) {
+            tdc_trm_full_counts_t n = {0, 0};
+            trm_u_row(st, st->dprev, y, st->urow);
+            const uint8_t *src = st->inc.in + (size_t)y * st->inc.in_stride;
+            tdc_res_t *res = st->rrow;
+            if (st->icodes) {
+                /* keep I_t (in may be out: copy before the row is overwritten);
+                 * rho of this row is not kept, it is recomputed when needed */
+                uint8_t *keep = st->icodes + (size_t)y * w3;
+                memcpy(keep, src, w3);
+                src = keep;
+            } else {
+                res = &st->residual[(size_t)y * w3];
+            }
+            trm_beta_row(st, &k, y, st->urow, src, st->inc.out + (size_t)y * st->inc.out_stride, res, &n);
+            st->inc.n[0] += n.hi;
+            st->inc.n[1] += n.lo;
+        }
+    }
+    st->inc.y = y;
+    if (done) {
+        *done = y;
+    }
+    return TDC_OK;
+}
+
+tdc_status_t tdc_trm_full_end(tdc_trm_t *st, uint32_t seq)
+{
+    uint32_t done = 0;
+    const tdc_status_t r = tdc_trm_full_rows(st, st ? st->cfg.height : 0u, &done);
+    if (r != TDC_OK) {
+        return r;
+    }
+    st->inc.kind = 0;
+    if (done != st->cfg.height) {
+        return TDC_ERR_STATE; /* unreachable: every row is there */
+    }
+    if (st->passthrough) {
+        st->stats.passthrough_frames++;
+    } else {
+        st->stats.clamped_high += st->inc.n[0];
+        st->stats.clamped_low += st->inc.n[1];
+        st->stats.full_frames++;
+        st->have_full = 1;
+    }
+    st->full_seq = seq;
+    return TDC_OK;
+}
+
+tdc_status_t tdc_trm_full(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out, uint32_t out_stride)
+{
+    const tdc_status_t r = tdc_trm_full_begin(st, in, in_stride, out, out_stride);
+    return r != TDC_OK ? r : tdc_trm_full_end(st, st->full_seq);
 }
 
 tdc_status_t tdc_trm_full_seq(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out, uint32_t out_stride,
                               uint32_t seq)
 {
-    const tdc_status_t r = tdc_trm_full(st, in, in_stride, out, out_stride);
-    if (r == TDC_OK && st) {
-        st->full_seq = seq;
-    }
-    return r;
+    const tdc_status_t r = tdc_trm_full_begin(st, in, in_stride, out, out_stride);
+    return r != TDC_OK ? r : tdc_trm_full_end(st, seq);
 }
 
 /* rho of row y into the row buffer (recompute) or a pointer into the stored
@@ -453,10 +521,42 @@ tdc_status_t tdc_trm_residual_row(tdc_trm_t *st, uint32_t y, tdc_res_t *out)
 }
 
 /* Reduced frame; with_state = 0 shows alpha alone (no residual). */
-static tdc_status_t trm_reduced(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t in_stride, uint8_t *out,
-                                uint32_t out_stride, int with_state)
+static tdc_status_t trm_reduced_args(const tdc_trm_t *st, const uint8_t *in_reduced, uint32_t in_stride,
+                                     const uint8_t *out, uint32_t out_stride)
 {
+    if (!st || !in_reduced || !out || out_stride < 3u * st->cfg.width) {
+        return TDC_ERR_ARG;
+    }
+    if (st->passthrough) {
+        return TDC_ERR_STATE; /* this stream was configured without reduced frames */
+    }
+    if (in_stride < 3u * st->rw) {
+        return TDC_ERR_ARG;
+    }
+    return TDC_OK;
+}
+
+/* Opens a reduced frame (arguments checked), with the kept state or, when
+ * !with_state, as alpha alone. */
+static void trm_reduced_open(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t in_stride, uint8_t *out,
+                             uint32_t out_stride, int with_state)
+{
+    memset(&st->inc, 0, sizeof st->inc);
+    st->inc.kind = 2;
+    st->inc.in = in_reduced;
+    st->inc.out = out;
+    st->inc.in_stride = in_stride;
+    st->inc.out_stride = out_stride;
+    st->inc.paired = (uint8_t)with_state;
+}
+
+tdc_status_t tdc_trm_reduced_rows(tdc_trm_t *st, uint32_t avail, uint32_t *done)
+{
+    if (!st || st->inc.kind != 2u) {
+        return TDC_ERR_STATE;
+    }
     const uint32_t rw3 = 3u * st->rw;
+    const int with_state = st->inc.paired;
     tdc_trm_rowctx_t k;
     trm_rowctx(st, &k);
     uint32_t *urow_a = st->urow;            /* U(D(I_t)), code Q22 */
@@ -464,8 +564,9 @@ static tdc_status_t trm_reduced(tdc_trm_t *st, const uint8_t *in_reduced, uint32
     /* without state: alpha alone, i.e. rho = 0 everywhere (the kernel then
      * never reads U(D(I_t))); the row buffer holds the zeros */
     tdc_res_t *zero = with_state ? NULL : st->rrow;
-    uint64_t computed = 0, skipped = 0, no_res = 0;
-    for (uint32_t y = 0; y < st->cfg.height; y++) {
+    uint32_t y = st->inc.y;
+    /* row y once the reduced rows its U reads are there */
+    for (; y < st->cfg.height && trm_u_last(st, y) < avail; y++) {
         tdc_trm_reduced_counts_t n = {0, 0, 0};
         const tdc_res_t *rho;
         if (with_state) {
@@ -490,35 +591,39 @@ static tdc_status_t trm_reduced(tdc_trm_t *st, const uint8_t *in_reduced, uint32
                 }
             }
         }
-        trm_u_row_codes(st, in_reduced, in_stride, y, urow_b);
+        trm_u_row_codes(st, st->inc.in, st->inc.in_stride, y, urow_b);
+        uint8_t *out = st->inc.out + (size_t)y * st->inc.out_stride;
         if (st->simd) {
-            tdc_trm_reduced_row_avx2(&k, urow_a, urow_b, rho, out + (size_t)y * out_stride, &n);
+            tdc_trm_reduced_row_avx2(&k, urow_a, urow_b, rho, out, &n);
         } else {
-            TDC_TRM_REDUCED_ROW_BOARD(&k, urow_a, urow_b, rho, out + (size_t)y * out_stride, &n);
+            TDC_TRM_REDUCED_ROW_BOARD(&k, urow_a, urow_b, rho, out, &n);
         }
-        computed += n.computed;
-        skipped += n.skipped;
-        no_res += n.no_res;
+        st->inc.n[0] += n.computed;
+        st->inc.n[1] += n.skipped;
+        st->inc.n[2] += n.no_res;
     }
-    st->stats.weight_computed += computed;
-    st->stats.weight_skipped += skipped;
-    st->stats.residual_skipped += no_res;
-    st->stats.reduced_frames++;
+    st->inc.y = y;
+    if (done) {
+        *done = y;
+    }
     return TDC_OK;
 }
 
-static tdc_status_t trm_reduced_args(const tdc_trm_t *st, const uint8_t *in_reduced, uint32_t in_stride,
-                                     const uint8_t *out, uint32_t out_stride)
+tdc_status_t tdc_trm_reduced_end(tdc_trm_t *st)
 {
-    if (!st || !in_reduced || !out || out_stride < 3u * st->cfg.width) {
-        return TDC_ERR_ARG;
+    uint32_t done = 0;
+    const tdc_status_t r = tdc_trm_reduced_rows(st, st ? st->rh : 0u, &done);
+    if (r != TDC_OK) {
+        return r;
     }
-    if (st->passthrough) {
-        return TDC_ERR_STATE; /* this stream was configured without reduced frames */
+    st->inc.kind = 0;
+    if (done != st->cfg.height) {
+        return TDC_ERR_STATE; /* unreachable: every reduced row is there */
     }
-    if (in_stride < 3u * st->rw) {
-        return TDC_ERR_ARG;
-    }
+    st->stats.weight_computed += st->inc.n[0];
+    st->stats.weight_skipped += st->inc.n[1];
+    st->stats.residual_skipped += st->inc.n[2];
+    st->stats.reduced_frames++;
     return TDC_OK;
 }
 
@@ -532,11 +637,12 @@ tdc_status_t tdc_trm_reduced(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t 
     if (!st->have_full) {
         return TDC_ERR_STATE;
     }
-    return trm_reduced(st, in_reduced, in_stride, out, out_stride, 1);
+    trm_reduced_open(st, in_reduced, in_stride, out, out_stride, 1);
+    return tdc_trm_reduced_end(st);
 }
 
-tdc_status_t tdc_trm_reduced_seq(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t in_stride, uint8_t *out,
-                                 uint32_t out_stride, uint32_t seq)
+tdc_status_t tdc_trm_reduced_begin(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t in_stride, uint8_t *out,
+                                   uint32_t out_stride, uint32_t seq)
 {
     const tdc_status_t a = trm_reduced_args(st, in_reduced, in_stride, out, out_stride);
     if (a != TDC_OK) {
@@ -547,7 +653,15 @@ tdc_status_t tdc_trm_reduced_seq(tdc_trm_t *st, const uint8_t *in_reduced, uint3
         st->stats.reduced_unpaired++;
         st->have_full = 0; /* whatever is kept is older than this frame: never use it again */
     }
-    return trm_reduced(st, in_reduced, in_stride, out, out_stride, paired);
+    trm_reduced_open(st, in_reduced, in_stride, out, out_stride, paired);
+    return TDC_OK;
+}
+
+tdc_status_t tdc_trm_reduced_seq(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t in_stride, uint8_t *out,
+                                 uint32_t out_stride, uint32_t seq)
+{
+    const tdc_status_t r = tdc_trm_reduced_begin(st, in_reduced, in_stride, out, out_stride, seq);
+    return r != TDC_OK ? r : tdc_trm_reduced_end(st);
 }
 
 tdc_status_t tdc_trm_downsample(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out, uint32_t out_stride)

@@ -166,6 +166,19 @@ typedef struct {
     uint8_t enc_one_step; /* enc_comb needs at most one threshold step */
     const tdc_trm_gaze_t *gaze; /* tdc_trm_set_gaze(); NULL (init's default): today's bytes */
     tdc_trm_stats_t stats;
+    /* the frame in progress (every frame runs through it: whole frames
+     * with all rows at once, row bands as they arrive) */
+    struct {
+        const uint8_t *in;
+        uint8_t *out;
+        uint32_t in_stride, out_stride;
+        int32_t loaded;  /* full: highest input row through D's horizontal pass (-1: none) */
+        uint32_t dy;     /* full: rows of D(I) done */
+        uint32_t y;      /* output rows final */
+        uint64_t n[3];   /* full: clamped high, low; reduced: computed, skipped, no residual */
+        uint8_t kind;    /* 0 none, 1 full, 2 reduced */
+        uint8_t paired;  /* reduced: with the kept state */
+    } inc;
 } tdc_trm_t;
 
 /* Validates cfg (ratio, sigma, sizes) and returns the arena size in bytes
@@ -236,6 +249,36 @@ tdc_status_t tdc_trm_full_seq(tdc_trm_t *st, const uint8_t *in, uint32_t in_stri
 TDC_MUST_CHECK
 tdc_status_t tdc_trm_reduced_seq(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t in_stride, uint8_t *out,
                                  uint32_t out_stride, uint32_t seq);
+
+/*
+ * Rows in flight (issue 17 item 2, docs/boards.md): the same frames, fed
+ * as their rows arrive, top to bottom.  _begin takes the frame's buffers
+ * (in may be out, as for the whole frame); _rows says that the first
+ * `avail` rows of the input are there (full: input rows; reduced: reduced
+ * rows; not decreasing) and runs what they allow -- full: D(I) rows whose
+ * kernel is covered, then the output rows whose U(D(I)) rows are done; an
+ * output row is written only when D no longer needs that input row --
+ * and returns in *done how many output rows (from the top) are final;
+ * _end runs the rest and closes the frame.  The output bytes are those of
+ * tdc_trm_full_seq / tdc_trm_reduced_seq (which run through these).  From
+ * _begin of a full frame until its _end the kept state is being replaced:
+ * a reduced frame in between (a full frame dropped mid-way) is unpaired.
+ * TDC_ERR_STATE: _rows/_end without the matching _begin.
+ */
+TDC_MUST_CHECK
+tdc_status_t tdc_trm_full_begin(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out,
+                                uint32_t out_stride);
+TDC_MUST_CHECK
+tdc_status_t tdc_trm_full_rows(tdc_trm_t *st, uint32_t avail, uint32_t *done);
+TDC_MUST_CHECK
+tdc_status_t tdc_trm_full_end(tdc_trm_t *st, uint32_t seq);
+TDC_MUST_CHECK
+tdc_status_t tdc_trm_reduced_begin(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t in_stride, uint8_t *out,
+                                   uint32_t out_stride, uint32_t seq);
+TDC_MUST_CHECK
+tdc_status_t tdc_trm_reduced_rows(tdc_trm_t *st, uint32_t avail, uint32_t *done);
+TDC_MUST_CHECK
+tdc_status_t tdc_trm_reduced_end(tdc_trm_t *st);
 
 /* Forget the kept full frame (it is no longer what the next reduced frame
  * pairs with), keeping the tables: e.g. when a newer full frame of this

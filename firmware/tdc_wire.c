@@ -13,7 +13,8 @@ const char *tdc_link_err_name(tdc_link_err_t e)
     static const char *const names[TDC_LINK_ERR_COUNT] = {
         "ok",    "magic",     "garbage",         "header-crc", "version",      "kind",
         "eye",   "format",    "dimensions",      "length",     "crc",          "stream",
-        "order", "duplicate", "missing-reduced", "unexpected", "stream-header", "layers", "foveation"};
+        "order", "duplicate", "missing-reduced", "unexpected", "stream-header", "layers", "foveation",
+        "band",  "band-dropped"};
     return (unsigned)e < (unsigned)TDC_LINK_ERR_COUNT ? names[e] : "?";
 }
 
@@ -91,8 +92,9 @@ void tdc_link_stream_unpack(const uint8_t in[TDC_LINK_STREAM_HEADER_BYTES], tdc_
  * ---------------------------------------------------------------------- */
 static const tdc_link_kind_info_t kinds[TDC_LINK_KIND_LAST + 1] = {
     [TDC_LINK_KIND_STREAM] = {"stream", TDC_LINK_PAYLOAD_FIXED, TDC_LINK_GRID_NONE, TDC_LINK_STREAM_HEADER_BYTES, 0u},
-    [TDC_LINK_KIND_FULL] = {"full", TDC_LINK_PAYLOAD_PIXELS, TDC_LINK_GRID_PIXELS, 0u, 0u},
-    [TDC_LINK_KIND_REDUCED] = {"reduced", TDC_LINK_PAYLOAD_PIXELS, TDC_LINK_GRID_PIXELS, 0u, 0u},
+    /* whole pictures, or with TDC_LINK_PKT_BAND one row band (band header + rows: tdc_band_link.h) */
+    [TDC_LINK_KIND_FULL] = {"full", TDC_LINK_PAYLOAD_PIXELS, TDC_LINK_GRID_PIXELS, 0u, TDC_LINK_PKT_BAND},
+    [TDC_LINK_KIND_REDUCED] = {"reduced", TDC_LINK_PAYLOAD_PIXELS, TDC_LINK_GRID_PIXELS, 0u, TDC_LINK_PKT_BAND},
     [TDC_LINK_KIND_SUBFRAME] = {"subframe", TDC_LINK_PAYLOAD_PIXELS, TDC_LINK_GRID_TILES, 0u, 0u},
     /* (dx, dy) int16 LE per pixel, or per tile with MV_PER_SAMPLE */
     [TDC_LINK_KIND_MOTION] = {"motion", TDC_LINK_PAYLOAD_PER_ELEM, TDC_LINK_GRID_MV, 4u, TDC_LINK_PKT_MV_PER_SAMPLE},

@@ -106,7 +106,8 @@ typedef enum {
 
 /* Per-packet flags (header `flags`). */
 #define TDC_LINK_PKT_MV_PER_SAMPLE 0x0001u /* MOTION: one vector per subframe sample (tile grid) */
-#define TDC_LINK_PKT_KNOWN 0x0001u
+#define TDC_LINK_PKT_BAND 0x0002u          /* FULL/REDUCED: one row band of the picture (tdc_band_link.h) */
+#define TDC_LINK_PKT_KNOWN 0x0003u
 
 /* Every header field; magic and header CRC are implied (pack writes them,
  * unpack checks them). */
@@ -149,7 +150,9 @@ typedef enum {
     TDC_LINK_ERR_STREAM_HEADER = 16,   /* stream header contents invalid (flags, r, size) */
     TDC_LINK_ERR_LAYERS = 17,          /* layered payload refused (reason: tdc_layer_err_t, counted apart) */
     TDC_LINK_ERR_FOVEATION = 18,       /* foveation header refused (reason: counters' fov_refused) */
-    TDC_LINK_ERR_COUNT = 19
+    TDC_LINK_ERR_BAND = 19,            /* row band refused (reason: tdc_band_err_t in detail, counters' band_errors) */
+    TDC_LINK_ERR_BAND_DROPPED = 20,    /* a banded picture dropped whole (reason: tdc_band_drop_t, band_drops) */
+    TDC_LINK_ERR_COUNT = 21
 } tdc_link_err_t;
 
 /* Short name of an error code ("crc", "magic", ...; "?" if out of range). */
@@ -188,7 +191,8 @@ tdc_link_err_t tdc_link_header_unpack(const uint8_t in[TDC_LINK_HEADER_BYTES], t
 #define TDC_LINK_STREAM_SAMPLE_MV 0x0010u /* subframe samples carry their own motion vectors */
 #define TDC_LINK_STREAM_LAYERS 0x0020u    /* layered subframes (LAYERS packets; needs SUBFRAMES) */
 #define TDC_LINK_STREAM_FOVEATED 0x0040u  /* FOVEATED packets (kernel log-polar + disk) may replace FULL ones */
-#define TDC_LINK_STREAM_KNOWN 0x007Fu
+#define TDC_LINK_STREAM_BANDS 0x0080u     /* FULL and REDUCED pictures come as row bands (tdc_band_link.h) */
+#define TDC_LINK_STREAM_KNOWN 0x00FFu
 
 /* Motion vectors: Q4 (1/16 px), range +-2047.9375 px, BACKWARD (the point
  * now at p was at p + mv in the previous frame). */

@@ -31,7 +31,7 @@ ARM_BOARDS := $(filter-out host,$(BOARDS))
 # Emulated boards: those whose board.mk names a QEMU machine.
 QEMU_BOARDS := $(sort $(patsubst boards/%/board.mk,%,$(shell grep -l '^BOARD_QEMU' boards/*/board.mk)))
 
-.PHONY: arm-fw-loop-check arm-fw-refuse-check arm-loop-cost run-arm firmware-size test-arm size bench-arm arm-bench profile-arm arm-profile arm-golden arm-golden-check arm-image-check arm-fit-check arm-fw-check
+.PHONY: arm-fw-loop-check arm-fw-refuse-check arm-fw-bands-check arm-loop-cost run-arm firmware-size test-arm size bench-arm arm-bench profile-arm arm-profile arm-golden arm-golden-check arm-image-check arm-fit-check arm-fw-check
 
 .SECONDEXPANSION:
 
@@ -193,12 +193,16 @@ STAGES ?= $(STAGES_DEFAULT)
 # when STAGES differs from the board's default (e.g. -link for STAGES=).
 space := $(eval) $(eval)
 STAGES_TAG := $(or $(subst $(space),+,$(sort $(STAGES))),link)
-BP := $(BUILD)/$(BOARD)-$(PANEL)$(if $(filter-out $(sort $(STAGES)),$(sort $(STAGES_DEFAULT)))$(filter-out $(sort $(STAGES_DEFAULT)),$(sort $(STAGES))),-$(STAGES_TAG))
+BP := $(BUILD)/$(BOARD)-$(PANEL)$(if $(filter-out $(sort $(STAGES)),$(sort $(STAGES_DEFAULT)))$(filter-out $(sort $(STAGES_DEFAULT)),$(sort $(STAGES))),-$(STAGES_TAG))$(if $(filter-out $(or $(BOARD_BANDS),0),$(BANDS)),-bands$(BANDS))
 FW_LCD_ON := $(if $(and $(filter lcd,$(PANEL_TYPE)),$(filter lcd,$(STAGES))),1,0)
 # BOARD_FW_CFG: the board's own configuration defines (e.g. LCD history
 # bits, the link formats it accepts), for every object of its images.
-FW_CFG := -DTDC_CFG_TRM=$(if $(filter trm,$(STAGES)),1,0) -DTDC_CFG_ASSEMBLE=$(if $(filter assemble,$(STAGES)),1,0) \
+# BANDS=1 (default: the board's BOARD_BANDS): pictures as row bands, one band
+# staged, a front/back frame buffer pair (docs/boards.md, "Rows in flight").
+BANDS ?= $(or $(BOARD_BANDS),0)
+FW_CFG_BASE := -DTDC_CFG_TRM=$(if $(filter trm,$(STAGES)),1,0) -DTDC_CFG_ASSEMBLE=$(if $(filter assemble,$(STAGES)),1,0) \
           -DTDC_CFG_LCD=$(FW_LCD_ON) $(BOARD_FW_CFG)
+FW_CFG := $(FW_CFG_BASE) -DTDC_CFG_BANDS=$(BANDS)
 PANEL_CONFIG := $(GEN)/tdc_panel_$(PANEL)_config.h
 ARM_IMG_CFLAGS := $(ARM_FW_CFLAGS) -include $(PANEL_CONFIG) $(FW_CFG)
 FW_IMG_SRCS = $(filter-out $(if $(filter 1,$(FW_LCD_ON)),,$(FW_LCD_SRCS)),$(FW_SRCS)) \
@@ -261,25 +265,32 @@ FW_MODES ?= plain $(if $(filter trm,$(STAGES)),trm) $(if $(filter assemble,$(STA
 FW_FRAMES_plain := 5
 FW_FRAMES_trm := 4
 FW_FRAMES_subframes := 6
-FWH := $(B)/fw-host/$(PANEL)-$(STAGES_TAG)
+# The host build of the loop, with and without bands (fw-bands-check compares
+# the two): build/<variant>/fw-host/<board>-<panel>-<stages>[-bands].
+FWH_B0 := $(B)/fw-host/$(BOARD)-$(PANEL)-$(STAGES_TAG)
+FWH_B1 := $(B)/fw-host/$(BOARD)-$(PANEL)-$(STAGES_TAG)-bands
+FWH := $(FWH_B$(BANDS))
 STREAMS := $(BUILD)/fw-streams
-
-$(FWH)/tdc_main.o: firmware/board/tdc_main.c $(GEN)/tdc_panels.h $(PANEL_CONFIG)
-	@mkdir -p $(@D)
-	$(CC) $(FW_CFLAGS) -Ifirmware/board -include $(PANEL_CONFIG) $(FW_CFG) -DTDC_FW_NO_MAIN -MMD -MP -c $< -o $@
-$(FWH)/tdc_board_host.o: tests/arm/tdc_board_host.c firmware/board/tdc_board.h
-	@mkdir -p $(@D)
-	$(CC) $(HOST_CFLAGS) -Ifirmware/board -MMD -MP -c $< -o $@
 # Firmware sources whose compiled code depends on the panel config (the link
 # decoder's compile-time maximum size): built for this panel, linked before
 # the host library so its panel-independent copies are not used.
 FWH_PANEL_SRCS := $(shell grep -l '"tdc_link.h"' $(filter firmware/%.c,$(wildcard firmware/*.c)))
-$(FWH)/fw/%.o: firmware/%.c $(GEN)/tdc_panels.h $(PANEL_CONFIG)
-	@mkdir -p $(@D)
-	$(CC) $(FW_CFLAGS) -include $(PANEL_CONFIG) $(FW_CFG) -MMD -MP -c $< -o $@
-$(FWH)/tdc_fw_host: $(FWH)/tdc_main.o $(FWH)/tdc_board_host.o $(patsubst firmware/%.c,$(FWH)/fw/%.o,$(FWH_PANEL_SRCS)) \
-                    $(FWLIB)
-	$(CC) $(HOST_LDFLAGS) $^ -o $@ $(HOST_LIBS)
+# $(1): directory, $(2): TDC_CFG_BANDS
+define fw_host_loop
+$(1)/tdc_main.o: firmware/board/tdc_main.c $(GEN)/tdc_panels.h $(PANEL_CONFIG)
+	@mkdir -p $$(@D)
+	$(CC) $(FW_CFLAGS) -Ifirmware/board -include $(PANEL_CONFIG) $(FW_CFG_BASE) -DTDC_CFG_BANDS=$(2) -DTDC_FW_NO_MAIN -MMD -MP -c $$< -o $$@
+$(1)/tdc_board_host.o: tests/arm/tdc_board_host.c firmware/board/tdc_board.h
+	@mkdir -p $$(@D)
+	$(CC) $(HOST_CFLAGS) -Ifirmware/board -MMD -MP -c $$< -o $$@
+$(1)/fw/%.o: firmware/%.c $(GEN)/tdc_panels.h $(PANEL_CONFIG)
+	@mkdir -p $$(@D)
+	$(CC) $(FW_CFLAGS) -include $(PANEL_CONFIG) $(FW_CFG_BASE) -DTDC_CFG_BANDS=$(2) -MMD -MP -c $$< -o $$@
+$(1)/tdc_fw_host: $(1)/tdc_main.o $(1)/tdc_board_host.o $(patsubst firmware/%.c,$(1)/fw/%.o,$(FWH_PANEL_SRCS)) $(FWLIB)
+	$(CC) $(HOST_LDFLAGS) $$^ -o $$@ $(HOST_LIBS)
+endef
+$(eval $(call fw_host_loop,$(FWH_B0),0))
+$(eval $(call fw_host_loop,$(FWH_B1),1))
 
 $(B)/tests/arm/fw_stream.o: tests/arm/fw_stream.c $(GEN)/tdc_panels.h
 	@mkdir -p $(@D)
@@ -318,6 +329,14 @@ $(BP)/fw-%-check: $(FWH)/tdc_fw_host $(B)/tests/fw_stream tests/arm/test_fw_%.sh
 	@chmod +x $@
 arm-fw-loop-check arm-fw-refuse-check: arm-fw-%-check: $(BP)/fw-%-check
 	@tests/run_tests.sh "fw-$*-$(PANEL)" $<
+# Rows in flight (tests/arm/test_fw_bands.sh): the banded loop on banded
+# streams, clean and with each bad band, against the whole-picture loop.
+$(BP)/fw-bands-check: $(FWH_B1)/tdc_fw_host $(FWH_B0)/tdc_fw_host $(B)/tests/fw_stream tests/arm/test_fw_bands.sh
+	@mkdir -p $(@D)
+	@printf '#!/bin/sh\nexec tests/arm/test_fw_bands.sh %s %s %s %s\n' "$(FWH_B1)/tdc_fw_host" "$(FWH_B0)/tdc_fw_host" "$(B)/tests/fw_stream" "$(PANEL_DIMS)" > $@
+	@chmod +x $@
+arm-fw-bands-check: $(BP)/fw-bands-check
+	@tests/run_tests.sh "fw-bands-$(BOARD)-$(PANEL)" $<
 
 -include $(shell find $(BA) $(BP) -name '*.d' 2>/dev/null)
 endif
@@ -363,6 +382,8 @@ test-arm:
 	    else $(call ARM_FAIL_LINE,$$b-$$p,firmware-build); fi; \
 	done
 	@$(MAKE) --no-print-directory -j2 BOARD=mps3-an547 PANEL=htc-vive arm-fw-loop-check || :
+	@$(MAKE) --no-print-directory -j2 BOARD=mps3-an547 PANEL=htc-vive arm-fw-bands-check || :
+	@$(MAKE) --no-print-directory -j2 BOARD=stm32h747i-disco PANEL=lcd-240 arm-fw-bands-check || :
 	@$(MAKE) --no-print-directory -j2 BOARD=mps3-an547 PANEL=disco-dsi arm-fw-refuse-check || :
 	@for t in $(ARM_FIT_FAIL); do \
 	    b=$${t%%:*}; r=$${t#*:}; p=$${r%%:*}; r=$${r#*:}; s=$${r%%:*}; g=$${r#*:}; \

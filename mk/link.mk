@@ -12,7 +12,8 @@ $(GEN)/tdc_crc32_tables.h: $(CRC32_GEN) | $(GEN)
 $(GEN)/tdc_panels.h: | $(GEN)/tdc_crc32_tables.h
 $(B)/firmware/tdc_crc32.o: $(GEN)/tdc_crc32_tables.h
 
-FW_SRCS += firmware/tdc_crc32.c firmware/tdc_pixfmt.c firmware/tdc_wire.c firmware/tdc_link.c firmware/tdc_link_encode.c firmware/tdc_layer_link.c
+FW_SRCS += firmware/tdc_crc32.c firmware/tdc_pixfmt.c firmware/tdc_wire.c firmware/tdc_link.c firmware/tdc_link_encode.c firmware/tdc_layer_link.c \
+            firmware/tdc_band_link.c
 SIM_SRCS += sim/link/tdc_link_file.c sim/link/tdc_pixfmt_ref.c sim/link/tdc_link_gen.c
 
 # Fuzzing of the decoder (and of every other parser), and the decoder's
@@ -21,7 +22,7 @@ SIM_SRCS += sim/link/tdc_link_file.c sim/link/tdc_pixfmt_ref.c sim/link/tdc_link
 # ---------------------------------------------------------------------------
 # Tests, golden vectors, benchmark.
 # ---------------------------------------------------------------------------
-TESTS += $(B)/tests/unit/test_wire $(B)/tests/unit/test_link $(B)/tests/unit/test_layer_link $(B)/tests/unit/test_link_pixfmt $(B)/tests/unit/test_link_file $(B)/tests/unit/test_link_mask
+TESTS += $(B)/tests/unit/test_wire $(B)/tests/unit/test_link $(B)/tests/unit/test_layer_link $(B)/tests/unit/test_band_link $(B)/tests/unit/test_link_pixfmt $(B)/tests/unit/test_link_file $(B)/tests/unit/test_link_mask
 GOLDEN_STAGES += link
 BENCHES += $(B)/tests/bench/bench_link
 

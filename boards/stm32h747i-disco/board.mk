@@ -17,4 +17,9 @@ BOARD_STAGES_pg279q :=
 # LCD history at 6 bits per sample (4.5 B/px instead of 6: lcd-240's "trm
 # lcd" fits with it), and no RGB30 link format (staging 3 B/px, not 4).
 BOARD_FW_CFG := -DTDC_CFG_LCD_PREV_BITS=6u -DTDC_LINK_FORMAT_MASK=0x16u
+# Rows in flight (docs/boards.md): pictures as row bands of 16 rows, one band
+# staged (92 KB for lcd-240 instead of 6.2 MB), so a front/back frame buffer
+# pair fits every default pair: the panel never scans out a buffer being
+# written, and a frame with a bad band is never swapped in.
+BOARD_BANDS := 1
 BOARD_FLASH := dfu: hosttools USB DFU path (tdc-usb flash), or dfu-util -a 0 -s 0x08000000:leave -D IMAGE.bin (BOOT0 high), or STM32CubeProgrammer over ST-LINK

@@ -39,6 +39,14 @@
  * packet into the frame buffer on arrival.  What it does not give is an
  * atomic swap on scan-out hardware: the eye being updated is processed in
  * the buffer the LTDC reads (docs/boards.md, "Frame buffer and scan-out").
+ *
+ * With TDC_CFG_BANDS (rows in flight, issue 17 item 2): pictures arrive as
+ * row bands (tdc_band_link.h), staging holds one band, each FULL band is
+ * unpacked at its rows of the back buffer as it arrives, the last band
+ * completes the eye; the frame buffer is a front/back pair and the swap
+ * happens only when a frame is finished (eyes not updated copied from the
+ * front first).  A picture with a bad or missing band is dropped whole by
+ * the decoder (BAND_DROPPED): its eye keeps its last good image.
  */
 #include <string.h>
 
@@ -58,6 +66,16 @@
 #endif
 #ifndef TDC_CFG_LCD
 #define TDC_CFG_LCD 0
+#endif
+/* Rows in flight (issue 17 item 2, docs/boards.md): FULL and REDUCED
+ * pictures arrive as row bands of at most TDC_CFG_BAND_ROWS rows; staging
+ * holds one band, the frame buffer is a front/back pair swapped only when a
+ * frame is complete. */
+#ifndef TDC_CFG_BANDS
+#define TDC_CFG_BANDS 0
+#endif
+#ifndef TDC_CFG_BAND_ROWS
+#define TDC_CFG_BAND_ROWS 16u
 #endif
 #if TDC_CFG_LCD && !TDC_PANEL_IS_LCD
 #error "TDC_CFG_LCD on an OLED panel: the LCD inverse is compiled out of OLED builds"
@@ -97,12 +115,28 @@
 extern const tdc_panel_t TDC_PANEL_SYMBOL;
 
 /* ---- static buffers (sizes from the panel and the stages) ---- */
-static uint8_t g_fb[(size_t)FW_STRIDE * FW_H] TDC_EXTRAM;
 /* Staging holds the largest payload this build accepts: a full frame in
- * the widest compiled-in format (RGB30: 4 B/px; without it RGB888, 3 B/px).
- * Per-pixel MOTION is never staged: no stage here uses it (skip_motion). */
+ * the widest compiled-in format (RGB30: 4 B/px; without it RGB888, 3 B/px),
+ * or with bands one band (and the largest subframe-stream payload, 4 B per
+ * tile, if assembly is in).  Per-pixel MOTION is never staged: no stage
+ * here uses it (skip_motion). */
 #define FW_FULL_BPP ((((unsigned)TDC_LINK_FORMAT_MASK >> TDC_PIXFMT_RGB30) & 1u) ? 4u : 3u)
+#if TDC_CFG_BANDS
+/* front/back: the panel scans out g_fbs[g.front]; the stages write the other */
+static uint8_t g_fbs[2][(size_t)FW_STRIDE * FW_H] TDC_EXTRAM;
+#define FB_BACK (g_fbs[g.front ^ 1u])
+#define FW_BAND_STAGING TDC_LINK_STAGING_BAND_BYTES(FW_W, TDC_CFG_BAND_ROWS, FW_FULL_BPP)
+#if TDC_CFG_ASSEMBLE
+#define FW_ASM_STAGING (TDC_TILE_COUNT(FW_W, FW_H) * 4u)
+#else
+#define FW_ASM_STAGING ((size_t)0)
+#endif
+#define FW_STAGING_BYTES (FW_BAND_STAGING > FW_ASM_STAGING ? FW_BAND_STAGING : FW_ASM_STAGING)
+#else
+static uint8_t g_fb[(size_t)FW_STRIDE * FW_H] TDC_EXTRAM;
+#define FB_BACK g_fb
 #define FW_STAGING_BYTES ((size_t)FW_W * FW_H * FW_FULL_BPP + TDC_LINK_STREAM_HEADER_BYTES)
+#endif
 static uint8_t g_staging[FW_STAGING_BYTES] TDC_EXTRAM;
 
 #if TDC_CFG_TRM
@@ -166,6 +200,18 @@ static struct {
     uint8_t have_stream;      /* the configured stream's header, to recognise a repeat */
     uint16_t stream_id;
     tdc_link_stream_info_t stream;
+#if TDC_CFG_BANDS
+    uint8_t front;          /* g_fbs[front] is on the panel */
+    uint32_t bands;         /* row bands taken */
+    uint32_t band_drops;    /* pictures dropped whole (a bad or missing band): the eye kept its image */
+    uint32_t eye_copies;    /* kept eyes copied front -> back before a swap */
+    uint8_t bopen[2];       /* eye's picture in flight has its stages open */
+    uint32_t bfinal[2];     /* ... and this many output rows (from the top) final */
+    uint32_t lcd_resets;    /* LCD history reset: a picture dropped after LCD rows ran */
+    uint32_t held_max[2];   /* rows a band leaves not final (FULL, REDUCED: full-res rows) */
+    uint64_t held_sum[2];
+    uint32_t held_n[2];
+#endif
 #if TDC_CFG_TRM
     tdc_trm_t trm[FW_EYES];
 #endif
@@ -231,6 +277,16 @@ static void configure_stream(void)
     g.have_stream = 1;
     const int reduced = (si->flags & TDC_LINK_STREAM_REDUCED) != 0;
     const int subframes = (si->flags & TDC_LINK_STREAM_SUBFRAMES) != 0;
+    const int bands = (si->flags & TDC_LINK_STREAM_BANDS) != 0;
+    if (bands != TDC_CFG_BANDS && (bands || (size_t)FW_W * FW_H * 3u + TDC_LINK_STREAM_HEADER_BYTES > sizeof g_staging)) {
+        /* bands need the front/back pair (a single buffer would show a
+         * dropped picture's first bands); a build staging one band cannot
+         * take whole pictures */
+        tdc_board_log(bands ? "stream sends row bands: this build has no back buffer (TDC_CFG_BANDS)"
+                            : "stream sends whole pictures: this build stages one row band (TDC_CFG_BANDS)");
+        g.unsupported++;
+        return;
+    }
     if (reduced && subframes) {
         tdc_board_log("stream uses TRM and tile assembly together: not supported by this build");
         g.unsupported++;
@@ -348,7 +404,7 @@ static int assemble_eye(uint32_t e, uint32_t frame, uint32_t kinds)
     int stride = 0;
     const uint8_t *out = tdc_asm_output(st, &stride);
     for (uint32_t y = 0; y < FW_H; y++) {
-        memcpy(g_fb + (size_t)y * FW_STRIDE + (size_t)e * FW_W * 3u, out + (size_t)y * (uint32_t)stride, FW_W * 3u);
+        memcpy(FB_BACK + (size_t)y * FW_STRIDE + (size_t)e * FW_W * 3u, out + (size_t)y * (uint32_t)stride, FW_W * 3u);
     }
     return 1;
 }
@@ -358,7 +414,7 @@ static int assemble_eye(uint32_t e, uint32_t frame, uint32_t kinds)
  * the frame buffer was updated. */
 static int process_eye_kinds(uint32_t e, uint32_t frame, uint32_t kinds)
 {
-    uint8_t *fb = g_fb + (size_t)e * FW_W * 3u;
+    uint8_t *fb = FB_BACK + (size_t)e * FW_W * 3u;
     tdc_res_t *residual = NULL;
     tdc_status_t st = TDC_OK;
     (void)fb;
@@ -418,7 +474,7 @@ static int process_eye_kinds(uint32_t e, uint32_t frame, uint32_t kinds)
  * by process_eye_kinds and still leaves the eye changed). */
 static int process_full(uint32_t e, uint32_t frame)
 {
-    if (tdc_link_unpack_full(&g.dec, g_fb + (size_t)e * FW_W * 3u, FW_STRIDE) != TDC_OK) {
+    if (tdc_link_unpack_full(&g.dec, FB_BACK + (size_t)e * FW_W * 3u, FW_STRIDE) != TDC_OK) {
         g.stage_errors++;
         return 0;
     }
@@ -433,7 +489,23 @@ static int process_eye(uint32_t e, uint32_t frame)
 
 static void show_frame(void)
 {
+#if TDC_CFG_BANDS
+    /* an eye not updated keeps its last shown image: the front's, copied
+     * into the back before the swap (the back may hold a dropped picture) */
+    for (uint32_t e = 0; e < FW_EYES; e++) {
+        if (!(g.eyes_updated & (1u << e))) {
+            const size_t off = (size_t)e * FW_W * 3u;
+            for (uint32_t y = 0; y < FW_H; y++) {
+                memcpy(FB_BACK + (size_t)y * FW_STRIDE + off, g_fbs[g.front] + (size_t)y * FW_STRIDE + off, FW_W * 3u);
+            }
+            g.eye_copies++;
+        }
+    }
+    g.front ^= 1u;
+    (void)tdc_board_panel_show(g_fbs[g.front], FW_STRIDE, FW_EYES * FW_W, FW_H, g.frame);
+#else
     (void)tdc_board_panel_show(g_fb, FW_STRIDE, FW_EYES * FW_W, FW_H, g.frame);
+#endif
     tdc_board_vsync_wait();
     g.frames_shown++;
 }
@@ -494,6 +566,121 @@ static void eye_done(uint32_t e)
     }
 }
 
+#if TDC_CFG_BANDS
+/* Marks around the work a band's event starts (its decode to the back
+ * buffer and the stages it lets run): the latency from its last byte to
+ * its pixels being final, counted on Cortex-M by the QEMU plugin
+ * (tests/arm/band_latency.sh). */
+void tdc_fw_band_in(void);
+void tdc_fw_band_out(void);
+__attribute__((noinline, used)) void tdc_fw_band_in(void)
+{
+    __asm__ volatile("" ::: "memory");
+}
+__attribute__((noinline, used)) void tdc_fw_band_out(void)
+{
+    __asm__ volatile("" ::: "memory");
+}
+
+/* Eye e's picture in flight was dropped: rows the LCD inverse already ran
+ * hold that picture's history, so the eye's LCD starts again without
+ * history (never from a mixed one); TRM's kept state was invalidated when
+ * the full frame began (tdc_trm_full_begin), a reduced frame keeps none. */
+static void band_abandon(uint32_t e)
+{
+    if (e >= FW_EYES || !g.bopen[e]) {
+        return;
+    }
+    g.bopen[e] = 0;
+#if TDC_CFG_LCD
+    if (g.lcd_ok && g.bfinal[e] > 0u) {
+        tdc_lcd_reset(&g.lcd[e]);
+        g.lcd_resets++;
+    }
+#endif
+}
+
+/* The stages a band lets run, in the eye's part of the back buffer: TRM's
+ * full-res path (D rows as its kernel rows arrive, then the output rows
+ * whose U rows are done) or reduced path (output rows whose reduced rows
+ * are there), then the LCD inverse on the rows that became final.  The
+ * last band closes the frame of each stage and completes the eye. */
+static void band_stages(uint32_t e, uint32_t kind, const tdc_band_hdr_t *bh)
+{
+    uint8_t *fb = FB_BACK + (size_t)e * FW_W * 3u;
+    const int last = bh->index + 1u == bh->count;
+    const uint32_t avail = (uint32_t)bh->first_row + bh->rows;
+    uint32_t done = avail, covered = avail; /* output rows final; output rows the arrived rows cover */
+    tdc_status_t st = TDC_OK;
+    tdc_res_t *residual = NULL;
+    if (bh->index == 0u) {
+        g.bopen[e] = 1;
+        g.bfinal[e] = 0;
+    }
+    switch (g.mode) {
+    case MODE_PLAIN:
+        break;
+#if TDC_CFG_TRM
+    case MODE_TRM: {
+        tdc_trm_t *t = &g.trm[e];
+        if (kind == TDC_LINK_KIND_FULL) {
+            if (bh->index == 0u) {
+                st = tdc_trm_full_begin(t, fb, FW_STRIDE, fb, FW_STRIDE); /* in place: D reads a row before it is written */
+            }
+            if (st == TDC_OK) {
+                st = last ? tdc_trm_full_end(t, g.frame) : tdc_trm_full_rows(t, avail, &done);
+            }
+        } else {
+            uint32_t rw = 0, rh = 0;
+            tdc_link_reduced_size(&g.dec, &rw, &rh);
+            if (bh->index == 0u) {
+                st = tdc_trm_reduced_begin(t, g_reduced[e], rw * 3u, fb, FW_STRIDE, g.frame);
+            }
+            if (st == TDC_OK) {
+                st = last ? tdc_trm_reduced_end(t) : tdc_trm_reduced_rows(t, avail, &done);
+            }
+            covered = rh ? (uint32_t)(((uint64_t)avail * FW_H) / rh) : FW_H;
+        }
+        residual = tdc_trm_residual(t);
+        break;
+    }
+#endif
+    default: st = TDC_ERR_STATE; break;
+    }
+    if (last) {
+        done = covered = FW_H;
+    }
+    if (st != TDC_OK) {
+        g.stage_errors++;
+        band_abandon(e);
+        eye_done(e);
+        return;
+    }
+#if TDC_CFG_LCD
+    if (g.lcd_ok && done > g.bfinal[e] &&
+        tdc_lcd_rows(&g.lcd[e], fb, FW_STRIDE, fb, FW_STRIDE, residual, g.bfinal[e], done) != TDC_OK) {
+        g.stage_errors++;
+    }
+#endif
+    (void)residual;
+    g.bfinal[e] = done;
+    const uint32_t k = kind == TDC_LINK_KIND_FULL ? 0u : 1u, held = covered > done ? covered - done : 0u;
+    g.held_max[k] = held > g.held_max[k] ? held : g.held_max[k];
+    g.held_sum[k] += held;
+    g.held_n[k]++;
+    if (last) {
+#if TDC_CFG_LCD
+        if (g.lcd_ok) {
+            tdc_lcd_frame_done(&g.lcd[e]);
+        }
+#endif
+        g.bopen[e] = 0;
+        g.eyes_updated = (uint8_t)(g.eyes_updated | (1u << e));
+        eye_done(e);
+    }
+}
+#endif
+
 /* A pixel packet of the current or a later frame failed its payload CRC:
  * that eye keeps its image for this frame.  A rejected packet never moves
  * the loop's notion of time (its frame index is not trusted: only the
@@ -502,7 +689,17 @@ static void eye_done(uint32_t e)
  * starts that frame. */
 static void on_rejected(const tdc_link_event_t *ev)
 {
-    if (g.mode == MODE_NONE || ev->error != TDC_LINK_ERR_CRC || ev->eye >= FW_EYES ||
+    /* a band's CRC error: the decoder reports the drop of the picture it
+     * names (BAND_DROPPED), which is what counts here */
+    const int lost = (ev->error == TDC_LINK_ERR_CRC && !(ev->flags & TDC_LINK_PKT_BAND)) ||
+                     ev->error == TDC_LINK_ERR_BAND_DROPPED;
+#if TDC_CFG_BANDS
+    if (ev->error == TDC_LINK_ERR_BAND_DROPPED) {
+        g.band_drops++;
+        band_abandon(ev->eye);
+    }
+#endif
+    if (g.mode == MODE_NONE || !lost || ev->eye >= FW_EYES ||
         (g.have_frame && ev->frame_index < g.frame) || (g.have_last && ev->frame_index <= g.last_frame)) {
         return;
     }
@@ -537,6 +734,33 @@ static void late_full(uint32_t e, uint32_t frame)
     }
 }
 
+/* A row band of the current frame (FULL or REDUCED, due for its eye): a
+ * FULL band is unpacked at its rows of the eye's part of the back buffer
+ * (the decoder wrote a REDUCED band into g_reduced itself), then the
+ * stages run on what it completes (band_stages). */
+static void on_band(const tdc_link_event_t *ev)
+{
+#if TDC_CFG_BANDS
+    const uint32_t e = ev->eye;
+    const tdc_band_hdr_t *bh = tdc_link_band(&g.dec, e);
+    tdc_fw_band_in();
+    g.bands++;
+    if (!bh || (g.eyes_done & (1u << e)) || (bh->index > 0u && !g.bopen[e])) {
+        return;
+    }
+    if (ev->kind == TDC_LINK_KIND_FULL && tdc_link_unpack_full(&g.dec, FB_BACK + (size_t)e * FW_W * 3u, FW_STRIDE) != TDC_OK) {
+        g.stage_errors++;
+        return;
+    }
+    /* (g.kinds stays clear: finish_frame must never run an eye's stages
+     * on a picture whose bands did not all come) */
+    band_stages(e, ev->kind, bh);
+    tdc_fw_band_out();
+#else
+    (void)ev; /* configure_stream refuses band streams without a back buffer */
+#endif
+}
+
 static int same_stream(const tdc_link_event_t *ev)
 {
     const tdc_link_stream_info_t *si = tdc_link_stream(&g.dec);
@@ -559,8 +783,10 @@ static void on_packet(const tdc_link_event_t *ev)
     if (g.mode == MODE_NONE || ev->eye >= FW_EYES) {
         return;
     }
+    const int band = (ev->flags & TDC_LINK_PKT_BAND) != 0;
     if (!g.have_frame && g.have_last && ev->frame_index <= g.last_frame) {
-        if (ev->kind == TDC_LINK_KIND_FULL && ev->frame_index == g.last_frame) {
+        /* (a band of a finished frame: its picture is not whole; ignored) */
+        if (ev->kind == TDC_LINK_KIND_FULL && ev->frame_index == g.last_frame && !band) {
             late_full(ev->eye, ev->frame_index);
         } else {
             g.late_packets++; /* its frame was shown already (or dropped) */
@@ -574,6 +800,10 @@ static void on_packet(const tdc_link_event_t *ev)
     }
     if (!g.have_frame || ev->frame_index != g.frame) {
         start_frame(ev->frame_index);
+    }
+    if (band) {
+        on_band(ev);
+        return;
     }
     g.kinds[e] = (uint8_t)(g.kinds[e] | KIND_BIT(ev->kind));
     if (ev->kind == TDC_LINK_KIND_FULL) {
@@ -686,6 +916,18 @@ int tdc_fw_run(void)
     log_kv("repeated stream headers (no-op): ", g.stream_repeats);
     log_kv("late full packets processed: ", g.late_full);
     log_kv("packets skipped (unused kind): ", c->packets_skipped);
+#if TDC_CFG_BANDS
+    log_kv("row bands: ", g.bands);
+    log_kv("pictures dropped (bad or missing band): ", g.band_drops);
+    log_kv("kept eyes copied before a swap: ", g.eye_copies);
+    log_kv("LCD history resets (picture dropped after its first LCD rows): ", g.lcd_resets);
+    log_kv("rows a FULL band leaves not final, max: ", g.held_max[0]);
+    log_kv("rows a FULL band leaves not final, mean x100: ",
+           g.held_n[0] ? (uint32_t)(g.held_sum[0] * 100u / g.held_n[0]) : 0u);
+    log_kv("rows a REDUCED band leaves not final, max: ", g.held_max[1]);
+    log_kv("rows a REDUCED band leaves not final, mean x100: ",
+           g.held_n[1] ? (uint32_t)(g.held_sum[1] * 100u / g.held_n[1]) : 0u);
+#endif
 #if TDC_CFG_TRM
     if (g.mode == MODE_TRM) {
         uint32_t unpaired = 0;

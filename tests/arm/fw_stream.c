@@ -27,6 +27,18 @@
  *                   after eye 1's packet; frame 3: eye 0's REDUCED corrupted
  *   trm-resend-ref  frame 2 intact, frame 3 eye 0's REDUCED corrupted
  *   subframes-late  the subframe stream with frame indices from 1000
+ *   trm-drop        frame 2: eye 0's FULL corrupted (rejected, eye kept)
+ * Rows in flight (issue 17 item 2; tests/arm/test_fw_bands.sh): the TRM
+ * stream with stream flag BANDS, every picture as bands of 16 rows:
+ *   trm-bands          clean: must show what trm shows through the loop
+ *                      without bands
+ *   trm-bands-crc      frame 2, eye 0's FULL: band 3 with a bad payload CRC
+ *   trm-bands-order    ... bands 3 and 4 swapped
+ *   trm-bands-missing  ... its last band never sent
+ *   trm-bands-size     ... band 3 in bands of 8 rows (the frame changes size)
+ *                      (these four must show what trm-drop shows)
+ *   trm-bands-other    ... band 5 of frame 4 between its bands 2 and 3 (a
+ *                      band for another frame: refused alone, as trm)
  * Contents: tests/golden/tdc_content.h (edge on eye 0, text on eye 1).
  *
  * EXPECTED (plain mode only, for panels that show the decoded codes, i.e.
@@ -56,6 +68,36 @@ static void put(size_t n, const char *what)
     }
 }
 
+/* Row bands of 16 rows of a picture; frame 2, eye 0 damaged per `how`. */
+static void put_bands(const tdc_link_encoder_t *enc, tdc_link_kind_t kind, uint32_t e, uint32_t f, const uint8_t *rgb,
+                      uint32_t w, uint32_t h, const char *how)
+{
+    const uint32_t br = 16, n = tdc_band_count(h, br);
+    const int bad = f == 2 && e == 0 && kind == TDC_LINK_KIND_FULL && *how;
+    for (uint32_t i = 0; i < n; i++) {
+        uint32_t idx = i, rows = br, fr = f;
+        if (bad && !strcmp(how, "order") && (i == 3 || i == 4)) {
+            idx = 7 - i;
+        }
+        if (bad && !strcmp(how, "missing") && i + 1 == n) {
+            break;
+        }
+        if (bad && !strcmp(how, "size") && i == 3) {
+            idx = 6;
+            rows = 8;
+        }
+        size_t k = tdc_link_encode_band(enc, g_pkt, g_cap, kind, e, fr, TDC_PIXFMT_RGB888, rgb, w, h, w * 3u, rows, idx);
+        if (bad && !strcmp(how, "crc") && i == 3) {
+            g_pkt[TDC_LINK_HEADER_BYTES + TDC_BAND_HDR_BYTES + 5u] ^= 0x20u;
+        }
+        put(k, "band");
+        if (bad && !strcmp(how, "other") && i == 2) {
+            put(tdc_link_encode_band(enc, g_pkt, g_cap, kind, e, f + 2u, TDC_PIXFMT_RGB888, rgb, w, h, w * 3u, br, 5),
+                "band of another frame");
+        }
+    }
+}
+
 static tdc_content_t eye_content(uint32_t eye)
 {
     return eye ? TDC_CONTENT_TEXT : TDC_CONTENT_EDGE;
@@ -79,6 +121,8 @@ int main(int argc, char **argv)
     const int v_rehdr = !strcmp(mode, "trm-rehdr"), v_resend = !strcmp(mode, "trm-resend");
     const int v_resend_ref = !strcmp(mode, "trm-resend-ref");
     const uint32_t f0 = !strcmp(mode, "subframes-late") ? 1000u : 0u;
+    const int bands = !strncmp(mode, "trm-bands", 9), v_drop = !strcmp(mode, "trm-drop");
+    const char *band_how = bands && mode[9] == '-' ? mode + 10 : "";
     if (!trm && !sub && !plain) {
         fprintf(stderr, "fw_stream: unknown mode %s\n", mode);
         return 2;
@@ -87,6 +131,9 @@ int main(int argc, char **argv)
     info.flags = trm ? TDC_LINK_STREAM_REDUCED : sub ? (TDC_LINK_STREAM_SUBFRAMES | TDC_LINK_STREAM_SAMPLE_MV) : 0u;
     if (v_motion) {
         info.flags |= TDC_LINK_STREAM_MOTION;
+    }
+    if (bands) {
+        info.flags |= TDC_LINK_STREAM_BANDS;
     }
     info.r_num = 1;
     info.r_den = trm ? 2 : 1;
@@ -145,10 +192,15 @@ int main(int argc, char **argv)
                 }
                 put(n, "full frame");
             } else if (trm) {
-                if (tdc_link_trm_kind(f, e) == TDC_LINK_KIND_FULL) {
+                if (bands && tdc_link_trm_kind(f, e) == TDC_LINK_KIND_FULL) {
+                    put_bands(&enc, TDC_LINK_KIND_FULL, e, f, rgb, w, h, band_how);
+                } else if (tdc_link_trm_kind(f, e) == TDC_LINK_KIND_FULL) {
                     size_t n = tdc_link_encode_frame(&enc, g_pkt, g_cap, TDC_LINK_KIND_FULL, e, f, TDC_PIXFMT_RGB888,
                                                      rgb, w, h, w * 3u);
-                    if (v_resend && f == 2 && e == 0) {
+                    if (v_drop && f == 2 && e == 0) {
+                        g_pkt[TDC_LINK_HEADER_BYTES + 100u] ^= 0x40u; /* payload CRC must catch it */
+                        put(n, "full frame (corrupted)");
+                    } else if (v_resend && f == 2 && e == 0) {
                         /* corrupted now, resent intact after eye 1's packet */
                         g_pkt[TDC_LINK_HEADER_BYTES + 100u] ^= 0x40u;
                         put(n, "full frame (corrupted)");
@@ -173,6 +225,10 @@ int main(int argc, char **argv)
                                 red[((size_t)y * rw + x) * 3 + c] = (uint8_t)((s + 2) / 4);
                             }
                         }
+                    }
+                    if (bands) {
+                        put_bands(&enc, TDC_LINK_KIND_REDUCED, e, f, red, rw, rh, band_how);
+                        continue;
                     }
                     size_t n = tdc_link_encode_frame(&enc, g_pkt, g_cap, TDC_LINK_KIND_REDUCED, e, f, TDC_PIXFMT_RGB888,
                                                      red, rw, rh, rw * 3u);

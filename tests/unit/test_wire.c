@@ -151,7 +151,9 @@ static void test_kind_table(void **state)
     }
     /* Only MOTION may carry MV_PER_SAMPLE. */
     assert_int_equal(tdc_link_kind_info(TDC_LINK_KIND_MOTION)->pkt_flags, TDC_LINK_PKT_MV_PER_SAMPLE);
-    assert_int_equal(tdc_link_kind_info(TDC_LINK_KIND_FULL)->pkt_flags, 0);
+    /* FULL and REDUCED may be row bands (tdc_band_link.h) */
+    assert_int_equal(tdc_link_kind_info(TDC_LINK_KIND_FULL)->pkt_flags, TDC_LINK_PKT_BAND);
+    assert_int_equal(tdc_link_kind_info(TDC_LINK_KIND_REDUCED)->pkt_flags, TDC_LINK_PKT_BAND);
 }
 
 /* Payload sizes = the table of docs/link-protocol.md §2, written out. */
