@@ -58,8 +58,17 @@ tdc_board_status_t tdc_board_transport_read(uint8_t *buf, uint32_t cap, uint32_t
     size_t n = 1u + (g_chunk_seed >> 16) % 700u;
     if (n > cap) n = cap;
     if (n > total - g_in_pos) n = total - g_in_pos;
-    for (size_t i = 0; i < n; i++, g_in_pos++)
-        buf[i] = g_in_pos < g_in_len ? g_in[g_in_pos] : g_tail[g_in_pos - g_in_len];
+    /* two copies, not a byte loop: the loop's per-byte comparisons were 19 % of
+     * each execution under -fsanitize=fuzzer's comparison tracing */
+    size_t i = 0;
+    if (g_in_pos < g_in_len) {
+        i = n < g_in_len - g_in_pos ? n : g_in_len - g_in_pos;
+        memcpy(buf, g_in + g_in_pos, i);
+    }
+    if (i < n) {
+        memcpy(buf + i, g_tail + (g_in_pos + i - g_in_len), n - i);
+    }
+    g_in_pos += n;
     *got = (uint32_t)n;
     return TDC_BOARD_OK;
 }
