@@ -162,15 +162,21 @@ static void bench_link(tdc_pixfmt_t fmt, const char *label)
     report(label, BENCH_FRAMES * BENCH_PX);
 }
 
-static void bench_trm(tdc_content_t c, const char *full_label, const char *reduced_label)
+/* g_trm for a stream of reduced frames at 90 Hz, HTC Vive gamma. */
+static void trm_init_stream(void)
 {
-    make_inputs(c);
     tdc_trm_config_t cfg;
     tdc_trm_default_config(&cfg, (uint16_t)BENCH_W, (uint16_t)BENCH_H, 90);
     cfg.reduced_in_stream = 1;
     if (tdc_trm_init(&g_trm, &cfg, &tdc_panel_htc_vive, g_arena, sizeof g_arena) != TDC_OK) {
         fail("TRM init");
     }
+}
+
+static void bench_trm(tdc_content_t c, const char *full_label, const char *reduced_label)
+{
+    make_inputs(c);
+    trm_init_stream();
     /* Full and reduced alternate, as in a stream; each kind is bracketed. */
     uint64_t dummy = 0;
     for (uint32_t f = 0; f < BENCH_FRAMES; f++) {
@@ -242,6 +248,20 @@ static void bench_assemble(int moving, const char *label)
     }
 }
 
+/* The first LCD profile (TDC_PANEL_LIST order) whose tables mode needs;
+ * g_lcd is left initialised in that mode.  NULL if none. */
+static const tdc_panel_t *first_lcd_panel(uint8_t mode)
+{
+    for (unsigned i = 0; i < sizeof k_panels / sizeof k_panels[0]; i++) {
+        const tdc_lcd_config_t cfg = {(uint16_t)BENCH_W, (uint16_t)BENCH_H, k_panels[i]->refresh_hz, mode, 8u};
+        if (k_panels[i]->type == TDC_PANEL_LCD &&
+            tdc_lcd_init(&g_lcd, &cfg, k_panels[i], g_lcd_arena, sizeof g_lcd_arena) == TDC_OK) {
+            return k_panels[i];
+        }
+    }
+    return NULL;
+}
+
 static void bench_lcd(void)
 {
     static const struct {
@@ -255,15 +275,7 @@ static void bench_lcd(void)
     /* Every mode on one profile: the first LCD profile (TDC_PANEL_LIST
      * order) with the transition tables, i.e. every mode's tables (pg279q;
      * disco-dsi, first in the list, has neither those nor 33x33). */
-    const tdc_panel_t *lcd = NULL;
-    for (unsigned i = 0; i < sizeof k_panels / sizeof k_panels[0] && !lcd; i++) {
-        const tdc_lcd_config_t cfg = {(uint16_t)BENCH_W, (uint16_t)BENCH_H, k_panels[i]->refresh_hz,
-                                      TDC_LCD_MODE_STATEFUL_PAIR, 8u};
-        if (k_panels[i]->type == TDC_PANEL_LCD &&
-            tdc_lcd_init(&g_lcd, &cfg, k_panels[i], g_lcd_arena, sizeof g_lcd_arena) == TDC_OK) {
-            lcd = k_panels[i];
-        }
-    }
+    const tdc_panel_t *lcd = first_lcd_panel(TDC_LCD_MODE_STATEFUL_PAIR);
     if (!lcd) {
         return;
     }
@@ -303,22 +315,8 @@ static void bench_lcd(void)
 static void bench_bands(void)
 {
     make_inputs(TDC_CONTENT_TEXT);
-    tdc_trm_config_t tcfg;
-    tdc_trm_default_config(&tcfg, (uint16_t)BENCH_W, (uint16_t)BENCH_H, 90);
-    tcfg.reduced_in_stream = 1;
-    if (tdc_trm_init(&g_trm, &tcfg, &tdc_panel_htc_vive, g_arena, sizeof g_arena) != TDC_OK) {
-        fail("TRM init");
-    }
-    const tdc_panel_t *lcd = NULL;
-    for (unsigned i = 0; i < sizeof k_panels / sizeof k_panels[0] && !lcd; i++) {
-        const tdc_lcd_config_t cfg = {(uint16_t)BENCH_W, (uint16_t)BENCH_H, k_panels[i]->refresh_hz,
-                                      TDC_LCD_MODE_TABLE33, 8u};
-        if (k_panels[i]->type == TDC_PANEL_LCD &&
-            tdc_lcd_init(&g_lcd, &cfg, k_panels[i], g_lcd_arena, sizeof g_lcd_arena) == TDC_OK) {
-            lcd = k_panels[i];
-        }
-    }
-    if (!lcd) {
+    trm_init_stream();
+    if (!first_lcd_panel(TDC_LCD_MODE_TABLE33)) {
         fail("no LCD profile with a 33x33 table");
     }
     const tdc_link_stream_info_t info = {TDC_LINK_STREAM_REDUCED | TDC_LINK_STREAM_BANDS, 1, 2, (uint16_t)BENCH_W,
