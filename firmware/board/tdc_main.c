@@ -593,6 +593,7 @@ static void band_abandon(uint32_t e)
 static void band_stages(uint32_t e, uint32_t kind, const tdc_band_hdr_t *bh)
 {
     uint8_t *fb = FB_BACK + (size_t)e * FW_W * 3u;
+    (void)fb; /* a build without TRM and LCD only unpacks */
     const int last = bh->index + 1u == bh->count;
     const uint32_t avail = (uint32_t)bh->first_row + bh->rows;
     uint32_t done = avail, covered = avail; /* output rows final; output rows the arrived rows cover */
