@@ -4,10 +4,10 @@
 FW_SRCS += firmware/tdc_fov.c firmware/tdc_fov_link.c
 SIM_SRCS += sim/ref_fov.c
 # foveated error statistics (eccentricity weighting, FLIP's weighted median) for the simulator
-FOV_METRICS_OBJ = $(B)/sim/metrics/tdc_fov_metrics.o
+FOV_METRICS_OBJ = $(B)/sim/metrics/tdc_fov_metrics.o $(B)/sim/metrics/tdc_filter.o
 TESTS += $(B)/tests/unit/test_fov_metrics
 $(B)/tests/unit/test_fov_metrics: $(B)/tests/unit/test_fov_metrics.o $(FOV_METRICS_OBJ)
-	$(CC) $(HOST_LDFLAGS) $^ -o $@ $(HOST_LIBS)
+	$(CC) $(HOST_LDFLAGS) $(SIM_OMP) $^ -o $@ $(HOST_LIBS)
 
 # (TABLEGEN is defined after the fragments are read: name the program)
 $(GEN)/tdc_fov_tables.h: $(BUILD)/tools/tdc-tablegen | $(GEN)

@@ -41,7 +41,14 @@ $(SIMX_OBJS) $(B)/sim/simulator/tdc_sim_main.o: $(GEN)/tdc_sim_features.h
 # The simulator's own stages run threaded over rows with gcc's OpenMP
 # (sim/tdc_par.h says why); other compilers build them serial.
 SIM_OMP := $(if $(filter gcc,$(CCNAME)),-fopenmp)
-$(SIMX_OBJS) $(B)/sim/simulator/tdc_sim_main.o: HOST_CFLAGS += $(SIM_OMP)
+# -fno-trapping-math: gcc 12 if-converts a select (a < b ? p : q) in a
+# vector loop only when comparisons may not trap; -fno-math-errno: sqrt
+# becomes the instruction, without the errno branch.  Neither changes a
+# value (no reassociation, no contraction: C11 mode); they let the
+# element-wise row kernels (FLIP's L*a*b* and error rows, SSIM's map row,
+# the panorama samples) vectorise.  clang does not trap by default.
+SIM_VEC := $(if $(filter gcc,$(CCNAME)),-fno-trapping-math -fno-math-errno)
+$(SIMX_OBJS) $(B)/sim/simulator/tdc_sim_main.o: HOST_CFLAGS += $(SIM_OMP) $(SIM_VEC)
 
 $(SIMXLIB): $(SIMX_OBJS)
 	@rm -f $@; mkdir -p $(@D)

@@ -28,6 +28,10 @@ extern long tdc_par_min_work;
 #include <omp.h>
 #define TDC_PAR_PRAGMA(x) _Pragma(#x)
 #define TDC_PAR_FOR(work) TDC_PAR_PRAGMA(omp parallel for schedule(dynamic, 4) if ((long)(work) >= tdc_par_min_work))
+/* A parallel region whose threads share the bands of TDC_PAR_BANDS (each
+ * thread allocates its own scratch once per region, then takes bands). */
+#define TDC_PAR_REGION(work) TDC_PAR_PRAGMA(omp parallel if ((long)(work) >= tdc_par_min_work))
+#define TDC_PAR_BANDS TDC_PAR_PRAGMA(omp for schedule(dynamic, 1))
 static inline void tdc_par_set_threads(int n)
 {
     omp_set_num_threads(n > 0 ? n : 1);
@@ -38,6 +42,8 @@ static inline int tdc_par_threads(void)
 }
 #else
 #define TDC_PAR_FOR(work)
+#define TDC_PAR_REGION(work)
+#define TDC_PAR_BANDS
 static inline void tdc_par_set_threads(int n)
 {
     (void)n;

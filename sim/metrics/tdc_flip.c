@@ -68,13 +68,6 @@ static void rgb_to_ycxcz(const double *rgb, double *o)
     o[2] = 200.0 * (yr - zr);
 }
 
-static void ycxcz_to_rgb(const double *c, double *rgb)
-{
-    double yr = (c[0] + 16.0) / 116.0;
-    double xyz[3] = {(c[1] / 500.0 + yr) * XN, yr * YN, (yr - c[2] / 200.0) * ZN};
-    mat3(k_xyz2rgb, xyz, rgb);
-}
-
 /* cbrt by table (tdc_powtab.h: 7e-9 relative, below the float L*a*b* kept) */
 static double lab_f(const tdc_powtab_t *cb, double t)
 {
@@ -99,42 +92,48 @@ static double hyab(const double *a, const double *b)
     return fabs(a[0] - b[0]) + sqrt(da * da + db * db);
 }
 
-/* Prefiltered YyCxCz -> clamped linear RGB -> Hunt-adjusted L*a*b* (lab_out,
- * 3 floats per pixel) and the feature plane (Yy + 16) / 116 (yfeat). */
-static int flip_color_prepare(const double *lin, int w, int h, double ppd, float *lab_out, float *yfeat, float *work)
+/*
+ * The per-image half of FLIP, streamed in bands of rows (tdc_filter.h): a
+ * source row is converted to YyCxCz and the feature plane (Yy + 16) / 116,
+ * edge-padded, and filtered horizontally - the CSF kernels per channel and
+ * the feature kernels d1, g, d2 - into a ring; an output row is filtered
+ * vertically, taken back to clamped linear RGB and Hunt-adjusted L*a*b*,
+ * and its edge and point magnitudes formed.  The reference keeps those
+ * rows (5 floats per pixel); a test image's rows are compared with the
+ * reference's at once, so no plane of the test image is stored.
+ */
+#define KMAX (2 * TDC_FILTER_MAX_R + 1)
+enum { RC0 = 0, RC2 = 3, RD1 = 6, RG = 7, RD2 = 8, NRING = 9 }; /* ring rows of a source row */
+
+typedef struct {
+    int w, h, rc, rf, rmax, two[3];
+    float k1[3][KMAX], k2[3][KMAX];   /* CSF: first and (if two[c]) second Gaussian of channel c */
+    float fg[KMAX], fd1[KMAX], fd2[KMAX]; /* features: Gaussian, first and second derivative */
+} flip_kern_t;
+
+/* The kernels at ppd; 0, or -1 if a radius exceeds TDC_FILTER_MAX_R. */
+static int flip_kernels(flip_kern_t *K, int w, int h, double ppd)
 {
     static const double a1[3] = {1.0, 1.0, 34.1}, b1[3] = {0.0047, 0.0053, 0.04};
     static const double a2[3] = {0.0, 0.0, 13.5}, b2[3] = {1e-5, 1e-5, 0.025};
     const double bmax = 0.04;
+    K->w = w;
+    K->h = h;
     int r = (int)ceil(3.0 * sqrt(bmax / (2.0 * PI * PI)) * ppd);
-    if (r < 1) {
-        r = 1;
-    }
-    if (r > TDC_FILTER_MAX_R) {
+    K->rc = r < 1 ? 1 : r;
+    double sigma = 0.5 * 0.082 * ppd;
+    r = (int)ceil(3.0 * sigma);
+    K->rf = r < 1 ? 1 : r;
+    if (K->rc > TDC_FILTER_MAX_R || K->rf > TDC_FILTER_MAX_R) {
         return -1;
     }
-    size_t n = (size_t)w * h;
-    const tdc_powtab_t *cb = tdc_powtab_metrics(TDC_POWTAB_CBRT);
-    float *plane[3] = {work, work + n, work + 2 * n};
-    float *filt[3] = {work + 3 * n, work + 4 * n, work + 5 * n};
-    float *f2 = work + 6 * n, *tmp = work + 7 * n;
-    TDC_PAR_FOR((size_t)w * h)
-    for (int y = 0; y < h; y++) {
-        for (size_t i = (size_t)y * w; i < (size_t)(y + 1) * w; i++) {
-            double o[3];
-            rgb_to_ycxcz(lin + 3 * i, o);
-            plane[0][i] = (float)o[0];
-            plane[1][i] = (float)o[1];
-            plane[2][i] = (float)o[2];
-            yfeat[i] = (float)((o[0] + 16.0) / 116.0);
-        }
-    }
+    K->rmax = K->rc > K->rf ? K->rc : K->rf;
+    r = K->rc;
     for (int c = 0; c < 3; c++) {
         /* 2-D kernel (w1 g1(x) g1(y) + w2 g2(x) g2(y)) / total with
          * w = a sqrt(pi / b); each term as a separable pass whose 1-D
          * kernels carry sqrt(w / total) */
-        double g1[2 * TDC_FILTER_MAX_R + 1], g2[2 * TDC_FILTER_MAX_R + 1];
-        float k1[2 * TDC_FILTER_MAX_R + 1], k2[2 * TDC_FILTER_MAX_R + 1];
+        double g1[KMAX], g2[KMAX];
         double s1 = 0.0, s2 = 0.0;
         for (int j = -r; j <= r; j++) {
             double xd = (double)j / ppd; /* degrees */
@@ -147,57 +146,13 @@ static int flip_color_prepare(const double *lin, int w, int h, double ppd, float
         double total = w1 * s1 * s1 + w2 * s2 * s2;
         double q1 = sqrt(w1 / total), q2 = sqrt(w2 / total);
         for (int j = 0; j < 2 * r + 1; j++) {
-            k1[j] = (float)(q1 * g1[j]);
-            k2[j] = (float)(q2 * g2[j]);
+            K->k1[c][j] = (float)(q1 * g1[j]);
+            K->k2[c][j] = (float)(q2 * g2[j]);
         }
-        if (tdc_sep_filter_f(plane[c], filt[c], tmp, w, h, k1, k1, r, TDC_EDGE_CLAMP)) {
-            return -1;
-        }
-        if (w2 > 0.0) {
-            if (tdc_sep_filter_f(plane[c], f2, tmp, w, h, k2, k2, r, TDC_EDGE_CLAMP)) {
-                return -1;
-            }
-            TDC_PAR_FOR((size_t)w * h)
-            for (int y = 0; y < h; y++) {
-                for (size_t i = (size_t)y * w; i < (size_t)(y + 1) * w; i++) {
-                    filt[c][i] += f2[i];
-                }
-            }
-        }
+        K->two[c] = w2 > 0.0;
     }
-    TDC_PAR_FOR((size_t)w * h)
-    for (int y = 0; y < h; y++) {
-        for (size_t i = (size_t)y * w; i < (size_t)(y + 1) * w; i++) {
-            double c[3] = {filt[0][i], filt[1][i], filt[2][i]}, rgb[3], lab[3];
-            ycxcz_to_rgb(c, rgb);
-            for (int k = 0; k < 3; k++) {
-                rgb[k] = rgb[k] < 0.0 ? 0.0 : (rgb[k] > 1.0 ? 1.0 : rgb[k]);
-            }
-            rgb_to_lab_hunt(cb, rgb, lab);
-            lab_out[3 * i] = (float)lab[0];
-            lab_out[3 * i + 1] = (float)lab[1];
-            lab_out[3 * i + 2] = (float)lab[2];
-        }
-    }
-    return 0;
-}
-
-/* Edge and point feature magnitudes of plane y (work: 3 w*h floats). */
-static int flip_features(const float *y, int w, int h, double ppd, float *edge, float *point, float *work)
-{
-    double sigma = 0.5 * 0.082 * ppd;
-    int r = (int)ceil(3.0 * sigma);
-    if (r < 1) {
-        r = 1;
-    }
-    if (r > TDC_FILTER_MAX_R) {
-        return -1;
-    }
-    int kn = 2 * r + 1;
-    size_t n = (size_t)w * h;
-    float *gx = work, *gy = work + n, *tmp = work + 2 * n;
-    double g[2 * TDC_FILTER_MAX_R + 1], d1[2 * TDC_FILTER_MAX_R + 1], d2[2 * TDC_FILTER_MAX_R + 1];
-    float fg[2 * TDC_FILTER_MAX_R + 1], fd1[2 * TDC_FILTER_MAX_R + 1], fd2[2 * TDC_FILTER_MAX_R + 1];
+    r = K->rf;
+    double g[KMAX], d1[KMAX], d2[KMAX];
     double gs = 0.0, d1p = 0.0, d2p = 0.0, d2n = 0.0;
     for (int j = -r; j <= r; j++) {
         double e = exp(-(double)(j * j) / (2.0 * sigma * sigma));
@@ -214,61 +169,267 @@ static int flip_features(const float *y, int w, int h, double ppd, float *edge, 
             d2n -= d2[j + r];
         }
     }
-    for (int j = 0; j < kn; j++) {
-        fg[j] = (float)(g[j] / gs);
-        fd1[j] = (float)(d1[j] / d1p); /* antisymmetric: negative lobe sums to -1 too */
-        fd2[j] = (float)(d2[j] > 0.0 ? d2[j] / d2p : d2[j] / d2n);
-    }
-    for (int pass = 0; pass < 2; pass++) {
-        const float *d = pass ? fd2 : fd1;
-        float *o = pass ? point : edge;
-        if (tdc_sep_filter_f(y, gx, tmp, w, h, d, fg, r, TDC_EDGE_CLAMP) ||
-            tdc_sep_filter_f(y, gy, tmp, w, h, fg, d, r, TDC_EDGE_CLAMP)) {
-            return -1;
-        }
-        TDC_PAR_FOR((size_t)w * h)
-        for (int yr = 0; yr < h; yr++) {
-            for (size_t i = (size_t)yr * w; i < (size_t)(yr + 1) * w; i++) {
-                o[i] = sqrtf(gx[i] * gx[i] + gy[i] * gy[i]);
-            }
-        }
+    for (int j = 0; j < 2 * r + 1; j++) {
+        K->fg[j] = (float)(g[j] / gs);
+        K->fd1[j] = (float)(d1[j] / d1p); /* antisymmetric: negative lobe sums to -1 too */
+        K->fd2[j] = (float)(d2[j] > 0.0 ? d2[j] / d2p : d2[j] / d2n);
     }
     return 0;
 }
 
-/* The per-image half of FLIP: L*a*b* of the prefiltered image (3 floats per
- * pixel) and its edge and point feature magnitudes (1 each); work: 9 floats
- * per pixel. */
-static int flip_image(const double *lin, int w, int h, double ppd, float *lab, float *edge, float *point, float *work)
+typedef struct {
+    const flip_kern_t *K;
+    const double *lin;
+    /* prepare: the reference's planes are written; vs: compared with */
+    const tdc_flip_ref_t *ref;
+    float *lab_out, *e_out, *p_out;
+    double *map, *rows, cmax;
+    const tdc_powtab_t *cb, *pq;
+    /* per thread */
+    float *ring;               /* 2 rmax + 1 slots of NRING rows of w */
+    float *pad;                /* 4 rows of w + 2 rmax: Yy, Cx, Cz, feature */
+    float *f, *f2, *gx, *gy;   /* vertical results: f 3 rows */
+    float *lab, *e, *p;        /* vs: the test image's row */
+    double *dmap, *dex;        /* vs: the row's map (when none is wanted) and exponents */
+} flip_band_t;
+
+static void flip_src_row(void *ctx, int yy, int slot)
 {
-    size_t n = (size_t)w * h;
-    float *yf = work + 8 * n;
-    return flip_color_prepare(lin, w, h, ppd, lab, yf, work) || flip_features(yf, w, h, ppd, edge, point, work);
+    flip_band_t *s = ctx;
+    const flip_kern_t *K = s->K;
+    const int w = K->w, rm = K->rmax;
+    const size_t pw = (size_t)w + 2 * (size_t)rm;
+    float *pad[4] = {s->pad, s->pad + pw, s->pad + 2 * pw, s->pad + 3 * pw};
+    const double *lin = s->lin + 3 * (size_t)yy * w;
+    TDC_SIMD
+    for (int x = 0; x < w; x++) {
+        double o[3];
+        rgb_to_ycxcz(lin + 3 * (size_t)x, o);
+        pad[0][rm + x] = (float)o[0];
+        pad[1][rm + x] = (float)o[1];
+        pad[2][rm + x] = (float)o[2];
+        pad[3][rm + x] = (float)((o[0] + 16.0) / 116.0);
+    }
+    for (int q = 0; q < 4; q++) {
+        for (int i = 1; i <= rm; i++) {
+            pad[q][rm - i] = pad[q][rm];
+            pad[q][rm + w - 1 + i] = pad[q][rm + w - 1];
+        }
+    }
+    float *ring = s->ring + (size_t)slot * NRING * w;
+    const float *src[KMAX];
+    const int kc = 2 * K->rc + 1, kf = 2 * K->rf + 1;
+    for (int c = 0; c < 3; c++) {
+        for (int j = 0; j < kc; j++) {
+            src[j] = pad[c] + (rm - K->rc) + j;
+        }
+        tdc_filter_taps_f(ring + (size_t)(RC0 + c) * w, src, K->k1[c], kc, w);
+        if (K->two[c]) {
+            tdc_filter_taps_f(ring + (size_t)(RC2 + c) * w, src, K->k2[c], kc, w);
+        }
+    }
+    for (int j = 0; j < kf; j++) {
+        src[j] = pad[3] + (rm - K->rf) + j;
+    }
+    tdc_filter_taps_f(ring + (size_t)RD1 * w, src, K->fd1, kf, w);
+    tdc_filter_taps_f(ring + (size_t)RG * w, src, K->fg, kf, w);
+    tdc_filter_taps_f(ring + (size_t)RD2 * w, src, K->fd2, kf, w);
+}
+
+/* Vertical taps k (radius r) over ring row kind q, output row y, into o. */
+static void flip_vert(const flip_band_t *s, int q, const float *k, int r, int y, float *o)
+{
+    const flip_kern_t *K = s->K;
+    const float *src[KMAX];
+    tdc_filter_ring_rows_f(src, s->ring + (size_t)q * K->w, (size_t)NRING * K->w, 2 * K->rmax + 1, y, K->h, r,
+                           TDC_EDGE_CLAMP);
+    tdc_filter_taps_f(o, src, k, 2 * r + 1, K->w);
+}
+
+/* Filtered YyCxCz -> clamped linear RGB -> Hunt-adjusted L*a*b* of a row:
+ * YyCxCz -> XYZ -> RGB (k_xyz2rgb), the clamp and rgb_to_lab_hunt in their
+ * order, written element-wise (the cube root by tdc_powtab_pos: its
+ * argument t > (6/29)^3 is positive and normal) so that the loop
+ * vectorises - the same bits as pixel by pixel (test_metrics' FLIP maps;
+ * 1440x1600: ~9 % of the run's CPU before). */
+TDC_SIMD_CLONES static void flip_lab_row(const tdc_powtab_t *cb, const float *f0, const float *f1, const float *f2,
+                                         float *lab, int w)
+{
+    const double *mi = k_xyz2rgb, *m = k_rgb2xyz, d = 6.0 / 29.0;
+    TDC_SIMD
+    for (int x = 0; x < w; x++) {
+        const double yr = (f0[x] + 16.0) / 116.0;
+        const double X = ((double)f1[x] / 500.0 + yr) * XN, Y = yr * YN, Z = (yr - (double)f2[x] / 200.0) * ZN;
+        double r = mi[0] * X + mi[1] * Y + mi[2] * Z;
+        double g = mi[3] * X + mi[4] * Y + mi[5] * Z;
+        double b = mi[6] * X + mi[7] * Y + mi[8] * Z;
+        r = r < 0.0 ? 0.0 : (r > 1.0 ? 1.0 : r);
+        g = g < 0.0 ? 0.0 : (g > 1.0 ? 1.0 : g);
+        b = b < 0.0 ? 0.0 : (b > 1.0 ? 1.0 : b);
+        const double tx = (m[0] * r + m[1] * g + m[2] * b) / XN;
+        const double ty = (m[3] * r + m[4] * g + m[5] * b) / YN;
+        const double tz = (m[6] * r + m[7] * g + m[8] * b) / ZN;
+        /* both branches, then a select: no control flow in the loop */
+        const double px = tdc_powtab_pos(cb, tx), py = tdc_powtab_pos(cb, ty), pz = tdc_powtab_pos(cb, tz);
+        const double qx = tx / (3.0 * d * d) + 4.0 / 29.0, qy = ty / (3.0 * d * d) + 4.0 / 29.0;
+        const double qz = tz / (3.0 * d * d) + 4.0 / 29.0;
+        const double fx = tx > d * d * d ? px : qx, fy = ty > d * d * d ? py : qy, fz = tz > d * d * d ? pz : qz;
+        const double L = 116.0 * fy - 16.0;
+        lab[3 * x] = (float)L;
+        lab[3 * x + 1] = (float)(0.01 * L * 500.0 * (fx - fy));
+        lab[3 * x + 2] = (float)(0.01 * L * 200.0 * (fy - fz));
+    }
+}
+
+/* The error of one row (reference lab_r, e_r, p_r; test lab, fe, fp) into
+ * map, summed left to right; ex: w doubles of scratch.  Colour and feature
+ * terms element-wise (vectorised: tdc_powtab_pos for the HyAB^0.7 of a
+ * distance that is 0 or at least a float's smallest step, selects for the
+ * remap and the clamps), then the pixel error dc^(1 - df) and the sum -
+ * the same values as pixel by pixel. */
+TDC_SIMD_CLONES static double flip_err_row(const tdc_powtab_t *pq, double cmax, const float *restrict lab_r,
+                                           const float *restrict e_r, const float *restrict p_r,
+                                           const float *restrict lab, const float *restrict fe,
+                                           const float *restrict fp, double *restrict map, double *restrict ex,
+                                           int w)
+{
+    const double pc = 0.4, pt = 0.95;
+    TDC_SIMD
+    for (int x = 0; x < w; x++) {
+        const double dl = (double)lab_r[3 * x] - (double)lab[3 * x];
+        const double da = (double)lab_r[3 * x + 1] - (double)lab[3 * x + 1];
+        const double db = (double)lab_r[3 * x + 2] - (double)lab[3 * x + 2];
+        const double hy = fabs(dl) + sqrt(da * da + db * db); /* hyab */
+        const double hq = tdc_powtab_pos(pq, hy);            /* ^qc, qc = 0.7 */
+        double dc = hy != hy ? hy : (hy > 0.0 ? hq : 0.0);   /* NaN as NaN, 0^0.7 = 0 */
+        const double lo = pt / (pc * cmax) * dc, hi = pt + (dc - pc * cmax) / (cmax - pc * cmax) * (1.0 - pt);
+        dc = dc < pc * cmax ? lo : hi;
+        dc = dc > 1.0 ? 1.0 : dc;
+        const double dfe = fabs((double)e_r[x] - fe[x]), dfp = fabs((double)p_r[x] - fp[x]);
+        double df = sqrt((dfe > dfp ? dfe : dfp) / sqrt(2.0)); /* ^qf, qf = 0.5 */
+        df = df > 1.0 ? 1.0 : df;
+        map[x] = dc;
+        ex[x] = 1.0 - df;
+    }
+    double sum = 0.0;
+    for (int x = 0; x < w; x++) {
+        const double e = pow(map[x], ex[x]);
+        map[x] = e;
+        sum += e;
+    }
+    return sum;
+}
+
+static void flip_out_row(void *ctx, int y)
+{
+    flip_band_t *s = ctx;
+    const flip_kern_t *K = s->K;
+    const int w = K->w;
+    float *f[3] = {s->f, s->f + w, s->f + 2 * (size_t)w};
+    for (int c = 0; c < 3; c++) {
+        flip_vert(s, RC0 + c, K->k1[c], K->rc, y, f[c]);
+        if (K->two[c]) {
+            flip_vert(s, RC2 + c, K->k2[c], K->rc, y, s->f2);
+            for (int x = 0; x < w; x++) {
+                f[c][x] += s->f2[x];
+            }
+        }
+    }
+    const size_t i0 = (size_t)y * w;
+    const int prep = s->ref == NULL;
+    float *lab = prep ? s->lab_out + 3 * i0 : s->lab;
+    float *fe = prep ? s->e_out + i0 : s->e, *fp = prep ? s->p_out + i0 : s->p;
+    flip_lab_row(s->cb, f[0], f[1], f[2], lab, w);
+    for (int pass = 0; pass < 2; pass++) {
+        /* edge: d1 across, g along, and g across, d1 along; point: d2 */
+        flip_vert(s, pass ? RD2 : RD1, K->fg, K->rf, y, s->gx);
+        flip_vert(s, RG, pass ? K->fd2 : K->fd1, K->rf, y, s->gy);
+        float *o = pass ? fp : fe;
+        TDC_SIMD
+        for (int x = 0; x < w; x++) {
+            o[x] = sqrtf(s->gx[x] * s->gx[x] + s->gy[x] * s->gy[x]);
+        }
+    }
+    if (prep) {
+        return;
+    }
+    s->rows[y] = flip_err_row(s->pq, s->cmax, s->ref->buf + 3 * i0, s->ref->buf + 3 * (size_t)w * K->h + i0,
+                              s->ref->buf + 4 * (size_t)w * K->h + i0, lab, fe, fp, s->map ? s->map + i0 : s->dmap,
+                              s->dex, w);
+}
+
+/* Every band of rows of s0 (a template); 0, or -1 out of memory. */
+static int flip_bands(const flip_band_t *s0)
+{
+    const flip_kern_t *K = s0->K;
+    const int w = K->w, h = K->h, rm = K->rmax;
+    /* bands of at least 16 rmax rows: the 2 rmax rows shared with the
+     * neighbours are converted and filtered horizontally twice (+12.5 %) */
+    const int band = 16 * rm > 64 ? 16 * rm : 64, nb = (h + band - 1) / band;
+    const size_t slots = 2 * (size_t)rm + 1, pw = (size_t)w + 2 * (size_t)rm;
+    int bad = 0;
+    TDC_PAR_REGION((size_t)w * h)
+    {
+        flip_band_t s = *s0;
+        /* the two double rows first (malloc's alignment), then the floats */
+        double *mem = malloc(sizeof(double) * 2 * (size_t)w +
+                             sizeof(float) * (slots * NRING * (size_t)w + 4 * pw + 11 * (size_t)w));
+        if (!mem) {
+            bad = 1; /* benign race: every writer stores 1 */
+        } else {
+            s.dmap = mem;
+            s.dex = mem + w;
+            s.ring = (float *)(void *)(mem + 2 * (size_t)w);
+            s.pad = s.ring + slots * NRING * (size_t)w;
+            s.f = s.pad + 4 * pw;
+            s.f2 = s.f + 3 * (size_t)w;
+            s.gx = s.f2 + w;
+            s.gy = s.gx + w;
+            s.lab = s.gy + w;
+            s.e = s.lab + 3 * (size_t)w;
+            s.p = s.e + w;
+        }
+        TDC_PAR_BANDS
+        for (int b = 0; b < nb; b++) {
+            if (mem) {
+                const int y0 = b * band, y1 = y0 + band < h ? y0 + band : h;
+                tdc_filter_stream(y0, y1, h, rm, flip_src_row, flip_out_row, &s);
+            }
+        }
+        free(mem);
+    }
+    return bad ? -1 : 0;
 }
 
 size_t tdc_flip_work_bytes(int w, int h)
 {
-    return sizeof(float) * (size_t)w * h * 14 + sizeof(double) * (size_t)h;
+    (void)w;
+    return sizeof(double) * (size_t)(h > 0 ? h : 1);
 }
 
 int tdc_flip_prepare(tdc_flip_ref_t *ref, const double *lin, int w, int h, double ppd, void *work)
 {
+    (void)work;
     size_t n = (size_t)w * h;
-    if (w < 1 || h < 1 || w > TDC_FILTER_MAX_W) {
+    flip_kern_t K;
+    if (w < 1 || h < 1 || w > TDC_FILTER_MAX_W || flip_kernels(&K, w, h, ppd)) {
         return -1;
     }
     ref->buf = tdc_metrics_reserve(ref->buf, &ref->cap, sizeof(float) * 5 * n);
-    float *own = work ? NULL : malloc(tdc_flip_work_bytes(w, h));
-    if (!ref->buf || (!work && !own)) {
-        free(own);
+    if (!ref->buf) {
         return -1;
     }
     ref->w = w;
     ref->h = h;
     ref->ppd = ppd;
-    int bad = flip_image(lin, w, h, ppd, ref->buf, ref->buf + 3 * n, ref->buf + 4 * n, work ? (float *)work : own);
-    free(own);
-    return bad ? -1 : 0;
+    flip_band_t s = {0};
+    s.K = &K;
+    s.lin = lin;
+    s.lab_out = ref->buf;
+    s.e_out = ref->buf + 3 * n;
+    s.p_out = ref->buf + 4 * n;
+    s.cb = tdc_powtab_metrics(TDC_POWTAB_CBRT);
+    return flip_bands(&s);
 }
 
 void tdc_flip_ref_free(tdc_flip_ref_t *ref)
@@ -279,60 +440,34 @@ void tdc_flip_ref_free(tdc_flip_ref_t *ref)
 
 double tdc_flip_vs(const tdc_flip_ref_t *ref, const double *test, double *map, void *work)
 {
-    const double qc = 0.7, pc = 0.4, pt = 0.95, qf = 0.5;
     const int w = ref->w, h = ref->h;
-    size_t n = (size_t)w * h;
-    /* lab t 3, features t 2, work 9 floats per pixel; row sums */
-    float *own = work ? NULL : malloc(tdc_flip_work_bytes(w, h));
-    float *mem = work ? (float *)work : own;
-    if (!mem) {
+    const size_t n = (size_t)w * h;
+    flip_kern_t K;
+    if (flip_kernels(&K, w, h, ref->ppd)) {
         return -1.0;
     }
-    const float *lab_r = ref->buf, *e_r = ref->buf + 3 * n, *p_r = ref->buf + 4 * n;
-    float *lab_t = mem, *e_t = mem + 3 * n, *p_t = mem + 4 * n, *fw = mem + 5 * n;
-    double *rows = (double *)(void *)(mem + 14 * n);
-    if (flip_image(test, w, h, ref->ppd, lab_t, e_t, p_t, fw)) {
-        free(own);
+    double *own = work ? NULL : malloc(tdc_flip_work_bytes(w, h));
+    double *rows = work ? (double *)work : own;
+    if (!rows) {
         return -1.0;
     }
+    flip_band_t s = {0};
+    s.K = &K;
+    s.lin = test;
+    s.ref = ref;
+    s.map = map;
+    s.rows = rows;
+    s.cb = tdc_powtab_metrics(TDC_POWTAB_CBRT);
+    s.pq = tdc_powtab_metrics(TDC_POWTAB_HYAB);
     const double green[3] = {0.0, 1.0, 0.0}, blue[3] = {0.0, 0.0, 1.0};
-    const tdc_powtab_t *cb = tdc_powtab_metrics(TDC_POWTAB_CBRT), *pq = tdc_powtab_metrics(TDC_POWTAB_HYAB);
     double lg[3], lb[3];
-    rgb_to_lab_hunt(cb, green, lg);
-    rgb_to_lab_hunt(cb, blue, lb);
-    const double cmax = tdc_powtab(pq, hyab(lg, lb)); /* ^qc, qc = 0.7 */
-    TDC_PAR_FOR((size_t)w * h)
-    for (int y = 0; y < h; y++) {
-        double sum = 0.0;
-        for (size_t i = (size_t)y * w; i < (size_t)(y + 1) * w; i++) {
-            double lr[3] = {lab_r[3 * i], lab_r[3 * i + 1], lab_r[3 * i + 2]};
-            double lt[3] = {lab_t[3 * i], lab_t[3 * i + 1], lab_t[3 * i + 2]};
-            double dc = tdc_powtab(pq, hyab(lr, lt)); /* ^qc */
-            if (dc < pc * cmax) {
-                dc = pt / (pc * cmax) * dc;
-            } else {
-                dc = pt + (dc - pc * cmax) / (cmax - pc * cmax) * (1.0 - pt);
-            }
-            if (dc > 1.0) {
-                dc = 1.0;
-            }
-            double fe = fabs((double)e_r[i] - e_t[i]), fp = fabs((double)p_r[i] - p_t[i]);
-            double df = sqrt((fe > fp ? fe : fp) / sqrt(2.0)); /* ^qf, qf = 0.5 */
-            if (df > 1.0) {
-                df = 1.0;
-            }
-            double e = pow(dc, 1.0 - df);
-            if (map) {
-                map[i] = e;
-            }
-            sum += e;
-        }
-        rows[y] = sum;
-    }
-    (void)qf, (void)qc; /* qc is the HYAB table's exponent */
+    rgb_to_lab_hunt(s.cb, green, lg);
+    rgb_to_lab_hunt(s.cb, blue, lb);
+    s.cmax = tdc_powtab(s.pq, hyab(lg, lb)); /* ^qc, qc = 0.7 */
+    int bad = flip_bands(&s);
     double sum = tdc_par_sum_rows(rows, h);
     free(own);
-    return n ? sum / (double)n : 0.0;
+    return bad ? -1.0 : (n ? sum / (double)n : 0.0);
 }
 
 double tdc_flip(const double *ref, const double *test, int w, int h, double ppd, double *map)

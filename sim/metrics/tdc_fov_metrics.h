@@ -21,11 +21,22 @@
 /* FLIP's weighted median of n values in [0, 1] (100 buckets; values
  * outside are clamped).  0 for n == 0 or an all-zero map. */
 double tdc_flip_weighted_median(const double *map, size_t n);
-/* Eccentricity-weighted mean of a w x h map, gaze (gx, gy) in pixels
- * (pixel centres at i + 0.5), ppd pixels per degree. */
+/* The statistics of a w x h map around the gaze (gx, gy) in pixels (pixel
+ * centres at i + 0.5), ppd pixels per degree, foveal disk radius r pixels
+ * (a pixel is inside when its squared distance <= r^2): in one pass,
+ * threaded over rows (sim/tdc_par.h: row sums in row order, so the result
+ * does not depend on the thread count).  It replaced three serial passes
+ * with a hypot per pixel each: 1.51 of 14.5 s wall of the stereo headline
+ * run (docs/simulator-performance.md).  0, or -1 out of memory. */
+typedef struct {
+    double ecc;     /* eccentricity-weighted mean */
+    double fovea;   /* mean within the disk; 0 when no pixel qualifies */
+    double periph;  /* mean beyond it; 0 when none */
+    double wmedian; /* tdc_flip_weighted_median of the map */
+} tdc_fov_stats_t;
+int tdc_fov_stats(const double *map, int w, int h, double gx, double gy, double ppd, double r, tdc_fov_stats_t *st);
+/* Single statistics of tdc_fov_stats (-1 out of memory). */
 double tdc_ecc_weighted_mean(const double *map, int w, int h, double gx, double gy, double ppd);
-/* Mean of the map over pixels within radius r of the gaze (inside = 1) or
- * beyond it (inside = 0); 0 when no pixel qualifies. */
 double tdc_disk_mean(const double *map, int w, int h, double gx, double gy, double r, int inside);
 
 #endif

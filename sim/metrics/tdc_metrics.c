@@ -55,6 +55,10 @@ void tdc_metrics_encode(const double *lin, double *enc, size_t n)
 
 /* SSIM's Gaussian window: 11 taps (sigma 1.5, truncate 3.5, as scipy.ndimage). */
 #define SSIM_R 5
+#define SSIM_SLOTS (2 * SSIM_R + 1)
+/* Output rows per band.  A band filters the 2r source rows it shares with
+ * each neighbour horizontally again: +16 % on the horizontal half at 64. */
+#define SSIM_BAND 64
 static void ssim_kernel(double k[2 * SSIM_R + 1])
 {
     const double sigma = 1.5;
@@ -68,58 +72,172 @@ static void ssim_kernel(double k[2 * SSIM_R + 1])
     }
 }
 
-/* The filtered planes of b per channel c: mean mu_b (buf + 2cn) and mean
- * of b^2 (buf + (2c+1)n); work: 2n scratch. */
-static int ssim_ref_planes(const double *b, int w, int h, double *buf, double *work)
-{
+/*
+ * Only the interior (rows and columns [r, n - r)) enters the mean, and its
+ * taps never leave the image, so only interior outputs are computed; they
+ * are the values the whole-plane filter with 'reflect' edges gives there.
+ * Per channel c the quantities q are b, b^2 (prepare: the reference's
+ * windowed mean mu_b and mean square, kept as planes 2c and 2c + 1 of n) or
+ * a, a^2, a b (vs), streamed through a ring of horizontal results
+ * (tdc_filter.h), reduced row by row: the SSIM map is never stored.
+ */
+typedef struct {
+    const double *a, *b; /* a: the test image (vs), NULL in prepare; b: the reference */
+    const double *planes; /* vs: the reference's mu_b, mean b^2 planes */
+    double *out;          /* prepare: where those planes go */
+    double *rows;         /* vs: per-channel row sums, 3 x h */
     double k[2 * SSIM_R + 1];
-    ssim_kernel(k);
-    size_t n = (size_t)w * h;
-    double *y = work, *tmp = work + n;
-    int bad = 0;
-    for (int c = 0; c < 3 && !bad; c++) {
-        double *uy = buf + 2 * c * n, *uyy = buf + (2 * c + 1) * n;
-        TDC_PAR_FOR((size_t)w * h)
-        for (int yr = 0; yr < h; yr++) {
-            for (size_t i = (size_t)yr * w; i < (size_t)(yr + 1) * w; i++) {
-                y[i] = b[3 * i + c];
+    double c1, c2;
+    int w, h, wi, nq; /* wi = w - 2r interior columns; nq = 2 (prepare) or 3 (vs) */
+    double *ring;     /* SSIM_SLOTS x 3 channels x nq rows of wi */
+    double *in;       /* nq rows of w: one channel's quantities of a source row */
+    double *v;        /* nq rows of wi: the vertical results of an output row */
+} ssim_band_t;
+
+static void ssim_src_row(void *ctx, int yy, int slot)
+{
+    ssim_band_t *s = ctx;
+    const int w = s->w, nq = s->nq;
+    const double *src[2 * SSIM_R + 1];
+    for (int c = 0; c < 3; c++) {
+        double *q0 = s->in, *q1 = s->in + w, *q2 = s->in + 2 * (size_t)w;
+        const double *b = s->b + 3 * (size_t)yy * w + c;
+        if (s->a) {
+            const double *a = s->a + 3 * (size_t)yy * w + c;
+            for (int x = 0; x < w; x++) {
+                q0[x] = a[3 * x];
+                q1[x] = q0[x] * q0[x];
+                q2[x] = q0[x] * b[3 * x];
+            }
+        } else {
+            for (int x = 0; x < w; x++) {
+                q0[x] = b[3 * x];
+                q1[x] = q0[x] * q0[x];
             }
         }
-        bad |= tdc_sep_filter_d(y, uy, tmp, w, h, k, k, SSIM_R, TDC_EDGE_REFLECT);
-        TDC_PAR_FOR((size_t)w * h)
-        for (int yr = 0; yr < h; yr++) {
-            for (size_t i = (size_t)yr * w; i < (size_t)(yr + 1) * w; i++) {
-                y[i] *= y[i];
+        for (int q = 0; q < nq; q++) {
+            for (int j = 0; j <= 2 * SSIM_R; j++) {
+                src[j] = s->in + (size_t)q * w + j;
             }
+            double *o = s->ring + (((size_t)slot * 3 + c) * nq + q) * s->wi;
+            tdc_filter_taps_d(o, src, s->k, 2 * SSIM_R + 1, s->wi);
         }
-        bad |= tdc_sep_filter_d(y, uyy, tmp, w, h, k, k, SSIM_R, TDC_EDGE_REFLECT);
     }
-    return bad;
+}
+
+/* The SSIM map of one interior row, summed left to right: the terms
+ * element-wise first (vectorised, the divisions too), into t, then the sum
+ * - the same value as term by term. */
+TDC_SIMD_CLONES static double ssim_row_sum(const double *restrict ux, const double *restrict uxx,
+                                           const double *restrict uxy, const double *restrict uy,
+                                           const double *restrict uyy, double c1, double c2, double *restrict t,
+                                           int wi)
+{
+    TDC_SIMD
+    for (int x = 0; x < wi; x++) {
+        double vx = uxx[x] - ux[x] * ux[x];
+        double vy = uyy[x] - uy[x] * uy[x];
+        double vxy = uxy[x] - ux[x] * uy[x];
+        double num = (2.0 * ux[x] * uy[x] + c1) * (2.0 * vxy + c2);
+        double den = (ux[x] * ux[x] + uy[x] * uy[x] + c1) * (vx + vy + c2);
+        t[x] = num / den;
+    }
+    double sum = 0.0;
+    for (int x = 0; x < wi; x++) {
+        sum += t[x];
+    }
+    return sum;
+}
+
+static void ssim_out_row(void *ctx, int y)
+{
+    ssim_band_t *s = ctx;
+    const int w = s->w, h = s->h, wi = s->wi, nq = s->nq, r = SSIM_R;
+    const size_t n = (size_t)w * h, stride = (size_t)3 * nq * wi;
+    const double *src[2 * SSIM_R + 1];
+    for (int c = 0; c < 3; c++) {
+        for (int q = 0; q < nq; q++) {
+            double *o = s->out ? s->out + (2 * (size_t)c + q) * n + (size_t)y * w + r : s->v + (size_t)q * wi;
+            tdc_filter_ring_rows_d(src, s->ring + ((size_t)c * nq + q) * wi, stride, SSIM_SLOTS, y, h, r,
+                                   TDC_EDGE_REFLECT);
+            tdc_filter_taps_d(o, src, s->k, 2 * SSIM_R + 1, wi);
+        }
+        if (s->out) {
+            continue;
+        }
+        const double *ux = s->v, *uxx = s->v + wi, *uxy = s->v + 2 * (size_t)wi;
+        const double *uy = s->planes + 2 * (size_t)c * n + (size_t)y * w + r, *uyy = uy + n;
+        s->rows[(size_t)c * h + y] = ssim_row_sum(ux, uxx, uxy, uy, uyy, s->c1, s->c2, s->in, wi);
+    }
+}
+
+/* Every band of interior rows of s (a template: its pointers and sizes);
+ * 0, or -1 out of memory. */
+static int ssim_bands(const ssim_band_t *s0)
+{
+    const int h = s0->h, r = SSIM_R, nb = (h - 2 * r + SSIM_BAND - 1) / SSIM_BAND;
+    int bad = 0;
+    TDC_PAR_REGION((size_t)s0->w * h)
+    {
+        ssim_band_t s = *s0;
+        const size_t nq = (size_t)s.nq, wi = (size_t)s.wi;
+        double *mem = malloc(sizeof(double) * (SSIM_SLOTS * 3 * nq * wi + nq * (size_t)s.w + nq * wi));
+        s.ring = mem;
+        s.in = mem + SSIM_SLOTS * 3 * nq * wi;
+        s.v = s.in + nq * (size_t)s.w;
+        if (!mem) {
+            bad = 1; /* benign race: every writer stores 1 */
+        }
+        TDC_PAR_BANDS
+        for (int b = 0; b < nb; b++) {
+            if (mem) {
+                const int y0 = r + b * SSIM_BAND, y1 = y0 + SSIM_BAND < h - r ? y0 + SSIM_BAND : h - r;
+                tdc_filter_stream(y0, y1, h, r, ssim_src_row, ssim_out_row, &s);
+            }
+        }
+        free(mem);
+    }
+    return bad ? -1 : 0;
+}
+
+static void ssim_setup(ssim_band_t *s, int w, int h)
+{
+    memset(s, 0, sizeof(*s));
+    ssim_kernel(s->k);
+    s->w = w;
+    s->h = h;
+    s->wi = w - 2 * SSIM_R;
 }
 
 size_t tdc_ssim_work_bytes(int w, int h)
 {
-    return sizeof(double) * ((size_t)w * h * 7 + (size_t)h);
+    (void)w;
+    return sizeof(double) * 3 * (size_t)(h > 0 ? h : 1);
 }
 
 int tdc_ssim_prepare(tdc_ssim_ref_t *ref, const double *b, int w, int h, void *work)
 {
+    (void)work;
     size_t n = (size_t)w * h;
     if (w < 1 || h < 1) {
         return -1;
     }
     ref->buf = tdc_metrics_reserve(ref->buf, &ref->cap, sizeof(double) * 6 * n);
-    double *own = work ? NULL : malloc(tdc_ssim_work_bytes(w, h));
-    if (!ref->buf || (!work && !own)) {
-        free(own);
+    if (!ref->buf) {
         return -1;
     }
     ref->b = b;
     ref->w = w;
     ref->h = h;
-    int bad = ssim_ref_planes(b, w, h, ref->buf, work ? (double *)work : own);
-    free(own);
-    return bad ? -1 : 0;
+    if (w <= 2 * SSIM_R || h <= 2 * SSIM_R) {
+        return 0; /* no interior: SSIM is 1 by definition (below) */
+    }
+    ssim_band_t s;
+    ssim_setup(&s, w, h);
+    s.b = b;
+    s.out = ref->buf;
+    s.nq = 2;
+    return ssim_bands(&s);
 }
 
 void tdc_ssim_ref_free(tdc_ssim_ref_t *ref)
@@ -130,54 +248,30 @@ void tdc_ssim_ref_free(tdc_ssim_ref_t *ref)
 
 double tdc_ssim_vs(const tdc_ssim_ref_t *ref, const double *a, double data_range, void *work)
 {
-    double k[2 * SSIM_R + 1];
-    ssim_kernel(k);
     const int w = ref->w, h = ref->h, r = SSIM_R;
-    const double *b = ref->b;
-    size_t n = (size_t)w * h;
+    if (w <= 2 * r || h <= 2 * r) {
+        return 1.0; /* mean over an empty interior: 1 per channel, as before */
+    }
     double *own = work ? NULL : malloc(tdc_ssim_work_bytes(w, h));
-    double *buf = work ? (double *)work : own;
-    if (!buf) {
+    double *rows = work ? (double *)work : own;
+    if (!rows) {
         return -1.0;
     }
-    double *x = buf, *xx = buf + n, *xy = buf + 2 * n;
-    double *ux = buf + 3 * n, *uxx = buf + 4 * n, *uxy = buf + 5 * n;
-    double *tmp = buf + 6 * n, *rows = buf + 7 * n;
-    const double c1 = (0.01 * data_range) * (0.01 * data_range);
-    const double c2 = (0.03 * data_range) * (0.03 * data_range);
-    const int pad = r; /* (win_size - 1) / 2 with win_size = 2r + 1 */
+    ssim_band_t s;
+    ssim_setup(&s, w, h);
+    s.a = a;
+    s.b = ref->b;
+    s.planes = ref->buf;
+    s.rows = rows;
+    s.nq = 3;
+    s.c1 = (0.01 * data_range) * (0.01 * data_range);
+    s.c2 = (0.03 * data_range) * (0.03 * data_range);
+    int bad = ssim_bands(&s);
+    /* per channel: the interior's mean, rows summed in row order */
+    const size_t cnt = (size_t)(h - 2 * r) * (size_t)(w - 2 * r);
     double total = 0.0;
-    int bad = 0;
-    for (int c = 0; c < 3 && !bad; c++) {
-        const double *uy = ref->buf + 2 * c * n, *uyy = ref->buf + (2 * c + 1) * n;
-        TDC_PAR_FOR((size_t)w * h)
-        for (int yr = 0; yr < h; yr++) {
-            for (size_t i = (size_t)yr * w; i < (size_t)(yr + 1) * w; i++) {
-                x[i] = a[3 * i + c];
-                xx[i] = x[i] * x[i];
-                xy[i] = x[i] * b[3 * i + c];
-            }
-        }
-        bad |= tdc_sep_filter_d(x, ux, tmp, w, h, k, k, r, TDC_EDGE_REFLECT);
-        bad |= tdc_sep_filter_d(xx, uxx, tmp, w, h, k, k, r, TDC_EDGE_REFLECT);
-        bad |= tdc_sep_filter_d(xy, uxy, tmp, w, h, k, k, r, TDC_EDGE_REFLECT);
-        TDC_PAR_FOR((size_t)w * h)
-        for (int yy0 = pad; yy0 < h - pad; yy0++) {
-            double s = 0.0;
-            for (int xx0 = pad; xx0 < w - pad; xx0++) {
-                size_t i = (size_t)yy0 * w + xx0;
-                double vx = uxx[i] - ux[i] * ux[i];
-                double vy = uyy[i] - uy[i] * uy[i];
-                double vxy = uxy[i] - ux[i] * uy[i];
-                double num = (2.0 * ux[i] * uy[i] + c1) * (2.0 * vxy + c2);
-                double den = (ux[i] * ux[i] + uy[i] * uy[i] + c1) * (vx + vy + c2);
-                s += num / den;
-            }
-            rows[yy0] = s;
-        }
-        size_t cnt = h > 2 * pad && w > 2 * pad ? (size_t)(h - 2 * pad) * (size_t)(w - 2 * pad) : 0;
-        double s = h > 2 * pad ? tdc_par_sum_rows(rows + pad, h - 2 * pad) : 0.0;
-        total += cnt ? s / (double)cnt : 1.0;
+    for (int c = 0; c < 3; c++) {
+        total += tdc_par_sum_rows(rows + (size_t)c * h + r, h - 2 * r) / (double)cnt;
     }
     free(own);
     return bad ? -1.0 : total / 3.0;

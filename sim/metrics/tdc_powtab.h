@@ -59,4 +59,23 @@ static inline double tdc_powtab(const tdc_powtab_t *t, double x)
     return (lo + (t->man[i + 1] - lo) * f) * t->ex[E];
 }
 
+/* The same value as tdc_powtab for x > 0 finite and normal, written without
+ * the libm branch and with the fraction formed by bits (1 + f 2^-41, less
+ * 1: exact), so that an element-wise loop over it vectorises (AVX2
+ * gathers); any other x gives an unspecified value - select around it. */
+static inline double tdc_powtab_pos(const tdc_powtab_t *t, double x)
+{
+    uint64_t u;
+    memcpy(&u, &x, sizeof u);
+    const uint64_t E = (u >> 52) & 0x7ffu;
+    const uint64_t i = (u >> (52 - TDC_POWTAB_BITS)) & (TDC_POWTAB_N - 1u);
+    const uint64_t fb = ((u & ((UINT64_C(1) << (52 - TDC_POWTAB_BITS)) - 1u)) << TDC_POWTAB_BITS) |
+                        UINT64_C(0x3ff0000000000000);
+    double f;
+    memcpy(&f, &fb, sizeof f);
+    f -= 1.0;
+    const double lo = t->man[i];
+    return (lo + (t->man[i + 1] - lo) * f) * t->ex[E];
+}
+
 #endif

@@ -636,7 +636,7 @@ int tdc_render_frame(tdc_render_t *r, uint32_t frame, tdc_render_mode_t mode, co
         for (int s = 0; s < TDC_STAGE_COUNT; s++) st.ms[s] += (double)w[i].th.ticks[s] * ms_per_tick;
         for (int k = 0; k < TDC_RAY_KIND_COUNT; k++) st.rays[k] += w[i].th.rays[k];
         st.dual_culled += w[i].th.dual_culled;
-        free(w[i].th.rec);
+        tdc_r_thread_free(&w[i].th);
     }
     free(w);
     if (!ok) {
@@ -718,6 +718,7 @@ int tdc_render_probe(tdc_render_t *r, uint32_t frame, double x, double y, tdc_re
         memcpy(p->refl_mv, s.refl_used ? s.mvsurf : s.mv, sizeof p->refl_mv);
     }
     memcpy(p->shade, s.lshade, sizeof p->shade);
+    tdc_r_thread_free(&th);
     p->vis = s.vis;
     memcpy(p->refl, s.refl, sizeof p->refl);
     return 0;

@@ -1,10 +1,10 @@
 /*
  * tdc_render_trace.c - the per-sample passes of Whitted ray tracing on
  * Embree and the motion vectors:
- *   primary      rtcIntersect1 per sample (camera ray through (x, y))
+ *   primary      camera rays through (x, y), 16 at a time (rtcIntersect16)
  *   shade        procedural texture, ambient + point/rect lights with shadow
- *                rays (rtcOccluded1, or rtcIntersect1 when shadow MVs need
- *                the blocker)
+ *                rays (a tile's, 16 at a time through rtcOccluded16; one by
+ *                one with rtcIntersect1 when shadow MVs need the blocker)
  *   reflect      mirror bounces, up to 3
  *   mv           primary MV: P_{i-1} T^{-1} P_i^{-1} x (Zeng eq. 1), by
  *                carrying the object-space hit through both frames' matrices
@@ -12,7 +12,8 @@
  *                previous position, reflected through the mirror chain's
  *                previous planes (Householder reflections), projected
  *   mv-shadow    Zeng eq. 3 + falloff eq. 4 (one previous-frame ray)
- *   mv-dual      Zeng eq. 6: x^O = y + (x - z) (one previous-frame ray)
+ *   mv-dual      Zeng eq. 6: x^O = y + (x - z) (one previous-frame ray, a
+ *                tile's 16 at a time)
  * MVs are in float px, backward (previous minus current position).
  */
 #include <math.h>
@@ -191,27 +192,99 @@ static double offset_eps(const double P[3])
     return 1e-4 * (1 + m);
 }
 
-/* Local (direct) radiance at a surface; optionally records the first
- * blocked point light's blocker into s. */
-static void shade_direct(rthread_t *t, int obj, const double P[3], const double Q[3], const double N[3],
-                         const double NQ[3], uint32_t dst, uint32_t k, uint32_t salt, rsample_t *track, double out[3],
-                         double *unshadowed)
+/* A shadow ray of the packet path (tdc_r_pass_shade): the ray, what its
+ * light sample adds to e when it is not blocked, and the answer. */
+struct tdc_r_shadow {
+    struct RTCRay ray;
+    double q[3];
+    int blocked;
+};
+
+void tdc_r_thread_free(rthread_t *t)
+{
+    free(t->rec);
+    free(t->sq);
+    free(t->sq_cnt);
+    free(t->dq);
+    t->rec = NULL;
+    t->sq = NULL;
+    t->sq_cnt = NULL;
+    t->dq = NULL;
+    t->nrec = t->crec = t->nsq = t->csq = t->csq_cnt = t->cdq = 0;
+}
+
+/* Queues a shadow ray; 0, or -1 out of memory (nothing queued). */
+static int sq_push(rthread_t *t, const double O[3], const double L[3], double tfar, const double q[3])
+{
+    if (t->nsq == t->csq) {
+        size_t c = t->csq ? 2 * t->csq : 1024;
+        struct tdc_r_shadow *p = realloc(t->sq, c * sizeof *p);
+        if (!p) return -1;
+        t->sq = p;
+        t->csq = c;
+    }
+    struct tdc_r_shadow *r = &t->sq[t->nsq++];
+    set_ray(&r->ray, O, L, 0, tfar);
+    copy3(r->q, q);
+    r->blocked = 0;
+    return 0;
+}
+
+/* The queued shadow rays [0, nsq), 16 at a time through rtcOccluded16 in
+ * queue order - the order of the tile's samples and their light samples,
+ * which the tile fixes whatever the thread count, so the packets (and
+ * their answers) are the same in every run. */
+static void sq_trace(rthread_t *t)
+{
+    /* the default (incoherent) traversal: with RTC_INTERSECT_CONTEXT_FLAG_COHERENT
+     * Debian's Embree 3.13.5 never returned from rtcOccluded16 on
+     * test_render_stream's static sphere (AVX-512 host) */
+    struct RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    for (size_t i = 0; i < t->nsq; i += 16) {
+        _Alignas(64) int valid[16];
+        _Alignas(64) struct RTCRay16 p;
+        const int m = t->nsq - i < 16 ? (int)(t->nsq - i) : 16;
+        for (int k = 0; k < 16; k++) {
+            const struct RTCRay *r = &t->sq[i + (size_t)(k < m ? k : 0)].ray;
+            valid[k] = k < m ? -1 : 0;
+            p.org_x[k] = r->org_x;
+            p.org_y[k] = r->org_y;
+            p.org_z[k] = r->org_z;
+            p.tnear[k] = r->tnear;
+            p.dir_x[k] = r->dir_x;
+            p.dir_y[k] = r->dir_y;
+            p.dir_z[k] = r->dir_z;
+            p.time[k] = 0;
+            p.tfar[k] = r->tfar;
+            p.mask[k] = 0xFFFFFFFFu;
+            p.id[k] = 0;
+            p.flags[k] = 0;
+        }
+        rtcOccluded16(valid, t->top, &ctx, &p);
+        for (int k = 0; k < m; k++) {
+            struct tdc_r_shadow *r = &t->sq[i + (size_t)k];
+            t->rays[TDC_RAY_SHADOW]++;
+            if (t->record) record(t, &r->ray, TDC_RAY_SHADOW, TDC_RAY_OCCLUSION);
+            r->blocked = p.tfar[k] < 0;
+        }
+    }
+}
+
+/* How the light samples' visibility is found: a ray at once (rtcOccluded1,
+ * or rtcIntersect1 when shadow MVs track the blocker), or queued for the
+ * packet path (nothing added to e: sq_finish adds the unblocked ones). */
+enum { LIGHTS_TRACE, LIGHTS_QUEUE };
+
+/* The direct light at P (normal N, facing the viewer) into e (started at
+ * the ambient) and, if eu, every light sample's light, blocked or not;
+ * optionally records the first blocked light sample's blocker into track.
+ * LIGHTS_QUEUE returns -1 when the queue is out of memory. */
+static int light_loop(rthread_t *t, const double P[3], const double N[3], uint32_t dst, uint32_t k, uint32_t salt,
+                      rsample_t *track, double e[3], double eu[3], int how)
 {
     const tdc_render_t *r = t->r;
     const tdc_scene_t *sc = r->scene;
-    const tdc_object_t *o = &sc->objects[obj];
-    const tdc_material_t *m = &sc->materials[o->material];
-    if (m->unlit) { /* straight into out: a copy through base[] stalled on store forwarding */
-        tdc_r_base_color(r, o, Q, NQ, t->tex_fw, out);
-        if (unshadowed) copy3(unshadowed, out);
-        return;
-    }
-    double base[3];
-    tdc_r_base_color(r, o, Q, NQ, t->tex_fw, base);
-    double e[3] = {sc->ambient[0], sc->ambient[1], sc->ambient[2]};
-    /* layers: the same sums without the visibility term (eu: every light
-     * sample counted, blocked or not); e itself is computed as before */
-    double eu[3] = {e[0], e[1], e[2]};
     double eps = offset_eps(P);
     double O[3] = {P[0] + N[0] * eps, P[1] + N[1] * eps, P[2] + N[2] * eps};
     for (int li = 0; li < sc->nlights; li++) {
@@ -233,8 +306,19 @@ static void shade_direct(rthread_t *t, int obj, const double P[3], const double 
 #endif
             double c = dot3(N, L);
             if (c <= 0) continue;
-            if (unshadowed)
+            if (eu)
                 for (int i = 0; i < 3; i++) eu[i] += l->intensity[i] * c / (d * d);
+            double q[3];
+#if defined(__SSE2__)
+            _mm_storeu_pd(q, _mm_div_pd(_mm_mul_pd(_mm_loadu_pd(l->intensity), _mm_set1_pd(c)), _mm_set1_pd(d * d)));
+            q[2] = l->intensity[2] * c / (d * d);
+#else
+            for (int i = 0; i < 3; i++) q[i] = l->intensity[i] * c / (d * d);
+#endif
+            if (how == LIGHTS_QUEUE) {
+                if (sq_push(t, O, L, d * (1 - 1e-6), q)) return -1;
+                continue;
+            }
             int blocked;
             if (track && t->track_blockers && !track->in_shadow) {
                 struct RTCRayHit rh;
@@ -253,16 +337,9 @@ static void shade_direct(rthread_t *t, int obj, const double P[3], const double 
                 blocked = occluded(t, O, L, d * (1 - 1e-6));
             }
             if (!blocked) {
-#if defined(__SSE2__)
-                double q[2];
-                _mm_storeu_pd(q,
-                              _mm_div_pd(_mm_mul_pd(_mm_loadu_pd(l->intensity), _mm_set1_pd(c)), _mm_set1_pd(d * d)));
                 e[0] += q[0];
                 e[1] += q[1];
-                e[2] += l->intensity[2] * c / (d * d);
-#else
-                for (int i = 0; i < 3; i++) e[i] += l->intensity[i] * c / (d * d);
-#endif
+                e[2] += q[2];
             }
         } else {
             /* Rect light: stratified samples over the rectangle; ground truth
@@ -296,8 +373,14 @@ static void shade_direct(rthread_t *t, int obj, const double P[3], const double 
                 for (int i = 0; i < 3; i++) L[i] /= d;
                 double c = dot3(N, L), cl = fabs(dot3(ln, L));
                 if (c <= 0) continue;
-                if (unshadowed)
+                if (eu)
                     for (int i = 0; i < 3; i++) eu[i] += l->intensity[i] * c * cl / (d * d) / ns;
+                double q[3];
+                for (int i = 0; i < 3; i++) q[i] = l->intensity[i] * c * cl / (d * d) / ns;
+                if (how == LIGHTS_QUEUE) {
+                    if (sq_push(t, O, L, d * (1 - 1e-6), q)) return -1;
+                    continue;
+                }
                 if (track && t->track_blockers && !track->in_shadow) {
                     /* shadow MVs: the first blocked light sample keeps its
                      * blocker and its offset on the (translating) light */
@@ -318,9 +401,49 @@ static void shade_direct(rthread_t *t, int obj, const double P[3], const double 
                 } else if (occluded(t, O, L, d * (1 - 1e-6))) {
                     continue;
                 }
-                for (int i = 0; i < 3; i++) e[i] += l->intensity[i] * c * cl / (d * d) / ns;
+                for (int i = 0; i < 3; i++) e[i] += q[i];
             }
         }
+    }
+    return 0;
+}
+
+/* Local (direct) radiance at a surface; optionally records the first
+ * blocked point light's blocker into s.  queued >= 0: the light samples'
+ * rays were queued and traced (tdc_r_pass_shade); their answers start at
+ * t->sq[*next], queued of them, and unshadowed already holds the sum of
+ * every light sample's light (eu). */
+static void shade_direct(rthread_t *t, int obj, const double P[3], const double Q[3], const double N[3],
+                         const double NQ[3], uint32_t dst, uint32_t k, uint32_t salt, rsample_t *track, double out[3],
+                         double *unshadowed, int queued, size_t *next)
+{
+    const tdc_render_t *r = t->r;
+    const tdc_scene_t *sc = r->scene;
+    const tdc_object_t *o = &sc->objects[obj];
+    const tdc_material_t *m = &sc->materials[o->material];
+    if (m->unlit) { /* straight into out: a copy through base[] stalled on store forwarding */
+        tdc_r_base_color(r, o, Q, NQ, t->tex_fw, out);
+        if (unshadowed) copy3(unshadowed, out);
+        return;
+    }
+    double base[3];
+    tdc_r_base_color(r, o, Q, NQ, t->tex_fw, base);
+    double e[3] = {sc->ambient[0], sc->ambient[1], sc->ambient[2]};
+    /* layers: the same sums without the visibility term (eu: every light
+     * sample counted, blocked or not); e itself is computed as before */
+    double eu[3] = {e[0], e[1], e[2]};
+    if (queued >= 0) {
+        for (int i = 0; i < queued; i++) {
+            const struct tdc_r_shadow *q = &t->sq[(*next)++];
+            if (!q->blocked) {
+                e[0] += q->q[0];
+                e[1] += q->q[1];
+                e[2] += q->q[2];
+            }
+        }
+        if (unshadowed) copy3(eu, unshadowed);
+    } else {
+        light_loop(t, P, N, dst, k, salt, track, e, unshadowed ? eu : NULL, LIGHTS_TRACE);
     }
     for (int i = 0; i < 3; i++) out[i] = base[i] * e[i];
     if (unshadowed)
@@ -346,21 +469,83 @@ static void layer_split(rsample_t *a)
     a->refl[0] = a->refl[1] = a->refl[2] = 0;
 }
 
+/* Closest hits of m <= 16 rays from o along dir[k] (tnear 0, no tfar) in
+ * one rtcIntersect16 call with the coherent traversal (camera-like rays:
+ * one origin): object (-1 = miss), t and Embree's raw normal per ray;
+ * counted and recorded as single rays of `kind` would be.  Embree's packet
+ * kernel may return other bits than rtcIntersect1 for the same ray (the
+ * sign of a zero normal component, the last bit of t on spheres;
+ * bench_render counts them), so images differ from single-ray tracing in
+ * such bits; the callers' packets are consecutive samples of a tile, fixed
+ * by the tile whatever the thread count, so they are the same in every run. */
+static void closest16(rthread_t *t, int prevf, const double o[3], const double *const dir[16], int m, uint32_t kind,
+                      int obj[16], float tfar[16], float ng[16][3])
+{
+    struct RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    _Alignas(64) int valid[16];
+    _Alignas(64) struct RTCRayHit16 p;
+    for (int k = 0; k < 16; k++) {
+        struct RTCRay ray;
+        set_ray(&ray, o, dir[k < m ? k : 0], 0, INFINITY);
+        valid[k] = k < m ? -1 : 0;
+        p.ray.org_x[k] = ray.org_x;
+        p.ray.org_y[k] = ray.org_y;
+        p.ray.org_z[k] = ray.org_z;
+        p.ray.tnear[k] = ray.tnear;
+        p.ray.dir_x[k] = ray.dir_x;
+        p.ray.dir_y[k] = ray.dir_y;
+        p.ray.dir_z[k] = ray.dir_z;
+        p.ray.time[k] = 0;
+        p.ray.tfar[k] = ray.tfar;
+        p.ray.mask[k] = ray.mask;
+        p.ray.id[k] = 0;
+        p.ray.flags[k] = 0;
+        p.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+        p.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+        if (k < m) {
+            t->rays[kind]++;
+            if (t->record) record(t, &ray, kind, prevf ? TDC_RAY_PREV_FRAME : 0);
+        }
+    }
+    rtcIntersect16(valid, prevf ? t->top_prev : t->top, &ctx, &p);
+    for (int k = 0; k < m; k++) {
+        obj[k] = p.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID ? -1 : (int)p.hit.instID[0][k];
+        tfar[k] = p.ray.tfar[k];
+        ng[k][0] = p.hit.Ng_x[k];
+        ng[k][1] = p.hit.Ng_y[k];
+        ng[k][2] = p.hit.Ng_z[k];
+    }
+}
+
+/* Primary rays 16 at a time (closest16): the samples of a tile in their
+ * order (place_samples). */
 void tdc_r_pass_primary(rthread_t *t, rsample_t *s, int n)
 {
     const rcam_t *cam = &t->cur->cam;
-    for (int i = 0; i < n; i++) {
-        rsample_t *a = &s[i];
-        tdc_r_cam_ray(cam, a->x, a->y, a->dir);
-        struct RTCRayHit rh;
-        a->obj = intersect(t, 0, cam->pos, a->dir, 0, INFINITY, TDC_RAY_PRIMARY, &rh);
-        a->in_shadow = 0;
-        a->nmir = 0;
-        a->mirror = 0;
-        a->hit_t = rh.ray.tfar;
-        a->hit_ng[0] = rh.hit.Ng_x;
-        a->hit_ng[1] = rh.hit.Ng_y;
-        a->hit_ng[2] = rh.hit.Ng_z;
+    for (int i0 = 0; i0 < n; i0 += 16) {
+        const int m = n - i0 < 16 ? n - i0 : 16;
+        const double *dir[16];
+        int obj[16];
+        float tf[16], ng[16][3];
+        for (int k = 0; k < m; k++) {
+            rsample_t *a = &s[i0 + k];
+            tdc_r_cam_ray(cam, a->x, a->y, a->dir);
+            a->in_shadow = 0;
+            a->nmir = 0;
+            a->mirror = 0;
+            dir[k] = a->dir;
+        }
+        closest16(t, 0, cam->pos, dir, m, TDC_RAY_PRIMARY, obj, tf, ng);
+        for (int k = 0; k < m; k++) {
+            rsample_t *a = &s[i0 + k];
+            a->obj = obj[k];
+            a->hit_t = tf[k];
+            a->hit_ng[0] = ng[k][0];
+            a->hit_ng[1] = ng[k][1];
+            a->hit_ng[2] = ng[k][2];
+        }
     }
     wncache_t wc = {.obj = -1};
     /* Surfaces in a second loop: its iterations are independent, so the
@@ -391,6 +576,34 @@ void tdc_r_pass_shade(rthread_t *t, rsample_t *s, int n)
             rsample_t *a = &s[i];
             if (a->obj >= 0 && uv_first[a->obj]) tdc_r_tex_uv(&sc->objects[a->obj], a->Q, a->NQ, &a->tu, &a->tv);
         }
+    /* Shadow rays in packets (without blocker tracking, which needs each
+     * blocked ray's hit at once): every lit sample's light samples are
+     * queued first, in sample order, traced 16 at a time, and the shading
+     * below adds the unblocked ones - the same sums in the same order. */
+    int queued = !t->track_blockers && n > 0;
+    if (queued) {
+        if (t->csq_cnt < (size_t)n) {
+            int *c = realloc(t->sq_cnt, (size_t)(unsigned)n * sizeof *c);
+            if (c) {
+                t->sq_cnt = c;
+                t->csq_cnt = (size_t)n;
+            }
+        }
+        queued = t->csq_cnt >= (size_t)n;
+        t->nsq = 0;
+        for (int i = 0; i < n && queued; i++) {
+            rsample_t *a = &s[i];
+            t->sq_cnt[i] = -1;
+            if (a->obj < 0 || uv_first[a->obj] || sc->materials[sc->objects[a->obj].material].unlit) continue;
+            size_t n0 = t->nsq;
+            double *eu = t->layers ? a->lshade : NULL, e[3];
+            if (eu) copy3(eu, sc->ambient);
+            if (light_loop(t, a->P, a->N, rng_key(a), a->k, 0, NULL, e, eu, LIGHTS_QUEUE)) queued = 0;
+            t->sq_cnt[i] = (int)(t->nsq - n0);
+        }
+        if (queued) sq_trace(t);
+    }
+    size_t next = 0;
     for (int i = 0; i < n; i++) {
         rsample_t *a = &s[i];
         if (a->obj < 0) {
@@ -413,7 +626,7 @@ void tdc_r_pass_shade(rthread_t *t, rsample_t *s, int n)
             tdc_r_base_color(t->r, o, a->Q, a->NQ, t->tex_fw, a->col);
         else
             shade_direct(t, a->obj, a->P, a->Q, a->N, a->NQ, rng_key(a), a->k, 0, a, a->col,
-                         t->layers ? a->lshade : NULL);
+                         t->layers ? a->lshade : NULL, queued ? t->sq_cnt[i] : -1, &next);
         a->mirror = t->r->cfg.max_bounces > 0 ? m->mirror : 0;
         a->rough = m->roughness;
         if (t->layers && (uv_first[a->obj] || m->unlit)) copy3(a->lshade, a->col);
@@ -495,7 +708,7 @@ void tdc_r_trace_local(rthread_t *t, const double P[3], const double N[3], const
     wncache_t wc = {.obj = -1};
     surface_rh(t->cur, &rh, h, O, d, P2, Q2, N2, NQ2, &wc);
     t->tex_fw = 0; /* a diffuse bounce: its Monte Carlo estimate averages the texture (point-sampled as before) */
-    shade_direct(t, h, P2, Q2, N2, NQ2, rng_key(a), a->k, salt, NULL, L, NULL);
+    shade_direct(t, h, P2, Q2, N2, NQ2, rng_key(a), a->k, salt, NULL, L, NULL, -1, NULL);
 }
 
 void tdc_r_pass_reflect(rthread_t *t, rsample_t *s, int n)
@@ -553,7 +766,7 @@ void tdc_r_pass_reflect(rthread_t *t, rsample_t *s, int n)
             dist += rh.ray.tfar * sqrt(dot3(d, d));
             t->tex_fw = t->cone > 0 ? tdc_r_tex_footprint(t->cone, dist, d, NQ, t->cur->minv[h]) : 0;
             double loc[3];
-            shade_direct(t, h, P, Q, N, NQ, rng_key(a), a->k, 4u * (uint32_t)(b + 1), NULL, loc, NULL);
+            shade_direct(t, h, P, Q, N, NQ, rng_key(a), a->k, 4u * (uint32_t)(b + 1), NULL, loc, NULL, -1, NULL);
             double m2 = sc->materials[sc->objects[h].material].mirror;
             obj = h;
             if (m2 > 0 && b + 1 < maxb) {
@@ -1024,8 +1237,33 @@ void tdc_r_pass_mv_shadow(rthread_t *t, rsample_t *s, int n)
     }
 }
 
+/* The dual pass's previous-frame visibility ray of a sample: where it
+ * looks (y), the ray's direction, what it hit and where (prev_visible's
+ * values, traced 16 at a time by closest16). */
+typedef struct tdc_r_dual {
+    int i;       /* the sample */
+    double y[2]; /* previous-frame position */
+    double d[3], W[3];
+    int o;
+} tdc_r_dual_t;
+
 void tdc_r_pass_mv_dual(rthread_t *t, rsample_t *s, int n)
 {
+    /* the samples that need a ray, with their previous-frame positions */
+    if (t->cdq < (size_t)(unsigned)n) {
+        tdc_r_dual_t *q = realloc(t->dq, (size_t)(unsigned)n * sizeof *q);
+        if (!q) {
+            for (int i = 0; i < n; i++) { /* out of memory: no dual MVs for this tile */
+                s[i].mvd[0] = s[i].mv[0];
+                s[i].mvd[1] = s[i].mv[1];
+                s[i].disocc = 0;
+            }
+            return;
+        }
+        t->dq = q;
+        t->cdq = (size_t)(unsigned)n;
+    }
+    int nq = 0;
     for (int i = 0; i < n; i++) {
         rsample_t *a = &s[i];
         a->mvd[0] = a->mv[0];
@@ -1049,12 +1287,38 @@ void tdc_r_pass_mv_dual(rthread_t *t, rsample_t *s, int n)
                 continue;
             }
         }
-        double y[2] = {a->xc + a->mv[0], a->yc + a->mv[1]};
+        tdc_r_dual_t *q = &t->dq[nq];
+        q->y[0] = a->xc + a->mv[0];
+        q->y[1] = a->yc + a->mv[1];
         if (a->refl_used) { /* dual MVs are for primary visibility: use the primary correspondence */
-            if (a->obj < 0 || track_point(t, a->obj, a->Q, &a->xc, &a->yc, &y[0], &y[1]) < 0) continue;
+            if (a->obj < 0 || track_point(t, a->obj, a->Q, &a->xc, &a->yc, &q->y[0], &q->y[1]) < 0) continue;
         }
-        double W[3], d[3];
-        int o = prev_visible(t, y[0], y[1], W, d);
+        q->i = i;
+        nq++;
+    }
+    const rcam_t *cam = &t->prev->cam;
+    for (int i0 = 0; i0 < nq; i0 += 16) {
+        const int m = nq - i0 < 16 ? nq - i0 : 16;
+        const double *dir[16];
+        int obj[16];
+        float tf[16], ng[16][3];
+        for (int k = 0; k < m; k++) {
+            tdc_r_dual_t *q = &t->dq[i0 + k];
+            tdc_r_cam_ray(cam, q->y[0], q->y[1], q->d);
+            dir[k] = q->d;
+        }
+        closest16(t, 1, cam->pos, dir, m, TDC_RAY_MV, obj, tf, ng);
+        for (int k = 0; k < m; k++) {
+            tdc_r_dual_t *q = &t->dq[i0 + k];
+            q->o = obj[k];
+            if (q->o >= 0)
+                for (int c = 0; c < 3; c++) q->W[c] = cam->pos[c] + tf[k] * q->d[c];
+        }
+    }
+    for (int j = 0; j < nq; j++) {
+        const tdc_r_dual_t *q = &t->dq[j];
+        rsample_t *a = &s[q->i];
+        const int o = q->o;
         int same;
         if (a->obj < 0)
             same = o < 0;
@@ -1063,22 +1327,22 @@ void tdc_r_pass_mv_dual(rthread_t *t, rsample_t *s, int n)
         else {
             double sp[3];
             tdc_r_xform_point(t->prev->m[a->obj], a->Q, sp);
-            double e[3] = {W[0] - sp[0], W[1] - sp[1], W[2] - sp[2]};
+            double e[3] = {q->W[0] - sp[0], q->W[1] - sp[1], q->W[2] - sp[2]};
             same = sqrt(dot3(e, e)) <= 1e-3 * (1 + a->depth);
         }
         if (same) continue;
         /* Disoccluded: z = where the previous occluder point is now. */
         double z[2];
         if (o >= 0) {
-            double q[3], wc[3];
-            tdc_r_xform_point(t->prev->minv[o], W, q);
-            tdc_r_xform_point(t->cur->m[o], q, wc);
+            double qq[3], wc[3];
+            tdc_r_xform_point(t->prev->minv[o], q->W, qq);
+            tdc_r_xform_point(t->cur->m[o], qq, wc);
             if (tdc_r_project(&t->cur->cam, wc, &z[0], &z[1]) < 0) continue;
-        } else if (tdc_r_project_dir(&t->cur->cam, d, &z[0], &z[1]) < 0) {
+        } else if (tdc_r_project_dir(&t->cur->cam, q->d, &z[0], &z[1]) < 0) {
             continue;
         }
         a->disocc = 1;
-        a->mvd[0] = y[0] - z[0];
-        a->mvd[1] = y[1] - z[1];
+        a->mvd[0] = q->y[0] - z[0];
+        a->mvd[1] = q->y[1] - z[1];
     }
 }

@@ -76,7 +76,19 @@ typedef struct {
     int record;
     tdc_render_ray_t *rec;
     size_t nrec, crec;
+    /* the shadow rays of a tile's shade pass, traced in packets of 16
+     * (tdc_r_pass_shade): the ray, its light's contribution if unblocked,
+     * the answer; and how many rays each sample of the tile has */
+    struct tdc_r_shadow *sq;
+    size_t nsq, csq;
+    int *sq_cnt;
+    size_t csq_cnt;
+    struct tdc_r_dual *dq; /* the dual pass's previous-frame rays of a tile */
+    size_t cdq;
 } rthread_t;
+
+/* Frees what the passes allocated in t (recorded rays, shadow queue). */
+void tdc_r_thread_free(rthread_t *t);
 
 void tdc_r_pass_primary(rthread_t *t, rsample_t *s, int n);
 void tdc_r_pass_shade(rthread_t *t, rsample_t *s, int n);

@@ -59,6 +59,7 @@ typedef struct {
     tdc_ssim_ref_t ssim_g;
     tdc_flip_ref_t flip_g;
     double *scratch, *perc, *crop_p, *enc_p, *err, *flipmap, *rows;
+    float *err_spare; /* w x h x 3: changes places with a mode's err_prev at every evaluation */
     double *rows_out, *rows_n; /* flicker outside the foveal disk: per-row sums and counts */
     double *xy;   /* sample positions (render calls are sequential too) */
     char *series; /* one series line per mode and eye, written in mode order */
@@ -81,6 +82,7 @@ static void eval_free(sim_eval_t *e)
     free(e->crop_p);
     free(e->enc_p);
     free(e->err);
+    free(e->err_spare);
     free(e->flipmap);
     free(e->rows);
     free(e->rows_out);
@@ -104,6 +106,7 @@ static int eval_alloc(sim_eval_t *e, int w, int h, int nseries)
     bad |= !(e->crop_p = malloc(sizeof(double) * n3));
     bad |= !(e->enc_p = malloc(sizeof(double) * n3));
     bad |= !(e->err = malloc(sizeof(double) * n3));
+    bad |= !(e->err_spare = malloc(sizeof(float) * n3));
     bad |= !(e->flipmap = malloc(sizeof(double) * (size_t)w * h));
     bad |= !(e->rows = malloc(sizeof(double) * (size_t)h));
     bad |= !(e->rows_out = malloc(sizeof(double) * (size_t)h));
@@ -361,58 +364,79 @@ static void eval_mode_eye(sim_mode_t *m, sim_eval_t *ev, const tdc_eye_cfg_t *ec
         tdc_sim_stage(m, "metrics (out of memory or size beyond the filters)", -1);
         return;
     }
-    TDC_PAR_FOR((size_t)cw * ch)
-    for (int y = 0; y < ch; y++) {
-        for (size_t k = 3 * (size_t)y * cw; k < 3 * (size_t)(y + 1) * cw; k++) {
-            ev->err[k] = ev->enc_p[k] - enc_g[k];
-        }
-    }
     /* around the true gaze (crop coordinates): the foveal disk is the fov
      * modes' disk fraction of the distance to the farthest screen corner */
     double gz[2];
     tdc_sim_gaze_true(m->gaze, te, gz);
     const double gx = gz[0] - margin, gy = gz[1] - margin, rf = cfg->fov_disk * tdc_sim_gaze_rmax(m->gaze, gz);
-    m->sum_flip_ecc += tdc_ecc_weighted_mean(ev->flipmap, cw, ch, gx, gy, cfg->flip_ppd);
-    m->sum_flip_fovea += tdc_disk_mean(ev->flipmap, cw, ch, gx, gy, rf, 1);
-    m->sum_flip_periph += tdc_disk_mean(ev->flipmap, cw, ch, gx, gy, rf, 0);
-    m->sum_flip_wmed += tdc_flip_weighted_median(ev->flipmap, (size_t)cw * ch);
+    tdc_fov_stats_t fs;
+    if (tdc_fov_stats(ev->flipmap, cw, ch, gx, gy, cfg->flip_ppd, rf, &fs)) {
+        tdc_sim_stage(m, "gaze metrics (out of memory)", -1);
+        return;
+    }
+    m->sum_flip_ecc += fs.ecc;
+    m->sum_flip_fovea += fs.fovea;
+    m->sum_flip_periph += fs.periph;
+    m->sum_flip_wmed += fs.wmedian;
+    /* The encoded error, its frame-to-frame change (flicker: the retinal
+     * point at x now was at x - v dt in the last image, so the last error
+     * is sampled there, bilinear with edges clamped as tdc_bilinear_f, its
+     * column and row terms once per column and row) and the error kept as
+     * float for the next instant, in one pass; the new error goes to the
+     * spare plane, which then changes places with the mode's. */
     double flick = NAN;
-    if (m->have_err_prev) {
-        /* frame-to-frame change of the motion-compensated error: the
-         * retinal point at x now was at x - v dt in the last image */
-        double sx = -v[0] * cfg->pursuit_gain * (te - prev_te), sy = -v[1] * cfg->pursuit_gain * (te - prev_te);
-        TDC_PAR_FOR((size_t)cw * ch)
-        for (int y = 0; y < ch; y++) {
-            double se = 0.0, so = 0.0, no = 0.0;
-            for (int x = 0; x < cw; x++) {
-                double sp = 0.0;
-                for (int c = 0; c < 3; c++) {
-                    double pe = tdc_bilinear_f(m->err_prev, cw, ch, 3, x + sx, y + sy, c);
-                    double d = ev->err[3 * ((size_t)y * cw + x) + c] - pe;
-                    sp += d * d;
+    const int have_prev = m->have_err_prev, keep_err = cfg->temporal;
+    const double sx = -v[0] * cfg->pursuit_gain * (te - prev_te), sy = -v[1] * cfg->pursuit_gain * (te - prev_te);
+    const float *ep = m->err_prev;
+    float *en = ev->err_spare;
+    TDC_PAR_FOR((size_t)cw * ch)
+    for (int y = 0; y < ch; y++) {
+        double yc = y + sy;
+        yc = yc < 0.0 ? 0.0 : (yc > ch - 1 ? ch - 1 : yc);
+        const int y0 = (int)yc, y1 = y0 + 1 < ch ? y0 + 1 : y0;
+        const double fy = yc - y0;
+        const float *r0 = ep + 3 * (size_t)y0 * cw, *r1 = ep + 3 * (size_t)y1 * cw;
+        const size_t i0 = 3 * (size_t)y * cw;
+        double se = 0.0, so = 0.0, no = 0.0;
+        for (int x = 0; x < cw; x++) {
+            double sp = 0.0;
+            double xc = x + sx;
+            xc = xc < 0.0 ? 0.0 : (xc > cw - 1 ? cw - 1 : xc);
+            const int x0 = (int)xc, x1 = x0 + 1 < cw ? x0 + 1 : x0;
+            const double fx = xc - x0;
+            for (int c = 0; c < 3; c++) {
+                const size_t k = i0 + 3 * (size_t)x + c;
+                const double d = ev->enc_p[k] - enc_g[k];
+                if (keep_err) {
+                    ev->err[k] = d;
                 }
-                se += sp;
-                const double dx = x + 0.5 - gx, dy = y + 0.5 - gy;
-                if (dx * dx + dy * dy > rf * rf) {
-                    so += sp;
-                    no += 3.0;
+                en[k] = (float)d;
+                if (have_prev) {
+                    const double a = r0[3 * x0 + c], b = r0[3 * x1 + c], dd = r1[3 * x0 + c], e = r1[3 * x1 + c];
+                    const double pe = (a + (b - a) * fx) * (1.0 - fy) + (dd + (e - dd) * fx) * fy;
+                    const double df = d - pe;
+                    sp += df * df;
                 }
             }
-            ev->rows[y] = se;
-            ev->rows_out[y] = so;
-            ev->rows_n[y] = no;
+            se += sp;
+            const double dx = x + 0.5 - gx, dy = y + 0.5 - gy;
+            if (dx * dx + dy * dy > rf * rf) {
+                so += sp;
+                no += 3.0;
+            }
         }
+        ev->rows[y] = se;
+        ev->rows_out[y] = so;
+        ev->rows_n[y] = no;
+    }
+    ev->err_spare = m->err_prev;
+    m->err_prev = en;
+    if (have_prev) {
         flick = 255.0 * sqrt(tdc_par_sum_rows(ev->rows, ch) / (double)cn);
         const double n_out = tdc_par_sum_rows(ev->rows_n, ch);
         m->sum_flicker_periph += n_out > 0 ? 255.0 * sqrt(tdc_par_sum_rows(ev->rows_out, ch) / n_out) : 0.0;
         m->sum_flicker += flick;
         m->n_flicker++;
-    }
-    TDC_PAR_FOR((size_t)cw * ch)
-    for (int y = 0; y < ch; y++) {
-        for (size_t k = 3 * (size_t)y * cw; k < 3 * (size_t)(y + 1) * cw; k++) {
-            m->err_prev[k] = (float)ev->err[k];
-        }
     }
     m->have_err_prev = 1;
     if (cfg->temporal && !m->temporal) {

@@ -8,7 +8,8 @@
  * work of issue 6) and compare the lines.  The hashes depend on the Embree,
  * libm and firmware ordering code of the build, so they are not a
  * portable golden.
- * Usage: test_render_hash [width height]
+ * Usage: test_render_hash [width height [threads]] (threads default 2: the
+ * lines must not depend on it)
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -28,9 +29,9 @@ static uint64_t fnv(uint64_t h, const void *p, size_t n)
 
 int main(int argc, char **argv)
 {
-    int W = argc > 2 ? atoi(argv[1]) : 480, H = argc > 2 ? atoi(argv[2]) : 270;
-    if (W < 2 || H < 2 || W > 4096 || H > 4096) {
-        fprintf(stderr, "usage: %s [width height]\n", argv[0]);
+    int W = argc > 2 ? atoi(argv[1]) : 480, H = argc > 2 ? atoi(argv[2]) : 270, T = argc > 3 ? atoi(argv[3]) : 2;
+    if (W < 2 || H < 2 || W > 4096 || H > 4096 || T < 1 || T > 64) {
+        fprintf(stderr, "usage: %s [width height [threads]]\n", argv[0]);
         return 2;
     }
     static tdc_scene_t sc;
@@ -50,7 +51,7 @@ int main(int argc, char **argv)
             tdc_render_default_config(&cfg);
             cfg.width = W;
             cfg.height = H;
-            cfg.threads = 2;
+            cfg.threads = T;
             cfg.shadow_mv = opt;
             cfg.dual_mv = opt;
             cfg.gt_samples = 4;
