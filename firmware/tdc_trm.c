@@ -386,19 +386,26 @@ static void trm_beta_row(tdc_trm_t *st, const tdc_trm_rowctx_t *k, uint32_t y, c
     }
 }
 
+/* A frame in progress (full: kind 1, reduced: 2) on these buffers. */
+static void trm_inc_open(tdc_trm_t *st, uint8_t kind, const uint8_t *in, uint32_t in_stride, uint8_t *out,
+                         uint32_t out_stride)
+{
+    memset(&st->inc, 0, sizeof st->inc);
+    st->inc.kind = kind;
+    st->inc.in = in;
+    st->inc.out = out;
+    st->inc.in_stride = in_stride;
+    st->inc.out_stride = out_stride;
+    st->inc.loaded = -1;
+}
+
 tdc_status_t tdc_trm_full_begin(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out,
                                 uint32_t out_stride)
 {
     if (!st || !in || !out || in_stride < 3u * st->cfg.width || out_stride < 3u * st->cfg.width) {
         return TDC_ERR_ARG;
     }
-    memset(&st->inc, 0, sizeof st->inc);
-    st->inc.kind = 1;
-    st->inc.in = in;
-    st->inc.out = out;
-    st->inc.in_stride = in_stride;
-    st->inc.out_stride = out_stride;
-    st->inc.loaded = -1;
+    trm_inc_open(st, 1u, in, in_stride, out, out_stride);
     if (!st->passthrough) {
         st->have_full = 0; /* D(I) and the kept codes are being replaced */
     }
@@ -541,12 +548,7 @@ static tdc_status_t trm_reduced_args(const tdc_trm_t *st, const uint8_t *in_redu
 static void trm_reduced_open(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t in_stride, uint8_t *out,
                              uint32_t out_stride, int with_state)
 {
-    memset(&st->inc, 0, sizeof st->inc);
-    st->inc.kind = 2;
-    st->inc.in = in_reduced;
-    st->inc.out = out;
-    st->inc.in_stride = in_stride;
-    st->inc.out_stride = out_stride;
+    trm_inc_open(st, 2u, in_reduced, in_stride, out, out_stride);
     st->inc.paired = (uint8_t)with_state;
 }
 

@@ -567,21 +567,6 @@ static void eye_done(uint32_t e)
 }
 
 #if TDC_CFG_BANDS
-/* Marks around the work a band's event starts (its decode to the back
- * buffer and the stages it lets run): the latency from its last byte to
- * its pixels being final, counted on Cortex-M by the QEMU plugin
- * (tests/arm/band_latency.sh). */
-void tdc_fw_band_in(void);
-void tdc_fw_band_out(void);
-__attribute__((noinline, used)) void tdc_fw_band_in(void)
-{
-    __asm__ volatile("" ::: "memory");
-}
-__attribute__((noinline, used)) void tdc_fw_band_out(void)
-{
-    __asm__ volatile("" ::: "memory");
-}
-
 /* Eye e's picture in flight was dropped: rows the LCD inverse already ran
  * hold that picture's history, so the eye's LCD starts again without
  * history (never from a mixed one); TRM's kept state was invalidated when
@@ -608,6 +593,7 @@ static void band_abandon(uint32_t e)
 static void band_stages(uint32_t e, uint32_t kind, const tdc_band_hdr_t *bh)
 {
     uint8_t *fb = FB_BACK + (size_t)e * FW_W * 3u;
+    (void)fb; /* a build without TRM and LCD only unpacks */
     const int last = bh->index + 1u == bh->count;
     const uint32_t avail = (uint32_t)bh->first_row + bh->rows;
     uint32_t done = avail, covered = avail; /* output rows final; output rows the arrived rows cover */
@@ -738,12 +724,11 @@ static void late_full(uint32_t e, uint32_t frame)
  * FULL band is unpacked at its rows of the eye's part of the back buffer
  * (the decoder wrote a REDUCED band into g_reduced itself), then the
  * stages run on what it completes (band_stages). */
-static void on_band(const tdc_link_event_t *ev)
-{
 #if TDC_CFG_BANDS
+static void band_work(const tdc_link_event_t *ev)
+{
     const uint32_t e = ev->eye;
     const tdc_band_hdr_t *bh = tdc_link_band(&g.dec, e);
-    tdc_fw_band_in();
     g.bands++;
     if (!bh || (g.eyes_done & (1u << e)) || (bh->index > 0u && !g.bopen[e])) {
         return;
@@ -755,7 +740,30 @@ static void on_band(const tdc_link_event_t *ev)
     /* (g.kinds stays clear: finish_frame must never run an eye's stages
      * on a picture whose bands did not all come) */
     band_stages(e, ev->kind, bh);
-    tdc_fw_band_out();
+}
+/* What a band's event costs, from the decoder's event to its pixels being
+ * final, by kind: separate functions so an instruction count can take
+ * them apart (host: valgrind --toggle-collect, docs/boards.md). */
+void tdc_fw_band_full(const tdc_link_event_t *ev);
+void tdc_fw_band_reduced(const tdc_link_event_t *ev);
+__attribute__((noinline)) void tdc_fw_band_full(const tdc_link_event_t *ev)
+{
+    band_work(ev);
+}
+__attribute__((noinline)) void tdc_fw_band_reduced(const tdc_link_event_t *ev)
+{
+    band_work(ev);
+}
+#endif
+
+static void on_band(const tdc_link_event_t *ev)
+{
+#if TDC_CFG_BANDS
+    if (ev->kind == TDC_LINK_KIND_FULL) {
+        tdc_fw_band_full(ev);
+    } else {
+        tdc_fw_band_reduced(ev);
+    }
 #else
     (void)ev; /* configure_stream refuses band streams without a back buffer */
 #endif

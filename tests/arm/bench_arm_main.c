@@ -55,7 +55,7 @@ static uint64_t g_arena[(TDC_ASM_MEM_BYTES(BENCH_W, BENCH_H) > TDC_TRM_MEM_BYTES
                             8u +
                         1u] TDC_EXTRAM;
 static uint64_t g_lcd_arena[TDC_LCD_MEM_BYTES(BENCH_W, BENCH_H) / 8u] TDC_EXTRAM;
-static uint8_t g_samples[RW * RH * 3u];
+static uint8_t g_samples[RW * RH * 3u] TDC_EXTRAM;
 /* foveated remap: log-polar buffer 0.555 W x 0.555 H, its motion vectors, TAA arena */
 #define FOV_LW ((BENCH_W * 555u) / 1000u)
 #define FOV_LH ((BENCH_H * 555u) / 1000u)
@@ -63,7 +63,7 @@ static uint8_t g_fov_lp[FOV_LW * FOV_LH * 3u] TDC_EXTRAM;
 static int16_t g_fov_mv[FOV_LW * FOV_LH * 2u] TDC_EXTRAM;
 static uint64_t g_fov_arena[TDC_FOV_MEM_BYTES(BENCH_W, BENCH_H, 1) / 8u] TDC_EXTRAM;
 static tdc_fov_t g_fov;
-static int16_t g_mv[RW * RH * 2u];
+static int16_t g_mv[RW * RH * 2u] TDC_EXTRAM;
 
 static tdc_link_decoder_t g_dec;
 static tdc_trm_t g_trm;
@@ -162,15 +162,21 @@ static void bench_link(tdc_pixfmt_t fmt, const char *label)
     report(label, BENCH_FRAMES * BENCH_PX);
 }
 
-static void bench_trm(tdc_content_t c, const char *full_label, const char *reduced_label)
+/* g_trm for a stream of reduced frames at 90 Hz, HTC Vive gamma. */
+static void trm_init_stream(void)
 {
-    make_inputs(c);
     tdc_trm_config_t cfg;
     tdc_trm_default_config(&cfg, (uint16_t)BENCH_W, (uint16_t)BENCH_H, 90);
     cfg.reduced_in_stream = 1;
     if (tdc_trm_init(&g_trm, &cfg, &tdc_panel_htc_vive, g_arena, sizeof g_arena) != TDC_OK) {
         fail("TRM init");
     }
+}
+
+static void bench_trm(tdc_content_t c, const char *full_label, const char *reduced_label)
+{
+    make_inputs(c);
+    trm_init_stream();
     /* Full and reduced alternate, as in a stream; each kind is bracketed. */
     uint64_t dummy = 0;
     for (uint32_t f = 0; f < BENCH_FRAMES; f++) {
@@ -242,6 +248,20 @@ static void bench_assemble(int moving, const char *label)
     }
 }
 
+/* The first LCD profile (TDC_PANEL_LIST order) whose tables mode needs;
+ * g_lcd is left initialised in that mode.  NULL if none. */
+static const tdc_panel_t *first_lcd_panel(uint8_t mode)
+{
+    for (unsigned i = 0; i < sizeof k_panels / sizeof k_panels[0]; i++) {
+        const tdc_lcd_config_t cfg = {(uint16_t)BENCH_W, (uint16_t)BENCH_H, k_panels[i]->refresh_hz, mode, 8u};
+        if (k_panels[i]->type == TDC_PANEL_LCD &&
+            tdc_lcd_init(&g_lcd, &cfg, k_panels[i], g_lcd_arena, sizeof g_lcd_arena) == TDC_OK) {
+            return k_panels[i];
+        }
+    }
+    return NULL;
+}
+
 static void bench_lcd(void)
 {
     static const struct {
@@ -255,15 +275,7 @@ static void bench_lcd(void)
     /* Every mode on one profile: the first LCD profile (TDC_PANEL_LIST
      * order) with the transition tables, i.e. every mode's tables (pg279q;
      * disco-dsi, first in the list, has neither those nor 33x33). */
-    const tdc_panel_t *lcd = NULL;
-    for (unsigned i = 0; i < sizeof k_panels / sizeof k_panels[0] && !lcd; i++) {
-        const tdc_lcd_config_t cfg = {(uint16_t)BENCH_W, (uint16_t)BENCH_H, k_panels[i]->refresh_hz,
-                                      TDC_LCD_MODE_STATEFUL_PAIR, 8u};
-        if (k_panels[i]->type == TDC_PANEL_LCD &&
-            tdc_lcd_init(&g_lcd, &cfg, k_panels[i], g_lcd_arena, sizeof g_lcd_arena) == TDC_OK) {
-            lcd = k_panels[i];
-        }
-    }
+    const tdc_panel_t *lcd = first_lcd_panel(TDC_LCD_MODE_STATEFUL_PAIR);
     if (!lcd) {
         return;
     }
@@ -289,6 +301,105 @@ static void bench_lcd(void)
         }
         tdc_bench_mark();
         report(modes[m].label, nf * BENCH_PX);
+    }
+}
+
+/* Rows in flight (issue 17 item 2): a TRM stream in row bands of 16 rows
+ * through the decoder (one band staged), each band's rows through TRM and
+ * the LCD inverse (33x33 table) as it arrives, as the board loop does
+ * (firmware/board/tdc_main.c, band_stages).  Measured per band: from
+ * feeding its last byte (the decoder's checks and event) to its rows being
+ * final (unpack, TRM rows, LCD rows).  Frames 0 and 1 fill the history;
+ * frames 2 (FULL) and 3 (REDUCED) are measured. */
+#define BAND_ROWS 16u
+static void bench_bands(void)
+{
+    make_inputs(TDC_CONTENT_TEXT);
+    trm_init_stream();
+    if (!first_lcd_panel(TDC_LCD_MODE_TABLE33)) {
+        fail("no LCD profile with a 33x33 table");
+    }
+    const tdc_link_stream_info_t info = {TDC_LINK_STREAM_REDUCED | TDC_LINK_STREAM_BANDS, 1, 2, (uint16_t)BENCH_W,
+                                         (uint16_t)BENCH_H, 1, 0, 90};
+    tdc_link_encoder_t enc;
+    tdc_link_encoder_init(&enc, 5, &info);
+    const tdc_link_config_t dcfg = {(uint16_t)BENCH_W, (uint16_t)BENCH_H, 1};
+    tdc_link_buffers_t b;
+    memset(&b, 0, sizeof b);
+    b.staging = g_staging;
+    b.staging_bytes = TDC_LINK_STAGING_BAND_BYTES(BENCH_W, BAND_ROWS, 4u); /* one band, as a banded board */
+    b.defer_full = 1;
+    b.reduced[0] = g_samples;
+    b.reduced_bytes = sizeof g_samples;
+    if (tdc_link_decoder_init(&g_dec, &dcfg, &b) != TDC_OK) {
+        fail("link decoder init");
+    }
+    tdc_link_event_t ev;
+    size_t n = tdc_link_encode_stream(&enc, g_pkt[0], sizeof g_pkt[0]);
+    for (size_t used = 0; used < n;) {
+        used += tdc_link_feed(&g_dec, g_pkt[0] + used, n - used, &ev);
+    }
+    for (uint32_t f = 0; f < 4u; f++) {
+        const int full = (f & 1u) == 0u;
+        const uint32_t h = full ? BENCH_H : RH, nb = tdc_band_count(h, BAND_ROWS);
+        uint32_t final_rows = 0;
+        for (uint32_t i = 0; i < nb; i++) {
+            n = full ? tdc_link_encode_band(&enc, g_pkt[0], sizeof g_pkt[0], TDC_LINK_KIND_FULL, 0, f, TDC_PIXFMT_RGB888,
+                                            g_in[f & 1u], BENCH_W, BENCH_H, BENCH_W * 3u, BAND_ROWS, i)
+                     : tdc_link_encode_band(&enc, g_pkt[0], sizeof g_pkt[0], TDC_LINK_KIND_REDUCED, 0, f,
+                                            TDC_PIXFMT_RGB888, g_red[f & 1u], RW, RH, RW * 3u, BAND_ROWS, i);
+            size_t used = 0;
+            while (used + 1u < n) {
+                used += tdc_link_feed(&g_dec, g_pkt[0] + used, n - 1u - used, &ev);
+            }
+            if (f >= 2u) {
+                tdc_bench_mark();
+            }
+            ev.type = TDC_LINK_EV_NONE;
+            while (ev.type != TDC_LINK_EV_PACKET) {
+                const size_t k = tdc_link_feed(&g_dec, g_pkt[0] + used, n - used, &ev);
+                used += k;
+                if (ev.type == TDC_LINK_EV_NONE || ev.type == TDC_LINK_EV_ERROR) {
+                    fail("band refused");
+                }
+            }
+            const tdc_band_hdr_t *bh = tdc_link_band(&g_dec, 0);
+            const int last = i + 1u == nb;
+            const uint32_t avail = (uint32_t)bh->first_row + bh->rows;
+            uint32_t done = 0;
+            tdc_status_t st = TDC_OK;
+            if (full) {
+                st = tdc_link_unpack_full(&g_dec, g_out, BENCH_W * 3u);
+                if (st == TDC_OK && i == 0u) {
+                    st = tdc_trm_full_begin(&g_trm, g_out, BENCH_W * 3u, g_out, BENCH_W * 3u);
+                }
+                if (st == TDC_OK) {
+                    st = last ? tdc_trm_full_end(&g_trm, f) : tdc_trm_full_rows(&g_trm, avail, &done);
+                }
+            } else {
+                if (i == 0u) {
+                    st = tdc_trm_reduced_begin(&g_trm, g_samples, RW * 3u, g_out, BENCH_W * 3u, f);
+                }
+                if (st == TDC_OK) {
+                    st = last ? tdc_trm_reduced_end(&g_trm) : tdc_trm_reduced_rows(&g_trm, avail, &done);
+                }
+            }
+            done = last ? BENCH_H : done;
+            if (st != TDC_OK ||
+                tdc_lcd_rows(&g_lcd, g_out, BENCH_W * 3u, g_out, BENCH_W * 3u, NULL, final_rows, done) != TDC_OK) {
+                fail("band stages");
+            }
+            final_rows = done;
+            if (last) {
+                tdc_lcd_frame_done(&g_lcd);
+            }
+            if (f >= 2u) {
+                tdc_bench_mark();
+                report(full ? "band latency: FULL band of 16 rows, last byte to final pixels (TRM + LCD 33x33), per band"
+                            : "band latency: REDUCED band of 16 rows, last byte to final pixels (TRM + LCD 33x33), per band",
+                       1u);
+            }
+        }
     }
 }
 
@@ -384,7 +495,7 @@ static int want(const char *group)
             }
         }
     }
-    static const char *const groups[] = {"link", "trm", "assemble", "lcd", "fov", "layers"};
+    static const char *const groups[] = {"link", "trm", "assemble", "lcd", "fov", "layers", "bands"};
     int known = 0;
     for (unsigned i = 0; i < sizeof groups / sizeof groups[0]; i++) {
         known |= !strcmp(word, groups[i]);
@@ -423,6 +534,9 @@ int main(void)
     }
     if (want("lcd")) {
         bench_lcd();
+    }
+    if (want("bands")) {
+        bench_bands();
     }
     if (want("fov")) {
         bench_fov(0, "foveated remap (alpha 4, 12.4 % disk)");
