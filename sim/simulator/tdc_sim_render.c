@@ -40,6 +40,22 @@ typedef struct {
     long f0; /* scene frame of run time 0 (tdc_sim_render_options) */
 } rsrc_t;
 
+/* A renderer vector (in pixels per renderer frame) scaled by k to the
+ * source's time step, rounded and clamped to the link's int16 range; a
+ * linear renderer value coded with the source gamma (clamped to [0, 1]).
+ * Every output path of this source uses these two. */
+static int16_t rs_scale_mv(int16_t v, double k)
+{
+    double q = floor(v * k + 0.5);
+    return (int16_t)(q > 32767 ? 32767 : (q < -32767 ? -32767 : q));
+}
+
+static uint8_t rs_code(float v, double gamma)
+{
+    double l = v < 0.0f ? 0.0 : (v > 1.0f ? 1.0 : (double)v);
+    return (uint8_t)(255.0 * pow(l, 1.0 / gamma) + 0.5);
+}
+
 static long frame_of(const rsrc_t *c, double t)
 {
     double f = floor(t * c->clock_hz + 1e-9);
@@ -82,15 +98,13 @@ static int rs_full(tdc_source_t *s, double t, double dt, uint8_t *rgb, int16_t *
     }
     size_t n = (size_t)s->width * s->height;
     for (size_t i = 0; i < 3 * n; i++) {
-        double l = c->lin[i] < 0.0f ? 0.0 : (c->lin[i] > 1.0f ? 1.0 : (double)c->lin[i]);
-        rgb[i] = (uint8_t)(255.0 * pow(l, 1.0 / s->gamma[i % 3]) + 0.5);
+        rgb[i] = rs_code(c->lin[i], s->gamma[i % 3]);
     }
     if (mv) {
         /* renderer MVs span one clock frame; scale to dt */
         double k = dt * c->clock_hz;
         for (size_t i = 0; i < 2 * n; i++) {
-            double q = floor(c->mv[i] * k + 0.5);
-            mv[i] = (int16_t)(q > 32767 ? 32767 : (q < -32767 ? -32767 : q));
+            mv[i] = rs_scale_mv(c->mv[i], k);
         }
     }
     *rays = st.rays[TDC_RAY_PRIMARY];
@@ -239,8 +253,7 @@ static int rs_subframe(tdc_source_t *s, int slot, int shadow, uint32_t frame, do
     }
     size_t n = (size_t)st.out_w * st.out_h;
     for (size_t i = 0; i < 3 * n; i++) {
-        double l = c->sub_lin[i] < 0.0f ? 0.0 : (c->sub_lin[i] > 1.0f ? 1.0 : (double)c->sub_lin[i]);
-        samples[i] = (uint8_t)(255.0 * pow(l, 1.0 / s->gamma[i % 3]) + 0.5);
+        samples[i] = rs_code(c->sub_lin[i], s->gamma[i % 3]);
     }
     double k = dt * c->clock_hz;
     for (size_t i = 0; i < n; i++) {
@@ -255,8 +268,7 @@ static int rs_subframe(tdc_source_t *s, int slot, int shadow, uint32_t frame, do
             }
         }
         for (int j = 0; j < 2; j++) {
-            double q = floor(src[j] * k + 0.5);
-            mv[2 * i + j] = (int16_t)(q > 32767 ? 32767 : (q < -32767 ? -32767 : q));
+            mv[2 * i + j] = rs_scale_mv(src[j], k);
         }
     }
     memcpy(pattern, tdc_render_pattern_bits(c->sub[slot]), ((size_t)n + 7) / 8);
@@ -291,8 +303,7 @@ static int rs_reduced(tdc_source_t *s, int slot, double t, double r, int ss, dou
         return -1;
     }
     for (size_t i = 0; i < 3 * (size_t)rw * rh; i++) {
-        double l = c->lin[i] < 0.0f ? 0.0 : (c->lin[i] > 1.0f ? 1.0 : (double)c->lin[i]);
-        rgb[i] = (uint8_t)(255.0 * pow(l, 1.0 / s->gamma[i % 3]) + 0.5);
+        rgb[i] = rs_code(c->lin[i], s->gamma[i % 3]);
     }
     *rays = st.rays[TDC_RAY_PRIMARY];
     return 0;
@@ -327,14 +338,12 @@ static int rs_foveated(tdc_source_t *s, const tdc_fov_sampling_t *f, double t, d
     }
     const size_t n = (size_t)nlp + (size_t)nd;
     for (size_t i = 0; i < 3 * n; i++) {
-        double l = c->fov_lin[i] < 0.0f ? 0.0 : (c->fov_lin[i] > 1.0f ? 1.0 : (double)c->fov_lin[i]);
-        rgb[i] = (uint8_t)(255.0 * pow(l, 1.0 / s->gamma[i % 3]) + 0.5);
+        rgb[i] = rs_code(c->fov_lin[i], s->gamma[i % 3]);
     }
     if (mv) {
         double k = dt * c->clock_hz; /* renderer MVs span one clock frame */
         for (size_t i = 0; i < 2 * n; i++) {
-            double q = floor(c->fov_mv[i] * k + 0.5);
-            mv[i] = (int16_t)(q > 32767 ? 32767 : (q < -32767 ? -32767 : q));
+            mv[i] = rs_scale_mv(c->fov_mv[i], k);
         }
     }
     *rays = st.rays[TDC_RAY_PRIMARY];
@@ -356,18 +365,6 @@ static int rs_cut(tdc_source_t *s, double t0, double t1)
  * and GLOSSY (refl; zeng: mv_refl, the mirror / stochastic glossy vector)
  * planes.  Codes with the source gamma; vectors scaled from the renderer's
  * frame to dt like rs_subframe. */
-static int16_t rs_scale_mv(int16_t v, double k)
-{
-    double q = floor(v * k + 0.5);
-    return (int16_t)(q > 32767 ? 32767 : (q < -32767 ? -32767 : q));
-}
-
-static uint8_t rs_code(float v, double gamma)
-{
-    double l = v < 0.0f ? 0.0 : (v > 1.0f ? 1.0 : (double)v);
-    return (uint8_t)(255.0 * pow(l, 1.0 / gamma) + 0.5);
-}
-
 static int rs_layered(tdc_source_t *s, int slot, int zeng, uint32_t frame, double t, double dt,
                       struct tdc_layer_frame *lf, uint8_t *pattern, uint64_t *rays)
 {
