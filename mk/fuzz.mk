@@ -74,7 +74,8 @@ FUZZ_NOCMP_frameloop := firmware/tdc_trm.c firmware/tdc_assemble.c firmware/tdc_
 
 define fuzz_target
 $(FUZZ_DIR)/fuzz_$(1): $(FUZZ_SRCS_$(1)) $(FUZZ_NOCMP_$(1)) $(FUZZ_DEPS_$(1)) $(wildcard firmware/*.h sim/link/*.h sim/render/*.h) \
-                       $(GEN)/tdc_crc32_tables.h $(GEN)/tdc_fov_tables.h $(GEN)/tdc_panels.h tests/fuzz/nocov.txt
+                       $(GEN)/tdc_crc32_tables.h $(GEN)/tdc_fov_tables.h $(GEN)/tdc_trm_tables.h $(GEN)/tdc_panels.h \
+                       tests/fuzz/nocov.txt
 	@mkdir -p $$(@D)/obj-$(1)
 	@for f in $(FUZZ_NOCMP_$(1)); do o=$$(@D)/obj-$(1)/$$$$(basename $$$$f .c).o; echo "$(FUZZ_CC) ... -fno-sanitize-coverage=trace-cmp -c $$$$f"; \
 	    $(FUZZ_CC) $(FUZZ_FLAGS) $(FUZZ_CFLAGS_$(1)) -fno-sanitize-coverage=trace-cmp -c $$$$f -o $$$$o || exit 1; done
