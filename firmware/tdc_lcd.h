@@ -66,7 +66,7 @@
  * --transitions from measured (previous drive, drive) transitions
  * (docs/lcd.md §2).  A pixel's STATE is named by the code whose settled
  * transmittance it is.  Per channel, st_n x st_n uint16 in Q4 codes (1/16
- * code, 0..255*16), nodes at i / (st_n - 1) of full scale, row-major:
+ * code, 0..255*16; st_n = 17, 33 or 65), nodes at i / (st_n - 1) of full scale, row-major:
  *   st_od[c][i * st_n + j]    drive that delivers, within one refresh, the
  *                             light of wanted code j from state i (clamped to
  *                             0 / 255 where out of reach);
@@ -85,7 +85,7 @@ typedef struct {
     int32_t p_q24[4];    /* p1..p4 in Q24 */
     const int16_t *od17; /* 17 x 17 deltas, see above */
     const int16_t *od33; /* 33 x 33 deltas */
-    uint8_t st_n;        /* stateful tables: 17 or 33 nodes; 0 = none for this rate */
+    uint8_t st_n;        /* stateful tables: 17, 33 or 65 nodes; 0 = none for this rate */
     const uint16_t *st_od[3];
     const uint16_t *st_next[3];
     const uint16_t *st_reach[3];
