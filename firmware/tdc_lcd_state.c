@@ -180,19 +180,24 @@ void tdc_lcd_st_build(tdc_lcd_t *st)
     for (int32_t code = 0; st->st_ddec && code < 256; code++) {
         st->st_ddec[code] = debt_decode(code < 128 ? code : code - 256); /* index = (uint8_t)debt */
     }
+    for (unsigned c = 0; c < 3u; c++) {
+        for (uint32_t k = 0; k < 256u; k++) {
+            st->st_dec[c * 256u + k] = (int32_t)st->panel->gamma[c].decode[k]; /* <= 2^24 */
+        }
+    }
 }
 
-/* The residual of a sub-pixel out of reach, counted in the stage stats. */
-static void st_miss(tdc_lcd_t *st, tdc_res_t *residual, size_t s, int32_t miss)
+/* The residual of a sub-pixel out of reach, counted. */
+static void st_miss(tdc_lcd_st_counts_t *n, tdc_res_t *residual, size_t s, int32_t miss)
 {
     if (miss > 0) {
-        st->stats.clamped_high++;
+        n->clamped_high++;
     } else {
-        st->stats.clamped_low++;
+        n->clamped_low++;
     }
     if (residual && miss != 0) {
         residual[s] = tdc_clamp32(tdc_add_sat32(residual[s], miss), -TDC_LIN_ONE, TDC_LIN_ONE);
-        st->stats.residual_added++;
+        n->residual_added++;
     }
 }
 
@@ -206,7 +211,8 @@ typedef struct {
     const uint16_t *lut;      /* [2^bits][256] */
     const uint8_t *whi, *wlo; /* [2^bits] */
     const int32_t *lhi, *llo; /* [2^bits] */
-    const tdc_gamma_table_t *gt;
+    const int32_t *dec;       /* [256]: decode of the channel */
+    const tdc_gamma_table_t *gt; /* the pair mode's re-encoding; NULL in the C row kernel */
 } st_chan_t;
 
 /* The light a sub-pixel misses at state q, wanted code w (want in Q24): 0 if in reach. */
@@ -223,13 +229,13 @@ static inline int32_t st_out_of_reach(const st_chan_t *ch, uint32_t q, uint32_t 
 
 /* A pair's second refresh, 8-bit state, for a sub-pixel that is owed light:
  * the wanted light plus the debt, re-encoded to a wanted code. */
-static void st_one8(tdc_lcd_t *st, const st_chan_t *k, uint32_t w, uint8_t *out, uint8_t *state, const int8_t *debt,
-                    size_t s, tdc_res_t *residual, uint32_t *nmiss)
+static void st_one8(tdc_lcd_st_counts_t *n, const int32_t *ddec, const st_chan_t *k, uint32_t w, uint8_t *out,
+                    uint8_t *state, const int8_t *debt, size_t s, tdc_res_t *residual, uint32_t *nmiss)
 {
-    int32_t want = (int32_t)k->gt->decode[w];
+    int32_t want = k->dec[w];
     if (*debt != 0) {
         /* |debt| <= 2^24: want + debt within +-2^25, no overflow. */
-        want = tdc_clamp32(want + st->st_ddec[(uint8_t)*debt], 0, TDC_LIN_ONE);
+        want = tdc_clamp32(want + ddec[(uint8_t)*debt], 0, TDC_LIN_ONE);
         w = tdc_gamma_encode(k->gt, want, 255u);
     }
     const uint32_t q = *state;
@@ -238,7 +244,7 @@ static void st_one8(tdc_lcd_t *st, const st_chan_t *k, uint32_t w, uint8_t *out,
     *state = (uint8_t)(e >> 8);
     const int32_t miss = st_out_of_reach(k, q, w, want);
     if (miss != 0) {
-        st_miss(st, residual, s, miss);
+        st_miss(n, residual, s, miss);
         (*nmiss)++;
     }
 }
@@ -248,15 +254,15 @@ static void st_one8(tdc_lcd_t *st, const st_chan_t *k, uint32_t w, uint8_t *out,
  * drives: one 16-bit lookup and a test of the drive per sub-pixel.  The
  * three channels' lookups sit at constant offsets (2^16 entries) from one
  * base.  debt: NULL, or the pair mode's debt row (owe: first refresh of a
- * pair, else second).  Returns the sub-pixels out of reach. */
+ * pair, else second; ddec its decode).  Returns the sub-pixels out of reach. */
 #if defined(__GNUC__)
 #define ST_ALWAYS_INLINE inline __attribute__((always_inline))
 #else
 #define ST_ALWAYS_INLINE inline
 #endif
-static ST_ALWAYS_INLINE uint32_t st_row8(tdc_lcd_t *st, const st_chan_t ch[3], const uint8_t *in, uint8_t *out,
-                                         uint8_t *state, int8_t *debt, int owe, uint32_t w3, size_t s0,
-                                         tdc_res_t *residual)
+static ST_ALWAYS_INLINE uint32_t st_row8(tdc_lcd_st_counts_t *n, const int32_t *ddec, const st_chan_t ch[3],
+                                         const uint8_t *in, uint8_t *out, uint8_t *state, int8_t *debt, int owe,
+                                         uint32_t w3, size_t s0, tdc_res_t *residual)
 {
     const uint16_t *lut = ch[0].lut;
     uint32_t nmiss = 0;
@@ -270,7 +276,8 @@ static ST_ALWAYS_INLINE uint32_t st_row8(tdc_lcd_t *st, const st_chan_t ch[3], c
         if (debt && !owe && (debt[i] | debt[i + 1u] | debt[i + 2u]) != 0) {
             /* a pair's second refresh pays what is owed (rare: after a target out of reach) */
             for (unsigned c = 0; c < 3u; c++) {
-                st_one8(st, &ch[c], in[i + c], out + i + c, state + i + c, debt + i + c, s0 + i + c, residual, &nmiss);
+                st_one8(n, ddec, &ch[c], in[i + c], out + i + c, state + i + c, debt + i + c, s0 + i + c, residual,
+                        &nmiss);
             }
             continue;
         }
@@ -289,7 +296,7 @@ static ST_ALWAYS_INLINE uint32_t st_row8(tdc_lcd_t *st, const st_chan_t ch[3], c
         if ((((e0 + 1u) & 255u) <= 1u) | (((e1 + 1u) & 255u) <= 1u) | (((e2 + 1u) & 255u) <= 1u)) {
             const uint32_t qs[3] = {q0, q1, q2}, ws[3] = {w0, w1, w2};
             for (unsigned c = 0; c < 3u; c++) {
-                const int32_t want = (int32_t)ch[c].gt->decode[ws[c]];
+                const int32_t want = ch[c].dec[ws[c]];
                 const int32_t miss = st_out_of_reach(&ch[c], qs[c], ws[c], want);
                 if (miss == 0) {
                     continue;
@@ -297,10 +304,10 @@ static ST_ALWAYS_INLINE uint32_t st_row8(tdc_lcd_t *st, const st_chan_t ch[3], c
                 nmiss++;
                 if (owe) {
                     debt[i + c] = debt_encode(miss);
-                    st->stats.clamped_high += miss > 0;
-                    st->stats.clamped_low += miss < 0;
+                    n->clamped_high += miss > 0;
+                    n->clamped_low += miss < 0;
                 } else {
-                    st_miss(st, residual, s0 + i + c, miss);
+                    st_miss(n, residual, s0 + i + c, miss);
                 }
             }
         }
@@ -308,74 +315,39 @@ static ST_ALWAYS_INLINE uint32_t st_row8(tdc_lcd_t *st, const st_chan_t ch[3], c
     return nmiss;
 }
 
-/* The run (tdc_lcd_kernels.h) in portable C: the reference of the AVX2 run
- * (tests/checkasm/checkasm_lcd.c).  The boards do not use it: st_row8 alone
- * is what they run (65.7 instructions per pixel on the Cortex-M7). */
-uint32_t tdc_lcd_st_run8_c(const uint16_t *lut, const uint8_t *in, uint8_t *out, uint8_t *state, uint32_t i,
-                           uint32_t w3)
+/* The channel views of the 8-bit-state tables (tdc_lcd_kernels.h layout). */
+static void st_chans8(const tdc_lcd_st_tabs_t *t, const tdc_gamma_table_t *gt, st_chan_t ch[3])
 {
-    for (; i + TDC_LCD_RUN8_STEP <= w3; i += TDC_LCD_RUN8_STEP) {
-        uint16_t e[TDC_LCD_RUN8_STEP];
-        uint32_t edge = 0;
-        for (uint32_t k = 0; k < TDC_LCD_RUN8_STEP; k++) {
-            e[k] = lut[(k % 3u) * 65536u + ((uint32_t)state[i + k] << 8 | in[i + k])];
-            edge |= ((e[k] + 1u) & 255u) <= 1u;
-        }
-        if (edge) {
-            return i;
-        }
-        for (uint32_t k = 0; k < TDC_LCD_RUN8_STEP; k++) {
-            out[i + k] = (uint8_t)e[k];
-            state[i + k] = (uint8_t)(e[k] >> 8);
-        }
+    for (unsigned c = 0; c < 3u; c++) {
+        const size_t k = (size_t)c * 256u;
+        ch[c] = (st_chan_t){t->lut + k * 256u, t->whi + k, t->wlo + k, t->lhi + k, t->llo + k, t->dec + k,
+                            gt ? gt + c : 0};
     }
-    return i < w3 ? i : w3; /* the tail, for the caller's loop */
 }
 
-/* st_row8 without debt; with the AVX2 run where init chose it: its steps
- * without a drive of 0 or 255, st_row8 for the others and the row's tail
- * (same bytes, residual and counts: checkasm_lcd.c, the golden vectors). */
-static uint32_t st_row8_plain(tdc_lcd_t *st, const st_chan_t ch[3], const uint8_t *in, uint8_t *out, uint8_t *state,
-                              uint32_t w3, size_t s0, tdc_res_t *residual)
+/* The row kernel (tdc_lcd_kernels.h) in portable C: st_row8 without debt,
+ * what the boards run (65.7 instructions per pixel on the Cortex-M7) and the
+ * reference of the AVX2 row (tests/checkasm/checkasm_lcd.c). */
+uint32_t tdc_lcd_st_row8_c(const tdc_lcd_st_tabs_t *t, const uint8_t *in, uint8_t *out, uint8_t *state, uint32_t w3,
+                           int32_t *res, tdc_lcd_st_counts_t *n)
 {
-    if (st->st_run8 == tdc_lcd_st_run8_c) {
-        return st_row8(st, ch, in, out, state, 0, 0, w3, s0, residual); /* boards, and hosts without AVX2 */
-    }
-    if (st->st_run8_rest) {
-        /* the run stopped at most steps of a recent row: its gathers are
-         * wasted there (moving text, docs/lcd.md), so st_row8 alone for a
-         * few rows, then the run is tried again */
-        st->st_run8_rest--;
-        return st_row8(st, ch, in, out, state, 0, 0, w3, s0, residual);
-    }
-    uint32_t nmiss = 0, stops = 0;
-    for (uint32_t i = 0; i < w3;) {
-        i = st->st_run8(ch[0].lut, in, out, state, i, w3);
-        if (i >= w3) {
-            break;
-        }
-        const uint32_t n = w3 - i < TDC_LCD_RUN8_STEP ? w3 - i : TDC_LCD_RUN8_STEP;
-        nmiss += st_row8(st, ch, in + i, out + i, state + i, 0, 0, n, s0 + i, residual);
-        i += n;
-        stops++;
-    }
-    if (4u * stops * TDC_LCD_RUN8_STEP > w3) {
-        st->st_run8_rest = 8u; /* over a quarter of the steps stopped */
-    }
-    return nmiss;
+    st_chan_t ch[3];
+    st_chans8(t, 0, ch);
+    return st_row8(n, 0, ch, in, out, state, 0, 0, w3, 0, res);
 }
 
-static uint32_t st_row8_pair(tdc_lcd_t *st, const st_chan_t ch[3], const uint8_t *in, uint8_t *out, uint8_t *state,
-                             int8_t *debt, int owe, uint32_t w3, size_t s0, tdc_res_t *residual)
+static uint32_t st_row8_pair(tdc_lcd_st_counts_t *n, const int32_t *ddec, const st_chan_t ch[3], const uint8_t *in,
+                             uint8_t *out, uint8_t *state, int8_t *debt, int owe, uint32_t w3, size_t s0,
+                             tdc_res_t *residual)
 {
-    return owe ? st_row8(st, ch, in, out, state, debt, 1, w3, s0, residual)
-               : st_row8(st, ch, in, out, state, debt, 0, w3, s0, residual);
+    return owe ? st_row8(n, ddec, ch, in, out, state, debt, 1, w3, s0, residual)
+               : st_row8(n, ddec, ch, in, out, state, debt, 0, w3, s0, residual);
 }
 
 /* Any state precision below 8 bits, pair mode or not. */
-static uint32_t st_row_general(tdc_lcd_t *st, const st_chan_t ch[3], const uint8_t *in, uint8_t *out, uint8_t *state,
-                               int8_t *debt, int owe, int pay, unsigned bits, uint32_t w3, size_t s0,
-                               tdc_res_t *residual)
+static uint32_t st_row_general(tdc_lcd_t *st, tdc_lcd_st_counts_t *cnt, const st_chan_t ch[3], const uint8_t *in,
+                               uint8_t *out, uint8_t *state, int8_t *debt, int owe, int pay, unsigned bits, uint32_t w3,
+                               size_t s0, tdc_res_t *residual)
 {
     uint32_t nmiss = 0;
     size_t s = s0;
@@ -383,7 +355,7 @@ static uint32_t st_row_general(tdc_lcd_t *st, const st_chan_t ch[3], const uint8
         for (uint32_t c = 0; c < 3u; c++, s++) {
             const st_chan_t *k = &ch[c];
             uint32_t w = in[i + c];
-            int32_t want = (int32_t)k->gt->decode[w];
+            int32_t want = k->dec[w];
             if (pay && debt[s] != 0) {
                 /* |debt| <= 2^24: want + debt within +-2^25, no overflow. */
                 want = tdc_clamp32(want + st->st_ddec[(uint8_t)debt[s]], 0, TDC_LIN_ONE);
@@ -402,12 +374,12 @@ static uint32_t st_row_general(tdc_lcd_t *st, const st_chan_t ch[3], const uint8
                 /* out of reach: owed to the pair's second refresh */
                 debt[s] = debt_encode(miss);
                 if (miss != 0) {
-                    st->stats.clamped_high += miss > 0;
-                    st->stats.clamped_low += miss < 0;
+                    cnt->clamped_high += miss > 0;
+                    cnt->clamped_low += miss < 0;
                     nmiss++;
                 }
             } else if (miss != 0) {
-                st_miss(st, residual, s, miss);
+                st_miss(cnt, residual, s, miss);
                 nmiss++;
             }
         }
@@ -429,9 +401,11 @@ void tdc_lcd_st_rows(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_stride, u
     st_chan_t ch[3];
     for (unsigned c = 0; c < 3u; c++) {
         const size_t k = (size_t)c * nq;
-        ch[c] = (st_chan_t){st->st_lut + k * 256u, st->st_whi + k, st->st_wlo + k,
-                            st->st_lhi + k,        st->st_llo + k, &st->panel->gamma[c]};
+        ch[c] = (st_chan_t){st->st_lut + k * 256u, st->st_whi + k,         st->st_wlo + k,          st->st_lhi + k,
+                            st->st_llo + k,        st->st_dec + c * 256u, &st->panel->gamma[c]};
     }
+    const tdc_lcd_st_tabs_t tabs = {st->st_lut, st->st_whi, st->st_wlo, st->st_lhi, st->st_llo, st->st_dec};
+    tdc_lcd_st_counts_t cnt = {0, 0, 0};
     uint64_t missed = 0;
     for (uint32_t y = y0; y < y1; y++) {
         const uint8_t *in = wanted + (size_t)y * in_stride;
@@ -453,13 +427,17 @@ void tdc_lcd_st_rows(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_stride, u
             continue;
         }
         if (bits == 8u && !debt) {
-            missed += st_row8_plain(st, ch, in, out, state + s0, w3, s0, residual);
+            /* the row kernel: C (boards) or AVX2, chosen at init */
+            missed += st->st_row8(&tabs, in, out, state + s0, w3, residual ? residual + s0 : 0, &cnt);
         } else if (bits == 8u) {
-            missed += st_row8_pair(st, ch, in, out, state + s0, debt + s0, owe, w3, s0, residual);
+            missed += st_row8_pair(&cnt, st->st_ddec, ch, in, out, state + s0, debt + s0, owe, w3, s0, residual);
         } else {
-            missed += st_row_general(st, ch, in, out, state, debt, owe, pay, bits, w3, s0, residual);
+            missed += st_row_general(st, &cnt, ch, in, out, state, debt, owe, pay, bits, w3, s0, residual);
         }
     }
+    st->stats.clamped_low += cnt.clamped_low;
+    st->stats.clamped_high += cnt.clamped_high;
+    st->stats.residual_added += cnt.residual_added;
     if (st->have_history) {
         st->stats.roots += (uint64_t)w3 * (y1 - y0) - missed;
     }
