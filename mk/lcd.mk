@@ -48,6 +48,8 @@ lcd-profiles: $(TDC_LCD_MEASURE) $(TDC_CALIB)
 # The report (docs/lcd-report.md): perceived error of TRM frames on the
 # simulated LCD per inverse mode, and the firmware time per 1440x1600 frame.
 BENCHES += $(B)/tests/bench/bench_lcd_report
+# Diagnostic (not in make bench): which cause limits the stateful tables on
+# static content, docs/lcd.md §8 (make $(B)/tests/bench/bench_lcd_floor).
 report-lcd: $(B)/tests/bench/bench_lcd_report
 	$(B)/tests/bench/bench_lcd_report --panel pg279q -o docs/lcd-report.md
 	$(B)/tests/bench/bench_lcd_report --panel lcd-240 -o docs/lcd-report-240.md
