@@ -243,8 +243,7 @@ static void lcd_carve(tdc_lcd_t *st, const tdc_lcd_config_t *cfg, tdc_arena_t *a
 
 void tdc_lcd_set_simd(tdc_lcd_t *st, int enable)
 {
-    st->st_run8 = enable && tdc_lcd_avx2_available() ? tdc_lcd_st_run8_avx2 : tdc_lcd_st_run8_c;
-    st->st_run8_rest = 0;
+    st->st_row8 = enable && tdc_lcd_avx2_available() ? tdc_lcd_st_row8_avx2 : tdc_lcd_st_row8_c;
 }
 
 size_t tdc_lcd_get_size(const tdc_lcd_config_t *cfg)

@@ -46,6 +46,7 @@
 
 #include "tdc_arena.h"
 #include "tdc_fixed.h"
+#include "tdc_lcd_kernels.h"
 #include "tdc_panel.h"
 
 #define TDC_LCD_COEF_FRAC 24
@@ -66,7 +67,7 @@
  * --transitions from measured (previous drive, drive) transitions
  * (docs/lcd.md §2).  A pixel's STATE is named by the code whose settled
  * transmittance it is.  Per channel, st_n x st_n uint16 in Q4 codes (1/16
- * code, 0..255*16), nodes at i / (st_n - 1) of full scale, row-major:
+ * code, 0..255*16; st_n = 17, 33 or 65), nodes at i / (st_n - 1) of full scale, row-major:
  *   st_od[c][i * st_n + j]    drive that delivers, within one refresh, the
  *                             light of wanted code j from state i (clamped to
  *                             0 / 255 where out of reach);
@@ -85,7 +86,7 @@ typedef struct {
     int32_t p_q24[4];    /* p1..p4 in Q24 */
     const int16_t *od17; /* 17 x 17 deltas, see above */
     const int16_t *od33; /* 33 x 33 deltas */
-    uint8_t st_n;        /* stateful tables: 17 or 33 nodes; 0 = none for this rate */
+    uint8_t st_n;        /* stateful tables: 17, 33 or 65 nodes; 0 = none for this rate */
     const uint16_t *st_od[3];
     const uint16_t *st_next[3];
     const uint16_t *st_reach[3];
@@ -202,10 +203,10 @@ typedef struct {
     int32_t *st_ddec;         /* STATEFUL_PAIR [256]: debt code (as uint8) -> light, Q24 */
     uint8_t st_phase;         /* STATEFUL_PAIR: 0 = first refresh of a pair (even frame since reset) */
     uint8_t table_fault;      /* tdc_lcd_table_fault_t of the last refused init */
-    /* stateful, 8-bit state without debt: the hot run (tdc_lcd_kernels.h),
+    int32_t *st_dec;          /* [3][256]: the panel's decode per channel (Q24), for the row kernels */
+    /* stateful, 8-bit state without debt: the row kernel (tdc_lcd_kernels.h),
      * C or AVX2, chosen at init */
-    uint32_t (*st_run8)(const uint16_t *lut, const uint8_t *in, uint8_t *out, uint8_t *state, uint32_t i, uint32_t w3);
-    uint8_t st_run8_rest; /* rows left without the run (it stopped at most steps of a recent row) */
+    tdc_lcd_st_row8_fn *st_row8;
     uint8_t q_enc[256];   /* 8-bit code -> prev_bits code (rounded) */
     uint8_t q_dec[256];   /* prev_bits code -> 8-bit code */
     tdc_lcd_stats_t stats;
@@ -249,8 +250,9 @@ _Static_assert((uint64_t)TDC_LCD_MAX_DIM *TDC_LCD_MAX_DIM * 6u + (1u << 20) <= 0
     X(st_lut, uint16_t, TDC_LCD_MODE_IS_STATEFUL(MODE) ? (3u << (BITS)) * 256u : 0u) /* drive | next state << 8 */   \
     X(st_lhi, int32_t, TDC_LCD_MODE_IS_STATEFUL(MODE) ? (3u << (BITS)) : 0u)         /* light at the reach limits */ \
     X(st_llo, int32_t, TDC_LCD_MODE_IS_STATEFUL(MODE) ? (3u << (BITS)) : 0u)                                         \
+    X(st_dec, int32_t, TDC_LCD_MODE_IS_STATEFUL(MODE) ? 3u * 256u : 0u)               /* decode per channel */         \
     X(st_whi, uint8_t, TDC_LCD_MODE_IS_STATEFUL(MODE) ? (3u << (BITS)) : 0u) /* wanted codes beyond are */           \
-    X(st_wlo, uint8_t, TDC_LCD_MODE_IS_STATEFUL(MODE) ? (3u << (BITS)) : 0u) /* out of reach */                      \
+    X(st_wlo, uint8_t, TDC_LCD_MODE_IS_STATEFUL(MODE) ? (3u << (BITS)) + 4u : 0u) /* out of reach (+ gather slack) */ \
     X(st_ddec, int32_t, TDC_LCD_PAIR_(MODE) ? 256u : 0u)                     /* debt code -> light */                \
     X(st_debt, int8_t, TDC_LCD_PAIR_(MODE) ? (size_t)(W) * (H)*3u : 0u)      /* light owed, per sample */
 

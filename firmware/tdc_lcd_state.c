@@ -36,17 +36,27 @@
 
 #define ST_MAX (255u << TDC_LCD_ST_FRAC) /* largest Q4 code */
 
+/* Q16 fraction bits of a node step: n - 1 = 2^(16 - fb) (n = 17, 33, 65). */
+static unsigned st_frac_bits(unsigned n)
+{
+    return n == 65u ? 10u : (n == 33u ? 11u : 12u);
+}
+
 /*
  * Bilinear interpolation of an n x n Q4 table at (a, b), both Q16 in
- * [0, 65536] (node i at i / (n - 1)); result Q4, rounded.
- * Scaling and overflow: entries <= 4080 < 2^12, fraction < 2^12, so a row
- * value scaled by 2^fb < 2^24 (int32), the second stage < 2^36 (int64).
+ * [0, 65536] (node i at i / (n - 1)), rounded ONCE to the nearest 8-bit code
+ * (0..255).  Rounding to Q4 first and then to a code (as before) rounded the
+ * values in [k + 15/32, k + 1/2) up: a +1 code bias on ~3 % of the dense
+ * lookup that measured 0.1415 % instead of 0.1156 % static RMS error on
+ * lcd-240 (docs/lcd.md §2a).
+ * Scaling and overflow: entries <= 4080 < 2^12, fraction <= 2^fb <= 2^12, so a
+ * row value scaled by 2^fb < 2^24 (int32), the second stage < 2^36 (int64).
  * All terms are non-negative except the differences, and the result is a
- * convex combination of entries, so it stays in [0, 4080].
+ * convex combination of entries, so it stays in [0, 4080 * 2^(2 fb)].
  */
-static uint32_t interp_q4(const uint16_t *t, unsigned n, uint32_t a, uint32_t b)
+static uint32_t interp_code(const uint16_t *t, unsigned n, uint32_t a, uint32_t b)
 {
-    const unsigned fb = n == 33u ? 11u : 12u;
+    const unsigned fb = st_frac_bits(n);
     const uint32_t fmask = (1u << fb) - 1u;
     unsigned ia = a >> fb, ib = b >> fb;
     int32_t fa = (int32_t)(a & fmask), fbb = (int32_t)(b & fmask);
@@ -62,7 +72,9 @@ static uint32_t interp_q4(const uint16_t *t, unsigned n, uint32_t a, uint32_t b)
     const int32_t p = (int32_t)((uint32_t)r0[0] << fb) + ((int32_t)r0[1] - (int32_t)r0[0]) * fbb;
     const int32_t q = (int32_t)((uint32_t)r1[0] << fb) + ((int32_t)r1[1] - (int32_t)r1[0]) * fbb;
     const int64_t d = (int64_t)p * ((int64_t)1 << fb) + (int64_t)(q - p) * fa; /* Q4 * 2^(2 fb), >= 0 */
-    return (uint32_t)((d + ((int64_t)1 << (2u * fb - 1u))) >> (2u * fb));
+    const unsigned sh = 2u * fb + TDC_LCD_ST_FRAC;                             /* to whole codes */
+    const uint32_t c = (uint32_t)((d + ((int64_t)1 << (sh - 1u))) >> sh);
+    return c > 255u ? 255u : c;
 }
 
 /* 8-bit code -> Q16 (as tdc_lcd.c: round(k * 65536 / 255)). */
@@ -71,17 +83,10 @@ static uint32_t code_q16(uint32_t k)
     return k * 257u + (k >> 7);
 }
 
-/* Q4 code -> nearest 8-bit code. */
-static uint32_t q4_code(uint32_t v)
-{
-    const uint32_t c = (v + (1u << (TDC_LCD_ST_FRAC - 1u))) >> TDC_LCD_ST_FRAC;
-    return c > 255u ? 255u : c;
-}
-
 tdc_lcd_table_fault_t tdc_lcd_st_validate(const tdc_lcd_rate_t *rate)
 {
     const unsigned n = rate->st_n;
-    if (n != 17u && n != 33u) {
+    if (n != 17u && n != 33u && n != 65u) {
         return TDC_LCD_TABLE_MISSING;
     }
     for (unsigned c = 0; c < 3u; c++) {
@@ -134,7 +139,7 @@ void tdc_lcd_st_build(tdc_lcd_t *st)
     const tdc_lcd_rate_t *rate = st->rate;
     const unsigned n = rate->st_n, bits = st->cfg.prev_bits;
     const uint32_t nq = 1u << bits;
-    const unsigned fb = n == 33u ? 11u : 12u;
+    const unsigned fb = st_frac_bits(n);
     for (unsigned c = 0; c < 3u; c++) {
         const tdc_gamma_table_t *gt = &st->panel->gamma[c];
         for (uint32_t q = 0; q < nq; q++) {
@@ -162,12 +167,12 @@ void tdc_lcd_st_build(tdc_lcd_t *st)
             st->st_llo[k] = tdc_gamma_decode_gval(gt, lo << 4);
             uint16_t *row = st->st_lut + k * 256u;
             for (uint32_t w = 0; w < 256u; w++) {
-                uint32_t drive = q4_code(interp_q4(rate->st_od[c], n, s16, code_q16(w)));
+                uint32_t drive = interp_code(rate->st_od[c], n, s16, code_q16(w));
                 /* Out of reach: the limit drive, whatever the interpolation
                  * between a clamped and an unclamped node gave (so the frame
                  * loop needs to test the limits only for drives 0 and 255). */
                 drive = w > whi ? 255u : (w < wlo ? 0u : drive);
-                const uint32_t next = q4_code(interp_q4(rate->st_next[c], n, s16, code_q16(drive)));
+                const uint32_t next = interp_code(rate->st_next[c], n, s16, code_q16(drive));
                 row[w] = (uint16_t)(drive | ((uint32_t)st->q_enc[next] << 8));
             }
         }
@@ -175,19 +180,24 @@ void tdc_lcd_st_build(tdc_lcd_t *st)
     for (int32_t code = 0; st->st_ddec && code < 256; code++) {
         st->st_ddec[code] = debt_decode(code < 128 ? code : code - 256); /* index = (uint8_t)debt */
     }
+    for (unsigned c = 0; c < 3u; c++) {
+        for (uint32_t k = 0; k < 256u; k++) {
+            st->st_dec[c * 256u + k] = (int32_t)st->panel->gamma[c].decode[k]; /* <= 2^24 */
+        }
+    }
 }
 
-/* The residual of a sub-pixel out of reach, counted in the stage stats. */
-static void st_miss(tdc_lcd_t *st, tdc_res_t *residual, size_t s, int32_t miss)
+/* The residual of a sub-pixel out of reach, counted. */
+static void st_miss(tdc_lcd_st_counts_t *n, tdc_res_t *residual, size_t s, int32_t miss)
 {
     if (miss > 0) {
-        st->stats.clamped_high++;
+        n->clamped_high++;
     } else {
-        st->stats.clamped_low++;
+        n->clamped_low++;
     }
     if (residual && miss != 0) {
         residual[s] = tdc_clamp32(tdc_add_sat32(residual[s], miss), -TDC_LIN_ONE, TDC_LIN_ONE);
-        st->stats.residual_added++;
+        n->residual_added++;
     }
 }
 
@@ -201,7 +211,8 @@ typedef struct {
     const uint16_t *lut;      /* [2^bits][256] */
     const uint8_t *whi, *wlo; /* [2^bits] */
     const int32_t *lhi, *llo; /* [2^bits] */
-    const tdc_gamma_table_t *gt;
+    const int32_t *dec;       /* [256]: decode of the channel */
+    const tdc_gamma_table_t *gt; /* the pair mode's re-encoding; NULL in the C row kernel */
 } st_chan_t;
 
 /* The light a sub-pixel misses at state q, wanted code w (want in Q24): 0 if in reach. */
@@ -218,13 +229,13 @@ static inline int32_t st_out_of_reach(const st_chan_t *ch, uint32_t q, uint32_t 
 
 /* A pair's second refresh, 8-bit state, for a sub-pixel that is owed light:
  * the wanted light plus the debt, re-encoded to a wanted code. */
-static void st_one8(tdc_lcd_t *st, const st_chan_t *k, uint32_t w, uint8_t *out, uint8_t *state, const int8_t *debt,
-                    size_t s, tdc_res_t *residual, uint32_t *nmiss)
+static void st_one8(tdc_lcd_st_counts_t *n, const int32_t *ddec, const st_chan_t *k, uint32_t w, uint8_t *out,
+                    uint8_t *state, const int8_t *debt, size_t s, tdc_res_t *residual, uint32_t *nmiss)
 {
-    int32_t want = (int32_t)k->gt->decode[w];
+    int32_t want = k->dec[w];
     if (*debt != 0) {
         /* |debt| <= 2^24: want + debt within +-2^25, no overflow. */
-        want = tdc_clamp32(want + st->st_ddec[(uint8_t)*debt], 0, TDC_LIN_ONE);
+        want = tdc_clamp32(want + ddec[(uint8_t)*debt], 0, TDC_LIN_ONE);
         w = tdc_gamma_encode(k->gt, want, 255u);
     }
     const uint32_t q = *state;
@@ -233,7 +244,7 @@ static void st_one8(tdc_lcd_t *st, const st_chan_t *k, uint32_t w, uint8_t *out,
     *state = (uint8_t)(e >> 8);
     const int32_t miss = st_out_of_reach(k, q, w, want);
     if (miss != 0) {
-        st_miss(st, residual, s, miss);
+        st_miss(n, residual, s, miss);
         (*nmiss)++;
     }
 }
@@ -243,15 +254,15 @@ static void st_one8(tdc_lcd_t *st, const st_chan_t *k, uint32_t w, uint8_t *out,
  * drives: one 16-bit lookup and a test of the drive per sub-pixel.  The
  * three channels' lookups sit at constant offsets (2^16 entries) from one
  * base.  debt: NULL, or the pair mode's debt row (owe: first refresh of a
- * pair, else second).  Returns the sub-pixels out of reach. */
+ * pair, else second; ddec its decode).  Returns the sub-pixels out of reach. */
 #if defined(__GNUC__)
 #define ST_ALWAYS_INLINE inline __attribute__((always_inline))
 #else
 #define ST_ALWAYS_INLINE inline
 #endif
-static ST_ALWAYS_INLINE uint32_t st_row8(tdc_lcd_t *st, const st_chan_t ch[3], const uint8_t *in, uint8_t *out,
-                                         uint8_t *state, int8_t *debt, int owe, uint32_t w3, size_t s0,
-                                         tdc_res_t *residual)
+static ST_ALWAYS_INLINE uint32_t st_row8(tdc_lcd_st_counts_t *n, const int32_t *ddec, const st_chan_t ch[3],
+                                         const uint8_t *in, uint8_t *out, uint8_t *state, int8_t *debt, int owe,
+                                         uint32_t w3, size_t s0, tdc_res_t *residual)
 {
     const uint16_t *lut = ch[0].lut;
     uint32_t nmiss = 0;
@@ -265,7 +276,8 @@ static ST_ALWAYS_INLINE uint32_t st_row8(tdc_lcd_t *st, const st_chan_t ch[3], c
         if (debt && !owe && (debt[i] | debt[i + 1u] | debt[i + 2u]) != 0) {
             /* a pair's second refresh pays what is owed (rare: after a target out of reach) */
             for (unsigned c = 0; c < 3u; c++) {
-                st_one8(st, &ch[c], in[i + c], out + i + c, state + i + c, debt + i + c, s0 + i + c, residual, &nmiss);
+                st_one8(n, ddec, &ch[c], in[i + c], out + i + c, state + i + c, debt + i + c, s0 + i + c, residual,
+                        &nmiss);
             }
             continue;
         }
@@ -284,7 +296,7 @@ static ST_ALWAYS_INLINE uint32_t st_row8(tdc_lcd_t *st, const st_chan_t ch[3], c
         if ((((e0 + 1u) & 255u) <= 1u) | (((e1 + 1u) & 255u) <= 1u) | (((e2 + 1u) & 255u) <= 1u)) {
             const uint32_t qs[3] = {q0, q1, q2}, ws[3] = {w0, w1, w2};
             for (unsigned c = 0; c < 3u; c++) {
-                const int32_t want = (int32_t)ch[c].gt->decode[ws[c]];
+                const int32_t want = ch[c].dec[ws[c]];
                 const int32_t miss = st_out_of_reach(&ch[c], qs[c], ws[c], want);
                 if (miss == 0) {
                     continue;
@@ -292,10 +304,10 @@ static ST_ALWAYS_INLINE uint32_t st_row8(tdc_lcd_t *st, const st_chan_t ch[3], c
                 nmiss++;
                 if (owe) {
                     debt[i + c] = debt_encode(miss);
-                    st->stats.clamped_high += miss > 0;
-                    st->stats.clamped_low += miss < 0;
+                    n->clamped_high += miss > 0;
+                    n->clamped_low += miss < 0;
                 } else {
-                    st_miss(st, residual, s0 + i + c, miss);
+                    st_miss(n, residual, s0 + i + c, miss);
                 }
             }
         }
@@ -303,74 +315,39 @@ static ST_ALWAYS_INLINE uint32_t st_row8(tdc_lcd_t *st, const st_chan_t ch[3], c
     return nmiss;
 }
 
-/* The run (tdc_lcd_kernels.h) in portable C: the reference of the AVX2 run
- * (tests/checkasm/checkasm_lcd.c).  The boards do not use it: st_row8 alone
- * is what they run (65.7 instructions per pixel on the Cortex-M7). */
-uint32_t tdc_lcd_st_run8_c(const uint16_t *lut, const uint8_t *in, uint8_t *out, uint8_t *state, uint32_t i,
-                           uint32_t w3)
+/* The channel views of the 8-bit-state tables (tdc_lcd_kernels.h layout). */
+static void st_chans8(const tdc_lcd_st_tabs_t *t, const tdc_gamma_table_t *gt, st_chan_t ch[3])
 {
-    for (; i + TDC_LCD_RUN8_STEP <= w3; i += TDC_LCD_RUN8_STEP) {
-        uint16_t e[TDC_LCD_RUN8_STEP];
-        uint32_t edge = 0;
-        for (uint32_t k = 0; k < TDC_LCD_RUN8_STEP; k++) {
-            e[k] = lut[(k % 3u) * 65536u + ((uint32_t)state[i + k] << 8 | in[i + k])];
-            edge |= ((e[k] + 1u) & 255u) <= 1u;
-        }
-        if (edge) {
-            return i;
-        }
-        for (uint32_t k = 0; k < TDC_LCD_RUN8_STEP; k++) {
-            out[i + k] = (uint8_t)e[k];
-            state[i + k] = (uint8_t)(e[k] >> 8);
-        }
+    for (unsigned c = 0; c < 3u; c++) {
+        const size_t k = (size_t)c * 256u;
+        ch[c] = (st_chan_t){t->lut + k * 256u, t->whi + k, t->wlo + k, t->lhi + k, t->llo + k, t->dec + k,
+                            gt ? gt + c : 0};
     }
-    return i < w3 ? i : w3; /* the tail, for the caller's loop */
 }
 
-/* st_row8 without debt; with the AVX2 run where init chose it: its steps
- * without a drive of 0 or 255, st_row8 for the others and the row's tail
- * (same bytes, residual and counts: checkasm_lcd.c, the golden vectors). */
-static uint32_t st_row8_plain(tdc_lcd_t *st, const st_chan_t ch[3], const uint8_t *in, uint8_t *out, uint8_t *state,
-                              uint32_t w3, size_t s0, tdc_res_t *residual)
+/* The row kernel (tdc_lcd_kernels.h) in portable C: st_row8 without debt,
+ * what the boards run (65.7 instructions per pixel on the Cortex-M7) and the
+ * reference of the AVX2 row (tests/checkasm/checkasm_lcd.c). */
+uint32_t tdc_lcd_st_row8_c(const tdc_lcd_st_tabs_t *t, const uint8_t *in, uint8_t *out, uint8_t *state, uint32_t w3,
+                           int32_t *res, tdc_lcd_st_counts_t *n)
 {
-    if (st->st_run8 == tdc_lcd_st_run8_c) {
-        return st_row8(st, ch, in, out, state, 0, 0, w3, s0, residual); /* boards, and hosts without AVX2 */
-    }
-    if (st->st_run8_rest) {
-        /* the run stopped at most steps of a recent row: its gathers are
-         * wasted there (moving text, docs/lcd.md), so st_row8 alone for a
-         * few rows, then the run is tried again */
-        st->st_run8_rest--;
-        return st_row8(st, ch, in, out, state, 0, 0, w3, s0, residual);
-    }
-    uint32_t nmiss = 0, stops = 0;
-    for (uint32_t i = 0; i < w3;) {
-        i = st->st_run8(ch[0].lut, in, out, state, i, w3);
-        if (i >= w3) {
-            break;
-        }
-        const uint32_t n = w3 - i < TDC_LCD_RUN8_STEP ? w3 - i : TDC_LCD_RUN8_STEP;
-        nmiss += st_row8(st, ch, in + i, out + i, state + i, 0, 0, n, s0 + i, residual);
-        i += n;
-        stops++;
-    }
-    if (4u * stops * TDC_LCD_RUN8_STEP > w3) {
-        st->st_run8_rest = 8u; /* over a quarter of the steps stopped */
-    }
-    return nmiss;
+    st_chan_t ch[3];
+    st_chans8(t, 0, ch);
+    return st_row8(n, 0, ch, in, out, state, 0, 0, w3, 0, res);
 }
 
-static uint32_t st_row8_pair(tdc_lcd_t *st, const st_chan_t ch[3], const uint8_t *in, uint8_t *out, uint8_t *state,
-                             int8_t *debt, int owe, uint32_t w3, size_t s0, tdc_res_t *residual)
+static uint32_t st_row8_pair(tdc_lcd_st_counts_t *n, const int32_t *ddec, const st_chan_t ch[3], const uint8_t *in,
+                             uint8_t *out, uint8_t *state, int8_t *debt, int owe, uint32_t w3, size_t s0,
+                             tdc_res_t *residual)
 {
-    return owe ? st_row8(st, ch, in, out, state, debt, 1, w3, s0, residual)
-               : st_row8(st, ch, in, out, state, debt, 0, w3, s0, residual);
+    return owe ? st_row8(n, ddec, ch, in, out, state, debt, 1, w3, s0, residual)
+               : st_row8(n, ddec, ch, in, out, state, debt, 0, w3, s0, residual);
 }
 
 /* Any state precision below 8 bits, pair mode or not. */
-static uint32_t st_row_general(tdc_lcd_t *st, const st_chan_t ch[3], const uint8_t *in, uint8_t *out, uint8_t *state,
-                               int8_t *debt, int owe, int pay, unsigned bits, uint32_t w3, size_t s0,
-                               tdc_res_t *residual)
+static uint32_t st_row_general(tdc_lcd_t *st, tdc_lcd_st_counts_t *cnt, const st_chan_t ch[3], const uint8_t *in,
+                               uint8_t *out, uint8_t *state, int8_t *debt, int owe, int pay, unsigned bits, uint32_t w3,
+                               size_t s0, tdc_res_t *residual)
 {
     uint32_t nmiss = 0;
     size_t s = s0;
@@ -378,7 +355,7 @@ static uint32_t st_row_general(tdc_lcd_t *st, const st_chan_t ch[3], const uint8
         for (uint32_t c = 0; c < 3u; c++, s++) {
             const st_chan_t *k = &ch[c];
             uint32_t w = in[i + c];
-            int32_t want = (int32_t)k->gt->decode[w];
+            int32_t want = k->dec[w];
             if (pay && debt[s] != 0) {
                 /* |debt| <= 2^24: want + debt within +-2^25, no overflow. */
                 want = tdc_clamp32(want + st->st_ddec[(uint8_t)debt[s]], 0, TDC_LIN_ONE);
@@ -397,12 +374,12 @@ static uint32_t st_row_general(tdc_lcd_t *st, const st_chan_t ch[3], const uint8
                 /* out of reach: owed to the pair's second refresh */
                 debt[s] = debt_encode(miss);
                 if (miss != 0) {
-                    st->stats.clamped_high += miss > 0;
-                    st->stats.clamped_low += miss < 0;
+                    cnt->clamped_high += miss > 0;
+                    cnt->clamped_low += miss < 0;
                     nmiss++;
                 }
             } else if (miss != 0) {
-                st_miss(st, residual, s, miss);
+                st_miss(cnt, residual, s, miss);
                 nmiss++;
             }
         }
@@ -424,9 +401,11 @@ void tdc_lcd_st_rows(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_stride, u
     st_chan_t ch[3];
     for (unsigned c = 0; c < 3u; c++) {
         const size_t k = (size_t)c * nq;
-        ch[c] = (st_chan_t){st->st_lut + k * 256u, st->st_whi + k, st->st_wlo + k,
-                            st->st_lhi + k,        st->st_llo + k, &st->panel->gamma[c]};
+        ch[c] = (st_chan_t){st->st_lut + k * 256u, st->st_whi + k,         st->st_wlo + k,          st->st_lhi + k,
+                            st->st_llo + k,        st->st_dec + c * 256u, &st->panel->gamma[c]};
     }
+    const tdc_lcd_st_tabs_t tabs = {st->st_lut, st->st_whi, st->st_wlo, st->st_lhi, st->st_llo, st->st_dec};
+    tdc_lcd_st_counts_t cnt = {0, 0, 0};
     uint64_t missed = 0;
     for (uint32_t y = y0; y < y1; y++) {
         const uint8_t *in = wanted + (size_t)y * in_stride;
@@ -448,13 +427,17 @@ void tdc_lcd_st_rows(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_stride, u
             continue;
         }
         if (bits == 8u && !debt) {
-            missed += st_row8_plain(st, ch, in, out, state + s0, w3, s0, residual);
+            /* the row kernel: C (boards) or AVX2, chosen at init */
+            missed += st->st_row8(&tabs, in, out, state + s0, w3, residual ? residual + s0 : 0, &cnt);
         } else if (bits == 8u) {
-            missed += st_row8_pair(st, ch, in, out, state + s0, debt + s0, owe, w3, s0, residual);
+            missed += st_row8_pair(&cnt, st->st_ddec, ch, in, out, state + s0, debt + s0, owe, w3, s0, residual);
         } else {
-            missed += st_row_general(st, ch, in, out, state, debt, owe, pay, bits, w3, s0, residual);
+            missed += st_row_general(st, &cnt, ch, in, out, state, debt, owe, pay, bits, w3, s0, residual);
         }
     }
+    st->stats.clamped_low += cnt.clamped_low;
+    st->stats.clamped_high += cnt.clamped_high;
+    st->stats.residual_added += cnt.residual_added;
     if (st->have_history) {
         st->stats.roots += (uint64_t)w3 * (y1 - y0) - missed;
     }

@@ -36,7 +36,7 @@
  *
  * Usage: tdc-calib MEAS.csv -o OUT.panel --name NAME --width W --height H
  *                  [--eyes N] [--refresh HZ] [--table 0|17|33] [--note TEXT]
- *                  [--transitions TRANS.csv [--state-table 17|33]]
+ *                  [--transitions TRANS.csv [--state-table 17|33|65] [--smooth]]
  */
 #include <errno.h>
 #include <math.h>
@@ -185,7 +185,7 @@ static int usage(void)
 {
     fprintf(stderr, "usage: tdc-calib MEAS.csv -o OUT.panel --name NAME --width W --height H [--eyes N]\n"
                     "                 [--refresh HZ] [--table 0|17|33] [--note TEXT]\n"
-                    "                 [--transitions TRANS.csv [--state-table 17|33]]\n");
+                    "                 [--transitions TRANS.csv [--state-table 17|33|65] [--smooth]]\n");
     return TDC_EXIT_ARGS;
 }
 
@@ -202,7 +202,7 @@ static int opt_num(const char *opt, const char *v, int lo, int hi, int *out)
 int main(int argc, char **argv)
 {
     const char *in = NULL, *out = NULL, *name = NULL, *note = NULL, *trans = NULL;
-    int width = 0, height = 0, eyes = 1, refresh = 0, table = 33, state_n = 33;
+    int width = 0, height = 0, eyes = 1, refresh = 0, table = 33, state_n = 33, smooth = 0;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         int bad = 0;
@@ -221,7 +221,9 @@ int main(int argc, char **argv)
         } else if (!strcmp(a, "--table") && v) {
             bad = opt_num(a, argv[++i], 0, 33, &table);
         } else if (!strcmp(a, "--state-table") && v) {
-            bad = opt_num(a, argv[++i], 17, 33, &state_n);
+            bad = opt_num(a, argv[++i], 17, 65, &state_n);
+        } else if (!strcmp(a, "--smooth")) {
+            smooth = 1;
         } else if (!strcmp(a, "--transitions") && v) {
             trans = argv[++i];
         } else if (!strcmp(a, "--note") && v) {
@@ -236,7 +238,7 @@ int main(int argc, char **argv)
         }
     }
     if (!in || !out || !name || width < 1 || height < 1 || (table != 0 && table != 17 && table != 33) ||
-        (state_n != 17 && state_n != 33)) {
+        (state_n != 17 && state_n != 33 && state_n != 65)) {
         return usage();
     }
     if (!name[0] || strpbrk(name, " \t\r\n#")) {
@@ -450,7 +452,7 @@ int main(int argc, char **argv)
         int rc = tdc_meas_load(trans, &tm, err, sizeof err);
         const int code = rc == -2 ? TDC_EXIT_FILE : TDC_EXIT_INPUT;
         if (rc == 0) {
-            rc = tdc_st_fit(&tm, trans, state_n, gamma, &st, err, sizeof err);
+            rc = tdc_st_fit(&tm, trans, state_n, smooth, gamma, &st, err, sizeof err);
         }
         tdc_meas_free(&tm);
         if (rc != 0) {

@@ -28,7 +28,7 @@
 
 #include "tdc_meas.h"
 
-#define TDC_ST_MAX_N 33
+#define TDC_ST_MAX_N 65
 #define TDC_ST_MAX_RATES 3
 
 typedef struct {
@@ -48,7 +48,7 @@ typedef struct {
 } tdc_st_fit_t;
 
 typedef struct {
-    int n; /* table nodes per axis: 17 or 33 */
+    int n; /* table nodes per axis: 17, 33 or 65 */
     int nrates;
     int max_code;
     tdc_st_fit_t rate[TDC_ST_MAX_RATES];
@@ -57,11 +57,12 @@ typedef struct {
 /* Fits every rate of m (a TDC_MEAS_TRANSITIONS file named path) to n x n
  * tables.  gamma: the profile's per-channel gamma (the code axes of the
  * tables are the firmware's codes, so they must use the gamma its tables
- * decode with), or NULL to fit it from the settled transitions.  0 on
- * success; else -1 and one line in err saying what is wrong and why the fit
- * cannot be trusted. */
-int tdc_st_fit(const tdc_meas_t *m, const char *path, int n, const double *gamma, tdc_st_fits_t *out, char *err,
-               size_t errlen);
+ * decode with), or NULL to fit it from the settled transitions.  smooth: 1
+ * to smooth the cell means along both axes before the fit (measurement
+ * noise; tdc_calib_trans.c).  0 on success; else -1 and one line in err
+ * saying what is wrong and why the fit cannot be trusted. */
+int tdc_st_fit(const tdc_meas_t *m, const char *path, int n, int smooth, const double *gamma, tdc_st_fits_t *out,
+               char *err, size_t errlen);
 
 /* Prints the per-class fit errors (stdout of tdc-calib). */
 void tdc_st_print(const tdc_st_fits_t *fits, FILE *f);

@@ -27,6 +27,8 @@
 
 #define MAX_CODES 1024
 
+#define ST_MAXN 65 /* stateful tables: 17, 33 or 65 nodes per axis */
+
 typedef struct {
     char name[64];
     char type[16];
@@ -50,12 +52,12 @@ typedef struct {
     int st_n;
     int st_nr;
     int st_rate_hz[TDC_PANEL_MAX_RATES];
-    uint16_t st_od[TDC_PANEL_MAX_RATES][3][33 * 33], st_next[TDC_PANEL_MAX_RATES][3][33 * 33];
-    uint16_t st_reach[TDC_PANEL_MAX_RATES][3][2 * 33];
-    unsigned char st_seen[TDC_PANEL_MAX_RATES][3][2 * 33 + 2]; /* od rows, st rows, lo, hi */
+    uint16_t st_od[TDC_PANEL_MAX_RATES][3][ST_MAXN * ST_MAXN], st_next[TDC_PANEL_MAX_RATES][3][ST_MAXN * ST_MAXN];
+    uint16_t st_reach[TDC_PANEL_MAX_RATES][3][2 * ST_MAXN];
+    unsigned char st_seen[TDC_PANEL_MAX_RATES][3][2 * ST_MAXN + 2]; /* od rows, st rows, lo, hi */
 } profile_t;
 
-#define TOK_MAX 40
+#define TOK_MAX (ST_MAXN + 8) /* lcd_od RATE CH ROW and 65 values */
 
 static const char *g_path;
 static FILE *g_in; /* the profile being read (closed by whoever catches a failure) */
@@ -208,9 +210,9 @@ static void parse_profile_stream(FILE *f, profile_t *p)
             }
             p->n_lcd_rate_p++;
         } else if (!strcmp(k, "lcd_state_n") && n == 2) {
-            p->st_n = parse_int(tok[1], (int)line, 17, 33, k);
-            if (p->st_n != 17 && p->st_n != 33) {
-                die(TDC_EXIT_INPUT, (int)line, "lcd_state_n must be 17 or 33");
+            p->st_n = parse_int(tok[1], (int)line, 17, ST_MAXN, k);
+            if (p->st_n != 17 && p->st_n != 33 && p->st_n != 65) {
+                die(TDC_EXIT_INPUT, (int)line, "lcd_state_n must be 17, 33 or 65");
             }
         } else if ((!strcmp(k, "lcd_od") || !strcmp(k, "lcd_st") || !strcmp(k, "lcd_reach_lo") ||
                     !strcmp(k, "lcd_reach_hi")) &&
@@ -230,9 +232,9 @@ static void parse_profile_stream(FILE *f, profile_t *p)
             }
             const int row = row_key ? parse_int(tok[3], (int)line, 0, p->st_n - 1, k) : 0;
             const int slot = !strcmp(k, "lcd_od")         ? row
-                             : !strcmp(k, "lcd_st")       ? 33 + row
-                             : !strcmp(k, "lcd_reach_lo") ? 66
-                                                          : 67;
+                             : !strcmp(k, "lcd_st")       ? ST_MAXN + row
+                             : !strcmp(k, "lcd_reach_lo") ? 2 * ST_MAXN
+                                                          : 2 * ST_MAXN + 1;
             if (p->st_seen[ri][ch][slot]) {
                 die(TDC_EXIT_INPUT, (int)line, "%s: rate %s channel %s%s%s given twice", k, tok[1], tok[2],
                     row_key ? " row " : "", row_key ? tok[3] : "");
@@ -245,7 +247,7 @@ static void parse_profile_stream(FILE *f, profile_t *p)
                 } else if (!strcmp(k, "lcd_st")) {
                     p->st_next[ri][ch][row * p->st_n + c] = v;
                 } else {
-                    p->st_reach[ri][ch][(slot - 66) * p->st_n + c] = v;
+                    p->st_reach[ri][ch][(slot - 2 * ST_MAXN) * p->st_n + c] = v;
                 }
             }
         } else if (!strcmp(k, "lcd_table") && n == 2) {
@@ -303,12 +305,12 @@ static void check_state_tables(const profile_t *p)
         }
         for (int ch = 0; ch < 3; ch++) {
             for (int row = 0; row < p->st_n; row++) {
-                if (!p->st_seen[i][ch][row] || !p->st_seen[i][ch][33 + row]) {
+                if (!p->st_seen[i][ch][row] || !p->st_seen[i][ch][ST_MAXN + row]) {
                     die(TDC_EXIT_INPUT, 0, "stateful tables for %d Hz channel %c: lcd_od/lcd_st row %d missing",
                         p->st_rate_hz[i], "RGB"[ch], row);
                 }
             }
-            if (!p->st_seen[i][ch][66] || !p->st_seen[i][ch][67]) {
+            if (!p->st_seen[i][ch][2 * ST_MAXN] || !p->st_seen[i][ch][2 * ST_MAXN + 1]) {
                 die(TDC_EXIT_INPUT, 0, "stateful tables for %d Hz channel %c: lcd_reach_lo/hi missing",
                     p->st_rate_hz[i], "RGB"[ch]);
             }

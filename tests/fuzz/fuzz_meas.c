@@ -36,7 +36,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         }
         if (m.kind == TDC_MEAS_TRANSITIONS) {
             err[0] = 0;
-            if (tdc_st_fit(&m, "fuzz", 17, NULL, &fits, err, sizeof err) != 0 && !err[0]) {
+            if (tdc_st_fit(&m, "fuzz", 17, (int)(size & 1u), NULL, &fits, err, sizeof err) != 0 && !err[0]) {
                 abort();
             }
         }

@@ -33,9 +33,10 @@ tflags="--transitions --grid 33 --runs 2 --noise 0.002 --seed 2"
 "$calib" "$tmp/pg.csv" -o "$tmp/pg279q.panel" --name pg279q --width 2560 --height 1440 --refresh 144 --table 33 \
     --transitions "$tmp/pgt.csv" --note "x" > /dev/null || fail calib
 "$measure" sim/lcd/panels/lcd-240.lcdsim 144,240 $flags -o "$tmp/l.csv" || fail measure
-"$measure" sim/lcd/panels/lcd-240.lcdsim 144,240 $tflags -o "$tmp/lt.csv" || fail measure
+"$measure" sim/lcd/panels/lcd-240.lcdsim 144,240 --transitions --grid 33 --runs 8 --noise 0.002 --seed 2 \
+    -o "$tmp/lt.csv" || fail measure
 "$calib" "$tmp/l.csv" -o "$tmp/lcd-240.panel" --name lcd-240 --width 1920 --height 1080 --refresh 240 --table 33 \
-    --transitions "$tmp/lt.csv" --note "x" > /dev/null || fail calib
+    --transitions "$tmp/lt.csv" --state-table 65 --smooth --note "x" > /dev/null || fail calib
 for p in pg279q lcd-240; do
     grep -v '^#' "boards/panels/$p.panel" > "$tmp/a"; grep -v '^#' "$tmp/$p.panel" > "$tmp/b"
     cmp -s "$tmp/a" "$tmp/b" || { diff "$tmp/a" "$tmp/b"; fail "boards/panels/$p.panel is not what make lcd-profiles makes"; }
