@@ -110,7 +110,7 @@ static int fov_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32
                                 st->alpha_q8,
                                 st->disk_q15,
                                 tdc_fov_lp_size(st->delta_q15, (uint16_t)m->w),
-                                tdc_fov_lp_size(st->delta_q15, (uint16_t)m->h)};
+                                tdc_fov_lp_size(st->delta_q15, (uint16_t)m->h), {0, 0}, 0, 0};
     tdc_fov_geom_t g;
     int rc = tdc_fov_geom(&g, (uint16_t)m->w, (uint16_t)m->h, &p);
     if (tdc_sim_stage(m, "fov geometry", rc)) {
@@ -138,7 +138,7 @@ static int fov_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32
     } else {
         /* the exact inverse of eq. 2.2 for the log-polar samples, then the disk pixel centres */
         const ref_fov_params_t rp = {p.gaze_x_q8 / 256.0, p.gaze_y_q8 / 256.0, p.alpha_q8 / 256.0,
-                                     p.disk_q15 / 32768.0, g.lp_w, g.lp_h};
+                                     p.disk_q15 / 32768.0, g.lp_w, g.lp_h, 0, 0, 0};
         ref_fov_geom_t rg;
         ref_fov_geom(&rg, m->w, m->h, &rp);
         size_t k = 0;

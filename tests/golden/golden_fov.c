@@ -49,7 +49,7 @@ static void run_vector(tdc_golden_ctx_t *ctx, const fov_vector_t *v)
         return;
     }
     uint32_t seed = 0x9e3779b9u ^ v->alpha_q8 ^ ((uint32_t)v->disk_q15 << 11);
-    tdc_fov_params_t p = {v->gx, v->gy, v->alpha_q8, v->disk_q15, LW, LH};
+    tdc_fov_params_t p = {v->gx, v->gy, v->alpha_q8, v->disk_q15, LW, LH, {0, 0}, 0, 0};
     for (uint32_t t = 0; t < 5u; t++) {
         tdc_content_frame(TDC_CONTENT_TEXT, t, 3u, g_lp, LW, LH, LW * 3);
         tdc_content_frame(TDC_CONTENT_GRADIENT, t, 3u, g_disk, GW, GH, GW * 3);

@@ -53,6 +53,10 @@ static inline void fov_params(const ref_fov_params_t *rp, tdc_fov_params_t *fp)
     fp->disk_q15 = (uint16_t)lround(rp->disk * 32768);
     fp->lp_w = (uint16_t)rp->lp_w;
     fp->lp_h = (uint16_t)rp->lp_h;
+    fp->transform = (uint16_t)rp->transform;
+    fp->zero = 0;
+    fp->lr_k_q4[0] = rp->transform ? (uint16_t)lround(rp->kx * 16) : 0;
+    fp->lr_k_q4[1] = rp->transform ? (uint16_t)lround(rp->ky * 16) : 0;
 }
 
 /* The reference's parameters as the firmware sees them (after rounding). */
@@ -62,6 +66,8 @@ static inline void fov_quantise(ref_fov_params_t *rp)
     rp->cy = lround(rp->cy * 256) / 256.0;
     rp->alpha = lround(rp->alpha * 256) / 256.0;
     rp->disk = lround(rp->disk * 32768) / 32768.0;
+    rp->kx = lround(rp->kx * 16) / 16.0;
+    rp->ky = lround(rp->ky * 16) / 16.0;
 }
 
 #endif

@@ -418,7 +418,7 @@ static void fov_one(uint32_t w, uint32_t h, int taa, int init, int frames)
         for (size_t i = 0; i < (size_t)w * h * 3u; i++) img[i] = (uint8_t)(i * 7u);
         for (int f = 0; f < 3; f++) {
             const tdc_fov_params_t p = {
-                (int32_t)(w * 100u + 50u * (uint32_t)f), (int32_t)(h * 140u), 1024, 4077, lw, lh};
+                (int32_t)(w * 100u + 50u * (uint32_t)f), (int32_t)(h * 140u), 1024, 4077, lw, lh, {0, 0}, 0, 0};
             assert_int_equal(
                 tdc_fov_frame(st, &p, lp, (size_t)lw * 3u, mv, (size_t)lw * 2u, img, w * 3u, 11111, img, w * 3u),
                 TDC_OK);

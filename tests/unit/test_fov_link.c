@@ -32,7 +32,7 @@ static void test_round_trip(void **state)
             const uint16_t delta = k == 2 ? 32768 : 18187; /* 0.555, quantised up */
             tdc_fov_params_t p = {W * 128 + 77 * k,          H * 100,
                                   (uint16_t)(256 + 700 * k), (uint16_t)(4077 * k),
-                                  tdc_fov_lp_size(delta, W), tdc_fov_lp_size(delta, H)};
+                                  tdc_fov_lp_size(delta, W), tdc_fov_lp_size(delta, H), {0, 0}, 0, 0};
             uint8_t hdr[TDC_FOV_HDR_BYTES];
             assert_int_equal(tdc_fov_hdr_pack(hdr, W, H, &p, delta, (uint8_t)(k & 1)), TDC_OK);
             tdc_fov_hdr_t h;
@@ -59,7 +59,7 @@ static void test_named_rejections(void **state)
 {
     (void)state;
     const uint16_t W = 1080, H = 1200;
-    const tdc_fov_params_t p = {W * 128, H * 128, 1024, 4077, 599, 666};
+    const tdc_fov_params_t p = {W * 128, H * 128, 1024, 4077, 599, 666, {0, 0}, 0, 0};
     uint8_t good[TDC_FOV_HDR_BYTES], b[TDC_FOV_HDR_BYTES];
     assert_int_equal(tdc_fov_hdr_pack(good, W, H, &p, 18187, 1), TDC_OK);
     tdc_fov_hdr_t h;
@@ -107,7 +107,7 @@ static void test_bit_flips(void **state)
 {
     (void)state;
     const uint16_t W = 640, H = 360;
-    const tdc_fov_params_t p = {W * 110, H * 140, 1024, 4077, 355, 199};
+    const tdc_fov_params_t p = {W * 110, H * 140, 1024, 4077, 355, 199, {0, 0}, 0, 0};
     uint8_t good[TDC_FOV_HDR_BYTES];
     assert_int_equal(tdc_fov_hdr_pack(good, W, H, &p, 18187, 1), TDC_OK);
     int refused = 0, accepted = 0;

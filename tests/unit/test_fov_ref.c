@@ -30,7 +30,7 @@ static double g_worst_max, g_worst_share = 100;
 
 static void run_case(const char *name, double cx, double cy, double alpha, double disk, int taa)
 {
-    ref_fov_params_t rp = {cx, cy, alpha, disk, (int)lround(0.555 * W), (int)lround(0.555 * H)};
+    ref_fov_params_t rp = {cx, cy, alpha, disk, (int)lround(0.555 * W), (int)lround(0.555 * H), 0, 0, 0};
     fov_quantise(&rp);
     tdc_fov_params_t fp;
     fov_params(&rp, &fp);

@@ -93,7 +93,7 @@ static void test_modes_exact_costs(void **state)
         tdc_sim_result_t r[3];
         assert_int_equal(run(&cfg, m, 3, r), 0);
         print(r, 3);
-        const tdc_fov_params_t p = {W * 128, H * 128, 1024, 4077, tdc_fov_lp_size(18187, W), tdc_fov_lp_size(18187, H)};
+        const tdc_fov_params_t p = {W * 128, H * 128, 1024, 4077, tdc_fov_lp_size(18187, W), tdc_fov_lp_size(18187, H), {0, 0}, 0, 0};
         tdc_fov_geom_t g;
         assert_int_equal(tdc_fov_geom(&g, W, H, &p), TDC_OK);
         const uint64_t nlp = (uint64_t)(g.lp_w - g.u0) * g.lp_h, nd = tdc_fov_disk_pixels(&g);
