@@ -412,7 +412,7 @@ static void bench_fov(uint8_t taa, const char *label)
         fail("fov init");
     }
     const tdc_fov_params_t p = {(int32_t)(BENCH_W * 110u), (int32_t)(BENCH_H * 140u), 1024u, 4077u,
-                                (uint16_t)FOV_LW,          (uint16_t)FOV_LH};
+                                (uint16_t)FOV_LW,          (uint16_t)FOV_LH, {0, 0}, 0, 0};
     tdc_content_frame(TDC_CONTENT_TEXT, 0u, 1u, g_fov_lp, (int)FOV_LW, (int)FOV_LH, (int)(FOV_LW * 3u));
     for (uint32_t k = 0; k < FOV_LW * FOV_LH; k++) {
         g_fov_mv[2u * k] = -24; /* a 1.5 px pan: backward MV */

@@ -40,6 +40,9 @@ static void params(tdc_fov_params_t *p, int W, int H, double gx, double gy, doub
     p->disk_q15 = (uint16_t)lround(disk * 32768);
     p->lp_w = tdc_fov_lp_size(18187, (uint16_t)W); /* delta 0.555 as the link header carries it */
     p->lp_h = tdc_fov_lp_size(18187, (uint16_t)H);
+    p->lr_k_q4[0] = p->lr_k_q4[1] = 0;
+    p->transform = TDC_FOV_KERNEL_LOG_POLAR;
+    p->zero = 0;
 }
 
 static int costs(void)
