@@ -81,6 +81,10 @@ static void test_named_rejections(void **state)
         {20, 4, 1, TDC_FOV_HDR_GEOMETRY},
         {24, 1, 2, TDC_FOV_HDR_RESERVED},
         {31, 1, 1, TDC_FOV_HDR_RESERVED},
+        {30, 1, 1, TDC_FOV_HDR_RESERVED},
+        {26, 2, 300, TDC_FOV_HDR_RESERVED}, /* k on a kernel log-polar header */
+        {25, 1, 2, TDC_FOV_HDR_TRANSFORM},
+        {25, 1, 1, TDC_FOV_HDR_ALPHA}, /* log-rectilinear with alpha 4 */
     };
     for (unsigned c = 0; c < sizeof cases / sizeof cases[0]; c++) {
         memcpy(b, good, sizeof b);
@@ -101,6 +105,39 @@ static void test_named_rejections(void **state)
     assert_string_equal(tdc_fov_hdr_err_name(TDC_FOV_HDR_GEOMETRY), "TDC_FOV_HDR_GEOMETRY");
     assert_string_equal(tdc_fov_hdr_err_name((tdc_fov_hdr_err_t)99), "TDC_FOV_HDR_?");
     assert_int_equal(tdc_fov_hdr_pack(b, W, H, &q, 18187, 2), TDC_ERR_ARG);
+    /* log-rectilinear: packed and parsed back, each of its own refusals */
+    tdc_fov_params_t r = p;
+    r.alpha_q8 = 256;
+    r.transform = TDC_FOV_LOG_RECT;
+    r.lr_k_q4[0] = 4600;
+    r.lr_k_q4[1] = 65535;
+    assert_int_equal(tdc_fov_hdr_pack(b, W, H, &r, 18187, 1), TDC_OK);
+    assert_int_equal(b[25], 1);
+    assert_int_equal(tdc_fov_hdr_parse(b, W, H, &h), TDC_FOV_HDR_OK);
+    assert_memory_equal(&h.p, &r, sizeof r);
+    assert_int_equal(h.g.u0, 0);
+    assert_int_equal(h.payload_bytes, 7u * 599u * 666u + 3u * tdc_fov_disk_pixels(&h.g));
+    uint8_t lr[TDC_FOV_HDR_BYTES];
+    memcpy(lr, b, sizeof lr);
+    static const struct {
+        unsigned off, len;
+        uint32_t v;
+        tdc_fov_hdr_err_t want;
+    } lcases[] = {
+        {26, 2, 0, TDC_FOV_HDR_SCALE},    {26, 2, 15, TDC_FOV_HDR_SCALE}, {28, 2, 0, TDC_FOV_HDR_SCALE},
+        {8, 2, 257, TDC_FOV_HDR_ALPHA},   {25, 1, 9, TDC_FOV_HDR_TRANSFORM}, {18, 2, 3, TDC_FOV_HDR_GEOMETRY},
+        {14, 2, 598, TDC_FOV_HDR_BUFFER}, {30, 2, 1, TDC_FOV_HDR_RESERVED},
+    };
+    for (unsigned c = 0; c < sizeof lcases / sizeof lcases[0]; c++) {
+        memcpy(b, lr, sizeof b);
+        for (unsigned i = 0; i < lcases[c].len; i++) b[lcases[c].off + i] = (uint8_t)(lcases[c].v >> (8 * i));
+        const tdc_fov_hdr_err_t e = tdc_fov_hdr_parse(b, W, H, &h);
+        if (e != lcases[c].want)
+            fail_msg("lr case %u: got %s want %s", c, tdc_fov_hdr_err_name(e), tdc_fov_hdr_err_name(lcases[c].want));
+    }
+    r.lr_k_q4[1] = 15; /* the sender cannot pack what the receiver refuses */
+    assert_int_equal(tdc_fov_hdr_pack(b, W, H, &r, 18187, 0), TDC_ERR_ARG);
+    assert_string_equal(tdc_fov_hdr_err_name(TDC_FOV_HDR_SCALE), "TDC_FOV_HDR_SCALE");
 }
 
 static void test_bit_flips(void **state)
