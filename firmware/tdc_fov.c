@@ -205,7 +205,7 @@ tdc_status_t tdc_fov_geom(tdc_fov_geom_t *g, uint16_t width, uint16_t height, co
         u0 = fu > (uint32_t)TDC_FOV_REACH ? fu - (uint32_t)TDC_FOV_REACH : 0u;
     }
     g->u0 = (uint16_t)(u0 > g->l ? g->l : u0);
-    g->transform = p->transform;
+    g->transform = (uint8_t)p->transform;
     if (p->transform != TDC_FOV_KERNEL_LOG_POLAR) { /* log-rectilinear: the whole buffer (tdc_fov_lr.h) */
         g->l = 0;
         g->u0 = 0;

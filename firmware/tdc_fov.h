@@ -160,6 +160,8 @@ void tdc_fov_reset(tdc_fov_t *st);
  *         disk_stride); may be the same buffer as out (each pixel is read
  *         before it is written).
  *   dt_us: this frame's time, for eq. 4.7 (TAA only; 0 = as the last one).
+ * A log-rectilinear frame (p->transform, tdc_fov_lr.h) reads lp as its whole
+ * texel buffer and needs scratch attached (tdc_fov_lr_attach), else TDC_ERR_ARG.
  * TDC_ERR_ARG / TDC_ERR_SIZE as tdc_fov_geom, or a geometry larger than the config. */
 TDC_MUST_CHECK tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8_t *lp, size_t lp_stride,
                                           const int16_t *mv, size_t mv_stride, const uint8_t *disk, size_t disk_stride,
