@@ -41,6 +41,9 @@ void tdc_fov_lr_axis(tdc_fov_lr_axis_t *a, int32_t c_q8, uint16_t k_q4, uint16_t
     /* s is strictly increasing and N >= 4 px apart: S >= log2(1 + 4 / 4096)
      * ~ 2^-10 in exact terms, ~ 23500 Q24 steps, far above the table error */
     a->S_q24 = (uint32_t)(s1 - a->s0_q24);
+    if (a->S_q24 == 0u) { /* not reachable in range (see above); keeps the divisions defined */
+        a->S_q24 = 1u;
+    }
 }
 
 uint32_t tdc_fov_lr_fwd_q16(const tdc_fov_lr_axis_t *a, int32_t x_q8)
