@@ -23,6 +23,7 @@
  */
 #include "tdc_fov.h"
 
+#include "tdc_fov_lr.h"
 #include "tdc_fov_tables.h"
 #include "tdc_math.h"
 
@@ -204,6 +205,12 @@ tdc_status_t tdc_fov_geom(tdc_fov_geom_t *g, uint16_t width, uint16_t height, co
         u0 = fu > (uint32_t)TDC_FOV_REACH ? fu - (uint32_t)TDC_FOV_REACH : 0u;
     }
     g->u0 = (uint16_t)(u0 > g->l ? g->l : u0);
+    g->transform = (uint8_t)p->transform;
+    if (p->transform != TDC_FOV_KERNEL_LOG_POLAR) { /* log-rectilinear: the whole buffer (tdc_fov_lr.h) */
+        g->l = 0;
+        g->u0 = 0;
+        return tdc_fov_lr_params_ok(p) ? TDC_OK : TDC_ERR_ARG;
+    }
     return TDC_OK;
 }
 
@@ -260,6 +267,7 @@ typedef struct {
     int32_t leta_max; /* log2 of the largest eta (x = 1), Q24: log2 is monotone, so eta <= this */
     int32_t sig_lo;   /* sigma = 1/2 and 1/sigma^2 = 4 as the functions give them */
     uint32_t inv2_lo;
+    const tdc_fov_lr_t *lr; /* log-rectilinear frame: the periphery sample from tdc_fov_lr.c */
 } fov_src_t;
 
 static uint32_t compose(const fov_src_t *s, int32_t i, int32_t dx, int32_t dy, uint64_t r2, uint16_t c[3], uint32_t *iu,
@@ -276,7 +284,9 @@ static uint32_t compose(const fov_src_t *s, int32_t i, int32_t dx, int32_t dy, u
         }
     }
     uint32_t lpc[3] = {0, 0, 0};
-    if (b) {
+    if (b && s->lr) {
+        tdc_fov_lr_sample(s->lr, i, lpc, iu, jv);
+    } else if (b) {
         fov_radial_t rr;
         radial(g, r2, &rr);
         const uint32_t v = (uint32_t)(((uint64_t)tdc_fov_turns_q32(dx, dy) * g->lp_h) >> 16);
@@ -379,6 +389,7 @@ tdc_status_t tdc_fov_init(tdc_fov_t *st, const tdc_fov_config_t *cfg, void *mem,
     }
     fov_carve(st, cfg, &arena);
     st->cfg = *cfg;
+    st->lr = 0;
     st->frames = 0;
     st->rejected_frames = 0;
     tdc_fov_reset(st);
@@ -463,7 +474,17 @@ tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8
         (mv && mv_stride < (size_t)p->lp_w * 2u)) {
         return TDC_ERR_ARG;
     }
-    fov_src_t src = {&g, lp, lp_stride, disk, disk_stride, 0, (int32_t)g.r_disk_q8 - TDC_FOV_BLEND_Q8, 0, 0, 0};
+    fov_src_t src = {&g, lp, lp_stride, disk, disk_stride, 0, (int32_t)g.r_disk_q8 - TDC_FOV_BLEND_Q8, 0, 0, 0, 0};
+    if (g.transform == TDC_FOV_LOG_RECT) { /* the second kind: needs its scratch attached */
+        if (!st->lr) {
+            return TDC_ERR_ARG;
+        }
+        const tdc_status_t ls = tdc_fov_lr_begin(st->lr, &g, p, lp, lp_stride);
+        if (ls != TDC_OK) {
+            return ls;
+        }
+        src.lr = st->lr;
+    }
     src.leta_max = tdc_fov_log2_q24(91750u + 16u * 65536u) - 16 * Q24;
     src.sig_lo = tdc_fov_exp2_q16(-Q24);
     src.inv2_lo = (uint32_t)tdc_fov_exp2_q16(2 * Q24);
@@ -509,6 +530,9 @@ tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8
         const int32_t dy = y * 256 + 128 - g.cy_q8;
         const uint64_t dy2 = (uint64_t)((int64_t)dy * dy);
         src.disk = disk + (size_t)y * disk_stride;
+        if (src.lr) {
+            tdc_fov_lr_row(st->lr, y);
+        }
         uint8_t *orow = out + (size_t)y * out_stride;
         uint16_t *sl = st->cfg.taa ? rw.slot[y & 1] : 0;
         for (int32_t x = 0; x < W; x++) {

@@ -60,12 +60,20 @@
 #define TDC_FOV_BLEND_Q8 1024 /* the blend band: 4 px, Q8 */
 #define TDC_FOV_REACH 4       /* the kernel reaches 2 sigma <= 4 columns */
 
-/* Per-frame foveation parameters (the foveated packet's header). */
+/* The transform of the buffer (the link header's transform byte). */
+#define TDC_FOV_KERNEL_LOG_POLAR 0u /* this file: eq. 2.2 */
+#define TDC_FOV_LOG_RECT 1u         /* log-rectilinear, tdc_fov_lr.h */
+
+/* Per-frame foveation parameters (the foveated packet's header).  Zero
+ * lr_k_q4, transform (and zero) is the kernel log-polar kind. */
 typedef struct {
     int32_t gaze_x_q8, gaze_y_q8; /* C in display pixels, Q8 */
-    uint16_t alpha_q8;            /* K(x) = x^alpha, Q8 in [1, 8] */
+    uint16_t alpha_q8;            /* K(x) = x^alpha, Q8 in [1, 8]; 256 for log-rectilinear */
     uint16_t disk_q15;            /* r_d / R, Q15 in [0, 1] (32768 = 1) */
     uint16_t lp_w, lp_h;          /* log-polar buffer size (delta * W, delta * H) */
+    uint16_t lr_k_q4[2];          /* log-rectilinear foveal scale k (x, y), Q4 px, >= 1 px; 0 otherwise */
+    uint16_t transform;           /* TDC_FOV_KERNEL_LOG_POLAR or TDC_FOV_LOG_RECT */
+    uint16_t zero;                /* 0: no padding bytes (parsed headers compare bytewise) */
 } tdc_fov_params_t;
 
 /* Geometry of one frame, derived from the parameters (tdc_fov_geom). */
@@ -82,6 +90,7 @@ typedef struct {
     uint64_t r_disk2_q16;   /* r_d^2: a pixel is in the disk iff |x'|^2 <= r_d^2 */
     uint16_t l;             /* eq. 4.5: disk rectangle columns [0, l) */
     uint16_t u0;            /* first column the link carries */
+    uint8_t transform;      /* the parameters' (log-rectilinear: l = u0 = 0) */
 } tdc_fov_geom_t;
 
 /* Checks the parameters against a display of width x height and fills g.
@@ -119,8 +128,11 @@ typedef struct {
 #define TDC_FOV_MEM_BYTES(W, H, TAA) \
     ((TAA) ? (size_t)0 TDC_FOV_ARENA(TDC_ARENA_BLOCK_BYTES, W, H, 1) : (size_t)TDC_ARENA_ALIGN)
 
+struct tdc_fov_lr_s; /* tdc_fov_lr.h */
+
 typedef struct {
     tdc_fov_config_t cfg;
+    struct tdc_fov_lr_s *lr; /* log-rectilinear scratch (tdc_fov_lr_attach), NULL: refused */
     uint16_t *hist[2]; /* Q8 RGB history frames, ping-pong */
     uint16_t *rows;    /* scratch: 2 rows x 8 values + 3 rows of |s - h| */
     uint8_t cur;       /* hist[cur] holds the last output */
@@ -148,6 +160,8 @@ void tdc_fov_reset(tdc_fov_t *st);
  *         disk_stride); may be the same buffer as out (each pixel is read
  *         before it is written).
  *   dt_us: this frame's time, for eq. 4.7 (TAA only; 0 = as the last one).
+ * A log-rectilinear frame (p->transform, tdc_fov_lr.h) reads lp as its whole
+ * texel buffer and needs scratch attached (tdc_fov_lr_attach), else TDC_ERR_ARG.
  * TDC_ERR_ARG / TDC_ERR_SIZE as tdc_fov_geom, or a geometry larger than the config. */
 TDC_MUST_CHECK tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8_t *lp, size_t lp_stride,
                                           const int16_t *mv, size_t mv_stride, const uint8_t *disk, size_t disk_stride,

@@ -5,6 +5,8 @@
  */
 #include "tdc_fov_link.h"
 
+#include "tdc_fov_lr.h" /* TDC_FOV_LR_K_MIN_Q4 */
+
 #include "tdc_wire.h" /* little-endian fields */
 
 uint16_t tdc_fov_lp_size(uint16_t delta_q15, uint16_t n)
@@ -38,6 +40,11 @@ tdc_status_t tdc_fov_hdr_pack(uint8_t out[TDC_FOV_HDR_BYTES], uint16_t width, ui
     tdc_put_le16(out + 18, g.u0);
     tdc_put_le32(out + 20, tdc_fov_disk_pixels(&g));
     out[24] = flags;
+    out[25] = (uint8_t)p->transform;
+    if (p->transform != TDC_FOV_KERNEL_LOG_POLAR) {
+        tdc_put_le16(out + 26, p->lr_k_q4[0]);
+        tdc_put_le16(out + 28, p->lr_k_q4[1]);
+    }
     return TDC_OK;
 }
 
@@ -53,8 +60,16 @@ tdc_fov_hdr_err_t tdc_fov_hdr_parse(const uint8_t in[TDC_FOV_HDR_BYTES], uint16_
     p->lp_w = tdc_get_le16(in + 14);
     p->lp_h = tdc_get_le16(in + 16);
     h->flags = in[24];
+    p->transform = in[25];
+    p->zero = 0;
+    p->lr_k_q4[0] = tdc_get_le16(in + 26);
+    p->lr_k_q4[1] = tdc_get_le16(in + 28);
     h->payload_bytes = 0;
-    if (p->alpha_q8 < TDC_FOV_ALPHA_MIN_Q8 || p->alpha_q8 > TDC_FOV_ALPHA_MAX_Q8) {
+    const int lr = p->transform == TDC_FOV_LOG_RECT;
+    if (p->transform > TDC_FOV_LOG_RECT) {
+        return TDC_FOV_HDR_TRANSFORM;
+    }
+    if (p->alpha_q8 < TDC_FOV_ALPHA_MIN_Q8 || p->alpha_q8 > TDC_FOV_ALPHA_MAX_Q8 || (lr && p->alpha_q8 != 256u)) {
         return TDC_FOV_HDR_ALPHA;
     }
     if (h->delta_q15 == 0 || h->delta_q15 > 32768u) {
@@ -67,6 +82,9 @@ tdc_fov_hdr_err_t tdc_fov_hdr_parse(const uint8_t in[TDC_FOV_HDR_BYTES], uint16_
     if (p->gaze_x_q8 < -w8 || p->gaze_x_q8 > 2 * w8 || p->gaze_y_q8 < -h8 || p->gaze_y_q8 > 2 * h8) {
         return TDC_FOV_HDR_GAZE;
     }
+    if (lr && (p->lr_k_q4[0] < TDC_FOV_LR_K_MIN_Q4 || p->lr_k_q4[1] < TDC_FOV_LR_K_MIN_Q4)) {
+        return TDC_FOV_HDR_SCALE;
+    }
     if (p->lp_w != tdc_fov_lp_size(h->delta_q15, width) || p->lp_h != tdc_fov_lp_size(h->delta_q15, height) ||
         tdc_fov_geom(&h->g, width, height, p) != TDC_OK) {
         return TDC_FOV_HDR_BUFFER;
@@ -77,7 +95,10 @@ tdc_fov_hdr_err_t tdc_fov_hdr_parse(const uint8_t in[TDC_FOV_HDR_BYTES], uint16_
     if (h->flags & ~TDC_FOV_FLAG_MV) {
         return TDC_FOV_HDR_RESERVED;
     }
-    for (unsigned i = 25; i < TDC_FOV_HDR_BYTES; i++) {
+    if (!lr && (p->lr_k_q4[0] | p->lr_k_q4[1])) {
+        return TDC_FOV_HDR_RESERVED; /* k belongs to the log-rectilinear kind */
+    }
+    for (unsigned i = 30; i < TDC_FOV_HDR_BYTES; i++) {
         if (in[i]) {
             return TDC_FOV_HDR_RESERVED;
         }
@@ -142,6 +163,7 @@ const char *tdc_fov_hdr_err_name(tdc_fov_hdr_err_t e)
 {
     static const char *const n[TDC_FOV_HDR_COUNT] = {
         "TDC_FOV_HDR_OK",     "TDC_FOV_HDR_ALPHA",    "TDC_FOV_HDR_DELTA",    "TDC_FOV_HDR_DISK",   "TDC_FOV_HDR_GAZE",
-        "TDC_FOV_HDR_BUFFER", "TDC_FOV_HDR_GEOMETRY", "TDC_FOV_HDR_RESERVED", "TDC_FOV_HDR_PAYLOAD"};
+        "TDC_FOV_HDR_BUFFER", "TDC_FOV_HDR_GEOMETRY", "TDC_FOV_HDR_RESERVED", "TDC_FOV_HDR_PAYLOAD",
+        "TDC_FOV_HDR_TRANSFORM", "TDC_FOV_HDR_SCALE"};
     return (unsigned)e < TDC_FOV_HDR_COUNT ? n[e] : "TDC_FOV_HDR_?";
 }

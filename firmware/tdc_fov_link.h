@@ -17,7 +17,17 @@
  *   18  uint16  u0                           first column carried (must equal the geometry's)
  *   20  uint32  disk pixels                  (must equal the geometry's count)
  *   24  uint8   flags                        bit 0: motion vectors follow (TAA); others 0
- *   25  7 bytes reserved, 0
+ *   25  uint8   transform                    0: kernel log-polar (above), 1: log-rectilinear
+ *                                            (tdc_fov_lr.h); others refused
+ *   26  uint16  k_x, Q4 display pixels       log-rectilinear foveal scale per axis, in
+ *   28  uint16  k_y, Q4                      [1, 4096) px; 0 for kernel log-polar
+ *   30  2 bytes reserved, 0
+ *
+ * Log-rectilinear: alpha must be 1 (256), w x h is the whole buffer (u0 = 0),
+ * rows j = 0..h-1 of texels i = 0..w-1, each the area average of the picture
+ * over its footprint (tdc_fov_lr.h); the disk and the vectors as above.
+ * Kernel log-polar headers are byte for byte what they were before the
+ * transform byte existed (it and k are 0).
  *
  * Payload: the log-polar samples, rows j = 0..h-1 of columns u0..w-1, RGB8;
  * the disk pixels, display rows top to bottom, each row's span
@@ -37,7 +47,7 @@
 /* Why a foveation header was refused (a counter index: 0 = accepted). */
 typedef enum {
     TDC_FOV_HDR_OK = 0,
-    TDC_FOV_HDR_ALPHA,    /* alpha outside [1, 8] */
+    TDC_FOV_HDR_ALPHA,    /* alpha outside [1, 8] (log-rectilinear: not 1) */
     TDC_FOV_HDR_DELTA,    /* delta outside (0, 1] */
     TDC_FOV_HDR_DISK,     /* disk fraction above 1 */
     TDC_FOV_HDR_GAZE,     /* gaze more than one screen outside */
@@ -45,6 +55,8 @@ typedef enum {
     TDC_FOV_HDR_GEOMETRY, /* u0 or the disk count disagree with the parameters */
     TDC_FOV_HDR_RESERVED, /* unknown flag or a non-zero reserved byte */
     TDC_FOV_HDR_PAYLOAD,  /* payload length disagrees with the header */
+    TDC_FOV_HDR_TRANSFORM, /* unknown transform */
+    TDC_FOV_HDR_SCALE,     /* log-rectilinear foveal scale k outside [1, 4096) px */
     TDC_FOV_HDR_COUNT
 } tdc_fov_hdr_err_t;
 

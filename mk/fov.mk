@@ -1,8 +1,8 @@
 # Foveated streams (issue 14, DESIGN §4.5): the display-side remap stage with
 # peripheral TAA, its double-precision reference, tests, golden vectors.
 # The stage's log/power/atan/Gaussian tables come from tdc-tablegen --fov.
-FW_SRCS += firmware/tdc_fov.c firmware/tdc_fov_link.c
-SIM_SRCS += sim/ref_fov.c
+FW_SRCS += firmware/tdc_fov.c firmware/tdc_fov_lr.c firmware/tdc_fov_link.c
+SIM_SRCS += sim/ref_fov.c sim/ref_fov_lr.c
 # foveated error statistics (eccentricity weighting, FLIP's weighted median) for the simulator
 FOV_METRICS_OBJ = $(B)/sim/metrics/tdc_fov_metrics.o $(B)/sim/metrics/tdc_filter.o
 TESTS += $(B)/tests/unit/test_fov_metrics
@@ -20,12 +20,12 @@ endif
 $(B)/check-fw-rules: $(GEN)/tdc_fov_tables.h
 
 # Own link rules: the fov tests need only these objects.
-FOV_OBJS = $(B)/firmware/tdc_fov.o $(B)/firmware/tdc_fov_link.o $(B)/firmware/tdc_math.o $(B)/sim/ref_fov.o
-FOV_TESTS := test_fov test_fov_ref test_fov_link
+FOV_OBJS = $(B)/firmware/tdc_fov.o $(B)/firmware/tdc_fov_lr.o $(B)/firmware/tdc_fov_link.o $(B)/firmware/tdc_math.o $(B)/sim/ref_fov.o $(B)/sim/ref_fov_lr.o
+FOV_TESTS := test_fov test_fov_ref test_fov_link test_fov_lr
 TESTS += $(foreach t,$(FOV_TESTS),$(B)/tests/unit/$(t))
 $(foreach t,$(FOV_TESTS),$(B)/tests/unit/$(t)): $(B)/tests/unit/%: $(B)/tests/unit/%.o $(FOV_OBJS)
 	$(CC) $(HOST_LDFLAGS) $^ -o $@ $(HOST_LIBS)
-$(B)/tests/unit/test_fov.o $(B)/tests/unit/test_fov_ref.o: $(GEN)/tdc_fov_tables.h
+$(B)/tests/unit/test_fov.o $(B)/tests/unit/test_fov_ref.o $(B)/tests/unit/test_fov_lr.o: $(GEN)/tdc_fov_tables.h
 
 # the FOVEATED kind in the link decoder (docs/link-protocol.md)
 TESTS += $(B)/tests/unit/test_link_fov
@@ -38,7 +38,7 @@ BENCHES += $(B)/tests/bench/bench_fov
 
 # Fuzzing: the target `fov` is registered in mk/fuzz.mk (tests/fuzz/fuzz_fov.c,
 # seeds tests/fuzz/corpus-fov, regenerated deliberately by make fuzz-seeds-fov).
-$(BUILD)/fuzz/make_seeds_fov: tests/fuzz/make_seeds_fov.c firmware/tdc_fov.c firmware/tdc_fov_link.c firmware/tdc_math.c $(GEN)/tdc_fov_tables.h
+$(BUILD)/fuzz/make_seeds_fov: tests/fuzz/make_seeds_fov.c firmware/tdc_fov.c firmware/tdc_fov_lr.c firmware/tdc_fov_link.c firmware/tdc_math.c $(GEN)/tdc_fov_tables.h
 	@mkdir -p $(@D)
 	gcc -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror -O2 -Ifirmware -I$(GEN) $(filter %.c,$^) -o $@
 fuzz-seeds-fov: $(BUILD)/fuzz/make_seeds_fov

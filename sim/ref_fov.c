@@ -39,6 +39,13 @@ void ref_fov_geom(ref_fov_geom_t *g, int width, int height, const ref_fov_params
     if (g->u0 > g->l) {
         g->u0 = g->l;
     }
+    g->transform = p->transform;
+    if (p->transform) { /* log-rectilinear: the whole buffer */
+        g->l = 0;
+        g->u0 = 0;
+        ref_fov_lr_axis(&g->ax, p->cx, p->kx, width, p->lp_w);
+        ref_fov_lr_axis(&g->ay, p->cy, p->ky, height, p->lp_h);
+    }
 }
 
 static double kinv(const ref_fov_geom_t *g, double x) /* K^-1(x) = x^(1/alpha), x >= 0 */
@@ -98,7 +105,9 @@ static double compose(const ref_fov_geom_t *g, const uint8_t *lp, size_t lp_stri
     const double r = hypot(x - g->cx, y - g->cy);
     const double b = fmin(fmax((r - (g->r_disk - BLEND_PX)) / BLEND_PX, 0), 1);
     double lpc[3] = {0, 0, 0};
-    if (b > 0) {
+    if (b > 0 && g->transform) {
+        ref_fov_lr_sample(&g->ax, &g->ay, lp, lp_stride, x, y, lpc, iu, jv);
+    } else if (b > 0) {
         double u, v;
         ref_fov_to_lp(g, x, y, &u, &v);
         const double sig = fmin(fmax(ref_fov_sigma_u(g, r, u), 0.5), 2.0);

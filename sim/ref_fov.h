@@ -12,11 +12,15 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "ref_fov_lr.h"
+
 typedef struct {
     double cx, cy;  /* gaze, display pixels (screen [0, W] x [0, H]) */
     double alpha;   /* K(x) = x^alpha */
     double disk;    /* r_d / R */
     int lp_w, lp_h; /* log-polar buffer */
+    int transform;  /* 0 kernel log-polar, 1 log-rectilinear (ref_fov_lr.h; alpha unused) */
+    double kx, ky;  /* log-rectilinear foveal scale per axis, display pixels */
 } ref_fov_params_t;
 
 typedef struct {
@@ -26,6 +30,8 @@ typedef struct {
     double r_disk; /* r_d */
     int l;         /* eq. 4.5 */
     int u0;        /* first column carried (same rule as the firmware) */
+    int transform;
+    ref_fov_lr_axis_t ax, ay; /* log-rectilinear axes (transform 1) */
 } ref_fov_geom_t;
 
 void ref_fov_geom(ref_fov_geom_t *g, int width, int height, const ref_fov_params_t *p);

@@ -49,7 +49,7 @@ int tdc_render_set_foveation(tdc_render_t *r, const tdc_render_fov_t *f, int *lp
     const uint16_t dq = (uint16_t)ceil(f->delta * 32768 - 1e-9);
     tdc_fov_params_t p = {(int32_t)lround(f->gaze_x * 256),    (int32_t)lround(f->gaze_y * 256),
                           (uint16_t)lround(f->alpha * 256),    (uint16_t)lround(f->disk * 32768),
-                          tdc_fov_lp_size(dq, (uint16_t)r->W), tdc_fov_lp_size(dq, (uint16_t)r->H)};
+                          tdc_fov_lp_size(dq, (uint16_t)r->W), tdc_fov_lp_size(dq, (uint16_t)r->H), {0, 0}, 0, 0};
     tdc_fov_geom_t g;
     if (tdc_fov_geom(&g, (uint16_t)r->W, (uint16_t)r->H, &p) != TDC_OK) return -1;
     const int nlp = (g.lp_w - g.u0) * g.lp_h;

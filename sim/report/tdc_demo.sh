@@ -57,13 +57,15 @@ fov-disk-20|-s pan -r 90 -g 480x540 -m fov-taa --fov-disk 0.2 -n 8
 fov-disk-30|-s pan -r 90 -g 480x540 -m fov-taa --fov-disk 0.3 -n 8
 fov-alpha-1|-s pan -r 90 -g 480x540 -m fov-taa --fov-alpha 1 -n 8
 fov-alpha-8|-s pan -r 90 -g 480x540 -m fov-taa --fov-alpha 8 -n 8
+fov-lr-pan|-s pan -r 90 -g 480x540 -m full,fov,fov-taa,fovlr,fovlr-taa -n 8
 fov-render|-R panorama -r 90 -g 540x600 -m full,fov,fov-taa -n 12 --gaze saccade --gaze-latency 20 --gaze-noise 0.3'
 
 # Headset scale: photographs (thin grass stalks, leaf veins, dandelion
 # filaments) and Embree scenes (text, panorama), TRM at 90 Hz on the
 # headset eye, assembly at 1920x1080 / 240 Hz, foveation (fov, fov-taa) on
 # the HTC Vive eye (1080x1200); the fov-disk-* / fov-alpha-* runs are the
-# disk-fraction and alpha comparison (eq. 5.1) at 480x540, fov-render the
+# disk-fraction and alpha comparison (eq. 5.1) at 480x540, fov-lr-pan the
+# two transforms side by side (kernel log-polar, log-rectilinear), fov-render the
 # Embree renderer's own foveated frames with saccades and a late, noisy
 # eye tracker (sim/report/tdc_fov_report.py).
 case $SCALE in

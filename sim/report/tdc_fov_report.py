@@ -97,6 +97,28 @@ def fov_section(out):
                   + f", fov-taa {f(taa['flip_wmedian']):.3f}; the thesis's Table 5.1 (baseline foveated mode) "
                   "0.187-0.272 over its five views, Table 5.3 (TAA mode, with DLSS) up to 0.042 above it. "
                   "Not the same scenes: ours are a photograph and Embree scenes, theirs Sponza and the Sun temple.\n")
+    # the two transforms side by side (issue 14 item 6): every run with fov* and fovlr* modes
+    for n, m in runs.items():
+        lr = [k for k in ("fov", "fov-taa", "fovlr", "fovlr-taa") if k in m]
+        if not any(k.startswith("fovlr") for k in lr) or not any(not k.startswith("fovlr") for k in lr):
+            continue
+        summ = {x["mode"]: x for x in read(os.path.join(out, n, "summary.csv"))}
+        md.append(f"### Kernel log-polar against log-rectilinear, `{n}`\n")
+        md.append("fov / fov-taa: kernel log-polar, rays through eq. 2.3, radial blur on the display side; "
+                  "fovlr / fovlr-taa: log-rectilinear (Li et al.), every texel the summed-area average of its "
+                  "footprint in a full-rate render, bilinear on the display side; both with the same disk, delta, "
+                  "link kind, stage entry and TAA (docs/foveation.md).\n")
+        md.append("| mode | rays vs full | link vs full | FLIP fovea | FLIP periphery | FLIP ecc | FLIP w-median | "
+                  "flicker periphery | fw us/frame |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
+        for k in ["full"] + lr:
+            r = m.get(k)
+            if not r:
+                continue
+            fw = summ.get(k, {}).get("fw_us_per_frame", "")
+            md.append(f"| {k} | {f(r['rays_vs_full']):.4f} | {f(r['link_vs_full']):.4f} | {f(r['flip_fovea']):.4f} | "
+                      f"{f(r['flip_periphery']):.4f} | {f(r['flip_ecc']):.4f} | {f(r['flip_wmedian']):.3f} | "
+                      f"{f(r['flicker_periphery']):.2f} | {fw} |")
+        md.append("")
     # disk sweep and alpha sweep
     sweep = []
     for n, m in runs.items():

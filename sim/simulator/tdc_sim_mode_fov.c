@@ -17,6 +17,16 @@
  * the positions of the exact inverse of eq. 2.2 (sim/ref_fov.c) and the
  * disk pixel centres, spp rays each like the full-rate modes.  Rays are
  * counted exactly (samples x spp, or the renderer's count).
+ *
+ * fovlr / fovlr-taa: the log-rectilinear kind (firmware/tdc_fov_lr.h, Li et
+ * al.), the same disk, link kind, stage entry and TAA.  The source renders
+ * the whole frame at display resolution (spp rays per pixel, or the
+ * renderer's full frame), the sender builds its summed-area table and
+ * sends each texel as the area average of its footprint (gamma-coded codes,
+ * as the stage interpolates them), the disk pixels from the same frame,
+ * and with TAA each texel's vector is the one of the pixel under its
+ * centre.  Foveal scale per axis: the default rule (k S(k) = n, one texel
+ * per pixel at the gaze, sim/ref_fov_lr.c).  Rays: the full frame's.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -26,9 +36,12 @@
 #include "simulator/tdc_sim_mode.h"
 #include "tdc_fov.h"
 #include "tdc_fov_link.h"
+#include "tdc_fov_lr.h"
 #include "tdc_sim_features.h"
 
-enum { FOV_PLAIN, FOV_TAA };
+enum { FOV_PLAIN, FOV_TAA, FOVLR_PLAIN, FOVLR_TAA };
+#define IS_LR(v) ((v) == FOVLR_PLAIN || (v) == FOVLR_TAA)
+#define IS_TAA(v) ((v) == FOV_TAA || (v) == FOVLR_TAA)
 
 #define F &tdc_sim_family_fov
 #define L TDC_SIM_LINK_FOVEATED
@@ -37,6 +50,9 @@ static const tdc_mode_desc_t k_modes[] = {
      "kernel log-polar foveation (thesis), alpha 4, delta 0.555, 12.443 % disk, FOVEATED packets, firmware remap"},
     {"fov-taa", F, FOV_TAA, L, 1, 1, 0, 0, 0,
      "fov + peripheral TAA (thesis eqs. 4.7-4.10, phased out after the disk border), Halton jitter, vectors sent"},
+    {"fovlr", F, FOVLR_PLAIN, L, 1, 1, 0, 0, 0,
+     "log-rectilinear foveation (Li et al.): summed-area averages of a full-rate render, delta 0.555, same disk"},
+    {"fovlr-taa", F, FOVLR_TAA, L, 1, 1, 0, 0, 0, "fovlr + the same peripheral TAA as fov-taa, vectors sent"},
 };
 #undef L
 #undef F
@@ -47,6 +63,9 @@ typedef struct {
     uint8_t *samp; /* samples in payload order */
     int16_t *smv;
     double *xy;
+    tdc_fov_lr_t lr; /* log-rectilinear scratch (fovlr modes) */
+    void *lr_arena;
+    int16_t *pmv; /* the full frame's vectors (fovlr-taa) */
     uint16_t alpha_q8, delta_q15, disk_q15;
     double last_t;
     int have_t;
@@ -71,7 +90,7 @@ static int fov_init(sim_mode_t *m, const tdc_sim_setup_t *s)
     st->alpha_q8 = (uint16_t)lround(cfg->fov_alpha * 256.0);
     st->delta_q15 = (uint16_t)ceil(cfg->fov_delta * 32768.0 - 1e-9);
     st->disk_q15 = (uint16_t)lround(cfg->fov_disk * 32768.0);
-    const tdc_fov_config_t fc = {(uint16_t)m->w, (uint16_t)m->h, (uint8_t)(m->d->variant == FOV_TAA)};
+    const tdc_fov_config_t fc = {(uint16_t)m->w, (uint16_t)m->h, (uint8_t)IS_TAA(m->d->variant)};
     const size_t n = tdc_fov_get_size(&fc);
     if (!n || !(cfg->fov_delta > 0 && cfg->fov_delta <= 1)) {
         tdc_sim_refuse(m, "fov init (size or delta)", TDC_ERR_SIZE);
@@ -86,17 +105,68 @@ static int fov_init(sim_mode_t *m, const tdc_sim_setup_t *s)
     if (!st->arena || !st->samp || !st->smv || !st->xy) {
         return -1;
     }
-    const int rc = tdc_fov_init(&st->st, &fc, st->arena, n);
+    int rc = tdc_fov_init(&st->st, &fc, st->arena, n);
     if (rc != TDC_OK) {
         tdc_sim_refuse(m, "fov init", rc);
+        return 0;
+    }
+    if (IS_LR(m->d->variant)) {
+        const size_t ln = tdc_fov_lr_get_size((uint16_t)m->w);
+        st->lr_arena = aligned_alloc(8, (ln + 7) & ~(size_t)7);
+        st->pmv = malloc(m->npx * 2 * sizeof(int16_t));
+        if (!st->lr_arena || !st->pmv) {
+            return -1;
+        }
+        rc = tdc_fov_lr_init(&st->lr, (uint16_t)m->w, st->lr_arena, ln);
+        if (rc == TDC_OK) {
+            rc = tdc_fov_lr_attach(&st->st, &st->lr);
+        }
+        if (rc != TDC_OK) {
+            tdc_sim_refuse(m, "fovlr init", rc);
+        }
     }
     return 0;
+}
+
+/* fovlr: the area-averaged log-rectilinear buffer of a full-rate render and
+ * the disk pixels of the same render, in payload order (st->samp, st->smv). */
+static void lr_samples(sim_mode_t *m, fov_state_t *st, tdc_source_t *src, const tdc_fov_params_t *p,
+                       const tdc_fov_geom_t *g, double t, double dt, int spp, int taa)
+{
+    tdc_sim_render_full(m, src, t, spp, 0.0, 0.0, taa ? st->pmv : NULL, dt, TDC_MV_SURFACE);
+    const double t0 = tdc_sim_now();
+    ref_fov_lr_axis_t ax, ay;
+    ref_fov_lr_axis(&ax, p->gaze_x_q8 / 256.0, p->lr_k_q4[0] / 16.0, m->w, g->lp_w);
+    ref_fov_lr_axis(&ay, p->gaze_y_q8 / 256.0, p->lr_k_q4[1] / 16.0, m->h, g->lp_h);
+    double *sat = ref_fov_lr_sat(m->render, (size_t)m->w * 3, m->w, m->h);
+    if (sat) {
+        ref_fov_lr_buffer(sat, m->w, m->h, &ax, &ay, st->samp, (size_t)g->lp_w * 3, NULL);
+        free(sat);
+    }
+    size_t k = (size_t)g->lp_w * g->lp_h;
+    if (taa) { /* each texel's vector: the pixel under its centre */
+        for (int j = 0; j < g->lp_h; j++) {
+            const int y = (int)fmin(fmax(floor(ref_fov_lr_inv(&ay, j + 0.5)), 0), m->h - 1);
+            for (int i = 0; i < g->lp_w; i++) {
+                const int x = (int)fmin(fmax(floor(ref_fov_lr_inv(&ax, i + 0.5)), 0), m->w - 1);
+                memcpy(st->smv + 2 * ((size_t)j * g->lp_w + i), st->pmv + 2 * ((size_t)y * m->w + x),
+                       2 * sizeof(int16_t));
+            }
+        }
+    }
+    for (int j = 0; j < m->h; j++) {
+        int32_t x0;
+        const uint32_t span = tdc_fov_disk_span(g, j, &x0);
+        memcpy(st->samp + 3 * k, m->render + 3 * ((size_t)j * m->w + (size_t)x0), 3 * (size_t)span);
+        k += span;
+    }
+    m->res->render_s += tdc_sim_now() - t0; /* the sender's summed-area pass */
 }
 
 static int fov_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32_t lf)
 {
     fov_state_t *st = m->fam;
-    const int taa = m->d->variant == FOV_TAA;
+    const int taa = IS_TAA(m->d->variant), lr = IS_LR(m->d->variant);
     const double dt = st->have_t ? t - st->last_t : m->fs;
     st->last_t = t;
     st->have_t = 1;
@@ -105,19 +175,28 @@ static int fov_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32
     tdc_sim_gaze_tracked(m->gaze, t, m->frame, m->eye, gz);
     gz[0] = fmin(fmax(gz[0], -0.99 * m->w), 1.99 * m->w);
     gz[1] = fmin(fmax(gz[1], -0.99 * m->h), 1.99 * m->h);
-    const tdc_fov_params_t p = {(int32_t)lround(gz[0] * 256),
-                                (int32_t)lround(gz[1] * 256),
-                                st->alpha_q8,
-                                st->disk_q15,
-                                tdc_fov_lp_size(st->delta_q15, (uint16_t)m->w),
-                                tdc_fov_lp_size(st->delta_q15, (uint16_t)m->h)};
+    tdc_fov_params_t p = {(int32_t)lround(gz[0] * 256),
+                          (int32_t)lround(gz[1] * 256),
+                          st->alpha_q8,
+                          st->disk_q15,
+                          tdc_fov_lp_size(st->delta_q15, (uint16_t)m->w),
+                          tdc_fov_lp_size(st->delta_q15, (uint16_t)m->h),
+                          {0, 0},
+                          TDC_FOV_KERNEL_LOG_POLAR,
+                          0};
+    if (lr) { /* the default foveal scale per axis, Q4 as the header carries it */
+        p.alpha_q8 = 256;
+        p.transform = TDC_FOV_LOG_RECT;
+        p.lr_k_q4[0] = (uint16_t)lround(16 * ref_fov_lr_k(m->w, p.lp_w, p.gaze_x_q8 / 256.0));
+        p.lr_k_q4[1] = (uint16_t)lround(16 * ref_fov_lr_k(m->h, p.lp_h, p.gaze_y_q8 / 256.0));
+    }
     tdc_fov_geom_t g;
     int rc = tdc_fov_geom(&g, (uint16_t)m->w, (uint16_t)m->h, &p);
     if (tdc_sim_stage(m, "fov geometry", rc)) {
         return rc;
     }
     double jx = 0, jy = 0;
-    if (taa) { /* Halton(2,3) jitter of the log-polar samples (thesis §4.3.2) */
+    if (taa && !lr) { /* Halton(2,3) jitter of the log-polar samples (thesis §4.3.2) */
         double hx = 0, hy = 0;
         for (uint32_t k = m->frame + 1, b = 2; k; k /= 2, b *= 2) hx += (double)(k % 2) / b;
         for (uint32_t k = m->frame + 1, b = 3; k; k /= 3, b *= 3) hy += (double)(k % 3) / b;
@@ -126,7 +205,9 @@ static int fov_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32
     }
     const size_t nlp = (size_t)(g.lp_w - g.u0) * g.lp_h, n = nlp + tdc_fov_disk_pixels(&g);
     double t0 = tdc_sim_now();
-    if (src->foveated) {
+    if (lr) {
+        lr_samples(m, st, src, &p, &g, t, dt, spp, taa);
+    } else if (src->foveated) {
         const tdc_fov_sampling_t fs = {p.gaze_x_q8 / 256.0, p.gaze_y_q8 / 256.0, p.alpha_q8 / 256.0,
                                        st->delta_q15 / 32768.0, p.disk_q15 / 32768.0, jx, jy};
         uint64_t rays = 0;
@@ -138,7 +219,7 @@ static int fov_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32
     } else {
         /* the exact inverse of eq. 2.2 for the log-polar samples, then the disk pixel centres */
         const ref_fov_params_t rp = {p.gaze_x_q8 / 256.0, p.gaze_y_q8 / 256.0, p.alpha_q8 / 256.0,
-                                     p.disk_q15 / 32768.0, g.lp_w, g.lp_h};
+                                     p.disk_q15 / 32768.0, g.lp_w, g.lp_h, 0, 0, 0};
         ref_fov_geom_t rg;
         ref_fov_geom(&rg, m->w, m->h, &rp);
         size_t k = 0;
@@ -158,8 +239,10 @@ static int fov_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32
         src->samples(src, t, (int)n, st->xy, spp, st->samp, taa ? st->smv : NULL, dt, TDC_MV_SURFACE);
         m->res->rays += (uint64_t)n * (uint64_t)(spp > 0 ? spp : 1);
     }
-    m->res->render_s += tdc_sim_now() - t0;
-    m->res->rendered++;
+    if (!lr) { /* (tdc_sim_render_full counted the fovlr render) */
+        m->res->render_s += tdc_sim_now() - t0;
+        m->res->rendered++;
+    }
     /* over the link: the decoder checks and unpacks (disk into its full
      * buffer, the rest into the log-polar buffers) */
     tdc_fov_hdr_t h;
@@ -192,6 +275,8 @@ static void fov_free(sim_mode_t *m)
         free(st->samp);
         free(st->smv);
         free(st->xy);
+        free(st->lr_arena);
+        free(st->pmv);
         free(st);
     }
     m->fam = NULL;

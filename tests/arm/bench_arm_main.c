@@ -20,6 +20,7 @@
 #include "tdc_content.h"
 #include "tdc_crt0.h"
 #include "tdc_fov.h"
+#include "tdc_fov_lr.h"
 #include "tdc_layer_content.h"
 #include "tdc_layers.h"
 #include "tdc_lcd.h"
@@ -63,6 +64,8 @@ static uint8_t g_fov_lp[FOV_LW * FOV_LH * 3u] TDC_EXTRAM;
 static int16_t g_fov_mv[FOV_LW * FOV_LH * 2u] TDC_EXTRAM;
 static uint64_t g_fov_arena[TDC_FOV_MEM_BYTES(BENCH_W, BENCH_H, 1) / 8u] TDC_EXTRAM;
 static tdc_fov_t g_fov;
+static uint64_t g_fov_lr_arena[TDC_FOV_LR_MEM_BYTES(BENCH_W) / 8u];
+static tdc_fov_lr_t g_fov_lr;
 static int16_t g_mv[RW * RH * 2u] TDC_EXTRAM;
 
 static tdc_link_decoder_t g_dec;
@@ -404,15 +407,26 @@ static void bench_bands(void)
 }
 
 /* Foveated remap at alpha = 4, delta = 0.555, 12.443 % disk, gaze off-centre;
- * frame 0 fills the history, frame 1 is measured. */
-static void bench_fov(uint8_t taa, const char *label)
+ * frame 0 fills the history, frame 1 is measured.  lr: the log-rectilinear
+ * kind at the same gaze, its foveal scales from the sender's default rule
+ * (ref_fov_lr_k: 165.75 and 91.875 px at 640 x 360). */
+static void bench_fov(uint8_t taa, uint8_t lr, const char *label)
 {
     const tdc_fov_config_t cfg = {(uint16_t)BENCH_W, (uint16_t)BENCH_H, taa};
-    if (tdc_fov_init(&g_fov, &cfg, g_fov_arena, sizeof g_fov_arena) != TDC_OK) {
+    if (tdc_fov_init(&g_fov, &cfg, g_fov_arena, sizeof g_fov_arena) != TDC_OK ||
+        tdc_fov_lr_init(&g_fov_lr, (uint16_t)BENCH_W, g_fov_lr_arena, sizeof g_fov_lr_arena) != TDC_OK ||
+        tdc_fov_lr_attach(&g_fov, &g_fov_lr) != TDC_OK) {
         fail("fov init");
     }
-    const tdc_fov_params_t p = {(int32_t)(BENCH_W * 110u), (int32_t)(BENCH_H * 140u), 1024u, 4077u,
-                                (uint16_t)FOV_LW,          (uint16_t)FOV_LH};
+    const tdc_fov_params_t p = {(int32_t)(BENCH_W * 110u),
+                                (int32_t)(BENCH_H * 140u),
+                                lr ? 256u : 1024u,
+                                4077u,
+                                (uint16_t)FOV_LW,
+                                (uint16_t)FOV_LH,
+                                {lr ? 2652u : 0u, lr ? 1470u : 0u},
+                                lr ? TDC_FOV_LOG_RECT : TDC_FOV_KERNEL_LOG_POLAR,
+                                0};
     tdc_content_frame(TDC_CONTENT_TEXT, 0u, 1u, g_fov_lp, (int)FOV_LW, (int)FOV_LH, (int)(FOV_LW * 3u));
     for (uint32_t k = 0; k < FOV_LW * FOV_LH; k++) {
         g_fov_mv[2u * k] = -24; /* a 1.5 px pan: backward MV */
@@ -539,8 +553,10 @@ int main(void)
         bench_bands();
     }
     if (want("fov")) {
-        bench_fov(0, "foveated remap (alpha 4, 12.4 % disk)");
-        bench_fov(1, "foveated remap + peripheral TAA");
+        bench_fov(0, 0, "foveated remap (alpha 4, 12.4 % disk)");
+        bench_fov(1, 0, "foveated remap + peripheral TAA");
+        bench_fov(0, 1, "foveated remap, log-rectilinear");
+        bench_fov(1, 1, "foveated remap, log-rectilinear + TAA");
     }
     return 0;
 }

@@ -13,7 +13,8 @@
  *    ray share per disk fraction and where it is lowest (thesis: 10-20 %,
  *    12.443 % observed).
  * 2. Remap throughput on one core at 1080 x 1200 (HTC Vive eye): ns per output
- *    pixel, fov and fov-taa, against memcpy bandwidth measured in the same
+ *    pixel, fov and fov-taa (and fovlr, fovlr-taa: the log-rectilinear kind),
+ *    against memcpy bandwidth measured in the same
  *    run: bound = bytes touched per output pixel / memcpy bandwidth.
  *    Goal: >= 50 % of the bound.
  */
@@ -25,7 +26,9 @@
 #include <time.h>
 
 #include "tdc_fov.h"
+#include "ref_fov_lr.h"
 #include "tdc_fov_link.h"
+#include "tdc_fov_lr.h"
 #include "tdc_panels.h"
 #include "bench_clock.h"
 #include "tdc_must.h"
@@ -40,6 +43,9 @@ static void params(tdc_fov_params_t *p, int W, int H, double gx, double gy, doub
     p->disk_q15 = (uint16_t)lround(disk * 32768);
     p->lp_w = tdc_fov_lp_size(18187, (uint16_t)W); /* delta 0.555 as the link header carries it */
     p->lp_h = tdc_fov_lp_size(18187, (uint16_t)H);
+    p->lr_k_q4[0] = p->lr_k_q4[1] = 0;
+    p->transform = TDC_FOV_KERNEL_LOG_POLAR;
+    p->zero = 0;
 }
 
 static int costs(void)
@@ -102,12 +108,17 @@ static void fill(uint8_t *p, size_t n, uint32_t seed)
     }
 }
 
-static void throughput(void)
+static void throughput(int lr, double bw)
 {
     enum { W = 1080, H = 1200 };
-    const double bw = memcpy_bandwidth();
     tdc_fov_params_t p;
     params(&p, W, H, 0.45, 0.5, 0.12443);
+    if (lr) { /* log-rectilinear, the sender's default foveal scales */
+        p.alpha_q8 = 256;
+        p.transform = TDC_FOV_LOG_RECT;
+        p.lr_k_q4[0] = (uint16_t)lround(16 * ref_fov_lr_k(W, p.lp_w, p.gaze_x_q8 / 256.0));
+        p.lr_k_q4[1] = (uint16_t)lround(16 * ref_fov_lr_k(H, p.lp_h, p.gaze_y_q8 / 256.0));
+    }
     tdc_fov_geom_t fg;
     TDC_MUST(tdc_fov_geom(&fg, W, H, &p));
     uint8_t *lp = malloc((size_t)p.lp_w * p.lp_h * 3), *dk = malloc(W * H * 3), *out = malloc(W * H * 3);
@@ -119,14 +130,20 @@ static void throughput(void)
         mv[2 * k + 1] = 8;
     }
     const double lps = (double)(p.lp_w - fg.u0) * p.lp_h / (W * H), dks = tdc_fov_disk_pixels(&fg) / (double)(W * H);
-    printf("\nremap throughput, %dx%d (one eye), one core; memcpy bandwidth %.2f GB/s (read + write)\n", W, H,
-           bw / 1e9);
+    if (!lr) {
+        printf("\nremap throughput, %dx%d (one eye), one core; memcpy bandwidth %.2f GB/s (read + write)\n", W, H,
+               bw / 1e9);
+    }
+    static uint64_t lr_mem[TDC_FOV_LR_MEM_BYTES(W) / 8u];
+    tdc_fov_lr_t lrs;
+    TDC_MUST(tdc_fov_lr_init(&lrs, W, lr_mem, sizeof lr_mem));
     for (int taa = 0; taa < 2; taa++) {
         tdc_fov_config_t cfg = {W, H, (uint8_t)taa};
         size_t n = tdc_fov_get_size(&cfg);
         void *mem = malloc(n);
         tdc_fov_t st;
         TDC_MUST(tdc_fov_init(&st, &cfg, mem, n));
+        TDC_MUST(tdc_fov_lr_attach(&st, &lrs));
         TDC_MUST(tdc_fov_frame(&st, &p, lp, (size_t)p.lp_w * 3, mv, (size_t)p.lp_w * 2, dk, W * 3, 11111, out, W * 3));
         double best = 1e30;
         for (int r = 0; r < 5; r++) {
@@ -143,7 +160,7 @@ static void throughput(void)
         const double ns = 1e9 * best / (W * H), bound = 1e9 * bytes / bw;
         printf("  %-8s %7.2f ns/px (%6.1f Mpx/s, %5.1f ms/frame); %5.2f B/px touched -> bound %.3f ns/px: %5.1f %% of "
                "the bound (goal >= 50 %%)\n",
-               taa ? "fov-taa" : "fov", ns, 1e-6 * W * H / best, 1e3 * best, bytes, bound, 100 * bound / ns);
+               lr ? (taa ? "fovlr-taa" : "fovlr") : (taa ? "fov-taa" : "fov"), ns, 1e-6 * W * H / best, 1e3 * best, bytes, bound, 100 * bound / ns);
         free(mem);
     }
     free(lp), free(dk), free(out), free(mv);
@@ -152,7 +169,9 @@ static void throughput(void)
 int main(void)
 {
     const int miss = costs();
-    throughput();
+    const double bw = memcpy_bandwidth();
+    throughput(0, bw);
+    throughput(1, bw);
     printf("\ncost goal (<= 35 %% rays and link bytes): %s\n", miss ? "MISSED (see the table)" : "met on every panel");
     return 0;
 }

@@ -4,7 +4,8 @@
  * 48 x 32 panel (tdc_fov_hdr_parse, tdc_fov_payload_check); an accepted
  * packet is unpacked (log-polar rows, disk spans, motion vectors) and
  * remapped twice by tdc_fov_frame with TAA, the second time with the gaze
- * moved (reprojection, the saccade rule).  ASan + UBSan catch what goes
+ * moved (reprojection, the saccade rule); log-rectilinear headers with the
+ * stage's log-rectilinear scratch attached.  ASan + UBSan catch what goes
  * wrong; refusals are the expected outcome for most inputs.
  * Seeds: tests/fuzz/corpus-fov (make fuzz-seeds-fov).
  */
@@ -14,11 +15,13 @@
 
 #include "tdc_fov.h"
 #include "tdc_fov_link.h"
+#include "tdc_fov_lr.h"
 
 #define FW 48
 #define FH 32
 
 static uint64_t g_arena[TDC_FOV_MEM_BYTES(FW, FH, 1) / 8u];
+static uint64_t g_lr_arena[TDC_FOV_LR_MEM_BYTES(FW) / 8u];
 static uint8_t g_lp[FW * FH * 3], g_img[FW * FH * 3];
 static int16_t g_mv[FW * FH * 2];
 
@@ -56,7 +59,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
     const tdc_fov_config_t cfg = {FW, FH, 1};
     tdc_fov_t st;
-    if (tdc_fov_init(&st, &cfg, g_arena, sizeof g_arena) != TDC_OK) {
+    tdc_fov_lr_t lr;
+    if (tdc_fov_init(&st, &cfg, g_arena, sizeof g_arena) != TDC_OK ||
+        tdc_fov_lr_init(&lr, FW, g_lr_arena, sizeof g_lr_arena) != TDC_OK || tdc_fov_lr_attach(&st, &lr) != TDC_OK) {
         __builtin_trap();
     }
     tdc_fov_params_t q = h.p;

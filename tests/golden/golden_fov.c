@@ -5,12 +5,14 @@
  * each: the gaze drifts, motion vectors and frame times vary, and before
  * frame 4 the gaze jumps across the screen (the saccade path).  One
  * checksum per frame: FNV-1a 64 over the output codes, and with TAA over
- * the Q8 history too (little-endian).  Freestanding, static buffers
- * (~22 KiB).
+ * the Q8 history too (little-endian).  The log-rectilinear kind
+ * (firmware/tdc_fov_lr.c): gaze x disk x TAA likewise, foveal scales per
+ * gaze, named lr-....  Freestanding, static buffers (~23 KiB).
  */
 #include "golden.h"
 #include "tdc_content.h"
 #include "tdc_fov.h"
+#include "tdc_fov_lr.h"
 
 #define GW 45 /* odd sizes on purpose */
 #define GH 29
@@ -18,6 +20,7 @@
 #define LH 16
 
 static uint64_t g_arena[TDC_FOV_MEM_BYTES(GW, GH, 1) / 8u];
+static uint64_t g_lr_arena[TDC_FOV_LR_MEM_BYTES(GW) / 8u];
 static uint8_t g_lp[LW * LH * 3];
 static uint8_t g_disk[GW * GH * 3];
 static uint8_t g_out[GW * GH * 3];
@@ -28,12 +31,13 @@ typedef struct {
     int32_t gx, gy; /* Q8 */
     uint8_t taa;
     const char *gname;
+    uint16_t k_q4[2]; /* log-rectilinear foveal scales; 0: kernel log-polar */
 } fov_vector_t;
 
 static void run_vector(tdc_golden_ctx_t *ctx, const fov_vector_t *v)
 {
     char name[80];
-    char *o = tdc_golden_put_str(name, "a");
+    char *o = tdc_golden_put_str(name, v->k_q4[0] ? "lr-a" : "a");
     o = tdc_golden_put_u32(o, v->alpha_q8);
     o = tdc_golden_put_str(o, "-d");
     o = tdc_golden_put_u32(o, v->disk_q15);
@@ -44,12 +48,22 @@ static void run_vector(tdc_golden_ctx_t *ctx, const fov_vector_t *v)
 
     const tdc_fov_config_t cfg = {GW, GH, v->taa};
     tdc_fov_t st;
-    if (tdc_fov_init(&st, &cfg, g_arena, sizeof g_arena) != TDC_OK) {
+    tdc_fov_lr_t lr;
+    if (tdc_fov_init(&st, &cfg, g_arena, sizeof g_arena) != TDC_OK ||
+        tdc_fov_lr_init(&lr, GW, g_lr_arena, sizeof g_lr_arena) != TDC_OK || tdc_fov_lr_attach(&st, &lr) != TDC_OK) {
         tdc_golden_emit(ctx, "fov", name, 0, 0); /* a failing init shows as a mismatch */
         return;
     }
     uint32_t seed = 0x9e3779b9u ^ v->alpha_q8 ^ ((uint32_t)v->disk_q15 << 11);
-    tdc_fov_params_t p = {v->gx, v->gy, v->alpha_q8, v->disk_q15, LW, LH};
+    tdc_fov_params_t p = {v->gx,
+                          v->gy,
+                          v->alpha_q8,
+                          v->disk_q15,
+                          LW,
+                          LH,
+                          {v->k_q4[0], v->k_q4[1]},
+                          v->k_q4[0] ? TDC_FOV_LOG_RECT : TDC_FOV_KERNEL_LOG_POLAR,
+                          0};
     for (uint32_t t = 0; t < 5u; t++) {
         tdc_content_frame(TDC_CONTENT_TEXT, t, 3u, g_lp, LW, LH, LW * 3);
         tdc_content_frame(TDC_CONTENT_GRADIENT, t, 3u, g_disk, GW, GH, GW * 3);
@@ -93,9 +107,20 @@ void tdc_golden_fov(tdc_golden_ctx_t *ctx)
         for (unsigned d = 0; d < 3; d++) {
             for (unsigned g = 0; g < 3; g++) {
                 for (uint8_t taa = 0; taa < 2; taa++) {
-                    const fov_vector_t v = {alphas[a], disks[d], gazes[g].x, gazes[g].y, taa, gazes[g].name};
+                    const fov_vector_t v = {alphas[a], disks[d], gazes[g].x, gazes[g].y, taa, gazes[g].name, {0, 0}};
                     run_vector(ctx, &v);
                 }
+            }
+        }
+    }
+    /* log-rectilinear: the foveal scales the sender's default rule gives here (k S(k) = n) */
+    static const uint16_t lr_k[3][2] = {{185, 117}, {371, 235}, {439, 349}};
+    for (unsigned d = 0; d < 3; d++) {
+        for (unsigned g = 0; g < 3; g++) {
+            for (uint8_t taa = 0; taa < 2; taa++) {
+                const fov_vector_t v = {256,           disks[d], gazes[g].x, gazes[g].y, taa, gazes[g].name,
+                                        {lr_k[g][0], lr_k[g][1]}};
+                run_vector(ctx, &v);
             }
         }
     }

@@ -172,6 +172,9 @@ static size_t gen_foveated(int damaged)
     for (uint32_t f = 0; f < 6; f++) {
         for (uint32_t e = 0; e < 2; e++) {
             tdc_fov_params_t p;
+            p.transform = TDC_FOV_KERNEL_LOG_POLAR;
+            p.lr_k_q4[0] = p.lr_k_q4[1] = 0;
+            p.zero = 0;
             p.gaze_x_q8 = (int32_t)(f * 2900u + e * 700u) - 1500;
             p.gaze_y_q8 = 3000 + (int32_t)(f * 900u);
             p.alpha_q8 = alpha[(f + e) % 3u];

@@ -53,7 +53,55 @@ static inline void fov_params(const ref_fov_params_t *rp, tdc_fov_params_t *fp)
     fp->disk_q15 = (uint16_t)lround(rp->disk * 32768);
     fp->lp_w = (uint16_t)rp->lp_w;
     fp->lp_h = (uint16_t)rp->lp_h;
+    fp->transform = (uint16_t)rp->transform;
+    fp->zero = 0;
+    fp->lr_k_q4[0] = rp->transform ? (uint16_t)lround(rp->kx * 16) : 0;
+    fp->lr_k_q4[1] = rp->transform ? (uint16_t)lround(rp->ky * 16) : 0;
 }
+
+/* Fixed point against the reference (the team's standard): max abs error of
+ * the 8-bit output against the unrounded reference and the share within
+ * 1 LSB per case, target >= 99.9 % and <= 2 LSB; the worst case of a test. */
+typedef struct {
+    double maxe;
+    uint64_t n, in1;
+} fov_err_t;
+typedef struct {
+    double max, share; /* share starts at 100 */
+    int fail;
+} fov_worst_t;
+
+static inline void fov_err_add(fov_err_t *e, const uint8_t *out, const double *ref, size_t n)
+{
+    for (size_t k = 0; k < n; k++) {
+        const double d = fabs(out[k] - ref[k]);
+        e->maxe = d > e->maxe ? d : e->maxe;
+        e->in1 += d <= 1.0;
+        e->n++;
+    }
+}
+
+/* The case's share within 1 LSB (%); folds the case into w; 1 if it meets the target. */
+static inline int fov_err_done(const fov_err_t *e, fov_worst_t *w, double *share)
+{
+    *share = 100.0 * (double)e->in1 / (double)e->n;
+    const int ok = *share >= 99.9 && e->maxe <= 2.0;
+    w->fail |= !ok;
+    w->max = e->maxe > w->max ? e->maxe : w->max;
+    w->share = *share < w->share ? *share : w->share;
+    return ok;
+}
+
+/* The gaze positions of the accuracy tests on a W x H screen: centre,
+ * off-centre, each corner, outside. */
+typedef struct {
+    const char *name;
+    double cx, cy;
+} fov_gaze_t;
+#define FOV_REF_GAZES(W, H)                                                                            \
+    {"centre", (W) / 2.0, (H) / 2.0}, {"off-centre", 37.3, 61.7}, {"corner TL", 0, 0}, {"corner TR", (W), 0}, \
+        {"corner BL", 0, (H)}, {"corner BR", (W), (H)}, {"outside left", -70.5, 40.0},                     \
+        {"outside BR", (W) + 90.25, (H) + 60.0}
 
 /* The reference's parameters as the firmware sees them (after rounding). */
 static inline void fov_quantise(ref_fov_params_t *rp)
@@ -62,6 +110,8 @@ static inline void fov_quantise(ref_fov_params_t *rp)
     rp->cy = lround(rp->cy * 256) / 256.0;
     rp->alpha = lround(rp->alpha * 256) / 256.0;
     rp->disk = lround(rp->disk * 32768) / 32768.0;
+    rp->kx = lround(rp->kx * 16) / 16.0;
+    rp->ky = lround(rp->ky * 16) / 16.0;
 }
 
 #endif

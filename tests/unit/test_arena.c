@@ -25,6 +25,7 @@
 #include "tdc_arena.h"
 #include "tdc_assemble.h"
 #include "tdc_fov.h"
+#include "tdc_fov_lr.h"
 #include "tdc_layers.h"
 #include "tdc_lcd.h"
 #include "tdc_panels.h"
@@ -418,7 +419,7 @@ static void fov_one(uint32_t w, uint32_t h, int taa, int init, int frames)
         for (size_t i = 0; i < (size_t)w * h * 3u; i++) img[i] = (uint8_t)(i * 7u);
         for (int f = 0; f < 3; f++) {
             const tdc_fov_params_t p = {
-                (int32_t)(w * 100u + 50u * (uint32_t)f), (int32_t)(h * 140u), 1024, 4077, lw, lh};
+                (int32_t)(w * 100u + 50u * (uint32_t)f), (int32_t)(h * 140u), 1024, 4077, lw, lh, {0, 0}, 0, 0};
             assert_int_equal(
                 tdc_fov_frame(st, &p, lp, (size_t)lw * 3u, mv, (size_t)lw * 2u, img, w * 3u, 11111, img, w * 3u),
                 TDC_OK);
@@ -455,6 +456,71 @@ static void test_fov_arena(void **state)
     tdc_fov_t st;
     assert_int_equal(tdc_fov_init(&st, &c, g_static_fov, sizeof g_static_fov), TDC_OK);
     assert_int_equal(tdc_fov_get_size(&c), sizeof g_static_fov);
+}
+
+/* log-rectilinear scratch (tdc_fov_lr.h): the compile-time bound is what
+ * get_size says, the layout is the one list, frames stay inside it */
+static void fov_lr_one(uint32_t w, int frames)
+{
+    const size_t n = tdc_fov_lr_get_size((uint16_t)w), bound = TDC_FOV_LR_MEM_BYTES((size_t)w);
+    if (n == 0 || n % TDC_ARENA_ALIGN != 0 || n != bound) {
+        fail_msg("fov lr %u: get_size %zu, bound %zu", w, n, bound);
+    }
+    arena_t a;
+    arena_new(&a, n);
+    tdc_fov_lr_t lrs, *st = &lrs;
+    assert_int_equal(tdc_fov_lr_init(st, (uint16_t)w, a.mem + 4, n), TDC_ERR_ARG);
+    assert_int_equal(tdc_fov_lr_init(st, (uint16_t)w, a.mem, n - 1), TDC_ERR_SIZE);
+    assert_int_equal(tdc_fov_lr_init(st, (uint16_t)w, a.mem, n), TDC_OK);
+    walk_t wk = {a.mem, 0, "fov lr"};
+    TDC_FOV_LR_ARENA(WALK, w)
+    walk_end(&wk, n);
+    arena_check_guard(&a, "fov lr init");
+    if (frames) {
+        const uint32_t h = 37u;
+        const tdc_fov_config_t c = {(uint16_t)w, (uint16_t)h, 0};
+        uint64_t fmem[1];
+        tdc_fov_t fs;
+        assert_int_equal(tdc_fov_init(&fs, &c, fmem, sizeof fmem), TDC_OK);
+        assert_int_equal(tdc_fov_lr_attach(&fs, st), TDC_OK);
+        const uint16_t lw = (uint16_t)w, lh = (uint16_t)h; /* delta 1: the widest buffer */
+        uint8_t *lp = malloc((size_t)lw * lh * 3u), *img = malloc((size_t)w * h * 3u);
+        for (size_t i = 0; i < (size_t)lw * lh * 3u; i++) lp[i] = (uint8_t)(i * 29u);
+        for (size_t i = 0; i < (size_t)w * h * 3u; i++) img[i] = (uint8_t)(i * 7u);
+        for (int f = 0; f < 3; f++) {
+            /* the gaze moves off the screen (by 0.78 W) in frame 2 */
+            const tdc_fov_params_t p = {(int32_t)(w * 100u) - (int32_t)((uint32_t)f * w * 150u),
+                                        (int32_t)(h * 140u),
+                                        256,
+                                        4077,
+                                        lw,
+                                        lh,
+                                        {16u, 65535u},
+                                        TDC_FOV_LOG_RECT,
+                                        0};
+            assert_int_equal(tdc_fov_frame(&fs, &p, lp, (size_t)lw * 3u, NULL, 0, img, w * 3u, 11111, img, w * 3u),
+                             TDC_OK);
+        }
+        arena_check_guard(&a, "fov lr frames");
+        free(lp);
+        free(img);
+    }
+    free(a.mem);
+}
+
+static void test_fov_lr_arena(void **state)
+{
+    (void)state;
+    static const uint32_t small[] = {4, 9, 33, 64};
+    for (unsigned i = 0; i < sizeof small / sizeof small[0]; i++) {
+        fov_lr_one(small[i], 1);
+    }
+    for (unsigned p = 0; p < NPANELS; p++) {
+        fov_lr_one(g_panels[p]->width, 0);
+    }
+    fov_lr_one(TDC_FOV_MAX_SIZE, 0);
+    assert_int_equal(tdc_fov_lr_get_size(TDC_FOV_MIN_SIZE - 1u), 0);
+    assert_int_equal(tdc_fov_lr_get_size(TDC_FOV_MAX_SIZE + 1u), 0);
 }
 
 /* ------------------------------------------------------------ the carver */
@@ -569,7 +635,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_lasm_arena),
         cmocka_unit_test(test_carver),    cmocka_unit_test(test_trm_arena), cmocka_unit_test(test_lcd_arena),
-        cmocka_unit_test(test_asm_arena), cmocka_unit_test(test_fov_arena),
+        cmocka_unit_test(test_asm_arena), cmocka_unit_test(test_fov_arena), cmocka_unit_test(test_fov_lr_arena),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

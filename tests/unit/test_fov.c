@@ -72,7 +72,7 @@ static void test_transform_pair(void **state)
     double worst_u = 0, worst_v = 0, worst_d = 0;
     for (unsigned a = 0; a < 4; a++) {
         for (int c = 0; c < 6; c++) {
-            ref_fov_params_t rp = {rndu() * 1920, rndu() * 1080, alphas[a], 0.12443, 1065, 599};
+            ref_fov_params_t rp = {rndu() * 1920, rndu() * 1080, alphas[a], 0.12443, 1065, 599, 0, 0, 0};
             if (c == 0) {
                 rp.cx = -500;
                 rp.cy = 1500; /* outside the screen */
@@ -129,7 +129,7 @@ static void test_disk_rectangle(void **state)
     for (int c = 0; c < 400; c++) {
         const int Wd = 16 + (int)(rnd() % 300), Hd = 16 + (int)(rnd() % 200);
         ref_fov_params_t rp = {rndu() * 3 * Wd - Wd, rndu() * 3 * Hd - Hd, 1 + rndu() * 7, rndu(),
-                               (int)(Wd * 0.555),    (int)(Hd * 0.555)};
+                               (int)(Wd * 0.555),    (int)(Hd * 0.555), 0, 0, 0};
         if (c % 10 == 0) {
             rp.disk = c % 20 ? 0 : 1;
         }
@@ -207,7 +207,7 @@ static void test_uniform(void **state)
             memcpy(dk + 3 * k, col, 3);
         }
         static const double corner[][2] = {{0, 0}, {W, 0}, {0, H}, {W, H}, {-W, -H}, {2 * W, 2 * H}};
-        tdc_fov_params_t fp = {0, 0, (uint16_t)(256 + rnd() % 1793), (uint16_t)(rnd() % 32769), 33, 23};
+        tdc_fov_params_t fp = {0, 0, (uint16_t)(256 + rnd() % 1793), (uint16_t)(rnd() % 32769), 33, 23, {0, 0}, 0, 0};
         for (int f = 0; f < 4; f++) {
             const double gx = c < 12 ? corner[c / 2][0] : rndu() * 3 * W - W;
             const double gy = c < 12 ? corner[c / 2][1] : rndu() * 3 * H - H;
@@ -233,7 +233,7 @@ static void test_disk_extremes(void **state)
     (void)state;
     enum { W = 80, H = 50, LW = 44, LH = 28 };
     static uint8_t lp[LW * LH * 3], dk[W * H * 3], dk2[W * H * 3], out[W * H * 3], out2[W * H * 3];
-    ref_fov_params_t rp = {31.7, 18.2, 4, 0, LW, LH};
+    ref_fov_params_t rp = {31.7, 18.2, 4, 0, LW, LH, 0, 0, 0};
     ref_fov_geom_t g;
     ref_fov_geom(&g, W, H, &rp);
     fov_make_inputs(&g, 0, 0, 0, lp, dk);
@@ -289,7 +289,7 @@ static void test_bad_input(void **state)
     run_stage(&st, 1, W, H, &mem);
     memset(out, 77, sizeof out);
     memcpy(before, out, sizeof out);
-    const tdc_fov_params_t ok = {W * 128, H * 128, 1024, 4077, 22, 16};
+    const tdc_fov_params_t ok = {W * 128, H * 128, 1024, 4077, 22, 16, {0, 0}, 0, 0};
     tdc_fov_params_t p = ok;
     p.alpha_q8 = 255;
     assert_int_equal(tdc_fov_frame(&st, &p, lp, 66, NULL, 0, dk, W * 3, 0, out, W * 3), TDC_ERR_ARG);
@@ -342,7 +342,7 @@ static void test_gaze_jump(void **state)
     void *mem, *mem0;
     run_stage(&st, 1, W, H, &mem);
     run_stage(&st0, 0, W, H, &mem0);
-    ref_fov_params_t rp = {8, 6, 4, 0.12443, LW, LH};
+    ref_fov_params_t rp = {8, 6, 4, 0.12443, LW, LH, 0, 0, 0};
     for (int f = 0; f < 12; f++) {
         const int jump = f == 8;
         if (jump) {
@@ -385,7 +385,7 @@ static void test_long_run(void **state)
     tdc_fov_t st;
     void *mem;
     run_stage(&st, 1, W, H, &mem);
-    tdc_fov_params_t fp = {W * 128, H * 128, 1024, 4077, LW, LH};
+    tdc_fov_params_t fp = {W * 128, H * 128, 1024, 4077, LW, LH, {0, 0}, 0, 0};
     for (uint32_t f = 0; f < 100000u; f++) {
         for (size_t k = 0; k < sizeof lp; k++) {
             lp[k] = (uint8_t)rnd();

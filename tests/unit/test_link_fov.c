@@ -7,7 +7,10 @@
  * truncated and padded payloads, buffers this build lacks, sequencing,
  * stream headers) gives its error event and counter, leaves every pipeline
  * buffer unchanged, and the next valid packet is accepted; chunking does
- * not change anything.
+ * not change anything.  The log-rectilinear transform (tdc_fov_lr.h) through
+ * the same kind: round trips (the whole buffer, u0 = 0) and its own
+ * refusals (unknown transform, foveal scale, alpha, k on a kernel
+ * log-polar header, u0), each with the last good frame kept.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -583,6 +586,75 @@ static void test_chunking(void **state)
     }
 }
 
+static tdc_fov_params_t lr_params(int32_t gx_q8, int32_t gy_q8, uint16_t disk_q15)
+{
+    tdc_fov_params_t p = params(gx_q8, gy_q8, 256, disk_q15);
+    p.transform = TDC_FOV_LOG_RECT;
+    p.lr_k_q4[0] = 0x0105; /* 16.3 px */
+    p.lr_k_q4[1] = 0x00C8; /* 12.5 px */
+    return p;
+}
+
+static void test_log_rect(void **state)
+{
+    (void)state;
+    static uint8_t before_lp[TDC_LINK_FRAME_BYTES(W, H)], before_full[TDC_LINK_FRAME_BYTES(W, H)];
+    const tdc_link_encoder_t enc = encoder(FOV, 1);
+    assert_int_equal(lt_init(&rig, W, H, 1), TDC_OK);
+    size_t n = put_stream_header(0, &enc);
+    assert_int_equal(lt_feed(&rig, stream, n, 0, 0), n);
+    static const int32_t gazes[][2] = {{W * 128, H * 128}, {0, 0}, {-W * 200, H * 300}};
+    for (uint32_t f = 0; f < 6; f++) {
+        const tdc_fov_params_t p = lr_params(gazes[f % 3][0], gazes[f % 3][1], f < 3 ? 4077 : (f == 4 ? 32768 : 0));
+        memcpy(before_lp, rig.fov_lp[0], sizeof before_lp);
+        memcpy(before_full, rig.full[0], sizeof before_full);
+        n = put_foveated(0, &enc, 0, f, &p, (int)(f & 1u), NULL);
+        const uint32_t ev0 = rig.nev;
+        assert_int_equal(lt_feed(&rig, stream, n, -97, f), n);
+        assert_int_equal(rig.nev, ev0 + 1);
+        if (rig.ev[ev0].type != TDC_LINK_EV_PACKET)
+            fail_msg("frame %u: event %d error %d", f, rig.ev[ev0].type, rig.ev[ev0].error);
+        check_decoded(0, f, &p, (int)(f & 1u), before_lp, before_full);
+        assert_int_equal(tdc_link_fov(&rig.dec, 0)->g.u0, 0); /* the whole buffer */
+    }
+    /* the whole buffer with vectors (2.2 B/px at delta 0.555) and a whole-screen disk (3 B/px) exceed a
+     * 4 B/px staging buffer: refused by length like any packet larger than the build's buffers */
+    {
+        const tdc_fov_params_t big = lr_params(W * 128, H * 128, 32768);
+        n = put_foveated(0, &enc, 0, 6, &big, 1, NULL);
+        const uint32_t ev0 = rig.nev;
+        assert_int_equal(lt_feed(&rig, stream, n, 0, 0), n);
+        assert_int_equal(lt_count(&rig, ev0, TDC_LINK_EV_ERROR, TDC_LINK_ERR_LENGTH), 1);
+    }
+    const tdc_fov_params_t p = lr_params(W * 90, H * 140, 4077);
+    tdc_fov_geom_t g;
+    assert_int_equal(tdc_fov_geom(&g, W, H, &p), TDC_OK);
+    fill_samples(&g, 1, 0);
+    const uint8_t F = TDC_PIXFMT_RGB888;
+    const tdc_link_err_t E = TDC_LINK_ERR_FOVEATION;
+    n = raw_foveated(&enc, 0, 1, &p, 0, 25, 2, 0, F, W); /* transform 2: unknown */
+    expect_refused(pkt, n, E, TDC_FOV_HDR_TRANSFORM, 1, FOV, 0, 0);
+    n = raw_foveated(&enc, 0, 1, &p, 0, 25, 0xFF, 0, F, W);
+    expect_refused(pkt, n, E, TDC_FOV_HDR_TRANSFORM, 1, FOV, 0, 0);
+    n = raw_foveated(&enc, 0, 1, &p, 0, 27, 0, 0, F, W); /* k_x 0x0105 -> 5: below 1 px */
+    expect_refused(pkt, n, E, TDC_FOV_HDR_SCALE, 1, FOV, 0, 0);
+    n = raw_foveated(&enc, 0, 1, &p, 0, 28, 0, 0, F, W); /* k_y 0 */
+    expect_refused(pkt, n, E, TDC_FOV_HDR_SCALE, 1, FOV, 0, 0);
+    n = raw_foveated(&enc, 0, 1, &p, 0, 9, 4, 0, F, W); /* alpha 4: log-rectilinear has none */
+    expect_refused(pkt, n, E, TDC_FOV_HDR_ALPHA, 1, FOV, 0, 0);
+    n = raw_foveated(&enc, 0, 1, &p, 0, 18, 1, 0, F, W); /* u0 1: the whole buffer is carried */
+    expect_refused(pkt, n, E, TDC_FOV_HDR_GEOMETRY, 1, FOV, 0, 0);
+    n = raw_foveated(&enc, 0, 1, &p, 0, 30, 1, 0, F, W); /* reserved */
+    expect_refused(pkt, n, E, TDC_FOV_HDR_RESERVED, 1, FOV, 0, 0);
+    const tdc_fov_params_t q = params(W * 128, H * 128, 1024, 4077); /* a kernel log-polar header with a k */
+    assert_int_equal(tdc_fov_geom(&g, W, H, &q), TDC_OK);
+    fill_samples(&g, 1, 0);
+    n = raw_foveated(&enc, 0, 1, &q, 0, 26, 1, 0, F, W);
+    expect_refused(pkt, n, E, TDC_FOV_HDR_RESERVED, 1, FOV, 0, 0);
+    n = raw_foveated(&enc, 0, 1, &q, 0, 25, 1, 0, F, W); /* transform 1 without k */
+    expect_refused(pkt, n, E, TDC_FOV_HDR_ALPHA, 1, FOV, 0, 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -593,6 +665,7 @@ int main(void)
         cmocka_unit_test(test_refusals_buffers_and_sequence),
         cmocka_unit_test(test_stream_headers),
         cmocka_unit_test(test_chunking),
+        cmocka_unit_test(test_log_rect),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -66,7 +66,7 @@ static void run_scene(const char *name)
         int nlp, nd;
         assert_int_equal(tdc_render_set_foveation(r, &fv, &nlp, &nd), 0);
         tdc_fov_params_t p = {(int32_t)lround(fv.gaze_x * 256), (int32_t)lround(fv.gaze_y * 256), 1024, 4077,
-                              (uint16_t)(W * 555 / 1000),       (uint16_t)(H * 555 / 1000)};
+                              (uint16_t)(W * 555 / 1000),       (uint16_t)(H * 555 / 1000), {0, 0}, 0, 0};
         tdc_fov_geom_t g;
         assert_int_equal(tdc_fov_geom(&g, W, H, &p), TDC_OK);
         assert_int_equal(nlp, (g.lp_w - g.u0) * g.lp_h);

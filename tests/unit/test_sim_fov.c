@@ -6,7 +6,10 @@
  * the foveal region is perceived better than the periphery, and a tracker
  * latency moves the fovea off the gaze (foveal FLIP rises); the gaze
  * schedules and the tracker's latency and noise are what they claim; a
- * configuration the stage refuses is refused, not run.
+ * configuration the stage refuses is refused, not run.  fovlr and
+ * fovlr-taa (log-rectilinear): rays are the full frame's, link bytes the
+ * whole buffer's exactly, and the area-averaged periphery beats the
+ * point-sampled kernel log-polar one in FLIP and flicker.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -22,7 +25,9 @@
 #include "simulator/tdc_sim.h"
 #include "simulator/tdc_sim_gaze.h"
 #include "tdc_fov.h"
+#include "ref_fov_lr.h"
 #include "tdc_fov_link.h"
+#include "tdc_fov_lr.h"
 #include "tdc_sim_features.h"
 
 #define W 96
@@ -93,7 +98,7 @@ static void test_modes_exact_costs(void **state)
         tdc_sim_result_t r[3];
         assert_int_equal(run(&cfg, m, 3, r), 0);
         print(r, 3);
-        const tdc_fov_params_t p = {W * 128, H * 128, 1024, 4077, tdc_fov_lp_size(18187, W), tdc_fov_lp_size(18187, H)};
+        const tdc_fov_params_t p = {W * 128, H * 128, 1024, 4077, tdc_fov_lp_size(18187, W), tdc_fov_lp_size(18187, H), {0, 0}, 0, 0};
         tdc_fov_geom_t g;
         assert_int_equal(tdc_fov_geom(&g, W, H, &p), TDC_OK);
         const uint64_t nlp = (uint64_t)(g.lp_w - g.u0) * g.lp_h, nd = tdc_fov_disk_pixels(&g);
@@ -117,6 +122,55 @@ static void test_modes_exact_costs(void **state)
             assert_true(r[i].flip_fovea < r[i].flip_periph);
             assert_true(r[i].flip_periph > r[0].flip_periph);
         }
+    }
+}
+
+/* The log-rectilinear modes beside the kernel log-polar ones. */
+static void test_lr_modes(void **state)
+{
+    (void)state;
+    if (!TDC_SIM_HAVE_LINK) {
+        skip();
+    }
+    tdc_sim_config_t cfg;
+    config(&cfg, 12);
+    cfg.gaze = TDC_GAZE_FIXED;
+    static const char *const m[] = {"full", "fov", "fovlr", "fovlr-taa"};
+    tdc_sim_result_t r[4];
+    assert_int_equal(run(&cfg, m, 4, r), 0);
+    print(r, 4);
+    const uint16_t lw = tdc_fov_lp_size(18187, W), lh = tdc_fov_lp_size(18187, H);
+    const tdc_fov_params_t p = {W * 128,
+                                H * 128,
+                                256,
+                                4077,
+                                lw,
+                                lh,
+                                {(uint16_t)lround(16 * ref_fov_lr_k(W, lw, W / 2.0)),
+                                 (uint16_t)lround(16 * ref_fov_lr_k(H, lh, H / 2.0))},
+                                TDC_FOV_LOG_RECT,
+                                0};
+    tdc_fov_geom_t g;
+    assert_int_equal(tdc_fov_geom(&g, W, H, &p), TDC_OK);
+    assert_int_equal(g.u0, 0);
+    for (int i = 0; i < 4; i++) {
+        assert_true(r[i].available);
+        assert_int_equal(r[i].link_errors, 0);
+        assert_false(r[i].nonfinite);
+        assert_int_equal(r[i].foveated, i > 0);
+    }
+    const uint64_t frames = r[2].frames;
+    assert_int_equal(r[2].rays, r[0].rays); /* the summed-area table needs the full-rate render */
+    assert_int_equal(r[3].rays, r[0].rays);
+    const uint64_t stream = 32u + 16u;
+    assert_int_equal(tdc_fov_payload_bytes(&g, 0), 3u * lw * lh + 3u * tdc_fov_disk_pixels(&g));
+    assert_int_equal(r[2].link_bytes, stream + frames * (32u + TDC_FOV_HDR_BYTES + tdc_fov_payload_bytes(&g, 0)));
+    assert_int_equal(r[3].link_bytes, stream + frames * (32u + TDC_FOV_HDR_BYTES + tdc_fov_payload_bytes(&g, 1)));
+    /* area averages against point samples: a better periphery, less flicker */
+    for (int i = 2; i < 4; i++) {
+        assert_true(r[i].flip_periph < r[1].flip_periph);
+        assert_true(r[i].flip_fovea < r[i].flip_periph);
+        assert_true(r[i].flicker_periph < r[1].flicker_periph);
     }
 }
 
@@ -252,6 +306,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_modes_exact_costs),
+        cmocka_unit_test(test_lr_modes),
         cmocka_unit_test(test_latency_moves_the_fovea),
         cmocka_unit_test(test_refused),
         cmocka_unit_test(test_gaze_schedules),
