@@ -344,6 +344,7 @@ typedef struct {
     int32_t rb_q8;          /* r_d - 4 px (may be negative) */
     int32_t leta_max;       /* log2 of the largest eta (x = 1), Q24: log2 is monotone, so eta <= this */
     uint32_t off_dummy;     /* sample (u0, 0) */
+    int taa;                /* 1: the nearest samples (ij) are needed */
 } fov_src_t;
 
 typedef struct {
@@ -354,9 +355,16 @@ typedef struct {
 #define TAPS_MAX 9 /* sigma <= 2: |t - u| <= 2 sigma = 4 */
 #define GEN_FLAG 512u
 
-static inline int32_t lerp16(int32_t a, int32_t b, uint32_t f)
+/* Linear interpolation between nodes, f in Q16: (a (2^16 - f) + b f + 2^15) >> 16.
+ * u < 2^30: 64-bit sum; sigma, 1/sigma^2 <= 2^15: the sum <= 2^31 + 2^15 fits 32 bits. */
+static inline uint32_t lerp_u(uint32_t a, uint32_t b, uint32_t f)
 {
-    return a + (int32_t)tdc_asr64((int64_t)(b - a) * f + 32768, 16);
+    return (uint32_t)(((uint64_t)a * (65536u - f) + (uint64_t)b * f + 32768u) >> 16);
+}
+
+static inline uint32_t lerp_s(uint32_t a, uint32_t b, uint32_t f)
+{
+    return (a * (65536u - f) + b * f + 32768u) >> 16;
 }
 
 static void geom_px(const fov_src_t *s, const fov_rowbuf_t *rb, int32_t i, int32_t dx, int32_t dy, uint64_t r2)
@@ -371,25 +379,26 @@ static void geom_px(const fov_src_t *s, const fov_rowbuf_t *rb, int32_t i, int32
             b = (uint32_t)tdc_clamp32(x, 0, TDC_FOV_BLEND_Q8) >> 2;
         }
     }
-    rb->off0[i] = s->off_dummy | TDC_FOV_STEP0; /* disk pixels: a harmless descriptor (sample (u0, 0), weight 1) */
-    rb->off1[i] = s->off_dummy;
-    rb->wf[i] = 32768u;
     rb->b[i] = (uint16_t)b;
-    rb->ij[i] = 0;
     if (!b) {
+        rb->off0[i] = s->off_dummy | TDC_FOV_STEP0; /* a harmless descriptor: sample (u0, 0), weight 1 */
+        rb->off1[i] = s->off_dummy;
+        rb->wf[i] = 32768u;
         return;
     }
     /* eq. 2.2 radial part and eq. 4.4's sigma: the radial table, interpolated on |x'|^2 */
     int32_t u, sig, inv2;
     const uint32_t e = r2 >= ((uint64_t)1 << TDC_FOV_NODE_E0) ? 63u - clz64(r2) : 0u;
-    const uint32_t n = e ? ((e - TDC_FOV_NODE_E0) << TDC_FOV_NODE_BITS) | ((uint32_t)(r2 >> (e - 7u)) & 127u) : 0u;
+    /* the top 24 bits of |x'|^2: the leading 1, 7 bits of node, 16 of fraction */
+    const uint32_t m24 = e >= 23u ? (uint32_t)(r2 >> (e - 23u)) : (uint32_t)r2 << (23u - e);
+    const uint32_t n = e ? ((e - TDC_FOV_NODE_E0) << TDC_FOV_NODE_BITS) | ((m24 >> 16) & 127u) : 0u;
     if (e && n + 1u < s->rad_nodes) {
-        const uint32_t f = (uint32_t)((r2 << 3) >> (e - TDC_FOV_NODE_E0)) & 0xFFFFu; /* Q16 in the node */
+        const uint32_t f = m24 & 0xFFFFu; /* Q16 in the node */
         const tdc_fov_node_t *na = s->rad + n, *nb = na + 1;
-        u = lerp16((int32_t)na->u_q16, (int32_t)nb->u_q16, f);
-        sig = lerp16(na->sig_q14, nb->sig_q14, f);
-        inv2 = lerp16(na->inv2_q12, nb->inv2_q12, f);
-        u = u > (int32_t)g->lp_w << 16 ? (int32_t)g->lp_w << 16 : u;
+        const uint32_t uu = lerp_u(na->u_q16, nb->u_q16, f);
+        u = (int32_t)(uu > (uint32_t)g->lp_w << 16 ? (uint32_t)g->lp_w << 16 : uu);
+        sig = (int32_t)lerp_s(na->sig_q14, nb->sig_q14, f);
+        inv2 = (int32_t)lerp_s(na->inv2_q12, nb->inv2_q12, f);
     } else {
         tdc_fov_node_t nd; /* within 4 px of the gaze: exact */
         node_fill(g, r2, 1, s->leta_max, &nd);
@@ -408,8 +417,10 @@ static void geom_px(const fov_src_t *s, const fov_rowbuf_t *rb, int32_t i, int32
     const uint32_t j0 = v >> 16, fv = (v & 0xFFFFu) >> 1; /* Q15 */
     const uint32_t j1 = j0 + 1u == g->lp_h ? 0u : j0 + 1u;
     const int32_t cmin = g->u0, cmax = (int32_t)g->lp_w - 1;
-    const uint32_t ui = ((uint32_t)u + 32768u) >> 16, vi = (v + 32768u) >> 16;
-    rb->ij[i] = (uint32_t)tdc_clamp32((int32_t)ui, cmin, cmax) | (vi >= g->lp_h ? 0u : vi) << 16;
+    if (s->taa) { /* the nearest sample: its motion vector */
+        const uint32_t ui = ((uint32_t)u + 32768u) >> 16, vi = (v + 32768u) >> 16;
+        rb->ij[i] = (uint32_t)tdc_clamp32((int32_t)ui, cmin, cmax) | (vi >= g->lp_h ? 0u : vi) << 16;
+    }
     if (sig == 8192) { /* sigma = 1/2: two taps, floor(u) and floor(u) + 1, from the tent table */
         const uint32_t fu = (uint32_t)u & 0xFFFFu, k = fu >> 8, fr = fu & 255u;
         const uint32_t ta = tdc_fov_tent_tab[k], tb = tdc_fov_tent_tab[k + 1u];
@@ -450,6 +461,9 @@ static void geom_px(const fov_src_t *s, const fov_rowbuf_t *rb, int32_t i, int32
         nsum += wt[k];
     }
     wt[kmax] += 32768u - nsum; /* |32768 - nsum| <= nt / 2 + 1, wt[kmax] >= 2^15 / nt */
+    rb->off0[i] = s->off_dummy | TDC_FOV_STEP0; /* the kernel's value is not used */
+    rb->off1[i] = s->off_dummy;
+    rb->wf[i] = 32768u;
     /* the kernel's arithmetic per tap: rows j0, j1 weighted (w - a, a), a = (w fv + 2^14) >> 15 */
     const uint8_t *r0 = s->lp + (size_t)j0 * s->lp_stride, *r1 = s->lp + (size_t)j1 * s->lp_stride;
     uint32_t acc[3] = {64u, 64u, 64u};
@@ -471,8 +485,13 @@ static inline uint32_t px_colour(const tdc_fov_t *st, const uint8_t *drow, int32
 {
     const uint32_t bf = st->t_b[i], b = bf & 511u;
     uint32_t lpc[3];
-    for (int ch = 0; ch < 3; ch++) {
-        lpc[ch] = (bf & GEN_FLAG) ? st->t_gen[(size_t)i * 3u + (size_t)ch] : st->t_out[(size_t)ch * st->cfg.width + (size_t)i];
+    if (bf & GEN_FLAG) {
+        const uint16_t *gp = st->t_gen + (size_t)i * 3u;
+        lpc[0] = gp[0], lpc[1] = gp[1], lpc[2] = gp[2];
+    } else {
+        const uint16_t *kp = st->t_out + i;
+        const size_t w = st->cfg.width;
+        lpc[0] = kp[0], lpc[1] = kp[w], lpc[2] = kp[2u * w];
     }
     if (b < 256u) {
         const uint8_t *dp = drow + (size_t)i * 3u;
@@ -490,8 +509,9 @@ static inline uint32_t px_colour(const tdc_fov_t *st, const uint8_t *drow, int32
 /* The C tap kernel (tdc_fov_kernels.h). */
 void tdc_fov_tap2_row_c(const tdc_fov_tap2_args_t *a, uint32_t n)
 {
+    const tdc_fov_tap2_args_t l = *a; /* locals: the stores below cannot move the pointers */
     for (uint32_t k = 0; k < n; k++) {
-        tdc_fov_tap2_px(a, k);
+        tdc_fov_tap2_px(&l, k);
     }
 }
 
@@ -629,7 +649,7 @@ tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8
     }
     const int32_t W = g.width, H = g.height;
     fov_src_t src = {&g, lp, lp_stride, st->rad, 0, st->colinv, 0, 0, 0, (int32_t)g.r_disk_q8 - TDC_FOV_BLEND_Q8, 0,
-                     (uint32_t)g.u0 * 3u};
+                     (uint32_t)g.u0 * 3u, st->cfg.taa};
     const fov_rowbuf_t rb = {st->t_off0, st->t_off1, st->t_wf, st->t_ij, st->t_gen, st->t_b};
     const tdc_fov_tap2_args_t ka = {lp, lp_bytes, st->t_off0, st->t_off1, st->t_wf,
                                     {st->t_out, st->t_out + W, st->t_out + 2 * W}};
@@ -709,16 +729,29 @@ tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8
             geom_px(&src, &rb, x, dx, dy, (uint64_t)((int64_t)dx * dx) + dy2);
         }
         st->tap2(&ka, (uint32_t)W);
+        if (!st->cfg.taa) {
+            /* b = 256 from the kernel (most pixels): Q8 -> 8 bits; the rest through px_colour */
+            const uint16_t *kr = st->t_out, *kg = kr + W, *kb = kg + W;
+            for (int32_t x = 0; x < W; x++) {
+                uint8_t *o = orow + (size_t)x * 3u;
+                if (st->t_b[x] == 256u) {
+                    o[0] = (uint8_t)((kr[x] + 128u) >> 8);
+                    o[1] = (uint8_t)((kg[x] + 128u) >> 8);
+                    o[2] = (uint8_t)((kb[x] + 128u) >> 8);
+                } else {
+                    uint16_t c[3];
+                    (void)px_colour(st, drow, x, c);
+                    for (int ch = 0; ch < 3; ch++) {
+                        o[ch] = (uint8_t)((c[ch] + 128u) >> 8);
+                    }
+                }
+            }
+            continue;
+        }
         for (int32_t x = 0; x < W; x++) {
             uint16_t c[3];
             const uint32_t b = px_colour(st, drow, x, c);
             const uint32_t iu = st->t_ij[x] & 0xFFFFu, jv = st->t_ij[x] >> 16;
-            if (!st->cfg.taa) {
-                for (int ch = 0; ch < 3; ch++) {
-                    orow[(size_t)x * 3u + (size_t)ch] = (uint8_t)((c[ch] + 128u) >> 8);
-                }
-                continue;
-            }
             uint16_t *e = sl + (size_t)x * ROW_VALS;
             e[0] = c[0];
             e[1] = c[1];

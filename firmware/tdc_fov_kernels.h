@@ -52,7 +52,7 @@ tdc_fov_tap2_row_fn tdc_fov_tap2_row_mve;  /* Helium; the C kernel elsewhere */
 int tdc_fov_avx2_available(void);
 
 /* What a board runs (AVX2 on hosts is chosen at run time). */
-#if defined(__ARM_FEATURE_MVE)
+#if defined(TDC_TRM_MVE) /* Helium boards (BOARD_MVE): every object is told */
 #define TDC_FOV_TAP2_BOARD tdc_fov_tap2_row_mve
 #else
 #define TDC_FOV_TAP2_BOARD tdc_fov_tap2_row_c
