@@ -27,6 +27,13 @@
 #include "tdc_math.h"
 
 #define Q24 (1 << 24)
+/* Out of line where a rare path would crowd the hot one's registers (GNU C
+ * compilers; plain elsewhere).  Same code and results either way. */
+#if defined(__GNUC__) || defined(__clang__)
+#define FOV_COLD __attribute__((noinline, cold))
+#else
+#define FOV_COLD
+#endif
 #define ONE_Q15 32768u
 
 static unsigned clz64(uint64_t x)
@@ -367,6 +374,9 @@ static inline uint32_t lerp_s(uint32_t a, uint32_t b, uint32_t f)
     return (a * (65536u - f) + b * f + 32768u) >> 16;
 }
 
+static void geom_general(const fov_src_t *s, const fov_rowbuf_t *rb, int32_t i, uint32_t b, int32_t u, int32_t sig,
+                         int32_t inv2, uint32_t j0, uint32_t j1, uint32_t fv);
+
 static void geom_px(const fov_src_t *s, const fov_rowbuf_t *rb, int32_t i, int32_t dx, int32_t dy, uint64_t r2)
 {
     const tdc_fov_geom_t *g = s->g;
@@ -430,6 +440,15 @@ static void geom_px(const fov_src_t *s, const fov_rowbuf_t *rb, int32_t i, int32
         rb->wf[i] = (ta - (((ta - tb) * fr + 128u) >> 8)) | fv << 16;
         return;
     }
+    geom_general(s, rb, i, b, u, sig, inv2, j0, j1, fv);
+}
+
+/* sigma > 1/2 (few pixels at alpha 4): up to 9 taps, computed here, not by the
+ * kernel.  Out of line: the common two-tap path above keeps its registers. */
+static FOV_COLD void geom_general(const fov_src_t *s, const fov_rowbuf_t *rb, int32_t i, uint32_t b, int32_t u,
+                                      int32_t sig, int32_t inv2, uint32_t j0, uint32_t j1, uint32_t fv)
+{
+    const int32_t cmin = s->g->u0, cmax = (int32_t)s->g->lp_w - 1;
     /* sigma > 1/2: up to 9 taps, weights from the cut Gaussian normalised to 2^15 */
     const int32_t lo = tdc_asr32(u - 8 * sig + 65535, 16), hi = tdc_asr32(u + 8 * sig, 16);
     const int32_t u12 = (u + 8) >> 4;
@@ -495,13 +514,11 @@ static inline uint32_t px_colour(const tdc_fov_t *st, const uint8_t *drow, int32
     }
     if (b < 256u) {
         const uint8_t *dp = drow + (size_t)i * 3u;
-        for (int ch = 0; ch < 3; ch++) {
-            c[ch] = (uint16_t)(((256u - b) * dp[ch] * 256u + b * lpc[ch] + 128u) >> 8);
-        }
+        c[0] = (uint16_t)(((256u - b) * dp[0] * 256u + b * lpc[0] + 128u) >> 8);
+        c[1] = (uint16_t)(((256u - b) * dp[1] * 256u + b * lpc[1] + 128u) >> 8);
+        c[2] = (uint16_t)(((256u - b) * dp[2] * 256u + b * lpc[2] + 128u) >> 8);
     } else {
-        for (int ch = 0; ch < 3; ch++) {
-            c[ch] = (uint16_t)lpc[ch];
-        }
+        c[0] = (uint16_t)lpc[0], c[1] = (uint16_t)lpc[1], c[2] = (uint16_t)lpc[2];
     }
     return b;
 }
@@ -585,6 +602,24 @@ typedef struct {
     uint16_t *dif[3];
 } fov_rows_t;
 
+/* eq. 2.5 for one channel: s + (1 - a)(h - s), (1 - a) in Q15 (k), the
+ * product rounded toward zero (see finish_row). */
+static inline uint32_t taa_blend(uint32_t s, uint32_t h, uint32_t k)
+{
+    const int32_t dlt = (int32_t)h - (int32_t)s;
+    const int32_t m = (int32_t)((k * (uint32_t)tdc_abs32(dlt)) >> 15);
+    return (uint32_t)((int32_t)s + (dlt < 0 ? -m : m));
+}
+
+/* History at a Q4 position: bilinear in Q4, Q8 codes out (<= 255 * 256). */
+static inline uint32_t hist_bilinear(const uint16_t *h00, const uint16_t *h01, const uint16_t *h10, const uint16_t *h11,
+                                     uint32_t fx, uint32_t fy)
+{
+    const uint32_t top = *h00 * (16u - fx) + *h01 * fx;
+    const uint32_t bot = *h10 * (16u - fx) + *h11 * fx;
+    return (top * (16u - fy) + bot * fy + 128u) >> 8;
+}
+
 /* eq. 4.9 box, eq. 4.10 and eq. 2.5 for row y; writes history and output. */
 static void finish_row(const tdc_fov_t *st, const fov_rows_t *rw, int32_t y, uint16_t *hist_new, uint8_t *orow)
 {
@@ -609,16 +644,14 @@ static void finish_row(const tdc_fov_t *st, const fov_rows_t *rw, int32_t y, uin
             /* f = s + (1 - a)(h - s), the product rounded toward zero: |f - s|
              * shrinks every frame, so a static field converges to exactly s
              * (rounding half up stalls at h - s = 5/256 of a code with a = 0.1) */
-            for (int ch = 0; ch < 3; ch++) {
-                const int32_t dlt = (int32_t)e[3 + ch] - (int32_t)e[ch];
-                const int32_t m = (int32_t)(((ONE_Q15 - aeff) * (uint32_t)tdc_abs32(dlt)) >> 15);
-                f[ch] = (uint32_t)((int32_t)e[ch] + (dlt < 0 ? -m : m));
-            }
+            f[0] = taa_blend(e[0], e[3], ONE_Q15 - aeff);
+            f[1] = taa_blend(e[1], e[4], ONE_Q15 - aeff);
+            f[2] = taa_blend(e[2], e[5], ONE_Q15 - aeff);
         }
-        for (int ch = 0; ch < 3; ch++) {
-            hn[ch] = (uint16_t)f[ch];
-            orow[(size_t)x * 3u + (size_t)ch] = (uint8_t)((f[ch] + 128u) >> 8);
-        }
+        hn[0] = (uint16_t)f[0], hn[1] = (uint16_t)f[1], hn[2] = (uint16_t)f[2];
+        orow[(size_t)x * 3u] = (uint8_t)((f[0] + 128u) >> 8);
+        orow[(size_t)x * 3u + 1u] = (uint8_t)((f[1] + 128u) >> 8);
+        orow[(size_t)x * 3u + 2u] = (uint8_t)((f[2] + 128u) >> 8);
         cs_l = cs_c;
         cs_c = cs_r;
         cs_r = x + 2 < W ? COLSUM(x + 2) : 0u;
@@ -723,7 +756,7 @@ tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8
         src.ay = (uint32_t)tdc_abs32(dy);
         src.inv_y = recip_norm(src.ay);
         uint8_t *orow = out + (size_t)y * out_stride;
-        uint16_t *sl = st->cfg.taa ? rw.slot[y & 1] : 0;
+        uint16_t *sl = st->cfg.taa ? rw.slot[y & 1] : 0, *dif_row = st->cfg.taa ? rw.dif[y % 3] : 0;
         for (int32_t x = 0; x < W; x++) {
             const int32_t dx = x * 256 + 128 - g.cx_q8;
             geom_px(&src, &rb, x, dx, dy, (uint64_t)((int64_t)dx * dx) + dy2);
@@ -779,14 +812,13 @@ tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8
                     const uint16_t *h01 = hist_old + ((size_t)y0 * W + (size_t)x1) * 3u;
                     const uint16_t *h10 = hist_old + ((size_t)y1 * W + (size_t)x0) * 3u;
                     const uint16_t *h11 = hist_old + ((size_t)y1 * W + (size_t)x1) * 3u;
-                    dsum = 0;
-                    for (int ch = 0; ch < 3; ch++) {
-                        const uint32_t top = h00[ch] * (16u - fx) + h01[ch] * fx;
-                        const uint32_t bot = h10[ch] * (16u - fx) + h11[ch] * fx;
-                        const uint32_t hv = (top * (16u - fy) + bot * fy + 128u) >> 8;
-                        e[3 + ch] = (uint16_t)hv;
-                        dsum += (uint32_t)tdc_abs32((int32_t)c[ch] - (int32_t)hv);
-                    }
+                    const uint32_t hv0 = hist_bilinear(h00, h01, h10, h11, fx, fy);
+                    const uint32_t hv1 = hist_bilinear(h00 + 1, h01 + 1, h10 + 1, h11 + 1, fx, fy);
+                    const uint32_t hv2 = hist_bilinear(h00 + 2, h01 + 2, h10 + 2, h11 + 2, fx, fy);
+                    e[3] = (uint16_t)hv0, e[4] = (uint16_t)hv1, e[5] = (uint16_t)hv2;
+                    dsum = (uint32_t)tdc_abs32((int32_t)c[0] - (int32_t)hv0) +
+                           (uint32_t)tdc_abs32((int32_t)c[1] - (int32_t)hv1) +
+                           (uint32_t)tdc_abs32((int32_t)c[2] - (int32_t)hv2);
                     /* eq. 4.8: H = (|m| / |(W, H)|)^(1/4) * 60 / R_n, Q15, capped at 1 (eq. 4.10's min) */
                     const uint32_t m2 = (uint32_t)(mx * mx) + (uint32_t)(my * my);
                     uint32_t hq = 0;
@@ -803,7 +835,7 @@ tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8
                     e[6] = (uint16_t)hq;
                 }
             }
-            rw.dif[y % 3][x] = (uint16_t)((dsum + 1u) / 3u);
+            dif_row[x] = (uint16_t)((dsum + 1u) / 3u);
         }
         if (st->cfg.taa && y > 0) {
             finish_row(st, &rw, y - 1, hist_new, out + (size_t)(y - 1) * out_stride);

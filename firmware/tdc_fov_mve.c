@@ -41,9 +41,9 @@ void tdc_fov_tap2_row_mve(const tdc_fov_tap2_args_t *a, uint32_t n)
         for (uint32_t c = 0; c < 3u; c++) {
             const uint8_t *b = a->lp + c;
             uint32x4_t s = vmulq_u32(w00, vldrbq_gather_offset_u32(b, o0));
-            s = vmlaq_u32(s, vldrbq_gather_offset_u32(b, o0s), w01);
-            s = vmlaq_u32(s, vldrbq_gather_offset_u32(b, o1), wa);
-            s = vmlaq_u32(s, vldrbq_gather_offset_u32(b, o1s), wb);
+            s = vaddq_u32(s, vmulq_u32(vldrbq_gather_offset_u32(b, o0s), w01)); /* MVE has no vector x vector MLA */
+            s = vaddq_u32(s, vmulq_u32(vldrbq_gather_offset_u32(b, o1), wa));
+            s = vaddq_u32(s, vmulq_u32(vldrbq_gather_offset_u32(b, o1s), wb));
             vstrhq_u32(a->out[c] + k, vshrq_n_u32(vaddq_n_u32(s, 64u), 7));
         }
     }
