@@ -397,25 +397,27 @@ static void geom_px(const fov_src_t *s, const fov_rowbuf_t *rb, int32_t i, int32
         return;
     }
     /* eq. 2.2 radial part and eq. 4.4's sigma: the radial table, interpolated on |x'|^2 */
-    int32_t u, sig, inv2;
+    int32_t u;
     const uint32_t e = r2 >= ((uint64_t)1 << TDC_FOV_NODE_E0) ? 63u - clz64(r2) : 0u;
     /* the top 24 bits of |x'|^2: the leading 1, 7 bits of node, 16 of fraction */
     const uint32_t m24 = e >= 23u ? (uint32_t)(r2 >> (e - 23u)) : (uint32_t)r2 << (23u - e);
     const uint32_t n = e ? ((e - TDC_FOV_NODE_E0) << TDC_FOV_NODE_BITS) | ((m24 >> 16) & 127u) : 0u;
+    const tdc_fov_node_t *na, *nb;
+    tdc_fov_node_t nd;
+    uint32_t f;
     if (e && n + 1u < s->rad_nodes) {
-        const uint32_t f = m24 & 0xFFFFu; /* Q16 in the node */
-        const tdc_fov_node_t *na = s->rad + n, *nb = na + 1;
+        f = m24 & 0xFFFFu; /* Q16 in the node */
+        na = s->rad + n;
+        nb = na + 1;
         const uint32_t uu = lerp_u(na->u_q16, nb->u_q16, f);
         u = (int32_t)(uu > (uint32_t)g->lp_w << 16 ? (uint32_t)g->lp_w << 16 : uu);
-        sig = (int32_t)lerp_s(na->sig_q14, nb->sig_q14, f);
-        inv2 = (int32_t)lerp_s(na->inv2_q12, nb->inv2_q12, f);
     } else {
-        tdc_fov_node_t nd; /* within 4 px of the gaze: exact */
-        node_fill(g, r2, 1, s->leta_max, &nd);
+        node_fill(g, r2, 1, s->leta_max, &nd); /* within 4 px of the gaze: exact */
+        na = nb = &nd;
+        f = 0;
         u = (int32_t)nd.u_q16;
-        sig = nd.sig_q14;
-        inv2 = nd.inv2_q12;
     }
+    const int32_t sig = (int32_t)lerp_s(na->sig_q14, nb->sig_q14, f);
     /* eq. 2.2 angle: atan of the octant ratio, the divide by a per-column / per-row reciprocal */
     const uint32_t ax = (uint32_t)tdc_abs32(dx), ay = s->ay;
     uint32_t turns = 0;
@@ -440,7 +442,7 @@ static void geom_px(const fov_src_t *s, const fov_rowbuf_t *rb, int32_t i, int32
         rb->wf[i] = (ta - (((ta - tb) * fr + 128u) >> 8)) | fv << 16;
         return;
     }
-    geom_general(s, rb, i, b, u, sig, inv2, j0, j1, fv);
+    geom_general(s, rb, i, b, u, sig, (int32_t)lerp_s(na->inv2_q12, nb->inv2_q12, f), j0, j1, fv);
 }
 
 /* sigma > 1/2 (few pixels at alpha 4): up to 9 taps, computed here, not by the
@@ -809,9 +811,8 @@ tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8
                     const uint32_t fx = (uint32_t)px & 15u, fy = (uint32_t)py & 15u;
                     const int32_t x1 = x0 + 1 < W ? x0 + 1 : x0, y1 = y0 + 1 < H ? y0 + 1 : y0;
                     const uint16_t *h00 = hist_old + ((size_t)y0 * W + (size_t)x0) * 3u;
-                    const uint16_t *h01 = hist_old + ((size_t)y0 * W + (size_t)x1) * 3u;
-                    const uint16_t *h10 = hist_old + ((size_t)y1 * W + (size_t)x0) * 3u;
-                    const uint16_t *h11 = hist_old + ((size_t)y1 * W + (size_t)x1) * 3u;
+                    const uint16_t *h01 = h00 + (size_t)(x1 - x0) * 3u;
+                    const uint16_t *h10 = h00 + (size_t)(y1 - y0) * (size_t)W * 3u, *h11 = h10 + (size_t)(x1 - x0) * 3u;
                     const uint32_t hv0 = hist_bilinear(h00, h01, h10, h11, fx, fy);
                     const uint32_t hv1 = hist_bilinear(h00 + 1, h01 + 1, h10 + 1, h11 + 1, fx, fy);
                     const uint32_t hv2 = hist_bilinear(h00 + 2, h01 + 2, h10 + 2, h11 + 2, fx, fy);
