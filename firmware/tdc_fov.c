@@ -6,20 +6,33 @@
  * Scaling and overflow (every product is checked here once):
  *   display coordinates Q8, |x'| < 3 * 8192 * 256 < 2^23, so |x'|^2 (Q16) < 2^47
  *   in uint64; log2 values Q24 with |value| < 64, so < 2^30; the u coordinate
- *   Q16 < 8192 * 2^16 = 2^29; colours Q8 codes <= 255 * 256 < 2^16; kernel
- *   weights Q15 <= 2^15, <= 9 taps: sum < 2^19; the angular interpolation
- *   gives Q16 codes < 2^24, so weighted colour sums < 2^43 (uint64), divided
- *   once per channel (tdc_udiv64_32 needs sum > acc >> 32: sum >= 0.54 * 2^15,
- *   acc >> 32 < 2^11);
+ *   Q16 < 8192 * 2^16 = 2^29 (past R at most 2^30: the table's last node);
+ *   radial table interpolation: u (a (2^16 - f) + b f) < 2^46 in uint64, sigma
+ *   Q14 and 1/sigma^2 Q12 <= 2^15, so their sums <= 2^31 + 2^15 in uint32;
+ *   the angle's ratio (n << clz(m)) * inv < 2^64; colours Q8 codes <= 255 * 256
+ *   < 2^16; kernel weights Q15 normalised to sum 2^15 exactly (the remainder
+ *   on the largest), so a weighted sum of 8-bit samples < 255 * 2^15 + 64 <
+ *   2^23 (uint32; tdc_fov_kernels.h for the two-tap kernel); the >2-tap path's
+ *   normalisation: raw sum >= G(1) 2^15 = 17859, so 2^30 / sum < 2^16 and
+ *   weight * reciprocal < 2^31;
  *   TAA blend a (Q15) * colour (Q8) < 2^31 in uint32.
  * Rounding: half up at every shift; tables interpolated linearly.
  *
+ * Per-pixel work (docs/foveation.md "Remap speed"): eq. 2.2's radial part
+ * and eq. 4.4's sigma come from the per-frame radial table (tdc_fov.h),
+ * interpolated on |x'|^2 (no square root, no logarithm or power per pixel;
+ * exact within 4 px of the gaze), rebuilt only when R, alpha or lp_w change;
+ * the angle's atan ratio uses per-column and per-row reciprocals (no divide
+ * per pixel).  At sigma = 1/2 (most pixels at alpha 4) the two taps' weights
+ * come pre-normalised from tdc_fov_tent_tab.
+ *
  * Separability: eq. 2.2 is radial/angular, so it does not separate into
- * rows and columns; per row the stage hoists y' and y'^2, per pixel it
- * skips the log-polar path where the disk covers the pixel (b = 0) and the
- * square root where the pixel is outside the blend band.  TAA is one pass
- * over rows with 2 rows of composed colour and 3 rows of |s - h| scratch
- * (the 3x3 box of eq. 4.9 finishes row y - 1 while row y is composed).
+ * rows and columns.  Each display row takes three passes over a row of
+ * scratch: geometry (the blend weight, u, v, sigma: a tap descriptor per
+ * pixel, or the >2-tap colour itself), the tap kernel (tdc_fov_kernels.h:
+ * C, AVX2, Helium), the composite (+ TAA).  TAA is one pass over rows with
+ * 2 rows of composed colour and 3 rows of |s - h| scratch (the 3x3 box of
+ * eq. 4.9 finishes row y - 1 while row y is composed).
  */
 #include "tdc_fov.h"
 
