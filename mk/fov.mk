@@ -43,7 +43,8 @@ BENCHES += $(B)/tests/bench/bench_fov
 
 # Fuzzing: the target `fov` is registered in mk/fuzz.mk (tests/fuzz/fuzz_fov.c,
 # seeds tests/fuzz/corpus-fov, regenerated deliberately by make fuzz-seeds-fov).
-$(BUILD)/fuzz/make_seeds_fov: tests/fuzz/make_seeds_fov.c firmware/tdc_fov.c firmware/tdc_fov_link.c firmware/tdc_math.c $(GEN)/tdc_fov_tables.h
+$(BUILD)/fuzz/make_seeds_fov: tests/fuzz/make_seeds_fov.c firmware/tdc_fov.c firmware/tdc_fov_avx2.c firmware/tdc_fov_mve.c \
+                              firmware/tdc_fov_link.c firmware/tdc_math.c $(GEN)/tdc_fov_tables.h
 	@mkdir -p $(@D)
 	gcc -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror -O2 -Ifirmware -I$(GEN) $(filter %.c,$^) -o $@
 fuzz-seeds-fov: $(BUILD)/fuzz/make_seeds_fov
