@@ -514,6 +514,21 @@ static FOV_COLD void geom_general(const fov_src_t *s, const fov_rowbuf_t *rb, in
     rb->b[i] = (uint16_t)(b | GEN_FLAG);
 }
 
+/* The geometry pass over one row.  The source and the geometry are copied
+ * to locals first: the descriptor stores cannot alias them, so the compiler
+ * keeps them in registers instead of reloading them after every store. */
+static void geom_row(const fov_src_t *src, const fov_rowbuf_t *rb, int32_t W, int32_t dy, uint64_t dy2)
+{
+    const tdc_fov_geom_t g = *src->g;
+    fov_src_t s = *src;
+    s.g = &g;
+    const fov_rowbuf_t r = *rb;
+    for (int32_t x = 0; x < W; x++) {
+        const int32_t dx = x * 256 + 128 - g.cx_q8;
+        geom_px(&s, &r, x, dx, dy, (uint64_t)((int64_t)dx * dx) + dy2);
+    }
+}
+
 /* The composite of pixel i after the kernel ran: Q8 colour c, returns b. */
 static inline uint32_t px_colour(const tdc_fov_t *st, const uint8_t *drow, int32_t i, uint16_t c[3])
 {
@@ -772,10 +787,7 @@ tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8
         src.inv_y = recip_norm(src.ay);
         uint8_t *orow = out + (size_t)y * out_stride;
         uint16_t *sl = st->cfg.taa ? rw.slot[y & 1] : 0, *dif_row = st->cfg.taa ? rw.dif[y % 3] : 0;
-        for (int32_t x = 0; x < W; x++) {
-            const int32_t dx = x * 256 + 128 - g.cx_q8;
-            geom_px(&src, &rb, x, dx, dy, (uint64_t)((int64_t)dx * dx) + dy2);
-        }
+        geom_row(&src, &rb, W, dy, dy2);
         st->tap2(&ka, (uint32_t)W);
         if (!st->cfg.taa) {
             /* b = 256 from the kernel (most pixels): Q8 -> 8 bits; the rest through px_colour */
