@@ -706,10 +706,11 @@ tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8
         return TDC_ERR_ARG;
     }
     /* tap descriptors hold byte offsets below 2^31 (tdc_fov_kernels.h) */
-    const size_t lp_bytes = (size_t)(p->lp_h - 1u) * lp_stride + (size_t)p->lp_w * 3u;
-    if (lp_stride > ((size_t)1 << 31) || lp_bytes >= ((size_t)1 << 31)) {
+    const uint64_t lp_bytes64 = (uint64_t)(p->lp_h - 1u) * (uint64_t)lp_stride + (uint64_t)p->lp_w * 3u; /* no wrap */
+    if (lp_bytes64 >= ((uint64_t)1 << 31)) {
         return TDC_ERR_ARG;
     }
+    const size_t lp_bytes = (size_t)lp_bytes64;
     const int32_t W = g.width, H = g.height;
     fov_src_t src = {&g, lp, lp_stride, st->rad, 0, st->colinv, 0, 0, 0, (int32_t)g.r_disk_q8 - TDC_FOV_BLEND_Q8, 0,
                      (uint32_t)g.u0 * 3u, st->cfg.taa};

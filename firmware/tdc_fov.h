@@ -204,7 +204,9 @@ void tdc_fov_reset(tdc_fov_t *st);
  *         disk_stride); may be the same buffer as out (each pixel is read
  *         before it is written).
  *   dt_us: this frame's time, for eq. 4.7 (TAA only; 0 = as the last one).
- * TDC_ERR_ARG / TDC_ERR_SIZE as tdc_fov_geom, or a geometry larger than the config. */
+ * TDC_ERR_ARG / TDC_ERR_SIZE as tdc_fov_geom, or a geometry larger than the config;
+ * TDC_ERR_ARG for a stride too small or a log-polar buffer spanning 2^31 bytes or
+ * more ((lp_h - 1) lp_stride + 3 lp_w: the tap descriptors hold byte offsets). */
 TDC_MUST_CHECK tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8_t *lp, size_t lp_stride,
                                           const int16_t *mv, size_t mv_stride, const uint8_t *disk, size_t disk_stride,
                                           uint32_t dt_us, uint8_t *out, size_t out_stride);

@@ -314,6 +314,8 @@ static void test_bad_input(void **state)
     p = ok;
     assert_int_equal(tdc_fov_frame(&st, &p, lp, 65, NULL, 0, dk, W * 3, 0, out, W * 3), TDC_ERR_ARG); /* stride */
     assert_int_equal(tdc_fov_frame(&st, &p, NULL, 66, NULL, 0, dk, W * 3, 0, out, W * 3), TDC_ERR_ARG);
+    /* a log-polar buffer of 2^31 bytes or more (the tap descriptors' offsets): refused, never read */
+    assert_int_equal(tdc_fov_frame(&st, &p, lp, (size_t)1 << 29, NULL, 0, dk, W * 3, 0, out, W * 3), TDC_ERR_ARG);
     assert_memory_equal(out, before, sizeof out); /* nothing written on a refusal */
     assert_int_equal(st.frames, 0);
     /* gaze exactly one screen outside is accepted */
