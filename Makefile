@@ -98,7 +98,7 @@ deps:
 # Generated tables: one C file + config header per panel profile.
 # ---------------------------------------------------------------------------
 TABLEGEN := $(BUILD)/tools/tdc-tablegen
-$(TABLEGEN): hosttools/tablegen/tdc_tablegen.c hosttools/common/tdc_tool.c $(wildcard hosttools/tablegen/*.h) \
+$(TABLEGEN): hosttools/tablegen/tdc_tablegen.c hosttools/common/tdc_tool.c firmware/tdc_math.c $(wildcard hosttools/tablegen/*.h) \
              hosttools/common/tdc_tool.h | $(BUILD)/tools
 	gcc -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror -O2 -Ifirmware -Ihosttools/common $(filter %.c,$^) -o $@ -lm
 

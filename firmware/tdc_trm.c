@@ -200,7 +200,7 @@ tdc_status_t tdc_trm_init(tdc_trm_t *st, const tdc_trm_config_t *cfg, const tdc_
     trm_build_kernels(cfg->height, st->rh, cfg->sigma_q8, st->dtaps, st->dy_first, st->dy_w);
     trm_build_upsample(cfg->width, st->rw, st->ux_i);
     trm_build_upsample(cfg->height, st->rh, st->uy_i);
-    tdc_trm_wexp_build(st->wexp); /* for the per-pixel weight (tdc_trm_weight) */
+    st->wexp = tdc_trm_wexp_q30; /* for the per-pixel weight (tdc_trm_weight); const, generated */
     st->enc_one_step = 0;
     if (st->simd && st->enc_comb) {
         st->enc_one_step = (uint8_t)tdc_trm_avx2_build_encode(panel, st->enc_comb);

@@ -82,7 +82,6 @@
     X(dy_w, uint16_t, (size_t)(RH) * (TAPS))                                                           \
     X(ux_i, uint16_t, (size_t)(W)*2u) /* U tables (index, fraction) */                                 \
     X(uy_i, uint16_t, (size_t)(H)*2u)                                                                  \
-    X(wexp, uint32_t, (size_t)TDC_TRM_WEXP_ENTRIES)  /* exp(-x) table */                               \
     X(enc_comb, uint8_t, (size_t)TDC_TRM_SIMD_BYTES) /* AVX2 encode index (0 on boards) */
 
 /*
@@ -161,7 +160,7 @@ typedef struct {
     uint16_t *ux_f;       /* W: bilinear fraction Q14 */
     uint16_t *uy_i;       /* H */
     uint16_t *uy_f;       /* H */
-    uint32_t *wexp;       /* TDC_TRM_WEXP_ENTRIES: exp(-k/256) in Q30 */
+    const uint32_t *wexp; /* tdc_trm_wexp_q30: exp(-k/256) in Q30, const (generated) */
     uint8_t *enc_comb;    /* TDC_TRM_SIMD_BYTES: AVX2 encode index (NULL without) */
     uint8_t enc_one_step; /* enc_comb needs at most one threshold step */
     const tdc_trm_gaze_t *gaze; /* tdc_trm_set_gaze(); NULL (init's default): today's bytes */

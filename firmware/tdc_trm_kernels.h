@@ -41,16 +41,21 @@ typedef struct {
 } tdc_trm_rowctx_t;
 
 /* Builds the row context from its parts: panel's gamma tables, the U table
- * ux, the exp table wexp (tdc_trm_wexp_build), the row width, s, and the
+ * ux, the exp table wexp (tdc_trm_wexp_q30), the row width, s, and the
  * AVX2 encode index (3 x TDC_TRM_ENC_COMB bytes, tdc_trm_avx2_build_encode;
  * NULL without).  tdc_trm.c builds one per frame from its state; checkasm
  * builds them from its own random tables: one builder, no copy. */
 void tdc_trm_rowctx_init(tdc_trm_rowctx_t *k, const tdc_panel_t *panel, const uint16_t *ux, const uint32_t *wexp,
                          uint32_t width, uint32_t s_q8, const uint8_t *enc_comb, uint32_t enc_one_step);
 
-/* exp(-x) at x = k / 256 in Q30, k < TDC_TRM_WEXP_ENTRIES, from the exact
- * helper (the table of tdc_trm_weight_q15; generated, never typed). */
-void tdc_trm_wexp_build(uint32_t *wexp);
+/* exp(-x) at x = k / 256 in Q30, k < TDC_TRM_WEXP_ENTRIES: the table of
+ * tdc_trm_weight_q15, const (flash on a board, shared by both eyes).  It is
+ * generated at build time by `tdc-tablegen --trm` from the firmware's own
+ * tdc_exp_neg_q16_q30(k << 8), so it holds exactly the values the stage built
+ * into each eye's arena at every stream start until session 6 (17,412 B of
+ * RAM per eye, and 35 % of a fuzz_frameloop execution); test_trm checks every
+ * entry against that function. */
+extern const uint32_t tdc_trm_wexp_q30[TDC_TRM_WEXP_ENTRIES];
 
 typedef struct {
     uint32_t hi, lo; /* pixel-channels with beta > 1, beta < 0 */

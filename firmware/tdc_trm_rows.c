@@ -23,12 +23,8 @@ void tdc_trm_rowctx_init(tdc_trm_rowctx_t *k, const tdc_panel_t *panel, const ui
     k->enc_one_step = enc_one_step;
 }
 
-void tdc_trm_wexp_build(uint32_t *wexp)
-{
-    for (uint32_t k = 0; k < TDC_TRM_WEXP_ENTRIES; k++) {
-        wexp[k] = tdc_exp_neg_q16_q30(k << 8);
-    }
-}
+/* tdc_trm_wexp_q30[]: defined by the generated header, in this file only. */
+#include "tdc_trm_tables.h"
 
 /* Half an output code in code Q16: the quantisation of a reduced frame. */
 #define TDC_TRM_HALF_CODE_Q16 (1u << 15)

@@ -82,7 +82,23 @@ typedef struct {
                               [AMNA*19]), default 1; 0: point-sampled as before */
     int indirect;          /* one diffuse indirect bounce per sample, 6-cone record (Zeng §4.3), default 0 */
     int indirect_reuse;    /* FULL frames: reuse the previous frame's cones at the dual MV (eqs. 9-11), default 0 */
+    int fov_lod;           /* FOVEATED, with tex_filter: texture LOD of each log-polar sample (thesis
+                              §4.1.2, eqs. 4.1-4.3; tdc_render_fov.c): TDC_FOV_LOD_FOOTPRINT (default), _THESIS
+                              or _OFF (one display pixel's cone, as before) */
 } tdc_render_config_t;
+
+/* cfg.fov_lod: the cone of a log-polar sample is one display pixel's times
+ *  OFF        1;
+ *  FOOTPRINT  the sample's cell on the display, max(1, the longer side of
+ *             eq. 2.3's cell: radial r L alpha (u/w)^(alpha-1) / w, tangential
+ *             2 pi r / h, in display pixels per buffer texel): the texture is
+ *             box-filtered over what the sample stands for, so the periphery
+ *             does not alias before eq. 4.4 blurs it;
+ *  THESIS     2^phi with the thesis's heuristic bias phi = 3 S1((u/w)^alpha)^3
+ *             (eq. 4.3, S1 = smoothstep on [0, 1]); without its base bias 0.3
+ *             of eq. 4.2, which our full-rate frames do not have either.
+ * Disk samples keep one pixel's cone in every mode. */
+enum { TDC_FOV_LOD_OFF = 0, TDC_FOV_LOD_FOOTPRINT = 1, TDC_FOV_LOD_THESIS = 2 };
 
 /* Caller-owned outputs; any pointer may be NULL (that output is not
  * written).  Sizes: n = output pixels (or tiles) of the mode.  FULL and
@@ -166,6 +182,11 @@ void tdc_render_set_record(tdc_render_t *r, int on);
 void tdc_render_set_jitter(tdc_render_t *r, double jx, double jy);
 /* Reflected MVs at mirror hits (TDRT §3.1.2) on or off for the following frames (cfg.reflect_mv). */
 void tdc_render_set_reflect_mv(tdc_render_t *r, int on);
+/* cfg.fov_lod (TDC_FOV_LOD_*) from the next tdc_render_set_foveation on. */
+void tdc_render_set_fov_lod(tdc_render_t *r, int mode);
+/* The ray cone of FOVEATED sample k (output order: log-polar, then disk) in
+ * display pixels' cones (cfg.fov_lod); 0 for k out of range. */
+float tdc_render_fov_cone(const tdc_render_t *r, int k);
 /* Seed of every random number of the following frames (cfg.seed): glossy
  * lobe samples, area-light samples, ground-truth and reduced-frame
  * stratification, the indirect bounce. */

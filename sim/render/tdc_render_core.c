@@ -19,6 +19,7 @@ void tdc_render_default_config(tdc_render_config_t *cfg)
     cfg->max_bounces = 3;
     cfg->reflect_mv = 1;
     cfg->tex_filter = 1;
+    cfg->fov_lod = TDC_FOV_LOD_FOOTPRINT;
     cfg->reduced_factor = 0.5;
     cfg->reduced_ss = 2;
     cfg->reduced_sigma = 2.5;
@@ -212,6 +213,7 @@ void tdc_render_close(tdc_render_t *r)
     free(r->pattern);
     free(r->rec);
     free(r->fov_xy);
+    free(r->fov_cone);
     free(r->cone_hist[0]);
     free(r->cone_hist[1]);
     for (int i = 0; i < 64; i++) free(r->sbuf[i]);
@@ -260,6 +262,11 @@ void tdc_render_set_jitter(tdc_render_t *r, double jx, double jy)
 void tdc_render_set_reflect_mv(tdc_render_t *r, int on)
 {
     r->cfg.reflect_mv = on != 0;
+}
+
+void tdc_render_set_fov_lod(tdc_render_t *r, int mode)
+{
+    r->cfg.fov_lod = mode; /* read by the next tdc_render_set_foveation */
 }
 
 void tdc_render_set_seed(tdc_render_t *r, uint32_t seed)

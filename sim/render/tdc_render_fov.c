@@ -22,6 +22,24 @@ void tdc_render_halton(uint32_t f, double *jx, double *jy)
     *jy = hy - 0.5;
 }
 
+/* The cone of a log-polar sample in display pixels' cones (cfg.fov_lod,
+ * tdc_render.h): at radius rad of eq. 2.3, r = e^(L un^alpha) with un = u/w,
+ * one buffer column spans dr/du = r L alpha un^(alpha-1) / w display pixels
+ * radially and one buffer row 2 pi r / h tangentially. */
+static double lod_cone(int mode, double rad, double L, double alpha, double un, int w, int h)
+{
+    if (mode == TDC_FOV_LOD_FOOTPRINT) {
+        const double radial = rad * L * alpha * pow(un, alpha - 1) / w, tang = 2 * M_PI * rad / h;
+        const double side = radial > tang ? radial : tang;
+        return side > 1 ? side : 1;
+    }
+    if (mode == TDC_FOV_LOD_THESIS) {
+        const double x = fmin(fmax(pow(un, alpha), 0), 1), s1 = x * x * (3 - 2 * x); /* S1 */
+        return exp2(3 * s1 * s1 * s1);
+    }
+    return 1;
+}
+
 int tdc_render_set_foveation(tdc_render_t *r, const tdc_render_fov_t *f, int *lp_samples, int *disk_pixels)
 {
     if (!r || !f || !(f->delta > 0 && f->delta <= 1) || !(f->alpha >= 1 && f->alpha <= 8) ||
@@ -39,6 +57,9 @@ int tdc_render_set_foveation(tdc_render_t *r, const tdc_render_fov_t *f, int *lp
     float *xy = realloc(r->fov_xy, (size_t)(nlp + nd > 0 ? nlp + nd : 1) * 2 * sizeof(float));
     if (!xy) return -1;
     r->fov_xy = xy;
+    float *cone = realloc(r->fov_cone, (size_t)(nlp + nd > 0 ? nlp + nd : 1) * sizeof(float));
+    if (!cone) return -1;
+    r->fov_cone = cone;
     /* eq. 2.3 with the exact inverse: r = e^(L (u / w)^alpha), theta = 2 pi v / h */
     const double cx = p.gaze_x_q8 / 256.0, cy = p.gaze_y_q8 / 256.0, alpha = p.alpha_q8 / 256.0;
     const double ex = fmax(cx, r->W - cx), ey = fmax(cy, r->H - cy), L = log(sqrt(ex * ex + ey * ey));
@@ -51,6 +72,7 @@ int tdc_render_set_foveation(tdc_render_t *r, const tdc_render_fov_t *f, int *lp
             const double rad = exp(L * pow(u / g.lp_w, alpha));
             xy[2 * k] = (float)(cx + rad * c);
             xy[2 * k + 1] = (float)(cy + rad * s);
+            cone[k] = (float)lod_cone(r->cfg.fov_lod, rad, L, alpha, u / g.lp_w, g.lp_w, g.lp_h);
             k++;
         }
     }
@@ -60,6 +82,7 @@ int tdc_render_set_foveation(tdc_render_t *r, const tdc_render_fov_t *f, int *lp
         for (uint32_t i = 0; i < n; i++) {
             xy[2 * k] = (float)(x0 + (int32_t)i + 0.5);
             xy[2 * k + 1] = (float)(j + 0.5);
+            cone[k] = 1.0f;
             k++;
         }
     }
@@ -78,8 +101,16 @@ int tdc_render_set_samples(tdc_render_t *r, const double *xy, int n)
     float *p = realloc(r->fov_xy, (size_t)n * 2 * sizeof(float));
     if (!p) return -1;
     r->fov_xy = p;
+    free(r->fov_cone); /* arbitrary positions: one display pixel's cone each */
+    r->fov_cone = NULL;
     for (int i = 0; i < 2 * n; i++) p[i] = (float)xy[i];
     r->fov_n = n;
     r->fov_lp = 0;
     return 0;
+}
+
+float tdc_render_fov_cone(const tdc_render_t *r, int k)
+{
+    if (!r || k < 0 || k >= r->fov_n) return 0;
+    return r->fov_cone ? r->fov_cone[k] : 1.0f;
 }

@@ -361,6 +361,8 @@ static void *worker_main(void *arg)
         if (ti >= ntiles) break;
         rsample_t *s = w->s;
         int n = place_samples(jb, ti % jb->ntx, ti / jb->ntx, s);
+        for (int i = 0; i < n; i++) /* the sample's ray cone (FOVEATED: its log-polar LOD) */
+            s[i].cone_k = jb->mode == TDC_RENDER_FOVEATED && jb->r->fov_cone ? jb->r->fov_cone[s[i].dst] : 1.0f;
         uint64_t t_ = stamp();
         TIMED(th, TDC_STAGE_PRIMARY, tdc_r_pass_primary(th, s, n));
         TIMED(th, TDC_STAGE_SHADE, tdc_r_pass_shade(th, s, n));
@@ -683,6 +685,7 @@ int tdc_render_probe(tdc_render_t *r, uint32_t frame, double x, double y, tdc_re
     s.y = (float)y;
     s.px = (int)floor(x); /* same random-number key as a frame's sample in this pixel */
     s.py = (int)floor(y);
+    s.cone_k = 1.0f; /* one display pixel's cone */
     tdc_r_pass_primary(&th, &s, 1);
     tdc_r_pass_shade(&th, &s, 1);
     if (r->feat.mirrors && r->cfg.max_bounces > 0) tdc_r_pass_reflect(&th, &s, 1);

@@ -58,10 +58,9 @@ void tdc_r_pass_indirect(rthread_t *t, rsample_t *s, int n)
         double L[3];
         tdc_r_trace_local(t, a->P, a->N, d, a, 16u, L);
         double base[3];
-        double fw = t->cone > 0 ? tdc_r_tex_footprint(t->cone, a->hit_t * sqrt(a->dir[0] * a->dir[0] + a->dir[1] * a->dir[1] +
-                                                                         a->dir[2] * a->dir[2]),
-                                                      a->dir, a->NQ, t->cur->minv[a->obj])
-                                : 0; /* the primary hit's footprint, as in the shade pass */
+        /* the primary hit's footprint, as in the shade pass */
+        double fw = tdc_r_sample_fw(t, a, a->hit_t * sqrt(a->dir[0] * a->dir[0] + a->dir[1] * a->dir[1] + a->dir[2] * a->dir[2]),
+                                    a->dir, a->NQ, t->cur->minv[a->obj]);
         tdc_r_base_color(r, o, a->Q, a->NQ, fw, base);
         double alb[3] = {kd * base[0], kd * base[1], kd * base[2]};
         double ind[3] = {alb[0] * L[0], alb[1] * L[1], alb[2] * L[2]};

@@ -93,6 +93,7 @@ struct tdc_render {
     void *sbuf[64];        /* per-thread sample buffers, kept between frames */
     size_t sbuf_cap[64];   /* in samples */
     float *fov_xy;         /* FOVEATED: sample positions, fov_n x 2 */
+    float *fov_cone;       /* FOVEATED: each sample's cone in display pixels (>= 1, cfg.fov_lod), fov_n */
     int fov_n, fov_lp;     /* samples, of which log-polar */
     tdc_render_ray_t *rec; /* recorded rays (merged) */
     size_t nrec;

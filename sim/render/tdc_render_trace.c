@@ -617,9 +617,7 @@ void tdc_r_pass_shade(rthread_t *t, rsample_t *s, int n)
         }
         const tdc_object_t *o = &sc->objects[a->obj];
         const tdc_material_t *m = &sc->materials[o->material];
-        t->tex_fw = t->cone > 0 ? tdc_r_tex_footprint(t->cone, a->hit_t * sqrt(dot3(a->dir, a->dir)), a->dir, a->NQ,
-                                                      t->cur->minv[a->obj])
-                                : 0;
+        t->tex_fw = tdc_r_sample_fw(t, a, a->hit_t * sqrt(dot3(a->dir, a->dir)), a->dir, a->NQ, t->cur->minv[a->obj]);
         if (uv_first[a->obj]) /* the texture colour at the coordinates computed above */
             tdc_r_tex_color(t->r, o, a->tu, a->tv, t->tex_fw, a->col);
         else if (m->unlit) /* the texture colour: no call into the lighting code */
@@ -764,7 +762,7 @@ void tdc_r_pass_reflect(rthread_t *t, rsample_t *s, int n)
             }
             surface_rh(t->cur, &rh, h, O, d, P, Q, N, NQ, &wc);
             dist += rh.ray.tfar * sqrt(dot3(d, d));
-            t->tex_fw = t->cone > 0 ? tdc_r_tex_footprint(t->cone, dist, d, NQ, t->cur->minv[h]) : 0;
+            t->tex_fw = tdc_r_sample_fw(t, a, dist, d, NQ, t->cur->minv[h]);
             double loc[3];
             shade_direct(t, h, P, Q, N, NQ, rng_key(a), a->k, 4u * (uint32_t)(b + 1), NULL, loc, NULL, -1, NULL);
             double m2 = sc->materials[sc->objects[h].material].mirror;

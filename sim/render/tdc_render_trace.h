@@ -19,6 +19,7 @@ typedef struct {
     int obj;                                  /* primary hit object, -1 = miss */
     int in_shadow, nmir, mv_valid, refl_used; /* flags: tracked shadow, mirror chain length, MV */
     float hit_t, hit_ng[3];                   /* Embree's primary hit: ray parameter, raw object-space normal */
+    float cone_k; /* this sample's ray cone in display pixels' cones (FOVEATED: cfg.fov_lod; else 1) */
     double dir[3];                            /* primary direction (not normalised, see tdc_r_cam_ray) */
     double P[3], Q[3];                        /* hit: world, object space */
     double N[3], NQ[3];                       /* normal: world (facing the ray), object space (raw) */
@@ -99,6 +100,15 @@ void tdc_r_pass_mv_shadow(rthread_t *t, rsample_t *s, int n);
 void tdc_r_pass_mv_dual(rthread_t *t, rsample_t *s, int n);
 void tdc_r_pass_indirect(rthread_t *t, rsample_t *s, int n);
 /* Random-number key of a sample: its pixel (same light samples in every mode and in probes). */
+/* Texture footprint of sample a's cone after dist along d on a surface of
+ * object-space normal NQ (tdc_r_tex_footprint), with the sample's own cone
+ * (cone_k: the FOVEATED log-polar LOD); 0 with point-sampled textures. */
+static inline double tdc_r_sample_fw(const rthread_t *t, const rsample_t *a, double dist, const double d[3],
+                                     const double NQ[3], const double *minv)
+{
+    return t->cone > 0 ? tdc_r_tex_footprint(t->cone * a->cone_k, dist, d, NQ, minv) : 0;
+}
+
 static inline uint32_t tdc_r_rng_key(const rsample_t *a)
 {
     return (uint32_t)a->py * 65536u + (uint32_t)a->px;

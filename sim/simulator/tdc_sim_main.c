@@ -62,6 +62,9 @@ static void usage(FILE *f)
             "                          default 0): another stretch of the animation, another content\n"
             "      --no-reflect-mv     renderer: primary MVs at mirror hits instead of reflected MVs\n"
             "                          (TDRT §3.1.2, Figs. 5-6)\n"
+            "      --fov-lod MODE      renderer, fov modes: texture LOD of the log-polar samples (thesis\n"
+            "                          §4.1.2): footprint (default; the sample's display cell), thesis\n"
+            "                          (eq. 4.3's bias 3 S1(u^alpha)^3), off (one display pixel)\n"
             "  -d, --duration S        simulated seconds (default 0.5)\n"
             "  -n, --frames N          simulated refreshes (overrides --duration)\n"
             "  -w, --window N          fused window in refreshes (default 2 below 200 Hz, else 4)\n"
@@ -218,6 +221,7 @@ int main(int argc, char **argv)
         O_IPD,
         O_START,
         O_NOREFLMV,
+        O_FOVLOD,
         O_TIMES,
         O_IMAGE,
         O_ZOOM,
@@ -270,6 +274,7 @@ int main(int argc, char **argv)
                                          {"ipd", required_argument, 0, O_IPD},
                                          {"start-frame", required_argument, 0, O_START},
                                          {"no-reflect-mv", no_argument, 0, O_NOREFLMV},
+                                         {"fov-lod", required_argument, 0, O_FOVLOD},
                                          {"times", no_argument, 0, O_TIMES},
                                          {"image", required_argument, 0, O_IMAGE},
                                          {"zoom", required_argument, 0, O_ZOOM},
@@ -300,6 +305,7 @@ int main(int argc, char **argv)
     double disparity = 4.0, ipd = 0.063;
     long start_frame = 0;
     int reflect_mv = 1;
+    int fov_lod = TDC_FOV_LOD_FOOTPRINT;
     long frames = -1;
     double v;
     int c;
@@ -355,6 +361,18 @@ int main(int argc, char **argv)
             start_frame = (long)v;
             break;
         case O_NOREFLMV: reflect_mv = 0; break;
+        case O_FOVLOD:
+            if (!strcmp(optarg, "footprint")) {
+                fov_lod = TDC_FOV_LOD_FOOTPRINT;
+            } else if (!strcmp(optarg, "thesis")) {
+                fov_lod = TDC_FOV_LOD_THESIS;
+            } else if (!strcmp(optarg, "off")) {
+                fov_lod = TDC_FOV_LOD_OFF;
+            } else {
+                fprintf(stderr, "tdc-sim: --fov-lod: %s is not footprint, thesis or off\n", optarg);
+                return TDC_EXIT_ARGS;
+            }
+            break;
         case O_IMAGE: image = optarg; break;
         case O_ZOOM:
             if (parse_num(optarg, 1e-3, 1e3, &im.zoom, "zoom")) {
@@ -708,7 +726,7 @@ int main(int argc, char **argv)
                 }
                 return image_exit(err);
             }
-            tdc_sim_render_options(s, start_frame, reflect_mv, cfg.seed);
+            tdc_sim_render_options(s, start_frame, reflect_mv, fov_lod, cfg.seed);
             if (e) {
                 cfg.right = s;
             } else {

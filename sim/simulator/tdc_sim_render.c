@@ -112,12 +112,14 @@ static int rs_full(tdc_source_t *s, double t, double dt, uint8_t *rgb, int16_t *
     return 0;
 }
 
-void tdc_sim_render_options(tdc_source_t *s, long start_frame, int reflect_mv, uint32_t seed)
+void tdc_sim_render_options(tdc_source_t *s, long start_frame, int reflect_mv, int fov_lod, uint32_t seed)
 {
     rsrc_t *c = s->ctx;
     c->f0 = start_frame;
     c->cfg.reflect_mv = reflect_mv ? 1 : 0;
     tdc_render_set_reflect_mv(c->r, c->cfg.reflect_mv);
+    c->cfg.fov_lod = fov_lod;
+    tdc_render_set_fov_lod(c->r, fov_lod);
     /* the per-mode renderers (rs_slot) open later from c->cfg */
     c->cfg.seed = seed;
     tdc_render_set_seed(c->r, seed);
@@ -573,9 +575,9 @@ tdc_source_t *tdc_sim_render_source(const char *name, int w, int h, int clock_hz
 
 #else
 
-void tdc_sim_render_options(tdc_source_t *s, long start_frame, int reflect_mv, uint32_t seed)
+void tdc_sim_render_options(tdc_source_t *s, long start_frame, int reflect_mv, int fov_lod, uint32_t seed)
 {
-    (void)s, (void)start_frame, (void)reflect_mv, (void)seed;
+    (void)s, (void)start_frame, (void)reflect_mv, (void)fov_lod, (void)seed;
 }
 
 tdc_source_t *tdc_sim_render_source(const char *name, int w, int h, int clock_hz, int gt_samples, int threads,

@@ -11,6 +11,7 @@
 
 #include <stddef.h>
 
+#include "render/tdc_render.h" /* TDC_FOV_LOD_* (header only: no Embree needed) */
 #include "simulator/tdc_sim_scene.h"
 
 /* name: a built-in renderer scene (discs text panorama room mirror fence
@@ -24,6 +25,6 @@ tdc_source_t *tdc_sim_render_source(const char *name, int w, int h, int clock_hz
  * at mirror hits on (1, the default) or off (primary MVs, TDRT Fig. 6 left),
  * and the renderer's seed (tdc-sim -S: every random number of the renderer,
  * i.e. glossy and area-light samples and the ground truth's stratification). */
-void tdc_sim_render_options(tdc_source_t *s, long start_frame, int reflect_mv, uint32_t seed);
+void tdc_sim_render_options(tdc_source_t *s, long start_frame, int reflect_mv, int fov_lod, uint32_t seed);
 
 #endif

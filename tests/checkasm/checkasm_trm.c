@@ -22,7 +22,6 @@
 #define MAXW 1500u
 #define URW (MAXW + 1u) /* reduced columns + the duplicate */
 
-static uint32_t wexp[TDC_TRM_WEXP_ENTRIES];
 static uint16_t ux[2u * MAXW];
 static uint32_t urow_a[3u * URW], urow_b[3u * URW];
 static uint8_t src[3u * MAXW];
@@ -47,7 +46,6 @@ static void tables_once(void)
         return;
     }
     done = 1;
-    tdc_trm_wexp_build(wexp);
     for (unsigned p = 0; p < NPANELS; p++) {
         one_step[p] = tdc_trm_avx2_build_encode(panels[p], comb[p]);
     }
@@ -55,7 +53,7 @@ static void tables_once(void)
 
 static void set_ctx(tdc_trm_rowctx_t *k, unsigned p, uint32_t width, uint32_t s_q8, int force_scan)
 {
-    tdc_trm_rowctx_init(k, panels[p], ux, wexp, width, s_q8, comb[p], force_scan ? 0u : (uint32_t)one_step[p]);
+    tdc_trm_rowctx_init(k, panels[p], ux, tdc_trm_wexp_q30, width, s_q8, comb[p], force_scan ? 0u : (uint32_t)one_step[p]);
 }
 
 /* One row of inputs.  mode 0 random, 1 extremes, 2 mostly static (the

@@ -9,7 +9,12 @@
  *     ray through its eq. 2.3 position;
  *   - the gaze moves per frame (the sample set follows it);
  *   - remapped by tdc_fov_frame, the disk interior is exactly the FULL
- *     frame and the periphery stays close to it (mean error reported).
+ *     frame and the periphery stays close to it (mean error reported);
+ *   - texture LOD of the log-polar samples (thesis §4.1.2, cfg.fov_lod):
+ *     the footprint cone equals the cell of eq. 2.3 measured by finite
+ *     differences of the sample positions, disk samples keep one pixel's
+ *     cone, the thesis's eq. 4.3 bias runs 1 -> 8 with u, and the LOD changes
+ *     only samples whose cone grew (the others stay bit-identical).
  */
 #include <math.h>
 #include <setjmp.h>
@@ -45,6 +50,7 @@ static tdc_render_t *open_builtin(const char *name)
 static void run_scene(const char *name)
 {
     tdc_render_t *r = open_builtin(name);
+    tdc_render_set_fov_lod(r, TDC_FOV_LOD_OFF); /* samples == probes (one pixel's cone) */
     float *full = malloc(W * H * 3 * sizeof(float));
     int16_t *fmv = malloc(W * H * 2 * sizeof(int16_t));
     float *samp = malloc(W * H * 3 * sizeof(float));
@@ -152,6 +158,87 @@ static void test_foveated_scenes(void **state)
     run_scene("mirror");
 }
 
+/* eq. 2.3's screen position of buffer coordinates (u, v) (columns, rows). */
+static void lp_pos(double cx, double cy, double L, double alpha, int w, int h, double u, double v, double *x, double *y)
+{
+    const double rad = exp(L * pow(fmax(u, 0) / w, alpha)), th = 2 * M_PI * v / h;
+    *x = cx + rad * cos(th);
+    *y = cy + rad * sin(th);
+}
+
+static void test_fov_lod(void **state)
+{
+    (void)state;
+    tdc_render_t *r = open_builtin("panorama");
+    tdc_render_fov_t fv = {W * 0.4, H * 0.55, 4, 0.555, 0.12443, 0.25, -0.125};
+    const int modes[3] = {TDC_FOV_LOD_OFF, TDC_FOV_LOD_FOOTPRINT, TDC_FOV_LOD_THESIS};
+    float *samp[3];
+    int nlp = 0, nd = 0;
+    double cmax[3] = {0, 0, 0};
+    tdc_fov_params_t p = {(int32_t)lround(fv.gaze_x * 256), (int32_t)lround(fv.gaze_y * 256), 1024, 4077,
+                          (uint16_t)(W * 555 / 1000),       (uint16_t)(H * 555 / 1000)};
+    tdc_fov_geom_t g;
+    assert_int_equal(tdc_fov_geom(&g, W, H, &p), TDC_OK);
+    const double cx = p.gaze_x_q8 / 256.0, cy = p.gaze_y_q8 / 256.0;
+    const double ex = fmax(cx, W - cx), ey = fmax(cy, H - cy), L = log(sqrt(ex * ex + ey * ey));
+    for (int m = 0; m < 3; m++) {
+        tdc_render_set_fov_lod(r, modes[m]);
+        assert_int_equal(tdc_render_set_foveation(r, &fv, &nlp, &nd), 0);
+        int k = 0;
+        double prev_u_cone = 0;
+        for (int j = 0; j < g.lp_h; j++)
+            for (int i = g.u0; i < g.lp_w; i++, k++) {
+                const double c = tdc_render_fov_cone(r, k), u = i + fv.jx, v = j + fv.jy;
+                assert_true(c >= 1);
+                cmax[m] = fmax(cmax[m], c);
+                if (modes[m] == TDC_FOV_LOD_OFF) {
+                    assert_true(c == 1);
+                } else if (modes[m] == TDC_FOV_LOD_FOOTPRINT) {
+                    /* the cell's longer side by central differences of the positions */
+                    double x0, y0, x1, y1, x2, y2, x3, y3;
+                    lp_pos(cx, cy, L, 4, g.lp_w, g.lp_h, u - 0.01, v, &x0, &y0);
+                    lp_pos(cx, cy, L, 4, g.lp_w, g.lp_h, u + 0.01, v, &x1, &y1);
+                    lp_pos(cx, cy, L, 4, g.lp_w, g.lp_h, u, v - 0.01, &x2, &y2);
+                    lp_pos(cx, cy, L, 4, g.lp_w, g.lp_h, u, v + 0.01, &x3, &y3);
+                    const double dr = hypot(x1 - x0, y1 - y0) / 0.02, dt = hypot(x3 - x2, y3 - y2) / 0.02;
+                    const double want = fmax(1, fmax(dr, dt));
+                    if (!(fabs(c - want) <= 1e-3 * want))
+                        fail_msg("footprint cone of (%d, %d): %g, finite differences %g", i, j, c, want);
+                } else if (j == 0) { /* thesis: 2^(3 S1((u/w)^alpha)^3), non-decreasing in u, in [1, 8] */
+                    assert_true(c >= prev_u_cone && c <= 8);
+                    prev_u_cone = c;
+                }
+            }
+        for (; k < nlp + nd; k++) assert_true(tdc_render_fov_cone(r, k) == 1); /* disk: one pixel */
+        assert_true(tdc_render_fov_cone(r, nlp + nd) == 0);                   /* out of range */
+        int ow, oh;
+        tdc_render_output_size(r, TDC_RENDER_FOVEATED, &ow, &oh);
+        samp[m] = malloc((size_t)ow * 3 * sizeof(float));
+        tdc_render_out_t so = {.rgb = samp[m]};
+        tdc_render_stats_t st;
+        assert_int_equal(tdc_render_frame(r, 4, TDC_RENDER_FOVEATED, &so, &st), 0);
+    }
+    assert_true(cmax[1] > 4 && cmax[2] > 7); /* the periphery's cells are large at alpha 4 */
+    /* the LOD changes exactly the samples whose cone grew, and some of them (textured surfaces) */
+    tdc_render_set_fov_lod(r, TDC_FOV_LOD_FOOTPRINT);
+    assert_int_equal(tdc_render_set_foveation(r, &fv, &nlp, &nd), 0);
+    int changed = 0, same_cone_changed = 0;
+    for (int k = 0; k < nlp + nd; k++) {
+        const int differs = memcmp(&samp[0][3 * k], &samp[1][3 * k], 3 * sizeof(float)) != 0;
+        if (tdc_render_fov_cone(r, k) == 1)
+            same_cone_changed += differs;
+        else
+            changed += differs;
+    }
+    printf("  fov LOD: footprint cone up to %.1f px (thesis %.1f); %d of %d log-polar samples changed, %d with one "
+           "pixel's cone\n",
+           cmax[1], cmax[2], changed, nlp, same_cone_changed);
+    assert_int_equal(same_cone_changed, 0);
+    assert_true(changed > 0);
+    for (int m = 0; m < 3; m++) free(samp[m]);
+    tdc_render_close(r);
+}
+
 static void test_bad_foveation(void **state)
 {
     (void)state;
@@ -171,6 +258,7 @@ static void test_bad_foveation(void **state)
 
 int main(void)
 {
-    const struct CMUnitTest tests[] = {cmocka_unit_test(test_foveated_scenes), cmocka_unit_test(test_bad_foveation)};
+    const struct CMUnitTest tests[] = {cmocka_unit_test(test_foveated_scenes), cmocka_unit_test(test_fov_lod),
+                                       cmocka_unit_test(test_bad_foveation)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -55,7 +55,7 @@ static void run_glossy(uint32_t seed, tdc_sim_result_t *r, double *speed)
     if (!src) {
         fail_msg("%s", err);
     }
-    tdc_sim_render_options(src, 0, 1, seed);
+    tdc_sim_render_options(src, 0, 1, TDC_FOV_LOD_FOOTPRINT, seed);
     double v[2];
     src->pursuit(src, 0.0, v);
     *speed = hypot(v[0], v[1]) / HZ; /* px per refresh */

@@ -12,6 +12,8 @@
 #include <cmocka.h>
 
 #include "golden/tdc_content.h"
+#include "tdc_math.h"
+#include "tdc_trm_kernels.h"
 #include "trm_fixture.h"
 
 static void test_config_errors(void **state)
@@ -233,6 +235,20 @@ static void test_weight_accuracy(void **state)
     trm_fix_close(&f);
 }
 
+/* The generated weight table (tdc-tablegen --trm) holds exactly the values
+ * of the firmware's exact helper, which the stage computed at init before
+ * the table was generated (so every TRM golden vector is unchanged). */
+static void test_weight_table_generated(void **state)
+{
+    (void)state;
+    uint32_t bad = 0;
+    for (uint32_t k = 0; k < TDC_TRM_WEXP_ENTRIES; k++) {
+        bad += tdc_trm_wexp_q30[k] != tdc_exp_neg_q16_q30(k << 8);
+    }
+    assert_int_equal(bad, 0);
+    assert_int_equal(tdc_trm_wexp_q30[0], 1u << 30);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -244,6 +260,7 @@ int main(void)
         cmocka_unit_test(test_static_pair_skips_weight),
         cmocka_unit_test(test_stereo_alternation),
         cmocka_unit_test(test_weight_accuracy),
+        cmocka_unit_test(test_weight_table_generated),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
