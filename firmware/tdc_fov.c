@@ -6,20 +6,33 @@
  * Scaling and overflow (every product is checked here once):
  *   display coordinates Q8, |x'| < 3 * 8192 * 256 < 2^23, so |x'|^2 (Q16) < 2^47
  *   in uint64; log2 values Q24 with |value| < 64, so < 2^30; the u coordinate
- *   Q16 < 8192 * 2^16 = 2^29; colours Q8 codes <= 255 * 256 < 2^16; kernel
- *   weights Q15 <= 2^15, <= 9 taps: sum < 2^19; the angular interpolation
- *   gives Q16 codes < 2^24, so weighted colour sums < 2^43 (uint64), divided
- *   once per channel (tdc_udiv64_32 needs sum > acc >> 32: sum >= 0.54 * 2^15,
- *   acc >> 32 < 2^11);
+ *   Q16 < 8192 * 2^16 = 2^29 (past R at most 2^30: the table's last node);
+ *   radial table interpolation: u (a (2^16 - f) + b f) < 2^46 in uint64, sigma
+ *   Q14 and 1/sigma^2 Q12 <= 2^15, so their sums <= 2^31 + 2^15 in uint32;
+ *   the angle's ratio (n << clz(m)) * inv < 2^64; colours Q8 codes <= 255 * 256
+ *   < 2^16; kernel weights Q15 normalised to sum 2^15 exactly (the remainder
+ *   on the largest), so a weighted sum of 8-bit samples < 255 * 2^15 + 64 <
+ *   2^23 (uint32; tdc_fov_kernels.h for the two-tap kernel); the >2-tap path's
+ *   normalisation: raw sum >= G(1) 2^15 = 17859, so 2^30 / sum < 2^16 and
+ *   weight * reciprocal < 2^31;
  *   TAA blend a (Q15) * colour (Q8) < 2^31 in uint32.
  * Rounding: half up at every shift; tables interpolated linearly.
  *
+ * Per-pixel work (docs/foveation.md "Remap speed"): eq. 2.2's radial part
+ * and eq. 4.4's sigma come from the per-frame radial table (tdc_fov.h),
+ * interpolated on |x'|^2 (no square root, no logarithm or power per pixel;
+ * exact within 4 px of the gaze), rebuilt only when R, alpha or lp_w change;
+ * the angle's atan ratio uses per-column and per-row reciprocals (no divide
+ * per pixel).  At sigma = 1/2 (most pixels at alpha 4) the two taps' weights
+ * come pre-normalised from tdc_fov_tent_tab.
+ *
  * Separability: eq. 2.2 is radial/angular, so it does not separate into
- * rows and columns; per row the stage hoists y' and y'^2, per pixel it
- * skips the log-polar path where the disk covers the pixel (b = 0) and the
- * square root where the pixel is outside the blend band.  TAA is one pass
- * over rows with 2 rows of composed colour and 3 rows of |s - h| scratch
- * (the 3x3 box of eq. 4.9 finishes row y - 1 while row y is composed).
+ * rows and columns.  Each display row takes three passes over a row of
+ * scratch: geometry (the blend weight, u, v, sigma: a tap descriptor per
+ * pixel, or the >2-tap colour itself), the tap kernel (tdc_fov_kernels.h:
+ * C, AVX2, Helium), the composite (+ TAA).  TAA is one pass over rows with
+ * 2 rows of composed colour and 3 rows of |s - h| scratch (the 3x3 box of
+ * eq. 4.9 finishes row y - 1 while row y is composed).
  */
 #include "tdc_fov.h"
 
@@ -28,6 +41,13 @@
 #include "tdc_math.h"
 
 #define Q24 (1 << 24)
+/* Out of line where a rare path would crowd the hot one's registers (GNU C
+ * compilers; plain elsewhere).  Same code and results either way. */
+#if defined(__GNUC__) || defined(__clang__)
+#define FOV_COLD __attribute__((noinline, cold))
+#else
+#define FOV_COLD
+#endif
 #define ONE_Q15 32768u
 
 static unsigned clz64(uint64_t x)
@@ -93,14 +113,9 @@ int32_t tdc_fov_exp2_q16(int32_t s)
 
 /* atan2(dy, dx) mod 2 pi in Q32 turns (eq. 2.2's arctan + 1[y' < 0] 2 pi).
  * One octant from the table (error < 2e-7 turns), the rest by symmetry. */
-uint32_t tdc_fov_turns_q32(int32_t dx, int32_t dy)
+/* The angle from the octant ratio t = min/max (Q30): table, symmetry. */
+static inline uint32_t turns_from_ratio(uint32_t t, uint32_t ax, uint32_t ay, int32_t dx, int32_t dy)
 {
-    const uint32_t ax = (uint32_t)tdc_abs32(dx), ay = (uint32_t)tdc_abs32(dy);
-    if ((ax | ay) == 0u) {
-        return 0;
-    }
-    const uint32_t mx = ax > ay ? ax : ay, mn = ax > ay ? ay : ax;
-    const uint32_t t = (uint32_t)tdc_div_q30(mn, mx); /* [0, 2^30] */
     const uint32_t idx = t >> 22, fr = (t >> 6) & 0xFFFFu;
     const uint32_t a0 = tdc_fov_atan_tab[idx];
     const uint32_t a1 = idx < 256u ? tdc_fov_atan_tab[idx + 1u] : a0;
@@ -117,21 +132,50 @@ uint32_t tdc_fov_turns_q32(int32_t dx, int32_t dy)
     return a;
 }
 
+uint32_t tdc_fov_turns_q32(int32_t dx, int32_t dy)
+{
+    const uint32_t ax = (uint32_t)tdc_abs32(dx), ay = (uint32_t)tdc_abs32(dy);
+    if ((ax | ay) == 0u) {
+        return 0;
+    }
+    const uint32_t mx = ax > ay ? ax : ay, mn = ax > ay ? ay : ax;
+    return turns_from_ratio((uint32_t)tdc_div_q30(mn, mx), ax, ay, dx, dy); /* [0, 2^30] */
+}
+
+/* The division-free ratio of the pixel loop: for m > 0, inv = floor((2^63 - 1)
+ * / (m << clz(m))) in (2^31, 2^32); then n / m in Q30 = ((n << clz(m)) * inv)
+ * >> 33 for n <= m (n << clz(m) < 2^32: the product < 2^64), at most 1 LSB
+ * below tdc_div_q30's value.  One 64/32 divide per display column and per row
+ * and frame instead of one per pixel. */
+static uint32_t recip_norm(uint32_t m)
+{
+    return m ? tdc_udiv64_32(~(uint64_t)0 >> 1, m << tdc_clz32(m)) : 0u;
+}
+
+static inline uint32_t ratio_q30(uint32_t n, uint32_t m, uint32_t inv)
+{
+    return (uint32_t)(((uint64_t)(n << tdc_clz32(m)) * inv) >> 33);
+}
+
 /* eq. 2.2 radial part for |x'|^2 in Q16, with the intermediates the blur
  * needs.  ln|x'| / L = log2(|x'|^2) / log2(R^2) = rho; u/w = 2^(log2(rho)/alpha). */
 typedef struct {
     uint32_t u_q16;
     int32_t l1;    /* log2(|x'|^2), Q24 (0 when |x'| <= 1) */
     int32_t lg_l1; /* log2 of the Q24 integer l1 */
-    uint32_t nq;   /* -log2(u/w), Q24 */
+    int32_t nq;    /* -log2(u/w), Q24 (negative past R when not clipped) */
 } fov_radial_t;
 
-static void radial(const tdc_fov_geom_t *g, uint64_t r2_q16, fov_radial_t *o)
+/* clip: u = lp_w from R on (eq. 2.2); else the same formula continued past R
+ * (the radial table's last node: no kink inside the last interpolated segment;
+ * the table's user clips).  Past R, |x'|^2 <= 2 R^2, so -nq <= 1/alpha * log2(1 + 1 /
+ * log2(R^2)) < 1 (Q24) and 2^-nq = 2 * 2^-(1 + nq), Q31 < 2^32. */
+static void radial(const tdc_fov_geom_t *g, uint64_t r2_q16, fov_radial_t *o, int clip)
 {
     o->u_q16 = 0;
     o->l1 = 0;
     o->lg_l1 = 0;
-    o->nq = 31u * (uint32_t)Q24;
+    o->nq = 31 * Q24;
     if (r2_q16 <= 65536u) {
         return; /* |x'| <= 1: ln |x'| <= 0, K^-1 undefined below 0: u = 0 */
     }
@@ -140,25 +184,41 @@ static void radial(const tdc_fov_geom_t *g, uint64_t r2_q16, fov_radial_t *o)
         return;
     }
     o->l1 = l1;
-    if (l1 >= g->log2_r2max_q24) {
+    if (l1 >= g->log2_r2max_q24 && clip) {
         o->lg_l1 = g->lg_lr_q24;
         o->nq = 0;
         o->u_q16 = (uint32_t)g->lp_w << 16;
         return;
     }
     o->lg_l1 = tdc_fov_log2_q24((uint64_t)l1);
-    const uint32_t neg = (uint32_t)(g->lg_lr_q24 - o->lg_l1);
-    o->nq = (uint32_t)(((uint64_t)neg * g->inv_alpha_q24 + (1u << 23)) >> 24);
-    o->u_q16 = (uint32_t)(((uint64_t)g->lp_w * exp2neg_q30(o->nq) + (1u << 13)) >> 14);
+    const int32_t neg = g->lg_lr_q24 - o->lg_l1;
+    if (neg >= 0) {
+        o->nq = (int32_t)(((uint64_t)(uint32_t)neg * g->inv_alpha_q24 + (1u << 23)) >> 24);
+        o->u_q16 = (uint32_t)(((uint64_t)g->lp_w * exp2neg_q30((uint32_t)o->nq) + (1u << 13)) >> 14);
+    } else {
+        const uint32_t pos = (uint32_t)(((uint64_t)(uint32_t)(-neg) * g->inv_alpha_q24 + (1u << 23)) >> 24);
+        o->nq = -(int32_t)pos;
+        const uint64_t v31 = 2u * (uint64_t)exp2_frac_q30((uint32_t)Q24 - (pos < (uint32_t)Q24 ? pos : (uint32_t)Q24));
+        o->u_q16 = (uint32_t)(((uint64_t)g->lp_w * v31 + (1u << 14)) >> 15);
+    }
 }
 
 void tdc_fov_to_lp(const tdc_fov_geom_t *g, int32_t x_q8, int32_t y_q8, uint32_t *u_q16, uint32_t *v_q16)
 {
     const int32_t dx = x_q8 - g->cx_q8, dy = y_q8 - g->cy_q8;
     fov_radial_t rr;
-    radial(g, (uint64_t)((int64_t)dx * dx + (int64_t)dy * dy), &rr);
+    radial(g, (uint64_t)((int64_t)dx * dx + (int64_t)dy * dy), &rr, 1);
     *u_q16 = rr.u_q16;
     *v_q16 = (uint32_t)(((uint64_t)tdc_fov_turns_q32(dx, dy) * g->lp_h) >> 16);
+}
+
+/* R^2 in Q16 (the farthest screen corner from the gaze, eq. 2.4's L = ln R). */
+static uint64_t r2max_q16(int32_t cx_q8, int32_t cy_q8, uint32_t width, uint32_t height)
+{
+    const int64_t w8 = (int64_t)width * 256, h8 = (int64_t)height * 256;
+    const int64_t ex = cx_q8 > w8 - cx_q8 ? cx_q8 : w8 - cx_q8;
+    const int64_t ey = cy_q8 > h8 - cy_q8 ? cy_q8 : h8 - cy_q8;
+    return (uint64_t)(ex * ex + ey * ey);
 }
 
 tdc_status_t tdc_fov_geom(tdc_fov_geom_t *g, uint16_t width, uint16_t height, const tdc_fov_params_t *p)
@@ -181,10 +241,7 @@ tdc_status_t tdc_fov_geom(tdc_fov_geom_t *g, uint16_t width, uint16_t height, co
     g->lp_h = p->lp_h;
     g->cx_q8 = p->gaze_x_q8;
     g->cy_q8 = p->gaze_y_q8;
-    /* R^2: the farthest corner (eq. 2.4's L = ln R) */
-    const int64_t ex = p->gaze_x_q8 > w8 - p->gaze_x_q8 ? p->gaze_x_q8 : w8 - p->gaze_x_q8;
-    const int64_t ey = p->gaze_y_q8 > h8 - p->gaze_y_q8 ? p->gaze_y_q8 : h8 - p->gaze_y_q8;
-    const uint64_t r2max = (uint64_t)(ex * ex + ey * ey); /* >= 8 px^2 */
+    const uint64_t r2max = r2max_q16(p->gaze_x_q8, p->gaze_y_q8, width, height); /* >= 8 px^2 */
     g->log2_r2max_q24 = tdc_fov_log2_q24(r2max) - 16 * Q24;
     g->lg_lr_q24 = tdc_fov_log2_q24((uint64_t)g->log2_r2max_q24);
     g->log2_w_q24 = tdc_fov_log2_q24(p->lp_w);
@@ -194,13 +251,13 @@ tdc_status_t tdc_fov_geom(tdc_fov_geom_t *g, uint16_t width, uint16_t height, co
     g->r_disk_q8 = (uint32_t)(((uint64_t)p->disk_q15 * g->r_max_q8 + 16384u) >> 15);
     g->r_disk2_q16 = (uint64_t)g->r_disk_q8 * g->r_disk_q8;
     fov_radial_t rr;
-    radial(g, g->r_disk2_q16, &rr);
+    radial(g, g->r_disk2_q16, &rr, 1);
     uint32_t l = (rr.u_q16 + 65535u) >> 16; /* eq. 4.5: ceil */
     g->l = (uint16_t)(l > p->lp_w ? p->lp_w : l);
     uint32_t u0 = 0;
     if (g->r_disk_q8 > (uint32_t)TDC_FOV_BLEND_Q8) {
         const uint64_t rb = g->r_disk_q8 - (uint32_t)TDC_FOV_BLEND_Q8;
-        radial(g, rb * rb, &rr);
+        radial(g, rb * rb, &rr, 1);
         const uint32_t fu = rr.u_q16 >> 16;
         u0 = fu > (uint32_t)TDC_FOV_REACH ? fu - (uint32_t)TDC_FOV_REACH : 0u;
     }
@@ -252,26 +309,96 @@ uint32_t tdc_fov_disk_pixels(const tdc_fov_geom_t *g)
 }
 
 /* ---------------------------------------------------------------------
- * One display pixel: log-polar sample with the radial blur (eq. 4.4), the
- * disk composite.  Writes the composed colour (Q8) and returns the blend
- * weight b (Q8, 0 = disk only); *iu, *jv: the nearest log-polar sample.
+ * eq. 4.4's sigma_u = eta/4 du/dr, du/dr = u / (alpha ln(r) r), eta = 1.4 +
+ * 16 r/R, all in log2: log2 sigma = log2 eta + log2 u - 2 - log2 alpha -
+ * log2 ln r - log2 r.  Returns log2 sigma clamped to [-1, 1] (Q24).
+ * ------------------------------------------------------------------- */
+static int32_t log2_sigma(const tdc_fov_geom_t *g, const fov_radial_t *rr, int32_t leta_max)
+{
+    if (rr->l1 <= 0) {
+        return Q24; /* sigma = 2 where r <= 1 */
+    }
+    const int64_t lnr = (int64_t)rr->lg_l1 - 24 * Q24 + TDC_FOV_LOG2_LN2_Q24 - Q24;
+    const int64_t s0 = (int64_t)g->log2_w_q24 - (int64_t)rr->nq - 2 * Q24 - g->log2_alpha_q24 - lnr - (rr->l1 / 2);
+    if (s0 + leta_max <= -Q24) {
+        return -Q24; /* clamped whatever eta is (the common case at alpha 4): no eta */
+    }
+    const int32_t x_q16 = tdc_fov_exp2_q16(tdc_asr32(rr->l1 - g->log2_r2max_q24, 1));
+    const int32_t leta = tdc_fov_log2_q24((uint64_t)(91750 + 16 * (int64_t)x_q16)) - 16 * Q24;
+    const int64_t s64 = s0 + leta;
+    return (int32_t)(s64 < -Q24 ? -Q24 : (s64 > Q24 ? Q24 : s64));
+}
+
+/* u, sigma (Q14, [2^13, 2^15]) and 1/sigma^2 (Q12, [2^10, 2^14]) at |x'|^2:
+ * a node of the radial table, or a pixel closer than 4 px to the gaze. */
+static void node_fill(const tdc_fov_geom_t *g, uint64_t r2_q16, int clip, int32_t leta_max, tdc_fov_node_t *nd)
+{
+    fov_radial_t rr;
+    radial(g, r2_q16, &rr, clip);
+    const int32_t ls = log2_sigma(g, &rr, leta_max);
+    nd->u_q16 = rr.u_q16;
+    nd->sig_q14 = (uint16_t)(((uint32_t)tdc_fov_exp2_q16(ls) + 2u) >> 2);
+    nd->inv2_q12 = (uint16_t)(((uint32_t)tdc_fov_exp2_q16(-2 * ls) + 8u) >> 4);
+}
+
+/* Nodes the frame needs: up to the one past the octave of R^2 (<= the
+ * arena's TDC_FOV_RAD_NODES: R^2 <= 4 (W^2 + H^2) px^2). */
+static uint32_t rad_nodes_for(uint64_t r2max)
+{
+    if (r2max < ((uint64_t)1 << TDC_FOV_NODE_E0)) {
+        return 0;
+    }
+    const uint32_t e = 63u - clz64(r2max);
+    return ((e - TDC_FOV_NODE_E0 + 1u) << TDC_FOV_NODE_BITS) + 1u;
+}
+
+/* ---------------------------------------------------------------------
+ * The geometry pass, one display pixel: the blend weight b (Q8, 0 = disk
+ * only), eq. 2.2's u and v, eq. 4.4's sigma; at sigma = 1/2 (most pixels)
+ * the tap descriptor for the kernel (tdc_fov_kernels.h), else the blurred
+ * colour itself (3 to 9 taps).  rb->b[i] = b | 512 for a pixel with its
+ * colour in rb->gen; rb->ij[i] = iu | jv << 16 (the nearest sample).
  * ------------------------------------------------------------------- */
 typedef struct {
     const tdc_fov_geom_t *g;
     const uint8_t *lp;
     size_t lp_stride;
-    const uint8_t *disk;
-    size_t disk_stride;
-    uint64_t rb2_q16; /* (r_d - 4 px)^2, or 0 */
-    int32_t rb_q8;    /* r_d - 4 px (may be negative) */
-    int32_t leta_max; /* log2 of the largest eta (x = 1), Q24: log2 is monotone, so eta <= this */
-    int32_t sig_lo;   /* sigma = 1/2 and 1/sigma^2 = 4 as the functions give them */
-    uint32_t inv2_lo;
+    const tdc_fov_node_t *rad;
+    uint32_t rad_nodes;
+    const uint32_t *colinv; /* per column: recip_norm(|dx|) */
+    uint32_t ay, inv_y;     /* this row: |dy| (Q8) and recip_norm(|dy|) */
+    uint64_t rb2_q16;       /* (r_d - 4 px)^2, or 0 */
+    int32_t rb_q8;          /* r_d - 4 px (may be negative) */
+    int32_t leta_max;       /* log2 of the largest eta (x = 1), Q24: log2 is monotone, so eta <= this */
+    uint32_t off_dummy;     /* sample (u0, 0) */
+    int taa;                /* 1: the nearest samples (ij) are needed */
     const tdc_fov_lr_t *lr; /* log-rectilinear frame: the periphery sample from tdc_fov_lr.c */
 } fov_src_t;
 
-static uint32_t compose(const fov_src_t *s, int32_t i, int32_t dx, int32_t dy, uint64_t r2, uint16_t c[3], uint32_t *iu,
-                        uint32_t *jv)
+typedef struct {
+    uint32_t *off0, *off1, *wf, *ij;
+    uint16_t *gen, *b;
+} fov_rowbuf_t;
+
+#define TAPS_MAX 9 /* sigma <= 2: |t - u| <= 2 sigma = 4 */
+#define GEN_FLAG 512u
+
+/* Linear interpolation between nodes, f in Q16: (a (2^16 - f) + b f + 2^15) >> 16.
+ * u < 2^30: 64-bit sum; sigma, 1/sigma^2 <= 2^15: the sum <= 2^31 + 2^15 fits 32 bits. */
+static inline uint32_t lerp_u(uint32_t a, uint32_t b, uint32_t f)
+{
+    return (uint32_t)(((uint64_t)a * (65536u - f) + (uint64_t)b * f + 32768u) >> 16);
+}
+
+static inline uint32_t lerp_s(uint32_t a, uint32_t b, uint32_t f)
+{
+    return (a * (65536u - f) + b * f + 32768u) >> 16;
+}
+
+static void geom_general(const fov_src_t *s, const fov_rowbuf_t *rb, int32_t i, uint32_t b, int32_t u, int32_t sig,
+                         int32_t inv2, uint32_t j0, uint32_t j1, uint32_t fv);
+
+static void geom_px(const fov_src_t *s, const fov_rowbuf_t *rb, int32_t i, int32_t dx, int32_t dy, uint64_t r2)
 {
     const tdc_fov_geom_t *g = s->g;
     uint32_t b = 256;
@@ -283,74 +410,172 @@ static uint32_t compose(const fov_src_t *s, int32_t i, int32_t dx, int32_t dy, u
             b = (uint32_t)tdc_clamp32(x, 0, TDC_FOV_BLEND_Q8) >> 2;
         }
     }
-    uint32_t lpc[3] = {0, 0, 0};
-    if (b && s->lr) {
-        tdc_fov_lr_sample(s->lr, i, lpc, iu, jv);
-    } else if (b) {
-        fov_radial_t rr;
-        radial(g, r2, &rr);
-        const uint32_t v = (uint32_t)(((uint64_t)tdc_fov_turns_q32(dx, dy) * g->lp_h) >> 16);
-        /* sigma_u = eta/4 du/dr, du/dr = u / (alpha ln(r) r), eta = 1.4 + 16 r/R (eq. 4.4),
-         * all in log2: log2 sigma = log2 eta + log2 u - 2 - log2 alpha - log2 ln r - log2 r */
-        int32_t ls = Q24; /* sigma = 2 where r <= 1 */
-        if (rr.l1 > 0) {
-            const int64_t lnr = (int64_t)rr.lg_l1 - 24 * Q24 + TDC_FOV_LOG2_LN2_Q24 - Q24;
-            const int64_t s0 =
-                (int64_t)g->log2_w_q24 - (int64_t)rr.nq - 2 * Q24 - g->log2_alpha_q24 - lnr - (rr.l1 / 2);
-            if (s0 + s->leta_max <= -Q24) {
-                ls = -Q24; /* clamped whatever eta is (the common case at alpha 4): the same result, no eta */
-            } else {
-                const int32_t x_q16 = tdc_fov_exp2_q16(tdc_asr32(rr.l1 - g->log2_r2max_q24, 1));
-                const int32_t leta = tdc_fov_log2_q24((uint64_t)(91750 + 16 * (int64_t)x_q16)) - 16 * Q24;
-                const int64_t s64 = s0 + leta;
-                ls = (int32_t)(s64 < -Q24 ? -Q24 : (s64 > Q24 ? Q24 : s64));
-            }
+    rb->b[i] = (uint16_t)b;
+    if (!b || s->lr) {
+        rb->off0[i] = s->off_dummy | TDC_FOV_STEP0; /* a harmless descriptor: sample (u0, 0), weight 1 */
+        rb->off1[i] = s->off_dummy;
+        rb->wf[i] = 32768u;
+        if (b) { /* log-rectilinear: the periphery sample (Q8) is the pixel's colour, as geom_general's */
+            uint32_t c[3], iu = 0, jv = 0;
+            tdc_fov_lr_sample(s->lr, i, c, &iu, &jv);
+            uint16_t *gp = rb->gen + (size_t)i * 3u;
+            gp[0] = (uint16_t)c[0], gp[1] = (uint16_t)c[1], gp[2] = (uint16_t)c[2]; /* <= 255 * 256 */
+            rb->ij[i] = iu | jv << 16;
+            rb->b[i] = (uint16_t)(b | GEN_FLAG);
         }
-        /* sigma in [2^15, 2^17] (Q16) and 1/sigma^2; the clamped ends from the frame's constants */
-        const int32_t sig = ls == -Q24 ? s->sig_lo : tdc_fov_exp2_q16(ls);
-        const uint32_t inv2 = ls == -Q24 ? s->inv2_lo : (uint32_t)tdc_fov_exp2_q16(-2 * ls);
-        const int32_t u = (int32_t)rr.u_q16;
-        int32_t lo = tdc_asr32(u - 2 * sig + 65535, 16), hi = tdc_asr32(u + 2 * sig, 16);
-        const uint32_t j0 = v >> 16, fv = v & 0xFFFFu;
-        const uint32_t j1 = j0 + 1u == g->lp_h ? 0u : j0 + 1u;
-        const uint8_t *r0 = s->lp + (size_t)j0 * s->lp_stride, *r1 = s->lp + (size_t)j1 * s->lp_stride;
-        uint64_t acc[3] = {0, 0, 0};
-        uint32_t sum = 0;
-        for (int32_t t = lo; t <= hi; t++) {
-            const int32_t d = TDC_SHL32(t, 16) - u;
-            const uint64_t d2 = (uint64_t)((int64_t)d * d) >> 16;
-            const uint32_t t2 = (uint32_t)((d2 * inv2) >> 16); /* (d / sigma)^2, Q16 */
-            const uint32_t k = t2 >> 10, fr = t2 & 1023u;
-            if (k >= 256u) {
-                continue;
-            }
-            const uint32_t ga = tdc_fov_gauss_tab[k], gb = tdc_fov_gauss_tab[k + 1u];
-            const uint32_t wgt = ga - (((ga - gb) * fr + 512u) >> 10);
-            const int32_t col = tdc_clamp32(t, g->u0, (int32_t)g->lp_w - 1);
-            const uint8_t *p0 = r0 + (size_t)col * 3u, *p1 = r1 + (size_t)col * 3u;
-            for (int ch = 0; ch < 3; ch++) {
-                acc[ch] += (uint64_t)wgt * (p0[ch] * (65536u - fv) + p1[ch] * fv); /* Q16 codes */
-            }
-            sum += wgt;
+        return;
+    }
+    /* eq. 2.2 radial part and eq. 4.4's sigma: the radial table, interpolated on |x'|^2 */
+    int32_t u;
+    const uint32_t e = r2 >= ((uint64_t)1 << TDC_FOV_NODE_E0) ? 63u - clz64(r2) : 0u;
+    /* the top 24 bits of |x'|^2: the leading 1, 7 bits of node, 16 of fraction */
+    const uint32_t m24 = e >= 23u ? (uint32_t)(r2 >> (e - 23u)) : (uint32_t)r2 << (23u - e);
+    const uint32_t n = e ? ((e - TDC_FOV_NODE_E0) << TDC_FOV_NODE_BITS) | ((m24 >> 16) & 127u) : 0u;
+    const tdc_fov_node_t *na, *nb;
+    tdc_fov_node_t nd;
+    uint32_t f;
+    if (e && n + 1u < s->rad_nodes) {
+        f = m24 & 0xFFFFu; /* Q16 in the node */
+        na = s->rad + n;
+        nb = na + 1;
+        const uint32_t uu = lerp_u(na->u_q16, nb->u_q16, f);
+        u = (int32_t)(uu > (uint32_t)g->lp_w << 16 ? (uint32_t)g->lp_w << 16 : uu);
+    } else {
+        node_fill(g, r2, 1, s->leta_max, &nd); /* within 4 px of the gaze: exact */
+        na = nb = &nd;
+        f = 0;
+        u = (int32_t)nd.u_q16;
+    }
+    const int32_t sig = (int32_t)lerp_s(na->sig_q14, nb->sig_q14, f);
+    /* eq. 2.2 angle: atan of the octant ratio, the divide by a per-column / per-row reciprocal */
+    const uint32_t ax = (uint32_t)tdc_abs32(dx), ay = s->ay;
+    uint32_t turns = 0;
+    if (ax | ay) {
+        const uint32_t t = ax > ay ? ratio_q30(ay, ax, s->colinv[i]) : ratio_q30(ax, ay, s->inv_y);
+        turns = turns_from_ratio(t, ax, ay, dx, dy);
+    }
+    const uint32_t v = (uint32_t)(((uint64_t)turns * g->lp_h) >> 16);
+    const uint32_t j0 = v >> 16, fv = (v & 0xFFFFu) >> 1; /* Q15 */
+    const uint32_t j1 = j0 + 1u == g->lp_h ? 0u : j0 + 1u;
+    const int32_t cmin = g->u0, cmax = (int32_t)g->lp_w - 1;
+    if (s->taa) { /* the nearest sample: its motion vector */
+        const uint32_t ui = ((uint32_t)u + 32768u) >> 16, vi = (v + 32768u) >> 16;
+        rb->ij[i] = (uint32_t)tdc_clamp32((int32_t)ui, cmin, cmax) | (vi >= g->lp_h ? 0u : vi) << 16;
+    }
+    if (sig == 8192) { /* sigma = 1/2: two taps, floor(u) and floor(u) + 1, from the tent table */
+        const uint32_t fu = (uint32_t)u & 0xFFFFu, k = fu >> 8, fr = fu & 255u;
+        const uint32_t ta = tdc_fov_tent_tab[k], tb = tdc_fov_tent_tab[k + 1u];
+        const int32_t c0 = tdc_clamp32(u >> 16, cmin, cmax), c1 = tdc_clamp32((u >> 16) + 1, cmin, cmax);
+        rb->off0[i] = (uint32_t)(j0 * s->lp_stride + (size_t)c0 * 3u) | (c1 == c0 ? TDC_FOV_STEP0 : 0u);
+        rb->off1[i] = (uint32_t)(j1 * s->lp_stride + (size_t)c0 * 3u);
+        rb->wf[i] = (ta - (((ta - tb) * fr + 128u) >> 8)) | fv << 16;
+        return;
+    }
+    geom_general(s, rb, i, b, u, sig, (int32_t)lerp_s(na->inv2_q12, nb->inv2_q12, f), j0, j1, fv);
+}
+
+/* sigma > 1/2 (few pixels at alpha 4): up to 9 taps, computed here, not by the
+ * kernel.  Out of line: the common two-tap path above keeps its registers. */
+static FOV_COLD void geom_general(const fov_src_t *s, const fov_rowbuf_t *rb, int32_t i, uint32_t b, int32_t u,
+                                      int32_t sig, int32_t inv2, uint32_t j0, uint32_t j1, uint32_t fv)
+{
+    const int32_t cmin = s->g->u0, cmax = (int32_t)s->g->lp_w - 1;
+    /* sigma > 1/2: up to 9 taps, weights from the cut Gaussian normalised to 2^15 */
+    const int32_t lo = tdc_asr32(u - 8 * sig + 65535, 16), hi = tdc_asr32(u + 8 * sig, 16);
+    const int32_t u12 = (u + 8) >> 4;
+    int32_t col[TAPS_MAX];
+    uint32_t wt[TAPS_MAX], sum = 0;
+    int32_t nt = 0;
+    for (int32_t t = lo; t <= hi && nt < TAPS_MAX; t++) {
+        const int32_t d = TDC_SHL32(t, 12) - u12;       /* Q12, |d| <= 4.01 */
+        const uint32_t d2 = (uint32_t)(d * d) >> 12;    /* Q12 < 2^17 */
+        const uint32_t t2 = (d2 * (uint32_t)inv2) >> 8; /* (d / sigma)^2, Q16 */
+        const uint32_t k = t2 >> 10, fr = t2 & 1023u;
+        if (k >= 256u) {
+            continue;
         }
+        const uint32_t ga = tdc_fov_gauss_tab[k], gb = tdc_fov_gauss_tab[k + 1u];
+        wt[nt] = ga - (((ga - gb) * fr + 512u) >> 10);
+        col[nt] = tdc_clamp32(t, cmin, cmax);
+        sum += wt[nt];
+        nt++;
+    }
+    /* sum >= G(1) 2^15 = 17859 (some tap has |d| <= 1/2 <= sigma): recip < 2^16, wt * recip < 2^31.
+     * The rounding remainder goes to the largest weight, so the weights sum to 2^15 exactly. */
+    const uint32_t recip = ((1u << 30) + sum / 2u) / sum;
+    uint32_t nsum = 0;
+    int32_t kmax = 0;
+    for (int32_t k = 0; k < nt; k++) {
+        kmax = wt[k] > wt[kmax] ? k : kmax;
+        wt[k] = (wt[k] * recip + 16384u) >> 15;
+        nsum += wt[k];
+    }
+    wt[kmax] += 32768u - nsum; /* |32768 - nsum| <= nt / 2 + 1, wt[kmax] >= 2^15 / nt */
+    rb->off0[i] = s->off_dummy | TDC_FOV_STEP0; /* the kernel's value is not used */
+    rb->off1[i] = s->off_dummy;
+    rb->wf[i] = 32768u;
+    /* the kernel's arithmetic per tap: rows j0, j1 weighted (w - a, a), a = (w fv + 2^14) >> 15 */
+    const uint8_t *r0 = s->lp + (size_t)j0 * s->lp_stride, *r1 = s->lp + (size_t)j1 * s->lp_stride;
+    uint32_t acc[3] = {64u, 64u, 64u};
+    for (int32_t k = 0; k < nt; k++) {
+        const uint32_t wa = (wt[k] * fv + 16384u) >> 15, wb = wt[k] - wa;
+        const uint8_t *p0 = r0 + (size_t)col[k] * 3u, *p1 = r1 + (size_t)col[k] * 3u;
         for (int ch = 0; ch < 3; ch++) {
-            lpc[ch] = (tdc_udiv64_32(acc[ch] + sum / 2u, sum) + 128u) >> 8; /* Q8 */
+            acc[ch] += wb * p0[ch] + wa * p1[ch]; /* weights sum to 2^15: < 255 * 2^15 + 64 */
         }
-        const uint32_t ui = (rr.u_q16 + 32768u) >> 16, vi = (v + 32768u) >> 16;
-        *iu = (uint32_t)tdc_clamp32((int32_t)ui, g->u0, (int32_t)g->lp_w - 1);
-        *jv = vi >= g->lp_h ? 0u : vi;
+    }
+    for (int ch = 0; ch < 3; ch++) {
+        rb->gen[(size_t)i * 3u + (size_t)ch] = (uint16_t)(acc[ch] >> 7); /* Q8 */
+    }
+    rb->b[i] = (uint16_t)(b | GEN_FLAG);
+}
+
+/* The geometry pass over one row.  The source and the geometry are copied
+ * to locals first: the descriptor stores cannot alias them, so the compiler
+ * keeps them in registers instead of reloading them after every store. */
+static void geom_row(const fov_src_t *src, const fov_rowbuf_t *rb, int32_t W, int32_t dy, uint64_t dy2)
+{
+    const tdc_fov_geom_t g = *src->g;
+    fov_src_t s = *src;
+    s.g = &g;
+    const fov_rowbuf_t r = *rb;
+    for (int32_t x = 0; x < W; x++) {
+        const int32_t dx = x * 256 + 128 - g.cx_q8;
+        geom_px(&s, &r, x, dx, dy, (uint64_t)((int64_t)dx * dx) + dy2);
+    }
+}
+
+/* The composite of pixel i after the kernel ran: Q8 colour c, returns b. */
+static inline uint32_t px_colour(const tdc_fov_t *st, const uint8_t *drow, int32_t i, uint16_t c[3])
+{
+    const uint32_t bf = st->t_b[i], b = bf & 511u;
+    uint32_t lpc[3];
+    if (bf & GEN_FLAG) {
+        const uint16_t *gp = st->t_gen + (size_t)i * 3u;
+        lpc[0] = gp[0], lpc[1] = gp[1], lpc[2] = gp[2];
+    } else {
+        const uint16_t *kp = st->t_out + i;
+        const size_t w = st->cfg.width;
+        lpc[0] = kp[0], lpc[1] = kp[w], lpc[2] = kp[2u * w];
     }
     if (b < 256u) {
-        const uint8_t *dp = s->disk + (size_t)i * 3u;
-        for (int ch = 0; ch < 3; ch++) {
-            c[ch] = (uint16_t)(((256u - b) * dp[ch] * 256u + b * lpc[ch] + 128u) >> 8);
-        }
+        const uint8_t *dp = drow + (size_t)i * 3u;
+        c[0] = (uint16_t)(((256u - b) * dp[0] * 256u + b * lpc[0] + 128u) >> 8);
+        c[1] = (uint16_t)(((256u - b) * dp[1] * 256u + b * lpc[1] + 128u) >> 8);
+        c[2] = (uint16_t)(((256u - b) * dp[2] * 256u + b * lpc[2] + 128u) >> 8);
     } else {
-        for (int ch = 0; ch < 3; ch++) {
-            c[ch] = (uint16_t)lpc[ch];
-        }
+        c[0] = (uint16_t)lpc[0], c[1] = (uint16_t)lpc[1], c[2] = (uint16_t)lpc[2];
     }
     return b;
+}
+
+/* The C tap kernel (tdc_fov_kernels.h). */
+void tdc_fov_tap2_row_c(const tdc_fov_tap2_args_t *a, uint32_t n)
+{
+    const tdc_fov_tap2_args_t l = *a; /* locals: the stores below cannot move the pointers */
+    for (uint32_t k = 0; k < n; k++) {
+        tdc_fov_tap2_px(&l, k);
+    }
 }
 
 /* ---------------------------------------------------------------------
@@ -392,8 +617,18 @@ tdc_status_t tdc_fov_init(tdc_fov_t *st, const tdc_fov_config_t *cfg, void *mem,
     st->lr = 0;
     st->frames = 0;
     st->rejected_frames = 0;
+    st->rad_builds = 0;
+    st->rad_valid = 0;
+    st->colinv_valid = 0;
+    st->rad_nodes = 0;
+    tdc_fov_set_simd(st, 1);
     tdc_fov_reset(st);
     return TDC_OK;
+}
+
+void tdc_fov_set_simd(tdc_fov_t *st, int enable)
+{
+    st->tap2 = enable && tdc_fov_avx2_available() ? tdc_fov_tap2_row_avx2 : TDC_FOV_TAP2_BOARD;
 }
 
 void tdc_fov_reset(tdc_fov_t *st)
@@ -414,30 +649,41 @@ typedef struct {
     uint16_t *dif[3];
 } fov_rows_t;
 
+/* eq. 2.5 for one channel: s + (1 - a)(h - s), (1 - a) in Q15 (k), the
+ * product rounded toward zero (see finish_row). */
+static inline uint32_t taa_blend(uint32_t s, uint32_t h, uint32_t k)
+{
+    const int32_t dlt = (int32_t)h - (int32_t)s;
+    const int32_t m = (int32_t)((k * (uint32_t)tdc_abs32(dlt)) >> 15);
+    return (uint32_t)((int32_t)s + (dlt < 0 ? -m : m));
+}
+
+/* History at a Q4 position: bilinear in Q4, Q8 codes out (<= 255 * 256). */
+static inline uint32_t hist_bilinear(const uint16_t *h00, const uint16_t *h01, const uint16_t *h10, const uint16_t *h11,
+                                     uint32_t fx, uint32_t fy)
+{
+    const uint32_t top = *h00 * (16u - fx) + *h01 * fx;
+    const uint32_t bot = *h10 * (16u - fx) + *h11 * fx;
+    return (top * (16u - fy) + bot * fy + 128u) >> 8;
+}
+
 /* eq. 4.9 box, eq. 4.10 and eq. 2.5 for row y; writes history and output. */
 static void finish_row(const tdc_fov_t *st, const fov_rows_t *rw, int32_t y, uint16_t *hist_new, uint8_t *orow)
 {
     const int32_t W = st->cfg.width, H = st->cfg.height;
     const uint16_t *sl = rw->slot[y & 1];
+    /* the 3x3 box as a sliding sum of column sums over the rows y - 1..y + 1 on the screen */
+    const uint16_t *d0 = y > 0 ? rw->dif[(y - 1) % 3] : 0, *d1 = rw->dif[y % 3], *d2 = y + 1 < H ? rw->dif[(y + 1) % 3] : 0;
+    const uint32_t nrows = 1u + (d0 != 0) + (d2 != 0);
+#define COLSUM(xx) ((uint32_t)d1[xx] + (d0 ? d0[xx] : 0u) + (d2 ? d2[xx] : 0u))
+    uint32_t cs_l = 0, cs_c = COLSUM(0), cs_r = COLSUM(1); /* W >= 4 */
     for (int32_t x = 0; x < W; x++) {
         const uint16_t *e = sl + (size_t)x * ROW_VALS;
         uint16_t *hn = hist_new + ((size_t)y * W + (size_t)x) * 3u;
         uint32_t f[3] = {e[0], e[1], e[2]};
         if (e[6] != 0xFFFFu) { /* history valid */
-            uint32_t sum = 0, cnt = 0;
-            for (int32_t yy = y - 1; yy <= y + 1; yy++) {
-                if (yy < 0 || yy >= H) {
-                    continue;
-                }
-                const uint16_t *dr = rw->dif[yy % 3];
-                for (int32_t xx = x - 1; xx <= x + 1; xx++) {
-                    if (xx >= 0 && xx < W) {
-                        sum += dr[xx];
-                        cnt++;
-                    }
-                }
-            }
-            const uint32_t eps = (sum + cnt / 2u) / cnt; /* Q8 codes */
+            const uint32_t sum = cs_l + cs_c + cs_r, cnt = nrows * (3u - (x == 0) - (x == W - 1));
+            const uint32_t eps = cnt == 9u ? (sum + 4u) / 9u : (sum + cnt / 2u) / cnt; /* Q8 codes */
             uint32_t amin = (eps * ONE_Q15 + 32640u) / 65280u;
             amin = amin < 3277u ? 3277u : (amin > ONE_Q15 ? ONE_Q15 : amin);
             const uint32_t a = amin + (((ONE_Q15 - amin) * e[6] + 16384u) >> 15);
@@ -445,17 +691,19 @@ static void finish_row(const tdc_fov_t *st, const fov_rows_t *rw, int32_t y, uin
             /* f = s + (1 - a)(h - s), the product rounded toward zero: |f - s|
              * shrinks every frame, so a static field converges to exactly s
              * (rounding half up stalls at h - s = 5/256 of a code with a = 0.1) */
-            for (int ch = 0; ch < 3; ch++) {
-                const int32_t dlt = (int32_t)e[3 + ch] - (int32_t)e[ch];
-                const int32_t m = (int32_t)(((ONE_Q15 - aeff) * (uint32_t)tdc_abs32(dlt)) >> 15);
-                f[ch] = (uint32_t)((int32_t)e[ch] + (dlt < 0 ? -m : m));
-            }
+            f[0] = taa_blend(e[0], e[3], ONE_Q15 - aeff);
+            f[1] = taa_blend(e[1], e[4], ONE_Q15 - aeff);
+            f[2] = taa_blend(e[2], e[5], ONE_Q15 - aeff);
         }
-        for (int ch = 0; ch < 3; ch++) {
-            hn[ch] = (uint16_t)f[ch];
-            orow[(size_t)x * 3u + (size_t)ch] = (uint8_t)((f[ch] + 128u) >> 8);
-        }
+        hn[0] = (uint16_t)f[0], hn[1] = (uint16_t)f[1], hn[2] = (uint16_t)f[2];
+        orow[(size_t)x * 3u] = (uint8_t)((f[0] + 128u) >> 8);
+        orow[(size_t)x * 3u + 1u] = (uint8_t)((f[1] + 128u) >> 8);
+        orow[(size_t)x * 3u + 2u] = (uint8_t)((f[2] + 128u) >> 8);
+        cs_l = cs_c;
+        cs_c = cs_r;
+        cs_r = x + 2 < W ? COLSUM(x + 2) : 0u;
     }
+#undef COLSUM
 }
 
 tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8_t *lp, size_t lp_stride,
@@ -474,7 +722,22 @@ tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8
         (mv && mv_stride < (size_t)p->lp_w * 2u)) {
         return TDC_ERR_ARG;
     }
-    fov_src_t src = {&g, lp, lp_stride, disk, disk_stride, 0, (int32_t)g.r_disk_q8 - TDC_FOV_BLEND_Q8, 0, 0, 0, 0};
+    /* tap descriptors hold byte offsets below 2^31 (tdc_fov_kernels.h) */
+    const uint64_t lp_bytes64 = (uint64_t)(p->lp_h - 1u) * (uint64_t)lp_stride + (uint64_t)p->lp_w * 3u; /* no wrap */
+    if (lp_bytes64 >= ((uint64_t)1 << 31)) {
+        return TDC_ERR_ARG;
+    }
+    const size_t lp_bytes = (size_t)lp_bytes64;
+    const int32_t W = g.width, H = g.height;
+    fov_src_t src = {&g, lp, lp_stride, st->rad, 0, st->colinv, 0, 0, 0, (int32_t)g.r_disk_q8 - TDC_FOV_BLEND_Q8, 0,
+                     (uint32_t)g.u0 * 3u, st->cfg.taa, 0};
+    const fov_rowbuf_t rb = {st->t_off0, st->t_off1, st->t_wf, st->t_ij, st->t_gen, st->t_b};
+    const tdc_fov_tap2_args_t ka = {lp, lp_bytes, st->t_off0, st->t_off1, st->t_wf,
+                                    {st->t_out, st->t_out + W, st->t_out + 2 * W}};
+    src.leta_max = tdc_fov_log2_q24(91750u + 16u * 65536u) - 16 * Q24;
+    if (src.rb_q8 > 0) {
+        src.rb2_q16 = (uint64_t)src.rb_q8 * (uint64_t)src.rb_q8;
+    }
     if (g.transform == TDC_FOV_LOG_RECT) { /* the second kind: needs its scratch attached */
         if (!st->lr) {
             return TDC_ERR_ARG;
@@ -485,13 +748,32 @@ tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8
         }
         src.lr = st->lr;
     }
-    src.leta_max = tdc_fov_log2_q24(91750u + 16u * 65536u) - 16 * Q24;
-    src.sig_lo = tdc_fov_exp2_q16(-Q24);
-    src.inv2_lo = (uint32_t)tdc_fov_exp2_q16(2 * Q24);
-    if (src.rb_q8 > 0) {
-        src.rb2_q16 = (uint64_t)src.rb_q8 * (uint64_t)src.rb_q8;
+    /* The radial table (kernel log-polar only): rebuilt only when R (the gaze), alpha or lp_w changed */
+    const uint32_t nodes = rad_nodes_for(r2max_q16(g.cx_q8, g.cy_q8, g.width, g.height));
+    if (src.lr) {
+        /* not used by a log-rectilinear frame: kept for the next log-polar one */
+    } else if (!st->rad_valid || st->rad_key_r2 != g.log2_r2max_q24 || st->rad_key_lpw != g.lp_w ||
+        st->rad_key_alpha != p->alpha_q8 || st->rad_nodes != nodes) {
+        for (uint32_t n = 0; n < nodes; n++) {
+            const uint32_t e = TDC_FOV_NODE_E0 + (n >> TDC_FOV_NODE_BITS), m = n & 127u;
+            node_fill(&g, ((uint64_t)1 << e) + ((uint64_t)m << (e - 7u)), 0, src.leta_max, &st->rad[n]);
+        }
+        st->rad_valid = 1;
+        st->rad_key_r2 = g.log2_r2max_q24;
+        st->rad_key_lpw = g.lp_w;
+        st->rad_key_alpha = p->alpha_q8;
+        st->rad_nodes = nodes;
+        st->rad_builds++;
     }
-    const int32_t W = g.width, H = g.height;
+    src.rad_nodes = st->rad_nodes;
+    /* The columns' reciprocals: rebuilt when the gaze's x changed */
+    if (!st->colinv_valid || st->colinv_cx != g.cx_q8) {
+        for (int32_t x = 0; x < W; x++) {
+            st->colinv[x] = recip_norm((uint32_t)tdc_abs32(x * 256 + 128 - g.cx_q8));
+        }
+        st->colinv_valid = 1;
+        st->colinv_cx = g.cx_q8;
+    }
 
     /* TAA set-up: eq. 4.7 rate, 60 / R_n (Q16); saccade rejection */
     int reject_all = 1;
@@ -514,6 +796,7 @@ tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8
         st->gaze_prev_y_q8 = p->gaze_y_q8;
     }
 
+    uint32_t h_m2 = 0, h_hq = 0; /* eq. 4.8's H of the last vector (H(0) = 0) */
     fov_rows_t rw = {{0, 0}, {0, 0, 0}};
     uint16_t *hist_old = 0, *hist_new = 0;
     if (st->cfg.taa) {
@@ -529,24 +812,39 @@ tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8
     for (int32_t y = 0; y < H; y++) {
         const int32_t dy = y * 256 + 128 - g.cy_q8;
         const uint64_t dy2 = (uint64_t)((int64_t)dy * dy);
-        src.disk = disk + (size_t)y * disk_stride;
+        const uint8_t *drow = disk + (size_t)y * disk_stride;
+        src.ay = (uint32_t)tdc_abs32(dy);
+        src.inv_y = recip_norm(src.ay);
+        uint8_t *orow = out + (size_t)y * out_stride;
+        uint16_t *sl = st->cfg.taa ? rw.slot[y & 1] : 0, *dif_row = st->cfg.taa ? rw.dif[y % 3] : 0;
         if (src.lr) {
             tdc_fov_lr_row(st->lr, y);
         }
-        uint8_t *orow = out + (size_t)y * out_stride;
-        uint16_t *sl = st->cfg.taa ? rw.slot[y & 1] : 0;
-        for (int32_t x = 0; x < W; x++) {
-            const int32_t dx = x * 256 + 128 - g.cx_q8;
-            const uint64_t r2 = (uint64_t)((int64_t)dx * dx) + dy2;
-            uint16_t c[3];
-            uint32_t iu = 0, jv = 0;
-            const uint32_t b = compose(&src, x, dx, dy, r2, c, &iu, &jv);
-            if (!st->cfg.taa) {
-                for (int ch = 0; ch < 3; ch++) {
-                    orow[(size_t)x * 3u + (size_t)ch] = (uint8_t)((c[ch] + 128u) >> 8);
+        geom_row(&src, &rb, W, dy, dy2);
+        st->tap2(&ka, (uint32_t)W);
+        if (!st->cfg.taa) {
+            /* b = 256 from the kernel (most pixels): Q8 -> 8 bits; the rest through px_colour */
+            const uint16_t *kr = st->t_out, *kg = kr + W, *kb = kg + W;
+            for (int32_t x = 0; x < W; x++) {
+                uint8_t *o = orow + (size_t)x * 3u;
+                if (st->t_b[x] == 256u) {
+                    o[0] = (uint8_t)((kr[x] + 128u) >> 8);
+                    o[1] = (uint8_t)((kg[x] + 128u) >> 8);
+                    o[2] = (uint8_t)((kb[x] + 128u) >> 8);
+                } else {
+                    uint16_t c[3];
+                    (void)px_colour(st, drow, x, c);
+                    for (int ch = 0; ch < 3; ch++) {
+                        o[ch] = (uint8_t)((c[ch] + 128u) >> 8);
+                    }
                 }
-                continue;
             }
+            continue;
+        }
+        for (int32_t x = 0; x < W; x++) {
+            uint16_t c[3];
+            const uint32_t b = px_colour(st, drow, x, c);
+            const uint32_t iu = st->t_ij[x] & 0xFFFFu, jv = st->t_ij[x] >> 16;
             uint16_t *e = sl + (size_t)x * ROW_VALS;
             e[0] = c[0];
             e[1] = c[1];
@@ -571,30 +869,32 @@ tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8
                     const uint32_t fx = (uint32_t)px & 15u, fy = (uint32_t)py & 15u;
                     const int32_t x1 = x0 + 1 < W ? x0 + 1 : x0, y1 = y0 + 1 < H ? y0 + 1 : y0;
                     const uint16_t *h00 = hist_old + ((size_t)y0 * W + (size_t)x0) * 3u;
-                    const uint16_t *h01 = hist_old + ((size_t)y0 * W + (size_t)x1) * 3u;
-                    const uint16_t *h10 = hist_old + ((size_t)y1 * W + (size_t)x0) * 3u;
-                    const uint16_t *h11 = hist_old + ((size_t)y1 * W + (size_t)x1) * 3u;
-                    dsum = 0;
-                    for (int ch = 0; ch < 3; ch++) {
-                        const uint32_t top = h00[ch] * (16u - fx) + h01[ch] * fx;
-                        const uint32_t bot = h10[ch] * (16u - fx) + h11[ch] * fx;
-                        const uint32_t hv = (top * (16u - fy) + bot * fy + 128u) >> 8;
-                        e[3 + ch] = (uint16_t)hv;
-                        dsum += (uint32_t)tdc_abs32((int32_t)c[ch] - (int32_t)hv);
-                    }
+                    const uint16_t *h01 = h00 + (size_t)(x1 - x0) * 3u;
+                    const uint16_t *h10 = h00 + (size_t)(y1 - y0) * (size_t)W * 3u, *h11 = h10 + (size_t)(x1 - x0) * 3u;
+                    const uint32_t hv0 = hist_bilinear(h00, h01, h10, h11, fx, fy);
+                    const uint32_t hv1 = hist_bilinear(h00 + 1, h01 + 1, h10 + 1, h11 + 1, fx, fy);
+                    const uint32_t hv2 = hist_bilinear(h00 + 2, h01 + 2, h10 + 2, h11 + 2, fx, fy);
+                    e[3] = (uint16_t)hv0, e[4] = (uint16_t)hv1, e[5] = (uint16_t)hv2;
+                    dsum = (uint32_t)tdc_abs32((int32_t)c[0] - (int32_t)hv0) +
+                           (uint32_t)tdc_abs32((int32_t)c[1] - (int32_t)hv1) +
+                           (uint32_t)tdc_abs32((int32_t)c[2] - (int32_t)hv2);
                     /* eq. 4.8: H = (|m| / |(W, H)|)^(1/4) * 60 / R_n, Q15, capped at 1 (eq. 4.10's min) */
                     const uint32_t m2 = (uint32_t)(mx * mx) + (uint32_t)(my * my);
                     uint32_t hq = 0;
-                    if (m2) {
+                    if (m2 == h_m2) {
+                        hq = h_hq; /* neighbours mostly share one sample's vector */
+                    } else if (m2) {
                         const int32_t lg = tdc_fov_log2_q24(m2) - 8 * Q24 - log2_diag2;
                         const uint64_t e16 = (uint64_t)tdc_fov_exp2_q16(tdc_asr32(lg, 3));
                         const uint64_t hh = (e16 * r60_q16 + (1u << 16)) >> 17;
                         hq = hh > ONE_Q15 ? ONE_Q15 : (uint32_t)hh;
+                        h_m2 = m2;
+                        h_hq = hq;
                     }
                     e[6] = (uint16_t)hq;
                 }
             }
-            rw.dif[y % 3][x] = (uint16_t)((dsum + 1u) / 3u);
+            dif_row[x] = (uint16_t)((dsum + 1u) / 3u);
         }
         if (st->cfg.taa && y > 0) {
             finish_row(st, &rw, y - 1, hist_new, out + (size_t)(y - 1) * out_stride);

@@ -41,10 +41,13 @@
  * values in Q8 (like TRM's D and U), the history is Q8 codes (uint16).
  *
  * Memory: caller-owned arena of tdc_fov_get_size() bytes (TDC_FOV_MEM_BYTES
- * on a board; layout TDC_FOV_ARENA, carved by tdc_arena.h): with TAA two Q8
- * history frames (12 bytes per display pixel: the previous frame is read by
+ * on a board; layout TDC_FOV_ARENA, carved by tdc_arena.h): the radial
+ * table (8 bytes per node, TDC_FOV_RAD_NODES: 2561 nodes, 20 KB for a
+ * 1080 x 1200 eye) and 34 bytes per display column (reciprocals, one row of
+ * tap descriptors and colours); with TAA two Q8 history
+ * frames (12 bytes per display pixel: the previous frame is read by
  * reprojection while the new one is written) and 38 bytes per display
- * column of row scratch; without TAA nothing.
+ * column of row scratch.
  * No heap, no float, no recursion; same bytes on every compiler and CPU.
  */
 #ifndef TDC_FOV_H
@@ -52,6 +55,7 @@
 
 #include "tdc_arena.h"
 #include "tdc_fixed.h"
+#include "tdc_fov_kernels.h"
 
 #define TDC_FOV_MIN_SIZE 4u /* display and log-polar sides at least this */
 #define TDC_FOV_MAX_SIZE 8192u
@@ -115,37 +119,89 @@ typedef struct {
     uint8_t taa;            /* 1: peripheral TAA (history in the arena) */
 } tdc_fov_config_t;
 
-/* The arena layout (firmware/tdc_arena.h), one list: with TAA two Q8 RGB
- * history frames (ping-pong) and the row scratch, 19 uint16 per display
- * column (2 rows x 8 values + 3 rows of |s - h|); without TAA nothing. */
+/* The per-frame radial table (eq. 2.2's u and eq. 4.4's sigma as functions
+ * of |x'|^2): node n = 128 (e - 20) + m sits at |x'|^2 = 2^e (1 + m/128)
+ * (Q16, e >= 20, i.e. |x'| >= 4 px; closer pixels take the exact path),
+ * linear interpolation between nodes (u error <= 3.3e-4 columns: the
+ * interpolation of w (log2 r^2 / log2 R^2)^(1/alpha) over a node, alpha 1..8).
+ * Rebuilt only when R, alpha or lp_w change (the gaze moves R).  Nodes up to
+ * the octave of R^2 <= 4 (W^2 + H^2) px^2 (the gaze is at most one screen
+ * outside): floor(log2(W^2 + H^2)) - 1 octaves of 128 nodes, + 1. */
+typedef struct {
+    uint32_t u_q16;    /* eq. 2.2 u, Q16 columns, not clipped at lp_w (extrapolated past R) */
+    uint16_t sig_q14;  /* sigma_u in [1/2, 2], Q14 */
+    uint16_t inv2_q12; /* 1 / sigma_u^2 in [1/4, 4], Q12 */
+} tdc_fov_node_t;
+#define TDC_FOV_NODE_BITS 7u /* 128 nodes per octave of |x'|^2 */
+#define TDC_FOV_NODE_E0 20u  /* first octave: |x'|^2 = 2^20 (Q16) = 16 px^2 */
+#define TDC_FOV_LOG2_S_(S, k) +(((uint64_t)(S)) >= ((uint64_t)1 << (k)) ? 1u : 0u)
+#define TDC_FOV_FLOOR_LOG2_(S)                                                                                     \
+    (0u TDC_FOV_LOG2_S_(S, 1) TDC_FOV_LOG2_S_(S, 2) TDC_FOV_LOG2_S_(S, 3) TDC_FOV_LOG2_S_(S, 4)                   \
+         TDC_FOV_LOG2_S_(S, 5) TDC_FOV_LOG2_S_(S, 6) TDC_FOV_LOG2_S_(S, 7) TDC_FOV_LOG2_S_(S, 8)                  \
+             TDC_FOV_LOG2_S_(S, 9) TDC_FOV_LOG2_S_(S, 10) TDC_FOV_LOG2_S_(S, 11) TDC_FOV_LOG2_S_(S, 12)           \
+                 TDC_FOV_LOG2_S_(S, 13) TDC_FOV_LOG2_S_(S, 14) TDC_FOV_LOG2_S_(S, 15) TDC_FOV_LOG2_S_(S, 16)      \
+                     TDC_FOV_LOG2_S_(S, 17) TDC_FOV_LOG2_S_(S, 18) TDC_FOV_LOG2_S_(S, 19) TDC_FOV_LOG2_S_(S, 20)  \
+                         TDC_FOV_LOG2_S_(S, 21) TDC_FOV_LOG2_S_(S, 22) TDC_FOV_LOG2_S_(S, 23)                     \
+                             TDC_FOV_LOG2_S_(S, 24) TDC_FOV_LOG2_S_(S, 25) TDC_FOV_LOG2_S_(S, 26)                 \
+                                 TDC_FOV_LOG2_S_(S, 27))
+/* Nodes for a W x H display (W, H >= 4, so W^2 + H^2 >= 32: >= 4 octaves). */
+#define TDC_FOV_RAD_NODES(W, H) \
+    ((size_t)(TDC_FOV_FLOOR_LOG2_((uint64_t)(W) * (W) + (uint64_t)(H) * (H)) - 1u) * 128u + 1u)
+
+/* The arena layout (firmware/tdc_arena.h), one list: the radial table, one
+ * reciprocal per display column (the angle's atan without a divide), and
+ * with TAA two Q8 RGB history frames (ping-pong) and the row scratch, 19
+ * uint16 per display column (2 rows x 8 values + 3 rows of |s - h|). */
 #define TDC_FOV_ROW_VALS 19u
 #define TDC_FOV_ARENA(X, W, H, TAA)                                 \
+    X(rad, tdc_fov_node_t, TDC_FOV_RAD_NODES(W, H))                 \
+    X(colinv, uint32_t, (size_t)(W))                                \
+    X(t_off0, uint32_t, (size_t)(W))                                \
+    X(t_off1, uint32_t, (size_t)(W))                                \
+    X(t_wf, uint32_t, (size_t)(W))                                  \
+    X(t_ij, uint32_t, (size_t)(W))                                  \
+    X(t_out, uint16_t, (size_t)(W)*3u)                              \
+    X(t_gen, uint16_t, (size_t)(W)*3u)                              \
+    X(t_b, uint16_t, (size_t)(W))                                   \
     X(hist[0], uint16_t, (TAA) ? (size_t)(W) * (size_t)(H)*3u : 0u) \
     X(hist[1], uint16_t, (TAA) ? (size_t)(W) * (size_t)(H)*3u : 0u) \
     X(rows, uint16_t, (TAA) ? (size_t)(W)*TDC_FOV_ROW_VALS : 0u)
-/* Compile-time bound for static arenas (an empty layout still reports
- * TDC_ARENA_ALIGN bytes, as get_size does). */
-#define TDC_FOV_MEM_BYTES(W, H, TAA) \
-    ((TAA) ? (size_t)0 TDC_FOV_ARENA(TDC_ARENA_BLOCK_BYTES, W, H, 1) : (size_t)TDC_ARENA_ALIGN)
+/* Compile-time bound for static arenas. */
+#define TDC_FOV_MEM_BYTES(W, H, TAA) ((size_t)0 TDC_FOV_ARENA(TDC_ARENA_BLOCK_BYTES, W, H, TAA))
 
 struct tdc_fov_lr_s; /* tdc_fov_lr.h */
 
 typedef struct {
     tdc_fov_config_t cfg;
     struct tdc_fov_lr_s *lr; /* log-rectilinear scratch (tdc_fov_lr_attach), NULL: refused */
-    uint16_t *hist[2]; /* Q8 RGB history frames, ping-pong */
-    uint16_t *rows;    /* scratch: 2 rows x 8 values + 3 rows of |s - h| */
-    uint8_t cur;       /* hist[cur] holds the last output */
+    tdc_fov_node_t *rad; /* radial table (TDC_FOV_RAD_NODES), valid for rad_key */
+    uint32_t *colinv;    /* per display column: 2^63 / (|dx| << clz(|dx|)), for colinv_cx */
+    /* one display row of the geometry pass (tdc_fov_kernels.h): tap descriptors, the
+     * kernel's output planes, the other pixels' colours, blend weight | general flag, iu | jv << 16 */
+    uint32_t *t_off0, *t_off1, *t_wf, *t_ij;
+    uint16_t *t_out, *t_gen, *t_b;
+    tdc_fov_tap2_row_fn *tap2; /* the row kernel (tdc_fov_set_simd) */
+    uint16_t *hist[2];   /* Q8 RGB history frames, ping-pong */
+    uint16_t *rows;      /* scratch: 2 rows x 8 values + 3 rows of |s - h| */
+    uint8_t cur;         /* hist[cur] holds the last output */
     uint8_t have_hist;
+    uint8_t rad_valid, colinv_valid;
+    int32_t rad_key_r2, rad_key_lpw, rad_key_alpha; /* the table's log2(R^2) (Q24), lp_w, alpha */
+    uint32_t rad_nodes;                             /* nodes built */
+    int32_t colinv_cx;                              /* gaze x (Q8) of colinv */
     uint32_t dt_prev_us;
     int32_t gaze_prev_x_q8, gaze_prev_y_q8;
     uint32_t frames, rejected_frames; /* counters: frames composed, histories rejected */
+    uint32_t rad_builds;              /* counter: radial tables built */
 } tdc_fov_t;
 
 size_t tdc_fov_get_size(const tdc_fov_config_t *cfg);
 /* mem: caller-owned arena of tdc_fov_get_size() bytes, aligned to
  * TDC_ARENA_ALIGN (8); TDC_ERR_ARG if not, TDC_ERR_SIZE if too small. */
 TDC_MUST_CHECK tdc_status_t tdc_fov_init(tdc_fov_t *st, const tdc_fov_config_t *cfg, void *mem, size_t mem_bytes);
+/* 1: the SIMD tap kernel where the CPU has one (the default), 0: the C kernel
+ * (same bytes; for the benchmarks and checkasm). */
+void tdc_fov_set_simd(tdc_fov_t *st, int enable);
 /* Forget the history (stream restart, loss): the next frame is taken as is. */
 void tdc_fov_reset(tdc_fov_t *st);
 
@@ -162,7 +218,9 @@ void tdc_fov_reset(tdc_fov_t *st);
  *   dt_us: this frame's time, for eq. 4.7 (TAA only; 0 = as the last one).
  * A log-rectilinear frame (p->transform, tdc_fov_lr.h) reads lp as its whole
  * texel buffer and needs scratch attached (tdc_fov_lr_attach), else TDC_ERR_ARG.
- * TDC_ERR_ARG / TDC_ERR_SIZE as tdc_fov_geom, or a geometry larger than the config. */
+ * TDC_ERR_ARG / TDC_ERR_SIZE as tdc_fov_geom, or a geometry larger than the config;
+ * TDC_ERR_ARG for a stride too small or a log-polar buffer spanning 2^31 bytes or
+ * more ((lp_h - 1) lp_stride + 3 lp_w: the tap descriptors hold byte offsets). */
 TDC_MUST_CHECK tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8_t *lp, size_t lp_stride,
                                           const int16_t *mv, size_t mv_stride, const uint8_t *disk, size_t disk_stride,
                                           uint32_t dt_us, uint8_t *out, size_t out_stride);

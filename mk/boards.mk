@@ -103,6 +103,7 @@ $(BA)/libtdcfw.a: $$(ARM_FW_OBJS)
 
 ifeq ($(BOARD_MVE),1)
 $(BA)/firmware/tdc_trm_mve.o: ARM_FW_CFLAGS := $(call ARM_MVE_FIX,$(ARM_FW_CFLAGS))
+$(BA)/firmware/tdc_fov_mve.o: ARM_FW_CFLAGS := $(call ARM_MVE_FIX,$(ARM_FW_CFLAGS))
 endif
 
 # Link an image; a region overflow becomes the memory-fit verdict ($(1) names
@@ -160,7 +161,7 @@ $(BA)/harness-check: $(BA)/tdc_harness.elf tests/arm/test_harness.sh
 
 # Helium boards: the checkasm core (tests/checkasm/, the host's registry and
 # inputs) in QEMU, which checks the MVE row kernels against the C kernels.
-ARM_CHECKASM_SRCS = tests/arm/checkasm_arm_main.c tests/checkasm/checkasm.c tests/checkasm/checkasm_trm.c tests/checkasm/checkasm_lcd.c
+ARM_CHECKASM_SRCS = tests/arm/checkasm_arm_main.c tests/checkasm/checkasm.c tests/checkasm/checkasm_trm.c tests/checkasm/checkasm_lcd.c tests/checkasm/checkasm_fov.c
 ARM_CHECKASM_OBJS = $(patsubst %.c,$(BA)/%.o,$(ARM_BOARD_SRCS) $(ARM_CHECKASM_SRCS))
 $(patsubst %.c,$(BA)/%.o,$(ARM_CHECKASM_SRCS)): ARM_TEST_CFLAGS += -DCHECKASM_NO_MAIN
 $(BA)/checkasm_mve.elf: $$(ARM_CHECKASM_OBJS) $(BA)/libtdcfw.a $(ARM_LDDEPS)
@@ -169,8 +170,8 @@ $(BA)/checkasm-mve: $(BA)/checkasm_mve.elf tests/arm/run_checkasm_qemu.sh
 	@printf '#!/bin/sh\nexec tests/arm/run_checkasm_qemu.sh "%s" %s "%s" %s\n' \
 	    "$(BOARD)" "$(QEMU_TIMEOUT)" "$(BA)/checkasm_mve.elf" "$(BOARD_QEMU)" > $@
 	@chmod +x $@
-$(BA)/mve-nofloat: $(BA)/firmware/tdc_trm_mve.o tests/rules/check_arm_nofloat.sh
-	@printf '#!/bin/sh\nexec tests/rules/check_arm_nofloat.sh %s %s\n' "$(ARM_CROSS)objdump" "$<" > $@
+$(BA)/mve-nofloat: $(BA)/firmware/tdc_trm_mve.o $(BA)/firmware/tdc_fov_mve.o tests/rules/check_arm_nofloat.sh
+	@printf '#!/bin/sh\nexec tests/rules/check_arm_nofloat.sh %s %s\n' "$(ARM_CROSS)objdump" "$(filter %.o,$^)" > $@
 	@chmod +x $@
 ARM_CHECKASM = $(if $(filter 1,$(BOARD_MVE)),$(BA)/checkasm-mve $(BA)/mve-nofloat)
 
@@ -214,6 +215,7 @@ $(BP)/stages: FORCE
 	@mkdir -p $(@D); echo '$(ARM_IMG_CFLAGS)' | cmp -s - $@ || echo '$(ARM_IMG_CFLAGS)' > $@
 ifeq ($(BOARD_MVE),1)
 $(BP)/firmware/tdc_trm_mve.o: ARM_IMG_CFLAGS := $(call ARM_MVE_FIX,$(ARM_IMG_CFLAGS))
+$(BP)/firmware/tdc_fov_mve.o: ARM_IMG_CFLAGS := $(call ARM_MVE_FIX,$(ARM_IMG_CFLAGS))
 endif
 $(BP)/%.o: %.c $(GEN)/tdc_panels.h $(PANEL_CONFIG) $(BP)/stages
 	@mkdir -p $(@D)

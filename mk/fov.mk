@@ -2,6 +2,10 @@
 # peripheral TAA, its double-precision reference, tests, golden vectors.
 # The stage's log/power/atan/Gaussian tables come from tdc-tablegen --fov.
 FW_SRCS += firmware/tdc_fov.c firmware/tdc_fov_lr.c firmware/tdc_fov_link.c
+# the tap kernel: AVX2 (x86-64 hosts; the C kernel elsewhere) and Helium (the
+# C kernel except on BOARD_MVE boards); checked against C by tests/checkasm
+FW_SRCS += firmware/tdc_fov_avx2.c firmware/tdc_fov_mve.c
+$(B)/firmware/tdc_fov_avx2.o: FW_CFLAGS := $(filter-out -mgeneral-regs-only,$(FW_CFLAGS))
 SIM_SRCS += sim/ref_fov.c sim/ref_fov_lr.c
 # foveated error statistics (eccentricity weighting, FLIP's weighted median) for the simulator
 FOV_METRICS_OBJ = $(B)/sim/metrics/tdc_fov_metrics.o $(B)/sim/metrics/tdc_filter.o
@@ -20,7 +24,8 @@ endif
 $(B)/check-fw-rules: $(GEN)/tdc_fov_tables.h
 
 # Own link rules: the fov tests need only these objects.
-FOV_OBJS = $(B)/firmware/tdc_fov.o $(B)/firmware/tdc_fov_lr.o $(B)/firmware/tdc_fov_link.o $(B)/firmware/tdc_math.o $(B)/sim/ref_fov.o $(B)/sim/ref_fov_lr.o
+FOV_OBJS = $(B)/firmware/tdc_fov.o $(B)/firmware/tdc_fov_lr.o $(B)/firmware/tdc_fov_avx2.o $(B)/firmware/tdc_fov_mve.o \
+           $(B)/firmware/tdc_fov_link.o $(B)/firmware/tdc_math.o $(B)/sim/ref_fov.o $(B)/sim/ref_fov_lr.o
 FOV_TESTS := test_fov test_fov_ref test_fov_link test_fov_lr
 TESTS += $(foreach t,$(FOV_TESTS),$(B)/tests/unit/$(t))
 $(foreach t,$(FOV_TESTS),$(B)/tests/unit/$(t)): $(B)/tests/unit/%: $(B)/tests/unit/%.o $(FOV_OBJS)
@@ -38,7 +43,8 @@ BENCHES += $(B)/tests/bench/bench_fov
 
 # Fuzzing: the target `fov` is registered in mk/fuzz.mk (tests/fuzz/fuzz_fov.c,
 # seeds tests/fuzz/corpus-fov, regenerated deliberately by make fuzz-seeds-fov).
-$(BUILD)/fuzz/make_seeds_fov: tests/fuzz/make_seeds_fov.c firmware/tdc_fov.c firmware/tdc_fov_lr.c firmware/tdc_fov_link.c firmware/tdc_math.c $(GEN)/tdc_fov_tables.h
+$(BUILD)/fuzz/make_seeds_fov: tests/fuzz/make_seeds_fov.c firmware/tdc_fov.c firmware/tdc_fov_lr.c firmware/tdc_fov_avx2.c \
+                              firmware/tdc_fov_mve.c firmware/tdc_fov_link.c firmware/tdc_math.c $(GEN)/tdc_fov_tables.h
 	@mkdir -p $(@D)
 	gcc -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror -O2 -Ifirmware -I$(GEN) $(filter %.c,$^) -o $@
 fuzz-seeds-fov: $(BUILD)/fuzz/make_seeds_fov

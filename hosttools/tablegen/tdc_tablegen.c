@@ -490,6 +490,9 @@ static void gen_commit(tdc_out_t *out, const char *path)
  *   atan(k/256) / (2 pi)       k = 0..256, Q32 turns  (eq. 2.2: the angle, one octant)
  *   (e^(-t^2/2) - e^-2) / (1 - e^-2) at t^2 = k/64, k = 0..256, Q15
  *                                                     (eq. 4.4: the radial Gaussian, cut at t = 2)
+ *   G(2f) / (G(2f) + G(2 - 2f)) at f = k/256, k = 0..256, Q15
+ *                                                     (eq. 4.4 at sigma = 1/2: the normalised weight of
+ *                                                      tap floor(u), f = frac(u); floor(u) + 1 gets the rest)
  * Each is interpolated linearly by the stage; the interpolation errors are
  * stated beside the functions that read them.
  */
@@ -517,6 +520,12 @@ static void gen_fov(const char *path)
         t[k] = (uint32_t)llround(ldexp(g < 0 ? 0 : g, 15));
     }
     emit_u32(f, "static const uint32_t tdc_fov_gauss_tab", t, 257);
+    for (int k = 0; k <= 256; k++) { /* sigma = 1/2: the taps at d = f and 1 - f, t = 2d */
+        const double e2 = exp(-2.0), f0 = k / 256.0;
+        const double g0 = (exp(-0.5 * 4 * f0 * f0) - e2) / (1 - e2), g1 = (exp(-0.5 * 4 * (1 - f0) * (1 - f0)) - e2) / (1 - e2);
+        t[k] = (uint32_t)llround(ldexp(fmax(g0, 0) / (fmax(g0, 0) + fmax(g1, 0)), 15));
+    }
+    emit_u32(f, "static const uint32_t tdc_fov_tent_tab", t, 257);
     /* log2(ln 2) in Q24 (negative): d/dr of eq. 2.2 needs ln r = log2(r) ln 2 */
     fprintf(f, "#define TDC_FOV_LOG2_LN2_Q24 (%ld)\n", lround(ldexp(log2(log(2.0)), 24)));
     fprintf(f, "#endif\n");

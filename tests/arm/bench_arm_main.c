@@ -407,10 +407,12 @@ static void bench_bands(void)
 }
 
 /* Foveated remap at alpha = 4, delta = 0.555, 12.443 % disk, gaze off-centre;
- * frame 0 fills the history, frame 1 is measured.  lr: the log-rectilinear
- * kind at the same gaze, its foveal scales from the sender's default rule
- * (ref_fov_lr_k: 165.75 and 91.875 px at 640 x 360). */
-static void bench_fov(uint8_t taa, uint8_t lr, const char *label)
+ * frame 0 fills the history, frame 1 is measured: with the same gaze (the
+ * radial table and the column reciprocals kept), or with the gaze moved by
+ * (1, 1) px (both rebuilt, as every frame of a moving gaze does).  lr: the
+ * log-rectilinear kind at the same gaze, its foveal scales from the sender's
+ * default rule (ref_fov_lr_k: 165.75 and 91.875 px at 640 x 360). */
+static void bench_fov(uint8_t taa, uint8_t lr, int move, const char *label)
 {
     const tdc_fov_config_t cfg = {(uint16_t)BENCH_W, (uint16_t)BENCH_H, taa};
     if (tdc_fov_init(&g_fov, &cfg, g_fov_arena, sizeof g_fov_arena) != TDC_OK ||
@@ -436,8 +438,11 @@ static void bench_fov(uint8_t taa, uint8_t lr, const char *label)
                       BENCH_W * 3u) != TDC_OK) {
         fail("fov frame");
     }
+    tdc_fov_params_t p1 = p;
+    p1.gaze_x_q8 += move ? 256 : 0;
+    p1.gaze_y_q8 += move ? 256 : 0;
     tdc_bench_mark();
-    if (tdc_fov_frame(&g_fov, &p, g_fov_lp, FOV_LW * 3u, g_fov_mv, FOV_LW * 2u, g_in[1], BENCH_W * 3u, 11111u, g_out,
+    if (tdc_fov_frame(&g_fov, &p1, g_fov_lp, FOV_LW * 3u, g_fov_mv, FOV_LW * 2u, g_in[1], BENCH_W * 3u, 11111u, g_out,
                       BENCH_W * 3u) != TDC_OK) {
         fail("fov frame");
     }
@@ -553,10 +558,11 @@ int main(void)
         bench_bands();
     }
     if (want("fov")) {
-        bench_fov(0, 0, "foveated remap (alpha 4, 12.4 % disk)");
-        bench_fov(1, 0, "foveated remap + peripheral TAA");
-        bench_fov(0, 1, "foveated remap, log-rectilinear");
-        bench_fov(1, 1, "foveated remap, log-rectilinear + TAA");
+        bench_fov(0, 0, 0, "foveated remap (alpha 4, 12.4 % disk)");
+        bench_fov(1, 0, 0, "foveated remap + peripheral TAA");
+        bench_fov(0, 0, 1, "foveated remap, gaze moved (tables rebuilt)");
+        bench_fov(0, 1, 0, "foveated remap, log-rectilinear");
+        bench_fov(1, 1, 0, "foveated remap, log-rectilinear + TAA");
     }
     return 0;
 }

@@ -133,23 +133,44 @@ static void throughput(int lr, double bw)
     if (!lr) {
         printf("\nremap throughput, %dx%d (one eye), one core; memcpy bandwidth %.2f GB/s (read + write)\n", W, H,
                bw / 1e9);
+        const tdc_fov_config_t c0 = {W, H, 0}, c1 = {W, H, 1};
+        printf("  stage memory: %zu B without TAA (radial table %zu nodes x %zu B + %zu B per column), %zu B with TAA\n",
+               tdc_fov_get_size(&c0), (size_t)TDC_FOV_RAD_NODES(W, H), sizeof(tdc_fov_node_t),
+               (tdc_fov_get_size(&c0) - TDC_ARENA_ROUND(TDC_FOV_RAD_NODES(W, H) * sizeof(tdc_fov_node_t))) / W,
+               tdc_fov_get_size(&c1));
     }
     static uint64_t lr_mem[TDC_FOV_LR_MEM_BYTES(W) / 8u];
     tdc_fov_lr_t lrs;
     TDC_MUST(tdc_fov_lr_init(&lrs, W, lr_mem, sizeof lr_mem));
-    for (int taa = 0; taa < 2; taa++) {
+    /* variants: fov, fov-taa (gaze still: the radial table and the column
+     * reciprocals are built once), fov with the gaze moving 1 px per frame
+     * (both rebuilt every frame, as with an eye tracker), fov with the C tap
+     * kernel instead of AVX2; the log-rectilinear kind with and without TAA */
+    typedef struct {
+        int taa, move, simd;
+        const char *name;
+    } variant_t;
+    static const variant_t var_lp[] = {{0, 0, 1, "fov"}, {1, 0, 1, "fov-taa"}, {0, 1, 1, "fov-move"}, {0, 0, 0, "fov-C"}};
+    static const variant_t var_lr[] = {{0, 0, 1, "fovlr"}, {1, 0, 1, "fovlr-taa"}};
+    const variant_t *var = lr ? var_lr : var_lp;
+    const unsigned nvar = lr ? 2u : 4u;
+    for (unsigned vi = 0; vi < nvar; vi++) {
+        const int taa = var[vi].taa;
         tdc_fov_config_t cfg = {W, H, (uint8_t)taa};
         size_t n = tdc_fov_get_size(&cfg);
         void *mem = malloc(n);
         tdc_fov_t st;
         TDC_MUST(tdc_fov_init(&st, &cfg, mem, n));
         TDC_MUST(tdc_fov_lr_attach(&st, &lrs));
+        tdc_fov_set_simd(&st, var[vi].simd);
         TDC_MUST(tdc_fov_frame(&st, &p, lp, (size_t)p.lp_w * 3, mv, (size_t)p.lp_w * 2, dk, W * 3, 11111, out, W * 3));
         double best = 1e30;
+        tdc_fov_params_t pr = p;
         for (int r = 0; r < 5; r++) {
+            pr.gaze_x_q8 += var[vi].move ? (r & 1 ? -256 : 256) : 0;
             const double t0 = now_s();
             TDC_MUST(
-                tdc_fov_frame(&st, &p, lp, (size_t)p.lp_w * 3, mv, (size_t)p.lp_w * 2, dk, W * 3, 11111, out, W * 3));
+                tdc_fov_frame(&st, &pr, lp, (size_t)p.lp_w * 3, mv, (size_t)p.lp_w * 2, dk, W * 3, 11111, out, W * 3));
             const double t = now_s() - t0;
             best = t < best ? t : best;
         }
@@ -160,7 +181,10 @@ static void throughput(int lr, double bw)
         const double ns = 1e9 * best / (W * H), bound = 1e9 * bytes / bw;
         printf("  %-8s %7.2f ns/px (%6.1f Mpx/s, %5.1f ms/frame); %5.2f B/px touched -> bound %.3f ns/px: %5.1f %% of "
                "the bound (goal >= 50 %%)\n",
-               lr ? (taa ? "fovlr-taa" : "fovlr") : (taa ? "fov-taa" : "fov"), ns, 1e-6 * W * H / best, 1e3 * best, bytes, bound, 100 * bound / ns);
+               var[vi].name, ns, 1e-6 * W * H / best, 1e3 * best, bytes, bound, 100 * bound / ns);
+        if (var[vi].move) {
+            printf("           (radial tables built: %u in %d frames)\n", (unsigned)st.rad_builds, 6);
+        }
         free(mem);
     }
     free(lp), free(dk), free(out), free(mv);

@@ -22,8 +22,9 @@
 /* ---- the modules: one line per firmware stage with optimised kernels ---- */
 extern const checkasm_module_t checkasm_trm;
 extern const checkasm_module_t checkasm_lcd;
+extern const checkasm_module_t checkasm_fov;
 
-static const checkasm_module_t *const g_modules[] = {&checkasm_trm, &checkasm_lcd};
+static const checkasm_module_t *const g_modules[] = {&checkasm_trm, &checkasm_lcd, &checkasm_fov};
 #define NMODULES (sizeof g_modules / sizeof g_modules[0])
 
 #define BENCH_CALLS 20u

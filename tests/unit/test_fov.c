@@ -314,6 +314,8 @@ static void test_bad_input(void **state)
     p = ok;
     assert_int_equal(tdc_fov_frame(&st, &p, lp, 65, NULL, 0, dk, W * 3, 0, out, W * 3), TDC_ERR_ARG); /* stride */
     assert_int_equal(tdc_fov_frame(&st, &p, NULL, 66, NULL, 0, dk, W * 3, 0, out, W * 3), TDC_ERR_ARG);
+    /* a log-polar buffer of 2^31 bytes or more (the tap descriptors' offsets): refused, never read */
+    assert_int_equal(tdc_fov_frame(&st, &p, lp, (size_t)1 << 29, NULL, 0, dk, W * 3, 0, out, W * 3), TDC_ERR_ARG);
     assert_memory_equal(out, before, sizeof out); /* nothing written on a refusal */
     assert_int_equal(st.frames, 0);
     /* gaze exactly one screen outside is accepted */
@@ -444,6 +446,66 @@ static void test_long_run(void **state)
     free(mem);
 }
 
+/* The per-frame tables are a cache: a stage that kept them from earlier
+ * frames (other gazes, alpha, buffer sizes, disks; the radial table rebuilt
+ * only when R, alpha or lp_w change) gives the same bytes as a fresh stage,
+ * with the SIMD tap kernel and with the C one; the table is rebuilt exactly
+ * when its key changes. */
+static void test_tables_cached(void **state)
+{
+    (void)state;
+    enum { W = 97, H = 71 };
+    static uint8_t lp[W * H * 3], dk[W * H * 3], out_a[W * H * 3], out_b[W * H * 3], out_c[W * H * 3];
+    for (size_t i = 0; i < sizeof lp; i++) {
+        lp[i] = (uint8_t)rnd();
+        dk[i] = (uint8_t)rnd();
+    }
+    tdc_fov_t kept, fresh;
+    void *mem_k, *mem_f;
+    run_stage(&kept, 0, W, H, &mem_k);
+    run_stage(&fresh, 0, W, H, &mem_f);
+    uint32_t builds = 0;
+    tdc_fov_params_t prev = {0, 0, 0, 0, 0, 0, {0, 0}, TDC_FOV_KERNEL_LOG_POLAR, 0};
+    for (int c = 0; c < 120; c++) {
+        tdc_fov_params_t p = prev; /* kernel log-polar, every field set */
+        p.gaze_x_q8 = (int32_t)(rnd() % (3u * W * 256u)) - W * 256;
+        p.gaze_y_q8 = (int32_t)(rnd() % (3u * H * 256u)) - H * 256;
+        if (c % 3 == 1) {
+            p = prev; /* the same R: no rebuild */
+            p.disk_q15 = (uint16_t)(rnd() % 32769u);
+        } else if (c % 3 == 2) { /* the mirrored gaze: the same R, other columns */
+            p = prev;
+            p.gaze_x_q8 = W * 256 - prev.gaze_x_q8;
+        } else {
+            p.alpha_q8 = (uint16_t)(256u + rnd() % 1793u);
+            p.disk_q15 = (uint16_t)(rnd() % 32769u);
+            p.lp_w = (uint16_t)(4u + rnd() % (W - 3u));
+            p.lp_h = (uint16_t)(4u + rnd() % (H - 3u));
+        }
+        const int same_key = c > 0 && p.alpha_q8 == prev.alpha_q8 && p.lp_w == prev.lp_w &&
+                             (c % 3 != 0) /* the same R by construction */;
+        prev = p;
+        tdc_fov_set_simd(&kept, c & 1);
+        assert_int_equal(tdc_fov_frame(&kept, &p, lp, W * 3u, NULL, 0, dk, W * 3u, 0, out_a, W * 3u), TDC_OK);
+        assert_int_equal(tdc_fov_init(&fresh, &fresh.cfg, mem_f, tdc_fov_get_size(&fresh.cfg)), TDC_OK);
+        assert_int_equal(tdc_fov_frame(&fresh, &p, lp, W * 3u, NULL, 0, dk, W * 3u, 0, out_b, W * 3u), TDC_OK);
+        tdc_fov_set_simd(&fresh, 0);
+        assert_int_equal(tdc_fov_frame(&fresh, &p, lp, W * 3u, NULL, 0, dk, W * 3u, 0, out_c, W * 3u), TDC_OK);
+        assert_memory_equal(out_a, out_b, sizeof out_a);
+        assert_memory_equal(out_a, out_c, sizeof out_a);
+        assert_int_equal(fresh.rad_builds, 1u); /* the C-kernel frame reused the table */
+        builds += same_key ? 0u : 1u;
+        if (same_key) {
+            assert_int_equal(kept.rad_builds, builds);
+        }
+        builds = kept.rad_builds;
+    }
+    printf("tables: %u radial builds in 120 frames (80 with the same R, alpha, lp_w as the frame before)\n", builds);
+    assert_true(builds <= 40u + 1u);
+    free(mem_k);
+    free(mem_f);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -451,6 +513,7 @@ int main(void)
         cmocka_unit_test(test_disk_rectangle),  cmocka_unit_test(test_uniform),
         cmocka_unit_test(test_disk_extremes),   cmocka_unit_test(test_bad_input),
         cmocka_unit_test(test_gaze_jump),       cmocka_unit_test(test_long_run),
+        cmocka_unit_test(test_tables_cached),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -199,7 +199,7 @@ static void test_stage_on_decoded_buffers(void **state)
     (void)state;
     static uint8_t lp[TDC_LINK_FRAME_BYTES(W, H)], disk[TDC_LINK_FRAME_BYTES(W, H)], out_a[TDC_LINK_FRAME_BYTES(W, H)];
     static int16_t mv[TDC_LINK_MOTION_COUNT(W, H)];
-    static uint64_t arena_a[(W * H * 12 + W * 38 + 64) / 8 + 16], arena_b[(W * H * 12 + W * 38 + 64) / 8 + 16];
+    static uint64_t arena_a[TDC_FOV_MEM_BYTES(W, H, 1) / 8u], arena_b[TDC_FOV_MEM_BYTES(W, H, 1) / 8u];
     const tdc_fov_config_t cfg = {W, H, 1};
     assert_true(tdc_fov_get_size(&cfg) <= sizeof arena_a);
     tdc_fov_t sa, sb;
