@@ -176,7 +176,7 @@ static void test_fov_lod(void **state)
     int nlp = 0, nd = 0;
     double cmax[3] = {0, 0, 0};
     tdc_fov_params_t p = {(int32_t)lround(fv.gaze_x * 256), (int32_t)lround(fv.gaze_y * 256), 1024, 4077,
-                          (uint16_t)(W * 555 / 1000),       (uint16_t)(H * 555 / 1000)};
+                          (uint16_t)(W * 555 / 1000),       (uint16_t)(H * 555 / 1000), {0, 0}, TDC_FOV_KERNEL_LOG_POLAR, 0};
     tdc_fov_geom_t g;
     assert_int_equal(tdc_fov_geom(&g, W, H, &p), TDC_OK);
     const double cx = p.gaze_x_q8 / 256.0, cy = p.gaze_y_q8 / 256.0;
