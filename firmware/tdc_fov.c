@@ -748,12 +748,12 @@ tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8
         }
         src.lr = st->lr;
     }
-    /* The radial table (kernel log-polar only): rebuilt only when R (the gaze), alpha or lp_w changed */
-    const uint32_t nodes = rad_nodes_for(r2max_q16(g.cx_q8, g.cy_q8, g.width, g.height));
-    if (src.lr) {
-        /* not used by a log-rectilinear frame: kept for the next log-polar one */
-    } else if (!st->rad_valid || st->rad_key_r2 != g.log2_r2max_q24 || st->rad_key_lpw != g.lp_w ||
-        st->rad_key_alpha != p->alpha_q8 || st->rad_nodes != nodes) {
+    /* The radial table: rebuilt only when R (the gaze), alpha or lp_w changed.  A log-rectilinear
+     * frame does not read it (geom_px takes its periphery from tdc_fov_lr.c): kept for the next
+     * log-polar one. */
+    const uint32_t nodes = src.lr ? st->rad_nodes : rad_nodes_for(r2max_q16(g.cx_q8, g.cy_q8, g.width, g.height));
+    if (!src.lr && (!st->rad_valid || st->rad_key_r2 != g.log2_r2max_q24 || st->rad_key_lpw != g.lp_w ||
+                    st->rad_key_alpha != p->alpha_q8 || st->rad_nodes != nodes)) {
         for (uint32_t n = 0; n < nodes; n++) {
             const uint32_t e = TDC_FOV_NODE_E0 + (n >> TDC_FOV_NODE_BITS), m = n & 127u;
             node_fill(&g, ((uint64_t)1 << e) + ((uint64_t)m << (e - 7u)), 0, src.leta_max, &st->rad[n]);
