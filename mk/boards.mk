@@ -185,7 +185,9 @@ arm-golden-check: $(BA)/golden-check $(BA)/harness-check $(ARM_CHECKASM)
 # BOARD_STAGES, else all); the LCD inverse only on LCD panels, and its
 # sources ($(FW_LCD_SRCS)) are left out of every other build.
 # ---------------------------------------------------------------------------
-ALL_STAGES := trm assemble lcd
+# fov: the foveation stage (FOVEATED streams, docs/foveation.md) without
+# peripheral TAA; fovtaa: with it (12 B/px of history per eye).
+ALL_STAGES := trm assemble lcd fovtaa
 # A board may name other default stages for a panel: BOARD_STAGES_<panel>.
 STAGES_DEFAULT := $(if $(filter-out undefined,$(origin BOARD_STAGES_$(PANEL))),$(BOARD_STAGES_$(PANEL)),$(if \
                   $(filter undefined,$(origin BOARD_STAGES)),$(ALL_STAGES),$(BOARD_STAGES)))
@@ -202,6 +204,7 @@ FW_LCD_ON := $(if $(and $(filter lcd,$(PANEL_TYPE)),$(filter lcd,$(STAGES))),1,0
 # staged, a front/back frame buffer pair (docs/boards.md, "Rows in flight").
 BANDS ?= $(or $(BOARD_BANDS),0)
 FW_CFG_BASE := -DTDC_CFG_TRM=$(if $(filter trm,$(STAGES)),1,0) -DTDC_CFG_ASSEMBLE=$(if $(filter assemble,$(STAGES)),1,0) \
+          -DTDC_CFG_FOV=$(if $(filter fov fovtaa,$(STAGES)),1,0) -DTDC_CFG_FOV_TAA=$(if $(filter fovtaa,$(STAGES)),1,0) \
           -DTDC_CFG_LCD=$(FW_LCD_ON) $(BOARD_FW_CFG)
 FW_CFG := $(FW_CFG_BASE) -DTDC_CFG_BANDS=$(BANDS)
 PANEL_CONFIG := $(GEN)/tdc_panel_$(PANEL)_config.h
@@ -263,8 +266,12 @@ arm-image-check: $(BP)/check-image-rules
 # ---------------------------------------------------------------------------
 PANEL_DIMS := $(shell awk '$$1 == "width" { w = $$2 } $$1 == "height" { h = $$2 } $$1 == "eyes" { e = $$2 } \
                 END { print w, h, (e ? e : 1) }' boards/panels/$(PANEL).panel)
-FW_MODES ?= plain $(if $(filter trm,$(STAGES)),trm) $(if $(filter assemble,$(STAGES)),subframes)
+FW_MODES ?= plain $(if $(filter trm,$(STAGES)),trm) $(if $(filter assemble,$(STAGES)),subframes) \
+            $(if $(filter fov fovtaa,$(STAGES)),fov fovlr) $(if $(filter fovtaa,$(STAGES)),fov-taa)
 FW_FRAMES_plain := 5
+FW_FRAMES_fov := 5
+FW_FRAMES_fovlr := 5
+FW_FRAMES_fov-taa := 5
 FW_FRAMES_trm := 4
 FW_FRAMES_subframes := 6
 # The host build of the loop, with and without bands (fw-bands-check compares
@@ -302,7 +309,7 @@ $(B)/tests/fw_stream: $(B)/tests/arm/fw_stream.o $(B)/tests/golden/tdc_content.o
 
 $(STREAMS)/$(PANEL)-%.tdcs: $(B)/tests/fw_stream
 	@mkdir -p $(@D)
-	$(B)/tests/fw_stream $* $(PANEL_DIMS) $(FW_FRAMES_$*) $@ $(if $(filter plain,$*),$(if $(filter lcd,$(PANEL_TYPE)),,$@.expected))
+	$(B)/tests/fw_stream $* $(PANEL_DIMS) $(FW_FRAMES_$*) $@ $(if $(filter plain fov fovlr fov-taa,$*),$(if $(filter lcd,$(PANEL_TYPE)),,$@.expected))
 
 $(BP)/fw-check: $(BP)/tdc-firmware.elf $(FWH)/tdc_fw_host $(foreach m,$(FW_MODES),$(STREAMS)/$(PANEL)-$(m).tdcs) \
                 tests/arm/run_fw_qemu.sh

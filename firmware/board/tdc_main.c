@@ -1,11 +1,12 @@
 /*
  * tdc_main.c - the controller's frame loop (DESIGN §1):
  *
- *   transport bytes -> link decoder -> tile assembly | TRM -> LCD inverse -> panel
+ *   transport bytes -> link decoder -> tile assembly | TRM | foveation -> LCD inverse -> panel
  *
  * One build per board/panel pair: every size comes from the panel's config
  * header (-include build/gen/tdc_panel_<panel>_config.h) and the enabled
- * stages (TDC_CFG_TRM, TDC_CFG_ASSEMBLE, TDC_CFG_LCD, set by `make STAGES=`),
+ * stages (TDC_CFG_TRM, TDC_CFG_ASSEMBLE, TDC_CFG_FOV (+ TDC_CFG_FOV_TAA),
+ * TDC_CFG_LCD, set by `make STAGES=`),
  * so every buffer is a static object and a pair that does not fit its board
  * fails at link time (see mk/boards.mk, docs/boards.md).
  *
@@ -17,13 +18,23 @@
  *                            the loop decides it updates its eye (defer_full)
  *   reduced        E * reduced frame (TRM, r <= TDC_CFG_R_NUM/TDC_CFG_R_DEN)
  *   subframe, sample motion, pattern bits   per eye (assembly)
- *   mode arena     per eye max(TRM arena, assembly arena): a stream uses
- *                  TRM (reduced frames) or assembly (subframes), not both
+ *   mode arena     per eye max(TRM arena, assembly arena, foveation block):
+ *                  a stream uses TRM (reduced frames), assembly (subframes)
+ *                  or foveation (FOVEATED packets), never two of them
+ *   foveation block (TDC_CFG_FOV, in the mode arena) the stage's arena
+ *                  (radial table, row scratch; with TDC_CFG_FOV_TAA the two
+ *                  history frames, 12 B/px), the log-rectilinear scratch,
+ *                  and the decoder's FOVEATED buffers: the disk frame
+ *                  W*H*3 (the decoder's full[]: disk pixels land there, never
+ *                  in the frame buffer), the log-polar / log-rectilinear
+ *                  samples and (TAA) their vectors, for deltas up to
+ *                  TDC_CFG_FOV_DELTA_Q15
  *   LCD arena      per eye (LCD panels only)
  *
  * A frame is shown when every eye has what its mode needs (TRM: the FULL or
- * REDUCED packet due; plain: FULL; assembly: SUBFRAME and, if the stream
- * sends them, its sample motion vectors) or had that packet rejected for a
+ * REDUCED packet due; plain: FULL; foveated: FOVEATED or FULL, as a plain
+ * stream's FULL; assembly: SUBFRAME and, if the stream sends them, its
+ * sample motion vectors) or had that packet rejected for a
  * bad payload CRC (the eye keeps its last image: rejected packets never
  * touch the frame buffer, tdc_link.h).  If a packet of a later frame
  * arrives first, the unfinished frame is completed with what arrived and
@@ -86,6 +97,24 @@
 #if TDC_CFG_ASSEMBLE
 #include "tdc_assemble.h"
 #endif
+#ifndef TDC_CFG_FOV
+#define TDC_CFG_FOV 0
+#endif
+#if TDC_CFG_FOV
+#include "tdc_fov.h"
+#include "tdc_fov_lr.h"
+/* Peripheral TAA (12 B/px of history per eye); without it a packet that
+ * carries motion vectors is refused by the decoder (UNEXPECTED). */
+#ifndef TDC_CFG_FOV_TAA
+#define TDC_CFG_FOV_TAA 1
+#endif
+/* Largest buffer downscale delta (Q15) this build holds: the samples
+ * buffer is sized for it, a larger delta is refused by the decoder
+ * (LENGTH).  Default: 0.555 as senders quantise it (tdc_fov_link.h). */
+#ifndef TDC_CFG_FOV_DELTA_Q15
+#define TDC_CFG_FOV_DELTA_Q15 18187u
+#endif
+#endif
 #if TDC_CFG_LCD
 #include "tdc_lcd.h"
 /* Overdrive table (what monitor scalers use; ~4.5x fewer instructions per
@@ -121,6 +150,28 @@ extern const tdc_panel_t TDC_PANEL_SYMBOL;
  * tile, if assembly is in).  Per-pixel MOTION is never staged: no stage
  * here uses it (skip_motion). */
 #define FW_FULL_BPP ((((unsigned)TDC_LINK_FORMAT_MASK >> TDC_PIXFMT_RGB30) & 1u) ? 4u : 3u)
+#define FW_MAX2(a, b) ((a) > (b) ? (a) : (b))
+#if TDC_CFG_FOV
+/* Foveation (per eye): the samples buffer for TDC_CFG_FOV_DELTA_Q15
+ * (tdc_fov_lp_size), the largest FOVEATED payload (header, every sample
+ * with its vector, every pixel in the disk: disk fraction 1) and the
+ * block carved from the eye's mode arena, in this order: stage arena,
+ * log-rectilinear scratch, disk frame, samples, vectors. */
+#define FW_LPW (((uint32_t)TDC_CFG_FOV_DELTA_Q15 * FW_W) >> 15)
+#define FW_LPH (((uint32_t)TDC_CFG_FOV_DELTA_Q15 * FW_H) >> 15)
+#define FW_LP_SAMPLES ((size_t)FW_LPW * FW_LPH)
+#define FW_FOV_PAYLOAD \
+    ((size_t)TDC_FOV_HDR_BYTES + FW_LP_SAMPLES * (3u + (TDC_CFG_FOV_TAA ? 4u : 0u)) + (size_t)FW_W * FW_H * 3u)
+#define FW_FOV_STAGE_BYTES TDC_ARENA_ROUND(TDC_FOV_MEM_BYTES(FW_W, FW_H, TDC_CFG_FOV_TAA))
+#define FW_FOV_LR_BYTES TDC_ARENA_ROUND(TDC_FOV_LR_MEM_BYTES(FW_W))
+#define FW_FOV_DISK_BYTES TDC_ARENA_ROUND((size_t)FW_W * FW_H * 3u)
+#define FW_FOV_LP_BYTES TDC_ARENA_ROUND(FW_LP_SAMPLES * 3u)
+#define FW_FOV_MV_BYTES (TDC_CFG_FOV_TAA ? TDC_ARENA_ROUND(FW_LP_SAMPLES * 4u) : (size_t)0)
+#define FW_FOV_BYTES (FW_FOV_STAGE_BYTES + FW_FOV_LR_BYTES + FW_FOV_DISK_BYTES + FW_FOV_LP_BYTES + FW_FOV_MV_BYTES)
+#else
+#define FW_FOV_PAYLOAD ((size_t)0)
+#define FW_FOV_BYTES ((size_t)0)
+#endif
 #if TDC_CFG_BANDS
 /* front/back: the panel scans out g_fbs[g.front]; the stages write the other */
 static uint8_t g_fbs[2][(size_t)FW_STRIDE * FW_H] TDC_EXTRAM;
@@ -131,11 +182,11 @@ static uint8_t g_fbs[2][(size_t)FW_STRIDE * FW_H] TDC_EXTRAM;
 #else
 #define FW_ASM_STAGING ((size_t)0)
 #endif
-#define FW_STAGING_BYTES (FW_BAND_STAGING > FW_ASM_STAGING ? FW_BAND_STAGING : FW_ASM_STAGING)
+#define FW_STAGING_BYTES FW_MAX2(FW_MAX2(FW_BAND_STAGING, FW_ASM_STAGING), FW_FOV_PAYLOAD)
 #else
 static uint8_t g_fb[(size_t)FW_STRIDE * FW_H] TDC_EXTRAM;
 #define FB_BACK g_fb
-#define FW_STAGING_BYTES ((size_t)FW_W * FW_H * FW_FULL_BPP + TDC_LINK_STREAM_HEADER_BYTES)
+#define FW_STAGING_BYTES FW_MAX2((size_t)FW_W * FW_H * FW_FULL_BPP + TDC_LINK_STREAM_HEADER_BYTES, FW_FOV_PAYLOAD)
 #endif
 static uint8_t g_staging[FW_STAGING_BYTES] TDC_EXTRAM;
 
@@ -157,9 +208,21 @@ static uint8_t g_pattern[FW_EYES][TDC_PATTERN_BYTES(FW_W, FW_H)] TDC_EXTRAM;
 #define FW_ASM_BYTES ((size_t)0)
 #endif
 
-#define FW_MODE_BYTES (FW_TRM_BYTES > FW_ASM_BYTES ? FW_TRM_BYTES : FW_ASM_BYTES)
-#if TDC_CFG_TRM || TDC_CFG_ASSEMBLE
+/* One arena per eye for the stream's mode.  The foveation block holds the
+ * decoder's FOVEATED buffers too: the decoder writes them only for a
+ * FOVEATED packet, which it accepts only in a stream flagged FOVEATED, and
+ * configure_stream runs no other mode's stage in such a stream (it refuses
+ * FOVEATED with REDUCED or SUBFRAMES), so they never overlap a live TRM or
+ * assembly state; a stage's init starts from nothing it finds there. */
+#define FW_MODE_BYTES FW_MAX2(FW_MAX2(FW_TRM_BYTES, FW_ASM_BYTES), FW_FOV_BYTES)
+#if TDC_CFG_TRM || TDC_CFG_ASSEMBLE || TDC_CFG_FOV
 static uint64_t g_mode_arena[FW_EYES][FW_MODE_BYTES / 8u] TDC_EXTRAM;
+#endif
+#if TDC_CFG_FOV
+#define FOV_LR_MEM(e) ((uint8_t *)g_mode_arena[e] + FW_FOV_STAGE_BYTES)
+#define FOV_DISK(e) ((uint8_t *)g_mode_arena[e] + FW_FOV_STAGE_BYTES + FW_FOV_LR_BYTES)
+#define FOV_LP(e) (FOV_DISK(e) + FW_FOV_DISK_BYTES)
+#define FOV_MV(e) ((int16_t *)(void *)(FOV_LP(e) + FW_FOV_LP_BYTES))
 #endif
 
 #if TDC_CFG_LCD
@@ -171,9 +234,12 @@ static uint64_t g_lcd_arena[FW_EYES][TDC_LCD_MEM_BYTES_MODE_BITS(FW_W, FW_H, TDC
 static uint8_t g_rx[16384];
 
 /* ---- loop state ---- */
-typedef enum { MODE_NONE = 0, MODE_PLAIN, MODE_TRM, MODE_ASSEMBLE } fw_mode_t;
+typedef enum { MODE_NONE = 0, MODE_PLAIN, MODE_TRM, MODE_ASSEMBLE, MODE_FOV } fw_mode_t;
 
 #define KIND_BIT(k) (1u << (k))
+/* The kinds that carry one eye's whole picture (one slot per eye and
+ * frame, tdc_link.c): processed on arrival, never left for finish_frame. */
+#define PICTURE_KINDS (KIND_BIT(TDC_LINK_KIND_FULL) | KIND_BIT(TDC_LINK_KIND_FOVEATED))
 
 static struct {
     tdc_link_decoder_t dec;
@@ -215,6 +281,15 @@ static struct {
 #if TDC_CFG_TRM
     tdc_trm_t trm[FW_EYES];
 #endif
+#if TDC_CFG_FOV
+    tdc_fov_t fov[FW_EYES];
+    tdc_fov_lr_t fov_lr[FW_EYES];
+    uint8_t fov_have;        /* bit e: fov_last[e] is eye e's last frame through the stage */
+    uint32_t fov_last[2];
+    uint32_t fov_dt_us;      /* frame time at the panel's rate (eq. 4.7) */
+    uint32_t fov_frames;     /* foveated eye-frames composed */
+    uint32_t fov_resets;     /* TAA histories forgotten: a gap in the eye's frames or a FULL picture */
+#endif
 #if TDC_CFG_ASSEMBLE
     tdc_asm_t as[FW_EYES];
     uint32_t asm_skipped; /* frames behind assembly's counter */
@@ -244,7 +319,7 @@ static const char *reset_name(tdc_reset_cause_t c)
 }
 
 /* ---- stream configuration ---- */
-#if TDC_CFG_TRM || TDC_CFG_LCD
+#if TDC_CFG_TRM || TDC_CFG_LCD || TDC_CFG_FOV
 /* The refresh rate the panel runs a stream at: the stream's if the panel
  * has that rate, else the panel's nominal one. */
 static uint16_t panel_hz(const tdc_panel_t *panel, uint16_t stream_hz)
@@ -278,6 +353,7 @@ static void configure_stream(void)
     const int reduced = (si->flags & TDC_LINK_STREAM_REDUCED) != 0;
     const int subframes = (si->flags & TDC_LINK_STREAM_SUBFRAMES) != 0;
     const int bands = (si->flags & TDC_LINK_STREAM_BANDS) != 0;
+    const int fov = (si->flags & TDC_LINK_STREAM_FOVEATED) != 0;
     if (bands != TDC_CFG_BANDS && (bands || (size_t)FW_W * FW_H * 3u + TDC_LINK_STREAM_HEADER_BYTES > sizeof g_staging)) {
         /* bands need the front/back pair (a single buffer would show a
          * dropped picture's first bands); a build staging one band cannot
@@ -287,8 +363,9 @@ static void configure_stream(void)
         g.unsupported++;
         return;
     }
-    if (reduced && subframes) {
-        tdc_board_log("stream uses TRM and tile assembly together: not supported by this build");
+    if ((reduced && subframes) || (fov && (reduced || subframes))) {
+        tdc_board_log(fov ? "stream foveates TRM or assembly frames: not supported by this build"
+                          : "stream uses TRM and tile assembly together: not supported by this build");
         g.unsupported++;
         return;
     }
@@ -328,6 +405,30 @@ static void configure_stream(void)
         }
         g.mode = MODE_ASSEMBLE;
 #endif
+    } else if (fov) {
+#if TDC_CFG_FOV
+        const tdc_fov_config_t cfg = {(uint16_t)FW_W, (uint16_t)FW_H, (uint8_t)TDC_CFG_FOV_TAA};
+        for (uint32_t e = 0; e < FW_EYES; e++) {
+            const size_t need = tdc_fov_get_size(&cfg);
+            if (need == 0 || need > FW_FOV_STAGE_BYTES ||
+                tdc_fov_init(&g.fov[e], &cfg, g_mode_arena[e], FW_FOV_STAGE_BYTES) != TDC_OK ||
+                tdc_fov_lr_init(&g.fov_lr[e], (uint16_t)FW_W, FOV_LR_MEM(e), FW_FOV_LR_BYTES) != TDC_OK ||
+                tdc_fov_lr_attach(&g.fov[e], &g.fov_lr[e]) != TDC_OK) {
+                tdc_board_log("foveation stage refused the panel (size)");
+                g.unsupported++;
+                return;
+            }
+        }
+        const uint32_t hz = panel_hz(panel, si->refresh_hz);
+        g.fov_dt_us = hz ? 1000000u / hz : 0u;
+        g.fov_have = 0;
+        g.mode = MODE_FOV;
+#else
+        /* (the decoder, which has no foveation buffers here, refused it already) */
+        tdc_board_log("stream is foveated: this build has no foveation stage (STAGES=fov)");
+        g.unsupported++;
+        return;
+#endif
     } else {
         g.mode = MODE_PLAIN;
     }
@@ -362,6 +463,7 @@ static uint32_t kinds_needed(uint32_t eye, uint32_t frame)
                ((si && (si->flags & TDC_LINK_STREAM_SAMPLE_MV)) ? KIND_BIT(TDC_LINK_KIND_MOTION) : 0u);
     }
     case MODE_PLAIN: return KIND_BIT(TDC_LINK_KIND_FULL);
+    case MODE_FOV: return PICTURE_KINDS; /* either fills the eye's picture slot */
     default: return 0u;
     }
 }
@@ -410,6 +512,51 @@ static int assemble_eye(uint32_t e, uint32_t frame, uint32_t kinds)
 }
 #endif
 
+#if TDC_CFG_FOV
+/* Forgets eye e's TAA history (its next foveated frame is taken as is). */
+static void fov_forget(uint32_t e)
+{
+    if (g.fov_have & (1u << e)) {
+        g.fov_resets++;
+    }
+    g.fov_have = (uint8_t)(g.fov_have & ~(1u << e));
+    tdc_fov_reset(&g.fov[e]);
+}
+
+/* The FOVEATED packet tdc_link_feed() just returned for eye e of `frame`:
+ * the samples and (TAA) vectors wait in the eye's foveation block, the
+ * disk pixels in its disk frame; the stage remaps them into the eye's part
+ * of the frame buffer (nothing written if it refuses).  Peripheral TAA
+ * runs on packets that carry vectors (TDC_FOV_FLAG_MV), from a history
+ * that is the eye's previous frame: after a lost, refused or late frame,
+ * a FULL picture or a packet without vectors it is forgotten (the frame is
+ * composed as the stage without TAA composes it), never applied later. */
+static tdc_status_t fov_eye(uint32_t e, uint32_t frame, uint8_t *fb)
+{
+    const tdc_fov_hdr_t *h = tdc_link_fov(&g.dec, e);
+    if (!h) {
+        return TDC_ERR_STATE;
+    }
+    const int taa = (h->flags & TDC_FOV_FLAG_MV) != 0; /* the sender asks for TAA by sending vectors */
+    if (!taa || !(g.fov_have & (1u << e)) || frame != g.fov_last[e] + 1u) {
+        fov_forget(e);
+    }
+    const tdc_status_t st = tdc_fov_frame(&g.fov[e], &h->p, FOV_LP(e), (size_t)h->p.lp_w * 3u, taa ? FOV_MV(e) : NULL,
+                                          (size_t)h->p.lp_w * 2u, FOV_DISK(e), (size_t)FW_W * 3u, g.fov_dt_us, fb,
+                                          FW_STRIDE);
+    if (st == TDC_OK && taa) {
+        g.fov_have = (uint8_t)(g.fov_have | (1u << e));
+        g.fov_last[e] = frame;
+    } else if (st != TDC_OK) {
+        fov_forget(e);
+    }
+    if (st == TDC_OK) {
+        g.fov_frames++;
+    }
+    return st;
+}
+#endif
+
 /* Runs the pipeline of eye e on what arrived; returns 1 if the eye's part of
  * the frame buffer was updated. */
 static int process_eye_kinds(uint32_t e, uint32_t frame, uint32_t kinds)
@@ -443,6 +590,17 @@ static int process_eye_kinds(uint32_t e, uint32_t frame, uint32_t kinds)
         /* NULL (rho is recomputed, not stored): the LCD inverse drops the
          * light it cannot reach and counts it (tdc_lcd_stats_t) */
         residual = tdc_trm_residual(&g.trm[e]);
+        break;
+#endif
+#if TDC_CFG_FOV
+    case MODE_FOV:
+        if (kinds & KIND_BIT(TDC_LINK_KIND_FOVEATED)) {
+            st = fov_eye(e, frame, fb);
+        } else if (kinds & KIND_BIT(TDC_LINK_KIND_FULL)) {
+            fov_forget(e); /* a whole picture: shown as it is, the history no longer matches it */
+        } else {
+            return 0;
+        }
         break;
 #endif
 #if TDC_CFG_ASSEMBLE
@@ -480,6 +638,18 @@ static int process_full(uint32_t e, uint32_t frame)
     }
     (void)process_eye_kinds(e, frame, KIND_BIT(TDC_LINK_KIND_FULL));
     return 1;
+}
+
+/* The picture packet (FULL or FOVEATED) tdc_link_feed() just returned, for
+ * eye e: returns 1 if the frame buffer changed.  A FOVEATED frame the stage
+ * refuses leaves the eye's image as it was (the stage writes nothing; the
+ * refusal is counted in stage_errors and 0 returned). */
+static int process_picture(uint32_t e, uint32_t frame, uint32_t kind)
+{
+    if (kind == TDC_LINK_KIND_FULL) {
+        return process_full(e, frame);
+    }
+    return process_eye_kinds(e, frame, KIND_BIT(kind));
 }
 
 static int process_eye(uint32_t e, uint32_t frame)
@@ -524,7 +694,7 @@ static void finish_frame(void)
     g.have_last = 1;
     g.last_frame = g.frame;
     for (uint32_t e = 0; e < FW_EYES; e++) {
-        if (!(g.eyes_done & (1u << e)) && (g.kinds[e] & ~KIND_BIT(TDC_LINK_KIND_FULL)) && process_eye(e, g.frame)) {
+        if (!(g.eyes_done & (1u << e)) && (g.kinds[e] & ~PICTURE_KINDS) && process_eye(e, g.frame)) {
             g.eyes_updated = (uint8_t)(g.eyes_updated | (1u << e));
         }
         if (!(g.eyes_updated & (1u << e))) {
@@ -606,6 +776,13 @@ static void band_stages(uint32_t e, uint32_t kind, const tdc_band_hdr_t *bh)
     switch (g.mode) {
     case MODE_PLAIN:
         break;
+#if TDC_CFG_FOV
+    case MODE_FOV: /* a FULL picture in a foveated stream: shown as it is */
+        if (bh->index == 0u) {
+            fov_forget(e);
+        }
+        break;
+#endif
 #if TDC_CFG_TRM
     case MODE_TRM: {
         tdc_trm_t *t = &g.trm[e];
@@ -677,8 +854,10 @@ static void on_rejected(const tdc_link_event_t *ev)
 {
     /* a band's CRC error: the decoder reports the drop of the picture it
      * names (BAND_DROPPED), which is what counts here */
+    /* (a foveation header refused after its payload CRC matched: the frame
+     * index is vouched for, the picture lost the same way) */
     const int lost = (ev->error == TDC_LINK_ERR_CRC && !(ev->flags & TDC_LINK_PKT_BAND)) ||
-                     ev->error == TDC_LINK_ERR_BAND_DROPPED;
+                     ev->error == TDC_LINK_ERR_BAND_DROPPED || ev->error == TDC_LINK_ERR_FOVEATION;
 #if TDC_CFG_BANDS
     if (ev->error == TDC_LINK_ERR_BAND_DROPPED) {
         g.band_drops++;
@@ -708,14 +887,14 @@ static void on_rejected(const tdc_link_event_t *ev)
     }
 }
 
-/* A FULL packet the decoder accepted for an eye of the frame the loop
- * finished last (rejected first, then resent intact): processed now, so TRM
- * pairs the next reduced frame with it, and shown with the next frame, in
- * which that eye counts as updated (pending_updated). */
-static void late_full(uint32_t e, uint32_t frame)
+/* A FULL (or FOVEATED) packet the decoder accepted for an eye of the frame
+ * the loop finished last (rejected first, then resent intact): processed
+ * now, so TRM pairs the next reduced frame with it, and shown with the next
+ * frame, in which that eye counts as updated (pending_updated). */
+static void late_full(uint32_t e, uint32_t frame, uint32_t kind)
 {
     g.late_full++;
-    if ((kinds_needed(e, frame) & KIND_BIT(TDC_LINK_KIND_FULL)) && process_full(e, frame)) {
+    if ((kinds_needed(e, frame) & KIND_BIT(kind)) && process_picture(e, frame, kind)) {
         g.pending_updated = (uint8_t)(g.pending_updated | (1u << e));
     }
 }
@@ -794,15 +973,15 @@ static void on_packet(const tdc_link_event_t *ev)
     const int band = (ev->flags & TDC_LINK_PKT_BAND) != 0;
     if (!g.have_frame && g.have_last && ev->frame_index <= g.last_frame) {
         /* (a band of a finished frame: its picture is not whole; ignored) */
-        if (ev->kind == TDC_LINK_KIND_FULL && ev->frame_index == g.last_frame && !band) {
-            late_full(ev->eye, ev->frame_index);
+        if ((KIND_BIT(ev->kind) & PICTURE_KINDS) && ev->frame_index == g.last_frame && !band) {
+            late_full(ev->eye, ev->frame_index, ev->kind);
         } else {
             g.late_packets++; /* its frame was shown already (or dropped) */
         }
         return;
     }
     const uint32_t e = ev->eye;
-    if (ev->kind == TDC_LINK_KIND_FULL && !(kinds_needed(e, ev->frame_index) & KIND_BIT(TDC_LINK_KIND_FULL))) {
+    if ((KIND_BIT(ev->kind) & PICTURE_KINDS) && !(kinds_needed(e, ev->frame_index) & KIND_BIT(ev->kind))) {
         g.unused_full++; /* e.g. in an assembly stream: left in staging, time not moved */
         return;
     }
@@ -814,10 +993,11 @@ static void on_packet(const tdc_link_event_t *ev)
         return;
     }
     g.kinds[e] = (uint8_t)(g.kinds[e] | KIND_BIT(ev->kind));
-    if (ev->kind == TDC_LINK_KIND_FULL) {
-        /* the eye's whole need (plain, TRM's full slot); also when it was
-         * rejected first and resent intact before the frame finished */
-        if (process_full(e, g.frame)) {
+    if (KIND_BIT(ev->kind) & PICTURE_KINDS) {
+        /* the eye's whole need (plain, TRM's full slot, foveated); also
+         * when it was rejected first and resent intact before the frame
+         * finished */
+        if (process_picture(e, g.frame, ev->kind)) {
             g.eyes_updated = (uint8_t)(g.eyes_updated | (1u << e));
         }
         if (!(g.eyes_done & (1u << e))) {
@@ -846,6 +1026,11 @@ static void decoder_init(void)
 #if TDC_CFG_TRM
         b.reduced[e] = g_reduced[e];
 #endif
+#if TDC_CFG_FOV
+        b.full[e] = FOV_DISK(e); /* FOVEATED disk pixels only: FULL payloads stay deferred */
+        b.fov_lp[e] = FOV_LP(e);
+        b.fov_mv[e] = TDC_CFG_FOV_TAA ? FOV_MV(e) : NULL;
+#endif
 #if TDC_CFG_ASSEMBLE
         b.subframe[e] = g_subframe[e];
         b.sample_motion[e] = g_sample_mv[e];
@@ -854,6 +1039,11 @@ static void decoder_init(void)
     }
 #if TDC_CFG_TRM
     b.reduced_bytes = sizeof g_reduced[0];
+#endif
+#if TDC_CFG_FOV
+    b.full_stride = FW_W * 3u;
+    b.fov_lp_bytes = FW_LP_SAMPLES * 3u;
+    b.fov_mv_count = TDC_CFG_FOV_TAA ? FW_LP_SAMPLES * 2u : 0u;
 #endif
     if (tdc_link_decoder_init(&g.dec, &cfg, &b) != TDC_OK) {
         tdc_board_log("link decoder: panel larger than the compiled maximum");
@@ -947,6 +1137,17 @@ int tdc_fw_run(void)
 #endif
 #if TDC_CFG_ASSEMBLE
     log_kv("assembly restarts (joined mid-stream): ", g.asm_resyncs);
+#endif
+#if TDC_CFG_FOV
+    {
+        uint32_t refused = 0;
+        for (unsigned i = 1; i < TDC_FOV_HDR_COUNT; i++) {
+            refused += c->fov_refused[i];
+        }
+        log_kv("foveated frames composed: ", g.fov_frames);
+        log_kv("foveation headers refused: ", refused);
+        log_kv("foveated TAA histories forgotten (gap, refusal or full frame): ", g.fov_resets);
+    }
 #endif
 #if TDC_CFG_LCD
     {

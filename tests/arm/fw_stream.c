@@ -39,19 +39,42 @@
  *                      (these four must show what trm-drop shows)
  *   trm-bands-other    ... band 5 of frame 4 between its bands 2 and 3 (a
  *                      band for another frame: refused alone, as trm)
+ * Foveated streams (issue 14; stream flag FOVEATED, tdc_link_encode_foveated),
+ * alpha 4, delta 0.555 (18187), disk 12.443 %, the gaze moving every frame:
+ *   fov        kernel log-polar samples (the picture at the exact eq. 2.3
+ *              positions, as tdc-sim samples a source), no vectors
+ *   fov-taa    the same with a vector per sample (peripheral TAA)
+ *   fovlr      log-rectilinear: area averages of the picture (the sender's
+ *              summed-area table, sim/ref_fov_lr.c), no vectors
+ *   in each: frame 1 of eye 0 with a corrupted payload byte (CRC: eye 0
+ *   keeps frame 0, and under TAA its next frame starts a new history),
+ *   frame 2 of the last eye with a foveation header the decoder refuses
+ *   (fov, fov-taa: alpha 9.0; fovlr: the gaze two screens outside; both
+ *   CRCs recomputed, so only the foveation check can refuse it: kept), and
+ *   frame 3 of the last eye a FULL picture (shown as it is; TAA starts
+ *   again after it).
  * Contents: tests/golden/tdc_content.h (edge on eye 0, text on eye 1).
  *
- * EXPECTED (plain mode only, for panels that show the decoded codes, i.e.
- * not LCD): the "frame N fnv1a64" lines the panel must show, computed here
- * independently of the firmware loop: each eye's packet payload unpacked
- * into a side-by-side frame buffer, the corrupted eye keeping its previous
- * image, a frame with no accepted packet not shown at all.
+ * EXPECTED (plain and foveated modes, for panels that show the decoded
+ * codes, i.e. not LCD): the "frame N fnv1a64" lines the panel must show,
+ * computed here independently of the firmware loop: each eye's packet
+ * payload unpacked into a side-by-side frame buffer (a foveated one through
+ * the stage, tdc_fov_frame, of this program's own per eye: TAA only on
+ * packets with vectors, from the eye's previous frame's history, at the
+ * stream's frame time), a refused packet's eye keeping its previous image,
+ * a frame with no accepted packet not shown at all.
  */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include <math.h>
+
+#include "ref_fov.h"
+#include "ref_fov_lr.h"
 #include "tdc_content.h"
+#include "tdc_crc32.h"
+#include "tdc_fov_lr.h"
 #include "tdc_link_encode.h"
 #include "tdc_ordering.h"
 #include "tdc_pixfmt.h"
@@ -103,10 +126,159 @@ static tdc_content_t eye_content(uint32_t eye)
     return eye ? TDC_CONTENT_TEXT : TDC_CONTENT_EDGE;
 }
 
+/* ---- foveated streams ---- */
+#define FOV_DELTA_Q15 18187u
+typedef struct {
+    tdc_fov_t st;
+    tdc_fov_lr_t lr;
+    void *arena, *lr_arena;
+    uint8_t *lp, *disk;
+    int16_t *mv;
+    int have;      /* last: the eye's last frame through the stage */
+    uint32_t last;
+} fov_ref_t;
+
+/* The reference stage of one eye (EXPECTED), TAA as the board builds it. */
+static void fov_ref_init(fov_ref_t *r, uint32_t w, uint32_t h, int taa)
+{
+    const tdc_fov_config_t cfg = {(uint16_t)w, (uint16_t)h, (uint8_t)taa};
+    const size_t n = (tdc_fov_get_size(&cfg) + 7u) & ~(size_t)7u, ln = (tdc_fov_lr_get_size((uint16_t)w) + 7u) & ~(size_t)7u;
+    const size_t lp = (size_t)tdc_fov_lp_size(FOV_DELTA_Q15, (uint16_t)w) * tdc_fov_lp_size(FOV_DELTA_Q15, (uint16_t)h);
+    r->arena = aligned_alloc(8, n);
+    r->lr_arena = aligned_alloc(8, ln);
+    r->lp = malloc(lp * 3u);
+    r->mv = malloc(lp * 4u);
+    r->disk = malloc((size_t)w * h * 3u);
+    r->have = 0;
+    if (!r->arena || !r->lr_arena || !r->lp || !r->mv || !r->disk || tdc_fov_init(&r->st, &cfg, r->arena, n) != TDC_OK ||
+        tdc_fov_lr_init(&r->lr, (uint16_t)w, r->lr_arena, ln) != TDC_OK || tdc_fov_lr_attach(&r->st, &r->lr) != TDC_OK) {
+        fprintf(stderr, "fw_stream: foveation reference init failed\n");
+        exit(1);
+    }
+}
+
+static void fov_ref_free(fov_ref_t *r)
+{
+    free(r->arena);
+    free(r->lr_arena);
+    free(r->lp);
+    free(r->mv);
+    free(r->disk);
+}
+
+/* The packet pkt (accepted by the decoder) through the reference stage
+ * into out; returns 1 if out changed. */
+static int fov_ref_frame(fov_ref_t *r, const uint8_t *pkt, uint32_t frame, uint32_t w, uint32_t h, uint32_t dt_us,
+                         uint8_t *out, size_t out_stride)
+{
+    tdc_fov_hdr_t fh;
+    if (tdc_fov_hdr_parse(pkt + TDC_LINK_HEADER_BYTES, (uint16_t)w, (uint16_t)h, &fh) != TDC_FOV_HDR_OK) {
+        return 0;
+    }
+    tdc_fov_unpack(&fh, pkt + TDC_LINK_HEADER_BYTES + TDC_FOV_HDR_BYTES, r->lp, (size_t)fh.p.lp_w * 3u, r->mv,
+                   (size_t)fh.p.lp_w * 2u, r->disk, (size_t)w * 3u);
+    const int taa = (fh.flags & TDC_FOV_FLAG_MV) != 0;
+    if (!taa || !r->have || frame != r->last + 1u) {
+        tdc_fov_reset(&r->st);
+    }
+    if (tdc_fov_frame(&r->st, &fh.p, r->lp, (size_t)fh.p.lp_w * 3u, taa ? r->mv : NULL, (size_t)fh.p.lp_w * 2u,
+                      r->disk, (size_t)w * 3u, dt_us, out, out_stride) != TDC_OK) {
+        r->have = 0;
+        return 0;
+    }
+    r->have = taa;
+    r->last = frame;
+    return 1;
+}
+
+/* Eye e's FOVEATED packet of frame f from the picture rgb: the gaze moves
+ * across the screen, samples where the sender takes them (eq. 2.3 for
+ * kernel log-polar, summed-area averages for log-rectilinear), backward
+ * vectors (the edge content pans +3 px per frame) if mv_buf. */
+static size_t fov_packet(const tdc_link_encoder_t *enc, uint32_t e, uint32_t f, const uint8_t *rgb, uint32_t w,
+                         uint32_t h, int lr, int16_t *mv_buf, uint8_t *samples)
+{
+    tdc_fov_params_t p;
+    memset(&p, 0, sizeof p);
+    p.gaze_x_q8 = (int32_t)lround((0.30 + 0.09 * f + 0.05 * e) * w * 256.0);
+    p.gaze_y_q8 = (int32_t)lround((0.45 + 0.03 * f) * h * 256.0);
+    p.alpha_q8 = lr ? 256u : 1024u;
+    p.disk_q15 = 4077u; /* 12.443 % */
+    p.lp_w = tdc_fov_lp_size(FOV_DELTA_Q15, (uint16_t)w);
+    p.lp_h = tdc_fov_lp_size(FOV_DELTA_Q15, (uint16_t)h);
+    p.transform = lr ? TDC_FOV_LOG_RECT : TDC_FOV_KERNEL_LOG_POLAR;
+    const double gx = p.gaze_x_q8 / 256.0, gy = p.gaze_y_q8 / 256.0;
+    if (lr) {
+        p.lr_k_q4[0] = (uint16_t)lround(16 * ref_fov_lr_k((int)w, p.lp_w, gx));
+        p.lr_k_q4[1] = (uint16_t)lround(16 * ref_fov_lr_k((int)h, p.lp_h, gy));
+    }
+    tdc_fov_geom_t g;
+    if (tdc_fov_geom(&g, (uint16_t)w, (uint16_t)h, &p) != TDC_OK) {
+        fprintf(stderr, "fw_stream: foveation geometry refused\n");
+        exit(1);
+    }
+    size_t k = 0;
+    if (lr) {
+        ref_fov_lr_axis_t ax, ay;
+        ref_fov_lr_axis(&ax, gx, p.lr_k_q4[0] / 16.0, (int)w, p.lp_w);
+        ref_fov_lr_axis(&ay, gy, p.lr_k_q4[1] / 16.0, (int)h, p.lp_h);
+        double *sat = ref_fov_lr_sat(rgb, (size_t)w * 3u, (int)w, (int)h);
+        if (!sat) {
+            fprintf(stderr, "fw_stream: out of memory\n");
+            exit(1);
+        }
+        ref_fov_lr_buffer(sat, (int)w, (int)h, &ax, &ay, samples, (size_t)p.lp_w * 3u, NULL);
+        free(sat);
+        k = (size_t)p.lp_w * p.lp_h;
+    } else {
+        const ref_fov_params_t rp = {gx, gy, p.alpha_q8 / 256.0, p.disk_q15 / 32768.0, p.lp_w, p.lp_h, 0, 0, 0};
+        ref_fov_geom_t rg;
+        ref_fov_geom(&rg, (int)w, (int)h, &rp);
+        for (uint32_t j = 0; j < p.lp_h; j++) {
+            for (uint32_t i = g.u0; i < p.lp_w; i++, k++) {
+                double x, y;
+                ref_fov_from_lp(&rg, i, j, &x, &y);
+                const long xi = lround(fmin(fmax(floor(x), 0), w - 1.0)), yi = lround(fmin(fmax(floor(y), 0), h - 1.0));
+                memcpy(samples + 3u * k, rgb + ((size_t)yi * w + (size_t)xi) * 3u, 3);
+            }
+        }
+    }
+    for (size_t i = 0; mv_buf && i < k; i++) {
+        mv_buf[2 * i] = (int16_t)(e == 0 ? -3 * 16 : (int)(i % 7u) - 3);
+        mv_buf[2 * i + 1] = (int16_t)(e == 1 ? 2 * 16 : 0);
+    }
+    for (uint32_t j = 0; j < h; j++) {
+        int32_t x0;
+        const uint32_t span = tdc_fov_disk_span(&g, (int32_t)j, &x0);
+        memcpy(samples + 3u * k, rgb + ((size_t)j * w + (size_t)x0) * 3u, 3u * (size_t)span);
+        k += span;
+    }
+    return tdc_link_encode_foveated(enc, g_pkt, g_cap, e, f, &p, FOV_DELTA_Q15, samples, mv_buf, NULL);
+}
+
+/* A foveation header the decoder must refuse after the payload CRC: byte
+ * `at` of it set to v (little-endian int32 if wide), both CRCs recomputed. */
+static void fov_spoil(size_t n, uint32_t at, int32_t v, int wide)
+{
+    tdc_link_header_t hh;
+    (void)tdc_link_header_unpack(g_pkt, &hh);
+    uint8_t *fh = g_pkt + TDC_LINK_HEADER_BYTES;
+    if (wide) {
+        for (unsigned i = 0; i < 4; i++) {
+            fh[at + i] = (uint8_t)((uint32_t)v >> (8u * i));
+        }
+    } else {
+        fh[at] = (uint8_t)v;
+    }
+    hh.payload_crc = tdc_crc32(fh, n - TDC_LINK_HEADER_BYTES);
+    tdc_link_header_pack(g_pkt, &hh);
+}
+
 int main(int argc, char **argv)
 {
     if (argc != 7 && argc != 8) {
-        fprintf(stderr, "usage: %s plain|trm|subframes W H EYES FRAMES OUT.tdcs [EXPECTED]\n", argv[0]);
+        fprintf(stderr, "usage: %s plain|trm|subframes|fov|fov-taa|fovlr|... W H EYES FRAMES OUT.tdcs [EXPECTED]\n",
+                argv[0]);
         return 2;
     }
     const char *mode = argv[1];
@@ -117,18 +289,23 @@ int main(int argc, char **argv)
         return 2;
     }
     const int trm = !strncmp(mode, "trm", 3), sub = !strncmp(mode, "subframes", 9), plain = !strcmp(mode, "plain");
+    const int fov = !strcmp(mode, "fov") || !strcmp(mode, "fov-taa") || !strcmp(mode, "fovlr");
+    const int fov_taa = !strcmp(mode, "fov-taa"), fov_lr = !strcmp(mode, "fovlr");
     const int v_motion = !strcmp(mode, "trm-motion"), v_future = !strcmp(mode, "trm-future");
     const int v_rehdr = !strcmp(mode, "trm-rehdr"), v_resend = !strcmp(mode, "trm-resend");
     const int v_resend_ref = !strcmp(mode, "trm-resend-ref");
     const uint32_t f0 = !strcmp(mode, "subframes-late") ? 1000u : 0u;
     const int bands = !strncmp(mode, "trm-bands", 9), v_drop = !strcmp(mode, "trm-drop");
     const char *band_how = bands && mode[9] == '-' ? mode + 10 : "";
-    if (!trm && !sub && !plain) {
+    if (!trm && !sub && !plain && !fov) {
         fprintf(stderr, "fw_stream: unknown mode %s\n", mode);
         return 2;
     }
     tdc_link_stream_info_t info = {0};
     info.flags = trm ? TDC_LINK_STREAM_REDUCED : sub ? (TDC_LINK_STREAM_SUBFRAMES | TDC_LINK_STREAM_SAMPLE_MV) : 0u;
+    if (fov) {
+        info.flags = TDC_LINK_STREAM_FOVEATED;
+    }
     if (v_motion) {
         info.flags |= TDC_LINK_STREAM_MOTION;
     }
@@ -146,7 +323,7 @@ int main(int argc, char **argv)
 
     const uint32_t tx = (w + 1) / 2, ty = (h + 1) / 2;
     const uint32_t rw = TDC_REDUCED_DIM(w, 1u, 2u), rh = TDC_REDUCED_DIM(h, 1u, 2u);
-    g_cap = (size_t)w * h * 4u + 1024u;
+    g_cap = (size_t)w * h * 8u + 1024u; /* a foveated packet: samples, vectors and the disk */
     g_pkt = malloc(g_cap);
     uint8_t *g_resend = malloc(g_cap);
     size_t resend_n = 0;
@@ -156,6 +333,8 @@ int main(int argc, char **argv)
     int16_t *mv = malloc((size_t)tx * ty * 2u * sizeof *mv);
     uint8_t *bits = calloc(TDC_PATTERN_BYTES(w, h) + 1u, 1);
     int16_t *pmv = calloc((size_t)w * h * 2u, sizeof *pmv);
+    uint8_t *fsamples = fov ? malloc((size_t)w * h * 6u) : NULL;
+    fov_ref_t fref[2];
     g_out = fopen(argv[6], "wb");
     if (!g_pkt || !rgb || !red || !samples || !mv || !bits || !g_out) {
         fprintf(stderr, "fw_stream: out of memory or cannot create %s\n", argv[6]);
@@ -163,12 +342,15 @@ int main(int argc, char **argv)
     }
     FILE *expect = NULL;
     uint8_t *fb = NULL;
-    if (argc == 8 && plain) {
+    if (argc == 8 && (plain || fov)) {
         expect = fopen(argv[7], "w");
         fb = calloc((size_t)eyes * w * h * 3u, 1);
         if (!expect || !fb) {
             fprintf(stderr, "fw_stream: cannot create %s\n", argv[7]);
             return 1;
+        }
+        for (uint32_t e = 0; fov && e < eyes; e++) {
+            fov_ref_init(&fref[e], w, h, fov_taa);
         }
     }
     put(tdc_link_encode_stream(&enc, g_pkt, g_cap), "stream header");
@@ -179,7 +361,38 @@ int main(int argc, char **argv)
             if (plain && f == 3 && e == 0) {
                 continue; /* the packet never arrives */
             }
-            if (plain) {
+            if (fov && f == 3 && e == eyes - 1u) {
+                /* a FULL picture in the foveated stream: shown as it is */
+                size_t n = tdc_link_encode_frame(&enc, g_pkt, g_cap, TDC_LINK_KIND_FULL, e, f, TDC_PIXFMT_RGB888, rgb, w,
+                                                 h, w * 3u);
+                if (fb) {
+                    tdc_pixfmt_unpack(TDC_PIXFMT_RGB888, g_pkt + TDC_LINK_HEADER_BYTES, w, h, fb + (size_t)e * w * 3u,
+                                      eyes * w * 3u);
+                    fref[e].have = 0;
+                    shown = 1;
+                }
+                put(n, "full frame (foveated stream)");
+            } else if (fov) {
+                size_t n = fov_packet(&enc, e, f, rgb, w, h, fov_lr, fov_taa ? pmv : NULL, fsamples);
+                const int corrupt = f == 1 && e == 0, spoil = f == 2 && e == eyes - 1u;
+                if (n && spoil) {
+                    /* fov: alpha 9.0 (byte 9 of the foveation header); fovlr: gaze x two screens outside */
+                    if (fov_lr) {
+                        fov_spoil(n, 0, (int32_t)(3 * w * 256u), 1);
+                    } else {
+                        fov_spoil(n, 9, 9, 0);
+                    }
+                }
+                if (fb && n && !corrupt && !spoil &&
+                    fov_ref_frame(&fref[e], g_pkt, f, w, h, 1000000u / info.refresh_hz, fb + (size_t)e * w * 3u,
+                                  (size_t)eyes * w * 3u)) {
+                    shown = 1;
+                }
+                if (corrupt) {
+                    g_pkt[TDC_LINK_HEADER_BYTES + TDC_FOV_HDR_BYTES + 40u] ^= 0x40u; /* payload CRC must catch it */
+                }
+                put(n, "foveated frame");
+            } else if (plain) {
                 const tdc_pixfmt_t fmt = (f == 2 && e == eyes - 1u) ? TDC_PIXFMT_RGB565 : TDC_PIXFMT_RGB888;
                 size_t n = tdc_link_encode_frame(&enc, g_pkt, g_cap, TDC_LINK_KIND_FULL, e, f, fmt, rgb, w, h, w * 3u);
                 const int corrupt = f == 1 && e == 0 && n > TDC_LINK_HEADER_BYTES + 100u;
@@ -301,6 +514,10 @@ int main(int argc, char **argv)
         return 1;
     }
     free(fb);
+    for (uint32_t e = 0; expect && fov && e < eyes; e++) {
+        fov_ref_free(&fref[e]);
+    }
+    free(fsamples);
     if (fclose(g_out) != 0) {
         fprintf(stderr, "fw_stream: write error\n");
         return 1;
