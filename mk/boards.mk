@@ -269,9 +269,9 @@ PANEL_DIMS := $(shell awk '$$1 == "width" { w = $$2 } $$1 == "height" { h = $$2 
 FW_MODES ?= plain $(if $(filter trm,$(STAGES)),trm) $(if $(filter assemble,$(STAGES)),subframes) \
             $(if $(filter fov fovtaa,$(STAGES)),fov fovlr) $(if $(filter fovtaa,$(STAGES)),fov-taa)
 FW_FRAMES_plain := 5
-FW_FRAMES_fov := 5
-FW_FRAMES_fovlr := 5
-FW_FRAMES_fov-taa := 5
+FW_FRAMES_fov := 9
+FW_FRAMES_fovlr := 9
+FW_FRAMES_fov-taa := 9
 FW_FRAMES_trm := 4
 FW_FRAMES_subframes := 6
 # The host build of the loop, with and without bands (fw-bands-check compares
@@ -362,11 +362,14 @@ FORCE:
 # failure is recorded as a FAIL line too.
 #   ARM_TEST_PAIRS: board:panel:stages[:streams] ("default" = the board's
 #   default stages, "link" = STAGES= : link decode and panel output only;
-#   streams: which of plain+trm+subframes to run, default all the stages
-#   allow; the LCD pair runs only trm to stay within the time budget)
+#   streams: which of plain+trm+subframes+fov+fovlr+fov-taa to run, default
+#   all the stages allow; the LCD pair runs only trm to stay within the time
+#   budget; the Cortex-M7 runs the foveated streams on disco-dsi, the one
+#   panel whose buffers fit its 16 MiB of PSRAM with them)
 #   ARM_FIT_FAIL: board:panel:stages:region pairs that must not fit
 # ---------------------------------------------------------------------------
-ARM_TEST_PAIRS ?= mps2-an500:htc-vive:link mps3-an547:htc-vive:default mps3-an547:lcd-240:default:trm \
+ARM_TEST_PAIRS ?= mps2-an500:htc-vive:link mps2-an500:disco-dsi:default:fov+fovlr+fov-taa \
+                  mps3-an547:htc-vive:default mps3-an547:lcd-240:default:trm \
                   stm32h747i-disco:htc-vive:default stm32h747i-disco:lcd-240:default \
                   stm32h747i-disco:disco-dsi:default
 ARM_FIT_FAIL ?= mps2-an500:htc-vive:default:PSRAM stm32h747i-disco:htc-vive:assemble:SDRAM

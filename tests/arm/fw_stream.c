@@ -46,12 +46,13 @@
  *   fov-taa    the same with a vector per sample (peripheral TAA)
  *   fovlr      log-rectilinear: area averages of the picture (the sender's
  *              summed-area table, sim/ref_fov_lr.c), no vectors
- *   in each: frame 1 of eye 0 with a corrupted payload byte (CRC: eye 0
- *   keeps frame 0, and under TAA its next frame starts a new history),
- *   frame 2 of the last eye with a foveation header the decoder refuses
- *   (fov, fov-taa: alpha 9.0; fovlr: the gaze two screens outside; both
- *   CRCs recomputed, so only the foveation check can refuse it: kept), and
- *   frame 3 of the last eye a FULL picture (shown as it is; TAA starts
+ *   in each (9 frames: mono panels too keep runs of consecutive TAA frames):
+ *   frame 1 of eye 0 with a corrupted payload byte (CRC: eye 0 keeps
+ *   frame 0, and under TAA its next frame starts a new history), frame 4
+ *   of the last eye with a foveation header the decoder refuses (fov,
+ *   fov-taa: alpha 9.0; fovlr: the gaze two screens outside; both CRCs
+ *   recomputed, so only the foveation check can refuse it: kept), and
+ *   frame 6 of the last eye a FULL picture (shown as it is; TAA starts
  *   again after it).
  * Contents: tests/golden/tdc_content.h (edge on eye 0, text on eye 1).
  *
@@ -200,8 +201,8 @@ static size_t fov_packet(const tdc_link_encoder_t *enc, uint32_t e, uint32_t f, 
 {
     tdc_fov_params_t p;
     memset(&p, 0, sizeof p);
-    p.gaze_x_q8 = (int32_t)lround((0.30 + 0.09 * f + 0.05 * e) * w * 256.0);
-    p.gaze_y_q8 = (int32_t)lround((0.45 + 0.03 * f) * h * 256.0);
+    p.gaze_x_q8 = (int32_t)lround((0.30 + 0.05 * f + 0.05 * e) * w * 256.0);
+    p.gaze_y_q8 = (int32_t)lround((0.45 + 0.02 * f) * h * 256.0);
     p.alpha_q8 = lr ? 256u : 1024u;
     p.disk_q15 = 4077u; /* 12.443 % */
     p.lp_w = tdc_fov_lp_size(FOV_DELTA_Q15, (uint16_t)w);
@@ -361,7 +362,7 @@ int main(int argc, char **argv)
             if (plain && f == 3 && e == 0) {
                 continue; /* the packet never arrives */
             }
-            if (fov && f == 3 && e == eyes - 1u) {
+            if (fov && f == 6 && e == eyes - 1u) {
                 /* a FULL picture in the foveated stream: shown as it is */
                 size_t n = tdc_link_encode_frame(&enc, g_pkt, g_cap, TDC_LINK_KIND_FULL, e, f, TDC_PIXFMT_RGB888, rgb, w,
                                                  h, w * 3u);
@@ -374,7 +375,7 @@ int main(int argc, char **argv)
                 put(n, "full frame (foveated stream)");
             } else if (fov) {
                 size_t n = fov_packet(&enc, e, f, rgb, w, h, fov_lr, fov_taa ? pmv : NULL, fsamples);
-                const int corrupt = f == 1 && e == 0, spoil = f == 2 && e == eyes - 1u;
+                const int corrupt = f == 1 && e == 0, spoil = f == 4 && e == eyes - 1u;
                 if (n && spoil) {
                     /* fov: alpha 9.0 (byte 9 of the foveation header); fovlr: gaze x two screens outside */
                     if (fov_lr) {
