@@ -272,6 +272,12 @@ FW_FRAMES_plain := 5
 FW_FRAMES_fov := 9
 FW_FRAMES_fovlr := 9
 FW_FRAMES_fov-taa := 9
+FW_FRAMES_fov-clean := 5
+FW_FRAMES_fovlr-clean := 5
+FW_FRAMES_fov-taa-clean := 5
+# The loop-cost rows (make bench-arm) run the foveated streams without their
+# damaged packets, so that every frame costs what a foveated frame costs.
+FW_LOOP_MODES = $(patsubst fov%,fov%-clean,$(filter-out plain,$(FW_MODES)))
 FW_FRAMES_trm := 4
 FW_FRAMES_subframes := 6
 # The host build of the loop, with and without bands (fw-bands-check compares
@@ -320,8 +326,8 @@ $(BP)/fw-check: $(BP)/tdc-firmware.elf $(FWH)/tdc_fw_host $(foreach m,$(FW_MODES
 # Instructions per shown frame of the whole loop on this pair's streams.
 PANEL_PIXELS = $(shell echo $(PANEL_DIMS) | awk '{ print $$1 * $$2 * $$3 }')
 $(BP)/loop.tsv: $(BP)/tdc-firmware.elf $(INSN_PLUGIN) tests/arm/loop_cost.sh \
-                $(foreach m,$(FW_MODES),$(STREAMS)/$(PANEL)-$(m).tdcs)
-	@for m in $(filter-out plain,$(FW_MODES)); do \
+                $(foreach m,$(FW_LOOP_MODES),$(STREAMS)/$(PANEL)-$(m).tdcs)
+	@for m in $(FW_LOOP_MODES); do \
 	    tests/arm/loop_cost.sh $(ARM_NM) $(INSN_PLUGIN) $< $(STREAMS)/$(PANEL)-$$m.tdcs $(PANEL_PIXELS) \
 	        "frame loop, $(PANEL) $$m stream" $(BOARD_QEMU) || exit 1; done > $@.tmp && mv $@.tmp $@
 arm-loop-cost: $(BP)/loop.tsv
@@ -416,16 +422,19 @@ profile-arm: $(INSN_PLUGIN)
 
 # Whole frame loop per shown frame (mps3-an547: the board whose DDR holds
 # every stage at these panel sizes).
-ARM_LOOP_PAIRS ?= mps3-an547:htc-vive mps3-an547:lcd-240
+# board:panel[:streams]: streams as in ARM_TEST_PAIRS (default all the
+# stages allow); the Cortex-M7's foveated rows on disco-dsi (60 Hz: no TRM).
+ARM_LOOP_PAIRS ?= mps3-an547:htc-vive mps3-an547:lcd-240 mps2-an500:disco-dsi:fov+fovlr+fov-taa
 bench-arm: deps $(INSN_PLUGIN)
 	@for b in $(QEMU_BOARDS); do $(MAKE) --no-print-directory -j2 BOARD=$$b arm-bench >/dev/null || exit 1; done
 	@ARM_OPT="$(ARM_OPT)" tests/arm/bench_table.sh $(foreach b,$(QEMU_BOARDS),$(b)=$(BUILD)/arm-$(b)/bench.tsv)
 	@for t in $(ARM_LOOP_PAIRS); do \
-	    $(MAKE) --no-print-directory -j2 BOARD=$${t%%:*} PANEL=$${t#*:} arm-loop-cost >/dev/null || exit 1; done
+	    b=$${t%%:*}; r=$${t#*:}; p=$${r%%:*}; set --; [ "$$r" != "$$p" ] && set -- "FW_MODES=$$(echo $${r#*:} | tr + ' ')"; \
+	    $(MAKE) --no-print-directory -j2 BOARD=$$b PANEL=$$p "$$@" arm-loop-cost >/dev/null || exit 1; done
 	@echo; echo "whole frame loop per shown frame (link decode + stages; frames 1.., without the panel checksum):"
 	@printf '%-44s %8s %16s %12s\n' stream board "instructions" "per pixel"
-	@for t in $(ARM_LOOP_PAIRS); do awk -F '\t' -v b=$${t%%:*} '{ printf "%-44s %8s %16s %12s\n", $$1, b, $$2, $$3 }' \
-	    $(BUILD)/$${t%%:*}-$${t#*:}/loop.tsv; done
+	@for t in $(ARM_LOOP_PAIRS); do b=$${t%%:*}; r=$${t#*:}; \
+	    awk -F '\t' -v b=$$b '{ printf "%-44s %8s %16s %12s\n", $$1, b, $$2, $$3 }' $(BUILD)/$$b-$${r%%:*}/loop.tsv; done
 
 # make size: every board/panel pair with the board's default stages.
 size:

@@ -10,7 +10,7 @@ BOARD_SRCS  := boards/stm32h747i-disco/startup.c boards/stm32h747i-disco/sdram.c
 # lcd-240; tile assembly (23 B/px) only for the board's own 800x480 panel,
 # which runs at 60 Hz, so TRM is compiled in there but refused at run time.
 BOARD_STAGES := trm lcd
-BOARD_STAGES_disco-dsi := trm assemble lcd
+BOARD_STAGES_disco-dsi := trm assemble lcd fovtaa
 # 2560x1440: not even the LCD inverse fits (frame buffer + staging 22 MB +
 # 6-bit history 16.6 MB): link decode and panel out only.
 BOARD_STAGES_pg279q :=

@@ -53,7 +53,8 @@
  *   fov-taa: alpha 9.0; fovlr: the gaze two screens outside; both CRCs
  *   recomputed, so only the foveation check can refuse it: kept), and
  *   frame 6 of the last eye a FULL picture (shown as it is; TAA starts
- *   again after it).
+ *   again after it).  fov-clean, fov-taa-clean, fovlr-clean: the same
+ *   streams without those three (make bench-arm's frame-loop rows).
  * Contents: tests/golden/tdc_content.h (edge on eye 0, text on eye 1).
  *
  * EXPECTED (plain and foveated modes, for panels that show the decoded
@@ -290,8 +291,14 @@ int main(int argc, char **argv)
         return 2;
     }
     const int trm = !strncmp(mode, "trm", 3), sub = !strncmp(mode, "subframes", 9), plain = !strcmp(mode, "plain");
-    const int fov = !strcmp(mode, "fov") || !strcmp(mode, "fov-taa") || !strcmp(mode, "fovlr");
-    const int fov_taa = !strcmp(mode, "fov-taa"), fov_lr = !strcmp(mode, "fovlr");
+    /* (fov*-clean: the same stream without the damaged packets: make bench-arm's loop rows) */
+    const size_t ml = strlen(mode), fov_clean = ml > 6 && !strcmp(mode + ml - 6, "-clean");
+    char fmode[16] = "";
+    if (ml - (fov_clean ? 6u : 0u) < sizeof fmode) {
+        memcpy(fmode, mode, ml - (fov_clean ? 6u : 0u));
+    }
+    const int fov = !strcmp(fmode, "fov") || !strcmp(fmode, "fov-taa") || !strcmp(fmode, "fovlr");
+    const int fov_taa = !strcmp(fmode, "fov-taa"), fov_lr = !strcmp(fmode, "fovlr");
     const int v_motion = !strcmp(mode, "trm-motion"), v_future = !strcmp(mode, "trm-future");
     const int v_rehdr = !strcmp(mode, "trm-rehdr"), v_resend = !strcmp(mode, "trm-resend");
     const int v_resend_ref = !strcmp(mode, "trm-resend-ref");
@@ -362,7 +369,7 @@ int main(int argc, char **argv)
             if (plain && f == 3 && e == 0) {
                 continue; /* the packet never arrives */
             }
-            if (fov && f == 6 && e == eyes - 1u) {
+            if (fov && !fov_clean && f == 6 && e == eyes - 1u) {
                 /* a FULL picture in the foveated stream: shown as it is */
                 size_t n = tdc_link_encode_frame(&enc, g_pkt, g_cap, TDC_LINK_KIND_FULL, e, f, TDC_PIXFMT_RGB888, rgb, w,
                                                  h, w * 3u);
@@ -375,7 +382,7 @@ int main(int argc, char **argv)
                 put(n, "full frame (foveated stream)");
             } else if (fov) {
                 size_t n = fov_packet(&enc, e, f, rgb, w, h, fov_lr, fov_taa ? pmv : NULL, fsamples);
-                const int corrupt = f == 1 && e == 0, spoil = f == 4 && e == eyes - 1u;
+                const int corrupt = !fov_clean && f == 1 && e == 0, spoil = !fov_clean && f == 4 && e == eyes - 1u;
                 if (n && spoil) {
                     /* fov: alpha 9.0 (byte 9 of the foveation header); fovlr: gaze x two screens outside */
                     if (fov_lr) {

@@ -20,6 +20,10 @@ int tdc_link_sink_init(tdc_link_sink_t *s, uint16_t w, uint16_t h)
     b.motion[0] = s->motion;
     b.sample_motion[0] = s->sample_motion;
     b.pattern[0] = s->pattern;
+    b.fov_lp[0] = s->fov_lp;
+    b.fov_lp_bytes = sizeof s->fov_lp;
+    b.fov_mv[0] = s->fov_mv;
+    b.fov_mv_count = sizeof s->fov_mv / sizeof s->fov_mv[0];
     tdc_link_config_t cfg = {w, h, 1};
     return tdc_link_decoder_init(&s->dec, &cfg, &b) == TDC_OK ? 0 : -1;
 }
@@ -37,7 +41,8 @@ void tdc_link_sink_feed(void *ctx, const uint8_t *data, uint32_t len, tdc_usbp_s
                 d->crc_errors++;
             else
                 d->malformed++;
-        } else if (ev.kind == TDC_LINK_KIND_FULL || ev.kind == TDC_LINK_KIND_REDUCED) {
+        } else if (ev.kind == TDC_LINK_KIND_FULL || ev.kind == TDC_LINK_KIND_REDUCED ||
+                   ev.kind == TDC_LINK_KIND_FOVEATED) {
             d->frames++;
         }
     }

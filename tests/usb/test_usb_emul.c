@@ -25,6 +25,7 @@
 #include <unistd.h>
 
 #include "link/tdc_link_gen.h"
+#include "tdc_link_encode.h"
 #include "tdc_usb_emul.h"
 
 #include "tdc_usb_run.h"
@@ -141,6 +142,67 @@ static void test_stream_link_decoder(void **state)
     run_tool(&r, (const char *[]){"stream", "--chunk", "1000", path, NULL});
     expect(&r, 0, "link_crc_errors 1 link_malformed 0", NULL);
     assert_non_null(strstr(r.out, "frames 11"));
+}
+
+/* A foveated stream (issue 14) needs nothing of tdc-usb: it sends the
+ * bytes, the board's decoder takes FOVEATED packets (kernel log-polar and
+ * log-rectilinear, with and without vectors) like any other kind and
+ * refuses a bad foveation header by name (counted as malformed). */
+static void test_stream_foveated(void **state)
+{
+    fixture_t *f = *state;
+    enum { W = 32, H = 24, FRAMES = 6 };
+    assert_int_equal(emul_board_attach_link_decoder(f->board[0], W, H), 0);
+    tdc_link_stream_info_t in;
+    memset(&in, 0, sizeof in);
+    in.flags = TDC_LINK_STREAM_FOVEATED;
+    in.r_num = in.r_den = 1;
+    in.width = W;
+    in.height = H;
+    in.eyes = 1;
+    in.refresh_hz = 90;
+    tdc_link_encoder_t enc;
+    tdc_link_encoder_init(&enc, 9, &in);
+    static uint8_t stream[64 * 1024], samples[W * H * 6];
+    static int16_t mv[W * H * 2];
+    for (size_t i = 0; i < sizeof samples; i++) {
+        samples[i] = (uint8_t)(i * 7u);
+    }
+    size_t n = tdc_link_encode_stream(&enc, stream, sizeof stream), spoiled = 0;
+    for (uint32_t fr = 0; fr < FRAMES; fr++) {
+        tdc_fov_params_t p;
+        memset(&p, 0, sizeof p);
+        p.gaze_x_q8 = (int32_t)(fr * 3u + 10u) * 256;
+        p.gaze_y_q8 = 12 * 256;
+        p.alpha_q8 = (fr & 1u) ? 256u : 1024u;
+        p.disk_q15 = 4077;
+        p.lp_w = tdc_fov_lp_size(18187, W);
+        p.lp_h = tdc_fov_lp_size(18187, H);
+        if (fr & 1u) { /* log-rectilinear */
+            p.transform = TDC_FOV_LOG_RECT;
+            p.lr_k_q4[0] = p.lr_k_q4[1] = 8 * 16;
+        }
+        const size_t at = n;
+        n += tdc_link_encode_foveated(&enc, stream + n, sizeof stream - n, 0, fr, &p, 18187, samples,
+                                      (fr % 3u) ? mv : NULL, NULL);
+        assert_true(n > at);
+        if (fr == 4) { /* alpha 9.0, both CRCs recomputed: only the foveation check refuses it */
+            tdc_link_header_t hh;
+            assert_int_equal(tdc_link_header_unpack(stream + at, &hh), TDC_LINK_OK);
+            stream[at + TDC_LINK_HEADER_BYTES + 9] = 9;
+            hh.payload_crc = tdc_crc32(stream + at + TDC_LINK_HEADER_BYTES, hh.payload_len);
+            tdc_link_header_pack(stream + at, &hh);
+            spoiled = 1;
+        }
+    }
+    assert_int_equal(spoiled, 1);
+    char path[128];
+    snprintf(path, sizeof path, "%s/fov.tdcs", tmpdir);
+    write_file(path, stream, n);
+    run_t r;
+    run_tool(&r, (const char *[]){"stream", "--chunk", "1000", path, NULL});
+    expect(&r, 0, "link_crc_errors 0 link_malformed 1", NULL);
+    assert_non_null(strstr(r.out, "frames 5"));
 }
 
 static void stream_fault(fixture_t *f, emul_fault_t fault, uint32_t after, int code, const char *msg)
@@ -302,6 +364,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_two_devices, setup_two, teardown),
         cmocka_unit_test_setup_teardown(test_stream, setup_one, teardown),
         cmocka_unit_test_setup_teardown(test_stream_link_decoder, setup_one, teardown),
+        cmocka_unit_test_setup_teardown(test_stream_foveated, setup_one, teardown),
         cmocka_unit_test_setup_teardown(test_stream_stall, setup_one, teardown),
         cmocka_unit_test_setup_teardown(test_stream_timeout, setup_one, teardown),
         cmocka_unit_test_setup_teardown(test_stream_unplug, setup_one, teardown),
