@@ -31,7 +31,7 @@ ARM_BOARDS := $(filter-out host,$(BOARDS))
 # Emulated boards: those whose board.mk names a QEMU machine.
 QEMU_BOARDS := $(sort $(patsubst boards/%/board.mk,%,$(shell grep -l '^BOARD_QEMU' boards/*/board.mk)))
 
-.PHONY: arm-fw-loop-check arm-fw-refuse-check arm-fw-bands-check arm-loop-cost run-arm firmware-size test-arm size bench-arm arm-bench profile-arm arm-profile arm-golden arm-golden-check arm-image-check arm-fit-check arm-fw-check
+.PHONY: arm-fw-fov-check arm-fw-loop-check arm-fw-refuse-check arm-fw-bands-check arm-loop-cost run-arm firmware-size test-arm size bench-arm arm-bench profile-arm arm-profile arm-golden arm-golden-check arm-image-check arm-fit-check arm-fw-check
 
 .SECONDEXPANSION:
 
@@ -336,13 +336,15 @@ arm-fw-check: $(BP)/fw-check
 	@tests/run_tests.sh "$(BOARD)-$(PANEL)" $(BP)/fw-check
 
 # Host-build checks of the loop on crafted streams (issue 17): fw-loop
-# (tests/arm/test_fw_loop.sh: after loss, against clean streams) and
-# fw-refuse (tests/arm/test_fw_refuse.sh: a 60 Hz panel refuses TRM).
+# (tests/arm/test_fw_loop.sh: after loss, against clean streams),
+# fw-refuse (tests/arm/test_fw_refuse.sh: a 60 Hz panel refuses TRM) and
+# fw-fov (tests/arm/test_fw_fov.sh, with STAGES="trm fov": foveated streams
+# on a build without TAA).
 $(BP)/fw-%-check: $(FWH)/tdc_fw_host $(B)/tests/fw_stream tests/arm/test_fw_%.sh
 	@mkdir -p $(@D)
 	@printf '#!/bin/sh\nexec tests/arm/test_fw_$*.sh %s %s %s\n' "$(FWH)/tdc_fw_host" "$(B)/tests/fw_stream" "$(PANEL_DIMS)" > $@
 	@chmod +x $@
-arm-fw-loop-check arm-fw-refuse-check: arm-fw-%-check: $(BP)/fw-%-check
+arm-fw-loop-check arm-fw-refuse-check arm-fw-fov-check: arm-fw-%-check: $(BP)/fw-%-check
 	@tests/run_tests.sh "fw-$*-$(PANEL)" $<
 # Rows in flight (tests/arm/test_fw_bands.sh): the banded loop on banded
 # streams, clean and with each bad band, against the whole-picture loop.
@@ -403,6 +405,7 @@ test-arm:
 	@$(MAKE) --no-print-directory -j2 BOARD=mps3-an547 PANEL=htc-vive arm-fw-bands-check || :
 	@$(MAKE) --no-print-directory -j2 BOARD=stm32h747i-disco PANEL=lcd-240 arm-fw-bands-check || :
 	@$(MAKE) --no-print-directory -j2 BOARD=mps3-an547 PANEL=disco-dsi arm-fw-refuse-check || :
+	@$(MAKE) --no-print-directory -j2 BOARD=mps3-an547 PANEL=htc-vive STAGES="trm fov" arm-fw-fov-check || :
 	@for t in $(ARM_FIT_FAIL); do \
 	    b=$${t%%:*}; r=$${t#*:}; p=$${r%%:*}; r=$${r#*:}; s=$${r%%:*}; g=$${r#*:}; \
 	    printf '#!/bin/sh\nexec tests/arm/test_fit.sh %s %s %s %s\n' $$b $$p $$s $$g > $(BUILD)/fit-$$b-$$p; \
