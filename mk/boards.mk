@@ -344,6 +344,11 @@ $(BP)/fw-%-check: $(FWH)/tdc_fw_host $(B)/tests/fw_stream tests/arm/test_fw_%.sh
 	@mkdir -p $(@D)
 	@printf '#!/bin/sh\nexec tests/arm/test_fw_$*.sh %s %s %s\n' "$(FWH)/tdc_fw_host" "$(B)/tests/fw_stream" "$(PANEL_DIMS)" > $@
 	@chmod +x $@
+# (fw-fov also runs the streams through the loop with bands: front/back buffers)
+$(BP)/fw-fov-check: $(FWH_B0)/tdc_fw_host $(FWH_B1)/tdc_fw_host $(B)/tests/fw_stream tests/arm/test_fw_fov.sh
+	@mkdir -p $(@D)
+	@printf '#!/bin/sh\nexec tests/arm/test_fw_fov.sh %s %s %s %s\n' "$(FWH_B0)/tdc_fw_host" "$(B)/tests/fw_stream" "$(PANEL_DIMS)" "$(FWH_B1)/tdc_fw_host" > $@
+	@chmod +x $@
 arm-fw-loop-check arm-fw-refuse-check arm-fw-fov-check: arm-fw-%-check: $(BP)/fw-%-check
 	@tests/run_tests.sh "fw-$*-$(PANEL)" $<
 # Rows in flight (tests/arm/test_fw_bands.sh): the banded loop on banded

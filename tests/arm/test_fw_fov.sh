@@ -10,8 +10,11 @@
 #                picture of frame 6 is (the one packet it can play)
 #   trm          a stream without foveated packets never starts the stage
 #                (stage elision: "foveated frames composed: 0")
-# Usage: test_fw_fov.sh HOST_LOOP FW_STREAM W H EYES
-host=$1; gen=$2; w=$3; h=$4; eyes=$5
+# With BANDS_LOOP (the same build with row bands: front/back frame buffers,
+# staging sized for a foveated payload) fov and fovlr must show the same
+# expected frames through the swap, kept eyes copied from the front.
+# Usage: test_fw_fov.sh HOST_LOOP FW_STREAM W H EYES [BANDS_LOOP]
+host=$1; gen=$2; w=$3; h=$4; eyes=$5; bands=$6
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 fail=0
@@ -24,6 +27,14 @@ for m in fov fovlr; do
     if ! cmp -s "$tmp/$m.exp" "$tmp/$m.out" || [ "$(grep -c . "$tmp/$m.out")" -lt 5 ]; then
         echo "fw-fov[$m]: FAIL: frames differ from the expected ones:"; diff "$tmp/$m.exp" "$tmp/$m.out" | head; fail=1
     else echo "fw-fov[$m]: $(grep -c . "$tmp/$m.out") frames as expected without TAA ($(grep -E 'composed|headers refused' "$tmp/$m.err" | sed 's/^\[host\] //' | tr '\n' ';'))"; fi
+done
+for m in fov fovlr; do
+    [ -n "$bands" ] || continue
+    "$bands" "$tmp/$m.tdcs" >"$tmp/$m.bout" 2>"$tmp/$m.berr"
+    if ! cmp -s "$tmp/$m.exp" "$tmp/$m.bout"; then
+        echo "fw-fov[$m, bands]: FAIL: the banded loop's frames differ from the expected ones:"
+        diff "$tmp/$m.exp" "$tmp/$m.bout" | head; grep -v ': 0$' "$tmp/$m.berr" | head; fail=1
+    else echo "fw-fov[$m, bands]: $(grep -c . "$tmp/$m.bout") frames as expected through the front/back swap ($(grep 'copied' "$tmp/$m.berr" | sed 's/^\[host\] //'))"; fi
 done
 rej=$(sed -n 's/.*packets\/bytes rejected: //p' "$tmp/fov-taa.err")
 if [ "$(cat "$tmp/fov-taa.out" | awk '{print $2}' | tr '\n' ' ')" != "6 " ] || [ "${rej:-0}" -lt 16 ] ||
