@@ -36,7 +36,7 @@ FUZZ_SRCS_scene := tests/fuzz/fuzz_scene.c sim/render/tdc_scene_parse.c hosttool
 FUZZ_DEPS_scene := sim/render/tdc_render_geom.c
 FUZZ_CFLAGS_scene := -Isim/render
 FUZZ_LIBS_scene := -lembree3 -lm
-# the board frame loop for a 16 x 8 stereo OLED panel with TRM and tile assembly, built as on a board:
+# the board frame loop for a 16 x 8 stereo OLED panel with TRM, tile assembly and foveation (with TAA), built as on a board:
 # without the x86 AVX2 kernels (TDC_NO_SIMD), whose encode index TRM built at every stream start
 # (22 % of each execution; the kernels are checked against C by checkasm)
 FUZZ_SRCS_frameloop := tests/fuzz/fuzz_frameloop.c $(LINK_FW_SRCS) \
@@ -45,7 +45,7 @@ FUZZ_SRCS_frameloop := tests/fuzz/fuzz_frameloop.c $(LINK_FW_SRCS) \
 FUZZ_DEPS_frameloop := firmware/board/tdc_main.c
 FUZZ_CFLAGS_frameloop := -Ifirmware/board -DTDC_PANEL_NAME='"fuzz"' -DTDC_PANEL_SYMBOL=tdc_panel_htc_vive \
     -DTDC_PANEL_WIDTH=16 -DTDC_PANEL_HEIGHT=8 -DTDC_PANEL_EYES=2 -DTDC_PANEL_BITS=8 -DTDC_PANEL_REFRESH_HZ=90 \
-    -DTDC_PANEL_IS_LCD=0 -DTDC_CFG_TRM=1 -DTDC_CFG_ASSEMBLE=1 -DTDC_FW_NO_MAIN -DTDC_NO_SIMD
+    -DTDC_PANEL_IS_LCD=0 -DTDC_CFG_TRM=1 -DTDC_CFG_ASSEMBLE=1 -DTDC_CFG_FOV=1 -DTDC_FW_NO_MAIN -DTDC_NO_SIMD
 FUZZ_CORPUS_link := tests/fuzz/corpus
 # the LCD measurement reader and the transition fit's checks (hosttools/calib)
 FUZZ_SRCS_meas := tests/fuzz/fuzz_meas.c hosttools/calib/tdc_meas.c \

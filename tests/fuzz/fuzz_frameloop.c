@@ -1,7 +1,7 @@
 /*
  * fuzz_frameloop.c - libFuzzer harness of the board frame loop
  * (firmware/board/tdc_main.c, built into this harness for a 16 x 8 stereo
- * OLED panel with TRM and tile assembly compiled in) behind a test double
+ * OLED panel with TRM, tile assembly and foveation with TAA compiled in) behind a test double
  * of the board interface: the transport returns the fuzz input in chunks
  * whose sizes come from byte 0, followed by a valid plain stream (a STREAM
  * packet and one FULL frame per eye, three times, so it is found again
