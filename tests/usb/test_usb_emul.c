@@ -82,6 +82,16 @@ static void test_two_devices(void **state)
     expect(&r, 3, NULL, "2 tdc boards match");
 }
 
+/* Writes n bytes to <tmpdir>/<name> and sends them with tdc-usb stream in
+ * transfers of `chunk` bytes. */
+static void stream_bytes(run_t *r, const char *name, const uint8_t *data, size_t n, const char *chunk)
+{
+    char path[128];
+    snprintf(path, sizeof path, "%s/%s", tmpdir, name);
+    write_file(path, data, n);
+    run_tool(r, (const char *[]){"stream", "--chunk", chunk, path, NULL});
+}
+
 static void test_stream(void **state)
 {
     fixture_t *f = *state;
@@ -89,9 +99,8 @@ static void test_stream(void **state)
     uint8_t *data = random_bytes(n, 42);
     char path[128];
     snprintf(path, sizeof path, "%s/stream.tdcs", tmpdir);
-    write_file(path, data, n);
     run_t r;
-    run_tool(&r, (const char *[]){"stream", "--chunk", "8192", path, NULL});
+    stream_bytes(&r, "stream.tdcs", data, n, "8192");
     expect(&r, 0, "board received all 200003 bytes", NULL);
     assert_non_null(strstr(r.out, "MB/s"));
     assert_non_null(strstr(r.out, "link_crc_errors 0"));
@@ -125,11 +134,8 @@ static void test_stream_link_decoder(void **state)
     uint32_t npk = 0;
     size_t n = tdc_link_gen_stream(stream, sizeof stream, &o, scratch, sizeof scratch, pk, 64, &npk);
     assert_true(n > 0 && npk == FRAMES + 1);
-    char path[128];
-    snprintf(path, sizeof path, "%s/gen.tdcs", tmpdir);
-    write_file(path, stream, n);
     run_t r;
-    run_tool(&r, (const char *[]){"stream", "--chunk", "1000", path, NULL});
+    stream_bytes(&r, "gen.tdcs", stream, n, "1000");
     expect(&r, 0, "link_crc_errors 0 link_malformed 0", NULL);
     assert_non_null(strstr(r.out, "frames 12"));
     /* A new stream (new id: the board keeps its sequence state across
@@ -138,8 +144,7 @@ static void test_stream_link_decoder(void **state)
     o.stream_id = 8;
     assert_int_equal(tdc_link_gen_stream(stream, sizeof stream, &o, scratch, sizeof scratch, pk, 64, &npk), n);
     stream[pk[5].offset + TDC_LINK_HEADER_BYTES + 17] ^= 0x04u;
-    write_file(path, stream, n);
-    run_tool(&r, (const char *[]){"stream", "--chunk", "1000", path, NULL});
+    stream_bytes(&r, "gen.tdcs", stream, n, "1000");
     expect(&r, 0, "link_crc_errors 1 link_malformed 0", NULL);
     assert_non_null(strstr(r.out, "frames 11"));
 }
@@ -196,11 +201,8 @@ static void test_stream_foveated(void **state)
         }
     }
     assert_int_equal(spoiled, 1);
-    char path[128];
-    snprintf(path, sizeof path, "%s/fov.tdcs", tmpdir);
-    write_file(path, stream, n);
     run_t r;
-    run_tool(&r, (const char *[]){"stream", "--chunk", "1000", path, NULL});
+    stream_bytes(&r, "fov.tdcs", stream, n, "1000");
     expect(&r, 0, "link_crc_errors 0 link_malformed 1", NULL);
     assert_non_null(strstr(r.out, "frames 5"));
 }
