@@ -35,8 +35,8 @@
  * REDUCED packet due; plain: FULL; foveated: FOVEATED or FULL, as a plain
  * stream's FULL; assembly: SUBFRAME and, if the stream sends them, its
  * sample motion vectors) or had that packet rejected for a
- * bad payload CRC (the eye keeps its last image: rejected packets never
- * touch the frame buffer, tdc_link.h).  If a packet of a later frame
+ * bad payload CRC or a refused foveation header (the eye keeps its last
+ * image: rejected packets never touch the frame buffer, tdc_link.h).  If a packet of a later frame
  * arrives first, the unfinished frame is completed with what arrived and
  * shown.
  *
@@ -288,7 +288,7 @@ static struct {
     uint32_t fov_last[2];
     uint32_t fov_dt_us;      /* frame time at the panel's rate (eq. 4.7) */
     uint32_t fov_frames;     /* foveated eye-frames composed */
-    uint32_t fov_resets;     /* TAA histories forgotten: a gap in the eye's frames or a FULL picture */
+    uint32_t fov_resets;     /* TAA histories forgotten: a gap in the eye's frames, a refusal or a FULL picture */
 #endif
 #if TDC_CFG_ASSEMBLE
     tdc_asm_t as[FW_EYES];
