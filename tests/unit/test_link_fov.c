@@ -518,8 +518,9 @@ static void test_refusals_buffers_and_sequence(void **state)
 static void test_stream_headers(void **state)
 {
     (void)state;
-    /* foveated with reduced frames or subframes: not defined, refused */
-    const uint32_t bad[] = {FOV | TDC_LINK_STREAM_REDUCED, FOV | TDC_LINK_STREAM_SUBFRAMES};
+    /* foveated with subframes: not defined, refused (with reduced frames:
+     * foveated TRM, tests/unit/test_link_fov_trm.c) */
+    const uint32_t bad[] = {FOV | TDC_LINK_STREAM_SUBFRAMES, FOV | TDC_LINK_STREAM_REDUCED | TDC_LINK_STREAM_SUBFRAMES};
     for (int k = 0; k < 2; k++) {
         tdc_link_encoder_t enc = encoder(bad[k], 1);
         if (bad[k] & TDC_LINK_STREAM_REDUCED) {
