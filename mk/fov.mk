@@ -57,3 +57,9 @@ TESTS += $(B)/tests/unit/test_sim_fov
 $(B)/tests/unit/test_sim_fov: $(B)/tests/unit/test_sim_fov.o $$(SIMXLIB) $$(SIMLIB) $$(FWLIB)
 	$(CC) $(HOST_LDFLAGS) $(SIM_OMP) $^ -o $@ $(HOST_LIBS)
 $(B)/tests/unit/test_sim_fov.o: $(GEN)/tdc_sim_features.h
+
+# The simulator's fov-trm mode (sim/simulator/tdc_sim_mode_fovtrm.c): foveated TRM
+TESTS += $(B)/tests/unit/test_sim_fov_trm
+$(B)/tests/unit/test_sim_fov_trm: $(B)/tests/unit/test_sim_fov_trm.o $$(SIMXLIB) $$(SIMLIB) $$(FWLIB)
+	$(CC) $(HOST_LDFLAGS) $(SIM_OMP) $^ -o $@ $(HOST_LIBS)
+$(B)/tests/unit/test_sim_fov_trm.o: $(GEN)/tdc_sim_features.h

@@ -126,6 +126,7 @@ extern const tdc_sim_family_t tdc_sim_family_warp;
 extern const tdc_sim_family_t tdc_sim_family_asm;
 extern const tdc_sim_family_t tdc_sim_family_layers;
 extern const tdc_sim_family_t tdc_sim_family_fov;
+extern const tdc_sim_family_t tdc_sim_family_fovtrm;
 extern const tdc_sim_family_t tdc_sim_stage_lcd;
 
 /* ---- helpers shared by the families (tdc_sim_mode.c) ---- */

@@ -14,6 +14,7 @@ static const tdc_sim_family_t *const k_families[] = {
     &tdc_sim_family_asm,
     &tdc_sim_family_layers,
     &tdc_sim_family_fov,
+    &tdc_sim_family_fovtrm,
 };
 
 #define MAX_MODES 64
