@@ -119,6 +119,27 @@ def fov_section(out):
                       f"{f(r['flip_periphery']):.4f} | {f(r['flip_ecc']):.4f} | {f(r['flip_wmedian']):.3f} | "
                       f"{f(r['flicker_periphery']):.2f} | {fw} |")
         md.append("")
+    # foveated TRM (issue 14 item 5): every run with fov-trm
+    for n, m in runs.items():
+        if "fov-trm" not in m:
+            continue
+        summ = {x["mode"]: x for x in read(os.path.join(out, n, "summary.csv"))}
+        md.append(f"### Foveated TRM, `{n}`\n")
+        md.append("fov-trm: trm50's stream with both frames foveated -- the full frames as fov's, the reduced "
+                  "frames' buffer and disk on the r = 1/2 grid (FOVEATED packets with FOV_REDUCED), each remapped "
+                  "into its buffer by the firmware and then through TRM as plain FULL / REDUCED frames; no "
+                  "peripheral TAA (docs/foveation.md, \"Foveated TRM\").\n")
+        md.append("| mode | rays vs full | link vs full | FLIP fovea | FLIP periphery | FLIP ecc | FLIP w-median | "
+                  "flicker periphery | fw us/frame |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
+        for k in ("full", "trm50", "fov", "fov-taa", "fov-trm"):
+            r = m.get(k)
+            if not r:
+                continue
+            fw = summ.get(k, {}).get("fw_us_per_frame", "")
+            md.append(f"| {k} | {f(r['rays_vs_full']):.4f} | {f(r['link_vs_full']):.4f} | {f(r['flip_fovea']):.4f} | "
+                      f"{f(r['flip_periphery']):.4f} | {f(r['flip_ecc']):.4f} | {f(r['flip_wmedian']):.3f} | "
+                      f"{f(r['flicker_periphery']):.2f} | {fw} |")
+        md.append("")
     # disk sweep and alpha sweep
     sweep = []
     for n, m in runs.items():

@@ -23,8 +23,12 @@
  *
  * Samples: every source through samples() at the positions of the exact
  * inverse of eq. 2.2 (sim/ref_fov.c) on the slot's grid and the grid's disk
- * pixel centres, scaled to the screen (W / rw, H / rh), spp rays each;
- * rays = samples x spp, exactly.
+ * pixels, scaled to the screen (W / rw, H / rh), spp rays each; a reduced
+ * disk pixel's rays spread over its footprint (g x g point samples, g^2 <=
+ * spp; one at its centre at spp 1) and are resolved with TRM's Gaussian
+ * D over the neighbouring disk pixels' (as the renderer's trm50r reduced
+ * frames), so the reduced frame is the prefiltered picture TRM's residual
+ * assumes.  rays = samples x spp, exactly.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -32,6 +36,7 @@
 
 #include "ref_fov.h"
 #include "simulator/tdc_sim_mode.h"
+#include "simulator/tdc_sim_codes.h"
 #include "tdc_fov_link.h"
 #include "tdc_sim_features.h"
 
@@ -57,11 +62,102 @@ typedef struct {
     tdc_fov_trm_t fv;
     void *fv_mem;
     uint8_t *samp; /* samples in payload order */
-    double *xy;
+    double *xy;    /* positions (cap of them) */
+    uint8_t *sub;  /* the reduced disk's point samples (cap) */
+    double *lin;   /* ... in linear light (cap x 3) */
+    int32_t *map;  /* reduced grid: disk index of each pixel, -1 outside */
+    size_t cap;
     uint16_t alpha_q8, delta_q15, disk_q15;
     double last_t;
     int have_t;
 } fovtrm_state_t;
+
+/* Position and sample buffers for n positions (grown on demand: the
+ * reduced frames' disk needs spp positions per pixel). */
+static int fovtrm_reserve(fovtrm_state_t *st, size_t n)
+{
+    if (n <= st->cap) {
+        return 0;
+    }
+    double *xy = realloc(st->xy, n * 2 * sizeof(double));
+    if (xy) {
+        st->xy = xy;
+    }
+    uint8_t *sub = realloc(st->sub, n * 3);
+    if (sub) {
+        st->sub = sub;
+    }
+    double *lin = realloc(st->lin, n * 3 * sizeof(double));
+    if (lin) {
+        st->lin = lin;
+    }
+    if (!xy || !sub || !lin) {
+        return -1;
+    }
+    st->cap = n;
+    return 0;
+}
+
+/* The reduced disk pixels from their point samples (st->sub, positions at
+ * st->xy + 2 nlp, sub per pixel in disk order): each the Gaussian resolve of
+ * the point samples within 3 sigma of its centre (sigma = TRM's D, in
+ * full-res px; neighbours outside the disk are missing and the weights
+ * renormalised), in linear light -- what the renderer's REDUCED frames do
+ * (trm50r: ss x ss rays per reduced pixel, Gaussian resolve), so that the
+ * reduced frame is the D-prefiltered picture TRM's residual expects. */
+static void resolve_reduced_disk(fovtrm_state_t *st, const tdc_source_t *src, const tdc_fov_geom_t *g, size_t nlp,
+                                 size_t nd, int sub, double sx, double sy)
+{
+    const int gw = g->width, gh = g->height;
+    const double sig = st->trm.cfg.sigma_q8 / 256.0, reach = 3.0 * sig;
+    /* disk index of every reduced pixel, -1 outside the disk */
+    for (size_t i = 0; i < (size_t)gw * gh; i++) {
+        st->map[i] = -1;
+    }
+    int32_t d = 0;
+    for (int j = 0; j < gh; j++) {
+        int32_t x0;
+        const uint32_t span = tdc_fov_disk_span(g, j, &x0);
+        for (uint32_t i = 0; i < span; i++) {
+            st->map[(size_t)j * gw + (size_t)x0 + i] = d++;
+        }
+    }
+    for (size_t q = 0; q < nd * (size_t)sub * 3u; q++) {
+        st->lin[q] = pow(st->sub[q] / 255.0, src->gamma[q % 3u]);
+    }
+    const int ri = (int)ceil(reach / sx) + 1, rj = (int)ceil(reach / sy) + 1;
+    for (int j = 0; j < gh; j++) {
+        for (int i = 0; i < gw; i++) {
+            const int32_t k = st->map[(size_t)j * gw + (size_t)i];
+            if (k < 0) {
+                continue;
+            }
+            const double cx = (i + 0.5) * sx, cy = (j + 0.5) * sy;
+            double acc[3] = {0, 0, 0}, wsum = 0.0;
+            for (int b = j - rj; b <= j + rj; b++) {
+                for (int a = i - ri; a <= i + ri; a++) {
+                    const int32_t n = (a < 0 || b < 0 || a >= gw || b >= gh) ? -1 : st->map[(size_t)b * gw + (size_t)a];
+                    for (int q = 0; n >= 0 && q < sub; q++) {
+                        const size_t o = (size_t)n * (size_t)sub + (size_t)q;
+                        const double dx = st->xy[2 * (nlp + o)] - cx, dy = st->xy[2 * (nlp + o) + 1] - cy;
+                        const double d2 = dx * dx + dy * dy;
+                        if (d2 > reach * reach) {
+                            continue;
+                        }
+                        const double w = exp(-d2 / (2.0 * sig * sig));
+                        wsum += w;
+                        for (int c = 0; c < 3; c++) {
+                            acc[c] += w * st->lin[3 * o + (size_t)c];
+                        }
+                    }
+                }
+            }
+            for (int c = 0; c < 3; c++) {
+                st->samp[3 * (nlp + (size_t)k) + (size_t)c] = tdc_sim_encode_code(acc[c] / wsum, src->gamma[c]);
+            }
+        }
+    }
+}
 
 static int32_t *fovtrm_residual(sim_mode_t *m)
 {
@@ -101,8 +197,8 @@ static int fovtrm_init(sim_mode_t *m, const tdc_sim_setup_t *s)
     st->trm_mem = malloc(nt);
     st->fv_mem = aligned_alloc(8, (nf + 7) & ~(size_t)7);
     st->samp = malloc((lpn + m->npx) * 3);
-    st->xy = malloc((lpn + m->npx) * 2 * sizeof(double));
-    if (!st->trm_mem || !st->fv_mem || !st->samp || !st->xy) {
+    st->map = malloc((size_t)rw * rh * sizeof(int32_t));
+    if (!st->map || !st->trm_mem || !st->fv_mem || !st->samp || fovtrm_reserve(st, lpn + m->npx) != 0) {
         return -1;
     }
     tdc_status_t rc = tdc_trm_init(&st->trm, &tc, s->fw_panel, st->trm_mem, nt);
@@ -172,17 +268,36 @@ static int fovtrm_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uin
             st->xy[2 * k + 1] = y * sy;
         }
     }
+    const size_t nlp = k, nd = tdc_fov_disk_pixels(&g);
+    /* a reduced disk pixel covers sx x sy screen pixels: its rays spread
+     * over that footprint (a gr x gr grid of point samples, then TRM's
+     * Gaussian resolve: resolve_reduced_disk), a full one is spp rays
+     * within its pixel as in fov */
+    const int gr = red ? tdc_sim_spp_grid(spp) : 1, sub = gr * gr;
+    if (fovtrm_reserve(st, nlp + nd * (size_t)sub) != 0) {
+        return tdc_sim_stage(m, "fov-trm sample buffers", TDC_ERR_SIZE);
+    }
     for (int j = 0; j < gh; j++) {
         int32_t x0;
         const uint32_t span = tdc_fov_disk_span(&g, j, &x0);
-        for (uint32_t i = 0; i < span; i++, k++) {
-            st->xy[2 * k] = (x0 + (int32_t)i + 0.5) * sx;
-            st->xy[2 * k + 1] = (j + 0.5) * sy;
+        for (uint32_t i = 0; i < span; i++) {
+            for (int b = 0; b < gr; b++) {
+                for (int a = 0; a < gr; a++, k++) {
+                    st->xy[2 * k] = (x0 + (int32_t)i + (red ? (a + 0.5) / gr : 0.5)) * sx;
+                    st->xy[2 * k + 1] = (j + (red ? (b + 0.5) / gr : 0.5)) * sy;
+                }
+            }
         }
     }
     double t0 = tdc_sim_now();
-    src->samples(src, t, (int)k, st->xy, spp, st->samp, NULL, dt, TDC_MV_SURFACE);
-    m->res->rays += (uint64_t)k * (uint64_t)(spp > 0 ? spp : 1);
+    if (!red) {
+        src->samples(src, t, (int)k, st->xy, spp, st->samp, NULL, dt, TDC_MV_SURFACE);
+    } else {
+        src->samples(src, t, (int)nlp, st->xy, spp, st->samp, NULL, dt, TDC_MV_SURFACE);
+        src->samples(src, t, (int)(nd * (size_t)sub), st->xy + 2 * nlp, 1, st->sub, NULL, dt, TDC_MV_SURFACE);
+        resolve_reduced_disk(st, src, &g, nlp, nd, sub, sx, sy);
+    }
+    m->res->rays += (uint64_t)(nlp + nd) * (uint64_t)(spp > 0 ? spp : 1); /* spp rays each, as every mode counts */
     m->res->render_s += tdc_sim_now() - t0;
     m->res->rendered++;
     /* over the link into the slot's buffers, then the remap over the slot's
@@ -221,6 +336,9 @@ static void fovtrm_free(sim_mode_t *m)
         free(st->fv_mem);
         free(st->samp);
         free(st->xy);
+        free(st->sub);
+        free(st->lin);
+        free(st->map);
         free(st);
     }
     m->fam = NULL;
