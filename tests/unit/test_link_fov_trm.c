@@ -36,7 +36,7 @@
 
 static lt_rig_t rig;
 static uint8_t stream[1 << 18], pkt[1 << 16], payload[1 << 16];
-static uint8_t samples[W * H * 3];
+static uint8_t samples[2 * W * H * 3]; /* lp samples + a whole-screen disk */
 static int16_t mvs[W * H * 2];
 
 typedef struct {
