@@ -52,14 +52,8 @@ fuzz-seeds-fov: $(BUILD)/fuzz/make_seeds_fov
 	$(BUILD)/fuzz/make_seeds_fov tests/fuzz/corpus-fov
 .PHONY: fuzz-seeds-fov
 
-# The simulator's fov modes (sim/simulator/tdc_sim_mode_fov.c), gaze schedules and tracker
+# The simulator's fov modes (sim/simulator/tdc_sim_mode_fov.c, fov-trm: tdc_sim_mode_fovtrm.c), gaze schedules and tracker
 TESTS += $(B)/tests/unit/test_sim_fov
 $(B)/tests/unit/test_sim_fov: $(B)/tests/unit/test_sim_fov.o $$(SIMXLIB) $$(SIMLIB) $$(FWLIB)
 	$(CC) $(HOST_LDFLAGS) $(SIM_OMP) $^ -o $@ $(HOST_LIBS)
 $(B)/tests/unit/test_sim_fov.o: $(GEN)/tdc_sim_features.h
-
-# The simulator's fov-trm mode (sim/simulator/tdc_sim_mode_fovtrm.c): foveated TRM
-TESTS += $(B)/tests/unit/test_sim_fov_trm
-$(B)/tests/unit/test_sim_fov_trm: $(B)/tests/unit/test_sim_fov_trm.o $$(SIMXLIB) $$(SIMLIB) $$(FWLIB)
-	$(CC) $(HOST_LDFLAGS) $(SIM_OMP) $^ -o $@ $(HOST_LIBS)
-$(B)/tests/unit/test_sim_fov_trm.o: $(GEN)/tdc_sim_features.h
