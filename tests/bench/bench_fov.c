@@ -185,7 +185,7 @@ static void throughput(int lr, double bw)
     /* variants: fov, fov-taa (gaze still: the radial table and the column
      * reciprocals are built once), fov with the gaze moving 1 px per frame
      * (both rebuilt every frame, as with an eye tracker), fov with the C tap
-     * kernel instead of AVX2; the log-rectilinear kind with and without TAA */
+     * kernels (geometry and taps) instead of AVX2; the log-rectilinear kind with and without TAA */
     typedef struct {
         int taa, move, simd;
         const char *name;
