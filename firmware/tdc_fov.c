@@ -536,6 +536,8 @@ static inline uint32_t px_colour(const tdc_fov_t *st, const uint8_t *drow, int32
     if (bf & GEN_FLAG) {
         const uint16_t *gp = st->t_gen + (size_t)i * 3u;
         lpc[0] = gp[0], lpc[1] = gp[1], lpc[2] = gp[2];
+    } else if (!b) {
+        lpc[0] = lpc[1] = lpc[2] = 0; /* the disk only; the tap kernel may not have run (log-rectilinear rows) */
     } else {
         const uint16_t *kp = st->t_out + i;
         const size_t w = st->cfg.width;
@@ -876,7 +878,9 @@ tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8
             tdc_fov_lr_row(st->lr, y);
         }
         st->geom(&src, 0, W);
-        st->tap2(&ka, (uint32_t)W);
+        if (!src.lr) { /* a log-rectilinear row has every periphery colour in gen already */
+            st->tap2(&ka, (uint32_t)W);
+        }
         if (!st->cfg.taa) {
             /* b = 256 from the kernel (most pixels): Q8 -> 8 bits; the rest through px_colour */
             const uint16_t *kr = st->t_out, *kg = kr + W, *kb = kg + W;
