@@ -264,3 +264,33 @@ double ref_fov_ray_share(const ref_fov_geom_t *g, long disk_pixels)
 {
     return ((double)(g->lp_w - g->u0) * g->lp_h + (double)disk_pixels) / ((double)g->width * g->height);
 }
+
+double ref_fov_lod_cone(int mode, double r, double L, double alpha, double un, int w, int h)
+{
+    if (mode == TDC_FOV_LOD_FOOTPRINT) {
+        const double radial = r * L * alpha * pow(un, alpha - 1) / w, tang = 2 * M_PI * r / h;
+        const double side = radial > tang ? radial : tang;
+        return side > 1 ? side : 1;
+    }
+    if (mode == TDC_FOV_LOD_THESIS) {
+        const double x = fmin(fmax(pow(un, alpha), 0), 1), s1 = x * x * (3 - 2 * x); /* S1 */
+        return exp2(3 * s1 * s1 * s1);
+    }
+    return 1;
+}
+
+size_t ref_fov_lp_samples(const ref_fov_geom_t *g, int u0, double jx, double jy, int lod, double *xy, double *side)
+{
+    size_t k = 0;
+    for (int j = 0; j < g->lp_h; j++) {
+        for (int i = u0; i < g->lp_w; i++, k++) {
+            const double u = fmax(i + jx, 0.0);
+            ref_fov_from_lp(g, u, j + jy, &xy[2 * k], &xy[2 * k + 1]);
+            if (side) {
+                const double un = u / g->lp_w, r = exp(g->L * pow(un, g->alpha));
+                side[k] = ref_fov_lod_cone(lod, r, g->L, g->alpha, un, g->lp_w, g->lp_h);
+            }
+        }
+    }
+    return k;
+}

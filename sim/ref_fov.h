@@ -59,6 +59,26 @@ void ref_fov_free(ref_fov_t *st);
 void ref_fov_frame(ref_fov_t *st, const ref_fov_params_t *p, const uint8_t *lp, size_t lp_stride, const int16_t *mv,
                    size_t mv_stride, const uint8_t *disk, size_t disk_stride, uint32_t dt_us, double *out);
 
+/* Texture LOD / footprint prefilter of the log-polar samples (thesis §4.1.2,
+ * eqs. 4.1-4.3): what one log-polar sample stands for on the display, in
+ * display pixels (the renderer's cone factor, tdc_render.h cfg.fov_lod; the
+ * simulator's box side for photographs and procedural scenes):
+ *  OFF        1 (one display pixel: the point sample);
+ *  FOOTPRINT  max(1, the longer side of eq. 2.3's cell at radius r, u / w = un:
+ *             radial r L alpha un^(alpha-1) / w, tangential 2 pi r / h);
+ *  THESIS     2^phi, phi = 3 S1(un^alpha)^3 (eq. 4.3, S1 = smoothstep on
+ *             [0, 1]; without eq. 4.2's base bias 0.3).
+ * The one definition both sample paths use (do not write it twice). */
+enum { TDC_FOV_LOD_OFF = 0, TDC_FOV_LOD_FOOTPRINT = 1, TDC_FOV_LOD_THESIS = 2 };
+double ref_fov_lod_cone(int mode, double r, double L, double alpha, double un, int w, int h);
+
+/* The log-polar samples of columns [u0, lp_w) x rows [0, lp_h), in payload
+ * order (row by row), at buffer position (max(i + jx, 0), j + jy): their
+ * display positions by the exact inverse of eq. 2.2 into xy (2 doubles per
+ * sample) and, with side != NULL, ref_fov_lod_cone(lod, ...) of each.
+ * Returns the number of samples. */
+size_t ref_fov_lp_samples(const ref_fov_geom_t *g, int u0, double jx, double jy, int lod, double *xy, double *side);
+
 /* eq. 5.1 ray model: samples traced for a frame (log-polar columns [u0, w)
  * plus the disk pixels on the screen) over W*H. */
 double ref_fov_ray_share(const ref_fov_geom_t *g, long disk_pixels);

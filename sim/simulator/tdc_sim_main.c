@@ -62,9 +62,10 @@ static void usage(FILE *f)
             "                          default 0): another stretch of the animation, another content\n"
             "      --no-reflect-mv     renderer: primary MVs at mirror hits instead of reflected MVs\n"
             "                          (TDRT §3.1.2, Figs. 5-6)\n"
-            "      --fov-lod MODE      renderer, fov modes: texture LOD of the log-polar samples (thesis\n"
-            "                          §4.1.2): footprint (default; the sample's display cell), thesis\n"
-            "                          (eq. 4.3's bias 3 S1(u^alpha)^3), off (one display pixel)\n"
+            "      --fov-lod MODE      fov modes: prefilter of the log-polar samples (thesis §4.1.2): the\n"
+            "                          renderer's texture LOD, the other sources' box average in linear\n"
+            "                          light: footprint (default; the sample's display cell), thesis\n"
+            "                          (eq. 4.3's bias 3 S1(u^alpha)^3), off (one display pixel / point)\n"
             "  -d, --duration S        simulated seconds (default 0.5)\n"
             "  -n, --frames N          simulated refreshes (overrides --duration)\n"
             "  -w, --window N          fused window in refreshes (default 2 below 200 Hz, else 4)\n"
@@ -372,6 +373,7 @@ int main(int argc, char **argv)
                 fprintf(stderr, "tdc-sim: --fov-lod: %s is not footprint, thesis or off\n", optarg);
                 return TDC_EXIT_ARGS;
             }
+            cfg.fov_lod = fov_lod;
             break;
         case O_IMAGE: image = optarg; break;
         case O_ZOOM:
