@@ -64,6 +64,8 @@ typedef struct {
                                w = floor(delta_q15 W / 2^15) (tdc_fov_lp_size) */
     double disk;           /* disk radius / distance to the farthest corner, [0, 1]; default 0.12443 */
     double jx, jy;         /* sub-sample jitter of the log-polar samples (Halton 2,3 where TAA follows) */
+    int jitter;            /* how (jx, jy) moves a sample (ref_fov_lp_jitter): TDC_FOV_JITTER_TEXEL (0,
+                              half a buffer texel) or _PIXEL (at most half a display pixel too) */
 } tdc_render_fov_t;
 
 typedef struct {

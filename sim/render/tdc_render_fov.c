@@ -16,11 +16,7 @@
 
 void tdc_render_halton(uint32_t f, double *jx, double *jy)
 {
-    double hx = 0, hy = 0;
-    for (uint32_t k = f + 1, b = 2; k; k /= 2, b *= 2) hx += (double)(k % 2) / b;
-    for (uint32_t k = f + 1, b = 3; k; k /= 3, b *= 3) hy += (double)(k % 3) / b;
-    *jx = hx - 0.5;
-    *jy = hy - 0.5;
+    ref_fov_halton(f, jx, jy);
 }
 
 int tdc_render_set_foveation(tdc_render_t *r, const tdc_render_fov_t *f, int *lp_samples, int *disk_pixels)
@@ -48,10 +44,11 @@ int tdc_render_set_foveation(tdc_render_t *r, const tdc_render_fov_t *f, int *lp
     const double ex = fmax(cx, r->W - cx), ey = fmax(cy, r->H - cy), L = log(sqrt(ex * ex + ey * ey));
     size_t k = 0;
     for (int j = 0; j < g.lp_h; j++) {
-        const double th = 2 * M_PI * (j + f->jy) / g.lp_h;
-        const double c = cos(th), s = sin(th);
         for (int i = g.u0; i < g.lp_w; i++) {
-            const double u = fmax(i + f->jx, 0.0);
+            double u, v;
+            ref_fov_lp_jitter(f->jitter, L, alpha, g.lp_w, g.lp_h, i, j, f->jx, f->jy, &u, &v);
+            const double th = 2 * M_PI * v / g.lp_h;
+            const double c = cos(th), s = sin(th);
             const double rad = exp(L * pow(u / g.lp_w, alpha));
             xy[2 * k] = (float)(cx + rad * c);
             xy[2 * k + 1] = (float)(cy + rad * s);

@@ -69,6 +69,7 @@ typedef struct {
     int16_t *pmv; /* the full frame's vectors (fovlr-taa) */
     double *side; /* the footprint of each log-polar sample, display pixels (ref_fov_lod_cone) */
     int lod;      /* TDC_FOV_LOD_* (cfg.fov_lod) */
+    int jitter;   /* TDC_FOV_JITTER_* (cfg.fov_jitter) */
     uint16_t alpha_q8, delta_q15, disk_q15;
     double last_t;
     int have_t;
@@ -94,6 +95,7 @@ static int fov_init(sim_mode_t *m, const tdc_sim_setup_t *s)
     st->delta_q15 = (uint16_t)ceil(cfg->fov_delta * 32768.0 - 1e-9);
     st->disk_q15 = (uint16_t)lround(cfg->fov_disk * 32768.0);
     st->lod = cfg->fov_lod;
+    st->jitter = cfg->fov_jitter;
     const tdc_fov_config_t fc = {(uint16_t)m->w, (uint16_t)m->h, (uint8_t)IS_TAA(m->d->variant)};
     const size_t n = tdc_fov_get_size(&fc);
     if (!n || !(cfg->fov_delta > 0 && cfg->fov_delta <= 1)) {
@@ -242,12 +244,8 @@ static int fov_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32
         return rc;
     }
     double jx = 0, jy = 0;
-    if (taa && !lr) { /* Halton(2,3) jitter of the log-polar samples (thesis §4.3.2) */
-        double hx = 0, hy = 0;
-        for (uint32_t k = m->frame + 1, b = 2; k; k /= 2, b *= 2) hx += (double)(k % 2) / b;
-        for (uint32_t k = m->frame + 1, b = 3; k; k /= 3, b *= 3) hy += (double)(k % 3) / b;
-        jx = hx - 0.5;
-        jy = hy - 0.5;
+    if (taa && !lr) { /* Halton(2,3) jitter of the log-polar samples (thesis §4.3.2; how far: st->jitter) */
+        ref_fov_halton(m->frame, &jx, &jy);
     }
     const size_t nlp = (size_t)(g.lp_w - g.u0) * g.lp_h, n = nlp + tdc_fov_disk_pixels(&g);
     double t0 = tdc_sim_now();
@@ -255,7 +253,7 @@ static int fov_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32
         lr_samples(m, st, src, &p, &g, t, dt, spp, taa);
     } else if (src->foveated) {
         const tdc_fov_sampling_t fs = {p.gaze_x_q8 / 256.0, p.gaze_y_q8 / 256.0, p.alpha_q8 / 256.0,
-                                       st->delta_q15 / 32768.0, p.disk_q15 / 32768.0, jx, jy};
+                                       st->delta_q15 / 32768.0, p.disk_q15 / 32768.0, jx, jy, st->jitter};
         uint64_t rays = 0;
         rc = src->foveated(src, &fs, t, dt, st->samp, taa ? st->smv : NULL, &rays);
         if (tdc_sim_stage(m, "renderer (foveated frame)", rc ? TDC_ERR_ARG : TDC_OK)) {
@@ -269,7 +267,7 @@ static int fov_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32
         ref_fov_geom_t rg;
         ref_fov_geom(&rg, m->w, m->h, &rp);
         const int lod = st->lod;
-        size_t k = ref_fov_lp_samples(&rg, g.u0, jx, jy, lod, st->xy, lod != TDC_FOV_LOD_OFF ? st->side : NULL);
+        size_t k = ref_fov_lp_samples(&rg, g.u0, jx, jy, st->jitter, lod, st->xy, lod != TDC_FOV_LOD_OFF ? st->side : NULL);
         for (int j = 0; j < m->h; j++) {
             int32_t x0;
             const uint32_t span = tdc_fov_disk_span(&g, j, &x0);

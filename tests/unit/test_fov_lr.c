@@ -389,7 +389,7 @@ static void test_footprint_prefilter(void **state)
     double *xy = malloc(n * 2 * sizeof(double)), *side = malloc(n * sizeof(double));
     for (int lod = TDC_FOV_LOD_OFF; lod <= TDC_FOV_LOD_THESIS; lod++) {
         const double jx = lod == TDC_FOV_LOD_FOOTPRINT ? 0.3 : -0.2, jy = 0.1;
-        assert_int_equal(ref_fov_lp_samples(&g, g.u0, jx, jy, lod, xy, side), n);
+        assert_int_equal(ref_fov_lp_samples(&g, g.u0, jx, jy, TDC_FOV_JITTER_TEXEL, lod, xy, side), n);
         int checked = 0;
         size_t k = 0;
         for (int j = 0; j < g.lp_h; j++) {
@@ -420,6 +420,31 @@ static void test_footprint_prefilter(void **state)
             assert_true(checked > (int)n / 2);
         }
     }
+    /* the TAA jitter: TEXEL moves a peripheral sample by up to half a cell
+     * (many display pixels), PIXEL by at most half a texel and about half a
+     * display pixel per axis (the cell varies a little over the offset) */
+    double worst_px = 0, worst_texel_mode = 0;
+    for (int j = 0; j < g.lp_h; j++) {
+        for (int i = g.u0; i < g.lp_w; i++) {
+            double x0, y0, u, v, x, y;
+            ref_fov_from_lp(&g, i, j, &x0, &y0);
+            for (int mode = TDC_FOV_JITTER_TEXEL; mode <= TDC_FOV_JITTER_PIXEL; mode++) {
+                ref_fov_lp_jitter(mode, g.L, g.alpha, g.lp_w, g.lp_h, i, j, 0.5, -0.5, &u, &v);
+                assert_true(fabs(u - i) <= 0.5 && fabs(v - j) <= 0.5);
+                ref_fov_from_lp(&g, u, v, &x, &y);
+                const double d = hypot(x - x0, y - y0);
+                if (mode == TDC_FOV_JITTER_PIXEL) {
+                    worst_px = fmax(worst_px, d);
+                    assert_true(d <= 0.55 * M_SQRT2);
+                } else {
+                    worst_texel_mode = fmax(worst_texel_mode, d);
+                }
+            }
+        }
+    }
+    printf("jitter (0.5, -0.5): texel moves a sample up to %.2f px, pixel up to %.3f px\n", worst_texel_mode,
+           worst_px);
+    assert_true(worst_texel_mode > 3);
     free(xy);
     free(side);
 }

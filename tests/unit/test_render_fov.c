@@ -65,7 +65,7 @@ static void run_scene(const char *name)
         tdc_render_out_t o = {.rgb = full, .mv = fmv};
         tdc_render_stats_t st;
         assert_int_equal(tdc_render_frame(r, f, TDC_RENDER_FULL, &o, &st), 0);
-        tdc_render_fov_t fv = {W * (0.3 + 0.15 * (f - 3)), H * (0.6 - 0.1 * (f - 3)), 4, 0.555, 0.12443, 0, 0};
+        tdc_render_fov_t fv = {W * (0.3 + 0.15 * (f - 3)), H * (0.6 - 0.1 * (f - 3)), 4, 0.555, 0.12443, 0, 0, TDC_FOV_JITTER_TEXEL};
         tdc_render_halton(f, &fv.jx, &fv.jy);
         int nlp, nd;
         assert_int_equal(tdc_render_set_foveation(r, &fv, &nlp, &nd), 0);
@@ -174,7 +174,7 @@ static void test_fov_lod(void **state)
 {
     (void)state;
     tdc_render_t *r = open_builtin("panorama");
-    tdc_render_fov_t fv = {W * 0.4, H * 0.55, 4, 0.555, 0.12443, 0.25, -0.125};
+    tdc_render_fov_t fv = {W * 0.4, H * 0.55, 4, 0.555, 0.12443, 0.25, -0.125, TDC_FOV_JITTER_TEXEL};
     const int modes[3] = {TDC_FOV_LOD_OFF, TDC_FOV_LOD_FOOTPRINT, TDC_FOV_LOD_THESIS};
     float *samp[3];
     int nlp = 0, nd = 0;
@@ -195,7 +195,7 @@ static void test_fov_lod(void **state)
         tdc_render_set_fov_lod(r, modes[m]);
         assert_int_equal(tdc_render_set_foveation(r, &fv, &nlp, &nd), 0);
         /* one footprint function: the simulator's box side is the renderer's cone, sample by sample */
-        assert_int_equal(ref_fov_lp_samples(&rg, g.u0, fv.jx, fv.jy, modes[m], sxy, sside), (size_t)nlp);
+        assert_int_equal(ref_fov_lp_samples(&rg, g.u0, fv.jx, fv.jy, fv.jitter, modes[m], sxy, sside), (size_t)nlp);
         for (int k = 0; k < nlp; k++) {
             if (!(fabs(sside[k] - tdc_render_fov_cone(r, k)) <= 1e-6 * sside[k]))
                 fail_msg("lod %d sample %d: simulator footprint %g, renderer cone %g", modes[m], k, sside[k],
@@ -252,6 +252,12 @@ static void test_fov_lod(void **state)
            cmax[1], cmax[2], changed, nlp, same_cone_changed);
     assert_int_equal(same_cone_changed, 0);
     assert_true(changed > 0);
+    /* the same with the display-pixel jitter (ref_fov_lp_jitter's PIXEL): footprints still agree */
+    fv.jitter = TDC_FOV_JITTER_PIXEL;
+    assert_int_equal(tdc_render_set_foveation(r, &fv, &nlp, &nd), 0);
+    assert_int_equal(ref_fov_lp_samples(&rg, g.u0, fv.jx, fv.jy, fv.jitter, TDC_FOV_LOD_FOOTPRINT, sxy, sside),
+                     (size_t)nlp);
+    for (int k = 0; k < nlp; k++) assert_true(fabs(sside[k] - tdc_render_fov_cone(r, k)) <= 1e-6 * sside[k]);
     for (int m = 0; m < 3; m++) free(samp[m]);
     free(sxy);
     free(sside);
@@ -262,7 +268,7 @@ static void test_bad_foveation(void **state)
 {
     (void)state;
     tdc_render_t *r = open_builtin("discs");
-    tdc_render_fov_t fv = {W / 2.0, H / 2.0, 4, 0.555, 0.12443, 0, 0};
+    tdc_render_fov_t fv = {W / 2.0, H / 2.0, 4, 0.555, 0.12443, 0, 0, TDC_FOV_JITTER_TEXEL};
     assert_int_equal(tdc_render_frame(r, 0, TDC_RENDER_FOVEATED, NULL, NULL), -1); /* not set yet */
     fv.alpha = 9;
     assert_int_equal(tdc_render_set_foveation(r, &fv, NULL, NULL), -1);
