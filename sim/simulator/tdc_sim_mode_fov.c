@@ -267,7 +267,8 @@ static int fov_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32
         ref_fov_geom_t rg;
         ref_fov_geom(&rg, m->w, m->h, &rp);
         const int lod = st->lod;
-        size_t k = ref_fov_lp_samples(&rg, g.u0, jx, jy, st->jitter, lod, st->xy, lod != TDC_FOV_LOD_OFF ? st->side : NULL);
+        double *side = lod != TDC_FOV_LOD_OFF ? st->side : NULL;
+        size_t k = ref_fov_lp_samples(&rg, g.u0, jx, jy, st->jitter, lod, st->xy, side);
         for (int j = 0; j < m->h; j++) {
             int32_t x0;
             const uint32_t span = tdc_fov_disk_span(&g, j, &x0);

@@ -549,7 +549,8 @@ static void test_refused(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_round_trip), cmocka_unit_test(test_area_average), cmocka_unit_test(test_area_average_linear),
+        cmocka_unit_test(test_round_trip), cmocka_unit_test(test_area_average),
+        cmocka_unit_test(test_area_average_linear),
         cmocka_unit_test(test_footprint_prefilter), cmocka_unit_test(test_uniform),
         cmocka_unit_test(test_refused),    cmocka_unit_test(test_fixed_vs_double),
     };

@@ -65,7 +65,8 @@ static void run_scene(const char *name)
         tdc_render_out_t o = {.rgb = full, .mv = fmv};
         tdc_render_stats_t st;
         assert_int_equal(tdc_render_frame(r, f, TDC_RENDER_FULL, &o, &st), 0);
-        tdc_render_fov_t fv = {W * (0.3 + 0.15 * (f - 3)), H * (0.6 - 0.1 * (f - 3)), 4, 0.555, 0.12443, 0, 0, TDC_FOV_JITTER_TEXEL};
+        tdc_render_fov_t fv = {W * (0.3 + 0.15 * (f - 3)), H * (0.6 - 0.1 * (f - 3)), 4, 0.555, 0.12443, 0, 0,
+                               TDC_FOV_JITTER_TEXEL};
         tdc_render_halton(f, &fv.jx, &fv.jy);
         int nlp, nd;
         assert_int_equal(tdc_render_set_foveation(r, &fv, &nlp, &nd), 0);
