@@ -141,7 +141,7 @@ static const checkasm_family_t fov_tap2 = {"fov_tap2", check_tap2, bench_tap2};
 #define GMAXW 600u
 static uint64_t g_stage_mem[TDC_FOV_MEM_BYTES(GMAXW, GMAXW, 0) / 8u + 1u] CHECKASM_BIG;
 static uint32_t g_go[2][4][GMAXW] CHECKASM_BIG; /* off0, off1, wf, ij of the C and the optimised row */
-static uint16_t g_gb[2][4][GMAXW] CHECKASM_BIG; /* gen (3 per pixel) and b */
+static uint16_t g_ggen[2][3u * GMAXW] CHECKASM_BIG, g_gbw[2][GMAXW] CHECKASM_BIG; /* gen (3 per pixel), b */
 
 typedef struct {
     tdc_fov_t st;
@@ -185,8 +185,8 @@ static void geom_bufs(tdc_fov_geom_args_t *a, unsigned side)
     a->off1 = g_go[side][1];
     a->wf = g_go[side][2];
     a->ij = g_go[side][3];
-    a->gen = g_gb[side][0];
-    a->b = g_gb[side][3];
+    a->gen = g_ggen[side];
+    a->b = g_gbw[side];
 }
 
 static void check_geom(const checkasm_kernel_t *kr)
@@ -208,7 +208,8 @@ static void check_geom(const checkasm_kernel_t *kr)
         const int32_t x0 = run % 4u ? (int32_t)checkasm_rand_below((uint32_t)W) : 0;
         const int32_t x1 = run % 4u ? x0 + (int32_t)checkasm_rand_below((uint32_t)(W - x0) + 1u) : W;
         memset(g_go, 0xA5, sizeof g_go);
-        memset(g_gb, 0xA5, sizeof g_gb);
+        memset(g_ggen, 0xA5, sizeof g_ggen);
+        memset(g_gbw, 0xA5, sizeof g_gbw);
         geom_bufs(&a, 0);
         CHECKASM_REF(tdc_fov_geom_row_fn, kr)(&a, x0, x1);
         geom_bufs(&a, 1);
@@ -217,8 +218,8 @@ static void check_geom(const checkasm_kernel_t *kr)
         for (unsigned o = 0; o < 8u; o++) {
             const int u32 = o < 4u;
             for (int32_t x = x0; x < x1; x++) {
-                const uint32_t vc = u32 ? g_go[0][o][x] : o < 7u ? g_gb[0][0][3 * x + (int32_t)(o - 4u)] : g_gb[0][3][x];
-                const uint32_t vo = u32 ? g_go[1][o][x] : o < 7u ? g_gb[1][0][3 * x + (int32_t)(o - 4u)] : g_gb[1][3][x];
+                const uint32_t vc = u32 ? g_go[0][o][x] : o < 7u ? g_ggen[0][3 * x + (int32_t)(o - 4u)] : g_gbw[0][x];
+                const uint32_t vo = u32 ? g_go[1][o][x] : o < 7u ? g_ggen[1][3 * x + (int32_t)(o - 4u)] : g_gbw[1][x];
                 if (vc != vo) {
                     checkasm_fail("fov_geom run %u: %ux%u gaze (%d, %d)/256 alpha %u/256 disk %u/32768 taa %d row %d "
                                   "[%d, %d): %s[%d] %08x vs %08x",

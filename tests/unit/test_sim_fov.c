@@ -9,8 +9,10 @@
  * configuration the stage refuses is refused, not run.  fovlr and
  * fovlr-taa (log-rectilinear): rays are the full frame's, link bytes the
  * whole buffer's exactly, and the area-averaged periphery beats the
- * point-sampled kernel log-polar one in FLIP and flicker.  fov-trm
- * (foveated TRM): exact rays and link bytes of both grids, refusals.
+ * point-sampled kernel log-polar one in FLIP and flicker.  The footprint
+ * prefilter (cfg.fov_lod) costs no rays or bytes, leaves the disk and full
+ * rate alone and lowers the periphery's flicker.  fov-trm (foveated TRM):
+ * exact rays and link bytes of both grids, refusals.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -26,6 +28,7 @@
 #include "simulator/tdc_sim.h"
 #include "simulator/tdc_sim_gaze.h"
 #include "tdc_fov.h"
+#include "ref_fov.h"
 #include "ref_fov_lr.h"
 #include "tdc_fov_link.h"
 #include "tdc_fov_lr.h"
@@ -137,6 +140,7 @@ static void test_lr_modes(void **state)
     tdc_sim_config_t cfg;
     config(&cfg, 12);
     cfg.gaze = TDC_GAZE_FIXED;
+    cfg.fov_lod = TDC_FOV_LOD_OFF; /* against point-sampled log-polar samples */
     static const char *const m[] = {"full", "fov", "fovlr", "fovlr-taa"};
     tdc_sim_result_t r[4];
     assert_int_equal(run(&cfg, m, 4, r), 0);
@@ -173,6 +177,42 @@ static void test_lr_modes(void **state)
         assert_true(r[i].flip_periph < r[1].flip_periph);
         assert_true(r[i].flip_fovea < r[i].flip_periph);
         assert_true(r[i].flicker_periph < r[1].flicker_periph);
+    }
+}
+
+/* The footprint prefilter of the log-polar samples (cfg.fov_lod, the
+ * procedural and photograph sources' box average): the same rays and link
+ * bytes as point samples (it filters, it does not trace), full rate and
+ * the fovea (nearly: FLIP's filters reach across the small disk) are
+ * unchanged, and the periphery flickers less, with TAA and without. */
+static void test_prefilter(void **state)
+{
+    (void)state;
+    if (!TDC_SIM_HAVE_LINK) {
+        skip();
+    }
+    static const char *const m[] = {"full", "fov", "fov-taa"};
+    tdc_sim_result_t r[3][3];
+    static const int lods[3] = {TDC_FOV_LOD_OFF, TDC_FOV_LOD_FOOTPRINT, TDC_FOV_LOD_THESIS};
+    for (int l = 0; l < 3; l++) {
+        tdc_sim_config_t cfg;
+        config(&cfg, 16);
+        cfg.fov_lod = lods[l];
+        assert_int_equal(run(&cfg, m, 3, r[l]), 0);
+        printf(" lod %d\n", lods[l]);
+        print(r[l], 3);
+    }
+    for (int l = 1; l < 3; l++) {
+        assert_true(r[l][0].flip == r[0][0].flip); /* full rate: untouched */
+        for (int i = 1; i < 3; i++) {
+            assert_int_equal(r[l][i].rays, r[0][i].rays);
+            assert_int_equal(r[l][i].link_bytes, r[0][i].link_bytes);
+            /* the disk keeps its point samples (a 7.5-px disk here: FLIP's filters reach across it) */
+            assert_true(fabs(r[l][i].flip_fovea - r[0][i].flip_fovea) < 0.03);
+        }
+    }
+    for (int i = 1; i < 3; i++) {
+        assert_true(r[1][i].flicker_periph < r[0][i].flicker_periph);
     }
 }
 
@@ -406,6 +446,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_modes_exact_costs),
         cmocka_unit_test(test_lr_modes),
+        cmocka_unit_test(test_prefilter),
         cmocka_unit_test(test_latency_moves_the_fovea),
         cmocka_unit_test(test_refused),
         cmocka_unit_test(test_fov_trm_exact_costs),
