@@ -167,6 +167,12 @@ int tdc_sim_send_full(sim_mode_t *m, uint32_t lf, const uint8_t *rgb);
 int tdc_sim_subframe_xy(sim_mode_t *m, const int16_t *mvbuf, const uint8_t *pattern, uint32_t lf, int radius);
 void tdc_sim_subframe_keep_mv(sim_mode_t *m, int16_t *mvbuf, int n, const int16_t *mv);
 
+/* The fov modes' footprint prefilter of nlp log-polar samples at display
+ * positions xy with footprint sides side (display pixels) into samp
+ * (tdc_sim_mode_fov.c, also used by fov-trm).  0, or -1 out of memory. */
+int tdc_sim_fov_prefilter(sim_mode_t *m, tdc_source_t *src, double t, int spp, const double *xy, const double *side,
+                          size_t nlp, uint8_t *samp);
+
 /* Rounds and clamps to a code (bilinear samples of codes: tdc_bilinear_u8). */
 uint8_t tdc_sim_to8(double v);
 

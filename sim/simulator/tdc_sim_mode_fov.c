@@ -174,16 +174,18 @@ static void lr_samples(sim_mode_t *m, fov_state_t *st, tdc_source_t *src, const 
 
 /* The footprint prefilter of the photograph and procedural sources (the
  * Embree renderer's texture LOD does it in its own FOVEATED mode): each of
- * the nlp log-polar samples in st->samp becomes the mean linear light of the
- * picture over the square of side st->side[k] display pixels centred on its
- * position (ref_fov_lr_box_mean: a summed-area table, bilinear inside each
+ * the nlp log-polar samples in samp becomes the mean linear light of the
+ * picture over the square of side side[k] display pixels centred on its
+ * position xy[2k..] (ref_fov_lr_box_mean: a summed-area table, bilinear inside each
  * pixel, so the box moves continuously with the jittered position), encoded
  * as the source encodes.  The picture: the source at every pixel centre,
  * spp rays each, as full rate renders it.  It stands for a texture's
  * prefiltered pyramid, which a renderer builds once per texture: its time
  * is the render time's, its evaluations are not rays (the primary rays are
- * the samples' own, counted by the caller).  Disk samples are left alone. */
-static int prefilter(sim_mode_t *m, fov_state_t *st, tdc_source_t *src, double t, int spp, size_t nlp)
+ * the samples' own, counted by the caller).  Disk samples are left alone.
+ * Shared with fov-trm (tdc_sim_mode.h). */
+int tdc_sim_fov_prefilter(sim_mode_t *m, tdc_source_t *src, double t, int spp, const double *xy, const double *side,
+                          size_t nlp, uint8_t *samp)
 {
     if (!(src->frame && src->frame(src, t, 0.0, 0.0, spp, m->render, m->scratch) == 0)) {
         for (int y = 0; y < m->h; y++) {
@@ -202,9 +204,9 @@ static int prefilter(sim_mode_t *m, fov_state_t *st, tdc_source_t *src, double t
     }
     for (size_t k = 0; k < nlp; k++) {
         double c[3];
-        ref_fov_lr_box_mean(sat, m->w, m->h, st->xy[2 * k], st->xy[2 * k + 1], st->side[k], c);
+        ref_fov_lr_box_mean(sat, m->w, m->h, xy[2 * k], xy[2 * k + 1], side[k], c);
         for (int ch = 0; ch < 3; ch++) {
-            st->samp[3 * k + ch] = tdc_sim_encode_code(c[ch], src->gamma[ch]);
+            samp[3 * k + ch] = tdc_sim_encode_code(c[ch], src->gamma[ch]);
         }
     }
     free(sat);
@@ -278,7 +280,7 @@ static int fov_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32
             }
         }
         src->samples(src, t, (int)n, st->xy, spp, st->samp, taa ? st->smv : NULL, dt, TDC_MV_SURFACE);
-        if (lod != TDC_FOV_LOD_OFF && prefilter(m, st, src, t, spp, nlp) != 0) {
+        if (lod != TDC_FOV_LOD_OFF && tdc_sim_fov_prefilter(m, src, t, spp, st->xy, st->side, nlp, st->samp) != 0) {
             return tdc_sim_stage(m, "fov prefilter (out of memory)", TDC_ERR_ARG);
         }
         m->res->rays += (uint64_t)n * (uint64_t)(spp > 0 ? spp : 1);

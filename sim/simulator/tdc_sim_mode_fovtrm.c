@@ -22,7 +22,8 @@
  * frame before it (docs/foveation.md).
  *
  * Samples: every source through samples() at the positions of the exact
- * inverse of eq. 2.2 (sim/ref_fov.c) on the slot's grid and the grid's disk
+ * inverse of eq. 2.2 (sim/ref_fov.c, ref_fov_lp_samples as fov, with fov's
+ * footprint prefilter --fov-lod) on the slot's grid and the grid's disk
  * pixels, scaled to the screen (W / rw, H / rh), spp rays each; a reduced
  * disk pixel's rays spread over its footprint (g x g point samples, g^2 <=
  * spp; one at its centre at spp 1) and are resolved with TRM's Gaussian
@@ -66,6 +67,8 @@ typedef struct {
     uint8_t *sub;  /* the reduced disk's point samples (cap) */
     double *lin;   /* ... in linear light (cap x 3) */
     int32_t *map;  /* reduced grid: disk index of each pixel, -1 outside */
+    double *side;  /* footprint of each log-polar sample, display pixels (fov's prefilter) */
+    int lod, jitter; /* cfg.fov_lod, cfg.fov_jitter, as the fov modes */
     size_t cap;
     uint16_t alpha_q8, delta_q15, disk_q15;
     double last_t;
@@ -177,6 +180,8 @@ static int fovtrm_init(sim_mode_t *m, const tdc_sim_setup_t *s)
     st->alpha_q8 = (uint16_t)lround(cfg->fov_alpha * 256.0);
     st->delta_q15 = (uint16_t)ceil(cfg->fov_delta * 32768.0 - 1e-9);
     st->disk_q15 = (uint16_t)lround(cfg->fov_disk * 32768.0);
+    st->lod = cfg->fov_lod;
+    st->jitter = cfg->fov_jitter;
     tdc_trm_config_t tc;
     tdc_trm_default_config(&tc, (uint16_t)m->w, (uint16_t)m->h, (uint16_t)m->hz);
     tc.r_num = m->d->r_num;
@@ -198,7 +203,8 @@ static int fovtrm_init(sim_mode_t *m, const tdc_sim_setup_t *s)
     st->fv_mem = aligned_alloc(8, (nf + 7) & ~(size_t)7);
     st->samp = malloc((lpn + m->npx) * 3);
     st->map = malloc((size_t)rw * rh * sizeof(int32_t));
-    if (!st->map || !st->trm_mem || !st->fv_mem || !st->samp || fovtrm_reserve(st, lpn + m->npx) != 0) {
+    st->side = malloc((lpn ? lpn : 1) * sizeof(double));
+    if (!st->map || !st->side || !st->trm_mem || !st->fv_mem || !st->samp || fovtrm_reserve(st, lpn + m->npx) != 0) {
         return -1;
     }
     tdc_status_t rc = tdc_trm_init(&st->trm, &tc, s->fw_panel, st->trm_mem, nt);
@@ -259,13 +265,15 @@ static int fovtrm_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uin
                                  g.lp_w, g.lp_h, 0, 0, 0};
     ref_fov_geom_t rg;
     ref_fov_geom(&rg, gw, gh, &rp);
-    size_t k = 0;
-    for (int j = 0; j < g.lp_h; j++) {
-        for (int i = g.u0; i < g.lp_w; i++, k++) {
-            double x, y;
-            ref_fov_from_lp(&rg, i, j, &x, &y);
-            st->xy[2 * k] = x * sx;
-            st->xy[2 * k + 1] = y * sy;
+    /* the log-polar samples as fov places them (no TAA jitter here), with
+     * their footprints for fov's prefilter, scaled from the grid to the screen */
+    double *side = st->lod != TDC_FOV_LOD_OFF ? st->side : NULL;
+    size_t k = ref_fov_lp_samples(&rg, g.u0, 0.0, 0.0, st->jitter, st->lod, st->xy, side);
+    for (size_t q = 0; q < k; q++) {
+        st->xy[2 * q] *= sx;
+        st->xy[2 * q + 1] *= sy;
+        if (side) {
+            side[q] *= 0.5 * (sx + sy);
         }
     }
     const size_t nlp = k, nd = tdc_fov_disk_pixels(&g);
@@ -296,6 +304,9 @@ static int fovtrm_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uin
         src->samples(src, t, (int)nlp, st->xy, spp, st->samp, NULL, dt, TDC_MV_SURFACE);
         src->samples(src, t, (int)(nd * (size_t)sub), st->xy + 2 * nlp, 1, st->sub, NULL, dt, TDC_MV_SURFACE);
         resolve_reduced_disk(st, src, &g, nlp, nd, sub, sx, sy);
+    }
+    if (side && tdc_sim_fov_prefilter(m, src, t, spp, st->xy, side, nlp, st->samp) != 0) {
+        return tdc_sim_stage(m, "fov-trm prefilter (out of memory)", TDC_ERR_ARG);
     }
     m->res->rays += (uint64_t)(nlp + nd) * (uint64_t)(spp > 0 ? spp : 1); /* spp rays each, as every mode counts */
     m->res->render_s += tdc_sim_now() - t0;
@@ -339,6 +350,7 @@ static void fovtrm_free(sim_mode_t *m)
         free(st->sub);
         free(st->lin);
         free(st->map);
+        free(st->side);
         free(st);
     }
     m->fam = NULL;
