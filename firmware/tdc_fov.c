@@ -356,29 +356,11 @@ static uint32_t rad_nodes_for(uint64_t r2max)
  * The geometry pass, one display pixel: the blend weight b (Q8, 0 = disk
  * only), eq. 2.2's u and v, eq. 4.4's sigma; at sigma = 1/2 (most pixels)
  * the tap descriptor for the kernel (tdc_fov_kernels.h), else the blurred
- * colour itself (3 to 9 taps).  rb->b[i] = b | 512 for a pixel with its
- * colour in rb->gen; rb->ij[i] = iu | jv << 16 (the nearest sample).
+ * colour itself (3 to 9 taps).  b[i] = b | 512 for a pixel with its
+ * colour in gen; ij[i] = iu | jv << 16 (the nearest sample).
  * ------------------------------------------------------------------- */
-typedef struct {
-    const tdc_fov_geom_t *g;
-    const uint8_t *lp;
-    size_t lp_stride;
-    const tdc_fov_node_t *rad;
-    uint32_t rad_nodes;
-    const uint32_t *colinv; /* per column: recip_norm(|dx|) */
-    uint32_t ay, inv_y;     /* this row: |dy| (Q8) and recip_norm(|dy|) */
-    uint64_t rb2_q16;       /* (r_d - 4 px)^2, or 0 */
-    int32_t rb_q8;          /* r_d - 4 px (may be negative) */
-    int32_t leta_max;       /* log2 of the largest eta (x = 1), Q24: log2 is monotone, so eta <= this */
-    uint32_t off_dummy;     /* sample (u0, 0) */
-    int taa;                /* 1: the nearest samples (ij) are needed */
-    const tdc_fov_lr_t *lr; /* log-rectilinear frame: the periphery sample from tdc_fov_lr.c */
-} fov_src_t;
-
-typedef struct {
-    uint32_t *off0, *off1, *wf, *ij;
-    uint16_t *gen, *b;
-} fov_rowbuf_t;
+/* The pass's inputs and outputs: tdc_fov_geom_args_t (tdc_fov.h). */
+typedef tdc_fov_geom_args_t fov_src_t;
 
 #define TAPS_MAX 9 /* sigma <= 2: |t - u| <= 2 sigma = 4 */
 #define GEN_FLAG 512u
@@ -395,11 +377,12 @@ static inline uint32_t lerp_s(uint32_t a, uint32_t b, uint32_t f)
     return (a * (65536u - f) + b * f + 32768u) >> 16;
 }
 
-static void geom_general(const fov_src_t *s, const fov_rowbuf_t *rb, int32_t i, uint32_t b, int32_t u, int32_t sig,
-                         int32_t inv2, uint32_t j0, uint32_t j1, uint32_t fv);
+static void geom_general(const fov_src_t *s, int32_t i, uint32_t b, int32_t u, int32_t sig, int32_t inv2, uint32_t j0,
+                         uint32_t j1, uint32_t fv);
 
-static void geom_px(const fov_src_t *s, const fov_rowbuf_t *rb, int32_t i, int32_t dx, int32_t dy, uint64_t r2)
+static void geom_px(const fov_src_t *s, int32_t i, int32_t dx, uint64_t r2)
 {
+    const int32_t dy = s->dy;
     const tdc_fov_geom_t *g = s->g;
     uint32_t b = 256;
     if (r2 < g->r_disk2_q16) {
@@ -410,18 +393,18 @@ static void geom_px(const fov_src_t *s, const fov_rowbuf_t *rb, int32_t i, int32
             b = (uint32_t)tdc_clamp32(x, 0, TDC_FOV_BLEND_Q8) >> 2;
         }
     }
-    rb->b[i] = (uint16_t)b;
+    s->b[i] = (uint16_t)b;
     if (!b || s->lr) {
-        rb->off0[i] = s->off_dummy | TDC_FOV_STEP0; /* a harmless descriptor: sample (u0, 0), weight 1 */
-        rb->off1[i] = s->off_dummy;
-        rb->wf[i] = 32768u;
+        s->off0[i] = s->off_dummy | TDC_FOV_STEP0; /* a harmless descriptor: sample (u0, 0), weight 1 */
+        s->off1[i] = s->off_dummy;
+        s->wf[i] = 32768u;
         if (b) { /* log-rectilinear: the periphery sample (Q8) is the pixel's colour, as geom_general's */
             uint32_t c[3], iu = 0, jv = 0;
             tdc_fov_lr_sample(s->lr, i, c, &iu, &jv);
-            uint16_t *gp = rb->gen + (size_t)i * 3u;
+            uint16_t *gp = s->gen + (size_t)i * 3u;
             gp[0] = (uint16_t)c[0], gp[1] = (uint16_t)c[1], gp[2] = (uint16_t)c[2]; /* <= 255 * 256 */
-            rb->ij[i] = iu | jv << 16;
-            rb->b[i] = (uint16_t)(b | GEN_FLAG);
+            s->ij[i] = iu | jv << 16;
+            s->b[i] = (uint16_t)(b | GEN_FLAG);
         }
         return;
     }
@@ -460,24 +443,24 @@ static void geom_px(const fov_src_t *s, const fov_rowbuf_t *rb, int32_t i, int32
     const int32_t cmin = g->u0, cmax = (int32_t)g->lp_w - 1;
     if (s->taa) { /* the nearest sample: its motion vector */
         const uint32_t ui = ((uint32_t)u + 32768u) >> 16, vi = (v + 32768u) >> 16;
-        rb->ij[i] = (uint32_t)tdc_clamp32((int32_t)ui, cmin, cmax) | (vi >= g->lp_h ? 0u : vi) << 16;
+        s->ij[i] = (uint32_t)tdc_clamp32((int32_t)ui, cmin, cmax) | (vi >= g->lp_h ? 0u : vi) << 16;
     }
     if (sig == 8192) { /* sigma = 1/2: two taps, floor(u) and floor(u) + 1, from the tent table */
         const uint32_t fu = (uint32_t)u & 0xFFFFu, k = fu >> 8, fr = fu & 255u;
         const uint32_t ta = tdc_fov_tent_tab[k], tb = tdc_fov_tent_tab[k + 1u];
         const int32_t c0 = tdc_clamp32(u >> 16, cmin, cmax), c1 = tdc_clamp32((u >> 16) + 1, cmin, cmax);
-        rb->off0[i] = (uint32_t)(j0 * s->lp_stride + (size_t)c0 * 3u) | (c1 == c0 ? TDC_FOV_STEP0 : 0u);
-        rb->off1[i] = (uint32_t)(j1 * s->lp_stride + (size_t)c0 * 3u);
-        rb->wf[i] = (ta - (((ta - tb) * fr + 128u) >> 8)) | fv << 16;
+        s->off0[i] = (uint32_t)(j0 * s->lp_stride + (size_t)c0 * 3u) | (c1 == c0 ? TDC_FOV_STEP0 : 0u);
+        s->off1[i] = (uint32_t)(j1 * s->lp_stride + (size_t)c0 * 3u);
+        s->wf[i] = (ta - (((ta - tb) * fr + 128u) >> 8)) | fv << 16;
         return;
     }
-    geom_general(s, rb, i, b, u, sig, (int32_t)lerp_s(na->inv2_q12, nb->inv2_q12, f), j0, j1, fv);
+    geom_general(s, i, b, u, sig, (int32_t)lerp_s(na->inv2_q12, nb->inv2_q12, f), j0, j1, fv);
 }
 
 /* sigma > 1/2 (few pixels at alpha 4): up to 9 taps, computed here, not by the
  * kernel.  Out of line: the common two-tap path above keeps its registers. */
-static FOV_COLD void geom_general(const fov_src_t *s, const fov_rowbuf_t *rb, int32_t i, uint32_t b, int32_t u,
-                                      int32_t sig, int32_t inv2, uint32_t j0, uint32_t j1, uint32_t fv)
+static FOV_COLD void geom_general(const fov_src_t *s, int32_t i, uint32_t b, int32_t u, int32_t sig, int32_t inv2,
+                                  uint32_t j0, uint32_t j1, uint32_t fv)
 {
     const int32_t cmin = s->g->u0, cmax = (int32_t)s->g->lp_w - 1;
     /* sigma > 1/2: up to 9 taps, weights from the cut Gaussian normalised to 2^15 */
@@ -511,9 +494,9 @@ static FOV_COLD void geom_general(const fov_src_t *s, const fov_rowbuf_t *rb, in
         nsum += wt[k];
     }
     wt[kmax] += 32768u - nsum; /* |32768 - nsum| <= nt / 2 + 1, wt[kmax] >= 2^15 / nt */
-    rb->off0[i] = s->off_dummy | TDC_FOV_STEP0; /* the kernel's value is not used */
-    rb->off1[i] = s->off_dummy;
-    rb->wf[i] = 32768u;
+    s->off0[i] = s->off_dummy | TDC_FOV_STEP0; /* the kernel's value is not used */
+    s->off1[i] = s->off_dummy;
+    s->wf[i] = 32768u;
     /* the kernel's arithmetic per tap: rows j0, j1 weighted (w - a, a), a = (w fv + 2^14) >> 15 */
     const uint8_t *r0 = s->lp + (size_t)j0 * s->lp_stride, *r1 = s->lp + (size_t)j1 * s->lp_stride;
     uint32_t acc[3] = {64u, 64u, 64u};
@@ -525,23 +508,23 @@ static FOV_COLD void geom_general(const fov_src_t *s, const fov_rowbuf_t *rb, in
         }
     }
     for (int ch = 0; ch < 3; ch++) {
-        rb->gen[(size_t)i * 3u + (size_t)ch] = (uint16_t)(acc[ch] >> 7); /* Q8 */
+        s->gen[(size_t)i * 3u + (size_t)ch] = (uint16_t)(acc[ch] >> 7); /* Q8 */
     }
-    rb->b[i] = (uint16_t)(b | GEN_FLAG);
+    s->b[i] = (uint16_t)(b | GEN_FLAG);
 }
 
-/* The geometry pass over one row.  The source and the geometry are copied
- * to locals first: the descriptor stores cannot alias them, so the compiler
+/* The geometry pass over pixels [x0, x1) of one row (the C kernel of
+ * tdc_fov_geom_row_fn).  The arguments and the geometry are copied to
+ * locals first: the descriptor stores cannot alias them, so the compiler
  * keeps them in registers instead of reloading them after every store. */
-static void geom_row(const fov_src_t *src, const fov_rowbuf_t *rb, int32_t W, int32_t dy, uint64_t dy2)
+void tdc_fov_geom_row_c(const tdc_fov_geom_args_t *a, int32_t x0, int32_t x1)
 {
-    const tdc_fov_geom_t g = *src->g;
-    fov_src_t s = *src;
+    const tdc_fov_geom_t g = *a->g;
+    fov_src_t s = *a;
     s.g = &g;
-    const fov_rowbuf_t r = *rb;
-    for (int32_t x = 0; x < W; x++) {
+    for (int32_t x = x0; x < x1; x++) {
         const int32_t dx = x * 256 + 128 - g.cx_q8;
-        geom_px(&s, &r, x, dx, dy, (uint64_t)((int64_t)dx * dx) + dy2);
+        geom_px(&s, x, dx, (uint64_t)((int64_t)dx * dx) + s.dy2);
     }
 }
 
@@ -553,6 +536,8 @@ static inline uint32_t px_colour(const tdc_fov_t *st, const uint8_t *drow, int32
     if (bf & GEN_FLAG) {
         const uint16_t *gp = st->t_gen + (size_t)i * 3u;
         lpc[0] = gp[0], lpc[1] = gp[1], lpc[2] = gp[2];
+    } else if (!b) {
+        lpc[0] = lpc[1] = lpc[2] = 0; /* the disk only; the tap kernel may not have run (log-rectilinear rows) */
     } else {
         const uint16_t *kp = st->t_out + i;
         const size_t w = st->cfg.width;
@@ -619,6 +604,8 @@ tdc_status_t tdc_fov_init(tdc_fov_t *st, const tdc_fov_config_t *cfg, void *mem,
     st->rejected_frames = 0;
     st->rad_builds = 0;
     st->rad_valid = 0;
+    st->rad_half_lo = 1;
+    st->rad_half_hi = 0;
     st->colinv_valid = 0;
     st->rad_nodes = 0;
     tdc_fov_set_simd(st, 1);
@@ -628,7 +615,9 @@ tdc_status_t tdc_fov_init(tdc_fov_t *st, const tdc_fov_config_t *cfg, void *mem,
 
 void tdc_fov_set_simd(tdc_fov_t *st, int enable)
 {
-    st->tap2 = enable && tdc_fov_avx2_available() ? tdc_fov_tap2_row_avx2 : TDC_FOV_TAP2_BOARD;
+    const int avx2 = enable && tdc_fov_avx2_available();
+    st->tap2 = avx2 ? tdc_fov_tap2_row_avx2 : TDC_FOV_TAP2_BOARD;
+    st->geom = avx2 ? tdc_fov_geom_row_avx2 : tdc_fov_geom_row_c;
 }
 
 void tdc_fov_reset(tdc_fov_t *st)
@@ -706,6 +695,108 @@ static void finish_row(const tdc_fov_t *st, const fov_rows_t *rw, int32_t y, uin
 #undef COLSUM
 }
 
+/* log2 of eq. 4.4's largest eta (x = 1: 1.4 + 16 = 91750 / 2^16 + 16), Q24: eta is at most this. */
+static int32_t leta_max_q24(void)
+{
+    return tdc_fov_log2_q24(91750u + 16u * 65536u) - 16 * Q24;
+}
+
+/* The frame's tables: the radial table, rebuilt only when R (the gaze), alpha or lp_w changed (a
+ * log-rectilinear frame does not read it: geom_px takes its periphery from tdc_fov_lr.c; kept for
+ * the next log-polar one), with its longest run of nodes with sigma = 1/2, [half_lo, half_hi] (a
+ * pixel between two of them takes the two-tap path: the SIMD geometry tests that on the node index
+ * alone); the columns' reciprocals, rebuilt when the gaze's x changed. */
+static void frame_tables(tdc_fov_t *st, const tdc_fov_geom_t *g, const tdc_fov_params_t *p)
+{
+    const int32_t leta_max = leta_max_q24();
+    const int lr = g->transform == TDC_FOV_LOG_RECT;
+    const uint32_t nodes = lr ? st->rad_nodes : rad_nodes_for(r2max_q16(g->cx_q8, g->cy_q8, g->width, g->height));
+    if (!lr && (!st->rad_valid || st->rad_key_r2 != g->log2_r2max_q24 || st->rad_key_lpw != g->lp_w ||
+                st->rad_key_alpha != p->alpha_q8 || st->rad_nodes != nodes)) {
+        uint32_t run = 0, best = 0;
+        st->rad_half_lo = 1;
+        st->rad_half_hi = 0;
+        for (uint32_t n = 0; n < nodes; n++) {
+            const uint32_t e = TDC_FOV_NODE_E0 + (n >> TDC_FOV_NODE_BITS), m = n & 127u;
+            node_fill(g, ((uint64_t)1 << e) + ((uint64_t)m << (e - 7u)), 0, leta_max, &st->rad[n]);
+            run = st->rad[n].sig_q14 == 8192u ? run + 1u : 0u;
+            if (run > best) {
+                best = run;
+                st->rad_half_lo = n + 1u - run;
+                st->rad_half_hi = n;
+            }
+        }
+        st->rad_valid = 1;
+        st->rad_key_r2 = g->log2_r2max_q24;
+        st->rad_key_lpw = g->lp_w;
+        st->rad_key_alpha = p->alpha_q8;
+        st->rad_nodes = nodes;
+        st->rad_builds++;
+    }
+    if (!st->colinv_valid || st->colinv_cx != g->cx_q8) {
+        for (int32_t x = 0; x < g->width; x++) {
+            st->colinv[x] = recip_norm((uint32_t)tdc_abs32(x * 256 + 128 - g->cx_q8));
+        }
+        st->colinv_valid = 1;
+        st->colinv_cx = g->cx_q8;
+    }
+}
+
+/* The geometry pass's arguments for a frame (the stage's tables and row
+ * buffers; the radial table's node count once it is built) and a row. */
+static void geom_args_frame(const tdc_fov_t *st, const tdc_fov_geom_t *g, const uint8_t *lp, size_t lp_stride,
+                            fov_src_t *a)
+{
+    const fov_src_t z = {0};
+    *a = z;
+    a->g = g;
+    a->lp = lp;
+    a->lp_stride = lp_stride;
+    a->rad = st->rad;
+    a->rad_nodes = st->rad_nodes;
+    a->half_lo = st->rad_half_lo;
+    a->half_hi = st->rad_half_hi;
+    a->colinv = st->colinv;
+    a->atan_tab = tdc_fov_atan_tab;
+    a->tent_tab = tdc_fov_tent_tab;
+    a->rb_q8 = (int32_t)g->r_disk_q8 - TDC_FOV_BLEND_Q8;
+    a->rb2_q16 = a->rb_q8 > 0 ? (uint64_t)a->rb_q8 * (uint64_t)a->rb_q8 : 0u;
+    a->leta_max = leta_max_q24();
+    a->off_dummy = (uint32_t)g->u0 * 3u;
+    a->taa = st->cfg.taa;
+    a->lr = g->transform == TDC_FOV_LOG_RECT ? st->lr : 0;
+    a->off0 = st->t_off0;
+    a->off1 = st->t_off1;
+    a->wf = st->t_wf;
+    a->ij = st->t_ij;
+    a->gen = st->t_gen;
+    a->b = st->t_b;
+}
+
+static void geom_args_row(fov_src_t *a, int32_t y)
+{
+    a->dy = y * 256 + 128 - a->g->cy_q8;
+    a->dy2 = (uint64_t)((int64_t)a->dy * a->dy);
+    a->ay = (uint32_t)tdc_abs32(a->dy);
+    a->inv_y = recip_norm(a->ay);
+}
+
+tdc_status_t tdc_fov_geom_args(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8_t *lp, size_t lp_stride,
+                               int32_t y, tdc_fov_geom_t *g, tdc_fov_geom_args_t *a)
+{
+    if (!st || !p || !lp || !g || !a) {
+        return TDC_ERR_ARG;
+    }
+    const tdc_status_t s = tdc_fov_geom(g, st->cfg.width, st->cfg.height, p);
+    if (s != TDC_OK || g->transform != TDC_FOV_KERNEL_LOG_POLAR || y < 0 || y >= (int32_t)g->height) {
+        return s != TDC_OK ? s : TDC_ERR_ARG;
+    }
+    frame_tables(st, g, p);
+    geom_args_frame(st, g, lp, lp_stride, a);
+    geom_args_row(a, y);
+    return TDC_OK;
+}
+
 tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8_t *lp, size_t lp_stride,
                            const int16_t *mv, size_t mv_stride, const uint8_t *disk, size_t disk_stride, uint32_t dt_us,
                            uint8_t *out, size_t out_stride)
@@ -729,15 +820,8 @@ tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8
     }
     const size_t lp_bytes = (size_t)lp_bytes64;
     const int32_t W = g.width, H = g.height;
-    fov_src_t src = {&g, lp, lp_stride, st->rad, 0, st->colinv, 0, 0, 0, (int32_t)g.r_disk_q8 - TDC_FOV_BLEND_Q8, 0,
-                     (uint32_t)g.u0 * 3u, st->cfg.taa, 0};
-    const fov_rowbuf_t rb = {st->t_off0, st->t_off1, st->t_wf, st->t_ij, st->t_gen, st->t_b};
     const tdc_fov_tap2_args_t ka = {lp, lp_bytes, st->t_off0, st->t_off1, st->t_wf,
                                     {st->t_out, st->t_out + W, st->t_out + 2 * W}};
-    src.leta_max = tdc_fov_log2_q24(91750u + 16u * 65536u) - 16 * Q24;
-    if (src.rb_q8 > 0) {
-        src.rb2_q16 = (uint64_t)src.rb_q8 * (uint64_t)src.rb_q8;
-    }
     if (g.transform == TDC_FOV_LOG_RECT) { /* the second kind: needs its scratch attached */
         if (!st->lr) {
             return TDC_ERR_ARG;
@@ -746,34 +830,10 @@ tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8
         if (ls != TDC_OK) {
             return ls;
         }
-        src.lr = st->lr;
     }
-    /* The radial table: rebuilt only when R (the gaze), alpha or lp_w changed.  A log-rectilinear
-     * frame does not read it (geom_px takes its periphery from tdc_fov_lr.c): kept for the next
-     * log-polar one. */
-    const uint32_t nodes = src.lr ? st->rad_nodes : rad_nodes_for(r2max_q16(g.cx_q8, g.cy_q8, g.width, g.height));
-    if (!src.lr && (!st->rad_valid || st->rad_key_r2 != g.log2_r2max_q24 || st->rad_key_lpw != g.lp_w ||
-                    st->rad_key_alpha != p->alpha_q8 || st->rad_nodes != nodes)) {
-        for (uint32_t n = 0; n < nodes; n++) {
-            const uint32_t e = TDC_FOV_NODE_E0 + (n >> TDC_FOV_NODE_BITS), m = n & 127u;
-            node_fill(&g, ((uint64_t)1 << e) + ((uint64_t)m << (e - 7u)), 0, src.leta_max, &st->rad[n]);
-        }
-        st->rad_valid = 1;
-        st->rad_key_r2 = g.log2_r2max_q24;
-        st->rad_key_lpw = g.lp_w;
-        st->rad_key_alpha = p->alpha_q8;
-        st->rad_nodes = nodes;
-        st->rad_builds++;
-    }
-    src.rad_nodes = st->rad_nodes;
-    /* The columns' reciprocals: rebuilt when the gaze's x changed */
-    if (!st->colinv_valid || st->colinv_cx != g.cx_q8) {
-        for (int32_t x = 0; x < W; x++) {
-            st->colinv[x] = recip_norm((uint32_t)tdc_abs32(x * 256 + 128 - g.cx_q8));
-        }
-        st->colinv_valid = 1;
-        st->colinv_cx = g.cx_q8;
-    }
+    frame_tables(st, &g, p);
+    fov_src_t src;
+    geom_args_frame(st, &g, lp, lp_stride, &src);
 
     /* TAA set-up: eq. 4.7 rate, 60 / R_n (Q16); saccade rejection */
     int reject_all = 1;
@@ -810,18 +870,17 @@ tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8
     }
 
     for (int32_t y = 0; y < H; y++) {
-        const int32_t dy = y * 256 + 128 - g.cy_q8;
-        const uint64_t dy2 = (uint64_t)((int64_t)dy * dy);
         const uint8_t *drow = disk + (size_t)y * disk_stride;
-        src.ay = (uint32_t)tdc_abs32(dy);
-        src.inv_y = recip_norm(src.ay);
+        geom_args_row(&src, y);
         uint8_t *orow = out + (size_t)y * out_stride;
         uint16_t *sl = st->cfg.taa ? rw.slot[y & 1] : 0, *dif_row = st->cfg.taa ? rw.dif[y % 3] : 0;
         if (src.lr) {
             tdc_fov_lr_row(st->lr, y);
         }
-        geom_row(&src, &rb, W, dy, dy2);
-        st->tap2(&ka, (uint32_t)W);
+        st->geom(&src, 0, W);
+        if (!src.lr) { /* a log-rectilinear row has every periphery colour in gen already */
+            st->tap2(&ka, (uint32_t)W);
+        }
         if (!st->cfg.taa) {
             /* b = 256 from the kernel (most pixels): Q8 -> 8 bits; the rest through px_colour */
             const uint16_t *kr = st->t_out, *kg = kr + W, *kb = kg + W;

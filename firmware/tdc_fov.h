@@ -171,6 +171,38 @@ typedef struct {
 
 struct tdc_fov_lr_s; /* tdc_fov_lr.h */
 
+/* The geometry pass over one display row (internal to the stage; public for
+ * the SIMD kernels and tests/checkasm): eq. 2.2 from the radial table and
+ * the reciprocals, eq. 4.4's sigma, the blend weight; per pixel a two-tap
+ * descriptor (tdc_fov_kernels.h) or, where sigma > 1/2 or the pixel is
+ * log-rectilinear, its colour in gen.  Built per frame and row by
+ * tdc_fov_geom_args() from the stage; the kernels fill pixels [x0, x1). */
+typedef struct {
+    const tdc_fov_geom_t *g;
+    const uint8_t *lp;
+    size_t lp_stride;
+    const tdc_fov_node_t *rad;
+    uint32_t rad_nodes;
+    uint32_t half_lo, half_hi;            /* nodes [half_lo, half_hi] have sigma = 1/2 (none: lo > hi) */
+    const uint32_t *colinv;               /* per column: recip_norm(|dx|) */
+    const uint32_t *atan_tab, *tent_tab;  /* tdc_fov_tables.h (257 entries each) */
+    uint64_t rb2_q16;                     /* (r_d - 4 px)^2, or 0 */
+    int32_t rb_q8;                        /* r_d - 4 px (may be negative) */
+    int32_t leta_max;                     /* log2 of the largest eta (x = 1), Q24 */
+    uint32_t off_dummy;                   /* sample (u0, 0) */
+    int taa;                              /* 1: the nearest samples (ij) are needed */
+    const struct tdc_fov_lr_s *lr;        /* log-rectilinear frame: the periphery from tdc_fov_lr.c */
+    int32_t dy;                           /* this row: y' (Q8), y'^2 (Q16), |y'| and recip_norm(|y'|) */
+    uint64_t dy2;
+    uint32_t ay, inv_y;
+    uint32_t *off0, *off1, *wf, *ij;      /* out: descriptors, iu | jv << 16 */
+    uint16_t *gen, *b;                    /* out: colours (Q8 x 3) where b & 512, blend weight | 512 */
+} tdc_fov_geom_args_t;
+
+typedef void tdc_fov_geom_row_fn(const tdc_fov_geom_args_t *a, int32_t x0, int32_t x1);
+tdc_fov_geom_row_fn tdc_fov_geom_row_c;    /* the reference: every pixel in C (what the boards run) */
+tdc_fov_geom_row_fn tdc_fov_geom_row_avx2; /* 8 pixels a step where all 8 take the two-tap path; the C row elsewhere */
+
 typedef struct {
     tdc_fov_config_t cfg;
     struct tdc_fov_lr_s *lr; /* log-rectilinear scratch (tdc_fov_lr_attach), NULL: refused */
@@ -180,7 +212,8 @@ typedef struct {
      * kernel's output planes, the other pixels' colours, blend weight | general flag, iu | jv << 16 */
     uint32_t *t_off0, *t_off1, *t_wf, *t_ij;
     uint16_t *t_out, *t_gen, *t_b;
-    tdc_fov_tap2_row_fn *tap2; /* the row kernel (tdc_fov_set_simd) */
+    tdc_fov_tap2_row_fn *tap2; /* the row kernels (tdc_fov_set_simd) */
+    tdc_fov_geom_row_fn *geom;
     uint16_t *hist[2];   /* Q8 RGB history frames, ping-pong */
     uint16_t *rows;      /* scratch: 2 rows x 8 values + 3 rows of |s - h| */
     uint8_t cur;         /* hist[cur] holds the last output */
@@ -188,6 +221,7 @@ typedef struct {
     uint8_t rad_valid, colinv_valid;
     int32_t rad_key_r2, rad_key_lpw, rad_key_alpha; /* the table's log2(R^2) (Q24), lp_w, alpha */
     uint32_t rad_nodes;                             /* nodes built */
+    uint32_t rad_half_lo, rad_half_hi;              /* their longest run with sigma = 1/2 */
     int32_t colinv_cx;                              /* gaze x (Q8) of colinv */
     uint32_t dt_prev_us;
     int32_t gaze_prev_x_q8, gaze_prev_y_q8;
@@ -199,9 +233,16 @@ size_t tdc_fov_get_size(const tdc_fov_config_t *cfg);
 /* mem: caller-owned arena of tdc_fov_get_size() bytes, aligned to
  * TDC_ARENA_ALIGN (8); TDC_ERR_ARG if not, TDC_ERR_SIZE if too small. */
 TDC_MUST_CHECK tdc_status_t tdc_fov_init(tdc_fov_t *st, const tdc_fov_config_t *cfg, void *mem, size_t mem_bytes);
-/* 1: the SIMD tap kernel where the CPU has one (the default), 0: the C kernel
- * (same bytes; for the benchmarks and checkasm). */
+/* 1: the SIMD row kernels (geometry, taps) where the CPU has them (the
+ * default), 0: the C kernels (same bytes; for the benchmarks and checkasm). */
 void tdc_fov_set_simd(tdc_fov_t *st, int enable);
+/* The geometry pass's arguments for display row y of a kernel log-polar
+ * frame with parameters p (its geometry into g, which must outlive a),
+ * building the stage's tables as tdc_fov_frame does and pointing at its row
+ * buffers (tests/checkasm).  TDC_ERR_ARG for a log-rectilinear frame or a
+ * row off the display; tdc_fov_geom's refusals. */
+TDC_MUST_CHECK tdc_status_t tdc_fov_geom_args(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8_t *lp,
+                                              size_t lp_stride, int32_t y, tdc_fov_geom_t *g, tdc_fov_geom_args_t *a);
 /* Forget the history (stream restart, loss): the next frame is taken as is. */
 void tdc_fov_reset(tdc_fov_t *st);
 

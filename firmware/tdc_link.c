@@ -47,7 +47,9 @@ static const uint8_t tdc_link_magic_bytes[4] = {'T', 'D', 'C', 'L'};
 static uint32_t slot_bit(uint32_t kind, uint32_t eye, uint32_t flags)
 {
     if (kind == TDC_LINK_KIND_FOVEATED) {
-        kind = TDC_LINK_KIND_FULL; /* one picture per eye and frame: FULL or FOVEATED */
+        /* one picture per eye and frame: FULL or FOVEATED, or in a TRM
+         * stream's reduced slot REDUCED or FOVEATED with FOV_REDUCED */
+        kind = (flags & TDC_LINK_PKT_FOV_REDUCED) ? TDC_LINK_KIND_REDUCED : TDC_LINK_KIND_FULL;
     }
     if (kind == TDC_LINK_KIND_MOTION && (flags & TDC_LINK_PKT_MV_PER_SAMPLE)) {
         return 1u << (14u + eye);
@@ -255,7 +257,11 @@ static tdc_link_err_t check_header(const tdc_link_decoder_t *dec, uint32_t versi
                  : ((sflags & TDC_LINK_STREAM_MOTION) && (b->motion[eye] || b->skip_motion));
         break;
     case TDC_LINK_KIND_FOVEATED:
-        ok = (sflags & TDC_LINK_STREAM_FOVEATED) && b->fov_lp[eye] != NULL && b->full[eye] != NULL;
+        /* the slot it states must be the one TRM's schedule has due */
+        ok = (sflags & TDC_LINK_STREAM_FOVEATED) && b->fov_lp[eye] != NULL &&
+             ((flags & TDC_LINK_PKT_FOV_REDUCED)
+                  ? trm && b->reduced[eye] != NULL && tdc_link_trm_kind(p->frame_index, eye) == TDC_LINK_KIND_REDUCED
+                  : b->full[eye] != NULL && (!trm || tdc_link_trm_kind(p->frame_index, eye) == TDC_LINK_KIND_FULL));
         break;
     case TDC_LINK_KIND_LAYERS:
         ok = (sflags & TDC_LINK_STREAM_LAYERS) && tdc_layer_frame_accepts(b->layers[eye], flags);
@@ -268,8 +274,10 @@ static tdc_link_err_t check_header(const tdc_link_decoder_t *dec, uint32_t versi
         return TDC_LINK_ERR_UNEXPECTED;
     }
 
-    const uint32_t want_w = kind == TDC_LINK_KIND_REDUCED ? dec->rw : dec->cfg.width;
-    const uint32_t want_h = kind == TDC_LINK_KIND_REDUCED ? dec->rh : dec->cfg.height;
+    const int red_grid =
+        kind == TDC_LINK_KIND_REDUCED || (kind == TDC_LINK_KIND_FOVEATED && (flags & TDC_LINK_PKT_FOV_REDUCED));
+    const uint32_t want_w = red_grid ? dec->rw : dec->cfg.width;
+    const uint32_t want_h = red_grid ? dec->rh : dec->cfg.height;
     if (p->width != want_w || p->height != want_h) {
         return TDC_LINK_ERR_DIMENSIONS;
     }
@@ -501,10 +509,10 @@ static tdc_link_err_t commit_stream(tdc_link_decoder_t *dec)
     if ((in.flags & (TDC_LINK_STREAM_SAMPLE_MV | TDC_LINK_STREAM_LAYERS)) && !(in.flags & TDC_LINK_STREAM_SUBFRAMES)) {
         return TDC_LINK_ERR_STREAM_HEADER;
     }
-    /* Foveated frames replace FULL ones; with reduced frames or subframes
-     * (which frame is foveated) nothing is defined yet. */
-    if ((in.flags & TDC_LINK_STREAM_FOVEATED) &&
-        (in.flags & (TDC_LINK_STREAM_REDUCED | TDC_LINK_STREAM_SUBFRAMES))) {
+    /* Foveated frames replace FULL ones, and in a TRM stream REDUCED ones
+     * too (packet flag FOV_REDUCED); with subframes (which frame is
+     * foveated) nothing is defined yet. */
+    if ((in.flags & TDC_LINK_STREAM_FOVEATED) && (in.flags & TDC_LINK_STREAM_SUBFRAMES)) {
         return TDC_LINK_ERR_STREAM_HEADER;
     }
     /* The build must have a buffer for every stage the stream uses. */
@@ -541,7 +549,9 @@ static tdc_link_err_t commit_stream(tdc_link_decoder_t *dec)
 static tdc_link_err_t check_foveated(tdc_link_decoder_t *dec, uint32_t eye, tdc_fov_hdr_t *h)
 {
     const uint8_t *s = dec->buf.staging + dec->payload_base;
-    tdc_fov_hdr_err_t r = tdc_fov_hdr_parse(s, dec->cfg.width, dec->cfg.height, h);
+    /* against the slot's grid: the panel, or the reduced grid (check_header
+     * matched the packet's width x height to it) */
+    tdc_fov_hdr_err_t r = tdc_fov_hdr_parse(s, dec->pkt.width, dec->pkt.height, h);
     if (r == TDC_FOV_HDR_OK) {
         r = tdc_fov_payload_check(h, dec->payload_len - TDC_FOV_HDR_BYTES);
     }
@@ -551,8 +561,11 @@ static tdc_link_err_t check_foveated(tdc_link_decoder_t *dec, uint32_t eye, tdc_
     }
     const tdc_link_buffers_t *b = &dec->buf;
     const size_t lp = (size_t)h->p.lp_w * h->p.lp_h;
-    if ((h->flags & TDC_FOV_FLAG_MV) && !b->fov_mv[eye]) {
-        return TDC_LINK_ERR_UNEXPECTED; /* vectors for a build without the TAA buffer */
+    /* vectors for a build without the TAA buffer, or in a TRM stream: each
+     * slot's stage sees every other frame of its eye, its history would be
+     * two frames old and the vectors reach one (docs/link-protocol.md §2.2) */
+    if ((h->flags & TDC_FOV_FLAG_MV) && (!b->fov_mv[eye] || (dec->stream.flags & TDC_LINK_STREAM_REDUCED))) {
+        return TDC_LINK_ERR_UNEXPECTED;
     }
     if (lp * 3u > b->fov_lp_bytes || ((h->flags & TDC_FOV_FLAG_MV) && lp * 2u > b->fov_mv_count)) {
         return TDC_LINK_ERR_LENGTH; /* a larger delta than this build's buffers hold */
@@ -747,8 +760,11 @@ static void on_payload(tdc_link_decoder_t *dec, uint32_t src_end)
             }
             break;
         case TDC_LINK_KIND_FOVEATED:
+            /* the disk pixels into the slot's picture: the frame buffer, or the reduced buffer */
             tdc_fov_unpack(&fh, s + TDC_FOV_HDR_BYTES, b->fov_lp[eye], (size_t)fh.p.lp_w * 3u, b->fov_mv[eye],
-                           (size_t)fh.p.lp_w * 2u, b->full[eye], b->full_stride);
+                           (size_t)fh.p.lp_w * 2u,
+                           (p->flags & TDC_LINK_PKT_FOV_REDUCED) ? b->reduced[eye] : b->full[eye],
+                           (p->flags & TDC_LINK_PKT_FOV_REDUCED) ? (size_t)p->width * 3u : b->full_stride);
             dec->fov[eye] = fh;
             dec->fov_valid |= (uint8_t)(1u << eye);
             break;

@@ -133,7 +133,9 @@ typedef struct {
      * motion vectors (TAA streams), int16 pairs with rows lp_w * 2 apart, at
      * most fov_mv_count int16s (NULL: packets with vectors are refused); the
      * disk pixels go into full[eye] (the stage reads each before it writes
-     * it).  fov_lp NULL: the build has no foveation stage. */
+     * it), or, for a TRM stream's reduced slot (packet flag
+     * TDC_LINK_PKT_FOV_REDUCED), into reduced[eye] (rows rW * 3 bytes apart).
+     * fov_lp NULL: the build has no foveation stage. */
     uint8_t *fov_lp[2];
     size_t fov_lp_bytes;
     int16_t *fov_mv[2];
@@ -268,7 +270,9 @@ const tdc_link_stream_info_t *tdc_link_stream(const tdc_link_decoder_t *dec);
 
 /* The foveation header (stage parameters, geometry) of eye's last accepted
  * FOVEATED packet in the active stream, NULL if none: read it on that
- * packet's event, before feeding more bytes. */
+ * packet's event, before feeding more bytes.  Its geometry is the slot's
+ * grid: W x H, or rW x rH for a packet with TDC_LINK_PKT_FOV_REDUCED (the
+ * event's flags say which). */
 const tdc_fov_hdr_t *tdc_link_fov(const tdc_link_decoder_t *dec, uint32_t eye);
 
 /* The header of eye's last accepted row band (index, count, rows) in the

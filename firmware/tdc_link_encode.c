@@ -305,7 +305,23 @@ size_t tdc_link_encode_foveated(const tdc_link_encoder_t *enc, uint8_t *out, siz
                                 const tdc_fov_params_t *p, uint16_t delta_q15, const uint8_t *samples,
                                 const int16_t *mv, tdc_fov_geom_t *g)
 {
-    const uint16_t w = enc->info.width, h = enc->info.height;
+    return tdc_link_encode_foveated_slot(enc, out, cap, TDC_LINK_KIND_FULL, eye, frame, p, delta_q15, samples, mv, g);
+}
+
+size_t tdc_link_encode_foveated_slot(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap, tdc_link_kind_t slot,
+                                     uint32_t eye, uint32_t frame, const tdc_fov_params_t *p, uint16_t delta_q15,
+                                     const uint8_t *samples, const int16_t *mv, tdc_fov_geom_t *g)
+{
+    if (!enc || (slot != TDC_LINK_KIND_FULL && slot != TDC_LINK_KIND_REDUCED) ||
+        (slot == TDC_LINK_KIND_REDUCED && enc->info.r_den == 0)) {
+        return 0;
+    }
+    const int red = slot == TDC_LINK_KIND_REDUCED;
+    /* the slot's grid: the eye, or the reduced grid of the stream's ratio */
+    const uint16_t w = red ? (uint16_t)TDC_REDUCED_DIM(enc->info.width, enc->info.r_num, enc->info.r_den)
+                           : enc->info.width;
+    const uint16_t h = red ? (uint16_t)TDC_REDUCED_DIM(enc->info.height, enc->info.r_num, enc->info.r_den)
+                           : enc->info.height;
     tdc_fov_geom_t geom;
     uint8_t fh[TDC_FOV_HDR_BYTES];
     if (!out || !p || !samples || tdc_fov_geom(&geom, w, h, p) != TDC_OK ||
@@ -322,6 +338,6 @@ size_t tdc_link_encode_foveated(const tdc_link_encoder_t *enc, uint8_t *out, siz
         *g = geom;
     }
     tdc_link_header_t f;
-    fields(enc, &f, TDC_LINK_KIND_FOVEATED, eye, frame, TDC_PIXFMT_RGB888, w, h, 0);
+    fields(enc, &f, TDC_LINK_KIND_FOVEATED, eye, frame, TDC_PIXFMT_RGB888, w, h, red ? TDC_LINK_PKT_FOV_REDUCED : 0u);
     return finish(out, &f, n);
 }

@@ -88,6 +88,16 @@ size_t tdc_link_encode_layers(const tdc_link_encoder_t *enc, uint8_t *out, size_
 size_t tdc_link_encode_foveated(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap, uint32_t eye, uint32_t frame,
                                 const tdc_fov_params_t *p, uint16_t delta_q15, const uint8_t *samples,
                                 const int16_t *mv, tdc_fov_geom_t *g);
+/* The same for a slot of the stream: TDC_LINK_KIND_FULL (the call above)
+ * or TDC_LINK_KIND_REDUCED, the reduced frame of a TRM stream foveated: p
+ * and the samples on the rW x rH grid of the encoder's ratio (rW =
+ * TDC_REDUCED_DIM(W, r_num, r_den)), packet width x height rW x rH and
+ * flag TDC_LINK_PKT_FOV_REDUCED (docs/link-protocol.md §2.2).  The encoder
+ * does not check the stream's flags (tests send refused packets with it);
+ * 0 for another slot, r_den 0, or as above. */
+size_t tdc_link_encode_foveated_slot(const tdc_link_encoder_t *enc, uint8_t *out, size_t cap, tdc_link_kind_t slot,
+                                     uint32_t eye, uint32_t frame, const tdc_fov_params_t *p, uint16_t delta_q15,
+                                     const uint8_t *samples, const int16_t *mv, tdc_fov_geom_t *g);
 
 /* Pixel packing from RGB888 (the inverse of firmware/tdc_pixfmt.c). */
 void tdc_pixfmt_pack(tdc_pixfmt_t fmt, const uint8_t *rgb, uint32_t w, uint32_t h, uint32_t stride, uint8_t *out);

@@ -99,8 +99,9 @@ static const tdc_link_kind_info_t kinds[TDC_LINK_KIND_LAST + 1] = {
     /* (dx, dy) int16 LE per pixel, or per tile with MV_PER_SAMPLE */
     [TDC_LINK_KIND_MOTION] = {"motion", TDC_LINK_PAYLOAD_PER_ELEM, TDC_LINK_GRID_MV, 4u, TDC_LINK_PKT_MV_PER_SAMPLE},
     [TDC_LINK_KIND_PATTERN] = {"pattern", TDC_LINK_PAYLOAD_BITS, TDC_LINK_GRID_TILES, 0u, 0u},
-    /* RGB888 samples; the 32-byte foveation header states the rest */
-    [TDC_LINK_KIND_FOVEATED] = {"foveated", TDC_LINK_PAYLOAD_STATED, TDC_LINK_GRID_NONE, 0u, 0u},
+    /* RGB888 samples; the 32-byte foveation header states the rest; with
+     * FOV_REDUCED the picture of a TRM stream's reduced slot (rW x rH) */
+    [TDC_LINK_KIND_FOVEATED] = {"foveated", TDC_LINK_PAYLOAD_STATED, TDC_LINK_GRID_NONE, 0u, TDC_LINK_PKT_FOV_REDUCED},
     /* layer header + per layer value and vector planes (+ falloff), flags = the layer set */
     [TDC_LINK_KIND_LAYERS] = {"layers", TDC_LINK_PAYLOAD_LAYERS, TDC_LINK_GRID_TILES, 0u, TDC_LAYER_PKT_KNOWN},
 };

@@ -107,7 +107,8 @@ typedef enum {
 /* Per-packet flags (header `flags`). */
 #define TDC_LINK_PKT_MV_PER_SAMPLE 0x0001u /* MOTION: one vector per subframe sample (tile grid) */
 #define TDC_LINK_PKT_BAND 0x0002u          /* FULL/REDUCED: one row band of the picture (tdc_band_link.h) */
-#define TDC_LINK_PKT_KNOWN 0x0003u
+#define TDC_LINK_PKT_FOV_REDUCED 0x0004u   /* FOVEATED: fills the eye's REDUCED slot of a TRM stream (rW x rH grid) */
+#define TDC_LINK_PKT_KNOWN 0x0007u
 
 /* Every header field; magic and header CRC are implied (pack writes them,
  * unpack checks them). */

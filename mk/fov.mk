@@ -1,7 +1,7 @@
 # Foveated streams (issue 14, DESIGN §4.5): the display-side remap stage with
 # peripheral TAA, its double-precision reference, tests, golden vectors.
 # The stage's log/power/atan/Gaussian tables come from tdc-tablegen --fov.
-FW_SRCS += firmware/tdc_fov.c firmware/tdc_fov_lr.c firmware/tdc_fov_link.c
+FW_SRCS += firmware/tdc_fov.c firmware/tdc_fov_lr.c firmware/tdc_fov_link.c firmware/tdc_fov_trm.c
 # the tap kernel: AVX2 (x86-64 hosts; the C kernel elsewhere) and Helium (the
 # C kernel except on BOARD_MVE boards); checked against C by tests/checkasm
 FW_SRCS += firmware/tdc_fov_avx2.c firmware/tdc_fov_mve.c
@@ -33,7 +33,7 @@ $(foreach t,$(FOV_TESTS),$(B)/tests/unit/$(t)): $(B)/tests/unit/%: $(B)/tests/un
 $(B)/tests/unit/test_fov.o $(B)/tests/unit/test_fov_ref.o $(B)/tests/unit/test_fov_lr.o: $(GEN)/tdc_fov_tables.h
 
 # the FOVEATED kind in the link decoder (docs/link-protocol.md)
-TESTS += $(B)/tests/unit/test_link_fov
+TESTS += $(B)/tests/unit/test_link_fov $(B)/tests/unit/test_link_fov_trm
 
 GOLDEN_STAGES += fov
 
@@ -52,7 +52,7 @@ fuzz-seeds-fov: $(BUILD)/fuzz/make_seeds_fov
 	$(BUILD)/fuzz/make_seeds_fov tests/fuzz/corpus-fov
 .PHONY: fuzz-seeds-fov
 
-# The simulator's fov modes (sim/simulator/tdc_sim_mode_fov.c), gaze schedules and tracker
+# The simulator's fov modes (sim/simulator/tdc_sim_mode_fov.c, fov-trm: tdc_sim_mode_fovtrm.c), gaze schedules and tracker
 TESTS += $(B)/tests/unit/test_sim_fov
 $(B)/tests/unit/test_sim_fov: $(B)/tests/unit/test_sim_fov.o $$(SIMXLIB) $$(SIMLIB) $$(FWLIB)
 	$(CC) $(HOST_LDFLAGS) $(SIM_OMP) $^ -o $@ $(HOST_LIBS)

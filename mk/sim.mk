@@ -7,7 +7,7 @@
 SIMX_SRCS := sim/simulator/tdc_sim_scene.c sim/simulator/tdc_sim_modes.c sim/simulator/tdc_sim_run.c \
              sim/simulator/tdc_sim_mode.c sim/simulator/tdc_sim_mode_plain.c sim/simulator/tdc_sim_mode_trm.c \
              sim/simulator/tdc_sim_mode_warp.c sim/simulator/tdc_sim_blockmatch.c sim/simulator/tdc_sim_mode_asm.c sim/simulator/tdc_sim_mode_layers.c sim/simulator/tdc_sim_stage_lcd.c \
-             sim/simulator/tdc_sim_mode_fov.c sim/simulator/tdc_sim_gaze.c sim/metrics/tdc_fov_metrics.c \
+             sim/simulator/tdc_sim_mode_fov.c sim/simulator/tdc_sim_mode_fovtrm.c sim/simulator/tdc_sim_gaze.c sim/metrics/tdc_fov_metrics.c \
              sim/simulator/tdc_sim_link.c sim/eye/tdc_eye.c sim/eye/tdc_eye_temporal.c sim/metrics/tdc_metrics.c sim/metrics/tdc_flip.c sim/metrics/tdc_filter.c \
              sim/metrics/tdc_powtab.c \
              sim/panel/tdc_panel_sim.c sim/report/tdc_report.c sim/simulator/tdc_sim_render.c

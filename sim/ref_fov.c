@@ -264,3 +264,58 @@ double ref_fov_ray_share(const ref_fov_geom_t *g, long disk_pixels)
 {
     return ((double)(g->lp_w - g->u0) * g->lp_h + (double)disk_pixels) / ((double)g->width * g->height);
 }
+
+double ref_fov_lod_cone(int mode, double r, double L, double alpha, double un, int w, int h)
+{
+    if (mode == TDC_FOV_LOD_FOOTPRINT) {
+        const double radial = r * L * alpha * pow(un, alpha - 1) / w, tang = 2 * M_PI * r / h;
+        const double side = radial > tang ? radial : tang;
+        return side > 1 ? side : 1;
+    }
+    if (mode == TDC_FOV_LOD_THESIS) {
+        const double x = fmin(fmax(pow(un, alpha), 0), 1), s1 = x * x * (3 - 2 * x); /* S1 */
+        return exp2(3 * s1 * s1 * s1);
+    }
+    return 1;
+}
+
+void ref_fov_halton(uint32_t f, double *jx, double *jy)
+{
+    double hx = 0, hy = 0;
+    for (uint32_t k = f + 1, b = 2; k; k /= 2, b *= 2) hx += (double)(k % 2) / b;
+    for (uint32_t k = f + 1, b = 3; k; k /= 3, b *= 3) hy += (double)(k % 3) / b;
+    *jx = hx - 0.5;
+    *jy = hy - 0.5;
+}
+
+void ref_fov_lp_jitter(int mode, double L, double alpha, int w, int h, int i, int j, double jx, double jy, double *u,
+                       double *v)
+{
+    double su = 1, sv = 1;
+    if (mode == TDC_FOV_JITTER_PIXEL) {
+        const double un = (double)i / w, r = exp(L * pow(un, alpha));
+        const double radial = r * L * alpha * pow(un, alpha - 1) / w, tang = 2 * M_PI * r / h;
+        su = radial > 1 ? 1 / radial : 1;
+        sv = tang > 1 ? 1 / tang : 1;
+    }
+    *u = fmax(i + jx * su, 0.0);
+    *v = j + jy * sv;
+}
+
+size_t ref_fov_lp_samples(const ref_fov_geom_t *g, int u0, double jx, double jy, int jitter, int lod, double *xy,
+                          double *side)
+{
+    size_t k = 0;
+    for (int j = 0; j < g->lp_h; j++) {
+        for (int i = u0; i < g->lp_w; i++, k++) {
+            double u, v;
+            ref_fov_lp_jitter(jitter, g->L, g->alpha, g->lp_w, g->lp_h, i, j, jx, jy, &u, &v);
+            ref_fov_from_lp(g, u, v, &xy[2 * k], &xy[2 * k + 1]);
+            if (side) {
+                const double un = u / g->lp_w, r = exp(g->L * pow(un, g->alpha));
+                side[k] = ref_fov_lod_cone(lod, r, g->L, g->alpha, un, g->lp_w, g->lp_h);
+            }
+        }
+    }
+    return k;
+}

@@ -59,6 +59,44 @@ void ref_fov_free(ref_fov_t *st);
 void ref_fov_frame(ref_fov_t *st, const ref_fov_params_t *p, const uint8_t *lp, size_t lp_stride, const int16_t *mv,
                    size_t mv_stride, const uint8_t *disk, size_t disk_stride, uint32_t dt_us, double *out);
 
+/* Texture LOD / footprint prefilter of the log-polar samples (thesis §4.1.2,
+ * eqs. 4.1-4.3): what one log-polar sample stands for on the display, in
+ * display pixels (the renderer's cone factor, tdc_render.h cfg.fov_lod; the
+ * simulator's box side for photographs and procedural scenes):
+ *  OFF        1 (one display pixel: the point sample);
+ *  FOOTPRINT  max(1, the longer side of eq. 2.3's cell at radius r, u / w = un:
+ *             radial r L alpha un^(alpha-1) / w, tangential 2 pi r / h);
+ *  THESIS     2^phi, phi = 3 S1(un^alpha)^3 (eq. 4.3, S1 = smoothstep on
+ *             [0, 1]; without eq. 4.2's base bias 0.3).
+ * The one definition both sample paths use (do not write it twice). */
+enum { TDC_FOV_LOD_OFF = 0, TDC_FOV_LOD_FOOTPRINT = 1, TDC_FOV_LOD_THESIS = 2 };
+double ref_fov_lod_cone(int mode, double r, double L, double alpha, double un, int w, int h);
+
+/* Halton(2,3) point f + 1 moved to [-1/2, 1/2)^2: the TAA jitter of frame f
+ * (thesis §4.3.2; tdc_render_halton is this). */
+void ref_fov_halton(uint32_t f, double *jx, double *jy);
+
+/* The TAA jitter (jx, jy) in [-1/2, 1/2)^2 of log-polar sample (i, j) as a
+ * buffer position (u, v) = (max(i + jx s_u, 0), j + jy s_v):
+ *  TEXEL  s_u = s_v = 1: half a buffer texel (the thesis offsets the
+ *         dispatch index of its render target, §4.3.2) - at alpha 4 up to
+ *         ~12 display pixels radially at a headset's screen edge, ~18 at
+ *         the corners, and the display side does not know the offset;
+ *  PIXEL  s = min(1, 1 / (display pixels per texel along that axis at i)):
+ *         at most half a texel and at most half a display pixel (radial
+ *         r L alpha (i/w)^(alpha-1) / w, tangential 2 pi r / h, r = e^(L (i/w)^alpha)). */
+enum { TDC_FOV_JITTER_TEXEL = 0, TDC_FOV_JITTER_PIXEL = 1 };
+void ref_fov_lp_jitter(int mode, double L, double alpha, int w, int h, int i, int j, double jx, double jy, double *u,
+                       double *v);
+
+/* The log-polar samples of columns [u0, lp_w) x rows [0, lp_h), in payload
+ * order (row by row), at buffer position ref_fov_lp_jitter(jitter, ...):
+ * their display positions by the exact inverse of eq. 2.2 into xy (2
+ * doubles per sample) and, with side != NULL, ref_fov_lod_cone(lod, ...) at
+ * that position.  Returns the number of samples. */
+size_t ref_fov_lp_samples(const ref_fov_geom_t *g, int u0, double jx, double jy, int jitter, int lod, double *xy,
+                          double *side);
+
 /* eq. 5.1 ray model: samples traced for a frame (log-polar columns [u0, w)
  * plus the disk pixels on the screen) over W*H. */
 double ref_fov_ray_share(const ref_fov_geom_t *g, long disk_pixels);

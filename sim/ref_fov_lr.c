@@ -8,6 +8,8 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "simulator/tdc_sim_codes.h" /* tdc_sim_encode_code: the sources' encoder */
+
 #define K_MAX (65535.0 / 16.0)
 
 static double warp(const ref_fov_lr_axis_t *a, double d)
@@ -70,7 +72,16 @@ double ref_fov_lr_k(int N, int n, double c)
     return sqrt(lo * hi);
 }
 
-double *ref_fov_lr_sat(const uint8_t *img, size_t stride, int W, int H)
+void ref_fov_lin_lut(const double gamma[3], double lut[3 * 256])
+{
+    for (int ch = 0; ch < 3; ch++) {
+        for (int k = 0; k < 256; k++) {
+            lut[256 * ch + k] = pow(k / 255.0, gamma[ch]);
+        }
+    }
+}
+
+double *ref_fov_lr_sat(const uint8_t *img, size_t stride, int W, int H, const double *lut)
 {
     const size_t w1 = (size_t)W + 1;
     double *sat = calloc(w1 * ((size_t)H + 1) * 3, sizeof(double));
@@ -81,7 +92,8 @@ double *ref_fov_lr_sat(const uint8_t *img, size_t stride, int W, int H)
         double row[3] = {0, 0, 0};
         for (int x = 0; x < W; x++) {
             for (int ch = 0; ch < 3; ch++) {
-                row[ch] += img[(size_t)y * stride + (size_t)x * 3 + ch];
+                const uint8_t code = img[(size_t)y * stride + (size_t)x * 3 + ch];
+                row[ch] += lut ? lut[256 * ch + code] : code;
                 sat[(((size_t)y + 1) * w1 + x + 1) * 3 + ch] = sat[((size_t)y * w1 + x + 1) * 3 + ch] + row[ch];
             }
         }
@@ -118,8 +130,21 @@ void ref_fov_lr_box(const double *sat, int W, int H, double x0, double y0, doubl
     }
 }
 
+void ref_fov_lr_box_mean(const double *sat, int W, int H, double x, double y, double side, double out[3])
+{
+    x = fmin(fmax(x, 0), W);
+    y = fmin(fmax(y, 0), H);
+    const double x0 = fmax(x - side / 2, 0), x1 = fmin(x + side / 2, W);
+    const double y0 = fmax(y - side / 2, 0), y1 = fmin(y + side / 2, H);
+    ref_fov_lr_box(sat, W, H, x0, y0, x1, y1, out);
+    const double area = (x1 - x0) * (y1 - y0);
+    for (int ch = 0; ch < 3; ch++) {
+        out[ch] /= area;
+    }
+}
+
 void ref_fov_lr_buffer(const double *sat, int W, int H, const ref_fov_lr_axis_t *ax, const ref_fov_lr_axis_t *ay,
-                       uint8_t *lp, size_t lp_stride, double *avg)
+                       uint8_t *lp, size_t lp_stride, double *avg, const double *gamma)
 {
     for (int j = 0; j < ay->n; j++) {
         const double y0 = ref_fov_lr_inv(ay, j), y1 = ref_fov_lr_inv(ay, j + 1);
@@ -129,8 +154,9 @@ void ref_fov_lr_buffer(const double *sat, int W, int H, const ref_fov_lr_axis_t 
             ref_fov_lr_box(sat, W, H, x0, y0, x1, y1, s);
             const double area = (x1 - x0) * (y1 - y0);
             for (int ch = 0; ch < 3; ch++) {
-                const double v = fmin(fmax(s[ch] / area, 0), 255);
-                lp[(size_t)j * lp_stride + (size_t)m * 3 + ch] = (uint8_t)lround(v);
+                const double v = fmin(fmax(s[ch] / area, 0), gamma ? 1 : 255);
+                lp[(size_t)j * lp_stride + (size_t)m * 3 + ch] =
+                    gamma ? tdc_sim_encode_code(v, gamma[ch]) : (uint8_t)lround(v);
                 if (avg) {
                     avg[((size_t)j * ax->n + m) * 3 + ch] = v;
                 }

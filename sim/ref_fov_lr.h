@@ -35,18 +35,30 @@ double ref_fov_lr_k(int N, int n, double c);
 
 /* Summed-area table of a W x H RGB8 picture (rows stride bytes apart):
  * (W + 1) x (H + 1) x 3 doubles, sat[(y (W + 1) + x) 3 + ch] = sum over
- * pixels [0, x) x [0, y).  Returns NULL on allocation failure. */
-double *ref_fov_lr_sat(const uint8_t *img, size_t stride, int W, int H);
+ * pixels [0, x) x [0, y) of lut[256 ch + code] (lut NULL: the codes
+ * themselves; ref_fov_lin_lut: linear light).  NULL on allocation failure. */
+double *ref_fov_lr_sat(const uint8_t *img, size_t stride, int W, int H, const double *lut);
+/* lut[256 ch + k] = (k / 255)^gamma[ch]: the linear light of drive code k
+ * under the panel gamma the simulator's sources encode with
+ * (tdc_sim_encode_code is its inverse). */
+void ref_fov_lin_lut(const double gamma[3], double lut[3 * 256]);
 /* Integral of the picture (piecewise constant per pixel) over
  * [x0, x1] x [y0, y1] (fractional, inside [0, W] x [0, H]) from its SAT:
  * the SAT is bilinear inside each pixel cell, so this is exact. */
 void ref_fov_lr_box(const double *sat, int W, int H, double x0, double y0, double x1, double y1, double out[3]);
+/* Mean of the picture over the square of side `side` (> 0) centred at
+ * (x, y) moved into [0, W] x [0, H], cut to the screen (so never empty):
+ * the footprint prefilter of a log-polar sample (ref_fov_lod_cone). */
+void ref_fov_lr_box_mean(const double *sat, int W, int H, double x, double y, double side, double out[3]);
 /* The buffer the sender transmits: texel (m, j) = the area average over
- * [x(m), x(m+1)) x [y(j), y(j+1)), rounded to RGB8; lp: ay->n rows of
- * ax->n texels, rows lp_stride bytes apart.  With avg (may be NULL) the
- * unrounded averages (n_x n_y 3 doubles). */
+ * [x(m), x(m+1)) x [y(j), y(j+1)); lp: ay->n rows of ax->n texels, rows
+ * lp_stride bytes apart.  gamma NULL: sat holds codes, the average is
+ * rounded to RGB8; else sat holds linear light (ref_fov_lr_sat with
+ * ref_fov_lin_lut) and the average is encoded round(255 v^(1/gamma)).  With
+ * avg (may be NULL) the unrounded averages (n_x n_y 3 doubles, in sat's
+ * units). */
 void ref_fov_lr_buffer(const double *sat, int W, int H, const ref_fov_lr_axis_t *ax, const ref_fov_lr_axis_t *ay,
-                       uint8_t *lp, size_t lp_stride, double *avg);
+                       uint8_t *lp, size_t lp_stride, double *avg, const double *gamma);
 /* The display side's periphery sample at display point (x, y): bilinear
  * between texel centres at (u - 1/2, v - 1/2) clamped to [0, n - 1];
  * nearest texel (floor(u), floor(v)) clamped. */

@@ -45,6 +45,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "ref_fov.h" /* TDC_FOV_LOD_*, ref_fov_lod_cone (sim/ref_fov.c: the one footprint definition) */
 #include "tdc_scene.h"
 
 typedef enum {
@@ -63,6 +64,8 @@ typedef struct {
                                w = floor(delta_q15 W / 2^15) (tdc_fov_lp_size) */
     double disk;           /* disk radius / distance to the farthest corner, [0, 1]; default 0.12443 */
     double jx, jy;         /* sub-sample jitter of the log-polar samples (Halton 2,3 where TAA follows) */
+    int jitter;            /* how (jx, jy) moves a sample (ref_fov_lp_jitter): TDC_FOV_JITTER_TEXEL (0,
+                              half a buffer texel) or _PIXEL (at most half a display pixel too) */
 } tdc_render_fov_t;
 
 typedef struct {
@@ -97,8 +100,9 @@ typedef struct {
  *  THESIS     2^phi with the thesis's heuristic bias phi = 3 S1((u/w)^alpha)^3
  *             (eq. 4.3, S1 = smoothstep on [0, 1]); without its base bias 0.3
  *             of eq. 4.2, which our full-rate frames do not have either.
- * Disk samples keep one pixel's cone in every mode. */
-enum { TDC_FOV_LOD_OFF = 0, TDC_FOV_LOD_FOOTPRINT = 1, TDC_FOV_LOD_THESIS = 2 };
+ * Disk samples keep one pixel's cone in every mode.  The factor is
+ * ref_fov_lod_cone (sim/ref_fov.c), which the simulator's photograph and
+ * procedural sources use as their footprint prefilter's box side. */
 
 /* Caller-owned outputs; any pointer may be NULL (that output is not
  * written).  Sizes: n = output pixels (or tiles) of the mode.  FULL and

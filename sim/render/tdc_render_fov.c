@@ -9,35 +9,14 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "ref_fov.h" /* ref_fov_lod_cone: the footprint both sample paths use */
 #include "tdc_fov.h"
 #include "tdc_fov_link.h"
 #include "tdc_render_internal.h"
 
 void tdc_render_halton(uint32_t f, double *jx, double *jy)
 {
-    double hx = 0, hy = 0;
-    for (uint32_t k = f + 1, b = 2; k; k /= 2, b *= 2) hx += (double)(k % 2) / b;
-    for (uint32_t k = f + 1, b = 3; k; k /= 3, b *= 3) hy += (double)(k % 3) / b;
-    *jx = hx - 0.5;
-    *jy = hy - 0.5;
-}
-
-/* The cone of a log-polar sample in display pixels' cones (cfg.fov_lod,
- * tdc_render.h): at radius rad of eq. 2.3, r = e^(L un^alpha) with un = u/w,
- * one buffer column spans dr/du = r L alpha un^(alpha-1) / w display pixels
- * radially and one buffer row 2 pi r / h tangentially. */
-static double lod_cone(int mode, double rad, double L, double alpha, double un, int w, int h)
-{
-    if (mode == TDC_FOV_LOD_FOOTPRINT) {
-        const double radial = rad * L * alpha * pow(un, alpha - 1) / w, tang = 2 * M_PI * rad / h;
-        const double side = radial > tang ? radial : tang;
-        return side > 1 ? side : 1;
-    }
-    if (mode == TDC_FOV_LOD_THESIS) {
-        const double x = fmin(fmax(pow(un, alpha), 0), 1), s1 = x * x * (3 - 2 * x); /* S1 */
-        return exp2(3 * s1 * s1 * s1);
-    }
-    return 1;
+    ref_fov_halton(f, jx, jy);
 }
 
 int tdc_render_set_foveation(tdc_render_t *r, const tdc_render_fov_t *f, int *lp_samples, int *disk_pixels)
@@ -65,14 +44,15 @@ int tdc_render_set_foveation(tdc_render_t *r, const tdc_render_fov_t *f, int *lp
     const double ex = fmax(cx, r->W - cx), ey = fmax(cy, r->H - cy), L = log(sqrt(ex * ex + ey * ey));
     size_t k = 0;
     for (int j = 0; j < g.lp_h; j++) {
-        const double th = 2 * M_PI * (j + f->jy) / g.lp_h;
-        const double c = cos(th), s = sin(th);
         for (int i = g.u0; i < g.lp_w; i++) {
-            const double u = fmax(i + f->jx, 0.0);
+            double u, v;
+            ref_fov_lp_jitter(f->jitter, L, alpha, g.lp_w, g.lp_h, i, j, f->jx, f->jy, &u, &v);
+            const double th = 2 * M_PI * v / g.lp_h;
+            const double c = cos(th), s = sin(th);
             const double rad = exp(L * pow(u / g.lp_w, alpha));
             xy[2 * k] = (float)(cx + rad * c);
             xy[2 * k + 1] = (float)(cy + rad * s);
-            cone[k] = (float)lod_cone(r->cfg.fov_lod, rad, L, alpha, u / g.lp_w, g.lp_w, g.lp_h);
+            cone[k] = (float)ref_fov_lod_cone(r->cfg.fov_lod, rad, L, alpha, u / g.lp_w, g.lp_w, g.lp_h);
             k++;
         }
     }

@@ -58,6 +58,7 @@ fov-disk-30|-s pan -r 90 -g 480x540 -m fov-taa --fov-disk 0.3 -n 8
 fov-alpha-1|-s pan -r 90 -g 480x540 -m fov-taa --fov-alpha 1 -n 8
 fov-alpha-8|-s pan -r 90 -g 480x540 -m fov-taa --fov-alpha 8 -n 8
 fov-lr-pan|-s pan -r 90 -g 480x540 -m full,fov,fov-taa,fovlr,fovlr-taa -n 8
+fov-trm-pan|-s pan -r 90 -g 480x540 -m full,trm50,fov,fov-trm -n 8
 fov-render|-R panorama -r 90 -g 540x600 -m full,fov,fov-taa -n 12 --gaze saccade --gaze-latency 20 --gaze-noise 0.3'
 
 # Headset scale: photographs (thin grass stalks, leaf veins, dandelion
@@ -65,7 +66,8 @@ fov-render|-R panorama -r 90 -g 540x600 -m full,fov,fov-taa -n 12 --gaze saccade
 # headset eye, assembly at 1920x1080 / 240 Hz, foveation (fov, fov-taa) on
 # the HTC Vive eye (1080x1200); the fov-disk-* / fov-alpha-* runs are the
 # disk-fraction and alpha comparison (eq. 5.1) at 480x540, fov-lr-pan the
-# two transforms side by side (kernel log-polar, log-rectilinear), fov-render the
+# two transforms side by side (kernel log-polar, log-rectilinear), fov-trm-pan
+# foveated TRM (both frames of trm50's stream foveated) beside trm50 and fov, fov-render the
 # Embree renderer's own foveated frames with saccades and a late, noisy
 # eye tracker (sim/report/tdc_fov_report.py).
 case $SCALE in

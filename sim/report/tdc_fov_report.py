@@ -58,6 +58,21 @@ def eq51(W, H, alpha, delta, disk, gx=None, gy=None):
     return (Ap + Ac) / (W * H)
 
 
+def cost_table(md, m, summ, keys):
+    """Costs and gaze metrics of the modes `keys` present in a run (foveation.csv rows m, summary rows summ)."""
+    md.append("| mode | rays vs full | link vs full | FLIP fovea | FLIP periphery | FLIP ecc | FLIP w-median | "
+              "flicker periphery | fw us/frame |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
+    for k in keys:
+        r = m.get(k)
+        if not r:
+            continue
+        fw = summ.get(k, {}).get("fw_us_per_frame", "")
+        md.append(f"| {k} | {f(r['rays_vs_full']):.4f} | {f(r['link_vs_full']):.4f} | {f(r['flip_fovea']):.4f} | "
+                  f"{f(r['flip_periphery']):.4f} | {f(r['flip_ecc']):.4f} | {f(r['flip_wmedian']):.3f} | "
+                  f"{f(r['flicker_periphery']):.2f} | {fw} |")
+    md.append("")
+
+
 def fov_section(out):
     runs = {}
     for n in sorted(os.listdir(out)):
@@ -108,17 +123,18 @@ def fov_section(out):
                   "fovlr / fovlr-taa: log-rectilinear (Li et al.), every texel the summed-area average of its "
                   "footprint in a full-rate render, bilinear on the display side; both with the same disk, delta, "
                   "link kind, stage entry and TAA (docs/foveation.md).\n")
-        md.append("| mode | rays vs full | link vs full | FLIP fovea | FLIP periphery | FLIP ecc | FLIP w-median | "
-                  "flicker periphery | fw us/frame |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
-        for k in ["full"] + lr:
-            r = m.get(k)
-            if not r:
-                continue
-            fw = summ.get(k, {}).get("fw_us_per_frame", "")
-            md.append(f"| {k} | {f(r['rays_vs_full']):.4f} | {f(r['link_vs_full']):.4f} | {f(r['flip_fovea']):.4f} | "
-                      f"{f(r['flip_periphery']):.4f} | {f(r['flip_ecc']):.4f} | {f(r['flip_wmedian']):.3f} | "
-                      f"{f(r['flicker_periphery']):.2f} | {fw} |")
-        md.append("")
+        cost_table(md, m, summ, ["full"] + lr)
+    # foveated TRM (issue 14 item 5): every run with fov-trm
+    for n, m in runs.items():
+        if "fov-trm" not in m:
+            continue
+        summ = {x["mode"]: x for x in read(os.path.join(out, n, "summary.csv"))}
+        md.append(f"### Foveated TRM, `{n}`\n")
+        md.append("fov-trm: trm50's stream with both frames foveated -- the full frames as fov's, the reduced "
+                  "frames' buffer and disk on the r = 1/2 grid (FOVEATED packets with FOV_REDUCED), each remapped "
+                  "into its buffer by the firmware and then through TRM as plain FULL / REDUCED frames; no "
+                  "peripheral TAA (docs/foveation.md, \"Foveated TRM\").\n")
+        cost_table(md, m, summ, ["full", "trm50", "fov", "fov-taa", "fov-trm"])
     # disk sweep and alpha sweep
     sweep = []
     for n, m in runs.items():

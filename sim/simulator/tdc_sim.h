@@ -91,6 +91,10 @@ typedef struct {
     double fov_alpha;         /* K(x) = x^alpha of the fov modes (default 4) */
     double fov_delta;         /* buffer downscale (default 0.555) */
     double fov_disk;          /* disk fraction (default 0.12443) */
+    int fov_lod;              /* TDC_FOV_LOD_* (ref_fov.h): footprint prefilter of the log-polar samples
+                                 (default FOOTPRINT; the renderer's texture LOD, the other sources' box average) */
+    int fov_jitter;           /* TDC_FOV_JITTER_* (ref_fov.h): what fov-taa's Halton jitter moves a log-polar
+                                 sample by (default PIXEL: <= half a texel and <= half a display pixel) */
     const char *outdir; /* NULL: no files */
     const char *label;  /* run label for the report */
 } tdc_sim_config_t;

@@ -380,11 +380,18 @@ int tdc_sim_link_layers(tdc_sim_link_t *l, int eye, uint32_t frame, const tdc_la
 int tdc_sim_link_foveated(tdc_sim_link_t *l, int eye, uint32_t frame, const tdc_fov_params_t *fp, uint16_t delta_q15,
                           const uint8_t *samples, const int16_t *mv, tdc_fov_hdr_t *hdr)
 {
+    return tdc_sim_link_foveated_slot(l, eye, frame, 0, fp, delta_q15, samples, mv, hdr);
+}
+
+int tdc_sim_link_foveated_slot(tdc_sim_link_t *l, int eye, uint32_t frame, int reduced, const tdc_fov_params_t *fp,
+                               uint16_t delta_q15, const uint8_t *samples, const int16_t *mv, tdc_fov_hdr_t *hdr)
+{
 #if TDC_SIM_HAVE_LINK
     link_priv_t *p = l->priv;
     double t0 = now_s();
-    size_t n = tdc_link_encode_foveated(&p->enc, p->pkt, p->cap, (uint32_t)eye, frame, fp, delta_q15, samples, mv,
-                                        NULL);
+    size_t n = tdc_link_encode_foveated_slot(&p->enc, p->pkt, p->cap,
+                                             reduced ? TDC_LINK_KIND_REDUCED : TDC_LINK_KIND_FULL, (uint32_t)eye,
+                                             frame, fp, delta_q15, samples, mv, NULL);
     l->encode_s += now_s() - t0;
     const int rc = feed(l, n, TDC_LINK_KIND_FOVEATED);
     const tdc_fov_hdr_t *h = tdc_link_fov(&p->dec, (uint32_t)eye);
@@ -396,6 +403,7 @@ int tdc_sim_link_foveated(tdc_sim_link_t *l, int eye, uint32_t frame, const tdc_
     (void)l;
     (void)eye;
     (void)frame;
+    (void)reduced;
     (void)fp;
     (void)delta_q15;
     (void)samples;

@@ -64,6 +64,12 @@ int tdc_sim_link_layers(tdc_sim_link_t *l, int eye, uint32_t frame, const tdc_la
  * Needs the link in the build (-1 without). */
 int tdc_sim_link_foveated(tdc_sim_link_t *l, int eye, uint32_t frame, const tdc_fov_params_t *p, uint16_t delta_q15,
                           const uint8_t *samples, const int16_t *mv, tdc_fov_hdr_t *hdr);
+/* The same for a slot of a TRM stream (docs/link-protocol.md §2.2):
+ * reduced = 1 sends the reduced frame foveated (p and the samples on the
+ * rw x rh grid, packet flag FOV_REDUCED; the decoder puts the disk pixels
+ * into reduced[eye]); reduced = 0 is tdc_sim_link_foveated. */
+int tdc_sim_link_foveated_slot(tdc_sim_link_t *l, int eye, uint32_t frame, int reduced, const tdc_fov_params_t *p,
+                               uint16_t delta_q15, const uint8_t *samples, const int16_t *mv, tdc_fov_hdr_t *hdr);
 /* Bytes of a payload sent without a packet kind of its own (interlaced
  * rows): counted as payload + header, not decoded. */
 void tdc_sim_link_count_raw(tdc_sim_link_t *l, size_t payload);

@@ -62,9 +62,14 @@ static void usage(FILE *f)
             "                          default 0): another stretch of the animation, another content\n"
             "      --no-reflect-mv     renderer: primary MVs at mirror hits instead of reflected MVs\n"
             "                          (TDRT §3.1.2, Figs. 5-6)\n"
-            "      --fov-lod MODE      renderer, fov modes: texture LOD of the log-polar samples (thesis\n"
-            "                          §4.1.2): footprint (default; the sample's display cell), thesis\n"
-            "                          (eq. 4.3's bias 3 S1(u^alpha)^3), off (one display pixel)\n"
+            "      --fov-lod MODE      fov modes: prefilter of the log-polar samples (thesis §4.1.2): the\n"
+            "                          renderer's texture LOD, the other sources' box average in linear\n"
+            "                          light: footprint (default; the sample's display cell), thesis\n"
+            "                          (eq. 4.3's bias 3 S1(u^alpha)^3), off (one display pixel / point)\n"
+            "      --fov-jitter J      fov-taa: the Halton jitter moves a log-polar sample by at most\n"
+            "                          half a texel and half a display pixel (pixel, default) or half\n"
+            "                          a texel (texel: the thesis's render-target jitter, ~12 px at a\n"
+            "                          headset's screen edge)\n"
             "  -d, --duration S        simulated seconds (default 0.5)\n"
             "  -n, --frames N          simulated refreshes (overrides --duration)\n"
             "  -w, --window N          fused window in refreshes (default 2 below 200 Hz, else 4)\n"
@@ -222,6 +227,7 @@ int main(int argc, char **argv)
         O_START,
         O_NOREFLMV,
         O_FOVLOD,
+        O_FOVJIT,
         O_TIMES,
         O_IMAGE,
         O_ZOOM,
@@ -275,6 +281,7 @@ int main(int argc, char **argv)
                                          {"start-frame", required_argument, 0, O_START},
                                          {"no-reflect-mv", no_argument, 0, O_NOREFLMV},
                                          {"fov-lod", required_argument, 0, O_FOVLOD},
+                                         {"fov-jitter", required_argument, 0, O_FOVJIT},
                                          {"times", no_argument, 0, O_TIMES},
                                          {"image", required_argument, 0, O_IMAGE},
                                          {"zoom", required_argument, 0, O_ZOOM},
@@ -370,6 +377,17 @@ int main(int argc, char **argv)
                 fov_lod = TDC_FOV_LOD_OFF;
             } else {
                 fprintf(stderr, "tdc-sim: --fov-lod: %s is not footprint, thesis or off\n", optarg);
+                return TDC_EXIT_ARGS;
+            }
+            cfg.fov_lod = fov_lod;
+            break;
+        case O_FOVJIT:
+            if (!strcmp(optarg, "pixel")) {
+                cfg.fov_jitter = TDC_FOV_JITTER_PIXEL;
+            } else if (!strcmp(optarg, "texel")) {
+                cfg.fov_jitter = TDC_FOV_JITTER_TEXEL;
+            } else {
+                fprintf(stderr, "tdc-sim: --fov-jitter: %s is not pixel or texel\n", optarg);
                 return TDC_EXIT_ARGS;
             }
             break;

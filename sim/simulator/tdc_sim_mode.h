@@ -126,6 +126,7 @@ extern const tdc_sim_family_t tdc_sim_family_warp;
 extern const tdc_sim_family_t tdc_sim_family_asm;
 extern const tdc_sim_family_t tdc_sim_family_layers;
 extern const tdc_sim_family_t tdc_sim_family_fov;
+extern const tdc_sim_family_t tdc_sim_family_fovtrm;
 extern const tdc_sim_family_t tdc_sim_stage_lcd;
 
 /* ---- helpers shared by the families (tdc_sim_mode.c) ---- */
@@ -165,6 +166,12 @@ int tdc_sim_send_full(sim_mode_t *m, uint32_t lf, const uint8_t *rgb);
  * at its pixel of mvbuf (each pixel keeps its latest sample's vector). */
 int tdc_sim_subframe_xy(sim_mode_t *m, const int16_t *mvbuf, const uint8_t *pattern, uint32_t lf, int radius);
 void tdc_sim_subframe_keep_mv(sim_mode_t *m, int16_t *mvbuf, int n, const int16_t *mv);
+
+/* The fov modes' footprint prefilter of nlp log-polar samples at display
+ * positions xy with footprint sides side (display pixels) into samp
+ * (tdc_sim_mode_fov.c, also used by fov-trm).  0, or -1 out of memory. */
+int tdc_sim_fov_prefilter(sim_mode_t *m, tdc_source_t *src, double t, int spp, const double *xy, const double *side,
+                          size_t nlp, uint8_t *samp);
 
 /* Rounds and clamps to a code (bilinear samples of codes: tdc_bilinear_u8). */
 uint8_t tdc_sim_to8(double v);

@@ -22,8 +22,8 @@
  * al.), the same disk, link kind, stage entry and TAA.  The source renders
  * the whole frame at display resolution (spp rays per pixel, or the
  * renderer's full frame), the sender builds its summed-area table and
- * sends each texel as the area average of its footprint (gamma-coded codes,
- * as the stage interpolates them), the disk pixels from the same frame,
+ * sends each texel as the area average of its footprint (in linear light,
+ * encoded back with the source's gamma), the disk pixels from the same frame,
  * and with TAA each texel's vector is the one of the pixel under its
  * centre.  Foveal scale per axis: the default rule (k S(k) = n, one texel
  * per pixel at the gaze, sim/ref_fov_lr.c).  Rays: the full frame's.
@@ -37,6 +37,7 @@
 #include "tdc_fov.h"
 #include "tdc_fov_link.h"
 #include "tdc_fov_lr.h"
+#include "simulator/tdc_sim_codes.h"
 #include "tdc_sim_features.h"
 
 enum { FOV_PLAIN, FOV_TAA, FOVLR_PLAIN, FOVLR_TAA };
@@ -66,6 +67,9 @@ typedef struct {
     tdc_fov_lr_t lr; /* log-rectilinear scratch (fovlr modes) */
     void *lr_arena;
     int16_t *pmv; /* the full frame's vectors (fovlr-taa) */
+    double *side; /* the footprint of each log-polar sample, display pixels (ref_fov_lod_cone) */
+    int lod;      /* TDC_FOV_LOD_* (cfg.fov_lod) */
+    int jitter;   /* TDC_FOV_JITTER_* (cfg.fov_jitter) */
     uint16_t alpha_q8, delta_q15, disk_q15;
     double last_t;
     int have_t;
@@ -90,6 +94,8 @@ static int fov_init(sim_mode_t *m, const tdc_sim_setup_t *s)
     st->alpha_q8 = (uint16_t)lround(cfg->fov_alpha * 256.0);
     st->delta_q15 = (uint16_t)ceil(cfg->fov_delta * 32768.0 - 1e-9);
     st->disk_q15 = (uint16_t)lround(cfg->fov_disk * 32768.0);
+    st->lod = cfg->fov_lod;
+    st->jitter = cfg->fov_jitter;
     const tdc_fov_config_t fc = {(uint16_t)m->w, (uint16_t)m->h, (uint8_t)IS_TAA(m->d->variant)};
     const size_t n = tdc_fov_get_size(&fc);
     if (!n || !(cfg->fov_delta > 0 && cfg->fov_delta <= 1)) {
@@ -102,7 +108,8 @@ static int fov_init(sim_mode_t *m, const tdc_sim_setup_t *s)
     st->samp = malloc((lpn + m->npx) * 3);
     st->smv = malloc((lpn + m->npx) * 2 * sizeof(int16_t));
     st->xy = malloc((lpn + m->npx) * 2 * sizeof(double));
-    if (!st->arena || !st->samp || !st->smv || !st->xy) {
+    st->side = malloc((lpn ? lpn : 1) * sizeof(double));
+    if (!st->arena || !st->samp || !st->smv || !st->xy || !st->side) {
         return -1;
     }
     int rc = tdc_fov_init(&st->st, &fc, st->arena, n);
@@ -138,9 +145,11 @@ static void lr_samples(sim_mode_t *m, fov_state_t *st, tdc_source_t *src, const 
     ref_fov_lr_axis_t ax, ay;
     ref_fov_lr_axis(&ax, p->gaze_x_q8 / 256.0, p->lr_k_q4[0] / 16.0, m->w, g->lp_w);
     ref_fov_lr_axis(&ay, p->gaze_y_q8 / 256.0, p->lr_k_q4[1] / 16.0, m->h, g->lp_h);
-    double *sat = ref_fov_lr_sat(m->render, (size_t)m->w * 3, m->w, m->h);
+    double lut[3 * 256]; /* averages in linear light, encoded back as the source encodes */
+    ref_fov_lin_lut(src->gamma, lut);
+    double *sat = ref_fov_lr_sat(m->render, (size_t)m->w * 3, m->w, m->h, lut);
     if (sat) {
-        ref_fov_lr_buffer(sat, m->w, m->h, &ax, &ay, st->samp, (size_t)g->lp_w * 3, NULL);
+        ref_fov_lr_buffer(sat, m->w, m->h, &ax, &ay, st->samp, (size_t)g->lp_w * 3, NULL, src->gamma);
         free(sat);
     }
     size_t k = (size_t)g->lp_w * g->lp_h;
@@ -161,6 +170,47 @@ static void lr_samples(sim_mode_t *m, fov_state_t *st, tdc_source_t *src, const 
         k += span;
     }
     m->res->render_s += tdc_sim_now() - t0; /* the sender's summed-area pass */
+}
+
+/* The footprint prefilter of the photograph and procedural sources (the
+ * Embree renderer's texture LOD does it in its own FOVEATED mode): each of
+ * the nlp log-polar samples in samp becomes the mean linear light of the
+ * picture over the square of side side[k] display pixels centred on its
+ * position xy[2k..] (ref_fov_lr_box_mean: a summed-area table, bilinear inside each
+ * pixel, so the box moves continuously with the jittered position), encoded
+ * as the source encodes.  The picture: the source at every pixel centre,
+ * spp rays each, as full rate renders it.  It stands for a texture's
+ * prefiltered pyramid, which a renderer builds once per texture: its time
+ * is the render time's, its evaluations are not rays (the primary rays are
+ * the samples' own, counted by the caller).  Disk samples are left alone.
+ * Shared with fov-trm (tdc_sim_mode.h). */
+int tdc_sim_fov_prefilter(sim_mode_t *m, tdc_source_t *src, double t, int spp, const double *xy, const double *side,
+                          size_t nlp, uint8_t *samp)
+{
+    if (!(src->frame && src->frame(src, t, 0.0, 0.0, spp, m->render, m->scratch) == 0)) {
+        for (int y = 0; y < m->h; y++) {
+            for (int x = 0; x < m->w; x++) {
+                m->xy[2 * ((size_t)y * m->w + x)] = x + 0.5;
+                m->xy[2 * ((size_t)y * m->w + x) + 1] = y + 0.5;
+            }
+        }
+        src->samples(src, t, (int)m->npx, m->xy, spp, m->render, NULL, 0.0, TDC_MV_SURFACE);
+    }
+    double lut[3 * 256];
+    ref_fov_lin_lut(src->gamma, lut);
+    double *sat = ref_fov_lr_sat(m->render, (size_t)m->w * 3, m->w, m->h, lut);
+    if (!sat) {
+        return -1;
+    }
+    for (size_t k = 0; k < nlp; k++) {
+        double c[3];
+        ref_fov_lr_box_mean(sat, m->w, m->h, xy[2 * k], xy[2 * k + 1], side[k], c);
+        for (int ch = 0; ch < 3; ch++) {
+            samp[3 * k + ch] = tdc_sim_encode_code(c[ch], src->gamma[ch]);
+        }
+    }
+    free(sat);
+    return 0;
 }
 
 static int fov_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32_t lf)
@@ -196,12 +246,8 @@ static int fov_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32
         return rc;
     }
     double jx = 0, jy = 0;
-    if (taa && !lr) { /* Halton(2,3) jitter of the log-polar samples (thesis §4.3.2) */
-        double hx = 0, hy = 0;
-        for (uint32_t k = m->frame + 1, b = 2; k; k /= 2, b *= 2) hx += (double)(k % 2) / b;
-        for (uint32_t k = m->frame + 1, b = 3; k; k /= 3, b *= 3) hy += (double)(k % 3) / b;
-        jx = hx - 0.5;
-        jy = hy - 0.5;
+    if (taa && !lr) { /* Halton(2,3) jitter of the log-polar samples (thesis §4.3.2; how far: st->jitter) */
+        ref_fov_halton(m->frame, &jx, &jy);
     }
     const size_t nlp = (size_t)(g.lp_w - g.u0) * g.lp_h, n = nlp + tdc_fov_disk_pixels(&g);
     double t0 = tdc_sim_now();
@@ -209,7 +255,7 @@ static int fov_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32
         lr_samples(m, st, src, &p, &g, t, dt, spp, taa);
     } else if (src->foveated) {
         const tdc_fov_sampling_t fs = {p.gaze_x_q8 / 256.0, p.gaze_y_q8 / 256.0, p.alpha_q8 / 256.0,
-                                       st->delta_q15 / 32768.0, p.disk_q15 / 32768.0, jx, jy};
+                                       st->delta_q15 / 32768.0, p.disk_q15 / 32768.0, jx, jy, st->jitter};
         uint64_t rays = 0;
         rc = src->foveated(src, &fs, t, dt, st->samp, taa ? st->smv : NULL, &rays);
         if (tdc_sim_stage(m, "renderer (foveated frame)", rc ? TDC_ERR_ARG : TDC_OK)) {
@@ -222,12 +268,9 @@ static int fov_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32
                                      p.disk_q15 / 32768.0, g.lp_w, g.lp_h, 0, 0, 0};
         ref_fov_geom_t rg;
         ref_fov_geom(&rg, m->w, m->h, &rp);
-        size_t k = 0;
-        for (int j = 0; j < g.lp_h; j++) {
-            for (int i = g.u0; i < g.lp_w; i++, k++) {
-                ref_fov_from_lp(&rg, fmax(i + jx, 0.0), j + jy, &st->xy[2 * k], &st->xy[2 * k + 1]);
-            }
-        }
+        const int lod = st->lod;
+        double *side = lod != TDC_FOV_LOD_OFF ? st->side : NULL;
+        size_t k = ref_fov_lp_samples(&rg, g.u0, jx, jy, st->jitter, lod, st->xy, side);
         for (int j = 0; j < m->h; j++) {
             int32_t x0;
             const uint32_t span = tdc_fov_disk_span(&g, j, &x0);
@@ -237,6 +280,9 @@ static int fov_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32
             }
         }
         src->samples(src, t, (int)n, st->xy, spp, st->samp, taa ? st->smv : NULL, dt, TDC_MV_SURFACE);
+        if (lod != TDC_FOV_LOD_OFF && tdc_sim_fov_prefilter(m, src, t, spp, st->xy, st->side, nlp, st->samp) != 0) {
+            return tdc_sim_stage(m, "fov prefilter (out of memory)", TDC_ERR_ARG);
+        }
         m->res->rays += (uint64_t)n * (uint64_t)(spp > 0 ? spp : 1);
     }
     if (!lr) { /* (tdc_sim_render_full counted the fovlr render) */
@@ -275,6 +321,7 @@ static void fov_free(sim_mode_t *m)
         free(st->samp);
         free(st->smv);
         free(st->xy);
+        free(st->side);
         free(st->lr_arena);
         free(st->pmv);
         free(st);

@@ -1,6 +1,7 @@
 /* tdc_sim_modes.c - the mode families, the run defaults and which parts of the data path exist. */
 #include <string.h>
 
+#include "ref_fov.h" /* TDC_FOV_LOD_*, TDC_FOV_JITTER_* */
 #include "simulator/tdc_sim.h"
 #include "simulator/tdc_sim_mode.h"
 #include "tdc_sim_features.h"
@@ -14,6 +15,7 @@ static const tdc_sim_family_t *const k_families[] = {
     &tdc_sim_family_asm,
     &tdc_sim_family_layers,
     &tdc_sim_family_fov,
+    &tdc_sim_family_fovtrm,
 };
 
 #define MAX_MODES 64
@@ -85,4 +87,6 @@ void tdc_sim_default_config(tdc_sim_config_t *c)
     c->fov_alpha = 4.0;
     c->fov_delta = 0.555;
     c->fov_disk = 0.12443;
+    c->fov_lod = TDC_FOV_LOD_FOOTPRINT;
+    c->fov_jitter = TDC_FOV_JITTER_PIXEL;
 }

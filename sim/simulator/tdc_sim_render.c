@@ -325,7 +325,7 @@ static int rs_foveated(tdc_source_t *s, const tdc_fov_sampling_t *f, double t, d
             return -1;
         }
     }
-    const tdc_render_fov_t rf = {f->gaze_x, f->gaze_y, f->alpha, f->delta, f->disk, f->jx, f->jy};
+    const tdc_render_fov_t rf = {f->gaze_x, f->gaze_y, f->alpha, f->delta, f->disk, f->jx, f->jy, f->jitter};
     int nlp = 0, nd = 0;
     if (tdc_render_set_foveation(c->fov, &rf, &nlp, &nd) != 0 || (size_t)nlp + (size_t)nd > cap) {
         return -1;

@@ -52,6 +52,7 @@ typedef struct {
     double gaze_x, gaze_y; /* display pixels */
     double alpha, delta, disk;
     double jx, jy; /* jitter of the log-polar samples (Halton where TAA follows) */
+    int jitter;    /* how it moves a sample: TDC_FOV_JITTER_* (ref_fov_lp_jitter) */
 } tdc_fov_sampling_t;
 
 struct tdc_source {

@@ -26,6 +26,7 @@
 #include <time.h>
 
 #include "tdc_fov.h"
+#include "ref_fov.h"
 #include "ref_fov_lr.h"
 #include "tdc_fov_link.h"
 #include "tdc_fov_lr.h"
@@ -48,6 +49,44 @@ static void params(tdc_fov_params_t *p, int W, int H, double gx, double gy, doub
     p->zero = 0;
 }
 
+/* The log-polar samples some display pixel reads: the remap's taps (eq. 4.4's
+ * columns [u - 2 sigma, u + 2 sigma], at least floor(u) and floor(u) + 1,
+ * rows floor(v) and the next, periodic) from the double reference's eq. 2.2
+ * at every pixel outside the disk's blend band.  Samples of [u0, w) x h that
+ * no pixel reads lie off the screen (the buffer covers the circle of radius
+ * R): traced and sent today, the share this prints is what a sender that
+ * skipped them would save. */
+static double lp_read_share(int W, int H, double gx, double gy, const tdc_fov_geom_t *fg)
+{
+    ref_fov_params_t rp = {gx * W, gy * H, 4.0, 0.12443, fg->lp_w, fg->lp_h, 0, 0, 0};
+    ref_fov_geom_t g;
+    ref_fov_geom(&g, W, H, &rp);
+    unsigned char *hit = calloc((size_t)fg->lp_w * fg->lp_h, 1);
+    if (!hit) return -1;
+    for (int j = 0; j < H; j++) {
+        for (int i = 0; i < W; i++) {
+            const double x = i + 0.5, y = j + 0.5, r = hypot(x - g.cx, y - g.cy);
+            if (r <= g.r_disk - 4) continue; /* the disk only */
+            double u, v;
+            ref_fov_to_lp(&g, x, y, &u, &v);
+            const double sig = fmin(fmax(ref_fov_sigma_u(&g, r, u), 0.5), 2.0);
+            int lo = (int)ceil(u - 2 * sig), hi = (int)floor(u + 2 * sig);
+            lo = lo > (int)floor(u) ? (int)floor(u) : lo;
+            hi = hi < (int)floor(u) + 1 ? (int)floor(u) + 1 : hi;
+            const int j0 = (int)floor(v) % g.lp_h, j1 = (j0 + 1) % g.lp_h;
+            for (int t = lo; t <= hi; t++) {
+                const int c = t < g.u0 ? g.u0 : (t > g.lp_w - 1 ? g.lp_w - 1 : t);
+                hit[(size_t)j0 * g.lp_w + c] = hit[(size_t)j1 * g.lp_w + c] = 1;
+            }
+        }
+    }
+    long n = 0;
+    for (int j = 0; j < g.lp_h; j++)
+        for (int c = g.u0; c < g.lp_w; c++) n += hit[(size_t)j * g.lp_w + c];
+    free(hit);
+    return (double)n / ((double)(g.lp_w - g.u0) * g.lp_h);
+}
+
 static int costs(void)
 {
     const tdc_panel_t *panels[] = {
@@ -55,8 +94,8 @@ static int costs(void)
         TDC_PANEL_LIST(P)};
     int miss = 0;
     printf("rays and link bytes against full rate (alpha 4, delta 0.555, disk 12.443 %%); goal <= 35 %% each\n");
-    printf("%-10s %-10s %-10s %7s %7s %9s %10s %9s %9s %9s\n", "panel", "size", "gaze", "l", "u0", "disk px", "rays",
-           "rays %", "fov B %", "taa B %");
+    printf("%-10s %-10s %-10s %7s %7s %9s %10s %9s %9s %9s %8s %9s\n", "panel", "size", "gaze", "l", "u0", "disk px",
+           "rays", "rays %", "fov B %", "taa B %", "lp read", "rays % r");
     for (unsigned k = 0; k < sizeof panels / sizeof panels[0]; k++) {
         const int W = panels[k]->width, H = panels[k]->height;
         static const double gz[][2] = {{0.5, 0.5}, {0.3, 0.4}};
@@ -71,9 +110,10 @@ static int costs(void)
             const double fb = HDR_BYTES + tdc_fov_payload_bytes(&fg, 0), tb = HDR_BYTES + tdc_fov_payload_bytes(&fg, 1);
             char sz[24];
             snprintf(sz, sizeof sz, "%dx%d", W, H);
-            printf("%-10s %-10s %-10s %7u %7u %9.0f %10.0f %8.2f%% %8.2f%% %8.2f%%\n", panels[k]->name, sz,
-                   g ? "(.3W,.4H)" : "centre", fg.l, fg.u0, dk, rays, 100 * rays / (W * H), 100 * fb / full_b,
-                   100 * tb / full_b);
+            const double rd = lp_read_share(W, H, gz[g][0], gz[g][1], &fg);
+            printf("%-10s %-10s %-10s %7u %7u %9.0f %10.0f %8.2f%% %8.2f%% %8.2f%% %7.1f%% %8.2f%%\n", panels[k]->name,
+                   sz, g ? "(.3W,.4H)" : "centre", fg.l, fg.u0, dk, rays, 100 * rays / (W * H), 100 * fb / full_b,
+                   100 * tb / full_b, 100 * rd, 100 * (lps * rd + dk) / (W * H));
             miss |= rays / (W * H) > 0.35 || tb / full_b > 0.35;
         }
     }
@@ -145,7 +185,7 @@ static void throughput(int lr, double bw)
     /* variants: fov, fov-taa (gaze still: the radial table and the column
      * reciprocals are built once), fov with the gaze moving 1 px per frame
      * (both rebuilt every frame, as with an eye tracker), fov with the C tap
-     * kernel instead of AVX2; the log-rectilinear kind with and without TAA */
+     * kernels (geometry and taps) instead of AVX2; the log-rectilinear kind with and without TAA */
     typedef struct {
         int taa, move, simd;
         const char *name;

@@ -8,11 +8,20 @@
  * 0 / 2^15 - 1 / random, descriptors at the buffer's very end (the last
  * sample of the last row: the SIMD kernels' C fall-back) and at its start,
  * every row length 1..40 and then random ones.
+ *
+ * fov_geom: the geometry pass (tdc_fov_geom_row_fn) of a real stage's
+ * frame (tdc_fov_geom_args: its radial table and reciprocals) on random
+ * displays up to 600 x 600, gazes on, at the corners of and outside the
+ * screen, alpha 1..8, disks 0..1, TAA (the nearest samples) on or off, a
+ * random row and span [x0, x1) of it: every output (descriptors, nearest
+ * samples, colours, blend weights) bit for bit.
  */
 #include <string.h>
 
 #include "checkasm.h"
+#include "tdc_fov.h"
 #include "tdc_fov_kernels.h"
+#include "tdc_fov_link.h"
 
 #define FMAXN 2048u /* pixels per row */
 #define FLPW 600u
@@ -127,6 +136,121 @@ static void bench_tap2(const checkasm_kernel_t *kr)
 
 static const checkasm_family_t fov_tap2 = {"fov_tap2", check_tap2, bench_tap2};
 
+
+/* ---- fov_geom ---- */
+#define GMAXW 600u
+static uint64_t g_stage_mem[TDC_FOV_MEM_BYTES(GMAXW, GMAXW, 0) / 8u + 1u] CHECKASM_BIG;
+static uint32_t g_go[2][4][GMAXW] CHECKASM_BIG; /* off0, off1, wf, ij of the C and the optimised row */
+static uint16_t g_ggen[2][3u * GMAXW] CHECKASM_BIG, g_gbw[2][GMAXW] CHECKASM_BIG; /* gen (3 per pixel), b */
+
+typedef struct {
+    tdc_fov_t st;
+    tdc_fov_params_t p;
+    fov_lp_t l;
+} geom_case_t;
+
+static int geom_case(geom_case_t *c, int bench)
+{
+    const uint32_t W = bench ? 600u : 16u + checkasm_rand_below(GMAXW - 15u);
+    const uint32_t H = bench ? 600u : 16u + checkasm_rand_below(GMAXW - 15u);
+    const tdc_fov_config_t cfg = {(uint16_t)W, (uint16_t)H, 0};
+    if (tdc_fov_init(&c->st, &cfg, g_stage_mem, sizeof g_stage_mem) != TDC_OK) {
+        return checkasm_fail("fov_geom: stage %ux%u does not fit", (unsigned)W, (unsigned)H);
+    }
+    tdc_fov_params_t *p = &c->p;
+    memset(p, 0, sizeof *p);
+    const uint32_t where = checkasm_rand_below(8u);
+    const int32_t gx = (int32_t)(where == 0u ? 0u : where == 1u ? W * 256u : checkasm_rand_below(W * 256u));
+    const int32_t gy = (int32_t)(where == 2u ? H * 256u : checkasm_rand_below(H * 256u));
+    p->gaze_x_q8 = bench ? (int32_t)(W * 115u) : (where == 3u ? gx - (int32_t)(W * 200u) : gx); /* 3: outside */
+    p->gaze_y_q8 = bench ? (int32_t)(H * 128u) : gy;
+    p->alpha_q8 = (uint16_t)(bench ? 1024u : 256u + checkasm_rand_below(7u * 256u + 1u));
+    const uint32_t dk = checkasm_rand_below(6u);
+    p->disk_q15 = (uint16_t)(bench ? 4077u : dk == 0u ? 0u : dk == 1u ? 32768u : checkasm_rand_below(16384u));
+    p->lp_w = tdc_fov_lp_size(18187, (uint16_t)W);
+    p->lp_h = tdc_fov_lp_size(18187, (uint16_t)H);
+    c->l.lp_w = p->lp_w;
+    c->l.lp_h = p->lp_h;
+    c->l.stride = (size_t)p->lp_w * 3u + checkasm_rand_below(8u);
+    c->l.bytes = (size_t)(p->lp_h - 1u) * c->l.stride + (size_t)p->lp_w * 3u;
+    for (size_t k = 0; k < c->l.bytes; k++) {
+        g_lp[k] = (uint8_t)checkasm_rand();
+    }
+    return 0;
+}
+
+static void geom_bufs(tdc_fov_geom_args_t *a, unsigned side)
+{
+    a->off0 = g_go[side][0];
+    a->off1 = g_go[side][1];
+    a->wf = g_go[side][2];
+    a->ij = g_go[side][3];
+    a->gen = g_ggen[side];
+    a->b = g_gbw[side];
+}
+
+static void check_geom(const checkasm_kernel_t *kr)
+{
+    const uint32_t runs = checkasm_runs(400u);
+    geom_case_t c;
+    for (uint32_t run = 0; run < runs && !checkasm_failed(); run++) {
+        if (run % 20u == 0u && geom_case(&c, 0)) {
+            return;
+        }
+        const int32_t W = c.st.cfg.width, y = (int32_t)checkasm_rand_below(c.st.cfg.height);
+        tdc_fov_geom_t g;
+        tdc_fov_geom_args_t a;
+        if (tdc_fov_geom_args(&c.st, &c.p, g_lp, c.l.stride, y, &g, &a) != TDC_OK) {
+            checkasm_fail("fov_geom run %u: parameters refused", (unsigned)run);
+            return;
+        }
+        a.taa = (int)checkasm_rand_below(2u);
+        const int32_t x0 = run % 4u ? (int32_t)checkasm_rand_below((uint32_t)W) : 0;
+        const int32_t x1 = run % 4u ? x0 + (int32_t)checkasm_rand_below((uint32_t)(W - x0) + 1u) : W;
+        memset(g_go, 0xA5, sizeof g_go);
+        memset(g_ggen, 0xA5, sizeof g_ggen);
+        memset(g_gbw, 0xA5, sizeof g_gbw);
+        geom_bufs(&a, 0);
+        CHECKASM_REF(tdc_fov_geom_row_fn, kr)(&a, x0, x1);
+        geom_bufs(&a, 1);
+        CHECKASM_OPT(tdc_fov_geom_row_fn, kr)(&a, x0, x1);
+        static const char *const names[] = {"off0", "off1", "wf", "ij", "gen", "gen", "gen", "b"};
+        for (unsigned o = 0; o < 8u; o++) {
+            const int u32 = o < 4u;
+            for (int32_t x = x0; x < x1; x++) {
+                const uint32_t vc = u32 ? g_go[0][o][x] : o < 7u ? g_ggen[0][3 * x + (int32_t)(o - 4u)] : g_gbw[0][x];
+                const uint32_t vo = u32 ? g_go[1][o][x] : o < 7u ? g_ggen[1][3 * x + (int32_t)(o - 4u)] : g_gbw[1][x];
+                if (vc != vo) {
+                    checkasm_fail("fov_geom run %u: %ux%u gaze (%d, %d)/256 alpha %u/256 disk %u/32768 taa %d row %d "
+                                  "[%d, %d): %s[%d] %08x vs %08x",
+                                  (unsigned)run, (unsigned)W, (unsigned)c.st.cfg.height, (int)c.p.gaze_x_q8,
+                                  (int)c.p.gaze_y_q8, (unsigned)c.p.alpha_q8, (unsigned)c.p.disk_q15, a.taa, (int)y,
+                                  (int)x0, (int)x1, names[o], (int)x, (unsigned)vc, (unsigned)vo);
+                    return;
+                }
+            }
+        }
+    }
+}
+
+static void bench_geom(const checkasm_kernel_t *kr)
+{
+    geom_case_t c;
+    if (geom_case(&c, 1)) {
+        return;
+    }
+    tdc_fov_geom_t g;
+    tdc_fov_geom_args_t a;
+    if (tdc_fov_geom_args(&c.st, &c.p, g_lp, c.l.stride, 120, &g, &a) != TDC_OK) {
+        return;
+    }
+    geom_bufs(&a, 0);
+    /* a 600 px row 180 px above the gaze of a 600 x 600 display (alpha 4, 12.4 % disk) */
+    CHECKASM_BENCH(kr, "600 px", 600u, tdc_fov_geom_row_fn, f, f(&a, 0, 600));
+}
+
+static const checkasm_family_t fov_geom = {"fov_geom", check_geom, bench_geom};
+
 /* Helium boards (TDC_TRM_MVE, their start-up enables the MVE unit): always
  * runnable there; elsewhere the MVE name is the C kernel and is skipped. */
 static int mve_available(void)
@@ -141,6 +265,7 @@ static int mve_available(void)
 static const checkasm_kernel_t g_fov_kernels[] = {
     CHECKASM_KERNEL(&fov_tap2, "avx2", tdc_fov_avx2_available, tdc_fov_tap2_row_c, tdc_fov_tap2_row_avx2),
     CHECKASM_KERNEL(&fov_tap2, "mve", mve_available, tdc_fov_tap2_row_c, tdc_fov_tap2_row_mve),
+    CHECKASM_KERNEL(&fov_geom, "avx2", tdc_fov_avx2_available, tdc_fov_geom_row_c, tdc_fov_geom_row_avx2),
 };
 
 const checkasm_module_t checkasm_fov = {"fov", g_fov_kernels, sizeof g_fov_kernels / sizeof g_fov_kernels[0]};

@@ -17,7 +17,8 @@
  * Checked on every event, beyond the sanitizers:
  *  - a buffer changes only with an accepted packet of its kind and eye
  *    (a rejected packet never touches frame state; FOVEATED writes the
- *    full frame, the log-polar buffer and its vectors);
+ *    full frame -- with FOV_REDUCED the reduced frame, on the reduced
+ *    grid, without vectors --, the log-polar buffer and its vectors);
  *  - an accepted FOVEATED packet leaves a foveation header whose geometry
  *    the stage accepts; the refusal reasons add up to the FOVEATION errors;
  *  - error counters equal the error events seen, packets_ok the packet events;
@@ -194,13 +195,20 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                 abort();
             }
             if (ev.kind == TDC_LINK_KIND_FOVEATED) {
+                /* the slot's grid: the panel, or a TRM stream's reduced grid */
+                const int red = (ev.flags & TDC_LINK_PKT_FOV_REDUCED) != 0;
+                uint32_t rw = 0, rh = 0;
+                tdc_link_reduced_size(&dec, &rw, &rh);
                 const tdc_fov_hdr_t *fh = tdc_link_fov(&dec, ev.eye);
                 tdc_fov_geom_t g;
-                if (!fh || tdc_fov_geom(&g, FW, FH, &fh->p) != TDC_OK || g.l != fh->g.l || g.u0 != fh->g.u0 ||
-                    g.r_disk2_q16 != fh->g.r_disk2_q16 || g.log2_r2max_q24 != fh->g.log2_r2max_q24) {
+                if (!fh || (red && (!(tdc_link_stream(&dec)->flags & TDC_LINK_STREAM_REDUCED) || ev.width != rw ||
+                                    ev.height != rh || (fh->flags & TDC_FOV_FLAG_MV))) ||
+                    tdc_fov_geom(&g, red ? (uint16_t)rw : FW, red ? (uint16_t)rh : FH, &fh->p) != TDC_OK ||
+                    g.l != fh->g.l || g.u0 != fh->g.u0 || g.r_disk2_q16 != fh->g.r_disk2_q16 ||
+                    g.log2_r2max_q24 != fh->g.log2_r2max_q24) {
                     abort();
                 }
-                take_snap(TDC_LINK_KIND_FULL, ev.eye); /* the disk pixels */
+                take_snap(red ? TDC_LINK_KIND_REDUCED : TDC_LINK_KIND_FULL, ev.eye); /* the disk pixels */
                 take_snap(SLOT_FOV_LP, ev.eye);
                 take_snap(SLOT_FOV_MV, ev.eye);
             } else {

@@ -3,7 +3,8 @@
  * (tests/fuzz/corpus/): valid streams for the harness's 19 x 13 stereo
  * panel in every pixel format and stream mode (and the mono variants for
  * the harness's mono build), plus damaged variants; foveated streams
- * (stereo with motion vectors, mono without) with damaged variants.
+ * (stereo with motion vectors, mono without) with damaged variants, and
+ * foveated TRM streams (FOVEATED packets in both slots).
  * Byte 0 of each file is the harness's mode byte (chunking, CRC repair).
  * Usage: make_seeds OUTDIR      (mk/link.mk: make fuzz-seeds)
  */
@@ -104,6 +105,72 @@ static int foveated_seeds(const char *dir)
     return bad;
 }
 
+/* Foveated TRM streams (r = 3/4: the 10 x 7 reduced grid of r = 1/2 has a
+ * log-polar buffer below the stage's minimum side): 6 frames, every slot
+ * foveated (FOV_REDUCED on the reduced ones), no vectors (refused in TRM
+ * streams); mono and stereo, and a stereo one with a reduced packet's
+ * gaze byte flipped, CRCs repaired by the harness. */
+static int foveated_trm_seeds(const char *dir)
+{
+    static uint8_t samples[19 * 13 * 6];
+    for (size_t i = 0; i < sizeof samples; i++) {
+        samples[i] = (uint8_t)(i * 53u + 7u);
+    }
+    int bad = 0;
+    for (int eyes = 1; eyes <= 2; eyes++) {
+        tdc_link_stream_info_t in;
+        memset(&in, 0, sizeof in);
+        in.flags = TDC_LINK_STREAM_FOVEATED | TDC_LINK_STREAM_REDUCED;
+        in.r_num = 3;
+        in.r_den = 4;
+        in.width = 19;
+        in.height = 13;
+        in.eyes = (uint8_t)eyes;
+        in.refresh_hz = 90;
+        tdc_link_encoder_t enc;
+        tdc_link_encoder_init(&enc, 23, &in);
+        size_t n = tdc_link_encode_stream(&enc, stream, sizeof stream), reduced_at = 0;
+        for (uint32_t f = 0; f < 6; f++) {
+            for (uint32_t e = 0; e < (uint32_t)eyes; e++) {
+                const int red = tdc_link_trm_kind(f, e) == TDC_LINK_KIND_REDUCED;
+                const uint16_t gw = red ? (uint16_t)TDC_REDUCED_DIM(19, 3, 4) : 19;
+                const uint16_t gh = red ? (uint16_t)TDC_REDUCED_DIM(13, 3, 4) : 13;
+                tdc_fov_params_t p;
+                memset(&p, 0, sizeof p);
+                p.gaze_x_q8 = (int32_t)(f * 60u + e * 20u) * gw;
+                p.gaze_y_q8 = (int32_t)(100u + f * 25u) * gh;
+                p.alpha_q8 = (uint16_t)(256u + 384u * (f % 3u));
+                p.disk_q15 = (uint16_t)(f * 2500u);
+                p.lp_w = tdc_fov_lp_size(18187, gw);
+                p.lp_h = tdc_fov_lp_size(18187, gh);
+                if (red && !reduced_at) {
+                    reduced_at = n;
+                }
+                const size_t k = tdc_link_encode_foveated_slot(&enc, stream + n, sizeof stream - n,
+                                                               red ? TDC_LINK_KIND_REDUCED : TDC_LINK_KIND_FULL, e, f,
+                                                               &p, 18187, samples, NULL, NULL);
+                if (!k) {
+                    fprintf(stderr, "make_seeds: foveated TRM encoding failed\n");
+                    return 1;
+                }
+                n += k;
+            }
+        }
+        const uint8_t mono = eyes == 1 ? 0x20 : 0;
+        char name[96];
+        snprintf(name, sizeof name, "fov-trm-%s-whole", eyes == 1 ? "mono" : "stereo");
+        bad |= write_seed(dir, name, mono, stream, n);
+        if (eyes == 2) {
+            bad |= write_seed(dir, "fov-trm-stereo-chunked", 0x05, stream, n);
+            static uint8_t d[1 << 18];
+            memcpy(d, stream, n);
+            d[reduced_at + TDC_LINK_HEADER_BYTES + 2] ^= 0x01; /* the reduced slot's gaze x */
+            bad |= write_seed(dir, "fov-trm-stereo-gaze-repair", 0x80, d, n);
+        }
+    }
+    return bad;
+}
+
 int main(int argc, char **argv)
 {
     if (argc != 2) {
@@ -200,5 +267,6 @@ int main(int argc, char **argv)
         }
     }
     bad |= foveated_seeds(argv[1]);
+    bad |= foveated_trm_seeds(argv[1]);
     return bad;
 }

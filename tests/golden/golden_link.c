@@ -105,7 +105,10 @@ static void run(tdc_golden_ctx_t *ctx, const char *vector, size_t n, size_t chun
             case TDC_LINK_KIND_FULL: h = tdc_fnv1a64(h, g_full[e], sizeof g_full[e]); break;
             case TDC_LINK_KIND_FOVEATED: { /* the disk in the frame, the log-polar samples, vectors, geometry */
                 const tdc_fov_hdr_t *fh = tdc_link_fov(&g_dec, e);
-                h = tdc_fnv1a64(h, g_full[e], sizeof g_full[e]);
+                /* a TRM stream's reduced slot: the disk in the reduced frame */
+                h = (ev.flags & TDC_LINK_PKT_FOV_REDUCED)
+                        ? fold_u32(tdc_fnv1a64(h, g_reduced[e], (size_t)ev.width * ev.height * 3u), ev.flags)
+                        : tdc_fnv1a64(h, g_full[e], sizeof g_full[e]);
                 h = tdc_fnv1a64(h, g_fov_lp[e], sizeof g_fov_lp[e]);
                 h = fold_i16s(h, g_fov_mv[e], sizeof g_fov_mv[e] / sizeof g_fov_mv[e][0]);
                 h = fh ? fold_u32(fold_u32(h, fh->g.l), fh->g.u0) : TDC_GOLDEN_FAILED;
@@ -201,6 +204,72 @@ static size_t gen_foveated(int damaged)
     return n;
 }
 
+/* A foveated TRM stream (stereo, r = 1/2: the 23 x 14 reduced grid):
+ * every slot a FOVEATED packet (FOV_REDUCED in the reduced slots, its
+ * parameters on the reduced grid) but frame 4's reduced one, a plain
+ * REDUCED packet; the gaze moving over and off the screen, alpha 1/4/8,
+ * disks 0..1; before frame 3's eye-0 reduced picture a refused one (the
+ * reduced slot's flag on a full-size packet, header CRC valid: DIMENSIONS),
+ * folded into the next checksum. */
+static size_t gen_foveated_trm(void)
+{
+    tdc_link_stream_info_t in;
+    for (size_t i = 0; i < sizeof in; i++) {
+        ((uint8_t *)&in)[i] = 0;
+    }
+    in.flags = TDC_LINK_STREAM_FOVEATED | TDC_LINK_STREAM_REDUCED;
+    in.r_num = 1;
+    in.r_den = 2;
+    in.width = LW;
+    in.height = LH;
+    in.eyes = 2;
+    in.refresh_hz = 90;
+    tdc_link_encoder_t enc;
+    tdc_link_encoder_init(&enc, 0x31, &in);
+    size_t n = tdc_link_encode_stream(&enc, g_stream, sizeof g_stream);
+    static const uint16_t alpha[3] = {256, 1024, 2048}, disk[4] = {0, 4077, 12000, 32768};
+    static uint8_t samples[2 * LW * LH * 3];
+    for (uint32_t f = 0; f < 6; f++) {
+        for (uint32_t e = 0; e < 2; e++) {
+            const int red = tdc_link_trm_kind(f, e) == TDC_LINK_KIND_REDUCED;
+            const uint32_t gw = red ? TDC_REDUCED_DIM(LW, 1u, 2u) : LW, gh = red ? TDC_REDUCED_DIM(LH, 1u, 2u) : LH;
+            tdc_link_gen_rgb(samples, gw, 2u * gh, f, e, 91u);
+            if (red && f == 4) {
+                n += tdc_link_encode_frame(&enc, g_stream + n, sizeof g_stream - n, TDC_LINK_KIND_REDUCED, e, f,
+                                           TDC_PIXFMT_RGB888, samples, gw, gh, gw * 3u);
+                continue;
+            }
+            tdc_fov_params_t p;
+            p.transform = TDC_FOV_KERNEL_LOG_POLAR;
+            p.lr_k_q4[0] = p.lr_k_q4[1] = 0;
+            p.zero = 0;
+            p.gaze_x_q8 = (int32_t)((f * 60u + e * 15u) * gw) - 20 * (int32_t)gw;
+            p.gaze_y_q8 = (int32_t)((110u + f * 20u) * gh);
+            p.alpha_q8 = alpha[(f + e) % 3u];
+            p.disk_q15 = disk[(f + 2u * e) % 4u];
+            p.lp_w = tdc_fov_lp_size(18187, (uint16_t)gw);
+            p.lp_h = tdc_fov_lp_size(18187, (uint16_t)gh);
+            if (red && f == 3 && e == 0) {
+                /* the full slot's encoding with the reduced slot's flag */
+                const size_t at = n;
+                tdc_fov_params_t q = p;
+                q.lp_w = tdc_fov_lp_size(18187, LW);
+                q.lp_h = tdc_fov_lp_size(18187, LH);
+                n += tdc_link_encode_foveated(&enc, g_stream + n, sizeof g_stream - n, e, f, &q, 18187, samples, NULL,
+                                              NULL);
+                tdc_link_header_t hh;
+                (void)tdc_link_header_unpack(g_stream + at, &hh);
+                hh.flags = TDC_LINK_PKT_FOV_REDUCED;
+                tdc_link_header_pack(g_stream + at, &hh);
+            }
+            n += tdc_link_encode_foveated_slot(&enc, g_stream + n, sizeof g_stream - n,
+                                               red ? TDC_LINK_KIND_REDUCED : TDC_LINK_KIND_FULL, e, f, &p, 18187,
+                                               samples, NULL, NULL);
+        }
+    }
+    return n;
+}
+
 static void name2(char *out, const char *a, const char *b)
 {
     while (*a) {
@@ -249,4 +318,8 @@ void tdc_golden_link(tdc_golden_ctx_t *ctx)
         n = gen_foveated(damaged);
         run(ctx, damaged ? "foveated-refused" : "foveated", n, damaged ? 5 : 4096);
     }
+    /* Foveated TRM (issue 14 item 5): both slots foveated, fed 11 bytes at a time. */
+    init_decoder();
+    n = gen_foveated_trm();
+    run(ctx, "foveated-trm", n, 11);
 }

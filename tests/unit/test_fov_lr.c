@@ -11,7 +11,14 @@
  *    the double one; the default k gives one texel per pixel at the gaze;
  *  - the summed-area buffer conserves the picture's integral and is exact
  *    on a uniform field; stripes finer than a texel average out in the
- *    periphery (what area averaging is for);
+ *    periphery (what area averaging is for); the same in linear light (the
+ *    simulator's sender): every code of a uniform field exact under any
+ *    gamma, stripes to their linear-light mean;
+ *  - the footprint prefilter of the kernel log-polar samples (the same box,
+ *    ref_fov_lr_box_mean, over ref_fov_lod_cone's side): a uniform field
+ *    exact for every code, stripes finer than the box to their mean, no
+ *    jump when the box moves; the footprint of ref_fov_lp_samples is the
+ *    cell of the exact inverse of eq. 2.2 (central differences);
  *  - a uniform field remaps to exactly that field (any gaze, corners,
  *    outside, with TAA and random motion);
  *  - bad parameters (unknown transform, k out of range, alpha != 1, no
@@ -28,6 +35,7 @@
 
 #include "fov_fixture.h"
 #include "ref_fov_lr.h"
+#include "simulator/tdc_sim_codes.h"
 #include "tdc_fov_lr.h"
 
 #define W 160
@@ -91,9 +99,9 @@ static void lr_inputs(const ref_fov_geom_t *g, double t, uint8_t *lp, uint8_t *i
             fov_picture(i + 0.5 - t, j + 0.5, 0, img + ((size_t)j * g->width + i) * 3);
         }
     }
-    double *sat = ref_fov_lr_sat(img, (size_t)g->width * 3, g->width, g->height);
+    double *sat = ref_fov_lr_sat(img, (size_t)g->width * 3, g->width, g->height, NULL);
     assert_non_null(sat);
-    ref_fov_lr_buffer(sat, g->width, g->height, &g->ax, &g->ay, lp, (size_t)g->lp_w * 3, NULL);
+    ref_fov_lr_buffer(sat, g->width, g->height, &g->ax, &g->ay, lp, (size_t)g->lp_w * 3, NULL, NULL);
     free(sat);
 }
 
@@ -215,13 +223,13 @@ static void test_area_average(void **state)
     const int w = 200, h = 120;
     uint8_t *img = malloc((size_t)w * h * 3);
     for (int k = 0; k < w * h * 3; k++) img[k] = (uint8_t)(rndu() * 256);
-    double *sat = ref_fov_lr_sat(img, (size_t)w * 3, w, h);
+    double *sat = ref_fov_lr_sat(img, (size_t)w * 3, w, h, NULL);
     ref_fov_lr_axis_t ax, ay;
     ref_fov_lr_axis(&ax, 63.3, ref_fov_lr_k(w, 111, 63.3), w, 111);
     ref_fov_lr_axis(&ay, 90.1, ref_fov_lr_k(h, 66, 90.1), h, 66);
     uint8_t *lp = malloc(111 * 66 * 3);
     double *avg = malloc(111 * 66 * 3 * sizeof(double));
-    ref_fov_lr_buffer(sat, w, h, &ax, &ay, lp, 111 * 3, avg);
+    ref_fov_lr_buffer(sat, w, h, &ax, &ay, lp, 111 * 3, avg, NULL);
     double tot[3] = {0, 0, 0}, mass[3] = {0, 0, 0};
     for (int k = 0; k < w * h * 3; k++) tot[k % 3] += img[k];
     for (int j = 0; j < 66; j++) {
@@ -236,9 +244,9 @@ static void test_area_average(void **state)
     /* vertical stripes of period 2 px: every texel wider than a few pixels is ~ the mean */
     for (int j = 0; j < h; j++)
         for (int i = 0; i < w; i++) memset(img + ((size_t)j * w + i) * 3, (i & 1) ? 250 : 10, 3);
-    sat = ref_fov_lr_sat(img, (size_t)w * 3, w, h);
+    sat = ref_fov_lr_sat(img, (size_t)w * 3, w, h, NULL);
     ref_fov_lr_axis(&ax, 63.3, 4.0, w, 111); /* a small k: wide texels in the periphery */
-    ref_fov_lr_buffer(sat, w, h, &ax, &ay, lp, 111 * 3, avg);
+    ref_fov_lr_buffer(sat, w, h, &ax, &ay, lp, 111 * 3, avg, NULL);
     int wide = 0;
     for (int m = 0; m < 111; m++) {
         const double x0 = ref_fov_lr_inv(&ax, m), x1 = ref_fov_lr_inv(&ax, m + 1);
@@ -251,13 +259,194 @@ static void test_area_average(void **state)
     /* uniform field: every texel exactly the value */
     memset(img, 77, (size_t)w * h * 3);
     free(sat);
-    sat = ref_fov_lr_sat(img, (size_t)w * 3, w, h);
-    ref_fov_lr_buffer(sat, w, h, &ax, &ay, lp, 111 * 3, NULL);
+    sat = ref_fov_lr_sat(img, (size_t)w * 3, w, h, NULL);
+    ref_fov_lr_buffer(sat, w, h, &ax, &ay, lp, 111 * 3, NULL, NULL);
     for (int k = 0; k < 111 * 66 * 3; k++) assert_int_equal(lp[k], 77);
     free(sat);
     free(img);
     free(lp);
     free(avg);
+}
+
+/* Linear light (the simulator's sender and prefilter): codes decoded by the
+ * panel gamma, averaged, encoded back. */
+static double lin_mean_code(int a, int b, double gamma) /* linear-light mean of codes a, b, as a code (unrounded) */
+{
+    return 255 * pow((pow(a / 255.0, gamma) + pow(b / 255.0, gamma)) / 2, 1 / gamma);
+}
+
+static void test_area_average_linear(void **state)
+{
+    (void)state;
+    const int w = 200, h = 120;
+    uint8_t *img = malloc((size_t)w * h * 3);
+    uint8_t *lp = malloc(111 * 66 * 3);
+    double *avg = malloc(111 * 66 * 3 * sizeof(double));
+    ref_fov_lr_axis_t ax, ay;
+    ref_fov_lr_axis(&ax, 63.3, 4.0, w, 111);
+    ref_fov_lr_axis(&ay, 90.1, ref_fov_lr_k(h, 66, 90.1), h, 66);
+    static const double gammas[][3] = {{2.2, 2.2, 2.2}, {1.0, 1.8, 2.6}};
+    for (int gi = 0; gi < 2; gi++) {
+        double lut[3 * 256];
+        ref_fov_lin_lut(gammas[gi], lut);
+        for (int c = 0; c < 256; c += 5) { /* uniform: exactly the code back */
+            memset(img, c, (size_t)w * h * 3);
+            double *sat = ref_fov_lr_sat(img, (size_t)w * 3, w, h, lut);
+            ref_fov_lr_buffer(sat, w, h, &ax, &ay, lp, 111 * 3, NULL, gammas[gi]);
+            for (int k = 0; k < 111 * 66 * 3; k++) assert_int_equal(lp[k], c);
+            free(sat);
+        }
+    }
+    /* stripes 10 / 250 of period 2 px: the linear-light mean (code 183 at
+     * gamma 2.2), not the codes' 130 */
+    for (int j = 0; j < h; j++)
+        for (int i = 0; i < w; i++) memset(img + ((size_t)j * w + i) * 3, (i & 1) ? 250 : 10, 3);
+    double lut[3 * 256];
+    ref_fov_lin_lut(gammas[0], lut);
+    double *sat = ref_fov_lr_sat(img, (size_t)w * 3, w, h, lut);
+    ref_fov_lr_buffer(sat, w, h, &ax, &ay, lp, 111 * 3, avg, gammas[0]);
+    const double l10 = lut[10], l250 = lut[250], mean = (l10 + l250) / 2, target = lin_mean_code(10, 250, 2.2);
+    int wide = 0;
+    for (int m = 0; m < 111; m++) {
+        const double x0 = ref_fov_lr_inv(&ax, m), x1 = ref_fov_lr_inv(&ax, m + 1);
+        if (x1 - x0 >= 4) {
+            wide++;
+            const double tol = (l250 - l10) / (x1 - x0) + 1e-12; /* half a stripe at each end */
+            assert_true(fabs(avg[m * 3] - mean) <= tol);
+            assert_int_equal(lp[m * 3], tdc_sim_encode_code(avg[m * 3], 2.2));
+            if (x1 - x0 >= 40) {
+                assert_true(fabs(lp[m * 3] - target) <= 1.5);
+            }
+        }
+    }
+    printf("stripes 10/250: linear-light texel %d (the codes' mean 130)\n", (int)lround(target));
+    assert_true(wide > 10);
+    assert_true(target > 180);
+    free(sat);
+    free(img);
+    free(lp);
+    free(avg);
+}
+
+/* The kernel log-polar samples' footprint prefilter (the simulator's
+ * photograph and procedural sources): box means over ref_fov_lod_cone. */
+static void test_footprint_prefilter(void **state)
+{
+    (void)state;
+    const int w = 160, h = 100;
+    uint8_t *img = malloc((size_t)w * h * 3);
+    double lut[3 * 256];
+    const double gamma[3] = {2.2, 2.4, 1.8};
+    ref_fov_lin_lut(gamma, lut);
+    /* uniform: every code back exactly, any centre (also off the screen) and side */
+    for (int c = 0; c < 256; c++) {
+        memset(img, c, (size_t)w * h * 3);
+        double *sat = ref_fov_lr_sat(img, (size_t)w * 3, w, h, lut);
+        for (int t = 0; t < 40; t++) {
+            const double x = -50 + rndu() * (w + 100), y = -50 + rndu() * (h + 100), side = 1 + rndu() * 60;
+            double m[3];
+            ref_fov_lr_box_mean(sat, w, h, x, y, side, m);
+            for (int ch = 0; ch < 3; ch++) assert_int_equal(tdc_sim_encode_code(m[ch], gamma[ch]), c);
+        }
+        free(sat);
+    }
+    /* stripes of period 2 px (0 / 255): a box of side s >= 4 inside the
+     * screen is their linear mean 1/2 within 1/(2 s) (half a stripe at each
+     * end); a 1-px box on a stripe is that stripe (point-like) */
+    for (int j = 0; j < h; j++)
+        for (int i = 0; i < w; i++) memset(img + ((size_t)j * w + i) * 3, (i & 1) ? 255 : 0, 3);
+    double *sat = ref_fov_lr_sat(img, (size_t)w * 3, w, h, lut);
+    double worst = 0;
+    for (int t = 0; t < 2000; t++) {
+        const double side = 4 + rndu() * 40;
+        const double x = side / 2 + rndu() * (w - side), y = side / 2 + rndu() * (h - side);
+        double m[3];
+        ref_fov_lr_box_mean(sat, w, h, x, y, side, m);
+        worst = fmax(worst, fabs(m[0] - 0.5) * side);
+        assert_true(fabs(m[0] - 0.5) <= 0.5 / side + 1e-12);
+    }
+    double one[3];
+    ref_fov_lr_box_mean(sat, w, h, 21.5, 30.5, 1.0, one);
+    assert_true(fabs(one[0] - 1.0) < 1e-12);
+    /* the box moves continuously: 1e-6 px changes the mean by at most 1e-6 / side per unit contrast */
+    for (int t = 0; t < 500; t++) {
+        const double side = 2 + rndu() * 30, x = side + rndu() * (w - 2 * side), y = side + rndu() * (h - 2 * side);
+        double a[3], b[3];
+        ref_fov_lr_box_mean(sat, w, h, x, y, side, a);
+        ref_fov_lr_box_mean(sat, w, h, x + 1e-6, y, side, b);
+        assert_true(fabs(a[0] - b[0]) <= 2e-6 / side + 1e-12);
+    }
+    printf("footprint box over 2-px stripes: |mean - 1/2| * side <= %.3f (bound 0.5)\n", worst);
+    free(sat);
+    free(img);
+    /* ref_fov_lp_samples: the positions are the exact inverse of eq. 2.2,
+     * the sides ref_fov_lod_cone's, and the footprint is the cell's longer
+     * side (central differences of the positions, where > 1 px) */
+    const ref_fov_params_t p = {0.45 * w, 0.55 * h, 4.0, 0.12443, 89, 56, 0, 0, 0};
+    ref_fov_geom_t g;
+    ref_fov_geom(&g, w, h, &p);
+    const size_t n = (size_t)(g.lp_w - g.u0) * g.lp_h;
+    double *xy = malloc(n * 2 * sizeof(double)), *side = malloc(n * sizeof(double));
+    for (int lod = TDC_FOV_LOD_OFF; lod <= TDC_FOV_LOD_THESIS; lod++) {
+        const double jx = lod == TDC_FOV_LOD_FOOTPRINT ? 0.3 : -0.2, jy = 0.1;
+        assert_int_equal(ref_fov_lp_samples(&g, g.u0, jx, jy, TDC_FOV_JITTER_TEXEL, lod, xy, side), n);
+        int checked = 0;
+        size_t k = 0;
+        for (int j = 0; j < g.lp_h; j++) {
+            for (int i = g.u0; i < g.lp_w; i++, k++) {
+                const double u = fmax(i + jx, 0);
+                double x, y;
+                ref_fov_from_lp(&g, u, j + jy, &x, &y);
+                assert_true(x == xy[2 * k] && y == xy[2 * k + 1]);
+                assert_true(side[k] >= 1);
+                if (lod == TDC_FOV_LOD_OFF) {
+                    assert_true(side[k] == 1);
+                } else if (lod == TDC_FOV_LOD_THESIS) {
+                    assert_true(side[k] <= 8);
+                } else if (u > 1) {
+                    double xa, ya, xb, yb, xc, yc, xd, yd;
+                    ref_fov_from_lp(&g, u - 1e-4, j + jy, &xa, &ya);
+                    ref_fov_from_lp(&g, u + 1e-4, j + jy, &xb, &yb);
+                    ref_fov_from_lp(&g, u, j + jy - 1e-4, &xc, &yc);
+                    ref_fov_from_lp(&g, u, j + jy + 1e-4, &xd, &yd);
+                    const double rad = hypot(xb - xa, yb - ya) / 2e-4, tan_ = hypot(xd - xc, yd - yc) / 2e-4;
+                    const double cell = fmax(fmax(rad, tan_), 1);
+                    assert_true(fabs(side[k] - cell) <= 1e-3 * cell);
+                    checked++;
+                }
+            }
+        }
+        if (lod == TDC_FOV_LOD_FOOTPRINT) {
+            assert_true(checked > (int)n / 2);
+        }
+    }
+    /* the TAA jitter: TEXEL moves a peripheral sample by up to half a cell
+     * (many display pixels), PIXEL by at most half a texel and about half a
+     * display pixel per axis (the cell varies a little over the offset) */
+    double worst_px = 0, worst_texel_mode = 0;
+    for (int j = 0; j < g.lp_h; j++) {
+        for (int i = g.u0; i < g.lp_w; i++) {
+            double x0, y0, u, v, x, y;
+            ref_fov_from_lp(&g, i, j, &x0, &y0);
+            for (int mode = TDC_FOV_JITTER_TEXEL; mode <= TDC_FOV_JITTER_PIXEL; mode++) {
+                ref_fov_lp_jitter(mode, g.L, g.alpha, g.lp_w, g.lp_h, i, j, 0.5, -0.5, &u, &v);
+                assert_true(fabs(u - i) <= 0.5 && fabs(v - j) <= 0.5);
+                ref_fov_from_lp(&g, u, v, &x, &y);
+                const double d = hypot(x - x0, y - y0);
+                if (mode == TDC_FOV_JITTER_PIXEL) {
+                    worst_px = fmax(worst_px, d);
+                    assert_true(d <= 0.55 * M_SQRT2);
+                } else {
+                    worst_texel_mode = fmax(worst_texel_mode, d);
+                }
+            }
+        }
+    }
+    printf("jitter (0.5, -0.5): texel moves a sample up to %.2f px, pixel up to %.3f px\n", worst_texel_mode,
+           worst_px);
+    assert_true(worst_texel_mode > 3);
+    free(xy);
+    free(side);
 }
 
 /* A uniform field stays exactly uniform: any gaze, disk, TAA with motion. */
@@ -360,7 +549,9 @@ static void test_refused(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_round_trip), cmocka_unit_test(test_area_average), cmocka_unit_test(test_uniform),
+        cmocka_unit_test(test_round_trip), cmocka_unit_test(test_area_average),
+        cmocka_unit_test(test_area_average_linear),
+        cmocka_unit_test(test_footprint_prefilter), cmocka_unit_test(test_uniform),
         cmocka_unit_test(test_refused),    cmocka_unit_test(test_fixed_vs_double),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -50,14 +50,7 @@ static tdc_fov_params_t params(int32_t gx_q8, int32_t gy_q8, uint16_t alpha_q8, 
 
 static tdc_link_encoder_t encoder(uint32_t flags, uint8_t eyes)
 {
-    tdc_link_stream_info_t in;
-    memset(&in, 0, sizeof in);
-    in.flags = flags;
-    in.r_num = in.r_den = 1;
-    in.width = W;
-    in.height = H;
-    in.eyes = eyes;
-    in.refresh_hz = 90;
+    const tdc_link_stream_info_t in = lt_info(flags, W, H, eyes, 1, 1, 90);
     tdc_link_encoder_t enc;
     tdc_link_encoder_init(&enc, 7, &in);
     return enc;
@@ -67,17 +60,7 @@ static tdc_link_encoder_t encoder(uint32_t flags, uint8_t eyes)
  * different for every (frame, eye). */
 static size_t fill_samples(const tdc_fov_geom_t *g, uint32_t frame, uint32_t eye)
 {
-    const size_t nlp = (size_t)(g->lp_w - g->u0) * g->lp_h, n = nlp + tdc_fov_disk_pixels(g);
-    uint32_t s = 0x9E3779B9u * (frame * 2u + eye + 1u);
-    for (size_t i = 0; i < n * 3u; i++) {
-        s = s * 1664525u + 1013904223u;
-        samples[i] = (uint8_t)(s >> 24);
-    }
-    for (size_t i = 0; i < nlp * 2u; i++) {
-        s = s * 1664525u + 1013904223u;
-        mvs[i] = (int16_t)((int32_t)(s >> 20) - 2048);
-    }
-    return n;
+    return lt_fov_samples(g, 0x9E3779B9u * (frame * 2u + eye + 1u), samples, mvs);
 }
 
 static size_t put(size_t at, const uint8_t *p, size_t n)
@@ -518,8 +501,9 @@ static void test_refusals_buffers_and_sequence(void **state)
 static void test_stream_headers(void **state)
 {
     (void)state;
-    /* foveated with reduced frames or subframes: not defined, refused */
-    const uint32_t bad[] = {FOV | TDC_LINK_STREAM_REDUCED, FOV | TDC_LINK_STREAM_SUBFRAMES};
+    /* foveated with subframes: not defined, refused (with reduced frames:
+     * foveated TRM, tests/unit/test_link_fov_trm.c) */
+    const uint32_t bad[] = {FOV | TDC_LINK_STREAM_SUBFRAMES, FOV | TDC_LINK_STREAM_REDUCED | TDC_LINK_STREAM_SUBFRAMES};
     for (int k = 0; k < 2; k++) {
         tdc_link_encoder_t enc = encoder(bad[k], 1);
         if (bad[k] & TDC_LINK_STREAM_REDUCED) {

@@ -75,6 +75,41 @@ static inline int lt_init(lt_rig_t *r, uint16_t w, uint16_t h, uint8_t eyes)
     return tdc_link_decoder_init(&r->dec, &cfg, &b);
 }
 
+/* A stream header for a w x h panel (the fields every test sets). */
+static inline tdc_link_stream_info_t lt_info(uint32_t flags, uint16_t w, uint16_t h, uint8_t eyes, uint16_t r_num,
+                                             uint16_t r_den, uint16_t hz)
+{
+    tdc_link_stream_info_t in;
+    memset(&in, 0, sizeof in);
+    in.flags = flags;
+    in.r_num = r_num;
+    in.r_den = r_den;
+    in.width = w;
+    in.height = h;
+    in.eyes = eyes;
+    in.refresh_hz = hz;
+    return in;
+}
+
+/* The samples of a foveated picture of geometry g in payload order (lp
+ * samples, then the disk) and the lp samples' vectors, pseudo-random from
+ * seed (an LCG: the same bytes on every run).  Returns the sample count;
+ * samples holds 3 bytes, mvs 2 int16 per sample. */
+static inline size_t lt_fov_samples(const tdc_fov_geom_t *g, uint32_t seed, uint8_t *samples, int16_t *mvs)
+{
+    const size_t nlp = (size_t)(g->lp_w - g->u0) * g->lp_h, n = nlp + tdc_fov_disk_pixels(g);
+    uint32_t s = seed;
+    for (size_t i = 0; i < n * 3u; i++) {
+        s = s * 1664525u + 1013904223u;
+        samples[i] = (uint8_t)(s >> 24);
+    }
+    for (size_t i = 0; i < nlp * 2u; i++) {
+        s = s * 1664525u + 1013904223u;
+        mvs[i] = (int16_t)((int32_t)(s >> 20) - 2048);
+    }
+    return n;
+}
+
 /* Hash of every pipeline buffer (what the display could show or use). */
 static inline uint64_t lt_hash_all(const lt_rig_t *r)
 {

@@ -14,7 +14,10 @@
  *     the footprint cone equals the cell of eq. 2.3 measured by finite
  *     differences of the sample positions, disk samples keep one pixel's
  *     cone, the thesis's eq. 4.3 bias runs 1 -> 8 with u, and the LOD changes
- *     only samples whose cone grew (the others stay bit-identical).
+ *     only samples whose cone grew (the others stay bit-identical); the
+ *     simulator's photograph / procedural path (ref_fov_lp_samples) gives
+ *     every log-polar sample the same footprint as the renderer's cone
+ *     (one function, ref_fov_lod_cone, with the same jittered arguments).
  */
 #include <math.h>
 #include <setjmp.h>
@@ -26,6 +29,7 @@
 #include <cmocka.h>
 
 #include "tdc_fov.h"
+#include "ref_fov.h"
 #include "render/tdc_render.h"
 
 #define W 160
@@ -61,7 +65,8 @@ static void run_scene(const char *name)
         tdc_render_out_t o = {.rgb = full, .mv = fmv};
         tdc_render_stats_t st;
         assert_int_equal(tdc_render_frame(r, f, TDC_RENDER_FULL, &o, &st), 0);
-        tdc_render_fov_t fv = {W * (0.3 + 0.15 * (f - 3)), H * (0.6 - 0.1 * (f - 3)), 4, 0.555, 0.12443, 0, 0};
+        tdc_render_fov_t fv = {W * (0.3 + 0.15 * (f - 3)), H * (0.6 - 0.1 * (f - 3)), 4, 0.555, 0.12443, 0, 0,
+                               TDC_FOV_JITTER_TEXEL};
         tdc_render_halton(f, &fv.jx, &fv.jy);
         int nlp, nd;
         assert_int_equal(tdc_render_set_foveation(r, &fv, &nlp, &nd), 0);
@@ -170,7 +175,7 @@ static void test_fov_lod(void **state)
 {
     (void)state;
     tdc_render_t *r = open_builtin("panorama");
-    tdc_render_fov_t fv = {W * 0.4, H * 0.55, 4, 0.555, 0.12443, 0.25, -0.125};
+    tdc_render_fov_t fv = {W * 0.4, H * 0.55, 4, 0.555, 0.12443, 0.25, -0.125, TDC_FOV_JITTER_TEXEL};
     const int modes[3] = {TDC_FOV_LOD_OFF, TDC_FOV_LOD_FOOTPRINT, TDC_FOV_LOD_THESIS};
     float *samp[3];
     int nlp = 0, nd = 0;
@@ -181,9 +186,22 @@ static void test_fov_lod(void **state)
     assert_int_equal(tdc_fov_geom(&g, W, H, &p), TDC_OK);
     const double cx = p.gaze_x_q8 / 256.0, cy = p.gaze_y_q8 / 256.0;
     const double ex = fmax(cx, W - cx), ey = fmax(cy, H - cy), L = log(sqrt(ex * ex + ey * ey));
+    /* the simulator's photograph / procedural path (ref_fov_lp_samples) on the same geometry */
+    const ref_fov_params_t rp = {cx, cy, 4, p.disk_q15 / 32768.0, g.lp_w, g.lp_h, 0, 0, 0};
+    ref_fov_geom_t rg;
+    ref_fov_geom(&rg, W, H, &rp);
+    const size_t nsim = (size_t)(g.lp_w - g.u0) * g.lp_h;
+    double *sxy = malloc(nsim * 2 * sizeof(double)), *sside = malloc(nsim * sizeof(double));
     for (int m = 0; m < 3; m++) {
         tdc_render_set_fov_lod(r, modes[m]);
         assert_int_equal(tdc_render_set_foveation(r, &fv, &nlp, &nd), 0);
+        /* one footprint function: the simulator's box side is the renderer's cone, sample by sample */
+        assert_int_equal(ref_fov_lp_samples(&rg, g.u0, fv.jx, fv.jy, fv.jitter, modes[m], sxy, sside), (size_t)nlp);
+        for (int k = 0; k < nlp; k++) {
+            if (!(fabs(sside[k] - tdc_render_fov_cone(r, k)) <= 1e-6 * sside[k]))
+                fail_msg("lod %d sample %d: simulator footprint %g, renderer cone %g", modes[m], k, sside[k],
+                         tdc_render_fov_cone(r, k));
+        }
         int k = 0;
         double prev_u_cone = 0;
         for (int j = 0; j < g.lp_h; j++)
@@ -235,7 +253,15 @@ static void test_fov_lod(void **state)
            cmax[1], cmax[2], changed, nlp, same_cone_changed);
     assert_int_equal(same_cone_changed, 0);
     assert_true(changed > 0);
+    /* the same with the display-pixel jitter (ref_fov_lp_jitter's PIXEL): footprints still agree */
+    fv.jitter = TDC_FOV_JITTER_PIXEL;
+    assert_int_equal(tdc_render_set_foveation(r, &fv, &nlp, &nd), 0);
+    assert_int_equal(ref_fov_lp_samples(&rg, g.u0, fv.jx, fv.jy, fv.jitter, TDC_FOV_LOD_FOOTPRINT, sxy, sside),
+                     (size_t)nlp);
+    for (int k = 0; k < nlp; k++) assert_true(fabs(sside[k] - tdc_render_fov_cone(r, k)) <= 1e-6 * sside[k]);
     for (int m = 0; m < 3; m++) free(samp[m]);
+    free(sxy);
+    free(sside);
     tdc_render_close(r);
 }
 
@@ -243,7 +269,7 @@ static void test_bad_foveation(void **state)
 {
     (void)state;
     tdc_render_t *r = open_builtin("discs");
-    tdc_render_fov_t fv = {W / 2.0, H / 2.0, 4, 0.555, 0.12443, 0, 0};
+    tdc_render_fov_t fv = {W / 2.0, H / 2.0, 4, 0.555, 0.12443, 0, 0, TDC_FOV_JITTER_TEXEL};
     assert_int_equal(tdc_render_frame(r, 0, TDC_RENDER_FOVEATED, NULL, NULL), -1); /* not set yet */
     fv.alpha = 9;
     assert_int_equal(tdc_render_set_foveation(r, &fv, NULL, NULL), -1);

@@ -9,7 +9,10 @@
  * configuration the stage refuses is refused, not run.  fovlr and
  * fovlr-taa (log-rectilinear): rays are the full frame's, link bytes the
  * whole buffer's exactly, and the area-averaged periphery beats the
- * point-sampled kernel log-polar one in FLIP and flicker.
+ * point-sampled kernel log-polar one in FLIP and flicker.  The footprint
+ * prefilter (cfg.fov_lod) costs no rays or bytes, leaves the disk and full
+ * rate alone and lowers the periphery's flicker.  fov-trm (foveated TRM):
+ * exact rays and link bytes of both grids, refusals.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -25,9 +28,11 @@
 #include "simulator/tdc_sim.h"
 #include "simulator/tdc_sim_gaze.h"
 #include "tdc_fov.h"
+#include "ref_fov.h"
 #include "ref_fov_lr.h"
 #include "tdc_fov_link.h"
 #include "tdc_fov_lr.h"
+#include "tdc_geom.h"
 #include "tdc_sim_features.h"
 
 #define W 96
@@ -135,6 +140,7 @@ static void test_lr_modes(void **state)
     tdc_sim_config_t cfg;
     config(&cfg, 12);
     cfg.gaze = TDC_GAZE_FIXED;
+    cfg.fov_lod = TDC_FOV_LOD_OFF; /* against point-sampled log-polar samples */
     static const char *const m[] = {"full", "fov", "fovlr", "fovlr-taa"};
     tdc_sim_result_t r[4];
     assert_int_equal(run(&cfg, m, 4, r), 0);
@@ -171,6 +177,42 @@ static void test_lr_modes(void **state)
         assert_true(r[i].flip_periph < r[1].flip_periph);
         assert_true(r[i].flip_fovea < r[i].flip_periph);
         assert_true(r[i].flicker_periph < r[1].flicker_periph);
+    }
+}
+
+/* The footprint prefilter of the log-polar samples (cfg.fov_lod, the
+ * procedural and photograph sources' box average): the same rays and link
+ * bytes as point samples (it filters, it does not trace), full rate and
+ * the fovea (nearly: FLIP's filters reach across the small disk) are
+ * unchanged, and the periphery flickers less, with TAA and without. */
+static void test_prefilter(void **state)
+{
+    (void)state;
+    if (!TDC_SIM_HAVE_LINK) {
+        skip();
+    }
+    static const char *const m[] = {"full", "fov", "fov-taa"};
+    tdc_sim_result_t r[3][3];
+    static const int lods[3] = {TDC_FOV_LOD_OFF, TDC_FOV_LOD_FOOTPRINT, TDC_FOV_LOD_THESIS};
+    for (int l = 0; l < 3; l++) {
+        tdc_sim_config_t cfg;
+        config(&cfg, 16);
+        cfg.fov_lod = lods[l];
+        assert_int_equal(run(&cfg, m, 3, r[l]), 0);
+        printf(" lod %d\n", lods[l]);
+        print(r[l], 3);
+    }
+    for (int l = 1; l < 3; l++) {
+        assert_true(r[l][0].flip == r[0][0].flip); /* full rate: untouched */
+        for (int i = 1; i < 3; i++) {
+            assert_int_equal(r[l][i].rays, r[0][i].rays);
+            assert_int_equal(r[l][i].link_bytes, r[0][i].link_bytes);
+            /* the disk keeps its point samples (a 7.5-px disk here: FLIP's filters reach across it) */
+            assert_true(fabs(r[l][i].flip_fovea - r[0][i].flip_fovea) < 0.03);
+        }
+    }
+    for (int i = 1; i < 3; i++) {
+        assert_true(r[1][i].flicker_periph < r[0][i].flicker_periph);
     }
 }
 
@@ -216,6 +258,103 @@ static void test_refused(void **state)
     assert_true(r[1].refused != 0);
     cfg.strict = 1;
     assert_int_equal(run(&cfg, m, 2, r), -1);
+}
+
+/* ---- fov-trm (sim/simulator/tdc_sim_mode_fovtrm.c): a TRM stream whose
+ * full and reduced frames are both foveated, end to end (samples ->
+ * FOVEATED packets in both slots through the firmware decoder ->
+ * tdc_fov_trm -> TRM -> panel -> eye -> metrics), mono and stereo.  Rays and
+ * link bytes are exactly the two grids' geometry per slot (TRM's schedule:
+ * mono even frames full; stereo one eye full, one reduced); no link error,
+ * no reduced frame missing; the fovea is perceived better than the
+ * periphery; it costs less than fov; a panel whose reduced grid is too
+ * small for the buffer, or a delta the stage refuses, is refused at init
+ * (not run, and -1 with --strict). ---- */
+
+/* The geometry of a slot's grid with the gaze fixed at the screen centre. */
+static tdc_fov_geom_t trm_grid(uint16_t gw, uint16_t gh)
+{
+    const tdc_fov_params_t p = {gw * 128, gh * 128, 1024, 4077, tdc_fov_lp_size(18187, gw), tdc_fov_lp_size(18187, gh),
+                                {0, 0}, 0, 0};
+    tdc_fov_geom_t g;
+    assert_int_equal(tdc_fov_geom(&g, gw, gh, &p), TDC_OK);
+    return g;
+}
+
+static void test_fov_trm_exact_costs(void **state)
+{
+    (void)state;
+    if (!TDC_SIM_HAVE_LINK || !TDC_SIM_HAVE_TRM) {
+        skip();
+    }
+    const uint16_t rw = (uint16_t)TDC_REDUCED_DIM(W, 1, 2), rh = (uint16_t)TDC_REDUCED_DIM(H, 1, 2);
+    const tdc_fov_geom_t gf = trm_grid(W, H), gr = trm_grid(rw, rh);
+    const uint64_t nf = (uint64_t)(gf.lp_w - gf.u0) * gf.lp_h + tdc_fov_disk_pixels(&gf);
+    const uint64_t nr = (uint64_t)(gr.lp_w - gr.u0) * gr.lp_h + tdc_fov_disk_pixels(&gr);
+    printf("  full grid %dx%d: %llu samples, reduced grid %ux%u: %llu samples\n", W, H, (unsigned long long)nf, rw, rh,
+           (unsigned long long)nr);
+    assert_true(nr > 0 && nr < nf);
+    for (int eyes = 1; eyes <= 2; eyes++) {
+        tdc_sim_config_t cfg;
+        config(&cfg, 13);
+        cfg.eyes = eyes;
+        cfg.gaze = TDC_GAZE_FIXED;
+        static const char *const m[] = {"full", "trm50", "fov", "fov-trm"};
+        tdc_sim_result_t r[4];
+        assert_int_equal(run(&cfg, m, 4, r), 0);
+        print(r, 4);
+        for (int i = 0; i < 4; i++) {
+            assert_true(r[i].available);
+            assert_int_equal(r[i].link_errors, 0); /* every packet accepted, none missing */
+            assert_false(r[i].nonfinite);
+            assert_true(r[i].flip > 0 && r[i].flip < 1);
+        }
+        assert_int_equal(r[3].foveated, 1);
+        /* TRM's schedule: mono even refreshes full; stereo one eye of each */
+        const uint64_t frames = r[3].frames;
+        const uint64_t n_full = eyes == 2 ? frames : (frames + 1u) / 2u, n_red = eyes == 2 ? frames : frames / 2u;
+        assert_int_equal(r[3].rays, (n_full * nf + n_red * nr) * 4u); /* spp 4 below 200 Hz, like full */
+        const uint64_t stream = 32u + 16u;
+        assert_int_equal(r[3].link_bytes,
+                         stream + n_full * (32u + TDC_FOV_HDR_BYTES + tdc_fov_payload_bytes(&gf, 0)) +
+                             n_red * (32u + TDC_FOV_HDR_BYTES + tdc_fov_payload_bytes(&gr, 0)));
+        /* cheaper than fov, whose every picture is the full grid's */
+        assert_int_equal(r[2].rays, frames * (uint64_t)eyes * nf * 4u);
+        assert_true(r[3].rays < r[2].rays && r[3].link_bytes < r[2].link_bytes);
+        /* the disk is traced densely, the periphery is not */
+        assert_true(r[3].flip_fovea < r[3].flip_periph);
+        assert_true(r[3].flip_periph > r[0].flip_periph);
+    }
+}
+
+/* A reduced grid too small for the buffer (16 x 12: the 8 x 6 grid's
+ * buffer would be 4 x 3, below the stage's minimum side), and a delta the
+ * stage refuses: fov-trm is refused at init while fov runs. */
+static void test_fov_trm_refused(void **state)
+{
+    (void)state;
+    if (!TDC_SIM_HAVE_LINK || !TDC_SIM_HAVE_TRM) {
+        skip();
+    }
+    static const char *const m[] = {"fov", "fov-trm"};
+    tdc_sim_result_t r[2];
+    tdc_sim_config_t cfg;
+    config(&cfg, 4);
+    cfg.width = cfg.scene.width = 16;
+    cfg.height = cfg.scene.height = 12;
+    assert_int_equal(run(&cfg, m, 2, r), 0);
+    print(r, 2);
+    assert_true(r[0].available);
+    assert_false(r[1].available);
+    assert_true(r[1].refused != 0);
+    assert_int_equal(r[1].rays, 0);
+    cfg.strict = 1;
+    assert_int_equal(run(&cfg, m, 2, r), -1);
+    config(&cfg, 4);
+    cfg.fov_delta = 1.5;
+    assert_int_equal(run(&cfg, m + 1, 1, r), 0);
+    assert_false(r[0].available);
+    assert_true(r[0].refused != 0);
 }
 
 /* ---- the gaze schedules and the tracker ---- */
@@ -307,8 +446,11 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_modes_exact_costs),
         cmocka_unit_test(test_lr_modes),
+        cmocka_unit_test(test_prefilter),
         cmocka_unit_test(test_latency_moves_the_fovea),
         cmocka_unit_test(test_refused),
+        cmocka_unit_test(test_fov_trm_exact_costs),
+        cmocka_unit_test(test_fov_trm_refused),
         cmocka_unit_test(test_gaze_schedules),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
