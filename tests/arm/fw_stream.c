@@ -28,6 +28,10 @@
  *   trm-resend-ref  frame 2 intact, frame 3 eye 0's REDUCED corrupted
  *   subframes-late  the subframe stream with frame indices from 1000
  *   trm-drop        frame 2: eye 0's FULL corrupted (rejected, eye kept)
+ *   trm-fov         foveated TRM (stream flags REDUCED | FOVEATED): both
+ *                   slots as FOVEATED packets, the reduced one on the rW x rH
+ *                   grid (tdc_link_encode_foveated_slot); the board refuses
+ *                   it by name (tests/arm/test_fw_fov.sh)
  * Rows in flight (issue 17 item 2; tests/arm/test_fw_bands.sh): the TRM
  * stream with stream flag BANDS, every picture as bands of 16 rows:
  *   trm-bands          clean: must show what trm shows through the loop
@@ -41,8 +45,9 @@
  *                      band for another frame: refused alone, as trm)
  * Foveated streams (issue 14; stream flag FOVEATED, tdc_link_encode_foveated),
  * alpha 4, delta 0.555 (18187), disk 12.443 %, the gaze moving every frame:
- *   fov        kernel log-polar samples (the picture at the exact eq. 2.3
- *              positions, as tdc-sim samples a source), no vectors
+ *   fov        kernel log-polar samples (the picture's pixel at each
+ *              sample's display position, ref_fov_lp_samples: the sender's
+ *              placement), no vectors
  *   fov-taa    the same with a vector per sample (peripheral TAA)
  *   fovlr      log-rectilinear: area averages of the picture (the sender's
  *              summed-area table, sim/ref_fov_lr.c), no vectors
@@ -193,12 +198,14 @@ static int fov_ref_frame(fov_ref_t *r, const uint8_t *pkt, uint32_t frame, uint3
     return 1;
 }
 
-/* Eye e's FOVEATED packet of frame f from the picture rgb: the gaze moves
- * across the screen, samples where the sender takes them (eq. 2.3 for
- * kernel log-polar, summed-area averages for log-rectilinear), backward
- * vectors (the edge content pans +3 px per frame) if mv_buf. */
-static size_t fov_packet(const tdc_link_encoder_t *enc, uint32_t e, uint32_t f, const uint8_t *rgb, uint32_t w,
-                         uint32_t h, int lr, int16_t *mv_buf, uint8_t *samples)
+/* Eye e's FOVEATED packet of frame f for the stream's slot (FULL, or a TRM
+ * stream's REDUCED: then rgb, w, h are the reduced grid's) from the
+ * picture rgb: the gaze moves across the screen, samples where the sender
+ * takes them (ref_fov_lp_samples for kernel log-polar, summed-area averages
+ * for log-rectilinear), backward vectors (the edge content pans +3 px per
+ * frame) if mv_buf. */
+static size_t fov_packet(const tdc_link_encoder_t *enc, tdc_link_kind_t slot, uint32_t e, uint32_t f,
+                         const uint8_t *rgb, uint32_t w, uint32_t h, int lr, int16_t *mv_buf, uint8_t *samples)
 {
     tdc_fov_params_t p;
     memset(&p, 0, sizeof p);
@@ -224,26 +231,31 @@ static size_t fov_packet(const tdc_link_encoder_t *enc, uint32_t e, uint32_t f, 
         ref_fov_lr_axis_t ax, ay;
         ref_fov_lr_axis(&ax, gx, p.lr_k_q4[0] / 16.0, (int)w, p.lp_w);
         ref_fov_lr_axis(&ay, gy, p.lr_k_q4[1] / 16.0, (int)h, p.lp_h);
-        double *sat = ref_fov_lr_sat(rgb, (size_t)w * 3u, (int)w, (int)h);
+        double *sat = ref_fov_lr_sat(rgb, (size_t)w * 3u, (int)w, (int)h, NULL);
         if (!sat) {
             fprintf(stderr, "fw_stream: out of memory\n");
             exit(1);
         }
-        ref_fov_lr_buffer(sat, (int)w, (int)h, &ax, &ay, samples, (size_t)p.lp_w * 3u, NULL);
+        ref_fov_lr_buffer(sat, (int)w, (int)h, &ax, &ay, samples, (size_t)p.lp_w * 3u, NULL, NULL);
         free(sat);
         k = (size_t)p.lp_w * p.lp_h;
     } else {
+        /* the sender's placement (no jitter, no LOD), the picture's pixel under each */
         const ref_fov_params_t rp = {gx, gy, p.alpha_q8 / 256.0, p.disk_q15 / 32768.0, p.lp_w, p.lp_h, 0, 0, 0};
         ref_fov_geom_t rg;
         ref_fov_geom(&rg, (int)w, (int)h, &rp);
-        for (uint32_t j = 0; j < p.lp_h; j++) {
-            for (uint32_t i = g.u0; i < p.lp_w; i++, k++) {
-                double x, y;
-                ref_fov_from_lp(&rg, i, j, &x, &y);
-                const long xi = lround(fmin(fmax(floor(x), 0), w - 1.0)), yi = lround(fmin(fmax(floor(y), 0), h - 1.0));
-                memcpy(samples + 3u * k, rgb + ((size_t)yi * w + (size_t)xi) * 3u, 3);
-            }
+        double *xy = malloc((size_t)p.lp_w * p.lp_h * 2u * sizeof *xy);
+        if (!xy) {
+            fprintf(stderr, "fw_stream: out of memory\n");
+            exit(1);
         }
+        k = ref_fov_lp_samples(&rg, g.u0, 0.0, 0.0, TDC_FOV_JITTER_TEXEL, TDC_FOV_LOD_OFF, xy, NULL);
+        for (size_t i = 0; i < k; i++) {
+            const long xi = lround(fmin(fmax(floor(xy[2 * i]), 0), w - 1.0));
+            const long yi = lround(fmin(fmax(floor(xy[2 * i + 1]), 0), h - 1.0));
+            memcpy(samples + 3u * i, rgb + ((size_t)yi * w + (size_t)xi) * 3u, 3);
+        }
+        free(xy);
     }
     for (size_t i = 0; mv_buf && i < k; i++) {
         mv_buf[2 * i] = (int16_t)(e == 0 ? -3 * 16 : (int)(i % 7u) - 3);
@@ -255,7 +267,7 @@ static size_t fov_packet(const tdc_link_encoder_t *enc, uint32_t e, uint32_t f, 
         memcpy(samples + 3u * k, rgb + ((size_t)j * w + (size_t)x0) * 3u, 3u * (size_t)span);
         k += span;
     }
-    return tdc_link_encode_foveated(enc, g_pkt, g_cap, e, f, &p, FOV_DELTA_Q15, samples, mv_buf, NULL);
+    return tdc_link_encode_foveated_slot(enc, g_pkt, g_cap, slot, e, f, &p, FOV_DELTA_Q15, samples, mv_buf, NULL);
 }
 
 /* A foveation header the decoder must refuse after the payload CRC: byte
@@ -301,7 +313,7 @@ int main(int argc, char **argv)
     const int fov_taa = !strcmp(fmode, "fov-taa"), fov_lr = !strcmp(fmode, "fovlr");
     const int v_motion = !strcmp(mode, "trm-motion"), v_future = !strcmp(mode, "trm-future");
     const int v_rehdr = !strcmp(mode, "trm-rehdr"), v_resend = !strcmp(mode, "trm-resend");
-    const int v_resend_ref = !strcmp(mode, "trm-resend-ref");
+    const int v_resend_ref = !strcmp(mode, "trm-resend-ref"), v_fovtrm = !strcmp(mode, "trm-fov");
     const uint32_t f0 = !strcmp(mode, "subframes-late") ? 1000u : 0u;
     const int bands = !strncmp(mode, "trm-bands", 9), v_drop = !strcmp(mode, "trm-drop");
     const char *band_how = bands && mode[9] == '-' ? mode + 10 : "";
@@ -316,6 +328,9 @@ int main(int argc, char **argv)
     }
     if (v_motion) {
         info.flags |= TDC_LINK_STREAM_MOTION;
+    }
+    if (v_fovtrm) {
+        info.flags |= TDC_LINK_STREAM_FOVEATED;
     }
     if (bands) {
         info.flags |= TDC_LINK_STREAM_BANDS;
@@ -341,7 +356,7 @@ int main(int argc, char **argv)
     int16_t *mv = malloc((size_t)tx * ty * 2u * sizeof *mv);
     uint8_t *bits = calloc(TDC_PATTERN_BYTES(w, h) + 1u, 1);
     int16_t *pmv = calloc((size_t)w * h * 2u, sizeof *pmv);
-    uint8_t *fsamples = fov ? malloc((size_t)w * h * 6u) : NULL;
+    uint8_t *fsamples = fov || v_fovtrm ? malloc((size_t)w * h * 6u) : NULL;
     fov_ref_t fref[2];
     g_out = fopen(argv[6], "wb");
     if (!g_pkt || !rgb || !red || !samples || !mv || !bits || !g_out) {
@@ -381,7 +396,7 @@ int main(int argc, char **argv)
                 }
                 put(n, "full frame (foveated stream)");
             } else if (fov) {
-                size_t n = fov_packet(&enc, e, f, rgb, w, h, fov_lr, fov_taa ? pmv : NULL, fsamples);
+                size_t n = fov_packet(&enc, TDC_LINK_KIND_FULL, e, f, rgb, w, h, fov_lr, fov_taa ? pmv : NULL, fsamples);
                 const int corrupt = !fov_clean && f == 1 && e == 0, spoil = !fov_clean && f == 4 && e == eyes - 1u;
                 if (n && spoil) {
                     /* fov: alpha 9.0 (byte 9 of the foveation header); fovlr: gaze x two screens outside */
@@ -413,7 +428,9 @@ int main(int argc, char **argv)
                 }
                 put(n, "full frame");
             } else if (trm) {
-                if (bands && tdc_link_trm_kind(f, e) == TDC_LINK_KIND_FULL) {
+                if (v_fovtrm && tdc_link_trm_kind(f, e) == TDC_LINK_KIND_FULL) {
+                    put(fov_packet(&enc, TDC_LINK_KIND_FULL, e, f, rgb, w, h, 0, NULL, fsamples), "foveated full slot");
+                } else if (bands && tdc_link_trm_kind(f, e) == TDC_LINK_KIND_FULL) {
                     put_bands(&enc, TDC_LINK_KIND_FULL, e, f, rgb, w, h, band_how);
                 } else if (tdc_link_trm_kind(f, e) == TDC_LINK_KIND_FULL) {
                     size_t n = tdc_link_encode_frame(&enc, g_pkt, g_cap, TDC_LINK_KIND_FULL, e, f, TDC_PIXFMT_RGB888,
@@ -449,6 +466,11 @@ int main(int argc, char **argv)
                     }
                     if (bands) {
                         put_bands(&enc, TDC_LINK_KIND_REDUCED, e, f, red, rw, rh, band_how);
+                        continue;
+                    }
+                    if (v_fovtrm) {
+                        put(fov_packet(&enc, TDC_LINK_KIND_REDUCED, e, f, red, rw, rh, 0, NULL, fsamples),
+                            "foveated reduced slot");
                         continue;
                     }
                     size_t n = tdc_link_encode_frame(&enc, g_pkt, g_cap, TDC_LINK_KIND_REDUCED, e, f, TDC_PIXFMT_RGB888,

@@ -10,6 +10,10 @@
 #                picture of frame 6 is (the one packet it can play)
 #   trm          a stream without foveated packets never starts the stage
 #                (stage elision: "foveated frames composed: 0")
+#   trm-fov      foveated TRM (REDUCED | FOVEATED, which the decoder
+#                accepts): the loop refuses the stream by name (its
+#                foveation block shares the mode arena with TRM's), shows
+#                nothing and exits 1 (an unsupported stream)
 # With BANDS_LOOP (the same build with row bands: front/back frame buffers,
 # staging sized for a foveated payload) fov and fovlr must show the same
 # expected frames through the swap, kept eyes copied from the front.
@@ -18,8 +22,8 @@ host=$1; gen=$2; w=$3; h=$4; eyes=$5; bands=$6
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 fail=0
-for m in fov fovlr fov-taa trm; do
-    n=9; [ $m = trm ] && n=4
+for m in fov fovlr fov-taa trm trm-fov; do
+    n=9; case $m in trm*) n=4;; esac
     "$gen" $m "$w" "$h" "$eyes" $n "$tmp/$m.tdcs" "$tmp/$m.exp" || { echo "fw-fov: fw_stream $m failed"; exit 1; }
     "$host" "$tmp/$m.tdcs" >"$tmp/$m.out" 2>"$tmp/$m.err"; echo $? > "$tmp/$m.rc"
 done
@@ -45,4 +49,8 @@ else echo "fw-fov[fov-taa]: every FOVEATED packet refused ($rej rejected), only 
 if [ "$(grep -c . "$tmp/trm.out")" -ne 4 ] || ! grep -q 'foveated frames composed: 0' "$tmp/trm.err"; then
     echo "fw-fov[trm]: FAIL: the TRM stream in a foveating build"; cat "$tmp/trm.err"; fail=1
 else echo "fw-fov[trm]: 4 frames, stage not started"; fi
+if [ -s "$tmp/trm-fov.out" ] || [ "$(cat "$tmp/trm-fov.rc")" -ne 1 ] || ! grep -q 'stream foveates TRM' "$tmp/trm-fov.err" ||
+   ! grep -q 'unsupported streams: 1' "$tmp/trm-fov.err"; then
+    echo "fw-fov[trm-fov]: FAIL: foveated TRM not refused by name"; cat "$tmp/trm-fov.err"; fail=1
+else echo "fw-fov[trm-fov]: refused: $(grep 'stream foveates' "$tmp/trm-fov.err" | sed 's/^\[host\] //')"; fi
 exit $fail
