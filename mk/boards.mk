@@ -267,7 +267,8 @@ arm-image-check: $(BP)/check-image-rules
 PANEL_DIMS := $(shell awk '$$1 == "width" { w = $$2 } $$1 == "height" { h = $$2 } $$1 == "eyes" { e = $$2 } \
                 END { print w, h, (e ? e : 1) }' boards/panels/$(PANEL).panel)
 FW_MODES ?= plain $(if $(filter trm,$(STAGES)),trm) $(if $(filter assemble,$(STAGES)),subframes) \
-            $(if $(filter fov fovtaa,$(STAGES)),fov fovlr) $(if $(filter fovtaa,$(STAGES)),fov-taa)
+            $(if $(filter fov fovtaa,$(STAGES)),fov fovlr) $(if $(filter fovtaa,$(STAGES)),fov-taa) \
+            $(if $(and $(filter trm,$(STAGES)),$(filter fov fovtaa,$(STAGES))),trm-fov)
 FW_FRAMES_plain := 5
 FW_FRAMES_fov := 9
 FW_FRAMES_fovlr := 9
@@ -275,9 +276,11 @@ FW_FRAMES_fov-taa := 9
 FW_FRAMES_fov-clean := 5
 FW_FRAMES_fovlr-clean := 5
 FW_FRAMES_fov-taa-clean := 5
+FW_FRAMES_trm-fov := 8
+FW_FRAMES_trm-fov-clean := 5
 # The loop-cost rows (make bench-arm) run the foveated streams without their
 # damaged packets, so that every frame costs what a foveated frame costs.
-FW_LOOP_MODES = $(patsubst fov%,fov%-clean,$(filter-out plain,$(FW_MODES)))
+FW_LOOP_MODES = $(patsubst trm-fov,trm-fov-clean,$(patsubst fov%,fov%-clean,$(filter-out plain,$(FW_MODES))))
 FW_FRAMES_trm := 4
 FW_FRAMES_subframes := 6
 # The host build of the loop, with and without bands (fw-bands-check compares
@@ -315,7 +318,8 @@ $(B)/tests/fw_stream: $(B)/tests/arm/fw_stream.o $(B)/tests/golden/tdc_content.o
 
 $(STREAMS)/$(PANEL)-%.tdcs: $(B)/tests/fw_stream
 	@mkdir -p $(@D)
-	$(B)/tests/fw_stream $* $(PANEL_DIMS) $(FW_FRAMES_$*) $@ $(if $(filter plain fov fovlr fov-taa,$*),$(if $(filter lcd,$(PANEL_TYPE)),,$@.expected))
+	$(B)/tests/fw_stream $* $(PANEL_DIMS) $(FW_FRAMES_$*) $@ $(if $(filter plain fov fovlr fov-taa trm-fov,$*),$(if \
+	    $(filter lcd,$(PANEL_TYPE)),,$@.expected $(if $(filter trm-fov,$*),$(PANEL))))
 
 $(BP)/fw-check: $(BP)/tdc-firmware.elf $(FWH)/tdc_fw_host $(foreach m,$(FW_MODES),$(STREAMS)/$(PANEL)-$(m).tdcs) \
                 tests/arm/run_fw_qemu.sh
