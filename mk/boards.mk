@@ -293,22 +293,30 @@ STREAMS := $(BUILD)/fw-streams
 # decoder's compile-time maximum size): built for this panel, linked before
 # the host library so its panel-independent copies are not used.
 FWH_PANEL_SRCS := $(shell grep -l '"tdc_link.h"' $(filter firmware/%.c,$(wildcard firmware/*.c)))
-# $(1): directory, $(2): TDC_CFG_BANDS
+# $(1): directory, $(2): TDC_CFG_BANDS, $(3): the stage defines
 define fw_host_loop
 $(1)/tdc_main.o: firmware/board/tdc_main.c $(GEN)/tdc_panels.h $(PANEL_CONFIG)
 	@mkdir -p $$(@D)
-	$(CC) $(FW_CFLAGS) -Ifirmware/board -include $(PANEL_CONFIG) $(FW_CFG_BASE) -DTDC_CFG_BANDS=$(2) -DTDC_FW_NO_MAIN -MMD -MP -c $$< -o $$@
+	$(CC) $(FW_CFLAGS) -Ifirmware/board -include $(PANEL_CONFIG) $(3) -DTDC_CFG_BANDS=$(2) -DTDC_FW_NO_MAIN -MMD -MP -c $$< -o $$@
 $(1)/tdc_board_host.o: tests/arm/tdc_board_host.c firmware/board/tdc_board.h
 	@mkdir -p $$(@D)
 	$(CC) $(HOST_CFLAGS) -Ifirmware/board -MMD -MP -c $$< -o $$@
 $(1)/fw/%.o: firmware/%.c $(GEN)/tdc_panels.h $(PANEL_CONFIG)
 	@mkdir -p $$(@D)
-	$(CC) $(FW_CFLAGS) -include $(PANEL_CONFIG) $(FW_CFG_BASE) -DTDC_CFG_BANDS=$(2) -MMD -MP -c $$< -o $$@
+	$(CC) $(FW_CFLAGS) -include $(PANEL_CONFIG) $(3) -DTDC_CFG_BANDS=$(2) -MMD -MP -c $$< -o $$@
 $(1)/tdc_fw_host: $(1)/tdc_main.o $(1)/tdc_board_host.o $(patsubst firmware/%.c,$(1)/fw/%.o,$(FWH_PANEL_SRCS)) $(FWLIB)
 	$(CC) $(HOST_LDFLAGS) $$^ -o $$@ $(HOST_LIBS)
 endef
-$(eval $(call fw_host_loop,$(FWH_B0),0))
-$(eval $(call fw_host_loop,$(FWH_B1),1))
+$(eval $(call fw_host_loop,$(FWH_B0),0,$(FW_CFG_BASE)))
+$(eval $(call fw_host_loop,$(FWH_B1),1,$(FW_CFG_BASE)))
+# fw-fov's builds that must refuse a foveated TRM stream: without the
+# foveation stage, without TRM, and with both but TDC_CFG_FOV_TRM=0 (a
+# board short of memory)
+FWH_FOVX := $(B)/fw-host/$(BOARD)-$(PANEL)-fovcheck
+FW_CFG_NOSTAGE := -DTDC_CFG_ASSEMBLE=0 -DTDC_CFG_FOV_TAA=0 -DTDC_CFG_LCD=0 $(BOARD_FW_CFG)
+$(eval $(call fw_host_loop,$(FWH_FOVX)-trm,0,-DTDC_CFG_TRM=1 -DTDC_CFG_FOV=0 $(FW_CFG_NOSTAGE)))
+$(eval $(call fw_host_loop,$(FWH_FOVX)-fov,0,-DTDC_CFG_TRM=0 -DTDC_CFG_FOV=1 $(FW_CFG_NOSTAGE)))
+$(eval $(call fw_host_loop,$(FWH_FOVX)-optout,0,-DTDC_CFG_TRM=1 -DTDC_CFG_FOV=1 -DTDC_CFG_FOV_TRM=0 $(FW_CFG_NOSTAGE)))
 
 $(B)/tests/arm/fw_stream.o: tests/arm/fw_stream.c $(GEN)/tdc_panels.h
 	@mkdir -p $(@D)
@@ -348,10 +356,12 @@ $(BP)/fw-%-check: $(FWH)/tdc_fw_host $(B)/tests/fw_stream tests/arm/test_fw_%.sh
 	@mkdir -p $(@D)
 	@printf '#!/bin/sh\nexec tests/arm/test_fw_$*.sh %s %s %s\n' "$(FWH)/tdc_fw_host" "$(B)/tests/fw_stream" "$(PANEL_DIMS)" > $@
 	@chmod +x $@
-# (fw-fov also runs the streams through the loop with bands: front/back buffers)
-$(BP)/fw-fov-check: $(FWH_B0)/tdc_fw_host $(FWH_B1)/tdc_fw_host $(B)/tests/fw_stream tests/arm/test_fw_fov.sh
+# (fw-fov also runs the streams through the loop with bands: front/back
+# buffers, and the foveated TRM stream through the builds that refuse it)
+FWH_FOVX_ALL := $(FWH_FOVX)-trm/tdc_fw_host $(FWH_FOVX)-fov/tdc_fw_host $(FWH_FOVX)-optout/tdc_fw_host
+$(BP)/fw-fov-check: $(FWH_B0)/tdc_fw_host $(FWH_B1)/tdc_fw_host $(FWH_FOVX_ALL) $(B)/tests/fw_stream tests/arm/test_fw_fov.sh
 	@mkdir -p $(@D)
-	@printf '#!/bin/sh\nexec tests/arm/test_fw_fov.sh %s %s %s %s\n' "$(FWH_B0)/tdc_fw_host" "$(B)/tests/fw_stream" "$(PANEL_DIMS)" "$(FWH_B1)/tdc_fw_host" > $@
+	@printf '#!/bin/sh\nexec tests/arm/test_fw_fov.sh %s %s %s %s %s %s\n' "$(FWH_B0)/tdc_fw_host" "$(B)/tests/fw_stream" "$(PANEL_DIMS)" "$(FWH_B1)/tdc_fw_host" "$(if $(filter lcd,$(PANEL_TYPE)),-,$(PANEL))" "$(FWH_FOVX_ALL)" > $@
 	@chmod +x $@
 arm-fw-loop-check arm-fw-refuse-check arm-fw-fov-check: arm-fw-%-check: $(BP)/fw-%-check
 	@tests/run_tests.sh "fw-$*-$(PANEL)" $<
