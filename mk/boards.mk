@@ -200,12 +200,15 @@ BP := $(BUILD)/$(BOARD)-$(PANEL)$(if $(filter-out $(sort $(STAGES)),$(sort $(STA
 FW_LCD_ON := $(if $(and $(filter lcd,$(PANEL_TYPE)),$(filter lcd,$(STAGES))),1,0)
 # BOARD_FW_CFG: the board's own configuration defines (e.g. LCD history
 # bits, the link formats it accepts), for every object of its images.
+# FOV_TRM=0 (with trm and fov in STAGES): no foveated TRM, whose decoder
+# buffers and stage arenas sit beside TRM's arena (docs/boards.md, "Foveated
+# streams"): the mode arena as without it, such a stream refused by name.
 # BANDS=1 (default: the board's BOARD_BANDS): pictures as row bands, one band
 # staged, a front/back frame buffer pair (docs/boards.md, "Rows in flight").
 BANDS ?= $(or $(BOARD_BANDS),0)
 FW_CFG_BASE := -DTDC_CFG_TRM=$(if $(filter trm,$(STAGES)),1,0) -DTDC_CFG_ASSEMBLE=$(if $(filter assemble,$(STAGES)),1,0) \
           -DTDC_CFG_FOV=$(if $(filter fov fovtaa,$(STAGES)),1,0) -DTDC_CFG_FOV_TAA=$(if $(filter fovtaa,$(STAGES)),1,0) \
-          -DTDC_CFG_LCD=$(FW_LCD_ON) $(BOARD_FW_CFG)
+          -DTDC_CFG_LCD=$(FW_LCD_ON) $(if $(filter 0,$(FOV_TRM)),-DTDC_CFG_FOV_TRM=0) $(BOARD_FW_CFG)
 FW_CFG := $(FW_CFG_BASE) -DTDC_CFG_BANDS=$(BANDS)
 PANEL_CONFIG := $(GEN)/tdc_panel_$(PANEL)_config.h
 ARM_IMG_CFLAGS := $(ARM_FW_CFLAGS) -include $(PANEL_CONFIG) $(FW_CFG)

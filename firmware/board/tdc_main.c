@@ -422,6 +422,7 @@ static void configure_stream(void)
          * arena at the start of the mode arena, nothing else) */
         uint8_t *trm_mem[FW_EYES];
         size_t trm_bytes = sizeof g_mode_arena[0];
+        int fovtrm = 0;
         for (uint32_t e = 0; e < FW_EYES; e++) {
             trm_mem[e] = (uint8_t *)g_mode_arena[e];
         }
@@ -441,7 +442,7 @@ static void configure_stream(void)
                 trm_mem[e] = FOVTRM_TRM(e);
             }
             trm_bytes = FW_TRM_BYTES;
-            g.fovtrm_on = 1;
+            fovtrm = 1;
         }
 #endif
         for (uint32_t e = 0; e < FW_EYES; e++) {
@@ -462,6 +463,10 @@ static void configure_stream(void)
             }
         }
         g.mode = MODE_TRM;
+#if TDC_CFG_FOV_TRM
+        g.fovtrm_on = (uint8_t)fovtrm;
+#endif
+        (void)fovtrm;
 #endif
     } else if (subframes) {
 #if TDC_CFG_ASSEMBLE
