@@ -392,10 +392,11 @@ FORCE:
 # failure is recorded as a FAIL line too.
 #   ARM_TEST_PAIRS: board:panel:stages[:streams] ("default" = the board's
 #   default stages, "link" = STAGES= : link decode and panel output only;
-#   streams: which of plain+trm+subframes+fov+fovlr+fov-taa to run, default
-#   all the stages allow; the LCD pair runs only trm to stay within the time
-#   budget; the Cortex-M7 runs the foveated streams on disco-dsi, the one
-#   panel whose buffers fit its 16 MiB of PSRAM with them)
+#   streams: which of plain+trm+subframes+fov+fovlr+fov-taa+trm-fov to run,
+#   default all the stages allow (trm-fov: foveated TRM, with trm and fov);
+#   the LCD pair runs only trm to stay within the time budget; the Cortex-M7
+#   runs the foveated streams on disco-dsi, the one panel whose buffers fit
+#   its 16 MiB of PSRAM with them (60 Hz: no TRM, so no trm-fov on the M7))
 #   ARM_FIT_FAIL: board:panel:stages:region pairs that must not fit
 # ---------------------------------------------------------------------------
 ARM_TEST_PAIRS ?= mps2-an500:htc-vive:link mps2-an500:disco-dsi:default:fov+fovlr+fov-taa \

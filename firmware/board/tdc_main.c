@@ -1109,8 +1109,8 @@ static void on_packet(const tdc_link_event_t *ev)
     if (!g.have_frame && g.have_last && ev->frame_index <= g.last_frame) {
         /* (a band of a finished frame: its picture is not whole; ignored) */
         /* (a late foveated reduced slot is ignored as a late REDUCED is) */
-        if ((KIND_BIT(ev->kind) & PICTURE_KINDS) && ev->frame_index == g.last_frame && !band &&
-            !(ev->flags & TDC_LINK_PKT_FOV_REDUCED)) {
+        const int fov_reduced = ev->kind == TDC_LINK_KIND_FOVEATED && (ev->flags & TDC_LINK_PKT_FOV_REDUCED);
+        if ((KIND_BIT(ev->kind) & PICTURE_KINDS) && ev->frame_index == g.last_frame && !band && !fov_reduced) {
             late_full(ev->eye, ev->frame_index, ev->kind);
         } else {
             g.late_packets++; /* its frame was shown already (or dropped) */
