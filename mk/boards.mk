@@ -200,12 +200,15 @@ BP := $(BUILD)/$(BOARD)-$(PANEL)$(if $(filter-out $(sort $(STAGES)),$(sort $(STA
 FW_LCD_ON := $(if $(and $(filter lcd,$(PANEL_TYPE)),$(filter lcd,$(STAGES))),1,0)
 # BOARD_FW_CFG: the board's own configuration defines (e.g. LCD history
 # bits, the link formats it accepts), for every object of its images.
+# FOV_TRM=0 (with trm and fov in STAGES): no foveated TRM, whose decoder
+# buffers and stage arenas sit beside TRM's arena (docs/boards.md, "Foveated
+# streams"): the mode arena as without it, such a stream refused by name.
 # BANDS=1 (default: the board's BOARD_BANDS): pictures as row bands, one band
 # staged, a front/back frame buffer pair (docs/boards.md, "Rows in flight").
 BANDS ?= $(or $(BOARD_BANDS),0)
 FW_CFG_BASE := -DTDC_CFG_TRM=$(if $(filter trm,$(STAGES)),1,0) -DTDC_CFG_ASSEMBLE=$(if $(filter assemble,$(STAGES)),1,0) \
           -DTDC_CFG_FOV=$(if $(filter fov fovtaa,$(STAGES)),1,0) -DTDC_CFG_FOV_TAA=$(if $(filter fovtaa,$(STAGES)),1,0) \
-          -DTDC_CFG_LCD=$(FW_LCD_ON) $(BOARD_FW_CFG)
+          -DTDC_CFG_LCD=$(FW_LCD_ON) $(if $(filter 0,$(FOV_TRM)),-DTDC_CFG_FOV_TRM=0) $(BOARD_FW_CFG)
 FW_CFG := $(FW_CFG_BASE) -DTDC_CFG_BANDS=$(BANDS)
 PANEL_CONFIG := $(GEN)/tdc_panel_$(PANEL)_config.h
 ARM_IMG_CFLAGS := $(ARM_FW_CFLAGS) -include $(PANEL_CONFIG) $(FW_CFG)
@@ -267,7 +270,8 @@ arm-image-check: $(BP)/check-image-rules
 PANEL_DIMS := $(shell awk '$$1 == "width" { w = $$2 } $$1 == "height" { h = $$2 } $$1 == "eyes" { e = $$2 } \
                 END { print w, h, (e ? e : 1) }' boards/panels/$(PANEL).panel)
 FW_MODES ?= plain $(if $(filter trm,$(STAGES)),trm) $(if $(filter assemble,$(STAGES)),subframes) \
-            $(if $(filter fov fovtaa,$(STAGES)),fov fovlr) $(if $(filter fovtaa,$(STAGES)),fov-taa)
+            $(if $(filter fov fovtaa,$(STAGES)),fov fovlr) $(if $(filter fovtaa,$(STAGES)),fov-taa) \
+            $(if $(and $(filter trm,$(STAGES)),$(filter fov fovtaa,$(STAGES))),trm-fov)
 FW_FRAMES_plain := 5
 FW_FRAMES_fov := 9
 FW_FRAMES_fovlr := 9
@@ -275,9 +279,11 @@ FW_FRAMES_fov-taa := 9
 FW_FRAMES_fov-clean := 5
 FW_FRAMES_fovlr-clean := 5
 FW_FRAMES_fov-taa-clean := 5
+FW_FRAMES_trm-fov := 8
+FW_FRAMES_trm-fov-clean := 5
 # The loop-cost rows (make bench-arm) run the foveated streams without their
 # damaged packets, so that every frame costs what a foveated frame costs.
-FW_LOOP_MODES = $(patsubst fov%,fov%-clean,$(filter-out plain,$(FW_MODES)))
+FW_LOOP_MODES = $(patsubst trm-fov,trm-fov-clean,$(patsubst fov%,fov%-clean,$(filter-out plain,$(FW_MODES))))
 FW_FRAMES_trm := 4
 FW_FRAMES_subframes := 6
 # The host build of the loop, with and without bands (fw-bands-check compares
@@ -290,22 +296,30 @@ STREAMS := $(BUILD)/fw-streams
 # decoder's compile-time maximum size): built for this panel, linked before
 # the host library so its panel-independent copies are not used.
 FWH_PANEL_SRCS := $(shell grep -l '"tdc_link.h"' $(filter firmware/%.c,$(wildcard firmware/*.c)))
-# $(1): directory, $(2): TDC_CFG_BANDS
+# $(1): directory, $(2): TDC_CFG_BANDS, $(3): the stage defines
 define fw_host_loop
 $(1)/tdc_main.o: firmware/board/tdc_main.c $(GEN)/tdc_panels.h $(PANEL_CONFIG)
 	@mkdir -p $$(@D)
-	$(CC) $(FW_CFLAGS) -Ifirmware/board -include $(PANEL_CONFIG) $(FW_CFG_BASE) -DTDC_CFG_BANDS=$(2) -DTDC_FW_NO_MAIN -MMD -MP -c $$< -o $$@
+	$(CC) $(FW_CFLAGS) -Ifirmware/board -include $(PANEL_CONFIG) $(3) -DTDC_CFG_BANDS=$(2) -DTDC_FW_NO_MAIN -MMD -MP -c $$< -o $$@
 $(1)/tdc_board_host.o: tests/arm/tdc_board_host.c firmware/board/tdc_board.h
 	@mkdir -p $$(@D)
 	$(CC) $(HOST_CFLAGS) -Ifirmware/board -MMD -MP -c $$< -o $$@
 $(1)/fw/%.o: firmware/%.c $(GEN)/tdc_panels.h $(PANEL_CONFIG)
 	@mkdir -p $$(@D)
-	$(CC) $(FW_CFLAGS) -include $(PANEL_CONFIG) $(FW_CFG_BASE) -DTDC_CFG_BANDS=$(2) -MMD -MP -c $$< -o $$@
+	$(CC) $(FW_CFLAGS) -include $(PANEL_CONFIG) $(3) -DTDC_CFG_BANDS=$(2) -MMD -MP -c $$< -o $$@
 $(1)/tdc_fw_host: $(1)/tdc_main.o $(1)/tdc_board_host.o $(patsubst firmware/%.c,$(1)/fw/%.o,$(FWH_PANEL_SRCS)) $(FWLIB)
 	$(CC) $(HOST_LDFLAGS) $$^ -o $$@ $(HOST_LIBS)
 endef
-$(eval $(call fw_host_loop,$(FWH_B0),0))
-$(eval $(call fw_host_loop,$(FWH_B1),1))
+$(eval $(call fw_host_loop,$(FWH_B0),0,$(FW_CFG_BASE)))
+$(eval $(call fw_host_loop,$(FWH_B1),1,$(FW_CFG_BASE)))
+# fw-fov's builds that must refuse a foveated TRM stream: without the
+# foveation stage, without TRM, and with both but TDC_CFG_FOV_TRM=0 (a
+# board short of memory)
+FWH_FOVX := $(B)/fw-host/$(BOARD)-$(PANEL)-fovcheck
+FW_CFG_NOSTAGE := -DTDC_CFG_ASSEMBLE=0 -DTDC_CFG_FOV_TAA=0 -DTDC_CFG_LCD=0 $(BOARD_FW_CFG)
+$(eval $(call fw_host_loop,$(FWH_FOVX)-trm,0,-DTDC_CFG_TRM=1 -DTDC_CFG_FOV=0 $(FW_CFG_NOSTAGE)))
+$(eval $(call fw_host_loop,$(FWH_FOVX)-fov,0,-DTDC_CFG_TRM=0 -DTDC_CFG_FOV=1 $(FW_CFG_NOSTAGE)))
+$(eval $(call fw_host_loop,$(FWH_FOVX)-optout,0,-DTDC_CFG_TRM=1 -DTDC_CFG_FOV=1 -DTDC_CFG_FOV_TRM=0 $(FW_CFG_NOSTAGE)))
 
 $(B)/tests/arm/fw_stream.o: tests/arm/fw_stream.c $(GEN)/tdc_panels.h
 	@mkdir -p $(@D)
@@ -315,7 +329,8 @@ $(B)/tests/fw_stream: $(B)/tests/arm/fw_stream.o $(B)/tests/golden/tdc_content.o
 
 $(STREAMS)/$(PANEL)-%.tdcs: $(B)/tests/fw_stream
 	@mkdir -p $(@D)
-	$(B)/tests/fw_stream $* $(PANEL_DIMS) $(FW_FRAMES_$*) $@ $(if $(filter plain fov fovlr fov-taa,$*),$(if $(filter lcd,$(PANEL_TYPE)),,$@.expected))
+	$(B)/tests/fw_stream $* $(PANEL_DIMS) $(FW_FRAMES_$*) $@ $(if $(filter plain fov fovlr fov-taa trm-fov,$*),$(if \
+	    $(filter lcd,$(PANEL_TYPE)),,$@.expected $(if $(filter trm-fov,$*),$(PANEL))))
 
 $(BP)/fw-check: $(BP)/tdc-firmware.elf $(FWH)/tdc_fw_host $(foreach m,$(FW_MODES),$(STREAMS)/$(PANEL)-$(m).tdcs) \
                 tests/arm/run_fw_qemu.sh
@@ -344,10 +359,12 @@ $(BP)/fw-%-check: $(FWH)/tdc_fw_host $(B)/tests/fw_stream tests/arm/test_fw_%.sh
 	@mkdir -p $(@D)
 	@printf '#!/bin/sh\nexec tests/arm/test_fw_$*.sh %s %s %s\n' "$(FWH)/tdc_fw_host" "$(B)/tests/fw_stream" "$(PANEL_DIMS)" > $@
 	@chmod +x $@
-# (fw-fov also runs the streams through the loop with bands: front/back buffers)
-$(BP)/fw-fov-check: $(FWH_B0)/tdc_fw_host $(FWH_B1)/tdc_fw_host $(B)/tests/fw_stream tests/arm/test_fw_fov.sh
+# (fw-fov also runs the streams through the loop with bands: front/back
+# buffers, and the foveated TRM stream through the builds that refuse it)
+FWH_FOVX_ALL := $(FWH_FOVX)-trm/tdc_fw_host $(FWH_FOVX)-fov/tdc_fw_host $(FWH_FOVX)-optout/tdc_fw_host
+$(BP)/fw-fov-check: $(FWH_B0)/tdc_fw_host $(FWH_B1)/tdc_fw_host $(FWH_FOVX_ALL) $(B)/tests/fw_stream tests/arm/test_fw_fov.sh
 	@mkdir -p $(@D)
-	@printf '#!/bin/sh\nexec tests/arm/test_fw_fov.sh %s %s %s %s\n' "$(FWH_B0)/tdc_fw_host" "$(B)/tests/fw_stream" "$(PANEL_DIMS)" "$(FWH_B1)/tdc_fw_host" > $@
+	@printf '#!/bin/sh\nexec tests/arm/test_fw_fov.sh %s %s %s %s %s %s\n' "$(FWH_B0)/tdc_fw_host" "$(B)/tests/fw_stream" "$(PANEL_DIMS)" "$(FWH_B1)/tdc_fw_host" "$(if $(filter lcd,$(PANEL_TYPE)),-,$(PANEL))" "$(FWH_FOVX_ALL)" > $@
 	@chmod +x $@
 arm-fw-loop-check arm-fw-refuse-check arm-fw-fov-check: arm-fw-%-check: $(BP)/fw-%-check
 	@tests/run_tests.sh "fw-$*-$(PANEL)" $<
@@ -375,10 +392,11 @@ FORCE:
 # failure is recorded as a FAIL line too.
 #   ARM_TEST_PAIRS: board:panel:stages[:streams] ("default" = the board's
 #   default stages, "link" = STAGES= : link decode and panel output only;
-#   streams: which of plain+trm+subframes+fov+fovlr+fov-taa to run, default
-#   all the stages allow; the LCD pair runs only trm to stay within the time
-#   budget; the Cortex-M7 runs the foveated streams on disco-dsi, the one
-#   panel whose buffers fit its 16 MiB of PSRAM with them)
+#   streams: which of plain+trm+subframes+fov+fovlr+fov-taa+trm-fov to run,
+#   default all the stages allow (trm-fov: foveated TRM, with trm and fov);
+#   the LCD pair runs only trm to stay within the time budget; the Cortex-M7
+#   runs the foveated streams on disco-dsi, the one panel whose buffers fit
+#   its 16 MiB of PSRAM with them (60 Hz: no TRM, so no trm-fov on the M7))
 #   ARM_FIT_FAIL: board:panel:stages:region pairs that must not fit
 # ---------------------------------------------------------------------------
 ARM_TEST_PAIRS ?= mps2-an500:htc-vive:link mps2-an500:disco-dsi:default:fov+fovlr+fov-taa \

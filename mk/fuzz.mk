@@ -41,7 +41,7 @@ FUZZ_LIBS_scene := -lembree3 -lm
 # (22 % of each execution; the kernels are checked against C by checkasm)
 FUZZ_SRCS_frameloop := tests/fuzz/fuzz_frameloop.c $(LINK_FW_SRCS) \
                        firmware/tdc_trm_rows.c firmware/tdc_trm_avx2.c \
-                       $(GEN)/tdc_panel_htc-vive.c firmware/tdc_link_encode.c
+                       $(GEN)/tdc_panel_htc-vive.c firmware/tdc_link_encode.c firmware/tdc_fov_trm.c
 FUZZ_DEPS_frameloop := firmware/board/tdc_main.c
 FUZZ_CFLAGS_frameloop := -Ifirmware/board -DTDC_PANEL_NAME='"fuzz"' -DTDC_PANEL_SYMBOL=tdc_panel_htc_vive \
     -DTDC_PANEL_WIDTH=16 -DTDC_PANEL_HEIGHT=8 -DTDC_PANEL_EYES=2 -DTDC_PANEL_BITS=8 -DTDC_PANEL_REFRESH_HZ=90 \

@@ -18,17 +18,23 @@
  *                            the loop decides it updates its eye (defer_full)
  *   reduced        E * reduced frame (TRM, r <= TDC_CFG_R_NUM/TDC_CFG_R_DEN)
  *   subframe, sample motion, pattern bits   per eye (assembly)
- *   mode arena     per eye max(TRM arena, assembly arena, foveation block):
- *                  a stream uses TRM (reduced frames), assembly (subframes)
- *                  or foveation (FOVEATED packets), never two of them
- *   foveation block (TDC_CFG_FOV, in the mode arena) the stage's arena
- *                  (radial table, row scratch; with TDC_CFG_FOV_TAA the two
- *                  history frames, 12 B/px), the log-rectilinear scratch,
- *                  and the decoder's FOVEATED buffers: the disk frame
- *                  W*H*3 (the decoder's full[]: disk pixels land there, never
- *                  in the frame buffer), the log-polar / log-rectilinear
- *                  samples and (TAA) their vectors, for deltas up to
- *                  TDC_CFG_FOV_DELTA_Q15
+ *   mode arena     per eye max(TRM arena, assembly arena, foveation block,
+ *                  foveated TRM block): a stream uses TRM (reduced frames),
+ *                  assembly (subframes), foveation (FOVEATED packets) or
+ *                  foveated TRM (both), never another combination
+ *   foveation block (TDC_CFG_FOV, in the mode arena) first the decoder's
+ *                  FOVEATED buffers: the disk frame W*H*3 (the decoder's
+ *                  full[]: disk pixels land there, never in the frame
+ *                  buffer), the log-polar / log-rectilinear samples and
+ *                  (TAA) their vectors, for deltas up to
+ *                  TDC_CFG_FOV_DELTA_Q15; then the stage's arena (radial
+ *                  table, row scratch; with TDC_CFG_FOV_TAA the two history
+ *                  frames, 12 B/px) and the log-rectilinear scratch
+ *   foveated TRM block (TDC_CFG_FOV_TRM, in the mode arena) the same
+ *                  decoder buffers at the same place, then TRM's arena and
+ *                  tdc_fov_trm's (two stage arenas without TAA, W x H and
+ *                  rW x rH): a plain TRM stream keeps TRM's arena at the
+ *                  start of the mode arena as without foveation
  *   LCD arena      per eye (LCD panels only)
  *
  * A frame is shown when every eye has what its mode needs (TRM: the FULL or
@@ -115,6 +121,21 @@
 #define TDC_CFG_FOV_DELTA_Q15 18187u
 #endif
 #endif
+/* Foveated TRM (stream flags REDUCED | FOVEATED, docs/foveation.md
+ * "Foveated TRM"): with TRM and the foveation stage both in, the loop plays
+ * it through tdc_fov_trm, whose two instances and the decoder's FOVEATED
+ * buffers sit beside TRM's arena (not in it: both are live at once).  A
+ * board short of memory sets 0: the mode arena is then as without it and
+ * such a stream is refused by name. */
+#ifndef TDC_CFG_FOV_TRM
+#define TDC_CFG_FOV_TRM (TDC_CFG_TRM && TDC_CFG_FOV)
+#endif
+#if TDC_CFG_FOV_TRM && !(TDC_CFG_TRM && TDC_CFG_FOV)
+#error "TDC_CFG_FOV_TRM needs TDC_CFG_TRM and TDC_CFG_FOV"
+#endif
+#if TDC_CFG_FOV_TRM
+#include "tdc_fov_trm.h"
+#endif
 #if TDC_CFG_LCD
 #include "tdc_lcd.h"
 /* Overdrive table (what monitor scalers use; ~4.5x fewer instructions per
@@ -156,7 +177,8 @@ extern const tdc_panel_t TDC_PANEL_SYMBOL;
  * (tdc_fov_lp_size), the largest FOVEATED payload (header, every sample
  * with its vector, every pixel in the disk: disk fraction 1) and the
  * block carved from the eye's mode arena, in this order: stage arena,
- * log-rectilinear scratch, disk frame, samples, vectors. */
+ * disk frame, samples, vectors (the decoder's, at the same place in the
+ * foveated TRM block), stage arena, log-rectilinear scratch. */
 #define FW_LPW (((uint32_t)TDC_CFG_FOV_DELTA_Q15 * FW_W) >> 15)
 #define FW_LPH (((uint32_t)TDC_CFG_FOV_DELTA_Q15 * FW_H) >> 15)
 #define FW_LP_SAMPLES ((size_t)FW_LPW * FW_LPH)
@@ -167,7 +189,8 @@ extern const tdc_panel_t TDC_PANEL_SYMBOL;
 #define FW_FOV_DISK_BYTES TDC_ARENA_ROUND((size_t)FW_W * FW_H * 3u)
 #define FW_FOV_LP_BYTES TDC_ARENA_ROUND(FW_LP_SAMPLES * 3u)
 #define FW_FOV_MV_BYTES (TDC_CFG_FOV_TAA ? TDC_ARENA_ROUND(FW_LP_SAMPLES * 4u) : (size_t)0)
-#define FW_FOV_BYTES (FW_FOV_STAGE_BYTES + FW_FOV_LR_BYTES + FW_FOV_DISK_BYTES + FW_FOV_LP_BYTES + FW_FOV_MV_BYTES)
+#define FW_FOV_DEC_BYTES (FW_FOV_DISK_BYTES + FW_FOV_LP_BYTES + FW_FOV_MV_BYTES)
+#define FW_FOV_BYTES (FW_FOV_DEC_BYTES + FW_FOV_STAGE_BYTES + FW_FOV_LR_BYTES)
 #else
 #define FW_FOV_PAYLOAD ((size_t)0)
 #define FW_FOV_BYTES ((size_t)0)
@@ -198,6 +221,13 @@ static uint8_t g_reduced[FW_EYES][(size_t)FW_RW * FW_RH * 3u] TDC_EXTRAM;
 #else
 #define FW_TRM_BYTES ((size_t)0)
 #endif
+#if TDC_CFG_FOV_TRM
+/* decoder buffers, TRM's arena, both grids' stage arenas (no TAA) */
+#define FW_FOVTRM_STAGE_BYTES TDC_ARENA_ROUND(TDC_FOV_TRM_MEM_BYTES(FW_W, FW_H, FW_RW, FW_RH))
+#define FW_FOVTRM_BYTES (FW_FOV_DEC_BYTES + FW_TRM_BYTES + FW_FOVTRM_STAGE_BYTES)
+#else
+#define FW_FOVTRM_BYTES ((size_t)0)
+#endif
 
 #if TDC_CFG_ASSEMBLE
 static uint8_t g_subframe[FW_EYES][TDC_LINK_SUBFRAME_BYTES(FW_W, FW_H)] TDC_EXTRAM;
@@ -211,18 +241,25 @@ static uint8_t g_pattern[FW_EYES][TDC_PATTERN_BYTES(FW_W, FW_H)] TDC_EXTRAM;
 /* One arena per eye for the stream's mode.  The foveation block holds the
  * decoder's FOVEATED buffers too: the decoder writes them only for a
  * FOVEATED packet, which it accepts only in a stream flagged FOVEATED, and
- * configure_stream runs no other mode's stage in such a stream (it refuses
- * FOVEATED with REDUCED or SUBFRAMES), so they never overlap a live TRM or
- * assembly state; a stage's init starts from nothing it finds there. */
-#define FW_MODE_BYTES FW_MAX2(FW_MAX2(FW_TRM_BYTES, FW_ASM_BYTES), FW_FOV_BYTES)
+ * in such a stream configure_stream runs no assembly, and TRM only in the
+ * foveated TRM block, whose TRM arena starts after those buffers (it
+ * refuses FOVEATED with SUBFRAMES, and with REDUCED without
+ * TDC_CFG_FOV_TRM), so they never overlap a live TRM or assembly state; a
+ * stage's init starts from nothing it finds there. */
+#define FW_MODE_BYTES FW_MAX2(FW_MAX2(FW_MAX2(FW_TRM_BYTES, FW_ASM_BYTES), FW_FOV_BYTES), FW_FOVTRM_BYTES)
 #if TDC_CFG_TRM || TDC_CFG_ASSEMBLE || TDC_CFG_FOV
 static uint64_t g_mode_arena[FW_EYES][FW_MODE_BYTES / 8u] TDC_EXTRAM;
 #endif
 #if TDC_CFG_FOV
-#define FOV_LR_MEM(e) ((uint8_t *)g_mode_arena[e] + FW_FOV_STAGE_BYTES)
-#define FOV_DISK(e) ((uint8_t *)g_mode_arena[e] + FW_FOV_STAGE_BYTES + FW_FOV_LR_BYTES)
+#define FOV_DISK(e) ((uint8_t *)g_mode_arena[e])
 #define FOV_LP(e) (FOV_DISK(e) + FW_FOV_DISK_BYTES)
 #define FOV_MV(e) ((int16_t *)(void *)(FOV_LP(e) + FW_FOV_LP_BYTES))
+#define FOV_STAGE(e) (FOV_DISK(e) + FW_FOV_DEC_BYTES)
+#define FOV_LR_MEM(e) (FOV_STAGE(e) + FW_FOV_STAGE_BYTES)
+#endif
+#if TDC_CFG_FOV_TRM
+#define FOVTRM_TRM(e) (FOV_DISK(e) + FW_FOV_DEC_BYTES)
+#define FOVTRM_STAGE(e) (FOVTRM_TRM(e) + FW_TRM_BYTES)
 #endif
 
 #if TDC_CFG_LCD
@@ -290,6 +327,11 @@ static struct {
     uint32_t fov_frames;     /* foveated eye-frames composed */
     uint32_t fov_resets;     /* TAA histories forgotten: a gap in the eye's frames, a refusal or a FULL picture */
 #endif
+#if TDC_CFG_FOV_TRM
+    tdc_fov_trm_t fovtrm[FW_EYES];
+    uint8_t fovtrm_on;          /* MODE_TRM stream flagged FOVEATED: its slots may come foveated */
+    uint32_t fovtrm_frames[2];  /* foveated pictures composed: full slot, reduced slot */
+#endif
 #if TDC_CFG_ASSEMBLE
     tdc_asm_t as[FW_EYES];
     uint32_t asm_skipped; /* frames behind assembly's counter */
@@ -340,6 +382,9 @@ static void configure_stream(void)
     const tdc_panel_t *panel = &TDC_PANEL_SYMBOL;
     (void)panel;
     g.mode = MODE_NONE;
+#if TDC_CFG_FOV_TRM
+    g.fovtrm_on = 0;
+#endif
     g.have_frame = 0;
     g.have_last = 0;
     g.have_rej = 0;
@@ -363,14 +408,43 @@ static void configure_stream(void)
         g.unsupported++;
         return;
     }
-    if ((reduced && subframes) || (fov && (reduced || subframes))) {
-        tdc_board_log(fov ? "stream foveates TRM or assembly frames: not supported by this build"
+    if ((reduced && subframes) || (fov && subframes) || (fov && reduced && !TDC_CFG_FOV_TRM)) {
+        tdc_board_log(fov ? (subframes ? "stream foveates assembly frames: not supported by this build"
+                                       : "stream foveates TRM frames: not in this build (TDC_CFG_FOV_TRM)")
                           : "stream uses TRM and tile assembly together: not supported by this build");
         g.unsupported++;
         return;
     }
     if (reduced) {
 #if TDC_CFG_TRM
+        /* foveated TRM: TRM's arena after the decoder's FOVEATED buffers,
+         * the two grids' stage arenas after it (a plain TRM stream: TRM's
+         * arena at the start of the mode arena, nothing else) */
+        uint8_t *trm_mem[FW_EYES];
+        size_t trm_bytes = sizeof g_mode_arena[0];
+        int fovtrm = 0;
+        for (uint32_t e = 0; e < FW_EYES; e++) {
+            trm_mem[e] = (uint8_t *)g_mode_arena[e];
+        }
+#if TDC_CFG_FOV_TRM
+        if (fov) {
+            uint32_t rw = 0, rh = 0;
+            tdc_link_reduced_size(&g.dec, &rw, &rh);
+            const size_t need = tdc_fov_trm_get_size((uint16_t)FW_W, (uint16_t)FW_H, (uint16_t)rw, (uint16_t)rh);
+            for (uint32_t e = 0; e < FW_EYES; e++) {
+                if (need == 0 || need > FW_FOVTRM_STAGE_BYTES ||
+                    tdc_fov_trm_init(&g.fovtrm[e], (uint16_t)FW_W, (uint16_t)FW_H, (uint16_t)rw, (uint16_t)rh,
+                                     FOVTRM_STAGE(e), FW_FOVTRM_STAGE_BYTES) != TDC_OK) {
+                    tdc_board_log("foveation stage refused the foveated TRM stream (size)");
+                    g.unsupported++;
+                    return;
+                }
+                trm_mem[e] = FOVTRM_TRM(e);
+            }
+            trm_bytes = FW_TRM_BYTES;
+            fovtrm = 1;
+        }
+#endif
         for (uint32_t e = 0; e < FW_EYES; e++) {
             tdc_trm_config_t cfg;
             /* the rate the panel really runs: the stream's if the panel
@@ -382,14 +456,17 @@ static void configure_stream(void)
             cfg.reduced_in_stream = 1;
             cfg.keep_residual = 0; /* rho recomputed from the kept codes: 4.5 B/px, docs/boards.md */
             const size_t need = tdc_trm_get_size(&cfg);
-            if (need == 0 || need > sizeof g_mode_arena[e] ||
-                tdc_trm_init(&g.trm[e], &cfg, panel, g_mode_arena[e], sizeof g_mode_arena[e]) != TDC_OK) {
+            if (need == 0 || need > trm_bytes || tdc_trm_init(&g.trm[e], &cfg, panel, trm_mem[e], trm_bytes) != TDC_OK) {
                 tdc_board_log("TRM refused the stream (ratio, refresh or size): frames keep the last image");
                 g.unsupported++;
                 return;
             }
         }
         g.mode = MODE_TRM;
+#if TDC_CFG_FOV_TRM
+        g.fovtrm_on = (uint8_t)fovtrm;
+#endif
+        (void)fovtrm;
 #endif
     } else if (subframes) {
 #if TDC_CFG_ASSEMBLE
@@ -411,7 +488,7 @@ static void configure_stream(void)
         for (uint32_t e = 0; e < FW_EYES; e++) {
             const size_t need = tdc_fov_get_size(&cfg);
             if (need == 0 || need > FW_FOV_STAGE_BYTES ||
-                tdc_fov_init(&g.fov[e], &cfg, g_mode_arena[e], FW_FOV_STAGE_BYTES) != TDC_OK ||
+                tdc_fov_init(&g.fov[e], &cfg, FOV_STAGE(e), FW_FOV_STAGE_BYTES) != TDC_OK ||
                 tdc_fov_lr_init(&g.fov_lr[e], (uint16_t)FW_W, FOV_LR_MEM(e), FW_FOV_LR_BYTES) != TDC_OK ||
                 tdc_fov_lr_attach(&g.fov[e], &g.fov_lr[e]) != TDC_OK) {
                 tdc_board_log("foveation stage refused the panel (size)");
@@ -453,10 +530,22 @@ static void configure_stream(void)
 }
 
 /* ---- per-eye pipeline ---- */
+static int fovtrm_on(void)
+{
+#if TDC_CFG_FOV_TRM
+    return g.fovtrm_on;
+#else
+    return 0;
+#endif
+}
+
 static uint32_t kinds_needed(uint32_t eye, uint32_t frame)
 {
     switch (g.mode) {
-    case MODE_TRM: return KIND_BIT(tdc_link_trm_kind(frame, eye));
+    case MODE_TRM:
+        /* the slot due; in a foveated TRM stream it may come FOVEATED (the
+         * decoder checked that the packet's slot is the one due) */
+        return KIND_BIT(tdc_link_trm_kind(frame, eye)) | (fovtrm_on() ? KIND_BIT(TDC_LINK_KIND_FOVEATED) : 0u);
     case MODE_ASSEMBLE: {
         const tdc_link_stream_info_t *si = tdc_link_stream(&g.dec);
         return KIND_BIT(TDC_LINK_KIND_SUBFRAME) |
@@ -557,6 +646,38 @@ static tdc_status_t fov_eye(uint32_t e, uint32_t frame, uint8_t *fb)
 }
 #endif
 
+#if TDC_CFG_FOV_TRM
+/* The FOVEATED packet tdc_link_feed() just returned for eye e of `frame` in
+ * a foveated TRM stream: its slot is the one TRM's schedule has due (the
+ * decoder refused any other).  tdc_fov_trm remaps the slot's picture in
+ * place -- the full slot's disk frame (W x H) or the reduced slot's
+ * picture g_reduced[e] (rW x rH), where the decoder left the disk pixels --
+ * then TRM runs on it as on a FULL or REDUCED picture, writing the eye's
+ * part of the frame buffer.  A refusal by the stage writes nothing there
+ * (counted as a stage error); TRM's sequencing then shows the next reduced
+ * frame without residual, as after a lost full frame. */
+static tdc_status_t fovtrm_eye(uint32_t e, uint32_t frame, uint8_t *fb)
+{
+    const tdc_fov_hdr_t *h = tdc_link_fov(&g.dec, e);
+    const int red = tdc_link_trm_kind(frame, e) == TDC_LINK_KIND_REDUCED;
+    uint32_t rw = 0, rh = 0;
+    tdc_link_reduced_size(&g.dec, &rw, &rh);
+    if (!h) {
+        return TDC_ERR_STATE;
+    }
+    uint8_t *pic = red ? g_reduced[e] : FOV_DISK(e);
+    const uint32_t stride = red ? rw * 3u : FW_W * 3u;
+    tdc_status_t st = tdc_fov_trm_frame(&g.fovtrm[e], h, red, FOV_LP(e), pic, stride);
+    if (st != TDC_OK) {
+        return st;
+    }
+    g.fov_frames++;
+    g.fovtrm_frames[red]++;
+    return red ? tdc_trm_reduced_seq(&g.trm[e], pic, stride, fb, FW_STRIDE, frame)
+               : tdc_trm_full_seq(&g.trm[e], pic, stride, fb, FW_STRIDE, frame);
+}
+#endif
+
 /* Runs the pipeline of eye e on what arrived; returns 1 if the eye's part of
  * the frame buffer was updated. */
 static int process_eye_kinds(uint32_t e, uint32_t frame, uint32_t kinds)
@@ -578,7 +699,13 @@ static int process_eye_kinds(uint32_t e, uint32_t frame, uint32_t kinds)
          * if that one was lost, rejected or out of order (or this is the
          * stream's start), the reduced frame is shown without residual,
          * never with stale state (tdc_trm_reduced_seq). */
-        if (kinds & KIND_BIT(TDC_LINK_KIND_FULL)) {
+        if (kinds & KIND_BIT(TDC_LINK_KIND_FOVEATED)) {
+#if TDC_CFG_FOV_TRM
+            st = fovtrm_eye(e, frame, fb);
+#else
+            return 0; /* (unreachable: needed only in a foveated TRM stream) */
+#endif
+        } else if (kinds & KIND_BIT(TDC_LINK_KIND_FULL)) {
             st = tdc_trm_full_seq(&g.trm[e], fb, FW_STRIDE, fb, FW_STRIDE, frame); /* in place: D(I) is taken first */
         } else if (kinds & KIND_BIT(TDC_LINK_KIND_REDUCED)) {
             uint32_t rw = 0, rh = 0;
@@ -858,6 +985,14 @@ static void on_rejected(const tdc_link_event_t *ev)
      * index is vouched for, the picture lost the same way) */
     const int lost = (ev->error == TDC_LINK_ERR_CRC && !(ev->flags & TDC_LINK_PKT_BAND)) ||
                      ev->error == TDC_LINK_ERR_BAND_DROPPED || ev->error == TDC_LINK_ERR_FOVEATION;
+    if (ev->error == TDC_LINK_ERR_STREAM_HEADER) {
+        /* a stream header the decoder refused after its CRC matched: a
+         * stage the stream needs is not in this build (no buffer for it),
+         * or the header is invalid; nothing of that stream is shown */
+        tdc_board_log("stream header refused by the decoder: a stage it needs is not in this build, or invalid");
+        g.unsupported++;
+        return;
+    }
 #if TDC_CFG_BANDS
     if (ev->error == TDC_LINK_ERR_BAND_DROPPED) {
         g.band_drops++;
@@ -973,7 +1108,9 @@ static void on_packet(const tdc_link_event_t *ev)
     const int band = (ev->flags & TDC_LINK_PKT_BAND) != 0;
     if (!g.have_frame && g.have_last && ev->frame_index <= g.last_frame) {
         /* (a band of a finished frame: its picture is not whole; ignored) */
-        if ((KIND_BIT(ev->kind) & PICTURE_KINDS) && ev->frame_index == g.last_frame && !band) {
+        /* (a late foveated reduced slot is ignored as a late REDUCED is) */
+        const int fov_reduced = ev->kind == TDC_LINK_KIND_FOVEATED && (ev->flags & TDC_LINK_PKT_FOV_REDUCED);
+        if ((KIND_BIT(ev->kind) & PICTURE_KINDS) && ev->frame_index == g.last_frame && !band && !fov_reduced) {
             late_full(ev->eye, ev->frame_index, ev->kind);
         } else {
             g.late_packets++; /* its frame was shown already (or dropped) */
@@ -1005,7 +1142,9 @@ static void on_packet(const tdc_link_event_t *ev)
         }
         return;
     }
-    const uint32_t need = kinds_needed(e, g.frame);
+    /* assembly needs every kind it names; TRM one of its slot's (REDUCED,
+     * or FOVEATED: a picture kind, processed above) */
+    const uint32_t need = kinds_needed(e, g.frame) & ~PICTURE_KINDS;
     if (!(g.eyes_done & (1u << e)) && need && (g.kinds[e] & need) == need) {
         if (process_eye(e, g.frame)) {
             g.eyes_updated = (uint8_t)(g.eyes_updated | (1u << e));
@@ -1147,6 +1286,12 @@ int tdc_fw_run(void)
         log_kv("foveated frames composed: ", g.fov_frames);
         log_kv("foveation headers refused: ", refused);
         log_kv("foveated TAA histories forgotten (gap, refusal or full frame): ", g.fov_resets);
+    }
+#endif
+#if TDC_CFG_FOV_TRM
+    if (g.fovtrm_on) {
+        log_kv("foveated TRM pictures composed, full slot: ", g.fovtrm_frames[0]);
+        log_kv("foveated TRM pictures composed, reduced slot: ", g.fovtrm_frames[1]);
     }
 #endif
 #if TDC_CFG_LCD

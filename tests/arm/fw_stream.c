@@ -28,10 +28,17 @@
  *   trm-resend-ref  frame 2 intact, frame 3 eye 0's REDUCED corrupted
  *   subframes-late  the subframe stream with frame indices from 1000
  *   trm-drop        frame 2: eye 0's FULL corrupted (rejected, eye kept)
- *   trm-fov         foveated TRM (stream flags REDUCED | FOVEATED): both
- *                   slots as FOVEATED packets, the reduced one on the rW x rH
- *                   grid (tdc_link_encode_foveated_slot); the board refuses
- *                   it by name (tests/arm/test_fw_fov.sh)
+ *   trm-fov         foveated TRM (stream flags REDUCED | FOVEATED, as the
+ *                   foveated streams below, no vectors): each slot as a
+ *                   FOVEATED packet, the reduced one on the rW x rH grid
+ *                   (tdc_link_encode_foveated_slot) from the 2x2 box
+ *                   reduced picture; frame 1 of eye 0 (a reduced slot) with a
+ *                   corrupted payload byte (CRC: kept), frame 4 of eye 0 (a
+ *                   full slot) with a foveation header the decoder refuses
+ *                   (alpha 9.0: kept, and frame 5's reduced slot of that eye
+ *                   shown without residual), frame 6 every eye's slot as a
+ *                   plain FULL or REDUCED picture; trm-fov-clean: without
+ *                   those three (make bench-arm's loop row)
  * Rows in flight (issue 17 item 2; tests/arm/test_fw_bands.sh): the TRM
  * stream with stream flag BANDS, every picture as bands of 16 rows:
  *   trm-bands          clean: must show what trm shows through the loop
@@ -63,13 +70,19 @@
  * Contents: tests/golden/tdc_content.h (edge on eye 0, text on eye 1).
  *
  * EXPECTED (plain and foveated modes, for panels that show the decoded
- * codes, i.e. not LCD): the "frame N fnv1a64" lines the panel must show,
+ * codes, i.e. not LCD; trm-fov with PANEL, the panel's name, for TRM's
+ * profile, and only if TRM accepts the panel's rate): the "frame N
+ * fnv1a64" lines the panel must show,
  * computed here independently of the firmware loop: each eye's packet
  * payload unpacked into a side-by-side frame buffer (a foveated one through
  * the stage, tdc_fov_frame, of this program's own per eye: TAA only on
  * packets with vectors, from the eye's previous frame's history, at the
  * stream's frame time), a refused packet's eye keeping its previous image,
- * a frame with no accepted packet not shown at all.
+ * a frame with no accepted packet not shown at all.  trm-fov: each slot's
+ * picture through this program's own stage instance of that slot's grid
+ * (tdc_fov_frame into a separate picture), then the slot's TRM step
+ * (tdc_trm_full_seq / tdc_trm_reduced_seq, configured as the board
+ * configures it) into the frame buffer.
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -85,6 +98,8 @@
 #include "tdc_link_encode.h"
 #include "tdc_ordering.h"
 #include "tdc_pixfmt.h"
+#include "tdc_trm.h"
+#include "tdc_panels.h"
 
 static uint8_t *g_pkt;
 static size_t g_cap;
@@ -198,6 +213,94 @@ static int fov_ref_frame(fov_ref_t *r, const uint8_t *pkt, uint32_t frame, uint3
     return 1;
 }
 
+/* ---- foveated TRM (trm-fov) ---- */
+/* The 2x2 box prefilter of the TRM streams' reduced frames (rounded; edge
+ * pixels replicated). */
+static void box_reduce(const uint8_t *rgb, uint32_t w, uint32_t h, uint8_t *red, uint32_t rw, uint32_t rh)
+{
+    for (uint32_t y = 0; y < rh; y++) {
+        for (uint32_t x = 0; x < rw; x++) {
+            for (uint32_t c = 0; c < 3; c++) {
+                uint32_t s = 0;
+                for (uint32_t k = 0; k < 4; k++) {
+                    uint32_t xx = 2 * x + (k & 1), yy = 2 * y + (k >> 1);
+                    xx = xx < w ? xx : w - 1;
+                    yy = yy < h ? yy : h - 1;
+                    s += rgb[((size_t)yy * w + xx) * 3 + c];
+                }
+                red[((size_t)y * rw + x) * 3 + c] = (uint8_t)((s + 2) / 4);
+            }
+        }
+    }
+}
+
+typedef struct {
+    fov_ref_t full, red; /* one stage instance per slot grid */
+    tdc_trm_t trm;
+    void *arena;
+    uint8_t *pic; /* the slot's picture after the remap (or unpacked) */
+    uint32_t rw, rh;
+} fovtrm_ref_t;
+
+/* Eye reference of a foveated TRM stream (EXPECTED): TRM configured as the
+ * board's loop configures it (the stream's rate if the panel has it, else
+ * the panel's own; r = 1/2, reduced frames in the stream, rho not kept).
+ * Returns 0 if TRM refuses the panel (the loop refuses the stream then). */
+static int fovtrm_ref_init(fovtrm_ref_t *r, const tdc_panel_t *panel, uint32_t w, uint32_t h, uint16_t stream_hz)
+{
+    uint16_t hz = panel->refresh_hz;
+    for (unsigned i = 0; i < TDC_PANEL_MAX_RATES && panel->rates_hz[i]; i++) {
+        hz = panel->rates_hz[i] == stream_hz ? stream_hz : hz;
+    }
+    tdc_trm_config_t cfg;
+    tdc_trm_default_config(&cfg, (uint16_t)w, (uint16_t)h, hz);
+    cfg.r_num = 1;
+    cfg.r_den = 2;
+    cfg.reduced_in_stream = 1;
+    cfg.keep_residual = 0;
+    const size_t n = (tdc_trm_get_size(&cfg) + 7u) & ~(size_t)7u;
+    r->arena = n ? aligned_alloc(8, n) : NULL;
+    if (!r->arena || tdc_trm_init(&r->trm, &cfg, panel, r->arena, n) != TDC_OK) {
+        free(r->arena);
+        return 0;
+    }
+    r->rw = TDC_REDUCED_DIM(w, 1u, 2u);
+    r->rh = TDC_REDUCED_DIM(h, 1u, 2u);
+    fov_ref_init(&r->full, w, h, 0);
+    fov_ref_init(&r->red, r->rw, r->rh, 0);
+    r->pic = malloc((size_t)w * h * 3u);
+    if (!r->pic) {
+        fprintf(stderr, "fw_stream: out of memory\n");
+        exit(1);
+    }
+    return 1;
+}
+
+static void fovtrm_ref_free(fovtrm_ref_t *r)
+{
+    fov_ref_free(&r->full);
+    fov_ref_free(&r->red);
+    free(r->arena);
+    free(r->pic);
+}
+
+/* Packet pkt (accepted by the decoder) of eye e's slot in frame f, FOVEATED
+ * or (plain) a FULL / REDUCED picture: the slot's picture, then TRM's step
+ * into out; returns 1 if out changed. */
+static int fovtrm_ref_frame(fovtrm_ref_t *r, const uint8_t *pkt, int red, int plain, uint32_t f, uint32_t w,
+                            uint32_t h, uint8_t *out, size_t out_stride)
+{
+    const uint32_t gw = red ? r->rw : w, gh = red ? r->rh : h;
+    if (plain) {
+        tdc_pixfmt_unpack(TDC_PIXFMT_RGB888, pkt + TDC_LINK_HEADER_BYTES, gw, gh, r->pic, gw * 3u);
+    } else if (!fov_ref_frame(red ? &r->red : &r->full, pkt, f, gw, gh, 0, r->pic, (size_t)gw * 3u)) {
+        return 0;
+    }
+    const tdc_status_t st = red ? tdc_trm_reduced_seq(&r->trm, r->pic, gw * 3u, out, (uint32_t)out_stride, f)
+                                : tdc_trm_full_seq(&r->trm, r->pic, gw * 3u, out, (uint32_t)out_stride, f);
+    return st == TDC_OK;
+}
+
 /* Eye e's FOVEATED packet of frame f for the stream's slot (FULL, or a TRM
  * stream's REDUCED: then rgb, w, h are the reduced grid's) from the
  * picture rgb: the gaze moves across the screen, samples where the sender
@@ -290,8 +393,9 @@ static void fov_spoil(size_t n, uint32_t at, int32_t v, int wide)
 
 int main(int argc, char **argv)
 {
-    if (argc != 7 && argc != 8) {
-        fprintf(stderr, "usage: %s plain|trm|subframes|fov|fov-taa|fovlr|... W H EYES FRAMES OUT.tdcs [EXPECTED]\n",
+    if (argc < 7 || argc > 9) {
+        fprintf(stderr,
+                "usage: %s plain|trm|subframes|fov|fov-taa|fovlr|trm-fov|... W H EYES FRAMES OUT.tdcs [EXPECTED [PANEL]]\n",
                 argv[0]);
         return 2;
     }
@@ -313,7 +417,7 @@ int main(int argc, char **argv)
     const int fov_taa = !strcmp(fmode, "fov-taa"), fov_lr = !strcmp(fmode, "fovlr");
     const int v_motion = !strcmp(mode, "trm-motion"), v_future = !strcmp(mode, "trm-future");
     const int v_rehdr = !strcmp(mode, "trm-rehdr"), v_resend = !strcmp(mode, "trm-resend");
-    const int v_resend_ref = !strcmp(mode, "trm-resend-ref"), v_fovtrm = !strcmp(mode, "trm-fov");
+    const int v_resend_ref = !strcmp(mode, "trm-resend-ref"), v_fovtrm = !strcmp(fmode, "trm-fov");
     const uint32_t f0 = !strcmp(mode, "subframes-late") ? 1000u : 0u;
     const int bands = !strncmp(mode, "trm-bands", 9), v_drop = !strcmp(mode, "trm-drop");
     const char *band_how = bands && mode[9] == '-' ? mode + 10 : "";
@@ -365,7 +469,34 @@ int main(int argc, char **argv)
     }
     FILE *expect = NULL;
     uint8_t *fb = NULL;
-    if (argc == 8 && (plain || fov)) {
+    fovtrm_ref_t tref[2];
+    int fovtrm_exp = 0;
+    if (argc == 9 && v_fovtrm) {
+#define X(p) &p,
+        static const tdc_panel_t *const all[] = {TDC_PANEL_LIST(X) NULL};
+#undef X
+        const tdc_panel_t *panel = NULL;
+        for (unsigned i = 0; all[i]; i++) {
+            panel = !panel && !strcmp(all[i]->name, argv[8]) ? all[i] : panel;
+        }
+        if (!panel) {
+            fprintf(stderr, "fw_stream: unknown panel %s\n", argv[8]);
+            return 2;
+        }
+        fovtrm_exp = 1;
+        for (uint32_t e = 0; e < eyes && fovtrm_exp; e++) {
+            fovtrm_exp = fovtrm_ref_init(&tref[e], panel, w, h, info.refresh_hz);
+            for (uint32_t k = 0; k < e && !fovtrm_exp; k++) {
+                fovtrm_ref_free(&tref[k]);
+            }
+        }
+        if (!fovtrm_exp) {
+            /* the loop refuses the stream on this panel: nothing to expect */
+            fprintf(stderr, "fw_stream: TRM refuses panel %s: no expected frames\n", argv[8]);
+            (void)remove(argv[7]);
+        }
+    }
+    if (argc >= 8 && (plain || fov || fovtrm_exp)) {
         expect = fopen(argv[7], "w");
         fb = calloc((size_t)eyes * w * h * 3u, 1);
         if (!expect || !fb) {
@@ -427,10 +558,33 @@ int main(int argc, char **argv)
                     g_pkt[TDC_LINK_HEADER_BYTES + 100u] ^= 0x40u; /* payload CRC must catch it */
                 }
                 put(n, "full frame");
+            } else if (v_fovtrm) {
+                const int red_slot = tdc_link_trm_kind(f, e) == TDC_LINK_KIND_REDUCED;
+                const tdc_link_kind_t slot = red_slot ? TDC_LINK_KIND_REDUCED : TDC_LINK_KIND_FULL;
+                const uint32_t sw = red_slot ? rw : w, sh = red_slot ? rh : h;
+                if (red_slot) {
+                    box_reduce(rgb, w, h, red, rw, rh);
+                }
+                const uint8_t *src = red_slot ? red : rgb;
+                const int plain_slot = !fov_clean && f == 6, corrupt = !fov_clean && f == 1 && e == 0;
+                const int spoil = !fov_clean && f == 4 && e == 0;
+                const size_t n = plain_slot ? tdc_link_encode_frame(&enc, g_pkt, g_cap, slot, e, f, TDC_PIXFMT_RGB888, src,
+                                                                    sw, sh, sw * 3u)
+                                            : fov_packet(&enc, slot, e, f, src, sw, sh, 0, NULL, fsamples);
+                if (n && spoil) {
+                    fov_spoil(n, 9, 9, 0); /* alpha 9.0 */
+                }
+                if (fb && n && !corrupt && !spoil &&
+                    fovtrm_ref_frame(&tref[e], g_pkt, red_slot, plain_slot, f, w, h, fb + (size_t)e * w * 3u,
+                                     (size_t)eyes * w * 3u)) {
+                    shown = 1;
+                }
+                if (corrupt) {
+                    g_pkt[TDC_LINK_HEADER_BYTES + TDC_FOV_HDR_BYTES + 40u] ^= 0x40u; /* payload CRC must catch it */
+                }
+                put(n, red_slot ? "reduced slot (foveated TRM)" : "full slot (foveated TRM)");
             } else if (trm) {
-                if (v_fovtrm && tdc_link_trm_kind(f, e) == TDC_LINK_KIND_FULL) {
-                    put(fov_packet(&enc, TDC_LINK_KIND_FULL, e, f, rgb, w, h, 0, NULL, fsamples), "foveated full slot");
-                } else if (bands && tdc_link_trm_kind(f, e) == TDC_LINK_KIND_FULL) {
+                if (bands && tdc_link_trm_kind(f, e) == TDC_LINK_KIND_FULL) {
                     put_bands(&enc, TDC_LINK_KIND_FULL, e, f, rgb, w, h, band_how);
                 } else if (tdc_link_trm_kind(f, e) == TDC_LINK_KIND_FULL) {
                     size_t n = tdc_link_encode_frame(&enc, g_pkt, g_cap, TDC_LINK_KIND_FULL, e, f, TDC_PIXFMT_RGB888,
@@ -449,28 +603,9 @@ int main(int argc, char **argv)
                         put(n, "full frame");
                     }
                 } else {
-                    /* 2x2 box prefilter (rounded; edge pixels replicated). */
-                    for (uint32_t y = 0; y < rh; y++) {
-                        for (uint32_t x = 0; x < rw; x++) {
-                            for (uint32_t c = 0; c < 3; c++) {
-                                uint32_t s = 0;
-                                for (uint32_t k = 0; k < 4; k++) {
-                                    uint32_t xx = 2 * x + (k & 1), yy = 2 * y + (k >> 1);
-                                    xx = xx < w ? xx : w - 1;
-                                    yy = yy < h ? yy : h - 1;
-                                    s += rgb[((size_t)yy * w + xx) * 3 + c];
-                                }
-                                red[((size_t)y * rw + x) * 3 + c] = (uint8_t)((s + 2) / 4);
-                            }
-                        }
-                    }
+                    box_reduce(rgb, w, h, red, rw, rh);
                     if (bands) {
                         put_bands(&enc, TDC_LINK_KIND_REDUCED, e, f, red, rw, rh, band_how);
-                        continue;
-                    }
-                    if (v_fovtrm) {
-                        put(fov_packet(&enc, TDC_LINK_KIND_REDUCED, e, f, red, rw, rh, 0, NULL, fsamples),
-                            "foveated reduced slot");
                         continue;
                     }
                     size_t n = tdc_link_encode_frame(&enc, g_pkt, g_cap, TDC_LINK_KIND_REDUCED, e, f, TDC_PIXFMT_RGB888,
@@ -546,6 +681,9 @@ int main(int argc, char **argv)
     free(fb);
     for (uint32_t e = 0; expect && fov && e < eyes; e++) {
         fov_ref_free(&fref[e]);
+    }
+    for (uint32_t e = 0; fovtrm_exp && e < eyes; e++) {
+        fovtrm_ref_free(&tref[e]);
     }
     free(fsamples);
     if (fclose(g_out) != 0) {
