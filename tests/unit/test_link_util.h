@@ -162,4 +162,23 @@ static inline uint32_t lt_count(const lt_rig_t *r, uint32_t from, int type, int 
     return n;
 }
 
+/* A refused FOVEATED packet (cmocka tests; the caller includes cmocka.h):
+ * since event ev0 exactly one error err and no packet, err counted once,
+ * the foveation-header reason (0: none) counted alone, every buffer as
+ * hashed before (h0) and the last good foveation header kept. */
+#ifdef cmocka_unit_test
+static inline void lt_expect_fov_refused(const lt_rig_t *r, uint32_t ev0, tdc_link_err_t err, int reason, uint64_t h0,
+                                         const tdc_fov_hdr_t *kept)
+{
+    assert_int_equal(lt_count(r, ev0, TDC_LINK_EV_ERROR, err), 1);
+    assert_int_equal(lt_count(r, ev0, TDC_LINK_EV_PACKET, 0), 0);
+    assert_int_equal(tdc_link_error_count(&r->dec, err), 1);
+    for (int k = 1; k < TDC_FOV_HDR_COUNT; k++) {
+        assert_int_equal(tdc_link_counters(&r->dec)->fov_refused[k], k == reason ? 1u : 0u);
+    }
+    assert_true(lt_hash_all(r) == h0); /* the last good frame is kept, nothing written */
+    assert_memory_equal(tdc_link_fov(&r->dec, 0), kept, sizeof *kept);
+}
+#endif
+
 #endif
