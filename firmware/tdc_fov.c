@@ -395,9 +395,11 @@ static void geom_px(const fov_src_t *s, int32_t i, int32_t dx, uint64_t r2)
     }
     s->b[i] = (uint16_t)b;
     if (!b || s->lr) {
-        s->off0[i] = s->off_dummy | TDC_FOV_STEP0; /* a harmless descriptor: sample (u0, 0), weight 1 */
-        s->off1[i] = s->off_dummy;
-        s->wf[i] = 32768u;
+        if (!s->lr) { /* the tap kernel runs over log-polar rows only */
+            s->off0[i] = s->off_dummy | TDC_FOV_STEP0; /* a harmless descriptor: sample (u0, 0), weight 1 */
+            s->off1[i] = s->off_dummy;
+            s->wf[i] = 32768u;
+        }
         if (b) { /* log-rectilinear: the periphery sample (Q8) is the pixel's colour, as geom_general's */
             uint32_t c[3], iu = 0, jv = 0;
             tdc_fov_lr_sample(s->lr, i, c, &iu, &jv);
