@@ -122,6 +122,15 @@ uint32_t checkasm_runs(uint32_t dflt)
     return g.runs ? g.runs : dflt;
 }
 
+int checkasm_mve_available(void)
+{
+#if defined(TDC_TRM_MVE)
+    return 1;
+#else
+    return 0;
+#endif
+}
+
 /* ---- mismatches ---- */
 
 #define DIFF_BODY                          \

@@ -9,7 +9,7 @@
  * stage, e.g. checkasm_trm.c) defines its families and registers its pairs
  * in a table.  A new SIMD kernel of an existing signature is one line:
  *
- *     CHECKASM_KERNEL(&trm_full_row, "mve", tdc_trm_mve_available,
+ *     CHECKASM_KERNEL(&trm_full_row, "mve", checkasm_mve_available,
  *                     tdc_trm_full_row_c, tdc_trm_full_row_mve),
  *
  * The core (checkasm.c) runs every registered pair that this build and CPU
@@ -89,6 +89,10 @@ uint32_t checkasm_rand_below(uint32_t n); /* [0, n), 0 when n == 0 */
 
 /* Check effort: the family's default, or --runs N. */
 uint32_t checkasm_runs(uint32_t dflt);
+/* The `available` of the Helium (MVE) pairs: 1 in builds for the Helium
+ * boards (TDC_TRM_MVE: their start-up enables the MVE unit, so it always
+ * runs there), 0 elsewhere (the MVE names are the C kernels: skipped). */
+int checkasm_mve_available(void);
 
 /* ---- mismatches ---- */
 /* First index where two arrays of n elements differ, or -1. */

@@ -251,20 +251,9 @@ static void bench_geom(const checkasm_kernel_t *kr)
 
 static const checkasm_family_t fov_geom = {"fov_geom", check_geom, bench_geom};
 
-/* Helium boards (TDC_TRM_MVE, their start-up enables the MVE unit): always
- * runnable there; elsewhere the MVE name is the C kernel and is skipped. */
-static int mve_available(void)
-{
-#if defined(TDC_TRM_MVE)
-    return 1;
-#else
-    return 0;
-#endif
-}
-
 static const checkasm_kernel_t g_fov_kernels[] = {
     CHECKASM_KERNEL(&fov_tap2, "avx2", tdc_fov_avx2_available, tdc_fov_tap2_row_c, tdc_fov_tap2_row_avx2),
-    CHECKASM_KERNEL(&fov_tap2, "mve", mve_available, tdc_fov_tap2_row_c, tdc_fov_tap2_row_mve),
+    CHECKASM_KERNEL(&fov_tap2, "mve", checkasm_mve_available, tdc_fov_tap2_row_c, tdc_fov_tap2_row_mve),
     CHECKASM_KERNEL(&fov_geom, "avx2", tdc_fov_avx2_available, tdc_fov_geom_row_c, tdc_fov_geom_row_avx2),
 };
 

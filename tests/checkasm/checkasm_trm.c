@@ -340,15 +340,6 @@ static const checkasm_family_t trm_reduced_row = {"trm_reduced_row", check_reduc
 static const checkasm_family_t trm_dvert = {"trm_dvert", check_dvert, bench_dvert};
 static const checkasm_family_t trm_dhoriz = {"trm_dhoriz", check_dhoriz, bench_dhoriz};
 
-#if defined(TDC_TRM_MVE)
-/* Built with TDC_TRM_MVE only for Cortex-M55 images, whose start-up enables
- * the MVE unit (CP10/CP11): always runnable there. */
-static int mve_available(void)
-{
-    return 1;
-}
-#endif
-
 static const checkasm_kernel_t g_trm_kernels[] = {
     CHECKASM_KERNEL(&trm_full_row, "avx2", tdc_trm_avx2_available, tdc_trm_full_row_c, tdc_trm_full_row_avx2),
     CHECKASM_KERNEL(&trm_reduced_row, "avx2", tdc_trm_avx2_available, tdc_trm_reduced_row_c, tdc_trm_reduced_row_avx2),
@@ -356,10 +347,10 @@ static const checkasm_kernel_t g_trm_kernels[] = {
     CHECKASM_KERNEL(&trm_dhoriz, "avx2", tdc_trm_avx2_available, tdc_trm_dhoriz_c, tdc_trm_dhoriz_avx2),
 #if defined(TDC_TRM_MVE)
     /* Helium boards (BOARD_MVE): run under QEMU by tests/arm/checkasm_arm_main.c */
-    CHECKASM_KERNEL(&trm_full_row, "mve", mve_available, tdc_trm_full_row_c, tdc_trm_full_row_mve),
-    CHECKASM_KERNEL(&trm_reduced_row, "mve", mve_available, tdc_trm_reduced_row_c, tdc_trm_reduced_row_mve),
-    CHECKASM_KERNEL(&trm_dvert, "mve", mve_available, tdc_trm_dvert_c, tdc_trm_dvert_mve),
-    CHECKASM_KERNEL(&trm_dhoriz, "mve", mve_available, tdc_trm_dhoriz_c, tdc_trm_dhoriz_mve),
+    CHECKASM_KERNEL(&trm_full_row, "mve", checkasm_mve_available, tdc_trm_full_row_c, tdc_trm_full_row_mve),
+    CHECKASM_KERNEL(&trm_reduced_row, "mve", checkasm_mve_available, tdc_trm_reduced_row_c, tdc_trm_reduced_row_mve),
+    CHECKASM_KERNEL(&trm_dvert, "mve", checkasm_mve_available, tdc_trm_dvert_c, tdc_trm_dvert_mve),
+    CHECKASM_KERNEL(&trm_dhoriz, "mve", checkasm_mve_available, tdc_trm_dhoriz_c, tdc_trm_dhoriz_mve),
 #endif
 };
 
