@@ -250,16 +250,7 @@ static size_t raw_foveated(const tdc_link_encoder_t *enc, uint32_t eye, uint32_t
         payload[byte_at] = byte_val;
     }
     len = (uint32_t)((int32_t)len + len_delta);
-    tdc_link_header_t f;
-    memset(&f, 0, sizeof f);
-    f.version = TDC_LINK_VERSION;
-    f.kind = TDC_LINK_KIND_FOVEATED;
-    f.eye = (uint8_t)eye;
-    f.format = fmt;
-    f.stream_id = 7;
-    f.frame_index = frame;
-    f.width = width;
-    f.height = H;
+    const tdc_link_header_t f = lt_fov_header((uint8_t)eye, fmt, 0, frame, width, H);
     return tdc_link_encode_raw(pkt, sizeof pkt, &f, payload, len);
 }
 
@@ -319,15 +310,7 @@ static void test_refusals_packet_header(void **state)
     expect_refused(pkt, n, TDC_LINK_ERR_DIMENSIONS, TDC_FOV_HDR_OK, 1, FOV, 0, 0);
     /* shorter than the foveation header */
     {
-        tdc_link_header_t f;
-        memset(&f, 0, sizeof f);
-        f.version = TDC_LINK_VERSION;
-        f.kind = TDC_LINK_KIND_FOVEATED;
-        f.format = TDC_PIXFMT_RGB888;
-        f.stream_id = 7;
-        f.frame_index = 1;
-        f.width = W;
-        f.height = H;
+        const tdc_link_header_t f = lt_fov_header(0, TDC_PIXFMT_RGB888, 0, 1, W, H);
         memset(payload, 0, 31);
         n = tdc_link_encode_raw(pkt, sizeof pkt, &f, payload, 31);
         expect_refused(pkt, n, TDC_LINK_ERR_LENGTH, TDC_FOV_HDR_OK, 1, FOV, 0, 0);

@@ -355,16 +355,7 @@ static size_t raw_fov(const tdc_fov_params_t *p, uint16_t gw, uint16_t gh, uint3
     if (byte_at >= 0) {
         payload[byte_at] = byte_val;
     }
-    tdc_link_header_t f;
-    memset(&f, 0, sizeof f);
-    f.version = TDC_LINK_VERSION;
-    f.kind = TDC_LINK_KIND_FOVEATED;
-    f.format = TDC_PIXFMT_RGB888;
-    f.stream_id = 7;
-    f.flags = flags;
-    f.frame_index = frame;
-    f.width = width;
-    f.height = height;
+    const tdc_link_header_t f = lt_fov_header(0, TDC_PIXFMT_RGB888, flags, frame, width, height);
     return tdc_link_encode_raw(pkt, sizeof pkt, &f, payload,
                                TDC_FOV_HDR_BYTES + tdc_fov_payload_bytes(&g, with_mv));
 }

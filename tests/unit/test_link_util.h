@@ -162,6 +162,25 @@ static inline uint32_t lt_count(const lt_rig_t *r, uint32_t from, int type, int 
     return n;
 }
 
+/* The packet header of a hand-built FOVEATED packet (stream 7; the tests
+ * encode it with tdc_link_encode_raw, so CRCs stay valid). */
+static inline tdc_link_header_t lt_fov_header(uint8_t eye, uint8_t fmt, uint16_t flags, uint32_t frame, uint16_t w,
+                                              uint16_t h)
+{
+    tdc_link_header_t f;
+    memset(&f, 0, sizeof f);
+    f.version = TDC_LINK_VERSION;
+    f.kind = TDC_LINK_KIND_FOVEATED;
+    f.eye = eye;
+    f.format = fmt;
+    f.stream_id = 7;
+    f.flags = flags;
+    f.frame_index = frame;
+    f.width = w;
+    f.height = h;
+    return f;
+}
+
 /* A refused FOVEATED packet (cmocka tests; the caller includes cmocka.h):
  * since event ev0 exactly one error err and no packet, err counted once,
  * the foveation-header reason (0: none) counted alone, every buffer as
