@@ -12,8 +12,6 @@ SIMX_SRCS := sim/simulator/tdc_sim_scene.c sim/simulator/tdc_sim_modes.c sim/sim
              sim/metrics/tdc_powtab.c \
              sim/panel/tdc_panel_sim.c sim/report/tdc_report.c sim/simulator/tdc_sim_render.c
 SIMX_OBJS = $(patsubst %.c,$(B)/%.o,$(SIMX_SRCS))
-SIMXLIB := $(B)/libtdcsimulator.a
-TDC_SIM := $(B)/tdc-sim
 
 HOST_PROGS += $(TDC_SIM)
 DEPS_PKGS += python3-scipy # test_metrics: the flip v1.6 transcription (scipy.signal.convolve2d)
