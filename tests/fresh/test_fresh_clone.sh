@@ -1,0 +1,72 @@
+#!/bin/sh
+# test_fresh_clone.sh [PAIRS...] - the README's commands work as the first
+# command in a fresh clone.  The working tree (tracked files and untracked,
+# not ignored ones: what a commit of it would hold, without build/ or report/)
+# is copied to a temporary folder, with make's own variables cleared so the
+# copy is entered as a newcomer's shell would.  Checked there:
+#   1. `make -n CMD` for every command the README names prints the `deps`
+#      step before its first compiler line;
+#   2. every board/panel image (PAIRS, board:panel) builds from a clean tree,
+#      each board's first pair before anything else was built in its copy
+#      (a missing generated-header dependency fails there);
+#   3. `make -j2 demo DEMO_SCALE=ci` (every demo run, tiny sizes) exits 0
+#      and writes report/index.md.
+# Packages are already present here (make test installed them); that step of
+# a fresh machine is what `make -n` shows in 1.
+set -u
+src=$(cd "$(dirname "$0")/../.." && pwd)
+tmp=$(mktemp -d /tmp/tdc-fresh.XXXXXX)
+trap 'rm -rf "$tmp"' EXIT INT TERM
+unset MAKEFLAGS MFLAGS MAKELEVEL MAKEOVERRIDES TDC_DEPS
+fail=0
+say() { printf '%s\n' "$*"; }
+bad() { say "FAIL: $*"; fail=1; }
+
+copy_tree() { # copy_tree DEST
+    mkdir -p "$1"
+    (cd "$src" && git ls-files -z --cached --others --exclude-standard | \
+        xargs -0 sh -c 'for f; do [ -e "$f" ] && printf "%s\0" "$f"; done' sh | \
+        cpio -0 -pdm --quiet "$1") || { bad "copy of the working tree failed"; exit 1; }
+}
+copy_tree "$tmp/n"
+
+# 1. deps before the first compiler line, for every command the README names
+#    (and its -j2 form: the order must not depend on the job count)
+for cmd in "" demo test bench bench-sim size report-lcd "experiments EXP_SCALE=demo" \
+           "sweep SWEEP=sim/sweep/examples/small.sweep" "BOARD=stm32h747i-disco PANEL=disco-dsi" \
+           "BOARD=mps2-an500 PANEL=htc-vive" "BOARD=mps3-an547 PANEL=htc-vive"; do
+    for j in "" -j2; do
+        # shellcheck disable=SC2086
+        out=$(cd "$tmp/n" && make -n $j $cmd 2>&1)
+        d=$(printf '%s\n' "$out" | grep -n 'dpkg-query' | head -1 | cut -d: -f1)
+        c=$(printf '%s\n' "$out" | grep -nE '^(gcc|clang|cc|arm-none-eabi-gcc|g\+\+) ' | head -1 | cut -d: -f1)
+        if [ -z "$d" ]; then bad "make -n $j $cmd: no deps step"
+        elif [ -n "$c" ] && [ "$c" -lt "$d" ]; then bad "make -n $j $cmd: compiler line $c before the deps step (line $d)"
+        else say "ok: make -n $j $cmd: deps first (line $d; first compile ${c:-none})"; fi
+    done
+done
+[ -e "$tmp/n/build" ] && bad "make -n wrote build/ in the copy"
+
+# 2. board images from a clean tree
+[ $# -gt 0 ] || set -- stm32h747i-disco:disco-dsi
+seen=" "
+for pair in "$@"; do
+    b=${pair%%:*}; p=${pair#*:}
+    case $seen in *" $b "*) ;; *) seen="$seen$b "; copy_tree "$tmp/b-$b" ;; esac
+    if (cd "$tmp/b-$b" && make -j2 BOARD="$b" PANEL="$p" > "$tmp/log-$b-$p" 2>&1) && \
+       [ -s "$tmp/b-$b/build/$b-$p/tdc-firmware.elf" ]; then
+        say "ok: make BOARD=$b PANEL=$p in a fresh tree"
+    else
+        bad "make BOARD=$b PANEL=$p in a fresh tree:"; tail -5 "$tmp/log-$b-$p" | sed 's/^/    /'
+    fi
+done
+
+# 3. the demo, every run at the ci scale
+t0=$(date +%s)
+if (cd "$tmp/n" && make -j2 demo DEMO_SCALE=ci > "$tmp/demo.log" 2>&1) && [ -s "$tmp/n/report/index.md" ]; then
+    say "ok: make -j2 demo DEMO_SCALE=ci in a fresh tree ($(( $(date +%s) - t0 )) s, report/index.md written)"
+else
+    bad "make -j2 demo DEMO_SCALE=ci in a fresh tree ($(( $(date +%s) - t0 )) s):"; grep -E 'FAILED|Error|error:' "$tmp/demo.log" | head -8 | sed 's/^/    /'
+    tail -5 "$tmp/demo.log" | sed 's/^/    /'
+fi
+exit $fail
