@@ -6,9 +6,11 @@
 # copy is entered as a newcomer's shell would.  Checked there:
 #   1. `make -n CMD` for every command the README names prints the `deps`
 #      step before its first compiler line;
-#   2. every board/panel image (PAIRS, board:panel) builds from a clean tree,
-#      each board's first pair before anything else was built in its copy
-#      (a missing generated-header dependency fails there);
+#   2. the board/panel images PAIRS (board:panel; default: the README's
+#      example) build, each in a copy where nothing else was built (a missing
+#      generated-header dependency fails there), and `make size` builds every
+#      pair from a clean tree (a pair that does not fit is a verdict, not a
+#      failure);
 #   3. `make -j2 demo DEMO_SCALE=ci` (every demo run, tiny sizes) exits 0
 #      and writes report/index.md.
 # Packages are already present here (make test installed them); that step of
@@ -47,19 +49,29 @@ for cmd in "" demo test bench bench-sim size report-lcd "experiments EXP_SCALE=d
 done
 [ -e "$tmp/n/build" ] && bad "make -n wrote build/ in the copy"
 
-# 2. board images from a clean tree
+# 2. board images from a clean tree: the README's example pair first in its
+#    own copy (nothing else built there), then `make size` in another copy,
+#    which builds every board/panel pair and fails on any failure that is
+#    not a memory-fit verdict
 [ $# -gt 0 ] || set -- stm32h747i-disco:disco-dsi
-seen=" "
 for pair in "$@"; do
     b=${pair%%:*}; p=${pair#*:}
-    case $seen in *" $b "*) ;; *) seen="$seen$b "; copy_tree "$tmp/b-$b" ;; esac
-    if (cd "$tmp/b-$b" && make -j2 BOARD="$b" PANEL="$p" > "$tmp/log-$b-$p" 2>&1) && \
-       [ -s "$tmp/b-$b/build/$b-$p/tdc-firmware.elf" ]; then
-        say "ok: make BOARD=$b PANEL=$p in a fresh tree"
+    copy_tree "$tmp/b-$b-$p"
+    if (cd "$tmp/b-$b-$p" && make -j2 BOARD="$b" PANEL="$p" > "$tmp/log-$b-$p" 2>&1) && \
+       [ -s "$tmp/b-$b-$p/build/$b-$p/tdc-firmware.elf" ]; then
+        say "ok: make -j2 BOARD=$b PANEL=$p in a fresh tree"
     else
-        bad "make BOARD=$b PANEL=$p in a fresh tree:"; tail -5 "$tmp/log-$b-$p" | sed 's/^/    /'
+        bad "make -j2 BOARD=$b PANEL=$p in a fresh tree:"; tail -5 "$tmp/log-$b-$p" | sed 's/^/    /'
     fi
+    rm -rf "$tmp/b-$b-$p"
 done
+copy_tree "$tmp/s"
+if (cd "$tmp/s" && make size > "$tmp/size.log" 2>&1); then
+    say "ok: make size in a fresh tree: $(grep -c '^== ' "$tmp/size.log") pairs, $(grep -c 'region' "$tmp/size.log") region lines, $(grep -c '^    memory fit' "$tmp/size.log") memory-fit verdicts"
+else
+    bad "make size in a fresh tree:"; grep -B1 -A5 'build failed' "$tmp/size.log" | head -20 | sed 's/^/    /'
+fi
+rm -rf "$tmp/s"
 
 # 3. the demo, every run at the ci scale
 t0=$(date +%s)
