@@ -61,6 +61,23 @@ int tdc_fail(int code, const char *cmd, const char *what, const char *why_fmt, .
 /* A bad option value: "tool: cmd: bad value for OPT 'VAL': WANT" -> ARGS. */
 int tdc_fail_option(const char *cmd, const char *opt, const char *val, const char *want);
 
+/* Any other bad command line: "tool: cmd: WHY: try 'tool --help'" -> ARGS
+ * (one line: the usage goes to stdout on --help only). */
+#if defined(__GNUC__)
+__attribute__((format(printf, 2, 3)))
+#endif
+int tdc_fail_usage(const char *cmd, const char *why_fmt, ...);
+
+/* getopt_long() returned '?' or ':' (call it with opterr = 0 and an
+ * optstring starting with ':'): the unknown option, or the one missing its
+ * value, as one tdc_fail_usage() line -> ARGS. */
+int tdc_fail_getopt(int c, char *const *argv);
+
+/* An input file before it is read: 0 when path can be opened for reading
+ * and is not a folder, else -1 with errno (EISDIR for a folder), so a folder
+ * is FILE ("cannot read"), not a malformed (INPUT) empty file. */
+int tdc_in_check(const char *path);
+
 /* ---- numbers: the whole string, decimal (or 0x hex where noted), no sign
  * unless signed, no white space, no wrap.  Return 0 on success, -1 (and
  * leave *out alone) when the text is not a number or is outside [lo, hi]. */
