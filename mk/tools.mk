@@ -24,3 +24,12 @@ $(B)/test-tool-conventions: tests/unit/test_tool_conventions.sh tests/unit/tool_
 	@printf '#!/bin/sh\nexec tests/unit/test_tool_conventions.sh %s\n' "$(HOST_PROGS) $(TABLEGEN)" > $@
 	@chmod +x $@
 TESTS += $(B)/test-tool-conventions
+
+# The one exit-code table (hosttools/common/tdc_exit.h) against its copies:
+# docs/tools.md, README, every code named in the docs, the Python tools.
+$(TABLEGEN): hosttools/common/tdc_exit.h
+$(B)/test-exit-table: tests/unit/test_exit_table.py hosttools/common/tdc_exit.h hosttools/common/tdc_exit.py
+	@mkdir -p $(@D)
+	@printf '#!/bin/sh\nexec /usr/bin/python3 tests/unit/test_exit_table.py\n' > $@
+	@chmod +x $@
+TESTS += $(B)/test-exit-table

@@ -14,9 +14,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-static const char *const k_exit_names[TDC_EXIT_COUNT] = {
-    "OK",           "ARGS", "NO_DEVICE", "AMBIGUOUS", "IO",    "TIMEOUT", "DISCONNECTED", "FILE", "IMAGE",
-    "INCOMPATIBLE", "DFU",  "VERIFY",    "PROTOCOL",  "INPUT", "REFUSED", "NO_LINE",      "BUSY", "NOMEM"};
+#define TDC_EXIT_NAME(code, name, meaning, programs) [code] = #name,
+static const char *const k_exit_names[TDC_EXIT_COUNT] = {TDC_EXIT_TABLE(TDC_EXIT_NAME)};
+#undef TDC_EXIT_NAME
 
 const char *tdc_exit_name(int code)
 {

@@ -36,12 +36,18 @@ one_line() {
     fi
 }
 
-# --help: exit 0, the usage on stdout, nothing on stderr.
+# --help: exit 0, the usage on stdout, nothing on stderr; the exit codes it
+# lists ("N NAME" after "exit codes") are those of the one table.
+python3 hosttools/common/tdc_exit.py list > "$t/codes" || bad "tdc_exit.py list"
 help_ok() {
     prog=$1; name=$(basename "$prog")
     "$prog" --help >"$t/out" 2>"$t/err"; got=$?
     if [ "$got" -eq 0 ] && [ -s "$t/out" ] && [ ! -s "$t/err" ]; then ok "$name: --help"
     else bad "$name: --help (exit $got, stdout $(wc -c < "$t/out") bytes, stderr: $(head -c 200 "$t/err"))"; fi
+    wrong=$(sed -n '/[Ee]xit codes/,$p' "$t/out" | grep -oE '\b[0-9]{1,2} [A-Z][A-Z_]+\b' | sort -u | grep -vxF -f "$t/codes")
+    if ! grep -qi "exit codes" "$t/out"; then bad "$name: --help names no exit codes"
+    elif [ -n "$wrong" ]; then bad "$name: --help names codes not in tdc_exit.h: $wrong"
+    else ok "$name: --help exit codes match tdc_exit.h"; fi
 }
 
 for prog in "$@"; do
