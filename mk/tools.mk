@@ -33,3 +33,11 @@ $(B)/test-exit-table: tests/unit/test_exit_table.py hosttools/common/tdc_exit.h 
 	@printf '#!/bin/sh\nexec /usr/bin/python3 tests/unit/test_exit_table.py\n' > $@
 	@chmod +x $@
 TESTS += $(B)/test-exit-table
+
+# docs/design.md's paths exist, its "where is X" symbols are in the files it
+# names, and README links the table (0.1 s).
+$(B)/test-design-refs: tests/unit/test_design_refs.py docs/design.md README.md
+	@mkdir -p $(@D)
+	@printf '#!/bin/sh\nexec /usr/bin/python3 tests/unit/test_design_refs.py\n' > $@
+	@chmod +x $@
+TESTS += $(B)/test-design-refs
