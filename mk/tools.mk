@@ -28,7 +28,7 @@ TESTS += $(B)/test-tool-conventions
 # The one exit-code table (hosttools/common/tdc_exit.h) against its copies:
 # docs/tools.md, README, every code named in the docs, the Python tools.
 $(TABLEGEN): hosttools/common/tdc_exit.h
-$(B)/test-exit-table: tests/unit/test_exit_table.py hosttools/common/tdc_exit.h hosttools/common/tdc_exit.py
+$(B)/test-exit-table: tests/unit/test_exit_table.py tests/unit/tdc_check.py hosttools/common/tdc_exit.h hosttools/common/tdc_exit.py
 	@mkdir -p $(@D)
 	@printf '#!/bin/sh\nexec /usr/bin/python3 tests/unit/test_exit_table.py\n' > $@
 	@chmod +x $@
@@ -36,7 +36,7 @@ TESTS += $(B)/test-exit-table
 
 # docs/design.md's paths exist, its "where is X" symbols are in the files it
 # names, and README links the table (0.1 s).
-$(B)/test-design-refs: tests/unit/test_design_refs.py docs/design.md README.md
+$(B)/test-design-refs: tests/unit/test_design_refs.py tests/unit/tdc_check.py docs/design.md README.md
 	@mkdir -p $(@D)
 	@printf '#!/bin/sh\nexec /usr/bin/python3 tests/unit/test_design_refs.py\n' > $@
 	@chmod +x $@

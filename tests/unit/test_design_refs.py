@@ -14,18 +14,9 @@ import os
 import re
 import sys
 
-fails = []
-passes = 0
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from tdc_check import check, done  # noqa: E402
 
-
-def check(cond, what):
-    global passes
-    if cond:
-        passes += 1
-        print("ok   " + what)
-    else:
-        fails.append(what)
-        print("FAIL " + what)
 
 
 design = open("docs/design.md").read()
@@ -59,5 +50,4 @@ for row in rows:
     named = [p for p in PATH.findall(row) if os.path.exists(p)]
     check(named and not gone, "where is X '%s': %d file(s), symbols found %s" % (what, len(files), gone or ""))
 
-print("design refs: %d passed, %d failed" % (passes, len(fails)))
-sys.exit(1 if fails else 0)
+done("design refs")

@@ -22,28 +22,14 @@ import sys
 REPO = os.getcwd()
 sys.path.insert(0, os.path.join(REPO, "hosttools", "common"))
 import tdc_exit  # noqa: E402
-
-fails = []
-passes = 0
-
-
-def check(cond, what):
-    global passes
-    if cond:
-        passes += 1
-        print("ok   " + what)
-    else:
-        fails.append(what)
-        print("FAIL " + what)
-
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from tdc_check import check, done  # noqa: E402
 
 names = {code: name for code, name, _, _ in tdc_exit.EXIT.rows}
 PAIR = re.compile(r"\b(\d{1,2}) ([A-Z][A-Z_]{1,15})\b")
 
-
 def bad_pairs(text):
     return ["%s %s" % (n, w) for n, w in PAIR.findall(text) if names.get(int(n)) != w]
-
 
 # 1. docs/tools.md: the table, exactly
 doc = open("docs/tools.md").read()
@@ -102,5 +88,4 @@ except ValueError:
     check(True, "tdc_exit.read_table refuses a gap")
 os.remove(tmp)
 
-print("exit table: %d passed, %d failed" % (passes, len(fails)))
-sys.exit(1 if fails else 0)
+done("exit table")
