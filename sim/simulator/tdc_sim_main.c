@@ -179,7 +179,36 @@ static int mkdir_p(const char *dir)
             *p = '/';
         }
     }
-    return mkdir(tmp, 0755) && errno != EEXIST ? -1 : 0;
+    if (mkdir(tmp, 0755) && errno != EEXIST) {
+        return -1;
+    }
+    struct stat st; /* EEXIST: a folder, not a file of that name */
+    if (stat(tmp, &st) != 0 || !S_ISDIR(st.st_mode)) {
+        errno = ENOTDIR;
+        return -1;
+    }
+    return 0;
+}
+
+/* OUTDIR/NAME opened for writing, or NULL after the one-line FILE message. */
+static FILE *out_open(const char *dir, const char *name, char *path, size_t cap)
+{
+    snprintf(path, cap, "%s/%s", dir, name);
+    FILE *f = fopen(path, "w");
+    if (!f) {
+        tdc_fail(TDC_EXIT_FILE, NULL, path, "cannot write: %s", strerror(errno));
+    }
+    return f;
+}
+
+/* Closes an output; FILE (with its message) when anything of it was not written. */
+static int out_close(FILE *f, const char *path)
+{
+    const int err = ferror(f);
+    if (fclose(f) != 0 || err) {
+        return tdc_fail(TDC_EXIT_FILE, NULL, path, "write failed: %s", strerror(errno ? errno : EIO));
+    }
+    return TDC_EXIT_OK;
 }
 
 static int parse_num(const char *s, double lo, double hi, double *v, const char *what)
@@ -316,7 +345,9 @@ int main(int argc, char **argv)
     long frames = -1;
     double v;
     int c;
-    while ((c = getopt_long(argc, argv, "R:s:m:p:r:g:d:n:w:S:o:l:qh", opts, NULL)) != -1) {
+    tdc_tool_set_name("tdc-sim");
+    opterr = 0; /* tdc_fail_getopt() writes the one line */
+    while ((c = getopt_long(argc, argv, ":R:s:m:p:r:g:d:n:w:S:o:l:qh", opts, NULL)) != -1) {
         switch (c) {
         case 's': {
             int k = tdc_scene_from_name(optarg);
@@ -647,7 +678,7 @@ int main(int argc, char **argv)
             return 0;
         }
         case 'h': usage(stdout); return 0;
-        default: usage(stderr); return TDC_EXIT_ARGS;
+        default: return tdc_fail_getopt(c, argv);
         }
     }
     tdc_par_set_threads(threads);
@@ -688,8 +719,7 @@ int main(int argc, char **argv)
         cfg.label = renderer ? renderer : (image ? image : tdc_scene_name(cfg.scene.kind));
     }
     if (cfg.outdir && mkdir_p(cfg.outdir)) {
-        fprintf(stderr, "tdc-sim: cannot create '%s': %s\n", cfg.outdir, strerror(errno));
-        return TDC_EXIT_FILE;
+        return tdc_fail(TDC_EXIT_FILE, NULL, cfg.outdir, "cannot create the output folder: %s", strerror(errno));
     }
     tdc_source_t *src = NULL;
     if (image && renderer) {
@@ -698,6 +728,9 @@ int main(int argc, char **argv)
     }
     if (image) {
         char err[512];
+        if (tdc_in_check(image) != 0) {
+            return tdc_fail(TDC_EXIT_FILE, "--image", image, "cannot read: %s", strerror(errno));
+        }
         if (cfg.scene.speed < 0) {
             cfg.scene.speed = 0.0;
         }
@@ -773,15 +806,17 @@ int main(int argc, char **argv)
     }
     tdc_sim_result_t *res = calloc((size_t)nm, sizeof(*res));
     FILE *series = NULL;
-    char path[1200];
-    if (cfg.outdir) {
-        snprintf(path, sizeof(path), "%s/series.csv", cfg.outdir);
-        series = fopen(path, "w");
+    char path[1200], series_path[1200];
+    if (cfg.outdir && !(series = out_open(cfg.outdir, "series.csv", series_path, sizeof series_path))) {
+        free(res);
+        src->destroy(src);
+        if (cfg.right) {
+            cfg.right->destroy(cfg.right);
+        }
+        return TDC_EXIT_FILE;
     }
     int rc = res ? tdc_sim_run(&cfg, src, modes, nm, res, series) : -1;
-    if (series) {
-        fclose(series);
-    }
+    int file_rc = series ? out_close(series, series_path) : TDC_EXIT_OK;
     if (rc == 0 && cfg.times) {
         fprintf(stderr,
                 "tdc-sim: stage wall seconds: source %.2f link %.2f firmware %.2f panel %.2f eye %.2f metrics %.2f "
@@ -792,21 +827,24 @@ int main(int argc, char **argv)
     if (rc == 0) {
         tdc_report_markdown(stdout, &cfg, res, nm);
         if (cfg.outdir) {
-            snprintf(path, sizeof(path), "%s/summary.csv", cfg.outdir);
-            FILE *f = fopen(path, "w");
+            FILE *f = out_open(cfg.outdir, "summary.csv", path, sizeof path);
             if (f) {
                 tdc_report_csv(f, &cfg, res, nm, 1);
-                fclose(f);
+                file_rc = out_close(f, path) ? TDC_EXIT_FILE : file_rc;
+            } else {
+                file_rc = TDC_EXIT_FILE;
             }
-            snprintf(path, sizeof(path), "%s/foveation.csv", cfg.outdir);
-            f = fopen(path, "w");
+            f = out_open(cfg.outdir, "foveation.csv", path, sizeof path);
             if (f) {
                 tdc_report_foveation(f, &cfg, res, nm, 1);
-                fclose(f);
+                file_rc = out_close(f, path) ? TDC_EXIT_FILE : file_rc;
+            } else {
+                file_rc = TDC_EXIT_FILE;
             }
-            snprintf(path, sizeof(path), "%s/summary.md", cfg.outdir);
-            f = fopen(path, "w");
-            if (f) {
+            f = out_open(cfg.outdir, "summary.md", path, sizeof path);
+            if (!f) {
+                file_rc = TDC_EXIT_FILE;
+            } else {
                 fprintf(f,
                         "Run `%s`: scene `%s`, %s panel, %d Hz clock, %s%dx%d, %.2f px/deg, %.3f s, window %d "
                         "refreshes.\n\n",
@@ -814,7 +852,7 @@ int main(int argc, char **argv)
                         cfg.refresh_hz, cfg.eyes == 2 ? "stereo 2x" : "", cfg.width, cfg.height, cfg.flip_ppd,
                         cfg.duration_s, cfg.window_frames > 0 ? cfg.window_frames : (cfg.refresh_hz >= 200 ? 4 : 2));
                 tdc_report_markdown(f, &cfg, res, nm);
-                fclose(f);
+                file_rc = out_close(f, path) ? TDC_EXIT_FILE : file_rc;
             }
         }
         for (int i = 0; i < nm; i++) {
@@ -830,6 +868,10 @@ int main(int argc, char **argv)
         cfg.right->destroy(cfg.right);
     }
     /* a stage error, a refused configuration or non-finite output: the
-     * run is not a result (docs/tools.md: REFUSED) */
-    return rc == 0 ? TDC_EXIT_OK : TDC_EXIT_REFUSED;
+     * run is not a result (docs/tools.md: REFUSED); an output not written
+     * (a strip, a summary) is FILE, never success */
+    if (rc != 0) {
+        return TDC_EXIT_REFUSED;
+    }
+    return file_rc != TDC_EXIT_OK || tdc_report_write_failed() ? TDC_EXIT_FILE : TDC_EXIT_OK;
 }

@@ -19,8 +19,8 @@ expect 13 "linkdump: file cut mid-packet is not clean" "tdc-linkdump: $t/cut.tdc
 { cat "$t/s.tdcs"; printf 'trailing garbage'; } > "$t/tail.tdcs"
 expect 13 "linkdump: garbage after the last packet" "ends inside a packet or with garbage (16 bytes)" -- "$dump" "$t/tail.tdcs"
 printf 'not a stream at all, not at all' > "$t/junk.tdcs"
-expect 13 "linkdump: not a stream" "not a readable .tdcs stream" -- "$dump" "$t/junk.tdcs"
-expect 7 "linkdump: missing file" "cannot read" -- "$dump" "$t/nope.tdcs"
+expect 13 "linkdump: not a stream" "junk.tdcs: not a .tdcs stream: it does not start with a valid STREAM packet" -- "$dump" "$t/junk.tdcs"
+expect 7 "linkdump: missing file" "nope.tdcs: cannot open for reading: No such file" -- "$dump" "$t/nope.tdcs"
 expect 1 "linkdump: usage" "usage" -- "$dump"
 
 # ---- tdc-render
