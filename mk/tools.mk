@@ -20,7 +20,7 @@ TESTS += $(B)/test-tool-errors
 # --help exits 0, a bad option, a folder as input and an output that cannot
 # be written each give one line and ARGS/FILE.  A program added to
 # HOST_PROGS without cases in the script fails it.  ~3 s.
-$(B)/test-tool-conventions: tests/unit/test_tool_conventions.sh tests/unit/tool_expect.sh $(HOST_PROGS) $(TABLEGEN)
+$(B)/test-tool-conventions: tests/unit/test_tool_conventions.sh tests/unit/tool_expect.sh $$(HOST_PROGS) $(TABLEGEN)
 	@printf '#!/bin/sh\nexec tests/unit/test_tool_conventions.sh %s\n' "$(HOST_PROGS) $(TABLEGEN)" > $@
 	@chmod +x $@
 TESTS += $(B)/test-tool-conventions

@@ -10,7 +10,8 @@ several fragments use belong in the Makefile, before the fragments.
 
 Reads the Makefile and the fragments in make's order and reports every rule
 line (not a recipe, not a variable assignment) that names $(VAR) where VAR is
-first assigned after that line.  $$(VAR) (second expansion) is fine.
+first assigned, or appended to (+=), after that line: the rule would see
+none or only part of the list.  $$(VAR) (second expansion) is fine.
 Exit 0 when there is none, 1 otherwise.
 """
 import glob
@@ -37,10 +38,13 @@ def main():
     top = sys.argv[1] if len(sys.argv) > 1 else '.'
     seq = lines_in_make_order(top)
     first = {}
+    last_append = {}
     for pos, (f, n, l) in enumerate(seq):
         m = ASSIGN.match(l)
         if m and not l.startswith('\t'):
             first.setdefault(m.group(1), (pos, f, n))
+            if '+=' in l.split('#')[0]:
+                last_append[m.group(1)] = (pos, f, n)
     bad = 0
     for pos, (f, n, l) in enumerate(seq):
         if l.startswith('\t') or l.lstrip().startswith('#') or ':' not in l or ASSIGN.match(l) or COND.match(l):
@@ -49,6 +53,10 @@ def main():
             if var in first and first[var][0] > pos:
                 print(f'{f}:{n}: rule names $({var}), first set at {first[var][1]}:{first[var][2]} '
                       f'(read later: empty here): {l.strip()[:90]}')
+                bad = 1
+            elif var in last_append and last_append[var][0] > pos:
+                print(f'{f}:{n}: rule names $({var}), appended to later at {last_append[var][1]}:'
+                      f'{last_append[var][2]} (this rule sees part of the list): {l.strip()[:90]}')
                 bad = 1
     if not bad:
         print(f'check_make_order: {len(seq)} lines of the Makefile and mk/*.mk: no rule names a variable set later')
