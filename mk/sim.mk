@@ -17,7 +17,12 @@ SIMX_OBJS = $(patsubst %.c,$(B)/%.o,$(SIMX_SRCS))
 HOST_PROGS += $(TDC_SIM)
 DEPS_PKGS += python3-scipy # test_metrics: the flip v1.6 transcription (scipy.signal.convolve2d)
 SIM_TESTS := test_sim_smoke test_sim_eye test_metrics test_eye_temporal test_sim_blockmatch test_sim_retina
-TESTS += $(foreach t,$(SIM_TESTS),$(B)/tests/unit/$(t))
+TESTS += $(foreach t,$(SIM_TESTS),$(B)/tests/unit/$(t)) $(B)/test-sim-dump
+
+# tdc-sim --dump: files, sizes, exit codes (a few seconds at 32x32)
+$(B)/test-sim-dump: tests/unit/test_sim_dump.sh $(TDC_SIM)
+	@printf '#!/bin/sh\nexec tests/unit/test_sim_dump.sh %s\n' "$(TDC_SIM)" > $@
+	@chmod +x $@
 
 # Which parts of the data path exist in this tree: decided from the other
 # fragments' source lists (recursively expanded, so after every fragment is
