@@ -77,6 +77,10 @@ sim_retina_t *sim_retina_new(const tdc_sim_setup_t *s, tdc_source_t *const srcs[
         free(r);
         return NULL;
     }
+    if (strcmp(r->disp.ppd_from, "default") == 0) {
+        fprintf(stderr, "tdc-sim: note: panel profile %s has no ppd: the retinal signal uses %.2f px/deg (the "
+                        "documented default; --ppd sets it)\n", profile->name, r->disp.ppd);
+    }
     r->cfg = cfg;
     r->eyes = s->eyes;
     r->w = cfg->width;

@@ -600,7 +600,7 @@ int tdc_sim_run(const tdc_sim_config_t *cfg, tdc_source_t *src, const tdc_mode_d
     int cw = w - 2 * margin, ch = h - 2 * margin;
     int gt_steps = src->rigid ? 1 : (int)fmin(16.0, fmax(2.0, ceil(speed * W / 0.5)));
     if (series) {
-        fprintf(series, "mode,eval,t,psnr,ssim,flip,flicker\n");
+        fprintf(series, "mode,eval,t,psnr,ssim,flip,legacy_flicker\n");
     }
     double prev_te = 0.0, gaze[2] = {0.0, 0.0};
     for (long j = 0; j < nevals && rc == 0; j++) {
