@@ -8,7 +8,8 @@
  *  - no refresh-count box: a static image gives the same signal at 90 and
  *    165 Hz (hold: every step equal; low persistence: the same light over
  *    the common period 1/15 s), and a low-persistence pulse carries the
- *    whole refresh's light (5x the mean in the lit fifth, 0 in the rest);
+ *    whole refresh's light (5x the mean in the lit fifth, 0 in the rest;
+ *    the mean that of a hold panel);
  *  - smooth pursuit is stabilised (a tracked pan stands still on the
  *    retina, a fixated one moves v / R per refresh), a fixed gaze is
  *    reported where it was set;
@@ -225,8 +226,15 @@ static void test_static_pulse_same_light(void **state)
     printf("  pulse: lit step %.2f cd/m^2, mean over 1/15 s %.4f (90 Hz) %.4f (165 Hz)\n", mean(a->y[0][0]), sa, sb);
     assert_true(fabs(mean(a->y[0][0]) - 5.0 * sa) < 1e-3 * sa);
     assert_true(fabs(sa - sb) < 1e-4 * sa);
+    /* the pulse is driven 1 / persistence brighter: the mean light is the
+     * hold panel's (the same static image at persistence 1) */
+    run_t hold = {90, 6, 0.0, 1.0, 1, 0, 1};
+    cap_t *c = run(&hold, m, 1);
+    printf("  hold panel: %.4f cd/m^2\n", mean(c->y[0][0]));
+    assert_true(fabs(sa - mean(c->y[0][0])) < 1e-4 * sa);
     free(a);
     free(b);
+    free(c);
 }
 
 /* A pan at 180 px/s tracked: the lit steps of refreshes 2 and 4 are the
