@@ -200,17 +200,19 @@ int sim_retina_advance(sim_retina_t *r, double te)
     if (!r) {
         return 0;
     }
-    for (int e = 0; e < r->eyes; e++) {
-        while (r->ref_frame[e] < (long)floor(te * r->R + 1e-6)) {
-            int rc = ref_refresh(r, e);
-            if (rc) {
-                return rc;
-            }
-        }
-    }
     const tdc_sim_config_t *cfg = r->cfg;
     for (; (r->next + 1) * r->dt <= te + 1e-9; r->next++) {
         const long k = r->next;
+        /* the reference shows the refresh this step lies in (one at a time:
+         * its ring holds the slices of two refreshes) */
+        for (int e = 0; e < r->eyes; e++) {
+            while (r->ref_frame[e] <= k / r->steps) {
+                int rc = ref_refresh(r, e);
+                if (rc) {
+                    return rc;
+                }
+            }
+        }
         tdc_retina_frame_t fr;
         memset(&fr, 0, sizeof(fr));
         fr.step = k;
