@@ -283,6 +283,7 @@ static void test_lcd_transition_resolved(void **state)
     free(c);
 }
 
+/* --gaze fixed and --gaze saccade: the gaze point of every step. */
 static void test_fixed_gaze_reported(void **state)
 {
     (void)state;
@@ -292,6 +293,16 @@ static void test_fixed_gaze_reported(void **state)
     for (int k = 0; k < c->nsteps[0]; k++) {
         assert_true(c->gaze[k][0] == 20.5 && c->gaze[k][1] == 14.5);
         assert_true(fabs(c->t1[k] - c->t0[k] - 1.0 / 450.0) < 1e-12);
+    }
+    free(c);
+    /* saccades: the gaze table's first two fixations (0.32, 0.36) and
+     * (0.68, 0.42) of the view, the jump at 250 ms */
+    run_t q = {90, 27, -1.0, 0.2, 1, 2, 1, 0};
+    c = run(&q, m, 1);
+    assert_int_equal(c->nsteps[0], 27);
+    for (int k = 0; k < 27; k++) {
+        const double tm = 0.5 * (c->t0[k] + c->t1[k]), fx = tm < 0.25 ? 0.32 : 0.68, fy = tm < 0.25 ? 0.36 : 0.42;
+        assert_true(fabs(c->gaze[k][0] - fx * W) < 1e-9 && fabs(c->gaze[k][1] - fy * H) < 1e-9);
     }
     free(c);
 }
