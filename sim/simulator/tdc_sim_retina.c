@@ -10,9 +10,10 @@
 #include "simulator/tdc_sim_codes.h"
 #include "simulator/tdc_sim_dump.h"
 
-/* The reference's slices: those of the refresh being sampled and the one
- * before (a step never reaches further back: steps tile the refreshes). */
-#define REF_RING (2 * TDC_PANEL_SIM_MAX_SLICES)
+/* The reference's slices: those of the refresh being sampled (steps tile
+ * the refreshes, every slice lies inside its refresh, and the reference
+ * shows a refresh only when its first step is sampled). */
+#define REF_RING TDC_PANEL_SIM_MAX_SLICES
 
 struct sim_retina {
     const tdc_sim_config_t *cfg;
@@ -204,7 +205,7 @@ int sim_retina_advance(sim_retina_t *r, double te)
     for (; (r->next + 1) * r->dt <= te + 1e-9; r->next++) {
         const long k = r->next;
         /* the reference shows the refresh this step lies in (one at a time:
-         * its ring holds the slices of two refreshes) */
+         * its ring holds one refresh's slices) */
         for (int e = 0; e < r->eyes; e++) {
             while (r->ref_frame[e] <= k / r->steps) {
                 int rc = ref_refresh(r, e);
