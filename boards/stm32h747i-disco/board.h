@@ -4,8 +4,22 @@
 
 #define TDC_BOARD_NAME "stm32h747i-disco"
 #define TDC_BOARD_EMULATED 0
-#define TDC_BOARD_CPU_HZ 480000000u /* after clock set-up: HSE 25 MHz, PLL1 M=5 N=192 P=2 */
-#define TDC_BOARD_HSE_HZ 25000000u
+#define TDC_BOARD_HSE_HZ 25000000u /* UM2411: X1, 25 MHz crystal on the HSE pins */
+
+/* PLL1 (RM0399 section 9 "PLL"): ref = HSE / M = 5 MHz (PLL1RGE 4-8 MHz),
+ * VCO = ref * N = 800 MHz (wide range 192-960 MHz), SYSCLK = VCO / P.
+ * 400 MHz is the maximum at VOS1, and VOS1 is the highest scale on the
+ * DISCO's direct-SMPS supply (480 MHz needs VOS0, which needs the LDO:
+ * DS12930 operating conditions).  The timer below follows from these. */
+#define TDC_DISCO_PLL1_M 5u
+#define TDC_DISCO_PLL1_N 160u
+#define TDC_DISCO_PLL1_P 2u
+#define TDC_DISCO_PLL1_Q 4u /* 200 MHz */
+#define TDC_DISCO_PLL1_R 2u /* 400 MHz */
+#define TDC_BOARD_CPU_HZ (TDC_BOARD_HSE_HZ / TDC_DISCO_PLL1_M * TDC_DISCO_PLL1_N / TDC_DISCO_PLL1_P)
+/* AXI/AHB = CPU / 2 = 200 MHz (HPRE), every APB = AHB / 2 = 100 MHz. */
+#define TDC_DISCO_HCLK_HZ (TDC_BOARD_CPU_HZ / 2u)
+#define TDC_DISCO_PCLK_HZ (TDC_DISCO_HCLK_HZ / 2u)
 
 /* Peripheral base addresses (RM0399 section 2.3.2). */
 #define TDC_STM32_RCC 0x58024400u
@@ -15,6 +29,8 @@
 #define TDC_STM32_LTDC 0x50001000u
 #define TDC_STM32_DSI 0x50000000u
 #define TDC_STM32_USB_OTG_HS 0x40040000u
+#define TDC_STM32_USART1 0x40011000u
+#define TDC_STM32_SYSCFG 0x58000400u
 #define TDC_STM32_GPIO(port) (0x58020000u + 0x400u * (uint32_t)(port)) /* port 0 = A .. 10 = K */
 #define TDC_STM32_SDRAM_BASE 0xD0000000u
 #define TDC_STM32_SDRAM_BYTES (32u * 1024u * 1024u)

@@ -1,35 +1,37 @@
 /*
  * tdc_board_stm32h7.c - the board interface on the STM32H747I-DISCO
- * (Cortex-M7 core).  What is real and what is a stub:
+ * (Cortex-M7 core).  The drivers live in boards/stm32h747i-disco/ (clocks,
+ * SDRAM, caches, log UART, fault handler); this file maps the narrow board
+ * interface (tdc_board.h) onto them:
  *
- *   timer        REAL  DWT cycle counter at TDC_BOARD_CPU_HZ
- *   reset cause  REAL  RCC_RSR flags (cleared after reading)
- *   panel out    REAL  LTDC layer 1 frame-buffer address + shadow reload on
- *                      vertical blanking (RM0399 section 35) ...
- *                STUB  ... the LTDC timing, DSI host/PHY and OTM8009A panel
- *                      initialisation are not written: tdc_board_init()
- *                      reports TDC_BOARD_ERR_NOT_IMPLEMENTED for them in the
- *                      log and the LTDC is left disabled
- *   vsync        REAL  polls LTDC_CDSR.VSYNCS (returns at once while the
- *                      LTDC is disabled)
- *   transport    STUB  USB OTG HS bulk OUT endpoint (ULPI PHY) not written:
- *                      reads return nothing; hosttools' USB path targets it
- *   log          STUB  dropped (no UART on the DISCO's ST-LINK VCP yet)
+ *   timer        DWT cycle counter at TDC_BOARD_CPU_HZ (board.h, from PLL1)
+ *   reset cause  RCC_RSR, power-on tested first (a power-on reset also sets
+ *                the brown-out and pin flags), then cleared
+ *   log          USART1 to the ST-LINK virtual COM port (log_uart.c)
+ *   panel out    LTDC layer 1 address + pitch, reload at vertical blanking,
+ *                after cleaning the frame buffer from the D-cache
+ *   vsync        LTDC_CDSR.VSYNCS
+ *   NOT YET WRITTEN (each says so at run time): the LTDC timing and the
+ *   DSI host / panel bring-up (panel_show reports NOT_IMPLEMENTED while the
+ *   LTDC is off), and the USB OTG HS transport (transport_read reports
+ *   NOT_IMPLEMENTED, so the frame loop ends after start-up).
  *
- * Nothing here has run on hardware: it builds, links and is checked in CI.
+ * Executed in tests/disco against register models; not yet run on a board.
  */
 #include "board.h"
+#include "disco.h"
 #include "tdc_board.h"
 
 #define RCC_RSR TDC_REG32(TDC_STM32_RCC + 0xD0u)
 #define LTDC(off) TDC_REG32(TDC_STM32_LTDC + (off))
 #define LTDC_SRCR 0x24u
-#define LTDC_GCR 0x18u
 #define LTDC_CDSR 0x48u
 #define LTDC_L1CFBAR 0xACu
 #define LTDC_L1CFBLR 0xB0u
+#define LTDC_L1CFBLNR 0xB4u
 
 static uint32_t g_last_cycles, g_us, g_frac;
+static int g_ltdc_up; /* the LTDC's clock, timings and layer are set up */
 
 tdc_board_status_t tdc_board_init(void)
 {
@@ -39,9 +41,8 @@ tdc_board_status_t tdc_board_init(void)
     TDC_REG32(TDC_CM_DWT_CYCCNT) = 0u;
     TDC_REG32(TDC_CM_DWT_CTRL) |= 1u;
     g_last_cycles = 0u;
-    /* STUB: LTDC clocks/timings, DSI host + D-PHY PLL and the OTM8009A
-     * command sequence; USB OTG HS core + ULPI PHY and the bulk endpoint. */
-    tdc_board_log("stm32h747i-disco: DSI panel and USB HS transport are stubs (not implemented)");
+    tdc_disco_log_init(); /* again: crt0 zeroed its state after startup.c's early log */
+    tdc_board_log("stm32h747i-disco: DSI panel and USB HS transport not written yet");
     return TDC_BOARD_OK;
 }
 
@@ -49,27 +50,33 @@ tdc_board_status_t tdc_board_transport_read(uint8_t *buf, uint32_t cap, uint32_t
 {
     (void)buf;
     (void)cap;
-    *got = 0u; /* STUB: USB HS bulk OUT endpoint */
+    *got = 0u; /* USB HS bulk OUT endpoint: not written yet */
     return TDC_BOARD_ERR_NOT_IMPLEMENTED;
 }
 
 tdc_board_status_t tdc_board_panel_show(const uint8_t *fb, uint32_t stride, uint32_t width, uint32_t height,
                                         uint32_t frame_index)
 {
-    (void)height;
     (void)frame_index;
-    /* Layer 1 scans out fb from the next vertical blanking: address,
-     * pitch / line length (bytes, +7 per RM0399), then reload on VBR. */
+    if (!g_ltdc_up) {
+        return TDC_BOARD_ERR_NOT_IMPLEMENTED; /* no LTDC access with its clock off */
+    }
+    /* The LTDC reads SDRAM, not the D-cache: write the frame back first.
+     * Layer 1 then scans out fb from the next vertical blanking: address,
+     * pitch / line length (bytes, +7 per RM0399 LTDC_LxCFBLR), line count,
+     * then reload on VBR. */
+    tdc_disco_dcache_clean(fb, stride * height);
     LTDC(LTDC_L1CFBAR) = (uint32_t)(uintptr_t)fb;
     LTDC(LTDC_L1CFBLR) = (stride << 16) | (width * 3u + 7u);
+    LTDC(LTDC_L1CFBLNR) = height;
     LTDC(LTDC_SRCR) = 1u << 1; /* VBR: reload shadow registers at vertical blanking */
-    return (LTDC(LTDC_GCR) & 1u) ? TDC_BOARD_OK : TDC_BOARD_ERR_NOT_IMPLEMENTED;
+    return TDC_BOARD_OK;
 }
 
 void tdc_board_vsync_wait(void)
 {
-    if (!(LTDC(LTDC_GCR) & 1u)) {
-        return; /* LTDC not running (panel set-up is a stub) */
+    if (!g_ltdc_up) {
+        return; /* LTDC not running (panel set-up not written yet) */
     }
     while (LTDC(LTDC_CDSR) & (1u << 2)) { /* leave the current VSYNC */
     }
@@ -93,6 +100,12 @@ tdc_reset_cause_t tdc_board_reset_cause(void)
 {
     const uint32_t rsr = RCC_RSR;
     RCC_RSR = rsr | (1u << 16); /* RMVF: clear the flags for the next reset */
+    /* RM0399 RCC "reset source identification": a power-on reset sets
+     * PORRSTF and also BORRSTF and PINRSTF; a brown-out sets BORRSTF and
+     * PINRSTF; every reset drives NRST, so PINRSTF alone means the pin. */
+    if (rsr & (1u << 23)) {
+        return TDC_RESET_POWER_ON;
+    }
     if (rsr & (1u << 21)) {
         return TDC_RESET_BROWNOUT;
     }
@@ -100,13 +113,10 @@ tdc_reset_cause_t tdc_board_reset_cause(void)
         return TDC_RESET_WATCHDOG; /* IWDG1/2, WWDG1/2 */
     }
     if (rsr & (3u << 24)) {
-        return TDC_RESET_SOFTWARE; /* SFT1RSTF / SFT2RSTF */
+        return TDC_RESET_SOFTWARE; /* SFT1RSTF / SFT2RSTF (also the fault handler's reset) */
     }
     if (rsr & (3u << 30)) {
         return TDC_RESET_LOW_POWER;
-    }
-    if (rsr & (1u << 23)) {
-        return TDC_RESET_POWER_ON;
     }
     if (rsr & (1u << 22)) {
         return TDC_RESET_PIN;
@@ -116,5 +126,5 @@ tdc_reset_cause_t tdc_board_reset_cause(void)
 
 void tdc_board_log(const char *msg)
 {
-    (void)msg; /* STUB: no log channel yet */
+    tdc_disco_log(msg);
 }

@@ -1,0 +1,244 @@
+#!/usr/bin/python3
+"""test_disco.py - the STM32H747I-DISCO's board code, executed.
+
+Runs the linked firmware ELF (make BOARD=stm32h747i-disco PANEL=disco-dsi)
+on an emulated Cortex-M7 against the register models of disco_models.py
+(every access outside the register map, with a clock off, or against an
+RM0399 order rule stops the run), then checks the recorded register values
+against values this file computes from RM0399's formulas and the parts'
+data sheets.  Usage: test_disco.py ELF [unittest args]
+"""
+import math
+import os
+import re
+import struct
+import sys
+import unittest
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from disco_emu import Disco  # noqa: E402
+from disco_models import EmuError, VOS_LIMITS_MHZ, FLASH_WS, ahb_div, apb_div  # noqa: E402
+
+ELF = None
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+HSE_HZ = 25000000  # UM2411: 25 MHz crystal
+SUPPLY_VOS_MAX = 1  # direct SMPS: VOS1 is the highest scale (VOS0 needs the LDO, DS12930)
+
+# IS42S32800J data sheet, -6 speed grade (ns, or clocks where it gives clocks).
+SDRAM_NS = {"tXSR": 70, "tRAS": 42, "tRC": 60, "tRP": 18, "tRCD": 18}
+SDRAM_CLK = {"tMRD": 2, "tWR": 2}
+SDRAM_REFRESH = (64e-3, 4096)  # 4096 refresh cycles every 64 ms
+SDRAM_GEOMETRY = {"cols": 9, "rows": 12, "bits": 32, "banks": 4}
+
+_BOOTED = None
+
+
+def booted():
+    """One board run to the frame loop's first transport read, shared by the
+    read-only tests (2-3 s)."""
+    global _BOOTED
+    if _BOOTED is None:
+        b = Disco(ELF)
+        b.run_reset()
+        _BOOTED = b
+    return _BOOTED
+
+
+def board_h_macros():
+    text = open(os.path.join(ROOT, "boards", "stm32h747i-disco", "board.h")).read()
+    macros = {k: re.sub(r"/\*.*", "", v).strip() for k, v in re.findall(r"#define (TDC_\w+) (.+)$", text, re.M)}
+    def ev(name):
+        expr = macros[name]
+        expr = re.sub(r"\b(\d+)u\b", r"\1", expr)
+        expr = re.sub(r"\b(TDC_\w+)\b", lambda m: str(ev(m.group(1))), expr)
+        return eval(expr.replace("/", "//"), {})
+    return ev
+
+
+class Clocks(unittest.TestCase):
+    def test_supply_written_once_smps(self):
+        b = booted()
+        w = b.writes("PWR", "CR3")
+        self.assertEqual(len(w), 1, "PWR_CR3 supply configuration is write-once")
+        self.assertEqual(w[0].value & 0x3F, 0x4, "direct SMPS: SDEN = 1, LDOEN = 0, BYPASS = 0")
+        i_cr3 = b.log.index(w[0])
+        i_rdy = b.index(lambda a: a.reg == "CSR1" and a.value >> 13 & 1)
+        i_vos = b.index(lambda a: a.op == "W" and a.reg == "D3CR")
+        self.assertTrue(i_cr3 < i_rdy < i_vos, "CR3, then ACTVOSRDY read, then VOS")
+
+    def test_vos_and_clock_limits(self):
+        b = booted()
+        self.assertEqual(b.pwr.vos(), SUPPLY_VOS_MAX)
+        self.assertTrue(b.rcc.switches, "SYSCLK never switched")
+        for sysclk, vos in b.rcc.switches:
+            self.assertEqual(vos, SUPPLY_VOS_MAX)
+            self.assertLessEqual(sysclk, VOS_LIMITS_MHZ[vos][0] * 1000000)
+        i_vosrdy = b.index(lambda a: a.reg == "D3CR" and a.op == "R" and a.value >> 13 & 1)
+        i_sw = b.index(lambda a: a.op == "W" and a.reg == "CFGR")
+        self.assertTrue(0 <= i_vosrdy < i_sw, "VOSRDY read before the switch to PLL1")
+
+    def test_pll1_from_formula(self):
+        b = booted()
+        sel, cfg, divr = b.last("RCC", "PLLCKSELR"), b.last("RCC", "PLLCFGR"), b.last("RCC", "PLL1DIVR")
+        self.assertEqual(sel & 3, 2, "PLL source HSE")
+        divm = sel >> 4 & 0x3F
+        n, p, q, r = (divr & 0x1FF) + 1, (divr >> 9 & 0x7F) + 1, (divr >> 16 & 0x7F) + 1, (divr >> 24 & 0x7F) + 1
+        ref = HSE_HZ / divm  # RM0399 RCC: ref1_ck = HSE / DIVM1
+        vco = ref * n  # integer mode: VCO = ref1_ck x DIVN1
+        rge = cfg >> 2 & 3
+        lo, hi = [(1e6, 2e6), (2e6, 4e6), (4e6, 8e6), (8e6, 16e6)][rge]
+        self.assertTrue(lo <= ref <= hi, "PLL1RGE %d does not hold %g Hz" % (rge, ref))
+        self.assertEqual(cfg >> 1 & 1, 0, "wide VCO for a 2-16 MHz input")
+        self.assertTrue(192e6 <= vco <= 960e6)
+        self.assertEqual(p % 2, 0, "DIVP1 even")
+        sysclk = vco / p
+        self.assertEqual(sysclk, VOS_LIMITS_MHZ[SUPPLY_VOS_MAX][0] * 1e6, "400 MHz: the VOS1 maximum")
+        self.assertLessEqual(vco / q, 200e6)
+        self.assertLessEqual(vco / r, 400e6)
+        ev = board_h_macros()
+        self.assertEqual(ev("TDC_BOARD_CPU_HZ"), sysclk, "board.h timer constant = the programmed clock")
+        d1, d2, d3 = b.last("RCC", "D1CFGR"), b.last("RCC", "D2CFGR"), b.last("RCC", "D3CFGR")
+        cpu = sysclk / ahb_div(d1 >> 8 & 0xF)
+        hclk = cpu / ahb_div(d1 & 0xF)
+        self.assertEqual(cpu, sysclk)
+        self.assertEqual(hclk, 200e6)
+        for pre in (d1 >> 4 & 7, d2 >> 4 & 7, d2 >> 8 & 7, d3 >> 4 & 7):
+            self.assertEqual(hclk / apb_div(pre), 100e6)
+        self.assertEqual(ev("TDC_DISCO_HCLK_HZ"), hclk)
+        self.assertEqual(ev("TDC_DISCO_PCLK_HZ"), 100e6)
+
+    def test_flash_wait_states(self):
+        b = booted()
+        acr = b.last("FLASH", "ACR")
+        want = next((lat, wrh) for fmax, lat, wrh in FLASH_WS[SUPPLY_VOS_MAX] if 200 <= fmax)
+        self.assertEqual((acr & 0xF, acr >> 4 & 3), want)
+        i_acr = b.index(lambda a: a.op == "W" and a.reg == "ACR")
+        i_rb = b.index(lambda a: a.op == "R" and a.reg == "ACR" and a.value == acr)
+        i_sw = b.index(lambda a: a.op == "W" and a.reg == "CFGR")
+        self.assertTrue(i_acr < i_rb < i_sw, "ACR written and read back before the switch")
+
+    def test_ldo_wired_board_refused(self):
+        # The same image on a board whose VCORE came from the LDO would
+        # wait for ACTVOSRDY forever: the model says so.
+        b = Disco(ELF, supply="ldo")
+        with self.assertRaisesRegex(EmuError, "PWR_CR3"):
+            b.run_reset()
+
+
+class Sdram(unittest.TestCase):
+    def test_geometry_and_timings_from_ns(self):
+        b = booted()
+        sdcr1, sdcr2 = b.last("FMC", "SDCR1"), b.last("FMC", "SDCR2")
+        hclk3 = b.rcc.clocks()["hclk"]
+        sdclk = hclk3 / (sdcr1 >> 10 & 3)  # SDCLK field: 2 = HCLK/2, 3 = HCLK/3
+        self.assertLessEqual(sdclk, 166e6, "-6 grade: 166 MHz")
+        for cr in (sdcr2,):
+            self.assertEqual((cr & 3) + 8, SDRAM_GEOMETRY["cols"])
+            self.assertEqual((cr >> 2 & 3) + 11, SDRAM_GEOMETRY["rows"])
+            self.assertEqual(8 << (cr >> 4 & 3), SDRAM_GEOMETRY["bits"])
+            self.assertEqual(2 << (cr >> 6 & 1), SDRAM_GEOMETRY["banks"])
+        cas = sdcr2 >> 7 & 3
+        cyc = {k: math.ceil(ns * 1e-9 * sdclk - 1e-9) for k, ns in SDRAM_NS.items()}
+        cyc.update(SDRAM_CLK)
+        # RM0399 FMC_SDTRx: TWR >= TRAS - TRCD and TWR >= TRC - TRCD - TRP.
+        cyc["tWR"] = max(cyc["tWR"], cyc["tRAS"] - cyc["tRCD"], cyc["tRC"] - cyc["tRCD"] - cyc["tRP"])
+        sdtr1, sdtr2 = b.last("FMC", "SDTR1"), b.last("FMC", "SDTR2")
+        fields = {"tMRD": 0, "tXSR": 4, "tRAS": 8, "tRC": 12, "tWR": 16, "tRP": 20, "tRCD": 24}
+        for name, sh in fields.items():
+            # TRC and TRP of both banks come from SDTR1 (RM0399 FMC_SDTRx).
+            reg = sdtr1 if name in ("tRC", "tRP") else sdtr2
+            self.assertEqual((reg >> sh & 0xF) + 1, cyc[name], "%s: %d cycles at %g MHz" % (name, cyc[name], sdclk / 1e6))
+        period, rows = SDRAM_REFRESH
+        count = math.floor(period / rows * sdclk) - 20  # RM0399 FMC_SDRTR: COUNT = refresh rate x SDCLK - 20
+        self.assertEqual(b.last("FMC", "SDRTR") >> 1 & 0x1FFF, count)
+        modes = [c for c in b.fmc.commands]
+        self.assertEqual([c[0] for c in modes], [1, 2, 3, 4])
+        mrd = modes[3][2]
+        self.assertEqual(mrd >> 4 & 7, cas, "mode register CAS = SDCR CAS")
+        self.assertEqual(mrd & 7, 0, "burst length 1")
+        self.assertGreaterEqual(modes[2][1], 2, "at least 2 auto-refresh cycles")
+        # >= 100 us between clock enable and precharge-all: the M7 retires at
+        # most 2 instructions a cycle, so >= 2 x 100 us x CPU clock instructions.
+        self.assertGreaterEqual(modes[1][3], 2 * 100e-6 * b.rcc.clocks()["cpu"])
+
+    def test_sdram_used_only_after_init(self):
+        b = booted()
+        self.assertTrue(b.sdram_mapped, "crt0 zeroed the SDRAM buffers after the FMC sequence")
+
+
+class Caches(unittest.TestCase):
+    def test_mpu_region_and_dcache(self):
+        b = booted()
+        s = b.scs
+        self.assertTrue(s.dcache_on() and s.v[0xED14] >> 17 & 1)
+        rn, rasr = s.mpu_attr(0xD0000000)
+        self.assertEqual(1 << ((rasr >> 1 & 0x1F) + 1), 32 << 20)
+        self.assertEqual((rasr >> 19 & 7, rasr >> 17 & 1, rasr >> 16 & 1), (1, 1, 1), "Normal WBWA")
+        self.assertEqual(rasr >> 28 & 1, 1, "execute never")
+        i_mpu = b.index(lambda a: a.op == "W" and a.reg == "MPU_CTRL")
+        i_dc = b.index(lambda a: a.op == "W" and a.reg == "CCR" and a.value >> 16 & 1)
+        i_ext = b.index(lambda a: a.reg == "SDRTR")
+        self.assertTrue(i_ext < i_mpu < i_dc)
+
+    def test_flip_cleans_frame_buffer(self):
+        b = Disco(ELF)
+        b.run_reset()
+        fb = 0xD0100000
+        w, h, stride = 800, 480, 800 * 3
+        n = len(b.log)
+        rc = b.call("tdc_board_panel_show", fb, stride, w, h, 0)
+        # The LTDC is not brought up yet: the flip must say so and must not
+        # touch the LTDC with its clock off (the model would raise).
+        self.assertEqual(rc, 0xFFFFFFFE, "TDC_BOARD_ERR_NOT_IMPLEMENTED")
+        self.assertFalse([a for a in b.log[n:] if a.periph == "LTDC"])
+
+
+class ResetCause(unittest.TestCase):
+    # RM0399 RCC_RSR bits; tdc_reset_cause_t values from tdc_board.h.
+    POR, BOR, PIN, SFT1, IWDG1, WWDG1 = 1 << 23, 1 << 21, 1 << 22, 1 << 24, 1 << 26, 1 << 28
+    CASES = [(POR | BOR | PIN | (1 << 19) | (1 << 20) | (1 << 17), 1),  # power-on
+             (BOR | PIN, 5),  # brown-out
+             (PIN, 2), (SFT1 | PIN, 3), (IWDG1 | PIN, 4), (WWDG1 | PIN, 4), (0, 0)]
+
+    def test_order(self):
+        for rsr, want in self.CASES:
+            b = Disco(ELF, rsr=rsr)
+            self.assertEqual(b.call("tdc_board_reset_cause"), want, "RCC_RSR 0x%08x" % rsr)
+            self.assertEqual(b.rcc.v[0xD0], 0, "flags cleared (RMVF)")
+
+
+class LogAndFault(unittest.TestCase):
+    def test_uart_log(self):
+        b = booted()
+        text = b.uart_text()
+        self.assertIn("power-on\r\n", text)
+        self.assertIn("stm32h747i-disco:", text)
+        brr = b.last("USART1", "BRR")
+        baud = b.rcc.clocks()["pclk2"] / brr  # USART16SEL = 0: rcc_pclk2; oversampling 16
+        self.assertLess(abs(baud - 115200) / 115200, 0.01)
+        self.assertEqual((b.gpio[0].mode(9), b.gpio[0].af(9), b.gpio[0].mode(10), b.gpio[0].af(10)), (2, 7, 2, 7))
+
+    def test_fault_vectors_and_report(self):
+        b = Disco(ELF)
+        b.run_reset()
+        vec = struct.unpack("<7I", bytes(b.uc.mem_read(0x08000000, 28)))
+        entry = b.sym("tdc_disco_fault_entry") | 1
+        self.assertEqual(vec[3:7], (entry,) * 4, "HardFault, MemManage, BusFault, UsageFault")
+        frame = 0x24070000
+        b.uc.mem_write(frame, struct.pack("<8I", 0, 1, 2, 3, 12, 0x08004321, 0x08001234, 0x01000000))
+        b.scs.v[0xED28] = 0x00008200  # CFSR: BFARVALID | PRECISERR
+        b.scs.v[0xED38] = 0xC0000004
+        b.uart_mark = len(b.usart1.tx)
+        b.call("tdc_disco_fault_report", frame, 5)
+        self.assertTrue(b.scs.reset_requested)
+        text = b.usart1.tx[b.uart_mark:].decode()
+        for line in ("fault: exception 0x00000005", "fault: pc 0x08001234", "fault: lr 0x08004321",
+                     "fault: cfsr 0x00008200", "fault: bfar 0xc0000004"):
+            self.assertIn(line + "\r\n", text)
+
+
+if __name__ == "__main__":
+    ELF = sys.argv.pop(1) if len(sys.argv) > 1 else os.environ.get("DISCO_ELF")
+    if not ELF or not os.path.exists(ELF):
+        sys.exit("test_disco: run: no firmware ELF given (make BOARD=stm32h747i-disco PANEL=disco-dsi)")
+    unittest.main(verbosity=2)
