@@ -21,6 +21,26 @@
 #define TDC_DISCO_HCLK_HZ (TDC_BOARD_CPU_HZ / 2u)
 #define TDC_DISCO_PCLK_HZ (TDC_DISCO_HCLK_HZ / 2u)
 
+/* The DISCO's own panel (MB1166, OTM8009A controller, landscape): the size
+ * and rate of boards/panels/disco-dsi.panel, the porches of the OTM8009A
+ * data sheet's video-mode timing (also NT35510-compatible).  The LTDC
+ * always drives this panel, whatever PANEL the image was built for. */
+#define TDC_DISCO_LCD_W 800u
+#define TDC_DISCO_LCD_H 480u
+#define TDC_DISCO_LCD_HZ 60u
+#define TDC_DISCO_LCD_HSYNC 2u
+#define TDC_DISCO_LCD_HBP 34u
+#define TDC_DISCO_LCD_HFP 34u
+#define TDC_DISCO_LCD_VSYNC 1u
+#define TDC_DISCO_LCD_VBP 15u
+#define TDC_DISCO_LCD_VFP 16u
+/* Pixel clock = LTDC kernel clock = PLL3R (RM0399 RCC: ltdc_ker_ck):
+ * (2+34+800+34) x (1+15+480+16) x 60 Hz = 26.73 MHz wanted; HSE / 5 = 5 MHz
+ * (PLL3RGE 4-8 MHz) x 107 = 535 MHz VCO (wide) / 20 = 26.75 MHz, 60.05 Hz. */
+#define TDC_DISCO_PLL3_M 5u
+#define TDC_DISCO_PLL3_N 107u
+#define TDC_DISCO_PLL3_R 20u
+
 /* Peripheral base addresses (RM0399 section 2.3.2). */
 #define TDC_STM32_RCC 0x58024400u
 #define TDC_STM32_PWR 0x58024800u

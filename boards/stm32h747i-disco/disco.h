@@ -12,6 +12,15 @@ void tdc_disco_caches_on(void);
 /* clocks.c: clean [p, p + bytes) from the D-cache to memory (DCCMVAC). */
 void tdc_disco_dcache_clean(const void *p, uint32_t bytes);
 
+/* ltdc.c: PLL3 pixel clock, the panel timings, layer 1 RGB888 (off until
+ * the first flip), LTDC on; 1 when PLL3 locked. */
+int tdc_disco_ltdc_init(void);
+/* ltdc.c: clean fb from the D-cache, scan it out from the next vertical
+ * blanking; 0 when the LTDC is not up. */
+int tdc_disco_ltdc_flip(const uint8_t *fb, uint32_t stride, uint32_t width, uint32_t height);
+/* ltdc.c: returns at the start of the next vertical sync. */
+void tdc_disco_ltdc_vsync_wait(void);
+
 /* log_uart.c: USART1 on PA9/PA10 at 115200 8N1 (the ST-LINK VCP). */
 void tdc_disco_log_init(void);
 void tdc_disco_log(const char *msg);

@@ -8,13 +8,14 @@
  *   reset cause  RCC_RSR, power-on tested first (a power-on reset also sets
  *                the brown-out and pin flags), then cleared
  *   log          USART1 to the ST-LINK virtual COM port (log_uart.c)
- *   panel out    LTDC layer 1 address + pitch, reload at vertical blanking,
- *                after cleaning the frame buffer from the D-cache
+ *   panel out    LTDC (ltdc.c): pixel clock, timings, RGB888 layer 1 at
+ *                the frame buffer, reloaded at vertical blanking after the
+ *                buffer is cleaned from the D-cache
  *   vsync        LTDC_CDSR.VSYNCS
- *   NOT YET WRITTEN (each says so at run time): the LTDC timing and the
- *   DSI host / panel bring-up (panel_show reports NOT_IMPLEMENTED while the
- *   LTDC is off), and the USB OTG HS transport (transport_read reports
- *   NOT_IMPLEMENTED, so the frame loop ends after start-up).
+ *   NOT YET WRITTEN (each says so at run time): the DSI host, D-PHY and
+ *   panel command sequence (the LTDC runs, its output reaches no glass),
+ *   and the USB OTG HS transport (transport_read reports NOT_IMPLEMENTED,
+ *   so the frame loop ends after start-up).
  *
  * Executed in tests/disco against register models; not yet run on a board.
  */
@@ -23,15 +24,8 @@
 #include "tdc_board.h"
 
 #define RCC_RSR TDC_REG32(TDC_STM32_RCC + 0xD0u)
-#define LTDC(off) TDC_REG32(TDC_STM32_LTDC + (off))
-#define LTDC_SRCR 0x24u
-#define LTDC_CDSR 0x48u
-#define LTDC_L1CFBAR 0xACu
-#define LTDC_L1CFBLR 0xB0u
-#define LTDC_L1CFBLNR 0xB4u
 
 static uint32_t g_last_cycles, g_us, g_frac;
-static int g_ltdc_up; /* the LTDC's clock, timings and layer are set up */
 
 tdc_board_status_t tdc_board_init(void)
 {
@@ -42,7 +36,8 @@ tdc_board_status_t tdc_board_init(void)
     TDC_REG32(TDC_CM_DWT_CTRL) |= 1u;
     g_last_cycles = 0u;
     tdc_disco_log_init(); /* again: crt0 zeroed its state after startup.c's early log */
-    tdc_board_log("stm32h747i-disco: DSI panel and USB HS transport not written yet");
+    (void)tdc_disco_ltdc_init();
+    tdc_board_log("stm32h747i-disco: DSI host, panel commands and USB HS transport not written yet");
     return TDC_BOARD_OK;
 }
 
@@ -58,30 +53,12 @@ tdc_board_status_t tdc_board_panel_show(const uint8_t *fb, uint32_t stride, uint
                                         uint32_t frame_index)
 {
     (void)frame_index;
-    if (!g_ltdc_up) {
-        return TDC_BOARD_ERR_NOT_IMPLEMENTED; /* no LTDC access with its clock off */
-    }
-    /* The LTDC reads SDRAM, not the D-cache: write the frame back first.
-     * Layer 1 then scans out fb from the next vertical blanking: address,
-     * pitch / line length (bytes, +7 per RM0399 LTDC_LxCFBLR), line count,
-     * then reload on VBR. */
-    tdc_disco_dcache_clean(fb, stride * height);
-    LTDC(LTDC_L1CFBAR) = (uint32_t)(uintptr_t)fb;
-    LTDC(LTDC_L1CFBLR) = (stride << 16) | (width * 3u + 7u);
-    LTDC(LTDC_L1CFBLNR) = height;
-    LTDC(LTDC_SRCR) = 1u << 1; /* VBR: reload shadow registers at vertical blanking */
-    return TDC_BOARD_OK;
+    return tdc_disco_ltdc_flip(fb, stride, width, height) ? TDC_BOARD_OK : TDC_BOARD_ERR_IO;
 }
 
 void tdc_board_vsync_wait(void)
 {
-    if (!g_ltdc_up) {
-        return; /* LTDC not running (panel set-up not written yet) */
-    }
-    while (LTDC(LTDC_CDSR) & (1u << 2)) { /* leave the current VSYNC */
-    }
-    while (!(LTDC(LTDC_CDSR) & (1u << 2))) { /* wait for the next */
-    }
+    tdc_disco_ltdc_vsync_wait();
 }
 
 uint32_t tdc_board_time_us(void)

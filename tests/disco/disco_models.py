@@ -477,9 +477,29 @@ class Ltdc(Model):
         return self.v[off]
 
     def write(self, off, value):
-        if off == 0x24 and value & 3:
+        rcc = self.emu.rcc
+        if off == 0x18 and value & 1 and not self.v[0x18] & 1:
+            # The kernel clock is PLL3R (RM0399 RCC 'ltdc_ker_ck'): it must run.
+            if not (rcc.v[0] >> 29 & 1 and rcc.v[0x2C] >> 24 & 1):
+                raise EmuError("LTDC enabled without PLL3 locked and DIVR3EN: no pixel clock")
+            hs, vs = [self.v[o] >> 16 & 0xFFF for o in (8, 0xC, 0x10, 0x14)], [self.v[o] & 0x7FF for o in (8, 0xC, 0x10, 0x14)]
+            if not (hs == sorted(hs) and vs == sorted(vs) and len(set(hs)) == 4 and len(set(vs)) == 4):
+                raise EmuError("LTDC timing registers not increasing (SSCR < BPCR < AWCR < TWCR, RM0399 LTDC)")
+        if off == 0x84 and value & 1:
+            fb = self.v[0xAC]
+            ram = (0x24000000 <= fb < 0x24080000) or (0xD0000000 <= fb < 0xD2000000 and self.emu.fmc.sdram_ready())
+            if not ram:
+                raise EmuError("LTDC layer 1 enabled on frame buffer 0x%08x: not memory the LTDC can read" % fb)
+            if self.v[0x94] > 7:
+                raise EmuError("L1PFCR: no such pixel format")
+            bpp = [4, 3, 2, 2, 2, 1, 1, 2][self.v[0x94]]
+            width = (self.v[0x88] >> 16 & 0xFFF) - (self.v[0x88] & 0xFFF) + 1
+            if (self.v[0xB0] & 0x1FFF) > width * bpp + 7:
+                raise EmuError("L1CFBLR line length larger than the window (+7, RM0399 LTDC_LxCFBLR)")
+        if off == 0x24 and value & 2 and self.v[0x84] & 1:
             self.emu.scs.check_flip(self.v[0xAC], self.v[0xB0] >> 16, self.v[0xB4] & 0x7FF)
             self.flips.append((self.v[0xAC], self.v[0xB0], self.v[0xB4]))
+        if off == 0x24:
             value = 0
         self.v[off] = value
 

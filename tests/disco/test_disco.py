@@ -185,12 +185,53 @@ class Caches(unittest.TestCase):
         b.run_reset()
         fb = 0xD0100000
         w, h, stride = 800, 480, 800 * 3
-        n = len(b.log)
+        # The model refuses a flip whose frame-buffer lines were not all
+        # cleaned (DCCMVAC) since the previous one while the D-cache is on.
         rc = b.call("tdc_board_panel_show", fb, stride, w, h, 0)
-        # The LTDC is not brought up yet: the flip must say so and must not
-        # touch the LTDC with its clock off (the model would raise).
-        self.assertEqual(rc, 0xFFFFFFFE, "TDC_BOARD_ERR_NOT_IMPLEMENTED")
-        self.assertFalse([a for a in b.log[n:] if a.periph == "LTDC"])
+        self.assertEqual(rc, 0, "TDC_BOARD_OK")
+        self.assertEqual(b.ltdc.flips, [(fb, (stride << 16) | (w * 3 + 7), h)])
+        # A frame larger than the DISCO's panel is cropped to it.
+        b.call("tdc_board_panel_show", fb, 2160 * 3, 2160, 1200, 1)
+        self.assertEqual(b.ltdc.flips[1], (fb, ((2160 * 3) << 16) | (w * 3 + 7), h))
+
+
+def panel_profile(name):
+    out = {}
+    for line in open(os.path.join(ROOT, "boards", "panels", name + ".panel")):
+        f = line.split()
+        if f and not f[0].startswith("#"):
+            out[f[0]] = f[1:]
+    return out
+
+
+class Ltdc(unittest.TestCase):
+    # OTM8009A data sheet video-mode timing (also what ST's DISCO set-up
+    # uses for the NT35510 revision): sync, back porch, front porch.
+    H = (2, 34, 34)
+    V = (1, 15, 16)
+
+    def test_timings_from_panel(self):
+        b = booted()
+        p = panel_profile("disco-dsi")
+        w, h, hz = int(p["width"][0]), int(p["height"][0]), int(p["refresh_hz"][0])
+        (hs, hbp, hfp), (vs, vbp, vfp) = self.H, self.V
+        want = {"SSCR": ((hs - 1) << 16) | (vs - 1),
+                "BPCR": ((hs + hbp - 1) << 16) | (vs + vbp - 1),
+                "AWCR": ((hs + hbp + w - 1) << 16) | (vs + vbp + h - 1),
+                "TWCR": ((hs + hbp + w + hfp - 1) << 16) | (vs + vbp + h + vfp - 1)}
+        for reg, v in want.items():
+            self.assertEqual(b.last("LTDC", reg), v, reg)
+        self.assertEqual(b.last("LTDC", "L1WHPCR"), ((hs + hbp + w - 1) << 16) | (hs + hbp))
+        self.assertEqual(b.last("LTDC", "L1WVPCR"), ((vs + vbp + h - 1) << 16) | (vs + vbp))
+        self.assertEqual(b.last("LTDC", "L1PFCR"), 1, "RGB888")
+        self.assertEqual(b.ltdc.v[0x18] & 1, 1, "LTDC enabled")
+        self.assertEqual(b.ltdc.v[0x84] & 1, 0, "layer off until the first frame")
+        # Pixel clock = PLL3R = HSE / DIVM3 x DIVN3 / DIVR3 (RM0399 RCC).
+        sel, divr = b.last("RCC", "PLLCKSELR"), b.last("RCC", "PLL3DIVR")
+        pclk = HSE_HZ / (sel >> 20 & 0x3F) * ((divr & 0x1FF) + 1) / ((divr >> 24 & 0x7F) + 1)
+        total = (hs + hbp + w + hfp) * (vs + vbp + h + vfp)
+        self.assertLess(abs(pclk / total - hz) / hz, 0.005, "frame rate %.3f Hz" % (pclk / total))
+        self.assertEqual(b.rcc.pll(3)[4], int(pclk))
 
 
 class ResetCause(unittest.TestCase):
