@@ -13,3 +13,20 @@ test-disco:
 	@printf '#!/bin/sh\nexec /usr/bin/python3 tests/disco/test_disco.py %s\n' "$(DISCO_ELF)" > $(BUILD)/test-disco
 	@chmod +x $(BUILD)/test-disco
 	@tests/run_tests.sh disco $(BUILD)/test-disco
+
+# Flashing (docs/boards.md "STM32H747I-DISCO"): through the on-board
+# ST-LINK with openocd (its board/stm32h747i-disco.cfg), or, as the
+# fall-back, ST's ROM bootloader on USART1 (PA9/PA10, reached through the
+# ST-LINK's virtual COM port) with stm32flash, BOOT0 held high at reset.
+DEPS_PKGS += openocd stm32flash
+DISCO_TTY ?= /dev/ttyACM0
+.PHONY: flash flash-uart
+ifeq ($(BOARD),stm32h747i-disco)
+flash: firmware
+	openocd -f board/stm32h747i-disco.cfg -c "program $(BP)/tdc-firmware.elf verify reset exit"
+flash-uart: firmware
+	stm32flash -b 115200 -w $(BP)/tdc-firmware.bin -v -S 0x08000000 -g 0x08000000 $(DISCO_TTY)
+else
+flash flash-uart:
+	@echo "make: flash: BOARD=$(BOARD) is not flashed: $(BOARD_FLASH)"; exit 2
+endif

@@ -22,4 +22,4 @@ BOARD_FW_CFG := -DTDC_CFG_LCD_PREV_BITS=6u -DTDC_LINK_FORMAT_MASK=0x16u
 # pair fits every default pair: the panel never scans out a buffer being
 # written, and a frame with a bad band is never swapped in.
 BOARD_BANDS := 1
-BOARD_FLASH := dfu: hosttools USB DFU path (tdc-usb flash), or dfu-util -a 0 -s 0x08000000:leave -D IMAGE.bin (BOOT0 high), or STM32CubeProgrammer over ST-LINK
+BOARD_FLASH := make flash (openocd through the on-board ST-LINK), make flash-uart (stm32flash, ROM bootloader on USART1, BOOT0 high); tdc-usb flash once the USB HS transport exists
