@@ -40,6 +40,16 @@
 #define TDC_DISCO_PLL3_M 5u
 #define TDC_DISCO_PLL3_N 107u
 #define TDC_DISCO_PLL3_R 20u
+/* DSI host PLL (RM0399 DSI wrapper, DSI_WRPCR), reference = HSE:
+ * lane rate = HSE x NDIV / (IDF x ODF) = 25 MHz x 100 / 5 = 500 Mbit/s per
+ * lane (the D-PHY maximum), VCO = 2 x that = 1000 MHz (500-1000 MHz);
+ * 2 lanes carry 1000 Mbit/s against 26.75 MHz x 24 bit = 642 Mbit/s of
+ * pixels.  Lane byte clock = 500 / 8 = 62.5 MHz. */
+#define TDC_DISCO_DSI_NDIV 100u
+#define TDC_DISCO_DSI_IDF 5u
+#define TDC_DISCO_DSI_ODF 1u
+#define TDC_DISCO_DSI_LANE_HZ (TDC_BOARD_HSE_HZ / TDC_DISCO_DSI_IDF * TDC_DISCO_DSI_NDIV / TDC_DISCO_DSI_ODF)
+#define TDC_DISCO_LCD_PCLK_HZ (TDC_BOARD_HSE_HZ / TDC_DISCO_PLL3_M * TDC_DISCO_PLL3_N / TDC_DISCO_PLL3_R)
 
 /* Peripheral base addresses (RM0399 section 2.3.2). */
 #define TDC_STM32_RCC 0x58024400u

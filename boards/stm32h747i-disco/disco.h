@@ -21,6 +21,13 @@ int tdc_disco_ltdc_flip(const uint8_t *fb, uint32_t stride, uint32_t width, uint
 /* ltdc.c: returns at the start of the next vertical sync. */
 void tdc_disco_ltdc_vsync_wait(void);
 
+/* dsi_panel.c: DSI host, PLL, D-PHY, video-mode timings (before the
+ * LTDC starts); 1 when the regulator and PLL came up. */
+int tdc_disco_dsi_init(void);
+/* dsi_panel.c: link on, panel reset released, controller identified, DCS
+ * start-up sent, backlight on (after the LTDC runs). */
+int tdc_disco_panel_on(void);
+
 /* log_uart.c: USART1 on PA9/PA10 at 115200 8N1 (the ST-LINK VCP). */
 void tdc_disco_log_init(void);
 void tdc_disco_log(const char *msg);

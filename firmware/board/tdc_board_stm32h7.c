@@ -36,8 +36,14 @@ tdc_board_status_t tdc_board_init(void)
     TDC_REG32(TDC_CM_DWT_CTRL) |= 1u;
     g_last_cycles = 0u;
     tdc_disco_log_init(); /* again: crt0 zeroed its state after startup.c's early log */
-    (void)tdc_disco_ltdc_init();
-    tdc_board_log("stm32h747i-disco: DSI host, panel commands and USB HS transport not written yet");
+    /* DSI host first, then the LTDC, then the link and the panel (the host
+     * starts after the LTDC so it locks to running video timing). */
+    if (tdc_disco_dsi_init() && tdc_disco_ltdc_init()) {
+        (void)tdc_disco_panel_on();
+    } else {
+        tdc_board_log("stm32h747i-disco: DSI or LTDC clock did not come up: no panel");
+    }
+    tdc_board_log("stm32h747i-disco: USB HS transport not written yet");
     return TDC_BOARD_OK;
 }
 

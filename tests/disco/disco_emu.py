@@ -83,7 +83,7 @@ class Disco:
     Reset_Handler until the frame loop asks the transport for data (or
     stop_at); board.call(name, *args) runs one firmware function."""
 
-    def __init__(self, elf, hse_hz=25000000, supply="smps", panel_id=0x40, rsr=None):
+    def __init__(self, elf, hse_hz=25000000, supply="smps", panel="otm8009a", rsr=None):
         self.segs, self.syms, self.entry = read_elf(elf)
         self.log = []
         self.error = None
@@ -102,7 +102,7 @@ class Disco:
         self.fmc = Fmc(self)
         self.usart1 = Usart(self, "USART1", 0x40011000, ("APB2ENR", 4))
         self.ltdc = Ltdc(self)
-        self.dsi = Dsi(self, panel_id)
+        self.dsi = Dsi(self, panel)
         self.scs = Scs(self)
         self.models = [self.rcc, self.pwr, Syscfg(self), self.flash, self.fmc, self.usart1, self.ltdc, self.dsi, self.scs]
         self.gpio = [Gpio(self, port) for port in range(11)]

@@ -388,6 +388,7 @@ class Gpio(Model):
             0x14: ("ODR", 0), 0x18: ("BSRR", 0), 0x1C: ("LCKR", 0), 0x20: ("AFRL", 0), 0x24: ("AFRH", 0)}
 
     def __init__(self, emu, port):
+        self.port = port
         self.name = "GPIO" + "ABCDEFGHIJK"[port]
         self.base = 0x58020000 + 0x400 * port
         self.clock = ("AHB4ENR", port)
@@ -398,10 +399,13 @@ class Gpio(Model):
             self.v.update({0x00: 0xFFFFFEBF, 0x08: 0xC0, 0x0C: 0x100})
 
     def write(self, off, value):
+        old = self.v[0x14]
         if off == 0x18:
             self.v[0x14] = (self.v[0x14] | (value & 0xFFFF)) & ~(value >> 16)
-            return
-        self.v[off] = value
+        else:
+            self.v[off] = value
+        if self.v[0x14] != old or off == 0x18:
+            self.emu.dsi.gpio_changed(self.port, old, self.v[0x14])
 
     def mode(self, pin):
         return self.v[0] >> (2 * pin) & 3
@@ -505,29 +509,138 @@ class Ltdc(Model):
 
 
 # ---------------------------------------------------------------------------
-# DSI host: RM0399 section 34 "DSI Host (DSI)" (register map only for now:
-# every access is checked against it and recorded)
+# DSI host + wrapper: RM0399 chapter "DSI Host (DSI)" (Synopsys DesignWare
+# host; wrapper PLL formula and ranges as RM0399 states them:
+# lane rate = HSE x NDIV / (IDF x ODF), VCO = 2 x lane rate x ODF in
+# 500-1000 MHz, lane rate 31.25-500 Mbit/s, NDIV 10-125, IDF 1-7).
+# Behind it, a model of the panel's controller: reset line, ID registers,
+# the DCS packets it receives and when.
 # ---------------------------------------------------------------------------
 class Dsi(Model):
     name, base, size = "DSI", 0x50000000, 0x1000
     clock = ("APB3ENR", 4)
     regs = {}
     for _o, _n in ((0x00, "VR"), (0x04, "CR"), (0x08, "CCR"), (0x0C, "LVCIDR"), (0x10, "LCOLCR"), (0x14, "LPCR"),
-                   (0x18, "LPMCR"), (0x24, "PCR"), (0x28, "GVCIDR"), (0x2C, "MCR"), (0x30, "VMCR"), (0x34, "VPCR"),
-                   (0x38, "VCCR"), (0x3C, "VNPCR"), (0x40, "VHSACR"), (0x44, "VHBPCR"), (0x48, "VLCR"),
-                   (0x4C, "VVSACR"), (0x50, "VVBPCR"), (0x54, "VVFPCR"), (0x58, "VVACR"), (0x5C, "LCCR"),
-                   (0x60, "CMCR"), (0x64, "GHCR"), (0x68, "GPDR"), (0x6C, "GPSR"), (0x70, "TCCR0"), (0x74, "TCCR1"),
-                   (0x78, "TCCR2"), (0x7C, "TCCR3"), (0x80, "TCCR4"), (0x84, "TCCR5"), (0x8C, "CLCR"),
-                   (0x90, "CLTCR"), (0x94, "DLTCR"), (0xA0, "PCTLR"), (0xA4, "PCONFR"), (0xA8, "PUCR"),
+                   (0x18, "LPMCR"), (0x2C, "PCR"), (0x30, "GVCIDR"), (0x34, "MCR"), (0x38, "VMCR"), (0x3C, "VPCR"),
+                   (0x40, "VCCR"), (0x44, "VNPCR"), (0x48, "VHSACR"), (0x4C, "VHBPCR"), (0x50, "VLCR"),
+                   (0x54, "VVSACR"), (0x58, "VVBPCR"), (0x5C, "VVFPCR"), (0x60, "VVACR"), (0x64, "LCCR"),
+                   (0x68, "CMCR"), (0x6C, "GHCR"), (0x70, "GPDR"), (0x74, "GPSR"), (0x78, "TCCR0"), (0x7C, "TCCR1"),
+                   (0x80, "TCCR2"), (0x84, "TCCR3"), (0x88, "TCCR4"), (0x8C, "TCCR5"), (0x94, "CLCR"),
+                   (0x98, "CLTCR"), (0x9C, "DLTCR"), (0xA0, "PCTLR"), (0xA4, "PCONFR"), (0xA8, "PUCR"),
                    (0xAC, "PTTCR"), (0xB0, "PSR"), (0xBC, "ISR0"), (0xC0, "ISR1"), (0xC4, "IER0"), (0xC8, "IER1"),
                    (0xD8, "FIR0"), (0xDC, "FIR1"), (0x100, "VSCR"), (0x400, "WCFGR"), (0x404, "WCR"),
                    (0x408, "WIER"), (0x40C, "WISR"), (0x410, "WIFCR"), (0x418, "WPCR0"), (0x41C, "WPCR1"),
                    (0x420, "WPCR2"), (0x424, "WPCR3"), (0x428, "WPCR4"), (0x430, "WRPCR")):
-        regs[_o] = (_n, 0x3131302A if _n == "VR" else (0x15 if _n == "GPSR" else 0))
+        regs[_o] = (_n, 0x3133302A if _n == "VR" else 0)
+    PANEL_IDS = {"otm8009a": {0xDA: 0x40, 0xDB: 0x00}, "nt35510": {0xDA: 0x00, 0xDB: 0x80}}
 
-    def __init__(self, emu, panel_id):
+    def __init__(self, emu, panel):
         super().__init__(emu)
-        self.panel_id = panel_id
+        self.panel = panel
+        self.ids = self.PANEL_IDS[panel]
+        self.wfifo = []
+        self.rfifo = []
+        self.max_return = 0
+        self.packets = []  # (data type, bytes, DWT cycle)
+        self.reset_release = None
+        self.low_since = None
+
+    def lane_rate(self):
+        w = self.v[0x430]
+        ndiv, idf, odf = w >> 2 & 0x7F, w >> 11 & 0xF, 1 << (w >> 16 & 3)
+        return self.emu.rcc.hse_hz * ndiv / (idf * odf) if idf else 0, ndiv, idf, odf
+
+    def ms_since(self, cyc):
+        return (self.emu.scs.cyc - cyc) / (self.emu.rcc.clocks()["cpu"] / 1000.0)
+
+    def read(self, off):
+        if off == 0x40C:  # WISR: RRS follows REGEN, PLLLS follows an accepted PLLEN
+            w = self.v[0x430]
+            return ((w >> 24 & 1) << 12) | ((w & 1) << 8)
+        if off == 0x74:
+            return 0x5 | (0 if self.rfifo else 0x10)
+        if off == 0x70:
+            if not self.rfifo:
+                raise EmuError("DSI_GPDR read with the read FIFO empty (GPSR.PRDFE set)")
+            return self.rfifo.pop(0)
+        return self.v[off]
+
+    def write(self, off, value):
+        if off == 0x430:
+            old = self.v[0x430]
+            if old & 1 and (old ^ value) & 0x3FFFE:
+                raise EmuError("DSI_WRPCR dividers changed while the DSI PLL runs")
+            if value & 1 and not old & 1:
+                if not value >> 24 & 1:
+                    raise EmuError("DSI PLL enabled before the DSI regulator (WRPCR.REGEN, WISR.RRS)")
+                self.v[0x430] = value
+                lane, ndiv, idf, odf = self.lane_rate()
+                vco = lane * 2 * odf
+                if not (10 <= ndiv <= 125 and 1 <= idf <= 7 and 500e6 <= vco <= 1000e6 and 31.25e6 <= lane <= 500e6):
+                    raise EmuError("DSI PLL NDIV %d IDF %d ODF %d: VCO %.0f MHz, lane %.1f Mbit/s out of range"
+                                   % (ndiv, idf, odf, vco / 1e6, lane / 1e6))
+        elif off == 0x404 and value >> 3 & 1:
+            if not self.v[0x430] & 1:
+                raise EmuError("DSI wrapper enabled without its PLL locked")
+            if not self.v[4] & 1 or (self.v[0xA0] & 6) != 6:
+                raise EmuError("DSI wrapper enabled before the host (CR.EN) and D-PHY (PCTLR CKE, DEN)")
+            if not self.emu.ltdc.v[0x18] & 1:
+                raise EmuError("DSI started before the LTDC runs (RM0399: start the host after the LTDC)")
+        elif off == 0x70:
+            self.wfifo.append(value)
+        elif off == 0x6C:
+            self.packet(value)
+        self.v[off] = value
+
+    def packet(self, hdr):
+        if not (self.v[4] & 1 and self.v[0x404] >> 3 & 1):
+            raise EmuError("DSI command with the host or wrapper off")
+        g = self.emu.gpio[6]
+        if g.mode(3) != 1 or not g.out(3):
+            raise EmuError("DSI command while the panel is held in reset (PG3 low)")
+        if self.reset_release is None:
+            raise EmuError("DSI command before the panel's reset line was pulsed")
+        if self.ms_since(self.reset_release) < 120:
+            raise EmuError("DSI command %.1f ms after the panel reset was released (< 120 ms)"
+                           % self.ms_since(self.reset_release))
+        dt, lsb, msb = hdr & 0x3F, hdr >> 8 & 0xFF, hdr >> 16 & 0xFF
+        if dt == 0x37:
+            self.max_return = lsb | msb << 8
+            return
+        if dt == 0x06:
+            if not self.v[0x2C] >> 2 & 1:
+                raise EmuError("DCS read without bus turnaround enabled (DSI_PCR.BTAE)")
+            if self.max_return < 1:
+                raise EmuError("DCS read before a maximum-return-packet-size packet")
+            self.rfifo.append(self.ids.get(lsb, 0))
+            self.packets.append((dt, bytes([lsb]), self.emu.scs.cyc))
+            return
+        if dt == 0x05:
+            data = bytes([lsb])
+        elif dt == 0x15:
+            data = bytes([lsb, msb])
+        elif dt == 0x39:
+            n = lsb | msb << 8
+            raw = b"".join(w.to_bytes(4, "little") for w in self.wfifo)
+            if len(self.wfifo) != (n + 3) // 4:
+                raise EmuError("DCS long write of %d bytes with %d payload words queued" % (n, len(self.wfifo)))
+            data = raw[:n]
+            self.wfifo = []
+        else:
+            raise EmuError("DSI packet data type 0x%02x not expected from this board" % dt)
+        self.packets.append((dt, data, self.emu.scs.cyc))
+
+    def gpio_changed(self, port, old_odr, new_odr):
+        """PG3 is the panel's reset line (active low)."""
+        if port != 6:
+            return
+        was, now = old_odr >> 3 & 1, new_odr >> 3 & 1
+        if not now and (was or self.low_since is None):
+            self.low_since = self.emu.scs.cyc
+        if now and not was:
+            if self.low_since is None or self.ms_since(self.low_since) < 0.01:
+                raise EmuError("panel reset released without a >= 10 us low pulse")
+            self.reset_release = self.emu.scs.cyc
 
 
 # ---------------------------------------------------------------------------

@@ -234,6 +234,72 @@ class Ltdc(unittest.TestCase):
         self.assertEqual(b.rcc.pll(3)[4], int(pclk))
 
 
+class DsiPanel(unittest.TestCase):
+    LANES = 2
+
+    def test_pll_and_video_timings(self):
+        b = booted()
+        w = b.last("DSI", "WRPCR")
+        ndiv, idf, odf = w >> 2 & 0x7F, w >> 11 & 0xF, 1 << (w >> 16 & 3)
+        lane = HSE_HZ * ndiv / (idf * odf)  # RM0399 DSI wrapper PLL
+        self.assertTrue(500e6 <= 2 * lane * odf <= 1000e6, "VCO range")
+        self.assertLessEqual(lane, 500e6, "D-PHY lane rate")
+        sel, d3 = b.last("RCC", "PLLCKSELR"), b.last("RCC", "PLL3DIVR")
+        pclk = HSE_HZ / (sel >> 20 & 0x3F) * ((d3 & 0x1FF) + 1) / ((d3 >> 24 & 0x7F) + 1)
+        self.assertGreaterEqual(self.LANES * lane, 24 * pclk, "2 lanes carry RGB888 at the pixel clock")
+        self.assertEqual(b.last("DSI", "PCONFR") & 3, self.LANES - 1)
+        self.assertEqual(b.last("DSI", "WPCR0") & 0x3F, round(4e9 / lane), "UIX4: 4 x unit interval in ns")
+        self.assertLessEqual(lane / 8 / (b.last("DSI", "CCR") & 0xFF), 20e6, "escape clock <= 20 MHz")
+        p = panel_profile("disco-dsi")
+        w_px, h_px = int(p["width"][0]), int(p["height"][0])
+        (hs, hbp, hfp), (vs, vbp, vfp) = Ltdc.H, Ltdc.V
+        lbc = lane / 8  # lane byte clock
+        for reg, px in (("VHSACR", hs), ("VHBPCR", hbp), ("VLCR", hs + hbp + w_px + hfp)):
+            self.assertEqual(b.last("DSI", reg), math.floor(px * lbc / pclk), reg)
+        for reg, lines in (("VVSACR", vs), ("VVBPCR", vbp), ("VVFPCR", vfp), ("VVACR", h_px)):
+            self.assertEqual(b.last("DSI", reg), lines, reg)
+        self.assertEqual(b.last("DSI", "VPCR"), w_px)
+        self.assertEqual((b.last("DSI", "LCOLCR") & 0xF, b.last("DSI", "WCFGR") >> 1 & 7), (5, 5), "24-bit colour")
+        self.assertEqual(b.last("DSI", "WCFGR") & 1, 0, "video mode")
+        # DSI started after the LTDC (the model enforces it; here the order is visible).
+        i_ltdc = b.index(lambda a: a.reg == "GCR" and a.op == "W" and a.value & 1)
+        i_dsi = b.index(lambda a: a.reg == "WCR" and a.op == "W" and a.value >> 3 & 1)
+        self.assertTrue(0 <= i_ltdc < i_dsi)
+
+    def expected_dcs(self):
+        """The MIPI DCS 1.1 start-up for a landscape RGB888 panel of the
+        profile's size (command codes and parameter layouts of DCS: exit_sleep_mode
+        0x11, set_pixel_format 0x3A (0x77: 24 bit), set_address_mode 0x36 (MV|MX),
+        set_column_address 0x2A / set_page_address 0x2B (start, end, 16-bit
+        big-endian), set_tear_on 0x35, write brightness 0x51, write CTRL display
+        0x53, set_display_on 0x29)."""
+        p = panel_profile("disco-dsi")
+        w, h = int(p["width"][0]), int(p["height"][0])
+        return [bytes([0x11]), bytes([0x3A, 0x77]), bytes([0x36, 0x60]),
+                bytes([0x2A, 0, 0, (w - 1) >> 8, (w - 1) & 0xFF]), bytes([0x2B, 0, 0, (h - 1) >> 8, (h - 1) & 0xFF]),
+                bytes([0x35, 0x00]), bytes([0x51, 0xFF]), bytes([0x53, 0x2C]), bytes([0x29])]
+
+    def check_panel(self, b, ids, name):
+        writes = [d for dt, d, _c in b.dsi.packets if dt != 0x06]
+        reads = [d[0] for dt, d, _c in b.dsi.packets if dt == 0x06]
+        self.assertEqual(reads, ids)
+        self.assertEqual(writes, self.expected_dcs())
+        cyc = {d: c for _dt, d, c in b.dsi.packets}
+        ms = (cyc[bytes([0x3A, 0x77])] - cyc[bytes([0x11])]) / (b.rcc.clocks()["cpu"] / 1000)
+        self.assertGreaterEqual(ms, 120, "120 ms after exit_sleep_mode")
+        self.assertIn("panel controller %s" % name, b.uart_text())
+        gj, gg = b.gpio[9], b.gpio[6]
+        self.assertEqual((gj.mode(12), gj.out(12), gg.mode(3), gg.out(3)), (1, 1, 1, 1), "backlight on, reset released")
+
+    def test_otm8009a(self):
+        self.check_panel(booted(), [0xDA], "OTM8009A")
+
+    def test_nt35510(self):
+        b = Disco(ELF, panel="nt35510")
+        b.run_reset()
+        self.check_panel(b, [0xDA, 0xDB], "NT35510")
+
+
 class ResetCause(unittest.TestCase):
     # RM0399 RCC_RSR bits; tdc_reset_cause_t values from tdc_board.h.
     POR, BOR, PIN, SFT1, IWDG1, WWDG1 = 1 << 23, 1 << 21, 1 << 22, 1 << 24, 1 << 26, 1 << 28
@@ -253,6 +319,7 @@ class LogAndFault(unittest.TestCase):
         b = booted()
         text = b.uart_text()
         self.assertIn("power-on\r\n", text)
+        self.assertIn("option bit BCM4 is set", text, "the model's option bytes boot the M4")
         self.assertIn("stm32h747i-disco:", text)
         brr = b.last("USART1", "BRR")
         baud = b.rcc.clocks()["pclk2"] / brr  # USART16SEL = 0: rcc_pclk2; oversampling 16
