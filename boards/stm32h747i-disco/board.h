@@ -49,6 +49,10 @@
 #define TDC_DISCO_DSI_IDF 5u
 #define TDC_DISCO_DSI_ODF 1u
 #define TDC_DISCO_DSI_LANE_HZ (TDC_BOARD_HSE_HZ / TDC_DISCO_DSI_IDF * TDC_DISCO_DSI_NDIV / TDC_DISCO_DSI_ODF)
+/* Flash polls (flash.c): a 128 KiB sector erase takes up to seconds
+ * (DS12930 flash characteristics), a 256-bit word program microseconds. */
+#define TDC_DISCO_FLASH_ERASE_MS 4000u
+#define TDC_DISCO_FLASH_PROGRAM_MS 10u
 #define TDC_DISCO_LCD_PCLK_HZ (TDC_BOARD_HSE_HZ / TDC_DISCO_PLL3_M * TDC_DISCO_PLL3_N / TDC_DISCO_PLL3_R)
 
 /* Peripheral base addresses (RM0399 section 2.3.2). */

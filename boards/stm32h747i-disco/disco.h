@@ -28,6 +28,14 @@ int tdc_disco_dsi_init(void);
  * start-up sent, backlight on (after the LTDC runs). */
 int tdc_disco_panel_on(void);
 
+/* flash.c: the DFU target (tdc_usbp_flash_t): offsets 1-2 MiB are the
+ * bank not running (0..1 MiB, the running one, is refused); 0 = done. */
+int tdc_disco_flash_write(void *ctx, uint32_t offset, const uint8_t *data, uint32_t len);
+int tdc_disco_flash_read(void *ctx, uint32_t offset, uint8_t *data, uint32_t len);
+/* flash.c: swap the banks by option byte and reset; returns 0 only when
+ * the option bytes did not take the new value. */
+int tdc_disco_flash_activate_other_bank(void);
+
 /* log_uart.c: USART1 on PA9/PA10 at 115200 8N1 (the ST-LINK VCP). */
 void tdc_disco_log_init(void);
 void tdc_disco_log(const char *msg);

@@ -22,12 +22,12 @@ instruction.
 """
 import struct
 
-from unicorn import Uc, UcError, UC_ARCH_ARM, UC_MODE_THUMB, UC_MODE_MCLASS, UC_HOOK_MEM_UNMAPPED
+from unicorn import Uc, UcError, UC_ARCH_ARM, UC_MODE_THUMB, UC_MODE_MCLASS, UC_HOOK_MEM_UNMAPPED, UC_HOOK_MEM_WRITE
 from unicorn import UC_PROT_ALL
 from unicorn.arm_const import UC_CPU_ARM_CORTEX_M7, UC_ARM_REG_SP, UC_ARM_REG_LR, UC_ARM_REG_PC
 from unicorn.arm_const import UC_ARM_REG_R0, UC_ARM_REG_R1, UC_ARM_REG_R2, UC_ARM_REG_R3
 
-from disco_models import Rcc, Pwr, Syscfg, Flash, Fmc, Gpio, Usart, Ltdc, Dsi, Scs, EmuError
+from disco_models import Rcc, Pwr, Syscfg, Flash, Fmc, Gpio, Usart, Ltdc, Dsi, Scs, EmuError, PowerLoss
 
 # RM0399 section 2.3 (memory map): RAM-like regions.
 RAM_REGIONS = [
@@ -53,7 +53,8 @@ class Access:
 
 def read_elf(path):
     """(loadable segments [(paddr, bytes, memsz)], symbols {name: value}, entry) of an ELF32 LE file."""
-    data = open(path, "rb").read()
+    with open(path, "rb") as f:
+        data = f.read()
     if data[:4] != b"\x7fELF" or data[4] != 1 or data[5] != 1:
         raise ValueError("%s: not a 32-bit little-endian ELF" % path)
     (entry, phoff, shoff) = struct.unpack_from("<III", data, 0x18)
@@ -91,6 +92,8 @@ class Disco:
         self.uc.ctl_set_cpu_model(UC_CPU_ARM_CORTEX_M7)
         for _name, base, size in RAM_REGIONS:
             self.uc.mem_map(base, size, UC_PROT_ALL)
+        # Erased flash reads all ones; the image goes on top.
+        self.uc.mem_write(0x08000000, b"\xff" * (2 << 20))
         for paddr, blob, _memsz in self.segs:
             self.uc.mem_write(paddr, blob)
         self.uc.mem_write(RETURN_MAGIC, b"\x00\xbf\x00\xbf")  # nop; nop
@@ -104,6 +107,8 @@ class Disco:
         self.ltdc = Ltdc(self)
         self.dsi = Dsi(self, panel)
         self.scs = Scs(self)
+        self.power_lost = False
+        self.uc.hook_add(UC_HOOK_MEM_WRITE, self.flash.mem_write, None, 0x08000000, 0x081FFFFF)
         self.models = [self.rcc, self.pwr, Syscfg(self), self.flash, self.fmc, self.usart1, self.ltdc, self.dsi, self.scs]
         self.gpio = [Gpio(self, port) for port in range(11)]
         self.models += self.gpio
@@ -159,6 +164,8 @@ class Disco:
             reg = m.reg_name(addr - m.base)
             self.log.append(Access("W", m.name, reg, addr - m.base, value & 0xFFFFFFFF, self.pc()))
             m.write(addr - m.base, value & 0xFFFFFFFF)
+        except PowerLoss:
+            pass  # the core already stopped
         except EmuError as e:
             self.fail(str(e))
 
@@ -180,14 +187,14 @@ class Disco:
 
     def run(self, begin, until, timeout_s=60):
         try:
-            self.uc.emu_start(begin | 1, until, timeout=int(timeout_s * 1e6))
+            self.uc.emu_start(begin | 1, until, timeout=int(timeout_s * 1e6) if timeout_s else 0)
         except UcError as e:
             if self.error is None:
                 self.error = "CPU exception %s at pc 0x%08x" % (e, self.pc())
         if self.error:
             raise EmuError(self.error)
-        if self.scs.reset_requested:
-            return  # SYSRESETREQ: the core would reset here
+        if self.scs.reset_requested or self.power_lost:
+            return  # SYSRESETREQ or power cut: the core stops here
         if self.pc() != until:
             raise EmuError("stopped at pc 0x%08x before reaching 0x%08x (timeout %d s?)" % (self.pc(), until, timeout_s))
 

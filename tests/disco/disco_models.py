@@ -307,29 +307,162 @@ class Syscfg(Model):
 
 
 # ---------------------------------------------------------------------------
-# FLASH interface registers: RM0399 section 4 "Embedded flash memory"
+# FLASH: RM0399 chapter "Embedded flash memory (FLASH)".  Two banks of
+# 8 x 128 KiB sectors; register set 1 serves the bank at 0x08000000, set 2
+# (+0x100) the bank at 0x08100000 (SWAP_BANK = 0).  Rules: CRx writable
+# only after the KEYRx sequence; programming only with PG set, in whole
+# 256-bit words (8 sequential word writes), only into erased words;
+# sector erase only while idle; nothing written to the bank the core runs
+# from; option bytes only after the OPTKEYR sequence.  Power can be cut
+# after a given number of erase/program operations (PowerLoss).
 # ---------------------------------------------------------------------------
+class PowerLoss(Exception):
+    pass
+
+
 class Flash(Model):
     name, base = "FLASH", 0x52002000
     regs = {0x00: ("ACR", 0x37), 0x04: ("KEYR1", 0), 0x08: ("OPTKEYR", 0), 0x0C: ("CR1", 0x31), 0x10: ("SR1", 0),
             0x14: ("CCR1", 0), 0x18: ("OPTCR", 1), 0x1C: ("OPTSR_CUR", 0x1C6AAF0 | (1 << 23)), 0x20: ("OPTSR_PRG", 0),
             0x104: ("KEYR2", 0), 0x10C: ("CR2", 0x31), 0x110: ("SR2", 0), 0x114: ("CCR2", 0)}
+    BANK = 1 << 20
+    SECTOR = 128 << 10
+    KEYS, OPTKEYS = (0x45670123, 0xCDEF89AB), (0x08192A3B, 0x4C5D6E7F)
 
     def __init__(self, emu):
         super().__init__(emu)
         self.latency_seen = 7  # reset value, read back by definition
+        self.key_state = {0: 0, 0x100: 0}
+        self.optkey_state = 0
+        self.busy_reads = {0: 0, 0x100: 0}
+        self.erased = []  # (bank offset, sector)
+        self.programmed = set()  # flash word addresses
+        self.pending = []  # word writes of the flash word being filled
+        self.ops = 0
+        self.power_cut_at = None  # ops count at which power fails
+        self.stuck_busy = False
+        self.running_bank_writes = 0
 
     def read(self, off):
         if off == 0:
             self.latency_seen = self.v[0] & 0xF
+        if off in (0x10, 0x110):
+            b = off - 0x10
+            if self.stuck_busy or self.busy_reads[b]:
+                self.busy_reads[b] = max(0, self.busy_reads[b] - 1)
+                return self.v[off] | 0x5  # BSY, QW
+            return self.v[off] & ~0x5
+        if off == 0x1C and self.busy_reads.get("opt"):
+            self.busy_reads["opt"] -= 1
+            return self.v[off] | 1
         return self.v[off]
+
+    def tick(self):
+        self.ops += 1
+        if self.power_cut_at is not None and self.ops >= self.power_cut_at:
+            self.emu.power_lost = True
+            self.emu.uc.emu_stop()
+            raise PowerLoss()
 
     def write(self, off, value):
         if off == 0 and (value & 0xF) != (self.v[0] & 0xF):
             # Until the new LATENCY is read back, assume the worst (RM0399:
             # check it is taken into account by reading FLASH_ACR).
             self.latency_seen = min(self.latency_seen, value & 0xF)
+        if off in (0x04, 0x104):
+            b = off - 0x04
+            if self.key_state[b] == 0 and value == self.KEYS[0]:
+                self.key_state[b] = 1
+            elif self.key_state[b] == 1 and value == self.KEYS[1]:
+                self.key_state[b] = 2
+                self.v[b + 0x0C] &= ~1
+            else:
+                raise EmuError("FLASH_KEYR%d: wrong unlock sequence (CR stays locked until reset)" % (1 + b // 0x100))
+            return
+        if off in (0x0C, 0x10C):
+            b = off - 0x0C
+            if self.v[off] & 1:
+                raise EmuError("FLASH_CR%d written while locked" % (1 + b // 0x100))
+            if value & (1 << 7) and value & (1 << 2):  # SER + START
+                if self.busy_reads[b] or self.stuck_busy:
+                    raise EmuError("sector erase started while the bank is busy")
+                if b == 0:
+                    raise EmuError("sector erase in the bank the core runs from")
+                sector = value >> 8 & 7
+                base = 0x08000000 + (self.BANK if b else 0) + sector * self.SECTOR
+                try:
+                    self.tick()
+                except PowerLoss:
+                    self.emu.uc.mem_write(base, b"\xff" * (self.SECTOR // 2))  # half erased
+                    raise
+                self.emu.uc.mem_write(base, b"\xff" * self.SECTOR)
+                self.programmed = {a for a in self.programmed if not base <= a < base + self.SECTOR}
+                self.erased.append((b, sector))
+                self.busy_reads[b] = 3
+                value &= ~(1 << 7)
+            if value & 2 and (value >> 4 & 3) != 3:
+                raise EmuError("programming with PSIZE %d: the DISCO's 3.3 V supply takes x64 (PSIZE 3)"
+                               % (value >> 4 & 3))
+            if not value & 2 and self.pending:
+                raise EmuError("PG cleared with a partial flash word in the write buffer (%d of 8 words)"
+                               % len(self.pending))
+            if value & 1:
+                self.key_state[b] = 0
+        if off == 0x20 and self.v[0x18] & 1:
+            raise EmuError("FLASH_OPTSR_PRG written with the option bytes locked")
+        if off == 0x08:
+            if self.optkey_state == 0 and value == self.OPTKEYS[0]:
+                self.optkey_state = 1
+            elif self.optkey_state == 1 and value == self.OPTKEYS[1]:
+                self.optkey_state = 2
+                self.v[0x18] &= ~1
+            else:
+                raise EmuError("FLASH_OPTKEYR: wrong unlock sequence")
+            return
+        if off == 0x18:
+            if self.v[0x18] & 1 and not value & 1:
+                raise EmuError("FLASH_OPTCR unlocked by a write instead of the OPTKEYR sequence")
+            if value & 2:
+                if self.v[0x18] & 1:
+                    raise EmuError("OPTSTART with the option bytes locked")
+                self.tick()
+                self.v[0x1C] = (self.v[0x1C] & 0x7FFFFFFF) | (self.v[0x20] & 0x80000000)
+                self.busy_reads["opt"] = 2
+                value &= ~2
+            if value & 1:
+                self.optkey_state = 0
         self.v[off] = value
+
+    def mem_write(self, uc, access, addr, size, value, data):
+        """Hook on stores to the flash address range."""
+        try:
+            if addr < 0x08000000 + self.BANK:
+                self.running_bank_writes += 1
+                raise EmuError("store to 0x%08x: the bank the core runs from" % addr)
+            if not self.v[0x10C] & 2:
+                raise EmuError("store to flash 0x%08x without FLASH_CR2.PG" % addr)
+            if size != 4 or addr & 3:
+                raise EmuError("%d-byte store to flash 0x%08x: program 32-bit words" % (size, addr))
+            word = addr & ~31
+            if self.pending and (word != self.pending[0] & ~31 or addr != self.pending[-1] + 4):
+                raise EmuError("flash word writes not sequential within one 256-bit word (0x%08x)" % addr)
+            if not self.pending and addr & 31:
+                raise EmuError("flash word programming must start at its first 32-bit word (0x%08x)" % addr)
+            if word in self.programmed:
+                raise EmuError("flash word 0x%08x programmed twice without an erase (ECC)" % word)
+            if not self.pending and bytes(uc.mem_read(word, 32)) != b"\xff" * 32:
+                raise EmuError("flash word 0x%08x not erased" % word)
+            self.pending.append(addr)
+            if len(self.pending) == 8:
+                self.tick()
+                self.programmed.add(word)
+                self.pending = []
+                self.busy_reads[0x100] = 2
+        except PowerLoss:
+            pass
+        except EmuError as e:
+            self.emu.fail(str(e))
+        return True
 
 
 # ---------------------------------------------------------------------------
@@ -673,13 +806,14 @@ class Scs(Model):
         self.cleaned = set()
         self.mpu = {}
         self.cyc = 0
+        self.cyc_step = 4000  # cycles each DWT_CYCCNT read advances the model's time
         self.reset_requested = False
 
     def read(self, off):
         if off == 0xED80:
             return 0xF00FE019 if self.v[0xED84] == 0 else 0xF01FE019
         if off == 0x1004:
-            self.cyc += 4000
+            self.cyc += self.cyc_step
             return self.cyc & 0xFFFFFFFF
         return self.v[off]
 

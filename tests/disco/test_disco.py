@@ -45,7 +45,8 @@ def booted():
 
 
 def board_h_macros():
-    text = open(os.path.join(ROOT, "boards", "stm32h747i-disco", "board.h")).read()
+    with open(os.path.join(ROOT, "boards", "stm32h747i-disco", "board.h")) as f:
+        text = f.read()
     macros = {k: re.sub(r"/\*.*", "", v).strip() for k, v in re.findall(r"#define (TDC_\w+) (.+)$", text, re.M)}
     def ev(name):
         expr = macros[name]
@@ -197,10 +198,11 @@ class Caches(unittest.TestCase):
 
 def panel_profile(name):
     out = {}
-    for line in open(os.path.join(ROOT, "boards", "panels", name + ".panel")):
-        f = line.split()
-        if f and not f[0].startswith("#"):
-            out[f[0]] = f[1:]
+    with open(os.path.join(ROOT, "boards", "panels", name + ".panel")) as fh:
+        for line in fh:
+            f = line.split()
+            if f and not f[0].startswith("#"):
+                out[f[0]] = f[1:]
     return out
 
 
@@ -298,6 +300,95 @@ class DsiPanel(unittest.TestCase):
         b = Disco(ELF, panel="nt35510")
         b.run_reset()
         self.check_panel(b, [0xDA, 0xDB], "NT35510")
+
+
+class FlashUpdate(unittest.TestCase):
+    MIB = 1 << 20
+    SRC = 0x24020000  # staging in AXI SRAM, clear of .data/.bss and the stack
+    BLOCK = 4096      # a DFU download block
+
+    def image(self, n=300010, seed=7):
+        x, out = seed, bytearray()
+        for _ in range(n):
+            x = (x * 1103515245 + 12345) & 0x7FFFFFFF
+            out.append(x >> 16 & 0xFF)
+        return bytes(out)
+
+    def download(self, b, img):
+        b.uc.mem_write(self.SRC, img)
+        for off in range(0, len(img), self.BLOCK):
+            n = min(self.BLOCK, len(img) - off)
+            rc = b.call("tdc_disco_flash_write", 0, self.MIB + off, self.SRC + off, n)
+            if b.power_lost:
+                return None
+            if rc != 0:
+                return rc
+        return 0
+
+    def running_bank(self, b):
+        return bytes(b.uc.mem_read(0x08000000, self.MIB))
+
+    def test_update_then_swap(self):
+        b = Disco(ELF)
+        b.run_reset()
+        before = self.running_bank(b)
+        img = self.image()
+        self.assertEqual(self.download(b, img), 0)
+        bank2 = bytes(b.uc.mem_read(0x08100000, self.MIB))
+        pad = (-len(img)) % 32
+        self.assertEqual(bank2[:len(img) + pad], img + b"\xff" * pad, "image + erased tail of its last flash word")
+        self.assertEqual(sorted(b.flash.erased), [(0x100, s) for s in range(math.ceil(len(img) / (128 << 10)))],
+                         "each 128 KiB sector the image covers erased once")
+        self.assertEqual(len(b.flash.programmed), math.ceil(len(img) / 32), "one program per 256-bit word")
+        self.assertEqual(self.running_bank(b), before, "running bank untouched")
+        b.uc.mem_write(self.SRC, b"\0" * 64)
+        self.assertEqual(b.call("tdc_disco_flash_read", 0, self.MIB + 4096, self.SRC, 64), 0)
+        self.assertEqual(bytes(b.uc.mem_read(self.SRC, 64)), img[4096:4160])
+        swap0 = b.flash.v[0x1C] >> 31
+        b.call("tdc_disco_flash_activate_other_bank")
+        self.assertEqual(b.flash.v[0x1C] >> 31, swap0 ^ 1, "SWAP_BANK toggled")
+        self.assertTrue(b.scs.reset_requested, "reset to boot the other bank")
+
+    def test_running_bank_refused(self):
+        b = Disco(ELF)
+        b.run_reset()
+        n = len(b.log)
+        b.uc.mem_write(self.SRC, b"\0" * 64)
+        self.assertNotEqual(b.call("tdc_disco_flash_write", 0, 0, self.SRC, 64), 0)
+        self.assertFalse([a for a in b.log[n:] if a.periph == "FLASH"], "no flash register touched")
+
+    def test_power_loss_mid_update(self):
+        img = self.image()
+        for cut in (1, 2500):  # during the first sector erase; while programming the last sector
+            b = Disco(ELF)
+            b.run_reset()
+            before = self.running_bank(b)
+            b.flash.power_cut_at = b.flash.ops + cut
+            self.assertIsNone(self.download(b, img), "power cut at operation %d" % cut)
+            self.assertEqual(self.running_bank(b), before, "running bank intact after the cut")
+            self.assertEqual(b.flash.v[0x1C] >> 31, 0, "banks not swapped")
+            self.assertNotEqual(bytes(b.uc.mem_read(0x08100000, len(img))), img, "the other bank is incomplete")
+            if cut != 1:
+                continue
+            # Power back: the same (intact) image boots.
+            again = Disco(ELF)
+            again.uc.mem_write(0x08100000, bytes(b.uc.mem_read(0x08100000, self.MIB)))
+            again.run_reset()
+            self.assertIn("power-on", again.uart_text())
+
+    def test_erase_busy_times_out(self):
+        b = Disco(ELF)
+        b.run_reset()
+        b.flash.stuck_busy = True
+        b.scs.cyc_step = 4000000  # 10 ms of model time per DWT read
+        t0 = b.scs.cyc
+        b.uc.mem_write(self.SRC, b"\0" * 64)
+        self.assertNotEqual(b.call("tdc_disco_flash_write", 0, self.MIB, self.SRC, 64), 0, "busy flash reported")
+        waited_ms = (b.scs.cyc - t0) / (b.rcc.clocks()["cpu"] / 1000)
+        ev = board_h_macros()
+        self.assertGreaterEqual(waited_ms, ev("TDC_DISCO_FLASH_ERASE_MS"))
+        self.assertLess(waited_ms, 2 * ev("TDC_DISCO_FLASH_ERASE_MS") + 100)
+        self.assertEqual(b.flash.erased, [], "no erase started on a busy bank")
 
 
 class ResetCause(unittest.TestCase):
