@@ -131,7 +131,10 @@ int tdc_disco_flash_write(void *ctx, uint32_t offset, const uint8_t *data, uint3
         (offset % WORD_BYTES) != 0u) {
         return 1;
     }
-    const uint32_t bank_off = 0x100u; /* the bank at 0x08100000 is always bank register set 2's view */
+    /* Registers follow the physical bank, the swap moves addresses only:
+     * with SWAP_BANK clear bank 2 sits at 0x08100000 (register set 2),
+     * with it set bank 1 does (set 1). */
+    const uint32_t bank_off = (FLASH_R(OPTSR_CUR) & OPT_SWAP_BANK) ? 0u : 0x100u;
     unlock(bank_off);
     int ok = 1;
     for (uint32_t done = 0; ok && done < len; done += WORD_BYTES) {

@@ -343,6 +343,11 @@ class Flash(Model):
         self.stuck_busy = False
         self.running_bank_writes = 0
 
+    def other_set(self):
+        """Register-set offset of the physical bank mapped at 0x08100000:
+        registers follow the physical bank, SWAP_BANK moves the addresses."""
+        return 0 if self.v[0x1C] >> 31 else 0x100
+
     def read(self, off):
         if off == 0:
             self.latency_seen = self.v[0] & 0xF
@@ -386,10 +391,10 @@ class Flash(Model):
             if value & (1 << 7) and value & (1 << 2):  # SER + START
                 if self.busy_reads[b] or self.stuck_busy:
                     raise EmuError("sector erase started while the bank is busy")
-                if b == 0:
-                    raise EmuError("sector erase in the bank the core runs from")
+                if b != self.other_set():
+                    raise EmuError("sector erase in the bank the core runs from (register set %d)" % (1 + b // 0x100))
                 sector = value >> 8 & 7
-                base = 0x08000000 + (self.BANK if b else 0) + sector * self.SECTOR
+                base = 0x08000000 + self.BANK + sector * self.SECTOR
                 try:
                     self.tick()
                 except PowerLoss:
@@ -439,8 +444,9 @@ class Flash(Model):
             if addr < 0x08000000 + self.BANK:
                 self.running_bank_writes += 1
                 raise EmuError("store to 0x%08x: the bank the core runs from" % addr)
-            if not self.v[0x10C] & 2:
-                raise EmuError("store to flash 0x%08x without FLASH_CR2.PG" % addr)
+            cr = 0x0C + self.other_set()
+            if not self.v[cr] & 2:
+                raise EmuError("store to flash 0x%08x without PG in FLASH_CR%d" % (addr, 1 + cr // 0x100))
             if size != 4 or addr & 3:
                 raise EmuError("%d-byte store to flash 0x%08x: program 32-bit words" % (size, addr))
             word = addr & ~31
@@ -457,7 +463,7 @@ class Flash(Model):
                 self.tick()
                 self.programmed.add(word)
                 self.pending = []
-                self.busy_reads[0x100] = 2
+                self.busy_reads[self.other_set()] = 2
         except PowerLoss:
             pass
         except EmuError as e:

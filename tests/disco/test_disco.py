@@ -329,7 +329,16 @@ class FlashUpdate(unittest.TestCase):
         return bytes(b.uc.mem_read(0x08000000, self.MIB))
 
     def test_update_then_swap(self):
+        self.update_then_swap(0)
+
+    def test_update_then_swap_back(self):
+        # Running from bank 2 (swapped): the update goes to bank 1 through
+        # register set 1, and the swap returns.
+        self.update_then_swap(1)
+
+    def update_then_swap(self, swapped):
         b = Disco(ELF)
+        b.flash.v[0x1C] |= swapped << 31
         b.run_reset()
         before = self.running_bank(b)
         img = self.image()
@@ -337,7 +346,7 @@ class FlashUpdate(unittest.TestCase):
         bank2 = bytes(b.uc.mem_read(0x08100000, self.MIB))
         pad = (-len(img)) % 32
         self.assertEqual(bank2[:len(img) + pad], img + b"\xff" * pad, "image + erased tail of its last flash word")
-        self.assertEqual(sorted(b.flash.erased), [(0x100, s) for s in range(math.ceil(len(img) / (128 << 10)))],
+        self.assertEqual(sorted(b.flash.erased), [(0 if swapped else 0x100, s) for s in range(math.ceil(len(img) / (128 << 10)))],
                          "each 128 KiB sector the image covers erased once")
         self.assertEqual(len(b.flash.programmed), math.ceil(len(img) / 32), "one program per 256-bit word")
         self.assertEqual(self.running_bank(b), before, "running bank untouched")
