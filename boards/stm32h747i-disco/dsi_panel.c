@@ -8,8 +8,8 @@
  * low-power mode.  Video timings go to the host in lane byte clocks:
  * pixels x lane byte clock / pixel clock, rounded down.
  *
- * Panel: reset line PG3 (active low), backlight enable PJ12 (UM2411 /
- * MB1166 schematic).  The controller is told apart by its ID registers
+ * Panel: reset line PG3 (active low), backlight enable PJ12 (the pins
+ * ST's STM32H747I-DISCO BSP names; its tearing-effect pin PJ2 is unused).  The controller is told apart by its ID registers
  * (DCS read_ID1 0xDA = 0x40: OTM8009A; read_ID2 0xDB = 0x80: NT35510, the
  * values ST's BSP and Zephyr's driver test).  Both then get the same MIPI
  * DCS start-up: exit_sleep_mode, 120 ms, set_pixel_format 24 bit,
