@@ -32,9 +32,3 @@ flash flash-uart:
 	@echo "make: flash: BOARD=$(BOARD) is not flashed: $(BOARD_FLASH)"; exit 2
 endif
 
-# The flash driver (DFU target) is linked although no code calls it yet
-# (the USB HS transport that will is not written): tests/disco executes it.
-ifeq ($(BOARD),stm32h747i-disco)
-ARM_LDFLAGS += -Wl,--undefined=tdc_disco_flash_write -Wl,--undefined=tdc_disco_flash_read \
-               -Wl,--undefined=tdc_disco_flash_activate_other_bank
-endif

@@ -5,6 +5,8 @@
 
 #include <stdint.h>
 
+#include "tdc_usbproto.h"
+
 /* clocks.c: supply, VOS1, 400 MHz; 1 when every ready bit came. */
 int tdc_disco_clocks_init(void);
 /* clocks.c: MPU region for the SDRAM, I- and D-cache invalidated and on. */
@@ -35,6 +37,14 @@ int tdc_disco_flash_read(void *ctx, uint32_t offset, uint8_t *data, uint32_t len
 /* flash.c: swap the banks by option byte and reset; returns 0 only when
  * the option bytes did not take the new value. */
 int tdc_disco_flash_activate_other_bank(void);
+
+/* usb_hs.c: OTG HS device on the ULPI PHY with the project's protocol;
+ * 1 when the core came out of reset. */
+int tdc_disco_usb_init(const tdc_usbp_config_t *cfg);
+/* usb_hs.c: service the core (reset, enumeration, control, bulk). */
+void tdc_disco_usb_poll(void);
+/* usb_hs.c: up to cap link-stream bytes received on bulk OUT 0x01. */
+uint32_t tdc_disco_usb_read(uint8_t *buf, uint32_t cap);
 
 /* log_uart.c: USART1 on PA9/PA10 at 115200 8N1 (the ST-LINK VCP). */
 void tdc_disco_log_init(void);

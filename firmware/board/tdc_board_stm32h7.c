@@ -43,16 +43,34 @@ tdc_board_status_t tdc_board_init(void)
     } else {
         tdc_board_log("stm32h747i-disco: DSI or LTDC clock did not come up: no panel");
     }
-    tdc_board_log("stm32h747i-disco: USB HS transport not written yet");
+    /* USB HS: serial number = the 96-bit unique device ID (RM0399 "Unique
+     * device ID register", 0x1FF1E800) in hex. */
+    static char serial[25];
+    for (uint32_t i = 0; i < 24u; i++) {
+        const uint32_t w = TDC_REG32(0x1FF1E800u + 4u * (i / 8u));
+        serial[i] = "0123456789abcdef"[(w >> (28u - 4u * (i % 8u))) & 0xFu];
+    }
+    const tdc_usbp_config_t usb = {.board_name = TDC_BOARD_NAME,
+                                   .panel_name = TDC_PANEL_NAME,
+                                   .serial = serial,
+                                   .fw_version = 0u,
+                                   .panel_width = TDC_DISCO_LCD_W,
+                                   .panel_height = TDC_DISCO_LCD_H,
+                                   .refresh_mhz = TDC_DISCO_LCD_HZ * 1000u,
+                                   .rx_buffer_bytes = 16384u,
+                                   .max_packet_bytes = 512u,
+                                   .flash = {tdc_disco_flash_write, tdc_disco_flash_read, 0, 1024u * 1024u}};
+    if (!tdc_disco_usb_init(&usb)) {
+        tdc_board_log("stm32h747i-disco: USB OTG HS core did not come out of reset");
+        return TDC_BOARD_ERR_IO;
+    }
     return TDC_BOARD_OK;
 }
 
 tdc_board_status_t tdc_board_transport_read(uint8_t *buf, uint32_t cap, uint32_t *got)
 {
-    (void)buf;
-    (void)cap;
-    *got = 0u; /* USB HS bulk OUT endpoint: not written yet */
-    return TDC_BOARD_ERR_NOT_IMPLEMENTED;
+    *got = tdc_disco_usb_read(buf, cap); /* bulk OUT 0x01 through the ring (usb_hs.c) */
+    return TDC_BOARD_OK;
 }
 
 tdc_board_status_t tdc_board_panel_show(const uint8_t *fb, uint32_t stride, uint32_t width, uint32_t height,

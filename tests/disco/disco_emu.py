@@ -27,7 +27,7 @@ from unicorn import UC_PROT_ALL
 from unicorn.arm_const import UC_CPU_ARM_CORTEX_M7, UC_ARM_REG_SP, UC_ARM_REG_LR, UC_ARM_REG_PC
 from unicorn.arm_const import UC_ARM_REG_R0, UC_ARM_REG_R1, UC_ARM_REG_R2, UC_ARM_REG_R3
 
-from disco_models import Rcc, Pwr, Syscfg, Flash, Fmc, Gpio, Usart, Ltdc, Dsi, Scs, EmuError, PowerLoss
+from disco_models import Rcc, Pwr, Syscfg, Flash, Fmc, Gpio, Usart, Ltdc, Dsi, Scs, Usb, EmuError, PowerLoss
 
 # RM0399 section 2.3 (memory map): RAM-like regions.
 RAM_REGIONS = [
@@ -36,7 +36,9 @@ RAM_REGIONS = [
     ("AXISRAM", 0x24000000, 512 << 10),
     ("SRAM123", 0x30000000, 288 << 10),
     ("SRAM4", 0x38000000, 64 << 10),
+    ("SYSMEM", 0x1FF00000, 128 << 10),  # system memory; the unique device ID at 0x1FF1E800
 ]
+UID = bytes.fromhex("0a1b2c3d4e5f60718293a4b5")
 SDRAM_BASE, SDRAM_BYTES = 0xD0000000, 32 << 20
 RETURN_MAGIC = 0x3800FF00  # a halfword in SRAM4 the harness stops at (call())
 
@@ -97,6 +99,7 @@ class Disco:
         for paddr, blob, _memsz in self.segs:
             self.uc.mem_write(paddr, blob)
         self.uc.mem_write(RETURN_MAGIC, b"\x00\xbf\x00\xbf")  # nop; nop
+        self.uc.mem_write(0x1FF1E800, UID)
         self.sdram_mapped = False
         self.uc.hook_add(UC_HOOK_MEM_UNMAPPED, self._unmapped)
         self.rcc = Rcc(self, hse_hz, rsr)
@@ -109,7 +112,9 @@ class Disco:
         self.scs = Scs(self)
         self.power_lost = False
         self.uc.hook_add(UC_HOOK_MEM_WRITE, self.flash.mem_write, None, 0x08000000, 0x081FFFFF)
-        self.models = [self.rcc, self.pwr, Syscfg(self), self.flash, self.fmc, self.usart1, self.ltdc, self.dsi, self.scs]
+        self.usb = Usb(self)
+        self.models = [self.rcc, self.pwr, Syscfg(self), self.flash, self.fmc, self.usart1, self.ltdc, self.dsi, self.scs,
+                       self.usb]
         self.gpio = [Gpio(self, port) for port in range(11)]
         self.models += self.gpio
         pages = {}

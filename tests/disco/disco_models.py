@@ -783,6 +783,135 @@ class Dsi(Model):
 
 
 # ---------------------------------------------------------------------------
+# USB OTG HS: RM0399 chapter "USB on-the-go high-speed (OTG_HS)" (Synopsys
+# DWC2), device mode, FIFO mode, with a scripted host on the other side of
+# the ULPI PHY.  Rules: both RCC clocks (core, ULPI) before any access; the
+# core out of reset and in device mode with the external PHY before the
+# host sees it; every ULPI pin in AF10; received packets popped through
+# GRXSTSP with exactly their data words read before the next pop; an
+# endpoint receives only while enabled (else the host gets NAK); IN data
+# only into an enabled endpoint, no more than its transfer size.
+# ---------------------------------------------------------------------------
+class Usb(Model):
+    name, base, size = "OTG_HS", 0x40040000, 0x40000
+    clock = ("AHB1ENR", 25)
+    ULPI_PINS = [(0, 3), (0, 5), (1, 0), (1, 1), (1, 5), (1, 10), (1, 11), (1, 12), (1, 13), (2, 0), (7, 4), (8, 11)]
+    regs = {0x000: ("GOTGCTL", 0), 0x004: ("GOTGINT", 0), 0x008: ("GAHBCFG", 0), 0x00C: ("GUSBCFG", 0x1440),
+            0x010: ("GRSTCTL", 0x80000000), 0x014: ("GINTSTS", 0x04000020), 0x018: ("GINTMSK", 0),
+            0x01C: ("GRXSTSR", 0), 0x020: ("GRXSTSP", 0), 0x024: ("GRXFSIZ", 0x200), 0x028: ("DIEPTXF0", 0x2000200),
+            0x038: ("GCCFG", 0), 0x03C: ("CID", 0x1200), 0x104: ("DIEPTXF1", 0), 0x108: ("DIEPTXF2", 0),
+            0x800: ("DCFG", 0x02200000), 0x804: ("DCTL", 2), 0x808: ("DSTS", 0x10), 0x810: ("DIEPMSK", 0),
+            0x814: ("DOEPMSK", 0), 0x818: ("DAINT", 0), 0x81C: ("DAINTMSK", 0), 0x834: ("DIEPEMPMSK", 0),
+            0xE00: ("PCGCCTL", 0)}
+    for _n in range(4):
+        for _o, _r in ((0x900, "DIEPCTL"), (0x908, "DIEPINT"), (0x910, "DIEPTSIZ"), (0x918, "DTXFSTS"),
+                       (0xB00, "DOEPCTL"), (0xB08, "DOEPINT"), (0xB10, "DOEPTSIZ")):
+            regs[_o + 0x20 * _n] = ("%s%d" % (_r, _n), 0x80 if _r == "DIEPINT" else 0)
+    for _n in range(4):
+        regs[0x1000 * (_n + 1)] = ("FIFO%d" % _n, 0)
+
+    def __init__(self, emu):
+        super().__init__(emu)
+        self.rx = []  # (status word, data bytes)
+        self.cur = None  # data words left of the popped entry
+        self.tx = {0: bytearray(), 1: bytearray()}
+        self.sent = {0: [], 1: []}  # completed IN transfers
+        self.reset_done = False
+
+    def check_clock(self):
+        super().check_clock()
+        if not self.emu.rcc.enabled("AHB1ENR", 26):
+            raise EmuError("OTG_HS accessed without its ULPI clock (RCC_AHB1ENR.USB1OTGHSULPIEN)")
+
+    def read(self, off):
+        if off == 0x14:
+            return self.v[0x14] | (0x10 if self.rx else 0)
+        if off == 0x20:
+            if self.cur:
+                raise EmuError("GRXSTSP popped with %d data words of the previous entry unread" % len(self.cur))
+            if not self.rx:
+                raise EmuError("GRXSTSP popped with the RX FIFO empty")
+            st, data = self.rx.pop(0)
+            data = bytes(data) + b"\0" * ((-len(data)) % 4)
+            self.cur = [int.from_bytes(data[i:i + 4], "little") for i in range(0, len(data), 4)]
+            return st
+        if off == 0x1000:
+            if not self.cur:
+                raise EmuError("RX FIFO read beyond the popped entry's byte count")
+            return self.cur.pop(0)
+        return self.v[off]
+
+    def write(self, off, value):
+        if off == 0x10 and value & 1:
+            value &= ~1  # core soft reset completes at once
+            self.reset_done = True
+        if off == 0x10:
+            value = (value & ~0x31) | 0x80000000  # flushes complete at once, AHBIDL
+        if off == 0x14:  # write 1 to clear
+            self.v[0x14] &= ~value
+            return
+        if off in (0x908, 0x928, 0xB08, 0xB28):
+            self.v[off] &= ~value
+            return
+        if 0x2000 >= off >= 0x1000 and off % 0x1000 == 0:
+            ep = off // 0x1000 - 1
+            ctl, tsiz = 0x900 + 0x20 * ep, 0x910 + 0x20 * ep
+            if not self.v[ctl] >> 31 & 1:
+                raise EmuError("TX FIFO %d written while IN endpoint %d is not enabled" % (ep, ep))
+            want = self.v[tsiz] & 0x7FFFF
+            self.tx[ep] += value.to_bytes(4, "little")
+            if len(self.tx[ep]) > want + 3:
+                raise EmuError("IN endpoint %d: more data pushed than its transfer size %d" % (ep, want))
+            if len(self.tx[ep]) >= want:
+                self.sent[ep].append(bytes(self.tx[ep][:want]))
+                self.tx[ep] = bytearray()
+                self.v[ctl] &= ~(1 << 31)
+                self.v[0x908 + 0x20 * ep] |= 1  # XFRC
+            return
+        if off in (0x900, 0x920) and value >> 31 & 1 and (self.v[0x910 + (off - 0x900)] & 0x7FFFF) == 0:
+            # zero-length packet: goes out at once
+            ep = (off - 0x900) // 0x20
+            self.sent[ep].append(b"")
+            self.v[0x908 + 0x20 * ep] |= 1
+            value &= ~(1 << 31)
+        self.v[off] = value
+
+    # --- the host side ---------------------------------------------------
+    def connect_check(self):
+        for port, pin in self.ULPI_PINS:
+            g = self.emu.gpio[port]
+            if g.mode(pin) != 2 or g.af(pin) != 10:
+                raise EmuError("ULPI pin P%s%d not in AF10: the PHY is not connected" % ("ABCDEFGHIJK"[port], pin))
+        if not self.reset_done or not self.v[0xC] >> 30 & 1 or self.v[0xC] >> 6 & 1 or self.v[0x804] & 2:
+            raise EmuError("host sees no HS device: core reset, forced device mode, ULPI PHY and soft connect needed")
+
+    def bus_reset(self):
+        self.connect_check()
+        self.v[0x14] |= (1 << 12) | (1 << 13)
+        self.v[0x808] = 0  # ENUMSPD high speed
+
+    def setup(self, raw):
+        if not (self.v[0xB10] >> 29 & 3):
+            raise EmuError("SETUP received with EP0 OUT not armed for SETUP (STUPCNT 0)")
+        self.rx.append(((6 << 17) | (8 << 4), raw))
+        self.rx.append(((4 << 17), b""))
+
+    def out(self, ep, data):
+        """One OUT packet; False = NAK (endpoint not enabled)."""
+        ctl, tsiz = 0xB00 + 0x20 * ep, 0xB10 + 0x20 * ep
+        if not self.v[ctl] >> 31 & 1:
+            return False
+        if len(data) > (self.v[tsiz] & 0x7FFFF):
+            raise EmuError("OUT packet of %d bytes larger than EP%d's transfer size" % (len(data), ep))
+        if ep and not self.v[ctl] >> 15 & 1:
+            raise EmuError("OUT data to EP%d, which is not active (USBAEP)" % ep)
+        self.v[ctl] &= ~(1 << 31)
+        self.rx.append(((2 << 17) | (len(data) << 4) | ep, data))
+        self.rx.append(((3 << 17) | ep, b""))
+        return True
+
+
+# ---------------------------------------------------------------------------
 # Cortex-M7 private peripheral bus: SCB, MPU, cache maintenance, DWT
 # (ARMv7-M ARM B3.2, Cortex-M7 TRM chapter 4 "System control")
 # ---------------------------------------------------------------------------

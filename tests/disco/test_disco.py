@@ -400,6 +400,68 @@ class FlashUpdate(unittest.TestCase):
         self.assertEqual(b.flash.erased, [], "no erase started on a busy bank")
 
 
+class UsbHs(unittest.TestCase):
+    """A scripted host against the DWC2 model: enumeration through the
+    project's protocol code on endpoint 0, then a bulk OUT transfer read
+    back through tdc_board_transport_read().  (The host's zero-length
+    status stages after IN data are not sent: the driver ignores them.)"""
+    GOT = 0x24070000  # a word for transport_read's *got
+    BUF = 0x24060000
+
+    def control(self, b, bm, req, val, idx, length, data=b""):
+        n0 = len(b.usb.sent[0])
+        b.usb.setup(struct.pack("<BBHHH", bm, req, val, idx, length))
+        b.call("tdc_disco_usb_poll")
+        if not bm & 0x80 and length:
+            self.assertTrue(b.usb.out(0, data), "EP0 armed for the OUT data stage")
+            b.call("tdc_disco_usb_poll")
+        sent = b.usb.sent[0][n0:]
+        self.assertEqual(len(sent), 1, "one IN transfer (data or status) per request")
+        self.assertFalse(b.usb.v[0x900] >> 21 & 1, "not stalled")
+        return sent[0]
+
+    def test_enumerate_and_bulk_out(self):
+        b = Disco(ELF)
+        b.run_reset()
+        b.usb.bus_reset()
+        b.call("tdc_disco_usb_poll")
+        dev = self.control(b, 0x80, 6, 0x0100, 0, 64)
+        self.assertEqual((len(dev), dev[0], dev[1], dev[7]), (18, 18, 1, 64), "device descriptor, EP0 64 bytes")
+        self.assertEqual(self.control(b, 0x00, 5, 7, 0, 0), b"", "SET_ADDRESS status")
+        self.assertEqual(b.usb.v[0x800] >> 4 & 0x7F, 7, "DCFG.DAD")
+        head = self.control(b, 0x80, 6, 0x0200, 0, 9)
+        total = struct.unpack_from("<H", head, 2)[0]
+        cfg = self.control(b, 0x80, 6, 0x0200, 0, total)
+        eps = {cfg[i + 2]: struct.unpack_from("<H", cfg, i + 4)[0] for i in range(len(cfg) - 6)
+               if cfg[i] == 7 and cfg[i + 1] == 5}
+        self.assertEqual(eps.get(0x01), 512, "bulk OUT 0x01, 512 bytes at high speed")
+        self.assertEqual(eps.get(0x81), 512, "bulk IN 0x81")
+        self.assertEqual(self.control(b, 0x00, 9, 1, 0, 0), b"", "SET_CONFIGURATION status")
+        status = b.usb.sent[1][-1]
+        self.assertEqual(struct.unpack_from("<I", status, 0)[0], 0x53434454, "status report on bulk IN ('TDCS')")
+        info = self.control(b, 0xC1, 0x01, 0, 0, 64)
+        self.assertIn(b"stm32h747i-disco", info, "BOARD_INFO names the board")
+        # A bulk transfer of link-stream bytes, 512-byte packets.
+        data = bytes((i * 37 + 11) & 0xFF for i in range(3000))
+        for off in range(0, len(data), 512):
+            self.assertTrue(b.usb.out(1, data[off:off + 512]), "bulk OUT re-armed after each packet")
+            b.call("tdc_disco_usb_poll")
+        got = b""
+        for _ in range(4):
+            rc = b.call("tdc_board_transport_read", self.BUF, 4096, self.GOT)
+            self.assertEqual(rc, 0, "TDC_BOARD_OK")
+            n = struct.unpack("<I", bytes(b.uc.mem_read(self.GOT, 4)))[0]
+            got += bytes(b.uc.mem_read(self.BUF, n))
+        self.assertEqual(got, data)
+
+    def test_no_host_before_core_reset(self):
+        # The model refuses a host before the core is set up: what the
+        # driver does in tdc_board_init is what makes enumeration possible.
+        b = Disco(ELF)
+        with self.assertRaisesRegex(EmuError, "ULPI pin|no HS device"):
+            b.usb.bus_reset()
+
+
 class ResetCause(unittest.TestCase):
     # RM0399 RCC_RSR bits; tdc_reset_cause_t values from tdc_board.h.
     POR, BOR, PIN, SFT1, IWDG1, WWDG1 = 1 << 23, 1 << 21, 1 << 22, 1 << 24, 1 << 26, 1 << 28
