@@ -52,7 +52,7 @@ static tdc_usbp_t g_proto;
 static uint8_t g_ring[RING_BYTES];
 static uint32_t g_head, g_tail; /* free-running; head - tail = bytes held */
 static uint8_t g_setup[8];
-static uint8_t g_ctl[512]; /* EP0 data stage in or out */
+static uint8_t g_ctl[TDC_DFU_TRANSFER_SIZE]; /* EP0 data stage in or out: a DFU block at most */
 static uint32_t g_ctl_out_len, g_ctl_out_want;
 static int g_configured;
 
@@ -120,6 +120,14 @@ static void ep0_arm_setup(void)
     OTG(DOEPCTL0) |= EPENA | CNAK;
 }
 
+/* One packet of a control OUT data stage (7-bit transfer size field). */
+static void ep0_arm_out(void)
+{
+    const uint32_t left = g_ctl_out_want - g_ctl_out_len;
+    OTG(DOEPTSIZ0) = (1u << 19) | (left < 64u ? left : 64u);
+    OTG(DOEPCTL0) |= EPENA | CNAK;
+}
+
 static void ep_write(uint32_t ep, uint32_t tsiz_off, uint32_t ctl_off, const uint8_t *p, uint32_t n, uint32_t mps)
 {
     const uint32_t pkts = n == 0u ? 1u : (n + mps - 1u) / mps;
@@ -134,9 +142,21 @@ static void ep_write(uint32_t ep, uint32_t tsiz_off, uint32_t ctl_off, const uin
     }
 }
 
+/* Endpoint 0's transfer size field holds 7 bits and its packet count 2
+ * (RM0399 OTG_DIEPTSIZ0), so longer replies (a DFU upload block) go out one
+ * 64-byte packet at a time, each after the previous one left (bounded
+ * wait: the host polls IN at least every microframe while it reads). */
 static void ep0_send(const uint8_t *p, uint32_t n)
 {
-    ep_write(0u, DIEPTSIZ0, DIEPCTL0, p, n, 64u);
+    uint32_t off = 0;
+    do {
+        if (!wait_otg(DIEPCTL0, EPENA, 0u)) {
+            return;
+        }
+        const uint32_t k = n - off < 64u ? n - off : 64u;
+        ep_write(0u, DIEPTSIZ0, DIEPCTL0, p + off, k, 64u);
+        off += k;
+    } while (off < n);
 }
 
 static void ep0_stall(void)
@@ -228,19 +248,25 @@ static int rx_pop(void)
         }
     } else if (kind == 4u) { /* SETUP stage done */
         const uint32_t wlen = (uint32_t)g_setup[6] | ((uint32_t)g_setup[7] << 8);
-        if (!(g_setup[0] & 0x80u) && wlen > 0u) {
+        if (!(g_setup[0] & 0x80u) && wlen > sizeof g_ctl) {
+            ep0_stall(); /* larger than any request of the protocol */
+            ep0_arm_setup();
+        } else if (!(g_setup[0] & 0x80u) && wlen > 0u) {
             g_ctl_out_len = 0u;
-            g_ctl_out_want = wlen <= sizeof g_ctl ? wlen : (uint32_t)sizeof g_ctl;
-            OTG(DOEPTSIZ0) = (1u << 19) | g_ctl_out_want;
-            OTG(DOEPCTL0) |= EPENA | CNAK;
+            g_ctl_out_want = wlen;
+            ep0_arm_out();
         } else {
             control();
             ep0_arm_setup();
         }
     } else if (kind == 3u && ep == 0u && g_ctl_out_want) {
-        g_ctl_out_want = 0u;
-        control();
-        ep0_arm_setup();
+        if (g_ctl_out_len < g_ctl_out_want) {
+            ep0_arm_out(); /* next packet of the data stage */
+        } else {
+            g_ctl_out_want = 0u;
+            control();
+            ep0_arm_setup();
+        }
     } else if (kind == 3u && ep == 1u) {
         bulk_out_arm();
     }

@@ -858,7 +858,7 @@ class Usb(Model):
             ctl, tsiz = 0x900 + 0x20 * ep, 0x910 + 0x20 * ep
             if not self.v[ctl] >> 31 & 1:
                 raise EmuError("TX FIFO %d written while IN endpoint %d is not enabled" % (ep, ep))
-            want = self.v[tsiz] & 0x7FFFF
+            want = self.v[tsiz] & (0x7F if ep == 0 else 0x7FFFF)  # EP0: 7-bit XFRSIZ
             self.tx[ep] += value.to_bytes(4, "little")
             if len(self.tx[ep]) > want + 3:
                 raise EmuError("IN endpoint %d: more data pushed than its transfer size %d" % (ep, want))
@@ -868,6 +868,8 @@ class Usb(Model):
                 self.v[ctl] &= ~(1 << 31)
                 self.v[0x908 + 0x20 * ep] |= 1  # XFRC
             return
+        if off in (0x910, 0xB10) and value & 0x7FFFF > 0x7F:
+            raise EmuError("EP0 transfer size %d does not fit DxEPTSIZ0's 7-bit field" % (value & 0x7FFFF))
         if off in (0x900, 0x920) and value >> 31 & 1 and (self.v[0x910 + (off - 0x900)] & 0x7FFFF) == 0:
             # zero-length packet: goes out at once
             ep = (off - 0x900) // 0x20
@@ -901,7 +903,7 @@ class Usb(Model):
         ctl, tsiz = 0xB00 + 0x20 * ep, 0xB10 + 0x20 * ep
         if not self.v[ctl] >> 31 & 1:
             return False
-        if len(data) > (self.v[tsiz] & 0x7FFFF):
+        if len(data) > (self.v[tsiz] & (0x7F if ep == 0 else 0x7FFFF)):
             raise EmuError("OUT packet of %d bytes larger than EP%d's transfer size" % (len(data), ep))
         if ep and not self.v[ctl] >> 15 & 1:
             raise EmuError("OUT data to EP%d, which is not active (USBAEP)" % ep)

@@ -412,13 +412,14 @@ class UsbHs(unittest.TestCase):
         n0 = len(b.usb.sent[0])
         b.usb.setup(struct.pack("<BBHHH", bm, req, val, idx, length))
         b.call("tdc_disco_usb_poll")
-        if not bm & 0x80 and length:
-            self.assertTrue(b.usb.out(0, data), "EP0 armed for the OUT data stage")
+        for off in range(0, length if not bm & 0x80 else 0, 64):  # OUT data stage, 64-byte packets
+            self.assertTrue(b.usb.out(0, data[off:off + 64]), "EP0 armed for each OUT data packet")
             b.call("tdc_disco_usb_poll")
         sent = b.usb.sent[0][n0:]
-        self.assertEqual(len(sent), 1, "one IN transfer (data or status) per request")
+        self.assertGreaterEqual(len(sent), 1, "an IN data or status stage")
+        self.assertTrue(all(len(p) <= 64 for p in sent), "EP0 packets of at most 64 bytes")
         self.assertFalse(b.usb.v[0x900] >> 21 & 1, "not stalled")
-        return sent[0]
+        return b"".join(sent)
 
     def test_enumerate_and_bulk_out(self):
         b = Disco(ELF)
@@ -453,6 +454,14 @@ class UsbHs(unittest.TestCase):
             n = struct.unpack("<I", bytes(b.uc.mem_read(self.GOT, 4)))[0]
             got += bytes(b.uc.mem_read(self.BUF, n))
         self.assertEqual(got, data)
+        # A DFU download block (wTransferSize 1024) through EP0 into the
+        # flash driver: it lands in the bank not running.
+        block = bytes((i * 13 + 5) & 0xFF for i in range(1024))
+        self.assertEqual(self.control(b, 0x21, 1, 0, 1, len(block), block), b"", "DFU_DNLOAD status stage")
+        self.assertEqual(bytes(b.uc.mem_read(0x08100000, len(block))), block)
+        self.assertEqual(b.flash.erased, [(0x100, 0)], "sector 0 of the other bank erased once")
+        st = self.control(b, 0xA1, 3, 0, 1, 6)
+        self.assertEqual(st[0], 0, "DFU_GETSTATUS: status OK")
 
     def test_no_host_before_core_reset(self):
         # The model refuses a host before the core is set up: what the
