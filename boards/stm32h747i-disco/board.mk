@@ -22,4 +22,4 @@ BOARD_FW_CFG := -DTDC_CFG_LCD_PREV_BITS=6u -DTDC_LINK_FORMAT_MASK=0x16u
 # pair fits every default pair: the panel never scans out a buffer being
 # written, and a frame with a bad band is never swapped in.
 BOARD_BANDS := 1
-BOARD_FLASH := make flash (openocd through the on-board ST-LINK), make flash-uart (stm32flash, ROM bootloader on USART1, BOOT0 high); tdc-usb flash once the USB HS transport exists
+BOARD_FLASH := make flash (openocd through the on-board ST-LINK), make flash-uart (stm32flash, ROM bootloader on USART1, BOOT0 high); tdc-usb flash for updates through the running image's USB HS port
