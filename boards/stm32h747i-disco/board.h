@@ -6,7 +6,7 @@
 #define TDC_BOARD_EMULATED 0
 #define TDC_BOARD_HSE_HZ 25000000u /* UM2411: X1, 25 MHz crystal on the HSE pins */
 
-/* PLL1 (RM0399 section 9 "PLL"): ref = HSE / M = 5 MHz (PLL1RGE 4-8 MHz),
+/* PLL1 (RM0399 RCC chapter, "PLL"): ref = HSE / M = 5 MHz (PLL1RGE 4-8 MHz),
  * VCO = ref * N = 800 MHz (wide range 192-960 MHz), SYSCLK = VCO / P.
  * 400 MHz is the maximum at VOS1, and VOS1 is the highest scale on the
  * DISCO's direct-SMPS supply (480 MHz needs VOS0, which needs the LDO:
@@ -55,7 +55,7 @@
 #define TDC_DISCO_FLASH_PROGRAM_MS 10u
 #define TDC_DISCO_LCD_PCLK_HZ (TDC_BOARD_HSE_HZ / TDC_DISCO_PLL3_M * TDC_DISCO_PLL3_N / TDC_DISCO_PLL3_R)
 
-/* Peripheral base addresses (RM0399 section 2.3.2). */
+/* Peripheral base addresses (RM0399 memory map). */
 #define TDC_STM32_RCC 0x58024400u
 #define TDC_STM32_PWR 0x58024800u
 #define TDC_STM32_FLASH_R 0x52002000u

@@ -2,15 +2,15 @@
  * clocks.c - STM32H747I-DISCO supply, voltage scale and clock tree, then the
  * Cortex-M7 caches and the MPU region of the SDRAM.
  *
- * Supply and scale (RM0399 section 7 "Power control"): the DISCO wires
+ * Supply and scale (RM0399 chapter "Power control"): the DISCO wires
  * VCORE to the internal SMPS directly (UM2411), so PWR_CR3 gets SDEN = 1,
  * LDOEN = 0, BYPASS = 0 in ONE write (the supply bits are write-once after
  * power-on) and ACTVOSRDY is awaited; then VOS1, the highest scale on that
  * supply, and VOSRDY before any clock is raised.
  *
- * Clocks (RM0399 section 9 "RCC"): HSE 25 MHz -> PLL1 (board.h) 400 MHz
+ * Clocks (RM0399 chapter "RCC"): HSE 25 MHz -> PLL1 (board.h) 400 MHz
  * SYSCLK; D1CPRE /1, HPRE /2 (AXI/AHB 200 MHz), all APB prescalers /2
- * (100 MHz): the VOS1 maxima of DS12930.  Flash (RM0399 section 4 wait-state
+ * (100 MHz): the VOS1 maxima of DS12930.  Flash (RM0399 chapter wait-state
  * table, VOS1, AXI 185-210 MHz): LATENCY 2, WRHIGHFREQ 2, read back before
  * the switch.
  *

@@ -5,7 +5,7 @@
  *
  * USART1 kernel clock = rcc_pclk2 (RCC_D2CCIP2R.USART16SEL reset value 0),
  * 100 MHz after clocks.c: BRR = 100 MHz / 115200 = 868 (oversampling 16,
- * 0.006 % error; RM0399 section 48 "USART baud rate generation").
+ * 0.006 % error; RM0399 chapter "USART baud rate generation").
  */
 #include <stdint.h>
 

@@ -29,7 +29,7 @@ from unicorn.arm_const import UC_ARM_REG_R0, UC_ARM_REG_R1, UC_ARM_REG_R2, UC_AR
 
 from disco_models import Rcc, Pwr, Syscfg, Flash, Fmc, Gpio, Usart, Ltdc, Dsi, Scs, Usb, EmuError, PowerLoss
 
-# RM0399 section 2.3 (memory map): RAM-like regions.
+# RM0399 memory map: RAM-like regions.
 RAM_REGIONS = [
     ("FLASH", 0x08000000, 2 << 20),
     ("DTCM", 0x20000000, 128 << 10),

@@ -1,5 +1,5 @@
 """disco_models.py - register models of the STM32H747 peripherals the DISCO's
-board code touches, written from RM0399 (rev 3), the STM32H747xI data sheet
+board code touches, written from RM0399, the STM32H747xI data sheet
 DS12930 and the Cortex-M7 TRM.  Each model knows its register map (an
 offset outside it raises), its reset values, the ready/status bits the
 firmware polls, and the order rules the reference manual states; a broken
@@ -13,9 +13,9 @@ class EmuError(Exception):
 
 # DS12930 table "General operating conditions": maximum clocks per voltage
 # scale (CPU, AXI/AHB, APB) in MHz.  VOS0 exists only on the LDO supply
-# (DS12930 note, RM0399 section 7 "Power control": overdrive needs the LDO).
+# (DS12930 note, RM0399 chapter "Power control": overdrive needs the LDO).
 VOS_LIMITS_MHZ = {0: (480, 240, 120), 1: (400, 200, 100), 2: (300, 150, 75), 3: (200, 100, 50)}
-# RM0399 section 4 table "FLASH recommended number of wait states and
+# RM0399 embedded-flash chapter, table "FLASH recommended number of wait states and
 # programming delay": (max AXI MHz, LATENCY, WRHIGHFREQ) per VOS.
 FLASH_WS = {
     0: [(70, 0, 0), (140, 1, 1), (185, 2, 1), (210, 2, 2), (225, 3, 2), (240, 4, 2)],
@@ -76,7 +76,7 @@ class Model:
 
 
 # ---------------------------------------------------------------------------
-# RCC: RM0399 section 9 "Reset and clock control (RCC)"
+# RCC: RM0399 chapter "Reset and clock control (RCC)"
 # ---------------------------------------------------------------------------
 class Rcc(Model):
     name, base = "RCC", 0x58024400
@@ -94,7 +94,7 @@ class Rcc(Model):
             0xE4: ("APB3ENR", 0), 0xE8: ("APB1LENR", 0), 0xEC: ("APB1HENR", 0), 0xF0: ("APB2ENR", 0),
             0xF4: ("APB4ENR", 0)}
     # RCC_RSR after a power-on reset: POR, BOR, pin, D1, D2 and CPU flags all
-    # set (RM0399 section 9 "Reset source identification" table).
+    # set (RM0399 RCC chapter, "reset source identification").
     RSR_POWER_ON = (1 << 23) | (1 << 21) | (1 << 22) | (1 << 19) | (1 << 20) | (1 << 17)
     PLL_FIELDS = {1: (0x30, 0, 4), 2: (0x38, 4, 12), 3: (0x40, 8, 20)}  # DIVR reg, PLLCFGR shift, DIVM shift
 
@@ -224,7 +224,7 @@ class Rcc(Model):
 
 
 # ---------------------------------------------------------------------------
-# PWR: RM0399 section 7 "Power control (PWR)"
+# PWR: RM0399 chapter "Power control (PWR)"
 # ---------------------------------------------------------------------------
 class Pwr(Model):
     name, base = "PWR", 0x58024800
@@ -472,7 +472,7 @@ class Flash(Model):
 
 
 # ---------------------------------------------------------------------------
-# FMC SDRAM controller: RM0399 section 22 "Flexible memory controller (FMC)"
+# FMC SDRAM controller: RM0399 chapter "Flexible memory controller (FMC)"
 # ---------------------------------------------------------------------------
 class Fmc(Model):
     name, base, size = "FMC", 0x52004000, 0x1000
@@ -519,7 +519,7 @@ class Fmc(Model):
 
 
 # ---------------------------------------------------------------------------
-# GPIO: RM0399 section 11 "General-purpose I/Os (GPIO)"
+# GPIO: RM0399 chapter "General-purpose I/Os (GPIO)"
 # ---------------------------------------------------------------------------
 class Gpio(Model):
     size = 0x400
@@ -557,7 +557,7 @@ class Gpio(Model):
 
 
 # ---------------------------------------------------------------------------
-# USART: RM0399 section 48 "USART/UART"
+# USART: RM0399 chapter "USART/UART"
 # ---------------------------------------------------------------------------
 class Usart(Model):
     regs = {0x00: ("CR1", 0), 0x04: ("CR2", 0), 0x08: ("CR3", 0), 0x0C: ("BRR", 0), 0x10: ("GTPR", 0), 0x14: ("RTOR", 0),
@@ -594,7 +594,7 @@ class Usart(Model):
 
 
 # ---------------------------------------------------------------------------
-# LTDC: RM0399 section 33 "LCD-TFT display controller (LTDC)"
+# LTDC: RM0399 chapter "LCD-TFT display controller (LTDC)"
 # ---------------------------------------------------------------------------
 class Ltdc(Model):
     name, base = "LTDC", 0x50001000
