@@ -51,8 +51,11 @@
 #define TDC_DISCO_DSI_LANE_HZ (TDC_BOARD_HSE_HZ / TDC_DISCO_DSI_IDF * TDC_DISCO_DSI_NDIV / TDC_DISCO_DSI_ODF)
 /* Flash polls (flash.c): a 128 KiB sector erase takes up to seconds
  * (DS12930 flash characteristics), a 256-bit word program microseconds. */
+#define TDC_DISCO_FLASH_BANK_BYTES (1024u * 1024u) /* one DFU slot per bank */
 #define TDC_DISCO_FLASH_ERASE_MS 4000u
 #define TDC_DISCO_FLASH_PROGRAM_MS 10u
+/* USB HS bulk OUT ring (usb_hs.c): 32 packets of 512 bytes. */
+#define TDC_DISCO_USB_RING_BYTES 16384u
 #define TDC_DISCO_LCD_PCLK_HZ (TDC_BOARD_HSE_HZ / TDC_DISCO_PLL3_M * TDC_DISCO_PLL3_N / TDC_DISCO_PLL3_R)
 
 /* Peripheral base addresses (RM0399 memory map). */

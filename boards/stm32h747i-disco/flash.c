@@ -31,7 +31,7 @@
 #include "disco.h"
 
 #define FLASH_R(off) TDC_REG32(TDC_STM32_FLASH_R + (off))
-#define BANK_BYTES (1024u * 1024u)
+#define BANK_BYTES TDC_DISCO_FLASH_BANK_BYTES
 #define SECTOR_BYTES (128u * 1024u)
 #define WORD_BYTES 32u /* 256-bit flash word */
 #define FLASH_BASE 0x08000000u

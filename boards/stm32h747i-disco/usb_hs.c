@@ -46,7 +46,7 @@ enum {
 #define GINT_USBRST (1u << 12)
 #define GINT_ENUMDNE (1u << 13)
 #define HS_MPS 512u
-#define RING_BYTES 16384u /* 32 packets of 512: link packets arrive in bursts */
+#define RING_BYTES TDC_DISCO_USB_RING_BYTES
 
 static tdc_usbp_t g_proto;
 static uint8_t g_ring[RING_BYTES];

@@ -1,8 +1,9 @@
 /*
  * tdc_board_stm32h7.c - the board interface on the STM32H747I-DISCO
  * (Cortex-M7 core).  The drivers live in boards/stm32h747i-disco/ (clocks,
- * SDRAM, caches, log UART, fault handler); this file maps the narrow board
- * interface (tdc_board.h) onto them:
+ * SDRAM, caches, log UART and fault handler, LTDC, DSI and panel, flash,
+ * USB HS); this file maps the narrow board interface (tdc_board.h) onto
+ * them:
  *
  *   timer        DWT cycle counter at TDC_BOARD_CPU_HZ (board.h, from PLL1)
  *   reset cause  RCC_RSR, power-on tested first (a power-on reset also sets
@@ -11,11 +12,11 @@
  *   panel out    LTDC (ltdc.c): pixel clock, timings, RGB888 layer 1 at
  *                the frame buffer, reloaded at vertical blanking after the
  *                buffer is cleaned from the D-cache
+ *                (dsi_panel.c: DSI host and D-PHY, panel ID and DCS start-up)
  *   vsync        LTDC_CDSR.VSYNCS
- *   NOT YET WRITTEN (each says so at run time): the DSI host, D-PHY and
- *   panel command sequence (the LTDC runs, its output reaches no glass),
- *   and the USB OTG HS transport (transport_read reports NOT_IMPLEMENTED,
- *   so the frame loop ends after start-up).
+ *   transport    USB OTG HS bulk OUT through a ring (usb_hs.c), polled
+ *   NOT YET WRITTEN: the panel controllers' vendor register tables
+ *   (docs/boards.md, "STM32H747I-DISCO").
  *
  * Executed in tests/disco against register models; not yet run on a board.
  */
@@ -54,12 +55,13 @@ tdc_board_status_t tdc_board_init(void)
                                    .panel_name = TDC_PANEL_NAME,
                                    .serial = serial,
                                    .fw_version = 0u,
-                                   .panel_width = TDC_DISCO_LCD_W,
-                                   .panel_height = TDC_DISCO_LCD_H,
-                                   .refresh_mhz = TDC_DISCO_LCD_HZ * 1000u,
-                                   .rx_buffer_bytes = 16384u,
+                                   /* the panel the image decodes streams for */
+                                   .panel_width = TDC_PANEL_WIDTH * TDC_PANEL_EYES,
+                                   .panel_height = TDC_PANEL_HEIGHT,
+                                   .refresh_mhz = TDC_PANEL_REFRESH_HZ * 1000u,
+                                   .rx_buffer_bytes = TDC_DISCO_USB_RING_BYTES,
                                    .max_packet_bytes = 512u,
-                                   .flash = {tdc_disco_flash_write, tdc_disco_flash_read, 0, 1024u * 1024u}};
+                                   .flash = {tdc_disco_flash_write, tdc_disco_flash_read, 0, TDC_DISCO_FLASH_BANK_BYTES}};
     if (!tdc_disco_usb_init(&usb)) {
         tdc_board_log("stm32h747i-disco: USB OTG HS core did not come out of reset");
         return TDC_BOARD_ERR_IO;
