@@ -20,8 +20,8 @@ int tdc_disco_ltdc_init(void);
 /* ltdc.c: clean fb from the D-cache, scan it out from the next vertical
  * blanking; 0 when the LTDC is not up. */
 int tdc_disco_ltdc_flip(const uint8_t *fb, uint32_t stride, uint32_t width, uint32_t height);
-/* ltdc.c: returns at the start of the next vertical sync. */
-void tdc_disco_ltdc_vsync_wait(void);
+/* ltdc.c: 1 during vertical sync, 0 outside, -1 when the LTDC is not up. */
+int tdc_disco_ltdc_vsync(void);
 
 /* dsi_panel.c: DSI host, PLL, D-PHY, video-mode timings (before the
  * LTDC starts); 1 when the regulator and PLL came up. */

@@ -89,16 +89,7 @@ int tdc_disco_ltdc_flip(const uint8_t *fb, uint32_t stride, uint32_t width, uint
     return 1;
 }
 
-void tdc_disco_ltdc_vsync_wait(void)
+int tdc_disco_ltdc_vsync(void)
 {
-    if (!g_up) {
-        return;
-    }
-    /* LTDC_CDSR.VSYNCS: leave the current vertical sync, wait for the next
-     * (bounded: one frame is 16.7 ms, i.e. far fewer than 10^7 reads). */
-    uint32_t i = 0;
-    while ((LTDC(0x48) & (1u << 2)) && i++ < 10000000u) {
-    }
-    while (!(LTDC(0x48) & (1u << 2)) && i++ < 20000000u) {
-    }
+    return g_up ? (int)((LTDC(0x48) >> 2) & 1u) : -1; /* LTDC_CDSR.VSYNCS */
 }

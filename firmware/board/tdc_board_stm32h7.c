@@ -13,7 +13,7 @@
  *                the frame buffer, reloaded at vertical blanking after the
  *                buffer is cleaned from the D-cache
  *                (dsi_panel.c: DSI host and D-PHY, panel ID and DCS start-up)
- *   vsync        LTDC_CDSR.VSYNCS
+ *   vsync        LTDC_CDSR.VSYNCS, servicing USB while it waits
  *   transport    USB OTG HS bulk OUT through a ring (usb_hs.c), polled
  *   NOT YET WRITTEN: the panel controllers' vendor register tables
  *   (docs/boards.md, "STM32H747I-DISCO").
@@ -82,9 +82,18 @@ tdc_board_status_t tdc_board_panel_show(const uint8_t *fb, uint32_t stride, uint
     return tdc_disco_ltdc_flip(fb, stride, width, height) ? TDC_BOARD_OK : TDC_BOARD_ERR_IO;
 }
 
+/* Leaves the current vertical sync, waits for the next, and services USB
+ * meanwhile (the wait is the frame loop's idle time; bounded: one frame
+ * is 16.7 ms, far fewer polls than the limit). */
 void tdc_board_vsync_wait(void)
 {
-    tdc_disco_ltdc_vsync_wait();
+    uint32_t i = 0;
+    while (tdc_disco_ltdc_vsync() == 1 && i++ < 10000000u) {
+        tdc_disco_usb_poll();
+    }
+    while (tdc_disco_ltdc_vsync() == 0 && i++ < 20000000u) {
+        tdc_disco_usb_poll();
+    }
 }
 
 uint32_t tdc_board_time_us(void)

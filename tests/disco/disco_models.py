@@ -614,9 +614,9 @@ class Ltdc(Model):
         self.cdsr_reads = 0
 
     def read(self, off):
-        if off == 0x48:  # CDSR: VSYNCS toggles so a vsync wait terminates
+        if off == 0x48:  # CDSR: VSYNCS for 4 of every 64 reads: a frame, mostly active
             self.cdsr_reads += 1
-            return 0xB | ((self.cdsr_reads // 2 & 1) << 2)
+            return 0xB | (int(self.cdsr_reads % 64 < 4) << 2)
         return self.v[off]
 
     def write(self, off, value):

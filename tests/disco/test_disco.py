@@ -454,6 +454,16 @@ class UsbHs(unittest.TestCase):
             n = struct.unpack("<I", bytes(b.uc.mem_read(self.GOT, 4)))[0]
             got += bytes(b.uc.mem_read(self.BUF, n))
         self.assertEqual(got, data)
+        # The vsync wait (the frame loop's idle time) services USB: a packet
+        # taken while nothing polls leaves the endpoint NAKing until then.
+        self.assertTrue(b.usb.out(1, b"\x01" * 512))
+        self.assertFalse(b.usb.out(1, b"\x02" * 512), "NAK until the board polls")
+        b.call("tdc_board_vsync_wait")
+        self.assertTrue(b.usb.out(1, b"\x02" * 512), "re-armed during the vsync wait")
+        b.call("tdc_disco_usb_poll")
+        b.call("tdc_board_transport_read", self.BUF, 4096, self.GOT)
+        n = struct.unpack("<I", bytes(b.uc.mem_read(self.GOT, 4)))[0]
+        self.assertEqual(bytes(b.uc.mem_read(self.BUF, n)), b"\x01" * 512 + b"\x02" * 512)
         # A DFU download block (wTransferSize 1024) through EP0 into the
         # flash driver: it lands in the bank not running.
         block = bytes((i * 13 + 5) & 0xFF for i in range(1024))
