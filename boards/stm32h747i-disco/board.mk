@@ -1,10 +1,10 @@
-# ST STM32H747I-DISCO: STM32H747XI (Cortex-M7 at 480 MHz + Cortex-M4), 32 MiB SDRAM, MIPI-DSI, USB HS.
-BOARD_DESC  := ST STM32H747I-DISCO (Cortex-M7 core, 480 MHz; 1 MiB SRAM, 32 MiB SDRAM, MIPI-DSI, USB HS)
+# ST STM32H747I-DISCO: STM32H747XI (Cortex-M7 at 400 MHz on its SMPS supply + Cortex-M4, held), 32 MiB SDRAM, MIPI-DSI, USB HS.
+BOARD_DESC  := ST STM32H747I-DISCO (Cortex-M7 core, 400 MHz; 1 MiB SRAM, 32 MiB SDRAM, MIPI-DSI, USB HS)
 BOARD_CPU   := -mcpu=cortex-m7 -mthumb -mfloat-abi=soft
 BOARD_LDS   := boards/stm32h747i-disco/stm32h747i-disco.ld
 # name:origin:length:attributes (RM0399 memory map; SDRAM on FMC bank 2 as wired on the DISCO)
 BOARD_MEM   := FLASH:0x08000000:1M:rx DTCM:0x20000000:128K:rw AXISRAM:0x24000000:512K:rwx SDRAM:0xD0000000:32M:rw
-BOARD_SRCS  := boards/stm32h747i-disco/startup.c boards/stm32h747i-disco/sdram.c firmware/board/tdc_board_stm32h7.c
+BOARD_SRCS  := $(addprefix boards/stm32h747i-disco/,startup.c clocks.c sdram.c log_uart.c ltdc.c dsi_panel.c flash.c usb_hs.c) firmware/board/tdc_board_stm32h7.c
 # Default stages (docs/boards.md, memory fit): TRM (rho recomputed, 4.5 B/px)
 # and the LCD inverse fit the 32 MiB SDRAM for htc-vive, rift-cv1 and
 # lcd-240; tile assembly (23 B/px) only for the board's own 800x480 panel,
@@ -22,4 +22,4 @@ BOARD_FW_CFG := -DTDC_CFG_LCD_PREV_BITS=6u -DTDC_LINK_FORMAT_MASK=0x16u
 # pair fits every default pair: the panel never scans out a buffer being
 # written, and a frame with a bad band is never swapped in.
 BOARD_BANDS := 1
-BOARD_FLASH := dfu: hosttools USB DFU path (tdc-usb flash), or dfu-util -a 0 -s 0x08000000:leave -D IMAGE.bin (BOOT0 high), or STM32CubeProgrammer over ST-LINK
+BOARD_FLASH := make flash (openocd through the on-board ST-LINK), make flash-uart (stm32flash, ROM bootloader on USART1, BOOT0 high); tdc-usb flash for updates through the running image's USB HS port

@@ -1,18 +1,22 @@
 /*
- * sdram.c - FMC SDRAM bank 2 of the STM32H747I-DISCO: IS42S32800J, 32-bit
- * bus, 4 banks x 4096 rows x 512 columns = 32 MiB at 0xD0000000.
+ * sdram.c - FMC SDRAM bank 2 of the STM32H747I-DISCO: IS42S32800J-6, 32-bit
+ * bus, 4 banks x 4096 rows x 512 columns = 32 MiB at 0xD0000000 (UM2411:
+ * SDNE1/SDCKE1, hence bank 2).
  *
- * FMC kernel clock = HCLK3 = 240 MHz, SDCLK = HCLK/2 = 120 MHz (8.33 ns).
- * Timings from the IS42S32800J-6 data sheet, rounded up to SDCLK cycles:
- * tMRD 2, tXSR 70 ns -> 9, tRAS 42 ns -> 6, tRC 60 ns -> 8, tWR 2,
- * tRP 18 ns -> 3, tRCD 18 ns -> 3; CAS latency 3; refresh 4096 rows / 64 ms
- * -> (64 ms / 4096) * 120 MHz - 20 = 1855.
+ * FMC kernel clock = HCLK3 = 200 MHz (clocks.c), SDCLK = HCLK / 2 = 100 MHz
+ * (10 ns).  Timings from the IS42S32800J data sheet (-6 speed grade),
+ * rounded up to SDCLK cycles: tMRD 2 tCK, tXSR 70 ns -> 7, tRAS 42 ns -> 5,
+ * tRC 60 ns -> 6, tRP 18 ns -> 2, tRCD 18 ns -> 2; TWR = max(tWR 2 tCK,
+ * TRAS - TRCD, TRC - TRCD - TRP) = 3 (RM0399 FMC_SDTRx: TWR must also cover
+ * those differences).  CAS latency 3 (2 would do at 100 MHz; 3 is legal at
+ * every SDCLK this board can run).  Refresh: 4096 rows per 64 ms ->
+ * 15.625 us x 100 MHz - 20 = 1542 (RM0399 FMC_SDRTR formula).
  *
  * Pins (UM2411 schematics, AF12 = FMC): the 32-bit data, address, bank,
  * control lines on ports D, E, F, G, H, I.
  *
- * Written from RM0399 section 22 and the data sheet; NOT yet run on
- * hardware (no board in CI).
+ * Sequence: RM0399 FMC "SDRAM initialization" steps 1-8.  Executed in
+ * tests/disco against an FMC model; not yet run on a board.
  */
 #include <stdint.h>
 
@@ -86,14 +90,14 @@ void tdc_stm32_sdram_init(void)
     FMC(0x144) = common | geometry;
     /* SDTR: TMRD, TXSR, TRAS, TRC, TWR, TRP, TRCD (each minus one); TRC and
      * TRP are taken from SDTR1. */
-    const uint32_t timing = (1u << 0) | (8u << 4) | (5u << 8) | (7u << 12) | (1u << 16) | (2u << 20) | (2u << 24);
+    const uint32_t timing = (1u << 0) | (6u << 4) | (4u << 8) | (5u << 12) | (2u << 16) | (1u << 20) | (1u << 24);
     FMC(0x148) = timing;
     FMC(0x14C) = timing;
     TDC_REG32(TDC_STM32_FMC + 0x00u) |= 1u << 31; /* FMC_BCR1: FMCEN */
     sdram_command(1u, 1u, 0u);                    /* clock configuration enable */
-    delay_cycles(100000u);                        /* >= 100 us at 480 MHz */
+    delay_cycles(100000u);                        /* >= 100 us: >= 4 cycles per iteration, 400 MHz */
     sdram_command(2u, 1u, 0u);                    /* precharge all */
     sdram_command(3u, 8u, 0u);                    /* 8 auto-refresh cycles */
     sdram_command(4u, 1u, 0x230u);                /* mode: burst 1, sequential, CAS 3, single write */
-    FMC(0x154) = 1855u << 1;                      /* FMC_SDRTR: refresh count */
+    FMC(0x154) = 1542u << 1;                      /* FMC_SDRTR: refresh count */
 }
