@@ -8,7 +8,6 @@ TEST_EXTRA += test-disco
 DISCO_ELF := $(BUILD)/stm32h747i-disco-disco-dsi/tdc-firmware.elf
 .PHONY: test-disco
 test-disco:
-	@$(MAKE) --no-print-directory -j2 $(GEN)/tdc_fov_tables.h >/dev/null # host-generated header the image includes
 	@$(MAKE) --no-print-directory -j2 BOARD=stm32h747i-disco PANEL=disco-dsi firmware >/dev/null
 	@mkdir -p $(BUILD)
 	@printf '#!/bin/sh\nexec /usr/bin/python3 tests/disco/test_disco.py %s\n' "$(DISCO_ELF)" > $(BUILD)/test-disco
