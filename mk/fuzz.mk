@@ -39,10 +39,10 @@ FUZZ_LIBS_scene := -lembree3 -lm
 # the board frame loop for a 16 x 8 stereo OLED panel with TRM, tile assembly and foveation (with TAA), built as on a board:
 # without the x86 AVX2 kernels (TDC_NO_SIMD), whose encode index TRM built at every stream start
 # (22 % of each execution; the kernels are checked against C by checkasm)
-FUZZ_SRCS_frameloop := tests/fuzz/fuzz_frameloop.c $(LINK_FW_SRCS) \
+FUZZ_SRCS_frameloop := tests/fuzz/fuzz_frameloop.c $(FW_LOOP_SRCS) $(LINK_FW_SRCS) \
                        firmware/tdc_trm_rows.c firmware/tdc_trm_avx2.c \
                        $(GEN)/tdc_panel_htc-vive.c firmware/tdc_link_encode.c firmware/tdc_fov_trm.c
-FUZZ_DEPS_frameloop := firmware/board/tdc_main.c
+FUZZ_DEPS_frameloop := $(wildcard firmware/board/*.h)
 FUZZ_CFLAGS_frameloop := -Ifirmware/board -DTDC_PANEL_NAME='"fuzz"' -DTDC_PANEL_SYMBOL=tdc_panel_htc_vive \
     -DTDC_PANEL_WIDTH=16 -DTDC_PANEL_HEIGHT=8 -DTDC_PANEL_EYES=2 -DTDC_PANEL_BITS=8 -DTDC_PANEL_REFRESH_HZ=90 \
     -DTDC_PANEL_IS_LCD=0 -DTDC_CFG_TRM=1 -DTDC_CFG_ASSEMBLE=1 -DTDC_CFG_FOV=1 -DTDC_FW_NO_MAIN -DTDC_NO_SIMD
