@@ -50,29 +50,6 @@
 #endif
 #define ONE_Q15 32768u
 
-static unsigned clz64(uint64_t x)
-{
-    const uint32_t hi = (uint32_t)(x >> 32);
-    return hi ? tdc_clz32(hi) : 32u + tdc_clz32((uint32_t)x);
-}
-
-/* log2(x), x >= 1, Q24.  Mantissa table of 257 entries, linear
- * interpolation on the next 16 bits: error <= 2.8e-6 (h^2/8 |f''|, h = 1/256)
- * plus 0.5 LSB Q24 rounding; asserted in tests/test_fov.c. */
-int32_t tdc_fov_log2_q24(uint64_t x)
-{
-    if (x == 0) {
-        return 0;
-    }
-    const unsigned e = 63u - clz64(x);
-    const uint64_t m = x << (63u - e);
-    const uint32_t idx = (uint32_t)(m >> 55) & 255u;
-    const uint32_t fr = (uint32_t)(m >> 39) & 0xFFFFu;
-    const uint32_t a = tdc_fov_log2_tab[idx], b = tdc_fov_log2_tab[idx + 1u];
-    const uint32_t val = a + (uint32_t)(((uint64_t)(b - a) * fr + 32768u) >> 16); /* Q30 <= 2^30 */
-    return (int32_t)(e << 24) + (int32_t)((val + 32u) >> 6);
-}
-
 /* 2^(-g) for g in [0, 1] (Q24, g <= 2^24), Q30 in [2^29, 2^30].
  * Error <= 9.2e-7 relative (interpolation) + 0.5 LSB. */
 static uint32_t exp2_frac_q30(uint32_t g)
@@ -179,7 +156,7 @@ static void radial(const tdc_fov_geom_t *g, uint64_t r2_q16, fov_radial_t *o, in
     if (r2_q16 <= 65536u) {
         return; /* |x'| <= 1: ln |x'| <= 0, K^-1 undefined below 0: u = 0 */
     }
-    const int32_t l1 = tdc_fov_log2_q24(r2_q16) - 16 * Q24;
+    const int32_t l1 = tdc_log2_q24(r2_q16) - 16 * Q24;
     if (l1 <= 0) {
         return;
     }
@@ -190,7 +167,7 @@ static void radial(const tdc_fov_geom_t *g, uint64_t r2_q16, fov_radial_t *o, in
         o->u_q16 = (uint32_t)g->lp_w << 16;
         return;
     }
-    o->lg_l1 = tdc_fov_log2_q24((uint64_t)l1);
+    o->lg_l1 = tdc_log2_q24((uint64_t)l1);
     const int32_t neg = g->lg_lr_q24 - o->lg_l1;
     if (neg >= 0) {
         o->nq = (int32_t)(((uint64_t)(uint32_t)neg * g->inv_alpha_q24 + (1u << 23)) >> 24);
@@ -242,10 +219,10 @@ tdc_status_t tdc_fov_geom(tdc_fov_geom_t *g, uint16_t width, uint16_t height, co
     g->cx_q8 = p->gaze_x_q8;
     g->cy_q8 = p->gaze_y_q8;
     const uint64_t r2max = r2max_q16(p->gaze_x_q8, p->gaze_y_q8, width, height); /* >= 8 px^2 */
-    g->log2_r2max_q24 = tdc_fov_log2_q24(r2max) - 16 * Q24;
-    g->lg_lr_q24 = tdc_fov_log2_q24((uint64_t)g->log2_r2max_q24);
-    g->log2_w_q24 = tdc_fov_log2_q24(p->lp_w);
-    g->log2_alpha_q24 = tdc_fov_log2_q24(p->alpha_q8) - 8 * Q24;
+    g->log2_r2max_q24 = tdc_log2_q24(r2max) - 16 * Q24;
+    g->lg_lr_q24 = tdc_log2_q24((uint64_t)g->log2_r2max_q24);
+    g->log2_w_q24 = tdc_log2_q24(p->lp_w);
+    g->log2_alpha_q24 = tdc_log2_q24(p->alpha_q8) - 8 * Q24;
     g->inv_alpha_q24 = tdc_udiv64_32(((uint64_t)1 << 32) + p->alpha_q8 / 2u, p->alpha_q8);
     g->r_max_q8 = tdc_isqrt64(r2max);
     g->r_disk_q8 = (uint32_t)(((uint64_t)p->disk_q15 * g->r_max_q8 + 16384u) >> 15);
@@ -324,7 +301,7 @@ static int32_t log2_sigma(const tdc_fov_geom_t *g, const fov_radial_t *rr, int32
         return -Q24; /* clamped whatever eta is (the common case at alpha 4): no eta */
     }
     const int32_t x_q16 = tdc_fov_exp2_q16(tdc_asr32(rr->l1 - g->log2_r2max_q24, 1));
-    const int32_t leta = tdc_fov_log2_q24((uint64_t)(91750 + 16 * (int64_t)x_q16)) - 16 * Q24;
+    const int32_t leta = tdc_log2_q24((uint64_t)(91750 + 16 * (int64_t)x_q16)) - 16 * Q24;
     const int64_t s64 = s0 + leta;
     return (int32_t)(s64 < -Q24 ? -Q24 : (s64 > Q24 ? Q24 : s64));
 }
@@ -348,7 +325,7 @@ static uint32_t rad_nodes_for(uint64_t r2max)
     if (r2max < ((uint64_t)1 << TDC_FOV_NODE_E0)) {
         return 0;
     }
-    const uint32_t e = 63u - clz64(r2max);
+    const uint32_t e = 63u - tdc_clz64(r2max);
     return ((e - TDC_FOV_NODE_E0 + 1u) << TDC_FOV_NODE_BITS) + 1u;
 }
 
@@ -412,7 +389,7 @@ static void geom_px(const fov_src_t *s, int32_t i, int32_t dx, uint64_t r2)
     }
     /* eq. 2.2 radial part and eq. 4.4's sigma: the radial table, interpolated on |x'|^2 */
     int32_t u;
-    const uint32_t e = r2 >= ((uint64_t)1 << TDC_FOV_NODE_E0) ? 63u - clz64(r2) : 0u;
+    const uint32_t e = r2 >= ((uint64_t)1 << TDC_FOV_NODE_E0) ? 63u - tdc_clz64(r2) : 0u;
     /* the top 24 bits of |x'|^2: the leading 1, 7 bits of node, 16 of fraction */
     const uint32_t m24 = e >= 23u ? (uint32_t)(r2 >> (e - 23u)) : (uint32_t)r2 << (23u - e);
     const uint32_t n = e ? ((e - TDC_FOV_NODE_E0) << TDC_FOV_NODE_BITS) | ((m24 >> 16) & 127u) : 0u;
@@ -565,6 +542,18 @@ void tdc_fov_tap2_row_c(const tdc_fov_tap2_args_t *a, uint32_t n)
     }
 }
 
+tdc_status_t tdc_fov_lr_attach(tdc_fov_t *st, tdc_fov_lr_t *lr)
+{
+    if (!st) {
+        return TDC_ERR_ARG;
+    }
+    if (lr && lr->width < st->cfg.width) {
+        return TDC_ERR_SIZE;
+    }
+    st->lr = lr;
+    return TDC_OK;
+}
+
 /* ---------------------------------------------------------------------
  * Stage state.
  * ------------------------------------------------------------------- */
@@ -700,7 +689,7 @@ static void finish_row(const tdc_fov_t *st, const fov_rows_t *rw, int32_t y, uin
 /* log2 of eq. 4.4's largest eta (x = 1: 1.4 + 16 = 91750 / 2^16 + 16), Q24: eta is at most this. */
 static int32_t leta_max_q24(void)
 {
-    return tdc_fov_log2_q24(91750u + 16u * 65536u) - 16 * Q24;
+    return tdc_log2_q24(91750u + 16u * 65536u) - 16 * Q24;
 }
 
 /* The frame's tables: the radial table, rebuilt only when R (the gaze), alpha or lp_w changed (a
@@ -849,7 +838,7 @@ tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8
         r60_q16 = (1006632960u + rate / 2u) / rate; /* 60 * 2^24 / rate */
         st->dt_prev_us = dt;
         const uint64_t diag2 = (uint64_t)W * W + (uint64_t)H * H;
-        log2_diag2 = tdc_fov_log2_q24(diag2);
+        log2_diag2 = tdc_log2_q24(diag2);
         const int64_t gx = (int64_t)p->gaze_x_q8 - st->gaze_prev_x_q8, gy = (int64_t)p->gaze_y_q8 - st->gaze_prev_y_q8;
         const int saccade = (uint64_t)(gx * gx + gy * gy) > diag2 * 1024u; /* > diag / 8, Q8 */
         reject_all = !st->have_hist || saccade;
@@ -945,7 +934,7 @@ tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8
                     if (m2 == h_m2) {
                         hq = h_hq; /* neighbours mostly share one sample's vector */
                     } else if (m2) {
-                        const int32_t lg = tdc_fov_log2_q24(m2) - 8 * Q24 - log2_diag2;
+                        const int32_t lg = tdc_log2_q24(m2) - 8 * Q24 - log2_diag2;
                         const uint64_t e16 = (uint64_t)tdc_fov_exp2_q16(tdc_asr32(lg, 3));
                         const uint64_t hh = (e16 * r60_q16 + (1u << 16)) >> 17;
                         hq = hh > ONE_Q15 ? ONE_Q15 : (uint32_t)hh;

@@ -17,7 +17,7 @@ FUZZ_FLAGS := -std=c11 -D_GNU_SOURCE -g -O1 -fsanitize=fuzzer,address,undefined 
 LINK_FW_SRCS := firmware/tdc_wire.c firmware/tdc_link.c firmware/tdc_pixfmt.c firmware/tdc_crc32.c firmware/tdc_layer_link.c \
                 firmware/tdc_band_link.c \
                 firmware/tdc_fov.c firmware/tdc_fov_lr.c firmware/tdc_fov_avx2.c firmware/tdc_fov_mve.c firmware/tdc_fov_link.c \
-                firmware/tdc_math.c
+                firmware/tdc_math.c firmware/tdc_math_log2.c
 
 # name: harness + sources [+ flags, libraries]
 FUZZ_ALL := link usbproto usbreply panel tdcs scene frameloop meas fov layers bands
@@ -53,7 +53,7 @@ FUZZ_SRCS_meas := tests/fuzz/fuzz_meas.c hosttools/calib/tdc_meas.c \
 FUZZ_LIBS_meas := -lm
 # the foveated packet's kind-specific path: header, payload length, unpack, the stage with TAA
 # (seeds: make fuzz-seeds-fov, mk/fov.mk)
-FUZZ_SRCS_fov := tests/fuzz/fuzz_fov.c firmware/tdc_fov_link.c firmware/tdc_math.c
+FUZZ_SRCS_fov := tests/fuzz/fuzz_fov.c firmware/tdc_fov_link.c firmware/tdc_math.c firmware/tdc_math_log2.c
 FUZZ_DEPS_fov := $(GEN)/tdc_fov_tables.h
 # the layered subframe kind through the decoder (seeds: tests/fuzz/corpus-layers)
 FUZZ_SRCS_layers := tests/fuzz/fuzz_layers.c $(LINK_FW_SRCS) firmware/tdc_link_encode.c
