@@ -127,6 +127,9 @@ extern uint8_t tdc_fw_reduced[FW_EYES][(size_t)FW_RW * FW_RH * 3u];
 #define FW_FB_BYTES ((size_t)FW_STRIDE * FW_H)
 #define FW_FB_COUNT (TDC_CFG_BANDS ? 2u : 1u) /* bands: front/back */
 #define FW_STAGING_WHOLE ((size_t)FW_W * FW_H * FW_FULL_BPP + TDC_LINK_STREAM_HEADER_BYTES)
+/* a whole RGB888 picture: what a build staging one band must hold to take
+ * whole-picture streams too */
+#define FW_STAGING_RGB888 ((size_t)FW_W * FW_H * 3u + TDC_LINK_STREAM_HEADER_BYTES)
 #define FW_STAGING_BANDS FW_MAX2(TDC_LINK_STAGING_BAND_BYTES(FW_W, TDC_CFG_BAND_ROWS, FW_FULL_BPP), FW_ASM_STAGING)
 #define FW_STAGING_BYTES FW_MAX2(TDC_CFG_BANDS ? FW_STAGING_BANDS : FW_STAGING_WHOLE, FW_FOV_PAYLOAD)
 #define FW_MODE_BYTES FW_MAX2(FW_MAX2(FW_MAX2(FW_TRM_BYTES, FW_ASM_BYTES), FW_FOV_BYTES), FW_FOVTRM_BYTES)

@@ -52,7 +52,7 @@ const tdc_fw_family_t *tdc_fw_stream_start(void)
     tdc_fw.stream_id = tdc_fw.dec.stream_id;
     tdc_fw.have_stream = 1;
     const int bands = (si->flags & TDC_LINK_STREAM_BANDS) != 0;
-    if (bands != TDC_CFG_BANDS && (bands || FW_STAGING_WHOLE > sizeof tdc_fw_staging)) {
+    if (bands != TDC_CFG_BANDS && (bands || FW_STAGING_RGB888 > sizeof tdc_fw_staging)) {
         /* bands need the front/back pair (a single buffer would show a
          * dropped picture's first bands); a build staging one band cannot
          * take whole pictures */
