@@ -305,13 +305,13 @@ define fw_host_loop
 $(1)/board/%.o: firmware/board/%.c $(GEN)/tdc_panels.h $(PANEL_CONFIG)
 	@mkdir -p $$(@D)
 	$(CC) $(FW_CFLAGS) -Ifirmware/board -include $(PANEL_CONFIG) $(3) -DTDC_CFG_BANDS=$(2) -DTDC_FW_NO_MAIN -MMD -MP -c $$< -o $$@
-$(1)/tdc_board_host.o: tests/arm/tdc_board_host.c firmware/board/tdc_board.h
+$(1)/%.o: tests/arm/%.c firmware/board/tdc_board.h
 	@mkdir -p $$(@D)
 	$(CC) $(HOST_CFLAGS) -Ifirmware/board -MMD -MP -c $$< -o $$@
 $(1)/fw/%.o: firmware/%.c $(GEN)/tdc_panels.h $(PANEL_CONFIG)
 	@mkdir -p $$(@D)
 	$(CC) $(FW_CFLAGS) -include $(PANEL_CONFIG) $(3) -DTDC_CFG_BANDS=$(2) -MMD -MP -c $$< -o $$@
-$(1)/tdc_fw_host: $(patsubst firmware/board/%.c,$(1)/board/%.o,$(FW_LOOP_SRCS)) $(1)/tdc_board_host.o $(patsubst firmware/%.c,$(1)/fw/%.o,$(FWH_PANEL_SRCS)) $(FWLIB)
+$(1)/tdc_fw_host: $(patsubst firmware/board/%.c,$(1)/board/%.o,$(FW_LOOP_SRCS)) $(1)/tdc_board_host.o $(1)/tdc_board_stub.o $(patsubst firmware/%.c,$(1)/fw/%.o,$(FWH_PANEL_SRCS)) $(FWLIB)
 	$(CC) $(HOST_LDFLAGS) $$^ -o $$@ $(HOST_LIBS)
 endef
 $(eval $(call fw_host_loop,$(FWH_B0),0,$(FW_CFG_BASE)))

@@ -39,7 +39,7 @@ FUZZ_LIBS_scene := -lembree3 -lm
 # the board frame loop for a 16 x 8 stereo OLED panel with TRM, tile assembly and foveation (with TAA), built as on a board:
 # without the x86 AVX2 kernels (TDC_NO_SIMD), whose encode index TRM built at every stream start
 # (22 % of each execution; the kernels are checked against C by checkasm)
-FUZZ_SRCS_frameloop := tests/fuzz/fuzz_frameloop.c $(FW_LOOP_SRCS) $(LINK_FW_SRCS) \
+FUZZ_SRCS_frameloop := tests/fuzz/fuzz_frameloop.c tests/arm/tdc_board_stub.c $(FW_LOOP_SRCS) $(LINK_FW_SRCS) \
                        firmware/tdc_trm_rows.c firmware/tdc_trm_avx2.c \
                        $(GEN)/tdc_panel_htc-vive.c firmware/tdc_link_encode.c firmware/tdc_fov_trm.c
 FUZZ_DEPS_frameloop := $(wildcard firmware/board/*.h)

@@ -17,25 +17,10 @@
 #include "board.h"
 #include "sdram.h"
 #include "tdc_crt0.h"
-
-extern uint32_t __stack_top[];
-void Reset_Handler(void);
+#include "tdc_vectors.h"
 
 #define STM32H747_IRQS 150
-
-typedef struct {
-    const uint32_t *initial_sp;
-    void (*handler[15])(void);
-    void (*irq[STM32H747_IRQS])(void);
-} tdc_vectors_t;
-
-__attribute__((section(".vectors"), used)) const tdc_vectors_t tdc_vectors = {
-    __stack_top,
-    {Reset_Handler, tdc_crt0_default_handler, tdc_crt0_default_handler, tdc_crt0_default_handler,
-     tdc_crt0_default_handler, tdc_crt0_default_handler, 0, 0, 0, 0, tdc_crt0_default_handler, tdc_crt0_default_handler,
-     0, tdc_crt0_default_handler, tdc_crt0_default_handler},
-    {tdc_crt0_default_handler},
-};
+TDC_VECTORS(STM32H747_IRQS);
 
 #define RCC(off) TDC_REG32(TDC_STM32_RCC + (off))
 #define PWR(off) TDC_REG32(TDC_STM32_PWR + (off))

@@ -93,20 +93,6 @@ tdc_board_status_t tdc_board_panel_show(const uint8_t *fb, uint32_t stride, uint
     return TDC_BOARD_OK;
 }
 
-void tdc_board_vsync_wait(void)
-{
-}
-
-uint32_t tdc_board_time_us(void)
-{
-    return 0;
-}
-
-tdc_reset_cause_t tdc_board_reset_cause(void)
-{
-    return TDC_RESET_POWER_ON;
-}
-
 void tdc_board_log(const char *msg)
 {
     (void)msg;
