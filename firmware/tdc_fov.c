@@ -57,7 +57,7 @@ static uint32_t exp2_frac_q30(uint32_t g)
     const uint32_t idx = g >> 16, fr = g & 0xFFFFu;
     const uint32_t a = tdc_fov_exp2_tab[idx];
     const uint32_t b = idx < 256u ? tdc_fov_exp2_tab[idx + 1u] : a;
-    return a - (uint32_t)(((uint64_t)(a - b) * fr + 32768u) >> 16);
+    return a - (uint32_t)tdc_urshr64((uint64_t)(a - b) * fr, 16);
 }
 
 /* 2^(-n) for n >= 0 (Q24), Q30. */
@@ -68,7 +68,7 @@ static uint32_t exp2neg_q30(uint32_t n)
         return 0;
     }
     const uint32_t v = exp2_frac_q30(n & 0xFFFFFFu);
-    return ip ? (v + (1u << (ip - 1u))) >> ip : v;
+    return ip ? tdc_urshr32(v, ip) : v;
 }
 
 /* 2^s, s in Q24 (any sign), Q16, saturating at INT32_MAX for s >= 14. */
@@ -83,7 +83,7 @@ int32_t tdc_fov_exp2_q16(int32_t s)
         return 0;
     }
     if (sh > 0) {
-        return (int32_t)((v + (1u << (sh - 1))) >> sh);
+        return (int32_t)tdc_urshr32(v, (unsigned)sh);
     }
     return sh == 0 ? (int32_t)v : INT32_MAX;
 }
@@ -96,7 +96,7 @@ static inline uint32_t turns_from_ratio(uint32_t t, uint32_t ax, uint32_t ay, in
     const uint32_t idx = t >> 22, fr = (t >> 6) & 0xFFFFu;
     const uint32_t a0 = tdc_fov_atan_tab[idx];
     const uint32_t a1 = idx < 256u ? tdc_fov_atan_tab[idx + 1u] : a0;
-    uint32_t a = a0 + (uint32_t)(((uint64_t)(a1 - a0) * fr + 32768u) >> 16);
+    uint32_t a = a0 + (uint32_t)tdc_urshr64((uint64_t)(a1 - a0) * fr, 16);
     if (ay > ax) {
         a = (1u << 30) - a;
     }
@@ -225,7 +225,7 @@ tdc_status_t tdc_fov_geom(tdc_fov_geom_t *g, uint16_t width, uint16_t height, co
     g->log2_alpha_q24 = tdc_log2_q24(p->alpha_q8) - 8 * Q24;
     g->inv_alpha_q24 = tdc_udiv64_32(((uint64_t)1 << 32) + p->alpha_q8 / 2u, p->alpha_q8);
     g->r_max_q8 = tdc_isqrt64(r2max);
-    g->r_disk_q8 = (uint32_t)(((uint64_t)p->disk_q15 * g->r_max_q8 + 16384u) >> 15);
+    g->r_disk_q8 = (uint32_t)tdc_urshr64((uint64_t)p->disk_q15 * g->r_max_q8, 15);
     g->r_disk2_q16 = (uint64_t)g->r_disk_q8 * g->r_disk_q8;
     fov_radial_t rr;
     radial(g, g->r_disk2_q16, &rr, 1);
@@ -314,8 +314,8 @@ static void node_fill(const tdc_fov_geom_t *g, uint64_t r2_q16, int clip, int32_
     radial(g, r2_q16, &rr, clip);
     const int32_t ls = log2_sigma(g, &rr, leta_max);
     nd->u_q16 = rr.u_q16;
-    nd->sig_q14 = (uint16_t)(((uint32_t)tdc_fov_exp2_q16(ls) + 2u) >> 2);
-    nd->inv2_q12 = (uint16_t)(((uint32_t)tdc_fov_exp2_q16(-2 * ls) + 8u) >> 4);
+    nd->sig_q14 = (uint16_t)tdc_urshr32((uint32_t)tdc_fov_exp2_q16(ls), 2);
+    nd->inv2_q12 = (uint16_t)tdc_urshr32((uint32_t)tdc_fov_exp2_q16(-2 * ls), 4);
 }
 
 /* Nodes the frame needs: up to the one past the octave of R^2 (<= the
@@ -346,12 +346,12 @@ typedef tdc_fov_geom_args_t fov_src_t;
  * u < 2^30: 64-bit sum; sigma, 1/sigma^2 <= 2^15: the sum <= 2^31 + 2^15 fits 32 bits. */
 static inline uint32_t lerp_u(uint32_t a, uint32_t b, uint32_t f)
 {
-    return (uint32_t)(((uint64_t)a * (65536u - f) + (uint64_t)b * f + 32768u) >> 16);
+    return (uint32_t)tdc_urshr64((uint64_t)a * (65536u - f) + (uint64_t)b * f, 16);
 }
 
 static inline uint32_t lerp_s(uint32_t a, uint32_t b, uint32_t f)
 {
-    return (a * (65536u - f) + b * f + 32768u) >> 16;
+    return tdc_urshr32(a * (65536u - f) + b * f, 16);
 }
 
 static void geom_general(const fov_src_t *s, int32_t i, uint32_t b, int32_t u, int32_t sig, int32_t inv2, uint32_t j0,
@@ -421,7 +421,7 @@ static void geom_px(const fov_src_t *s, int32_t i, int32_t dx, uint64_t r2)
     const uint32_t j1 = j0 + 1u == g->lp_h ? 0u : j0 + 1u;
     const int32_t cmin = g->u0, cmax = (int32_t)g->lp_w - 1;
     if (s->taa) { /* the nearest sample: its motion vector */
-        const uint32_t ui = ((uint32_t)u + 32768u) >> 16, vi = (v + 32768u) >> 16;
+        const uint32_t ui = tdc_urshr32((uint32_t)u, 16), vi = tdc_urshr32(v, 16);
         s->ij[i] = (uint32_t)tdc_clamp32((int32_t)ui, cmin, cmax) | (vi >= g->lp_h ? 0u : vi) << 16;
     }
     if (sig == 8192) { /* sigma = 1/2: two taps, floor(u) and floor(u) + 1, from the tent table */
@@ -430,7 +430,7 @@ static void geom_px(const fov_src_t *s, int32_t i, int32_t dx, uint64_t r2)
         const int32_t c0 = tdc_clamp32(u >> 16, cmin, cmax), c1 = tdc_clamp32((u >> 16) + 1, cmin, cmax);
         s->off0[i] = (uint32_t)(j0 * s->lp_stride + (size_t)c0 * 3u) | (c1 == c0 ? TDC_FOV_STEP0 : 0u);
         s->off1[i] = (uint32_t)(j1 * s->lp_stride + (size_t)c0 * 3u);
-        s->wf[i] = (ta - (((ta - tb) * fr + 128u) >> 8)) | fv << 16;
+        s->wf[i] = (ta - tdc_urshr32((ta - tb) * fr, 8)) | fv << 16;
         return;
     }
     geom_general(s, i, b, u, sig, (int32_t)lerp_s(na->inv2_q12, nb->inv2_q12, f), j0, j1, fv);
@@ -457,7 +457,7 @@ static FOV_COLD void geom_general(const fov_src_t *s, int32_t i, uint32_t b, int
             continue;
         }
         const uint32_t ga = tdc_fov_gauss_tab[k], gb = tdc_fov_gauss_tab[k + 1u];
-        wt[nt] = ga - (((ga - gb) * fr + 512u) >> 10);
+        wt[nt] = ga - tdc_urshr32((ga - gb) * fr, 10);
         col[nt] = tdc_clamp32(t, cmin, cmax);
         sum += wt[nt];
         nt++;
@@ -469,7 +469,7 @@ static FOV_COLD void geom_general(const fov_src_t *s, int32_t i, uint32_t b, int
     int32_t kmax = 0;
     for (int32_t k = 0; k < nt; k++) {
         kmax = wt[k] > wt[kmax] ? k : kmax;
-        wt[k] = (wt[k] * recip + 16384u) >> 15;
+        wt[k] = tdc_urshr32(wt[k] * recip, 15);
         nsum += wt[k];
     }
     wt[kmax] += 32768u - nsum; /* |32768 - nsum| <= nt / 2 + 1, wt[kmax] >= 2^15 / nt */
@@ -480,7 +480,7 @@ static FOV_COLD void geom_general(const fov_src_t *s, int32_t i, uint32_t b, int
     const uint8_t *r0 = s->lp + (size_t)j0 * s->lp_stride, *r1 = s->lp + (size_t)j1 * s->lp_stride;
     uint32_t acc[3] = {64u, 64u, 64u};
     for (int32_t k = 0; k < nt; k++) {
-        const uint32_t wa = (wt[k] * fv + 16384u) >> 15, wb = wt[k] - wa;
+        const uint32_t wa = tdc_urshr32(wt[k] * fv, 15), wb = wt[k] - wa;
         const uint8_t *p0 = r0 + (size_t)col[k] * 3u, *p1 = r1 + (size_t)col[k] * 3u;
         for (int ch = 0; ch < 3; ch++) {
             acc[ch] += wb * p0[ch] + wa * p1[ch]; /* weights sum to 2^15: < 255 * 2^15 + 64 */
@@ -524,9 +524,9 @@ static inline uint32_t px_colour(const tdc_fov_t *st, const uint8_t *drow, int32
     }
     if (b < 256u) {
         const uint8_t *dp = drow + (size_t)i * 3u;
-        c[0] = (uint16_t)(((256u - b) * dp[0] * 256u + b * lpc[0] + 128u) >> 8);
-        c[1] = (uint16_t)(((256u - b) * dp[1] * 256u + b * lpc[1] + 128u) >> 8);
-        c[2] = (uint16_t)(((256u - b) * dp[2] * 256u + b * lpc[2] + 128u) >> 8);
+        c[0] = (uint16_t)tdc_urshr32((256u - b) * dp[0] * 256u + b * lpc[0], 8);
+        c[1] = (uint16_t)tdc_urshr32((256u - b) * dp[1] * 256u + b * lpc[1], 8);
+        c[2] = (uint16_t)tdc_urshr32((256u - b) * dp[2] * 256u + b * lpc[2], 8);
     } else {
         c[0] = (uint16_t)lpc[0], c[1] = (uint16_t)lpc[1], c[2] = (uint16_t)lpc[2];
     }
@@ -666,8 +666,8 @@ static void finish_row(const tdc_fov_t *st, const fov_rows_t *rw, int32_t y, uin
             const uint32_t eps = cnt == 9u ? (sum + 4u) / 9u : (sum + cnt / 2u) / cnt; /* Q8 codes */
             uint32_t amin = (eps * ONE_Q15 + 32640u) / 65280u;
             amin = amin < 3277u ? 3277u : (amin > ONE_Q15 ? ONE_Q15 : amin);
-            const uint32_t a = amin + (((ONE_Q15 - amin) * e[6] + 16384u) >> 15);
-            const uint32_t aeff = ONE_Q15 - ((e[7] * (ONE_Q15 - a) + 128u) >> 8);
+            const uint32_t a = amin + tdc_urshr32((ONE_Q15 - amin) * e[6], 15);
+            const uint32_t aeff = ONE_Q15 - tdc_urshr32(e[7] * (ONE_Q15 - a), 8);
             /* f = s + (1 - a)(h - s), the product rounded toward zero: |f - s|
              * shrinks every frame, so a static field converges to exactly s
              * (rounding half up stalls at h - s = 5/256 of a code with a = 0.1) */

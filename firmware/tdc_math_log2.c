@@ -16,6 +16,6 @@ int32_t tdc_log2_q24(uint64_t x)
     const uint32_t idx = (uint32_t)(m >> 55) & 255u;
     const uint32_t fr = (uint32_t)(m >> 39) & 0xFFFFu;
     const uint32_t a = tdc_fov_log2_tab[idx], b = tdc_fov_log2_tab[idx + 1u];
-    const uint32_t val = a + (uint32_t)(((uint64_t)(b - a) * fr + 32768u) >> 16); /* Q30 <= 2^30 */
-    return (int32_t)(e << 24) + (int32_t)((val + 32u) >> 6);
+    const uint32_t val = a + (uint32_t)tdc_urshr64((uint64_t)(b - a) * fr, 16); /* Q30 <= 2^30 */
+    return (int32_t)(e << 24) + (int32_t)tdc_urshr32(val, 6); /* Q30 -> Q24 */
 }

@@ -161,7 +161,7 @@ static inline int32_t tdc_trm_motion_weight_q15(const tdc_trm_rowctx_t *k, tdc_l
 {
     const uint32_t diff = (uint32_t)tdc_abs32(a - b);
     const int32_t c_q30 = tdc_div_q30(diff, (uint32_t)a + (uint32_t)b);
-    const uint64_t sc = ((uint64_t)k->s_q8 * (uint32_t)c_q30 + (1ull << 21)) >> 22;
+    const uint64_t sc = tdc_urshr64((uint64_t)k->s_q8 * (uint32_t)c_q30, 22); /* Q8 * Q30 -> Q16 */
     return tdc_trm_weight_q15(k->wexp, sc);
 }
 
