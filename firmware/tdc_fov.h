@@ -161,8 +161,13 @@ typedef struct {
     uint16_t *gen, *b;                    /* out: colours (Q8 x 3) where b & 512, blend weight | 512 */
 } tdc_fov_geom_args_t;
 
+/* u, sigma and 1/sigma^2 of the radial table at |x'|^2 (Q16): a node of the
+ * frame's table, or a pixel closer than 4 px to the gaze (the row kernel).
+ * clip: u = lp_w from R on; leta_max: log2 of eq. 4.4's largest eta. */
+void tdc_fov_node_fill(const tdc_fov_geom_t *g, uint64_t r2_q16, int clip, int32_t leta_max, tdc_fov_node_t *nd);
+
 typedef void tdc_fov_geom_row_fn(const tdc_fov_geom_args_t *a, int32_t x0, int32_t x1);
-tdc_fov_geom_row_fn tdc_fov_geom_row_c;    /* the reference: every pixel in C (what the boards run) */
+tdc_fov_geom_row_fn tdc_fov_geom_row_c;    /* the reference: every pixel in C (what the boards run), tdc_fov_rows.c */
 tdc_fov_geom_row_fn tdc_fov_geom_row_avx2; /* 8 pixels a step where all 8 take the two-tap path; the C row elsewhere */
 
 typedef struct {

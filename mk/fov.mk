@@ -1,7 +1,7 @@
 # Foveated streams (issue 14, DESIGN §4.5): the display-side remap stage with
 # peripheral TAA, its double-precision reference, tests, golden vectors.
 # The stage's log/power/atan/Gaussian tables come from tdc-tablegen --fov.
-FW_SRCS += firmware/tdc_fov.c firmware/tdc_fov_lr.c firmware/tdc_fov_link.c firmware/tdc_fov_trm.c
+FW_SRCS += firmware/tdc_fov.c firmware/tdc_fov_rows.c firmware/tdc_fov_lr.c firmware/tdc_fov_link.c firmware/tdc_fov_trm.c
 # the tap kernel: AVX2 (x86-64 hosts; the C kernel elsewhere) and Helium (the
 # C kernel except on BOARD_MVE boards); checked against C by tests/checkasm
 FW_SRCS += firmware/tdc_fov_avx2.c firmware/tdc_fov_mve.c
@@ -16,15 +16,15 @@ $(B)/tests/unit/test_fov_metrics: $(B)/tests/unit/test_fov_metrics.o $(FOV_METRI
 # (TABLEGEN is defined after the fragments are read: name the program)
 $(GEN)/tdc_fov_tables.h: $(BUILD)/tools/tdc-tablegen | $(GEN)
 	$(BUILD)/tools/tdc-tablegen --fov $@
-$(B)/firmware/tdc_fov.o $(B)/firmware/tdc_math_log2.o: $(GEN)/tdc_fov_tables.h
+$(B)/firmware/tdc_fov.o $(B)/firmware/tdc_fov_rows.o $(B)/firmware/tdc_math_log2.o: $(GEN)/tdc_fov_tables.h
 ifneq ($(BOARD),host)
-$(BA)/firmware/tdc_fov.o $(BA)/firmware/tdc_math_log2.o: $(GEN)/tdc_fov_tables.h
+$(BA)/firmware/tdc_fov.o $(BA)/firmware/tdc_fov_rows.o $(BA)/firmware/tdc_math_log2.o: $(GEN)/tdc_fov_tables.h
 endif
 # the recursion check compiles every firmware source on its own
 $(B)/check-fw-rules: $(GEN)/tdc_fov_tables.h
 
 # Own link rules: the fov tests need only these objects.
-FOV_OBJS = $(B)/firmware/tdc_fov.o $(B)/firmware/tdc_fov_lr.o $(B)/firmware/tdc_fov_avx2.o $(B)/firmware/tdc_fov_mve.o \
+FOV_OBJS = $(B)/firmware/tdc_fov.o $(B)/firmware/tdc_fov_rows.o $(B)/firmware/tdc_fov_lr.o $(B)/firmware/tdc_fov_avx2.o $(B)/firmware/tdc_fov_mve.o \
            $(B)/firmware/tdc_fov_link.o $(B)/firmware/tdc_math.o $(B)/firmware/tdc_math_log2.o $(B)/sim/ref_fov.o \
            $(B)/sim/ref_fov_lr.o
 FOV_TESTS := test_fov test_fov_ref test_fov_link test_fov_lr
@@ -44,7 +44,7 @@ BENCHES += $(B)/tests/bench/bench_fov
 
 # Fuzzing: the target `fov` is registered in mk/fuzz.mk (tests/fuzz/fuzz_fov.c,
 # seeds tests/fuzz/corpus-fov, regenerated deliberately by make fuzz-seeds-fov).
-$(BUILD)/fuzz/make_seeds_fov: tests/fuzz/make_seeds_fov.c firmware/tdc_fov.c firmware/tdc_fov_lr.c firmware/tdc_fov_avx2.c \
+$(BUILD)/fuzz/make_seeds_fov: tests/fuzz/make_seeds_fov.c firmware/tdc_fov.c firmware/tdc_fov_rows.c firmware/tdc_fov_lr.c firmware/tdc_fov_avx2.c \
                               firmware/tdc_fov_mve.c firmware/tdc_fov_link.c firmware/tdc_math.c firmware/tdc_math_log2.c $(GEN)/tdc_fov_tables.h
 	@mkdir -p $(@D)
 	gcc -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror -O2 -Ifirmware -I$(GEN) $(filter %.c,$^) -o $@

@@ -16,7 +16,7 @@ FUZZ_FLAGS := -std=c11 -D_GNU_SOURCE -g -O1 -fsanitize=fuzzer,address,undefined 
 # the link decoder and what it calls (FOVEATED packets: the foveation header and geometry)
 LINK_FW_SRCS := firmware/tdc_wire.c firmware/tdc_link.c firmware/tdc_pixfmt.c firmware/tdc_crc32.c firmware/tdc_layer_link.c \
                 firmware/tdc_band_link.c \
-                firmware/tdc_fov.c firmware/tdc_fov_lr.c firmware/tdc_fov_avx2.c firmware/tdc_fov_mve.c firmware/tdc_fov_link.c \
+                firmware/tdc_fov.c firmware/tdc_fov_rows.c firmware/tdc_fov_lr.c firmware/tdc_fov_avx2.c firmware/tdc_fov_mve.c firmware/tdc_fov_link.c \
                 firmware/tdc_math.c firmware/tdc_math_log2.c
 
 # name: harness + sources [+ flags, libraries]
@@ -69,7 +69,7 @@ FUZZ_SRCS_bands := tests/fuzz/fuzz_bands.c $(LINK_FW_SRCS) firmware/tdc_link_enc
 # 2,360 -> 10,376 exec/s, and more coverage in the same 25 s: 228 edges / 713
 # features against 226 / 654).  tests/fuzz/nocov.txt removes a file's
 # coverage altogether; this keeps the edges.
-FUZZ_NOCMP_fov := firmware/tdc_fov.c firmware/tdc_fov_lr.c firmware/tdc_fov_avx2.c firmware/tdc_fov_mve.c
+FUZZ_NOCMP_fov := firmware/tdc_fov.c firmware/tdc_fov_rows.c firmware/tdc_fov_lr.c firmware/tdc_fov_avx2.c firmware/tdc_fov_mve.c
 FUZZ_NOCMP_meas := hosttools/calib/tdc_calib_trans.c
 FUZZ_NOCMP_frameloop := firmware/tdc_trm.c firmware/tdc_assemble.c firmware/tdc_ordering.c firmware/tdc_trm_gaze.c
 
