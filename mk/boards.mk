@@ -37,7 +37,6 @@ FW_LOOP_SRCS := firmware/board/tdc_main.c $(sort $(wildcard firmware/board/tdc_f
 
 .PHONY: arm-fw-fov-check arm-fw-loop-check arm-fw-refuse-check arm-fw-bands-check arm-loop-cost run-arm firmware-size test-arm size bench-arm arm-bench profile-arm arm-profile arm-golden arm-golden-check arm-image-check arm-fit-check arm-fw-check
 
-.SECONDEXPANSION:
 
 ifneq ($(BOARD),host)
 # ---------------------------------------------------------------------------
@@ -83,7 +82,7 @@ ARM_LDDEPS := $(BA)/memory.ld $(BOARD_LDS) firmware/board/tdc_cortexm_sections.l
 # Compiler flags are part of the objects: rebuild when they change (ARM_OPT).
 $(BA)/cflags: FORCE
 	@mkdir -p $(@D); echo '$(ARM_TEST_CFLAGS)' | cmp -s - $@ || echo '$(ARM_TEST_CFLAGS)' > $@
-$(BA)/firmware/%.o: firmware/%.c $(GEN)/tdc_panels.h $(BA)/cflags
+$(BA)/firmware/%.o: firmware/%.c $(GEN)/tdc_panels.h $(BA)/cflags | $$(FW_GEN_HEADERS)
 	@mkdir -p $(@D)
 	$(ARM_CC) $(ARM_FW_CFLAGS) -MMD -MP -c $< -o $@
 $(BA)/boards/%.o: boards/%.c $(BA)/cflags
@@ -227,7 +226,7 @@ ifeq ($(BOARD_MVE),1)
 $(BP)/firmware/tdc_trm_mve.o: ARM_IMG_CFLAGS := $(call ARM_MVE_FIX,$(ARM_IMG_CFLAGS))
 $(BP)/firmware/tdc_fov_mve.o: ARM_IMG_CFLAGS := $(call ARM_MVE_FIX,$(ARM_IMG_CFLAGS))
 endif
-$(BP)/%.o: %.c $(GEN)/tdc_panels.h $(PANEL_CONFIG) $(BP)/stages
+$(BP)/%.o: %.c $(GEN)/tdc_panels.h $(PANEL_CONFIG) $(BP)/stages | $$(FW_GEN_HEADERS)
 	@mkdir -p $(@D)
 	$(ARM_CC) $(ARM_IMG_CFLAGS) -MMD -MP -c $< -o $@
 $(BP)/gen/%.o: $(GEN)/%.c $(BP)/stages
@@ -242,14 +241,15 @@ $(BP)/tdc-firmware.elf: $$(FW_IMG_OBJS) $(ARM_LDDEPS)
 
 firmware: $(BP)/tdc-firmware.elf
 
-# Sections and region use of this pair's image, or its memory-fit verdict.
+# Sections and region use of this pair's image, or its memory-fit verdict
+# (a pair that does not fit is a finding, exit 0); any other failure fails.
 firmware-size:
 	@echo "== $(BOARD) / $(PANEL) (stages: $(or $(strip $(STAGES)),link only))"
-	@if $(MAKE) --no-print-directory firmware > $(BUILD)/.size-$(BOARD)-$(PANEL).log 2>&1; then \
+	@mkdir -p $(BUILD); if $(MAKE) --no-print-directory firmware > $(BUILD)/.size-$(BOARD)-$(PANEL).log 2>&1; then \
 	    tools/size_report.sh $(ARM_SIZE) $(BP)/tdc-firmware.elf "$(BOARD_MEM)"; \
 	elif grep -q '^memory fit' $(BUILD)/.size-$(BOARD)-$(PANEL).log; then \
 	    grep -A12 '^memory fit' $(BUILD)/.size-$(BOARD)-$(PANEL).log | grep -v '^make' | sed 's/^/    /'; \
-	else echo "    build failed (not a memory-fit verdict):"; tail -5 $(BUILD)/.size-$(BOARD)-$(PANEL).log | sed 's/^/    /'; fi
+	else echo "    build failed (not a memory-fit verdict):"; tail -5 $(BUILD)/.size-$(BOARD)-$(PANEL).log | sed 's/^/    /'; exit 1; fi
 
 # Run this pair's image in QEMU on a link stream file (emulated boards):
 #   make BOARD=mps3-an547 PANEL=htc-vive run-arm STREAM=file.tdcs
@@ -302,13 +302,13 @@ STREAMS := $(BUILD)/fw-streams
 FWH_PANEL_SRCS := $(shell grep -l '"tdc_link.h"' $(filter firmware/%.c,$(wildcard firmware/*.c)))
 # $(1): directory, $(2): TDC_CFG_BANDS, $(3): the stage defines
 define fw_host_loop
-$(1)/board/%.o: firmware/board/%.c $(GEN)/tdc_panels.h $(PANEL_CONFIG)
+$(1)/board/%.o: firmware/board/%.c $(GEN)/tdc_panels.h $(PANEL_CONFIG) | $$$$(FW_GEN_HEADERS)
 	@mkdir -p $$(@D)
 	$(CC) $(FW_CFLAGS) -Ifirmware/board -include $(PANEL_CONFIG) $(3) -DTDC_CFG_BANDS=$(2) -DTDC_FW_NO_MAIN -MMD -MP -c $$< -o $$@
 $(1)/%.o: tests/arm/%.c firmware/board/tdc_board.h
 	@mkdir -p $$(@D)
 	$(CC) $(HOST_CFLAGS) -Ifirmware/board -MMD -MP -c $$< -o $$@
-$(1)/fw/%.o: firmware/%.c $(GEN)/tdc_panels.h $(PANEL_CONFIG)
+$(1)/fw/%.o: firmware/%.c $(GEN)/tdc_panels.h $(PANEL_CONFIG) | $$$$(FW_GEN_HEADERS)
 	@mkdir -p $$(@D)
 	$(CC) $(FW_CFLAGS) -include $(PANEL_CONFIG) $(3) -DTDC_CFG_BANDS=$(2) -MMD -MP -c $$< -o $$@
 $(1)/tdc_fw_host: $(patsubst firmware/board/%.c,$(1)/board/%.o,$(FW_LOOP_SRCS)) $(1)/tdc_board_host.o $(1)/tdc_board_stub.o $(patsubst firmware/%.c,$(1)/fw/%.o,$(FWH_PANEL_SRCS)) $(FWLIB)
@@ -468,5 +468,6 @@ bench-arm: deps $(INSN_PLUGIN)
 
 # make size: every board/panel pair with the board's default stages.
 size:
-	@for b in $(ARM_BOARDS); do for p in $(PANELS); do \
-	    $(MAKE) --no-print-directory -j2 BOARD=$$b PANEL=$$p firmware-size; done; done
+	@rc=0; for b in $(ARM_BOARDS); do for p in $(PANELS); do \
+	    $(MAKE) --no-print-directory -j2 BOARD=$$b PANEL=$$p firmware-size || rc=1; done; done; \
+	[ $$rc = 0 ] || echo "size: some images failed to build (not a memory-fit verdict): see above"; exit $$rc

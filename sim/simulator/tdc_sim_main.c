@@ -72,7 +72,8 @@ static void usage(FILE *f)
             "                          headset's screen edge)\n"
             "  -d, --duration S        simulated seconds (default 0.5)\n"
             "  -n, --frames N          simulated refreshes (overrides --duration)\n"
-            "  -w, --window N          fused window in refreshes (default 2 below 200 Hz, else 4)\n"
+            "  -w, --window N          legacy eye: fused window in refreshes (default 2 below 200 Hz,\n"
+            "                          else 4); the retinal signal (--dump) has none\n"
             "      --spp N             rays per pixel of full frames (default 4 below 200 Hz, else 1)\n"
             "      --speed PX_PER_S    main motion speed (default: the scene's)\n"
             "      --angle DEG         main motion direction (default 0 = +x)\n"
@@ -80,9 +81,15 @@ static void usage(FILE *f)
             "      --persistence F     OLED duty cycle (default 0.2 below 200 Hz, else 1 = hold)\n"
             "      --pursuit track|fixate  eye tracks the main motion or fixates (default track)\n"
             "      --pursuit-gain G    smooth-pursuit gain (default 1)\n"
-            "      --temporal          temporal visibility model: the retinal error through a temporal CSF\n"
-            "                          (Watson 1986 band-pass, sim/eye/tdc_eye_temporal.h): column terr\n"
+            "      --temporal          legacy temporal visibility model: the legacy eye's error through a\n"
+            "                          temporal CSF (Watson 1986, sim/eye/tdc_eye_temporal.h): legacy_terr\n"
             "      --metric-every K    evaluate every K-th refresh (default 1)\n"
+            "      --dump DIR          the retinal signal as files (docs/eye.md): per refresh and eye the drive\n"
+            "                          codes, per step the emitted light and the retinal image of every mode\n"
+            "                          and of the reference (16-bit linear PNG, Y4M), dump.json, steps.csv\n"
+            "      --retina-steps N    retinal signal: steps per refresh, 1..16 (default: 4 on an LCD,\n"
+            "                          round(1 / persistence) up to 8 on an OLED)\n"
+            "      --pursuit-lag MS    retinal signal: the eye pursues the velocity of MS ago (default 0)\n"
             "      --ppd X             pixels per degree of the view (FLIP; default: the profile's, e.g.\n"
             "                          11.4 for htc-vive; 67.02, FLIP's desktop default, for profiles\n"
             "                          without one)\n"
@@ -117,7 +124,8 @@ static void usage(FILE *f)
             p.trm ? "yes" : "NO", p.link ? "yes" : "NO", p.assemble ? "yes" : "NO", p.lcd_fw ? "yes" : "NO",
             p.lcd_phys ? "yes" : "no (built-in fallback)");
     fprintf(f, "\nexit codes (docs/tools.md): 0 OK, 1 ARGS, 7 FILE, 13 INPUT (malformed image or scene),\n"
-               "14 REFUSED (a stage error or refused configuration: the run is not a result), 17 NOMEM\n");
+               "14 REFUSED (a stage error or refused configuration: the run is not a result), 17 NOMEM;\n"
+               "--dump: 7 FILE when a file could not be written, 13 INPUT when the panel profile has no photometry\n");
 }
 
 /* *explicit: 0 when a group ('all', a family) was named. */
@@ -179,7 +187,36 @@ static int mkdir_p(const char *dir)
             *p = '/';
         }
     }
-    return mkdir(tmp, 0755) && errno != EEXIST ? -1 : 0;
+    if (mkdir(tmp, 0755) && errno != EEXIST) {
+        return -1;
+    }
+    struct stat st; /* EEXIST: a folder, not a file of that name */
+    if (stat(tmp, &st) != 0 || !S_ISDIR(st.st_mode)) {
+        errno = ENOTDIR;
+        return -1;
+    }
+    return 0;
+}
+
+/* OUTDIR/NAME opened for writing, or NULL after the one-line FILE message. */
+static FILE *out_open(const char *dir, const char *name, char *path, size_t cap)
+{
+    snprintf(path, cap, "%s/%s", dir, name);
+    FILE *f = fopen(path, "w");
+    if (!f) {
+        tdc_fail(TDC_EXIT_FILE, NULL, path, "cannot write: %s", strerror(errno));
+    }
+    return f;
+}
+
+/* Closes an output; FILE (with its message) when anything of it was not written. */
+static int out_close(FILE *f, const char *path)
+{
+    const int err = ferror(f);
+    if (fclose(f) != 0 || err) {
+        return tdc_fail(TDC_EXIT_FILE, NULL, path, "write failed: %s", strerror(errno ? errno : EIO));
+    }
+    return TDC_EXIT_OK;
 }
 
 static int parse_num(const char *s, double lo, double hi, double *v, const char *what)
@@ -242,7 +279,10 @@ int main(int argc, char **argv)
         O_GAZE_NOISE,
         O_FOV_ALPHA,
         O_FOV_DELTA,
-        O_FOV_DISK
+        O_FOV_DISK,
+        O_DUMP,
+        O_RSTEPS,
+        O_LAG
     };
     static const struct option opts[] = {{"scene", required_argument, 0, 's'},
                                          {"mode", required_argument, 0, 'm'},
@@ -297,6 +337,9 @@ int main(int argc, char **argv)
                                          {"fov-alpha", required_argument, 0, O_FOV_ALPHA},
                                          {"fov-delta", required_argument, 0, O_FOV_DELTA},
                                          {"fov-disk", required_argument, 0, O_FOV_DISK},
+                                         {"dump", required_argument, 0, O_DUMP},
+                                         {"retina-steps", required_argument, 0, O_RSTEPS},
+                                         {"pursuit-lag", required_argument, 0, O_LAG},
                                          {"help", no_argument, 0, 'h'},
                                          {0, 0, 0, 0}};
     tdc_sim_config_t cfg;
@@ -316,7 +359,9 @@ int main(int argc, char **argv)
     long frames = -1;
     double v;
     int c;
-    while ((c = getopt_long(argc, argv, "R:s:m:p:r:g:d:n:w:S:o:l:qh", opts, NULL)) != -1) {
+    tdc_tool_set_name("tdc-sim");
+    opterr = 0; /* tdc_fail_getopt() writes the one line */
+    while ((c = getopt_long(argc, argv, ":R:s:m:p:r:g:d:n:w:S:o:l:qh", opts, NULL)) != -1) {
         switch (c) {
         case 's': {
             int k = tdc_scene_from_name(optarg);
@@ -611,6 +656,29 @@ int main(int argc, char **argv)
             cfg.flip_ppd = v;
             ppd_given = 1;
             break;
+        case O_DUMP:
+            if (optarg[0] == '\0') {
+                fprintf(stderr, "tdc-sim: --dump: empty folder name\n");
+                return TDC_EXIT_ARGS;
+            }
+            cfg.dump_dir = optarg;
+            break;
+        case O_RSTEPS:
+            if (parse_num(optarg, 1, 16, &v, "retina-steps")) {
+                return TDC_EXIT_ARGS;
+            }
+            if (v != floor(v)) {
+                fprintf(stderr, "tdc-sim: bad retina-steps '%s' (an integer 1 .. 16)\n", optarg);
+                return TDC_EXIT_ARGS;
+            }
+            cfg.retina_steps = (int)v;
+            break;
+        case O_LAG:
+            if (parse_num(optarg, 0, 500, &v, "pursuit-lag")) {
+                return TDC_EXIT_ARGS;
+            }
+            cfg.pursuit_lag_ms = v;
+            break;
         case O_TRMS:
             if (parse_num(optarg, 0, 1000, &v, "trm-s")) {
                 return TDC_EXIT_ARGS;
@@ -647,7 +715,7 @@ int main(int argc, char **argv)
             return 0;
         }
         case 'h': usage(stdout); return 0;
-        default: usage(stderr); return TDC_EXIT_ARGS;
+        default: return tdc_fail_getopt(c, argv);
         }
     }
     tdc_par_set_threads(threads);
@@ -667,8 +735,31 @@ int main(int argc, char **argv)
         cfg.height = prof->height;
     }
     cfg.eyes = eyes ? eyes : prof->eyes;
+    cfg.ppd_from = ppd_given ? "--ppd" : (prof->ppd_x100 ? "profile" : "default");
     if (!ppd_given && prof->ppd_x100) {
         cfg.flip_ppd = prof->ppd_x100 / 100.0;
+    }
+    /* the gaze point is a pixel of the view */
+    if (cfg.gaze_at_x >= 0 && (cfg.gaze_at_x >= cfg.width || cfg.gaze_at_y >= cfg.height)) {
+        fprintf(stderr, "tdc-sim: --gaze-at %g,%g: outside the %dx%d view\n", cfg.gaze_at_x, cfg.gaze_at_y, cfg.width,
+                cfg.height);
+        return TDC_EXIT_ARGS;
+    }
+    if (cfg.dump_dir) {
+        /* the retinal signal: its frame rate and the panel's photometry */
+        double pers = cfg.persistence > 0 ? cfg.persistence : (cfg.refresh_hz >= 200 ? 1.0 : 0.2);
+        int steps = tdc_retina_steps(cfg.retina_steps, cfg.panel == TDC_PANEL_SIM_LCD, pers);
+        if ((long)cfg.refresh_hz * steps > 2000) {
+            fprintf(stderr, "tdc-sim: --retina-steps: %d Hz x %d steps = %ld retinal frames/s, above 2000\n",
+                    cfg.refresh_hz, steps, (long)cfg.refresh_hz * steps);
+            return TDC_EXIT_ARGS;
+        }
+        tdc_retina_display_t disp;
+        char why[256];
+        if (tdc_retina_display_from_panel(prof, cfg.flip_ppd, cfg.ppd_from, cfg.width, &disp, why, sizeof(why))) {
+            fprintf(stderr, "tdc-sim: --dump: %s\n", why);
+            return TDC_EXIT_INPUT;
+        }
     }
     if (frames > 0) {
         cfg.duration_s = (double)frames / cfg.refresh_hz;
@@ -688,8 +779,7 @@ int main(int argc, char **argv)
         cfg.label = renderer ? renderer : (image ? image : tdc_scene_name(cfg.scene.kind));
     }
     if (cfg.outdir && mkdir_p(cfg.outdir)) {
-        fprintf(stderr, "tdc-sim: cannot create '%s': %s\n", cfg.outdir, strerror(errno));
-        return TDC_EXIT_FILE;
+        return tdc_fail(TDC_EXIT_FILE, NULL, cfg.outdir, "cannot create the output folder: %s", strerror(errno));
     }
     tdc_source_t *src = NULL;
     if (image && renderer) {
@@ -698,6 +788,9 @@ int main(int argc, char **argv)
     }
     if (image) {
         char err[512];
+        if (tdc_in_check(image) != 0) {
+            return tdc_fail(TDC_EXIT_FILE, "--image", image, "cannot read: %s", strerror(errno));
+        }
         if (cfg.scene.speed < 0) {
             cfg.scene.speed = 0.0;
         }
@@ -773,15 +866,17 @@ int main(int argc, char **argv)
     }
     tdc_sim_result_t *res = calloc((size_t)nm, sizeof(*res));
     FILE *series = NULL;
-    char path[1200];
-    if (cfg.outdir) {
-        snprintf(path, sizeof(path), "%s/series.csv", cfg.outdir);
-        series = fopen(path, "w");
+    char path[1200], series_path[1200];
+    if (cfg.outdir && !(series = out_open(cfg.outdir, "series.csv", series_path, sizeof series_path))) {
+        free(res);
+        src->destroy(src);
+        if (cfg.right) {
+            cfg.right->destroy(cfg.right);
+        }
+        return TDC_EXIT_FILE;
     }
     int rc = res ? tdc_sim_run(&cfg, src, modes, nm, res, series) : -1;
-    if (series) {
-        fclose(series);
-    }
+    int file_rc = series ? out_close(series, series_path) : TDC_EXIT_OK;
     if (rc == 0 && cfg.times) {
         fprintf(stderr,
                 "tdc-sim: stage wall seconds: source %.2f link %.2f firmware %.2f panel %.2f eye %.2f metrics %.2f "
@@ -792,21 +887,24 @@ int main(int argc, char **argv)
     if (rc == 0) {
         tdc_report_markdown(stdout, &cfg, res, nm);
         if (cfg.outdir) {
-            snprintf(path, sizeof(path), "%s/summary.csv", cfg.outdir);
-            FILE *f = fopen(path, "w");
+            FILE *f = out_open(cfg.outdir, "summary.csv", path, sizeof path);
             if (f) {
                 tdc_report_csv(f, &cfg, res, nm, 1);
-                fclose(f);
+                file_rc = out_close(f, path) ? TDC_EXIT_FILE : file_rc;
+            } else {
+                file_rc = TDC_EXIT_FILE;
             }
-            snprintf(path, sizeof(path), "%s/foveation.csv", cfg.outdir);
-            f = fopen(path, "w");
+            f = out_open(cfg.outdir, "foveation.csv", path, sizeof path);
             if (f) {
                 tdc_report_foveation(f, &cfg, res, nm, 1);
-                fclose(f);
+                file_rc = out_close(f, path) ? TDC_EXIT_FILE : file_rc;
+            } else {
+                file_rc = TDC_EXIT_FILE;
             }
-            snprintf(path, sizeof(path), "%s/summary.md", cfg.outdir);
-            f = fopen(path, "w");
-            if (f) {
+            f = out_open(cfg.outdir, "summary.md", path, sizeof path);
+            if (!f) {
+                file_rc = TDC_EXIT_FILE;
+            } else {
                 fprintf(f,
                         "Run `%s`: scene `%s`, %s panel, %d Hz clock, %s%dx%d, %.2f px/deg, %.3f s, window %d "
                         "refreshes.\n\n",
@@ -814,7 +912,7 @@ int main(int argc, char **argv)
                         cfg.refresh_hz, cfg.eyes == 2 ? "stereo 2x" : "", cfg.width, cfg.height, cfg.flip_ppd,
                         cfg.duration_s, cfg.window_frames > 0 ? cfg.window_frames : (cfg.refresh_hz >= 200 ? 4 : 2));
                 tdc_report_markdown(f, &cfg, res, nm);
-                fclose(f);
+                file_rc = out_close(f, path) ? TDC_EXIT_FILE : file_rc;
             }
         }
         for (int i = 0; i < nm; i++) {
@@ -830,6 +928,13 @@ int main(int argc, char **argv)
         cfg.right->destroy(cfg.right);
     }
     /* a stage error, a refused configuration or non-finite output: the
-     * run is not a result (docs/tools.md: REFUSED) */
-    return rc == 0 ? TDC_EXIT_OK : TDC_EXIT_REFUSED;
+     * run is not a result (docs/tools.md: REFUSED); an output not written
+     * (a strip, a summary, a --dump file: rc -2) is FILE, never success */
+    if (rc == -2) {
+        return TDC_EXIT_FILE;
+    }
+    if (rc != 0) {
+        return TDC_EXIT_REFUSED;
+    }
+    return file_rc != TDC_EXIT_OK || tdc_report_write_failed() ? TDC_EXIT_FILE : TDC_EXIT_OK;
 }
