@@ -94,6 +94,34 @@ static int tdc_asm_bits_uniform(const uint8_t *bits, uint32_t ti0, uint32_t n)
 /* ------------------------------------------------------------------------
  * Ingest.
  * ---------------------------------------------------------------------- */
+/* Tile row ty of a subframe whose tiles trace pixel position pos_h
+ * (hourglass ordering) or pos_b (bowtie): when every tile of the row traces
+ * the same position (subframes 0 and 3, or one ordering for the whole tile
+ * row), its samples are one dense row of pixels: 1 with that position, its
+ * pixel row y, column parity q and the tiles n that have the pixel; 0 when
+ * that pixel row is past the frame (a partial tile row); -1 when the row
+ * mixes orderings (then per tile).  The walk of ingest and of the static
+ * frame. */
+typedef struct {
+    unsigned pos;
+    int bowtie;
+    uint32_t y, q, n;
+} tdc_asm_tile_row_t;
+
+static inline int tdc_asm_tile_row(const tdc_asm_t *st, uint32_t ty, unsigned pos_h, unsigned pos_b,
+                                   tdc_asm_tile_row_t *r)
+{
+    const uint32_t tx_n = st->tiles_x;
+    const int row_order = pos_h == pos_b ? 0 : tdc_asm_bits_uniform(st->pattern, ty * tx_n, tx_n);
+    if (row_order < 0) return -1;
+    r->bowtie = row_order;
+    r->pos = row_order ? pos_b : pos_h;
+    r->y = 2u * ty + (r->pos >> 1);
+    r->q = r->pos & 1u;
+    r->n = tx_n - (r->q && (st->cfg.width & 1u) ? 1u : 0u);
+    return r->y < st->cfg.height;
+}
+
 void tdc_asm_start_at(tdc_asm_t *st, uint32_t frame)
 {
     if (st) {
@@ -127,18 +155,14 @@ tdc_status_t tdc_asm_ingest(tdc_asm_t *st, uint32_t frame, const uint8_t *sample
     int32_t nz = 0; /* change of the count of non-zero motion entries */
     for (uint32_t ty = 0; ty < st->tiles_y; ty++) {
         const uint32_t ti0 = ty * tx_n;
-        const int row_order = pos_h == pos_b ? 0 : tdc_asm_bits_uniform(st->pattern, ti0, tx_n);
-        if (row_order >= 0) {
-            /* Every tile of the row traces the same position (subframes 0
-             * and 3, or one ordering for the whole tile row): the row of
-             * samples is one dense copy into one plane. */
-            const unsigned pos = row_order ? pos_b : pos_h;
-            const uint32_t y = 2u * ty + (pos >> 1), q = pos & 1u;
-            if (y >= h) continue; /* partial tile row: no such pixels */
-            const uint32_t n = tx_n - (q && (w & 1u) ? 1u : 0u);
-            memcpy((row_order ? plane_b : plane_h) + (size_t)ti0 * 3u, samples + (size_t)ti0 * 3u, (size_t)n * 3u);
-            int16_t *m = st->mv + ((size_t)y * w + q) * 2u;
-            for (uint32_t tx = 0; tx < n; tx++, m += 4) {
+        tdc_asm_tile_row_t r;
+        const int dense = tdc_asm_tile_row(st, ty, pos_h, pos_b, &r);
+        if (dense == 0) continue; /* partial tile row: no such pixels */
+        if (dense > 0) {
+            /* the row of samples: one dense copy into one plane */
+            memcpy((r.bowtie ? plane_b : plane_h) + (size_t)ti0 * 3u, samples + (size_t)ti0 * 3u, (size_t)r.n * 3u);
+            int16_t *m = st->mv + ((size_t)r.y * w + r.q) * 2u;
+            for (uint32_t tx = 0; tx < r.n; tx++, m += 4) {
                 uint32_t was = tdc_mv_word(m), is = 0;
                 if (mvs) memcpy(&is, mvs + (size_t)(ti0 + tx) * 2u, sizeof(is));
                 if (is != was) memcpy(m, &is, sizeof(is)); /* unchanged: keep the line clean */
@@ -689,20 +713,17 @@ static void tdc_asm_static_frame(tdc_asm_t *st, uint32_t frame)
     const uint8_t bit = (uint8_t)(1u << slot);
     for (uint32_t ty = 0; ty < st->tiles_y; ty++) {
         const uint32_t ti0 = ty * tx_n;
-        const int row_order = pos_h == pos_b ? 0 : tdc_asm_bits_uniform(st->pattern, ti0, tx_n);
-        if (row_order >= 0) {
-            /* One position for every tile of the row (see ingest). */
-            const unsigned pos = row_order ? pos_b : pos_h;
-            const uint32_t y = 2u * ty + (pos >> 1), q = pos & 1u;
-            if (y >= h) continue;
-            const uint32_t n = tx_n - (q && (w & 1u) ? 1u : 0u);
-            const uint8_t *s0 = st->samples + ((size_t)pos * tiles + ti0) * 3u;
-            uint8_t *win = st->window + (size_t)y * w + q, *o = img + ((size_t)y * w + q) * 3u;
-            for (uint32_t tx = 0; tx < n; tx++, win += 2, o += 6, s0 += 3) {
+        tdc_asm_tile_row_t r;
+        const int dense = tdc_asm_tile_row(st, ty, pos_h, pos_b, &r);
+        if (dense == 0) continue;
+        if (dense > 0) {
+            const uint8_t *s0 = st->samples + ((size_t)r.pos * tiles + ti0) * 3u;
+            uint8_t *win = st->window + (size_t)r.y * w + r.q, *o = img + ((size_t)r.y * w + r.q) * 3u;
+            for (uint32_t tx = 0; tx < r.n; tx++, win += 2, o += 6, s0 += 3) {
                 *win = (uint8_t)(*win | bit);
                 tdc_asm_window_mean(s0, stride, *win, o);
             }
-            averaged += n;
+            averaged += r.n;
             continue;
         }
         for (uint32_t tx = 0; tx < tx_n; tx++) {

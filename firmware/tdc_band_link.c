@@ -5,7 +5,7 @@
  */
 #include "tdc_band_link.h"
 
-#include "tdc_wire.h"
+#include "tdc_bytes.h"
 
 /* Geometry of band `index` of a height-row picture in bands of band_rows:
  * 0 and *first, *rows, *count set if valid. */

@@ -7,7 +7,7 @@
 #include "tdc_crc32.h"
 
 #include "tdc_crc32_tables.h"
-#include "tdc_wire.h"
+#include "tdc_bytes.h"
 
 uint32_t tdc_crc32_update(uint32_t state, const uint8_t *data, size_t n)
 {

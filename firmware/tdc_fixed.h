@@ -80,6 +80,19 @@ static inline int64_t tdc_rshr_round64(int64_t x, unsigned n)
     return tdc_asr64(x + ((int64_t)1 << (n - 1)), n);
 }
 
+/* Round-half-up shift of an unsigned value, (x + 2^(n-1)) >> n for
+ * 1 <= n <= 31 (63), in the operand's own width: the caller keeps
+ * x + 2^(n-1) in range (the Scaling notes at each use). */
+static inline uint32_t tdc_urshr32(uint32_t x, unsigned n)
+{
+    return (x + (1u << (n - 1u))) >> n;
+}
+
+static inline uint64_t tdc_urshr64(uint64_t x, unsigned n)
+{
+    return (x + ((uint64_t)1 << (n - 1u))) >> n;
+}
+
 /* Left shift of a signed value by multiplication (defined for negatives). */
 #define TDC_SHL32(x, n) ((int32_t)(x) * ((int32_t)1 << (n)))
 

@@ -41,37 +41,7 @@
 #include "tdc_math.h"
 
 #define Q24 (1 << 24)
-/* Out of line where a rare path would crowd the hot one's registers (GNU C
- * compilers; plain elsewhere).  Same code and results either way. */
-#if defined(__GNUC__) || defined(__clang__)
-#define FOV_COLD __attribute__((noinline, cold))
-#else
-#define FOV_COLD
-#endif
 #define ONE_Q15 32768u
-
-static unsigned clz64(uint64_t x)
-{
-    const uint32_t hi = (uint32_t)(x >> 32);
-    return hi ? tdc_clz32(hi) : 32u + tdc_clz32((uint32_t)x);
-}
-
-/* log2(x), x >= 1, Q24.  Mantissa table of 257 entries, linear
- * interpolation on the next 16 bits: error <= 2.8e-6 (h^2/8 |f''|, h = 1/256)
- * plus 0.5 LSB Q24 rounding; asserted in tests/test_fov.c. */
-int32_t tdc_fov_log2_q24(uint64_t x)
-{
-    if (x == 0) {
-        return 0;
-    }
-    const unsigned e = 63u - clz64(x);
-    const uint64_t m = x << (63u - e);
-    const uint32_t idx = (uint32_t)(m >> 55) & 255u;
-    const uint32_t fr = (uint32_t)(m >> 39) & 0xFFFFu;
-    const uint32_t a = tdc_fov_log2_tab[idx], b = tdc_fov_log2_tab[idx + 1u];
-    const uint32_t val = a + (uint32_t)(((uint64_t)(b - a) * fr + 32768u) >> 16); /* Q30 <= 2^30 */
-    return (int32_t)(e << 24) + (int32_t)((val + 32u) >> 6);
-}
 
 /* 2^(-g) for g in [0, 1] (Q24, g <= 2^24), Q30 in [2^29, 2^30].
  * Error <= 9.2e-7 relative (interpolation) + 0.5 LSB. */
@@ -80,7 +50,7 @@ static uint32_t exp2_frac_q30(uint32_t g)
     const uint32_t idx = g >> 16, fr = g & 0xFFFFu;
     const uint32_t a = tdc_fov_exp2_tab[idx];
     const uint32_t b = idx < 256u ? tdc_fov_exp2_tab[idx + 1u] : a;
-    return a - (uint32_t)(((uint64_t)(a - b) * fr + 32768u) >> 16);
+    return a - (uint32_t)tdc_urshr64((uint64_t)(a - b) * fr, 16);
 }
 
 /* 2^(-n) for n >= 0 (Q24), Q30. */
@@ -91,7 +61,7 @@ static uint32_t exp2neg_q30(uint32_t n)
         return 0;
     }
     const uint32_t v = exp2_frac_q30(n & 0xFFFFFFu);
-    return ip ? (v + (1u << (ip - 1u))) >> ip : v;
+    return ip ? tdc_urshr32(v, ip) : v;
 }
 
 /* 2^s, s in Q24 (any sign), Q16, saturating at INT32_MAX for s >= 14. */
@@ -106,32 +76,13 @@ int32_t tdc_fov_exp2_q16(int32_t s)
         return 0;
     }
     if (sh > 0) {
-        return (int32_t)((v + (1u << (sh - 1))) >> sh);
+        return (int32_t)tdc_urshr32(v, (unsigned)sh);
     }
     return sh == 0 ? (int32_t)v : INT32_MAX;
 }
 
 /* atan2(dy, dx) mod 2 pi in Q32 turns (eq. 2.2's arctan + 1[y' < 0] 2 pi).
  * One octant from the table (error < 2e-7 turns), the rest by symmetry. */
-/* The angle from the octant ratio t = min/max (Q30): table, symmetry. */
-static inline uint32_t turns_from_ratio(uint32_t t, uint32_t ax, uint32_t ay, int32_t dx, int32_t dy)
-{
-    const uint32_t idx = t >> 22, fr = (t >> 6) & 0xFFFFu;
-    const uint32_t a0 = tdc_fov_atan_tab[idx];
-    const uint32_t a1 = idx < 256u ? tdc_fov_atan_tab[idx + 1u] : a0;
-    uint32_t a = a0 + (uint32_t)(((uint64_t)(a1 - a0) * fr + 32768u) >> 16);
-    if (ay > ax) {
-        a = (1u << 30) - a;
-    }
-    if (dx < 0) {
-        a = (1u << 31) - a;
-    }
-    if (dy < 0) {
-        a = 0u - a;
-    }
-    return a;
-}
-
 uint32_t tdc_fov_turns_q32(int32_t dx, int32_t dy)
 {
     const uint32_t ax = (uint32_t)tdc_abs32(dx), ay = (uint32_t)tdc_abs32(dy);
@@ -139,7 +90,7 @@ uint32_t tdc_fov_turns_q32(int32_t dx, int32_t dy)
         return 0;
     }
     const uint32_t mx = ax > ay ? ax : ay, mn = ax > ay ? ay : ax;
-    return turns_from_ratio((uint32_t)tdc_div_q30(mn, mx), ax, ay, dx, dy); /* [0, 2^30] */
+    return tdc_fov_turns_from_ratio(tdc_fov_atan_tab, (uint32_t)tdc_div_q30(mn, mx), ax, ay, dx, dy); /* [0, 2^30] */
 }
 
 /* The division-free ratio of the pixel loop: for m > 0, inv = floor((2^63 - 1)
@@ -150,11 +101,6 @@ uint32_t tdc_fov_turns_q32(int32_t dx, int32_t dy)
 static uint32_t recip_norm(uint32_t m)
 {
     return m ? tdc_udiv64_32(~(uint64_t)0 >> 1, m << tdc_clz32(m)) : 0u;
-}
-
-static inline uint32_t ratio_q30(uint32_t n, uint32_t m, uint32_t inv)
-{
-    return (uint32_t)(((uint64_t)(n << tdc_clz32(m)) * inv) >> 33);
 }
 
 /* eq. 2.2 radial part for |x'|^2 in Q16, with the intermediates the blur
@@ -179,7 +125,7 @@ static void radial(const tdc_fov_geom_t *g, uint64_t r2_q16, fov_radial_t *o, in
     if (r2_q16 <= 65536u) {
         return; /* |x'| <= 1: ln |x'| <= 0, K^-1 undefined below 0: u = 0 */
     }
-    const int32_t l1 = tdc_fov_log2_q24(r2_q16) - 16 * Q24;
+    const int32_t l1 = tdc_log2_q24(r2_q16) - 16 * Q24;
     if (l1 <= 0) {
         return;
     }
@@ -190,7 +136,7 @@ static void radial(const tdc_fov_geom_t *g, uint64_t r2_q16, fov_radial_t *o, in
         o->u_q16 = (uint32_t)g->lp_w << 16;
         return;
     }
-    o->lg_l1 = tdc_fov_log2_q24((uint64_t)l1);
+    o->lg_l1 = tdc_log2_q24((uint64_t)l1);
     const int32_t neg = g->lg_lr_q24 - o->lg_l1;
     if (neg >= 0) {
         o->nq = (int32_t)(((uint64_t)(uint32_t)neg * g->inv_alpha_q24 + (1u << 23)) >> 24);
@@ -242,13 +188,13 @@ tdc_status_t tdc_fov_geom(tdc_fov_geom_t *g, uint16_t width, uint16_t height, co
     g->cx_q8 = p->gaze_x_q8;
     g->cy_q8 = p->gaze_y_q8;
     const uint64_t r2max = r2max_q16(p->gaze_x_q8, p->gaze_y_q8, width, height); /* >= 8 px^2 */
-    g->log2_r2max_q24 = tdc_fov_log2_q24(r2max) - 16 * Q24;
-    g->lg_lr_q24 = tdc_fov_log2_q24((uint64_t)g->log2_r2max_q24);
-    g->log2_w_q24 = tdc_fov_log2_q24(p->lp_w);
-    g->log2_alpha_q24 = tdc_fov_log2_q24(p->alpha_q8) - 8 * Q24;
+    g->log2_r2max_q24 = tdc_log2_q24(r2max) - 16 * Q24;
+    g->lg_lr_q24 = tdc_log2_q24((uint64_t)g->log2_r2max_q24);
+    g->log2_w_q24 = tdc_log2_q24(p->lp_w);
+    g->log2_alpha_q24 = tdc_log2_q24(p->alpha_q8) - 8 * Q24;
     g->inv_alpha_q24 = tdc_udiv64_32(((uint64_t)1 << 32) + p->alpha_q8 / 2u, p->alpha_q8);
     g->r_max_q8 = tdc_isqrt64(r2max);
-    g->r_disk_q8 = (uint32_t)(((uint64_t)p->disk_q15 * g->r_max_q8 + 16384u) >> 15);
+    g->r_disk_q8 = (uint32_t)tdc_urshr64((uint64_t)p->disk_q15 * g->r_max_q8, 15);
     g->r_disk2_q16 = (uint64_t)g->r_disk_q8 * g->r_disk_q8;
     fov_radial_t rr;
     radial(g, g->r_disk2_q16, &rr, 1);
@@ -324,21 +270,21 @@ static int32_t log2_sigma(const tdc_fov_geom_t *g, const fov_radial_t *rr, int32
         return -Q24; /* clamped whatever eta is (the common case at alpha 4): no eta */
     }
     const int32_t x_q16 = tdc_fov_exp2_q16(tdc_asr32(rr->l1 - g->log2_r2max_q24, 1));
-    const int32_t leta = tdc_fov_log2_q24((uint64_t)(91750 + 16 * (int64_t)x_q16)) - 16 * Q24;
+    const int32_t leta = tdc_log2_q24((uint64_t)(91750 + 16 * (int64_t)x_q16)) - 16 * Q24;
     const int64_t s64 = s0 + leta;
     return (int32_t)(s64 < -Q24 ? -Q24 : (s64 > Q24 ? Q24 : s64));
 }
 
 /* u, sigma (Q14, [2^13, 2^15]) and 1/sigma^2 (Q12, [2^10, 2^14]) at |x'|^2:
  * a node of the radial table, or a pixel closer than 4 px to the gaze. */
-static void node_fill(const tdc_fov_geom_t *g, uint64_t r2_q16, int clip, int32_t leta_max, tdc_fov_node_t *nd)
+void tdc_fov_node_fill(const tdc_fov_geom_t *g, uint64_t r2_q16, int clip, int32_t leta_max, tdc_fov_node_t *nd)
 {
     fov_radial_t rr;
     radial(g, r2_q16, &rr, clip);
     const int32_t ls = log2_sigma(g, &rr, leta_max);
     nd->u_q16 = rr.u_q16;
-    nd->sig_q14 = (uint16_t)(((uint32_t)tdc_fov_exp2_q16(ls) + 2u) >> 2);
-    nd->inv2_q12 = (uint16_t)(((uint32_t)tdc_fov_exp2_q16(-2 * ls) + 8u) >> 4);
+    nd->sig_q14 = (uint16_t)tdc_urshr32((uint32_t)tdc_fov_exp2_q16(ls), 2);
+    nd->inv2_q12 = (uint16_t)tdc_urshr32((uint32_t)tdc_fov_exp2_q16(-2 * ls), 4);
 }
 
 /* Nodes the frame needs: up to the one past the octave of R^2 (<= the
@@ -348,186 +294,8 @@ static uint32_t rad_nodes_for(uint64_t r2max)
     if (r2max < ((uint64_t)1 << TDC_FOV_NODE_E0)) {
         return 0;
     }
-    const uint32_t e = 63u - clz64(r2max);
+    const uint32_t e = 63u - tdc_clz64(r2max);
     return ((e - TDC_FOV_NODE_E0 + 1u) << TDC_FOV_NODE_BITS) + 1u;
-}
-
-/* ---------------------------------------------------------------------
- * The geometry pass, one display pixel: the blend weight b (Q8, 0 = disk
- * only), eq. 2.2's u and v, eq. 4.4's sigma; at sigma = 1/2 (most pixels)
- * the tap descriptor for the kernel (tdc_fov_kernels.h), else the blurred
- * colour itself (3 to 9 taps).  b[i] = b | 512 for a pixel with its
- * colour in gen; ij[i] = iu | jv << 16 (the nearest sample).
- * ------------------------------------------------------------------- */
-/* The pass's inputs and outputs: tdc_fov_geom_args_t (tdc_fov.h). */
-typedef tdc_fov_geom_args_t fov_src_t;
-
-#define TAPS_MAX 9 /* sigma <= 2: |t - u| <= 2 sigma = 4 */
-#define GEN_FLAG 512u
-
-/* Linear interpolation between nodes, f in Q16: (a (2^16 - f) + b f + 2^15) >> 16.
- * u < 2^30: 64-bit sum; sigma, 1/sigma^2 <= 2^15: the sum <= 2^31 + 2^15 fits 32 bits. */
-static inline uint32_t lerp_u(uint32_t a, uint32_t b, uint32_t f)
-{
-    return (uint32_t)(((uint64_t)a * (65536u - f) + (uint64_t)b * f + 32768u) >> 16);
-}
-
-static inline uint32_t lerp_s(uint32_t a, uint32_t b, uint32_t f)
-{
-    return (a * (65536u - f) + b * f + 32768u) >> 16;
-}
-
-static void geom_general(const fov_src_t *s, int32_t i, uint32_t b, int32_t u, int32_t sig, int32_t inv2, uint32_t j0,
-                         uint32_t j1, uint32_t fv);
-
-static void geom_px(const fov_src_t *s, int32_t i, int32_t dx, uint64_t r2)
-{
-    const int32_t dy = s->dy;
-    const tdc_fov_geom_t *g = s->g;
-    uint32_t b = 256;
-    if (r2 < g->r_disk2_q16) {
-        if (r2 <= s->rb2_q16) {
-            b = 0;
-        } else {
-            const int32_t x = (int32_t)tdc_isqrt64(r2) - s->rb_q8;
-            b = (uint32_t)tdc_clamp32(x, 0, TDC_FOV_BLEND_Q8) >> 2;
-        }
-    }
-    s->b[i] = (uint16_t)b;
-    if (!b || s->lr) {
-        if (!s->lr) { /* the tap kernel runs over log-polar rows only */
-            s->off0[i] = s->off_dummy | TDC_FOV_STEP0; /* a harmless descriptor: sample (u0, 0), weight 1 */
-            s->off1[i] = s->off_dummy;
-            s->wf[i] = 32768u;
-        }
-        if (b) { /* log-rectilinear: the periphery sample (Q8) is the pixel's colour, as geom_general's */
-            uint32_t c[3], iu = 0, jv = 0;
-            tdc_fov_lr_sample(s->lr, i, c, &iu, &jv);
-            uint16_t *gp = s->gen + (size_t)i * 3u;
-            gp[0] = (uint16_t)c[0], gp[1] = (uint16_t)c[1], gp[2] = (uint16_t)c[2]; /* <= 255 * 256 */
-            s->ij[i] = iu | jv << 16;
-            s->b[i] = (uint16_t)(b | GEN_FLAG);
-        }
-        return;
-    }
-    /* eq. 2.2 radial part and eq. 4.4's sigma: the radial table, interpolated on |x'|^2 */
-    int32_t u;
-    const uint32_t e = r2 >= ((uint64_t)1 << TDC_FOV_NODE_E0) ? 63u - clz64(r2) : 0u;
-    /* the top 24 bits of |x'|^2: the leading 1, 7 bits of node, 16 of fraction */
-    const uint32_t m24 = e >= 23u ? (uint32_t)(r2 >> (e - 23u)) : (uint32_t)r2 << (23u - e);
-    const uint32_t n = e ? ((e - TDC_FOV_NODE_E0) << TDC_FOV_NODE_BITS) | ((m24 >> 16) & 127u) : 0u;
-    const tdc_fov_node_t *na, *nb;
-    tdc_fov_node_t nd;
-    uint32_t f;
-    if (e && n + 1u < s->rad_nodes) {
-        f = m24 & 0xFFFFu; /* Q16 in the node */
-        na = s->rad + n;
-        nb = na + 1;
-        const uint32_t uu = lerp_u(na->u_q16, nb->u_q16, f);
-        u = (int32_t)(uu > (uint32_t)g->lp_w << 16 ? (uint32_t)g->lp_w << 16 : uu);
-    } else {
-        node_fill(g, r2, 1, s->leta_max, &nd); /* within 4 px of the gaze: exact */
-        na = nb = &nd;
-        f = 0;
-        u = (int32_t)nd.u_q16;
-    }
-    const int32_t sig = (int32_t)lerp_s(na->sig_q14, nb->sig_q14, f);
-    /* eq. 2.2 angle: atan of the octant ratio, the divide by a per-column / per-row reciprocal */
-    const uint32_t ax = (uint32_t)tdc_abs32(dx), ay = s->ay;
-    uint32_t turns = 0;
-    if (ax | ay) {
-        const uint32_t t = ax > ay ? ratio_q30(ay, ax, s->colinv[i]) : ratio_q30(ax, ay, s->inv_y);
-        turns = turns_from_ratio(t, ax, ay, dx, dy);
-    }
-    const uint32_t v = (uint32_t)(((uint64_t)turns * g->lp_h) >> 16);
-    const uint32_t j0 = v >> 16, fv = (v & 0xFFFFu) >> 1; /* Q15 */
-    const uint32_t j1 = j0 + 1u == g->lp_h ? 0u : j0 + 1u;
-    const int32_t cmin = g->u0, cmax = (int32_t)g->lp_w - 1;
-    if (s->taa) { /* the nearest sample: its motion vector */
-        const uint32_t ui = ((uint32_t)u + 32768u) >> 16, vi = (v + 32768u) >> 16;
-        s->ij[i] = (uint32_t)tdc_clamp32((int32_t)ui, cmin, cmax) | (vi >= g->lp_h ? 0u : vi) << 16;
-    }
-    if (sig == 8192) { /* sigma = 1/2: two taps, floor(u) and floor(u) + 1, from the tent table */
-        const uint32_t fu = (uint32_t)u & 0xFFFFu, k = fu >> 8, fr = fu & 255u;
-        const uint32_t ta = tdc_fov_tent_tab[k], tb = tdc_fov_tent_tab[k + 1u];
-        const int32_t c0 = tdc_clamp32(u >> 16, cmin, cmax), c1 = tdc_clamp32((u >> 16) + 1, cmin, cmax);
-        s->off0[i] = (uint32_t)(j0 * s->lp_stride + (size_t)c0 * 3u) | (c1 == c0 ? TDC_FOV_STEP0 : 0u);
-        s->off1[i] = (uint32_t)(j1 * s->lp_stride + (size_t)c0 * 3u);
-        s->wf[i] = (ta - (((ta - tb) * fr + 128u) >> 8)) | fv << 16;
-        return;
-    }
-    geom_general(s, i, b, u, sig, (int32_t)lerp_s(na->inv2_q12, nb->inv2_q12, f), j0, j1, fv);
-}
-
-/* sigma > 1/2 (few pixels at alpha 4): up to 9 taps, computed here, not by the
- * kernel.  Out of line: the common two-tap path above keeps its registers. */
-static FOV_COLD void geom_general(const fov_src_t *s, int32_t i, uint32_t b, int32_t u, int32_t sig, int32_t inv2,
-                                  uint32_t j0, uint32_t j1, uint32_t fv)
-{
-    const int32_t cmin = s->g->u0, cmax = (int32_t)s->g->lp_w - 1;
-    /* sigma > 1/2: up to 9 taps, weights from the cut Gaussian normalised to 2^15 */
-    const int32_t lo = tdc_asr32(u - 8 * sig + 65535, 16), hi = tdc_asr32(u + 8 * sig, 16);
-    const int32_t u12 = (u + 8) >> 4;
-    int32_t col[TAPS_MAX];
-    uint32_t wt[TAPS_MAX], sum = 0;
-    int32_t nt = 0;
-    for (int32_t t = lo; t <= hi && nt < TAPS_MAX; t++) {
-        const int32_t d = TDC_SHL32(t, 12) - u12;       /* Q12, |d| <= 4.01 */
-        const uint32_t d2 = (uint32_t)(d * d) >> 12;    /* Q12 < 2^17 */
-        const uint32_t t2 = (d2 * (uint32_t)inv2) >> 8; /* (d / sigma)^2, Q16 */
-        const uint32_t k = t2 >> 10, fr = t2 & 1023u;
-        if (k >= 256u) {
-            continue;
-        }
-        const uint32_t ga = tdc_fov_gauss_tab[k], gb = tdc_fov_gauss_tab[k + 1u];
-        wt[nt] = ga - (((ga - gb) * fr + 512u) >> 10);
-        col[nt] = tdc_clamp32(t, cmin, cmax);
-        sum += wt[nt];
-        nt++;
-    }
-    /* sum >= G(1) 2^15 = 17859 (some tap has |d| <= 1/2 <= sigma): recip < 2^16, wt * recip < 2^31.
-     * The rounding remainder goes to the largest weight, so the weights sum to 2^15 exactly. */
-    const uint32_t recip = ((1u << 30) + sum / 2u) / sum;
-    uint32_t nsum = 0;
-    int32_t kmax = 0;
-    for (int32_t k = 0; k < nt; k++) {
-        kmax = wt[k] > wt[kmax] ? k : kmax;
-        wt[k] = (wt[k] * recip + 16384u) >> 15;
-        nsum += wt[k];
-    }
-    wt[kmax] += 32768u - nsum; /* |32768 - nsum| <= nt / 2 + 1, wt[kmax] >= 2^15 / nt */
-    s->off0[i] = s->off_dummy | TDC_FOV_STEP0; /* the kernel's value is not used */
-    s->off1[i] = s->off_dummy;
-    s->wf[i] = 32768u;
-    /* the kernel's arithmetic per tap: rows j0, j1 weighted (w - a, a), a = (w fv + 2^14) >> 15 */
-    const uint8_t *r0 = s->lp + (size_t)j0 * s->lp_stride, *r1 = s->lp + (size_t)j1 * s->lp_stride;
-    uint32_t acc[3] = {64u, 64u, 64u};
-    for (int32_t k = 0; k < nt; k++) {
-        const uint32_t wa = (wt[k] * fv + 16384u) >> 15, wb = wt[k] - wa;
-        const uint8_t *p0 = r0 + (size_t)col[k] * 3u, *p1 = r1 + (size_t)col[k] * 3u;
-        for (int ch = 0; ch < 3; ch++) {
-            acc[ch] += wb * p0[ch] + wa * p1[ch]; /* weights sum to 2^15: < 255 * 2^15 + 64 */
-        }
-    }
-    for (int ch = 0; ch < 3; ch++) {
-        s->gen[(size_t)i * 3u + (size_t)ch] = (uint16_t)(acc[ch] >> 7); /* Q8 */
-    }
-    s->b[i] = (uint16_t)(b | GEN_FLAG);
-}
-
-/* The geometry pass over pixels [x0, x1) of one row (the C kernel of
- * tdc_fov_geom_row_fn).  The arguments and the geometry are copied to
- * locals first: the descriptor stores cannot alias them, so the compiler
- * keeps them in registers instead of reloading them after every store. */
-void tdc_fov_geom_row_c(const tdc_fov_geom_args_t *a, int32_t x0, int32_t x1)
-{
-    const tdc_fov_geom_t g = *a->g;
-    fov_src_t s = *a;
-    s.g = &g;
-    for (int32_t x = x0; x < x1; x++) {
-        const int32_t dx = x * 256 + 128 - g.cx_q8;
-        geom_px(&s, x, dx, (uint64_t)((int64_t)dx * dx) + s.dy2);
-    }
 }
 
 /* The composite of pixel i after the kernel ran: Q8 colour c, returns b. */
@@ -535,7 +303,7 @@ static inline uint32_t px_colour(const tdc_fov_t *st, const uint8_t *drow, int32
 {
     const uint32_t bf = st->t_b[i], b = bf & 511u;
     uint32_t lpc[3];
-    if (bf & GEN_FLAG) {
+    if (bf & TDC_FOV_GEN_FLAG) {
         const uint16_t *gp = st->t_gen + (size_t)i * 3u;
         lpc[0] = gp[0], lpc[1] = gp[1], lpc[2] = gp[2];
     } else if (!b) {
@@ -547,22 +315,13 @@ static inline uint32_t px_colour(const tdc_fov_t *st, const uint8_t *drow, int32
     }
     if (b < 256u) {
         const uint8_t *dp = drow + (size_t)i * 3u;
-        c[0] = (uint16_t)(((256u - b) * dp[0] * 256u + b * lpc[0] + 128u) >> 8);
-        c[1] = (uint16_t)(((256u - b) * dp[1] * 256u + b * lpc[1] + 128u) >> 8);
-        c[2] = (uint16_t)(((256u - b) * dp[2] * 256u + b * lpc[2] + 128u) >> 8);
+        c[0] = (uint16_t)tdc_urshr32((256u - b) * dp[0] * 256u + b * lpc[0], 8);
+        c[1] = (uint16_t)tdc_urshr32((256u - b) * dp[1] * 256u + b * lpc[1], 8);
+        c[2] = (uint16_t)tdc_urshr32((256u - b) * dp[2] * 256u + b * lpc[2], 8);
     } else {
         c[0] = (uint16_t)lpc[0], c[1] = (uint16_t)lpc[1], c[2] = (uint16_t)lpc[2];
     }
     return b;
-}
-
-/* The C tap kernel (tdc_fov_kernels.h). */
-void tdc_fov_tap2_row_c(const tdc_fov_tap2_args_t *a, uint32_t n)
-{
-    const tdc_fov_tap2_args_t l = *a; /* locals: the stores below cannot move the pointers */
-    for (uint32_t k = 0; k < n; k++) {
-        tdc_fov_tap2_px(&l, k);
-    }
 }
 
 /* ---------------------------------------------------------------------
@@ -677,8 +436,8 @@ static void finish_row(const tdc_fov_t *st, const fov_rows_t *rw, int32_t y, uin
             const uint32_t eps = cnt == 9u ? (sum + 4u) / 9u : (sum + cnt / 2u) / cnt; /* Q8 codes */
             uint32_t amin = (eps * ONE_Q15 + 32640u) / 65280u;
             amin = amin < 3277u ? 3277u : (amin > ONE_Q15 ? ONE_Q15 : amin);
-            const uint32_t a = amin + (((ONE_Q15 - amin) * e[6] + 16384u) >> 15);
-            const uint32_t aeff = ONE_Q15 - ((e[7] * (ONE_Q15 - a) + 128u) >> 8);
+            const uint32_t a = amin + tdc_urshr32((ONE_Q15 - amin) * e[6], 15);
+            const uint32_t aeff = ONE_Q15 - tdc_urshr32(e[7] * (ONE_Q15 - a), 8);
             /* f = s + (1 - a)(h - s), the product rounded toward zero: |f - s|
              * shrinks every frame, so a static field converges to exactly s
              * (rounding half up stalls at h - s = 5/256 of a code with a = 0.1) */
@@ -700,7 +459,7 @@ static void finish_row(const tdc_fov_t *st, const fov_rows_t *rw, int32_t y, uin
 /* log2 of eq. 4.4's largest eta (x = 1: 1.4 + 16 = 91750 / 2^16 + 16), Q24: eta is at most this. */
 static int32_t leta_max_q24(void)
 {
-    return tdc_fov_log2_q24(91750u + 16u * 65536u) - 16 * Q24;
+    return tdc_log2_q24(91750u + 16u * 65536u) - 16 * Q24;
 }
 
 /* The frame's tables: the radial table, rebuilt only when R (the gaze), alpha or lp_w changed (a
@@ -720,7 +479,7 @@ static void frame_tables(tdc_fov_t *st, const tdc_fov_geom_t *g, const tdc_fov_p
         st->rad_half_hi = 0;
         for (uint32_t n = 0; n < nodes; n++) {
             const uint32_t e = TDC_FOV_NODE_E0 + (n >> TDC_FOV_NODE_BITS), m = n & 127u;
-            node_fill(g, ((uint64_t)1 << e) + ((uint64_t)m << (e - 7u)), 0, leta_max, &st->rad[n]);
+            tdc_fov_node_fill(g, ((uint64_t)1 << e) + ((uint64_t)m << (e - 7u)), 0, leta_max, &st->rad[n]);
             run = st->rad[n].sig_q14 == 8192u ? run + 1u : 0u;
             if (run > best) {
                 best = run;
@@ -747,9 +506,9 @@ static void frame_tables(tdc_fov_t *st, const tdc_fov_geom_t *g, const tdc_fov_p
 /* The geometry pass's arguments for a frame (the stage's tables and row
  * buffers; the radial table's node count once it is built) and a row. */
 static void geom_args_frame(const tdc_fov_t *st, const tdc_fov_geom_t *g, const uint8_t *lp, size_t lp_stride,
-                            fov_src_t *a)
+                            tdc_fov_geom_args_t *a)
 {
-    const fov_src_t z = {0};
+    const tdc_fov_geom_args_t z = {0};
     *a = z;
     a->g = g;
     a->lp = lp;
@@ -775,7 +534,7 @@ static void geom_args_frame(const tdc_fov_t *st, const tdc_fov_geom_t *g, const 
     a->b = st->t_b;
 }
 
-static void geom_args_row(fov_src_t *a, int32_t y)
+static void geom_args_row(tdc_fov_geom_args_t *a, int32_t y)
 {
     a->dy = y * 256 + 128 - a->g->cy_q8;
     a->dy2 = (uint64_t)((int64_t)a->dy * a->dy);
@@ -834,7 +593,7 @@ tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8
         }
     }
     frame_tables(st, &g, p);
-    fov_src_t src;
+    tdc_fov_geom_args_t src;
     geom_args_frame(st, &g, lp, lp_stride, &src);
 
     /* TAA set-up: eq. 4.7 rate, 60 / R_n (Q16); saccade rejection */
@@ -849,7 +608,7 @@ tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8
         r60_q16 = (1006632960u + rate / 2u) / rate; /* 60 * 2^24 / rate */
         st->dt_prev_us = dt;
         const uint64_t diag2 = (uint64_t)W * W + (uint64_t)H * H;
-        log2_diag2 = tdc_fov_log2_q24(diag2);
+        log2_diag2 = tdc_log2_q24(diag2);
         const int64_t gx = (int64_t)p->gaze_x_q8 - st->gaze_prev_x_q8, gy = (int64_t)p->gaze_y_q8 - st->gaze_prev_y_q8;
         const int saccade = (uint64_t)(gx * gx + gy * gy) > diag2 * 1024u; /* > diag / 8, Q8 */
         reject_all = !st->have_hist || saccade;
@@ -945,7 +704,7 @@ tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t *p, const uint8
                     if (m2 == h_m2) {
                         hq = h_hq; /* neighbours mostly share one sample's vector */
                     } else if (m2) {
-                        const int32_t lg = tdc_fov_log2_q24(m2) - 8 * Q24 - log2_diag2;
+                        const int32_t lg = tdc_log2_q24(m2) - 8 * Q24 - log2_diag2;
                         const uint64_t e16 = (uint64_t)tdc_fov_exp2_q16(tdc_asr32(lg, 3));
                         const uint64_t hh = (e16 * r60_q16 + (1u << 16)) >> 17;
                         hq = hh > ONE_Q15 ? ONE_Q15 : (uint32_t)hh;

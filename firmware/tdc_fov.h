@@ -56,46 +56,8 @@
 #include "tdc_arena.h"
 #include "tdc_fixed.h"
 #include "tdc_fov_kernels.h"
+#include "tdc_fov_params.h"
 
-#define TDC_FOV_MIN_SIZE 4u /* display and log-polar sides at least this */
-#define TDC_FOV_MAX_SIZE 8192u
-#define TDC_FOV_ALPHA_MIN_Q8 256u /* K(x) = x^alpha, alpha in [1, 8], Q8 */
-#define TDC_FOV_ALPHA_MAX_Q8 2048u
-#define TDC_FOV_BLEND_Q8 1024 /* the blend band: 4 px, Q8 */
-#define TDC_FOV_REACH 4       /* the kernel reaches 2 sigma <= 4 columns */
-
-/* The transform of the buffer (the link header's transform byte). */
-#define TDC_FOV_KERNEL_LOG_POLAR 0u /* this file: eq. 2.2 */
-#define TDC_FOV_LOG_RECT 1u         /* log-rectilinear, tdc_fov_lr.h */
-
-/* Per-frame foveation parameters (the foveated packet's header).  Zero
- * lr_k_q4, transform (and zero) is the kernel log-polar kind. */
-typedef struct {
-    int32_t gaze_x_q8, gaze_y_q8; /* C in display pixels, Q8 */
-    uint16_t alpha_q8;            /* K(x) = x^alpha, Q8 in [1, 8]; 256 for log-rectilinear */
-    uint16_t disk_q15;            /* r_d / R, Q15 in [0, 1] (32768 = 1) */
-    uint16_t lp_w, lp_h;          /* log-polar buffer size (delta * W, delta * H) */
-    uint16_t lr_k_q4[2];          /* log-rectilinear foveal scale k (x, y), Q4 px, >= 1 px; 0 otherwise */
-    uint16_t transform;           /* TDC_FOV_KERNEL_LOG_POLAR or TDC_FOV_LOG_RECT */
-    uint16_t zero;                /* 0: no padding bytes (parsed headers compare bytewise) */
-} tdc_fov_params_t;
-
-/* Geometry of one frame, derived from the parameters (tdc_fov_geom). */
-typedef struct {
-    uint16_t width, height, lp_w, lp_h;
-    int32_t cx_q8, cy_q8;
-    int32_t log2_r2max_q24; /* log2(R^2), Q24, > 0 */
-    int32_t lg_lr_q24;      /* log2(log2(R^2)) + 24 (the table's scale), Q24 */
-    int32_t log2_w_q24;     /* log2(lp_w), Q24 */
-    int32_t log2_alpha_q24; /* log2(alpha), Q24 */
-    uint32_t inv_alpha_q24; /* 2^24 / alpha */
-    uint32_t r_max_q8;      /* R = sqrt(R^2), Q8 (floor) */
-    uint32_t r_disk_q8;     /* r_d = disk * R, Q8 */
-    uint64_t r_disk2_q16;   /* r_d^2: a pixel is in the disk iff |x'|^2 <= r_d^2 */
-    uint16_t l;             /* eq. 4.5: disk rectangle columns [0, l) */
-    uint16_t u0;            /* first column the link carries */
-    uint8_t transform;      /* the parameters' (log-rectilinear: l = u0 = 0) */
-} tdc_fov_geom_t;
 
 /* Checks the parameters against a display of width x height and fills g.
  * TDC_ERR_ARG: alpha, disk, lp size out of range or the gaze farther than
@@ -199,8 +161,13 @@ typedef struct {
     uint16_t *gen, *b;                    /* out: colours (Q8 x 3) where b & 512, blend weight | 512 */
 } tdc_fov_geom_args_t;
 
+/* u, sigma and 1/sigma^2 of the radial table at |x'|^2 (Q16): a node of the
+ * frame's table, or a pixel closer than 4 px to the gaze (the row kernel).
+ * clip: u = lp_w from R on; leta_max: log2 of eq. 4.4's largest eta. */
+void tdc_fov_node_fill(const tdc_fov_geom_t *g, uint64_t r2_q16, int clip, int32_t leta_max, tdc_fov_node_t *nd);
+
 typedef void tdc_fov_geom_row_fn(const tdc_fov_geom_args_t *a, int32_t x0, int32_t x1);
-tdc_fov_geom_row_fn tdc_fov_geom_row_c;    /* the reference: every pixel in C (what the boards run) */
+tdc_fov_geom_row_fn tdc_fov_geom_row_c;    /* the reference: every pixel in C (what the boards run), tdc_fov_rows.c */
 tdc_fov_geom_row_fn tdc_fov_geom_row_avx2; /* 8 pixels a step where all 8 take the two-tap path; the C row elsewhere */
 
 typedef struct {
@@ -267,7 +234,11 @@ TDC_MUST_CHECK tdc_status_t tdc_fov_frame(tdc_fov_t *st, const tdc_fov_params_t 
                                           uint32_t dt_us, uint8_t *out, size_t out_stride);
 
 /* Building blocks, exported for the tests (each states its error). */
-int32_t tdc_fov_log2_q24(uint64_t x);               /* log2(x) for x >= 1, Q24 */
+/* The stage accepts log-rectilinear frames only with the warp's scratch
+ * attached (tdc_fov_lr.h; NULL detaches); TDC_ERR_SIZE if lr serves a
+ * narrower display. */
+TDC_MUST_CHECK tdc_status_t tdc_fov_lr_attach(tdc_fov_t *st, struct tdc_fov_lr_s *lr);
+
 int32_t tdc_fov_exp2_q16(int32_t s_q24);            /* 2^s in Q16, s in Q24, saturating */
 uint32_t tdc_fov_turns_q32(int32_t dx, int32_t dy); /* atan2(dy, dx) mod 2pi, Q32 turns */
 

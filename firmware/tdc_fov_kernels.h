@@ -33,6 +33,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "tdc_fixed.h"
+
 #define TDC_FOV_STEP0 0x80000000u /* off0 flag: both columns are the same sample */
 
 typedef struct {
@@ -71,6 +73,32 @@ static inline void tdc_fov_tap2_px(const tdc_fov_tap2_args_t *a, uint32_t k)
     a->out[0][k] = (uint16_t)((w00 * p0[0] + w01 * q0[0] + wa * p1[0] + wb * q1[0] + 64u) >> 7);
     a->out[1][k] = (uint16_t)((w00 * p0[1] + w01 * q0[1] + wa * p1[1] + wb * q1[1] + 64u) >> 7);
     a->out[2][k] = (uint16_t)((w00 * p0[2] + w01 * q0[2] + wa * p1[2] + wb * q1[2] + 64u) >> 7);
+}
+
+/* The geometry pass marks a pixel whose colour it computed itself (sigma
+ * > 1/2, or a log-rectilinear periphery) with this bit of b[i]. */
+#define TDC_FOV_GEN_FLAG 512u
+
+/* eq. 2.2's angle in Q32 turns from the octant ratio t = min/max (Q30):
+ * the arctangent table (tdc_fov_tables.h, 257 entries), then symmetry.  The
+ * stage's tdc_fov_turns_q32 and the geometry row kernels. */
+static inline uint32_t tdc_fov_turns_from_ratio(const uint32_t *atan_tab, uint32_t t, uint32_t ax, uint32_t ay,
+                                                int32_t dx, int32_t dy)
+{
+    const uint32_t idx = t >> 22, fr = (t >> 6) & 0xFFFFu;
+    const uint32_t a0 = atan_tab[idx];
+    const uint32_t a1 = idx < 256u ? atan_tab[idx + 1u] : a0;
+    uint32_t a = a0 + (uint32_t)tdc_urshr64((uint64_t)(a1 - a0) * fr, 16);
+    if (ay > ax) {
+        a = (1u << 30) - a;
+    }
+    if (dx < 0) {
+        a = (1u << 31) - a;
+    }
+    if (dy < 0) {
+        a = 0u - a;
+    }
+    return a;
 }
 
 #endif /* TDC_FOV_KERNELS_H */

@@ -7,7 +7,7 @@
 
 #include "tdc_fov_lr.h" /* TDC_FOV_LR_K_MIN_Q4 */
 
-#include "tdc_wire.h" /* little-endian fields */
+#include "tdc_bytes.h"
 
 uint16_t tdc_fov_lp_size(uint16_t delta_q15, uint16_t n)
 {

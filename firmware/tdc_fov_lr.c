@@ -25,7 +25,7 @@ int tdc_fov_lr_params_ok(const tdc_fov_params_t *p)
 int32_t tdc_fov_lr_warp_q24(const tdc_fov_lr_axis_t *a, int32_t d_q8)
 {
     const uint32_t ad = (uint32_t)tdc_abs32(d_q8);
-    const int32_t s = tdc_fov_log2_q24((uint64_t)a->k_q8 + ad) - a->lk_q24; /* >= 0: log2 is monotone */
+    const int32_t s = tdc_log2_q24((uint64_t)a->k_q8 + ad) - a->lk_q24; /* >= 0: log2 is monotone */
     return d_q8 < 0 ? -s : s;
 }
 
@@ -33,7 +33,7 @@ void tdc_fov_lr_axis(tdc_fov_lr_axis_t *a, int32_t c_q8, uint16_t k_q4, uint16_t
 {
     a->c_q8 = c_q8;
     a->k_q8 = (uint32_t)k_q4 * 16u;
-    a->lk_q24 = tdc_fov_log2_q24(a->k_q8);
+    a->lk_q24 = tdc_log2_q24(a->k_q8);
     a->N = N;
     a->n = n;
     a->s0_q24 = tdc_fov_lr_warp_q24(a, -c_q8);
@@ -89,18 +89,6 @@ tdc_status_t tdc_fov_lr_init(tdc_fov_lr_t *lr, uint16_t width, void *mem, size_t
     lr->lp = 0;
     lr->lp_stride = 0;
     lr->frames = 0;
-    return TDC_OK;
-}
-
-tdc_status_t tdc_fov_lr_attach(tdc_fov_t *st, tdc_fov_lr_t *lr)
-{
-    if (!st) {
-        return TDC_ERR_ARG;
-    }
-    if (lr && lr->width < st->cfg.width) {
-        return TDC_ERR_SIZE;
-    }
-    st->lr = lr;
     return TDC_OK;
 }
 

@@ -1,5 +1,5 @@
 /*
- * tdc_fov_lr.h - the log-rectilinear foveation kind (issue 14 item 6; after
+ * tdc_fov_lr.h - the log-rectilinear foveation kind (after
  * Li, Du, Babu, Brumar, Varshney, "A log-rectilinear transformation for
  * foveated 360-degree video streaming", IEEE TVCG 27(5), 2021, which the
  * thesis recommends as future work, §6.3).  Second transform behind the
@@ -18,7 +18,7 @@
  *   du/dx = n / (S ln2 (k + |x - c|))                        (density: largest at the gaze, falling as k/(k + |d|))
  *
  * The base of the logarithm cancels in u; log2 is the table the kernel
- * log-polar kind already has (tdc_fov_log2_q24, tdc-tablegen --fov).
+ * log-polar kind already has (tdc_log2_q24, tdc-tablegen --fov).
  * Buffer texel m covers [x(m), x(m + 1)) on screen; the sender fills it
  * with the AREA AVERAGE of the picture over its footprint rectangle
  * [x(m), x(m+1)) x [y(j), y(j+1)) (summed-area tables, Li et al.), so the
@@ -62,7 +62,9 @@
 #ifndef TDC_FOV_LR_H
 #define TDC_FOV_LR_H
 
-#include "tdc_fov.h"
+#include "tdc_arena.h"
+#include "tdc_fixed.h"
+#include "tdc_fov_params.h"
 
 #define TDC_FOV_LR_K_MIN_Q4 16u /* k >= 1 display pixel */
 
@@ -107,9 +109,7 @@ size_t tdc_fov_lr_get_size(uint16_t width);
 /* mem: aligned to TDC_ARENA_ALIGN; TDC_ERR_ARG (null, width out of range,
  * misaligned), TDC_ERR_SIZE (too small).  Attach with tdc_fov_lr_attach. */
 TDC_MUST_CHECK tdc_status_t tdc_fov_lr_init(tdc_fov_lr_t *lr, uint16_t width, void *mem, size_t mem_bytes);
-/* The stage accepts log-rectilinear frames only with scratch attached
- * (NULL detaches); TDC_ERR_SIZE if lr serves a narrower display. */
-TDC_MUST_CHECK tdc_status_t tdc_fov_lr_attach(tdc_fov_t *st, tdc_fov_lr_t *lr);
+/* (attached to the stage with tdc_fov_lr_attach, tdc_fov.h) */
 
 /* Called by tdc_fov_frame (the dispatch on the transform): set-up of a
  * frame (the axes and the column table), one display row (the vertical

@@ -1,5 +1,5 @@
 /*
- * tdc_fov_trm.h - foveated TRM streams (issue 14 item 5,
+ * tdc_fov_trm.h - foveated TRM streams (
  * docs/link-protocol.md §2.2, docs/foveation.md "Foveated TRM"): the
  * remap of both pictures of a TRM stream whose frames are foveated.
  *

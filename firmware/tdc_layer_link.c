@@ -6,7 +6,7 @@
  */
 #include "tdc_layer_link.h"
 
-#include "tdc_wire.h" /* little-endian fields */
+#include "tdc_bytes.h"
 
 int tdc_layer_mv_valid(uint32_t type, uint32_t kind)
 {

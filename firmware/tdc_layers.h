@@ -1,5 +1,5 @@
 /*
- * tdc_layers.h - layered tile assembly (issue 16; Zeng et al., temporally
+ * tdc_layers.h - layered tile assembly (Zeng et al., temporally
  * reliable motion vectors, §4-§5; TDRT §3.2): the tile-ordered assembly of
  * tdc_assemble.h run per component, each reprojected with its own motion
  * vector, and the components recombined into the displayed frame.

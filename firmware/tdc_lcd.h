@@ -306,7 +306,7 @@ tdc_status_t tdc_lcd_frame(tdc_lcd_t *st, const uint8_t *wanted, uint32_t in_str
                            uint32_t out_stride, tdc_res_t *residual);
 
 /*
- * Rows in flight (issue 17 item 2): the frame of tdc_lcd_frame in pieces.
+ * Rows in flight (docs/boards.md): the frame of tdc_lcd_frame in pieces.
  * tdc_lcd_rows runs rows [y0, y1) of the current frame (wanted, drive and
  * residual are the frame's, not the rows'; rows are independent, any order,
  * each once); tdc_lcd_frame_done closes it (the history then is this

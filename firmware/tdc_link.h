@@ -125,7 +125,8 @@ typedef struct {
      * with tdc_link_unpack_full() where and if it wants.  A frame loop
      * sets this so that a packet it does not use (another mode's kind, a
      * later frame, a late resend) never touches the frame buffer being
-     * shown (firmware/board/tdc_main.c; fuzz finding F1). */
+     * shown (firmware/board/tdc_main.c: unpacked on arrival, a FULL
+     * packet would change an eye the loop keeps, tests/fuzz/findings/). */
     uint8_t defer_full;
     /* FOVEATED packets (stream flag TDC_LINK_STREAM_FOVEATED, tdc_fov_link.h):
      * the kernel log-polar samples, lp_w x lp_h RGB888 with rows lp_w * 3

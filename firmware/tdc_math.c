@@ -135,8 +135,7 @@ uint32_t tdc_isqrt64_digits(uint64_t x)
     if (x == 0u) {
         return 0u;
     }
-    const uint32_t hi = (uint32_t)(x >> 32);
-    const unsigned lz = hi ? tdc_clz32(hi) : 32u + tdc_clz32((uint32_t)x);
+    const unsigned lz = tdc_clz64(x);
     uint64_t res = 0;
     uint64_t bit = 1ULL << ((63u - lz) & ~1u); /* highest power of 4 <= x */
     while (bit != 0u) {
@@ -246,10 +245,9 @@ uint32_t tdc_isqrt64(uint64_t x)
     if (x < 2u || (x >> 32) >= 0xfffffffcu) {
         return tdc_isqrt64_digits(x);
     }
-    const uint32_t hi = (uint32_t)(x >> 32);
-    const unsigned lz = (hi ? tdc_clz32(hi) : 32u + tdc_clz32((uint32_t)x)) & ~1u; /* even */
-    const uint32_t top = (uint32_t)((x << lz) >> 32);                              /* in [2^30, 2^32) */
-    const uint64_t up = ((uint64_t)isqrt32_digits(top) + 1u) << 16;                /* > sqrt(x << lz) */
+    const unsigned lz = tdc_clz64(x) & ~1u;                         /* even */
+    const uint32_t top = (uint32_t)((x << lz) >> 32);               /* in [2^30, 2^32) */
+    const uint64_t up = ((uint64_t)isqrt32_digits(top) + 1u) << 16; /* > sqrt(x << lz) */
     const unsigned half = lz / 2u;
     uint64_t s = (up + ((1ULL << half) - 1u)) >> half; /* ceil: > sqrt(x) */
     if (s > 0xffffffffu) {

@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "tdc_fixed.h"
-#include "tdc_wire.h"
+#include "tdc_bytes.h"
 
 int tdc_pixfmt_valid(uint32_t f)
 {

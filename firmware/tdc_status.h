@@ -9,7 +9,7 @@
  * libusb_error_name() convention: greppable), tdc_status_text() one line
  * saying what went wrong (what the tools print after the name).
  *
- * Deliberately not in this enum (see the report of issue 12):
+ * Deliberately not in this enum:
  *   - tdc_link_err_t (tdc_link.h): the reason a link packet was rejected.
  *     It is not a return value but a dense, positive counter index (one
  *     counter per reason, 0 = none) carried in a decoder event.

@@ -28,6 +28,7 @@
 #include "tdc_fixed.h"
 #include "tdc_geom.h"
 #include "tdc_panel.h"
+#include "tdc_trm_kernels.h" /* the row kernels below the stage; TDC_TRM_WEXP_ENTRIES */
 
 /* Largest Gaussian support: taps within 3 sigma, sigma <= 3.5 px. */
 #define TDC_TRM_MAX_TAPS 24
@@ -38,14 +39,10 @@
     ((((6u * (uint32_t)(sigma_q8)) >> 8) + 1u) > TDC_TRM_MAX_TAPS ? (uint32_t)TDC_TRM_MAX_TAPS \
                                                                   : (((6u * (uint32_t)(sigma_q8)) >> 8) + 1u))
 
-/* Entries of the exp(-x) weight table, x = k/256 for k < 17*256 (+1 end). */
-#define TDC_TRM_WEXP_ENTRIES (17u * 256u + 1u)
-
 /* Reduced size for ratio num/den: round(n * num / den), at least 1. */
-/* The AVX2 row kernels' one-step encode index (tdc_trm_kernels.h):
- * 3 channels x TDC_TRM_ENC_COMB entries + 4 bytes of gather padding, on
- * x86-64 hosts only; boards reserve nothing for it. */
-#define TDC_TRM_ENC_COMB (1024u + 4096u - 16u + 1u)
+/* The AVX2 row kernels' one-step encode index (TDC_TRM_ENC_COMB,
+ * tdc_trm_kernels.h): 3 channels x TDC_TRM_ENC_COMB entries + 4 bytes of
+ * gather padding, on x86-64 hosts only; boards reserve nothing for it. */
 #if defined(__x86_64__) && !defined(TDC_NO_SIMD)
 #define TDC_TRM_SIMD_BYTES (3u * TDC_TRM_ENC_COMB + 8u)
 #else
@@ -250,7 +247,7 @@ tdc_status_t tdc_trm_reduced_seq(tdc_trm_t *st, const uint8_t *in_reduced, uint3
                                  uint32_t out_stride, uint32_t seq);
 
 /*
- * Rows in flight (issue 17 item 2, docs/boards.md): the same frames, fed
+ * Rows in flight (docs/boards.md): the same frames, fed
  * as their rows arrive, top to bottom.  _begin takes the frame's buffers
  * (in may be out, as for the whole frame); _rows says that the first
  * `avail` rows of the input are there (full: input rows; reduced: reduced

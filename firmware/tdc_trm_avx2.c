@@ -32,6 +32,7 @@
  *    against its defining inequality (trm_recip4), so it is the exact
  *    floor the C path gets from a divide instruction.
  */
+#include "tdc_trm.h" /* TDC_TRM_MAX_TAPS */
 #include "tdc_trm_kernels.h"
 
 /* Portable C: builds the AVX2 kernels' encode index (tdc_trm_kernels.h). */

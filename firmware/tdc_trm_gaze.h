@@ -1,5 +1,5 @@
 /*
- * tdc_trm_gaze.h - gaze-aware TRM (issue 15, beyond the paper): a
+ * tdc_trm_gaze.h - gaze-aware TRM (beyond the paper): a
  * compensation strength that falls where the image moves on the retina.
  *
  * TRM's compensation (beta = 2 I - U D I, and the residual) cancels on the

@@ -19,8 +19,13 @@
 
 #include "tdc_fixed.h"
 #include "tdc_panel.h"
-#include "tdc_trm.h"
 #include "tdc_math.h"
+
+/* Entries of the exp(-x) weight table, x = k/256 for k < 17*256 (+1 end). */
+#define TDC_TRM_WEXP_ENTRIES (17u * 256u + 1u)
+
+/* Entries per channel of the AVX2 kernels' one-step encode index. */
+#define TDC_TRM_ENC_COMB (1024u + 4096u - 16u + 1u)
 
 /* What a row kernel needs; built per frame from tdc_trm_t. */
 typedef struct {
@@ -51,9 +56,9 @@ void tdc_trm_rowctx_init(tdc_trm_rowctx_t *k, const tdc_panel_t *panel, const ui
 /* exp(-x) at x = k / 256 in Q30, k < TDC_TRM_WEXP_ENTRIES: the table of
  * tdc_trm_weight_q15, const (flash on a board, shared by both eyes).  It is
  * generated at build time by `tdc-tablegen --trm` from the firmware's own
- * tdc_exp_neg_q16_q30(k << 8), so it holds exactly the values the stage built
- * into each eye's arena at every stream start until session 6 (17,412 B of
- * RAM per eye, and 35 % of a fuzz_frameloop execution); test_trm checks every
+ * tdc_exp_neg_q16_q30(k << 8), so it holds exactly the values the stage would
+ * build into each eye's arena at every stream start (17,412 B of RAM per
+ * eye, and 35 % of a fuzz_frameloop execution); test_trm checks every
  * entry against that function. */
 extern const uint32_t tdc_trm_wexp_q30[TDC_TRM_WEXP_ENTRIES];
 
@@ -156,15 +161,16 @@ static inline int32_t tdc_trm_motion_weight_q15(const tdc_trm_rowctx_t *k, tdc_l
 {
     const uint32_t diff = (uint32_t)tdc_abs32(a - b);
     const int32_t c_q30 = tdc_div_q30(diff, (uint32_t)a + (uint32_t)b);
-    const uint64_t sc = ((uint64_t)k->s_q8 * (uint32_t)c_q30 + (1ull << 21)) >> 22;
+    const uint64_t sc = tdc_urshr64((uint64_t)k->s_q8 * (uint32_t)c_q30, 22); /* Q8 * Q30 -> Q16 */
     return tdc_trm_weight_q15(k->wexp, sc);
 }
 
 /* Gaze-aware TRM (tdc_trm_gaze.c): whether row y has a tile with k < 1,
  * and the full row with beta = I + k (I - U D I) (C only: it runs only
  * where the eye does not track the content). */
-int tdc_trm_gaze_row_active(const tdc_trm_gaze_t *g, uint32_t y);
-void tdc_trm_gaze_full_row(const tdc_trm_rowctx_t *k, const tdc_trm_gaze_t *g, uint32_t y, const uint32_t *urow,
+struct tdc_trm_gaze; /* tdc_trm.h */
+int tdc_trm_gaze_row_active(const struct tdc_trm_gaze *g, uint32_t y);
+void tdc_trm_gaze_full_row(const tdc_trm_rowctx_t *k, const struct tdc_trm_gaze *g, uint32_t y, const uint32_t *urow,
                            const uint8_t *src, uint8_t *dst, tdc_res_t *res, tdc_trm_full_counts_t *n);
 
 /* ---- per-pixel helpers of the C row kernels (tdc_trm_rows.c) and the

@@ -139,8 +139,8 @@ uint32_t tdc_usbp_device_descriptor(uint8_t out[18])
                                     0x00, 0x00, 0x00, 64, /* class per interface, ep0 max packet 64 */
                                     (uint8_t)(TDC_USB_VID & 0xFFu), (uint8_t)(TDC_USB_VID >> 8),
                                     (uint8_t)(TDC_USB_PID & 0xFFu), (uint8_t)(TDC_USB_PID >> 8),
-                                    /* bcdDevice = protocol version, 0x0001 (little-endian: low byte first;
-         * it read 0x0100 before, issue 19) */
+                                    /* bcdDevice = protocol version, 0x0001 (little-endian: low byte first,
+         * as every descriptor field: high byte first reads 0x0100) */
                                     (uint8_t)(TDC_USB_PROTO_VERSION & 0xFFu), (uint8_t)(TDC_USB_PROTO_VERSION >> 8), 1,
                                     2, 3, 1}; /* strings, 1 configuration */
     memcpy(out, dev, sizeof dev);

@@ -12,7 +12,7 @@
  * tdc_usbp_status_report() to fill the bulk IN endpoint.
  *
  * Firmware rules: no heap, no float, caller-owned state (tdc_usbp_t), every
- * multi-byte field is serialised explicitly little-endian (tdc_wire.h's
+ * multi-byte field is serialised explicitly little-endian (tdc_bytes.h's
  * tdc_get/put_le*, no struct punning), so the bytes on the wire do not
  * depend on the compiler or CPU; CRC-32 is the link's (tdc_crc32.h).
  */
@@ -24,7 +24,7 @@
 
 #include "tdc_crc32.h" /* CRC-32 of images and of the received bytes */
 #include "tdc_status.h"
-#include "tdc_wire.h" /* little-endian fields */
+#include "tdc_bytes.h"
 
 /* pid.codes open-source VID with its *test* PID 0x0001: for development and
  * CI only.  A shipped board must get its own PID from pid.codes. */
@@ -134,8 +134,8 @@ typedef enum {
 
 /* tdc firmware image = 48-byte header + payload (what DFU downloads).
  * Header version 2: the board field holds 16 characters, the longest board
- * name (stm32h747i-disco) and the BOARD_INFO name field; version 1 had 12
- * and no image could ever name that board (issue 19). */
+ * name (stm32h747i-disco) and the BOARD_INFO name field; version 1 had 12,
+ * too few to name that board. */
 #define TDC_IMAGE_MAGIC 0x46434454u /* "TDCF" */
 #define TDC_IMAGE_HEADER_VERSION 2u
 #define TDC_IMAGE_HEADER_LEN 48u

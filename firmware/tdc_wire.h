@@ -5,9 +5,8 @@
  * host program that writes or reads link packets (encoder, .tdcs files,
  * simulator link accounting, fuzzer, tdc-usb).
  *
- *   1. Little-endian load/store of 16/32-bit fields (no struct punning, no
- *      alignment or host byte-order assumption; compilers merge the byte
- *      accesses into one load on little-endian CPUs).
+ *   1. Little-endian load/store of 16/32-bit fields: tdc_bytes.h, below
+ *      this header (the payload formats use them without the packet layer).
  *   2. The 32-byte link packet header: offsets, tdc_link_header_t and its
  *      pack/unpack (the only code that reads or writes header bytes).
  *   3. The STREAM payload (16 bytes): offsets, pack/unpack.
@@ -26,49 +25,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "tdc_bytes.h"
 #include "tdc_geom.h"
 #include "tdc_pixfmt.h"
-
-/* ------------------------------------------------------------------------
- * 1. Little-endian fields.
- * ---------------------------------------------------------------------- */
-static inline uint16_t tdc_get_le16(const uint8_t *p)
-{
-    return (uint16_t)((uint32_t)p[0] | ((uint32_t)p[1] << 8));
-}
-static inline uint32_t tdc_get_le32(const uint8_t *p)
-{
-    return (uint32_t)p[0] | ((uint32_t)p[1] << 8) | ((uint32_t)p[2] << 16) | ((uint32_t)p[3] << 24);
-}
-static inline void tdc_put_le16(uint8_t *p, uint32_t v)
-{
-    p[0] = (uint8_t)(v & 0xFFu);
-    p[1] = (uint8_t)((v >> 8) & 0xFFu);
-}
-static inline void tdc_put_le32(uint8_t *p, uint32_t v)
-{
-    p[0] = (uint8_t)(v & 0xFFu);
-    p[1] = (uint8_t)((v >> 8) & 0xFFu);
-    p[2] = (uint8_t)((v >> 16) & 0xFFu);
-    p[3] = (uint8_t)(v >> 24);
-}
-/* int16 as two's complement bits, without implementation-defined
- * conversions: values >= 2^15 read as v - 2^16, negatives written as v + 2^16. */
-static inline int16_t tdc_get_le16s(const uint8_t *p)
-{
-    const int32_t v = (int32_t)tdc_get_le16(p);
-    return (int16_t)(v >= 32768 ? v - 65536 : v);
-}
-static inline void tdc_put_le16s(uint8_t *p, int16_t v)
-{
-    tdc_put_le16(p, (uint32_t)(v < 0 ? (int32_t)v + 65536 : (int32_t)v));
-}
-/* int32 likewise (writing needs no helper: (uint32_t)v is defined). */
-static inline int32_t tdc_get_le32s(const uint8_t *p)
-{
-    const uint32_t v = tdc_get_le32(p);
-    return v <= 0x7FFFFFFFu ? (int32_t)v : -(int32_t)(~v) - 1;
-}
 
 /* ------------------------------------------------------------------------
  * 2. Link packet header: 32 bytes, little-endian, naturally aligned fields.

@@ -30,6 +30,10 @@ INSN_PLUGIN := $(BUILD)/tools/tdc-insn-count.so
 ARM_BOARDS := $(filter-out host,$(BOARDS))
 # Emulated boards: those whose board.mk names a QEMU machine.
 QEMU_BOARDS := $(sort $(patsubst boards/%/board.mk,%,$(shell grep -l '^BOARD_QEMU' boards/*/board.mk)))
+# The board frame loop: tdc_main.c and one file per stream family, output
+# stage and transport property (firmware/board/tdc_fw_family.h), each empty
+# unless its stage is in the build.
+FW_LOOP_SRCS := firmware/board/tdc_main.c $(sort $(wildcard firmware/board/tdc_fw_*.c))
 
 .PHONY: arm-fw-fov-check arm-fw-loop-check arm-fw-refuse-check arm-fw-bands-check arm-loop-cost run-arm firmware-size test-arm size bench-arm arm-bench profile-arm arm-profile arm-golden arm-golden-check arm-image-check arm-fit-check arm-fw-check
 
@@ -179,7 +183,7 @@ arm-golden-check: $(BA)/golden-check $(BA)/harness-check $(ARM_CHECKASM)
 
 # ---------------------------------------------------------------------------
 # Firmware image of a board/panel pair: the frame loop (firmware/board/
-# tdc_main.c) over the firmware sources, compiled with the panel's config
+# tdc_main.c and its stream families, $(FW_LOOP_SRCS)) over the firmware sources, compiled with the panel's config
 # header.  STAGES picks the pipeline stages (default: the board's
 # BOARD_STAGES, else all); the LCD inverse only on LCD panels, and its
 # sources ($(FW_LCD_SRCS)) are left out of every other build.
@@ -212,7 +216,7 @@ FW_CFG := $(FW_CFG_BASE) -DTDC_CFG_BANDS=$(BANDS)
 PANEL_CONFIG := $(GEN)/tdc_panel_$(PANEL)_config.h
 ARM_IMG_CFLAGS := $(ARM_FW_CFLAGS) -include $(PANEL_CONFIG) $(FW_CFG)
 FW_IMG_SRCS = $(filter-out $(if $(filter 1,$(FW_LCD_ON)),,$(FW_LCD_SRCS)),$(FW_SRCS)) \
-              $(BOARD_SRCS) firmware/board/tdc_crt0.c firmware/board/tdc_main.c
+              $(BOARD_SRCS) firmware/board/tdc_crt0.c $(FW_LOOP_SRCS)
 FW_IMG_OBJS = $(patsubst %.c,$(BP)/%.o,$(FW_IMG_SRCS)) $(BP)/gen/tdc_panel_$(PANEL).o
 
 # The stage selection and flags are part of the objects: rebuild when they change.
@@ -298,16 +302,16 @@ STREAMS := $(BUILD)/fw-streams
 FWH_PANEL_SRCS := $(shell grep -l '"tdc_link.h"' $(filter firmware/%.c,$(wildcard firmware/*.c)))
 # $(1): directory, $(2): TDC_CFG_BANDS, $(3): the stage defines
 define fw_host_loop
-$(1)/tdc_main.o: firmware/board/tdc_main.c $(GEN)/tdc_panels.h $(PANEL_CONFIG) | $$$$(FW_GEN_HEADERS)
+$(1)/board/%.o: firmware/board/%.c $(GEN)/tdc_panels.h $(PANEL_CONFIG) | $$$$(FW_GEN_HEADERS)
 	@mkdir -p $$(@D)
 	$(CC) $(FW_CFLAGS) -Ifirmware/board -include $(PANEL_CONFIG) $(3) -DTDC_CFG_BANDS=$(2) -DTDC_FW_NO_MAIN -MMD -MP -c $$< -o $$@
-$(1)/tdc_board_host.o: tests/arm/tdc_board_host.c firmware/board/tdc_board.h
+$(1)/%.o: tests/arm/%.c firmware/board/tdc_board.h
 	@mkdir -p $$(@D)
 	$(CC) $(HOST_CFLAGS) -Ifirmware/board -MMD -MP -c $$< -o $$@
 $(1)/fw/%.o: firmware/%.c $(GEN)/tdc_panels.h $(PANEL_CONFIG) | $$$$(FW_GEN_HEADERS)
 	@mkdir -p $$(@D)
 	$(CC) $(FW_CFLAGS) -include $(PANEL_CONFIG) $(3) -DTDC_CFG_BANDS=$(2) -MMD -MP -c $$< -o $$@
-$(1)/tdc_fw_host: $(1)/tdc_main.o $(1)/tdc_board_host.o $(patsubst firmware/%.c,$(1)/fw/%.o,$(FWH_PANEL_SRCS)) $(FWLIB)
+$(1)/tdc_fw_host: $(patsubst firmware/board/%.c,$(1)/board/%.o,$(FW_LOOP_SRCS)) $(1)/tdc_board_host.o $(1)/tdc_board_stub.o $(patsubst firmware/%.c,$(1)/fw/%.o,$(FWH_PANEL_SRCS)) $(FWLIB)
 	$(CC) $(HOST_LDFLAGS) $$^ -o $$@ $(HOST_LIBS)
 endef
 $(eval $(call fw_host_loop,$(FWH_B0),0,$(FW_CFG_BASE)))

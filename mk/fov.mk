@@ -1,7 +1,7 @@
 # Foveated streams (issue 14, DESIGN §4.5): the display-side remap stage with
 # peripheral TAA, its double-precision reference, tests, golden vectors.
 # The stage's log/power/atan/Gaussian tables come from tdc-tablegen --fov.
-FW_SRCS += firmware/tdc_fov.c firmware/tdc_fov_lr.c firmware/tdc_fov_link.c firmware/tdc_fov_trm.c
+FW_SRCS += firmware/tdc_fov.c firmware/tdc_fov_rows.c firmware/tdc_fov_lr.c firmware/tdc_fov_link.c firmware/tdc_fov_trm.c
 # the tap kernel: AVX2 (x86-64 hosts; the C kernel elsewhere) and Helium (the
 # C kernel except on BOARD_MVE boards); checked against C by tests/checkasm
 FW_SRCS += firmware/tdc_fov_avx2.c firmware/tdc_fov_mve.c
@@ -20,8 +20,9 @@ FW_GEN_HEADERS += $(GEN)/tdc_fov_tables.h
 $(B)/check-fw-rules: $(GEN)/tdc_fov_tables.h
 
 # Own link rules: the fov tests need only these objects.
-FOV_OBJS = $(B)/firmware/tdc_fov.o $(B)/firmware/tdc_fov_lr.o $(B)/firmware/tdc_fov_avx2.o $(B)/firmware/tdc_fov_mve.o \
-           $(B)/firmware/tdc_fov_link.o $(B)/firmware/tdc_math.o $(B)/sim/ref_fov.o $(B)/sim/ref_fov_lr.o
+FOV_OBJS = $(B)/firmware/tdc_fov.o $(B)/firmware/tdc_fov_rows.o $(B)/firmware/tdc_fov_lr.o $(B)/firmware/tdc_fov_avx2.o $(B)/firmware/tdc_fov_mve.o \
+           $(B)/firmware/tdc_fov_link.o $(B)/firmware/tdc_math.o $(B)/firmware/tdc_math_log2.o $(B)/sim/ref_fov.o \
+           $(B)/sim/ref_fov_lr.o
 FOV_TESTS := test_fov test_fov_ref test_fov_link test_fov_lr
 TESTS += $(foreach t,$(FOV_TESTS),$(B)/tests/unit/$(t))
 $(foreach t,$(FOV_TESTS),$(B)/tests/unit/$(t)): $(B)/tests/unit/%: $(B)/tests/unit/%.o $(FOV_OBJS)
@@ -39,8 +40,8 @@ BENCHES += $(B)/tests/bench/bench_fov
 
 # Fuzzing: the target `fov` is registered in mk/fuzz.mk (tests/fuzz/fuzz_fov.c,
 # seeds tests/fuzz/corpus-fov, regenerated deliberately by make fuzz-seeds-fov).
-$(BUILD)/fuzz/make_seeds_fov: tests/fuzz/make_seeds_fov.c firmware/tdc_fov.c firmware/tdc_fov_lr.c firmware/tdc_fov_avx2.c \
-                              firmware/tdc_fov_mve.c firmware/tdc_fov_link.c firmware/tdc_math.c $(GEN)/tdc_fov_tables.h
+$(BUILD)/fuzz/make_seeds_fov: tests/fuzz/make_seeds_fov.c firmware/tdc_fov.c firmware/tdc_fov_rows.c firmware/tdc_fov_lr.c firmware/tdc_fov_avx2.c \
+                              firmware/tdc_fov_mve.c firmware/tdc_fov_link.c firmware/tdc_math.c firmware/tdc_math_log2.c $(GEN)/tdc_fov_tables.h
 	@mkdir -p $(@D)
 	gcc -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror -O2 -Ifirmware -I$(GEN) $(filter %.c,$^) -o $@
 fuzz-seeds-fov: $(BUILD)/fuzz/make_seeds_fov

@@ -16,8 +16,8 @@ FUZZ_FLAGS := -std=c11 -D_GNU_SOURCE -g -O1 -fsanitize=fuzzer,address,undefined 
 # the link decoder and what it calls (FOVEATED packets: the foveation header and geometry)
 LINK_FW_SRCS := firmware/tdc_wire.c firmware/tdc_link.c firmware/tdc_pixfmt.c firmware/tdc_crc32.c firmware/tdc_layer_link.c \
                 firmware/tdc_band_link.c \
-                firmware/tdc_fov.c firmware/tdc_fov_lr.c firmware/tdc_fov_avx2.c firmware/tdc_fov_mve.c firmware/tdc_fov_link.c \
-                firmware/tdc_math.c
+                firmware/tdc_fov.c firmware/tdc_fov_rows.c firmware/tdc_fov_lr.c firmware/tdc_fov_avx2.c firmware/tdc_fov_mve.c firmware/tdc_fov_link.c \
+                firmware/tdc_math.c firmware/tdc_math_log2.c
 
 # name: harness + sources [+ flags, libraries]
 FUZZ_ALL := link usbproto usbreply panel tdcs scene frameloop meas fov layers bands
@@ -39,10 +39,10 @@ FUZZ_LIBS_scene := -lembree3 -lm
 # the board frame loop for a 16 x 8 stereo OLED panel with TRM, tile assembly and foveation (with TAA), built as on a board:
 # without the x86 AVX2 kernels (TDC_NO_SIMD), whose encode index TRM built at every stream start
 # (22 % of each execution; the kernels are checked against C by checkasm)
-FUZZ_SRCS_frameloop := tests/fuzz/fuzz_frameloop.c $(LINK_FW_SRCS) \
+FUZZ_SRCS_frameloop := tests/fuzz/fuzz_frameloop.c tests/arm/tdc_board_stub.c $(FW_LOOP_SRCS) $(LINK_FW_SRCS) \
                        firmware/tdc_trm_rows.c firmware/tdc_trm_avx2.c \
                        $(GEN)/tdc_panel_htc-vive.c firmware/tdc_link_encode.c firmware/tdc_fov_trm.c
-FUZZ_DEPS_frameloop := firmware/board/tdc_main.c
+FUZZ_DEPS_frameloop := $(wildcard firmware/board/*.h)
 FUZZ_CFLAGS_frameloop := -Ifirmware/board -DTDC_PANEL_NAME='"fuzz"' -DTDC_PANEL_SYMBOL=tdc_panel_htc_vive \
     -DTDC_PANEL_WIDTH=16 -DTDC_PANEL_HEIGHT=8 -DTDC_PANEL_EYES=2 -DTDC_PANEL_BITS=8 -DTDC_PANEL_REFRESH_HZ=90 \
     -DTDC_PANEL_IS_LCD=0 -DTDC_CFG_TRM=1 -DTDC_CFG_ASSEMBLE=1 -DTDC_CFG_FOV=1 -DTDC_FW_NO_MAIN -DTDC_NO_SIMD
@@ -53,7 +53,7 @@ FUZZ_SRCS_meas := tests/fuzz/fuzz_meas.c hosttools/calib/tdc_meas.c \
 FUZZ_LIBS_meas := -lm
 # the foveated packet's kind-specific path: header, payload length, unpack, the stage with TAA
 # (seeds: make fuzz-seeds-fov, mk/fov.mk)
-FUZZ_SRCS_fov := tests/fuzz/fuzz_fov.c firmware/tdc_fov_link.c firmware/tdc_math.c
+FUZZ_SRCS_fov := tests/fuzz/fuzz_fov.c firmware/tdc_fov_link.c firmware/tdc_math.c firmware/tdc_math_log2.c
 FUZZ_DEPS_fov := $(GEN)/tdc_fov_tables.h
 # the layered subframe kind through the decoder (seeds: tests/fuzz/corpus-layers)
 FUZZ_SRCS_layers := tests/fuzz/fuzz_layers.c $(LINK_FW_SRCS) firmware/tdc_link_encode.c
@@ -69,7 +69,7 @@ FUZZ_SRCS_bands := tests/fuzz/fuzz_bands.c $(LINK_FW_SRCS) firmware/tdc_link_enc
 # 2,360 -> 10,376 exec/s, and more coverage in the same 25 s: 228 edges / 713
 # features against 226 / 654).  tests/fuzz/nocov.txt removes a file's
 # coverage altogether; this keeps the edges.
-FUZZ_NOCMP_fov := firmware/tdc_fov.c firmware/tdc_fov_lr.c firmware/tdc_fov_avx2.c firmware/tdc_fov_mve.c
+FUZZ_NOCMP_fov := firmware/tdc_fov.c firmware/tdc_fov_rows.c firmware/tdc_fov_lr.c firmware/tdc_fov_avx2.c firmware/tdc_fov_mve.c
 FUZZ_NOCMP_meas := hosttools/calib/tdc_calib_trans.c
 FUZZ_NOCMP_frameloop := firmware/tdc_trm.c firmware/tdc_assemble.c firmware/tdc_ordering.c firmware/tdc_trm_gaze.c
 

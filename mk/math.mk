@@ -1,6 +1,6 @@
 # Fixed-point math core (firmware/tdc_math.c) and its exhaustive tests, also
 # with the Cortex-M arithmetic on the host.
-FW_SRCS += firmware/tdc_math.c
+FW_SRCS += firmware/tdc_math.c firmware/tdc_math_log2.c
 TESTS += $(B)/tests/unit/test_math
 
 # test_math again with the Cortex-M arithmetic (TDC_HW_DIV64=0: long

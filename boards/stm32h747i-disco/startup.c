@@ -13,25 +13,11 @@
 #include "disco.h"
 #include "sdram.h"
 #include "tdc_crt0.h"
-
-extern uint32_t __stack_top[];
-void Reset_Handler(void);
+#include "tdc_vectors.h"
 
 #define STM32H747_IRQS 150
-
-typedef struct {
-    const uint32_t *initial_sp;
-    void (*handler[15])(void);
-    void (*irq[STM32H747_IRQS])(void);
-} tdc_vectors_t;
-
-__attribute__((section(".vectors"), used)) const tdc_vectors_t tdc_vectors = {
-    __stack_top,
-    {Reset_Handler, tdc_crt0_default_handler, tdc_disco_fault_entry, tdc_disco_fault_entry,
-     tdc_disco_fault_entry, tdc_disco_fault_entry, 0, 0, 0, 0, tdc_crt0_default_handler, tdc_crt0_default_handler,
-     0, tdc_crt0_default_handler, tdc_crt0_default_handler},
-    {tdc_crt0_default_handler},
-};
+/* faults: the fault registers to the log, then a reset (disco.h) */
+TDC_VECTORS_FAULT(STM32H747_IRQS, tdc_disco_fault_entry);
 
 #define FLASH_OPTSR_CUR TDC_REG32(TDC_STM32_FLASH_R + 0x1Cu)
 

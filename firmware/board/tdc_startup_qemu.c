@@ -12,23 +12,9 @@
 #include "board.h"
 #include "tdc_crt0.h"
 #include "tdc_semihost.h"
+#include "tdc_vectors.h"
 
-extern uint32_t __stack_top[];
-void Reset_Handler(void);
-
-typedef struct {
-    const uint32_t *initial_sp;
-    void (*handler[15])(void); /* exceptions 1..15 */
-    void (*irq[32])(void);
-} tdc_vectors_t;
-
-__attribute__((section(".vectors"), used)) const tdc_vectors_t tdc_vectors = {
-    __stack_top,
-    {Reset_Handler, tdc_crt0_default_handler, tdc_crt0_default_handler, tdc_crt0_default_handler,
-     tdc_crt0_default_handler, tdc_crt0_default_handler, 0, 0, 0, 0, tdc_crt0_default_handler, tdc_crt0_default_handler,
-     0, tdc_crt0_default_handler, tdc_crt0_default_handler},
-    {tdc_crt0_default_handler},
-};
+TDC_VECTORS(32);
 
 void Reset_Handler(void)
 {

@@ -6,6 +6,7 @@
  *   transport: the .tdcs file argv[1], read in 16 KiB chunks
  *   panel:     "frame N fnv1a64" lines on stdout (same format as
  *              firmware/board/tdc_board_emulated.c)
+ *   the rest:  tdc_board_stub.c (no vsync, timer at 0, power-on reset)
  * Usage: tdc_fw_host STREAM.tdcs
  */
 #include <stdio.h>
@@ -35,20 +36,6 @@ tdc_board_status_t tdc_board_panel_show(const uint8_t *fb, uint32_t stride, uint
     const uint64_t h = tdc_board_frame_checksum(fb, stride, width, height);
     printf("frame %u %016llx\n", (unsigned)frame_index, (unsigned long long)h);
     return TDC_BOARD_OK;
-}
-
-void tdc_board_vsync_wait(void)
-{
-}
-
-uint32_t tdc_board_time_us(void)
-{
-    return 0;
-}
-
-tdc_reset_cause_t tdc_board_reset_cause(void)
-{
-    return TDC_RESET_POWER_ON;
 }
 
 void tdc_board_log(const char *msg)

@@ -17,6 +17,7 @@
 
 #include "checkasm.h"
 #include "tdc_panels.h"
+#include "tdc_trm.h"
 #include "tdc_trm_kernels.h"
 
 #define MAXW 1500u

@@ -1,6 +1,6 @@
 /*
  * fuzz_frameloop.c - libFuzzer harness of the board frame loop
- * (firmware/board/tdc_main.c, built into this harness for a 16 x 8 stereo
+ * (firmware/board/tdc_main.c and its families, built with this harness for a 16 x 8 stereo
  * OLED panel with TRM, tile assembly and foveation with TAA compiled in) behind a test double
  * of the board interface: the transport returns the fuzz input in chunks
  * whose sizes come from byte 0, followed by a valid plain stream (a STREAM
@@ -23,7 +23,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../../firmware/board/tdc_main.c"
+#include "tdc_board.h"
+#include "tdc_fw_family.h"
 #include "tdc_link_encode.h"
 
 static const uint8_t *g_in;
@@ -82,7 +83,7 @@ tdc_board_status_t tdc_board_panel_show(const uint8_t *fb, uint32_t stride, uint
     for (uint32_t e = 0; e < FW_EYES; e++) {
         uint8_t now[FW_W * FW_H * 3u];
         eye_copy(now, fb, e);
-        if (g_check_kept && g_have_shown && !(g.eyes_updated & (1u << e)) && memcmp(now, g_shown[e], sizeof now) != 0)
+        if (g_check_kept && g_have_shown && !(tdc_fw.eyes_updated & (1u << e)) && memcmp(now, g_shown[e], sizeof now) != 0)
             abort(); /* invariant 2: a kept eye changed */
         memcpy(g_shown[e], now, sizeof now);
         valid &= memcmp(now, g_valid[e], sizeof now) == 0;
@@ -90,20 +91,6 @@ tdc_board_status_t tdc_board_panel_show(const uint8_t *fb, uint32_t stride, uint
     g_have_shown = 1;
     g_last_is_valid = valid;
     return TDC_BOARD_OK;
-}
-
-void tdc_board_vsync_wait(void)
-{
-}
-
-uint32_t tdc_board_time_us(void)
-{
-    return 0;
-}
-
-tdc_reset_cause_t tdc_board_reset_cause(void)
-{
-    return TDC_RESET_POWER_ON;
 }
 
 void tdc_board_log(const char *msg)
@@ -143,9 +130,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         const char *known = getenv("TDC_FUZZ_KNOWN");
         g_check_kept = !(known && strstr(known, "F1"));
     }
-    /* a board starts from zeroed RAM (crt0): so does each run */
-    memset(&g, 0, sizeof g);
-    memset(g_fb, 0, sizeof g_fb);
+    /* a board starts from zeroed RAM (crt0): so does each run's loop state
+     * and frame buffer (a family's own state is set up by each stream's
+     * header before it is used) */
+    memset(&tdc_fw, 0, sizeof tdc_fw);
+    memset(tdc_fw_fb, 0, sizeof tdc_fw_fb);
     g_in = size ? data + 1 : data;
     g_in_len = size ? size - 1 : 0;
     g_in_pos = 0;

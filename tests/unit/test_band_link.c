@@ -26,6 +26,7 @@
 
 #include "tdc_link.h"
 #include "tdc_link_encode.h"
+#include "test_link_util.h"
 
 #define W 37
 #define H 23
@@ -52,10 +53,7 @@ static int n_ev;
 static void setup(uint32_t sflags, int defer)
 {
     tdc_link_config_t cfg = {W, H, 2};
-    tdc_link_buffers_t b;
-    memset(&b, 0, sizeof b);
-    b.staging = staging;
-    b.staging_bytes = sizeof staging;
+    tdc_link_buffers_t b = lt_buffers(staging, sizeof staging);
     b.defer_full = (uint8_t)defer;
     for (int e = 0; e < 2; e++) {
         b.full[e] = defer ? NULL : full[e];

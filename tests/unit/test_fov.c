@@ -20,6 +20,7 @@
 #include <cmocka.h>
 
 #include "fov_fixture.h"
+#include "tdc_math.h"
 #include "golden/golden.h"
 
 static uint32_t g_rng = 12345u;
@@ -38,7 +39,7 @@ static void test_building_blocks(void **state)
     double e_log = 0, e_exp = 0, e_atan = 0;
     for (int k = 0; k < 200000; k++) {
         const uint64_t x = 1 + ((uint64_t)rnd() << (rnd() % 31)) + (rnd() & 0xFFFF);
-        const double l = tdc_fov_log2_q24(x) / 16777216.0;
+        const double l = tdc_log2_q24(x) / 16777216.0;
         e_log = fmax(e_log, fabs(l - log2((double)x)));
         const int32_t s = (int32_t)(rnd() % (40u << 24)) - (26 << 24); /* [-26, 14) */
         const double ex = exp2(s / 16777216.0) * 65536.0;

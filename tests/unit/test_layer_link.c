@@ -16,6 +16,7 @@
 #include "tdc_crc32.h"
 #include "tdc_link.h"
 #include "tdc_link_encode.h"
+#include "test_link_util.h"
 
 #define W 17 /* odd: partial tiles */
 #define H 9
@@ -66,10 +67,7 @@ static void fill_sender(uint32_t seed)
 static void setup_decoder(uint32_t sflags)
 {
     tdc_link_config_t cfg = {W, H, 2};
-    tdc_link_buffers_t b;
-    memset(&b, 0, sizeof b);
-    b.staging = staging;
-    b.staging_bytes = sizeof staging;
+    tdc_link_buffers_t b = lt_buffers(staging, sizeof staging);
     for (int e = 0; e < 2; e++) {
         memset(&d_frame[e], 0, sizeof d_frame[e]);
         for (int t = 0; t < TDC_LAYER_MAX; t++) {

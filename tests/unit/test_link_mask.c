@@ -14,6 +14,7 @@
 
 #include "tdc_link_encode.h"
 #include "link/tdc_link_gen.h"
+#include "test_link_util.h"
 
 #define W 17
 #define H 9
@@ -25,10 +26,7 @@ static void test_only_rgb888_compiled_in(void **state)
     (void)state;
     static tdc_link_decoder_t dec;
     tdc_link_config_t cfg = {W, H, 1};
-    tdc_link_buffers_t b;
-    memset(&b, 0, sizeof b);
-    b.staging = staging;
-    b.staging_bytes = sizeof staging;
+    tdc_link_buffers_t b = lt_buffers(staging, sizeof staging);
     b.full[0] = frame;
     b.full_stride = W * 3;
     assert_int_equal(tdc_link_decoder_init(&dec, &cfg, &b), TDC_OK);

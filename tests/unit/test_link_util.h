@@ -41,6 +41,18 @@ static inline uint64_t lt_fnv(uint64_t h, const void *p, size_t n)
     return h;
 }
 
+/* A decoder's buffers with only its staging: each test then wires the
+ * buffers its streams need (and nothing else, so the decoder refuses the
+ * rest). */
+static inline tdc_link_buffers_t lt_buffers(uint8_t *staging, size_t staging_bytes)
+{
+    tdc_link_buffers_t b;
+    memset(&b, 0, sizeof b);
+    b.staging = staging;
+    b.staging_bytes = staging_bytes;
+    return b;
+}
+
 /* Fills buffers with a recognisable pattern so "unchanged" is meaningful. */
 static inline int lt_init(lt_rig_t *r, uint16_t w, uint16_t h, uint8_t eyes)
 {
@@ -53,10 +65,7 @@ static inline int lt_init(lt_rig_t *r, uint16_t w, uint16_t h, uint8_t eyes)
     memset(r->fov_lp, 0x77, sizeof r->fov_lp);
     memset(r->fov_mv, 0x88, sizeof r->fov_mv);
     tdc_link_config_t cfg = {w, h, eyes};
-    tdc_link_buffers_t b;
-    memset(&b, 0, sizeof b);
-    b.staging = r->staging;
-    b.staging_bytes = sizeof r->staging;
+    tdc_link_buffers_t b = lt_buffers(r->staging, sizeof r->staging);
     b.full_stride = (uint32_t)w * 3u;
     b.reduced_bytes = sizeof r->reduced[0];
     b.fov_lp_bytes = sizeof r->fov_lp[0];

@@ -17,6 +17,7 @@
 #include "render/tdc_render.h"
 #include "render/tdc_render_stream.h"
 #include "tdc_link.h"
+#include "test_link_util.h"
 
 #define W 33 /* odd sizes: partial tiles, reduced size rounding */
 #define H 25
@@ -38,10 +39,7 @@ static uint32_t decode_file(const char *path, uint32_t by_kind[TDC_LINK_KIND_LAS
 {
     static tdc_link_decoder_t dec;
     tdc_link_config_t cfg = {W, H, 1};
-    tdc_link_buffers_t b;
-    memset(&b, 0, sizeof b);
-    b.staging = staging;
-    b.staging_bytes = sizeof staging;
+    tdc_link_buffers_t b = lt_buffers(staging, sizeof staging);
     b.full[0] = dfull;
     b.full_stride = W * 3;
     b.reduced[0] = dred;
