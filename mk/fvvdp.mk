@@ -1,0 +1,47 @@
+# FovVideoVDP, written from the paper (Mantiuk et al. 2021): the simulator's
+# visual model.  See docs/visual-model.md.
+#
+# The metric lives in the host simulation library (its thread threshold,
+# tdc_par_min_work, in the simulator's archive); its row loops run
+# threaded with gcc's OpenMP (sim/tdc_par.h), so programs that link it link
+# with -fopenmp too.
+FVVDP_SRCS := sim/metrics/tdc_fvvdp.c sim/metrics/tdc_fvvdp_display.c sim/metrics/tdc_fvvdp_pyr.c \
+              sim/metrics/tdc_fvvdp_temporal.c sim/metrics/tdc_fvvdp_csf.c
+SIM_SRCS += $(FVVDP_SRCS)
+FVVDP_OMP := $(if $(filter gcc,$(CCNAME)),-fopenmp)
+FVVDP_OBJS = $(patsubst %.c,$(B)/%.o,$(FVVDP_SRCS))
+$(FVVDP_OBJS): HOST_CFLAGS += $(FVVDP_OMP) $(if $(filter gcc,$(CCNAME)),-fno-trapping-math -fno-math-errno)
+
+# The validation set (sim/metrics/validation): its generators, the tool that
+# dumps its frames for the reference and prints the table, the stored
+# reference numbers.
+FVVDP_VAL_OBJ := $(B)/sim/metrics/validation/fvvdp_conditions.o
+TDC_FVVDP_VALIDATE := $(B)/bin/tdc-fvvdp-validate
+HOST_PROGS += $(TDC_FVVDP_VALIDATE)
+$(TDC_FVVDP_VALIDATE): $(B)/sim/metrics/validation/fvvdp_validate.o $(FVVDP_VAL_OBJ) $$(SIMXLIB) $(SIMLIB) $(FWLIB)
+	@mkdir -p $(@D)
+	$(CC) $(HOST_LDFLAGS) $(FVVDP_OMP) $(filter %.o,$^) -o $@ -Wl,--start-group $(SIMXLIB) $(SIMLIB) $(FWLIB) -Wl,--end-group $(HOST_LIBS)
+
+# Running the reference beside the project (never a build or test
+# dependency): `make fvvdp-reference FVVDP_REF=/path/to/FovVideoVDP`
+# rewrites the stored table; python3-torch is Debian's.
+DEPS_PKGS += python3-torch # fvvdp-reference only: runs the reference FovVideoVDP on the CPU
+FVVDP_REF ?=
+fvvdp-reference: $(TDC_FVVDP_VALIDATE)
+	@test -n "$(FVVDP_REF)" || { echo "fvvdp-reference: set FVVDP_REF to a FovVideoVDP checkout"; exit 2; }
+	rm -rf $(B)/fvvdp-frames
+	$(TDC_FVVDP_VALIDATE) dump $(B)/fvvdp-frames
+	{ echo "# FovVideoVDP reference $(FVVDP_REF), made by: make fvvdp-reference"; \
+	  FVVDP_THREADS=1 /usr/bin/python3 sim/metrics/validation/fvvdp_reference.py $(FVVDP_REF) $(B)/fvvdp-frames; } \
+	    > $(B)/fvvdp_reference.csv.tmp
+	mv $(B)/fvvdp_reference.csv.tmp sim/metrics/validation/fvvdp_reference.csv
+	$(TDC_FVVDP_VALIDATE) table sim/metrics/validation/fvvdp_reference.csv
+.PHONY: fvvdp-reference
+
+# Tests: the stages (exact properties) and the stored-reference comparison.
+FVVDP_TESTS := test_fvvdp_valid
+TESTS += $(foreach t,$(FVVDP_TESTS),$(B)/tests/unit/$(t))
+$(B)/tests/unit/test_fvvdp_valid.o: HOST_CFLAGS += -DFVVDP_REFERENCE_CSV='"sim/metrics/validation/fvvdp_reference.csv"'
+$(foreach t,$(FVVDP_TESTS),$(B)/tests/unit/$(t)): $(B)/tests/%: $(B)/tests/%.o $(FVVDP_VAL_OBJ) $$(SIMXLIB) $(SIMLIB) $(FWLIB)
+	@mkdir -p $(@D)
+	$(CC) $(HOST_LDFLAGS) $(FVVDP_OMP) $(filter %.o,$^) -o $@ -Wl,--start-group $(SIMXLIB) $(SIMLIB) $(FWLIB) -Wl,--end-group $(HOST_LIBS)

@@ -1,0 +1,131 @@
+/*
+ * fvvdp_validate.c - tdc-fvvdp-validate: the validation set of the
+ * FovVideoVDP port against the reference implementation.
+ *
+ *   tdc-fvvdp-validate dump DIR     write the frames (DIR/<name>.f32: the
+ *                                   test frames then the reference frames,
+ *                                   float32 cd/m^2, row-major) and
+ *                                   DIR/manifest.csv for fvvdp_reference.py
+ *   tdc-fvvdp-validate table CSV    tdc's JOD beside the reference's (CSV
+ *                                   from fvvdp_reference.py): a markdown
+ *                                   table, mean and max |dJOD|, Spearman
+ *                                   rank correlation, tdc's throughput
+ *
+ * Exit codes: 0 done, 2 usage, 3 input (CSV) unreadable or incomplete,
+ * 4 output not written, 5 metric refused a condition.
+ */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+
+#include "fvvdp_conditions.h"
+#include "metrics/tdc_fvvdp.h"
+
+#define TOOL "tdc-fvvdp-validate"
+
+static int dump(const char *dir)
+{
+    char path[4096];
+    if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
+        fprintf(stderr, TOOL ": dump: cannot create %s: %s\n", dir, strerror(errno));
+        return 4;
+    }
+    snprintf(path, sizeof path, "%s/manifest.csv", dir);
+    FILE *mf = fopen(path, "w");
+    if (!mf) {
+        fprintf(stderr, TOOL ": dump: cannot write %s: %s\n", path, strerror(errno));
+        return 4;
+    }
+    fprintf(mf, "name,width,height,frames,fps,width_m,distance_m,gaze_x,gaze_y\n");
+    float fr[64 * 64];
+    int bad = 0;
+    for (int i = 0; i < fvvdp_ncond; i++) {
+        const fvvdp_cond_t *c = &fvvdp_conds[i];
+        tdc_fvvdp_geometry_t g = tdc_fvvdp_geometry_ppd(c->w, c->h, c->ppd);
+        double gz[2];
+        int fov = fvvdp_cond_gaze(c, gz);
+        fprintf(mf, "%s,%d,%d,%d,%.17g,%.17g,%.17g,", c->name, c->w, c->h, c->frames, c->frames > 1 ? c->fps : 0.0,
+                g.width_m, g.distance_m);
+        if (fov) {
+            fprintf(mf, "%.17g,%.17g\n", gz[0], gz[1]);
+        } else {
+            fprintf(mf, "nan,nan\n");
+        }
+        snprintf(path, sizeof path, "%s/%s.f32", dir, c->name);
+        FILE *f = fopen(path, "wb");
+        if (!f) {
+            fprintf(stderr, TOOL ": dump: cannot write %s: %s\n", path, strerror(errno));
+            fclose(mf);
+            return 4;
+        }
+        for (int t = 1; t >= 0; t--) {
+            for (int k = 0; k < c->frames; k++) {
+                fvvdp_cond_frame(c, k, t, fr);
+                bad |= fwrite(fr, sizeof(float), (size_t)c->w * c->h, f) != (size_t)c->w * c->h;
+            }
+        }
+        bad |= fclose(f) != 0;
+    }
+    bad |= fclose(mf) != 0;
+    if (bad) {
+        fprintf(stderr, TOOL ": dump: write to %s failed\n", dir);
+        return 4;
+    }
+    printf("%d conditions written to %s\n", fvvdp_ncond, dir);
+    return 0;
+}
+
+static int table(const char *csv)
+{
+    double ref[FVVDP_MAXCOND], secs[FVVDP_MAXCOND], tdc[FVVDP_MAXCOND] = { 0 };
+    int rc = fvvdp_read_reference(csv, ref, secs);
+    if (rc == -1) {
+        fprintf(stderr, TOOL ": table: cannot read %s: %s\n", csv, strerror(errno));
+        return 3;
+    }
+    if (rc < -1) {
+        fprintf(stderr, TOOL ": table: %s has no row for condition %s\n", csv, fvvdp_conds[-2 - rc].name);
+        return 3;
+    }
+    double sum = 0, mx = 0, tref = 0, ttdc = 0;
+    printf("| condition | reference JOD | tdc JOD | tdc - reference |\n|---|---:|---:|---:|\n");
+    for (int i = 0; i < fvvdp_ncond; i++) {
+        char why[160];
+        struct timespec t0, t1;
+        clock_gettime(CLOCK_MONOTONIC, &t0);
+        tdc[i] = fvvdp_cond_run(&fvvdp_conds[i], why, sizeof why);
+        clock_gettime(CLOCK_MONOTONIC, &t1);
+        if (isnan(tdc[i])) {
+            fprintf(stderr, TOOL ": table: condition %s refused: %s\n", fvvdp_conds[i].name, why);
+            return 5;
+        }
+        ttdc += (t1.tv_sec - t0.tv_sec) + 1e-9 * (t1.tv_nsec - t0.tv_nsec);
+        tref += secs[i];
+        double d = tdc[i] - ref[i];
+        sum += fabs(d);
+        mx = fabs(d) > mx ? fabs(d) : mx;
+        printf("| %s | %.4f | %.4f | %+.4f |\n", fvvdp_conds[i].name, ref[i], tdc[i], d);
+    }
+    printf("\n%d conditions: mean |dJOD| %.4f (goal <= 0.1), max |dJOD| %.4f (goal <= 0.3), Spearman %.4f (goal >= 0.98)\n",
+           fvvdp_ncond, sum / fvvdp_ncond, mx, fvvdp_spearman(ref, tdc, fvvdp_ncond));
+    if (!isnan(tref)) {
+        printf("time over the set: tdc %.3f s, reference %.3f s (ratio %.1fx)\n", ttdc, tref, tref / ttdc);
+    }
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc == 3 && strcmp(argv[1], "dump") == 0) {
+        return dump(argv[2]);
+    }
+    if (argc == 3 && strcmp(argv[1], "table") == 0) {
+        return table(argv[2]);
+    }
+    fprintf(stderr, TOOL ": usage: " TOOL " dump DIR | table REFERENCE.csv\n");
+    return 2;
+}
