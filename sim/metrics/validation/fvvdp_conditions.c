@@ -16,52 +16,51 @@
 #include "fvvdp_conditions.h"
 #include "metrics/tdc_fvvdp.h"
 
-enum { K_SAME, K_BLUR, K_NOISE, K_CONTRAST, K_FLICKER, K_JUDDER, K_DROP, K_ALT, K_DYNNOISE };
 
 /* The pan speed of moving conditions, deg/s. */
 #define PAN 4.0
 
 const fvvdp_cond_t fvvdp_conds[] = {
-    { "identical-image", 64, 64, 1, 0, 20, 0, K_SAME, 0, 0 },
-    { "blur-0.5px-20ppd", 64, 64, 1, 0, 20, 0, K_BLUR, 0.5, 0 },
-    { "blur-1px-20ppd", 64, 64, 1, 0, 20, 0, K_BLUR, 1.0, 0 },
-    { "blur-2px-20ppd", 64, 64, 1, 0, 20, 0, K_BLUR, 2.0, 0 },
-    { "blur-1px-11.4ppd", 64, 64, 1, 0, 11.4, 0, K_BLUR, 1.0, 0 },
-    { "blur-1px-56ppd", 64, 64, 1, 0, 56, 0, K_BLUR, 1.0, 0 },
-    { "noise-0.01-20ppd", 64, 64, 1, 0, 20, 0, K_NOISE, 0.01, 0 },
-    { "noise-0.03-20ppd", 64, 64, 1, 0, 20, 0, K_NOISE, 0.03, 0 },
-    { "noise-0.1-20ppd", 64, 64, 1, 0, 20, 0, K_NOISE, 0.1, 0 },
-    { "noise-0.03-56ppd", 64, 64, 1, 0, 56, 0, K_NOISE, 0.03, 0 },
-    { "contrast-0.9-20ppd", 64, 64, 1, 0, 20, 0, K_CONTRAST, 0.9, 0 },
-    { "contrast-0.7-20ppd", 64, 64, 1, 0, 20, 0, K_CONTRAST, 0.7, 0 },
-    { "contrast-0.5-11.4ppd", 64, 64, 1, 0, 11.4, 0, K_CONTRAST, 0.5, 0 },
-    { "flicker-5Hz-120fps", 64, 64, 40, 120, 20, 0, K_FLICKER, 0.05, 5 },
-    { "flicker-10Hz-120fps", 64, 64, 40, 120, 20, 0, K_FLICKER, 0.05, 10 },
-    { "flicker-20Hz-120fps", 64, 64, 40, 120, 20, 0, K_FLICKER, 0.05, 20 },
-    { "flicker-30Hz-120fps", 64, 64, 40, 120, 20, 0, K_FLICKER, 0.05, 30 },
-    { "flicker-60Hz-240fps", 64, 64, 80, 240, 20, 0, K_FLICKER, 0.05, 60 },
-    { "flicker-20Hz-60fps-56ppd", 64, 64, 24, 60, 56, 0, K_FLICKER, 0.05, 20 },
-    { "judder-hold2-120fps-11.4ppd", 64, 64, 40, 120, 11.4, 0, K_JUDDER, 2, PAN },
-    { "judder-hold3-90fps-20ppd", 64, 64, 30, 90, 20, 0, K_JUDDER, 3, PAN },
-    { "drop-every6-90fps-20ppd", 64, 64, 30, 90, 20, 0, K_DROP, 6, PAN },
-    { "drop-every5-60fps-56ppd", 64, 64, 24, 60, 56, 0, K_DROP, 5, PAN },
-    { "trm-alt45-90fps", 64, 64, 30, 90, 20, 0, K_ALT, 1.5, 0 },
-    { "trm-alt60-120fps", 64, 64, 40, 120, 20, 0, K_ALT, 1.5, 0 },
-    { "trm-alt72-144fps", 64, 64, 48, 144, 20, 0, K_ALT, 1.5, 0 },
-    { "trm-alt120-240fps", 64, 64, 80, 240, 20, 0, K_ALT, 1.5, 0 },
-    { "trm-alt45-90fps-pan-11.4ppd", 64, 64, 30, 90, 11.4, 0, K_ALT, 1.5, PAN },
-    { "fovblur-2px-5deg", 64, 64, 1, 0, 20, 5, K_BLUR, 2.0, 0 },
-    { "fovblur-2px-10deg", 64, 64, 1, 0, 20, 10, K_BLUR, 2.0, 0 },
-    { "fovblur-2px-20deg", 64, 64, 1, 0, 20, 20, K_BLUR, 2.0, 0 },
-    { "fovblur-2px-30deg", 64, 64, 1, 0, 20, 30, K_BLUR, 2.0, 0 },
-    { "fovblur-2px-10deg-11.4ppd", 64, 64, 1, 0, 11.4, 10, K_BLUR, 2.0, 0 },
-    { "fovblur-2px-10deg-56ppd", 64, 64, 1, 0, 56, 10, K_BLUR, 2.0, 0 },
-    { "fovnoise-0.03-20deg-90fps", 64, 64, 30, 90, 20, 20, K_DYNNOISE, 0.03, 0 },
-    { "dynnoise-0.03-60fps", 64, 64, 24, 60, 20, 0, K_DYNNOISE, 0.03, 0 },
-    { "dynnoise-0.03-144fps", 64, 64, 48, 144, 20, 0, K_DYNNOISE, 0.03, 0 },
-    { "dynnoise-0.03-240fps", 64, 64, 80, 240, 20, 0, K_DYNNOISE, 0.03, 0 },
-    { "identical-video-pan-90fps", 64, 64, 30, 90, 20, 0, K_SAME, 0, PAN },
-    { "blur-1px-video-pan-60fps", 64, 64, 24, 60, 20, 0, K_BLUR, 1.0, PAN },
+    { "identical-image", 64, 64, 1, 0, 20, 0, FVVDP_K_SAME, 0, 0 },
+    { "blur-0.5px-20ppd", 64, 64, 1, 0, 20, 0, FVVDP_K_BLUR, 0.5, 0 },
+    { "blur-1px-20ppd", 64, 64, 1, 0, 20, 0, FVVDP_K_BLUR, 1.0, 0 },
+    { "blur-2px-20ppd", 64, 64, 1, 0, 20, 0, FVVDP_K_BLUR, 2.0, 0 },
+    { "blur-1px-11.4ppd", 64, 64, 1, 0, 11.4, 0, FVVDP_K_BLUR, 1.0, 0 },
+    { "blur-1px-56ppd", 64, 64, 1, 0, 56, 0, FVVDP_K_BLUR, 1.0, 0 },
+    { "noise-0.01-20ppd", 64, 64, 1, 0, 20, 0, FVVDP_K_NOISE, 0.01, 0 },
+    { "noise-0.03-20ppd", 64, 64, 1, 0, 20, 0, FVVDP_K_NOISE, 0.03, 0 },
+    { "noise-0.1-20ppd", 64, 64, 1, 0, 20, 0, FVVDP_K_NOISE, 0.1, 0 },
+    { "noise-0.03-56ppd", 64, 64, 1, 0, 56, 0, FVVDP_K_NOISE, 0.03, 0 },
+    { "contrast-0.9-20ppd", 64, 64, 1, 0, 20, 0, FVVDP_K_CONTRAST, 0.9, 0 },
+    { "contrast-0.7-20ppd", 64, 64, 1, 0, 20, 0, FVVDP_K_CONTRAST, 0.7, 0 },
+    { "contrast-0.5-11.4ppd", 64, 64, 1, 0, 11.4, 0, FVVDP_K_CONTRAST, 0.5, 0 },
+    { "flicker-5Hz-120fps", 64, 64, 40, 120, 20, 0, FVVDP_K_FLICKER, 0.05, 5 },
+    { "flicker-10Hz-120fps", 64, 64, 40, 120, 20, 0, FVVDP_K_FLICKER, 0.05, 10 },
+    { "flicker-20Hz-120fps", 64, 64, 40, 120, 20, 0, FVVDP_K_FLICKER, 0.05, 20 },
+    { "flicker-30Hz-120fps", 64, 64, 40, 120, 20, 0, FVVDP_K_FLICKER, 0.05, 30 },
+    { "flicker-60Hz-240fps", 64, 64, 80, 240, 20, 0, FVVDP_K_FLICKER, 0.05, 60 },
+    { "flicker-20Hz-60fps-56ppd", 64, 64, 24, 60, 56, 0, FVVDP_K_FLICKER, 0.05, 20 },
+    { "judder-hold2-120fps-11.4ppd", 64, 64, 40, 120, 11.4, 0, FVVDP_K_JUDDER, 2, PAN },
+    { "judder-hold3-90fps-20ppd", 64, 64, 30, 90, 20, 0, FVVDP_K_JUDDER, 3, PAN },
+    { "drop-every6-90fps-20ppd", 64, 64, 30, 90, 20, 0, FVVDP_K_DROP, 6, PAN },
+    { "drop-every5-60fps-56ppd", 64, 64, 24, 60, 56, 0, FVVDP_K_DROP, 5, PAN },
+    { "trm-alt45-90fps", 64, 64, 30, 90, 20, 0, FVVDP_K_ALT, 1.5, 0 },
+    { "trm-alt60-120fps", 64, 64, 40, 120, 20, 0, FVVDP_K_ALT, 1.5, 0 },
+    { "trm-alt72-144fps", 64, 64, 48, 144, 20, 0, FVVDP_K_ALT, 1.5, 0 },
+    { "trm-alt120-240fps", 64, 64, 80, 240, 20, 0, FVVDP_K_ALT, 1.5, 0 },
+    { "trm-alt45-90fps-pan-11.4ppd", 64, 64, 30, 90, 11.4, 0, FVVDP_K_ALT, 1.5, PAN },
+    { "fovblur-2px-5deg", 64, 64, 1, 0, 20, 5, FVVDP_K_BLUR, 2.0, 0 },
+    { "fovblur-2px-10deg", 64, 64, 1, 0, 20, 10, FVVDP_K_BLUR, 2.0, 0 },
+    { "fovblur-2px-20deg", 64, 64, 1, 0, 20, 20, FVVDP_K_BLUR, 2.0, 0 },
+    { "fovblur-2px-30deg", 64, 64, 1, 0, 20, 30, FVVDP_K_BLUR, 2.0, 0 },
+    { "fovblur-2px-10deg-11.4ppd", 64, 64, 1, 0, 11.4, 10, FVVDP_K_BLUR, 2.0, 0 },
+    { "fovblur-2px-10deg-56ppd", 64, 64, 1, 0, 56, 10, FVVDP_K_BLUR, 2.0, 0 },
+    { "fovnoise-0.03-20deg-90fps", 64, 64, 30, 90, 20, 20, FVVDP_K_DYNNOISE, 0.03, 0 },
+    { "dynnoise-0.03-60fps", 64, 64, 24, 60, 20, 0, FVVDP_K_DYNNOISE, 0.03, 0 },
+    { "dynnoise-0.03-144fps", 64, 64, 48, 144, 20, 0, FVVDP_K_DYNNOISE, 0.03, 0 },
+    { "dynnoise-0.03-240fps", 64, 64, 80, 240, 20, 0, FVVDP_K_DYNNOISE, 0.03, 0 },
+    { "identical-video-pan-90fps", 64, 64, 30, 90, 20, 0, FVVDP_K_SAME, 0, PAN },
+    { "blur-1px-video-pan-60fps", 64, 64, 24, 60, 20, 0, FVVDP_K_BLUR, 1.0, PAN },
 };
 const int fvvdp_ncond = (int)(sizeof fvvdp_conds / sizeof fvvdp_conds[0]);
 
@@ -131,18 +130,18 @@ void fvvdp_cond_frame(const fvvdp_cond_t *c, int f, int t, float *out)
     double speed = c->b * c->ppd / fps; /* px per refresh for panning kinds */
     double pos = f;                     /* content time in refreshes */
     double v[MAXW * MAXW], lo[MAXW * MAXW];
-    if (t && c->kind == K_JUDDER) {
+    if (t && c->kind == FVVDP_K_JUDDER) {
         pos = floor(f / c->a) * c->a;
-    } else if (t && c->kind == K_DROP && f > 0 && f % (int)c->a == 0) {
+    } else if (t && c->kind == FVVDP_K_DROP && f > 0 && f % (int)c->a == 0) {
         pos = f - 1;
     }
-    int moving = (c->kind == K_JUDDER || c->kind == K_DROP || c->kind == K_ALT || c->kind == K_SAME || c->kind == K_BLUR);
+    int moving = (c->kind == FVVDP_K_JUDDER || c->kind == FVVDP_K_DROP || c->kind == FVVDP_K_ALT || c->kind == FVVDP_K_SAME || c->kind == FVVDP_K_BLUR);
     double dx = moving ? speed * pos : 0.0;
-    if (c->kind == K_SAME || c->kind == K_BLUR) {
+    if (c->kind == FVVDP_K_SAME || c->kind == FVVDP_K_BLUR) {
         dx = c->b * c->ppd / fps * f;
     }
-    content(w, h, dx, t && c->kind == K_BLUR ? c->a : 0.0, v);
-    if (t && c->kind == K_ALT) {
+    content(w, h, dx, t && c->kind == FVVDP_K_BLUR ? c->a : 0.0, v);
+    if (t && c->kind == FVVDP_K_ALT) {
         /* Alternating high-pass: the two-frame mean is the reference. */
         content(w, h, dx, c->a, lo);
         double s = (f & 1) ? -1.0 : 1.0;
@@ -155,16 +154,16 @@ void fvvdp_cond_frame(const fvvdp_cond_t *c, int f, int t, float *out)
             double e = v[y * w + x];
             if (t) {
                 switch (c->kind) {
-                case K_NOISE:
+                case FVVDP_K_NOISE:
                     e += c->a * hash(x, y, 1);
                     break;
-                case K_DYNNOISE:
+                case FVVDP_K_DYNNOISE:
                     e += c->a * hash(x, y, 1 + f);
                     break;
-                case K_CONTRAST:
+                case FVVDP_K_CONTRAST:
                     e = 0.45 + c->a * (e - 0.45);
                     break;
-                case K_FLICKER:
+                case FVVDP_K_FLICKER:
                     e *= 1.0 + c->a * sin(2.0 * M_PI * c->b * f / fps);
                     break;
                 default:

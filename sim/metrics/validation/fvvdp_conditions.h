@@ -12,6 +12,16 @@
 
 #include <stddef.h>
 
+/* Generators: test = reference (SAME), Gaussian blur of a px, static or
+ * per-frame noise of amplitude a, contrast scaled by a, flicker of depth a at
+ * b Hz, content held a refreshes (JUDDER) or every a-th refresh repeated
+ * (DROP) while panning at b deg/s, TRM-like alternation (+/- the detail above
+ * a Gaussian of a px, on alternate refreshes). */
+enum {
+    FVVDP_K_SAME, FVVDP_K_BLUR, FVVDP_K_NOISE, FVVDP_K_CONTRAST, FVVDP_K_FLICKER,
+    FVVDP_K_JUDDER, FVVDP_K_DROP, FVVDP_K_ALT, FVVDP_K_DYNNOISE
+};
+
 typedef struct {
     const char *name;
     int w, h, frames;
