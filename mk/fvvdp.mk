@@ -45,3 +45,11 @@ $(B)/tests/unit/test_fvvdp_valid.o: HOST_CFLAGS += -DFVVDP_REFERENCE_CSV='"sim/m
 $(foreach t,$(FVVDP_TESTS),$(B)/tests/unit/$(t)): $(B)/tests/%: $(B)/tests/%.o $(FVVDP_VAL_OBJ) $$(SIMXLIB) $(SIMLIB) $(FWLIB)
 	@mkdir -p $(@D)
 	$(CC) $(HOST_LDFLAGS) $(FVVDP_OMP) $(filter %.o,$^) -o $@ -Wl,--start-group $(SIMXLIB) $(SIMLIB) $(FWLIB) -Wl,--end-group $(HOST_LIBS)
+
+# Part of `make bench-sim`: the metric's throughput against the reference's
+# on the same frames (tests/bench/bench_fvvdp.sh; FVVDP_REF to run the
+# reference in the same run, else its stored seconds).
+.PHONY: bench-fvvdp
+bench-fvvdp: $(TDC_FVVDP_VALIDATE)
+	@tests/bench/bench_fvvdp.sh $(TDC_FVVDP_VALIDATE) $(FVVDP_REF)
+bench-sim: bench-fvvdp

@@ -262,7 +262,7 @@ static double band_q(tdc_fvvdp_t *m, int l, int ch, const double *gaze)
         tdc_fvvdp_view_dir(&m->g, m->w, m->h, gaze[0] + 0.5, gaze[1] + 0.5, gd);
     }
     const double *rm = gaze ? m->resmag[l] : NULL;
-    TDC_PAR_FOR((long)bw * bh * 8)
+    TDC_PAR_FOR((long)bw * bh)
     for (int y = 0; y < bh; y++) {
         double s = 0.0, vy = 0.0;
         if (gaze) {

@@ -6,6 +6,10 @@
  *                                   test frames then the reference frames,
  *                                   float32 cd/m^2, row-major) and
  *                                   DIR/manifest.csv for fvvdp_reference.py
+ *   tdc-fvvdp-validate bench        seconds tdc's metric spends on the set
+ *                                   (frames made beforehand, untimed): the
+ *                                   figure make bench-sim sets against the
+ *                                   reference's on the same frames
  *   tdc-fvvdp-validate table CSV    tdc's JOD beside the reference's (CSV
  *                                   from fvvdp_reference.py): a markdown
  *                                   table, mean and max |dJOD|, Spearman
@@ -118,14 +122,57 @@ static int table(const char *csv)
     return 0;
 }
 
+static double now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec + 1e-9 * t.tv_nsec;
+}
+
+static int bench(void)
+{
+    static float fr[2][512][64 * 64];
+    double secs = 0.0, px = 0.0;
+    int frames = 0;
+    for (int i = 0; i < fvvdp_ncond; i++) {
+        const fvvdp_cond_t *c = &fvvdp_conds[i];
+        char why[160];
+        for (int k = 0; k < c->frames && k < 512; k++) {
+            fvvdp_cond_frame(c, k, 1, fr[0][k]);
+            fvvdp_cond_frame(c, k, 0, fr[1][k]);
+        }
+        tdc_fvvdp_geometry_t g = tdc_fvvdp_geometry_ppd(c->w, c->h, c->ppd);
+        double gz[2];
+        int fov = fvvdp_cond_gaze(c, gz);
+        double t0 = now();
+        tdc_fvvdp_t *m = tdc_fvvdp_new(&g, c->frames > 1 ? c->fps : 0.0, why, sizeof why);
+        if (!m) {
+            fprintf(stderr, TOOL ": bench: condition %s refused: %s\n", c->name, why);
+            return 5;
+        }
+        for (int k = 0; k < c->frames; k++) {
+            tdc_fvvdp_frame(m, fr[0][k], fr[1][k], fov ? gz : NULL);
+        }
+        tdc_fvvdp_free(m);
+        secs += now() - t0;
+        frames += c->frames;
+        px += (double)c->frames * c->w * c->h;
+    }
+    printf("tdc %d frames %.0f pixels %.4f s\n", frames, px, secs);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
+    if (argc == 2 && strcmp(argv[1], "bench") == 0) {
+        return bench();
+    }
     if (argc == 3 && strcmp(argv[1], "dump") == 0) {
         return dump(argv[2]);
     }
     if (argc == 3 && strcmp(argv[1], "table") == 0) {
         return table(argv[2]);
     }
-    fprintf(stderr, TOOL ": usage: " TOOL " dump DIR | table REFERENCE.csv\n");
+    fprintf(stderr, TOOL ": usage: " TOOL " dump DIR | bench | table REFERENCE.csv\n");
     return 2;
 }
