@@ -68,7 +68,11 @@ struct tdc_fvvdp {
     double *gp[4][TDC_FVVDP_MAX_LEVELS];  /* Gaussian pyramids of the signals */
     double *resmag[TDC_FVVDP_MAX_LEVELS]; /* off-axis magnification per band sample */
     double *bkg, *ct, *cr, *tmp, *rows;
-    double qsum;
+    double fovea_deg;
+    /* Q of the frame in progress and pooled over frames: [all, fovea, periphery]. */
+    double qsc[3][2], qsum[3];
+    int nq[3];
+    tdc_fvvdp_jods_t last;
     size_t bytes;
 };
 
@@ -108,6 +112,7 @@ tdc_fvvdp_t *tdc_fvvdp_new(const tdc_fvvdp_geometry_t *g, double fps, char *why,
     m->h = g->height;
     m->ppd = tdc_fvvdp_ppd(g);
     m->fps = fps;
+    m->fovea_deg = 5.0;
     if (tdc_fvvdp_pyr_layout(&m->pyr, m->w, m->h, m->ppd) != 0) {
         snprintf(why, why_len, "no pyramid for %dx%d at %g px/deg", m->w, m->h, m->ppd);
         free(m);
@@ -133,7 +138,7 @@ tdc_fvvdp_t *tdc_fvvdp_new(const tdc_fvvdp_geometry_t *g, double fps, char *why,
     ok &= (m->ct = zalloc(m, n, sizeof(double))) != NULL;
     ok &= (m->cr = zalloc(m, n, sizeof(double))) != NULL;
     ok &= (m->tmp = zalloc(m, n, sizeof(double))) != NULL;
-    ok &= (m->rows = zalloc(m, (size_t)m->h, sizeof(double))) != NULL;
+    ok &= (m->rows = zalloc(m, 3 * (size_t)m->h, sizeof(double))) != NULL;
     if (!ok) {
         snprintf(why, why_len, "out of memory (%zu bytes)", m->bytes);
         tdc_fvvdp_free(m);
@@ -175,9 +180,43 @@ size_t tdc_fvvdp_bytes(const tdc_fvvdp_t *m)
     return m->bytes + sizeof *m;
 }
 
+static double pooled(const tdc_fvvdp_t *m, int r)
+{
+    return m->nq[r] ? tdc_fvvdp_q2jod(m->qsum[r] / m->nq[r]) : NAN;
+}
+
 double tdc_fvvdp_jod(const tdc_fvvdp_t *m)
 {
-    return tdc_fvvdp_q2jod(m->frames ? m->qsum / m->frames : 0.0);
+    return m->nq[0] ? pooled(m, 0) : 10.0;
+}
+
+void tdc_fvvdp_pooled(const tdc_fvvdp_t *m, tdc_fvvdp_jods_t *j)
+{
+    j->all = pooled(m, 0);
+    j->fovea = pooled(m, 1);
+    j->periphery = pooled(m, 2);
+}
+
+void tdc_fvvdp_last(const tdc_fvvdp_t *m, tdc_fvvdp_jods_t *j)
+{
+    *j = m->last;
+}
+
+void tdc_fvvdp_reset_pool(tdc_fvvdp_t *m)
+{
+    for (int r = 0; r < 3; r++) {
+        m->qsum[r] = 0.0;
+        m->nq[r] = 0;
+    }
+}
+
+int tdc_fvvdp_set_fovea(tdc_fvvdp_t *m, double deg)
+{
+    if (!(deg > 0.0 && deg <= 90.0)) {
+        return -1;
+    }
+    m->fovea_deg = deg;
+    return 0;
 }
 
 /* Level 0 of the four signals: the frame itself (images) or the FIR of the
@@ -249,22 +288,27 @@ static void resmag_maps(tdc_fvvdp_t *m)
 }
 
 /* Q of one band and channel: the beta-mean of the masked, CSF-normalised
- * difference of the contrasts in m->ct (test) and m->cr (reference). */
-static double band_q(tdc_fvvdp_t *m, int l, int ch, const double *gaze)
+ * difference of the contrasts in m->ct (test) and m->cr (reference), over
+ * the band (q[0]) and, with a gaze, over its samples within fovea_deg of the
+ * gaze (q[1]) and beyond (q[2]; -1 where the region has no sample).  The
+ * regional means are tdc's, not the paper's: the same pooling restricted to
+ * the region's samples. */
+static void band_q(tdc_fvvdp_t *m, int l, int ch, const double *gaze, double q[3])
 {
     int bw = m->pyr.w[l], bh = m->pyr.h[l];
     double rho = m->pyr.rho[l];
     double corr = pow(10.0, SENS_CORR_DB / 20.0);
     double mc = pow(10.0, MASK_C);
-    double q = ch ? MASK_Q_TRANS : MASK_Q_SUST;
+    double mq = ch ? MASK_Q_TRANS : MASK_Q_SUST;
     double gd[2] = { 0.0, 0.0 };
     if (gaze) {
         tdc_fvvdp_view_dir(&m->g, m->w, m->h, gaze[0] + 0.5, gaze[1] + 0.5, gd);
     }
     const double *rm = gaze ? m->resmag[l] : NULL;
+    double *rin = m->rows + m->h, *nin = m->rows + 2 * (size_t)m->h;
     TDC_PAR_FOR((long)bw * bh)
     for (int y = 0; y < bh; y++) {
-        double s = 0.0, vy = 0.0;
+        double s = 0.0, si = 0.0, ni = 0.0, vy = 0.0;
         if (gaze) {
             double d[2];
             tdc_fvvdp_view_dir(&m->g, bw, bh, 0.5, y + 0.5, d);
@@ -283,14 +327,25 @@ static double band_q(tdc_fvvdp_t *m, int l, int ch, const double *gaze)
             double sens = tdc_fvvdp_csf_lut(ch, r, m->bkg[i], ecc) * corr;
             double t = m->ct[i] * sens, rr = m->cr[i] * sens;
             double mk = mc * fmin(fabs(t), fabs(rr));
-            double d = pow(fabs(t - rr), MASK_P) / (1.0 + pow(mk, q));
+            double d = pow(fabs(t - rr), MASK_P) / (1.0 + pow(mk, mq));
             d = d < 1e4 ? d : 1e4;
-            s += pow(d, BETA);
+            double e = pow(d, BETA);
+            s += e;
+            if (ecc < m->fovea_deg) {
+                si += e;
+                ni += 1.0;
+            }
         }
         m->rows[y] = s;
+        rin[y] = si;
+        nin[y] = ni;
     }
+    double n = (double)bw * bh;
     double sum = tdc_par_sum_rows(m->rows, bh);
-    return pow(sum / ((double)bw * bh), 1.0 / BETA);
+    double sin_ = tdc_par_sum_rows(rin, bh), n_in = tdc_par_sum_rows(nin, bh);
+    q[0] = pow(sum / n, 1.0 / BETA);
+    q[1] = n_in > 0.0 ? pow(sin_ / n_in, 1.0 / BETA) : -1.0;
+    q[2] = n - n_in > 0.0 ? pow(fmax(sum - sin_, 0.0) / (n - n_in), 1.0 / BETA) : -1.0;
 }
 
 /* Contrast of band l of signal s into out, given bkg of that band. */
@@ -321,7 +376,9 @@ double tdc_fvvdp_frame(tdc_fvvdp_t *m, const float *test, const float *ref, cons
     if (gaze) {
         resmag_maps(m);
     }
-    double qsc[2] = { 0.0, 0.0 };
+    /* Regions a band has no sample of are left out of that band's sum. */
+    double qsc[3][2] = { { 0.0, 0.0 }, { 0.0, 0.0 }, { 0.0, 0.0 } };
+    int have[3] = { 1, gaze != NULL, gaze != NULL };
     for (int l = 0; l + 1 < lv; l++) {
         int bw = m->pyr.w[l], bh = m->pyr.h[l];
         /* Local adaptation: the reference's sustained signal one level down. */
@@ -331,20 +388,34 @@ double tdc_fvvdp_frame(tdc_fvvdp_t *m, const float *test, const float *ref, cons
         }
         double mul = l == 0 ? 1.0 : 2.0;
         for (int c = 0; c < m->nch; c++) {
+            double q[3];
             band_contrast(m, 2 * c, l, mul, m->ct);
             band_contrast(m, 2 * c + 1, l, mul, m->cr);
-            qsc[c] += band_q(m, l, c, gaze) * (c ? W_TRANSIENT : 1.0);
+            band_q(m, l, c, gaze, q);
+            for (int r = 0; r < 3; r++) {
+                qsc[r][c] += q[r] > 0.0 ? q[r] * (c ? W_TRANSIENT : 1.0) : 0.0;
+                have[r] &= !(l == 0 && q[r] < 0.0);
+            }
         }
     }
-    double qtc = pow(qsc[0], BETA_TCH);
-    if (m->nch == 2) {
-        qtc += pow(qsc[1], BETA_TCH);
+    double qtc[3];
+    for (int r = 0; r < 3; r++) {
+        qtc[r] = pow(qsc[r][0], BETA_TCH);
+        if (m->nch == 2) {
+            qtc[r] += pow(qsc[r][1], BETA_TCH);
+        }
+        qtc[r] = pow(qtc[r], 1.0 / BETA_TCH);
+        if (have[r]) {
+            m->qsum[r] += qtc[r];
+            m->nq[r]++;
+        }
     }
-    qtc = pow(qtc, 1.0 / BETA_TCH);
-    m->qsum += qtc;
+    m->last.all = tdc_fvvdp_q2jod(qtc[0]);
+    m->last.fovea = have[1] ? tdc_fvvdp_q2jod(qtc[1]) : NAN;
+    m->last.periphery = have[2] ? tdc_fvvdp_q2jod(qtc[2]) : NAN;
     m->frames++;
     if (m->nch == 2) {
         m->head = (m->head + 1) % m->taps;
     }
-    return tdc_fvvdp_q2jod(qtc);
+    return m->last.all;
 }

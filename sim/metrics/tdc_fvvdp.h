@@ -109,8 +109,29 @@ void tdc_fvvdp_free(tdc_fvvdp_t *m);
  * foveated judging, or NULL for foveal sensitivity everywhere.  Returns the
  * JOD of this frame alone. */
 double tdc_fvvdp_frame(tdc_fvvdp_t *m, const float *test, const float *ref, const double *gaze);
-/* The JOD of every frame fed so far (pooled as the paper does). */
+/* The JOD of every frame fed (since the last reset_pool), pooled as the
+ * paper does; 10 before any. */
 double tdc_fvvdp_jod(const tdc_fvvdp_t *m);
+
+/* JODs of the whole view and of its regions: within the foveal radius of
+ * the gaze and beyond it (NAN without a gaze, or where a region has no
+ * pixel).  Regional JODs are tdc's extension: the paper's pooling
+ * restricted to the region's pixels (the CSF still sees every pixel's
+ * eccentricity); the reference has none, so they are not in the validation. */
+typedef struct {
+    double all, fovea, periphery;
+} tdc_fvvdp_jods_t;
+void tdc_fvvdp_pooled(const tdc_fvvdp_t *m, tdc_fvvdp_jods_t *j);
+/* The same for the last frame fed. */
+void tdc_fvvdp_last(const tdc_fvvdp_t *m, tdc_fvvdp_jods_t *j);
+/* Foveal radius in degrees (default 5: fovea and parafovea); -1 if out of
+ * (0, 90]. */
+int tdc_fvvdp_set_fovea(tdc_fvvdp_t *m, double deg);
+/* Forget the pooled frames, keep the temporal history: call once after a
+ * warm-up of 250 ms (the filters' length), so that the start-up of a clip,
+ * whose history is its first frame repeated, is not judged
+ * (docs/visual-model.md). */
+void tdc_fvvdp_reset_pool(tdc_fvvdp_t *m);
 /* Frames fed so far. */
 int tdc_fvvdp_frames(const tdc_fvvdp_t *m);
 /* Bytes the metric holds (the temporal history dominates). */

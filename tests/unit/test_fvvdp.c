@@ -14,6 +14,7 @@
  *   - identical inputs -> JOD 10 (image, video, foveated);
  *   - JOD strictly decreasing in blur and in noise strength;
  *   - the same JOD bits with 1 and 2 threads;
+ *   - the fovea/periphery split and pooling after the warm-up;
  *   - bad sizes, rates and geometry refused with a reason.
  */
 #include <math.h>
@@ -271,6 +272,74 @@ static void test_threads_identical(void **state)
     assert_true(j1 < 10.0);
 }
 
+/* The fovea/periphery split: noise of the same strength everywhere is worse
+ * where the eye looks (gaze on the left edge of a 5.6 deg view, 2.5 deg
+ * fovea); with the fovea covering everything the fovea is the whole view;
+ * a gaze 10 deg away leaves the 5 deg fovea empty (NAN). */
+static void test_regions(void **state)
+{
+    (void)state;
+    char why[160];
+    const fvvdp_cond_t c = { "noise", 64, 64, 1, 0, 11.4, 0, FVVDP_K_NOISE, 0.03, 0 };
+    float t[64 * 64], r[64 * 64];
+    fvvdp_cond_frame(&c, 0, 1, t);
+    fvvdp_cond_frame(&c, 0, 0, r);
+    tdc_fvvdp_geometry_t g = tdc_fvvdp_geometry_ppd(64, 64, 11.4);
+    tdc_fvvdp_t *m = tdc_fvvdp_new(&g, 0.0, why, sizeof why);
+    assert_non_null(m);
+    assert_int_equal(tdc_fvvdp_set_fovea(m, 2.5), 0);
+    assert_int_equal(tdc_fvvdp_set_fovea(m, 0.0), -1);
+    double edge[2] = { 0.0, 31.5 };
+    tdc_fvvdp_jods_t j;
+    tdc_fvvdp_frame(m, t, r, edge);
+    tdc_fvvdp_pooled(m, &j);
+    print_message("noise 0.03, gaze on the left edge, 2.5 deg fovea: all %.3f fovea %.3f periphery %.3f\n", j.all,
+                  j.fovea, j.periphery);
+    assert_true(j.fovea < j.periphery - 0.1);
+    assert_int_equal(tdc_fvvdp_set_fovea(m, 90.0), 0);
+    tdc_fvvdp_frame(m, t, r, edge);
+    tdc_fvvdp_last(m, &j);
+    assert_true(j.fovea == j.all && isnan(j.periphery));
+    tdc_fvvdp_free(m);
+    g = tdc_fvvdp_geometry_ppd(64, 64, 20.0);
+    m = tdc_fvvdp_new(&g, 0.0, why, sizeof why);
+    double away[2];
+    const fvvdp_cond_t far = { "blur", 64, 64, 1, 0, 20, 10, FVVDP_K_BLUR, 2.0, 0 };
+    assert_int_equal(fvvdp_cond_gaze(&far, away), 1);
+    tdc_fvvdp_frame(m, t, r, away);
+    tdc_fvvdp_last(m, &j);
+    assert_true(isnan(j.fovea));
+    assert_true(j.periphery == j.all);
+    tdc_fvvdp_free(m);
+}
+
+/* Pooling after the 250 ms warm-up judges the alternation, not the
+ * start-up (docs/visual-model.md): 9.90 against 8.38 pooled from frame 0. */
+static void test_reset_pool(void **state)
+{
+    (void)state;
+    char why[160];
+    const fvvdp_cond_t c = { "alt", 64, 64, 40, 90, 20, 0, FVVDP_K_ALT, 1.5, 0 };
+    tdc_fvvdp_geometry_t g = tdc_fvvdp_geometry_ppd(64, 64, 20.0);
+    tdc_fvvdp_t *m = tdc_fvvdp_new(&g, 90.0, why, sizeof why);
+    float t[64 * 64], r[64 * 64];
+    double all_from_0 = 0.0;
+    for (int f = 0; f < c.frames; f++) {
+        fvvdp_cond_frame(&c, f, 1, t);
+        fvvdp_cond_frame(&c, f, 0, r);
+        tdc_fvvdp_frame(m, t, r, NULL);
+        if (f == 22) { /* 23 frames = 255 ms */
+            all_from_0 = tdc_fvvdp_jod(m);
+            tdc_fvvdp_reset_pool(m);
+        }
+    }
+    assert_true(all_from_0 < 8.5);
+    assert_true(tdc_fvvdp_jod(m) > 9.8 && tdc_fvvdp_jod(m) < 10.0);
+    tdc_fvvdp_reset_pool(m);
+    assert_true(tdc_fvvdp_jod(m) == 10.0);
+    tdc_fvvdp_free(m);
+}
+
 static void test_refused(void **state)
 {
     (void)state;
@@ -324,6 +393,8 @@ int main(void)
         cmocka_unit_test(test_identical_is_10),
         cmocka_unit_test(test_monotone),
         cmocka_unit_test(test_threads_identical),
+        cmocka_unit_test(test_regions),
+        cmocka_unit_test(test_reset_pool),
         cmocka_unit_test(test_refused),
         cmocka_unit_test(test_photometry_geometry),
     };
