@@ -24,6 +24,29 @@ ifeq ($(filter $(PANEL),$(PANELS)),)
 $(error unknown PANEL '$(PANEL)'; known panels: $(PANELS))
 endif
 
+# ---------------------------------------------------------------------------
+# Debian packages before anything compiles, whatever the goal and -j: the
+# first make only runs `deps`, then re-enters itself for the goals with
+# TDC_DEPS=done, so no compiler line can come before apt-get (`make -n demo`
+# shows the order).  Prerequisites alone cannot promise that: with -j, or with
+# fragments read in file-name order, compile lines ran before `deps`.
+# ---------------------------------------------------------------------------
+NODEPS_GOALS := deps clean help
+TDC_WRAP :=
+ifneq ($(TDC_DEPS),done)
+ifneq ($(filter-out $(NODEPS_GOALS),$(or $(MAKECMDGOALS),all)),)
+TDC_WRAP := 1
+TDC_GOALS := $(or $(MAKECMDGOALS),all)
+.PHONY: $(TDC_GOALS) tdc-deps-first
+$(TDC_GOALS): tdc-deps-first
+	@:
+tdc-deps-first:
+	@$(MAKE) --no-print-directory TDC_DEPS=done deps
+	@$(MAKE) --no-print-directory TDC_DEPS=done $(MAKECMDGOALS)
+endif
+endif
+ifneq ($(TDC_WRAP),1)
+
 include boards/$(BOARD)/board.mk
 
 # ---------------------------------------------------------------------------
@@ -71,9 +94,27 @@ TEST_EXTRA :=       # extra phony targets `make test` runs after the host suites
 .PHONY: all deps test run-tests run-golden bench demo golden-update clean firmware help
 all: $(if $(filter host,$(BOARD)),host,firmware)
 
-# Host libraries (defined before the fragments so their rules can name them).
+# Names that several fragments use, defined before the fragments are read:
+# make expands a rule's prerequisites when it reads the rule, so a name set
+# in a later fragment would be empty there (mk/*.mk are read in file-name
+# order; tests/rules/check_make_order.py keeps it so).
 FWLIB := $(B)/libtdcfw.a
 SIMLIB := $(B)/libtdcsim.a
+SIMXLIB := $(B)/libtdcsimulator.a
+RENDERLIB := $(B)/libtdcrender.a
+TDC_SIM := $(B)/tdc-sim
+TDC_RENDER := $(B)/tdc-render
+TDCRUN := $(B)/bin/tdc-run
+TABLEGEN := $(BUILD)/tools/tdc-tablegen
+TEST_SUPPORT_OBJS = $(B)/tests/golden/tdc_content.o $(B)/tests/golden/golden_common.o
+# Generated headers every firmware object may include, in every build folder
+# (host, arm-<board>, <board>-<panel>, fw-host): order-only prerequisites of
+# the object rules, so a fresh tree generates them before the first compile
+# (the .d files track their contents after that).  Fragments append.
+FW_GEN_HEADERS := $(GEN)/tdc_panels.h
+
+# Rules whose prerequisites name lists that later fragments extend use $$(...).
+.SECONDEXPANSION:
 
 include $(sort $(wildcard mk/*.mk))
 
@@ -97,7 +138,6 @@ deps:
 # ---------------------------------------------------------------------------
 # Generated tables: one C file + config header per panel profile.
 # ---------------------------------------------------------------------------
-TABLEGEN := $(BUILD)/tools/tdc-tablegen
 $(TABLEGEN): hosttools/tablegen/tdc_tablegen.c hosttools/common/tdc_tool.c firmware/tdc_math.c $(wildcard hosttools/tablegen/*.h) \
              hosttools/common/tdc_tool.h | $(BUILD)/tools
 	gcc -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror -O2 -Ifirmware -Ihosttools/common $(filter %.c,$^) -o $@ -lm
@@ -120,7 +160,7 @@ $(GEN)/tdc_panels.h: $(PANEL_CSRCS) Makefile | $(GEN)
 FW_OBJS = $(patsubst %.c,$(B)/%.o,$(FW_SRCS)) $(patsubst $(GEN)/%.c,$(B)/gen/%.o,$(PANEL_CSRCS))
 SIM_OBJS = $(patsubst %.c,$(B)/%.o,$(SIM_SRCS))
 
-$(B)/firmware/%.o: firmware/%.c $(GEN)/tdc_panels.h
+$(B)/firmware/%.o: firmware/%.c $(GEN)/tdc_panels.h | $$(FW_GEN_HEADERS)
 	@mkdir -p $(@D)
 	$(CC) $(FW_CFLAGS) -MMD -MP -c $< -o $@
 $(B)/gen/%.o: $(GEN)/%.c
@@ -151,8 +191,7 @@ $(SIMLIB): $(SIM_OBJS) $(B)/.simobjs
 	@rm -f $@; mkdir -p $(@D)
 	ar rcs $@ $(SIM_OBJS) $(if $(SIM_OBJS),,--thin)
 
-# Test support linked into every test: deterministic contents, checksums.
-TEST_SUPPORT_OBJS = $(B)/tests/golden/tdc_content.o $(B)/tests/golden/golden_common.o
+# Test support linked into every test (TEST_SUPPORT_OBJS): deterministic contents, checksums.
 
 # A test or bench program from one source file: tests/<name>.c -> $(B)/tests/<name>
 $(B)/tests/%: $(B)/tests/%.o $(TEST_SUPPORT_OBJS) $(SIMLIB) $(FWLIB)
@@ -215,3 +254,5 @@ clean:
 help:
 	@sed -n '2,12p' Makefile
 	@echo "boards: $(BOARDS)"; echo "panels: $(PANELS)"
+
+endif # TDC_WRAP

@@ -45,6 +45,11 @@ typedef struct {
     uint16_t refresh_hz;                    /* nominal refresh */
     uint16_t ppd_x100;                      /* pixels per degree at the view centre x 100 (0: unknown); host
                               * simulator's viewing geometry (FLIP, eye), unused by the firmware */
+    /* photometry and viewing distance (0: not in the profile); host simulator's
+     * retinal signal (sim/eye/tdc_retina.h), unused by the firmware */
+    uint32_t peak_mcdm2;  /* luminance of full drive, milli-cd/m^2 */
+    uint32_t black_ucdm2; /* luminance of drive 0, micro-cd/m^2 */
+    uint32_t distance_mm; /* viewing distance (HMD: of the lens's virtual image) */
     uint16_t rates_hz[TDC_PANEL_MAX_RATES]; /* supported refresh rates, 0-terminated */
     uint32_t gamma_micro[3];                /* per-channel gamma x 1e6: exactly the value the tables came from */
     tdc_gamma_table_t gamma[3];

@@ -33,7 +33,6 @@ QEMU_BOARDS := $(sort $(patsubst boards/%/board.mk,%,$(shell grep -l '^BOARD_QEM
 
 .PHONY: arm-fw-fov-check arm-fw-loop-check arm-fw-refuse-check arm-fw-bands-check arm-loop-cost run-arm firmware-size test-arm size bench-arm arm-bench profile-arm arm-profile arm-golden arm-golden-check arm-image-check arm-fit-check arm-fw-check
 
-.SECONDEXPANSION:
 
 ifneq ($(BOARD),host)
 # ---------------------------------------------------------------------------
@@ -79,7 +78,7 @@ ARM_LDDEPS := $(BA)/memory.ld $(BOARD_LDS) firmware/board/tdc_cortexm_sections.l
 # Compiler flags are part of the objects: rebuild when they change (ARM_OPT).
 $(BA)/cflags: FORCE
 	@mkdir -p $(@D); echo '$(ARM_TEST_CFLAGS)' | cmp -s - $@ || echo '$(ARM_TEST_CFLAGS)' > $@
-$(BA)/firmware/%.o: firmware/%.c $(GEN)/tdc_panels.h $(BA)/cflags
+$(BA)/firmware/%.o: firmware/%.c $(GEN)/tdc_panels.h $(BA)/cflags | $$(FW_GEN_HEADERS)
 	@mkdir -p $(@D)
 	$(ARM_CC) $(ARM_FW_CFLAGS) -MMD -MP -c $< -o $@
 $(BA)/boards/%.o: boards/%.c $(BA)/cflags
@@ -223,7 +222,7 @@ ifeq ($(BOARD_MVE),1)
 $(BP)/firmware/tdc_trm_mve.o: ARM_IMG_CFLAGS := $(call ARM_MVE_FIX,$(ARM_IMG_CFLAGS))
 $(BP)/firmware/tdc_fov_mve.o: ARM_IMG_CFLAGS := $(call ARM_MVE_FIX,$(ARM_IMG_CFLAGS))
 endif
-$(BP)/%.o: %.c $(GEN)/tdc_panels.h $(PANEL_CONFIG) $(BP)/stages
+$(BP)/%.o: %.c $(GEN)/tdc_panels.h $(PANEL_CONFIG) $(BP)/stages | $$(FW_GEN_HEADERS)
 	@mkdir -p $(@D)
 	$(ARM_CC) $(ARM_IMG_CFLAGS) -MMD -MP -c $< -o $@
 $(BP)/gen/%.o: $(GEN)/%.c $(BP)/stages
@@ -298,13 +297,13 @@ STREAMS := $(BUILD)/fw-streams
 FWH_PANEL_SRCS := $(shell grep -l '"tdc_link.h"' $(filter firmware/%.c,$(wildcard firmware/*.c)))
 # $(1): directory, $(2): TDC_CFG_BANDS, $(3): the stage defines
 define fw_host_loop
-$(1)/tdc_main.o: firmware/board/tdc_main.c $(GEN)/tdc_panels.h $(PANEL_CONFIG)
+$(1)/tdc_main.o: firmware/board/tdc_main.c $(GEN)/tdc_panels.h $(PANEL_CONFIG) | $$$$(FW_GEN_HEADERS)
 	@mkdir -p $$(@D)
 	$(CC) $(FW_CFLAGS) -Ifirmware/board -include $(PANEL_CONFIG) $(3) -DTDC_CFG_BANDS=$(2) -DTDC_FW_NO_MAIN -MMD -MP -c $$< -o $$@
 $(1)/tdc_board_host.o: tests/arm/tdc_board_host.c firmware/board/tdc_board.h
 	@mkdir -p $$(@D)
 	$(CC) $(HOST_CFLAGS) -Ifirmware/board -MMD -MP -c $$< -o $$@
-$(1)/fw/%.o: firmware/%.c $(GEN)/tdc_panels.h $(PANEL_CONFIG)
+$(1)/fw/%.o: firmware/%.c $(GEN)/tdc_panels.h $(PANEL_CONFIG) | $$$$(FW_GEN_HEADERS)
 	@mkdir -p $$(@D)
 	$(CC) $(FW_CFLAGS) -include $(PANEL_CONFIG) $(3) -DTDC_CFG_BANDS=$(2) -MMD -MP -c $$< -o $$@
 $(1)/tdc_fw_host: $(1)/tdc_main.o $(1)/tdc_board_host.o $(patsubst firmware/%.c,$(1)/fw/%.o,$(FWH_PANEL_SRCS)) $(FWLIB)

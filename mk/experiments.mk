@@ -15,8 +15,8 @@ TEST_EXTRA += test-experiments
 
 .PHONY: experiments experiments-report demo-experiments test-experiments
 # Group zeng-cost times the renderer's own passes with tdc-render (no sweep).
-experiments demo-experiments experiments-report: $(B)/tdc-render
-experiments demo-experiments experiments-report: export TDC_RENDER = $(abspath $(B)/tdc-render)
+experiments demo-experiments experiments-report: $(TDC_RENDER)
+experiments demo-experiments experiments-report: export TDC_RENDER := $(abspath $(TDC_RENDER))
 experiments: deps $(TDC_SIM)
 	$(EXP_PY) run $(EXP_GROUPS) --scale $(EXP_SCALE) --out $(EXP_OUT) -j $(JOBS) --sim $(TDC_SIM); \
 	    rc=$$?; $(EXP_PY) report --out $(EXP_OUT) --report $(or $(REPORT),report)/experiments.md; exit $$rc

@@ -13,13 +13,9 @@ TESTS += $(B)/tests/unit/test_fov_metrics
 $(B)/tests/unit/test_fov_metrics: $(B)/tests/unit/test_fov_metrics.o $(FOV_METRICS_OBJ)
 	$(CC) $(HOST_LDFLAGS) $(SIM_OMP) $^ -o $@ $(HOST_LIBS)
 
-# (TABLEGEN is defined after the fragments are read: name the program)
-$(GEN)/tdc_fov_tables.h: $(BUILD)/tools/tdc-tablegen | $(GEN)
-	$(BUILD)/tools/tdc-tablegen --fov $@
-$(B)/firmware/tdc_fov.o: $(GEN)/tdc_fov_tables.h
-ifneq ($(BOARD),host)
-$(BA)/firmware/tdc_fov.o: $(GEN)/tdc_fov_tables.h
-endif
+$(GEN)/tdc_fov_tables.h: $(TABLEGEN) | $(GEN)
+	$(TABLEGEN) --fov $@
+FW_GEN_HEADERS += $(GEN)/tdc_fov_tables.h
 # the recursion check compiles every firmware source on its own
 $(B)/check-fw-rules: $(GEN)/tdc_fov_tables.h
 

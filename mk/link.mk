@@ -7,10 +7,7 @@ $(CRC32_GEN): sim/link/tdc_crc32_gen.c firmware/tdc_crc32.h | $(BUILD)/tools
 	gcc -std=c11 -Wall -Wextra -Werror -O2 -Ifirmware $< -o $@
 $(GEN)/tdc_crc32_tables.h: $(CRC32_GEN) | $(GEN)
 	$(CRC32_GEN) $@
-# Every firmware object already depends on tdc_panels.h; ordering the table
-# before it makes the header exist for any build rule (host or board).
-$(GEN)/tdc_panels.h: | $(GEN)/tdc_crc32_tables.h
-$(B)/firmware/tdc_crc32.o: $(GEN)/tdc_crc32_tables.h
+FW_GEN_HEADERS += $(GEN)/tdc_crc32_tables.h
 
 FW_SRCS += firmware/tdc_crc32.c firmware/tdc_pixfmt.c firmware/tdc_wire.c firmware/tdc_link.c firmware/tdc_link_encode.c firmware/tdc_layer_link.c \
             firmware/tdc_band_link.c

@@ -6,15 +6,14 @@ RENDER_SRCS := sim/render/tdc_scene_parse.c sim/render/tdc_scene_anim.c sim/rend
                sim/render/tdc_render_trace.c sim/render/tdc_render_frame.c sim/render/tdc_render_stream.c \
                sim/render/tdc_render_fov.c sim/render/tdc_render_cones.c sim/render/tdc_render_indirect.c
 RENDER_OBJS = $(patsubst %.c,$(B)/%.o,$(RENDER_SRCS))
-RENDERLIB = $(B)/libtdcrender.a
 RENDER_LDLIBS := -lembree3
 
 $(B)/libtdcrender.a: $(RENDER_OBJS)
 	@rm -f $@
 	ar rcs $@ $^
 
-HOST_PROGS += $(B)/tdc-render
-$(B)/tdc-render: $(B)/sim/render/tdc_render_main.o $(B)/libtdcrender.a $(SIMLIB) $(FWLIB)
+HOST_PROGS += $(TDC_RENDER)
+$(TDC_RENDER): $(B)/sim/render/tdc_render_main.o $(B)/libtdcrender.a $(SIMLIB) $(FWLIB)
 	$(CC) $(HOST_LDFLAGS) $< -o $@ $(RENDERLIB) $(SIMLIB) $(FWLIB) $(RENDER_LDLIBS) $(HOST_LIBS)
 
 RENDER_TESTS := test_render_scene test_render_mv test_render_gt test_render_stream test_render_fov test_render_cones test_render_texture

@@ -8,17 +8,21 @@ SIMX_SRCS := sim/simulator/tdc_sim_scene.c sim/simulator/tdc_sim_modes.c sim/sim
              sim/simulator/tdc_sim_mode.c sim/simulator/tdc_sim_mode_plain.c sim/simulator/tdc_sim_mode_trm.c \
              sim/simulator/tdc_sim_mode_warp.c sim/simulator/tdc_sim_blockmatch.c sim/simulator/tdc_sim_mode_asm.c sim/simulator/tdc_sim_mode_layers.c sim/simulator/tdc_sim_stage_lcd.c \
              sim/simulator/tdc_sim_mode_fov.c sim/simulator/tdc_sim_mode_fovtrm.c sim/simulator/tdc_sim_gaze.c sim/metrics/tdc_fov_metrics.c \
-             sim/simulator/tdc_sim_link.c sim/eye/tdc_eye.c sim/eye/tdc_eye_temporal.c sim/metrics/tdc_metrics.c sim/metrics/tdc_flip.c sim/metrics/tdc_filter.c \
+             sim/simulator/tdc_sim_link.c sim/eye/tdc_eye.c sim/eye/tdc_eye_temporal.c sim/eye/tdc_retina.c \
+             sim/simulator/tdc_sim_retina.c sim/simulator/tdc_sim_dump.c sim/metrics/tdc_metrics.c sim/metrics/tdc_flip.c sim/metrics/tdc_filter.c \
              sim/metrics/tdc_powtab.c \
              sim/panel/tdc_panel_sim.c sim/report/tdc_report.c sim/simulator/tdc_sim_render.c
 SIMX_OBJS = $(patsubst %.c,$(B)/%.o,$(SIMX_SRCS))
-SIMXLIB := $(B)/libtdcsimulator.a
-TDC_SIM := $(B)/tdc-sim
 
 HOST_PROGS += $(TDC_SIM)
 DEPS_PKGS += python3-scipy # test_metrics: the flip v1.6 transcription (scipy.signal.convolve2d)
-SIM_TESTS := test_sim_smoke test_sim_eye test_metrics test_eye_temporal test_sim_blockmatch
-TESTS += $(foreach t,$(SIM_TESTS),$(B)/tests/unit/$(t))
+SIM_TESTS := test_sim_smoke test_sim_eye test_metrics test_eye_temporal test_sim_blockmatch test_sim_retina
+TESTS += $(foreach t,$(SIM_TESTS),$(B)/tests/unit/$(t)) $(B)/test-sim-dump
+
+# tdc-sim --dump: files, sizes, exit codes (a few seconds at 32x32)
+$(B)/test-sim-dump: tests/unit/test_sim_dump.sh $(TDC_SIM)
+	@printf '#!/bin/sh\nexec tests/unit/test_sim_dump.sh %s\n' "$(TDC_SIM)" > $@
+	@chmod +x $@
 
 # Which parts of the data path exist in this tree: decided from the other
 # fragments' source lists (recursively expanded, so after every fragment is

@@ -15,11 +15,11 @@ BENCHES += $(B)/tests/bench/bench_trm
 # checked for floating-point instructions instead.
 FW_SRCS += firmware/tdc_trm_rows.c firmware/tdc_trm_avx2.c
 # TRM's exp(-x) weight table, generated (tdc-tablegen --trm) and included by
-# tdc_trm_rows.c; every firmware object depends on tdc_panels.h, which waits for it.
-$(GEN)/tdc_trm_tables.h: $(BUILD)/tools/tdc-tablegen | $(GEN)
-	$(BUILD)/tools/tdc-tablegen --trm $@
-$(GEN)/tdc_panels.h: | $(GEN)/tdc_trm_tables.h
-$(B)/firmware/tdc_trm_rows.o $(B)/check-fw-rules: $(GEN)/tdc_trm_tables.h
+# tdc_trm_rows.c (FW_GEN_HEADERS: made before any firmware object, in every build folder).
+$(GEN)/tdc_trm_tables.h: $(TABLEGEN) | $(GEN)
+	$(TABLEGEN) --trm $@
+FW_GEN_HEADERS += $(GEN)/tdc_trm_tables.h
+$(B)/check-fw-rules: $(GEN)/tdc_trm_tables.h
 # Helium (MVE) row kernels: compiled empty except for boards with BOARD_MVE
 # (mk/boards.mk gives that object -mcpu=cortex-m55+nofp -mfloat-abi=softfp).
 FW_SRCS += firmware/tdc_trm_mve.c

@@ -34,6 +34,7 @@ typedef struct {
     char type[16];
     int width, height, eyes, bits, refresh_hz;
     double ppd; /* pixels per degree at the view centre (0: not given) */
+    double peak_cdm2, black_cdm2, distance_m; /* photometry and viewing distance (0: not given) */
     int rates[TDC_PANEL_MAX_RATES];
     int nrates;
     double gamma[3];
@@ -181,6 +182,12 @@ static void parse_profile_stream(FILE *f, profile_t *p)
             p->bits = parse_int(tok[1], (int)line, 6, 10, k);
         } else if (!strcmp(k, "ppd") && n == 2) {
             p->ppd = parse_double(tok[1], (int)line, 1.0, 200.0, k);
+        } else if (!strcmp(k, "peak_cdm2") && n == 2) {
+            p->peak_cdm2 = parse_double(tok[1], (int)line, 1.0, 10000.0, k);
+        } else if (!strcmp(k, "black_cdm2") && n == 2) {
+            p->black_cdm2 = parse_double(tok[1], (int)line, 0.0, 100.0, k);
+        } else if (!strcmp(k, "distance_m") && n == 2) {
+            p->distance_m = parse_double(tok[1], (int)line, 0.01, 100.0, k);
         } else if (!strcmp(k, "refresh_hz") && n == 2) {
             p->refresh_hz = parse_int(tok[1], (int)line, 1, 1000, k);
         } else if (!strcmp(k, "rates_hz") && n >= 2 && n <= TDC_PANEL_MAX_RATES) {
@@ -262,6 +269,9 @@ static void parse_profile_stream(FILE *f, profile_t *p)
     if (!p->name[0] || !p->type[0] || !p->width || !p->height || !p->eyes || !p->bits || !p->refresh_hz ||
         !p->have_gamma) {
         die(TDC_EXIT_INPUT, 0, "profile needs name, type, width, height, eyes, bits, refresh_hz and gamma");
+    }
+    if (p->peak_cdm2 > 0.0 && p->black_cdm2 >= p->peak_cdm2) {
+        die(TDC_EXIT_INPUT, 0, "black_cdm2 %g must be below peak_cdm2 %g", p->black_cdm2, p->peak_cdm2);
     }
     if (!strcmp(p->type, "lcd") && !p->have_lcd) {
         die(TDC_EXIT_INPUT, 0, "an lcd profile needs lcd_p p1 p2 p3 p4");
@@ -598,6 +608,8 @@ int main(int argc, char **argv)
     fprintf(f, "    .width = %d, .height = %d, .eyes = %d, .bits = %d, .refresh_hz = %d,\n", p.width, p.height, p.eyes,
             p.bits, p.refresh_hz);
     fprintf(f, "    .ppd_x100 = %ldu,\n", lround(p.ppd * 100.0));
+    fprintf(f, "    .peak_mcdm2 = %ldu, .black_ucdm2 = %ldu, .distance_mm = %ldu,\n", lround(p.peak_cdm2 * 1e3),
+            lround(p.black_cdm2 * 1e6), lround(p.distance_m * 1e3));
     fprintf(f, "    .rates_hz = {");
     for (int i = 0; i < p.nrates; i++) {
         fprintf(f, "%d, ", p.rates[i]);

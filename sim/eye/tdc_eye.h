@@ -52,6 +52,10 @@ int tdc_eye_perceive(const tdc_eye_cfg_t *cfg, const tdc_eye_slice_t *slices, in
 int tdc_eye_ground_truth(const tdc_eye_cfg_t *cfg, tdc_source_t *src, double t_end, const double v[2], int nsteps,
                          double *out, double *scratch);
 
+/* out(x) += wgt * light of the slice at x + (sx, sy) (bilinear, edges
+ * clamped): one sub-step of the integrals above.  0, or -1 (memory). */
+int tdc_eye_accumulate(double *out, const tdc_eye_slice_t *sl, int w, int h, double sx, double sy, double wgt);
+
 /* Bilinear lookup of channel c at (x, y) in pixel-centre coordinates
  * (pixel i's centre at i), edges clamped. */
 double tdc_eye_bilinear(const double *img, int w, int h, double x, double y, int c);

@@ -194,7 +194,7 @@ else:
 # 4. adaptive orderings flicker less than either fixed ordering (thin features)
 h, b, a = row("asm-thin", "asm-hourglass"), row("asm-thin", "asm-bowtie"), row("asm-thin", "asm-adaptive")
 if h and b and a:
-    fa, fh, fb = fnum(a["flicker"]), fnum(h["flicker"]), fnum(b["flicker"])
+    fa, fh, fb = fnum(a["legacy_flicker"]), fnum(h["legacy_flicker"]), fnum(b["legacy_flicker"])
     check("Adaptive orderings flicker less than either fixed ordering (thin features, pan)", fa < fh and fa < fb,
           f"flicker (RMS code values of the frame-to-frame change of the motion-compensated error): "
           f"adaptive {fa:.3f}, hourglass {fh:.3f}, bowtie {fb:.3f}")

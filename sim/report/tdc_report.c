@@ -78,9 +78,9 @@ void tdc_report_csv(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_result_t
 {
     if (header) {
         fprintf(f, "run,scene,panel,mode,display_hz,width,height,evals,psnr_db,psnr_min_db,ssim,flip,flip_max,"
-                   "flicker,rays_per_s,rays_vs_full,link_bytes_per_s,link_vs_full,fw_us_per_frame,"
+                   "legacy_flicker,rays_per_s,rays_vs_full,link_bytes_per_s,link_vs_full,fw_us_per_frame,"
                    "render_us_per_frame,frames,resets,link_errors,nonfinite,available,eyes,psnr_eye0_db,psnr_eye1_db,"
-                   "ssim_eye0,ssim_eye1,flip_eye0,flip_eye1,terr,note\n");
+                   "ssim_eye0,ssim_eye1,flip_eye0,flip_eye1,legacy_terr,note\n");
     }
     const int eyes = cfg->eyes == 2 ? 2 : 1;
     double full_rays = (double)cfg->width * cfg->height * (cfg->spp > 0 ? cfg->spp : (cfg->refresh_hz >= 200 ? 1 : 4)) *
@@ -117,7 +117,7 @@ void tdc_report_markdown(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_res
                        cfg->refresh_hz * eyes;
     double full_bytes = (double)cfg->width * cfg->height * 3.0 * cfg->refresh_hz * eyes;
     fprintf(f,
-            "| mode | Hz | PSNR dB | SSIM | FLIP | flicker | rays vs full | link vs full | link MB/s | fw us/frame | "
+            "| mode | Hz | PSNR dB | SSIM | FLIP | flicker (legacy) | rays vs full | link vs full | link MB/s | fw us/frame | "
             "render us/frame |\n");
     fprintf(f, "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
     for (int i = 0; i < n; i++) {
@@ -136,7 +136,7 @@ void tdc_report_markdown(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_res
         /* stereo: the table above is both eyes (mean figures, the pair's rays and link bytes) */
         fprintf(f,
                 "\nPer eye (left = eye 0, right = eye 1):\n\n| mode | PSNR L | PSNR R | SSIM L | SSIM R | FLIP L | "
-                "FLIP R | flicker L | flicker R |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+                "FLIP R | flicker L (legacy) | flicker R (legacy) |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
         for (int i = 0; i < n; i++) {
             const tdc_sim_result_t *x = &r[i];
             if (x->available) {
@@ -173,14 +173,14 @@ void tdc_report_foveation(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_re
     double full_bytes = (double)cfg->width * cfg->height * 3.0 * cfg->refresh_hz * eyes;
     if (csv) {
         fprintf(f, "run,mode,gaze,latency_ms,noise_deg,alpha,delta,disk,rays_vs_full,link_vs_full,flip,flip_fovea,"
-                   "flip_periphery,flip_ecc,flip_wmedian,flicker,flicker_periphery\n");
+                   "flip_periphery,flip_ecc,flip_wmedian,legacy_flicker,legacy_flicker_periphery\n");
     } else {
         fprintf(f,
                 "\nFoveation (gaze `%s`, tracker latency %.0f ms, noise %.2f deg; alpha %.2f, delta %.3f, disk %.4f of "
                 "the distance to the farthest corner, which is also the foveal region below; FLIP weighted by "
                 "eccentricity 2.3/(2.3 + e deg) around the true gaze; weighted median as the thesis's Tables "
                 "5.1-5.3):\n\n| mode | rays vs full | link vs full | FLIP | FLIP fovea | FLIP periphery | FLIP ecc | "
-                "FLIP w-median | flicker | flicker periphery |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | "
+                "FLIP w-median | flicker (legacy) | flicker periphery (legacy) |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | "
                 "---: | ---: |\n",
                 tdc_sim_gaze_name(cfg->gaze), cfg->gaze_latency_ms, cfg->gaze_noise_deg, cfg->fov_alpha, cfg->fov_delta,
                 cfg->fov_disk);

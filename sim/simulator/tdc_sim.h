@@ -17,6 +17,7 @@
 #include <stdio.h>
 
 #include "eye/tdc_eye.h"
+#include "eye/tdc_retina.h"
 #include "panel/tdc_panel_sim.h"
 #include "simulator/tdc_sim_scene.h"
 #include "tdc_panel.h"
@@ -64,7 +65,8 @@ typedef struct {
     tdc_source_t *right;    /* eye 1's source (its own camera) when eyes == 2 */
     tdc_sim_times_t *times; /* optional: receives the stage breakdown */
     int refresh_hz;         /* run clock: display rate of the modes without a fixed rate */
-    int window_frames;      /* fused window in frames of the run clock (0: 2 below 200 Hz, else 4) */
+    int window_frames;      /* legacy eye: fused window in frames of the run clock (0: 2 below 200 Hz,
+                               else 4); the retinal signal has none */
     double duration_s;
     int spp; /* rays per pixel of full frames (0: 4 below 200 Hz, else 1) */
     tdc_panel_sim_kind_t panel;
@@ -78,6 +80,7 @@ typedef struct {
     int metric_every; /* evaluate every k-th instant (1 = all) */
     int temporal;     /* 1: temporal visibility model (eye/tdc_eye_temporal.h): terr */
     double flip_ppd;
+    const char *ppd_from; /* where flip_ppd came from: "profile", "--ppd" or "default" (NULL: profile) */
     int trm_s;    /* TRM motion sensitivity s (0: firmware default) */
     int progress; /* progress bar on stderr */
     int strip_at; /* evaluation index for the picture strip (-1: middle) */
@@ -95,6 +98,14 @@ typedef struct {
                                  (default FOOTPRINT; the renderer's texture LOD, the other sources' box average) */
     int fov_jitter;           /* TDC_FOV_JITTER_* (ref_fov.h): what fov-taa's Halton jitter moves a log-polar
                                  sample by (default PIXEL: <= half a texel and <= half a display pixel) */
+    /* the retinal signal (eye/tdc_retina.h), computed when a consumer or
+     * --dump wants it: steps per refresh (0: automatic), the eye's pursuit
+     * lag, the consumer, the dump folder */
+    int retina_steps;
+    double pursuit_lag_ms;
+    tdc_retina_cb_t retina_cb;
+    void *retina_ctx;
+    const char *dump_dir;
     const char *outdir; /* NULL: no files */
     const char *label;  /* run label for the report */
 } tdc_sim_config_t;
@@ -139,8 +150,10 @@ typedef struct {
 } tdc_sim_result_t;
 
 /* Runs the given modes; results[i] for modes[i].  Writes per-instant rows
- * to series (CSV, may be NULL) and picture strips into cfg->outdir.
- * Returns 0, or -1 on a setup error (message on stderr). */
+ * to series (CSV, may be NULL) and picture strips into cfg->outdir; hands
+ * the retinal signal to cfg->retina_cb and writes cfg->dump_dir.
+ * Returns 0, -1 on a setup or stage error, -2 when an output (--dump, the
+ * consumer) failed (message on stderr). */
 int tdc_sim_run(const tdc_sim_config_t *cfg, tdc_source_t *src, const tdc_mode_desc_t *const *modes, int nmodes,
                 tdc_sim_result_t *results, FILE *series);
 

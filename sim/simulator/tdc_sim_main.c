@@ -72,7 +72,8 @@ static void usage(FILE *f)
             "                          headset's screen edge)\n"
             "  -d, --duration S        simulated seconds (default 0.5)\n"
             "  -n, --frames N          simulated refreshes (overrides --duration)\n"
-            "  -w, --window N          fused window in refreshes (default 2 below 200 Hz, else 4)\n"
+            "  -w, --window N          legacy eye: fused window in refreshes (default 2 below 200 Hz,\n"
+            "                          else 4); the retinal signal (--dump) has none\n"
             "      --spp N             rays per pixel of full frames (default 4 below 200 Hz, else 1)\n"
             "      --speed PX_PER_S    main motion speed (default: the scene's)\n"
             "      --angle DEG         main motion direction (default 0 = +x)\n"
@@ -83,6 +84,12 @@ static void usage(FILE *f)
             "      --temporal          temporal visibility model: the retinal error through a temporal CSF\n"
             "                          (Watson 1986 band-pass, sim/eye/tdc_eye_temporal.h): column terr\n"
             "      --metric-every K    evaluate every K-th refresh (default 1)\n"
+            "      --dump DIR          the retinal signal as files (docs/eye.md): per refresh and eye the drive\n"
+            "                          codes, per step the emitted light and the retinal image of every mode\n"
+            "                          and of the reference (16-bit linear PNG, Y4M), dump.json, steps.csv\n"
+            "      --retina-steps N    retinal signal: steps per refresh, 1..16 (default: 4 on an LCD,\n"
+            "                          round(1 / persistence) up to 8 on an OLED)\n"
+            "      --pursuit-lag MS    retinal signal: the eye pursues the velocity of MS ago (default 0)\n"
             "      --ppd X             pixels per degree of the view (FLIP; default: the profile's, e.g.\n"
             "                          11.4 for htc-vive; 67.02, FLIP's desktop default, for profiles\n"
             "                          without one)\n"
@@ -117,7 +124,8 @@ static void usage(FILE *f)
             p.trm ? "yes" : "NO", p.link ? "yes" : "NO", p.assemble ? "yes" : "NO", p.lcd_fw ? "yes" : "NO",
             p.lcd_phys ? "yes" : "no (built-in fallback)");
     fprintf(f, "\nexit codes (docs/tools.md): 0 OK, 1 ARGS, 7 FILE, 13 INPUT (malformed image or scene),\n"
-               "14 REFUSED (a stage error or refused configuration: the run is not a result), 17 NOMEM\n");
+               "14 REFUSED (a stage error or refused configuration: the run is not a result), 17 NOMEM;\n"
+               "--dump: 7 FILE when a file could not be written, 13 INPUT when the panel profile has no photometry\n");
 }
 
 /* *explicit: 0 when a group ('all', a family) was named. */
@@ -242,7 +250,10 @@ int main(int argc, char **argv)
         O_GAZE_NOISE,
         O_FOV_ALPHA,
         O_FOV_DELTA,
-        O_FOV_DISK
+        O_FOV_DISK,
+        O_DUMP,
+        O_RSTEPS,
+        O_LAG
     };
     static const struct option opts[] = {{"scene", required_argument, 0, 's'},
                                          {"mode", required_argument, 0, 'm'},
@@ -297,6 +308,9 @@ int main(int argc, char **argv)
                                          {"fov-alpha", required_argument, 0, O_FOV_ALPHA},
                                          {"fov-delta", required_argument, 0, O_FOV_DELTA},
                                          {"fov-disk", required_argument, 0, O_FOV_DISK},
+                                         {"dump", required_argument, 0, O_DUMP},
+                                         {"retina-steps", required_argument, 0, O_RSTEPS},
+                                         {"pursuit-lag", required_argument, 0, O_LAG},
                                          {"help", no_argument, 0, 'h'},
                                          {0, 0, 0, 0}};
     tdc_sim_config_t cfg;
@@ -611,6 +625,29 @@ int main(int argc, char **argv)
             cfg.flip_ppd = v;
             ppd_given = 1;
             break;
+        case O_DUMP:
+            if (optarg[0] == '\0') {
+                fprintf(stderr, "tdc-sim: --dump: empty folder name\n");
+                return TDC_EXIT_ARGS;
+            }
+            cfg.dump_dir = optarg;
+            break;
+        case O_RSTEPS:
+            if (parse_num(optarg, 1, 16, &v, "retina-steps")) {
+                return TDC_EXIT_ARGS;
+            }
+            if (v != floor(v)) {
+                fprintf(stderr, "tdc-sim: bad retina-steps '%s' (an integer 1 .. 16)\n", optarg);
+                return TDC_EXIT_ARGS;
+            }
+            cfg.retina_steps = (int)v;
+            break;
+        case O_LAG:
+            if (parse_num(optarg, 0, 500, &v, "pursuit-lag")) {
+                return TDC_EXIT_ARGS;
+            }
+            cfg.pursuit_lag_ms = v;
+            break;
         case O_TRMS:
             if (parse_num(optarg, 0, 1000, &v, "trm-s")) {
                 return TDC_EXIT_ARGS;
@@ -667,8 +704,31 @@ int main(int argc, char **argv)
         cfg.height = prof->height;
     }
     cfg.eyes = eyes ? eyes : prof->eyes;
+    cfg.ppd_from = ppd_given ? "--ppd" : (prof->ppd_x100 ? "profile" : "default");
     if (!ppd_given && prof->ppd_x100) {
         cfg.flip_ppd = prof->ppd_x100 / 100.0;
+    }
+    /* the gaze point is a pixel of the view */
+    if (cfg.gaze_at_x >= 0 && (cfg.gaze_at_x >= cfg.width || cfg.gaze_at_y >= cfg.height)) {
+        fprintf(stderr, "tdc-sim: --gaze-at %g,%g: outside the %dx%d view\n", cfg.gaze_at_x, cfg.gaze_at_y, cfg.width,
+                cfg.height);
+        return TDC_EXIT_ARGS;
+    }
+    if (cfg.dump_dir) {
+        /* the retinal signal: its frame rate and the panel's photometry */
+        double pers = cfg.persistence > 0 ? cfg.persistence : (cfg.refresh_hz >= 200 ? 1.0 : 0.2);
+        int steps = tdc_retina_steps(cfg.retina_steps, cfg.panel == TDC_PANEL_SIM_LCD, pers);
+        if ((long)cfg.refresh_hz * steps > 2000) {
+            fprintf(stderr, "tdc-sim: --retina-steps: %d Hz x %d steps = %ld retinal frames/s, above 2000\n",
+                    cfg.refresh_hz, steps, (long)cfg.refresh_hz * steps);
+            return TDC_EXIT_ARGS;
+        }
+        tdc_retina_display_t disp;
+        char why[256];
+        if (tdc_retina_display_from_panel(prof, cfg.flip_ppd, cfg.ppd_from, cfg.width, &disp, why, sizeof(why))) {
+            fprintf(stderr, "tdc-sim: --dump: %s\n", why);
+            return TDC_EXIT_INPUT;
+        }
     }
     if (frames > 0) {
         cfg.duration_s = (double)frames / cfg.refresh_hz;
@@ -831,5 +891,5 @@ int main(int argc, char **argv)
     }
     /* a stage error, a refused configuration or non-finite output: the
      * run is not a result (docs/tools.md: REFUSED) */
-    return rc == 0 ? TDC_EXIT_OK : TDC_EXIT_REFUSED;
+    return rc == 0 ? TDC_EXIT_OK : (rc == -2 ? TDC_EXIT_FILE : TDC_EXIT_REFUSED);
 }

@@ -16,6 +16,7 @@
 #include "simulator/tdc_sim.h"
 #include "simulator/tdc_sim_link.h"
 #include "simulator/tdc_sim_mode.h"
+#include "simulator/tdc_sim_retina.h"
 #include "tdc_bilinear.h"
 #include "tdc_panels.h"
 #include "tdc_par.h"
@@ -572,6 +573,10 @@ int tdc_sim_run(const tdc_sim_config_t *cfg, tdc_source_t *src, const tdc_mode_d
     for (int k = 0; k < nmodes * eyes; k++) {
         ms[k].gaze = &fovea;
     }
+    /* the retinal signal, when a consumer or --dump wants it */
+    int rrc = 0;
+    sim_retina_t *retina = rc == 0 ? sim_retina_new(&setup, srcs, &fovea, gamma, gp, ms, nmodes, &rrc) : NULL;
+    rc = rc ? rc : rrc;
     long total = (long)floor(cfg->duration_s * R + 1e-9);
     long nevals = total - (wf - 1);
     if (nevals < 1) {
@@ -595,7 +600,7 @@ int tdc_sim_run(const tdc_sim_config_t *cfg, tdc_source_t *src, const tdc_mode_d
     int cw = w - 2 * margin, ch = h - 2 * margin;
     int gt_steps = src->rigid ? 1 : (int)fmin(16.0, fmax(2.0, ceil(speed * W / 0.5)));
     if (series) {
-        fprintf(series, "mode,eval,t,psnr,ssim,flip,flicker\n");
+        fprintf(series, "mode,eval,t,psnr,ssim,flip,legacy_flicker\n");
     }
     double prev_te = 0.0, gaze[2] = {0.0, 0.0};
     for (long j = 0; j < nevals && rc == 0; j++) {
@@ -614,9 +619,14 @@ int tdc_sim_run(const tdc_sim_config_t *cfg, tdc_source_t *src, const tdc_mode_d
                         rc = -1; /* reported with the mode, frame and stage */
                         break;
                     }
+                    rc = sim_retina_shown(retina, m);
+                    if (rc) {
+                        break;
+                    }
                 }
             }
         }
+        rc = rc ? rc : sim_retina_advance(retina, te);
         if (rc) {
             break;
         }
@@ -676,6 +686,10 @@ int tdc_sim_run(const tdc_sim_config_t *cfg, tdc_source_t *src, const tdc_mode_d
     }
     if (cfg->progress) {
         fputc('\n', stderr);
+    }
+    {
+        int frc = sim_retina_free(retina, rc == 0);
+        rc = rc ? rc : frc;
     }
     for (int i = 0; i < nmodes; i++) {
         tdc_sim_result_t *r = &results[i];

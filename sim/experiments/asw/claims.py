@@ -29,6 +29,6 @@ def claims(exp):
     for sp in sorted({r["speed"] for r in rows}, key=float):
         for m in ("full", "half", "asw", "asw-est"):
             cells = [exp.stats.fmt_ms(exp.stats.summary(exp.values(rows, c, mode=m, speed=sp)), d)
-                     for c, d in (("flip", 4), ("psnr_db", 2), ("flicker", 2))]
+                     for c, d in (("flip", 4), ("psnr_db", 2), ("legacy_flicker", 2))]
             lines.append("| %s | %s | %s |" % (sp, m, " | ".join(cells)))
     exp.write_extra("Mean ± spread over the 5 photographs:\n\n" + "\n".join(lines) + "\n")

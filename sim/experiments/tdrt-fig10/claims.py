@@ -3,7 +3,7 @@
 SWEEP = "fig10"
 ORDERINGS = ("asm-hourglass", "asm-bowtie", "asm-adaptive")
 # metric column, label, digits (lower is better for both)
-METRICS = (("flip", "FLIP", 4), ("flicker", "flicker", 2))
+METRICS = (("flip", "FLIP", 4), ("legacy_flicker", "flicker", 2))
 MOTION = {"0": "horizontal", "30": "diagonal (below the random band)", "45": "diagonal (in the random band)",
           "60": "diagonal (above the random band)", "90": "vertical"}
 HZ = 240.0

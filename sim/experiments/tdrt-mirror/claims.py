@@ -21,6 +21,6 @@ def claims(exp):
     for mode in ("full", "taa", "asm-adaptive"):
         for name, rows in (("reflected", on), ("primary", off)):
             cells = [exp.stats.fmt_ms(exp.stats.summary(exp.values(rows, col, mode=mode)), d)
-                     for col, d in (("flip", 4), ("psnr_db", 2), ("flicker", 2))]
+                     for col, d in (("flip", 4), ("psnr_db", 2), ("legacy_flicker", 2))]
             lines.append("| %s | %s | %s |" % (mode, name, " | ".join(cells)))
     exp.write_extra("Mean ± spread over the 5 stretches of the animation:\n\n" + "\n".join(lines) + "\n")

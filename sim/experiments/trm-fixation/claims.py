@@ -37,7 +37,7 @@ def claims(exp):
     rows = exp.rows(SWEEP)
     # per-instant FLIP, then the temporally filtered error (terr: the
     # retinal error through the temporal CSF, sim/eye/tdc_eye_temporal.h)
-    for col, label in (("flip", "FLIP"), ("terr", "terr")):
+    for col, label in (("flip", "FLIP"), ("legacy_terr", "terr")):
         kw = {"col": col, "hib": False, "label": label}
         # pursuit: TRM near full, above reduced-only and half rate
         ranking(exp, rows, "trm50", "reduced50", "track", "pan", "A beats B", "TRM 9.1 > reduced-only", **kw)
@@ -48,7 +48,7 @@ def claims(exp):
         ranking(exp, rows, "trm50", "half", "fixate", "pan", "not B", "TRM 5.6 ≈ half 5.4 (not below)", **kw)
     # gaze-aware TRM (beyond the paper, tdc_trm_gaze.h): never worse than
     # reduced-only under fixation, within a stated tolerance of TRM under pursuit
-    for col, tol in (("flip", GAZE_TOL_FLIP), ("terr", GAZE_TOL_TERR)):
+    for col, tol in (("flip", GAZE_TOL_FLIP), ("legacy_terr", GAZE_TOL_TERR)):
         g = seeds_of(exp, rows, "trm50g", col, pursuit="fixate", scene="pan")
         r = seeds_of(exp, rows, "reduced50", col, pursuit="fixate", scene="pan")
         c = exp.stats.compare(g, r, higher_is_better=False)
@@ -87,7 +87,7 @@ def claims(exp):
         for p in ("track", "fixate"):
             for m in ("full", "half", "reduced50", "trm50", "trm50g"):
                 cells = []
-                for col, d in (("flip", 4), ("psnr_db", 2), ("flicker", 2), ("terr", 2)):
+                for col, d in (("flip", 4), ("psnr_db", 2), ("legacy_flicker", 2), ("legacy_terr", 2)):
                     cells.append(exp.stats.fmt_ms(exp.stats.summary(seeds_of(exp, rows, m, col, pursuit=p, scene=scene)), d))
                 out.append("| %s | %s | %s | %s |" % (scene, p, m, " | ".join(cells)))
     exp.write_extra("Mean ± spread over the seeds (FLIP and PSNR per instant; flicker = RMS frame-to-frame change of "

@@ -10,7 +10,7 @@ def claims(exp):
              "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
     for g in GAINS:
         v = {m: exp.values(rows, "flip", mode=m, gain=g) for m in ("full", "reduced50", "trm50", "trm50g")}
-        t = {m: exp.values(rows, "terr", mode=m, gain=g) for m in ("reduced50", "trm50", "trm50g")}
+        t = {m: exp.values(rows, "legacy_terr", mode=m, gain=g) for m in ("reduced50", "trm50", "trm50g")}
         table.append("| %s | %s | %s |" % (g, " | ".join(exp.stats.fmt_ms(exp.stats.summary(v[m]), 4)
                                                          for m in ("full", "reduced50", "trm50", "trm50g")),
                                            " | ".join(exp.stats.fmt_ms(exp.stats.summary(t[m]), 2)

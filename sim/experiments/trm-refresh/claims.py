@@ -22,7 +22,7 @@ def claims(exp):
     seeds = sorted({int(x["seed"]) for x in rows})
     rs = sorted({int(x["r"]) for x in rows})  # the demo scale runs a subset
     scenes = [sc for sc in ("pan", "discs") if any(x["scene"] == sc for x in rows)]
-    has_terr = any(x["terr"] != "" for x in rows)
+    has_terr = any(x["legacy_terr"] != "" for x in rows)
     th_table = ["| scene | " + " | ".join("%d Hz" % h for h in RATES) + " |", "| --- |" + " ---: |" * len(RATES)]
     ex_table = ["| scene | r | " + " | ".join("%d Hz" % h for h in RATES) + " |", "| --- | --- |" + " ---: |" * len(RATES)]
     for sc in scenes:
@@ -54,7 +54,7 @@ def claims(exp):
                                                                          s.fmt_ms(s.summary(per_rate[165]), 2)),
                   v[0], v[1], spread=s.fmt(c["spread"], 3), n=c["n"], run="%s/%s scene=%s" % (exp.group, SWEEP, sc))
         # the mechanism: TRM's excess error at r = 1/2 should fall with the refresh rate
-        for col, lab in (("flip", "FLIP"), ("terr", "terr")) if has_terr else (("flip", "FLIP"),):
+        for col, lab in (("flip", "FLIP"), ("legacy_terr", "terr")) if has_terr else (("flip", "FLIP"),):
             e90, e165 = excess(exp, rows, col, sc, 90, 50), excess(exp, rows, col, sc, 165, 50)
             if 50 not in rs or not e90 or not e165:
                 continue

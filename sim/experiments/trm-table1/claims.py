@@ -10,8 +10,8 @@ SAVING = {"half": 0.5, "interlace": 0.5, "bfi": 0.5, "ncsfi": 0.5, "trm50": 0.37
 def claims(exp):
     rows = exp.rows(SWEEP)
     s = exp.stats
-    fl = {m: exp.values(rows, "flicker", mode=m) for m in MODES}
-    te = {m: exp.values(rows, "terr", mode=m) for m in MODES}
+    fl = {m: exp.values(rows, "legacy_flicker", mode=m) for m in MODES}
+    te = {m: exp.values(rows, "legacy_terr", mode=m) for m in MODES}
     table = ["| mode | paper flicker | flicker | terr | rays saved | link saved | paper saving |",
              "| --- | --- | ---: | ---: | ---: | ---: | --- |"]
     for m in MODES:
