@@ -15,6 +15,7 @@
 #include "report/tdc_report.h"
 #include "simulator/tdc_sim.h"
 #include "simulator/tdc_sim_gaze.h"
+#include "simulator/tdc_sim_jod.h"
 #include "simulator/tdc_sim_render.h"
 #include "tdc_par.h"
 
@@ -84,6 +85,8 @@ static void usage(FILE *f)
             "      --temporal          temporal visibility model: the retinal error through a temporal CSF\n"
             "                          (Watson 1986 band-pass, sim/eye/tdc_eye_temporal.h): column terr\n"
             "      --metric-every K    evaluate every K-th refresh (default 1)\n"
+            "      --jod               judge the retinal signal with FovVideoVDP (docs/visual-model.md): JOD per\n"
+            "                          mode and eye, fovea / periphery, in -o DIR's jod.csv and jod_series.csv\n"
             "      --dump DIR          the retinal signal as files (docs/eye.md): per refresh and eye the drive\n"
             "                          codes, per step the emitted light and the retinal image of every mode\n"
             "                          and of the reference (16-bit linear PNG, Y4M), dump.json, steps.csv\n"
@@ -252,6 +255,7 @@ int main(int argc, char **argv)
         O_FOV_DELTA,
         O_FOV_DISK,
         O_DUMP,
+        O_JOD,
         O_RSTEPS,
         O_LAG
     };
@@ -309,6 +313,7 @@ int main(int argc, char **argv)
                                          {"fov-delta", required_argument, 0, O_FOV_DELTA},
                                          {"fov-disk", required_argument, 0, O_FOV_DISK},
                                          {"dump", required_argument, 0, O_DUMP},
+                                         {"jod", no_argument, 0, O_JOD},
                                          {"retina-steps", required_argument, 0, O_RSTEPS},
                                          {"pursuit-lag", required_argument, 0, O_LAG},
                                          {"help", no_argument, 0, 'h'},
@@ -328,6 +333,7 @@ int main(int argc, char **argv)
     int reflect_mv = 1;
     int fov_lod = TDC_FOV_LOD_FOOTPRINT;
     long frames = -1;
+    int jod = 0; /* --jod */
     double v;
     int c;
     while ((c = getopt_long(argc, argv, "R:s:m:p:r:g:d:n:w:S:o:l:qh", opts, NULL)) != -1) {
@@ -625,6 +631,9 @@ int main(int argc, char **argv)
             cfg.flip_ppd = v;
             ppd_given = 1;
             break;
+        case O_JOD:
+            jod = 1;
+            break;
         case O_DUMP:
             if (optarg[0] == '\0') {
                 fprintf(stderr, "tdc-sim: --dump: empty folder name\n");
@@ -714,7 +723,7 @@ int main(int argc, char **argv)
                 cfg.height);
         return TDC_EXIT_ARGS;
     }
-    if (cfg.dump_dir) {
+    if (cfg.dump_dir || jod) {
         /* the retinal signal: its frame rate and the panel's photometry */
         double pers = cfg.persistence > 0 ? cfg.persistence : (cfg.refresh_hz >= 200 ? 1.0 : 0.2);
         int steps = tdc_retina_steps(cfg.retina_steps, cfg.panel == TDC_PANEL_SIM_LCD, pers);
@@ -726,7 +735,7 @@ int main(int argc, char **argv)
         tdc_retina_display_t disp;
         char why[256];
         if (tdc_retina_display_from_panel(prof, cfg.flip_ppd, cfg.ppd_from, cfg.width, &disp, why, sizeof(why))) {
-            fprintf(stderr, "tdc-sim: --dump: %s\n", why);
+            fprintf(stderr, "tdc-sim: %s: %s\n", cfg.dump_dir ? "--dump" : "--jod", why);
             return TDC_EXIT_INPUT;
         }
     }
@@ -838,7 +847,37 @@ int main(int argc, char **argv)
         snprintf(path, sizeof(path), "%s/series.csv", cfg.outdir);
         series = fopen(path, "w");
     }
-    int rc = res ? tdc_sim_run(&cfg, src, modes, nm, res, series) : -1;
+    /* The judge (--jod): a consumer of the retinal signal. */
+    FILE *jod_series = NULL;
+    tdc_sim_jod_t *judge = NULL;
+    if (jod) {
+        if (cfg.outdir) {
+            snprintf(path, sizeof(path), "%s/jod_series.csv", cfg.outdir);
+            jod_series = fopen(path, "w");
+        }
+        judge = tdc_sim_jod_new(jod_series);
+        cfg.retina_cb = judge ? tdc_sim_jod_cb : NULL;
+        cfg.retina_ctx = judge;
+    }
+    int rc = res && (!jod || judge) ? tdc_sim_run(&cfg, src, modes, nm, res, series) : -1;
+    if (judge) {
+        rc = rc ? rc : tdc_sim_jod_finish(judge);
+        if (rc == 0) {
+            tdc_sim_jod_write(judge, stdout);
+            if (cfg.outdir) {
+                snprintf(path, sizeof(path), "%s/jod.csv", cfg.outdir);
+                FILE *f = fopen(path, "w");
+                if (!f || tdc_sim_jod_write(judge, f) || fclose(f)) {
+                    fprintf(stderr, "tdc-sim: --jod: cannot write %s\n", path);
+                    rc = -2;
+                }
+            }
+        }
+        tdc_sim_jod_free(judge);
+    }
+    if (jod_series && fclose(jod_series)) {
+        rc = rc ? rc : -2;
+    }
     if (series) {
         fclose(series);
     }
