@@ -53,3 +53,14 @@ $(foreach t,$(FVVDP_TESTS),$(B)/tests/unit/$(t)): $(B)/tests/%: $(B)/tests/%.o $
 bench-fvvdp: $(TDC_FVVDP_VALIDATE)
 	@tests/bench/bench_fvvdp.sh $(TDC_FVVDP_VALIDATE) $(FVVDP_REF)
 bench-sim: bench-fvvdp
+
+# tdc-sim --jod end to end (the optimised build only: a simulator run under
+# ASan would add a minute; the metric itself runs in the sanitizer build's
+# unit tests).
+$(B)/tests/unit/test_sim_jod: $$(TDC_SIM) tests/unit/test_sim_jod.sh
+	@mkdir -p $(@D)
+	@printf '#!/bin/sh\nexec tests/unit/test_sim_jod.sh %s\n' "$(TDC_SIM)" > $@
+	@chmod +x $@
+ifeq ($(SAN),)
+TESTS += $(B)/tests/unit/test_sim_jod
+endif
