@@ -862,6 +862,23 @@ int main(int argc, char **argv)
     int rc = res && (!jod || judge) ? tdc_sim_run(&cfg, src, modes, nm, res, series) : -1;
     if (judge) {
         rc = rc ? rc : tdc_sim_jod_finish(judge);
+        for (int i = 0; rc == 0 && i < nm; i++) {
+            /* the JOD columns of summary.csv and the report (mean of the eyes) */
+            int ne = cfg.eyes == 2 ? 2 : 1, ok = 1;
+            double sum[3] = {0.0, 0.0, 0.0};
+            for (int e = 0; e < ne; e++) {
+                tdc_fvvdp_jods_t jr = {NAN, NAN, NAN};
+                ok &= tdc_sim_jod_result(judge, res[i].desc->name, e, &jr, &res[i].jod_frames) == 0;
+                res[i].eye_jod[e] = ok ? jr.all : NAN;
+                sum[0] += jr.all;
+                sum[1] += jr.fovea;
+                sum[2] += jr.periphery;
+            }
+            res[i].judged = ok;
+            res[i].jod = sum[0] / ne;
+            res[i].jod_fovea = sum[1] / ne;
+            res[i].jod_periphery = sum[2] / ne;
+        }
         if (rc == 0) {
             tdc_sim_jod_write(judge, stdout);
             if (cfg.outdir) {
