@@ -4,7 +4,8 @@
 # jod.csv has one row per mode, JODs in (0, 10], the 23-refresh warm-up not
 # pooled (22 pooled), TRM's JOD below full's (it shows half-resolution
 # frames), jod_series.csv one row per mode and refresh with the warm-up
-# marked; and the same JOD with 1 and 2 threads.
+# marked; summary.csv's jod column and summary.md's leading JOD column; and
+# the same JOD with 1 and 2 threads.
 # Usage: tests/unit/test_sim_jod.sh TDC_SIM
 sim=$1
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
@@ -25,4 +26,11 @@ cmp -s "$j" "$tmp/t2/jod.csv" || fail "1 and 2 threads differ: $(tr '\n' ' ' < "
 s=$tmp/t1/jod_series.csv
 [ "$(wc -l < "$s")" -eq 91 ] || fail "jod_series.csv has $(wc -l < "$s") lines, want 1 + 2 x 45"
 [ "$(awk -F, '$5 == 0' "$s" | wc -l)" -eq 46 ] || fail "warm-up rows: $(awk -F, '$5 == 0' "$s" | wc -l), want 2 x 23"
+# summary.csv carries the same JOD (mono: the one eye) and the report leads with it.
+sc=$(head -1 "$tmp/t1/summary.csv" | tr , '\n' | grep -nx 'jod' | cut -d: -f1)
+mc=$(head -1 "$tmp/t1/summary.csv" | tr , '\n' | grep -nx 'mode' | cut -d: -f1)
+[ -n "$sc" ] || fail "summary.csv has no jod column"
+sj=$(awk -F, -v m="$mc" -v c="$sc" '$m == "trm50" { print $c }' "$tmp/t1/summary.csv")
+[ "$sj" = "$trm" ] || fail "summary.csv jod $sj, jod.csv $trm"
+grep -q '^| mode | JOD | JOD fovea | JOD periphery | Hz |' "$tmp/t1/summary.md" || fail "summary.md does not lead with JOD"
 echo "sim jod: ok (full $full, trm50 $trm)"
