@@ -47,11 +47,12 @@ $(foreach t,$(FVVDP_TESTS),$(B)/tests/unit/$(t)): $(B)/tests/%: $(B)/tests/%.o $
 	$(CC) $(HOST_LDFLAGS) $(FVVDP_OMP) $(filter %.o,$^) -o $@ -Wl,--start-group $(SIMXLIB) $(SIMLIB) $(FWLIB) -Wl,--end-group $(HOST_LIBS)
 
 # Part of `make bench-sim`: the metric's throughput against the reference's
-# on the same frames (tests/bench/bench_fvvdp.sh; FVVDP_REF to run the
-# reference in the same run, else its stored seconds).
+# on the same frames (FVVDP_REF to run the reference in the same run, else
+# its stored seconds), and tdc-sim's headline configuration with and without
+# the judge (tests/bench/bench_fvvdp.sh).
 .PHONY: bench-fvvdp
-bench-fvvdp: $(TDC_FVVDP_VALIDATE)
-	@tests/bench/bench_fvvdp.sh $(TDC_FVVDP_VALIDATE) $(FVVDP_REF)
+bench-fvvdp: $(TDC_FVVDP_VALIDATE) $$(TDC_SIM)
+	@tests/bench/bench_fvvdp.sh $(TDC_FVVDP_VALIDATE) $(TDC_SIM) $(FVVDP_REF)
 bench-sim: bench-fvvdp
 
 # tdc-sim --jod end to end (the optimised build only: a simulator run under
