@@ -15,8 +15,9 @@
  *                                   table, mean and max |dJOD|, Spearman
  *                                   rank correlation
  *
- * Exit codes: 0 done, 2 usage, 3 input (CSV) unreadable or incomplete,
- * 4 output not written, 5 metric refused a condition.
+ * Exit codes (docs/tools.md): 0 OK, 1 ARGS usage, 7 FILE a file not read or
+ * written, 13 INPUT the reference table lacks a condition, 14 REFUSED the
+ * metric refused a condition.
  */
 #include <errno.h>
 #include <math.h>
@@ -28,6 +29,7 @@
 
 #include "fvvdp_conditions.h"
 #include "metrics/tdc_fvvdp.h"
+#include "tdc_tool.h"
 
 #define TOOL "tdc-fvvdp-validate"
 
@@ -36,13 +38,13 @@ static int dump(const char *dir)
     char path[4096];
     if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
         fprintf(stderr, TOOL ": dump: cannot create %s: %s\n", dir, strerror(errno));
-        return 4;
+        return TDC_EXIT_FILE;
     }
     snprintf(path, sizeof path, "%s/manifest.csv", dir);
     FILE *mf = fopen(path, "w");
     if (!mf) {
         fprintf(stderr, TOOL ": dump: cannot write %s: %s\n", path, strerror(errno));
-        return 4;
+        return TDC_EXIT_FILE;
     }
     fprintf(mf, "name,width,height,frames,fps,width_m,distance_m,gaze_x,gaze_y\n");
     float fr[64 * 64];
@@ -64,7 +66,7 @@ static int dump(const char *dir)
         if (!f) {
             fprintf(stderr, TOOL ": dump: cannot write %s: %s\n", path, strerror(errno));
             fclose(mf);
-            return 4;
+            return TDC_EXIT_FILE;
         }
         for (int t = 1; t >= 0; t--) {
             for (int k = 0; k < c->frames; k++) {
@@ -77,7 +79,7 @@ static int dump(const char *dir)
     bad |= fclose(mf) != 0;
     if (bad) {
         fprintf(stderr, TOOL ": dump: write to %s failed\n", dir);
-        return 4;
+        return TDC_EXIT_FILE;
     }
     printf("%d conditions written to %s\n", fvvdp_ncond, dir);
     return 0;
@@ -89,11 +91,11 @@ static int table(const char *csv)
     int rc = fvvdp_read_reference(csv, ref, secs);
     if (rc == -1) {
         fprintf(stderr, TOOL ": table: cannot read %s: %s\n", csv, strerror(errno));
-        return 3;
+        return TDC_EXIT_FILE;
     }
     if (rc < -1) {
         fprintf(stderr, TOOL ": table: %s has no row for condition %s\n", csv, fvvdp_conds[-2 - rc].name);
-        return 3;
+        return TDC_EXIT_INPUT;
     }
     double sum = 0, mx = 0;
     printf("| condition | reference JOD | tdc JOD | tdc - reference |\n|---|---:|---:|---:|\n");
@@ -102,7 +104,7 @@ static int table(const char *csv)
         tdc[i] = fvvdp_cond_run(&fvvdp_conds[i], why, sizeof why);
         if (isnan(tdc[i])) {
             fprintf(stderr, TOOL ": table: condition %s refused: %s\n", fvvdp_conds[i].name, why);
-            return 5;
+            return TDC_EXIT_REFUSED;
         }
         double d = tdc[i] - ref[i];
         sum += fabs(d);
@@ -140,7 +142,7 @@ static int bench(void)
         tdc_fvvdp_t *m = tdc_fvvdp_new(&g, c->frames > 1 ? c->fps : 0.0, why, sizeof why);
         if (!m) {
             fprintf(stderr, TOOL ": bench: condition %s refused: %s\n", c->name, why);
-            return 5;
+            return TDC_EXIT_REFUSED;
         }
         for (int k = 0; k < c->frames; k++) {
             tdc_fvvdp_frame(m, fr[0][k], fr[1][k], fov ? gz : NULL);
@@ -166,5 +168,5 @@ int main(int argc, char **argv)
         return table(argv[2]);
     }
     fprintf(stderr, TOOL ": usage: " TOOL " dump DIR | bench | table REFERENCE.csv\n");
-    return 2;
+    return TDC_EXIT_ARGS;
 }
