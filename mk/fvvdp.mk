@@ -31,7 +31,9 @@ fvvdp-reference: $(TDC_FVVDP_VALIDATE)
 	@test -n "$(FVVDP_REF)" || { echo "fvvdp-reference: set FVVDP_REF to a FovVideoVDP checkout"; exit 2; }
 	rm -rf $(B)/fvvdp-frames
 	$(TDC_FVVDP_VALIDATE) dump $(B)/fvvdp-frames
-	{ echo "# FovVideoVDP reference $(FVVDP_REF), made by: make fvvdp-reference"; \
+	{ echo "# FovVideoVDP reference implementation (github.com/gfxdisp/FovVideoVDP) at" \
+	    "$$(git -C $(FVVDP_REF) rev-parse --short HEAD 2>/dev/null || echo '(not a git checkout)'), CPU, one torch thread"; \
+	  echo "# made by: make fvvdp-reference FVVDP_REF=<checkout>; seconds: the reference's predict() wall time"; \
 	  FVVDP_THREADS=1 /usr/bin/python3 sim/metrics/validation/fvvdp_reference.py $(FVVDP_REF) $(B)/fvvdp-frames; } \
 	    > $(B)/fvvdp_reference.csv.tmp
 	mv $(B)/fvvdp_reference.csv.tmp sim/metrics/validation/fvvdp_reference.csv
