@@ -46,6 +46,7 @@
 #include "tdc_par.h"
 
 void tdc_fvvdp_csf_init(void);
+double tdc_fvvdp_csf_lut_q(int ch, double log2_rho, double lum, double sqrt_ecc);
 
 #define MASK_P 2.4
 #define MASK_C (-0.973838)
@@ -66,8 +67,8 @@ struct tdc_fvvdp {
     tdc_fvvdp_pyr_t pyr;
     float *hist;                          /* [2][taps][w*h], ring at head */
     double *gp[4][TDC_FVVDP_MAX_LEVELS];  /* Gaussian pyramids of the signals */
-    double *resmag[TDC_FVVDP_MAX_LEVELS]; /* off-axis magnification per band sample */
-    double *bkg, *ct, *cr, *tmp, *rows;
+    double *lresmag[TDC_FVVDP_MAX_LEVELS]; /* log2 of the off-axis magnification per band sample */
+    double *bkg, *ct, *cr, *tmp, *rows, *colx;
     double fovea_deg;
     /* Q of the frame in progress and pooled over frames: [all, fovea, periphery]. */
     double qsc[3][2], qsum[3];
@@ -139,6 +140,7 @@ tdc_fvvdp_t *tdc_fvvdp_new(const tdc_fvvdp_geometry_t *g, double fps, char *why,
     ok &= (m->cr = zalloc(m, n, sizeof(double))) != NULL;
     ok &= (m->tmp = zalloc(m, n, sizeof(double))) != NULL;
     ok &= (m->rows = zalloc(m, 3 * (size_t)m->h, sizeof(double))) != NULL;
+    ok &= (m->colx = zalloc(m, (size_t)m->w, sizeof(double))) != NULL;
     if (!ok) {
         snprintf(why, why_len, "out of memory (%zu bytes)", m->bytes);
         tdc_fvvdp_free(m);
@@ -160,8 +162,9 @@ void tdc_fvvdp_free(tdc_fvvdp_t *m)
         }
     }
     for (int l = 0; l < TDC_FVVDP_MAX_LEVELS; l++) {
-        free(m->resmag[l]);
+        free(m->lresmag[l]);
     }
+    free(m->colx);
     free(m->bkg);
     free(m->ct);
     free(m->cr);
@@ -270,18 +273,18 @@ static void resmag_maps(tdc_fvvdp_t *m)
 {
     for (int l = 0; l + 1 < m->pyr.levels; l++) {
         int bw = m->pyr.w[l], bh = m->pyr.h[l];
-        if (m->resmag[l]) {
+        if (m->lresmag[l]) {
             continue;
         }
-        m->resmag[l] = zalloc(m, (size_t)bw * bh, sizeof(double));
-        if (!m->resmag[l]) {
+        m->lresmag[l] = zalloc(m, (size_t)bw * bh, sizeof(double));
+        if (!m->lresmag[l]) {
             continue; /* falls back to on-axis magnification 1 */
         }
         for (int y = 0; y < bh; y++) {
             for (int x = 0; x < bw; x++) {
                 double d[2];
                 tdc_fvvdp_view_dir(&m->g, bw, bh, x + 0.5, y + 0.5, d);
-                m->resmag[l][(size_t)y * bw + x] = tdc_fvvdp_res_mag(&m->g, d);
+                m->lresmag[l][(size_t)y * bw + x] = log2(tdc_fvvdp_res_mag(&m->g, d));
             }
         }
     }
@@ -304,8 +307,16 @@ static void band_q(tdc_fvvdp_t *m, int l, int ch, const double *gaze, double q[3
     if (gaze) {
         tdc_fvvdp_view_dir(&m->g, m->w, m->h, gaze[0] + 0.5, gaze[1] + 0.5, gd);
     }
-    const double *rm = gaze ? m->resmag[l] : NULL;
+    const double *lrm = gaze ? m->lresmag[l] : NULL;
     double *rin = m->rows + m->h, *nin = m->rows + 2 * (size_t)m->h;
+    double lrho = log2(rho);
+    /* Horizontal view angles relative to the gaze, per column (the view
+     * direction's x depends on the column only, its y on the row only). */
+    for (int x = 0; gaze && x < bw; x++) {
+        double d[2];
+        tdc_fvvdp_view_dir(&m->g, bw, bh, x + 0.5, 0.5, d);
+        m->colx[x] = d[0] - gd[0];
+    }
     TDC_PAR_FOR((long)bw * bh)
     for (int y = 0; y < bh; y++) {
         double s = 0.0, si = 0.0, ni = 0.0, vy = 0.0;
@@ -316,15 +327,13 @@ static void band_q(tdc_fvvdp_t *m, int l, int ch, const double *gaze, double q[3
         }
         for (int x = 0; x < bw; x++) {
             size_t i = (size_t)y * bw + x;
-            double ecc = 0.0, r = rho;
+            double ecc = 0.0, lr = lrho;
             if (gaze) {
-                double d[2];
-                tdc_fvvdp_view_dir(&m->g, bw, bh, x + 0.5, 0.5, d);
-                double vx = d[0] - gd[0];
+                double vx = m->colx[x];
                 ecc = sqrt(vx * vx + vy * vy);
-                r = rho * (rm ? rm[i] : 1.0);
+                lr = lrho + (lrm ? lrm[i] : 0.0);
             }
-            double sens = tdc_fvvdp_csf_lut(ch, r, m->bkg[i], ecc) * corr;
+            double sens = tdc_fvvdp_csf_lut_q(ch, lr, m->bkg[i], sqrt(ecc)) * corr;
             double t = m->ct[i] * sens, rr = m->cr[i] * sens;
             double mk = mc * fmin(fabs(t), fabs(rr));
             double d = pow(fabs(t - rr), MASK_P) / (1.0 + pow(mk, mq));

@@ -183,6 +183,7 @@ static inline double axis(double q, double lo, double hi, int *i0)
 }
 
 void tdc_fvvdp_csf_init(void);
+double tdc_fvvdp_csf_lut_q(int ch, double log2_rho, double lum, double sqrt_ecc);
 void tdc_fvvdp_csf_init(void)
 {
     pthread_once(&lut_once, lut_build);
@@ -191,10 +192,18 @@ void tdc_fvvdp_csf_init(void)
 double tdc_fvvdp_csf_lut(int ch, double rho, double lum, double ecc)
 {
     tdc_fvvdp_csf_init();
+    return tdc_fvvdp_csf_lut_q(ch, log2(rho), lum, sqrt(ecc > 0.0 ? ecc : 0.0));
+}
+
+/* The table at log2 rho and sqrt ecc (the metric's inner loop has them
+ * from per-band maps, without a log and a square root per sample); after
+ * tdc_fvvdp_csf_init. */
+double tdc_fvvdp_csf_lut_q(int ch, double log2_rho, double lum, double sqrt_ecc)
+{
     int i, j, k;
-    double fr = axis(log2(rho), R_LO, R_HI, &i);
+    double fr = axis(log2_rho, R_LO, R_HI, &i);
     double fy = axis(log2(lum), Y_LO, Y_HI, &j);
-    double fe = axis(sqrt(ecc > 0.0 ? ecc : 0.0), 0.0, E_HI, &k);
+    double fe = axis(sqrt_ecc, 0.0, E_HI, &k);
     const float(*v)[N][N] = lut[ch];
     double a = ((v[j][i][k] * (1 - fr) + v[j][i + 1][k] * fr) * (1 - fy) +
                 (v[j + 1][i][k] * (1 - fr) + v[j + 1][i + 1][k] * fr) * fy) * (1 - fe) +
