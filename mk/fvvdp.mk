@@ -22,13 +22,16 @@ $(TDC_FVVDP_VALIDATE): $(B)/sim/metrics/validation/fvvdp_validate.o $(FVVDP_VAL_
 	@mkdir -p $(@D)
 	$(CC) $(HOST_LDFLAGS) $(FVVDP_OMP) $(filter %.o,$^) -o $@ -Wl,--start-group $(SIMXLIB) $(SIMLIB) $(FWLIB) -Wl,--end-group $(HOST_LIBS)
 
-# Running the reference beside the project (never a build or test
-# dependency): `make fvvdp-reference FVVDP_REF=/path/to/FovVideoVDP`
-# rewrites the stored table; python3-torch is Debian's.
-DEPS_PKGS += python3-torch # fvvdp-reference only: runs the reference FovVideoVDP on the CPU
+# Running the reference beside the project: `make fvvdp-reference
+# FVVDP_REF=/path/to/FovVideoVDP` rewrites the stored table.  It needs
+# Debian's python3-torch and python3-scipy, deliberately not in DEPS_PKGS:
+# the reference is never a build or test dependency (make test compares with
+# the stored table), and torch is a large install nothing else needs.
 FVVDP_REF ?=
 fvvdp-reference: $(TDC_FVVDP_VALIDATE)
 	@test -n "$(FVVDP_REF)" || { echo "fvvdp-reference: set FVVDP_REF to a FovVideoVDP checkout"; exit 2; }
+	@/usr/bin/python3 -c 'import torch, scipy' 2>/dev/null || \
+	    { echo "fvvdp-reference: needs Debian's python3-torch and python3-scipy (apt-get install python3-torch python3-scipy)"; exit 2; }
 	rm -rf $(B)/fvvdp-frames
 	$(TDC_FVVDP_VALIDATE) dump $(B)/fvvdp-frames
 	{ echo "# FovVideoVDP reference implementation (github.com/gfxdisp/FovVideoVDP) at" \
