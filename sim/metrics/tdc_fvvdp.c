@@ -27,6 +27,10 @@
  *   6. JOD (eq. 9): 10 - (|a|^(1/b) Q)^b, a = -0.0161713, b = 10^-0.228.
  * All values: fvvdp_parameters.json "version 1.2.3" of the reference.
  *
+ * Sharing (tdc_fvvdp_new_shared): metrics judging several tests against one
+ * reference hold and filter the reference once; a sharing metric reads the
+ * owner's reference pyramids, so the owner must be fed each frame first.
+ *
  * Memory: the history is ceil(fps/4) frames of test and reference, float,
  * w*h each (22.1 MB a 1440x1600 eye at 90 Hz, 23 taps: 23*2*4*2.3 M = 424
  * MB); the rest is O(w*h) doubles (the four signals' pyramids, 4/3 of a
@@ -60,12 +64,14 @@ double tdc_fvvdp_csf_lut_q(int ch, double log2_rho, double lum, double sqrt_ecc)
 #define LOG_JOD_EXP (-0.2280)
 
 struct tdc_fvvdp {
+    const tdc_fvvdp_t *owner; /* shares the owner's reference signals (tdc_fvvdp_new_shared) */
     tdc_fvvdp_geometry_t g;
     double ppd, fps;
     int w, h, nch, taps, frames, head;
     double f[2][TDC_FVVDP_MAX_TAPS];
     tdc_fvvdp_pyr_t pyr;
-    float *hist;                          /* [2][taps][w*h], ring at head */
+    float *hist;                          /* [streams][taps][w*h], ring at head: test, reference
+                                             (the reference only without an owner) */
     double *gp[4][TDC_FVVDP_MAX_LEVELS];  /* Gaussian pyramids of the signals */
     double *lresmag[TDC_FVVDP_MAX_LEVELS]; /* log2 of the off-axis magnification per band sample */
     double *bkg, *ct, *cr, *tmp, *rows, *colx;
@@ -89,7 +95,8 @@ static void *zalloc(tdc_fvvdp_t *m, size_t n, size_t sz)
     return calloc(n, sz);
 }
 
-tdc_fvvdp_t *tdc_fvvdp_new(const tdc_fvvdp_geometry_t *g, double fps, char *why, size_t why_len)
+static tdc_fvvdp_t *new_impl(const tdc_fvvdp_geometry_t *g, double fps, const tdc_fvvdp_t *owner, char *why,
+                             size_t why_len)
 {
     if (g->width < 4 || g->height < 4 || g->width > 16384 || g->height > 16384) {
         snprintf(why, why_len, "size %dx%d outside 4..16384", g->width, g->height);
@@ -108,6 +115,7 @@ tdc_fvvdp_t *tdc_fvvdp_new(const tdc_fvvdp_geometry_t *g, double fps, char *why,
         snprintf(why, why_len, "out of memory");
         return NULL;
     }
+    m->owner = owner;
     m->g = *g;
     m->w = g->width;
     m->h = g->height;
@@ -128,10 +136,10 @@ tdc_fvvdp_t *tdc_fvvdp_new(const tdc_fvvdp_geometry_t *g, double fps, char *why,
     size_t n = (size_t)m->w * m->h;
     int ok = 1;
     if (m->nch == 2) {
-        ok &= (m->hist = zalloc(m, 2 * (size_t)m->taps * n, sizeof(float))) != NULL;
+        ok &= (m->hist = zalloc(m, (owner ? 1 : 2) * (size_t)m->taps * n, sizeof(float))) != NULL;
     }
     for (int s = 0; s < 2 * m->nch; s++) {
-        for (int l = 0; l < m->pyr.levels; l++) {
+        for (int l = 0; l < m->pyr.levels && !(owner && (s & 1)); l++) {
             ok &= (m->gp[s][l] = zalloc(m, (size_t)m->pyr.w[l] * m->pyr.h[l], sizeof(double))) != NULL;
         }
     }
@@ -148,6 +156,27 @@ tdc_fvvdp_t *tdc_fvvdp_new(const tdc_fvvdp_geometry_t *g, double fps, char *why,
     }
     tdc_fvvdp_csf_init();
     return m;
+}
+
+tdc_fvvdp_t *tdc_fvvdp_new(const tdc_fvvdp_geometry_t *g, double fps, char *why, size_t why_len)
+{
+    return new_impl(g, fps, NULL, why, why_len);
+}
+
+tdc_fvvdp_t *tdc_fvvdp_new_shared(const tdc_fvvdp_t *owner, char *why, size_t why_len)
+{
+    if (owner->owner) {
+        snprintf(why, why_len, "the owner of a shared reference must own it");
+        return NULL;
+    }
+    return new_impl(&owner->g, owner->fps, owner, why, why_len);
+}
+
+/* Pyramid level l of signal s (odd s: the reference's, the owner's when
+ * shared). */
+static const double *sig(const tdc_fvvdp_t *m, int s, int l)
+{
+    return (s & 1) && m->owner ? m->owner->gp[s][l] : m->gp[s][l];
 }
 
 void tdc_fvvdp_free(tdc_fvvdp_t *m)
@@ -227,15 +256,18 @@ int tdc_fvvdp_set_fovea(tdc_fvvdp_t *m, double deg)
 static void signals(tdc_fvvdp_t *m, const float *test, const float *ref)
 {
     size_t n = (size_t)m->w * m->h;
+    int nt = m->owner ? 1 : 2; /* streams held: test, and the reference unless shared */
     if (m->nch == 1) {
         for (size_t i = 0; i < n; i++) {
             m->gp[0][0][i] = test[i];
-            m->gp[1][0][i] = ref[i];
+            if (nt == 2) {
+                m->gp[1][0][i] = ref[i];
+            }
         }
         return;
     }
     const float *src[2] = { test, ref };
-    for (int t = 0; t < 2; t++) {
+    for (int t = 0; t < nt; t++) {
         float *h = m->hist + (size_t)t * m->taps * n;
         if (m->frames == 0) {
             for (int k = 0; k < m->taps; k++) {
@@ -248,7 +280,7 @@ static void signals(tdc_fvvdp_t *m, const float *test, const float *ref)
     int taps = m->taps, head = m->head, w = m->w;
     TDC_PAR_FOR((long)n * taps)
     for (int y = 0; y < m->h; y++) {
-        for (int t = 0; t < 2; t++) {
+        for (int t = 0; t < nt; t++) {
             const float *h = m->hist + (size_t)t * taps * n + (size_t)y * w;
             double *sus = m->gp[t][0] + (size_t)y * w, *tr = m->gp[2 + t][0] + (size_t)y * w;
             for (int x = 0; x < w; x++) {
@@ -361,8 +393,8 @@ static void band_q(tdc_fvvdp_t *m, int l, int ch, const double *gaze, double q[3
 static void band_contrast(tdc_fvvdp_t *m, int s, int l, double mul, double *out)
 {
     int bw = m->pyr.w[l], bh = m->pyr.h[l];
-    tdc_fvvdp_expand(m->gp[s][l + 1], bw, bh, out, m->tmp);
-    const double *g = m->gp[s][l];
+    tdc_fvvdp_expand(sig(m, s, l + 1), bw, bh, out, m->tmp);
+    const double *g = sig(m, s, l);
     TDC_PAR_FOR((long)bw * bh)
     for (int y = 0; y < bh; y++) {
         for (int x = 0; x < bw; x++) {
@@ -378,7 +410,7 @@ double tdc_fvvdp_frame(tdc_fvvdp_t *m, const float *test, const float *ref, cons
     signals(m, test, ref);
     int nsig = 2 * m->nch, lv = m->pyr.levels;
     for (int s = 0; s < nsig; s++) {
-        for (int l = 0; l + 1 < lv; l++) {
+        for (int l = 0; l + 1 < lv && !(m->owner && (s & 1)); l++) {
             tdc_fvvdp_reduce(m->gp[s][l], m->pyr.w[l], m->pyr.h[l], m->gp[s][l + 1], m->tmp);
         }
     }
@@ -391,7 +423,7 @@ double tdc_fvvdp_frame(tdc_fvvdp_t *m, const float *test, const float *ref, cons
     for (int l = 0; l + 1 < lv; l++) {
         int bw = m->pyr.w[l], bh = m->pyr.h[l];
         /* Local adaptation: the reference's sustained signal one level down. */
-        tdc_fvvdp_expand(m->gp[1][l + 1], bw, bh, m->bkg, m->tmp);
+        tdc_fvvdp_expand(sig(m, 1, l + 1), bw, bh, m->bkg, m->tmp);
         for (size_t i = 0; i < (size_t)bw * bh; i++) {
             m->bkg[i] = m->bkg[i] > 0.1 ? m->bkg[i] : 0.1;
         }

@@ -14,6 +14,7 @@ typedef struct {
     char mode[64];
     int eye;
     tdc_fvvdp_t *m;       /* created at the first refresh's end (its step count gives the rate) */
+    int own;              /* index of the judge whose reference m shares, or -1 */
     float *acc_t, *acc_r; /* this refresh's retinal luminance, summed over its steps */
     int w, h, nacc;
     long refresh;         /* the refresh being accumulated */
@@ -56,15 +57,29 @@ static int flush(tdc_sim_jod_t *s, judge_t *j)
         return 0;
     }
     if (!j->m) {
-        /* The first refresh's step count fixes the rate: R = steps/s / N. */
+        /* The first refresh's step count fixes the rate: R = steps/s / N.
+         * The eye's first judge holds the reference; the eye's other modes
+         * share it (their refreshes are flushed after it, in mode order). */
         char why[160];
         double rate = j->fps / j->nacc;
-        j->m = tdc_fvvdp_new(&j->g, rate, why, sizeof why);
+        j->own = -1;
+        for (int i = 0; i < s->n && j->own < 0; i++) {
+            j->own = s->j[i].eye == j->eye && s->j[i].m && s->j[i].own < 0 && &s->j[i] != j ? i : -1;
+        }
+        j->m = j->own >= 0 ? tdc_fvvdp_new_shared(s->j[j->own].m, why, sizeof why)
+                           : tdc_fvvdp_new(&j->g, rate, why, sizeof why);
         if (!j->m) {
             fprintf(stderr, "tdc-sim: jod: mode %s eye %d: %s\n", j->mode, j->eye, why);
             return -1;
         }
         j->warmup = (int)ceil(WARMUP_S * rate);
+    }
+    if (j->own >= 0 && tdc_fvvdp_frames(s->j[j->own].m) != j->fed + 1) {
+        /* the judge holding the reference stopped (its mode failed): this
+         * mode's reference would be stale */
+        fprintf(stderr, "tdc-sim: jod: mode %s eye %d: the reference's judge (mode %s) has %d refreshes, not %d\n",
+                j->mode, j->eye, s->j[j->own].mode, tdc_fvvdp_frames(s->j[j->own].m), j->fed + 1);
+        return -1;
     }
     size_t np = (size_t)j->w * j->h;
     float inv = 1.0f / (float)j->nacc;

@@ -15,6 +15,7 @@
  *   - JOD strictly decreasing in blur and in noise strength;
  *   - the same JOD bits with 1 and 2 threads;
  *   - the fovea/periphery split and pooling after the warm-up;
+ *   - a metric sharing another's reference gives the same bits;
  *   - bad sizes, rates and geometry refused with a reason.
  */
 #include <math.h>
@@ -340,6 +341,46 @@ static void test_reset_pool(void **state)
     tdc_fvvdp_free(m);
 }
 
+/* Two tests against one reference: the sharing metric (reference held and
+ * filtered once) gives the same bits as an independent one, foveated video,
+ * and holds less memory. */
+static void test_shared_reference(void **state)
+{
+    (void)state;
+    char why[160];
+    const fvvdp_cond_t a = { "alt", 64, 64, 30, 90, 20, 10, FVVDP_K_ALT, 1.5, 4.0 };
+    const fvvdp_cond_t b = { "blur", 64, 64, 30, 90, 20, 10, FVVDP_K_BLUR, 1.0, 4.0 };
+    tdc_fvvdp_geometry_t g = tdc_fvvdp_geometry_ppd(64, 64, 20.0);
+    tdc_fvvdp_t *own = tdc_fvvdp_new(&g, 90.0, why, sizeof why);
+    tdc_fvvdp_t *sh = tdc_fvvdp_new_shared(own, why, sizeof why);
+    tdc_fvvdp_t *solo = tdc_fvvdp_new(&g, 90.0, why, sizeof why);
+    assert_non_null(own);
+    assert_non_null(sh);
+    assert_non_null(solo);
+    assert_null(tdc_fvvdp_new_shared(sh, why, sizeof why));
+    assert_true(tdc_fvvdp_bytes(sh) < tdc_fvvdp_bytes(solo));
+    double gz[2];
+    assert_int_equal(fvvdp_cond_gaze(&a, gz), 1);
+    float ta[64 * 64], tb[64 * 64], r[64 * 64], junk[64 * 64];
+    for (int f = 0; f < a.frames; f++) {
+        fvvdp_cond_frame(&a, f, 1, ta);
+        fvvdp_cond_frame(&b, f, 1, tb);
+        fvvdp_cond_frame(&a, f, 0, r);
+        for (int i = 0; i < 64 * 64; i++) {
+            junk[i] = 1.0f; /* ignored by a sharing metric */
+        }
+        tdc_fvvdp_frame(own, ta, r, gz);
+        tdc_fvvdp_frame(sh, tb, junk, gz);
+        tdc_fvvdp_frame(solo, tb, r, gz);
+    }
+    double js = tdc_fvvdp_jod(sh), jo = tdc_fvvdp_jod(solo);
+    assert_memory_equal(&js, &jo, sizeof js);
+    assert_true(js < 10.0 && tdc_fvvdp_jod(own) < 10.0);
+    tdc_fvvdp_free(sh);
+    tdc_fvvdp_free(solo);
+    tdc_fvvdp_free(own);
+}
+
 static void test_refused(void **state)
 {
     (void)state;
@@ -395,6 +436,7 @@ int main(void)
         cmocka_unit_test(test_threads_identical),
         cmocka_unit_test(test_regions),
         cmocka_unit_test(test_reset_pool),
+        cmocka_unit_test(test_shared_reference),
         cmocka_unit_test(test_refused),
         cmocka_unit_test(test_photometry_geometry),
     };

@@ -4,7 +4,7 @@
 # jod.csv has one row per mode, JODs in (0, 10], the 23-refresh warm-up not
 # pooled (22 pooled), TRM's JOD below full's (it shows half-resolution
 # frames), jod_series.csv one row per mode and refresh with the warm-up
-# marked; summary.csv's jod column and summary.md's leading JOD column; and
+# marked; trm50 alone as with full (the reference shared); summary.csv's jod column and summary.md's leading JOD column; and
 # the same JOD with 1 and 2 threads.
 # Usage: tests/unit/test_sim_jod.sh TDC_SIM
 sim=$1
@@ -26,6 +26,11 @@ cmp -s "$j" "$tmp/t2/jod.csv" || fail "1 and 2 threads differ: $(tr '\n' ' ' < "
 s=$tmp/t1/jod_series.csv
 [ "$(wc -l < "$s")" -eq 91 ] || fail "jod_series.csv has $(wc -l < "$s") lines, want 1 + 2 x 45"
 [ "$(awk -F, '$5 == 0' "$s" | wc -l)" -eq 46 ] || fail "warm-up rows: $(awk -F, '$5 == 0' "$s" | wc -l), want 2 x 23"
+# trm50 judged alone (holding its own reference) = trm50 sharing full's.
+mkdir -p "$tmp/alone"
+"$sim" -q -s pan -r 90 -g 64x64 --mono -m trm50 -n 45 --jod -o "$tmp/alone" > /dev/null 2>&1 || fail "tdc-sim -m trm50 --jod exited $?"
+alone=$(awk -F, '$1 == "trm50" { print $3 }' "$tmp/alone/jod.csv")
+[ "$alone" = "$trm" ] || fail "trm50 alone $alone, sharing full's reference $trm"
 # summary.csv carries the same JOD (mono: the one eye) and the report leads with it.
 sc=$(head -1 "$tmp/t1/summary.csv" | tr , '\n' | grep -nx 'jod' | cut -d: -f1)
 mc=$(head -1 "$tmp/t1/summary.csv" | tr , '\n' | grep -nx 'mode' | cut -d: -f1)
