@@ -31,7 +31,13 @@ int tdc_png_read(const char *path, tdc_image_t *img, char *err, size_t errlen)
         return -1;
     }
     unsigned char sig[8];
-    if (fread(sig, 1, 8, f) != 8 || png_sig_cmp(sig, 0, 8)) {
+    const size_t got = fread(sig, 1, 8, f);
+    if (got != 8 && ferror(f)) { /* a folder opens, and reading it fails with EISDIR */
+        snprintf(err, errlen, "%s: cannot read: %s", path, strerror(errno));
+        fclose(f);
+        return -1;
+    }
+    if (got != 8 || png_sig_cmp(sig, 0, 8)) {
         snprintf(err, errlen, "%s: not a PNG file", path);
         fclose(f);
         return -1;

@@ -27,7 +27,7 @@
  * the stateful overdrive tables (tdc_calib_trans.h) and writes them into
  * the profile; the per-class fit errors are printed.
  *
- * The profile is written to OUT.panel.tmp and renamed onto OUT.panel only
+ * The profile is written to OUT.panel.tmp.PID and renamed onto OUT.panel only
  * when everything succeeded: an error never truncates an existing profile.
  *
  * Exit codes (hosttools/common/tdc_tool.h): 0 OK, ARGS (1) bad command line,
@@ -181,13 +181,9 @@ static double lum_sse(int rate, const double p[4], const double gamma[3])
     return s;
 }
 
-static int usage(void)
-{
-    fprintf(stderr, "usage: tdc-calib MEAS.csv -o OUT.panel --name NAME --width W --height H [--eyes N]\n"
-                    "                 [--refresh HZ] [--table 0|17|33] [--note TEXT]\n"
-                    "                 [--transitions TRANS.csv [--state-table 17|33|65] [--smooth]]\n");
-    return TDC_EXIT_ARGS;
-}
+static const char usage[] = "usage: tdc-calib MEAS.csv -o OUT.panel --name NAME --width W --height H [--eyes N]\n"
+                            "                 [--refresh HZ] [--table 0|17|33] [--note TEXT]\n"
+                            "                 [--transitions TRANS.csv [--state-table 17|33|65] [--smooth]]\n";
 
 /* Numeric option: the whole argument, in range, no wrap-around. */
 static int opt_num(const char *opt, const char *v, int lo, int hi, int *out)
@@ -203,6 +199,14 @@ int main(int argc, char **argv)
 {
     const char *in = NULL, *out = NULL, *name = NULL, *note = NULL, *trans = NULL;
     int width = 0, height = 0, eyes = 1, refresh = 0, table = 33, state_n = 33, smooth = 0;
+    tdc_tool_set_name("tdc-calib");
+    if (argc == 2 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
+        printf("%sFits an LCD panel profile (gamma, TRM eq. 7 p1..p4 per rate, optional state tables)\n"
+               "to a measurement file of tdc-lcd-measure or a real colorimeter (docs/lcd.md).\n"
+               "exit codes (docs/tools.md): 0 OK, 1 ARGS, 7 FILE, 13 INPUT (malformed or unfittable data)\n",
+               usage);
+        return TDC_EXIT_OK;
+    }
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         int bad = 0;
@@ -231,15 +235,20 @@ int main(int argc, char **argv)
         } else if (a[0] != '-' && !in) {
             in = a;
         } else {
-            return usage();
+            return tdc_fail_usage(NULL, a[0] != '-' ? "a second measurement file '%s'"
+                                        : v         ? "unknown option '%s'"
+                                                    : "unknown option '%s', or it needs a value",
+                                  a);
         }
         if (bad) {
             return TDC_EXIT_ARGS;
         }
     }
-    if (!in || !out || !name || width < 1 || height < 1 || (table != 0 && table != 17 && table != 33) ||
-        (state_n != 17 && state_n != 33 && state_n != 65)) {
-        return usage();
+    if (!in || !out || !name || width < 1 || height < 1) {
+        return tdc_fail_usage(NULL, "needs MEAS.csv, -o OUT.panel, --name, --width and --height");
+    }
+    if ((table != 0 && table != 17 && table != 33) || (state_n != 17 && state_n != 33 && state_n != 65)) {
+        return tdc_fail_usage(NULL, "--table is 0, 17 or 33; --state-table 17, 33 or 65");
     }
     if (!name[0] || strpbrk(name, " \t\r\n#")) {
         fprintf(stderr, "tdc-calib: --name '%s': need a non-empty name without blanks or '#'\n", name);
@@ -468,17 +477,12 @@ int main(int argc, char **argv)
         }
         tdc_st_print(&st, stdout);
     }
-    /* Profile: written to OUT.tmp, renamed onto OUT when complete. */
-    char tmp_path[4096];
-    if (snprintf(tmp_path, sizeof tmp_path, "%s.tmp", out) >= (int)sizeof tmp_path) {
-        fprintf(stderr, "tdc-calib: -o %s: path too long\n", out);
-        return TDC_EXIT_ARGS;
+    /* Profile: written to OUT.tmp.PID (tdc_out_open), renamed onto OUT when complete. */
+    tdc_out_t o;
+    if (tdc_out_open(&o, out, "w") != 0) {
+        return tdc_fail(TDC_EXIT_FILE, NULL, out, "cannot write: %s", strerror(errno));
     }
-    FILE *f = fopen(tmp_path, "w");
-    if (!f) {
-        fprintf(stderr, "tdc-calib: cannot write %s: %s\n", tmp_path, strerror(errno));
-        return TDC_EXIT_FILE;
-    }
+    FILE *f = o.f;
     fprintf(f, "# %s: LCD profile written by tdc-calib from %s.\n", name, in);
     if (note) {
         fprintf(f, "# %s\n", note);
@@ -520,10 +524,8 @@ int main(int argc, char **argv)
     if (trans) {
         tdc_st_write_profile(&st, f);
     }
-    if ((ferror(f) | fclose(f)) != 0 || rename(tmp_path, out) != 0) {
-        fprintf(stderr, "tdc-calib: cannot write %s: %s\n", out, strerror(errno));
-        remove(tmp_path);
-        return TDC_EXIT_FILE;
+    if (tdc_out_commit(&o) != 0) {
+        return tdc_fail(TDC_EXIT_FILE, NULL, out, "cannot write: %s", strerror(errno));
     }
     printf("wrote %s\n", out);
     tdc_meas_free(&meas);

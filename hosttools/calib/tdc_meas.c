@@ -11,6 +11,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "tdc_tool.h"
+
 int tdc_meas_errf(char *err, size_t errlen, const char *fmt, ...)
 {
     if (err && errlen) {
@@ -165,7 +167,7 @@ int tdc_meas_parse(const char *text, size_t len, const char *path, tdc_meas_t *m
 int tdc_meas_load(const char *path, tdc_meas_t *m, char *err, size_t errlen)
 {
     memset(m, 0, sizeof *m);
-    FILE *f = fopen(path, "rb");
+    FILE *f = tdc_in_check(path) == 0 ? fopen(path, "rb") : NULL; /* a folder: EISDIR, FILE */
     if (!f) {
         tdc_meas_errf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
         return -2;

@@ -10,11 +10,13 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <getopt.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
-static const char *const k_exit_names[TDC_EXIT_COUNT] = {
-    "OK",           "ARGS", "NO_DEVICE", "AMBIGUOUS", "IO",    "TIMEOUT", "DISCONNECTED", "FILE", "IMAGE",
-    "INCOMPATIBLE", "DFU",  "VERIFY",    "PROTOCOL",  "INPUT", "REFUSED", "NO_LINE",      "BUSY", "NOMEM"};
+#define TDC_EXIT_NAME(code, name, meaning, programs) [code] = #name,
+static const char *const k_exit_names[TDC_EXIT_COUNT] = {TDC_EXIT_TABLE(TDC_EXIT_NAME)};
+#undef TDC_EXIT_NAME
 
 const char *tdc_exit_name(int code)
 {
@@ -51,6 +53,39 @@ int tdc_fail_option(const char *cmd, const char *opt, const char *val, const cha
     char what[256];
     snprintf(what, sizeof what, "bad value for %s '%s'", opt, val ? val : "");
     return tdc_fail(TDC_EXIT_ARGS, cmd, what, "%s", want);
+}
+
+int tdc_fail_usage(const char *cmd, const char *why_fmt, ...)
+{
+    char why[1024];
+    va_list ap;
+    va_start(ap, why_fmt);
+    vsnprintf(why, sizeof why, why_fmt, ap);
+    va_end(ap);
+    return tdc_fail(TDC_EXIT_ARGS, cmd, NULL, "%s: try '%s --help'", why, g_name);
+}
+
+int tdc_fail_getopt(int c, char *const *argv)
+{
+    /* glibc: optind is past the offending element; optopt is the short
+     * option's letter (0 for an unknown long option) */
+    char opt[3] = {'-', (char)optopt, 0};
+    const char *name = c == '?' && optopt > 0 && optopt < 128 ? opt : argv[optind - 1];
+    return tdc_fail_usage(NULL, c == ':' ? "option '%s' needs a value" : "unknown option '%s'", name);
+}
+
+int tdc_in_check(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return -1;
+    struct stat st;
+    const int dir = fstat(fileno(f), &st) == 0 && S_ISDIR(st.st_mode);
+    fclose(f);
+    if (dir) {
+        errno = EISDIR;
+        return -1;
+    }
+    return 0;
 }
 
 /* Digits of base 10 (or 16 after 0x), each step checked against the limit

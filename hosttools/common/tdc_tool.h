@@ -5,7 +5,7 @@
  * one-line messages "tool: command: what failed: why", and number parsing
  * that refuses what does not fit instead of wrapping it.
  *
- * The table (and the message format) is documented in docs/tools.md; a
+ * The table is tdc_exit.h; it and the message format are in docs/tools.md; a
  * program uses the codes that can happen in it and never gives a code
  * another meaning.  Host code only (libc, stdio).
  */
@@ -15,32 +15,17 @@
 #include <stdint.h>
 #include <stdio.h>
 
-/* Named exit codes, positive so shells see them (picotool style).  0..12
- * are the codes tdc-usb has always used; the rest were added for the other
- * programs.  Keep in step with tdc_exit_name() and docs/tools.md. */
-typedef enum {
-    TDC_EXIT_OK = 0,
-    TDC_EXIT_ARGS = 1,         /* bad command line: unknown option, bad value, missing argument */
-    TDC_EXIT_NO_DEVICE = 2,    /* no board (USB) or GPIO chip matches */
-    TDC_EXIT_AMBIGUOUS = 3,    /* more than one board matches: select one */
-    TDC_EXIT_IO = 4,           /* device I/O error (libusb: access, stall, I/O; GPIO request or read) */
-    TDC_EXIT_TIMEOUT = 5,      /* a transfer or an expected event timed out */
-    TDC_EXIT_DISCONNECTED = 6, /* the board went away mid-operation */
-    TDC_EXIT_FILE = 7,         /* cannot open, read, write or create a file or folder */
-    TDC_EXIT_IMAGE = 8,        /* firmware image malformed: magic, size, CRC, suffix */
-    TDC_EXIT_INCOMPATIBLE = 9, /* image for another board, or too large for its slot */
-    TDC_EXIT_DFU = 10,         /* the board's DFU reported an error */
-    TDC_EXIT_VERIFY = 11,      /* read-back or received-data check failed */
-    TDC_EXIT_PROTOCOL = 12,    /* the board's reply is malformed */
-    TDC_EXIT_INPUT = 13,       /* an input file's contents are malformed (PNG, CSV, scene, OBJ,
-                                   panel profile, .tdcs stream: truncated, corrupt, out of range) */
-    TDC_EXIT_REFUSED = 14,     /* the firmware (a stage) refused the input or the configuration */
-    TDC_EXIT_NO_LINE = 15,     /* no such GPIO line on the chip */
-    TDC_EXIT_BUSY = 16,        /* the GPIO line is in use by another consumer */
-    TDC_EXIT_NOMEM = 17        /* out of memory */
-} tdc_exit_t;
+#include "tdc_exit.h"
 
-#define TDC_EXIT_COUNT 18
+/* Named exit codes, positive so shells see them (picotool style): the one
+ * table in tdc_exit.h, TDC_EXIT_OK = 0, TDC_EXIT_ARGS = 1, ... */
+#define TDC_EXIT_ENUM(code, name, meaning, programs) TDC_EXIT_##name = code,
+typedef enum { TDC_EXIT_TABLE(TDC_EXIT_ENUM) } tdc_exit_t;
+#undef TDC_EXIT_ENUM
+
+#define TDC_EXIT_ONE(code, name, meaning, programs) +1
+enum { TDC_EXIT_COUNT = 0 TDC_EXIT_TABLE(TDC_EXIT_ONE) };
+#undef TDC_EXIT_ONE
 
 /* "OK", "ARGS", ... ; "?" for a value outside the table. */
 const char *tdc_exit_name(int code);
@@ -60,6 +45,23 @@ int tdc_fail(int code, const char *cmd, const char *what, const char *why_fmt, .
 
 /* A bad option value: "tool: cmd: bad value for OPT 'VAL': WANT" -> ARGS. */
 int tdc_fail_option(const char *cmd, const char *opt, const char *val, const char *want);
+
+/* Any other bad command line: "tool: cmd: WHY: try 'tool --help'" -> ARGS
+ * (one line: the usage goes to stdout on --help only). */
+#if defined(__GNUC__)
+__attribute__((format(printf, 2, 3)))
+#endif
+int tdc_fail_usage(const char *cmd, const char *why_fmt, ...);
+
+/* getopt_long() returned '?' or ':' (call it with opterr = 0 and an
+ * optstring starting with ':'): the unknown option, or the one missing its
+ * value, as one tdc_fail_usage() line -> ARGS. */
+int tdc_fail_getopt(int c, char *const *argv);
+
+/* An input file before it is read: 0 when path can be opened for reading
+ * and is not a folder, else -1 with errno (EISDIR for a folder), so a folder
+ * is FILE ("cannot read"), not a malformed (INPUT) empty file. */
+int tdc_in_check(const char *path);
 
 /* ---- numbers: the whole string, decimal (or 0x hex where noted), no sign
  * unless signed, no white space, no wrap.  Return 0 on success, -1 (and

@@ -183,7 +183,8 @@ int main(int argc, char **argv)
     int c;
     unsigned long v;
     tdc_tool_set_name("tdc-gpio");
-    while ((c = getopt_long(argc, argv, "h", lopts, NULL)) != -1) {
+    opterr = 0; /* tdc_fail_getopt() writes the one line */
+    while ((c = getopt_long(argc, argv, ":h", lopts, NULL)) != -1) {
         const char *bad = NULL;
         switch (c) {
         case O_CHIP: o.chip = optarg; break;
@@ -229,15 +230,15 @@ int main(int argc, char **argv)
                 bad = "--edge";
             break;
         case 'h': fputs(usage_text, stdout); return TDC_EXIT_OK;
-        default: fputs(usage_text, stderr); return TDC_EXIT_ARGS;
+        default: return tdc_fail_getopt(c, argv);
         }
         if (bad != NULL) {
             return tdc_fail_option(NULL, bad, optarg, "see tdc-gpio --help");
         }
     }
     if (optind != argc - 1) {
-        fputs(usage_text, stderr);
-        return TDC_EXIT_ARGS;
+        return tdc_fail_usage(NULL, optind < argc ? "one command, got %d words" : "no command (reset, boot or vsync)",
+                              argc - optind);
     }
     const char *cmd = argv[optind];
     if (strcmp(cmd, "reset") != 0 && strcmp(cmd, "boot") != 0 && strcmp(cmd, "vsync") != 0) {

@@ -568,7 +568,17 @@ static void gen_trm(const char *path)
 
 int main(int argc, char **argv)
 {
+    static const char usage[] = "usage: tdc-tablegen PROFILE.panel OUTDIR | tdc-tablegen --fov OUT.h | "
+                                "tdc-tablegen --trm OUT.h";
     tdc_tool_set_name("tdc-tablegen");
+    if (argc == 2 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
+        printf("%s\n"
+               "Writes OUTDIR/tdc_panel_NAME.c and its config header from a panel profile, or the\n"
+               "foveation (--fov) or TRM (--trm) constant tables, each only when complete.\n"
+               "exit codes (docs/tools.md): 0 OK, 1 ARGS, 7 FILE, 13 INPUT (a malformed profile)\n",
+               usage);
+        return TDC_EXIT_OK;
+    }
     if (argc == 3 && !strcmp(argv[1], "--fov")) {
         gen_fov(argv[2]);
         return TDC_EXIT_OK;
@@ -577,8 +587,11 @@ int main(int argc, char **argv)
         gen_trm(argv[2]);
         return TDC_EXIT_OK;
     }
+    if (argc > 1 && argv[1][0] == '-') {
+        return tdc_fail_usage(NULL, "unknown option '%s'", argv[1]);
+    }
     if (argc != 3) {
-        return tdc_fail(TDC_EXIT_ARGS, NULL, "usage", "tdc-tablegen PROFILE.panel OUTDIR | tdc-tablegen --fov OUT.h | tdc-tablegen --trm OUT.h");
+        return tdc_fail_usage(NULL, "%s", usage);
     }
     g_path = argv[1];
     profile_t p;

@@ -278,7 +278,7 @@ int tdc_run_assemble_main(int argc, char **argv)
     tdc_image_t img;
     char err[600];
     if (tdc_png_read(argv[first], &img, err, sizeof(err)) != 0)
-        return tdc_fail(access(argv[first], R_OK) != 0 ? TDC_EXIT_FILE : TDC_EXIT_INPUT, "assemble", NULL, "%s", err);
+        return tdc_fail(tdc_in_check(argv[first]) != 0 ? TDC_EXIT_FILE : TDC_EXIT_INPUT, "assemble", NULL, "%s", err);
     uint32_t tx = (uint32_t)img.width, ty = (uint32_t)img.height;
     tdc_png_free(&img);
     if (!w) w = (int)(2 * tx), h = (int)(2 * ty);
@@ -314,7 +314,7 @@ int tdc_run_assemble_main(int argc, char **argv)
         int dropped = !strcmp(name, "-");
         if (!dropped) {
             if (tdc_png_read(name, &img, err, sizeof(err)) != 0) {
-                rc = tdc_fail(access(name, R_OK) != 0 ? TDC_EXIT_FILE : TDC_EXIT_INPUT, "assemble", NULL, "%s", err);
+                rc = tdc_fail(tdc_in_check(name) != 0 ? TDC_EXIT_FILE : TDC_EXIT_INPUT, "assemble", NULL, "%s", err);
                 break;
             }
             if ((uint32_t)img.width != tx || (uint32_t)img.height != ty) {

@@ -199,7 +199,7 @@ static int load_frame(const opts_t *o, char **files, int i, tdc_image_t *img)
     }
     if (tdc_png_read(files[i], img, err, sizeof err) != 0) {
         /* tdc_png_read's message names the file and why; a file it cannot open is FILE */
-        return tdc_fail(access(files[i], R_OK) != 0 ? TDC_EXIT_FILE : TDC_EXIT_INPUT, NULL, NULL, "%s", err);
+        return tdc_fail(tdc_in_check(files[i]) != 0 ? TDC_EXIT_FILE : TDC_EXIT_INPUT, NULL, NULL, "%s", err);
     }
     tdc_png_to8(img);
     return 0;

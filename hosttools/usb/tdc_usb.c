@@ -161,7 +161,8 @@ static tdc_exit_t cmd_list(libusb_context *ctx, opts_t *o)
 /* Opened before the board, so a missing file is reported as such. */
 static tdc_exit_t open_stream_file(const char *path, FILE **f)
 {
-    *f = strcmp(path, "-") == 0 ? stdin : fopen(path, "rb");
+    const int in = strcmp(path, "-") == 0;
+    *f = in ? stdin : tdc_in_check(path) == 0 ? fopen(path, "rb") : NULL;
     if (*f == NULL) {
         fprintf(stderr, "tdc-usb: stream: cannot open %s: %s\n", path, strerror(errno));
         return TDC_EXIT_FILE;
@@ -213,10 +214,10 @@ static tdc_exit_t cmd_stream(tdc_board_t *b, const opts_t *o, const char *path, 
             last = t;
         }
     }
+    const int read_err = ferror(f) ? (errno ? errno : EIO) : 0; /* before libusb calls change errno */
     tdc_usb_progress(o, "stream", sent, total, t0);
     tdc_usb_progress_end(o);
     double dt = tdc_usb_now_s() - t0;
-    int read_err = ferror(f);
     if (f != stdin) fclose(f);
     free(buf);
     if (e != TDC_EXIT_OK) {
@@ -224,7 +225,7 @@ static tdc_exit_t cmd_stream(tdc_board_t *b, const opts_t *o, const char *path, 
         return e;
     }
     if (read_err) {
-        fprintf(stderr, "tdc-usb: stream: read error on %s\n", path);
+        fprintf(stderr, "tdc-usb: stream: cannot read %s: %s\n", path, strerror(read_err));
         return TDC_EXIT_FILE;
     }
     printf("sent %llu bytes in %.3f s: %.2f MB/s\n", (unsigned long long)sent, dt,
@@ -275,6 +276,13 @@ static int parse_version(const char *s, uint32_t *out)
     return 0;
 }
 
+/* Every failure ends with "tdc-usb: exit N (NAME)" (docs/hosttools.md). */
+static int finish(int e)
+{
+    if (e != TDC_EXIT_OK) fprintf(stderr, "tdc-usb: exit %d (%s)\n", e, tdc_exit_name(e));
+    return e;
+}
+
 int main(int argc, char **argv)
 {
     opts_t o = {.sel = {TDC_USB_VID, TDC_USB_PID, -1, -1, NULL, DEFAULT_TIMEOUT_MS},
@@ -315,7 +323,8 @@ int main(int argc, char **argv)
     int c;
     long v;
     tdc_tool_set_name("tdc-usb");
-    while ((c = getopt_long(argc, argv, "h", lopts, NULL)) != -1) {
+    opterr = 0; /* tdc_fail_getopt() writes the one line */
+    while ((c = getopt_long(argc, argv, ":h", lopts, NULL)) != -1) {
         const char *bad = NULL;
         switch (c) {
         case O_BUS:
@@ -364,15 +373,14 @@ int main(int argc, char **argv)
             if (parse_version(optarg, &o.fw_version)) bad = "--fw-version";
             break;
         case 'h': usage(stdout); return TDC_EXIT_OK;
-        default: usage(stderr); return TDC_EXIT_ARGS;
+        default: return finish(tdc_fail_getopt(c, argv));
         }
         if (bad != NULL) {
-            return tdc_fail_option(NULL, bad, optarg, "see tdc-usb --help");
+            return finish(tdc_fail_option(NULL, bad, optarg, "see tdc-usb --help"));
         }
     }
     if (optind >= argc) {
-        usage(stderr);
-        return TDC_EXIT_ARGS;
+        return finish(tdc_fail_usage(NULL, "no command (list, info, stream, flash or mkimage)"));
     }
     const char *cmd = argv[optind];
     int nargs = argc - optind - 1;
@@ -382,18 +390,16 @@ int main(int argc, char **argv)
                : strcmp(cmd, "list") == 0 || strcmp(cmd, "info") == 0  ? 0
                                                                        : -1;
     if (want < 0 || nargs != want) {
-        fprintf(stderr, want < 0 ? "tdc-usb: unknown command '%s'\n" : "tdc-usb: wrong number of arguments for '%s'\n",
-                cmd);
-        usage(stderr);
-        return TDC_EXIT_ARGS;
+        return finish(want < 0 ? tdc_fail_usage(NULL, "unknown command '%s'", cmd)
+                               : tdc_fail_usage(cmd, "wants %d argument(s), got %d", want, nargs));
     }
-    if (strcmp(cmd, "mkimage") == 0) return tdc_usb_cmd_mkimage(&o, args[0], args[1]);
+    if (strcmp(cmd, "mkimage") == 0) return finish(tdc_usb_cmd_mkimage(&o, args[0], args[1]));
 
     libusb_context *ctx = NULL;
     int r = libusb_init(&ctx);
     if (r != 0) {
         fprintf(stderr, "tdc-usb: libusb_init failed: %s (%s)\n", libusb_error_name(r), libusb_strerror(r));
-        return TDC_EXIT_IO;
+        return finish(TDC_EXIT_IO);
     }
     tdc_exit_t e;
     if (strcmp(cmd, "list") == 0) {
@@ -424,6 +430,5 @@ int main(int argc, char **argv)
         free(img);
     }
     libusb_exit(ctx);
-    if (e != TDC_EXIT_OK) fprintf(stderr, "tdc-usb: exit %d (%s)\n", (int)e, tdc_exit_name(e));
-    return (int)e;
+    return finish(e);
 }

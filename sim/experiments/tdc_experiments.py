@@ -22,8 +22,9 @@ Commands:
         docs/results.md
 
 Defaults: --scale headset, --out build/experiments, -j = cores.
-Exit codes: 0 OK, 1 BAD_GROUP (unknown group, malformed sweep or claims
-script), 2 USAGE, 3 RUN_FAILED (a sweep job failed, a claims script
+Exit codes (the one table, hosttools/common/tdc_exit.h; docs/tools.md):
+0 OK, 1 ARGS (bad command line, unknown group or scale), 13 INPUT (malformed
+sweep or claims script), 18 JOBS (a sweep job failed, a claims script
 raised, or a cached result is missing).
 """
 import csv
@@ -43,9 +44,11 @@ sys.path.insert(0, HERE)
 # the folder of the groups (tests point it at a temporary one)
 GROUPS_DIR = os.path.abspath(os.environ.get("TDC_EXPERIMENTS_DIR", HERE))
 import tdc_stats  # noqa: E402
+sys.path.insert(0, os.path.join(REPO, "hosttools", "common"))
+from tdc_exit import EXIT  # noqa: E402  (the one exit-code table)
 
 SCALES = ("demo", "dev", "headset")
-EXIT_OK, EXIT_BAD_GROUP, EXIT_USAGE, EXIT_RUN_FAILED = 0, 1, 2, 3
+EXIT_OK, EXIT_BAD_GROUP, EXIT_USAGE, EXIT_RUN_FAILED = EXIT.OK, EXIT.INPUT, EXIT.ARGS, EXIT.JOBS
 CLAIM_COLUMNS = ["group", "paper", "claim", "paper_value", "tdc_value", "spread", "n", "run", "verdict", "why"]
 VERDICTS = ("agree", "disagree", "inconclusive")
 MARK_BEGIN = "<!-- experiments:begin (written by sim/experiments/tdc_experiments.py report) -->"
@@ -355,7 +358,7 @@ def main(argv):
     for g in pos:
         if g not in known:
             print("tdc-experiments: unknown group '%s' (groups: %s)" % (g, ", ".join(known)), file=sys.stderr)
-            return EXIT_BAD_GROUP
+            return EXIT_USAGE
     sel = pos or known
     try:
         if cmd == "list":

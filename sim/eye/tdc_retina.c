@@ -150,6 +150,19 @@ int tdc_retina_sample(const tdc_retina_eye_t *eye, const tdc_eye_slice_t *sl, in
     const size_t np = (size_t)w * h;
     const double T = b - a, gain = d->peak_cdm2 - d->black_cdm2;
     double black = 0.0; /* the black level times the emitting share of [a, b) */
+    int lit = 0;
+    for (int i = 0; i < n && !lit; i++) {
+        lit = sl[i].t0 < b && sl[i].t1 > a;
+    }
+    if (!lit) {
+        /* no light in the step (4 of an OLED's 5 at 20 % persistence): all
+         * zero bits are 0.0f */
+        memset(rgb, 0, sizeof(float) * 3 * np);
+        if (y) {
+            memset(y, 0, sizeof(float) * np);
+        }
+        return 0;
+    }
     memset(acc, 0, sizeof(double) * 3 * np);
     for (int i = 0; i < n; i++) {
         const double a1 = sl[i].t0 > a ? sl[i].t0 : a, b1 = sl[i].t1 < b ? sl[i].t1 : b;

@@ -20,6 +20,7 @@
  * The output is written to a temporary file renamed onto FILE on success,
  * so an error never leaves a truncated file behind.
  */
+#include <errno.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -28,6 +29,7 @@
 
 #include "lcd/tdc_lcdsim.h"
 #include "../../hosttools/calib/tdc_meas.h"
+#include "tdc_tool.h"
 
 static uint64_t g_rng = 0x9e3779b97f4a7c15ull;
 
@@ -44,12 +46,8 @@ static double rnd_gauss(void)
     return sqrt(-2.0 * log(rnd_uniform())) * cos(6.283185307179586 * rnd_uniform());
 }
 
-static int usage(void)
-{
-    fprintf(stderr, "usage: tdc-lcd-measure PANEL.lcdsim RATES [--grid N] [--integration S] [--noise REL] "
-                    "[--seed N] [--transitions [--runs R]] [-o FILE]\n");
-    return TDC_EXIT_ARGS;
-}
+static const char usage[] = "usage: tdc-lcd-measure PANEL.lcdsim RATES [--grid N] [--integration S] [--noise REL] "
+                            "[--seed N] [--transitions [--runs R]] [-o FILE]";
 
 static double noisy(double y, double noise)
 {
@@ -59,8 +57,21 @@ static double noisy(double y, double noise)
 
 int main(int argc, char **argv)
 {
+    tdc_tool_set_name("tdc-lcd-measure");
+    if (argc == 2 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
+        printf("%s\n"
+               "Simulates the Fig. 7 luminance measurement of an LCD panel model (or, with\n"
+               "--transitions, one-refresh transitions) at the refresh rates RATES (comma-separated Hz)\n"
+               "and writes the CSV to FILE (stdout without -o) for tdc-calib.\n"
+               "exit codes (docs/tools.md): 0 OK, 1 ARGS, 7 FILE, 13 INPUT (a malformed panel model)\n",
+               usage);
+        return TDC_EXIT_OK;
+    }
+    if (argc > 1 && argv[1][0] == '-') {
+        return tdc_fail_usage(NULL, "unknown option '%s'", argv[1]);
+    }
     if (argc < 3) {
-        return usage();
+        return tdc_fail_usage(NULL, "%s", usage);
     }
     const char *panel_path = argv[1];
     const char *rates_arg = argv[2];
@@ -92,7 +103,8 @@ int main(int argc, char **argv)
             out_path = v;
             i++;
         } else {
-            return usage();
+            const int needs = !v && strstr(" --grid --runs --integration --noise --seed -o ", a) && a[0] == '-';
+            return tdc_fail_usage(NULL, needs ? "option '%s' needs a value" : "unknown option '%s'", a);
         }
         if (bad) {
             fprintf(stderr,
@@ -105,6 +117,9 @@ int main(int argc, char **argv)
     g_rng ^= (uint64_t)seed * 0x2545f4914f6cdd1dull;
     tdc_lcdsim_panel_t p;
     char err[256];
+    if (tdc_in_check(panel_path) != 0) {
+        return tdc_fail(TDC_EXIT_FILE, NULL, panel_path, "cannot read: %s", strerror(errno));
+    }
     if (tdc_lcdsim_load(panel_path, &p, err, sizeof err) != 0) {
         fprintf(stderr, "tdc-lcd-measure: %s\n", err);
         return TDC_EXIT_INPUT;
@@ -125,15 +140,13 @@ int main(int argc, char **argv)
         fprintf(stderr, "tdc-lcd-measure: bad rate list '%s'\n", rates_arg);
         return TDC_EXIT_ARGS;
     }
-    char tmp_path[4096];
+    tdc_out_t out;
     FILE *f = stdout;
     if (out_path) {
-        snprintf(tmp_path, sizeof tmp_path, "%s.tmp", out_path);
-        f = fopen(tmp_path, "w");
-        if (!f) {
-            fprintf(stderr, "tdc-lcd-measure: cannot write %s\n", tmp_path);
-            return TDC_EXIT_FILE;
+        if (tdc_out_open(&out, out_path, "w") != 0) {
+            return tdc_fail(TDC_EXIT_FILE, NULL, out_path, "cannot write: %s", strerror(errno));
         }
+        f = out.f;
     }
     static const char chname[3] = {'R', 'G', 'B'};
     if (!transitions) {
@@ -171,12 +184,8 @@ int main(int argc, char **argv)
             }
         }
     }
-    if (out_path) {
-        if (ferror(f) | fclose(f) || rename(tmp_path, out_path) != 0) {
-            fprintf(stderr, "tdc-lcd-measure: cannot write %s\n", out_path);
-            remove(tmp_path);
-            return TDC_EXIT_FILE;
-        }
+    if (out_path && tdc_out_commit(&out) != 0) {
+        return tdc_fail(TDC_EXIT_FILE, NULL, out_path, "cannot write: %s", strerror(errno));
     }
     return 0;
 }

@@ -4,14 +4,24 @@
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+
+/* The reason of the last failure, for the caller's one message line. */
+#define LF_ERR(lf, ...) snprintf((lf)->err, sizeof (lf)->err, __VA_ARGS__)
 
 static int open_mode(tdc_link_file_t *lf, const char *path, const char *mode, int writing)
 {
     memset(lf, 0, sizeof *lf);
     snprintf(lf->path, sizeof lf->path, "%s", path);
     lf->f = fopen(path, mode);
+    struct stat st; /* a folder opens for reading on Linux; every read then fails */
+    if (lf->f && !writing && fstat(fileno(lf->f), &st) == 0 && S_ISDIR(st.st_mode)) {
+        fclose(lf->f);
+        lf->f = NULL;
+        errno = EISDIR;
+    }
     if (!lf->f) {
-        fprintf(stderr, "tdcs: cannot open '%s' for %s: %s\n", path, writing ? "writing" : "reading", strerror(errno));
+        LF_ERR(lf, "cannot open for %s: %s", writing ? "writing" : "reading", strerror(errno));
         return -1;
     }
     lf->writing = writing;
@@ -34,7 +44,7 @@ int tdc_link_file_write(tdc_link_file_t *lf, const uint8_t *packet, size_t n)
         return -1;
     }
     if (fwrite(packet, 1, n, lf->f) != n) {
-        fprintf(stderr, "tdcs: write to '%s' failed: %s\n", lf->path, strerror(errno));
+        LF_ERR(lf, "write failed: %s", strerror(errno));
         return -1;
     }
     lf->bytes += n;
@@ -52,22 +62,21 @@ long tdc_link_file_read_packet(tdc_link_file_t *lf, uint8_t *buf, size_t cap, td
         return 0;
     }
     if (got != TDC_LINK_HEADER_BYTES) {
-        fprintf(stderr, "tdcs: '%s': truncated header at byte %llu\n", lf->path, (unsigned long long)lf->bytes);
+        LF_ERR(lf, "truncated header at byte %llu", (unsigned long long)lf->bytes);
         return -1;
     }
     const tdc_link_err_t e = tdc_link_header_unpack(buf, hdr);
     if (e != TDC_LINK_OK) {
-        fprintf(stderr, "tdcs: '%s': bad %s at byte %llu\n", lf->path, e == TDC_LINK_ERR_MAGIC ? "magic" : "header CRC",
-                (unsigned long long)lf->bytes);
+        LF_ERR(lf, "bad %s at byte %llu", e == TDC_LINK_ERR_MAGIC ? "magic" : "header CRC", (unsigned long long)lf->bytes);
         return -1;
     }
     if ((size_t)hdr->payload_len > cap - TDC_LINK_HEADER_BYTES) {
-        fprintf(stderr, "tdcs: '%s': packet of %u payload bytes at byte %llu does not fit %zu\n", lf->path,
-                (unsigned)hdr->payload_len, (unsigned long long)lf->bytes, cap);
+        LF_ERR(lf, "packet of %u payload bytes at byte %llu does not fit %zu", (unsigned)hdr->payload_len,
+               (unsigned long long)lf->bytes, cap);
         return -1;
     }
     if (fread(buf + TDC_LINK_HEADER_BYTES, 1, hdr->payload_len, lf->f) != hdr->payload_len) {
-        fprintf(stderr, "tdcs: '%s': truncated payload at byte %llu\n", lf->path, (unsigned long long)lf->bytes);
+        LF_ERR(lf, "truncated payload at byte %llu", (unsigned long long)lf->bytes);
         return -1;
     }
     const long total = (long)(TDC_LINK_HEADER_BYTES + hdr->payload_len);
@@ -83,7 +92,7 @@ long tdc_link_file_read_raw(tdc_link_file_t *lf, uint8_t *buf, size_t cap)
     }
     size_t got = fread(buf, 1, cap, lf->f);
     if (got == 0 && ferror(lf->f)) {
-        fprintf(stderr, "tdcs: read from '%s' failed: %s\n", lf->path, strerror(errno));
+        LF_ERR(lf, "read failed: %s", strerror(errno));
         return -1;
     }
     lf->bytes += got;
@@ -97,11 +106,13 @@ int tdc_link_file_close(tdc_link_file_t *lf)
     }
     int rc = 0;
     if (lf->writing && fflush(lf->f) != 0) {
-        fprintf(stderr, "tdcs: flush of '%s' failed: %s\n", lf->path, strerror(errno));
+        LF_ERR(lf, "flush failed: %s", strerror(errno));
         rc = -1;
     }
     if (fclose(lf->f) != 0) {
-        fprintf(stderr, "tdcs: close of '%s' failed: %s\n", lf->path, strerror(errno));
+        if (rc == 0) { /* else the flush's reason stands */
+            LF_ERR(lf, "close failed: %s", strerror(errno));
+        }
         rc = -1;
     }
     lf->f = NULL;
@@ -113,13 +124,15 @@ int tdc_link_file_check(const char *path, FILE *log, int verbose, tdc_link_file_
     memset(sum, 0, sizeof *sum);
     tdc_link_file_t lf;
     if (tdc_link_file_open(&lf, path) < 0) {
-        return -1;
+        snprintf(sum->err, sizeof sum->err, "%s", lf.err);
+        return -2;
     }
     uint8_t first[TDC_LINK_HEADER_BYTES + TDC_LINK_STREAM_HEADER_BYTES];
     tdc_link_header_t f;
     if (fread(first, 1, sizeof first, lf.f) != sizeof first || tdc_link_header_unpack(first, &f) != TDC_LINK_OK ||
         f.kind != TDC_LINK_KIND_STREAM || f.payload_len != TDC_LINK_STREAM_HEADER_BYTES) {
-        fprintf(stderr, "tdcs: '%s' does not start with a valid STREAM packet\n", path);
+        snprintf(sum->err, sizeof sum->err, "not a .tdcs stream: %s",
+                 ferror(lf.f) ? strerror(errno) : "it does not start with a valid STREAM packet");
         tdc_link_file_close(&lf);
         return -1;
     }
@@ -131,8 +144,8 @@ int tdc_link_file_check(const char *path, FILE *log, int verbose, tdc_link_file_
     if (in.width == 0 || in.height == 0 || in.eyes < 1 || in.eyes > 2 ||
         (uint32_t)in.width * in.height > TDC_LINK_MAX_PIXELS || in.width > TDC_LINK_MAX_WIDTH ||
         in.height > TDC_LINK_MAX_HEIGHT) {
-        fprintf(stderr, "tdcs: '%s': stream size %ux%u x %u eyes is not supported\n", path, in.width, in.height,
-                in.eyes);
+        snprintf(sum->err, sizeof sum->err, "stream size %ux%u x %u eyes is not supported", in.width, in.height,
+                 in.eyes);
         tdc_link_file_close(&lf);
         return -1;
     }
@@ -182,7 +195,7 @@ int tdc_link_file_check(const char *path, FILE *log, int verbose, tdc_link_file_
     tdc_link_decoder_t *dec = rc == 0 ? calloc(1, sizeof *dec) : NULL;
     tdc_link_config_t cfg = {in.width, in.height, in.eyes};
     if (!dec || tdc_link_decoder_init(dec, &cfg, &b) != TDC_OK) {
-        fprintf(stderr, "tdcs: '%s': out of memory for a %ux%u decoder\n", path, in.width, in.height);
+        snprintf(sum->err, sizeof sum->err, "out of memory for a %ux%u decoder", in.width, in.height);
         rc = -1;
     }
     long got = 0;
@@ -203,7 +216,8 @@ int tdc_link_file_check(const char *path, FILE *log, int verbose, tdc_link_file_
         }
     }
     if (got < 0) {
-        rc = -1;
+        snprintf(sum->err, sizeof sum->err, "%s", lf.err);
+        rc = -2;
     }
     if (rc == 0 && dec) {
         /* End of file: a packet begun but not finished (a truncated file), or

@@ -6,10 +6,8 @@
  * or the file ends inside a packet).
  * Usage: tdc-linkdump [-v] FILE.tdcs
  */
-#include <errno.h>
 #include <stdio.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "link/tdc_link_file.h"
 #include "tdc_tool.h"
@@ -30,16 +28,16 @@ int main(int argc, char **argv)
         verbose = 1;
         a++;
     }
-    if (a + 1 != argc) {
-        return tdc_fail(TDC_EXIT_ARGS, NULL, "usage", "tdc-linkdump [-v] FILE.tdcs");
+    if (a < argc && argv[a][0] == '-' && argv[a][1] != '\0') {
+        return tdc_fail_usage(NULL, "unknown option '%s'", argv[a]);
     }
-    if (access(argv[a], R_OK) != 0) {
-        return tdc_fail(TDC_EXIT_FILE, NULL, argv[a], "cannot read: %s", strerror(errno));
+    if (a + 1 != argc) {
+        return tdc_fail_usage(NULL, "usage: tdc-linkdump [-v] FILE.tdcs");
     }
     tdc_link_file_summary_t s;
     const int rc = tdc_link_file_check(argv[a], stdout, verbose, &s);
     if (rc < 0) {
-        return tdc_fail(TDC_EXIT_INPUT, NULL, argv[a], "not a readable .tdcs stream (see above)");
+        return tdc_fail(rc == -2 ? TDC_EXIT_FILE : TDC_EXIT_INPUT, NULL, argv[a], "%s", s.err);
     }
     printf("%s: stream %u, %ux%u x %u eye(s), flags 0x%x, r = %u/%u, %u Hz; %llu bytes, %u packets accepted\n", argv[a],
            s.stream_id, s.stream.width, s.stream.height, s.stream.eyes, (unsigned)s.stream.flags, s.stream.r_num,

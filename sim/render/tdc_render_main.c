@@ -20,9 +20,9 @@
 #include "tdc_render_stream.h"
 #include "tdc_tool.h"
 
-static void usage(void)
+static void usage(FILE *f)
 {
-    fprintf(stderr, "usage: tdc-render (--scene FILE | --builtin NAME) [options]\n"
+    fprintf(f, "usage: tdc-render (--scene FILE | --builtin NAME) [options]\n"
                     "       tdc-render --list | --print-scene NAME\n"
                     "options:\n"
                     "  --mode full|reduced|subframe|gt|trm   (trm: full and reduced frames alternate)\n"
@@ -83,7 +83,10 @@ int main(int argc, char **argv)
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (!strcmp(a, "--list")) {
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            usage(stdout);
+            return TDC_EXIT_OK;
+        } else if (!strcmp(a, "--list")) {
             for (int k = 0; k < tdc_scene_builtin_count; k++) printf("%s\n", tdc_scene_builtin_names[k]);
             return 0;
         } else if (!strcmp(a, "--print-scene") && v) {
@@ -138,16 +141,20 @@ int main(int argc, char **argv)
         } else if (!strcmp(a, "--reduced-factor") && v) {
             if (tdc_parse_double(argv[++i], 0.01, 1.0, &cfg.reduced_factor)) goto bad;
         } else {
-            usage();
-            return tdc_fail(TDC_EXIT_ARGS, NULL, a, v || a[0] != '-' ? "unknown option" : "needs a value");
+            static const char *const valued[] = {"--print-scene", "--scene",   "--builtin", "--mode",
+                                                 "--png",         "--stream",  "--frames",  "--size",
+                                                 "--threads",     "--bounces", "--gt-samples", "--seed",
+                                                 "--reduced-factor"};
+            int needs = 0;
+            for (size_t k = 0; k < sizeof valued / sizeof valued[0]; k++) needs |= !v && !strcmp(a, valued[k]);
+            return tdc_fail_usage(NULL, needs ? "option '%s' needs a value" : "unknown option '%s'", a);
         }
         continue;
     bad:
         return tdc_fail_option(NULL, a, argv[i], "see tdc-render --help");
     }
     if (!!scene_file == !!builtin) {
-        usage();
-        return tdc_fail(TDC_EXIT_ARGS, NULL, NULL, "give exactly one of --scene FILE and --builtin NAME");
+        return tdc_fail_usage(NULL, "give exactly one of --scene FILE and --builtin NAME");
     }
     int trm = 0;
     tdc_render_mode_t mode;
@@ -178,6 +185,9 @@ int main(int argc, char **argv)
     int16_t *mv = NULL, *mvs = NULL, *mvd = NULL, *mvr = NULL, *msurf = NULL;
     float *lsw = NULL;
     uint8_t *lsrc = NULL;
+    if (scene_file && tdc_in_check(scene_file) != 0) {
+        return tdc_fail(TDC_EXIT_FILE, NULL, scene_file, "cannot read: %s", strerror(errno));
+    }
     tdc_scene_t *scene = malloc(sizeof *scene);
     if (!scene) return tdc_fail(TDC_EXIT_NOMEM, NULL, "scene", "out of memory");
     tdc_scene_status_t st = scene_file ? tdc_scene_load(scene_file, scene, err, sizeof err)

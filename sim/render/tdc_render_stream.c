@@ -60,7 +60,7 @@ tdc_render_stream_t *tdc_render_stream_create(const char *path, tdc_render_t *r,
 {
     tdc_render_stream_t *s = calloc(1, sizeof *s);
     if (!s) {
-        snprintf(err, errlen, "%s: out of memory", path);
+        snprintf(err, errlen, "out of memory");
         return NULL;
     }
     s->r = r;
@@ -73,7 +73,7 @@ tdc_render_stream_t *tdc_render_stream_create(const char *path, tdc_render_t *r,
     s->rgb8 = malloc((size_t)s->W * s->H * 3);
     s->pkt = malloc(s->cap);
     if (!s->rgb8 || !s->pkt) {
-        snprintf(err, errlen, "%s: out of memory", path);
+        snprintf(err, errlen, "out of memory");
         tdc_render_stream_close(s, NULL, NULL);
         return NULL;
     }
@@ -103,7 +103,7 @@ tdc_render_stream_t *tdc_render_stream_create(const char *path, tdc_render_t *r,
     if (kind == TDC_RSTREAM_LAYERS) {
         info.flags |= TDC_LINK_STREAM_SUBFRAMES | TDC_LINK_STREAM_LAYERS;
         if (layer_planes(s, &ft) < 0) {
-            snprintf(err, errlen, "%s: out of memory", path);
+            snprintf(err, errlen, "out of memory");
             tdc_render_stream_close(s, NULL, NULL);
             return NULL;
         }
@@ -115,14 +115,14 @@ tdc_render_stream_t *tdc_render_stream_create(const char *path, tdc_render_t *r,
     tdc_link_encoder_init(&s->enc, 1, &info);
     s->lf.f = NULL;
     if (tdc_link_file_create(&s->lf, path) < 0) {
-        snprintf(err, errlen, "%s: cannot create stream file", path);
+        snprintf(err, errlen, "%s", s->lf.err);
         tdc_render_stream_close(s, NULL, NULL);
         return NULL;
     }
     size_t n = tdc_link_encode_stream(&s->enc, s->pkt, s->cap);
     if (!n || tdc_link_file_write(&s->lf, s->pkt, n) < 0) {
-        snprintf(err, errlen, "%s: the link encoder rejected the stream header (flags 0x%x, r %u/%u)", path,
-                 (unsigned)info.flags, info.r_num, info.r_den);
+        snprintf(err, errlen, "the link encoder rejected the stream header (flags 0x%x, r %u/%u)%s%s",
+                 (unsigned)info.flags, info.r_num, info.r_den, n ? ": " : "", n ? s->lf.err : "");
         tdc_render_stream_close(s, NULL, NULL);
         return NULL;
     }

@@ -13,6 +13,10 @@
 #                     size and length that fit the budget with today's
 #                     simulator: TRM one eye 1440x1600, assembly 1920x1080,
 #                     fewer modes and refreshes
+# DEMO_SCALE=ci       every run of `today`, each shrunk to a tiny size and a
+#                     few refreshes (sizes / 8, at least 32 px; <= 12
+#                     refreshes; 240 Hz durations 0.05 s): proves every run
+#                     still runs, in about a minute (the fresh-clone test)
 set -eu
 SIM=$1
 OUT=${2:-report}
@@ -74,11 +78,11 @@ case $SCALE in
 headset)
     EYE="-g 1440x1600 --stereo"; TN=24; TM=full,half,ncsfi,trm50,trm25,asw; TM2=full,trm50,trm25
     AN=48; AM=full,full60,taa60,asm-hourglass,asm-bowtie,asm-adaptive; AM2=full,taa60,asm-adaptive; FN=24 ;;
-today)
+today|ci)
     EYE="-g 1440x1600"; TN=6; TM=full,half,trm50; TM2=full,trm50
     AN=10; AM=full,taa60,asm-adaptive; AM2=full,asm-adaptive; FN=8 ;;
 *)
-    echo "tdc_demo.sh: DEMO_SCALE '$SCALE': headset or today" >&2; exit 2 ;;
+    echo "tdc_demo.sh: DEMO_SCALE '$SCALE': headset, today or ci" >&2; exit 2 ;;
 esac
 HS="hs-trm-dune|--image $PH/Dune.jpg --zoom 1.6 --speed 300 --angle 10 -r 90 $EYE -m $TM -n $TN
 hs-trm-wings|--image $PH/TwoWings.jpg --zoom 1.0 --zoom-rate 0.6 --rotate 12 --speed 150 -r 90 $EYE -m $TM2 -n $TN
@@ -91,6 +95,22 @@ hs-fov-dune|--image $PH/Dune.jpg --zoom 1.6 --speed 300 --angle 10 -r 90 -g 1080
 # long runs first (better packing on the job slots); DEMO_ONLY=REGEX keeps matching runs
 ALL=$(printf '%s\n%s\n' "$HS" "$RUNS" | awk -F'|' -v re="${DEMO_ONLY:-.}" '$1 ~ re')
 [ -n "$ALL" ] || { echo "tdc_demo.sh: DEMO_ONLY '${DEMO_ONLY:-}' matches no run" >&2; exit 2; }
+if [ "$SCALE" = ci ]; then
+    # one awk pass over each run's arguments: -g W/8 x H/8 (multiples of 8,
+    # at least 32; runs without -g get 64x48), -n at most 12 (3000 where
+    # metrics are sampled sparsely: --metric-every), -d at most 0.05 s
+    ALL=$(printf '%s\n' "$ALL" | awk -F'|' '{
+        n = split($2, a, " "); sparse = ($2 ~ /--metric-every/); hasg = 0; out = ""
+        for (i = 1; i <= n; i++) {
+            if (a[i] == "-g" && i < n) { split(a[i + 1], d, "x")
+                w = int(d[1] / 64) * 8; h = int(d[2] / 64) * 8
+                a[i + 1] = (w < 32 ? 32 : w) "x" (h < 32 ? 32 : h); hasg = 1 }
+            else if (a[i] == "-n" && i < n) { cap = sparse ? 3000 : 12; if (a[i + 1] + 0 > cap) a[i + 1] = cap }
+            else if (a[i] == "-d" && i < n) { if (a[i + 1] + 0 > 0.05) a[i + 1] = 0.05 }
+        }
+        for (i = 1; i <= n; i++) out = out (i > 1 ? " " : "") a[i]
+        print $1 "|" out (hasg ? "" : " -g 64x48") }')
+fi
 for n in $(printf '%s\n' "$ALL" | cut -d'|' -f1); do rm -rf "${OUT:?}/$n"; mkdir -p "$OUT/$n"; done
 
 # Progress: one bar per run (tdc-sim's own bar, read from its stderr); on a

@@ -24,6 +24,13 @@ static void heat(double e, uint8_t *p)
     p[2] = (uint8_t)(255 * b);
 }
 
+static int g_write_failed;
+
+int tdc_report_write_failed(void)
+{
+    return g_write_failed;
+}
+
 int tdc_report_strip(const char *outdir, const char *mode, const uint8_t *codes, const double *perc_lin,
                      const double *gt_lin, const double *flipmap, int w, int h, int cw, int ch, int margin)
 {
@@ -34,6 +41,7 @@ int tdc_report_strip(const char *outdir, const char *mode, const uint8_t *codes,
     int W = 4 * pw + 3 * gap, H = ph;
     uint8_t *img = malloc((size_t)W * H * 3);
     if (!img) {
+        g_write_failed = 1;
         return -1;
     }
     memset(img, 255, (size_t)W * H * 3);
@@ -64,6 +72,7 @@ int tdc_report_strip(const char *outdir, const char *mode, const uint8_t *codes,
     int rc = tdc_png_write(path, img, W, H, 8, (size_t)W * 3, err, sizeof(err));
     if (rc) {
         fprintf(stderr, "tdc-sim: %s\n", err);
+        g_write_failed = 1;
     }
     free(img);
     return rc;

@@ -17,6 +17,10 @@
 int tdc_report_strip(const char *outdir, const char *mode, const uint8_t *codes, const double *perc_lin,
                      const double *gt_lin, const double *flipmap, int w, int h, int cw, int ch, int margin);
 
+/* 1 once a strip could not be written (its message is on stderr): the
+ * strips are written deep inside a run, the program's exit code says it. */
+int tdc_report_write_failed(void);
+
 /* Summary of one run: CSV header + rows (append = 0 writes the header). */
 void tdc_report_csv(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_result_t *r, int n, int header);
 

@@ -16,9 +16,11 @@
  * pixels per degree), drawn per rendered frame from the run's seed.
  * The metrics weight errors by eccentricity around the TRUE gaze.
  *
- * Note: the eye model's retinal motion compensation stays the run's
- * (--fixation / pursuit of the scene); the gaze point only decides where
- * the fovea is.
+ * Note: the legacy eye model's retinal motion compensation stays the run's
+ * (--pursuit fixate / pursuit of the scene); the gaze point only decides
+ * where the fovea is.  The retinal signal (eye/tdc_retina.h) follows the
+ * schedule itself: its eye moves along this table's schedules (pursuit with
+ * --pursuit-gain and --pursuit-lag).
  */
 #ifndef TDC_SIM_GAZE_H
 #define TDC_SIM_GAZE_H

@@ -82,8 +82,8 @@ static void usage(FILE *f)
             "      --persistence F     OLED duty cycle (default 0.2 below 200 Hz, else 1 = hold)\n"
             "      --pursuit track|fixate  eye tracks the main motion or fixates (default track)\n"
             "      --pursuit-gain G    smooth-pursuit gain (default 1)\n"
-            "      --temporal          temporal visibility model: the retinal error through a temporal CSF\n"
-            "                          (Watson 1986 band-pass, sim/eye/tdc_eye_temporal.h): column terr\n"
+            "      --temporal          legacy temporal visibility model: the legacy eye's error through a\n"
+            "                          temporal CSF (Watson 1986, sim/eye/tdc_eye_temporal.h): legacy_terr\n"
             "      --metric-every K    evaluate every K-th refresh (default 1)\n"
             "      --jod               judge the retinal signal with FovVideoVDP (docs/visual-model.md): JOD per\n"
             "                          mode and eye, fovea / periphery, in -o DIR's jod.csv and jod_series.csv\n"
@@ -190,7 +190,36 @@ static int mkdir_p(const char *dir)
             *p = '/';
         }
     }
-    return mkdir(tmp, 0755) && errno != EEXIST ? -1 : 0;
+    if (mkdir(tmp, 0755) && errno != EEXIST) {
+        return -1;
+    }
+    struct stat st; /* EEXIST: a folder, not a file of that name */
+    if (stat(tmp, &st) != 0 || !S_ISDIR(st.st_mode)) {
+        errno = ENOTDIR;
+        return -1;
+    }
+    return 0;
+}
+
+/* OUTDIR/NAME opened for writing, or NULL after the one-line FILE message. */
+static FILE *out_open(const char *dir, const char *name, char *path, size_t cap)
+{
+    snprintf(path, cap, "%s/%s", dir, name);
+    FILE *f = fopen(path, "w");
+    if (!f) {
+        tdc_fail(TDC_EXIT_FILE, NULL, path, "cannot write: %s", strerror(errno));
+    }
+    return f;
+}
+
+/* Closes an output; FILE (with its message) when anything of it was not written. */
+static int out_close(FILE *f, const char *path)
+{
+    const int err = ferror(f);
+    if (fclose(f) != 0 || err) {
+        return tdc_fail(TDC_EXIT_FILE, NULL, path, "write failed: %s", strerror(errno ? errno : EIO));
+    }
+    return TDC_EXIT_OK;
 }
 
 static int parse_num(const char *s, double lo, double hi, double *v, const char *what)
@@ -336,7 +365,9 @@ int main(int argc, char **argv)
     int jod = 0; /* --jod */
     double v;
     int c;
-    while ((c = getopt_long(argc, argv, "R:s:m:p:r:g:d:n:w:S:o:l:qh", opts, NULL)) != -1) {
+    tdc_tool_set_name("tdc-sim");
+    opterr = 0; /* tdc_fail_getopt() writes the one line */
+    while ((c = getopt_long(argc, argv, ":R:s:m:p:r:g:d:n:w:S:o:l:qh", opts, NULL)) != -1) {
         switch (c) {
         case 's': {
             int k = tdc_scene_from_name(optarg);
@@ -693,7 +724,7 @@ int main(int argc, char **argv)
             return 0;
         }
         case 'h': usage(stdout); return 0;
-        default: usage(stderr); return TDC_EXIT_ARGS;
+        default: return tdc_fail_getopt(c, argv);
         }
     }
     tdc_par_set_threads(threads);
@@ -757,8 +788,7 @@ int main(int argc, char **argv)
         cfg.label = renderer ? renderer : (image ? image : tdc_scene_name(cfg.scene.kind));
     }
     if (cfg.outdir && mkdir_p(cfg.outdir)) {
-        fprintf(stderr, "tdc-sim: cannot create '%s': %s\n", cfg.outdir, strerror(errno));
-        return TDC_EXIT_FILE;
+        return tdc_fail(TDC_EXIT_FILE, NULL, cfg.outdir, "cannot create the output folder: %s", strerror(errno));
     }
     tdc_source_t *src = NULL;
     if (image && renderer) {
@@ -767,6 +797,9 @@ int main(int argc, char **argv)
     }
     if (image) {
         char err[512];
+        if (tdc_in_check(image) != 0) {
+            return tdc_fail(TDC_EXIT_FILE, "--image", image, "cannot read: %s", strerror(errno));
+        }
         if (cfg.scene.speed < 0) {
             cfg.scene.speed = 0.0;
         }
@@ -842,24 +875,30 @@ int main(int argc, char **argv)
     }
     tdc_sim_result_t *res = calloc((size_t)nm, sizeof(*res));
     FILE *series = NULL;
-    char path[1200];
-    if (cfg.outdir) {
-        snprintf(path, sizeof(path), "%s/series.csv", cfg.outdir);
-        series = fopen(path, "w");
+    char path[1200], series_path[1200];
+    if (cfg.outdir && !(series = out_open(cfg.outdir, "series.csv", series_path, sizeof series_path))) {
+        free(res);
+        src->destroy(src);
+        if (cfg.right) {
+            cfg.right->destroy(cfg.right);
+        }
+        return TDC_EXIT_FILE;
     }
     /* The judge (--jod): a consumer of the retinal signal. */
     FILE *jod_series = NULL;
     tdc_sim_jod_t *judge = NULL;
+    char jod_path[1200];
+    int jod_rc = TDC_EXIT_OK;
     if (jod) {
-        if (cfg.outdir) {
-            snprintf(path, sizeof(path), "%s/jod_series.csv", cfg.outdir);
-            jod_series = fopen(path, "w");
+        if (cfg.outdir && !(jod_series = out_open(cfg.outdir, "jod_series.csv", jod_path, sizeof jod_path))) {
+            jod_rc = TDC_EXIT_FILE;
         }
-        judge = tdc_sim_jod_new(jod_series);
+        judge = jod_rc == TDC_EXIT_OK ? tdc_sim_jod_new(jod_series) : NULL;
         cfg.retina_cb = judge ? tdc_sim_jod_cb : NULL;
         cfg.retina_ctx = judge;
     }
-    int rc = res && (!jod || judge) ? tdc_sim_run(&cfg, src, modes, nm, res, series) : -1;
+    int rc = res && (!jod || judge) ? tdc_sim_run(&cfg, src, modes, nm, res, series) : (jod_rc ? -2 : -1);
+    int file_rc = series ? out_close(series, series_path) : TDC_EXIT_OK;
     if (judge) {
         rc = rc ? rc : tdc_sim_jod_finish(judge);
         for (int i = 0; rc == 0 && i < nm; i++) {
@@ -882,21 +921,16 @@ int main(int argc, char **argv)
         if (rc == 0) {
             tdc_sim_jod_write(judge, stdout);
             if (cfg.outdir) {
-                snprintf(path, sizeof(path), "%s/jod.csv", cfg.outdir);
-                FILE *f = fopen(path, "w");
-                if (!f || tdc_sim_jod_write(judge, f) || fclose(f)) {
-                    fprintf(stderr, "tdc-sim: --jod: cannot write %s\n", path);
-                    rc = -2;
-                }
+                FILE *f = out_open(cfg.outdir, "jod.csv", path, sizeof path);
+                int bad = !f || tdc_sim_jod_write(judge, f);
+                bad |= f && out_close(f, path);
+                file_rc = bad ? TDC_EXIT_FILE : file_rc;
             }
         }
         tdc_sim_jod_free(judge);
     }
-    if (jod_series && fclose(jod_series)) {
-        rc = rc ? rc : -2;
-    }
-    if (series) {
-        fclose(series);
+    if (jod_series && out_close(jod_series, jod_path)) {
+        file_rc = TDC_EXIT_FILE;
     }
     if (rc == 0 && cfg.times) {
         fprintf(stderr,
@@ -908,21 +942,24 @@ int main(int argc, char **argv)
     if (rc == 0) {
         tdc_report_markdown(stdout, &cfg, res, nm);
         if (cfg.outdir) {
-            snprintf(path, sizeof(path), "%s/summary.csv", cfg.outdir);
-            FILE *f = fopen(path, "w");
+            FILE *f = out_open(cfg.outdir, "summary.csv", path, sizeof path);
             if (f) {
                 tdc_report_csv(f, &cfg, res, nm, 1);
-                fclose(f);
+                file_rc = out_close(f, path) ? TDC_EXIT_FILE : file_rc;
+            } else {
+                file_rc = TDC_EXIT_FILE;
             }
-            snprintf(path, sizeof(path), "%s/foveation.csv", cfg.outdir);
-            f = fopen(path, "w");
+            f = out_open(cfg.outdir, "foveation.csv", path, sizeof path);
             if (f) {
                 tdc_report_foveation(f, &cfg, res, nm, 1);
-                fclose(f);
+                file_rc = out_close(f, path) ? TDC_EXIT_FILE : file_rc;
+            } else {
+                file_rc = TDC_EXIT_FILE;
             }
-            snprintf(path, sizeof(path), "%s/summary.md", cfg.outdir);
-            f = fopen(path, "w");
-            if (f) {
+            f = out_open(cfg.outdir, "summary.md", path, sizeof path);
+            if (!f) {
+                file_rc = TDC_EXIT_FILE;
+            } else {
                 fprintf(f,
                         "Run `%s`: scene `%s`, %s panel, %d Hz clock, %s%dx%d, %.2f px/deg, %.3f s, window %d "
                         "refreshes.\n\n",
@@ -930,7 +967,7 @@ int main(int argc, char **argv)
                         cfg.refresh_hz, cfg.eyes == 2 ? "stereo 2x" : "", cfg.width, cfg.height, cfg.flip_ppd,
                         cfg.duration_s, cfg.window_frames > 0 ? cfg.window_frames : (cfg.refresh_hz >= 200 ? 4 : 2));
                 tdc_report_markdown(f, &cfg, res, nm);
-                fclose(f);
+                file_rc = out_close(f, path) ? TDC_EXIT_FILE : file_rc;
             }
         }
         for (int i = 0; i < nm; i++) {
@@ -946,6 +983,13 @@ int main(int argc, char **argv)
         cfg.right->destroy(cfg.right);
     }
     /* a stage error, a refused configuration or non-finite output: the
-     * run is not a result (docs/tools.md: REFUSED) */
-    return rc == 0 ? TDC_EXIT_OK : (rc == -2 ? TDC_EXIT_FILE : TDC_EXIT_REFUSED);
+     * run is not a result (docs/tools.md: REFUSED); an output not written
+     * (a strip, a summary, a --dump file: rc -2) is FILE, never success */
+    if (rc == -2) {
+        return TDC_EXIT_FILE;
+    }
+    if (rc != 0) {
+        return TDC_EXIT_REFUSED;
+    }
+    return file_rc != TDC_EXIT_OK || tdc_report_write_failed() ? TDC_EXIT_FILE : TDC_EXIT_OK;
 }

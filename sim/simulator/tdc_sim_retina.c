@@ -10,9 +10,10 @@
 #include "simulator/tdc_sim_codes.h"
 #include "simulator/tdc_sim_dump.h"
 
-/* The reference's slices: those of the refresh being sampled and the one
- * before (a step never reaches further back: steps tile the refreshes). */
-#define REF_RING (2 * TDC_PANEL_SIM_MAX_SLICES)
+/* The reference's slices: those of the refresh being sampled (steps tile
+ * the refreshes, every slice lies inside its refresh, and the reference
+ * shows a refresh only when its first step is sampled). */
+#define REF_RING TDC_PANEL_SIM_MAX_SLICES
 
 struct sim_retina {
     const tdc_sim_config_t *cfg;
@@ -200,17 +201,19 @@ int sim_retina_advance(sim_retina_t *r, double te)
     if (!r) {
         return 0;
     }
-    for (int e = 0; e < r->eyes; e++) {
-        while (r->ref_frame[e] < (long)floor(te * r->R + 1e-6)) {
-            int rc = ref_refresh(r, e);
-            if (rc) {
-                return rc;
-            }
-        }
-    }
     const tdc_sim_config_t *cfg = r->cfg;
     for (; (r->next + 1) * r->dt <= te + 1e-9; r->next++) {
         const long k = r->next;
+        /* the reference shows the refresh this step lies in (one at a time:
+         * its ring holds one refresh's slices) */
+        for (int e = 0; e < r->eyes; e++) {
+            while (r->ref_frame[e] <= k / r->steps) {
+                int rc = ref_refresh(r, e);
+                if (rc) {
+                    return rc;
+                }
+            }
+        }
         tdc_retina_frame_t fr;
         memset(&fr, 0, sizeof(fr));
         fr.step = k;

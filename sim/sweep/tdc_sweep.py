@@ -34,9 +34,10 @@ Commands:
                                               expand, sbatch --array=0-(N-1); --wait: then merge
     tdc-sweep merge OUT                       OUT/sweep.csv, timings.csv, report.md
 
-Exit codes: 0 OK, 1 BAD_SWEEP (malformed sweep file or OUT), 2 USAGE,
-3 JOBS_FAILED (merge: a job failed or is missing; the rest is merged),
-4 ENGINE (GNU parallel / Slurm missing or refused the array).
+Exit codes (the one table, hosttools/common/tdc_exit.h; docs/tools.md):
+0 OK, 1 ARGS, 13 INPUT (malformed sweep file or OUT), 18 JOBS (merge: a job
+failed or is missing; the rest is merged), 19 ENGINE (GNU parallel / Slurm
+missing or refused the array).
 """
 import csv
 import itertools
@@ -48,8 +49,10 @@ import subprocess
 import sys
 import time
 
-EXIT_OK, EXIT_BAD_SWEEP, EXIT_USAGE, EXIT_JOBS_FAILED, EXIT_ENGINE = 0, 1, 2, 3, 4
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(REPO, "hosttools", "common"))
+from tdc_exit import EXIT  # noqa: E402  (the one exit-code table)
+EXIT_OK, EXIT_BAD_SWEEP, EXIT_USAGE, EXIT_JOBS_FAILED, EXIT_ENGINE = EXIT.OK, EXIT.INPUT, EXIT.ARGS, EXIT.JOBS, EXIT.ENGINE
 OPTION_AXES = {"modes": ["-m"], "refresh": ["-r"], "speed": ["--speed"], "seed": ["-S"],
                "scene": ["-s"], "image": ["--image"], "size": ["-g"],
                "pursuit": ["--pursuit"], "gain": ["--pursuit-gain"], "renderer": ["-R"]}

@@ -6,8 +6,9 @@
 #   2. a group of two 5-seed sweeps at 32x32 with per-scale lines: run on GNU
 #      parallel, claims.csv with the claim columns, the report table and the
 #      docs/results.md block between its markers (rewritten, not appended);
-#   3. refusals: an unknown group (exit 1), a claims script that raises
-#      (exit 3, named), a bad scale (exit 2), a malformed scale key (exit 1).
+#   3. refusals (hosttools/common/tdc_exit.h): an unknown group (1 ARGS), a
+#      claims script that raises (18 JOBS, named), a bad scale (1 ARGS), a
+#      malformed scale key (13 INPUT).
 set -u
 SIM=$(readlink -f "$1")
 EXP="/usr/bin/python3 $(pwd)/sim/experiments/tdc_experiments.py"
@@ -96,12 +97,12 @@ else bad "report exit $rc: $(cat "$T/rep.txt"; cat "$T/results.md")"; fi
 $EXP run nosuch --out "$O" --sim "$SIM" > /dev/null 2> "$T/e1.txt"; rc=$?
 [ $rc -eq 1 ] && grep -q "unknown group 'nosuch'" "$T/e1.txt" && ok "unknown group: exit 1, $(cat "$T/e1.txt")" || bad "unknown group exit $rc"
 $EXP run broken --scale demo --out "$O" -j 2 --sim "$SIM" > /dev/null 2> "$T/e2.txt"; rc=$?
-[ $rc -eq 3 ] && grep -q "broken/claims.py raised" "$T/e2.txt" && grep -q deliberate "$T/e2.txt" \
-    && ok "raising claims script: exit 3, named" || bad "raising claims exit $rc: $(cat "$T/e2.txt")"
+[ $rc -eq 18 ] && grep -q "broken/claims.py raised" "$T/e2.txt" && grep -q deliberate "$T/e2.txt" \
+    && ok "raising claims script: exit 18 (JOBS), named" || bad "raising claims exit $rc: $(cat "$T/e2.txt")"
 $EXP run toy --scale huge --out "$O" > /dev/null 2> "$T/e3.txt"; rc=$?
-[ $rc -eq 2 ] && ok "bad scale: exit 2" || bad "bad scale exit $rc"
+[ $rc -eq 1 ] && ok "bad scale: exit 1 (ARGS)" || bad "bad scale exit $rc"
 printf 'name = x\nbase = -n 2\nhuge.base = -n 3\nmodes = full\n' > "$G/broken/x.sweep"
 $EXP list broken > /dev/null 2> "$T/e4.txt"; rc=$?
-[ $rc -eq 1 ] && grep -q "line 3: scale 'huge'" "$T/e4.txt" && ok "malformed scale key: exit 1, $(cat "$T/e4.txt")" \
+[ $rc -eq 13 ] && grep -q "line 3: scale 'huge'" "$T/e4.txt" && ok "malformed scale key: exit 13 (INPUT), $(cat "$T/e4.txt")" \
     || bad "malformed scale key exit $rc: $(cat "$T/e4.txt")"
 exit $fail

@@ -125,7 +125,9 @@ static void test_write_read_decode(void **state)
     unlink(path);
     assert_int_equal(tdc_link_file_open(&lf, "/nonexistent/dir/x.tdcs"), -1);
     assert_int_equal(tdc_link_file_create(&lf, "/nonexistent/dir/x.tdcs"), -1);
-    assert_int_equal(tdc_link_file_check("/nonexistent/dir/x.tdcs", NULL, 0, &sum), -1);
+    assert_int_equal(tdc_link_file_check("/nonexistent/dir/x.tdcs", NULL, 0, &sum), -2); /* FILE, not INPUT */
+    assert_int_equal(tdc_link_file_open(&lf, "."), -1); /* a folder opens on Linux: refused */
+    assert_int_equal(tdc_link_file_check(".", NULL, 0, &sum), -2);
 }
 
 int main(void)

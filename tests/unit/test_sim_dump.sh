@@ -63,6 +63,19 @@ rl = [sum(struct.unpack("<1024H", ref[hl + k * 2054 + 6: hl + (k + 1) * 2054])) 
 assert rl[5] > 100 and all(v == 0 for v in rl[1:5]), rl
 EOF
 
+# the same bytes with 1 and 2 threads
+"$SIM" -q --threads 1 --mono -g 32x32 -n 4 -m full,bfi --dump "$T/t1" > /dev/null 2>&1 || fail "1-thread run"
+for f in $(cd "$T/d" && find . -type f | sort); do
+    cmp -s "$T/d/$f" "$T/t1/$f" || fail "$f differs between 1 and 2 threads"
+done
+
+# pursuit lag: the eye starts pursuing 100 px/s 50 ms late (shift 0 up to
+# the middle of step 4 at 50 ms, then 100 px/s x (61.1 ms - 50 ms))
+"$SIM" -q --mono -g 32x32 -n 7 -m full --retina-steps 1 --speed 100 --pursuit-lag 50 --dump "$T/lag" > /dev/null 2>&1 ||
+    fail "lag run"
+[ "$(awk -F, '$2 == 4 { print $10 } $2 == 5 { print $10 }' "$T/lag/steps.csv" | tr '\n' ' ')" = "0.0000 1.1111 " ] ||
+    fail "pursuit lag: $(cut -d, -f2,10 "$T/lag/steps.csv" | tr '\n' ' ')"
+
 # 2. a write that fails mid-run: a folder where the video goes -> FILE (7), no dump.json
 mkdir -p "$T/e/full/retina.y4m"
 "$SIM" -q --mono -g 32x32 -n 2 -m full --dump "$T/e" > /dev/null 2> "$T/err"

@@ -8,7 +8,8 @@
  *  - no refresh-count box: a static image gives the same signal at 90 and
  *    165 Hz (hold: every step equal; low persistence: the same light over
  *    the common period 1/15 s), and a low-persistence pulse carries the
- *    whole refresh's light (5x the mean in the lit fifth, 0 in the rest);
+ *    whole refresh's light (5x the mean in the lit fifth, 0 in the rest;
+ *    the mean that of a hold panel);
  *  - smooth pursuit is stabilised (a tracked pan stands still on the
  *    retina, a fixated one moves v / R per refresh), a fixed gaze is
  *    reported where it was set;
@@ -69,6 +70,7 @@ typedef struct {
     int hz, frames;
     double speed, persistence;
     int pursuit, gaze, steps;
+    int lcd;
 } run_t;
 
 static cap_t *run(const run_t *p, const char *const *names, int n)
@@ -92,6 +94,7 @@ static cap_t *run(const run_t *p, const char *const *names, int n)
     cfg.gaze_at_x = p->gaze == 1 ? 20.5 : -1.0;
     cfg.gaze_at_y = p->gaze == 1 ? 14.5 : -1.0;
     cfg.retina_steps = p->steps;
+    cfg.panel = p->lcd ? TDC_PANEL_SIM_LCD : TDC_PANEL_SIM_OLED;
     cap_t *c = calloc(1, sizeof(*c));
     assert_non_null(c);
     const tdc_mode_desc_t *modes[MAXM];
@@ -147,7 +150,7 @@ static void test_bfi_vs_interlace(void **state)
 {
     (void)state;
     static const char *const m[] = {"bfi", "interlace", "full"};
-    run_t p = {90, 8, -1.0, 0.2, 1, 0, 1};
+    run_t p = {90, 8, -1.0, 0.2, 1, 0, 1, 0};
     cap_t *c = run(&p, m, 3);
     assert_true(c->nsteps[0] >= 6 && c->nsteps[1] == c->nsteps[0]);
     int dark_bfi = 0, dark_il = 0, differ = 0;
@@ -179,7 +182,7 @@ static void test_static_hold_same_at_90_and_165(void **state)
 {
     (void)state;
     static const char *const m[] = {"full"};
-    run_t p90 = {90, 6, 0.0, 1.0, 1, 0, 2}, p165 = {165, 11, 0.0, 1.0, 1, 0, 2};
+    run_t p90 = {90, 6, 0.0, 1.0, 1, 0, 2, 0}, p165 = {165, 11, 0.0, 1.0, 1, 0, 2, 0};
     cap_t *a = run(&p90, m, 1), *b = run(&p165, m, 1);
     assert_true(a->nsteps[0] >= 10 && b->nsteps[0] >= 20);
     assert_true(a->fps == 180.0 && b->fps == 330.0);
@@ -204,7 +207,7 @@ static void test_static_pulse_same_light(void **state)
 {
     (void)state;
     static const char *const m[] = {"full"};
-    run_t p90 = {90, 6, 0.0, 0.2, 1, 0, 0}, p165 = {165, 11, 0.0, 0.2, 1, 0, 0};
+    run_t p90 = {90, 6, 0.0, 0.2, 1, 0, 0, 0}, p165 = {165, 11, 0.0, 0.2, 1, 0, 0, 0};
     cap_t *a = run(&p90, m, 1), *b = run(&p165, m, 1);
     assert_int_equal(a->nsteps[0], 30);
     assert_int_equal(b->nsteps[0], 55);
@@ -225,8 +228,15 @@ static void test_static_pulse_same_light(void **state)
     printf("  pulse: lit step %.2f cd/m^2, mean over 1/15 s %.4f (90 Hz) %.4f (165 Hz)\n", mean(a->y[0][0]), sa, sb);
     assert_true(fabs(mean(a->y[0][0]) - 5.0 * sa) < 1e-3 * sa);
     assert_true(fabs(sa - sb) < 1e-4 * sa);
+    /* the pulse is driven 1 / persistence brighter: the mean light is the
+     * hold panel's (the same static image at persistence 1) */
+    run_t hold = {90, 6, 0.0, 1.0, 1, 0, 1, 0};
+    cap_t *c = run(&hold, m, 1);
+    printf("  hold panel: %.4f cd/m^2\n", mean(c->y[0][0]));
+    assert_true(fabs(sa - mean(c->y[0][0])) < 1e-4 * sa);
     free(a);
     free(b);
+    free(c);
 }
 
 /* A pan at 180 px/s tracked: the lit steps of refreshes 2 and 4 are the
@@ -235,7 +245,7 @@ static void test_pursuit_stabilised(void **state)
 {
     (void)state;
     static const char *const m[] = {"full"};
-    run_t track = {90, 8, 180.0, 0.2, 1, 0, 0}, fix = {90, 8, 180.0, 0.2, 0, 0, 0};
+    run_t track = {90, 8, 180.0, 0.2, 1, 0, 0, 0}, fix = {90, 8, 180.0, 0.2, 0, 0, 0, 0};
     cap_t *a = run(&track, m, 1), *b = run(&fix, m, 1);
     /* the tracked image reads the screen up to D = 9 px right of x: columns
      * beyond W - 10 read the clamped edge */
@@ -249,15 +259,50 @@ static void test_pursuit_stabilised(void **state)
     free(b);
 }
 
+/* An LCD at 240 Hz (4 steps per refresh): the reference's first refresh
+ * rises from black step by step (the liquid crystal's transition resolved
+ * within the refresh), then settles: the last refresh's steps agree. */
+static void test_lcd_transition_resolved(void **state)
+{
+    (void)state;
+    static const char *const m[] = {"full"};
+    run_t p = {240, 8, 0.0, 1.0, 1, 0, 0, 1};
+    cap_t *c = run(&p, m, 1);
+    assert_int_equal(c->nsteps[0], 32);
+    printf("  LCD reference, refresh 0:");
+    for (int k = 0; k < 4; k++) {
+        printf(" %.2f", mean(c->ref[k]));
+    }
+    printf(" ... refresh 7: %.2f %.2f cd/m^2\n", mean(c->ref[28]), mean(c->ref[31]));
+    assert_true(mean(c->ref[0]) > 0.0);
+    for (int k = 1; k < 4; k++) {
+        assert_true(mean(c->ref[k]) > mean(c->ref[k - 1]));
+    }
+    assert_true(fabs(mean(c->ref[31]) - mean(c->ref[28])) < 0.01 * mean(c->ref[31]));
+    assert_true(mean(c->ref[0]) < 0.9 * mean(c->ref[31]));
+    free(c);
+}
+
+/* --gaze fixed and --gaze saccade: the gaze point of every step. */
 static void test_fixed_gaze_reported(void **state)
 {
     (void)state;
     static const char *const m[] = {"full"};
-    run_t p = {90, 3, -1.0, 0.2, 1, 1, 0};
+    run_t p = {90, 3, -1.0, 0.2, 1, 1, 0, 0};
     cap_t *c = run(&p, m, 1);
     for (int k = 0; k < c->nsteps[0]; k++) {
         assert_true(c->gaze[k][0] == 20.5 && c->gaze[k][1] == 14.5);
         assert_true(fabs(c->t1[k] - c->t0[k] - 1.0 / 450.0) < 1e-12);
+    }
+    free(c);
+    /* saccades: the gaze table's first two fixations (0.32, 0.36) and
+     * (0.68, 0.42) of the view, the jump at 250 ms */
+    run_t q = {90, 27, -1.0, 0.2, 1, 2, 1, 0};
+    c = run(&q, m, 1);
+    assert_int_equal(c->nsteps[0], 27);
+    for (int k = 0; k < 27; k++) {
+        const double tm = 0.5 * (c->t0[k] + c->t1[k]), fx = tm < 0.25 ? 0.32 : 0.68, fy = tm < 0.25 ? 0.36 : 0.42;
+        assert_true(fabs(c->gaze[k][0] - fx * W) < 1e-9 && fabs(c->gaze[k][1] - fy * H) < 1e-9);
     }
     free(c);
 }
@@ -291,7 +336,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_bfi_vs_interlace),         cmocka_unit_test(test_static_hold_same_at_90_and_165),
         cmocka_unit_test(test_static_pulse_same_light),  cmocka_unit_test(test_pursuit_stabilised),
-        cmocka_unit_test(test_fixed_gaze_reported),      cmocka_unit_test(test_profile_without_photometry),
+        cmocka_unit_test(test_lcd_transition_resolved),  cmocka_unit_test(test_fixed_gaze_reported),
+        cmocka_unit_test(test_profile_without_photometry),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

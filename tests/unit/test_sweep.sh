@@ -1,12 +1,12 @@
 #!/bin/sh
 # test_sweep.sh TDC_SIM - sweeps on real engines (issue 13 item 6):
-#   1. a malformed sweep file: one line, exit 1 (BAD_SWEEP), nothing run;
+#   1. a malformed sweep file: one line, exit 13 (INPUT), nothing run;
 #   2. the small sweep (16 jobs) under GNU parallel -j 2;
 #   3. the same sweep as a Slurm job array on a one-node cluster this test
 #      starts itself (munged + slurmctld + slurmd on 127.0.0.1, generated
 #      key and slurm.conf in a temp dir, free ports), merged CSV byte-equal
 #      to the parallel run's;
-#   4. a sweep with a failing job: merge names it and exits 3 (JOBS_FAILED),
+#   4. a sweep with a failing job: merge names it and exits 18 (JOBS),
 #      the other jobs are merged.
 # Every daemon is stopped at the end, also on failure (trap), with timeouts;
 # if the cluster cannot start here the test FAILS and prints what failed.
@@ -38,12 +38,12 @@ trap 'exit 1' INT TERM HUP
 # 1. malformed sweep file
 printf 'name = broken\nmodes full trm50\n' > "$T/broken.sweep"
 $SWEEP local "$T/broken.sweep" "$T/broken" --sim "$SIM" > "$T/o.txt" 2> "$T/e.txt"; rc=$?
-if [ $rc -eq 1 ] && [ "$(wc -l < "$T/e.txt")" -eq 1 ] && grep -q "broken.sweep line 2" "$T/e.txt" && \
+if [ $rc -eq 13 ] && [ "$(wc -l < "$T/e.txt")" -eq 1 ] && grep -q "broken.sweep line 2" "$T/e.txt" && \
    [ ! -d "$T/broken/jobs/0000" ]; then ok "malformed: $(cat "$T/e.txt")"
 else bad "malformed sweep: exit $rc, $(cat "$T/e.txt")"; fi
 printf 'modes = full,trm{q}\n' > "$T/ph.sweep"
 $SWEEP expand "$T/ph.sweep" "$T/ph" --sim "$SIM" > /dev/null 2> "$T/e.txt"; rc=$?
-[ $rc -eq 1 ] && grep -q "placeholder" "$T/e.txt" && ok "unknown placeholder: $(cat "$T/e.txt")" || bad "placeholder: exit $rc"
+[ $rc -eq 13 ] && grep -q "placeholder" "$T/e.txt" && ok "unknown placeholder: $(cat "$T/e.txt")" || bad "placeholder: exit $rc"
 
 # 2. GNU parallel
 t0=$(date +%s)
@@ -144,12 +144,12 @@ base = -s pan -g 32x24 -n 6 -m full
 refresh = 90 2000
 EOF2
 $SWEEP local "$T/onebad.sweep" "$T/onebad" -j 2 --sim "$SIM" 2> "$T/bad.err"; rc=$?
-if [ $rc -eq 3 ] && grep -q 'job 0001 failed: exit 1: tdc-sim: bad refresh' "$T/bad.err" && \
+if [ $rc -eq 18 ] && grep -q 'job 0001 failed: exit 1: tdc-sim: bad refresh' "$T/bad.err" && \
    [ "$(($(wc -l < "$T/onebad/sweep.csv") - 1))" -eq 1 ] && grep -q '| 0001 | refresh=2000 |' "$T/onebad/report.md"; then
-    ok "failed job named by merge (exit 3): $(grep 'job 0001' "$T/bad.err")"
+    ok "failed job named by merge (exit 18 JOBS): $(grep 'job 0001' "$T/bad.err")"
 else bad "failing job: exit $rc, $(cat "$T/bad.err")"; fi
 rm -rf "$T/onebad/jobs/0000/status.json"
 $SWEEP merge "$T/onebad" 2> "$T/bad2.err"; rc=$?
-[ $rc -eq 3 ] && grep -q 'job 0000 failed: missing' "$T/bad2.err" && ok "missing job named: $(grep 'job 0000' "$T/bad2.err")" \
+[ $rc -eq 18 ] && grep -q 'job 0000 failed: missing' "$T/bad2.err" && ok "missing job named: $(grep 'job 0000' "$T/bad2.err")" \
     || bad "missing job: exit $rc $(cat "$T/bad2.err")"
 exit $fail

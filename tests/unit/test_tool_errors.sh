@@ -19,8 +19,8 @@ expect 13 "linkdump: file cut mid-packet is not clean" "tdc-linkdump: $t/cut.tdc
 { cat "$t/s.tdcs"; printf 'trailing garbage'; } > "$t/tail.tdcs"
 expect 13 "linkdump: garbage after the last packet" "ends inside a packet or with garbage (16 bytes)" -- "$dump" "$t/tail.tdcs"
 printf 'not a stream at all, not at all' > "$t/junk.tdcs"
-expect 13 "linkdump: not a stream" "not a readable .tdcs stream" -- "$dump" "$t/junk.tdcs"
-expect 7 "linkdump: missing file" "cannot read" -- "$dump" "$t/nope.tdcs"
+expect 13 "linkdump: not a stream" "junk.tdcs: not a .tdcs stream: it does not start with a valid STREAM packet" -- "$dump" "$t/junk.tdcs"
+expect 7 "linkdump: missing file" "nope.tdcs: cannot open for reading: No such file" -- "$dump" "$t/nope.tdcs"
 expect 1 "linkdump: usage" "usage" -- "$dump"
 
 # ---- tdc-render
@@ -59,6 +59,10 @@ expect 13 "tablegen: a 600-byte line is refused with its number" "htc-vive.panel
 expect 13 "tablegen: refresh_hz 2^32+90 refused" "refresh_hz: expected an integer" -- "$tablegen" "$t/htc-vive.panel" "$t/gen"
 { cat boards/panels/htc-vive.panel; echo 'gamma nan 2.2 2.2'; } > "$t/htc-vive.panel"
 expect 13 "tablegen: gamma nan refused" "gamma: expected a number" -- "$tablegen" "$t/htc-vive.panel" "$t/gen"
+{ cat boards/panels/htc-vive.panel; echo 'black_cdm2 99'; echo 'peak_cdm2 50'; } > "$t/htc-vive.panel"
+expect 13 "tablegen: black above peak refused" "black_cdm2 99 must be below peak_cdm2 50" -- "$tablegen" "$t/htc-vive.panel" "$t/gen"
+{ cat boards/panels/htc-vive.panel; echo 'peak_cdm2 0'; } > "$t/htc-vive.panel"
+expect 13 "tablegen: peak_cdm2 0 refused" "peak_cdm2: expected a number" -- "$tablegen" "$t/htc-vive.panel" "$t/gen"
 cmp -s "$t/gen/tdc_panel_htc-vive.c" "$t/keep.c" && ok "tablegen: the existing table survives failed runs" || bad "tablegen: table changed"
 expect 7 "tablegen: missing profile" "cannot open" -- "$tablegen" "$t/nope.panel" "$t/gen"
 expect 7 "tablegen: missing output folder" "cannot write" -- "$tablegen" boards/panels/htc-vive.panel "$t/no/dir"

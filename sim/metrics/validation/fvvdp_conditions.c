@@ -270,7 +270,11 @@ int fvvdp_read_reference(const char *path, double *ref, double *secs)
             }
         }
     }
+    int err = ferror(f);
     fclose(f);
+    if (err) {
+        return -1; /* a read error (a folder given as the table) */
+    }
     for (int i = 0; i < fvvdp_ncond; i++) {
         if (isnan(ref[i])) {
             return -2 - i;

@@ -156,8 +156,21 @@ static int bench(void)
     return 0;
 }
 
+static void usage(FILE *f)
+{
+    fprintf(f, "usage: " TOOL " dump DIR | bench | table REFERENCE.csv\n"
+               "  dump DIR     write the validation set's frames and manifest.csv for fvvdp_reference.py\n"
+               "  bench        seconds tdc's FovVideoVDP spends on the set (make bench-sim)\n"
+               "  table CSV    tdc's JOD beside the reference's, with the agreement statistics\n"
+               "exit codes: 0 OK, 1 ARGS, 7 FILE, 13 INPUT (the table lacks a condition), 14 REFUSED\n");
+}
+
 int main(int argc, char **argv)
 {
+    if (argc == 2 && strcmp(argv[1], "--help") == 0) {
+        usage(stdout);
+        return TDC_EXIT_OK;
+    }
     if (argc == 2 && strcmp(argv[1], "bench") == 0) {
         return bench();
     }
@@ -167,6 +180,6 @@ int main(int argc, char **argv)
     if (argc == 3 && strcmp(argv[1], "table") == 0) {
         return table(argv[2]);
     }
-    fprintf(stderr, TOOL ": usage: " TOOL " dump DIR | bench | table REFERENCE.csv\n");
+    fprintf(stderr, TOOL ": bad arguments: usage: " TOOL " dump DIR | bench | table REFERENCE.csv (--help)\n");
     return TDC_EXIT_ARGS;
 }

@@ -1,0 +1,16 @@
+# A newcomer's first commands: the fragments' read order
+# (tests/rules/check_make_order.py) and a copy of the working tree running
+# the README's commands as a fresh clone does (tests/fresh/test_fresh_clone.sh:
+# `make -n` shows deps first, board images from a clean tree, `make demo`
+# with every run at DEMO_SCALE=ci, `make size` over every pair).
+# FRESH_PAIRS: images built alone in a copy where nothing else was built
+# (the README's example pair, and one per emulated board).
+FRESH_PAIRS ?= stm32h747i-disco:disco-dsi mps3-an547:htc-vive
+TEST_EXTRA += test-newcomer
+.PHONY: test-newcomer
+test-newcomer:
+	@mkdir -p $(BUILD)
+	@printf '#!/bin/sh\nexec tests/rules/check_make_order.py .\n' > $(BUILD)/make-order
+	@printf '#!/bin/sh\nexec tests/fresh/test_fresh_clone.sh %s\n' "$(FRESH_PAIRS)" > $(BUILD)/fresh-clone
+	@chmod +x $(BUILD)/make-order $(BUILD)/fresh-clone
+	@tests/run_tests.sh newcomer $(BUILD)/make-order $(BUILD)/fresh-clone
