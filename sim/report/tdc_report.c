@@ -89,7 +89,8 @@ void tdc_report_csv(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_result_t
         fprintf(f, "run,scene,panel,mode,display_hz,width,height,evals,psnr_db,psnr_min_db,ssim,flip,flip_max,"
                    "legacy_flicker,rays_per_s,rays_vs_full,link_bytes_per_s,link_vs_full,fw_us_per_frame,"
                    "render_us_per_frame,frames,resets,link_errors,nonfinite,available,eyes,psnr_eye0_db,psnr_eye1_db,"
-                   "ssim_eye0,ssim_eye1,flip_eye0,flip_eye1,legacy_terr,note\n");
+                   "ssim_eye0,ssim_eye1,flip_eye0,flip_eye1,legacy_terr,note,jod,jod_fovea,jod_periphery,jod_eye0,"
+                   "jod_eye1,jod_frames\n");
     }
     const int eyes = cfg->eyes == 2 ? 2 : 1;
     double full_rays = (double)cfg->width * cfg->height * (cfg->spp > 0 ? cfg->spp : (cfg->refresh_hz >= 200 ? 1 : 4)) *
@@ -109,13 +110,23 @@ void tdc_report_csv(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_result_t
         }
         fprintf(f,
                 "%s,%s,%s,%s,%d,%d,%d,%d,%.3f,%.3f,%.5f,%.5f,%.5f,%.3f,%.0f,%.4f,%.0f,%.4f,%.2f,%.2f,%llu,%u,%u,%d,%d,"
-                "%d,%s,%s,\"%s\"\n",
+                "%d,%s,%s,\"%s\"",
                 cfg->label ? cfg->label : "run", tdc_scene_name(cfg->scene.kind), panel_name(cfg), x->desc->name,
                 x->display_hz, cfg->width, cfg->height, x->evals, x->psnr, x->evals ? x->psnr_min : 0.0, x->ssim,
                 x->flip, x->flip_max, x->flicker, x->rays / T, x->rays / T / full_rays, x->link_bytes / T,
                 x->link_bytes / T / full_bytes, 1e6 * x->fw_s / fr, 1e6 * x->render_s / fr,
                 (unsigned long long)x->frames, x->resets, x->link_errors, x->nonfinite, x->available, eyes, per_eye,
                 terr, x->note);
+        /* FovVideoVDP (--jod; empty without it) */
+        if (x->judged) {
+            fprintf(f, ",%.4f,%.4f,%.4f,%.4f,", x->jod, x->jod_fovea, x->jod_periphery, x->eye_jod[0]);
+            if (eyes == 2) {
+                fprintf(f, "%.4f", x->eye_jod[1]);
+            }
+            fprintf(f, ",%d\n", x->jod_frames);
+        } else {
+            fprintf(f, ",,,,,,\n");
+        }
     }
 }
 
@@ -125,20 +136,33 @@ void tdc_report_markdown(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_res
     double full_rays = (double)cfg->width * cfg->height * (cfg->spp > 0 ? cfg->spp : (cfg->refresh_hz >= 200 ? 1 : 4)) *
                        cfg->refresh_hz * eyes;
     double full_bytes = (double)cfg->width * cfg->height * 3.0 * cfg->refresh_hz * eyes;
+    /* With --jod, FovVideoVDP's JOD leads (docs/visual-model.md). */
+    int judged = 0;
+    for (int i = 0; i < n; i++) {
+        judged |= r[i].judged;
+    }
     fprintf(f,
-            "| mode | Hz | PSNR dB | SSIM | FLIP | flicker (legacy) | rays vs full | link vs full | link MB/s | fw us/frame | "
-            "render us/frame |\n");
-    fprintf(f, "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+            "| mode |%s Hz | PSNR dB | SSIM | FLIP | flicker (legacy) | rays vs full | link vs full | link MB/s | fw us/frame | "
+            "render us/frame |\n",
+            judged ? " JOD | JOD fovea | JOD periphery |" : "");
+    fprintf(f, "| --- |%s ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n",
+            judged ? " ---: | ---: | ---: |" : "");
     for (int i = 0; i < n; i++) {
         const tdc_sim_result_t *x = &r[i];
+        char jod[64] = "";
+        if (judged && x->judged) {
+            snprintf(jod, sizeof(jod), " %.3f | %.3f | %.3f |", x->jod, x->jod_fovea, x->jod_periphery);
+        } else if (judged) {
+            snprintf(jod, sizeof(jod), " n/a | n/a | n/a |");
+        }
         if (!x->available) {
-            fprintf(f, "| %s | %d | n/a | n/a | n/a | n/a | | | | | |\n", x->desc->name, x->display_hz);
+            fprintf(f, "| %s |%s %d | n/a | n/a | n/a | n/a | | | | | |\n", x->desc->name, jod, x->display_hz);
             continue;
         }
         double T = x->sim_s > 0 ? x->sim_s : 1.0;
         double fr = x->frames ? (double)x->frames : 1.0;
-        fprintf(f, "| %s | %d | %.2f | %.4f | %.4f | %.2f | %.3f | %.3f | %.2f | %.0f | %.0f |\n", x->desc->name,
-                x->display_hz, x->psnr, x->ssim, x->flip, x->flicker, x->rays / T / full_rays,
+        fprintf(f, "| %s |%s %d | %.2f | %.4f | %.4f | %.2f | %.3f | %.3f | %.2f | %.0f | %.0f |\n", x->desc->name,
+                jod, x->display_hz, x->psnr, x->ssim, x->flip, x->flicker, x->rays / T / full_rays,
                 x->link_bytes / T / full_bytes, x->link_bytes / T / 1e6, 1e6 * x->fw_s / fr, 1e6 * x->render_s / fr);
     }
     if (eyes == 2) {

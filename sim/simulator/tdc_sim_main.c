@@ -15,6 +15,7 @@
 #include "report/tdc_report.h"
 #include "simulator/tdc_sim.h"
 #include "simulator/tdc_sim_gaze.h"
+#include "simulator/tdc_sim_jod.h"
 #include "simulator/tdc_sim_render.h"
 #include "tdc_par.h"
 
@@ -84,6 +85,8 @@ static void usage(FILE *f)
             "      --temporal          legacy temporal visibility model: the legacy eye's error through a\n"
             "                          temporal CSF (Watson 1986, sim/eye/tdc_eye_temporal.h): legacy_terr\n"
             "      --metric-every K    evaluate every K-th refresh (default 1)\n"
+            "      --jod               judge the retinal signal with FovVideoVDP (docs/visual-model.md): JOD per\n"
+            "                          mode and eye, fovea / periphery, in -o DIR's jod.csv and jod_series.csv\n"
             "      --dump DIR          the retinal signal as files (docs/eye.md): per refresh and eye the drive\n"
             "                          codes, per step the emitted light and the retinal image of every mode\n"
             "                          and of the reference (16-bit linear PNG, Y4M), dump.json, steps.csv\n"
@@ -281,6 +284,7 @@ int main(int argc, char **argv)
         O_FOV_DELTA,
         O_FOV_DISK,
         O_DUMP,
+        O_JOD,
         O_RSTEPS,
         O_LAG
     };
@@ -338,6 +342,7 @@ int main(int argc, char **argv)
                                          {"fov-delta", required_argument, 0, O_FOV_DELTA},
                                          {"fov-disk", required_argument, 0, O_FOV_DISK},
                                          {"dump", required_argument, 0, O_DUMP},
+                                         {"jod", no_argument, 0, O_JOD},
                                          {"retina-steps", required_argument, 0, O_RSTEPS},
                                          {"pursuit-lag", required_argument, 0, O_LAG},
                                          {"help", no_argument, 0, 'h'},
@@ -357,6 +362,7 @@ int main(int argc, char **argv)
     int reflect_mv = 1;
     int fov_lod = TDC_FOV_LOD_FOOTPRINT;
     long frames = -1;
+    int jod = 0; /* --jod */
     double v;
     int c;
     tdc_tool_set_name("tdc-sim");
@@ -656,6 +662,9 @@ int main(int argc, char **argv)
             cfg.flip_ppd = v;
             ppd_given = 1;
             break;
+        case O_JOD:
+            jod = 1;
+            break;
         case O_DUMP:
             if (optarg[0] == '\0') {
                 fprintf(stderr, "tdc-sim: --dump: empty folder name\n");
@@ -745,7 +754,7 @@ int main(int argc, char **argv)
                 cfg.height);
         return TDC_EXIT_ARGS;
     }
-    if (cfg.dump_dir) {
+    if (cfg.dump_dir || jod) {
         /* the retinal signal: its frame rate and the panel's photometry */
         double pers = cfg.persistence > 0 ? cfg.persistence : (cfg.refresh_hz >= 200 ? 1.0 : 0.2);
         int steps = tdc_retina_steps(cfg.retina_steps, cfg.panel == TDC_PANEL_SIM_LCD, pers);
@@ -757,7 +766,7 @@ int main(int argc, char **argv)
         tdc_retina_display_t disp;
         char why[256];
         if (tdc_retina_display_from_panel(prof, cfg.flip_ppd, cfg.ppd_from, cfg.width, &disp, why, sizeof(why))) {
-            fprintf(stderr, "tdc-sim: --dump: %s\n", why);
+            fprintf(stderr, "tdc-sim: %s: %s\n", cfg.dump_dir ? "--dump" : "--jod", why);
             return TDC_EXIT_INPUT;
         }
     }
@@ -875,8 +884,54 @@ int main(int argc, char **argv)
         }
         return TDC_EXIT_FILE;
     }
-    int rc = res ? tdc_sim_run(&cfg, src, modes, nm, res, series) : -1;
+    /* The judge (--jod): a consumer of the retinal signal. */
+    FILE *jod_series = NULL;
+    tdc_sim_jod_t *judge = NULL;
+    char jod_path[1200];
+    int jod_rc = TDC_EXIT_OK;
+    if (jod) {
+        if (cfg.outdir && !(jod_series = out_open(cfg.outdir, "jod_series.csv", jod_path, sizeof jod_path))) {
+            jod_rc = TDC_EXIT_FILE;
+        }
+        judge = jod_rc == TDC_EXIT_OK ? tdc_sim_jod_new(jod_series) : NULL;
+        cfg.retina_cb = judge ? tdc_sim_jod_cb : NULL;
+        cfg.retina_ctx = judge;
+    }
+    int rc = res && (!jod || judge) ? tdc_sim_run(&cfg, src, modes, nm, res, series) : (jod_rc ? -2 : -1);
     int file_rc = series ? out_close(series, series_path) : TDC_EXIT_OK;
+    if (judge) {
+        rc = rc ? rc : tdc_sim_jod_finish(judge);
+        for (int i = 0; rc == 0 && i < nm; i++) {
+            /* the JOD columns of summary.csv and the report (mean of the eyes) */
+            int ne = cfg.eyes == 2 ? 2 : 1, ok = 1;
+            double sum[3] = {0.0, 0.0, 0.0};
+            for (int e = 0; e < ne; e++) {
+                tdc_fvvdp_jods_t jr = {NAN, NAN, NAN};
+                ok &= tdc_sim_jod_result(judge, res[i].desc->name, e, &jr, &res[i].jod_frames) == 0;
+                res[i].eye_jod[e] = ok ? jr.all : NAN;
+                sum[0] += jr.all;
+                sum[1] += jr.fovea;
+                sum[2] += jr.periphery;
+            }
+            res[i].judged = ok;
+            res[i].jod = sum[0] / ne;
+            res[i].jod_fovea = sum[1] / ne;
+            res[i].jod_periphery = sum[2] / ne;
+        }
+        if (rc == 0) {
+            tdc_sim_jod_write(judge, stdout);
+            if (cfg.outdir) {
+                FILE *f = out_open(cfg.outdir, "jod.csv", path, sizeof path);
+                int bad = !f || tdc_sim_jod_write(judge, f);
+                bad |= f && out_close(f, path);
+                file_rc = bad ? TDC_EXIT_FILE : file_rc;
+            }
+        }
+        tdc_sim_jod_free(judge);
+    }
+    if (jod_series && out_close(jod_series, jod_path)) {
+        file_rc = TDC_EXIT_FILE;
+    }
     if (rc == 0 && cfg.times) {
         fprintf(stderr,
                 "tdc-sim: stage wall seconds: source %.2f link %.2f firmware %.2f panel %.2f eye %.2f metrics %.2f "

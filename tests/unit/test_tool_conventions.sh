@@ -94,6 +94,10 @@ for prog in "$@"; do
             rm -rf "$t/simout"; mkdir -p "$t/simout/$out"
             one_line 7 "$out not writable" $sim -o "$t/simout"
         done
+        for out in jod.csv jod_series.csv; do
+            rm -rf "$t/simout"; mkdir -p "$t/simout/$out"
+            one_line 7 "--jod: $out not writable" $sim --jod -o "$t/simout"
+        done
         ;;
     tdc-render)
         one_line 7 "folder as --scene" "$prog" --scene "$t/dir"
@@ -114,6 +118,13 @@ for prog in "$@"; do
         one_line 7 "output folder not writable" "$prog" boards/panels/htc-vive.panel "$nowhere"
         one_line 7 "--fov output not writable" "$prog" --fov "$nowhere.h"
         one_line 7 "--trm output is a folder" "$prog" --trm "$t/dir"
+        ;;
+    tdc-fvvdp-validate)
+        one_line 7 "table: folder as the reference table" "$prog" table "$t/dir"
+        one_line 7 "table: no such table" "$prog" table "$t/none.csv"
+        printf 'condition,reference_jod,seconds\n' > "$t/short.csv"
+        one_line 13 "table: a condition missing" "$prog" table "$t/short.csv"
+        one_line 7 "dump: folder not creatable" "$prog" dump "$nowhere"
         ;;
     *)
         bad "$name: no cases in $0 (every program keeps docs/tools.md)"

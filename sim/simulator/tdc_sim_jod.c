@@ -1,0 +1,200 @@
+/*
+ * tdc_sim_jod.c - FovVideoVDP on the retinal signal (tdc_sim_jod.h).
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "simulator/tdc_sim_jod.h"
+
+#define MAX_JUDGES 128
+#define WARMUP_S 0.25
+
+typedef struct {
+    char mode[64];
+    int eye;
+    tdc_fvvdp_t *m;       /* created at the first refresh's end (its step count gives the rate) */
+    int own;              /* index of the judge whose reference m shares, or -1 */
+    float *acc_t, *acc_r; /* this refresh's retinal luminance, summed over its steps */
+    int w, h, nacc;
+    long refresh;         /* the refresh being accumulated */
+    double gaze[2], t1;
+    int fed, warmup;      /* frames fed; frames of the warm-up */
+    tdc_fvvdp_geometry_t g;
+    double fps;           /* retinal steps per second */
+} judge_t;
+
+struct tdc_sim_jod {
+    FILE *series;
+    judge_t j[MAX_JUDGES];
+    int n;
+};
+
+tdc_sim_jod_t *tdc_sim_jod_new(FILE *series)
+{
+    tdc_sim_jod_t *s = calloc(1, sizeof *s);
+    if (s && series) {
+        s->series = series;
+        fprintf(series, "mode,eye,refresh,t,pooled,jod,jod_fovea,jod_periphery\n");
+    }
+    return s;
+}
+
+static judge_t *find(tdc_sim_jod_t *s, const char *mode, int eye)
+{
+    for (int i = 0; i < s->n; i++) {
+        if (s->j[i].eye == eye && strcmp(s->j[i].mode, mode) == 0) {
+            return &s->j[i];
+        }
+    }
+    return NULL;
+}
+
+/* Feeds the accumulated refresh (its mean) to the metric. */
+static int flush(tdc_sim_jod_t *s, judge_t *j)
+{
+    if (j->nacc == 0) {
+        return 0;
+    }
+    if (!j->m) {
+        /* The first refresh's step count fixes the rate: R = steps/s / N.
+         * The eye's first judge holds the reference; the eye's other modes
+         * share it (their refreshes are flushed after it, in mode order). */
+        char why[160];
+        double rate = j->fps / j->nacc;
+        j->own = -1;
+        for (int i = 0; i < s->n && j->own < 0; i++) {
+            j->own = s->j[i].eye == j->eye && s->j[i].m && s->j[i].own < 0 && &s->j[i] != j ? i : -1;
+        }
+        j->m = j->own >= 0 ? tdc_fvvdp_new_shared(s->j[j->own].m, why, sizeof why)
+                           : tdc_fvvdp_new(&j->g, rate, why, sizeof why);
+        if (!j->m) {
+            fprintf(stderr, "tdc-sim: jod: mode %s eye %d: %s\n", j->mode, j->eye, why);
+            return -1;
+        }
+        j->warmup = (int)ceil(WARMUP_S * rate);
+    }
+    if (j->own >= 0 && tdc_fvvdp_frames(s->j[j->own].m) != j->fed + 1) {
+        /* the judge holding the reference stopped (its mode failed): this
+         * mode's reference would be stale */
+        fprintf(stderr, "tdc-sim: jod: mode %s eye %d: the reference's judge (mode %s) has %d refreshes, not %d\n",
+                j->mode, j->eye, s->j[j->own].mode, tdc_fvvdp_frames(s->j[j->own].m), j->fed + 1);
+        return -1;
+    }
+    size_t np = (size_t)j->w * j->h;
+    float inv = 1.0f / (float)j->nacc;
+    for (size_t i = 0; i < np; i++) {
+        j->acc_t[i] *= inv;
+        j->acc_r[i] *= inv;
+    }
+    tdc_fvvdp_frame(j->m, j->acc_t, j->acc_r, j->gaze);
+    j->fed++;
+    if (j->fed == j->warmup) {
+        tdc_fvvdp_reset_pool(j->m);
+    }
+    if (s->series) {
+        tdc_fvvdp_jods_t r;
+        tdc_fvvdp_last(j->m, &r);
+        fprintf(s->series, "%s,%d,%ld,%.6f,%d,%.4f,%.4f,%.4f\n", j->mode, j->eye, j->refresh, j->t1,
+                j->fed > j->warmup, r.all, r.fovea, r.periphery);
+    }
+    memset(j->acc_t, 0, np * sizeof(float));
+    memset(j->acc_r, 0, np * sizeof(float));
+    j->nacc = 0;
+    return 0;
+}
+
+int tdc_sim_jod_cb(void *ctx, const tdc_retina_frame_t *f)
+{
+    tdc_sim_jod_t *s = ctx;
+    judge_t *j = find(s, f->mode, f->eye);
+    size_t np = (size_t)f->width * f->height;
+    if (!j) {
+        if (s->n == MAX_JUDGES) {
+            fprintf(stderr, "tdc-sim: jod: more than %d mode-eye pairs\n", MAX_JUDGES);
+            return -1;
+        }
+        j = &s->j[s->n];
+        snprintf(j->mode, sizeof j->mode, "%s", f->mode);
+        j->eye = f->eye;
+        j->w = f->width;
+        j->h = f->height;
+        j->g = (tdc_fvvdp_geometry_t){ f->width, f->height, f->display->width_m, f->display->distance_m };
+        j->fps = f->fps;
+        j->refresh = f->refresh;
+        j->acc_t = calloc(np, sizeof(float));
+        j->acc_r = calloc(np, sizeof(float));
+        if (!j->acc_t || !j->acc_r) {
+            fprintf(stderr, "tdc-sim: jod: out of memory\n");
+            free(j->acc_t);
+            free(j->acc_r);
+            memset(j, 0, sizeof *j);
+            return -1;
+        }
+        s->n++;
+    }
+    if (f->refresh != j->refresh) {
+        if (flush(s, j)) {
+            return -1;
+        }
+        j->refresh = f->refresh;
+    }
+    for (size_t i = 0; i < np; i++) {
+        j->acc_t[i] += f->test_y[i];
+        j->acc_r[i] += f->ref_y[i];
+    }
+    j->nacc++;
+    j->gaze[0] = f->gaze[0];
+    j->gaze[1] = f->gaze[1];
+    j->t1 = f->t1;
+    return 0;
+}
+
+int tdc_sim_jod_finish(tdc_sim_jod_t *s)
+{
+    for (int i = 0; i < s->n; i++) {
+        if (flush(s, &s->j[i])) {
+            return -1;
+        }
+    }
+    return 0;
+}
+
+int tdc_sim_jod_result(tdc_sim_jod_t *s, const char *mode, int eye, tdc_fvvdp_jods_t *out, int *frames)
+{
+    judge_t *j = find(s, mode, eye);
+    if (!j || !j->m) {
+        return -1;
+    }
+    tdc_fvvdp_pooled(j->m, out);
+    *frames = j->fed > j->warmup ? j->fed - j->warmup : 0;
+    return 0;
+}
+
+int tdc_sim_jod_write(tdc_sim_jod_t *s, FILE *f)
+{
+    int bad = fprintf(f, "mode,eye,jod,jod_fovea,jod_periphery,frames_pooled\n") < 0;
+    for (int i = 0; i < s->n; i++) {
+        tdc_fvvdp_jods_t r = { NAN, NAN, NAN };
+        const judge_t *j = &s->j[i];
+        if (j->m) {
+            tdc_fvvdp_pooled(j->m, &r);
+        }
+        int pooled = j->fed > j->warmup ? j->fed - j->warmup : 0;
+        bad |= fprintf(f, "%s,%d,%.4f,%.4f,%.4f,%d\n", j->mode, j->eye, r.all, r.fovea, r.periphery, pooled) < 0;
+    }
+    return bad ? -1 : 0;
+}
+
+void tdc_sim_jod_free(tdc_sim_jod_t *s)
+{
+    if (!s) {
+        return;
+    }
+    for (int i = 0; i < s->n; i++) {
+        tdc_fvvdp_free(s->j[i].m);
+        free(s->j[i].acc_t);
+        free(s->j[i].acc_r);
+    }
+    free(s);
+}
