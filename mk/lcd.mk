@@ -33,16 +33,21 @@ LCD_MEAS_FLAGS := --grid 17 --integration 1 --noise 0.002 --seed 1
 LCD_TRANS_FLAGS := --transitions --grid 33 --runs 2 --noise 0.002 --seed 2
 # lcd-240: 8 runs, 65-node tables, smoothed (the static goal, docs/lcd.md §8).
 LCD_TRANS_FLAGS_240 := --transitions --grid 33 --runs 8 --noise 0.002 --seed 2
+# photometry: not in the measurements (relative to white); stated with its source
+LCD_PHOT_pg279q = --peak-cdm2 350 --black-cdm2 0.35 --distance-m 0.6 \
+    --photometry-note "ASUS PG279Q data sheet: 350 cd/m^2, 1000:1; desk distance"
+LCD_PHOT_lcd-240 = --peak-cdm2 400 --black-cdm2 0.4 --distance-m 0.6 \
+    --photometry-note "assumed, not measured: a typical 240 Hz gaming LCD data sheet value, 1000:1; desk distance"
 lcd-profiles: $(TDC_LCD_MEASURE) $(TDC_CALIB)
 	@mkdir -p $(B)/lcd
 	$(TDC_LCD_MEASURE) sim/lcd/panels/pg279q.lcdsim 120,144,165 $(LCD_MEAS_FLAGS) -o $(B)/lcd/pg279q.csv
 	$(TDC_LCD_MEASURE) sim/lcd/panels/pg279q.lcdsim 120,144,165 $(LCD_TRANS_FLAGS) -o $(B)/lcd/pg279q-tr.csv
 	$(TDC_CALIB) $(B)/lcd/pg279q.csv -o boards/panels/pg279q.panel --name pg279q --width 2560 --height 1440 \
-	    --refresh 144 --table 33 --transitions $(B)/lcd/pg279q-tr.csv --note "FITTED TO THE SIMULATED PANEL sim/lcd/panels/pg279q.lcdsim (ASUS PG279Q class, not a measured monitor) by make lcd-profiles"
+	    --refresh 144 --table 33 --transitions $(B)/lcd/pg279q-tr.csv $(LCD_PHOT_pg279q) --note "FITTED TO THE SIMULATED PANEL sim/lcd/panels/pg279q.lcdsim (ASUS PG279Q class, not a measured monitor) by make lcd-profiles"
 	$(TDC_LCD_MEASURE) sim/lcd/panels/lcd-240.lcdsim 144,240 $(LCD_MEAS_FLAGS) -o $(B)/lcd/lcd-240.csv
 	$(TDC_LCD_MEASURE) sim/lcd/panels/lcd-240.lcdsim 144,240 $(LCD_TRANS_FLAGS_240) -o $(B)/lcd/lcd-240-tr.csv
 	$(TDC_CALIB) $(B)/lcd/lcd-240.csv -o boards/panels/lcd-240.panel --name lcd-240 --width 1920 --height 1080 \
-	    --refresh 240 --table 33 --transitions $(B)/lcd/lcd-240-tr.csv --state-table 65 --smooth --note "FITTED TO THE SIMULATED PANEL sim/lcd/panels/lcd-240.lcdsim (240 Hz TN class, strobed backlight, not a measured monitor) by make lcd-profiles"
+	    --refresh 240 --table 33 --transitions $(B)/lcd/lcd-240-tr.csv --state-table 65 --smooth $(LCD_PHOT_lcd-240) --note "FITTED TO THE SIMULATED PANEL sim/lcd/panels/lcd-240.lcdsim (240 Hz TN class, strobed backlight, not a measured monitor) by make lcd-profiles"
 .PHONY: lcd-profiles
 
 # The report (docs/lcd-report.md): perceived error of TRM frames on the

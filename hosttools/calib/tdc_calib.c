@@ -183,7 +183,8 @@ static double lum_sse(int rate, const double p[4], const double gamma[3])
 
 static const char usage[] = "usage: tdc-calib MEAS.csv -o OUT.panel --name NAME --width W --height H [--eyes N]\n"
                             "                 [--refresh HZ] [--table 0|17|33] [--note TEXT]\n"
-                            "                 [--transitions TRANS.csv [--state-table 17|33|65] [--smooth]]\n";
+                            "                 [--transitions TRANS.csv [--state-table 17|33|65] [--smooth]]\n"
+                            "                 [--peak-cdm2 L --black-cdm2 L --distance-m D [--photometry-note TEXT]]\n";
 
 /* Numeric option: the whole argument, in range, no wrap-around. */
 static int opt_num(const char *opt, const char *v, int lo, int hi, int *out)
@@ -198,6 +199,9 @@ static int opt_num(const char *opt, const char *v, int lo, int hi, int *out)
 int main(int argc, char **argv)
 {
     const char *in = NULL, *out = NULL, *name = NULL, *note = NULL, *trans = NULL;
+    /* photometry is not fitted from the measurements (they are relative to
+     * white): the caller states it, with its source, and it is copied */
+    const char *peak = NULL, *black = NULL, *dist = NULL, *pnote = NULL;
     int width = 0, height = 0, eyes = 1, refresh = 0, table = 33, state_n = 33, smooth = 0;
     tdc_tool_set_name("tdc-calib");
     if (argc == 2 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
@@ -232,6 +236,14 @@ int main(int argc, char **argv)
             trans = argv[++i];
         } else if (!strcmp(a, "--note") && v) {
             note = argv[++i];
+        } else if (!strcmp(a, "--peak-cdm2") && v) {
+            peak = argv[++i];
+        } else if (!strcmp(a, "--black-cdm2") && v) {
+            black = argv[++i];
+        } else if (!strcmp(a, "--distance-m") && v) {
+            dist = argv[++i];
+        } else if (!strcmp(a, "--photometry-note") && v) {
+            pnote = argv[++i];
         } else if (a[0] != '-' && !in) {
             in = a;
         } else {
@@ -246,6 +258,17 @@ int main(int argc, char **argv)
     }
     if (!in || !out || !name || width < 1 || height < 1) {
         return tdc_fail_usage(NULL, "needs MEAS.csv, -o OUT.panel, --name, --width and --height");
+    }
+    if ((peak || black || dist || pnote) && !(peak && black && dist)) {
+        return tdc_fail_usage(NULL, "--peak-cdm2, --black-cdm2 and --distance-m go together");
+    }
+    if (peak) {
+        char *e1, *e2, *e3;
+        const double pk = strtod(peak, &e1), bl = strtod(black, &e2), dm = strtod(dist, &e3);
+        if (*e1 || *e2 || *e3 || !(pk > 0 && pk <= 100000) || !(bl >= 0 && bl < pk) || !(dm > 0 && dm <= 100)) {
+            return tdc_fail_usage(NULL, "photometry '%s %s %s': need 0 < peak <= 100000 cd/m^2, 0 <= black < peak, "
+                                  "0 < distance <= 100 m", peak, black, dist);
+        }
     }
     if ((table != 0 && table != 17 && table != 33) || (state_n != 17 && state_n != 33 && state_n != 65)) {
         return tdc_fail_usage(NULL, "--table is 0, 17 or 33; --state-table 17, 33 or 65");
@@ -501,6 +524,10 @@ int main(int argc, char **argv)
         fprintf(f, " %d", g_rates[r]);
     }
     fprintf(f, "\ngamma       %.6f %.6f %.6f\n", gamma[0], gamma[1], gamma[2]);
+    if (peak) {
+        fprintf(f, "# photometry (given to tdc-calib, not fitted)%s%s\npeak_cdm2   %s\nblack_cdm2  %s\ndistance_m  %s\n",
+                pnote ? ": " : "", pnote ? pnote : "", peak, black, dist);
+    }
     /* Coefficients as the firmware holds them: Q24 integers (TDC_LCD_COEF_FRAC),
      * written as their exact decimal value q / 2^24 so that tdc-tablegen's
      * rounding gives back exactly q; the integers themselves in a comment. */

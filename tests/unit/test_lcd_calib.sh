@@ -31,12 +31,15 @@ tflags="--transitions --grid 33 --runs 2 --noise 0.002 --seed 2"
 "$measure" sim/lcd/panels/pg279q.lcdsim 120,144,165 $flags -o "$tmp/pg.csv" || fail measure
 "$measure" sim/lcd/panels/pg279q.lcdsim 120,144,165 $tflags -o "$tmp/pgt.csv" || fail measure
 "$calib" "$tmp/pg.csv" -o "$tmp/pg279q.panel" --name pg279q --width 2560 --height 1440 --refresh 144 --table 33 \
-    --transitions "$tmp/pgt.csv" --note "x" > /dev/null || fail calib
+    --transitions "$tmp/pgt.csv" --peak-cdm2 350 --black-cdm2 0.35 --distance-m 0.6 \
+    --photometry-note "ASUS PG279Q data sheet: 350 cd/m^2, 1000:1; desk distance" --note "x" > /dev/null || fail calib
 "$measure" sim/lcd/panels/lcd-240.lcdsim 144,240 $flags -o "$tmp/l.csv" || fail measure
 "$measure" sim/lcd/panels/lcd-240.lcdsim 144,240 --transitions --grid 33 --runs 8 --noise 0.002 --seed 2 \
     -o "$tmp/lt.csv" || fail measure
 "$calib" "$tmp/l.csv" -o "$tmp/lcd-240.panel" --name lcd-240 --width 1920 --height 1080 --refresh 240 --table 33 \
-    --transitions "$tmp/lt.csv" --state-table 65 --smooth --note "x" > /dev/null || fail calib
+    --transitions "$tmp/lt.csv" --state-table 65 --smooth --peak-cdm2 400 --black-cdm2 0.4 --distance-m 0.6 \
+    --photometry-note "assumed, not measured: a typical 240 Hz gaming LCD data sheet value, 1000:1; desk distance" \
+    --note "x" > /dev/null || fail calib
 for p in pg279q lcd-240; do
     grep -v '^#' "boards/panels/$p.panel" > "$tmp/a"; grep -v '^#' "$tmp/$p.panel" > "$tmp/b"
     cmp -s "$tmp/a" "$tmp/b" || { diff "$tmp/a" "$tmp/b"; fail "boards/panels/$p.panel is not what make lcd-profiles makes"; }
