@@ -229,6 +229,8 @@ def judge(a, b, claim, metric, higher_is_better=None, margin=None, method="t"):
         why = {"equivalent": "interval inside ±m", "disagree": "interval outside ±m: a real difference",
                "inconclusive": "interval crosses ±m"}[v]
     out["verdict"] = v
+    if n >= 2 and max(g) == min(g) and len({float(x) for x in a}) == 1:
+        why += "; the %d pairs are identical (the seed does not vary this content: in effect one pair)" % n
     out["why"] = "%s (gain of A %s, 95 %% CI [%s, %s], margin %s, n %d, %s)" % (
         why, fmt(out["gain"], 4), fmt(lo, 4), fmt(hi, 4), fmt(m, 4), n, "paired t" if method == "t" else "bootstrap")
     return out

@@ -153,6 +153,8 @@ check(abs(j["margin"] - 0.03 * s.mean(b)) < 1e-12 and j["verdict"] == "equivalen
 j2 = s.judge(a, b, "equal", "flip", method="bootstrap")
 check(j2["verdict"] == "equivalent" and j2["lo"] > j["lo"] - 1e-12 and j2["hi"] < j["hi"] + 1e-12,
       "judge with the bootstrap interval (narrower than t at n 5): equivalent")
+j = s.judge([1.0] * 5, [0.5] * 5, "better", "psnr_db")
+check(j["verdict"] == "agree" and "in effect one pair" in j["why"], "judge names identical pairs: %s" % j["why"])
 check(all(k in s.MARGINS for k in s.HIGHER_IS_BETTER) and all(k in s.HIGHER_IS_BETTER for k in s.MARGINS),
       "every metric has a margin and a direction")
 try:
