@@ -137,6 +137,25 @@ class Experiment:
         """Rows of its timings.csv (time columns, same job/axis keys)."""
         return self._csv(sweep, "timings.csv")
 
+    def job_rows(self, sweep, name):
+        """Rows of a per-job CSV tdc-sim writes beside summary.csv (e.g. foveation.csv), one
+        list over the jobs, each row with its job's axis values from sweep.csv added."""
+        axes = {}
+        for r in self.rows(sweep):
+            axes.setdefault(r["job"], r)
+        out = []
+        for job, ax in sorted(axes.items(), key=lambda kv: int(kv[0])):
+            p = os.path.join(self.out, self.group, sweep, "jobs", "%04d" % int(job), name)
+            if not os.path.isfile(p):
+                raise ExpError(EXIT_RUN_FAILED, "%s: missing (run the group again)" % os.path.relpath(p, REPO))
+            with open(p, newline="", encoding="utf-8") as f:
+                for r in csv.DictReader(f):
+                    for k, v in ax.items():
+                        r.setdefault(k, v)
+                    r["job"] = job
+                    out.append(r)
+        return out
+
     def write_extra(self, text):
         """Markdown the report prints under the group's README (tables beside the claims)."""
         with open(os.path.join(self.out, self.group, "extra.md"), "w", encoding="utf-8") as f:
