@@ -27,6 +27,9 @@ static tdc_scene_t sc;
 static tdc_render_t *open_with(const char *text, int threads, uint32_t seed, int gt_samples, int indirect,
                                int reuse);
 
+/* REDUCED resolve domain of the next open (0: linear light, the default) */
+static double g_reduced_gamma;
+
 static tdc_render_t *open_cfg(const char *text, int threads, uint32_t seed, int gt_samples)
 {
     return open_with(text, threads, seed, gt_samples, 0, 0);
@@ -49,6 +52,7 @@ static tdc_render_t *open_with(const char *text, int threads, uint32_t seed, int
     cfg.shadow_mv = cfg.dual_mv = 1;
     cfg.indirect = indirect;
     cfg.indirect_reuse = reuse;
+    cfg.reduced_gamma[0] = cfg.reduced_gamma[1] = cfg.reduced_gamma[2] = g_reduced_gamma;
     tdc_render_t *r = tdc_render_open(&sc, &cfg, err, sizeof err);
     if (!r) fail_msg("%s", err);
     return r;
@@ -269,18 +273,9 @@ static void test_reduced_coded_resolve(void **state)
 {
     (void)state;
     static float full[W * H * 3], red[W * H * 3];
-    char err[256];
-    tdc_scene_status_t st = tdc_scene_parse(scene_stripes, "t", NULL, &sc, err, sizeof err);
-    if (st != TDC_SCENE_OK) fail_msg("%s", err);
-    tdc_render_config_t cfg;
-    tdc_render_default_config(&cfg);
-    cfg.width = W;
-    cfg.height = H;
-    cfg.threads = 2;
-    cfg.gt_samples = 1;
-    cfg.reduced_gamma[0] = cfg.reduced_gamma[1] = cfg.reduced_gamma[2] = 2.2;
-    tdc_render_t *r = tdc_render_open(&sc, &cfg, err, sizeof err);
-    if (!r) fail_msg("%s", err);
+    g_reduced_gamma = 2.2;
+    tdc_render_t *r = open_cfg(scene_stripes, 2, 1, 1);
+    g_reduced_gamma = 0;
     int rw, rh;
     tdc_render_output_size(r, TDC_RENDER_REDUCED, &rw, &rh);
     render(r, 0, TDC_RENDER_FULL, full, NULL, NULL, NULL);
