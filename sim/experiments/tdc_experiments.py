@@ -366,16 +366,19 @@ def report(out, report_path, results_path):
         f.write(text)
     print("tdc-experiments: %d claims -> %s" % (len(rows), report_path), file=sys.stderr)
     if results_path:
-        update_results(results_path, rows)
+        update_results(results_path, rows, out)
     return EXIT_OK
 
 
-def update_results(path, rows):
+def update_results(path, rows, out):
     """docs/results.md: the table and the disagreements, between the markers."""
     with open(path, encoding="utf-8") as f:
         text = f.read()
-    body = [MARK_BEGIN, "", "Paper vs tdc (from `make experiments`; full report with runs and spreads: "
-            "`report/experiments.md`, docs/experiments.md):", "", claims_table(rows)]
+    scales = sorted({read_meta(out, g).get("scale", "?") for g in groups() if read_meta(out, g)})
+    body = [MARK_BEGIN, "", "Paper vs tdc (from `make experiments`; full report with runs, run times and intervals: "
+            "`report/experiments.md`, docs/experiments.md). Scale of these results: **%s** (`%s`)." % (
+                ", ".join(scales) or "?", "tdc_experiments.py run --scale " + (scales[0] if len(scales) == 1 else "S")),
+            "", claims_table(rows)]
     body.insert(2, counts(rows) + "\n")
     dis = [r for r in rows if r["verdict"] not in ("agree", "equivalent")]
     if dis:
