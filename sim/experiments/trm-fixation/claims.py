@@ -54,7 +54,11 @@ def claims(exp):
             exp.judge("TRM eq. 3 / issue 15 judge", Q3, "static, %s: TRM equals full (%s)" % (p, col), "identical",
                       seeds_of(exp, rows, "trm50", col, pursuit=p, scene="static"),
                       seeds_of(exp, rows, "full", col, pursuit=p, scene="static"), "equal", col, "trm50", "full",
-                      run="%s/%s pursuit=%s scene=static" % (exp.group, SWEEP, p))
+                      run="%s/%s pursuit=%s scene=static" % (exp.group, SWEEP, p), cls="model limit",
+                      why="eq. 3 holds before the 8-bit coding: the fused pair averages two 8-bit frames, finer steps "
+                          "than one frame's (PSNR up to +0.5 dB against the continuous ground truth), and the clamped "
+                          "residual moves a few codes at high-contrast edges; the metrics resolve these sub-LSB "
+                          "differences of the percept, a visual model decides whether they are visible")
     # the table beside the claims: every mode, both gazes, mean +- spread
     out = ["| scene | gaze | mode | FLIP | PSNR dB | flicker | terr |", "| --- | --- | --- | ---: | ---: | ---: | ---: |"]
     for scene in ("pan", "static"):
