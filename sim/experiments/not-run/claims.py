@@ -8,11 +8,6 @@ ROWS = [
      "0.5 required only about 4.5 bpp'", "JPEG XS bandwidth with TRM", "≈ 4.5 bpp at r = 0.5 (XS bpp = 7)",
      "not reproducible", "JPEG XS (ISO/IEC 21122) has no encoder in Debian 12 and the standard's reference software "
      "is not freely licensed; the lossless column needs the same sequences, which the paper does not publish"),
-    ("TDRT Fig. 1", "§2: 'Four images, each rendered with one sample per pixel (SPP) from the standard 4× MSAA pattern, "
-     "are shown after each other' (a static edge antialiased over time)", "static edge: 4 jittered 1-spp frames fused "
-     "at 240 Hz look antialiased", "antialiased", "",
-     "not built: tdc-sim has no mode that shows jittered 1-spp frames without accumulation (taa blends its history, "
-     "the assembly averages static pixels in the firmware); the row needs a 'jitter1' plain mode and a static-edge scene"),
     ("TDRT §3.2.1 Fig. 7", "§3.2.1: 'use all immediate neighbors in the variance sampling, which means that old pixel "
      "information would be used. Another possibility would be to do variance sampling with samples from a 3×3 area in "
      "the most recent subframe, but this also reduces the quality'", "variance neighbourhood: most recent immediate "
