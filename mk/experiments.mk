@@ -11,9 +11,9 @@ EXP_SCALE ?= headset
 EXP_OUT ?= $(BUILD)/experiments
 EXP_GROUPS ?=
 EXP_PY := /usr/bin/python3 sim/experiments/tdc_experiments.py
-TEST_EXTRA += test-experiments
+TEST_EXTRA += test-experiments test-tdc-stats
 
-.PHONY: experiments experiments-report demo-experiments test-experiments
+.PHONY: experiments experiments-report demo-experiments test-experiments test-tdc-stats
 # Group zeng-cost times the renderer's own passes with tdc-render (no sweep).
 experiments demo-experiments experiments-report: $(TDC_RENDER)
 experiments demo-experiments experiments-report: export TDC_RENDER := $(abspath $(TDC_RENDER))
@@ -44,3 +44,7 @@ $(B)/test-experiments: tests/unit/test_experiments.sh $(TDC_SIM)
 	@chmod +x $@
 test-experiments: $(B)/test-experiments
 	@tests/run_tests.sh experiments $(B)/test-experiments
+
+# tdc_stats on synthetic data with known answers, against scipy.stats (~2 s).
+test-tdc-stats:
+	@tests/run_tests.sh experiments tests/unit/test_tdc_stats.py

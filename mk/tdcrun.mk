@@ -4,7 +4,7 @@ SIM_SRCS += sim/tdc_png.c
 
 # tdc-run: the firmware on anyone's frames.  Other modes add their sources
 # to TDCRUN_SRCS (e.g. tile assembly: hosttools/tdcrun/run_assemble.c).
-TDCRUN_OBJS = $(patsubst %.c,$(B)/%.o,hosttools/tdcrun/tdc_run.c $(TDCRUN_SRCS)) $(B)/tests/golden/tdc_content.o
+TDCRUN_OBJS = $(patsubst %.c,$(B)/%.o,hosttools/tdcrun/tdc_run.c hosttools/tdcrun/run_gaze.c $(TDCRUN_SRCS)) $(B)/tests/golden/tdc_content.o
 $(B)/hosttools/tdcrun/tdc_run.o: HOST_CFLAGS += $(if $(filter hosttools/tdcrun/run_assemble.c,$(TDCRUN_SRCS)),-DTDC_RUN_WITH_ASSEMBLE)
 # the mode list comes from the fragments: rebuild when they change
 $(B)/hosttools/tdcrun/tdc_run.o: $(wildcard mk/*.mk)

@@ -19,6 +19,7 @@
 #include "tdc_png.h"
 #include "tdc_run.h"
 #include "tdc_trm.h"
+#include "tdc_trm_gaze.h"
 #include "tdc_trm_kernels.h"
 
 static const char k_usage[] =
@@ -52,6 +53,11 @@ static const char k_usage[] =
     "      --count N          frames of built-in content (default 8)\n"
     "      --size WxH         size of built-in content (default 160x120)\n"
     "      --save-input       also write the input frames as OUTDIR/input_NNNNN.png\n"
+    "      --gaze FILE        gaze-aware TRM (tdc_trm_gaze.h, the simulator's trm50g): the eye\n"
+    "                         tracker's gaze velocity per frame, lines frame,gx,gy (px/frame)\n"
+    "      --mv FILE          with --gaze: the renderer's motion per 16-px tile and frame,\n"
+    "                         lines frame,tx,ty,dx,dy (px/frame); every full frame needs all\n"
+    "                         its tiles and its gaze line (docs/tools.md)\n"
     "      --kernels K        TRM row kernels: auto (AVX2 when this CPU has it), c (the\n"
     "                         portable kernels boards run) or avx2 (error without AVX2);\n"
     "                         all give the same bytes (default auto)\n"
@@ -71,6 +77,7 @@ typedef struct {
     const char *builtin;
     int count, bw, bh;
     int kernels; /* -1 auto, 0 C, 1 AVX2 */
+    const char *gaze, *mv; /* gaze-aware TRM inputs (run_gaze.c) */
 } opts_t;
 
 static const tdc_panel_t *find_panel(const char *name)
@@ -151,7 +158,27 @@ static int mkdir_p(const char *path)
 typedef struct {
     tdc_trm_t trm;
     void *mem;
+    tdc_trm_gaze_t gaze;
+    void *gmem;
 } eye_t;
+
+/* The gaze stage on an open eye (16-px tiles, default ramp). */
+static int eye_gaze(eye_t *e, uint16_t w, uint16_t h)
+{
+    tdc_trm_gaze_config_t gc;
+    tdc_trm_gaze_default_config(&gc, w, h);
+    gc.tile = TDC_RUN_GAZE_TILE;
+    size_t n = tdc_trm_gaze_get_size(&gc);
+    e->gmem = n ? malloc(n) : NULL;
+    if (!e->gmem) {
+        return tdc_fail(TDC_EXIT_NOMEM, NULL, "gaze stage", "cannot allocate %zu bytes", n);
+    }
+    tdc_status_t st = tdc_trm_gaze_init(&e->gaze, &gc, e->gmem, n);
+    if (st == TDC_OK) {
+        st = tdc_trm_set_gaze(&e->trm, &e->gaze);
+    }
+    return st == TDC_OK ? TDC_EXIT_OK : tdc_fail(TDC_EXIT_REFUSED, NULL, "gaze stage", "%s", tdc_status_name(st));
+}
 
 static int eye_open(eye_t *e, const tdc_trm_config_t *cfg, const tdc_panel_t *panel, int kernels)
 {
@@ -219,7 +246,7 @@ static int write_png(const opts_t *o, const char *prefix, int i, const uint8_t *
 
 int tdc_run_trm_main(int argc, char **argv)
 {
-    opts_t o = {NULL, &tdc_panel_htc_vive, 1, 2, 10.0, 2.5, 0, "alternate", 0, 0, 0, 0, NULL, 8, 160, 120, -1};
+    opts_t o = {NULL, &tdc_panel_htc_vive, 1, 2, 10.0, 2.5, 0, "alternate", 0, 0, 0, 0, NULL, 8, 160, 120, -1, NULL, NULL};
     static const struct option longopts[] = {{"out", required_argument, 0, 'o'},
                                              {"panel", required_argument, 0, 'p'},
                                              {"ratio", required_argument, 0, 'r'},
@@ -236,6 +263,8 @@ int tdc_run_trm_main(int argc, char **argv)
                                              {"help", no_argument, 0, 'h'},
                                              {"save-input", no_argument, 0, 8},
                                              {"kernels", required_argument, 0, 9},
+                                             {"gaze", required_argument, 0, 10},
+                                             {"mv", required_argument, 0, 11},
                                              {0, 0, 0, 0}};
     int c;
     opterr = 0;
@@ -326,6 +355,8 @@ int tdc_run_trm_main(int argc, char **argv)
                 return usage_error("--kernels must be auto, c or avx2, got '%s'", optarg);
             }
             break;
+        case 10: o.gaze = optarg; break;
+        case 11: o.mv = optarg; break;
         case 'h': {
             char names[512];
             panel_names(names, sizeof names);
@@ -346,6 +377,12 @@ int tdc_run_trm_main(int argc, char **argv)
     if (o.builtin && argc > optind) {
         return usage_error("--builtin takes no frame files (got '%s')", argv[optind]);
     }
+    if (!o.gaze != !o.mv) {
+        return usage_error("%s", "--gaze and --mv go together (retinal motion = motion - gaze)");
+    }
+    if (o.gaze && o.stereo) {
+        return usage_error("%s", "--gaze is for one eye (no --stereo)");
+    }
     if (o.stereo && strcmp(o.frames, "auto")) {
         return usage_error("%s", "--stereo needs --frames auto");
     }
@@ -363,6 +400,7 @@ static int run_trm(const opts_t *po, char **files, int nframes)
     eye_t eye[2] = {{.mem = NULL}, {.mem = NULL}};
     uint8_t *out = NULL, *prev_out = NULL, *red = NULL, *perc = NULL;
     FILE *csv = NULL;
+    tdc_run_gaze_t gz = {0};
     int rc = TDC_EXIT_OK, eyes = o.stereo ? 2 : 1;
 
     /* The first frame decides the size; it must be full-res. */
@@ -391,6 +429,12 @@ static int run_trm(const opts_t *po, char **files, int nframes)
     cfg.reduced_in_stream = (uint8_t)(o.r_num != o.r_den);
     for (int e = 0; e < eyes && rc == TDC_EXIT_OK; e++) {
         rc = eye_open(&eye[e], &cfg, o.panel, o.kernels);
+    }
+    if (rc == TDC_EXIT_OK && o.gaze && !eye[0].trm.passthrough) {
+        rc = tdc_run_gaze_load(&gz, o.gaze, o.mv, nframes, EW, H);
+        if (rc == TDC_EXIT_OK) {
+            rc = eye_gaze(&eye[0], (uint16_t)EW, (uint16_t)H);
+        }
     }
     if (rc != TDC_EXIT_OK) {
         goto done;
@@ -443,6 +487,20 @@ static int run_trm(const opts_t *po, char **files, int nframes)
                     rc = tdc_fail(TDC_EXIT_INPUT, NULL, name, "full-res frame is %dx%d, expected %dx%d", img.width,
                                   img.height, W, H);
                     break;
+                }
+                if (gz.mv) {
+                    /* the map for this full frame, as a board computes it from the FULL packet's MOTION */
+                    const int16_t *mv;
+                    int16_t gx, gy;
+                    if ((rc = tdc_run_gaze_frame(&gz, i, o.gaze, o.mv, &mv, &gx, &gy)) != TDC_EXIT_OK) {
+                        break;
+                    }
+                    st = tdc_trm_gaze_update(&eye[e].gaze, mv, gz.tx * gz.ty, gx, gy);
+                    if (st != TDC_OK) {
+                        rc = tdc_fail(TDC_EXIT_REFUSED, NULL, o.mv, "gaze stage refused frame %d: %s", i,
+                                      tdc_status_name(st));
+                        break;
+                    }
                 }
                 st = tdc_trm_full(t, (uint8_t *)img.data + (size_t)e * EW * 3, (uint32_t)W * 3, eye_out,
                                   (uint32_t)W * 3);
@@ -515,7 +573,9 @@ done:
     }
     for (int e = 0; e < eyes; e++) {
         free(eye[e].mem);
+        free(eye[e].gmem);
     }
+    tdc_run_gaze_free(&gz);
     free(out);
     free(prev_out);
     free(red);

@@ -49,8 +49,11 @@ from tdc_exit import EXIT  # noqa: E402  (the one exit-code table)
 
 SCALES = ("demo", "dev", "headset")
 EXIT_OK, EXIT_BAD_GROUP, EXIT_USAGE, EXIT_RUN_FAILED = EXIT.OK, EXIT.INPUT, EXIT.ARGS, EXIT.JOBS
-CLAIM_COLUMNS = ["group", "paper", "claim", "paper_value", "tdc_value", "spread", "n", "run", "verdict", "why"]
-VERDICTS = ("agree", "disagree", "inconclusive")
+CLAIM_COLUMNS = ["group", "paper", "quote", "claim", "paper_value", "tdc_value", "ci", "margin", "n", "run", "verdict",
+                 "class", "why"]
+VERDICTS = ("agree", "equivalent", "disagree", "inconclusive")
+# what a non-agreement rests on (docs/experiments.md); a defect is fixed, not classed
+CLASSES = ("", "setting", "model limit", "not reproducible")
 MARK_BEGIN = "<!-- experiments:begin (written by sim/experiments/tdc_experiments.py report) -->"
 MARK_END = "<!-- experiments:end -->"
 
@@ -137,6 +140,25 @@ class Experiment:
         """Rows of its timings.csv (time columns, same job/axis keys)."""
         return self._csv(sweep, "timings.csv")
 
+    def job_rows(self, sweep, name):
+        """Rows of a per-job CSV tdc-sim writes beside summary.csv (e.g. foveation.csv), one
+        list over the jobs, each row with its job's axis values from sweep.csv added."""
+        axes = {}
+        for r in self.rows(sweep):
+            axes.setdefault(r["job"], r)
+        out = []
+        for job, ax in sorted(axes.items(), key=lambda kv: int(kv[0])):
+            p = os.path.join(self.out, self.group, sweep, "jobs", "%04d" % int(job), name)
+            if not os.path.isfile(p):
+                raise ExpError(EXIT_RUN_FAILED, "%s: missing (run the group again)" % os.path.relpath(p, REPO))
+            with open(p, newline="", encoding="utf-8") as f:
+                for r in csv.DictReader(f):
+                    for k, v in ax.items():
+                        r.setdefault(k, v)
+                    r["job"] = job
+                    out.append(r)
+        return out
+
     def write_extra(self, text):
         """Markdown the report prints under the group's README (tables beside the claims)."""
         with open(os.path.join(self.out, self.group, "extra.md"), "w", encoding="utf-8") as f:
@@ -153,12 +175,43 @@ class Experiment:
         sel.sort(key=lambda r: (int(r.get("seed", 0) or 0), int(r.get("job", 0))))
         return [float(r[col]) for r in sel]
 
-    def claim(self, paper, claim, paper_value, tdc_value, verdict, why="", spread="", n="", run=""):
+    def claim(self, paper, claim, paper_value, tdc_value, verdict, why="", spread="", n="", run="", quote="",
+              ci="", margin="", cls=""):
+        """One row.  quote: the paper's sentence the row tests ("§4.3: '...'");
+        ci: the 95 % interval of the judged quantity (spread: older rows' sample
+        SD, shown when there is no interval); cls: what a non-agreement rests on
+        (CLASSES), its reason in why."""
         if verdict not in VERDICTS:
             raise ValueError("verdict '%s' (one of %s)" % (verdict, ", ".join(VERDICTS)))
-        self.claims.append({"group": self.group, "paper": paper, "claim": claim, "paper_value": paper_value,
-                            "tdc_value": tdc_value, "spread": spread, "n": n,
-                            "run": run or "%s (scale %s)" % (self.group, self.scale), "verdict": verdict, "why": why})
+        if cls not in CLASSES:
+            raise ValueError("class '%s' (one of %s)" % (cls, ", ".join(c for c in CLASSES if c)))
+        if cls and verdict in ("agree", "equivalent"):
+            raise ValueError("class '%s' on an agreeing row" % cls)
+        self.claims.append({"group": self.group, "paper": paper, "quote": quote, "claim": claim,
+                            "paper_value": paper_value, "tdc_value": tdc_value,
+                            "ci": ci or ("SD %s" % spread if spread != "" else ""), "margin": margin, "n": n,
+                            "run": run or "%s (scale %s)" % (self.group, self.scale), "verdict": verdict,
+                            "class": cls, "why": why})
+
+    def judge(self, paper, quote, claim, paper_value, a, b, kind, metric, label_a="A", label_b="B", digits=4,
+              run="", why="", cls="", margin=None, method="t", higher_is_better=None):
+        """A row judged by tdc_stats.judge: the paper says A is 'better' than /
+        'not worse' than / 'equal' to B in metric; a and b paired per seed or
+        content.  cls/why: the class and reason if it does not agree (kept
+        only then).  Returns the judge() result."""
+        st = tdc_stats
+        if not a or len(a) != len(b):
+            raise ExpError(EXIT_RUN_FAILED, "%s: '%s': %d vs %d values (unpaired or missing results)" % (
+                self.group, claim, len(a), len(b)))
+        j = st.judge(a, b, kind, metric, higher_is_better=higher_is_better, margin=margin, method=method)
+        ok = j["verdict"] in ("agree", "equivalent")
+        self.claim(paper, claim, paper_value,
+                   "%s %s: %s vs %s %s" % (metric, label_a, st.fmt_ms(st.summary(a), digits), label_b,
+                                           st.fmt_ms(st.summary(b), digits)),
+                   j["verdict"], j["why"] + ("" if ok or not why else "; " + why),
+                   n=j["n"], run=run, quote=quote, ci="gain %s %s" % (st.fmt(j["gain"], digits), st.fmt_ci(j, digits)),
+                   margin=st.fmt(j["margin"], digits), cls="" if ok else cls)
+        return j
 
 
 def load_claims_module(group):
@@ -256,27 +309,42 @@ def md_cell(s):
 
 
 def claims_table(rows):
-    out = ["| paper | claim | paper | tdc | spread (n) | run | verdict | why |",
-           "| --- | --- | --- | --- | --- | --- | --- | --- |"]
+    out = ["| paper | the sentence tested | claim (condition) | paper | tdc | 95 % CI (n) | margin | run | verdict | why |",
+           "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
     for r in rows:
-        sp = r["spread"] + (" (%s)" % r["n"] if r.get("n") else "")
-        v = r["verdict"] if r["verdict"] == "agree" else "**%s**" % r["verdict"]
-        out.append("| %s |" % " | ".join(md_cell(x) for x in (r["paper"], r["claim"], r["paper_value"], r["tdc_value"],
-                                                            sp, r["run"], v, r["why"])))
+        ci = r.get("ci", r.get("spread", "")) + (" (%s)" % r["n"] if r.get("n") else "")
+        v = r["verdict"] if r["verdict"] in ("agree", "equivalent") else "**%s**" % r["verdict"]
+        if r.get("class"):
+            v += " (%s)" % r["class"]
+        out.append("| %s |" % " | ".join(md_cell(x) for x in (r["paper"], r.get("quote", ""), r["claim"],
+                                                            r["paper_value"], r["tdc_value"], ci, r.get("margin", ""),
+                                                            r["run"], v, r["why"])))
     return "\n".join(out) + "\n"
+
+
+def counts(rows):
+    """The block's count line: verdicts, the classes of the non-agreements, the goal's share."""
+    k = {v: sum(1 for r in rows if r["verdict"] == v) for v in VERDICTS}
+    cl = {c: sum(1 for r in rows if r.get("class") == c) for c in CLASSES if c}
+    good = k["agree"] + k["equivalent"] + cl["setting"]
+    return ("%d claims: %d agree, %d equivalent, %d disagree, %d inconclusive; of the non-agreements %d are "
+            "setting differences, %d model limits, %d not reproducible here, %d unclassed. Agree, equivalent or "
+            "an explained setting difference: %d of %d (%.0f %%)." % (
+                len(rows), k["agree"], k["equivalent"], k["disagree"], k["inconclusive"], cl["setting"],
+                cl["model limit"], cl["not reproducible"],
+                sum(1 for r in rows if r["verdict"] not in ("agree", "equivalent") and not r.get("class")),
+                good, len(rows), 100.0 * good / len(rows) if rows else 0.0))
 
 
 def report(out, report_path, results_path):
     rows, missing = read_all_claims(out)
-    n_agree = sum(1 for r in rows if r["verdict"] == "agree")
     lines = ["# Paper vs tdc: the papers' experiments in the simulator", "",
              "Written by `sim/experiments/tdc_experiments.py report` from every group's `claims.csv` "
-             "(`make experiments`; how a group is added: docs/experiments.md). Spread = sample standard deviation "
-             "over the seeds/contents (n); \"A beats B\" is only claimed when the difference exceeds the spread of "
-             "the paired per-seed differences (sim/experiments/tdc_stats.py).", "",
-             "%d claims: %d agree, %d disagree, %d inconclusive." %
-             (len(rows), n_agree, sum(1 for r in rows if r["verdict"] == "disagree"),
-              sum(1 for r in rows if r["verdict"] == "inconclusive")), ""]
+             "(`make experiments`; how a group is added: docs/experiments.md). Each row quotes the sentence it "
+             "tests and is judged per condition: the 95 % confidence interval of A's paired gain over B (per "
+             "seed/content, n pairs) against the metric's equivalence margin (sim/experiments/tdc_stats.py: "
+             "agree, equivalent, disagree or inconclusive). Rows written before that carry \"SD\": the sample "
+             "standard deviation.", "", counts(rows), ""]
     if missing:
         lines += ["Groups without results (not run yet): %s." % ", ".join(missing), ""]
     lines += ["## Runs", "", "| group | scale | jobs | wall s | CPU s (jobs) | date |", "| --- | --- | ---: | ---: | ---: | --- |"]
@@ -301,21 +369,26 @@ def report(out, report_path, results_path):
         f.write(text)
     print("tdc-experiments: %d claims -> %s" % (len(rows), report_path), file=sys.stderr)
     if results_path:
-        update_results(results_path, rows)
+        update_results(results_path, rows, out)
     return EXIT_OK
 
 
-def update_results(path, rows):
+def update_results(path, rows, out):
     """docs/results.md: the table and the disagreements, between the markers."""
     with open(path, encoding="utf-8") as f:
         text = f.read()
-    body = [MARK_BEGIN, "", "Paper vs tdc (from `make experiments`; full report with runs and spreads: "
-            "`report/experiments.md`, docs/experiments.md):", "", claims_table(rows)]
-    dis = [r for r in rows if r["verdict"] != "agree"]
+    scales = sorted({read_meta(out, g).get("scale", "?") for g in groups() if read_meta(out, g)})
+    body = [MARK_BEGIN, "", "Paper vs tdc (from `make experiments`; full report with runs, run times and intervals: "
+            "`report/experiments.md`, docs/experiments.md). Scale of these results: **%s** (`%s`)." % (
+                ", ".join(scales) or "?", "tdc_experiments.py run --scale " + (scales[0] if len(scales) == 1 else "S")),
+            "", claims_table(rows)]
+    body.insert(2, counts(rows) + "\n")
+    dis = [r for r in rows if r["verdict"] not in ("agree", "equivalent")]
     if dis:
         body += ["Where tdc disagrees or cannot decide, and why:", ""]
-        body += ["- **%s, %s** (%s): paper %s, tdc %s — %s" % (r["paper"], r["claim"], r["verdict"], r["paper_value"],
-                                                               r["tdc_value"], r["why"] or "(no reason given)") for r in dis]
+        body += ["- **%s, %s** (%s%s): paper %s, tdc %s — %s" % (
+            r["paper"], r["claim"], r["verdict"], ", " + r["class"] if r.get("class") else "", r["paper_value"],
+            r["tdc_value"], r["why"] or "(no reason given)") for r in dis]
         body.append("")
     body.append(MARK_END)
     block = "\n".join(body)

@@ -79,6 +79,11 @@ typedef struct {
     double reduced_factor; /* r of REDUCED frames, (0, 1], default 0.5 */
     int reduced_ss;        /* supersamples per reduced pixel per axis, default 2 */
     double reduced_sigma;  /* Gaussian resolve sigma in full-res px, default 2.5 (TRM §4.3) */
+    double reduced_gamma[3]; /* > 0: resolve the supersamples as gamma-coded values v = I^(1/gamma)
+                              (clamped to [0, 1]) and return v^gamma, so that the displayed code is the
+                              filtered code, as the firmware's D filters codes (TRM §4.2-4.3; pairing
+                              the reduced frame with the full frame's compensation needs the same
+                              domain); 0 (default): resolve in linear light */
     int gt_samples;        /* N of GROUND_TRUTH, default 64 */
     int record_rays;       /* keep every traced ray of the last frame (benchmark) */
     int tex_filter;        /* box-filter textures over each sample's ray-cone footprint (TDRT §3.1.1,

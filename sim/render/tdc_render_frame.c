@@ -377,6 +377,19 @@ static void *worker_main(void *arg)
     return NULL;
 }
 
+/* Linear radiance <-> gamma-coded value in place (reduced_gamma): to code clamps
+ * to [0, 1] as the link's coding does, so the resolve filters what is shown. */
+static void code_domain(float *v, size_t n, const double gamma[3], int to_linear)
+{
+    for (size_t i = 0; i < n; i++) {
+        for (int k = 0; k < 3; k++) {
+            double x = v[3 * i + k];
+            x = x < 0 ? 0 : x > 1 ? 1 : x;
+            v[3 * i + k] = (float)pow(x, to_linear ? gamma[k] : 1.0 / gamma[k]);
+        }
+    }
+}
+
 /* Separable Gaussian resolve of the supersample grid (sw x sh) to ow x oh. */
 static void resolve_gaussian(const float *ss, int sw, int sh, int ow, int oh, double sigma_s, int ssx, int ssy,
                              float *out)
@@ -657,7 +670,13 @@ int tdc_render_frame(tdc_render_t *r, uint32_t frame, tdc_render_mode_t mode, co
     if (mode == TDC_RENDER_REDUCED) {
         t0 = tdc_r_now_ms();
         double sigma_s = r->cfg.reduced_sigma * jb.sw / (double)r->W;
-        if (out->rgb) resolve_gaussian(ss, jb.sw, jb.sh, st.out_w, st.out_h, sigma_s, ssx, ssy, out->rgb);
+        if (out->rgb) {
+            const double *g = r->cfg.reduced_gamma;
+            int coded = g[0] > 0 && g[1] > 0 && g[2] > 0;
+            if (coded) code_domain(ss, (size_t)jb.sw * jb.sh, g, 0);
+            resolve_gaussian(ss, jb.sw, jb.sh, st.out_w, st.out_h, sigma_s, ssx, ssy, out->rgb);
+            if (coded) code_domain(out->rgb, (size_t)st.out_w * st.out_h, g, 1);
+        }
         st.ms[TDC_STAGE_RESOLVE] = tdc_r_now_ms() - t0;
         st.ran[TDC_STAGE_RESOLVE] = 1;
     }

@@ -82,6 +82,8 @@ typedef struct {
     double flip_ppd;
     const char *ppd_from; /* where flip_ppd came from: "profile", "--ppd" or "default" (NULL: profile) */
     int trm_s;    /* TRM motion sensitivity s (0: firmware default) */
+    double trm_sigma; /* sigma of TRM's D in full-res px (0: firmware default 2.5; < 0: 1.25 / r,
+                         i.e. 2.5 px at r = 1/2 scaled with r) */
     int progress; /* progress bar on stderr */
     int strip_at; /* evaluation index for the picture strip (-1: middle) */
     uint32_t seed;

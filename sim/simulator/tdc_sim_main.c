@@ -97,6 +97,9 @@ static void usage(FILE *f)
             "                          11.4 for htc-vive; 67.02, FLIP's desktop default, for profiles\n"
             "                          without one)\n"
             "      --trm-s S           TRM motion sensitivity s (default: firmware default)\n"
+            "      --trm-sigma PX|scaled  sigma of TRM's D in full-res px (default 2.5, TRM §4.3); scaled:\n"
+            "                          1.25 / r (2.5 at r = 1/2, the same in reduced px at every r; the\n"
+            "                          firmware's D takes 0.25-3.5 px, so r < 0.36 is refused)\n"
             "      --gaze pursuit|fixed|saccade  where the eye looks (foveated modes and the gaze\n"
             "                          metrics; default pursuit: follows the pursued motion from the centre)\n"
             "      --gaze-at X,Y       --gaze fixed: that point in pixels (default the centre)\n"
@@ -253,6 +256,7 @@ int main(int argc, char **argv)
         O_EVERY,
         O_PPD,
         O_TRMS,
+        O_TRMSIGMA,
         O_GTSS,
         O_STRIP,
         O_LIST,
@@ -308,6 +312,7 @@ int main(int argc, char **argv)
                                          {"metric-every", required_argument, 0, O_EVERY},
                                          {"ppd", required_argument, 0, O_PPD},
                                          {"trm-s", required_argument, 0, O_TRMS},
+                                         {"trm-sigma", required_argument, 0, O_TRMSIGMA},
                                          {"gt-ss", required_argument, 0, O_GTSS},
                                          {"strip-at", required_argument, 0, O_STRIP},
                                          {"seed", required_argument, 0, 'S'},
@@ -693,6 +698,15 @@ int main(int argc, char **argv)
                 return TDC_EXIT_ARGS;
             }
             cfg.trm_s = (int)v;
+            break;
+        case O_TRMSIGMA:
+            if (!strcmp(optarg, "scaled")) {
+                cfg.trm_sigma = -1.0;
+            } else if (parse_num(optarg, 0.25, 3.5, &v, "trm-sigma")) {
+                return TDC_EXIT_ARGS;
+            } else {
+                cfg.trm_sigma = v;
+            }
             break;
         case O_GTSS:
             if (parse_num(optarg, 1, 16, &v, "gt-ss")) {

@@ -85,6 +85,16 @@ static int trm_init(sim_mode_t *m, const tdc_sim_setup_t *s)
     if (s->cfg->trm_s > 0) {
         tc.s_q8 = (uint32_t)s->cfg->trm_s * 256u;
     }
+    if (s->cfg->trm_sigma != 0) {
+        double sg = s->cfg->trm_sigma > 0 ? s->cfg->trm_sigma : 1.25 * m->d->r_den / m->d->r_num;
+        if (sg * 256.0 > TDC_TRM_MAX_SIGMA_Q8) {
+            fprintf(stderr, "tdc-sim: %s: --trm-sigma scaled: sigma %.2f px at r = %d/%d is above the firmware "
+                            "D's largest, %.1f px\n", m->d->name, sg, m->d->r_num, m->d->r_den,
+                    TDC_TRM_MAX_SIGMA_Q8 / 256.0);
+            return -2; /* refused (reported), not out of memory */
+        }
+        tc.sigma_q8 = (uint16_t)(sg * 256.0 + 0.5);
+    }
     if (m->d->variant == TRM_NCSFI) {
         tc.s_q8 = 0; /* w = exp(0) = 1: residual added regardless of motion */
     }

@@ -15,7 +15,7 @@
 #include "simulator/tdc_sim_mode.h"
 #include "tdc_bilinear.h"
 
-enum { WARP_ASW, WARP_TAA, WARP_ASW_EST };
+enum { WARP_ASW, WARP_TAA, WARP_ASW_EST, WARP_JITTER };
 
 #define F &tdc_sim_family_warp
 static const tdc_mode_desc_t k_modes[] = {
@@ -26,6 +26,8 @@ static const tdc_mode_desc_t k_modes[] = {
     {"taa", F, WARP_TAA, 0, 1, 1, 0, 0, 0, "the run's refresh, jittered 1 spp with TAA (as taa60)"},
     {"taa120", F, WARP_TAA, 0, 1, 1, 120, 0, 0, "120 Hz, jittered 1 spp with TAA (as taa60)"},
     {"taa80", F, WARP_TAA, 0, 1, 1, 80, 0, 0, "80 Hz, jittered 1 spp with TAA (as taa60)"},
+    {"jitter1", F, WARP_JITTER, 0, 1, 1, 0, 0, 0,
+     "the run's refresh, 1 spp at the 4x MSAA pattern's positions in turn, shown as rendered (TDRT Fig. 1)"},
 };
 #undef F
 
@@ -119,6 +121,20 @@ static int warp_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint3
         taa_resolve(m, st);
         m->res->render_s += tdc_sim_now() - t0;
         return tdc_sim_send_full(m, lf, st->hist);
+    }
+    if (m->d->variant == WARP_JITTER) {
+        /* the standard 4x MSAA sample positions (D3D: (-2,-6), (6,-2), (-6,2), (2,6) / 16 px), one
+         * per refresh, no history: the eye integrates them (TDRT §2, Fig. 1) */
+        static const double msaa4[4][2] = {{-0.125, -0.375}, {0.375, -0.125}, {-0.375, 0.125}, {0.125, 0.375}};
+        tdc_sim_render_full(m, src, t, 1, msaa4[lf & 3u][0], msaa4[lf & 3u][1], NULL, 0, TDC_MV_SURFACE);
+        return tdc_sim_send_full(m, lf, m->render);
+    }
+    if (m->d->variant == WARP_JITTER) {
+        /* the standard 4x MSAA sample positions (D3D: (-2,-6), (6,-2), (-6,2), (2,6) / 16 px), one
+         * per refresh, no history: the eye integrates them (TDRT §2, Fig. 1) */
+        static const double msaa4[4][2] = {{-0.125, -0.375}, {0.375, -0.125}, {-0.375, 0.125}, {0.125, 0.375}};
+        tdc_sim_render_full(m, src, t, 1, msaa4[lf & 3u][0], msaa4[lf & 3u][1], NULL, 0, TDC_MV_SURFACE);
+        return tdc_sim_send_full(m, lf, m->render);
     }
     if (m->d->variant == WARP_ASW_EST) {
         if ((lf & 1u) == 0u || !st->have_hist) {

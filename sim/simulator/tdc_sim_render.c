@@ -286,6 +286,9 @@ static int rs_reduced(tdc_source_t *s, int slot, double t, double r, int ss, dou
     cfg.reduced_factor = r;
     cfg.reduced_ss = ss;
     cfg.reduced_sigma = sigma;
+    for (int k = 0; k < 3; k++) {
+        cfg.reduced_gamma[k] = s->gamma[k]; /* resolve the codes the link carries, as D does */
+    }
     if (!rs_slot(c, c->red, slot, &cfg)) {
         return -1;
     }

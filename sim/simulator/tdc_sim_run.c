@@ -189,8 +189,9 @@ static int mode_init(sim_mode_t *m, const tdc_mode_desc_t *d, tdc_sim_result_t *
     } else {
         m->link = eye0->link;
     }
-    if (d->family->init(m, s)) {
-        return -1;
+    int frc = d->family->init(m, s);
+    if (frc) {
+        return frc; /* -2: refused, reported by the family */
     }
     if (cfg->panel == TDC_PANEL_SIM_LCD && tdc_sim_stage_lcd.init(m, s)) {
         return -1;
@@ -541,8 +542,11 @@ int tdc_sim_run(const tdc_sim_config_t *cfg, tdc_source_t *src, const tdc_mode_d
     for (int i = 0; i < nmodes; i++) {
         for (int e = 0; e < eyes; e++) {
             sim_mode_t *m = &ms[i * eyes + e];
-            if (mode_init(m, modes[i], &results[i], &setup, gamma, W, e, &ms[i * eyes], ev.xy, ev.scratch)) {
-                fprintf(stderr, "tdc-sim: out of memory setting up mode %s\n", modes[i]->name);
+            int irc = mode_init(m, modes[i], &results[i], &setup, gamma, W, e, &ms[i * eyes], ev.xy, ev.scratch);
+            if (irc) {
+                if (irc != -2) {
+                    fprintf(stderr, "tdc-sim: out of memory setting up mode %s\n", modes[i]->name);
+                }
                 rc = -1;
             }
             m->slot = i;

@@ -1,8 +1,7 @@
 #!/bin/sh
 # test_experiments.sh TDC_SIM - the experiment framework (issue 15,
 # docs/experiments.md) on a temporary group folder:
-#   1. the statistics helper: "A beats B" only beyond the spread of the
-#      paired differences, a tie inside it, too few seeds below 5;
+#   1. (the statistics helper has its own test, test_tdc_stats.py);
 #   2. a group of two 5-seed sweeps at 32x32 with per-scale lines: run on GNU
 #      parallel, claims.csv with the claim columns, the report table and the
 #      docs/results.md block between its markers (rewritten, not appended);
@@ -13,29 +12,12 @@ set -u
 SIM=$(readlink -f "$1")
 EXP="/usr/bin/python3 $(pwd)/sim/experiments/tdc_experiments.py"
 T=$(mktemp -d /tmp/tdc_exp_test.XXXXXX)
-trap 'rm -rf "$T"' EXIT
+trap '[ -n "${KEEP:-}" ] || rm -rf "$T"' EXIT
 fail=0
 ok() { echo "ok: $*"; }
 bad() { echo "FAIL: $*"; fail=1; }
 
-# 1. statistics
-if PYTHONPATH=sim/experiments /usr/bin/python3 - <<'PY'
-import tdc_stats as s
-a = [30.0, 31.0, 32.0, 31.5, 30.5]
-b = [x - 1.0 for x in a]                     # paired: 1 dB better on every seed
-assert s.compare(a, b)["verdict"] == "A beats B", s.compare(a, b)
-noisy = [30.0, 33.0, 29.0, 32.5, 29.5]       # mean 30.8 vs 31.0, differences spread ~2 dB
-assert s.compare(noisy, a)["verdict"] == "tie", s.compare(noisy, a)
-assert s.compare(a[:4], b[:4])["verdict"] == "too few seeds"
-lo = [0.1, 0.11, 0.12, 0.1, 0.11]            # lower is better (FLIP)
-assert s.compare(lo, [x + 0.05 for x in lo], higher_is_better=False)["verdict"] == "A beats B"
-assert s.compare(lo, [x + 0.05 for x in lo], higher_is_better=True)["verdict"] == "B beats A"
-assert not s.beats(noisy, a) and s.beats(a, b)
-assert abs(s.spread([1.0, 2.0, 3.0]) - 1.0) < 1e-12 and s.spread([5.0]) == 0.0
-u = s.compare([1, 2, 3, 4, 5], [0, 1, 2, 3, 4, 5], paired=False)   # unpaired: spread_a + spread_b
-assert u["verdict"] == "tie" and abs(u["spread"] - (s.spread([1, 2, 3, 4, 5]) + s.spread([0, 1, 2, 3, 4, 5]))) < 1e-12
-PY
-then ok "statistics: beats only beyond the spread, ties, too few seeds"; else bad "statistics helper"; fi
+# 1. the statistics: tests/unit/test_tdc_stats.py (make test-tdc-stats)
 
 # 2. a group
 G=$T/groups
@@ -65,7 +47,11 @@ def claims(exp):
               spread="%.3f" % c["spread"], n=c["n"])
     st = exp.rows("static")
     d = exp.stats.compare(exp.values(st, "psnr_db", mode="trm50"), exp.values(st, "psnr_db", mode="full"))
-    exp.claim("toy paper", "static TRM = full", "identical", "%.3f dB" % d["diff"], "disagree", "a reason, with | pipe")
+    exp.claim("toy paper", "static TRM = full", "identical", "%.3f dB" % d["diff"], "disagree", "a reason, with | pipe",
+              cls="setting")
+    exp.judge("toy paper", "§1: 'static content is identical'", "static full equals itself (judged)", "identical",
+              exp.values(st, "psnr_db", mode="full"), exp.values(st, "psnr_db", mode="full"), "equal", "psnr_db",
+              "full", "full")
     exp.write_extra("| a | b |\n| --- | --- |\n| 1 | 2 |\n")
 PY
 cp "$G/toy/moving.sweep" "$G/broken/x.sweep"
@@ -78,18 +64,22 @@ $EXP run toy --scale demo --out "$O" -j 2 --sim "$SIM" > "$T/run.txt" 2>&1; rc=$
 if [ $rc -eq 0 ] && [ -f "$O/toy/claims.csv" ] && grep -q -- "-g 32x32" "$O/toy/moving.sweep"; then
     ok "run: 10 jobs at scale demo, $(grep -c . "$O/toy/moving/sweep.csv") rows in moving/sweep.csv"
 else bad "run exit $rc: $(tail -3 "$T/run.txt")"; fi
-if head -1 "$O/toy/claims.csv" | grep -qx "group,paper,claim,paper_value,tdc_value,spread,n,run,verdict,why" \
-    && grep -q "^toy,toy paper,full beats half,yes,.*,5,toy (scale demo),agree," "$O/toy/claims.csv"; then
+if head -1 "$O/toy/claims.csv" | grep -qx "group,paper,quote,claim,paper_value,tdc_value,ci,margin,n,run,verdict,class,why" \
+    && grep -q "^toy,toy paper,,full beats half,yes,.*,5,toy (scale demo),agree,," "$O/toy/claims.csv" \
+    && grep -q "^toy,toy paper,§1: 'static content is identical',static full equals itself (judged),identical,.*,\"gain 0.0000 \[0.0000, 0.0000\]\",0.2500,5,toy (scale demo),equivalent,,\"interval inside" "$O/toy/claims.csv"; then
     ok "claims.csv: $(sed -n 2p "$O/toy/claims.csv")"
 else bad "claims.csv: $(cat "$O/toy/claims.csv" 2>/dev/null)"; fi
 printf '# results\n\ntext before\n' > "$T/results.md"
 $EXP report --out "$O" --report "$T/rep/experiments.md" --results "$T/results.md" > "$T/rep.txt" 2>&1
 $EXP report --out "$O" --report "$T/rep/experiments.md" --results "$T/results.md" >> "$T/rep.txt" 2>&1; rc=$?
-if [ $rc -eq 0 ] && grep -q "| toy paper | full beats half | yes |" "$T/rep/experiments.md" \
+if [ $rc -eq 0 ] && grep -q "| toy paper |  | full beats half | yes |" "$T/rep/experiments.md" \
     && grep -q 'a reason, with \\| pipe' "$T/rep/experiments.md" && grep -q "| 1 | 2 |" "$T/rep/experiments.md" \
     && grep -q "^| toy | demo | 10 |" "$T/rep/experiments.md" \
     && [ "$(grep -c 'experiments:begin' "$T/results.md")" = 1 ] && grep -q "text before" "$T/results.md" \
-    && grep -q "static TRM = full\*\* (disagree)" "$T/results.md"; then
+    && grep -q "static TRM = full\*\* (disagree, setting)" "$T/results.md" \
+    && grep -q "^3 claims: 1 agree, 1 equivalent, 1 disagree, 0 inconclusive; of the non-agreements 1 are setting" "$T/results.md" \
+    && grep -q "Scale of these results: \*\*demo\*\*" "$T/results.md" \
+    && grep -q "an explained setting difference: 3 of 3 (100 %)" "$T/rep/experiments.md"; then
     ok "report: the paper-vs-tdc table, the group's extra table, one results.md block with the disagreement"
 else bad "report exit $rc: $(cat "$T/rep.txt"; cat "$T/results.md")"; fi
 

@@ -27,6 +27,9 @@ static tdc_scene_t sc;
 static tdc_render_t *open_with(const char *text, int threads, uint32_t seed, int gt_samples, int indirect,
                                int reuse);
 
+/* REDUCED resolve domain of the next open (0: linear light, the default) */
+static double g_reduced_gamma;
+
 static tdc_render_t *open_cfg(const char *text, int threads, uint32_t seed, int gt_samples)
 {
     return open_with(text, threads, seed, gt_samples, 0, 0);
@@ -49,6 +52,7 @@ static tdc_render_t *open_with(const char *text, int threads, uint32_t seed, int
     cfg.shadow_mv = cfg.dual_mv = 1;
     cfg.indirect = indirect;
     cfg.indirect_reuse = reuse;
+    cfg.reduced_gamma[0] = cfg.reduced_gamma[1] = cfg.reduced_gamma[2] = g_reduced_gamma;
     tdc_render_t *r = tdc_render_open(&sc, &cfg, err, sizeof err);
     if (!r) fail_msg("%s", err);
     return r;
@@ -262,6 +266,38 @@ static void test_reduced_prefiltered(void **state)
     tdc_render_close(r);
 }
 
+/* reduced_gamma: the resolve filters gamma-coded values (what the link carries and
+ * the firmware's D filters), so the prefiltered stripes come out at the code-domain
+ * mean decoded, (mean v)^gamma with v = I^(1/gamma) - not at the linear mean. */
+static void test_reduced_coded_resolve(void **state)
+{
+    (void)state;
+    static float full[W * H * 3], red[W * H * 3];
+    g_reduced_gamma = 2.2;
+    tdc_render_t *r = open_cfg(scene_stripes, 2, 1, 1);
+    g_reduced_gamma = 0;
+    int rw, rh;
+    tdc_render_output_size(r, TDC_RENDER_REDUCED, &rw, &rh);
+    render(r, 0, TDC_RENDER_FULL, full, NULL, NULL, NULL);
+    render(r, 0, TDC_RENDER_REDUCED, red, NULL, NULL, NULL);
+    double lin = 0, code = 0, rmean = 0;
+    for (int i = 0; i < W * H; i++) {
+        double v = full[3 * i] < 0 ? 0 : full[3 * i] > 1 ? 1 : full[3 * i];
+        lin += v / (W * H);
+        code += pow(v, 1 / 2.2) / (W * H);
+    }
+    int n = 0;
+    for (int y = 3; y < rh - 3; y++)
+        for (int x = 3; x < rw - 3; x++, n++) rmean += red[3 * (y * rw + x)];
+    rmean /= n;
+    double want = pow(code, 2.2);
+    printf("stripes, coded resolve (gamma 2.2): reduced mean %.3f, code-domain mean decoded %.3f, linear mean %.3f\n",
+           rmean, want, lin);
+    assert_true(fabs(rmean - want) < 0.03);
+    assert_true(fabs(rmean - lin) > 0.1); /* the domain matters on this content */
+    tdc_render_close(r);
+}
+
 static void test_subframe_positions(void **state)
 {
     (void)state;
@@ -387,6 +423,7 @@ int main(void)
         cmocka_unit_test(test_glossy_layers_deterministic),
         cmocka_unit_test(test_ground_truth_convergence),
         cmocka_unit_test(test_reduced_prefiltered),
+        cmocka_unit_test(test_reduced_coded_resolve),
         cmocka_unit_test(test_subframe_positions),
         cmocka_unit_test(test_indirect_cone_reuse),
     };

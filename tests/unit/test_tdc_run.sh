@@ -60,5 +60,32 @@ if "$run" -q -o "$t/kv" --kernels avx2 --builtin text --count 6 --size 97x67 --f
 else
     grep -q "no AVX2 kernels" "$t/kv.err" && ok "--kernels avx2 refused without AVX2" || bad "--kernels avx2"
 fi
+# gaze-aware TRM from files (--gaze, --mv; run_gaze.c): a 40x30 eye is 3x2
+# tiles of 16 px.  Tracking (gaze = motion: no retinal motion, k = 1) gives
+# plain TRM's bytes; fixating moving content (retinal 4 px/frame > 2: k = 0)
+# shows each full frame unsharpened, i.e. the input's bytes, and differs
+# from TRM.
+printf 'frame,gx,gy\n' > "$t/g_track.csv"; printf '# fixation\n' > "$t/g_fix.csv"; printf 'frame,tx,ty,dx,dy\n' > "$t/mv.csv"
+for f in 0 1 2 3 4 5; do
+    echo "$f,4,0" >> "$t/g_track.csv"; echo "$f,0,0" >> "$t/g_fix.csv"
+    for y in 0 1; do for x in 0 1 2; do echo "$f,$x,$y,4,0" >> "$t/mv.csv"; done; done
+done
+"$run" -q -o "$t/gp" --builtin text --count 6 --size 40x30 --frames auto || bad "plain TRM run"
+"$run" -q -o "$t/gt" --builtin text --count 6 --size 40x30 --frames auto --gaze "$t/g_track.csv" --mv "$t/mv.csv" || bad "gaze run (track)"
+"$run" -q -o "$t/gf" --builtin text --count 6 --size 40x30 --frames auto --gaze "$t/g_fix.csv" --mv "$t/mv.csv" --save-input || bad "gaze run (fixate)"
+same=1; for f in "$t/gp"/drive_*.png; do cmp -s "$f" "$t/gt/$(basename "$f")" || same=0; done
+[ $same -eq 1 ] && ok "--gaze tracking the motion: plain TRM's drive frames" || bad "--gaze tracking differs from TRM"
+cmp -s "$t/gf/drive_00002.png" "$t/gf/input_00002.png" && cmp -s "$t/gf/drive_00004.png" "$t/gf/input_00004.png" \
+    && ! cmp -s "$t/gf/drive_00002.png" "$t/gp/drive_00002.png" \
+    && ok "--gaze fixating: full frames shown unsharpened (the input's bytes), unlike TRM" || bad "--gaze fixating"
+expect 1 "--gaze without --mv" "--gaze and --mv go together" -- "$run" -o "$t/gx" --builtin text --gaze "$t/g_fix.csv"
+expect 1 "--gaze with --stereo" "--gaze is for one eye" -- "$run" -o "$t/gx" --stereo --frames auto --builtin text --gaze "$t/g_fix.csv" --mv "$t/mv.csv"
+expect 7 "--gaze file missing" "cannot open --gaze file" -- "$run" -o "$t/gx" --builtin text --count 6 --size 40x30 --frames auto --gaze "$t/none.csv" --mv "$t/mv.csv"
+grep -v '^4,1,1,' "$t/mv.csv" > "$t/mv_short.csv"
+expect 13 "a full frame's tile missing" "full frame 4 has 5 of its 3x2 tile motion vectors" -- "$run" -o "$t/gx" --builtin text --count 6 --size 40x30 --frames auto --gaze "$t/g_fix.csv" --mv "$t/mv_short.csv"
+printf '0,0,0,4\n' > "$t/mv_bad.csv"
+expect 13 "malformed --mv line" "line 1: expected frame,tx,ty,dx,dy" -- "$run" -o "$t/gx" --builtin text --count 6 --size 40x30 --frames auto --gaze "$t/g_fix.csv" --mv "$t/mv_bad.csv"
+printf '0,3,0,1,1\n' > "$t/mv_out.csv"
+expect 13 "tile outside the frame" "tile (3, 0) outside the 3x2 tiles" -- "$run" -o "$t/gx" --builtin text --count 6 --size 40x30 --frames auto --gaze "$t/g_fix.csv" --mv "$t/mv_out.csv"
 echo "tdc-run: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]

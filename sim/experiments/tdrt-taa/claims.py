@@ -4,7 +4,15 @@ SWEEP = "taa"
 TAA = (("taa60", 60.0), ("taa80", 80.0), ("taa120", 120.0), ("taa", 240.0))
 ASM = "asm-adaptive"
 PAPER_RATIO = 3.5
-TOL = 0.25  # agree within 25 % of the paper's ratio
+TOL = 0.25  # the equal-error analysis below (not a paper claim): within 25 % of the ratio
+ABOUT = 0.10  # "about 3.5x": 10 % below it still reads "about"
+Q35 = ("§4: 'The rationale for this is that our method renders a frame about 3.5× faster than vanilla rendering "
+       "with TAA.'")
+Q_US = ("§4 (user study): 'we randomly placed a rendering with 1 SPP at 60 FPS on either the left or right side, and our "
+        "technique at 240 FPS, on the other side ... When asked to identify the rendering that best resembled the "
+        "ground truth, 94% selected our technique'")
+Q_Q = ("§1: 'Our results include an increase in performance by a factor of approximately 3.5× with increased "
+       "quality, compared to TAA'")
 
 
 def per_frame_us(t):
@@ -48,7 +56,7 @@ def claims(exp):
             eq_rays.append(r * (float(t240["rays_per_s"]) / 240.0) / float(a["rays_per_s"]))
             # TAA's cost per frame at 240 Hz stands for its cost per frame at the lower rate
             eq_time.append(r * per_frame_us(tt) / (240.0 * per_frame_us(ta)))
-        for m in ("full",) + tuple(x for x, _ in TAA) + (ASM,):
+        for m in ("full", "full60") + tuple(x for x, _ in TAA) + (ASM,):
             if m in sel:
                 s = sel[m]
                 lines.append("| %s | %s | %s | %.4f | %.2f | %.2f | %.0f |" % (
@@ -57,56 +65,36 @@ def claims(exp):
     st = exp.stats
     run = "%s/%s (%s)" % (exp.group, SWEEP, " ".join(scenes))
     if ratio_t:
-        s = st.summary(ratio_t)
-        ok = abs(s["mean"] - PAPER_RATIO) <= TOL * PAPER_RATIO
-        exp.claim("TDRT §4", "a frame of assembly vs a frame of rendering + TAA: time ratio", "≈ 3.5×",
-                  "%s× (rays %s×)" % (st.fmt_ms(s, 2), st.fmt(st.mean(ratio_r), 2)), "agree" if ok else "disagree",
-                  "renderer + filter CPU time per frame at 240 Hz, same resolution" +
-                  ("" if ok else "; outside 3.5 ± 25 %: on this CPU renderer the firmware assembly (the filter) and "
-                   "the fixed per-frame costs do not shrink with the rays"),
-                  spread=st.fmt(s["spread"], 2), n=s["n"], run=run)
-    fa = [float(r["flip"]) for r in exp.select(rows, mode=ASM)]
-    f60 = [float(r["flip"]) for r in exp.select(rows, mode="taa60")]
-    if fa and len(fa) == len(f60):
-        c = st.compare(fa, f60, higher_is_better=False)
-        got = c["verdict"]
-        exp.claim("TDRT §1/§4", "assembly at 240 Hz vs rendering + TAA at 60 Hz: quality", "increased quality",
-                  "FLIP %s vs %s" % (st.fmt_ms(st.summary(fa), 4), st.fmt_ms(st.summary(f60), 4)),
-                  "agree" if got == "A beats B" else ("disagree" if got == "B beats A" else "inconclusive"),
-                  "%s (difference %s, spread %s)" % (got.replace("A", "assembly").replace("B", "taa60"),
-                                                    st.fmt(c["diff"], 4), st.fmt(c["spread"], 4)),
-                  spread=st.fmt(c["spread"], 4), n=c["n"], run=run)
-    # cost at equal perceived error: if the assembly ties TAA at 60 Hz (its lowest measured rate), TAA needs at
-    # most 60 Hz for the same FLIP, and its cost per second there bounds the ratio; else interpolate the rate
-    tie60 = bool(fa) and len(fa) == len(f60) and st.compare(fa, f60, higher_is_better=False)["verdict"] == "tie"
-    if tie60:
-        per_s = []
+        # "about 3.5x" per frame: the ratio is at least 3.5 x (1 - 10 %) ("about"), within the ratio's 5 % margin
+        exp.judge("TDRT §4", Q35, "a frame of assembly vs a frame of rendering + TAA: time ratio, about 3.5×",
+                  "≈ 3.5× per frame", ratio_t, [PAPER_RATIO * (1 - ABOUT)] * len(ratio_t), "not worse", "ratio",
+                  "assembly", "%.2f×" % (PAPER_RATIO * (1 - ABOUT)), 2, run=run,
+                  why="renderer + filter CPU time per frame at 240 Hz, same resolution; on this CPU renderer the "
+                      "firmware assembly (the filter) and the fixed per-frame costs do not shrink with the rays")
+    def per_scene(mode, col="flip"):
+        out = []
         for sc in scenes:
-            sel = {r["mode"]: r for r in exp.select(rows, rscene=sc)}
-            if ASM in sel and "taa60" in sel:
-                per_s.append(60.0 * per_frame_us(tmap[tkey(sel["taa60"])]) /
-                             (240.0 * per_frame_us(tmap[tkey(sel[ASM])])))
-        s = st.summary(per_s)
-        ok = abs(s["mean"] - PAPER_RATIO) <= TOL * PAPER_RATIO
-        exp.claim("TDRT abstract/§4", "rendering + TAA at the assembly's perceived error: cost ratio", "≈ 3.5×",
-                  "≤ %s× (TAA at ≤ 60 Hz; rays per second equal)" % st.fmt_ms(s, 2), "agree" if ok else "disagree",
-                  "the assembly at 240 Hz ties TAA at 60 Hz in FLIP (above), and TAA's FLIP does not fall with its rate "
-                  "here (60 Hz %s, 240 Hz %s: under pursuit a held 60 Hz frame is seen with TAA's own per-frame "
-                  "error, dominated by its history blur); so TAA needs no more than 60 Hz for the same error, i.e. the "
-                  "same rays per second (a quarter of the pixels at 4x the rate), and its time per second is that "
-                  "bound: the per-frame 3.5x buys the 4x frame rate, not a cheaper image at equal error" % (
-                      st.fmt(st.mean(f60), 4), st.fmt(st.mean([float(r["flip"]) for r in exp.select(rows, mode="taa")]), 4)),
-                  spread=st.fmt(s["spread"], 2), n=s["n"], run=run)
-    elif eq_rate:
-        s, sr, stt = st.summary(eq_rate), st.summary(eq_rays), st.summary(eq_time)
-        ok = abs(stt["mean"] - PAPER_RATIO) <= TOL * PAPER_RATIO
-        exp.claim("TDRT abstract/§4", "rendering + TAA at the assembly's perceived error: cost ratio", "≈ 3.5×",
-                  "%s× (TAA at %s Hz, rays %s×)" % (st.fmt_ms(stt, 2), st.fmt_ms(s, 0), st.fmt_ms(sr, 2)),
-                  "agree" if ok and len(eq_rate) >= st.MIN_SEEDS else "inconclusive" if len(eq_rate) < st.MIN_SEEDS
-                  else "disagree",
-                  "equal FLIP, TAA rate interpolated between 60/80/120/240 Hz" + ("; " + "; ".join(notes) if notes else ""),
-                  spread=st.fmt(stt["spread"], 2), n=stt["n"], run=run)
-    elif notes:
-        exp.claim("TDRT abstract/§4", "rendering + TAA at the assembly's perceived error: cost ratio", "≈ 3.5×",
-                  "no crossing", "inconclusive", "; ".join(notes), n=len(notes), run=run)
-    exp.write_extra("Per scene (one run each; the claims pair the scenes):\n\n" + "\n".join(lines) + "\n")
+            v = [float(r[col]) for r in exp.select(rows, rscene=sc, mode=mode)]
+            out.append(v[0] if v else float("nan"))
+        return out
+
+    fa, f60 = per_scene(ASM), per_scene("taa60")
+    exp.judge("TDRT §1/§4", Q_Q, "assembly at 240 Hz better than rendering + TAA at 60 Hz (quality)",
+              "increased quality", fa, f60, "better", "flip", "assembly 240 Hz", "TAA 60 Hz", run=run,
+              cls="model limit", why="FLIP scores each refresh against the ground truth; what the paper shows is "
+              "temporal integration at 240 Hz (the visual model judges this row)")
+    if "full60" in {r["mode"] for r in rows}:
+        exp.judge("TDRT §4 (user study)", Q_US, "assembly at 240 Hz better than 1 spp at 60 Hz (no TAA)",
+                  "94 % of 35 subjects chose the assembly", fa, per_scene("full60"), "better", "flip",
+                  "assembly 240 Hz", "1 spp 60 Hz", run=run + " (scenes as contents; the paper: BISTRO only)",
+                  cls="model limit", why="the study's subjects judged the fused 240 Hz sequence; FLIP scores each "
+                  "refresh (the visual model judges this row)")
+    # not a paper claim (the 3.5x is per frame): the cost at equal FLIP, beside the table
+    eq = ""
+    if eq_rate:
+        stt = st.summary(eq_time)
+        eq = ("TAA's cost at the assembly's FLIP (rate interpolated between 60/80/120/240 Hz): %s× the assembly's "
+              "(%d scenes)." % (st.fmt_ms(stt, 2), stt["n"]))
+    if notes:
+        eq += " " + "; ".join(notes) + "."
+    exp.write_extra("Per scene (one run each; the claims pair the scenes). %s\n\n" % eq.strip() + "\n".join(lines) + "\n")

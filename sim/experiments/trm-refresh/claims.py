@@ -6,13 +6,18 @@ FLIP_TOL = 0.05  # stated tolerance: TRM's FLIP (mean over instants) may exceed 
 
 def excess(exp, rows, col, scene, rate, r):
     """Per seed: TRM r's col minus full rate's (same job)."""
+    return [t - f for t, f in paired(rows, col, scene, rate, r)]
+
+
+def paired(rows, col, scene, rate, r):
+    """Per seed: (TRM r's col, full rate's col) of the same job."""
     out = []
     for job in sorted({x["job"] for x in rows if x["scene"] == scene and x["refresh"] == str(rate) and x["r"] == str(r)},
                       key=int):
         f = [x for x in rows if x["job"] == job and x["mode"] == "full"]
         t = [x for x in rows if x["job"] == job and x["mode"] == "trm%d" % r]
         if f and t and f[0][col] != "" and t[0][col] != "":
-            out.append(float(t[0][col]) - float(f[0][col]))
+            out.append((float(t[0][col]), float(f[0][col])))
     return out
 
 
@@ -44,45 +49,51 @@ def claims(exp):
                 th.append(best)
             per_rate[h] = th
         th_table.append("| %s | %s |" % (sc, " | ".join(s.fmt_ms(s.summary(per_rate[h]), 2) for h in RATES)))
-        c = s.compare(per_rate[100], per_rate[165], higher_is_better=True)
-        v = {"A beats B": ("agree", "threshold falls from 100 to 165 Hz beyond the spread"),
-             "tie": ("inconclusive", "threshold at 165 Hz within the spread of 100 Hz's"),
-             "B beats A": ("disagree", "threshold rises with the refresh rate: see the next claim"),
-             "too few seeds": ("inconclusive", "fewer than 5 seeds")}[c["verdict"]]
-        exp.claim("TRM §5 Fig. 11", "%s: threshold r (FLIP within %.2f of full) falls 100 -> 165 Hz" % (sc, FLIP_TOL),
-                  "falls (3 of 4 scenes)", "r %s at 100 Hz, %s at 165 Hz" % (s.fmt_ms(s.summary(per_rate[100]), 2),
-                                                                         s.fmt_ms(s.summary(per_rate[165]), 2)),
-                  v[0], v[1], spread=s.fmt(c["spread"], 3), n=c["n"], run="%s/%s scene=%s" % (exp.group, SWEEP, sc))
-        # the mechanism: TRM's excess error at r = 1/2 should fall with the refresh rate
-        for col, lab in (("flip", "FLIP"), ("legacy_terr", "terr")) if has_terr else (("flip", "FLIP"),):
-            e90, e165 = excess(exp, rows, col, sc, 90, 50), excess(exp, rows, col, sc, 165, 50)
-            if 50 not in rs or not e90 or not e165:
-                continue
-            c = s.compare(e90, e165, higher_is_better=False)  # 'B beats A': smaller excess at 165 Hz
-            ok = c["verdict"] == "B beats A"
-            why = "" if ok else (
-                "in this model full rate's own error falls with the rate faster than TRM's (less hold blur per "
-                "frame), while the reduced frame's blur and the clamping losses are the same at every rate; the eye "
-                "model fuses 2 frames at every rate (22 ms at 90 Hz, 12 ms at 165 Hz), so %s gives the faster "
-                "alternation no extra masking. The paper's threshold is an observers' discrimination threshold on an "
-                "LCD at 56 px/deg" % ("per-instant FLIP" if col == "flip" else "the temporal CSF, which runs after that fusion,"))
-            exp.claim("TRM §5 Fig. 11", "%s: TRM r = 1/2 error above full falls 90 -> 165 Hz (%s)" % (sc, lab),
-                      "more reduction possible at higher rates",
-                      "%s excess %s at 90 Hz, %s at 165 Hz" % (lab, s.fmt_ms(s.summary(e90), 3), s.fmt_ms(s.summary(e165), 3)),
-                      "agree" if ok else ("inconclusive" if c["verdict"] == "tie" else "disagree"), why,
-                      spread=s.fmt(c["spread"], 3), n=c["n"], run="%s/%s scene=%s r=1/2" % (exp.group, SWEEP, sc))
-        # larger r closer to full rate (the premise of a threshold)
-        lo, hi = min(rs), max(rs)
-        a, b = excess(exp, rows, "flip", sc, 90, hi), excess(exp, rows, "flip", sc, 90, lo)
-        c = s.compare(a, b, higher_is_better=False)
-        exp.claim("TRM §5 Fig. 11", "%s, 90 Hz: r = %.2f closer to full than r = %.2f" % (sc, hi / 100, lo / 100),
-                  "larger r, less visible", "FLIP excess %s vs %s" % (s.fmt_ms(s.summary(a), 3), s.fmt_ms(s.summary(b), 3)),
-                  "agree" if c["verdict"] == "A beats B" else ("inconclusive" if c["verdict"] == "tie" else "disagree"),
-                  "" if c["verdict"] == "A beats B" else c["verdict"],
-                  spread=s.fmt(c["spread"], 3), n=c["n"], run="%s/%s scene=%s refresh=90" % (exp.group, SWEEP, sc))
+    fig11(exp)
     exp.write_extra(
-        "Threshold r per refresh rate: the smallest r of {%s} from which every larger r keeps FLIP within %.2f of full "
+        "On the HTC Vive's OLED at 90-165 Hz (not the paper's set-up; the claims are judged on fig11.sweep, the "
+        "pg279q LCD at 56 px/deg). Threshold r per refresh rate: the smallest r of {%s} from which every larger r keeps FLIP within %.2f of full "
         "rate's (per seed; mean ± spread; 1.00 = none):\n\n%s\n\nTRM's FLIP minus full rate's per r and rate (mean ± spread "
         "over the seeds). The excess is nearly flat in r: D's Gaussian has sigma 2.5 full-res px at every r (TRM §4.3), "
         "so above r = 0.4 the reduced frame carries the same band and r only moves the upsampling error.\n\n%s\n" %
         (", ".join("%.2f" % (r / 100) for r in rs), FLIP_TOL, "\n".join(th_table), "\n".join(ex_table)))
+
+
+Q_04 = ("§5 (Experiment 1): 'Overall, the experiment showed that a reduction factor of 0.4 or less produces animation "
+        "that is indistinguishable from rendering frames at the full-resolution.'")
+Q_HZ = ("§5 (Experiment 1): 'For all animations, except Sports hall, the resolution of odd-numbered frames can be "
+        "further reduced for higher refresh-rate displays.'")
+WHY_EYE = ("an observer's 75 %% discrimination threshold (QUEST) is not an error magnitude: %s is the size of the "
+           "error, and a difference the eye cannot see can exceed the margin (the visual model, JOD, judges this row)")
+
+
+def fig11(exp):
+    """Fig. 11 in the paper's set-up (fig11.sweep): per scene and rate, never pooled."""
+    try:
+        rows = exp.rows("fig11")
+    except Exception:  # noqa: BLE001 - a cached run from before the sweep existed
+        return
+    rates = sorted({int(x["refresh"]) for x in rows})
+    rs = sorted({int(x["r"]) for x in rows})
+    # terr (the temporal CSF) runs on the OLED path only; on the LCD the temporal measure is flicker
+    cols = ("flip", "legacy_terr") if any(x["legacy_terr"] != "" for x in rows) else ("flip", "legacy_flicker")
+    for sc in sorted({x["scene"] for x in rows}):
+        for col in cols:
+            if 40 in rs:
+                for h in rates:
+                    pr = paired(rows, col, sc, h, 40)
+                    exp.judge("TRM §5 Fig. 11", Q_04, "%s, %d Hz: TRM r = 0.4 equal to full rate (%s)" % (sc, h, col),
+                              "indistinguishable", [a for a, _ in pr], [b for _, b in pr], "equal", col, "trm40", "full",
+                              run="%s/fig11 scene=%s refresh=%d (pg279q, 56 px/deg; 100 Hz not characterised)" % (exp.group, sc, h),
+                              cls="model limit", why=WHY_EYE % col)
+            lo, hi = min(rates), max(rates)
+            r = 50 if 50 in rs else max(rs)
+            if lo != hi:
+                e_hi, e_lo = excess(exp, rows, col, sc, hi, r), excess(exp, rows, col, sc, lo, r)
+                exp.judge("TRM §5 Fig. 11", Q_HZ, "%s: TRM r = %.2f closer to full at %d Hz than at %d Hz (%s excess)" % (
+                              sc, r / 100, hi, lo, col), "threshold r falls with the rate",
+                          e_hi, e_lo, "better", col, "%d Hz" % hi, "%d Hz" % lo,
+                          run="%s/fig11 scene=%s r=%.2f (pg279q, 56 px/deg)" % (exp.group, sc, r / 100),
+                          cls="model limit",
+                          why="the eye model fuses 2 frames at every rate, so the faster alternation gets no extra "
+                              "masking; " + WHY_EYE % col)
