@@ -1,0 +1,397 @@
+/*
+ * tdc_board_linux_ffs.c - the Linux board's transport: a USB gadget made
+ * through configfs (libcomposite) with one FunctionFS function whose ep0
+ * and bulk endpoints are served by the firmware's protocol code
+ * (firmware/tdc_usbproto.c, docs/usb-protocol.md):
+ *   ep0     board info, counters, DFU 1.1 into A/B slots (a file in the
+ *           state folder stands for the flash)   thread ep0_thread
+ *   ep1 OUT link stream bytes: read by the frame loop (tdc_lx_ffs_read)
+ *   ep2 IN  status reports, always one queued     thread status_thread
+ * The gadget is created if it does not exist (a systemd unit may have made
+ * it at boot) and bound to the USB device controller: dwc2 in peripheral
+ * mode on a Raspberry Pi (docs/boards.md), dummy_udc in `make test-vm`.
+ * Unplug (the host goes away, or the UDC is unbound) shows as ESHUTDOWN
+ * on ep1 and FUNCTIONFS_DISABLE on ep0: logged "host gone", the panel
+ * keeps its last frame, the loop waits for the next connection.
+ */
+#include <dirent.h>
+#include <endian.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <linux/usb/functionfs.h>
+#include <pthread.h>
+#include <signal.h>
+#include <stdio.h>
+#include <string.h>
+#include <sys/mount.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "tdc_board_linux.h"
+#include "tdc_usbproto.h"
+
+#define GADGET "/sys/kernel/config/usb_gadget/tdc-board"
+/* A slot holds the board program or a panel profile image (48-byte header
+ * + payload); the static x86-64 program is ~1.2 MB. */
+#define SLOT_BYTES (8u * 1024u * 1024u)
+/* The function's descriptors: the configuration descriptor minus its 9-byte
+ * header and minus the 9-byte DFU functional descriptor at its end: Linux
+ * 6.1's FunctionFS accepts class descriptors (type 0x21) only inside HID
+ * and CCID interfaces (ffs_do_single_desc() in
+ * drivers/usb/gadget/function/f_fs.c, `case USB_TYPE_CLASS | 0x01`), so
+ * hosts use the protocol's wTransferSize of 1024 (dfu-util: -t 1024). */
+#define FN_DESC_LEN (TDC_USB_CONFIG_DESC_LEN - 18u)
+
+static pthread_mutex_t g_lock = PTHREAD_MUTEX_INITIALIZER;
+static tdc_usbp_t g_proto;
+static int g_ep0 = -1, g_ep1 = -1, g_slots = -1;
+static volatile int g_enabled;
+
+int tdc_lx_ffs_write_descriptors(int ep0)
+{
+    struct {
+        struct usb_functionfs_descs_head_v2 head;
+        uint32_t fs_count, hs_count;
+        uint8_t fs[FN_DESC_LEN], hs[FN_DESC_LEN];
+    } __attribute__((packed)) d;
+    uint8_t cfg[TDC_USB_CONFIG_DESC_LEN];
+    d.head.magic = htole32(FUNCTIONFS_DESCRIPTORS_MAGIC_V2);
+    d.head.length = htole32(sizeof d);
+    d.head.flags = htole32(FUNCTIONFS_HAS_FS_DESC | FUNCTIONFS_HAS_HS_DESC);
+    d.fs_count = htole32(4);
+    d.hs_count = htole32(4);
+    (void)tdc_usbp_config_descriptor(cfg, 0);
+    memcpy(d.fs, cfg + 9, FN_DESC_LEN);
+    (void)tdc_usbp_config_descriptor(cfg, 1);
+    memcpy(d.hs, cfg + 9, FN_DESC_LEN);
+    /* FunctionFS numbers a function's strings from 1 (its own table below) */
+    d.fs[8] = d.hs[8] = 1;   /* iInterface of the streaming interface */
+    d.fs[31] = d.hs[31] = 2; /* iInterface of the DFU interface */
+    struct {
+        struct usb_functionfs_strings_head head;
+        uint16_t code;
+        char s1[sizeof "tdc link stream"], s2[sizeof "tdc DFU (A/B slot)"];
+    } __attribute__((packed)) s;
+    s.head.magic = htole32(FUNCTIONFS_STRINGS_MAGIC);
+    s.head.length = htole32(sizeof s);
+    s.head.str_count = htole32(2);
+    s.head.lang_count = htole32(1);
+    s.code = htole16(0x0409);
+    memcpy(s.s1, "tdc link stream", sizeof s.s1);
+    memcpy(s.s2, "tdc DFU (A/B slot)", sizeof s.s2);
+    if (write(ep0, &d, sizeof d) != (ssize_t)sizeof d || write(ep0, &s, sizeof s) != (ssize_t)sizeof s) return -1;
+    return 0;
+}
+
+/* ---- DFU slots: one file of 2 * SLOT_BYTES in the state folder ---- */
+static int slot_write(void *ctx, uint32_t off, const uint8_t *d, uint32_t n)
+{
+    (void)ctx;
+    return g_slots >= 0 && pwrite(g_slots, d, n, off) == (ssize_t)n ? 0 : -1;
+}
+
+static int slot_read(void *ctx, uint32_t off, uint8_t *d, uint32_t n)
+{
+    (void)ctx;
+    if (g_slots < 0) return -1;
+    ssize_t r = pread(g_slots, d, n, off);
+    if (r < 0) return -1;
+    memset(d + r, 0xFF, n - (uint32_t)r); /* beyond the file: erased flash */
+    return 0;
+}
+
+/* A USB reset or the board's own (RESET_BOARD, DFU_DETACH): a manifested
+ * image becomes the active slot.  Called with the lock held. */
+static void board_reset(const char *why)
+{
+    if (tdc_usbp_bus_reset(&g_proto)) {
+        uint8_t hdr[TDC_IMAGE_HEADER_LEN];
+        if (slot_read(NULL, (uint32_t)g_proto.dfu_active_slot * SLOT_BYTES, hdr, sizeof hdr) == 0) {
+            g_proto.cfg.fw_version = tdc_get_le32(hdr + TDC_IMAGE_OFF_FW_VERSION);
+        }
+        tdc_lx_logf("%s: activated slot %u, firmware %u.%u.%u, %u bytes", why, g_proto.dfu_active_slot,
+                    g_proto.cfg.fw_version >> 16, (g_proto.cfg.fw_version >> 8) & 0xFFu,
+                    g_proto.cfg.fw_version & 0xFFu, tdc_usbp_slot_image(&g_proto, g_proto.dfu_active_slot));
+    }
+}
+
+static void stall(int ep0, int in)
+{
+    /* FunctionFS: an I/O in the wrong direction stalls ep0 (EL2HLT) */
+    if ((in ? read(ep0, NULL, 0) : write(ep0, NULL, 0)) < 0 && errno != EL2HLT) {
+        tdc_lx_logf("usb: ep0: stall: %s", strerror(errno));
+    }
+}
+
+static void handle_setup(int ep0, const struct usb_ctrlrequest *c)
+{
+    static uint8_t data[4096], reply[4096];
+    tdc_usbp_setup_t s = {c->bRequestType, c->bRequest, le16toh(c->wValue), le16toh(c->wIndex), le16toh(c->wLength)};
+    uint32_t len = 0;
+    if (s.bm_request_type & 0x80u) {
+        pthread_mutex_lock(&g_lock);
+        tdc_status_t r = tdc_usbp_control(&g_proto, &s, NULL, reply, sizeof reply, &len);
+        pthread_mutex_unlock(&g_lock);
+        if (r != TDC_OK) {
+            stall(ep0, 1);
+        } else if (write(ep0, reply, len) < 0) {
+            tdc_lx_logf("usb: ep0: reply: %s", strerror(errno));
+        }
+        return;
+    }
+    if (s.w_length > sizeof data) {
+        stall(ep0, 0);
+        return;
+    }
+    /* OUT: the data stage is read first (reading acks the status stage), so
+     * a refused DNLOAD shows up in the next GETSTATUS as dfuERROR (DFU 1.1). */
+    if (s.w_length > 0 && read(ep0, data, s.w_length) != s.w_length) {
+        tdc_lx_logf("usb: ep0: data stage: %s", strerror(errno));
+        return;
+    }
+    pthread_mutex_lock(&g_lock);
+    tdc_status_t r = tdc_usbp_control(&g_proto, &s, data, reply, sizeof reply, &len);
+    if (tdc_usbp_take_reset(&g_proto)) board_reset("reset requested");
+    pthread_mutex_unlock(&g_lock);
+    if (s.w_length == 0) {
+        if (r != TDC_OK) {
+            stall(ep0, 0);
+        } else if (read(ep0, NULL, 0) < 0) {
+            tdc_lx_logf("usb: ep0: status stage: %s", strerror(errno));
+        }
+    }
+}
+
+static void *ep0_thread(void *arg)
+{
+    (void)arg;
+    for (;;) {
+        struct usb_functionfs_event ev[4];
+        ssize_t n = read(g_ep0, ev, sizeof ev);
+        if (n < 0) {
+            if (errno != EINTR && errno != EAGAIN) {
+                tdc_lx_logf("usb: ep0 events: %s", strerror(errno));
+                usleep(100000);
+            }
+            continue;
+        }
+        for (ssize_t i = 0; i < n / (ssize_t)sizeof ev[0]; i++) {
+            switch (ev[i].type) {
+            case FUNCTIONFS_SETUP: handle_setup(g_ep0, &ev[i].u.setup); break;
+            case FUNCTIONFS_ENABLE:
+                g_enabled = 1;
+                tdc_lx_logf("usb: host connected (configuration set)");
+                break;
+            case FUNCTIONFS_DISABLE:
+                if (g_enabled) tdc_lx_logf("usb: host gone (disconnected or reset): the panel keeps its last frame");
+                g_enabled = 0;
+                pthread_mutex_lock(&g_lock);
+                board_reset("USB reset");
+                pthread_mutex_unlock(&g_lock);
+                break;
+            case FUNCTIONFS_UNBIND: tdc_lx_logf("usb: gadget unbound from its controller"); break;
+            default: break;
+            }
+        }
+    }
+    return NULL;
+}
+
+static int open_ep(const char *name)
+{
+    char path[512];
+    snprintf(path, sizeof path, "%s/%s", tdc_lx_opts.ffs_dir, name);
+    return open(path, O_RDWR | O_CLOEXEC);
+}
+
+/* Bulk IN: a status report is always queued; a write completes when the host reads it. */
+static void *status_thread(void *arg)
+{
+    (void)arg;
+    for (;;) {
+        int fd = open_ep("ep2");
+        while (fd >= 0) {
+            uint8_t rep[TDC_USB_STATUS_LEN];
+            pthread_mutex_lock(&g_lock);
+            tdc_usbp_status_report(&g_proto, rep);
+            pthread_mutex_unlock(&g_lock);
+            if (write(fd, rep, sizeof rep) < 0) break;
+        }
+        if (fd >= 0) close(fd);
+        usleep(20000);
+    }
+    return NULL;
+}
+
+int tdc_lx_ffs_read(uint8_t *buf, uint32_t cap, uint32_t *got)
+{
+    *got = 0;
+    if (tdc_lx_stop) return -1;
+    if (g_ep1 < 0 && (g_ep1 = open_ep("ep1")) < 0) {
+        tdc_lx_logf("usb: cannot open bulk OUT endpoint %s/ep1: %s", tdc_lx_opts.ffs_dir, strerror(errno));
+        usleep(100000);
+        return 0;
+    }
+    ssize_t n = read(g_ep1, buf, cap); /* blocks until the host sends (or is configured) */
+    if (n > 0) {
+        pthread_mutex_lock(&g_lock);
+        tdc_usbp_bulk_out(&g_proto, buf, (uint32_t)n);
+        pthread_mutex_unlock(&g_lock);
+        *got = (uint32_t)n;
+        return 1;
+    }
+    if (tdc_lx_stop) return -1;
+    if (n < 0 && errno != EINTR) {
+        /* ESHUTDOWN: the function was disabled under the read (unplug) */
+        close(g_ep1);
+        g_ep1 = -1;
+        usleep(20000);
+    }
+    return 0;
+}
+
+void tdc_lx_ffs_frame_shown(void)
+{
+    pthread_mutex_lock(&g_lock);
+    g_proto.cnt.frames_shown++;
+    pthread_mutex_unlock(&g_lock);
+}
+
+static int put(const char *dir, const char *name, const char *val)
+{
+    char path[512];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    int fd = open(path, O_WRONLY | O_CLOEXEC);
+    if (fd < 0) return -1;
+    ssize_t n = write(fd, val, strlen(val));
+    int e = errno;
+    close(fd);
+    errno = e;
+    return n == (ssize_t)strlen(val) ? 0 : -1;
+}
+
+static int mkdir_ok(const char *p)
+{
+    return mkdir(p, 0755) == 0 || errno == EEXIST ? 0 : -1;
+}
+
+/* The configfs gadget (idempotent: a unit may have made it at boot). */
+static int make_gadget(void)
+{
+    struct stat st;
+    if (stat("/sys/kernel/config/usb_gadget", &st) != 0) {
+        (void)mount("none", "/sys/kernel/config", "configfs", 0, NULL);
+        if (stat("/sys/kernel/config/usb_gadget", &st) != 0) {
+            tdc_lx_fail(TDC_LX_EXIT_NO_DEVICE,
+                        "usb: gadget not bound: no /sys/kernel/config/usb_gadget (load libcomposite, mount configfs)");
+            return -1;
+        }
+    }
+    if (mkdir_ok(GADGET) || mkdir_ok(GADGET "/strings/0x409") || mkdir_ok(GADGET "/functions/ffs.tdc") ||
+        mkdir_ok(GADGET "/configs/c.1")) {
+        tdc_lx_fail(TDC_LX_EXIT_IO, "usb: gadget not bound: cannot create %s: %s", GADGET, strerror(errno));
+        return -1;
+    }
+    char vid[8], pid[8];
+    snprintf(vid, sizeof vid, "0x%04x", TDC_USB_VID);
+    snprintf(pid, sizeof pid, "0x%04x", TDC_USB_PID);
+    if (put(GADGET, "idVendor", vid) || put(GADGET, "idProduct", pid) || put(GADGET, "bcdDevice", "0x0001") ||
+        put(GADGET, "bcdUSB", "0x0200") || put(GADGET "/strings/0x409", "manufacturer", "tdc project") ||
+        put(GADGET "/strings/0x409", "product", "tdc display controller") ||
+        put(GADGET "/strings/0x409", "serialnumber", tdc_lx_opts.serial) ||
+        put(GADGET "/configs/c.1", "MaxPower", "100")) {
+        /* a bound gadget refuses these writes (EBUSY): already set up */
+        if (errno != EBUSY) {
+            tdc_lx_fail(TDC_LX_EXIT_IO, "usb: gadget not bound: writing %s: %s", GADGET, strerror(errno));
+            return -1;
+        }
+    }
+    if (symlink(GADGET "/functions/ffs.tdc", GADGET "/configs/c.1/ffs.tdc") != 0 && errno != EEXIST) {
+        tdc_lx_fail(TDC_LX_EXIT_IO, "usb: gadget not bound: linking the function: %s", strerror(errno));
+        return -1;
+    }
+    return 0;
+}
+
+static int bind_udc(void)
+{
+    char udc[256] = "";
+    if (tdc_lx_opts.udc) {
+        snprintf(udc, sizeof udc, "%s", tdc_lx_opts.udc);
+    } else {
+        DIR *d = opendir("/sys/class/udc");
+        for (struct dirent *e; d && (e = readdir(d)) != NULL;) {
+            if (e->d_name[0] != '.') {
+                snprintf(udc, sizeof udc, "%s", e->d_name);
+                break;
+            }
+        }
+        if (d) closedir(d);
+    }
+    if (!udc[0]) {
+        tdc_lx_fail(TDC_LX_EXIT_NO_DEVICE, "usb: gadget not bound: no USB device controller in /sys/class/udc "
+                                           "(Raspberry Pi: dtoverlay=dwc2,dr_mode=peripheral)");
+        return -1;
+    }
+    (void)put(GADGET, "UDC", ""); /* a previous run's binding */
+    if (put(GADGET, "UDC", udc) != 0) {
+        tdc_lx_fail(TDC_LX_EXIT_IO, "usb: gadget not bound: binding to %s: %s", udc, strerror(errno));
+        return -1;
+    }
+    tdc_lx_logf("usb: gadget bound to %s, serial %s", udc, tdc_lx_opts.serial);
+    return 0;
+}
+
+int tdc_lx_ffs_init(uint32_t width, uint32_t height, uint32_t refresh_mhz, uint32_t rx_bytes, uint32_t max_packet)
+{
+    char path[512];
+    snprintf(path, sizeof path, "%s/slots.bin", tdc_lx_opts.state_dir);
+    if (mkdir_ok(tdc_lx_opts.state_dir) || (g_slots = open(path, O_RDWR | O_CREAT | O_CLOEXEC, 0644)) < 0) {
+        tdc_lx_logf("dfu: no slot file %s: %s (updates will fail)", path, strerror(errno));
+    }
+    tdc_usbp_config_t cfg = {.board_name = "linux",
+                             .panel_name = TDC_PANEL_NAME,
+                             .serial = tdc_lx_opts.serial,
+                             .fw_version = 0x000100u,
+                             .panel_width = (uint16_t)width,
+                             .panel_height = (uint16_t)height,
+                             .refresh_mhz = refresh_mhz,
+                             .rx_buffer_bytes = rx_bytes,
+                             .max_packet_bytes = max_packet,
+                             .flash = {slot_write, slot_read, NULL, SLOT_BYTES},
+                             .sink = NULL,
+                             .sink_ctx = NULL};
+    if (tdc_usbp_init(&g_proto, &cfg) != TDC_OK) {
+        tdc_lx_fail(TDC_LX_EXIT_ARGS, "usb: protocol refused the configuration (serial longer than 31 characters?)");
+        return -1;
+    }
+    if (make_gadget() != 0) return -1;
+    if (mkdir_ok(tdc_lx_opts.ffs_dir) != 0) {
+        tdc_lx_fail(TDC_LX_EXIT_IO, "usb: gadget not bound: cannot create %s: %s", tdc_lx_opts.ffs_dir, strerror(errno));
+        return -1;
+    }
+    snprintf(path, sizeof path, "%s/ep0", tdc_lx_opts.ffs_dir);
+    if (access(path, F_OK) != 0 && mount("tdc", tdc_lx_opts.ffs_dir, "functionfs", 0, NULL) != 0) {
+        tdc_lx_fail(TDC_LX_EXIT_NO_DEVICE, "usb: gadget not bound: cannot mount FunctionFS at %s: %s (usb_f_fs loaded?)",
+                    tdc_lx_opts.ffs_dir, strerror(errno));
+        return -1;
+    }
+    if ((g_ep0 = open(path, O_RDWR | O_CLOEXEC)) < 0 || tdc_lx_ffs_write_descriptors(g_ep0) != 0) {
+        tdc_lx_fail(TDC_LX_EXIT_IO, "usb: gadget not bound: FunctionFS ep0 %s: %s", path, strerror(errno));
+        return -1;
+    }
+    /* SIGTERM must reach the main thread (its blocked ep1 read returns EINTR) */
+    sigset_t block, old;
+    sigemptyset(&block);
+    sigaddset(&block, SIGTERM);
+    sigaddset(&block, SIGINT);
+    pthread_sigmask(SIG_BLOCK, &block, &old);
+    pthread_t t;
+    int bad = pthread_create(&t, NULL, ep0_thread, NULL) != 0 || pthread_create(&t, NULL, status_thread, NULL) != 0;
+    pthread_sigmask(SIG_SETMASK, &old, NULL);
+    if (bad) {
+        tdc_lx_fail(TDC_LX_EXIT_IO, "usb: cannot start the endpoint threads");
+        return -1;
+    }
+    return bind_udc();
+}

@@ -1,0 +1,28 @@
+# The Linux board (boards/linux, docs/boards.md "Linux board"): the frame
+# loop as a user-space program, tdc-board, behind tdc_board.h with KMS panel
+# out (libdrm), a USB gadget transport (configfs + FunctionFS) and GPIO
+# (libgpiod).
+#   make BOARD=linux [PANEL=p]     -> build/linux-<panel>/tdc-board (static)
+# The loop and the firmware are the objects of the host build of the frame
+# loop (tdc_main.c and the panel-sized decoder built for this panel and these
+# stages, the gcc -O2 firmware library), so the board shows the bytes the
+# host double (tests/arm/tdc_board_host.c) prints; make test-vm compares them.
+
+DEPS_PKGS += libdrm-dev libgpiod-dev
+
+ifeq ($(BOARD_OS),linux)
+LX_CFLAGS := -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror -Wvla -Wshadow $(OPT) -g \
+             -Ifirmware -Ifirmware/board -I$(GEN) $(shell pkg-config --cflags libdrm 2>/dev/null || echo -I/usr/include/libdrm) \
+             -include $(PANEL_CONFIG)
+LX_LIBS := -static -ldrm -lgpiod -lpthread
+# the loop's objects for this panel and these stages (mk/boards.mk fw_host_loop)
+$(eval $(call fw_host_loop,$(BP)/loop,$(BANDS),$(FW_CFG_BASE)))
+LX_LOOP_OBJS = $(BP)/loop/tdc_main.o $(patsubst firmware/%.c,$(BP)/loop/fw/%.o,$(FWH_PANEL_SRCS))
+LX_BOARD_OBJS = $(patsubst firmware/board/%.c,$(BP)/board/%.o,$(BOARD_SRCS))
+$(BP)/board/%.o: firmware/board/%.c firmware/board/tdc_board_linux.h firmware/board/tdc_board.h $(PANEL_CONFIG) $(GEN)/tdc_panels.h
+	@mkdir -p $(@D)
+	$(CC) $(LX_CFLAGS) -MMD -MP -c $< -o $@
+$(BP)/tdc-board: $$(LX_BOARD_OBJS) $$(LX_LOOP_OBJS) $(FWLIB)
+	$(CC) $(HOST_LDFLAGS) $^ -o $@ $(LX_LIBS)
+	@echo "board program: $@ (panel $(PANEL), stages: $(or $(strip $(STAGES)),link only), bands $(BANDS))"
+endif
