@@ -26,3 +26,17 @@ $(BP)/tdc-board: $$(LX_BOARD_OBJS) $$(LX_LOOP_OBJS) $(FWLIB)
 	$(CC) $(HOST_LDFLAGS) $^ -o $@ $(LX_LIBS)
 	@echo "board program: $@ (panel $(PANEL), stages: $(or $(strip $(STAGES)),link only), bands $(BANDS))"
 endif
+
+# make test-vm (mk/hosttools.mk): the board for htc-vive, the host double of
+# its very loop objects, and the streams it shows in the VM: TRM, foveated
+# (a corrupted payload and a refused foveation header inside), banded TRM
+# with a corrupted band (frame 2: that picture dropped whole, its eye kept).
+# (The plain stream, 34 MB at this size, passed too but doubled the VM's
+# time; its corrupted/RGB565/lost cases run on the host: test_fw_loop.sh.)
+VM_DISPLAY_PANEL := htc-vive
+VM_DISPLAY_MODES := trm fov trm-bands-crc
+ifeq ($(BOARD_OS),linux)
+FW_FRAMES_trm-bands-crc := 3
+.PHONY: linux-vm-inputs
+linux-vm-inputs: $(BP)/tdc-board $(BP)/loop/tdc_fw_host $(foreach m,$(VM_DISPLAY_MODES),$(STREAMS)/$(PANEL)-$(m).tdcs)
+endif

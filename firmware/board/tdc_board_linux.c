@@ -9,7 +9,7 @@
  * Usage: tdc-board [options]      (runs until SIGTERM / SIGINT)
  *   --drm PATH          DRM device (default /dev/dri/card0)
  *   --connector NAME    e.g. HDMI-A-1, DSI-1, Virtual-1 (default: the first connected)
- *   --ffs DIR           FunctionFS mount point (default /dev/ffs-tdc)
+ *   --ffs DIR           FunctionFS mount point (default /dev/ffs-tdcboard)
  *   --udc NAME          USB device controller (default: the first in /sys/class/udc)
  *   --serial S          USB serial number (default: the machine id's first 8 characters, else "0")
  *   --state DIR         DFU A/B slots (default /var/lib/tdc)
@@ -38,7 +38,7 @@
 #endif
 
 tdc_lx_opts_t tdc_lx_opts = {.drm_path = "/dev/dri/card0",
-                             .ffs_dir = "/dev/ffs-tdc",
+                             .ffs_dir = "/dev/ffs-tdcboard",
                              .serial = "0",
                              .state_dir = "/var/lib/tdc"};
 volatile int tdc_lx_stop;

@@ -31,6 +31,9 @@
 #include "tdc_usbproto.h"
 
 #define GADGET "/sys/kernel/config/usb_gadget/tdc-board"
+/* FunctionFS instance names are global: "ffs.<name>", mounted as device <name> */
+#define FFS_NAME "tdcboard"
+#define FFS_FUNCTION "ffs." FFS_NAME
 /* A slot holds the board program or a panel profile image (48-byte header
  * + payload); the static x86-64 program is ~1.2 MB. */
 #define SLOT_BYTES (8u * 1024u * 1024u)
@@ -287,10 +290,13 @@ static int make_gadget(void)
             return -1;
         }
     }
-    if (mkdir_ok(GADGET) || mkdir_ok(GADGET "/strings/0x409") || mkdir_ok(GADGET "/functions/ffs.tdc") ||
-        mkdir_ok(GADGET "/configs/c.1")) {
-        tdc_lx_fail(TDC_LX_EXIT_IO, "usb: gadget not bound: cannot create %s: %s", GADGET, strerror(errno));
-        return -1;
+    static const char *const dirs[] = {GADGET, GADGET "/strings/0x409", GADGET "/functions/" FFS_FUNCTION,
+                                       GADGET "/configs/c.1"};
+    for (unsigned i = 0; i < sizeof dirs / sizeof dirs[0]; i++) {
+        if (mkdir_ok(dirs[i]) != 0) { /* EBUSY: another gadget has a FunctionFS instance of that name */
+            tdc_lx_fail(TDC_LX_EXIT_IO, "usb: gadget not bound: cannot create %s: %s", dirs[i], strerror(errno));
+            return -1;
+        }
     }
     char vid[8], pid[8];
     snprintf(vid, sizeof vid, "0x%04x", TDC_USB_VID);
@@ -306,7 +312,7 @@ static int make_gadget(void)
             return -1;
         }
     }
-    if (symlink(GADGET "/functions/ffs.tdc", GADGET "/configs/c.1/ffs.tdc") != 0 && errno != EEXIST) {
+    if (symlink(GADGET "/functions/" FFS_FUNCTION, GADGET "/configs/c.1/" FFS_FUNCTION) != 0 && errno != EEXIST) {
         tdc_lx_fail(TDC_LX_EXIT_IO, "usb: gadget not bound: linking the function: %s", strerror(errno));
         return -1;
     }
@@ -371,7 +377,7 @@ int tdc_lx_ffs_init(uint32_t width, uint32_t height, uint32_t refresh_mhz, uint3
         return -1;
     }
     snprintf(path, sizeof path, "%s/ep0", tdc_lx_opts.ffs_dir);
-    if (access(path, F_OK) != 0 && mount("tdc", tdc_lx_opts.ffs_dir, "functionfs", 0, NULL) != 0) {
+    if (access(path, F_OK) != 0 && mount(FFS_NAME, tdc_lx_opts.ffs_dir, "functionfs", 0, NULL) != 0) {
         tdc_lx_fail(TDC_LX_EXIT_NO_DEVICE, "usb: gadget not bound: cannot mount FunctionFS at %s: %s (usb_f_fs loaded?)",
                     tdc_lx_opts.ffs_dir, strerror(errno));
         return -1;

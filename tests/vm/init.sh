@@ -61,6 +61,9 @@ wait_board() {
 bind
 if wait_board; then ok usb-enumerate; else bad usb-enumerate "no board after 10 s"; cat /tmp/board.log; finish; fi
 
+# tdc_only=display on the kernel command line (TDC_VM_ONLY=display make
+# test-vm): only the display board's checks, while working on them
+if ! grep -q tdc_only=display /proc/cmdline; then
 check usb-list 0 "serial VM-1 board vm-gadget panel vm-32x24" tdc-usb list
 check usb-info 0 "panel: vm-32x24 32x24 @ 90.000 Hz" tdc-usb --serial VM-1 info
 # link streams through the firmware decoder on the board: counters are its verdicts
@@ -180,5 +183,45 @@ missed=$(sed -n 's/.*missed frames \([0-9]*\).*/\1/p' /tmp/out)
 echo "    measured refresh ${hz} dHz, missed ${missed}"
 [ -n "$hz" ] && [ "$hz" -ge 190 ] && [ "$hz" -le 210 ] && ok gpio-vsync-rate || bad gpio-vsync-rate "refresh '$hz' dHz, want 190..210 (20 Hz +-5 %)"
 [ -n "$missed" ] && [ "$missed" -ge 2 ] && [ "$missed" -le 5 ] && ok gpio-vsync-missed || bad gpio-vsync-missed "missed '$missed', want 2..5 (3 left out in the window)"
+
+fi # tdc_only
+
+# ---------------------------------------------------------------- display board
+# The Linux board (BOARD=linux, tdc-board): its own configfs gadget on the
+# same dummy UDC (the fixture above is unplugged and stopped), KMS on
+# QEMU's bochs-display through Debian's bochs DRM driver.  Each stream is
+# sent piece by piece (tests/vm/display_data.sh); after each shown frame
+# the console line "VMSHOT NAME K" has the host capture the scan-out
+# (tests/vm/qemu_capture.py) and answer on ttyS1; run-vm.sh compares the
+# captures byte for byte with the host loop's frames.
+unbind; kill $board_pid; wait $board_pid 2>/dev/null
+check board-no-drm 2 "drm: no DRM device /dev/dri/card0" tdc-board --drm /dev/dri/card0
+for m in drm drm_kms_helper ttm drm_ttm_helper drm_vram_helper bochs; do
+    insmod /lib/modules/$m.ko || bad "insmod-$m" "insmod failed"
+done
+for i in $(seq 50); do [ -e /dev/dri/card0 ] && break; usleep 100000; done
+exec 3< /dev/ttyS1
+stty -F /dev/ttyS1 -echo
+tdc-board --udc "$UDC" --serial VM-2 --state /tmp/tdc-state > /tmp/tdcb.log 2>&1 &
+tdcb=$!
+B="tdc-usb --serial VM-2"
+for i in $(seq 100); do $B info > /dev/null 2>&1 && break; usleep 100000; done
+check board-info 0 "panel: htc-vive 1080x1200" $B info
+frames() { $B info 2>/dev/null | sed -n 's/.* frames \([0-9]*\)$/\1/p'; }
+for d in /data/disp/*; do
+    name=${d##*/}; sent=0; shots=0; t0=$(date +%s)
+    while read -r part want shot; do
+        $B --timeout 60000 --chunk 16384 stream $d/$part > /tmp/out 2>&1 || { bad "display-$name" "stream $part: exit $?"; cat /tmp/out; break; }
+        n=; for i in $(seq 600); do n=$(frames); [ "${n:-0}" -ge "$want" ] && break; usleep 50000; done
+        [ "$n" = "$want" ] || { bad "display-$name" "$part: board shows $n frames, want $want"; break; }
+        if [ "$shot" != - ]; then echo "VMSHOT $name $shot"; read -r go <&3; shots=$((shots+1)); fi
+        sent=$((sent+1))
+    done < $d/plan
+    echo "    display $name: $sent pieces sent, $shots frames captured, $(($(date +%s) - t0)) s"
+    [ $sent = $(grep -c . $d/plan) ] && ok "display-$name-sent"
+done
+kill -TERM $tdcb; wait $tdcb; rc=$?
+sed 's/^/    /' /tmp/tdcb.log
+[ $rc = 0 ] && ok board-sigterm || bad board-sigterm "exit $rc after SIGTERM"
 
 finish
