@@ -73,6 +73,10 @@ void tdc_lx_fail(int code, const char *fmt, ...)
 
 tdc_board_status_t tdc_board_init(void)
 {
+    /* the loop runs once per USB connection (main): set up once */
+    static int done;
+    if (done) return TDC_BOARD_OK;
+    done = 1;
     const uint32_t w = TDC_PANEL_EYES * TDC_PANEL_WIDTH, h = TDC_PANEL_HEIGHT;
     if (!tdc_lx_opts.no_display && tdc_lx_drm_init(w, h, TDC_PANEL_REFRESH_HZ) != 0) return TDC_BOARD_ERR_IO;
     if (tdc_lx_gpio_init() != 0) return TDC_BOARD_ERR_IO;
@@ -195,7 +199,14 @@ int main(int argc, char **argv)
     sigaction(SIGINT, &sa, NULL);
     signal(SIGPIPE, SIG_IGN);
     setvbuf(stdout, NULL, _IOLBF, 0);
-    const int rc = tdc_fw_run();
+    /* One run of the frame loop per USB connection: when the host goes
+     * (unplug, USB reset) the loop shows what it has and returns, and the
+     * next connection starts with a fresh link decoder (a half-received
+     * packet must not swallow the next stream's header). */
+    int rc;
+    do {
+        rc = tdc_fw_run();
+    } while (!tdc_lx_stop && !g_fail && !tdc_lx_opts.stream);
     if (g_fail) return g_fail;
     return rc;
 }

@@ -57,7 +57,8 @@ void tdc_lx_drm_wait(void);
 
 /* USB gadget (tdc_board_linux_ffs.c) */
 int tdc_lx_ffs_init(uint32_t width, uint32_t height, uint32_t refresh_mhz, uint32_t rx_bytes, uint32_t max_packet);
-/* Bulk OUT into buf: 1 with *got bytes, 0 nothing (host gone, waiting), -1 stop. */
+/* Bulk OUT into buf: 1 with *got bytes, 0 nothing yet, -1 stop (SIGTERM),
+ * -2 host gone (the connection's stream ended). */
 int tdc_lx_ffs_read(uint8_t *buf, uint32_t cap, uint32_t *got);
 void tdc_lx_ffs_frame_shown(void);
 /* Writes the function's descriptors and strings to ep0 (FunctionFS v2

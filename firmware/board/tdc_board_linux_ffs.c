@@ -245,10 +245,12 @@ int tdc_lx_ffs_read(uint8_t *buf, uint32_t cap, uint32_t *got)
     }
     if (tdc_lx_stop) return -1;
     if (n < 0 && errno != EINTR) {
-        /* ESHUTDOWN: the function was disabled under the read (unplug) */
+        /* ESHUTDOWN: the function was disabled under the read (unplug,
+         * USB reset): this connection's stream has ended */
+        tdc_lx_logf("usb: host gone: stream ended (%s); the panel keeps its last frame", strerror(errno));
         close(g_ep1);
         g_ep1 = -1;
-        usleep(20000);
+        return -2;
     }
     return 0;
 }

@@ -208,18 +208,39 @@ B="tdc-usb --serial VM-2"
 for i in $(seq 100); do $B info > /dev/null 2>&1 && break; usleep 100000; done
 check board-info 0 "panel: htc-vive 1080x1200" $B info
 frames() { $B info 2>/dev/null | sed -n 's/.* frames \([0-9]*\)$/\1/p'; }
-for d in /data/disp/*; do
-    name=${d##*/}; sent=0; shots=0; t0=$(date +%s)
+# play DIR NAME [PLAN]: a stream's pieces, a capture after each shown frame
+play() {
+    d=$1; name=$2; plan=${3:-$1/plan}; sent=0; shots=0; t0=$(date +%s)
     while read -r part want shot; do
         $B --timeout 60000 --chunk 16384 stream $d/$part > /tmp/out 2>&1 || { bad "display-$name" "stream $part: exit $?"; cat /tmp/out; break; }
         n=; for i in $(seq 600); do n=$(frames); [ "${n:-0}" -ge "$want" ] && break; usleep 50000; done
         [ "$n" = "$want" ] || { bad "display-$name" "$part: board shows $n frames, want $want"; break; }
         if [ "$shot" != - ]; then echo "VMSHOT $name $shot"; read -r go <&3; shots=$((shots+1)); fi
         sent=$((sent+1))
-    done < $d/plan
+    done < $plan
     echo "    display $name: $sent pieces sent, $shots frames captured, $(($(date +%s) - t0)) s"
-    [ $sent = $(grep -c . $d/plan) ] && ok "display-$name-sent"
-done
+    [ $sent = $(grep -c . $plan) ] && ok "display-$name-sent"
+}
+# (the foveated stream up to frame 5: its corrupted payload (frame 1) and
+# refused foveation header (frame 4) are in; the whole of it doubles the time)
+head -n 6 /data/disp/fov/plan > /tmp/fov.plan
+play /data/disp/fov fov /tmp/fov.plan
+play /data/disp/trm trm
+play /data/disp/trm-bands-crc trm-bands-crc
+# Unplug mid-stream: tdc-usb sees the board go (6), the board logs the host
+# gone and keeps running; re-plugged, a new stream (the foveated one from
+# its start) shows its frames identical again: a fresh decoder per connection.
+GB=/sys/kernel/config/usb_gadget/tdc-board
+cat /data/disp/trm/part-* | $B --timeout 60000 --chunk 16384 stream - > /tmp/unplug.out 2>&1 &
+p=$!; sleep 2; echo "" > $GB/UDC; wait $p; rc=$?
+sed 's/^/    /' /tmp/unplug.out
+[ $rc = 6 ] && ok board-unplug-stream || bad board-unplug-stream "tdc-usb exit $rc, want 6"
+for i in $(seq 50); do grep -q "host gone" /tmp/tdcb.log && break; usleep 100000; done
+grep -q "usb: host gone" /tmp/tdcb.log && kill -0 $tdcb && ok board-unplug-survives || bad board-unplug-survives "no 'host gone' or board exited"
+echo "$UDC" > $GB/UDC
+for i in $(seq 100); do $B info > /dev/null 2>&1 && break; usleep 100000; done
+head -n 2 /data/disp/fov/plan > /tmp/replug.plan
+play /data/disp/fov fov.replug /tmp/replug.plan
 kill -TERM $tdcb; wait $tdcb; rc=$?
 sed 's/^/    /' /tmp/tdcb.log
 [ $rc = 0 ] && ok board-sigterm || bad board-sigterm "exit $rc after SIGTERM"
