@@ -40,3 +40,17 @@ FW_FRAMES_trm-bands-crc := 3
 .PHONY: linux-vm-inputs
 linux-vm-inputs: $(BP)/tdc-board $(BP)/loop/tdc_fw_host $(foreach m,$(VM_DISPLAY_MODES),$(STREAMS)/$(PANEL)-$(m).tdcs)
 endif
+
+# make bench: the board's frame loop against the 90 Hz budget at Vive size
+# (tests/linux/bench_board_rt.sh): frames/s and the share of the budget per
+# part, today's single core beside the goal (real time on <= 2 cores).
+BENCH_BOARD_PANEL := htc-vive
+$(B)/bench-linux-board: FORCE
+	@$(MAKE) --no-print-directory -j2 BOARD=linux PANEL=$(BENCH_BOARD_PANEL) CC=gcc OPT=-O2 SAN= \
+	    $(BUILD)/linux-$(BENCH_BOARD_PANEL)/tdc-board $(BUILD)/gcc-O2/tests/fw_stream
+	@mkdir -p $(@D)
+	@printf '#!/bin/sh\nexec tests/linux/bench_board_rt.sh %s %s %s\n' $(BUILD)/linux-$(BENCH_BOARD_PANEL)/tdc-board \
+	    $(BUILD)/gcc-O2/tests/fw_stream "$$(awk '$$1 == "width" { w = $$2 } $$1 == "height" { h = $$2 } \
+	    $$1 == "eyes" { e = $$2 } $$1 == "refresh_hz" { r = $$2 } END { print w, h, e, r }' boards/panels/$(BENCH_BOARD_PANEL).panel)" > $@
+	@chmod +x $@
+BENCHES += $(B)/bench-linux-board

@@ -15,6 +15,10 @@
  *   --state DIR         DFU A/B slots (default /var/lib/tdc)
  *   --stream FILE       read a .tdcs file instead of USB, exit at its end
  *   --no-display        checksum lines on stdout instead of KMS
+ *   --bench             with --stream: the scan-out conversion into a RAM
+ *                       buffer instead of KMS, and at the end one line
+ *                       "bench: ..." with the time spent in transport,
+ *                       loop (decode + stages), panel out (make bench)
  *   --gpio-chip C --gpio-vsync L --gpio-reset L   (tdc_board_linux_gpio.c)
  *   --syslog            log to syslog as well as stderr
  *   --reset-cause power-on|pin|software|watchdog   (what the unit that restarted us says)
@@ -45,6 +49,17 @@ volatile int tdc_lx_stop;
 static int g_fail, g_syslog;
 static tdc_reset_cause_t g_reset = TDC_RESET_POWER_ON;
 static FILE *g_stream;
+/* --bench: microseconds spent in the board calls; the rest is the loop */
+static int g_bench;
+static uint64_t g_t_transport, g_t_panel, g_frames;
+static uint32_t *g_bench_fb;
+
+static uint64_t now_us(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (uint64_t)t.tv_sec * 1000000u + (uint64_t)t.tv_nsec / 1000u;
+}
 
 static void vlog(const char *fmt, va_list ap)
 {
@@ -78,6 +93,7 @@ tdc_board_status_t tdc_board_init(void)
     if (done) return TDC_BOARD_OK;
     done = 1;
     const uint32_t w = TDC_PANEL_EYES * TDC_PANEL_WIDTH, h = TDC_PANEL_HEIGHT;
+    if (g_bench && !(g_bench_fb = malloc((size_t)w * h * 4u))) return TDC_BOARD_ERR_IO; /* once, at start-up */
     if (!tdc_lx_opts.no_display && tdc_lx_drm_init(w, h, TDC_PANEL_REFRESH_HZ) != 0) return TDC_BOARD_ERR_IO;
     if (tdc_lx_gpio_init() != 0) return TDC_BOARD_ERR_IO;
     if (tdc_lx_opts.stream) {
@@ -102,8 +118,10 @@ tdc_board_status_t tdc_board_transport_read(uint8_t *buf, uint32_t cap, uint32_t
 {
     *got = 0;
     if (g_stream) {
+        const uint64_t t0 = g_bench ? now_us() : 0;
         const size_t n = fread(buf, 1, cap, g_stream);
         *got = (uint32_t)n;
+        if (g_bench) g_t_transport += now_us() - t0;
         return n ? TDC_BOARD_OK : ferror(g_stream) ? TDC_BOARD_ERR_IO : TDC_BOARD_END;
     }
     return tdc_lx_ffs_read(buf, cap, got) < 0 ? TDC_BOARD_END : TDC_BOARD_OK;
@@ -112,6 +130,20 @@ tdc_board_status_t tdc_board_transport_read(uint8_t *buf, uint32_t cap, uint32_t
 tdc_board_status_t tdc_board_panel_show(const uint8_t *fb, uint32_t stride, uint32_t width, uint32_t height,
                                         uint32_t frame_index)
 {
+    if (g_bench) { /* what the KMS path does per frame: RGB888 -> XRGB8888 (tdc_board_linux_drm.c) */
+        const uint64_t t0 = now_us();
+        for (uint32_t y = 0; y < height; y++) {
+            const uint8_t *p = fb + (size_t)y * stride;
+            uint32_t *d = g_bench_fb + (size_t)y * width;
+            for (uint32_t x = 0; x < width; x++) {
+                d[x] = (uint32_t)p[3 * x] << 16 | (uint32_t)p[3 * x + 1] << 8 | p[3 * x + 2];
+            }
+        }
+        g_t_panel += now_us() - t0;
+        g_frames++;
+        (void)frame_index;
+        return TDC_BOARD_OK;
+    }
     if (tdc_lx_opts.no_display) {
         printf("frame %u %016llx\n", (unsigned)frame_index,
                (unsigned long long)tdc_board_frame_checksum(fb, stride, width, height));
@@ -152,7 +184,7 @@ static void on_signal(int sig)
 static int usage(void)
 {
     fprintf(stderr, "usage: tdc-board [--drm PATH] [--connector NAME] [--ffs DIR] [--udc NAME] [--serial S]\n"
-                    "                 [--state DIR] [--stream FILE] [--no-display] [--syslog]\n"
+                    "                 [--state DIR] [--stream FILE] [--no-display] [--bench] [--syslog]\n"
                     "                 [--gpio-chip C [--gpio-vsync L] [--gpio-reset L]] [--reset-cause C]\n");
     return TDC_LX_EXIT_ARGS;
 }
@@ -185,6 +217,9 @@ int main(int argc, char **argv)
             i++;
         } else if (!strcmp(a, "--no-display")) {
             tdc_lx_opts.no_display = 1;
+        } else if (!strcmp(a, "--bench")) {
+            tdc_lx_opts.no_display = 1;
+            g_bench = 1;
         } else if (!strcmp(a, "--syslog")) {
             g_syslog = 1;
             openlog("tdc-board", LOG_PID, LOG_DAEMON);
@@ -204,9 +239,16 @@ int main(int argc, char **argv)
      * next connection starts with a fresh link decoder (a half-received
      * packet must not swallow the next stream's header). */
     int rc;
+    const uint64_t t0 = now_us();
     do {
         rc = tdc_fw_run();
     } while (!tdc_lx_stop && !g_fail && !tdc_lx_opts.stream);
+    if (g_bench) {
+        const uint64_t total = now_us() - t0;
+        printf("bench: frames %llu total_us %llu transport_us %llu panel_us %llu loop_us %llu\n",
+               (unsigned long long)g_frames, (unsigned long long)total, (unsigned long long)g_t_transport,
+               (unsigned long long)g_t_panel, (unsigned long long)(total - g_t_transport - g_t_panel));
+    }
     if (g_fail) return g_fail;
     return rc;
 }
