@@ -26,6 +26,7 @@
  * for start-up failures (2 no DRM device / no UDC, 14 mode not available).
  */
 #include <errno.h>
+#include <pthread.h>
 #include <signal.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -173,6 +174,19 @@ tdc_reset_cause_t tdc_board_reset_cause(void)
 void tdc_board_log(const char *msg)
 {
     tdc_lx_logf("%s", msg);
+}
+
+int tdc_lx_thread(void *(*fn)(void *))
+{
+    sigset_t block, old;
+    sigemptyset(&block);
+    sigaddset(&block, SIGTERM);
+    sigaddset(&block, SIGINT);
+    pthread_sigmask(SIG_BLOCK, &block, &old);
+    pthread_t t;
+    const int rc = pthread_create(&t, NULL, fn, NULL);
+    pthread_sigmask(SIG_SETMASK, &old, NULL);
+    return rc == 0 ? 0 : -1;
 }
 
 static void on_signal(int sig)

@@ -47,6 +47,9 @@ extern tdc_lx_opts_t tdc_lx_opts;
 void tdc_lx_logf(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 /* Records a start-up failure's exit code (the first one wins) and logs it. */
 void tdc_lx_fail(int code, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+/* Starts a thread with SIGTERM/SIGINT blocked in it, so that they reach the
+ * main thread (its blocked endpoint read returns EINTR); 0 or -1. */
+int tdc_lx_thread(void *(*fn)(void *));
 /* Set by SIGTERM/SIGINT: the transport reports its end, the loop returns. */
 extern volatile int tdc_lx_stop;
 
@@ -61,9 +64,6 @@ int tdc_lx_ffs_init(uint32_t width, uint32_t height, uint32_t refresh_mhz, uint3
  * -2 host gone (the connection's stream ended). */
 int tdc_lx_ffs_read(uint8_t *buf, uint32_t cap, uint32_t *got);
 void tdc_lx_ffs_frame_shown(void);
-/* Writes the function's descriptors and strings to ep0 (FunctionFS v2
- * format); 0 or -1 with errno.  Shared with the test fixture tests/vm/tdc_ffs_board.c. */
-int tdc_lx_ffs_write_descriptors(int ep0);
 
 /* GPIO (tdc_board_linux_gpio.c) */
 int tdc_lx_gpio_init(void);

@@ -42,30 +42,26 @@ static dumb_t g_buf[2];
 static unsigned g_front; /* the buffer scanned out (or about to be, once its flip completes) */
 static int g_flip_pending, g_no_vblank;
 
-static uint32_t prop_id(uint32_t obj, uint32_t type, const char *name)
+/* A property of a KMS object by name: its id (0: none), and its value in *value. */
+static uint32_t prop_find(uint32_t obj, uint32_t type, const char *name, uint64_t *value)
 {
     drmModeObjectProperties *props = drmModeObjectGetProperties(g_fd, obj, type);
     uint32_t id = 0;
     for (uint32_t i = 0; props && i < props->count_props && !id; i++) {
         drmModePropertyRes *p = drmModeGetProperty(g_fd, props->props[i]);
-        if (p && !strcmp(p->name, name)) id = p->prop_id;
+        if (p && !strcmp(p->name, name)) {
+            id = p->prop_id;
+            if (value) *value = props->prop_values[i];
+        }
         drmModeFreeProperty(p);
     }
     drmModeFreeObjectProperties(props);
     return id;
 }
 
-static uint64_t prop_value(uint32_t obj, uint32_t type, const char *name)
+static uint32_t prop_id(uint32_t obj, uint32_t type, const char *name)
 {
-    drmModeObjectProperties *props = drmModeObjectGetProperties(g_fd, obj, type);
-    uint64_t v = 0;
-    for (uint32_t i = 0; props && i < props->count_props; i++) {
-        drmModePropertyRes *p = drmModeGetProperty(g_fd, props->props[i]);
-        if (p && !strcmp(p->name, name)) v = props->prop_values[i];
-        drmModeFreeProperty(p);
-    }
-    drmModeFreeObjectProperties(props);
-    return v;
+    return prop_find(obj, type, name, NULL);
 }
 
 static void conn_name(const drmModeConnector *c, char *out, size_t cap)
@@ -180,8 +176,9 @@ static int pick_crtc_plane(drmModeRes *res, const drmModeConnector *c)
     drmModePlaneRes *pr = drmModeGetPlaneResources(g_fd);
     for (uint32_t i = 0; pr && i < pr->count_planes && !g_plane; i++) {
         drmModePlane *p = drmModeGetPlane(g_fd, pr->planes[i]);
+        uint64_t type = 0;
         if (p && (p->possible_crtcs & (1u << g_crtc_index)) &&
-            prop_value(p->plane_id, DRM_MODE_OBJECT_PLANE, "type") == DRM_PLANE_TYPE_PRIMARY) {
+            prop_find(p->plane_id, DRM_MODE_OBJECT_PLANE, "type", &type) && type == DRM_PLANE_TYPE_PRIMARY) {
             g_plane = p->plane_id;
         }
         drmModeFreePlane(p);

@@ -20,7 +20,6 @@
 #include <fcntl.h>
 #include <linux/usb/functionfs.h>
 #include <pthread.h>
-#include <signal.h>
 #include <stdio.h>
 #include <string.h>
 #include <sys/mount.h>
@@ -28,6 +27,7 @@
 #include <unistd.h>
 
 #include "tdc_board_linux.h"
+#include "tdc_ffs.h"
 #include "tdc_usbproto.h"
 
 #define GADGET "/sys/kernel/config/usb_gadget/tdc-board"
@@ -37,54 +37,15 @@
 /* A slot holds the board program or a panel profile image (48-byte header
  * + payload); the static x86-64 program is ~1.2 MB. */
 #define SLOT_BYTES (8u * 1024u * 1024u)
-/* The function's descriptors: the configuration descriptor minus its 9-byte
- * header and minus the 9-byte DFU functional descriptor at its end: Linux
- * 6.1's FunctionFS accepts class descriptors (type 0x21) only inside HID
- * and CCID interfaces (ffs_do_single_desc() in
- * drivers/usb/gadget/function/f_fs.c, `case USB_TYPE_CLASS | 0x01`), so
- * hosts use the protocol's wTransferSize of 1024 (dfu-util: -t 1024). */
-#define FN_DESC_LEN (TDC_USB_CONFIG_DESC_LEN - 18u)
 
 static pthread_mutex_t g_lock = PTHREAD_MUTEX_INITIALIZER;
 static tdc_usbp_t g_proto;
 static int g_ep0 = -1, g_ep1 = -1, g_slots = -1;
 static volatile int g_enabled;
-
-int tdc_lx_ffs_write_descriptors(int ep0)
-{
-    struct {
-        struct usb_functionfs_descs_head_v2 head;
-        uint32_t fs_count, hs_count;
-        uint8_t fs[FN_DESC_LEN], hs[FN_DESC_LEN];
-    } __attribute__((packed)) d;
-    uint8_t cfg[TDC_USB_CONFIG_DESC_LEN];
-    d.head.magic = htole32(FUNCTIONFS_DESCRIPTORS_MAGIC_V2);
-    d.head.length = htole32(sizeof d);
-    d.head.flags = htole32(FUNCTIONFS_HAS_FS_DESC | FUNCTIONFS_HAS_HS_DESC);
-    d.fs_count = htole32(4);
-    d.hs_count = htole32(4);
-    (void)tdc_usbp_config_descriptor(cfg, 0);
-    memcpy(d.fs, cfg + 9, FN_DESC_LEN);
-    (void)tdc_usbp_config_descriptor(cfg, 1);
-    memcpy(d.hs, cfg + 9, FN_DESC_LEN);
-    /* FunctionFS numbers a function's strings from 1 (its own table below) */
-    d.fs[8] = d.hs[8] = 1;   /* iInterface of the streaming interface */
-    d.fs[31] = d.hs[31] = 2; /* iInterface of the DFU interface */
-    struct {
-        struct usb_functionfs_strings_head head;
-        uint16_t code;
-        char s1[sizeof "tdc link stream"], s2[sizeof "tdc DFU (A/B slot)"];
-    } __attribute__((packed)) s;
-    s.head.magic = htole32(FUNCTIONFS_STRINGS_MAGIC);
-    s.head.length = htole32(sizeof s);
-    s.head.str_count = htole32(2);
-    s.head.lang_count = htole32(1);
-    s.code = htole16(0x0409);
-    memcpy(s.s1, "tdc link stream", sizeof s.s1);
-    memcpy(s.s2, "tdc DFU (A/B slot)", sizeof s.s2);
-    if (write(ep0, &d, sizeof d) != (ssize_t)sizeof d || write(ep0, &s, sizeof s) != (ssize_t)sizeof s) return -1;
-    return 0;
-}
+/* connections lost (FUNCTIONFS_DISABLE after ENABLE): the reader ends the
+ * loop's run when this moves, also when the loss happened while the loop
+ * was busy and not reading (a read then just waits for the next ENABLE) */
+static volatile unsigned g_lost;
 
 /* ---- DFU slots: one file of 2 * SLOT_BYTES in the state folder ---- */
 static int slot_write(void *ctx, uint32_t off, const uint8_t *d, uint32_t n)
@@ -118,53 +79,6 @@ static void board_reset(const char *why)
     }
 }
 
-static void stall(int ep0, int in)
-{
-    /* FunctionFS: an I/O in the wrong direction stalls ep0 (EL2HLT) */
-    if ((in ? read(ep0, NULL, 0) : write(ep0, NULL, 0)) < 0 && errno != EL2HLT) {
-        tdc_lx_logf("usb: ep0: stall: %s", strerror(errno));
-    }
-}
-
-static void handle_setup(int ep0, const struct usb_ctrlrequest *c)
-{
-    static uint8_t data[4096], reply[4096];
-    tdc_usbp_setup_t s = {c->bRequestType, c->bRequest, le16toh(c->wValue), le16toh(c->wIndex), le16toh(c->wLength)};
-    uint32_t len = 0;
-    if (s.bm_request_type & 0x80u) {
-        pthread_mutex_lock(&g_lock);
-        tdc_status_t r = tdc_usbp_control(&g_proto, &s, NULL, reply, sizeof reply, &len);
-        pthread_mutex_unlock(&g_lock);
-        if (r != TDC_OK) {
-            stall(ep0, 1);
-        } else if (write(ep0, reply, len) < 0) {
-            tdc_lx_logf("usb: ep0: reply: %s", strerror(errno));
-        }
-        return;
-    }
-    if (s.w_length > sizeof data) {
-        stall(ep0, 0);
-        return;
-    }
-    /* OUT: the data stage is read first (reading acks the status stage), so
-     * a refused DNLOAD shows up in the next GETSTATUS as dfuERROR (DFU 1.1). */
-    if (s.w_length > 0 && read(ep0, data, s.w_length) != s.w_length) {
-        tdc_lx_logf("usb: ep0: data stage: %s", strerror(errno));
-        return;
-    }
-    pthread_mutex_lock(&g_lock);
-    tdc_status_t r = tdc_usbp_control(&g_proto, &s, data, reply, sizeof reply, &len);
-    if (tdc_usbp_take_reset(&g_proto)) board_reset("reset requested");
-    pthread_mutex_unlock(&g_lock);
-    if (s.w_length == 0) {
-        if (r != TDC_OK) {
-            stall(ep0, 0);
-        } else if (read(ep0, NULL, 0) < 0) {
-            tdc_lx_logf("usb: ep0: status stage: %s", strerror(errno));
-        }
-    }
-}
-
 static void *ep0_thread(void *arg)
 {
     (void)arg;
@@ -180,13 +94,16 @@ static void *ep0_thread(void *arg)
         }
         for (ssize_t i = 0; i < n / (ssize_t)sizeof ev[0]; i++) {
             switch (ev[i].type) {
-            case FUNCTIONFS_SETUP: handle_setup(g_ep0, &ev[i].u.setup); break;
+            case FUNCTIONFS_SETUP: tdc_ffs_setup(g_ep0, &ev[i].u.setup, &g_proto, &g_lock, board_reset); break;
             case FUNCTIONFS_ENABLE:
                 g_enabled = 1;
                 tdc_lx_logf("usb: host connected (configuration set)");
                 break;
             case FUNCTIONFS_DISABLE:
-                if (g_enabled) tdc_lx_logf("usb: host gone (disconnected or reset): the panel keeps its last frame");
+                if (g_enabled) {
+                    tdc_lx_logf("usb: host gone (disconnected or reset): the panel keeps its last frame");
+                    g_lost++;
+                }
                 g_enabled = 0;
                 pthread_mutex_lock(&g_lock);
                 board_reset("USB reset");
@@ -228,8 +145,16 @@ static void *status_thread(void *arg)
 
 int tdc_lx_ffs_read(uint8_t *buf, uint32_t cap, uint32_t *got)
 {
+    static unsigned seen;
     *got = 0;
     if (tdc_lx_stop) return -1;
+    if (seen != g_lost) {
+        seen = g_lost;
+        tdc_lx_logf("usb: host gone: stream ended; the next connection starts a new one");
+        if (g_ep1 >= 0) close(g_ep1);
+        g_ep1 = -1;
+        return -2;
+    }
     if (g_ep1 < 0 && (g_ep1 = open_ep("ep1")) < 0) {
         tdc_lx_logf("usb: cannot open bulk OUT endpoint %s/ep1: %s", tdc_lx_opts.ffs_dir, strerror(errno));
         usleep(100000);
@@ -250,6 +175,7 @@ int tdc_lx_ffs_read(uint8_t *buf, uint32_t cap, uint32_t *got)
         tdc_lx_logf("usb: host gone: stream ended (%s); the panel keeps its last frame", strerror(errno));
         close(g_ep1);
         g_ep1 = -1;
+        seen = g_lost;
         return -2;
     }
     return 0;
@@ -384,19 +310,11 @@ int tdc_lx_ffs_init(uint32_t width, uint32_t height, uint32_t refresh_mhz, uint3
                     tdc_lx_opts.ffs_dir, strerror(errno));
         return -1;
     }
-    if ((g_ep0 = open(path, O_RDWR | O_CLOEXEC)) < 0 || tdc_lx_ffs_write_descriptors(g_ep0) != 0) {
+    if ((g_ep0 = open(path, O_RDWR | O_CLOEXEC)) < 0 || tdc_ffs_write_descriptors(g_ep0) != 0) {
         tdc_lx_fail(TDC_LX_EXIT_IO, "usb: gadget not bound: FunctionFS ep0 %s: %s", path, strerror(errno));
         return -1;
     }
-    /* SIGTERM must reach the main thread (its blocked ep1 read returns EINTR) */
-    sigset_t block, old;
-    sigemptyset(&block);
-    sigaddset(&block, SIGTERM);
-    sigaddset(&block, SIGINT);
-    pthread_sigmask(SIG_BLOCK, &block, &old);
-    pthread_t t;
-    int bad = pthread_create(&t, NULL, ep0_thread, NULL) != 0 || pthread_create(&t, NULL, status_thread, NULL) != 0;
-    pthread_sigmask(SIG_SETMASK, &old, NULL);
+    const int bad = tdc_lx_thread(ep0_thread) != 0 || tdc_lx_thread(status_thread) != 0;
     if (bad) {
         tdc_lx_fail(TDC_LX_EXIT_IO, "usb: cannot start the endpoint threads");
         return -1;

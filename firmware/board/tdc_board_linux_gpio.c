@@ -10,8 +10,6 @@
  */
 #include <errno.h>
 #include <gpiod.h>
-#include <pthread.h>
-#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -89,14 +87,7 @@ int tdc_lx_gpio_init(void)
             tdc_lx_fail(TDC_LX_EXIT_IO, "gpio: reset line %s: %s", tdc_lx_opts.gpio_reset, strerror(errno));
             return -1;
         }
-        sigset_t block, old;
-        sigemptyset(&block);
-        sigaddset(&block, SIGTERM);
-        sigaddset(&block, SIGINT);
-        pthread_sigmask(SIG_BLOCK, &block, &old);
-        pthread_t t;
-        int bad = pthread_create(&t, NULL, reset_thread, NULL);
-        pthread_sigmask(SIG_SETMASK, &old, NULL);
+        const int bad = tdc_lx_thread(reset_thread) != 0;
         if (bad) {
             tdc_lx_fail(TDC_LX_EXIT_IO, "gpio: cannot start the reset-line thread");
             return -1;

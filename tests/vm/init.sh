@@ -212,10 +212,15 @@ frames() { $B info 2>/dev/null | sed -n 's/.* frames \([0-9]*\)$/\1/p'; }
 play() {
     d=$1; name=$2; plan=${3:-$1/plan}; sent=0; shots=0; t0=$(date +%s)
     while read -r part want shot; do
-        $B --timeout 60000 --chunk 16384 stream $d/$part > /tmp/out 2>&1 || { bad "display-$name" "stream $part: exit $?"; cat /tmp/out; break; }
+        timeout 90 $B --timeout 60000 --chunk 16384 stream $d/$part > /tmp/out 2>&1; rc=$?
+        # exit 11: the board's byte counter had not yet caught up with the
+        # last transfer the host saw complete (the loop counts after its
+        # read returns); all bytes arrived if the counter now says so
+        [ $rc = 11 ] && usleep 300000 && $B info 2>/dev/null | grep -q "rx_bytes $(stat -c %s $d/$part) " && rc=0
+        [ $rc = 0 ] || { bad "display-$name" "stream $part: exit $rc"; cat /tmp/out; tail -n 8 /tmp/tdcb.log; break; }
         n=; for i in $(seq 600); do n=$(frames); [ "${n:-0}" -ge "$want" ] && break; usleep 50000; done
-        [ "$n" = "$want" ] || { bad "display-$name" "$part: board shows $n frames, want $want"; break; }
-        if [ "$shot" != - ]; then echo "VMSHOT $name $shot"; read -r go <&3; shots=$((shots+1)); fi
+        [ "$n" = "$want" ] || { bad "display-$name" "$part: board shows $n frames, want $want"; tail -n 8 /tmp/tdcb.log; break; }
+        if [ "$shot" != - ]; then echo "VMSHOT $name $shot"; timeout 60 sh -c 'read -r go' <&3; shots=$((shots+1)); fi
         sent=$((sent+1))
     done < $plan
     echo "    display $name: $sent pieces sent, $shots frames captured, $(($(date +%s) - t0)) s"
@@ -237,8 +242,9 @@ sed 's/^/    /' /tmp/unplug.out
 [ $rc = 6 ] && ok board-unplug-stream || bad board-unplug-stream "tdc-usb exit $rc, want 6"
 for i in $(seq 50); do grep -q "host gone" /tmp/tdcb.log && break; usleep 100000; done
 grep -q "usb: host gone" /tmp/tdcb.log && kill -0 $tdcb && ok board-unplug-survives || bad board-unplug-survives "no 'host gone' or board exited"
-echo "$UDC" > $GB/UDC
+echo "$UDC" > $GB/UDC || bad board-replug "binding $UDC again failed"
 for i in $(seq 100); do $B info > /dev/null 2>&1 && break; usleep 100000; done
+tail -n 4 /tmp/tdcb.log | sed 's/^/    /'
 head -n 1 /data/disp/fov/plan > /tmp/replug.plan
 play /data/disp/fov fov.replug /tmp/replug.plan
 kill -TERM $tdcb; wait $tdcb; rc=$?
