@@ -54,3 +54,15 @@ $(B)/bench-linux-board: FORCE
 	    $$1 == "eyes" { e = $$2 } $$1 == "refresh_hz" { r = $$2 } END { print w, h, e, r }' boards/panels/$(BENCH_BOARD_PANEL).panel)" > $@
 	@chmod +x $@
 BENCHES += $(B)/bench-linux-board
+
+# make BOARD=linux install [DESTDIR=..] [PREFIX=/usr/local]: the program and
+# its systemd unit (boards/linux/tdc-board.service; enable it with
+# systemctl enable --now tdc-board).  Not run in CI (root, systemd).
+PREFIX ?= /usr/local
+ifeq ($(BOARD_OS),linux)
+.PHONY: install
+install: $(BP)/tdc-board
+	install -D -m 755 $< $(DESTDIR)$(PREFIX)/bin/tdc-board
+	sed 's|/usr/local/bin/tdc-board|$(PREFIX)/bin/tdc-board|' boards/linux/tdc-board.service > $(BP)/tdc-board.service
+	install -D -m 644 $(BP)/tdc-board.service $(DESTDIR)/etc/systemd/system/tdc-board.service
+endif
