@@ -59,11 +59,6 @@ static uint32_t prop_find(uint32_t obj, uint32_t type, const char *name, uint64_
     return id;
 }
 
-static uint32_t prop_id(uint32_t obj, uint32_t type, const char *name)
-{
-    return prop_find(obj, type, name, NULL);
-}
-
 static void conn_name(const drmModeConnector *c, char *out, size_t cap)
 {
     const char *t = drmModeGetConnectorTypeName(c->connector_type);
@@ -220,19 +215,28 @@ int tdc_lx_drm_init(uint32_t width, uint32_t height, uint32_t refresh_hz)
     }
     drmModeFreeResources(res);
     if (rc != 0) return -1;
-    p_conn_crtc = prop_id(g_conn, DRM_MODE_OBJECT_CONNECTOR, "CRTC_ID");
-    p_crtc_mode = prop_id(g_crtc, DRM_MODE_OBJECT_CRTC, "MODE_ID");
-    p_crtc_active = prop_id(g_crtc, DRM_MODE_OBJECT_CRTC, "ACTIVE");
-    p_fb = prop_id(g_plane, DRM_MODE_OBJECT_PLANE, "FB_ID");
-    p_crtc = prop_id(g_plane, DRM_MODE_OBJECT_PLANE, "CRTC_ID");
-    p_sx = prop_id(g_plane, DRM_MODE_OBJECT_PLANE, "SRC_X");
-    p_sy = prop_id(g_plane, DRM_MODE_OBJECT_PLANE, "SRC_Y");
-    p_sw = prop_id(g_plane, DRM_MODE_OBJECT_PLANE, "SRC_W");
-    p_sh = prop_id(g_plane, DRM_MODE_OBJECT_PLANE, "SRC_H");
-    p_cx = prop_id(g_plane, DRM_MODE_OBJECT_PLANE, "CRTC_X");
-    p_cy = prop_id(g_plane, DRM_MODE_OBJECT_PLANE, "CRTC_Y");
-    p_cw = prop_id(g_plane, DRM_MODE_OBJECT_PLANE, "CRTC_W");
-    p_ch = prop_id(g_plane, DRM_MODE_OBJECT_PLANE, "CRTC_H");
+    const struct {
+        uint32_t *id, obj, type;
+        const char *name;
+    } props[] = {{&p_conn_crtc, g_conn, DRM_MODE_OBJECT_CONNECTOR, "CRTC_ID"},
+                 {&p_crtc_mode, g_crtc, DRM_MODE_OBJECT_CRTC, "MODE_ID"},
+                 {&p_crtc_active, g_crtc, DRM_MODE_OBJECT_CRTC, "ACTIVE"},
+                 {&p_fb, g_plane, DRM_MODE_OBJECT_PLANE, "FB_ID"},
+                 {&p_crtc, g_plane, DRM_MODE_OBJECT_PLANE, "CRTC_ID"},
+                 {&p_sx, g_plane, DRM_MODE_OBJECT_PLANE, "SRC_X"},
+                 {&p_sy, g_plane, DRM_MODE_OBJECT_PLANE, "SRC_Y"},
+                 {&p_sw, g_plane, DRM_MODE_OBJECT_PLANE, "SRC_W"},
+                 {&p_sh, g_plane, DRM_MODE_OBJECT_PLANE, "SRC_H"},
+                 {&p_cx, g_plane, DRM_MODE_OBJECT_PLANE, "CRTC_X"},
+                 {&p_cy, g_plane, DRM_MODE_OBJECT_PLANE, "CRTC_Y"},
+                 {&p_cw, g_plane, DRM_MODE_OBJECT_PLANE, "CRTC_W"},
+                 {&p_ch, g_plane, DRM_MODE_OBJECT_PLANE, "CRTC_H"}};
+    for (unsigned i = 0; i < sizeof props / sizeof props[0]; i++) {
+        if (!(*props[i].id = prop_find(props[i].obj, props[i].type, props[i].name, NULL))) {
+            tdc_lx_fail(TDC_LX_EXIT_REFUSED, "drm: no atomic property %s on %s", props[i].name, name);
+            return -1;
+        }
+    }
     if (make_dumb(&g_buf[0]) != 0 || make_dumb(&g_buf[1]) != 0) {
         tdc_lx_fail(TDC_LX_EXIT_IO, "drm: cannot allocate two %ux%u XRGB8888 dumb buffers: %s", g_w, g_h,
                     strerror(errno));

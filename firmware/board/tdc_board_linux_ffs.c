@@ -124,22 +124,13 @@ static int open_ep(const char *name)
     return open(path, O_RDWR | O_CLOEXEC);
 }
 
-/* Bulk IN: a status report is always queued; a write completes when the host reads it. */
+/* Bulk IN: status reports (tdc_ffs.c). */
 static void *status_thread(void *arg)
 {
     (void)arg;
-    for (;;) {
-        int fd = open_ep("ep2");
-        while (fd >= 0) {
-            uint8_t rep[TDC_USB_STATUS_LEN];
-            pthread_mutex_lock(&g_lock);
-            tdc_usbp_status_report(&g_proto, rep);
-            pthread_mutex_unlock(&g_lock);
-            if (write(fd, rep, sizeof rep) < 0) break;
-        }
-        if (fd >= 0) close(fd);
-        usleep(20000);
-    }
+    char path[512];
+    snprintf(path, sizeof path, "%s/ep2", tdc_lx_opts.ffs_dir);
+    tdc_ffs_status_loop(path, &g_proto, &g_lock);
     return NULL;
 }
 

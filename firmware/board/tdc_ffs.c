@@ -6,6 +6,7 @@
  */
 #include <endian.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <stdio.h>
 #include <string.h>
 #include <unistd.h>
@@ -101,5 +102,21 @@ void tdc_ffs_setup(int ep0, const struct usb_ctrlrequest *c, tdc_usbp_t *proto, 
         } else if (read(ep0, NULL, 0) < 0) {
             fprintf(stderr, "usb: ep0: status stage: %s\n", strerror(errno));
         }
+    }
+}
+
+void tdc_ffs_status_loop(const char *ep2_path, tdc_usbp_t *proto, pthread_mutex_t *lock)
+{
+    for (;;) {
+        int fd = open(ep2_path, O_RDWR | O_CLOEXEC);
+        while (fd >= 0) {
+            uint8_t rep[TDC_USB_STATUS_LEN];
+            pthread_mutex_lock(lock);
+            tdc_usbp_status_report(proto, rep);
+            pthread_mutex_unlock(lock);
+            if (write(fd, rep, sizeof rep) < 0) break; /* disabled / unbound: reopen */
+        }
+        if (fd >= 0) close(fd);
+        usleep(20000);
     }
 }

@@ -19,4 +19,9 @@ int tdc_ffs_write_descriptors(int ep0);
 void tdc_ffs_setup(int ep0, const struct usb_ctrlrequest *c, tdc_usbp_t *proto, pthread_mutex_t *lock,
                    void (*on_reset)(const char *why));
 
+/* Bulk IN (ep2_path): a status report always queued, each write completing
+ * when the host reads it; reopens the endpoint after an unplug.  Never
+ * returns: a thread's body. */
+void tdc_ffs_status_loop(const char *ep2_path, tdc_usbp_t *proto, pthread_mutex_t *lock);
+
 #endif

@@ -94,22 +94,13 @@ static void *bulk_out_thread(void *arg)
     return NULL;
 }
 
-/* Bulk IN: a status report is always queued; each write completes when the host reads. */
+/* Bulk IN: status reports (firmware/board/tdc_ffs.c). */
 static void *bulk_in_thread(void *arg)
 {
     (void)arg;
-    for (;;) {
-        int fd = open_ep("ep2", O_RDWR);
-        while (fd >= 0) {
-            uint8_t rep[TDC_USB_STATUS_LEN];
-            pthread_mutex_lock(&lock);
-            tdc_usbp_status_report(&proto, rep);
-            pthread_mutex_unlock(&lock);
-            if (write(fd, rep, sizeof rep) < 0) break;
-        }
-        if (fd >= 0) close(fd);
-        usleep(20000);
-    }
+    char path[300];
+    snprintf(path, sizeof path, "%s/ep2", dir);
+    tdc_ffs_status_loop(path, &proto, &lock);
     return NULL;
 }
 
