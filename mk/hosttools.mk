@@ -66,7 +66,7 @@ TESTS += $(B)/tests/usb/test_gpio_vsync
 DEPS_PKGS += qemu-system-x86 busybox-static linux-image-amd64 linux-headers-amd64 linux-source cpio kmod
 VM_BIN := $(BUILD)/gcc-O2/bin
 VM_BOARD_SRCS := tests/vm/tdc_ffs_board.c firmware/board/tdc_ffs.c tests/usb/tdc_link_sink.c firmware/tdc_usbproto.c $(LINK_FW_SRCS)
-$(VM_BIN)/tdc_ffs_board: $(VM_BOARD_SRCS) $(wildcard firmware/*.h) $(GEN)/tdc_crc32_tables.h $(GEN)/tdc_fov_tables.h
+$(VM_BIN)/tdc_ffs_board: $(VM_BOARD_SRCS) $(wildcard firmware/*.h) firmware/board/tdc_ffs.h $(GEN)/tdc_crc32_tables.h $(GEN)/tdc_fov_tables.h
 	@mkdir -p $(@D)
 	gcc -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror -O2 -Ifirmware -Ifirmware/board -I$(GEN) -Itests/usb -static \
 	    $(VM_BOARD_SRCS) -o $@ -lpthread
