@@ -87,10 +87,13 @@ test-vm:
 	@$(MAKE) --no-print-directory CC=gcc OPT=-O2 SAN= $(VM_BIN)/tdc-usb $(VM_BIN)/tdc-gpio \
 	    $(VM_BIN)/tdc_ffs_board $(VM_BIN)/tdc_vsync_gen $(VM_BIN)/tdc_vm_mkstream
 	@$(MAKE) --no-print-directory -j2 BOARD=linux PANEL=$(VM_DISPLAY_PANEL) CC=gcc OPT=-O2 SAN= linux-vm-inputs
+	@$(MAKE) --no-print-directory -j2 BOARD=linux PANEL=$(VM_NOMODE_PANEL) CC=gcc OPT=-O2 SAN= \
+	    $(BUILD)/linux-$(VM_NOMODE_PANEL)/tdc-board
 	@if tests/vm/run-vm.sh $(VM_BIN) $(BUILD)/vm $(BUILD)/linux-$(VM_DISPLAY_PANEL)/tdc-board \
 	        $(BUILD)/linux-$(VM_DISPLAY_PANEL)/loop/tdc_fw_host \
 	        $$(awk '$$1 == "width" { w = $$2 } $$1 == "height" { h = $$2 } $$1 == "eyes" { e = $$2 } \
 	               $$1 == "refresh_hz" { r = $$2 } END { print w * e, h, r }' boards/panels/$(VM_DISPLAY_PANEL).panel) \
+	        $(BUILD)/linux-$(VM_NOMODE_PANEL)/tdc-board \
 	        $(foreach m,$(VM_DISPLAY_MODES),$(m)=$(BUILD)/fw-streams/$(VM_DISPLAY_PANEL)-$(m).tdcs); then r=PASS; else r=FAIL; fi; \
 	    echo "[vm] $$r test-vm"; [ -z "$$RESULTS" ] || echo "vm test-vm $$r" >> "$$RESULTS"; \
 	    [ $$r = PASS ]

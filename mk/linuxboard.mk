@@ -35,6 +35,9 @@ endif
 # time; its corrupted/RGB565/lost cases run on the host: test_fw_loop.sh.)
 VM_DISPLAY_PANEL := htc-vive
 VM_DISPLAY_MODES := trm fov trm-bands-crc
+# a board whose panel (2560x1440) the VM's display (EDID up to 2160x1200)
+# has no mode for: "mode not available" named
+VM_NOMODE_PANEL := pg279q
 ifeq ($(BOARD_OS),linux)
 FW_FRAMES_trm-bands-crc := 3
 .PHONY: linux-vm-inputs

@@ -203,6 +203,7 @@ for i in $(seq 50); do [ -e /dev/dri/card0 ] && break; usleep 100000; done
 check board-no-connector 2 "drm: no connector HDMI-A-1 on /dev/dri/card0 (connectors: Virtual-1 (connected))" \
     tdc-board --connector HDMI-A-1
 check board-no-udc 4 "usb: gadget not bound: binding to nosuch-udc" tdc-board --udc nosuch-udc
+check board-no-mode 14 "drm: mode 2560x1440 not available on Virtual-1 (modes: 2160x1200@90" tdc-board-nomode
 exec 3< /dev/ttyS1
 stty -F /dev/ttyS1 -echo
 tdc-board --udc "$UDC" --serial VM-2 --state /tmp/tdc-state > /tmp/tdcb.log 2>&1 &

@@ -8,14 +8,15 @@
 # bochs DRM driver and QEMU's bochs-display; its scan-out is captured from
 # outside (tests/vm/qemu_capture.py) and compared byte for byte with the
 # host loop's frames (tests/vm/display_data.sh).
-# Usage: tests/vm/run-vm.sh BIN_DIR VM_DIR BOARD HOST_LOOP W H HZ NAME=STREAM...
+# Usage: tests/vm/run-vm.sh BIN_DIR VM_DIR BOARD HOST_LOOP W H HZ BOARD2 NAME=STREAM...
 #   BIN_DIR: directory with tdc-usb, tdc-gpio, tdc_ffs_board, tdc_vsync_gen, tdc_vm_mkstream
 #   VM_DIR:  work directory (module build, initramfs, console log)
 #   BOARD:   the Linux board program for a W x H (all eyes) HZ panel, HOST_LOOP
-#            the host double of its frame loop, NAME=STREAM the streams shown
+#            the host double of its frame loop, NAME=STREAM the streams shown,
+#            BOARD2 the board for a panel the VM's display has no mode for
 set -eu
-bin=$1; vm=$2; tdcb=$3; hostloop=$4; dw=$5; dh=$6; rate=$(($7 * 1000))
-shift 7
+bin=$1; vm=$2; tdcb=$3; hostloop=$4; dw=$5; dh=$6; rate=$(($7 * 1000)); tdcb2=$8
+shift 8
 mkdir -p "$vm"
 
 need() { command -v "$1" > /dev/null 2>&1 || { echo "test-vm: missing $1 ($2)"; exit 1; }; }
@@ -64,6 +65,7 @@ done
 cp "$ko" "$root/lib/modules/gpio-sim.ko"
 for p in tdc-usb tdc-gpio tdc_ffs_board tdc_vsync_gen; do cp "$bin/$p" "$root/usr/bin/"; done
 cp "$tdcb" "$root/usr/bin/tdc-board"
+cp "$tdcb2" "$root/usr/bin/tdc-board-nomode"
 # Debian's dfu-util (an independent DFU client, package dfu-util) as it is
 need dfu-util "Debian package dfu-util"
 cp "$(command -v dfu-util)" "$root/usr/bin/dfu-util"
