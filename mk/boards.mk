@@ -239,7 +239,8 @@ $(BP)/tdc-firmware.elf: $$(FW_IMG_OBJS) $(ARM_LDDEPS)
 	@echo "firmware: $@ ($(BOARD), panel $(PANEL), stages: $(or $(strip $(STAGES)),link only))"
 	@$(ARM_SIZE) $@
 
-firmware: $(BP)/tdc-firmware.elf
+# (a hosted board names its own program: BOARD_IMAGE, e.g. mk/linuxboard.mk)
+firmware: $(BP)/$(or $(BOARD_IMAGE),tdc-firmware.elf)
 
 # Sections and region use of this pair's image, or its memory-fit verdict
 # (a pair that does not fit is a finding, exit 0); any other failure fails.

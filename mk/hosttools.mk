@@ -65,10 +65,10 @@ TESTS += $(B)/tests/usb/test_gpio_vsync
 # ---------------------------------------------------------------------------
 DEPS_PKGS += qemu-system-x86 busybox-static linux-image-amd64 linux-headers-amd64 linux-source cpio kmod
 VM_BIN := $(BUILD)/gcc-O2/bin
-VM_BOARD_SRCS := tests/vm/tdc_ffs_board.c tests/usb/tdc_link_sink.c firmware/tdc_usbproto.c $(LINK_FW_SRCS)
-$(VM_BIN)/tdc_ffs_board: $(VM_BOARD_SRCS) $(wildcard firmware/*.h) $(GEN)/tdc_crc32_tables.h $(GEN)/tdc_fov_tables.h
+VM_BOARD_SRCS := tests/vm/tdc_ffs_board.c firmware/board/tdc_ffs.c tests/usb/tdc_link_sink.c firmware/tdc_usbproto.c $(LINK_FW_SRCS)
+$(VM_BIN)/tdc_ffs_board: $(VM_BOARD_SRCS) $(wildcard firmware/*.h) firmware/board/tdc_ffs.h $(GEN)/tdc_crc32_tables.h $(GEN)/tdc_fov_tables.h
 	@mkdir -p $(@D)
-	gcc -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror -O2 -Ifirmware -I$(GEN) -Itests/usb -static \
+	gcc -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror -O2 -Ifirmware -Ifirmware/board -I$(GEN) -Itests/usb -static \
 	    $(VM_BOARD_SRCS) -o $@ -lpthread
 # The .tdcs streams the VM sends, from the link generator (host program).
 $(VM_BIN)/tdc_vm_mkstream: $(B)/tests/vm/tdc_vm_mkstream.o $(SIMLIB) $(FWLIB)
@@ -86,6 +86,14 @@ TEST_EXTRA += test-vm
 test-vm:
 	@$(MAKE) --no-print-directory CC=gcc OPT=-O2 SAN= $(VM_BIN)/tdc-usb $(VM_BIN)/tdc-gpio \
 	    $(VM_BIN)/tdc_ffs_board $(VM_BIN)/tdc_vsync_gen $(VM_BIN)/tdc_vm_mkstream
-	@if tests/vm/run-vm.sh $(VM_BIN) $(BUILD)/vm; then r=PASS; else r=FAIL; fi; \
+	@$(MAKE) --no-print-directory -j2 BOARD=linux PANEL=$(VM_DISPLAY_PANEL) CC=gcc OPT=-O2 SAN= linux-vm-inputs
+	@$(MAKE) --no-print-directory -j2 BOARD=linux PANEL=$(VM_NOMODE_PANEL) CC=gcc OPT=-O2 SAN= \
+	    $(BUILD)/linux-$(VM_NOMODE_PANEL)/tdc-board
+	@if tests/vm/run-vm.sh $(VM_BIN) $(BUILD)/vm $(BUILD)/linux-$(VM_DISPLAY_PANEL)/tdc-board \
+	        $(BUILD)/linux-$(VM_DISPLAY_PANEL)/loop/tdc_fw_host \
+	        $$(awk '$$1 == "width" { w = $$2 } $$1 == "height" { h = $$2 } $$1 == "eyes" { e = $$2 } \
+	               $$1 == "refresh_hz" { r = $$2 } END { print w * e, h, r }' boards/panels/$(VM_DISPLAY_PANEL).panel) \
+	        $(BUILD)/linux-$(VM_NOMODE_PANEL)/tdc-board \
+	        $(foreach m,$(VM_DISPLAY_MODES),$(m)=$(BUILD)/fw-streams/$(VM_DISPLAY_PANEL)-$(m).tdcs); then r=PASS; else r=FAIL; fi; \
 	    echo "[vm] $$r test-vm"; [ -z "$$RESULTS" ] || echo "vm test-vm $$r" >> "$$RESULTS"; \
 	    [ $$r = PASS ]

@@ -61,6 +61,9 @@ wait_board() {
 bind
 if wait_board; then ok usb-enumerate; else bad usb-enumerate "no board after 10 s"; cat /tmp/board.log; finish; fi
 
+# tdc_only=display on the kernel command line (TDC_VM_ONLY=display make
+# test-vm): only the display board's checks, while working on them
+if ! grep -q tdc_only=display /proc/cmdline; then
 check usb-list 0 "serial VM-1 board vm-gadget panel vm-32x24" tdc-usb list
 check usb-info 0 "panel: vm-32x24 32x24 @ 90.000 Hz" tdc-usb --serial VM-1 info
 # link streams through the firmware decoder on the board: counters are its verdicts
@@ -180,5 +183,76 @@ missed=$(sed -n 's/.*missed frames \([0-9]*\).*/\1/p' /tmp/out)
 echo "    measured refresh ${hz} dHz, missed ${missed}"
 [ -n "$hz" ] && [ "$hz" -ge 190 ] && [ "$hz" -le 210 ] && ok gpio-vsync-rate || bad gpio-vsync-rate "refresh '$hz' dHz, want 190..210 (20 Hz +-5 %)"
 [ -n "$missed" ] && [ "$missed" -ge 2 ] && [ "$missed" -le 5 ] && ok gpio-vsync-missed || bad gpio-vsync-missed "missed '$missed', want 2..5 (3 left out in the window)"
+
+fi # tdc_only
+
+# ---------------------------------------------------------------- display board
+# The Linux board (BOARD=linux, tdc-board): its own configfs gadget on the
+# same dummy UDC (the fixture above is unplugged and stopped), KMS on
+# QEMU's bochs-display through Debian's bochs DRM driver.  Each stream is
+# sent piece by piece (tests/vm/display_data.sh); after each shown frame
+# the console line "VMSHOT NAME K" has the host capture the scan-out
+# (tests/vm/qemu_capture.py) and answer on ttyS1; run-vm.sh compares the
+# captures byte for byte with the host loop's frames.
+unbind; kill $board_pid; wait $board_pid 2>/dev/null
+check board-no-drm 2 "drm: no DRM device /dev/dri/card0" tdc-board --drm /dev/dri/card0
+for m in drm drm_kms_helper ttm drm_ttm_helper drm_vram_helper bochs; do
+    insmod /lib/modules/$m.ko || bad "insmod-$m" "insmod failed"
+done
+for i in $(seq 50); do [ -e /dev/dri/card0 ] && break; usleep 100000; done
+check board-no-connector 2 "drm: no connector HDMI-A-1 on /dev/dri/card0 (connectors: Virtual-1 (connected))" \
+    tdc-board --connector HDMI-A-1
+check board-no-udc 4 "usb: gadget not bound: binding to nosuch-udc" tdc-board --udc nosuch-udc
+check board-no-mode 14 "drm: mode 2560x1440 not available on Virtual-1 (modes: 2160x1200@90" tdc-board-nomode
+exec 3< /dev/ttyS1
+stty -F /dev/ttyS1 -echo
+tdc-board --udc "$UDC" --serial VM-2 --state /tmp/tdc-state > /tmp/tdcb.log 2>&1 &
+tdcb=$!
+B="tdc-usb --serial VM-2"
+for i in $(seq 100); do $B info > /dev/null 2>&1 && break; usleep 100000; done
+check board-info 0 "panel: htc-vive 1080x1200" $B info
+frames() { $B info 2>/dev/null | sed -n 's/.* frames \([0-9]*\)$/\1/p'; }
+# play DIR NAME [PLAN]: a stream's pieces, a capture after each shown frame
+play() {
+    d=$1; name=$2; plan=${3:-$1/plan}; sent=0; shots=0; t0=$(date +%s)
+    while read -r part want shot; do
+        timeout 90 $B --timeout 60000 --chunk 16384 stream $d/$part > /tmp/out 2>&1; rc=$?
+        # exit 11: the board's byte counter had not yet caught up with the
+        # last transfer the host saw complete (the loop counts after its
+        # read returns); all bytes arrived if the counter now says so
+        [ $rc = 11 ] && usleep 300000 && $B info 2>/dev/null | grep -q "rx_bytes $(stat -c %s $d/$part) " && rc=0
+        [ $rc = 0 ] || { bad "display-$name" "stream $part: exit $rc"; cat /tmp/out; tail -n 8 /tmp/tdcb.log; break; }
+        n=; for i in $(seq 600); do n=$(frames); [ "${n:-0}" -ge "$want" ] && break; usleep 50000; done
+        [ "$n" = "$want" ] || { bad "display-$name" "$part: board shows $n frames, want $want"; tail -n 8 /tmp/tdcb.log; break; }
+        if [ "$shot" != - ]; then echo "VMSHOT $name $shot"; timeout 60 sh -c 'read -r go' <&3; shots=$((shots+1)); fi
+        sent=$((sent+1))
+    done < $plan
+    echo "    display $name: $sent pieces sent, $shots frames captured, $(($(date +%s) - t0)) s"
+    [ $sent = $(grep -c . $plan) ] && ok "display-$name-sent"
+}
+# (the foveated stream up to frame 4: its corrupted payload (frame 1) and
+# refused foveation header (frame 4) are in; the whole of it doubles the time)
+head -n 5 /data/disp/fov/plan > /tmp/fov.plan
+play /data/disp/fov fov /tmp/fov.plan
+play /data/disp/trm trm
+play /data/disp/trm-bands-crc trm-bands-crc
+# Unplug mid-stream: tdc-usb sees the board go (6), the board logs the host
+# gone and keeps running; re-plugged, a new stream (the foveated one from
+# its start) shows its frames identical again: a fresh decoder per connection.
+GB=/sys/kernel/config/usb_gadget/tdc-board
+cat /data/disp/trm/part-* | $B --timeout 60000 --chunk 16384 stream - > /tmp/unplug.out 2>&1 &
+p=$!; sleep 2; echo "" > $GB/UDC; wait $p; rc=$?
+sed 's/^/    /' /tmp/unplug.out
+[ $rc = 6 ] && ok board-unplug-stream || bad board-unplug-stream "tdc-usb exit $rc, want 6"
+for i in $(seq 50); do grep -q "host gone" /tmp/tdcb.log && break; usleep 100000; done
+grep -q "usb: host gone" /tmp/tdcb.log && kill -0 $tdcb && ok board-unplug-survives || bad board-unplug-survives "no 'host gone' or board exited"
+echo "$UDC" > $GB/UDC || bad board-replug "binding $UDC again failed"
+for i in $(seq 100); do $B info > /dev/null 2>&1 && break; usleep 100000; done
+tail -n 4 /tmp/tdcb.log | sed 's/^/    /'
+head -n 1 /data/disp/fov/plan > /tmp/replug.plan
+play /data/disp/fov fov.replug /tmp/replug.plan
+kill -TERM $tdcb; wait $tdcb; rc=$?
+sed 's/^/    /' /tmp/tdcb.log
+[ $rc = 0 ] && ok board-sigterm || bad board-sigterm "exit $rc after SIGTERM"
 
 finish

@@ -10,7 +10,9 @@
  * Usage: tdc_ffs_board <functionfs mount dir> <serial>
  * Writes descriptors and strings to ep0, prints "ready" on stdout once the
  * endpoints exist (the init script then binds the UDC), and serves forever.
- * Static build, no libraries beyond libc/pthread.
+ * Static build, no libraries beyond libc/pthread.  The Linux board
+ * (BOARD=linux, firmware/board/tdc_board_linux_ffs.c) is the product; this
+ * fixture stays for the protocol checks on a 32x24 test panel.
  */
 #include <endian.h>
 #include <errno.h>
@@ -22,19 +24,11 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "tdc_ffs.h" /* descriptors and ep0 requests, shared with the Linux board */
 #include "tdc_link_sink.h"
 #include "tdc_usbproto.h"
 
 #define SLOT_BYTES (256u * 1024u)
-/* The function's descriptors: the configuration descriptor minus its 9-byte
- * header and minus the 9-byte DFU functional descriptor at its end.  Linux
- * 6.1's FunctionFS accepts class descriptors (type 0x21) only inside HID and
- * CCID interfaces: ffs_do_single_desc() in drivers/usb/gadget/function/f_fs.c,
- * `case USB_TYPE_CLASS | 0x01`, returns -EINVAL for any other interface
- * class ("unknown descriptor"), so this gadget cannot carry it.  tdc-usb
- * then uses the protocol's wTransferSize (1024) and dfu-util needs `-t 1024`
- * (tests/vm/init.sh).  Boards and the umockdev emulation send it. */
-#define FN_DESC_LEN (TDC_USB_CONFIG_DESC_LEN - 18u)
 
 static pthread_mutex_t lock = PTHREAD_MUTEX_INITIALIZER;
 static tdc_usbp_t proto;
@@ -80,44 +74,6 @@ static int open_ep(const char *name, int flags)
     return open(path, flags);
 }
 
-static void write_descriptors(int ep0)
-{
-    struct {
-        struct usb_functionfs_descs_head_v2 head;
-        uint32_t fs_count, hs_count;
-        uint8_t fs[FN_DESC_LEN], hs[FN_DESC_LEN];
-    } __attribute__((packed)) d;
-    uint8_t cfg[TDC_USB_CONFIG_DESC_LEN];
-    d.head.magic = htole32(FUNCTIONFS_DESCRIPTORS_MAGIC_V2);
-    d.head.length = htole32(sizeof d);
-    d.head.flags = htole32(FUNCTIONFS_HAS_FS_DESC | FUNCTIONFS_HAS_HS_DESC);
-    d.fs_count = htole32(4);
-    d.hs_count = htole32(4);
-    tdc_usbp_config_descriptor(cfg, 0);
-    memcpy(d.fs, cfg + 9, FN_DESC_LEN);
-    tdc_usbp_config_descriptor(cfg, 1);
-    memcpy(d.hs, cfg + 9, FN_DESC_LEN);
-    /* FunctionFS numbers a function's strings from 1 (its own table below) */
-    d.fs[8] = d.hs[8] = 1;   /* iInterface of the streaming interface */
-    d.fs[31] = d.hs[31] = 2; /* iInterface of the DFU interface */
-    struct {
-        struct usb_functionfs_strings_head head;
-        uint16_t code;
-        char s1[sizeof "tdc link stream"], s2[sizeof "tdc DFU (A/B slot)"];
-    } __attribute__((packed)) s;
-    s.head.magic = htole32(FUNCTIONFS_STRINGS_MAGIC);
-    s.head.length = htole32(sizeof s);
-    s.head.str_count = htole32(2);
-    s.head.lang_count = htole32(1);
-    s.code = htole16(0x0409);
-    memcpy(s.s1, "tdc link stream", sizeof s.s1);
-    memcpy(s.s2, "tdc DFU (A/B slot)", sizeof s.s2);
-    if (write(ep0, &d, sizeof d) != (ssize_t)sizeof d || write(ep0, &s, sizeof s) != (ssize_t)sizeof s) {
-        perror("tdc_ffs_board: writing descriptors");
-        exit(1);
-    }
-}
-
 /* Bulk OUT: link packets into the protocol's accounting. */
 static void *bulk_out_thread(void *arg)
 {
@@ -138,68 +94,14 @@ static void *bulk_out_thread(void *arg)
     return NULL;
 }
 
-/* Bulk IN: a status report is always queued; each write completes when the host reads. */
+/* Bulk IN: status reports (firmware/board/tdc_ffs.c). */
 static void *bulk_in_thread(void *arg)
 {
     (void)arg;
-    for (;;) {
-        int fd = open_ep("ep2", O_RDWR);
-        while (fd >= 0) {
-            uint8_t rep[TDC_USB_STATUS_LEN];
-            pthread_mutex_lock(&lock);
-            tdc_usbp_status_report(&proto, rep);
-            pthread_mutex_unlock(&lock);
-            if (write(fd, rep, sizeof rep) < 0) break;
-        }
-        if (fd >= 0) close(fd);
-        usleep(20000);
-    }
+    char path[300];
+    snprintf(path, sizeof path, "%s/ep2", dir);
+    tdc_ffs_status_loop(path, &proto, &lock);
     return NULL;
-}
-
-static void handle_setup(int ep0, const struct usb_ctrlrequest *c)
-{
-    static uint8_t data[4096], reply[4096];
-    tdc_usbp_setup_t s = {c->bRequestType, c->bRequest, le16toh(c->wValue), le16toh(c->wIndex), le16toh(c->wLength)};
-    uint32_t len = 0;
-    if (s.bm_request_type & 0x80u) {
-        pthread_mutex_lock(&lock);
-        tdc_status_t r = tdc_usbp_control(&proto, &s, NULL, reply, sizeof reply, &len);
-        pthread_mutex_unlock(&lock);
-        if (r == TDC_OK) {
-            if (write(ep0, reply, len) < 0) perror("tdc_ffs_board: ep0 write");
-        } else if (read(ep0, NULL, 0) < 0 && errno != EL2HLT) { /* wrong direction = stall */
-            perror("tdc_ffs_board: ep0 stall");
-        }
-        return;
-    }
-    if (s.w_length > sizeof data) {
-        if (write(ep0, NULL, 0) < 0 && errno != EL2HLT) perror("tdc_ffs_board: ep0 stall");
-        return;
-    }
-    /* OUT: the data stage is read first (reading acks the status stage), so
-     * a rejected DNLOAD shows up in the next GETSTATUS as dfuERROR, as DFU
-     * 1.1 allows.  Requests without data are acked or stalled here. */
-    if (s.w_length > 0 && read(ep0, data, s.w_length) != s.w_length) {
-        perror("tdc_ffs_board: ep0 read");
-        return;
-    }
-    pthread_mutex_lock(&lock);
-    tdc_status_t r = tdc_usbp_control(&proto, &s, data, reply, sizeof reply, &len);
-    int reset = tdc_usbp_take_reset(&proto);
-    if (reset) board_reboot("RESET_BOARD");
-    pthread_mutex_unlock(&lock);
-    if (s.w_length == 0) {
-        if (r == TDC_OK) {
-            if (read(ep0, NULL, 0) < 0) perror("tdc_ffs_board: ep0 ack");
-        } else if (write(ep0, NULL, 0) < 0 && errno != EL2HLT) {
-            perror("tdc_ffs_board: ep0 stall");
-        }
-    }
-    if (reset) {
-        printf("tdc_ffs_board: reset requested\n");
-        fflush(stdout);
-    }
 }
 
 int main(int argc, char **argv)
@@ -234,7 +136,10 @@ int main(int argc, char **argv)
         perror("tdc_ffs_board: open ep0");
         return 1;
     }
-    write_descriptors(ep0);
+    if (tdc_ffs_write_descriptors(ep0) != 0) {
+        perror("tdc_ffs_board: writing descriptors");
+        return 1;
+    }
     pthread_t t1, t2;
     pthread_create(&t1, NULL, bulk_out_thread, NULL);
     pthread_create(&t2, NULL, bulk_in_thread, NULL);
@@ -251,7 +156,7 @@ int main(int argc, char **argv)
         }
         for (ssize_t i = 0; i < n / (ssize_t)sizeof ev[0]; i++) {
             if (ev[i].type == FUNCTIONFS_SETUP) {
-                handle_setup(ep0, &ev[i].u.setup);
+                tdc_ffs_setup(ep0, &ev[i].u.setup, &proto, &lock, board_reboot);
             } else if (ev[i].type == FUNCTIONFS_DISABLE) { /* bus reset (dfu-util -R) or unplug */
                 pthread_mutex_lock(&lock);
                 board_reboot("USB reset");
