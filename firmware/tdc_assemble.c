@@ -1,5 +1,5 @@
 /*
- * tdc_assemble.c - tile-ordered frame assembly (DESIGN §4.3); see
+ * tdc_assemble.c - tile-ordered frame assembly (docs/design.md §4.3); see
  * tdc_assemble.h for the algorithm and formats.
  */
 #include "tdc_assemble.h"

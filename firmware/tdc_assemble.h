@@ -1,6 +1,6 @@
 /*
  * tdc_assemble.h - tile-ordered frame assembly for 240 Hz streams
- * (DESIGN §4.3, TDRT paper §3.2).
+ * (docs/design.md §4.3, TDRT paper §3.2).
  *
  * Every refresh the renderer traces one pixel per 2x2 tile (a subframe):
  * subframe k = frame mod 4 holds, for each tile, the pixel at position

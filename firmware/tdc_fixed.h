@@ -4,7 +4,7 @@
  * here, so that a stage never invents its own arithmetic (the status enum,
  * included from here, is tdc_status.h).
  *
- * Rules (DESIGN §3): C11, no floating point, no implementation-defined
+ * Rules (docs/design.md §3): C11, no floating point, no implementation-defined
  * behaviour.  In particular:
  *   - right shifts of negative values are implementation-defined in C11, so
  *     every signed shift goes through tdc_asr32()/tdc_asr64(), which only

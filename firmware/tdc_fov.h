@@ -1,5 +1,5 @@
 /*
- * tdc_fov.h - foveated streams, display side (DESIGN §4.5; thesis
+ * tdc_fov.h - foveated streams, display side (docs/design.md §4.5; thesis
  * "Image Upscaling for Ray Traced Foveated Rendering" §2.2.2, §4.2, §4.4).
  *
  * The renderer traces a kernel log-polar buffer of lp_w x lp_h samples
@@ -217,7 +217,7 @@ void tdc_fov_reset(tdc_fov_t *st);
  *   lp:   lp_h rows of lp_w RGB8 samples (row = angle), stride lp_stride bytes;
  *         only columns [g.u0, lp_w) are read.
  *   mv:   motion vectors of the log-polar samples, int16 (x, y) pairs in Q4
- *         display pixels, BACKWARD as everywhere on the link (DESIGN §4.4):
+ *         display pixels, BACKWARD as everywhere on the link (docs/design.md §4.4):
  *         the point now at p was at p + mv (the thesis's eq. 4.6 vector is
  *         -mv); stride mv_stride int16 per row; NULL = no motion.  TAA only.
  *   disk: W x H RGB8 image of which only disk pixels are read (stride

@@ -15,7 +15,7 @@
 #include <stdint.h>
 
 /* Reduced size for the TRM ratio r = num/den: round(n * num / den), at
- * least 1 (DESIGN §4.1).  n * num < 2^32 for n <= 65535 and num <= 65535. */
+ * least 1 (docs/design.md §4.1).  n * num < 2^32 for n <= 65535 and num <= 65535. */
 #define TDC_REDUCED_DIM(n, num, den)                                                   \
     ((((uint32_t)(n) * (uint32_t)(num)) + (uint32_t)(den) / 2u) / (uint32_t)(den) < 1u \
          ? 1u                                                                          \

@@ -1,6 +1,6 @@
 /*
  * tdc_lcd.h - overdrive-aware LCD temporal model and its inverse
- * (DESIGN §4.2, TRM paper §4.4, eq. 7).
+ * (docs/design.md §4.2, TRM paper §4.4, eq. 7).
  *
  * Model.  v_t, v_{t-1} are normalised drive values in [0, 1] (code / (C-1)).
  *     M(v_t, v_{t-1}) = p1 (v_t^2 + v_{t-1}^2) + p2 v_t v_{t-1} + p3 (v_t + v_{t-1}) + p4

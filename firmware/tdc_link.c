@@ -497,7 +497,7 @@ static tdc_link_err_t commit_stream(tdc_link_decoder_t *dec)
     }
     uint32_t rw = 0, rh = 0;
     if (in.flags & TDC_LINK_STREAM_REDUCED) {
-        /* 1/4 <= r < 1 (DESIGN §4.1, tdc_trm.h). */
+        /* 1/4 <= r < 1 (docs/design.md §4.1, tdc_trm.h). */
         if ((uint32_t)in.r_num * 4u < in.r_den || in.r_num >= in.r_den) {
             return TDC_LINK_ERR_STREAM_HEADER;
         }

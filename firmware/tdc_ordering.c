@@ -1,5 +1,5 @@
 /*
- * tdc_ordering.c - tile orderings and the ordering decision (DESIGN §4.3).
+ * tdc_ordering.c - tile orderings and the ordering decision (docs/design.md §4.3).
  * Integer only; see tdc_ordering.h for formats and precision.
  */
 #include "tdc_ordering.h"

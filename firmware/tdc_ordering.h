@@ -1,6 +1,6 @@
 /*
  * tdc_ordering.h - per-tile pixel orderings of tile-ordered frame assembly
- * (DESIGN §4.3, TDRT paper §3.1.1 and §3.2.3).  Shared by the firmware
+ * (docs/design.md §4.3, TDRT paper §3.1.1 and §3.2.3).  Shared by the firmware
  * assembly stage and the host renderer, which links this file so both sides
  * make bit-identical decisions.
  *
@@ -54,7 +54,7 @@ unsigned tdc_mv_row_scan(const int16_t *row, uint32_t w, uint32_t *first);
 unsigned tdc_ordering_pixel(tdc_ordering_t o, unsigned k);
 
 /*
- * The ordering decision g(l_f, a) of DESIGN §4.3 for one tile.
+ * The ordering decision g(l_f, a) of docs/design.md §4.3 for one tile.
  *   m = (mx_q4, my_q4): the tile's motion, Q4 px (|component| <= 32768).
  *   l_f = fractional part of |m|: |m| is floor(sqrt((mx^2 + my^2) * 2^16))
  *         in Q12 px, exact (integer square root), so l_f is exact to
@@ -104,7 +104,7 @@ static inline void tdc_ordering_set(uint8_t *bits, uint32_t tile_index, tdc_orde
 }
 
 /*
- * Static-pixel jitter (4x SSAA, DESIGN §4.3): a fixed 4-position rotated
+ * Static-pixel jitter (4x SSAA, docs/design.md §4.3): a fixed 4-position rotated
  * grid that advances once per 4 frames: index j = (frame / 4) mod 4,
  * offsets from the pixel centre in Q4 px:
  *   j = 0: (-2, -6)   j = 1: (+6, -2)   j = 2: (+2, +6)   j = 3: (-6, +2)

@@ -1,5 +1,5 @@
 /*
- * tdc_trm.h - temporal resolution multiplexing (DESIGN §4.1, TRM paper §4).
+ * tdc_trm.h - temporal resolution multiplexing (docs/design.md §4.1, TRM paper §4).
  *
  * Per colour channel, for one eye:
  *   full-res frame t:  beta = 2 I - lin(U(D(I)))      (linear light)

@@ -1,4 +1,4 @@
-# Foveated streams (issue 14, DESIGN §4.5): the display-side remap stage with
+# Foveated streams (issue 14, docs/design.md §4.5): the display-side remap stage with
 # peripheral TAA, its double-precision reference, tests, golden vectors.
 # The stage's log/power/atan/Gaussian tables come from tdc-tablegen --fov.
 FW_SRCS += firmware/tdc_fov.c firmware/tdc_fov_rows.c firmware/tdc_fov_lr.c firmware/tdc_fov_link.c firmware/tdc_fov_trm.c

@@ -1,4 +1,4 @@
-# TRM (DESIGN §4.1): the stage, its double reference, row kernels (C and AVX2),
+# TRM (docs/design.md §4.1): the stage, its double reference, row kernels (C and AVX2),
 # tests, golden vectors, benchmark.
 FW_SRCS += firmware/tdc_trm.c
 SIM_SRCS += sim/ref_trm.c

@@ -11,7 +11,7 @@
 #include "tdc_math.h"
 
 /* ------------------------------------------------------------------------
- * Ordering decision, straight from DESIGN §4.3 / paper eq. 2-5.
+ * Ordering decision, straight from docs/design.md §4.3 / paper eq. 2-5.
  * ---------------------------------------------------------------------- */
 tdc_ordering_t tdc_ref_ordering_decide(double mx, double my, tdc_ordering_t current, uint32_t tile_x, uint32_t tile_y,
                                        uint32_t frame)

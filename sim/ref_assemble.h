@@ -1,6 +1,6 @@
 /*
  * ref_assemble.h - double-precision reference of tile-ordered frame assembly
- * (TDRT paper §3.2, DESIGN §4.3), written straight from the text, plus a
+ * (TDRT paper §3.2, docs/design.md §4.3), written straight from the text, plus a
  * synthetic 240 Hz subframe stream (an analytic "renderer") for the tests,
  * golden-free error reports and the benchmark.
  *

@@ -1,6 +1,6 @@
 /*
  * ref_trm.h - double-precision reference of TRM, written straight from the
- * paper's equations (TRM §4, DESIGN §4.1) with the same sampling geometry
+ * paper's equations (TRM §4, docs/design.md §4.1) with the same sampling geometry
  * as the firmware (reduced sample centres, clamp-to-edge, Gaussian support
  * 3 sigma, bilinear U) but no quantisation except the final 8-bit output:
  *   v = code / 255;  lin(v) = v^gamma  (per channel)

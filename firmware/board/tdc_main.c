@@ -1,5 +1,5 @@
 /*
- * tdc_main.c - the controller's frame loop (DESIGN §1):
+ * tdc_main.c - the controller's frame loop (docs/design.md §1):
  *
  *   transport bytes -> link decoder -> stream family -> LCD inverse -> panel
  *

@@ -1,6 +1,6 @@
 /*
  * tdc-calib - fits an LCD panel profile from alternating-pair luminance
- * measurements (TRM paper §4.4, Fig. 7-9; DESIGN §6).
+ * measurements (TRM paper §4.4, Fig. 7-9; docs/design.md §6).
  *
  * Input: the measurement CSV of docs/lcd.md (rate_hz,channel,code_a,code_b,
  * luminance_cd_m2; '#' comments; header line).  For every (rate, channel)

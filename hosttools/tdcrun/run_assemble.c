@@ -43,7 +43,7 @@ static const char k_usage[] =
     "usage: tdc-run assemble [options] -o OUTDIR SUBFRAME.png|- ...\n"
     "       tdc-run assemble --write-stream KIND -o DIR [--size WxH] [--count N] [--velocity VX,VY]\n"
     "\n"
-    "Tile-ordered frame assembly (240 Hz subframes, DESIGN 4.3) with the firmware stage.\n"
+    "Tile-ordered frame assembly (240 Hz subframes, docs/design.md §4.3) with the firmware stage.\n"
     "Each SUBFRAME.png holds one RGB sample per 2x2 tile (ceil(W/2) x ceil(H/2) pixels) of\n"
     "refresh i (i = its position in the list); SUBFRAME.mv beside it, if present, holds the\n"
     "samples' motion vectors (int16 Q4 pairs, backward) and, on frames i % 4 == 0, the\n"

@@ -1,6 +1,6 @@
 /*
  * tdc_lcdsim.h - physical LCD pixel response for the host simulator
- * (DESIGN §5, TRM paper §2.2).
+ * (docs/design.md §5, TRM paper §2.2).
  *
  * Each sub-pixel's transmittance x (normalised linear light, 0..1) relaxes
  * toward the static level of its drive value, T(v) = v^gamma_c, as a

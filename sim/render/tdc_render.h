@@ -1,5 +1,5 @@
 /*
- * tdc_render.h - the companion CPU renderer (DESIGN §5, issue 6): Whitted
+ * tdc_render.h - the companion CPU renderer (docs/design.md §5, issue 6): Whitted
  * ray tracing on Intel Embree 3, frame by frame, for the simulator.
  *
  *   tdc_render_t *r = tdc_render_open(scene, &cfg, err, sizeof err);
@@ -28,7 +28,7 @@
  *                 Orderings are updated by tdc_ordering_update() at every
  *                 frame = 0 mod 4 (see tdc_render_pattern_bits()).
  *   GROUND_TRUTH  W x H, N stratified samples per pixel (box filter).
- *   FOVEATED      n x 1 samples (thesis §4.2, DESIGN §4.5; set with
+ *   FOVEATED      n x 1 samples (thesis §4.2, docs/design.md §4.5; set with
  *                 tdc_render_set_foveation): first the kernel log-polar
  *                 buffer, rows j = 0..h-1 (angle) of columns u0..w-1
  *                 (radius), each a ray through the exact inverse of eq. 2.2

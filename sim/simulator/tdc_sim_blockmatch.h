@@ -12,7 +12,7 @@
  * blocks).  Ties prefer the shorter vector (SAD + TDC_BM_LAMBDA |d|1), so
  * flat content does not move.
  *
- * Convention: backward, like the renderer's MVs (DESIGN §4.4): the content
+ * Convention: backward, like the renderer's MVs (docs/design.md §4.4): the content
  * at p in `cur` was at p + d in `prev`.  Output per pixel, Q4 px, scaled by
  * `scale` (0.5: a vector over two frames turned into one frame's).
  */

@@ -1,5 +1,5 @@
 /*
- * tdc_sim_mode_fov.c - foveated streams (issue 14, DESIGN §4.5): the
+ * tdc_sim_mode_fov.c - foveated streams (issue 14, docs/design.md §4.5): the
  * renderer traces the kernel log-polar buffer (alpha, delta) and the
  * uniformly sampled foveal disk (a fraction of the distance to the farthest
  * corner) around the gaze the eye tracker reports; the packet goes over the

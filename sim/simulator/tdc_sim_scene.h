@@ -7,7 +7,7 @@
  *   - samples: trace n primary rays at given sub-pixel positions at time t
  *     and return panel drive codes (RGB888, encoded with the panel gamma so
  *     that the ideal panel shows the scene's linear light) and optionally the
- *     backward motion vector of each sample (Q4 pixels, see DESIGN §4.4);
+ *     backward motion vector of each sample (Q4 pixels, see docs/design.md §4.4);
  *   - ground truth: linear light of every pixel at time t, box-filtered over
  *     the pixel with a dense supersampling grid;
  *   - motion: the velocity the eye pursues (paper TRM §3, smooth pursuit) and

@@ -1,6 +1,6 @@
 /*
  * test_assemble.c - behaviour of tile-ordered frame assembly that the paper
- * (TDRT §3.2) and DESIGN §4.3 require: static convergence to exactly the
+ * (TDRT §3.2) and docs/design.md §4.3 require: static convergence to exactly the
  * mean of the 4 jittered samples in 16 frames, orderings of eq. 4 / eq. 5
  * chosen per band from the stream's motion, the hashed diagonal, averaging
  * dropped at once when a pixel turns dynamic, dropped subframes, motion

@@ -1,5 +1,5 @@
 #!/bin/sh
-# The LCD inverse is compiled out of OLED builds (DESIGN §3, issue 3).
+# The LCD inverse is compiled out of OLED builds (docs/design.md §3, issue 3).
 #
 # 1. Host object set of an OLED build: every firmware object except
 #    $(FW_LCD_SRCS), plus the OLED panels' generated tables.  None of them may

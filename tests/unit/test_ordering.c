@@ -1,5 +1,5 @@
 /*
- * test_ordering.c - the tile-ordering decision (DESIGN §4.3, paper eq. 2-5):
+ * test_ordering.c - the tile-ordering decision (docs/design.md §4.3, paper eq. 2-5):
  * orderings and jitter tables, angle and fractional-length precision against
  * double, agreement with the double reference decision, paper eq. 4 / eq. 5
  * per band, the hashed diagonal, zero motion, and the per-tile update.
