@@ -1,0 +1,22 @@
+# Zeng et al. (temporally reliable motion vectors) evaluated as the paper
+# does: the double-precision reference pipeline and its analytic scenes
+# (sim/zeng/README.md), tdc-zeng, its unit test, and the experiment group
+# sim/experiments/zeng-reliable (which runs tdc-zeng itself).
+ZENG_SRCS := sim/zeng/zeng_scene.c sim/zeng/zeng_filter.c sim/zeng/zeng_pipe.c sim/zeng/zeng_eval.c
+ZENG_OBJS = $(patsubst %.c,$(B)/%.o,$(ZENG_SRCS))
+TDC_ZENG := $(B)/tdc-zeng
+HOST_PROGS += $(TDC_ZENG)
+
+# the ground truth (1024 rays a pixel) runs threaded over rows
+$(ZENG_OBJS): HOST_CFLAGS += $(SIM_OMP)
+$(TDC_ZENG): $(B)/sim/zeng/zeng_main.o $(ZENG_OBJS) $(SIMLIB)
+	$(CC) $(HOST_LDFLAGS) $(SIM_OMP) $^ -o $@ $(HOST_LIBS)
+
+TESTS += $(B)/tests/unit/test_zeng
+$(B)/tests/unit/test_zeng: $(B)/tests/unit/test_zeng.o $(ZENG_OBJS) $$(SIMXLIB) $(SIMLIB) $(FWLIB)
+	$(CC) $(HOST_LDFLAGS) $(SIM_OMP) $^ -o $@ $(HOST_LIBS)
+
+experiments demo-experiments experiments-report: $(TDC_ZENG)
+experiments demo-experiments experiments-report: export TDC_ZENG = $(abspath $(TDC_ZENG))
+.PHONY: tdc-zeng
+tdc-zeng: $(TDC_ZENG)
