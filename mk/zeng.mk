@@ -13,7 +13,9 @@ $(TDC_ZENG): $(B)/sim/zeng/zeng_main.o $(ZENG_OBJS) $(SIMLIB)
 	$(CC) $(HOST_LDFLAGS) $(SIM_OMP) $^ -o $@ $(HOST_LIBS)
 
 TESTS += $(B)/tests/unit/test_zeng
-$(B)/tests/unit/test_zeng: $(B)/tests/unit/test_zeng.o $(ZENG_OBJS) $$(SIMXLIB) $(SIMLIB) $(FWLIB)
+# tdc_ssim from the simulator's metrics (the SSIM map is checked against it)
+ZENG_METRICS = $(B)/sim/metrics/tdc_metrics.o $(B)/sim/metrics/tdc_filter.o $(B)/sim/metrics/tdc_powtab.o
+$(B)/tests/unit/test_zeng: $(B)/tests/unit/test_zeng.o $(ZENG_OBJS) $$(ZENG_METRICS) $(SIMLIB)
 	$(CC) $(HOST_LDFLAGS) $(SIM_OMP) $^ -o $@ $(HOST_LIBS)
 
 experiments demo-experiments experiments-report: $(TDC_ZENG)
