@@ -22,3 +22,12 @@ experiments demo-experiments experiments-report: $(TDC_ZENG)
 experiments demo-experiments experiments-report: export TDC_ZENG = $(abspath $(TDC_ZENG))
 .PHONY: tdc-zeng
 tdc-zeng: $(TDC_ZENG)
+
+# The controller's side: exponential history per layer (eq. 2/4) in fixed
+# point, its double reference, the reference test, golden vectors.
+FW_SRCS += firmware/tdc_layer_hist.c
+SIM_SRCS += sim/ref_layer_hist.c
+GOLDEN_STAGES += lhist
+TESTS += $(B)/tests/unit/test_layer_hist
+$(B)/tests/unit/test_layer_hist: $(B)/tests/unit/test_layer_hist.o $(SIMLIB) $(FWLIB)
+	$(CC) $(HOST_LDFLAGS) $^ -o $@ $(HOST_LIBS)
