@@ -20,8 +20,10 @@
  * Scaling and overflow:
  *   bilinear: history <= 255 * 256 (Q8) x Q4 x Q4 weights (sum 256), 4 taps
  *     < 2^24, >> 8 -> Q8;
- *   moments: S1 <= 9 * 255, S2 <= 9 * 255^2; n S2 - S1^2 <= 2^21, << 16 <
- *     2^37 (tdc_isqrt64: n sigma in Q8), one division by n <= 9;
+ *   moments: S1 <= 9 * 255, S2 <= 9 * 255^2; n S2 - S1^2 <= n^2 255^2 / 4
+ *     < 2^21, << 4 < 2^25 (uint32), / n^2: the variance in Q4 < 2^18,
+ *     tdc_sqrt_q8 (table, |error| <= 12 in Q8) >> 2: sigma in Q8 within
+ *     0.012 code (an exact isqrt cost 25x the whole step without clamp);
  *   k sigma <= 3 * 2^15 (Q8), bounds clipped to [0, 255 * 256];
  *   alpha^V: (32768 - alpha) G < 2^30, >> 15;
  *   blend: a (<= 2^15) x x << 8 (< 2^16) + (2^15 - a) x h* (< 2^16) < 2^32

@@ -31,3 +31,6 @@ GOLDEN_STAGES += lhist
 TESTS += $(B)/tests/unit/test_layer_hist
 $(B)/tests/unit/test_layer_hist: $(B)/tests/unit/test_layer_hist.o $(SIMLIB) $(FWLIB)
 	$(CC) $(HOST_LDFLAGS) $^ -o $@ $(HOST_LIBS)
+BENCHES += $(B)/tests/bench/bench_layer_hist
+$(B)/tests/bench/bench_layer_hist: $(B)/tests/bench/bench_layer_hist.o $(FWLIB)
+	$(CC) $(HOST_LDFLAGS) $^ -o $@ $(HOST_LIBS)
