@@ -150,6 +150,7 @@ int main(int argc, char **argv)
             if (use[m] && zp_init(&st[m], m, w, h)) {
                 return nomem();
             }
+            st[m].seed = (uint64_t)seeds[si];
         }
         for (size_t p = 0; p < n; p++) {
             last_dis[p] = -1000;

@@ -13,7 +13,7 @@
 #define CH 3
 #define EPS_WC 0.001 /* eq. 8's epsilon */
 
-static const char *const k_mnames[ZM_N] = {"trad", "trad-clamp", "spec", "ours", "svgf"};
+static const char *const k_mnames[ZM_N] = {"trad", "trad-clamp", "spec", "ours", "svgf", "asvgf"};
 
 const char *zp_method_name(int m) { return m >= 0 && m < ZM_N ? k_mnames[m] : "?"; }
 
@@ -37,7 +37,8 @@ int zp_init(zp_state_t *st, int method, int w, int h)
     st->len = calloc(n, sizeof(double));
     st->var = calloc(n, sizeof(double));
     st->var2 = calloc(n, sizeof(double));
-    if (!st->hist || !st->out || !st->filt || !st->tmp || !st->tmp2 || !st->sig || !st->mvx || !st->mom || !st->len ||
+    st->lam = calloc(n, sizeof(double));
+    if (!st->lam || !st->hist || !st->out || !st->filt || !st->tmp || !st->tmp2 || !st->sig || !st->mvx || !st->mom || !st->len ||
         !st->var || !st->var2) {
         zp_free(st);
         return -1;
@@ -58,6 +59,7 @@ void zp_free(zp_state_t *st)
     free(st->len);
     free(st->var);
     free(st->var2);
+    free(st->lam);
     memset(st, 0, sizeof *st);
 }
 
@@ -181,10 +183,70 @@ static void shadow_vectors(zp_state_t *st, const zs_frame_t *f, const zs_frame_t
     }
 }
 
-static void svgf_step(zp_state_t *st, const zs_frame_t *f, const zs_frame_t *pf)
+/* A-SVGF's temporal gradient (Schied et al. 2018, simplified to one
+ * re-shaded sample per 3x3 stratum, no gradient a-trous): lambda per pixel
+ * in st->lam. */
+static void asvgf_gradient(zp_state_t *st, const zs_scene_t *s, int frame, const zs_frame_t *f, const zs_frame_t *pf)
+{
+    const int w = f->w, h = f->h, gw = (w + 2) / 3, gh = (h + 2) / 3;
+    zs_cam_t cam;
+    zs_camera(s, frame, w, h, &cam);
+    double *g = st->mvx; /* gw x gh strata (mvx holds W*H*3 doubles) */
+    for (int sy = 0; sy < gh; sy++) {
+        for (int sx = 0; sx < gw; sx++) {
+            const uint32_t hs = (uint32_t)(sx * 73856093u ^ sy * 19349663u ^ (uint32_t)frame * 83492791u);
+            int qx = sx * 3 + (int)(hs % 3u), qy = sy * 3 + (int)((hs / 3u) % 3u);
+            qx = qx < w ? qx : w - 1;
+            qy = qy < h ? qy : h - 1;
+            const size_t q = (size_t)qy * w + qx;
+            double lam = 0;
+            if (pf->id[q] >= 0) {
+                double off[3], off0[3], pz[3], xy[2];
+                zs_obj_offset(s, pf->id[q], frame, off);
+                zs_obj_offset(s, pf->id[q], frame - 1, off0);
+                for (int k = 0; k < 3; k++) {
+                    pz[k] = pf->pos[3 * q + k] + off[k] - off0[k];
+                }
+                if (zs_project(&cam, pz, 1, xy) && xy[0] >= 0 && xy[1] >= 0 && xy[0] < w && xy[1] < h) {
+                    const int px = (int)xy[0], py = (int)xy[1];
+                    if (f->id[(size_t)py * w + px] == pf->id[q]) {
+                        double v[3];
+                        zs_sample(s, frame, w, h, px, py, st->seed, frame - 1, q, v);
+                        const double a = mean3(v), b = mean3(pf->layer + 3 * q);
+                        const double m = fmax(fabs(a), fabs(b));
+                        lam = m > 1e-6 ? fmin(1.0, fabs(a - b) / m) : 0.0;
+                    }
+                }
+            }
+            g[(size_t)sy * gw + sx] = lam;
+        }
+    }
+    for (int y = 0; y < h; y++) {
+        for (int x = 0; x < w; x++) {
+            const int sx = x / 3, sy = y / 3;
+            double acc = 0;
+            int cnt = 0;
+            for (int j = -1; j <= 1; j++) {
+                for (int i = -1; i <= 1; i++) {
+                    if (sx + i >= 0 && sy + j >= 0 && sx + i < gw && sy + j < gh) {
+                        acc += g[(size_t)(sy + j) * gw + sx + i];
+                        cnt++;
+                    }
+                }
+            }
+            st->lam[(size_t)y * w + x] = acc / cnt;
+        }
+    }
+}
+
+static void svgf_step(zp_state_t *st, const zs_scene_t *s, int frame, const zs_frame_t *f, const zs_frame_t *pf)
 {
     const int w = f->w, h = f->h;
     const size_t n = (size_t)w * h;
+    const int adaptive = st->method == ZM_ASVGF && st->have;
+    if (adaptive) {
+        asvgf_gradient(st, s, frame, f, pf);
+    }
     zf_guide_t g = guide_of(f);
     const zf_edges_t e = {0.05, 128, 0};
     double *col = st->filt, *m2 = st->tmp2; /* integrated colour, new moments */
@@ -205,7 +267,7 @@ static void svgf_step(zp_state_t *st, const zs_frame_t *f, const zs_frame_t *pf)
             }
         }
         const double len = ok ? fmin(st->sig[p] + 1.0, 255.0) : 1.0;
-        const double a = fmax(0.2, 1.0 / len);
+        const double a0 = fmax(0.2, 1.0 / len), a = adaptive ? (1 - st->lam[p]) * a0 + st->lam[p] : a0;
         for (int k = 0; k < 3; k++) {
             col[3 * p + k] = ok ? a * c[k] + (1 - a) * hc[k] : c[k];
         }
@@ -268,8 +330,8 @@ void zp_step(zp_state_t *st, const zs_scene_t *s, int frame, const zs_frame_t *f
     const int w = f->w, h = f->h;
     const size_t n = (size_t)w * h;
     st->rejected = st->dual = 0;
-    if (st->method == ZM_SVGF) {
-        svgf_step(st, f, pf);
+    if (st->method == ZM_SVGF || st->method == ZM_ASVGF) {
+        svgf_step(st, s, frame, f, pf);
         return;
     }
     zp_spatial(s, f, f->layer, st->filt, st->tmp);

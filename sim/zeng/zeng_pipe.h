@@ -21,6 +21,12 @@
  *               max(0.2, 1/n), variance from the moments (spatial 7x7 when n
  *               < 4), 5 variance-guided a-trous levels, the first level fed
  *               back as history.
+ *   asvgf       Schied et al. 2018 on top: one sample per 3x3 stratum of
+ *               the previous frame is forward-projected and re-shaded in
+ *               this frame with its old random numbers; the normalised
+ *               temporal gradient lambda = |delta| / max(old, new), averaged
+ *               over 3x3 strata, raises the blend weight: a = (1 - lambda)
+ *               a + lambda.
  *
  * Per-effect spatial filters (Zeng §5), applied before eq. 2:
  *   visibility  separable 31x31 joint bilateral (sigma 8 px)
@@ -34,7 +40,7 @@
 
 #include "zeng/zeng_scene.h"
 
-enum { ZM_TRAD, ZM_TRAD_CLAMP, ZM_SPEC, ZM_OURS, ZM_SVGF, ZM_N };
+enum { ZM_TRAD, ZM_TRAD_CLAMP, ZM_SPEC, ZM_OURS, ZM_SVGF, ZM_ASVGF, ZM_N };
 
 typedef struct {
     int method, w, h;
@@ -47,6 +53,9 @@ typedef struct {
     double *filt, *tmp, *tmp2, *sig, *mvx;
     /* SVGF */
     double *mom, *len, *var, *var2;
+    /* A-SVGF: the renderer seed (to re-shade old samples), lambda per stratum */
+    uint64_t seed;
+    double *lam;
     /* diagnostics of the last step: pixels whose history was rejected, and
      * those that took a dual vector */
     long rejected, dual;

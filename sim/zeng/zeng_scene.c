@@ -739,6 +739,46 @@ void zs_render(const zs_scene_t *s, int frame, uint64_t seed, zs_frame_t *f)
     }
 }
 
+void zs_sample(const zs_scene_t *s, int frame, int w, int h, int x, int y, uint64_t seed, int rng_frame,
+               size_t rng_pixel, double out[3])
+{
+    zs_cam_t c;
+    zs_camera(s, frame, w, h, &c);
+    double d[3], n[3], p[3];
+    cam_ray(&c, x + 0.5, y + 0.5, d);
+    int id;
+    double t = zs_intersect(s, frame, c.pos, d, INFINITY, &id, n);
+    v_set(out, 0, 0, 0);
+    if (id < 0) {
+        if (s->noisy != ZL_GLOSSY) {
+            v_set(out, 1, 1, 1);
+        }
+        return;
+    }
+    v_axpy(p, c.pos, t, d);
+    if (v_dot(n, d) > 0) {
+        for (int k = 0; k < 3; k++) {
+            n[k] = -n[k];
+        }
+    }
+    const uint64_t key = zr_key(seed, (uint64_t)rng_frame, rng_pixel);
+    const double u = zr_u01(key, 0), v = zr_u01(key, 1);
+    if (s->noisy == ZL_VIS) {
+        double lp[3], bp[3];
+        int bid;
+        const double vis = vis_sample(s, frame, p, n, u, v, lp, bp, &bid);
+        v_set(out, vis, vis, vis);
+    } else if (s->noisy == ZL_GLOSSY) {
+        if (s->obj[id].ks > 0) {
+            double hit[3], dir[3];
+            int hid;
+            glossy_sample(s, frame, p, n, d, &s->obj[id], u, v, out, hit, &hid, dir);
+        }
+    } else {
+        indirect_sample(s, frame, p, n, u, v, out);
+    }
+}
+
 void zs_ground_truth(const zs_scene_t *s, int frame, int w, int h, int spp, double *out)
 {
     int k = (int)lround(sqrt((double)spp));

@@ -26,6 +26,7 @@
 #ifndef ZENG_SCENE_H
 #define ZENG_SCENE_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #define ZS_MAX_OBJ 24
@@ -89,6 +90,11 @@ void zs_frame_free(zs_frame_t *f);
 /* Renders frame `frame` with one sample per pixel of the scene's noisy layer
  * (random numbers from seed) and every motion vector. */
 void zs_render(const zs_scene_t *s, int frame, uint64_t seed, zs_frame_t *f);
+/* The noisy layer's one sample at pixel (x, y) of `frame` drawn with the
+ * random numbers of (seed, rng_frame, rng_pixel): A-SVGF's temporal
+ * gradient re-shades the previous frame's sample in this frame. */
+void zs_sample(const zs_scene_t *s, int frame, int w, int h, int x, int y, uint64_t seed, int rng_frame,
+               size_t rng_pixel, double out[3]);
 /* Ground truth of the noisy layer: `spp` stratified samples per pixel
  * (spp a square), seed-independent; out: W*H*3. */
 void zs_ground_truth(const zs_scene_t *s, int frame, int w, int h, int spp, double *out);
