@@ -499,19 +499,22 @@ static void bench_layers(uint16_t layers, uint8_t k, uint8_t cleanup, uint8_t sp
     }
 }
 
-/* Per-layer history (tdc_layer_hist.h, Zeng eq. 2/4) at LAYER_W x LAYER_H
+/* Per-layer history (tdc_layer_hist.h, Zeng eq. 2/4) at HIST_W x HIST_H
+ * (its inputs at LAYER_W x LAYER_H overflowed the AN500's PSRAM by 125 KiB)
  * in the same arena, on the noisy panning layer of tdc_lhist_content.h:
  * 4 frames warm it, the next 2 are measured. */
-_Static_assert(TDC_LHIST_MEM_BYTES(LAYER_W, LAYER_H) <= sizeof g_arena, "history arena in the shared bench arena");
-static uint8_t g_hx[LAYER_W * LAYER_H * 3u] TDC_EXTRAM;
-static int16_t g_hmv[LAYER_W * LAYER_H * 2u] TDC_EXTRAM;
-static uint16_t g_hg[LAYER_W * LAYER_H] TDC_EXTRAM;
+#define HIST_W 160u
+#define HIST_H 80u
+_Static_assert(TDC_LHIST_MEM_BYTES(HIST_W, HIST_H) <= sizeof g_arena, "history arena in the shared bench arena");
+static uint8_t g_hx[HIST_W * HIST_H * 3u] TDC_EXTRAM;
+static int16_t g_hmv[HIST_W * HIST_H * 2u] TDC_EXTRAM;
+static uint16_t g_hg[HIST_W * HIST_H] TDC_EXTRAM;
 static tdc_lhist_t g_lhist;
 
 static void bench_lhist(uint8_t ch, uint8_t k, uint8_t falloff, const char *label)
 {
-    const tdc_lhist_config_t cfg = {(uint16_t)LAYER_W, (uint16_t)LAYER_H, ch, k, 3277};
-    const tdc_lhist_content_t c = {(uint16_t)LAYER_W, (uint16_t)LAYER_H, ch, 30, 20, -6, 0, falloff, 1u};
+    const tdc_lhist_config_t cfg = {(uint16_t)HIST_W, (uint16_t)HIST_H, ch, k, 3277};
+    const tdc_lhist_content_t c = {(uint16_t)HIST_W, (uint16_t)HIST_H, ch, 30, 20, -6, 0, falloff, 1u};
     if (tdc_lhist_init(&g_lhist, &cfg, g_arena, sizeof g_arena) != TDC_OK) {
         fail("layer history init");
     }
@@ -525,7 +528,7 @@ static void bench_lhist(uint8_t ch, uint8_t k, uint8_t falloff, const char *labe
         }
         if (f >= 4u) {
             tdc_bench_mark();
-            report(label, LAYER_W * LAYER_H);
+            report(label, HIST_W * HIST_H);
         }
     }
 }

@@ -1,10 +1,16 @@
 """Zeng et al. §6-§7 on the double-precision reference pipeline (tdc-zeng): RMSE/SSIM of the temporally reliable
 vectors against traditional vectors (with and without clamping), specular vectors and SVGF, per scene, 5 seeds."""
 import csv
+import importlib.util
 import os
 import subprocess
 
-REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+HERE = os.path.dirname(os.path.abspath(__file__))
+REPO = os.path.dirname(os.path.dirname(HERE))
+# the sister group's claim rule (RMSE and SSIM both beyond the paired spread)
+_spec = importlib.util.spec_from_file_location("zeng_layers_claims", os.path.join(HERE, "..", "zeng-layers", "claims.py"))
+ZENG_LAYERS = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(ZENG_LAYERS)
 SCENES = ("fence", "glossy", "occlusion")
 SEEDS = "1 2 3 4 5"
 # size, frames, first evaluated frame (the history needs ~1/alpha = 10 frames to fill)
@@ -53,12 +59,7 @@ def compare(exp, scene, rows, a, b, run, region):
     rk, sk = ("rmse_region", "ssim_region") if region else ("rmse", "ssim")
     cr = st.compare(col(rows, a, rk), col(rows, b, rk), higher_is_better=False)
     cs = st.compare(col(rows, a, sk), col(rows, b, sk), higher_is_better=True)
-    if cr["verdict"] == "A beats B" and cs["verdict"] == "A beats B":
-        verdict = "agree"
-    elif "B beats A" in (cr["verdict"], cs["verdict"]):
-        verdict = "disagree"
-    else:
-        verdict = "inconclusive"
+    verdict = ZENG_LAYERS.verdict_both(cr, cs)
     ra, rb = st.summary(col(rows, a, rk)), st.summary(col(rows, b, rk))
     sa, sb = st.summary(col(rows, a, sk)), st.summary(col(rows, b, sk))
     margin = (rb["mean"] - ra["mean"]) / rb["mean"] * 100.0 if rb["mean"] else float("nan")
