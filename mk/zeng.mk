@@ -34,3 +34,7 @@ $(B)/tests/unit/test_layer_hist: $(B)/tests/unit/test_layer_hist.o $(SIMLIB) $(F
 BENCHES += $(B)/tests/bench/bench_layer_hist
 $(B)/tests/bench/bench_layer_hist: $(B)/tests/bench/bench_layer_hist.o $(FWLIB)
 	$(CC) $(HOST_LDFLAGS) $^ -o $@ $(HOST_LIBS)
+$(B)/test-zeng-cli: tests/unit/test_zeng_cli.sh $(TDC_ZENG)
+	@printf '#!/bin/sh\nexec tests/unit/test_zeng_cli.sh %s\n' "$(TDC_ZENG)" > $@
+	@chmod +x $@
+TESTS += $(B)/test-zeng-cli

@@ -14,6 +14,7 @@
  * then one row "cost,...": primary-ray ms, dual-vector ms per frame, ratio.
  * Exit codes (docs/tools.md): 0 OK, 1 ARGS, 7 FILE, 17 NOMEM.
  */
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -110,6 +111,11 @@ int main(int argc, char **argv)
     if (!nseeds) {
         return usage("--seeds: a list of integers");
     }
+    FILE *out = stdout;
+    if (csv && !(out = fopen(csv, "w"))) {
+        fprintf(stderr, "tdc-zeng: --csv: cannot create %s: %s\n", csv, strerror(errno));
+        return EXIT_FILE;
+    }
     zs_scene_t sc;
     zs_scene_init(&sc, kind);
     const size_t n = (size_t)w * h;
@@ -131,11 +137,6 @@ int main(int argc, char **argv)
     }
     for (int f = g0; f < frames; f++) {
         zs_ground_truth(&sc, f, w, h, gt_spp, gt + (size_t)(f - g0) * n * 3);
-    }
-    FILE *out = stdout;
-    if (csv && !(out = fopen(csv, "w"))) {
-        fprintf(stderr, "tdc-zeng: --csv: cannot create %s\n", csv);
-        return EXIT_FILE;
     }
     fprintf(out, "scene,seed,method,rmse,ssim,rmse_region,ssim_region,region_px\n");
     double t_primary = 0, t_dual = 0;
@@ -273,8 +274,8 @@ int main(int argc, char **argv)
     }
     fprintf(out, "cost,primary_ms_per_frame,dual_ms_per_frame,dual_over_primary\n");
     fprintf(out, "cost,%.4f,%.4f,%.4f\n", t_primary / n_cost, t_dual / n_cost, t_dual / t_primary);
-    if (csv && fclose(out)) {
-        fprintf(stderr, "tdc-zeng: --csv: cannot write %s\n", csv);
+    if (csv ? fclose(out) != 0 : fflush(out) != 0) {
+        fprintf(stderr, "tdc-zeng: --csv: cannot write %s: %s\n", csv ? csv : "stdout", strerror(errno));
         return EXIT_FILE;
     }
     if (strip) {
