@@ -623,6 +623,53 @@ static void virtual_image_mv(const zs_scene_t *s, int frame, const zs_cam_t *pc,
     }
 }
 
+/* The primary ray through pixel (x, y)'s centre: its direction d, and when
+ * it hits (the object's id returned, else -1) the point p and the normal n
+ * turned towards the viewer. */
+static int primary_hit(const zs_scene_t *s, int frame, const zs_cam_t *c, int x, int y, double d[3], double p[3],
+                       double n[3])
+{
+    int id;
+    cam_ray(c, x + 0.5, y + 0.5, d);
+    const double t = zs_intersect(s, frame, c->pos, d, INFINITY, &id, n);
+    if (id < 0) {
+        return -1;
+    }
+    v_axpy(p, c->pos, t, d);
+    if (v_dot(n, d) > 0) {
+        for (int k = 0; k < 3; k++) {
+            n[k] = -n[k];
+        }
+    }
+    return id;
+}
+
+/* One sample of the scene's noisy layer at a primary hit (id, p, n, view
+ * direction d) from the uniforms (u, v); the value a miss (id < 0) or a
+ * surface without the layer shows. */
+static void layer_sample(const zs_scene_t *s, int frame, int id, const double p[3], const double n[3],
+                         const double d[3], double u, double v, double out[3])
+{
+    if (id < 0) {
+        const double one = s->noisy == ZL_GLOSSY ? 0.0 : 1.0;
+        v_set(out, one, one, one);
+    } else if (s->noisy == ZL_VIS) {
+        double lp[3], bp[3];
+        int bid;
+        const double vis = vis_sample(s, frame, p, n, u, v, lp, bp, &bid);
+        v_set(out, vis, vis, vis);
+    } else if (s->noisy == ZL_GLOSSY) {
+        v_set(out, 0, 0, 0);
+        if (s->obj[id].ks > 0) {
+            double hit[3], dir[3];
+            int hid;
+            glossy_sample(s, frame, p, n, d, &s->obj[id], u, v, out, hit, &hid, dir);
+        }
+    } else {
+        indirect_sample(s, frame, p, n, u, v, out);
+    }
+}
+
 void zs_render(const zs_scene_t *s, int frame, uint64_t seed, zs_frame_t *f)
 {
     const int w = f->w, h = f->h;
@@ -633,10 +680,8 @@ void zs_render(const zs_scene_t *s, int frame, uint64_t seed, zs_frame_t *f)
         for (int x = 0; x < w; x++) {
             const size_t i = (size_t)y * w + x;
             double d[3], n[3];
-            cam_ray(&c, x + 0.5, y + 0.5, d);
-            int id;
-            double t = zs_intersect(s, frame, c.pos, d, INFINITY, &id, n);
             double *p = f->pos + 3 * i, *lay = f->layer + 3 * i;
+            const int id = primary_hit(s, frame, &c, x, y, d, p, n);
             f->id[i] = id;
             f->in_shadow[i] = 0;
             v_set(lay, 0, 0, 0);
@@ -656,15 +701,9 @@ void zs_render(const zs_scene_t *s, int frame, uint64_t seed, zs_frame_t *f)
                 }
                 continue;
             }
-            v_axpy(p, c.pos, t, d);
-            if (v_dot(n, d) > 0) {
-                for (int k = 0; k < 3; k++) {
-                    n[k] = -n[k];
-                }
-            }
             memcpy(f->nrm + 3 * i, n, sizeof n);
             albedo_at(s, id, frame, p, f->alb + 3 * i);
-            f->depth[i] = t * v_dot(d, c.f);
+            f->depth[i] = (v_dot(p, c.f) - v_dot(c.pos, c.f));
             const zs_obj_t *ob = &s->obj[id];
             double e = direct(s, frame, p, n);
             for (int k = 0; k < 3; k++) {
@@ -745,38 +784,9 @@ void zs_sample(const zs_scene_t *s, int frame, int w, int h, int x, int y, uint6
     zs_cam_t c;
     zs_camera(s, frame, w, h, &c);
     double d[3], n[3], p[3];
-    cam_ray(&c, x + 0.5, y + 0.5, d);
-    int id;
-    double t = zs_intersect(s, frame, c.pos, d, INFINITY, &id, n);
-    v_set(out, 0, 0, 0);
-    if (id < 0) {
-        if (s->noisy != ZL_GLOSSY) {
-            v_set(out, 1, 1, 1);
-        }
-        return;
-    }
-    v_axpy(p, c.pos, t, d);
-    if (v_dot(n, d) > 0) {
-        for (int k = 0; k < 3; k++) {
-            n[k] = -n[k];
-        }
-    }
+    const int id = primary_hit(s, frame, &c, x, y, d, p, n);
     const uint64_t key = zr_key(seed, (uint64_t)rng_frame, rng_pixel);
-    const double u = zr_u01(key, 0), v = zr_u01(key, 1);
-    if (s->noisy == ZL_VIS) {
-        double lp[3], bp[3];
-        int bid;
-        const double vis = vis_sample(s, frame, p, n, u, v, lp, bp, &bid);
-        v_set(out, vis, vis, vis);
-    } else if (s->noisy == ZL_GLOSSY) {
-        if (s->obj[id].ks > 0) {
-            double hit[3], dir[3];
-            int hid;
-            glossy_sample(s, frame, p, n, d, &s->obj[id], u, v, out, hit, &hid, dir);
-        }
-    } else {
-        indirect_sample(s, frame, p, n, u, v, out);
-    }
+    layer_sample(s, frame, id, p, n, d, zr_u01(key, 0), zr_u01(key, 1), out);
 }
 
 void zs_ground_truth(const zs_scene_t *s, int frame, int w, int h, int spp, double *out)
@@ -790,44 +800,19 @@ void zs_ground_truth(const zs_scene_t *s, int frame, int w, int h, int spp, doub
     for (int y = 0; y < h; y++) {
         for (int x = 0; x < w; x++) {
             const size_t i = (size_t)y * w + x;
-            double d[3], n[3], acc[3] = {0, 0, 0};
-            cam_ray(&c, x + 0.5, y + 0.5, d);
-            int id;
-            double t = zs_intersect(s, frame, c.pos, d, INFINITY, &id, n);
-            if (id < 0) {
-                double one = s->noisy == ZL_GLOSSY ? 0.0 : 1.0;
-                v_set(out + 3 * i, one, one, one);
-                continue;
-            }
-            double p[3];
-            v_axpy(p, c.pos, t, d);
-            if (v_dot(n, d) > 0) {
-                for (int q = 0; q < 3; q++) {
-                    n[q] = -n[q];
-                }
-            }
-            const zs_obj_t *ob = &s->obj[id];
-            if (s->noisy == ZL_GLOSSY && ob->ks <= 0) {
-                v_set(out + 3 * i, 0, 0, 0);
+            double d[3], n[3], p[3], acc[3] = {0, 0, 0};
+            const int id = primary_hit(s, frame, &c, x, y, d, p, n);
+            if (id < 0 || (s->noisy == ZL_GLOSSY && s->obj[id].ks <= 0)) {
+                layer_sample(s, frame, id, p, n, d, 0.5, 0.5, out + 3 * i); /* constant: 1 or 0 */
                 continue;
             }
             const uint64_t key = zr_key(0x6a09e667f3bcc909ull, (uint64_t)frame, i);
             for (int a = 0; a < k; a++) {
                 for (int b = 0; b < k; b++) {
                     const unsigned j = (unsigned)(a * k + b);
-                    double u = (a + zr_u01(key, 2 * j)) / k, v = (b + zr_u01(key, 2 * j + 1)) / k, sm[3];
-                    if (s->noisy == ZL_VIS) {
-                        double lp[3], bp[3];
-                        int bid;
-                        double vis = vis_sample(s, frame, p, n, u, v, lp, bp, &bid);
-                        v_set(sm, vis, vis, vis);
-                    } else if (s->noisy == ZL_GLOSSY) {
-                        double hit[3], dir[3];
-                        int hid;
-                        glossy_sample(s, frame, p, n, d, ob, u, v, sm, hit, &hid, dir);
-                    } else {
-                        indirect_sample(s, frame, p, n, u, v, sm);
-                    }
+                    double sm[3];
+                    layer_sample(s, frame, id, p, n, d, (a + zr_u01(key, 2 * j)) / k, (b + zr_u01(key, 2 * j + 1)) / k,
+                                 sm);
                     for (int q = 0; q < 3; q++) {
                         acc[q] += sm[q];
                     }
