@@ -8,7 +8,7 @@
  *
  *   tdc-zeng --scene fence|glossy|occlusion [--size WxH] [--frames N]
  *            [--eval-from K] [--seeds "1 2 3 4 5"] [--gt-spp 1024]
- *            [--csv FILE] [--png FILE]
+ *            [--rough SIGMA] [--csv FILE] [--png FILE]
  *
  * CSV rows: scene,seed,method,rmse,ssim,rmse_region,ssim_region,region_px
  * then one row "cost,...": primary-ray ms, dual-vector ms per frame, ratio.
@@ -58,6 +58,7 @@ int main(int argc, char **argv)
 {
     const char *scene_name = NULL, *csv = NULL, *png = NULL, *seeds_s = "1 2 3 4 5";
     int w = 160, h = 120, frames = 40, eval_from = 16, gt_spp = 1024;
+    double rough = 0; /* 0: the scene's own */
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (!v) {
@@ -80,6 +81,11 @@ int main(int argc, char **argv)
             gt_spp = atoi(v);
         } else if (!strcmp(a, "--csv")) {
             csv = v;
+        } else if (!strcmp(a, "--rough")) {
+            rough = atof(v);
+            if (!(rough > 0 && rough < 1)) {
+                return usage("--rough: the glossy lobe's sigma in radians, in (0, 1)");
+            }
         } else if (!strcmp(a, "--png")) {
             png = v;
         } else {
@@ -118,6 +124,11 @@ int main(int argc, char **argv)
     }
     zs_scene_t sc;
     zs_scene_init(&sc, kind);
+    for (int o = 0; o < sc.nobj && rough > 0; o++) {
+        if (sc.obj[o].ks > 0) {
+            sc.obj[o].rough = rough;
+        }
+    }
     const size_t n = (size_t)w * h;
     const int nev = frames - eval_from;
     /* ground truth layers of the evaluated frames, and three before them
