@@ -22,6 +22,8 @@
 #include "tdc_fov.h"
 #include "tdc_fov_lr.h"
 #include "tdc_layer_content.h"
+#include "tdc_layer_hist.h"
+#include "tdc_lhist_content.h"
 #include "tdc_layers.h"
 #include "tdc_lcd.h"
 #include "tdc_link.h"
@@ -497,6 +499,40 @@ static void bench_layers(uint16_t layers, uint8_t k, uint8_t cleanup, uint8_t sp
     }
 }
 
+/* Per-layer history (tdc_layer_hist.h, Zeng eq. 2/4) at HIST_W x HIST_H
+ * (its inputs at LAYER_W x LAYER_H overflowed the AN500's PSRAM by 125 KiB)
+ * in the same arena, on the noisy panning layer of tdc_lhist_content.h:
+ * 4 frames warm it, the next 2 are measured. */
+#define HIST_W 160u
+#define HIST_H 80u
+_Static_assert(TDC_LHIST_MEM_BYTES(HIST_W, HIST_H) <= sizeof g_arena, "history arena in the shared bench arena");
+static uint8_t g_hx[HIST_W * HIST_H * 3u] TDC_EXTRAM;
+static int16_t g_hmv[HIST_W * HIST_H * 2u] TDC_EXTRAM;
+static uint16_t g_hg[HIST_W * HIST_H] TDC_EXTRAM;
+static tdc_lhist_t g_lhist;
+
+static void bench_lhist(uint8_t ch, uint8_t k, uint8_t falloff, const char *label)
+{
+    const tdc_lhist_config_t cfg = {(uint16_t)HIST_W, (uint16_t)HIST_H, ch, k, 3277};
+    const tdc_lhist_content_t c = {(uint16_t)HIST_W, (uint16_t)HIST_H, ch, 30, 20, -6, 0, falloff, 1u};
+    if (tdc_lhist_init(&g_lhist, &cfg, g_arena, sizeof g_arena) != TDC_OK) {
+        fail("layer history init");
+    }
+    for (uint32_t f = 0; f < 6u; f++) {
+        tdc_lhist_content(&c, f, g_hx, g_hmv, g_hg);
+        if (f >= 4u) {
+            tdc_bench_mark();
+        }
+        if (tdc_lhist_step(&g_lhist, g_hx, g_hmv, falloff ? g_hg : NULL) != TDC_OK) {
+            fail("layer history");
+        }
+        if (f >= 4u) {
+            tdc_bench_mark();
+            report(label, HIST_W * HIST_H);
+        }
+    }
+}
+
 /* Group from QEMU's -append (last word): link, trm, assemble, lcd, fov, layers; anything
  * else runs all (make profile-arm runs one group under the profiler). */
 static int want(const char *group)
@@ -550,6 +586,8 @@ int main(void)
         bench_layers(sh | vi | TDC_LAYER_PKT_FALLOFF, 3, 0, 2, 0, "layered assembly, fence (shadow MVs, splat)");
         bench_layers(sh | vi | TDC_LAYER_PKT_FALLOFF, 3, 1, 2, 0, "layered assembly, fence + clean-up");
         bench_layers(all, 3, 1, 2, 24, "layered assembly, all 4 layers + clean-up");
+        bench_lhist(3, 3, 0, "layer history, colour layer (eq. 2, 3 sigma)");
+        bench_lhist(1, 3, 1, "layer history, visibility (eq. 2 + eq. 4 falloff, 3 sigma)");
     }
     if (want("lcd")) {
         bench_lcd();

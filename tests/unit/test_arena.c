@@ -26,6 +26,7 @@
 #include "tdc_assemble.h"
 #include "tdc_fov.h"
 #include "tdc_fov_lr.h"
+#include "tdc_layer_hist.h"
 #include "tdc_layers.h"
 #include "tdc_lcd.h"
 #include "tdc_panels.h"
@@ -632,10 +633,64 @@ static void test_lasm_arena(void **state)
     lasm_one(1, TDC_LASM_MAX_DIM, 0x1u, 0, 0);
 }
 
+/* ------------------------------------------------- per-layer history */
+
+static void lhist_one(uint32_t w, uint32_t h, uint8_t ch, int init)
+{
+    const tdc_lhist_config_t c = {(uint16_t)w, (uint16_t)h, ch, 3, 3277};
+    const size_t n = tdc_lhist_get_size(&c), bound = TDC_LHIST_MEM_BYTES((size_t)w, (size_t)h);
+    if (n == 0 || n % TDC_ARENA_ALIGN != 0 || n > bound || (ch == 3u && n != bound)) {
+        fail_msg("layer history %ux%u ch %u: get_size %zu, bound %zu", w, h, ch, n, bound);
+    }
+    if (!init) {
+        return;
+    }
+    arena_t a;
+    arena_new(&a, n);
+    tdc_lhist_t ls, *st = &ls;
+    assert_int_equal(tdc_lhist_init(st, &c, a.mem + 4, n), TDC_ERR_ARG);
+    assert_int_equal(tdc_lhist_init(st, &c, a.mem, n - 1), TDC_ERR_SIZE);
+    assert_int_equal(tdc_lhist_init(st, &c, a.mem, n), TDC_OK);
+    walk_t wk = {a.mem, 0, "layer history"};
+    TDC_LHIST_ARENA(WALK, c.width, c.height, c.channels)
+    walk_end(&wk, n);
+    uint8_t *x = malloc((size_t)w * h * ch);
+    int16_t *mv = malloc((size_t)w * h * 4u);
+    assert_non_null(x);
+    assert_non_null(mv);
+    for (uint32_t f = 0; f < 4; f++) {
+        for (size_t i = 0; i < (size_t)w * h * ch; i++) {
+            x[i] = (uint8_t)(i * 13u + f * 50u);
+        }
+        for (size_t i = 0; i < (size_t)w * h * 2u; i++) {
+            mv[i] = (int16_t)((int)((i * 7u + f) % 61u) - 30);
+        }
+        assert_int_equal(tdc_lhist_step(st, x, mv, NULL), TDC_OK);
+    }
+    arena_check_guard(&a, "layer history frames");
+    free(x);
+    free(mv);
+    free(a.mem);
+}
+
+static void test_lhist_arena(void **state)
+{
+    (void)state;
+    static const uint32_t small[][2] = {{1, 1}, {1, 5}, {3, 1}, {33, 17}};
+    for (unsigned i = 0; i < sizeof small / sizeof small[0]; i++) {
+        lhist_one(small[i][0], small[i][1], 1, 1);
+        lhist_one(small[i][0], small[i][1], 3, 1);
+    }
+    for (unsigned p = 0; p < NPANELS; p++) {
+        lhist_one(g_panels[p]->width, g_panels[p]->height, 3, 0);
+    }
+    lhist_one(TDC_LHIST_MAX_DIM, TDC_LHIST_MAX_DIM, 3, 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_lasm_arena),
+        cmocka_unit_test(test_lasm_arena), cmocka_unit_test(test_lhist_arena),
         cmocka_unit_test(test_carver),    cmocka_unit_test(test_trm_arena), cmocka_unit_test(test_lcd_arena),
         cmocka_unit_test(test_asm_arena), cmocka_unit_test(test_fov_arena), cmocka_unit_test(test_fov_lr_arena),
     };

@@ -29,16 +29,21 @@ def verdict_of(got):
     return "agree" if got == "A beats B" else ("inconclusive" if got in ("tie", "too few seeds") else "disagree")
 
 
+def verdict_both(cr, cs):
+    """A claim on RMSE and SSIM (two tdc_stats.compare results): agree when A beats B in both, disagree when B
+    beats A in either, else inconclusive (also used by the zeng-reliable group)."""
+    if cr["verdict"] == "A beats B" and cs["verdict"] == "A beats B":
+        return "agree"
+    if "B beats A" in (cr["verdict"], cs["verdict"]):
+        return "disagree"
+    return "inconclusive"
+
+
 def both(exp, rows, sweep, a, b, paper, claim, paper_value, why_not=""):
     """A beats B in RMSE (lower) and SSIM (higher), each beyond the paired spread over the seeds."""
     cr = exp.stats.compare(col(exp, rows, a, "rmse"), col(exp, rows, b, "rmse"), higher_is_better=False)
     cs = exp.stats.compare(col(exp, rows, a, "ssim"), col(exp, rows, b, "ssim"), higher_is_better=True)
-    if cr["verdict"] == "A beats B" and cs["verdict"] == "A beats B":
-        verdict = "agree"
-    elif "B beats A" in (cr["verdict"], cs["verdict"]):
-        verdict = "disagree"
-    else:
-        verdict = "inconclusive"
+    verdict = verdict_both(cr, cs)
     sr, ss = exp.stats.summary(col(exp, rows, a, "rmse")), exp.stats.summary(col(exp, rows, b, "rmse"))
     tr, ts = exp.stats.summary(col(exp, rows, a, "ssim")), exp.stats.summary(col(exp, rows, b, "ssim"))
     tdc = "RMSE %s vs %s, SSIM %s vs %s" % (exp.stats.fmt_ms(sr, 2), exp.stats.fmt_ms(ss, 2),

@@ -1,0 +1,140 @@
+"""Zeng et al. §6-§7 on the double-precision reference pipeline (tdc-zeng): RMSE/SSIM of the temporally reliable
+vectors against traditional vectors (with and without clamping), specular vectors and SVGF, per scene, 5 seeds."""
+import csv
+import importlib.util
+import os
+import subprocess
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+REPO = os.path.dirname(os.path.dirname(HERE))
+# the sister group's claim rule (RMSE and SSIM both beyond the paired spread)
+_spec = importlib.util.spec_from_file_location("zeng_layers_claims", os.path.join(HERE, "..", "zeng-layers", "claims.py"))
+ZENG_LAYERS = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(ZENG_LAYERS)
+SCENES = ("fence", "glossy", "occlusion")
+SEEDS = "1 2 3 4 5"
+# size, frames, first evaluated frame (the history needs ~1/alpha = 10 frames to fill)
+SCALES = {"demo": ("64x48", 20, 12), "dev": ("128x96", 36, 16), "headset": ("128x96", 36, 16)}
+PIXELS = {"64x48": 64 * 48, "128x96": 128 * 96, "160x120": 160 * 120}
+NEGLIGIBLE = 0.25  # of the primary rays, as the zeng-cost group reads §7's "negligible"
+FIG = {"fence": "Zeng Fig. 8 (and Fig. 1 left)", "glossy": "Zeng Fig. 11 (and Fig. 1 middle)",
+       "occlusion": "Zeng Fig. 12 (and Fig. 1 right)"}
+SENTENCE = {
+    "fence": "\"our shadow motion vectors are able to produce shadows that are closely attached to the fence\"; "
+             "\"With clamping, the results are less lagging but much more noisy\"",
+    "glossy": "\"Our method produces the closest result to the ground truth\"",
+    "occlusion": "\"our occlusion motion vectors are able to find their corresponding locations in the previous "
+                 "frame, thus avoiding noise and repetitive patterns\"",
+}
+
+
+def binary():
+    return os.environ.get("TDC_ZENG") or os.path.join(REPO, "build", "gcc-O2", "tdc-zeng")
+
+
+def run_scene(exp, scene):
+    """Rows of tdc-zeng's CSV for one scene (cached in the group's result folder)."""
+    size, frames, first = SCALES.get(exp.scale, SCALES["headset"])
+    d = os.path.join(exp.out, exp.group)
+    os.makedirs(d, exist_ok=True)
+    path = os.path.join(d, "%s-%s-%d.csv" % (scene, size, frames))
+    if not os.path.isfile(path):
+        cmd = [binary(), "--scene", scene, "--size", size, "--frames", str(frames), "--eval-from", str(first),
+               "--seeds", SEEDS, "--gt-spp", "1024", "--csv", path + ".tmp"]
+        subprocess.run(cmd, check=True)
+        os.replace(path + ".tmp", path)
+    with open(path, newline="", encoding="utf-8") as f:
+        lines = f.read().splitlines()
+    rows = list(csv.DictReader([ln for ln in lines if not ln.startswith("cost")]))
+    cost = [ln.split(",") for ln in lines if ln.startswith("cost,") and not ln.startswith("cost,primary")]
+    return rows, (float(cost[0][1]), float(cost[0][2])) if cost else None, size, frames, first
+
+
+def col(rows, method, name):
+    sel = sorted((r for r in rows if r["method"] == method), key=lambda r: int(r["seed"]))
+    return [float(r[name]) for r in sel]
+
+
+def compare(exp, scene, rows, a, b, run, region):
+    st = exp.stats
+    rk, sk = ("rmse_region", "ssim_region") if region else ("rmse", "ssim")
+    cr = st.compare(col(rows, a, rk), col(rows, b, rk), higher_is_better=False)
+    cs = st.compare(col(rows, a, sk), col(rows, b, sk), higher_is_better=True)
+    verdict = ZENG_LAYERS.verdict_both(cr, cs)
+    ra, rb = st.summary(col(rows, a, rk)), st.summary(col(rows, b, rk))
+    sa, sb = st.summary(col(rows, a, sk)), st.summary(col(rows, b, sk))
+    margin = (rb["mean"] - ra["mean"]) / rb["mean"] * 100.0 if rb["mean"] else float("nan")
+    tdc = "RMSE %s vs %s (%.1f %% lower), SSIM %s vs %s" % (st.fmt_ms(ra, 4), st.fmt_ms(rb, 4), margin,
+                                                           st.fmt_ms(sa, 4), st.fmt_ms(sb, 4))
+    why = "RMSE: %s (difference %s, paired spread %s); SSIM: %s (difference %s, paired spread %s)" % (
+        cr["verdict"].replace("A", a).replace("B", b), st.fmt(cr["diff"], 4), st.fmt(cr["spread"], 4),
+        cs["verdict"].replace("A", a).replace("B", b), st.fmt(cs["diff"], 4), st.fmt(cs["spread"], 4))
+    if verdict != "agree":
+        why += "; " + WHY_NOT.get((scene, b), "see sim/zeng/README.md")
+    where = "effect region" if region else "whole frame"
+    exp.claim(FIG[scene], "%s, %s: ours beats %s in RMSE and SSIM" % (scene, where, b),
+              SENTENCE[scene] + " (paper's figures: lower RMSE, higher SSIM than %s)" % b, tdc, verdict, why,
+              spread=st.fmt(cr["spread"], 4), n=cr["n"], run=run)
+
+
+WHY_NOT = {
+    ("glossy", "trad-clamp"): "the stochastic vectors (eq. 5) scatter each pixel's history fetch over the lobe's "
+                              "footprint (several pixels here): the fetched history carries the reflection's "
+                              "gradient as noise, which the 3-sigma clamp on the 1-sample neighbourhood keeps and "
+                              "the eq. 7-8 clean-up (sigma = w_A + w_C, mostly < 1 px) does not remove; measured "
+                              "at 64x48 (sim/zeng/README.md): the loss shrinks with the lobe (RMSE +37 % at 0.08 "
+                              "rad, +12 % at 0.02) and with a 1-sigma clamp for ours (ahead in RMSE at 0.02 rad, "
+                              "not in SSIM)",
+    ("glossy", "spec"): "as against trad-clamp: the specular vector is deterministic, so its history fetch adds no "
+                        "noise, and in this scene its virtual image differs from the lobe's only at object edges",
+    ("occlusion", "trad"): "traditional vectors reject the disoccluded history and fall back to the 4-level "
+                           "a-trous filter, which on this smooth indirect light is already close to the ground "
+                           "truth; the dual vectors fetch the background beside the occluder, whose irradiance "
+                           "differs (the occluder's own contact shadow), and the 3-sigma clamp lets it through",
+    ("occlusion", "svgf"): "SVGF's variance-guided 5-level a-trous overblurs, which costs little on smooth "
+                           "indirect light (the paper: 'sometimes SVGF is better in quantity')",
+    ("occlusion", "asvgf"): "A-SVGF rejects the history where its gradient fires and otherwise filters as SVGF "
+                            "does: on smooth indirect light its overblur costs little",
+    ("glossy", "asvgf"): "as against trad-clamp: the eq. 5 vectors' noisy history fetch",
+    ("glossy", "svgf"): "as against trad-clamp: the eq. 5 vectors' noisy history fetch",
+    ("fence", "svgf"): "SVGF's variance-guided filter overblurs (the paper: 'sometimes SVGF is better in "
+                       "quantity')",
+}
+
+
+def claims(exp):
+    st = exp.stats
+    extra = []
+    for scene in SCENES:
+        rows, cost, size, frames, first = run_scene(exp, scene)
+        run = "%s (tdc-zeng %s, frames %d-%d, seeds %s, 1024-spp ground truth)" % (exp.group, size, first,
+                                                                                    frames - 1, SEEDS)
+        baselines = ["trad-clamp", "trad", "svgf", "asvgf"] + (["spec"] if scene == "glossy" else [])
+        for b in baselines:
+            compare(exp, scene, rows, "ours", b, run, region=False)
+        compare(exp, scene, rows, "ours", "trad-clamp", run, region=True)
+        methods = [m for m in ("trad", "trad-clamp", "spec", "ours", "svgf", "asvgf") if col(rows, m, "rmse")]
+        extra += ["", "**%s** %s, frames %d-%d (mean ± spread over 5 seeds):" % (scene, size, first, frames - 1), "",
+                  "| method | RMSE | SSIM | RMSE region | SSIM region |", "| --- | ---: | ---: | ---: | ---: |"]
+        for m in methods:
+            extra.append("| %s | %s |" % (m, " | ".join(st.fmt_ms(st.summary(col(rows, m, c)), 4)
+                                                       for c in ("rmse", "ssim", "rmse_region", "ssim_region"))))
+        if scene == "occlusion" and cost:
+            ratio = cost[1] / cost[0]
+            exp.claim("Zeng §7", "dual vectors (eq. 6, a lookup in the previous frame's ids and positions): cost "
+                      "per frame beside the primary rays", "negligible (< 0.23 ms at 1080p, GPU)",
+                      "%.3f ms vs %.3f ms primary (%.3f×)" % (cost[1], cost[0], ratio),
+                      "agree" if ratio <= NEGLIGIBLE else "disagree",
+                      "thread CPU time over frames 1-%d of seed 1, one pass over every pixel each; 'negligible' "
+                      "read as <= %.2f of the primary rays (as the zeng-cost group); the Embree renderer's dual "
+                      "pass traced a ray per candidate (1.08x)%s" % (
+                          frames - 1, NEGLIGIBLE,
+                          "" if ratio <= NEGLIGIBLE else
+                          "; the lookup costs %.0f ns a pixel whatever the scene, while a primary ray into these "
+                          "analytic scenes (5-12 objects, no hierarchy) costs only %.0f ns: the ratio says more "
+                          "about the cheap rays than about the lookup" % (
+                              1e6 * cost[1] / PIXELS[size], 1e6 * cost[0] / PIXELS[size])),
+                      n=1, run=run)
+    exp.write_extra("RMSE and SSIM on gamma-encoded frames (values in [0, 1]); regions: fence = where the "
+                    "ground-truth visibility is below 0.98 now or in the 3 frames before, glossy = the glossy "
+                    "floor, occlusion = pixels disoccluded in the last 8 frames.\n" + "\n".join(extra) + "\n")

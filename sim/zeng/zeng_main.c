@@ -1,0 +1,311 @@
+/*
+ * tdc-zeng - Zeng et al.'s evaluation (§6-§7) on the double-precision
+ * reference pipeline (sim/zeng/README.md): one scene, its 1-sample frames
+ * per seed, every method, RMSE and SSIM against a >= 1024-sample ground
+ * truth per frame (whole frame and the effect's region), averaged over the
+ * evaluated frames; and the cost of the dual vectors (a G-buffer lookup)
+ * beside the primary rays (§7).
+ *
+ *   tdc-zeng --scene fence|glossy|occlusion [--size WxH] [--frames N]
+ *            [--eval-from K] [--seeds "1 2 3 4 5"] [--gt-spp 1024]
+ *            [--rough SIGMA] [--csv FILE] [--png FILE]
+ *
+ * CSV rows: scene,seed,method,rmse,ssim,rmse_region,ssim_region,region_px
+ * then one row "cost,...": primary-ray ms, dual-vector ms per frame, ratio.
+ * Exit codes (docs/tools.md): 0 OK, 1 ARGS, 7 FILE, 17 NOMEM.
+ */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "tdc_png.h"
+#include "zeng/zeng_eval.h"
+#include "zeng/zeng_pipe.h"
+
+#define EXIT_ARGS 1
+#define EXIT_FILE 7
+#define EXIT_NOMEM 17
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+static int usage(const char *what)
+{
+    fprintf(stderr, "tdc-zeng: arguments: %s: see the header of sim/zeng/zeng_main.c\n", what);
+    return EXIT_ARGS;
+}
+
+static int nomem(void)
+{
+    fprintf(stderr, "tdc-zeng: run: allocation failed: out of memory\n");
+    return EXIT_NOMEM;
+}
+
+typedef struct {
+    double rmse, ssim, rmse_r, ssim_r;
+    long px;
+    int n;
+} acc_t;
+
+int main(int argc, char **argv)
+{
+    const char *scene_name = NULL, *csv = NULL, *png = NULL, *seeds_s = "1 2 3 4 5";
+    int w = 160, h = 120, frames = 40, eval_from = 16, gt_spp = 1024;
+    double rough = 0; /* 0: the scene's own */
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (!v) {
+            return usage("an option without its value");
+        }
+        i++;
+        if (!strcmp(a, "--scene")) {
+            scene_name = v;
+        } else if (!strcmp(a, "--size")) {
+            if (sscanf(v, "%dx%d", &w, &h) != 2 || w < 16 || h < 16 || w > 4096 || h > 4096) {
+                return usage("--size: WxH, 16..4096");
+            }
+        } else if (!strcmp(a, "--frames")) {
+            frames = atoi(v);
+        } else if (!strcmp(a, "--eval-from")) {
+            eval_from = atoi(v);
+        } else if (!strcmp(a, "--seeds")) {
+            seeds_s = v;
+        } else if (!strcmp(a, "--gt-spp")) {
+            gt_spp = atoi(v);
+        } else if (!strcmp(a, "--csv")) {
+            csv = v;
+        } else if (!strcmp(a, "--rough")) {
+            rough = atof(v);
+            if (!(rough > 0 && rough < 1)) {
+                return usage("--rough: the glossy lobe's sigma in radians, in (0, 1)");
+            }
+        } else if (!strcmp(a, "--png")) {
+            png = v;
+        } else {
+            return usage(a);
+        }
+    }
+    const int kind = scene_name ? zs_scene_by_name(scene_name) : -1;
+    if (kind < 0) {
+        return usage("--scene: fence, glossy or occlusion");
+    }
+    const int k = (int)lround(sqrt((double)gt_spp));
+    if (k * k != gt_spp || gt_spp < 1) {
+        return usage("--gt-spp: a square (1024 = 32^2)");
+    }
+    if (frames < 2 || eval_from < 1 || eval_from >= frames) {
+        return usage("--frames N >= 2, 1 <= --eval-from < N");
+    }
+    long seeds[64];
+    int nseeds = 0;
+    for (const char *p = seeds_s; *p && nseeds < 64;) {
+        char *end;
+        long s = strtol(p, &end, 10);
+        if (end == p) {
+            break;
+        }
+        seeds[nseeds++] = s;
+        p = end;
+    }
+    if (!nseeds) {
+        return usage("--seeds: a list of integers");
+    }
+    FILE *out = stdout;
+    if (csv && !(out = fopen(csv, "w"))) {
+        fprintf(stderr, "tdc-zeng: --csv: cannot create %s: %s\n", csv, strerror(errno));
+        return EXIT_FILE;
+    }
+    zs_scene_t sc;
+    zs_scene_init(&sc, kind);
+    for (int o = 0; o < sc.nobj && rough > 0; o++) {
+        if (sc.obj[o].ks > 0) {
+            sc.obj[o].rough = rough;
+        }
+    }
+    const size_t n = (size_t)w * h;
+    const int nev = frames - eval_from;
+    /* ground truth layers of the evaluated frames, and three before them
+     * (the shadow region spans where the shadow was) */
+    const int g0 = eval_from >= 3 ? eval_from - 3 : 0, ngt = frames - g0;
+    double *gt = malloc((size_t)ngt * n * 3 * sizeof(double));
+    double *rgb = malloc(n * 3 * sizeof(double)), *ref = malloc(n * 3 * sizeof(double));
+    double *enc = malloc(n * 3 * sizeof(double)), *encr = malloc(n * 3 * sizeof(double));
+    double *map = malloc(n * sizeof(double));
+    uint8_t *mask = malloc(n);
+    int *last_dis = malloc(n * sizeof(int));
+    uint8_t *strip = png ? malloc(n * 3 * (ZM_N + 1)) : NULL;
+    zs_frame_t fa, fb;
+    if (!gt || !rgb || !ref || !enc || !encr || !map || !mask || !last_dis || (png && !strip) ||
+        zs_frame_alloc(&fa, w, h) || zs_frame_alloc(&fb, w, h)) {
+        return nomem();
+    }
+    for (int f = g0; f < frames; f++) {
+        zs_ground_truth(&sc, f, w, h, gt_spp, gt + (size_t)(f - g0) * n * 3);
+    }
+    fprintf(out, "scene,seed,method,rmse,ssim,rmse_region,ssim_region,region_px\n");
+    double t_primary = 0, t_dual = 0;
+    long n_cost = 0;
+    for (int si = 0; si < nseeds; si++) {
+        zp_state_t st[ZM_N];
+        acc_t acc[ZM_N];
+        memset(acc, 0, sizeof acc);
+        int use[ZM_N];
+        for (int m = 0; m < ZM_N; m++) {
+            use[m] = m != ZM_SPEC || sc.noisy == ZL_GLOSSY;
+            if (use[m] && zp_init(&st[m], m, w, h)) {
+                return nomem();
+            }
+            st[m].seed = (uint64_t)seeds[si];
+        }
+        for (size_t p = 0; p < n; p++) {
+            last_dis[p] = -1000;
+        }
+        zs_frame_t *f = &fa, *pf = &fb;
+        for (int fr = 0; fr < frames; fr++) {
+            zs_render(&sc, fr, (uint64_t)seeds[si], f);
+            if (fr > 0 && si == 0) {
+                /* §7: the dual vectors' cost beside the primary rays of
+                 * the same frame (thread CPU time) */
+                zs_cam_t cam;
+                zs_camera(&sc, fr, w, h, &cam);
+                double t0 = now_ms();
+                for (int y = 0; y < h; y++) {
+                    for (int x = 0; x < w; x++) {
+                        double d[3];
+                        const double px = x + 0.5 - 0.5 * w, py = y + 0.5 - 0.5 * h;
+                        for (int c = 0; c < 3; c++) {
+                            d[c] = cam.fpx * cam.f[c] + px * cam.r[c] - py * cam.u[c];
+                        }
+                        const double l = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+                        d[0] /= l;
+                        d[1] /= l;
+                        d[2] /= l;
+                        int id;
+                        (void)zs_intersect(&sc, fr, cam.pos, d, INFINITY, &id, NULL);
+                        rgb[(size_t)y * w + x] = id;
+                    }
+                }
+                double t1 = now_ms();
+                for (int y = 0; y < h; y++) {
+                    for (int x = 0; x < w; x++) {
+                        double o2[2];
+                        ref[(size_t)y * w + x] = zp_dual_vector(&sc, fr, f, pf, &cam, x, y, o2) + o2[0];
+                    }
+                }
+                double t2 = now_ms();
+                t_primary += t1 - t0;
+                t_dual += t2 - t1;
+                n_cost++;
+            }
+            for (int m = 0; m < ZM_N; m++) {
+                if (use[m]) {
+                    zp_step(&st[m], &sc, fr, f, pf);
+                }
+            }
+            /* disocclusions (the occlusion region): the traditional vector
+             * lands on another object in the previous frame */
+            if (fr > 0) {
+                for (int y = 0; y < h; y++) {
+                    for (int x = 0; x < w; x++) {
+                        const size_t p = (size_t)y * w + x;
+                        const int qx = (int)floor(f->mv_trad[2 * p]), qy = (int)floor(f->mv_trad[2 * p + 1]);
+                        if (qx >= 0 && qy >= 0 && qx < w && qy < h && pf->id[(size_t)qy * w + qx] != f->id[p]) {
+                            last_dis[p] = fr;
+                        }
+                    }
+                }
+            }
+            if (fr >= eval_from) {
+                const double *gl = gt + (size_t)(fr - g0) * n * 3;
+                zs_composite(&sc, f, gl, ref);
+                ze_encode(ref, encr, w, h);
+                for (size_t p = 0; p < n; p++) {
+                    if (sc.noisy == ZL_VIS) {
+                        int in = 0;
+                        for (int b = fr - 3 < g0 ? g0 : fr - 3; b <= fr; b++) {
+                            in |= gt[(size_t)(b - g0) * n * 3 + 3 * p] < 0.98;
+                        }
+                        mask[p] = (uint8_t)in;
+                    } else if (sc.noisy == ZL_GLOSSY) {
+                        mask[p] = f->id[p] >= 0 && sc.obj[f->id[p]].ks > 0;
+                    } else {
+                        mask[p] = fr - last_dis[p] < 8;
+                    }
+                }
+                for (int m = 0; m < ZM_N; m++) {
+                    if (!use[m]) {
+                        continue;
+                    }
+                    zs_composite(&sc, f, st[m].out, rgb);
+                    ze_encode(rgb, enc, w, h);
+                    ze_ssim_map(enc, encr, w, h, map);
+                    double r0, s0, r1, s1;
+                    ze_region(enc, encr, map, NULL, w, h, &r0, &s0);
+                    long px = ze_region(enc, encr, map, mask, w, h, &r1, &s1);
+                    acc[m].rmse += r0;
+                    acc[m].ssim += s0;
+                    if (px > 0 && !isnan(s1)) {
+                        acc[m].rmse_r += r1;
+                        acc[m].ssim_r += s1;
+                        acc[m].n++;
+                    }
+                    acc[m].px += px;
+                    if (strip && si == 0 && fr == frames - 1) {
+                        for (int y = 0; y < h; y++) {
+                            for (int x = 0; x < w * 3; x++) {
+                                size_t row = (size_t)y * w * 3 * (ZM_N + 1);
+                                strip[row + (size_t)(m + 1) * w * 3 + x] =
+                                    (uint8_t)lround(255.0 * enc[(size_t)y * w * 3 + x]);
+                                strip[row + x] = (uint8_t)lround(255.0 * encr[(size_t)y * w * 3 + x]);
+                            }
+                        }
+                    }
+                }
+            }
+            zs_frame_t *t = f;
+            f = pf;
+            pf = t;
+        }
+        for (int m = 0; m < ZM_N; m++) {
+            if (!use[m]) {
+                continue;
+            }
+            fprintf(out, "%s,%ld,%s,%.6f,%.6f,%.6f,%.6f,%ld\n", zs_scene_name(kind), seeds[si], zp_method_name(m),
+                    acc[m].rmse / nev, acc[m].ssim / nev, acc[m].n ? acc[m].rmse_r / acc[m].n : NAN,
+                    acc[m].n ? acc[m].ssim_r / acc[m].n : NAN, acc[m].px / nev);
+            zp_free(&st[m]);
+        }
+    }
+    fprintf(out, "cost,primary_ms_per_frame,dual_ms_per_frame,dual_over_primary\n");
+    fprintf(out, "cost,%.4f,%.4f,%.4f\n", t_primary / n_cost, t_dual / n_cost, t_dual / t_primary);
+    if (csv ? fclose(out) != 0 : fflush(out) != 0) {
+        fprintf(stderr, "tdc-zeng: --csv: cannot write %s: %s\n", csv ? csv : "stdout", strerror(errno));
+        return EXIT_FILE;
+    }
+    if (strip) {
+        char err[256];
+        if (tdc_png_write(png, strip, w * (ZM_N + 1), h, 8, (size_t)w * 3 * (ZM_N + 1), err, sizeof err)) {
+            fprintf(stderr, "tdc-zeng: --png: cannot write %s: %s\n", png, err);
+            return EXIT_FILE;
+        }
+    }
+    zs_frame_free(&fa);
+    zs_frame_free(&fb);
+    free(gt);
+    free(rgb);
+    free(ref);
+    free(enc);
+    free(encr);
+    free(map);
+    free(mask);
+    free(last_dis);
+    free(strip);
+    return 0;
+}

@@ -1,0 +1,418 @@
+/*
+ * zeng_pipe.c - Zeng et al.'s temporal pipeline and its baselines
+ * (zeng_pipe.h).
+ */
+#include "zeng/zeng_pipe.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "zeng/zeng_filter.h"
+
+#define CH 3
+#define EPS_WC 0.001 /* eq. 8's epsilon */
+
+static const char *const k_mnames[ZM_N] = {"trad", "trad-clamp", "spec", "ours", "svgf", "asvgf"};
+
+const char *zp_method_name(int m) { return m >= 0 && m < ZM_N ? k_mnames[m] : "?"; }
+
+int zp_init(zp_state_t *st, int method, int w, int h)
+{
+    memset(st, 0, sizeof *st);
+    st->method = method;
+    st->w = w;
+    st->h = h;
+    st->alpha = 0.1;
+    st->clamp_r = 2;
+    const size_t n = (size_t)w * h;
+    st->hist = calloc(n * CH, sizeof(double));
+    st->out = calloc(n * CH, sizeof(double));
+    st->filt = calloc(n * CH, sizeof(double));
+    st->tmp = calloc(n * CH, sizeof(double));
+    st->tmp2 = calloc(n * CH, sizeof(double));
+    st->sig = calloc(n, sizeof(double));
+    st->mvx = calloc(n * CH, sizeof(double));
+    st->mom = calloc(n * 2, sizeof(double));
+    st->len = calloc(n, sizeof(double));
+    st->var = calloc(n, sizeof(double));
+    st->var2 = calloc(n, sizeof(double));
+    st->lam = calloc(n, sizeof(double));
+    if (!st->lam || !st->hist || !st->out || !st->filt || !st->tmp || !st->tmp2 || !st->sig || !st->mvx || !st->mom || !st->len ||
+        !st->var || !st->var2) {
+        zp_free(st);
+        return -1;
+    }
+    return 0;
+}
+
+void zp_free(zp_state_t *st)
+{
+    free(st->hist);
+    free(st->out);
+    free(st->filt);
+    free(st->tmp);
+    free(st->tmp2);
+    free(st->sig);
+    free(st->mvx);
+    free(st->mom);
+    free(st->len);
+    free(st->var);
+    free(st->var2);
+    free(st->lam);
+    memset(st, 0, sizeof *st);
+}
+
+static zf_guide_t guide_of(const zs_frame_t *f)
+{
+    zf_guide_t g = {f->w, f->h, f->id, f->depth, f->nrm};
+    return g;
+}
+
+void zp_spatial(const zs_scene_t *s, const zs_frame_t *f, const double *in, double *out, double *tmp)
+{
+    zf_guide_t g = guide_of(f);
+    if (s->noisy == ZL_VIS) {
+        /* 31x31 joint bilateral, its Gaussian sized by the penumbra
+         * (sigma = half the PCSS width, 0.5..8 px) averaged over the
+         * in-shadow pixels in reach */
+        const size_t n = (size_t)f->w * f->h;
+        double *pm = calloc(n * CH, sizeof(double)), *sg = calloc(n, sizeof(double));
+        const zf_edges_t e = {0.05, 32, 0};
+        if (!pm || !sg) {
+            free(pm);
+            free(sg);
+            memcpy(out, in, n * CH * sizeof(double));
+            return;
+        }
+        for (size_t p = 0; p < n; p++) {
+            const double m = f->in_shadow[p] ? 1.0 : 0.0;
+            pm[3 * p] = m * f->pen[p];
+            pm[3 * p + 1] = pm[3 * p + 2] = m;
+        }
+        zf_bilateral(pm, CH, &g, &e, 15, 8.0, NULL, out, tmp);
+        for (size_t p = 0; p < n; p++) {
+            const double pw = out[3 * p + 1] > 1e-6 ? out[3 * p] / out[3 * p + 1] : 1.0;
+            sg[p] = fmin(fmax(0.5 * pw, 0.5), 8.0);
+        }
+        zf_bilateral(in, CH, &g, &e, 15, 0.0, sg, out, tmp);
+        free(pm);
+        free(sg);
+    } else if (s->noisy == ZL_GLOSSY) {
+        const zf_edges_t e = {0.05, 32, 1};
+        zf_bilateral(in, CH, &g, &e, 7, 3.0, NULL, out, tmp);
+    } else {
+        const zf_edges_t e = {0.05, 32, 0};
+        zf_atrous(in, CH, &g, &e, 4, 0.0, out, tmp);
+    }
+}
+
+int zp_dual_vector(const zs_scene_t *s, int frame, const zs_frame_t *f, const zs_frame_t *pf, const zs_cam_t *cam,
+                   int x, int y, double out[2])
+{
+    const size_t p = (size_t)y * f->w + x;
+    const double yx = f->mv_trad[2 * p], yy = f->mv_trad[2 * p + 1];
+    out[0] = yx;
+    out[1] = yy;
+    const int qx = (int)floor(yx), qy = (int)floor(yy);
+    if (qx < 0 || qy < 0 || qx >= f->w || qy >= f->h) {
+        return 0;
+    }
+    const size_t q = (size_t)qy * f->w + qx;
+    const int occ = pf->id[q];
+    if (occ == f->id[p] || occ < 0) {
+        return 0;
+    }
+    double off[3], off0[3], pz[3], z[2];
+    zs_obj_offset(s, occ, frame, off);
+    zs_obj_offset(s, occ, frame - 1, off0);
+    for (int k = 0; k < 3; k++) {
+        pz[k] = pf->pos[3 * q + k] + off[k] - off0[k];
+    }
+    if (!zs_project(cam, pz, 1, z)) {
+        return 0;
+    }
+    out[0] = qx + 0.5 + (x + 0.5 - z[0]);
+    out[1] = qy + 0.5 + (y + 0.5 - z[1]);
+    return 1;
+}
+
+static double mean3(const double *v) { return (v[0] + v[1] + v[2]) / 3.0; }
+
+/* Shadow vectors for every pixel: the in-shadow pixels' eq. 3
+ * displacements averaged with the shadow filter's weights (Zeng §4.1:
+ * "propagated (weight averaged) into the center of each filter"); pixels
+ * with no in-shadow pixel in reach keep the traditional vector.  Writes
+ * prev positions to mv (W*H*2) and alpha^V (eq. 4) to av. */
+static void shadow_vectors(zp_state_t *st, const zs_frame_t *f, const zs_frame_t *pf, double *mv, double *av)
+{
+    const int w = f->w, h = f->h;
+    const size_t n = (size_t)w * h;
+    for (size_t p = 0; p < n; p++) {
+        const double m = f->in_shadow[p] ? 1.0 : 0.0;
+        const int x = (int)(p % w), y = (int)(p / w);
+        st->mvx[3 * p] = m * (f->mv_eff[2 * p] - (x + 0.5));
+        st->mvx[3 * p + 1] = m * (f->mv_eff[2 * p + 1] - (y + 0.5));
+        st->mvx[3 * p + 2] = m;
+    }
+    zf_guide_t g = guide_of(f);
+    const zf_edges_t e = {0.05, 32, 0};
+    zf_bilateral(st->mvx, CH, &g, &e, 15, 8.0, NULL, st->tmp2, st->tmp);
+    for (size_t p = 0; p < n; p++) {
+        const int x = (int)(p % w), y = (int)(p / w);
+        const double m = st->tmp2[3 * p + 2];
+        av[p] = st->alpha;
+        if (m < 1e-6 || f->id[p] < 0) {
+            mv[2 * p] = f->mv_trad[2 * p];
+            mv[2 * p + 1] = f->mv_trad[2 * p + 1];
+            continue;
+        }
+        mv[2 * p] = x + 0.5 + st->tmp2[3 * p] / m;
+        mv[2 * p + 1] = y + 0.5 + st->tmp2[3 * p + 1] / m;
+        /* eq. 4: the angle between the receiver's normal and the direction
+         * from its (previous) point to the previous frame's point at x^V */
+        const int qx = (int)floor(mv[2 * p]), qy = (int)floor(mv[2 * p + 1]);
+        double theta = 0.0;
+        if (qx >= 0 && qy >= 0 && qx < w && qy < h && pf->id[(size_t)qy * w + qx] >= 0) {
+            const double *sv = pf->pos + 3 * ((size_t)qy * w + qx), *sp = f->pos + 3 * p, *nn = f->nrm + 3 * p;
+            double d[3] = {sv[0] - sp[0], sv[1] - sp[1], sv[2] - sp[2]};
+            double l = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+            theta = l < 1e-9 ? 0.5 * M_PI : acos(fmax(-1.0, fmin(1.0, (d[0] * nn[0] + d[1] * nn[1] + d[2] * nn[2]) / l)));
+        }
+        av[p] = zs_alpha_v(theta, st->alpha);
+    }
+}
+
+/* A-SVGF's temporal gradient (Schied et al. 2018, simplified to one
+ * re-shaded sample per 3x3 stratum, no gradient a-trous): lambda per pixel
+ * in st->lam. */
+static void asvgf_gradient(zp_state_t *st, const zs_scene_t *s, int frame, const zs_frame_t *f, const zs_frame_t *pf)
+{
+    const int w = f->w, h = f->h, gw = (w + 2) / 3, gh = (h + 2) / 3;
+    zs_cam_t cam;
+    zs_camera(s, frame, w, h, &cam);
+    double *g = st->mvx; /* gw x gh strata (mvx holds W*H*3 doubles) */
+    for (int sy = 0; sy < gh; sy++) {
+        for (int sx = 0; sx < gw; sx++) {
+            const uint32_t hs = (uint32_t)(sx * 73856093u ^ sy * 19349663u ^ (uint32_t)frame * 83492791u);
+            int qx = sx * 3 + (int)(hs % 3u), qy = sy * 3 + (int)((hs / 3u) % 3u);
+            qx = qx < w ? qx : w - 1;
+            qy = qy < h ? qy : h - 1;
+            const size_t q = (size_t)qy * w + qx;
+            double lam = 0;
+            if (pf->id[q] >= 0) {
+                double off[3], off0[3], pz[3], xy[2];
+                zs_obj_offset(s, pf->id[q], frame, off);
+                zs_obj_offset(s, pf->id[q], frame - 1, off0);
+                for (int k = 0; k < 3; k++) {
+                    pz[k] = pf->pos[3 * q + k] + off[k] - off0[k];
+                }
+                if (zs_project(&cam, pz, 1, xy) && xy[0] >= 0 && xy[1] >= 0 && xy[0] < w && xy[1] < h) {
+                    const int px = (int)xy[0], py = (int)xy[1];
+                    if (f->id[(size_t)py * w + px] == pf->id[q]) {
+                        double v[3];
+                        zs_sample(s, frame, w, h, px, py, st->seed, frame - 1, q, v);
+                        const double a = mean3(v), b = mean3(pf->layer + 3 * q);
+                        const double m = fmax(fabs(a), fabs(b));
+                        lam = m > 1e-6 ? fmin(1.0, fabs(a - b) / m) : 0.0;
+                    }
+                }
+            }
+            g[(size_t)sy * gw + sx] = lam;
+        }
+    }
+    for (int y = 0; y < h; y++) {
+        for (int x = 0; x < w; x++) {
+            const int sx = x / 3, sy = y / 3;
+            double acc = 0;
+            int cnt = 0;
+            for (int j = -1; j <= 1; j++) {
+                for (int i = -1; i <= 1; i++) {
+                    if (sx + i >= 0 && sy + j >= 0 && sx + i < gw && sy + j < gh) {
+                        acc += g[(size_t)(sy + j) * gw + sx + i];
+                        cnt++;
+                    }
+                }
+            }
+            st->lam[(size_t)y * w + x] = acc / cnt;
+        }
+    }
+}
+
+static void svgf_step(zp_state_t *st, const zs_scene_t *s, int frame, const zs_frame_t *f, const zs_frame_t *pf)
+{
+    const int w = f->w, h = f->h;
+    const size_t n = (size_t)w * h;
+    const int adaptive = st->method == ZM_ASVGF && st->have;
+    if (adaptive) {
+        asvgf_gradient(st, s, frame, f, pf);
+    }
+    zf_guide_t g = guide_of(f);
+    const zf_edges_t e = {0.05, 128, 0};
+    double *col = st->filt, *m2 = st->tmp2; /* integrated colour, new moments */
+    for (size_t p = 0; p < n; p++) {
+        const double *c = f->layer + 3 * p;
+        const double l = mean3(c);
+        double hc[3], hm[2];
+        int ok = 0;
+        if (st->have) {
+            const double *mv = f->mv_trad + 2 * p;
+            ok = zf_fetch(st->hist, CH, w, h, mv[0], mv[1], pf->id, f->id[p], hc) &&
+                 zf_fetch(st->mom, 2, w, h, mv[0], mv[1], pf->id, f->id[p], hm);
+            if (ok) {
+                int qx = (int)floor(mv[0]), qy = (int)floor(mv[1]);
+                qx = qx < 0 ? 0 : (qx >= w ? w - 1 : qx);
+                qy = qy < 0 ? 0 : (qy >= h ? h - 1 : qy);
+                st->sig[p] = st->len[(size_t)qy * w + qx];
+            }
+        }
+        const double len = ok ? fmin(st->sig[p] + 1.0, 255.0) : 1.0;
+        const double a0 = fmax(0.2, 1.0 / len), a = adaptive ? (1 - st->lam[p]) * a0 + st->lam[p] : a0;
+        for (int k = 0; k < 3; k++) {
+            col[3 * p + k] = ok ? a * c[k] + (1 - a) * hc[k] : c[k];
+        }
+        m2[2 * p] = ok ? a * l + (1 - a) * hm[0] : l;
+        m2[2 * p + 1] = ok ? a * l * l + (1 - a) * hm[1] : l * l;
+        st->mvx[p] = len;
+        st->rejected += !ok;
+    }
+    memcpy(st->len, st->mvx, n * sizeof(double));
+    memcpy(st->mom, m2, n * 2 * sizeof(double));
+    for (size_t p = 0; p < n; p++) {
+        if (st->len[p] >= 4) {
+            st->var[p] = fmax(0.0, st->mom[2 * p + 1] - st->mom[2 * p] * st->mom[2 * p]);
+            continue;
+        }
+        /* fewer than 4 frames of history: the moments of a 7x7 neighbourhood */
+        const int x = (int)(p % w), y = (int)(p / w);
+        double s1 = 0, s2 = 0, ws = 0;
+        for (int j = -3; j <= 3; j++) {
+            for (int i = -3; i <= 3; i++) {
+                int xx = x + i, yy = y + j;
+                if (xx < 0 || yy < 0 || xx >= w || yy >= h) {
+                    continue;
+                }
+                const size_t q = (size_t)yy * w + xx;
+                const double l = mean3(f->layer + 3 * q);
+                const double wk = (f->id[q] == f->id[p]) ? 1.0 : 0.0;
+                s1 += wk * l;
+                s2 += wk * l * l;
+                ws += wk;
+            }
+        }
+        s1 /= ws;
+        st->var[p] = fmax(0.0, s2 / ws - s1 * s1) * 4.0 / st->len[p];
+    }
+    double *a = col, *b = st->out, *va = st->var, *vb = st->var2;
+    for (int l = 0; l < 5; l++) {
+        zf_svgf_level(a, va, CH, &g, &e, l, b, vb);
+        if (l == 0) {
+            memcpy(st->hist, b, n * CH * sizeof(double));
+        }
+        double *t = a;
+        a = b;
+        b = t;
+        t = va;
+        va = vb;
+        vb = t;
+    }
+    if (a != st->out) {
+        memcpy(st->out, a, n * CH * sizeof(double));
+    }
+    if (va != st->var) {
+        memcpy(st->var, va, n * sizeof(double));
+    }
+    st->have = 1;
+}
+
+void zp_step(zp_state_t *st, const zs_scene_t *s, int frame, const zs_frame_t *f, const zs_frame_t *pf)
+{
+    const int w = f->w, h = f->h;
+    const size_t n = (size_t)w * h;
+    st->rejected = st->dual = 0;
+    if (st->method == ZM_SVGF || st->method == ZM_ASVGF) {
+        svgf_step(st, s, frame, f, pf);
+        return;
+    }
+    zp_spatial(s, f, f->layer, st->filt, st->tmp);
+    if (!st->have) {
+        memcpy(st->hist, st->filt, n * CH * sizeof(double));
+        memcpy(st->out, st->filt, n * CH * sizeof(double));
+        st->have = 1;
+        return;
+    }
+    /* vectors: previous positions (W*H*2) and alpha per pixel */
+    double *mv = malloc(n * 2 * sizeof(double)), *av = malloc(n * sizeof(double));
+    double *blend = st->tmp2;
+    if (!mv || !av) {
+        free(mv);
+        free(av);
+        return;
+    }
+    zs_cam_t cam;
+    zs_camera(s, frame, w, h, &cam);
+    for (size_t p = 0; p < n; p++) {
+        mv[2 * p] = f->mv_trad[2 * p];
+        mv[2 * p + 1] = f->mv_trad[2 * p + 1];
+        av[p] = st->alpha;
+    }
+    if (st->method == ZM_OURS && s->noisy == ZL_VIS) {
+        shadow_vectors(st, f, pf, mv, av); /* uses tmp2 as scratch before the blend fills it */
+    } else if ((st->method == ZM_OURS || st->method == ZM_SPEC) && s->noisy == ZL_GLOSSY) {
+        const double *src = st->method == ZM_OURS ? f->mv_eff : f->mv_spec;
+        for (size_t p = 0; p < n; p++) {
+            if (f->id[p] >= 0 && s->obj[f->id[p]].ks > 0 && src[2 * p] > -1e8) {
+                mv[2 * p] = src[2 * p];
+                mv[2 * p + 1] = src[2 * p + 1];
+            }
+        }
+    } else if (st->method == ZM_OURS && s->noisy == ZL_INDIRECT) {
+        for (int y = 0; y < h; y++) {
+            for (int x = 0; x < w; x++) {
+                st->dual += zp_dual_vector(s, frame, f, pf, &cam, x, y, mv + 2 * ((size_t)y * w + x));
+            }
+        }
+    }
+    const double k = st->method == ZM_OURS ? 3.0 : 1.0;
+    const int clamp = st->method != ZM_TRAD;
+    for (int y = 0; y < h; y++) {
+        for (int x = 0; x < w; x++) {
+            const size_t p = (size_t)y * w + x;
+            double hv[3], hc[3];
+            /* the glossy layer exists on the glossy surface only: its
+             * history never takes a tap from another object */
+            const int ok = zf_fetch(st->hist, CH, w, h, mv[2 * p], mv[2 * p + 1],
+                                    st->method == ZM_TRAD || s->noisy == ZL_GLOSSY ? pf->id : NULL, f->id[p], hv);
+            double a = ok ? av[p] : 1.0;
+            st->rejected += !ok;
+            memcpy(hc, hv, sizeof hc);
+            if (ok && clamp) {
+                double mu[3], sd[3];
+                zf_moments(f->layer, CH, w, h, x, y, st->clamp_r, mu, sd);
+                for (int c = 0; c < 3; c++) {
+                    hc[c] = fmin(fmax(hv[c], mu[c] - k * sd[c]), mu[c] + k * sd[c]);
+                }
+            }
+            for (int c = 0; c < 3; c++) {
+                blend[3 * p + c] = ok ? a * st->filt[3 * p + c] + (1 - a) * hc[c] : st->filt[3 * p + c];
+            }
+            if (st->method == ZM_OURS) {
+                /* eqs. 7-8: the clean-up filter's sigma */
+                const double wa = (a - st->alpha) * (a - st->alpha);
+                const double h0 = mean3(hv), h1 = mean3(hc);
+                const double wc = ok ? fabs(h1 - h0) / (fabs(h0) + EPS_WC) : 0.0;
+                st->sig[p] = fmin(wa + wc, 5.0);
+            }
+        }
+    }
+    memcpy(st->hist, blend, n * CH * sizeof(double));
+    if (st->method == ZM_OURS) {
+        zf_guide_t g = guide_of(f);
+        const zf_edges_t e = {0.05, 32, 0};
+        zf_bilateral(blend, CH, &g, &e, 4, 0.0, st->sig, st->out, st->tmp);
+    } else {
+        memcpy(st->out, blend, n * CH * sizeof(double));
+    }
+    free(mv);
+    free(av);
+}
