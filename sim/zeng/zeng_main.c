@@ -22,12 +22,22 @@
 #include <time.h>
 
 #include "tdc_png.h"
+#include "tdc_tool.h"
 #include "zeng/zeng_eval.h"
 #include "zeng/zeng_pipe.h"
 
-#define EXIT_ARGS 1
-#define EXIT_FILE 7
-#define EXIT_NOMEM 17
+/* the one exit-code table (hosttools/common/tdc_exit.h) */
+#define EXIT_ARGS TDC_EXIT_ARGS
+#define EXIT_FILE TDC_EXIT_FILE
+#define EXIT_NOMEM TDC_EXIT_NOMEM
+
+static const char help_text[] =
+    "usage: tdc-zeng --scene fence|glossy|occlusion [--size WxH] [--frames N] [--eval-from K]\n"
+    "                [--seeds \"1 2 3 4 5\"] [--gt-spp 1024] [--rough SIGMA] [--csv FILE] [--png FILE]\n"
+    "Zeng et al.'s evaluation (sec. 6-7) on the double-precision reference pipeline (sim/zeng/README.md):\n"
+    "every method's RMSE and SSIM against a >= 1024-sample ground truth, whole frame and effect region,\n"
+    "and the dual vectors' cost beside the primary rays.\n"
+    "exit codes (docs/tools.md): 0 OK, 1 ARGS, 7 FILE, 17 NOMEM\n";
 
 static double now_ms(void)
 {
@@ -59,6 +69,10 @@ int main(int argc, char **argv)
     const char *scene_name = NULL, *csv = NULL, *png = NULL, *seeds_s = "1 2 3 4 5";
     int w = 160, h = 120, frames = 40, eval_from = 16, gt_spp = 1024;
     double rough = 0; /* 0: the scene's own */
+    if (argc == 2 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
+        fputs(help_text, stdout);
+        return 0;
+    }
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (!v) {

@@ -126,6 +126,12 @@ for prog in "$@"; do
         one_line 13 "table: a condition missing" "$prog" table "$t/short.csv"
         one_line 7 "dump: folder not creatable" "$prog" dump "$nowhere"
         ;;
+    tdc-zeng)
+        one_line 7 "--csv is a folder" "$prog" --scene fence --size 16x16 --frames 2 --eval-from 1 --seeds 1 \
+            --gt-spp 1 --csv "$t/dir"
+        one_line 7 "--csv not creatable" "$prog" --scene fence --size 16x16 --frames 2 --eval-from 1 --seeds 1 \
+            --gt-spp 1 --csv "$nowhere.csv"
+        ;;
     *)
         bad "$name: no cases in $0 (every program keeps docs/tools.md)"
         ;;
