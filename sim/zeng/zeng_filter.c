@@ -82,6 +82,19 @@ void zf_bilateral(const double *in, int ch, const zf_guide_t *g, const zf_edges_
 
 static const double k_b3[5] = {1.0 / 16, 1.0 / 4, 3.0 / 8, 1.0 / 4, 1.0 / 16};
 
+/* One tap of a 5x5 a-trous kernel at offset (dx, dy) from (x, y): its
+ * index in *q, 0 when it falls outside the frame (the tap is skipped and the
+ * weights renormalised). */
+static int atrous_tap(int w, int h, int x, int y, int dx, int dy, size_t *q)
+{
+    const int xx = x + dx, yy = y + dy;
+    if (xx < 0 || yy < 0 || xx >= w || yy >= h) {
+        return 0;
+    }
+    *q = (size_t)yy * w + xx;
+    return 1;
+}
+
 void zf_atrous(const double *in, int ch, const zf_guide_t *g, const zf_edges_t *e, int levels, double sigma_c,
                double *out, double *tmp)
 {
@@ -99,11 +112,10 @@ void zf_atrous(const double *in, int ch, const zf_guide_t *g, const zf_edges_t *
                 double acc[4] = {0, 0, 0, 0}, ws = 0;
                 for (int j = -2; j <= 2; j++) {
                     for (int i = -2; i <= 2; i++) {
-                        int xx = x + i * step, yy = y + j * step;
-                        if (xx < 0 || yy < 0 || xx >= w || yy >= h) {
+                        size_t q;
+                        if (!atrous_tap(w, h, x, y, i * step, j * step, &q)) {
                             continue;
                         }
-                        const size_t q = (size_t)yy * w + xx;
                         double wk = k_b3[i + 2] * k_b3[j + 2] * edge_w(g, e, p, q);
                         if (sigma_c > 0 && wk > 0) {
                             double d2 = 0;
@@ -163,11 +175,10 @@ void zf_svgf_level(const double *col, const double *var, int ch, const zf_guide_
             double acc[4] = {0, 0, 0, 0}, ws = 0, va = 0;
             for (int j = -2; j <= 2; j++) {
                 for (int i = -2; i <= 2; i++) {
-                    int xx = x + i * step, yy = y + j * step;
-                    if (xx < 0 || yy < 0 || xx >= w || yy >= h) {
+                    size_t q;
+                    if (!atrous_tap(w, h, x, y, i * step, j * step, &q)) {
                         continue;
                     }
-                    const size_t q = (size_t)yy * w + xx;
                     double wk = k_b3[i + 2] * k_b3[j + 2] * edge_w(g, e, p, q) *
                                 exp(-fabs(lum(col + q * ch, ch) - lp) / sl);
                     for (int c = 0; c < ch; c++) {
