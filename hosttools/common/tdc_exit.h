@@ -21,9 +21,9 @@
 #define TDC_EXIT_TABLE(X) \
     X(0, OK, "success", "all") \
     X(1, ARGS, "bad command line: unknown option, bad value, missing argument", "all") \
-    X(2, NO_DEVICE, "no board (USB) or GPIO chip matches", "tdc-usb, tdc-gpio") \
+    X(2, NO_DEVICE, "no board (USB), GPIO chip, DRM device or connector matches", "tdc-usb, tdc-gpio, tdc-board") \
     X(3, AMBIGUOUS, "more than one board matches: select one", "tdc-usb") \
-    X(4, IO, "device I/O error (libusb: access, stall, I/O; GPIO request/read)", "tdc-usb, tdc-gpio") \
+    X(4, IO, "device I/O error (libusb: access, stall, I/O; GPIO request/read; USB gadget set-up)", "tdc-usb, tdc-gpio, tdc-board") \
     X(5, TIMEOUT, "a transfer or an expected edge timed out", "tdc-usb, tdc-gpio") \
     X(6, DISCONNECTED, "the board went away mid-operation", "tdc-usb") \
     X(7, FILE, "cannot open, read, write or create a file or folder (a folder named as a file included)", "all but tdc-gpio") \
@@ -32,11 +32,11 @@
     X(10, DFU, "the board's DFU reported an error", "tdc-usb") \
     X(11, VERIFY, "read-back or received-data check failed", "tdc-usb") \
     X(12, PROTOCOL, "the board's reply is malformed", "tdc-usb") \
-    X(13, INPUT, "an input file's contents are malformed: PNG, CSV, scene, OBJ, panel profile, .tdcs stream, sweep or experiment group", "tdc-run, tdc-sim, tdc-render, tdc-linkdump, tdc-tablegen, tdc-calib, tdc-lcd-measure, tdc_sweep.py, tdc_experiments.py") \
-    X(14, REFUSED, "the firmware (a stage) or the renderer refused the input or configuration: the run is not a result", "tdc-run, tdc-sim, tdc-render") \
+    X(13, INPUT, "an input file's contents are malformed: PNG, CSV, scene, OBJ, panel profile, .tdcs stream, sweep or experiment group", "tdc-run, tdc-sim, tdc-render, tdc-linkdump, tdc-tablegen, tdc-calib, tdc-lcd-measure, tdc_sweep.py, tdc_experiments.py, tdc-fvvdp-validate") \
+    X(14, REFUSED, "the firmware (a stage) or the renderer refused the input or configuration: the run is not a result", "tdc-run, tdc-sim, tdc-render, tdc-fvvdp-validate, tdc-board (no display mode for the panel)") \
     X(15, NO_LINE, "no such GPIO line on the chip", "tdc-gpio") \
     X(16, BUSY, "the GPIO line is held by another consumer", "tdc-gpio") \
-    X(17, NOMEM, "out of memory", "tdc-run, tdc-sim, tdc-render") \
+    X(17, NOMEM, "out of memory", "tdc-run, tdc-sim, tdc-render, tdc-zeng") \
     X(18, JOBS, "a job of a sweep or experiment failed, or a result it needs is missing (each job's own code is in its log)", "tdc_sweep.py, tdc_experiments.py") \
     X(19, ENGINE, "the job engine (GNU parallel, Slurm sbatch) is missing or failed", "tdc_sweep.py")
 /* clang-format on */
