@@ -573,4 +573,3 @@ tdc_source_t *tdc_sim_render_source(const char *name, int w, int h, int clock_hz
               "renderer with its own adaptive orderings; foveated frames traced by its FOVEATED mode";
     return s;
 }
-
