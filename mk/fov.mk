@@ -53,4 +53,3 @@ fuzz-seeds-fov: $(BUILD)/fuzz/make_seeds_fov
 TESTS += $(B)/tests/unit/test_sim_fov
 $(B)/tests/unit/test_sim_fov: $(B)/tests/unit/test_sim_fov.o $$(SIMXLIB) $$(SIMLIB) $$(FWLIB)
 	$(CC) $(HOST_LDFLAGS) $(SIM_OMP) $^ -o $@ $(HOST_LIBS)
-$(B)/tests/unit/test_sim_fov.o: $(GEN)/tdc_sim_features.h

@@ -19,7 +19,5 @@ $(B)/tests/bench/bench_layers: $(B)/tests/bench/bench_layers.o $(B)/tests/golden
 # The layered modes on the Embree renderer's glossy floor and the simulator's
 # renderer seed (tdc-sim -S) through tdc_sim_run (after mk/sim.mk's libraries).
 TESTS += $(B)/tests/unit/test_sim_layers_render
-$(B)/tests/unit/test_sim_layers_render.o: $(GEN)/tdc_sim_features.h
-$(B)/tests/unit/test_sim_layers_render: $(B)/tests/unit/test_sim_layers_render.o $$(SIMXLIB) $(SIMLIB) $(FWLIB) $$(SIM_RENDER_LIBS)
-	$(CC) $(HOST_LDFLAGS) $(SIM_OMP) $< -o $@ $(SIMXLIB) $(SIM_RENDER_LIBS) $(SIMLIB) $(FWLIB) \
-	    $(if $(SIM_RENDER_LIBS),$(RENDER_LDLIBS)) $(HOST_LIBS)
+$(B)/tests/unit/test_sim_layers_render: $(B)/tests/unit/test_sim_layers_render.o $$(SIMXLIB) $(SIMLIB) $(FWLIB) $(RENDERLIB)
+	$(CC) $(HOST_LDFLAGS) $(SIM_OMP) $< -o $@ $(SIMXLIB) $(RENDERLIB) $(SIMLIB) $(FWLIB) $(RENDER_LDLIBS) $(HOST_LIBS)

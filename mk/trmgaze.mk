@@ -8,9 +8,7 @@ GOLDEN_STAGES += trmgaze
 
 # The TRM modes of issue 15 through tdc_sim_run (reduced50, trm50g, the
 # renderer's REDUCED frames) and the temporal model's terr: links the
-# simulator and, when in the tree, the Embree renderer (after mk/sim.mk).
+# simulator and the Embree renderer.
 TESTS += $(B)/tests/unit/test_sim_trm_modes
-$(B)/tests/unit/test_sim_trm_modes.o: $(GEN)/tdc_sim_features.h
-$(B)/tests/unit/test_sim_trm_modes: $(B)/tests/unit/test_sim_trm_modes.o $(SIMXLIB) $(SIMLIB) $(FWLIB) $$(SIM_RENDER_LIBS)
-	$(CC) $(HOST_LDFLAGS) $(SIM_OMP) $< -o $@ $(SIMXLIB) $(SIM_RENDER_LIBS) $(SIMLIB) $(FWLIB) \
-	    $(if $(SIM_RENDER_LIBS),$(RENDER_LDLIBS)) $(HOST_LIBS)
+$(B)/tests/unit/test_sim_trm_modes: $(B)/tests/unit/test_sim_trm_modes.o $(SIMXLIB) $(SIMLIB) $(FWLIB) $(RENDERLIB)
+	$(CC) $(HOST_LDFLAGS) $(SIM_OMP) $< -o $@ $(SIMXLIB) $(RENDERLIB) $(SIMLIB) $(FWLIB) $(RENDER_LDLIBS) $(HOST_LIBS)

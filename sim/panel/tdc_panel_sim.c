@@ -6,8 +6,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "tdc_sim_features.h"
-#if TDC_SIM_HAVE_LCD_PHYS
 #include "lcd/tdc_lcdsim.h"
 
 typedef struct {
@@ -15,7 +13,6 @@ typedef struct {
     tdc_lcdsim_t sim;
     char model[160];
 } lcdsim_ext_t;
-#endif
 
 double tdc_panel_sim_decode(int code, double g)
 {
@@ -63,7 +60,6 @@ int tdc_panel_sim_init(tdc_panel_sim_t *p, tdc_panel_sim_kind_t kind, int w, int
 
 int tdc_panel_sim_lcd_backlight(tdc_panel_sim_t *p, int strobe, double duty, double phase)
 {
-#if TDC_SIM_HAVE_LCD_PHYS
     lcdsim_ext_t *e = p ? (lcdsim_ext_t *)p->ext : NULL;
     if (!e || p->kind != TDC_PANEL_SIM_LCD ||
         (strobe && !(duty > 0.0 && duty <= 1.0 && phase >= 0.0 && phase + duty <= 1.0 + 1e-12))) {
@@ -75,18 +71,10 @@ int tdc_panel_sim_lcd_backlight(tdc_panel_sim_t *p, int strobe, double duty, dou
     snprintf(e->model, sizeof(e->model), "LCD: physical model sim/lcd (%s, %s backlight)", e->panel.name,
              e->panel.strobe ? "strobed" : "constant");
     return 0;
-#else
-    (void)p;
-    (void)strobe;
-    (void)duty;
-    (void)phase;
-    return -1;
-#endif
 }
 
 int tdc_panel_sim_use_lcdsim(tdc_panel_sim_t *p, const char *path, char *err, size_t errlen)
 {
-#if TDC_SIM_HAVE_LCD_PHYS
     if (!p || p->kind != TDC_PANEL_SIM_LCD || !path) {
         snprintf(err, errlen, "not an LCD panel");
         return -1;
@@ -106,12 +94,6 @@ int tdc_panel_sim_use_lcdsim(tdc_panel_sim_t *p, const char *path, char *err, si
     p->model = e->model;
     p->ext = e;
     return 0;
-#else
-    (void)p;
-    (void)path;
-    snprintf(err, errlen, "physical LCD model (sim/lcd) not in this build");
-    return -1;
-#endif
 }
 
 void tdc_panel_sim_free(tdc_panel_sim_t *p)
@@ -119,14 +101,12 @@ void tdc_panel_sim_free(tdc_panel_sim_t *p)
     if (!p) {
         return;
     }
-#if TDC_SIM_HAVE_LCD_PHYS
     if (p->ext) {
         lcdsim_ext_t *e = p->ext;
         tdc_lcdsim_free(&e->sim);
         free(e);
         p->ext = NULL;
     }
-#endif
     for (int i = 0; i < TDC_PANEL_SIM_MAX_SLICES; i++) {
         free(p->slice_buf[i]);
         p->slice_buf[i] = NULL;
@@ -159,7 +139,6 @@ int tdc_panel_sim_show(tdc_panel_sim_t *p, const uint8_t *codes, double t, doubl
         out[0].lin = b;
         return 1;
     }
-#if TDC_SIM_HAVE_LCD_PHYS
     if (p->ext) {
         /* physical model: mean light of the refresh; a strobed backlight
          * emits it during its flash only */
@@ -178,7 +157,6 @@ int tdc_panel_sim_show(tdc_panel_sim_t *p, const uint8_t *codes, double t, doubl
         out[0].lin = p->slice_buf[0];
         return 1;
     }
-#endif
     /* LCD fallback: L(s) = T + (L0 - T) exp(-s / tau) within the frame; the
      * mean over [a, b] is T + (L0 - T) tau (e^{-a/tau} - e^{-b/tau}) / (b - a). */
     const int ns = TDC_PANEL_SIM_MAX_SLICES;

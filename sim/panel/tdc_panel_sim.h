@@ -46,7 +46,7 @@ void tdc_panel_sim_free(tdc_panel_sim_t *p);
 /* Switches an LCD panel to the physical liquid-crystal model of sim/lcd
  * (tdc_lcdsim: transition-dependent time constants, exact integration,
  * constant or strobed backlight) loaded from a .lcdsim file.  Returns 0, or
- * -1 (model not in this build, or the file does not load: message in err);
+ * -1 (not an LCD panel, or the file does not load: message in err);
  * the built-in fallback stays in use then. */
 int tdc_panel_sim_use_lcdsim(tdc_panel_sim_t *p, const char *path, char *err, size_t errlen);
 

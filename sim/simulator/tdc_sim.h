@@ -41,12 +41,6 @@ typedef struct {
 const tdc_mode_desc_t *const *tdc_sim_modes(int *n);
 const tdc_mode_desc_t *tdc_sim_mode_find(const char *name);
 
-/* Which parts of the data path are real in this build. */
-typedef struct {
-    int trm, link, assemble, lcd_fw, lcd_phys;
-} tdc_sim_parts_t;
-void tdc_sim_parts(tdc_sim_parts_t *p);
-
 /* Wall-clock seconds per stage of a run (tdc_sim_config_t.times). */
 typedef struct {
     double source_s;   /* renderer: frames, subframes, ground truth */

@@ -5,8 +5,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "tdc_sim_features.h"
-#include "tdc_wire.h" /* packet sizes, also for the accounting without the link */
+#include "tdc_wire.h" /* packet sizes */
 
 /* the simulator's stream flags are the wire's */
 _Static_assert(TDC_SIM_LINK_REDUCED == TDC_LINK_STREAM_REDUCED && TDC_SIM_LINK_SUBFRAMES == TDC_LINK_STREAM_SUBFRAMES &&
@@ -14,10 +13,8 @@ _Static_assert(TDC_SIM_LINK_REDUCED == TDC_LINK_STREAM_REDUCED && TDC_SIM_LINK_S
                    TDC_SIM_LINK_FOVEATED == TDC_LINK_STREAM_FOVEATED,
                "TDC_SIM_LINK_* differ from TDC_LINK_STREAM_*");
 
-#if TDC_SIM_HAVE_LINK
 #include "tdc_link_encode.h"
 #include "tdc_link.h"
-#endif
 
 static double now_s(void)
 {
@@ -26,7 +23,6 @@ static double now_s(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-#if TDC_SIM_HAVE_LINK
 typedef struct {
     tdc_link_encoder_t enc;
     tdc_link_decoder_t dec;
@@ -74,7 +70,6 @@ static int feed(tdc_sim_link_t *l, size_t n, int kind)
     l->packets++;
     return ok;
 }
-#endif
 
 int tdc_sim_link_init(tdc_sim_link_t *l, int w, int h, int eyes, uint32_t flags, uint16_t r_num, uint16_t r_den,
                       uint16_t hz)
@@ -124,7 +119,6 @@ int tdc_sim_link_init(tdc_sim_link_t *l, int w, int h, int eyes, uint32_t flags,
             return -1;
         }
     }
-#if TDC_SIM_HAVE_LINK
     link_priv_t *p = calloc(1, sizeof(*p));
     if (!p) {
         tdc_sim_link_free(l);
@@ -164,21 +158,17 @@ int tdc_sim_link_init(tdc_sim_link_t *l, int w, int h, int eyes, uint32_t flags,
         tdc_sim_link_free(l);
         return -1;
     }
-    l->real = 1;
-#endif
     return tdc_sim_link_stream(l);
 }
 
 void tdc_sim_link_free(tdc_sim_link_t *l)
 {
-#if TDC_SIM_HAVE_LINK
     link_priv_t *p = l->priv;
     if (p) {
         free(p->pkt);
         free(p->staging);
         free(p);
     }
-#endif
     l->priv = NULL;
     for (int e = 0; e < 2; e++) {
         free(l->full[e]);
@@ -206,7 +196,6 @@ void tdc_sim_link_free(tdc_sim_link_t *l)
 int tdc_sim_link_stream(tdc_sim_link_t *l)
 {
     l->stream_id++;
-#if TDC_SIM_HAVE_LINK
     link_priv_t *p = l->priv;
     tdc_link_stream_info_t info;
     memset(&info, 0, sizeof(info));
@@ -222,76 +211,43 @@ int tdc_sim_link_stream(tdc_sim_link_t *l)
     size_t n = tdc_link_encode_stream(&p->enc, p->pkt, p->cap);
     l->encode_s += now_s() - t0;
     return feed(l, n, TDC_LINK_KIND_STREAM);
-#else
-    l->bytes += TDC_LINK_HEADER_BYTES + TDC_LINK_STREAM_HEADER_BYTES;
-    l->packets++;
-    return 0;
-#endif
 }
 
 int tdc_sim_link_full(tdc_sim_link_t *l, int eye, uint32_t frame, const uint8_t *rgb)
 {
-#if TDC_SIM_HAVE_LINK
     link_priv_t *p = l->priv;
     double t0 = now_s();
     size_t n = tdc_link_encode_frame(&p->enc, p->pkt, p->cap, TDC_LINK_KIND_FULL, (uint32_t)eye, frame,
                                      TDC_PIXFMT_RGB888, rgb, (uint32_t)l->w, (uint32_t)l->h, (uint32_t)l->w * 3u);
     l->encode_s += now_s() - t0;
     return feed(l, n, TDC_LINK_KIND_FULL);
-#else
-    size_t bytes = TDC_LINK_FRAME_BYTES(l->w, l->h);
-    (void)frame;
-    memcpy(l->full[eye], rgb, bytes);
-    l->bytes += TDC_LINK_HEADER_BYTES + bytes;
-    l->packets++;
-    return 0;
-#endif
 }
 
 int tdc_sim_link_reduced(tdc_sim_link_t *l, int eye, uint32_t frame, const uint8_t *rgb)
 {
-    size_t bytes = TDC_LINK_FRAME_BYTES(l->rw, l->rh);
-#if TDC_SIM_HAVE_LINK
     link_priv_t *p = l->priv;
     double t0 = now_s();
     size_t n = tdc_link_encode_frame(&p->enc, p->pkt, p->cap, TDC_LINK_KIND_REDUCED, (uint32_t)eye, frame,
                                      TDC_PIXFMT_RGB888, rgb, (uint32_t)l->rw, (uint32_t)l->rh, (uint32_t)l->rw * 3u);
     l->encode_s += now_s() - t0;
-    (void)bytes;
     return feed(l, n, TDC_LINK_KIND_REDUCED);
-#else
-    (void)frame;
-    memcpy(l->reduced[eye], rgb, bytes);
-    l->bytes += TDC_LINK_HEADER_BYTES + bytes;
-    l->packets++;
-    return 0;
-#endif
 }
 
 /* A PATTERN packet (the cycle's tile orderings); 0 when accepted. */
 static int send_pattern(tdc_sim_link_t *l, int eye, uint32_t frame, const uint8_t *pattern)
 {
-#if TDC_SIM_HAVE_LINK
     link_priv_t *p = l->priv;
     const double t0 = now_s();
     const size_t n = tdc_link_encode_pattern(&p->enc, p->pkt, p->cap, (uint32_t)eye, frame, pattern, (uint32_t)l->w,
                                              (uint32_t)l->h);
     l->encode_s += now_s() - t0;
     return feed(l, n, TDC_LINK_KIND_PATTERN);
-#else
-    (void)frame;
-    memcpy(l->pattern[eye], pattern, TDC_PATTERN_BYTES(l->w, l->h));
-    l->bytes += TDC_LINK_HEADER_BYTES + TDC_PATTERN_BYTES(l->w, l->h);
-    l->packets++;
-    return 0;
-#endif
 }
 
 int tdc_sim_link_subframe(tdc_sim_link_t *l, int eye, uint32_t frame, const uint8_t *samples, const int16_t *mv,
                           const uint8_t *pattern)
 {
     int rc = 0;
-#if TDC_SIM_HAVE_LINK
     link_priv_t *p = l->priv;
     double t0 = now_s();
     size_t n;
@@ -310,20 +266,6 @@ int tdc_sim_link_subframe(tdc_sim_link_t *l, int eye, uint32_t frame, const uint
         l->encode_s += now_s() - t0;
         rc |= feed(l, n, TDC_LINK_KIND_MOTION);
     }
-#else
-    (void)frame;
-    memcpy(l->subframe[eye], samples, TDC_LINK_SUBFRAME_BYTES(l->w, l->h));
-    l->bytes += TDC_LINK_HEADER_BYTES + TDC_LINK_SUBFRAME_BYTES(l->w, l->h);
-    l->packets++;
-    if (pattern) {
-        send_pattern(l, eye, frame, pattern);
-    }
-    if (mv) {
-        memcpy(l->sample_motion[eye], mv, TDC_LINK_SAMPLE_MOTION_COUNT(l->w, l->h) * sizeof(int16_t));
-        l->bytes += TDC_LINK_HEADER_BYTES + TDC_LINK_SAMPLE_MOTION_COUNT(l->w, l->h) * sizeof(int16_t);
-        l->packets++;
-    }
-#endif
     return rc ? -1 : 0;
 }
 
@@ -331,16 +273,13 @@ int tdc_sim_link_layers(tdc_sim_link_t *l, int eye, uint32_t frame, const tdc_la
                         const uint8_t *pattern)
 {
     const uint32_t flags = src->present;
-    const size_t tiles = TDC_TILE_COUNT(l->w, l->h);
     if (!l->layers[eye]) {
         return -1;
     }
-#if TDC_SIM_HAVE_LINK
     link_priv_t *p = l->priv;
     int rc = 0;
     double t0 = now_s();
     size_t n;
-    (void)tiles;
     if (pattern) {
         rc |= send_pattern(l, eye, frame, pattern);
         t0 = now_s();
@@ -354,27 +293,6 @@ int tdc_sim_link_layers(tdc_sim_link_t *l, int eye, uint32_t frame, const tdc_la
     l->encode_s += now_s() - t0;
     rc |= feed(l, n, TDC_LINK_KIND_LAYERS);
     return rc ? -1 : 0;
-#else
-    (void)frame;
-    tdc_layer_frame_t *d = l->layers[eye];
-    for (unsigned t = 1; t <= TDC_LAYER_MAX; t++) {
-        if (flags & TDC_LAYER_PKT_TYPE(t)) {
-            memcpy(d->value[t - 1u], src->value[t - 1u], tiles * tdc_layer_value_bytes(t));
-            memcpy(d->mv[t - 1u], src->mv[t - 1u], tiles * 4u);
-        }
-    }
-    if (flags & TDC_LAYER_PKT_FALLOFF) {
-        memcpy(d->falloff, src->falloff, tiles * 2u);
-    }
-    d->hdr = src->hdr;
-    d->present = (uint16_t)flags;
-    l->bytes += TDC_LINK_HEADER_BYTES + tdc_layer_payload_bytes(flags, (uint32_t)tiles);
-    l->packets++;
-    if (pattern) {
-        send_pattern(l, eye, frame, pattern);
-    }
-    return 0;
-#endif
 }
 
 int tdc_sim_link_foveated(tdc_sim_link_t *l, int eye, uint32_t frame, const tdc_fov_params_t *fp, uint16_t delta_q15,
@@ -386,7 +304,6 @@ int tdc_sim_link_foveated(tdc_sim_link_t *l, int eye, uint32_t frame, const tdc_
 int tdc_sim_link_foveated_slot(tdc_sim_link_t *l, int eye, uint32_t frame, int reduced, const tdc_fov_params_t *fp,
                                uint16_t delta_q15, const uint8_t *samples, const int16_t *mv, tdc_fov_hdr_t *hdr)
 {
-#if TDC_SIM_HAVE_LINK
     link_priv_t *p = l->priv;
     double t0 = now_s();
     size_t n = tdc_link_encode_foveated_slot(&p->enc, p->pkt, p->cap,
@@ -399,18 +316,6 @@ int tdc_sim_link_foveated_slot(tdc_sim_link_t *l, int eye, uint32_t frame, int r
         *hdr = *h;
     }
     return rc == 0 && h ? 0 : -1;
-#else
-    (void)l;
-    (void)eye;
-    (void)frame;
-    (void)reduced;
-    (void)fp;
-    (void)delta_q15;
-    (void)samples;
-    (void)mv;
-    (void)hdr;
-    return -1;
-#endif
 }
 
 void tdc_sim_link_count_raw(tdc_sim_link_t *l, size_t payload)

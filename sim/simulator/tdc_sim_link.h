@@ -2,9 +2,7 @@
  * tdc_sim_link.h - the link as the simulator uses it: every payload is
  * encoded into real packets by the host encoder (sim/link) and fed through
  * the firmware decoder (firmware/tdc_link.h), which fills the buffers the
- * firmware stages read.  Packets are counted in bytes on the wire.  Without
- * the link component in the build, payloads are copied and their bytes
- * counted as payload + a 32-byte header (said in the report).
+ * firmware stages read.  Packets are counted in bytes on the wire.
  */
 #ifndef TDC_SIM_LINK_H
 #define TDC_SIM_LINK_H
@@ -16,7 +14,6 @@
 #include "tdc_fov_link.h"
 
 typedef struct {
-    int real; /* 1: encoder + decoder in the path */
     int w, h, rw, rh;
     int eyes; /* 1, or 2: one stereo stream, packets carry the eye */
     uint32_t flags;

@@ -122,13 +122,6 @@ static void usage(FILE *f)
     for (int i = 0; i < n; i++) {
         fprintf(f, "  %-18s %s%s\n", m[i]->name, m[i]->what, m[i]->fixed_hz ? " (fixed rate)" : "");
     }
-    tdc_sim_parts_t p;
-    tdc_sim_parts(&p);
-    fprintf(f,
-            "\nparts in this build: TRM firmware %s, link encoder+decoder %s, assembly firmware %s,\n"
-            "LCD firmware stage %s, physical LCD model %s\n",
-            p.trm ? "yes" : "NO", p.link ? "yes" : "NO", p.assemble ? "yes" : "NO", p.lcd_fw ? "yes" : "NO",
-            p.lcd_phys ? "yes" : "no (built-in fallback)");
     fprintf(f, "\nexit codes (docs/tools.md): 0 OK, 1 ARGS, 7 FILE, 13 INPUT (malformed image or scene),\n"
                "14 REFUSED (a stage error or refused configuration: the run is not a result), 17 NOMEM;\n"
                "--dump: 7 FILE when a file could not be written, 13 INPUT when the panel profile has no photometry\n");

@@ -5,11 +5,8 @@
 #include <string.h>
 #include <time.h>
 
-#include "tdc_sim_features.h"
 #include "tdc_status.h"
-#if TDC_SIM_HAVE_ASM
 #include "tdc_ordering.h"
-#endif
 
 double tdc_sim_now(void)
 {
@@ -143,7 +140,6 @@ uint8_t tdc_sim_to8(double v)
     return (uint8_t)(v <= 0 ? 0 : (v >= 255 ? 255 : (int)v));
 }
 
-#if TDC_SIM_HAVE_ASM
 int tdc_sim_subframe_xy(sim_mode_t *m, const int16_t *mvbuf, const uint8_t *pattern, uint32_t lf, int radius)
 {
     const int tx = (m->w + 1) / 2, ty = (m->h + 1) / 2;
@@ -189,4 +185,3 @@ void tdc_sim_subframe_keep_mv(sim_mode_t *m, int16_t *mvbuf, int n, const int16_
         v[1] = mv[2 * i + 1];
     }
 }
-#endif

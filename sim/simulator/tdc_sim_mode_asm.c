@@ -9,12 +9,9 @@
 #include <string.h>
 
 #include "simulator/tdc_sim_mode.h"
-#include "tdc_sim_features.h"
 
-#if TDC_SIM_HAVE_ASM
 #include "tdc_assemble.h"
 #include "tdc_ordering.h"
-#endif
 
 #define F &tdc_sim_family_asm
 #define L (TDC_SIM_LINK_SUBFRAMES | TDC_SIM_LINK_SAMPLE_MV)
@@ -29,7 +26,6 @@ static const tdc_mode_desc_t k_modes[] = {
 #undef F
 #undef L
 
-#if TDC_SIM_HAVE_ASM
 typedef struct {
     tdc_asm_t as;
     void *mem;
@@ -160,25 +156,6 @@ static void asm_free(sim_mode_t *m)
     }
     m->fam = NULL;
 }
-#else
-static int asm_init(sim_mode_t *m, const tdc_sim_setup_t *s)
-{
-    (void)s;
-    tdc_sim_note(m, "tile-assembly firmware stage not in this build");
-    m->res->available = 0;
-    return 0;
-}
-static int asm_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32_t lf)
-{
-    (void)m, (void)src, (void)t, (void)spp, (void)lf;
-    return 0;
-}
-#define asm_reset NULL
-static void asm_free(sim_mode_t *m)
-{
-    (void)m;
-}
-#endif
 
 const tdc_sim_family_t tdc_sim_family_asm = {
     "asm", k_modes, (int)(sizeof(k_modes) / sizeof(k_modes[0])), asm_init, asm_frame, asm_reset, asm_free,

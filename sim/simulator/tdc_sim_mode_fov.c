@@ -38,7 +38,6 @@
 #include "tdc_fov_link.h"
 #include "tdc_fov_lr.h"
 #include "simulator/tdc_sim_codes.h"
-#include "tdc_sim_features.h"
 
 enum { FOV_PLAIN, FOV_TAA, FOVLR_PLAIN, FOVLR_TAA };
 #define IS_LR(v) ((v) == FOVLR_PLAIN || (v) == FOVLR_TAA)
@@ -79,11 +78,6 @@ static int fov_init(sim_mode_t *m, const tdc_sim_setup_t *s)
 {
     const tdc_sim_config_t *cfg = s->cfg;
     m->res->foveated = 1;
-    if (!TDC_SIM_HAVE_LINK) {
-        m->res->available = 0;
-        tdc_sim_note(m, "needs the link decoder (FOVEATED packets), not in this build");
-        return 0;
-    }
     fov_state_t *st = calloc(1, sizeof *st);
     if (!st) {
         return -1;

@@ -39,12 +39,9 @@
 #include "simulator/tdc_sim_mode.h"
 #include "simulator/tdc_sim_codes.h"
 #include "tdc_fov_link.h"
-#include "tdc_sim_features.h"
 
-#if TDC_SIM_HAVE_TRM
 #include "tdc_fov_trm.h"
 #include "tdc_trm.h"
-#endif
 
 #define F &tdc_sim_family_fovtrm
 #define L (TDC_SIM_LINK_FOVEATED | TDC_SIM_LINK_REDUCED)
@@ -56,7 +53,6 @@ static const tdc_mode_desc_t k_modes[] = {
 #undef L
 #undef F
 
-#if TDC_SIM_HAVE_TRM && TDC_SIM_HAVE_LINK
 typedef struct {
     tdc_trm_t trm;
     void *trm_mem;
@@ -355,26 +351,6 @@ static void fovtrm_free(sim_mode_t *m)
     }
     m->fam = NULL;
 }
-#else
-static int fovtrm_init(sim_mode_t *m, const tdc_sim_setup_t *s)
-{
-    (void)s;
-    m->res->foveated = 1;
-    m->res->available = 0;
-    tdc_sim_note(m, "needs the TRM stage and the link decoder, not in this build");
-    return 0;
-}
-static int fovtrm_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32_t lf)
-{
-    (void)m, (void)src, (void)t, (void)spp, (void)lf;
-    return 0;
-}
-#define fovtrm_reset NULL
-static void fovtrm_free(sim_mode_t *m)
-{
-    (void)m;
-}
-#endif
 
 const tdc_sim_family_t tdc_sim_family_fovtrm = {
     "fovtrm", k_modes, (int)(sizeof(k_modes) / sizeof(k_modes[0])), fovtrm_init, fovtrm_frame, fovtrm_reset, fovtrm_free,

@@ -20,12 +20,9 @@
 #include <string.h>
 
 #include "simulator/tdc_sim_mode.h"
-#include "tdc_sim_features.h"
 
-#if TDC_SIM_HAVE_ASM
 #include "tdc_layers.h"
 #include "tdc_ordering.h"
-#endif
 
 enum { V_ORDINARY = 0, V_ZENG = 1, V_ZENG_TDRT = 2, V_ZENG_CLEAN = 3 };
 
@@ -40,7 +37,6 @@ static const tdc_mode_desc_t k_modes[] = {
 #undef F
 #undef L
 
-#if TDC_SIM_HAVE_ASM
 typedef struct {
     tdc_lasm_t st;
     void *mem;
@@ -226,25 +222,6 @@ static void lasm_free(sim_mode_t *m)
     }
     m->fam = NULL;
 }
-#else
-static int lasm_init(sim_mode_t *m, const tdc_sim_setup_t *s)
-{
-    (void)s;
-    tdc_sim_note(m, "tile-assembly firmware stage not in this build");
-    m->res->available = 0;
-    return 0;
-}
-static int lasm_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32_t lf)
-{
-    (void)m, (void)src, (void)t, (void)spp, (void)lf;
-    return 0;
-}
-#define lasm_reset NULL
-static void lasm_free(sim_mode_t *m)
-{
-    (void)m;
-}
-#endif
 
 const tdc_sim_family_t tdc_sim_family_layers = {
     "layers", k_modes, (int)(sizeof(k_modes) / sizeof(k_modes[0])), lasm_init, lasm_frame, lasm_reset, lasm_free,

@@ -19,12 +19,9 @@
 #include <string.h>
 
 #include "simulator/tdc_sim_mode.h"
-#include "tdc_sim_features.h"
 
-#if TDC_SIM_HAVE_TRM
 #include "tdc_trm.h"
 #include "tdc_trm_gaze.h"
-#endif
 
 enum { TRM_TRM, TRM_NCSFI, TRM_REDUCED_ONLY, TRM_GAZE, TRM_RENDER_PRE, TRM_RENDER_POINT };
 
@@ -52,7 +49,6 @@ static const tdc_mode_desc_t k_modes[] = {
 #undef F
 #undef R
 
-#if TDC_SIM_HAVE_TRM
 typedef struct {
     tdc_trm_t trm;   /* the controller's TRM stage */
     tdc_trm_t trm_r; /* the renderer's prefilter D (same configuration) */
@@ -309,25 +305,6 @@ static void trm_free(sim_mode_t *m)
     }
     m->fam = NULL;
 }
-#else
-static int trm_init(sim_mode_t *m, const tdc_sim_setup_t *s)
-{
-    (void)s;
-    tdc_sim_note(m, "TRM firmware stage not in this build");
-    m->res->available = 0;
-    return 0;
-}
-static int trm_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32_t lf)
-{
-    (void)m, (void)src, (void)t, (void)spp, (void)lf;
-    return 0;
-}
-#define trm_reset NULL
-static void trm_free(sim_mode_t *m)
-{
-    (void)m;
-}
-#endif
 
 const tdc_sim_family_t tdc_sim_family_trm = {
     "trm", k_modes, (int)(sizeof(k_modes) / sizeof(k_modes[0])), trm_init, trm_frame, trm_reset, trm_free,

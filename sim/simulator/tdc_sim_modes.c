@@ -4,7 +4,6 @@
 #include "ref_fov.h" /* TDC_FOV_LOD_*, TDC_FOV_JITTER_* */
 #include "simulator/tdc_sim.h"
 #include "simulator/tdc_sim_mode.h"
-#include "tdc_sim_features.h"
 
 /* The mode families, in the order --list and 'all' show them.  A new
  * family is one file (tdc_sim_mode.h) and one line here. */
@@ -47,15 +46,6 @@ const tdc_mode_desc_t *tdc_sim_mode_find(const char *name)
         }
     }
     return NULL;
-}
-
-void tdc_sim_parts(tdc_sim_parts_t *p)
-{
-    p->trm = TDC_SIM_HAVE_TRM;
-    p->link = TDC_SIM_HAVE_LINK;
-    p->assemble = TDC_SIM_HAVE_ASM;
-    p->lcd_fw = TDC_SIM_HAVE_LCD_FW;
-    p->lcd_phys = TDC_SIM_HAVE_LCD_PHYS;
 }
 
 void tdc_sim_default_config(tdc_sim_config_t *c)

@@ -6,9 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "tdc_sim_features.h"
 
-#if TDC_SIM_HAVE_RENDER
 #include "render/tdc_render.h"
 #include "render/tdc_scene.h"
 #include "tdc_layer_link.h"
@@ -575,26 +573,3 @@ tdc_source_t *tdc_sim_render_source(const char *name, int w, int h, int clock_hz
               "renderer with its own adaptive orderings; foveated frames traced by its FOVEATED mode";
     return s;
 }
-
-#else
-
-void tdc_sim_render_options(tdc_source_t *s, long start_frame, int reflect_mv, int fov_lod, uint32_t seed)
-{
-    (void)s, (void)start_frame, (void)reflect_mv, (void)fov_lod, (void)seed;
-}
-
-tdc_source_t *tdc_sim_render_source(const char *name, int w, int h, int clock_hz, int gt_samples, int threads,
-                                    double eye_x, char *err, size_t errlen)
-{
-    (void)eye_x;
-    (void)name;
-    (void)w;
-    (void)h;
-    (void)clock_hz;
-    (void)gt_samples;
-    (void)threads;
-    snprintf(err, errlen, "the Embree renderer (sim/render) is not in this build");
-    return NULL;
-}
-
-#endif

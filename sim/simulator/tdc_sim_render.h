@@ -15,8 +15,8 @@
 #include "simulator/tdc_sim_scene.h"
 
 /* name: a built-in renderer scene (discs text panorama room mirror fence
- * bigmesh glossy blocker) or a scene file path.  NULL with a message in err if the renderer
- * is not in this build or the scene does not load.  eye_x: this eye's camera
+ * bigmesh glossy blocker) or a scene file path.  NULL with a message in err if
+ * the scene does not load.  eye_x: this eye's camera
  * offset along the camera's right vector in scene units (stereo: +-IPD/2). */
 tdc_source_t *tdc_sim_render_source(const char *name, int w, int h, int clock_hz, int gt_samples, int threads,
                                     double eye_x, char *err, size_t errlen);

@@ -182,10 +182,6 @@ static int mode_init(sim_mode_t *m, const tdc_mode_desc_t *d, tdc_sim_result_t *
             }
             tdc_sim_note(m, "link stream header rejected");
         }
-        if (!m->link->real) {
-            tdc_sim_note(m,
-                         "link: payload copied, bytes = payload + 32-byte header (encoder/decoder not in this build)");
-        }
     } else {
         m->link = eye0->link;
     }

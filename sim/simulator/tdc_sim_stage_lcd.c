@@ -11,20 +11,16 @@
 #include <string.h>
 
 #include "simulator/tdc_sim_mode.h"
-#include "tdc_sim_features.h"
 
-#if TDC_SIM_HAVE_LCD_FW
 #include "tdc_lcd.h"
 
 typedef struct {
     tdc_lcd_t lcd;
     void *mem;
 } lcd_state_t;
-#endif
 
 static int lcd_init(sim_mode_t *m, const tdc_sim_setup_t *s)
 {
-#if TDC_SIM_HAVE_LCD_FW
     if (s->lcd_panel) {
         const tdc_sim_config_t *cfg = s->cfg;
         tdc_lcd_config_t lc = {(uint16_t)m->w, (uint16_t)m->h, (uint16_t)m->hz, (uint8_t)cfg->lcd_mode,
@@ -52,9 +48,6 @@ static int lcd_init(sim_mode_t *m, const tdc_sim_setup_t *s)
     } else {
         tdc_sim_note(m, "no LCD panel profile: LCD firmware stage skipped, drive = wanted code");
     }
-#else
-    tdc_sim_note(m, "LCD firmware stage not in this build: drive = wanted code");
-#endif
     char path[512], err[256];
     snprintf(path, sizeof(path), "sim/lcd/panels/%s.lcdsim", s->lcd_panel ? s->lcd_panel->name : "pg279q");
     if (tdc_panel_sim_use_lcdsim(&m->panel, path, err, sizeof(err)) != 0) {
@@ -71,7 +64,6 @@ static int lcd_init(sim_mode_t *m, const tdc_sim_setup_t *s)
 static int lcd_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32_t lf)
 {
     (void)src, (void)t, (void)spp, (void)lf;
-#if TDC_SIM_HAVE_LCD_FW
     lcd_state_t *st = m->drive;
     if (!st) {
         return 0;
@@ -81,33 +73,23 @@ static int lcd_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32
     int rc = tdc_lcd_frame(&st->lcd, m->wanted, (uint32_t)m->w * 3u, m->out, (uint32_t)m->w * 3u, rho);
     m->res->fw_s += tdc_sim_now() - t0;
     return tdc_sim_stage(m, "tdc_lcd_frame", rc);
-#else
-    (void)m;
-    return 0;
-#endif
 }
 
 static void lcd_reset(sim_mode_t *m)
 {
-#if TDC_SIM_HAVE_LCD_FW
     lcd_state_t *st = m->drive;
     if (st) {
         tdc_lcd_reset(&st->lcd);
     }
-#else
-    (void)m;
-#endif
 }
 
 static void lcd_free(sim_mode_t *m)
 {
-#if TDC_SIM_HAVE_LCD_FW
     lcd_state_t *st = m->drive;
     if (st) {
         free(st->mem);
         free(st);
     }
-#endif
     m->drive = NULL;
 }
 

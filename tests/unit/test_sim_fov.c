@@ -33,7 +33,6 @@
 #include "tdc_fov_link.h"
 #include "tdc_fov_lr.h"
 #include "tdc_geom.h"
-#include "tdc_sim_features.h"
 
 #define W 96
 #define H 72
@@ -91,9 +90,6 @@ static void print(const tdc_sim_result_t *r, int n)
 static void test_modes_exact_costs(void **state)
 {
     (void)state;
-    if (!TDC_SIM_HAVE_LINK) {
-        skip();
-    }
     for (int eyes = 1; eyes <= 2; eyes++) {
         tdc_sim_config_t cfg;
         config(&cfg, 12);
@@ -134,9 +130,6 @@ static void test_modes_exact_costs(void **state)
 static void test_lr_modes(void **state)
 {
     (void)state;
-    if (!TDC_SIM_HAVE_LINK) {
-        skip();
-    }
     tdc_sim_config_t cfg;
     config(&cfg, 12);
     cfg.gaze = TDC_GAZE_FIXED;
@@ -188,9 +181,6 @@ static void test_lr_modes(void **state)
 static void test_prefilter(void **state)
 {
     (void)state;
-    if (!TDC_SIM_HAVE_LINK) {
-        skip();
-    }
     static const char *const m[] = {"full", "fov", "fov-taa"};
     tdc_sim_result_t r[3][3];
     static const int lods[3] = {TDC_FOV_LOD_OFF, TDC_FOV_LOD_FOOTPRINT, TDC_FOV_LOD_THESIS};
@@ -222,9 +212,6 @@ static void test_prefilter(void **state)
 static void test_latency_moves_the_fovea(void **state)
 {
     (void)state;
-    if (!TDC_SIM_HAVE_LINK) {
-        skip();
-    }
     static const char *const m[] = {"fov"};
     tdc_sim_result_t r0, r1;
     tdc_sim_config_t cfg;
@@ -244,9 +231,6 @@ static void test_latency_moves_the_fovea(void **state)
 static void test_refused(void **state)
 {
     (void)state;
-    if (!TDC_SIM_HAVE_LINK) {
-        skip();
-    }
     static const char *const m[] = {"full", "fov-taa"};
     tdc_sim_result_t r[2];
     tdc_sim_config_t cfg;
@@ -284,9 +268,6 @@ static tdc_fov_geom_t trm_grid(uint16_t gw, uint16_t gh)
 static void test_fov_trm_exact_costs(void **state)
 {
     (void)state;
-    if (!TDC_SIM_HAVE_LINK || !TDC_SIM_HAVE_TRM) {
-        skip();
-    }
     const uint16_t rw = (uint16_t)TDC_REDUCED_DIM(W, 1, 2), rh = (uint16_t)TDC_REDUCED_DIM(H, 1, 2);
     const tdc_fov_geom_t gf = trm_grid(W, H), gr = trm_grid(rw, rh);
     const uint64_t nf = (uint64_t)(gf.lp_w - gf.u0) * gf.lp_h + tdc_fov_disk_pixels(&gf);
@@ -333,9 +314,6 @@ static void test_fov_trm_exact_costs(void **state)
 static void test_fov_trm_refused(void **state)
 {
     (void)state;
-    if (!TDC_SIM_HAVE_LINK || !TDC_SIM_HAVE_TRM) {
-        skip();
-    }
     static const char *const m[] = {"fov", "fov-trm"};
     tdc_sim_result_t r[2];
     tdc_sim_config_t cfg;

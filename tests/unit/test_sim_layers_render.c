@@ -26,13 +26,11 @@
 
 #include "simulator/tdc_sim.h"
 #include "simulator/tdc_sim_render.h"
-#include "tdc_sim_features.h"
 
 #define W 48
 #define H 32
 #define HZ 240
 
-#if TDC_SIM_HAVE_RENDER && TDC_SIM_HAVE_ASM
 static const char *const k_modes[] = {"lasm-ordinary", "lasm-zeng", "lasm-zeng-clean"};
 #define NM 3
 
@@ -67,12 +65,10 @@ static void run_glossy(uint32_t seed, tdc_sim_result_t *r, double *speed)
     assert_int_equal(tdc_sim_run(&cfg, src, modes, NM, r, NULL), 0);
     src->destroy(src);
 }
-#endif
 
 static void test_glossy_seed(void **state)
 {
     (void)state;
-#if TDC_SIM_HAVE_RENDER && TDC_SIM_HAVE_ASM
     tdc_sim_result_t a[NM], b[NM], c[NM];
     double sa, sb, sc;
     run_glossy(1, a, &sa);
@@ -102,9 +98,6 @@ static void test_glossy_seed(void **state)
         }
     }
     assert_true(sa < 2.0 && sc < 2.0);
-#else
-    skip();
-#endif
 }
 
 int main(void)

@@ -19,7 +19,6 @@
 
 #include "simulator/tdc_sim.h"
 #include "tdc_par.h"
-#include "tdc_sim_features.h"
 
 static int run(tdc_scene_kind_t scene, int hz, int frames, const char *const *names, int n, tdc_sim_result_t *res,
                tdc_panel_sim_kind_t panel, double speed)
@@ -88,7 +87,6 @@ static void test_static_trm_equals_full(void **state)
     tdc_sim_result_t r[2];
     assert_int_equal(run(TDC_SCENE_STATIC, 90, 16, m, 2, r, TDC_PANEL_SIM_OLED, -1.0), 0);
     check_sane(r, 2);
-#if TDC_SIM_HAVE_TRM
     assert_true(r[1].available);
     /* eq. 3: perceived identical up to 8-bit quantisation (> 45 dB, FLIP
      * within 0.005 of full rate's) */
@@ -96,7 +94,6 @@ static void test_static_trm_equals_full(void **state)
     assert_true(fabs(r[1].flip - r[0].flip) < 0.005);
     /* 16 frames: 8 full + 8 reduced at r = 1/2 -> 5/8 of the pixels */
     assert_true(fabs((double)r[1].rays / (double)r[0].rays - 0.625) < 0.01);
-#endif
 }
 
 static void test_asm_family(void **state)
@@ -107,12 +104,10 @@ static void test_asm_family(void **state)
     tdc_sim_result_t r[7];
     assert_int_equal(run(TDC_SCENE_FENCE, 240, 16, m, 7, r, TDC_PANEL_SIM_OLED, -1.0), 0);
     check_sane(r, 7);
-#if TDC_SIM_HAVE_ASM
     for (int i = 3; i < 7; i++) {
         assert_true(r[i].available);
         assert_true(fabs((double)r[i].rays / (double)r[0].rays - 0.25) < 1e-9);
     }
-#endif
 }
 
 /* The layered modes (docs/layers.md) run end to end over the LAYERS link
@@ -124,7 +119,6 @@ static void test_layers_family(void **state)
     tdc_sim_result_t r[5];
     assert_int_equal(run(TDC_SCENE_FENCE, 240, 16, m, 5, r, TDC_PANEL_SIM_OLED, -1.0), 0);
     check_sane(r, 5);
-#if TDC_SIM_HAVE_ASM
     for (int i = 1; i < 5; i++) {
         assert_true(r[i].available);
         assert_int_equal(r[i].link_errors, 0);
@@ -132,7 +126,6 @@ static void test_layers_family(void **state)
     }
     assert_true(r[2].psnr > r[1].psnr + 3.0);
     assert_true(r[2].flip < r[1].flip);
-#endif
 }
 
 static void test_extremes(void **state)
@@ -181,7 +174,6 @@ static inline void tiny_config(tdc_sim_config_t *cfg, int hz, int frames)
 static void test_stage_error_ends_run(void **state)
 {
     (void)state;
-#if TDC_SIM_HAVE_ASM
     tdc_sim_config_t cfg;
     tiny_config(&cfg, 240, 12);
     tdc_source_t *src = tdc_scene_create(&cfg.scene, NULL);
@@ -192,7 +184,6 @@ static void test_stage_error_ends_run(void **state)
     assert_int_equal(tdc_sim_run(&cfg, src, modes, 1, r, NULL), -1);
     assert_true(r[0].frames == 3); /* frames 0-2 shown, the run stopped at 3 */
     src->destroy(src);
-#endif
 }
 
 /* A rate a firmware stage refuses: noted (mode unavailable) in a group run,
@@ -200,7 +191,6 @@ static void test_stage_error_ends_run(void **state)
 static void test_refused_rate(void **state)
 {
     (void)state;
-#if TDC_SIM_HAVE_TRM
     tdc_sim_config_t cfg;
     tiny_config(&cfg, 30, 4); /* below TRM's minimum refresh */
     tdc_source_t *src = tdc_scene_create(&cfg.scene, NULL);
@@ -213,7 +203,6 @@ static void test_refused_rate(void **state)
     cfg.strict = 1;
     assert_int_equal(tdc_sim_run(&cfg, src, modes, 2, r, NULL), -1);
     src->destroy(src);
-#endif
 }
 
 /* Results do not depend on the thread count: every metric and cost column

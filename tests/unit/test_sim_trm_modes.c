@@ -26,7 +26,6 @@
 
 #include "simulator/tdc_sim.h"
 #include "simulator/tdc_sim_render.h"
-#include "tdc_sim_features.h"
 
 static void cfg_pan(tdc_sim_config_t *cfg, int pursuit, int temporal)
 {
@@ -57,7 +56,6 @@ static void run_modes(tdc_sim_config_t *cfg, tdc_source_t *src, const char *cons
 static void test_gaze_and_reduced(void **state)
 {
     (void)state;
-#if TDC_SIM_HAVE_TRM
     static const char *const m[] = {"full", "half", "reduced50", "trm50", "trm50g"};
     for (int pursuit = 0; pursuit < 2; pursuit++) {
         tdc_sim_config_t cfg;
@@ -92,13 +90,11 @@ static void test_gaze_and_reduced(void **state)
     run_modes(&cfg, src, m, 1, r);
     src->destroy(src);
     assert_true(isnan(r[0].terr));
-#endif
 }
 
 static void test_renderer_reduced_modes(void **state)
 {
     (void)state;
-#if TDC_SIM_HAVE_TRM
     static const char *const m[] = {"full", "trm50r", "trm25r", "trm50p"};
     tdc_sim_config_t cfg;
     tdc_sim_result_t r[4];
@@ -111,7 +107,6 @@ static void test_renderer_reduced_modes(void **state)
         assert_false(r[i].available);
         assert_non_null(strstr(r[i].note, "-R SCENE"));
     }
-#if TDC_SIM_HAVE_RENDER
     char err[256];
     cfg.width = 64;
     cfg.height = 48;
@@ -129,8 +124,6 @@ static void test_renderer_reduced_modes(void **state)
     assert_true(fabs(r[1].rays / full - 1.0) < 0.01);   /* (1 + 4 * 1/4) / 2 */
     assert_true(fabs(r[2].rays / full - 0.625) < 0.02); /* (1 + 4 / 16) / 2 */
     assert_true(fabs(r[3].rays / full - 0.625) < 0.01); /* (1 + 1/4) / 2 */
-#endif
-#endif
 }
 
 /* jitter1 (TDRT Fig. 1): a static edge, one sample per pixel at the 4x MSAA
@@ -140,7 +133,6 @@ static void test_renderer_reduced_modes(void **state)
 static void test_jitter1_static_edge(void **state)
 {
     (void)state;
-#if TDC_SIM_HAVE_RENDER
     char path[] = "/tmp/tdc_jitter1_XXXXXX";
     int fd = mkstemp(path);
     assert_true(fd >= 0);
@@ -172,7 +164,6 @@ static void test_jitter1_static_edge(void **state)
     remove(path);
     assert_true(gain[1] > 5.0);
     assert_true(gain[1] > gain[0] + 3.0);
-#endif
 }
 
 int main(void)
