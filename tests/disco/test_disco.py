@@ -464,14 +464,31 @@ class UsbHs(unittest.TestCase):
         b.call("tdc_board_transport_read", self.BUF, 4096, self.GOT)
         n = struct.unpack("<I", bytes(b.uc.mem_read(self.GOT, 4)))[0]
         self.assertEqual(bytes(b.uc.mem_read(self.BUF, n)), b"\x01" * 512 + b"\x02" * 512)
-        # A DFU download block (wTransferSize 1024) through EP0 into the
-        # flash driver: it lands in the bank not running.
+        self.dfu_block_through_ep0(b)
+
+    def dfu_block_through_ep0(self, b):
+        """A DFU download block (wTransferSize 1024) through EP0 into the
+        flash driver, landing in the bank not running.  It starts a sector,
+        whose erase (the model's erase_ms) cannot fit the DNLOAD request:
+        GETSTATUS answers dfuDNBUSY with a bwPollTimeout covering the
+        erase, the board writes after that reply, and the host's next
+        GETSTATUS (sent after bwPollTimeout) finds dfuDNLOAD-IDLE."""
         block = bytes((i * 13 + 5) & 0xFF for i in range(1024))
         self.assertEqual(self.control(b, 0x21, 1, 0, 1, len(block), block), b"", "DFU_DNLOAD status stage")
-        self.assertEqual(bytes(b.uc.mem_read(0x08100000, len(block))), block)
-        self.assertEqual(b.flash.erased, [(0x100, 0)], "sector 0 of the other bank erased once")
+        self.assertEqual(b.flash.erased, [], "no erase within the DNLOAD request")
+        t0 = b.scs.cyc
         st = self.control(b, 0xA1, 3, 0, 1, 6)
-        self.assertEqual(st[0], 0, "DFU_GETSTATUS: status OK")
+        busy_ms = (b.scs.cyc - t0) / (b.rcc.clocks()["cpu"] / 1000)
+        poll_ms = st[1] | st[2] << 8 | st[3] << 16
+        self.assertEqual((st[0], st[4]), (0, 4), "DFU_GETSTATUS during the erase: OK, dfuDNBUSY")
+        self.assertGreaterEqual(busy_ms, b.flash.erase_ms, "the erase ran after the reply")
+        self.assertGreaterEqual(poll_ms, busy_ms, "bwPollTimeout %d ms covers the %.0f ms the board was busy"
+                                % (poll_ms, busy_ms))
+        self.assertEqual(b.flash.erased, [(0x100, 0)], "sector 0 of the other bank erased once")
+        self.assertEqual(bytes(b.uc.mem_read(0x08100000, len(block))), block)
+        st = self.control(b, 0xA1, 3, 0, 1, 6)
+        self.assertEqual((st[0], st[4], st[1] | st[2] << 8 | st[3] << 16), (0, 5, 0),
+                         "DFU_GETSTATUS after bwPollTimeout: OK, dfuDNLOAD-IDLE, no wait")
 
     def test_no_host_before_core_reset(self):
         # The model refuses a host before the core is set up: what the
