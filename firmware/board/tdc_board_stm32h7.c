@@ -97,6 +97,13 @@ void tdc_board_vsync_wait(void)
     }
 }
 
+/* DWT_CYCCNT (ARMv7-M ARM C1.8: enabled by DEMCR.TRCENA and
+ * DWT_CTRL.CYCCNTENA in tdc_board_init), one count per core clock. */
+uint32_t tdc_board_cycles(void)
+{
+    return TDC_REG32(TDC_CM_DWT_CYCCNT);
+}
+
 uint32_t tdc_board_time_us(void)
 {
     const uint32_t now = TDC_REG32(TDC_CM_DWT_CYCCNT);

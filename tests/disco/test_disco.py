@@ -512,6 +512,45 @@ class ResetCause(unittest.TestCase):
             self.assertEqual(b.rcc.v[0xD0], 0, "flags cleared (RMVF)")
 
 
+class StageTiming(unittest.TestCase):
+    """The frame loop's per-stage timing on the DISCO: tdc_board_cycles()
+    is DWT_CYCCNT, counting since tdc_board_init set DEMCR.TRCENA and
+    DWT_CTRL.CYCCNTENA (ARMv7-M ARM C1.8); the loop's accounting
+    (tdc_fw_time_stage/tdc_fw_time_frame, tdc_fw_log.c) logs one line of
+    mean cycles per frame and stage every 64 frames to USART1."""
+    STAGE = {"decode": 0, "family": 1, "lcd": 2, "show": 3}
+
+    def test_dwt_cycles_logged_per_stage(self):
+        b = Disco(ELF)
+        b.run_reset()
+        self.assertTrue(b.scs.v[0xEDFC] >> 24 & 1, "DEMCR.TRCENA")
+        self.assertTrue(b.scs.v[0x1000] & 1, "DWT_CTRL.CYCCNTENA")
+        b.scs.cyc_step = 0
+        b.scs.cyc = 0xFFFFF000  # the counter wraps during the run
+        self.assertEqual(b.call("tdc_board_cycles"), 0xFFFFF000, "tdc_board_cycles reads DWT_CYCCNT")
+        # per frame: decode 2 x 1500 + 700, family 9000 + k, lcd 4000, show 6,666,666 (one 60 Hz frame at 400 MHz)
+        spend = {"decode": [1500, 1500, 700], "family": [9000], "lcd": [4000], "show": [6666666]}
+        mark = len(b.usart1.tx)
+        for k in range(64):
+            for stage, chunks in spend.items():
+                for c in chunks:
+                    t = b.call("tdc_board_cycles")
+                    b.scs.cyc += c + (k if stage == "family" else 0)
+                    self.assertEqual(b.call("tdc_fw_time_stage", self.STAGE[stage], t), b.scs.cyc & 0xFFFFFFFF)
+            if k < 63:
+                b.call("tdc_fw_time_frame")
+                self.assertEqual(b.usart1.tx[mark:], b"", "no timing line before 64 frames")
+        b.call("tdc_fw_time_frame")
+        text = b.usart1.tx[mark:].decode()
+        want = "cycles/frame: decode 3700 family %d lcd 4000 show 6666666" % (9000 + sum(range(64)) // 64)
+        self.assertIn(want + "\r\n", text)
+        # the next 64 frames start from zero
+        mark = len(b.usart1.tx)
+        for _ in range(64):
+            b.call("tdc_fw_time_frame")
+        self.assertEqual(b.usart1.tx[mark:], b"", "nothing spent: no line")
+
+
 class LogAndFault(unittest.TestCase):
     def test_uart_log(self):
         b = booted()
