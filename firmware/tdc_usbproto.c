@@ -331,6 +331,7 @@ static tdc_status_t dfu_request(tdc_usbp_t *s, const tdc_usbp_setup_t *setup, co
              * holds an image to boot or upload; the running slot is untouched */
             s->dfu_slot_image[inactive_slot(s)] = 0;
             s->dfu_pending = 0;
+            s->dfu_block_len = 0; /* a block an ABORT left unwritten */
         } else if (s->dfu_state == TDC_DFU_STATE_DNLOAD_IDLE) {
             if (setup->w_length == 0u) {
                 s->dfu_state = TDC_DFU_STATE_MANIFEST_SYNC;
@@ -342,8 +343,17 @@ static tdc_status_t dfu_request(tdc_usbp_t *s, const tdc_usbp_setup_t *setup, co
         if (setup->w_length > TDC_DFU_TRANSFER_SIZE || data_out == NULL || setup->w_value != s->dfu_next_block)
             return dfu_fail(s, TDC_DFU_ERR_STALLEDPKT);
         if ((uint64_t)s->dfu_received + setup->w_length > f->slot_bytes) return dfu_fail(s, TDC_DFU_ERR_ADDRESS);
-        if (f->write(f->ctx, slot_base(s, inactive_slot(s)) + s->dfu_received, data_out, setup->w_length) != 0)
-            return dfu_fail(s, TDC_DFU_ERR_WRITE);
+        {
+            const uint32_t at = slot_base(s, inactive_slot(s)) + s->dfu_received;
+            const uint32_t ms = f->busy_ms != NULL ? f->busy_ms(f->ctx, at, setup->w_length) : 0u;
+            if (ms != 0u) { /* too slow for the request: written after GETSTATUS */
+                memcpy(s->dfu_block, data_out, setup->w_length);
+                s->dfu_block_len = setup->w_length;
+                s->dfu_block_ms = ms;
+            } else if (f->write(f->ctx, at, data_out, setup->w_length) != 0) {
+                return dfu_fail(s, TDC_DFU_ERR_WRITE);
+            }
+        }
         s->dfu_received += setup->w_length;
         s->dfu_next_block = (uint16_t)(s->dfu_next_block + 1u);
         s->dfu_state = TDC_DFU_STATE_DNLOAD_SYNC;
@@ -354,8 +364,14 @@ static tdc_status_t dfu_request(tdc_usbp_t *s, const tdc_usbp_setup_t *setup, co
         if (reply_cap < TDC_DFU_GETSTATUS_LEN) /* caller error: answer nothing, change nothing */
             return TDC_ERR_ARG;
         uint32_t poll_ms = 0;
-        if (s->dfu_state == TDC_DFU_STATE_DNLOAD_SYNC) {
-            s->dfu_state = TDC_DFU_STATE_DNLOAD_IDLE; /* writes complete synchronously */
+        if (s->dfu_state == TDC_DFU_STATE_DNLOAD_SYNC && s->dfu_block_len != 0u) {
+            s->dfu_state = TDC_DFU_STATE_DNBUSY; /* DFU 1.1 §6.1.2: the block is written now */
+            s->dfu_block_armed = 1;
+            poll_ms = s->dfu_block_ms;
+        } else if (s->dfu_state == TDC_DFU_STATE_DNLOAD_SYNC) {
+            s->dfu_state = TDC_DFU_STATE_DNLOAD_IDLE; /* written within DNLOAD */
+        } else if (s->dfu_state == TDC_DFU_STATE_DNBUSY) {
+            poll_ms = s->dfu_block_ms; /* asked too early (or a board writing later): wait again */
         } else if (s->dfu_state == TDC_DFU_STATE_MANIFEST_SYNC) {
             tdc_dfu_status_t st = dfu_manifest(s);
             if (st != TDC_DFU_OK) {
@@ -437,6 +453,22 @@ static tdc_status_t dfu_request(tdc_usbp_t *s, const tdc_usbp_setup_t *setup, co
     }
 }
 
+int tdc_usbp_dfu_work(tdc_usbp_t *s)
+{
+    if (s == NULL || !s->dfu_block_armed) return 0;
+    const tdc_usbp_flash_t *f = &s->cfg.flash;
+    const uint32_t n = s->dfu_block_len;
+    s->dfu_block_armed = 0;
+    s->dfu_block_len = 0;
+    if (s->dfu_state != TDC_DFU_STATE_DNBUSY) return 0; /* a stalled request ended the download */
+    if (f->write(f->ctx, slot_base(s, inactive_slot(s)) + s->dfu_received - n, s->dfu_block, n) != 0) {
+        (void)dfu_fail(s, TDC_DFU_ERR_WRITE);
+    } else {
+        s->dfu_state = TDC_DFU_STATE_DNLOAD_SYNC; /* the next GETSTATUS: dfuDNLOAD-IDLE */
+    }
+    return 1;
+}
+
 int tdc_usbp_bus_reset(tdc_usbp_t *s)
 {
     if (s == NULL) return 0;
@@ -452,6 +484,8 @@ int tdc_usbp_bus_reset(tdc_usbp_t *s)
     s->dfu_status = TDC_DFU_OK;
     s->dfu_upload_pos = 0;
     s->dfu_received = 0;
+    s->dfu_block_len = 0;
+    s->dfu_block_armed = 0;
     return switched;
 }
 

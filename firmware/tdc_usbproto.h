@@ -204,6 +204,12 @@ typedef struct {
     int (*read)(void *ctx, uint32_t offset, uint8_t *data, uint32_t len);
     void *ctx;
     uint32_t slot_bytes;
+    /* Milliseconds a write(offset, len) may take, or 0 when it completes
+     * within the DNLOAD request (RAM, a file, word programming).  NULL:
+     * always 0.  Non-zero defers the write: GETSTATUS answers dfuDNBUSY
+     * with this bwPollTimeout, the board runs tdc_usbp_dfu_work() after
+     * the reply, and the host's next GETSTATUS finds dfuDNLOAD-SYNC. */
+    uint32_t (*busy_ms)(void *ctx, uint32_t offset, uint32_t len);
 } tdc_usbp_flash_t;
 
 /* Called with each bulk OUT transfer; *delta arrives zeroed. */
@@ -247,6 +253,10 @@ typedef struct {
     uint8_t dfu_upload_slot;    /* slot an upload in progress reads */
     uint8_t detach_pending;     /* DFU_DETACH acknowledged: reset (activate) within wDetachTimeOut */
     uint32_t dfu_upload_pos;
+    uint32_t dfu_block_len;  /* a deferred block waits in dfu_block (busy_ms != 0) */
+    uint32_t dfu_block_ms;   /* its bwPollTimeout */
+    uint8_t dfu_block_armed; /* GETSTATUS answered dfuDNBUSY: tdc_usbp_dfu_work() writes it */
+    uint8_t dfu_block[TDC_DFU_TRANSFER_SIZE];
     uint8_t reset_pending; /* RESET_BOARD acknowledged: reset after the status stage */
 } tdc_usbp_t;
 
@@ -279,6 +289,12 @@ void tdc_usbp_status_report(tdc_usbp_t *s, uint8_t out[TDC_USB_STATUS_LEN]);
 /* Returns 1 once after RESET_BOARD (or DFU_DETACH) was acknowledged: the
  * board then resets itself (and calls tdc_usbp_bus_reset() as it restarts). */
 int tdc_usbp_take_reset(tdc_usbp_t *s);
+
+/* Runs a download block deferred as dfuDNBUSY (tdc_usbp_flash_t.busy_ms),
+ * once GETSTATUS's reply is on its way: the write, then dfuDNLOAD-SYNC, or
+ * dfuERROR/errWRITE.  Returns 1 if it wrote (or failed), 0 if nothing was
+ * waiting.  Boards whose busy_ms is NULL need not call it. */
+int tdc_usbp_dfu_work(tdc_usbp_t *s);
 
 /* A USB bus reset (or the board's own reset after RESET_BOARD/DETACH).
  * Activation (DFU 1.1 manifestation-tolerant, docs/usb-protocol.md): when

@@ -34,6 +34,9 @@ int tdc_disco_panel_on(void);
  * bank not running (0..1 MiB, the running one, is refused); 0 = done. */
 int tdc_disco_flash_write(void *ctx, uint32_t offset, const uint8_t *data, uint32_t len);
 int tdc_disco_flash_read(void *ctx, uint32_t offset, uint8_t *data, uint32_t len);
+/* flash.c: the bwPollTimeout a write needs (tdc_usbp_flash_t.busy_ms):
+ * the erase bound for each sector it starts, else 0. */
+uint32_t tdc_disco_flash_busy_ms(void *ctx, uint32_t offset, uint32_t len);
 /* flash.c: swap the banks by option byte and reset; returns 0 only when
  * the option bytes did not take the new value. */
 int tdc_disco_flash_activate_other_bank(void);

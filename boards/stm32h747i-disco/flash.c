@@ -18,9 +18,11 @@
  *
  * Erase time: a sector erase takes up to seconds (DS12930 flash
  * characteristics); polls here are bounded by TDC_DISCO_FLASH_ERASE_MS by
- * the DWT cycle counter.  The tdc DFU state machine must report dfuDNBUSY
- * with a bwPollTimeout of that order while a download block erases a
- * sector (not done: tdc_usbproto.c answers 0 today).
+ * the DWT cycle counter.  A download block that starts a sector is
+ * therefore too slow for its DNLOAD request: tdc_disco_flash_busy_ms()
+ * makes the DFU state machine answer dfuDNBUSY with that bound as
+ * bwPollTimeout and write the block after the reply (usb_hs.c), so the
+ * host's next GETSTATUS arrives once the erase is over.
  *
  * Executed in tests/disco against a flash model that enforces these rules
  * and cuts power mid-update; not yet run on a board.
@@ -149,6 +151,17 @@ int tdc_disco_flash_write(void *ctx, uint32_t offset, const uint8_t *data, uint3
     }
     FLASH_R(bank_off + CR) = CR_LOCK;
     return ok ? 0 : 1;
+}
+
+uint32_t tdc_disco_flash_busy_ms(void *ctx, uint32_t offset, uint32_t len)
+{
+    (void)ctx;
+    if (offset < BANK_BYTES || len == 0u) {
+        return 0u; /* refused by the write at once */
+    }
+    const uint32_t first = (offset - BANK_BYTES + SECTOR_BYTES - 1u) / SECTOR_BYTES; /* sectors starting */
+    const uint32_t end = (offset - BANK_BYTES + len - 1u) / SECTOR_BYTES;            /* in [offset, +len) */
+    return end >= first ? (end - first + 1u) * TDC_DISCO_FLASH_ERASE_MS : 0u;
 }
 
 int tdc_disco_flash_read(void *ctx, uint32_t offset, uint8_t *data, uint32_t len)

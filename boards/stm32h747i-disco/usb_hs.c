@@ -294,6 +294,9 @@ void tdc_disco_usb_poll(void)
     }
     for (uint32_t i = 0; i < 64u && rx_pop(); i++) {
     }
+    /* A DFU block answered dfuDNBUSY: erase and program it now, while the
+     * host waits out bwPollTimeout (EP0 NAKs meanwhile). */
+    (void)tdc_usbp_dfu_work(&g_proto);
     if (g_configured && (OTG(EP(DIEPINT0, 1u)) & 1u)) { /* XFRC: the host took the last report */
         OTG(EP(DIEPINT0, 1u)) = 1u;
         status_in();

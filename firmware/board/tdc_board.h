@@ -80,6 +80,11 @@ void tdc_board_vsync_wait(void);
 /* Free-running microsecond timer (wraps at 2^32). */
 uint32_t tdc_board_time_us(void);
 
+/* CPU cycle counter for the loop's per-stage timing (wraps at 2^32), or
+ * 0 on boards that have none or whose timing would change their golden
+ * logs (emulated, Linux): the loop then logs no timing. */
+uint32_t tdc_board_cycles(void);
+
 /* Why the controller last reset. */
 tdc_reset_cause_t tdc_board_reset_cause(void);
 

@@ -76,6 +76,11 @@ void tdc_board_vsync_wait(void)
 {
 }
 
+uint32_t tdc_board_cycles(void)
+{
+    return 0u; /* QEMU's instruction count is not the M7's: no stage timing */
+}
+
 uint32_t tdc_board_time_us(void)
 {
     /* SysTick counts down from 2^24 - 1. */

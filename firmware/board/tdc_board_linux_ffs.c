@@ -283,7 +283,7 @@ int tdc_lx_ffs_init(uint32_t width, uint32_t height, uint32_t refresh_mhz, uint3
                              .refresh_mhz = refresh_mhz,
                              .rx_buffer_bytes = rx_bytes,
                              .max_packet_bytes = max_packet,
-                             .flash = {slot_write, slot_read, NULL, SLOT_BYTES},
+                             .flash = {slot_write, slot_read, NULL, SLOT_BYTES, NULL}, /* a file: writes within DNLOAD */
                              .sink = NULL,
                              .sink_ctx = NULL};
     if (tdc_usbp_init(&g_proto, &cfg) != TDC_OK) {

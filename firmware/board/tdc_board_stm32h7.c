@@ -61,7 +61,8 @@ tdc_board_status_t tdc_board_init(void)
                                    .refresh_mhz = TDC_PANEL_REFRESH_HZ * 1000u,
                                    .rx_buffer_bytes = TDC_DISCO_USB_RING_BYTES,
                                    .max_packet_bytes = 512u,
-                                   .flash = {tdc_disco_flash_write, tdc_disco_flash_read, 0, TDC_DISCO_FLASH_BANK_BYTES}};
+                                   .flash = {tdc_disco_flash_write, tdc_disco_flash_read, 0, TDC_DISCO_FLASH_BANK_BYTES,
+                                             tdc_disco_flash_busy_ms}};
     if (!tdc_disco_usb_init(&usb)) {
         tdc_board_log("stm32h747i-disco: USB OTG HS core did not come out of reset");
         return TDC_BOARD_ERR_IO;
@@ -94,6 +95,13 @@ void tdc_board_vsync_wait(void)
     while (tdc_disco_ltdc_vsync() == 0 && i++ < 20000000u) {
         tdc_disco_usb_poll();
     }
+}
+
+/* DWT_CYCCNT (ARMv7-M ARM C1.8: enabled by DEMCR.TRCENA and
+ * DWT_CTRL.CYCCNTENA in tdc_board_init), one count per core clock. */
+uint32_t tdc_board_cycles(void)
+{
+    return TDC_REG32(TDC_CM_DWT_CYCCNT);
 }
 
 uint32_t tdc_board_time_us(void)

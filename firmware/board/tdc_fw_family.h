@@ -48,6 +48,18 @@
 /* What eye() did. */
 enum { FW_EYE_REFUSED = -1, FW_EYE_NOTHING = 0, FW_EYE_UPDATED = 1 };
 
+/* Per-stage timing (tdc_fw_log.c): what the loop's cycles go to. */
+enum {
+    FW_STAGE_DECODE, /* link decoder, FULL unpack */
+    FW_STAGE_FAMILY, /* the stream family's stages: TRM, assembly, foveated remap */
+    FW_STAGE_LCD,    /* the LCD inverse */
+    FW_STAGE_SHOW,   /* scan-out flip and the vsync wait */
+    FW_STAGE_COUNT
+};
+/* One timing line every 2^FW_TIMING_LOG2 frames shown (64: about 1 s at
+ * 60 Hz; a power of two, so the mean is a shift). */
+#define FW_TIMING_LOG2 6u
+
 typedef struct tdc_fw_family tdc_fw_family_t;
 struct tdc_fw_family {
     const char *name;
@@ -111,6 +123,8 @@ typedef struct {
     uint8_t have_stream;      /* the configured stream's header, to recognise a repeat */
     uint16_t stream_id;
     tdc_link_stream_info_t stream;
+    uint64_t stage_cycles[FW_STAGE_COUNT]; /* tdc_board_cycles() spent per stage since the last timing line */
+    uint32_t timed_frames;                 /* frames shown since then */
 } tdc_fw_loop_t;
 
 extern tdc_fw_loop_t tdc_fw;
@@ -127,6 +141,11 @@ void tdc_fw_log_kv(const char *what, uint32_t v);
 const char *tdc_fw_reset_name(tdc_reset_cause_t c);
 /* the loop's own counters (each family logs its own) */
 void tdc_fw_log_loop(const tdc_link_counters_t *c);
+/* adds tdc_board_cycles() - since to the stage; returns the counter now */
+uint32_t tdc_fw_time_stage(unsigned stage, uint32_t since);
+/* a frame was shown: every 2^FW_TIMING_LOG2 frames one line of the mean
+ * cycles per frame of each stage (none when the board counts no cycles) */
+void tdc_fw_time_frame(void);
 
 /* ---- the LCD inverse after every family (tdc_fw_lcd.c) ---- */
 #if TDC_CFG_LCD

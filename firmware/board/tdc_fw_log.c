@@ -16,6 +16,35 @@ void tdc_fw_log_kv(const char *what, uint32_t v)
     tdc_board_log(line);
 }
 
+uint32_t tdc_fw_time_stage(unsigned stage, uint32_t since)
+{
+    const uint32_t now = tdc_board_cycles();
+    tdc_fw.stage_cycles[stage] += now - since; /* modulo 2^32: a stage under 10 s at 400 MHz */
+    return now;
+}
+
+void tdc_fw_time_frame(void)
+{
+    static const char *const names[FW_STAGE_COUNT] = {"cycles/frame: decode ", " family ", " lcd ", " show "};
+    if (++tdc_fw.timed_frames < (1u << FW_TIMING_LOG2)) {
+        return;
+    }
+    uint64_t any = 0;
+    char line[128];
+    char *end = line + sizeof line - 1, *o = line;
+    for (unsigned s = 0; s < FW_STAGE_COUNT; s++) {
+        any |= tdc_fw.stage_cycles[s];
+        o = tdc_text_str(o, end, names[s]);
+        o = tdc_text_u32(o, end, (uint32_t)(tdc_fw.stage_cycles[s] >> FW_TIMING_LOG2));
+        tdc_fw.stage_cycles[s] = 0;
+    }
+    *o = 0;
+    tdc_fw.timed_frames = 0;
+    if (any != 0u) {
+        tdc_board_log(line);
+    }
+}
+
 const char *tdc_fw_reset_name(tdc_reset_cause_t c)
 {
     static const char *const names[] = {"unknown", "power-on", "pin", "software", "watchdog", "brown-out", "low-power"};

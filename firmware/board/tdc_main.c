@@ -68,7 +68,9 @@ static int process_eye_kinds(uint32_t e, uint32_t frame, uint32_t kinds)
 {
     uint8_t *fb = tdc_fw_back_eye(e);
     tdc_res_t *residual = NULL;
+    uint32_t t = tdc_board_cycles();
     const int r = tdc_fw.fam ? tdc_fw.fam->eye(e, frame, kinds, fb, &residual) : FW_EYE_NOTHING;
+    t = tdc_fw_time_stage(FW_STAGE_FAMILY, t);
     if (r != FW_EYE_UPDATED) {
         tdc_fw.stage_errors += r == FW_EYE_REFUSED;
         return 0;
@@ -76,6 +78,7 @@ static int process_eye_kinds(uint32_t e, uint32_t frame, uint32_t kinds)
     if (tdc_fw_lcd_frame(e, fb, residual) != 0) {
         tdc_fw.stage_errors++;
     }
+    (void)tdc_fw_time_stage(FW_STAGE_LCD, t);
     return 1;
 }
 
@@ -90,7 +93,10 @@ static int process_picture(uint32_t e, uint32_t frame, uint32_t kind)
     if (kind != TDC_LINK_KIND_FULL) {
         return process_eye_kinds(e, frame, KIND_BIT(kind));
     }
-    if (tdc_link_unpack_full(&tdc_fw.dec, tdc_fw_back_eye(e), FW_STRIDE) != TDC_OK) {
+    const uint32_t t = tdc_board_cycles();
+    const tdc_status_t st = tdc_link_unpack_full(&tdc_fw.dec, tdc_fw_back_eye(e), FW_STRIDE);
+    (void)tdc_fw_time_stage(FW_STAGE_DECODE, t);
+    if (st != TDC_OK) {
         tdc_fw.stage_errors++;
         return 0;
     }
@@ -105,10 +111,13 @@ static void mark_updated(uint32_t e, int updated)
 
 static void show_frame(void)
 {
+    const uint32_t t = tdc_board_cycles();
     tdc_fw_bands_keep_eyes(); /* bands: kept eyes from the front, then the swap */
     (void)tdc_board_panel_show(tdc_fw_fb[tdc_fw.front], FW_STRIDE, FW_EYES * FW_W, FW_H, tdc_fw.frame);
     tdc_board_vsync_wait();
+    (void)tdc_fw_time_stage(FW_STAGE_SHOW, t);
     tdc_fw.frames_shown++;
+    tdc_fw_time_frame();
 }
 
 /* Ends the frame being collected: eyes still missing something are
@@ -293,7 +302,9 @@ static void decoder_init(void)
 static int dispatch(const uint8_t *p, uint32_t n, size_t *used)
 {
     tdc_link_event_t ev;
+    const uint32_t t = tdc_board_cycles();
     *used = tdc_link_feed(&tdc_fw.dec, p, n, &ev);
+    (void)tdc_fw_time_stage(FW_STAGE_DECODE, t);
     if (ev.type == TDC_LINK_EV_PACKET) {
         on_packet(&ev);
     } else if (ev.type == TDC_LINK_EV_ERROR) {

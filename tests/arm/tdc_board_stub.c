@@ -12,6 +12,11 @@ void tdc_board_vsync_wait(void)
 {
 }
 
+uint32_t tdc_board_cycles(void)
+{
+    return 0;
+}
+
 uint32_t tdc_board_time_us(void)
 {
     return 0;

@@ -342,6 +342,12 @@ class Flash(Model):
         self.power_cut_at = None  # ops count at which power fails
         self.stuck_busy = False
         self.running_bank_writes = 0
+        # A sector erase lasts ERASE_MS of model time: when the bank stops
+        # reading busy the model clock (DWT) jumps to the erase's end, as if
+        # the core had polled all along.  2 s, inside the "up to seconds" of
+        # DS12930 and below the driver's 4 s bound (TDC_DISCO_FLASH_ERASE_MS).
+        self.erase_ms = 2000
+        self.erase_end = {0: 0, 0x100: 0}  # model cycle at which each bank's erase ends
 
     def other_set(self):
         """Register-set offset of the physical bank mapped at 0x08100000:
@@ -356,6 +362,7 @@ class Flash(Model):
             if self.stuck_busy or self.busy_reads[b]:
                 self.busy_reads[b] = max(0, self.busy_reads[b] - 1)
                 return self.v[off] | 0x5  # BSY, QW
+            self.emu.scs.cyc = max(self.emu.scs.cyc, self.erase_end[b])
             return self.v[off] & ~0x5
         if off == 0x1C and self.busy_reads.get("opt"):
             self.busy_reads["opt"] -= 1
@@ -404,6 +411,7 @@ class Flash(Model):
                 self.programmed = {a for a in self.programmed if not base <= a < base + self.SECTOR}
                 self.erased.append((b, sector))
                 self.busy_reads[b] = 3
+                self.erase_end[b] = self.emu.scs.cyc + self.erase_ms * self.emu.rcc.clocks()["cpu"] // 1000
                 value &= ~(1 << 7)
             if value & 2 and (value >> 4 & 3) != 3:
                 raise EmuError("programming with PSIZE %d: the DISCO's 3.3 V supply takes x64 (PSIZE 3)"

@@ -464,14 +464,31 @@ class UsbHs(unittest.TestCase):
         b.call("tdc_board_transport_read", self.BUF, 4096, self.GOT)
         n = struct.unpack("<I", bytes(b.uc.mem_read(self.GOT, 4)))[0]
         self.assertEqual(bytes(b.uc.mem_read(self.BUF, n)), b"\x01" * 512 + b"\x02" * 512)
-        # A DFU download block (wTransferSize 1024) through EP0 into the
-        # flash driver: it lands in the bank not running.
+        self.dfu_block_through_ep0(b)
+
+    def dfu_block_through_ep0(self, b):
+        """A DFU download block (wTransferSize 1024) through EP0 into the
+        flash driver, landing in the bank not running.  It starts a sector,
+        whose erase (the model's erase_ms) cannot fit the DNLOAD request:
+        GETSTATUS answers dfuDNBUSY with a bwPollTimeout covering the
+        erase, the board writes after that reply, and the host's next
+        GETSTATUS (sent after bwPollTimeout) finds dfuDNLOAD-IDLE."""
         block = bytes((i * 13 + 5) & 0xFF for i in range(1024))
         self.assertEqual(self.control(b, 0x21, 1, 0, 1, len(block), block), b"", "DFU_DNLOAD status stage")
-        self.assertEqual(bytes(b.uc.mem_read(0x08100000, len(block))), block)
-        self.assertEqual(b.flash.erased, [(0x100, 0)], "sector 0 of the other bank erased once")
+        self.assertEqual(b.flash.erased, [], "no erase within the DNLOAD request")
+        t0 = b.scs.cyc
         st = self.control(b, 0xA1, 3, 0, 1, 6)
-        self.assertEqual(st[0], 0, "DFU_GETSTATUS: status OK")
+        busy_ms = (b.scs.cyc - t0) / (b.rcc.clocks()["cpu"] / 1000)
+        poll_ms = st[1] | st[2] << 8 | st[3] << 16
+        self.assertEqual((st[0], st[4]), (0, 4), "DFU_GETSTATUS during the erase: OK, dfuDNBUSY")
+        self.assertGreaterEqual(busy_ms, b.flash.erase_ms, "the erase ran after the reply")
+        self.assertGreaterEqual(poll_ms, busy_ms, "bwPollTimeout %d ms covers the %.0f ms the board was busy"
+                                % (poll_ms, busy_ms))
+        self.assertEqual(b.flash.erased, [(0x100, 0)], "sector 0 of the other bank erased once")
+        self.assertEqual(bytes(b.uc.mem_read(0x08100000, len(block))), block)
+        st = self.control(b, 0xA1, 3, 0, 1, 6)
+        self.assertEqual((st[0], st[4], st[1] | st[2] << 8 | st[3] << 16), (0, 5, 0),
+                         "DFU_GETSTATUS after bwPollTimeout: OK, dfuDNLOAD-IDLE, no wait")
 
     def test_no_host_before_core_reset(self):
         # The model refuses a host before the core is set up: what the
@@ -493,6 +510,45 @@ class ResetCause(unittest.TestCase):
             b = Disco(ELF, rsr=rsr)
             self.assertEqual(b.call("tdc_board_reset_cause"), want, "RCC_RSR 0x%08x" % rsr)
             self.assertEqual(b.rcc.v[0xD0], 0, "flags cleared (RMVF)")
+
+
+class StageTiming(unittest.TestCase):
+    """The frame loop's per-stage timing on the DISCO: tdc_board_cycles()
+    is DWT_CYCCNT, counting since tdc_board_init set DEMCR.TRCENA and
+    DWT_CTRL.CYCCNTENA (ARMv7-M ARM C1.8); the loop's accounting
+    (tdc_fw_time_stage/tdc_fw_time_frame, tdc_fw_log.c) logs one line of
+    mean cycles per frame and stage every 64 frames to USART1."""
+    STAGE = {"decode": 0, "family": 1, "lcd": 2, "show": 3}
+
+    def test_dwt_cycles_logged_per_stage(self):
+        b = Disco(ELF)
+        b.run_reset()
+        self.assertTrue(b.scs.v[0xEDFC] >> 24 & 1, "DEMCR.TRCENA")
+        self.assertTrue(b.scs.v[0x1000] & 1, "DWT_CTRL.CYCCNTENA")
+        b.scs.cyc_step = 0
+        b.scs.cyc = 0xFFFFF000  # the counter wraps during the run
+        self.assertEqual(b.call("tdc_board_cycles"), 0xFFFFF000, "tdc_board_cycles reads DWT_CYCCNT")
+        # per frame: decode 2 x 1500 + 700, family 9000 + k, lcd 4000, show 6,666,666 (one 60 Hz frame at 400 MHz)
+        spend = {"decode": [1500, 1500, 700], "family": [9000], "lcd": [4000], "show": [6666666]}
+        mark = len(b.usart1.tx)
+        for k in range(64):
+            for stage, chunks in spend.items():
+                for c in chunks:
+                    t = b.call("tdc_board_cycles")
+                    b.scs.cyc += c + (k if stage == "family" else 0)
+                    self.assertEqual(b.call("tdc_fw_time_stage", self.STAGE[stage], t), b.scs.cyc & 0xFFFFFFFF)
+            if k < 63:
+                b.call("tdc_fw_time_frame")
+                self.assertEqual(b.usart1.tx[mark:], b"", "no timing line before 64 frames")
+        b.call("tdc_fw_time_frame")
+        text = b.usart1.tx[mark:].decode()
+        want = "cycles/frame: decode 3700 family %d lcd 4000 show 6666666" % (9000 + sum(range(64)) // 64)
+        self.assertIn(want + "\r\n", text)
+        # the next 64 frames start from zero
+        mark = len(b.usart1.tx)
+        for _ in range(64):
+            b.call("tdc_fw_time_frame")
+        self.assertEqual(b.usart1.tx[mark:], b"", "nothing spent: no line")
 
 
 class LogAndFault(unittest.TestCase):

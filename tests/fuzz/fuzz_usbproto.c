@@ -157,7 +157,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                              .refresh_mhz = 90000u,
                              .rx_buffer_bytes = 8192u,
                              .max_packet_bytes = 8192u,
-                             .flash = {fw, fr, NULL, SLOT}};
+                             .flash = {fw, fr, NULL, SLOT, NULL}};
     if (tdc_usbp_init(&s, &cfg) != TDC_OK) abort();
     size_t p = 0;
     while (p < size) {

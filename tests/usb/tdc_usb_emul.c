@@ -20,6 +20,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #define EMUL_MAX_URBS 64
 
@@ -43,7 +44,26 @@ struct emul_board {
     UMockdevIoctlData *flying[EMUL_MAX_URBS]; /* never answered (hang faults) */
     int n_flying;
     tdc_link_sink_t *sink; /* optional: the firmware's link decoder as the sink */
+    uint32_t erase_ms, erase_unit; /* slow erase: a block starting an erase unit is written later */
+    double busy_until;             /* a deferred block is written once this time has passed */
+    int busy_replies, early_polls;
 };
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+/* tdc_usbp_flash_t.busy_ms: like a flash that erases erase_unit bytes at a
+ * time, taking erase_ms (0: every write within the request). */
+static uint32_t emul_flash_busy_ms(void *ctx, uint32_t offset, uint32_t len)
+{
+    emul_board_t *b = ctx;
+    (void)len;
+    return b->erase_ms != 0u && offset % b->erase_unit == 0u ? b->erase_ms : 0u;
+}
 
 int emul_board_attach_link_decoder(emul_board_t *b, uint16_t w, uint16_t h)
 {
@@ -141,7 +161,17 @@ static int urb_run(emul_board_t *b, UMockdevIoctlData *urb_data, UMockdevIoctlDa
             urb_finish(b, urb_data, -EPIPE, 0);
             return 0;
         }
+        /* The board writes a deferred block in the background, done at
+         * busy_until; a host asking before then gets dfuDNBUSY again. */
+        if (b->proto.dfu_block_armed && now_s() >= b->busy_until) (void)tdc_usbp_dfu_work(&b->proto);
+        const int early = b->proto.dfu_block_armed;
         tdc_status_t r = tdc_usbp_control(&b->proto, &setup, data + 8, reply, (uint32_t)sizeof reply, &reply_len);
+        if (r == TDC_OK && setup.b_request == TDC_DFU_GETSTATUS && (setup.bm_request_type & 0x7Fu) == 0x21u &&
+            b->proto.dfu_block_armed) {
+            b->early_polls += early;
+            b->busy_replies += !early;
+            if (!early) b->busy_until = now_s() + b->proto.dfu_block_ms / 1000.0;
+        }
         if (r != TDC_OK) {
             urb_finish(b, urb_data, -EPIPE, 0);
             return 0;
@@ -317,7 +347,7 @@ emul_board_t *emul_board_add(UMockdevTestbed *tb, int bus, int dev, const char *
                              .refresh_mhz = 90000u,
                              .rx_buffer_bytes = 16384u,
                              .max_packet_bytes = 16384u,
-                             .flash = {emul_flash_write, emul_flash_read, b, slot_bytes}};
+                             .flash = {emul_flash_write, emul_flash_read, b, slot_bytes, emul_flash_busy_ms}};
     if (tdc_usbp_init(&b->proto, &cfg) != TDC_OK) {
         fprintf(stderr, "tdc_usb_emul: board protocol init failed\n");
         emul_board_free(b);
@@ -366,6 +396,14 @@ void emul_board_set_fault(emul_board_t *b, emul_fault_t fault, uint32_t fault_af
     pthread_mutex_unlock(&b->lock);
 }
 
+void emul_board_set_erase(emul_board_t *b, uint32_t erase_ms, uint32_t erase_unit)
+{
+    pthread_mutex_lock(&b->lock);
+    b->erase_ms = erase_ms;
+    b->erase_unit = erase_unit;
+    pthread_mutex_unlock(&b->lock);
+}
+
 void emul_board_stats(emul_board_t *b, emul_board_stats_t *out)
 {
     pthread_mutex_lock(&b->lock);
@@ -387,6 +425,8 @@ void emul_board_stats(emul_board_t *b, emul_board_stats_t *out)
     out->dfu_status = (int)b->proto.dfu_status;
     out->reset_requested = b->reset_requested;
     out->dfu_state = (int)b->proto.dfu_state;
+    out->busy_replies = b->busy_replies;
+    out->early_polls = b->early_polls;
     pthread_mutex_unlock(&b->lock);
 }
 

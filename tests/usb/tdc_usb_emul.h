@@ -39,6 +39,10 @@ emul_board_t *emul_board_add(UMockdevTestbed *tb, int bus, int dev, const char *
  * are the decoder's verdicts.  Returns 0, or -1 if the decoder refused. */
 int emul_board_attach_link_decoder(emul_board_t *b, uint16_t w, uint16_t h);
 void emul_board_set_fault(emul_board_t *b, emul_fault_t fault, uint32_t fault_after);
+/* A flash erasing erase_unit bytes in erase_ms: a DFU block starting a
+ * unit answers dfuDNBUSY with bwPollTimeout erase_ms and is written once
+ * that time has passed (0: writes complete within DNLOAD, the default). */
+void emul_board_set_erase(emul_board_t *b, uint32_t erase_ms, uint32_t erase_unit);
 void emul_board_free(emul_board_t *b);
 
 /* Snapshot of what the board saw (thread-safe). */
@@ -55,6 +59,8 @@ typedef struct {
     int resets, activations;       /* board restarts; those that switched slots */
     int reset_requested;
     int dfu_state, dfu_status;
+    int busy_replies; /* GETSTATUS answered dfuDNBUSY for a block (set_erase) */
+    int early_polls;  /* GETSTATUS sent before that answer's bwPollTimeout ran out */
 } emul_board_stats_t;
 void emul_board_stats(emul_board_t *b, emul_board_stats_t *out);
 

@@ -227,6 +227,29 @@ static void test_dfu_flash_activate_and_failures(void **state)
     free(newer);
 }
 
+/* A board whose flash erases slowly (dfuDNBUSY with bwPollTimeout for
+ * each block starting a 4 KiB erase unit): dfu-util waits each timeout
+ * out, as tdc-usb flash does (test_usb_emul), and the image lands. */
+static void test_dfu_busy_erase(void **state)
+{
+    fixture_t *f = *state;
+    char img[256];
+    path_of(img, sizeof img, "busy.img");
+    size_t len;
+    uint8_t *good = make_image("emul", 9000, img, &len);
+    emul_board_set_erase(f->board[0], 40, 4096);
+    run_t r;
+    dfu_flash(&r, img, 0);
+    expect(&r, 0, "Download done.", NULL);
+    emul_board_stats_t st;
+    emul_board_stats(f->board[0], &st);
+    assert_int_equal(st.image_bytes, len);
+    assert_int_equal(st.slot_crc, ref_crc32(good, len));
+    assert_int_equal(st.busy_replies, 3); /* blocks at 0, 4096, 8192 */
+    assert_int_equal(st.early_polls, 0);
+    free(good);
+}
+
 /* Detach/reset on their own: dfu-util -e (DETACH) and a USB reset without a
  * new image change nothing; after a plain download (no -R) the new image
  * waits, and the next USB reset boots it. */
@@ -308,6 +331,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_descriptors_lsusb, setup_one, teardown),
         cmocka_unit_test_setup_teardown(test_dfu_list, setup_one, teardown),
         cmocka_unit_test_setup_teardown(test_dfu_flash_activate_and_failures, setup_one, teardown),
+        cmocka_unit_test_setup_teardown(test_dfu_busy_erase, setup_one, teardown),
         cmocka_unit_test_setup_teardown(test_dfu_detach_reset, setup_one, teardown),
         cmocka_unit_test_setup_teardown(test_suffix_interop, setup_one, teardown),
     };

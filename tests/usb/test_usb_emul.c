@@ -277,6 +277,27 @@ static void test_flash(void **state)
     free(img);
 }
 
+/* A board whose flash erases slowly: tdc-usb flash waits out each
+ * bwPollTimeout of a dfuDNBUSY answer instead of polling early. */
+static void test_flash_busy_erase(void **state)
+{
+    fixture_t *f = *state;
+    char img_path[128];
+    snprintf(img_path, sizeof img_path, "%s/fw.img", tmpdir);
+    size_t len;
+    uint8_t *img = make_image("emul", 9000, img_path, &len); /* blocks at 0, 4096, 8192: three erase units */
+    emul_board_set_erase(f->board[0], 40, 4096);
+    run_t r;
+    run_tool(&r, (const char *[]){"flash", "--no-reset", img_path, NULL});
+    expect(&r, 0, "verified 9048 bytes read back", NULL);
+    emul_board_stats_t st;
+    emul_board_stats(f->board[0], &st);
+    assert_int_equal(st.slot_crc, tdc_crc32(img, len));
+    assert_int_equal(st.busy_replies, 3);
+    assert_int_equal(st.early_polls, 0);
+    free(img);
+}
+
 static void test_flash_bad_images(void **state)
 {
     fixture_t *f = *state;
@@ -373,6 +394,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_stream_missing_file, setup_one, teardown),
         cmocka_unit_test_setup_teardown(test_info_stall_and_timeout, setup_one, teardown),
         cmocka_unit_test_setup_teardown(test_flash, setup_one, teardown),
+        cmocka_unit_test_setup_teardown(test_flash_busy_erase, setup_one, teardown),
         cmocka_unit_test_setup_teardown(test_flash_bad_images, setup_one, teardown),
         cmocka_unit_test_setup_teardown(test_flash_board_rejects, setup_one, teardown),
     };

@@ -34,7 +34,18 @@ static int fr(void *ctx, uint32_t off, uint8_t *d, uint32_t n)
     return 0;
 }
 
+/* A flash whose erase unit is 2048 bytes: a block starting one is slow. */
+#define ERASE_UNIT 2048u
+#define ERASE_MS 1234u
+static uint32_t fbusy(void *ctx, uint32_t off, uint32_t n)
+{
+    (void)ctx;
+    (void)n;
+    return off % ERASE_UNIT == 0u ? ERASE_MS : 0u;
+}
+
 static tdc_usbp_t s;
+static uint32_t (*busy_hook)(void *, uint32_t, uint32_t);
 
 static int setup(void **state)
 {
@@ -50,8 +61,16 @@ static int setup(void **state)
                              .refresh_mhz = 90000u,
                              .rx_buffer_bytes = 8192u,
                              .max_packet_bytes = 8192u,
-                             .flash = {fw, fr, NULL, SLOT}};
+                             .flash = {fw, fr, NULL, SLOT, busy_hook}};
     return tdc_usbp_init(&s, &cfg) == TDC_OK ? 0 : -1;
+}
+
+static int setup_busy(void **state)
+{
+    busy_hook = fbusy;
+    int r = setup(state);
+    busy_hook = NULL;
+    return r;
 }
 
 static uint8_t reply[TDC_DFU_TRANSFER_SIZE];
@@ -206,6 +225,71 @@ static void test_dfu_download_upload(void **state)
     assert_int_equal(got, len);
     assert_memory_equal(back, image, len);
     assert_int_equal(dfu_state(), TDC_DFU_STATE_IDLE);
+}
+
+static uint32_t poll_timeout(void)
+{
+    return reply[1] | (uint32_t)reply[2] << 8 | (uint32_t)reply[3] << 16;
+}
+
+/* A block the board's flash cannot write within the request (busy_ms):
+ * dfuDNBUSY with its poll timeout, written by tdc_usbp_dfu_work() after
+ * the reply; other blocks as before. */
+static void test_dfu_busy(void **state)
+{
+    (void)state;
+    uint32_t len = make_image(3000, "testboard"); /* blocks at 0, 1024, 2048 (slow), 3072 */
+    uint8_t status, st;
+    for (uint16_t blk = 0; blk * 1024u < len; blk++) {
+        const uint32_t off = blk * 1024u, n = len - off < 1024u ? len - off : 1024u;
+        const int slow = (SLOT + off) % ERASE_UNIT == 0u;
+        assert_int_equal(req(DFU_OUT, TDC_DFU_DNLOAD, blk, 1, (uint16_t)n, image + off), TDC_OK);
+        getstatus(&status, &st);
+        assert_int_equal(status, TDC_DFU_OK);
+        if (slow) {
+            assert_int_equal(st, TDC_DFU_STATE_DNBUSY);
+            assert_int_equal(poll_timeout(), ERASE_MS);
+            assert_int_equal(slot[SLOT + off], 0xFF); /* not written before the reply */
+            getstatus(&status, &st);                  /* polled too early: still busy */
+            assert_int_equal(st, TDC_DFU_STATE_DNBUSY);
+            assert_int_equal(poll_timeout(), ERASE_MS);
+            assert_int_equal(tdc_usbp_dfu_work(&s), 1);
+            assert_memory_equal(slot + SLOT + off, image + off, n);
+            assert_int_equal(dfu_state(), TDC_DFU_STATE_DNLOAD_SYNC);
+            getstatus(&status, &st);
+        }
+        assert_int_equal(st, TDC_DFU_STATE_DNLOAD_IDLE);
+        assert_int_equal(poll_timeout(), 0);
+        assert_int_equal(tdc_usbp_dfu_work(&s), 0); /* nothing waiting */
+    }
+    assert_int_equal(req(DFU_OUT, TDC_DFU_DNLOAD, 3, 1, 0, NULL), TDC_OK);
+    getstatus(&status, &st);
+    if (st == TDC_DFU_STATE_MANIFEST) getstatus(&status, &st);
+    assert_int_equal(status, TDC_DFU_OK);
+    assert_int_equal(tdc_usbp_slot_image(&s, 1), len);
+    assert_memory_equal(slot + SLOT, image, len);
+
+    /* the deferred write fails: dfuERROR/errWRITE at the next GETSTATUS */
+    assert_int_equal(req(DFU_OUT, TDC_DFU_DNLOAD, 0, 1, 1024, image), TDC_OK);
+    getstatus(&status, &st);
+    assert_int_equal(st, TDC_DFU_STATE_DNBUSY);
+    fail_write = 1;
+    assert_int_equal(tdc_usbp_dfu_work(&s), 1);
+    getstatus(&status, &st);
+    assert_int_equal(st, TDC_DFU_STATE_ERROR);
+    assert_int_equal(status, TDC_DFU_ERR_WRITE);
+    fail_write = 0;
+
+    /* a request stalled while busy ends the download: the block is dropped */
+    assert_int_equal(req(DFU_OUT, TDC_DFU_CLRSTATUS, 0, 1, 0, NULL), TDC_OK);
+    memset(slot + SLOT, 0xFF, SLOT);
+    assert_int_equal(req(DFU_OUT, TDC_DFU_DNLOAD, 0, 1, 1024, image), TDC_OK);
+    getstatus(&status, &st);
+    assert_int_equal(st, TDC_DFU_STATE_DNBUSY);
+    assert_int_equal(req(DFU_OUT, TDC_DFU_DNLOAD, 1, 1, 1024, image + 1024), TDC_ERR_STALL);
+    assert_int_equal(tdc_usbp_dfu_work(&s), 0);
+    assert_int_equal(slot[SLOT], 0xFF);
+    assert_int_equal(dfu_state(), TDC_DFU_STATE_ERROR);
 }
 
 static void test_dfu_rejects(void **state)
@@ -433,6 +517,7 @@ int main(void)
         cmocka_unit_test_setup(test_descriptors, setup),
         cmocka_unit_test_setup(test_board_info_and_counters, setup),
         cmocka_unit_test_setup(test_dfu_download_upload, setup),
+        cmocka_unit_test_setup(test_dfu_busy, setup_busy),
         cmocka_unit_test_setup(test_dfu_rejects, setup),
         cmocka_unit_test_setup(test_image_check, setup),
         cmocka_unit_test_setup(test_corner_cases, setup),

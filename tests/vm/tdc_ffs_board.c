@@ -120,7 +120,7 @@ int main(int argc, char **argv)
                              .refresh_mhz = 90000u,
                              .rx_buffer_bytes = 16384u,
                              .max_packet_bytes = 65536u,
-                             .flash = {flash_write, flash_read, NULL, SLOT_BYTES},
+                             .flash = {flash_write, flash_read, NULL, SLOT_BYTES, NULL}, /* writes within DNLOAD */
                              .sink = tdc_link_sink_feed,
                              .sink_ctx = &link_sink};
     if (tdc_link_sink_init(&link_sink, 32, 24) != 0) {
