@@ -19,7 +19,7 @@ $(B)/tests/unit/test_zeng: $(B)/tests/unit/test_zeng.o $(ZENG_OBJS) $$(ZENG_METR
 	$(CC) $(HOST_LDFLAGS) $(SIM_OMP) $^ -o $@ $(HOST_LIBS)
 
 experiments demo-experiments experiments-report: $(TDC_ZENG)
-experiments demo-experiments experiments-report: export TDC_ZENG = $(abspath $(TDC_ZENG))
+experiments demo-experiments experiments-report: export TDC_ZENG := $(abspath $(TDC_ZENG))
 .PHONY: tdc-zeng
 tdc-zeng: $(TDC_ZENG)
 

@@ -46,6 +46,17 @@ def main():
             if '+=' in l.split('#')[0]:
                 last_append[m.group(1)] = (pos, f, n)
     bad = 0
+    # a recursive (=) assignment, global or target-specific, that names itself
+    # loops when expanded (make stops: "Recursive variable ... references itself")
+    selfref = re.compile(r'(?:^|:)\s*(?:export\s+|override\s+)?([A-Za-z_][A-Za-z0-9_]*)\s*=(?!=)(.*)$')
+    for f, n, l in seq:
+        if l.startswith('\t') or l.lstrip().startswith('#'):
+            continue
+        m = selfref.search(l)
+        if m and not re.search(r'[:+?!]$', l[:m.end(1)].rstrip() + l[m.end(1):].split('=')[0].strip()) \
+                and '$(%s)' % m.group(1) in m.group(2):
+            print(f'{f}:{n}: recursive variable {m.group(1)} names itself (use := ): {l.strip()[:90]}')
+            bad = 1
     for pos, (f, n, l) in enumerate(seq):
         if l.startswith('\t') or l.lstrip().startswith('#') or ':' not in l or ASSIGN.match(l) or COND.match(l):
             continue
