@@ -39,7 +39,8 @@ for cmd in "" demo test bench bench-sim size report-lcd "experiments EXP_SCALE=d
            "BOARD=mps2-an500 PANEL=htc-vive" "BOARD=mps3-an547 PANEL=htc-vive"; do
     for j in "" -j2; do
         # shellcheck disable=SC2086
-        out=$(cd "$tmp/n" && make -n $j $cmd 2>&1)
+        out=$(cd "$tmp/n" && make -n $j $cmd 2>&1); rc=$?
+        [ $rc -eq 0 ] || { bad "make -n $j $cmd: exit $rc: $(printf '%s\n' "$out" | grep -E '\*\*\*' | head -1)"; continue; }
         d=$(printf '%s\n' "$out" | grep -n 'dpkg-query' | head -1 | cut -d: -f1)
         c=$(printf '%s\n' "$out" | grep -nE '^(gcc|clang|cc|arm-none-eabi-gcc|g\+\+) ' | head -1 | cut -d: -f1)
         if [ -z "$d" ]; then bad "make -n $j $cmd: no deps step"
