@@ -27,7 +27,9 @@ QEMU_TIMEOUT ?= 300
 # since prerequisites are expanded when make reads the rule.
 INSN_PLUGIN := $(BUILD)/tools/tdc-insn-count.so
 
-ARM_BOARDS := $(filter-out host,$(BOARDS))
+# Cortex-M boards: those with a linker script (the host and the Linux board
+# build programs for an operating system; make size has nothing to say of them).
+ARM_BOARDS := $(sort $(patsubst boards/%/board.mk,%,$(shell grep -l '^BOARD_LDS' boards/*/board.mk)))
 # Emulated boards: those whose board.mk names a QEMU machine.
 QEMU_BOARDS := $(sort $(patsubst boards/%/board.mk,%,$(shell grep -l '^BOARD_QEMU' boards/*/board.mk)))
 # The board frame loop: tdc_main.c and one file per stream family, output

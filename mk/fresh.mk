@@ -6,7 +6,7 @@
 # FRESH_PAIRS: images built alone in a copy where nothing else was built
 # (the README's example pair, and one per emulated board).
 FRESH_PAIRS ?= stm32h747i-disco:disco-dsi mps3-an547:htc-vive
-TEST_EXTRA += test-newcomer
+TEST_BESIDE += test-newcomer
 .PHONY: test-newcomer
 test-newcomer:
 	@mkdir -p $(BUILD)
