@@ -245,7 +245,7 @@ test: deps
 	@# TEST_BESIDE runs in the background beside TEST_EXTRA (its own copy of the
 	@# tree and build): the QEMU runs there are single-threaded and leave a core
 	@# idle; its output is printed when it ends, its verdicts go to $(RESULTS).
-	@for t in $(TEST_BESIDE); do { $(MAKE) --no-print-directory $$t || \
+	@mkdir -p $(BUILD); for t in $(TEST_BESIDE); do { $(MAKE) --no-print-directory $$t || \
 	    { echo "$$t target FAIL" >> $(RESULTS); echo "*** $$t: target failed"; }; } \
 	    > $(BUILD)/beside-$$t.log 2>&1 & echo $$! > $(BUILD)/beside-$$t.pid; done
 	@for t in $(TEST_EXTRA); do $(MAKE) --no-print-directory $$t || \
