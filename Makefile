@@ -107,6 +107,7 @@ TDC_SIM := $(B)/tdc-sim
 TDC_RENDER := $(B)/tdc-render
 TDCRUN := $(B)/bin/tdc-run
 TABLEGEN := $(BUILD)/tools/tdc-tablegen
+# test support linked into every test: deterministic contents, checksums
 TEST_SUPPORT_OBJS = $(B)/tests/golden/tdc_content.o $(B)/tests/golden/golden_common.o
 # Generated headers every firmware object may include, in every build folder
 # (host, arm-<board>, <board>-<panel>, fw-host): order-only prerequisites of
@@ -191,8 +192,6 @@ $(FWLIB): $(FW_OBJS) $(B)/.fwobjs
 $(SIMLIB): $(SIM_OBJS) $(B)/.simobjs
 	@rm -f $@; mkdir -p $(@D)
 	ar rcs $@ $(SIM_OBJS) $(if $(SIM_OBJS),,--thin)
-
-# Test support linked into every test (TEST_SUPPORT_OBJS): deterministic contents, checksums.
 
 # A test or bench program from one source file: tests/<name>.c -> $(B)/tests/<name>
 $(B)/tests/%: $(B)/tests/%.o $(TEST_SUPPORT_OBJS) $(SIMLIB) $(FWLIB)
