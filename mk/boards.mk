@@ -21,7 +21,7 @@ ARM_NM := $(ARM_CROSS)nm
 ARM_SIZE := $(ARM_CROSS)size
 ARM_OBJCOPY := $(ARM_CROSS)objcopy
 ARM_OPT ?= -O2
-QEMU_TIMEOUT ?= 300
+QEMU_TIMEOUT ?= 600
 # The instruction-counting TCG plugin (make bench-arm, below): defined before
 # the first rule that names it as a prerequisite (arm-bench, arm-loop-cost),
 # since prerequisites are expanded when make reads the rule.
@@ -340,10 +340,9 @@ $(STREAMS)/$(PANEL)-%.tdcs: $(B)/tests/fw_stream
 	    $(filter lcd,$(PANEL_TYPE)),,$@.expected $(if $(filter trm-fov,$*),$(PANEL))))
 
 $(BP)/fw-check: $(BP)/tdc-firmware.elf $(FWH)/tdc_fw_host $(foreach m,$(FW_MODES),$(STREAMS)/$(PANEL)-$(m).tdcs) \
-                tests/arm/run_fw_qemu.sh
-	@{ echo '#!/bin/sh'; echo 'rc=0'; \
-	   $(foreach m,$(FW_MODES),echo 'tests/arm/run_fw_qemu.sh "$(BOARD)/$(PANEL)/$(m)" $(QEMU_TIMEOUT) $(BP)/tdc-firmware.elf $(FWH)/tdc_fw_host $(STREAMS)/$(PANEL)-$(m).tdcs $(BOARD_QEMU) || rc=1';) \
-	   echo 'exit $$rc'; } > $@
+                tests/arm/run_fw_qemu.sh tests/run_par.sh
+	@{ $(foreach m,$(filter trm-fov,$(FW_MODES)) $(filter-out trm-fov,$(FW_MODES)),echo 'tests/arm/run_fw_qemu.sh "$(BOARD)/$(PANEL)/$(m)" $(QEMU_TIMEOUT) $(BP)/tdc-firmware.elf $(FWH)/tdc_fw_host $(STREAMS)/$(PANEL)-$(m).tdcs $(BOARD_QEMU)';) } > $@.modes
+	@printf '#!/bin/sh\n# generated: every mode of this pair under QEMU, two at a time\nexec tests/run_par.sh 2 %s\n' $@.modes > $@
 	@chmod +x $@
 # Instructions per shown frame of the whole loop on this pair's streams.
 PANEL_PIXELS = $(shell echo $(PANEL_DIMS) | awk '{ print $$1 * $$2 * $$3 }')
