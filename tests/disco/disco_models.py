@@ -679,7 +679,8 @@ class Dsi(Model):
                    (0x408, "WIER"), (0x40C, "WISR"), (0x410, "WIFCR"), (0x418, "WPCR0"), (0x41C, "WPCR1"),
                    (0x420, "WPCR2"), (0x424, "WPCR3"), (0x428, "WPCR4"), (0x430, "WRPCR")):
         regs[_o] = (_n, 0x3133302A if _n == "VR" else 0)
-    PANEL_IDS = {"otm8009a": {0xDA: 0x40, 0xDB: 0x00}, "nt35510": {0xDA: 0x00, 0xDB: 0x80}}
+    PANEL_IDS = {"otm8009a": {0xDA: 0x40, 0xDB: 0x00}, "nt35510": {0xDA: 0x00, 0xDB: 0x80},
+                 "unknown": {0xDA: 0x00, 0xDB: 0x00}}
 
     def __init__(self, emu, panel):
         super().__init__(emu)

@@ -56,6 +56,114 @@ def board_h_macros():
     return ev
 
 
+# The MB1166 panel's register tables in the controllers' data-sheet
+# notation: "register  parameters" per line ("00*10" = ten 00h), "wait N"
+# = N ms before the next command.  OTM8009A (Orise Tech data sheet,
+# command set 2): a four-digit register is the command-2 address (C480h =
+# register C4h at offset 80h).  NT35510 (Novatek data sheet): manufacturer
+# command set, page 1 then page 0 (F0h selects the page).  The values are
+# the MB1166 figures of ST's DISCO board support (otm8009a.c, nt35510.c),
+# the OTM8009A gamma inside command set 2 as the data sheet and Linux's
+# panel-orisetech-otm8009a.c have it; held here independently of
+# boards/stm32h747i-disco/panel_tables.c, which must send the same bytes.
+OTM8009A = """
+FF00 80 09 01          # CMD2 enable 1
+FF80 80 09             # CMD2 enable 2 (Orise)
+C480 30                # SD_PCH_CTRL
+wait 10
+C48A 40                # not documented
+wait 10
+C5B1 A9                # PWR_CTRL4 +1
+C591 34                # PWR_CTRL2 +1
+C0B4 50                # P_DRV_M
+D900 4E                # VCOMDC
+C181 66                # OSC_ADJ 65 Hz
+C1A1 08                # RGB_VID_SET
+C592 01                # PWR_CTRL2 +2
+C595 34                # PWR_CTRL2 +5
+D800 79 79             # GVDDSET
+C594 33                # PWR_CTRL2 +4
+C0A3 1B                # SD_CTRL +1
+C582 83                # PWR_CTRL1 +2
+C481 83                # SD_PCH_CTRL +1
+C1A1 0E                # RGB_VID_SET
+B3A6 00 01             # PANSET
+CE80 85 01 00 84 01 00 # GOAVST
+CEA0 18 04 03 39 00 00 00 18 03 03 3A 00 00 00  # GOACLKA1
+CEB0 18 02 03 3B 00 00 00 18 01 03 3C 00 00 00  # GOACLKA3
+CFC0 01 01 20 20 00 00 01 02 00 00              # GOAECLK
+CFD0 00
+CB80 00*10             # PANCTRLSET1
+CB90 00*15
+CBA0 00*15
+CBB0 00*10
+CBC0 00 04 04 04 04 04 00*9
+CBD0 00*6 04 04 04 04 04 00*4
+CBE0 00*10
+CBF0 FF*10             # PANCTRLSET8
+CC80 00 26 09 0B 01 25 00*4                     # PANU2D1
+CC90 00*11 26 0A 0C 02
+CCA0 25 00*14
+CCB0 00 25 0C 0A 02 26 00*4                     # PAND2U1
+CCC0 00*11 25 0B 09 01
+CCD0 26 00*14
+C581 66                # PWR_CTRL1 +1
+F5B6 06                # not documented
+C6B1 06                # PWM_PARA3
+E100 00 09 0F 0E 07 10 0B 0A 04 07 0B 08 0F 10 0A 01  # GMCT2.2P
+E200 00 09 0F 0E 07 10 0B 0A 04 07 0B 08 0F 10 0A 01  # GMCT2.2N
+FF00 FF FF FF          # leave command 2
+00                     # nop
+"""
+NT35510 = """
+F0 55 AA 52 08 01      # MAUCCTR page 1
+B0 03 03 03            # SETAVDD
+B6 46 46 46            # BT1CTR
+B1 03 03 03            # SETAVEE
+B7 36 36 36            # BT2CTR
+B2 00 00 02            # SETVCL
+B8 26 26 26            # BT3CTR
+BF 01                  # VGHCTR
+B3 09 09 09            # SETVGH
+B9 36 36 36            # BT4CTR
+B5 08 08 08            # SETVGL
+BA 26 26 26            # BT5CTR
+BC 00 80 00            # SETVGP
+BD 00 80 00            # SETVGN
+BE 00 50               # SETVCMOFF
+F0 55 AA 52 08 00      # MAUCCTR page 0
+B1 FC 00               # DOPCTR
+B6 03                  # SDHDTCTR
+B5 50                  # DPRSLCTR
+B7 00 00               # GSEQCTR
+B8 01 02 02 02         # SDEQCTR
+BC 00 00 00            # INVCTR
+CC 03 00 00
+BA 01                  # SDVPCTR
+wait 200
+"""
+
+
+def panel_table(text):
+    """[(register, parameter bytes, wait ms after)] from the notation above."""
+    rows = []
+    for line in text.splitlines():
+        f = line.split("#")[0].split()
+        if not f:
+            continue
+        if f[0] == "wait":
+            reg, params, _w = rows[-1]
+            rows[-1] = (reg, params, int(f[1]))
+            continue
+        params = bytearray()
+        for tok in f[1:]:
+            v, _, n = tok.partition("*")
+            params += bytes([int(v, 16)]) * int(n or 1)
+        rows.append((int(f[0], 16), bytes(params), 0))
+    return rows
+
+
+
 class Clocks(unittest.TestCase):
     def test_supply_written_once_smps(self):
         b = booted()
@@ -270,36 +378,71 @@ class DsiPanel(unittest.TestCase):
 
     def expected_dcs(self):
         """The MIPI DCS 1.1 start-up for a landscape RGB888 panel of the
-        profile's size (command codes and parameter layouts of DCS: exit_sleep_mode
-        0x11, set_pixel_format 0x3A (0x77: 24 bit), set_address_mode 0x36 (MV|MX),
-        set_column_address 0x2A / set_page_address 0x2B (start, end, 16-bit
-        big-endian), set_tear_on 0x35, write brightness 0x51, write CTRL display
-        0x53, set_display_on 0x29)."""
+        profile's size (command codes and parameter layouts of DCS:
+        exit_sleep_mode 0x11 then 120 ms, set_pixel_format 0x3A (0x77: 24
+        bit), set_address_mode 0x36 (MV|MX), set_column_address 0x2A /
+        set_page_address 0x2B (start, end, 16-bit big-endian), set_tear_on
+        0x35, write brightness 0x51, write CTRL display 0x53, write CABC 0x55
+        (off), set_display_on 0x29, write_memory_start 0x2C)."""
         p = panel_profile("disco-dsi")
         w, h = int(p["width"][0]), int(p["height"][0])
-        return [bytes([0x11]), bytes([0x3A, 0x77]), bytes([0x36, 0x60]),
-                bytes([0x2A, 0, 0, (w - 1) >> 8, (w - 1) & 0xFF]), bytes([0x2B, 0, 0, (h - 1) >> 8, (h - 1) & 0xFF]),
-                bytes([0x35, 0x00]), bytes([0x51, 0xFF]), bytes([0x53, 0x2C]), bytes([0x29])]
+        return [(0x11, b"", 120), (0x3A, b"\x77", 0), (0x36, b"\x60", 0),
+                (0x2A, bytes([0, 0, (w - 1) >> 8, (w - 1) & 0xFF]), 0),
+                (0x2B, bytes([0, 0, (h - 1) >> 8, (h - 1) & 0xFF]), 0),
+                (0x35, b"\x00", 0), (0x51, b"\xff", 0), (0x53, b"\x2c", 0), (0x55, b"\x00", 0),
+                (0x29, b"", 0), (0x2C, b"", 0)]
 
-    def check_panel(self, b, ids, name):
-        writes = [d for dt, d, _c in b.dsi.packets if dt != 0x06]
+    @staticmethod
+    def packets(rows):
+        """Rows (register, parameters, wait ms) -> the DSI packets they
+        are, [(data type, bytes, wait ms after)]: a register above 0xFF is an
+        OTM8009A command-2 address, sent as the address shift (DCS 00h with
+        its low byte) and then its high byte; DCS short write without
+        (0x05) or with one parameter (0x15), long write (0x39) beyond."""
+        out = []
+        for reg, params, wait in rows:
+            if reg > 0xFF:
+                out.append((0x15, bytes([0x00, reg & 0xFF]), 0))
+                reg >>= 8
+            dt = 0x05 if not params else 0x15 if len(params) == 1 else 0x39
+            out.append((dt, bytes([reg]) + params, wait))
+        return out
+
+    def check_panel(self, b, ids, name, table):
+        writes = [(dt, d) for dt, d, _c in b.dsi.packets if dt != 0x06]
         reads = [d[0] for dt, d, _c in b.dsi.packets if dt == 0x06]
         self.assertEqual(reads, ids)
-        self.assertEqual(writes, self.expected_dcs())
-        cyc = {d: c for _dt, d, c in b.dsi.packets}
-        ms = (cyc[bytes([0x3A, 0x77])] - cyc[bytes([0x11])]) / (b.rcc.clocks()["cpu"] / 1000)
-        self.assertGreaterEqual(ms, 120, "120 ms after exit_sleep_mode")
+        want = self.packets(table + self.expected_dcs())
+        for i, (got, (dt, data, _w)) in enumerate(zip(writes, want)):
+            self.assertEqual(got, (dt, data), "packet %d of %d" % (i, len(want)))
+        self.assertEqual(len(writes), len(want), "packet count")
+        # Each wait the data sheets ask for, measured on the model's clock
+        # (DWT cycles) from that packet to the next.
+        cyc = [c for dt, _d, c in b.dsi.packets if dt != 0x06]
+        ms_per_cyc = 1000.0 / b.rcc.clocks()["cpu"]
+        for i, (_dt, data, wait) in enumerate(want[:-1]):
+            if wait:
+                self.assertGreaterEqual((cyc[i + 1] - cyc[i]) * ms_per_cyc, wait,
+                                        "%d ms after packet %d (%s)" % (wait, i, data.hex()))
         self.assertIn("panel controller %s" % name, b.uart_text())
         gj, gg = b.gpio[9], b.gpio[6]
         self.assertEqual((gj.mode(12), gj.out(12), gg.mode(3), gg.out(3)), (1, 1, 1, 1), "backlight on, reset released")
 
     def test_otm8009a(self):
-        self.check_panel(booted(), [0xDA], "OTM8009A")
+        self.check_panel(booted(), [0xDA], "OTM8009A", panel_table(OTM8009A))
 
     def test_nt35510(self):
         b = Disco(ELF, panel="nt35510")
         b.run_reset()
-        self.check_panel(b, [0xDA, 0xDB], "NT35510")
+        self.check_panel(b, [0xDA, 0xDB], "NT35510", panel_table(NT35510))
+
+    def test_unknown_controller(self):
+        # Neither ID: the DCS start-up only, and a log line naming ID1.
+        b = Disco(ELF, panel="unknown")
+        b.run_reset()
+        writes = [(dt, d) for dt, d, _c in b.dsi.packets if dt != 0x06]
+        self.assertEqual(writes, [(dt, d) for dt, d, _w in self.packets(self.expected_dcs())])
+        self.assertIn("unknown panel controller, ID1 0x00000000", b.uart_text())
 
 
 class FlashUpdate(unittest.TestCase):
