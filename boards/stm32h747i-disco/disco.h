@@ -62,7 +62,12 @@ int tdc_disco_flash_activate_other_bank(void);
 /* usb_hs.c: OTG HS device on the ULPI PHY with the project's protocol;
  * 1 when the core came out of reset. */
 int tdc_disco_usb_init(const tdc_usbp_config_t *cfg);
-/* usb_hs.c: service the core (reset, enumeration, control, bulk). */
+/* usb_hs.c: the OTG_HS interrupt (vector table): bus reset, enumeration,
+ * control requests, bulk OUT packets into the ring. */
+void tdc_disco_usb_irq(void);
+/* usb_hs.c: the frame loop's share, with the USB interrupt masked: a DFU
+ * block's erase and program, the next status report, bulk OUT re-armed
+ * once the ring has room again. */
 void tdc_disco_usb_poll(void);
 /* usb_hs.c: up to cap link-stream bytes received on bulk OUT 0x01. */
 uint32_t tdc_disco_usb_read(uint8_t *buf, uint32_t cap);

@@ -546,18 +546,19 @@ class FlashUpdate(unittest.TestCase):
 class UsbHs(unittest.TestCase):
     """A scripted host against the DWC2 model: enumeration through the
     project's protocol code on endpoint 0, then a bulk OUT transfer read
-    back through tdc_board_transport_read().  (The host's zero-length
-    status stages after IN data are not sent: the driver ignores them.)"""
+    back through tdc_board_transport_read().  Nothing polls the core: each
+    host event asserts the model's interrupt line and the harness runs the
+    handler the vector table names (disco_emu.Disco.interrupts).  (The
+    host's zero-length status stages after IN data are not sent: the
+    driver ignores them.)"""
     GOT = 0x24070000  # a word for transport_read's *got
     BUF = 0x24060000
 
     def control(self, b, bm, req, val, idx, length, data=b""):
         n0 = len(b.usb.sent[0])
         b.usb.setup(struct.pack("<BBHHH", bm, req, val, idx, length))
-        b.call("tdc_disco_usb_poll")
         for off in range(0, length if not bm & 0x80 else 0, 64):  # OUT data stage, 64-byte packets
             self.assertTrue(b.usb.out(0, data[off:off + 64]), "EP0 armed for each OUT data packet")
-            b.call("tdc_disco_usb_poll")
         sent = b.usb.sent[0][n0:]
         self.assertGreaterEqual(len(sent), 1, "an IN data or status stage")
         self.assertTrue(all(len(p) <= 64 for p in sent), "EP0 packets of at most 64 bytes")
@@ -568,7 +569,6 @@ class UsbHs(unittest.TestCase):
         b = Disco(ELF)
         b.run_reset()
         b.usb.bus_reset()
-        b.call("tdc_disco_usb_poll")
         dev = self.control(b, 0x80, 6, 0x0100, 0, 64)
         self.assertEqual((len(dev), dev[0], dev[1], dev[7]), (18, 18, 1, 64), "device descriptor, EP0 64 bytes")
         self.assertEqual(self.control(b, 0x00, 5, 7, 0, 0), b"", "SET_ADDRESS status")
@@ -581,6 +581,7 @@ class UsbHs(unittest.TestCase):
         self.assertEqual(eps.get(0x01), 512, "bulk OUT 0x01, 512 bytes at high speed")
         self.assertEqual(eps.get(0x81), 512, "bulk IN 0x81")
         self.assertEqual(self.control(b, 0x00, 9, 1, 0, 0), b"", "SET_CONFIGURATION status")
+        self.assertGreaterEqual(b.irqs_taken, 6, "served by the OTG_HS interrupt")
         status = b.usb.sent[1][-1]
         self.assertEqual(struct.unpack_from("<I", status, 0)[0], 0x53434454, "status report on bulk IN ('TDCS')")
         info = self.control(b, 0xC1, 0x01, 0, 0, 64)
@@ -589,7 +590,6 @@ class UsbHs(unittest.TestCase):
         data = bytes((i * 37 + 11) & 0xFF for i in range(3000))
         for off in range(0, len(data), 512):
             self.assertTrue(b.usb.out(1, data[off:off + 512]), "bulk OUT re-armed after each packet")
-            b.call("tdc_disco_usb_poll")
         got = b""
         for _ in range(4):
             rc = b.call("tdc_board_transport_read", self.BUF, 4096, self.GOT)
@@ -597,30 +597,41 @@ class UsbHs(unittest.TestCase):
             n = struct.unpack("<I", bytes(b.uc.mem_read(self.GOT, 4)))[0]
             got += bytes(b.uc.mem_read(self.BUF, n))
         self.assertEqual(got, data)
-        # The vsync wait (the frame loop's idle time) services USB: a packet
-        # taken while nothing polls leaves the endpoint NAKing until then.
-        self.assertTrue(b.usb.out(1, b"\x01" * 512))
-        self.assertFalse(b.usb.out(1, b"\x02" * 512), "NAK until the board polls")
-        b.call("tdc_board_vsync_wait")
-        self.assertTrue(b.usb.out(1, b"\x02" * 512), "re-armed during the vsync wait")
-        b.call("tdc_disco_usb_poll")
-        b.call("tdc_board_transport_read", self.BUF, 4096, self.GOT)
-        n = struct.unpack("<I", bytes(b.uc.mem_read(self.GOT, 4)))[0]
-        self.assertEqual(bytes(b.uc.mem_read(self.BUF, n)), b"\x01" * 512 + b"\x02" * 512)
+        # While nothing reads (a stage runs), the interrupt fills the ring
+        # until it has no room for a packet; then bulk OUT NAKs, and the
+        # next transport_read re-arms it: flow control, nothing dropped.
+        ring = board_h_macros()("TDC_DISCO_USB_RING_BYTES")
+        pkts = [bytes([(k * 7 + i) & 0xFF for i in range(512)]) for k in range(ring // 512 + 3)]
+        taken = 0
+        while taken < len(pkts) and b.usb.out(1, pkts[taken]):
+            taken += 1
+        self.assertEqual(taken, ring // 512, "packets taken before the ring is full")
+        stream = b""
+        while len(stream) < len(pkts) * 512:
+            b.call("tdc_board_transport_read", self.BUF, 4096, self.GOT)
+            n = struct.unpack("<I", bytes(b.uc.mem_read(self.GOT, 4)))[0]
+            self.assertGreater(n, 0, "ring drained")
+            stream += bytes(b.uc.mem_read(self.BUF, n))
+            while taken < len(pkts) and b.usb.out(1, pkts[taken]):
+                taken += 1
+        self.assertEqual(stream, b"".join(pkts), "every byte once, in order")
         self.dfu_block_through_ep0(b)
 
     def dfu_block_through_ep0(self, b):
         """A DFU download block (wTransferSize 1024) through EP0 into the
         flash driver, landing in the bank not running.  It starts a sector,
         whose erase (the model's erase_ms) cannot fit the DNLOAD request:
-        GETSTATUS answers dfuDNBUSY with a bwPollTimeout covering the
-        erase, the board writes after that reply, and the host's next
+        GETSTATUS (answered in the interrupt) gives dfuDNBUSY with a
+        bwPollTimeout covering the erase, the board writes after that reply
+        in the frame loop's vsync wait, and the host's next
         GETSTATUS (sent after bwPollTimeout) finds dfuDNLOAD-IDLE."""
         block = bytes((i * 13 + 5) & 0xFF for i in range(1024))
         self.assertEqual(self.control(b, 0x21, 1, 0, 1, len(block), block), b"", "DFU_DNLOAD status stage")
         self.assertEqual(b.flash.erased, [], "no erase within the DNLOAD request")
         t0 = b.scs.cyc
-        st = self.control(b, 0xA1, 3, 0, 1, 6)
+        st = self.control(b, 0xA1, 3, 0, 1, 6)  # answered in the interrupt
+        self.assertEqual(b.flash.erased, [], "no erase in the interrupt handler")
+        b.call("tdc_board_vsync_wait")  # the frame loop's idle time does the DFU work
         busy_ms = (b.scs.cyc - t0) / (b.rcc.clocks()["cpu"] / 1000)
         poll_ms = st[1] | st[2] << 8 | st[3] << 16
         self.assertEqual((st[0], st[4]), (0, 4), "DFU_GETSTATUS during the erase: OK, dfuDNBUSY")
