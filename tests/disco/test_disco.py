@@ -644,6 +644,20 @@ class UsbHs(unittest.TestCase):
         self.assertEqual((st[0], st[4], st[1] | st[2] << 8 | st[3] << 16), (0, 5, 0),
                          "DFU_GETSTATUS after bwPollTimeout: OK, dfuDNLOAD-IDLE, no wait")
 
+    def test_interrupt_wiring(self):
+        # RM0399 vector table position 77 = OTG_HS; ARMv7-M NVIC: enable bit
+        # 77 % 32 of ISER2, priority byte 77 % 4 of IPR19 (upper 4 bits on
+        # the M7's 16 levels); the core's global and per-cause masks.
+        b = booted()
+        entry = struct.unpack("<I", bytes(b.uc.mem_read(0x08000000 + 4 * (16 + 77), 4)))[0]
+        self.assertEqual(entry, b.sym("tdc_disco_usb_irq") | 1)
+        self.assertTrue(b.scs.nvic_enabled(77))
+        self.assertEqual(sum(bin(b.scs.v[0xE100 + 4 * i]).count("1") for i in range(5)), 1, "only OTG_HS enabled")
+        prio = b.scs.v[0xE400 + 4 * 19] >> 8 & 0xFF
+        self.assertTrue(prio and not prio & 0xF, "a priority in the implemented upper nibble")
+        self.assertEqual(b.usb.v[0x8] & 1, 1, "GAHBCFG.GINTMSK")
+        self.assertEqual(b.usb.v[0x18], (1 << 4) | (1 << 12) | (1 << 13), "GINTMSK: RXFLVL, USBRST, ENUMDNE")
+
     def test_no_host_before_core_reset(self):
         # The model refuses a host before the core is set up: what the
         # driver does in tdc_board_init is what makes enumeration possible.
