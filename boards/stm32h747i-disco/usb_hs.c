@@ -63,7 +63,9 @@ static uint8_t g_ring[RING_BYTES];
 /* Free-running; head - tail = bytes held.  One writer each: the interrupt
  * moves head, the frame loop tail. */
 static volatile uint32_t g_head, g_tail;
-static volatile int g_out_parked; /* bulk OUT left NAKing: the ring had no room for a packet */
+static volatile int g_out_parked;
+_Static_assert((RING_BYTES & (RING_BYTES - 1u)) == 0u && RING_BYTES >= 2u * HS_MPS,
+               "free-running ring indices need a power-of-two size of at least two packets"); /* bulk OUT left NAKing: the ring had no room for a packet */
 static uint8_t g_setup[8];
 static uint8_t g_ctl[TDC_DFU_TRANSFER_SIZE]; /* EP0 data stage in or out: a DFU block at most */
 static uint32_t g_ctl_out_len, g_ctl_out_want;
@@ -245,16 +247,21 @@ static void control(void)
  * is empty. */
 static int rx_pop(void)
 {
-    static uint8_t pkt[HS_MPS];
+    /* Words as the FIFO gives them: on this little-endian core their bytes
+     * are the packet's bytes in order (read through an unsigned char
+     * pointer, which may alias anything). */
+    static uint32_t pkt32[HS_MPS / 4u];
+    const uint8_t *const pkt = (const uint8_t *)pkt32;
     if (!(OTG(GINTSTS) & GINT_RXFLVL)) {
         return 0;
     }
     const uint32_t st = OTG(GRXSTSP);
     const uint32_t ep = st & 0xFu, bcnt = (st >> 4) & 0x7FFu, kind = (st >> 17) & 0xFu;
-    for (uint32_t i = 0; i < bcnt; i += 4u) {
+    const uint32_t words = (bcnt + 3u) / 4u;
+    for (uint32_t i = 0; i < words; i++) {
         const uint32_t w = FIFO(0u); /* every OUT endpoint pops through FIFO 0's window */
-        for (uint32_t b = 0; b < 4u && i + b < bcnt && i + b < HS_MPS; b++) {
-            pkt[i + b] = (uint8_t)(w >> (8u * b));
+        if (i < HS_MPS / 4u) {
+            pkt32[i] = w;
         }
     }
     const uint32_t n = bcnt < HS_MPS ? bcnt : HS_MPS;
@@ -268,12 +275,12 @@ static int rx_pop(void)
     } else if (kind == 2u && ep == 1u) { /* link bytes */
         tdc_usbp_bulk_out(&g_proto, pkt, n);
         /* Armed only with room for a whole packet (below): n fits. */
-        uint32_t head = g_head;
-        for (uint32_t i = 0; i < n && head - g_tail < RING_BYTES; i++) {
-            g_ring[head++ % RING_BYTES] = pkt[i];
-        }
+        const uint32_t head = g_head, at = head % RING_BYTES;
+        const uint32_t k = n < RING_BYTES - at ? n : RING_BYTES - at;
+        memcpy(g_ring + at, pkt, k);
+        memcpy(g_ring, pkt + k, n - k);
         __asm__ volatile("" ::: "memory"); /* the bytes before the new head */
-        g_head = head;
+        g_head = head + n;
     } else if (kind == 4u) { /* SETUP stage done */
         const uint32_t wlen = (uint32_t)g_setup[6] | ((uint32_t)g_setup[7] << 8);
         if (!(g_setup[0] & 0x80u) && wlen > sizeof g_ctl) {
@@ -351,11 +358,13 @@ uint32_t tdc_disco_usb_read(uint8_t *buf, uint32_t cap)
 {
     const uint32_t head = g_head;
     __asm__ volatile("" ::: "memory"); /* the bytes after the head that covers them */
-    uint32_t tail = g_tail, n = 0;
-    while (n < cap && tail != head) {
-        buf[n++] = g_ring[tail++ % RING_BYTES];
-    }
-    g_tail = tail;
+    const uint32_t tail = g_tail, at = tail % RING_BYTES;
+    const uint32_t n = head - tail < cap ? head - tail : cap;
+    const uint32_t k = n < RING_BYTES - at ? n : RING_BYTES - at;
+    memcpy(buf, g_ring + at, k);
+    memcpy(buf + k, g_ring, n - k);
+    __asm__ volatile("" ::: "memory"); /* copied out before the slots are given back */
+    g_tail = tail + n;
     tdc_disco_usb_poll(); /* re-arms bulk OUT if the ring had filled */
     return n;
 }
