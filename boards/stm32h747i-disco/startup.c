@@ -45,7 +45,7 @@ void Reset_Handler(void)
     tdc_stm32_sdram_init();
     tdc_disco_caches_on();
     (void)tdc_crt0_start();
-    /* main() returns only when the transport fails (today: the USB stub);
+    /* main() returns only when the transport fails (USB did not come up);
      * keep the last image on the panel and sleep. */
     for (;;) {
         __asm__ volatile("wfi");
