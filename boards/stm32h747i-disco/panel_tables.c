@@ -12,15 +12,16 @@
  * more as a DCS long write (0x39).
  *
  * Sources: register addresses and names from the OTM8009A data sheet
- * (Orise Tech, "OTM8009A 480RGBx864 TFT LCD single chip driver", command
- * set 2) and the NT35510 data sheet (Novatek, "NT35510 480RGBx864 ... ",
+ * (Orise Tech; command set 2) and the NT35510 data sheet (Novatek;
  * manufacturer command set pages 0 and 1); the values that set up this
  * panel (voltages, GOA timing, gamma) are the MB1166 figures of ST's
  * STM32H747I-DISCO board support (otm8009a.c / nt35510.c, read, not
- * copied), checked against the Linux driver panel-orisetech-otm8009a.c for
- * the same glass.  Where ST's order and the data sheet disagree the data
- * sheet wins: the OTM8009A gamma tables (E100h, E200h) belong to command
- * set 2, so they go before the set is closed (ST's BSP writes them after).
+ * copied), compared with Linux's panel-orisetech-otm8009a.c (ST's driver
+ * for the same controller: the registers it writes carry the same values;
+ * it leaves out the first C1A1h = 08h and C6B1h).  Where ST's BSP order and the
+ * data sheet disagree the data sheet wins: the OTM8009A gamma tables
+ * (E100h, E200h) belong to command set 2, so they go before the set is
+ * closed, as Linux has them (ST's BSP writes them after).
  * tests/disco/test_disco.py holds these figures a second time, in the data
  * sheets' notation, and checks the bytes on the DSI link against them.
  *
