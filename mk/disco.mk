@@ -31,3 +31,11 @@ flash flash-uart:
 	@echo "make: flash: BOARD=$(BOARD) is not flashed: $(BOARD_FLASH)"; exit 2
 endif
 
+
+# Instructions of the DISCO's own board code per unit of work (USB HS
+# interrupt and ring, transport_read, scan-out flip), counted on the
+# emulated M7: docs/boards.md "DISCO real-time table".  About 15 s.
+.PHONY: bench-disco
+bench-disco:
+	@$(MAKE) --no-print-directory -j2 BOARD=stm32h747i-disco PANEL=disco-dsi firmware >/dev/null
+	@/usr/bin/python3 tests/disco/disco_cost.py $(DISCO_ELF)

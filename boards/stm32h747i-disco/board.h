@@ -78,6 +78,12 @@
 #define TDC_CM_DWT_CYCCNT 0xE0001004u
 #define TDC_CM_DWT_LAR 0xE0001FB0u
 #define TDC_CM_SCB_AIRCR 0xE000ED0Cu
+/* NVIC (ARMv7-M ARM B3.4): set-enable, clear-enable, priority bytes. */
+#define TDC_CM_NVIC_ISER(n) (0xE000E100u + 4u * (n))
+#define TDC_CM_NVIC_ICER(n) (0xE000E180u + 4u * (n))
+#define TDC_CM_NVIC_IPR(n) (0xE000E400u + 4u * (n))
+/* RM0399 vector table: OTG_HS global interrupt. */
+#define TDC_STM32_OTG_HS_IRQN 77u
 
 #define TDC_REG32(addr) (*(volatile uint32_t *)(uintptr_t)(addr))
 

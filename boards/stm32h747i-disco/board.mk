@@ -4,7 +4,7 @@ BOARD_CPU   := -mcpu=cortex-m7 -mthumb -mfloat-abi=soft
 BOARD_LDS   := boards/stm32h747i-disco/stm32h747i-disco.ld
 # name:origin:length:attributes (RM0399 memory map; SDRAM on FMC bank 2 as wired on the DISCO)
 BOARD_MEM   := FLASH:0x08000000:1M:rx DTCM:0x20000000:128K:rw AXISRAM:0x24000000:512K:rwx SDRAM:0xD0000000:32M:rw
-BOARD_SRCS  := $(addprefix boards/stm32h747i-disco/,startup.c clocks.c sdram.c log_uart.c ltdc.c dsi_panel.c flash.c usb_hs.c) firmware/board/tdc_board_stm32h7.c
+BOARD_SRCS  := $(addprefix boards/stm32h747i-disco/,startup.c clocks.c sdram.c log_uart.c ltdc.c dsi_panel.c panel_tables.c flash.c usb_hs.c) firmware/board/tdc_board_stm32h7.c
 # Default stages (docs/boards.md, memory fit): TRM (rho recomputed, 4.5 B/px)
 # and the LCD inverse fit the 32 MiB SDRAM for htc-vive, rift-cv1 and
 # lcd-240; tile assembly (23 B/px) only for the board's own 800x480 panel,

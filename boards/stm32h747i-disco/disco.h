@@ -26,9 +26,27 @@ int tdc_disco_ltdc_vsync(void);
 /* dsi_panel.c: DSI host, PLL, D-PHY, video-mode timings (before the
  * LTDC starts); 1 when the regulator and PLL came up. */
 int tdc_disco_dsi_init(void);
-/* dsi_panel.c: link on, panel reset released, controller identified, DCS
- * start-up sent, backlight on (after the LTDC runs). */
+/* dsi_panel.c: link on, panel reset released, controller identified, its
+ * command table and the DCS start-up sent, backlight on (after the LTDC
+ * runs). */
 int tdc_disco_panel_on(void);
+
+/* panel_tables.c: one panel register write: reg is a DCS command (0x00-0xFF)
+ * or an OTM8009A command-2 address 0xHHLL (sent as the address shift
+ * 00h = LL, then HH with the parameters); n parameters; wait_ms before the
+ * next row. */
+typedef struct {
+    uint16_t reg;
+    uint8_t n;
+    uint8_t wait_ms;
+    uint8_t p[16];
+} tdc_disco_panel_cmd_t;
+extern const tdc_disco_panel_cmd_t tdc_disco_otm8009a_table[];
+extern const uint32_t tdc_disco_otm8009a_rows;
+extern const tdc_disco_panel_cmd_t tdc_disco_nt35510_table[];
+extern const uint32_t tdc_disco_nt35510_rows;
+extern const tdc_disco_panel_cmd_t tdc_disco_dcs_startup[];
+extern const uint32_t tdc_disco_dcs_startup_rows;
 
 /* flash.c: the DFU target (tdc_usbp_flash_t): offsets 1-2 MiB are the
  * bank not running (0..1 MiB, the running one, is refused); 0 = done. */
@@ -44,7 +62,12 @@ int tdc_disco_flash_activate_other_bank(void);
 /* usb_hs.c: OTG HS device on the ULPI PHY with the project's protocol;
  * 1 when the core came out of reset. */
 int tdc_disco_usb_init(const tdc_usbp_config_t *cfg);
-/* usb_hs.c: service the core (reset, enumeration, control, bulk). */
+/* usb_hs.c: the OTG_HS interrupt (vector table): bus reset, enumeration,
+ * control requests, bulk OUT packets into the ring. */
+void tdc_disco_usb_irq(void);
+/* usb_hs.c: the frame loop's share, with the USB interrupt masked: a DFU
+ * block's erase and program, the next status report, bulk OUT re-armed
+ * once the ring has room again. */
 void tdc_disco_usb_poll(void);
 /* usb_hs.c: up to cap link-stream bytes received on bulk OUT 0x01. */
 uint32_t tdc_disco_usb_read(uint8_t *buf, uint32_t cap);

@@ -9,15 +9,14 @@
  * pixels x lane byte clock / pixel clock, rounded down.
  *
  * Panel: reset line PG3 (active low), backlight enable PJ12 (the pins
- * ST's STM32H747I-DISCO BSP names; its tearing-effect pin PJ2 is unused).  The controller is told apart by its ID registers
- * (DCS read_ID1 0xDA = 0x40: OTM8009A; read_ID2 0xDB = 0x80: NT35510, the
- * values ST's BSP and Zephyr's driver test).  Both then get the same MIPI
- * DCS start-up: exit_sleep_mode, 120 ms, set_pixel_format 24 bit,
- * set_address_mode landscape, column/page address 800 x 480,
- * set_tear_on, brightness, set_display_on.  NOT written: each
- * controller's vendor register tables (power, gamma, GOA timing), which
- * the data sheets list beyond DCS; without them the glass may stay dark or
- * show wrong colours.
+ * ST's STM32H747I-DISCO BSP names; its tearing-effect pin PJ2 is unused).
+ * The controller is told apart by its ID registers (DCS read_ID1 0xDA =
+ * 0x40: OTM8009A; read_ID2 0xDB = 0x80: NT35510, the values ST's BSP and
+ * Zephyr's driver test).  Each then gets its own register table (power,
+ * GOA timing, gamma: panel_tables.c), and both the same MIPI DCS start-up
+ * (exit_sleep_mode, 120 ms, pixel format, landscape, window, tear on,
+ * brightness, display on).  An unknown controller gets the DCS start-up
+ * only, and the log says so.
  *
  * vsync stays on the LTDC (ltdc.c): in video mode the panel follows the
  * host's timing, so the LTDC's vertical sync is the panel's.
@@ -129,6 +128,25 @@ static int dcs_read1(uint8_t cmd, uint8_t *out)
     return 1;
 }
 
+/* A command table (panel_tables.c): each row as one DCS write, an
+ * OTM8009A command-2 address preceded by its address shift, then the
+ * row's wait. */
+static int send_table(const tdc_disco_panel_cmd_t *t, uint32_t rows)
+{
+    int ok = 1;
+    for (uint32_t i = 0; i < rows; i++) {
+        if (t[i].reg > 0xFFu) {
+            const uint8_t shift = (uint8_t)(t[i].reg & 0xFFu);
+            ok &= dcs_write(0x00u, &shift, 1u);
+        }
+        ok &= dcs_write((uint8_t)(t[i].reg >> (t[i].reg > 0xFFu ? 8u : 0u)), t[i].p, t[i].n);
+        if (t[i].wait_ms != 0u) {
+            delay_ms(t[i].wait_ms);
+        }
+    }
+    return ok;
+}
+
 int tdc_disco_dsi_init(void)
 {
     RCC(0xE0) |= (1u << PORT_G) | (1u << PORT_J); /* RCC_AHB4ENR: GPIOG, GPIOJ */
@@ -188,7 +206,8 @@ int tdc_disco_dsi_init(void)
 }
 
 /* Starts the link (the LTDC must already run: the host then locks to its
- * timing), identifies the controller and sends the DCS start-up. */
+ * timing), identifies the controller, sends its table and the DCS
+ * start-up. */
 int tdc_disco_panel_on(void)
 {
     DSI(DSI_CR) = 1u;        /* EN */
@@ -204,31 +223,25 @@ int tdc_disco_panel_on(void)
         tdc_disco_log("stm32h747i-disco: panel did not answer read_ID1 over DSI");
         return 0;
     }
+    const tdc_disco_panel_cmd_t *table = 0;
+    uint32_t rows = 0u;
     if (id1 == 0x40u) {
         tdc_disco_log("stm32h747i-disco: panel controller OTM8009A (ID1 0x40)");
+        table = tdc_disco_otm8009a_table;
+        rows = tdc_disco_otm8009a_rows;
     } else if (dcs_read1(0xDBu, &id2) && id2 == 0x80u) {
         tdc_disco_log("stm32h747i-disco: panel controller NT35510 (ID2 0x80)");
+        table = tdc_disco_nt35510_table;
+        rows = tdc_disco_nt35510_rows;
     } else {
         tdc_disco_log_hex("stm32h747i-disco: unknown panel controller, ID1 ", id1);
     }
 
-    static const uint8_t colmod[] = {0x77u};                  /* 24 bit/pixel */
-    static const uint8_t madctl[] = {0x60u};                  /* MV | MX: landscape */
-    static const uint8_t caset[] = {0x00u, 0x00u, 0x03u, 0x1Fu}; /* columns 0..799 */
-    static const uint8_t paset[] = {0x00u, 0x00u, 0x01u, 0xDFu}; /* pages 0..479 */
-    static const uint8_t te_vblank[] = {0x00u};               /* TE: vertical blanking only */
-    static const uint8_t brightness[] = {0xFFu};
-    static const uint8_t ctrl_display[] = {0x2Cu};            /* BCTRL, DD, BL */
-    int ok = dcs_write(0x11u, 0, 0u); /* exit_sleep_mode */
-    delay_ms(120u);
-    ok &= dcs_write(0x3Au, colmod, 1u);
-    ok &= dcs_write(0x36u, madctl, 1u);
-    ok &= dcs_write(0x2Au, caset, 4u);
-    ok &= dcs_write(0x2Bu, paset, 4u);
-    ok &= dcs_write(0x35u, te_vblank, 1u);
-    ok &= dcs_write(0x51u, brightness, 1u);
-    ok &= dcs_write(0x53u, ctrl_display, 1u);
-    ok &= dcs_write(0x29u, 0, 0u); /* set_display_on */
+    int ok = 1;
+    if (table != 0) {
+        ok &= send_table(table, rows);
+    }
+    ok &= send_table(tdc_disco_dcs_startup, tdc_disco_dcs_startup_rows);
     pin_output(PORT_J, BACKLIGHT_PIN, 1u);
     return ok;
 }

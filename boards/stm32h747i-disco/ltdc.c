@@ -8,10 +8,9 @@
  * frame arrives the layer is off and the panel shows the background colour
  * (LTDC_BCCR), the boot test pattern: a uniform dark blue.
  *
- * What is not written: the DSI host and D-PHY, and the panel's command
- * sequence (OTM8009A / NT35510), without which the LTDC's output reaches no
- * glass.  Executed in tests/disco against an LTDC model; not yet run on a
- * board.
+ * The LTDC's output reaches the glass through the DSI host in video mode
+ * (dsi_panel.c).  Executed in tests/disco against an LTDC model; not yet
+ * run on a board.
  */
 #include <stdint.h>
 

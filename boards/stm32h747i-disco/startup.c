@@ -16,8 +16,10 @@
 #include "tdc_vectors.h"
 
 #define STM32H747_IRQS 150
-/* faults: the fault registers to the log, then a reset (disco.h) */
-TDC_VECTORS_FAULT(STM32H747_IRQS, tdc_disco_fault_entry);
+/* faults: the fault registers to the log, then a reset (disco.h); the
+ * OTG_HS global interrupt (RM0399 vector table, position 77) serves USB
+ * (usb_hs.c). */
+TDC_VECTORS_FAULT_IRQ(STM32H747_IRQS, tdc_disco_fault_entry, TDC_STM32_OTG_HS_IRQN, tdc_disco_usb_irq);
 
 #define FLASH_OPTSR_CUR TDC_REG32(TDC_STM32_FLASH_R + 0x1Cu)
 
@@ -43,7 +45,7 @@ void Reset_Handler(void)
     tdc_stm32_sdram_init();
     tdc_disco_caches_on();
     (void)tdc_crt0_start();
-    /* main() returns only when the transport fails (today: the USB stub);
+    /* main() returns only when the transport fails (USB did not come up);
      * keep the last image on the panel and sleep. */
     for (;;) {
         __asm__ volatile("wfi");

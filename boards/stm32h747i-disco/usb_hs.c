@@ -1,9 +1,16 @@
 /*
  * usb_hs.c - USB OTG HS in device mode on the DISCO's ULPI PHY (USB3320 on
- * the HS connector), polled, FIFO ("slave") mode: the project's protocol
- * (firmware/tdc_usbproto.c) answers endpoint 0, bulk OUT 0x01 fills a ring
- * that tdc_board_transport_read() drains, bulk IN 0x81 carries status
- * reports.
+ * the HS connector), FIFO ("slave") mode, interrupt-driven: the OTG_HS
+ * interrupt (tdc_disco_usb_irq) takes bus resets, enumeration, the
+ * project's protocol (firmware/tdc_usbproto.c) on endpoint 0 and bulk OUT
+ * 0x01 packets into a ring that tdc_board_transport_read() drains, so the
+ * host is served while a stage runs.  The frame loop's share
+ * (tdc_disco_usb_poll, from transport_read and the vsync wait, with the
+ * interrupt masked) is what may take long or touches the protocol state
+ * the interrupt also uses: a DFU block's erase and program (up to 4 s per
+ * sector), the next status report on bulk IN 0x81, and re-arming bulk OUT
+ * once the ring has room for a packet again (the endpoint NAKs meanwhile:
+ * nothing is dropped).
  *
  * RM0399 chapter "USB on-the-go high-speed (OTG_HS)" (a Synopsys DWC2
  * core): core soft reset, forced device mode, high speed with the ULPI
@@ -48,9 +55,17 @@ enum {
 #define HS_MPS 512u
 #define RING_BYTES TDC_DISCO_USB_RING_BYTES
 
+#define OTG_IRQ_WORD (TDC_STM32_OTG_HS_IRQN / 32u)
+#define OTG_IRQ_BIT (1u << (TDC_STM32_OTG_HS_IRQN % 32u))
+
 static tdc_usbp_t g_proto;
 static uint8_t g_ring[RING_BYTES];
-static uint32_t g_head, g_tail; /* free-running; head - tail = bytes held */
+/* Free-running; head - tail = bytes held.  One writer each: the interrupt
+ * moves head, the frame loop tail. */
+static volatile uint32_t g_head, g_tail;
+static volatile int g_out_parked;
+_Static_assert((RING_BYTES & (RING_BYTES - 1u)) == 0u && RING_BYTES >= 2u * HS_MPS,
+               "free-running ring indices need a power-of-two size of at least two packets"); /* bulk OUT left NAKing: the ring had no room for a packet */
 static uint8_t g_setup[8];
 static uint8_t g_ctl[TDC_DFU_TRANSFER_SIZE]; /* EP0 data stage in or out: a DFU block at most */
 static uint32_t g_ctl_out_len, g_ctl_out_want;
@@ -108,9 +123,15 @@ int tdc_disco_usb_init(const tdc_usbp_config_t *cfg)
     (void)wait_otg(GRSTCTL, 1u << 5, 0u);
     OTG(GRSTCTL) = 1u << 4;                     /* flush RX FIFO */
     (void)wait_otg(GRSTCTL, 1u << 4, 0u);
-    OTG(GINTMSK) = 0u;                          /* polled */
-    OTG(GAHBCFG) = 0u;
-    OTG(DCTL) &= ~(1u << 1);                    /* SDIS = 0: connect */
+    /* Interrupts: RX FIFO level, bus reset, enumeration done; the global
+     * mask in GAHBCFG; the NVIC line at priority 8 of 16 (upper nibble). */
+    OTG(GINTMSK) = GINT_RXFLVL | GINT_USBRST | GINT_ENUMDNE;
+    OTG(GAHBCFG) = 1u; /* GINTMSK */
+    TDC_REG32(TDC_CM_NVIC_IPR(TDC_STM32_OTG_HS_IRQN / 4u)) =
+        (TDC_REG32(TDC_CM_NVIC_IPR(TDC_STM32_OTG_HS_IRQN / 4u)) & ~(0xFFu << (8u * (TDC_STM32_OTG_HS_IRQN % 4u)))) |
+        (0x80u << (8u * (TDC_STM32_OTG_HS_IRQN % 4u)));
+    TDC_REG32(TDC_CM_NVIC_ISER(OTG_IRQ_WORD)) = OTG_IRQ_BIT;
+    OTG(DCTL) &= ~(1u << 1); /* SDIS = 0: connect */
     return 1;
 }
 
@@ -172,6 +193,11 @@ static void status_in(void)
     ep_write(1u, EP(DIEPTSIZ0, 1u), EP(DIEPCTL0, 1u), st, sizeof st, HS_MPS);
 }
 
+static uint32_t ring_room(void)
+{
+    return RING_BYTES - (g_head - g_tail);
+}
+
 static void bulk_out_arm(void)
 {
     OTG(EP(DOEPTSIZ0, 1u)) = (1u << 19) | HS_MPS;
@@ -221,16 +247,21 @@ static void control(void)
  * is empty. */
 static int rx_pop(void)
 {
-    static uint8_t pkt[HS_MPS];
+    /* Words as the FIFO gives them: on this little-endian core their bytes
+     * are the packet's bytes in order (read through an unsigned char
+     * pointer, which may alias anything). */
+    static uint32_t pkt32[HS_MPS / 4u];
+    const uint8_t *const pkt = (const uint8_t *)pkt32;
     if (!(OTG(GINTSTS) & GINT_RXFLVL)) {
         return 0;
     }
     const uint32_t st = OTG(GRXSTSP);
     const uint32_t ep = st & 0xFu, bcnt = (st >> 4) & 0x7FFu, kind = (st >> 17) & 0xFu;
-    for (uint32_t i = 0; i < bcnt; i += 4u) {
+    const uint32_t words = (bcnt + 3u) / 4u;
+    for (uint32_t i = 0; i < words; i++) {
         const uint32_t w = FIFO(0u); /* every OUT endpoint pops through FIFO 0's window */
-        for (uint32_t b = 0; b < 4u && i + b < bcnt && i + b < HS_MPS; b++) {
-            pkt[i + b] = (uint8_t)(w >> (8u * b));
+        if (i < HS_MPS / 4u) {
+            pkt32[i] = w;
         }
     }
     const uint32_t n = bcnt < HS_MPS ? bcnt : HS_MPS;
@@ -243,9 +274,13 @@ static int rx_pop(void)
         g_ctl_out_len += k;
     } else if (kind == 2u && ep == 1u) { /* link bytes */
         tdc_usbp_bulk_out(&g_proto, pkt, n);
-        for (uint32_t i = 0; i < n && g_head - g_tail < RING_BYTES; i++) {
-            g_ring[g_head++ % RING_BYTES] = pkt[i];
-        }
+        /* Armed only with room for a whole packet (below): n fits. */
+        const uint32_t head = g_head, at = head % RING_BYTES;
+        const uint32_t k = n < RING_BYTES - at ? n : RING_BYTES - at;
+        memcpy(g_ring + at, pkt, k);
+        memcpy(g_ring, pkt + k, n - k);
+        __asm__ volatile("" ::: "memory"); /* the bytes before the new head */
+        g_head = head + n;
     } else if (kind == 4u) { /* SETUP stage done */
         const uint32_t wlen = (uint32_t)g_setup[6] | ((uint32_t)g_setup[7] << 8);
         if (!(g_setup[0] & 0x80u) && wlen > sizeof g_ctl) {
@@ -268,12 +303,16 @@ static int rx_pop(void)
             ep0_arm_setup();
         }
     } else if (kind == 3u && ep == 1u) {
-        bulk_out_arm();
+        if (ring_room() >= HS_MPS) {
+            bulk_out_arm();
+        } else {
+            g_out_parked = 1; /* the frame loop re-arms after reading */
+        }
     }
     return 1;
 }
 
-void tdc_disco_usb_poll(void)
+void tdc_disco_usb_irq(void)
 {
     const uint32_t gint = OTG(GINTSTS);
     if (gint & GINT_USBRST) {
@@ -292,8 +331,15 @@ void tdc_disco_usb_poll(void)
         OTG(DIEPCTL0) &= ~3u; /* MPSIZ 64 bytes */
         OTG(DCTL) |= 1u << 8;  /* CGINAK */
     }
+    /* RXFLVL clears itself once the FIFO is empty; bounded per entry. */
     for (uint32_t i = 0; i < 64u && rx_pop(); i++) {
     }
+}
+
+void tdc_disco_usb_poll(void)
+{
+    TDC_REG32(TDC_CM_NVIC_ICER(OTG_IRQ_WORD)) = OTG_IRQ_BIT;
+    __asm__ volatile("dsb\n\tisb" ::: "memory"); /* masked from the next instruction on */
     /* A DFU block answered dfuDNBUSY: erase and program it now, while the
      * host waits out bwPollTimeout (EP0 NAKs meanwhile). */
     (void)tdc_usbp_dfu_work(&g_proto);
@@ -301,14 +347,24 @@ void tdc_disco_usb_poll(void)
         OTG(EP(DIEPINT0, 1u)) = 1u;
         status_in();
     }
+    if (g_out_parked && ring_room() >= HS_MPS) {
+        g_out_parked = 0;
+        bulk_out_arm();
+    }
+    TDC_REG32(TDC_CM_NVIC_ISER(OTG_IRQ_WORD)) = OTG_IRQ_BIT;
 }
 
 uint32_t tdc_disco_usb_read(uint8_t *buf, uint32_t cap)
 {
-    tdc_disco_usb_poll();
-    uint32_t n = 0;
-    while (n < cap && g_tail != g_head) {
-        buf[n++] = g_ring[g_tail++ % RING_BYTES];
-    }
+    const uint32_t head = g_head;
+    __asm__ volatile("" ::: "memory"); /* the bytes after the head that covers them */
+    const uint32_t tail = g_tail, at = tail % RING_BYTES;
+    const uint32_t n = head - tail < cap ? head - tail : cap;
+    const uint32_t k = n < RING_BYTES - at ? n : RING_BYTES - at;
+    memcpy(buf, g_ring + at, k);
+    memcpy(buf + k, g_ring, n - k);
+    __asm__ volatile("" ::: "memory"); /* copied out before the slots are given back */
+    g_tail = tail + n;
+    tdc_disco_usb_poll(); /* re-arms bulk OUT if the ring had filled */
     return n;
 }

@@ -12,11 +12,11 @@
  *   panel out    LTDC (ltdc.c): pixel clock, timings, RGB888 layer 1 at
  *                the frame buffer, reloaded at vertical blanking after the
  *                buffer is cleaned from the D-cache
- *                (dsi_panel.c: DSI host and D-PHY, panel ID and DCS start-up)
+ *                (dsi_panel.c: DSI host and D-PHY, panel ID, the
+ *                controller's register table (panel_tables.c), DCS start-up)
  *   vsync        LTDC_CDSR.VSYNCS, servicing USB while it waits
- *   transport    USB OTG HS bulk OUT through a ring (usb_hs.c), polled
- *   NOT YET WRITTEN: the panel controllers' vendor register tables
- *   (docs/boards.md, "STM32H747I-DISCO").
+ *   transport    USB OTG HS bulk OUT through a ring (usb_hs.c), filled by
+ *                the OTG_HS interrupt
  *
  * Executed in tests/disco against register models; not yet run on a board.
  */

@@ -20,8 +20,10 @@ void Reset_Handler(void);
 
 /* TDC_VECTORS_FAULT(n, fault): the same table with HardFault, MemManage,
  * BusFault and UsageFault (exceptions 3-6) sent to `fault`, for a board
- * whose fault handler reports the fault registers before it resets. */
-#define TDC_VECTORS_FAULT(n_irqs, fault)                                                              \
+ * whose fault handler reports the fault registers before it resets.
+ * TDC_VECTORS_FAULT_IRQ(n, fault, irqn, handler): and external interrupt
+ * irqn (the board's reference manual numbering) sent to `handler`. */
+#define TDC_VECTORS_TABLE(n_irqs, fault, ...)                                                         \
     typedef struct {                                                                                  \
         const uint32_t *initial_sp;                                                                   \
         void (*handler[15])(void); /* exceptions 1..15 */                                             \
@@ -32,8 +34,11 @@ void Reset_Handler(void);
         {Reset_Handler, tdc_crt0_default_handler, fault, fault, fault, fault, 0, 0, 0, 0,             \
          tdc_crt0_default_handler, tdc_crt0_default_handler, 0, tdc_crt0_default_handler,             \
          tdc_crt0_default_handler},                                                                   \
-        {tdc_crt0_default_handler},                                                                   \
+        {__VA_ARGS__},                                                                                \
     }
+#define TDC_VECTORS_FAULT(n_irqs, fault) TDC_VECTORS_TABLE(n_irqs, fault, tdc_crt0_default_handler)
+#define TDC_VECTORS_FAULT_IRQ(n_irqs, fault, irqn, irq_handler) \
+    TDC_VECTORS_TABLE(n_irqs, fault, tdc_crt0_default_handler, [irqn] = irq_handler)
 #define TDC_VECTORS(n_irqs) TDC_VECTORS_FAULT(n_irqs, tdc_crt0_default_handler)
 
 #endif

@@ -25,7 +25,7 @@ import struct
 from unicorn import Uc, UcError, UC_ARCH_ARM, UC_MODE_THUMB, UC_MODE_MCLASS, UC_HOOK_MEM_UNMAPPED, UC_HOOK_MEM_WRITE
 from unicorn import UC_PROT_ALL
 from unicorn.arm_const import UC_CPU_ARM_CORTEX_M7, UC_ARM_REG_SP, UC_ARM_REG_LR, UC_ARM_REG_PC
-from unicorn.arm_const import UC_ARM_REG_R0, UC_ARM_REG_R1, UC_ARM_REG_R2, UC_ARM_REG_R3
+from unicorn.arm_const import UC_ARM_REG_R0, UC_ARM_REG_R1, UC_ARM_REG_R2, UC_ARM_REG_R3, UC_ARM_REG_PRIMASK
 
 from disco_models import Rcc, Pwr, Syscfg, Flash, Fmc, Gpio, Usart, Ltdc, Dsi, Scs, Usb, EmuError, PowerLoss
 
@@ -41,6 +41,7 @@ RAM_REGIONS = [
 UID = bytes.fromhex("0a1b2c3d4e5f60718293a4b5")
 SDRAM_BASE, SDRAM_BYTES = 0xD0000000, 32 << 20
 RETURN_MAGIC = 0x3800FF00  # a halfword in SRAM4 the harness stops at (call())
+OTG_HS_IRQ = 77  # RM0399 vector table: OTG_HS global interrupt
 
 
 class Access:
@@ -111,6 +112,7 @@ class Disco:
         self.dsi = Dsi(self, panel)
         self.scs = Scs(self)
         self.power_lost = False
+        self.irqs_taken = 0
         self.uc.hook_add(UC_HOOK_MEM_WRITE, self.flash.mem_write, None, 0x08000000, 0x081FFFFF)
         self.usb = Usb(self)
         self.models = [self.rcc, self.pwr, Syscfg(self), self.flash, self.fmc, self.usart1, self.ltdc, self.dsi, self.scs,
@@ -223,7 +225,33 @@ class Disco:
         self.uc.reg_write(UC_ARM_REG_LR, RETURN_MAGIC | 1)
         self.run(self.sym(name) & ~1, RETURN_MAGIC, timeout_s)
         self.uc.reg_write(UC_ARM_REG_SP, sp + 64)
-        return self.uc.reg_read(UC_ARM_REG_R0)
+        r0 = self.uc.reg_read(UC_ARM_REG_R0)
+        self.interrupts()  # one the function left pending (e.g. unmasked in the NVIC) is taken on return
+        return r0
+
+    def interrupts(self):
+        """The OTG_HS interrupt, taken when the DWC2 model asserts it, the
+        NVIC has it enabled and PRIMASK is clear: the handler the vector
+        table names for position 77 runs (an exception handler is an AAPCS
+        function on ARMv7-M; the hardware-stacked frame is not modelled),
+        again while the line stays asserted, as the NVIC re-pends a level
+        interrupt.  Taken between the harness's steps, never in the middle
+        of running code: preemption races are not exercised."""
+        for _ in range(64):
+            if self.scs.reset_requested or self.power_lost or not self.usb.irq_line():
+                return
+            if not self.scs.nvic_enabled(OTG_HS_IRQ) or self.uc.reg_read(UC_ARM_REG_PRIMASK) & 1:
+                return  # pending; taken once unmasked
+            handler = struct.unpack("<I", bytes(self.uc.mem_read(0x08000000 + 4 * (16 + OTG_HS_IRQ), 4)))[0]
+            if not handler & 1 or not 0x08000000 <= handler < 0x08200000:
+                raise EmuError("OTG_HS interrupt: vector table entry 0x%08x is no Thumb handler in flash" % handler)
+            self.irqs_taken += 1
+            sp = self.uc.reg_read(UC_ARM_REG_SP) or struct.unpack("<I", bytes(self.uc.mem_read(0x08000000, 4)))[0]
+            self.uc.reg_write(UC_ARM_REG_SP, (sp - 128) & ~7)
+            self.uc.reg_write(UC_ARM_REG_LR, RETURN_MAGIC | 1)
+            self.run(handler & ~1, RETURN_MAGIC, 30)
+            self.uc.reg_write(UC_ARM_REG_SP, sp)
+        raise EmuError("OTG_HS interrupt still asserted after 64 handler runs: the handler does not clear its cause")
 
     # --- queries for tests ----------------------------------------------
     def writes(self, periph, reg=None):

@@ -679,7 +679,8 @@ class Dsi(Model):
                    (0x408, "WIER"), (0x40C, "WISR"), (0x410, "WIFCR"), (0x418, "WPCR0"), (0x41C, "WPCR1"),
                    (0x420, "WPCR2"), (0x424, "WPCR3"), (0x428, "WPCR4"), (0x430, "WRPCR")):
         regs[_o] = (_n, 0x3133302A if _n == "VR" else 0)
-    PANEL_IDS = {"otm8009a": {0xDA: 0x40, 0xDB: 0x00}, "nt35510": {0xDA: 0x00, 0xDB: 0x80}}
+    PANEL_IDS = {"otm8009a": {0xDA: 0x40, 0xDB: 0x00}, "nt35510": {0xDA: 0x00, 0xDB: 0x80},
+                 "unknown": {0xDA: 0x00, 0xDB: 0x00}}
 
     def __init__(self, emu, panel):
         super().__init__(emu)
@@ -895,16 +896,23 @@ class Usb(Model):
         if not self.reset_done or not self.v[0xC] >> 30 & 1 or self.v[0xC] >> 6 & 1 or self.v[0x804] & 2:
             raise EmuError("host sees no HS device: core reset, forced device mode, ULPI PHY and soft connect needed")
 
+    def irq_line(self):
+        """The core's interrupt output: GAHBCFG.GINTMSK and a GINTSTS bit
+        its GINTMSK bit lets through (RM0399 OTG_HS interrupt hierarchy)."""
+        return bool(self.v[0x8] & 1 and self.read(0x14) & self.v[0x18])
+
     def bus_reset(self):
         self.connect_check()
         self.v[0x14] |= (1 << 12) | (1 << 13)
         self.v[0x808] = 0  # ENUMSPD high speed
+        self.emu.interrupts()
 
     def setup(self, raw):
         if not (self.v[0xB10] >> 29 & 3):
             raise EmuError("SETUP received with EP0 OUT not armed for SETUP (STUPCNT 0)")
         self.rx.append(((6 << 17) | (8 << 4), raw))
         self.rx.append(((4 << 17), b""))
+        self.emu.interrupts()
 
     def out(self, ep, data):
         """One OUT packet; False = NAK (endpoint not enabled)."""
@@ -918,6 +926,7 @@ class Usb(Model):
         self.v[ctl] &= ~(1 << 31)
         self.rx.append(((2 << 17) | (len(data) << 4) | ep, data))
         self.rx.append(((3 << 17) | ep, b""))
+        self.emu.interrupts()
         return True
 
 
@@ -938,6 +947,12 @@ class Scs(Model):
             0xE000ED9C: ("MPU_RBAR", 0), 0xE000EDA0: ("MPU_RASR", 0), 0xE000EDFC: ("DEMCR", 0),
             0xE000EF50: ("ICIALLU", 0), 0xE000EF5C: ("DCIMVAC", 0), 0xE000EF60: ("DCISW", 0),
             0xE000EF68: ("DCCMVAC", 0), 0xE000EF6C: ("DCCSW", 0), 0xE000EF70: ("DCCIMVAC", 0), 0xE000EF74: ("DCCISW", 0)}
+    # NVIC (ARMv7-M ARM B3.4): 150 external interrupts on the STM32H747.
+    for _i in range(5):
+        regs[0xE000E100 + 4 * _i] = ("NVIC_ISER%d" % _i, 0)
+        regs[0xE000E180 + 4 * _i] = ("NVIC_ICER%d" % _i, 0)
+    for _i in range(38):
+        regs[0xE000E400 + 4 * _i] = ("NVIC_IPR%d" % _i, 0)
     # Cortex-M7 with 16 KiB D-cache (STM32H747): 4 ways x 128 sets x 32 bytes
     # (CCSIDR for CSSELR = 0 data; 0xF00FE019 in the M7 TRM's encoding).
     DC_WAYS, DC_SETS, LINE = 4, 128, 32
@@ -954,7 +969,12 @@ class Scs(Model):
         self.cyc_step = 4000  # cycles each DWT_CYCCNT read advances the model's time
         self.reset_requested = False
 
+    def nvic_enabled(self, irq):
+        return bool(self.v[0xE100 + 4 * (irq // 32)] >> (irq % 32) & 1)
+
     def read(self, off):
+        if 0xE180 <= off < 0xE194:  # ICERn reads the enabled set too
+            return self.v[off - 0x80]
         if off == 0xED80:
             return 0xF00FE019 if self.v[0xED84] == 0 else 0xF01FE019
         if off == 0x1004:
@@ -967,6 +987,12 @@ class Scs(Model):
 
     def write(self, off, value):
         name = self.regs[off][0]
+        if name.startswith("NVIC_ISER"):
+            self.v[off] |= value  # write 1 to enable
+            return
+        if name.startswith("NVIC_ICER"):
+            self.v[off - 0x80] &= ~value  # write 1 to disable
+            return
         if name == "DCISW":
             self.invalidated.add((value >> 30, value >> 5 & 0x7F))
         elif name == "ICIALLU":

@@ -56,6 +56,114 @@ def board_h_macros():
     return ev
 
 
+# The MB1166 panel's register tables in the controllers' data-sheet
+# notation: "register  parameters" per line ("00*10" = ten 00h), "wait N"
+# = N ms before the next command.  OTM8009A (Orise Tech data sheet,
+# command set 2): a four-digit register is the command-2 address (C480h =
+# register C4h at offset 80h).  NT35510 (Novatek data sheet): manufacturer
+# command set, page 1 then page 0 (F0h selects the page).  The values are
+# the MB1166 figures of ST's DISCO board support (otm8009a.c, nt35510.c),
+# the OTM8009A gamma inside command set 2 as the data sheet and Linux's
+# panel-orisetech-otm8009a.c have it; held here independently of
+# boards/stm32h747i-disco/panel_tables.c, which must send the same bytes.
+OTM8009A = """
+FF00 80 09 01          # CMD2 enable 1
+FF80 80 09             # CMD2 enable 2 (Orise)
+C480 30                # SD_PCH_CTRL
+wait 10
+C48A 40                # not documented
+wait 10
+C5B1 A9                # PWR_CTRL4 +1
+C591 34                # PWR_CTRL2 +1
+C0B4 50                # P_DRV_M
+D900 4E                # VCOMDC
+C181 66                # OSC_ADJ 65 Hz
+C1A1 08                # RGB_VID_SET
+C592 01                # PWR_CTRL2 +2
+C595 34                # PWR_CTRL2 +5
+D800 79 79             # GVDDSET
+C594 33                # PWR_CTRL2 +4
+C0A3 1B                # SD_CTRL +1
+C582 83                # PWR_CTRL1 +2
+C481 83                # SD_PCH_CTRL +1
+C1A1 0E                # RGB_VID_SET
+B3A6 00 01             # PANSET
+CE80 85 01 00 84 01 00 # GOAVST
+CEA0 18 04 03 39 00 00 00 18 03 03 3A 00 00 00  # GOACLKA1
+CEB0 18 02 03 3B 00 00 00 18 01 03 3C 00 00 00  # GOACLKA3
+CFC0 01 01 20 20 00 00 01 02 00 00              # GOAECLK
+CFD0 00
+CB80 00*10             # PANCTRLSET1
+CB90 00*15
+CBA0 00*15
+CBB0 00*10
+CBC0 00 04 04 04 04 04 00*9
+CBD0 00*6 04 04 04 04 04 00*4
+CBE0 00*10
+CBF0 FF*10             # PANCTRLSET8
+CC80 00 26 09 0B 01 25 00*4                     # PANU2D1
+CC90 00*11 26 0A 0C 02
+CCA0 25 00*14
+CCB0 00 25 0C 0A 02 26 00*4                     # PAND2U1
+CCC0 00*11 25 0B 09 01
+CCD0 26 00*14
+C581 66                # PWR_CTRL1 +1
+F5B6 06                # not documented
+C6B1 06                # PWM_PARA3
+E100 00 09 0F 0E 07 10 0B 0A 04 07 0B 08 0F 10 0A 01  # GMCT2.2P
+E200 00 09 0F 0E 07 10 0B 0A 04 07 0B 08 0F 10 0A 01  # GMCT2.2N
+FF00 FF FF FF          # leave command 2
+00                     # nop
+"""
+NT35510 = """
+F0 55 AA 52 08 01      # MAUCCTR page 1
+B0 03 03 03            # SETAVDD
+B6 46 46 46            # BT1CTR
+B1 03 03 03            # SETAVEE
+B7 36 36 36            # BT2CTR
+B2 00 00 02            # SETVCL
+B8 26 26 26            # BT3CTR
+BF 01                  # VGHCTR
+B3 09 09 09            # SETVGH
+B9 36 36 36            # BT4CTR
+B5 08 08 08            # SETVGL
+BA 26 26 26            # BT5CTR
+BC 00 80 00            # SETVGP
+BD 00 80 00            # SETVGN
+BE 00 50               # SETVCMOFF
+F0 55 AA 52 08 00      # MAUCCTR page 0
+B1 FC 00               # DOPCTR
+B6 03                  # SDHDTCTR
+B5 50                  # DPRSLCTR
+B7 00 00               # GSEQCTR
+B8 01 02 02 02         # SDEQCTR
+BC 00 00 00            # INVCTR
+CC 03 00 00
+BA 01                  # SDVPCTR
+wait 200
+"""
+
+
+def panel_table(text):
+    """[(register, parameter bytes, wait ms after)] from the notation above."""
+    rows = []
+    for line in text.splitlines():
+        f = line.split("#")[0].split()
+        if not f:
+            continue
+        if f[0] == "wait":
+            reg, params, _w = rows[-1]
+            rows[-1] = (reg, params, int(f[1]))
+            continue
+        params = bytearray()
+        for tok in f[1:]:
+            v, _, n = tok.partition("*")
+            params += bytes([int(v, 16)]) * int(n or 1)
+        rows.append((int(f[0], 16), bytes(params), 0))
+    return rows
+
+
+
 class Clocks(unittest.TestCase):
     def test_supply_written_once_smps(self):
         b = booted()
@@ -270,36 +378,71 @@ class DsiPanel(unittest.TestCase):
 
     def expected_dcs(self):
         """The MIPI DCS 1.1 start-up for a landscape RGB888 panel of the
-        profile's size (command codes and parameter layouts of DCS: exit_sleep_mode
-        0x11, set_pixel_format 0x3A (0x77: 24 bit), set_address_mode 0x36 (MV|MX),
-        set_column_address 0x2A / set_page_address 0x2B (start, end, 16-bit
-        big-endian), set_tear_on 0x35, write brightness 0x51, write CTRL display
-        0x53, set_display_on 0x29)."""
+        profile's size (command codes and parameter layouts of DCS:
+        exit_sleep_mode 0x11 then 120 ms, set_pixel_format 0x3A (0x77: 24
+        bit), set_address_mode 0x36 (MV|MX), set_column_address 0x2A /
+        set_page_address 0x2B (start, end, 16-bit big-endian), set_tear_on
+        0x35, write brightness 0x51, write CTRL display 0x53, write CABC 0x55
+        (off), set_display_on 0x29, write_memory_start 0x2C)."""
         p = panel_profile("disco-dsi")
         w, h = int(p["width"][0]), int(p["height"][0])
-        return [bytes([0x11]), bytes([0x3A, 0x77]), bytes([0x36, 0x60]),
-                bytes([0x2A, 0, 0, (w - 1) >> 8, (w - 1) & 0xFF]), bytes([0x2B, 0, 0, (h - 1) >> 8, (h - 1) & 0xFF]),
-                bytes([0x35, 0x00]), bytes([0x51, 0xFF]), bytes([0x53, 0x2C]), bytes([0x29])]
+        return [(0x11, b"", 120), (0x3A, b"\x77", 0), (0x36, b"\x60", 0),
+                (0x2A, bytes([0, 0, (w - 1) >> 8, (w - 1) & 0xFF]), 0),
+                (0x2B, bytes([0, 0, (h - 1) >> 8, (h - 1) & 0xFF]), 0),
+                (0x35, b"\x00", 0), (0x51, b"\xff", 0), (0x53, b"\x2c", 0), (0x55, b"\x00", 0),
+                (0x29, b"", 0), (0x2C, b"", 0)]
 
-    def check_panel(self, b, ids, name):
-        writes = [d for dt, d, _c in b.dsi.packets if dt != 0x06]
+    @staticmethod
+    def packets(rows):
+        """Rows (register, parameters, wait ms) -> the DSI packets they
+        are, [(data type, bytes, wait ms after)]: a register above 0xFF is an
+        OTM8009A command-2 address, sent as the address shift (DCS 00h with
+        its low byte) and then its high byte; DCS short write without
+        (0x05) or with one parameter (0x15), long write (0x39) beyond."""
+        out = []
+        for reg, params, wait in rows:
+            if reg > 0xFF:
+                out.append((0x15, bytes([0x00, reg & 0xFF]), 0))
+                reg >>= 8
+            dt = 0x05 if not params else 0x15 if len(params) == 1 else 0x39
+            out.append((dt, bytes([reg]) + params, wait))
+        return out
+
+    def check_panel(self, b, ids, name, table):
+        writes = [(dt, d) for dt, d, _c in b.dsi.packets if dt != 0x06]
         reads = [d[0] for dt, d, _c in b.dsi.packets if dt == 0x06]
         self.assertEqual(reads, ids)
-        self.assertEqual(writes, self.expected_dcs())
-        cyc = {d: c for _dt, d, c in b.dsi.packets}
-        ms = (cyc[bytes([0x3A, 0x77])] - cyc[bytes([0x11])]) / (b.rcc.clocks()["cpu"] / 1000)
-        self.assertGreaterEqual(ms, 120, "120 ms after exit_sleep_mode")
+        want = self.packets(table + self.expected_dcs())
+        for i, (got, (dt, data, _w)) in enumerate(zip(writes, want)):
+            self.assertEqual(got, (dt, data), "packet %d of %d" % (i, len(want)))
+        self.assertEqual(len(writes), len(want), "packet count")
+        # Each wait the data sheets ask for, measured on the model's clock
+        # (DWT cycles) from that packet to the next.
+        cyc = [c for dt, _d, c in b.dsi.packets if dt != 0x06]
+        ms_per_cyc = 1000.0 / b.rcc.clocks()["cpu"]
+        for i, (_dt, data, wait) in enumerate(want[:-1]):
+            if wait:
+                self.assertGreaterEqual((cyc[i + 1] - cyc[i]) * ms_per_cyc, wait,
+                                        "%d ms after packet %d (%s)" % (wait, i, data.hex()))
         self.assertIn("panel controller %s" % name, b.uart_text())
         gj, gg = b.gpio[9], b.gpio[6]
         self.assertEqual((gj.mode(12), gj.out(12), gg.mode(3), gg.out(3)), (1, 1, 1, 1), "backlight on, reset released")
 
     def test_otm8009a(self):
-        self.check_panel(booted(), [0xDA], "OTM8009A")
+        self.check_panel(booted(), [0xDA], "OTM8009A", panel_table(OTM8009A))
 
     def test_nt35510(self):
         b = Disco(ELF, panel="nt35510")
         b.run_reset()
-        self.check_panel(b, [0xDA, 0xDB], "NT35510")
+        self.check_panel(b, [0xDA, 0xDB], "NT35510", panel_table(NT35510))
+
+    def test_unknown_controller(self):
+        # Neither ID: the DCS start-up only, and a log line naming ID1.
+        b = Disco(ELF, panel="unknown")
+        b.run_reset()
+        writes = [(dt, d) for dt, d, _c in b.dsi.packets if dt != 0x06]
+        self.assertEqual(writes, [(dt, d) for dt, d, _w in self.packets(self.expected_dcs())])
+        self.assertIn("unknown panel controller, ID1 0x00000000", b.uart_text())
 
 
 class FlashUpdate(unittest.TestCase):
@@ -403,18 +546,19 @@ class FlashUpdate(unittest.TestCase):
 class UsbHs(unittest.TestCase):
     """A scripted host against the DWC2 model: enumeration through the
     project's protocol code on endpoint 0, then a bulk OUT transfer read
-    back through tdc_board_transport_read().  (The host's zero-length
-    status stages after IN data are not sent: the driver ignores them.)"""
+    back through tdc_board_transport_read().  Nothing polls the core: each
+    host event asserts the model's interrupt line and the harness runs the
+    handler the vector table names (disco_emu.Disco.interrupts).  (The
+    host's zero-length status stages after IN data are not sent: the
+    driver ignores them.)"""
     GOT = 0x24070000  # a word for transport_read's *got
     BUF = 0x24060000
 
     def control(self, b, bm, req, val, idx, length, data=b""):
         n0 = len(b.usb.sent[0])
         b.usb.setup(struct.pack("<BBHHH", bm, req, val, idx, length))
-        b.call("tdc_disco_usb_poll")
         for off in range(0, length if not bm & 0x80 else 0, 64):  # OUT data stage, 64-byte packets
             self.assertTrue(b.usb.out(0, data[off:off + 64]), "EP0 armed for each OUT data packet")
-            b.call("tdc_disco_usb_poll")
         sent = b.usb.sent[0][n0:]
         self.assertGreaterEqual(len(sent), 1, "an IN data or status stage")
         self.assertTrue(all(len(p) <= 64 for p in sent), "EP0 packets of at most 64 bytes")
@@ -425,7 +569,6 @@ class UsbHs(unittest.TestCase):
         b = Disco(ELF)
         b.run_reset()
         b.usb.bus_reset()
-        b.call("tdc_disco_usb_poll")
         dev = self.control(b, 0x80, 6, 0x0100, 0, 64)
         self.assertEqual((len(dev), dev[0], dev[1], dev[7]), (18, 18, 1, 64), "device descriptor, EP0 64 bytes")
         self.assertEqual(self.control(b, 0x00, 5, 7, 0, 0), b"", "SET_ADDRESS status")
@@ -438,6 +581,7 @@ class UsbHs(unittest.TestCase):
         self.assertEqual(eps.get(0x01), 512, "bulk OUT 0x01, 512 bytes at high speed")
         self.assertEqual(eps.get(0x81), 512, "bulk IN 0x81")
         self.assertEqual(self.control(b, 0x00, 9, 1, 0, 0), b"", "SET_CONFIGURATION status")
+        self.assertGreaterEqual(b.irqs_taken, 6, "served by the OTG_HS interrupt")
         status = b.usb.sent[1][-1]
         self.assertEqual(struct.unpack_from("<I", status, 0)[0], 0x53434454, "status report on bulk IN ('TDCS')")
         info = self.control(b, 0xC1, 0x01, 0, 0, 64)
@@ -446,7 +590,6 @@ class UsbHs(unittest.TestCase):
         data = bytes((i * 37 + 11) & 0xFF for i in range(3000))
         for off in range(0, len(data), 512):
             self.assertTrue(b.usb.out(1, data[off:off + 512]), "bulk OUT re-armed after each packet")
-            b.call("tdc_disco_usb_poll")
         got = b""
         for _ in range(4):
             rc = b.call("tdc_board_transport_read", self.BUF, 4096, self.GOT)
@@ -454,30 +597,41 @@ class UsbHs(unittest.TestCase):
             n = struct.unpack("<I", bytes(b.uc.mem_read(self.GOT, 4)))[0]
             got += bytes(b.uc.mem_read(self.BUF, n))
         self.assertEqual(got, data)
-        # The vsync wait (the frame loop's idle time) services USB: a packet
-        # taken while nothing polls leaves the endpoint NAKing until then.
-        self.assertTrue(b.usb.out(1, b"\x01" * 512))
-        self.assertFalse(b.usb.out(1, b"\x02" * 512), "NAK until the board polls")
-        b.call("tdc_board_vsync_wait")
-        self.assertTrue(b.usb.out(1, b"\x02" * 512), "re-armed during the vsync wait")
-        b.call("tdc_disco_usb_poll")
-        b.call("tdc_board_transport_read", self.BUF, 4096, self.GOT)
-        n = struct.unpack("<I", bytes(b.uc.mem_read(self.GOT, 4)))[0]
-        self.assertEqual(bytes(b.uc.mem_read(self.BUF, n)), b"\x01" * 512 + b"\x02" * 512)
+        # While nothing reads (a stage runs), the interrupt fills the ring
+        # until it has no room for a packet; then bulk OUT NAKs, and the
+        # next transport_read re-arms it: flow control, nothing dropped.
+        ring = board_h_macros()("TDC_DISCO_USB_RING_BYTES")
+        pkts = [bytes([(k * 7 + i) & 0xFF for i in range(512)]) for k in range(ring // 512 + 3)]
+        taken = 0
+        while taken < len(pkts) and b.usb.out(1, pkts[taken]):
+            taken += 1
+        self.assertEqual(taken, ring // 512, "packets taken before the ring is full")
+        stream = b""
+        while len(stream) < len(pkts) * 512:
+            b.call("tdc_board_transport_read", self.BUF, 4096, self.GOT)
+            n = struct.unpack("<I", bytes(b.uc.mem_read(self.GOT, 4)))[0]
+            self.assertGreater(n, 0, "ring drained")
+            stream += bytes(b.uc.mem_read(self.BUF, n))
+            while taken < len(pkts) and b.usb.out(1, pkts[taken]):
+                taken += 1
+        self.assertEqual(stream, b"".join(pkts), "every byte once, in order")
         self.dfu_block_through_ep0(b)
 
     def dfu_block_through_ep0(self, b):
         """A DFU download block (wTransferSize 1024) through EP0 into the
         flash driver, landing in the bank not running.  It starts a sector,
         whose erase (the model's erase_ms) cannot fit the DNLOAD request:
-        GETSTATUS answers dfuDNBUSY with a bwPollTimeout covering the
-        erase, the board writes after that reply, and the host's next
+        GETSTATUS (answered in the interrupt) gives dfuDNBUSY with a
+        bwPollTimeout covering the erase, the board writes after that reply
+        in the frame loop's vsync wait, and the host's next
         GETSTATUS (sent after bwPollTimeout) finds dfuDNLOAD-IDLE."""
         block = bytes((i * 13 + 5) & 0xFF for i in range(1024))
         self.assertEqual(self.control(b, 0x21, 1, 0, 1, len(block), block), b"", "DFU_DNLOAD status stage")
         self.assertEqual(b.flash.erased, [], "no erase within the DNLOAD request")
         t0 = b.scs.cyc
-        st = self.control(b, 0xA1, 3, 0, 1, 6)
+        st = self.control(b, 0xA1, 3, 0, 1, 6)  # answered in the interrupt
+        self.assertEqual(b.flash.erased, [], "no erase in the interrupt handler")
+        b.call("tdc_board_vsync_wait")  # the frame loop's idle time does the DFU work
         busy_ms = (b.scs.cyc - t0) / (b.rcc.clocks()["cpu"] / 1000)
         poll_ms = st[1] | st[2] << 8 | st[3] << 16
         self.assertEqual((st[0], st[4]), (0, 4), "DFU_GETSTATUS during the erase: OK, dfuDNBUSY")
@@ -489,6 +643,20 @@ class UsbHs(unittest.TestCase):
         st = self.control(b, 0xA1, 3, 0, 1, 6)
         self.assertEqual((st[0], st[4], st[1] | st[2] << 8 | st[3] << 16), (0, 5, 0),
                          "DFU_GETSTATUS after bwPollTimeout: OK, dfuDNLOAD-IDLE, no wait")
+
+    def test_interrupt_wiring(self):
+        # RM0399 vector table position 77 = OTG_HS; ARMv7-M NVIC: enable bit
+        # 77 % 32 of ISER2, priority byte 77 % 4 of IPR19 (upper 4 bits on
+        # the M7's 16 levels); the core's global and per-cause masks.
+        b = booted()
+        entry = struct.unpack("<I", bytes(b.uc.mem_read(0x08000000 + 4 * (16 + 77), 4)))[0]
+        self.assertEqual(entry, b.sym("tdc_disco_usb_irq") | 1)
+        self.assertTrue(b.scs.nvic_enabled(77))
+        self.assertEqual(sum(bin(b.scs.v[0xE100 + 4 * i]).count("1") for i in range(5)), 1, "only OTG_HS enabled")
+        prio = b.scs.v[0xE400 + 4 * 19] >> 8 & 0xFF
+        self.assertTrue(prio and not prio & 0xF, "a priority in the implemented upper nibble")
+        self.assertEqual(b.usb.v[0x8] & 1, 1, "GAHBCFG.GINTMSK")
+        self.assertEqual(b.usb.v[0x18], (1 << 4) | (1 << 12) | (1 << 13), "GINTMSK: RXFLVL, USBRST, ENUMDNE")
 
     def test_no_host_before_core_reset(self):
         # The model refuses a host before the core is set up: what the
