@@ -76,7 +76,7 @@ FW_CFLAGS := $(FW_WARN) $(OPT) -g $(SAN_FLAGS) $(FW_NOFLOAT) -ffunction-sections
 
 # Host code (sim, tests, tools): may use double, libc, libraries.
 HOST_CFLAGS := -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror -Wvla -Wshadow $(OPT) -g $(SAN_FLAGS) \
-               -Ifirmware -I$(GEN) -Isim -Itests
+               -Ifirmware -I$(GEN) -Isim -Iref -I. -Itests
 HOST_LDFLAGS := $(SAN_FLAGS)
 HOST_LIBS := -lcmocka -lpng -lm -lpthread
 
@@ -169,6 +169,12 @@ $(B)/gen/%.o: $(GEN)/%.c
 	@mkdir -p $(@D)
 	$(CC) $(FW_CFLAGS) -c $< -o $@
 $(B)/sim/%.o: sim/%.c $(GEN)/tdc_panels.h
+	@mkdir -p $(@D)
+	$(CC) $(HOST_CFLAGS) -MMD -MP -c $< -o $@
+$(B)/ref/%.o: ref/%.c $(GEN)/tdc_panels.h
+	@mkdir -p $(@D)
+	$(CC) $(HOST_CFLAGS) -MMD -MP -c $< -o $@
+$(B)/render/%.o: render/%.c $(GEN)/tdc_panels.h
 	@mkdir -p $(@D)
 	$(CC) $(HOST_CFLAGS) -MMD -MP -c $< -o $@
 $(B)/hosttools/%.o: hosttools/%.c $(GEN)/tdc_panels.h

@@ -1,12 +1,12 @@
 # Tile-ordered frame assembly (issue 5): orderings, assembly, double reference,
 # tests, golden vectors, benchmark, `tdc-run assemble`.
 FW_SRCS += firmware/tdc_ordering.c firmware/tdc_assemble.c
-SIM_SRCS += sim/ref_assemble.c
+SIM_SRCS += ref/ref_assemble.c
 
 # Own link rules (only the objects these programs need), so the assembly
 # tests do not depend on every other component of the libraries.
 ASM_FW_OBJS = $(B)/firmware/tdc_ordering.o $(B)/firmware/tdc_assemble.o $(B)/firmware/tdc_math.o $(B)/firmware/tdc_status.o
-ASM_SIM_OBJS = $(B)/sim/ref_assemble.o
+ASM_SIM_OBJS = $(B)/ref/ref_assemble.o
 ASM_TESTS := test_ordering test_assemble_ref test_assemble test_assemble_long
 
 TESTS += $(foreach t,$(ASM_TESTS),$(B)/tests/unit/$(t))

@@ -14,7 +14,7 @@
  *
  * Samples: a source with its own foveated mode (the Embree renderer) traces
  * them itself; the others (procedural scenes, photographs) are sampled at
- * the positions of the exact inverse of eq. 2.2 (sim/ref_fov.c) and the
+ * the positions of the exact inverse of eq. 2.2 (ref/ref_fov.c) and the
  * disk pixel centres, spp rays each like the full-rate modes.  Rays are
  * counted exactly (samples x spp, or the renderer's count).
  *
@@ -26,7 +26,7 @@
  * encoded back with the source's gamma), the disk pixels from the same frame,
  * and with TAA each texel's vector is the one of the pixel under its
  * centre.  Foveal scale per axis: the default rule (k S(k) = n, one texel
- * per pixel at the gaze, sim/ref_fov_lr.c).  Rays: the full frame's.
+ * per pixel at the gaze, ref/ref_fov_lr.c).  Rays: the full frame's.
  */
 #include <math.h>
 #include <stdlib.h>

@@ -22,7 +22,7 @@
  * frame before it (docs/foveation.md).
  *
  * Samples: every source through samples() at the positions of the exact
- * inverse of eq. 2.2 (sim/ref_fov.c, ref_fov_lp_samples as fov, with fov's
+ * inverse of eq. 2.2 (ref/ref_fov.c, ref_fov_lp_samples as fov, with fov's
  * footprint prefilter --fov-lod) on the slot's grid and the grid's disk
  * pixels, scaled to the screen (W / rw, H / rh), spp rays each; a reduced
  * disk pixel's rays spread over its footprint (g x g point samples, g^2 <=

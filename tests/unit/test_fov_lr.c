@@ -1,7 +1,7 @@
 /*
  * test_fov_lr.c - the log-rectilinear foveation kind (firmware/tdc_fov_lr.c
  * behind tdc_fov_frame) against its double-precision reference
- * (sim/ref_fov_lr.c), and its properties:
+ * (ref/ref_fov_lr.c), and its properties:
  *  - fixed point vs double: max abs error of the 8-bit output against the
  *    unrounded reference, share within 1 LSB, per case (gaze centre,
  *    off-centre, each corner, outside; disk 0 / 12.443 % / 1; TAA runs);

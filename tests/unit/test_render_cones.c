@@ -1,6 +1,6 @@
 /*
  * test_render_cones.c - the 6-cone incident radiance of Zeng §4.3
- * (sim/render/tdc_render_cones.c): eqs. 9-10 against Monte Carlo, the
+ * (render/tdc_render_cones.c): eqs. 9-10 against Monte Carlo, the
  * layout, recording, re-shading under a uniform sky, and the temporal
  * reuse across a change of normal against a cone-by-index copy.
  */

@@ -21,7 +21,7 @@ static void test_example_file(void **state)
 {
     (void)state;
     char err[512];
-    assert_int_equal(tdc_scene_load("sim/scenes/example.scene", &sc, err, sizeof err), TDC_SCENE_OK);
+    assert_int_equal(tdc_scene_load("render/scenes/example.scene", &sc, err, sizeof err), TDC_SCENE_OK);
     assert_string_equal(sc.name, "example");
     assert_int_equal(sc.nobjects, 6);
     assert_int_equal(sc.nlights, 2);

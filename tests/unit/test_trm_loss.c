@@ -9,7 +9,7 @@
  *    out of order or never arrived is shown without residual -- byte for
  *    byte what a stage with no state shows -- and counted; never with
  *    stale state.  Each loss pattern runs against the double reference
- *    (sim/ref_trm.c) fed the same losses (its rho zeroed where the
+ *    (ref/ref_trm.c) fed the same losses (its rho zeroed where the
  *    firmware has no pair): per frame >= 99.9 % within 1 LSB, none beyond
  *    2 LSB.  Patterns: every k-th full frame dropped (k = 2, 3, 5),
  *    duplicated frames, swapped pairs, a scene cut mid-pair, and 10^5
