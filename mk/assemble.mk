@@ -26,5 +26,5 @@ TDCRUN_SRCS += hosttools/tdcrun/run_assemble.c
 # End-to-end test of `tdc-run assemble` (needs the tdc-run program).
 TESTS += $(B)/tests/unit/test_assemble_tdcrun
 $(B)/tests/unit/test_assemble_tdcrun.o: HOST_CFLAGS += -DTDC_RUN_PATH='"$(B)/bin/tdc-run"'
-$(B)/tests/unit/test_assemble_tdcrun: $(B)/tests/unit/test_assemble_tdcrun.o $(ASM_SIM_OBJS) $(ASM_FW_OBJS) $(B)/sim/tdc_png.o | $(B)/bin/tdc-run
+$(B)/tests/unit/test_assemble_tdcrun: $(B)/tests/unit/test_assemble_tdcrun.o $(ASM_SIM_OBJS) $(ASM_FW_OBJS) $(B)/common/tdc_png.o | $(B)/bin/tdc-run
 	$(CC) $(HOST_LDFLAGS) $^ -o $@ $(HOST_LIBS)

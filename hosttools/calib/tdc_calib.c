@@ -30,7 +30,7 @@
  * The profile is written to OUT.panel.tmp.PID and renamed onto OUT.panel only
  * when everything succeeded: an error never truncates an existing profile.
  *
- * Exit codes (hosttools/common/tdc_tool.h): 0 OK, ARGS (1) bad command line,
+ * Exit codes (common/tdc_tool.h): 0 OK, ARGS (1) bad command line,
  * FILE (7) cannot read or write a file, INPUT (13) a measurement file is
  * malformed or cannot be fitted (the message says why).
  *
@@ -44,7 +44,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../../sim/lcd/tdc_lcd_model.h"
+#include "tdc_lcd_model.h"
 #include "tdc_calib_trans.h"
 #include "tdc_meas.h"
 #include "tdc_panel.h"

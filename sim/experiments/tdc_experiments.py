@@ -22,7 +22,7 @@ Commands:
         docs/results.md
 
 Defaults: --scale headset, --out build/experiments, -j = cores.
-Exit codes (the one table, hosttools/common/tdc_exit.h; docs/tools.md):
+Exit codes (the one table, common/tdc_exit.h; docs/tools.md):
 0 OK, 1 ARGS (bad command line, unknown group or scale), 13 INPUT (malformed
 sweep or claims script), 18 JOBS (a sweep job failed, a claims script
 raised, or a cached result is missing).
@@ -44,7 +44,7 @@ sys.path.insert(0, HERE)
 # the folder of the groups (tests point it at a temporary one)
 GROUPS_DIR = os.path.abspath(os.environ.get("TDC_EXPERIMENTS_DIR", HERE))
 import tdc_stats  # noqa: E402
-sys.path.insert(0, os.path.join(REPO, "hosttools", "common"))
+sys.path.insert(0, os.path.join(REPO, "common"))
 from tdc_exit import EXIT  # noqa: E402  (the one exit-code table)
 
 SCALES = ("demo", "dev", "headset")

@@ -37,7 +37,7 @@
 #include "tdc_fov.h"
 #include "tdc_fov_link.h"
 #include "tdc_fov_lr.h"
-#include "simulator/tdc_sim_codes.h"
+#include "tdc_sim_codes.h"
 
 enum { FOV_PLAIN, FOV_TAA, FOVLR_PLAIN, FOVLR_TAA };
 #define IS_LR(v) ((v) == FOVLR_PLAIN || (v) == FOVLR_TAA)

@@ -37,7 +37,7 @@
 
 #include "ref_fov.h"
 #include "simulator/tdc_sim_mode.h"
-#include "simulator/tdc_sim_codes.h"
+#include "tdc_sim_codes.h"
 #include "tdc_fov_link.h"
 
 #include "tdc_fov_trm.h"

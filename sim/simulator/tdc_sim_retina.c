@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "simulator/tdc_sim_codes.h"
+#include "tdc_sim_codes.h"
 #include "simulator/tdc_sim_dump.h"
 
 /* The reference's slices: those of the refresh being sampled (steps tile

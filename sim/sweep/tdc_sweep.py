@@ -34,7 +34,7 @@ Commands:
                                               expand, sbatch --array=0-(N-1); --wait: then merge
     tdc-sweep merge OUT                       OUT/sweep.csv, timings.csv, report.md
 
-Exit codes (the one table, hosttools/common/tdc_exit.h; docs/tools.md):
+Exit codes (the one table, common/tdc_exit.h; docs/tools.md):
 0 OK, 1 ARGS, 13 INPUT (malformed sweep file or OUT), 18 JOBS (merge: a job
 failed or is missing; the rest is merged), 19 ENGINE (GNU parallel / Slurm
 missing or refused the array).
@@ -50,7 +50,7 @@ import sys
 import time
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-sys.path.insert(0, os.path.join(REPO, "hosttools", "common"))
+sys.path.insert(0, os.path.join(REPO, "common"))
 from tdc_exit import EXIT  # noqa: E402  (the one exit-code table)
 EXIT_OK, EXIT_BAD_SWEEP, EXIT_USAGE, EXIT_JOBS_FAILED, EXIT_ENGINE = EXIT.OK, EXIT.INPUT, EXIT.ARGS, EXIT.JOBS, EXIT.ENGINE
 OPTION_AXES = {"modes": ["-m"], "refresh": ["-r"], "speed": ["--speed"], "seed": ["-S"],

@@ -35,7 +35,7 @@
 
 #include "fov_fixture.h"
 #include "ref_fov_lr.h"
-#include "simulator/tdc_sim_codes.h"
+#include "tdc_sim_codes.h"
 #include "tdc_fov_lr.h"
 
 #define W 160

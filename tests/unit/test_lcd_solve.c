@@ -1,7 +1,7 @@
 /*
  * test_lcd_solve.c - exhaustive tests of the LCD temporal-model inverse
  * (firmware/tdc_lcd.h) and of the overdrive tables (tdc_overdrive.h)
- * against the double-precision reference (sim/lcd/tdc_lcd_model.h).
+ * against the double-precision reference (common/tdc_lcd_model.h).
  *
  * For every coefficient set (the shipped profiles' per-rate sets and the
  * degenerate / stiff sets below):
@@ -31,7 +31,7 @@
 
 #include <cmocka.h>
 
-#include "lcd/tdc_lcd_model.h"
+#include "tdc_lcd_model.h"
 #include "tdc_lcd.h"
 #include "tdc_overdrive.h"
 #include "tdc_panels.h"

@@ -16,7 +16,7 @@
 
 #include <cmocka.h>
 
-#include "lcd/tdc_lcd_model.h"
+#include "tdc_lcd_model.h"
 #include "lcd/tdc_lcd_ref.h"
 #include "tdc_gamma.h"
 #include "tdc_lcd.h"

@@ -13,7 +13,7 @@
 #include <stdlib.h>
 #include <unistd.h>
 
-#include "link/tdc_link_file.h"
+#include "tdc_link_file.h"
 #include "link/tdc_link_gen.h"
 #include "test_link_util.h"
 

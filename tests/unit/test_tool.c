@@ -1,5 +1,5 @@
 /*
- * test_tool - the shared tool convention (hosttools/common/tdc_tool.c):
+ * test_tool - the shared tool convention (common/tdc_tool.c):
  * every exit code has a distinct name, numbers that do not fit are refused
  * (never wrapped: 4294967297 is not 1), nan/inf refused, sizes, CSV fields,
  * lines longer than the buffer reported instead of split, and output files
