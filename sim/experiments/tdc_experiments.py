@@ -46,6 +46,7 @@ GROUPS_DIR = os.path.abspath(os.environ.get("TDC_EXPERIMENTS_DIR", HERE))
 import tdc_stats  # noqa: E402
 sys.path.insert(0, os.path.join(REPO, "common"))
 from tdc_exit import EXIT  # noqa: E402  (the one exit-code table)
+import tdc_argv  # noqa: E402  (the one command-line reader)
 
 SCALES = ("demo", "dev", "headset")
 EXIT_OK, EXIT_BAD_GROUP, EXIT_USAGE, EXIT_RUN_FAILED = EXIT.OK, EXIT.INPUT, EXIT.ARGS, EXIT.JOBS
@@ -408,20 +409,11 @@ def main(argv):
         print(__doc__)
         return EXIT_OK if len(argv) >= 2 else EXIT_USAGE
     cmd, rest = argv[1], argv[2:]
-    opts, pos = {}, []
-    it = iter(rest)
-    for a in it:
-        if a in ("--scale", "--out", "-j", "--sim", "--report", "--results"):
-            v = next(it, None)
-            if v is None:
-                print("tdc-experiments: %s needs a value" % a, file=sys.stderr)
-                return EXIT_USAGE
-            opts[a] = v
-        elif a.startswith("-"):
-            print("tdc-experiments: unknown option '%s' (see --help)" % a, file=sys.stderr)
-            return EXIT_USAGE
-        else:
-            pos.append(a)
+    try:
+        opts, pos = tdc_argv.parse(rest, valued=("--scale", "--out", "-j", "--sim", "--report", "--results"))
+    except tdc_argv.UsageError as e:
+        print("tdc-experiments: %s" % e, file=sys.stderr)
+        return EXIT_USAGE
     scale = opts.get("--scale", "headset")
     out = os.path.abspath(opts.get("--out", os.path.join(REPO, "build", "experiments")))
     if scale not in SCALES:

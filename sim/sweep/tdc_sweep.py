@@ -52,6 +52,7 @@ import time
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.join(REPO, "common"))
 from tdc_exit import EXIT  # noqa: E402  (the one exit-code table)
+import tdc_argv  # noqa: E402  (the one command-line reader)
 EXIT_OK, EXIT_BAD_SWEEP, EXIT_USAGE, EXIT_JOBS_FAILED, EXIT_ENGINE = EXIT.OK, EXIT.INPUT, EXIT.ARGS, EXIT.JOBS, EXIT.ENGINE
 OPTION_AXES = {"modes": ["-m"], "refresh": ["-r"], "speed": ["--speed"], "seed": ["-S"],
                "scene": ["-s"], "image": ["--image"], "size": ["-g"],
@@ -322,20 +323,10 @@ def main(argv):
         print(__doc__)
         return EXIT_OK if len(argv) >= 2 else EXIT_USAGE
     cmd, rest = argv[1], argv[2:]
-    opts, pos = {}, []
-    it = iter(rest)
-    for a in it:
-        if a in ("-j", "--sim", "--partition", "--time"):
-            v = next(it, None)
-            if v is None:
-                die(EXIT_USAGE, "%s needs a value" % a)
-            opts[a] = v
-        elif a == "--wait":
-            opts[a] = True
-        elif a.startswith("-") and a != "-":
-            die(EXIT_USAGE, "unknown option '%s' (see --help)" % a)
-        else:
-            pos.append(a)
+    try:
+        opts, pos = tdc_argv.parse(rest, valued=("-j", "--sim", "--partition", "--time"), flags=("--wait",))
+    except tdc_argv.UsageError as e:
+        die(EXIT_USAGE, str(e))
     sim = opts.get("--sim", os.path.join(REPO, "build", "gcc-O2", "tdc-sim"))
     try:
         if cmd == "expand" and len(pos) == 2:

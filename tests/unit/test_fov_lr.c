@@ -33,6 +33,8 @@
 #include <string.h>
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include "fov_fixture.h"
 #include "ref_fov_lr.h"
 #include "tdc_sim_codes.h"
@@ -546,13 +548,9 @@ static void test_refused(void **state)
     rig_free(&r);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_round_trip), cmocka_unit_test(test_area_average),
-        cmocka_unit_test(test_area_average_linear),
-        cmocka_unit_test(test_footprint_prefilter), cmocka_unit_test(test_uniform),
-        cmocka_unit_test(test_refused),    cmocka_unit_test(test_fixed_vs_double),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_round_trip), cmocka_unit_test(test_area_average),
+    cmocka_unit_test(test_area_average_linear),
+    cmocka_unit_test(test_footprint_prefilter), cmocka_unit_test(test_uniform),
+    cmocka_unit_test(test_refused),    cmocka_unit_test(test_fixed_vs_double),
+)

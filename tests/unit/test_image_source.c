@@ -16,6 +16,8 @@
 #include <unistd.h>
 
 #include <cmocka.h>
+
+#include "tdc_cmocka.h"
 #include <jpeglib.h>
 
 #include "image/tdc_image_read.h"
@@ -401,12 +403,8 @@ static void test_read_and_bad_input(void **state)
     rmdir(dir);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_constant_image),         cmocka_unit_test(test_aligned_and_box_means),
-        cmocka_unit_test(test_exact_against_clipping), cmocka_unit_test(test_samples_and_mvs),
-        cmocka_unit_test(test_read_and_bad_input),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_constant_image),         cmocka_unit_test(test_aligned_and_box_means),
+    cmocka_unit_test(test_exact_against_clipping), cmocka_unit_test(test_samples_and_mvs),
+    cmocka_unit_test(test_read_and_bad_input),
+)

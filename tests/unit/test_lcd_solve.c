@@ -31,6 +31,8 @@
 
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include "tdc_lcd_model.h"
 #include "tdc_lcd.h"
 #include "tdc_overdrive.h"
@@ -417,18 +419,14 @@ static void test_packing(void **state)
     }
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_cases),
-        cmocka_unit_test(test_forward_model),
-        cmocka_unit_test(test_exact_8bit_sets),
-        cmocka_unit_test(test_exact_profiles),
-        cmocka_unit_test(test_exact_10bit_dense),
-        cmocka_unit_test(test_tables),
-        cmocka_unit_test(test_table_convention),
-        cmocka_unit_test(test_generated_tables_match),
-        cmocka_unit_test(test_packing),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_cases),
+    cmocka_unit_test(test_forward_model),
+    cmocka_unit_test(test_exact_8bit_sets),
+    cmocka_unit_test(test_exact_profiles),
+    cmocka_unit_test(test_exact_10bit_dense),
+    cmocka_unit_test(test_tables),
+    cmocka_unit_test(test_table_convention),
+    cmocka_unit_test(test_generated_tables_match),
+    cmocka_unit_test(test_packing),
+)

@@ -17,6 +17,8 @@
 #include <stddef.h>
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -615,17 +617,13 @@ static void test_log_rect(void **state)
     expect_refused(pkt, n, E, TDC_FOV_HDR_ALPHA, 1, FOV, 0, 0);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_round_trip),
-        cmocka_unit_test(test_stage_on_decoded_buffers),
-        cmocka_unit_test(test_refusals_packet_header),
-        cmocka_unit_test(test_refusals_foveation_header),
-        cmocka_unit_test(test_refusals_buffers_and_sequence),
-        cmocka_unit_test(test_stream_headers),
-        cmocka_unit_test(test_chunking),
-        cmocka_unit_test(test_log_rect),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_round_trip),
+    cmocka_unit_test(test_stage_on_decoded_buffers),
+    cmocka_unit_test(test_refusals_packet_header),
+    cmocka_unit_test(test_refusals_foveation_header),
+    cmocka_unit_test(test_refusals_buffers_and_sequence),
+    cmocka_unit_test(test_stream_headers),
+    cmocka_unit_test(test_chunking),
+    cmocka_unit_test(test_log_rect),
+)

@@ -9,6 +9,8 @@
 #include <stddef.h>
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -205,13 +207,9 @@ static void test_reuse_across_normals(void **state)
     for (int k = 0; k < TDC_CONES; k++) assert_true(fabs(c2[k][0] - 10) < 1e-12); /* a = 1: the current frame only */
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_overlap_vs_monte_carlo),
-        cmocka_unit_test(test_layout_and_record),
-        cmocka_unit_test(test_shade_uniform_sky),
-        cmocka_unit_test(test_reuse_across_normals),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_overlap_vs_monte_carlo),
+    cmocka_unit_test(test_layout_and_record),
+    cmocka_unit_test(test_shade_uniform_sky),
+    cmocka_unit_test(test_reuse_across_normals),
+)

@@ -9,6 +9,8 @@
 #include <stddef.h>
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -316,14 +318,10 @@ static void test_layered_streams(void **state)
     layered("discs", 5, SH, 0); /* no shadows, no reflections: one layer */
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_full_stream),
-        cmocka_unit_test(test_trm_stream),
-        cmocka_unit_test(test_subframe_stream),
-        cmocka_unit_test(test_static_stream),
-        cmocka_unit_test(test_layered_streams),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_full_stream),
+    cmocka_unit_test(test_trm_stream),
+    cmocka_unit_test(test_subframe_stream),
+    cmocka_unit_test(test_static_stream),
+    cmocka_unit_test(test_layered_streams),
+)

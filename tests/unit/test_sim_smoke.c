@@ -17,6 +17,8 @@
 
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include "simulator/tdc_sim.h"
 #include "tdc_par.h"
 
@@ -340,14 +342,10 @@ static void test_stereo_symmetric(void **state)
     l->destroy(l);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_trm_family_pan),       cmocka_unit_test(test_static_trm_equals_full),
-        cmocka_unit_test(test_asm_family),           cmocka_unit_test(test_layers_family), cmocka_unit_test(test_extremes),
-        cmocka_unit_test(test_stage_error_ends_run), cmocka_unit_test(test_refused_rate),
-        cmocka_unit_test(test_threads_same_digits),  cmocka_unit_test(test_stereo),
-        cmocka_unit_test(test_stereo_symmetric),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_trm_family_pan),       cmocka_unit_test(test_static_trm_equals_full),
+    cmocka_unit_test(test_asm_family),           cmocka_unit_test(test_layers_family), cmocka_unit_test(test_extremes),
+    cmocka_unit_test(test_stage_error_ends_run), cmocka_unit_test(test_refused_rate),
+    cmocka_unit_test(test_threads_same_digits),  cmocka_unit_test(test_stereo),
+    cmocka_unit_test(test_stereo_symmetric),
+)

@@ -16,6 +16,8 @@
 
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include "tdc_tool.h"
 
 static void test_exit_names(void **state)
@@ -186,18 +188,14 @@ static void test_safe_name(void **state)
     for (int i = 0; bad[i]; i++) assert_false(tdc_safe_name(bad[i]));
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_exit_names),
-        cmocka_unit_test(test_u64),
-        cmocka_unit_test(test_u32_and_int_do_not_wrap),
-        cmocka_unit_test(test_double),
-        cmocka_unit_test(test_size),
-        cmocka_unit_test(test_field),
-        cmocka_unit_test(test_read_line),
-        cmocka_unit_test(test_out_keeps_old_until_commit),
-        cmocka_unit_test(test_safe_name),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_exit_names),
+    cmocka_unit_test(test_u64),
+    cmocka_unit_test(test_u32_and_int_do_not_wrap),
+    cmocka_unit_test(test_double),
+    cmocka_unit_test(test_size),
+    cmocka_unit_test(test_field),
+    cmocka_unit_test(test_read_line),
+    cmocka_unit_test(test_out_keeps_old_until_commit),
+    cmocka_unit_test(test_safe_name),
+)

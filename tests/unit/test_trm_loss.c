@@ -24,6 +24,8 @@
 #include <string.h>
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include "golden/tdc_content.h"
 #include "ref_trm.h"
 #include "tdc_panels.h"
@@ -284,12 +286,8 @@ static void test_random_loss_1e5(void **state)
     loss_close(&L);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_recompute_equals_stored), cmocka_unit_test(test_drop_every_kth_full),
-        cmocka_unit_test(test_duplicates_and_swaps),    cmocka_unit_test(test_scene_cut_mid_pair),
-        cmocka_unit_test(test_random_loss_1e5),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_recompute_equals_stored), cmocka_unit_test(test_drop_every_kth_full),
+    cmocka_unit_test(test_duplicates_and_swaps),    cmocka_unit_test(test_scene_cut_mid_pair),
+    cmocka_unit_test(test_random_loss_1e5),
+)
