@@ -2,12 +2,19 @@
 tdc_sweep.py): `tool COMMAND [options] [positional...]`, as the C tools read
 theirs (docs/tools.md).
 
-    opts, pos = tdc_argv.parse(rest, valued=("-j", "--sim"), flags=("--wait",))
+    r = tdc_argv.command(argv, __doc__, "tdc-sweep", valued=("-j", "--sim"), flags=("--wait",))
+    if isinstance(r, int):   # --help, no command, or a refused option: the exit code
+        return r
+    cmd, opts, pos = r
 
 An option in `valued` takes the next argument as its value, one in `flags`
 is True when given; anything else starting with "-" (but "-" alone, which is
-positional) is refused.  A refusal raises UsageError with the one-line why;
-the tool prints it and exits with EXIT.ARGS (common/tdc_exit.h)."""
+positional) is refused with one line `tool: why` and EXIT.ARGS
+(common/tdc_exit.h); no command prints the help and exits ARGS, --help
+prints it and exits OK.  parse() alone raises UsageError."""
+import sys
+
+from tdc_exit import EXIT
 
 
 class UsageError(Exception):
@@ -30,3 +37,15 @@ def parse(rest, valued=(), flags=()):
         else:
             pos.append(a)
     return opts, pos
+
+
+def command(argv, doc, tool, valued=(), flags=()):
+    if len(argv) < 2 or argv[1] in ("-h", "--help"):
+        print(doc)
+        return EXIT.OK if len(argv) >= 2 else EXIT.ARGS
+    try:
+        opts, pos = parse(argv[2:], valued, flags)
+    except UsageError as e:
+        print("%s: %s" % (tool, e), file=sys.stderr)
+        return EXIT.ARGS
+    return argv[1], opts, pos

@@ -126,6 +126,21 @@ static double fit_gamma(int ch)
     return 0.5 * (lo + hi);
 }
 
+static void swap_d(double *a, double *b)
+{
+    const double t = *a;
+    *a = *b;
+    *b = t;
+}
+
+/* Swaps the n doubles at a and b (rows of a matrix, entries of vectors). */
+static void swap_n(double *a, double *b, int n)
+{
+    for (int k = 0; k < n; k++) {
+        swap_d(&a[k], &b[k]);
+    }
+}
+
 /* Solves the 4x4 system A x = y by Gaussian elimination with partial pivoting. */
 static int solve4(double A[4][4], double y[4], double x[4])
 {
@@ -139,14 +154,8 @@ static int solve4(double A[4][4], double y[4], double x[4])
         if (fabs(A[piv][c]) < 1e-12) {
             return -1;
         }
-        for (int k = 0; k < 4; k++) {
-            double t = A[c][k];
-            A[c][k] = A[piv][k];
-            A[piv][k] = t;
-        }
-        double t = y[c];
-        y[c] = y[piv];
-        y[piv] = t;
+        swap_n(A[c], A[piv], 4);
+        swap_d(&y[c], &y[piv]);
         for (int r = c + 1; r < 4; r++) {
             double f = A[r][c] / A[c][c];
             for (int k = c; k < 4; k++) {
@@ -457,17 +466,9 @@ int main(int argc, char **argv)
                 int t = g_rates[i];
                 g_rates[i] = g_rates[j];
                 g_rates[j] = t;
-                for (int k = 0; k < 4; k++) {
-                    double d = p[i][k];
-                    p[i][k] = p[j][k];
-                    p[j][k] = d;
-                }
-                double d = rmse_lum[i];
-                rmse_lum[i] = rmse_lum[j];
-                rmse_lum[j] = d;
-                d = rmse_plain[i];
-                rmse_plain[i] = rmse_plain[j];
-                rmse_plain[j] = d;
+                swap_n(p[i], p[j], 4);
+                swap_d(&rmse_lum[i], &rmse_lum[j]);
+                swap_d(&rmse_plain[i], &rmse_plain[j]);
             }
         }
     }

@@ -405,15 +405,11 @@ def update_results(path, rows, out):
 
 
 def main(argv):
-    if len(argv) < 2 or argv[1] in ("-h", "--help"):
-        print(__doc__)
-        return EXIT_OK if len(argv) >= 2 else EXIT_USAGE
-    cmd, rest = argv[1], argv[2:]
-    try:
-        opts, pos = tdc_argv.parse(rest, valued=("--scale", "--out", "-j", "--sim", "--report", "--results"))
-    except tdc_argv.UsageError as e:
-        print("tdc-experiments: %s" % e, file=sys.stderr)
-        return EXIT_USAGE
+    r = tdc_argv.command(argv, __doc__, "tdc-experiments",
+                         valued=("--scale", "--out", "-j", "--sim", "--report", "--results"))
+    if isinstance(r, int):
+        return r
+    cmd, opts, pos = r
     scale = opts.get("--scale", "headset")
     out = os.path.abspath(opts.get("--out", os.path.join(REPO, "build", "experiments")))
     if scale not in SCALES:

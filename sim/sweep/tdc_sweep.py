@@ -319,14 +319,10 @@ def engine_slurm(out, n, wait, partition, minutes):
 
 
 def main(argv):
-    if len(argv) < 2 or argv[1] in ("-h", "--help"):
-        print(__doc__)
-        return EXIT_OK if len(argv) >= 2 else EXIT_USAGE
-    cmd, rest = argv[1], argv[2:]
-    try:
-        opts, pos = tdc_argv.parse(rest, valued=("-j", "--sim", "--partition", "--time"), flags=("--wait",))
-    except tdc_argv.UsageError as e:
-        die(EXIT_USAGE, str(e))
+    r = tdc_argv.command(argv, __doc__, "tdc-sweep", valued=("-j", "--sim", "--partition", "--time"), flags=("--wait",))
+    if isinstance(r, int):
+        return r
+    cmd, opts, pos = r
     sim = opts.get("--sim", os.path.join(REPO, "build", "gcc-O2", "tdc-sim"))
     try:
         if cmd == "expand" and len(pos) == 2:
