@@ -1,7 +1,8 @@
 # The common host library, below sim/, render/ and hosttools/ (docs/design.md
 # §10): the tool convention and exit-code table (tdc_tool, tdc_exit), PNG
-# I/O, .tdcs stream files, LCD measurement files (tdc_meas) and the LCD
-# physical model's parameters.  None of
+# I/O, .tdcs stream files, LCD measurement files (tdc_meas), the LCD
+# physical model's parameters and TDC_FREE_ALL (tdc_free.h); for the Python
+# tools tdc_exit.py and the command-line reader tdc_argv.py.  None of
 # them includes anything but firmware/ and common/ headers; the include
 # direction is checked by tests/rules/check_include_dirs.py.  Archived into
 # SIMLIB, so every host program and test linking that has it; tdc_meas is

@@ -38,6 +38,7 @@
 #include "tdc_fov_link.h"
 #include "tdc_fov_lr.h"
 #include "tdc_sim_codes.h"
+#include "tdc_free.h"
 
 enum { FOV_PLAIN, FOV_TAA, FOVLR_PLAIN, FOVLR_TAA };
 #define IS_LR(v) ((v) == FOVLR_PLAIN || (v) == FOVLR_TAA)
@@ -311,14 +312,7 @@ static void fov_free(sim_mode_t *m)
 {
     fov_state_t *st = m->fam;
     if (st) {
-        free(st->arena);
-        free(st->samp);
-        free(st->smv);
-        free(st->xy);
-        free(st->side);
-        free(st->lr_arena);
-        free(st->pmv);
-        free(st);
+        TDC_FREE_ALL(st->arena, st->samp, st->smv, st->xy, st->side, st->lr_arena, st->pmv, st);
     }
     m->fam = NULL;
 }

@@ -42,6 +42,7 @@
 
 #include "tdc_fov_trm.h"
 #include "tdc_trm.h"
+#include "tdc_free.h"
 
 #define F &tdc_sim_family_fovtrm
 #define L (TDC_SIM_LINK_FOVEATED | TDC_SIM_LINK_REDUCED)
@@ -339,15 +340,7 @@ static void fovtrm_free(sim_mode_t *m)
 {
     fovtrm_state_t *st = m->fam;
     if (st) {
-        free(st->trm_mem);
-        free(st->fv_mem);
-        free(st->samp);
-        free(st->xy);
-        free(st->sub);
-        free(st->lin);
-        free(st->map);
-        free(st->side);
-        free(st);
+        TDC_FREE_ALL(st->trm_mem, st->fv_mem, st->samp, st->xy, st->sub, st->lin, st->map, st->side, st);
     }
     m->fam = NULL;
 }

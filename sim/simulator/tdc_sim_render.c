@@ -10,6 +10,7 @@
 #include "render/tdc_render.h"
 #include "render/tdc_scene.h"
 #include "tdc_layer_link.h"
+#include "tdc_free.h"
 
 #define RS_SLOTS 64 /* one per mode of a run (tdc-sim takes up to 64) */
 
@@ -453,22 +454,8 @@ static void rs_destroy(tdc_source_t *s)
                 tdc_render_close(c->red[i]);
             }
         }
-        free(c->scene);
-        free(c->sub_lin);
-        free(c->sub_mv);
-        free(c->sub_mvs);
-        free(c->sub_mvd);
-        free(c->l_shade);
-        free(c->l_vis);
-        free(c->l_refl);
-        free(c->l_w);
-        free(c->l_mvsurf);
-        free(c->l_mvrefl);
-        free(c->l_src);
-        free(c->lin);
-        free(c->mv);
-        free(c->gt);
-        free(c);
+        TDC_FREE_ALL(c->scene, c->sub_lin, c->sub_mv, c->sub_mvs, c->sub_mvd, c->l_shade, c->l_vis, c->l_refl,
+                     c->l_w, c->l_mvsurf, c->l_mvrefl, c->l_src, c->lin, c->mv, c->gt, c);
     }
     free(s);
 }

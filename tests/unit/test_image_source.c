@@ -33,13 +33,7 @@ static double urand(void)
 
 static tdc_scene_params_t screen(int w, int h, double speed, double angle)
 {
-    tdc_scene_params_t p;
-    memset(&p, 0, sizeof p);
-    p.width = w;
-    p.height = h;
-    p.speed = speed;
-    p.angle_deg = angle;
-    p.pursuit = 1;
+    const tdc_scene_params_t p = {.width = w, .height = h, .speed = speed, .angle_deg = angle, .pursuit = 1};
     return p;
 }
 

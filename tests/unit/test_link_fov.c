@@ -39,14 +39,14 @@ static int16_t mvs[W * H * 2];
 
 static tdc_fov_params_t params(int32_t gx_q8, int32_t gy_q8, uint16_t alpha_q8, uint16_t disk_q15)
 {
-    tdc_fov_params_t p;
-    memset(&p, 0, sizeof p);
-    p.gaze_x_q8 = gx_q8;
-    p.gaze_y_q8 = gy_q8;
-    p.alpha_q8 = alpha_q8;
-    p.disk_q15 = disk_q15;
-    p.lp_w = tdc_fov_lp_size(DELTA_Q15, W);
-    p.lp_h = tdc_fov_lp_size(DELTA_Q15, H);
+    const tdc_fov_params_t p = {
+        .gaze_x_q8 = gx_q8,
+        .gaze_y_q8 = gy_q8,
+        .alpha_q8 = alpha_q8,
+        .disk_q15 = disk_q15,
+        .lp_w = tdc_fov_lp_size(DELTA_Q15, W),
+        .lp_h = tdc_fov_lp_size(DELTA_Q15, H),
+    };
     return p;
 }
 
