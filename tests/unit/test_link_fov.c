@@ -396,32 +396,35 @@ static void test_refusals_foveation_header(void **state)
             expect_refused(pkt, n, E, TDC_FOV_HDR_DELTA, 1, FOV, 0, 0);
         }
     }
-    /* disk fraction above 1 (Q15 at 12..13: 4077 = 0x0FED -> 0x80ED) */
-    n = raw_foveated(&enc, 0, 1, &p, 0, 13, 0x80, 0, F, W);
-    expect_refused(pkt, n, E, TDC_FOV_HDR_DISK, 1, FOV, 0, 0);
-    /* gaze far outside the screen (x, Q8 int32 at 0..3: top byte) */
-    n = raw_foveated(&enc, 0, 1, &p, 0, 3, 0x40, 0, F, W);
-    expect_refused(pkt, n, E, TDC_FOV_HDR_GAZE, 1, FOV, 0, 0);
-    n = raw_foveated(&enc, 0, 1, &p, 0, 3, 0xC0, 0, F, W);
-    expect_refused(pkt, n, E, TDC_FOV_HDR_GAZE, 1, FOV, 0, 0);
-    /* buffer width disagreeing with delta and the panel (14..15) */
-    n = raw_foveated(&enc, 0, 1, &p, 0, 14, (uint8_t)(p.lp_w + 1u), 0, F, W);
-    expect_refused(pkt, n, E, TDC_FOV_HDR_BUFFER, 1, FOV, 0, 0);
-    /* u0 (18..19) and the disk count (20..23) disagreeing with the parameters */
-    n = raw_foveated(&enc, 0, 1, &p, 0, 18, (uint8_t)(g.u0 - 1u), 0, F, W);
-    expect_refused(pkt, n, E, TDC_FOV_HDR_GEOMETRY, 1, FOV, 0, 0);
-    n = raw_foveated(&enc, 0, 1, &p, 0, 22, 1, 0, F, W);
-    expect_refused(pkt, n, E, TDC_FOV_HDR_GEOMETRY, 1, FOV, 0, 0);
-    /* an unknown flag, a reserved byte */
-    n = raw_foveated(&enc, 0, 1, &p, 0, 24, 2, 0, F, W);
-    expect_refused(pkt, n, E, TDC_FOV_HDR_RESERVED, 1, FOV, 0, 0);
-    n = raw_foveated(&enc, 0, 1, &p, 0, 31, 1, 0, F, W);
-    expect_refused(pkt, n, E, TDC_FOV_HDR_RESERVED, 1, FOV, 0, 0);
-    /* a payload one byte short or long of what the header states (CRC valid) */
-    n = raw_foveated(&enc, 0, 1, &p, 0, -1, 0, -1, F, W);
-    expect_refused(pkt, n, E, TDC_FOV_HDR_PAYLOAD, 1, FOV, 0, 0);
-    n = raw_foveated(&enc, 0, 1, &p, 0, -1, 0, 1, F, W);
-    expect_refused(pkt, n, E, TDC_FOV_HDR_PAYLOAD, 1, FOV, 0, 0);
+    /* one header or payload byte changed (at, to v; or the payload len bytes
+     * short or long, CRC valid): refused with the reason named */
+    const struct {
+        int at;
+        uint8_t v;
+        int len;
+        tdc_fov_hdr_err_t why;
+    } bad[] = {
+        /* disk fraction above 1 (Q15 at 12..13: 4077 = 0x0FED -> 0x80ED) */
+        {13, 0x80, 0, TDC_FOV_HDR_DISK},
+        /* gaze far outside the screen (x, Q8 int32 at 0..3: top byte) */
+        {3, 0x40, 0, TDC_FOV_HDR_GAZE},
+        {3, 0xC0, 0, TDC_FOV_HDR_GAZE},
+        /* buffer width disagreeing with delta and the panel (14..15) */
+        {14, (uint8_t)(p.lp_w + 1u), 0, TDC_FOV_HDR_BUFFER},
+        /* u0 (18..19) and the disk count (20..23) disagreeing with the parameters */
+        {18, (uint8_t)(g.u0 - 1u), 0, TDC_FOV_HDR_GEOMETRY},
+        {22, 1, 0, TDC_FOV_HDR_GEOMETRY},
+        /* an unknown flag, a reserved byte */
+        {24, 2, 0, TDC_FOV_HDR_RESERVED},
+        {31, 1, 0, TDC_FOV_HDR_RESERVED},
+        /* a payload one byte short or long of what the header states (CRC valid) */
+        {-1, 0, -1, TDC_FOV_HDR_PAYLOAD},
+        {-1, 0, 1, TDC_FOV_HDR_PAYLOAD},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        n = raw_foveated(&enc, 0, 1, &p, 0, bad[i].at, bad[i].v, bad[i].len, F, W);
+        expect_refused(pkt, n, E, bad[i].why, 1, FOV, 0, 0);
+    }
     /* the MV flag set but no vectors sent: the payload is short */
     n = raw_foveated(&enc, 0, 1, &p, 0, 24, TDC_FOV_FLAG_MV, 0, F, W);
     expect_refused(pkt, n, E, TDC_FOV_HDR_PAYLOAD, 1, FOV, 0, 0);

@@ -87,7 +87,7 @@ static tdc_render_t *open_scene(const char *name)
     return r;
 }
 
-static void run(tdc_rstream_kind_t kind, const char *scene, int frames, uint32_t expect[TDC_LINK_KIND_LAST + 1],
+static void run(tdc_rstream_kind_t kind, const char *scene, int frames, const uint32_t expect[TDC_LINK_KIND_LAST + 1],
                 uint32_t *flags)
 {
     char path[] = "/tmp/tdc_rstream_XXXXXX";
@@ -138,39 +138,34 @@ static void run(tdc_rstream_kind_t kind, const char *scene, int frames, uint32_t
     tdc_render_close(r);
 }
 
-static void test_full_stream(void **state)
-{
-    (void)state;
-    uint32_t e[TDC_LINK_KIND_LAST + 1] = {0}, flags;
-    e[TDC_LINK_KIND_STREAM] = 1;
-    e[TDC_LINK_KIND_FULL] = 6;
-    e[TDC_LINK_KIND_MOTION] = 6;
-    run(TDC_RSTREAM_FULL, "fence", 6, e, &flags);
-    assert_true(flags & TDC_LINK_STREAM_MOTION);
-}
+/* One stream kind written by the renderer and read back: the packets of each
+ * kind it must hold and the stream flags it must set. */
+typedef struct {
+    tdc_rstream_kind_t kind;
+    const char *scene;
+    int frames;
+    uint32_t expect[TDC_LINK_KIND_LAST + 1];
+    uint32_t flags;
+} stream_case_t;
 
-static void test_trm_stream(void **state)
-{
-    (void)state;
-    uint32_t e[TDC_LINK_KIND_LAST + 1] = {0}, flags;
-    e[TDC_LINK_KIND_STREAM] = 1;
-    e[TDC_LINK_KIND_FULL] = 3;
-    e[TDC_LINK_KIND_REDUCED] = 3;
-    e[TDC_LINK_KIND_MOTION] = 3;
-    run(TDC_RSTREAM_TRM, "mirror", 6, e, &flags);
-    assert_true((flags & TDC_LINK_STREAM_REDUCED) && (flags & TDC_LINK_STREAM_MIRRORS));
-}
+static stream_case_t k_full = {TDC_RSTREAM_FULL, "fence", 6,
+                               {[TDC_LINK_KIND_STREAM] = 1, [TDC_LINK_KIND_FULL] = 6, [TDC_LINK_KIND_MOTION] = 6},
+                               TDC_LINK_STREAM_MOTION};
+static stream_case_t k_trm = {TDC_RSTREAM_TRM, "mirror", 6,
+                              {[TDC_LINK_KIND_STREAM] = 1, [TDC_LINK_KIND_FULL] = 3, [TDC_LINK_KIND_REDUCED] = 3,
+                               [TDC_LINK_KIND_MOTION] = 3},
+                              TDC_LINK_STREAM_REDUCED | TDC_LINK_STREAM_MIRRORS};
+static stream_case_t k_subframes = {TDC_RSTREAM_SUBFRAMES, "discs", 8,
+                                    {[TDC_LINK_KIND_STREAM] = 1, [TDC_LINK_KIND_SUBFRAME] = 8,
+                                     [TDC_LINK_KIND_PATTERN] = 2, [TDC_LINK_KIND_MOTION] = 8},
+                                    TDC_LINK_STREAM_SUBFRAMES | TDC_LINK_STREAM_SAMPLE_MV};
 
-static void test_subframe_stream(void **state)
+static void test_stream(void **state)
 {
-    (void)state;
-    uint32_t e[TDC_LINK_KIND_LAST + 1] = {0}, flags;
-    e[TDC_LINK_KIND_STREAM] = 1;
-    e[TDC_LINK_KIND_SUBFRAME] = 8;
-    e[TDC_LINK_KIND_PATTERN] = 2;
-    e[TDC_LINK_KIND_MOTION] = 8;
-    run(TDC_RSTREAM_SUBFRAMES, "discs", 8, e, &flags);
-    assert_true((flags & TDC_LINK_STREAM_SUBFRAMES) && (flags & TDC_LINK_STREAM_SAMPLE_MV));
+    const stream_case_t *c = *state;
+    uint32_t flags;
+    run(c->kind, c->scene, c->frames, c->expect, &flags);
+    assert_int_equal(flags & c->flags, c->flags);
 }
 
 static void test_static_stream(void **state)
@@ -319,9 +314,9 @@ static void test_layered_streams(void **state)
 }
 
 TDC_TEST_MAIN(
-    cmocka_unit_test(test_full_stream),
-    cmocka_unit_test(test_trm_stream),
-    cmocka_unit_test(test_subframe_stream),
+    cmocka_unit_test_prestate(test_stream, &k_full),
+    cmocka_unit_test_prestate(test_stream, &k_trm),
+    cmocka_unit_test_prestate(test_stream, &k_subframes),
     cmocka_unit_test(test_static_stream),
     cmocka_unit_test(test_layered_streams),
 )
