@@ -293,14 +293,22 @@ static void expect_refused(const uint8_t *bad, size_t nbad, tdc_link_err_t err, 
 }
 
 #define FOV TDC_LINK_STREAM_FOVEATED
+/* The refusal tests' packet: gaze at the centre, alpha 4, disk 4077/32768,
+ * its geometry in g and its samples filled. */
+static tdc_fov_params_t refusal_setup(tdc_fov_geom_t *g)
+{
+    const tdc_fov_params_t p = params(W * 128, H * 128, 1024, 4077);
+    assert_int_equal(tdc_fov_geom(g, W, H, &p), TDC_OK);
+    fill_samples(g, 1, 0);
+    return p;
+}
+
 static void test_refusals_packet_header(void **state)
 {
     (void)state;
     const tdc_link_encoder_t enc = encoder(FOV, 1);
-    const tdc_fov_params_t p = params(W * 128, H * 128, 1024, 4077);
     tdc_fov_geom_t g;
-    assert_int_equal(tdc_fov_geom(&g, W, H, &p), TDC_OK);
-    fill_samples(&g, 1, 0);
+    const tdc_fov_params_t p = refusal_setup(&g);
     size_t n;
     /* a pixel format other than RGB888 */
     n = raw_foveated(&enc, 0, 1, &p, 0, -1, 0, 0, TDC_PIXFMT_RGB565, W);
@@ -369,10 +377,8 @@ static void test_refusals_foveation_header(void **state)
 {
     (void)state;
     const tdc_link_encoder_t enc = encoder(FOV, 1);
-    const tdc_fov_params_t p = params(W * 128, H * 128, 1024, 4077);
     tdc_fov_geom_t g;
-    assert_int_equal(tdc_fov_geom(&g, W, H, &p), TDC_OK);
-    fill_samples(&g, 1, 0);
+    const tdc_fov_params_t p = refusal_setup(&g);
     const uint8_t F = TDC_PIXFMT_RGB888;
     size_t n;
     const tdc_link_err_t E = TDC_LINK_ERR_FOVEATION;
@@ -434,10 +440,8 @@ static void test_refusals_buffers_and_sequence(void **state)
 {
     (void)state;
     const tdc_link_encoder_t enc = encoder(FOV, 2);
-    const tdc_fov_params_t p = params(W * 128, H * 128, 1024, 4077);
     tdc_fov_geom_t g;
-    assert_int_equal(tdc_fov_geom(&g, W, H, &p), TDC_OK);
-    fill_samples(&g, 1, 0);
+    const tdc_fov_params_t p = refusal_setup(&g);
     size_t n;
     /* vectors for a build without the TAA buffer */
     n = tdc_link_encode_foveated(&enc, pkt, sizeof pkt, 0, 1, &p, DELTA_Q15, samples, mvs, NULL);

@@ -74,7 +74,9 @@ static uint32_t decode_file(const char *path, uint32_t by_kind[TDC_LINK_KIND_LAS
     return c->packets_ok;
 }
 
-static tdc_render_t *open_scene(const char *name)
+/* Built-in scene name at W x H; layered: with the shadow and dual vectors
+ * the layers need, indirect light when indirect. */
+static tdc_render_t *open_scene(const char *name, int layered, int indirect)
 {
     char err[256];
     assert_int_equal(tdc_scene_builtin(name, &sc, err, sizeof err), TDC_SCENE_OK);
@@ -82,6 +84,8 @@ static tdc_render_t *open_scene(const char *name)
     tdc_render_default_config(&cfg);
     cfg.width = W;
     cfg.height = H;
+    cfg.shadow_mv = cfg.dual_mv = layered;
+    cfg.indirect = indirect;
     tdc_render_t *r = tdc_render_open(&sc, &cfg, err, sizeof err);
     assert_non_null(r);
     return r;
@@ -94,7 +98,7 @@ static void run(tdc_rstream_kind_t kind, const char *scene, int frames, const ui
     int fd = mkstemp(path);
     assert_true(fd >= 0);
     close(fd);
-    tdc_render_t *r = open_scene(scene);
+    tdc_render_t *r = open_scene(scene, 0, 0);
     char err[256];
     tdc_render_stream_t *s = tdc_render_stream_create(path, r, kind, err, sizeof err);
     if (!s) fail_msg("%s", err);
@@ -222,15 +226,7 @@ static void layered(const char *scene, int frames, uint32_t want_set, int indire
     assert_true(fd >= 0);
     close(fd);
     char err[256];
-    assert_int_equal(tdc_scene_builtin(scene, &sc, err, sizeof err), TDC_SCENE_OK);
-    tdc_render_config_t cfg;
-    tdc_render_default_config(&cfg);
-    cfg.width = W;
-    cfg.height = H;
-    cfg.shadow_mv = cfg.dual_mv = 1;
-    cfg.indirect = indirect;
-    tdc_render_t *r = tdc_render_open(&sc, &cfg, err, sizeof err);
-    assert_non_null(r);
+    tdc_render_t *r = open_scene(scene, 1, indirect);
     tdc_render_stream_t *s = tdc_render_stream_create(path, r, TDC_RSTREAM_LAYERS, err, sizeof err);
     if (!s) fail_msg("%s", err);
     uint32_t set = tdc_render_stream_layer_set(s), flags = tdc_render_stream_flags(s);
