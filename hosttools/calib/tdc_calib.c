@@ -60,6 +60,17 @@ static row_t *g_rows;
 static int g_nrows;
 
 /* Mean luminance of the rows (rate, ch, a, b); NAN if none. */
+/* The first measured row at or after index i taken at rate (g_nrows: none):
+ * the fits visit one rate's rows with
+ *   for (int i = next_row(rate, 0); i < g_nrows; i = next_row(rate, i + 1)) */
+static int next_row(int rate, int i)
+{
+    while (i < g_nrows && g_rows[i].rate != rate) {
+        i++;
+    }
+    return i;
+}
+
 static double lookup(int rate, int ch, int a, int b)
 {
     double s = 0.0;
@@ -178,11 +189,8 @@ static int solve4(double A[4][4], double y[4], double x[4])
 static double lum_sse(int rate, const double p[4], const double gamma[3])
 {
     double s = 0.0;
-    for (int i = 0; i < g_nrows; i++) {
+    for (int i = next_row(rate, 0); i < g_nrows; i = next_row(rate, i + 1)) {
         const row_t *w = &g_rows[i];
-        if (w->rate != rate) {
-            continue;
-        }
         double mm = tdc_lcdm_M(p, w->a / g_max, w->b / g_max);
         double e = pow(mm < 0.0 ? 0.0 : (mm > 1.0 ? 1.0 : mm), gamma[w->ch]) - norm_lum(w);
         s += e * e;
@@ -346,11 +354,8 @@ int main(int argc, char **argv)
     for (int r = 0; r < g_nr; r++) {
         double A[4][4] = {{0}}, y[4] = {0};
         int n = 0;
-        for (int i = 0; i < g_nrows; i++) {
+        for (int i = next_row(g_rates[r], 0); i < g_nrows; i = next_row(g_rates[r], i + 1)) {
             const row_t *w = &g_rows[i];
-            if (w->rate != g_rates[r]) {
-                continue;
-            }
             double a = w->a / g_max, b = w->b / g_max;
             double yn = norm_lum(w);
             double m = pow(yn < 0.0 ? 0.0 : (yn > 1.0 ? 1.0 : yn), 1.0 / gamma[w->ch]);
@@ -372,11 +377,8 @@ int main(int argc, char **argv)
         double cur = lum_sse(g_rates[r], p[r], gamma);
         for (int it = 0; it < 50; it++) {
             double JA[4][4] = {{0}}, Jy[4] = {0}, step[4];
-            for (int i = 0; i < g_nrows; i++) {
+            for (int i = next_row(g_rates[r], 0); i < g_nrows; i = next_row(g_rates[r], i + 1)) {
                 const row_t *w = &g_rows[i];
-                if (w->rate != g_rates[r]) {
-                    continue;
-                }
                 double a = w->a / g_max, b = w->b / g_max, yn = norm_lum(w);
                 double mm = tdc_lcdm_M(p[r], a, b);
                 if (mm <= 1e-6) {
@@ -424,11 +426,8 @@ int main(int argc, char **argv)
             }
         }
         double sl = 0.0, sm = 0.0, sp = 0.0;
-        for (int i = 0; i < g_nrows; i++) {
+        for (int i = next_row(g_rates[r], 0); i < g_nrows; i = next_row(g_rates[r], i + 1)) {
             const row_t *w = &g_rows[i];
-            if (w->rate != g_rates[r]) {
-                continue;
-            }
             double a = w->a / g_max, b = w->b / g_max, yn = norm_lum(w);
             double mm = tdc_lcdm_M(p[r], a, b);
             double ym = pow(mm < 0.0 ? 0.0 : (mm > 1.0 ? 1.0 : mm), gamma[w->ch]);
