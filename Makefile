@@ -168,24 +168,15 @@ $(B)/firmware/%.o: firmware/%.c $(GEN)/tdc_panels.h | $$(FW_GEN_HEADERS)
 $(B)/gen/%.o: $(GEN)/%.c
 	@mkdir -p $(@D)
 	$(CC) $(FW_CFLAGS) -c $< -o $@
-$(B)/sim/%.o: sim/%.c $(GEN)/tdc_panels.h
-	@mkdir -p $(@D)
-	$(CC) $(HOST_CFLAGS) -MMD -MP -c $< -o $@
-$(B)/common/%.o: common/%.c $(GEN)/tdc_panels.h
-	@mkdir -p $(@D)
-	$(CC) $(HOST_CFLAGS) -MMD -MP -c $< -o $@
-$(B)/ref/%.o: ref/%.c $(GEN)/tdc_panels.h
-	@mkdir -p $(@D)
-	$(CC) $(HOST_CFLAGS) -MMD -MP -c $< -o $@
-$(B)/render/%.o: render/%.c $(GEN)/tdc_panels.h
-	@mkdir -p $(@D)
-	$(CC) $(HOST_CFLAGS) -MMD -MP -c $< -o $@
-$(B)/hosttools/%.o: hosttools/%.c $(GEN)/tdc_panels.h
-	@mkdir -p $(@D)
-	$(CC) $(HOST_CFLAGS) -MMD -MP -c $< -o $@
-$(B)/tests/%.o: tests/%.c $(GEN)/tdc_panels.h
-	@mkdir -p $(@D)
-	$(CC) $(HOST_CFLAGS) -MMD -MP -c $< -o $@
+# Host code, one rule per source folder (they differ in nothing but the
+# folder; a fragment adds flags per folder, e.g. $(B)/hosttools/usb/%.o).
+HOST_SRC_DIRS := sim common ref render hosttools tests
+define HOST_OBJ_RULE
+$$(B)/$(1)/%.o: $(1)/%.c $$(GEN)/tdc_panels.h
+	@mkdir -p $$(@D)
+	$$(CC) $$(HOST_CFLAGS) -MMD -MP -c $$< -o $$@
+endef
+$(foreach d,$(HOST_SRC_DIRS),$(eval $(call HOST_OBJ_RULE,$(d))))
 
 # The archives also depend on their object lists, so adding or removing a
 # source (or building with another list) rebuilds them.
