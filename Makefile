@@ -76,7 +76,7 @@ FW_CFLAGS := $(FW_WARN) $(OPT) -g $(SAN_FLAGS) $(FW_NOFLOAT) -ffunction-sections
 
 # Host code (sim, tests, tools): may use double, libc, libraries.
 HOST_CFLAGS := -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror -Wvla -Wshadow $(OPT) -g $(SAN_FLAGS) \
-               -Ifirmware -I$(GEN) -Isim -Itests
+               -Ifirmware -I$(GEN) -Icommon -Isim -Iref -I. -Itests
 HOST_LDFLAGS := $(SAN_FLAGS)
 HOST_LIBS := -lcmocka -lpng -lm -lpthread
 
@@ -140,9 +140,9 @@ deps:
 # ---------------------------------------------------------------------------
 # Generated tables: one C file + config header per panel profile.
 # ---------------------------------------------------------------------------
-$(TABLEGEN): hosttools/tablegen/tdc_tablegen.c hosttools/common/tdc_tool.c firmware/tdc_math.c $(wildcard hosttools/tablegen/*.h) \
-             hosttools/common/tdc_tool.h | $(BUILD)/tools
-	gcc -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror -O2 -Ifirmware -Ihosttools/common $(filter %.c,$^) -o $@ -lm
+$(TABLEGEN): hosttools/tablegen/tdc_tablegen.c common/tdc_tool.c firmware/tdc_math.c $(wildcard hosttools/tablegen/*.h) \
+             common/tdc_tool.h | $(BUILD)/tools
+	gcc -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror -O2 -Ifirmware -Icommon $(filter %.c,$^) -o $@ -lm
 
 $(GEN)/tdc_panel_%.c $(GEN)/tdc_panel_%_config.h: boards/panels/%.panel $(TABLEGEN) | $(GEN)
 	$(TABLEGEN) $< $(GEN)
@@ -168,15 +168,15 @@ $(B)/firmware/%.o: firmware/%.c $(GEN)/tdc_panels.h | $$(FW_GEN_HEADERS)
 $(B)/gen/%.o: $(GEN)/%.c
 	@mkdir -p $(@D)
 	$(CC) $(FW_CFLAGS) -c $< -o $@
-$(B)/sim/%.o: sim/%.c $(GEN)/tdc_panels.h
-	@mkdir -p $(@D)
-	$(CC) $(HOST_CFLAGS) -MMD -MP -c $< -o $@
-$(B)/hosttools/%.o: hosttools/%.c $(GEN)/tdc_panels.h
-	@mkdir -p $(@D)
-	$(CC) $(HOST_CFLAGS) -MMD -MP -c $< -o $@
-$(B)/tests/%.o: tests/%.c $(GEN)/tdc_panels.h
-	@mkdir -p $(@D)
-	$(CC) $(HOST_CFLAGS) -MMD -MP -c $< -o $@
+# Host code, one rule per source folder (they differ in nothing but the
+# folder; a fragment adds flags per folder, e.g. $(B)/hosttools/usb/%.o).
+HOST_SRC_DIRS := sim common ref render hosttools tests
+define HOST_OBJ_RULE
+$$(B)/$(1)/%.o: $(1)/%.c $$(GEN)/tdc_panels.h
+	@mkdir -p $$(@D)
+	$$(CC) $$(HOST_CFLAGS) -MMD -MP -c $$< -o $$@
+endef
+$(foreach d,$(HOST_SRC_DIRS),$(eval $(call HOST_OBJ_RULE,$(d))))
 
 # The archives also depend on their object lists, so adding or removing a
 # source (or building with another list) rebuilds them.

@@ -1,7 +1,7 @@
 /*
  * tdc_fov.c - foveated remap to Cartesian with the radial blur, the disk
  * composite and peripheral TAA.  The equations and formats are in
- * tdc_fov.h; the double-precision reference is sim/ref_fov.c.
+ * tdc_fov.h; the double-precision reference is ref/ref_fov.c.
  *
  * Scaling and overflow (every product is checked here once):
  *   display coordinates Q8, |x'| < 3 * 8192 * 256 < 2^23, so |x'|^2 (Q16) < 2^47

@@ -31,7 +31,7 @@
  *
  * Note on eq. 2.3 as printed (x = e^(A K(u)) cos(Bv) + x^, A = L/w): it is the
  * inverse of eq. 2.2 only for K(x) = x.  The exact inverse, used by the
- * renderer (sim/render) and the reference (sim/ref_fov.c), is
+ * renderer (render) and the reference (ref/ref_fov.c), is
  * r = e^(L K(u / w)), which equals the printed form at alpha = 1.
  *
  * Coordinates: the screen is [0, W] x [0, H]; pixel (i, j) has its centre at

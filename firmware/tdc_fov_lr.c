@@ -2,7 +2,7 @@
  * tdc_fov_lr.c - log-rectilinear foveation: the separable warp and the
  * periphery sample of the stage (equations, Q formats and the scaling and
  * overflow note in tdc_fov_lr.h; double-precision reference
- * sim/ref_fov_lr.c).  The disk composite and the peripheral TAA are
+ * ref/ref_fov_lr.c).  The disk composite and the peripheral TAA are
  * tdc_fov.c's: tdc_fov_frame calls tdc_fov_lr_begin / _row / _sample in
  * place of the kernel log-polar sampling when the frame's transform says so.
  * Rounding: half up at every shift and division.

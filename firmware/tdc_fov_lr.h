@@ -29,7 +29,7 @@
  * at (u - 1/2, v - 1/2), clamped to [0, n - 1] on each axis.
  *
  * The foveal scale k is the sender's choice (header field, 1 <= k < 4096 px).
- * The sender's default (sim/ref_fov_lr.c ref_fov_lr_k) solves
+ * The sender's default (ref/ref_fov_lr.c ref_fov_lr_k) solves
  * k * S(k) * ln2 = n, which makes du/dx = 1 at the gaze: one texel per
  * display pixel there, the density falling to k / (k + |d|) away from it.
  * The foveal disk (radius disk * R, R = distance to the farthest corner),

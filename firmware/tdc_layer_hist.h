@@ -2,7 +2,7 @@
  * tdc_layer_hist.h - exponential history per layer (Zeng et al. eq. 2,
  * alpha = 0.1; eq. 4's alpha^V from the link's falloff weights), the
  * controller's side of what the double-precision reference (sim/zeng/,
- * sim/ref_layer_hist.c) shows the layered path needs: with one reprojected
+ * ref/ref_layer_hist.c) shows the layered path needs: with one reprojected
  * sample and no history (tdc_layers.h), a 1-sample layer stays as noisy as
  * it arrives; eq. 2 averages ~1/alpha frames along the layer's own vectors.
  *

@@ -6,7 +6,7 @@ FW_SRCS += firmware/tdc_fov.c firmware/tdc_fov_rows.c firmware/tdc_fov_lr.c firm
 # C kernel except on BOARD_MVE boards); checked against C by tests/checkasm
 FW_SRCS += firmware/tdc_fov_avx2.c firmware/tdc_fov_mve.c
 $(B)/firmware/tdc_fov_avx2.o: FW_CFLAGS := $(filter-out -mgeneral-regs-only,$(FW_CFLAGS))
-SIM_SRCS += sim/ref_fov.c sim/ref_fov_lr.c
+SIM_SRCS += ref/ref_fov.c ref/ref_fov_lr.c
 # foveated error statistics (eccentricity weighting, FLIP's weighted median) for the simulator
 FOV_METRICS_OBJ = $(B)/sim/metrics/tdc_fov_metrics.o $(B)/sim/metrics/tdc_filter.o
 TESTS += $(B)/tests/unit/test_fov_metrics
@@ -21,8 +21,8 @@ $(B)/check-fw-rules: $(GEN)/tdc_fov_tables.h
 
 # Own link rules: the fov tests need only these objects.
 FOV_OBJS = $(B)/firmware/tdc_fov.o $(B)/firmware/tdc_fov_rows.o $(B)/firmware/tdc_fov_lr.o $(B)/firmware/tdc_fov_avx2.o $(B)/firmware/tdc_fov_mve.o \
-           $(B)/firmware/tdc_fov_link.o $(B)/firmware/tdc_math.o $(B)/firmware/tdc_math_log2.o $(B)/sim/ref_fov.o \
-           $(B)/sim/ref_fov_lr.o
+           $(B)/firmware/tdc_fov_link.o $(B)/firmware/tdc_math.o $(B)/firmware/tdc_math_log2.o $(B)/ref/ref_fov.o \
+           $(B)/ref/ref_fov_lr.o
 FOV_TESTS := test_fov test_fov_ref test_fov_link test_fov_lr
 TESTS += $(foreach t,$(FOV_TESTS),$(B)/tests/unit/$(t))
 $(foreach t,$(FOV_TESTS),$(B)/tests/unit/$(t)): $(B)/tests/unit/%: $(B)/tests/unit/%.o $(FOV_OBJS)

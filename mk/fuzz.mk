@@ -12,7 +12,7 @@ FUZZ_SMOKE_SECONDS ?= 8
 FUZZ_DIR := $(BUILD)/fuzz
 FUZZ_FLAGS := -std=c11 -D_GNU_SOURCE -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
               -fsanitize-coverage-ignorelist=tests/fuzz/nocov.txt \
-              -Ifirmware -I$(GEN) -Isim -Ihosttools/common
+              -Ifirmware -I$(GEN) -Isim -Iref -Icommon
 # the link decoder and what it calls (FOVEATED packets: the foveation header and geometry)
 LINK_FW_SRCS := firmware/tdc_wire.c firmware/tdc_link.c firmware/tdc_pixfmt.c firmware/tdc_crc32.c firmware/tdc_layer_link.c \
                 firmware/tdc_band_link.c \
@@ -26,15 +26,15 @@ FUZZ_SRCS_link := tests/fuzz/fuzz_link.c $(LINK_FW_SRCS)
 FUZZ_SRCS_usbproto := tests/fuzz/fuzz_usbproto.c firmware/tdc_usbproto.c firmware/tdc_crc32.c
 FUZZ_SRCS_usbreply := tests/fuzz/fuzz_usbreply.c hosttools/usb/tdc_usb_reply.c
 FUZZ_CFLAGS_usbreply := -Ihosttools/usb
-FUZZ_SRCS_panel := tests/fuzz/fuzz_panel.c hosttools/common/tdc_tool.c
+FUZZ_SRCS_panel := tests/fuzz/fuzz_panel.c common/tdc_tool.c
 FUZZ_DEPS_panel := hosttools/tablegen/tdc_tablegen.c
 FUZZ_LIBS_panel := -lm
 # the .tdcs reader with a small compiled maximum (a 96 x 64 board)
-FUZZ_SRCS_tdcs := tests/fuzz/fuzz_tdcs.c sim/link/tdc_link_file.c firmware/tdc_link_encode.c $(LINK_FW_SRCS)
+FUZZ_SRCS_tdcs := tests/fuzz/fuzz_tdcs.c common/tdc_link_file.c firmware/tdc_link_encode.c $(LINK_FW_SRCS)
 FUZZ_CFLAGS_tdcs := -DTDC_PANEL_WIDTH=96 -DTDC_PANEL_HEIGHT=64
-FUZZ_SRCS_scene := tests/fuzz/fuzz_scene.c sim/render/tdc_scene_parse.c hosttools/common/tdc_tool.c
-FUZZ_DEPS_scene := sim/render/tdc_render_geom.c
-FUZZ_CFLAGS_scene := -Isim/render
+FUZZ_SRCS_scene := tests/fuzz/fuzz_scene.c render/tdc_scene_parse.c common/tdc_tool.c
+FUZZ_DEPS_scene := render/tdc_render_geom.c
+FUZZ_CFLAGS_scene := -Irender
 FUZZ_LIBS_scene := -lembree3 -lm
 # the board frame loop for a 16 x 8 stereo OLED panel with TRM, tile assembly and foveation (with TAA), built as on a board:
 # without the x86 AVX2 kernels (TDC_NO_SIMD), whose encode index TRM built at every stream start
@@ -48,8 +48,8 @@ FUZZ_CFLAGS_frameloop := -Ifirmware/board -DTDC_PANEL_NAME='"fuzz"' -DTDC_PANEL_
     -DTDC_PANEL_IS_LCD=0 -DTDC_CFG_TRM=1 -DTDC_CFG_ASSEMBLE=1 -DTDC_CFG_FOV=1 -DTDC_FW_NO_MAIN -DTDC_NO_SIMD
 FUZZ_CORPUS_link := tests/fuzz/corpus
 # the LCD measurement reader and the transition fit's checks (hosttools/calib)
-FUZZ_SRCS_meas := tests/fuzz/fuzz_meas.c hosttools/calib/tdc_meas.c \
-                  hosttools/common/tdc_tool.c
+FUZZ_SRCS_meas := tests/fuzz/fuzz_meas.c common/tdc_meas.c \
+                  common/tdc_tool.c
 FUZZ_LIBS_meas := -lm
 # the foveated packet's kind-specific path: header, payload length, unpack, the stage with TAA
 # (seeds: make fuzz-seeds-fov, mk/fov.mk)
@@ -74,7 +74,7 @@ FUZZ_NOCMP_meas := hosttools/calib/tdc_calib_trans.c
 FUZZ_NOCMP_frameloop := firmware/tdc_trm.c firmware/tdc_assemble.c firmware/tdc_ordering.c firmware/tdc_trm_gaze.c
 
 define fuzz_target
-$(FUZZ_DIR)/fuzz_$(1): $(FUZZ_SRCS_$(1)) $(FUZZ_NOCMP_$(1)) $(FUZZ_DEPS_$(1)) $(wildcard firmware/*.h sim/link/*.h sim/render/*.h) \
+$(FUZZ_DIR)/fuzz_$(1): $(FUZZ_SRCS_$(1)) $(FUZZ_NOCMP_$(1)) $(FUZZ_DEPS_$(1)) $(wildcard firmware/*.h sim/link/*.h render/*.h) \
                        $(GEN)/tdc_crc32_tables.h $(GEN)/tdc_fov_tables.h $(GEN)/tdc_trm_tables.h $(GEN)/tdc_panels.h \
                        tests/fuzz/nocov.txt
 	@mkdir -p $$(@D)/obj-$(1)
@@ -113,7 +113,7 @@ FUZZ_SEEDS_BIN := $(FUZZ_DIR)/make_seeds
 $(FUZZ_SEEDS_BIN): tests/fuzz/make_seeds.c sim/link/tdc_link_gen.c firmware/tdc_link_encode.c $(LINK_FW_SRCS) $(GEN)/tdc_crc32_tables.h \
                    $(GEN)/tdc_fov_tables.h
 	@mkdir -p $(@D)
-	gcc -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror -O2 -Ifirmware -Isim -I$(GEN) $(filter %.c,$^) -o $@
+	gcc -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror -O2 -Ifirmware -Isim -Iref -I$(GEN) $(filter %.c,$^) -o $@
 fuzz-seeds: $(FUZZ_SEEDS_BIN)
 	@mkdir -p tests/fuzz/corpus
 	$(FUZZ_SEEDS_BIN) tests/fuzz/corpus

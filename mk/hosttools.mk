@@ -22,13 +22,13 @@ $(B)/tests/usb/%.o: HOST_CFLAGS += $(UMOCKDEV_CFLAGS) -DTDC_USB_BIN='"$(abspath 
 
 TDC_USB_OBJS = $(B)/hosttools/usb/tdc_usb.o $(B)/hosttools/usb/tdc_usb_dev.o $(B)/hosttools/usb/tdc_usb_dfu.o \
                $(B)/hosttools/usb/tdc_usb_reply.o \
-               $(B)/hosttools/common/tdc_tool.o
+               $(B)/common/tdc_tool.o
 $(TDC_USB): $(TDC_USB_OBJS) $(FWLIB)
 	@mkdir -p $(@D)
 	$(CC) $(HOST_LDFLAGS) $(TDC_USB_OBJS) -o $@ $(FWLIB) $(LIBUSB_LIBS)
 
 TDC_GPIO_OBJS = $(B)/hosttools/gpio/tdc_gpio.o $(B)/hosttools/gpio/tdc_gpio_chip.o \
-                $(B)/hosttools/gpio/tdc_vsync_stats.o $(B)/hosttools/common/tdc_tool.o
+                $(B)/hosttools/gpio/tdc_vsync_stats.o $(B)/common/tdc_tool.o
 $(TDC_GPIO): $(TDC_GPIO_OBJS)
 	@mkdir -p $(@D)
 	$(CC) $(HOST_LDFLAGS) $(TDC_GPIO_OBJS) -o $@ $(GPIOD_LIBS) -lm

@@ -2,7 +2,7 @@
 # layered test stream, tests, golden vectors, benchmark.  The link kind is in
 # mk/link.mk (firmware/tdc_layer_link.c).
 FW_SRCS += firmware/tdc_layers.c
-SIM_SRCS += sim/ref_layers.c
+SIM_SRCS += ref/ref_layers.c
 GOLDEN_COMMON += tests/golden/tdc_layer_content.c
 GOLDEN_STAGES += layers
 

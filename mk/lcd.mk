@@ -8,19 +8,19 @@ FW_SRCS += $(FW_LCD_SRCS)
 SIM_SRCS += sim/lcd/tdc_lcdsim.c sim/lcd/tdc_lcd_ref.c
 
 # The overdrive tables are generated from the double-precision model.
-$(TABLEGEN): sim/lcd/tdc_lcd_model.h firmware/tdc_lcd.h
+$(TABLEGEN): common/tdc_lcd_model.h firmware/tdc_lcd.h
 
 # Host programs: the simulated Fig. 7 measurement and the calibration fit.
 TDC_LCD_MEASURE := $(B)/bin/tdc-lcd-measure
 TDC_CALIB := $(B)/bin/tdc-calib
 HOST_PROGS += $(TDC_LCD_MEASURE) $(TDC_CALIB)
 # The measurement-file reader (tdc_meas) is shared by both and the fuzz target.
-TDC_MEAS_OBJ := $(B)/hosttools/calib/tdc_meas.o
+TDC_MEAS_OBJ := $(B)/common/tdc_meas.o
 $(TDC_LCD_MEASURE): $(B)/sim/lcd/tdc_lcd_measure.o $(TDC_MEAS_OBJ) $(SIMLIB)
 	@mkdir -p $(@D)
 	$(CC) $(HOST_LDFLAGS) $(filter %.o,$^) -o $@ $(SIMLIB) -lm
 $(TDC_CALIB): $(B)/hosttools/calib/tdc_calib.o $(B)/hosttools/calib/tdc_calib_trans.o $(TDC_MEAS_OBJ) \
-              $(B)/hosttools/common/tdc_tool.o
+              $(B)/common/tdc_tool.o
 	@mkdir -p $(@D)
 	$(CC) $(HOST_LDFLAGS) $^ -o $@ -lm
 

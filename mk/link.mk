@@ -1,5 +1,5 @@
 # Link protocol (docs/link-protocol.md): firmware decoder, CRC-32, pixel
-# formats; host encoder and .tdcs stream files; tests, golden, fuzz, bench.
+# formats; host encoder (.tdcs stream files: mk/common.mk); tests, golden, fuzz, bench.
 
 # CRC-32 tables generated at build time (never typed by hand).
 CRC32_GEN := $(BUILD)/tools/tdc-crc32-gen
@@ -11,7 +11,7 @@ FW_GEN_HEADERS += $(GEN)/tdc_crc32_tables.h
 
 FW_SRCS += firmware/tdc_crc32.c firmware/tdc_pixfmt.c firmware/tdc_wire.c firmware/tdc_link.c firmware/tdc_link_encode.c firmware/tdc_layer_link.c \
             firmware/tdc_band_link.c
-SIM_SRCS += sim/link/tdc_link_file.c sim/link/tdc_pixfmt_ref.c sim/link/tdc_link_gen.c
+SIM_SRCS += sim/link/tdc_pixfmt_ref.c sim/link/tdc_link_gen.c
 
 # Fuzzing of the decoder (and of every other parser), and the decoder's
 # source list LINK_FW_SRCS: mk/fuzz.mk.

@@ -1,10 +1,10 @@
 # Companion CPU renderer on Embree 3 (issue 6): library, tdc-render, tests, bench.
 # Other components link it with: $(RENDERLIB) ... $(RENDER_LDLIBS)
 DEPS_PKGS += libembree-dev
-RENDER_SRCS := sim/render/tdc_scene_parse.c sim/render/tdc_scene_anim.c sim/render/tdc_scene_builtin.c \
-               sim/render/tdc_render_core.c sim/render/tdc_render_geom.c sim/render/tdc_render_texture.c \
-               sim/render/tdc_render_trace.c sim/render/tdc_render_frame.c sim/render/tdc_render_stream.c \
-               sim/render/tdc_render_fov.c sim/render/tdc_render_cones.c sim/render/tdc_render_indirect.c
+RENDER_SRCS := render/tdc_scene_parse.c render/tdc_scene_anim.c render/tdc_scene_builtin.c \
+               render/tdc_render_core.c render/tdc_render_geom.c render/tdc_render_texture.c \
+               render/tdc_render_trace.c render/tdc_render_frame.c render/tdc_render_stream.c \
+               render/tdc_render_fov.c render/tdc_render_cones.c render/tdc_render_indirect.c
 RENDER_OBJS = $(patsubst %.c,$(B)/%.o,$(RENDER_SRCS))
 RENDER_LDLIBS := -lembree3
 
@@ -13,7 +13,7 @@ $(B)/libtdcrender.a: $(RENDER_OBJS)
 	ar rcs $@ $^
 
 HOST_PROGS += $(TDC_RENDER)
-$(TDC_RENDER): $(B)/sim/render/tdc_render_main.o $(B)/libtdcrender.a $(SIMLIB) $(FWLIB)
+$(TDC_RENDER): $(B)/render/tdc_render_main.o $(B)/libtdcrender.a $(SIMLIB) $(FWLIB)
 	$(CC) $(HOST_LDFLAGS) $< -o $@ $(RENDERLIB) $(SIMLIB) $(FWLIB) $(RENDER_LDLIBS) $(HOST_LIBS)
 
 RENDER_TESTS := test_render_scene test_render_mv test_render_gt test_render_stream test_render_fov test_render_cones test_render_texture

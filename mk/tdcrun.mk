@@ -1,6 +1,5 @@
-# tdc-run (the firmware on anyone's PNG frames), PNG I/O, and the TRM part of
-# `make demo`.
-SIM_SRCS += sim/tdc_png.c
+# tdc-run (the firmware on anyone's PNG frames) and the TRM part of
+# `make demo` (PNG I/O: mk/common.mk).
 
 # tdc-run: the firmware on anyone's frames.  Other modes add their sources
 # to TDCRUN_SRCS (e.g. tile assembly: hosttools/tdcrun/run_assemble.c).

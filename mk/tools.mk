@@ -1,12 +1,8 @@
 # The one tool convention (issue 12 item 4, docs/tools.md): exit-code table,
 # "tool: command: what: why" messages, overflow-checked number parsing,
 # bounded line reading and rename-on-success output files, shared by every
-# host program.  In SIMLIB, so every program and test linking it has it;
+# host program: common/tdc_tool.c, in the common library (mk/common.mk);
 # tdc-usb, tdc-gpio and the table generator name the object or source.
-TOOL_SRC := hosttools/common/tdc_tool.c
-TOOL_OBJ := $(B)/hosttools/common/tdc_tool.o
-SIM_SRCS += $(TOOL_SRC)
-HOST_CFLAGS += -Ihosttools/common
 TESTS += $(B)/tests/unit/test_tool
 
 # Error paths of tdc-linkdump, tdc-render and the table generator (both
@@ -25,10 +21,10 @@ $(B)/test-tool-conventions: tests/unit/test_tool_conventions.sh tests/unit/tool_
 	@chmod +x $@
 TESTS += $(B)/test-tool-conventions
 
-# The one exit-code table (hosttools/common/tdc_exit.h) against its copies:
+# The one exit-code table (common/tdc_exit.h) against its copies:
 # docs/tools.md, README, every code named in the docs, the Python tools.
-$(TABLEGEN): hosttools/common/tdc_exit.h
-$(B)/test-exit-table: tests/unit/test_exit_table.py tests/unit/tdc_check.py hosttools/common/tdc_exit.h hosttools/common/tdc_exit.py
+$(TABLEGEN): common/tdc_exit.h
+$(B)/test-exit-table: tests/unit/test_exit_table.py tests/unit/tdc_check.py common/tdc_exit.h common/tdc_exit.py
 	@mkdir -p $(@D)
 	@printf '#!/bin/sh\nexec /usr/bin/python3 tests/unit/test_exit_table.py\n' > $@
 	@chmod +x $@

@@ -1,7 +1,7 @@
 # TRM (docs/design.md §4.1): the stage, its double reference, row kernels (C and AVX2),
 # tests, golden vectors, benchmark.
 FW_SRCS += firmware/tdc_trm.c
-SIM_SRCS += sim/ref_trm.c
+SIM_SRCS += ref/ref_trm.c
 TESTS += $(B)/tests/unit/test_trm_ref
 TESTS += $(B)/tests/unit/test_trm
 TESTS += $(B)/tests/unit/test_trm_stability

@@ -2,7 +2,7 @@
 # fixed-point-vs-reference and bad-input tests, golden vectors of the on-state
 # (the off-state is TRM's own vectors, unchanged).
 FW_SRCS += firmware/tdc_trm_gaze.c
-SIM_SRCS += sim/ref_trm_gaze.c
+SIM_SRCS += ref/ref_trm_gaze.c
 TESTS += $(B)/tests/unit/test_trm_gaze
 GOLDEN_STAGES += trmgaze
 

@@ -26,7 +26,7 @@ tdc-zeng: $(TDC_ZENG)
 # The controller's side: exponential history per layer (eq. 2/4) in fixed
 # point, its double reference, the reference test, golden vectors.
 FW_SRCS += firmware/tdc_layer_hist.c
-SIM_SRCS += sim/ref_layer_hist.c
+SIM_SRCS += ref/ref_layer_hist.c
 GOLDEN_STAGES += lhist
 TESTS += $(B)/tests/unit/test_layer_hist
 $(B)/tests/unit/test_layer_hist: $(B)/tests/unit/test_layer_hist.o $(SIMLIB) $(FWLIB)

@@ -17,7 +17,7 @@
 
 #include <stdint.h>
 
-/* Exit codes: the shared table of docs/tools.md (hosttools/common/tdc_tool.h). */
+/* Exit codes: the shared table of docs/tools.md (common/tdc_tool.h). */
 enum {
     TDC_LX_EXIT_OK = 0,
     TDC_LX_EXIT_ARGS = 1,

@@ -30,7 +30,7 @@
  * The profile is written to OUT.panel.tmp.PID and renamed onto OUT.panel only
  * when everything succeeded: an error never truncates an existing profile.
  *
- * Exit codes (hosttools/common/tdc_tool.h): 0 OK, ARGS (1) bad command line,
+ * Exit codes (common/tdc_tool.h): 0 OK, ARGS (1) bad command line,
  * FILE (7) cannot read or write a file, INPUT (13) a measurement file is
  * malformed or cannot be fitted (the message says why).
  *
@@ -44,7 +44,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../../sim/lcd/tdc_lcd_model.h"
+#include "tdc_lcd_model.h"
 #include "tdc_calib_trans.h"
 #include "tdc_meas.h"
 #include "tdc_panel.h"
@@ -60,6 +60,17 @@ static row_t *g_rows;
 static int g_nrows;
 
 /* Mean luminance of the rows (rate, ch, a, b); NAN if none. */
+/* The first measured row at or after index i taken at rate (g_nrows: none):
+ * the fits visit one rate's rows with
+ *   for (int i = next_row(rate, 0); i < g_nrows; i = next_row(rate, i + 1)) */
+static int next_row(int rate, int i)
+{
+    while (i < g_nrows && g_rows[i].rate != rate) {
+        i++;
+    }
+    return i;
+}
+
 static double lookup(int rate, int ch, int a, int b)
 {
     double s = 0.0;
@@ -126,6 +137,21 @@ static double fit_gamma(int ch)
     return 0.5 * (lo + hi);
 }
 
+static void swap_d(double *a, double *b)
+{
+    const double t = *a;
+    *a = *b;
+    *b = t;
+}
+
+/* Swaps the n doubles at a and b (rows of a matrix, entries of vectors). */
+static void swap_n(double *a, double *b, int n)
+{
+    for (int k = 0; k < n; k++) {
+        swap_d(&a[k], &b[k]);
+    }
+}
+
 /* Solves the 4x4 system A x = y by Gaussian elimination with partial pivoting. */
 static int solve4(double A[4][4], double y[4], double x[4])
 {
@@ -139,14 +165,8 @@ static int solve4(double A[4][4], double y[4], double x[4])
         if (fabs(A[piv][c]) < 1e-12) {
             return -1;
         }
-        for (int k = 0; k < 4; k++) {
-            double t = A[c][k];
-            A[c][k] = A[piv][k];
-            A[piv][k] = t;
-        }
-        double t = y[c];
-        y[c] = y[piv];
-        y[piv] = t;
+        swap_n(A[c], A[piv], 4);
+        swap_d(&y[c], &y[piv]);
         for (int r = c + 1; r < 4; r++) {
             double f = A[r][c] / A[c][c];
             for (int k = c; k < 4; k++) {
@@ -169,11 +189,8 @@ static int solve4(double A[4][4], double y[4], double x[4])
 static double lum_sse(int rate, const double p[4], const double gamma[3])
 {
     double s = 0.0;
-    for (int i = 0; i < g_nrows; i++) {
+    for (int i = next_row(rate, 0); i < g_nrows; i = next_row(rate, i + 1)) {
         const row_t *w = &g_rows[i];
-        if (w->rate != rate) {
-            continue;
-        }
         double mm = tdc_lcdm_M(p, w->a / g_max, w->b / g_max);
         double e = pow(mm < 0.0 ? 0.0 : (mm > 1.0 ? 1.0 : mm), gamma[w->ch]) - norm_lum(w);
         s += e * e;
@@ -337,11 +354,8 @@ int main(int argc, char **argv)
     for (int r = 0; r < g_nr; r++) {
         double A[4][4] = {{0}}, y[4] = {0};
         int n = 0;
-        for (int i = 0; i < g_nrows; i++) {
+        for (int i = next_row(g_rates[r], 0); i < g_nrows; i = next_row(g_rates[r], i + 1)) {
             const row_t *w = &g_rows[i];
-            if (w->rate != g_rates[r]) {
-                continue;
-            }
             double a = w->a / g_max, b = w->b / g_max;
             double yn = norm_lum(w);
             double m = pow(yn < 0.0 ? 0.0 : (yn > 1.0 ? 1.0 : yn), 1.0 / gamma[w->ch]);
@@ -363,11 +377,8 @@ int main(int argc, char **argv)
         double cur = lum_sse(g_rates[r], p[r], gamma);
         for (int it = 0; it < 50; it++) {
             double JA[4][4] = {{0}}, Jy[4] = {0}, step[4];
-            for (int i = 0; i < g_nrows; i++) {
+            for (int i = next_row(g_rates[r], 0); i < g_nrows; i = next_row(g_rates[r], i + 1)) {
                 const row_t *w = &g_rows[i];
-                if (w->rate != g_rates[r]) {
-                    continue;
-                }
                 double a = w->a / g_max, b = w->b / g_max, yn = norm_lum(w);
                 double mm = tdc_lcdm_M(p[r], a, b);
                 if (mm <= 1e-6) {
@@ -415,11 +426,8 @@ int main(int argc, char **argv)
             }
         }
         double sl = 0.0, sm = 0.0, sp = 0.0;
-        for (int i = 0; i < g_nrows; i++) {
+        for (int i = next_row(g_rates[r], 0); i < g_nrows; i = next_row(g_rates[r], i + 1)) {
             const row_t *w = &g_rows[i];
-            if (w->rate != g_rates[r]) {
-                continue;
-            }
             double a = w->a / g_max, b = w->b / g_max, yn = norm_lum(w);
             double mm = tdc_lcdm_M(p[r], a, b);
             double ym = pow(mm < 0.0 ? 0.0 : (mm > 1.0 ? 1.0 : mm), gamma[w->ch]);
@@ -457,17 +465,9 @@ int main(int argc, char **argv)
                 int t = g_rates[i];
                 g_rates[i] = g_rates[j];
                 g_rates[j] = t;
-                for (int k = 0; k < 4; k++) {
-                    double d = p[i][k];
-                    p[i][k] = p[j][k];
-                    p[j][k] = d;
-                }
-                double d = rmse_lum[i];
-                rmse_lum[i] = rmse_lum[j];
-                rmse_lum[j] = d;
-                d = rmse_plain[i];
-                rmse_plain[i] = rmse_plain[j];
-                rmse_plain[j] = d;
+                swap_n(p[i], p[j], 4);
+                swap_d(&rmse_lum[i], &rmse_lum[j]);
+                swap_d(&rmse_plain[i], &rmse_plain[j]);
             }
         }
     }

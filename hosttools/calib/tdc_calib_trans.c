@@ -17,7 +17,7 @@
 #define MAX_CLASS_RMS 0.015
 #define MIN_GRID 5
 
-#define fail tdc_meas_errf
+#define fail tdc_errf
 
 typedef struct {
     int G;

@@ -23,7 +23,7 @@
 #include "tdc_trm.h"
 #include "tdc_tool.h"
 #include "tdc_lcd.h"
-#include "../../sim/lcd/tdc_lcd_model.h"
+#include "tdc_lcd_model.h"
 
 #define MAX_CODES 1024
 
@@ -342,7 +342,7 @@ static const double *lcd_coefs_for_rate(const profile_t *p, int rate)
 /*
  * Overdrive table of n x n deltas (convention in firmware/tdc_overdrive.h)
  * from the QUANTISED coefficients p_q24, through the double-precision
- * inverse of sim/lcd/tdc_lcd_model.h: the table and the exact firmware solve
+ * inverse of common/tdc_lcd_model.h: the table and the exact firmware solve
  * describe the same model.
  */
 static void gen_od_table(FILE *f, const char *decl, const int32_t p_q24[4], int n, int bits)

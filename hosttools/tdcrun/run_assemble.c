@@ -22,7 +22,7 @@
  *   then, if flag bit 0: ceil(tiles_x * tiles_y / 8) bytes of ordering bits
  *              (bit i & 7 of byte i >> 3 for tile i; 1 = bowtie)
  * `--write-stream` produces such a stream from the synthetic scenes of
- * sim/ref_assemble.c, so the tool can be tried without a renderer.
+ * ref/ref_assemble.c, so the tool can be tried without a renderer.
  */
 #include <errno.h>
 #include <getopt.h>

@@ -22,7 +22,7 @@ Commands:
         docs/results.md
 
 Defaults: --scale headset, --out build/experiments, -j = cores.
-Exit codes (the one table, hosttools/common/tdc_exit.h; docs/tools.md):
+Exit codes (the one table, common/tdc_exit.h; docs/tools.md):
 0 OK, 1 ARGS (bad command line, unknown group or scale), 13 INPUT (malformed
 sweep or claims script), 18 JOBS (a sweep job failed, a claims script
 raised, or a cached result is missing).
@@ -44,8 +44,9 @@ sys.path.insert(0, HERE)
 # the folder of the groups (tests point it at a temporary one)
 GROUPS_DIR = os.path.abspath(os.environ.get("TDC_EXPERIMENTS_DIR", HERE))
 import tdc_stats  # noqa: E402
-sys.path.insert(0, os.path.join(REPO, "hosttools", "common"))
+sys.path.insert(0, os.path.join(REPO, "common"))
 from tdc_exit import EXIT  # noqa: E402  (the one exit-code table)
+import tdc_argv  # noqa: E402  (the one command-line reader)
 
 SCALES = ("demo", "dev", "headset")
 EXIT_OK, EXIT_BAD_GROUP, EXIT_USAGE, EXIT_RUN_FAILED = EXIT.OK, EXIT.INPUT, EXIT.ARGS, EXIT.JOBS
@@ -404,24 +405,11 @@ def update_results(path, rows, out):
 
 
 def main(argv):
-    if len(argv) < 2 or argv[1] in ("-h", "--help"):
-        print(__doc__)
-        return EXIT_OK if len(argv) >= 2 else EXIT_USAGE
-    cmd, rest = argv[1], argv[2:]
-    opts, pos = {}, []
-    it = iter(rest)
-    for a in it:
-        if a in ("--scale", "--out", "-j", "--sim", "--report", "--results"):
-            v = next(it, None)
-            if v is None:
-                print("tdc-experiments: %s needs a value" % a, file=sys.stderr)
-                return EXIT_USAGE
-            opts[a] = v
-        elif a.startswith("-"):
-            print("tdc-experiments: unknown option '%s' (see --help)" % a, file=sys.stderr)
-            return EXIT_USAGE
-        else:
-            pos.append(a)
+    r = tdc_argv.command(argv, __doc__, "tdc-experiments",
+                         valued=("--scale", "--out", "-j", "--sim", "--report", "--results"))
+    if isinstance(r, int):
+        return r
+    cmd, opts, pos = r
     scale = opts.get("--scale", "headset")
     out = os.path.abspath(opts.get("--out", os.path.join(REPO, "build", "experiments")))
     if scale not in SCALES:

@@ -1,7 +1,6 @@
 /* tdc_image_read.c - PNG (libpng, via tdc_png) or JPEG (libjpeg) input. */
 #include "image/tdc_image_read.h"
 
-#include <errno.h>
 #include <setjmp.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -87,13 +86,12 @@ static int read_jpeg(FILE *f, const char *path, tdc_image_t *img, char *err, siz
 int tdc_image_read(const char *path, tdc_image_t *img, char *err, size_t errlen)
 {
     memset(img, 0, sizeof *img);
-    FILE *f = fopen(path, "rb");
+    unsigned char sig[8];
+    size_t n;
+    FILE *f = tdc_png_open_sig(path, sig, &n, err, errlen);
     if (!f) {
-        snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
         return -1;
     }
-    unsigned char sig[8];
-    size_t n = fread(sig, 1, sizeof sig, f);
     if (n == 0) {
         snprintf(err, errlen, "%s: empty file", path);
         fclose(f);

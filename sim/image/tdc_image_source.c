@@ -11,7 +11,7 @@
 #include <string.h>
 
 #include "image/tdc_image_read.h"
-#include "simulator/tdc_sim_codes.h"
+#include "tdc_sim_codes.h"
 
 typedef struct {
     int iw, ih;

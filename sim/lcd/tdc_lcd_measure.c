@@ -28,7 +28,7 @@
 #include <string.h>
 
 #include "lcd/tdc_lcdsim.h"
-#include "../../hosttools/calib/tdc_meas.h"
+#include "tdc_meas.h"
 #include "tdc_tool.h"
 
 static uint64_t g_rng = 0x9e3779b97f4a7c15ull;

@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "lcd/tdc_lcd_model.h"
+#include "tdc_lcd_model.h"
 
 int tdc_lcd_ref_init(tdc_lcd_ref_t *r, const double p[4], const double gamma[3], size_t n)
 {

@@ -2,7 +2,7 @@
  * tdc_lcd_ref.h - double-precision reference of the firmware LCD stage
  * (firmware/tdc_lcd.h), straight from the equations: per sub-pixel
  *   W = (w/255)^g, P = (W + E_{t-1}) / 2, m = P^(1/g),
- *   v = the inverse of M(v, d_{t-1}) = m (sim/lcd/tdc_lcd_model.h),
+ *   v = the inverse of M(v, d_{t-1}) = m (common/tdc_lcd_model.h),
  *   unreachable: residual += W + E_{t-1} - 2 M(v, d)^g, E_t = 2 M^g - E_{t-1};
  *   first frame: v with M(v, v) = w/255, E = W.
  */

@@ -6,27 +6,18 @@
 
 #include <ctype.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-static int fail(char *err, size_t errlen, const char *fmt, ...)
-{
-    if (err && errlen) {
-        va_list ap;
-        va_start(ap, fmt);
-        vsnprintf(err, errlen, fmt, ap);
-        va_end(ap);
-    }
-    return -1;
-}
+#include "tdc_tool.h"
+
 
 int tdc_lcdsim_load(const char *path, tdc_lcdsim_panel_t *p, char *err, size_t errlen)
 {
     FILE *f = fopen(path, "r");
     if (!f) {
-        return fail(err, errlen, "%s: cannot open", path);
+        return tdc_errf(err, errlen, "%s: cannot open", path);
     }
     memset(p, 0, sizeof *p);
     p->strobe_duty = 1.0;
@@ -52,7 +43,7 @@ int tdc_lcdsim_load(const char *path, tdc_lcdsim_panel_t *p, char *err, size_t e
             v[i - 1] = strtod(tok[i], &end);
             if (strcmp(tok[0], "name") && strcmp(tok[0], "backlight") && *end) {
                 fclose(f);
-                return fail(err, errlen, "%s:%d: not a number: '%s'", path, line, tok[i]);
+                return tdc_errf(err, errlen, "%s:%d: not a number: '%s'", path, line, tok[i]);
             }
         }
         if (!strcmp(tok[0], "name") && n == 2) {
@@ -77,7 +68,7 @@ int tdc_lcdsim_load(const char *path, tdc_lcdsim_panel_t *p, char *err, size_t e
             for (int i = 0; i < p->nlev; i++) {
                 if (!(v[i] > 0.0)) {
                     fclose(f);
-                    return fail(err, errlen, "%s:%d: time constants must be > 0", path, line);
+                    return tdc_errf(err, errlen, "%s:%d: time constants must be > 0", path, line);
                 }
                 p->tau_ms[tau_rows][i] = v[i];
             }
@@ -92,20 +83,20 @@ int tdc_lcdsim_load(const char *path, tdc_lcdsim_panel_t *p, char *err, size_t e
                 if (!(p->strobe_duty > 0.0 && p->strobe_duty <= 1.0 && p->strobe_phase >= 0.0 &&
                       p->strobe_phase + p->strobe_duty <= 1.0 + 1e-12)) {
                     fclose(f);
-                    return fail(err, errlen, "%s:%d: strobe needs 0 < duty <= 1, phase + duty <= 1", path, line);
+                    return tdc_errf(err, errlen, "%s:%d: strobe needs 0 < duty <= 1, phase + duty <= 1", path, line);
                 }
             } else {
                 fclose(f);
-                return fail(err, errlen, "%s:%d: backlight constant | strobe DUTY PHASE", path, line);
+                return tdc_errf(err, errlen, "%s:%d: backlight constant | strobe DUTY PHASE", path, line);
             }
         } else {
             fclose(f);
-            return fail(err, errlen, "%s:%d: unknown key or wrong number of values: '%s'", path, line, tok[0]);
+            return tdc_errf(err, errlen, "%s:%d: unknown key or wrong number of values: '%s'", path, line, tok[0]);
         }
     }
     fclose(f);
     if (!have_gamma || p->nlev < 2 || tau_rows != p->nlev) {
-        return fail(err, errlen, "%s: needs gamma, tau_levels and one tau_ms row per level", path);
+        return tdc_errf(err, errlen, "%s: needs gamma, tau_levels and one tau_ms row per level", path);
     }
     return 0;
 }

@@ -9,7 +9,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "link/tdc_link_file.h"
+#include "tdc_link_file.h"
 #include "tdc_tool.h"
 
 int main(int argc, char **argv)

@@ -56,7 +56,7 @@ DESC = {
                           "truth): ordinary vs stochastic glossy vectors (Zeng eq. 5); the crops show the reflection "
                           "region where the two part. 5-seed figures: the zeng-layers experiment group.",
     "asm-pan": "Panned texture at 240 Hz: tile-ordered assembly vs full rate, 60 Hz and TAA.",
-    "render-panorama": "Embree renderer (sim/render, built-in scene `panorama`: camera yawing over a skyline drum), "
+    "render-panorama": "Embree renderer (render, built-in scene `panorama`: camera yawing over a skyline drum), "
                        "1 ray per pixel centre, ground truth 16 rays per pixel, 90 Hz OLED.",
     "render-fence": "Embree renderer, built-in scene `fence` (moving fence, static point light: moving shadow on a "
                     "static floor), 240 Hz; the renderer traces the subframes with its adaptive orderings and "

@@ -1,6 +1,6 @@
 /*
  * tdc_report.h - simulator outputs: summary CSV, markdown table, picture
- * strips (PNG via sim/tdc_png.h).  Plots are drawn by sim/report/tdc_plots.py
+ * strips (PNG via common/tdc_png.h).  Plots are drawn by sim/report/tdc_plots.py
  * (matplotlib) from the CSV files.
  */
 #ifndef TDC_REPORT_H

@@ -26,7 +26,7 @@ static void usage(FILE *f)
     fprintf(f, "usage: tdc-sim [options]\n"
                "Simulates display modes through the whole data path (renderer -> link encoder ->\n"
                "firmware via the link decoder -> panel -> eye -> metrics vs ground truth).\n\n"
-               "  -R, --renderer SCENE    use the Embree renderer (sim/render): a built-in renderer scene\n"
+               "  -R, --renderer SCENE    use the Embree renderer (render): a built-in renderer scene\n"
                "                          (discs text panorama room mirror fence bigmesh glossy blocker) or a scene file\n"
                "      --threads N         threads of the renderer and of the simulator's own stages (source,\n"
                "                          eye, metrics; default 2); results do not depend on it\n"

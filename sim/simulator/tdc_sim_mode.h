@@ -173,6 +173,17 @@ void tdc_sim_subframe_keep_mv(sim_mode_t *m, int16_t *mvbuf, int n, const int16_
 int tdc_sim_fov_prefilter(sim_mode_t *m, tdc_source_t *src, double t, int spp, const double *xy, const double *side,
                           size_t nlp, uint8_t *samp);
 
+/* The foveation parameters of a fov or fov-trm run as the link header
+ * carries them (tdc_sim_mode_fov.c): alpha Q8, delta Q15 rounded up (so
+ * that the buffer is floor(0.555 W) at every size here), disk Q15; with
+ * the renderer's footprint prefilter and jitter choices. */
+typedef struct {
+    int lod;    /* TDC_FOV_LOD_* (cfg.fov_lod) */
+    int jitter; /* TDC_FOV_JITTER_* (cfg.fov_jitter) */
+    uint16_t alpha_q8, delta_q15, disk_q15;
+} tdc_sim_fov_link_t;
+tdc_sim_fov_link_t tdc_sim_fov_link_of(const tdc_sim_config_t *cfg);
+
 /* Rounds and clamps to a code (bilinear samples of codes: tdc_bilinear_u8). */
 uint8_t tdc_sim_to8(double v);
 

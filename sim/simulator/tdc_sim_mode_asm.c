@@ -12,6 +12,7 @@
 
 #include "tdc_assemble.h"
 #include "tdc_ordering.h"
+#include "tdc_free.h"
 
 #define F &tdc_sim_family_asm
 #define L (TDC_SIM_LINK_SUBFRAMES | TDC_SIM_LINK_SAMPLE_MV)
@@ -147,12 +148,7 @@ static void asm_free(sim_mode_t *m)
 {
     asm_state_t *st = m->fam;
     if (st) {
-        free(st->mem);
-        free(st->mvbuf);
-        free(st->submv);
-        free(st->sub);
-        free(st->pattern);
-        free(st);
+        TDC_FREE_ALL(st->mem, st->mvbuf, st->submv, st->sub, st->pattern, st);
     }
     m->fam = NULL;
 }

@@ -14,7 +14,7 @@
  *
  * Samples: a source with its own foveated mode (the Embree renderer) traces
  * them itself; the others (procedural scenes, photographs) are sampled at
- * the positions of the exact inverse of eq. 2.2 (sim/ref_fov.c) and the
+ * the positions of the exact inverse of eq. 2.2 (ref/ref_fov.c) and the
  * disk pixel centres, spp rays each like the full-rate modes.  Rays are
  * counted exactly (samples x spp, or the renderer's count).
  *
@@ -26,7 +26,7 @@
  * encoded back with the source's gamma), the disk pixels from the same frame,
  * and with TAA each texel's vector is the one of the pixel under its
  * centre.  Foveal scale per axis: the default rule (k S(k) = n, one texel
- * per pixel at the gaze, sim/ref_fov_lr.c).  Rays: the full frame's.
+ * per pixel at the gaze, ref/ref_fov_lr.c).  Rays: the full frame's.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -37,7 +37,8 @@
 #include "tdc_fov.h"
 #include "tdc_fov_link.h"
 #include "tdc_fov_lr.h"
-#include "simulator/tdc_sim_codes.h"
+#include "tdc_sim_codes.h"
+#include "tdc_free.h"
 
 enum { FOV_PLAIN, FOV_TAA, FOVLR_PLAIN, FOVLR_TAA };
 #define IS_LR(v) ((v) == FOVLR_PLAIN || (v) == FOVLR_TAA)
@@ -67,12 +68,22 @@ typedef struct {
     void *lr_arena;
     int16_t *pmv; /* the full frame's vectors (fovlr-taa) */
     double *side; /* the footprint of each log-polar sample, display pixels (ref_fov_lod_cone) */
-    int lod;      /* TDC_FOV_LOD_* (cfg.fov_lod) */
-    int jitter;   /* TDC_FOV_JITTER_* (cfg.fov_jitter) */
-    uint16_t alpha_q8, delta_q15, disk_q15;
+    tdc_sim_fov_link_t q; /* the link header's parameters */
     double last_t;
     int have_t;
 } fov_state_t;
+
+tdc_sim_fov_link_t tdc_sim_fov_link_of(const tdc_sim_config_t *cfg)
+{
+    const tdc_sim_fov_link_t q = {
+        .lod = cfg->fov_lod,
+        .jitter = cfg->fov_jitter,
+        .alpha_q8 = (uint16_t)lround(cfg->fov_alpha * 256.0),
+        .delta_q15 = (uint16_t)ceil(cfg->fov_delta * 32768.0 - 1e-9),
+        .disk_q15 = (uint16_t)lround(cfg->fov_disk * 32768.0),
+    };
+    return q;
+}
 
 static int fov_init(sim_mode_t *m, const tdc_sim_setup_t *s)
 {
@@ -83,13 +94,7 @@ static int fov_init(sim_mode_t *m, const tdc_sim_setup_t *s)
         return -1;
     }
     m->fam = st;
-    /* the link header's quantisation: alpha Q8, delta Q15 rounded up (so
-     * that the buffer is floor(0.555 W) at every size here), disk Q15 */
-    st->alpha_q8 = (uint16_t)lround(cfg->fov_alpha * 256.0);
-    st->delta_q15 = (uint16_t)ceil(cfg->fov_delta * 32768.0 - 1e-9);
-    st->disk_q15 = (uint16_t)lround(cfg->fov_disk * 32768.0);
-    st->lod = cfg->fov_lod;
-    st->jitter = cfg->fov_jitter;
+    st->q = tdc_sim_fov_link_of(cfg);
     const tdc_fov_config_t fc = {(uint16_t)m->w, (uint16_t)m->h, (uint8_t)IS_TAA(m->d->variant)};
     const size_t n = tdc_fov_get_size(&fc);
     if (!n || !(cfg->fov_delta > 0 && cfg->fov_delta <= 1)) {
@@ -97,8 +102,8 @@ static int fov_init(sim_mode_t *m, const tdc_sim_setup_t *s)
         return 0;
     }
     st->arena = aligned_alloc(8, (n + 7) & ~(size_t)7);
-    const size_t lpn = (size_t)tdc_fov_lp_size(st->delta_q15, (uint16_t)m->w) *
-                       tdc_fov_lp_size(st->delta_q15, (uint16_t)m->h);
+    const size_t lpn = (size_t)tdc_fov_lp_size(st->q.delta_q15, (uint16_t)m->w) *
+                       tdc_fov_lp_size(st->q.delta_q15, (uint16_t)m->h);
     st->samp = malloc((lpn + m->npx) * 3);
     st->smv = malloc((lpn + m->npx) * 2 * sizeof(int16_t));
     st->xy = malloc((lpn + m->npx) * 2 * sizeof(double));
@@ -221,10 +226,10 @@ static int fov_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32
     gz[1] = fmin(fmax(gz[1], -0.99 * m->h), 1.99 * m->h);
     tdc_fov_params_t p = {(int32_t)lround(gz[0] * 256),
                           (int32_t)lround(gz[1] * 256),
-                          st->alpha_q8,
-                          st->disk_q15,
-                          tdc_fov_lp_size(st->delta_q15, (uint16_t)m->w),
-                          tdc_fov_lp_size(st->delta_q15, (uint16_t)m->h),
+                          st->q.alpha_q8,
+                          st->q.disk_q15,
+                          tdc_fov_lp_size(st->q.delta_q15, (uint16_t)m->w),
+                          tdc_fov_lp_size(st->q.delta_q15, (uint16_t)m->h),
                           {0, 0},
                           TDC_FOV_KERNEL_LOG_POLAR,
                           0};
@@ -240,7 +245,7 @@ static int fov_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32
         return rc;
     }
     double jx = 0, jy = 0;
-    if (taa && !lr) { /* Halton(2,3) jitter of the log-polar samples (thesis §4.3.2; how far: st->jitter) */
+    if (taa && !lr) { /* Halton(2,3) jitter of the log-polar samples (thesis §4.3.2; how far: st->q.jitter) */
         ref_fov_halton(m->frame, &jx, &jy);
     }
     const size_t nlp = (size_t)(g.lp_w - g.u0) * g.lp_h, n = nlp + tdc_fov_disk_pixels(&g);
@@ -249,7 +254,7 @@ static int fov_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32
         lr_samples(m, st, src, &p, &g, t, dt, spp, taa);
     } else if (src->foveated) {
         const tdc_fov_sampling_t fs = {p.gaze_x_q8 / 256.0, p.gaze_y_q8 / 256.0, p.alpha_q8 / 256.0,
-                                       st->delta_q15 / 32768.0, p.disk_q15 / 32768.0, jx, jy, st->jitter};
+                                       st->q.delta_q15 / 32768.0, p.disk_q15 / 32768.0, jx, jy, st->q.jitter};
         uint64_t rays = 0;
         rc = src->foveated(src, &fs, t, dt, st->samp, taa ? st->smv : NULL, &rays);
         if (tdc_sim_stage(m, "renderer (foveated frame)", rc ? TDC_ERR_ARG : TDC_OK)) {
@@ -262,9 +267,9 @@ static int fov_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32
                                      p.disk_q15 / 32768.0, g.lp_w, g.lp_h, 0, 0, 0};
         ref_fov_geom_t rg;
         ref_fov_geom(&rg, m->w, m->h, &rp);
-        const int lod = st->lod;
+        const int lod = st->q.lod;
         double *side = lod != TDC_FOV_LOD_OFF ? st->side : NULL;
-        size_t k = ref_fov_lp_samples(&rg, g.u0, jx, jy, st->jitter, lod, st->xy, side);
+        size_t k = ref_fov_lp_samples(&rg, g.u0, jx, jy, st->q.jitter, lod, st->xy, side);
         for (int j = 0; j < m->h; j++) {
             int32_t x0;
             const uint32_t span = tdc_fov_disk_span(&g, j, &x0);
@@ -286,7 +291,7 @@ static int fov_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32
     /* over the link: the decoder checks and unpacks (disk into its full
      * buffer, the rest into the log-polar buffers) */
     tdc_fov_hdr_t h;
-    if (tdc_sim_link_foveated(m->link, m->eye, lf, &p, st->delta_q15, st->samp, taa ? st->smv : NULL, &h) != 0) {
+    if (tdc_sim_link_foveated(m->link, m->eye, lf, &p, st->q.delta_q15, st->samp, taa ? st->smv : NULL, &h) != 0) {
         return tdc_sim_stage(m, "link FOVEATED packet", TDC_ERR_ARG);
     }
     t0 = tdc_sim_now();
@@ -311,14 +316,7 @@ static void fov_free(sim_mode_t *m)
 {
     fov_state_t *st = m->fam;
     if (st) {
-        free(st->arena);
-        free(st->samp);
-        free(st->smv);
-        free(st->xy);
-        free(st->side);
-        free(st->lr_arena);
-        free(st->pmv);
-        free(st);
+        TDC_FREE_ALL(st->arena, st->samp, st->smv, st->xy, st->side, st->lr_arena, st->pmv, st);
     }
     m->fam = NULL;
 }

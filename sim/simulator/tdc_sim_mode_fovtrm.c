@@ -22,7 +22,7 @@
  * frame before it (docs/foveation.md).
  *
  * Samples: every source through samples() at the positions of the exact
- * inverse of eq. 2.2 (sim/ref_fov.c, ref_fov_lp_samples as fov, with fov's
+ * inverse of eq. 2.2 (ref/ref_fov.c, ref_fov_lp_samples as fov, with fov's
  * footprint prefilter --fov-lod) on the slot's grid and the grid's disk
  * pixels, scaled to the screen (W / rw, H / rh), spp rays each; a reduced
  * disk pixel's rays spread over its footprint (g x g point samples, g^2 <=
@@ -37,11 +37,12 @@
 
 #include "ref_fov.h"
 #include "simulator/tdc_sim_mode.h"
-#include "simulator/tdc_sim_codes.h"
+#include "tdc_sim_codes.h"
 #include "tdc_fov_link.h"
 
 #include "tdc_fov_trm.h"
 #include "tdc_trm.h"
+#include "tdc_free.h"
 
 #define F &tdc_sim_family_fovtrm
 #define L (TDC_SIM_LINK_FOVEATED | TDC_SIM_LINK_REDUCED)
@@ -64,9 +65,8 @@ typedef struct {
     double *lin;   /* ... in linear light (cap x 3) */
     int32_t *map;  /* reduced grid: disk index of each pixel, -1 outside */
     double *side;  /* footprint of each log-polar sample, display pixels (fov's prefilter) */
-    int lod, jitter; /* cfg.fov_lod, cfg.fov_jitter, as the fov modes */
+    tdc_sim_fov_link_t q; /* the link header's parameters, as the fov modes */
     size_t cap;
-    uint16_t alpha_q8, delta_q15, disk_q15;
     double last_t;
     int have_t;
 } fovtrm_state_t;
@@ -172,12 +172,7 @@ static int fovtrm_init(sim_mode_t *m, const tdc_sim_setup_t *s)
         return -1;
     }
     m->fam = st;
-    /* the link header's quantisation, as the fov modes */
-    st->alpha_q8 = (uint16_t)lround(cfg->fov_alpha * 256.0);
-    st->delta_q15 = (uint16_t)ceil(cfg->fov_delta * 32768.0 - 1e-9);
-    st->disk_q15 = (uint16_t)lround(cfg->fov_disk * 32768.0);
-    st->lod = cfg->fov_lod;
-    st->jitter = cfg->fov_jitter;
+    st->q = tdc_sim_fov_link_of(cfg);
     tdc_trm_config_t tc;
     tdc_trm_default_config(&tc, (uint16_t)m->w, (uint16_t)m->h, (uint16_t)m->hz);
     tc.r_num = m->d->r_num;
@@ -193,8 +188,8 @@ static int fovtrm_init(sim_mode_t *m, const tdc_sim_setup_t *s)
         tdc_sim_refuse(m, "fov-trm init (size or delta)", TDC_ERR_SIZE);
         return 0;
     }
-    const size_t lpn = (size_t)tdc_fov_lp_size(st->delta_q15, (uint16_t)m->w) *
-                       tdc_fov_lp_size(st->delta_q15, (uint16_t)m->h);
+    const size_t lpn = (size_t)tdc_fov_lp_size(st->q.delta_q15, (uint16_t)m->w) *
+                       tdc_fov_lp_size(st->q.delta_q15, (uint16_t)m->h);
     st->trm_mem = malloc(nt);
     st->fv_mem = aligned_alloc(8, (nf + 7) & ~(size_t)7);
     st->samp = malloc((lpn + m->npx) * 3);
@@ -212,8 +207,8 @@ static int fovtrm_init(sim_mode_t *m, const tdc_sim_setup_t *s)
      * here rather than on the first reduced frame */
     for (int red = 0; red < 2 && rc == TDC_OK; red++) {
         const uint16_t gw = red ? rw : (uint16_t)m->w, gh = red ? rh : (uint16_t)m->h;
-        const tdc_fov_params_t p = {gw * 128, gh * 128, st->alpha_q8, st->disk_q15, tdc_fov_lp_size(st->delta_q15, gw),
-                                    tdc_fov_lp_size(st->delta_q15, gh), {0, 0}, TDC_FOV_KERNEL_LOG_POLAR, 0};
+        const tdc_fov_params_t p = {gw * 128, gh * 128, st->q.alpha_q8, st->q.disk_q15, tdc_fov_lp_size(st->q.delta_q15, gw),
+                                    tdc_fov_lp_size(st->q.delta_q15, gh), {0, 0}, TDC_FOV_KERNEL_LOG_POLAR, 0};
         tdc_fov_geom_t g;
         rc = tdc_fov_geom(&g, gw, gh, &p);
     }
@@ -243,10 +238,10 @@ static int fovtrm_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uin
     gz[1] = fmin(fmax(gz[1] / sy, -0.99 * gh), 1.99 * gh);
     const tdc_fov_params_t p = {(int32_t)lround(gz[0] * 256),
                                 (int32_t)lround(gz[1] * 256),
-                                st->alpha_q8,
-                                st->disk_q15,
-                                tdc_fov_lp_size(st->delta_q15, (uint16_t)gw),
-                                tdc_fov_lp_size(st->delta_q15, (uint16_t)gh),
+                                st->q.alpha_q8,
+                                st->q.disk_q15,
+                                tdc_fov_lp_size(st->q.delta_q15, (uint16_t)gw),
+                                tdc_fov_lp_size(st->q.delta_q15, (uint16_t)gh),
                                 {0, 0},
                                 TDC_FOV_KERNEL_LOG_POLAR,
                                 0};
@@ -263,8 +258,8 @@ static int fovtrm_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uin
     ref_fov_geom(&rg, gw, gh, &rp);
     /* the log-polar samples as fov places them (no TAA jitter here), with
      * their footprints for fov's prefilter, scaled from the grid to the screen */
-    double *side = st->lod != TDC_FOV_LOD_OFF ? st->side : NULL;
-    size_t k = ref_fov_lp_samples(&rg, g.u0, 0.0, 0.0, st->jitter, st->lod, st->xy, side);
+    double *side = st->q.lod != TDC_FOV_LOD_OFF ? st->side : NULL;
+    size_t k = ref_fov_lp_samples(&rg, g.u0, 0.0, 0.0, st->q.jitter, st->q.lod, st->xy, side);
     for (size_t q = 0; q < k; q++) {
         st->xy[2 * q] *= sx;
         st->xy[2 * q + 1] *= sy;
@@ -310,7 +305,7 @@ static int fovtrm_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uin
     /* over the link into the slot's buffers, then the remap over the slot's
      * picture and TRM as for a plain FULL / REDUCED packet */
     tdc_fov_hdr_t h;
-    if (tdc_sim_link_foveated_slot(m->link, e, lf, red, &p, st->delta_q15, st->samp, NULL, &h) != 0) {
+    if (tdc_sim_link_foveated_slot(m->link, e, lf, red, &p, st->q.delta_q15, st->samp, NULL, &h) != 0) {
         return tdc_sim_stage(m, red ? "link FOVEATED packet (reduced slot)" : "link FOVEATED packet", TDC_ERR_ARG);
     }
     const uint32_t w3 = (uint32_t)m->w * 3u, gw3 = (uint32_t)gw * 3u;
@@ -339,15 +334,7 @@ static void fovtrm_free(sim_mode_t *m)
 {
     fovtrm_state_t *st = m->fam;
     if (st) {
-        free(st->trm_mem);
-        free(st->fv_mem);
-        free(st->samp);
-        free(st->xy);
-        free(st->sub);
-        free(st->lin);
-        free(st->map);
-        free(st->side);
-        free(st);
+        TDC_FREE_ALL(st->trm_mem, st->fv_mem, st->samp, st->xy, st->sub, st->lin, st->map, st->side, st);
     }
     m->fam = NULL;
 }

@@ -23,6 +23,7 @@
 
 #include "tdc_layers.h"
 #include "tdc_ordering.h"
+#include "tdc_free.h"
 
 enum { V_ORDINARY = 0, V_ZENG = 1, V_ZENG_TDRT = 2, V_ZENG_CLEAN = 3 };
 
@@ -209,11 +210,7 @@ static void lasm_free(sim_mode_t *m)
 {
     lasm_state_t *st = m->fam;
     if (st) {
-        free(st->mem);
-        free(st->mvbuf);
-        free(st->pattern);
-        free(st->falloff);
-        free(st->keep);
+        TDC_FREE_ALL(st->mem, st->mvbuf, st->pattern, st->falloff, st->keep);
         for (int t = 0; t < TDC_LAYER_MAX; t++) {
             free(st->val[t]);
             free(st->mv[t]);

@@ -22,6 +22,7 @@
 
 #include "tdc_trm.h"
 #include "tdc_trm_gaze.h"
+#include "tdc_free.h"
 
 enum { TRM_TRM, TRM_NCSFI, TRM_REDUCED_ONLY, TRM_GAZE, TRM_RENDER_PRE, TRM_RENDER_POINT };
 
@@ -295,13 +296,7 @@ static void trm_free(sim_mode_t *m)
 {
     trm_state_t *st = m->fam;
     if (st) {
-        free(st->mem);
-        free(st->mem_r);
-        free(st->reduced);
-        free(st->mem_g);
-        free(st->mv);
-        free(st->tile_mv);
-        free(st);
+        TDC_FREE_ALL(st->mem, st->mem_r, st->reduced, st->mem_g, st->mv, st->tile_mv, st);
     }
     m->fam = NULL;
 }

@@ -14,6 +14,7 @@
 #include "simulator/tdc_sim_blockmatch.h"
 #include "simulator/tdc_sim_mode.h"
 #include "tdc_bilinear.h"
+#include "tdc_free.h"
 
 enum { WARP_ASW, WARP_TAA, WARP_ASW_EST, WARP_JITTER };
 
@@ -181,10 +182,7 @@ static void warp_free(sim_mode_t *m)
 {
     warp_state_t *st = m->fam;
     if (st) {
-        free(st->hist);
-        free(st->tmp);
-        free(st->mv);
-        free(st->prev);
+        TDC_FREE_ALL(st->hist, st->tmp, st->mv, st->prev);
         tdc_bm_free(&st->bm);
         free(st);
     }

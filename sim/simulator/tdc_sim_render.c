@@ -10,6 +10,7 @@
 #include "render/tdc_render.h"
 #include "render/tdc_scene.h"
 #include "tdc_layer_link.h"
+#include "tdc_free.h"
 
 #define RS_SLOTS 64 /* one per mode of a run (tdc-sim takes up to 64) */
 
@@ -54,6 +55,17 @@ static uint8_t rs_code(float v, double gamma)
     return (uint8_t)(255.0 * pow(l, 1.0 / gamma) + 0.5);
 }
 
+/* A render output with the colour (and, when mv is not NULL, motion-vector)
+ * buffers set and every other output off. */
+static tdc_render_out_t rs_out(float *rgb, int16_t *mv)
+{
+    tdc_render_out_t out;
+    memset(&out, 0, sizeof(out));
+    out.rgb = rgb;
+    out.mv = mv;
+    return out;
+}
+
 static long frame_of(const rsrc_t *c, double t)
 {
     double f = floor(t * c->clock_hz + 1e-9);
@@ -86,10 +98,7 @@ static int rs_full(tdc_source_t *s, double t, double dt, uint8_t *rgb, int16_t *
 {
     rsrc_t *c = s->ctx;
     long f = frame_of(c, t);
-    tdc_render_out_t out;
-    memset(&out, 0, sizeof(out));
-    out.rgb = c->lin;
-    out.mv = mv ? c->mv : NULL;
+    tdc_render_out_t out = rs_out(c->lin, mv ? c->mv : NULL);
     tdc_render_stats_t st;
     if (tdc_render_frame(c->r, (uint32_t)f, TDC_RENDER_FULL, &out, &st) != 0) {
         return -1;
@@ -135,9 +144,7 @@ static void rs_ground_truth(tdc_source_t *s, double t, double ox, double oy, dou
     long f = frame_of(c, t);
     int w = s->width, h = s->height;
     if (f != c->gt_frame) {
-        tdc_render_out_t out;
-        memset(&out, 0, sizeof(out));
-        out.rgb = c->lin;
+        tdc_render_out_t out = rs_out(c->lin, NULL);
         tdc_render_stats_t st;
         tdc_render_frame(c->r, (uint32_t)f, TDC_RENDER_GROUND_TRUTH, &out, &st);
         for (size_t i = 0; i < 3 * (size_t)w * h; i++) {
@@ -239,10 +246,7 @@ static int rs_subframe(tdc_source_t *s, int slot, int shadow, uint32_t frame, do
     if (f < 0) {
         return -1;
     }
-    tdc_render_out_t out;
-    memset(&out, 0, sizeof(out));
-    out.rgb = c->sub_lin;
-    out.mv = c->sub_mv;
+    tdc_render_out_t out = rs_out(c->sub_lin, c->sub_mv);
     if (shadow) {
         out.mv_shadow = c->sub_mvs;
         out.mv_dual = c->sub_mvd;
@@ -298,9 +302,7 @@ static int rs_reduced(tdc_source_t *s, int slot, double t, double r, int ss, dou
     if (!rgb) {
         return 0; /* prepared: the renderer is open (its BVH build is not a frame's cost) */
     }
-    tdc_render_out_t out;
-    memset(&out, 0, sizeof(out));
-    out.rgb = c->lin; /* W x H floats: room for the reduced frame */
+    tdc_render_out_t out = rs_out(c->lin, NULL); /* W x H floats: room for the reduced frame */
     tdc_render_stats_t st;
     if (tdc_render_frame(c->red[slot], (uint32_t)frame_of(c, t), TDC_RENDER_REDUCED, &out, &st) != 0) {
         return -1;
@@ -331,10 +333,7 @@ static int rs_foveated(tdc_source_t *s, const tdc_fov_sampling_t *f, double t, d
     if (tdc_render_set_foveation(c->fov, &rf, &nlp, &nd) != 0 || (size_t)nlp + (size_t)nd > cap) {
         return -1;
     }
-    tdc_render_out_t out;
-    memset(&out, 0, sizeof(out));
-    out.rgb = c->fov_lin;
-    out.mv = mv ? c->fov_mv : NULL;
+    tdc_render_out_t out = rs_out(c->fov_lin, mv ? c->fov_mv : NULL);
     tdc_render_stats_t st;
     if (tdc_render_frame(c->fov, (uint32_t)frame_of(c, t), TDC_RENDER_FOVEATED, &out, &st) != 0) {
         return -1;
@@ -377,10 +376,7 @@ static int rs_layered(tdc_source_t *s, int slot, int zeng, uint32_t frame, doubl
     if (f < 0) {
         return -1;
     }
-    tdc_render_out_t out;
-    memset(&out, 0, sizeof(out));
-    out.rgb = c->sub_lin;
-    out.mv = c->sub_mv;
+    tdc_render_out_t out = rs_out(c->sub_lin, c->sub_mv);
     out.mv_shadow = c->sub_mvs;
     out.shadow_weight = c->l_w;
     out.shade = c->l_shade;
@@ -458,22 +454,8 @@ static void rs_destroy(tdc_source_t *s)
                 tdc_render_close(c->red[i]);
             }
         }
-        free(c->scene);
-        free(c->sub_lin);
-        free(c->sub_mv);
-        free(c->sub_mvs);
-        free(c->sub_mvd);
-        free(c->l_shade);
-        free(c->l_vis);
-        free(c->l_refl);
-        free(c->l_w);
-        free(c->l_mvsurf);
-        free(c->l_mvrefl);
-        free(c->l_src);
-        free(c->lin);
-        free(c->mv);
-        free(c->gt);
-        free(c);
+        TDC_FREE_ALL(c->scene, c->sub_lin, c->sub_mv, c->sub_mvs, c->sub_mvd, c->l_shade, c->l_vis, c->l_refl,
+                     c->l_w, c->l_mvsurf, c->l_mvrefl, c->l_src, c->lin, c->mv, c->gt, c);
     }
     free(s);
 }

@@ -1,5 +1,5 @@
 /*
- * tdc_sim_render.h - the Embree companion renderer (sim/render, tdc-render)
+ * tdc_sim_render.h - the Embree companion renderer (render, tdc-render)
  * as a simulator source.  Full frames (1 primary ray per pixel centre, Whitted
  * shading), motion vectors and supersampled ground truth come from the
  * renderer; the eye pursues the motion at the image centre (renderer probe).

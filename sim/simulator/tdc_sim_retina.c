@@ -7,8 +7,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "simulator/tdc_sim_codes.h"
+#include "tdc_sim_codes.h"
 #include "simulator/tdc_sim_dump.h"
+#include "tdc_free.h"
 
 /* The reference's slices: those of the refresh being sampled (steps tile
  * the refreshes, every slice lies inside its refresh, and the reference
@@ -46,15 +47,7 @@ static void retina_release(sim_retina_t *r)
         }
     }
     tdc_retina_eye_free(&r->eye);
-    free(r->gt);
-    free(r->acc);
-    free(r->codes);
-    free(r->ref_rgb);
-    free(r->ref_y);
-    free(r->test_rgb);
-    free(r->test_y);
-    free(r->emit);
-    free(r);
+    TDC_FREE_ALL(r->gt, r->acc, r->codes, r->ref_rgb, r->ref_y, r->test_rgb, r->test_y, r->emit, r);
 }
 
 sim_retina_t *sim_retina_new(const tdc_sim_setup_t *s, tdc_source_t *const srcs[2], const tdc_sim_gaze_t *gaze,

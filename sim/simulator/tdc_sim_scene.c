@@ -15,7 +15,7 @@
 #include "tdc_layer_link.h"
 #include "tdc_math.h"
 #include "tdc_par.h"
-#include "simulator/tdc_sim_codes.h"
+#include "tdc_sim_codes.h"
 
 /* ---------------------------------------------------------------------
  * Tabulated functions for the inner loops (no libm call per sample).

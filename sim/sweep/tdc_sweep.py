@@ -34,7 +34,7 @@ Commands:
                                               expand, sbatch --array=0-(N-1); --wait: then merge
     tdc-sweep merge OUT                       OUT/sweep.csv, timings.csv, report.md
 
-Exit codes (the one table, hosttools/common/tdc_exit.h; docs/tools.md):
+Exit codes (the one table, common/tdc_exit.h; docs/tools.md):
 0 OK, 1 ARGS, 13 INPUT (malformed sweep file or OUT), 18 JOBS (merge: a job
 failed or is missing; the rest is merged), 19 ENGINE (GNU parallel / Slurm
 missing or refused the array).
@@ -50,8 +50,9 @@ import sys
 import time
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-sys.path.insert(0, os.path.join(REPO, "hosttools", "common"))
+sys.path.insert(0, os.path.join(REPO, "common"))
 from tdc_exit import EXIT  # noqa: E402  (the one exit-code table)
+import tdc_argv  # noqa: E402  (the one command-line reader)
 EXIT_OK, EXIT_BAD_SWEEP, EXIT_USAGE, EXIT_JOBS_FAILED, EXIT_ENGINE = EXIT.OK, EXIT.INPUT, EXIT.ARGS, EXIT.JOBS, EXIT.ENGINE
 OPTION_AXES = {"modes": ["-m"], "refresh": ["-r"], "speed": ["--speed"], "seed": ["-S"],
                "scene": ["-s"], "image": ["--image"], "size": ["-g"],
@@ -318,24 +319,10 @@ def engine_slurm(out, n, wait, partition, minutes):
 
 
 def main(argv):
-    if len(argv) < 2 or argv[1] in ("-h", "--help"):
-        print(__doc__)
-        return EXIT_OK if len(argv) >= 2 else EXIT_USAGE
-    cmd, rest = argv[1], argv[2:]
-    opts, pos = {}, []
-    it = iter(rest)
-    for a in it:
-        if a in ("-j", "--sim", "--partition", "--time"):
-            v = next(it, None)
-            if v is None:
-                die(EXIT_USAGE, "%s needs a value" % a)
-            opts[a] = v
-        elif a == "--wait":
-            opts[a] = True
-        elif a.startswith("-") and a != "-":
-            die(EXIT_USAGE, "unknown option '%s' (see --help)" % a)
-        else:
-            pos.append(a)
+    r = tdc_argv.command(argv, __doc__, "tdc-sweep", valued=("-j", "--sim", "--partition", "--time"), flags=("--wait",))
+    if isinstance(r, int):
+        return r
+    cmd, opts, pos = r
     sim = opts.get("--sim", os.path.join(REPO, "build", "gcc-O2", "tdc-sim"))
     try:
         if cmd == "expand" and len(pos) == 2:

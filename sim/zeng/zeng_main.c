@@ -26,7 +26,7 @@
 #include "zeng/zeng_eval.h"
 #include "zeng/zeng_pipe.h"
 
-/* the one exit-code table (hosttools/common/tdc_exit.h) */
+/* the one exit-code table (common/tdc_exit.h) */
 #define EXIT_ARGS TDC_EXIT_ARGS
 #define EXIT_FILE TDC_EXIT_FILE
 #define EXIT_NOMEM TDC_EXIT_NOMEM

@@ -57,7 +57,7 @@
  *              placement), no vectors
  *   fov-taa    the same with a vector per sample (peripheral TAA)
  *   fovlr      log-rectilinear: area averages of the picture (the sender's
- *              summed-area table, sim/ref_fov_lr.c), no vectors
+ *              summed-area table, ref/ref_fov_lr.c), no vectors
  *   in each (9 frames: mono panels too keep runs of consecutive TAA frames):
  *   frame 1 of eye 0 with a corrupted payload byte (CRC: eye 0 keeps
  *   frame 0, and under TAA its next frame starts a new history), frame 4

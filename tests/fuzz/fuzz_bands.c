@@ -28,6 +28,7 @@
 #include "tdc_crc32.h"
 #include "tdc_link.h"
 #include "tdc_link_encode.h"
+#include "fuzz_link_rig.h"
 
 #define FW 12
 #define FH 10
@@ -196,16 +197,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     tdc_link_config_t cfg = {FW, FH, 2};
-    tdc_link_buffers_t b;
-    memset(&b, 0, sizeof b);
-    b.staging = staging;
-    b.staging_bytes = sizeof staging;
-    b.full_stride = FW * 3;
-    b.reduced_bytes = sizeof reduced[0];
-    for (int e = 0; e < 2; e++) {
-        b.full[e] = full[e];
-        b.reduced[e] = reduced[e];
-    }
+    tdc_link_buffers_t b = fuzz_frame_buffers(staging, sizeof staging, FW, (uint8_t *[2]){full[0], full[1]},
+                                              (uint8_t *[2]){reduced[0], reduced[1]}, sizeof reduced[0]);
     memset(full, 0, sizeof full);
     memset(reduced, 0, sizeof reduced);
     memset(model, 0, sizeof model);

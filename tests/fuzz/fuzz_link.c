@@ -30,6 +30,7 @@
 
 #include "tdc_crc32.h"
 #include "tdc_link.h"
+#include "fuzz_link_rig.h"
 
 #define FW 19
 #define FH 13
@@ -124,15 +125,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     static tdc_link_decoder_t dec;
     const int mono = (mode & 0x20u) != 0;
     tdc_link_config_t cfg = {FW, FH, (uint8_t)(mono ? 1 : 2)};
-    tdc_link_buffers_t b;
-    memset(&b, 0, sizeof b);
-    b.staging = staging;
-    b.staging_bytes = sizeof staging;
-    b.full_stride = FW * 3;
-    b.reduced_bytes = sizeof reduced[0];
+    tdc_link_buffers_t b = fuzz_frame_buffers(staging, sizeof staging, FW, (uint8_t *[2]){full[0], full[1]},
+                                              (uint8_t *[2]){reduced[0], reduced[1]}, sizeof reduced[0]);
     for (int e = 0; e < 2; e++) {
-        b.full[e] = full[e];
-        b.reduced[e] = reduced[e];
         b.subframe[e] = mono ? NULL : subframe[e];
         b.motion[e] = motion[e];
         b.sample_motion[e] = mono ? NULL : sample_motion[e];

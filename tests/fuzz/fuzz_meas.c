@@ -1,6 +1,6 @@
 /*
  * fuzz_meas.c - libFuzzer target of the LCD measurement reader
- * (hosttools/calib/tdc_meas.c) and, for inputs it accepts as transition
+ * (common/tdc_meas.c) and, for inputs it accepts as transition
  * files, the stateful-table fit's checks (tdc_calib_trans.c): any input must
  * be parsed or refused with a message, never crash, leak or hang.
  * Seeds: tests/fuzz/corpus-meas (pairs and transition files, good and bad).
@@ -12,7 +12,7 @@
 #include <stdlib.h>
 
 #include "../../hosttools/calib/tdc_calib_trans.h"
-#include "../../hosttools/calib/tdc_meas.h"
+#include "tdc_meas.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 

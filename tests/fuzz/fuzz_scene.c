@@ -1,7 +1,7 @@
 /*
  * fuzz_scene.c - libFuzzer harness of the renderer's text inputs: the
- * scene-file parser (sim/render/tdc_scene_parse.c) and the OBJ mesh loader
- * (load_obj() of sim/render/tdc_render_geom.c, built into this harness).
+ * scene-file parser (render/tdc_scene_parse.c) and the OBJ mesh loader
+ * (load_obj() of render/tdc_render_geom.c, built into this harness).
  * Byte 0 chooses: even = the rest is a scene file, odd = an OBJ file (a
  * memfd).  Aborts (besides the sanitizers) when:
  *   - the parser accepts a scene whose counts exceed its arrays, whose name
@@ -20,7 +20,7 @@
 #include <sys/mman.h>
 #include <unistd.h>
 
-#include "../../sim/render/tdc_render_geom.c"
+#include "../../render/tdc_render_geom.c"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)

@@ -1,6 +1,6 @@
 /*
  * fuzz_tdcs.c - libFuzzer harness of the .tdcs stream-file reader
- * (sim/link/tdc_link_file.c: packet reader, raw reader and the whole-file
+ * (common/tdc_link_file.c: packet reader, raw reader and the whole-file
  * check behind tdc-linkdump), on any bytes as a file (a memfd).  Built with
  * a small compiled maximum (TDC_PANEL_WIDTH/HEIGHT 96 x 64, like a small
  * board), so a header claiming a large stream is refused quickly.
@@ -18,7 +18,7 @@
 #include <sys/mman.h>
 #include <unistd.h>
 
-#include "link/tdc_link_file.h"
+#include "tdc_link_file.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)

@@ -36,6 +36,8 @@ void tdc_golden_emit(tdc_golden_ctx_t *ctx, const char *stage, const char *vecto
  * new end.  The caller's buffer must hold the whole name. */
 char *tdc_golden_put_str(char *o, const char *s);
 char *tdc_golden_put_u32(char *o, uint32_t v);
+/* The head the TRM-family vector names share: "<content>-<w>x<h>-r<rn>_<rd>". */
+char *tdc_golden_put_head(char *o, const char *content, uint32_t w, uint32_t h, uint32_t rn, uint32_t rd);
 
 /* Deterministic PRNG (xorshift32): same sequence on every CPU. */
 static inline uint32_t tdc_golden_rand(uint32_t *state)

@@ -40,3 +40,16 @@ char *tdc_golden_put_u32(char *o, uint32_t v)
 {
     return tdc_text_u32(o, NULL, v);
 }
+
+char *tdc_golden_put_head(char *o, const char *content, uint32_t w, uint32_t h, uint32_t rn, uint32_t rd)
+{
+    o = tdc_golden_put_str(o, content);
+    *o++ = '-';
+    o = tdc_golden_put_u32(o, w);
+    *o++ = 'x';
+    o = tdc_golden_put_u32(o, h);
+    o = tdc_golden_put_str(o, "-r");
+    o = tdc_golden_put_u32(o, rn);
+    *o++ = '_';
+    return tdc_golden_put_u32(o, rd);
+}

@@ -59,15 +59,7 @@ uint64_t tdc_golden_trm_step(tdc_trm_t *trm, uint32_t t, const uint8_t *in, uint
 static void run_vector(tdc_golden_ctx_t *ctx, const trm_vector_t *v)
 {
     char name[64];
-    char *o = tdc_golden_put_str(name, tdc_content_name(v->content));
-    *o++ = '-';
-    o = tdc_golden_put_u32(o, v->w);
-    *o++ = 'x';
-    o = tdc_golden_put_u32(o, v->h);
-    o = tdc_golden_put_str(o, "-r");
-    o = tdc_golden_put_u32(o, v->rn);
-    *o++ = '_';
-    o = tdc_golden_put_u32(o, v->rd);
+    char *o = tdc_golden_put_head(name, tdc_content_name(v->content), v->w, v->h, v->rn, v->rd);
     o = tdc_golden_put_str(o, "-s");
     o = tdc_golden_put_u32(o, v->s_q8);
     *o++ = '-';

@@ -64,15 +64,7 @@ typedef struct {
 static void run_vector(tdc_golden_ctx_t *ctx, const gaze_vector_t *v)
 {
     char name[80];
-    char *o = tdc_golden_put_str(name, tdc_content_name(v->content));
-    *o++ = '-';
-    o = tdc_golden_put_u32(o, v->w);
-    *o++ = 'x';
-    o = tdc_golden_put_u32(o, v->h);
-    o = tdc_golden_put_str(o, "-r");
-    o = tdc_golden_put_u32(o, v->rn);
-    *o++ = '_';
-    o = tdc_golden_put_u32(o, v->rd);
+    char *o = tdc_golden_put_head(name, tdc_content_name(v->content), v->w, v->h, v->rn, v->rd);
     *o++ = '-';
     o = tdc_golden_put_str(o, k_map_names[v->map]);
     o = tdc_golden_put_str(o, "-kmin");

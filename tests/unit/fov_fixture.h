@@ -2,7 +2,7 @@
  * fov_fixture.h - foveated test inputs shared by the fov tests: a
  * procedural picture (edges, gradients, fine stripes) sampled the way the
  * renderer samples it, the log-polar buffer at eq. 2.3 positions (exact
- * inverse, sim/ref_fov.c) and the disk at pixel centres, and the
+ * inverse, ref/ref_fov.c) and the disk at pixel centres, and the
  * fixed-point parameters of a double-precision parameter set.
  */
 #ifndef FOV_FIXTURE_H

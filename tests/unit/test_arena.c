@@ -22,6 +22,8 @@
 
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include "tdc_arena.h"
 #include "tdc_assemble.h"
 #include "tdc_fov.h"
@@ -687,12 +689,8 @@ static void test_lhist_arena(void **state)
     lhist_one(TDC_LHIST_MAX_DIM, TDC_LHIST_MAX_DIM, 3, 0);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_lasm_arena), cmocka_unit_test(test_lhist_arena),
-        cmocka_unit_test(test_carver),    cmocka_unit_test(test_trm_arena), cmocka_unit_test(test_lcd_arena),
-        cmocka_unit_test(test_asm_arena), cmocka_unit_test(test_fov_arena), cmocka_unit_test(test_fov_lr_arena),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_lasm_arena), cmocka_unit_test(test_lhist_arena),
+    cmocka_unit_test(test_carver),    cmocka_unit_test(test_trm_arena), cmocka_unit_test(test_lcd_arena),
+    cmocka_unit_test(test_asm_arena), cmocka_unit_test(test_fov_arena), cmocka_unit_test(test_fov_lr_arena),
+)

@@ -11,6 +11,8 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
+
+#include "tdc_cmocka.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -496,20 +498,16 @@ static void test_dynamic_counters(void **state)
     rig_close(&r);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_static_converges_in_16),
-        cmocka_unit_test(test_orderings_eq4_eq5),
-        cmocka_unit_test(test_diagonal_hashed),
-        cmocka_unit_test(test_turning_dynamic_drops_average),
-        cmocka_unit_test(test_dropped_subframe),
-        cmocka_unit_test(test_mv_extremes),
-        cmocka_unit_test(test_moving_lines),
-        cmocka_unit_test(test_odd_sizes),
-        cmocka_unit_test(test_bad_input),
-        cmocka_unit_test(test_dynamic_counters),
-        cmocka_unit_test(test_set_motion),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_static_converges_in_16),
+    cmocka_unit_test(test_orderings_eq4_eq5),
+    cmocka_unit_test(test_diagonal_hashed),
+    cmocka_unit_test(test_turning_dynamic_drops_average),
+    cmocka_unit_test(test_dropped_subframe),
+    cmocka_unit_test(test_mv_extremes),
+    cmocka_unit_test(test_moving_lines),
+    cmocka_unit_test(test_odd_sizes),
+    cmocka_unit_test(test_bad_input),
+    cmocka_unit_test(test_dynamic_counters),
+    cmocka_unit_test(test_set_motion),
+)

@@ -1,6 +1,6 @@
 /*
  * test_assemble_ref.c - fixed-point assembly against the double-precision
- * reference (sim/ref_assemble.c), closed loop: both run the same synthetic
+ * reference (ref/ref_assemble.c), closed loop: both run the same synthetic
  * subframe streams (pans at integer, fractional, diagonal, large speeds,
  * moving 1-px lines, a static scene, dropped subframes) at an odd size.
  * Report: share of output bytes within 1 LSB of the reference's 8-bit

@@ -95,7 +95,7 @@ static void test_bad_input(void **state)
 {
     (void)state;
     char cmd[4096];
-    /* no such file: FILE (exit codes: hosttools/common/tdc_tool.h, docs/tools.md) */
+    /* no such file: FILE (exit codes: common/tdc_tool.h, docs/tools.md) */
     snprintf(cmd, sizeof(cmd), "%s assemble -o %s/o2 %s/nope.png", TDC_RUN_PATH, g_dir, g_dir);
     assert_int_equal(run(cmd), TDC_EXIT_FILE);
     /* size does not match the subframes */

@@ -24,6 +24,8 @@
 
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include "tdc_link.h"
 #include "tdc_link_encode.h"
 #include "test_link_util.h"
@@ -457,13 +459,9 @@ static void test_missing_last(void **state)
     assert_int_equal(tdc_link_counters(&dec)->band_drops[TDC_BAND_DROP_MISSING], 2);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_geometry),      cmocka_unit_test(test_roundtrip),   cmocka_unit_test(test_staging),
-        cmocka_unit_test(test_mode_mismatch), cmocka_unit_test(test_bad_crc),     cmocka_unit_test(test_out_of_order),
-        cmocka_unit_test(test_repeated),      cmocka_unit_test(test_size_change), cmocka_unit_test(test_bad_header),
-        cmocka_unit_test(test_other_frame),   cmocka_unit_test(test_missing_last),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_geometry),      cmocka_unit_test(test_roundtrip),   cmocka_unit_test(test_staging),
+    cmocka_unit_test(test_mode_mismatch), cmocka_unit_test(test_bad_crc),     cmocka_unit_test(test_out_of_order),
+    cmocka_unit_test(test_repeated),      cmocka_unit_test(test_size_change), cmocka_unit_test(test_bad_header),
+    cmocka_unit_test(test_other_frame),   cmocka_unit_test(test_missing_last),
+)

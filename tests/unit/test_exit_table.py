@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The exit-code table is written once (hosttools/common/tdc_exit.h); every
+"""The exit-code table is written once (common/tdc_exit.h); every
 other place that shows it must agree:
 
   1. docs/tools.md's table is exactly `tdc_exit.py markdown`;
@@ -20,7 +20,7 @@ import subprocess
 import sys
 
 REPO = os.getcwd()
-sys.path.insert(0, os.path.join(REPO, "hosttools", "common"))
+sys.path.insert(0, os.path.join(REPO, "common"))
 import tdc_exit  # noqa: E402
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from tdc_check import check, done  # noqa: E402
@@ -62,7 +62,7 @@ for path in ["README.md"] + sorted(glob.glob("docs/*.md")):
     check(not wrong, "%s names every exit code with its number %s" % (path, wrong or ""))
 
 # 4. C: the names come from the X-macro, nothing written by hand
-for path in ("hosttools/common/tdc_tool.c", "hosttools/common/tdc_tool.h"):
+for path in ("common/tdc_tool.c", "common/tdc_tool.h"):
     src = open(path).read()
     check('"NO_DEVICE"' not in src and "= 17" not in src and "TDC_EXIT_TABLE" in src,
           "%s builds on TDC_EXIT_TABLE, no table of its own" % path)

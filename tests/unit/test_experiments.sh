@@ -5,7 +5,7 @@
 #   2. a group of two 5-seed sweeps at 32x32 with per-scale lines: run on GNU
 #      parallel, claims.csv with the claim columns, the report table and the
 #      docs/results.md block between its markers (rewritten, not appended);
-#   3. refusals (hosttools/common/tdc_exit.h): an unknown group (1 ARGS), a
+#   3. refusals (common/tdc_exit.h): an unknown group (1 ARGS), a
 #      claims script that raises (18 JOBS, named), a bad scale (1 ARGS), a
 #      malformed scale key (13 INPUT).
 set -u

@@ -19,6 +19,8 @@
 #include <string.h>
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include "fov_fixture.h"
 #include "tdc_math.h"
 #include "golden/golden.h"
@@ -507,14 +509,10 @@ static void test_tables_cached(void **state)
     free(mem_f);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_building_blocks), cmocka_unit_test(test_transform_pair),
-        cmocka_unit_test(test_disk_rectangle),  cmocka_unit_test(test_uniform),
-        cmocka_unit_test(test_disk_extremes),   cmocka_unit_test(test_bad_input),
-        cmocka_unit_test(test_gaze_jump),       cmocka_unit_test(test_long_run),
-        cmocka_unit_test(test_tables_cached),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_building_blocks), cmocka_unit_test(test_transform_pair),
+    cmocka_unit_test(test_disk_rectangle),  cmocka_unit_test(test_uniform),
+    cmocka_unit_test(test_disk_extremes),   cmocka_unit_test(test_bad_input),
+    cmocka_unit_test(test_gaze_jump),       cmocka_unit_test(test_long_run),
+    cmocka_unit_test(test_tables_cached),
+)

@@ -1,7 +1,7 @@
 /*
  * test_fov_lr.c - the log-rectilinear foveation kind (firmware/tdc_fov_lr.c
  * behind tdc_fov_frame) against its double-precision reference
- * (sim/ref_fov_lr.c), and its properties:
+ * (ref/ref_fov_lr.c), and its properties:
  *  - fixed point vs double: max abs error of the 8-bit output against the
  *    unrounded reference, share within 1 LSB, per case (gaze centre,
  *    off-centre, each corner, outside; disk 0 / 12.443 % / 1; TAA runs);
@@ -33,9 +33,11 @@
 #include <string.h>
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include "fov_fixture.h"
 #include "ref_fov_lr.h"
-#include "simulator/tdc_sim_codes.h"
+#include "tdc_sim_codes.h"
 #include "tdc_fov_lr.h"
 
 #define W 160
@@ -546,13 +548,9 @@ static void test_refused(void **state)
     rig_free(&r);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_round_trip), cmocka_unit_test(test_area_average),
-        cmocka_unit_test(test_area_average_linear),
-        cmocka_unit_test(test_footprint_prefilter), cmocka_unit_test(test_uniform),
-        cmocka_unit_test(test_refused),    cmocka_unit_test(test_fixed_vs_double),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_round_trip), cmocka_unit_test(test_area_average),
+    cmocka_unit_test(test_area_average_linear),
+    cmocka_unit_test(test_footprint_prefilter), cmocka_unit_test(test_uniform),
+    cmocka_unit_test(test_refused),    cmocka_unit_test(test_fixed_vs_double),
+)

@@ -1,6 +1,6 @@
 /*
  * test_fov_ref.c - the fixed-point foveated remap (firmware/tdc_fov.c)
- * against the double-precision reference (sim/ref_fov.c) on a procedural
+ * against the double-precision reference (ref/ref_fov.c) on a procedural
  * picture sampled as the renderer samples it.  Per case: max abs error of
  * the 8-bit output against the unrounded reference, share within 1 LSB.
  * Cases: gaze at the centre, off-centre, each corner and outside the

@@ -16,6 +16,8 @@
 #include <unistd.h>
 
 #include <cmocka.h>
+
+#include "tdc_cmocka.h"
 #include <jpeglib.h>
 
 #include "image/tdc_image_read.h"
@@ -31,13 +33,7 @@ static double urand(void)
 
 static tdc_scene_params_t screen(int w, int h, double speed, double angle)
 {
-    tdc_scene_params_t p;
-    memset(&p, 0, sizeof p);
-    p.width = w;
-    p.height = h;
-    p.speed = speed;
-    p.angle_deg = angle;
-    p.pursuit = 1;
+    const tdc_scene_params_t p = {.width = w, .height = h, .speed = speed, .angle_deg = angle, .pursuit = 1};
     return p;
 }
 
@@ -401,12 +397,8 @@ static void test_read_and_bad_input(void **state)
     rmdir(dir);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_constant_image),         cmocka_unit_test(test_aligned_and_box_means),
-        cmocka_unit_test(test_exact_against_clipping), cmocka_unit_test(test_samples_and_mvs),
-        cmocka_unit_test(test_read_and_bad_input),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_constant_image),         cmocka_unit_test(test_aligned_and_box_means),
+    cmocka_unit_test(test_exact_against_clipping), cmocka_unit_test(test_samples_and_mvs),
+    cmocka_unit_test(test_read_and_bad_input),
+)

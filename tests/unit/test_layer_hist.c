@@ -1,6 +1,6 @@
 /*
  * test_layer_hist.c - the per-layer history (firmware/tdc_layer_hist.h)
- * against its double-precision reference (sim/ref_layer_hist.c), closed
+ * against its double-precision reference (ref/ref_layer_hist.c), closed
  * loop: both run the same noisy panning layers (tests/golden/
  * tdc_lhist_content.h) at an odd size for 40 frames, 1 and 3 channels, no
  * clamp / 1 sigma / 3 sigma, with and without eq. 4 falloff, tracked and

@@ -13,6 +13,8 @@
 
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include "tdc_crc32.h"
 #include "tdc_link.h"
 #include "tdc_link_encode.h"
@@ -305,12 +307,8 @@ static void test_header_refusals(void **state)
     assert_int_equal(tdc_link_encode_layers(&enc, pkt, 100, 0, 3, &s_frame, 1u, kinds, W, H), 0);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_sizes),           cmocka_unit_test(test_roundtrip),
-        cmocka_unit_test(test_not_announced),   cmocka_unit_test(test_refusals),
-        cmocka_unit_test(test_header_refusals),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_sizes),           cmocka_unit_test(test_roundtrip),
+    cmocka_unit_test(test_not_announced),   cmocka_unit_test(test_refusals),
+    cmocka_unit_test(test_header_refusals),
+)

@@ -23,6 +23,8 @@
 
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include "golden/tdc_layer_content.h"
 #include "tdc_layers.h"
 #include "tdc_panels.h"
@@ -315,13 +317,9 @@ static void test_splat(void **state)
     assert_true(rep[1] > rep[0]);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_errors),         cmocka_unit_test(test_recombine),
-        cmocka_unit_test(test_floor_not_dragged), cmocka_unit_test(test_own_vector),
-        cmocka_unit_test(test_falloff),        cmocka_unit_test(test_clamp_and_cleanup),
-        cmocka_unit_test(test_splat),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_errors),         cmocka_unit_test(test_recombine),
+    cmocka_unit_test(test_floor_not_dragged), cmocka_unit_test(test_own_vector),
+    cmocka_unit_test(test_falloff),        cmocka_unit_test(test_clamp_and_cleanup),
+    cmocka_unit_test(test_splat),
+)

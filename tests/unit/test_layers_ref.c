@@ -1,6 +1,6 @@
 /*
  * test_layers_ref.c - fixed-point layered assembly (firmware/tdc_layers.h)
- * against the double-precision reference (sim/ref_layers.c), closed loop:
+ * against the double-precision reference (ref/ref_layers.c), closed loop:
  * both run the same layered streams (tests/golden/tdc_layer_content.h) at an
  * odd size, with every layer set, both clamps, clean-up on and off,
  * splatting, falloff, moving shading, dropped subframes, random vectors.

@@ -86,7 +86,7 @@ done
 head -3 "$tmp/m.csv" > "$tmp/wrap.csv"; echo "120,R,4294967299,0,0.07" >> "$tmp/wrap.csv"
 "$calib" "$tmp/wrap.csv" -o "$tmp/w.panel" --name x --width 8 --height 8 > "$tmp/err.txt" 2>&1 && fail "code 4294967299 accepted"
 grep -q "wrap.csv:4: field code_a" "$tmp/err.txt" || fail "wrapped code: $(cat "$tmp/err.txt")"
-# named exit codes (hosttools/common/tdc_tool.h): ARGS 1, FILE 7, INPUT 13
+# named exit codes (common/tdc_tool.h): ARGS 1, FILE 7, INPUT 13
 code() { "$@" > /dev/null 2>&1; echo $?; }
 [ "$(code "$calib" "$tmp/m.csv" -o "$tmp/w.panel" --name x --width 8 --height 8 --width 0)" = 1 ] || fail "bad option: not ARGS"
 [ "$(code "$calib" "$tmp/none.csv" -o "$tmp/w.panel" --name x --width 8 --height 8)" = 7 ] || fail "missing file: not FILE"

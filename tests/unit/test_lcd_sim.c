@@ -22,6 +22,8 @@
 
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include "lcd/tdc_lcdsim.h"
 
 static const double k_taus_ms[] = {0.05, 0.1, 0.3, 1.0, 3.0, 10.0, 30.0, 50.0};
@@ -221,12 +223,8 @@ static void test_shipped_panels(void **state)
     assert_int_equal(tdc_lcdsim_load("boards/panels/pg279q.panel", &p, err, sizeof err), -1);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_exact_all_stiffness),   cmocka_unit_test(test_euler_fails_on_stiff_end),
-        cmocka_unit_test(test_frame_sim_closed_form), cmocka_unit_test(test_symmetric_tau_no_pair_deviation),
-        cmocka_unit_test(test_shipped_panels),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_exact_all_stiffness),   cmocka_unit_test(test_euler_fails_on_stiff_end),
+    cmocka_unit_test(test_frame_sim_closed_form), cmocka_unit_test(test_symmetric_tau_no_pair_deviation),
+    cmocka_unit_test(test_shipped_panels),
+)

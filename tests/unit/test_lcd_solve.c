@@ -1,7 +1,7 @@
 /*
  * test_lcd_solve.c - exhaustive tests of the LCD temporal-model inverse
  * (firmware/tdc_lcd.h) and of the overdrive tables (tdc_overdrive.h)
- * against the double-precision reference (sim/lcd/tdc_lcd_model.h).
+ * against the double-precision reference (common/tdc_lcd_model.h).
  *
  * For every coefficient set (the shipped profiles' per-rate sets and the
  * degenerate / stiff sets below):
@@ -31,7 +31,9 @@
 
 #include <cmocka.h>
 
-#include "lcd/tdc_lcd_model.h"
+#include "tdc_cmocka.h"
+
+#include "tdc_lcd_model.h"
 #include "tdc_lcd.h"
 #include "tdc_overdrive.h"
 #include "tdc_panels.h"
@@ -417,18 +419,14 @@ static void test_packing(void **state)
     }
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_cases),
-        cmocka_unit_test(test_forward_model),
-        cmocka_unit_test(test_exact_8bit_sets),
-        cmocka_unit_test(test_exact_profiles),
-        cmocka_unit_test(test_exact_10bit_dense),
-        cmocka_unit_test(test_tables),
-        cmocka_unit_test(test_table_convention),
-        cmocka_unit_test(test_generated_tables_match),
-        cmocka_unit_test(test_packing),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_cases),
+    cmocka_unit_test(test_forward_model),
+    cmocka_unit_test(test_exact_8bit_sets),
+    cmocka_unit_test(test_exact_profiles),
+    cmocka_unit_test(test_exact_10bit_dense),
+    cmocka_unit_test(test_tables),
+    cmocka_unit_test(test_table_convention),
+    cmocka_unit_test(test_generated_tables_match),
+    cmocka_unit_test(test_packing),
+)

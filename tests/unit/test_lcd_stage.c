@@ -16,7 +16,9 @@
 
 #include <cmocka.h>
 
-#include "lcd/tdc_lcd_model.h"
+#include "tdc_cmocka.h"
+
+#include "tdc_lcd_model.h"
 #include "lcd/tdc_lcd_ref.h"
 #include "tdc_gamma.h"
 #include "tdc_lcd.h"
@@ -335,12 +337,8 @@ static void test_in_place_and_gamma_mode(void **state)
     assert_memory_equal(a, in, N);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_init_errors),       cmocka_unit_test(test_first_frame_and_reset),
-        cmocka_unit_test(test_vs_reference),      cmocka_unit_test(test_residual_unreachable),
-        cmocka_unit_test(test_reduced_precision), cmocka_unit_test(test_in_place_and_gamma_mode),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_init_errors),       cmocka_unit_test(test_first_frame_and_reset),
+    cmocka_unit_test(test_vs_reference),      cmocka_unit_test(test_residual_unreachable),
+    cmocka_unit_test(test_reduced_precision), cmocka_unit_test(test_in_place_and_gamma_mode),
+)

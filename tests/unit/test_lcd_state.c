@@ -16,6 +16,8 @@
 
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include "golden/tdc_content.h"
 #include "lcd/tdc_lcdsim.h"
 #include "tdc_gamma.h"
@@ -356,14 +358,10 @@ static void test_beats_gamma_on_the_panel(void **state)
     }
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_vs_reference),
-        cmocka_unit_test(test_bad_tables),
-        cmocka_unit_test(test_residual),
-        cmocka_unit_test(test_pair_carry),
-        cmocka_unit_test(test_beats_gamma_on_the_panel),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_vs_reference),
+    cmocka_unit_test(test_bad_tables),
+    cmocka_unit_test(test_residual),
+    cmocka_unit_test(test_pair_carry),
+    cmocka_unit_test(test_beats_gamma_on_the_panel),
+)

@@ -10,6 +10,8 @@
 #include <stddef.h>
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -62,16 +64,7 @@ static void expected_rgb(tdc_pixfmt_t fmt, const uint8_t *s, uint32_t w, uint32_
 
 static tdc_link_stream_info_t info_of(uint32_t flags, uint16_t w, uint16_t h, uint8_t eyes, uint16_t rn, uint16_t rd)
 {
-    tdc_link_stream_info_t in;
-    memset(&in, 0, sizeof in);
-    in.flags = flags;
-    in.r_num = rn;
-    in.r_den = rd;
-    in.width = w;
-    in.height = h;
-    in.eyes = eyes;
-    in.refresh_hz = 120;
-    return in;
+    return lt_info(flags, w, h, eyes, rn, rd, 120);
 }
 
 /* ------------------------------------------------------------------------
@@ -1038,21 +1031,17 @@ static void test_init_errors(void **state)
                      0);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_round_trip_trm_odd_sizes),
-        cmocka_unit_test(test_round_trip_subframes_odd_sizes),
-        cmocka_unit_test(test_round_trip_full_only_and_stride),
-        cmocka_unit_test(test_defer_full),
-        cmocka_unit_test(test_malformed_table),
-        cmocka_unit_test(test_garbage_and_resync),
-        cmocka_unit_test(test_resync_after_cut),
-        cmocka_unit_test(test_chunking_identical),
-        cmocka_unit_test(test_missing_reduced_counts),
-        cmocka_unit_test(test_stream_headers),
-        cmocka_unit_test(test_pattern_only_at_cycle_start),
-        cmocka_unit_test(test_init_errors),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_round_trip_trm_odd_sizes),
+    cmocka_unit_test(test_round_trip_subframes_odd_sizes),
+    cmocka_unit_test(test_round_trip_full_only_and_stride),
+    cmocka_unit_test(test_defer_full),
+    cmocka_unit_test(test_malformed_table),
+    cmocka_unit_test(test_garbage_and_resync),
+    cmocka_unit_test(test_resync_after_cut),
+    cmocka_unit_test(test_chunking_identical),
+    cmocka_unit_test(test_missing_reduced_counts),
+    cmocka_unit_test(test_stream_headers),
+    cmocka_unit_test(test_pattern_only_at_cycle_start),
+    cmocka_unit_test(test_init_errors),
+)

@@ -9,11 +9,13 @@
 #include <stddef.h>
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <unistd.h>
 
-#include "link/tdc_link_file.h"
+#include "tdc_link_file.h"
 #include "link/tdc_link_gen.h"
 #include "test_link_util.h"
 
@@ -130,10 +132,6 @@ static void test_write_read_decode(void **state)
     assert_int_equal(tdc_link_file_check(".", NULL, 0, &sum), -2);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_write_read_decode),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_write_read_decode),
+)

@@ -17,6 +17,8 @@
 #include <stddef.h>
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -37,14 +39,14 @@ static int16_t mvs[W * H * 2];
 
 static tdc_fov_params_t params(int32_t gx_q8, int32_t gy_q8, uint16_t alpha_q8, uint16_t disk_q15)
 {
-    tdc_fov_params_t p;
-    memset(&p, 0, sizeof p);
-    p.gaze_x_q8 = gx_q8;
-    p.gaze_y_q8 = gy_q8;
-    p.alpha_q8 = alpha_q8;
-    p.disk_q15 = disk_q15;
-    p.lp_w = tdc_fov_lp_size(DELTA_Q15, W);
-    p.lp_h = tdc_fov_lp_size(DELTA_Q15, H);
+    const tdc_fov_params_t p = {
+        .gaze_x_q8 = gx_q8,
+        .gaze_y_q8 = gy_q8,
+        .alpha_q8 = alpha_q8,
+        .disk_q15 = disk_q15,
+        .lp_w = tdc_fov_lp_size(DELTA_Q15, W),
+        .lp_h = tdc_fov_lp_size(DELTA_Q15, H),
+    };
     return p;
 }
 
@@ -291,14 +293,22 @@ static void expect_refused(const uint8_t *bad, size_t nbad, tdc_link_err_t err, 
 }
 
 #define FOV TDC_LINK_STREAM_FOVEATED
+/* The refusal tests' packet: gaze at the centre, alpha 4, disk 4077/32768,
+ * its geometry in g and its samples filled. */
+static tdc_fov_params_t refusal_setup(tdc_fov_geom_t *g)
+{
+    const tdc_fov_params_t p = params(W * 128, H * 128, 1024, 4077);
+    assert_int_equal(tdc_fov_geom(g, W, H, &p), TDC_OK);
+    fill_samples(g, 1, 0);
+    return p;
+}
+
 static void test_refusals_packet_header(void **state)
 {
     (void)state;
     const tdc_link_encoder_t enc = encoder(FOV, 1);
-    const tdc_fov_params_t p = params(W * 128, H * 128, 1024, 4077);
     tdc_fov_geom_t g;
-    assert_int_equal(tdc_fov_geom(&g, W, H, &p), TDC_OK);
-    fill_samples(&g, 1, 0);
+    const tdc_fov_params_t p = refusal_setup(&g);
     size_t n;
     /* a pixel format other than RGB888 */
     n = raw_foveated(&enc, 0, 1, &p, 0, -1, 0, 0, TDC_PIXFMT_RGB565, W);
@@ -367,10 +377,8 @@ static void test_refusals_foveation_header(void **state)
 {
     (void)state;
     const tdc_link_encoder_t enc = encoder(FOV, 1);
-    const tdc_fov_params_t p = params(W * 128, H * 128, 1024, 4077);
     tdc_fov_geom_t g;
-    assert_int_equal(tdc_fov_geom(&g, W, H, &p), TDC_OK);
-    fill_samples(&g, 1, 0);
+    const tdc_fov_params_t p = refusal_setup(&g);
     const uint8_t F = TDC_PIXFMT_RGB888;
     size_t n;
     const tdc_link_err_t E = TDC_LINK_ERR_FOVEATION;
@@ -394,32 +402,35 @@ static void test_refusals_foveation_header(void **state)
             expect_refused(pkt, n, E, TDC_FOV_HDR_DELTA, 1, FOV, 0, 0);
         }
     }
-    /* disk fraction above 1 (Q15 at 12..13: 4077 = 0x0FED -> 0x80ED) */
-    n = raw_foveated(&enc, 0, 1, &p, 0, 13, 0x80, 0, F, W);
-    expect_refused(pkt, n, E, TDC_FOV_HDR_DISK, 1, FOV, 0, 0);
-    /* gaze far outside the screen (x, Q8 int32 at 0..3: top byte) */
-    n = raw_foveated(&enc, 0, 1, &p, 0, 3, 0x40, 0, F, W);
-    expect_refused(pkt, n, E, TDC_FOV_HDR_GAZE, 1, FOV, 0, 0);
-    n = raw_foveated(&enc, 0, 1, &p, 0, 3, 0xC0, 0, F, W);
-    expect_refused(pkt, n, E, TDC_FOV_HDR_GAZE, 1, FOV, 0, 0);
-    /* buffer width disagreeing with delta and the panel (14..15) */
-    n = raw_foveated(&enc, 0, 1, &p, 0, 14, (uint8_t)(p.lp_w + 1u), 0, F, W);
-    expect_refused(pkt, n, E, TDC_FOV_HDR_BUFFER, 1, FOV, 0, 0);
-    /* u0 (18..19) and the disk count (20..23) disagreeing with the parameters */
-    n = raw_foveated(&enc, 0, 1, &p, 0, 18, (uint8_t)(g.u0 - 1u), 0, F, W);
-    expect_refused(pkt, n, E, TDC_FOV_HDR_GEOMETRY, 1, FOV, 0, 0);
-    n = raw_foveated(&enc, 0, 1, &p, 0, 22, 1, 0, F, W);
-    expect_refused(pkt, n, E, TDC_FOV_HDR_GEOMETRY, 1, FOV, 0, 0);
-    /* an unknown flag, a reserved byte */
-    n = raw_foveated(&enc, 0, 1, &p, 0, 24, 2, 0, F, W);
-    expect_refused(pkt, n, E, TDC_FOV_HDR_RESERVED, 1, FOV, 0, 0);
-    n = raw_foveated(&enc, 0, 1, &p, 0, 31, 1, 0, F, W);
-    expect_refused(pkt, n, E, TDC_FOV_HDR_RESERVED, 1, FOV, 0, 0);
-    /* a payload one byte short or long of what the header states (CRC valid) */
-    n = raw_foveated(&enc, 0, 1, &p, 0, -1, 0, -1, F, W);
-    expect_refused(pkt, n, E, TDC_FOV_HDR_PAYLOAD, 1, FOV, 0, 0);
-    n = raw_foveated(&enc, 0, 1, &p, 0, -1, 0, 1, F, W);
-    expect_refused(pkt, n, E, TDC_FOV_HDR_PAYLOAD, 1, FOV, 0, 0);
+    /* one header or payload byte changed (at, to v; or the payload len bytes
+     * short or long, CRC valid): refused with the reason named */
+    const struct {
+        int at;
+        uint8_t v;
+        int len;
+        tdc_fov_hdr_err_t why;
+    } bad[] = {
+        /* disk fraction above 1 (Q15 at 12..13: 4077 = 0x0FED -> 0x80ED) */
+        {13, 0x80, 0, TDC_FOV_HDR_DISK},
+        /* gaze far outside the screen (x, Q8 int32 at 0..3: top byte) */
+        {3, 0x40, 0, TDC_FOV_HDR_GAZE},
+        {3, 0xC0, 0, TDC_FOV_HDR_GAZE},
+        /* buffer width disagreeing with delta and the panel (14..15) */
+        {14, (uint8_t)(p.lp_w + 1u), 0, TDC_FOV_HDR_BUFFER},
+        /* u0 (18..19) and the disk count (20..23) disagreeing with the parameters */
+        {18, (uint8_t)(g.u0 - 1u), 0, TDC_FOV_HDR_GEOMETRY},
+        {22, 1, 0, TDC_FOV_HDR_GEOMETRY},
+        /* an unknown flag, a reserved byte */
+        {24, 2, 0, TDC_FOV_HDR_RESERVED},
+        {31, 1, 0, TDC_FOV_HDR_RESERVED},
+        /* a payload one byte short or long of what the header states (CRC valid) */
+        {-1, 0, -1, TDC_FOV_HDR_PAYLOAD},
+        {-1, 0, 1, TDC_FOV_HDR_PAYLOAD},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        n = raw_foveated(&enc, 0, 1, &p, 0, bad[i].at, bad[i].v, bad[i].len, F, W);
+        expect_refused(pkt, n, E, bad[i].why, 1, FOV, 0, 0);
+    }
     /* the MV flag set but no vectors sent: the payload is short */
     n = raw_foveated(&enc, 0, 1, &p, 0, 24, TDC_FOV_FLAG_MV, 0, F, W);
     expect_refused(pkt, n, E, TDC_FOV_HDR_PAYLOAD, 1, FOV, 0, 0);
@@ -429,10 +440,8 @@ static void test_refusals_buffers_and_sequence(void **state)
 {
     (void)state;
     const tdc_link_encoder_t enc = encoder(FOV, 2);
-    const tdc_fov_params_t p = params(W * 128, H * 128, 1024, 4077);
     tdc_fov_geom_t g;
-    assert_int_equal(tdc_fov_geom(&g, W, H, &p), TDC_OK);
-    fill_samples(&g, 1, 0);
+    const tdc_fov_params_t p = refusal_setup(&g);
     size_t n;
     /* vectors for a build without the TAA buffer */
     n = tdc_link_encode_foveated(&enc, pkt, sizeof pkt, 0, 1, &p, DELTA_Q15, samples, mvs, NULL);
@@ -615,17 +624,13 @@ static void test_log_rect(void **state)
     expect_refused(pkt, n, E, TDC_FOV_HDR_ALPHA, 1, FOV, 0, 0);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_round_trip),
-        cmocka_unit_test(test_stage_on_decoded_buffers),
-        cmocka_unit_test(test_refusals_packet_header),
-        cmocka_unit_test(test_refusals_foveation_header),
-        cmocka_unit_test(test_refusals_buffers_and_sequence),
-        cmocka_unit_test(test_stream_headers),
-        cmocka_unit_test(test_chunking),
-        cmocka_unit_test(test_log_rect),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_round_trip),
+    cmocka_unit_test(test_stage_on_decoded_buffers),
+    cmocka_unit_test(test_refusals_packet_header),
+    cmocka_unit_test(test_refusals_foveation_header),
+    cmocka_unit_test(test_refusals_buffers_and_sequence),
+    cmocka_unit_test(test_stream_headers),
+    cmocka_unit_test(test_chunking),
+    cmocka_unit_test(test_log_rect),
+)

@@ -18,6 +18,8 @@
 #include <stddef.h>
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -486,14 +488,10 @@ static void test_stream_headers(void **state)
     }
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_round_trip),
-        cmocka_unit_test(test_missing_reduced),
-        cmocka_unit_test(test_stage_on_decoded_buffers),
-        cmocka_unit_test(test_refusals),
-        cmocka_unit_test(test_stream_headers),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_round_trip),
+    cmocka_unit_test(test_missing_reduced),
+    cmocka_unit_test(test_stage_on_decoded_buffers),
+    cmocka_unit_test(test_refusals),
+    cmocka_unit_test(test_stream_headers),
+)

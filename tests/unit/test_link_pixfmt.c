@@ -9,6 +9,8 @@
 #include <stddef.h>
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <stdio.h>
@@ -206,12 +208,8 @@ static void test_payload_sizes(void **state)
     assert_true(tdc_pixfmt_valid(TDC_PIXFMT_YCBCR420));
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_crc32_tables_and_check_value),     cmocka_unit_test(test_ycbcr_to_rgb_vs_reference),
-        cmocka_unit_test(test_ycbcr420_unpack_equals_pointwise), cmocka_unit_test(test_rgb30_and_rgb565_vs_reference),
-        cmocka_unit_test(test_rgb_to_ycbcr_vs_reference),        cmocka_unit_test(test_payload_sizes),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_crc32_tables_and_check_value),     cmocka_unit_test(test_ycbcr_to_rgb_vs_reference),
+    cmocka_unit_test(test_ycbcr420_unpack_equals_pointwise), cmocka_unit_test(test_rgb30_and_rgb565_vs_reference),
+    cmocka_unit_test(test_rgb_to_ycbcr_vs_reference),        cmocka_unit_test(test_payload_sizes),
+)

@@ -88,15 +88,15 @@ static inline int lt_init(lt_rig_t *r, uint16_t w, uint16_t h, uint8_t eyes)
 static inline tdc_link_stream_info_t lt_info(uint32_t flags, uint16_t w, uint16_t h, uint8_t eyes, uint16_t r_num,
                                              uint16_t r_den, uint16_t hz)
 {
-    tdc_link_stream_info_t in;
-    memset(&in, 0, sizeof in);
-    in.flags = flags;
-    in.r_num = r_num;
-    in.r_den = r_den;
-    in.width = w;
-    in.height = h;
-    in.eyes = eyes;
-    in.refresh_hz = hz;
+    const tdc_link_stream_info_t in = {
+        .flags = flags,
+        .r_num = r_num,
+        .r_den = r_den,
+        .width = w,
+        .height = h,
+        .eyes = eyes,
+        .refresh_hz = hz,
+    };
     return in;
 }
 
@@ -176,17 +176,17 @@ static inline uint32_t lt_count(const lt_rig_t *r, uint32_t from, int type, int 
 static inline tdc_link_header_t lt_fov_header(uint8_t eye, uint8_t fmt, uint16_t flags, uint32_t frame, uint16_t w,
                                               uint16_t h)
 {
-    tdc_link_header_t f;
-    memset(&f, 0, sizeof f);
-    f.version = TDC_LINK_VERSION;
-    f.kind = TDC_LINK_KIND_FOVEATED;
-    f.eye = eye;
-    f.format = fmt;
-    f.stream_id = 7;
-    f.flags = flags;
-    f.frame_index = frame;
-    f.width = w;
-    f.height = h;
+    const tdc_link_header_t f = {
+        .version = TDC_LINK_VERSION,
+        .kind = TDC_LINK_KIND_FOVEATED,
+        .eye = eye,
+        .format = fmt,
+        .stream_id = 7,
+        .flags = flags,
+        .frame_index = frame,
+        .width = w,
+        .height = h,
+    };
     return f;
 }
 

@@ -12,6 +12,8 @@
 #include <stdio.h>
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include "tdc_gamma.h"
 #include "tdc_math.h"
 #include "tdc_panels.h"
@@ -366,21 +368,17 @@ static void test_hash3(void **state)
     assert_true(ones > 960u * 540u / 2u - 2000u && ones < 960u * 540u / 2u + 2000u);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_shifts),
-        cmocka_unit_test(test_exp_neg),
-        cmocka_unit_test(test_recip),
-        cmocka_unit_test(test_div_q15),
-        cmocka_unit_test(test_isqrt),
-        cmocka_unit_test(test_udiv64_32),
-        cmocka_unit_test(test_gamma_tables),
-        cmocka_unit_test(test_helper_checksum),
-        cmocka_unit_test(test_mean_u8_exhaustive),
-        cmocka_unit_test(test_sqrt_q8),
-        cmocka_unit_test(test_div_small),
-        cmocka_unit_test(test_hash3),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_shifts),
+    cmocka_unit_test(test_exp_neg),
+    cmocka_unit_test(test_recip),
+    cmocka_unit_test(test_div_q15),
+    cmocka_unit_test(test_isqrt),
+    cmocka_unit_test(test_udiv64_32),
+    cmocka_unit_test(test_gamma_tables),
+    cmocka_unit_test(test_helper_checksum),
+    cmocka_unit_test(test_mean_u8_exhaustive),
+    cmocka_unit_test(test_sqrt_q8),
+    cmocka_unit_test(test_div_small),
+    cmocka_unit_test(test_hash3),
+)

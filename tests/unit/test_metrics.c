@@ -14,6 +14,8 @@
 
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include "metrics/tdc_metrics.h"
 #include "metrics/tdc_powtab.h"
 
@@ -339,12 +341,8 @@ static void test_flip_vs_nvlabs(void **state)
     assert_int_equal(system(rm), 0);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_psnr_ssim_vs_skimage), cmocka_unit_test(test_psnr_identical_capped),
-        cmocka_unit_test(test_powtab_accuracy),      cmocka_unit_test(test_flip_properties),
-        cmocka_unit_test(test_flip_vs_nvlabs),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_psnr_ssim_vs_skimage), cmocka_unit_test(test_psnr_identical_capped),
+    cmocka_unit_test(test_powtab_accuracy),      cmocka_unit_test(test_flip_properties),
+    cmocka_unit_test(test_flip_vs_nvlabs),
+)

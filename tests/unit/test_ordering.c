@@ -8,6 +8,8 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
+
+#include "tdc_cmocka.h"
 #include <math.h>
 #include <stdio.h>
 #include "tdc_math.h"
@@ -310,20 +312,16 @@ static void test_update_matches_definition(void **st)
     }
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_pixel_orders),
-        cmocka_unit_test(test_jitter),
-        cmocka_unit_test(test_angle_table_and_precision),
-        cmocka_unit_test(test_frac_len),
-        cmocka_unit_test(test_decision_matches_reference),
-        cmocka_unit_test(test_eq4_eq5_bands),
-        cmocka_unit_test(test_band_moves_with_angle),
-        cmocka_unit_test(test_diagonal_hashed),
-        cmocka_unit_test(test_zero_keeps),
-        cmocka_unit_test(test_update_neighbourhood),
-        cmocka_unit_test(test_update_matches_definition),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_pixel_orders),
+    cmocka_unit_test(test_jitter),
+    cmocka_unit_test(test_angle_table_and_precision),
+    cmocka_unit_test(test_frac_len),
+    cmocka_unit_test(test_decision_matches_reference),
+    cmocka_unit_test(test_eq4_eq5_bands),
+    cmocka_unit_test(test_band_moves_with_angle),
+    cmocka_unit_test(test_diagonal_hashed),
+    cmocka_unit_test(test_zero_keeps),
+    cmocka_unit_test(test_update_neighbourhood),
+    cmocka_unit_test(test_update_matches_definition),
+)

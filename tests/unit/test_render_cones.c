@@ -1,6 +1,6 @@
 /*
  * test_render_cones.c - the 6-cone incident radiance of Zeng §4.3
- * (sim/render/tdc_render_cones.c): eqs. 9-10 against Monte Carlo, the
+ * (render/tdc_render_cones.c): eqs. 9-10 against Monte Carlo, the
  * layout, recording, re-shading under a uniform sky, and the temporal
  * reuse across a change of normal against a cone-by-index copy.
  */
@@ -8,6 +8,8 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
+
+#include "tdc_cmocka.h"
 
 #include <math.h>
 #include <stdint.h>
@@ -205,13 +207,9 @@ static void test_reuse_across_normals(void **state)
     for (int k = 0; k < TDC_CONES; k++) assert_true(fabs(c2[k][0] - 10) < 1e-12); /* a = 1: the current frame only */
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_overlap_vs_monte_carlo),
-        cmocka_unit_test(test_layout_and_record),
-        cmocka_unit_test(test_shade_uniform_sky),
-        cmocka_unit_test(test_reuse_across_normals),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_overlap_vs_monte_carlo),
+    cmocka_unit_test(test_layout_and_record),
+    cmocka_unit_test(test_shade_uniform_sky),
+    cmocka_unit_test(test_reuse_across_normals),
+)

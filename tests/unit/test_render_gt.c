@@ -11,6 +11,8 @@
 #include <stddef.h>
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -416,16 +418,12 @@ static void test_indirect_cone_reuse(void **state)
     tdc_render_close(r2);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_same_seed_same_bytes),
-        cmocka_unit_test(test_glossy_layers_deterministic),
-        cmocka_unit_test(test_ground_truth_convergence),
-        cmocka_unit_test(test_reduced_prefiltered),
-        cmocka_unit_test(test_reduced_coded_resolve),
-        cmocka_unit_test(test_subframe_positions),
-        cmocka_unit_test(test_indirect_cone_reuse),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_same_seed_same_bytes),
+    cmocka_unit_test(test_glossy_layers_deterministic),
+    cmocka_unit_test(test_ground_truth_convergence),
+    cmocka_unit_test(test_reduced_prefiltered),
+    cmocka_unit_test(test_reduced_coded_resolve),
+    cmocka_unit_test(test_subframe_positions),
+    cmocka_unit_test(test_indirect_cone_reuse),
+)

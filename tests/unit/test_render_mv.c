@@ -16,6 +16,8 @@
 #include <stddef.h>
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -766,23 +768,19 @@ static void test_dual_mv_culling(void **state)
     tdc_render_close(r);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_mv_camera_pan),
-        cmocka_unit_test(test_mv_object_motion),
-        cmocka_unit_test(test_mv_mirror),
-        cmocka_unit_test(test_mv_mirror_needs_reflected),
-        cmocka_unit_test(test_shadow_mv_follows_shadow),
-        cmocka_unit_test(test_shadow_mv_area_light),
-        cmocka_unit_test(test_dual_mv_disocclusion),
-        cmocka_unit_test(test_static_scene_skips_mv),
-        cmocka_unit_test(test_frame_mv_matches_probe),
-        cmocka_unit_test(test_glossy_mv_vs_brute_force),
-        cmocka_unit_test(test_ggx_sampler),
-        cmocka_unit_test(test_layers),
-        cmocka_unit_test(test_dual_mv_culling),
-        cmocka_unit_test(test_samples_at_positions),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_mv_camera_pan),
+    cmocka_unit_test(test_mv_object_motion),
+    cmocka_unit_test(test_mv_mirror),
+    cmocka_unit_test(test_mv_mirror_needs_reflected),
+    cmocka_unit_test(test_shadow_mv_follows_shadow),
+    cmocka_unit_test(test_shadow_mv_area_light),
+    cmocka_unit_test(test_dual_mv_disocclusion),
+    cmocka_unit_test(test_static_scene_skips_mv),
+    cmocka_unit_test(test_frame_mv_matches_probe),
+    cmocka_unit_test(test_glossy_mv_vs_brute_force),
+    cmocka_unit_test(test_ggx_sampler),
+    cmocka_unit_test(test_layers),
+    cmocka_unit_test(test_dual_mv_culling),
+    cmocka_unit_test(test_samples_at_positions),
+)

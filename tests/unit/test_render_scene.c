@@ -8,6 +8,8 @@
 #include <stddef.h>
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -21,7 +23,7 @@ static void test_example_file(void **state)
 {
     (void)state;
     char err[512];
-    assert_int_equal(tdc_scene_load("sim/scenes/example.scene", &sc, err, sizeof err), TDC_SCENE_OK);
+    assert_int_equal(tdc_scene_load("render/scenes/example.scene", &sc, err, sizeof err), TDC_SCENE_OK);
     assert_string_equal(sc.name, "example");
     assert_int_equal(sc.nobjects, 6);
     assert_int_equal(sc.nlights, 2);
@@ -238,11 +240,7 @@ static void test_keyframes(void **state)
     assert_true(fabs(c.pos[0] - 1) < 1e-12 && fabs(c.yaw - M_PI / 4) < 1e-12);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_example_file), cmocka_unit_test(test_builtins),  cmocka_unit_test(test_parser_errors),
-        cmocka_unit_test(test_file_errors),  cmocka_unit_test(test_keyframes),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_example_file), cmocka_unit_test(test_builtins),  cmocka_unit_test(test_parser_errors),
+    cmocka_unit_test(test_file_errors),  cmocka_unit_test(test_keyframes),
+)

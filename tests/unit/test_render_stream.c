@@ -9,6 +9,8 @@
 #include <stddef.h>
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -72,7 +74,9 @@ static uint32_t decode_file(const char *path, uint32_t by_kind[TDC_LINK_KIND_LAS
     return c->packets_ok;
 }
 
-static tdc_render_t *open_scene(const char *name)
+/* Built-in scene name at W x H; layered: with the shadow and dual vectors
+ * the layers need, indirect light when indirect. */
+static tdc_render_t *open_scene(const char *name, int layered, int indirect)
 {
     char err[256];
     assert_int_equal(tdc_scene_builtin(name, &sc, err, sizeof err), TDC_SCENE_OK);
@@ -80,19 +84,21 @@ static tdc_render_t *open_scene(const char *name)
     tdc_render_default_config(&cfg);
     cfg.width = W;
     cfg.height = H;
+    cfg.shadow_mv = cfg.dual_mv = layered;
+    cfg.indirect = indirect;
     tdc_render_t *r = tdc_render_open(&sc, &cfg, err, sizeof err);
     assert_non_null(r);
     return r;
 }
 
-static void run(tdc_rstream_kind_t kind, const char *scene, int frames, uint32_t expect[TDC_LINK_KIND_LAST + 1],
+static void run(tdc_rstream_kind_t kind, const char *scene, int frames, const uint32_t expect[TDC_LINK_KIND_LAST + 1],
                 uint32_t *flags)
 {
     char path[] = "/tmp/tdc_rstream_XXXXXX";
     int fd = mkstemp(path);
     assert_true(fd >= 0);
     close(fd);
-    tdc_render_t *r = open_scene(scene);
+    tdc_render_t *r = open_scene(scene, 0, 0);
     char err[256];
     tdc_render_stream_t *s = tdc_render_stream_create(path, r, kind, err, sizeof err);
     if (!s) fail_msg("%s", err);
@@ -136,39 +142,34 @@ static void run(tdc_rstream_kind_t kind, const char *scene, int frames, uint32_t
     tdc_render_close(r);
 }
 
-static void test_full_stream(void **state)
-{
-    (void)state;
-    uint32_t e[TDC_LINK_KIND_LAST + 1] = {0}, flags;
-    e[TDC_LINK_KIND_STREAM] = 1;
-    e[TDC_LINK_KIND_FULL] = 6;
-    e[TDC_LINK_KIND_MOTION] = 6;
-    run(TDC_RSTREAM_FULL, "fence", 6, e, &flags);
-    assert_true(flags & TDC_LINK_STREAM_MOTION);
-}
+/* One stream kind written by the renderer and read back: the packets of each
+ * kind it must hold and the stream flags it must set. */
+typedef struct {
+    tdc_rstream_kind_t kind;
+    const char *scene;
+    int frames;
+    uint32_t expect[TDC_LINK_KIND_LAST + 1];
+    uint32_t flags;
+} stream_case_t;
 
-static void test_trm_stream(void **state)
-{
-    (void)state;
-    uint32_t e[TDC_LINK_KIND_LAST + 1] = {0}, flags;
-    e[TDC_LINK_KIND_STREAM] = 1;
-    e[TDC_LINK_KIND_FULL] = 3;
-    e[TDC_LINK_KIND_REDUCED] = 3;
-    e[TDC_LINK_KIND_MOTION] = 3;
-    run(TDC_RSTREAM_TRM, "mirror", 6, e, &flags);
-    assert_true((flags & TDC_LINK_STREAM_REDUCED) && (flags & TDC_LINK_STREAM_MIRRORS));
-}
+static stream_case_t k_full = {TDC_RSTREAM_FULL, "fence", 6,
+                               {[TDC_LINK_KIND_STREAM] = 1, [TDC_LINK_KIND_FULL] = 6, [TDC_LINK_KIND_MOTION] = 6},
+                               TDC_LINK_STREAM_MOTION};
+static stream_case_t k_trm = {TDC_RSTREAM_TRM, "mirror", 6,
+                              {[TDC_LINK_KIND_STREAM] = 1, [TDC_LINK_KIND_FULL] = 3, [TDC_LINK_KIND_REDUCED] = 3,
+                               [TDC_LINK_KIND_MOTION] = 3},
+                              TDC_LINK_STREAM_REDUCED | TDC_LINK_STREAM_MIRRORS};
+static stream_case_t k_subframes = {TDC_RSTREAM_SUBFRAMES, "discs", 8,
+                                    {[TDC_LINK_KIND_STREAM] = 1, [TDC_LINK_KIND_SUBFRAME] = 8,
+                                     [TDC_LINK_KIND_PATTERN] = 2, [TDC_LINK_KIND_MOTION] = 8},
+                                    TDC_LINK_STREAM_SUBFRAMES | TDC_LINK_STREAM_SAMPLE_MV};
 
-static void test_subframe_stream(void **state)
+static void test_stream(void **state)
 {
-    (void)state;
-    uint32_t e[TDC_LINK_KIND_LAST + 1] = {0}, flags;
-    e[TDC_LINK_KIND_STREAM] = 1;
-    e[TDC_LINK_KIND_SUBFRAME] = 8;
-    e[TDC_LINK_KIND_PATTERN] = 2;
-    e[TDC_LINK_KIND_MOTION] = 8;
-    run(TDC_RSTREAM_SUBFRAMES, "discs", 8, e, &flags);
-    assert_true((flags & TDC_LINK_STREAM_SUBFRAMES) && (flags & TDC_LINK_STREAM_SAMPLE_MV));
+    const stream_case_t *c = *state;
+    uint32_t flags;
+    run(c->kind, c->scene, c->frames, c->expect, &flags);
+    assert_int_equal(flags & c->flags, c->flags);
 }
 
 static void test_static_stream(void **state)
@@ -225,15 +226,7 @@ static void layered(const char *scene, int frames, uint32_t want_set, int indire
     assert_true(fd >= 0);
     close(fd);
     char err[256];
-    assert_int_equal(tdc_scene_builtin(scene, &sc, err, sizeof err), TDC_SCENE_OK);
-    tdc_render_config_t cfg;
-    tdc_render_default_config(&cfg);
-    cfg.width = W;
-    cfg.height = H;
-    cfg.shadow_mv = cfg.dual_mv = 1;
-    cfg.indirect = indirect;
-    tdc_render_t *r = tdc_render_open(&sc, &cfg, err, sizeof err);
-    assert_non_null(r);
+    tdc_render_t *r = open_scene(scene, 1, indirect);
     tdc_render_stream_t *s = tdc_render_stream_create(path, r, TDC_RSTREAM_LAYERS, err, sizeof err);
     if (!s) fail_msg("%s", err);
     uint32_t set = tdc_render_stream_layer_set(s), flags = tdc_render_stream_flags(s);
@@ -316,14 +309,10 @@ static void test_layered_streams(void **state)
     layered("discs", 5, SH, 0); /* no shadows, no reflections: one layer */
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_full_stream),
-        cmocka_unit_test(test_trm_stream),
-        cmocka_unit_test(test_subframe_stream),
-        cmocka_unit_test(test_static_stream),
-        cmocka_unit_test(test_layered_streams),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test_prestate(test_stream, &k_full),
+    cmocka_unit_test_prestate(test_stream, &k_trm),
+    cmocka_unit_test_prestate(test_stream, &k_subframes),
+    cmocka_unit_test(test_static_stream),
+    cmocka_unit_test(test_layered_streams),
+)

@@ -13,6 +13,8 @@
 
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include "eye/tdc_eye.h"
 #include "panel/tdc_panel_sim.h"
 #include "simulator/tdc_sim_scene.h"
@@ -223,16 +225,12 @@ static void test_code_slices_equal_light(void **state)
     }
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_code_slices_equal_light),
-        cmocka_unit_test(test_eye_steady),
-        cmocka_unit_test(test_eye_talbot_plateau),
-        cmocka_unit_test(test_eye_pursuit),
-        cmocka_unit_test(test_panel_oled),
-        cmocka_unit_test(test_panel_lcd),
-        cmocka_unit_test(test_scene_motion),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_code_slices_equal_light),
+    cmocka_unit_test(test_eye_steady),
+    cmocka_unit_test(test_eye_talbot_plateau),
+    cmocka_unit_test(test_eye_pursuit),
+    cmocka_unit_test(test_panel_oled),
+    cmocka_unit_test(test_panel_lcd),
+    cmocka_unit_test(test_scene_motion),
+)

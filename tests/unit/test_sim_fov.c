@@ -25,6 +25,8 @@
 
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include "simulator/tdc_sim.h"
 #include "simulator/tdc_sim_gaze.h"
 #include "tdc_fov.h"
@@ -419,17 +421,13 @@ static void test_gaze_schedules(void **state)
     assert_int_equal(tdc_sim_gaze_from_name("blink"), -1);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_modes_exact_costs),
-        cmocka_unit_test(test_lr_modes),
-        cmocka_unit_test(test_prefilter),
-        cmocka_unit_test(test_latency_moves_the_fovea),
-        cmocka_unit_test(test_refused),
-        cmocka_unit_test(test_fov_trm_exact_costs),
-        cmocka_unit_test(test_fov_trm_refused),
-        cmocka_unit_test(test_gaze_schedules),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_modes_exact_costs),
+    cmocka_unit_test(test_lr_modes),
+    cmocka_unit_test(test_prefilter),
+    cmocka_unit_test(test_latency_moves_the_fovea),
+    cmocka_unit_test(test_refused),
+    cmocka_unit_test(test_fov_trm_exact_costs),
+    cmocka_unit_test(test_fov_trm_refused),
+    cmocka_unit_test(test_gaze_schedules),
+)

@@ -24,6 +24,8 @@
 
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include "simulator/tdc_sim.h"
 #include "simulator/tdc_sim_render.h"
 
@@ -100,10 +102,6 @@ static void test_glossy_seed(void **state)
     assert_true(sa < 2.0 && sc < 2.0);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_glossy_seed),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_glossy_seed),
+)

@@ -26,6 +26,8 @@
 
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include "eye/tdc_retina.h"
 #include "simulator/tdc_sim.h"
 
@@ -331,13 +333,9 @@ static void test_profile_without_photometry(void **state)
     assert_true(fabs(d.width_m - 2.0 * tan(1.2 * M_PI / 180.0)) < 1e-12);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_bfi_vs_interlace),         cmocka_unit_test(test_static_hold_same_at_90_and_165),
-        cmocka_unit_test(test_static_pulse_same_light),  cmocka_unit_test(test_pursuit_stabilised),
-        cmocka_unit_test(test_lcd_transition_resolved),  cmocka_unit_test(test_fixed_gaze_reported),
-        cmocka_unit_test(test_profile_without_photometry),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_bfi_vs_interlace),         cmocka_unit_test(test_static_hold_same_at_90_and_165),
+    cmocka_unit_test(test_static_pulse_same_light),  cmocka_unit_test(test_pursuit_stabilised),
+    cmocka_unit_test(test_lcd_transition_resolved),  cmocka_unit_test(test_fixed_gaze_reported),
+    cmocka_unit_test(test_profile_without_photometry),
+)

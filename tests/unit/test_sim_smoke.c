@@ -17,6 +17,8 @@
 
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include "simulator/tdc_sim.h"
 #include "tdc_par.h"
 
@@ -249,6 +251,19 @@ static void test_threads_same_digits(void **state)
     tdc_par_min_work = min_work;
 }
 
+/* The stereo tests' run: a 48 x 40 pan, 12 frames at 90 Hz, FLIP at 11.4 ppd. */
+static void stereo_config(tdc_sim_config_t *cfg)
+{
+    tdc_sim_default_config(cfg);
+    cfg->scene.kind = TDC_SCENE_PAN;
+    cfg->width = cfg->scene.width = 48;
+    cfg->height = cfg->scene.height = 40;
+    cfg->duration_s = 12.0 / 90;
+    cfg->progress = 0;
+    cfg->flip_ppd = 11.4;
+    cfg->scene.gt_ss = 2;
+}
+
 /* Stereo (TRM §7.2): both eyes through one stereo stream.  TRM sends one
  * eye full and the other reduced each frame, so the pair costs what a mono
  * TRM stream of both eyes costs (5/8 of full at r = 1/2); each eye has its
@@ -258,14 +273,7 @@ static void test_stereo(void **state)
 {
     (void)state;
     tdc_sim_config_t cfg;
-    tdc_sim_default_config(&cfg);
-    cfg.scene.kind = TDC_SCENE_PAN;
-    cfg.width = cfg.scene.width = 48;
-    cfg.height = cfg.scene.height = 40;
-    cfg.duration_s = 12.0 / 90;
-    cfg.progress = 0;
-    cfg.flip_ppd = 11.4;
-    cfg.scene.gt_ss = 2;
+    stereo_config(&cfg);
     const tdc_mode_desc_t *modes[2] = {tdc_sim_mode_find("full"), tdc_sim_mode_find("trm50")};
     tdc_sim_result_t mono[2], st[2];
     tdc_source_t *l = tdc_scene_create(&cfg.scene, NULL);
@@ -307,14 +315,7 @@ static void test_stereo_symmetric(void **state)
 {
     (void)state;
     tdc_sim_config_t cfg;
-    tdc_sim_default_config(&cfg);
-    cfg.scene.kind = TDC_SCENE_PAN;
-    cfg.width = cfg.scene.width = 48;
-    cfg.height = cfg.scene.height = 40;
-    cfg.duration_s = 12.0 / 90;
-    cfg.progress = 0;
-    cfg.flip_ppd = 11.4;
-    cfg.scene.gt_ss = 2;
+    stereo_config(&cfg);
     const tdc_mode_desc_t *modes[3] = {tdc_sim_mode_find("full"), tdc_sim_mode_find("trm50"),
                                        tdc_sim_mode_find("trm25")};
     tdc_sim_result_t st[3];
@@ -340,14 +341,10 @@ static void test_stereo_symmetric(void **state)
     l->destroy(l);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_trm_family_pan),       cmocka_unit_test(test_static_trm_equals_full),
-        cmocka_unit_test(test_asm_family),           cmocka_unit_test(test_layers_family), cmocka_unit_test(test_extremes),
-        cmocka_unit_test(test_stage_error_ends_run), cmocka_unit_test(test_refused_rate),
-        cmocka_unit_test(test_threads_same_digits),  cmocka_unit_test(test_stereo),
-        cmocka_unit_test(test_stereo_symmetric),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_trm_family_pan),       cmocka_unit_test(test_static_trm_equals_full),
+    cmocka_unit_test(test_asm_family),           cmocka_unit_test(test_layers_family), cmocka_unit_test(test_extremes),
+    cmocka_unit_test(test_stage_error_ends_run), cmocka_unit_test(test_refused_rate),
+    cmocka_unit_test(test_threads_same_digits),  cmocka_unit_test(test_stereo),
+    cmocka_unit_test(test_stereo_symmetric),
+)

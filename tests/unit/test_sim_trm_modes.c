@@ -24,6 +24,8 @@
 
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include "simulator/tdc_sim.h"
 #include "simulator/tdc_sim_render.h"
 
@@ -166,12 +168,8 @@ static void test_jitter1_static_edge(void **state)
     assert_true(gain[1] > gain[0] + 3.0);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_gaze_and_reduced),
-        cmocka_unit_test(test_renderer_reduced_modes),
-        cmocka_unit_test(test_jitter1_static_edge),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_gaze_and_reduced),
+    cmocka_unit_test(test_renderer_reduced_modes),
+    cmocka_unit_test(test_jitter1_static_edge),
+)

@@ -12,6 +12,8 @@
 
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include "tdc_status.h"
 
 /* Every code, as the enum spells it (kept by hand: the test is that the
@@ -100,13 +102,9 @@ static void test_image_texts_stable(void **state)
     assert_string_equal(tdc_status_text(TDC_ERR_IMAGE_TOO_BIG), "image larger than the board's flash slot");
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_names_are_the_enumerators),
-        cmocka_unit_test(test_codes_names_texts_distinct),
-        cmocka_unit_test(test_unknown_values),
-        cmocka_unit_test(test_image_texts_stable),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_names_are_the_enumerators),
+    cmocka_unit_test(test_codes_names_texts_distinct),
+    cmocka_unit_test(test_unknown_values),
+    cmocka_unit_test(test_image_texts_stable),
+)

@@ -1,5 +1,5 @@
 /*
- * test_tool - the shared tool convention (hosttools/common/tdc_tool.c):
+ * test_tool - the shared tool convention (common/tdc_tool.c):
  * every exit code has a distinct name, numbers that do not fit are refused
  * (never wrapped: 4294967297 is not 1), nan/inf refused, sizes, CSV fields,
  * lines longer than the buffer reported instead of split, and output files
@@ -15,6 +15,8 @@
 #include <unistd.h>
 
 #include <cmocka.h>
+
+#include "tdc_cmocka.h"
 
 #include "tdc_tool.h"
 
@@ -186,18 +188,14 @@ static void test_safe_name(void **state)
     for (int i = 0; bad[i]; i++) assert_false(tdc_safe_name(bad[i]));
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_exit_names),
-        cmocka_unit_test(test_u64),
-        cmocka_unit_test(test_u32_and_int_do_not_wrap),
-        cmocka_unit_test(test_double),
-        cmocka_unit_test(test_size),
-        cmocka_unit_test(test_field),
-        cmocka_unit_test(test_read_line),
-        cmocka_unit_test(test_out_keeps_old_until_commit),
-        cmocka_unit_test(test_safe_name),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_exit_names),
+    cmocka_unit_test(test_u64),
+    cmocka_unit_test(test_u32_and_int_do_not_wrap),
+    cmocka_unit_test(test_double),
+    cmocka_unit_test(test_size),
+    cmocka_unit_test(test_field),
+    cmocka_unit_test(test_read_line),
+    cmocka_unit_test(test_out_keeps_old_until_commit),
+    cmocka_unit_test(test_safe_name),
+)

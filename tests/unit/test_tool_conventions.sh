@@ -38,7 +38,7 @@ one_line() {
 
 # --help: exit 0, the usage on stdout, nothing on stderr; the exit codes it
 # lists ("N NAME" after "exit codes") are those of the one table.
-python3 hosttools/common/tdc_exit.py list > "$t/codes" || bad "tdc_exit.py list"
+python3 common/tdc_exit.py list > "$t/codes" || bad "tdc_exit.py list"
 help_ok() {
     prog=$1; name=$(basename "$prog")
     "$prog" --help >"$t/out" 2>"$t/err"; got=$?

@@ -11,6 +11,8 @@
 #include <string.h>
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include "golden/tdc_content.h"
 #include "tdc_math.h"
 #include "tdc_trm_kernels.h"
@@ -249,18 +251,14 @@ static void test_weight_table_generated(void **state)
     assert_int_equal(tdc_trm_wexp_q30[0], 1u << 30);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_config_errors),
-        cmocka_unit_test(test_refuses_low_refresh),
-        cmocka_unit_test(test_call_order_keeps_last_frame),
-        cmocka_unit_test(test_arena_bound),
-        cmocka_unit_test(test_passthrough_elision),
-        cmocka_unit_test(test_static_pair_skips_weight),
-        cmocka_unit_test(test_stereo_alternation),
-        cmocka_unit_test(test_weight_accuracy),
-        cmocka_unit_test(test_weight_table_generated),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_config_errors),
+    cmocka_unit_test(test_refuses_low_refresh),
+    cmocka_unit_test(test_call_order_keeps_last_frame),
+    cmocka_unit_test(test_arena_bound),
+    cmocka_unit_test(test_passthrough_elision),
+    cmocka_unit_test(test_static_pair_skips_weight),
+    cmocka_unit_test(test_stereo_alternation),
+    cmocka_unit_test(test_weight_accuracy),
+    cmocka_unit_test(test_weight_table_generated),
+)

@@ -24,6 +24,8 @@
 
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include "golden/tdc_content.h"
 #include "ref_trm.h"
 #include "ref_trm_gaze.h"
@@ -335,13 +337,9 @@ static void test_bad_input(void **state)
     stage_free(&s);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_strength_vs_reference),
-        cmocka_unit_test(test_frames_vs_reference),
-        cmocka_unit_test(test_off_state_and_k0),
-        cmocka_unit_test(test_bad_input),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_strength_vs_reference),
+    cmocka_unit_test(test_frames_vs_reference),
+    cmocka_unit_test(test_off_state_and_k0),
+    cmocka_unit_test(test_bad_input),
+)

@@ -9,7 +9,7 @@
  *    out of order or never arrived is shown without residual -- byte for
  *    byte what a stage with no state shows -- and counted; never with
  *    stale state.  Each loss pattern runs against the double reference
- *    (sim/ref_trm.c) fed the same losses (its rho zeroed where the
+ *    (ref/ref_trm.c) fed the same losses (its rho zeroed where the
  *    firmware has no pair): per frame >= 99.9 % within 1 LSB, none beyond
  *    2 LSB.  Patterns: every k-th full frame dropped (k = 2, 3, 5),
  *    duplicated frames, swapped pairs, a scene cut mid-pair, and 10^5
@@ -23,6 +23,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include <cmocka.h>
+
+#include "tdc_cmocka.h"
 
 #include "golden/tdc_content.h"
 #include "ref_trm.h"
@@ -284,12 +286,8 @@ static void test_random_loss_1e5(void **state)
     loss_close(&L);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_recompute_equals_stored), cmocka_unit_test(test_drop_every_kth_full),
-        cmocka_unit_test(test_duplicates_and_swaps),    cmocka_unit_test(test_scene_cut_mid_pair),
-        cmocka_unit_test(test_random_loss_1e5),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_recompute_equals_stored), cmocka_unit_test(test_drop_every_kth_full),
+    cmocka_unit_test(test_duplicates_and_swaps),    cmocka_unit_test(test_scene_cut_mid_pair),
+    cmocka_unit_test(test_random_loss_1e5),
+)

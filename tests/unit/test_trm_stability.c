@@ -13,6 +13,8 @@
 #include <string.h>
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include "golden/tdc_content.h"
 #include "tdc_gamma.h"
 #include "trm_fixture.h"
@@ -277,13 +279,9 @@ static void test_long_moving_edge(void **state)
     trm_fix_close(&f);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_flat_fields_exact), cmocka_unit_test(test_flash_every_frame),
-        cmocka_unit_test(test_static_pair_eq3),   cmocka_unit_test(test_s_limits),
-        cmocka_unit_test(test_ratio_limits),      cmocka_unit_test(test_long_static_run),
-        cmocka_unit_test(test_long_moving_edge),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_flat_fields_exact), cmocka_unit_test(test_flash_every_frame),
+    cmocka_unit_test(test_static_pair_eq3),   cmocka_unit_test(test_s_limits),
+    cmocka_unit_test(test_ratio_limits),      cmocka_unit_test(test_long_static_run),
+    cmocka_unit_test(test_long_moving_edge),
+)

@@ -13,6 +13,8 @@
 
 #include <cmocka.h>
 
+#include "tdc_cmocka.h"
+
 #include "tdc_crc32.h"
 #include "tdc_layer_link.h"
 #include "tdc_wire.h"
@@ -206,12 +208,8 @@ static void test_payload_sizes(void **state)
                      TDC_LINK_HEADER_BYTES + 16384u * 16384u * 4u);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_le_fields),          cmocka_unit_test(test_header_pack_unpack),
-        cmocka_unit_test(test_stream_pack_unpack), cmocka_unit_test(test_kind_table),
-        cmocka_unit_test(test_payload_sizes),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+TDC_TEST_MAIN(
+    cmocka_unit_test(test_le_fields),          cmocka_unit_test(test_header_pack_unpack),
+    cmocka_unit_test(test_stream_pack_unpack), cmocka_unit_test(test_kind_table),
+    cmocka_unit_test(test_payload_sizes),
+)

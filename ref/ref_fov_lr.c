@@ -8,7 +8,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "simulator/tdc_sim_codes.h" /* tdc_sim_encode_code: the sources' encoder */
+#include "tdc_sim_codes.h" /* tdc_sim_encode_code: the sources' encoder */
 
 #define K_MAX (65535.0 / 16.0)
 

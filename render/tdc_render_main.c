@@ -5,7 +5,7 @@
  * link stream through the link encoder, and prints per-stage timings.
  *
  *   tdc-render --builtin fence --frames 0:8 --mode full --png out/ --stream out/fence.tdcs --shadow-mv
- *   tdc-render --scene sim/scenes/example.scene --mode gt --gt-samples 256 --png out/
+ *   tdc-render --scene render/scenes/example.scene --mode gt --gt-samples 256 --png out/
  *   tdc-render --list | --print-scene NAME
  */
 #include <errno.h>

@@ -53,6 +53,11 @@ __attribute__((format(printf, 2, 3)))
 #endif
 int tdc_fail_usage(const char *cmd, const char *why_fmt, ...);
 
+/* For a library function that reports to its caller rather than exiting:
+ * formats one message line into err (if err and errlen) and returns -1, so
+ * a refusal is `return tdc_errf(err, errlen, "...", ...)`. */
+int tdc_errf(char *err, size_t errlen, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+
 /* getopt_long() returned '?' or ':' (call it with opterr = 0 and an
  * optstring starting with ':'): the unknown option, or the one missing its
  * value, as one tdc_fail_usage() line -> ARGS. */

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "tdc_ordering.h"
+#include "tdc_free.h"
 
 #define NL TDC_LAYER_MAX
 #define VIS (TDC_LAYER_VISIBILITY - 1)
@@ -81,21 +82,9 @@ void tdc_ref_lasm_free(tdc_ref_lasm_t *r)
         return;
     }
     for (int i = 0; i < NL; i++) {
-        free(r->hist[i][0]);
-        free(r->hist[i][1]);
-        free(r->slots[i]);
-        free(r->window[i]);
-        free(r->mv[i]);
+        TDC_FREE_ALL(r->hist[i][0], r->hist[i][1], r->slots[i], r->window[i], r->mv[i]);
     }
-    free(r->splat);
-    free(r->newmask);
-    free(r->pattern);
-    free(r->weight);
-    free(r->scratch);
-    free(r->sigma);
-    free(r->exact);
-    free(r->out);
-    free(r);
+    TDC_FREE_ALL(r->splat, r->newmask, r->pattern, r->weight, r->scratch, r->sigma, r->exact, r->out, r);
 }
 
 int tdc_ref_lasm_ingest(tdc_ref_lasm_t *r, uint32_t frame, const tdc_layer_frame_t *lf, const uint8_t *pattern_bits)

@@ -1,5 +1,5 @@
 /* tdc_link_file.c - .tdcs stream files (see tdc_link_file.h). */
-#include "link/tdc_link_file.h"
+#include "tdc_link_file.h"
 
 #include <errno.h>
 #include <stdlib.h>

@@ -2,6 +2,8 @@
  * tdc_sim_codes.h - what every simulator source does with a sample: panel
  * drive code from linear light, Q4 motion vector, the stratified grid of
  * spp rays (shared by the procedural scenes and the photograph source).
+ * In ref/ because the references encode their outputs the same way
+ * (ref_fov_lr.c): below both the references and the simulator.
  */
 #ifndef TDC_SIM_CODES_H
 #define TDC_SIM_CODES_H

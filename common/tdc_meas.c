@@ -6,23 +6,11 @@
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "tdc_tool.h"
-
-int tdc_meas_errf(char *err, size_t errlen, const char *fmt, ...)
-{
-    if (err && errlen) {
-        va_list ap;
-        va_start(ap, fmt);
-        vsnprintf(err, errlen, fmt, ap);
-        va_end(ap);
-    }
-    return -1;
-}
 
 void tdc_meas_free(tdc_meas_t *m)
 {
@@ -52,7 +40,7 @@ int tdc_meas_parse(const char *text, size_t len, const char *path, tdc_meas_t *m
         line++;
         size_t n = e - pos;
         if (n > TDC_MEAS_MAX_LINE) {
-            return tdc_meas_errf(err, errlen, "%s:%d: line longer than %d characters", path, line, TDC_MEAS_MAX_LINE);
+            return tdc_errf(err, errlen, "%s:%d: line longer than %d characters", path, line, TDC_MEAS_MAX_LINE);
         }
         memcpy(buf, text + pos, n);
         buf[n] = 0;
@@ -61,7 +49,7 @@ int tdc_meas_parse(const char *text, size_t len, const char *path, tdc_meas_t *m
             buf[--n] = 0;
         }
         if (memchr(buf, 0, n)) {
-            return tdc_meas_errf(err, errlen, "%s:%d: NUL byte in a text line", path, line);
+            return tdc_errf(err, errlen, "%s:%d: NUL byte in a text line", path, line);
         }
         char *s = buf;
         while (*s == ' ' || *s == '\t') {
@@ -76,7 +64,7 @@ int tdc_meas_parse(const char *text, size_t len, const char *path, tdc_meas_t *m
             } else if (!strcmp(s, k_hdr_trans)) {
                 m->kind = TDC_MEAS_TRANSITIONS;
             } else {
-                return tdc_meas_errf(err, errlen, "%s:%d: expected the header %s (pairs) or %s (transitions)", path,
+                return tdc_errf(err, errlen, "%s:%d: expected the header %s (pairs) or %s (transitions)", path,
                                      line, k_hdr_pairs, k_hdr_trans);
             }
             continue;
@@ -97,56 +85,56 @@ int tdc_meas_parse(const char *text, size_t len, const char *path, tdc_meas_t *m
             *p = 0;
         }
         if (k != nf) {
-            return tdc_meas_errf(err, errlen, "%s:%d: %d fields, expected %d (%s)", path, line, k, nf,
+            return tdc_errf(err, errlen, "%s:%d: %d fields, expected %d (%s)", path, line, k, nf,
                                  m->kind == TDC_MEAS_PAIRS ? k_hdr_pairs : k_hdr_trans);
         }
         tdc_meas_row_t r = {0};
         int v;
         r.line = line;
         if (tdc_parse_int(fld[0], 1, 1000, &v)) {
-            return tdc_meas_errf(err, errlen, "%s:%d: field %s: '%s' is not an integer in 1..1000", path, line, nm[0],
+            return tdc_errf(err, errlen, "%s:%d: field %s: '%s' is not an integer in 1..1000", path, line, nm[0],
                                  fld[0]);
         }
         r.rate = v;
         if (strlen(fld[1]) != 1 || !strchr("RGB", fld[1][0])) {
-            return tdc_meas_errf(err, errlen, "%s:%d: field %s: '%s' is not R, G or B", path, line, nm[1], fld[1]);
+            return tdc_errf(err, errlen, "%s:%d: field %s: '%s' is not R, G or B", path, line, nm[1], fld[1]);
         }
         r.ch = fld[1][0] == 'R' ? 0 : fld[1][0] == 'G' ? 1 : 2;
         if (tdc_parse_int(fld[2], 0, 1023, &v)) {
-            return tdc_meas_errf(err, errlen, "%s:%d: field %s: '%s' is not an integer in 0..1023", path, line, nm[2],
+            return tdc_errf(err, errlen, "%s:%d: field %s: '%s' is not an integer in 0..1023", path, line, nm[2],
                                  fld[2]);
         }
         r.a = v;
         if (tdc_parse_int(fld[3], 0, 1023, &v)) {
-            return tdc_meas_errf(err, errlen, "%s:%d: field %s: '%s' is not an integer in 0..1023", path, line, nm[3],
+            return tdc_errf(err, errlen, "%s:%d: field %s: '%s' is not an integer in 0..1023", path, line, nm[3],
                                  fld[3]);
         }
         r.b = v;
         int li = 4;
         if (m->kind == TDC_MEAS_TRANSITIONS) {
             if (tdc_parse_int(fld[4], 0, 999, &v)) {
-                return tdc_meas_errf(err, errlen, "%s:%d: field %s: '%s' is not an integer in 0..999", path, line,
+                return tdc_errf(err, errlen, "%s:%d: field %s: '%s' is not an integer in 0..999", path, line,
                                      nm[4], fld[4]);
             }
             r.run = v;
             li = 5;
         }
         if (tdc_parse_double(fld[li], -1e6, 1e6, &r.lum)) {
-            return tdc_meas_errf(err, errlen, "%s:%d: field %s: '%s' is not a finite number (cd/m^2)", path, line,
+            return tdc_errf(err, errlen, "%s:%d: field %s: '%s' is not a finite number (cd/m^2)", path, line,
                                  nm[li], fld[li]);
         }
         if (m->kind == TDC_MEAS_TRANSITIONS && tdc_parse_double(fld[6], -1e6, 1e6, &r.end)) {
-            return tdc_meas_errf(err, errlen, "%s:%d: field %s: '%s' is not a finite number (cd/m^2)", path, line,
+            return tdc_errf(err, errlen, "%s:%d: field %s: '%s' is not a finite number (cd/m^2)", path, line,
                                  nm[6], fld[6]);
         }
         if (m->nrows == TDC_MEAS_MAX_ROWS) {
-            return tdc_meas_errf(err, errlen, "%s:%d: more than %d rows", path, line, TDC_MEAS_MAX_ROWS);
+            return tdc_errf(err, errlen, "%s:%d: more than %d rows", path, line, TDC_MEAS_MAX_ROWS);
         }
         if (m->nrows == m->cap) {
             size_t nc = m->cap ? 2 * m->cap : 1024;
             tdc_meas_row_t *nr = realloc(m->rows, nc * sizeof *nr);
             if (!nr) {
-                return tdc_meas_errf(err, errlen, "%s:%d: out of memory", path, line);
+                return tdc_errf(err, errlen, "%s:%d: out of memory", path, line);
             }
             m->rows = nr;
             m->cap = nc;
@@ -156,10 +144,10 @@ int tdc_meas_parse(const char *text, size_t len, const char *path, tdc_meas_t *m
         m->max_code = r.b > m->max_code ? r.b : m->max_code;
     }
     if (!m->kind) {
-        return tdc_meas_errf(err, errlen, "%s: no header line (empty file?)", path);
+        return tdc_errf(err, errlen, "%s: no header line (empty file?)", path);
     }
     if (!m->nrows) {
-        return tdc_meas_errf(err, errlen, "%s: no measurements after the header", path);
+        return tdc_errf(err, errlen, "%s: no measurements after the header", path);
     }
     return 0;
 }
@@ -169,7 +157,7 @@ int tdc_meas_load(const char *path, tdc_meas_t *m, char *err, size_t errlen)
     memset(m, 0, sizeof *m);
     FILE *f = tdc_in_check(path) == 0 ? fopen(path, "rb") : NULL; /* a folder: EISDIR, FILE */
     if (!f) {
-        tdc_meas_errf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
+        tdc_errf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
         return -2;
     }
     size_t cap = 1 << 16, n = 0;
@@ -180,7 +168,7 @@ int tdc_meas_load(const char *path, tdc_meas_t *m, char *err, size_t errlen)
             if (cap >= limit) {
                 free(text);
                 fclose(f);
-                return tdc_meas_errf(err, errlen, "%s: larger than 256 MiB", path);
+                return tdc_errf(err, errlen, "%s: larger than 256 MiB", path);
             }
             char *t = realloc(text, cap * 2);
             if (!t) {
@@ -201,7 +189,7 @@ int tdc_meas_load(const char *path, tdc_meas_t *m, char *err, size_t errlen)
     fclose(f);
     if (!text || rd_err) {
         free(text);
-        tdc_meas_errf(err, errlen, "%s: read error", path);
+        tdc_errf(err, errlen, "%s: read error", path);
         return -2;
     }
     int rc = tdc_meas_parse(text, n, path, m, err, errlen);

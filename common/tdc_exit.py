@@ -4,9 +4,9 @@
     from tdc_exit import EXIT          # EXIT.OK == 0, EXIT.ARGS == 1, ...
     EXIT.name(13)                      # 'INPUT'
 
-    python3 hosttools/common/tdc_exit.py markdown   # the table of docs/tools.md
-    python3 hosttools/common/tdc_exit.py short      # '0 OK, 1 ARGS, ...' (README)
-    python3 hosttools/common/tdc_exit.py list       # 'CODE NAME' lines (tests)
+    python3 common/tdc_exit.py markdown   # the table of docs/tools.md
+    python3 common/tdc_exit.py short      # '0 OK, 1 ARGS, ...' (README)
+    python3 common/tdc_exit.py list       # 'CODE NAME' lines (tests)
 
 The table is written once, in tdc_exit.h (an X-macro the C programs
 compile); this reads the same lines, so C, Python and the docs cannot

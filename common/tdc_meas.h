@@ -48,11 +48,7 @@ int tdc_meas_load(const char *path, tdc_meas_t *m, char *err, size_t errlen);
 
 void tdc_meas_free(tdc_meas_t *m);
 
-/* Formats one message line into err (if err and errlen); returns -1, so a
- * refusal is `return tdc_meas_errf(err, errlen, "...", ...)`. */
-int tdc_meas_errf(char *err, size_t errlen, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
-
-/* Numbers (options and fields) are parsed with hosttools/common/tdc_tool.h
+/* Numbers (options and fields) are parsed with common/tdc_tool.h
  * (tdc_parse_int, tdc_parse_double: the whole string, in range, no wrap). */
 
 #endif /* TDC_MEAS_H */

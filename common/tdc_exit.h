@@ -4,8 +4,8 @@
  *   X(code, NAME, "meaning", "programs")
  *
  * Read by tdc_tool.h (the TDC_EXIT_* enum) and tdc_tool.c (tdc_exit_name),
- * by hosttools/common/tdc_exit.py for the Python tools (tdc_sweep.py,
- * tdc_experiments.py) and the docs: `python3 hosttools/common/tdc_exit.py
+ * by common/tdc_exit.py for the Python tools (tdc_sweep.py,
+ * tdc_experiments.py) and the docs: `python3 common/tdc_exit.py
  * markdown` prints the table of docs/tools.md, `... short` the README line;
  * tests/unit/test_exit_table.sh fails when either differs from this list or
  * when a program's --help names a code otherwise.

@@ -9,7 +9,7 @@
 #include <string.h>
 
 #include "tdc_link_encode.h"
-#include "link/tdc_link_file.h"
+#include "tdc_link_file.h"
 #include "tdc_render_internal.h"
 
 struct tdc_render_stream {

@@ -22,19 +22,29 @@ static void png_quiet_warning(png_structp png, png_const_charp msg)
     (void)png, (void)msg;
 }
 
-int tdc_png_read(const char *path, tdc_image_t *img, char *err, size_t errlen)
+FILE *tdc_png_open_sig(const char *path, unsigned char sig[8], size_t *got, char *err, size_t errlen)
 {
-    memset(img, 0, sizeof *img);
     FILE *f = fopen(path, "rb");
     if (!f) {
         snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
-        return -1;
+        return NULL;
     }
-    unsigned char sig[8];
-    const size_t got = fread(sig, 1, 8, f);
-    if (got != 8 && ferror(f)) { /* a folder opens, and reading it fails with EISDIR */
+    *got = fread(sig, 1, 8, f);
+    if (*got != 8 && ferror(f)) {
         snprintf(err, errlen, "%s: cannot read: %s", path, strerror(errno));
         fclose(f);
+        return NULL;
+    }
+    return f;
+}
+
+int tdc_png_read(const char *path, tdc_image_t *img, char *err, size_t errlen)
+{
+    memset(img, 0, sizeof *img);
+    unsigned char sig[8];
+    size_t got;
+    FILE *f = tdc_png_open_sig(path, sig, &got, err, errlen);
+    if (!f) {
         return -1;
     }
     if (got != 8 || png_sig_cmp(sig, 0, 8)) {

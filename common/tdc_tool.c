@@ -65,6 +65,17 @@ int tdc_fail_usage(const char *cmd, const char *why_fmt, ...)
     return tdc_fail(TDC_EXIT_ARGS, cmd, NULL, "%s: try '%s --help'", why, g_name);
 }
 
+int tdc_errf(char *err, size_t errlen, const char *fmt, ...)
+{
+    if (err && errlen) {
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(err, errlen, fmt, ap);
+        va_end(ap);
+    }
+    return -1;
+}
+
 int tdc_fail_getopt(int c, char *const *argv)
 {
     /* glibc: optind is past the offending element; optopt is the short

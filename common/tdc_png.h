@@ -6,6 +6,7 @@
 #define TDC_PNG_H
 
 #include <stddef.h>
+#include <stdio.h>
 #include <stdint.h>
 
 typedef struct {
@@ -20,6 +21,12 @@ typedef struct {
  * alpha is dropped.  Returns 0, or -1 with a message in err (errlen bytes).
  */
 int tdc_png_read(const char *path, tdc_image_t *img, char *err, size_t errlen);
+
+/* Opens path and reads its first bytes (up to 8, *got of them) into sig,
+ * for a reader that tells formats apart by them: the file, positioned after
+ * them; NULL with one line in err when it cannot be opened or read (a
+ * folder opens, and reading it fails with EISDIR). */
+FILE *tdc_png_open_sig(const char *path, unsigned char sig[8], size_t *got, char *err, size_t errlen);
 
 /* Writes RGB888 (bits = 8) or RGB16 (bits = 16) rows `stride` samples apart.
  * Returns 0, or -1 with a message in err. */

@@ -1,7 +1,7 @@
 /*
  * tdc_scene.h - scene description of the companion renderer: materials,
  * shapes, keyframed objects, lights and a keyframed camera.  Scenes are text
- * files (format: docs/renderer.md and sim/scenes/README.md); built-in scenes
+ * files (format: docs/renderer.md and render/scenes/README.md); built-in scenes
  * are the same text compiled in.  Host code (double precision).
  *
  * Units: world units are arbitrary (metres in the built-ins), times in

@@ -45,7 +45,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "ref_fov.h" /* TDC_FOV_LOD_*, ref_fov_lod_cone (sim/ref_fov.c: the one footprint definition) */
+#include "ref_fov.h" /* TDC_FOV_LOD_*, ref_fov_lod_cone (ref/ref_fov.c: the one footprint definition) */
 #include "tdc_scene.h"
 
 typedef enum {
@@ -106,7 +106,7 @@ typedef struct {
  *             (eq. 4.3, S1 = smoothstep on [0, 1]); without its base bias 0.3
  *             of eq. 4.2, which our full-rate frames do not have either.
  * Disk samples keep one pixel's cone in every mode.  The factor is
- * ref_fov_lod_cone (sim/ref_fov.c), which the simulator's photograph and
+ * ref_fov_lod_cone (ref/ref_fov.c), which the simulator's photograph and
  * procedural sources use as their footprint prefilter's box side. */
 
 /* Caller-owned outputs; any pointer may be NULL (that output is not
