@@ -103,11 +103,12 @@ typedef struct tdc_fvvdp tdc_fvvdp_t;
  * Returns NULL with a one-line reason in why (>= 128 bytes) on bad input. */
 tdc_fvvdp_t *tdc_fvvdp_new(const tdc_fvvdp_geometry_t *g, double fps, char *why, size_t why_len);
 /* A metric judging another test against the same reference as owner: it
- * keeps no reference history or pyramids of its own but reads owner's, so
- * each frame must be fed to owner first (the reference argument of
- * tdc_fvvdp_frame is then ignored), and owner must outlive it.  Results are
- * the same bits as an unshared metric's. */
-tdc_fvvdp_t *tdc_fvvdp_new_shared(const tdc_fvvdp_t *owner, char *why, size_t why_len);
+ * keeps no reference history, pyramids or scratch planes of its own but
+ * reads and reuses owner's, so each frame must be fed to owner first (the
+ * reference argument of tdc_fvvdp_frame is then ignored, may be NULL), the
+ * metrics of one owner must not run frames at the same time, and owner must
+ * outlive them.  Results are the same bits as an unshared metric's. */
+tdc_fvvdp_t *tdc_fvvdp_new_shared(tdc_fvvdp_t *owner, char *why, size_t why_len);
 void tdc_fvvdp_free(tdc_fvvdp_t *m);
 
 /* Feed one frame of linear luminance (cd/m^2, row-major w*h) of the test

@@ -183,31 +183,35 @@ static inline double axis(double q, double lo, double hi, int *i0)
 }
 
 void tdc_fvvdp_csf_init(void);
-double tdc_fvvdp_csf_lut_q(int ch, double log2_rho, double lum, double sqrt_ecc);
+void tdc_fvvdp_csf_lut_log2(double log2_rho, double log2_lum, double sqrt_ecc, double out[2]);
 void tdc_fvvdp_csf_init(void)
 {
     pthread_once(&lut_once, lut_build);
 }
 
-double tdc_fvvdp_csf_lut(int ch, double rho, double lum, double ecc)
-{
-    tdc_fvvdp_csf_init();
-    return tdc_fvvdp_csf_lut_q(ch, log2(rho), lum, sqrt(ecc > 0.0 ? ecc : 0.0));
-}
-
-/* The table at log2 rho and sqrt ecc (the metric's inner loop has them
- * from per-band maps, without a log and a square root per sample); after
+/* log2 S of both channels (0: omega 0, 1: 5 Hz) at log2 rho, log2 L and
+ * sqrt ecc: one set of trilinear weights (the metric's inner loop has the
+ * three from per-band maps and a vectorisable log2); after
  * tdc_fvvdp_csf_init. */
-double tdc_fvvdp_csf_lut_q(int ch, double log2_rho, double lum, double sqrt_ecc)
+void tdc_fvvdp_csf_lut_log2(double log2_rho, double log2_lum, double sqrt_ecc, double out[2])
 {
     int i, j, k;
     double fr = axis(log2_rho, R_LO, R_HI, &i);
-    double fy = axis(log2(lum), Y_LO, Y_HI, &j);
+    double fy = axis(log2_lum, Y_LO, Y_HI, &j);
     double fe = axis(sqrt_ecc, 0.0, E_HI, &k);
-    const float(*v)[N][N] = lut[ch];
-    double a = ((v[j][i][k] * (1 - fr) + v[j][i + 1][k] * fr) * (1 - fy) +
-                (v[j + 1][i][k] * (1 - fr) + v[j + 1][i + 1][k] * fr) * fy) * (1 - fe) +
-               ((v[j][i][k + 1] * (1 - fr) + v[j][i + 1][k + 1] * fr) * (1 - fy) +
-                (v[j + 1][i][k + 1] * (1 - fr) + v[j + 1][i + 1][k + 1] * fr) * fy) * fe;
-    return exp2(a);
+    for (int ch = 0; ch < 2; ch++) {
+        const float(*v)[N][N] = lut[ch];
+        out[ch] = ((v[j][i][k] * (1 - fr) + v[j][i + 1][k] * fr) * (1 - fy) +
+                   (v[j + 1][i][k] * (1 - fr) + v[j + 1][i + 1][k] * fr) * fy) * (1 - fe) +
+                  ((v[j][i][k + 1] * (1 - fr) + v[j][i + 1][k + 1] * fr) * (1 - fy) +
+                   (v[j + 1][i][k + 1] * (1 - fr) + v[j + 1][i + 1][k + 1] * fr) * fy) * fe;
+    }
+}
+
+double tdc_fvvdp_csf_lut(int ch, double rho, double lum, double ecc)
+{
+    double a[2];
+    tdc_fvvdp_csf_init();
+    tdc_fvvdp_csf_lut_log2(log2(rho), log2(lum), sqrt(ecc > 0.0 ? ecc : 0.0), a);
+    return exp2(a[ch]);
 }

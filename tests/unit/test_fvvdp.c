@@ -397,8 +397,19 @@ static void test_refused(void **state)
     assert_non_null(strstr(why, "distance"));
     tdc_fvvdp_t *m = tdc_fvvdp_new(&g, 90.0, why, sizeof why);
     assert_non_null(m);
-    /* History bound: ceil(90/4) = 23 frames x test+ref x float. */
-    assert_true(tdc_fvvdp_bytes(m) >= 23u * 2 * 64 * 64 * sizeof(float));
+    /* History: it grows with the frames fed, to ceil(90/4) = 23 frames x
+     * test+ref x float, and no further. */
+    static float fr[64 * 64];
+    size_t b0 = tdc_fvvdp_bytes(m), b22 = 0;
+    for (int f = 0; f < 40; f++) {
+        tdc_fvvdp_frame(m, fr, fr, NULL);
+        b22 = f == 21 ? tdc_fvvdp_bytes(m) : b22;
+        if (f == 22) {
+            assert_int_equal(tdc_fvvdp_bytes(m) - b0, 23u * 2 * 64 * 64 * sizeof(float));
+            assert_int_equal(tdc_fvvdp_bytes(m) - b22, 2 * 64 * 64 * sizeof(float));
+        }
+    }
+    assert_int_equal(tdc_fvvdp_bytes(m) - b0, 23u * 2 * 64 * 64 * sizeof(float));
     tdc_fvvdp_free(m);
 }
 
