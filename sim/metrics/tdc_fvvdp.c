@@ -65,7 +65,8 @@ void tdc_fvvdp_csf_lut_log2(double log2_rho, double log2_lum, double sqrt_ecc, d
 #define LOG_JOD_EXP (-0.2280)
 
 struct tdc_fvvdp {
-    tdc_fvvdp_t *owner; /* shares the owner's reference signals and scratch (tdc_fvvdp_new_shared) */
+    tdc_fvvdp_t *owner; /* shares the owner's reference signals (tdc_fvvdp_new_shared) */
+    tdc_fvvdp_t *ws;    /* works in ws's scratch (tdc_fvvdp_new_beside, _shared); NULL: its own */
     tdc_fvvdp_geometry_t g;
     double ppd, fps;
     int w, h, nch, taps, frames;
@@ -76,10 +77,11 @@ struct tdc_fvvdp {
      * first frame read the first frame ("replicate" padding), so a run of n
      * frames holds min(n, taps) of them. */
     float *hist[2][TDC_FVVDP_MAX_TAPS];
-    /* Held by the owner (or an unshared metric) only, used by every metric
-     * sharing it in turn (each frame is fed to the owner first, the metrics
-     * of one owner never run at once): */
-    double *gp[4][TDC_FVVDP_MAX_LEVELS];   /* Gaussian pyramids of the signals (odd: the reference) */
+    /* Gaussian pyramids of the signals: the reference's (odd) held by the
+     * reference's owner, the test's (even) and the rest below by the
+     * workspace's holder and used by every metric working in it in turn
+     * (they never run frames at the same time): */
+    double *gp[4][TDC_FVVDP_MAX_LEVELS];
     double *lresmag[TDC_FVVDP_MAX_LEVELS]; /* log2 of the off-axis magnification per band sample */
     double *bkg, *ex, *tmp, *rows, *colx;
     float *con[4];                         /* band contrasts: test, reference x sustained, transient */
@@ -103,8 +105,8 @@ static void *zalloc(tdc_fvvdp_t *m, size_t n, size_t sz)
     return calloc(n, sz);
 }
 
-static tdc_fvvdp_t *new_impl(const tdc_fvvdp_geometry_t *g, double fps, tdc_fvvdp_t *owner, char *why,
-                             size_t why_len)
+static tdc_fvvdp_t *new_impl(const tdc_fvvdp_geometry_t *g, double fps, tdc_fvvdp_t *owner, tdc_fvvdp_t *ws,
+                             char *why, size_t why_len)
 {
     if (g->width < 4 || g->height < 4 || g->width > 16384 || g->height > 16384) {
         snprintf(why, why_len, "size %dx%d outside 4..16384", g->width, g->height);
@@ -124,6 +126,7 @@ static tdc_fvvdp_t *new_impl(const tdc_fvvdp_geometry_t *g, double fps, tdc_fvvd
         return NULL;
     }
     m->owner = owner;
+    m->ws = ws;
     m->g = *g;
     m->w = g->width;
     m->h = g->height;
@@ -143,16 +146,18 @@ static tdc_fvvdp_t *new_impl(const tdc_fvvdp_geometry_t *g, double fps, tdc_fvvd
     }
     size_t n = (size_t)m->w * m->h;
     int ok = 1;
-    for (int s = 0; s < 2 * m->nch && !owner; s++) {
-        for (int l = 0; l < m->pyr.levels; l++) {
+    for (int s = 0; s < 2 * m->nch; s++) {
+        for (int l = 0; l < m->pyr.levels && ((s & 1) ? !owner : !ws); l++) {
             ok &= (m->gp[s][l] = zalloc(m, (size_t)m->pyr.w[l] * m->pyr.h[l], sizeof(double))) != NULL;
         }
-        ok &= (m->con[s] = zalloc(m, n, sizeof(float))) != NULL;
+        ok &= ws || (m->con[s] = zalloc(m, n, sizeof(float))) != NULL;
     }
-    if (!owner) {
+    if (!ws) {
+        /* tmp: reduce needs w ceil(h/2), expand ceil(w/2) h */
+        size_t nt = (size_t)(m->w > m->h ? m->w : m->h) * ((m->w < m->h ? m->w : m->h) + 1) / 2;
         ok &= (m->bkg = zalloc(m, n, sizeof(double))) != NULL;
         ok &= (m->ex = zalloc(m, n, sizeof(double))) != NULL;
-        ok &= (m->tmp = zalloc(m, n, sizeof(double))) != NULL;
+        ok &= (m->tmp = zalloc(m, nt, sizeof(double))) != NULL;
         ok &= (m->rows = zalloc(m, 5 * (size_t)m->h, sizeof(double))) != NULL;
         ok &= (m->colx = zalloc(m, (size_t)m->w, sizeof(double))) != NULL;
     }
@@ -167,7 +172,7 @@ static tdc_fvvdp_t *new_impl(const tdc_fvvdp_geometry_t *g, double fps, tdc_fvvd
 
 tdc_fvvdp_t *tdc_fvvdp_new(const tdc_fvvdp_geometry_t *g, double fps, char *why, size_t why_len)
 {
-    return new_impl(g, fps, NULL, why, why_len);
+    return new_impl(g, fps, NULL, NULL, why, why_len);
 }
 
 tdc_fvvdp_t *tdc_fvvdp_new_shared(tdc_fvvdp_t *owner, char *why, size_t why_len)
@@ -176,13 +181,24 @@ tdc_fvvdp_t *tdc_fvvdp_new_shared(tdc_fvvdp_t *owner, char *why, size_t why_len)
         snprintf(why, why_len, "the owner of a shared reference must own it");
         return NULL;
     }
-    return new_impl(&owner->g, owner->fps, owner, why, why_len);
+    return new_impl(&owner->g, owner->fps, owner, owner->ws ? owner->ws : owner, why, why_len);
 }
 
-/* The metric holding the pyramids and scratch m works in. */
+tdc_fvvdp_t *tdc_fvvdp_new_beside(tdc_fvvdp_t *other, char *why, size_t why_len)
+{
+    return new_impl(&other->g, other->fps, NULL, other->ws ? other->ws : other, why, why_len);
+}
+
+/* The metric holding the scratch m works in. */
 static tdc_fvvdp_t *home(tdc_fvvdp_t *m)
 {
-    return m->owner ? m->owner : m;
+    return m->ws ? m->ws : m;
+}
+
+/* Pyramid of signal s (odd: the reference's, held by its owner). */
+static double **pyr(tdc_fvvdp_t *m, int s)
+{
+    return (s & 1) ? (m->owner ? m->owner : m)->gp[s] : home(m)->gp[s];
 }
 
 void tdc_fvvdp_free(tdc_fvvdp_t *m)
@@ -265,14 +281,13 @@ int tdc_fvvdp_set_fovea(tdc_fvvdp_t *m, double deg)
  * history (video).  -1: out of memory for the history. */
 static int signals(tdc_fvvdp_t *m, const float *test, const float *ref)
 {
-    tdc_fvvdp_t *o = home(m);
     size_t n = (size_t)m->w * m->h;
     int nt = m->owner ? 1 : 2; /* streams held: test, and the reference unless shared */
     if (m->nch == 1) {
         for (size_t i = 0; i < n; i++) {
-            o->gp[0][0][i] = test[i];
+            pyr(m, 0)[0][i] = test[i];
             if (nt == 2) {
-                o->gp[1][0][i] = ref[i];
+                pyr(m, 1)[0][i] = ref[i];
             }
         }
         return 0;
@@ -294,7 +309,7 @@ static int signals(tdc_fvvdp_t *m, const float *test, const float *ref)
     TDC_PAR_FOR((long)n * taps)
     for (int y = 0; y < m->h; y++) {
         for (int t = 0; t < nt; t++) {
-            double *sus = o->gp[t][0] + (size_t)y * w, *tr = o->gp[2 + t][0] + (size_t)y * w;
+            double *sus = pyr(m, t)[0] + (size_t)y * w, *tr = pyr(m, 2 + t)[0] + (size_t)y * w;
             for (int x = 0; x < w; x++) {
                 sus[x] = 0.0;
                 tr[x] = 0.0;
@@ -494,11 +509,12 @@ static void band_q(tdc_fvvdp_t *m, int l, const double *gaze, double q[2][3])
 
 /* Contrast of band l of signal s into con[s] (float: its rounding, 6e-8 of
  * the contrast, is far below any visible difference), given bkg. */
-static void band_contrast(tdc_fvvdp_t *o, int s, int l, double mul)
+static void band_contrast(tdc_fvvdp_t *m, int s, int l, double mul)
 {
+    tdc_fvvdp_t *o = home(m);
     int bw = o->pyr.w[l], bh = o->pyr.h[l];
-    tdc_fvvdp_expand(o->gp[s][l + 1], bw, bh, o->ex, o->tmp);
-    const double *g = o->gp[s][l], *ex = o->ex, *bkg = o->bkg;
+    tdc_fvvdp_expand(pyr(m, s)[l + 1], bw, bh, o->ex, o->tmp);
+    const double *g = pyr(m, s)[l], *ex = o->ex, *bkg = o->bkg;
     float *out = o->con[s];
     TDC_PAR_FOR((long)bw * bh)
     for (int y = 0; y < bh; y++) {
@@ -518,7 +534,7 @@ double tdc_fvvdp_frame(tdc_fvvdp_t *m, const float *test, const float *ref, cons
     int nsig = 2 * m->nch, lv = m->pyr.levels;
     for (int s = 0; s < nsig; s++) {
         for (int l = 0; l + 1 < lv && !(m->owner && (s & 1)); l++) {
-            tdc_fvvdp_reduce(o->gp[s][l], m->pyr.w[l], m->pyr.h[l], o->gp[s][l + 1], o->tmp);
+            tdc_fvvdp_reduce(pyr(m, s)[l], m->pyr.w[l], m->pyr.h[l], pyr(m, s)[l + 1], o->tmp);
         }
     }
     if (gaze) {
@@ -530,7 +546,7 @@ double tdc_fvvdp_frame(tdc_fvvdp_t *m, const float *test, const float *ref, cons
     for (int l = 0; l + 1 < lv; l++) {
         int bw = m->pyr.w[l], bh = m->pyr.h[l];
         /* Local adaptation: the reference's sustained signal one level down. */
-        tdc_fvvdp_expand(o->gp[1][l + 1], bw, bh, o->bkg, o->tmp);
+        tdc_fvvdp_expand(pyr(m, 1)[l + 1], bw, bh, o->bkg, o->tmp);
         double *bkg = o->bkg;
         TDC_PAR_FOR((long)bw * bh)
         for (int y = 0; y < bh; y++) {
@@ -540,7 +556,7 @@ double tdc_fvvdp_frame(tdc_fvvdp_t *m, const float *test, const float *ref, cons
         }
         double mul = l == 0 ? 1.0 : 2.0;
         for (int s = 0; s < nsig; s++) {
-            band_contrast(o, s, l, mul);
+            band_contrast(m, s, l, mul);
         }
         double q[2][3];
         band_q(m, l, gaze, q);

@@ -24,6 +24,7 @@ typedef struct {
     int fed, warmup;      /* frames fed; frames of the warm-up */
     tdc_fvvdp_geometry_t g;
     double fps;           /* retinal steps per second */
+    double rate;          /* the metric's frame rate (refreshes per second) */
 } judge_t;
 
 struct tdc_sim_jod {
@@ -67,12 +68,20 @@ static int flush(tdc_sim_jod_t *s, judge_t *j)
                     j->eye, s->j[j->own].mode);
             return -1;
         }
+        /* The other eye's metric at the same size and rate lends its
+         * scratch planes (the judges run one at a time). */
+        const judge_t *o = NULL;
+        for (int i = 0; i < s->n && !o; i++) {
+            o = s->j[i].m && s->j[i].rate == rate && memcmp(&s->j[i].g, &j->g, sizeof j->g) == 0 ? &s->j[i] : NULL;
+        }
         j->m = j->own >= 0 ? tdc_fvvdp_new_shared(s->j[j->own].m, why, sizeof why)
+               : o         ? tdc_fvvdp_new_beside(o->m, why, sizeof why)
                            : tdc_fvvdp_new(&j->g, rate, why, sizeof why);
         if (!j->m) {
             fprintf(stderr, "tdc-sim: jod: mode %s eye %d: %s\n", j->mode, j->eye, why);
             return -1;
         }
+        j->rate = rate;
         j->warmup = (int)ceil(WARMUP_S * rate);
     }
     if (j->own >= 0 && tdc_fvvdp_frames(s->j[j->own].m) != j->fed + 1) {
