@@ -51,7 +51,8 @@
 #include "tdc_par.h"
 
 void tdc_fvvdp_csf_init(void);
-void tdc_fvvdp_csf_lut_log2(double log2_rho, double log2_lum, double sqrt_ecc, double out[2]);
+void tdc_fvvdp_csf_lut_log2(const double *log2_rho, const double *log2_lum, const double *sqrt_ecc, int n,
+                            double *s0, double *s1);
 
 #define MASK_P 2.4
 #define MASK_C (-0.973838)
@@ -451,9 +452,11 @@ static void band_q(tdc_fvvdp_t *m, int l, const double *gaze, double q[2][3])
     double lrho = log2(m->pyr.rho[l]), fovea = m->fovea_deg;
     /* Horizontal view angles relative to the gaze, per column (the view
      * direction's x depends on the column only, its y on the row only). */
-    for (int x = 0; gaze && x < bw; x++) {
-        double d[2];
-        tdc_fvvdp_view_dir(&m->g, bw, bh, x + 0.5, 0.5, d);
+    for (int x = 0; x < bw; x++) {
+        double d[2] = { 0.0, 0.0 };
+        if (gaze) {
+            tdc_fvvdp_view_dir(&m->g, bw, bh, x + 0.5, 0.5, d);
+        }
         o->colx[x] = d[0] - gd[0];
     }
     TDC_PAR_FOR((long)bw * bh)
@@ -467,26 +470,29 @@ static void band_q(tdc_fvvdp_t *m, int l, const double *gaze, double q[2][3])
         for (int x0 = 0; x0 < bw; x0 += CHUNK) {
             int nx = bw - x0 < CHUNK ? bw - x0 : CHUNK;
             size_t i0 = (size_t)y * bw + x0;
-            double ls[2][CHUNK], e[CHUNK];
-            unsigned char in[CHUNK];
+            double ls[2][CHUNK], e[CHUNK], lr[CHUNK], ly[CHUNK], se[CHUNK], in[CHUNK]; /* in: 1 within the fovea */
+            const double *bkg = o->bkg + i0, *cx = o->colx + x0, *lm = lrm ? lrm + i0 : NULL;
             for (int x = 0; x < nx; x++) {
-                double ecc = 0.0, lr = lrho;
-                if (gaze) {
-                    double vx = o->colx[x0 + x];
-                    ecc = sqrt(vx * vx + vy * vy);
-                    lr = lrho + (lrm ? lrm[i0 + x] : 0.0);
-                }
-                double a[2];
-                tdc_fvvdp_csf_lut_log2(lr, fast_log2(o->bkg[i0 + x]), sqrt(ecc), a);
-                ls[0][x] = a[0] + lcorr;
-                ls[1][x] = a[1] + lcorr;
-                in[x] = ecc < fovea;
+                lr[x] = lm ? lrho + lm[x] : lrho;
+            }
+            TDC_SIMD
+            for (int x = 0; x < nx; x++) {
+                double ecc = sqrt(cx[x] * cx[x] + vy * vy); /* 0 without a gaze */
+                ly[x] = fast_log2(bkg[x]);
+                se[x] = sqrt(ecc);
+                in[x] = ecc < fovea ? 1.0 : 0.0;
+            }
+            tdc_fvvdp_csf_lut_log2(lr, ly, se, nx, ls[0], ls[1]);
+            TDC_SIMD
+            for (int x = 0; x < nx; x++) {
+                ls[0][x] += lcorr;
+                ls[1][x] += lcorr;
             }
             for (int c = 0; c < nch; c++) {
                 mask_row(o->con[2 * c] + i0, o->con[2 * c + 1] + i0, ls[c], c ? MASK_Q_TRANS : MASK_Q_SUST, nx, e);
                 for (int x = 0; x < nx; x++) {
                     acc[c] += e[x];
-                    acc[2 + c] += in[x] ? e[x] : 0.0;
+                    acc[2 + c] += in[x] * e[x];
                 }
             }
             for (int x = 0; x < nx; x++) {
