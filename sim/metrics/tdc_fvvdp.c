@@ -350,61 +350,55 @@ static void resmag_maps(tdc_fvvdp_t *m)
     }
 }
 
-/* log2 and exp2 for the masking loop, in plain arithmetic so that it
- * vectorises (libm's pow, three per sample and channel, took 60 % of the
- * metric's time at 1440x1600) and gives the same bits in every clone and
- * thread.  log2: the exponent plus 2 atanh(s) / ln 2 of the mantissa m in
- * [sqrt(1/2), sqrt(2)), s = (m - 1) / (m + 1) <= 0.172, series to s^15
- * (truncation < 1e-14); x below DBL_MIN (0, subnormals) gives -1100, whose
- * exp2 is 0 at the scale of every sum here.  exp2: 2^k by the exponent bits
- * times e^(f ln 2), f = x - k in [-0.5, 0.5], Taylor to degree 11
- * (truncation < 1e-14); x clamped to [-1020, 1020]. */
+/* log2 and exp2 for the masking loop, in single precision and plain
+ * arithmetic so that it vectorises (8 lanes in the AVX2 clone; libm's pow,
+ * three per sample and channel, took 60 % of the metric's time at
+ * 1440x1600) and gives the same bits in every clone and thread.  log2: the
+ * exponent plus 2 atanh(s) / ln 2 of the mantissa m in [sqrt(1/2), sqrt(2)),
+ * s = (m - 1) / (m + 1) <= 0.172, series to s^9 (truncation < 1e-8); x below
+ * FLT_MIN (0, subnormals) gives -150, whose exp2 is 0 at the scale of every
+ * sum here.  exp2: 2^k by the exponent bits times e^(f ln 2), f = x - k in
+ * [-0.5, 0.5], Taylor to degree 7 (truncation < 1e-8); x clamped to
+ * [-126, 126].  Float rounding moves the validation's JODs by < 1e-5. */
 typedef union {
-    double d;
-    uint64_t u;
+    float f;
+    uint32_t u;
 } bits_t;
 
-static inline double fast_log2(double x)
+static inline float fast_log2(float x)
 {
-    bits_t b = { .d = x }, e, mant;
-    e.u = (b.u >> 52) | 0x4330000000000000ull; /* 2^52 + biased exponent */
-    e.d -= 4503599627371519.0;                  /* 2^52 + 1023 */
-    mant.u = (b.u & 0x000FFFFFFFFFFFFFull) | 0x3FF0000000000000ull;
-    int hi = mant.d > 1.4142135623730951;
-    double m = hi ? 0.5 * mant.d : mant.d, ex = hi ? e.d + 1.0 : e.d;
-    double s = (m - 1.0) / (m + 1.0), z = s * s;
-    double p = 1.0 / 15.0;
-    p = p * z + 1.0 / 13.0;
-    p = p * z + 1.0 / 11.0;
-    p = p * z + 1.0 / 9.0;
-    p = p * z + 1.0 / 7.0;
-    p = p * z + 1.0 / 5.0;
-    p = p * z + 1.0 / 3.0;
-    p = p * z + 1.0;
-    double r = ex + 2.8853900817779268 * s * p; /* 2 / ln 2 */
-    return x >= 2.2250738585072014e-308 ? r : -1100.0;
+    bits_t b = { .f = x }, mant;
+    float e = (float)(int32_t)(b.u >> 23) - 127.0f;
+    mant.u = (b.u & 0x007FFFFFu) | 0x3F800000u;
+    int hi = mant.f > 1.41421356f;
+    float m = hi ? 0.5f * mant.f : mant.f;
+    e = hi ? e + 1.0f : e;
+    float s = (m - 1.0f) / (m + 1.0f), z = s * s;
+    float p = 1.0f / 9.0f;
+    p = p * z + 1.0f / 7.0f;
+    p = p * z + 1.0f / 5.0f;
+    p = p * z + 1.0f / 3.0f;
+    p = p * z + 1.0f;
+    float r = e + 2.88539008f * s * p; /* 2 / ln 2 */
+    return x >= 1.17549435e-38f ? r : -150.0f;
 }
 
-static inline double fast_exp2(double x)
+static inline float fast_exp2(float x)
 {
-    const double magic = 6755399441055744.0; /* 1.5 * 2^52: adding it rounds to an integer */
-    x = x < -1020.0 ? -1020.0 : (x > 1020.0 ? 1020.0 : x);
-    bits_t t = { .d = x + magic }, sc;
-    double k = t.d - magic, y = (x - k) * 0.6931471805599453;
-    sc.u = (t.u - 0x4338000000000000ull + 1023u) << 52;
-    double p = 1.0 / 39916800.0;
-    p = p * y + 1.0 / 3628800.0;
-    p = p * y + 1.0 / 362880.0;
-    p = p * y + 1.0 / 40320.0;
-    p = p * y + 1.0 / 5040.0;
-    p = p * y + 1.0 / 720.0;
-    p = p * y + 1.0 / 120.0;
-    p = p * y + 1.0 / 24.0;
-    p = p * y + 1.0 / 6.0;
-    p = p * y + 0.5;
-    p = p * y + 1.0;
-    p = p * y + 1.0;
-    return p * sc.d;
+    const float magic = 12582912.0f; /* 1.5 * 2^23: adding it rounds to an integer */
+    x = x < -126.0f ? -126.0f : (x > 126.0f ? 126.0f : x);
+    bits_t t = { .f = x + magic }, sc;
+    float k = t.f - magic, y = (x - k) * 0.693147181f;
+    sc.u = (t.u - 0x4B400000u + 127u) << 23;
+    float p = 1.0f / 5040.0f;
+    p = p * y + 1.0f / 720.0f;
+    p = p * y + 1.0f / 120.0f;
+    p = p * y + 1.0f / 24.0f;
+    p = p * y + 1.0f / 6.0f;
+    p = p * y + 0.5f;
+    p = p * y + 1.0f;
+    p = p * y + 1.0f;
+    return p * sc.f;
 }
 
 /* Masking and the beta power of n samples of one channel: contrasts ct
@@ -412,20 +406,20 @@ static inline double fast_exp2(double x)
  * correction, mq the channel's masking exponent; e receives
  * min(|T - R|^p / (1 + (10^c min(|T|, |R|))^q), 1e4)^beta, T = ct sens,
  * R = cr sens (steps 4-5 of the header, in log2). */
-static TDC_SIMD_CLONES void mask_row(const float *ct, const float *cr, const double *lsens, double mq, int n,
-                                     double *e)
+static TDC_SIMD_CLONES void mask_row(const float *ct, const float *cr, const float *lsens, float mq, int n, float *e)
 {
-    const double lmc = MASK_C * 3.3219280948873623; /* log2 10 */
-    const double lcap = 13.287712379549449;          /* log2 1e4 */
+    const float lmc = (float)(MASK_C * 3.3219280948873623); /* log2 10 */
+    const float lcap = 13.2877124f;                         /* log2 1e4 */
+    const float p = (float)MASK_P, beta = (float)BETA;
     TDC_SIMD
     for (int x = 0; x < n; x++) {
-        double t = fabs(ct[x]), r = fabs(cr[x]);
-        double dd = fabs((double)ct[x] - cr[x]), mn = t < r ? t : r;
-        double ld = fast_log2(dd) + lsens[x];
-        double lm = lmc + fast_log2(mn) + lsens[x];
-        double lq = MASK_P * ld - fast_log2(1.0 + fast_exp2(mq * lm));
+        float t = fabsf(ct[x]), r = fabsf(cr[x]);
+        float dd = fabsf(ct[x] - cr[x]), mn = t < r ? t : r;
+        float ld = fast_log2(dd) + lsens[x];
+        float lm = lmc + fast_log2(mn) + lsens[x];
+        float lq = p * ld - fast_log2(1.0f + fast_exp2(mq * lm));
         lq = lq < lcap ? lq : lcap;
-        e[x] = dd > 0.0 ? fast_exp2(BETA * lq) : 0.0;
+        e[x] = dd > 0.0f ? fast_exp2(beta * lq) : 0.0f;
     }
 }
 
@@ -470,7 +464,8 @@ static void band_q(tdc_fvvdp_t *m, int l, const double *gaze, double q[2][3])
         for (int x0 = 0; x0 < bw; x0 += CHUNK) {
             int nx = bw - x0 < CHUNK ? bw - x0 : CHUNK;
             size_t i0 = (size_t)y * bw + x0;
-            double ls[2][CHUNK], e[CHUNK], lr[CHUNK], ly[CHUNK], se[CHUNK], in[CHUNK]; /* in: 1 within the fovea */
+            double a[2][CHUNK], lr[CHUNK], ly[CHUNK], se[CHUNK], in[CHUNK]; /* in: 1 within the fovea */
+            float ls[2][CHUNK], e[CHUNK];
             const double *bkg = o->bkg + i0, *cx = o->colx + x0, *lm = lrm ? lrm + i0 : NULL;
             for (int x = 0; x < nx; x++) {
                 lr[x] = lm ? lrho + lm[x] : lrho;
@@ -478,18 +473,18 @@ static void band_q(tdc_fvvdp_t *m, int l, const double *gaze, double q[2][3])
             TDC_SIMD
             for (int x = 0; x < nx; x++) {
                 double ecc = sqrt(cx[x] * cx[x] + vy * vy); /* 0 without a gaze */
-                ly[x] = fast_log2(bkg[x]);
+                ly[x] = fast_log2((float)bkg[x]); /* the table axis: 1e-6 is plenty */
                 se[x] = sqrt(ecc);
                 in[x] = ecc < fovea ? 1.0 : 0.0;
             }
-            tdc_fvvdp_csf_lut_log2(lr, ly, se, nx, ls[0], ls[1]);
+            tdc_fvvdp_csf_lut_log2(lr, ly, se, nx, a[0], a[1]);
             TDC_SIMD
             for (int x = 0; x < nx; x++) {
-                ls[0][x] += lcorr;
-                ls[1][x] += lcorr;
+                ls[0][x] = (float)(a[0][x] + lcorr);
+                ls[1][x] = (float)(a[1][x] + lcorr);
             }
             for (int c = 0; c < nch; c++) {
-                mask_row(o->con[2 * c] + i0, o->con[2 * c + 1] + i0, ls[c], c ? MASK_Q_TRANS : MASK_Q_SUST, nx, e);
+                mask_row(o->con[2 * c] + i0, o->con[2 * c + 1] + i0, ls[c], c ? (float)MASK_Q_TRANS : (float)MASK_Q_SUST, nx, e);
                 for (int x = 0; x < nx; x++) {
                     acc[c] += e[x];
                     acc[2 + c] += in[x] * e[x];
