@@ -374,7 +374,9 @@ static void test_shared_reference(void **state)
         for (int i = 0; i < 64 * 64; i++) {
             junk[i] = 1.0f; /* ignored by a sharing metric */
         }
-        fvvdp_cond_frame(&b, f, 0, rb);
+        for (int i = 0; i < 64 * 64; i++) {
+            rb[i] = 0.7f * r[i]; /* another reference (the two conditions share theirs) */
+        }
         tdc_fvvdp_frame(own, ta, r, gz);
         tdc_fvvdp_frame(bes, ta, rb, gz);
         tdc_fvvdp_frame(sh, tb, junk, gz);
