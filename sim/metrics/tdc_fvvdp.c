@@ -27,15 +27,20 @@
  *   6. JOD (eq. 9): 10 - (|a|^(1/b) Q)^b, a = -0.0161713, b = 10^-0.228.
  * All values: fvvdp_parameters.json "version 1.2.3" of the reference.
  *
- * Sharing (tdc_fvvdp_new_shared): metrics judging several tests against one
- * reference hold and filter the reference once; a sharing metric reads the
- * owner's reference pyramids, so the owner must be fed each frame first.
+ * Sharing: metrics judging several tests against one reference
+ * (tdc_fvvdp_new_shared) hold and filter the reference once; a sharing
+ * metric reads the owner's reference pyramids, so the owner must be fed each
+ * frame first.  Metrics of the same size and rate (the modes and eyes of
+ * one run, tdc_fvvdp_new_beside) work in one set of scratch planes in turn.
  *
  * Memory: the history is ceil(fps/4) frames of test and reference, float,
- * w*h each (22.1 MB a 1440x1600 eye at 90 Hz, 23 taps: 23*2*4*2.3 M = 424
- * MB); the rest is O(w*h) doubles (the four signals' pyramids, 4/3 of a
- * frame each, plus four frame-sized scratch planes).  tdc_fvvdp_bytes()
- * reports the total.
+ * w*h each (9.2 MB a frame of 1440x1600; at 90 Hz, 23 taps, 212 MB a
+ * stream); it grows with the frames fed and stops at the filters' length
+ * (nothing older is kept), so a run of n frames holds min(n, taps).  The
+ * rest, once per workspace: the test signals' pyramids (2 x 4/3 frames of
+ * doubles), four contrast planes (float), three planes of doubles and the
+ * per-band magnification map; per reference, its two signals' pyramids.
+ * tdc_fvvdp_bytes() reports what a metric holds itself.
  *
  * Threads: every pass runs over rows (sim/tdc_par.h); per-band sums are
  * per-row partial sums added in row order, so the JOD does not depend on
