@@ -171,18 +171,6 @@ static void lut_build(void)
     }
 }
 
-static inline double axis(double q, double lo, double hi, int *i0)
-{
-    double u = (q - lo) / (hi - lo) * (N - 1);
-    u = u < 0.0 ? 0.0 : u > N - 1 ? N - 1 : u;
-    int i = (int)u;
-    if (i > N - 2) {
-        i = N - 2;
-    }
-    *i0 = i;
-    return u - i;
-}
-
 void tdc_fvvdp_csf_init(void);
 void tdc_fvvdp_csf_lut_log2(const double *log2_rho, const double *log2_lum, const double *sqrt_ecc, int n,
                             double *s0, double *s1);
