@@ -3,7 +3,8 @@
  * Bachy, Lian, Patney: "FovVideoVDP: A visible difference predictor for
  * wide field-of-view video", ACM TOG 40(4) 49, 2021), written by this
  * project from the paper's equations; the simulator's judge of temporal and
- * peripheral differences.  Host code, double precision.
+ * peripheral differences.  Host code, double precision (masking and band
+ * contrasts in float: tdc_fvvdp.c).
  *
  * The stages, one per file:
  *   tdc_fvvdp_display.c   photometry (drive code -> cd/m^2) and geometry
