@@ -27,21 +27,27 @@
  *   6. JOD (eq. 9): 10 - (|a|^(1/b) Q)^b, a = -0.0161713, b = 10^-0.228.
  * All values: fvvdp_parameters.json "version 1.2.3" of the reference.
  *
- * Sharing (tdc_fvvdp_new_shared): metrics judging several tests against one
- * reference hold and filter the reference once; a sharing metric reads the
- * owner's reference pyramids, so the owner must be fed each frame first.
+ * Sharing: metrics judging several tests against one reference
+ * (tdc_fvvdp_new_shared) hold and filter the reference once; a sharing
+ * metric reads the owner's reference pyramids, so the owner must be fed each
+ * frame first.  Metrics of the same size and rate (the modes and eyes of
+ * one run, tdc_fvvdp_new_beside) work in one set of scratch planes in turn.
  *
  * Memory: the history is ceil(fps/4) frames of test and reference, float,
- * w*h each (22.1 MB a 1440x1600 eye at 90 Hz, 23 taps: 23*2*4*2.3 M = 424
- * MB); the rest is O(w*h) doubles (the four signals' pyramids, 4/3 of a
- * frame each, plus four frame-sized scratch planes).  tdc_fvvdp_bytes()
- * reports the total.
+ * w*h each (9.2 MB a frame of 1440x1600; at 90 Hz, 23 taps, 212 MB a
+ * stream); it grows with the frames fed and stops at the filters' length
+ * (nothing older is kept), so a run of n frames holds min(n, taps).  The
+ * rest, once per workspace: the test signals' pyramids (2 x 4/3 frames of
+ * doubles), four contrast planes (float), three planes of doubles and the
+ * per-band magnification map; per reference, its two signals' pyramids.
+ * tdc_fvvdp_bytes() reports what a metric holds itself.
  *
  * Threads: every pass runs over rows (sim/tdc_par.h); per-band sums are
  * per-row partial sums added in row order, so the JOD does not depend on
  * the thread count.
  */
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -50,7 +56,8 @@
 #include "tdc_par.h"
 
 void tdc_fvvdp_csf_init(void);
-double tdc_fvvdp_csf_lut_q(int ch, double log2_rho, double lum, double sqrt_ecc);
+void tdc_fvvdp_csf_lut_log2(const double *log2_rho, const double *log2_lum, const double *sqrt_ecc, int n,
+                            double *s0, double *s1);
 
 #define MASK_P 2.4
 #define MASK_C (-0.973838)
@@ -64,17 +71,26 @@ double tdc_fvvdp_csf_lut_q(int ch, double log2_rho, double lum, double sqrt_ecc)
 #define LOG_JOD_EXP (-0.2280)
 
 struct tdc_fvvdp {
-    const tdc_fvvdp_t *owner; /* shares the owner's reference signals (tdc_fvvdp_new_shared) */
+    tdc_fvvdp_t *owner; /* shares the owner's reference signals (tdc_fvvdp_new_shared) */
+    tdc_fvvdp_t *ws;    /* works in ws's scratch (tdc_fvvdp_new_beside, _shared); NULL: its own */
     tdc_fvvdp_geometry_t g;
     double ppd, fps;
-    int w, h, nch, taps, frames, head;
+    int w, h, nch, taps, frames;
     double f[2][TDC_FVVDP_MAX_TAPS];
     tdc_fvvdp_pyr_t pyr;
-    float *hist;                          /* [streams][taps][w*h], ring at head: test, reference
-                                             (the reference only without an owner) */
-    double *gp[4][TDC_FVVDP_MAX_LEVELS];  /* Gaussian pyramids of the signals */
+    /* History: frame j of stream t (test, and the reference unless shared)
+     * in hist[t][j % taps], allocated as frames arrive; taps older than the
+     * first frame read the first frame ("replicate" padding), so a run of n
+     * frames holds min(n, taps) of them. */
+    float *hist[2][TDC_FVVDP_MAX_TAPS];
+    /* Gaussian pyramids of the signals: the reference's (odd) held by the
+     * reference's owner, the test's (even) and the rest below by the
+     * workspace's holder and used by every metric working in it in turn
+     * (they never run frames at the same time): */
+    double *gp[4][TDC_FVVDP_MAX_LEVELS];
     double *lresmag[TDC_FVVDP_MAX_LEVELS]; /* log2 of the off-axis magnification per band sample */
-    double *bkg, *ct, *cr, *tmp, *rows, *colx;
+    double *bkg, *ex, *tmp, *rows, *colx;
+    float *con[4];                         /* band contrasts: test, reference x sustained, transient */
     double fovea_deg;
     /* Q of the frame in progress and pooled over frames: [all, fovea, periphery]. */
     double qsc[3][2], qsum[3];
@@ -95,8 +111,8 @@ static void *zalloc(tdc_fvvdp_t *m, size_t n, size_t sz)
     return calloc(n, sz);
 }
 
-static tdc_fvvdp_t *new_impl(const tdc_fvvdp_geometry_t *g, double fps, const tdc_fvvdp_t *owner, char *why,
-                             size_t why_len)
+static tdc_fvvdp_t *new_impl(const tdc_fvvdp_geometry_t *g, double fps, tdc_fvvdp_t *owner, tdc_fvvdp_t *ws,
+                             char *why, size_t why_len)
 {
     if (g->width < 4 || g->height < 4 || g->width > 16384 || g->height > 16384) {
         snprintf(why, why_len, "size %dx%d outside 4..16384", g->width, g->height);
@@ -116,6 +132,7 @@ static tdc_fvvdp_t *new_impl(const tdc_fvvdp_geometry_t *g, double fps, const td
         return NULL;
     }
     m->owner = owner;
+    m->ws = ws;
     m->g = *g;
     m->w = g->width;
     m->h = g->height;
@@ -135,20 +152,21 @@ static tdc_fvvdp_t *new_impl(const tdc_fvvdp_geometry_t *g, double fps, const td
     }
     size_t n = (size_t)m->w * m->h;
     int ok = 1;
-    if (m->nch == 2) {
-        ok &= (m->hist = zalloc(m, (owner ? 1 : 2) * (size_t)m->taps * n, sizeof(float))) != NULL;
-    }
     for (int s = 0; s < 2 * m->nch; s++) {
-        for (int l = 0; l < m->pyr.levels && !(owner && (s & 1)); l++) {
+        for (int l = 0; l < m->pyr.levels && ((s & 1) ? !owner : !ws); l++) {
             ok &= (m->gp[s][l] = zalloc(m, (size_t)m->pyr.w[l] * m->pyr.h[l], sizeof(double))) != NULL;
         }
+        ok &= ws || (m->con[s] = zalloc(m, n, sizeof(float))) != NULL;
     }
-    ok &= (m->bkg = zalloc(m, n, sizeof(double))) != NULL;
-    ok &= (m->ct = zalloc(m, n, sizeof(double))) != NULL;
-    ok &= (m->cr = zalloc(m, n, sizeof(double))) != NULL;
-    ok &= (m->tmp = zalloc(m, n, sizeof(double))) != NULL;
-    ok &= (m->rows = zalloc(m, 3 * (size_t)m->h, sizeof(double))) != NULL;
-    ok &= (m->colx = zalloc(m, (size_t)m->w, sizeof(double))) != NULL;
+    if (!ws) {
+        /* tmp: reduce needs w ceil(h/2), expand ceil(w/2) h */
+        size_t nt = (size_t)(m->w > m->h ? m->w : m->h) * ((m->w < m->h ? m->w : m->h) + 1) / 2;
+        ok &= (m->bkg = zalloc(m, n, sizeof(double))) != NULL;
+        ok &= (m->ex = zalloc(m, n, sizeof(double))) != NULL;
+        ok &= (m->tmp = zalloc(m, nt, sizeof(double))) != NULL;
+        ok &= (m->rows = zalloc(m, 5 * (size_t)m->h, sizeof(double))) != NULL;
+        ok &= (m->colx = zalloc(m, (size_t)m->w, sizeof(double))) != NULL;
+    }
     if (!ok) {
         snprintf(why, why_len, "out of memory (%zu bytes)", m->bytes);
         tdc_fvvdp_free(m);
@@ -160,23 +178,33 @@ static tdc_fvvdp_t *new_impl(const tdc_fvvdp_geometry_t *g, double fps, const td
 
 tdc_fvvdp_t *tdc_fvvdp_new(const tdc_fvvdp_geometry_t *g, double fps, char *why, size_t why_len)
 {
-    return new_impl(g, fps, NULL, why, why_len);
+    return new_impl(g, fps, NULL, NULL, why, why_len);
 }
 
-tdc_fvvdp_t *tdc_fvvdp_new_shared(const tdc_fvvdp_t *owner, char *why, size_t why_len)
+tdc_fvvdp_t *tdc_fvvdp_new_shared(tdc_fvvdp_t *owner, char *why, size_t why_len)
 {
     if (owner->owner) {
         snprintf(why, why_len, "the owner of a shared reference must own it");
         return NULL;
     }
-    return new_impl(&owner->g, owner->fps, owner, why, why_len);
+    return new_impl(&owner->g, owner->fps, owner, owner->ws ? owner->ws : owner, why, why_len);
 }
 
-/* Pyramid level l of signal s (odd s: the reference's, the owner's when
- * shared). */
-static const double *sig(const tdc_fvvdp_t *m, int s, int l)
+tdc_fvvdp_t *tdc_fvvdp_new_beside(tdc_fvvdp_t *other, char *why, size_t why_len)
 {
-    return (s & 1) && m->owner ? m->owner->gp[s][l] : m->gp[s][l];
+    return new_impl(&other->g, other->fps, NULL, other->ws ? other->ws : other, why, why_len);
+}
+
+/* The metric holding the scratch m works in. */
+static tdc_fvvdp_t *home(tdc_fvvdp_t *m)
+{
+    return m->ws ? m->ws : m;
+}
+
+/* Pyramid of signal s (odd: the reference's, held by its owner). */
+static double **pyr(tdc_fvvdp_t *m, int s)
+{
+    return (s & 1) ? (m->owner ? m->owner : m)->gp[s] : home(m)->gp[s];
 }
 
 void tdc_fvvdp_free(tdc_fvvdp_t *m)
@@ -184,19 +212,23 @@ void tdc_fvvdp_free(tdc_fvvdp_t *m)
     if (!m) {
         return;
     }
-    free(m->hist);
+    for (int t = 0; t < 2; t++) {
+        for (int k = 0; k < TDC_FVVDP_MAX_TAPS; k++) {
+            free(m->hist[t][k]);
+        }
+    }
     for (int s = 0; s < 4; s++) {
         for (int l = 0; l < TDC_FVVDP_MAX_LEVELS; l++) {
             free(m->gp[s][l]);
         }
+        free(m->con[s]);
     }
     for (int l = 0; l < TDC_FVVDP_MAX_LEVELS; l++) {
         free(m->lresmag[l]);
     }
     free(m->colx);
     free(m->bkg);
-    free(m->ct);
-    free(m->cr);
+    free(m->ex);
     free(m->tmp);
     free(m->rows);
     free(m);
@@ -252,44 +284,44 @@ int tdc_fvvdp_set_fovea(tdc_fvvdp_t *m, double deg)
 }
 
 /* Level 0 of the four signals: the frame itself (images) or the FIR of the
- * history (video). */
-static void signals(tdc_fvvdp_t *m, const float *test, const float *ref)
+ * history (video).  -1: out of memory for the history. */
+static int signals(tdc_fvvdp_t *m, const float *test, const float *ref)
 {
     size_t n = (size_t)m->w * m->h;
     int nt = m->owner ? 1 : 2; /* streams held: test, and the reference unless shared */
     if (m->nch == 1) {
         for (size_t i = 0; i < n; i++) {
-            m->gp[0][0][i] = test[i];
+            pyr(m, 0)[0][i] = test[i];
             if (nt == 2) {
-                m->gp[1][0][i] = ref[i];
+                pyr(m, 1)[0][i] = ref[i];
             }
         }
-        return;
+        return 0;
     }
     const float *src[2] = { test, ref };
+    const float *rows[2][TDC_FVVDP_MAX_TAPS];
+    int taps = m->taps, cur = m->frames, w = m->w;
     for (int t = 0; t < nt; t++) {
-        float *h = m->hist + (size_t)t * m->taps * n;
-        if (m->frames == 0) {
-            for (int k = 0; k < m->taps; k++) {
-                memcpy(h + (size_t)k * n, src[t], n * sizeof(float));
-            }
-        } else {
-            memcpy(h + (size_t)m->head * n, src[t], n * sizeof(float));
+        float **slot = &m->hist[t][cur % taps];
+        if (!*slot && !(*slot = zalloc(m, n, sizeof(float)))) {
+            return -1;
+        }
+        memcpy(*slot, src[t], n * sizeof(float));
+        for (int k = 0; k < taps; k++) {
+            /* Tap k weighs the frame k refreshes old (the first before it). */
+            rows[t][k] = m->hist[t][(cur - k > 0 ? cur - k : 0) % taps];
         }
     }
-    int taps = m->taps, head = m->head, w = m->w;
     TDC_PAR_FOR((long)n * taps)
     for (int y = 0; y < m->h; y++) {
         for (int t = 0; t < nt; t++) {
-            const float *h = m->hist + (size_t)t * taps * n + (size_t)y * w;
-            double *sus = m->gp[t][0] + (size_t)y * w, *tr = m->gp[2 + t][0] + (size_t)y * w;
+            double *sus = pyr(m, t)[0] + (size_t)y * w, *tr = pyr(m, 2 + t)[0] + (size_t)y * w;
             for (int x = 0; x < w; x++) {
                 sus[x] = 0.0;
                 tr[x] = 0.0;
             }
             for (int k = 0; k < taps; k++) {
-                /* Tap k weighs the frame k refreshes old. */
-                const float *row = h + (size_t)((head - k + taps) % taps) * n;
+                const float *row = rows[t][k] + (size_t)y * w;
                 double f0 = m->f[0][k], f1 = m->f[1][k];
                 TDC_SIMD
                 for (int x = 0; x < w; x++) {
@@ -299,6 +331,7 @@ static void signals(tdc_fvvdp_t *m, const float *test, const float *ref)
             }
         }
     }
+    return 0;
 }
 
 static void resmag_maps(tdc_fvvdp_t *m)
@@ -322,100 +355,196 @@ static void resmag_maps(tdc_fvvdp_t *m)
     }
 }
 
-/* Q of one band and channel: the beta-mean of the masked, CSF-normalised
- * difference of the contrasts in m->ct (test) and m->cr (reference), over
- * the band (q[0]) and, with a gaze, over its samples within fovea_deg of the
- * gaze (q[1]) and beyond (q[2]; -1 where the region has no sample).  The
- * regional means are tdc's, not the paper's: the same pooling restricted to
- * the region's samples. */
-static void band_q(tdc_fvvdp_t *m, int l, int ch, const double *gaze, double q[3])
+/* log2 and exp2 for the masking loop, in single precision and plain
+ * arithmetic so that it vectorises (8 lanes in the AVX2 clone; libm's pow,
+ * three per sample and channel, took 60 % of the metric's time at
+ * 1440x1600) and gives the same bits in every clone and thread.  log2: the
+ * exponent plus 2 atanh(s) / ln 2 of the mantissa m in [sqrt(1/2), sqrt(2)),
+ * s = (m - 1) / (m + 1) <= 0.172, series to s^9 (truncation < 1e-8); x below
+ * FLT_MIN (0, subnormals) gives -150, whose exp2 is 0 at the scale of every
+ * sum here.  exp2: 2^k by the exponent bits times e^(f ln 2), f = x - k in
+ * [-0.5, 0.5], Taylor to degree 7 (truncation < 1e-8); x clamped to
+ * [-126, 126].  Float rounding moves the validation's JODs by < 1e-5. */
+typedef union {
+    float f;
+    uint32_t u;
+} bits_t;
+
+static inline float fast_log2(float x)
 {
-    int bw = m->pyr.w[l], bh = m->pyr.h[l];
-    double rho = m->pyr.rho[l];
-    double corr = pow(10.0, SENS_CORR_DB / 20.0);
-    double mc = pow(10.0, MASK_C);
-    double mq = ch ? MASK_Q_TRANS : MASK_Q_SUST;
+    bits_t b = { .f = x }, mant;
+    float e = (float)(int32_t)(b.u >> 23) - 127.0f;
+    mant.u = (b.u & 0x007FFFFFu) | 0x3F800000u;
+    int hi = mant.f > 1.41421356f;
+    float m = hi ? 0.5f * mant.f : mant.f;
+    e = hi ? e + 1.0f : e;
+    float s = (m - 1.0f) / (m + 1.0f), z = s * s;
+    float p = 1.0f / 9.0f;
+    p = p * z + 1.0f / 7.0f;
+    p = p * z + 1.0f / 5.0f;
+    p = p * z + 1.0f / 3.0f;
+    p = p * z + 1.0f;
+    float r = e + 2.88539008f * s * p; /* 2 / ln 2 */
+    return x >= 1.17549435e-38f ? r : -150.0f;
+}
+
+static inline float fast_exp2(float x)
+{
+    const float magic = 12582912.0f; /* 1.5 * 2^23: adding it rounds to an integer */
+    x = x < -126.0f ? -126.0f : (x > 126.0f ? 126.0f : x);
+    bits_t t = { .f = x + magic }, sc;
+    float k = t.f - magic, y = (x - k) * 0.693147181f;
+    sc.u = (t.u - 0x4B400000u + 127u) << 23;
+    float p = 1.0f / 5040.0f;
+    p = p * y + 1.0f / 720.0f;
+    p = p * y + 1.0f / 120.0f;
+    p = p * y + 1.0f / 24.0f;
+    p = p * y + 1.0f / 6.0f;
+    p = p * y + 0.5f;
+    p = p * y + 1.0f;
+    p = p * y + 1.0f;
+    return p * sc.f;
+}
+
+/* Masking and the beta power of n samples of one channel: contrasts ct
+ * (test) and cr (reference), lsens = log2 of the CSF sensitivity with its
+ * correction, mq the channel's masking exponent; e receives
+ * min(|T - R|^p / (1 + (10^c min(|T|, |R|))^q), 1e4)^beta, T = ct sens,
+ * R = cr sens (steps 4-5 of the header, in log2). */
+static TDC_SIMD_CLONES void mask_row(const float *ct, const float *cr, const float *lsens, float mq, int n, float *e)
+{
+    const float lmc = (float)(MASK_C * 3.3219280948873623); /* log2 10 */
+    const float lcap = 13.2877124f;                         /* log2 1e4 */
+    const float p = (float)MASK_P, beta = (float)BETA;
+    TDC_SIMD
+    for (int x = 0; x < n; x++) {
+        float t = fabsf(ct[x]), r = fabsf(cr[x]);
+        float dd = fabsf(ct[x] - cr[x]), mn = t < r ? t : r;
+        float ld = fast_log2(dd) + lsens[x];
+        float lm = lmc + fast_log2(mn) + lsens[x];
+        float lq = p * ld - fast_log2(1.0f + fast_exp2(mq * lm));
+        lq = lq < lcap ? lq : lcap;
+        e[x] = dd > 0.0f ? fast_exp2(beta * lq) : 0.0f;
+    }
+}
+
+#define CHUNK 256 /* samples of a row per masking call (stack buffers) */
+
+/* Q of one band, both channels: the beta-mean of the masked,
+ * CSF-normalised difference of the contrasts in con[] over the band
+ * (q[c][0]) and, with a gaze, over its samples within fovea_deg of the gaze
+ * (q[c][1]) and beyond (q[c][2]; -1 where the region has no sample).  The
+ * regional means are tdc's, not the paper's: the same pooling restricted to
+ * the region's samples.  The CSF's table position (frequency, adapting
+ * luminance, eccentricity) is the same for both channels: found once. */
+static void band_q(tdc_fvvdp_t *m, int l, const double *gaze, double q[2][3])
+{
+    tdc_fvvdp_t *o = home(m);
+    int bw = m->pyr.w[l], bh = m->pyr.h[l], nch = m->nch;
+    double lcorr = SENS_CORR_DB / 20.0 * 3.3219280948873623; /* log2 of the correction */
     double gd[2] = { 0.0, 0.0 };
     if (gaze) {
         tdc_fvvdp_view_dir(&m->g, m->w, m->h, gaze[0] + 0.5, gaze[1] + 0.5, gd);
     }
-    const double *lrm = gaze ? m->lresmag[l] : NULL;
-    double *rin = m->rows + m->h, *nin = m->rows + 2 * (size_t)m->h;
-    double lrho = log2(rho);
+    const double *lrm = gaze ? o->lresmag[l] : NULL;
+    double *rows = o->rows; /* per row: sum ch 0, ch 1, fovea ch 0, ch 1, fovea samples */
+    double lrho = log2(m->pyr.rho[l]), fovea = m->fovea_deg;
     /* Horizontal view angles relative to the gaze, per column (the view
      * direction's x depends on the column only, its y on the row only). */
-    for (int x = 0; gaze && x < bw; x++) {
-        double d[2];
-        tdc_fvvdp_view_dir(&m->g, bw, bh, x + 0.5, 0.5, d);
-        m->colx[x] = d[0] - gd[0];
+    for (int x = 0; x < bw; x++) {
+        double d[2] = { 0.0, 0.0 };
+        if (gaze) {
+            tdc_fvvdp_view_dir(&m->g, bw, bh, x + 0.5, 0.5, d);
+        }
+        o->colx[x] = d[0] - gd[0];
     }
     TDC_PAR_FOR((long)bw * bh)
     for (int y = 0; y < bh; y++) {
-        double s = 0.0, si = 0.0, ni = 0.0, vy = 0.0;
+        double acc[5] = { 0.0, 0.0, 0.0, 0.0, 0.0 }, vy = 0.0;
         if (gaze) {
             double d[2];
             tdc_fvvdp_view_dir(&m->g, bw, bh, 0.5, y + 0.5, d);
             vy = d[1] - gd[1];
         }
-        for (int x = 0; x < bw; x++) {
-            size_t i = (size_t)y * bw + x;
-            double ecc = 0.0, lr = lrho;
-            if (gaze) {
-                double vx = m->colx[x];
-                ecc = sqrt(vx * vx + vy * vy);
-                lr = lrho + (lrm ? lrm[i] : 0.0);
+        for (int x0 = 0; x0 < bw; x0 += CHUNK) {
+            int nx = bw - x0 < CHUNK ? bw - x0 : CHUNK;
+            size_t i0 = (size_t)y * bw + x0;
+            double a[2][CHUNK], lr[CHUNK], ly[CHUNK], se[CHUNK], in[CHUNK]; /* in: 1 within the fovea */
+            float ls[2][CHUNK], e[CHUNK];
+            const double *bkg = o->bkg + i0, *cx = o->colx + x0, *lm = lrm ? lrm + i0 : NULL;
+            for (int x = 0; x < nx; x++) {
+                lr[x] = lm ? lrho + lm[x] : lrho;
             }
-            double sens = tdc_fvvdp_csf_lut_q(ch, lr, m->bkg[i], sqrt(ecc)) * corr;
-            double t = m->ct[i] * sens, rr = m->cr[i] * sens;
-            double mk = mc * fmin(fabs(t), fabs(rr));
-            double d = pow(fabs(t - rr), MASK_P) / (1.0 + pow(mk, mq));
-            d = d < 1e4 ? d : 1e4;
-            double e = pow(d, BETA);
-            s += e;
-            if (ecc < m->fovea_deg) {
-                si += e;
-                ni += 1.0;
+            TDC_SIMD
+            for (int x = 0; x < nx; x++) {
+                double ecc = sqrt(cx[x] * cx[x] + vy * vy); /* 0 without a gaze */
+                ly[x] = fast_log2((float)bkg[x]); /* the table axis: 1e-6 is plenty */
+                se[x] = sqrt(ecc);
+                in[x] = ecc < fovea ? 1.0 : 0.0;
+            }
+            tdc_fvvdp_csf_lut_log2(lr, ly, se, nx, a[0], a[1]);
+            TDC_SIMD
+            for (int x = 0; x < nx; x++) {
+                ls[0][x] = (float)(a[0][x] + lcorr);
+                ls[1][x] = (float)(a[1][x] + lcorr);
+            }
+            for (int c = 0; c < nch; c++) {
+                mask_row(o->con[2 * c] + i0, o->con[2 * c + 1] + i0, ls[c], c ? (float)MASK_Q_TRANS : (float)MASK_Q_SUST, nx, e);
+                for (int x = 0; x < nx; x++) {
+                    acc[c] += e[x];
+                    acc[2 + c] += in[x] * e[x];
+                }
+            }
+            for (int x = 0; x < nx; x++) {
+                acc[4] += in[x];
             }
         }
-        m->rows[y] = s;
-        rin[y] = si;
-        nin[y] = ni;
+        for (int k = 0; k < 5; k++) {
+            rows[(size_t)k * bh + y] = acc[k];
+        }
     }
-    double n = (double)bw * bh;
-    double sum = tdc_par_sum_rows(m->rows, bh);
-    double sin_ = tdc_par_sum_rows(rin, bh), n_in = tdc_par_sum_rows(nin, bh);
-    q[0] = pow(sum / n, 1.0 / BETA);
-    q[1] = n_in > 0.0 ? pow(sin_ / n_in, 1.0 / BETA) : -1.0;
-    q[2] = n - n_in > 0.0 ? pow(fmax(sum - sin_, 0.0) / (n - n_in), 1.0 / BETA) : -1.0;
+    double n = (double)bw * bh, n_in = tdc_par_sum_rows(rows + 4 * (size_t)bh, bh);
+    for (int c = 0; c < nch; c++) {
+        double sum = tdc_par_sum_rows(rows + (size_t)c * bh, bh);
+        double sin_ = tdc_par_sum_rows(rows + (size_t)(2 + c) * bh, bh);
+        q[c][0] = pow(sum / n, 1.0 / BETA);
+        q[c][1] = n_in > 0.0 ? pow(sin_ / n_in, 1.0 / BETA) : -1.0;
+        q[c][2] = n - n_in > 0.0 ? pow(fmax(sum - sin_, 0.0) / (n - n_in), 1.0 / BETA) : -1.0;
+    }
 }
 
-/* Contrast of band l of signal s into out, given bkg of that band. */
-static void band_contrast(tdc_fvvdp_t *m, int s, int l, double mul, double *out)
+/* Contrast of band l of signal s into con[s] (float: its rounding, 6e-8 of
+ * the contrast, is far below any visible difference), given bkg. */
+static void band_contrast(tdc_fvvdp_t *m, int s, int l, double mul)
 {
-    int bw = m->pyr.w[l], bh = m->pyr.h[l];
-    tdc_fvvdp_expand(sig(m, s, l + 1), bw, bh, out, m->tmp);
-    const double *g = sig(m, s, l);
+    tdc_fvvdp_t *o = home(m);
+    int bw = o->pyr.w[l], bh = o->pyr.h[l];
+    tdc_fvvdp_expand(pyr(m, s)[l + 1], bw, bh, o->ex, o->tmp);
+    const double *g = pyr(m, s)[l], *ex = o->ex, *bkg = o->bkg;
+    float *out = o->con[s];
     TDC_PAR_FOR((long)bw * bh)
     for (int y = 0; y < bh; y++) {
-        for (int x = 0; x < bw; x++) {
-            size_t i = (size_t)y * bw + x;
-            double c = (g[i] - out[i]) / m->bkg[i];
-            out[i] = (c < 1000.0 ? c : 1000.0) * mul;
+        for (size_t i = (size_t)y * bw; i < (size_t)(y + 1) * bw; i++) {
+            double c = (g[i] - ex[i]) / bkg[i];
+            out[i] = (float)((c < 1000.0 ? c : 1000.0) * mul);
         }
     }
 }
 
 double tdc_fvvdp_frame(tdc_fvvdp_t *m, const float *test, const float *ref, const double *gaze)
 {
-    signals(m, test, ref);
+    tdc_fvvdp_t *o = home(m);
+    if (signals(m, test, ref)) {
+        return NAN;
+    }
     int nsig = 2 * m->nch, lv = m->pyr.levels;
     for (int s = 0; s < nsig; s++) {
         for (int l = 0; l + 1 < lv && !(m->owner && (s & 1)); l++) {
-            tdc_fvvdp_reduce(m->gp[s][l], m->pyr.w[l], m->pyr.h[l], m->gp[s][l + 1], m->tmp);
+            tdc_fvvdp_reduce(pyr(m, s)[l], m->pyr.w[l], m->pyr.h[l], pyr(m, s)[l + 1], o->tmp);
         }
     }
     if (gaze) {
-        resmag_maps(m);
+        resmag_maps(o);
     }
     /* Regions a band has no sample of are left out of that band's sum. */
     double qsc[3][2] = { { 0.0, 0.0 }, { 0.0, 0.0 }, { 0.0, 0.0 } };
@@ -423,19 +552,24 @@ double tdc_fvvdp_frame(tdc_fvvdp_t *m, const float *test, const float *ref, cons
     for (int l = 0; l + 1 < lv; l++) {
         int bw = m->pyr.w[l], bh = m->pyr.h[l];
         /* Local adaptation: the reference's sustained signal one level down. */
-        tdc_fvvdp_expand(sig(m, 1, l + 1), bw, bh, m->bkg, m->tmp);
-        for (size_t i = 0; i < (size_t)bw * bh; i++) {
-            m->bkg[i] = m->bkg[i] > 0.1 ? m->bkg[i] : 0.1;
+        tdc_fvvdp_expand(pyr(m, 1)[l + 1], bw, bh, o->bkg, o->tmp);
+        double *bkg = o->bkg;
+        TDC_PAR_FOR((long)bw * bh)
+        for (int y = 0; y < bh; y++) {
+            for (size_t i = (size_t)y * bw; i < (size_t)(y + 1) * bw; i++) {
+                bkg[i] = bkg[i] > 0.1 ? bkg[i] : 0.1;
+            }
         }
         double mul = l == 0 ? 1.0 : 2.0;
+        for (int s = 0; s < nsig; s++) {
+            band_contrast(m, s, l, mul);
+        }
+        double q[2][3];
+        band_q(m, l, gaze, q);
         for (int c = 0; c < m->nch; c++) {
-            double q[3];
-            band_contrast(m, 2 * c, l, mul, m->ct);
-            band_contrast(m, 2 * c + 1, l, mul, m->cr);
-            band_q(m, l, c, gaze, q);
             for (int r = 0; r < 3; r++) {
-                qsc[r][c] += q[r] > 0.0 ? q[r] * (c ? W_TRANSIENT : 1.0) : 0.0;
-                have[r] &= !(l == 0 && q[r] < 0.0);
+                qsc[r][c] += q[c][r] > 0.0 ? q[c][r] * (c ? W_TRANSIENT : 1.0) : 0.0;
+                have[r] &= !(l == 0 && q[c][r] < 0.0);
             }
         }
     }
@@ -455,8 +589,5 @@ double tdc_fvvdp_frame(tdc_fvvdp_t *m, const float *test, const float *ref, cons
     m->last.fovea = have[1] ? tdc_fvvdp_q2jod(qtc[1]) : NAN;
     m->last.periphery = have[2] ? tdc_fvvdp_q2jod(qtc[2]) : NAN;
     m->frames++;
-    if (m->nch == 2) {
-        m->head = (m->head + 1) % m->taps;
-    }
     return m->last.all;
 }

@@ -3,7 +3,8 @@
  * Bachy, Lian, Patney: "FovVideoVDP: A visible difference predictor for
  * wide field-of-view video", ACM TOG 40(4) 49, 2021), written by this
  * project from the paper's equations; the simulator's judge of temporal and
- * peripheral differences.  Host code, double precision.
+ * peripheral differences.  Host code, double precision (masking and band
+ * contrasts in float: tdc_fvvdp.c).
  *
  * The stages, one per file:
  *   tdc_fvvdp_display.c   photometry (drive code -> cd/m^2) and geometry
@@ -103,11 +104,20 @@ typedef struct tdc_fvvdp tdc_fvvdp_t;
  * Returns NULL with a one-line reason in why (>= 128 bytes) on bad input. */
 tdc_fvvdp_t *tdc_fvvdp_new(const tdc_fvvdp_geometry_t *g, double fps, char *why, size_t why_len);
 /* A metric judging another test against the same reference as owner: it
- * keeps no reference history or pyramids of its own but reads owner's, so
- * each frame must be fed to owner first (the reference argument of
- * tdc_fvvdp_frame is then ignored), and owner must outlive it.  Results are
- * the same bits as an unshared metric's. */
-tdc_fvvdp_t *tdc_fvvdp_new_shared(const tdc_fvvdp_t *owner, char *why, size_t why_len);
+ * keeps no reference history, pyramids or scratch planes of its own but
+ * reads and reuses owner's, so each frame must be fed to owner first (the
+ * reference argument of tdc_fvvdp_frame is then ignored, may be NULL), the
+ * metrics of one owner must not run frames at the same time, and owner must
+ * outlive them.  Results are the same bits as an unshared metric's. */
+tdc_fvvdp_t *tdc_fvvdp_new_shared(tdc_fvvdp_t *owner, char *why, size_t why_len);
+/* A metric with its own test and reference beside other (the same geometry
+ * and rate: the other eye of a stereo pair): it holds its histories and
+ * reference pyramids but works in other's scratch planes (the test's
+ * pyramids, contrasts, adaptation), so the metrics sharing them must not run
+ * frames at the same time and other must outlive it.  Results are the same
+ * bits as a metric of its own; each further metric saves about 7 planes of
+ * doubles (165 MB at 1440x1600). */
+tdc_fvvdp_t *tdc_fvvdp_new_beside(tdc_fvvdp_t *other, char *why, size_t why_len);
 void tdc_fvvdp_free(tdc_fvvdp_t *m);
 
 /* Feed one frame of linear luminance (cd/m^2, row-major w*h) of the test

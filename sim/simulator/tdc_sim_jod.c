@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "simulator/tdc_sim_jod.h"
+#include "tdc_par.h"
 
 #define MAX_JUDGES 128
 #define WARMUP_S 0.25
@@ -14,14 +15,16 @@ typedef struct {
     char mode[64];
     int eye;
     tdc_fvvdp_t *m;       /* created at the first refresh's end (its step count gives the rate) */
-    int own;              /* index of the judge whose reference m shares, or -1 */
-    float *acc_t, *acc_r; /* this refresh's retinal luminance, summed over its steps */
+    int own;              /* index of the judge whose reference m shares (the eye's first), or -1 */
+    float *acc_t, *acc_r; /* this refresh's retinal luminance, summed over its steps (acc_r: the
+                             reference, held by the eye's first judge only: the same for every mode) */
     int w, h, nacc;
     long refresh;         /* the refresh being accumulated */
     double gaze[2], t1;
     int fed, warmup;      /* frames fed; frames of the warm-up */
     tdc_fvvdp_geometry_t g;
     double fps;           /* retinal steps per second */
+    double rate;          /* the metric's frame rate (refreshes per second) */
 } judge_t;
 
 struct tdc_sim_jod {
@@ -57,21 +60,28 @@ static int flush(tdc_sim_jod_t *s, judge_t *j)
         return 0;
     }
     if (!j->m) {
-        /* The first refresh's step count fixes the rate: R = steps/s / N.
-         * The eye's first judge holds the reference; the eye's other modes
-         * share it (their refreshes are flushed after it, in mode order). */
+        /* The first refresh's step count fixes the rate: R = steps/s / N. */
         char why[160];
         double rate = j->fps / j->nacc;
-        j->own = -1;
-        for (int i = 0; i < s->n && j->own < 0; i++) {
-            j->own = s->j[i].eye == j->eye && s->j[i].m && s->j[i].own < 0 && &s->j[i] != j ? i : -1;
+        if (j->own >= 0 && !s->j[j->own].m) {
+            fprintf(stderr, "tdc-sim: jod: mode %s eye %d: the reference's judge (mode %s) has no metric\n", j->mode,
+                    j->eye, s->j[j->own].mode);
+            return -1;
+        }
+        /* The other eye's metric at the same size and rate lends its
+         * scratch planes (the judges run one at a time). */
+        const judge_t *o = NULL;
+        for (int i = 0; i < s->n && !o; i++) {
+            o = s->j[i].m && s->j[i].rate == rate && memcmp(&s->j[i].g, &j->g, sizeof j->g) == 0 ? &s->j[i] : NULL;
         }
         j->m = j->own >= 0 ? tdc_fvvdp_new_shared(s->j[j->own].m, why, sizeof why)
+               : o         ? tdc_fvvdp_new_beside(o->m, why, sizeof why)
                            : tdc_fvvdp_new(&j->g, rate, why, sizeof why);
         if (!j->m) {
             fprintf(stderr, "tdc-sim: jod: mode %s eye %d: %s\n", j->mode, j->eye, why);
             return -1;
         }
+        j->rate = rate;
         j->warmup = (int)ceil(WARMUP_S * rate);
     }
     if (j->own >= 0 && tdc_fvvdp_frames(s->j[j->own].m) != j->fed + 1) {
@@ -83,11 +93,20 @@ static int flush(tdc_sim_jod_t *s, judge_t *j)
     }
     size_t np = (size_t)j->w * j->h;
     float inv = 1.0f / (float)j->nacc;
-    for (size_t i = 0; i < np; i++) {
-        j->acc_t[i] *= inv;
-        j->acc_r[i] *= inv;
+    float *acc_t = j->acc_t, *acc_r = j->acc_r;
+    TDC_PAR_FOR(np)
+    for (int y = 0; y < j->h; y++) {
+        for (size_t i = (size_t)y * j->w; i < (size_t)(y + 1) * j->w; i++) {
+            acc_t[i] *= inv;
+            if (acc_r) {
+                acc_r[i] *= inv;
+            }
+        }
     }
-    tdc_fvvdp_frame(j->m, j->acc_t, j->acc_r, j->gaze);
+    if (isnan(tdc_fvvdp_frame(j->m, j->acc_t, j->acc_r, j->gaze))) {
+        fprintf(stderr, "tdc-sim: jod: mode %s eye %d: out of memory for the metric's history\n", j->mode, j->eye);
+        return -1;
+    }
     j->fed++;
     if (j->fed == j->warmup) {
         tdc_fvvdp_reset_pool(j->m);
@@ -99,7 +118,9 @@ static int flush(tdc_sim_jod_t *s, judge_t *j)
                 j->fed > j->warmup, r.all, r.fovea, r.periphery);
     }
     memset(j->acc_t, 0, np * sizeof(float));
-    memset(j->acc_r, 0, np * sizeof(float));
+    if (j->acc_r) {
+        memset(j->acc_r, 0, np * sizeof(float));
+    }
     j->nacc = 0;
     return 0;
 }
@@ -122,9 +143,15 @@ int tdc_sim_jod_cb(void *ctx, const tdc_retina_frame_t *f)
         j->g = (tdc_fvvdp_geometry_t){ f->width, f->height, f->display->width_m, f->display->distance_m };
         j->fps = f->fps;
         j->refresh = f->refresh;
+        /* The eye's first judge holds the reference; the eye's other modes
+         * share it (their refreshes are flushed after it, in mode order). */
+        j->own = -1;
+        for (int i = 0; i < s->n && j->own < 0; i++) {
+            j->own = s->j[i].eye == j->eye ? i : -1;
+        }
         j->acc_t = calloc(np, sizeof(float));
-        j->acc_r = calloc(np, sizeof(float));
-        if (!j->acc_t || !j->acc_r) {
+        j->acc_r = j->own < 0 ? calloc(np, sizeof(float)) : NULL;
+        if (!j->acc_t || (j->own < 0 && !j->acc_r)) {
             fprintf(stderr, "tdc-sim: jod: out of memory\n");
             free(j->acc_t);
             free(j->acc_r);
@@ -139,9 +166,15 @@ int tdc_sim_jod_cb(void *ctx, const tdc_retina_frame_t *f)
         }
         j->refresh = f->refresh;
     }
-    for (size_t i = 0; i < np; i++) {
-        j->acc_t[i] += f->test_y[i];
-        j->acc_r[i] += f->ref_y[i];
+    float *acc_t = j->acc_t, *acc_r = j->acc_r;
+    TDC_PAR_FOR(np)
+    for (int y = 0; y < f->height; y++) {
+        for (size_t i = (size_t)y * f->width; i < (size_t)(y + 1) * f->width; i++) {
+            acc_t[i] += f->test_y[i];
+            if (acc_r) {
+                acc_r[i] += f->ref_y[i];
+            }
+        }
     }
     j->nacc++;
     j->gaze[0] = f->gaze[0];

@@ -343,7 +343,8 @@ static void test_reset_pool(void **state)
 
 /* Two tests against one reference: the sharing metric (reference held and
  * filtered once) gives the same bits as an independent one, foveated video,
- * and holds less memory. */
+ * and holds less memory; so does a metric of another reference working in
+ * the same scratch (tdc_fvvdp_new_beside: the other eye), fed in between. */
 static void test_shared_reference(void **state)
 {
     (void)state;
@@ -354,6 +355,10 @@ static void test_shared_reference(void **state)
     tdc_fvvdp_t *own = tdc_fvvdp_new(&g, 90.0, why, sizeof why);
     tdc_fvvdp_t *sh = tdc_fvvdp_new_shared(own, why, sizeof why);
     tdc_fvvdp_t *solo = tdc_fvvdp_new(&g, 90.0, why, sizeof why);
+    tdc_fvvdp_t *bes = tdc_fvvdp_new_beside(sh, why, sizeof why);
+    tdc_fvvdp_t *solo2 = tdc_fvvdp_new(&g, 90.0, why, sizeof why);
+    assert_non_null(bes);
+    assert_true(tdc_fvvdp_bytes(bes) < tdc_fvvdp_bytes(solo));
     assert_non_null(own);
     assert_non_null(sh);
     assert_non_null(solo);
@@ -361,7 +366,7 @@ static void test_shared_reference(void **state)
     assert_true(tdc_fvvdp_bytes(sh) < tdc_fvvdp_bytes(solo));
     double gz[2];
     assert_int_equal(fvvdp_cond_gaze(&a, gz), 1);
-    float ta[64 * 64], tb[64 * 64], r[64 * 64], junk[64 * 64];
+    float ta[64 * 64], tb[64 * 64], r[64 * 64], rb[64 * 64], junk[64 * 64];
     for (int f = 0; f < a.frames; f++) {
         fvvdp_cond_frame(&a, f, 1, ta);
         fvvdp_cond_frame(&b, f, 1, tb);
@@ -369,12 +374,22 @@ static void test_shared_reference(void **state)
         for (int i = 0; i < 64 * 64; i++) {
             junk[i] = 1.0f; /* ignored by a sharing metric */
         }
+        for (int i = 0; i < 64 * 64; i++) {
+            rb[i] = 0.7f * r[i]; /* another reference (the two conditions share theirs) */
+        }
         tdc_fvvdp_frame(own, ta, r, gz);
+        tdc_fvvdp_frame(bes, ta, rb, gz);
         tdc_fvvdp_frame(sh, tb, junk, gz);
         tdc_fvvdp_frame(solo, tb, r, gz);
+        tdc_fvvdp_frame(solo2, ta, rb, gz);
     }
     double js = tdc_fvvdp_jod(sh), jo = tdc_fvvdp_jod(solo);
     assert_memory_equal(&js, &jo, sizeof js);
+    double jb = tdc_fvvdp_jod(bes), jb2 = tdc_fvvdp_jod(solo2);
+    assert_memory_equal(&jb, &jb2, sizeof jb);
+    assert_true(jb < 10.0 && jb != js);
+    tdc_fvvdp_free(bes);
+    tdc_fvvdp_free(solo2);
     assert_true(js < 10.0 && tdc_fvvdp_jod(own) < 10.0);
     tdc_fvvdp_free(sh);
     tdc_fvvdp_free(solo);
@@ -397,8 +412,19 @@ static void test_refused(void **state)
     assert_non_null(strstr(why, "distance"));
     tdc_fvvdp_t *m = tdc_fvvdp_new(&g, 90.0, why, sizeof why);
     assert_non_null(m);
-    /* History bound: ceil(90/4) = 23 frames x test+ref x float. */
-    assert_true(tdc_fvvdp_bytes(m) >= 23u * 2 * 64 * 64 * sizeof(float));
+    /* History: it grows with the frames fed, to ceil(90/4) = 23 frames x
+     * test+ref x float, and no further. */
+    static float fr[64 * 64];
+    size_t b0 = tdc_fvvdp_bytes(m), b22 = 0;
+    for (int f = 0; f < 40; f++) {
+        tdc_fvvdp_frame(m, fr, fr, NULL);
+        b22 = f == 21 ? tdc_fvvdp_bytes(m) : b22;
+        if (f == 22) {
+            assert_int_equal(tdc_fvvdp_bytes(m) - b0, 23u * 2 * 64 * 64 * sizeof(float));
+            assert_int_equal(tdc_fvvdp_bytes(m) - b22, 2 * 64 * 64 * sizeof(float));
+        }
+    }
+    assert_int_equal(tdc_fvvdp_bytes(m) - b0, 23u * 2 * 64 * 64 * sizeof(float));
     tdc_fvvdp_free(m);
 }
 
