@@ -5,7 +5,7 @@
 # tdc_par_min_work, in the simulator's archive); its row loops run
 # threaded with gcc's OpenMP (sim/tdc_par.h), so programs that link it link
 # with -fopenmp too.
-FVVDP_SRCS := sim/simulator/tdc_sim_jod.c sim/metrics/tdc_fvvdp.c sim/metrics/tdc_fvvdp_display.c sim/metrics/tdc_fvvdp_pyr.c \
+FVVDP_SRCS := sim/simulator/tdc_sim_jod.c sim/simulator/tdc_sim_heatmap.c sim/metrics/tdc_fvvdp.c sim/metrics/tdc_fvvdp_display.c sim/metrics/tdc_fvvdp_pyr.c \
               sim/metrics/tdc_fvvdp_temporal.c sim/metrics/tdc_fvvdp_csf.c
 SIM_SRCS += $(FVVDP_SRCS)
 FVVDP_OMP := $(if $(filter gcc,$(CCNAME)),-fopenmp)

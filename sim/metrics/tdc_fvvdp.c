@@ -81,6 +81,7 @@ struct tdc_fvvdp {
     int nq[3];
     tdc_fvvdp_jods_t last;
     size_t bytes;
+    double *const *dmap; /* heat-map hook (tdc_fvvdp_set_dmap) or NULL */
 };
 
 double tdc_fvvdp_q2jod(double q)
@@ -242,6 +243,11 @@ void tdc_fvvdp_reset_pool(tdc_fvvdp_t *m)
     }
 }
 
+void tdc_fvvdp_set_dmap(tdc_fvvdp_t *m, double *const *bands)
+{
+    m->dmap = bands;
+}
+
 int tdc_fvvdp_set_fovea(tdc_fvvdp_t *m, double deg)
 {
     if (!(deg > 0.0 && deg <= 90.0)) {
@@ -340,6 +346,7 @@ static void band_q(tdc_fvvdp_t *m, int l, int ch, const double *gaze, double q[3
         tdc_fvvdp_view_dir(&m->g, m->w, m->h, gaze[0] + 0.5, gaze[1] + 0.5, gd);
     }
     const double *lrm = gaze ? m->lresmag[l] : NULL;
+    double *dm = m->dmap ? m->dmap[l] : NULL, wch = ch ? W_TRANSIENT : 1.0;
     double *rin = m->rows + m->h, *nin = m->rows + 2 * (size_t)m->h;
     double lrho = log2(rho);
     /* Horizontal view angles relative to the gaze, per column (the view
@@ -370,6 +377,9 @@ static void band_q(tdc_fvvdp_t *m, int l, int ch, const double *gaze, double q[3
             double mk = mc * fmin(fabs(t), fabs(rr));
             double d = pow(fabs(t - rr), MASK_P) / (1.0 + pow(mk, mq));
             d = d < 1e4 ? d : 1e4;
+            if (dm) {
+                dm[i] += wch * d;
+            }
             double e = pow(d, BETA);
             s += e;
             if (ecc < m->fovea_deg) {

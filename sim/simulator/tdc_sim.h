@@ -102,9 +102,15 @@ typedef struct {
     tdc_retina_cb_t retina_cb;
     void *retina_ctx;
     const char *dump_dir;
+    int judge;          /* the report's judge: TDC_JUDGE_* (set by tdc-sim's main) */
     const char *outdir; /* NULL: no files */
     const char *label;  /* run label for the report */
 } tdc_sim_config_t;
+
+/* cfg.judge: FovVideoVDP's JOD (the default), the legacy columns alone
+ * (--judge legacy), or no JOD because the run is no longer than the judge's
+ * warm-up (simulator/tdc_sim_jod.h: nothing would be pooled). */
+enum { TDC_JUDGE_JOD = 0, TDC_JUDGE_LEGACY = 1, TDC_JUDGE_SHORT = 2 };
 
 void tdc_sim_default_config(tdc_sim_config_t *c);
 
