@@ -44,7 +44,7 @@ fvvdp-reference: $(TDC_FVVDP_VALIDATE)
 .PHONY: fvvdp-reference
 
 # Tests: the stages (exact properties) and the stored-reference comparison.
-FVVDP_TESTS := test_fvvdp test_fvvdp_valid
+FVVDP_TESTS := test_fvvdp test_fvvdp_valid test_sim_heatmap
 TESTS += $(foreach t,$(FVVDP_TESTS),$(B)/tests/unit/$(t))
 $(B)/tests/unit/test_fvvdp_valid.o: HOST_CFLAGS += -DFVVDP_REFERENCE_CSV='"sim/metrics/validation/fvvdp_reference.csv"'
 $(foreach t,$(FVVDP_TESTS),$(B)/tests/unit/$(t)): $(B)/tests/%: $(B)/tests/%.o $(FVVDP_VAL_OBJ) $$(SIMXLIB) $(SIMLIB) $(FWLIB)

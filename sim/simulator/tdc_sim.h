@@ -149,7 +149,7 @@ typedef struct {
      * FLIP's weighted median (thesis Tables 5.1-5.3), flicker outside the disk */
     double flip_ecc, flip_fovea, flip_periph, flip_wmedian, flicker_periph;
     int foveated; /* the mode foveates (fov family) */
-    /* FovVideoVDP on the retinal signal (--jod, simulator/tdc_sim_jod.h):
+    /* FovVideoVDP on the retinal signal (the judge, simulator/tdc_sim_jod.h):
      * JOD of the view, within 5 deg of the gaze and beyond, mean of the
      * eyes; refreshes pooled after the warm-up.  judged 0: not run. */
     int judged, jod_frames;

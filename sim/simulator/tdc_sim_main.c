@@ -85,12 +85,13 @@ static void usage(FILE *f)
             "      --temporal          legacy temporal visibility model: the legacy eye's error through a\n"
             "                          temporal CSF (Watson 1986, sim/eye/tdc_eye_temporal.h): legacy_terr\n"
             "      --metric-every K    evaluate every K-th refresh (default 1)\n"
-            "      --judge jod|legacy  the judge (docs/visual-model.md).  jod (default): FovVideoVDP on the\n"
+            "      --judge jod|legacy  the judge (docs/visual-model.md).  Default: FovVideoVDP on the\n"
             "                          retinal signal: JOD per mode and eye, fovea / periphery, in the report,\n"
             "                          summary.csv, series.csv (per refresh), -o DIR's jod.csv,\n"
             "                          jod_series.csv and heatmap_<mode>.png (eye 0's visible-difference\n"
-            "                          map); legacy: PSNR/SSIM/FLIP and the legacy columns only, 4-7x less\n"
-            "                          CPU at 128x96 (for sweeps that need no JOD)\n"
+            "                          map), unless the run is no longer than its 250 ms warm-up (nothing\n"
+            "                          to pool); jod: judged even then; legacy: PSNR/SSIM/FLIP and the\n"
+            "                          legacy columns only, 4-7x less CPU at 128x96 (sweeps without JOD)\n"
             "      --no-jod            --judge legacy (--jod: --judge jod)\n"
             "      --dump DIR          the retinal signal as files (docs/eye.md): per refresh and eye the drive\n"
             "                          codes, per step the emitted light and the retinal image of every mode\n"
@@ -369,7 +370,8 @@ int main(int argc, char **argv)
     int reflect_mv = 1;
     int fov_lod = TDC_FOV_LOD_FOOTPRINT;
     long frames = -1;
-    int jod = 1; /* the judge: FovVideoVDP unless --judge legacy / --no-jod */
+    int jod = -1; /* the judge: FovVideoVDP (-1: unless the run is within its warm-up; 1: --judge jod,
+                     always), 0: --judge legacy / --no-jod */
     double v;
     int c;
     tdc_tool_set_name("tdc-sim");
@@ -784,10 +786,12 @@ int main(int argc, char **argv)
         cfg.duration_s = (double)frames / cfg.refresh_hz;
     }
     /* The judge pools the refreshes after its warm-up: a run no longer than
-     * that has no JOD, and is not judged (saves the metric's cost). */
+     * that has no JOD and, unless --judge jod asks for the judge anyway (its
+     * cost: make bench-fvvdp), is not judged. */
     const long run_refreshes = (long)floor(cfg.duration_s * cfg.refresh_hz + 1e-9);
     cfg.judge = !jod ? TDC_JUDGE_LEGACY
-                     : (run_refreshes <= tdc_sim_jod_warmup(cfg.refresh_hz) ? TDC_JUDGE_SHORT : TDC_JUDGE_JOD);
+                     : (jod < 0 && run_refreshes <= tdc_sim_jod_warmup(cfg.refresh_hz) ? TDC_JUDGE_SHORT
+                                                                                         : TDC_JUDGE_JOD);
     jod = cfg.judge == TDC_JUDGE_JOD;
     if (cfg.dump_dir || jod) {
         /* the retinal signal: its frame rate and the panel's photometry */
