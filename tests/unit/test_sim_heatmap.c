@@ -8,7 +8,7 @@
  *     without it;
  *   - the map is the mean over the frames added (two identical frames give
  *     the one frame's map);
- *   - a pyramid without a band (a 4x4 view at 1 px/deg) gives no map.
+ *   - a view the pyramid refuses (3x3, below its 4 px) gives no map.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -113,7 +113,10 @@ static void test_local_difference(void **st)
 static void test_no_band(void **st)
 {
     (void)st;
-    assert_null(tdc_sim_heatmap_new(4, 4, 1.0));
+    assert_null(tdc_sim_heatmap_new(3, 3, 20.0));
+    tdc_sim_heatmap_t *hm = tdc_sim_heatmap_new(4, 4, 1.0); /* the smallest: one band */
+    assert_non_null(hm);
+    tdc_sim_heatmap_free(hm);
 }
 
 int main(void)
