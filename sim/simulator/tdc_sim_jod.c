@@ -1,6 +1,7 @@
 /*
  * tdc_sim_jod.c - FovVideoVDP on the retinal signal (tdc_sim_jod.h).
  */
+#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -287,6 +288,7 @@ static int merge_line(tdc_sim_jod_t *s, FILE *out, char *line, int eyes, double 
 int tdc_sim_jod_series_merge(tdc_sim_jod_t *s, const char *path, int eyes, double hz)
 {
     char tmp[1200], line[512];
+    errno = 0;
     snprintf(tmp, sizeof tmp, "%s.tmp", path);
     FILE *in = fopen(path, "r"), *out = in ? fopen(tmp, "w") : NULL;
     int bad = !in || !out;
@@ -302,7 +304,7 @@ int tdc_sim_jod_series_merge(tdc_sim_jod_t *s, const char *path, int eyes, doubl
         bad |= ferror(out) | (fclose(out) != 0);
     }
     if (bad || rename(tmp, path) != 0) {
-        fprintf(stderr, "tdc-sim: %s: cannot add the jod column\n", path);
+        fprintf(stderr, "tdc-sim: %s: cannot add the jod column: %s\n", path, strerror(errno ? errno : EIO));
         remove(tmp);
         return -1;
     }
