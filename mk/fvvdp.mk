@@ -5,7 +5,7 @@
 # tdc_par_min_work, in the simulator's archive); its row loops run
 # threaded with gcc's OpenMP (sim/tdc_par.h), so programs that link it link
 # with -fopenmp too.
-FVVDP_SRCS := sim/simulator/tdc_sim_jod.c sim/metrics/tdc_fvvdp.c sim/metrics/tdc_fvvdp_display.c sim/metrics/tdc_fvvdp_pyr.c \
+FVVDP_SRCS := sim/simulator/tdc_sim_jod.c sim/simulator/tdc_sim_heatmap.c sim/metrics/tdc_fvvdp.c sim/metrics/tdc_fvvdp_display.c sim/metrics/tdc_fvvdp_pyr.c \
               sim/metrics/tdc_fvvdp_temporal.c sim/metrics/tdc_fvvdp_csf.c
 SIM_SRCS += $(FVVDP_SRCS)
 FVVDP_OMP := $(if $(filter gcc,$(CCNAME)),-fopenmp)
@@ -44,7 +44,7 @@ fvvdp-reference: $(TDC_FVVDP_VALIDATE)
 .PHONY: fvvdp-reference
 
 # Tests: the stages (exact properties) and the stored-reference comparison.
-FVVDP_TESTS := test_fvvdp test_fvvdp_valid
+FVVDP_TESTS := test_fvvdp test_fvvdp_valid test_sim_heatmap
 TESTS += $(foreach t,$(FVVDP_TESTS),$(B)/tests/unit/$(t))
 $(B)/tests/unit/test_fvvdp_valid.o: HOST_CFLAGS += -DFVVDP_REFERENCE_CSV='"sim/metrics/validation/fvvdp_reference.csv"'
 $(foreach t,$(FVVDP_TESTS),$(B)/tests/unit/$(t)): $(B)/tests/%: $(B)/tests/%.o $(FVVDP_VAL_OBJ) $$(SIMXLIB) $(SIMLIB) $(FWLIB)

@@ -92,6 +92,7 @@ struct tdc_fvvdp {
     double *bkg, *ex, *tmp, *rows, *colx;
     float *con[4];                         /* band contrasts: test, reference x sustained, transient */
     double fovea_deg;
+    double *const *dmap; /* heat-map hook (tdc_fvvdp_set_dmap) or NULL */
     /* Q of the frame in progress and pooled over frames: [all, fovea, periphery]. */
     double qsc[3][2], qsum[3];
     int nq[3];
@@ -232,6 +233,11 @@ void tdc_fvvdp_free(tdc_fvvdp_t *m)
     free(m->tmp);
     free(m->rows);
     free(m);
+}
+
+void tdc_fvvdp_set_dmap(tdc_fvvdp_t *m, double *const *bands)
+{
+    m->dmap = bands;
 }
 
 int tdc_fvvdp_frames(const tdc_fvvdp_t *m)
@@ -447,6 +453,7 @@ static void band_q(tdc_fvvdp_t *m, int l, const double *gaze, double q[2][3])
         tdc_fvvdp_view_dir(&m->g, m->w, m->h, gaze[0] + 0.5, gaze[1] + 0.5, gd);
     }
     const double *lrm = gaze ? o->lresmag[l] : NULL;
+    double *dm = m->dmap ? m->dmap[l] : NULL; /* this metric's heat map, not the workspace's */
     double *rows = o->rows; /* per row: sum ch 0, ch 1, fovea ch 0, ch 1, fovea samples */
     double lrho = log2(m->pyr.rho[l]), fovea = m->fovea_deg;
     /* Horizontal view angles relative to the gaze, per column (the view
@@ -493,6 +500,10 @@ static void band_q(tdc_fvvdp_t *m, int l, const double *gaze, double q[2][3])
                 for (int x = 0; x < nx; x++) {
                     acc[c] += e[x];
                     acc[2 + c] += in[x] * e[x];
+                }
+                /* The heat map takes the masked difference d itself: e = d^beta. */
+                for (int x = 0; dm && x < nx; x++) {
+                    dm[i0 + x] += (c ? W_TRANSIENT : 1.0) * pow(e[x], 1.0 / BETA);
                 }
             }
             for (int x = 0; x < nx; x++) {

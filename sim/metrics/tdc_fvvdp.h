@@ -148,6 +148,11 @@ int tdc_fvvdp_set_fovea(tdc_fvvdp_t *m, double deg);
  * whose history is its first frame repeated, is not judged
  * (docs/visual-model.md). */
 void tdc_fvvdp_reset_pool(tdc_fvvdp_t *m);
+/* Heat-map hook: with bands non-NULL, every later frame adds its masked
+ * difference D of band l (before pooling; transient channel weighted as in
+ * pooling) to bands[l], w[l] x h[l] of the pyramid layout, for l < levels - 1.
+ * The caller zeroes and collapses them (simulator/tdc_sim_jod.c); NULL stops. */
+void tdc_fvvdp_set_dmap(tdc_fvvdp_t *m, double *const *bands);
 /* Frames fed so far. */
 int tdc_fvvdp_frames(const tdc_fvvdp_t *m);
 /* Bytes the metric holds (the temporal history dominates). */

@@ -58,16 +58,28 @@ def eq51(W, H, alpha, delta, disk, gx=None, gy=None):
     return (Ap + Ac) / (W * H)
 
 
+def jod_cells(rows, r):
+    """The leading JOD cells (fovea within 5 deg of the gaze, periphery beyond: tdc-sim's judge,
+    docs/visual-model.md) when any row of the table was judged: (header, rule, cells of row r)."""
+    if not any(x.get("jod") for x in rows):
+        return "", "", ""
+    cell = " ".join(("%.3f |" % f(r.get(k)) if r and r.get(k) else "n/a |") for k in ("jod", "jod_fovea", "jod_periphery"))
+    return " JOD | JOD fovea | JOD periphery |", " ---: | ---: | ---: |", " " + cell
+
+
 def cost_table(md, m, summ, keys):
-    """Costs and gaze metrics of the modes `keys` present in a run (foveation.csv rows m, summary rows summ)."""
-    md.append("| mode | rays vs full | link vs full | FLIP fovea | FLIP periphery | FLIP ecc | FLIP w-median | "
-              "flicker periphery | fw us/frame |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
+    """Costs and gaze metrics of the modes `keys` present in a run (foveation.csv rows m, summary rows summ);
+    JOD first where the run was judged."""
+    rows = [m[k] for k in keys if m.get(k)]
+    jh, jr, _ = jod_cells(rows, None)
+    md.append(f"| mode |{jh} rays vs full | link vs full | FLIP fovea | FLIP periphery | FLIP ecc | FLIP w-median | "
+              f"flicker periphery (legacy) | fw us/frame |\n| --- |{jr} ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
     for k in keys:
         r = m.get(k)
         if not r:
             continue
         fw = summ.get(k, {}).get("fw_us_per_frame", "")
-        md.append(f"| {k} | {f(r['rays_vs_full']):.4f} | {f(r['link_vs_full']):.4f} | {f(r['flip_fovea']):.4f} | "
+        md.append(f"| {k} |{jod_cells(rows, r)[2]} {f(r['rays_vs_full']):.4f} | {f(r['link_vs_full']):.4f} | {f(r['flip_fovea']):.4f} | "
                   f"{f(r['flip_periphery']):.4f} | {f(r['flip_ecc']):.4f} | {f(r['flip_wmedian']):.3f} | "
                   f"{f(r['legacy_flicker_periphery']):.2f} | {fw} |")
     md.append("")
@@ -148,15 +160,16 @@ def fov_section(out):
             s = read(os.path.join(out, n, "summary.csv"))
             summ[n] = s[0]
         md.append("### Error against cost per disk fraction and alpha; eq. 5.1\n")
-        md.append("| run | alpha | disk | rays vs full (exact) | eq. 5.1 estimate | link vs full | FLIP | FLIP fovea | "
-                  "FLIP ecc | FLIP w-median | render us/frame |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | "
+        jh, jr, _ = jod_cells([t[1] for t in sweep], None)
+        md.append(f"| run |{jh} alpha | disk | rays vs full (exact) | eq. 5.1 estimate | link vs full | FLIP | FLIP fovea | "
+                  f"FLIP ecc | FLIP w-median | render us/frame |\n| --- |{jr} ---: | ---: | ---: | ---: | ---: | ---: | ---: | "
                   "---: | ---: | ---: |")
         disk_pts = []
         for n, r, _ in sorted(sweep, key=lambda t: (f(t[1]["alpha"]), f(t[1]["disk"]))):
             W, H = int(summ[n]["width"]), int(summ[n]["height"])
             sm = [x for x in read(os.path.join(out, n, "summary.csv")) if x["mode"] == r["mode"]][0]
             e = eq51(W, H, f(r["alpha"]), f(r["delta"]), f(r["disk"]))
-            md.append(f"| {n} | {f(r['alpha']):.0f} | {f(r['disk']):.4f} | {f(r['rays_vs_full']):.4f} | {e:.4f} | "
+            md.append(f"| {n} |{jod_cells([t[1] for t in sweep], r)[2]} {f(r['alpha']):.0f} | {f(r['disk']):.4f} | {f(r['rays_vs_full']):.4f} | {e:.4f} | "
                       f"{f(r['link_vs_full']):.4f} | {f(r['flip']):.4f} | {f(r['flip_fovea']):.4f} | "
                       f"{f(r['flip_ecc']):.4f} | {f(r['flip_wmedian']):.3f} | {f(sm['render_us_per_frame']):.0f} |")
             if n.startswith("fov-disk-"):

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "simulator/tdc_sim_gaze.h"
+#include "simulator/tdc_sim_jod.h"
 #include "tdc_png.h"
 
 static uint8_t enc8(double lin)
@@ -25,6 +26,27 @@ static void heat(double e, uint8_t *p)
 }
 
 static int g_write_failed;
+
+/* A JOD cell: 3 decimals, or n/a (a region without pixels, nothing pooled). */
+static const char *fmt_jod(double v, char *buf)
+{
+    if (isfinite(v)) {
+        snprintf(buf, 16, "%.3f", v);
+    } else {
+        snprintf(buf, 16, "n/a");
+    }
+    return buf;
+}
+
+/* A JOD field of a CSV: 4 decimals, or empty. */
+static void csv_jod(FILE *f, double v)
+{
+    if (isfinite(v)) {
+        fprintf(f, ",%.4f", v);
+    } else {
+        fputc(',', f);
+    }
+}
 
 int tdc_report_write_failed(void)
 {
@@ -117,12 +139,14 @@ void tdc_report_csv(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_result_t
                 x->link_bytes / T / full_bytes, 1e6 * x->fw_s / fr, 1e6 * x->render_s / fr,
                 (unsigned long long)x->frames, x->resets, x->link_errors, x->nonfinite, x->available, eyes, per_eye,
                 terr, x->note);
-        /* FovVideoVDP (--jod; empty without it) */
+        /* FovVideoVDP (empty under --judge legacy, for a run within the
+         * warm-up, or where a region has no pixel) */
         if (x->judged) {
-            fprintf(f, ",%.4f,%.4f,%.4f,%.4f,", x->jod, x->jod_fovea, x->jod_periphery, x->eye_jod[0]);
-            if (eyes == 2) {
-                fprintf(f, "%.4f", x->eye_jod[1]);
-            }
+            csv_jod(f, x->jod);
+            csv_jod(f, x->jod_fovea);
+            csv_jod(f, x->jod_periphery);
+            csv_jod(f, x->eye_jod[0]);
+            csv_jod(f, eyes == 2 ? x->eye_jod[1] : NAN);
             fprintf(f, ",%d\n", x->jod_frames);
         } else {
             fprintf(f, ",,,,,,\n");
@@ -136,10 +160,18 @@ void tdc_report_markdown(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_res
     double full_rays = (double)cfg->width * cfg->height * (cfg->spp > 0 ? cfg->spp : (cfg->refresh_hz >= 200 ? 1 : 4)) *
                        cfg->refresh_hz * eyes;
     double full_bytes = (double)cfg->width * cfg->height * 3.0 * cfg->refresh_hz * eyes;
-    /* With --jod, FovVideoVDP's JOD leads (docs/visual-model.md). */
+    /* FovVideoVDP's JOD leads (docs/visual-model.md); the legacy columns
+     * say so in their names. */
     int judged = 0;
     for (int i = 0; i < n; i++) {
         judged |= r[i].judged;
+    }
+    if (cfg->judge == TDC_JUDGE_LEGACY) {
+        fprintf(f, "Judge: legacy (`--judge legacy`): no JOD; PSNR, SSIM, FLIP and the legacy columns only.\n\n");
+    } else if (cfg->judge == TDC_JUDGE_SHORT) {
+        fprintf(f, "JOD: n/a: the run (%.0f refreshes) is no longer than the judge's %.0f ms warm-up, so nothing "
+                   "would be pooled (docs/visual-model.md); PSNR, SSIM, FLIP and the legacy columns only.\n\n",
+                floor(cfg->duration_s * cfg->refresh_hz + 1e-9), 1e3 * TDC_SIM_JOD_WARMUP_S);
     }
     fprintf(f,
             "| mode |%s Hz | PSNR dB | SSIM | FLIP | flicker (legacy) | rays vs full | link vs full | link MB/s | fw us/frame | "
@@ -149,9 +181,10 @@ void tdc_report_markdown(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_res
             judged ? " ---: | ---: | ---: |" : "");
     for (int i = 0; i < n; i++) {
         const tdc_sim_result_t *x = &r[i];
-        char jod[64] = "";
+        char jod[64] = "", b[3][16];
         if (judged && x->judged) {
-            snprintf(jod, sizeof(jod), " %.3f | %.3f | %.3f |", x->jod, x->jod_fovea, x->jod_periphery);
+            snprintf(jod, sizeof(jod), " %s | %s | %s |", fmt_jod(x->jod, b[0]), fmt_jod(x->jod_fovea, b[1]),
+                     fmt_jod(x->jod_periphery, b[2]));
         } else if (judged) {
             snprintf(jod, sizeof(jod), " n/a | n/a | n/a |");
         }
@@ -168,12 +201,19 @@ void tdc_report_markdown(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_res
     if (eyes == 2) {
         /* stereo: the table above is both eyes (mean figures, the pair's rays and link bytes) */
         fprintf(f,
-                "\nPer eye (left = eye 0, right = eye 1):\n\n| mode | PSNR L | PSNR R | SSIM L | SSIM R | FLIP L | "
-                "FLIP R | flicker L (legacy) | flicker R (legacy) |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+                "\nPer eye (left = eye 0, right = eye 1):\n\n| mode |%s PSNR L | PSNR R | SSIM L | SSIM R | FLIP L | "
+                "FLIP R | flicker L (legacy) | flicker R (legacy) |\n| --- |%s ---: | ---: | ---: | ---: | ---: | ---: | "
+                "---: | ---: |\n",
+                judged ? " JOD L | JOD R |" : "", judged ? " ---: | ---: |" : "");
         for (int i = 0; i < n; i++) {
             const tdc_sim_result_t *x = &r[i];
+            char jod[48] = "", b[2][16];
+            if (judged) {
+                snprintf(jod, sizeof jod, " %s | %s |", fmt_jod(x->judged ? x->eye_jod[0] : NAN, b[0]),
+                         fmt_jod(x->judged ? x->eye_jod[1] : NAN, b[1]));
+            }
             if (x->available) {
-                fprintf(f, "| %s | %.2f | %.2f | %.4f | %.4f | %.4f | %.4f | %.2f | %.2f |\n", x->desc->name,
+                fprintf(f, "| %s |%s %.2f | %.2f | %.4f | %.4f | %.4f | %.4f | %.2f | %.2f |\n", x->desc->name, jod,
                         x->eye_psnr[0], x->eye_psnr[1], x->eye_ssim[0], x->eye_ssim[1], x->eye_flip[0], x->eye_flip[1],
                         x->eye_flicker[0], x->eye_flicker[1]);
             }
@@ -204,19 +244,27 @@ void tdc_report_foveation(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_re
     double full_rays = (double)cfg->width * cfg->height * (cfg->spp > 0 ? cfg->spp : (cfg->refresh_hz >= 200 ? 1 : 4)) *
                        cfg->refresh_hz * eyes;
     double full_bytes = (double)cfg->width * cfg->height * 3.0 * cfg->refresh_hz * eyes;
+    int judged = 0;
+    for (int i = 0; i < n; i++) {
+        judged |= r[i].judged;
+    }
     if (csv) {
         fprintf(f, "run,mode,gaze,latency_ms,noise_deg,alpha,delta,disk,rays_vs_full,link_vs_full,flip,flip_fovea,"
-                   "flip_periphery,flip_ecc,flip_wmedian,legacy_flicker,legacy_flicker_periphery\n");
+                   "flip_periphery,flip_ecc,flip_wmedian,legacy_flicker,legacy_flicker_periphery,jod,jod_fovea,"
+                   "jod_periphery\n");
     } else {
+        /* JOD's fovea is 5 deg around the gaze (FovVideoVDP's regions,
+         * docs/visual-model.md), FLIP's the fov disk */
         fprintf(f,
                 "\nFoveation (gaze `%s`, tracker latency %.0f ms, noise %.2f deg; alpha %.2f, delta %.3f, disk %.4f of "
-                "the distance to the farthest corner, which is also the foveal region below; FLIP weighted by "
+                "the distance to the farthest corner, which is also FLIP's foveal region below; JOD's fovea is "
+                "within 5 deg of the gaze; FLIP weighted by "
                 "eccentricity 2.3/(2.3 + e deg) around the true gaze; weighted median as the thesis's Tables "
-                "5.1-5.3):\n\n| mode | rays vs full | link vs full | FLIP | FLIP fovea | FLIP periphery | FLIP ecc | "
-                "FLIP w-median | flicker (legacy) | flicker periphery (legacy) |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | "
-                "---: | ---: |\n",
+                "5.1-5.3):\n\n| mode |%s rays vs full | link vs full | FLIP | FLIP fovea | FLIP periphery | FLIP ecc | "
+                "FLIP w-median | flicker (legacy) | flicker periphery (legacy) |\n| --- |%s ---: | ---: | ---: | ---: | "
+                "---: | ---: | ---: | ---: | ---: |\n",
                 tdc_sim_gaze_name(cfg->gaze), cfg->gaze_latency_ms, cfg->gaze_noise_deg, cfg->fov_alpha, cfg->fov_delta,
-                cfg->fov_disk);
+                cfg->fov_disk, judged ? " JOD | JOD fovea | JOD periphery |" : "", judged ? " ---: | ---: | ---: |" : "");
     }
     for (int i = 0; i < n; i++) {
         const tdc_sim_result_t *x = &r[i];
@@ -224,14 +272,24 @@ void tdc_report_foveation(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_re
             continue;
         }
         double T = x->sim_s > 0 ? x->sim_s : 1.0;
+        char jod[64] = "", b[3][16];
         if (csv) {
-            fprintf(f, "%s,%s,%s,%.1f,%.3f,%.3f,%.4f,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f,%.3f,%.3f\n",
+            fprintf(f, "%s,%s,%s,%.1f,%.3f,%.3f,%.4f,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f,%.3f,%.3f",
                     cfg->label ? cfg->label : "run", x->desc->name, tdc_sim_gaze_name(cfg->gaze), cfg->gaze_latency_ms,
                     cfg->gaze_noise_deg, cfg->fov_alpha, cfg->fov_delta, cfg->fov_disk, x->rays / T / full_rays,
                     x->link_bytes / T / full_bytes, x->flip, x->flip_fovea, x->flip_periph, x->flip_ecc,
                     x->flip_wmedian, x->flicker, x->flicker_periph);
+            csv_jod(f, x->judged ? x->jod : NAN);
+            csv_jod(f, x->judged ? x->jod_fovea : NAN);
+            csv_jod(f, x->judged ? x->jod_periphery : NAN);
+            fputc('\n', f);
         } else {
-            fprintf(f, "| %s | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %.2f | %.2f |\n", x->desc->name,
+            if (judged) {
+                snprintf(jod, sizeof jod, " %s | %s | %s |", fmt_jod(x->judged ? x->jod : NAN, b[0]),
+                         fmt_jod(x->judged ? x->jod_fovea : NAN, b[1]),
+                         fmt_jod(x->judged ? x->jod_periphery : NAN, b[2]));
+            }
+            fprintf(f, "| %s |%s %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %.2f | %.2f |\n", x->desc->name, jod,
                     x->rays / T / full_rays, x->link_bytes / T / full_bytes, x->flip, x->flip_fovea, x->flip_periph,
                     x->flip_ecc, x->flip_wmedian, x->flicker, x->flicker_periph);
         }

@@ -102,9 +102,15 @@ typedef struct {
     tdc_retina_cb_t retina_cb;
     void *retina_ctx;
     const char *dump_dir;
+    int judge;          /* the report's judge: TDC_JUDGE_* (set by tdc-sim's main) */
     const char *outdir; /* NULL: no files */
     const char *label;  /* run label for the report */
 } tdc_sim_config_t;
+
+/* cfg.judge: FovVideoVDP's JOD (the default), the legacy columns alone
+ * (--judge legacy), or no JOD because the run is no longer than the judge's
+ * warm-up (simulator/tdc_sim_jod.h: nothing would be pooled). */
+enum { TDC_JUDGE_JOD = 0, TDC_JUDGE_LEGACY = 1, TDC_JUDGE_SHORT = 2 };
 
 void tdc_sim_default_config(tdc_sim_config_t *c);
 
@@ -143,7 +149,7 @@ typedef struct {
      * FLIP's weighted median (thesis Tables 5.1-5.3), flicker outside the disk */
     double flip_ecc, flip_fovea, flip_periph, flip_wmedian, flicker_periph;
     int foveated; /* the mode foveates (fov family) */
-    /* FovVideoVDP on the retinal signal (--jod, simulator/tdc_sim_jod.h):
+    /* FovVideoVDP on the retinal signal (the judge, simulator/tdc_sim_jod.h):
      * JOD of the view, within 5 deg of the gaze and beyond, mean of the
      * eyes; refreshes pooled after the warm-up.  judged 0: not run. */
     int judged, jod_frames;

@@ -1,15 +1,16 @@
 /*
  * tdc_sim_jod.c - FovVideoVDP on the retinal signal (tdc_sim_jod.h).
  */
+#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "simulator/tdc_sim_heatmap.h"
 #include "simulator/tdc_sim_jod.h"
 #include "tdc_par.h"
 
 #define MAX_JUDGES 128
-#define WARMUP_S 0.25
 
 typedef struct {
     char mode[64];
@@ -25,17 +26,29 @@ typedef struct {
     tdc_fvvdp_geometry_t g;
     double fps;           /* retinal steps per second */
     double rate;          /* the metric's frame rate (refreshes per second) */
+    tdc_sim_heatmap_t *hm; /* eye 0 with heat maps on */
+    float *per;           /* per-refresh JOD (NAN in the warm-up), index: refresh */
+    long nper;
 } judge_t;
 
 struct tdc_sim_jod {
     FILE *series;
+    int heat;
     judge_t j[MAX_JUDGES];
     int n;
 };
 
-tdc_sim_jod_t *tdc_sim_jod_new(FILE *series)
+int tdc_sim_jod_warmup(double hz)
+{
+    return (int)ceil(TDC_SIM_JOD_WARMUP_S * hz);
+}
+
+tdc_sim_jod_t *tdc_sim_jod_new(FILE *series, int heatmaps)
 {
     tdc_sim_jod_t *s = calloc(1, sizeof *s);
+    if (s) {
+        s->heat = heatmaps;
+    }
     if (s && series) {
         s->series = series;
         fprintf(series, "mode,eye,refresh,t,pooled,jod,jod_fovea,jod_periphery\n");
@@ -82,7 +95,7 @@ static int flush(tdc_sim_jod_t *s, judge_t *j)
             return -1;
         }
         j->rate = rate;
-        j->warmup = (int)ceil(WARMUP_S * rate);
+        j->warmup = tdc_sim_jod_warmup(rate);
     }
     if (j->own >= 0 && tdc_fvvdp_frames(s->j[j->own].m) != j->fed + 1) {
         /* the judge holding the reference stopped (its mode failed): this
@@ -103,17 +116,44 @@ static int flush(tdc_sim_jod_t *s, judge_t *j)
             }
         }
     }
-    if (isnan(tdc_fvvdp_frame(j->m, j->acc_t, j->acc_r, j->gaze))) {
+    const int pooled = j->fed >= j->warmup; /* the frame about to be fed is pooled */
+    if (j->hm && pooled) {
+        tdc_fvvdp_set_dmap(j->m, tdc_sim_heatmap_bands(j->hm));
+    }
+    double fr = tdc_fvvdp_frame(j->m, j->acc_t, j->acc_r, j->gaze);
+    if (j->hm && pooled) {
+        tdc_fvvdp_set_dmap(j->m, NULL);
+    }
+    if (isnan(fr)) {
         fprintf(stderr, "tdc-sim: jod: mode %s eye %d: out of memory for the metric's history\n", j->mode, j->eye);
         return -1;
+    }
+    if (j->hm && pooled) {
+        tdc_sim_heatmap_add(j->hm, j->acc_r);
     }
     j->fed++;
     if (j->fed == j->warmup) {
         tdc_fvvdp_reset_pool(j->m);
     }
+    tdc_fvvdp_jods_t r;
+    tdc_fvvdp_last(j->m, &r);
+    if (j->refresh >= 0 && j->refresh >= j->nper) {
+        long cap = j->refresh + 64;
+        float *p = realloc(j->per, (size_t)cap * sizeof(float));
+        if (!p) {
+            fprintf(stderr, "tdc-sim: jod: out of memory\n");
+            return -1;
+        }
+        for (long k = j->nper; k < cap; k++) {
+            p[k] = NAN;
+        }
+        j->per = p;
+        j->nper = cap;
+    }
+    if (j->refresh >= 0) {
+        j->per[j->refresh] = pooled ? (float)r.all : NAN;
+    }
     if (s->series) {
-        tdc_fvvdp_jods_t r;
-        tdc_fvvdp_last(j->m, &r);
         fprintf(s->series, "%s,%d,%ld,%.6f,%d,%.4f,%.4f,%.4f\n", j->mode, j->eye, j->refresh, j->t1,
                 j->fed > j->warmup, r.all, r.fovea, r.periphery);
     }
@@ -150,11 +190,17 @@ int tdc_sim_jod_cb(void *ctx, const tdc_retina_frame_t *f)
             j->own = s->j[i].eye == j->eye ? i : -1;
         }
         j->acc_t = calloc(np, sizeof(float));
-        j->acc_r = j->own < 0 ? calloc(np, sizeof(float)) : NULL;
-        if (!j->acc_t || (j->own < 0 && !j->acc_r)) {
+        if (s->heat && f->eye == 0) {
+            j->hm = tdc_sim_heatmap_new(j->w, j->h, tdc_fvvdp_ppd(&j->g));
+        }
+        /* A heat map shows the reference under it: its judge keeps its own
+         * sum of the reference even where the metric shares the owner's. */
+        j->acc_r = j->own < 0 || j->hm ? calloc(np, sizeof(float)) : NULL;
+        if (!j->acc_t || (!j->acc_r && (j->own < 0 || j->hm)) || (s->heat && f->eye == 0 && !j->hm)) {
             fprintf(stderr, "tdc-sim: jod: out of memory\n");
             free(j->acc_t);
             free(j->acc_r);
+            tdc_sim_heatmap_free(j->hm);
             memset(j, 0, sizeof *j);
             return -1;
         }
@@ -214,9 +260,93 @@ int tdc_sim_jod_write(tdc_sim_jod_t *s, FILE *f)
             tdc_fvvdp_pooled(j->m, &r);
         }
         int pooled = j->fed > j->warmup ? j->fed - j->warmup : 0;
-        bad |= fprintf(f, "%s,%d,%.4f,%.4f,%.4f,%d\n", j->mode, j->eye, r.all, r.fovea, r.periphery, pooled) < 0;
+        char v[3][24];
+        const double x[3] = { r.all, r.fovea, r.periphery };
+        for (int k = 0; k < 3; k++) {
+            /* NAN (nothing pooled, a region without pixels): an empty field */
+            v[k][0] = 0;
+            if (isfinite(x[k])) {
+                snprintf(v[k], sizeof v[k], "%.4f", x[k]);
+            }
+        }
+        bad |= fprintf(f, "%s,%d,%s,%s,%s,%d\n", j->mode, j->eye, v[0], v[1], v[2], pooled) < 0;
     }
     return bad ? -1 : 0;
+}
+
+double tdc_sim_jod_at(tdc_sim_jod_t *s, const char *mode, int eye, long refresh)
+{
+    const judge_t *j = find(s, mode, eye);
+    return j && refresh >= 0 && refresh < j->nper ? j->per[refresh] : NAN;
+}
+
+int tdc_sim_jod_heatmaps(tdc_sim_jod_t *s, const char *outdir)
+{
+    int bad = 0;
+    for (int i = 0; i < s->n; i++) {
+        const judge_t *j = &s->j[i];
+        char path[1200], err[1400];
+        if (!j->hm || !tdc_sim_heatmap_frames(j->hm)) {
+            continue; /* eye 1, or no pooled refresh (a run within the warm-up) */
+        }
+        snprintf(path, sizeof path, "%s/heatmap_%s.png", outdir, j->mode);
+        if (tdc_sim_heatmap_write(j->hm, path, err, sizeof err)) {
+            fprintf(stderr, "tdc-sim: heat map: %s\n", err);
+            bad = 1;
+        }
+    }
+    return bad ? -1 : 0;
+}
+
+/* One series.csv line (no newline): "mode[.L|.R],eval,t,...," -> the JOD of
+ * the refresh that ends at t appended. */
+static int merge_line(tdc_sim_jod_t *s, FILE *out, char *line, int eyes, double hz)
+{
+    char mode[80];
+    size_t k = strcspn(line, ",");
+    if (k == 0 || k >= sizeof mode) {
+        return -1;
+    }
+    memcpy(mode, line, k);
+    mode[k] = 0;
+    int eye = 0;
+    if (eyes == 2 && k > 2 && mode[k - 2] == '.') {
+        eye = mode[k - 1] == 'R';
+        mode[k - 2] = 0;
+    }
+    const char *p = strchr(line + k + 1, ',');
+    double t = p ? strtod(p + 1, NULL) : NAN;
+    double v = isfinite(t) ? tdc_sim_jod_at(s, mode, eye, lround(t * hz) - 1) : NAN;
+    if (isfinite(v)) {
+        return fprintf(out, "%s%.4f\n", line, v) < 0 ? -1 : 0;
+    }
+    return fprintf(out, "%s\n", line) < 0 ? -1 : 0;
+}
+
+int tdc_sim_jod_series_merge(tdc_sim_jod_t *s, const char *path, int eyes, double hz)
+{
+    char tmp[1200], line[512];
+    errno = 0;
+    snprintf(tmp, sizeof tmp, "%s.tmp", path);
+    FILE *in = fopen(path, "r"), *out = in ? fopen(tmp, "w") : NULL;
+    int bad = !in || !out;
+    for (int n = 0; !bad && fgets(line, sizeof line, in); n++) {
+        line[strcspn(line, "\n")] = 0;
+        bad = n == 0 ? fprintf(out, "%s\n", line) < 0 : merge_line(s, out, line, eyes, hz);
+    }
+    bad |= in && ferror(in);
+    if (in) {
+        fclose(in);
+    }
+    if (out) {
+        bad |= ferror(out) | (fclose(out) != 0);
+    }
+    if (bad || rename(tmp, path) != 0) {
+        fprintf(stderr, "tdc-sim: %s: cannot add the jod column: %s\n", path, strerror(errno ? errno : EIO));
+        remove(tmp);
+        return -1;
+    }
+    return 0;
 }
 
 void tdc_sim_jod_free(tdc_sim_jod_t *s)
@@ -226,6 +356,8 @@ void tdc_sim_jod_free(tdc_sim_jod_t *s)
     }
     for (int i = 0; i < s->n; i++) {
         tdc_fvvdp_free(s->j[i].m);
+        tdc_sim_heatmap_free(s->j[i].hm);
+        free(s->j[i].per);
         free(s->j[i].acc_t);
         free(s->j[i].acc_r);
     }

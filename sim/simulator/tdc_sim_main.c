@@ -85,8 +85,14 @@ static void usage(FILE *f)
             "      --temporal          legacy temporal visibility model: the legacy eye's error through a\n"
             "                          temporal CSF (Watson 1986, sim/eye/tdc_eye_temporal.h): legacy_terr\n"
             "      --metric-every K    evaluate every K-th refresh (default 1)\n"
-            "      --jod               judge the retinal signal with FovVideoVDP (docs/visual-model.md): JOD per\n"
-            "                          mode and eye, fovea / periphery, in -o DIR's jod.csv and jod_series.csv\n"
+            "      --judge jod|legacy  the judge (docs/visual-model.md).  Default: FovVideoVDP on the\n"
+            "                          retinal signal: JOD per mode and eye, fovea / periphery, in the report,\n"
+            "                          summary.csv, series.csv (per refresh), -o DIR's jod.csv,\n"
+            "                          jod_series.csv and heatmap_<mode>.png (eye 0's visible-difference\n"
+            "                          map), unless the run is no longer than its 250 ms warm-up (nothing\n"
+            "                          to pool); jod: judged even then; legacy: PSNR/SSIM/FLIP and the\n"
+            "                          legacy columns only, 4-7x less CPU at 128x96 (sweeps without JOD)\n"
+            "      --no-jod            --judge legacy (--jod: --judge jod)\n"
             "      --dump DIR          the retinal signal as files (docs/eye.md): per refresh and eye the drive\n"
             "                          codes, per step the emitted light and the retinal image of every mode\n"
             "                          and of the reference (16-bit linear PNG, Y4M), dump.json, steps.csv\n"
@@ -282,6 +288,8 @@ int main(int argc, char **argv)
         O_FOV_DISK,
         O_DUMP,
         O_JOD,
+        O_NOJOD,
+        O_JUDGE,
         O_RSTEPS,
         O_LAG
     };
@@ -341,6 +349,8 @@ int main(int argc, char **argv)
                                          {"fov-disk", required_argument, 0, O_FOV_DISK},
                                          {"dump", required_argument, 0, O_DUMP},
                                          {"jod", no_argument, 0, O_JOD},
+                                         {"no-jod", no_argument, 0, O_NOJOD},
+                                         {"judge", required_argument, 0, O_JUDGE},
                                          {"retina-steps", required_argument, 0, O_RSTEPS},
                                          {"pursuit-lag", required_argument, 0, O_LAG},
                                          {"help", no_argument, 0, 'h'},
@@ -360,7 +370,8 @@ int main(int argc, char **argv)
     int reflect_mv = 1;
     int fov_lod = TDC_FOV_LOD_FOOTPRINT;
     long frames = -1;
-    int jod = 0; /* --jod */
+    int jod = -1; /* the judge: FovVideoVDP (-1: unless the run is within its warm-up; 1: --judge jod,
+                     always), 0: --judge legacy / --no-jod */
     double v;
     int c;
     tdc_tool_set_name("tdc-sim");
@@ -663,6 +674,16 @@ int main(int argc, char **argv)
         case O_JOD:
             jod = 1;
             break;
+        case O_NOJOD:
+            jod = 0;
+            break;
+        case O_JUDGE:
+            if (strcmp(optarg, "jod") && strcmp(optarg, "legacy")) {
+                fprintf(stderr, "tdc-sim: --judge '%s': jod or legacy\n", optarg);
+                return TDC_EXIT_ARGS;
+            }
+            jod = !strcmp(optarg, "jod");
+            break;
         case O_DUMP:
             if (optarg[0] == '\0') {
                 fprintf(stderr, "tdc-sim: --dump: empty folder name\n");
@@ -761,6 +782,17 @@ int main(int argc, char **argv)
                 cfg.height);
         return TDC_EXIT_ARGS;
     }
+    if (frames > 0) {
+        cfg.duration_s = (double)frames / cfg.refresh_hz;
+    }
+    /* The judge pools the refreshes after its warm-up: a run no longer than
+     * that has no JOD and, unless --judge jod asks for the judge anyway (its
+     * cost: make bench-fvvdp), is not judged. */
+    const long run_refreshes = (long)floor(cfg.duration_s * cfg.refresh_hz + 1e-9);
+    cfg.judge = !jod ? TDC_JUDGE_LEGACY
+                     : (jod < 0 && run_refreshes <= tdc_sim_jod_warmup(cfg.refresh_hz) ? TDC_JUDGE_SHORT
+                                                                                         : TDC_JUDGE_JOD);
+    jod = cfg.judge == TDC_JUDGE_JOD;
     if (cfg.dump_dir || jod) {
         /* the retinal signal: its frame rate and the panel's photometry */
         double pers = cfg.persistence > 0 ? cfg.persistence : (cfg.refresh_hz >= 200 ? 1.0 : 0.2);
@@ -773,12 +805,9 @@ int main(int argc, char **argv)
         tdc_retina_display_t disp;
         char why[256];
         if (tdc_retina_display_from_panel(prof, cfg.flip_ppd, cfg.ppd_from, cfg.width, &disp, why, sizeof(why))) {
-            fprintf(stderr, "tdc-sim: %s: %s\n", cfg.dump_dir ? "--dump" : "--jod", why);
+            fprintf(stderr, "tdc-sim: %s: %s\n", cfg.dump_dir ? "--dump" : "the judge (--judge jod)", why);
             return TDC_EXIT_INPUT;
         }
-    }
-    if (frames > 0) {
-        cfg.duration_s = (double)frames / cfg.refresh_hz;
     }
     if (cfg.scene.cut_time < 0) {
         cfg.scene.cut_time = cfg.duration_s / 2;
@@ -891,7 +920,8 @@ int main(int argc, char **argv)
         }
         return TDC_EXIT_FILE;
     }
-    /* The judge (--jod): a consumer of the retinal signal. */
+    /* The judge (FovVideoVDP; --judge legacy leaves it out): a consumer of
+     * the retinal signal. */
     FILE *jod_series = NULL;
     tdc_sim_jod_t *judge = NULL;
     char jod_path[1200];
@@ -900,7 +930,7 @@ int main(int argc, char **argv)
         if (cfg.outdir && !(jod_series = out_open(cfg.outdir, "jod_series.csv", jod_path, sizeof jod_path))) {
             jod_rc = TDC_EXIT_FILE;
         }
-        judge = jod_rc == TDC_EXIT_OK ? tdc_sim_jod_new(jod_series) : NULL;
+        judge = jod_rc == TDC_EXIT_OK ? tdc_sim_jod_new(jod_series, cfg.outdir != NULL) : NULL;
         cfg.retina_cb = judge ? tdc_sim_jod_cb : NULL;
         cfg.retina_ctx = judge;
     }
@@ -931,6 +961,9 @@ int main(int argc, char **argv)
                 FILE *f = out_open(cfg.outdir, "jod.csv", path, sizeof path);
                 int bad = !f || tdc_sim_jod_write(judge, f);
                 bad |= f && out_close(f, path);
+                bad |= tdc_sim_jod_heatmaps(judge, cfg.outdir) != 0;
+                bad |= tdc_sim_jod_series_merge(judge, series_path, cfg.eyes == 2 ? 2 : 1,
+                                                          cfg.refresh_hz) != 0;
                 file_rc = bad ? TDC_EXIT_FILE : file_rc;
             }
         }

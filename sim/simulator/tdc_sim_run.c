@@ -464,7 +464,7 @@ static void eval_mode_eye(sim_mode_t *m, sim_eval_t *ev, const tdc_eye_cfg_t *ec
     static const char *const eye_tag[2] = {".L", ".R"};
     const char *tag = m->eyes == 2 ? eye_tag[m->eye] : "";
     if (series) {
-        snprintf(series, SERIES_LINE, "%s%s,%ld,%.6f,%.4f,%.6f,%.6f,%s%.4f\n", r->desc->name, tag, j, te, psnr, ssim,
+        snprintf(series, SERIES_LINE, "%s%s,%ld,%.6f,%.4f,%.6f,%.6f,%s%.4f,\n", r->desc->name, tag, j, te, psnr, ssim,
                  flip, isnan(flick) ? "" : "", isnan(flick) ? 0.0 : flick);
     }
     if (j == strip_at && cfg->outdir) {
@@ -600,7 +600,8 @@ int tdc_sim_run(const tdc_sim_config_t *cfg, tdc_source_t *src, const tdc_mode_d
     int cw = w - 2 * margin, ch = h - 2 * margin;
     int gt_steps = src->rigid ? 1 : (int)fmin(16.0, fmax(2.0, ceil(speed * W / 0.5)));
     if (series) {
-        fprintf(series, "mode,eval,t,psnr,ssim,flip,legacy_flicker\n");
+        /* jod: empty here, filled by the judge after the run (tdc_sim_jod_series_merge) */
+        fprintf(series, "mode,eval,t,psnr,ssim,flip,legacy_flicker,jod\n");
     }
     double prev_te = 0.0, gaze[2] = {0.0, 0.0};
     for (long j = 0; j < nevals && rc == 0; j++) {

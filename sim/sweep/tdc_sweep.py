@@ -263,7 +263,9 @@ def merge(out):
 
 def write_report(out, spec, header, rows, failed):
     axes = spec["axes"]
-    cols = ["mode", "display_hz", "psnr_db", "ssim", "flip", "legacy_flicker", "rays_vs_full", "link_vs_full"]
+    # the judge's JOD first (empty where a job was not judged: docs/visual-model.md), then the secondary metrics
+    cols = ["mode", "jod", "jod_fovea", "jod_periphery", "display_hz", "psnr_db", "ssim", "flip", "legacy_flicker",
+            "rays_vs_full", "link_vs_full"]
     idx = [header.index(c) for c in cols if header and c in header]
     with open(os.path.join(out, "report.md"), "w", encoding="utf-8") as f:
         f.write("# Sweep `%s`\n\n" % spec["name"])

@@ -98,6 +98,11 @@ for prog in "$@"; do
             rm -rf "$t/simout"; mkdir -p "$t/simout/$out"
             one_line 7 "--jod: $out not writable" $sim --jod -o "$t/simout"
         done
+        # a judged run (30 refreshes: past the 250 ms warm-up): the heat map, series.csv's jod column
+        for out in heatmap_full.png series.csv.tmp; do
+            rm -rf "$t/simout"; mkdir -p "$t/simout/$out"
+            one_line 7 "judged: $out not writable" $sim -n 30 -o "$t/simout"
+        done
         ;;
     tdc-render)
         one_line 7 "folder as --scene" "$prog" --scene "$t/dir"
