@@ -165,6 +165,14 @@ class Experiment:
             f.write(text)
 
     @staticmethod
+    def has_jod(rows, col="jod"):
+        """True when every row carries a JOD that pooled frames after the judge's 0.25 s warm-up
+        (docs/visual-model.md): a run no longer than the warm-up reports the start-up transient
+        (jod_frames 0), which no verdict may rest on."""
+        return bool(rows) and all(r.get(col, "") not in ("", "nan") and
+                                  float(r.get("jod_frames", "") or 0) > 0 for r in rows)
+
+    @staticmethod
     def select(rows, **eq):
         return [r for r in rows if all(str(r.get(k)) == str(v) for k, v in eq.items())]
 
@@ -226,15 +234,16 @@ class Experiment:
                    secondary=(("flip", 4), ("psnr_db", 2)), run="", why="", cls=""):
         """A row on what an observer sees: judged in JOD (tdc-sim --jod, the visual model of
         docs/visual-model.md; margin 0.1 JOD), with the secondary metrics (FLIP, PSNR, ...) beside
-        it.  eq_a / eq_b select A's and B's rows (exp.values keywords).  A cached run made without
-        --jod has no jod column: the first secondary metric then decides, and the row says so."""
+        it.  eq_a / eq_b select A's and B's rows (exp.values keywords).  A run made without --jod
+        (or no longer than the judge's warm-up: has_jod) has no usable JOD: the first secondary
+        metric then decides, and the row says so."""
         sel = self.select(rows, **eq_a) + self.select(rows, **eq_b)
-        primary = "jod" if sel and all(r.get("jod", "") not in ("", "nan") for r in sel) else None
+        primary = "jod" if self.has_jod(sel) else None
         sec = [(m, d) for m, d in secondary]
         if primary is None:
             (primary, digits), sec = sec[0], sec[1:]
-            why = "no JOD in these results (a run without --jod): %s decides; %s" % (primary, why) if why else \
-                "no JOD in these results (a run without --jod): %s decides" % primary
+            why = "no JOD in these results (a run without --jod, or no longer than the judge's 0.25 s warm-up): %s decides; %s" % (primary, why) if why else \
+                "no JOD in these results (a run without --jod, or no longer than the judge's 0.25 s warm-up): %s decides" % primary
         else:
             digits = 3
         vals = lambda m, eq: self.values(rows, m, **eq)  # noqa: E731

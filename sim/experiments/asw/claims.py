@@ -22,7 +22,7 @@ def claims(exp):
              "extrapolation helps", sp)
         pair(exp, rows, "full", "asw-est", "TRM Table 1 (ASW)", "full rate better than estimated-motion ASW",
              "reprojection artifacts", sp)
-    has_jod = all(r.get("jod", "") not in ("", "nan") for r in rows)
+    has_jod = exp.has_jod(rows)
     lines = ["| speed px/s | mode | JOD | FLIP | PSNR dB | flicker |", "| ---: | --- | ---: | ---: | ---: | ---: |"]
     for sp in sorted({r["speed"] for r in rows}, key=float):
         for m in ("full", "half", "asw", "asw-est"):

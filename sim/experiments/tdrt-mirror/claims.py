@@ -12,7 +12,7 @@ def claims(exp):
     for mode, paper in (("taa", "TDRT Fig. 6 (TAA [Kar14])"), ("asm-adaptive", "TDRT §3.1.2 (any reprojection)")):
         # what an observer sees: JOD decides, FLIP and PSNR beside it (FLIP decides in a run without --jod)
         cols = [("jod", 3), ("flip", 4), ("psnr_db", 2)]
-        if not all(r.get("jod", "") not in ("", "nan") for r in on + off):
+        if not exp.has_jod(on + off):
             cols = cols[1:]
         (col, d), sec = cols[0], cols[1:]
         exp.judge(paper, Q_MIR, "mirror scene, %s: reflected MVs better than primary MVs" % mode,

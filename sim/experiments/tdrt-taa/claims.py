@@ -79,14 +79,14 @@ def claims(exp):
         return out
 
     # what an observer sees: JOD decides (the paper's quality is the fused 240 Hz sequence), FLIP beside it
-    has_jod = all(r.get("jod", "") not in ("", "nan") for r in rows)
+    has_jod = exp.has_jod(rows)
     prim, d = ("jod", 3) if has_jod else ("flip", 4)
     sec = [("flip", per_scene(ASM), per_scene("taa60"), 4)] if has_jod else []
     exp.judge("TDRT §1/§4", Q_Q, "assembly at 240 Hz better than rendering + TAA at 60 Hz (quality)",
               "increased quality", per_scene(ASM, prim), per_scene("taa60", prim), "better", prim, "assembly 240 Hz",
               "TAA 60 Hz", d, run=run, secondary=sec, cls="model limit",
-              why="the visual model sees the assembly's 1-spp dynamic pixels as noise that TAA at 60 Hz has "
-                  "filtered away; the paper judged it by eye on GPU scenes")
+              why="the paper's observers judged GPU scenes at 1080p; the visual model here sees the assembly's "
+                  "1-spp dynamic pixels as noise that TAA at 60 Hz has filtered away")
     if "full60" in {r["mode"] for r in rows}:
         sec = [("flip", per_scene(ASM), per_scene("full60"), 4)] if has_jod else []
         exp.judge("TDRT §4 (user study)", Q_US, "assembly at 240 Hz better than 1 spp at 60 Hz (no TAA)",

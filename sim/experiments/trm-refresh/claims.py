@@ -77,7 +77,7 @@ def fig11(exp):
     rs = sorted({int(x["r"]) for x in rows})
     # terr (the temporal CSF) runs on the OLED path only; on the LCD the temporal measure is flicker
     cols = ("flip", "legacy_terr") if any(x["legacy_terr"] != "" for x in rows) else ("flip", "legacy_flicker")
-    has_jod = all(x.get("jod", "") not in ("", "nan") for x in rows)
+    has_jod = exp.has_jod(rows)
     prim = "jod" if has_jod else cols[0]
     sec = [c for c in ("flip",) + cols if c != prim]
     sec = sorted(set(sec), key=sec.index)

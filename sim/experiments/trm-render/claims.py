@@ -28,7 +28,7 @@ def claims(exp):
     flip = {m: [] for m in ("full", "trm50", "trm50r", "trm50p")}
     psnr = {m: [] for m in ("trm50r", "trm50p")}
     jod = {m: [] for m in ("trm50r", "trm50p")}
-    has_jod = all(r.get("jod", "") not in ("", "nan") for r in rows)
+    has_jod = exp.has_jod(rows)
 
     def flip_or(col, m):
         return {"flip": flip, "psnr_db": psnr, "jod": jod}[col][m]

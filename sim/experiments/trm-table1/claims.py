@@ -51,7 +51,7 @@ def claims(exp):
                                    "changes frame to frame more than the interlaced fields'"}
     # Judged in JOD (what an observer sees; the visual model of docs/visual-model.md), the error measures beside
     # it.  "A flickers more than B" is read as: B is seen closer to the reference than A.
-    has_jod = all(r.get("jod", "") not in ("", "nan") for r in rows)
+    has_jod = exp.has_jod(rows)
     run = "%s/%s" % (exp.group, SWEEP)
     for a, b, what in (("bfi", "interlace", "severe > moderate"), ("interlace", "trm50", "moderate > mild"),
                        ("interlace", "ncsfi", "moderate > mild"), ("trm50", "half", "mild > none")):
@@ -93,7 +93,7 @@ def claims(exp):
             return [(float(r[col + "_eye0"]) + float(r[col + "_eye1"])) / 2 for r in
                     sorted(exp.select(st, mode="trm50"), key=lambda r: int(r["seed"]))]
         sec = [("flip", per_eye("flip"), exp.values(rows, "flip", mode="trm50"), 4)]
-        sjod = all(r.get("jod_eye0", "") not in ("", "nan") for r in st) and has_jod
+        sjod = exp.has_jod(st, "jod_eye0") and has_jod
         prim = ("jod", per_eye("jod"), exp.values(rows, "jod", mode="trm50"), 3) if sjod else sec.pop(0)
         exp.judge("TRM §7.2", Q72, "binocular (eyes alternate full/reduced) not worse than monocular TRM (per eye)",
                   "not more visible", prim[1], prim[2], "not worse", prim[0], "binocular", "monocular", prim[3],
