@@ -63,8 +63,8 @@ Q_04 = ("§5 (Experiment 1): 'Overall, the experiment showed that a reduction fa
         "that is indistinguishable from rendering frames at the full-resolution.'")
 Q_HZ = ("§5 (Experiment 1): 'For all animations, except Sports hall, the resolution of odd-numbered frames can be "
         "further reduced for higher refresh-rate displays.'")
-WHY_EYE = ("an observer's 75 %% discrimination threshold (QUEST) is not an error magnitude: %s is the size of the "
-           "error, and a difference the eye cannot see can exceed the margin")
+WHY_EYE = ("the paper's 'indistinguishable' is below its observers' 75 %% discrimination threshold (QUEST), about "
+           "1 JOD; %s's margin asks for a far smaller difference, so a difference under that threshold can exceed it")
 
 
 def fig11(exp):
