@@ -202,14 +202,15 @@ class Experiment:
                             "class": cls, "why": why})
 
     def judge(self, paper, quote, claim, paper_value, a, b, kind, metric, label_a="A", label_b="B", digits=4,
-              run="", why="", cls="", margin=None, method="t", higher_is_better=None, secondary=()):
+              run="", why="", cls="", margin=None, method="t", higher_is_better=None, secondary=(), note=""):
         """A row judged by tdc_stats.judge: the paper says A is 'better' than /
         'not worse' than / 'equal' to B in metric; a and b paired per seed or
         content.  cls/why: the class and reason if it does not agree (kept
         only then).  secondary: (metric, a, b, digits) shown beside the
         primary metric (their gain, interval and own verdict in the tdc and
         CI columns) without deciding the row: FLIP / SSIM / PSNR beside JOD
-        on a claim about what an observer sees.  Returns the judge() result."""
+        on a claim about what an observer sees.  note: said in why whatever
+        the verdict.  Returns the judge() result."""
         st = tdc_stats
         if not a or len(a) != len(b):
             raise ExpError(EXIT_RUN_FAILED, "%s: '%s': %d vs %d values (unpaired or missing results)" % (
@@ -226,7 +227,8 @@ class Experiment:
             j2 = st.judge(a2, b2, kind, m2, method=method)
             tdc += "; secondary %s: %s vs %s" % (m2, st.fmt_ms(st.summary(a2), d2), st.fmt_ms(st.summary(b2), d2))
             ci += "; %s gain %s %s (%s)" % (m2, st.fmt(j2["gain"], d2), st.fmt_ci(j2, d2), j2["verdict"])
-        self.claim(paper, claim, paper_value, tdc, j["verdict"], j["why"] + ("" if ok or not why else "; " + why),
+        self.claim(paper, claim, paper_value, tdc, j["verdict"],
+                   j["why"] + ("; " + note if note else "") + ("" if ok or not why else "; " + why),
                    n=j["n"], run=run, quote=quote, ci=ci, margin=st.fmt(j["margin"], digits), cls="" if ok else cls)
         return j
 
@@ -240,15 +242,16 @@ class Experiment:
         sel = self.select(rows, **eq_a) + self.select(rows, **eq_b)
         primary = "jod" if self.has_jod(sel) else None
         sec = [(m, d) for m, d in secondary]
+        note = ""
         if primary is None:
             (primary, digits), sec = sec[0], sec[1:]
-            why = "no JOD in these results (a run without --jod, or no longer than the judge's 0.25 s warm-up): %s decides; %s" % (primary, why) if why else \
-                "no JOD in these results (a run without --jod, or no longer than the judge's 0.25 s warm-up): %s decides" % primary
+            note = ("no JOD in these results (a run without --jod, or no longer than the judge's 0.25 s warm-up): "
+                    "%s decides" % primary)
         else:
             digits = 3
         vals = lambda m, eq: self.values(rows, m, **eq)  # noqa: E731
         return self.judge(paper, quote, claim, paper_value, vals(primary, eq_a), vals(primary, eq_b), kind, primary,
-                          label_a, label_b, digits, run=run, why=why, cls=cls,
+                          label_a, label_b, digits, run=run, why=why, cls=cls, note=note,
                           secondary=[(m, vals(m, eq_a), vals(m, eq_b), d) for m, d in sec])
 
     def judge_all(self, paper, quote, claim, paper_value, metrics, kind, label_a="A", label_b="B", run="", why="",
