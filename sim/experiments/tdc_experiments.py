@@ -166,6 +166,14 @@ class Experiment:
             f.write(text)
 
     @staticmethod
+    def has_jod(rows, col="jod"):
+        """True when every row carries a JOD that pooled frames after the judge's 0.25 s warm-up
+        (docs/visual-model.md): a run no longer than the warm-up reports the start-up transient
+        (jod_frames 0), which no verdict may rest on."""
+        return bool(rows) and all(r.get(col, "") not in ("", "nan") and
+                                  float(r.get("jod_frames", "") or 0) > 0 for r in rows)
+
+    @staticmethod
     def select(rows, **eq):
         return [r for r in rows if all(str(r.get(k)) == str(v) for k, v in eq.items())]
 
@@ -195,24 +203,82 @@ class Experiment:
                             "class": cls, "why": why})
 
     def judge(self, paper, quote, claim, paper_value, a, b, kind, metric, label_a="A", label_b="B", digits=4,
-              run="", why="", cls="", margin=None, method="t", higher_is_better=None):
+              run="", why="", cls="", margin=None, method="t", higher_is_better=None, secondary=(), note=""):
         """A row judged by tdc_stats.judge: the paper says A is 'better' than /
         'not worse' than / 'equal' to B in metric; a and b paired per seed or
         content.  cls/why: the class and reason if it does not agree (kept
-        only then).  Returns the judge() result."""
+        only then).  secondary: (metric, a, b, digits) shown beside the
+        primary metric (their gain, interval and own verdict in the tdc and
+        CI columns) without deciding the row: FLIP / SSIM / PSNR beside JOD
+        on a claim about what an observer sees.  note: said in why whatever
+        the verdict.  Returns the judge() result."""
         st = tdc_stats
         if not a or len(a) != len(b):
             raise ExpError(EXIT_RUN_FAILED, "%s: '%s': %d vs %d values (unpaired or missing results)" % (
                 self.group, claim, len(a), len(b)))
         j = st.judge(a, b, kind, metric, higher_is_better=higher_is_better, margin=margin, method=method)
         ok = j["verdict"] in ("agree", "equivalent")
-        self.claim(paper, claim, paper_value,
-                   "%s %s: %s vs %s %s" % (metric, label_a, st.fmt_ms(st.summary(a), digits), label_b,
-                                           st.fmt_ms(st.summary(b), digits)),
-                   j["verdict"], j["why"] + ("" if ok or not why else "; " + why),
-                   n=j["n"], run=run, quote=quote, ci="gain %s %s" % (st.fmt(j["gain"], digits), st.fmt_ci(j, digits)),
-                   margin=st.fmt(j["margin"], digits), cls="" if ok else cls)
+        tdc = "%s %s: %s vs %s %s" % (metric, label_a, st.fmt_ms(st.summary(a), digits), label_b,
+                                      st.fmt_ms(st.summary(b), digits))
+        ci = "gain %s %s" % (st.fmt(j["gain"], digits), st.fmt_ci(j, digits))
+        for m2, a2, b2, d2 in secondary:
+            if not a2 or len(a2) != len(b2):
+                raise ExpError(EXIT_RUN_FAILED, "%s: '%s': secondary %s: %d vs %d values" % (
+                    self.group, claim, m2, len(a2), len(b2)))
+            j2 = st.judge(a2, b2, kind, m2, method=method)
+            tdc += "; secondary %s: %s vs %s" % (m2, st.fmt_ms(st.summary(a2), d2), st.fmt_ms(st.summary(b2), d2))
+            ci += "; %s gain %s %s (%s)" % (m2, st.fmt(j2["gain"], d2), st.fmt_ci(j2, d2), j2["verdict"])
+        self.claim(paper, claim, paper_value, tdc, j["verdict"],
+                   j["why"] + ("; " + note if note else "") + ("" if ok or not why else "; " + why),
+                   n=j["n"], run=run, quote=quote, ci=ci, margin=st.fmt(j["margin"], digits), cls="" if ok else cls)
         return j
+
+    def judge_seen(self, paper, quote, claim, paper_value, rows, eq_a, eq_b, kind, label_a="A", label_b="B",
+                   secondary=(("flip", 4), ("psnr_db", 2)), run="", why="", cls=""):
+        """A row on what an observer sees: judged in JOD (tdc-sim --jod, the visual model of
+        docs/visual-model.md; margin 0.1 JOD), with the secondary metrics (FLIP, PSNR, ...) beside
+        it.  eq_a / eq_b select A's and B's rows (exp.values keywords).  A run made without --jod
+        (or no longer than the judge's warm-up: has_jod) has no usable JOD: the first secondary
+        metric then decides, and the row says so."""
+        sel = self.select(rows, **eq_a) + self.select(rows, **eq_b)
+        primary = "jod" if self.has_jod(sel) else None
+        sec = [(m, d) for m, d in secondary]
+        note = ""
+        if primary is None:
+            (primary, digits), sec = sec[0], sec[1:]
+            note = ("no JOD in these results (a run without --jod, or no longer than the judge's 0.25 s warm-up): "
+                    "%s decides" % primary)
+        else:
+            digits = 3
+        vals = lambda m, eq: self.values(rows, m, **eq)  # noqa: E731
+        return self.judge(paper, quote, claim, paper_value, vals(primary, eq_a), vals(primary, eq_b), kind, primary,
+                          label_a, label_b, digits, run=run, why=why, cls=cls, note=note,
+                          secondary=[(m, vals(m, eq_a), vals(m, eq_b), d) for m, d in sec])
+
+    def judge_all(self, paper, quote, claim, paper_value, metrics, kind, label_a="A", label_b="B", run="", why="",
+                  cls="", method="t"):
+        """One row for a claim the paper makes on several metrics at once ("lower RMSE and higher
+        SSIM"): metrics is a list of (metric, a, b, digits), each judged by tdc_stats.judge; the
+        row holds only when every metric holds (tdc_stats.judge_all).  Returns the combined result."""
+        st = tdc_stats
+        js, tdc, cis, margins, whys = [], [], [], [], []
+        for metric, a, b, digits in metrics:
+            if not a or len(a) != len(b):
+                raise ExpError(EXIT_RUN_FAILED, "%s: '%s': %s: %d vs %d values (unpaired or missing results)" % (
+                    self.group, claim, metric, len(a), len(b)))
+            j = st.judge(a, b, kind, metric, method=method)
+            js.append(j)
+            tdc.append("%s %s: %s vs %s %s" % (metric, label_a, st.fmt_ms(st.summary(a), digits), label_b,
+                                                st.fmt_ms(st.summary(b), digits)))
+            cis.append("%s gain %s %s" % (metric, st.fmt(j["gain"], digits), st.fmt_ci(j, digits)))
+            margins.append("%s %s" % (metric, st.fmt(j["margin"], digits)))
+            whys.append("%s: %s %s" % (metric, j["verdict"], j["why"]))
+        c = st.judge_all(js)
+        ok = c["verdict"] in ("agree", "equivalent")
+        self.claim(paper, claim, paper_value, "; ".join(tdc), c["verdict"],
+                   "; ".join(whys) + ("" if ok or not why else "; " + why), n=js[0]["n"], run=run, quote=quote,
+                   ci="; ".join(cis), margin="; ".join(margins), cls="" if ok else cls)
+        return c
 
 
 def load_claims_module(group):
@@ -261,7 +327,11 @@ def read_meta(out, group):
 
 def run_group(group, scale, out, jobs, sim):
     gdir = os.path.join(out, group)
-    os.makedirs(gdir, exist_ok=True)
+    # a run starts from nothing: claims scripts cache their own runs (tdc-render timings, tdc-zeng CSVs) in
+    # the group's folder, and a cache from an older build or scale must not be judged as this run's
+    if os.path.isdir(gdir):
+        shutil.rmtree(gdir)
+    os.makedirs(gdir)
     t0 = time.monotonic()
     c0 = os.times()
     failed = []
@@ -280,16 +350,21 @@ def run_group(group, scale, out, jobs, sim):
         sweeps[name] = {"jobs": n, "wall_s": round(time.monotonic() - ts, 1), "rc": rc}
         if rc != 0:
             failed.append("%s/%s (tdc_sweep exit %d)" % (group, name, rc))
-    c1 = os.times()
     meta = {"group": group, "scale": scale, "jobs_parallel": jobs, "sweeps": sweeps,
-            "wall_s": round(time.monotonic() - t0, 1),
-            "cpu_s": round((c1.children_user - c0.children_user) + (c1.children_system - c0.children_system), 1),
             "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())}
-    with open(os.path.join(gdir, "meta.json"), "w", encoding="utf-8") as f:
-        json.dump(meta, f, indent=1, sort_keys=True)
+
+    def write_meta():  # the claims' own runs (tdc-render, tdc-zeng) count too
+        c1 = os.times()
+        meta["wall_s"] = round(time.monotonic() - t0, 1)
+        meta["cpu_s"] = round(sum(getattr(c1, k) - getattr(c0, k) for k in ("user", "system", "children_user",
+                                                                            "children_system")), 1)
+        with open(os.path.join(gdir, "meta.json"), "w", encoding="utf-8") as f:
+            json.dump(meta, f, indent=1, sort_keys=True)
+    write_meta()
     if failed:
         raise ExpError(EXIT_RUN_FAILED, "failed: " + ", ".join(failed))
     run_claims(group, out)
+    write_meta()
     return meta
 
 
@@ -337,6 +412,22 @@ def counts(rows):
                 good, len(rows), 100.0 * good / len(rows) if rows else 0.0))
 
 
+def runs_table(out):
+    """Every group's run: scale, jobs, wall and CPU seconds (meta.json), with the totals."""
+    lines = ["| group | scale | jobs | wall s | CPU s (jobs and claims) | date |",
+             "| --- | --- | ---: | ---: | ---: | --- |"]
+    tj = tw = tc = 0
+    for g in groups():
+        m = read_meta(out, g)
+        if m:
+            j = sum(s["jobs"] for s in m["sweeps"].values())
+            tj, tw, tc = tj + j, tw + m.get("wall_s", 0), tc + m.get("cpu_s", 0)
+            lines.append("| %s | %s | %d | %.0f | %.0f | %s |" % (g, m.get("scale"), j, m.get("wall_s", 0),
+                                                                 m.get("cpu_s", 0), m.get("date", "")))
+    lines.append("| all | | %d | %.0f | %.0f | |" % (tj, tw, tc))
+    return "\n".join(lines)
+
+
 def report(out, report_path, results_path):
     rows, missing = read_all_claims(out)
     lines = ["# Paper vs tdc: the papers' experiments in the simulator", "",
@@ -348,13 +439,7 @@ def report(out, report_path, results_path):
              "standard deviation.", "", counts(rows), ""]
     if missing:
         lines += ["Groups without results (not run yet): %s." % ", ".join(missing), ""]
-    lines += ["## Runs", "", "| group | scale | jobs | wall s | CPU s (jobs) | date |", "| --- | --- | ---: | ---: | ---: | --- |"]
-    for g in groups():
-        m = read_meta(out, g)
-        if m:
-            lines.append("| %s | %s | %d | %.0f | %.0f | %s |" % (g, m.get("scale"), sum(s["jobs"] for s in m["sweeps"].values()),
-                                                                 m.get("wall_s", 0), m.get("cpu_s", 0), m.get("date", "")))
-    lines += ["", "## Paper vs tdc", "", claims_table(rows)]
+    lines += ["## Runs", "", runs_table(out), "", "## Paper vs tdc", "", claims_table(rows)]
     for g in groups():
         readme = os.path.join(GROUPS_DIR, g, "README.md")
         extra = os.path.join(out, g, "extra.md")
@@ -379,11 +464,11 @@ def update_results(path, rows, out):
     with open(path, encoding="utf-8") as f:
         text = f.read()
     scales = sorted({read_meta(out, g).get("scale", "?") for g in groups() if read_meta(out, g)})
-    body = [MARK_BEGIN, "", "Paper vs tdc (from `make experiments`; full report with runs, run times and intervals: "
-            "`report/experiments.md`, docs/experiments.md). Scale of these results: **%s** (`%s`)." % (
-                ", ".join(scales) or "?", "tdc_experiments.py run --scale " + (scales[0] if len(scales) == 1 else "S")),
-            "", claims_table(rows)]
-    body.insert(2, counts(rows) + "\n")
+    cmd = ("make experiments" if scales == ["headset"] else
+           "make experiments EXP_SCALE=%s" % (scales[0] if len(scales) == 1 else "S"))
+    body = [MARK_BEGIN, "", "Paper vs tdc (from `%s`; full report with intervals: `report/experiments.md`, "
+            "docs/experiments.md). Scale of these results: **%s**." % (cmd, ", ".join(scales) or "?"), "",
+            counts(rows), "", runs_table(out), "", claims_table(rows)]
     dis = [r for r in rows if r["verdict"] not in ("agree", "equivalent")]
     if dis:
         body += ["Where tdc disagrees or cannot decide, and why:", ""]

@@ -41,7 +41,7 @@ BOOT_RESAMPLES = 4000
 #  jod      0.1 JOD: 1 JOD is 75 % of observers preferring one condition, so
 #           0.1 JOD is 52.7 % (Phi(0.1 * 0.674)): a coin toss (issue 28).
 #  psnr_db  0.25 dB: a 2.9 % change of the RMS error (10^(0.25/20)).
-#  flip, terr, flicker, flicker_*: 3 % of B's mean error - the same
+#  flip, terr, flicker, rmse: 3 % of B's mean error - the same
 #           relative change of an error's size as 0.25 dB, and a third of
 #           the ~10 % contrast increment the eye needs to tell two supra-
 #           threshold contrasts apart (Legge & Foley 1980, Fig. 3's dipper
@@ -59,13 +59,14 @@ MARGINS = {
     "flip": ("rel", 0.03),
     "terr": ("rel", 0.03),
     "flicker": ("rel", 0.03),
+    "rmse": ("rel", 0.03),
     # the simulator's former judge, kept as labelled legacy columns (docs/eye.md)
     "legacy_terr": ("rel", 0.03),
     "legacy_flicker": ("rel", 0.03),
     "saving_pct": ("abs", 2.0),
     "ratio": ("rel", 0.05),
 }
-HIGHER_IS_BETTER = {"jod": True, "psnr_db": True, "ssim": True, "flip": False, "terr": False, "flicker": False,
+HIGHER_IS_BETTER = {"jod": True, "psnr_db": True, "ssim": True, "flip": False, "terr": False, "flicker": False, "rmse": False,
                     "legacy_terr": False, "legacy_flicker": False, "saving_pct": True, "ratio": True}
 CLAIMS = ("better", "not worse", "equal")
 
@@ -237,6 +238,27 @@ def judge(a, b, claim, metric, higher_is_better=None, margin=None, method="t"):
     out["why"] = "%s (gain of A %s, 95 %% CI [%s, %s], margin %s, n %d, %s)" % (
         why, fmt(out["gain"], 4), fmt(lo, 4), fmt(hi, 4), fmt(m, 4), n, "paired t" if method == "t" else "bootstrap")
     return out
+
+
+def judge_all(results):
+    """The verdict of one claim the paper makes on several metrics at once
+    ("lower RMSE and higher SSIM"), from each metric's judge() result: the
+    claim holds (agree, or equivalent for an 'equal' claim) only when it
+    holds in every metric; it is refuted (disagree) when any metric refutes
+    it; otherwise inconclusive.  Returns verdict and why (the metrics'
+    verdicts in order)."""
+    if not results:
+        raise ValueError("judge_all: no metric results")
+    vs = [j["verdict"] for j in results]
+    if "disagree" in vs:
+        v = "disagree"
+    elif all(x == "equivalent" for x in vs):
+        v = "equivalent"
+    elif all(x in ("agree", "equivalent") for x in vs):
+        v = "agree"
+    else:
+        v = "inconclusive"
+    return {"verdict": v, "verdicts": vs}
 
 
 def compare(a, b, higher_is_better=True, paired=None):

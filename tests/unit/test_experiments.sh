@@ -95,4 +95,24 @@ printf 'name = x\nbase = -n 2\nhuge.base = -n 3\nmodes = full\n' > "$G/broken/x.
 $EXP list broken > /dev/null 2> "$T/e4.txt"; rc=$?
 [ $rc -eq 13 ] && grep -q "line 3: scale 'huge'" "$T/e4.txt" && ok "malformed scale key: exit 13 (INPUT), $(cat "$T/e4.txt")" \
     || bad "malformed scale key exit $rc: $(cat "$T/e4.txt")"
+# judge_seen: JOD decides only when every row pooled frames after the judge's warm-up (jod_frames > 0);
+# otherwise the first secondary metric decides and the row says so
+out=$(/usr/bin/python3 - "$(dirname "$0")/../../sim/experiments" <<'PY'
+import sys
+sys.path.insert(0, sys.argv[1])
+import tdc_experiments as te
+def rows(frames):
+    return [{"mode": m, "seed": str(s), "job": str(s), "jod": "%.3f" % (9.0 + (0.5 if m == "a" else 0.0) + 0.01 * s),
+             "jod_frames": frames, "flip": "%.4f" % (0.10 - (0.0 if m == "a" else -0.02) + 0.001 * s),
+             "psnr_db": "30"} for s in range(1, 6) for m in ("a", "b")]
+for frames in ("13", "0"):
+    e = te.Experiment("toy", "/nonexistent", "demo")
+    e.judge_seen("p", "q", "c", "v", rows(frames), {"mode": "a"}, {"mode": "b"}, "better", "a", "b")
+    c = e.claims[0]
+    print(frames, c["tdc_value"].split(" ")[0], c["verdict"], "warm-up" in c["why"])
+PY
+)
+if [ "$(echo "$out" | sed -n 1p)" = "13 jod agree False" ] && [ "$(echo "$out" | sed -n 2p)" = "0 flip agree True" ]; then
+    ok "judge_seen: JOD decides with pooled frames, FLIP (named) without"
+else bad "judge_seen: $out"; fi
 exit $fail

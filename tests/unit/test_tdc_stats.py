@@ -163,5 +163,17 @@ try:
 except ValueError as ex:
     check("no equivalence margin" in str(ex), "unknown metric refused: %s" % ex)
 
+# 7. judge_all(): a claim on several metrics holds only in all of them, is refuted by any one
+A, D, I, E = ({"verdict": v} for v in ("agree", "disagree", "inconclusive", "equivalent"))
+for parts, want in (((A, A), "agree"), ((A, I), "inconclusive"), ((I, A), "inconclusive"), ((A, D), "disagree"),
+                    ((I, D), "disagree"), ((E, E), "equivalent"), ((E, I), "inconclusive"), ((A,), "agree")):
+    got = s.judge_all(list(parts))["verdict"]
+    check(got == want, "judge_all %s -> %s" % ("+".join(p["verdict"] for p in parts), got))
+# RMSE: an error magnitude, lower better, margin 3 % of B's mean
+a, b = pair(0.5, 0.05, base=10.0, hib=False)
+j = s.judge(a, b, "better", "rmse")
+check(j["verdict"] == "agree" and abs(j["margin"] - 0.3 * s.mean(b) / 10.0) < 1e-9,
+      "judge rmse: lower is better, margin 3 %% of B's mean (%.4f)" % j["margin"])
+
 print("test_tdc_stats: %s" % ("all passed" if not fails else "%d FAILED" % fails))
 sys.exit(1 if fails else 0)

@@ -20,11 +20,11 @@ def claims(exp):
         rows = exp.rows(sweep)
         # §4.4's sentence is about TRM's alternating pairs (the paper measured alternating pixel-value pairs
         # and fitted the model to them): judged on TRM's output only, not on full-rate content
-        exp.judge("TRM §4.4 (Fig. 7)", Q44, "%s, trm50 (alternating pairs): the temporal model's inverse better than "
-                  "plain gamma" % label, "plain gamma: halting artifacts",
-                  exp.values(rows, "flip", mode="trm50", lcdmode="exact"),
-                  exp.values(rows, "flip", mode="trm50", lcdmode="gamma"), "better", "flip", "exact", "gamma",
-                  run="%s/%s" % (exp.group, sweep),
+        # halting artifacts are what an observer sees: JOD decides, FLIP beside it
+        exp.judge_seen("TRM §4.4 (Fig. 7)", Q44, "%s, trm50 (alternating pairs): the temporal model's inverse better "
+                       "than plain gamma" % label, "plain gamma: halting artifacts", rows,
+                       {"mode": "trm50", "lcdmode": "exact"}, {"mode": "trm50", "lcdmode": "gamma"}, "better",
+                       "exact", "gamma", secondary=(("flip", 4),), run="%s/%s" % (exp.group, sweep),
                   cls="setting",
                   why=("lcd-240 is a strobed 240 Hz panel model, not the measured P279Q at 120 Hz" if sweep == "lcd240"
                        else "tdc's pg279q is a simulated LCD (rise/fall model), not the measured P279Q") +

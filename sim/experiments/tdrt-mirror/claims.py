@@ -10,11 +10,16 @@ def claims(exp):
     on, off = exp.rows("reflected"), exp.rows("primary")
     lines = ["| mode | MVs | FLIP | PSNR dB | flicker |", "| --- | --- | ---: | ---: | ---: |"]
     for mode, paper in (("taa", "TDRT Fig. 6 (TAA [Kar14])"), ("asm-adaptive", "TDRT §3.1.2 (any reprojection)")):
-        for col, label, d in (("flip", "FLIP", 4), ("psnr_db", "PSNR dB", 2)):
-            exp.judge(paper, Q_MIR, "mirror scene, %s: reflected MVs better than primary MVs (%s)" % (mode, label),
-                      "reflection considerably better", exp.values(on, col, mode=mode), exp.values(off, col, mode=mode),
-                      "better", col, "reflected", "primary", d,
-                      run="%s/reflected vs primary (whole frame; the mirror floor is about half)" % exp.group)
+        # what an observer sees: JOD decides, FLIP and PSNR beside it (FLIP decides in a run without --jod)
+        cols = [("jod", 3), ("flip", 4), ("psnr_db", 2)]
+        if not exp.has_jod(on + off):
+            cols = cols[1:]
+        (col, d), sec = cols[0], cols[1:]
+        exp.judge(paper, Q_MIR, "mirror scene, %s: reflected MVs better than primary MVs" % mode,
+                  "reflection considerably better", exp.values(on, col, mode=mode), exp.values(off, col, mode=mode),
+                  "better", col, "reflected", "primary", d,
+                  secondary=[(c, exp.values(on, c, mode=mode), exp.values(off, c, mode=mode), dd) for c, dd in sec],
+                  run="%s/reflected vs primary (whole frame; the mirror floor is about half)" % exp.group)
     for mode in ("full", "taa", "asm-adaptive"):
         for name, rows in (("reflected", on), ("primary", off)):
             cells = [exp.stats.fmt_ms(exp.stats.summary(exp.values(rows, col, mode=mode)), d)

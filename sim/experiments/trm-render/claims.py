@@ -27,9 +27,11 @@ def claims(exp):
     per_scene = {m: [] for m in ("trm50r", "trm25r", "trm50p")}
     flip = {m: [] for m in ("full", "trm50", "trm50r", "trm50p")}
     psnr = {m: [] for m in ("trm50r", "trm50p")}
+    jod = {m: [] for m in ("trm50r", "trm50p")}
+    has_jod = exp.has_jod(rows)
 
     def flip_or(col, m):
-        return flip[m] if col == "flip" else psnr[m]
+        return {"flip": flip, "psnr_db": psnr, "jod": jod}[col][m]
     for sc in SCENES:
         sp = {m: s.summary(speedups(exp, tim, m, sc)) for m in per_scene}
         for m in per_scene:
@@ -39,6 +41,8 @@ def claims(exp):
             flip[m].append(fl[m]["mean"])
         for m in psnr:
             psnr[m].append(s.mean(exp.values(rows, "psnr_db", mode=m, renderer=sc)))
+            if has_jod:
+                jod[m].append(s.mean(exp.values(rows, "jod", mode=m, renderer=sc)))
         rr = s.summary(exp.values(rows, "rays_vs_full", mode="trm50r", renderer=sc))["mean"]
         rp = s.summary(exp.values(rows, "rays_vs_full", mode="trm50p", renderer=sc))["mean"]
         table.append("| %s | %s | %s | %s | %.3f / %.3f | %s | %s | %s | %s |" % (
@@ -58,12 +62,14 @@ def claims(exp):
                       if ss else "")
     # §4.3 across the scenes as contents (the paper's sentence is about any content): the prefiltered
     # reduced frame (renderer REDUCED, Gaussian resolve of the codes, sigma 2.5) against point sampling
-    for col, d in (("flip", 4), ("psnr_db", 2)):
-        exp.judge("TRM §4.3", Q43, "prefiltered (renderer REDUCED) better than point-sampled reduced frames, %d scenes "
-                  "as contents (%s)" % (len(SCENES), col), "naive reduced frames judder",
-                  flip_or(col, "trm50r"), flip_or(col, "trm50p"), "better", col, "trm50r", "trm50p", d,
-                  run="%s/%s (scenes as contents)" % (exp.group, SWEEP), cls="model limit",
-                  why="judder is a phase error over time; PSNR and FLIP score each refresh against the ground truth "
-                      "and reward the point sample's sharpness (the visual model judges this row)")
+    # judder is what an observer sees: JOD decides, FLIP and PSNR beside it
+    prim = [("jod", 3)] if has_jod else [("flip", 4)]
+    sec = [(c, flip_or(c, "trm50r"), flip_or(c, "trm50p"), d) for c, d in (("flip", 4), ("psnr_db", 2))
+           if c != prim[0][0]]
+    exp.judge("TRM §4.3", Q43, "prefiltered (renderer REDUCED) better than point-sampled reduced frames, %d scenes "
+              "as contents" % len(SCENES), "naive reduced frames judder",
+              flip_or(prim[0][0], "trm50r"), flip_or(prim[0][0], "trm50p"), "better", prim[0][0], "trm50r", "trm50p",
+              prim[0][1], secondary=sec, run="%s/%s (scenes as contents)" % (exp.group, SWEEP), cls="model limit",
+              why="judder is a phase error over time; the per-refresh metrics reward the point sample's sharpness")
     exp.write_extra("Per scene (mean ± spread over the repetitions; renderer CPU time per displayed frame; rays relative "
                     "to full rate):\n\n" + "\n".join(table) + "\n")

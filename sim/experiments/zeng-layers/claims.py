@@ -25,36 +25,30 @@ def col(exp, rows, mode, name):
     return exp.values(rows, name, mode=mode)
 
 
-def verdict_of(got):
-    return "agree" if got == "A beats B" else ("inconclusive" if got in ("tie", "too few seeds") else "disagree")
+Q_GLOSSY = ("Zeng §6 (Figs. 1, 11): 'The comparison indicates that our glossy reflection motion vectors do not "
+            "introduce ghosting artifacts. However, with traditional motion vectors, naive filtering produces significant "
+            "ghosting.' ... 'Our method produces the closest result to the ground truth'")
+Q_CLEAN = ("Zeng §4.2: 'when the roughness is high, the glossy reflection motion vectors will be more noisy, but the "
+           "temporally filtered result will be then spatially cleaned up in a more aggressive manner.'")
+Q_SHADOW = ("Zeng §6 (Fig. 8): 'our shadow motion vectors are able to produce shadows that are closely attached to "
+            "the fence. In comparison, traditional motion vectors produce significant ghosting artifacts.'")
+Q_LAYERS = ("Zeng §5: 'One benefit from filtering separately for different effects is that we can use small spatial "
+            "filters for each of them.'")
+# why the layered assembly is not Zeng's set-up (the rows that do not agree are setting differences;
+# Zeng's own pipeline, TAA with a moving camera, is the zeng-reliable group)
+SETTING = ("tdc's layered tile assembly at 240 Hz is not Zeng's pipeline: Zeng accumulates every pixel under TAA "
+           "(exponential history, eq. 2) with a moving camera, where the assembly keeps a static pixel's 4-sample "
+           "window mean and shows a dynamic pixel as one reprojected sample; Zeng's set-up is the zeng-reliable group")
 
 
-def verdict_both(cr, cs):
-    """A claim on RMSE and SSIM (two tdc_stats.compare results): agree when A beats B in both, disagree when B
-    beats A in either, else inconclusive (also used by the zeng-reliable group)."""
-    if cr["verdict"] == "A beats B" and cs["verdict"] == "A beats B":
-        return "agree"
-    if "B beats A" in (cr["verdict"], cs["verdict"]):
-        return "disagree"
-    return "inconclusive"
-
-
-def both(exp, rows, sweep, a, b, paper, claim, paper_value, why_not=""):
-    """A beats B in RMSE (lower) and SSIM (higher), each beyond the paired spread over the seeds."""
-    cr = exp.stats.compare(col(exp, rows, a, "rmse"), col(exp, rows, b, "rmse"), higher_is_better=False)
-    cs = exp.stats.compare(col(exp, rows, a, "ssim"), col(exp, rows, b, "ssim"), higher_is_better=True)
-    verdict = verdict_both(cr, cs)
-    sr, ss = exp.stats.summary(col(exp, rows, a, "rmse")), exp.stats.summary(col(exp, rows, b, "rmse"))
-    tr, ts = exp.stats.summary(col(exp, rows, a, "ssim")), exp.stats.summary(col(exp, rows, b, "ssim"))
-    tdc = "RMSE %s vs %s, SSIM %s vs %s" % (exp.stats.fmt_ms(sr, 2), exp.stats.fmt_ms(ss, 2),
-                                            exp.stats.fmt_ms(tr, 4), exp.stats.fmt_ms(ts, 4))
-    why = "RMSE: %s (difference %s, paired spread %s); SSIM: %s (difference %s, paired spread %s)" % (
-        cr["verdict"].replace("A", a).replace("B", b), exp.stats.fmt(cr["diff"], 2), exp.stats.fmt(cr["spread"], 2),
-        cs["verdict"].replace("A", a).replace("B", b), exp.stats.fmt(cs["diff"], 4), exp.stats.fmt(cs["spread"], 4))
-    if verdict != "agree" and why_not:
-        why += "; " + why_not
-    exp.claim(paper, claim, paper_value, tdc, verdict, why, spread=exp.stats.fmt(cr["spread"], 2), n=cr["n"],
-              run="%s/%s" % (exp.group, sweep))
+def both(exp, rows, sweep, a, b, paper, quote, claim, paper_value, why_not=""):
+    """A beats B in RMSE (lower) and SSIM (higher): each judged by tdc_stats (95 % interval of the paired
+    gain over the seeds against the metric's margin), the row holding only when both hold."""
+    exp.judge_all(paper, quote, claim, paper_value,
+                  [("rmse", col(exp, rows, a, "rmse"), col(exp, rows, b, "rmse"), 2),
+                   ("ssim", col(exp, rows, a, "ssim"), col(exp, rows, b, "ssim"), 4)],
+                  "better", a, b, run="%s/%s" % (exp.group, sweep), why=why_not + "; " + SETTING if why_not else SETTING,
+                  cls="setting")
 
 
 GLOSSY_WHY = ("the glossy scene's camera is still and most of the floor reflects static objects: its ordinary "
@@ -67,27 +61,28 @@ GLOSSY_WHY = ("the glossy scene's camera is still and most of the floor reflects
 
 def claims(exp):
     rows = {s: exp.rows(s) for s in MODES}
-    both(exp, rows["glossy"], "glossy", "lasm-zeng", "lasm-ordinary", "Zeng §4.2, Fig. 11",
+    both(exp, rows["glossy"], "glossy", "lasm-zeng", "lasm-ordinary", "Zeng §4.2, Fig. 11", Q_GLOSSY,
          "glossy floor: stochastic glossy vectors (layers, 3 sigma) beat ordinary reprojection in RMSE and SSIM",
          "glossy vectors: no ghosting; RMSE/SSIM better", GLOSSY_WHY)
-    both(exp, rows["glossy"], "glossy", "lasm-zeng-clean", "lasm-ordinary", "Zeng §5 + §4.2",
+    both(exp, rows["glossy"], "glossy", "lasm-zeng-clean", "lasm-ordinary", "Zeng §5 + §4.2", Q_CLEAN,
          "glossy floor: glossy vectors + clean-up filter beat ordinary reprojection in RMSE and SSIM",
          "clean-up removes the noisy vectors' artefacts", GLOSSY_WHY)
-    both(exp, rows["blocker"], "blocker", "lasm-zeng", "lasm-ordinary", "Zeng §4.1, Fig. 9",
+    both(exp, rows["blocker"], "blocker", "lasm-zeng", "lasm-ordinary", "Zeng §4.1, Fig. 9", Q_SHADOW,
          "moving blocker (soft shadow): shadow vectors per layer beat ordinary vectors in RMSE and SSIM",
          "shadow vectors: the shadow follows its blocker",
          "the soft shadow of a 1-sample area light is noise: shadow vectors make its visibility dynamic, so it "
          "loses the static window's 4-sample mean as the glossy layer does, and the shadow is a small part of "
          "the frame; the 1-sigma variant lasm-zeng-tdrt is the best layered mode here (extra table)")
-    both(exp, rows["blocker"], "blocker", "lasm-zeng", "asm-adaptive-smv", "Zeng §4 (layers)",
+    both(exp, rows["blocker"], "blocker", "lasm-zeng", "asm-adaptive-smv", "Zeng §4 (layers)", Q_LAYERS,
          "moving blocker: layers with Zeng vectors beat one colour moved by the shadow vector",
          "components reused separately",
          "one colour moved by the shadow vector drags the floor texture, but the blocker's soft shadow is "
          "small next to the disocclusions and the block itself, which both paths reproject the same way")
-    both(exp, rows["fence"], "fence", "lasm-zeng", "lasm-ordinary", "Zeng §4.1, Fig. 1/10",
+    both(exp, rows["fence"], "fence", "lasm-zeng", "lasm-ordinary", "Zeng §4.1, Fig. 1/10", Q_SHADOW,
          "Embree fence: shadow vectors per layer beat ordinary vectors in RMSE and SSIM",
          "shadow vectors: no smeared shadow")
-    # issue 16's goal on the Embree fence
+    # issue 16's goal on the Embree fence: tdc's own target, not a sentence of the paper (its 32.41 dB is
+    # the procedural scene's exact-vector result), so it is reported beside the claims, not as a row
     best, bs = None, None
     for m in ("lasm-zeng", "lasm-zeng-tdrt", "lasm-zeng-clean"):
         s = exp.stats.summary(exp.values(rows["fence"], "psnr_db", mode=m))
@@ -96,20 +91,14 @@ def claims(exp):
     full = exp.stats.summary(exp.values(rows["fence"], "psnr_db", mode="full"))
     single = exp.stats.summary(exp.values(rows["fence"], "psnr_db", mode="asm-adaptive"))
     met = bs["mean"] - bs["spread"] >= FENCE_GOAL_DB
-    exp.claim("issue 16 goal", "Embree fence: Zeng vectors with layers recover half the gap 24.94 -> 32.41 dB",
-              ">= %.2f dB" % FENCE_GOAL_DB,
-              "%s %s dB (single-layer ordinary %s, full rate %s)" % (best, exp.stats.fmt_ms(bs, 2),
-                                                                     exp.stats.fmt_ms(single, 2),
-                                                                     exp.stats.fmt_ms(full, 2)),
-              "agree" if met else "disagree",
-              "met" if met else ("%.2f dB short; the full-rate stream (every pixel traced every refresh, 1 ray "
-                                 "at the pixel centre) reaches only %.2f dB against the 16-ray ground truth on "
-                                 "this scene and the assembly reaches 29.6 dB when nothing moves (4-sample window): the loss is edge "
-                                 "aliasing where things move (dynamic pixels, the fence and the hard shadow edges, keep "
-                                 "one pixel-centre ray), not the vectors; gamma, light colour and ground-truth samples "
-                                 "moved it by at most 0.1 dB (docs/layers.md, 'Embree fence: what limits it')" %
-                                 (FENCE_GOAL_DB - bs["mean"], full["mean"])),
-              spread=exp.stats.fmt(bs["spread"], 2), n=bs["n"], run="%s/fence" % exp.group)
+    goal = ("Issue 16's goal (tdc's, not the paper's): on the Embree fence, Zeng vectors with layers recover half "
+            "the gap 24.94 -> 32.41 dB (>= %.2f dB): best layered mode %s %s dB (single-layer ordinary %s, full "
+            "rate %s): %s" % (FENCE_GOAL_DB, best, exp.stats.fmt_ms(bs, 2), exp.stats.fmt_ms(single, 2),
+                              exp.stats.fmt_ms(full, 2), "met" if met else (
+                                  "not met, %.2f dB short; the full-rate stream (1 ray at the pixel centre) reaches "
+                                  "only %.2f dB against the ground truth on this scene: the loss is edge aliasing "
+                                  "where things move, not the vectors (docs/layers.md, 'Embree fence: what limits "
+                                  "it')" % (FENCE_GOAL_DB - bs["mean"], full["mean"]))))
     lines = []
     for s, modes in MODES.items():
         lines += ["", "**%s** (mean ± spread over the 5 %s):" % (s, "stretches" if s == "fence" else "seeds"), "",
@@ -120,7 +109,7 @@ def claims(exp):
             if not all(c and not c.startswith("nan") for c in cells):
                 continue
             lines.append("| %s | %s |" % (m, " | ".join(cells)))
-    exp.write_extra("RMSE in 8-bit code values from each run's PSNR (255 · 10^(−PSNR/20)); "
+    exp.write_extra(goal + "\n\nRMSE in 8-bit code values from each run's PSNR (255 · 10^(−PSNR/20)); "
                     "whole evaluated frame.\n" + "\n".join(lines) + "\n")
 
 

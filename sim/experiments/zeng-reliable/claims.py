@@ -1,22 +1,19 @@
 """Zeng et al. §6-§7 on the double-precision reference pipeline (tdc-zeng): RMSE/SSIM of the temporally reliable
 vectors against traditional vectors (with and without clamping), specular vectors and SVGF, per scene, 5 seeds."""
 import csv
-import importlib.util
 import os
 import subprocess
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-REPO = os.path.dirname(os.path.dirname(HERE))
-# the sister group's claim rule (RMSE and SSIM both beyond the paired spread)
-_spec = importlib.util.spec_from_file_location("zeng_layers_claims", os.path.join(HERE, "..", "zeng-layers", "claims.py"))
-ZENG_LAYERS = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(ZENG_LAYERS)
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(HERE)))
 SCENES = ("fence", "glossy", "occlusion")
 SEEDS = "1 2 3 4 5"
 # size, frames, first evaluated frame (the history needs ~1/alpha = 10 frames to fill)
 SCALES = {"demo": ("64x48", 20, 12), "dev": ("128x96", 36, 16), "headset": ("128x96", 36, 16)}
 PIXELS = {"64x48": 64 * 48, "128x96": 128 * 96, "160x120": 160 * 120}
-NEGLIGIBLE = 0.25  # of the primary rays, as the zeng-cost group reads §7's "negligible"
+# §7's "negligible" against tdc-zeng's primary rays, the only other pass it times (no shading pass: the
+# zeng-cost group's 0.10 of primary rays + shading has no counterpart here)
+NEGLIGIBLE = 0.25
 FIG = {"fence": "Zeng Fig. 8 (and Fig. 1 left)", "glossy": "Zeng Fig. 11 (and Fig. 1 middle)",
        "occlusion": "Zeng Fig. 12 (and Fig. 1 right)"}
 SENTENCE = {
@@ -56,27 +53,24 @@ def col(rows, method, name):
 
 
 def compare(exp, scene, rows, a, b, run, region):
-    st = exp.stats
+    """Ours beats b in RMSE (lower) and SSIM (higher), each judged by tdc_stats over the 5 seeds (95 % interval of
+    the paired gain against the metric's margin); the row holds only when both hold."""
     rk, sk = ("rmse_region", "ssim_region") if region else ("rmse", "ssim")
-    cr = st.compare(col(rows, a, rk), col(rows, b, rk), higher_is_better=False)
-    cs = st.compare(col(rows, a, sk), col(rows, b, sk), higher_is_better=True)
-    verdict = ZENG_LAYERS.verdict_both(cr, cs)
-    ra, rb = st.summary(col(rows, a, rk)), st.summary(col(rows, b, rk))
-    sa, sb = st.summary(col(rows, a, sk)), st.summary(col(rows, b, sk))
-    margin = (rb["mean"] - ra["mean"]) / rb["mean"] * 100.0 if rb["mean"] else float("nan")
-    tdc = "RMSE %s vs %s (%.1f %% lower), SSIM %s vs %s" % (st.fmt_ms(ra, 4), st.fmt_ms(rb, 4), margin,
-                                                           st.fmt_ms(sa, 4), st.fmt_ms(sb, 4))
-    why = "RMSE: %s (difference %s, paired spread %s); SSIM: %s (difference %s, paired spread %s)" % (
-        cr["verdict"].replace("A", a).replace("B", b), st.fmt(cr["diff"], 4), st.fmt(cr["spread"], 4),
-        cs["verdict"].replace("A", a).replace("B", b), st.fmt(cs["diff"], 4), st.fmt(cs["spread"], 4))
-    if verdict != "agree":
-        why += "; " + WHY_NOT.get((scene, b), "see sim/zeng/README.md")
     where = "effect region" if region else "whole frame"
-    exp.claim(FIG[scene], "%s, %s: ours beats %s in RMSE and SSIM" % (scene, where, b),
-              SENTENCE[scene] + " (paper's figures: lower RMSE, higher SSIM than %s)" % b, tdc, verdict, why,
-              spread=st.fmt(cr["spread"], 4), n=cr["n"], run=run)
+    exp.judge_all(FIG[scene], SENTENCE[scene], "%s, %s: ours beats %s in RMSE and SSIM" % (scene, where, b),
+                  "lower RMSE, higher SSIM than %s" % b,
+                  [("rmse", col(rows, a, rk), col(rows, b, rk), 4), ("ssim", col(rows, a, sk), col(rows, b, sk), 4)],
+                  "better", a, b, run=run, why=WHY_NOT.get((scene, b), "see sim/zeng/README.md") + (
+                      OCCLUSION_SETTING if CLASS.get((scene, b)) == "setting" and scene == "occlusion" else ""),
+                  cls=CLASS.get((scene, b), ""))
 
 
+# what a row that does not agree rests on (docs/experiments.md); filled per (scene, baseline)
+# (the glossy rows are not classed: eq. 5's stochastic fetch losing to the 3-sigma clamp is the Zeng
+# issue's open item, sim/zeng/README.md, not a difference of set-up)
+OCCLUSION_SETTING = ("; tdc-zeng's occlusion scene is an analytic room with smooth indirect light, not the paper's "
+                     "PICA scene (whose indirect light Figs. 1 and 12 show scaled 10x)")
+CLASS = {("occlusion", "trad"): "setting", ("occlusion", "asvgf"): "setting"}
 WHY_NOT = {
     ("glossy", "trad-clamp"): "the stochastic vectors (eq. 5) scatter each pixel's history fetch over the lobe's "
                               "footprint (several pixels here): the fetched history carries the reflection's "
@@ -91,14 +85,9 @@ WHY_NOT = {
                            "a-trous filter, which on this smooth indirect light is already close to the ground "
                            "truth; the dual vectors fetch the background beside the occluder, whose irradiance "
                            "differs (the occluder's own contact shadow), and the 3-sigma clamp lets it through",
-    ("occlusion", "svgf"): "SVGF's variance-guided 5-level a-trous overblurs, which costs little on smooth "
-                           "indirect light (the paper: 'sometimes SVGF is better in quantity')",
     ("occlusion", "asvgf"): "A-SVGF rejects the history where its gradient fires and otherwise filters as SVGF "
                             "does: on smooth indirect light its overblur costs little",
     ("glossy", "asvgf"): "as against trad-clamp: the eq. 5 vectors' noisy history fetch",
-    ("glossy", "svgf"): "as against trad-clamp: the eq. 5 vectors' noisy history fetch",
-    ("fence", "svgf"): "SVGF's variance-guided filter overblurs (the paper: 'sometimes SVGF is better in "
-                       "quantity')",
 }
 
 
@@ -109,7 +98,10 @@ def claims(exp):
         rows, cost, size, frames, first = run_scene(exp, scene)
         run = "%s (tdc-zeng %s, frames %d-%d, seeds %s, 1024-spp ground truth)" % (exp.group, size, first,
                                                                                     frames - 1, SEEDS)
-        baselines = ["trad-clamp", "trad", "svgf", "asvgf"] + (["spec"] if scene == "glossy" else [])
+        # no row against SVGF: §6 makes no quantitative claim there ('Note that sometimes SVGF is better in
+        # quantity, and this is because it tends to produce a significant amount of overblur'); its numbers
+        # are in the table beside the claims
+        baselines = ["trad-clamp", "trad", "asvgf"] + (["spec"] if scene == "glossy" else [])
         for b in baselines:
             compare(exp, scene, rows, "ours", b, run, region=False)
         compare(exp, scene, rows, "ours", "trad-clamp", run, region=True)
@@ -126,7 +118,7 @@ def claims(exp):
                       "%.3f ms vs %.3f ms primary (%.3f×)" % (cost[1], cost[0], ratio),
                       "agree" if ratio <= NEGLIGIBLE else "disagree",
                       "thread CPU time over frames 1-%d of seed 1, one pass over every pixel each; 'negligible' "
-                      "read as <= %.2f of the primary rays (as the zeng-cost group); the Embree renderer's dual "
+                      "read as <= %.2f of the primary rays; the Embree renderer's dual "
                       "pass traced a ray per candidate (1.08x)%s" % (
                           frames - 1, NEGLIGIBLE,
                           "" if ratio <= NEGLIGIBLE else
@@ -134,7 +126,9 @@ def claims(exp):
                           "analytic scenes (5-12 objects, no hierarchy) costs only %.0f ns: the ratio says more "
                           "about the cheap rays than about the lookup" % (
                               1e6 * cost[1] / PIXELS[size], 1e6 * cost[0] / PIXELS[size])),
-                      n=1, run=run)
+                      n=1, run=run, cls="" if ratio <= NEGLIGIBLE else "setting",
+                      quote="Zeng §7: 'in practice, we observed only a negligible performance cost by "
+                      "replacing with our motion vectors, which is always less than 0.23 ms.'")
     exp.write_extra("RMSE and SSIM on gamma-encoded frames (values in [0, 1]); regions: fence = where the "
                     "ground-truth visibility is below 0.98 now or in the 3 frames before, glossy = the glossy "
                     "floor, occlusion = pixels disoccluded in the last 8 frames.\n" + "\n".join(extra) + "\n")
