@@ -62,14 +62,17 @@ $(B)/bench-linux-board: FORCE
 	@chmod +x $@
 BENCHES += $(B)/bench-linux-board
 
-# make BOARD=linux install [DESTDIR=..] [PREFIX=/usr/local]: the program and
-# its systemd unit (boards/linux/tdc-board.service; enable it with
+# make BOARD=linux install [DESTDIR=..] [PREFIX=/usr/local]: the program, its
+# launcher (A/B slots with roll-back, boards/linux/tdc-board-launch) and the
+# systemd unit (boards/linux/tdc-board.service; enable it with
 # systemctl enable --now tdc-board).  Not run in CI (root, systemd).
 PREFIX ?= /usr/local
 ifeq ($(BOARD_OS),linux)
 .PHONY: install
 install: $(BP)/tdc-board
 	install -D -m 755 $< $(DESTDIR)$(PREFIX)/bin/tdc-board
+	sed 's|/usr/local/bin/tdc-board|$(PREFIX)/bin/tdc-board|' boards/linux/tdc-board-launch > $(BP)/tdc-board-launch
+	install -D -m 755 $(BP)/tdc-board-launch $(DESTDIR)$(PREFIX)/bin/tdc-board-launch
 	sed 's|/usr/local/bin/tdc-board|$(PREFIX)/bin/tdc-board|' boards/linux/tdc-board.service > $(BP)/tdc-board.service
 	install -D -m 644 $(BP)/tdc-board.service $(DESTDIR)/etc/systemd/system/tdc-board.service
 endif
@@ -97,3 +100,11 @@ test-linux-arm64:
 	    chmod +x $(BUILD)/linux-$(A64_BOARD_PANEL)-arm64/board-check; \
 	    tests/run_tests.sh linux-arm64 $(BUILD)/linux-$(A64_BOARD_PANEL)-arm64/board-check || :; \
 	else echo "[linux-arm64] FAIL build"; echo "linux-arm64 build FAIL" >> "$(RESULTS)"; fi
+
+# make test: the launcher's A/B roll-back logic with stand-in programs (~1 s;
+# the real program's DFU install and confirmation run in make test-vm)
+$(B)/test-board-launch: tests/linux/test_board_launch.sh boards/linux/tdc-board-launch
+	@mkdir -p $(@D)
+	@printf '#!/bin/sh\nexec tests/linux/test_board_launch.sh boards/linux/tdc-board-launch\n' > $@
+	@chmod +x $@
+TESTS += $(B)/test-board-launch
