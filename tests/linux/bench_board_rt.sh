@@ -19,7 +19,8 @@ printf '%-10s %6s %10s %8s | %9s %9s %9s | %8s %8s %8s %8s  (%% of the budget pe
     transport loop panel decode family lcd show
 # 64 frames: the loop's per-stage line (decode, family = the stream's stage,
 # LCD inverse, show = the scan-out conversion) comes every 64 frames shown
-for spec in trm:64 fov-clean:64 plain:64; do
+# (the foveated stream's gaze path is refused beyond ~32 frames: no line, -)
+for spec in trm:64 fov-clean:32 plain:64; do
     m=${spec%%:*}; n=${spec#*:}
     "$gen" "$m" "$w" "$h" "$eyes" "$n" "$tmp/$m.tdcs" > /dev/null
     cat "$tmp/$m.tdcs" > /dev/null # page cache: the transport is memory, as a USB buffer is
