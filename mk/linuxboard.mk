@@ -91,7 +91,7 @@ linux-arm64:
 	@$(A64_MAKE) BOARD=linux $(BUILD)/linux-$(PANEL)-arm64/tdc-board
 TEST_EXTRA += test-linux-arm64
 test-linux-arm64:
-	@if $(A64_MAKE) BOARD=linux PANEL=$(A64_BOARD_PANEL) $(BUILD)/linux-$(A64_BOARD_PANEL)-arm64/tdc-board > $(BUILD)/.a64blog 2>&1 && \
+	@mkdir -p $(BUILD)/linux-$(A64_BOARD_PANEL)-arm64; if $(A64_MAKE) BOARD=linux PANEL=$(A64_BOARD_PANEL) $(BUILD)/linux-$(A64_BOARD_PANEL)-arm64/tdc-board > $(BUILD)/.a64blog 2>&1 && \
 	    $(MAKE) --no-print-directory -j2 BOARD=linux PANEL=$(A64_BOARD_PANEL) CC=gcc OPT=-O2 SAN= \
 	        $(BUILD)/linux-$(A64_BOARD_PANEL)/tdc-board $(A64_BOARD_STREAMS) >> $(BUILD)/.a64blog 2>&1 || \
 	    { cat $(BUILD)/.a64blog; false; }; then \
