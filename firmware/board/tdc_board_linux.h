@@ -65,6 +65,9 @@ int tdc_lx_ffs_init(uint32_t width, uint32_t height, uint32_t refresh_mhz, uint3
  * -2 host gone (the connection's stream ended). */
 int tdc_lx_ffs_read(uint8_t *buf, uint32_t cap, uint32_t *got);
 void tdc_lx_ffs_frame_shown(void);
+/* 1 while a run of the loop ends whose host went and came back under a
+ * waiting read: its last frame is not shown (tdc_board_panel_show). */
+int tdc_lx_ffs_stale(void);
 /* Start-up done (display up, gadget bound): STATE/confirmed, which keeps a
  * program on trial (boards/linux/tdc-board-launch). */
 void tdc_lx_ffs_confirm(void);

@@ -255,6 +255,15 @@ static void *status_thread(void *arg)
  * returned: they start the next run of the loop (its fresh decoder). */
 static uint8_t g_carry[16384];
 static uint32_t g_carry_n;
+/* Set from that moment until the next run reads: the old run's last
+ * partial frame is not shown (a new stream has begun; the panel keeps its
+ * last frame, and the frame counter the host reads is the new stream's). */
+static int g_stale;
+
+int tdc_lx_ffs_stale(void)
+{
+    return g_stale;
+}
 
 int tdc_lx_ffs_read(uint8_t *buf, uint32_t cap, uint32_t *got)
 {
@@ -268,6 +277,7 @@ int tdc_lx_ffs_read(uint8_t *buf, uint32_t cap, uint32_t *got)
         g_ep1 = -1;
         return -2;
     }
+    g_stale = 0;
     if (g_carry_n) {
         const uint32_t n = g_carry_n < cap ? g_carry_n : cap;
         memcpy(buf, g_carry, n);
@@ -295,6 +305,7 @@ int tdc_lx_ffs_read(uint8_t *buf, uint32_t cap, uint32_t *got)
         seen = g_lost;
         memcpy(g_carry, buf, (size_t)n);
         g_carry_n = (uint32_t)n;
+        g_stale = 1;
         tdc_lx_logf("usb: host gone: stream ended; the next connection's first %zd bytes start a new one", n);
         return -2;
     }

@@ -236,6 +236,21 @@ head -n 5 /data/disp/fov/plan > /tmp/fov.plan
 play /data/disp/fov fov /tmp/fov.plan
 play /data/disp/trm trm
 play /data/disp/trm-bands-crc trm-bands-crc
+# Unplug mid-stream: tdc-usb sees the board go (6), the board logs the host
+# gone and keeps running; re-plugged, a new stream (the foveated one from
+# its start) shows its frames identical again: a fresh decoder per connection.
+GB=/sys/kernel/config/usb_gadget/tdc-board
+cat /data/disp/trm/part-* | $B --timeout 60000 --chunk 16384 stream - > /tmp/unplug.out 2>&1 &
+p=$!; sleep 2; echo "" > $GB/UDC; wait $p; rc=$?
+sed 's/^/    /' /tmp/unplug.out
+[ $rc = 6 ] && ok board-unplug-stream || bad board-unplug-stream "tdc-usb exit $rc, want 6"
+for i in $(seq 50); do grep -q "host gone" /tmp/tdcb.log && break; usleep 100000; done
+grep -q "usb: host gone" /tmp/tdcb.log && kill -0 $tdcb && ok board-unplug-survives || bad board-unplug-survives "no 'host gone' or board exited"
+echo "$UDC" > $GB/UDC || bad board-replug "binding $UDC again failed"
+for i in $(seq 100); do $B info > /dev/null 2>&1 && break; usleep 100000; done
+tail -n 4 /tmp/tdcb.log | sed 's/^/    /'
+head -n 1 /data/disp/fov/plan > /tmp/replug.plan
+play /data/disp/fov fov.replug /tmp/replug.plan
 kill -TERM $tdcb; wait $tdcb; rc=$?
 sed 's/^/    /' /tmp/tdcb.log
 [ $rc = 0 ] && ok board-sigterm || bad board-sigterm "exit $rc after SIGTERM"
@@ -249,7 +264,9 @@ sed 's/^/    /' /tmp/tdcb.log
 tdc-board-launch --program /usr/bin/tdc-board --confirm-s 5 --state /tmp/ab-state -- \
     --udc "$UDC" --serial VM-2 > /tmp/launch.log 2>&1 &
 lp=$!
-up() { for i in $(seq 150); do $B info > /dev/null 2>&1 && return; usleep 100000; done; }
+# up: the board answers (start-up under TCG on a loaded host: mode set,
+# gadget bound, enumeration; up to 60 s); 1 if it never did
+up() { for i in $(seq 300); do $B info > /dev/null 2>&1 && return 0; usleep 200000; done; return 1; }
 up
 check ab-installed 0 "firmware: 0.1.0" $B info
 head -c 65536 /data/tdc-board-update > /tmp/broken.bin
@@ -273,26 +290,5 @@ kill -TERM $lp; wait $lp; rc=$?
 sed 's/^/    /' /tmp/launch.log
 [ $rc = 0 ] && ok ab-launcher-sigterm || bad ab-launcher-sigterm "launcher exit $rc after SIGTERM"
 
-# the plain board again for the unplug
-tdc-board --udc "$UDC" --serial VM-2 --state /tmp/tdc-state > /tmp/tdcb.log 2>&1 &
-tdcb=$!
-up
-# Unplug mid-stream: tdc-usb sees the board go (6), the board logs the host
-# gone and keeps running; re-plugged, a new stream (the foveated one from
-# its start) shows its frames identical again: a fresh decoder per connection.
-GB=/sys/kernel/config/usb_gadget/tdc-board
-cat /data/disp/trm/part-* | $B --timeout 60000 --chunk 16384 stream - > /tmp/unplug.out 2>&1 &
-p=$!; sleep 2; echo "" > $GB/UDC; wait $p; rc=$?
-sed 's/^/    /' /tmp/unplug.out
-[ $rc = 6 ] && ok board-unplug-stream || bad board-unplug-stream "tdc-usb exit $rc, want 6"
-for i in $(seq 50); do grep -q "host gone" /tmp/tdcb.log && break; usleep 100000; done
-grep -q "usb: host gone" /tmp/tdcb.log && kill -0 $tdcb && ok board-unplug-survives || bad board-unplug-survives "no 'host gone' or board exited"
-echo "$UDC" > $GB/UDC || bad board-replug "binding $UDC again failed"
-for i in $(seq 100); do $B info > /dev/null 2>&1 && break; usleep 100000; done
-tail -n 4 /tmp/tdcb.log | sed 's/^/    /'
-head -n 1 /data/disp/fov/plan > /tmp/replug.plan
-play /data/disp/fov fov.replug /tmp/replug.plan
-kill -TERM $tdcb; wait $tdcb; rc=$?
-[ $rc = 0 ] && ok board-sigterm-replugged || bad board-sigterm-replugged "exit $rc after SIGTERM"
 
 finish
