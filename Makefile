@@ -89,6 +89,7 @@ BENCHES :=          # executables run by `make bench`
 HOST_PROGS :=       # programs built by plain `make`
 DEPS_PKGS := gcc make clang libclang-rt-14-dev libcmocka-dev libpng-dev pkg-config \
              python3-numpy python3-matplotlib python3-skimage
+DEPS_ARCHS :=       # foreign Debian architectures (multiarch) DEPS_PKGS names as PKG:ARCH
 TEST_EXTRA :=       # extra phony targets `make test` runs after the host suites
 TEST_BESIDE := test-variants # phony targets `make test` runs in the background beside TEST_EXTRA
 
@@ -128,8 +129,15 @@ $(B)/tests/tdc_golden: $(B)/tests/golden/golden_host_main.o $(GOLDEN_OBJS) $(FWL
 # Debian packages: installed once, skipped when present.
 # ---------------------------------------------------------------------------
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
+# A foreign architecture (DEPS_ARCHS, e.g. arm64 for the arm64 libraries of
+# the Linux board's cross build) is added to dpkg first; its packages are
+# then missing, so the apt-get update below reads its package lists.
 deps:
-	@missing=$$(for p in $(sort $(DEPS_PKGS)); do \
+	@for a in $(sort $(DEPS_ARCHS)); do \
+	    dpkg --print-foreign-architectures | grep -qx "$$a" || { \
+	    echo "deps: adding architecture $$a (dpkg --add-architecture)"; $(SUDO) dpkg --add-architecture "$$a" || exit 1; }; \
+	done; \
+	missing=$$(for p in $(sort $(DEPS_PKGS)); do \
 	    dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q '^install ok installed' || echo $$p; done); \
 	if [ -n "$$missing" ]; then \
 	    echo "deps: installing:" $$missing; \

@@ -38,7 +38,8 @@
     X(16, BUSY, "the GPIO line is held by another consumer", "tdc-gpio") \
     X(17, NOMEM, "out of memory", "tdc-run, tdc-sim, tdc-render, tdc-zeng") \
     X(18, JOBS, "a job of a sweep or experiment failed, or a result it needs is missing (each job's own code is in its log)", "tdc_sweep.py, tdc_experiments.py") \
-    X(19, ENGINE, "the job engine (GNU parallel, Slurm sbatch) is missing or failed", "tdc_sweep.py")
+    X(19, ENGINE, "the job engine (GNU parallel, Slurm sbatch) is missing or failed", "tdc_sweep.py") \
+    X(20, RESTART, "the board installed a new program by DFU and ended so that its launcher starts it (not an error)", "tdc-board")
 /* clang-format on */
 
 #endif

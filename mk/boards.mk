@@ -198,10 +198,11 @@ STAGES_DEFAULT := $(if $(filter-out undefined,$(origin BOARD_STAGES_$(PANEL))),$
                   $(filter undefined,$(origin BOARD_STAGES)),$(ALL_STAGES),$(BOARD_STAGES)))
 STAGES ?= $(STAGES_DEFAULT)
 # The image of a pair: build/<board>-<panel>, or build/<board>-<panel>-<stages>
-# when STAGES differs from the board's default (e.g. -link for STAGES=).
+# when STAGES differs from the board's default (e.g. -link for STAGES=);
+# BOARD_BP_SUFFIX: a board built for more than one CPU names the CPU.
 space := $(eval) $(eval)
 STAGES_TAG := $(or $(subst $(space),+,$(sort $(STAGES))),link)
-BP := $(BUILD)/$(BOARD)-$(PANEL)$(if $(filter-out $(sort $(STAGES)),$(sort $(STAGES_DEFAULT)))$(filter-out $(sort $(STAGES_DEFAULT)),$(sort $(STAGES))),-$(STAGES_TAG))$(if $(filter-out $(or $(BOARD_BANDS),0),$(BANDS)),-bands$(BANDS))
+BP := $(BUILD)/$(BOARD)-$(PANEL)$(BOARD_BP_SUFFIX)$(if $(filter-out $(sort $(STAGES)),$(sort $(STAGES_DEFAULT)))$(filter-out $(sort $(STAGES_DEFAULT)),$(sort $(STAGES))),-$(STAGES_TAG))$(if $(filter-out $(or $(BOARD_BANDS),0),$(BANDS)),-bands$(BANDS))
 FW_LCD_ON := $(if $(and $(filter lcd,$(PANEL_TYPE)),$(filter lcd,$(STAGES))),1,0)
 # BOARD_FW_CFG: the board's own configuration defines (e.g. LCD history
 # bits, the link formats it accepts), for every object of its images.

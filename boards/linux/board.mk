@@ -8,3 +8,5 @@ BOARD_SRCS  := firmware/board/tdc_board_linux.c firmware/board/tdc_board_linux_d
                firmware/board/tdc_board_linux_ffs.c firmware/board/tdc_board_linux_gpio.c firmware/board/tdc_ffs.c
 BOARD_BANDS := 1
 BOARD_FLASH := tdc-usb flash IMAGE (the protocol's DFU into A/B slot files), or make BOARD=linux install
+# the arm64 cross build (CC=aarch64-linux-gnu-gcc) beside the host one
+BOARD_BP_SUFFIX = $(if $(filter aarch64-%,$(CCNAME)),-arm64)

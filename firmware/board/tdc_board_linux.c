@@ -18,12 +18,15 @@
  *   --bench             with --stream: the scan-out conversion into a RAM
  *                       buffer instead of KMS, and at the end one line
  *                       "bench: ..." with the time spent in transport,
- *                       loop (decode + stages), panel out (make bench)
+ *                       loop (decode + stages), panel out (make bench);
+ *                       tdc_board_cycles() counts nanoseconds, so the loop
+ *                       logs its per-stage means every 64 frames
  *   --gpio-chip C --gpio-vsync L --gpio-reset L   (tdc_board_linux_gpio.c)
  *   --syslog            log to syslog as well as stderr
  *   --reset-cause power-on|pin|software|watchdog   (what the unit that restarted us says)
  * Exit: 0 after SIGTERM or the end of --stream; the codes of docs/tools.md
- * for start-up failures (2 no DRM device / no UDC, 14 mode not available).
+ * for start-up failures (2 no DRM device / no UDC, 14 mode not available);
+ * 20 after a DFU update installed a new program (tdc-board-launch starts it).
  */
 #include <errno.h>
 #include <pthread.h>
@@ -112,6 +115,7 @@ tdc_board_status_t tdc_board_init(void)
     }
     tdc_lx_logf("ready: panel %s %ux%u x%u eyes @ %u Hz", TDC_PANEL_NAME, TDC_PANEL_WIDTH, TDC_PANEL_HEIGHT,
                 TDC_PANEL_EYES, TDC_PANEL_REFRESH_HZ);
+    tdc_lx_ffs_confirm();
     return TDC_BOARD_OK;
 }
 
@@ -150,6 +154,10 @@ tdc_board_status_t tdc_board_panel_show(const uint8_t *fb, uint32_t stride, uint
                (unsigned long long)tdc_board_frame_checksum(fb, stride, width, height));
         return TDC_BOARD_OK;
     }
+    if (tdc_lx_ffs_stale()) {
+        tdc_lx_logf("usb: frame %u of the stream that ended is not shown: a new one has begun", (unsigned)frame_index);
+        return TDC_BOARD_OK;
+    }
     return tdc_lx_drm_show(fb, stride, width, height) == 0 ? TDC_BOARD_OK : TDC_BOARD_ERR_IO;
 }
 
@@ -159,9 +167,15 @@ void tdc_board_vsync_wait(void)
     tdc_lx_gpio_vsync();
 }
 
+/* --bench: nanoseconds (mod 2^32: a stage under 4 s), so that the loop's
+ * per-stage timing line (decode, family, LCD, show: every 64 frames) gives
+ * each stage's share of the frame budget; else 0 (no timing line). */
 uint32_t tdc_board_cycles(void)
 {
-    return 0u; /* bench-sim and perf time the stages on a host */
+    if (!g_bench) return 0u;
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (uint32_t)((uint64_t)t.tv_sec * 1000000000u + (uint64_t)t.tv_nsec);
 }
 
 uint32_t tdc_board_time_us(void)
@@ -269,5 +283,6 @@ int main(int argc, char **argv)
                (unsigned long long)g_t_panel, (unsigned long long)(total - g_t_transport - g_t_panel));
     }
     if (g_fail) return g_fail;
+    if (tdc_lx_restart) return TDC_LX_EXIT_RESTART;
     return rc;
 }

@@ -25,7 +25,8 @@ enum {
     TDC_LX_EXIT_IO = 4,        /* a driver call failed */
     TDC_LX_EXIT_TIMEOUT = 5,   /* no page-flip event */
     TDC_LX_EXIT_FILE = 7,      /* state folder / slot file */
-    TDC_LX_EXIT_REFUSED = 14   /* mode not available, no atomic KMS */
+    TDC_LX_EXIT_REFUSED = 14,  /* mode not available, no atomic KMS */
+    TDC_LX_EXIT_RESTART = 20   /* a DFU update installed a new program: the launcher starts it */
 };
 
 typedef struct {
@@ -64,6 +65,14 @@ int tdc_lx_ffs_init(uint32_t width, uint32_t height, uint32_t refresh_mhz, uint3
  * -2 host gone (the connection's stream ended). */
 int tdc_lx_ffs_read(uint8_t *buf, uint32_t cap, uint32_t *got);
 void tdc_lx_ffs_frame_shown(void);
+/* 1 while a run of the loop ends whose host went and came back under a
+ * waiting read: its last frame is not shown (tdc_board_panel_show). */
+int tdc_lx_ffs_stale(void);
+/* Start-up done (display up, gadget bound): STATE/confirmed, which keeps a
+ * program on trial (boards/linux/tdc-board-launch). */
+void tdc_lx_ffs_confirm(void);
+/* Set when a DFU reset installed a program: main returns TDC_LX_EXIT_RESTART. */
+extern int tdc_lx_restart;
 
 /* GPIO (tdc_board_linux_gpio.c) */
 int tdc_lx_gpio_init(void);

@@ -10,6 +10,13 @@
  * The gadget is created if it does not exist (a systemd unit may have made
  * it at boot) and bound to the USB device controller: dwc2 in peripheral
  * mode on a Raspberry Pi (docs/boards.md), dummy_udc in `make test-vm`.
+ * DFU A/B of the board program (docs/boards.md "Updates"): a manifested
+ * image whose payload is an ELF program is installed at the reset that
+ * activates it as STATE/prog-<slot> with STATE/pending naming the slot, and
+ * the program exits TDC_LX_EXIT_RESTART; its launcher
+ * (boards/linux/tdc-board-launch) starts that slot on trial and keeps it
+ * only if it writes STATE/confirmed (start-up done: display, gadget bound)
+ * within N s, else it goes back to the slot in STATE/active.
  * Unplug (the host goes away, or the UDC is unbound) shows as ESHUTDOWN
  * on ep1 and FUNCTIONFS_DISABLE on ep0: logged "host gone", the panel
  * keeps its last frame, the loop waits for the next connection.
@@ -20,6 +27,8 @@
 #include <fcntl.h>
 #include <linux/usb/functionfs.h>
 #include <pthread.h>
+#include <signal.h>
+#include <stdlib.h>
 #include <stdio.h>
 #include <string.h>
 #include <sys/mount.h>
@@ -64,8 +73,64 @@ static int slot_read(void *ctx, uint32_t off, uint8_t *d, uint32_t n)
     return 0;
 }
 
+/* ---- A/B program slots (files beside slots.bin, for the launcher) ---- */
+static volatile int g_restart_pending;
+int tdc_lx_restart; /* main() returns TDC_LX_EXIT_RESTART */
+
+static void state_path(char *out, size_t cap, const char *name)
+{
+    snprintf(out, cap, "%s/%s", tdc_lx_opts.state_dir, name);
+}
+
+/* Writes a small state file whole or not at all (write, fsync, rename). */
+static int state_put(const char *name, const char *text)
+{
+    char path[512], tmp[520];
+    state_path(path, sizeof path, name);
+    snprintf(tmp, sizeof tmp, "%s.new", path);
+    FILE *f = fopen(tmp, "w");
+    if (!f) return -1;
+    const int bad = fputs(text, f) < 0 || fflush(f) != 0 || fsync(fileno(f)) != 0;
+    if (fclose(f) != 0 || bad) return -1;
+    return rename(tmp, path);
+}
+
+/* The slot's image, if its payload is a program (ELF), copied out as
+ * STATE/prog-<slot> (mode 755) and STATE/pending = slot: 1; not a program
+ * (a panel profile, data): 0; a file error: -1 (logged). */
+static int install_program(unsigned slot)
+{
+    uint8_t hdr[TDC_IMAGE_HEADER_LEN + 4];
+    const uint32_t base = (uint32_t)slot * SLOT_BYTES;
+    if (slot_read(NULL, base, hdr, sizeof hdr) != 0) return -1;
+    const uint32_t len = tdc_get_le32(hdr + TDC_IMAGE_OFF_PAYLOAD_LEN);
+    if (len < 4u || memcmp(hdr + TDC_IMAGE_HEADER_LEN, "\177ELF", 4) != 0) return 0;
+    char path[512], tmp[520], name[16];
+    snprintf(name, sizeof name, "prog-%u", slot);
+    state_path(path, sizeof path, name);
+    snprintf(tmp, sizeof tmp, "%s.new", path);
+    const int fd = open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0755);
+    int bad = fd < 0;
+    static uint8_t buf[65536];
+    for (uint32_t off = 0; !bad && off < len; off += sizeof buf) {
+        const uint32_t n = len - off < sizeof buf ? len - off : (uint32_t)sizeof buf;
+        bad = slot_read(NULL, base + TDC_IMAGE_HEADER_LEN + off, buf, n) != 0 || write(fd, buf, n) != (ssize_t)n;
+    }
+    bad = bad || fsync(fd) != 0;
+    if (fd >= 0 && close(fd) != 0) bad = 1;
+    char num[16];
+    snprintf(num, sizeof num, "%u\n", slot);
+    if (bad || rename(tmp, path) != 0 || state_put("pending", num) != 0) {
+        tdc_lx_logf("dfu: cannot install slot %u as %s: %s (the running program stays)", slot, path, strerror(errno));
+        return -1;
+    }
+    return 1;
+}
+
 /* A USB reset or the board's own (RESET_BOARD, DFU_DETACH): a manifested
- * image becomes the active slot.  Called with the lock held. */
+ * image becomes the active slot; a program is installed for the launcher,
+ * and this one ends once the request is acknowledged (ep0_thread).  Called
+ * with the lock held. */
 static void board_reset(const char *why)
 {
     if (tdc_usbp_bus_reset(&g_proto)) {
@@ -76,7 +141,52 @@ static void board_reset(const char *why)
         tdc_lx_logf("%s: activated slot %u, firmware %u.%u.%u, %u bytes", why, g_proto.dfu_active_slot,
                     g_proto.cfg.fw_version >> 16, (g_proto.cfg.fw_version >> 8) & 0xFFu,
                     g_proto.cfg.fw_version & 0xFFu, tdc_usbp_slot_image(&g_proto, g_proto.dfu_active_slot));
+        const int prog = install_program(g_proto.dfu_active_slot);
+        if (prog == 1) {
+            tdc_lx_logf("dfu: slot %u holds a board program: restarting into it on trial (launcher)",
+                        g_proto.dfu_active_slot);
+            g_restart_pending = 1;
+        } else if (prog == 0) {
+            tdc_lx_logf("dfu: slot %u is not a program (no ELF header): kept as data, this program runs on",
+                        g_proto.dfu_active_slot);
+        }
     }
+}
+
+/* The slot this program was started from (STATE/trial while on trial, else
+ * STATE/active, written by the launcher): the protocol reports its image
+ * and version, and the next download goes to the other slot. */
+static void load_active_slot(void)
+{
+    char path[512];
+    unsigned k = 2;
+    state_path(path, sizeof path, "trial");
+    FILE *f = fopen(path, "r");
+    if (!f) {
+        state_path(path, sizeof path, "active");
+        f = fopen(path, "r");
+    }
+    if (f) {
+        if (fscanf(f, "%u", &k) != 1) k = 2;
+        fclose(f);
+    }
+    uint8_t hdr[TDC_IMAGE_HEADER_LEN];
+    if (k > 1 || slot_read(NULL, (uint32_t)k * SLOT_BYTES, hdr, sizeof hdr) != 0 ||
+        tdc_get_le32(hdr + TDC_IMAGE_OFF_MAGIC) != TDC_IMAGE_MAGIC) {
+        return; /* the installed program (no slot) */
+    }
+    g_proto.dfu_active_slot = (uint8_t)k;
+    g_proto.dfu_slot_image[k] = TDC_IMAGE_HEADER_LEN + tdc_get_le32(hdr + TDC_IMAGE_OFF_PAYLOAD_LEN);
+    g_proto.cfg.fw_version = tdc_get_le32(hdr + TDC_IMAGE_OFF_FW_VERSION);
+    tdc_lx_logf("dfu: running slot %u, firmware %u.%u.%u", k, g_proto.cfg.fw_version >> 16,
+                (g_proto.cfg.fw_version >> 8) & 0xFFu, g_proto.cfg.fw_version & 0xFFu);
+}
+
+void tdc_lx_ffs_confirm(void)
+{
+    char num[32];
+    snprintf(num, sizeof num, "%ld\n", (long)getpid());
+    if (state_put("confirmed", num) != 0) tdc_lx_logf("dfu: cannot write %s/confirmed: %s", tdc_lx_opts.state_dir, strerror(errno));
 }
 
 static void *ep0_thread(void *arg)
@@ -113,6 +223,13 @@ static void *ep0_thread(void *arg)
             default: break;
             }
         }
+        /* a new program was installed: end this one now that the request
+         * that activated it has had its status stage (SIGTERM reaches the
+         * main thread: its endpoint read returns, the loop ends) */
+        if (g_restart_pending && !tdc_lx_restart) {
+            tdc_lx_restart = 1;
+            kill(getpid(), SIGTERM);
+        }
     }
     return NULL;
 }
@@ -134,6 +251,20 @@ static void *status_thread(void *arg)
     return NULL;
 }
 
+/* Bytes of the next connection that a read waiting through an unplug
+ * returned: they start the next run of the loop (its fresh decoder). */
+static uint8_t g_carry[16384];
+static uint32_t g_carry_n;
+/* Set from that moment until the next run reads: the old run's last
+ * partial frame is not shown (a new stream has begun; the panel keeps its
+ * last frame, and the frame counter the host reads is the new stream's). */
+static int g_stale;
+
+int tdc_lx_ffs_stale(void)
+{
+    return g_stale;
+}
+
 int tdc_lx_ffs_read(uint8_t *buf, uint32_t cap, uint32_t *got)
 {
     static unsigned seen;
@@ -146,12 +277,38 @@ int tdc_lx_ffs_read(uint8_t *buf, uint32_t cap, uint32_t *got)
         g_ep1 = -1;
         return -2;
     }
+    g_stale = 0;
+    if (g_carry_n) {
+        const uint32_t n = g_carry_n < cap ? g_carry_n : cap;
+        memcpy(buf, g_carry, n);
+        memmove(g_carry, g_carry + n, g_carry_n - n);
+        g_carry_n -= n;
+        pthread_mutex_lock(&g_lock);
+        tdc_usbp_bulk_out(&g_proto, buf, n);
+        pthread_mutex_unlock(&g_lock);
+        *got = n;
+        return 1;
+    }
     if (g_ep1 < 0 && (g_ep1 = open_ep("ep1")) < 0) {
         tdc_lx_logf("usb: cannot open bulk OUT endpoint %s/ep1: %s", tdc_lx_opts.ffs_dir, strerror(errno));
         usleep(100000);
         return 0;
     }
     ssize_t n = read(g_ep1, buf, cap); /* blocks until the host sends (or is configured) */
+    if (n > 0 && seen != g_lost && (size_t)n <= sizeof g_carry) {
+        /* The host went and came back while this read waited (FunctionFS
+         * holds a read on a disabled function until it is enabled again):
+         * the bytes are the new connection's, not this stream's tail (fed
+         * to the old decoder, a half-received packet would swallow the new
+         * stream's header; make test-vm's re-plug once waited for a frame
+         * that never came at load average 17, before this). */
+        seen = g_lost;
+        memcpy(g_carry, buf, (size_t)n);
+        g_carry_n = (uint32_t)n;
+        g_stale = 1;
+        tdc_lx_logf("usb: host gone: stream ended; the next connection's first %zd bytes start a new one", n);
+        return -2;
+    }
     if (n > 0) {
         pthread_mutex_lock(&g_lock);
         tdc_usbp_bulk_out(&g_proto, buf, (uint32_t)n);
@@ -290,6 +447,7 @@ int tdc_lx_ffs_init(uint32_t width, uint32_t height, uint32_t refresh_mhz, uint3
         tdc_lx_fail(TDC_LX_EXIT_ARGS, "usb: protocol refused the configuration (serial longer than 31 characters?)");
         return -1;
     }
+    load_active_slot();
     if (make_gadget() != 0) return -1;
     if (mkdir_ok(tdc_lx_opts.ffs_dir) != 0) {
         tdc_lx_fail(TDC_LX_EXIT_IO, "usb: gadget not bound: cannot create %s: %s", tdc_lx_opts.ffs_dir, strerror(errno));

@@ -255,4 +255,40 @@ kill -TERM $tdcb; wait $tdcb; rc=$?
 sed 's/^/    /' /tmp/tdcb.log
 [ $rc = 0 ] && ok board-sigterm || bad board-sigterm "exit $rc after SIGTERM"
 
+# DFU A/B with roll-back (docs/boards.md "Updates"): the board under its
+# launcher (boards/linux/tdc-board-launch, 5 s to confirm).  tdc-usb flash
+# of a broken program (the board program cut at 64 KiB: execve refuses it)
+# is installed, tried, and rolled back: the old program answers again; a
+# good one (the same program, stripped, version 2.0.0) confirms and stays,
+# and shows the foveated stream's frame identical.
+tdc-board-launch --program /usr/bin/tdc-board --confirm-s 5 --state /tmp/ab-state -- \
+    --udc "$UDC" --serial VM-2 > /tmp/launch.log 2>&1 &
+lp=$!
+# up: the board answers (start-up under TCG on a loaded host: mode set,
+# gadget bound, enumeration; up to 60 s); 1 if it never did
+up() { for i in $(seq 300); do $B info > /dev/null 2>&1 && return 0; usleep 200000; done; return 1; }
+up
+check ab-installed 0 "firmware: 0.1.0" $B info
+head -c 65536 /data/tdc-board-update > /tmp/broken.bin
+tdc-usb mkimage --board linux --fw-version 0.9.9 /tmp/broken.bin /tmp/broken.img > /dev/null
+check ab-flash-broken 0 "verified 65584 bytes read back" $B flash /tmp/broken.img
+for i in $(seq 150); do grep -q "rollback: slot" /tmp/launch.log && break; usleep 100000; done
+up
+grep -q "rollback: slot 1 did not start" /tmp/launch.log && ok ab-broken-rolled-back \
+    || { bad ab-broken-rolled-back "no roll-back"; tail -n 20 /tmp/launch.log; }
+check ab-old-program-back 0 "firmware: 0.1.0" $B info
+tdc-usb mkimage --board linux --fw-version 2.0.0 /data/tdc-board-update /tmp/good.img > /dev/null
+check ab-flash-good 0 "verified" $B flash /tmp/good.img
+for i in $(seq 150); do grep -q "slot 1 confirmed" /tmp/launch.log && break; usleep 100000; done
+up
+grep -q "slot 1 confirmed: it stays" /tmp/launch.log && [ "$(cat /tmp/ab-state/active)" = 1 ] && ok ab-good-sticks \
+    || { bad ab-good-sticks "not confirmed"; tail -n 20 /tmp/launch.log; }
+check ab-new-program-runs 0 "firmware: 2.0.0" $B info
+head -n 1 /data/disp/fov/plan > /tmp/ab.plan
+play /data/disp/fov fov.ab /tmp/ab.plan
+kill -TERM $lp; wait $lp; rc=$?
+sed 's/^/    /' /tmp/launch.log
+[ $rc = 0 ] && ok ab-launcher-sigterm || bad ab-launcher-sigterm "launcher exit $rc after SIGTERM"
+
+
 finish

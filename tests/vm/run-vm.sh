@@ -66,6 +66,11 @@ cp "$ko" "$root/lib/modules/gpio-sim.ko"
 for p in tdc-usb tdc-gpio tdc_ffs_board tdc_vsync_gen; do cp "$bin/$p" "$root/usr/bin/"; done
 cp "$tdcb" "$root/usr/bin/tdc-board"
 cp "$tdcb2" "$root/usr/bin/tdc-board-nomode"
+# the launcher (A/B slots with roll-back) and the update image's program
+# (stripped: 2.1 -> ~1.2 MB of DFU transfer)
+cp boards/linux/tdc-board-launch "$root/usr/bin/tdc-board-launch"
+mkdir -p "$root/data"
+strip -o "$root/data/tdc-board-update" "$tdcb"
 # Debian's dfu-util (an independent DFU client, package dfu-util) as it is
 need dfu-util "Debian package dfu-util"
 cp "$(command -v dfu-util)" "$root/usr/bin/dfu-util"
@@ -90,7 +95,7 @@ rm -rf "$vm/shots"
 # bochs-display: the KMS device (64 MiB VRAM: fbdev's buffer and the board's
 # two XRGB8888 buffers), its EDID offering the panel's size; ttyS1 carries
 # the host's answers to the guest's capture requests.
-/usr/bin/python3 tests/vm/qemu_capture.py "$vm/console.log" "$vm/shots" "$vm/qmp.sock" "$vm/ack.sock" 420 -- \
+/usr/bin/python3 tests/vm/qemu_capture.py "$vm/console.log" "$vm/shots" "$vm/qmp.sock" "$vm/ack.sock" 900 -- \
     qemu-system-x86_64 -accel tcg -m 1536 -smp 1 -nographic -no-reboot -vga none \
     -device bochs-display,xres=$dw,yres=$dh,xmax=$dw,ymax=$dh,vgamem=64M,refresh_rate=$rate \
     -qmp "unix:$vm/qmp.sock,server=on,wait=off" \
