@@ -471,6 +471,12 @@ static void recombine(tdc_lasm_t *st)
     }
 }
 
+void tdc_lasm_start_at(tdc_lasm_t *st, uint32_t frame)
+{
+    st->next_frame = frame;
+    st->have_subframe = 0;
+}
+
 tdc_status_t tdc_lasm_assemble(tdc_lasm_t *st, uint32_t frame)
 {
     if (!st) {

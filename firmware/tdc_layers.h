@@ -166,6 +166,8 @@ TDC_MUST_CHECK tdc_status_t tdc_lasm_init(tdc_lasm_t *st, const tdc_lasm_config_
  * lf carries a layer the stage does not keep or its tiles disagree. */
 TDC_MUST_CHECK tdc_status_t tdc_lasm_ingest(tdc_lasm_t *st, uint32_t frame, const tdc_layer_frame_t *lf,
                                             const uint8_t *pattern_bits);
+/* Restarts assembly at `frame` (a late joiner: state as after init). */
+void tdc_lasm_start_at(tdc_lasm_t *st, uint32_t frame);
 /* Assembles `frame` (a missing subframe is allowed: old pixels only). */
 TDC_MUST_CHECK tdc_status_t tdc_lasm_assemble(tdc_lasm_t *st, uint32_t frame);
 /* The displayed frame, RGB888, stride width * 3. */
