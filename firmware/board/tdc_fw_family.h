@@ -31,6 +31,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h>
 
 #include "tdc_band_link.h"
 #include "tdc_fw_memmap.h"
@@ -134,6 +135,15 @@ extern tdc_fw_loop_t tdc_fw;
 static inline uint8_t *tdc_fw_back_eye(uint32_t e)
 {
     return tdc_fw_fb[(tdc_fw.front ^ 1u) % FW_FB_COUNT] + (size_t)e * FW_W * 3u;
+}
+
+/* A stage's W x H RGB888 output (rows `stride` bytes apart) into the eye's
+ * part of the frame buffer. */
+static inline void tdc_fw_put_eye(uint8_t *fb, const uint8_t *out, int stride)
+{
+    for (uint32_t y = 0; y < FW_H; y++) {
+        memcpy(fb + (size_t)y * FW_STRIDE, out + (size_t)y * (uint32_t)stride, FW_W * 3u);
+    }
 }
 
 /* ---- the log (tdc_fw_log.c) ---- */
