@@ -23,7 +23,8 @@ static int cfg_ok(const tdc_lasm_config_t *c)
     return c && c->width >= 1 && c->height >= 1 && c->width <= TDC_LASM_MAX_DIM && c->height <= TDC_LASM_MAX_DIM &&
            (c->layers & ~TDC_LAYER_PKT_TYPES) == 0 && (c->layers & TDC_LAYER_PKT_TYPE(TDC_LAYER_SHADING)) &&
            (c->clamp_k == TDC_LASM_CLAMP_TDRT || c->clamp_k == TDC_LASM_CLAMP_ZENG) && c->cleanup <= 1u &&
-           c->splat_radius <= TDC_LASM_SPLAT_MAX && c->alpha_q15 <= 32768u && c->panel != NULL;
+           c->splat_radius <= TDC_LASM_SPLAT_MAX && c->alpha_q15 <= 32768u && c->panel != NULL &&
+           c->history <= 1u && (!c->history || c->alpha_q15 >= 1u);
 }
 
 static uint32_t chan(const tdc_lasm_config_t *c, unsigned i)
@@ -35,7 +36,7 @@ static uint32_t chan(const tdc_lasm_config_t *c, unsigned i)
 static void carve(tdc_lasm_t *st, const tdc_lasm_config_t *cfg, tdc_arena_t *arena)
 {
     TDC_LASM_ARENA(TDC_ARENA_CARVE, cfg->width, cfg->height, TDC_PATTERN_BYTES(cfg->width, cfg->height),
-                   chan(cfg, 0), chan(cfg, 1), chan(cfg, 2), chan(cfg, 3))
+                   chan(cfg, 0), chan(cfg, 1), chan(cfg, 2), chan(cfg, 3), cfg->history)
 }
 
 size_t tdc_lasm_get_size(const tdc_lasm_config_t *cfg)
@@ -79,7 +80,17 @@ tdc_status_t tdc_lasm_init(tdc_lasm_t *st, const tdc_lasm_config_t *cfg, void *a
             memset(l->slots, 0, wh * st->ch[i] * 4u);
             memset(l->window, 0, wh);
             memset(l->mv, 0, wh * 4u);
+            if (cfg->history) {
+                const tdc_lhist_config_t hc = {cfg->width, cfg->height, st->ch[i], cfg->clamp_k, cfg->alpha_q15};
+                const size_t hb = TDC_LASM_LHIST_WORDS(wh, (size_t)st->ch[i]) * 8u;
+                if (tdc_lhist_init(&l->lh, &hc, l->lh_mem, hb) != TDC_OK) {
+                    return TDC_ERR_SIZE; /* (the layout above is the one tdc_lhist carves) */
+                }
+            }
         }
+    }
+    if (st->hmv) {
+        memset(st->hmv, 0, wh * 4u);
     }
     if (st->splat) {
         memset(st->splat, 0, wh * 4u);
@@ -237,6 +248,7 @@ static void assemble_layer(tdc_lasm_t *st, unsigned li, uint32_t frame)
     const int have = st->have_subframe && (st->present & TDC_LAYER_PKT_TYPE(li + 1u));
     const int falloff = li == VIS;
     const uint32_t one_minus_alpha = 32768u - st->cfg.alpha_q15;
+    int16_t *used = st->hmv; /* the vector of each pixel, for the history (NULL: none) */
 
     for (int32_t y = 0; y < H; y++) {
         for (int32_t x = 0; x < W; x++) {
@@ -259,6 +271,10 @@ static void assemble_layer(tdc_lasm_t *st, unsigned li, uint32_t frame)
                         }
                     }
                 }
+            }
+            if (used) {
+                used[2u * p] = (int16_t)mx;
+                used[2u * p + 1u] = (int16_t)my;
             }
             const int isnew = have && st->newmask[p];
             uint8_t *o = dst + p * ch;
@@ -417,15 +433,22 @@ static void cleanup_layer(tdc_lasm_t *st, unsigned li)
     }
 }
 
+/* The frame of layer li that is recombined: the history's output, or the
+ * assembled frame `b`. */
+static const uint8_t *shown(const tdc_lasm_t *st, unsigned li, int b)
+{
+    return st->cfg.history ? tdc_lhist_output(&st->l[li].lh) : st->l[li].hist[b];
+}
+
 /* lin(S) V / 255 + lin(G) + lin(I), encoded (8-bit codes). */
 static void recombine(tdc_lasm_t *st)
 {
     const size_t wh = (size_t)st->cfg.width * st->cfg.height;
     const int nb = st->cur ^ 1;
-    const uint8_t *S = st->l[0].hist[nb];
-    const uint8_t *V = st->ch[VIS] ? st->l[VIS].hist[nb] : NULL;
-    const uint8_t *G = st->ch[2] ? st->l[2].hist[nb] : NULL;
-    const uint8_t *I = st->ch[3] ? st->l[3].hist[nb] : NULL;
+    const uint8_t *S = shown(st, 0, nb);
+    const uint8_t *V = st->ch[VIS] ? shown(st, VIS, nb) : NULL;
+    const uint8_t *G = st->ch[2] ? shown(st, 2, nb) : NULL;
+    const uint8_t *I = st->ch[3] ? shown(st, 3, nb) : NULL;
     if (!V && !G && !I) {
         memcpy(st->out, S, wh * 3u); /* one layer: nothing to combine */
         return;
@@ -448,6 +471,12 @@ static void recombine(tdc_lasm_t *st)
     }
 }
 
+void tdc_lasm_start_at(tdc_lasm_t *st, uint32_t frame)
+{
+    st->next_frame = frame;
+    st->have_subframe = 0;
+}
+
 tdc_status_t tdc_lasm_assemble(tdc_lasm_t *st, uint32_t frame)
 {
     if (!st) {
@@ -463,6 +492,15 @@ tdc_status_t tdc_lasm_assemble(tdc_lasm_t *st, uint32_t frame)
         if (st->ch[i]) {
             assemble_layer(st, i, frame);
             cleanup_layer(st, i);
+            if (st->cfg.history) {
+                /* eq. 2 on the assembled frame, along the vectors it used;
+                 * G of eq. 4 on the visibility layer */
+                const tdc_status_t s = tdc_lhist_step(&st->l[i].lh, st->l[i].hist[st->cur ^ 1], st->hmv,
+                                                      i == VIS ? st->weight : NULL);
+                if (s != TDC_OK) {
+                    return s;
+                }
+            }
         }
     }
     recombine(st);
@@ -491,5 +529,5 @@ const uint8_t *tdc_lasm_layer(const tdc_lasm_t *st, unsigned type, unsigned *ch)
     if (ch) {
         *ch = st->ch[type - 1u];
     }
-    return st->l[type - 1u].hist[st->cur];
+    return shown(st, type - 1u, st->cur);
 }

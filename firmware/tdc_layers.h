@@ -44,18 +44,33 @@
  *     <= (9 * 4096)^2 < 2^31, total <= 2^39 (uint64), one 64/32 division;
  *   recombination: lin(S) (<= 2^24) x V (<= 255) < 2^32, / 255.
  *
+ * History per layer (cfg.history = 1; Zeng et al. eq. 2, tdc_layer_hist.h):
+ * without it a moving pixel is one reprojected sample and a 1-sample layer
+ * stays as noisy as it arrives.  With it, each layer's assembled frame above
+ * (after clean-up) is the current frame x of that layer's tdc_lhist stage,
+ * with, per pixel, the vector m the assembly used (surface: the 3x3
+ * longest; visibility: splatted) and, for VISIBILITY, the falloff G (eq. 4);
+ * the history is clamped to mu +- k sigma of x's 3x3 neighbourhood (k =
+ * clamp_k) and blended with alpha = alpha_q15.  The recombination (and
+ * tdc_lasm_layer) then reads the history outputs; the assembly's own frames
+ * still feed its reprojection, so with history 0 every byte is as before.
+ *
  * Memory (caller-owned arena, TDC_LASM_ARENA): per pixel, per configured
  * layer of c channels 6c + 5 bytes (2 frames 2c, 4 window slots 4c, window
  * mask 1, vectors 4), + 4 (splatted shadow vectors) with VISIBILITY, + 10
  * shared (new-sample mask 1, falloff 2, clean-up sigma 1, scratch 3, output
  * 3); SHADING + VISIBILITY 48 B/px, all four layers 94 B/px
- * (TDC_LASM_BYTES_PER_PIXEL_MAX, the compile-time bound at W x H).
+ * (TDC_LASM_BYTES_PER_PIXEL_MAX, the compile-time bound at W x H).  With
+ * history, + 5c per layer (two Q8 frames and the output, tdc_layer_hist.h)
+ * and 4 shared (the vectors used): all four layers + 54 = 148 B/px
+ * (TDC_LASM_HIST_BYTES_PER_PIXEL_MAX, bound TDC_LASM_MEM_BYTES_HIST).
  */
 #ifndef TDC_LAYERS_H
 #define TDC_LAYERS_H
 
 #include "tdc_arena.h"
 #include "tdc_fixed.h"
+#include "tdc_layer_hist.h"
 #include "tdc_layer_link.h"
 #include "tdc_ordering.h"
 #include "tdc_panel.h"
@@ -65,6 +80,7 @@
 #define TDC_LASM_SPLAT_MAX 4           /* splatting radius bound: a 9 x 9 neighbourhood */
 #define TDC_LASM_SIGMA_STEPS 80        /* clean-up sigma in 1/16 px, 1 .. 80 = 5 px */
 #define TDC_LASM_BYTES_PER_PIXEL_MAX 94u /* all four layers */
+#define TDC_LASM_HIST_BYTES_PER_PIXEL_MAX 148u /* all four layers with history */
 
 enum { TDC_LASM_CLAMP_TDRT = 1, TDC_LASM_CLAMP_ZENG = 3 }; /* k of mean +- k sigma */
 
@@ -74,8 +90,8 @@ typedef struct {
     uint8_t clamp_k;            /* TDC_LASM_CLAMP_TDRT or _ZENG */
     uint8_t cleanup;            /* 1: §5 clean-up filter */
     uint8_t splat_radius;       /* 0 (off) .. TDC_LASM_SPLAT_MAX */
-    uint8_t reserved;
-    uint16_t alpha_q15;         /* alpha of eq. 4 / 7 (Zeng: 0.1 = 3277) */
+    uint8_t history;            /* 1: exponential history per layer (eq. 2; alpha_q15 >= 1) */
+    uint16_t alpha_q15;         /* alpha of eqs. 2, 4, 7 (Zeng: 0.1 = 3277) */
     const tdc_panel_t *panel;   /* gamma tables, 8-bit codes */
 } tdc_lasm_config_t;
 
@@ -88,19 +104,26 @@ typedef struct {
     uint8_t *slots;   /* 4 planes W x H x ch: window samples by slot */
     uint8_t *window;  /* W x H: bit s = slot s in the window */
     int16_t *mv;      /* W x H x 2: vector of the pixel's latest sample */
+    uint64_t *lh_mem; /* the layer's tdc_lhist arena (history only) */
+    tdc_lhist_t lh;   /* its exponential history (history only) */
 } tdc_lasm_layer_t;
 
 /* The arena: X(member, type, count) for W x H pixels, BM pattern bytes,
- * and the channel count C0..C3 of each layer type (0 = not kept). */
-#define TDC_LASM_LAYER_ARENA(X, i, WH, C)                                     \
+ * the channel count C0..C3 of each layer type (0 = not kept) and HI = 1
+ * with history (each layer's tdc_lhist arena one block, its own layout). */
+#define TDC_LASM_LHIST_WORDS(WH, C) \
+    ((2u * TDC_ARENA_ROUND((WH) * (C) * 2u) + TDC_ARENA_ROUND((WH) * (C))) / 8u)
+#define TDC_LASM_LAYER_ARENA(X, i, WH, C, HI)                                 \
     X(l[i].hist[0], uint8_t, (WH) * (C)) X(l[i].hist[1], uint8_t, (WH) * (C)) \
     X(l[i].slots, uint8_t, (WH) * (C) * 4u) X(l[i].window, uint8_t, (C) ? (WH) : 0u) \
-    X(l[i].mv, int16_t, (C) ? (WH) * 2u : 0u)
-#define TDC_LASM_ARENA(X, W, H, BM, C0, C1, C2, C3)                          \
-    TDC_LASM_LAYER_ARENA(X, 0, (size_t)(W) * (H), C0)                        \
-    TDC_LASM_LAYER_ARENA(X, 1, (size_t)(W) * (H), C1)                        \
-    TDC_LASM_LAYER_ARENA(X, 2, (size_t)(W) * (H), C2)                        \
-    TDC_LASM_LAYER_ARENA(X, 3, (size_t)(W) * (H), C3)                        \
+    X(l[i].mv, int16_t, (C) ? (WH) * 2u : 0u)                                 \
+    X(l[i].lh_mem, uint64_t, (HI) ? TDC_LASM_LHIST_WORDS(WH, C) : 0u)
+#define TDC_LASM_ARENA(X, W, H, BM, C0, C1, C2, C3, HI)                      \
+    TDC_LASM_LAYER_ARENA(X, 0, (size_t)(W) * (H), C0, HI)                   \
+    TDC_LASM_LAYER_ARENA(X, 1, (size_t)(W) * (H), C1, HI)                   \
+    TDC_LASM_LAYER_ARENA(X, 2, (size_t)(W) * (H), C2, HI)                   \
+    TDC_LASM_LAYER_ARENA(X, 3, (size_t)(W) * (H), C3, HI)                   \
+    X(hmv, int16_t, (HI) ? (size_t)(W) * (H) * 2u : 0u)                      \
     X(splat, int16_t, (C1) ? (size_t)(W) * (H) * 2u : 0u)                    \
     X(newmask, uint8_t, (size_t)(W) * (H))                                   \
     X(weight, uint16_t, (size_t)(W) * (H))                                   \
@@ -110,16 +133,18 @@ typedef struct {
     X(gauss, uint16_t, (size_t)(TDC_LASM_SIGMA_STEPS + 1u) * 5u)             \
     X(pattern, uint8_t, (size_t)(BM))
 
-/* Compile-time bound: all four layers. */
+/* Compile-time bounds: all four layers, without and with history. */
 #define TDC_LASM_MEM_BYTES(W, H) \
-    ((size_t)0 TDC_LASM_ARENA(TDC_ARENA_BLOCK_BYTES, W, H, TDC_PATTERN_BYTES(W, H), 3u, 1u, 3u, 3u))
+    ((size_t)0 TDC_LASM_ARENA(TDC_ARENA_BLOCK_BYTES, W, H, TDC_PATTERN_BYTES(W, H), 3u, 1u, 3u, 3u, 0u))
+#define TDC_LASM_MEM_BYTES_HIST(W, H) \
+    ((size_t)0 TDC_LASM_ARENA(TDC_ARENA_BLOCK_BYTES, W, H, TDC_PATTERN_BYTES(W, H), 3u, 1u, 3u, 3u, 1u))
 
 typedef struct {
     tdc_lasm_config_t cfg;
     uint8_t ch[TDC_LAYER_MAX];      /* channels per layer type (0: not kept) */
     uint8_t kind[TDC_LAYER_MAX];    /* vector kind of the last ingested packet */
     tdc_lasm_layer_t l[TDC_LAYER_MAX];
-    int16_t *splat;
+    int16_t *splat, *hmv;           /* hmv: W x H x 2, the vector each pixel used (history) */
     uint8_t *newmask, *sigma, *scratch, *out, *pattern;
     uint16_t *weight, *gauss;
     uint32_t tiles_x, tiles_y;
@@ -141,11 +166,14 @@ TDC_MUST_CHECK tdc_status_t tdc_lasm_init(tdc_lasm_t *st, const tdc_lasm_config_
  * lf carries a layer the stage does not keep or its tiles disagree. */
 TDC_MUST_CHECK tdc_status_t tdc_lasm_ingest(tdc_lasm_t *st, uint32_t frame, const tdc_layer_frame_t *lf,
                                             const uint8_t *pattern_bits);
+/* Restarts assembly at `frame` (a late joiner: state as after init). */
+void tdc_lasm_start_at(tdc_lasm_t *st, uint32_t frame);
 /* Assembles `frame` (a missing subframe is allowed: old pixels only). */
 TDC_MUST_CHECK tdc_status_t tdc_lasm_assemble(tdc_lasm_t *st, uint32_t frame);
 /* The displayed frame, RGB888, stride width * 3. */
 const uint8_t *tdc_lasm_output(const tdc_lasm_t *st, int *stride_bytes);
-/* The last assembled frame of layer type t (NULL if not kept); *ch = channels. */
+/* The last frame of layer type t as recombined (with history: the history
+ * output; NULL if not kept); *ch = channels. */
 const uint8_t *tdc_lasm_layer(const tdc_lasm_t *st, unsigned type, unsigned *ch);
 
 #endif /* TDC_LAYERS_H */

@@ -509,6 +509,9 @@ static tdc_link_err_t commit_stream(tdc_link_decoder_t *dec)
     if ((in.flags & (TDC_LINK_STREAM_SAMPLE_MV | TDC_LINK_STREAM_LAYERS)) && !(in.flags & TDC_LINK_STREAM_SUBFRAMES)) {
         return TDC_LINK_ERR_STREAM_HEADER;
     }
+    if ((in.flags & TDC_LINK_STREAM_LAYER_HIST) && !(in.flags & TDC_LINK_STREAM_LAYERS)) {
+        return TDC_LINK_ERR_STREAM_HEADER;
+    }
     /* Foveated frames replace FULL ones, and in a TRM stream REDUCED ones
      * too (packet flag FOV_REDUCED); with subframes (which frame is
      * foveated) nothing is defined yet. */

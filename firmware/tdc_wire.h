@@ -152,7 +152,8 @@ tdc_link_err_t tdc_link_header_unpack(const uint8_t in[TDC_LINK_HEADER_BYTES], t
 #define TDC_LINK_STREAM_LAYERS 0x0020u    /* layered subframes (LAYERS packets; needs SUBFRAMES) */
 #define TDC_LINK_STREAM_FOVEATED 0x0040u  /* FOVEATED packets (kernel log-polar + disk) may replace FULL ones */
 #define TDC_LINK_STREAM_BANDS 0x0080u     /* FULL and REDUCED pictures come as row bands (tdc_band_link.h) */
-#define TDC_LINK_STREAM_KNOWN 0x00FFu
+#define TDC_LINK_STREAM_LAYER_HIST 0x0100u /* layered: exponential history per layer (tdc_layers.h; needs LAYERS) */
+#define TDC_LINK_STREAM_KNOWN 0x01FFu
 
 /* Motion vectors: Q4 (1/16 px), range +-2047.9375 px, BACKWARD (the point
  * now at p was at p + mv in the previous frame). */

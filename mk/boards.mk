@@ -37,7 +37,7 @@ QEMU_BOARDS := $(sort $(patsubst boards/%/board.mk,%,$(shell grep -l '^BOARD_QEM
 # unless its stage is in the build.
 FW_LOOP_SRCS := firmware/board/tdc_main.c $(sort $(wildcard firmware/board/tdc_fw_*.c))
 
-.PHONY: arm-fw-fov-check arm-fw-loop-check arm-fw-refuse-check arm-fw-bands-check arm-loop-cost run-arm firmware-size test-arm size bench-arm arm-bench profile-arm arm-profile arm-golden arm-golden-check arm-image-check arm-fit-check arm-fw-check
+.PHONY: arm-fw-layers-check arm-fw-fov-check arm-fw-loop-check arm-fw-refuse-check arm-fw-bands-check arm-loop-cost run-arm firmware-size test-arm size bench-arm arm-bench profile-arm arm-profile arm-golden arm-golden-check arm-image-check arm-fit-check arm-fw-check
 
 
 ifneq ($(BOARD),host)
@@ -191,7 +191,9 @@ arm-golden-check: $(BA)/golden-check $(BA)/harness-check $(ARM_CHECKASM)
 # sources ($(FW_LCD_SRCS)) are left out of every other build.
 # ---------------------------------------------------------------------------
 # fov: the foveation stage (FOVEATED streams, docs/foveation.md) without
-# peripheral TAA; fovtaa: with it (12 B/px of history per eye).
+# peripheral TAA; fovtaa: with it (12 B/px of history per eye).  layers: the
+# layered assembly (SUBFRAMES | LAYERS streams, 148 B/px per eye with its
+# history), in no board's defaults: STAGES=layers.
 ALL_STAGES := trm assemble lcd fovtaa
 # A board may name other default stages for a panel: BOARD_STAGES_<panel>.
 STAGES_DEFAULT := $(if $(filter-out undefined,$(origin BOARD_STAGES_$(PANEL))),$(BOARD_STAGES_$(PANEL)),$(if \
@@ -214,7 +216,8 @@ FW_LCD_ON := $(if $(and $(filter lcd,$(PANEL_TYPE)),$(filter lcd,$(STAGES))),1,0
 BANDS ?= $(or $(BOARD_BANDS),0)
 FW_CFG_BASE := -DTDC_CFG_TRM=$(if $(filter trm,$(STAGES)),1,0) -DTDC_CFG_ASSEMBLE=$(if $(filter assemble,$(STAGES)),1,0) \
           -DTDC_CFG_FOV=$(if $(filter fov fovtaa,$(STAGES)),1,0) -DTDC_CFG_FOV_TAA=$(if $(filter fovtaa,$(STAGES)),1,0) \
-          -DTDC_CFG_LCD=$(FW_LCD_ON) $(if $(filter 0,$(FOV_TRM)),-DTDC_CFG_FOV_TRM=0) $(BOARD_FW_CFG)
+          -DTDC_CFG_LCD=$(FW_LCD_ON) $(if $(filter 0,$(FOV_TRM)),-DTDC_CFG_FOV_TRM=0) \
+          -DTDC_CFG_LAYERS=$(if $(filter layers,$(STAGES)),1,0) $(BOARD_FW_CFG)
 FW_CFG := $(FW_CFG_BASE) -DTDC_CFG_BANDS=$(BANDS)
 PANEL_CONFIG := $(GEN)/tdc_panel_$(PANEL)_config.h
 ARM_IMG_CFLAGS := $(ARM_FW_CFLAGS) -include $(PANEL_CONFIG) $(FW_CFG)
@@ -279,7 +282,8 @@ PANEL_DIMS := $(shell awk '$$1 == "width" { w = $$2 } $$1 == "height" { h = $$2 
                 END { print w, h, (e ? e : 1) }' boards/panels/$(PANEL).panel)
 FW_MODES ?= plain $(if $(filter trm,$(STAGES)),trm) $(if $(filter assemble,$(STAGES)),subframes) \
             $(if $(filter fov fovtaa,$(STAGES)),fov fovlr) $(if $(filter fovtaa,$(STAGES)),fov-taa) \
-            $(if $(and $(filter trm,$(STAGES)),$(filter fov fovtaa,$(STAGES))),trm-fov)
+            $(if $(and $(filter trm,$(STAGES)),$(filter fov fovtaa,$(STAGES))),trm-fov) \
+            $(if $(filter layers,$(STAGES)),layers layers-hist)
 FW_FRAMES_plain := 5
 FW_FRAMES_fov := 9
 FW_FRAMES_fovlr := 9
@@ -294,6 +298,8 @@ FW_FRAMES_trm-fov-clean := 5
 FW_LOOP_MODES = $(patsubst trm-fov,trm-fov-clean,$(patsubst fov%,fov%-clean,$(filter-out plain,$(FW_MODES))))
 FW_FRAMES_trm := 4
 FW_FRAMES_subframes := 6
+FW_FRAMES_layers := 6
+FW_FRAMES_layers-hist := 6
 # The host build of the loop, with and without bands (fw-bands-check compares
 # the two): build/<variant>/fw-host/<board>-<panel>-<stages>[-bands].
 FWH_B0 := $(B)/fw-host/$(BOARD)-$(PANEL)-$(STAGES_TAG)
@@ -332,13 +338,15 @@ $(eval $(call fw_host_loop,$(FWH_FOVX)-optout,0,-DTDC_CFG_TRM=1 -DTDC_CFG_FOV=1 
 $(B)/tests/arm/fw_stream.o: tests/arm/fw_stream.c $(GEN)/tdc_panels.h
 	@mkdir -p $(@D)
 	$(CC) $(HOST_CFLAGS) -Isim/link -Itests/golden -MMD -MP -c $< -o $@
-$(B)/tests/fw_stream: $(B)/tests/arm/fw_stream.o $(B)/tests/golden/tdc_content.o $(SIMLIB) $(FWLIB)
+$(B)/tests/fw_stream: $(B)/tests/arm/fw_stream.o $(B)/tests/golden/tdc_content.o $(B)/tests/golden/tdc_layer_content.o \
+                     $(SIMLIB) $(FWLIB)
 	$(CC) $(HOST_LDFLAGS) $^ -o $@ $(HOST_LIBS)
 
 $(STREAMS)/$(PANEL)-%.tdcs: $(B)/tests/fw_stream
 	@mkdir -p $(@D)
 	$(B)/tests/fw_stream $* $(PANEL_DIMS) $(FW_FRAMES_$*) $@ $(if $(filter plain fov fovlr fov-taa trm-fov,$*),$(if \
-	    $(filter lcd,$(PANEL_TYPE)),,$@.expected $(if $(filter trm-fov,$*),$(PANEL))))
+	    $(filter lcd,$(PANEL_TYPE)),,$@.expected $(if $(filter trm-fov,$*),$(PANEL)))) \
+	    $(if $(filter layers layers-hist,$*),$(if $(and $(filter lcd,$(PANEL_TYPE)),$(filter lcd,$(STAGES))),,$@.expected $(PANEL)))
 
 $(BP)/fw-check: $(BP)/tdc-firmware.elf $(FWH)/tdc_fw_host $(foreach m,$(FW_MODES),$(STREAMS)/$(PANEL)-$(m).tdcs) \
                 tests/arm/run_fw_qemu.sh tests/run_par.sh
@@ -373,6 +381,20 @@ $(BP)/fw-fov-check: $(FWH_B0)/tdc_fw_host $(FWH_B1)/tdc_fw_host $(FWH_FOVX_ALL) 
 	@mkdir -p $(@D)
 	@printf '#!/bin/sh\nexec tests/arm/test_fw_fov.sh %s %s %s %s %s %s\n' "$(FWH_B0)/tdc_fw_host" "$(B)/tests/fw_stream" "$(PANEL_DIMS)" "$(FWH_B1)/tdc_fw_host" "$(if $(filter lcd,$(PANEL_TYPE)),-,$(PANEL))" "$(FWH_FOVX_ALL)" > $@
 	@chmod +x $@
+# fw-layers (tests/arm/test_fw_layers.sh, with STAGES=layers): the layered
+# family against tdc_layers itself, with and without history, and refused by
+# a build without it (FWH_LNO: these stages but layers).  The same streams in QEMU against
+# the host build: make BOARD=mps3-an547 PANEL=disco-dsi STAGES=layers
+# arm-fw-check (252 s on the shared machine: not in make test).
+FWH_LNO := $(B)/fw-host/$(BOARD)-$(PANEL)-$(STAGES_TAG)-nolayers
+$(eval $(call fw_host_loop,$(FWH_LNO),0,$(subst -DTDC_CFG_LAYERS=1,-DTDC_CFG_LAYERS=0,$(FW_CFG_BASE))))
+$(BP)/fw-layers-check: $(FWH_B0)/tdc_fw_host $(FWH_LNO)/tdc_fw_host \
+                       $(B)/tests/fw_stream tests/arm/test_fw_layers.sh
+	@mkdir -p $(@D)
+	@printf '#!/bin/sh\nexec tests/arm/test_fw_layers.sh %s %s %s %s %s\n' "$(FWH_B0)/tdc_fw_host" "$(FWH_LNO)/tdc_fw_host" "$(B)/tests/fw_stream" "$(PANEL_DIMS)" "$(PANEL)" > $@
+	@chmod +x $@
+arm-fw-layers-check: $(BP)/fw-layers-check
+	@tests/run_tests.sh "fw-layers-$(PANEL)" $<
 arm-fw-loop-check arm-fw-refuse-check arm-fw-fov-check: arm-fw-%-check: $(BP)/fw-%-check
 	@tests/run_tests.sh "fw-$*-$(PANEL)" $<
 # Rows in flight (tests/arm/test_fw_bands.sh): the banded loop on banded
@@ -435,6 +457,7 @@ test-arm:
 	@$(MAKE) --no-print-directory -j2 BOARD=mps3-an547 PANEL=htc-vive arm-fw-bands-check || :
 	@$(MAKE) --no-print-directory -j2 BOARD=stm32h747i-disco PANEL=lcd-240 arm-fw-bands-check || :
 	@$(MAKE) --no-print-directory -j2 BOARD=mps3-an547 PANEL=disco-dsi arm-fw-refuse-check || :
+	@$(MAKE) --no-print-directory -j2 BOARD=mps3-an547 PANEL=disco-dsi STAGES=layers arm-fw-layers-check || :
 	@$(MAKE) --no-print-directory -j2 BOARD=mps3-an547 PANEL=htc-vive STAGES="trm fov" arm-fw-fov-check || :
 	@for t in $(ARM_FIT_FAIL); do \
 	    b=$${t%%:*}; r=$${t#*:}; p=$${r%%:*}; r=$${r#*:}; s=$${r%%:*}; g=$${r#*:}; \

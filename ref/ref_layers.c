@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "ref_layer_hist.h"
 #include "tdc_ordering.h"
 #include "tdc_free.h"
 
@@ -25,6 +26,10 @@ struct tdc_ref_lasm {
     uint16_t *weight;
     double *scratch, *sigma, *exact;
     uint8_t *out;
+    /* history: per layer, the vectors used, the rounded outputs */
+    tdc_ref_lhist_t lh[NL];
+    int16_t *hmv;
+    uint8_t *lh_out[NL];
     int cur, have;
     unsigned present;
     uint32_t next;
@@ -56,8 +61,15 @@ tdc_ref_lasm_t *tdc_ref_lasm_new(const tdc_ref_lasm_config_t *cfg)
         r->window[i] = calloc(wh, 1);
         r->mv[i] = calloc(wh * 2, sizeof(int16_t));
         ok = ok && r->slots[i] && r->window[i] && r->mv[i];
+        if (cfg->history && ok) {
+            const tdc_lhist_config_t hc = {(uint16_t)cfg->width, (uint16_t)cfg->height, (uint8_t)r->ch[i],
+                                           (uint8_t)cfg->clamp_k, (uint16_t)floor(cfg->alpha * 32768.0 + 0.5)};
+            r->lh_out[i] = calloc(wh * r->ch[i], 1);
+            ok = r->lh_out[i] && tdc_ref_lhist_init(&r->lh[i], &hc) == 0;
+        }
     }
     r->splat = calloc(wh * 2, sizeof(int16_t));
+    r->hmv = calloc(wh * 2, sizeof(int16_t));
     r->newmask = calloc(wh, 1);
     r->pattern = calloc(TDC_PATTERN_BYTES(cfg->width, cfg->height) + 1, 1);
     r->weight = malloc(wh * sizeof(uint16_t));
@@ -65,7 +77,7 @@ tdc_ref_lasm_t *tdc_ref_lasm_new(const tdc_ref_lasm_config_t *cfg)
     r->sigma = calloc(wh, sizeof(double));
     r->exact = calloc(wh * 3, sizeof(double));
     r->out = calloc(wh * 3, 1);
-    if (!ok || !r->splat || !r->newmask || !r->pattern || !r->weight || !r->scratch || !r->sigma || !r->exact ||
+    if (!ok || !r->splat || !r->hmv || !r->newmask || !r->pattern || !r->weight || !r->scratch || !r->sigma || !r->exact ||
         !r->out) {
         tdc_ref_lasm_free(r);
         return NULL;
@@ -82,9 +94,12 @@ void tdc_ref_lasm_free(tdc_ref_lasm_t *r)
         return;
     }
     for (int i = 0; i < NL; i++) {
-        TDC_FREE_ALL(r->hist[i][0], r->hist[i][1], r->slots[i], r->window[i], r->mv[i]);
+        TDC_FREE_ALL(r->hist[i][0], r->hist[i][1], r->slots[i], r->window[i], r->mv[i], r->lh_out[i]);
+        if (r->lh[i].hist) {
+            tdc_ref_lhist_free(&r->lh[i]);
+        }
     }
-    TDC_FREE_ALL(r->splat, r->newmask, r->pattern, r->weight, r->scratch, r->sigma, r->exact, r->out, r);
+    TDC_FREE_ALL(r->hmv, r->splat, r->newmask, r->pattern, r->weight, r->scratch, r->sigma, r->exact, r->out, r);
 }
 
 int tdc_ref_lasm_ingest(tdc_ref_lasm_t *r, uint32_t frame, const tdc_layer_frame_t *lf, const uint8_t *pattern_bits)
@@ -196,6 +211,8 @@ static void ref_layer(tdc_ref_lasm_t *r, int li, uint32_t frame)
                     }
                 }
             }
+            r->hmv[2 * p] = (int16_t)mx;
+            r->hmv[2 * p + 1] = (int16_t)my;
             double *o = r->scratch + p * ch;
             int isnew = have && r->newmask[p];
             r->sigma[p] = 0.0;
@@ -339,20 +356,32 @@ int tdc_ref_lasm_assemble(tdc_ref_lasm_t *r, uint32_t frame)
         if (r->ch[i]) {
             ref_layer(r, i, frame);
             ref_cleanup(r, i);
+            if (r->cfg.history) {
+                const size_t n = (size_t)r->cfg.width * r->cfg.height * r->ch[i];
+                tdc_ref_lhist_step(&r->lh[i], r->hist[i][r->cur ^ 1], r->hmv, i == VIS ? r->weight : NULL);
+                for (size_t j = 0; j < n; j++) {
+                    const double v = floor(r->lh[i].out[j] + 0.5);
+                    r->lh_out[i][j] = (uint8_t)(v < 0 ? 0 : (v > 255 ? 255 : v));
+                }
+            }
         }
     }
     const int nb = r->cur ^ 1;
     const size_t wh = (size_t)r->cfg.width * r->cfg.height;
+    const uint8_t *L[NL];
+    for (int i = 0; i < NL; i++) {
+        L[i] = r->cfg.history ? r->lh_out[i] : r->hist[i][nb];
+    }
     for (size_t p = 0; p < wh; p++) {
         for (int c = 0; c < 3; c++) {
             const double g = r->cfg.gamma[c];
-            double l = pow(r->hist[0][nb][p * 3 + c] / 255.0, g);
+            double l = pow(L[0][p * 3 + c] / 255.0, g);
             if (r->ch[VIS]) {
-                l *= r->hist[VIS][nb][p] / 255.0;
+                l *= L[VIS][p] / 255.0;
             }
             for (int i = 2; i < NL; i++) {
                 if (r->ch[i]) {
-                    l += pow(r->hist[i][nb][p * 3 + c] / 255.0, g);
+                    l += pow(L[i][p * 3 + c] / 255.0, g);
                 }
             }
             double code = 255.0 * pow(fmin(l, 1.0), 1.0 / g);
@@ -380,5 +409,8 @@ const double *tdc_ref_lasm_output_exact(const tdc_ref_lasm_t *r)
 
 const uint8_t *tdc_ref_lasm_layer(const tdc_ref_lasm_t *r, unsigned type)
 {
-    return (type >= 1 && type <= NL && r->ch[type - 1]) ? r->hist[type - 1][r->cur] : NULL;
+    if (type < 1 || type > NL || !r->ch[type - 1]) {
+        return NULL;
+    }
+    return r->cfg.history ? r->lh_out[type - 1] : r->hist[type - 1][r->cur];
 }

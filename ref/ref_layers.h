@@ -26,6 +26,7 @@ typedef struct {
     int splat_radius;
     double alpha;
     double gamma[3]; /* panel gamma per channel */
+    int history;     /* 1: per-layer history (ref_layer_hist.h) on each assembled layer, as tdc_layers.h */
 } tdc_ref_lasm_config_t;
 
 tdc_ref_lasm_t *tdc_ref_lasm_new(const tdc_ref_lasm_config_t *cfg);
@@ -36,7 +37,8 @@ int tdc_ref_lasm_assemble(tdc_ref_lasm_t *r, uint32_t frame);
 /* Displayed frame RGB888 (rounded) and unrounded codes (doubles). */
 const uint8_t *tdc_ref_lasm_output(const tdc_ref_lasm_t *r);
 const double *tdc_ref_lasm_output_exact(const tdc_ref_lasm_t *r);
-/* Layer type t's last frame (8-bit), NULL if not kept. */
+/* Layer type t's last frame as recombined (8-bit; with history the rounded
+ * history output), NULL if not kept. */
 const uint8_t *tdc_ref_lasm_layer(const tdc_ref_lasm_t *r, unsigned type);
 
 #endif

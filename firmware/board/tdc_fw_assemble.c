@@ -93,9 +93,7 @@ static int asm_eye(uint32_t e, uint32_t frame, uint32_t kinds, uint8_t *fb, tdc_
     }
     int stride = 0;
     const uint8_t *out = tdc_asm_output(st, &stride);
-    for (uint32_t y = 0; y < FW_H; y++) {
-        memcpy(fb + (size_t)y * FW_STRIDE, out + (size_t)y * (uint32_t)stride, FW_W * 3u);
-    }
+    tdc_fw_put_eye(fb, out, stride);
     return FW_EYE_UPDATED;
 }
 

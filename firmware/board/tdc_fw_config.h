@@ -34,6 +34,14 @@
 #define TDC_CFG_ASSEMBLE 0
 #endif
 
+/* Layered tile assembly (SUBFRAMES | LAYERS streams, tdc_layers.h) with
+ * the per-layer history a stream may switch on (stream flag LAYER_HIST):
+ * every layer type kept, 148 B/px of arena per eye (not in any board's
+ * default stages: STAGES=layers). */
+#ifndef TDC_CFG_LAYERS
+#define TDC_CFG_LAYERS 0
+#endif
+
 /* Foveation (FOVEATED streams, tdc_fov.h). */
 #ifndef TDC_CFG_FOV
 #define TDC_CFG_FOV 0

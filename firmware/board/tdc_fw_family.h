@@ -2,12 +2,11 @@
  * tdc_fw_family.h - what a stream family implements for the board frame
  * loop (internal to firmware/board), and the loop state the families share.
  *
- * A family (plain, TRM, tile assembly, foveation, foveated TRM) is one
+ * A family (plain, TRM, tile assembly, layered assembly, foveation,
+ * foveated TRM) is one
  * file, tdc_fw_<family>.c, compiled in every build; unless its stage is
  * (TDC_CFG_*) it holds only a descriptor that matches no stream, so a
- * family not built is not linked.  (No layered
- * family yet: the decoder refuses LAYERS streams, the loop wires no layer
- * buffers.)  The loop
+ * family not built is not linked.  The loop
  * (tdc_main.c) owns what every stream shares - the decoder, the frame being
  * collected, which eye is done or updated, the frame buffer and the counters
  * - and picks the family whose stream flags the stream header carries:
@@ -32,6 +31,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h>
 
 #include "tdc_band_link.h"
 #include "tdc_fw_memmap.h"
@@ -43,7 +43,8 @@
  * frame, tdc_link.c): processed on arrival, never left for finish_frame. */
 #define PICTURE_KINDS (KIND_BIT(TDC_LINK_KIND_FULL) | KIND_BIT(TDC_LINK_KIND_FOVEATED))
 /* The stream flags that choose a family. */
-#define FW_FAMILY_FLAGS (TDC_LINK_STREAM_REDUCED | TDC_LINK_STREAM_SUBFRAMES | TDC_LINK_STREAM_FOVEATED)
+#define FW_FAMILY_FLAGS \
+    (TDC_LINK_STREAM_REDUCED | TDC_LINK_STREAM_SUBFRAMES | TDC_LINK_STREAM_FOVEATED | TDC_LINK_STREAM_LAYERS)
 
 /* What eye() did. */
 enum { FW_EYE_REFUSED = -1, FW_EYE_NOTHING = 0, FW_EYE_UPDATED = 1 };
@@ -85,10 +86,11 @@ struct tdc_fw_family {
 #define FW_FAMILY_OFF 0xffffffffu
 #define TDC_FW_FAMILY_NOT_BUILT(fam) \
     const tdc_fw_family_t tdc_fw_family_##fam = {#fam, FW_FAMILY_OFF, NULL, NULL, NULL, NULL, NULL, NULL}
-extern const tdc_fw_family_t tdc_fw_family_trm, tdc_fw_family_assemble, tdc_fw_family_fov, tdc_fw_family_fov_trm,
-    tdc_fw_family_plain;
-#define TDC_FW_FAMILIES \
-    &tdc_fw_family_trm, &tdc_fw_family_assemble, &tdc_fw_family_fov, &tdc_fw_family_fov_trm, &tdc_fw_family_plain
+extern const tdc_fw_family_t tdc_fw_family_trm, tdc_fw_family_assemble, tdc_fw_family_layers, tdc_fw_family_fov,
+    tdc_fw_family_fov_trm, tdc_fw_family_plain;
+#define TDC_FW_FAMILIES                                                                                         \
+    &tdc_fw_family_trm, &tdc_fw_family_assemble, &tdc_fw_family_layers, &tdc_fw_family_fov, &tdc_fw_family_fov_trm, \
+        &tdc_fw_family_plain
 
 /* ---- stream set-up (tdc_fw_stream.c) ---- */
 extern const tdc_fw_family_t *const tdc_fw_families[];
@@ -103,7 +105,7 @@ typedef struct {
     uint8_t have_frame;         /* a frame is being collected */
     uint8_t eyes_done;          /* bit e: eye e processed (or tried) for `frame` */
     uint8_t eyes_updated;       /* bit e: eye e's image changed for `frame` */
-    uint8_t kinds[2];           /* KIND_BIT()s received per eye for `frame` */
+    uint16_t kinds[2];          /* KIND_BIT()s received per eye for `frame` (LAYERS is bit 8) */
     uint32_t frame;
     uint8_t have_last;     /* a frame of this stream was finished ... */
     uint32_t last_frame;   /* ... and this was its index */
@@ -119,7 +121,7 @@ typedef struct {
     uint8_t pending_updated;  /* eyes a late FULL updated since the last show: updated in the next one */
     uint8_t have_rej;         /* a pixel packet of a frame not started yet was rejected ... */
     uint32_t rej_frame;       /* ... for this frame ... */
-    uint8_t rej_kinds[2];     /* ... these kinds, per eye (applied only if a good packet starts it) */
+    uint16_t rej_kinds[2];    /* ... these kinds, per eye (applied only if a good packet starts it) */
     uint8_t have_stream;      /* the configured stream's header, to recognise a repeat */
     uint16_t stream_id;
     tdc_link_stream_info_t stream;
@@ -133,6 +135,15 @@ extern tdc_fw_loop_t tdc_fw;
 static inline uint8_t *tdc_fw_back_eye(uint32_t e)
 {
     return tdc_fw_fb[(tdc_fw.front ^ 1u) % FW_FB_COUNT] + (size_t)e * FW_W * 3u;
+}
+
+/* A stage's W x H RGB888 output (rows `stride` bytes apart) into the eye's
+ * part of the frame buffer. */
+static inline void tdc_fw_put_eye(uint8_t *fb, const uint8_t *out, int stride)
+{
+    for (uint32_t y = 0; y < FW_H; y++) {
+        memcpy(fb + (size_t)y * FW_STRIDE, out + (size_t)y * (uint32_t)stride, FW_W * 3u);
+    }
 }
 
 /* ---- the log (tdc_fw_log.c) ---- */

@@ -12,6 +12,8 @@
  *                            the loop decides it updates its eye (defer_full)
  *   reduced        E * reduced frame (TRM, r <= TDC_CFG_R_NUM/TDC_CFG_R_DEN)
  *   subframe, sample motion, pattern bits   per eye (assembly)
+ *   layer planes   per eye, every layer type's values and vectors and the
+ *                  falloff (layered assembly, TDC_CFG_LAYERS)
  *   mode arena     per eye max(TRM arena, assembly arena, foveation block,
  *                  foveated TRM block): a stream uses TRM (reduced frames),
  *                  assembly (subframes), foveation (FOVEATED packets) or
@@ -80,6 +82,17 @@ extern uint8_t tdc_fw_reduced[FW_EYES][(size_t)FW_RW * FW_RH * 3u];
 #define FW_ASM_STAGING ((size_t)0)
 #endif
 
+/* ---- layered tile assembly: its arena with history (the bound); the
+ * largest LAYERS payload (every layer and the falloff plane, 28 B a tile) ---- */
+#if TDC_CFG_LAYERS
+#include "tdc_layers.h"
+#define FW_LASM_BYTES TDC_ARENA_ROUND(TDC_LASM_MEM_BYTES_HIST(FW_W, FW_H))
+#define FW_LASM_STAGING TDC_LINK_STAGING_LAYERS_BYTES(FW_W, FW_H)
+#else
+#define FW_LASM_BYTES ((size_t)0)
+#define FW_LASM_STAGING ((size_t)0)
+#endif
+
 /* ---- foveation: the samples buffer for TDC_CFG_FOV_DELTA_Q15
  * (tdc_fov_lp_size), the largest FOVEATED payload (header, every sample
  * with its vector, every pixel in the disk: disk fraction 1) and the block
@@ -131,8 +144,10 @@ extern uint8_t tdc_fw_reduced[FW_EYES][(size_t)FW_RW * FW_RH * 3u];
  * whole-picture streams too */
 #define FW_STAGING_RGB888 ((size_t)FW_W * FW_H * 3u + TDC_LINK_STREAM_HEADER_BYTES)
 #define FW_STAGING_BANDS FW_MAX2(TDC_LINK_STAGING_BAND_BYTES(FW_W, TDC_CFG_BAND_ROWS, FW_FULL_BPP), FW_ASM_STAGING)
-#define FW_STAGING_BYTES FW_MAX2(TDC_CFG_BANDS ? FW_STAGING_BANDS : FW_STAGING_WHOLE, FW_FOV_PAYLOAD)
-#define FW_MODE_BYTES FW_MAX2(FW_MAX2(FW_MAX2(FW_TRM_BYTES, FW_ASM_BYTES), FW_FOV_BYTES), FW_FOVTRM_BYTES)
+#define FW_STAGING_BYTES \
+    FW_MAX2(FW_MAX2(TDC_CFG_BANDS ? FW_STAGING_BANDS : FW_STAGING_WHOLE, FW_FOV_PAYLOAD), FW_LASM_STAGING)
+#define FW_MODE_BYTES \
+    FW_MAX2(FW_MAX2(FW_MAX2(FW_MAX2(FW_TRM_BYTES, FW_ASM_BYTES), FW_FOV_BYTES), FW_FOVTRM_BYTES), FW_LASM_BYTES)
 /* (a build with no stream family but plain still has one word) */
 #define FW_MODE_WORDS FW_MAX2(FW_MODE_BYTES / 8u, (size_t)1)
 

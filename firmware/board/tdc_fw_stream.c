@@ -27,6 +27,9 @@ static uint16_t panel_hz(uint16_t stream_hz)
 /* Why no family of this build plays a stream with these family flags. */
 static const char *refusal(uint32_t sel)
 {
+    if (sel & TDC_LINK_STREAM_LAYERS) {
+        return "stream sends layered subframes: this build has no layered assembly (STAGES=layers)";
+    }
     if (sel & TDC_LINK_STREAM_SUBFRAMES) {
         return (sel & TDC_LINK_STREAM_FOVEATED)
                    ? "stream foveates assembly frames: not supported by this build"

@@ -57,6 +57,13 @@ static void configure_stream(void)
     tdc_fw.fam = tdc_fw_stream_start();
 }
 
+/* A row band: packet flag BAND on a FULL or REDUCED packet (packet flags
+ * are per kind: a LAYERS packet's bit 1 says a visibility layer follows). */
+static int is_band(const tdc_link_event_t *ev)
+{
+    return (ev->kind == TDC_LINK_KIND_FULL || ev->kind == TDC_LINK_KIND_REDUCED) && (ev->flags & TDC_LINK_PKT_BAND);
+}
+
 static uint32_t kinds_needed(uint32_t e, uint32_t frame)
 {
     return tdc_fw.fam ? tdc_fw.fam->needs(e, frame) : 0u;
@@ -181,7 +188,7 @@ static void on_rejected(const tdc_link_event_t *ev)
      * names (BAND_DROPPED), which is what counts here; a foveation header
      * refused after its payload CRC matched: the frame index is vouched
      * for, the picture lost the same way */
-    const int lost = (ev->error == TDC_LINK_ERR_CRC && !(ev->flags & TDC_LINK_PKT_BAND)) ||
+    const int lost = (ev->error == TDC_LINK_ERR_CRC && !is_band(ev)) ||
                      ev->error == TDC_LINK_ERR_BAND_DROPPED || ev->error == TDC_LINK_ERR_FOVEATION;
     if (ev->error == TDC_LINK_ERR_STREAM_HEADER) {
         /* a stream header the decoder refused after its CRC matched: a
@@ -211,8 +218,8 @@ static void on_rejected(const tdc_link_event_t *ev)
         tdc_fw.rej_frame = ev->frame_index;
         tdc_fw.rej_kinds[0] = tdc_fw.rej_kinds[1] = 0;
     }
-    if (ev->kind <= 7u) {
-        tdc_fw.rej_kinds[ev->eye] = (uint8_t)(tdc_fw.rej_kinds[ev->eye] | KIND_BIT(ev->kind));
+    if (ev->kind <= TDC_LINK_KIND_LAST) {
+        tdc_fw.rej_kinds[ev->eye] = (uint16_t)(tdc_fw.rej_kinds[ev->eye] | KIND_BIT(ev->kind));
     }
 }
 
@@ -231,7 +238,7 @@ static void on_packet(const tdc_link_event_t *ev)
         return;
     }
     const uint32_t e = ev->eye, bit = KIND_BIT(ev->kind);
-    const int band = (ev->flags & TDC_LINK_PKT_BAND) != 0;
+    const int band = is_band(ev);
     if (!tdc_fw.have_frame && tdc_fw.have_last && ev->frame_index <= tdc_fw.last_frame) {
         /* A FULL (or FOVEATED) packet of the frame finished last (rejected
          * first, then resent intact): processed now, so TRM pairs the next
@@ -260,7 +267,7 @@ static void on_packet(const tdc_link_event_t *ev)
         tdc_fw_band(ev);
         return;
     }
-    tdc_fw.kinds[e] = (uint8_t)(tdc_fw.kinds[e] | bit);
+    tdc_fw.kinds[e] = (uint16_t)(tdc_fw.kinds[e] | bit);
     if (bit & PICTURE_KINDS) {
         /* the eye's whole need (plain, TRM's full slot, foveated); also
          * when it was rejected first and resent intact before the frame

@@ -10,6 +10,9 @@
  *                    controller over 5 x 5, §4.1), Zeng's 3 sigma clamp
  *   lasm-zeng-tdrt   Zeng's vectors with TDRT's 1 sigma clamp
  *   lasm-zeng-clean  lasm-zeng + the §5 clean-up filter
+ *   lasm-zeng-hist   lasm-zeng-clean + exponential history per layer (eq. 2,
+ *                    alpha 0.1; tdc_layers.h "History per layer": what a
+ *                    stream with flag LAYER_HIST gets from the frame loop)
  *
  * Orderings are adaptive (tdc_ordering_update over the renderer's motion
  * buffer: each pixel keeps the vector of its latest sample, the visibility
@@ -25,7 +28,7 @@
 #include "tdc_ordering.h"
 #include "tdc_free.h"
 
-enum { V_ORDINARY = 0, V_ZENG = 1, V_ZENG_TDRT = 2, V_ZENG_CLEAN = 3 };
+enum { V_ORDINARY = 0, V_ZENG = 1, V_ZENG_TDRT = 2, V_ZENG_CLEAN = 3, V_ZENG_HIST = 4 };
 
 #define F &tdc_sim_family_layers
 #define L (TDC_SIM_LINK_SUBFRAMES | TDC_SIM_LINK_LAYERS)
@@ -34,6 +37,8 @@ static const tdc_mode_desc_t k_modes[] = {
     {"lasm-zeng", F, V_ZENG, L, 1, 1, 0, -1, 1, "layered assembly, Zeng vectors (splatted), 3-sigma clamp"},
     {"lasm-zeng-tdrt", F, V_ZENG_TDRT, L, 1, 1, 0, -1, 1, "layered assembly, Zeng vectors, 1-sigma clamp"},
     {"lasm-zeng-clean", F, V_ZENG_CLEAN, L, 1, 1, 0, -1, 1, "layered assembly, Zeng vectors, 3 sigma + clean-up"},
+    {"lasm-zeng-hist", F, V_ZENG_HIST, L, 1, 1, 0, -1, 1,
+     "layered assembly, Zeng vectors, 3 sigma + clean-up + per-layer history (eq. 2)"},
 };
 #undef F
 #undef L
@@ -59,9 +64,9 @@ static tdc_lasm_config_t lasm_config(const sim_mode_t *m, const tdc_panel_t *pan
                            (uint16_t)(TDC_LAYER_PKT_TYPE(TDC_LAYER_SHADING) | TDC_LAYER_PKT_TYPE(TDC_LAYER_VISIBILITY) |
                                       (glossy ? TDC_LAYER_PKT_TYPE(TDC_LAYER_GLOSSY) : 0u)),
                            (uint8_t)(v == V_ORDINARY || v == V_ZENG_TDRT ? TDC_LASM_CLAMP_TDRT : TDC_LASM_CLAMP_ZENG),
-                           (uint8_t)(v == V_ZENG_CLEAN),
+                           (uint8_t)(v == V_ZENG_CLEAN || v == V_ZENG_HIST),
                            (uint8_t)(v == V_ORDINARY ? 0 : 2),
-                           0,
+                           (uint8_t)(v == V_ZENG_HIST),
                            3277, /* alpha 0.1 (Zeng §5) */
                            panel};
     return c;

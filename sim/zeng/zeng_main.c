@@ -8,7 +8,7 @@
  *
  *   tdc-zeng --scene fence|glossy|occlusion [--size WxH] [--frames N]
  *            [--eval-from K] [--seeds "1 2 3 4 5"] [--gt-spp 1024]
- *            [--rough SIGMA] [--csv FILE] [--png FILE]
+ *            [--rough SIGMA] [--clamp-on raw|filtered] [--csv FILE] [--png FILE]
  *
  * CSV rows: scene,seed,method,rmse,ssim,rmse_region,ssim_region,region_px
  * then one row "cost,...": primary-ray ms, dual-vector ms per frame, ratio.
@@ -33,7 +33,10 @@
 
 static const char help_text[] =
     "usage: tdc-zeng --scene fence|glossy|occlusion [--size WxH] [--frames N] [--eval-from K]\n"
-    "                [--seeds \"1 2 3 4 5\"] [--gt-spp 1024] [--rough SIGMA] [--csv FILE] [--png FILE]\n"
+    "                [--seeds \"1 2 3 4 5\"] [--gt-spp 1024] [--rough SIGMA] [--clamp-on raw|filtered]\n"
+    "                [--csv FILE] [--png FILE]\n"
+    "--clamp-on: the clamped methods' mu +- k sigma over the 1-sample frame (raw, default) or over the\n"
+    "spatially filtered frame that eq. 2 blends (filtered)\n"
     "Zeng et al.'s evaluation (sec. 6-7) on the double-precision reference pipeline (sim/zeng/README.md):\n"
     "every method's RMSE and SSIM against a >= 1024-sample ground truth, whole frame and effect region,\n"
     "and the dual vectors' cost beside the primary rays.\n"
@@ -69,6 +72,7 @@ int main(int argc, char **argv)
     const char *scene_name = NULL, *csv = NULL, *png = NULL, *seeds_s = "1 2 3 4 5";
     int w = 160, h = 120, frames = 40, eval_from = 16, gt_spp = 1024;
     double rough = 0; /* 0: the scene's own */
+    int clamp_filtered = 0;
     if (argc == 2 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
         fputs(help_text, stdout);
         return 0;
@@ -100,6 +104,11 @@ int main(int argc, char **argv)
             if (!(rough > 0 && rough < 1)) {
                 return usage("--rough: the glossy lobe's sigma in radians, in (0, 1)");
             }
+        } else if (!strcmp(a, "--clamp-on")) {
+            if (strcmp(v, "raw") && strcmp(v, "filtered")) {
+                return usage("--clamp-on: raw or filtered");
+            }
+            clamp_filtered = !strcmp(v, "filtered");
         } else if (!strcmp(a, "--png")) {
             png = v;
         } else {
@@ -177,6 +186,7 @@ int main(int argc, char **argv)
                 return nomem();
             }
             st[m].seed = (uint64_t)seeds[si];
+            st[m].clamp_filtered = clamp_filtered;
         }
         for (size_t p = 0; p < n; p++) {
             last_dis[p] = -1000;

@@ -388,7 +388,7 @@ void zp_step(zp_state_t *st, const zs_scene_t *s, int frame, const zs_frame_t *f
             memcpy(hc, hv, sizeof hc);
             if (ok && clamp) {
                 double mu[3], sd[3];
-                zf_moments(f->layer, CH, w, h, x, y, st->clamp_r, mu, sd);
+                zf_moments(st->clamp_filtered ? st->filt : f->layer, CH, w, h, x, y, st->clamp_r, mu, sd);
                 for (int c = 0; c < 3; c++) {
                     hc[c] = fmin(fmax(hv[c], mu[c] - k * sd[c]), mu[c] + k * sd[c]);
                 }

@@ -46,6 +46,10 @@ typedef struct {
     int method, w, h;
     double alpha;
     int clamp_r;  /* clamp window radius (2: 5x5) */
+    /* 1: the clamp's mu and sigma over the spatially filtered current frame
+     * (eq. 2's c~_i, "first filtered spatially per frame", then blended);
+     * 0: over the 1-sample frame */
+    int clamp_filtered;
     int have;     /* history valid */
     double *hist; /* W*H*3 accumulated layer (eq. 2's c-bar) */
     double *out;  /* W*H*3 displayed layer */

@@ -469,14 +469,21 @@ static uint16_t g_lw[LAYER_T] TDC_EXTRAM;
 static uint8_t g_lpat[TDC_PATTERN_BYTES(LAYER_W, LAYER_H)];
 static tdc_lasm_t g_lasm;
 
-static void bench_layers(uint16_t layers, uint8_t k, uint8_t cleanup, uint8_t splat, int16_t sh_v, const char *label)
+/* With history (148 B/px) at LHIST_W x LHIST_H: the pair of rows with and
+ * without it at that size gives the history's own cost per pixel. */
+#define LHIST_W 160u
+#define LHIST_H 80u
+_Static_assert(TDC_LASM_MEM_BYTES_HIST(LHIST_W, LHIST_H) <= sizeof g_arena, "layered arena with history");
+
+static void bench_layers_at(uint32_t w, uint32_t h, uint8_t history, uint16_t layers, uint8_t k, uint8_t cleanup,
+                            uint8_t splat, int16_t sh_v, const char *label)
 {
-    const tdc_lasm_config_t cfg = {(uint16_t)LAYER_W, (uint16_t)LAYER_H, (uint16_t)(layers & TDC_LAYER_PKT_TYPES),
-                                   k, cleanup, splat, 0, 3277, &tdc_panel_htc_vive};
+    const tdc_lasm_config_t cfg = {(uint16_t)w, (uint16_t)h, (uint16_t)(layers & TDC_LAYER_PKT_TYPES),
+                                   k, cleanup, splat, history, 3277, &tdc_panel_htc_vive};
     if (tdc_lasm_init(&g_lasm, &cfg, g_lasm_arena, sizeof g_lasm_arena) != TDC_OK) {
         fail("layered assembly init");
     }
-    const tdc_lcontent_t c = {(uint16_t)LAYER_W, (uint16_t)LAYER_H, layers, sh_v, 8, 18, -30, 10, 1, 0, 1u};
+    const tdc_lcontent_t c = {(uint16_t)w, (uint16_t)h, layers, sh_v, 8, 18, -30, 10, 1, 0, 1u};
     tdc_layer_frame_t lf;
     memset(&lf, 0, sizeof lf);
     for (unsigned t = 0; t < TDC_LAYER_MAX; t++) {
@@ -494,9 +501,14 @@ static void bench_layers(uint16_t layers, uint8_t k, uint8_t cleanup, uint8_t sp
         }
         if (f >= 8u) {
             tdc_bench_mark();
-            report(label, LAYER_W * LAYER_H);
+            report(label, w * h);
         }
     }
+}
+
+static void bench_layers(uint16_t layers, uint8_t k, uint8_t cleanup, uint8_t splat, int16_t sh_v, const char *label)
+{
+    bench_layers_at(LAYER_W, LAYER_H, 0, layers, k, cleanup, splat, sh_v, label);
 }
 
 /* Per-layer history (tdc_layer_hist.h, Zeng eq. 2/4) at HIST_W x HIST_H
@@ -586,6 +598,8 @@ int main(void)
         bench_layers(sh | vi | TDC_LAYER_PKT_FALLOFF, 3, 0, 2, 0, "layered assembly, fence (shadow MVs, splat)");
         bench_layers(sh | vi | TDC_LAYER_PKT_FALLOFF, 3, 1, 2, 0, "layered assembly, fence + clean-up");
         bench_layers(all, 3, 1, 2, 24, "layered assembly, all 4 layers + clean-up");
+        bench_layers_at(LHIST_W, LHIST_H, 0, all, 3, 1, 2, 24, "layered assembly, all 4 layers + clean-up, 160x80");
+        bench_layers_at(LHIST_W, LHIST_H, 1, all, 3, 1, 2, 24, "layered assembly, all 4 layers + clean-up + history, 160x80");
         bench_lhist(3, 3, 0, "layer history, colour layer (eq. 2, 3 sigma)");
         bench_lhist(1, 3, 1, "layer history, visibility (eq. 2 + eq. 4 falloff, 3 sigma)");
     }

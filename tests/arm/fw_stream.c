@@ -67,6 +67,15 @@
  *   frame 6 of the last eye a FULL picture (shown as it is; TAA starts
  *   again after it).  fov-clean, fov-taa-clean, fovlr-clean: the same
  *   streams without those three (make bench-arm's frame-loop rows).
+ * Layered streams (stream flags SUBFRAMES | LAYERS; tests/arm/fw_stream.c
+ * layers_stream): the four layers of tests/golden/tdc_layer_content.h
+ * (shading panning, visibility with shadow vectors and falloff, glossy,
+ * indirect), a hash ordering per cycle (PATTERN on frame 0 mod 4):
+ *   layers       the layered assembly without history
+ *   layers-hist  stream flag LAYER_HIST: with the per-layer history
+ *   EXPECTED: every frame as tdc_layers itself assembles the packets sent,
+ *   with the configuration the loop's layered family uses (PANEL: the
+ *   panel's gamma for the recombination).
  * Contents: tests/golden/tdc_content.h (edge on eye 0, text on eye 1).
  *
  * EXPECTED (plain and foveated modes, for panels that show the decoded
@@ -95,6 +104,9 @@
 #include "tdc_content.h"
 #include "tdc_crc32.h"
 #include "tdc_fov_lr.h"
+#include "tdc_layer_content.h"
+#include "tdc_layers.h"
+#include "tdc_math.h"
 #include "tdc_link_encode.h"
 #include "tdc_ordering.h"
 #include "tdc_pixfmt.h"
@@ -375,6 +387,102 @@ static size_t fov_packet(const tdc_link_encoder_t *enc, tdc_link_kind_t slot, ui
 
 /* A foveation header the decoder must refuse after the payload CRC: byte
  * `at` of it set to v (little-endian int32 if wide), both CRCs recomputed. */
+/* The layered streams (see the top): the stream, and with `expect` the
+ * frames tdc_layers shows for it.  0, or 1 on a failure (said on stderr). */
+static int layers_stream(int hist, uint32_t w, uint32_t h, uint32_t eyes, uint32_t frames, const char *out,
+                         const char *expect_path, const tdc_panel_t *panel)
+{
+    tdc_link_stream_info_t info = {0};
+    info.flags = TDC_LINK_STREAM_SUBFRAMES | TDC_LINK_STREAM_LAYERS | (hist ? TDC_LINK_STREAM_LAYER_HIST : 0u);
+    info.r_num = info.r_den = 1;
+    info.width = (uint16_t)w;
+    info.height = (uint16_t)h;
+    info.eyes = (uint8_t)eyes;
+    info.refresh_hz = 240;
+    tdc_link_encoder_t enc;
+    tdc_link_encoder_init(&enc, 7, &info);
+    const uint32_t tiles = TDC_TILE_COUNT(w, h), bm = TDC_PATTERN_BYTES(w, h);
+    const uint16_t set = TDC_LAYER_PKT_TYPES | TDC_LAYER_PKT_FALLOFF;
+    g_cap = TDC_LINK_HEADER_BYTES + TDC_LINK_STAGING_LAYERS_BYTES(w, h) + (size_t)bm + 1024u;
+    g_pkt = malloc(g_cap);
+    uint8_t *bits = calloc(bm + 1u, 1), *planes = malloc((size_t)tiles * 28u), *fb = NULL;
+    g_out = fopen(out, "wb");
+    FILE *expect = expect_path ? fopen(expect_path, "w") : NULL;
+    tdc_lasm_t st[2];
+    void *arena[2] = {NULL, NULL};
+    const tdc_lasm_config_t cfg = {(uint16_t)w, (uint16_t)h, TDC_LAYER_PKT_TYPES, TDC_LASM_CLAMP_ZENG, 1u, 2u,
+                                   (uint8_t)hist, 3277u, panel};
+    const size_t an = tdc_lasm_get_size(&cfg);
+    if (!g_pkt || !bits || !planes || !g_out || (expect_path && (!expect || !panel || !an))) {
+        fprintf(stderr, "fw_stream: out of memory, no panel, or cannot create %s / %s\n", out,
+                expect_path ? expect_path : "-");
+        return 1;
+    }
+    if (expect) {
+        fb = calloc((size_t)eyes * w * h * 3u, 1);
+        for (uint32_t e = 0; e < eyes; e++) {
+            arena[e] = aligned_alloc(8, (an + 7u) & ~(size_t)7u);
+            if (!fb || !arena[e] || tdc_lasm_init(&st[e], &cfg, arena[e], an) != TDC_OK) {
+                fprintf(stderr, "fw_stream: layered assembly set-up failed\n");
+                return 1;
+            }
+        }
+    }
+    tdc_layer_frame_t lf;
+    memset(&lf, 0, sizeof lf);
+    for (unsigned t = 0; t < TDC_LAYER_MAX; t++) {
+        lf.value[t] = planes + (size_t)tiles * 3u * t;
+        lf.mv[t] = (int16_t *)(void *)(planes + (size_t)tiles * 12u + (size_t)tiles * 4u * t);
+    }
+    lf.falloff = (uint16_t *)(void *)(planes + (size_t)tiles * 28u - (size_t)tiles * 2u);
+    put(tdc_link_encode_stream(&enc, g_pkt, g_cap), "stream header");
+    for (uint32_t f = 0; f < frames; f++) {
+        if ((f & 3u) == 0) {
+            for (uint32_t i = 0; i < bm; i++) {
+                bits[i] = (uint8_t)(tdc_hash3(i, f, 77u) & 0xFFu);
+            }
+        }
+        for (uint32_t e = 0; e < eyes; e++) {
+            const tdc_lcontent_t c = {(uint16_t)w, (uint16_t)h, set, 12, -6, 18, -30, 10, 1, 0, 5u + e};
+            tdc_layer_content_subframe(&c, f, bits, &lf);
+            if ((f & 3u) == 0) {
+                put(tdc_link_encode_pattern(&enc, g_pkt, g_cap, e, f, bits, w, h), "pattern");
+            }
+            put(tdc_link_encode_layers(&enc, g_pkt, g_cap, e, f, &lf, lf.present, lf.hdr.mv_kind, w, h), "layers");
+            if (expect) {
+                if (tdc_lasm_ingest(&st[e], f, &lf, (f & 3u) == 0 ? bits : NULL) != TDC_OK ||
+                    tdc_lasm_assemble(&st[e], f) != TDC_OK) {
+                    fprintf(stderr, "fw_stream: layered assembly failed at frame %u\n", (unsigned)f);
+                    return 1;
+                }
+                const uint8_t *o = tdc_lasm_output(&st[e], NULL);
+                for (uint32_t y = 0; y < h; y++) {
+                    memcpy(fb + ((size_t)y * eyes + e) * w * 3u, o + (size_t)y * w * 3u, (size_t)w * 3u);
+                }
+            }
+        }
+        if (expect) {
+            uint64_t hash = 0xcbf29ce484222325ULL;
+            for (size_t i = 0; i < (size_t)eyes * w * h * 3u; i++) {
+                hash = (hash ^ fb[i]) * 0x100000001b3ULL;
+            }
+            fprintf(expect, "frame %u %016llx\n", (unsigned)f, (unsigned long long)hash);
+        }
+    }
+    int rc = 0;
+    if ((expect && fclose(expect) != 0) || fclose(g_out) != 0) {
+        fprintf(stderr, "fw_stream: write error\n");
+        rc = 1;
+    }
+    free(arena[0]);
+    free(arena[1]);
+    free(fb);
+    free(planes);
+    free(bits);
+    free(g_pkt);
+    return rc;
+}
+
 static void fov_spoil(size_t n, uint32_t at, int32_t v, int wide)
 {
     tdc_link_header_t hh;
@@ -405,6 +513,17 @@ int main(int argc, char **argv)
     if (w < 2 || h < 2 || eyes < 1 || eyes > 2 || frames < 1) {
         fprintf(stderr, "fw_stream: bad size\n");
         return 2;
+    }
+    if (!strcmp(mode, "layers") || !strcmp(mode, "layers-hist")) {
+        const tdc_panel_t *panel = NULL;
+#define X(p) &p,
+        static const tdc_panel_t *const lpanels[] = {TDC_PANEL_LIST(X) NULL};
+#undef X
+        for (unsigned i = 0; argc == 9 && lpanels[i]; i++) {
+            panel = !panel && !strcmp(lpanels[i]->name, argv[8]) ? lpanels[i] : panel;
+        }
+        return layers_stream(!strcmp(mode, "layers-hist"), w, h, eyes, frames, argv[6], argc == 9 ? argv[7] : NULL,
+                             panel);
     }
     const int trm = !strncmp(mode, "trm", 3), sub = !strncmp(mode, "subframes", 9), plain = !strcmp(mode, "plain");
     /* (fov*-clean: the same stream without the damaged packets: make bench-arm's loop rows) */

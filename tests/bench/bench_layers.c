@@ -54,11 +54,12 @@ static void make(const tdc_lcontent_t *c)
     }
 }
 
-static double run_layers(const char *label, const tdc_lcontent_t *c, uint8_t k, uint8_t cleanup, uint8_t splat,
-                         int frames)
+static double run_layers_h(const char *label, const tdc_lcontent_t *c, uint8_t k, uint8_t cleanup, uint8_t splat,
+                           uint8_t history, int frames)
 {
     make(c);
-    tdc_lasm_config_t cfg = {BW, BH, (uint16_t)(c->layers & 0xF), k, cleanup, splat, 0, 3277, &tdc_panel_htc_vive};
+    tdc_lasm_config_t cfg = {BW, BH, (uint16_t)(c->layers & 0xF), k, cleanup, splat, history, 3277,
+                             &tdc_panel_htc_vive};
     size_t n = tdc_lasm_get_size(&cfg);
     void *arena = aligned_alloc(8, (n + 7) & ~(size_t)7);
     tdc_lasm_t *st = malloc(sizeof *st);
@@ -88,6 +89,12 @@ static double run_layers(const char *label, const tdc_lcontent_t *c, uint8_t k, 
     free(st);
     free(arena);
     return ns;
+}
+
+static double run_layers(const char *label, const tdc_lcontent_t *c, uint8_t k, uint8_t cleanup, uint8_t splat,
+                         int frames)
+{
+    return run_layers_h(label, c, k, cleanup, splat, 0, frames);
 }
 
 static double run_asm(const tdc_lcontent_t *c, int frames)
@@ -138,9 +145,10 @@ int main(int argc, char **argv)
     run_layers("layered, fence: shading + shadow, 3 sigma", &fence, 3, 0, 0, frames);
     run_layers("layered, fence + splat 2", &fence, 3, 0, 2, frames);
     const double z = run_layers("layered, fence + splat 2 + clean-up", &fence, 3, 1, 2, frames);
-    run_layers("layered, all 4 layers + splat + clean-up", &all, 3, 1, 2, frames);
-    printf("  ratios: layered one-layer / tdc_asm %.2f; fence Zeng + clean-up / tdc_asm %.2f; memcpy of one RGB888 "
-           "frame %.3f ns/px\n",
-           l1 / a, z / a, 6.0 / bw * 1e9);
+    const double l4 = run_layers("layered, all 4 layers + splat + clean-up", &all, 3, 1, 2, frames);
+    const double l4h = run_layers_h("layered, all 4 layers + clean-up + history", &all, 3, 1, 2, 1, frames);
+    printf("  ratios: layered one-layer / tdc_asm %.2f; fence Zeng + clean-up / tdc_asm %.2f; all 4 layers with "
+           "history / without %.2f (history %.2f ns/px); memcpy of one RGB888 frame %.3f ns/px\n",
+           l1 / a, z / a, l4h / l4, l4h - l4, 6.0 / bw * 1e9);
     return 0;
 }

@@ -560,10 +560,11 @@ static void test_carver(void **state)
 
 /* ------------------------------------------------- layered assembly */
 
-static void lasm_one(uint32_t w, uint32_t h, uint16_t layers, int init, int frames)
+static void lasm_one(uint32_t w, uint32_t h, uint16_t layers, int init, int frames, uint8_t history)
 {
-    const tdc_lasm_config_t c = {(uint16_t)w, (uint16_t)h, layers, 3, 1, 2, 0, 3277, &tdc_panel_htc_vive};
-    const size_t n = tdc_lasm_get_size(&c), bound = TDC_LASM_MEM_BYTES((size_t)w, (size_t)h);
+    const tdc_lasm_config_t c = {(uint16_t)w, (uint16_t)h, layers, 3, 1, 2, history, 3277, &tdc_panel_htc_vive};
+    const size_t n = tdc_lasm_get_size(&c);
+    const size_t bound = history ? TDC_LASM_MEM_BYTES_HIST((size_t)w, (size_t)h) : TDC_LASM_MEM_BYTES((size_t)w, (size_t)h);
     if (n == 0 || n % TDC_ARENA_ALIGN != 0 || n > bound || (layers == 0xFu && n != bound)) {
         fail_msg("layered assembly %ux%u layers 0x%x: get_size %zu, bound %zu", w, h, layers, n, bound);
     }
@@ -578,7 +579,7 @@ static void lasm_one(uint32_t w, uint32_t h, uint16_t layers, int init, int fram
     assert_int_equal(tdc_lasm_init(st, &c, a.mem, n), TDC_OK);
     walk_t wk = {a.mem, 0, "layered assembly"};
     TDC_LASM_ARENA(WALK, c.width, c.height, TDC_PATTERN_BYTES(c.width, c.height), st->ch[0], st->ch[1], st->ch[2],
-                   st->ch[3])
+                   st->ch[3], c.history)
     walk_end(&wk, n);
     arena_check_guard(&a, "layered assembly init");
     if (frames) {
@@ -624,15 +625,18 @@ static void test_lasm_arena(void **state)
     static const uint16_t sets[] = {0x1u, 0x3u, 0x5u, 0xFu};
     for (unsigned i = 0; i < sizeof small / sizeof small[0]; i++) {
         for (unsigned k = 0; k < sizeof sets / sizeof sets[0]; k++) {
-            lasm_one(small[i][0], small[i][1], sets[k], 1, 1);
+            lasm_one(small[i][0], small[i][1], sets[k], 1, 1, 0);
+            lasm_one(small[i][0], small[i][1], sets[k], 1, 1, 1);
         }
     }
     for (unsigned p = 0; p < NPANELS; p++) {
-        lasm_one(g_panels[p]->width, g_panels[p]->height, 0x3u, 0, 0);
-        lasm_one(g_panels[p]->width, g_panels[p]->height, 0xFu, 0, 0);
+        lasm_one(g_panels[p]->width, g_panels[p]->height, 0x3u, 0, 0, 0);
+        lasm_one(g_panels[p]->width, g_panels[p]->height, 0xFu, 0, 0, 0);
+        lasm_one(g_panels[p]->width, g_panels[p]->height, 0xFu, 0, 0, 1);
     }
-    lasm_one(TDC_LASM_MAX_DIM, TDC_LASM_MAX_DIM, 0xFu, 0, 0);
-    lasm_one(1, TDC_LASM_MAX_DIM, 0x1u, 0, 0);
+    lasm_one(TDC_LASM_MAX_DIM, TDC_LASM_MAX_DIM, 0xFu, 0, 0, 0);
+    lasm_one(TDC_LASM_MAX_DIM, TDC_LASM_MAX_DIM, 0xFu, 0, 0, 1);
+    lasm_one(1, TDC_LASM_MAX_DIM, 0x1u, 0, 0, 0);
 }
 
 /* ------------------------------------------------- per-layer history */

@@ -115,6 +115,19 @@ static void test_errors(void **state)
     assert_int_equal(tdc_lasm_init(&st, &bad, arena, sizeof arena), TDC_ERR_ARG);
     assert_int_equal(tdc_lasm_init(&st, &cfg, (uint8_t *)arena + 4, sizeof arena - 8), TDC_ERR_ARG);
     assert_int_equal(tdc_lasm_init(&st, &cfg, arena, tdc_lasm_get_size(&cfg) - 8), TDC_ERR_SIZE);
+    /* history: the bound is the full set with history, 148 B/px (+ rounding,
+     * tables); it adds nothing when off; history > 1 and alpha 0 refused */
+    tdc_lasm_config_t hall = all;
+    hall.history = 1;
+    assert_int_equal(tdc_lasm_get_size(&hall), TDC_LASM_MEM_BYTES_HIST(W, H));
+    assert_true(TDC_LASM_MEM_BYTES_HIST(W, H) >= (size_t)W * H * TDC_LASM_HIST_BYTES_PER_PIXEL_MAX);
+    assert_true(TDC_LASM_MEM_BYTES_HIST(W, H) <= (size_t)W * H * TDC_LASM_HIST_BYTES_PER_PIXEL_MAX + 2048);
+    bad = hall;
+    bad.history = 2;
+    assert_int_equal(tdc_lasm_get_size(&bad), 0);
+    bad = hall;
+    bad.alpha_q15 = 0;
+    assert_int_equal(tdc_lasm_get_size(&bad), 0);
     tdc_panel_t p10 = tdc_panel_htc_vive;
     p10.bits = 10;
     bad = cfg;

@@ -44,6 +44,7 @@ typedef struct {
     uint8_t clamp_k, cleanup, splat;
     uint8_t drop_mod;
     int max_diff; /* asserted bound, LSB */
+    uint8_t history; /* per-layer history (tdc_layer_hist) on the assembled layers */
 } scen_t;
 
 #define SH TDC_LAYER_PKT_TYPE(TDC_LAYER_SHADING)
@@ -53,15 +54,21 @@ typedef struct {
 #define FO TDC_LAYER_PKT_FALLOFF
 
 static const scen_t scens[] = {
-    {"one layer, pan (1.5, 0.5) px", SH, 24, 8, 0, 0, 0, 0, 0, 1, 0, 0, 0, 1},
-    {"fence, ordinary vectors", SH | VI, 0, 0, 18, 0, 0, 0, 0, 1, 0, 0, 0, 1},
-    {"fence, shadow vectors, 1 sigma", SH | VI, 0, 0, 18, 0, 0, 1, 0, 1, 0, 0, 0, 1},
-    {"fence, shadow vectors, 3 sigma", SH | VI, 0, 0, 18, 0, 0, 1, 0, 3, 0, 0, 0, 1},
-    {"fence, splat 2 + falloff + clean-up", SH | VI | FO, 0, 0, 18, 0, 0, 1, 0, 3, 1, 2, 0, 12},
-    {"fence fast 3.25 px, clean-up, 1 sigma", SH | VI | FO, 0, 0, 52, 0, 0, 1, 0, 1, 1, 1, 0, 12},
-    {"all layers, moving, clean-up", SH | VI | GL | IN | FO, 12, -6, 18, -30, 10, 1, 0, 3, 1, 2, 0, 12},
-    {"all layers + drops", SH | VI | GL | IN | FO, 12, 0, 18, 20, 0, 1, 0, 3, 1, 2, 5, 12},
-    {"random vectors, clean-up", SH | VI | GL | FO, 0, 0, 0, 0, 0, 1, 1, 3, 1, 1, 0, 12},
+    {"one layer, pan (1.5, 0.5) px", SH, 24, 8, 0, 0, 0, 0, 0, 1, 0, 0, 0, 1, 0},
+    {"fence, ordinary vectors", SH | VI, 0, 0, 18, 0, 0, 0, 0, 1, 0, 0, 0, 1, 0},
+    {"fence, shadow vectors, 1 sigma", SH | VI, 0, 0, 18, 0, 0, 1, 0, 1, 0, 0, 0, 1, 0},
+    {"fence, shadow vectors, 3 sigma", SH | VI, 0, 0, 18, 0, 0, 1, 0, 3, 0, 0, 0, 1, 0},
+    {"fence, splat 2 + falloff + clean-up", SH | VI | FO, 0, 0, 18, 0, 0, 1, 0, 3, 1, 2, 0, 12, 0},
+    {"fence fast 3.25 px, clean-up, 1 sigma", SH | VI | FO, 0, 0, 52, 0, 0, 1, 0, 1, 1, 1, 0, 12, 0},
+    {"all layers, moving, clean-up", SH | VI | GL | IN | FO, 12, -6, 18, -30, 10, 1, 0, 3, 1, 2, 0, 12, 0},
+    {"all layers + drops", SH | VI | GL | IN | FO, 12, 0, 18, 20, 0, 1, 0, 3, 1, 2, 5, 12, 0},
+    {"random vectors, clean-up", SH | VI | GL | FO, 0, 0, 0, 0, 0, 1, 1, 3, 1, 1, 0, 12, 0},
+    /* with history: eq. 2 over each assembled layer along the vectors the
+     * assembly used, 3x3 clamp of the layer's own frame */
+    {"history: one layer, pan, 1 sigma", SH, 24, 8, 0, 0, 0, 0, 0, 1, 0, 0, 0, 1, 1},
+    {"history: fence, shadow vectors, 3 sigma", SH | VI | FO, 0, 0, 18, 0, 0, 1, 0, 3, 0, 2, 0, 1, 1},
+    {"history: all layers + drops, clean-up", SH | VI | GL | IN | FO, 12, 0, 18, 20, 0, 1, 0, 3, 1, 2, 5, 12, 1},
+    {"history: random vectors, clean-up", SH | VI | GL | FO, 0, 0, 0, 0, 0, 1, 1, 3, 1, 1, 0, 12, 1},
 };
 
 static uint8_t val[TDC_LAYER_MAX][NT * 3];
@@ -93,14 +100,15 @@ static void run(const scen_t *s, err_t *all)
 {
     const tdc_panel_t *panel = &tdc_panel_htc_vive;
     tdc_lasm_config_t cfg = {W, H, (uint16_t)(s->layers & TDC_LAYER_PKT_TYPES), s->clamp_k, s->cleanup,
-                             s->splat, 0, 3277, panel};
+                             s->splat, s->history, 3277, panel};
     const size_t bytes = tdc_lasm_get_size(&cfg);
-    assert_true(bytes > 0 && bytes <= TDC_LASM_MEM_BYTES(W, H));
+    assert_true(bytes > 0 && bytes <= (s->history ? TDC_LASM_MEM_BYTES_HIST(W, H) : TDC_LASM_MEM_BYTES(W, H)));
     void *arena = aligned_alloc(8, (bytes + 7) & ~(size_t)7);
     tdc_lasm_t st;
     assert_int_equal(tdc_lasm_init(&st, &cfg, arena, bytes), TDC_OK);
     tdc_ref_lasm_config_t rc = {W, H, s->layers & TDC_LAYER_PKT_TYPES, s->clamp_k, s->cleanup, s->splat, 3277 / 32768.0,
-                                {panel->gamma_micro[0] / 1e6, panel->gamma_micro[1] / 1e6, panel->gamma_micro[2] / 1e6}};
+                                {panel->gamma_micro[0] / 1e6, panel->gamma_micro[1] / 1e6, panel->gamma_micro[2] / 1e6},
+                                s->history};
     tdc_ref_lasm_t *ref = tdc_ref_lasm_new(&rc);
     assert_non_null(ref);
     tdc_lcontent_t c = {W, H, s->layers, s->sh_vx, s->sh_vy, s->vis_vx, s->gl_vx, s->gl_vy,

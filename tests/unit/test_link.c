@@ -918,13 +918,15 @@ static void test_stream_headers(void **state)
     assert_int_equal(tdc_link_error_count(&rig.dec, TDC_LINK_ERR_STREAM), 1);
     assert_null(tdc_link_stream(&rig.dec));
     /* Invalid stream headers: unknown flag, eyes, r = 1 with REDUCED, r != 1
-     * without, sample MV without subframes, reduced size over capacity. */
+     * without, sample MV without subframes, reduced size over capacity,
+     * layer history without layers. */
     struct {
         uint32_t flags;
         uint16_t w;
         uint8_t eyes;
         uint16_t rn, rd;
-    } bad[] = {{0x100, MW, 2, 1, 1},
+    } bad[] = {{0x200, MW, 2, 1, 1},
+               {TDC_LINK_STREAM_SUBFRAMES | TDC_LINK_STREAM_LAYER_HIST, MW, 2, 1, 1},
                {0, MW, 1, 1, 1},
                {TDC_LINK_STREAM_REDUCED, MW, 2, 1, 1},
                {0, MW, 2, 1, 2},
