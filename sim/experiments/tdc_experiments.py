@@ -11,10 +11,17 @@ Every experiment group is one folder sim/experiments/<group>/ holding
 Adding a group is adding a folder (docs/experiments.md).
 
 Commands:
-    tdc-experiments list [--scale S]                       groups, sweeps, jobs
+    tdc-experiments list [GROUP...] [--scale S] [--out DIR] [--sim PATH]
+        groups, sweeps, jobs; with the jobs already in DIR's cache and an
+        estimate of the CPU seconds the others take
     tdc-experiments run [GROUP...] [--scale S] [--out DIR] [-j N] [--sim PATH]
         each sweep on GNU parallel (sim/sweep/tdc_sweep.py local) into
-        DIR/<group>/<sweep>/, then the group's claims -> DIR/<group>/claims.csv
+        DIR/<group>/<sweep>/, then the group's claims -> DIR/<group>/claims.csv;
+        every finished job is kept in DIR/.cache (key: the job's full tdc-sim
+        arguments, the binary's SHA-256, the files the arguments name), so a
+        run stopped part-way resumes where it stopped when started again
+        with the same command; the remaining CPU time is estimated before
+        every group
     tdc-experiments claims [GROUP...] [--out DIR]          claims again from cached results
     tdc-experiments report [--out DIR] [--report FILE] [--results FILE]
         every group's claims.csv -> the paper-vs-tdc table in FILE
@@ -44,6 +51,8 @@ sys.path.insert(0, HERE)
 # the folder of the groups (tests point it at a temporary one)
 GROUPS_DIR = os.path.abspath(os.environ.get("TDC_EXPERIMENTS_DIR", HERE))
 import tdc_stats  # noqa: E402
+sys.path.insert(0, os.path.join(REPO, "sim", "sweep"))
+import tdc_sweep  # noqa: E402  (the job expansion and the result cache)
 sys.path.insert(0, os.path.join(REPO, "common"))
 from tdc_exit import EXIT  # noqa: E402  (the one exit-code table)
 import tdc_argv  # noqa: E402  (the one command-line reader)
@@ -325,6 +334,66 @@ def read_meta(out, group):
         return {}
 
 
+def cache_dir(out):
+    return os.path.join(out, ".cache")
+
+
+def cache_rates(out):
+    """CPU seconds per work unit (tdc_sweep.job_units) of the cached runs: per sweep and over all."""
+    per, tot = {}, [0.0, 0.0]
+    for st in glob.glob(os.path.join(cache_dir(out), "*", "*", "status.json")):
+        try:
+            with open(st, encoding="utf-8") as f:
+                s = json.load(f)
+            cpu, units = float(s["cpu_s"]), float(s["job_units"])
+        except (OSError, ValueError, KeyError, TypeError):
+            continue
+        acc = per.setdefault(s.get("sweep", ""), [0.0, 0.0])
+        for a in (acc, tot):
+            a[0] += cpu
+            a[1] += units
+    rate = lambda a: a[0] / a[1] if a[1] > 0 else None  # noqa: E731
+    return {k: rate(v) for k, v in per.items()}, rate(tot)
+
+
+def plan(sel, scale, out, sim):
+    """Per sweep: (group, sweep, jobs, cached, estimated CPU s of the rest or None).  The estimate is
+    the sweep's own CPU s per unit from its cached runs, else that of every cached run."""
+    per, overall = cache_rates(out)
+    sha = tdc_sweep.file_sha256(sim)
+    rows = []
+    for g in sel:
+        for sw in sweeps_of(g):
+            name = os.path.splitext(os.path.basename(sw))[0]
+            tmp = os.path.join(out, ".plan", g, name + ".sweep")  # tdc_sweep reads sweep files
+            os.makedirs(os.path.dirname(tmp), exist_ok=True)
+            with open(tmp, "w", encoding="utf-8") as f:
+                f.write(scale_sweep(sw, scale))
+            try:
+                spec = {"jobs": tdc_sweep.expand(tdc_sweep.parse_sweep(tmp))}
+            except tdc_sweep.SweepError as e:
+                raise ExpError(EXIT_BAD_GROUP, str(e))
+            done, units = 0, 0.0
+            for j in spec["jobs"]:
+                if tdc_sweep.cached(cache_dir(out), tdc_sweep.job_key(sha, tdc_sweep.job_argv(spec, j["index"]))):
+                    done += 1
+                else:
+                    units += tdc_sweep.job_units(j["args"])
+            rate = per.get("%s/%s.sweep" % (g, name), overall)
+            rows.append((g, name, len(spec["jobs"]), done, units * rate if rate is not None else None))
+    return rows
+
+
+def print_plan(rows, scale, file=sys.stderr):
+    jobs, done = sum(r[2] for r in rows), sum(r[3] for r in rows)
+    est = [r[4] for r in rows if r[2] > r[3]]
+    known = sum(e for e in est if e is not None)
+    unknown = sum(1 for e in est if e is None)
+    print("tdc-experiments: scale %s: %d jobs, %d done (cached), %d to run: about %.0f CPU s (%.1f h)%s" % (
+        scale, jobs, done, jobs - done, known, known / 3600.0,
+        "; %d sweeps not estimated (nothing cached yet to measure a rate)" % unknown if unknown else ""), file=file)
+
+
 def run_group(group, scale, out, jobs, sim):
     gdir = os.path.join(out, group)
     # a run starts from nothing: claims scripts cache their own runs (tdc-render timings, tdc-zeng CSVs) in
@@ -346,7 +415,7 @@ def run_group(group, scale, out, jobs, sim):
         print("tdc-experiments: %s/%s: %d jobs at scale %s" % (group, name, n, scale), file=sys.stderr)
         ts = time.monotonic()
         rc = subprocess.call([sys.executable, os.path.join(REPO, "sim", "sweep", "tdc_sweep.py"), "local", eff,
-                              os.path.join(gdir, name), "-j", str(jobs), "--sim", sim])
+                              os.path.join(gdir, name), "-j", str(jobs), "--sim", sim, "--cache", cache_dir(out)])
         sweeps[name] = {"jobs": n, "wall_s": round(time.monotonic() - ts, 1), "rc": rc}
         if rc != 0:
             failed.append("%s/%s (tdc_sweep exit %d)" % (group, name, rc))
@@ -508,9 +577,18 @@ def main(argv):
     sel = pos or known
     try:
         if cmd == "list":
-            for g in sel:
-                for sw in sweeps_of(g):
-                    print("%-24s %-24s %4d jobs" % (g, os.path.basename(sw), count_jobs(scale_sweep(sw, scale))))
+            sim = os.path.abspath(opts.get("--sim", os.path.join(REPO, "build", "gcc-O2", "tdc-sim")))
+            if not os.path.isfile(sim):  # no binary: the jobs only (no cache key without it)
+                for g in sel:
+                    for sw in sweeps_of(g):
+                        print("%-24s %-24s %4d jobs" % (g, os.path.basename(sw), count_jobs(scale_sweep(sw, scale))))
+                return EXIT_OK
+            rows = plan(sel, scale, out, sim)
+            for g, name, n, done, est in rows:
+                print("%-24s %-24s %4d jobs %4d cached %s" % (g, name + ".sweep", n, done,
+                                                             "" if n == done else "~%.0f CPU s" % est
+                                                             if est is not None else "(no rate yet)"))
+            print_plan(rows, scale, sys.stdout)
             return EXIT_OK
         if cmd == "run":
             sim = os.path.abspath(opts.get("--sim", os.path.join(REPO, "build", "gcc-O2", "tdc-sim")))
@@ -531,6 +609,7 @@ def main(argv):
             rc = EXIT_OK
             for g in sel:
                 try:
+                    print_plan(plan(sel[sel.index(g):], scale, out, sim), scale)
                     m = run_group(g, scale, out, int(j), sim)
                     print("tdc-experiments: %s done in %.0f s wall, %.0f CPU s" % (g, m["wall_s"], m["cpu_s"]),
                           file=sys.stderr)

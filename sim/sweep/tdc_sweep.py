@@ -29,10 +29,19 @@ configuration on every engine.
 Commands:
     tdc-sweep expand SWEEP OUT [--sim PATH]   write OUT/jobs.json, print the jobs
     tdc-sweep run-job OUT [INDEX]             run one job (INDEX or $SLURM_ARRAY_TASK_ID)
-    tdc-sweep local SWEEP OUT [-j N]          expand, GNU parallel -j N (default: cores), merge
+    tdc-sweep local SWEEP OUT [-j N] [--cache DIR]
+                                              expand, GNU parallel -j N (default: cores), merge
     tdc-sweep slurm SWEEP OUT [--wait] [--partition P] [--time MIN]
                                               expand, sbatch --array=0-(N-1); --wait: then merge
     tdc-sweep merge OUT                       OUT/sweep.csv, timings.csv, report.md
+
+Result cache (--cache DIR, local and slurm): a job that ended with exit 0 is
+copied to DIR/<key>/, key = SHA-256 of the job's full tdc-sim arguments, the
+tdc-sim binary's SHA-256 and the SHA-256 of every argument that names a file;
+a later job with the same key restores those files instead of running, so an
+interrupted sweep resumes where it stopped.  status.json records the job's
+CPU seconds (cpu_s) and its work units (pixels x refreshes x modes, job_units)
+for the remaining-time estimate of tdc_experiments.py.
 
 Exit codes (the one table, common/tdc_exit.h; docs/tools.md):
 0 OK, 1 ARGS, 13 INPUT (malformed sweep file or OUT), 18 JOBS (merge: a job
@@ -40,9 +49,11 @@ failed or is missing; the rest is merged), 19 ENGINE (GNU parallel / Slurm
 missing or refused the array).
 """
 import csv
+import hashlib
 import itertools
 import json
 import os
+import resource
 import shlex
 import shutil
 import subprocess
@@ -142,12 +153,80 @@ def expand(sweep):
     return jobs
 
 
-def write_jobs(sweep_path, out, sim):
+_SHA = {}
+
+
+def file_sha256(path):
+    """SHA-256 of a file's bytes (memoised per path, mtime and size)."""
+    st = os.stat(path)
+    memo = (path, st.st_mtime_ns, st.st_size)
+    if memo not in _SHA:
+        h = hashlib.sha256()
+        with open(path, "rb") as f:
+            for block in iter(lambda: f.read(1 << 20), b""):
+                h.update(block)
+        _SHA[memo] = h.hexdigest()
+    return _SHA[memo]
+
+
+def job_argv(spec, index):
+    """tdc-sim's command line for job index, without its output folder."""
+    return ["-q", "-l", "job-%04d" % index] + spec["jobs"][index]["args"]
+
+
+def job_key(sim_sha, argv, cwd=REPO):
+    """The cache key of one run: its full arguments, the binary, and the bytes of every file an
+    argument names (an image, a scene file), so that an edited input is a new run."""
+    files = {}
+    for a in argv:
+        p = a if os.path.isabs(a) else os.path.join(cwd, a)
+        if a and not a.startswith("-") and os.path.isfile(p):
+            files[a] = file_sha256(p)
+    text = json.dumps({"sim": sim_sha, "argv": argv, "files": files}, sort_keys=True)
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
+def _opt(args, names, default):
+    v = default
+    for i, a in enumerate(args[:-1]):
+        if a in names:
+            v = args[i + 1]
+    return v
+
+
+def job_units(args):
+    """Work of one run for the time estimate: pixels x refreshes x modes (tdc-sim's defaults:
+    128x96, 90 Hz, 48 refreshes or -d seconds).  The cost per unit differs between groups (JOD,
+    the renderer, the LCD model), so the estimate calibrates per sweep where it can."""
+    try:
+        w, _, h = _opt(args, ("-g", "--size"), "128x96").partition("x")
+        px = int(w) * int(h)
+        hz = float(_opt(args, ("-r", "--refresh"), "90"))
+        d = _opt(args, ("-d", "--duration"), None)
+        n = float(d) * hz if d is not None else float(_opt(args, ("-n", "--refreshes"), "48"))
+        modes = len(_opt(args, ("-m", "--modes"), "full").split(","))
+        return max(1.0, px * n * modes)
+    except ValueError:
+        return 1.0
+
+
+def sweep_id(path):
+    """'<folder>/<file>' of a sweep file: names the sweep in the cache's per-sweep cost rates."""
+    return "/".join(os.path.abspath(path).split(os.sep)[-2:])
+
+
+def write_jobs(sweep_path, out, sim, cache=None):
     sweep = parse_sweep(sweep_path)
     jobs = expand(sweep)
     os.makedirs(os.path.join(out, "jobs"), exist_ok=True)
     spec = {"name": sweep["name"], "sweep_file": os.path.abspath(sweep_path), "sim": os.path.abspath(sim),
-            "repo": REPO, "axes": [a for a, _ in sweep["axes"]], "jobs": jobs}
+            "repo": REPO, "axes": [a for a, _ in sweep["axes"]], "jobs": jobs,
+            "cache": os.path.abspath(cache) if cache else None}
+    if cache:
+        sha = file_sha256(os.path.abspath(sim))
+        for j in jobs:
+            j["key"] = job_key(sha, job_argv(spec, j["index"]))
+            j["units"] = job_units(j["args"])
     tmp = os.path.join(out, "jobs.json.tmp")
     with open(tmp, "w", encoding="utf-8") as f:
         json.dump(spec, f, indent=1, sort_keys=True)
@@ -167,6 +246,33 @@ def job_dir(out, i):
     return os.path.join(out, "jobs", "%04d" % i)
 
 
+def cached(cache, key):
+    """The cache entry of key when it holds a finished, successful run, else None."""
+    if not cache or not key:
+        return None
+    e = os.path.join(cache, key[:2], key)
+    try:
+        with open(os.path.join(e, "status.json"), encoding="utf-8") as f:
+            return e if json.load(f).get("rc") == 0 else None
+    except (OSError, ValueError):
+        return None
+
+
+def store(cache, key, d):
+    """Copy a successful job's folder into the cache (whole or not at all: copied beside, renamed)."""
+    e = os.path.join(cache, key[:2], key)
+    if os.path.isdir(e):
+        return
+    tmp = "%s.tmp%d" % (e, os.getpid())
+    try:
+        os.makedirs(os.path.dirname(e), exist_ok=True)
+        shutil.copytree(d, tmp)
+        os.rename(tmp, e)
+    except OSError as err:  # a full disk or a concurrent store: the run itself stands
+        shutil.rmtree(tmp, ignore_errors=True)
+        print("tdc-sweep: cache: %s: not stored: %s" % (key[:12], err.strerror or err), file=sys.stderr)
+
+
 def run_job(out, index):
     spec = load_jobs(out)
     if not (0 <= index < len(spec["jobs"])):
@@ -175,23 +281,38 @@ def run_job(out, index):
     d = job_dir(out, index)
     if os.path.isdir(d):
         shutil.rmtree(d)  # a re-run replaces the job's folder, never mixes two runs
+    hit = cached(spec.get("cache"), job.get("key"))
+    if hit:  # the same run, the same binary, the same inputs: restore it (status.json says cached)
+        shutil.copytree(hit, d)
+        with open(os.path.join(d, "status.json"), encoding="utf-8") as f:
+            st = json.load(f)
+        st["cached"] = True
+        with open(os.path.join(d, "status.json"), "w", encoding="utf-8") as f:
+            json.dump(st, f, sort_keys=True)
+        return 0
     os.makedirs(d)
     argv = [spec["sim"], "-q", "-l", "job-%04d" % index, "-o", os.path.abspath(d)] + job["args"]
     with open(os.path.join(d, "command.txt"), "w", encoding="utf-8") as f:
         f.write(" ".join(shlex.quote(a) for a in argv) + "\n")
     t0 = time.monotonic()
+    r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
     with open(os.path.join(d, "stdout.txt"), "wb") as so, open(os.path.join(d, "stderr.txt"), "wb") as se:
         try:
             rc = subprocess.call(argv, stdout=so, stderr=se, cwd=spec["repo"])
         except OSError as e:
             se.write(("tdc-sweep: cannot run %s: %s\n" % (spec["sim"], e.strerror)).encode())
             rc = 127
+    r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
     status = {"index": index, "rc": rc, "wall_s": round(time.monotonic() - t0, 3),
+              "cpu_s": round(r1.ru_utime + r1.ru_stime - r0.ru_utime - r0.ru_stime, 3),
+              "job_units": job_units(job["args"]), "sweep": sweep_id(spec["sweep_file"]),
               "host": os.uname().nodename, "engine": "slurm" if "SLURM_JOB_ID" in os.environ else "local"}
     tmp = os.path.join(d, "status.json.tmp")
     with open(tmp, "w", encoding="utf-8") as f:
         json.dump(status, f, sort_keys=True)
     os.replace(tmp, os.path.join(d, "status.json"))  # written last: its presence means the job ended
+    if rc == 0 and spec.get("cache") and job.get("key"):
+        store(spec["cache"], job["key"], d)
     return rc
 
 
@@ -321,7 +442,8 @@ def engine_slurm(out, n, wait, partition, minutes):
 
 
 def main(argv):
-    r = tdc_argv.command(argv, __doc__, "tdc-sweep", valued=("-j", "--sim", "--partition", "--time"), flags=("--wait",))
+    r = tdc_argv.command(argv, __doc__, "tdc-sweep", valued=("-j", "--sim", "--partition", "--time", "--cache"),
+                         flags=("--wait",))
     if isinstance(r, int):
         return r
     cmd, opts, pos = r
@@ -342,7 +464,7 @@ def main(argv):
         if cmd in ("local", "slurm") and len(pos) == 2:
             if not os.access(sim, os.X_OK):
                 die(EXIT_USAGE, "tdc-sim not found at %s (make, or --sim PATH)" % sim)
-            spec = write_jobs(pos[0], pos[1], sim)
+            spec = write_jobs(pos[0], pos[1], sim, opts.get("--cache"))
             n = len(spec["jobs"])
             if cmd == "local":
                 j = opts.get("-j", str(os.cpu_count() or 1))

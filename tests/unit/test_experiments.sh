@@ -83,6 +83,26 @@ if [ $rc -eq 0 ] && grep -q "| toy paper |  | full beats half | yes |" "$T/rep/e
     ok "report: the paper-vs-tdc table, the group's extra table, one results.md block with the disagreement"
 else bad "report exit $rc: $(cat "$T/rep.txt"; cat "$T/results.md")"; fi
 
+# 2b. the result cache: the same run again restores every job (status.json "cached") with the same
+# claims; the estimate counts them done; another binary (one byte appended) or another argument
+# is a new run
+cp "$O/toy/claims.csv" "$T/claims1.csv"
+$EXP run toy --scale demo --out "$O" -j 2 --sim "$SIM" > "$T/run2.txt" 2>&1; rc=$?
+nc=$(grep -l '"cached": true' "$O"/toy/*/jobs/*/status.json 2>/dev/null | wc -l)
+if [ $rc -eq 0 ] && [ "$nc" = 10 ] && cmp -s "$O/toy/claims.csv" "$T/claims1.csv" \
+    && grep -q "scale demo: 10 jobs, 0 done (cached), 10 to run" "$T/run.txt" \
+    && grep -q "scale demo: 10 jobs, 10 done (cached), 0 to run: about 0 CPU s" "$T/run2.txt"; then
+    ok "cache: the second run restored $nc of 10 jobs, same claims.csv"
+else bad "cache: exit $rc, $nc cached: $(grep 'scale demo' "$T/run.txt" "$T/run2.txt")"; fi
+cp "$SIM" "$T/sim2"; printf x >> "$T/sim2"
+$EXP list toy --scale demo --out "$O" --sim "$T/sim2" > "$T/l2.txt" 2>&1
+sed 's/-n 6/-n 7/' "$G/toy/static.sweep" > "$T/s.sweep" && mv "$T/s.sweep" "$G/toy/static.sweep"
+$EXP list toy --scale demo --out "$O" --sim "$SIM" > "$T/l3.txt" 2>&1
+if grep -q "10 jobs, 0 done (cached)" "$T/l2.txt" && grep -q "static.sweep .* 5 jobs    0 cached ~[0-9]* CPU s" "$T/l3.txt" \
+    && grep -q "moving.sweep .* 5 jobs    5 cached" "$T/l3.txt"; then
+    ok "cache key: another binary and another argument are new runs; $(tail -1 "$T/l3.txt")"
+else bad "cache key: $(cat "$T/l2.txt" "$T/l3.txt")"; fi
+
 # 3. refusals
 $EXP run nosuch --out "$O" --sim "$SIM" > /dev/null 2> "$T/e1.txt"; rc=$?
 [ $rc -eq 1 ] && grep -q "unknown group 'nosuch'" "$T/e1.txt" && ok "unknown group: exit 1, $(cat "$T/e1.txt")" || bad "unknown group exit $rc"
