@@ -243,7 +243,7 @@ class Experiment:
         return j
 
     def judge_seen(self, paper, quote, claim, paper_value, rows, eq_a, eq_b, kind, label_a="A", label_b="B",
-                   secondary=(("flip", 4), ("psnr_db", 2)), run="", why="", cls=""):
+                   secondary=(("flip", 4), ("psnr_db", 2)), run="", why="", cls="", jod_margin=None, note=""):
         """A row on what an observer sees: judged in JOD (tdc-sim --jod, the visual model of
         docs/visual-model.md; margin 0.1 JOD), with the secondary metrics (FLIP, PSNR, ...) beside
         it.  eq_a / eq_b select A's and B's rows (exp.values keywords).  A run made without --jod
@@ -252,16 +252,16 @@ class Experiment:
         sel = self.select(rows, **eq_a) + self.select(rows, **eq_b)
         primary = "jod" if self.has_jod(sel) else None
         sec = [(m, d) for m, d in secondary]
-        note = ""
         if primary is None:
             (primary, digits), sec = sec[0], sec[1:]
-            note = ("no JOD in these results (a run without --jod, or no longer than the judge's 0.25 s warm-up): "
-                    "%s decides" % primary)
+            note += ("; " if note else "") + ("no JOD in these results (a run without --jod, or no longer than the "
+                                              "judge's 0.25 s warm-up): %s decides" % primary)
         else:
             digits = 3
         vals = lambda m, eq: self.values(rows, m, **eq)  # noqa: E731
         return self.judge(paper, quote, claim, paper_value, vals(primary, eq_a), vals(primary, eq_b), kind, primary,
                           label_a, label_b, digits, run=run, why=why, cls=cls, note=note,
+                          margin=jod_margin if primary == "jod" else None,
                           secondary=[(m, vals(m, eq_a), vals(m, eq_b), d) for m, d in sec])
 
     def judge_all(self, paper, quote, claim, paper_value, metrics, kind, label_a="A", label_b="B", run="", why="",

@@ -21,7 +21,7 @@ def pair(exp, rows, a, b, paper, claim, paper_value, speed):
 
 
 def claims(exp):
-    # the renderer scenes (disocclusions): one row per claim, the 5 scenes as the contents
+    # the renderer scenes (disocclusions): one row per claim, the scenes x stretches as the contents
     try:
         rr = exp.rows("aswr")
     except Exception:  # noqa: BLE001 - a cached run from before the sweep
@@ -33,7 +33,8 @@ def claims(exp):
                                    ("full", "asw-est", "TRM Table 1 (ASW)", "full rate better than estimated-motion ASW",
                                     "reprojection artifacts")) if rr else ():
         exp.judge_seen(paper, Q_ASW, "renderer scenes: %s" % claim, pv, rr, {"mode": a}, {"mode": b}, "better", a, b,
-                       run="%s/aswr (room mirror discs fence panorama)" % exp.group)
+                       run="%s/aswr (room mirror discs fence panorama; %d contents: scenes x stretches)" % (
+                           exp.group, len(exp.select(rr, mode=a))))
     rows = exp.rows(SWEEP)
     for sp in sorted({r["speed"] for r in rows}, key=float):  # per speed, never pooled
         pair(exp, rows, "asw", "asw-est", "issue 15 (ASW)", "exact renderer MVs better than block-matched motion",
