@@ -95,7 +95,8 @@ def claims(exp):
                            "two horizontal motions %s: adaptive better than %s over the frame" % (cond, fixed[4:]),
                            "per-tile choice right in both regions", rows9, {"mode": "asm-adaptive", "speed": sp},
                            {"mode": fixed, "speed": sp}, "better", "adaptive", fixed[4:], secondary=SECONDARY,
-                           run="%s/%s speed=%s (scene thin, %d seeds)" % (exp.group, SWEEP9, sp, len(exp.values(rows9, "jod", mode=fixed, speed=sp)))
+                           run="%s/%s speed=%s (scene thin, %d seeds)" % (
+                               exp.group, SWEEP9, sp, len(exp.select(rows9, mode=fixed, speed=sp))))
             content_class(exp, j)
     # the table beside the claims: every (angle, speed), mean +- spread over the contents
     lines = ["| angle | px/frame | l_f | " + " | ".join("%s %s" % (m[4:], lab) for lab in ("FLIP", "legacy_flicker")
