@@ -7,6 +7,10 @@
 #
 #   make experiments [EXP_GROUPS="trm-fixation ..."] [EXP_SCALE=headset|dev|demo] [JOBS=2]
 #   make experiments-report        the table again from the cached results
+# Every finished tdc-sim job is cached in $(EXP_OUT)/.cache (key: its full
+# arguments, the binary's SHA-256, the files it names): an interrupted
+# `make experiments` resumes where it stopped when run again, and prints the
+# jobs left and their estimated CPU seconds before every group.
 EXP_SCALE ?= headset
 EXP_OUT ?= $(BUILD)/experiments
 EXP_GROUPS ?=
@@ -24,19 +28,20 @@ experiments: deps $(TDC_SIM)
 experiments-report:
 	$(EXP_PY) report --out $(EXP_OUT) --report $(or $(REPORT),report)/experiments.md
 
-# `make demo`: the cached results of `make experiments` when there are any,
-# else every group at the demo scale (small sizes, minutes); docs/results.md
-# is only rewritten by `make experiments`.
+# `make demo`: the demo-scale results (small sizes): when $(EXP_DEMO_OUT)
+# holds them, their summary (the counts line and a per-group table on stdout,
+# the full table in report/experiments.md); else every group is run at demo
+# scale first (jobs cached in $(EXP_DEMO_OUT)/.cache: an interrupted run
+# resumes).  Re-run after a change: make experiments EXP_SCALE=demo
+# EXP_OUT=$(EXP_DEMO_OUT).  docs/results.md is only rewritten by
+# `tdc_experiments.py report` without --results - (make experiments).
+EXP_DEMO_OUT ?= $(BUILD)/experiments-demo
 demo: demo-experiments
 demo-experiments: $(TDC_SIM)
-	@if ls $(EXP_OUT)/*/claims.csv >/dev/null 2>&1; then \
-	    echo "demo: summarising the cached experiments in $(EXP_OUT) (make experiments)"; \
-	    $(EXP_PY) report --out $(EXP_OUT) --report $(or $(REPORT),report)/experiments.md --results -; \
-	else \
-	    $(EXP_PY) run --scale demo --out $(B)/experiments-demo -j $(JOBS) --sim $(TDC_SIM); rc=$$?; \
-	    $(EXP_PY) report --out $(B)/experiments-demo --report $(or $(REPORT),report)/experiments.md --results -; \
-	    exit $$rc; \
-	fi
+	@if ! ls $(EXP_DEMO_OUT)/*/claims.csv >/dev/null 2>&1; then \
+	    $(EXP_PY) run --scale demo --out $(EXP_DEMO_OUT) -j $(JOBS) --sim $(TDC_SIM) || rc=$$?; \
+	fi; \
+	$(EXP_PY) report --out $(EXP_DEMO_OUT) --report $(or $(REPORT),report)/experiments.md --results - && exit $${rc:-0}
 
 # The framework and the statistics helper on a temporary two-job group (~5 s).
 $(B)/test-experiments: tests/unit/test_experiments.sh $(TDC_SIM)

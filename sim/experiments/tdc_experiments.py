@@ -481,6 +481,23 @@ def counts(rows):
                 good, len(rows), 100.0 * good / len(rows) if rows else 0.0))
 
 
+def summary(rows, out):
+    """What `make demo` prints: the scale, the count line, and per group its verdicts and run time."""
+    scales = sorted({read_meta(out, g).get("scale", "?") for g in groups() if read_meta(out, g)})
+    lines = ["Paper vs tdc at scale %s (%s):" % (", ".join(scales) or "?", os.path.relpath(out, REPO)), counts(rows),
+             "%-16s %6s %6s %6s %6s %6s %9s %9s" % ("group", "claims", "agree", "equiv", "disagr", "inconc",
+                                                     "unclassed", "CPU s")]
+    for g in groups():
+        gr = [r for r in rows if r["group"] == g]
+        if not gr:
+            continue
+        k = [sum(1 for r in gr if r["verdict"] == v) for v in VERDICTS]
+        un = sum(1 for r in gr if r["verdict"] not in ("agree", "equivalent") and not r.get("class"))
+        lines.append("%-16s %6d %6d %6d %6d %6d %9d %9.0f" % ((g, len(gr)) + tuple(k) + (
+            un, read_meta(out, g).get("cpu_s", 0))))
+    return "\n".join(lines)
+
+
 def runs_table(out):
     """Every group's run: scale, jobs, wall and CPU seconds (meta.json), with the totals."""
     lines = ["| group | scale | jobs | wall s | CPU s (jobs and claims) | date |",
@@ -523,6 +540,7 @@ def report(out, report_path, results_path):
     with open(report_path, "w", encoding="utf-8") as f:
         f.write(text)
     print("tdc-experiments: %d claims -> %s" % (len(rows), report_path), file=sys.stderr)
+    print(summary(rows, out))
     if results_path:
         update_results(results_path, rows, out)
     return EXIT_OK
