@@ -71,7 +71,7 @@ if head -1 "$O/toy/claims.csv" | grep -qx "group,paper,quote,claim,paper_value,t
 else bad "claims.csv: $(cat "$O/toy/claims.csv" 2>/dev/null)"; fi
 printf '# results\n\ntext before\n' > "$T/results.md"
 $EXP report --out "$O" --report "$T/rep/experiments.md" --results "$T/results.md" > "$T/rep.txt" 2>&1
-$EXP report --out "$O" --report "$T/rep/experiments.md" --results "$T/results.md" >> "$T/rep.txt" 2>&1; rc=$?
+$EXP report --out "$O" --report "$T/rep/experiments.md" --results "$T/results.md" > "$T/sum.txt" 2>> "$T/rep.txt"; rc=$?
 if [ $rc -eq 0 ] && grep -q "| toy paper |  | full beats half | yes |" "$T/rep/experiments.md" \
     && grep -q 'a reason, with \\| pipe' "$T/rep/experiments.md" && grep -q "| 1 | 2 |" "$T/rep/experiments.md" \
     && grep -q "^| toy | demo | 10 |" "$T/rep/experiments.md" \
@@ -81,6 +81,10 @@ if [ $rc -eq 0 ] && grep -q "| toy paper |  | full beats half | yes |" "$T/rep/e
     && grep -q "Scale of these results: \*\*demo\*\*" "$T/results.md" \
     && grep -q "an explained setting difference: 3 of 3 (100 %)" "$T/rep/experiments.md"; then
     ok "report: the paper-vs-tdc table, the group's extra table, one results.md block with the disagreement"
+    if grep -q "^Paper vs tdc at scale demo" "$T/sum.txt" && grep -q "^3 claims: 1 agree" "$T/sum.txt" \
+        && grep -Eq "^toy +3 +1 +1 +1 +0 +0 " "$T/sum.txt"; then
+        ok "summary (make demo): $(sed -n 3,4p "$T/sum.txt" | tr -s ' ')"
+    else bad "summary: $(cat "$T/sum.txt")"; fi
 else bad "report exit $rc: $(cat "$T/rep.txt"; cat "$T/results.md")"; fi
 
 # 2b. the result cache: the same run again restores every job (status.json "cached") with the same
