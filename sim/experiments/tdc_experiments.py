@@ -420,7 +420,19 @@ def run_group(group, scale, out, jobs, sim):
         if rc != 0:
             failed.append("%s/%s (tdc_sweep exit %d)" % (group, name, rc))
     meta = {"group": group, "scale": scale, "jobs_parallel": jobs, "sweeps": sweeps,
-            "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())}
+            "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
+            "command": " ".join(["sim/experiments/tdc_experiments.py"] + sys.argv[1:]),
+            "cached_jobs": 0, "load_avg": round(os.getloadavg()[0], 1)}
+
+    # the jobs as they ran (a job restored from the cache keeps its own CPU and wall seconds)
+    for p in glob.glob(os.path.join(gdir, "*", "jobs", "*", "status.json")):
+        try:
+            with open(p, encoding="utf-8") as f:
+                st = json.load(f)
+        except (OSError, ValueError):
+            continue
+        meta["cached_jobs"] += 1 if st.get("cached") else 0
+        meta["jobs_cpu_s"] = round(meta.get("jobs_cpu_s", 0) + float(st.get("cpu_s", 0)), 1)
 
     def write_meta():  # the claims' own runs (tdc-render, tdc-zeng) count too
         c1 = os.times()
@@ -499,18 +511,21 @@ def summary(rows, out):
 
 
 def runs_table(out):
-    """Every group's run: scale, jobs, wall and CPU seconds (meta.json), with the totals."""
-    lines = ["| group | scale | jobs | wall s | CPU s (jobs and claims) | date |",
-             "| --- | --- | ---: | ---: | ---: | --- |"]
-    tj = tw = tc = 0
+    """Every group's run: scale, jobs (restored from the cache), the jobs' CPU seconds as they ran, and the
+    last invocation's wall and CPU seconds (meta.json), with the totals."""
+    lines = ["| group | scale | jobs | of them from the cache | tdc-sim CPU s (as run) | wall s | CPU s (this "
+             "invocation: jobs and claims) | date |",
+             "| --- | --- | ---: | ---: | ---: | ---: | ---: | --- |"]
+    t = [0, 0, 0.0, 0.0, 0.0]
     for g in groups():
         m = read_meta(out, g)
         if m:
-            j = sum(s["jobs"] for s in m["sweeps"].values())
-            tj, tw, tc = tj + j, tw + m.get("wall_s", 0), tc + m.get("cpu_s", 0)
-            lines.append("| %s | %s | %d | %.0f | %.0f | %s |" % (g, m.get("scale"), j, m.get("wall_s", 0),
-                                                                 m.get("cpu_s", 0), m.get("date", "")))
-    lines.append("| all | | %d | %.0f | %.0f | |" % (tj, tw, tc))
+            v = [sum(s["jobs"] for s in m["sweeps"].values()), m.get("cached_jobs", 0), m.get("jobs_cpu_s", 0),
+                 m.get("wall_s", 0), m.get("cpu_s", 0)]
+            t = [a + b for a, b in zip(t, v)]
+            lines.append("| %s | %s | %d | %d | %.0f | %.0f | %.0f | %s |" % ((g, m.get("scale")) + tuple(v) + (
+                m.get("date", ""),)))
+    lines.append("| all | | %d | %d | %.0f | %.0f | %.0f | |" % tuple(t))
     return "\n".join(lines)
 
 
@@ -550,11 +565,24 @@ def update_results(path, rows, out):
     """docs/results.md: the table and the disagreements, between the markers."""
     with open(path, encoding="utf-8") as f:
         text = f.read()
-    scales = sorted({read_meta(out, g).get("scale", "?") for g in groups() if read_meta(out, g)})
-    cmd = ("make experiments" if scales == ["headset"] else
-           "make experiments EXP_SCALE=%s" % (scales[0] if len(scales) == 1 else "S"))
-    body = [MARK_BEGIN, "", "Paper vs tdc (from `%s`; full report with intervals: `report/experiments.md`, "
-            "docs/experiments.md). Scale of these results: **%s**." % (cmd, ", ".join(scales) or "?"), "",
+    metas = [read_meta(out, g) for g in groups() if read_meta(out, g)]
+    scales = sorted({m.get("scale", "?") for m in metas})
+    cmds = sorted({m["command"] for m in metas if m.get("command")})
+    cmd = cmds[0] if len(cmds) == 1 else ("make experiments" if scales == ["headset"] else
+                                         "make experiments EXP_SCALE=%s" % (scales[0] if len(scales) == 1 else "S"))
+    wall, cpu = sum(m.get("wall_s", 0) for m in metas), sum(m.get("cpu_s", 0) for m in metas)
+    jcpu, njobs = sum(m.get("jobs_cpu_s", 0) for m in metas), sum(sum(s["jobs"] for s in m["sweeps"].values())
+                                                                  for m in metas)
+    loads = [m["load_avg"] for m in metas if "load_avg" in m]
+    scale_note = ("**%s scale** (small frames and short runs: not the headset scale of `make experiments`; the "
+                  "`run` column and the runs table say which sweep produced each row)" % scales[0].capitalize()
+                  if scales and scales != ["headset"] else "Scale of these results: **%s**" % (", ".join(scales) or "?"))
+    body = [MARK_BEGIN, "", "%s. Command: `%s`, then `sim/experiments/tdc_experiments.py report --out %s`; "
+            "%d tdc-sim jobs, %.0f CPU s as they ran; the last invocation %.0f s wall, %.0f CPU s%s (full report "
+            "with intervals: `report/experiments.md`; docs/experiments.md)." % (
+                scale_note, cmd, os.path.relpath(out, REPO), njobs, jcpu, wall, cpu,
+                " on this shared 2-core machine at load average %.0f-%.0f" % (min(loads), max(loads)) if loads else ""),
+            "",
             counts(rows), "", runs_table(out), "", claims_table(rows)]
     dis = [r for r in rows if r["verdict"] not in ("agree", "equivalent")]
     if dis:

@@ -78,7 +78,7 @@ if [ $rc -eq 0 ] && grep -q "| toy paper |  | full beats half | yes |" "$T/rep/e
     && [ "$(grep -c 'experiments:begin' "$T/results.md")" = 1 ] && grep -q "text before" "$T/results.md" \
     && grep -q "static TRM = full\*\* (disagree, setting)" "$T/results.md" \
     && grep -q "^3 claims: 1 agree, 1 equivalent, 1 disagree, 0 inconclusive; of the non-agreements 1 are setting" "$T/results.md" \
-    && grep -q "Scale of these results: \*\*demo\*\*" "$T/results.md" \
+    && grep -q "^\*\*Demo scale\*\* (small frames.*Command: \`sim/experiments/tdc_experiments.py run toy --scale demo" "$T/results.md" \
     && grep -q "an explained setting difference: 3 of 3 (100 %)" "$T/rep/experiments.md"; then
     ok "report: the paper-vs-tdc table, the group's extra table, one results.md block with the disagreement"
     if grep -q "^Paper vs tdc at scale demo" "$T/sum.txt" && grep -q "^3 claims: 1 agree" "$T/sum.txt" \
