@@ -568,8 +568,8 @@ def update_results(path, rows, out):
     metas = [read_meta(out, g) for g in groups() if read_meta(out, g)]
     scales = sorted({m.get("scale", "?") for m in metas})
     cmds = sorted({m["command"] for m in metas if m.get("command")})
-    cmd = cmds[0] if len(cmds) == 1 else ("make experiments" if scales == ["headset"] else
-                                         "make experiments EXP_SCALE=%s" % (scales[0] if len(scales) == 1 else "S"))
+    cmd = "` and `".join(cmds) if cmds else ("make experiments" if scales == ["headset"] else
+                                             "make experiments EXP_SCALE=%s" % (scales[0] if len(scales) == 1 else "S"))
     wall, cpu = sum(m.get("wall_s", 0) for m in metas), sum(m.get("cpu_s", 0) for m in metas)
     jcpu, njobs = sum(m.get("jobs_cpu_s", 0) for m in metas), sum(sum(s["jobs"] for s in m["sweeps"].values())
                                                                   for m in metas)
