@@ -13,6 +13,13 @@ RIGID = ("content: a rigid pan of a photograph at a whole number of pixels per f
          "disocclusions and non-rigid motion, which this content does not have")
 
 
+RENDERER = ("tdc's own expectation (issue 15), which no paper sets up: at 90 Hz these scenes move a few pixels a "
+            "frame, the hierarchical block matcher on the last two decoded frames recovers that motion nearly "
+            "everywhere the exact vectors give it (demo: PSNR within 0.5 dB on 4 of the 5 scenes, 0.8-1.4 dB "
+            "behind on the mirror's reflections), and both warps leave the same disocclusion holes, so the visual "
+            "model sees them equal within the margin (the exact warp is even behind on the fence)")
+
+
 def pair(exp, rows, a, b, paper, claim, paper_value, speed):
     """What an observer sees: JOD decides, FLIP and PSNR beside it."""
     exp.judge_seen(paper, Q_ASW, "photographs, %s px/s: %s" % (speed, claim), paper_value, rows, {"mode": a, "speed": speed},
@@ -32,9 +39,11 @@ def claims(exp):
                                     "the frame", "extrapolation helps"),
                                    ("full", "asw-est", "TRM Table 1 (ASW)", "full rate better than estimated-motion ASW",
                                     "reprojection artifacts")) if rr else ():
+        exact = a == "asw" and b == "asw-est"
         exp.judge_seen(paper, Q_ASW, "renderer scenes: %s" % claim, pv, rr, {"mode": a}, {"mode": b}, "better", a, b,
                        run="%s/aswr (room mirror discs fence panorama; %d contents: scenes x stretches)" % (
-                           exp.group, len(exp.select(rr, mode=a))))
+                           exp.group, len(exp.select(rr, mode=a))),
+                       cls="setting" if exact else "", why=RENDERER if exact else "")
     rows = exp.rows(SWEEP)
     for sp in sorted({r["speed"] for r in rows}, key=float):  # per speed, never pooled
         pair(exp, rows, "asw", "asw-est", "issue 15 (ASW)", "exact renderer MVs better than block-matched motion",
