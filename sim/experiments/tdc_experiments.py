@@ -568,8 +568,17 @@ def update_results(path, rows, out):
     metas = [read_meta(out, g) for g in groups() if read_meta(out, g)]
     scales = sorted({m.get("scale", "?") for m in metas})
     cmds = sorted({m["command"] for m in metas if m.get("command")})
-    cmd = "` and `".join(cmds) if cmds else ("make experiments" if scales == ["headset"] else
-                                             "make experiments EXP_SCALE=%s" % (scales[0] if len(scales) == 1 else "S"))
+    gs = set(groups())
+
+    def generic(c):  # the command without its group list: one form for runs split over disjoint groups
+        t = c.split()
+        t = [x for x in t if x not in gs]
+        return " ".join(t[:2] + ["[GROUP...]"] + t[2:]) if len(t) > 2 else c
+    forms = sorted({generic(c) for c in cmds})
+    cmd = ("`%s`" % cmds[0] if len(cmds) == 1 else "`" + "` / `".join(forms) + "` (%d invocations over disjoint "
+           "groups, some in parallel; each group's own is in its meta.json)" % len(cmds)) if cmds else (
+        "`make experiments`" if scales == ["headset"] else
+        "`make experiments EXP_SCALE=%s`" % (scales[0] if len(scales) == 1 else "S"))
     wall, cpu = sum(m.get("wall_s", 0) for m in metas), sum(m.get("cpu_s", 0) for m in metas)
     jcpu, njobs = sum(m.get("jobs_cpu_s", 0) for m in metas), sum(sum(s["jobs"] for s in m["sweeps"].values())
                                                                   for m in metas)
@@ -577,8 +586,8 @@ def update_results(path, rows, out):
     scale_note = ("**%s scale** (small frames and short runs: not the headset scale of `make experiments`; the "
                   "`run` column and the runs table say which sweep produced each row)" % scales[0].capitalize()
                   if scales and scales != ["headset"] else "Scale of these results: **%s**" % (", ".join(scales) or "?"))
-    body = [MARK_BEGIN, "", "%s. Command: `%s`, then `sim/experiments/tdc_experiments.py report --out %s`; "
-            "%d tdc-sim jobs, %.0f CPU s as they ran; the last invocation %.0f s wall, %.0f CPU s%s (full report "
+    body = [MARK_BEGIN, "", "%s. Command: %s, then `sim/experiments/tdc_experiments.py report --out %s`; "
+            "%d tdc-sim jobs, %.0f CPU s as they ran; the groups' last runs %.0f s wall summed, %.0f CPU s%s (full report "
             "with intervals: `report/experiments.md`; docs/experiments.md)." % (
                 scale_note, cmd, os.path.relpath(out, REPO), njobs, jcpu, wall, cpu,
                 " on this shared 2-core machine at load average %.0f-%.0f" % (min(loads), max(loads)) if loads else ""),
