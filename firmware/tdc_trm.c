@@ -372,7 +372,7 @@ static void trm_rowctx(const tdc_trm_t *st, tdc_trm_rowctx_t *k)
 /* beta of full-res row y from codes src and the kept D(I): dst = shown
  * codes, res = rho.  The one place both the full frame and the recompute
  * of rho for a reduced frame run (same kernel: same bytes). */
-static void trm_beta_row(tdc_trm_t *st, const tdc_trm_rowctx_t *k, uint32_t y, const uint32_t *urow, const uint8_t *src,
+static void trm_beta_row(const tdc_trm_t *st, const tdc_trm_rowctx_t *k, uint32_t y, const uint32_t *urow, const uint8_t *src,
                          uint8_t *dst, tdc_res_t *res, tdc_trm_full_counts_t *n)
 {
     if (st->gaze && tdc_trm_gaze_row_active(st->gaze, y)) {
@@ -384,6 +384,40 @@ static void trm_beta_row(tdc_trm_t *st, const tdc_trm_rowctx_t *k, uint32_t y, c
     } else {
         TDC_TRM_FULL_ROW_BOARD(k, urow, src, dst, res, n);
     }
+}
+
+/* A row worker's buffers carved from its memory (tdc_trm_rowbuf_init). */
+#define TDC_ROWBUF_CARVE(member, type, count) b->member = (type *)tdc_arena_take(&arena, sizeof(type) * (size_t)(count));
+
+/* Output row y of a full frame (D(I) rows it needs done) with row buffers
+ * b; clamps counted into n[0], n[1].  Reads the kept state, writes row y of
+ * the output and of icodes (or the stored residual) and b only: rows run on
+ * several cores at once with their own b (tdc_trm_band). */
+static void trm_full_out_row(const tdc_trm_t *st, const tdc_trm_rowctx_t *k, uint32_t y, const tdc_trm_rowbuf_t *b,
+                             uint64_t n[3])
+{
+    const uint32_t w3 = 3u * st->cfg.width;
+    const uint8_t *src = st->inc.in + (size_t)y * st->inc.in_stride;
+    uint8_t *dst = st->inc.out + (size_t)y * st->inc.out_stride;
+    if (st->passthrough) {
+        memmove(dst, src, w3); /* in may be out */
+        return;
+    }
+    tdc_trm_full_counts_t c = {0, 0};
+    trm_u_row(st, st->dprev, y, b->urow);
+    tdc_res_t *res = b->rrow;
+    if (st->icodes) {
+        /* keep I_t (in may be out: copy before the row is overwritten);
+         * rho of this row is not kept, it is recomputed when needed */
+        uint8_t *keep = st->icodes + (size_t)y * w3;
+        memcpy(keep, src, w3);
+        src = keep;
+    } else {
+        res = &st->residual[(size_t)y * w3];
+    }
+    trm_beta_row(st, k, y, b->urow, src, dst, res, &c);
+    n[0] += c.hi;
+    n[1] += c.lo;
 }
 
 /* A frame in progress (full: kind 1, reduced: 2) on these buffers. */
@@ -417,40 +451,23 @@ tdc_status_t tdc_trm_full_rows(tdc_trm_t *st, uint32_t avail, uint32_t *done)
     if (!st || st->inc.kind != 1u) {
         return TDC_ERR_STATE;
     }
-    const uint32_t h = st->cfg.height, w3 = 3u * st->cfg.width;
+    const uint32_t h = st->cfg.height;
     avail = avail < h ? avail : h;
     uint32_t y = st->inc.y;
     if (st->passthrough) {
+        const tdc_trm_rowbuf_t none = {NULL, NULL, NULL};
         for (; y < avail; y++) {
-            const uint8_t *src = st->inc.in + (size_t)y * st->inc.in_stride;
-            uint8_t *dst = st->inc.out + (size_t)y * st->inc.out_stride;
-            for (uint32_t i = 0; i < w3; i++) {
-                dst[i] = src[i];
-            }
+            trm_full_out_row(st, NULL, y, &none, st->inc.n);
         }
     } else {
         trm_d_rows(st, st->inc.in, st->inc.in_stride, st->dprev, NULL, 0, avail, &st->inc.loaded, &st->inc.dy);
         tdc_trm_rowctx_t k;
         trm_rowctx(st, &k);
+        const tdc_trm_rowbuf_t own = tdc_trm_rowbuf_own(st);
         /* row y: arrived, no longer needed by D (in may be out), its U rows done */
         for (; y < avail && (st->inc.loaded >= (int32_t)y || st->inc.dy == st->rh) && trm_u_last(st, y) < st->inc.dy;
              y++) {
-            tdc_trm_full_counts_t n = {0, 0};
-            trm_u_row(st, st->dprev, y, st->urow);
-            const uint8_t *src = st->inc.in + (size_t)y * st->inc.in_stride;
-            tdc_res_t *res = st->rrow;
-            if (st->icodes) {
-                /* keep I_t (in may be out: copy before the row is overwritten);
-                 * rho of this row is not kept, it is recomputed when needed */
-                uint8_t *keep = st->icodes + (size_t)y * w3;
-                memcpy(keep, src, w3);
-                src = keep;
-            } else {
-                res = &st->residual[(size_t)y * w3];
-            }
-            trm_beta_row(st, &k, y, st->urow, src, st->inc.out + (size_t)y * st->inc.out_stride, res, &n);
-            st->inc.n[0] += n.hi;
-            st->inc.n[1] += n.lo;
+            trm_full_out_row(st, &k, y, &own, st->inc.n);
         }
     }
     st->inc.y = y;
@@ -496,17 +513,18 @@ tdc_status_t tdc_trm_full_seq(tdc_trm_t *st, const uint8_t *in, uint32_t in_stri
     return r != TDC_OK ? r : tdc_trm_full_end(st, seq);
 }
 
-/* rho of row y into the row buffer (recompute) or a pointer into the stored
- * residual; urow holds U(D(I_t)) of row y. */
-static const tdc_res_t *trm_rho_row(tdc_trm_t *st, const tdc_trm_rowctx_t *k, uint32_t y, const uint32_t *urow)
+/* rho of row y into the row buffer b (recompute) or a pointer into the
+ * stored residual; urow holds U(D(I_t)) of row y. */
+static const tdc_res_t *trm_rho_row(const tdc_trm_t *st, const tdc_trm_rowctx_t *k, uint32_t y, const uint32_t *urow,
+                                    const tdc_trm_rowbuf_t *b)
 {
     const uint32_t w3 = 3u * st->cfg.width;
     if (!st->icodes) {
         return &st->residual[(size_t)y * w3];
     }
     tdc_trm_full_counts_t n = {0, 0};
-    trm_beta_row(st, k, y, urow, st->icodes + (size_t)y * w3, st->crow, st->rrow, &n);
-    return st->rrow;
+    trm_beta_row(st, k, y, urow, st->icodes + (size_t)y * w3, b->crow, b->rrow, &n);
+    return b->rrow;
 }
 
 tdc_status_t tdc_trm_residual_row(tdc_trm_t *st, uint32_t y, tdc_res_t *out)
@@ -519,8 +537,9 @@ tdc_status_t tdc_trm_residual_row(tdc_trm_t *st, uint32_t y, tdc_res_t *out)
     }
     tdc_trm_rowctx_t k;
     trm_rowctx(st, &k);
-    trm_u_row(st, st->dprev, y, st->urow);
-    const tdc_res_t *r = trm_rho_row(st, &k, y, st->urow);
+    const tdc_trm_rowbuf_t own = tdc_trm_rowbuf_own(st);
+    trm_u_row(st, st->dprev, y, own.urow);
+    const tdc_res_t *r = trm_rho_row(st, &k, y, own.urow, &own);
     for (uint32_t i = 0; i < 3u * st->cfg.width; i++) {
         out[i] = r[i];
     }
@@ -552,57 +571,72 @@ static void trm_reduced_open(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t 
     st->inc.paired = (uint8_t)with_state;
 }
 
+/* The row buffer of an unpaired reduced frame (alpha alone): rho = 0 in
+ * b's rho row (the kernel then never reads U(D(I_t)), zeroed too), or, in
+ * the stored-residual layout, each row's own rho row cleared as it is
+ * shown (that state is stale anyway). */
+static void trm_reduced_unpaired_rows(const tdc_trm_t *st, const tdc_trm_rowbuf_t *b)
+{
+    const uint32_t rw3 = 3u * st->rw;
+    for (uint32_t i = 0; st->icodes && i < 3u * st->cfg.width; i++) {
+        b->rrow[i] = 0;
+    }
+    for (uint32_t i = 0; i < rw3 + 3u; i++) {
+        b->urow[i] = 0; /* defined, though no kernel needs it where rho = 0 */
+    }
+}
+
+/* Output row y of a reduced frame (the reduced rows its U reads there)
+ * with row buffers b (unpaired: prepared by trm_reduced_unpaired_rows);
+ * weight counters into n.  As trm_full_out_row, rows run concurrently with
+ * their own b. */
+static void trm_reduced_out_row(const tdc_trm_t *st, const tdc_trm_rowctx_t *k, uint32_t y, const tdc_trm_rowbuf_t *b,
+                                uint64_t n[3])
+{
+    const uint32_t rw3 = 3u * st->rw;
+    uint32_t *urow_a = b->urow;            /* U(D(I_t)), code Q22 */
+    uint32_t *urow_b = b->urow + rw3 + 3u; /* U(i_t+1) */
+    tdc_trm_reduced_counts_t c = {0, 0, 0};
+    const tdc_res_t *rho;
+    if (st->inc.paired) {
+        trm_u_row(st, st->dprev, y, urow_a);
+        rho = trm_rho_row(st, k, y, urow_a, b);
+    } else if (st->icodes) {
+        rho = b->rrow;
+    } else {
+        tdc_res_t *r = &st->residual[(size_t)y * 3u * st->cfg.width];
+        for (uint32_t i = 0; i < 3u * st->cfg.width; i++) {
+            r[i] = 0;
+        }
+        rho = r;
+    }
+    trm_u_row_codes(st, st->inc.in, st->inc.in_stride, y, urow_b);
+    uint8_t *out = st->inc.out + (size_t)y * st->inc.out_stride;
+    if (st->simd) {
+        tdc_trm_reduced_row_avx2(k, urow_a, urow_b, rho, out, &c);
+    } else {
+        TDC_TRM_REDUCED_ROW_BOARD(k, urow_a, urow_b, rho, out, &c);
+    }
+    n[0] += c.computed;
+    n[1] += c.skipped;
+    n[2] += c.no_res;
+}
+
 tdc_status_t tdc_trm_reduced_rows(tdc_trm_t *st, uint32_t avail, uint32_t *done)
 {
     if (!st || st->inc.kind != 2u) {
         return TDC_ERR_STATE;
     }
-    const uint32_t rw3 = 3u * st->rw;
-    const int with_state = st->inc.paired;
     tdc_trm_rowctx_t k;
     trm_rowctx(st, &k);
-    uint32_t *urow_a = st->urow;            /* U(D(I_t)), code Q22 */
-    uint32_t *urow_b = st->urow + rw3 + 3u; /* U(i_t+1) */
-    /* without state: alpha alone, i.e. rho = 0 everywhere (the kernel then
-     * never reads U(D(I_t))); the row buffer holds the zeros */
-    tdc_res_t *zero = with_state ? NULL : st->rrow;
+    const tdc_trm_rowbuf_t own = tdc_trm_rowbuf_own(st);
     uint32_t y = st->inc.y;
     /* row y once the reduced rows its U reads are there */
     for (; y < st->cfg.height && trm_u_last(st, y) < avail; y++) {
-        tdc_trm_reduced_counts_t n = {0, 0, 0};
-        const tdc_res_t *rho;
-        if (with_state) {
-            trm_u_row(st, st->dprev, y, urow_a);
-            rho = trm_rho_row(st, &k, y, urow_a);
-        } else {
-            if (y == 0u) {
-                for (uint32_t i = 0; zero && i < 3u * st->cfg.width; i++) {
-                    zero[i] = 0;
-                }
-                for (uint32_t i = 0; i < rw3 + 3u; i++) {
-                    urow_a[i] = 0; /* defined, though no kernel needs it where rho = 0 */
-                }
-            }
-            /* stored-residual layout has no row buffer: its own rho row is
-             * cleared (that state is stale anyway) */
-            rho = zero ? zero : &st->residual[(size_t)y * 3u * st->cfg.width];
-            if (!zero) {
-                tdc_res_t *r = &st->residual[(size_t)y * 3u * st->cfg.width];
-                for (uint32_t i = 0; i < 3u * st->cfg.width; i++) {
-                    r[i] = 0;
-                }
-            }
+        if (y == 0u && !st->inc.paired) {
+            trm_reduced_unpaired_rows(st, &own);
         }
-        trm_u_row_codes(st, st->inc.in, st->inc.in_stride, y, urow_b);
-        uint8_t *out = st->inc.out + (size_t)y * st->inc.out_stride;
-        if (st->simd) {
-            tdc_trm_reduced_row_avx2(&k, urow_a, urow_b, rho, out, &n);
-        } else {
-            TDC_TRM_REDUCED_ROW_BOARD(&k, urow_a, urow_b, rho, out, &n);
-        }
-        st->inc.n[0] += n.computed;
-        st->inc.n[1] += n.skipped;
-        st->inc.n[2] += n.no_res;
+        trm_reduced_out_row(st, &k, y, &own, st->inc.n);
     }
     st->inc.y = y;
     if (done) {
@@ -664,6 +698,56 @@ tdc_status_t tdc_trm_reduced_seq(tdc_trm_t *st, const uint8_t *in_reduced, uint3
 {
     const tdc_status_t r = tdc_trm_reduced_begin(st, in_reduced, in_stride, out, out_stride, seq);
     return r != TDC_OK ? r : tdc_trm_reduced_end(st);
+}
+
+tdc_status_t tdc_trm_rowbuf_init(const tdc_trm_t *st, tdc_trm_rowbuf_t *b, void *mem, size_t bytes)
+{
+    tdc_arena_t arena;
+    if (!st || !b || !tdc_arena_over(&arena, mem, bytes)) {
+        return TDC_ERR_ARG;
+    }
+    if (bytes < TDC_TRM_ROWBUF_BYTES(st->cfg.width, st->rw)) {
+        return TDC_ERR_SIZE;
+    }
+    TDC_TRM_ROWBUF(TDC_ROWBUF_CARVE, st->cfg.width, st->rw)
+    return TDC_OK;
+}
+
+tdc_status_t tdc_trm_split(tdc_trm_t *st, uint32_t *y0)
+{
+    if (!st || !y0 || (st->inc.kind != 1u && st->inc.kind != 2u)) {
+        return TDC_ERR_STATE;
+    }
+    if (st->inc.kind == 1u && !st->passthrough) {
+        trm_d_rows(st, st->inc.in, st->inc.in_stride, st->dprev, NULL, 0, st->cfg.height, &st->inc.loaded,
+                   &st->inc.dy);
+    }
+    *y0 = st->inc.y;
+    return TDC_OK;
+}
+
+void tdc_trm_band(const tdc_trm_t *st, uint32_t y0, uint32_t y1, const tdc_trm_rowbuf_t *b, uint64_t n[3])
+{
+    tdc_trm_rowctx_t k;
+    trm_rowctx(st, &k);
+    if (st->inc.kind == 2u && !st->inc.paired && y0 < y1) {
+        trm_reduced_unpaired_rows(st, b);
+    }
+    for (uint32_t y = y0; y < y1; y++) {
+        if (st->inc.kind == 1u) {
+            trm_full_out_row(st, &k, y, b, n);
+        } else {
+            trm_reduced_out_row(st, &k, y, b, n);
+        }
+    }
+}
+
+void tdc_trm_join(tdc_trm_t *st, const uint64_t n[3])
+{
+    for (int i = 0; i < 3; i++) {
+        st->inc.n[i] += n[i];
+    }
+    st->inc.y = st->cfg.height;
 }
 
 tdc_status_t tdc_trm_downsample(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out, uint32_t out_stride)

@@ -276,6 +276,47 @@ tdc_status_t tdc_trm_reduced_rows(tdc_trm_t *st, uint32_t avail, uint32_t *done)
 TDC_MUST_CHECK
 tdc_status_t tdc_trm_reduced_end(tdc_trm_t *st);
 
+/*
+ * Whole frames on several cores (a board with row workers, docs/boards.md
+ * "Real time"): the output rows of a frame are independent once D(I) is
+ * done, so they run as row bands, each band with its own row buffers.
+ * After _begin, with every input row there:
+ *   tdc_trm_split   runs what must run in order (a full frame's D(I), on
+ *                   one core) and gives the first output row left, *y0;
+ *   tdc_trm_band    output rows [y0, y1) with row buffers b, counters
+ *                   added to n[3]; bands of disjoint rows with distinct b
+ *                   may run at the same time (st is only read, the output
+ *                   rows, their kept codes and b written);
+ *   tdc_trm_join    after every band [*y0, H) has run: their counters
+ *                   (summed), the rows done; then _end closes the frame.
+ * The bytes are those of _rows/_end whatever the bands (tested with 1, 2
+ * and 3: tests/linux/test_board_threads.sh).  The stage's own buffers are
+ * one worker's (tdc_trm_rowbuf_own); each further worker carves its own
+ * with tdc_trm_rowbuf_init from TDC_TRM_ROWBUF_BYTES(W, RW) bytes aligned
+ * to TDC_ARENA_ALIGN (TDC_ERR_SIZE if fewer, TDC_ERR_ARG if misaligned).
+ */
+typedef struct {
+    uint32_t *urow;  /* 2 rows of (rw+1)*3: U rows, code Q22 */
+    tdc_res_t *rrow; /* W*3: rho recomputed (NULL with keep_residual) */
+    uint8_t *crow;   /* W*3: the recompute's codes, discarded */
+} tdc_trm_rowbuf_t;
+#define TDC_TRM_ROWBUF(X, W, RW)                                                                        \
+    X(urow, uint32_t, (size_t)2u * ((RW) + 1u) * 3u)                                                    \
+    X(rrow, tdc_res_t, (size_t)(W)*3u)                                                                  \
+    X(crow, uint8_t, (size_t)(W)*3u)
+#define TDC_TRM_ROWBUF_BYTES(W, RW) ((size_t)0 TDC_TRM_ROWBUF(TDC_ARENA_BLOCK_BYTES, W, RW))
+TDC_MUST_CHECK
+tdc_status_t tdc_trm_rowbuf_init(const tdc_trm_t *st, tdc_trm_rowbuf_t *b, void *mem, size_t bytes);
+static inline tdc_trm_rowbuf_t tdc_trm_rowbuf_own(const tdc_trm_t *st)
+{
+    const tdc_trm_rowbuf_t b = {st->urow, st->rrow, st->crow};
+    return b;
+}
+TDC_MUST_CHECK
+tdc_status_t tdc_trm_split(tdc_trm_t *st, uint32_t *y0);
+void tdc_trm_band(const tdc_trm_t *st, uint32_t y0, uint32_t y1, const tdc_trm_rowbuf_t *b, uint64_t n[3]);
+void tdc_trm_join(tdc_trm_t *st, const uint64_t n[3]);
+
 /* Forget the kept full frame (it is no longer what the next reduced frame
  * pairs with), keeping the tables: e.g. when a newer full frame of this
  * eye was lost. */

@@ -19,8 +19,10 @@ LX_CFLAGS := -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror -Wvla -Wshadow $(OPT) 
              -Ifirmware -Ifirmware/board -I$(GEN) $(shell pkg-config --cflags libdrm 2>/dev/null || echo -I/usr/include/libdrm) \
              -include $(PANEL_CONFIG)
 LX_LIBS := -static -ldrm -lgpiod -lpthread
-# the loop's objects for this panel and these stages (mk/boards.mk fw_host_loop)
-$(eval $(call fw_host_loop,$(BP)/loop,$(BANDS),$(FW_CFG_BASE)))
+# the loop's objects for this panel and these stages (mk/boards.mk fw_host_loop),
+# with row workers (TDC_LX_MAX_WORKERS, tdc_board_linux.h: TRM's rows in bands
+# on up to 4 threads, --threads)
+$(eval $(call fw_host_loop,$(BP)/loop,$(BANDS),$(FW_CFG_BASE) -DTDC_CFG_ROW_WORKERS=4))
 LX_LOOP_OBJS = $(patsubst firmware/board/%.c,$(BP)/loop/board/%.o,$(FW_LOOP_SRCS)) $(patsubst firmware/%.c,$(BP)/loop/fw/%.o,$(FWH_PANEL_SRCS))
 LX_BOARD_OBJS = $(patsubst firmware/board/%.c,$(BP)/board/%.o,$(BOARD_SRCS))
 $(BP)/board/%.o: firmware/board/%.c firmware/board/tdc_board_linux.h firmware/board/tdc_board.h $(PANEL_CONFIG) $(GEN)/tdc_panels.h

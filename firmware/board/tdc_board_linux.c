@@ -15,6 +15,9 @@
  *   --state DIR         DFU A/B slots (default /var/lib/tdc)
  *   --stream FILE       read a .tdcs file instead of USB, exit at its end
  *   --no-display        checksum lines on stdout instead of KMS
+ *   --threads N         row workers: TRM's output rows of a frame as N
+ *                       bands on N threads, 1 <= N <= 4 (default: the CPUs
+ *                       online, at most 4); the bytes do not depend on N
  *   --bench             with --stream: the scan-out conversion into a RAM
  *                       buffer instead of KMS, and at the end one line
  *                       "bench: ..." with the time spent in transport,
@@ -100,6 +103,7 @@ tdc_board_status_t tdc_board_init(void)
     if (g_bench && !(g_bench_fb = malloc((size_t)w * h * 4u))) return TDC_BOARD_ERR_IO; /* once, at start-up */
     if (!tdc_lx_opts.no_display && tdc_lx_drm_init(w, h, TDC_PANEL_REFRESH_HZ) != 0) return TDC_BOARD_ERR_IO;
     if (tdc_lx_gpio_init() != 0) return TDC_BOARD_ERR_IO;
+    tdc_lx_workers_init();
     if (tdc_lx_opts.stream) {
         g_stream = fopen(tdc_lx_opts.stream, "rb");
         if (!g_stream) {
@@ -195,7 +199,7 @@ void tdc_board_log(const char *msg)
     tdc_lx_logf("%s", msg);
 }
 
-int tdc_lx_thread(void *(*fn)(void *))
+int tdc_lx_thread(void *(*fn)(void *), void *arg)
 {
     sigset_t block, old;
     sigemptyset(&block);
@@ -203,7 +207,7 @@ int tdc_lx_thread(void *(*fn)(void *))
     sigaddset(&block, SIGINT);
     pthread_sigmask(SIG_BLOCK, &block, &old);
     pthread_t t;
-    const int rc = pthread_create(&t, NULL, fn, NULL);
+    const int rc = pthread_create(&t, NULL, fn, arg);
     pthread_sigmask(SIG_SETMASK, &old, NULL);
     return rc == 0 ? 0 : -1;
 }
@@ -217,7 +221,7 @@ static void on_signal(int sig)
 static int usage(void)
 {
     fprintf(stderr, "usage: tdc-board [--drm PATH] [--connector NAME] [--ffs DIR] [--udc NAME] [--serial S]\n"
-                    "                 [--state DIR] [--stream FILE] [--no-display] [--bench] [--syslog]\n"
+                    "                 [--state DIR] [--stream FILE] [--no-display] [--bench] [--threads N] [--syslog]\n"
                     "                 [--gpio-chip C [--gpio-vsync L] [--gpio-reset L]] [--reset-cause C]\n");
     return TDC_LX_EXIT_ARGS;
 }
@@ -247,6 +251,12 @@ int main(int argc, char **argv)
             while (k < 5 && strcmp(v, names[k])) k++;
             if (k == 5) return usage();
             g_reset = (tdc_reset_cause_t)k;
+            i++;
+        } else if (!strcmp(a, "--threads") && v) {
+            char *end;
+            const long n = strtol(v, &end, 10);
+            if (*end || n < 1 || n > TDC_LX_MAX_WORKERS) return usage();
+            tdc_lx_opts.threads = (int)n;
             i++;
         } else if (!strcmp(a, "--no-display")) {
             tdc_lx_opts.no_display = 1;

@@ -20,6 +20,76 @@ static void trm_wire(tdc_link_buffers_t *b)
     b->reduced_bytes = sizeof tdc_fw_reduced[0];
 }
 
+#if TDC_CFG_ROW_WORKERS > 1
+/* Row buffers of the workers after the first (whose are each eye's own);
+ * the eyes run one after the other, so they share these. */
+static uint64_t g_rowmem[TDC_CFG_ROW_WORKERS - 1][TDC_TRM_ROWBUF_BYTES(FW_W, FW_RW) / 8u];
+static tdc_trm_rowbuf_t g_rowbuf[TDC_CFG_ROW_WORKERS];
+static uint32_t g_workers = 1; /* bands per frame for this stream */
+
+/* One frame's bands: band i is rows [y0 + rows i / n, y0 + rows (i+1) / n). */
+typedef struct {
+    const tdc_trm_t *t;
+    uint32_t y0, n;
+    uint64_t count[TDC_CFG_ROW_WORKERS][3];
+} trm_bands_t;
+
+static void trm_band_job(void *arg, uint32_t i)
+{
+    trm_bands_t *j = arg;
+    const uint64_t rows = j->t->cfg.height - j->y0;
+    const tdc_trm_rowbuf_t own = tdc_trm_rowbuf_own(j->t);
+    tdc_trm_band(j->t, j->y0 + (uint32_t)(rows * i / j->n), j->y0 + (uint32_t)(rows * (i + 1u) / j->n),
+                 i ? &g_rowbuf[i] : &own, j->count[i]);
+}
+
+/* After _begin: the frame's output rows as bands on the board's workers
+ * (tdc_trm_split/_band/_join), or nothing with one worker (_end runs them). */
+static tdc_status_t trm_run_bands(tdc_trm_t *t)
+{
+    const uint32_t have = tdc_board_workers();
+    trm_bands_t j = {t, 0, have < g_workers ? have : g_workers, {{0}}};
+    if (j.n <= 1u) {
+        return TDC_OK;
+    }
+    const tdc_status_t st = tdc_trm_split(t, &j.y0);
+    if (st != TDC_OK) {
+        return st;
+    }
+    tdc_board_run_bands(trm_band_job, &j, j.n);
+    uint64_t sum[3] = {0, 0, 0};
+    for (uint32_t i = 0; i < j.n; i++) {
+        for (int c = 0; c < 3; c++) {
+            sum[c] += j.count[i][c];
+        }
+    }
+    tdc_trm_join(t, sum);
+    return TDC_OK;
+}
+#endif
+
+tdc_status_t tdc_fw_trm_full(uint32_t e, const uint8_t *in, uint32_t stride, uint8_t *fb, uint32_t frame)
+{
+#if TDC_CFG_ROW_WORKERS > 1
+    tdc_status_t st = tdc_trm_full_begin(&tdc_fw_trm[e], in, stride, fb, FW_STRIDE);
+    st = st == TDC_OK ? trm_run_bands(&tdc_fw_trm[e]) : st;
+    return st == TDC_OK ? tdc_trm_full_end(&tdc_fw_trm[e], frame) : st;
+#else
+    return tdc_trm_full_seq(&tdc_fw_trm[e], in, stride, fb, FW_STRIDE, frame);
+#endif
+}
+
+tdc_status_t tdc_fw_trm_reduced(uint32_t e, const uint8_t *in, uint32_t stride, uint8_t *fb, uint32_t frame)
+{
+#if TDC_CFG_ROW_WORKERS > 1
+    tdc_status_t st = tdc_trm_reduced_begin(&tdc_fw_trm[e], in, stride, fb, FW_STRIDE, frame);
+    st = st == TDC_OK ? trm_run_bands(&tdc_fw_trm[e]) : st;
+    return st == TDC_OK ? tdc_trm_reduced_end(&tdc_fw_trm[e]) : st;
+#else
+    return tdc_trm_reduced_seq(&tdc_fw_trm[e], in, stride, fb, FW_STRIDE, frame);
+#endif
+}
+
 int tdc_fw_trm_setup(const tdc_link_stream_info_t *si, uint16_t hz, uint8_t *const mem[], size_t bytes)
 {
     for (uint32_t e = 0; e < FW_EYES; e++) {
@@ -39,6 +109,15 @@ int tdc_fw_trm_setup(const tdc_link_stream_info_t *si, uint16_t hz, uint8_t *con
             return -1;
         }
     }
+#if TDC_CFG_ROW_WORKERS > 1
+    g_workers = 1;
+    for (uint32_t i = 1; i < TDC_CFG_ROW_WORKERS; i++) {
+        if (tdc_trm_rowbuf_init(&tdc_fw_trm[0], &g_rowbuf[i], g_rowmem[i - 1u], sizeof g_rowmem[0]) != TDC_OK) {
+            break; /* unreachable: sized for the largest ratio; fewer bands then */
+        }
+        g_workers = i + 1u;
+    }
+#endif
     return 0;
 }
 
@@ -65,11 +144,11 @@ int tdc_fw_trm_eye(uint32_t e, uint32_t frame, uint32_t kinds, uint8_t *fb, tdc_
 {
     tdc_status_t st;
     if (kinds & KIND_BIT(TDC_LINK_KIND_FULL)) {
-        st = tdc_trm_full_seq(&tdc_fw_trm[e], fb, FW_STRIDE, fb, FW_STRIDE, frame); /* in place: D(I) is taken first */
+        st = tdc_fw_trm_full(e, fb, FW_STRIDE, fb, frame); /* in place: D(I) is taken first */
     } else if (kinds & KIND_BIT(TDC_LINK_KIND_REDUCED)) {
         uint32_t rw = 0, rh = 0;
         tdc_link_reduced_size(&tdc_fw.dec, &rw, &rh);
-        st = tdc_trm_reduced_seq(&tdc_fw_trm[e], tdc_fw_reduced[e], rw * 3u, fb, FW_STRIDE, frame);
+        st = tdc_fw_trm_reduced(e, tdc_fw_reduced[e], rw * 3u, fb, frame);
     } else {
         return FW_EYE_NOTHING;
     }
