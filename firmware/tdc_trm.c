@@ -242,15 +242,16 @@ static int32_t clampi(int32_t v, int32_t lo, int32_t hi)
  * full-res row in the ring (-1 before the first).  Rows are taken in order
  * whatever avail is, so the result does not depend on how they arrive.
  * Vertical pass scaling: 2^15 * 65280 < 2^31; (acc + 2^14) >> 15. */
-static void trm_d_rows(tdc_trm_t *st, const uint8_t *in, uint32_t stride, tdc_gval_t *dst, uint8_t *out8,
-                       uint32_t out8_stride, uint32_t avail, int32_t *loaded_io, uint32_t *jy_done)
+static void trm_d_rows(const tdc_trm_t *st, tdc_gval_t *ring, uint32_t jy_end, const uint8_t *in, uint32_t stride,
+                       tdc_gval_t *dst, uint8_t *out8, uint32_t out8_stride, uint32_t avail, int32_t *loaded_io,
+                       uint32_t *jy_done)
 {
     const int32_t hmax = (int32_t)st->cfg.height - 1;
     const uint32_t taps = st->dtaps;
     const uint32_t rw3 = 3u * st->rw;
     int32_t loaded = *loaded_io; /* highest full-res row in the ring */
     uint32_t jy = *jy_done;
-    for (; jy < st->rh; jy++) {
+    for (; jy < jy_end; jy++) {
         const int32_t k0 = st->dy_first[jy];
         const int32_t need = clampi(k0 + (int32_t)taps - 1, 0, hmax);
         if ((uint32_t)need >= avail) {
@@ -259,7 +260,7 @@ static void trm_d_rows(tdc_trm_t *st, const uint8_t *in, uint32_t stride, tdc_gv
         while (loaded < need) {
             loaded++;
             const uint8_t *row = in + (size_t)loaded * stride;
-            uint16_t *slot = &st->ring[((uint32_t)loaded % taps) * rw3];
+            uint16_t *slot = &ring[((uint32_t)loaded % taps) * rw3];
             /* direct calls, not a function pointer: the recursion check
              * follows the call graph */
             if (st->simd) {
@@ -271,7 +272,7 @@ static void trm_d_rows(tdc_trm_t *st, const uint8_t *in, uint32_t stride, tdc_gv
         const uint16_t *w = &st->dy_w[jy * taps];
         const tdc_gval_t *rows[TDC_TRM_MAX_TAPS];
         for (uint32_t t = 0; t < taps; t++) {
-            rows[t] = &st->ring[((uint32_t)clampi(k0 + (int32_t)t, 0, hmax) % taps) * rw3];
+            rows[t] = &ring[((uint32_t)clampi(k0 + (int32_t)t, 0, hmax) % taps) * rw3];
         }
         /* into D(I) (dst), or one row at a time rounded to codes (out8,
          * tdc_trm_downsample: the U row buffer is free then) */
@@ -299,7 +300,7 @@ static void trm_apply_d(tdc_trm_t *st, const uint8_t *in, uint32_t stride, tdc_g
 {
     int32_t loaded = -1;
     uint32_t jy = 0;
-    trm_d_rows(st, in, stride, dst, out8, out8_stride, st->cfg.height, &loaded, &jy);
+    trm_d_rows(st, st->ring, st->rh, in, stride, dst, out8, out8_stride, st->cfg.height, &loaded, &jy);
 }
 
 /* The reduced row below the one U of full-res row y reads first (the last
@@ -455,12 +456,13 @@ tdc_status_t tdc_trm_full_rows(tdc_trm_t *st, uint32_t avail, uint32_t *done)
     avail = avail < h ? avail : h;
     uint32_t y = st->inc.y;
     if (st->passthrough) {
-        const tdc_trm_rowbuf_t none = {NULL, NULL, NULL};
+        const tdc_trm_rowbuf_t none = {NULL, NULL, NULL, NULL};
         for (; y < avail; y++) {
             trm_full_out_row(st, NULL, y, &none, st->inc.n);
         }
     } else {
-        trm_d_rows(st, st->inc.in, st->inc.in_stride, st->dprev, NULL, 0, avail, &st->inc.loaded, &st->inc.dy);
+        trm_d_rows(st, st->ring, st->rh, st->inc.in, st->inc.in_stride, st->dprev, NULL, 0, avail, &st->inc.loaded,
+                   &st->inc.dy);
         tdc_trm_rowctx_t k;
         trm_rowctx(st, &k);
         const tdc_trm_rowbuf_t own = tdc_trm_rowbuf_own(st);
@@ -713,17 +715,27 @@ tdc_status_t tdc_trm_rowbuf_init(const tdc_trm_t *st, tdc_trm_rowbuf_t *b, void 
     return TDC_OK;
 }
 
-tdc_status_t tdc_trm_split(tdc_trm_t *st, uint32_t *y0)
+tdc_status_t tdc_trm_split(const tdc_trm_t *st, uint32_t *d_rows)
 {
-    if (!st || !y0 || (st->inc.kind != 1u && st->inc.kind != 2u)) {
+    if (!st || !d_rows || (st->inc.kind != 1u && st->inc.kind != 2u) || st->inc.y != 0u) {
         return TDC_ERR_STATE;
     }
-    if (st->inc.kind == 1u && !st->passthrough) {
-        trm_d_rows(st, st->inc.in, st->inc.in_stride, st->dprev, NULL, 0, st->cfg.height, &st->inc.loaded,
-                   &st->inc.dy);
+    *d_rows = st->inc.kind == 1u && !st->passthrough ? st->rh : 0u;
+    return st->inc.dy == 0u ? TDC_OK : TDC_ERR_STATE;
+}
+
+void tdc_trm_d_band(const tdc_trm_t *st, uint32_t j0, uint32_t j1, const tdc_trm_rowbuf_t *b)
+{
+    if (j0 >= j1) {
+        return;
     }
-    *y0 = st->inc.y;
-    return TDC_OK;
+    /* the ring starts empty below the first input row of D row j0 (rows
+     * above the frame are row 0, clamped): from there each D row is what
+     * trm_d_rows gives it in one pass over the frame */
+    const int32_t k0 = st->dy_first[j0];
+    int32_t loaded = (k0 < 0 ? 0 : k0) - 1;
+    uint32_t jy = j0;
+    trm_d_rows(st, b->ring, j1, st->inc.in, st->inc.in_stride, st->dprev, NULL, 0, st->cfg.height, &loaded, &jy);
 }
 
 void tdc_trm_band(const tdc_trm_t *st, uint32_t y0, uint32_t y1, const tdc_trm_rowbuf_t *b, uint64_t n[3])
@@ -748,6 +760,10 @@ void tdc_trm_join(tdc_trm_t *st, const uint64_t n[3])
         st->inc.n[i] += n[i];
     }
     st->inc.y = st->cfg.height;
+    if (st->inc.kind == 1u) {
+        st->inc.dy = st->rh; /* D(I) done by the bands */
+        st->inc.loaded = (int32_t)st->cfg.height - 1;
+    }
 }
 
 tdc_status_t tdc_trm_downsample(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out, uint32_t out_stride)

@@ -27,35 +27,47 @@ static uint64_t g_rowmem[TDC_CFG_ROW_WORKERS - 1][TDC_TRM_ROWBUF_BYTES(FW_W, FW_
 static tdc_trm_rowbuf_t g_rowbuf[TDC_CFG_ROW_WORKERS];
 static uint32_t g_workers = 1; /* bands per frame for this stream */
 
-/* One frame's bands: band i is rows [y0 + rows i / n, y0 + rows (i+1) / n). */
+/* One frame's bands: band i of `rows` rows is [rows i / n, rows (i+1) / n),
+ * D(I)'s rows first (d_rows of them; 0: none), then the output rows. */
 typedef struct {
     const tdc_trm_t *t;
-    uint32_t y0, n;
+    uint32_t n, d_rows;
+    int output; /* 0: D(I)'s rows, 1: the output rows */
     uint64_t count[TDC_CFG_ROW_WORKERS][3];
 } trm_bands_t;
 
 static void trm_band_job(void *arg, uint32_t i)
 {
     trm_bands_t *j = arg;
-    const uint64_t rows = j->t->cfg.height - j->y0;
     const tdc_trm_rowbuf_t own = tdc_trm_rowbuf_own(j->t);
-    tdc_trm_band(j->t, j->y0 + (uint32_t)(rows * i / j->n), j->y0 + (uint32_t)(rows * (i + 1u) / j->n),
-                 i ? &g_rowbuf[i] : &own, j->count[i]);
+    const tdc_trm_rowbuf_t *b = i ? &g_rowbuf[i] : &own;
+    const uint64_t rows = j->output ? j->t->cfg.height : j->d_rows;
+    const uint32_t r0 = (uint32_t)(rows * i / j->n), r1 = (uint32_t)(rows * (i + 1u) / j->n);
+    if (j->output) {
+        tdc_trm_band(j->t, r0, r1, b, j->count[i]);
+    } else {
+        tdc_trm_d_band(j->t, r0, r1, b);
+    }
 }
 
-/* After _begin: the frame's output rows as bands on the board's workers
- * (tdc_trm_split/_band/_join), or nothing with one worker (_end runs them). */
+/* After _begin: D(I) of a full frame, then the frame's output rows, as
+ * bands on the board's workers (tdc_trm_split/_d_band/_band/_join), or
+ * nothing with one worker (_end runs it all). */
 static tdc_status_t trm_run_bands(tdc_trm_t *t)
 {
     const uint32_t have = tdc_board_workers();
-    trm_bands_t j = {t, 0, have < g_workers ? have : g_workers, {{0}}};
+    trm_bands_t j = {t, have < g_workers ? have : g_workers, 0, 0, {{0}}};
     if (j.n <= 1u) {
         return TDC_OK;
     }
-    const tdc_status_t st = tdc_trm_split(t, &j.y0);
+    const tdc_status_t st = tdc_trm_split(t, &j.d_rows);
     if (st != TDC_OK) {
         return st;
     }
+    if (j.d_rows) {
+        tdc_board_run_bands(trm_band_job, &j, j.n);
+    }
+    j.output = 1;
     tdc_board_run_bands(trm_band_job, &j, j.n);
     uint64_t sum[3] = {0, 0, 0};
     for (uint32_t i = 0; i < j.n; i++) {
