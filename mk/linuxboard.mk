@@ -103,6 +103,23 @@ test-linux-arm64:
 	    tests/run_tests.sh linux-arm64 $(BUILD)/linux-$(A64_BOARD_PANEL)-arm64/board-check || :; \
 	else echo "[linux-arm64] FAIL build"; echo "linux-arm64 build FAIL" >> "$(RESULTS)"; fi
 
+# make test (TEST_EXTRA: once, not per variant): the board's row workers show
+# the bytes of the one-threaded loop (tests/linux/test_board_threads.sh,
+# htc-vive TRM and foveated TRM streams with 2 and 3 threads against the
+# host double; ~5 s of CPU after the board build the bench and test-vm share)
+TEST_EXTRA += test-board-threads
+.PHONY: test-board-threads
+test-board-threads:
+	@$(MAKE) --no-print-directory -j2 BOARD=linux PANEL=$(BENCH_BOARD_PANEL) CC=gcc OPT=-O2 SAN= \
+	    $(BUILD)/linux-$(BENCH_BOARD_PANEL)/tdc-board $(BUILD)/linux-$(BENCH_BOARD_PANEL)/loop/tdc_fw_host \
+	    $(BUILD)/gcc-O2/tests/fw_stream > $(BUILD)/.thrblog 2>&1 || { cat $(BUILD)/.thrblog; false; }
+	@printf '#!/bin/sh\nexec tests/linux/test_board_threads.sh %s %s %s %s\n' $(BUILD)/linux-$(BENCH_BOARD_PANEL)/tdc-board \
+	    $(BUILD)/linux-$(BENCH_BOARD_PANEL)/loop/tdc_fw_host $(BUILD)/gcc-O2/tests/fw_stream \
+	    "$$(awk '$$1 == "width" { w = $$2 } $$1 == "height" { h = $$2 } $$1 == "eyes" { e = $$2 } \
+	    END { print w, h, e }' boards/panels/$(BENCH_BOARD_PANEL).panel)" > $(BUILD)/linux-$(BENCH_BOARD_PANEL)/threads-check
+	@chmod +x $(BUILD)/linux-$(BENCH_BOARD_PANEL)/threads-check
+	@tests/run_tests.sh linux-threads $(BUILD)/linux-$(BENCH_BOARD_PANEL)/threads-check || :
+
 # make test: the launcher's A/B roll-back logic with stand-in programs (~1 s;
 # the real program's DFU install and confirmation run in make test-vm)
 $(B)/test-board-launch: tests/linux/test_board_launch.sh boards/linux/tdc-board-launch
