@@ -371,16 +371,18 @@ static void trm_rowctx(const tdc_trm_t *st, tdc_trm_rowctx_t *k)
 }
 
 /* beta of full-res row y from codes src and the kept D(I): dst = shown
- * codes, res = rho.  The one place both the full frame and the recompute
+ * codes (codes = 0: not needed, the AVX2 kernel skips them), res = rho.  The one place both the full frame and the recompute
  * of rho for a reduced frame run (same kernel: same bytes). */
 static void trm_beta_row(const tdc_trm_t *st, const tdc_trm_rowctx_t *k, uint32_t y, const uint32_t *urow, const uint8_t *src,
-                         uint8_t *dst, tdc_res_t *res, tdc_trm_full_counts_t *n)
+                         uint8_t *dst, tdc_res_t *res, tdc_trm_full_counts_t *n, int codes)
 {
     if (st->gaze && tdc_trm_gaze_row_active(st->gaze, y)) {
         tdc_trm_gaze_full_row(k, st->gaze, y, urow, src, dst, res, n); /* tdc_trm_gaze.h */
         return;
     }
-    if (st->simd) {
+    if (st->simd && !codes) {
+        tdc_trm_rho_row_avx2(k, urow, src, dst, res, n); /* codes discarded: not encoded */
+    } else if (st->simd) {
         tdc_trm_full_row_avx2(k, urow, src, dst, res, n);
     } else {
         TDC_TRM_FULL_ROW_BOARD(k, urow, src, dst, res, n);
@@ -416,7 +418,7 @@ static void trm_full_out_row(const tdc_trm_t *st, const tdc_trm_rowctx_t *k, uin
     } else {
         res = &st->residual[(size_t)y * w3];
     }
-    trm_beta_row(st, k, y, b->urow, src, dst, res, &c);
+    trm_beta_row(st, k, y, b->urow, src, dst, res, &c, 1);
     n[0] += c.hi;
     n[1] += c.lo;
 }
@@ -525,7 +527,7 @@ static const tdc_res_t *trm_rho_row(const tdc_trm_t *st, const tdc_trm_rowctx_t 
         return &st->residual[(size_t)y * w3];
     }
     tdc_trm_full_counts_t n = {0, 0};
-    trm_beta_row(st, k, y, urow, st->icodes + (size_t)y * w3, b->crow, b->rrow, &n);
+    trm_beta_row(st, k, y, urow, st->icodes + (size_t)y * w3, b->crow, b->rrow, &n, 0);
     return b->rrow;
 }
 

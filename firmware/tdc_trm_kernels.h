@@ -118,6 +118,9 @@ int tdc_trm_avx2_available(void);
  * returns 1 when every bucket holds at most one threshold. */
 int tdc_trm_avx2_build_encode(const tdc_panel_t *panel, uint8_t *comb);
 tdc_trm_full_row_fn tdc_trm_full_row_avx2;
+/* rho and the counts of tdc_trm_full_row_avx2, the codes in dst only for the
+ * pixels after the last 16-pixel block (the recompute of rho discards them) */
+tdc_trm_full_row_fn tdc_trm_rho_row_avx2;
 tdc_trm_dhoriz_fn tdc_trm_dhoriz_avx2;
 tdc_trm_reduced_row_fn tdc_trm_reduced_row_avx2;
 tdc_trm_dvert_fn tdc_trm_dvert_avx2;

@@ -144,6 +144,33 @@ static void describe_sample(char *buf, size_t cap, uint32_t width, long i)
 
 /* ---- full-res row ---- */
 
+/* rho_row: the full row's rho and counts (its codes are not compared: the
+ * kernel leaves them unwritten but for the C tail) */
+static void check_rho_row(const checkasm_kernel_t *kr)
+{
+    const uint32_t rows = checkasm_runs(3000u);
+    for (uint32_t row = 0; row < rows && !checkasm_failed(); row++) {
+        tdc_trm_rowctx_t k;
+        const row_params_t r = setup_row(row, &k);
+        tdc_trm_full_counts_t nc = {0, 0}, nv = {0, 0};
+        memset(res_c, 0x5a, sizeof res_c);
+        memset(res_v, 0x5a, sizeof res_v);
+        CHECKASM_REF(tdc_trm_full_row_fn, kr)(&k, urow_a, src, dst_c, res_c, &nc);
+        CHECKASM_OPT(tdc_trm_full_row_fn, kr)(&k, urow_a, src, dst_v, res_v, &nv);
+        const long i = checkasm_diff_i32(res_c, res_v, 3u * MAXW);
+        char where[256];
+        if (i >= 0) {
+            describe_sample(where, sizeof where, r.width, i);
+            checkasm_fail("row %u width %u panel %s mode %u: sample %ld: rho %d vs %d; %s", (unsigned)row,
+                          (unsigned)r.width, panels[r.panel]->name, (unsigned)r.mode, i, (int)res_c[i], (int)res_v[i],
+                          where);
+        } else if (nc.hi != nv.hi || nc.lo != nv.lo) {
+            checkasm_fail("row %u width %u: clamp counts hi %u vs %u, lo %u vs %u", (unsigned)row, (unsigned)r.width,
+                          (unsigned)nc.hi, (unsigned)nv.hi, (unsigned)nc.lo, (unsigned)nv.lo);
+        }
+    }
+}
+
 static void check_full_row(const checkasm_kernel_t *kr)
 {
     const uint32_t rows = checkasm_runs(3000u);
@@ -337,12 +364,14 @@ static void bench_dhoriz(const checkasm_kernel_t *kr)
 /* ---- families and registrations ---- */
 
 static const checkasm_family_t trm_full_row = {"trm_full_row", check_full_row, bench_full_row};
+static const checkasm_family_t trm_rho_row = {"trm_rho_row", check_rho_row, bench_full_row};
 static const checkasm_family_t trm_reduced_row = {"trm_reduced_row", check_reduced_row, bench_reduced_row};
 static const checkasm_family_t trm_dvert = {"trm_dvert", check_dvert, bench_dvert};
 static const checkasm_family_t trm_dhoriz = {"trm_dhoriz", check_dhoriz, bench_dhoriz};
 
 static const checkasm_kernel_t g_trm_kernels[] = {
     CHECKASM_KERNEL(&trm_full_row, "avx2", tdc_trm_avx2_available, tdc_trm_full_row_c, tdc_trm_full_row_avx2),
+    CHECKASM_KERNEL(&trm_rho_row, "avx2", tdc_trm_avx2_available, tdc_trm_full_row_c, tdc_trm_rho_row_avx2),
     CHECKASM_KERNEL(&trm_reduced_row, "avx2", tdc_trm_avx2_available, tdc_trm_reduced_row_c, tdc_trm_reduced_row_avx2),
     CHECKASM_KERNEL(&trm_dvert, "avx2", tdc_trm_avx2_available, tdc_trm_dvert_c, tdc_trm_dvert_avx2),
     CHECKASM_KERNEL(&trm_dhoriz, "avx2", tdc_trm_avx2_available, tdc_trm_dhoriz_c, tdc_trm_dhoriz_avx2),
