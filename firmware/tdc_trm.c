@@ -325,8 +325,10 @@ static void trm_u_row(const tdc_trm_t *st, const tdc_gval_t *src, uint32_t y, ui
     const uint32_t i0 = st->uy_i[2u * y], f = st->uy_i[2u * y + 1u];
     const uint32_t i1 = i0 + 1u < st->rh ? i0 + 1u : i0;
     const tdc_gval_t *a = &src[i0 * rw3], *b = &src[i1 * rw3];
-    for (uint32_t i = 0; i < rw3; i++) {
-        dst[i] = (uint32_t)((int32_t)a[i] * (1 << 14) + ((int32_t)b[i] - (int32_t)a[i]) * (int32_t)f);
+    if (st->simd) {
+        tdc_trm_uvert_avx2(a, b, f, rw3, dst);
+    } else {
+        tdc_trm_uvert_c(a, b, f, rw3, dst);
     }
     dst[rw3] = dst[rw3 - 3u];
     dst[rw3 + 1u] = dst[rw3 - 2u];
@@ -342,8 +344,10 @@ static void trm_u_row_codes(const tdc_trm_t *st, const uint8_t *src, uint32_t st
     const uint32_t i0 = st->uy_i[2u * y], f = st->uy_i[2u * y + 1u];
     const uint32_t i1 = i0 + 1u < st->rh ? i0 + 1u : i0;
     const uint8_t *a = src + (size_t)i0 * stride, *b = src + (size_t)i1 * stride;
-    for (uint32_t i = 0; i < rw3; i++) {
-        dst[i] = (uint32_t)((int32_t)a[i] * (1 << 22) + ((int32_t)b[i] - (int32_t)a[i]) * (int32_t)f * 256);
+    if (st->simd) {
+        tdc_trm_uvert_codes_avx2(a, b, f, rw3, dst);
+    } else {
+        tdc_trm_uvert_codes_c(a, b, f, rw3, dst);
     }
     dst[rw3] = dst[rw3 - 3u];
     dst[rw3 + 1u] = dst[rw3 - 2u];

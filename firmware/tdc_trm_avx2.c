@@ -499,6 +499,33 @@ TDC_AVX2 void tdc_trm_reduced_row_avx2(const tdc_trm_rowctx_t *k, const uint32_t
     }
 }
 
+/* U's vertical lerp, 8 values a step: the C kernel's int32 products. */
+TDC_AVX2 void tdc_trm_uvert_avx2(const uint16_t *a, const uint16_t *b, uint32_t f, uint32_t n, uint32_t *dst)
+{
+    const __m256i fv = _mm256_set1_epi32((int)f);
+    uint32_t i = 0;
+    for (; i + 8u <= n; i += 8u) {
+        const __m256i va = _mm256_cvtepu16_epi32(_mm_loadu_si128((const __m128i *)(const void *)(a + i)));
+        const __m256i vb = _mm256_cvtepu16_epi32(_mm_loadu_si128((const __m128i *)(const void *)(b + i)));
+        const __m256i v = _mm256_add_epi32(_mm256_slli_epi32(va, 14), _mm256_mullo_epi32(_mm256_sub_epi32(vb, va), fv));
+        _mm256_storeu_si256((__m256i *)(void *)(dst + i), v);
+    }
+    tdc_trm_uvert_c(a + i, b + i, f, n - i, dst + i);
+}
+
+TDC_AVX2 void tdc_trm_uvert_codes_avx2(const uint8_t *a, const uint8_t *b, uint32_t f, uint32_t n, uint32_t *dst)
+{
+    const __m256i fv = _mm256_set1_epi32((int)f);
+    uint32_t i = 0;
+    for (; i + 8u <= n; i += 8u) {
+        const __m256i va = _mm256_cvtepu8_epi32(_mm_loadl_epi64((const __m128i *)(const void *)(a + i)));
+        const __m256i vb = _mm256_cvtepu8_epi32(_mm_loadl_epi64((const __m128i *)(const void *)(b + i)));
+        const __m256i d = _mm256_slli_epi32(_mm256_mullo_epi32(_mm256_sub_epi32(vb, va), fv), 8);
+        _mm256_storeu_si256((__m256i *)(void *)(dst + i), _mm256_add_epi32(_mm256_slli_epi32(va, 22), d));
+    }
+    tdc_trm_uvert_codes_c(a + i, b + i, f, n - i, dst + i);
+}
+
 TDC_AVX2 void tdc_trm_dvert_avx2(const uint16_t *const *rows, const uint16_t *w, uint32_t taps, uint32_t n,
                                  uint16_t *out)
 {
@@ -602,6 +629,16 @@ void tdc_trm_rho_row_avx2(const tdc_trm_rowctx_t *k, const uint32_t *urow, const
 void tdc_trm_dvert_avx2(const uint16_t *const *rows, const uint16_t *w, uint32_t taps, uint32_t n, uint16_t *out)
 {
     tdc_trm_dvert_c(rows, w, taps, n, out);
+}
+
+void tdc_trm_uvert_avx2(const uint16_t *a, const uint16_t *b, uint32_t f, uint32_t n, uint32_t *dst)
+{
+    tdc_trm_uvert_c(a, b, f, n, dst);
+}
+
+void tdc_trm_uvert_codes_avx2(const uint8_t *a, const uint8_t *b, uint32_t f, uint32_t n, uint32_t *dst)
+{
+    tdc_trm_uvert_codes_c(a, b, f, n, dst);
 }
 
 void tdc_trm_dhoriz_avx2(const uint8_t *row, uint32_t width, const int16_t *first, const uint16_t *w, uint32_t taps,
