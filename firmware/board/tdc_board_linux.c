@@ -158,13 +158,7 @@ tdc_board_status_t tdc_board_panel_show(const uint8_t *fb, uint32_t stride, uint
 {
     if (g_bench) { /* what the KMS path does per frame: RGB888 -> XRGB8888 (tdc_board_linux_drm.c) */
         const uint64_t t0 = bench_us();
-        for (uint32_t y = 0; y < height; y++) {
-            const uint8_t *p = fb + (size_t)y * stride;
-            uint32_t *d = g_bench_fb + (size_t)y * width;
-            for (uint32_t x = 0; x < width; x++) {
-                d[x] = (uint32_t)p[3 * x] << 16 | (uint32_t)p[3 * x + 1] << 8 | p[3 * x + 2];
-            }
-        }
+        tdc_lx_xrgb(fb, stride, width, height, (uint8_t *)g_bench_fb, width * 4u);
         g_t_panel += bench_us() - t0;
         g_frames++;
         (void)frame_index;

@@ -56,6 +56,9 @@ void tdc_lx_fail(int code, const char *fmt, ...) __attribute__((format(printf, 2
 /* Starts a thread with SIGTERM/SIGINT blocked in it, so that they reach the
  * main thread (its blocked endpoint read returns EINTR); 0 or -1. */
 int tdc_lx_thread(void *(*fn)(void *), void *arg);
+/* The scan-out conversion RGB888 (stride) -> XRGB8888 (pitch) of w x h
+ * pixels, in bands on the row workers (tdc_board_linux_drm.c). */
+void tdc_lx_xrgb(const uint8_t *fb, uint32_t stride, uint32_t w, uint32_t h, uint8_t *dst, uint32_t pitch);
 /* Starts the row workers (--threads) once (a thread that does not start:
  * fewer, logged). */
 void tdc_lx_workers_init(void);
