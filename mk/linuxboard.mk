@@ -52,7 +52,8 @@ endif
 
 # make bench: the board's frame loop against the 90 Hz budget at Vive size
 # (tests/linux/bench_board_rt.sh): frames/s and the share of the budget per
-# part, today's single core beside the goal (real time on <= 2 cores).
+# part, the TRM stream on 1 thread (the baseline) and 2 (row workers) in one
+# run beside the goal (real time on <= 2 cores).
 BENCH_BOARD_PANEL := htc-vive
 $(B)/bench-linux-board: FORCE
 	@$(MAKE) --no-print-directory -j2 BOARD=linux PANEL=$(BENCH_BOARD_PANEL) CC=gcc OPT=-O2 SAN= \
