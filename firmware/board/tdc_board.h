@@ -83,7 +83,9 @@ void tdc_board_vsync_wait(void);
  * tdc_board_run_bands(fn, arg, n) runs fn(arg, i) for i < n <= workers at
  * once, i = 0 on the caller, the others on threads the board created at
  * start-up, and returns when all have.  Only a loop built with
- * TDC_CFG_ROW_WORKERS > 1 (tdc_fw_config.h) calls them: the Linux board. */
+ * TDC_CFG_ROW_WORKERS > 1 (tdc_fw_config.h) calls them: the Linux board
+ * (whose scan-out conversion uses them too); the host double's stub has
+ * one worker and runs bands in order (tests/arm/tdc_board_stub.c). */
 typedef void tdc_board_band_fn(void *arg, uint32_t band);
 uint32_t tdc_board_workers(void);
 void tdc_board_run_bands(tdc_board_band_fn *fn, void *arg, uint32_t n);
