@@ -55,6 +55,11 @@ int tdc_eye_ground_truth(const tdc_eye_cfg_t *cfg, tdc_source_t *src, double t_e
 /* out(x) += wgt * light of the slice at x + (sx, sy) (bilinear, edges
  * clamped): one sub-step of the integrals above.  0, or -1 (memory). */
 int tdc_eye_accumulate(double *out, const tdc_eye_slice_t *sl, int w, int h, double sx, double sy, double wgt);
+/* The same for the luminance alone: out (W*H) += wgt * sum_c rgb2y[c]
+ * light_c at x + (sx, sy) (a third of the work and memory when only the
+ * luminance is wanted: the metric's retinal signal). */
+int tdc_eye_accumulate_y(double *out, const tdc_eye_slice_t *sl, const double rgb2y[3], int w, int h, double sx,
+                         double sy, double wgt);
 
 /* Bilinear lookup of channel c at (x, y) in pixel-centre coordinates
  * (pixel i's centre at i), edges clamped. */
