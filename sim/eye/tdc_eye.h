@@ -60,6 +60,11 @@ int tdc_eye_accumulate(double *out, const tdc_eye_slice_t *sl, int w, int h, dou
  * luminance is wanted: the metric's retinal signal). */
 int tdc_eye_accumulate_y(double *out, const tdc_eye_slice_t *sl, const double rgb2y[3], int w, int h, double sx,
                          double sy, double wgt);
+/* The two halves of it, for a slice integrated over several sub-steps
+ * (decoded once, not once per sub-step and row; the same bits): the
+ * slice's luminance into y (W*H), then out += wgt * y at x + (sx, sy). */
+void tdc_eye_slice_luminance(const tdc_eye_slice_t *sl, const double rgb2y[3], int w, int h, double *y);
+int tdc_eye_accumulate_plane(double *out, const double *plane, int w, int h, double sx, double sy, double wgt);
 
 /* Bilinear lookup of channel c at (x, y) in pixel-centre coordinates
  * (pixel i's centre at i), edges clamped. */

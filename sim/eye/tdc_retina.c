@@ -172,6 +172,10 @@ int tdc_retina_sample(const tdc_retina_eye_t *eye, const tdc_eye_slice_t *sl, in
             continue;
         }
         black += d->black_cdm2 * norm * (b1 - a1) / T;
+        double *plane = acc + np; /* the luminance alone: the slice's, decoded once */
+        if (!rgb) {
+            tdc_eye_slice_luminance(&sl[i], d->rgb2y, w, h, plane);
+        }
         /* sub-steps: at most 0.5 px of retinal motion apart (the eye's
          * displacement over the overlap, sampled at its ends and middle) */
         double s0[2], s1[2], sm[2];
@@ -187,7 +191,7 @@ int tdc_retina_sample(const tdc_retina_eye_t *eye, const tdc_eye_slice_t *sl, in
             shift_at(eye, a1 + (k + 0.5) * dt, s);
             const double wgt = gain * norm * dt / T;
             if (rgb ? tdc_eye_accumulate(acc, &sl[i], w, h, s[0], s[1], wgt)
-                    : tdc_eye_accumulate_y(acc, &sl[i], d->rgb2y, w, h, s[0], s[1], wgt)) {
+                    : tdc_eye_accumulate_plane(acc, plane, w, h, s[0], s[1], wgt)) {
                 return -1;
             }
         }

@@ -112,7 +112,7 @@ typedef int (*tdc_retina_cb_t)(void *ctx, const tdc_retina_frame_t *f);
  * stabilisation (the light on the screen).  rgb (w*h*3) and y (w*h, may be
  * NULL) receive cd/m^2; acc: w*h*3 doubles of scratch.  rgb NULL: the
  * luminance alone into y (non-NULL then), integrated as one plane (a third
- * of the work; acc w*h doubles).  0 or -1 (memory). */
+ * of the work; acc 2 w*h doubles).  0 or -1 (memory). */
 int tdc_retina_sample(const tdc_retina_eye_t *eye, const tdc_eye_slice_t *sl, int n, double a, double b, double norm,
                       const tdc_retina_display_t *d, int w, int h, double *acc, float *rgb, float *y);
 

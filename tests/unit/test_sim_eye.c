@@ -261,6 +261,12 @@ static void test_accumulate_y_is_luminance(void **state)
                 double want = y3[0] * a[3 * i] + y3[1] * a[3 * i + 1] + y3[2] * a[3 * i + 2];
                 assert_true(fabs(b[i] - want) <= 1e-12 * (1.0 + want));
             }
+            /* decoded once, then integrated: the same bits */
+            double plane[CP], c[CP];
+            memset(c, 0, sizeof(c));
+            tdc_eye_slice_luminance(&sl, y3, CW, CH, plane);
+            assert_int_equal(tdc_eye_accumulate_plane(c, plane, CW, CH, shifts[k][0], shifts[k][1], 0.7), 0);
+            assert_memory_equal(b, c, sizeof(c));
         }
     }
 }
