@@ -48,7 +48,7 @@ static void retina_release(sim_retina_t *r)
         }
     }
     tdc_retina_eye_free(&r->eye);
-    TDC_FREE_ALL(r->gt, r->acc, r->codes, r->ref_rgb, r->ref_y, r->test_rgb, r->test_y, r->emit, r);
+    TDC_FREE_ALL(r->acc, r->codes, r->ref_rgb, r->ref_y, r->test_rgb, r->test_y, r->emit, r);
 }
 
 sim_retina_t *sim_retina_new(const tdc_sim_setup_t *s, tdc_source_t *const srcs[2], const tdc_sim_gaze_t *gaze,
@@ -111,10 +111,10 @@ sim_retina_t *sim_retina_new(const tdc_sim_setup_t *s, tdc_source_t *const srcs[
             bad |= !(r->buf[e][i] = calloc(n3, r->lcd ? sizeof(double) : 1));
         }
     }
-    bad |= !(r->gt = malloc(sizeof(double) * n3));
     /* The consumer (the judge) reads the luminance alone; only --dump needs
-     * the channels (about 0.2 GB at 1440x1600 for acc and the two planes) */
-    bad |= !(r->acc = malloc(sizeof(double) * (cfg->dump_dir ? n3 : 2 * np)));
+     * the channels (55 MB a plane at 1440x1600) */
+    bad |= !(r->acc = malloc(sizeof(double) * n3));
+    r->gt = r->acc; /* the reference's ground truth is encoded before any step is sampled: one plane */
     bad |= !(r->codes = malloc(n3));
     bad |= cfg->dump_dir && !(r->ref_rgb = malloc(sizeof(float) * n3));
     bad |= cfg->dump_dir && !(r->test_rgb = malloc(sizeof(float) * n3));
