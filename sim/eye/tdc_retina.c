@@ -163,7 +163,7 @@ int tdc_retina_sample(const tdc_retina_eye_t *eye, const tdc_eye_slice_t *sl, in
         if (y) {
             memset(y, 0, sizeof(float) * np);
         }
-        return 0;
+        return 1;
     }
     memset(acc, 0, sizeof(double) * (rgb ? 3 : 1) * np);
     for (int i = 0; i < n; i++) {

@@ -33,10 +33,11 @@
  * frame first.  Metrics of the same size and rate (the modes and eyes of
  * one run, tdc_fvvdp_new_beside) work in one set of scratch planes in turn.
  *
- * Memory: the history is ceil(fps/4) frames of test and reference, float,
- * w*h each (9.2 MB a frame of 1440x1600; at 90 Hz, 23 taps, 212 MB a
- * stream); it grows with the frames fed and stops at the filters' length
- * (nothing older is kept), so a run of n frames holds min(n, taps).  The
+ * Memory: the history is ceil(fps/4) frames of test and reference, 16-bit
+ * codes (tdc_fvvdp_l16: relative rounding <= 2^-12), w*h each (4.6 MB a
+ * frame of 1440x1600; at 90 Hz, 23 taps, 106 MB a stream); it grows with
+ * the frames fed and stops at the filters' length (nothing older is kept),
+ * so a run of n frames holds min(n, taps).  The
  * rest, once per workspace: the test signals' pyramids (2 x 4/3 frames of
  * doubles), four contrast planes (float), three planes of doubles and the
  * per-band magnification map; per reference, its two signals' pyramids.

@@ -235,13 +235,14 @@ int sim_retina_advance(sim_retina_t *r, double te)
         }
         for (int e = 0; e < r->eyes; e++) {
             fr.eye = e;
-            if (tdc_retina_sample(&r->eye, r->ring[e], r->count[e], fr.t0, fr.t1, r->norm, &r->disp, r->w, r->h,
-                                  r->acc, r->ref_rgb, r->ref_y)) {
+            fr.ref_dark = tdc_retina_sample(&r->eye, r->ring[e], r->count[e], fr.t0, fr.t1, r->norm, &r->disp, r->w,
+                                            r->h, r->acc, r->ref_rgb, r->ref_y);
+            if (fr.ref_dark < 0) {
                 return -1;
             }
             if (r->dump) {
                 if (tdc_retina_sample(NULL, r->ring[e], r->count[e], fr.t0, fr.t1, r->norm, &r->disp, r->w, r->h,
-                                      r->acc, r->emit, NULL) ||
+                                      r->acc, r->emit, NULL) < 0 ||
                     tdc_sim_dump_step(r->dump, 0, e, k, r->emit, r->ref_rgb, r->ref_y, fr.fps) ||
                     tdc_sim_dump_step_row(r->dump, &fr)) {
                     return -2;
@@ -255,8 +256,9 @@ int sim_retina_advance(sim_retina_t *r, double te)
                     continue;
                 }
                 const double norm = 1.0 / tdc_panel_sim_duty(&m->panel);
-                if (tdc_retina_sample(&r->eye, m->ring, m->ring_count, fr.t0, fr.t1, norm, &r->disp, r->w, r->h,
-                                      r->acc, r->test_rgb, r->test_y)) {
+                fr.test_dark = tdc_retina_sample(&r->eye, m->ring, m->ring_count, fr.t0, fr.t1, norm, &r->disp, r->w,
+                                                 r->h, r->acc, r->test_rgb, r->test_y);
+                if (fr.test_dark < 0) {
                     return -1;
                 }
                 fr.mode = m->d->name;
@@ -268,7 +270,7 @@ int sim_retina_advance(sim_retina_t *r, double te)
                 }
                 if (r->dump && i < 64) {
                     if (tdc_retina_sample(NULL, m->ring, m->ring_count, fr.t0, fr.t1, norm, &r->disp, r->w, r->h,
-                                          r->acc, r->emit, NULL) ||
+                                          r->acc, r->emit, NULL) < 0 ||
                         tdc_sim_dump_step(r->dump, i + 1, e, k, r->emit, r->test_rgb, r->test_y, fr.fps)) {
                         return -2;
                     }
