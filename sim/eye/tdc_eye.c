@@ -216,6 +216,12 @@ int tdc_eye_accumulate_plane(double *out, const double *plane, int w, int h, dou
 int tdc_eye_perceive(const tdc_eye_cfg_t *cfg, const tdc_eye_slice_t *slices, int n, double t_end, const double v[2],
                      double *out)
 {
+    return tdc_eye_perceive_buf(cfg, slices, n, t_end, v, out, NULL);
+}
+
+int tdc_eye_perceive_buf(const tdc_eye_cfg_t *cfg, const tdc_eye_slice_t *slices, int n, double t_end,
+                         const double v[2], double *out, double *scratch)
+{
     int w = cfg->width, h = cfg->height;
     double T = cfg->window_s, t_start = t_end - T;
     double g = cfg->pursuit_gain;
@@ -232,9 +238,21 @@ int tdc_eye_perceive(const tdc_eye_cfg_t *cfg, const tdc_eye_slice_t *slices, in
         int nsub = (int)ceil(speed * (b - a) / step);
         nsub = nsub < 1 ? 1 : (nsub > 64 ? 64 : nsub);
         double dt = (b - a) / nsub;
+        tdc_eye_slice_t sl = slices[i];
+        if (scratch && nsub > 1 && !sl.lin) {
+            /* codes decoded once for the sub-steps (the same values) */
+            const size_t n3 = 3 * (size_t)w * h;
+            TDC_PAR_FOR(n3)
+            for (int y = 0; y < h; y++) {
+                for (size_t k = 3 * (size_t)y * w; k < 3 * (size_t)(y + 1) * w; k++) {
+                    scratch[k] = sl.lut[256 * (k % 3) + sl.codes[k]];
+                }
+            }
+            sl.lin = scratch;
+        }
         for (int k = 0; k < nsub; k++) {
             double tm = a + (k + 0.5) * dt;
-            if (tdc_eye_accumulate(out, &slices[i], w, h, vx * (tm - t_end), vy * (tm - t_end), dt / T * cfg->norm)) {
+            if (tdc_eye_accumulate(out, &sl, w, h, vx * (tm - t_end), vy * (tm - t_end), dt / T * cfg->norm)) {
                 return -1;
             }
         }

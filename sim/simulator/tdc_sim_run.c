@@ -343,7 +343,8 @@ static void eval_mode_eye(sim_mode_t *m, sim_eval_t *ev, const tdc_eye_cfg_t *ec
     int w = m->w, h = m->h;
     size_t n3 = m->npx * 3, cn = (size_t)cw * ch * 3;
     double w0 = wall_now();
-    if (tdc_eye_perceive(ec, m->ring, m->ring_count, te, v, ev->perc)) {
+    /* ev->scratch is free here: the ground truth's renders are done */
+    if (tdc_eye_perceive_buf(ec, m->ring, m->ring_count, te, v, ev->perc, ev->scratch)) {
         tdc_sim_stage(m, "eye model (out of memory)", -1);
         return;
     }
