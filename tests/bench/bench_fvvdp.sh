@@ -15,7 +15,7 @@ REF=${3:-}
 export OMP_NUM_THREADS=1 OMP_WAIT_POLICY=passive
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-echo "bench-fvvdp: $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg), 1 thread each, $(date -u +%H:%M) UTC"
+echo "bench-fvvdp: $(getconf _NPROCESSORS_ONLN) cores, load $(cut -d' ' -f1-3 /proc/loadavg), 1 thread each, $(date -u +%H:%M) UTC"
 if ! "$TOOL" bench > "$tmp/tdc"; then
     echo "bench-fvvdp: tdc-fvvdp-validate bench: FAILED"
     exit 1
