@@ -33,6 +33,7 @@ static void usage(FILE *f)
                     "  --gt-samples N       ground-truth samples per pixel (default 64)\n"
                     "  --reduced-factor R   r of reduced frames (default 0.5)\n"
                     "  --shadow-mv --dual-mv --no-reflect-mv --bounces N\n"
+                    "  --dual-trace         dual MVs by a previous-frame ray per pixel, not the G-buffer lookup\n"
                     "  --png DIR            write DIR/<scene>-<mode>-<frame>.png (+ -mv.png for motion)\n"
                     "  --layers             with --png: also the layers -shade, -vis, -refl, -mv-refl (Zeng §4);\n"
                     "                       with --mode subframe --stream: a layered stream (LAYERS packets)\n"
@@ -112,6 +113,8 @@ int main(int argc, char **argv)
             cfg.shadow_mv = 1;
         else if (!strcmp(a, "--dual-mv"))
             cfg.dual_mv = 1;
+        else if (!strcmp(a, "--dual-trace"))
+            cfg.dual_mv = cfg.dual_trace = 1;
         else if (!strcmp(a, "--layers"))
             layers = 1;
         else if (!strcmp(a, "--indirect"))

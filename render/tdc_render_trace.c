@@ -12,8 +12,11 @@
  *                previous position, reflected through the mirror chain's
  *                previous planes (Householder reflections), projected
  *   mv-shadow    Zeng eq. 3 + falloff eq. 4 (one previous-frame ray)
- *   mv-dual      Zeng eq. 6: x^O = y + (x - z) (one previous-frame ray, a
- *                tile's 16 at a time)
+ *   mv-dual      Zeng eq. 6: x^O = y + (x - z), "where y = P_{i-1} T^{-1}(x_i)
+ *                P_i^{-1} x_i and z = P_i T(y) P_{i-1}^{-1} y": a lookup in the
+ *                previous FULL frame's depth / object-id G-buffer; without
+ *                one (first frame, subframes, sample sets, probes, option
+ *                dual_trace) one previous-frame ray, a tile's 16 at a time
  * MVs are in float px, backward (previous minus current position).
  */
 #include <math.h>
@@ -1245,6 +1248,64 @@ typedef struct tdc_r_dual {
     int o;
 } tdc_r_dual_t;
 
+/* Eq. 6's P_{i-1}^{-1} y and T(y) read from the previous frame's G-buffer
+ * (Zeng §4.3: "y = P_{i-1} T^{-1}(x_i) P_i^{-1} x_i and z = P_i T(y)
+ * P_{i-1}^{-1} y"; the object at y and its depth are what the previous frame
+ * saw there).  Sample a of this frame is "the same surface" at y if one of
+ * the 2x2 previous samples around y shows its object at its previous depth
+ * dp: within [lo - spread, hi + spread] of those samples' depths, widened by
+ * the traced test's 1e-3 (1 + depth) and 1 % of dp (a lone sample on a
+ * slanted surface at a silhouette; self-occlusion closer than 1 % goes
+ * unseen).  Otherwise q gets the nearest of the four samples: its object
+ * q->o and point q->W = camera + depth * d(y) (d's forward component is 1,
+ * tdc_r_cam_ray), as the traced ray would return them.  Returns 1 same
+ * surface, 0 disoccluded (q filled), -1 y is outside the image: no
+ * correspondence exists there (Zeng §7: "we do not explicitly handle the
+ * cases where the motion vectors point to regions outside the image
+ * plane"), the pixel keeps its vector. */
+static int gbuf_lookup(const rthread_t *t, const rsample_t *a, tdc_r_dual_t *q)
+{
+    const int W = t->r->W, H = t->r->H;
+    const double fx = q->y[0] - 0.5 - t->gb_jx, fy = q->y[1] - 0.5 - t->gb_jy; /* in sample units */
+    if (!(fx > -0.5 && fy > -0.5 && fx < W - 0.5 && fy < H - 0.5)) return -1;
+    const int i0 = (int)floor(fx), j0 = (int)floor(fy);
+    const rcam_t *cam = &t->prev->cam;
+    double dp = INFINITY;
+    if (a->obj >= 0) {
+        double sp[3];
+        tdc_r_xform_point(t->prev->m[a->obj], a->Q, sp);
+        dp = (sp[0] - cam->pos[0]) * cam->fwd[0] + (sp[1] - cam->pos[1]) * cam->fwd[1] +
+             (sp[2] - cam->pos[2]) * cam->fwd[2];
+    }
+    double lo = INFINITY, hi = -INFINITY, best = INFINITY;
+    int nb = -1;
+    for (int k = 0; k < 4; k++) {
+        int i = i0 + (k & 1), j = j0 + (k >> 1);
+        if (i < 0 || j < 0 || i >= W || j >= H) continue;
+        const tdc_r_gpix_t *g = &t->gb_prev[(size_t)j * W + i];
+        if (g->obj == a->obj) {
+            if (a->obj < 0) return 1; /* sky then and now */
+            if (g->depth < lo) lo = g->depth;
+            if (g->depth > hi) hi = g->depth;
+        }
+        double ex = fx - i, ey = fy - j, e = ex * ex + ey * ey;
+        if (e < best) {
+            best = e;
+            nb = j * W + i;
+        }
+    }
+    if (hi >= lo) {
+        double tol = (hi - lo) + 1e-3 * (1 + dp) + 0.01 * dp;
+        if (dp >= lo - tol && dp <= hi + tol) return 1;
+    }
+    const tdc_r_gpix_t *g = &t->gb_prev[nb];
+    tdc_r_cam_ray(cam, q->y[0], q->y[1], q->d);
+    q->o = g->obj;
+    if (q->o >= 0)
+        for (int c = 0; c < 3; c++) q->W[c] = cam->pos[c] + (double)g->depth * q->d[c];
+    return 0;
+}
+
 void tdc_r_pass_mv_dual(rthread_t *t, rsample_t *s, int n)
 {
     /* the samples that need a ray, with their previous-frame positions */
@@ -1291,11 +1352,12 @@ void tdc_r_pass_mv_dual(rthread_t *t, rsample_t *s, int n)
         if (a->refl_used) { /* dual MVs are for primary visibility: use the primary correspondence */
             if (a->obj < 0 || track_point(t, a->obj, a->Q, &a->xc, &a->yc, &q->y[0], &q->y[1]) < 0) continue;
         }
+        if (t->gb_prev && gbuf_lookup(t, a, q) != 0) continue; /* same surface at y, or y off the image */
         q->i = i;
         nq++;
     }
     const rcam_t *cam = &t->prev->cam;
-    for (int i0 = 0; i0 < nq; i0 += 16) {
+    for (int i0 = 0; i0 < nq && !t->gb_prev; i0 += 16) {
         const int m = nq - i0 < 16 ? nq - i0 : 16;
         const double *dir[16];
         int obj[16];
@@ -1318,7 +1380,9 @@ void tdc_r_pass_mv_dual(rthread_t *t, rsample_t *s, int n)
         rsample_t *a = &s[q->i];
         const int o = q->o;
         int same;
-        if (a->obj < 0)
+        if (t->gb_prev)
+            same = 0; /* the lookup decided */
+        else if (a->obj < 0)
             same = o < 0;
         else if (o != a->obj)
             same = 0;
