@@ -1253,8 +1253,8 @@ typedef struct tdc_r_dual {
  * P_{i-1}^{-1} y"; the object at y and its depth are what the previous frame
  * saw there), at the sample nearest y.  Sample a was occluded at y if that
  * sample saw something in front of a's previous point (depth dp): nearer
- * than dp by more than the traced test's 1e-3 (1 + dp) plus 1 % of dp (half
- * a pixel of a slanted surface).  A farther or equal depth is not an
+ * than dp by more than the traced test's 1e-3 (1 + dp) plus 1 % of dp, at
+ * the sample and at y (its depth there from the neighbour toward y).  A farther or equal depth is not an
  * occluder: y is then a's own surface or lies within half a pixel of its
  * silhouette, where the nearest sample fell on the background (a test of the
  * object id alone would call those disoccluded: 16 of 48 at a moving box's
@@ -1273,7 +1273,8 @@ static int gbuf_lookup(const rthread_t *t, const rsample_t *a, tdc_r_dual_t *q)
     if (!(fx > -0.5 && fy > -0.5 && fx < W - 0.5 && fy < H - 0.5)) return -1;
     /* rounding by truncation of a positive value instead of floor (a libm
      * call, or a 6-instruction sequence without SSE4.1) */
-    const tdc_r_gpix_t *gn = &t->gb_prev[(size_t)(int)(fy + 0.5) * W + (size_t)(int)(fx + 0.5)];
+    const int in = (int)(fx + 0.5), jn = (int)(fy + 0.5);
+    const tdc_r_gpix_t *gn = &t->gb_prev[(size_t)jn * W + in];
     const rcam_t *cam = &t->prev->cam;
     if (a->obj < 0) {
         if (gn->obj < 0) return 1; /* sky then and now */
@@ -1282,7 +1283,26 @@ static int gbuf_lookup(const rthread_t *t, const rsample_t *a, tdc_r_dual_t *q)
         tdc_r_xform_point(t->prev->m[a->obj], a->Q, sp);
         const double dp = (sp[0] - cam->pos[0]) * cam->fwd[0] + (sp[1] - cam->pos[1]) * cam->fwd[1] +
                           (sp[2] - cam->pos[2]) * cam->fwd[2];
-        if ((double)gn->depth >= dp - (1e-3 * (1 + dp) + 0.01 * dp)) return 1; /* sky: INFINITY */
+        const double lim = dp - (1e-3 * (1 + dp) + 0.01 * dp);
+        double dy = gn->depth; /* sky: INFINITY */
+        if (dy >= lim) return 1;
+        /* the depth at y itself, linear from the neighbour of the same
+         * object toward y (extrapolated from the other side at its edge):
+         * a grazing face changes depth by more than 1 % within half a
+         * pixel (the analytic occlusion scene's boxes: 0.17 a pixel at 3.3) */
+        const double off[2] = {fx - in, fy - jn};
+        for (int ax = 0; ax < 2; ax++) {
+            const int sg = off[ax] >= 0 ? 1 : -1;
+            for (int side = 0; side < 2; side++) {
+                const int s2 = side ? -sg : sg, i = in + (ax ? 0 : s2), j = jn + (ax ? s2 : 0);
+                if (i < 0 || j < 0 || i >= W || j >= H) continue;
+                const tdc_r_gpix_t *g = &t->gb_prev[(size_t)j * W + i];
+                if (g->obj != gn->obj) continue;
+                dy += ((double)g->depth - gn->depth) * s2 * off[ax];
+                break;
+            }
+        }
+        if (dy >= lim) return 1;
     }
     tdc_r_cam_ray(cam, q->y[0], q->y[1], q->d);
     q->o = gn->obj;

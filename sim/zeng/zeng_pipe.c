@@ -107,6 +107,26 @@ void zp_spatial(const zs_scene_t *s, const zs_frame_t *f, const double *in, doub
     }
 }
 
+double zp_depth_at(const zs_frame_t *f, int qx, int qy, double fx, double fy)
+{
+    const int w = f->w, h = f->h;
+    const size_t q = (size_t)qy * w + qx;
+    double d = f->depth[q];
+    const double off[2] = {fx - qx, fy - qy};
+    for (int a = 0; a < 2; a++) {
+        const int sg = off[a] >= 0 ? 1 : -1;
+        for (int side = 0; side < 2; side++) { /* toward y, else away from it (extrapolated) */
+            const int s2 = side ? -sg : sg, nx = qx + (a ? 0 : s2), ny = qy + (a ? s2 : 0);
+            if (nx < 0 || ny < 0 || nx >= w || ny >= h || f->id[(size_t)ny * w + nx] != f->id[q]) {
+                continue;
+            }
+            d += (f->depth[(size_t)ny * w + nx] - f->depth[q]) * s2 * off[a];
+            break;
+        }
+    }
+    return d;
+}
+
 int zp_dual_vector(const zs_scene_t *s, int frame, const zs_frame_t *f, const zs_frame_t *pf, const zs_cam_t *cam,
                    int x, int y, double out[2])
 {
@@ -119,11 +139,29 @@ int zp_dual_vector(const zs_scene_t *s, int frame, const zs_frame_t *f, const zs
         return 0;
     }
     const size_t q = (size_t)qy * f->w + qx;
-    const int occ = pf->id[q];
-    if (occ == f->id[p] || occ < 0) {
-        return 0;
+    const int occ = pf->id[q], me = f->id[p];
+    if (occ < 0) {
+        return 0; /* the previous frame saw sky there: nothing was in front */
     }
     double off[3], off0[3], pz[3], z[2];
+    if (me >= 0) {
+        /* occluded only if the previous frame saw something in front of this
+         * point at y: a depth test, as the renderer's G-buffer lookup
+         * (render/tdc_render_trace.c); an object-id test alone takes this
+         * object's own silhouette pixels, whose nearest previous sample
+         * fell on the wall behind, for disocclusions */
+        zs_cam_t pc;
+        zs_camera(s, frame - 1, f->w, f->h, &pc);
+        zs_obj_offset(s, me, frame, off);
+        zs_obj_offset(s, me, frame - 1, off0);
+        double dp = 0;
+        for (int k = 0; k < 3; k++) {
+            dp += (f->pos[3 * p + k] - off[k] + off0[k] - pc.pos[k]) * pc.f[k];
+        }
+        if (zp_depth_at(pf, qx, qy, yx - 0.5, yy - 0.5) >= dp - (1e-3 * (1 + dp) + 0.01 * dp)) {
+            return 0;
+        }
+    }
     zs_obj_offset(s, occ, frame, off);
     zs_obj_offset(s, occ, frame - 1, off0);
     for (int k = 0; k < 3; k++) {
