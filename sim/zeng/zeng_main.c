@@ -254,8 +254,9 @@ int main(int argc, char **argv)
             if (fr > 0 && si == 0) {
                 /* §7: the dual vectors' cost beside the primary rays of
                  * the same frame (thread CPU time) */
-                zs_cam_t cam;
+                zs_cam_t cam, pcam;
                 zs_camera(&sc, fr, w, h, &cam);
+                zs_camera(&sc, fr - 1, w, h, &pcam);
                 double t0 = now_ms();
                 for (int y = 0; y < h; y++) {
                     for (int x = 0; x < w; x++) {
@@ -277,7 +278,7 @@ int main(int argc, char **argv)
                 for (int y = 0; y < h; y++) {
                     for (int x = 0; x < w; x++) {
                         double o2[2];
-                        ref[(size_t)y * w + x] = zp_dual_vector(&sc, fr, f, pf, &cam, x, y, o2) + o2[0];
+                        ref[(size_t)y * w + x] = zp_dual_vector(&sc, fr, f, pf, &cam, &pcam, x, y, o2) + o2[0];
                     }
                 }
                 double t2 = now_ms();

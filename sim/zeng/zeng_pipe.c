@@ -128,7 +128,7 @@ double zp_depth_at(const zs_frame_t *f, int qx, int qy, double fx, double fy)
 }
 
 int zp_dual_vector(const zs_scene_t *s, int frame, const zs_frame_t *f, const zs_frame_t *pf, const zs_cam_t *cam,
-                   int x, int y, double out[2])
+                   const zs_cam_t *pc, int x, int y, double out[2])
 {
     const size_t p = (size_t)y * f->w + x;
     const double yx = f->mv_trad[2 * p], yy = f->mv_trad[2 * p + 1];
@@ -150,15 +150,12 @@ int zp_dual_vector(const zs_scene_t *s, int frame, const zs_frame_t *f, const zs
          * (render/tdc_render_trace.c); an object-id test alone takes this
          * object's own silhouette pixels, whose nearest previous sample
          * fell on the wall behind, for disocclusions */
-        zs_cam_t pc;
-        zs_camera(s, frame - 1, f->w, f->h, &pc);
-        zs_obj_offset(s, me, frame, off);
-        zs_obj_offset(s, me, frame - 1, off0);
-        double dp = 0;
-        for (int k = 0; k < 3; k++) {
-            dp += (f->pos[3 * p + k] - off[k] + off0[k] - pc.pos[k]) * pc.f[k];
-        }
-        if (zp_depth_at(pf, qx, qy, yx - 0.5, yy - 0.5) >= dp - (1e-3 * (1 + dp) + 0.01 * dp)) {
+        const double *v = s->obj[me].vel; /* zs_obj_offset(frame) - zs_obj_offset(frame - 1) */
+        const double *sp = f->pos + 3 * p;
+        const double dp = (sp[0] - v[0] - pc->pos[0]) * pc->f[0] + (sp[1] - v[1] - pc->pos[1]) * pc->f[1] +
+                          (sp[2] - v[2] - pc->pos[2]) * pc->f[2];
+        const double lim = dp - (1e-3 * (1 + dp) + 0.01 * dp);
+        if (pf->depth[q] >= lim || zp_depth_at(pf, qx, qy, yx - 0.5, yy - 0.5) >= lim) {
             return 0;
         }
     }
@@ -387,8 +384,9 @@ void zp_step(zp_state_t *st, const zs_scene_t *s, int frame, const zs_frame_t *f
         free(av);
         return;
     }
-    zs_cam_t cam;
+    zs_cam_t cam, pcam;
     zs_camera(s, frame, w, h, &cam);
+    zs_camera(s, frame - 1, w, h, &pcam);
     for (size_t p = 0; p < n; p++) {
         mv[2 * p] = f->mv_trad[2 * p];
         mv[2 * p + 1] = f->mv_trad[2 * p + 1];
@@ -407,7 +405,7 @@ void zp_step(zp_state_t *st, const zs_scene_t *s, int frame, const zs_frame_t *f
     } else if (st->method == ZM_OURS && s->noisy == ZL_INDIRECT) {
         for (int y = 0; y < h; y++) {
             for (int x = 0; x < w; x++) {
-                st->dual += zp_dual_vector(s, frame, f, pf, &cam, x, y, mv + 2 * ((size_t)y * w + x));
+                st->dual += zp_dual_vector(s, frame, f, pf, &cam, &pcam, x, y, mv + 2 * ((size_t)y * w + x));
             }
         }
     }

@@ -86,9 +86,9 @@ double zp_depth_at(const zs_frame_t *f, int qx, int qy, double fx, double fy);
  * frame's sample at y saw something in front of this surface point (its
  * depth nearer by more than 1e-3 (1 + d) + 1 % of d: a disocclusion), z = that occluder's
  * previous point moved by its own motion and projected with this frame's
- * camera, x^O = y + (x - z).  Returns 1 when the pixel is disoccluded (out =
+ * camera (cam; pc: the previous frame's), x^O = y + (x - z).  Returns 1 when the pixel is disoccluded (out =
  * x^O), 0 otherwise (out = the traditional vector). */
 int zp_dual_vector(const zs_scene_t *s, int frame, const zs_frame_t *f, const zs_frame_t *pf, const zs_cam_t *cam,
-                   int x, int y, double out[2]);
+                   const zs_cam_t *pc, int x, int y, double out[2]);
 
 #endif

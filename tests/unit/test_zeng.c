@@ -174,7 +174,7 @@ static void test_dual_vectors(void **state)
     for (int y = 0; y < H; y++) {
         for (int x = 0; x < W; x++) {
             double o[2];
-            if (!zp_dual_vector(&s, 6, &f, &pf, &cam, x, y, o)) {
+            if (!zp_dual_vector(&s, 6, &f, &pf, &cam, &pc, x, y, o)) {
                 continue;
             }
             dis++;
