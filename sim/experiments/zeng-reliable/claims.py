@@ -123,7 +123,7 @@ def claims(exp):
                                                                  "ssim_region"))))
         if scene == "occlusion" and cost:
             ratio = cost[1] / cost[0]
-            exp.claim("Zeng §7", "dual vectors (eq. 6, a lookup in the previous frame's ids and positions): cost "
+            exp.claim("Zeng §7", "dual vectors (eq. 6, a lookup in the previous frame's ids and depths): cost "
                       "per frame beside the primary rays", "negligible (< 0.23 ms at 1080p, GPU)",
                       "%.3f ms vs %.3f ms primary (%.3f×)" % (cost[1], cost[0], ratio),
                       "agree" if ratio <= NEGLIGIBLE else "disagree",
