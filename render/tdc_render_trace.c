@@ -1254,8 +1254,8 @@ typedef struct tdc_r_dual {
  * saw there), at the sample nearest y.  Sample a was occluded at y if that
  * sample saw something in front of a's previous point (depth dp): nearer
  * than dp by more than the traced test's 1e-3 (1 + dp) plus 1 % of dp, at
- * the sample and at y (its depth there from the neighbour toward y).  A farther or equal depth is not an
- * occluder: y is then a's own surface or lies within half a pixel of its
+ * the sample and at y (its depth there from the neighbour toward y).  A
+ * farther or equal depth is not an occluder: y is then a's own surface or lies within half a pixel of its
  * silhouette, where the nearest sample fell on the background (a test of the
  * object id alone would call those disoccluded: 16 of 48 at a moving box's
  * edges in test_render_mv; a test of 2x2 samples missed a turning box's own
@@ -1306,7 +1306,8 @@ static int gbuf_lookup(const rthread_t *t, const rsample_t *a, tdc_r_dual_t *q)
     }
     tdc_r_cam_ray(cam, q->y[0], q->y[1], q->d);
     q->o = gn->obj;
-    for (int c = 0; c < 3; c++) q->W[c] = cam->pos[c] + (double)gn->depth * q->d[c];
+    if (q->o >= 0)
+        for (int c = 0; c < 3; c++) q->W[c] = cam->pos[c] + (double)gn->depth * q->d[c];
     return 0;
 }
 
