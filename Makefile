@@ -251,16 +251,13 @@ endef
 # $(RESULTS), and every step prints its wall time.
 test: deps
 	@mkdir -p $(BUILD); rm -f $(RESULTS)
-	@t0=$$(date +%s); $(MAKE) --no-print-directory -j2 run-tests CC=gcc OPT=-O2 || \
-	    { echo "gcc-O2 run-tests build FAIL" >> $(RESULTS); echo "*** gcc-O2 run-tests: build or target failed"; }; \
-	    echo "[time] gcc-O2 run-tests: $$(( $$(date +%s) - t0 )) s"
-	@mkdir -p $(BUILD); for t in $(TEST_BESIDE); do { t0=$$(date +%s); $(MAKE) --no-print-directory $$t || \
-	    { echo "$$t target FAIL" >> $(RESULTS); echo "*** $$t: target failed"; }; \
-	    echo "[time] $$t (background): $$(( $$(date +%s) - t0 )) s"; } \
+	@tests/timed.sh "gcc-O2 run-tests" $(MAKE) --no-print-directory -j2 run-tests CC=gcc OPT=-O2 || \
+	    { echo "gcc-O2 run-tests build FAIL" >> $(RESULTS); echo "*** gcc-O2 run-tests: build or target failed"; }
+	@mkdir -p $(BUILD); for t in $(TEST_BESIDE); do { tests/timed.sh "$$t (background)" $(MAKE) --no-print-directory $$t || \
+	    { echo "$$t target FAIL" >> $(RESULTS); echo "*** $$t: target failed"; }; } \
 	    > $(BUILD)/beside-$$t.log 2>&1 & echo $$! > $(BUILD)/beside-$$t.pid; done
-	@for t in $(TEST_EXTRA); do t0=$$(date +%s); $(MAKE) --no-print-directory $$t || \
-	    { echo "$$t target FAIL" >> $(RESULTS); echo "*** $$t: target failed"; }; \
-	    echo "[time] $$t: $$(( $$(date +%s) - t0 )) s"; done
+	@for t in $(TEST_EXTRA); do tests/timed.sh "$$t" $(MAKE) --no-print-directory $$t || \
+	    { echo "$$t target FAIL" >> $(RESULTS); echo "*** $$t: target failed"; }; done
 	@for t in $(TEST_BESIDE); do while kill -0 $$(cat $(BUILD)/beside-$$t.pid) 2>/dev/null; do sleep 2; done; \
 	    cat $(BUILD)/beside-$$t.log; done
 	@tests/summary.sh $(RESULTS)

@@ -32,6 +32,23 @@ void tdc_pixfmt_rgb_to_ycbcr(int32_t r, int32_t g, int32_t b, uint8_t ycc[3])
     ycc[2] = sat_u8(128 + tdc_asr32(ENC_CR_R * r + ENC_CR_G * g + ENC_CR_B * b + 32768, 16));
 }
 
+static inline void pack_rgb565_px(const uint8_t *s, uint8_t *o)
+{
+    const uint32_t r5 = (s[0] * 31u + 127u) / 255u;
+    const uint32_t g6 = (s[1] * 63u + 127u) / 255u;
+    const uint32_t b5 = (s[2] * 31u + 127u) / 255u;
+    tdc_put_le16(o, (r5 << 11) | (g6 << 5) | b5);
+}
+
+static inline void pack_rgb30_px(const uint8_t *s, uint8_t *o)
+{
+    uint32_t v = 0;
+    for (uint32_t c = 0; c < 3; c++) {
+        v |= ((s[c] * 1023u + 127u) / 255u) << (10u * c);
+    }
+    tdc_put_le32(o, v);
+}
+
 void tdc_pixfmt_pack(tdc_pixfmt_t fmt, const uint8_t *rgb, uint32_t w, uint32_t h, uint32_t stride, uint8_t *out)
 {
     switch (fmt) {
@@ -40,31 +57,8 @@ void tdc_pixfmt_pack(tdc_pixfmt_t fmt, const uint8_t *rgb, uint32_t w, uint32_t 
             memcpy(out + (size_t)w * 3u * y, rgb + (size_t)stride * y, (size_t)w * 3u);
         }
         break;
-    case TDC_PIXFMT_RGB565:
-        for (uint32_t y = 0; y < h; y++) {
-            const uint8_t *s = rgb + (size_t)stride * y;
-            uint8_t *o = out + (size_t)w * 2u * y;
-            for (uint32_t x = 0; x < w; x++) {
-                const uint32_t r5 = (s[3 * x] * 31u + 127u) / 255u;
-                const uint32_t g6 = (s[3 * x + 1] * 63u + 127u) / 255u;
-                const uint32_t b5 = (s[3 * x + 2] * 31u + 127u) / 255u;
-                tdc_put_le16(o + 2u * x, (r5 << 11) | (g6 << 5) | b5);
-            }
-        }
-        break;
-    case TDC_PIXFMT_RGB30:
-        for (uint32_t y = 0; y < h; y++) {
-            const uint8_t *s = rgb + (size_t)stride * y;
-            uint8_t *o = out + (size_t)w * 4u * y;
-            for (uint32_t x = 0; x < w; x++) {
-                uint32_t v = 0;
-                for (uint32_t c = 0; c < 3; c++) {
-                    v |= ((s[3 * x + c] * 1023u + 127u) / 255u) << (10u * c);
-                }
-                tdc_put_le32(o + 4u * x, v);
-            }
-        }
-        break;
+    case TDC_PIXFMT_RGB565: TDC_PIXFMT_ROWS(rgb, stride, 3u, out, w * 2u, 2u, w, h, pack_rgb565_px); break;
+    case TDC_PIXFMT_RGB30: TDC_PIXFMT_ROWS(rgb, stride, 3u, out, w * 4u, 4u, w, h, pack_rgb30_px); break;
     case TDC_PIXFMT_YCBCR420: {
         const uint32_t cw = (w + 1u) / 2u, ch = (h + 1u) / 2u;
         uint8_t *cb = out + (size_t)w * h, *cr = cb + (size_t)cw * ch;

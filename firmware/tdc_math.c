@@ -128,6 +128,24 @@ int32_t tdc_div_q30(uint32_t num, uint32_t den)
     return (int32_t)((p + (1ULL << 31)) >> 32);
 }
 
+/* The digit-by-digit square root's loop, 2 bits per step, in the unsigned
+ * type of x, res and bit (the 32-bit one runs in 32-bit registers on the
+ * M-cores, the 64-bit one in pairs): one body, so the two widths cannot
+ * drift apart.  bit starts at a power of 4 <= x (or 0 when x is 0); x
+ * ends as the remainder, res as floor(sqrt(x)). */
+#define TDC_ISQRT_DIGIT_LOOP(x, res, bit)     \
+    do {                                      \
+        while ((bit) != 0u) {                 \
+            if ((x) >= (res) + (bit)) {       \
+                (x) -= (res) + (bit);         \
+                (res) = ((res) >> 1) + (bit); \
+            } else {                          \
+                (res) >>= 1;                  \
+            }                                 \
+            (bit) >>= 2;                      \
+        }                                     \
+    } while (0)
+
 /* Digit-by-digit square root, 2 bits per step; the first step is found
  * with a count of leading zeros instead of a scan down from 2^62. */
 uint32_t tdc_isqrt64_digits(uint64_t x)
@@ -138,15 +156,7 @@ uint32_t tdc_isqrt64_digits(uint64_t x)
     const unsigned lz = tdc_clz64(x);
     uint64_t res = 0;
     uint64_t bit = 1ULL << ((63u - lz) & ~1u); /* highest power of 4 <= x */
-    while (bit != 0u) {
-        if (x >= res + bit) {
-            x -= res + bit;
-            res = (res >> 1) + bit;
-        } else {
-            res >>= 1;
-        }
-        bit >>= 2;
-    }
+    TDC_ISQRT_DIGIT_LOOP(x, res, bit);
     return (uint32_t)res;
 }
 
@@ -217,15 +227,7 @@ static inline uint32_t isqrt32_digits(uint32_t x)
     while (bit > x) {
         bit >>= 2;
     }
-    while (bit != 0u) {
-        if (x >= res + bit) {
-            x -= res + bit;
-            res = (res >> 1) + bit;
-        } else {
-            res >>= 1;
-        }
-        bit >>= 2;
-    }
+    TDC_ISQRT_DIGIT_LOOP(x, res, bit);
     return res;
 }
 

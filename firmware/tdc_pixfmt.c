@@ -37,34 +37,32 @@ void tdc_pixfmt_unpack_rgb888(const uint8_t *src, uint32_t w, uint32_t h, uint8_
     }
 }
 
+static inline void rgb565_px(const uint8_t *s, uint8_t *d)
+{
+    const uint32_t v = tdc_get_le16(s);
+    const uint32_t r5 = v >> 11, g6 = (v >> 5) & 0x3Fu, b5 = v & 0x1Fu;
+    /* Bit replication: 0 -> 0, max -> 255, monotone. */
+    d[0] = (uint8_t)((r5 << 3) | (r5 >> 2));
+    d[1] = (uint8_t)((g6 << 2) | (g6 >> 4));
+    d[2] = (uint8_t)((b5 << 3) | (b5 >> 2));
+}
+
 void tdc_pixfmt_unpack_rgb565(const uint8_t *src, uint32_t w, uint32_t h, uint8_t *dst, uint32_t dst_stride)
 {
-    for (uint32_t y = 0; y < h; y++) {
-        const uint8_t *s = src + (size_t)w * 2u * y;
-        uint8_t *d = dst + (size_t)dst_stride * y;
-        for (uint32_t x = 0; x < w; x++) {
-            const uint32_t v = tdc_get_le16(s + 2u * x);
-            const uint32_t r5 = v >> 11, g6 = (v >> 5) & 0x3Fu, b5 = v & 0x1Fu;
-            /* Bit replication: 0 -> 0, max -> 255, monotone. */
-            d[3 * x + 0] = (uint8_t)((r5 << 3) | (r5 >> 2));
-            d[3 * x + 1] = (uint8_t)((g6 << 2) | (g6 >> 4));
-            d[3 * x + 2] = (uint8_t)((b5 << 3) | (b5 >> 2));
-        }
-    }
+    TDC_PIXFMT_ROWS(src, w * 2u, 2u, dst, dst_stride, 3u, w, h, rgb565_px);
+}
+
+static inline void rgb30_px(const uint8_t *s, uint8_t *d)
+{
+    const uint32_t v = tdc_get_le32(s);
+    d[0] = tdc_pixfmt_u10_to_u8(v & 0x3FFu);
+    d[1] = tdc_pixfmt_u10_to_u8((v >> 10) & 0x3FFu);
+    d[2] = tdc_pixfmt_u10_to_u8((v >> 20) & 0x3FFu);
 }
 
 void tdc_pixfmt_unpack_rgb30(const uint8_t *src, uint32_t w, uint32_t h, uint8_t *dst, uint32_t dst_stride)
 {
-    for (uint32_t y = 0; y < h; y++) {
-        const uint8_t *s = src + (size_t)w * 4u * y;
-        uint8_t *d = dst + (size_t)dst_stride * y;
-        for (uint32_t x = 0; x < w; x++) {
-            const uint32_t v = tdc_get_le32(s + 4u * x);
-            d[3 * x + 0] = tdc_pixfmt_u10_to_u8(v & 0x3FFu);
-            d[3 * x + 1] = tdc_pixfmt_u10_to_u8((v >> 10) & 0x3FFu);
-            d[3 * x + 2] = tdc_pixfmt_u10_to_u8((v >> 20) & 0x3FFu);
-        }
-    }
+    TDC_PIXFMT_ROWS(src, w * 4u, 4u, dst, dst_stride, 3u, w, h, rgb30_px);
 }
 
 /* Q16 value + rounding -> 8-bit code, clamped.  Scaling and overflow:

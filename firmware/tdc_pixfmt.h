@@ -72,4 +72,20 @@ static inline uint8_t tdc_pixfmt_u10_to_u8(uint32_t v)
     return (uint8_t)((v * 255u + 511u) / 1023u);
 }
 
+/* The row walk of every per-pixel converter of the packed formats (the
+ * encoder's packers, the decoder's unpackers): h rows of w pixels, source
+ * row y at in + in_row * y with IN_PX bytes a pixel, destination row y at
+ * out + out_row * y with OUT_PX bytes a pixel; PIXEL(s, d) converts one.
+ * A macro, so each format's loop is compiled with its pixel code inline. */
+#define TDC_PIXFMT_ROWS(in, in_row, IN_PX, out, out_row, OUT_PX, w, h, PIXEL)                                          \
+    do {                                                                                                               \
+        for (uint32_t rows_y_ = 0; rows_y_ < (h); rows_y_++) {                                                         \
+            const uint8_t *rows_s_ = (in) + (size_t)(in_row) * rows_y_;                                                \
+            uint8_t *rows_d_ = (out) + (size_t)(out_row) * rows_y_;                                                    \
+            for (uint32_t rows_x_ = 0; rows_x_ < (w); rows_x_++) {                                                     \
+                PIXEL(rows_s_ + (IN_PX) * rows_x_, rows_d_ + (OUT_PX) * rows_x_);                                      \
+            }                                                                                                          \
+        }                                                                                                              \
+    } while (0)
+
 #endif /* TDC_PIXFMT_H */

@@ -242,15 +242,16 @@ static int32_t clampi(int32_t v, int32_t lo, int32_t hi)
  * full-res row in the ring (-1 before the first).  Rows are taken in order
  * whatever avail is, so the result does not depend on how they arrive.
  * Vertical pass scaling: 2^15 * 65280 < 2^31; (acc + 2^14) >> 15. */
-static void trm_d_rows(tdc_trm_t *st, const uint8_t *in, uint32_t stride, tdc_gval_t *dst, uint8_t *out8,
-                       uint32_t out8_stride, uint32_t avail, int32_t *loaded_io, uint32_t *jy_done)
+static void trm_d_rows(const tdc_trm_t *st, tdc_gval_t *ring, uint32_t jy_end, const uint8_t *in, uint32_t stride,
+                       tdc_gval_t *dst, uint8_t *out8, uint32_t out8_stride, uint32_t avail, int32_t *loaded_io,
+                       uint32_t *jy_done)
 {
     const int32_t hmax = (int32_t)st->cfg.height - 1;
     const uint32_t taps = st->dtaps;
     const uint32_t rw3 = 3u * st->rw;
     int32_t loaded = *loaded_io; /* highest full-res row in the ring */
     uint32_t jy = *jy_done;
-    for (; jy < st->rh; jy++) {
+    for (; jy < jy_end; jy++) {
         const int32_t k0 = st->dy_first[jy];
         const int32_t need = clampi(k0 + (int32_t)taps - 1, 0, hmax);
         if ((uint32_t)need >= avail) {
@@ -259,7 +260,7 @@ static void trm_d_rows(tdc_trm_t *st, const uint8_t *in, uint32_t stride, tdc_gv
         while (loaded < need) {
             loaded++;
             const uint8_t *row = in + (size_t)loaded * stride;
-            uint16_t *slot = &st->ring[((uint32_t)loaded % taps) * rw3];
+            uint16_t *slot = &ring[((uint32_t)loaded % taps) * rw3];
             /* direct calls, not a function pointer: the recursion check
              * follows the call graph */
             if (st->simd) {
@@ -271,7 +272,7 @@ static void trm_d_rows(tdc_trm_t *st, const uint8_t *in, uint32_t stride, tdc_gv
         const uint16_t *w = &st->dy_w[jy * taps];
         const tdc_gval_t *rows[TDC_TRM_MAX_TAPS];
         for (uint32_t t = 0; t < taps; t++) {
-            rows[t] = &st->ring[((uint32_t)clampi(k0 + (int32_t)t, 0, hmax) % taps) * rw3];
+            rows[t] = &ring[((uint32_t)clampi(k0 + (int32_t)t, 0, hmax) % taps) * rw3];
         }
         /* into D(I) (dst), or one row at a time rounded to codes (out8,
          * tdc_trm_downsample: the U row buffer is free then) */
@@ -299,7 +300,7 @@ static void trm_apply_d(tdc_trm_t *st, const uint8_t *in, uint32_t stride, tdc_g
 {
     int32_t loaded = -1;
     uint32_t jy = 0;
-    trm_d_rows(st, in, stride, dst, out8, out8_stride, st->cfg.height, &loaded, &jy);
+    trm_d_rows(st, st->ring, st->rh, in, stride, dst, out8, out8_stride, st->cfg.height, &loaded, &jy);
 }
 
 /* The reduced row below the one U of full-res row y reads first (the last
@@ -324,8 +325,10 @@ static void trm_u_row(const tdc_trm_t *st, const tdc_gval_t *src, uint32_t y, ui
     const uint32_t i0 = st->uy_i[2u * y], f = st->uy_i[2u * y + 1u];
     const uint32_t i1 = i0 + 1u < st->rh ? i0 + 1u : i0;
     const tdc_gval_t *a = &src[i0 * rw3], *b = &src[i1 * rw3];
-    for (uint32_t i = 0; i < rw3; i++) {
-        dst[i] = (uint32_t)((int32_t)a[i] * (1 << 14) + ((int32_t)b[i] - (int32_t)a[i]) * (int32_t)f);
+    if (st->simd) {
+        tdc_trm_uvert_avx2(a, b, f, rw3, dst);
+    } else {
+        tdc_trm_uvert_c(a, b, f, rw3, dst);
     }
     dst[rw3] = dst[rw3 - 3u];
     dst[rw3 + 1u] = dst[rw3 - 2u];
@@ -341,8 +344,10 @@ static void trm_u_row_codes(const tdc_trm_t *st, const uint8_t *src, uint32_t st
     const uint32_t i0 = st->uy_i[2u * y], f = st->uy_i[2u * y + 1u];
     const uint32_t i1 = i0 + 1u < st->rh ? i0 + 1u : i0;
     const uint8_t *a = src + (size_t)i0 * stride, *b = src + (size_t)i1 * stride;
-    for (uint32_t i = 0; i < rw3; i++) {
-        dst[i] = (uint32_t)((int32_t)a[i] * (1 << 22) + ((int32_t)b[i] - (int32_t)a[i]) * (int32_t)f * 256);
+    if (st->simd) {
+        tdc_trm_uvert_codes_avx2(a, b, f, rw3, dst);
+    } else {
+        tdc_trm_uvert_codes_c(a, b, f, rw3, dst);
     }
     dst[rw3] = dst[rw3 - 3u];
     dst[rw3 + 1u] = dst[rw3 - 2u];
@@ -370,20 +375,56 @@ static void trm_rowctx(const tdc_trm_t *st, tdc_trm_rowctx_t *k)
 }
 
 /* beta of full-res row y from codes src and the kept D(I): dst = shown
- * codes, res = rho.  The one place both the full frame and the recompute
+ * codes (codes = 0: not needed, the AVX2 kernel skips them), res = rho.  The one place both the full frame and the recompute
  * of rho for a reduced frame run (same kernel: same bytes). */
-static void trm_beta_row(tdc_trm_t *st, const tdc_trm_rowctx_t *k, uint32_t y, const uint32_t *urow, const uint8_t *src,
-                         uint8_t *dst, tdc_res_t *res, tdc_trm_full_counts_t *n)
+static void trm_beta_row(const tdc_trm_t *st, const tdc_trm_rowctx_t *k, uint32_t y, const uint32_t *urow, const uint8_t *src,
+                         uint8_t *dst, tdc_res_t *res, tdc_trm_full_counts_t *n, int codes)
 {
     if (st->gaze && tdc_trm_gaze_row_active(st->gaze, y)) {
         tdc_trm_gaze_full_row(k, st->gaze, y, urow, src, dst, res, n); /* tdc_trm_gaze.h */
         return;
     }
-    if (st->simd) {
+    if (st->simd && !codes) {
+        tdc_trm_rho_row_avx2(k, urow, src, dst, res, n); /* codes discarded: not encoded */
+    } else if (st->simd) {
         tdc_trm_full_row_avx2(k, urow, src, dst, res, n);
     } else {
         TDC_TRM_FULL_ROW_BOARD(k, urow, src, dst, res, n);
     }
+}
+
+/* A row worker's buffers carved from its memory (tdc_trm_rowbuf_init). */
+#define TDC_ROWBUF_CARVE(member, type, count) b->member = (type *)tdc_arena_take(&arena, sizeof(type) * (size_t)(count));
+
+/* Output row y of a full frame (D(I) rows it needs done) with row buffers
+ * b; clamps counted into n[0], n[1].  Reads the kept state, writes row y of
+ * the output and of icodes (or the stored residual) and b only: rows run on
+ * several cores at once with their own b (tdc_trm_band). */
+static void trm_full_out_row(const tdc_trm_t *st, const tdc_trm_rowctx_t *k, uint32_t y, const tdc_trm_rowbuf_t *b,
+                             uint64_t n[3])
+{
+    const uint32_t w3 = 3u * st->cfg.width;
+    const uint8_t *src = st->inc.in + (size_t)y * st->inc.in_stride;
+    uint8_t *dst = st->inc.out + (size_t)y * st->inc.out_stride;
+    if (st->passthrough) {
+        memmove(dst, src, w3); /* in may be out */
+        return;
+    }
+    tdc_trm_full_counts_t c = {0, 0};
+    trm_u_row(st, st->dprev, y, b->urow);
+    tdc_res_t *res = b->rrow;
+    if (st->icodes) {
+        /* keep I_t (in may be out: copy before the row is overwritten);
+         * rho of this row is not kept, it is recomputed when needed */
+        uint8_t *keep = st->icodes + (size_t)y * w3;
+        memcpy(keep, src, w3);
+        src = keep;
+    } else {
+        res = &st->residual[(size_t)y * w3];
+    }
+    trm_beta_row(st, k, y, b->urow, src, dst, res, &c, 1);
+    n[0] += c.hi;
+    n[1] += c.lo;
 }
 
 /* A frame in progress (full: kind 1, reduced: 2) on these buffers. */
@@ -417,40 +458,24 @@ tdc_status_t tdc_trm_full_rows(tdc_trm_t *st, uint32_t avail, uint32_t *done)
     if (!st || st->inc.kind != 1u) {
         return TDC_ERR_STATE;
     }
-    const uint32_t h = st->cfg.height, w3 = 3u * st->cfg.width;
+    const uint32_t h = st->cfg.height;
     avail = avail < h ? avail : h;
     uint32_t y = st->inc.y;
     if (st->passthrough) {
+        const tdc_trm_rowbuf_t none = {NULL, NULL, NULL, NULL};
         for (; y < avail; y++) {
-            const uint8_t *src = st->inc.in + (size_t)y * st->inc.in_stride;
-            uint8_t *dst = st->inc.out + (size_t)y * st->inc.out_stride;
-            for (uint32_t i = 0; i < w3; i++) {
-                dst[i] = src[i];
-            }
+            trm_full_out_row(st, NULL, y, &none, st->inc.n);
         }
     } else {
-        trm_d_rows(st, st->inc.in, st->inc.in_stride, st->dprev, NULL, 0, avail, &st->inc.loaded, &st->inc.dy);
+        trm_d_rows(st, st->ring, st->rh, st->inc.in, st->inc.in_stride, st->dprev, NULL, 0, avail, &st->inc.loaded,
+                   &st->inc.dy);
         tdc_trm_rowctx_t k;
         trm_rowctx(st, &k);
+        const tdc_trm_rowbuf_t own = tdc_trm_rowbuf_own(st);
         /* row y: arrived, no longer needed by D (in may be out), its U rows done */
         for (; y < avail && (st->inc.loaded >= (int32_t)y || st->inc.dy == st->rh) && trm_u_last(st, y) < st->inc.dy;
              y++) {
-            tdc_trm_full_counts_t n = {0, 0};
-            trm_u_row(st, st->dprev, y, st->urow);
-            const uint8_t *src = st->inc.in + (size_t)y * st->inc.in_stride;
-            tdc_res_t *res = st->rrow;
-            if (st->icodes) {
-                /* keep I_t (in may be out: copy before the row is overwritten);
-                 * rho of this row is not kept, it is recomputed when needed */
-                uint8_t *keep = st->icodes + (size_t)y * w3;
-                memcpy(keep, src, w3);
-                src = keep;
-            } else {
-                res = &st->residual[(size_t)y * w3];
-            }
-            trm_beta_row(st, &k, y, st->urow, src, st->inc.out + (size_t)y * st->inc.out_stride, res, &n);
-            st->inc.n[0] += n.hi;
-            st->inc.n[1] += n.lo;
+            trm_full_out_row(st, &k, y, &own, st->inc.n);
         }
     }
     st->inc.y = y;
@@ -496,17 +521,18 @@ tdc_status_t tdc_trm_full_seq(tdc_trm_t *st, const uint8_t *in, uint32_t in_stri
     return r != TDC_OK ? r : tdc_trm_full_end(st, seq);
 }
 
-/* rho of row y into the row buffer (recompute) or a pointer into the stored
- * residual; urow holds U(D(I_t)) of row y. */
-static const tdc_res_t *trm_rho_row(tdc_trm_t *st, const tdc_trm_rowctx_t *k, uint32_t y, const uint32_t *urow)
+/* rho of row y into the row buffer b (recompute) or a pointer into the
+ * stored residual; urow holds U(D(I_t)) of row y. */
+static const tdc_res_t *trm_rho_row(const tdc_trm_t *st, const tdc_trm_rowctx_t *k, uint32_t y, const uint32_t *urow,
+                                    const tdc_trm_rowbuf_t *b)
 {
     const uint32_t w3 = 3u * st->cfg.width;
     if (!st->icodes) {
         return &st->residual[(size_t)y * w3];
     }
     tdc_trm_full_counts_t n = {0, 0};
-    trm_beta_row(st, k, y, urow, st->icodes + (size_t)y * w3, st->crow, st->rrow, &n);
-    return st->rrow;
+    trm_beta_row(st, k, y, urow, st->icodes + (size_t)y * w3, b->crow, b->rrow, &n, 0);
+    return b->rrow;
 }
 
 tdc_status_t tdc_trm_residual_row(tdc_trm_t *st, uint32_t y, tdc_res_t *out)
@@ -519,8 +545,9 @@ tdc_status_t tdc_trm_residual_row(tdc_trm_t *st, uint32_t y, tdc_res_t *out)
     }
     tdc_trm_rowctx_t k;
     trm_rowctx(st, &k);
-    trm_u_row(st, st->dprev, y, st->urow);
-    const tdc_res_t *r = trm_rho_row(st, &k, y, st->urow);
+    const tdc_trm_rowbuf_t own = tdc_trm_rowbuf_own(st);
+    trm_u_row(st, st->dprev, y, own.urow);
+    const tdc_res_t *r = trm_rho_row(st, &k, y, own.urow, &own);
     for (uint32_t i = 0; i < 3u * st->cfg.width; i++) {
         out[i] = r[i];
     }
@@ -552,57 +579,72 @@ static void trm_reduced_open(tdc_trm_t *st, const uint8_t *in_reduced, uint32_t 
     st->inc.paired = (uint8_t)with_state;
 }
 
+/* The row buffer of an unpaired reduced frame (alpha alone): rho = 0 in
+ * b's rho row (the kernel then never reads U(D(I_t)), zeroed too), or, in
+ * the stored-residual layout, each row's own rho row cleared as it is
+ * shown (that state is stale anyway). */
+static void trm_reduced_unpaired_rows(const tdc_trm_t *st, const tdc_trm_rowbuf_t *b)
+{
+    const uint32_t rw3 = 3u * st->rw;
+    for (uint32_t i = 0; st->icodes && i < 3u * st->cfg.width; i++) {
+        b->rrow[i] = 0;
+    }
+    for (uint32_t i = 0; i < rw3 + 3u; i++) {
+        b->urow[i] = 0; /* defined, though no kernel needs it where rho = 0 */
+    }
+}
+
+/* Output row y of a reduced frame (the reduced rows its U reads there)
+ * with row buffers b (unpaired: prepared by trm_reduced_unpaired_rows);
+ * weight counters into n.  As trm_full_out_row, rows run concurrently with
+ * their own b. */
+static void trm_reduced_out_row(const tdc_trm_t *st, const tdc_trm_rowctx_t *k, uint32_t y, const tdc_trm_rowbuf_t *b,
+                                uint64_t n[3])
+{
+    const uint32_t rw3 = 3u * st->rw;
+    uint32_t *urow_a = b->urow;            /* U(D(I_t)), code Q22 */
+    uint32_t *urow_b = b->urow + rw3 + 3u; /* U(i_t+1) */
+    tdc_trm_reduced_counts_t c = {0, 0, 0};
+    const tdc_res_t *rho;
+    if (st->inc.paired) {
+        trm_u_row(st, st->dprev, y, urow_a);
+        rho = trm_rho_row(st, k, y, urow_a, b);
+    } else if (st->icodes) {
+        rho = b->rrow;
+    } else {
+        tdc_res_t *r = &st->residual[(size_t)y * 3u * st->cfg.width];
+        for (uint32_t i = 0; i < 3u * st->cfg.width; i++) {
+            r[i] = 0;
+        }
+        rho = r;
+    }
+    trm_u_row_codes(st, st->inc.in, st->inc.in_stride, y, urow_b);
+    uint8_t *out = st->inc.out + (size_t)y * st->inc.out_stride;
+    if (st->simd) {
+        tdc_trm_reduced_row_avx2(k, urow_a, urow_b, rho, out, &c);
+    } else {
+        TDC_TRM_REDUCED_ROW_BOARD(k, urow_a, urow_b, rho, out, &c);
+    }
+    n[0] += c.computed;
+    n[1] += c.skipped;
+    n[2] += c.no_res;
+}
+
 tdc_status_t tdc_trm_reduced_rows(tdc_trm_t *st, uint32_t avail, uint32_t *done)
 {
     if (!st || st->inc.kind != 2u) {
         return TDC_ERR_STATE;
     }
-    const uint32_t rw3 = 3u * st->rw;
-    const int with_state = st->inc.paired;
     tdc_trm_rowctx_t k;
     trm_rowctx(st, &k);
-    uint32_t *urow_a = st->urow;            /* U(D(I_t)), code Q22 */
-    uint32_t *urow_b = st->urow + rw3 + 3u; /* U(i_t+1) */
-    /* without state: alpha alone, i.e. rho = 0 everywhere (the kernel then
-     * never reads U(D(I_t))); the row buffer holds the zeros */
-    tdc_res_t *zero = with_state ? NULL : st->rrow;
+    const tdc_trm_rowbuf_t own = tdc_trm_rowbuf_own(st);
     uint32_t y = st->inc.y;
     /* row y once the reduced rows its U reads are there */
     for (; y < st->cfg.height && trm_u_last(st, y) < avail; y++) {
-        tdc_trm_reduced_counts_t n = {0, 0, 0};
-        const tdc_res_t *rho;
-        if (with_state) {
-            trm_u_row(st, st->dprev, y, urow_a);
-            rho = trm_rho_row(st, &k, y, urow_a);
-        } else {
-            if (y == 0u) {
-                for (uint32_t i = 0; zero && i < 3u * st->cfg.width; i++) {
-                    zero[i] = 0;
-                }
-                for (uint32_t i = 0; i < rw3 + 3u; i++) {
-                    urow_a[i] = 0; /* defined, though no kernel needs it where rho = 0 */
-                }
-            }
-            /* stored-residual layout has no row buffer: its own rho row is
-             * cleared (that state is stale anyway) */
-            rho = zero ? zero : &st->residual[(size_t)y * 3u * st->cfg.width];
-            if (!zero) {
-                tdc_res_t *r = &st->residual[(size_t)y * 3u * st->cfg.width];
-                for (uint32_t i = 0; i < 3u * st->cfg.width; i++) {
-                    r[i] = 0;
-                }
-            }
+        if (y == 0u && !st->inc.paired) {
+            trm_reduced_unpaired_rows(st, &own);
         }
-        trm_u_row_codes(st, st->inc.in, st->inc.in_stride, y, urow_b);
-        uint8_t *out = st->inc.out + (size_t)y * st->inc.out_stride;
-        if (st->simd) {
-            tdc_trm_reduced_row_avx2(&k, urow_a, urow_b, rho, out, &n);
-        } else {
-            TDC_TRM_REDUCED_ROW_BOARD(&k, urow_a, urow_b, rho, out, &n);
-        }
-        st->inc.n[0] += n.computed;
-        st->inc.n[1] += n.skipped;
-        st->inc.n[2] += n.no_res;
+        trm_reduced_out_row(st, &k, y, &own, st->inc.n);
     }
     st->inc.y = y;
     if (done) {
@@ -664,6 +706,70 @@ tdc_status_t tdc_trm_reduced_seq(tdc_trm_t *st, const uint8_t *in_reduced, uint3
 {
     const tdc_status_t r = tdc_trm_reduced_begin(st, in_reduced, in_stride, out, out_stride, seq);
     return r != TDC_OK ? r : tdc_trm_reduced_end(st);
+}
+
+tdc_status_t tdc_trm_rowbuf_init(const tdc_trm_t *st, tdc_trm_rowbuf_t *b, void *mem, size_t bytes)
+{
+    tdc_arena_t arena;
+    if (!st || !b || !tdc_arena_over(&arena, mem, bytes)) {
+        return TDC_ERR_ARG;
+    }
+    if (bytes < TDC_TRM_ROWBUF_BYTES(st->cfg.width, st->rw)) {
+        return TDC_ERR_SIZE;
+    }
+    TDC_TRM_ROWBUF(TDC_ROWBUF_CARVE, st->cfg.width, st->rw)
+    return TDC_OK;
+}
+
+tdc_status_t tdc_trm_split(const tdc_trm_t *st, uint32_t *d_rows)
+{
+    if (!st || !d_rows || (st->inc.kind != 1u && st->inc.kind != 2u) || st->inc.y != 0u) {
+        return TDC_ERR_STATE;
+    }
+    *d_rows = st->inc.kind == 1u && !st->passthrough ? st->rh : 0u;
+    return st->inc.dy == 0u ? TDC_OK : TDC_ERR_STATE;
+}
+
+void tdc_trm_d_band(const tdc_trm_t *st, uint32_t j0, uint32_t j1, const tdc_trm_rowbuf_t *b)
+{
+    if (j0 >= j1) {
+        return;
+    }
+    /* the ring starts empty below the first input row of D row j0 (rows
+     * above the frame are row 0, clamped): from there each D row is what
+     * trm_d_rows gives it in one pass over the frame */
+    const int32_t k0 = st->dy_first[j0];
+    int32_t loaded = (k0 < 0 ? 0 : k0) - 1;
+    uint32_t jy = j0;
+    trm_d_rows(st, b->ring, j1, st->inc.in, st->inc.in_stride, st->dprev, NULL, 0, st->cfg.height, &loaded, &jy);
+}
+
+void tdc_trm_band(const tdc_trm_t *st, uint32_t y0, uint32_t y1, const tdc_trm_rowbuf_t *b, uint64_t n[3])
+{
+    tdc_trm_rowctx_t k;
+    trm_rowctx(st, &k);
+    if (st->inc.kind == 2u && !st->inc.paired && y0 < y1) {
+        trm_reduced_unpaired_rows(st, b);
+    }
+    for (uint32_t y = y0; y < y1; y++) {
+        if (st->inc.kind == 1u) {
+            trm_full_out_row(st, &k, y, b, n);
+        } else {
+            trm_reduced_out_row(st, &k, y, b, n);
+        }
+    }
+}
+
+void tdc_trm_join(tdc_trm_t *st, const uint64_t n[3])
+{
+    for (int i = 0; i < 3; i++) {
+        st->inc.n[i] += n[i];
+    }
+    st->inc.y = st->cfg.height;
+    if (st->inc.kind == 1u) {
+        st->inc.dy = st->rh; /* D(I) done by the bands */
+        st->inc.loaded = (int32_t)st->cfg.height - 1;
+    }
 }
 
 tdc_status_t tdc_trm_downsample(tdc_trm_t *st, const uint8_t *in, uint32_t in_stride, uint8_t *out, uint32_t out_stride)

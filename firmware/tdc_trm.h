@@ -276,6 +276,54 @@ tdc_status_t tdc_trm_reduced_rows(tdc_trm_t *st, uint32_t avail, uint32_t *done)
 TDC_MUST_CHECK
 tdc_status_t tdc_trm_reduced_end(tdc_trm_t *st);
 
+/*
+ * Whole frames on several cores (a board with row workers, docs/boards.md
+ * "Real time"): with every input row there, D(I)'s rows are independent
+ * given their input rows, and a frame's output rows are independent once
+ * D(I) is done, so both run as bands, each band with its own buffers.
+ * After _begin, with every input row there:
+ *   tdc_trm_split   checks the state (no row done yet) and gives *d_rows,
+ *                   D(I)'s rows to run (a full frame; 0 otherwise);
+ *   tdc_trm_d_band  D(I) rows [j0, j1) with b's ring (bands of disjoint
+ *                   rows with distinct b at the same time; each reloads
+ *                   the few input rows its first kernel reaches back);
+ *   tdc_trm_band    after every D band: output rows [y0, y1) with b,
+ *                   counters added to n[3]; bands of disjoint rows with
+ *                   distinct b at the same time (st is only read; the
+ *                   output rows, their kept codes and b written);
+ *   tdc_trm_join    after every band [0, H): their counters (summed), the
+ *                   rows done; then _end closes the frame.
+ * The bytes are those of _rows/_end whatever the bands (tested with 1, 2
+ * and 3: tests/linux/test_board_threads.sh).  The stage's own buffers are
+ * one worker's (tdc_trm_rowbuf_own); each further worker carves its own
+ * with tdc_trm_rowbuf_init from TDC_TRM_ROWBUF_BYTES(W, RW) bytes aligned
+ * to TDC_ARENA_ALIGN (TDC_ERR_SIZE if fewer, TDC_ERR_ARG if misaligned).
+ */
+typedef struct {
+    uint32_t *urow;   /* 2 rows of (rw+1)*3: U rows, code Q22 */
+    tdc_res_t *rrow;  /* W*3: rho recomputed (NULL with keep_residual) */
+    uint8_t *crow;    /* W*3: the recompute's codes, discarded */
+    tdc_gval_t *ring; /* taps rows of rw*3: D's horizontal pass */
+} tdc_trm_rowbuf_t;
+#define TDC_TRM_ROWBUF(X, W, RW)                                                                        \
+    X(urow, uint32_t, (size_t)2u * ((RW) + 1u) * 3u)                                                    \
+    X(rrow, tdc_res_t, (size_t)(W)*3u)                                                                  \
+    X(crow, uint8_t, (size_t)(W)*3u)                                                                    \
+    X(ring, tdc_gval_t, (size_t)TDC_TRM_TAPS(TDC_TRM_MAX_SIGMA_Q8) * (RW)*3u)
+#define TDC_TRM_ROWBUF_BYTES(W, RW) ((size_t)0 TDC_TRM_ROWBUF(TDC_ARENA_BLOCK_BYTES, W, RW))
+TDC_MUST_CHECK
+tdc_status_t tdc_trm_rowbuf_init(const tdc_trm_t *st, tdc_trm_rowbuf_t *b, void *mem, size_t bytes);
+static inline tdc_trm_rowbuf_t tdc_trm_rowbuf_own(const tdc_trm_t *st)
+{
+    const tdc_trm_rowbuf_t b = {st->urow, st->rrow, st->crow, st->ring};
+    return b;
+}
+TDC_MUST_CHECK
+tdc_status_t tdc_trm_split(const tdc_trm_t *st, uint32_t *d_rows);
+void tdc_trm_d_band(const tdc_trm_t *st, uint32_t j0, uint32_t j1, const tdc_trm_rowbuf_t *b);
+void tdc_trm_band(const tdc_trm_t *st, uint32_t y0, uint32_t y1, const tdc_trm_rowbuf_t *b, uint64_t n[3]);
+void tdc_trm_join(tdc_trm_t *st, const uint64_t n[3]);
+
 /* Forget the kept full frame (it is no longer what the next reduced frame
  * pairs with), keeping the tables: e.g. when a newer full frame of this
  * eye was lost. */

@@ -320,8 +320,12 @@ static inline TDC_AVX2 trm_step_t trm_step(const tdc_trm_rowctx_t *k, uint32_t x
     return s;
 }
 
-TDC_AVX2 void tdc_trm_full_row_avx2(const tdc_trm_rowctx_t *k, const uint32_t *urow, const uint8_t *src, uint8_t *dst,
-                                    tdc_res_t *res, tdc_trm_full_counts_t *n)
+/* The full row; codes = 0: rho and the counts only (dst written only by the
+ * C tail), the recompute of rho for a reduced frame, which discards the
+ * codes: the encode is 12 of the 48 gathers of a 16-pixel step. */
+static inline __attribute__((always_inline)) TDC_AVX2 void trm_full_row(const tdc_trm_rowctx_t *k, const uint32_t *urow,
+                                                                        const uint8_t *src, uint8_t *dst, tdc_res_t *res,
+                                                                        tdc_trm_full_counts_t *n, const int codes)
 {
     const __m256i one = _mm256_set1_epi32(TDC_LIN_ONE), zero = _mm256_setzero_si256();
     uint32_t x = 0, nhi = 0, nlo = 0;
@@ -358,14 +362,18 @@ TDC_AVX2 void tdc_trm_full_row_avx2(const tdc_trm_rowctx_t *k, const uint32_t *u
             nlo += trm_count8(_mm256_cmpgt_epi32(zero, beta));
             rho[e] = _mm256_sub_epi32(beta, shown[e]);
         }
-        trm_enc8xn(k, shown, code, 6);
+        if (codes) {
+            trm_enc8xn(k, shown, code, 6);
+        }
         for (int b = 0; b < 2; b++) {
             __m256i o[3];
             trm_interleave3(rho[3 * b], rho[3 * b + 1], rho[3 * b + 2], o);
             for (int j = 0; j < 3; j++) {
                 _mm256_storeu_si256((__m256i *)(void *)(res + 3u * x + 24u * (uint32_t)b + 8u * (uint32_t)j), o[j]);
             }
-            trm_store_codes(dst + 3u * x + 24u * (uint32_t)b, code[3 * b], code[3 * b + 1], code[3 * b + 2]);
+            if (codes) {
+                trm_store_codes(dst + 3u * x + 24u * (uint32_t)b, code[3 * b], code[3 * b + 1], code[3 * b + 2]);
+            }
         }
     }
     n->hi += nhi;
@@ -374,6 +382,18 @@ TDC_AVX2 void tdc_trm_full_row_avx2(const tdc_trm_rowctx_t *k, const uint32_t *u
         const tdc_trm_rowctx_t t = tdc_trm_tail_ctx(k, x);
         tdc_trm_full_row_c(&t, urow, src + 3u * x, dst + 3u * x, res + 3u * x, n);
     }
+}
+
+TDC_AVX2 void tdc_trm_full_row_avx2(const tdc_trm_rowctx_t *k, const uint32_t *urow, const uint8_t *src, uint8_t *dst,
+                                    tdc_res_t *res, tdc_trm_full_counts_t *n)
+{
+    trm_full_row(k, urow, src, dst, res, n, 1);
+}
+
+TDC_AVX2 void tdc_trm_rho_row_avx2(const tdc_trm_rowctx_t *k, const uint32_t *urow, const uint8_t *src, uint8_t *dst,
+                                   tdc_res_t *res, tdc_trm_full_counts_t *n)
+{
+    trm_full_row(k, urow, src, dst, res, n, 0);
 }
 
 TDC_AVX2 void tdc_trm_reduced_row_avx2(const tdc_trm_rowctx_t *k, const uint32_t *urow_a, const uint32_t *urow_b,
@@ -479,6 +499,33 @@ TDC_AVX2 void tdc_trm_reduced_row_avx2(const tdc_trm_rowctx_t *k, const uint32_t
     }
 }
 
+/* U's vertical lerp, 8 values a step: the C kernel's int32 products. */
+TDC_AVX2 void tdc_trm_uvert_avx2(const uint16_t *a, const uint16_t *b, uint32_t f, uint32_t n, uint32_t *dst)
+{
+    const __m256i fv = _mm256_set1_epi32((int)f);
+    uint32_t i = 0;
+    for (; i + 8u <= n; i += 8u) {
+        const __m256i va = _mm256_cvtepu16_epi32(_mm_loadu_si128((const __m128i *)(const void *)(a + i)));
+        const __m256i vb = _mm256_cvtepu16_epi32(_mm_loadu_si128((const __m128i *)(const void *)(b + i)));
+        const __m256i v = _mm256_add_epi32(_mm256_slli_epi32(va, 14), _mm256_mullo_epi32(_mm256_sub_epi32(vb, va), fv));
+        _mm256_storeu_si256((__m256i *)(void *)(dst + i), v);
+    }
+    tdc_trm_uvert_c(a + i, b + i, f, n - i, dst + i);
+}
+
+TDC_AVX2 void tdc_trm_uvert_codes_avx2(const uint8_t *a, const uint8_t *b, uint32_t f, uint32_t n, uint32_t *dst)
+{
+    const __m256i fv = _mm256_set1_epi32((int)f);
+    uint32_t i = 0;
+    for (; i + 8u <= n; i += 8u) {
+        const __m256i va = _mm256_cvtepu8_epi32(_mm_loadl_epi64((const __m128i *)(const void *)(a + i)));
+        const __m256i vb = _mm256_cvtepu8_epi32(_mm_loadl_epi64((const __m128i *)(const void *)(b + i)));
+        const __m256i d = _mm256_slli_epi32(_mm256_mullo_epi32(_mm256_sub_epi32(vb, va), fv), 8);
+        _mm256_storeu_si256((__m256i *)(void *)(dst + i), _mm256_add_epi32(_mm256_slli_epi32(va, 22), d));
+    }
+    tdc_trm_uvert_codes_c(a + i, b + i, f, n - i, dst + i);
+}
+
 TDC_AVX2 void tdc_trm_dvert_avx2(const uint16_t *const *rows, const uint16_t *w, uint32_t taps, uint32_t n,
                                  uint16_t *out)
 {
@@ -573,9 +620,25 @@ void tdc_trm_reduced_row_avx2(const tdc_trm_rowctx_t *k, const uint32_t *urow_a,
     tdc_trm_reduced_row_c(k, urow_a, urow_b, res, dst, n);
 }
 
+void tdc_trm_rho_row_avx2(const tdc_trm_rowctx_t *k, const uint32_t *urow, const uint8_t *src, uint8_t *dst,
+                          tdc_res_t *res, tdc_trm_full_counts_t *n)
+{
+    tdc_trm_full_row_c(k, urow, src, dst, res, n);
+}
+
 void tdc_trm_dvert_avx2(const uint16_t *const *rows, const uint16_t *w, uint32_t taps, uint32_t n, uint16_t *out)
 {
     tdc_trm_dvert_c(rows, w, taps, n, out);
+}
+
+void tdc_trm_uvert_avx2(const uint16_t *a, const uint16_t *b, uint32_t f, uint32_t n, uint32_t *dst)
+{
+    tdc_trm_uvert_c(a, b, f, n, dst);
+}
+
+void tdc_trm_uvert_codes_avx2(const uint8_t *a, const uint8_t *b, uint32_t f, uint32_t n, uint32_t *dst)
+{
+    tdc_trm_uvert_codes_c(a, b, f, n, dst);
 }
 
 void tdc_trm_dhoriz_avx2(const uint8_t *row, uint32_t width, const int16_t *first, const uint16_t *w, uint32_t taps,

@@ -89,6 +89,13 @@ typedef void tdc_trm_dvert_fn(const uint16_t *const *rows, const uint16_t *w, ui
 typedef void tdc_trm_dhoriz_fn(const uint8_t *row, uint32_t width, const int16_t *first, const uint16_t *w,
                                uint32_t taps, uint32_t rw, uint16_t *dst);
 
+/* U's vertical lerp of two reduced rows (n values, code Q8 or 8-bit codes)
+ * at fraction f (Q14): dst = a 2^14 + (b - a) f in code Q22, exact. */
+typedef void tdc_trm_uvert_fn(const uint16_t *a, const uint16_t *b, uint32_t f, uint32_t n, uint32_t *dst);
+typedef void tdc_trm_uvert_codes_fn(const uint8_t *a, const uint8_t *b, uint32_t f, uint32_t n, uint32_t *dst);
+tdc_trm_uvert_fn tdc_trm_uvert_c, tdc_trm_uvert_avx2;
+tdc_trm_uvert_codes_fn tdc_trm_uvert_codes_c, tdc_trm_uvert_codes_avx2;
+
 tdc_trm_full_row_fn tdc_trm_full_row_c;
 /* Helium (MVE) row kernels, Cortex-M55 boards (tdc_trm_mve.c; BOARD_MVE). */
 tdc_trm_full_row_fn tdc_trm_full_row_mve;
@@ -118,6 +125,9 @@ int tdc_trm_avx2_available(void);
  * returns 1 when every bucket holds at most one threshold. */
 int tdc_trm_avx2_build_encode(const tdc_panel_t *panel, uint8_t *comb);
 tdc_trm_full_row_fn tdc_trm_full_row_avx2;
+/* rho and the counts of tdc_trm_full_row_avx2, the codes in dst only for the
+ * pixels after the last 16-pixel block (the recompute of rho discards them) */
+tdc_trm_full_row_fn tdc_trm_rho_row_avx2;
 tdc_trm_dhoriz_fn tdc_trm_dhoriz_avx2;
 tdc_trm_reduced_row_fn tdc_trm_reduced_row_avx2;
 tdc_trm_dvert_fn tdc_trm_dvert_avx2;

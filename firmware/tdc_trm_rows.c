@@ -159,3 +159,21 @@ void tdc_trm_dhoriz_c(const uint8_t *row, uint32_t width, const int16_t *first, 
         dst[3u * j + 2u] = (uint16_t)((a2 + 64u) >> 7);
     }
 }
+
+/* U's vertical lerp (see tdc_trm_kernels.h).  Scaling: a 2^14 <= 65280 *
+ * 2^14 < 2^30 and |b - a| f < 65280 * 2^14 < 2^30: exact in int32. */
+void tdc_trm_uvert_c(const uint16_t *a, const uint16_t *b, uint32_t f, uint32_t n, uint32_t *dst)
+{
+    for (uint32_t i = 0; i < n; i++) {
+        dst[i] = (uint32_t)((int32_t)a[i] * (1 << 14) + ((int32_t)b[i] - (int32_t)a[i]) * (int32_t)f);
+    }
+}
+
+/* The same from 8-bit codes (code c = code Q8 c << 8): a 2^22 + (b - a) f
+ * 2^8, both terms < 2^30. */
+void tdc_trm_uvert_codes_c(const uint8_t *a, const uint8_t *b, uint32_t f, uint32_t n, uint32_t *dst)
+{
+    for (uint32_t i = 0; i < n; i++) {
+        dst[i] = (uint32_t)((int32_t)a[i] * (1 << 22) + ((int32_t)b[i] - (int32_t)a[i]) * (int32_t)f * 256);
+    }
+}

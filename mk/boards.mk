@@ -12,6 +12,15 @@
 # A board folder holds board.mk (BOARD_CPU, BOARD_LDS, BOARD_MEM, BOARD_FLASH,
 # BOARD_QEMU for emulated boards), board.h, startup.c (or BOARD_STARTUP: the QEMU boards share firmware/board/tdc_startup_qemu.c) and the linker script.
 
+# What every QEMU board shares, so its board.mk is the machine and memory map:
+# QEMU loads the ELF, and the start-up, emulated board layer and semihosting
+# come from firmware/board/.
+ifneq ($(BOARD_QEMU),)
+BOARD_FLASH ?= none: QEMU loads the ELF (qemu-system-arm $(BOARD_QEMU) -kernel IMAGE)
+BOARD_STARTUP ?= firmware/board/tdc_startup_qemu.c
+BOARD_SRCS ?= $(BOARD_STARTUP) firmware/board/tdc_board_emulated.c firmware/board/tdc_semihost.c
+endif
+
 DEPS_PKGS += gcc-arm-none-eabi binutils-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm
 TEST_EXTRA += test-arm
 

@@ -19,8 +19,10 @@ LX_CFLAGS := -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror -Wvla -Wshadow $(OPT) 
              -Ifirmware -Ifirmware/board -I$(GEN) $(shell pkg-config --cflags libdrm 2>/dev/null || echo -I/usr/include/libdrm) \
              -include $(PANEL_CONFIG)
 LX_LIBS := -static -ldrm -lgpiod -lpthread
-# the loop's objects for this panel and these stages (mk/boards.mk fw_host_loop)
-$(eval $(call fw_host_loop,$(BP)/loop,$(BANDS),$(FW_CFG_BASE)))
+# the loop's objects for this panel and these stages (mk/boards.mk fw_host_loop),
+# with row workers (TDC_LX_MAX_WORKERS, tdc_board_linux.h: TRM's rows in bands
+# on up to 4 threads, --threads)
+$(eval $(call fw_host_loop,$(BP)/loop,$(BANDS),$(FW_CFG_BASE) -DTDC_CFG_ROW_WORKERS=4))
 LX_LOOP_OBJS = $(patsubst firmware/board/%.c,$(BP)/loop/board/%.o,$(FW_LOOP_SRCS)) $(patsubst firmware/%.c,$(BP)/loop/fw/%.o,$(FWH_PANEL_SRCS))
 LX_BOARD_OBJS = $(patsubst firmware/board/%.c,$(BP)/board/%.o,$(BOARD_SRCS))
 $(BP)/board/%.o: firmware/board/%.c firmware/board/tdc_board_linux.h firmware/board/tdc_board.h $(PANEL_CONFIG) $(GEN)/tdc_panels.h
@@ -50,7 +52,8 @@ endif
 
 # make bench: the board's frame loop against the 90 Hz budget at Vive size
 # (tests/linux/bench_board_rt.sh): frames/s and the share of the budget per
-# part, today's single core beside the goal (real time on <= 2 cores).
+# part, the TRM stream on 1 thread (the baseline) and 2 (row workers) in one
+# run beside the goal (real time on <= 2 cores).
 BENCH_BOARD_PANEL := htc-vive
 $(B)/bench-linux-board: FORCE
 	@$(MAKE) --no-print-directory -j2 BOARD=linux PANEL=$(BENCH_BOARD_PANEL) CC=gcc OPT=-O2 SAN= \
@@ -100,6 +103,23 @@ test-linux-arm64:
 	    chmod +x $(BUILD)/linux-$(A64_BOARD_PANEL)-arm64/board-check; \
 	    tests/run_tests.sh linux-arm64 $(BUILD)/linux-$(A64_BOARD_PANEL)-arm64/board-check || :; \
 	else echo "[linux-arm64] FAIL build"; echo "linux-arm64 build FAIL" >> "$(RESULTS)"; fi
+
+# make test (TEST_EXTRA: once, not per variant): the board's row workers show
+# the bytes of the one-threaded loop (tests/linux/test_board_threads.sh,
+# htc-vive TRM and foveated TRM streams with 2 and 3 threads against the
+# host double; ~5 s of CPU after the board build the bench and test-vm share)
+TEST_EXTRA += test-board-threads
+.PHONY: test-board-threads
+test-board-threads:
+	@$(MAKE) --no-print-directory -j2 BOARD=linux PANEL=$(BENCH_BOARD_PANEL) CC=gcc OPT=-O2 SAN= \
+	    $(BUILD)/linux-$(BENCH_BOARD_PANEL)/tdc-board $(BUILD)/linux-$(BENCH_BOARD_PANEL)/loop/tdc_fw_host \
+	    $(BUILD)/gcc-O2/tests/fw_stream > $(BUILD)/.thrblog 2>&1 || { cat $(BUILD)/.thrblog; false; }
+	@printf '#!/bin/sh\nexec tests/linux/test_board_threads.sh %s %s %s %s\n' $(BUILD)/linux-$(BENCH_BOARD_PANEL)/tdc-board \
+	    $(BUILD)/linux-$(BENCH_BOARD_PANEL)/loop/tdc_fw_host $(BUILD)/gcc-O2/tests/fw_stream \
+	    "$$(awk '$$1 == "width" { w = $$2 } $$1 == "height" { h = $$2 } $$1 == "eyes" { e = $$2 } \
+	    END { print w, h, e }' boards/panels/$(BENCH_BOARD_PANEL).panel)" > $(BUILD)/linux-$(BENCH_BOARD_PANEL)/threads-check
+	@chmod +x $(BUILD)/linux-$(BENCH_BOARD_PANEL)/threads-check
+	@tests/run_tests.sh linux-threads $(BUILD)/linux-$(BENCH_BOARD_PANEL)/threads-check || :
 
 # make test: the launcher's A/B roll-back logic with stand-in programs (~1 s;
 # the real program's DFU install and confirmation run in make test-vm)

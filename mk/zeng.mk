@@ -9,7 +9,9 @@ HOST_PROGS += $(TDC_ZENG)
 
 # the ground truth (1024 rays a pixel) runs threaded over rows
 $(ZENG_OBJS): HOST_CFLAGS += $(SIM_OMP)
-$(TDC_ZENG): $(B)/sim/zeng/zeng_main.o $(ZENG_OBJS) $(SIMLIB)
+# --jod: FovVideoVDP from the host library, whose loop threshold
+# (tdc_par_min_work) lives in tdc_filter.o
+$(TDC_ZENG): $(B)/sim/zeng/zeng_main.o $(ZENG_OBJS) $$(ZENG_METRICS) $(SIMLIB)
 	$(CC) $(HOST_LDFLAGS) $(SIM_OMP) $^ -o $@ $(HOST_LIBS)
 
 TESTS += $(B)/tests/unit/test_zeng

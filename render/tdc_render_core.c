@@ -152,6 +152,7 @@ tdc_render_t *tdc_render_open(const tdc_scene_t *scene, const tdc_render_config_
     r->H = cfg->height ? cfg->height : scene->height;
     r->fr[0].frame = r->fr[1].frame = -1000;
     r->cone_frame = -2; /* no cone history */
+    r->gbuf_frame[0] = r->gbuf_frame[1] = -2; /* no G-buffer */
     r->mv_hist = calloc((size_t)r->W * r->H * 2, sizeof(int16_t));
     r->mv_hist_prev = calloc((size_t)r->W * r->H * 2, sizeof(int16_t));
     r->pattern = calloc(TDC_PATTERN_BYTES(r->W, r->H), 1);
@@ -216,6 +217,8 @@ void tdc_render_close(tdc_render_t *r)
     free(r->fov_cone);
     free(r->cone_hist[0]);
     free(r->cone_hist[1]);
+    free(r->gbuf[0]);
+    free(r->gbuf[1]);
     for (int i = 0; i < 64; i++) free(r->sbuf[i]);
     free(r);
 }

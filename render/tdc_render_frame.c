@@ -30,6 +30,8 @@ typedef struct {
     int do_reflect, do_mv, do_mv_reflect, do_mv_shadow, do_mv_dual, frame_static, do_layers, do_indirect;
     float *cone_cur;
     const float *cone_prev;
+    tdc_r_gpix_t *gb_cur;       /* FULL frames with dual_mv: this frame's G-buffer, written per sample */
+    const tdc_r_gpix_t *gb_prev; /* the previous frame's, read by the dual pass (NULL: it traces) */
     int ndual_rect; /* dual-MV culling rectangles (rthread_t), -1 = none */
     float dual_rect[TDC_SCENE_MAX_OBJECTS][4];
     const tdc_render_out_t *out;
@@ -307,6 +309,12 @@ static void write_outputs(job_t *jb, const rsample_t *s, int n)
             if (mv) mv[(size_t)a->dst * 2] = mv[(size_t)a->dst * 2 + 1] = 0;
         }
     }
+    if (jb->gb_cur) /* the next frame's eq. 6 lookup */
+        for (int i = 0; i < n; i++) {
+            tdc_r_gpix_t *g = &jb->gb_cur[(size_t)s[i].py * W + (size_t)s[i].px];
+            g->depth = (float)s[i].depth;
+            g->obj = s[i].obj;
+        }
     if (jb->do_layers) write_layers(jb, s, n);
     if (!o->depth && !o->mv_f && !o->mv_shadow && !o->shadow_weight && !o->mv_dual) return;
     write_rare(jb, s, n, 1);
@@ -537,6 +545,18 @@ int tdc_render_frame(tdc_render_t *r, uint32_t frame, tdc_render_mode_t mode, co
         jb.cone_cur = r->cone_hist[frame & 1u];
         jb.cone_prev = r->cone_frame == (long)frame - 1 ? r->cone_hist[(frame - 1) & 1u] : NULL;
     }
+    /* Zeng eq. 6 reads the previous frame's depth and object ids: FULL
+     * frames keep their G-buffer; the next FULL frame looks it up.  Other
+     * modes trace one pixel in four (subframes) or arbitrary positions, so
+     * no previous G-buffer exists there and the dual pass traces. */
+    if (r->cfg.dual_mv && mode == TDC_RENDER_FULL) {
+        const unsigned k = frame & 1u;
+        if (!r->gbuf[k] && !(r->gbuf[k] = malloc((size_t)r->W * r->H * sizeof(tdc_r_gpix_t)))) return -1;
+        r->gbuf_frame[k] = -2; /* until this frame is written */
+        jb.gb_cur = r->gbuf[k];
+        if (jb.do_mv_dual && !r->cfg.dual_trace && r->gbuf_frame[k ^ 1u] == (long)frame - 1)
+            jb.gb_prev = r->gbuf[k ^ 1u];
+    }
     st.ms[TDC_STAGE_SCENE] = tdc_r_now_ms() - t0;
     st.ran[TDC_STAGE_SCENE] = 1;
 
@@ -612,6 +632,9 @@ int tdc_render_frame(tdc_render_t *r, uint32_t frame, tdc_render_mode_t mode, co
         w[i].th.cone_cur = jb.cone_cur;
         w[i].th.cone_prev = jb.cone_prev;
         w[i].th.ndual_rect = jb.ndual_rect;
+        w[i].th.gb_prev = jb.gb_prev;
+        w[i].th.gb_jx = r->gbuf_j[(frame - 1) & 1u][0];
+        w[i].th.gb_jy = r->gbuf_j[(frame - 1) & 1u][1];
         if (jb.ndual_rect > 0) memcpy(w[i].th.dual_rect, jb.dual_rect, (size_t)jb.ndual_rect * sizeof jb.dual_rect[0]);
         if (r->sbuf_cap[i] < cap) { /* kept between frames: no page faults per frame */
             free(r->sbuf[i]);
@@ -666,6 +689,12 @@ int tdc_render_frame(tdc_render_t *r, uint32_t frame, tdc_render_mode_t mode, co
     st.ran[TDC_STAGE_MV_DUAL] = jb.do_mv_dual;
     st.ran[TDC_STAGE_INDIRECT] = jb.do_indirect;
     if (reuse) r->cone_frame = (long)frame;
+    if (jb.gb_cur) {
+        r->gbuf_frame[frame & 1u] = (long)frame;
+        r->gbuf_j[frame & 1u][0] = r->full_jx;
+        r->gbuf_j[frame & 1u][1] = r->full_jy;
+    }
+    st.dual_lookup = jb.gb_prev != NULL;
 
     if (mode == TDC_RENDER_REDUCED) {
         t0 = tdc_r_now_ms();

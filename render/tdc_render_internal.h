@@ -59,6 +59,14 @@ typedef struct {
     unsigned char rows[TDC_SCENE_TEXT_LEN + 1][8];
 } rtex_t;
 
+/* One pixel of a FULL frame's G-buffer (option dual_mv): the primary
+ * hit's camera depth (INFINITY: sky) and object (-1: sky).  Zeng eq. 6
+ * reads the previous frame's (tdc_r_pass_mv_dual). */
+typedef struct {
+    float depth;
+    int32_t obj;
+} tdc_r_gpix_t;
+
 struct tdc_render {
     tdc_scene_t *scene;
     tdc_render_config_t cfg;
@@ -101,6 +109,12 @@ struct tdc_render {
      * (TDC_R_CONE_FLOATS each), cone_frame = the frame in cone_hist[frame & 1] */
     float *cone_hist[2];
     long cone_frame;
+    /* option dual_mv: the G-buffers of the last two FULL frames, gbuf[k]
+     * holding frame gbuf_frame[k] (-2: none) sampled at pixel + 0.5 +
+     * gbuf_j[k] (the frame's jitter) */
+    tdc_r_gpix_t *gbuf[2];
+    long gbuf_frame[2];
+    float gbuf_j[2][2];
 };
 
 /* per-pixel cone record: 6 x RGB mean radiance, 6 weights, the normal */

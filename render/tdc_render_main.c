@@ -33,6 +33,7 @@ static void usage(FILE *f)
                     "  --gt-samples N       ground-truth samples per pixel (default 64)\n"
                     "  --reduced-factor R   r of reduced frames (default 0.5)\n"
                     "  --shadow-mv --dual-mv --no-reflect-mv --bounces N\n"
+                    "  --dual-trace         dual MVs by a previous-frame ray per pixel, not the G-buffer lookup\n"
                     "  --png DIR            write DIR/<scene>-<mode>-<frame>.png (+ -mv.png for motion)\n"
                     "  --layers             with --png: also the layers -shade, -vis, -refl, -mv-refl (Zeng §4);\n"
                     "                       with --mode subframe --stream: a layered stream (LAYERS packets)\n"
@@ -112,6 +113,8 @@ int main(int argc, char **argv)
             cfg.shadow_mv = 1;
         else if (!strcmp(a, "--dual-mv"))
             cfg.dual_mv = 1;
+        else if (!strcmp(a, "--dual-trace"))
+            cfg.dual_mv = cfg.dual_trace = 1;
         else if (!strcmp(a, "--layers"))
             layers = 1;
         else if (!strcmp(a, "--indirect"))
@@ -262,7 +265,16 @@ int main(int argc, char **argv)
 
     tdc_render_stats_t tot;
     memset(&tot, 0, sizeof tot);
-    int ran_frames[TDC_STAGE_COUNT] = {0};
+    int ran_frames[TDC_STAGE_COUNT] = {0}, dual_lookups = 0;
+    /* The dual vectors of frame A read frame A - 1's G-buffer (Zeng eq. 6),
+     * as in a renderer that runs on: A - 1 is rendered first, not counted. */
+    if (cfg.dual_mv && !cfg.dual_trace && mode == TDC_RENDER_FULL && !trm && f0 > 0) {
+        static const tdc_render_out_t none;
+        if (tdc_render_frame(r, (uint32_t)f0 - 1, TDC_RENDER_FULL, &none, NULL) < 0) {
+            rc = tdc_fail(TDC_EXIT_REFUSED, NULL, "renderer", "frame %d failed", f0 - 1);
+            goto done;
+        }
+    }
     for (int f = f0; f < f1 && !rc; f++) {
         tdc_render_mode_t m = mode;
         if (trm) m = tdc_link_trm_kind((uint32_t)f, 0) == TDC_LINK_KIND_REDUCED ? TDC_RENDER_REDUCED : TDC_RENDER_FULL;
@@ -296,6 +308,7 @@ int main(int argc, char **argv)
             ran_frames[k] += s.ran[k];
         }
         tot.wall_ms += s.wall_ms;
+        dual_lookups += s.dual_lookup;
         if (!quiet)
             printf("frame %4d %-12s %4dx%-4d %8.2f ms  %9llu rays %s\n", f, tdc_render_mode_name(m), s.out_w, s.out_h,
                    s.wall_ms, (unsigned long long)rays, s.frame_static ? "static" : "");
@@ -351,6 +364,9 @@ int main(int argc, char **argv)
     printf("rays: primary %llu shadow %llu reflect %llu mv %llu; wall %.1f ms, %.2f Mrays/s\n",
            (unsigned long long)tot.rays[0], (unsigned long long)tot.rays[1], (unsigned long long)tot.rays[2],
            (unsigned long long)tot.rays[3], tot.wall_ms, tot.wall_ms > 0 ? all / tot.wall_ms / 1e3 : 0.0);
+    if (cfg.dual_mv)
+        printf("dual MVs: the previous frame's G-buffer read in %d of %d frames (the others traced a ray per "
+               "candidate)\n", dual_lookups, nf);
     if (stream) {
         uint32_t np;
         uint64_t nb;

@@ -69,6 +69,10 @@ typedef struct {
     int ndual_rect;
     float dual_rect[TDC_SCENE_MAX_OBJECTS][4];
     uint64_t dual_culled; /* samples the rectangles spared a ray */
+    /* the previous FULL frame's G-buffer (W x H) and its sample jitter:
+     * the dual pass reads it instead of tracing; NULL: it traces */
+    const tdc_r_gpix_t *gb_prev;
+    float gb_jx, gb_jy;
     int have_mv, have_dual;         /* the MV / dual passes ran (indirect reuse follows mv / mvd) */
     float *cone_cur;                /* indirect_reuse: this frame's cone history (W x H), or NULL */
     const float *cone_prev;         /* the previous frame's, or NULL (no history) */

@@ -7,6 +7,3 @@ BOARD_LDS   := boards/mps3-an547/mps3-an547.ld
 # name:origin:length:attributes, Secure aliases (the core starts Secure; QEMU hw/arm/mps2-tz.c)
 BOARD_MEM   := ITCM:0x10000000:512K:rx DTCM:0x30000000:512K:rwx DDR:0x70000000:256M:rw
 BOARD_QEMU  := -M mps3-an547
-BOARD_FLASH := none: QEMU loads the ELF (qemu-system-arm -M mps3-an547 -kernel IMAGE)
-BOARD_STARTUP := firmware/board/tdc_startup_qemu.c
-BOARD_SRCS  := $(BOARD_STARTUP) firmware/board/tdc_board_emulated.c firmware/board/tdc_semihost.c

@@ -77,6 +77,19 @@ tdc_board_status_t tdc_board_panel_show(const uint8_t *fb, uint32_t stride, uint
 /* Blocks until the panel's next vertical blanking (no-op when emulated). */
 void tdc_board_vsync_wait(void);
 
+/* Row workers (a board with several cores; docs/boards.md "Real time"):
+ * tdc_board_workers() is how many bands of a frame's rows may run at once
+ * (1: one core, and then the loop never calls tdc_board_run_bands);
+ * tdc_board_run_bands(fn, arg, n) runs fn(arg, i) for i < n <= workers at
+ * once, i = 0 on the caller, the others on threads the board created at
+ * start-up, and returns when all have.  Only a loop built with
+ * TDC_CFG_ROW_WORKERS > 1 (tdc_fw_config.h) calls them: the Linux board
+ * (whose scan-out conversion uses them too); the host double's stub has
+ * one worker and runs bands in order (tests/arm/tdc_board_stub.c). */
+typedef void tdc_board_band_fn(void *arg, uint32_t band);
+uint32_t tdc_board_workers(void);
+void tdc_board_run_bands(tdc_board_band_fn *fn, void *arg, uint32_t n);
+
 /* Free-running microsecond timer (wraps at 2^32). */
 uint32_t tdc_board_time_us(void);
 

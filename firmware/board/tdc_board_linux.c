@@ -15,12 +15,17 @@
  *   --state DIR         DFU A/B slots (default /var/lib/tdc)
  *   --stream FILE       read a .tdcs file instead of USB, exit at its end
  *   --no-display        checksum lines on stdout instead of KMS
+ *   --threads N         row workers: TRM's output rows of a frame as N
+ *                       bands on N threads, 1 <= N <= 4 (default: the CPUs
+ *                       online, at most 4); the bytes do not depend on N
  *   --bench             with --stream: the scan-out conversion into a RAM
  *                       buffer instead of KMS, and at the end one line
- *                       "bench: ..." with the time spent in transport,
- *                       loop (decode + stages), panel out (make bench);
- *                       tdc_board_cycles() counts nanoseconds, so the loop
- *                       logs its per-stage means every 64 frames
+ *                       "bench: ..." with the loop thread's CPU time spent
+ *                       in transport, loop (decode + stages), panel out,
+ *                       the wall and all threads' CPU time (make bench);
+ *                       tdc_board_cycles() counts the loop thread's CPU
+ *                       nanoseconds, so the loop logs its per-stage means
+ *                       every 64 frames
  *   --gpio-chip C --gpio-vsync L --gpio-reset L   (tdc_board_linux_gpio.c)
  *   --syslog            log to syslog as well as stderr
  *   --reset-cause power-on|pin|software|watchdog   (what the unit that restarted us says)
@@ -58,11 +63,26 @@ static int g_bench;
 static uint64_t g_t_transport, g_t_panel, g_frames;
 static uint32_t *g_bench_fb;
 
-static uint64_t now_us(void)
+static uint64_t clock_ns(clockid_t c)
 {
     struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (uint64_t)t.tv_sec * 1000000u + (uint64_t)t.tv_nsec / 1000u;
+    clock_gettime(c, &t);
+    return (uint64_t)t.tv_sec * 1000000000u + (uint64_t)t.tv_nsec;
+}
+
+static uint64_t now_us(void)
+{
+    return clock_ns(CLOCK_MONOTONIC) / 1000u;
+}
+
+/* --bench: the loop thread's CPU time.  On a machine shared with other
+ * jobs the wall clock counts the time they hold the core; the thread's CPU
+ * time is what the work costs on a core of its own.  With row workers it
+ * is band 0 plus the parts that run in order: the frame's critical path
+ * when the workers have cores too (the bands are equal rows). */
+static uint64_t bench_us(void)
+{
+    return clock_ns(CLOCK_THREAD_CPUTIME_ID) / 1000u;
 }
 
 static void vlog(const char *fmt, va_list ap)
@@ -100,6 +120,7 @@ tdc_board_status_t tdc_board_init(void)
     if (g_bench && !(g_bench_fb = malloc((size_t)w * h * 4u))) return TDC_BOARD_ERR_IO; /* once, at start-up */
     if (!tdc_lx_opts.no_display && tdc_lx_drm_init(w, h, TDC_PANEL_REFRESH_HZ) != 0) return TDC_BOARD_ERR_IO;
     if (tdc_lx_gpio_init() != 0) return TDC_BOARD_ERR_IO;
+    tdc_lx_workers_init();
     if (tdc_lx_opts.stream) {
         g_stream = fopen(tdc_lx_opts.stream, "rb");
         if (!g_stream) {
@@ -123,10 +144,10 @@ tdc_board_status_t tdc_board_transport_read(uint8_t *buf, uint32_t cap, uint32_t
 {
     *got = 0;
     if (g_stream) {
-        const uint64_t t0 = g_bench ? now_us() : 0;
+        const uint64_t t0 = g_bench ? bench_us() : 0;
         const size_t n = fread(buf, 1, cap, g_stream);
         *got = (uint32_t)n;
-        if (g_bench) g_t_transport += now_us() - t0;
+        if (g_bench) g_t_transport += bench_us() - t0;
         return n ? TDC_BOARD_OK : ferror(g_stream) ? TDC_BOARD_ERR_IO : TDC_BOARD_END;
     }
     return tdc_lx_ffs_read(buf, cap, got) < 0 ? TDC_BOARD_END : TDC_BOARD_OK;
@@ -136,15 +157,9 @@ tdc_board_status_t tdc_board_panel_show(const uint8_t *fb, uint32_t stride, uint
                                         uint32_t frame_index)
 {
     if (g_bench) { /* what the KMS path does per frame: RGB888 -> XRGB8888 (tdc_board_linux_drm.c) */
-        const uint64_t t0 = now_us();
-        for (uint32_t y = 0; y < height; y++) {
-            const uint8_t *p = fb + (size_t)y * stride;
-            uint32_t *d = g_bench_fb + (size_t)y * width;
-            for (uint32_t x = 0; x < width; x++) {
-                d[x] = (uint32_t)p[3 * x] << 16 | (uint32_t)p[3 * x + 1] << 8 | p[3 * x + 2];
-            }
-        }
-        g_t_panel += now_us() - t0;
+        const uint64_t t0 = bench_us();
+        tdc_lx_xrgb(fb, stride, width, height, (uint8_t *)g_bench_fb, width * 4u);
+        g_t_panel += bench_us() - t0;
         g_frames++;
         (void)frame_index;
         return TDC_BOARD_OK;
@@ -167,15 +182,13 @@ void tdc_board_vsync_wait(void)
     tdc_lx_gpio_vsync();
 }
 
-/* --bench: nanoseconds (mod 2^32: a stage under 4 s), so that the loop's
- * per-stage timing line (decode, family, LCD, show: every 64 frames) gives
- * each stage's share of the frame budget; else 0 (no timing line). */
+/* --bench: nanoseconds of the loop thread's CPU time (bench_us; mod 2^32:
+ * a stage under 4 s), so that the loop's per-stage timing line (decode,
+ * family, LCD, show: every 64 frames) gives each stage's share of the frame
+ * budget; else 0 (no timing line). */
 uint32_t tdc_board_cycles(void)
 {
-    if (!g_bench) return 0u;
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (uint32_t)((uint64_t)t.tv_sec * 1000000000u + (uint64_t)t.tv_nsec);
+    return g_bench ? (uint32_t)clock_ns(CLOCK_THREAD_CPUTIME_ID) : 0u;
 }
 
 uint32_t tdc_board_time_us(void)
@@ -195,7 +208,7 @@ void tdc_board_log(const char *msg)
     tdc_lx_logf("%s", msg);
 }
 
-int tdc_lx_thread(void *(*fn)(void *))
+int tdc_lx_thread(void *(*fn)(void *), void *arg)
 {
     sigset_t block, old;
     sigemptyset(&block);
@@ -203,7 +216,7 @@ int tdc_lx_thread(void *(*fn)(void *))
     sigaddset(&block, SIGINT);
     pthread_sigmask(SIG_BLOCK, &block, &old);
     pthread_t t;
-    const int rc = pthread_create(&t, NULL, fn, NULL);
+    const int rc = pthread_create(&t, NULL, fn, arg);
     pthread_sigmask(SIG_SETMASK, &old, NULL);
     return rc == 0 ? 0 : -1;
 }
@@ -217,7 +230,7 @@ static void on_signal(int sig)
 static int usage(void)
 {
     fprintf(stderr, "usage: tdc-board [--drm PATH] [--connector NAME] [--ffs DIR] [--udc NAME] [--serial S]\n"
-                    "                 [--state DIR] [--stream FILE] [--no-display] [--bench] [--syslog]\n"
+                    "                 [--state DIR] [--stream FILE] [--no-display] [--bench] [--threads N] [--syslog]\n"
                     "                 [--gpio-chip C [--gpio-vsync L] [--gpio-reset L]] [--reset-cause C]\n");
     return TDC_LX_EXIT_ARGS;
 }
@@ -248,6 +261,12 @@ int main(int argc, char **argv)
             if (k == 5) return usage();
             g_reset = (tdc_reset_cause_t)k;
             i++;
+        } else if (!strcmp(a, "--threads") && v) {
+            char *end;
+            const long n = strtol(v, &end, 10);
+            if (*end || n < 1 || n > TDC_LX_MAX_WORKERS) return usage();
+            tdc_lx_opts.threads = (int)n;
+            i++;
         } else if (!strcmp(a, "--no-display")) {
             tdc_lx_opts.no_display = 1;
         } else if (!strcmp(a, "--bench")) {
@@ -272,15 +291,20 @@ int main(int argc, char **argv)
      * next connection starts with a fresh link decoder (a half-received
      * packet must not swallow the next stream's header). */
     int rc;
-    const uint64_t t0 = now_us();
+    const uint64_t t0 = now_us(), c0 = bench_us(), p0 = clock_ns(CLOCK_PROCESS_CPUTIME_ID) / 1000u;
     do {
         rc = tdc_fw_run();
     } while (!tdc_lx_stop && !g_fail && !tdc_lx_opts.stream);
     if (g_bench) {
-        const uint64_t total = now_us() - t0;
-        printf("bench: frames %llu total_us %llu transport_us %llu panel_us %llu loop_us %llu\n",
-               (unsigned long long)g_frames, (unsigned long long)total, (unsigned long long)g_t_transport,
-               (unsigned long long)g_t_panel, (unsigned long long)(total - g_t_transport - g_t_panel));
+        /* cpu: the loop thread (transport + loop + panel out); proc: every
+         * thread (the row workers' work too); wall: with the machine's load */
+        const uint64_t cpu = bench_us() - c0;
+        printf("bench: frames %llu cpu_us %llu transport_us %llu panel_us %llu loop_us %llu wall_us %llu proc_us %llu "
+               "threads %u\n",
+               (unsigned long long)g_frames, (unsigned long long)cpu, (unsigned long long)g_t_transport,
+               (unsigned long long)g_t_panel, (unsigned long long)(cpu - g_t_transport - g_t_panel),
+               (unsigned long long)(now_us() - t0),
+               (unsigned long long)(clock_ns(CLOCK_PROCESS_CPUTIME_ID) / 1000u - p0), (unsigned)tdc_board_workers());
     }
     if (g_fail) return g_fail;
     if (tdc_lx_restart) return TDC_LX_EXIT_RESTART;

@@ -40,7 +40,12 @@ typedef struct {
     const char *gpio_chip; /* NULL: no GPIO */
     const char *gpio_vsync, *gpio_reset;
     int no_display;        /* frames checksummed on stdout instead of KMS (bench, tests) */
+    int threads;           /* row workers (--threads N); 0: the CPUs online, at most TDC_LX_MAX_WORKERS */
 } tdc_lx_opts_t;
+
+/* The most row workers the board starts (tdc_board_linux_workers.c); the
+ * loop is built for as many (mk/linuxboard.mk, TDC_CFG_ROW_WORKERS). */
+#define TDC_LX_MAX_WORKERS 4
 
 extern tdc_lx_opts_t tdc_lx_opts;
 
@@ -50,7 +55,13 @@ void tdc_lx_logf(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 void tdc_lx_fail(int code, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 /* Starts a thread with SIGTERM/SIGINT blocked in it, so that they reach the
  * main thread (its blocked endpoint read returns EINTR); 0 or -1. */
-int tdc_lx_thread(void *(*fn)(void *));
+int tdc_lx_thread(void *(*fn)(void *), void *arg);
+/* The scan-out conversion RGB888 (stride) -> XRGB8888 (pitch) of w x h
+ * pixels, in bands on the row workers (tdc_board_linux_drm.c). */
+void tdc_lx_xrgb(const uint8_t *fb, uint32_t stride, uint32_t w, uint32_t h, uint8_t *dst, uint32_t pitch);
+/* Starts the row workers (--threads) once (a thread that does not start:
+ * fewer, logged). */
+void tdc_lx_workers_init(void);
 /* Set by SIGTERM/SIGINT: the transport reports its end, the loop returns. */
 extern volatile int tdc_lx_stop;
 

@@ -463,7 +463,7 @@ int tdc_lx_ffs_init(uint32_t width, uint32_t height, uint32_t refresh_mhz, uint3
         tdc_lx_fail(TDC_LX_EXIT_IO, "usb: gadget not bound: FunctionFS ep0 %s: %s", path, strerror(errno));
         return -1;
     }
-    const int bad = tdc_lx_thread(ep0_thread) != 0 || tdc_lx_thread(status_thread) != 0;
+    const int bad = tdc_lx_thread(ep0_thread, NULL) != 0 || tdc_lx_thread(status_thread, NULL) != 0;
     if (bad) {
         tdc_lx_fail(TDC_LX_EXIT_IO, "usb: cannot start the endpoint threads");
         return -1;

@@ -87,7 +87,7 @@ int tdc_lx_gpio_init(void)
             tdc_lx_fail(TDC_LX_EXIT_IO, "gpio: reset line %s: %s", tdc_lx_opts.gpio_reset, strerror(errno));
             return -1;
         }
-        const int bad = tdc_lx_thread(reset_thread) != 0;
+        const int bad = tdc_lx_thread(reset_thread, NULL) != 0;
         if (bad) {
             tdc_lx_fail(TDC_LX_EXIT_IO, "gpio: cannot start the reset-line thread");
             return -1;

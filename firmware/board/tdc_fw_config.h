@@ -90,6 +90,15 @@
 #define TDC_CFG_LCD_PREV_BITS 8u
 #endif
 
+/* Row workers: the most bands of a frame's output rows the loop runs at
+ * once (TRM, tdc_fw_trm.c), each band but the first with its own static
+ * row buffers (TDC_TRM_ROWBUF_BYTES, ~30 KB at 1080 pixels); the board says
+ * how many it has (tdc_board_workers).  1 (no threads): the Cortex-M
+ * boards; the Linux board's loop is built with 4. */
+#ifndef TDC_CFG_ROW_WORKERS
+#define TDC_CFG_ROW_WORKERS 1
+#endif
+
 /* Rows in flight (docs/boards.md): FULL and REDUCED pictures arrive as row
  * bands of at most TDC_CFG_BAND_ROWS rows; staging holds one band, the
  * frame buffer is a front/back pair swapped only when a frame is complete. */

@@ -66,8 +66,8 @@ static int fovtrm_eye(uint32_t e, uint32_t frame, uint32_t kinds, uint8_t *fb, t
     }
     tdc_fw.fov_composed++;
     g_frames[red]++;
-    const tdc_status_t st = red ? tdc_trm_reduced_seq(&tdc_fw_trm[e], pic, stride, fb, FW_STRIDE, frame)
-                                : tdc_trm_full_seq(&tdc_fw_trm[e], pic, stride, fb, FW_STRIDE, frame);
+    const tdc_status_t st =
+        red ? tdc_fw_trm_reduced(e, pic, stride, fb, frame) : tdc_fw_trm_full(e, pic, stride, fb, frame);
     *residual = tdc_trm_residual(&tdc_fw_trm[e]);
     return st == TDC_OK ? FW_EYE_UPDATED : FW_EYE_REFUSED;
 }

@@ -20,6 +20,88 @@ static void trm_wire(tdc_link_buffers_t *b)
     b->reduced_bytes = sizeof tdc_fw_reduced[0];
 }
 
+#if TDC_CFG_ROW_WORKERS > 1
+/* Row buffers of the workers after the first (whose are each eye's own);
+ * the eyes run one after the other, so they share these. */
+static uint64_t g_rowmem[TDC_CFG_ROW_WORKERS - 1][TDC_TRM_ROWBUF_BYTES(FW_W, FW_RW) / 8u];
+static tdc_trm_rowbuf_t g_rowbuf[TDC_CFG_ROW_WORKERS];
+static uint32_t g_workers = 1; /* bands per frame for this stream */
+
+/* One frame's bands: band i of `rows` rows is [rows i / n, rows (i+1) / n),
+ * D(I)'s rows first (d_rows of them; 0: none), then the output rows. */
+typedef struct {
+    const tdc_trm_t *t;
+    uint32_t n, d_rows;
+    int output; /* 0: D(I)'s rows, 1: the output rows */
+    uint64_t count[TDC_CFG_ROW_WORKERS][3];
+} trm_bands_t;
+
+static void trm_band_job(void *arg, uint32_t i)
+{
+    trm_bands_t *j = arg;
+    const tdc_trm_rowbuf_t own = tdc_trm_rowbuf_own(j->t);
+    const tdc_trm_rowbuf_t *b = i ? &g_rowbuf[i] : &own;
+    const uint64_t rows = j->output ? j->t->cfg.height : j->d_rows;
+    const uint32_t r0 = (uint32_t)(rows * i / j->n), r1 = (uint32_t)(rows * (i + 1u) / j->n);
+    if (j->output) {
+        tdc_trm_band(j->t, r0, r1, b, j->count[i]);
+    } else {
+        tdc_trm_d_band(j->t, r0, r1, b);
+    }
+}
+
+/* After _begin: D(I) of a full frame, then the frame's output rows, as
+ * bands on the board's workers (tdc_trm_split/_d_band/_band/_join), or
+ * nothing with one worker (_end runs it all). */
+static tdc_status_t trm_run_bands(tdc_trm_t *t)
+{
+    const uint32_t have = tdc_board_workers();
+    trm_bands_t j = {t, have < g_workers ? have : g_workers, 0, 0, {{0}}};
+    if (j.n <= 1u) {
+        return TDC_OK;
+    }
+    const tdc_status_t st = tdc_trm_split(t, &j.d_rows);
+    if (st != TDC_OK) {
+        return st;
+    }
+    if (j.d_rows) {
+        tdc_board_run_bands(trm_band_job, &j, j.n);
+    }
+    j.output = 1;
+    tdc_board_run_bands(trm_band_job, &j, j.n);
+    uint64_t sum[3] = {0, 0, 0};
+    for (uint32_t i = 0; i < j.n; i++) {
+        for (int c = 0; c < 3; c++) {
+            sum[c] += j.count[i][c];
+        }
+    }
+    tdc_trm_join(t, sum);
+    return TDC_OK;
+}
+#endif
+
+tdc_status_t tdc_fw_trm_full(uint32_t e, const uint8_t *in, uint32_t stride, uint8_t *fb, uint32_t frame)
+{
+#if TDC_CFG_ROW_WORKERS > 1
+    tdc_status_t st = tdc_trm_full_begin(&tdc_fw_trm[e], in, stride, fb, FW_STRIDE);
+    st = st == TDC_OK ? trm_run_bands(&tdc_fw_trm[e]) : st;
+    return st == TDC_OK ? tdc_trm_full_end(&tdc_fw_trm[e], frame) : st;
+#else
+    return tdc_trm_full_seq(&tdc_fw_trm[e], in, stride, fb, FW_STRIDE, frame);
+#endif
+}
+
+tdc_status_t tdc_fw_trm_reduced(uint32_t e, const uint8_t *in, uint32_t stride, uint8_t *fb, uint32_t frame)
+{
+#if TDC_CFG_ROW_WORKERS > 1
+    tdc_status_t st = tdc_trm_reduced_begin(&tdc_fw_trm[e], in, stride, fb, FW_STRIDE, frame);
+    st = st == TDC_OK ? trm_run_bands(&tdc_fw_trm[e]) : st;
+    return st == TDC_OK ? tdc_trm_reduced_end(&tdc_fw_trm[e]) : st;
+#else
+    return tdc_trm_reduced_seq(&tdc_fw_trm[e], in, stride, fb, FW_STRIDE, frame);
+#endif
+}
+
 int tdc_fw_trm_setup(const tdc_link_stream_info_t *si, uint16_t hz, uint8_t *const mem[], size_t bytes)
 {
     for (uint32_t e = 0; e < FW_EYES; e++) {
@@ -39,6 +121,15 @@ int tdc_fw_trm_setup(const tdc_link_stream_info_t *si, uint16_t hz, uint8_t *con
             return -1;
         }
     }
+#if TDC_CFG_ROW_WORKERS > 1
+    g_workers = 1;
+    for (uint32_t i = 1; i < TDC_CFG_ROW_WORKERS; i++) {
+        if (tdc_trm_rowbuf_init(&tdc_fw_trm[0], &g_rowbuf[i], g_rowmem[i - 1u], sizeof g_rowmem[0]) != TDC_OK) {
+            break; /* unreachable: sized for the largest ratio; fewer bands then */
+        }
+        g_workers = i + 1u;
+    }
+#endif
     return 0;
 }
 
@@ -65,11 +156,11 @@ int tdc_fw_trm_eye(uint32_t e, uint32_t frame, uint32_t kinds, uint8_t *fb, tdc_
 {
     tdc_status_t st;
     if (kinds & KIND_BIT(TDC_LINK_KIND_FULL)) {
-        st = tdc_trm_full_seq(&tdc_fw_trm[e], fb, FW_STRIDE, fb, FW_STRIDE, frame); /* in place: D(I) is taken first */
+        st = tdc_fw_trm_full(e, fb, FW_STRIDE, fb, frame); /* in place: D(I) is taken first */
     } else if (kinds & KIND_BIT(TDC_LINK_KIND_REDUCED)) {
         uint32_t rw = 0, rh = 0;
         tdc_link_reduced_size(&tdc_fw.dec, &rw, &rh);
-        st = tdc_trm_reduced_seq(&tdc_fw_trm[e], tdc_fw_reduced[e], rw * 3u, fb, FW_STRIDE, frame);
+        st = tdc_fw_trm_reduced(e, tdc_fw_reduced[e], rw * 3u, fb, frame);
     } else {
         return FW_EYE_NOTHING;
     }

@@ -64,40 +64,50 @@ static tdc_gpio_status_t find_line(const char *chip, const char *line, tdc_gpio_
     return TDC_GPIO_OK;
 }
 
-static tdc_gpio_status_t request_failed(tdc_gpio_line_t *l, char *err, int err_cap)
+/* libgpiod 1.6 has one request call per direction and edge kind, each with
+ * the consumer name and the flags; arg is the initial level or the edge. */
+typedef int (*request_fn)(struct gpiod_line *line, int flags, int arg);
+
+static int request_output(struct gpiod_line *line, int flags, int initial_active)
 {
-    int e = errno;
-    snprintf(err, (size_t)err_cap, "cannot request %s: %s", l->desc, strerror(e));
-    tdc_gpio_close(l);
-    return e == EBUSY ? TDC_GPIO_ERR_BUSY : TDC_GPIO_ERR_IO;
+    return gpiod_line_request_output_flags(line, CONSUMER, flags, initial_active ? 1 : 0);
+}
+
+static int request_events(struct gpiod_line *line, int flags, int edge)
+{
+    return edge == TDC_EDGE_RISING    ? gpiod_line_request_rising_edge_events_flags(line, CONSUMER, flags)
+           : edge == TDC_EDGE_FALLING ? gpiod_line_request_falling_edge_events_flags(line, CONSUMER, flags)
+                                      : gpiod_line_request_both_edges_events_flags(line, CONSUMER, flags);
+}
+
+/* Finds the line and requests it; a refused request closes it again and
+ * says why (EBUSY: another consumer took it in between). */
+static tdc_gpio_status_t open_line(const char *chip, const char *line, int active_low, request_fn request, int arg,
+                                   tdc_gpio_line_t **out, char *err, int err_cap)
+{
+    tdc_gpio_line_t *l = NULL;
+    tdc_gpio_status_t st = find_line(chip, line, &l, err, err_cap);
+    if (st != TDC_GPIO_OK) return st;
+    if (request(l->line, active_low ? GPIOD_LINE_REQUEST_FLAG_ACTIVE_LOW : 0, arg) != 0) {
+        int e = errno;
+        snprintf(err, (size_t)err_cap, "cannot request %s: %s", l->desc, strerror(e));
+        tdc_gpio_close(l);
+        return e == EBUSY ? TDC_GPIO_ERR_BUSY : TDC_GPIO_ERR_IO;
+    }
+    *out = l;
+    return TDC_GPIO_OK;
 }
 
 tdc_gpio_status_t tdc_gpio_open_output(const char *chip, const char *line, int active_low, int initial_active,
                                        tdc_gpio_line_t **out, char *err, int err_cap)
 {
-    tdc_gpio_line_t *l = NULL;
-    tdc_gpio_status_t st = find_line(chip, line, &l, err, err_cap);
-    if (st != TDC_GPIO_OK) return st;
-    int flags = active_low ? GPIOD_LINE_REQUEST_FLAG_ACTIVE_LOW : 0;
-    if (gpiod_line_request_output_flags(l->line, CONSUMER, flags, initial_active ? 1 : 0) != 0)
-        return request_failed(l, err, err_cap);
-    *out = l;
-    return TDC_GPIO_OK;
+    return open_line(chip, line, active_low, request_output, initial_active, out, err, err_cap);
 }
 
 tdc_gpio_status_t tdc_gpio_open_events(const char *chip, const char *line, tdc_gpio_edge_t edge, int active_low,
                                        tdc_gpio_line_t **out, char *err, int err_cap)
 {
-    tdc_gpio_line_t *l = NULL;
-    tdc_gpio_status_t st = find_line(chip, line, &l, err, err_cap);
-    if (st != TDC_GPIO_OK) return st;
-    int flags = active_low ? GPIOD_LINE_REQUEST_FLAG_ACTIVE_LOW : 0;
-    int r = edge == TDC_EDGE_RISING    ? gpiod_line_request_rising_edge_events_flags(l->line, CONSUMER, flags)
-            : edge == TDC_EDGE_FALLING ? gpiod_line_request_falling_edge_events_flags(l->line, CONSUMER, flags)
-                                       : gpiod_line_request_both_edges_events_flags(l->line, CONSUMER, flags);
-    if (r != 0) return request_failed(l, err, err_cap);
-    *out = l;
-    return TDC_GPIO_OK;
+    return open_line(chip, line, active_low, request_events, (int)edge, out, err, err_cap);
 }
 
 tdc_gpio_status_t tdc_gpio_set(tdc_gpio_line_t *l, int active)

@@ -27,12 +27,12 @@ TDC_SIMD_CLONES static void acc_row(double *restrict o, const double *r0, const 
     }
 }
 
-/* The same where idx0[k] = k + off and idx1[k] = k + off + 3 (no clamping:
+/* The same where idx0[k] = k + off and idx1[k] = k + off + nc (no clamping:
  * every column but a few at the edges): contiguous loads instead of gathers. */
-TDC_SIMD_CLONES static void acc_row_in(double *restrict o, const double *r0, const double *r1, int off,
+TDC_SIMD_CLONES static void acc_row_in(double *restrict o, const double *r0, const double *r1, int off, int nc,
                                        const double *restrict fx, double fy, double wgt, int k0, int k1)
 {
-    const double *ra = r0 + off, *rb = r0 + off + 3, *rd = r1 + off, *re = r1 + off + 3;
+    const double *ra = r0 + off, *rb = r0 + off + nc, *rd = r1 + off, *re = r1 + off + nc;
     TDC_SIMD
     for (int k = k0; k < k1; k++) {
         double a = ra[k], b = rb[k], d = rd[k], e = re[k];
@@ -49,35 +49,59 @@ TDC_SIMD_CLONES static void acc_row_int(double *restrict o, const double *r0, co
     }
 }
 
-/* Row `row` (3w values) of a slice as linear light: the slice's own row, or
- * the codes' row decoded through lut into buf. */
-static const double *slice_row(const tdc_eye_slice_t *sl, size_t row, int n, double *buf)
+/* Row y of a slice as linear light, nc values a pixel: nc 3, its channels
+ * (the slice's own row, or the codes' row decoded through its lut into
+ * buf); nc 1, its luminance sum_c y3[c] light_c (into buf; codes through
+ * ylut, y3[c] lut[c] per code). */
+static const double *slice_row(const tdc_eye_slice_t *sl, int nc, const double *y3, const double *ylut, size_t y,
+                               int w, double *buf)
 {
-    if (sl->lin) {
+    const size_t row = 3 * y * (size_t)w;
+    if (nc == 3 && sl->lin) {
         return sl->lin + row;
     }
-    const uint8_t *c = sl->codes + row;
-    const double *lut = sl->lut;
-    for (int k = 0; k < n; k += 3) {
-        buf[k] = lut[c[k]];
-        buf[k + 1] = lut[256 + c[k + 1]];
-        buf[k + 2] = lut[512 + c[k + 2]];
+    if (nc == 3) {
+        const uint8_t *c = sl->codes + row;
+        const double *lut = sl->lut;
+        for (int k = 0; k < 3 * w; k += 3) {
+            buf[k] = lut[c[k]];
+            buf[k + 1] = lut[256 + c[k + 1]];
+            buf[k + 2] = lut[512 + c[k + 2]];
+        }
+    } else if (sl->lin) {
+        const double *l = sl->lin + row;
+        for (int x = 0; x < w; x++) {
+            buf[x] = y3[0] * l[3 * x] + y3[1] * l[3 * x + 1] + y3[2] * l[3 * x + 2];
+        }
+    } else {
+        const uint8_t *c = sl->codes + row;
+        for (int x = 0; x < w; x++) {
+            buf[x] = ylut[c[3 * x]] + ylut[256 + c[3 * x + 1]] + ylut[512 + c[3 * x + 2]];
+        }
     }
     return buf;
 }
 
 /* out += wgt * img shifted by (sx, sy): out(x) += wgt * img(x + s), img the
- * slice's light (lin, or lut[] of codes).  The shift is the same for every
- * pixel, so the clamped source columns and their weights are computed once
- * per call (the same expressions as tdc_eye_bilinear, so the same values,
- * spread to the 3 channels of each pixel), and rows run in parallel: each
- * decodes its two source rows once (codes) and runs a vectorised row kernel
- * (contiguous loads away from the clamped edges).
- * 1440x1600 stereo TRM (perf, 1 thread): 11 % of the run before, ~4 % after. */
-int tdc_eye_accumulate(double *out, const tdc_eye_slice_t *sl, int w, int h, double sx, double sy, double wgt)
+ * slice's light (nc 3: per channel; nc 1: its luminance under y3).  The
+ * shift is the same for every pixel, so the clamped source columns and their
+ * weights are computed once per call (the same expressions as
+ * tdc_eye_bilinear, so the same values, spread to the nc values of each
+ * pixel), and rows run in parallel: each decodes its two source rows once
+ * and runs a vectorised row kernel (contiguous loads away from the clamped
+ * edges).  1440x1600 stereo TRM (perf, 1 thread): 11 % of the run before,
+ * ~4 % after. */
+static int accumulate(double *out, const tdc_eye_slice_t *sl, const double *plane, int nc, const double *y3, int w,
+                      int h, double sx, double sy, double wgt)
 {
-    const int n3 = 3 * w;
+    const int n3 = nc * w;
     double fsx = floor(sx), fsy = floor(sy);
+    double ylut[3 * 256];
+    if (nc == 1 && !plane && !sl->lin) {
+        for (int k = 0; k < 3 * 256; k++) {
+            ylut[k] = y3[k / 256] * sl->lut[k];
+        }
+    }
     int *idx = malloc(sizeof(int) * 2 * (size_t)n3);
     double *fxs = malloc(sizeof(double) * (size_t)n3);
     if (!idx || !fxs) {
@@ -92,63 +116,66 @@ int tdc_eye_accumulate(double *out, const tdc_eye_slice_t *sl, int w, int h, dou
         double fx;
         if (integer) {
             int ix = (int)fsx, xx = x + ix < 0 ? 0 : (x + ix >= w ? w - 1 : x + ix);
-            i0 = i1 = 3 * xx;
+            i0 = i1 = nc * xx;
             fx = 0.0;
         } else {
             double xs = x + sx;
             xs = xs < 0.0 ? 0.0 : (xs > w - 1 ? w - 1 : xs);
             int x0 = (int)xs;
-            i0 = 3 * x0;
-            i1 = 3 * (x0 + 1 < w ? x0 + 1 : x0);
+            i0 = nc * x0;
+            i1 = nc * (x0 + 1 < w ? x0 + 1 : x0);
             fx = xs - x0;
         }
-        for (int c = 0; c < 3; c++) {
-            idx0[3 * x + c] = i0 + c;
-            idx1[3 * x + c] = i1 + c;
-            fxs[3 * x + c] = fx;
+        for (int c = 0; c < nc; c++) {
+            idx0[nc * x + c] = i0 + c;
+            idx1[nc * x + c] = i1 + c;
+            fxs[nc * x + c] = fx;
         }
     }
-    /* the unclamped run [kb, ke): idx0[k] = k + off, idx1[k] = k + off + 3,
+    /* the unclamped run [kb, ke): idx0[k] = k + off, idx1[k] = k + off + nc,
      * checked value by value (the rounding of x + sx decides, not floor(sx)) */
-    int off = 3 * (int)fsx, kb = 0, ke = 0;
+    int off = nc * (int)fsx, kb = 0, ke = 0;
     if (!integer) {
-        while (kb < n3 && !(idx0[kb] == kb + off && idx1[kb] == kb + off + 3)) {
+        while (kb < n3 && !(idx0[kb] == kb + off && idx1[kb] == kb + off + nc)) {
             kb++;
         }
         ke = kb;
-        while (ke < n3 && idx0[ke] == ke + off && idx1[ke] == ke + off + 3) {
+        while (ke < n3 && idx0[ke] == ke + off && idx1[ke] == ke + off + nc) {
             ke++;
         }
         for (int k = ke; k < n3; k++) {
-            if (idx0[k] == k + off && idx1[k] == k + off + 3) {
+            if (idx0[k] == k + off && idx1[k] == k + off + nc) {
                 kb = ke = 0; /* not one run: gathers everywhere */
                 break;
             }
         }
     }
+    const int own = plane || (nc == 3 && sl->lin); /* rows read in place, no decode buffer */
     int bad = 0;
     TDC_PAR_FOR((size_t)w * h)
     for (int y = 0; y < h; y++) {
-        double *o = out + 3 * (size_t)y * w;
-        double *buf = sl->lin ? NULL : malloc(sizeof(double) * 2 * (size_t)n3);
-        if (!sl->lin && !buf) {
+        double *o = out + (size_t)nc * y * w;
+        double *buf = own ? NULL : malloc(sizeof(double) * 2 * (size_t)n3);
+        if (!own && !buf) {
             bad = 1; /* benign race: every writer stores 1 */
             continue;
         }
         if (integer) {
             /* integer shift: plain copy with clamping */
             int iy = (int)fsy, yy = y + iy < 0 ? 0 : (y + iy >= h ? h - 1 : y + iy);
-            acc_row_int(o, slice_row(sl, 3 * (size_t)yy * w, n3, buf), idx0, wgt, n3);
+            acc_row_int(o, plane ? plane + (size_t)yy * w : slice_row(sl, nc, y3, ylut, (size_t)yy, w, buf), idx0,
+                        wgt, n3);
         } else {
             double ys = y + sy;
             ys = ys < 0.0 ? 0.0 : (ys > h - 1 ? h - 1 : ys);
             int y0 = (int)ys;
             int y1 = y0 + 1 < h ? y0 + 1 : y0;
             double fy = ys - y0;
-            const double *r0 = slice_row(sl, 3 * (size_t)y0 * w, n3, buf);
-            const double *r1 = slice_row(sl, 3 * (size_t)y1 * w, n3, buf ? buf + n3 : NULL);
+            const double *r0 = plane ? plane + (size_t)y0 * w : slice_row(sl, nc, y3, ylut, (size_t)y0, w, buf);
+            const double *r1 = plane ? plane + (size_t)y1 * w
+                                     : slice_row(sl, nc, y3, ylut, (size_t)y1, w, buf ? buf + n3 : NULL);
             acc_row(o, r0, r1, idx0, idx1, fxs, fy, wgt, 0, kb);
-            acc_row_in(o, r0, r1, off, fxs, fy, wgt, kb, ke);
+            acc_row_in(o, r0, r1, off, nc, fxs, fy, wgt, kb, ke);
             acc_row(o, r0, r1, idx0, idx1, fxs, fy, wgt, ke, n3);
         }
         free(buf);
@@ -158,8 +185,42 @@ int tdc_eye_accumulate(double *out, const tdc_eye_slice_t *sl, int w, int h, dou
     return bad ? -1 : 0;
 }
 
+int tdc_eye_accumulate(double *out, const tdc_eye_slice_t *sl, int w, int h, double sx, double sy, double wgt)
+{
+    return accumulate(out, sl, NULL, 3, NULL, w, h, sx, sy, wgt);
+}
+
+int tdc_eye_accumulate_y(double *out, const tdc_eye_slice_t *sl, const double rgb2y[3], int w, int h, double sx,
+                         double sy, double wgt)
+{
+    return accumulate(out, sl, NULL, 1, rgb2y, w, h, sx, sy, wgt);
+}
+
+void tdc_eye_slice_luminance(const tdc_eye_slice_t *sl, const double rgb2y[3], int w, int h, double *y)
+{
+    double ylut[3 * 256];
+    for (int k = 0; k < 3 * 256 && !sl->lin; k++) {
+        ylut[k] = rgb2y[k / 256] * sl->lut[k];
+    }
+    TDC_PAR_FOR((size_t)w * h)
+    for (int r = 0; r < h; r++) {
+        slice_row(sl, 1, rgb2y, ylut, (size_t)r, w, y + (size_t)r * w);
+    }
+}
+
+int tdc_eye_accumulate_plane(double *out, const double *plane, int w, int h, double sx, double sy, double wgt)
+{
+    return accumulate(out, NULL, plane, 1, NULL, w, h, sx, sy, wgt);
+}
+
 int tdc_eye_perceive(const tdc_eye_cfg_t *cfg, const tdc_eye_slice_t *slices, int n, double t_end, const double v[2],
                      double *out)
+{
+    return tdc_eye_perceive_buf(cfg, slices, n, t_end, v, out, NULL);
+}
+
+int tdc_eye_perceive_buf(const tdc_eye_cfg_t *cfg, const tdc_eye_slice_t *slices, int n, double t_end,
+                         const double v[2], double *out, double *scratch)
 {
     int w = cfg->width, h = cfg->height;
     double T = cfg->window_s, t_start = t_end - T;
@@ -177,9 +238,21 @@ int tdc_eye_perceive(const tdc_eye_cfg_t *cfg, const tdc_eye_slice_t *slices, in
         int nsub = (int)ceil(speed * (b - a) / step);
         nsub = nsub < 1 ? 1 : (nsub > 64 ? 64 : nsub);
         double dt = (b - a) / nsub;
+        tdc_eye_slice_t sl = slices[i];
+        if (scratch && nsub > 1 && !sl.lin) {
+            /* codes decoded once for the sub-steps (the same values) */
+            const size_t n3 = 3 * (size_t)w * h;
+            TDC_PAR_FOR(n3)
+            for (int y = 0; y < h; y++) {
+                for (size_t k = 3 * (size_t)y * w; k < 3 * (size_t)(y + 1) * w; k++) {
+                    scratch[k] = sl.lut[256 * (k % 3) + sl.codes[k]];
+                }
+            }
+            sl.lin = scratch;
+        }
         for (int k = 0; k < nsub; k++) {
             double tm = a + (k + 0.5) * dt;
-            if (tdc_eye_accumulate(out, &slices[i], w, h, vx * (tm - t_end), vy * (tm - t_end), dt / T * cfg->norm)) {
+            if (tdc_eye_accumulate(out, &sl, w, h, vx * (tm - t_end), vy * (tm - t_end), dt / T * cfg->norm)) {
                 return -1;
             }
         }

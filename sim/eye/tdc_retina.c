@@ -157,19 +157,25 @@ int tdc_retina_sample(const tdc_retina_eye_t *eye, const tdc_eye_slice_t *sl, in
     if (!lit) {
         /* no light in the step (4 of an OLED's 5 at 20 % persistence): all
          * zero bits are 0.0f */
-        memset(rgb, 0, sizeof(float) * 3 * np);
+        if (rgb) {
+            memset(rgb, 0, sizeof(float) * 3 * np);
+        }
         if (y) {
             memset(y, 0, sizeof(float) * np);
         }
-        return 0;
+        return 1;
     }
-    memset(acc, 0, sizeof(double) * 3 * np);
+    memset(acc, 0, sizeof(double) * (rgb ? 3 : 1) * np);
     for (int i = 0; i < n; i++) {
         const double a1 = sl[i].t0 > a ? sl[i].t0 : a, b1 = sl[i].t1 < b ? sl[i].t1 : b;
         if (b1 <= a1 || (!sl[i].lin && (!sl[i].codes || !sl[i].lut))) {
             continue;
         }
         black += d->black_cdm2 * norm * (b1 - a1) / T;
+        double *plane = acc + np; /* the luminance alone: the slice's, decoded once */
+        if (!rgb) {
+            tdc_eye_slice_luminance(&sl[i], d->rgb2y, w, h, plane);
+        }
         /* sub-steps: at most 0.5 px of retinal motion apart (the eye's
          * displacement over the overlap, sampled at its ends and middle) */
         double s0[2], s1[2], sm[2];
@@ -183,10 +189,24 @@ int tdc_retina_sample(const tdc_retina_eye_t *eye, const tdc_eye_slice_t *sl, in
         for (int k = 0; k < nsub; k++) {
             double s[2];
             shift_at(eye, a1 + (k + 0.5) * dt, s);
-            if (tdc_eye_accumulate(acc, &sl[i], w, h, s[0], s[1], gain * norm * dt / T)) {
+            const double wgt = gain * norm * dt / T;
+            if (rgb ? tdc_eye_accumulate(acc, &sl[i], w, h, s[0], s[1], wgt)
+                    : tdc_eye_accumulate_plane(acc, plane, w, h, s[0], s[1], wgt)) {
                 return -1;
             }
         }
+    }
+    if (!rgb) {
+        /* the luminance alone: the black level's is black times the sum of
+         * the weights */
+        const double yb = black * (d->rgb2y[0] + d->rgb2y[1] + d->rgb2y[2]);
+        TDC_PAR_FOR(np)
+        for (int yy = 0; yy < h; yy++) {
+            for (size_t j = (size_t)yy * w; j < (size_t)(yy + 1) * w; j++) {
+                y[j] = (float)(acc[j] + yb);
+            }
+        }
+        return 0;
     }
     TDC_PAR_FOR(np)
     for (int yy = 0; yy < h; yy++) {

@@ -96,8 +96,9 @@ typedef struct {
     double t0, t1;           /* seconds */
     double fps;              /* steps per second: R N */
     int width, height;
-    const float *test, *ref;     /* w*h*3, cd/m^2 per channel */
+    const float *test, *ref;     /* w*h*3, cd/m^2 per channel; NULL unless --dump writes them */
     const float *test_y, *ref_y; /* w*h, luminance cd/m^2 (rgb2y) */
+    int test_dark, ref_dark;     /* 1: no light in the step, the planes are all zero */
     double gaze[2];              /* true gaze in the stabilised image, pixels */
     double gaze_screen[2];       /* true gaze on the screen at the step's middle */
     double shift[2];             /* D at the step's middle: image x shows screen x + D */
@@ -109,8 +110,11 @@ typedef struct {
 typedef int (*tdc_retina_cb_t)(void *ctx, const tdc_retina_frame_t *f);
 
 /* Mean emitted luminance over [a, b) of n slices as S_k above; eye NULL: no
- * stabilisation (the light on the screen).  acc: w*h*3 doubles of scratch;
- * rgb (w*h*3) and y (w*h, may be NULL) receive cd/m^2.  0 or -1 (memory). */
+ * stabilisation (the light on the screen).  rgb (w*h*3) and y (w*h, may be
+ * NULL) receive cd/m^2; acc: w*h*3 doubles of scratch.  rgb NULL: the
+ * luminance alone into y (non-NULL then), integrated as one plane (a third
+ * of the work; acc 2 w*h doubles).  0; 1 when no slice emits in [a, b)
+ * (the planes are zero: a consumer may skip them); -1 (memory). */
 int tdc_retina_sample(const tdc_retina_eye_t *eye, const tdc_eye_slice_t *sl, int n, double a, double b, double norm,
                       const tdc_retina_display_t *d, int w, int h, double *acc, float *rgb, float *y);
 

@@ -33,10 +33,11 @@
  * frame first.  Metrics of the same size and rate (the modes and eyes of
  * one run, tdc_fvvdp_new_beside) work in one set of scratch planes in turn.
  *
- * Memory: the history is ceil(fps/4) frames of test and reference, float,
- * w*h each (9.2 MB a frame of 1440x1600; at 90 Hz, 23 taps, 212 MB a
- * stream); it grows with the frames fed and stops at the filters' length
- * (nothing older is kept), so a run of n frames holds min(n, taps).  The
+ * Memory: the history is ceil(fps/4) frames of test and reference, 16-bit
+ * codes (tdc_fvvdp_l16: relative rounding <= 2^-12), w*h each (4.6 MB a
+ * frame of 1440x1600; at 90 Hz, 23 taps, 106 MB a stream); it grows with
+ * the frames fed and stops at the filters' length (nothing older is kept),
+ * so a run of n frames holds min(n, taps).  The
  * rest, once per workspace: the test signals' pyramids (2 x 4/3 frames of
  * doubles), four contrast planes (float), three planes of doubles and the
  * per-band magnification map; per reference, its two signals' pyramids.
@@ -82,7 +83,7 @@ struct tdc_fvvdp {
      * in hist[t][j % taps], allocated as frames arrive; taps older than the
      * first frame read the first frame ("replicate" padding), so a run of n
      * frames holds min(n, taps) of them. */
-    float *hist[2][TDC_FVVDP_MAX_TAPS];
+    unsigned short *hist[2][TDC_FVVDP_MAX_TAPS]; /* tdc_fvvdp_l16 codes */
     /* Gaussian pyramids of the signals: the reference's (odd) held by the
      * reference's owner, the test's (even) and the rest below by the
      * workspace's holder and used by every metric working in it in turn
@@ -289,8 +290,41 @@ int tdc_fvvdp_set_fovea(tdc_fvvdp_t *m, double deg)
     return 0;
 }
 
+/* A row of luminance into the history's 16-bit codes. */
+static TDC_SIMD_CLONES void encode_row(const float *in, unsigned short *out, int w)
+{
+    TDC_SIMD
+    for (int x = 0; x < w; x++) {
+        out[x] = tdc_fvvdp_l16(in[x]);
+    }
+}
+
+/* Both channels' FIR of one row over the taps (rows[k] + off: the frame k
+ * refreshes old): sustained into sus, transient into tr, in double, taps
+ * added in order (the same bits in every clone and thread). */
+static TDC_SIMD_CLONES void fir_row(const unsigned short *const *rows, size_t off, int taps, const double *f0,
+                                    const double *f1, int w, double *sus, double *tr)
+{
+    for (int x = 0; x < w; x++) {
+        sus[x] = 0.0;
+        tr[x] = 0.0;
+    }
+    for (int k = 0; k < taps; k++) {
+        const unsigned short *row = rows[k] + off;
+        double a = f0[k], b = f1[k];
+        TDC_SIMD
+        for (int x = 0; x < w; x++) {
+            double v = tdc_fvvdp_l16_value(row[x]);
+            sus[x] += a * v;
+            tr[x] += b * v;
+        }
+    }
+}
+
 /* Level 0 of the four signals: the frame itself (images) or the FIR of the
- * history (video).  -1: out of memory for the history. */
+ * history (video; the frame enters it as 16-bit codes, tdc_fvvdp_l16, and
+ * every tap, this frame's too, reads the codes).  -1: out of memory for the
+ * history. */
 static int signals(tdc_fvvdp_t *m, const float *test, const float *ref)
 {
     size_t n = (size_t)m->w * m->h;
@@ -305,14 +339,13 @@ static int signals(tdc_fvvdp_t *m, const float *test, const float *ref)
         return 0;
     }
     const float *src[2] = { test, ref };
-    const float *rows[2][TDC_FVVDP_MAX_TAPS];
+    const unsigned short *rows[2][TDC_FVVDP_MAX_TAPS];
     int taps = m->taps, cur = m->frames, w = m->w;
     for (int t = 0; t < nt; t++) {
-        float **slot = &m->hist[t][cur % taps];
-        if (!*slot && !(*slot = zalloc(m, n, sizeof(float)))) {
+        unsigned short **slot = &m->hist[t][cur % taps];
+        if (!*slot && !(*slot = zalloc(m, n, sizeof(unsigned short)))) {
             return -1;
         }
-        memcpy(*slot, src[t], n * sizeof(float));
         for (int k = 0; k < taps; k++) {
             /* Tap k weighs the frame k refreshes old (the first before it). */
             rows[t][k] = m->hist[t][(cur - k > 0 ? cur - k : 0) % taps];
@@ -321,20 +354,9 @@ static int signals(tdc_fvvdp_t *m, const float *test, const float *ref)
     TDC_PAR_FOR((long)n * taps)
     for (int y = 0; y < m->h; y++) {
         for (int t = 0; t < nt; t++) {
+            encode_row(src[t] + (size_t)y * w, m->hist[t][cur % taps] + (size_t)y * w, w);
             double *sus = pyr(m, t)[0] + (size_t)y * w, *tr = pyr(m, 2 + t)[0] + (size_t)y * w;
-            for (int x = 0; x < w; x++) {
-                sus[x] = 0.0;
-                tr[x] = 0.0;
-            }
-            for (int k = 0; k < taps; k++) {
-                const float *row = rows[t][k] + (size_t)y * w;
-                double f0 = m->f[0][k], f1 = m->f[1][k];
-                TDC_SIMD
-                for (int x = 0; x < w; x++) {
-                    sus[x] += f0 * row[x];
-                    tr[x] += f1 * row[x];
-                }
-            }
+            fir_row(rows[t], (size_t)y * w, taps, m->f[0], m->f[1], w, sus, tr);
         }
     }
     return 0;

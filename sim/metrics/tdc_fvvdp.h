@@ -82,6 +82,30 @@ void tdc_fvvdp_expand(const double *src, int w, int h, double *dst, double *tmp)
 
 /* ---- temporal channels (tdc_fvvdp_temporal.c) ---- */
 #define TDC_FVVDP_MAX_TAPS 256  /* ceil(fps/4): 1000 Hz at most */
+/* The history's 16-bit code of a luminance (cd/m^2): an unsigned float of
+ * 5 exponent and 11 mantissa bits (no sign: light is never negative),
+ * 2^-16 .. 2^15 (2 - 2^-11) = 65520 cd/m^2, rounded to nearest (ties to even).
+ * Relative rounding error <= 2^-12 = 0.024 % (a float's 24 bits cut to 12),
+ * half that of IEEE half precision, whose sign bit is wasted here;
+ * luminance below 2^-16 = 1.5e-5 cd/m^2 (a dark step) reads as 2^-16,
+ * beyond the top as the top.  Both ends: integer arithmetic on the float's
+ * bits, no table, so the FIR's loop vectorises (tdc_fvvdp.c).
+ * docs/visual-model.md gives the JOD change (validation set). */
+#define TDC_FVVDP_L16_EXP0 111u /* float exponent field of code 0: 2^(111-127) */
+static inline unsigned short tdc_fvvdp_l16(float v)
+{
+    union { float f; unsigned int u; } b;
+    const float lo = 1.52587890625e-05f, hi = 65520.0f; /* 2^-16, 2^15 (2 - 2^-11) */
+    b.f = v > lo ? (v < hi ? v : hi) : lo; /* NaN -> lo */
+    unsigned int u = b.u - (TDC_FVVDP_L16_EXP0 << 23);
+    return (unsigned short)((u + 0x7FFu + ((u >> 12) & 1u)) >> 12);
+}
+static inline float tdc_fvvdp_l16_value(unsigned short c)
+{
+    union { float f; unsigned int u; } b;
+    b.u = ((unsigned int)c << 12) + (TDC_FVVDP_L16_EXP0 << 23);
+    return b.f;
+}
 /* Taps of the sustained (ch 0) and transient (ch 1) filters at fps; tap 0
  * weighs the newest frame.  Returns the length (ceil(250 ms * fps)). */
 int tdc_fvvdp_temporal_filters(double fps, double f[2][TDC_FVVDP_MAX_TAPS]);

@@ -33,7 +33,12 @@ int tdc_panel_sim_init(tdc_panel_sim_t *p, tdc_panel_sim_kind_t kind, int w, int
         p->gamma[k] = gamma[k];
     }
     size_t n = 3 * (size_t)w * h;
-    int nbuf = kind == TDC_PANEL_SIM_LCD ? TDC_PANEL_SIM_MAX_SLICES : 1;
+    for (int k = 0; k < 3; k++) {
+        for (int c = 0; c < 256; c++) {
+            p->lut[256 * k + c] = tdc_panel_sim_decode(c, gamma[k]);
+        }
+    }
+    int nbuf = kind == TDC_PANEL_SIM_LCD ? TDC_PANEL_SIM_MAX_SLICES : 0;
     for (int i = 0; i < nbuf; i++) {
         p->slice_buf[i] = calloc(n, sizeof(double));
         if (!p->slice_buf[i]) {
@@ -123,20 +128,12 @@ double tdc_panel_sim_duty(const tdc_panel_sim_t *p)
 int tdc_panel_sim_show(tdc_panel_sim_t *p, const uint8_t *codes, double t, double frame_s, tdc_eye_slice_t *out)
 {
     size_t n = 3 * (size_t)p->width * p->height;
-    double lut[3][256];
-    for (int k = 0; k < 3; k++) {
-        for (int c = 0; c < 256; c++) {
-            lut[k][c] = tdc_panel_sim_decode(c, p->gamma[k]);
-        }
-    }
     if (p->kind == TDC_PANEL_SIM_OLED) {
-        double *b = p->slice_buf[0];
-        for (size_t i = 0; i < n; i++) {
-            b[i] = lut[i % 3][codes[i]];
-        }
+        memset(&out[0], 0, sizeof(out[0]));
         out[0].t0 = t;
         out[0].t1 = t + frame_s * p->persistence;
-        out[0].lin = b;
+        out[0].codes = codes;
+        out[0].lut = p->lut;
         return 1;
     }
     if (p->ext) {
@@ -162,7 +159,7 @@ int tdc_panel_sim_show(tdc_panel_sim_t *p, const uint8_t *codes, double t, doubl
     const int ns = TDC_PANEL_SIM_MAX_SLICES;
     double dt = frame_s / ns;
     for (size_t i = 0; i < n; i++) {
-        double target = lut[i % 3][codes[i]];
+        double target = p->lut[256 * (i % 3) + codes[i]];
         double l0 = p->state[i];
         double tau = target >= l0 ? p->tau_rise_s : p->tau_fall_s;
         for (int s = 0; s < ns; s++) {

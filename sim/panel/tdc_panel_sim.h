@@ -34,7 +34,8 @@ typedef struct {
     double tau_fall_s;
     const char *model; /* description for reports */
     double *state;     /* LCD: current light per sample (W*H*3) */
-    double *slice_buf[TDC_PANEL_SIM_MAX_SLICES];
+    double *slice_buf[TDC_PANEL_SIM_MAX_SLICES]; /* LCD only */
+    double lut[3 * 256]; /* OLED: light of each code, per channel (the slice's decode) */
     void *ext; /* physical LCD model from sim/lcd, when linked */
 } tdc_panel_sim_t;
 
@@ -60,8 +61,11 @@ double tdc_panel_sim_duty(const tdc_panel_sim_t *p);
 
 /*
  * Shows `codes` (RGB888, W*H, tightly packed) for the frame [t, t + frame_s).
- * Writes up to TDC_PANEL_SIM_MAX_SLICES slices; their images live in the
- * panel's buffers and stay valid until the next call, so copy them.
+ * Writes up to TDC_PANEL_SIM_MAX_SLICES slices; an LCD's images live in the
+ * panel's buffers and stay valid until the next call, so copy them; an
+ * OLED's slice is `codes` itself with the panel's lut (codes and lut, no
+ * light plane: a 1440x1600 plane of doubles is 55 MB per panel, and every
+ * consumer keeps the codes), valid while `codes` is.
  * Returns the number of slices.
  */
 int tdc_panel_sim_show(tdc_panel_sim_t *p, const uint8_t *codes, double t, double frame_s, tdc_eye_slice_t *out);

@@ -105,6 +105,26 @@ static const char *panel_name(const tdc_sim_config_t *cfg)
     return cfg->panel == TDC_PANEL_SIM_LCD ? "lcd" : "oled";
 }
 
+/* What every table is read against: the full-resolution rays (--spp per
+ * pixel, else 1 at >= 200 Hz and 4 below) and RGB888 link bytes per second
+ * of all eyes, and whether any run was judged (the JOD columns). */
+typedef struct {
+    int eyes, judged;
+    double full_rays, full_bytes;
+} report_base_t;
+
+static report_base_t report_base(const tdc_sim_config_t *cfg, const tdc_sim_result_t *r, int n)
+{
+    report_base_t b = {.eyes = cfg->eyes == 2 ? 2 : 1};
+    b.full_rays = (double)cfg->width * cfg->height * (cfg->spp > 0 ? cfg->spp : (cfg->refresh_hz >= 200 ? 1 : 4)) *
+                  cfg->refresh_hz * b.eyes;
+    b.full_bytes = (double)cfg->width * cfg->height * 3.0 * cfg->refresh_hz * b.eyes;
+    for (int i = 0; i < n; i++) {
+        b.judged |= r[i].judged;
+    }
+    return b;
+}
+
 void tdc_report_csv(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_result_t *r, int n, int header)
 {
     if (header) {
@@ -114,10 +134,8 @@ void tdc_report_csv(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_result_t
                    "ssim_eye0,ssim_eye1,flip_eye0,flip_eye1,legacy_terr,note,jod,jod_fovea,jod_periphery,jod_eye0,"
                    "jod_eye1,jod_frames\n");
     }
-    const int eyes = cfg->eyes == 2 ? 2 : 1;
-    double full_rays = (double)cfg->width * cfg->height * (cfg->spp > 0 ? cfg->spp : (cfg->refresh_hz >= 200 ? 1 : 4)) *
-                       cfg->refresh_hz * eyes;
-    double full_bytes = (double)cfg->width * cfg->height * 3.0 * cfg->refresh_hz * eyes;
+    const report_base_t base = report_base(cfg, r, n);
+    const int eyes = base.eyes;
     for (int i = 0; i < n; i++) {
         const tdc_sim_result_t *x = &r[i];
         double T = x->sim_s > 0 ? x->sim_s : 1.0;
@@ -135,8 +153,8 @@ void tdc_report_csv(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_result_t
                 "%d,%s,%s,\"%s\"",
                 cfg->label ? cfg->label : "run", tdc_scene_name(cfg->scene.kind), panel_name(cfg), x->desc->name,
                 x->display_hz, cfg->width, cfg->height, x->evals, x->psnr, x->evals ? x->psnr_min : 0.0, x->ssim,
-                x->flip, x->flip_max, x->flicker, x->rays / T, x->rays / T / full_rays, x->link_bytes / T,
-                x->link_bytes / T / full_bytes, 1e6 * x->fw_s / fr, 1e6 * x->render_s / fr,
+                x->flip, x->flip_max, x->flicker, x->rays / T, x->rays / T / base.full_rays, x->link_bytes / T,
+                x->link_bytes / T / base.full_bytes, 1e6 * x->fw_s / fr, 1e6 * x->render_s / fr,
                 (unsigned long long)x->frames, x->resets, x->link_errors, x->nonfinite, x->available, eyes, per_eye,
                 terr, x->note);
         /* FovVideoVDP (empty under --judge legacy, for a run within the
@@ -156,16 +174,10 @@ void tdc_report_csv(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_result_t
 
 void tdc_report_markdown(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_result_t *r, int n)
 {
-    const int eyes = cfg->eyes == 2 ? 2 : 1;
-    double full_rays = (double)cfg->width * cfg->height * (cfg->spp > 0 ? cfg->spp : (cfg->refresh_hz >= 200 ? 1 : 4)) *
-                       cfg->refresh_hz * eyes;
-    double full_bytes = (double)cfg->width * cfg->height * 3.0 * cfg->refresh_hz * eyes;
     /* FovVideoVDP's JOD leads (docs/visual-model.md); the legacy columns
      * say so in their names. */
-    int judged = 0;
-    for (int i = 0; i < n; i++) {
-        judged |= r[i].judged;
-    }
+    const report_base_t base = report_base(cfg, r, n);
+    const int eyes = base.eyes, judged = base.judged;
     if (cfg->judge == TDC_JUDGE_LEGACY) {
         fprintf(f, "Judge: legacy (`--judge legacy`): no JOD; PSNR, SSIM, FLIP and the legacy columns only.\n\n");
     } else if (cfg->judge == TDC_JUDGE_SHORT) {
@@ -195,8 +207,8 @@ void tdc_report_markdown(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_res
         double T = x->sim_s > 0 ? x->sim_s : 1.0;
         double fr = x->frames ? (double)x->frames : 1.0;
         fprintf(f, "| %s |%s %d | %.2f | %.4f | %.4f | %.2f | %.3f | %.3f | %.2f | %.0f | %.0f |\n", x->desc->name,
-                jod, x->display_hz, x->psnr, x->ssim, x->flip, x->flicker, x->rays / T / full_rays,
-                x->link_bytes / T / full_bytes, x->link_bytes / T / 1e6, 1e6 * x->fw_s / fr, 1e6 * x->render_s / fr);
+                jod, x->display_hz, x->psnr, x->ssim, x->flip, x->flicker, x->rays / T / base.full_rays,
+                x->link_bytes / T / base.full_bytes, x->link_bytes / T / 1e6, 1e6 * x->fw_s / fr, 1e6 * x->render_s / fr);
     }
     if (eyes == 2) {
         /* stereo: the table above is both eyes (mean figures, the pair's rays and link bytes) */
@@ -240,14 +252,8 @@ void tdc_report_markdown(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_res
 
 void tdc_report_foveation(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_result_t *r, int n, int csv)
 {
-    const int eyes = cfg->eyes == 2 ? 2 : 1;
-    double full_rays = (double)cfg->width * cfg->height * (cfg->spp > 0 ? cfg->spp : (cfg->refresh_hz >= 200 ? 1 : 4)) *
-                       cfg->refresh_hz * eyes;
-    double full_bytes = (double)cfg->width * cfg->height * 3.0 * cfg->refresh_hz * eyes;
-    int judged = 0;
-    for (int i = 0; i < n; i++) {
-        judged |= r[i].judged;
-    }
+    const report_base_t base = report_base(cfg, r, n);
+    const int judged = base.judged;
     if (csv) {
         fprintf(f, "run,mode,gaze,latency_ms,noise_deg,alpha,delta,disk,rays_vs_full,link_vs_full,flip,flip_fovea,"
                    "flip_periphery,flip_ecc,flip_wmedian,legacy_flicker,legacy_flicker_periphery,jod,jod_fovea,"
@@ -276,8 +282,8 @@ void tdc_report_foveation(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_re
         if (csv) {
             fprintf(f, "%s,%s,%s,%.1f,%.3f,%.3f,%.4f,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f,%.3f,%.3f",
                     cfg->label ? cfg->label : "run", x->desc->name, tdc_sim_gaze_name(cfg->gaze), cfg->gaze_latency_ms,
-                    cfg->gaze_noise_deg, cfg->fov_alpha, cfg->fov_delta, cfg->fov_disk, x->rays / T / full_rays,
-                    x->link_bytes / T / full_bytes, x->flip, x->flip_fovea, x->flip_periph, x->flip_ecc,
+                    cfg->gaze_noise_deg, cfg->fov_alpha, cfg->fov_delta, cfg->fov_disk, x->rays / T / base.full_rays,
+                    x->link_bytes / T / base.full_bytes, x->flip, x->flip_fovea, x->flip_periph, x->flip_ecc,
                     x->flip_wmedian, x->flicker, x->flicker_periph);
             csv_jod(f, x->judged ? x->jod : NAN);
             csv_jod(f, x->judged ? x->jod_fovea : NAN);
@@ -290,7 +296,7 @@ void tdc_report_foveation(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_re
                          fmt_jod(x->judged ? x->jod_periphery : NAN, b[2]));
             }
             fprintf(f, "| %s |%s %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %.2f | %.2f |\n", x->desc->name, jod,
-                    x->rays / T / full_rays, x->link_bytes / T / full_bytes, x->flip, x->flip_fovea, x->flip_periph,
+                    x->rays / T / base.full_rays, x->link_bytes / T / base.full_bytes, x->flip, x->flip_fovea, x->flip_periph,
                     x->flip_ecc, x->flip_wmedian, x->flicker, x->flicker_periph);
         }
     }

@@ -212,14 +212,16 @@ int tdc_sim_jod_cb(void *ctx, const tdc_retina_frame_t *f)
         }
         j->refresh = f->refresh;
     }
-    float *acc_t = j->acc_t, *acc_r = j->acc_r;
-    TDC_PAR_FOR(np)
-    for (int y = 0; y < f->height; y++) {
-        for (size_t i = (size_t)y * f->width; i < (size_t)(y + 1) * f->width; i++) {
+    /* a dark step adds nothing (4 of an OLED's 5 at 20 % persistence) */
+    float *acc_t = f->test_dark ? NULL : j->acc_t, *acc_r = f->ref_dark ? NULL : j->acc_r;
+    const int rows = acc_t || acc_r ? f->height : 0;
+    TDC_PAR_FOR(rows ? np : 0)
+    for (int y = 0; y < rows; y++) {
+        for (size_t i = (size_t)y * f->width; acc_t && i < (size_t)(y + 1) * f->width; i++) {
             acc_t[i] += f->test_y[i];
-            if (acc_r) {
-                acc_r[i] += f->ref_y[i];
-            }
+        }
+        for (size_t i = (size_t)y * f->width; acc_r && i < (size_t)(y + 1) * f->width; i++) {
+            acc_r[i] += f->ref_y[i];
         }
     }
     j->nacc++;

@@ -213,24 +213,26 @@ int tdc_sim_link_stream(tdc_sim_link_t *l)
     return feed(l, n, TDC_LINK_KIND_STREAM);
 }
 
-int tdc_sim_link_full(tdc_sim_link_t *l, int eye, uint32_t frame, const uint8_t *rgb)
+/* A FULL or REDUCED packet of a w x h RGB888 frame; 0 when accepted. */
+static int send_frame(tdc_sim_link_t *l, tdc_link_kind_t kind, int eye, uint32_t frame, const uint8_t *rgb, int w,
+                      int h)
 {
     link_priv_t *p = l->priv;
     double t0 = now_s();
-    size_t n = tdc_link_encode_frame(&p->enc, p->pkt, p->cap, TDC_LINK_KIND_FULL, (uint32_t)eye, frame,
-                                     TDC_PIXFMT_RGB888, rgb, (uint32_t)l->w, (uint32_t)l->h, (uint32_t)l->w * 3u);
+    size_t n = tdc_link_encode_frame(&p->enc, p->pkt, p->cap, kind, (uint32_t)eye, frame, TDC_PIXFMT_RGB888, rgb,
+                                     (uint32_t)w, (uint32_t)h, (uint32_t)w * 3u);
     l->encode_s += now_s() - t0;
-    return feed(l, n, TDC_LINK_KIND_FULL);
+    return feed(l, n, (int)kind);
+}
+
+int tdc_sim_link_full(tdc_sim_link_t *l, int eye, uint32_t frame, const uint8_t *rgb)
+{
+    return send_frame(l, TDC_LINK_KIND_FULL, eye, frame, rgb, l->w, l->h);
 }
 
 int tdc_sim_link_reduced(tdc_sim_link_t *l, int eye, uint32_t frame, const uint8_t *rgb)
 {
-    link_priv_t *p = l->priv;
-    double t0 = now_s();
-    size_t n = tdc_link_encode_frame(&p->enc, p->pkt, p->cap, TDC_LINK_KIND_REDUCED, (uint32_t)eye, frame,
-                                     TDC_PIXFMT_RGB888, rgb, (uint32_t)l->rw, (uint32_t)l->rh, (uint32_t)l->rw * 3u);
-    l->encode_s += now_s() - t0;
-    return feed(l, n, TDC_LINK_KIND_REDUCED);
+    return send_frame(l, TDC_LINK_KIND_REDUCED, eye, frame, rgb, l->rw, l->rh);
 }
 
 /* A PATTERN packet (the cycle's tile orderings); 0 when accepted. */

@@ -71,8 +71,7 @@ typedef struct {
 
 static void eval_free(sim_eval_t *e)
 {
-    free(e->crop_g);
-    free(e->enc_g);
+    free(e->enc_g); /* crop_g and crop_p are gt and perc themselves (crop_copy) */
     tdc_ssim_ref_free(&e->ssim_g);
     tdc_flip_ref_free(&e->flip_g);
     free(e->series);
@@ -80,7 +79,6 @@ static void eval_free(sim_eval_t *e)
     free(e->gt);
     free(e->scratch);
     free(e->perc);
-    free(e->crop_p);
     free(e->enc_p);
     free(e->err);
     free(e->err_spare);
@@ -96,7 +94,6 @@ static int eval_alloc(sim_eval_t *e, int w, int h, int nseries)
     size_t n3 = (size_t)w * h * 3;
     memset(e, 0, sizeof(*e));
     int bad = 0;
-    bad |= !(e->crop_g = malloc(sizeof(double) * n3));
     bad |= !(e->enc_g = malloc(sizeof(double) * n3));
     bad |= !(e->series = calloc((size_t)nseries, SERIES_LINE));
     size_t ws = tdc_ssim_work_bytes(w, h), wf = tdc_flip_work_bytes(w, h);
@@ -104,7 +101,6 @@ static int eval_alloc(sim_eval_t *e, int w, int h, int nseries)
     bad |= !(e->gt = malloc(sizeof(double) * n3));
     bad |= !(e->scratch = malloc(sizeof(double) * n3));
     bad |= !(e->perc = malloc(sizeof(double) * n3));
-    bad |= !(e->crop_p = malloc(sizeof(double) * n3));
     bad |= !(e->enc_p = malloc(sizeof(double) * n3));
     bad |= !(e->err = malloc(sizeof(double) * n3));
     bad |= !(e->err_spare = malloc(sizeof(float) * n3));
@@ -113,6 +109,10 @@ static int eval_alloc(sim_eval_t *e, int w, int h, int nseries)
     bad |= !(e->rows_out = malloc(sizeof(double) * (size_t)h));
     bad |= !(e->rows_n = malloc(sizeof(double) * (size_t)h));
     bad |= !(e->xy = malloc(sizeof(double) * 2 * (size_t)w * h));
+    /* The crops are made in place: the full planes are not read after them
+     * (110 MB less at 1440x1600) */
+    e->crop_g = e->gt;
+    e->crop_p = e->perc;
     return bad ? -1 : 0;
 }
 
@@ -308,6 +308,14 @@ static void mode_display_frame(sim_mode_t *m, tdc_source_t *src, int spp, tdc_si
  * ------------------------------------------------------------------- */
 static void crop_copy(const double *in, int w, int x0, int y0, int cw, int ch, double *out)
 {
+    if (in == out) {
+        /* in place: row y moves down to y cw, never over a row not yet
+         * moved (cw <= w, x0, y0 >= 0), so in row order, one thread */
+        for (int y = 0; y < ch; y++) {
+            memmove(out + (size_t)y * cw * 3, in + 3 * ((size_t)(y + y0) * w + x0), sizeof(double) * 3 * (size_t)cw);
+        }
+        return;
+    }
     TDC_PAR_FOR((size_t)cw * ch)
     for (int y = 0; y < ch; y++) {
         memcpy(out + (size_t)y * cw * 3, in + 3 * ((size_t)(y + y0) * w + x0), sizeof(double) * 3 * (size_t)cw);
@@ -335,7 +343,8 @@ static void eval_mode_eye(sim_mode_t *m, sim_eval_t *ev, const tdc_eye_cfg_t *ec
     int w = m->w, h = m->h;
     size_t n3 = m->npx * 3, cn = (size_t)cw * ch * 3;
     double w0 = wall_now();
-    if (tdc_eye_perceive(ec, m->ring, m->ring_count, te, v, ev->perc)) {
+    /* ev->scratch is free here: the ground truth's renders are done */
+    if (tdc_eye_perceive_buf(ec, m->ring, m->ring_count, te, v, ev->perc, ev->scratch)) {
         tdc_sim_stage(m, "eye model (out of memory)", -1);
         return;
     }

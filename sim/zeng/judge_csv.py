@@ -12,7 +12,8 @@ import sys
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "experiments"))
 import tdc_stats  # noqa: E402
 
-COLUMNS = (("rmse", False), ("ssim", True), ("rmse_region", False), ("ssim_region", True))
+COLUMNS = (("rmse", False), ("ssim", True), ("rmse_region", False), ("ssim_region", True), ("jod", True),
+           ("jod_region", True))  # the JODs only in a run with --jod
 
 
 def main(paths):
@@ -35,6 +36,8 @@ def main(paths):
         print("%s (%s, seeds %s)" % (path, rows[0]["scene"], " ".join(map(str, seeds))))
         for base in (m for m in by if m != "ours"):
             for col, hib in COLUMNS:
+                if col not in by["ours"][seeds[0]]:
+                    continue
                 a = [float(by["ours"][s][col]) for s in seeds]
                 b = [float(by[base][s][col]) for s in seeds]
                 c = tdc_stats.compare(a, b, higher_is_better=hib)

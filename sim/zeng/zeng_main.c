@@ -8,9 +8,12 @@
  *
  *   tdc-zeng --scene fence|glossy|occlusion [--size WxH] [--frames N]
  *            [--eval-from K] [--seeds "1 2 3 4 5"] [--gt-spp 1024]
- *            [--rough SIGMA] [--clamp-on raw|filtered] [--csv FILE] [--png FILE]
+ *            [--rough SIGMA] [--clamp-on raw|filtered] [--jod PPD] [--csv FILE] [--png FILE]
  *
  * CSV rows: scene,seed,method,rmse,ssim,rmse_region,ssim_region,region_px
+ * (with --jod also jod,jod_region: FovVideoVDP's JOD of the evaluated frames
+ * as a 60 Hz video at PPD pixels per degree, and of the effect region's
+ * differences alone: the test is the reference outside the region)
  * then one row "cost,...": primary-ray ms, dual-vector ms per frame, ratio.
  * Exit codes (docs/tools.md): 0 OK, 1 ARGS, 7 FILE, 17 NOMEM.
  */
@@ -21,6 +24,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "metrics/tdc_fvvdp.h"
 #include "tdc_png.h"
 #include "tdc_tool.h"
 #include "zeng/zeng_eval.h"
@@ -34,7 +38,9 @@
 static const char help_text[] =
     "usage: tdc-zeng --scene fence|glossy|occlusion [--size WxH] [--frames N] [--eval-from K]\n"
     "                [--seeds \"1 2 3 4 5\"] [--gt-spp 1024] [--rough SIGMA] [--clamp-on raw|filtered]\n"
-    "                [--csv FILE] [--png FILE]\n"
+    "                [--jod PPD] [--csv FILE] [--png FILE]\n"
+    "--jod PPD: also FovVideoVDP's JOD of the evaluated frames (60 Hz, PPD pixels per degree), whole frame\n"
+    "and effect region\n"
     "--clamp-on: the clamped methods' mu +- k sigma over the 1-sample frame (raw, default) or over the\n"
     "spatially filtered frame that eq. 2 blends (filtered)\n"
     "Zeng et al.'s evaluation (sec. 6-7) on the double-precision reference pipeline (sim/zeng/README.md):\n"
@@ -67,11 +73,28 @@ typedef struct {
     int n;
 } acc_t;
 
+/* The display the JOD judge assumes (our choice; the paper names none): an
+ * SDR desktop panel, 200 cd/m^2 peak, 1000:1, in a dark room, gamma 2.2
+ * (the encoding of ze_encode), BT.709 luminance weights. */
+static const tdc_fvvdp_photometry_t jod_display = {200.0, 1000.0, 0.0, 0.0, TDC_FVVDP_EOTF_GAMMA, {2.2, 2.2, 2.2},
+                                                   {0.2126, 0.7152, 0.0722}};
+#define JOD_FPS 60.0 /* one rendered frame per refresh of a 60 Hz panel */
+
+/* Gamma-encoded RGB (ze_encode) -> luminance in cd/m^2 on jod_display;
+ * with mask, the reference's luminance outside it. */
+static void jod_lum(const double *enc, size_t n, const uint8_t *mask, const float *ref, float *out)
+{
+    for (size_t p = 0; p < n; p++) {
+        out[p] = mask && !mask[p] ? ref[p] : (float)tdc_fvvdp_lum_rgb(&jod_display, enc + 3 * p);
+    }
+}
+
 int main(int argc, char **argv)
 {
     const char *scene_name = NULL, *csv = NULL, *png = NULL, *seeds_s = "1 2 3 4 5";
     int w = 160, h = 120, frames = 40, eval_from = 16, gt_spp = 1024;
     double rough = 0; /* 0: the scene's own */
+    double jod_ppd = 0; /* 0: no JOD */
     int clamp_filtered = 0;
     if (argc == 2 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
         fputs(help_text, stdout);
@@ -109,6 +132,11 @@ int main(int argc, char **argv)
                 return usage("--clamp-on: raw or filtered");
             }
             clamp_filtered = !strcmp(v, "filtered");
+        } else if (!strcmp(a, "--jod")) {
+            jod_ppd = atof(v);
+            if (!(jod_ppd >= 1 && jod_ppd <= 200)) {
+                return usage("--jod: pixels per degree, 1..200");
+            }
         } else if (!strcmp(a, "--png")) {
             png = v;
         } else {
@@ -164,6 +192,11 @@ int main(int argc, char **argv)
     uint8_t *mask = malloc(n);
     int *last_dis = malloc(n * sizeof(int));
     uint8_t *strip = png ? malloc(n * 3 * (ZM_N + 1)) : NULL;
+    float *lref = jod_ppd > 0 ? malloc(n * sizeof(float)) : NULL, *ltest = jod_ppd > 0 ? malloc(n * sizeof(float)) : NULL;
+    if (jod_ppd > 0 && (!lref || !ltest)) {
+        return nomem();
+    }
+    const tdc_fvvdp_geometry_t jod_geom = tdc_fvvdp_geometry_ppd(w, h, jod_ppd > 0 ? jod_ppd : 60);
     zs_frame_t fa, fb;
     if (!gt || !rgb || !ref || !enc || !encr || !map || !mask || !last_dis || (png && !strip) ||
         zs_frame_alloc(&fa, w, h) || zs_frame_alloc(&fb, w, h)) {
@@ -172,7 +205,7 @@ int main(int argc, char **argv)
     for (int f = g0; f < frames; f++) {
         zs_ground_truth(&sc, f, w, h, gt_spp, gt + (size_t)(f - g0) * n * 3);
     }
-    fprintf(out, "scene,seed,method,rmse,ssim,rmse_region,ssim_region,region_px\n");
+    fprintf(out, "scene,seed,method,rmse,ssim,rmse_region,ssim_region,region_px%s\n", jod_ppd > 0 ? ",jod,jod_region" : "");
     double t_primary = 0, t_dual = 0;
     long n_cost = 0;
     for (int si = 0; si < nseeds; si++) {
@@ -188,6 +221,30 @@ int main(int argc, char **argv)
             st[m].seed = (uint64_t)seeds[si];
             st[m].clamp_filtered = clamp_filtered;
         }
+        /* the JOD judges: jm[m][0] whole frame, [1] region; the first used
+         * method's whole-frame judge holds the reference, the others share it
+         * (fed after it, frame by frame); the first evaluated frame pads the
+         * temporal history (FovVideoVDP's "replicate") */
+        tdc_fvvdp_t *jm[ZM_N][2];
+        memset(jm, 0, sizeof jm);
+        int jo = -1;
+        for (int m = 0; m < ZM_N && jod_ppd > 0; m++) {
+            if (!use[m]) {
+                continue;
+            }
+            char why[160];
+            for (int r = 0; r < 2; r++) {
+                jm[m][r] = jo < 0 ? tdc_fvvdp_new(&jod_geom, JOD_FPS, why, sizeof why)
+                                  : tdc_fvvdp_new_shared(jm[jo][0], why, sizeof why);
+                if (!jm[m][r]) {
+                    fprintf(stderr, "tdc-zeng: --jod: the judge refused: %s\n", why);
+                    return EXIT_ARGS;
+                }
+                if (jo < 0) {
+                    jo = m;
+                }
+            }
+        }
         for (size_t p = 0; p < n; p++) {
             last_dis[p] = -1000;
         }
@@ -197,8 +254,9 @@ int main(int argc, char **argv)
             if (fr > 0 && si == 0) {
                 /* §7: the dual vectors' cost beside the primary rays of
                  * the same frame (thread CPU time) */
-                zs_cam_t cam;
+                zs_cam_t cam, pcam;
                 zs_camera(&sc, fr, w, h, &cam);
+                zs_camera(&sc, fr - 1, w, h, &pcam);
                 double t0 = now_ms();
                 for (int y = 0; y < h; y++) {
                     for (int x = 0; x < w; x++) {
@@ -220,7 +278,7 @@ int main(int argc, char **argv)
                 for (int y = 0; y < h; y++) {
                     for (int x = 0; x < w; x++) {
                         double o2[2];
-                        ref[(size_t)y * w + x] = zp_dual_vector(&sc, fr, f, pf, &cam, x, y, o2) + o2[0];
+                        ref[(size_t)y * w + x] = zp_dual_vector(&sc, fr, f, pf, &cam, &pcam, x, y, o2) + o2[0];
                     }
                 }
                 double t2 = now_ms();
@@ -263,12 +321,21 @@ int main(int argc, char **argv)
                         mask[p] = fr - last_dis[p] < 8;
                     }
                 }
+                if (jo >= 0) {
+                    jod_lum(encr, n, NULL, NULL, lref);
+                }
                 for (int m = 0; m < ZM_N; m++) {
                     if (!use[m]) {
                         continue;
                     }
                     zs_composite(&sc, f, st[m].out, rgb);
                     ze_encode(rgb, enc, w, h);
+                    for (int r = 0; r < 2 && jo >= 0; r++) { /* the owner (jo, whole frame) first */
+                        jod_lum(enc, n, r ? mask : NULL, lref, ltest);
+                        if (isnan(tdc_fvvdp_frame(jm[m][r], ltest, m == jo && !r ? lref : NULL, NULL))) {
+                            return nomem();
+                        }
+                    }
                     ze_ssim_map(enc, encr, w, h, map);
                     double r0, s0, r1, s1;
                     ze_region(enc, encr, map, NULL, w, h, &r0, &s0);
@@ -301,10 +368,24 @@ int main(int argc, char **argv)
             if (!use[m]) {
                 continue;
             }
-            fprintf(out, "%s,%ld,%s,%.6f,%.6f,%.6f,%.6f,%ld\n", zs_scene_name(kind), seeds[si], zp_method_name(m),
+            fprintf(out, "%s,%ld,%s,%.6f,%.6f,%.6f,%.6f,%ld", zs_scene_name(kind), seeds[si], zp_method_name(m),
                     acc[m].rmse / nev, acc[m].ssim / nev, acc[m].n ? acc[m].rmse_r / acc[m].n : NAN,
                     acc[m].n ? acc[m].ssim_r / acc[m].n : NAN, acc[m].px / nev);
+            if (jo >= 0) {
+                fprintf(out, ",%.4f,%.4f", tdc_fvvdp_jod(jm[m][0]), tdc_fvvdp_jod(jm[m][1]));
+            }
+            fputc('\n', out);
             zp_free(&st[m]);
+        }
+        for (int m = ZM_N; m-- > 0;) { /* the owner last: the others read its planes */
+            if (m != jo) {
+                tdc_fvvdp_free(jm[m][0]);
+                tdc_fvvdp_free(jm[m][1]);
+            }
+        }
+        if (jo >= 0) {
+            tdc_fvvdp_free(jm[jo][1]);
+            tdc_fvvdp_free(jm[jo][0]);
         }
     }
     fprintf(out, "cost,primary_ms_per_frame,dual_ms_per_frame,dual_over_primary\n");
@@ -331,5 +412,7 @@ int main(int argc, char **argv)
     free(mask);
     free(last_dis);
     free(strip);
+    free(lref);
+    free(ltest);
     return 0;
 }

@@ -107,8 +107,28 @@ void zp_spatial(const zs_scene_t *s, const zs_frame_t *f, const double *in, doub
     }
 }
 
+double zp_depth_at(const zs_frame_t *f, int qx, int qy, double fx, double fy)
+{
+    const int w = f->w, h = f->h;
+    const size_t q = (size_t)qy * w + qx;
+    double d = f->depth[q];
+    const double off[2] = {fx - qx, fy - qy};
+    for (int a = 0; a < 2; a++) {
+        const int sg = off[a] >= 0 ? 1 : -1;
+        for (int side = 0; side < 2; side++) { /* toward y, else away from it (extrapolated) */
+            const int s2 = side ? -sg : sg, nx = qx + (a ? 0 : s2), ny = qy + (a ? s2 : 0);
+            if (nx < 0 || ny < 0 || nx >= w || ny >= h || f->id[(size_t)ny * w + nx] != f->id[q]) {
+                continue;
+            }
+            d += (f->depth[(size_t)ny * w + nx] - f->depth[q]) * s2 * off[a];
+            break;
+        }
+    }
+    return d;
+}
+
 int zp_dual_vector(const zs_scene_t *s, int frame, const zs_frame_t *f, const zs_frame_t *pf, const zs_cam_t *cam,
-                   int x, int y, double out[2])
+                   const zs_cam_t *pc, int x, int y, double out[2])
 {
     const size_t p = (size_t)y * f->w + x;
     const double yx = f->mv_trad[2 * p], yy = f->mv_trad[2 * p + 1];
@@ -119,11 +139,26 @@ int zp_dual_vector(const zs_scene_t *s, int frame, const zs_frame_t *f, const zs
         return 0;
     }
     const size_t q = (size_t)qy * f->w + qx;
-    const int occ = pf->id[q];
-    if (occ == f->id[p] || occ < 0) {
-        return 0;
+    const int occ = pf->id[q], me = f->id[p];
+    if (occ < 0) {
+        return 0; /* the previous frame saw sky there: nothing was in front */
     }
     double off[3], off0[3], pz[3], z[2];
+    if (me >= 0) {
+        /* occluded only if the previous frame saw something in front of this
+         * point at y: a depth test, as the renderer's G-buffer lookup
+         * (render/tdc_render_trace.c); an object-id test alone takes this
+         * object's own silhouette pixels, whose nearest previous sample
+         * fell on the wall behind, for disocclusions */
+        const double *v = s->obj[me].vel; /* zs_obj_offset(frame) - zs_obj_offset(frame - 1) */
+        const double *sp = f->pos + 3 * p;
+        const double dp = (sp[0] - v[0] - pc->pos[0]) * pc->f[0] + (sp[1] - v[1] - pc->pos[1]) * pc->f[1] +
+                          (sp[2] - v[2] - pc->pos[2]) * pc->f[2];
+        const double lim = dp - (1e-3 * (1 + dp) + 0.01 * dp);
+        if (pf->depth[q] >= lim || zp_depth_at(pf, qx, qy, yx - 0.5, yy - 0.5) >= lim) {
+            return 0;
+        }
+    }
     zs_obj_offset(s, occ, frame, off);
     zs_obj_offset(s, occ, frame - 1, off0);
     for (int k = 0; k < 3; k++) {
@@ -349,8 +384,9 @@ void zp_step(zp_state_t *st, const zs_scene_t *s, int frame, const zs_frame_t *f
         free(av);
         return;
     }
-    zs_cam_t cam;
+    zs_cam_t cam, pcam;
     zs_camera(s, frame, w, h, &cam);
+    zs_camera(s, frame - 1, w, h, &pcam);
     for (size_t p = 0; p < n; p++) {
         mv[2 * p] = f->mv_trad[2 * p];
         mv[2 * p + 1] = f->mv_trad[2 * p + 1];
@@ -369,7 +405,7 @@ void zp_step(zp_state_t *st, const zs_scene_t *s, int frame, const zs_frame_t *f
     } else if (st->method == ZM_OURS && s->noisy == ZL_INDIRECT) {
         for (int y = 0; y < h; y++) {
             for (int x = 0; x < w; x++) {
-                st->dual += zp_dual_vector(s, frame, f, pf, &cam, x, y, mv + 2 * ((size_t)y * w + x));
+                st->dual += zp_dual_vector(s, frame, f, pf, &cam, &pcam, x, y, mv + 2 * ((size_t)y * w + x));
             }
         }
     }

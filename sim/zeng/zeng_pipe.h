@@ -75,12 +75,20 @@ void zp_step(zp_state_t *st, const zs_scene_t *s, int frame, const zs_frame_t *f
 /* The per-effect spatial filter of the scene's noisy layer (exposed for tests). */
 void zp_spatial(const zs_scene_t *s, const zs_frame_t *f, const double *in, double *out, double *tmp);
 
+/* The previous frame's view depth at continuous position (fx, fy) (pixel
+ * centres at integers) from its sample (qx, qy) and the neighbour on the
+ * object's side (linear; extrapolated from the other neighbour where the
+ * one toward (fx, fy) is another object; the sample's own depth where
+ * neither is): the depth a G-buffer read at y gives. */
+double zp_depth_at(const zs_frame_t *f, int qx, int qy, double fx, double fy);
+
 /* Eq. 6's dual vector of pixel (x, y): y = trad vector; when the previous
- * frame shows another object there (a disocclusion), z = that occluder's
+ * frame's sample at y saw something in front of this surface point (its
+ * depth nearer by more than 1e-3 (1 + d) + 1 % of d: a disocclusion), z = that occluder's
  * previous point moved by its own motion and projected with this frame's
- * camera, x^O = y + (x - z).  Returns 1 when the pixel is disoccluded (out =
+ * camera (cam; pc: the previous frame's), x^O = y + (x - z).  Returns 1 when the pixel is disoccluded (out =
  * x^O), 0 otherwise (out = the traditional vector). */
 int zp_dual_vector(const zs_scene_t *s, int frame, const zs_frame_t *f, const zs_frame_t *pf, const zs_cam_t *cam,
-                   int x, int y, double out[2]);
+                   const zs_cam_t *pc, int x, int y, double out[2]);
 
 #endif

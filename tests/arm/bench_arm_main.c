@@ -485,12 +485,7 @@ static void bench_layers_at(uint32_t w, uint32_t h, uint8_t history, uint16_t la
     }
     const tdc_lcontent_t c = {(uint16_t)w, (uint16_t)h, layers, sh_v, 8, 18, -30, 10, 1, 0, 1u};
     tdc_layer_frame_t lf;
-    memset(&lf, 0, sizeof lf);
-    for (unsigned t = 0; t < TDC_LAYER_MAX; t++) {
-        lf.value[t] = g_lval[t];
-        lf.mv[t] = g_lmv[t];
-    }
-    lf.falloff = g_lw;
+    TDC_LAYER_FRAME_WIRE(lf, g_lval, g_lmv, g_lw);
     for (uint32_t f = 0; f < 12u; f++) {
         tdc_layer_content_subframe(&c, f, g_lpat, &lf);
         if (f >= 8u) {

@@ -2,12 +2,14 @@
  * bench_clock.h - the benchmarks' clock and memory-bandwidth yardstick:
  * CPU time of the calling thread (the machine is shared, wall time would
  * count other processes' turns) and the best of 5 memcpy runs of 64 MiB,
- * as bytes read + written per second.
+ * as bytes read + written per second; and the load average printed beside
+ * them.
  */
 #ifndef BENCH_CLOCK_H
 #define BENCH_CLOCK_H
 
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -40,6 +42,23 @@ static inline double memcpy_bandwidth(void)
     (void)sink;
     free(a), free(b);
     return 2.0 * (double)n / best; /* read + write */
+}
+
+/* The first line of /proc/loadavg into buf ("unknown" where it cannot be
+ * read): printed beside CPU-time figures so a reader sees how busy the
+ * shared machine was. */
+static inline const char *bench_loadavg(char *buf, size_t cap)
+{
+    snprintf(buf, cap, "unknown");
+    FILE *f = fopen("/proc/loadavg", "r");
+    if (f) {
+        if (!fgets(buf, (int)cap, f)) {
+            snprintf(buf, cap, "unknown");
+        }
+        buf[strcspn(buf, "\n")] = 0;
+        fclose(f);
+    }
+    return buf;
 }
 
 #endif

@@ -28,17 +28,11 @@
 
 #include "golden/tdc_content.h"
 #include "lcd/tdc_lcdsim.h"
+#include "bench/bench_clock.h"
 #include "bench/tdc_must.h"
 #include "tdc_lcd.h"
 #include "tdc_panels.h"
 #include "tdc_trm.h"
-
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts); /* CPU time: the machine is shared */
-    return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
-}
 
 typedef struct {
     const char *label;
@@ -316,15 +310,8 @@ int main(int argc, char **argv)
 
     if (time_only) {
         /* The firmware times alone, as a Markdown table on stdout (docs/lcd.md §8). */
-        char la[128] = "unknown";
-        FILE *lf0 = fopen("/proc/loadavg", "r");
-        if (lf0) {
-            if (!fgets(la, sizeof la, lf0)) {
-                strcpy(la, "unknown");
-            }
-            la[strcspn(la, "\n")] = 0;
-            fclose(lf0);
-        }
+        char la[128];
+        bench_loadavg(la, sizeof la);
         printf("%s, %d x %d, thread CPU time, best of %d; memcpy %.3f ms; the stateful stage's traffic without its "
                "lookups (read frame + state, write drive + state) %.3f ms = %.1fx memcpy; loadavg %s\n\n| mode | ms / "
                "frame | x memcpy | x traffic bound | history bytes |\n|---|---|---|---|---|\n",
@@ -357,15 +344,8 @@ int main(int argc, char **argv)
             "response showing the codes of TRM without an LCD stage; the first pair of each run is warm-up. "
             "Luminance normalised to white, errors in %% of white.\n",
             W, H, frames);
-    char load[128] = "unknown";
-    FILE *lf = fopen("/proc/loadavg", "r");
-    if (lf) {
-        if (!fgets(load, sizeof load, lf)) {
-            strcpy(load, "unknown");
-        }
-        load[strcspn(load, "\n")] = 0;
-        fclose(lf);
-    }
+    char load[128];
+    bench_loadavg(load, sizeof load);
     fprintf(f,
             "* Time: `tdc_lcd_frame` on a %d x %d RGB frame (alternating two text frames), best of %d, thread "
             "CPU time (CLOCK_THREAD_CPUTIME_ID), host build of this run (one core; /proc/loadavg at the end of the "

@@ -20,6 +20,7 @@
 #include "link/tdc_link_gen.h"
 #include "tdc_crc32.h"
 #include "tdc_link.h"
+#include "unit/test_link_util.h"
 
 #define BW_DEFAULT 1920
 #define BH_DEFAULT 1080
@@ -80,10 +81,7 @@ int main(int argc, char **argv)
             tdc_link_encode_frame(&enc, pkt, sizeof pkt, TDC_LINK_KIND_FULL, 0, 0, (tdc_pixfmt_t)f, src, w, h, w * 3u);
         static tdc_link_decoder_t dec;
         tdc_link_config_t cfg = {(uint16_t)w, (uint16_t)h, 1};
-        tdc_link_buffers_t b;
-        memset(&b, 0, sizeof b);
-        b.staging = staging;
-        b.staging_bytes = sizeof staging;
+        tdc_link_buffers_t b = lt_buffers(staging, sizeof staging);
         b.full[0] = frame;
         b.full_stride = w * 3u;
         if (tdc_link_decoder_init(&dec, &cfg, &b) != TDC_OK) {

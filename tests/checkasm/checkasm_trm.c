@@ -144,6 +144,33 @@ static void describe_sample(char *buf, size_t cap, uint32_t width, long i)
 
 /* ---- full-res row ---- */
 
+/* rho_row: the full row's rho and counts (its codes are not compared: the
+ * kernel leaves them unwritten but for the C tail) */
+static void check_rho_row(const checkasm_kernel_t *kr)
+{
+    const uint32_t rows = checkasm_runs(3000u);
+    for (uint32_t row = 0; row < rows && !checkasm_failed(); row++) {
+        tdc_trm_rowctx_t k;
+        const row_params_t r = setup_row(row, &k);
+        tdc_trm_full_counts_t nc = {0, 0}, nv = {0, 0};
+        memset(res_c, 0x5a, sizeof res_c);
+        memset(res_v, 0x5a, sizeof res_v);
+        CHECKASM_REF(tdc_trm_full_row_fn, kr)(&k, urow_a, src, dst_c, res_c, &nc);
+        CHECKASM_OPT(tdc_trm_full_row_fn, kr)(&k, urow_a, src, dst_v, res_v, &nv);
+        const long i = checkasm_diff_i32(res_c, res_v, 3u * MAXW);
+        char where[256];
+        if (i >= 0) {
+            describe_sample(where, sizeof where, r.width, i);
+            checkasm_fail("row %u width %u panel %s mode %u: sample %ld: rho %d vs %d; %s", (unsigned)row,
+                          (unsigned)r.width, panels[r.panel]->name, (unsigned)r.mode, i, (int)res_c[i], (int)res_v[i],
+                          where);
+        } else if (nc.hi != nv.hi || nc.lo != nv.lo) {
+            checkasm_fail("row %u width %u: clamp counts hi %u vs %u, lo %u vs %u", (unsigned)row, (unsigned)r.width,
+                          (unsigned)nc.hi, (unsigned)nv.hi, (unsigned)nc.lo, (unsigned)nv.lo);
+        }
+    }
+}
+
 static void check_full_row(const checkasm_kernel_t *kr)
 {
     const uint32_t rows = checkasm_runs(3000u);
@@ -334,17 +361,91 @@ static void bench_dhoriz(const checkasm_kernel_t *kr)
                    f(src, 1440u, hfirst, hw, 16u, 720u, dout_c));
 }
 
+/* ---- U's vertical lerp: rows of code Q8 (up to 65280, the extremes
+ * often) or 8-bit codes, any fraction, lengths around the vector width ---- */
+
+static uint32_t uvert_setup(uint32_t run, uint32_t *f, uint16_t *a, uint16_t *b, uint8_t *ca, uint8_t *cb)
+{
+    static const uint32_t fixed_n[] = {1, 7, 8, 9, 15, 16, 17, 3u * 540u};
+    const uint32_t n = run < 8u ? fixed_n[run] : 1u + checkasm_rand_below(3u * MAXW);
+    *f = run % 5u == 0u ? 16383u : checkasm_rand_below(1u << 14);
+    for (uint32_t i = 0; i < n; i++) {
+        const uint32_t pick = checkasm_rand_below(4u);
+        a[i] = (uint16_t)(pick == 0u ? 0u : (pick == 1u ? 65280u : checkasm_rand_below(65281u)));
+        b[i] = (uint16_t)(pick == 1u ? 0u : (pick == 0u ? 65280u : checkasm_rand_below(65281u)));
+        ca[i] = (uint8_t)(a[i] >> 8);
+        cb[i] = (uint8_t)(b[i] >> 8);
+    }
+    return n;
+}
+
+static void check_uvert(const checkasm_kernel_t *kr, int codes)
+{
+    const uint32_t runs = checkasm_runs(2000u);
+    for (uint32_t run = 0; run < runs && !checkasm_failed(); run++) {
+        uint32_t f;
+        const uint32_t n = uvert_setup(run, &f, drows[0], drows[1], src, dst_v);
+        memset(res_c, 0x5a, sizeof res_c);
+        memset(res_v, 0x5a, sizeof res_v);
+        if (codes) {
+            CHECKASM_REF(tdc_trm_uvert_codes_fn, kr)(src, dst_v, f, n, (uint32_t *)(void *)res_c);
+            CHECKASM_OPT(tdc_trm_uvert_codes_fn, kr)(src, dst_v, f, n, (uint32_t *)(void *)res_v);
+        } else {
+            CHECKASM_REF(tdc_trm_uvert_fn, kr)(drows[0], drows[1], f, n, (uint32_t *)(void *)res_c);
+            CHECKASM_OPT(tdc_trm_uvert_fn, kr)(drows[0], drows[1], f, n, (uint32_t *)(void *)res_v);
+        }
+        const long i = checkasm_diff_i32(res_c, res_v, 3u * MAXW);
+        if (i >= 0) {
+            checkasm_fail("run %u n %u f %u: value %ld: %u vs %u (a %u, b %u)", (unsigned)run, (unsigned)n,
+                          (unsigned)f, i, (unsigned)res_c[i], (unsigned)res_v[i],
+                          (unsigned)(codes ? src[i] : drows[0][i]), (unsigned)(codes ? dst_v[i] : drows[1][i]));
+        }
+    }
+}
+
+static void check_uvert_q8(const checkasm_kernel_t *kr)
+{
+    check_uvert(kr, 0);
+}
+
+static void check_uvert_codes(const checkasm_kernel_t *kr)
+{
+    check_uvert(kr, 1);
+}
+
+static void bench_uvert(const checkasm_kernel_t *kr)
+{
+    uint32_t f;
+    (void)uvert_setup(7u, &f, drows[0], drows[1], src, dst_v);
+    CHECKASM_BENCH(kr, "540 columns x 3", 3u * 540u, tdc_trm_uvert_fn, fn,
+                   fn(drows[0], drows[1], f, 3u * 540u, (uint32_t *)(void *)res_c));
+}
+
+static void bench_uvert_codes(const checkasm_kernel_t *kr)
+{
+    uint32_t f;
+    (void)uvert_setup(7u, &f, drows[0], drows[1], src, dst_v);
+    CHECKASM_BENCH(kr, "540 columns x 3", 3u * 540u, tdc_trm_uvert_codes_fn, fn,
+                   fn(src, dst_v, f, 3u * 540u, (uint32_t *)(void *)res_c));
+}
+
 /* ---- families and registrations ---- */
 
 static const checkasm_family_t trm_full_row = {"trm_full_row", check_full_row, bench_full_row};
+static const checkasm_family_t trm_rho_row = {"trm_rho_row", check_rho_row, bench_full_row};
 static const checkasm_family_t trm_reduced_row = {"trm_reduced_row", check_reduced_row, bench_reduced_row};
 static const checkasm_family_t trm_dvert = {"trm_dvert", check_dvert, bench_dvert};
+static const checkasm_family_t trm_uvert = {"trm_uvert", check_uvert_q8, bench_uvert};
+static const checkasm_family_t trm_uvert_codes = {"trm_uvert_codes", check_uvert_codes, bench_uvert_codes};
 static const checkasm_family_t trm_dhoriz = {"trm_dhoriz", check_dhoriz, bench_dhoriz};
 
 static const checkasm_kernel_t g_trm_kernels[] = {
     CHECKASM_KERNEL(&trm_full_row, "avx2", tdc_trm_avx2_available, tdc_trm_full_row_c, tdc_trm_full_row_avx2),
+    CHECKASM_KERNEL(&trm_rho_row, "avx2", tdc_trm_avx2_available, tdc_trm_full_row_c, tdc_trm_rho_row_avx2),
     CHECKASM_KERNEL(&trm_reduced_row, "avx2", tdc_trm_avx2_available, tdc_trm_reduced_row_c, tdc_trm_reduced_row_avx2),
     CHECKASM_KERNEL(&trm_dvert, "avx2", tdc_trm_avx2_available, tdc_trm_dvert_c, tdc_trm_dvert_avx2),
+    CHECKASM_KERNEL(&trm_uvert, "avx2", tdc_trm_avx2_available, tdc_trm_uvert_c, tdc_trm_uvert_avx2),
+    CHECKASM_KERNEL(&trm_uvert_codes, "avx2", tdc_trm_avx2_available, tdc_trm_uvert_codes_c, tdc_trm_uvert_codes_avx2),
     CHECKASM_KERNEL(&trm_dhoriz, "avx2", tdc_trm_avx2_available, tdc_trm_dhoriz_c, tdc_trm_dhoriz_avx2),
 #if defined(TDC_TRM_MVE)
     /* Helium boards (BOARD_MVE): run under QEMU by tests/arm/checkasm_arm_main.c */

@@ -19,6 +19,7 @@
 #include "tdc_crc32.h"
 #include "tdc_link.h"
 #include "tdc_link_encode.h"
+#include "../golden/tdc_layer_content.h"
 
 #define FW 20
 #define FH 12
@@ -71,12 +72,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     b.staging = staging;
     b.staging_bytes = sizeof staging;
     for (int e = 0; e < 2; e++) {
-        memset(&lf[e], 0, sizeof lf[e]);
-        for (int t = 0; t < TDC_LAYER_MAX; t++) {
-            lf[e].value[t] = val[e][t];
-            lf[e].mv[t] = mv[e][t];
-        }
-        lf[e].falloff = wt[e];
+        TDC_LAYER_FRAME_WIRE(lf[e], val[e], mv[e], wt[e]);
         b.layers[e] = &lf[e];
         b.pattern[e] = pattern[e];
         b.subframe[e] = subframe[e];

@@ -29,6 +29,7 @@
 #include <string.h>
 
 #include "tdc_usbproto.h"
+#include "../usb/tdc_usbp_vive.h"
 
 #define SLOT 4096u
 #define BOARD "fuzzboard"
@@ -148,16 +149,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     memcpy(shadow, flash, SLOT);
     fail_write = 0;
     upload_len = upload_off = 0;
-    tdc_usbp_config_t cfg = {.board_name = BOARD,
-                             .panel_name = "htc-vive",
-                             .serial = "F1",
-                             .fw_version = 0x000100u,
-                             .panel_width = 2160,
-                             .panel_height = 1200,
-                             .refresh_mhz = 90000u,
-                             .rx_buffer_bytes = 8192u,
-                             .max_packet_bytes = 8192u,
-                             .flash = {fw, fr, NULL, SLOT, NULL}};
+    const tdc_usbp_config_t cfg =
+        tdc_usbp_vive_config(BOARD, "F1", 0x000100u, 8192u, (tdc_usbp_flash_t){fw, fr, NULL, SLOT, NULL});
     if (tdc_usbp_init(&s, &cfg) != TDC_OK) abort();
     size_t p = 0;
     while (p < size) {

@@ -38,6 +38,8 @@ char *tdc_golden_put_str(char *o, const char *s);
 char *tdc_golden_put_u32(char *o, uint32_t v);
 /* The head the TRM-family vector names share: "<content>-<w>x<h>-r<rn>_<rd>". */
 char *tdc_golden_put_head(char *o, const char *content, uint32_t w, uint32_t h, uint32_t rn, uint32_t rd);
+/* ... and their end: "-<panel>" and the terminating NUL. */
+void tdc_golden_put_panel(char *o, const char *panel);
 
 /* Deterministic PRNG (xorshift32): same sequence on every CPU. */
 static inline uint32_t tdc_golden_rand(uint32_t *state)

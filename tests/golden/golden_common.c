@@ -53,3 +53,9 @@ char *tdc_golden_put_head(char *o, const char *content, uint32_t w, uint32_t h, 
     *o++ = '_';
     return tdc_golden_put_u32(o, rd);
 }
+
+void tdc_golden_put_panel(char *o, const char *panel)
+{
+    *o++ = '-';
+    *tdc_golden_put_str(o, panel) = 0;
+}

@@ -59,12 +59,7 @@ static void run_vector(tdc_golden_ctx_t *ctx, const lvec_t *v)
     const uint32_t bm = TDC_PATTERN_BYTES(v->c.w, v->c.h);
     const int ok0 = tdc_lasm_init(&g_st, &cfg, g_arena, sizeof g_arena) == TDC_OK;
     tdc_layer_frame_t lf;
-    lf.present = 0;
-    for (unsigned t = 0; t < TDC_LAYER_MAX; t++) {
-        lf.value[t] = g_val[t];
-        lf.mv[t] = g_mv[t];
-    }
-    lf.falloff = g_w;
+    TDC_LAYER_FRAME_WIRE(lf, g_val, g_mv, g_w);
     for (uint32_t f = 0; f < v->frames; f++) {
         int ok = ok0;
         if ((f & 3u) == 0) {

@@ -26,6 +26,13 @@ typedef struct {
     const tdc_panel_t *panel;
 } trm_vector_t;
 
+void tdc_golden_trm_config(tdc_trm_config_t *cfg, uint32_t w, uint32_t h, uint32_t rn, uint32_t rd)
+{
+    tdc_trm_default_config(cfg, (uint16_t)w, (uint16_t)h, 90);
+    cfg->r_num = (uint16_t)rn;
+    cfg->r_den = (uint16_t)rd;
+}
+
 /* One frame of a full/reduced pair through a TRM stage, hashed: a full frame
  * (t even) folds in the drive codes and the recomputed rho, a reduced frame
  * the renderer's reduced input and the drive codes.  *ok &= every call
@@ -62,14 +69,10 @@ static void run_vector(tdc_golden_ctx_t *ctx, const trm_vector_t *v)
     char *o = tdc_golden_put_head(name, tdc_content_name(v->content), v->w, v->h, v->rn, v->rd);
     o = tdc_golden_put_str(o, "-s");
     o = tdc_golden_put_u32(o, v->s_q8);
-    *o++ = '-';
-    o = tdc_golden_put_str(o, v->panel->name);
-    *o = 0;
+    tdc_golden_put_panel(o, v->panel->name);
 
     tdc_trm_config_t cfg;
-    tdc_trm_default_config(&cfg, v->w, v->h, 90);
-    cfg.r_num = v->rn;
-    cfg.r_den = v->rd;
+    tdc_golden_trm_config(&cfg, v->w, v->h, v->rn, v->rd);
     cfg.s_q8 = v->s_q8;
     tdc_trm_t trm;
     if (tdc_trm_init(&trm, &cfg, v->panel, g_arena, sizeof g_arena) != TDC_OK) {

@@ -69,14 +69,10 @@ static void run_vector(tdc_golden_ctx_t *ctx, const gaze_vector_t *v)
     o = tdc_golden_put_str(o, k_map_names[v->map]);
     o = tdc_golden_put_str(o, "-kmin");
     o = tdc_golden_put_u32(o, v->kmin_q15);
-    *o++ = '-';
-    o = tdc_golden_put_str(o, v->panel->name);
-    *o = 0;
+    tdc_golden_put_panel(o, v->panel->name);
 
     tdc_trm_config_t cfg;
-    tdc_trm_default_config(&cfg, v->w, v->h, 90);
-    cfg.r_num = v->rn;
-    cfg.r_den = v->rd;
+    tdc_golden_trm_config(&cfg, v->w, v->h, v->rn, v->rd);
     tdc_trm_gaze_config_t gc;
     tdc_trm_gaze_default_config(&gc, v->w, v->h);
     gc.tile = GT;

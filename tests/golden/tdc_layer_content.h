@@ -17,8 +17,24 @@
 #define TDC_LAYER_CONTENT_H
 
 #include <stdint.h>
+#include <string.h>
 
 #include "tdc_layer_link.h"
+
+/* Zeroes the layered frame lf and points its planes at the caller's arrays:
+ * value[t] = VAL[t], mv[t] = MV[t] for every layer index t (VAL and MV
+ * indexable 0 .. TDC_LAYER_MAX - 1, each plane sized for the tiles),
+ * falloff = FALLOFF.  The one wiring of a frame the layered stage fills or
+ * the decoder writes, for the tests, benchmarks and fuzzers. */
+#define TDC_LAYER_FRAME_WIRE(lf, VAL, MV, FALLOFF)                                                                     \
+    do {                                                                                                               \
+        memset(&(lf), 0, sizeof(lf));                                                                                  \
+        for (unsigned wire_t_ = 0; wire_t_ < TDC_LAYER_MAX; wire_t_++) {                                               \
+            (lf).value[wire_t_] = (VAL)[wire_t_];                                                                      \
+            (lf).mv[wire_t_] = (MV)[wire_t_];                                                                          \
+        }                                                                                                              \
+        (lf).falloff = (FALLOFF);                                                                                      \
+    } while (0)
 
 typedef struct {
     uint16_t w, h;

@@ -10,6 +10,7 @@
 
 #include <math.h>
 #include <stdint.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "ref_fov.h"
@@ -90,6 +91,70 @@ static inline int fov_err_done(const fov_err_t *e, fov_worst_t *w, double *share
     w->max = e->maxe > w->max ? e->maxe : w->max;
     w->share = *share < w->share ? *share : w->share;
     return ok;
+}
+
+/* One accuracy case: the fixed-point stage against the reference on a
+ * w x h screen for the parameters rp, frame by frame, on a picture that
+ * pans +1.3 px in x per frame (so every log-polar sample's backward vector
+ * is -1.3 px).  The caller fills lp (lp_w x lp_h RGB) and disk (w x h RGB)
+ * before each frame; the error accumulates in err. */
+typedef struct {
+    ref_fov_t rs;
+    ref_fov_geom_t g;
+    uint8_t *lp, *disk, *out;
+    int16_t *mv;
+    double *ref;
+    fov_err_t err;
+    int w, h;
+} fov_case_t;
+
+/* 0, or -1 where the reference refused (the caller asserts). */
+static inline int fov_case_open(fov_case_t *c, int w, int h, const ref_fov_params_t *rp, int taa)
+{
+    memset(c, 0, sizeof *c);
+    c->w = w;
+    c->h = h;
+    if (ref_fov_init(&c->rs, w, h, taa) != 0) {
+        return -1;
+    }
+    ref_fov_geom(&c->g, w, h, rp);
+    const size_t nlp = (size_t)rp->lp_w * rp->lp_h, npx = (size_t)w * h;
+    c->lp = malloc(nlp * 3);
+    c->disk = malloc(npx * 3);
+    c->out = malloc(npx * 3);
+    c->mv = malloc(nlp * 2 * sizeof(int16_t));
+    c->ref = malloc(npx * 3 * sizeof(double));
+    if (!c->lp || !c->disk || !c->out || !c->mv || !c->ref) {
+        return -1;
+    }
+    for (size_t k = 0; k < nlp; k++) {
+        c->mv[2 * k] = (int16_t)lround(-1.3 * 16);
+        c->mv[2 * k + 1] = 0;
+    }
+    return 0;
+}
+
+/* One frame through st (fixed point) and the reference, its error added;
+ * returns tdc_fov_frame's code. */
+static inline tdc_status_t fov_case_frame(fov_case_t *c, tdc_fov_t *st, const tdc_fov_params_t *fp,
+                                       const ref_fov_params_t *rp)
+{
+    const size_t lp_stride = (size_t)rp->lp_w * 3, mv_stride = (size_t)rp->lp_w * 2, stride = (size_t)c->w * 3;
+    const tdc_status_t rc =
+        tdc_fov_frame(st, fp, c->lp, lp_stride, c->mv, mv_stride, c->disk, stride, 11111, c->out, stride);
+    ref_fov_frame(&c->rs, rp, c->lp, lp_stride, c->mv, mv_stride, c->disk, stride, 11111, c->ref);
+    fov_err_add(&c->err, c->out, c->ref, (size_t)c->w * c->h * 3);
+    return rc;
+}
+
+static inline void fov_case_close(fov_case_t *c)
+{
+    free(c->lp);
+    free(c->disk);
+    free(c->out);
+    free(c->mv);
+    free(c->ref);
+    ref_fov_free(&c->rs);
 }
 
 /* The gaze positions of the accuracy tests on a W x H screen: centre,

@@ -116,6 +116,25 @@ static void walk_end(const walk_t *w, size_t n)
     }
 }
 
+/* The checks every stage's init gets, in a fresh n-byte arena a: the one
+ * alignment rule (a base 4 bytes off alignment is TDC_ERR_ARG, one byte
+ * short TDC_ERR_SIZE, exactly n TDC_OK), then init's view pointers (of
+ * `st`, in scope) walked against LIST (the stage's *_ARENA list expanded
+ * with WALK, or code around it), and nothing written past n.  init is
+ * called as init(ARGS..., mem, bytes), ARGS a parenthesised list. */
+#define ARGS_OF(...) __VA_ARGS__
+#define CHECK_ARENA_INIT(a, n, stage, init, ARGS, LIST)                     \
+    do {                                                                    \
+        arena_new(&(a), n);                                                 \
+        assert_int_equal(init(ARGS_OF ARGS, (a).mem + 4, n), TDC_ERR_ARG);  \
+        assert_int_equal(init(ARGS_OF ARGS, (a).mem, (n)-1), TDC_ERR_SIZE); \
+        assert_int_equal(init(ARGS_OF ARGS, (a).mem, n), TDC_OK);           \
+        walk_t wk = {(a).mem, 0, stage};                                    \
+        LIST;                                                               \
+        walk_end(&wk, n);                                                   \
+        arena_check_guard(&(a), stage " init");                             \
+    } while (0)
+
 /* ------------------------------------------------------------------ TRM */
 
 static const uint16_t g_ratios[][2] = {{1, 4}, {1, 3}, {1, 2}, {2, 3}, {3, 4}, {7, 8}, {1, 1}};
@@ -154,6 +173,12 @@ static void trm_sizes(uint32_t w, uint32_t h)
     }
 }
 
+/* TRM's layout list; a pass-through stage (r = 1) has no blocks. */
+#define TRM_WALK_LIST                                                                      \
+    if (!st->passthrough) {                                                                \
+        TDC_TRM_ARENA(WALK, c.width, c.height, st->rw, st->rh, st->dtaps, c.keep_residual) \
+    }
+
 /* init over exactly get_size bytes: the layout, the one alignment rule,
  * one byte short; frames when asked (small sizes). */
 static void trm_layout(const tdc_panel_t *panel, uint32_t w, uint32_t h, const uint16_t r[2], uint16_t sigma,
@@ -164,17 +189,8 @@ static void trm_layout(const tdc_panel_t *panel, uint32_t w, uint32_t h, const u
     const size_t n = tdc_trm_get_size(&c);
     assert_true(n > 0);
     arena_t a;
-    arena_new(&a, n);
     tdc_trm_t trm, *st = &trm;
-    assert_int_equal(tdc_trm_init(st, &c, panel, a.mem + 4, n), TDC_ERR_ARG); /* not 8-aligned */
-    assert_int_equal(tdc_trm_init(st, &c, panel, a.mem, n - 1), TDC_ERR_SIZE);
-    assert_int_equal(tdc_trm_init(st, &c, panel, a.mem, n), TDC_OK);
-    walk_t wk = {a.mem, 0, "TRM"};
-    if (!st->passthrough) {
-        TDC_TRM_ARENA(WALK, c.width, c.height, st->rw, st->rh, st->dtaps, c.keep_residual)
-    }
-    walk_end(&wk, n);
-    arena_check_guard(&a, "TRM init");
+    CHECK_ARENA_INIT(a, n, "TRM", tdc_trm_init, (st, &c, panel), TRM_WALK_LIST);
     if (frames && !st->passthrough) {
         const size_t fb = (size_t)w * h * 3u;
         uint8_t *in = malloc(fb), *out = malloc(fb), *red = malloc(fb);
@@ -251,15 +267,9 @@ static void lcd_one_mode(const tdc_panel_t *panel, uint32_t w, uint32_t h, unsig
         return;
     }
     arena_t a;
-    arena_new(&a, n);
     tdc_lcd_t lcd, *st = &lcd;
-    assert_int_equal(tdc_lcd_init(st, &c, panel, a.mem + 4, n), TDC_ERR_ARG);
-    assert_int_equal(tdc_lcd_init(st, &c, panel, a.mem, n - 1), TDC_ERR_SIZE);
-    assert_int_equal(tdc_lcd_init(st, &c, panel, a.mem, n), TDC_OK);
-    walk_t wk = {a.mem, 0, "LCD"};
-    TDC_LCD_ARENA(WALK, c.width, c.height, c.prev_bits, c.mode)
-    walk_end(&wk, n);
-    arena_check_guard(&a, "LCD init");
+    CHECK_ARENA_INIT(a, n, "LCD", tdc_lcd_init, (st, &c, panel),
+                     TDC_LCD_ARENA(WALK, c.width, c.height, c.prev_bits, c.mode));
     if (frames) {
         const size_t fb = (size_t)w * h * 3u;
         uint8_t *in = malloc(fb), *out = malloc(fb);
@@ -342,15 +352,10 @@ static void asm_one(uint32_t w, uint32_t h, int init, int frames)
         return;
     }
     arena_t a;
-    arena_new(&a, n);
     tdc_asm_t as, *st = &as;
-    assert_int_equal(tdc_asm_init(st, &c, a.mem + 4, n), TDC_ERR_ARG);
-    assert_int_equal(tdc_asm_init(st, &c, a.mem, n - 1), TDC_ERR_SIZE);
-    assert_int_equal(tdc_asm_init(st, &c, a.mem, n), TDC_OK);
-    walk_t wk = {a.mem, 0, "assembly"};
-    TDC_ASM_ARENA(WALK, c.width, c.height, (size_t)st->tiles_x * st->tiles_y, TDC_PATTERN_BYTES(c.width, c.height))
-    walk_end(&wk, n);
-    arena_check_guard(&a, "assembly init");
+    CHECK_ARENA_INIT(a, n, "assembly", tdc_asm_init, (st, &c),
+                     TDC_ASM_ARENA(WALK, c.width, c.height, (size_t)st->tiles_x * st->tiles_y,
+                                   TDC_PATTERN_BYTES(c.width, c.height)));
     if (frames) {
         const size_t tiles = (size_t)st->tiles_x * st->tiles_y;
         uint8_t *samples = malloc(tiles * 3u);
@@ -404,15 +409,8 @@ static void fov_one(uint32_t w, uint32_t h, int taa, int init, int frames)
         return;
     }
     arena_t a;
-    arena_new(&a, n);
     tdc_fov_t fs, *st = &fs;
-    assert_int_equal(tdc_fov_init(st, &c, a.mem + 4, n), TDC_ERR_ARG);
-    assert_int_equal(tdc_fov_init(st, &c, a.mem, n - 1), TDC_ERR_SIZE);
-    assert_int_equal(tdc_fov_init(st, &c, a.mem, n), TDC_OK);
-    walk_t wk = {a.mem, 0, "fov"};
-    TDC_FOV_ARENA(WALK, c.width, c.height, c.taa)
-    walk_end(&wk, n);
-    arena_check_guard(&a, "fov init");
+    CHECK_ARENA_INIT(a, n, "fov", tdc_fov_init, (st, &c), TDC_FOV_ARENA(WALK, c.width, c.height, c.taa));
     if (frames) {
         const uint16_t lw = (uint16_t)(w > 6 ? w * 555 / 1000 : w), lh = (uint16_t)(h > 6 ? h * 555 / 1000 : h);
         uint8_t *lp = malloc((size_t)lw * lh * 3u), *img = malloc((size_t)w * h * 3u);
@@ -470,15 +468,8 @@ static void fov_lr_one(uint32_t w, int frames)
         fail_msg("fov lr %u: get_size %zu, bound %zu", w, n, bound);
     }
     arena_t a;
-    arena_new(&a, n);
     tdc_fov_lr_t lrs, *st = &lrs;
-    assert_int_equal(tdc_fov_lr_init(st, (uint16_t)w, a.mem + 4, n), TDC_ERR_ARG);
-    assert_int_equal(tdc_fov_lr_init(st, (uint16_t)w, a.mem, n - 1), TDC_ERR_SIZE);
-    assert_int_equal(tdc_fov_lr_init(st, (uint16_t)w, a.mem, n), TDC_OK);
-    walk_t wk = {a.mem, 0, "fov lr"};
-    TDC_FOV_LR_ARENA(WALK, w)
-    walk_end(&wk, n);
-    arena_check_guard(&a, "fov lr init");
+    CHECK_ARENA_INIT(a, n, "fov lr", tdc_fov_lr_init, (st, (uint16_t)w), TDC_FOV_LR_ARENA(WALK, w));
     if (frames) {
         const uint32_t h = 37u;
         const tdc_fov_config_t c = {(uint16_t)w, (uint16_t)h, 0};
@@ -572,16 +563,10 @@ static void lasm_one(uint32_t w, uint32_t h, uint16_t layers, int init, int fram
         return;
     }
     arena_t a;
-    arena_new(&a, n);
     tdc_lasm_t ls, *st = &ls;
-    assert_int_equal(tdc_lasm_init(st, &c, a.mem + 4, n), TDC_ERR_ARG);
-    assert_int_equal(tdc_lasm_init(st, &c, a.mem, n - 1), TDC_ERR_SIZE);
-    assert_int_equal(tdc_lasm_init(st, &c, a.mem, n), TDC_OK);
-    walk_t wk = {a.mem, 0, "layered assembly"};
-    TDC_LASM_ARENA(WALK, c.width, c.height, TDC_PATTERN_BYTES(c.width, c.height), st->ch[0], st->ch[1], st->ch[2],
-                   st->ch[3], c.history)
-    walk_end(&wk, n);
-    arena_check_guard(&a, "layered assembly init");
+    CHECK_ARENA_INIT(a, n, "layered assembly", tdc_lasm_init, (st, &c),
+                     TDC_LASM_ARENA(WALK, c.width, c.height, TDC_PATTERN_BYTES(c.width, c.height), st->ch[0], st->ch[1],
+                                    st->ch[2], st->ch[3], c.history));
     if (frames) {
         const size_t tiles = TDC_TILE_COUNT(w, h);
         tdc_layer_frame_t lf;
@@ -652,14 +637,9 @@ static void lhist_one(uint32_t w, uint32_t h, uint8_t ch, int init)
         return;
     }
     arena_t a;
-    arena_new(&a, n);
     tdc_lhist_t ls, *st = &ls;
-    assert_int_equal(tdc_lhist_init(st, &c, a.mem + 4, n), TDC_ERR_ARG);
-    assert_int_equal(tdc_lhist_init(st, &c, a.mem, n - 1), TDC_ERR_SIZE);
-    assert_int_equal(tdc_lhist_init(st, &c, a.mem, n), TDC_OK);
-    walk_t wk = {a.mem, 0, "layer history"};
-    TDC_LHIST_ARENA(WALK, c.width, c.height, c.channels)
-    walk_end(&wk, n);
+    CHECK_ARENA_INIT(a, n, "layer history", tdc_lhist_init, (st, &c),
+                     TDC_LHIST_ARENA(WALK, c.width, c.height, c.channels));
     uint8_t *x = malloc((size_t)w * h * ch);
     int16_t *mv = malloc((size_t)w * h * 4u);
     assert_non_null(x);

@@ -117,38 +117,19 @@ static void run_case(const char *name, double cx, double cy, double disk, int ta
     fov_params(&rp, &fp);
     rig_t r;
     rig_init(&r, W, H, taa);
-    ref_fov_t rs;
-    assert_int_equal(ref_fov_init(&rs, W, H, taa), 0);
-    ref_fov_geom_t g;
-    ref_fov_geom(&g, W, H, &rp);
-    uint8_t *lp = malloc((size_t)rp.lp_w * rp.lp_h * 3), *img = malloc(W * H * 3), *out = malloc(W * H * 3);
-    int16_t *mv = malloc((size_t)rp.lp_w * rp.lp_h * 2 * sizeof(int16_t));
-    double *ref = malloc(W * H * 3 * sizeof(double));
-    fov_err_t err = {0, 0, 0};
+    fov_case_t c;
+    assert_int_equal(fov_case_open(&c, W, H, &rp, taa), 0);
     const int frames = taa ? 8 : 1;
     for (int f = 0; f < frames; f++) {
-        lr_inputs(&g, taa ? 1.3 * f : 0, lp, img);
-        for (int k = 0; k < rp.lp_w * rp.lp_h; k++) {
-            mv[2 * k] = (int16_t)lround(-1.3 * 16);
-            mv[2 * k + 1] = 0;
-        }
-        assert_int_equal(tdc_fov_frame(&r.st, &fp, lp, (size_t)rp.lp_w * 3, mv, (size_t)rp.lp_w * 2, img, W * 3,
-                                       11111, out, W * 3),
-                         TDC_OK);
-        ref_fov_frame(&rs, &rp, lp, (size_t)rp.lp_w * 3, mv, (size_t)rp.lp_w * 2, img, W * 3, 11111, ref);
-        fov_err_add(&err, out, ref, W * H * 3);
+        lr_inputs(&c.g, taa ? 1.3 * f : 0, c.lp, c.disk);
+        assert_int_equal(fov_case_frame(&c, &r.st, &fp, &rp), TDC_OK);
     }
     assert_int_equal(r.lr.frames, (uint32_t)frames);
     double share;
-    const int ok = fov_err_done(&err, &g_worst, &share);
+    const int ok = fov_err_done(&c.err, &g_worst, &share);
     printf("  %-14s disk %6.3f %s k %6.2f,%6.2f: max %.3f LSB, within 1 LSB %.4f %%  %s\n", name, disk,
-           taa ? "taa" : "   ", rp.kx, rp.ky, err.maxe, share, ok ? "ok" : "FAIL");
-    free(lp);
-    free(img);
-    free(out);
-    free(mv);
-    free(ref);
-    ref_fov_free(&rs);
+           taa ? "taa" : "   ", rp.kx, rp.ky, c.err.maxe, share, ok ? "ok" : "FAIL");
+    fov_case_close(&c);
     rig_free(&r);
 }
 

@@ -38,14 +38,8 @@ static void run_case(const char *name, double cx, double cy, double alpha, doubl
     void *mem = malloc(mn);
     tdc_fov_t st;
     assert_int_equal(tdc_fov_init(&st, &cfg, mem, mn), TDC_OK);
-    ref_fov_t rs;
-    assert_int_equal(ref_fov_init(&rs, W, H, taa), 0);
-    ref_fov_geom_t g;
-    ref_fov_geom(&g, W, H, &rp);
-    uint8_t *lp = malloc((size_t)rp.lp_w * rp.lp_h * 3), *dk = malloc(W * H * 3), *out = malloc(W * H * 3);
-    int16_t *mv = malloc((size_t)rp.lp_w * rp.lp_h * 2 * sizeof(int16_t));
-    double *ref = malloc(W * H * 3 * sizeof(double));
-    fov_err_t err = {0, 0, 0};
+    fov_case_t c;
+    assert_int_equal(fov_case_open(&c, W, H, &rp, taa), 0);
     const int frames = taa ? 8 : 1;
     for (int f = 0; f < frames; f++) {
         /* Halton(2,3) jitter in [-0.5, 0.5) where TAA follows */
@@ -56,29 +50,15 @@ static void run_case(const char *name, double cx, double cy, double alpha, doubl
             hx -= 0.5;
             hy -= 0.5;
         }
-        const double t = taa ? 1.3 * f : 0;
-        fov_make_inputs(&g, t, hx, hy, lp, dk);
-        for (int k = 0; k < rp.lp_w * rp.lp_h; k++) {
-            mv[2 * k] = (int16_t)lround(-1.3 * 16); /* the pan moves +1.3 px x: backward MV -1.3 px */
-            mv[2 * k + 1] = 0;
-        }
-        assert_int_equal(
-            tdc_fov_frame(&st, &fp, lp, (size_t)rp.lp_w * 3, mv, (size_t)rp.lp_w * 2, dk, W * 3, 11111, out, W * 3),
-            TDC_OK);
-        ref_fov_frame(&rs, &rp, lp, (size_t)rp.lp_w * 3, mv, (size_t)rp.lp_w * 2, dk, W * 3, 11111, ref);
-        fov_err_add(&err, out, ref, W * H * 3);
+        fov_make_inputs(&c.g, taa ? 1.3 * f : 0, hx, hy, c.lp, c.disk);
+        assert_int_equal(fov_case_frame(&c, &st, &fp, &rp), TDC_OK);
     }
     double share;
-    const int ok = fov_err_done(&err, &g_worst, &share);
+    const int ok = fov_err_done(&c.err, &g_worst, &share);
     printf("  %-22s alpha %.0f disk %6.3f %s: max %.3f LSB, within 1 LSB %.4f %%  l=%d u0=%d  %s\n", name, alpha, disk,
-           taa ? "taa" : "   ", err.maxe, share, g.l, g.u0, ok ? "ok" : "FAIL");
-    free(lp);
-    free(dk);
-    free(out);
-    free(mv);
-    free(ref);
+           taa ? "taa" : "   ", c.err.maxe, share, c.g.l, c.g.u0, ok ? "ok" : "FAIL");
+    fov_case_close(&c);
     free(mem);
-    ref_fov_free(&rs);
 }
 
 static void test_fixed_vs_double(void **state)

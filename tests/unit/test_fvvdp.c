@@ -164,6 +164,36 @@ static void test_temporal_filters(void **state)
     assert_int_equal(tdc_fvvdp_temporal_filters(2000.0, f60), -1);
 }
 
+/* The history's 16-bit luminance code: relative rounding error <= 2^-12
+ * over its whole range (every float exponent, mantissas around each code's
+ * midpoints), codes monotone, the ends and bad values clamped. */
+static void test_history_code(void **state)
+{
+    (void)state;
+    double worst = 0.0;
+    unsigned short prev = 0;
+    for (double v = 1.6e-5; v < 65000.0; v *= 1.0 + 1.0 / 3001.0) {
+        unsigned short c = tdc_fvvdp_l16((float)v);
+        double back = tdc_fvvdp_l16_value(c), err = fabs(back - (float)v) / (float)v;
+        worst = err > worst ? err : worst;
+        assert_true(c >= prev);
+        prev = c;
+    }
+    assert_true(worst <= 1.0 / 4096.0 + 1e-12);
+    assert_true(worst > 0.9 / 4096.0); /* the sweep reaches the bound */
+    for (unsigned c = 0; c < 65536; c += 7) {
+        float v = tdc_fvvdp_l16_value((unsigned short)c);
+        assert_int_equal(tdc_fvvdp_l16(v), c); /* every code is its own value's */
+    }
+    assert_true(tdc_fvvdp_l16_value(0) == 1.52587890625e-05f);
+    assert_true(tdc_fvvdp_l16_value(0xFFFF) == 65520.0f);
+    assert_int_equal(tdc_fvvdp_l16(0.0f), 0);
+    assert_int_equal(tdc_fvvdp_l16(-1.0f), 0);
+    assert_int_equal(tdc_fvvdp_l16(NAN), 0);
+    assert_int_equal(tdc_fvvdp_l16(1e9f), 0xFFFF);
+    assert_int_equal(tdc_fvvdp_l16(INFINITY), 0xFFFF);
+}
+
 static void test_csf_reference_points(void **state)
 {
     (void)state;
@@ -413,18 +443,18 @@ static void test_refused(void **state)
     tdc_fvvdp_t *m = tdc_fvvdp_new(&g, 90.0, why, sizeof why);
     assert_non_null(m);
     /* History: it grows with the frames fed, to ceil(90/4) = 23 frames x
-     * test+ref x float, and no further. */
+     * test+ref x 16 bits, and no further. */
     static float fr[64 * 64];
     size_t b0 = tdc_fvvdp_bytes(m), b22 = 0;
     for (int f = 0; f < 40; f++) {
         tdc_fvvdp_frame(m, fr, fr, NULL);
         b22 = f == 21 ? tdc_fvvdp_bytes(m) : b22;
         if (f == 22) {
-            assert_int_equal(tdc_fvvdp_bytes(m) - b0, 23u * 2 * 64 * 64 * sizeof(float));
-            assert_int_equal(tdc_fvvdp_bytes(m) - b22, 2 * 64 * 64 * sizeof(float));
+            assert_int_equal(tdc_fvvdp_bytes(m) - b0, 23u * 2 * 64 * 64 * sizeof(unsigned short));
+            assert_int_equal(tdc_fvvdp_bytes(m) - b22, 2 * 64 * 64 * sizeof(unsigned short));
         }
     }
-    assert_int_equal(tdc_fvvdp_bytes(m) - b0, 23u * 2 * 64 * 64 * sizeof(float));
+    assert_int_equal(tdc_fvvdp_bytes(m) - b0, 23u * 2 * 64 * 64 * sizeof(unsigned short));
     tdc_fvvdp_free(m);
 }
 
@@ -455,6 +485,7 @@ int main(void)
         cmocka_unit_test(test_pyramid_constant),
         cmocka_unit_test(test_pyramid_layout),
         cmocka_unit_test(test_temporal_filters),
+        cmocka_unit_test(test_history_code),
         cmocka_unit_test(test_csf_reference_points),
         cmocka_unit_test(test_csf_table_and_shape),
         cmocka_unit_test(test_identical_is_10),

@@ -19,6 +19,7 @@
 #include "tdc_link.h"
 #include "tdc_link_encode.h"
 #include "test_link_util.h"
+#include "golden/tdc_layer_content.h"
 
 #define W 17 /* odd: partial tiles */
 #define H 9
@@ -71,12 +72,7 @@ static void setup_decoder(uint32_t sflags)
     tdc_link_config_t cfg = {W, H, 2};
     tdc_link_buffers_t b = lt_buffers(staging, sizeof staging);
     for (int e = 0; e < 2; e++) {
-        memset(&d_frame[e], 0, sizeof d_frame[e]);
-        for (int t = 0; t < TDC_LAYER_MAX; t++) {
-            d_frame[e].value[t] = d_val[e][t];
-            d_frame[e].mv[t] = d_mv[e][t];
-        }
-        d_frame[e].falloff = d_w[e];
+        TDC_LAYER_FRAME_WIRE(d_frame[e], d_val[e], d_mv[e], d_w[e]);
         b.layers[e] = &d_frame[e];
         b.pattern[e] = pattern[e];
         b.subframe[e] = subframe[e];

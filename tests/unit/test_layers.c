@@ -51,12 +51,7 @@ static void init(uint16_t layers, uint8_t k, uint8_t cleanup, uint8_t splat)
 {
     tdc_lasm_config_t cfg = {W, H, layers, k, cleanup, splat, 0, 3277, &tdc_panel_htc_vive};
     assert_int_equal(tdc_lasm_init(&st, &cfg, arena, sizeof arena), TDC_OK);
-    memset(&lf, 0, sizeof lf);
-    for (int t = 0; t < TDC_LAYER_MAX; t++) {
-        lf.value[t] = val[t];
-        lf.mv[t] = mvs[t];
-    }
-    lf.falloff = wts;
+    TDC_LAYER_FRAME_WIRE(lf, val, mvs, wts);
     memset(pattern, 0, sizeof pattern);
 }
 

@@ -114,12 +114,7 @@ static void run(const scen_t *s, err_t *all)
     tdc_lcontent_t c = {W, H, s->layers, s->sh_vx, s->sh_vy, s->vis_vx, s->gl_vx, s->gl_vy,
                         s->shadow_vectors, s->random_mv, 5u};
     tdc_layer_frame_t lf;
-    memset(&lf, 0, sizeof lf);
-    for (int t = 0; t < TDC_LAYER_MAX; t++) {
-        lf.value[t] = val[t];
-        lf.mv[t] = mvs[t];
-    }
-    lf.falloff = wts;
+    TDC_LAYER_FRAME_WIRE(lf, val, mvs, wts);
     err_t out = {0, 0, 0, 0}, lay = {0, 0, 0, 0};
     const uint32_t frames = 48;
     for (uint32_t f = 0; f < frames; f++) {

@@ -111,8 +111,11 @@ static void test_panel_oled(void **state)
     int n = tdc_panel_sim_show(&p, codes, 1.0, 0.01, s);
     assert_int_equal(n, 1);
     assert_true(fabs(s[0].t1 - s[0].t0 - 0.002) < 1e-12);
+    /* the slice is the codes with the panel's decode, no light plane */
+    assert_null(s[0].lin);
+    assert_ptr_equal(s[0].codes, codes);
     for (int i = 0; i < 24; i++) {
-        assert_true(fabs(s[0].lin[i] - pow(codes[i] / 255.0, g[i % 3])) < 1e-12);
+        assert_true(fabs(s[0].lut[256 * (i % 3) + codes[i]] - pow(codes[i] / 255.0, g[i % 3])) < 1e-12);
     }
     assert_true(fabs(tdc_panel_sim_duty(&p) - 0.2) < 1e-12);
     tdc_panel_sim_free(&p);
@@ -222,11 +225,59 @@ static void test_code_slices_equal_light(void **state)
         assert_int_equal(tdc_eye_perceive(&c, s1, 1, 0.02, v, a), 0);
         assert_int_equal(tdc_eye_perceive(&c, s2, 1, 0.02, v, b), 0);
         assert_memory_equal(a, b, sizeof(a));
+        /* decoded once into scratch for the sub-steps: the same bits */
+        double scratch[CN];
+        assert_int_equal(tdc_eye_perceive_buf(&c, s2, 1, 0.02, v, b, scratch), 0);
+        assert_memory_equal(a, b, sizeof(a));
+    }
+}
+
+/* The luminance-only integral (the judge's retinal signal) is the
+ * luminance of the per-channel one, for code and light slices, at integer,
+ * fractional and edge-clamped shifts (to rounding: 1e-12 relative). */
+static void test_accumulate_y_is_luminance(void **state)
+{
+    (void)state;
+    enum { CW = 23, CH = 17, CP = CW * CH, CN = CP * 3 };
+    static const double y3[3] = {0.2126, 0.7152, 0.0722};
+    static const double shifts[4][2] = {{0.0, 0.0}, {2.0, -3.0}, {0.37, -1.61}, {-25.3, 19.2}};
+    uint8_t codes[CN];
+    double lut[3 * 256], lin[CN], a[CN], b[CP];
+    for (int k = 0; k < 3; k++) {
+        for (int c = 0; c < 256; c++) {
+            lut[256 * k + c] = tdc_panel_sim_decode(c, 2.1 + 0.1 * k);
+        }
+    }
+    uint32_t x = 11;
+    for (int i = 0; i < CN; i++) {
+        x = x * 1664525u + 1013904223u;
+        codes[i] = (uint8_t)(x >> 24);
+        lin[i] = 0.5 * lut[256 * (i % 3) + codes[i]] + 0.01 * (i % 7);
+    }
+    for (int src = 0; src < 2; src++) {
+        tdc_eye_slice_t sl = {0.0, 1.0, src ? lin : NULL, src ? NULL : codes, src ? NULL : lut};
+        for (int k = 0; k < 4; k++) {
+            memset(a, 0, sizeof(a));
+            memset(b, 0, sizeof(b));
+            assert_int_equal(tdc_eye_accumulate(a, &sl, CW, CH, shifts[k][0], shifts[k][1], 0.7), 0);
+            assert_int_equal(tdc_eye_accumulate_y(b, &sl, y3, CW, CH, shifts[k][0], shifts[k][1], 0.7), 0);
+            for (int i = 0; i < CP; i++) {
+                double want = y3[0] * a[3 * i] + y3[1] * a[3 * i + 1] + y3[2] * a[3 * i + 2];
+                assert_true(fabs(b[i] - want) <= 1e-12 * (1.0 + want));
+            }
+            /* decoded once, then integrated: the same bits */
+            double plane[CP], c[CP];
+            memset(c, 0, sizeof(c));
+            tdc_eye_slice_luminance(&sl, y3, CW, CH, plane);
+            assert_int_equal(tdc_eye_accumulate_plane(c, plane, CW, CH, shifts[k][0], shifts[k][1], 0.7), 0);
+            assert_memory_equal(b, c, sizeof(c));
+        }
     }
 }
 
 TDC_TEST_MAIN(
     cmocka_unit_test(test_code_slices_equal_light),
+    cmocka_unit_test(test_accumulate_y_is_luminance),
     cmocka_unit_test(test_eye_steady),
     cmocka_unit_test(test_eye_talbot_plateau),
     cmocka_unit_test(test_eye_pursuit),

@@ -42,6 +42,7 @@ typedef struct {
     int nm, nsteps[MAXM];
     float y[MAXM][MAXF][W * H];
     float ref[MAXF][W * H];
+    int dark[MAXM][MAXF]; /* the step said it has no light (test_dark) */
     double gaze[MAXF][2], t0[MAXF], t1[MAXF], fps;
     double peak;
 } cap_t;
@@ -52,8 +53,14 @@ static int consume(void *ctx, const tdc_retina_frame_t *f)
     if (f->eye != 0 || f->step >= MAXF || f->width != W || f->height != H) {
         return f->width == W && f->height == H ? 0 : -1;
     }
+    for (int k = 0; k < W * H; k++) {
+        if ((f->test_dark && f->test_y[k] != 0.0f) || (f->ref_dark && f->ref_y[k] != 0.0f)) {
+            return -1; /* a step said dark must be all zero */
+        }
+    }
     for (int i = 0; i < c->nm; i++) {
         if (strcmp(c->names[i], f->mode) == 0) {
+            c->dark[i][f->step] = f->test_dark;
             memcpy(c->y[i][f->step], f->test_y, sizeof(float) * W * H);
             c->nsteps[i] = (int)f->step + 1;
         }
@@ -214,14 +221,20 @@ static void test_static_pulse_same_light(void **state)
     assert_int_equal(a->nsteps[0], 30);
     assert_int_equal(b->nsteps[0], 55);
     double sa = 0.0, sb = 0.0;
+    int ndark = 0;
     for (int k = 0; k < 30; k++) {
         double v = mean(a->y[0][k]);
         sa += v;
+        /* the lit step is never said dark; the judge skips those that are */
+        assert_true(k % 5 || !a->dark[0][k]);
+        ndark += a->dark[0][k];
         if (k % 5) {
             /* dark (the pulse's end and the step's start meet up to rounding) */
             assert_true(v < 1e-9 * mean(a->y[0][0]));
         }
     }
+    printf("  pulse: %d of the 24 unlit steps at 90 Hz said dark\n", ndark);
+    assert_true(ndark >= 20);
     for (int k = 0; k < 55; k++) {
         sb += mean(b->y[0][k]);
     }

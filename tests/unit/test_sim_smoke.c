@@ -98,18 +98,26 @@ static void test_static_trm_equals_full(void **state)
     assert_true(fabs((double)r[1].rays / (double)r[0].rays - 0.625) < 0.01);
 }
 
+/* The subframe families on the fence (240 Hz, 16 frames, sane, no link
+ * error): every mode from index first on runs and traces a quarter of
+ * full rate's (m[0]) rays, one sample per 2x2 tile. */
+static void run_quarter_rays(const char *const *m, int n, int first, tdc_sim_result_t *r)
+{
+    assert_int_equal(run(TDC_SCENE_FENCE, 240, 16, m, n, r, TDC_PANEL_SIM_OLED, -1.0), 0);
+    check_sane(r, n);
+    for (int i = first; i < n; i++) {
+        assert_true(r[i].available);
+        assert_true(fabs((double)r[i].rays / (double)r[0].rays - 0.25) < 1e-9);
+    }
+}
+
 static void test_asm_family(void **state)
 {
     (void)state;
     static const char *const m[] = {"full",       "full60",       "taa60",           "asm-hourglass",
                                     "asm-bowtie", "asm-adaptive", "asm-adaptive-smv"};
     tdc_sim_result_t r[7];
-    assert_int_equal(run(TDC_SCENE_FENCE, 240, 16, m, 7, r, TDC_PANEL_SIM_OLED, -1.0), 0);
-    check_sane(r, 7);
-    for (int i = 3; i < 7; i++) {
-        assert_true(r[i].available);
-        assert_true(fabs((double)r[i].rays / (double)r[0].rays - 0.25) < 1e-9);
-    }
+    run_quarter_rays(m, 7, 3, r);
 }
 
 /* The layered modes (docs/layers.md) run end to end over the LAYERS link
@@ -120,13 +128,7 @@ static void test_layers_family(void **state)
     static const char *const m[] = {"full",           "lasm-ordinary",  "lasm-zeng",
                                     "lasm-zeng-tdrt", "lasm-zeng-clean", "lasm-zeng-hist"};
     tdc_sim_result_t r[6];
-    assert_int_equal(run(TDC_SCENE_FENCE, 240, 16, m, 6, r, TDC_PANEL_SIM_OLED, -1.0), 0);
-    check_sane(r, 6);
-    for (int i = 1; i < 6; i++) {
-        assert_true(r[i].available);
-        assert_int_equal(r[i].link_errors, 0);
-        assert_true(fabs((double)r[i].rays / (double)r[0].rays - 0.25) < 1e-9);
-    }
+    run_quarter_rays(m, 6, 1, r);
     assert_true(r[2].psnr > r[1].psnr + 3.0);
     assert_true(r[2].flip < r[1].flip);
     /* the per-layer history is on (noise-free procedural layers: it only

@@ -214,6 +214,78 @@ static void test_stereo_alternation(void **state)
     trm_fix_close(&mono);
 }
 
+/* A whole frame through tdc_trm_split/_d_band/_band/_join with nb bands,
+ * run last band first (each band on its own buffers, as on the row
+ * workers); pic: the full frame (in place) or the reduced frame. */
+static tdc_status_t banded_frame(trm_fix_t *f, int full, uint32_t seq, uint32_t nb, tdc_trm_rowbuf_t *bufs)
+{
+    const uint32_t w3 = (uint32_t)f->w * 3u;
+    tdc_status_t st = full ? tdc_trm_full_begin(&f->trm, f->out, w3, f->out, w3)
+                           : tdc_trm_reduced_begin(&f->trm, f->red, (uint32_t)f->trm.rw * 3u, f->out, w3, seq);
+    uint32_t d_rows = 99;
+    st = st == TDC_OK ? tdc_trm_split(&f->trm, &d_rows) : st;
+    if (st != TDC_OK) {
+        return st;
+    }
+    assert_int_equal(d_rows, full ? f->trm.rh : 0u);
+    for (uint32_t i = nb; i-- > 0;) {
+        tdc_trm_d_band(&f->trm, d_rows * i / nb, d_rows * (i + 1u) / nb, &bufs[i]);
+    }
+    uint64_t n[3] = {0, 0, 0};
+    for (uint32_t i = nb; i-- > 0;) {
+        tdc_trm_band(&f->trm, (uint32_t)f->h * i / nb, (uint32_t)f->h * (i + 1u) / nb, &bufs[i], n);
+    }
+    tdc_trm_join(&f->trm, n);
+    return full ? tdc_trm_full_end(&f->trm, seq) : tdc_trm_reduced_end(&f->trm);
+}
+
+/* Row bands (the Linux board's row workers): the same bytes and counters
+ * as whole frames for 1-4 bands (band boundaries inside D's kernel reach
+ * at this size), full frames in place, paired and unpaired reduced ones;
+ * the buffers' checks. */
+static void test_row_bands(void **state)
+{
+    (void)state;
+    tdc_trm_config_t cfg;
+    tdc_trm_default_config(&cfg, 61, 47, 90);
+    trm_fix_t whole, band;
+    assert_int_equal(trm_fix_open(&whole, &cfg, &tdc_panel_htc_vive), TDC_OK);
+    assert_int_equal(trm_fix_open(&band, &cfg, &tdc_panel_htc_vive), TDC_OK);
+    const size_t bytes = TDC_TRM_ROWBUF_BYTES(61u, band.trm.rw);
+    uint64_t *mem = malloc(4u * bytes + 8u);
+    tdc_trm_rowbuf_t bufs[4];
+    bufs[0] = tdc_trm_rowbuf_own(&band.trm);
+    assert_int_equal(tdc_trm_rowbuf_init(&band.trm, &bufs[1], mem, bytes - 8u), TDC_ERR_SIZE);
+    assert_int_equal(tdc_trm_rowbuf_init(&band.trm, &bufs[1], (uint8_t *)mem + 4, bytes), TDC_ERR_ARG);
+    for (uint32_t i = 1; i < 4; i++) {
+        assert_int_equal(tdc_trm_rowbuf_init(&band.trm, &bufs[i], (uint8_t *)mem + (i - 1u) * bytes, bytes), TDC_OK);
+    }
+    uint32_t d = 0;
+    assert_int_equal(tdc_trm_split(&band.trm, &d), TDC_ERR_STATE); /* no frame open */
+    const uint32_t w3 = 61u * 3u, rw3 = (uint32_t)whole.trm.rw * 3u;
+    /* frame 0 reduced (unpaired: no full frame yet), then full / reduced */
+    for (uint32_t t = 0; t < 7; t++) {
+        const int full = t % 2u == 1u;
+        tdc_content_frame(TDC_CONTENT_EDGE, t, 0, whole.in, 61, 47, 90);
+        if (full) {
+            memcpy(whole.out, whole.in, (size_t)w3 * 47u);
+            memcpy(band.out, whole.in, (size_t)w3 * 47u);
+            assert_int_equal(tdc_trm_full_seq(&whole.trm, whole.out, w3, whole.out, w3, t), TDC_OK);
+        } else {
+            assert_int_equal(tdc_trm_downsample(&whole.trm, whole.in, w3, whole.red, rw3), TDC_OK);
+            memcpy(band.red, whole.red, (size_t)rw3 * whole.trm.rh);
+            assert_int_equal(tdc_trm_reduced_seq(&whole.trm, whole.red, rw3, whole.out, w3, t), TDC_OK);
+        }
+        assert_int_equal(banded_frame(&band, full, t, 1u + t % 4u, bufs), TDC_OK);
+        assert_memory_equal(band.out, whole.out, (size_t)w3 * 47u);
+    }
+    assert_int_equal(band.trm.stats.reduced_unpaired, 1);
+    assert_memory_equal(&band.trm.stats, &whole.trm.stats, sizeof whole.trm.stats);
+    free(mem);
+    trm_fix_close(&whole);
+    trm_fix_close(&band);
+}
+
 /* The reduced path's weight table against double exp(-x). */
 static void test_weight_accuracy(void **state)
 {
@@ -259,6 +331,7 @@ TDC_TEST_MAIN(
     cmocka_unit_test(test_passthrough_elision),
     cmocka_unit_test(test_static_pair_skips_weight),
     cmocka_unit_test(test_stereo_alternation),
+    cmocka_unit_test(test_row_bands),
     cmocka_unit_test(test_weight_accuracy),
     cmocka_unit_test(test_weight_table_generated),
 )

@@ -12,6 +12,7 @@ expect 1 "ground truth not a square" "tdc-zeng: arguments: --gt-spp" -- "$zeng" 
 expect 1 "evaluation starts after the last frame" "tdc-zeng: arguments: --frames" -- "$zeng" --scene fence --frames 4 --eval-from 4
 expect 1 "option without value" "without its value" -- "$zeng" --scene
 expect 1 "clamp source unknown" "tdc-zeng: arguments: --clamp-on: raw or filtered" -- "$zeng" --scene glossy --clamp-on median
+expect 1 "jod pixels per degree out of range" "tdc-zeng: arguments: --jod: pixels per degree" -- "$zeng" --scene fence --jod 0
 expect 7 "csv in a missing folder" "tdc-zeng: --csv: cannot create $t/no/x.csv: No such file" -- "$zeng" --scene fence --csv "$t/no/x.csv"
 expect 0 "tiny run" "" -- "$zeng" --scene glossy --size 16x16 --frames 3 --eval-from 2 --seeds "1 2" --gt-spp 4 --csv "$t/g.csv"
 rows=$(grep -c '^glossy,' "$t/g.csv")
@@ -21,6 +22,20 @@ grep -q '^cost,[0-9.]*,[0-9.]*,[0-9.]*$' "$t/g.csv" && ok "tiny run: cost row" |
 expect 0 "tiny run, clamp on the filtered frame" "" -- "$zeng" --scene glossy --size 16x16 --frames 3 --eval-from 2 --seeds "1 2" --gt-spp 4 --clamp-on filtered --csv "$t/f.csv"
 d=$(paste -d, "$t/g.csv" "$t/f.csv" | awk -F, '$1 == "glossy" && $4 != $12 { print $3 }' | sort -u | tr '\n' ' ')
 [ "$d" = "ours spec trad-clamp " ] && ok "filtered clamp: only the clamped methods move ($d)" || bad "filtered clamp: rows that moved: '$d'"
+# --jod adds FovVideoVDP's JODs and changes no other column; the 4-sample
+# frames differ visibly from the ground truth (JOD < 10); the occlusion
+# region (41 of 768 px here) holds a small part of the differences, so its
+# JOD (the test is the reference outside it) is well above the whole
+# frame's (by 1.4-1.7 JOD when this was written; a region JOD of the whole
+# test, or of the test outside the region, is within 0.5)
+occ="--scene occlusion --size 32x24 --frames 6 --eval-from 3 --seeds 1 --gt-spp 4"
+expect 0 "tiny occlusion run" "" -- "$zeng" $occ --csv "$t/o.csv"
+expect 0 "tiny occlusion run with JOD" "" -- "$zeng" $occ --jod 60 --csv "$t/j.csv"
+head -1 "$t/j.csv" | grep -q ',region_px,jod,jod_region$' && ok "jod: header" || bad "jod: header $(head -1 "$t/j.csv")"
+same=$(paste -d, "$t/o.csv" "$t/j.csv" | awk -F, '$1 == "occlusion" { for (i = 1; i <= 8; i++) if ($i != $(i + 8)) d++ } END { print d + 0 }')
+[ "$same" -eq 0 ] && ok "jod: other columns unchanged" || bad "jod: $same other values changed"
+v=$(awk -F, '$1 == "occlusion" { n++; if ($9 > 0 && $9 < 10) g++; if ($10 > $9 + 0.5 && $10 <= 10) r++ } END { print n + 0, g + 0, r + 0 }' "$t/j.csv")
+[ "$v" = "5 5 5" ] && ok "jod: in (0, 10), region above the whole frame (rows, in range, region: $v)" || bad "jod: rows, in range, region: $v"
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

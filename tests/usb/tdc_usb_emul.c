@@ -12,6 +12,7 @@
  */
 #include "tdc_usb_emul.h"
 #include "tdc_link_sink.h"
+#include "tdc_usbp_vive.h"
 
 #include <errno.h>
 #include <sys/ioctl.h>
@@ -338,16 +339,9 @@ emul_board_t *emul_board_add(UMockdevTestbed *tb, int bus, int dev, const char *
     snprintf(b->devnode, sizeof b->devnode, "/dev/bus/usb/%03d/%03d", bus, dev);
     snprintf(b->serial, sizeof b->serial, "%s", serial);
 
-    tdc_usbp_config_t cfg = {.board_name = "emul",
-                             .panel_name = "htc-vive",
-                             .serial = b->serial,
-                             .fw_version = 0x000100u,
-                             .panel_width = 2160,
-                             .panel_height = 1200,
-                             .refresh_mhz = 90000u,
-                             .rx_buffer_bytes = 16384u,
-                             .max_packet_bytes = 16384u,
-                             .flash = {emul_flash_write, emul_flash_read, b, slot_bytes, emul_flash_busy_ms}};
+    const tdc_usbp_config_t cfg =
+        tdc_usbp_vive_config("emul", b->serial, 0x000100u, 16384u,
+                             (tdc_usbp_flash_t){emul_flash_write, emul_flash_read, b, slot_bytes, emul_flash_busy_ms});
     if (tdc_usbp_init(&b->proto, &cfg) != TDC_OK) {
         fprintf(stderr, "tdc_usb_emul: board protocol init failed\n");
         emul_board_free(b);

@@ -206,12 +206,36 @@ int teardown(void **state)
     return 0;
 }
 
+void tmp_path(char *out, size_t cap, const char *name)
+{
+    snprintf(out, cap, "%s/%s", tmpdir, name);
+}
+
+void check_busy_erase(const fixture_t *f, void (*flash)(run_t *r, const char *img_path), const char *want_out)
+{
+    char img_path[128];
+    tmp_path(img_path, sizeof img_path, "busy.img");
+    size_t len;
+    uint8_t *img = make_image("emul", 9000, img_path, &len);
+    emul_board_set_erase(f->board[0], 40, 4096);
+    run_t r;
+    flash(&r, img_path);
+    expect(&r, 0, want_out, NULL);
+    emul_board_stats_t st;
+    emul_board_stats(f->board[0], &st);
+    assert_int_equal(st.image_bytes, len);
+    assert_int_equal(st.slot_crc, ref_crc32(img, len));
+    assert_int_equal(st.busy_replies, 3);
+    assert_int_equal(st.early_polls, 0);
+    free(img);
+}
+
 /* Builds an image with tdc-usb mkimage; returns its bytes (caller frees). */
 uint8_t *make_image(const char *board, size_t payload, const char *img_path, size_t *len)
 {
     uint8_t *p = random_bytes(payload, 99);
     char bin[128];
-    snprintf(bin, sizeof bin, "%s/fw.bin", tmpdir);
+    tmp_path(bin, sizeof bin, "fw.bin");
     write_file(bin, p, payload);
     free(p);
     run_t r;

@@ -48,5 +48,14 @@ int teardown(void **state);
 /* An image made by tdc-usb mkimage (header + payload; the file also has a
  * DFU suffix); returns header + payload (caller frees). */
 uint8_t *make_image(const char *board, size_t payload, const char *img_path, size_t *len);
+/* tmpdir/name into out. */
+void tmp_path(char *out, size_t cap, const char *name);
+/* The slow-erase case every flashing client (tdc-usb flash, dfu-util)
+ * must pass: board 0's flash answers dfuDNBUSY (40 ms bwPollTimeout) for
+ * each block that starts a 4 KiB erase unit; flash(r, img_path) downloads
+ * a 9000-byte image without a reset and must exit 0 printing want_out, the
+ * image must land and each of the three timeouts (blocks at 0, 4096, 8192)
+ * be waited out, none polled early. */
+void check_busy_erase(const fixture_t *f, void (*flash)(run_t *r, const char *img_path), const char *want_out);
 
 #endif

@@ -22,11 +22,6 @@
 #define LSUSB "/usr/bin/lsusb"
 #define DFU_SUFFIX "/usr/bin/dfu-suffix"
 
-static void path_of(char *out, size_t cap, const char *name)
-{
-    snprintf(out, cap, "%s/%s", tmpdir, name);
-}
-
 static uint8_t *read_all(const char *path, size_t *n)
 {
     FILE *f = fopen(path, "rb");
@@ -128,8 +123,8 @@ static void test_dfu_flash_activate_and_failures(void **state)
 {
     fixture_t *f = *state;
     char img[256], back[256], path[256];
-    path_of(img, sizeof img, "good.img");
-    path_of(back, sizeof back, "back.bin");
+    tmp_path(img, sizeof img, "good.img");
+    tmp_path(back, sizeof back, "back.bin");
     size_t len;
     uint8_t *good = make_image("emul", 5000, img, &len); /* with a DFU suffix */
     emul_board_stats_t st;
@@ -163,7 +158,7 @@ static void test_dfu_flash_activate_and_failures(void **state)
 
     /* an image for another board: refused at manifestation (errFILE) */
     size_t olen;
-    path_of(path, sizeof path, "other.img");
+    tmp_path(path, sizeof path, "other.img");
     uint8_t *other = make_image("otherboard", 3000, path, &olen);
     dfu_flash(&r, path, 1);
     emul_board_stats(f->board[0], &st);
@@ -175,7 +170,7 @@ static void test_dfu_flash_activate_and_failures(void **state)
 
     /* a raw binary (no tdc header, no suffix) */
     uint8_t *raw = random_bytes(4000, 5);
-    path_of(path, sizeof path, "raw.bin");
+    tmp_path(path, sizeof path, "raw.bin");
     write_file(path, raw, 4000);
     free(raw);
     dfu_flash(&r, path, 0);
@@ -192,7 +187,7 @@ static void test_dfu_flash_activate_and_failures(void **state)
 
     /* an oversized image: larger than the slot, refused (errADDRESS) while downloading */
     uint8_t *big = random_bytes(SLOT_BYTES + 4096, 6);
-    path_of(path, sizeof path, "big.bin");
+    tmp_path(path, sizeof path, "big.bin");
     write_file(path, big, SLOT_BYTES + 4096);
     free(big);
     dfu_flash(&r, path, 1);
@@ -204,7 +199,7 @@ static void test_dfu_flash_activate_and_failures(void **state)
 
     /* an interrupted download: the 3rd DNLOAD block is lost on the wire */
     size_t nlen;
-    path_of(path, sizeof path, "new.img");
+    tmp_path(path, sizeof path, "new.img");
     free(good);
     good = NULL;
     uint8_t *newer = make_image("emul", 6000, path, &nlen);
@@ -230,24 +225,14 @@ static void test_dfu_flash_activate_and_failures(void **state)
 /* A board whose flash erases slowly (dfuDNBUSY with bwPollTimeout for
  * each block starting a 4 KiB erase unit): dfu-util waits each timeout
  * out, as tdc-usb flash does (test_usb_emul), and the image lands. */
+static void dfu_flash_no_reset(run_t *r, const char *img_path)
+{
+    dfu_flash(r, img_path, 0);
+}
+
 static void test_dfu_busy_erase(void **state)
 {
-    fixture_t *f = *state;
-    char img[256];
-    path_of(img, sizeof img, "busy.img");
-    size_t len;
-    uint8_t *good = make_image("emul", 9000, img, &len);
-    emul_board_set_erase(f->board[0], 40, 4096);
-    run_t r;
-    dfu_flash(&r, img, 0);
-    expect(&r, 0, "Download done.", NULL);
-    emul_board_stats_t st;
-    emul_board_stats(f->board[0], &st);
-    assert_int_equal(st.image_bytes, len);
-    assert_int_equal(st.slot_crc, ref_crc32(good, len));
-    assert_int_equal(st.busy_replies, 3); /* blocks at 0, 4096, 8192 */
-    assert_int_equal(st.early_polls, 0);
-    free(good);
+    check_busy_erase(*state, dfu_flash_no_reset, "Download done.");
 }
 
 /* Detach/reset on their own: dfu-util -e (DETACH) and a USB reset without a
@@ -257,7 +242,7 @@ static void test_dfu_detach_reset(void **state)
 {
     fixture_t *f = *state;
     char img[256];
-    path_of(img, sizeof img, "d.img");
+    tmp_path(img, sizeof img, "d.img");
     size_t len;
     uint8_t *good = make_image("emul", 2000, img, &len);
     run_t r;
@@ -288,8 +273,8 @@ static void test_suffix_interop(void **state)
 {
     fixture_t *f = *state;
     char img[256], bare[256];
-    path_of(img, sizeof img, "s.img");
-    path_of(bare, sizeof bare, "bare.img");
+    tmp_path(img, sizeof img, "s.img");
+    tmp_path(bare, sizeof bare, "bare.img");
     size_t len;
     uint8_t *good = make_image("emul", 3000, img, &len);
     run_t r;

@@ -45,7 +45,7 @@ static void test_no_device(void **state)
     run_tool(&r, (const char *[]){"stream", "/nonexistent/x.tdcs", NULL});
     expect(&r, 7, NULL, "cannot open /nonexistent/x.tdcs");
     char path[128];
-    snprintf(path, sizeof path, "%s/garbage.img", tmpdir);
+    tmp_path(path, sizeof path, "garbage.img");
     write_file(path, (const uint8_t *)"not an image at all, but longer than the 48 header bytes", 56);
     run_tool(&r, (const char *[]){"flash", path, NULL});
     expect(&r, 8, NULL, "not a tdc firmware image");
@@ -87,7 +87,7 @@ static void test_two_devices(void **state)
 static void stream_bytes(run_t *r, const char *name, const uint8_t *data, size_t n, const char *chunk)
 {
     char path[128];
-    snprintf(path, sizeof path, "%s/%s", tmpdir, name);
+    tmp_path(path, sizeof path, name);
     write_file(path, data, n);
     run_tool(r, (const char *[]){"stream", "--chunk", chunk, path, NULL});
 }
@@ -98,7 +98,7 @@ static void test_stream(void **state)
     const size_t n = 200003; /* not a multiple of the chunk: the last transfer is short */
     uint8_t *data = random_bytes(n, 42);
     char path[128];
-    snprintf(path, sizeof path, "%s/stream.tdcs", tmpdir);
+    tmp_path(path, sizeof path, "stream.tdcs");
     run_t r;
     stream_bytes(&r, "stream.tdcs", data, n, "8192");
     expect(&r, 0, "board received all 200003 bytes", NULL);
@@ -211,7 +211,7 @@ static void stream_fault(fixture_t *f, emul_fault_t fault, uint32_t after, int c
 {
     uint8_t *data = random_bytes(100000, 3);
     char path[128];
-    snprintf(path, sizeof path, "%s/fault.tdcs", tmpdir);
+    tmp_path(path, sizeof path, "fault.tdcs");
     write_file(path, data, 100000);
     free(data);
     emul_board_set_fault(f->board[0], fault, after);
@@ -261,7 +261,7 @@ static void test_flash(void **state)
 {
     fixture_t *f = *state;
     char img_path[128];
-    snprintf(img_path, sizeof img_path, "%s/fw.img", tmpdir);
+    tmp_path(img_path, sizeof img_path, "fw.img");
     size_t len;
     uint8_t *img = make_image("emul", 5000, img_path, &len);
     run_t r;
@@ -279,31 +279,22 @@ static void test_flash(void **state)
 
 /* A board whose flash erases slowly: tdc-usb flash waits out each
  * bwPollTimeout of a dfuDNBUSY answer instead of polling early. */
+static void flash_no_reset(run_t *r, const char *img_path)
+{
+    run_tool(r, (const char *[]){"flash", "--no-reset", img_path, NULL});
+}
+
 static void test_flash_busy_erase(void **state)
 {
-    fixture_t *f = *state;
-    char img_path[128];
-    snprintf(img_path, sizeof img_path, "%s/fw.img", tmpdir);
-    size_t len;
-    uint8_t *img = make_image("emul", 9000, img_path, &len); /* blocks at 0, 4096, 8192: three erase units */
-    emul_board_set_erase(f->board[0], 40, 4096);
-    run_t r;
-    run_tool(&r, (const char *[]){"flash", "--no-reset", img_path, NULL});
-    expect(&r, 0, "verified 9048 bytes read back", NULL);
-    emul_board_stats_t st;
-    emul_board_stats(f->board[0], &st);
-    assert_int_equal(st.slot_crc, tdc_crc32(img, len));
-    assert_int_equal(st.busy_replies, 3);
-    assert_int_equal(st.early_polls, 0);
-    free(img);
+    check_busy_erase(*state, flash_no_reset, "verified 9048 bytes read back");
 }
 
 static void test_flash_bad_images(void **state)
 {
     fixture_t *f = *state;
     char img_path[128], bad_path[128];
-    snprintf(img_path, sizeof img_path, "%s/fw.img", tmpdir);
-    snprintf(bad_path, sizeof bad_path, "%s/bad.img", tmpdir);
+    tmp_path(img_path, sizeof img_path, "fw.img");
+    tmp_path(bad_path, sizeof bad_path, "bad.img");
     size_t len;
     uint8_t *img = make_image("emul", 3000, img_path, &len);
     run_t r;
@@ -343,7 +334,7 @@ static void test_flash_board_rejects(void **state)
 {
     fixture_t *f = *state;
     char img_path[128];
-    snprintf(img_path, sizeof img_path, "%s/fw.img", tmpdir);
+    tmp_path(img_path, sizeof img_path, "fw.img");
     size_t len;
     uint8_t *img = make_image("emul", 4000, img_path, &len);
     emul_board_set_fault(f->board[0], EMUL_FAULT_CORRUPT_FLASH, 2100); /* a bad flash cell */

@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "tdc_usbproto.h"
+#include "tdc_usbp_vive.h"
 
 #define SLOT 4096u
 
@@ -52,16 +53,8 @@ static int setup(void **state)
     (void)state;
     memset(slot, 0xFF, sizeof slot);
     fail_write = 0;
-    tdc_usbp_config_t cfg = {.board_name = "testboard",
-                             .panel_name = "htc-vive",
-                             .serial = "S1",
-                             .fw_version = 0x010203u,
-                             .panel_width = 2160,
-                             .panel_height = 1200,
-                             .refresh_mhz = 90000u,
-                             .rx_buffer_bytes = 8192u,
-                             .max_packet_bytes = 8192u,
-                             .flash = {fw, fr, NULL, SLOT, busy_hook}};
+    const tdc_usbp_config_t cfg =
+        tdc_usbp_vive_config("testboard", "S1", 0x010203u, 8192u, (tdc_usbp_flash_t){fw, fr, NULL, SLOT, busy_hook});
     return tdc_usbp_init(&s, &cfg) == TDC_OK ? 0 : -1;
 }
 
