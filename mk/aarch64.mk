@@ -18,7 +18,7 @@ test-aarch64:
 	    { cat $(BUILD)/.a64log; false; }; then \
 	    printf '#!/bin/sh\nexec tests/golden/check.sh aarch64-O2 -- qemu-aarch64 %s\n' $(A64)/tests/tdc_golden > $(A64)/golden-qemu; \
 	    printf '#!/bin/sh\nexec qemu-aarch64 %s\n' $(A64)/tests/checkasm/checkasm > $(A64)/checkasm-qemu; \
-	    printf '#!/bin/sh\nexec tests/rules/check_simd_nofloat.sh aarch64-linux-gnu-objdump %s\n' "$$(ls $(A64)/firmware/*.o)" > $(A64)/fw-nofloat; \
+	    printf '#!/bin/sh\nexec tests/rules/check_simd_nofloat.sh aarch64-linux-gnu-objdump %s\n' "$$(echo $(A64)/firmware/*.o)" > $(A64)/fw-nofloat; \
 	    chmod +x $(A64)/golden-qemu $(A64)/checkasm-qemu $(A64)/fw-nofloat; \
 	    tests/run_tests.sh aarch64-O2 $(A64)/golden-qemu $(A64)/checkasm-qemu $(A64)/fw-nofloat || :; \
 	else echo "[aarch64-O2] FAIL build"; echo "aarch64-O2 build FAIL" >> "$(RESULTS)"; fi
