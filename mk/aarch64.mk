@@ -4,8 +4,8 @@
 # gcc-aarch64-linux-gnu (static: no arm64 libraries needed) and run under
 # qemu-aarch64 (qemu-user) in `make test`: the same checksums as x86-64.
 # checkasm there checks the NEON kernels (firmware/tdc_trm_neon.c, compiled
-# into every AArch64 build) against C; `make bench-aarch64` counts their
-# instructions per pixel under qemu-aarch64 (tests/checkasm/insn_count.sh).
+# into every AArch64 build) against C; `make bench-aarch64` (mk/neon.mk)
+# counts their instructions per pixel under qemu-aarch64.
 DEPS_PKGS += gcc-aarch64-linux-gnu libc6-dev-arm64-cross qemu-user
 
 A64 := $(BUILD)/aarch64-linux-gnu-gcc-O2
@@ -23,12 +23,3 @@ test-aarch64:
 	    tests/run_tests.sh aarch64-O2 $(A64)/golden-qemu $(A64)/checkasm-qemu $(A64)/fw-nofloat || :; \
 	else echo "[aarch64-O2] FAIL build"; echo "aarch64-O2 build FAIL" >> "$(RESULTS)"; fi
 
-# make bench-aarch64: instructions per pixel of C and NEON on checkasm's
-# benchmark inputs, counted under qemu-aarch64 by the plugin of make
-# bench-arm (docs/boards.md "AArch64").
-.PHONY: bench-aarch64
-bench-aarch64:
-	@$(MAKE) --no-print-directory $(INSN_PLUGIN)
-	@$(A64_MAKE) $(A64)/tests/checkasm/checkasm > $(BUILD)/.a64log 2>&1 || { cat $(BUILD)/.a64log; false; }
-	@echo "instructions per unit under qemu-aarch64 (gcc -O2, $(A64)/tests/checkasm/checkasm --marks)"
-	@tests/checkasm/insn_count.sh aarch64-linux-gnu-nm $(INSN_PLUGIN) qemu-aarch64 $(A64)/tests/checkasm/checkasm $(or $(CHECKASM_PATTERN),trm)
