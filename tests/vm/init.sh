@@ -118,17 +118,23 @@ check usb-timeout 5 "LIBUSB_ERROR_TIMEOUT" tdc-usb --timeout 500 info
 kill -CONT $board_pid
 usleep 300000
 
-# Unplug during a stream (the UDC is unbound: a real disconnect).
-dd if=/dev/zero of=/tmp/long.bin bs=1M count=64 2>/dev/null
-tdc-usb --chunk 512 stream /tmp/long.bin > /tmp/unplug.out 2>&1 &
+# Unplug during a stream (the UDC is unbound: a real disconnect).  tdc-usb
+# reads the stream from a pipe: when 1 MiB has gone through the 64 KiB pipe
+# it is streaming to the board (a fixed sleep was not enough: at load
+# average 19 tdc-usb had not found the board after 1 s, exit 2); the rest
+# goes in after the unbind.
+rm -f /tmp/long.fifo; mkfifo /tmp/long.fifo
+tdc-usb --chunk 512 stream - < /tmp/long.fifo > /tmp/unplug.out 2>&1 &
 stream_pid=$!
-sleep 1
+exec 5> /tmp/long.fifo
+dd if=/dev/zero bs=64k count=16 >&5 2>/dev/null
 unbind
+dd if=/dev/zero bs=64k count=64 >&5 2>/dev/null
+exec 5>&-
 wait $stream_pid; rc=$?
 sed 's/^/    /' /tmp/unplug.out
 if [ $rc = 6 ] && grep -q LIBUSB_ERROR_NO_DEVICE /tmp/unplug.out; then ok usb-unplug
 else bad usb-unplug "exit $rc, want 6 with LIBUSB_ERROR_NO_DEVICE"; fi
-rm -f /tmp/long.bin
 check usb-no-device 2 "no tdc board" tdc-usb info
 bind
 wait_board && check usb-rebind 0 "serial VM-1" tdc-usb info
@@ -145,27 +151,44 @@ SIM=/sys/devices/platform/$(cat $S/dev_name)/$CHIP
 echo "gpio-sim chip $CHIP at $SIM"
 [ -n "$CHIP" ] && [ -e /dev/$CHIP ] && ok gpio-sim-live || bad gpio-sim-live "no chip"
 
+# line_seen VALUE_FILE WANT PID: the line's value once it reads WANT, or the
+# last value read once PID has ended (the state never came).  A fixed sleep
+# into the pulse was not enough: at load average 19 tdc-gpio had not yet
+# requested the line 0.7 s after its start.
+line_seen() {
+    while :; do
+        v=$(cat $1); [ "$v" = "$2" ] && break
+        kill -0 $3 2>/dev/null || { v=$(cat $1); break; }
+        usleep 20000
+    done
+    echo "$v"
+}
 # reset: the line is active (1) during the pulse and released afterwards
 tdc-gpio reset --chip $CHIP --line nreset --pulse-ms 1500 > /tmp/g.out 2>&1 &
-p=$!; usleep 700000; during=$(cat $SIM/sim_gpio0/value); wait $p; rc=$?
+p=$!; during=$(line_seen $SIM/sim_gpio0/value 1 $p); wait $p; rc=$?
 after=$(cat $SIM/sim_gpio0/value)
 cat /tmp/g.out
 [ $rc = 0 ] && [ "$during" = 1 ] && [ "$after" = 0 ] && ok gpio-reset || bad gpio-reset "exit $rc, value during $during after $after"
 # active low, with a pull-up: 0 during the pulse, 1 after
 echo pull-up > $SIM/sim_gpio0/pull
 tdc-gpio reset --chip $CHIP --line 0 --active-low --pulse-ms 1500 > /tmp/g.out 2>&1 &
-p=$!; usleep 700000; during=$(cat $SIM/sim_gpio0/value); wait $p; rc=$?
+p=$!; during=$(line_seen $SIM/sim_gpio0/value 0 $p); wait $p; rc=$?
 after=$(cat $SIM/sim_gpio0/value)
 [ $rc = 0 ] && [ "$during" = 0 ] && [ "$after" = 1 ] && ok gpio-reset-active-low || bad gpio-reset-active-low "exit $rc, value during $during after $after"
 echo pull-down > $SIM/sim_gpio0/pull
 # boot: boot line held while reset is pulsed and for --hold-ms after it
 tdc-gpio boot --chip $CHIP --line nreset --boot-line boot --pulse-ms 300 --hold-ms 1500 > /tmp/g.out 2>&1 &
-p=$!; usleep 1000000; boot_v=$(cat $SIM/sim_gpio1/value); rst_v=$(cat $SIM/sim_gpio0/value); wait $p; rc=$?
+p=$!; boot_v=; rst_v=
+while kill -0 $p 2>/dev/null; do # until the hold (boot 1, reset released) is seen
+    boot_v=$(cat $SIM/sim_gpio1/value); rst_v=$(cat $SIM/sim_gpio0/value)
+    [ "$boot_v" = 1 ] && [ "$rst_v" = 0 ] && break; usleep 20000
+done
+wait $p; rc=$?
 cat /tmp/g.out
 [ $rc = 0 ] && [ "$boot_v" = 1 ] && [ "$rst_v" = 0 ] && ok gpio-boot || bad gpio-boot "exit $rc, boot $boot_v reset $rst_v during hold"
 # busy: a held line is refused with the holder's name
 tdc-gpio reset --chip $CHIP --line nreset --pulse-ms 1500 > /dev/null 2>&1 &
-p=$!; usleep 500000
+p=$!; line_seen $SIM/sim_gpio0/value 1 $p > /dev/null # held
 check gpio-busy 16 "in use by 'tdc-gpio'" tdc-gpio reset --chip $CHIP --line nreset
 wait $p
 check gpio-no-line 15 "no line 'nosuch'" tdc-gpio reset --chip $CHIP --line nosuch
@@ -174,10 +197,23 @@ check gpio-vsync-timeout 5 "no edge" tdc-gpio vsync --chip $CHIP --line vsync --
 # vsync: 20 Hz with every 20th pulse left out.  The rate is low on purpose:
 # under TCG on a loaded host the generator's wake-ups slip by milliseconds,
 # which at 100 Hz already looks like missed frames; at 50 ms periods it does not.
-tdc_vsync_gen $SIM/sim_gpio2/pull 20 100 20 &
-g=$!
-check gpio-vsync 0 "refresh" tdc-gpio vsync --chip $CHIP --line vsync --count 60 --expect-hz 20
-wait $g
+# A measurement whose shortest interval is under half a period (the
+# generator never makes one) saw the source itself disturbed: the host
+# starved the guest and the generator caught up in a burst (at load average
+# 19: intervals 0.4..324 ms, a gap over tdc-gpio's 1 s timeout, exit 5).
+# That one measures the host, not tdc-gpio: measured again, 3 times at most;
+# the last one is checked whatever it saw.
+for attempt in 1 2 3; do
+    tdc_vsync_gen $SIM/sim_gpio2/pull 20 100 20 &
+    g=$!
+    tdc-gpio vsync --chip $CHIP --line vsync --count 60 --expect-hz 20 > /tmp/out 2>&1; rc=$?
+    wait $g
+    sed 's/^/    /' /tmp/out
+    shortest=$(sed -n 's/.*interval \([0-9]*\)\..*/\1/p' /tmp/out)
+    [ $attempt -lt 3 ] && [ -n "$shortest" ] && [ "$shortest" -lt 25000 ] || break
+    echo "    vsync source disturbed (an interval of $shortest us): measuring again"
+done
+[ $rc = 0 ] && grep -q refresh /tmp/out && ok gpio-vsync || bad gpio-vsync "exit $rc, want 0"
 hz=$(sed -n 's/.*refresh \([0-9]*\.[0-9]\).*/\1/p' /tmp/out | tr -d .)
 missed=$(sed -n 's/.*missed frames \([0-9]*\).*/\1/p' /tmp/out)
 echo "    measured refresh ${hz} dHz, missed ${missed}"
@@ -281,18 +317,17 @@ play /data/disp/fov fov.ab /tmp/ab.plan
 # shown or counted after the host went (tdc_board_linux_ffs.c; before, its
 # last frame could be flipped after the re-plug and counted as the new
 # stream's first, and the capture differed).  Mid-stream without a sleep:
-# tdc-usb reads the stream from a pipe; the unplug comes after the first half
-# of the pieces went in and before the rest does.
+# tdc-usb reads the stream from a pipe; the unplug comes after the first
+# piece (frame 0's packets) went in and before the rest does.
 GB=/sys/kernel/config/usb_gadget/tdc-board
 starts=$(grep -c "ready: panel" /tmp/launch.log)
 rm -f /tmp/unplug.fifo; mkfifo /tmp/unplug.fifo
 $B --timeout 60000 --chunk 16384 stream - < /tmp/unplug.fifo > /tmp/unplug.out 2>&1 &
 p=$!
 exec 4> /tmp/unplug.fifo
-half=$(($(grep -c . /data/disp/trm/plan) / 2))
-for part in $(awk '{ print $1 }' /data/disp/trm/plan | head -n $half); do cat /data/disp/trm/$part >&4; done
+cat /data/disp/trm/part-0 >&4
 echo "" > $GB/UDC
-for part in $(awk '{ print $1 }' /data/disp/trm/plan | tail -n +$((half + 1))); do cat /data/disp/trm/$part >&4 2> /dev/null || break; done
+for part in $(awk '{ print $1 }' /data/disp/trm/plan | tail -n +2); do cat /data/disp/trm/$part >&4 2> /dev/null || break; done
 exec 4>&-
 wait $p; rc=$?
 sed 's/^/    /' /tmp/unplug.out
