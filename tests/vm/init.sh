@@ -116,7 +116,7 @@ check usb-flash-too-big 9 "larger than the board's flash slot" sh -c \
 kill -STOP $board_pid
 check usb-timeout 5 "LIBUSB_ERROR_TIMEOUT" tdc-usb --timeout 500 info
 kill -CONT $board_pid
-usleep 300000
+for i in $(seq 100); do tdc-usb info > /dev/null 2>&1 && break; usleep 100000; done # it answers again
 
 # Unplug during a stream (the UDC is unbound: a real disconnect).  tdc-usb
 # reads the stream from a pipe: when 1 MiB has gone through the 64 KiB pipe
@@ -257,7 +257,11 @@ play() {
         # exit 11: the board's byte counter had not yet caught up with the
         # last transfer the host saw complete (the loop counts after its
         # read returns); all bytes arrived if the counter now says so
-        [ $rc = 11 ] && usleep 300000 && $B info 2>/dev/null | grep -q "rx_bytes $(stat -c %s $d/$part) " && rc=0
+        if [ $rc = 11 ]; then
+            for i in $(seq 50); do
+                $B info 2>/dev/null | grep -q "rx_bytes $(stat -c %s $d/$part) " && { rc=0; break; }; usleep 100000
+            done
+        fi
         [ $rc = 0 ] || { bad "display-$name" "stream $part: exit $rc"; cat /tmp/out; tail -n 8 $LOG; break; }
         n=; for i in $(seq 600); do n=$(frames); [ "${n:-0}" -ge "$want" ] && break; usleep 50000; done
         [ "$n" = "$want" ] || { bad "display-$name" "$part: board shows $n frames, want $want"; tail -n 8 $LOG; break; }
