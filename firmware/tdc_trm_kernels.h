@@ -102,6 +102,13 @@ tdc_trm_full_row_fn tdc_trm_full_row_mve;
 tdc_trm_reduced_row_fn tdc_trm_reduced_row_mve;
 tdc_trm_dvert_fn tdc_trm_dvert_mve;
 tdc_trm_dhoriz_fn tdc_trm_dhoriz_mve;
+/* AArch64 Advanced SIMD (NEON) D passes, every AArch64 build: NEON is in
+ * the ARMv8-A base (tdc_trm_neon.c; the rows stay C there, see that file). */
+#if defined(__aarch64__) && defined(__ARM_NEON) && !defined(TDC_NO_SIMD)
+#define TDC_TRM_NEON 1
+#endif
+tdc_trm_dvert_fn tdc_trm_dvert_neon;
+tdc_trm_dhoriz_fn tdc_trm_dhoriz_neon;
 /* What a board runs for the rows and D passes (AVX2 on hosts is chosen at
  * run time). */
 #if defined(TDC_TRM_MVE)
@@ -109,6 +116,11 @@ tdc_trm_dhoriz_fn tdc_trm_dhoriz_mve;
 #define TDC_TRM_REDUCED_ROW_BOARD tdc_trm_reduced_row_mve
 #define TDC_TRM_DVERT_BOARD tdc_trm_dvert_mve
 #define TDC_TRM_DHORIZ_BOARD tdc_trm_dhoriz_mve
+#elif defined(TDC_TRM_NEON)
+#define TDC_TRM_FULL_ROW_BOARD tdc_trm_full_row_c
+#define TDC_TRM_REDUCED_ROW_BOARD tdc_trm_reduced_row_c
+#define TDC_TRM_DVERT_BOARD tdc_trm_dvert_neon
+#define TDC_TRM_DHORIZ_BOARD tdc_trm_dhoriz_neon
 #else
 #define TDC_TRM_FULL_ROW_BOARD tdc_trm_full_row_c
 #define TDC_TRM_REDUCED_ROW_BOARD tdc_trm_reduced_row_c

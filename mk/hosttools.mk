@@ -80,7 +80,9 @@ $(VM_BIN)/tdc_vsync_gen: tests/vm/tdc_vsync_gen.c
 # In `make test`: 5 of 5 and then (with the link-decoder checks) 4 of 4
 # consecutive runs passed on a 2-core host at load average 6-9.6 (other
 # builds running), 44-64 s each (+ ~20 s the first time for the gpio-sim
-# module).  TCG only: it does not depend on KVM.
+# module).  TCG only: it does not depend on KVM.  At load average 15-23 (six
+# engineers) a run takes 425-1305 s: every wait in init.sh is on an event with
+# a generous bound (docs/boards.md "In `make test-vm`").
 TEST_EXTRA += test-vm
 .PHONY: test-vm
 test-vm:

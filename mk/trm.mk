@@ -23,6 +23,8 @@ $(B)/check-fw-rules: $(GEN)/tdc_trm_tables.h
 # Helium (MVE) row kernels: compiled empty except for boards with BOARD_MVE
 # (mk/boards.mk gives that object -mcpu=cortex-m55+nofp -mfloat-abi=softfp).
 FW_SRCS += firmware/tdc_trm_mve.c
+# AArch64 NEON D passes: compiled empty except for AArch64 (mk/aarch64.mk).
+FW_SRCS += firmware/tdc_trm_neon.c
 $(B)/firmware/tdc_trm_avx2.o: FW_CFLAGS := $(filter-out -mgeneral-regs-only,$(FW_CFLAGS))
 ifeq ($(shell uname -m),x86_64)
 $(B)/test-fw-nofloat-insn: $(FWLIB) tests/rules/check_simd_nofloat.sh

@@ -170,7 +170,7 @@ tdc_board_status_t tdc_board_panel_show(const uint8_t *fb, uint32_t stride, uint
         return TDC_BOARD_OK;
     }
     if (tdc_lx_ffs_stale()) {
-        tdc_lx_logf("usb: frame %u of the stream that ended is not shown: a new one has begun", (unsigned)frame_index);
+        tdc_lx_logf("usb: frame %u is not shown: its host has gone", (unsigned)frame_index);
         return TDC_BOARD_OK;
     }
     return tdc_lx_drm_show(fb, stride, width, height) == 0 ? TDC_BOARD_OK : TDC_BOARD_ERR_IO;

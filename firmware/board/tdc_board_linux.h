@@ -75,9 +75,12 @@ int tdc_lx_ffs_init(uint32_t width, uint32_t height, uint32_t refresh_mhz, uint3
 /* Bulk OUT into buf: 1 with *got bytes, 0 nothing yet, -1 stop (SIGTERM),
  * -2 host gone (the connection's stream ended). */
 int tdc_lx_ffs_read(uint8_t *buf, uint32_t cap, uint32_t *got);
-void tdc_lx_ffs_frame_shown(void);
-/* 1 while a run of the loop ends whose host went and came back under a
- * waiting read: its last frame is not shown (tdc_board_panel_show). */
+/* A flip of a frame of connection conn (tdc_lx_ffs_conn() when it was
+ * committed) completed: counted only if that host is still there. */
+void tdc_lx_ffs_frame_shown(unsigned conn);
+unsigned tdc_lx_ffs_conn(void);
+/* 1 when the frame about to be shown belongs to a host that has gone (the
+ * run ends, or will at its next read): not shown (tdc_board_panel_show). */
 int tdc_lx_ffs_stale(void);
 /* Start-up done (display up, gadget bound): STATE/confirmed, which keeps a
  * program on trial (boards/linux/tdc-board-launch). */

@@ -42,6 +42,8 @@ static uint32_t p_conn_crtc, p_crtc_mode, p_crtc_active, p_fb, p_crtc, p_sx, p_s
 static dumb_t g_buf[2];
 static unsigned g_front; /* the buffer scanned out (or about to be, once its flip completes) */
 static int g_flip_pending, g_no_vblank;
+/* the USB connection whose frame the pending flip shows (tdc_lx_ffs_conn) */
+static unsigned g_flip_conn;
 
 /* A property of a KMS object by name: its id (0: none), and its value in *value. */
 static uint32_t prop_find(uint32_t obj, uint32_t type, const char *name, uint64_t *value)
@@ -269,7 +271,7 @@ static void on_flip(int fd, unsigned seq, unsigned sec, unsigned usec, unsigned 
 {
     (void)fd, (void)seq, (void)sec, (void)usec, (void)crtc, (void)data;
     g_flip_pending = 0;
-    tdc_lx_ffs_frame_shown();
+    tdc_lx_ffs_frame_shown(g_flip_conn);
 }
 
 void tdc_lx_drm_wait(void)
@@ -346,6 +348,7 @@ int tdc_lx_drm_show(const uint8_t *fb, uint32_t stride, uint32_t width, uint32_t
         return -1;
     }
     g_flip_pending = 1;
+    g_flip_conn = tdc_lx_ffs_conn();
     g_front ^= 1u;
     return 0;
 }

@@ -53,8 +53,14 @@ static int g_ep0 = -1, g_ep1 = -1, g_slots = -1;
 static volatile int g_enabled;
 /* connections lost (FUNCTIONFS_DISABLE after ENABLE): the reader ends the
  * loop's run when this moves, also when the loss happened while the loop
- * was busy and not reading (a read then just waits for the next ENABLE) */
+ * was busy and not reading (a read then just waits for the next ENABLE).
+ * Moved under g_lock, so a frame counted under g_lock is either counted
+ * before the loss (and before the next host's reset-counters request, which
+ * ep0_thread handles after the DISABLE) or not at all. */
 static volatile unsigned g_lost;
+/* The connection the loop's current run serves: g_lost when that run began
+ * reading (main thread only). */
+static unsigned g_seen;
 
 /* ---- DFU slots: one file of 2 * SLOT_BYTES in the state folder ---- */
 static int slot_write(void *ctx, uint32_t off, const uint8_t *d, uint32_t n)
@@ -210,12 +216,12 @@ static void *ep0_thread(void *arg)
                 tdc_lx_logf("usb: host connected (configuration set)");
                 break;
             case FUNCTIONFS_DISABLE:
+                pthread_mutex_lock(&g_lock);
                 if (g_enabled) {
                     tdc_lx_logf("usb: host gone (disconnected or reset): the panel keeps its last frame");
                     g_lost++;
                 }
                 g_enabled = 0;
-                pthread_mutex_lock(&g_lock);
                 board_reset("USB reset");
                 pthread_mutex_unlock(&g_lock);
                 break;
@@ -255,23 +261,32 @@ static void *status_thread(void *arg)
  * returned: they start the next run of the loop (its fresh decoder). */
 static uint8_t g_carry[16384];
 static uint32_t g_carry_n;
-/* Set from that moment until the next run reads: the old run's last
- * partial frame is not shown (a new stream has begun; the panel keeps its
- * last frame, and the frame counter the host reads is the new stream's). */
+/* Set when a run of the loop ends because its host went, until the next
+ * run reads: the old run's last partial frame is not shown (the panel keeps
+ * its last frame). */
 static int g_stale;
 
 int tdc_lx_ffs_stale(void)
 {
-    return g_stale;
+    /* also while the loop, busy, has not yet read since its host went: a
+     * frame it finishes then is the old stream's, and the next host may
+     * already be streaming (make test-vm's re-plug saw such a frame flipped
+     * and counted as the new stream's first) */
+    return g_stale || g_seen != g_lost;
+}
+
+unsigned tdc_lx_ffs_conn(void)
+{
+    return g_seen;
 }
 
 int tdc_lx_ffs_read(uint8_t *buf, uint32_t cap, uint32_t *got)
 {
-    static unsigned seen;
     *got = 0;
     if (tdc_lx_stop) return -1;
-    if (seen != g_lost) {
-        seen = g_lost;
+    if (g_seen != g_lost) {
+        g_seen = g_lost;
+        g_stale = 1;
         tdc_lx_logf("usb: host gone: stream ended; the next connection starts a new one");
         if (g_ep1 >= 0) close(g_ep1);
         g_ep1 = -1;
@@ -295,14 +310,14 @@ int tdc_lx_ffs_read(uint8_t *buf, uint32_t cap, uint32_t *got)
         return 0;
     }
     ssize_t n = read(g_ep1, buf, cap); /* blocks until the host sends (or is configured) */
-    if (n > 0 && seen != g_lost && (size_t)n <= sizeof g_carry) {
+    if (n > 0 && g_seen != g_lost && (size_t)n <= sizeof g_carry) {
         /* The host went and came back while this read waited (FunctionFS
          * holds a read on a disabled function until it is enabled again):
          * the bytes are the new connection's, not this stream's tail (fed
          * to the old decoder, a half-received packet would swallow the new
          * stream's header; make test-vm's re-plug once waited for a frame
          * that never came at load average 17, before this). */
-        seen = g_lost;
+        g_seen = g_lost;
         memcpy(g_carry, buf, (size_t)n);
         g_carry_n = (uint32_t)n;
         g_stale = 1;
@@ -323,16 +338,17 @@ int tdc_lx_ffs_read(uint8_t *buf, uint32_t cap, uint32_t *got)
         tdc_lx_logf("usb: host gone: stream ended (%s); the panel keeps its last frame", strerror(errno));
         close(g_ep1);
         g_ep1 = -1;
-        seen = g_lost;
+        g_seen = g_lost;
+        g_stale = 1;
         return -2;
     }
     return 0;
 }
 
-void tdc_lx_ffs_frame_shown(void)
+void tdc_lx_ffs_frame_shown(unsigned conn)
 {
     pthread_mutex_lock(&g_lock);
-    g_proto.cnt.frames_shown++;
+    if (conn == g_lost) g_proto.cnt.frames_shown++; /* else: a frame of a host that has gone */
     pthread_mutex_unlock(&g_lock);
 }
 

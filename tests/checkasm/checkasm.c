@@ -41,7 +41,8 @@ static struct {
     unsigned failures;
     int quiet; /* the core's self-test: count failures, print nothing */
     long last_index;
-} g = {DEFAULT_SEED, 1, 0, NULL, "", 0, 0, 0, -1};
+    int marks; /* --marks: one call per side between checkasm_mark() calls */
+} g = {DEFAULT_SEED, 1, 0, NULL, "", 0, 0, 0, -1, 0};
 
 /* ---- output: one formatted line at a time through checkasm_write() ----
  * (formatted into a static buffer with vsnprintf, which newlib nano does
@@ -125,6 +126,15 @@ uint32_t checkasm_runs(uint32_t dflt)
 int checkasm_mve_available(void)
 {
 #if defined(TDC_TRM_MVE)
+    return 1;
+#else
+    return 0;
+#endif
+}
+
+int checkasm_neon_available(void)
+{
+#if defined(__aarch64__) && defined(__ARM_NEON) && !defined(TDC_NO_SIMD)
     return 1;
 #else
     return 0;
@@ -218,9 +228,42 @@ static void print_centi(uint64_t x)
     out("%8s.%02u", u64_text(x / 100u, 10u, dec), (unsigned)(x % 100u));
 }
 
+/* --marks: an instruction-counting emulator (QEMU with
+ * tests/arm/tdc_insn_plugin.c, mark=<this function's address>) records its
+ * count at every call; kept out of line and not merged away. */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+void checkasm_mark(void)
+{
+#if defined(__GNUC__)
+    __asm__ volatile("" ::: "memory");
+#endif
+}
+
+/* --marks: mark, reference call, mark, mark, optimised call, mark; then one
+ * line "mark NAME|LABEL|UNITS" (tests/checkasm/insn_count.sh reads both). */
+static int marks_step(checkasm_bench_t *b)
+{
+    checkasm_mark();
+    if (b->call++ == 0u) {
+        return 1;
+    }
+    if (b->side++ == 0) {
+        checkasm_mark();
+        return 1;
+    }
+    char dec[24];
+    out("mark %s|%s|%s\n", g.cur_name, b->label, u64_text(b->units, 10u, dec));
+    return 0;
+}
+
 int checkasm_bench_step(checkasm_bench_t *b)
 {
     uint64_t now;
+    if (g.marks) {
+        return marks_step(b);
+    }
     if (!timer_ns(&now)) {
         out("  %-24s %-38s no timer on this target: not timed\n", g.cur_name, b->label);
         return 0;
@@ -352,11 +395,13 @@ static int selected(const checkasm_kernel_t *k, const char *name, char **pats, i
 static int usage(int status)
 {
     char hex[24];
-    out("usage: checkasm [--seed N] [--runs N] [--bench] [--list] [PATTERN...]\n"
+    out("usage: checkasm [--seed N] [--runs N] [--bench | --marks] [--list] [PATTERN...]\n"
            "  checks every registered optimised kernel against its C reference, bit for bit\n"
            "  --seed N   RNG seed (default 0x%s); each kernel reseeds from it and its name\n"
            "  --runs N   inputs per kernel (default: each family's own)\n"
            "  --bench    then time reference and optimised kernel (ns per unit, speed-up)\n"
+           "  --marks    then call each once between checkasm_mark() calls (instruction\n"
+           "             counts under QEMU: tests/checkasm/insn_count.sh)\n"
            "  --list     list the registered kernels and whether this CPU runs them\n"
            "  PATTERN    glob on the kernel name (family_isa), its family or its ISA;\n"
            "             a plain word selects the kernels whose name contains it\n",
@@ -374,6 +419,8 @@ int checkasm_main(int argc, char **argv)
             return usage(0);
         } else if (strcmp(argv[i], "--bench") == 0) {
             bench = 1;
+        } else if (strcmp(argv[i], "--marks") == 0) {
+            bench = g.marks = 1;
         } else if (strcmp(argv[i], "--list") == 0) {
             list = 1;
         } else if ((strcmp(argv[i], "--seed") == 0 || strcmp(argv[i], "--runs") == 0) && i + 1 < argc) {

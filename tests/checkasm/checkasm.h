@@ -93,6 +93,9 @@ uint32_t checkasm_runs(uint32_t dflt);
  * boards (TDC_TRM_MVE: their start-up enables the MVE unit, so it always
  * runs there), 0 elsewhere (the MVE names are the C kernels: skipped). */
 int checkasm_mve_available(void);
+/* The `available` of the AArch64 NEON pairs: 1 in AArch64 builds (NEON is
+ * part of ARMv8-A: every such CPU runs it), 0 elsewhere. */
+int checkasm_neon_available(void);
 
 /* ---- mismatches ---- */
 /* First index where two arrays of n elements differ, or -1. */
@@ -125,6 +128,10 @@ checkasm_bench_t checkasm_bench_start(const checkasm_kernel_t *k, const char *la
 /* 1: make one more call, with checkasm_bench_fn(); 0: done (printed). */
 int checkasm_bench_step(checkasm_bench_t *b);
 checkasm_fn_t checkasm_bench_fn(const checkasm_bench_t *b);
+
+/* --marks: called around each side's one call; an instruction-counting
+ * emulator records its count there (tests/checkasm/insn_count.sh). */
+void checkasm_mark(void);
 
 /* Times `call` (which calls f, a T *) for the reference and the optimised
  * side, best of 50 batches of 20 calls each (short batches: a loaded machine

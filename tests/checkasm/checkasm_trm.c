@@ -454,6 +454,12 @@ static const checkasm_kernel_t g_trm_kernels[] = {
     CHECKASM_KERNEL(&trm_dvert, "mve", checkasm_mve_available, tdc_trm_dvert_c, tdc_trm_dvert_mve),
     CHECKASM_KERNEL(&trm_dhoriz, "mve", checkasm_mve_available, tdc_trm_dhoriz_c, tdc_trm_dhoriz_mve),
 #endif
+#if defined(TDC_TRM_NEON)
+    /* AArch64 (every build there: NEON is in the base ISA); the rows stay C
+     * on AArch64 (firmware/tdc_trm_neon.c says why) */
+    CHECKASM_KERNEL(&trm_dvert, "neon", checkasm_neon_available, tdc_trm_dvert_c, tdc_trm_dvert_neon),
+    CHECKASM_KERNEL(&trm_dhoriz, "neon", checkasm_neon_available, tdc_trm_dhoriz_c, tdc_trm_dhoriz_neon),
+#endif
 };
 
 const checkasm_module_t checkasm_trm = {"trm", g_trm_kernels, sizeof g_trm_kernels / sizeof g_trm_kernels[0]};
