@@ -249,8 +249,13 @@ endef
 # one of the two cores idle (23 min wall for 22.7 min of CPU at 694afb3).
 # Each background step's output is printed when it ends, its verdicts go to
 # $(RESULTS), and every step prints its wall time.
+# In a fresh tree (CI's clean clone: no build/ yet) the newcomer's demo runs
+# first, in place (tests/fresh/demo_in_tree.sh): test-newcomer reports it
+# instead of building the whole host tree a second time in its copy.
+FRESH_DEMO_MARK := $(abspath $(BUILD))/fresh-demo.mark
 test: deps
-	@mkdir -p $(BUILD); rm -f $(RESULTS)
+	@fresh=; [ -d $(BUILD) ] || fresh=1; mkdir -p $(BUILD); rm -f $(RESULTS) $(FRESH_DEMO_MARK); \
+	if [ -n "$$fresh" ]; then tests/timed.sh "demo DEMO_SCALE=ci (fresh tree, in place)" tests/fresh/demo_in_tree.sh $(FRESH_DEMO_MARK); fi
 	@tests/timed.sh "gcc-O2 run-tests" $(MAKE) --no-print-directory -j2 run-tests CC=gcc OPT=-O2 || \
 	    { echo "gcc-O2 run-tests build FAIL" >> $(RESULTS); echo "*** gcc-O2 run-tests: build or target failed"; }
 	@mkdir -p $(BUILD); for t in $(TEST_BESIDE); do { tests/timed.sh "$$t (background)" $(MAKE) --no-print-directory $$t || \

@@ -2,7 +2,9 @@
 # (tests/rules/check_make_order.py) and a copy of the working tree running
 # the README's commands as a fresh clone does (tests/fresh/test_fresh_clone.sh:
 # `make -n` shows deps first, board images from a clean tree, `make demo`
-# with every run at DEMO_SCALE=ci, `make size` over every pair).
+# with every run at DEMO_SCALE=ci, `make size` over every pair).  The demo
+# is the one `make test` ran in place when it found the tree fresh
+# (FRESH_DEMO_MARK, see the test target), else it runs in the copy.
 # FRESH_PAIRS: images built alone in a copy where nothing else was built
 # (the README's example pair, and one per emulated board).
 FRESH_PAIRS ?= stm32h747i-disco:disco-dsi mps3-an547:htc-vive
@@ -13,6 +15,6 @@ TEST_BESIDE += test-newcomer
 test-newcomer:
 	@mkdir -p $(BUILD)
 	@printf '#!/bin/sh\nexec tests/rules/check_make_order.py .\n' > $(BUILD)/make-order
-	@printf '#!/bin/sh\nexec tests/fresh/test_fresh_clone.sh %s\n' "$(FRESH_PAIRS)" > $(BUILD)/fresh-clone
+	@printf '#!/bin/sh\nFRESH_DEMO_MARK=%s exec tests/fresh/test_fresh_clone.sh %s\n' "$(FRESH_DEMO_MARK)" "$(FRESH_PAIRS)" > $(BUILD)/fresh-clone
 	@chmod +x $(BUILD)/make-order $(BUILD)/fresh-clone
 	@TEST_TIMEOUT=2400 tests/run_tests.sh newcomer $(BUILD)/make-order $(BUILD)/fresh-clone
