@@ -25,9 +25,9 @@ static inline uint8_t tdc_sim_encode_code(double lin, double gamma)
  * bucket at gamma 2.2, 0-1 elsewhere) instead of a pow per channel. */
 #define TDC_SIM_CODE_BUCKETS 4096
 typedef struct {
-    double gamma;                           /* 0: not filled yet */
-    double level[256];                      /* level[0] = -1 */
-    uint8_t lo[TDC_SIM_CODE_BUCKETS + 1];   /* the count at i / TDC_SIM_CODE_BUCKETS */
+    double gamma;                         /* 0: not filled yet */
+    double level[256];                    /* level[0] = -1 */
+    uint8_t lo[TDC_SIM_CODE_BUCKETS + 1]; /* the count at i / TDC_SIM_CODE_BUCKETS */
 } tdc_sim_code_table_t;
 
 typedef enum {
@@ -35,7 +35,7 @@ typedef enum {
      * 100-240 of its 255 levels lie an ulp or so off EXACT's (gamma
      * 1.8-2.6), so a sample that close to a level can get the next code */
     TDC_SIM_CODES_MIDPOINT,
-    TDC_SIM_CODES_EXACT     /* the least lin that tdc_sim_encode_code takes to k or above: its codes */
+    TDC_SIM_CODES_EXACT /* the least lin that tdc_sim_encode_code takes to k or above: its codes */
 } tdc_sim_code_levels_t;
 
 /* Fills t for gamma (nothing to do if it holds gamma already).  EXACT finds
@@ -54,7 +54,10 @@ static inline void tdc_sim_code_table_init(tdc_sim_code_table_t *t, double gamma
             t->level[k] = pow((k - 0.5) / 255.0, gamma);
             continue;
         }
-        union { double d; uint64_t u; } lo = {0.0}, hi = {1.0}, mid;
+        union {
+            double d;
+            uint64_t u;
+        } lo = {0.0}, hi = {1.0}, mid;
         while (lo.u < hi.u) {
             mid.u = lo.u + (hi.u - lo.u) / 2;
             if (tdc_sim_encode_code(mid.d, gamma) >= k) {
