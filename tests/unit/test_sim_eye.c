@@ -273,7 +273,8 @@ static void test_code_slices_equal_light(void **state)
 
 /* The luminance-only integral (the judge's retinal signal) is the
  * luminance of the per-channel one, for code and light slices, at integer,
- * fractional and edge-clamped shifts (to rounding: 1e-12 relative). */
+ * fractional and edge-clamped shifts (to rounding: 1e-12 relative); the
+ * sub-steps in one call give the bits of one call each. */
 static void test_accumulate_y_is_luminance(void **state)
 {
     (void)state;
@@ -303,6 +304,22 @@ static void test_accumulate_y_is_luminance(void **state)
             tdc_eye_slice_luminance(&sl, y3, CW, CH, plane);
             assert_int_equal(tdc_eye_accumulate_plane(c, plane, CW, CH, shifts[k][0], shifts[k][1], 0.7), 0);
             assert_memory_equal(b, c, sizeof(c));
+        }
+        /* the four shifts in one call (tdc_eye_accumulate_steps): the same
+         * bits as one call each, per channel and for the luminance plane */
+        static const double wg[4] = {0.7, 0.25, 1.5, 0.125};
+        double plane[CP], one[CN], all[CN];
+        tdc_eye_slice_luminance(&sl, y3, CW, CH, plane);
+        for (int lum = 0; lum < 2; lum++) {
+            memset(one, 0, sizeof(one));
+            memset(all, 0, sizeof(all));
+            for (int k = 0; k < 4; k++) {
+                assert_int_equal(lum ? tdc_eye_accumulate_plane(one, plane, CW, CH, shifts[k][0], shifts[k][1], wg[k])
+                                     : tdc_eye_accumulate(one, &sl, CW, CH, shifts[k][0], shifts[k][1], wg[k]),
+                                 0);
+            }
+            assert_int_equal(tdc_eye_accumulate_steps(all, &sl, lum ? plane : NULL, CW, CH, 4, &shifts[0][0], wg), 0);
+            assert_memory_equal(one, all, sizeof(one));
         }
     }
 }
