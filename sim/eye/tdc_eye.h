@@ -70,6 +70,13 @@ int tdc_eye_accumulate_y(double *out, const tdc_eye_slice_t *sl, const double rg
  * slice's luminance into y (W*H), then out += wgt * y at x + (sx, sy). */
 void tdc_eye_slice_luminance(const tdc_eye_slice_t *sl, const double rgb2y[3], int w, int h, double *y);
 int tdc_eye_accumulate_plane(double *out, const double *plane, int w, int h, double sx, double sy, double wgt);
+/* n sub-steps at once: out += sum_k wgt[k] * (the slice's light, or plane's
+ * luminance when plane is given) at x + (sxy[2k], sxy[2k+1]), added in k
+ * order - the same bits as n calls of tdc_eye_accumulate(_plane), in one
+ * pass over the rows (one parallel region, each output row in cache over
+ * the sub-steps).  0, or -1 (memory). */
+int tdc_eye_accumulate_steps(double *out, const tdc_eye_slice_t *sl, const double *plane, int w, int h, int n,
+                             const double *sxy, const double *wgt);
 
 /* Bilinear lookup of channel c at (x, y) in pixel-centre coordinates
  * (pixel i's centre at i), edges clamped. */

@@ -186,14 +186,13 @@ int tdc_retina_sample(const tdc_retina_eye_t *eye, const tdc_eye_slice_t *sl, in
         int nsub = (int)ceil(dist / 0.5);
         nsub = nsub < 1 ? 1 : (nsub > MAX_SUB ? MAX_SUB : nsub);
         const double dt = (b1 - a1) / nsub;
+        double sxy[2 * MAX_SUB], wgt[MAX_SUB];
         for (int k = 0; k < nsub; k++) {
-            double s[2];
-            shift_at(eye, a1 + (k + 0.5) * dt, s);
-            const double wgt = gain * norm * dt / T;
-            if (rgb ? tdc_eye_accumulate(acc, &sl[i], w, h, s[0], s[1], wgt)
-                    : tdc_eye_accumulate_plane(acc, plane, w, h, s[0], s[1], wgt)) {
-                return -1;
-            }
+            shift_at(eye, a1 + (k + 0.5) * dt, sxy + 2 * k);
+            wgt[k] = gain * norm * dt / T;
+        }
+        if (tdc_eye_accumulate_steps(acc, &sl[i], rgb ? NULL : plane, w, h, nsub, sxy, wgt)) {
+            return -1;
         }
     }
     if (!rgb) {

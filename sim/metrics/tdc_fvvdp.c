@@ -552,11 +552,13 @@ static void band_contrast(tdc_fvvdp_t *m, int s, int l, double mul)
 {
     tdc_fvvdp_t *o = home(m);
     int bw = o->pyr.w[l], bh = o->pyr.h[l];
-    tdc_fvvdp_expand(pyr(m, s)[l + 1], bw, bh, o->ex, o->tmp);
-    const double *g = pyr(m, s)[l], *ex = o->ex, *bkg = o->bkg;
+    const double *g = pyr(m, s)[l], *up = pyr(m, s)[l + 1], *bkg = o->bkg;
+    double *ex = o->ex, *tmp = o->tmp;
+    const int bw2 = (bw + 1) / 2;
     float *out = o->con[s];
     TDC_PAR_FOR((long)bw * bh)
     for (int y = 0; y < bh; y++) {
+        tdc_fvvdp_expand_row(up, bw, bh, y, tmp + (size_t)y * bw2, ex + (size_t)y * bw);
         for (size_t i = (size_t)y * bw; i < (size_t)(y + 1) * bw; i++) {
             double c = (g[i] - ex[i]) / bkg[i];
             out[i] = (float)((c < 1000.0 ? c : 1000.0) * mul);
@@ -585,10 +587,12 @@ double tdc_fvvdp_frame(tdc_fvvdp_t *m, const float *test, const float *ref, cons
     for (int l = 0; l + 1 < lv; l++) {
         int bw = m->pyr.w[l], bh = m->pyr.h[l];
         /* Local adaptation: the reference's sustained signal one level down. */
-        tdc_fvvdp_expand(pyr(m, 1)[l + 1], bw, bh, o->bkg, o->tmp);
-        double *bkg = o->bkg;
+        const double *up = pyr(m, 1)[l + 1];
+        double *bkg = o->bkg, *tmp = o->tmp;
+        const int bw2 = (bw + 1) / 2;
         TDC_PAR_FOR((long)bw * bh)
         for (int y = 0; y < bh; y++) {
+            tdc_fvvdp_expand_row(up, bw, bh, y, tmp + (size_t)y * bw2, bkg + (size_t)y * bw);
             for (size_t i = (size_t)y * bw; i < (size_t)(y + 1) * bw; i++) {
                 bkg[i] = bkg[i] > 0.1 ? bkg[i] : 0.1;
             }

@@ -79,6 +79,10 @@ void tdc_fvvdp_reduce(const double *src, int w, int h, double *dst, double *tmp)
 /* One expand step: src (ceil(w/2) x ceil(h/2)) -> dst w x h.  tmp holds
  * ceil(w/2)*h. */
 void tdc_fvvdp_expand(const double *src, int w, int h, double *dst, double *tmp);
+/* Row i of that expand into o (w), with t (ceil(w/2)) as scratch: callers
+ * that use the row at once expand inside their own row loop (no barrier,
+ * the row still in cache; the same bits as tdc_fvvdp_expand). */
+void tdc_fvvdp_expand_row(const double *src, int w, int h, int i, double *t, double *o);
 
 /* ---- temporal channels (tdc_fvvdp_temporal.c) ---- */
 #define TDC_FVVDP_MAX_TAPS 256  /* ceil(fps/4): 1000 Hz at most */

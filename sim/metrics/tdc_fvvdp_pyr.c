@@ -67,22 +67,19 @@ static inline int refl(int j, int n)
 void tdc_fvvdp_reduce(const double *src, int w, int h, double *dst, double *tmp)
 {
     int w2 = (w + 1) / 2, h2 = (h + 1) / 2;
-    /* Vertical: tmp (w x h2). */
+    /* Row i: vertical into tmp row i (w), then horizontal from it into dst
+     * row i (w2): one parallel loop, no barrier between the passes and the
+     * tmp row still in cache (the same operations as two passes) */
     TDC_PAR_FOR((long)w * h2)
     for (int i = 0; i < h2; i++) {
         const double *r0 = src + (size_t)refl(2 * i - 2, h) * w, *r1 = src + (size_t)refl(2 * i - 1, h) * w;
         const double *r2 = src + (size_t)refl(2 * i, h) * w, *r3 = src + (size_t)refl(2 * i + 1, h) * w;
         const double *r4 = src + (size_t)refl(2 * i + 2, h) * w;
-        double *o = tmp + (size_t)i * w;
+        double *t = tmp + (size_t)i * w;
         TDC_SIMD
         for (int x = 0; x < w; x++) {
-            o[x] = K[0] * r0[x] + K[1] * r1[x] + K[2] * r2[x] + K[3] * r3[x] + K[4] * r4[x];
+            t[x] = K[0] * r0[x] + K[1] * r1[x] + K[2] * r2[x] + K[3] * r3[x] + K[4] * r4[x];
         }
-    }
-    /* Horizontal: dst (w2 x h2). */
-    TDC_PAR_FOR((long)w2 * h2)
-    for (int i = 0; i < h2; i++) {
-        const double *t = tmp + (size_t)i * w;
         double *o = dst + (size_t)i * w2;
         for (int x = 0; x < w2; x++) {
             int c = 2 * x;
@@ -116,59 +113,59 @@ static inline double up(const double *x, int s, int n, int j)
     return 0.0;
 }
 
+void tdc_fvvdp_expand_row(const double *src, int w, int h, int i, double *t, double *o)
+{
+    int w2 = (w + 1) / 2;
+    /* Vertical into t (w2): output row i takes rows j = i-2..i+2 of the
+     * interleaved column; only the even (or padding) ones are non-zero. */
+    for (int x = 0; x < w2; x++) {
+        t[x] = 0.0;
+    }
+    for (int k = 0; k < 5; k++) {
+        int j = i + k - 2;
+        const double *row;
+        if (j >= 0 && j < h) {
+            if (j & 1) {
+                continue;
+            }
+            row = src + (size_t)(j / 2) * w2;
+        } else if (j == -2) {
+            row = src;
+        } else if (j == ((h & 1) ? h + 1 : h)) {
+            row = src + (size_t)((h + 1) / 2 - 1) * w2;
+        } else {
+            continue;
+        }
+        double kk = 2.0 * K[k];
+        TDC_SIMD
+        for (int x = 0; x < w2; x++) {
+            t[x] += kk * row[x];
+        }
+    }
+    /* Horizontal from t into o (w). */
+    for (int x = 0; x < w; x++) {
+        double s = 0.0;
+        if (x >= 2 && x + 2 < w) {
+            /* Even x: taps x-2, x, x+2 (k = 0, 2, 4); odd x: x-1, x+1. */
+            if (x & 1) {
+                s = 2.0 * K[1] * t[(x - 1) / 2] + 2.0 * K[3] * t[(x + 1) / 2];
+            } else {
+                s = 2.0 * K[0] * t[x / 2 - 1] + 2.0 * K[2] * t[x / 2] + 2.0 * K[4] * t[x / 2 + 1];
+            }
+        } else {
+            for (int k = 0; k < 5; k++) {
+                s += 2.0 * K[k] * up(t, 1, w, x + k - 2);
+            }
+        }
+        o[x] = s;
+    }
+}
+
 void tdc_fvvdp_expand(const double *src, int w, int h, double *dst, double *tmp)
 {
     int w2 = (w + 1) / 2;
-    /* Vertical: tmp (w2 x h). Output row i takes rows j = i-2..i+2 of the
-     * interleaved column; only the even (or padding) ones are non-zero. */
-    TDC_PAR_FOR((long)w2 * h)
-    for (int i = 0; i < h; i++) {
-        double *o = tmp + (size_t)i * w2;
-        for (int x = 0; x < w2; x++) {
-            o[x] = 0.0;
-        }
-        for (int k = 0; k < 5; k++) {
-            int j = i + k - 2;
-            const double *row;
-            if (j >= 0 && j < h) {
-                if (j & 1) {
-                    continue;
-                }
-                row = src + (size_t)(j / 2) * w2;
-            } else if (j == -2) {
-                row = src;
-            } else if (j == ((h & 1) ? h + 1 : h)) {
-                row = src + (size_t)((h + 1) / 2 - 1) * w2;
-            } else {
-                continue;
-            }
-            double kk = 2.0 * K[k];
-            TDC_SIMD
-            for (int x = 0; x < w2; x++) {
-                o[x] += kk * row[x];
-            }
-        }
-    }
-    /* Horizontal: dst (w x h). */
     TDC_PAR_FOR((long)w * h)
     for (int i = 0; i < h; i++) {
-        const double *t = tmp + (size_t)i * w2;
-        double *o = dst + (size_t)i * w;
-        for (int x = 0; x < w; x++) {
-            double s = 0.0;
-            if (x >= 2 && x + 2 < w) {
-                /* Even x: taps x-2, x, x+2 (k = 0, 2, 4); odd x: x-1, x+1. */
-                if (x & 1) {
-                    s = 2.0 * K[1] * t[(x - 1) / 2] + 2.0 * K[3] * t[(x + 1) / 2];
-                } else {
-                    s = 2.0 * K[0] * t[x / 2 - 1] + 2.0 * K[2] * t[x / 2] + 2.0 * K[4] * t[x / 2 + 1];
-                }
-            } else {
-                for (int k = 0; k < 5; k++) {
-                    s += 2.0 * K[k] * up(t, 1, w, x + k - 2);
-                }
-            }
-            o[x] = s;
-        }
+        tdc_fvvdp_expand_row(src, w, h, i, tmp + (size_t)i * w2, dst + (size_t)i * w);
     }
 }

@@ -185,6 +185,15 @@ void tdc_report_markdown(FILE *f, const tdc_sim_config_t *cfg, const tdc_sim_res
                    "would be pooled (docs/visual-model.md); PSNR, SSIM, FLIP and the legacy columns only.\n\n",
                 floor(cfg->duration_s * cfg->refresh_hz + 1e-9), 1e3 * TDC_SIM_JOD_WARMUP_S);
     }
+    if (cfg->metric_every > 1) {
+        /* JOD is judged at every refresh whatever K (its retinal signal is
+         * sampled apart from the legacy instants) */
+        const int k = cfg->metric_every;
+        fprintf(f,
+                "Legacy columns (PSNR, SSIM, FLIP, flicker, terr) at every %d%s refresh only (`--metric-every "
+                "%d`)%s.\n\n",
+                k, k == 2 ? "nd" : (k == 3 ? "rd" : "th"), k, judged ? "; JOD at every refresh" : "");
+    }
     fprintf(f,
             "| mode |%s Hz | PSNR dB | SSIM | FLIP | flicker (legacy) | rays vs full | link vs full | link MB/s | fw us/frame | "
             "render us/frame |\n",

@@ -90,17 +90,10 @@ double tdc_scene_default_speed(tdc_scene_kind_t k)
     }
 }
 
-#define CODE_BUCKETS 4096
-typedef struct {
-    double gamma;
-    double level[256];            /* level[k] = ((k - 0.5) / 255)^gamma, level[0] = -1 */
-    uint8_t lo[CODE_BUCKETS + 1]; /* largest k with level[k] <= i / CODE_BUCKETS */
-} code_table_t;
-
 typedef struct {
     tdc_scene_params_t p;
     double vx, vy;         /* main motion, px/s */
-    code_table_t codes[3]; /* drive-code decision levels per channel */
+    tdc_sim_code_table_t codes[3]; /* drive-code decision levels per channel (MIDPOINT) */
 } scene_ctx_t;
 
 static uint32_t hash2(int32_t a, int32_t b, uint32_t seed)
@@ -367,53 +360,15 @@ static void scene_velocity(const scene_ctx_t *sc, double x, double y, double t, 
     }
 }
 
-/* Drive code of linear light: round(255 lin^(1/gamma)), as the count of
- * decision levels ((k - 0.5) / 255)^gamma, k = 1..255, at or below lin
- * (binary search in a per-gamma table instead of a pow per channel). */
-static void code_table_init(code_table_t *t, double gamma)
-{
-    if (t->gamma == gamma) {
-        return;
-    }
-    t->level[0] = -1.0;
-    for (int k = 1; k < 256; k++) {
-        t->level[k] = pow((k - 0.5) / 255.0, gamma);
-    }
-    int k = 0;
-    for (int i = 0; i <= CODE_BUCKETS; i++) {
-        while (k < 255 && t->level[k + 1] <= (double)i / CODE_BUCKETS) {
-            k++;
-        }
-        t->lo[i] = (uint8_t)k;
-    }
-    t->gamma = gamma;
-}
-
-/* The largest k with level[k] <= lin (0 for negative or NaN): from the
- * bucket's lower bound up, a few steps at most (about 6 in the darkest
- * bucket at gamma 2.2, 0-1 elsewhere) instead of an 8-step binary search
- * with unpredictable branches; the same code. */
-static uint8_t encode_code(const code_table_t *t, double lin)
-{
-    if (!(lin >= 0.0)) {
-        return 0;
-    }
-    int k = t->lo[lin >= 1.0 ? CODE_BUCKETS : (int)(lin * CODE_BUCKETS)];
-    while (k < 255 && t->level[k + 1] <= lin) {
-        k++;
-    }
-    return (uint8_t)k;
-}
-
 static void src_samples(tdc_source_t *s, double t, int n, const double *xy, int spp, uint8_t *rgb, int16_t *mv,
                         double dt, tdc_mv_kind_t kind)
 {
     scene_ctx_t *sc = (scene_ctx_t *)s->ctx;
     int g = tdc_sim_spp_grid(spp);
     for (int k = 0; k < 3; k++) {
-        code_table_init(&sc->codes[k], s->gamma[k]);
+        tdc_sim_code_table_init(&sc->codes[k], s->gamma[k], TDC_SIM_CODES_MIDPOINT);
     }
-    const code_table_t *ct = sc->codes;
+    const tdc_sim_code_table_t *ct = sc->codes;
     const int blk = 256; /* samples per work item */
     TDC_PAR_FOR((size_t)n)
     for (int b = 0; b < (n + blk - 1) / blk; b++) {
@@ -438,7 +393,7 @@ static void src_samples(tdc_source_t *s, double t, int n, const double *xy, int 
                 }
             }
             for (int k = 0; k < 3; k++) {
-                rgb[3 * i + k] = encode_code(&ct[k], acc[k]);
+                rgb[3 * i + k] = tdc_sim_code_lookup(&ct[k], acc[k]);
             }
             if (mv) {
                 double v[2];
@@ -462,9 +417,9 @@ static int src_layers(tdc_source_t *s, double t, int n, const double *xy, double
     scene_ctx_t *sc = (scene_ctx_t *)s->ctx;
     const int fence = sc->p.kind == TDC_SCENE_FENCE;
     for (int k = 0; k < 3; k++) {
-        code_table_init(&sc->codes[k], s->gamma[k]);
+        tdc_sim_code_table_init(&sc->codes[k], s->gamma[k], TDC_SIM_CODES_MIDPOINT);
     }
-    const code_table_t *ct = sc->codes;
+    const tdc_sim_code_table_t *ct = sc->codes;
     for (int i = 0; i < n; i++) {
         double x = xy[2 * i], y = xy[2 * i + 1], c[3], v[2];
         if (fence) {
@@ -473,7 +428,7 @@ static int src_layers(tdc_source_t *s, double t, int n, const double *xy, double
             tdc_scene_radiance(s, x, y, t, c);
         }
         for (int k = 0; k < 3; k++) {
-            out->value[0][3 * i + k] = encode_code(&ct[k], c[k]);
+            out->value[0][3 * i + k] = tdc_sim_code_lookup(&ct[k], c[k]);
         }
         scene_velocity(sc, x, y, t, dt, TDC_MV_SURFACE, v);
         out->mv[0][2 * i] = tdc_sim_mv_q4(-v[0] * dt);
@@ -826,15 +781,15 @@ static int src_frame(tdc_source_t *s, double t, double jx, double jy, int spp, u
         return -1;
     }
     for (int k = 0; k < 3; k++) {
-        code_table_init(&sc->codes[k], s->gamma[k]);
+        tdc_sim_code_table_init(&sc->codes[k], s->gamma[k], TDC_SIM_CODES_MIDPOINT);
     }
-    const code_table_t *ct = sc->codes;
+    const tdc_sim_code_table_t *ct = sc->codes;
     size_t n = (size_t)s->width * s->height;
     TDC_PAR_FOR((size_t)s->width * s->height)
     for (int y = 0; y < s->height; y++) {
         for (size_t i = (size_t)y * s->width; i < (size_t)(y + 1) * s->width; i++) {
             for (int k = 0; k < 3; k++) {
-                rgb[3 * i + k] = encode_code(&ct[k], lin[3 * i + k]);
+                rgb[3 * i + k] = tdc_sim_code_lookup(&ct[k], lin[3 * i + k]);
             }
         }
     }

@@ -18,6 +18,7 @@
 #include "eye/tdc_eye.h"
 #include "panel/tdc_panel_sim.h"
 #include "simulator/tdc_sim_scene.h"
+#include "tdc_sim_codes.h"
 
 #define W 24
 #define H 16
@@ -197,6 +198,51 @@ static void test_scene_motion(void **state)
     s->destroy(s);
 }
 
+/* An OLED decode table (gammas 2.1, 2.2, 2.3) and n pseudo-random codes
+ * from seed: the code slices of the next two tests. */
+static void random_codes(double lut[3 * 256], uint8_t *codes, int n, uint32_t seed)
+{
+    for (int k = 0; k < 3; k++) {
+        for (int c = 0; c < 256; c++) {
+            lut[256 * k + c] = tdc_panel_sim_decode(c, 2.1 + 0.1 * k);
+        }
+    }
+    for (int i = 0; i < n; i++) {
+        seed = seed * 1664525u + 1013904223u;
+        codes[i] = (uint8_t)(seed >> 24);
+    }
+}
+
+/* The drive-code table (EXACT) gives tdc_sim_encode_code's code on both
+ * sides of every level, at 0, 1, out of range and on 10^5 random values,
+ * for gammas 1.8-2.6. */
+static void test_code_table_exact(void **state)
+{
+    (void)state;
+    static const double gammas[] = {1.8, 2.0, 2.19, 2.2, 2.2375, 2.4, 2.6};
+    static tdc_sim_code_table_t t; /* 6 kB */
+    for (size_t g = 0; g < sizeof(gammas) / sizeof(gammas[0]); g++) {
+        memset(&t, 0, sizeof(t));
+        tdc_sim_code_table_init(&t, gammas[g], TDC_SIM_CODES_EXACT);
+        for (int k = 1; k < 256; k++) {
+            const double at = t.level[k], below = nextafter(at, -1.0);
+            assert_int_equal(tdc_sim_code_lookup(&t, at), tdc_sim_encode_code(at, gammas[g]));
+            assert_int_equal(tdc_sim_code_lookup(&t, below), tdc_sim_encode_code(below, gammas[g]));
+            assert_int_equal(tdc_sim_code_lookup(&t, at), k); /* the level is where k starts */
+        }
+        static const double edge[] = {0.0, 1.0, -0.5, 1.5, 1e-300, 0.999999999};
+        for (size_t i = 0; i < sizeof(edge) / sizeof(edge[0]); i++) {
+            assert_int_equal(tdc_sim_code_lookup(&t, edge[i]), tdc_sim_encode_code(edge[i], gammas[g]));
+        }
+        uint32_t x = 3;
+        for (int i = 0; i < 100000; i++) {
+            x = x * 1664525u + 1013904223u;
+            const double lin = (double)x / 4294967296.0 * (i & 1 ? 1.0 : 0.01);
+            assert_int_equal(tdc_sim_code_lookup(&t, lin), tdc_sim_encode_code(lin, gammas[g]));
+        }
+    }
+}
+
 /* OLED slices kept as codes + the panel's decode table perceive exactly as
  * the decoded light itself (the ring keeps codes to save 7/8 of its memory),
  * at integer and fractional retinal shifts. */
@@ -206,15 +252,8 @@ static void test_code_slices_equal_light(void **state)
     enum { CW = 23, CH = 17, CN = CW * CH * 3 };
     uint8_t codes[CN];
     double lut[3 * 256], lin[CN], a[CN], b[CN];
-    for (int k = 0; k < 3; k++) {
-        for (int c = 0; c < 256; c++) {
-            lut[256 * k + c] = tdc_panel_sim_decode(c, 2.1 + 0.1 * k);
-        }
-    }
-    uint32_t x = 7;
+    random_codes(lut, codes, CN, 7);
     for (int i = 0; i < CN; i++) {
-        x = x * 1664525u + 1013904223u;
-        codes[i] = (uint8_t)(x >> 24);
         lin[i] = lut[256 * (i % 3) + codes[i]];
     }
     tdc_eye_cfg_t c = {CW, CH, 0.02, 5.0, 0.5, 1.0};
@@ -234,7 +273,8 @@ static void test_code_slices_equal_light(void **state)
 
 /* The luminance-only integral (the judge's retinal signal) is the
  * luminance of the per-channel one, for code and light slices, at integer,
- * fractional and edge-clamped shifts (to rounding: 1e-12 relative). */
+ * fractional and edge-clamped shifts (to rounding: 1e-12 relative); the
+ * sub-steps in one call give the bits of one call each. */
 static void test_accumulate_y_is_luminance(void **state)
 {
     (void)state;
@@ -243,15 +283,8 @@ static void test_accumulate_y_is_luminance(void **state)
     static const double shifts[4][2] = {{0.0, 0.0}, {2.0, -3.0}, {0.37, -1.61}, {-25.3, 19.2}};
     uint8_t codes[CN];
     double lut[3 * 256], lin[CN], a[CN], b[CP];
-    for (int k = 0; k < 3; k++) {
-        for (int c = 0; c < 256; c++) {
-            lut[256 * k + c] = tdc_panel_sim_decode(c, 2.1 + 0.1 * k);
-        }
-    }
-    uint32_t x = 11;
+    random_codes(lut, codes, CN, 11);
     for (int i = 0; i < CN; i++) {
-        x = x * 1664525u + 1013904223u;
-        codes[i] = (uint8_t)(x >> 24);
         lin[i] = 0.5 * lut[256 * (i % 3) + codes[i]] + 0.01 * (i % 7);
     }
     for (int src = 0; src < 2; src++) {
@@ -272,10 +305,27 @@ static void test_accumulate_y_is_luminance(void **state)
             assert_int_equal(tdc_eye_accumulate_plane(c, plane, CW, CH, shifts[k][0], shifts[k][1], 0.7), 0);
             assert_memory_equal(b, c, sizeof(c));
         }
+        /* the four shifts in one call (tdc_eye_accumulate_steps): the same
+         * bits as one call each, per channel and for the luminance plane */
+        static const double wg[4] = {0.7, 0.25, 1.5, 0.125};
+        double plane[CP], one[CN], all[CN];
+        tdc_eye_slice_luminance(&sl, y3, CW, CH, plane);
+        for (int lum = 0; lum < 2; lum++) {
+            memset(one, 0, sizeof(one));
+            memset(all, 0, sizeof(all));
+            for (int k = 0; k < 4; k++) {
+                assert_int_equal(lum ? tdc_eye_accumulate_plane(one, plane, CW, CH, shifts[k][0], shifts[k][1], wg[k])
+                                     : tdc_eye_accumulate(one, &sl, CW, CH, shifts[k][0], shifts[k][1], wg[k]),
+                                 0);
+            }
+            assert_int_equal(tdc_eye_accumulate_steps(all, &sl, lum ? plane : NULL, CW, CH, 4, &shifts[0][0], wg), 0);
+            assert_memory_equal(one, all, sizeof(one));
+        }
     }
 }
 
 TDC_TEST_MAIN(
+    cmocka_unit_test(test_code_table_exact),
     cmocka_unit_test(test_code_slices_equal_light),
     cmocka_unit_test(test_accumulate_y_is_luminance),
     cmocka_unit_test(test_eye_steady),

@@ -8,7 +8,8 @@
 # the same JOD with 1 and 2 threads; series.csv's jod column (the
 # refresh's JOD from jod_series.csv, empty in the warm-up); the heat maps
 # (trm50's visible difference above full's); --judge legacy (no JOD, said
-# so), a run within the warm-up (not judged, said so), a bad --judge.
+# so), --metric-every 9 (JODs unchanged, the legacy cadence said), a run
+# within the warm-up (not judged, said so), a bad --judge.
 # Usage: tests/unit/test_sim_jod.sh TDC_SIM
 sim=$1
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
@@ -63,6 +64,16 @@ mkdir -p "$tmp/leg"
 [ ! -e "$tmp/leg/jod.csv" ] && [ ! -e "$tmp/leg/heatmap_full.png" ] || fail "--judge legacy wrote jod.csv or a heat map"
 grep -q '^Judge: legacy' "$tmp/leg/summary.md" || fail "--judge legacy: summary.md does not say so"
 grep -q '| JOD' "$tmp/leg/summary.md" && fail "--judge legacy: summary.md has a JOD column"
+# --metric-every 9 (the legacy columns at a sparse cadence): the same JODs
+# and JOD series bit for bit, fewer legacy rows, and the reports say so
+mkdir -p "$tmp/k9"
+"$sim" -q -s pan -r 90 -g 64x64 --mono -m full,trm50 -n 45 --metric-every 9 -o "$tmp/k9" > /dev/null 2>&1 ||
+    fail "--metric-every 9 exited $?"
+cmp -s "$j" "$tmp/k9/jod.csv" && cmp -s "$s" "$tmp/k9/jod_series.csv" || fail "--metric-every 9 changed the JODs"
+[ "$(wc -l < "$tmp/k9/series.csv")" -lt "$(wc -l < "$se")" ] || fail "--metric-every 9: as many legacy rows as every refresh"
+grep -q '^Legacy columns .* every 9th refresh only .*; JOD at every refresh' "$tmp/k9/summary.md" ||
+    fail "--metric-every 9: summary.md does not say the legacy cadence"
+grep -q '^Legacy columns' "$tmp/t1/summary.md" && fail "every refresh: summary.md has a cadence note"
 # a run no longer than the warm-up (23 refreshes at 90 Hz): not judged, said so
 mkdir -p "$tmp/short"
 "$sim" -q -s pan -r 90 -g 64x64 --mono -m full -n 23 -o "$tmp/short" > /dev/null 2>&1 || fail "-n 23 exited $?"
