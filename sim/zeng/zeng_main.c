@@ -6,9 +6,11 @@
  * evaluated frames; and the cost of the dual vectors (a G-buffer lookup)
  * beside the primary rays (§7).
  *
- *   tdc-zeng --scene fence|glossy|occlusion [--size WxH] [--frames N]
+ *   tdc-zeng --scene fence|glossy|occlusion|pinkroom [--size WxH] [--frames N]
  *            [--eval-from K] [--seeds "1 2 3 4 5"] [--gt-spp 1024]
- *            [--rough SIGMA] [--clamp-on raw|filtered] [--jod PPD] [--csv FILE] [--png FILE]
+ *            [--rough SIGMA] [--clamp-on raw|filtered] [--glossy-filter llk|fixed]
+ *            [--no-falloff 0|1] [--spread K] [--ours-clamp K] [--jod PPD] [--csv FILE]
+ *            [--png FILE]
  *
  * CSV rows: scene,seed,method,rmse,ssim,rmse_region,ssim_region,region_px
  * (with --jod also jod,jod_region: FovVideoVDP's JOD of the evaluated frames
@@ -36,9 +38,15 @@
 #define EXIT_NOMEM TDC_EXIT_NOMEM
 
 static const char help_text[] =
-    "usage: tdc-zeng --scene fence|glossy|occlusion [--size WxH] [--frames N] [--eval-from K]\n"
+    "usage: tdc-zeng --scene fence|glossy|occlusion|pinkroom [--size WxH] [--frames N] [--eval-from K]\n"
     "                [--seeds \"1 2 3 4 5\"] [--gt-spp 1024] [--rough SIGMA] [--clamp-on raw|filtered]\n"
+    "                [--glossy-filter llk|fixed] [--no-falloff 0|1] [--spread K] [--ours-clamp K]\n"
     "                [--jod PPD] [--csv FILE] [--png FILE]\n"
+    "--glossy-filter: the glossy layer's spatial filter: [LLK*19]'s lobe footprint (llk, default) or the\n"
+    "fixed 15x15 joint bilateral, sigma 3 px (fixed)\n"
+    "--no-falloff 1: eq. 4's alpha^V off (alpha everywhere) for the shadow scenes\n"
+    "--spread K: eq. 5's spread along the lobe footprint's axes times K (1, the paper's; 0: none)\n"
+    "--ours-clamp K: ours' clamp at mu +- K sigma (3, sec. 5)\n"
     "--jod PPD: also FovVideoVDP's JOD of the evaluated frames (60 Hz, PPD pixels per degree), whole frame\n"
     "and effect region\n"
     "--clamp-on: the clamped methods' mu +- k sigma over the 1-sample frame (raw, default) or over the\n"
@@ -95,7 +103,8 @@ int main(int argc, char **argv)
     int w = 160, h = 120, frames = 40, eval_from = 16, gt_spp = 1024;
     double rough = 0; /* 0: the scene's own */
     double jod_ppd = 0; /* 0: no JOD */
-    int clamp_filtered = 0;
+    int clamp_filtered = 0, glossy_fixed = 0, no_falloff = 0;
+    double spread = 1.0, ours_k = 3.0;
     if (argc == 2 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
         fputs(help_text, stdout);
         return 0;
@@ -132,6 +141,26 @@ int main(int argc, char **argv)
                 return usage("--clamp-on: raw or filtered");
             }
             clamp_filtered = !strcmp(v, "filtered");
+        } else if (!strcmp(a, "--glossy-filter")) {
+            if (strcmp(v, "llk") && strcmp(v, "fixed")) {
+                return usage("--glossy-filter: llk or fixed");
+            }
+            glossy_fixed = !strcmp(v, "fixed");
+        } else if (!strcmp(a, "--no-falloff")) {
+            if (strcmp(v, "0") && strcmp(v, "1")) {
+                return usage("--no-falloff: 0 or 1");
+            }
+            no_falloff = !strcmp(v, "1");
+        } else if (!strcmp(a, "--spread")) {
+            spread = atof(v);
+            if (!(spread >= 0 && spread <= 4)) {
+                return usage("--spread: eq. 5's spread scale, 0..4");
+            }
+        } else if (!strcmp(a, "--ours-clamp")) {
+            ours_k = atof(v);
+            if (!(ours_k > 0 && ours_k <= 10)) {
+                return usage("--ours-clamp: sigmas, in (0, 10]");
+            }
         } else if (!strcmp(a, "--jod")) {
             jod_ppd = atof(v);
             if (!(jod_ppd >= 1 && jod_ppd <= 200)) {
@@ -145,7 +174,7 @@ int main(int argc, char **argv)
     }
     const int kind = scene_name ? zs_scene_by_name(scene_name) : -1;
     if (kind < 0) {
-        return usage("--scene: fence, glossy or occlusion");
+        return usage("--scene: fence, glossy, occlusion or pinkroom");
     }
     const int k = (int)lround(sqrt((double)gt_spp));
     if (k * k != gt_spp || gt_spp < 1) {
@@ -175,6 +204,9 @@ int main(int argc, char **argv)
     }
     zs_scene_t sc;
     zs_scene_init(&sc, kind);
+    sc.glossy_fixed = glossy_fixed;
+    sc.no_falloff = no_falloff;
+    sc.spread = spread;
     for (int o = 0; o < sc.nobj && rough > 0; o++) {
         if (sc.obj[o].ks > 0) {
             sc.obj[o].rough = rough;
@@ -220,6 +252,7 @@ int main(int argc, char **argv)
             }
             st[m].seed = (uint64_t)seeds[si];
             st[m].clamp_filtered = clamp_filtered;
+            st[m].clamp_k = ours_k;
         }
         /* the JOD judges: jm[m][0] whole frame, [1] region; the first used
          * method's whole-frame judge holds the reference, the others share it
