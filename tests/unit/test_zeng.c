@@ -393,6 +393,17 @@ static void test_glossy_footprint(void **state)
         e_raw += (f.layer[p] - gt[p]) * (f.layer[p] - gt[p]);
         e_filt += (out[p] - gt[p]) * (out[p] - gt[p]);
     }
+    /* the glossy layer's filter is this kernel on the floor (same object
+     * and normal), not the fixed 15x15 stand-in */
+    static double ref[3 * N], tmp2[3 * N];
+    zp_glossy_footprint(&s, &f, sg);
+    const zf_guide_t g = {W, H, f.id, f.depth, f.nrm};
+    const zf_edges_t e = {0.0, 32, 1};
+    zf_bilateral(f.layer, 3, &g, &e, 15, 0.0, sg, ref, tmp2);
+    assert_memory_equal(out, ref, sizeof out);
+    s.glossy_fixed = 1;
+    zp_spatial(&s, &f, f.layer, ref, tmp2);
+    assert_memory_not_equal(out, ref, sizeof out);
     print_message("glossy footprint: floor RMSE raw %.4f, [LLK*19]-filtered %.4f\n", sqrt(e_raw / (3 * N)),
                   sqrt(e_filt / (3 * N)));
     assert_true(e_filt < 0.25 * e_raw);
