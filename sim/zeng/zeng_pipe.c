@@ -294,6 +294,40 @@ static void shadow_vectors(zp_state_t *st, const zs_scene_t *s, const zs_frame_t
     }
 }
 
+/* Eq. 5's vectors weight-averaged with the glossy filter's kernel (the
+ * reading of §4.2's "similar to the shadow motion vectors", whose
+ * displacements §4.1 propagates "(weight averaged) into the center of each
+ * filter"): the displacement of every glossy pixel with a vector, averaged
+ * with [LLK*19]'s weights; mv holds the previous positions (W*H*2). */
+static void glossy_vectors_splat(zp_state_t *st, const zs_scene_t *s, const zs_frame_t *f, double *mv)
+{
+    const int w = f->w, h = f->h;
+    const size_t n = (size_t)w * h;
+    double *sg = malloc(n * sizeof(double));
+    if (!sg) {
+        return; /* keep the per-pixel vectors */
+    }
+    zp_glossy_footprint(s, f, sg);
+    for (size_t p = 0; p < n; p++) {
+        const int x = (int)(p % w), y = (int)(p / w);
+        const double m = f->id[p] >= 0 && s->obj[f->id[p]].ks > 0 && f->mv_eff[2 * p] > -1e8 ? 1.0 : 0.0;
+        st->mvx[3 * p] = m * (f->mv_eff[2 * p] - (x + 0.5));
+        st->mvx[3 * p + 1] = m * (f->mv_eff[2 * p + 1] - (y + 0.5));
+        st->mvx[3 * p + 2] = m;
+    }
+    zf_guide_t g = guide_of(f);
+    const zf_edges_t e = {0.0, 32, 1};
+    zf_bilateral(st->mvx, CH, &g, &e, LLK_R, 0.0, sg, st->tmp2, st->tmp);
+    for (size_t p = 0; p < n; p++) {
+        const double m = st->tmp2[3 * p + 2];
+        if (m > 1e-6 && f->id[p] >= 0 && s->obj[f->id[p]].ks > 0) {
+            mv[2 * p] = (double)(p % w) + 0.5 + st->tmp2[3 * p] / m;
+            mv[2 * p + 1] = (double)(p / w) + 0.5 + st->tmp2[3 * p + 1] / m;
+        }
+    }
+    free(sg);
+}
+
 /* A-SVGF's temporal gradient (Schied et al. 2018, simplified to one
  * re-shaded sample per 3x3 stratum, no gradient a-trous): lambda per pixel
  * in st->lam. */
@@ -477,6 +511,9 @@ void zp_step(zp_state_t *st, const zs_scene_t *s, int frame, const zs_frame_t *f
                 mv[2 * p] = src[2 * p];
                 mv[2 * p + 1] = src[2 * p + 1];
             }
+        }
+        if (st->method == ZM_OURS && s->glossy_splat) {
+            glossy_vectors_splat(st, s, f, mv);
         }
     } else if (st->method == ZM_OURS && s->noisy == ZL_INDIRECT) {
         for (int y = 0; y < h; y++) {

@@ -68,6 +68,11 @@ typedef struct {
     /* eq. 5's spread along the footprint's axes, scaled (1: the paper's; 0:
      * the sampled hit's virtual image alone; tdc-zeng --spread) */
     double spread;
+    /* 1: eq. 5's vectors weight-averaged over the glossy filter's kernel
+     * before the fetch, as §4.1 does with the shadow vectors (§4.2: "The
+     * usage of our stochastic glossy reflection motion vectors is similar to
+     * the shadow motion vectors"); 0: one per pixel (tdc-zeng --glossy-mv) */
+    int glossy_splat;
 } zs_scene_t;
 
 typedef struct {
