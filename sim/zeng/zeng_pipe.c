@@ -88,42 +88,35 @@ static zf_guide_t guide_of(const zs_frame_t *f)
 void zp_glossy_footprint(const zs_scene_t *s, const zs_frame_t *f, double *sg)
 {
     const int w = f->w, h = f->h;
+    const size_t n = (size_t)w * h;
     const double fpx = 0.5 * h / tan(0.5 * s->vfov);
-    double *ratio = malloc((size_t)w * h * sizeof(double));
-    for (int y = 0; y < h; y++) {
-        for (int x = 0; x < w; x++) {
-            const size_t p = (size_t)y * w + x;
-            /* eye distance from the view depth: the pixel ray's length per
-             * unit depth */
-            const double px = x + 0.5 - 0.5 * w, py = y + 0.5 - 0.5 * h;
-            const double dv = f->depth[p] * sqrt(fpx * fpx + px * px + py * py) / fpx;
-            const double dh = f->hitd[p];
-            const double r = isfinite(dh) ? dh / (dv + dh) : 1.0;
-            if (ratio) {
-                ratio[p] = r;
-            } else {
-                sg[p] = r; /* no scratch: the pixel's own ratio */
-            }
-        }
+    for (size_t p = 0; p < n; p++) {
+        /* eye distance from the view depth: the pixel ray's length per unit
+         * depth */
+        const double px = (double)(p % w) + 0.5 - 0.5 * w, py = (double)(p / w) + 0.5 - 0.5 * h;
+        const double dv = f->depth[p] * sqrt(fpx * fpx + px * px + py * py) / fpx, dh = f->hitd[p];
+        sg[p] = isfinite(dh) ? dh / (dv + dh) : 1.0;
+    }
+    double *ratio = malloc(n * sizeof(double)); /* without it: each pixel's own ratio */
+    if (ratio) {
+        memcpy(ratio, sg, n * sizeof(double));
     }
     for (int y = 0; y < h; y++) {
         for (int x = 0; x < w; x++) {
             const size_t p = (size_t)y * w + x;
             const int id = f->id[p];
-            double r = ratio ? 0.0 : sg[p];
-            if (ratio) {
-                int cnt = 0;
-                for (int j = -2; j <= 2; j++) {
-                    for (int i = -2; i <= 2; i++) {
-                        const int xx = x + i, yy = y + j;
-                        if (xx >= 0 && yy >= 0 && xx < w && yy < h && f->id[(size_t)yy * w + xx] == id) {
-                            r += ratio[(size_t)yy * w + xx];
-                            cnt++;
-                        }
+            double r = 0;
+            int cnt = 0;
+            for (int j = -2; j <= 2 && ratio; j++) {
+                for (int i = -2; i <= 2; i++) {
+                    const int xx = x + i, yy = y + j;
+                    if (xx >= 0 && yy >= 0 && xx < w && yy < h && f->id[(size_t)yy * w + xx] == id) {
+                        r += ratio[(size_t)yy * w + xx];
+                        cnt++;
                     }
                 }
-                r /= cnt;
             }
+            r = cnt ? r / cnt : sg[p];
             const double rough = id >= 0 ? s->obj[id].rough : 0.0;
             sg[p] = rough > 0 ? fmin(fmax(fpx * tan(rough) * r, 0.5), LLK_R / 2.5) : 0.0;
         }
