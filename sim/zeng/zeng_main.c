@@ -103,6 +103,26 @@ static void jod_lum(const double *enc, size_t n, const uint8_t *mask, const floa
     }
 }
 
+/* The options that pick one of two words (the first the default). */
+enum { PICK_CLAMP_ON, PICK_GLOSSY_FILTER, PICK_NO_FALLOFF, PICK_GLOSSY_MV, PICK_FETCH_ERROR, PICK_N };
+static const struct {
+    const char *opt, *word[2];
+} k_pick[PICK_N] = {{"--clamp-on", {"raw", "filtered"}},
+                    {"--glossy-filter", {"llk", "fixed"}},
+                    {"--no-falloff", {"0", "1"}},
+                    {"--glossy-mv", {"pixel", "splat"}},
+                    {"--fetch-error", {"0", "1"}}};
+
+static int pick_option(const char *a)
+{
+    for (int k = 0; k < PICK_N; k++) {
+        if (!strcmp(a, k_pick[k].opt)) {
+            return k;
+        }
+    }
+    return -1;
+}
+
 /* The error of a glossy vector alone: the previous frame's ground truth
  * fetched where each vector points (bilinear, taps on the same object, as
  * zp_step fetches the history) against this frame's ground truth, over the
@@ -137,9 +157,8 @@ int main(int argc, char **argv)
     int w = 160, h = 120, frames = 40, eval_from = 16, gt_spp = 1024;
     double rough = 0; /* 0: the scene's own */
     double jod_ppd = 0; /* 0: no JOD */
-    int clamp_filtered = 0, glossy_fixed = 0, no_falloff = 0;
     double spread = 1.0, ours_k = 3.0;
-    int fetch_error = 0, glossy_splat = 0;
+    int picked[PICK_N] = {0}, pk; /* the two-word options: 1 when the second word was given */
     if (argc == 2 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
         fputs(help_text, stdout);
         return 0;
@@ -171,21 +190,13 @@ int main(int argc, char **argv)
             if (!(rough > 0 && rough < 1)) {
                 return usage("--rough: the glossy lobe's sigma in radians, in (0, 1)");
             }
-        } else if (!strcmp(a, "--clamp-on")) {
-            if (strcmp(v, "raw") && strcmp(v, "filtered")) {
-                return usage("--clamp-on: raw or filtered");
+        } else if ((pk = pick_option(a)) >= 0) {
+            if (strcmp(v, k_pick[pk].word[0]) && strcmp(v, k_pick[pk].word[1])) {
+                char why[80];
+                snprintf(why, sizeof why, "%s: %s or %s", a, k_pick[pk].word[0], k_pick[pk].word[1]);
+                return usage(why);
             }
-            clamp_filtered = !strcmp(v, "filtered");
-        } else if (!strcmp(a, "--glossy-filter")) {
-            if (strcmp(v, "llk") && strcmp(v, "fixed")) {
-                return usage("--glossy-filter: llk or fixed");
-            }
-            glossy_fixed = !strcmp(v, "fixed");
-        } else if (!strcmp(a, "--no-falloff")) {
-            if (strcmp(v, "0") && strcmp(v, "1")) {
-                return usage("--no-falloff: 0 or 1");
-            }
-            no_falloff = !strcmp(v, "1");
+            picked[pk] = !strcmp(v, k_pick[pk].word[1]);
         } else if (!strcmp(a, "--spread")) {
             spread = atof(v);
             if (!(spread >= 0 && spread <= 4)) {
@@ -196,16 +207,6 @@ int main(int argc, char **argv)
             if (!(ours_k > 0 && ours_k <= 10)) {
                 return usage("--ours-clamp: sigmas, in (0, 10]");
             }
-        } else if (!strcmp(a, "--glossy-mv")) {
-            if (strcmp(v, "pixel") && strcmp(v, "splat")) {
-                return usage("--glossy-mv: pixel or splat");
-            }
-            glossy_splat = !strcmp(v, "splat");
-        } else if (!strcmp(a, "--fetch-error")) {
-            if (strcmp(v, "0") && strcmp(v, "1")) {
-                return usage("--fetch-error: 0 or 1");
-            }
-            fetch_error = !strcmp(v, "1");
         } else if (!strcmp(a, "--jod")) {
             jod_ppd = atof(v);
             if (!(jod_ppd >= 1 && jod_ppd <= 200)) {
@@ -217,6 +218,7 @@ int main(int argc, char **argv)
             return usage(a);
         }
     }
+    const int clamp_filtered = picked[PICK_CLAMP_ON], fetch_error = picked[PICK_FETCH_ERROR];
     const int kind = scene_name ? zs_scene_by_name(scene_name) : -1;
     if (kind < 0) {
         return usage("--scene: fence, glossy, occlusion or pinkroom");
@@ -249,10 +251,10 @@ int main(int argc, char **argv)
     }
     zs_scene_t sc;
     zs_scene_init(&sc, kind);
-    sc.glossy_fixed = glossy_fixed;
-    sc.no_falloff = no_falloff;
+    sc.glossy_fixed = picked[PICK_GLOSSY_FILTER];
+    sc.no_falloff = picked[PICK_NO_FALLOFF];
     sc.spread = spread;
-    sc.glossy_splat = glossy_splat;
+    sc.glossy_splat = picked[PICK_GLOSSY_MV];
     for (int o = 0; o < sc.nobj && rough > 0; o++) {
         if (sc.obj[o].ks > 0) {
             sc.obj[o].rough = rough;
