@@ -34,15 +34,17 @@ def binary():
     return os.environ.get("TDC_ZENG") or os.path.join(REPO, "build", "gcc-O2", "tdc-zeng")
 
 
-def run_scene(exp, scene):
-    """Rows of tdc-zeng's CSV for one scene (cached in the group's result folder)."""
+def run_scene(exp, scene, variant=()):
+    """Rows of tdc-zeng's CSV for one scene (cached in the group's result folder); variant: extra tdc-zeng
+    arguments (a pipeline switched off for an ablation row)."""
     size, frames, first = SCALES.get(exp.scale, SCALES["headset"])
     d = os.path.join(exp.out, exp.group)
     os.makedirs(d, exist_ok=True)
-    path = os.path.join(d, "%s-%s-%d-jod%s.csv" % (scene, size, frames, JOD_PPD))
+    tag = "".join(a.strip("-") for a in variant)
+    path = os.path.join(d, "%s-%s-%d-jod%s%s.csv" % (scene, size, frames, JOD_PPD, "-" + tag if tag else ""))
     if not os.path.isfile(path):
         cmd = [binary(), "--scene", scene, "--size", size, "--frames", str(frames), "--eval-from", str(first),
-               "--seeds", SEEDS, "--gt-spp", "1024", "--jod", JOD_PPD, "--csv", path + ".tmp"]
+               "--seeds", SEEDS, "--gt-spp", "1024", "--jod", JOD_PPD, "--csv", path + ".tmp"] + list(variant)
         subprocess.run(cmd, check=True)
         os.replace(path + ".tmp", path)
     with open(path, newline="", encoding="utf-8") as f:
@@ -116,6 +118,17 @@ def claims(exp):
         for b in baselines:
             compare(exp, scene, rows, "ours", b, run, region=False)
         compare(exp, scene, rows, "ours", "trad-clamp", run, region=True)
+        if scene == "pinkroom":
+            # "... thanks to our cosine falloff heuristic": ours against ours with eq. 4 switched off (alpha^V =
+            # alpha everywhere), the same seeds and frames
+            nf, _, _, _, _ = run_scene(exp, scene, ("--no-falloff", "1"))
+            exp.judge(FIG[scene], SENTENCE[scene], "pinkroom, whole frame: ours beats ours without eq. 4's cosine "
+                      "falloff (JOD; RMSE and SSIM beside)", "the falloff helps where the flat receiver fails",
+                      col(rows, "ours", "jod"), col(nf, "ours", "jod"), "better", "jod", "ours", "ours-no-falloff",
+                      3, run=run + "; tdc-zeng --no-falloff 1 for the second",
+                      secondary=[(m, col(rows, "ours", m), col(nf, "ours", m), 4) for m in ("rmse", "ssim")],
+                      note="JOD of the evaluated frames as a 60 Hz video at %s pixels per degree (tdc-zeng --jod)" %
+                      JOD_PPD)
         methods = [m for m in ("trad", "trad-clamp", "spec", "ours", "svgf", "asvgf") if col(rows, m, "rmse")]
         extra += ["", "**%s** %s, frames %d-%d (mean ± spread over 5 seeds):" % (scene, size, first, frames - 1), "",
                   "| method | JOD | RMSE | SSIM | JOD region | RMSE region | SSIM region |",
