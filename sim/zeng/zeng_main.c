@@ -6,9 +6,12 @@
  * evaluated frames; and the cost of the dual vectors (a G-buffer lookup)
  * beside the primary rays (§7).
  *
- *   tdc-zeng --scene fence|glossy|occlusion [--size WxH] [--frames N]
+ *   tdc-zeng --scene fence|glossy|occlusion|pinkroom [--size WxH] [--frames N]
  *            [--eval-from K] [--seeds "1 2 3 4 5"] [--gt-spp 1024]
- *            [--rough SIGMA] [--clamp-on raw|filtered] [--jod PPD] [--csv FILE] [--png FILE]
+ *            [--rough SIGMA] [--clamp-on raw|filtered] [--glossy-filter llk|fixed]
+ *            [--no-falloff 0|1] [--spread K] [--ours-clamp K] [--glossy-mv pixel|splat]
+ *            [--fetch-error 0|1]
+ *            [--jod PPD] [--csv FILE] [--png FILE]
  *
  * CSV rows: scene,seed,method,rmse,ssim,rmse_region,ssim_region,region_px
  * (with --jod also jod,jod_region: FovVideoVDP's JOD of the evaluated frames
@@ -28,6 +31,7 @@
 #include "tdc_png.h"
 #include "tdc_tool.h"
 #include "zeng/zeng_eval.h"
+#include "zeng/zeng_filter.h"
 #include "zeng/zeng_pipe.h"
 
 /* the one exit-code table (common/tdc_exit.h) */
@@ -36,9 +40,19 @@
 #define EXIT_NOMEM TDC_EXIT_NOMEM
 
 static const char help_text[] =
-    "usage: tdc-zeng --scene fence|glossy|occlusion [--size WxH] [--frames N] [--eval-from K]\n"
+    "usage: tdc-zeng --scene fence|glossy|occlusion|pinkroom [--size WxH] [--frames N] [--eval-from K]\n"
     "                [--seeds \"1 2 3 4 5\"] [--gt-spp 1024] [--rough SIGMA] [--clamp-on raw|filtered]\n"
-    "                [--jod PPD] [--csv FILE] [--png FILE]\n"
+    "                [--glossy-filter llk|fixed] [--no-falloff 0|1] [--spread K] [--ours-clamp K]\n"
+    "                [--glossy-mv pixel|splat] [--fetch-error 0|1] [--jod PPD] [--csv FILE] [--png FILE]\n"
+    "--glossy-filter: the glossy layer's spatial filter: [LLK*19]'s lobe footprint (llk, default) or the\n"
+    "fixed 15x15 joint bilateral, sigma 3 px (fixed)\n"
+    "--no-falloff 1: eq. 4's alpha^V off (alpha everywhere) for the shadow scenes\n"
+    "--spread K: eq. 5's spread along the lobe footprint's axes times K (1, the paper's; 0: none)\n"
+    "--ours-clamp K: ours' clamp at mu +- K sigma (3, sec. 5)\n"
+    "--glossy-mv splat: eq. 5's vectors weight-averaged over the glossy filter's kernel (as sec. 4.1's\n"
+    "shadow vectors); pixel (default): one per pixel\n"
+    "--fetch-error 1: glossy scene, on stderr: each vector's fetch from the previous frame's ground truth\n"
+    "against this frame's (RMSE of the linear layer over the glossy floor): the error of the vector alone\n"
     "--jod PPD: also FovVideoVDP's JOD of the evaluated frames (60 Hz, PPD pixels per degree), whole frame\n"
     "and effect region\n"
     "--clamp-on: the clamped methods' mu +- k sigma over the 1-sample frame (raw, default) or over the\n"
@@ -89,13 +103,62 @@ static void jod_lum(const double *enc, size_t n, const uint8_t *mask, const floa
     }
 }
 
+/* The options that pick one of two words (the first the default). */
+enum { PICK_CLAMP_ON, PICK_GLOSSY_FILTER, PICK_NO_FALLOFF, PICK_GLOSSY_MV, PICK_FETCH_ERROR, PICK_N };
+static const struct {
+    const char *opt, *word[2];
+} k_pick[PICK_N] = {{"--clamp-on", {"raw", "filtered"}},
+                    {"--glossy-filter", {"llk", "fixed"}},
+                    {"--no-falloff", {"0", "1"}},
+                    {"--glossy-mv", {"pixel", "splat"}},
+                    {"--fetch-error", {"0", "1"}}};
+
+static int pick_option(const char *a)
+{
+    for (int k = 0; k < PICK_N; k++) {
+        if (!strcmp(a, k_pick[k].opt)) {
+            return k;
+        }
+    }
+    return -1;
+}
+
+/* The error of a glossy vector alone: the previous frame's ground truth
+ * fetched where each vector points (bilinear, taps on the same object, as
+ * zp_step fetches the history) against this frame's ground truth, over the
+ * glossy floor (linear layer, 3 channels).  fe[v]: squared error, pixels,
+ * fetches that found no tap; v = trad, spec, ours. */
+static void fetch_err(const zs_scene_t *sc, const zs_frame_t *f, const zs_frame_t *pf, const double *gt_prev,
+                      const double *gt_now, double fe[3][3])
+{
+    const int w = f->w, h = f->h;
+    for (size_t p = 0; p < (size_t)w * h; p++) {
+        if (f->id[p] < 0 || sc->obj[f->id[p]].ks <= 0) {
+            continue;
+        }
+        const double *vec[3] = {f->mv_trad + 2 * p, f->mv_spec + 2 * p, f->mv_eff + 2 * p};
+        for (int v = 0; v < 3; v++) {
+            double hv[3];
+            if (vec[v][0] < -1e8 || !zf_fetch(gt_prev, 3, w, h, vec[v][0], vec[v][1], pf->id, f->id[p], hv)) {
+                fe[v][2]++;
+                continue;
+            }
+            for (int c = 0; c < 3; c++) {
+                fe[v][0] += (hv[c] - gt_now[3 * p + c]) * (hv[c] - gt_now[3 * p + c]) / 3.0;
+            }
+            fe[v][1]++;
+        }
+    }
+}
+
 int main(int argc, char **argv)
 {
     const char *scene_name = NULL, *csv = NULL, *png = NULL, *seeds_s = "1 2 3 4 5";
     int w = 160, h = 120, frames = 40, eval_from = 16, gt_spp = 1024;
     double rough = 0; /* 0: the scene's own */
     double jod_ppd = 0; /* 0: no JOD */
-    int clamp_filtered = 0;
+    double spread = 1.0, ours_k = 3.0;
+    int picked[PICK_N] = {0}, pk; /* the two-word options: 1 when the second word was given */
     if (argc == 2 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
         fputs(help_text, stdout);
         return 0;
@@ -127,11 +190,23 @@ int main(int argc, char **argv)
             if (!(rough > 0 && rough < 1)) {
                 return usage("--rough: the glossy lobe's sigma in radians, in (0, 1)");
             }
-        } else if (!strcmp(a, "--clamp-on")) {
-            if (strcmp(v, "raw") && strcmp(v, "filtered")) {
-                return usage("--clamp-on: raw or filtered");
+        } else if ((pk = pick_option(a)) >= 0) {
+            if (strcmp(v, k_pick[pk].word[0]) && strcmp(v, k_pick[pk].word[1])) {
+                char why[80];
+                snprintf(why, sizeof why, "%s: %s or %s", a, k_pick[pk].word[0], k_pick[pk].word[1]);
+                return usage(why);
             }
-            clamp_filtered = !strcmp(v, "filtered");
+            picked[pk] = !strcmp(v, k_pick[pk].word[1]);
+        } else if (!strcmp(a, "--spread")) {
+            spread = atof(v);
+            if (!(spread >= 0 && spread <= 4)) {
+                return usage("--spread: eq. 5's spread scale, 0..4");
+            }
+        } else if (!strcmp(a, "--ours-clamp")) {
+            ours_k = atof(v);
+            if (!(ours_k > 0 && ours_k <= 10)) {
+                return usage("--ours-clamp: sigmas, in (0, 10]");
+            }
         } else if (!strcmp(a, "--jod")) {
             jod_ppd = atof(v);
             if (!(jod_ppd >= 1 && jod_ppd <= 200)) {
@@ -143,9 +218,10 @@ int main(int argc, char **argv)
             return usage(a);
         }
     }
+    const int clamp_filtered = picked[PICK_CLAMP_ON], fetch_error = picked[PICK_FETCH_ERROR];
     const int kind = scene_name ? zs_scene_by_name(scene_name) : -1;
     if (kind < 0) {
-        return usage("--scene: fence, glossy or occlusion");
+        return usage("--scene: fence, glossy, occlusion or pinkroom");
     }
     const int k = (int)lround(sqrt((double)gt_spp));
     if (k * k != gt_spp || gt_spp < 1) {
@@ -175,6 +251,10 @@ int main(int argc, char **argv)
     }
     zs_scene_t sc;
     zs_scene_init(&sc, kind);
+    sc.glossy_fixed = picked[PICK_GLOSSY_FILTER];
+    sc.no_falloff = picked[PICK_NO_FALLOFF];
+    sc.spread = spread;
+    sc.glossy_splat = picked[PICK_GLOSSY_MV];
     for (int o = 0; o < sc.nobj && rough > 0; o++) {
         if (sc.obj[o].ks > 0) {
             sc.obj[o].rough = rough;
@@ -208,6 +288,8 @@ int main(int argc, char **argv)
     fprintf(out, "scene,seed,method,rmse,ssim,rmse_region,ssim_region,region_px%s\n", jod_ppd > 0 ? ",jod,jod_region" : "");
     double t_primary = 0, t_dual = 0;
     long n_cost = 0;
+    double fe[3][3]; /* trad, spec, ours: squared error, pixels, missed fetches */
+    memset(fe, 0, sizeof fe);
     for (int si = 0; si < nseeds; si++) {
         zp_state_t st[ZM_N];
         acc_t acc[ZM_N];
@@ -220,6 +302,7 @@ int main(int argc, char **argv)
             }
             st[m].seed = (uint64_t)seeds[si];
             st[m].clamp_filtered = clamp_filtered;
+            st[m].clamp_k = ours_k;
         }
         /* the JOD judges: jm[m][0] whole frame, [1] region; the first used
          * method's whole-frame judge holds the reference, the others share it
@@ -285,6 +368,9 @@ int main(int argc, char **argv)
                 t_primary += t1 - t0;
                 t_dual += t2 - t1;
                 n_cost++;
+            }
+            if (fetch_error && sc.noisy == ZL_GLOSSY && fr > g0) {
+                fetch_err(&sc, f, pf, gt + (size_t)(fr - 1 - g0) * n * 3, gt + (size_t)(fr - g0) * n * 3, fe);
             }
             for (int m = 0; m < ZM_N; m++) {
                 if (use[m]) {
@@ -386,6 +472,13 @@ int main(int argc, char **argv)
         if (jo >= 0) {
             tdc_fvvdp_free(jm[jo][1]);
             tdc_fvvdp_free(jm[jo][0]);
+        }
+    }
+    if (fetch_error && sc.noisy == ZL_GLOSSY) {
+        static const char *const fname[3] = {"trad", "spec", "ours (eq. 5)"};
+        for (int v = 0; v < 3; v++) {
+            fprintf(stderr, "tdc-zeng: fetch error, %s vectors: RMSE %.5f over %.0f floor pixels (%.0f fetches missed)\n",
+                    fname[v], sqrt(fe[v][0] / fmax(fe[v][1], 1.0)), fe[v][1], fe[v][2]);
         }
     }
     fprintf(out, "cost,primary_ms_per_frame,dual_ms_per_frame,dual_over_primary\n");

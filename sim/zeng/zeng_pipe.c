@@ -12,6 +12,7 @@
 
 #define CH 3
 #define EPS_WC 0.001 /* eq. 8's epsilon */
+#define LLK_R 15      /* the [LLK*19] kernel's radius: 31 taps a pass */
 
 static const char *const k_mnames[ZM_N] = {"trad", "trad-clamp", "spec", "ours", "svgf", "asvgf"};
 
@@ -25,6 +26,7 @@ int zp_init(zp_state_t *st, int method, int w, int h)
     st->h = h;
     st->alpha = 0.1;
     st->clamp_r = 2;
+    st->clamp_k = 3.0;
     const size_t n = (size_t)w * h;
     st->hist = calloc(n * CH, sizeof(double));
     st->out = calloc(n * CH, sizeof(double));
@@ -69,6 +71,59 @@ static zf_guide_t guide_of(const zs_frame_t *f)
     return g;
 }
 
+/* [LLK*19] (Liu, Llamas, Kelly et al., "Cinematic Rendering in UE4 with
+ * Real-Time Ray Tracing and Denoising", Ray Tracing Gems ch. 19, 2019; the
+ * same authors' patent US 10,776,985 describes the kernel): the
+ * reflection filter's kernel is the BRDF lobe reflected below the surface
+ * along the view ray and projected on the screen.  Here the lobe is a
+ * Gaussian of angular sigma around the mirror direction, so the reflected
+ * lobe is a cone of that sigma around the view ray continued past the
+ * surface point (d_v from the eye); at the hit distance d_h its
+ * cross-section, d_h tan(sigma) wide, lies d_v + d_h from the eye:
+ * sigma_px = fpx d_h tan(sigma) / (d_v + d_h).  Isotropic here: a GGX lobe
+ * stretches it along the plane of incidence, this scene's lobe does not.
+ * The 1-sample hit distance is noisy, so the ratio d_h / (d_v + d_h) is
+ * averaged over the pixel's 5x5 same-object neighbourhood (the sky's ratio
+ * is 1: the lobe's angle alone).  Capped at LLK_R / 2.5 px. */
+void zp_glossy_footprint(const zs_scene_t *s, const zs_frame_t *f, double *sg)
+{
+    const int w = f->w, h = f->h;
+    const size_t n = (size_t)w * h;
+    const double fpx = 0.5 * h / tan(0.5 * s->vfov);
+    for (size_t p = 0; p < n; p++) {
+        /* eye distance from the view depth: the pixel ray's length per unit
+         * depth */
+        const double px = (double)(p % w) + 0.5 - 0.5 * w, py = (double)(p / w) + 0.5 - 0.5 * h;
+        const double dv = f->depth[p] * sqrt(fpx * fpx + px * px + py * py) / fpx, dh = f->hitd[p];
+        sg[p] = isfinite(dh) ? dh / (dv + dh) : 1.0;
+    }
+    double *ratio = malloc(n * sizeof(double)); /* without it: each pixel's own ratio */
+    if (ratio) {
+        memcpy(ratio, sg, n * sizeof(double));
+    }
+    for (int y = 0; y < h; y++) {
+        for (int x = 0; x < w; x++) {
+            const size_t p = (size_t)y * w + x;
+            const int id = f->id[p];
+            double r = 0;
+            int cnt = 0;
+            for (int j = -2; j <= 2 && ratio; j++) {
+                for (int i = -2; i <= 2; i++) {
+                    const int xx = x + i, yy = y + j;
+                    if (xx >= 0 && yy >= 0 && xx < w && yy < h && f->id[(size_t)yy * w + xx] == id) {
+                        r += ratio[(size_t)yy * w + xx];
+                        cnt++;
+                    }
+                }
+            }
+            r = cnt ? r / cnt : sg[p];
+            const double rough = id >= 0 ? s->obj[id].rough : 0.0;
+            sg[p] = rough > 0 ? fmin(fmax(fpx * tan(rough) * r, 0.5), LLK_R / 2.5) : 0.0;
+        }
+    }
+    free(ratio);
+}
+
 void zp_spatial(const zs_scene_t *s, const zs_frame_t *f, const double *in, double *out, double *tmp)
 {
     zf_guide_t g = guide_of(f);
@@ -98,9 +153,23 @@ void zp_spatial(const zs_scene_t *s, const zs_frame_t *f, const double *in, doub
         zf_bilateral(in, CH, &g, &e, 15, 0.0, sg, out, tmp);
         free(pm);
         free(sg);
-    } else if (s->noisy == ZL_GLOSSY) {
+    } else if (s->noisy == ZL_GLOSSY && s->glossy_fixed) {
         const zf_edges_t e = {0.05, 32, 1};
         zf_bilateral(in, CH, &g, &e, 7, 3.0, NULL, out, tmp);
+    } else if (s->noisy == ZL_GLOSSY) {
+        double *sg = malloc((size_t)f->w * f->h * sizeof(double));
+        if (!sg) {
+            memcpy(out, in, (size_t)f->w * f->h * CH * sizeof(double));
+            return;
+        }
+        zp_glossy_footprint(s, f, sg);
+        /* the kernel lies on the reflector (world space in [LLK*19]): same
+         * object and normal, no screen-depth test (along a floor seen at a
+         * grazing angle the depth changes 2-3 % a row, which cut the
+         * kernel's vertical reach to ~2 rows) */
+        const zf_edges_t e = {0.0, 32, 1};
+        zf_bilateral(in, CH, &g, &e, LLK_R, 0.0, sg, out, tmp);
+        free(sg);
     } else {
         const zf_edges_t e = {0.05, 32, 0};
         zf_atrous(in, CH, &g, &e, 4, 0.0, out, tmp);
@@ -179,7 +248,7 @@ static double mean3(const double *v) { return (v[0] + v[1] + v[2]) / 3.0; }
  * "propagated (weight averaged) into the center of each filter"); pixels
  * with no in-shadow pixel in reach keep the traditional vector.  Writes
  * prev positions to mv (W*H*2) and alpha^V (eq. 4) to av. */
-static void shadow_vectors(zp_state_t *st, const zs_frame_t *f, const zs_frame_t *pf, double *mv, double *av)
+static void shadow_vectors(zp_state_t *st, const zs_scene_t *s, const zs_frame_t *f, const zs_frame_t *pf, double *mv, double *av)
 {
     const int w = f->w, h = f->h;
     const size_t n = (size_t)w * h;
@@ -214,8 +283,42 @@ static void shadow_vectors(zp_state_t *st, const zs_frame_t *f, const zs_frame_t
             double l = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
             theta = l < 1e-9 ? 0.5 * M_PI : acos(fmax(-1.0, fmin(1.0, (d[0] * nn[0] + d[1] * nn[1] + d[2] * nn[2]) / l)));
         }
-        av[p] = zs_alpha_v(theta, st->alpha);
+        av[p] = s->no_falloff ? st->alpha : zs_alpha_v(theta, st->alpha);
     }
+}
+
+/* Eq. 5's vectors weight-averaged with the glossy filter's kernel (the
+ * reading of §4.2's "similar to the shadow motion vectors", whose
+ * displacements §4.1 propagates "(weight averaged) into the center of each
+ * filter"): the displacement of every glossy pixel with a vector, averaged
+ * with [LLK*19]'s weights; mv holds the previous positions (W*H*2). */
+static void glossy_vectors_splat(zp_state_t *st, const zs_scene_t *s, const zs_frame_t *f, double *mv)
+{
+    const int w = f->w, h = f->h;
+    const size_t n = (size_t)w * h;
+    double *sg = malloc(n * sizeof(double));
+    if (!sg) {
+        return; /* keep the per-pixel vectors */
+    }
+    zp_glossy_footprint(s, f, sg);
+    for (size_t p = 0; p < n; p++) {
+        const int x = (int)(p % w), y = (int)(p / w);
+        const double m = f->id[p] >= 0 && s->obj[f->id[p]].ks > 0 && f->mv_eff[2 * p] > -1e8 ? 1.0 : 0.0;
+        st->mvx[3 * p] = m * (f->mv_eff[2 * p] - (x + 0.5));
+        st->mvx[3 * p + 1] = m * (f->mv_eff[2 * p + 1] - (y + 0.5));
+        st->mvx[3 * p + 2] = m;
+    }
+    zf_guide_t g = guide_of(f);
+    const zf_edges_t e = {0.0, 32, 1};
+    zf_bilateral(st->mvx, CH, &g, &e, LLK_R, 0.0, sg, st->tmp2, st->tmp);
+    for (size_t p = 0; p < n; p++) {
+        const double m = st->tmp2[3 * p + 2];
+        if (m > 1e-6 && f->id[p] >= 0 && s->obj[f->id[p]].ks > 0) {
+            mv[2 * p] = (double)(p % w) + 0.5 + st->tmp2[3 * p] / m;
+            mv[2 * p + 1] = (double)(p / w) + 0.5 + st->tmp2[3 * p + 1] / m;
+        }
+    }
+    free(sg);
 }
 
 /* A-SVGF's temporal gradient (Schied et al. 2018, simplified to one
@@ -393,7 +496,7 @@ void zp_step(zp_state_t *st, const zs_scene_t *s, int frame, const zs_frame_t *f
         av[p] = st->alpha;
     }
     if (st->method == ZM_OURS && s->noisy == ZL_VIS) {
-        shadow_vectors(st, f, pf, mv, av); /* uses tmp2 as scratch before the blend fills it */
+        shadow_vectors(st, s, f, pf, mv, av); /* uses tmp2 as scratch before the blend fills it */
     } else if ((st->method == ZM_OURS || st->method == ZM_SPEC) && s->noisy == ZL_GLOSSY) {
         const double *src = st->method == ZM_OURS ? f->mv_eff : f->mv_spec;
         for (size_t p = 0; p < n; p++) {
@@ -402,6 +505,9 @@ void zp_step(zp_state_t *st, const zs_scene_t *s, int frame, const zs_frame_t *f
                 mv[2 * p + 1] = src[2 * p + 1];
             }
         }
+        if (st->method == ZM_OURS && s->glossy_splat) {
+            glossy_vectors_splat(st, s, f, mv);
+        }
     } else if (st->method == ZM_OURS && s->noisy == ZL_INDIRECT) {
         for (int y = 0; y < h; y++) {
             for (int x = 0; x < w; x++) {
@@ -409,7 +515,7 @@ void zp_step(zp_state_t *st, const zs_scene_t *s, int frame, const zs_frame_t *f
             }
         }
     }
-    const double k = st->method == ZM_OURS ? 3.0 : 1.0;
+    const double k = st->method == ZM_OURS ? st->clamp_k : 1.0;
     const int clamp = st->method != ZM_TRAD;
     for (int y = 0; y < h; y++) {
         for (int x = 0; x < w; x++) {

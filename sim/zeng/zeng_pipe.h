@@ -30,9 +30,11 @@
  *
  * Per-effect spatial filters (Zeng §5), applied before eq. 2:
  *   visibility  separable 31x31 joint bilateral (sigma 8 px)
- *   glossy      separable 15x15 joint bilateral (sigma 3 px) on the glossy
- *               surface only: the fixed-footprint stand-in for [LLK*19]'s
- *               hit-distance-driven kernel
+ *   glossy      [LLK*19]: a joint bilateral on the glossy surface whose
+ *               Gaussian is the lobe reflected below the surface and
+ *               projected on the screen (its sigma from the hit distance
+ *               and the roughness, zp_glossy_footprint), up to 31x31;
+ *               s->glossy_fixed: the fixed 15x15, sigma 3 px, stand-in
  *   indirect    4-level a-trous (Dammertz), demodulated irradiance
  */
 #ifndef ZENG_PIPE_H
@@ -50,6 +52,7 @@ typedef struct {
      * (eq. 2's c~_i, "first filtered spatially per frame", then blended);
      * 0: over the 1-sample frame */
     int clamp_filtered;
+    double clamp_k; /* ours' clamp: mu +- clamp_k sigma (3, §5; the others use 1) */
     int have;     /* history valid */
     double *hist; /* W*H*3 accumulated layer (eq. 2's c-bar) */
     double *out;  /* W*H*3 displayed layer */
@@ -71,6 +74,11 @@ void zp_free(zp_state_t *st);
 /* One frame: f (this frame), pf (the previous frame's buffers, ignored at
  * the first step). */
 void zp_step(zp_state_t *st, const zs_scene_t *s, int frame, const zs_frame_t *f, const zs_frame_t *pf);
+
+/* [LLK*19]'s kernel for the glossy layer: per pixel the Gaussian's sigma in
+ * pixels, the glossy lobe reflected below the surface and projected on the
+ * screen (0 off the glossy surface; zeng_pipe.c). */
+void zp_glossy_footprint(const zs_scene_t *s, const zs_frame_t *f, double *sg);
 
 /* The per-effect spatial filter of the scene's noisy layer (exposed for tests). */
 void zp_spatial(const zs_scene_t *s, const zs_frame_t *f, const double *in, double *out, double *tmp);

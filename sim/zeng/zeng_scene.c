@@ -40,7 +40,7 @@ static void v_axpy(double o[3], const double a[3], double k, const double b[3])
     }
 }
 
-static const char *const k_names[ZS_NSCENES] = {"fence", "glossy", "occlusion"};
+static const char *const k_names[ZS_NSCENES] = {"fence", "glossy", "occlusion", "pinkroom"};
 
 const char *zs_scene_name(int kind) { return kind >= 0 && kind < ZS_NSCENES ? k_names[kind] : "?"; }
 
@@ -78,6 +78,7 @@ void zs_scene_init(zs_scene_t *s, int kind)
     memset(s, 0, sizeof *s);
     s->kind = kind;
     s->vfov = 50.0 * M_PI / 180.0;
+    s->spread = 1.0;
     zs_obj_t *o;
     switch (kind) {
     case ZS_FENCE:
@@ -125,6 +126,38 @@ void zs_scene_init(zs_scene_t *s, int kind)
         v_set(s->light_e2, 0, 0, 0.3);
         v_set(s->light_le, 300, 300, 300);
         s->ambient = 0.15;
+        break;
+    case ZS_PINKROOM:
+        /* Fig. 1 left (the pink room) with Fig. 9's "rapidly moving area
+         * light": pink floor and walls meeting in two corners, a table on
+         * four legs, a stool, a shelf by the left wall, a sphere half
+         * under the table's edge and a rolling one, a 0.5 x 0.5 light 2.3
+         * above the floor sweeping 0.08 units a frame.  The shadows bend over the corners and wrap onto the
+         * spheres, where eq. 3's locally flat receiver fails and eq. 4's
+         * cosine falloff must catch it (Zeng §6: "even when the locally flat
+         * plane assumption is violated"). */
+        s->noisy = ZL_VIS;
+        add(s, ZS_PLANE, 0, 0, 0, 0, 1, 0, 0.8, 0.5, 0.55);
+        add(s, ZS_PLANE, 0, 0, -2.4, 0, 0, 1, 0.85, 0.55, 0.62);
+        add(s, ZS_PLANE, -2.3, 0, 0, 1, 0, 0, 0.82, 0.48, 0.6);
+        add(s, ZS_BOX, -1.3, 0.72, -1.6, 0.1, 0.8, -0.8, 0.75, 0.7, 0.72); /* table top */
+        for (int k = 0; k < 4; k++) {
+            const double x = k & 1 ? 0.0 : -1.25, z = k & 2 ? -0.9 : -1.55;
+            add(s, ZS_BOX, x, 0, z, x + 0.06, 0.72, z + 0.06, 0.75, 0.7, 0.72);
+        }
+        add(s, ZS_BOX, 0.7, 0, -0.4, 1.15, 0.45, 0.05, 0.55, 0.75, 0.8);   /* stool */
+        add(s, ZS_BOX, -2.05, 0, -1.3, -1.8, 1.5, -0.9, 0.6, 0.45, 0.4);  /* shelf by the left wall */
+        add(s, ZS_SPHERE, 0.42, 0.33, -1.25, 0.33, 0, 0, 0.9, 0.85, 0.6); /* half under the table's edge */
+        o = add(s, ZS_SPHERE, -1.5, 0.22, -0.2, 0.22, 0, 0, 0.35, 0.5, 0.9);
+        v_set(o->vel, 0.04, 0, 0);
+        v_set(s->cam0, 0.9, 1.55, 2.4);
+        v_set(s->target, -0.6, 0.45, -1.2);
+        v_set(s->light_c, 1.3, 2.3, 0.0);
+        v_set(s->light_e1, 0.5, 0, 0);
+        v_set(s->light_e2, 0, 0, 0.5);
+        v_set(s->light_vel, -0.08, 0, 0);
+        v_set(s->light_le, 70, 66, 64);
+        s->ambient = 0.06;
         break;
     default:
         /* Figs. 1 right / 12: objects moving left to right in front of a
@@ -491,7 +524,8 @@ int zs_frame_alloc(zs_frame_t *f, int w, int h)
     f->mv_spec = malloc(n * 2 * sizeof(double));
     f->in_shadow = malloc(n);
     f->pen = calloc(n, sizeof(double));
-    if (!f->id || !f->pos || !f->nrm || !f->alb || !f->depth || !f->shade || !f->layer || !f->mv_trad || !f->mv_eff ||
+    f->hitd = malloc(n * sizeof(double));
+    if (!f->hitd || !f->id || !f->pos || !f->nrm || !f->alb || !f->depth || !f->shade || !f->layer || !f->mv_trad || !f->mv_eff ||
         !f->mv_spec || !f->in_shadow || !f->pen) {
         zs_frame_free(f);
         return -1;
@@ -513,6 +547,7 @@ void zs_frame_free(zs_frame_t *f)
     free(f->mv_spec);
     free(f->in_shadow);
     free(f->pen);
+    free(f->hitd);
     memset(f, 0, sizeof *f);
 }
 
@@ -685,6 +720,7 @@ void zs_render(const zs_scene_t *s, int frame, uint64_t seed, zs_frame_t *f)
             f->id[i] = id;
             f->in_shadow[i] = 0;
             v_set(lay, 0, 0, 0);
+            f->hitd[i] = INFINITY;
             f->mv_eff[2 * i] = f->mv_spec[2 * i] = -1e9;
             f->mv_eff[2 * i + 1] = f->mv_spec[2 * i + 1] = -1e9;
             if (id < 0) {
@@ -757,9 +793,13 @@ void zs_render(const zs_scene_t *s, int frame, uint64_t seed, zs_frame_t *f)
                 double hit[3], dir[3], g[2];
                 int hid;
                 glossy_sample(s, frame, p, n, d, ob, u, v, lay, hit, &hid, dir);
+                if (hid >= 0) {
+                    f->hitd[i] = sqrt((hit[0] - p[0]) * (hit[0] - p[0]) + (hit[1] - p[1]) * (hit[1] - p[1]) +
+                                      (hit[2] - p[2]) * (hit[2] - p[2]));
+                }
                 if (hid != -2) {
-                    g[0] = zr_gauss(key, 2);
-                    g[1] = zr_gauss(key, 3);
+                    g[0] = s->spread * zr_gauss(key, 2);
+                    g[1] = s->spread * zr_gauss(key, 3);
                     virtual_image_mv(s, frame, &pc, id, p, n, hid, hit, dir, ob->rough, g, f->mv_eff + 2 * i);
                 }
                 /* the specular baseline's vector: one more (mirror) ray */

@@ -22,6 +22,11 @@
  *             front of a wall, still camera; final = albedo * irradiance.
  *             Noisy layer: the indirect light (one cosine-weighted ray to a
  *             coloured sky, one diffuse bounce), filtered demodulated.
+ *   pinkroom  Fig. 1 left (and Fig. 9's moving light): a pink room, a table
+ *             on four legs, a stool, a shelf and two spheres (one rolling)
+ *             under an area light sweeping sideways; soft shadows fall over the
+ *             floor-wall corners and onto the spheres, where eq. 3's flat
+ *             receiver does not hold.  Noisy layer: visibility, as fence.
  */
 #ifndef ZENG_SCENE_H
 #define ZENG_SCENE_H
@@ -32,7 +37,7 @@
 #define ZS_MAX_OBJ 24
 
 enum { ZS_PLANE, ZS_BOX, ZS_SPHERE };
-enum { ZS_FENCE, ZS_GLOSSY, ZS_OCCLUSION, ZS_NSCENES };
+enum { ZS_FENCE, ZS_GLOSSY, ZS_OCCLUSION, ZS_PINKROOM, ZS_NSCENES };
 /* the layers the pipeline filters separately (Zeng §4: shading, visibility,
  * glossy, other indirect) */
 enum { ZL_VIS, ZL_GLOSSY, ZL_INDIRECT, ZL_N };
@@ -53,6 +58,21 @@ typedef struct {
     double light_c[3], light_e1[3], light_e2[3], light_vel[3], light_le[3];
     double ambient;
     int noisy; /* ZL_* layer this scene renders with one sample per pixel */
+    /* the glossy layer's spatial filter: 0 [LLK*19]'s lobe footprint
+     * (zeng_pipe.c), 1 the fixed 15x15 joint bilateral, sigma 3 px, that
+     * stood in for it before (kept to compare: tdc-zeng --glossy-filter) */
+    int glossy_fixed;
+    /* 1: eq. 4's alpha^V switched off (alpha everywhere): the cosine
+     * falloff's share (tdc-zeng --no-falloff) */
+    int no_falloff;
+    /* eq. 5's spread along the footprint's axes, scaled (1: the paper's; 0:
+     * the sampled hit's virtual image alone; tdc-zeng --spread) */
+    double spread;
+    /* 1: eq. 5's vectors weight-averaged over the glossy filter's kernel
+     * before the fetch, as §4.1 does with the shadow vectors (§4.2: "The
+     * usage of our stochastic glossy reflection motion vectors is similar to
+     * the shadow motion vectors"); 0: one per pixel (tdc-zeng --glossy-mv) */
+    int glossy_splat;
 } zs_scene_t;
 
 typedef struct {
@@ -74,6 +94,7 @@ typedef struct {
     double *mv_spec;                 /* glossy scene: the specular hit's virtual image (2) */
     uint8_t *in_shadow;              /* fence: the shadow ray found a blocker (mv_eff valid) */
     double *pen;                     /* fence, in-shadow pixels: the penumbra's width in pixels (PCSS) */
+    double *hitd;                    /* glossy surface: the lobe sample's hit distance (INFINITY: sky) */
 } zs_frame_t;
 
 void zs_scene_init(zs_scene_t *s, int kind);

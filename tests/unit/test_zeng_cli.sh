@@ -22,6 +22,23 @@ grep -q '^cost,[0-9.]*,[0-9.]*,[0-9.]*$' "$t/g.csv" && ok "tiny run: cost row" |
 expect 0 "tiny run, clamp on the filtered frame" "" -- "$zeng" --scene glossy --size 16x16 --frames 3 --eval-from 2 --seeds "1 2" --gt-spp 4 --clamp-on filtered --csv "$t/f.csv"
 d=$(paste -d, "$t/g.csv" "$t/f.csv" | awk -F, '$1 == "glossy" && $4 != $12 { print $3 }' | sort -u | tr '\n' ' ')
 [ "$d" = "ours spec trad-clamp " ] && ok "filtered clamp: only the clamped methods move ($d)" || bad "filtered clamp: rows that moved: '$d'"
+# the glossy filter switch changes the methods that use the per-effect
+# filter (trad, trad-clamp, spec, ours), never SVGF / A-SVGF (their own a-trous)
+expect 1 "glossy filter unknown" "tdc-zeng: arguments: --glossy-filter: llk or fixed" -- "$zeng" --scene glossy --glossy-filter box
+expect 1 "spread out of range" "tdc-zeng: arguments: --spread" -- "$zeng" --scene glossy --spread -1
+expect 1 "ours' clamp out of range" "tdc-zeng: arguments: --ours-clamp" -- "$zeng" --scene glossy --ours-clamp 0
+expect 0 "tiny run, fixed glossy filter" "" -- "$zeng" --scene glossy --size 16x16 --frames 3 --eval-from 2 --seeds "1 2" --gt-spp 4 --glossy-filter fixed --csv "$t/x.csv"
+d=$(paste -d, "$t/g.csv" "$t/x.csv" | awk -F, '$1 == "glossy" && $4 != $12 { print $3 }' | sort -u | tr '\n' ' ')
+[ "$d" = "ours spec trad trad-clamp " ] && ok "fixed glossy filter: only the per-effect filter's users move ($d)" || bad "fixed glossy filter: rows that moved: '$d'"
+# splatted eq. 5 vectors move ours only; --fetch-error prints one line per vector kind
+expect 1 "glossy vectors unknown" "tdc-zeng: arguments: --glossy-mv: pixel or splat" -- "$zeng" --scene glossy --glossy-mv mean
+expect 0 "tiny run, splatted glossy vectors" "tdc-zeng: fetch error, ours (eq. 5) vectors: RMSE" -- "$zeng" --scene glossy --size 16x16 --frames 3 --eval-from 2 --seeds "1 2" --gt-spp 4 --glossy-mv splat --fetch-error 1 --csv "$t/s.csv"
+d=$(paste -d, "$t/g.csv" "$t/s.csv" | awk -F, '$1 == "glossy" && $4 != $12 { print $3 }' | sort -u | tr '\n' ' ')
+[ "$d" = "ours " ] && ok "splatted glossy vectors: only ours moves ($d)" || bad "splatted glossy vectors: rows that moved: '$d'"
+# the pink room: a shadow scene (no specular baseline: 5 methods)
+expect 0 "tiny pink room run" "" -- "$zeng" --scene pinkroom --size 16x16 --frames 3 --eval-from 2 --seeds 1 --gt-spp 4 --csv "$t/p.csv"
+m=$(awk -F, '$1 == "pinkroom" { print $3 }' "$t/p.csv" | tr '\n' ' ')
+[ "$m" = "trad trad-clamp ours svgf asvgf " ] && ok "pink room: the shadow methods ($m)" || bad "pink room: methods '$m'"
 # --jod adds FovVideoVDP's JODs and changes no other column; the 4-sample
 # frames differ visibly from the ground truth (JOD < 10); the occlusion
 # region (41 of 768 px here) holds a small part of the differences, so its
