@@ -38,7 +38,9 @@ import csv
 import glob
 import importlib.util
 import json
+import math
 import os
+import shlex
 import shutil
 import subprocess
 import sys
@@ -181,6 +183,53 @@ class Experiment:
         (jod_frames 0), which no verdict may rest on."""
         return bool(rows) and all(r.get(col, "") not in ("", "nan") and
                                   float(r.get("jod_frames", "") or 0) > 0 for r in rows)
+
+    @staticmethod
+    def saccades(width, height, speed, angle_deg, seconds, gain=1.0):
+        """Catch-up saccades the simulated eye makes in a pursuit run (docs/eye.md, sim/simulator/tdc_sim_gaze.h):
+        it starts at the centre, moves at gain x the pursued velocity and jumps back to the centre when it
+        leaves the central half of the W x H view, i.e. every W/4 (H/4) pixels of travel."""
+        a = math.radians(angle_deg)
+        n = 0
+        for size, v in ((width, speed * math.cos(a)), (height, speed * math.sin(a))):
+            travel = abs(gain * v * seconds)
+            n += int(math.floor(travel / (size / 4.0) + 1e-9)) if size >= 4 else 0
+        return n
+
+    def base_args(self, sweep):
+        """The run's tdc-sim options of a sweep's base line at the scale it ran (DIR/<group>/<sweep>.sweep)."""
+        p = os.path.join(self.out, self.group, sweep + ".sweep")
+        try:
+            with open(p, encoding="utf-8") as f:
+                for line in f:
+                    k, _, v = line.split("#", 1)[0].partition("=")
+                    if k.strip() == "base":
+                        return shlex.split(v)
+        except OSError:
+            pass
+        return []
+
+    def saccade_note(self, sweep, gain=1.0, speed=None):
+        """A row's note when its pursuit runs hold catch-up saccades ("" when none): a TRM pair straddling one
+        falls apart on the retina, and the visual model (no saccadic suppression) judges the jump."""
+        args = self.base_args(sweep)
+        opt = lambda names, d: next((args[i + 1] for i, a in enumerate(args[:-1]) if a in names), d)  # noqa: E731
+        if opt(("--gaze",), "pursuit") != "pursuit" or opt(("--pursuit",), "track") != "track":
+            return ""
+        w, _, h = opt(("-g", "--size"), "0x0").partition("x")
+        hz = float(opt(("-r", "--refresh"), "90"))
+        secs = float(opt(("-n", "--frames"), "0")) / hz or float(opt(("-d", "--duration"), "0.5"))
+        scene = opt(("-s", "--scene"), "pan")
+        v = float(speed if speed is not None else opt(("--speed",), {"pan": 450, "thin": 330, "fence": 270,
+                                                                       "discs": 600}.get(scene, 0)))
+        n = self.saccades(int(w), int(h), v, float(opt(("--angle",), "0")), secs,
+                          float(opt(("--pursuit-gain",), gain)))
+        if n == 0:
+            return ""
+        return ("the simulated eye makes %d catch-up saccade%s in each run (back to the centre on leaving the central "
+                "half of the %sx%s view at %.0f px/s): a TRM pair straddling one falls apart on the retina and the "
+                "visual model, which has no saccadic suppression, judges the jump (docs/experiments.md, 'Saccades')" % (
+                    n, "s" if n > 1 else "", w, h, v))
 
     @staticmethod
     def select(rows, **eq):
