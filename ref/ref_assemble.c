@@ -197,12 +197,8 @@ int tdc_ref_asm_assemble(tdc_ref_asm_t *r, uint32_t frame)
                 continue;
             }
             /* Old dynamic: bilinear from the previous output at p + m. */
-            double sx = x + mx / 16.0, sy = y + my / 16.0;
-            sx = sx < 0 ? 0 : (sx > w - 1 ? w - 1 : sx);
-            sy = sy < 0 ? 0 : (sy > h - 1 ? h - 1 : sy);
-            int x0 = (int)floor(sx), y0 = (int)floor(sy);
-            int x1 = x0 + 1 < w ? x0 + 1 : x0, y1 = y0 + 1 < h ? y0 + 1 : y0;
-            double fx = sx - x0, fy = sy - y0;
+            double vb[3];
+            ref_bilinear_prev(r, x + mx / 16.0, y + my / 16.0, vb);
             /* The clamp's box (Fig. 7): by default the immediate neighbours
              * in the newest subframe. */
             int n = 0;
@@ -230,8 +226,7 @@ int tdc_ref_asm_assemble(tdc_ref_asm_t *r, uint32_t frame)
                     }
             }
             for (int c = 0; c < 3; c++) {
-                double v = (1 - fx) * (1 - fy) * ref_prev(r, x0, y0, c) + fx * (1 - fy) * ref_prev(r, x1, y0, c) +
-                           (1 - fx) * fy * ref_prev(r, x0, y1, c) + fx * fy * ref_prev(r, x1, y1, c);
+                double v = vb[c];
                 if (n > 0) {
                     double mean = s1[c] / n, var = s2[c] / n - mean * mean;
                     double sd = sqrt(var > 0 ? var : 0);
