@@ -260,6 +260,17 @@ class Experiment:
                             "run": run or "%s (scale %s)" % (self.group, self.scale), "verdict": verdict,
                             "class": cls, "why": why})
 
+    def class_last(self, cls, why):
+        """Classes the last row (a non-agreement) and adds the reason to its why: for a class that
+        depends on what the data show beyond the verdict (per content, per scale)."""
+        if cls not in CLASSES or not cls:
+            raise ValueError("class '%s' (one of %s)" % (cls, ", ".join(c for c in CLASSES if c)))
+        row = self.claims[-1]
+        if row["verdict"] in ("agree", "equivalent"):
+            raise ValueError("class '%s' on an agreeing row" % cls)
+        row["class"] = cls
+        row["why"] += "; " + why
+
     def judge(self, paper, quote, claim, paper_value, a, b, kind, metric, label_a="A", label_b="B", digits=4,
               run="", why="", cls="", margin=None, method="t", higher_is_better=None, secondary=(), note=""):
         """A row judged by tdc_stats.judge: the paper says A is 'better' than /

@@ -36,9 +36,7 @@ def content_class(exp, j):
     """An ordering row that disagrees because the orderings differ by less than the margin (the interval
     below +m) rests on the content (CONTENT); an inconclusive one is left unclassed (more contents decide)."""
     if j["verdict"] == "disagree":
-        row = exp.claims[-1]
-        row["class"] = "setting"
-        row["why"] += "; " + CONTENT
+        exp.class_last("setting", CONTENT)
 
 
 def spread_class(exp, j, rows, eq_a, eq_b):
@@ -57,16 +55,15 @@ def spread_class(exp, j, rows, eq_a, eq_b):
     big = [(n, g) for n, g in zip(names, ga) if g > j["margin"]]
     if 2 * ahead <= len(ga) or 2 * flip_ahead <= len(gf) or not big or 2 * len(big) > len(ga):
         return  # not a content spread: left unclassed
-    row = exp.claims[-1]
-    row["class"] = "setting"
-    row["why"] += ("; content: the paper's ordering is ahead on %d of %d photographs in JOD and %d of %d in FLIP, "
+    exp.class_last("setting", ("content: the paper's ordering is ahead on %d of %d photographs in JOD and %d of %d "
+                               "in FLIP, "
                    "by more than the margin only on %s (%s JOD: fine detail across the motion), within it on the "
                    "others, so the paired interval is wide and skewed; the paper chose by eye on BISTRO's thin "
                    "high-contrast features, the high end of this range (on the thin-line scene at 0.5 px/frame, "
                    "both its motions in eq. 4's hourglass band, hourglass led by 1.20 JOD [0.25, 2.14] over 5 "
                    "seeds, FLIP on 5 of 5: docs/experiments.md)" % (
                        ahead, len(ga), flip_ahead, len(gf), ", ".join(n for n, _ in big),
-                       ", ".join("+%.2f" % g for _, g in big)))
+                       ", ".join("+%.2f" % g for _, g in big))))
 
 
 def frac(px_per_frame):

@@ -92,14 +92,13 @@ def claims(exp):
                   "assembly 240 Hz", "TAA 60 Hz", d, run=run, secondary=sec)
     if j["verdict"] not in ("agree", "equivalent") and exp.scale == "demo" and has_jod:
         behind = [(c, a - t) for c, a, t in zip(contents, per_scene(ASM, prim), per_scene("taa60", prim)) if a < t]
-        row = exp.claims[-1]
-        row["class"] = "setting"
-        row["why"] += ("; demo scale: in %dx%d frames the assembly trails TAA at 60 Hz only on %s (%s JOD), where the "
+        exp.class_last("setting", ("demo scale: in %dx%d frames the assembly trails TAA at 60 Hz only on %s (%s JOD), "
+                                   "where the "
                        "room's taps and bottle necks are a tenth of a pixel wide and its window light is traced with 2 "
                        "noisy shadow rays; the paper rendered 1920x1080, and at 256x144 (headset scale) the assembly "
                        "no longer trails on the room and this row agrees (docs/experiments.md)" % (
                            int(rows[0]["width"]), int(rows[0]["height"]),
-                           ", ".join("%s@%s" % c for c, _ in behind), ", ".join("%+.2f" % g for _, g in behind)))
+                           ", ".join("%s@%s" % c for c, _ in behind), ", ".join("%+.2f" % g for _, g in behind))))
     if "full60" in {r["mode"] for r in rows}:
         sec = [("flip", per_scene(ASM), per_scene("full60"), 4)] if has_jod else []
         j = exp.judge("TDRT §4 (user study)", Q_US, "renderer scenes: assembly at 240 Hz better than 1 spp at 60 Hz "
@@ -111,9 +110,8 @@ def claims(exp):
             prem = st.judge(per_scene("full", prim), per_scene("full60", prim), "better", prim)
             behind = [(c, a - f) for c, a, f in zip(contents, per_scene(ASM, prim), per_scene("full60", prim))
                       if a < f - prem["margin"]]
-            row = exp.claims[-1]
-            row["class"] = "setting"
-            row["why"] += ("; the study's premise is absent from these scenes: their cameras move a fraction of a "
+            exp.class_last("setting", ("the study's premise is absent from these scenes: their cameras move a "
+                                       "fraction of a "
                            "pixel per refresh, so 1 spp at 240 Hz is only %.2f JOD [%.2f, %.2f] ahead of 1 spp at 60 "
                            "Hz (the difference the study was built to show; on moving detail it is 1-4 JOD, next "
                            "rows), and what is left is the assembly's own cost, beyond the margin on %s (%s JOD): the "
@@ -123,7 +121,7 @@ def claims(exp):
                            "resampled bilinearly at sub-pixel motion (3 of every 4 pixels are reprojected each "
                            "refresh)" % (
                                prem["gain"], prem["lo"], prem["hi"], ", ".join("%s@%s" % c for c, _ in behind),
-                               ", ".join("%+.2f" % g for _, g in behind)))
+                               ", ".join("%+.2f" % g for _, g in behind))))
     user_study_photos(exp)
     # not a paper claim (the 3.5x is per frame): the cost at equal FLIP, beside the table
     eq = ""
