@@ -260,6 +260,24 @@ class Experiment:
                             "run": run or "%s (scale %s)" % (self.group, self.scale), "verdict": verdict,
                             "class": cls, "why": why})
 
+    def content_spread(self, j, rows, eq_a, eq_b):
+        """When a 'better' row is inconclusive with a positive gain carried by a few contents - A ahead on most
+        contents in JOD and in FLIP, by more than the margin only on a minority - the per-content picture
+        (ahead, flip_ahead, n, [(content, gain) over the margin]); else None.  Contents are named by their
+        image (else seed), in exp.values' order."""
+        if j["verdict"] != "inconclusive" or j["gain"] <= 0:
+            return None
+        key = lambda r: (int(r.get("seed", 0) or 0), int(r.get("job", 0)))  # noqa: E731 (values' order)
+        names = [os.path.splitext(os.path.basename(r.get("image", "") or r.get("seed", "")))[0]
+                 for r in sorted(self.select(rows, **eq_a), key=key)]
+        ga = [a - b for a, b in zip(self.values(rows, "jod", **eq_a), self.values(rows, "jod", **eq_b))]
+        gf = [b - a for a, b in zip(self.values(rows, "flip", **eq_a), self.values(rows, "flip", **eq_b))]
+        ahead, flip_ahead = sum(1 for g in ga if g > 0), sum(1 for g in gf if g > 0)
+        big = [(n, g) for n, g in zip(names, ga) if g > j["margin"]]
+        if 2 * ahead <= len(ga) or 2 * flip_ahead <= len(gf) or not big or 2 * len(big) > len(ga):
+            return None
+        return ahead, flip_ahead, len(ga), big
+
     def class_last(self, cls, why):
         """Classes the last row (a non-agreement) and adds the reason to its why: for a class that
         depends on what the data show beyond the verdict (per content, per scale)."""

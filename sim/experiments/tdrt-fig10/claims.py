@@ -3,8 +3,6 @@
 Every row is one (direction, speed) cell, paired over the 10 contents: the
 paper separates the bands of l_f and the directions, so no row pools them."""
 
-import os
-
 SWEEP, SWEEP9 = "fig10", "fig9"
 ORDERINGS = ("asm-hourglass", "asm-bowtie", "asm-adaptive")
 # metric column, label, digits (lower is better for both); flicker is measured at every refresh
@@ -40,30 +38,21 @@ def content_class(exp, j):
 
 
 def spread_class(exp, j, rows, eq_a, eq_b):
-    """An ordering row left inconclusive because its gain is carried by a few contents: the paper's ordering
-    ahead (JOD) on most photographs and in FLIP, by more than the margin only on those with dense fine detail
-    across the motion, is a difference of content (the paper judged on BISTRO's thin features, the high end
-    of that range): classed "setting", with the per-content numbers."""
-    if j["verdict"] != "inconclusive" or j["gain"] <= 0:
-        return
-    key = lambda r: (int(r.get("seed", 0) or 0), int(r.get("job", 0)))  # noqa: E731 (exp.values' order)
-    names = [os.path.splitext(os.path.basename(r.get("image", "") or r.get("seed", "")))[0]
-             for r in sorted(exp.select(rows, **eq_a), key=key)]
-    ga = [a - b for a, b in zip(exp.values(rows, "jod", **eq_a), exp.values(rows, "jod", **eq_b))]
-    gf = [b - a for a, b in zip(exp.values(rows, "flip", **eq_a), exp.values(rows, "flip", **eq_b))]
-    ahead, flip_ahead = sum(1 for g in ga if g > 0), sum(1 for g in gf if g > 0)
-    big = [(n, g) for n, g in zip(names, ga) if g > j["margin"]]
-    if 2 * ahead <= len(ga) or 2 * flip_ahead <= len(gf) or not big or 2 * len(big) > len(ga):
+    """An ordering row left inconclusive because its gain is carried by a few contents (exp.content_spread):
+    the paper's ordering ahead on most photographs, by more than the margin only on those with dense fine
+    detail across the motion, is a difference of content (the paper judged on BISTRO's thin features, the
+    high end of that range): classed "setting", with the per-content numbers."""
+    sp = exp.content_spread(j, rows, eq_a, eq_b)
+    if sp is None:
         return  # not a content spread: left unclassed
-    exp.class_last("setting", ("content: the paper's ordering is ahead on %d of %d photographs in JOD and %d of %d "
-                               "in FLIP, "
-                   "by more than the margin only on %s (%s JOD: fine detail across the motion), within it on the "
-                   "others, so the paired interval is wide and skewed; the paper chose by eye on BISTRO's thin "
-                   "high-contrast features, the high end of this range (on the thin-line scene at 0.5 px/frame, "
-                   "both its motions in eq. 4's hourglass band, hourglass led by 1.20 JOD [0.25, 2.14] over 5 "
-                   "seeds, FLIP on 5 of 5: docs/experiments.md)" % (
-                       ahead, len(ga), flip_ahead, len(gf), ", ".join(n for n, _ in big),
-                       ", ".join("+%.2f" % g for _, g in big))))
+    ahead, flip_ahead, n, big = sp
+    exp.class_last("setting", (
+        "content: the paper's ordering is ahead on %d of %d photographs in JOD and %d of %d in FLIP, by more than "
+        "the margin only on %s (%s JOD: fine detail across the motion), within it on the others, so the paired "
+        "interval is wide and skewed; the paper chose by eye on BISTRO's thin high-contrast features, the high end "
+        "of this range (on the thin-line scene at 0.5 px/frame, both its motions in eq. 4's hourglass band, "
+        "hourglass led by 1.20 JOD [0.25, 2.14] over 5 seeds, FLIP on 5 of 5: docs/experiments.md)" % (
+            ahead, n, flip_ahead, n, ", ".join(c for c, _ in big), ", ".join("+%.2f" % g for _, g in big))))
 
 
 def frac(px_per_frame):
