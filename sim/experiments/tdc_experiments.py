@@ -392,6 +392,7 @@ def run_claims(group, out):
     except Exception:
         raise ExpError(EXIT_RUN_FAILED, "%s/claims.py raised:\n%s" % (group, traceback.format_exc()))
     path = os.path.join(out, group, "claims.csv")
+    os.makedirs(os.path.dirname(path), exist_ok=True)  # a group without jobs (trm-fig6) may have no folder yet
     tmp = path + ".tmp"
     with open(tmp, "w", newline="", encoding="utf-8") as f:
         w = csv.DictWriter(f, CLAIM_COLUMNS, lineterminator="\n")
