@@ -49,7 +49,13 @@ struct tdc_ref_asm {
     uint8_t *pattern;
     int have_sub;
     uint32_t next_frame;
+    tdc_ref_nbhd_t nbhd; /* the clamp's neighbourhood (NEWEST: the paper's) */
 };
+
+void tdc_ref_asm_set_nbhd(tdc_ref_asm_t *r, tdc_ref_nbhd_t nbhd)
+{
+    r->nbhd = nbhd;
+}
 
 tdc_ref_asm_t *tdc_ref_asm_new(int w, int h)
 {
@@ -115,6 +121,37 @@ static double ref_prev(const tdc_ref_asm_t *r, int x, int y, int c)
     return r->out[((size_t)y * r->w + x) * 3 + c];
 }
 
+/* The previous output bilinearly at (sx, sy), clamped to the frame. */
+static void ref_bilinear_prev(const tdc_ref_asm_t *r, double sx, double sy, double v[3])
+{
+    sx = sx < 0 ? 0 : (sx > r->w - 1 ? r->w - 1 : sx);
+    sy = sy < 0 ? 0 : (sy > r->h - 1 ? r->h - 1 : sy);
+    int x0 = (int)floor(sx), y0 = (int)floor(sy);
+    int x1 = x0 + 1 < r->w ? x0 + 1 : x0, y1 = y0 + 1 < r->h ? y0 + 1 : y0;
+    double fx = sx - x0, fy = sy - y0;
+    for (int c = 0; c < 3; c++)
+        v[c] = (1 - fx) * (1 - fy) * ref_prev(r, x0, y0, c) + fx * (1 - fy) * ref_prev(r, x1, y0, c) +
+               (1 - fx) * fy * ref_prev(r, x0, y1, c) + fx * fy * ref_prev(r, x1, y1, c);
+}
+
+/* Adds tile (tx, ty)'s sample of the newest subframe (if it has one) to the box sums. */
+static void ref_box_add_tile(const tdc_ref_asm_t *r, int tx, int ty, unsigned slot, int *n, double s1[3],
+                             double s2[3])
+{
+    if (tx < 0 || ty < 0 || tx >= r->tx || ty >= r->ty) return;
+    for (int k = 0; k < 4; k++) {
+        int x = 2 * tx + (k & 1), y = 2 * ty + (k >> 1);
+        if (x >= r->w || y >= r->h) continue;
+        size_t q = (size_t)y * r->w + x;
+        if (!r->isnew[q]) continue;
+        (*n)++;
+        for (int c = 0; c < 3; c++) {
+            double v = r->samples[q * 12 + slot * 3 + c];
+            s1[c] += v, s2[c] += v * v;
+        }
+    }
+}
+
 int tdc_ref_asm_assemble(tdc_ref_asm_t *r, uint32_t frame)
 {
     if (frame != r->next_frame) return -1;
@@ -160,30 +197,36 @@ int tdc_ref_asm_assemble(tdc_ref_asm_t *r, uint32_t frame)
                 continue;
             }
             /* Old dynamic: bilinear from the previous output at p + m. */
-            double sx = x + mx / 16.0, sy = y + my / 16.0;
-            sx = sx < 0 ? 0 : (sx > w - 1 ? w - 1 : sx);
-            sy = sy < 0 ? 0 : (sy > h - 1 ? h - 1 : sy);
-            int x0 = (int)floor(sx), y0 = (int)floor(sy);
-            int x1 = x0 + 1 < w ? x0 + 1 : x0, y1 = y0 + 1 < h ? y0 + 1 : y0;
-            double fx = sx - x0, fy = sy - y0;
-            /* Box from immediate neighbours in the newest subframe. */
+            double vb[3];
+            ref_bilinear_prev(r, x + mx / 16.0, y + my / 16.0, vb);
+            /* The clamp's box (Fig. 7): by default the immediate neighbours
+             * in the newest subframe. */
             int n = 0;
             double s1[3] = {0, 0, 0}, s2[3] = {0, 0, 0};
-            for (int oy = -1; oy <= 1; oy++)
-                for (int ox = -1; ox <= 1; ox++) {
-                    int nx = x + ox, ny = y + oy;
-                    if ((ox == 0 && oy == 0) || nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
-                    size_t q = (size_t)ny * w + nx;
-                    if (!r->isnew[q]) continue;
-                    n++;
-                    for (int c = 0; c < 3; c++) {
-                        double v = r->samples[q * 12 + slot * 3 + c];
-                        s1[c] += v, s2[c] += v * v;
+            if (r->nbhd == TDC_REF_NBHD_SUB3X3) {
+                for (int oy = -1; oy <= 1; oy++)
+                    for (int ox = -1; ox <= 1; ox++)
+                        ref_box_add_tile(r, x / 2 + ox, y / 2 + oy, slot, &n, s1, s2);
+            } else {
+                for (int oy = -1; oy <= 1; oy++)
+                    for (int ox = -1; ox <= 1; ox++) {
+                        int nx = x + ox, ny = y + oy;
+                        if ((ox == 0 && oy == 0) || nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
+                        size_t q = (size_t)ny * w + nx;
+                        double v3[3];
+                        if (r->isnew[q]) {
+                            for (int c = 0; c < 3; c++) v3[c] = r->samples[q * 12 + slot * 3 + c];
+                        } else if (r->nbhd == TDC_REF_NBHD_ALL) {
+                            ref_bilinear_prev(r, nx + mx / 16.0, ny + my / 16.0, v3);
+                        } else {
+                            continue;
+                        }
+                        n++;
+                        for (int c = 0; c < 3; c++) s1[c] += v3[c], s2[c] += v3[c] * v3[c];
                     }
-                }
+            }
             for (int c = 0; c < 3; c++) {
-                double v = (1 - fx) * (1 - fy) * ref_prev(r, x0, y0, c) + fx * (1 - fy) * ref_prev(r, x1, y0, c) +
-                           (1 - fx) * fy * ref_prev(r, x0, y1, c) + fx * fy * ref_prev(r, x1, y1, c);
+                double v = vb[c];
                 if (n > 0) {
                     double mean = s1[c] / n, var = s2[c] / n - mean * mean;
                     double sd = sqrt(var > 0 ? var : 0);

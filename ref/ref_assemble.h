@@ -2,13 +2,8 @@
  * ref_assemble.h - double-precision reference of tile-ordered frame assembly
  * (TDRT paper §3.2, docs/design.md §4.3), written straight from the text, plus a
  * synthetic 240 Hz subframe stream (an analytic "renderer") for the tests,
- * golden-free error reports and the benchmark.
- *
- * The reference keeps its own state (heap, host only).  Its previous frame
- * is its own 8-bit output (the output frame format is RGB888, and the paper
- * reprojects from the previous output frame); everything else - bilinear
- * weights, mean, sigma, box, window mean - is computed in double and rounded
- * half up only when written to the 8-bit output.
+ * golden-free error reports and the benchmark.  The assembly's own
+ * declarations are in ref_asm.h (the simulator includes only that).
  */
 #ifndef REF_ASSEMBLE_H
 #define REF_ASSEMBLE_H
@@ -16,25 +11,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "ref_asm.h"
 #include "tdc_ordering.h"
-
-/* Ordering decision in double: l_f = |m| - floor|m|, a = atan2 folded,
- * band (0.25, 0.75) shifted by +-0.5 a/(pi/2), random band |a - pi/4| <
- * pi/40 decided by tdc_hash3 (tdc_math.h: the definition of the random choice). */
-tdc_ordering_t tdc_ref_ordering_decide(double mx, double my, tdc_ordering_t current, uint32_t tile_x, uint32_t tile_y,
-                                       uint32_t frame);
-
-typedef struct tdc_ref_asm tdc_ref_asm_t;
-
-tdc_ref_asm_t *tdc_ref_asm_new(int w, int h);
-void tdc_ref_asm_free(tdc_ref_asm_t *r);
-/* Same contract as tdc_asm_ingest / tdc_asm_assemble (returns 0 or -1). */
-int tdc_ref_asm_ingest(tdc_ref_asm_t *r, uint32_t frame, const uint8_t *samples, const int16_t *mvs,
-                       const uint8_t *pattern_bits);
-int tdc_ref_asm_assemble(tdc_ref_asm_t *r, uint32_t frame);
-/* Last output, RGB888 rows w*3 bytes apart; and its unrounded values. */
-const uint8_t *tdc_ref_asm_output(const tdc_ref_asm_t *r);
-const double *tdc_ref_asm_output_exact(const tdc_ref_asm_t *r);
 
 /* ------------------------------------------------------------------------
  * Synthetic subframe stream.

@@ -38,7 +38,9 @@ import csv
 import glob
 import importlib.util
 import json
+import math
 import os
+import shlex
 import shutil
 import subprocess
 import sys
@@ -183,6 +185,53 @@ class Experiment:
                                   float(r.get("jod_frames", "") or 0) > 0 for r in rows)
 
     @staticmethod
+    def saccades(width, height, speed, angle_deg, seconds, gain=1.0):
+        """Catch-up saccades the simulated eye makes in a pursuit run (docs/eye.md, sim/simulator/tdc_sim_gaze.h):
+        it starts at the centre, moves at gain x the pursued velocity and jumps back to the centre when it
+        leaves the central half of the W x H view, i.e. every W/4 (H/4) pixels of travel."""
+        a = math.radians(angle_deg)
+        n = 0
+        for size, v in ((width, speed * math.cos(a)), (height, speed * math.sin(a))):
+            travel = abs(gain * v * seconds)
+            n += int(math.floor(travel / (size / 4.0) + 1e-9)) if size >= 4 else 0
+        return n
+
+    def base_args(self, sweep):
+        """The run's tdc-sim options of a sweep's base line at the scale it ran (DIR/<group>/<sweep>.sweep)."""
+        p = os.path.join(self.out, self.group, sweep + ".sweep")
+        try:
+            with open(p, encoding="utf-8") as f:
+                for line in f:
+                    k, _, v = line.split("#", 1)[0].partition("=")
+                    if k.strip() == "base":
+                        return shlex.split(v)
+        except OSError:
+            pass
+        return []
+
+    def saccade_note(self, sweep, gain=1.0, speed=None):
+        """A row's note when its pursuit runs hold catch-up saccades ("" when none): a TRM pair straddling one
+        falls apart on the retina, and the visual model (no saccadic suppression) judges the jump."""
+        args = self.base_args(sweep)
+        opt = lambda names, d: next((args[i + 1] for i, a in enumerate(args[:-1]) if a in names), d)  # noqa: E731
+        if opt(("--gaze",), "pursuit") != "pursuit" or opt(("--pursuit",), "track") != "track":
+            return ""
+        w, _, h = opt(("-g", "--size"), "0x0").partition("x")
+        hz = float(opt(("-r", "--refresh"), "90"))
+        secs = float(opt(("-n", "--frames"), "0")) / hz or float(opt(("-d", "--duration"), "0.5"))
+        scene = opt(("-s", "--scene"), "pan")
+        v = float(speed if speed is not None else opt(("--speed",), {"pan": 450, "thin": 330, "fence": 270,
+                                                                       "discs": 600}.get(scene, 0)))
+        n = self.saccades(int(w), int(h), v, float(opt(("--angle",), "0")), secs,
+                          float(opt(("--pursuit-gain",), gain)))
+        if n == 0:
+            return ""
+        return ("the simulated eye makes %d catch-up saccade%s in each run (back to the centre on leaving the central "
+                "half of the %sx%s view at %.0f px/s): a TRM pair straddling one falls apart on the retina and the "
+                "visual model, which has no saccadic suppression, judges the jump (docs/experiments.md, 'Saccades')" % (
+                    n, "s" if n > 1 else "", w, h, v))
+
+    @staticmethod
     def select(rows, **eq):
         return [r for r in rows if all(str(r.get(k)) == str(v) for k, v in eq.items())]
 
@@ -210,6 +259,35 @@ class Experiment:
                             "ci": ci or ("SD %s" % spread if spread != "" else ""), "margin": margin, "n": n,
                             "run": run or "%s (scale %s)" % (self.group, self.scale), "verdict": verdict,
                             "class": cls, "why": why})
+
+    def content_spread(self, j, rows, eq_a, eq_b):
+        """When a 'better' row is inconclusive with a positive gain carried by a few contents - A ahead on most
+        contents in JOD and in FLIP, by more than the margin only on a minority - the per-content picture
+        (ahead, flip_ahead, n, [(content, gain) over the margin]); else None.  Contents are named by their
+        image (else seed), in exp.values' order."""
+        if j["verdict"] != "inconclusive" or j["gain"] <= 0:
+            return None
+        key = lambda r: (int(r.get("seed", 0) or 0), int(r.get("job", 0)))  # noqa: E731 (values' order)
+        names = [os.path.splitext(os.path.basename(r.get("image", "") or r.get("seed", "")))[0]
+                 for r in sorted(self.select(rows, **eq_a), key=key)]
+        ga = [a - b for a, b in zip(self.values(rows, "jod", **eq_a), self.values(rows, "jod", **eq_b))]
+        gf = [b - a for a, b in zip(self.values(rows, "flip", **eq_a), self.values(rows, "flip", **eq_b))]
+        ahead, flip_ahead = sum(1 for g in ga if g > 0), sum(1 for g in gf if g > 0)
+        big = [(n, g) for n, g in zip(names, ga) if g > j["margin"]]
+        if 2 * ahead <= len(ga) or 2 * flip_ahead <= len(gf) or not big or 2 * len(big) > len(ga):
+            return None
+        return ahead, flip_ahead, len(ga), big
+
+    def class_last(self, cls, why):
+        """Classes the last row (a non-agreement) and adds the reason to its why: for a class that
+        depends on what the data show beyond the verdict (per content, per scale)."""
+        if cls not in CLASSES or not cls:
+            raise ValueError("class '%s' (one of %s)" % (cls, ", ".join(c for c in CLASSES if c)))
+        row = self.claims[-1]
+        if row["verdict"] in ("agree", "equivalent"):
+            raise ValueError("class '%s' on an agreeing row" % cls)
+        row["class"] = cls
+        row["why"] += "; " + why
 
     def judge(self, paper, quote, claim, paper_value, a, b, kind, metric, label_a="A", label_b="B", digits=4,
               run="", why="", cls="", margin=None, method="t", higher_is_better=None, secondary=(), note=""):
@@ -314,6 +392,7 @@ def run_claims(group, out):
     except Exception:
         raise ExpError(EXIT_RUN_FAILED, "%s/claims.py raised:\n%s" % (group, traceback.format_exc()))
     path = os.path.join(out, group, "claims.csv")
+    os.makedirs(os.path.dirname(path), exist_ok=True)  # a group without jobs (trm-fig6) may have no folder yet
     tmp = path + ".tmp"
     with open(tmp, "w", newline="", encoding="utf-8") as f:
         w = csv.DictWriter(f, CLAIM_COLUMNS, lineterminator="\n")

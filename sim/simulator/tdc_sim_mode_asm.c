@@ -4,6 +4,10 @@
  * or chosen from motion (the firmware's own tdc_ordering_update, linked by
  * the renderer side), optionally with shadow + dual motion vectors.  The
  * link carries SUBFRAME, PATTERN (every 4th frame) and MOTION packets.
+ * The asm-ref-* modes assemble the same packets with the double reference
+ * (ref/ref_asm.h) instead of the firmware, with the variance-sampling
+ * neighbourhood TDRT Fig. 7 compares (the firmware has only the paper's):
+ * asm-ref is the paper's box, the other two are the alternatives it rejects.
  */
 #include <stdlib.h>
 #include <string.h>
@@ -13,6 +17,7 @@
 #include "tdc_assemble.h"
 #include "tdc_ordering.h"
 #include "tdc_free.h"
+#include "ref_asm.h"
 
 #define F &tdc_sim_family_asm
 #define L (TDC_SIM_LINK_SUBFRAMES | TDC_SIM_LINK_SAMPLE_MV)
@@ -23,6 +28,13 @@ static const tdc_mode_desc_t k_modes[] = {
     {"asm-hourglass-smv", F, 0, L, 1, 1, 0, 0, 1, "assembly, hourglass, shadow + dual MVs"},
     {"asm-bowtie-smv", F, 0, L, 1, 1, 0, 1, 1, "assembly, bowtie, shadow + dual MVs"},
     {"asm-adaptive-smv", F, 0, L, 1, 1, 0, -1, 1, "assembly, adaptive, shadow + dual MVs"},
+    /* variant: 1 + tdc_ref_nbhd_t (the double reference, TDRT Fig. 7) */
+    {"asm-ref", F, 1 + TDC_REF_NBHD_NEWEST, L, 1, 1, 0, -1, 0,
+     "reference assembly (double), adaptive; box: newest immediate neighbours (the paper's)"},
+    {"asm-ref-all", F, 1 + TDC_REF_NBHD_ALL, L, 1, 1, 0, -1, 0,
+     "reference assembly, adaptive; box: all 8 neighbours (old ones reprojected)"},
+    {"asm-ref-sub3x3", F, 1 + TDC_REF_NBHD_SUB3X3, L, 1, 1, 0, -1, 0,
+     "reference assembly, adaptive; box: a 3x3 area of the newest subframe"},
 };
 #undef F
 #undef L
@@ -35,7 +47,17 @@ typedef struct {
     int16_t *submv;   /* MVs of this subframe's samples */
     uint8_t *sub;     /* samples of this subframe */
     uint8_t *pattern; /* orderings of the current cycle */
+    tdc_ref_asm_t *ref; /* asm-ref-* modes: the reference instead of the firmware */
 } asm_state_t;
+
+static int asm_ref_new(sim_mode_t *m, asm_state_t *st)
+{
+    tdc_ref_asm_free(st->ref);
+    st->ref = tdc_ref_asm_new(m->w, m->h);
+    if (!st->ref) return -1;
+    tdc_ref_asm_set_nbhd(st->ref, (tdc_ref_nbhd_t)(m->d->variant - 1));
+    return 0;
+}
 
 static int asm_init(sim_mode_t *m, const tdc_sim_setup_t *s)
 {
@@ -56,6 +78,9 @@ static int asm_init(sim_mode_t *m, const tdc_sim_setup_t *s)
     st->submv = calloc(tiles * 2, sizeof(int16_t));
     st->sub = calloc(tiles * 3, 1);
     st->pattern = calloc((tiles + 7) / 8 + 1, 1);
+    if (m->d->variant > 0) {
+        return st->mvbuf && st->submv && st->sub && st->pattern ? asm_ref_new(m, st) : -1;
+    }
     tdc_asm_config_t ac = {(uint16_t)m->w, (uint16_t)m->h};
     st->bytes = tdc_asm_get_size(&ac);
     st->mem = st->bytes ? malloc(st->bytes) : NULL;
@@ -119,6 +144,16 @@ static int asm_frame(sim_mode_t *m, tdc_source_t *src, double t, int spp, uint32
         return rc;
     }
     double t0 = tdc_sim_now();
+    if (st->ref) {
+        const uint8_t *pat = cycle ? m->link->pattern[m->eye] : NULL;
+        if (tdc_ref_asm_ingest(st->ref, lf, m->link->subframe[m->eye], m->link->sample_motion[m->eye], pat) ||
+            tdc_ref_asm_assemble(st->ref, lf)) {
+            return tdc_sim_stage(m, "reference assembly (ref_assemble)", TDC_ERR_STATE);
+        }
+        memcpy(m->wanted, tdc_ref_asm_output(st->ref), (size_t)m->w * m->h * 3);
+        r->fw_s += tdc_sim_now() - t0;
+        return 0;
+    }
     rc = tdc_sim_stage(m, "tdc_asm_ingest",
                        tdc_asm_ingest(&st->as, lf, m->link->subframe[m->eye], m->link->sample_motion[m->eye],
                                       cycle ? m->link->pattern[m->eye] : NULL));
@@ -140,6 +175,10 @@ static void asm_reset(sim_mode_t *m)
 {
     asm_state_t *st = m->fam;
     memset(st->mvbuf, 0, m->npx * 2 * sizeof(int16_t));
+    if (st->ref) {
+        if (asm_ref_new(m, st)) tdc_sim_stage(m, "reference assembly (stream reset): out of memory", TDC_ERR_STATE);
+        return;
+    }
     tdc_asm_config_t ac = {(uint16_t)m->w, (uint16_t)m->h};
     tdc_sim_stage(m, "tdc_asm_init (stream reset)", tdc_asm_init(&st->as, &ac, st->mem, st->bytes));
 }
@@ -148,6 +187,7 @@ static void asm_free(sim_mode_t *m)
 {
     asm_state_t *st = m->fam;
     if (st) {
+        tdc_ref_asm_free(st->ref);
         TDC_FREE_ALL(st->mem, st->mvbuf, st->submv, st->sub, st->pattern, st);
     }
     m->fam = NULL;

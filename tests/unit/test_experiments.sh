@@ -139,4 +139,86 @@ PY
 if [ "$(echo "$out" | sed -n 1p)" = "13 jod agree False" ] && [ "$(echo "$out" | sed -n 2p)" = "0 flip agree True" ]; then
     ok "judge_seen: JOD decides with pooled frames, FLIP (named) without"
 else bad "judge_seen: $out"; fi
+# the set-up check of pursuit runs (Experiment.saccades / saccade_note: the gaze rule of docs/eye.md),
+# the content-spread class of the ordering rows (tdrt-fig10 spread_class) and the Fig. 6 computation
+# (trm-fig6/fig6.py), on data with known answers
+out=$(/usr/bin/python3 - "$(dirname "$0")/../../sim/experiments" "$T" <<'PY'
+import importlib.util, os, sys
+sys.path.insert(0, sys.argv[1])
+import tdc_experiments as te
+S = te.Experiment.saccades
+print("sac", S(96, 96, 382.5, 0, 0.4), S(640, 64, 382.5, 0, 0.4), S(96, 96, 382.5, 0, 0.4, 0.9), S(96, 96, 450, 90, 0.4))
+out = sys.argv[2]
+os.makedirs(os.path.join(out, "g"), exist_ok=True)
+for name, base in (("wide", "--mono -s pan -g 640x64 --speed 382.5 -r 90 -n 36"),
+                   ("narrow", "--mono -s pan -g 96x96 --speed 382.5 -r 90 -n 36"),
+                   ("fixate", "--mono -s pan -g 96x96 --speed 382.5 -r 90 -n 36 --pursuit fixate"),
+                   ("default", "--mono -s pan -g 96x96 -r 90 -n 36")):
+    with open(os.path.join(out, "g", name + ".sweep"), "w") as f:
+        f.write("name = x\nbase = %s\nmodes = full\n" % base)
+e = te.Experiment("g", out, "demo")
+notes = [e.saccade_note(n) for n in ("wide", "narrow", "fixate", "default")]
+print("note", notes[0] == "", "6 catch-up saccades" in notes[1], notes[2] == "", "7 catch-up saccades at 450" in
+      notes[3].replace(" in each run (back to the centre on leaving the central half of the 96x96 view", ""))
+spec = importlib.util.spec_from_file_location("f10", os.path.join(sys.argv[1], "tdrt-fig10", "claims.py"))
+f10 = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(f10)
+def rows(gains):  # A ahead by gains[i] in JOD on content i, and in FLIP on every content
+    return [{"mode": m, "seed": "1", "job": str(i), "image": "/x/img%d.jpg" % i,
+             "jod": "%.3f" % (9.0 + (g if m == "a" else 0.0)), "flip": "%.4f" % (0.10 - (0.01 if m == "a" else 0.0))}
+            for i, g in enumerate(gains) for m in ("a", "b")]
+for gains in ([0.70, 0.40, 0.01, 0.02, -0.01, 0.03, 0.02, 0.01, 0.02, 0.01],   # carried by 2 contents: classed
+              [0.90, 0.50, -0.05, -0.02, -0.05, 0.30, -0.03, -0.01, -0.04, -0.02]):  # behind on most: unclassed
+    e = te.Experiment("g", out, "demo")
+    r = rows(gains)
+    j = e.judge("p", "q", "c", "v", e.values(r, "jod", mode="a"), e.values(r, "jod", mode="b"), "better", "jod")
+    f10.spread_class(e, j, r, {"mode": "a"}, {"mode": "b"})
+    print("spread", j["verdict"], e.claims[0]["class"] or "-", "img0, img1 (+0.70, +0.40" in e.claims[0]["why"])
+# the user study on photographs: a row that does not agree is classed by the study's premise (full - full60)
+spec = importlib.util.spec_from_file_location("taa", os.path.join(sys.argv[1], "tdrt-taa", "claims.py"))
+taa = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(taa)
+import csv
+# gains of the assembly over full60: premise: -0.3, 0, -0.2 where full60 = full, then 5 of 7 ahead where
+# full60 is 1 JOD worse (interval [-0.1, 0.48]: inconclusive): classed; no premise (full60 = full everywhere)
+# and premise everywhere (nothing flat to explain the interval): unclassed
+g_p = [-0.3, 0.0, -0.2, 0.9, -0.1, 0.8, 0.05, 0.6, -0.2, 0.3]
+g_n = [0.5, -0.3, 0.6, -0.2, 0.4, -0.1, 0.3, -0.4, 0.5, 0.2]
+f60_p = [9.95] * 3 + [9.0] * 7
+for case, (f60, asm) in {"premise": (f60_p, [a + g for a, g in zip(f60_p, g_p)]),
+                         "no premise": ([9.9] * 10, [9.9 + g for g in g_n]),
+                         "premise everywhere": ([9.0] * 10, [9.0 + g for g in g_n])}.items():
+    d = os.path.join(out, "us", "userstudy")
+    os.makedirs(d, exist_ok=True)
+    with open(os.path.join(d, "sweep.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, ["job", "seed", "speed", "image", "mode", "jod", "jod_frames", "flip", "psnr_db"])
+        w.writeheader()
+        for i in range(10):
+            for m, jv in (("full", 9.95 if case == "premise" else 9.9), ("full60", f60[i]), ("asm-adaptive", asm[i])):
+                w.writerow({"job": i, "seed": 1, "speed": 360, "image": "/x/p%d.jpg" % i, "mode": m, "jod": jv,
+                            "jod_frames": 10, "flip": 0.1, "psnr_db": 30})
+    e = te.Experiment("us", out, "demo")
+    taa.user_study_photos(e)
+    c = e.claims[0]
+    print("us", case, c["verdict"], c["class"] or "-", "(p0, p1, p2:" in c["why"])
+spec = importlib.util.spec_from_file_location("fig6", os.path.join(sys.argv[1], "trm-fig6", "fig6.py"))
+f6 = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(f6)
+o, u = f6.artefacts(0.25, 0.0, 1.0, "linear", "luminance")
+og, ug = f6.artefacts(0.25, 0.0, 1.0, "gamma", "brightness")
+ol, ul = f6.artefacts(0.25, 0.0, 1.0, "linear", "brightness")
+lin, p = f6.perceived(f6.square(0.0, 0.3, 0.3), "gamma")  # a flat field: TRM changes nothing
+print("fig6", abs(o - u) < 1e-9 and o > 0.1, ol > ul, abs(og - ug) < abs(ol - ul), max(abs(a - b) for a, b in zip(lin, p)) < 1e-12)
+PY
+)
+want="sac 6 0 5 7
+note True True True True
+spread inconclusive setting True
+spread inconclusive - False
+us premise inconclusive setting True
+us no premise inconclusive - False
+us premise everywhere inconclusive - False
+fig6 True True True True"
+if [ "$out" = "$want" ]; then ok "saccade check, content-spread class, Fig. 6 computation: known answers"
+else bad "saccade/spread/fig6: got '$out'"; fi
 exit $fail

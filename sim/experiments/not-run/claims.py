@@ -8,17 +8,6 @@ ROWS = [
      "0.5 required only about 4.5 bpp'", "JPEG XS bandwidth with TRM", "≈ 4.5 bpp at r = 0.5 (XS bpp = 7)",
      "not reproducible", "JPEG XS (ISO/IEC 21122) has no encoder in Debian 12 and the standard's reference software "
      "is not freely licensed; the lossless column needs the same sequences, which the paper does not publish"),
-    ("TDRT §3.2.1 Fig. 7", "§3.2.1: 'use all immediate neighbors in the variance sampling, which means that old pixel "
-     "information would be used. Another possibility would be to do variance sampling with samples from a 3×3 area in "
-     "the most recent subframe, but this also reduces the quality'", "variance neighbourhood: most recent immediate "
-     "neighbours better than all neighbours or a 3x3 of the newest subframe", "the paper's choice best", "",
-     "not built: the firmware's assembly implements only the paper's neighbourhood; the two alternatives need "
-     "firmware variants (tdc_assemble) and modes"),
-    ("TRM §4.2 Fig. 6", "Fig. 6: 'TRM performs sampling in γ-compressed space, the perceptual impact of over- and "
-     "undershoot artifacts are balanced.'", "over/undershoot of a moving square: gamma-space TRM balanced in "
-     "brightness, linear-space TRM not", "balanced in gamma space", "",
-     "not built: the firmware's D and U work on gamma codes only; the linear-light variant and a Stevens-brightness "
-     "read-out of the retinal image are needed"),
 ]
 
 

@@ -25,7 +25,8 @@ def ranking(exp, rows, a, b, pursuit, scene, kind, judge):
     in JOD (the judge's own unit), FLIP and the temporally filtered error beside it."""
     exp.judge_seen("issue 15 judge (TRM §4.1)", Q41, "%s, %s: %s %s %s" % (scene, pursuit, a, kind + " than", b), judge,
                    rows, {"mode": a, "pursuit": pursuit, "scene": scene}, {"mode": b, "pursuit": pursuit, "scene": scene},
-                   kind, a, b, secondary=SECONDARY, run="%s/%s pursuit=%s scene=%s" % (exp.group, SWEEP, pursuit, scene))
+                   kind, a, b, secondary=SECONDARY, run="%s/%s pursuit=%s scene=%s" % (exp.group, SWEEP, pursuit, scene),
+                   note=exp.saccade_note(SWEEP) if pursuit == "track" else "")
 
 
 def claims(exp):
@@ -46,7 +47,8 @@ def claims(exp):
     exp.judge_seen("tdc ★ (beyond the paper)", Q_GAZE, "track: gaze-aware TRM equal to TRM", "equal", rows,
                    {"mode": "trm50g", "pursuit": "track", "scene": "pan"},
                    {"mode": "trm50", "pursuit": "track", "scene": "pan"}, "equal", "trm50g", "trm50",
-                   secondary=SECONDARY, run="%s/%s pursuit=track scene=pan" % (exp.group, SWEEP))
+                   secondary=SECONDARY, run="%s/%s pursuit=track scene=pan" % (exp.group, SWEEP),
+                   note=exp.saccade_note(SWEEP))
     # static content: TRM eq. 3, identical to full rate under either gaze
     for p in ("track", "fixate"):
         exp.judge_seen("TRM eq. 3 / issue 15 judge", Q3, "static, %s: TRM equals full" % p, "identical", rows,

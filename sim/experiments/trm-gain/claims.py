@@ -23,14 +23,15 @@ def claims(exp):
         # judged in JOD (what an observer sees), FLIP and the temporally filtered error beside it
         sec = (("flip", 4), ("legacy_terr", 2))
         run = "%s/%s gain=%s" % (exp.group, SWEEP, g)
+        note = exp.saccade_note(SWEEP, gain=float(g))  # "" in this sweep's views (the set-up check)
         exp.judge_seen("tdc ★ (beyond the paper)", Q_GAZE, "gain %s: gaze-aware TRM equal to TRM" % g, "equal", rows,
                        {"mode": "trm50g", "gain": g}, {"mode": "trm50", "gain": g}, "equal", "trm50g", "trm50",
-                       secondary=sec, run=run)
+                       secondary=sec, run=run, note=note)
         exp.judge_seen("tdc ★ (beyond the paper)", Q_GAZE, "gain %s: gaze-aware TRM not worse than reduced-only" % g,
                        "never worse", rows, {"mode": "trm50g", "gain": g}, {"mode": "reduced50", "gain": g},
-                       "not worse", "trm50g", "reduced50", secondary=sec, run=run)
+                       "not worse", "trm50g", "reduced50", secondary=sec, run=run, note=note)
         if g != "1":
             exp.judge_seen("TRM §3/§4.1", Q_SPEM, "gain %s (SPEM lag %d %%): TRM better than reduced-only" % (
                 g, round(100 * (1 - float(g)))), "TRM works under real SPEM", rows, {"mode": "trm50", "gain": g},
-                {"mode": "reduced50", "gain": g}, "better", "trm50", "reduced50", secondary=sec, run=run)
+                {"mode": "reduced50", "gain": g}, "better", "trm50", "reduced50", secondary=sec, run=run, note=note)
     exp.write_extra("Mean ± spread over the seeds:\n\n" + "\n".join(table) + "\n")

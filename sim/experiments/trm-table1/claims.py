@@ -76,7 +76,8 @@ def claims(exp):
                        "reduced < strong", rows, {"mode": m}, {"mode": "half"}, "better", m, "half",
                        secondary=(("flip", 4),), run=run, cls="model limit",
                        why="BFI's black frame and interlace's missing field are error at every instant; the blur the "
-                           "column means is what the eye fuses over the pair")
+                           "column means is what the eye fuses over the pair",
+                       note=exp.saccade_note(SWEEP))
     exp.judge_seen("TRM Table 1", Q_T1, "flicker: TRM equal to NCSFI (both mild)", "mild = mild", frows,
                    {"mode": "trm50"}, {"mode": "ncsfi"}, "equal", "trm50", "ncsfi",
                    secondary=fsec, run=frun, cls="model limit" if fmov else "",
@@ -90,7 +91,8 @@ def claims(exp):
                        what, rows, {"mode": a}, {"mode": b}, kind, a, b, secondary=(("flip", 4), ("legacy_terr", 2)),
                        run="%s/%s (pursuit)" % (exp.group, SWEEP), cls="model limit",
                        why="the paper's JOD comes from observers' pairwise preference in VR on its own scenes; "
-                           "tdc's is the visual model's on a textured pan")
+                           "tdc's is the visual model's on a textured pan",
+                       note=exp.saccade_note(SWEEP))
     # §7.2 binocular: the alternating-eye presentation not worse than the monocular one (per eye: the mean of
     # the two eyes' figures against the monocular TRM eye)
     try:
