@@ -27,6 +27,14 @@
  *             under an area light sweeping sideways; soft shadows fall over the
  *             floor-wall corners and onto the spheres, where eq. 3's flat
  *             receiver does not hold.  Noisy layer: visibility, as fence.
+ *   lights    Fig. 10: "another view of the fence scene with multiple
+ *             moving light sources": the fence seen from higher and to the
+ *             side under three area lights, each moving its own way, so the
+ *             slats cast three shadows moving at three speeds that overlap.
+ *             One shadow ray per pixel to one light chosen in proportion to
+ *             its unshadowed light there (§4.1: "for each light sample, we
+ *             compute its motion vector"); the visibility layer is the
+ *             lights' visibilities weighted by their unshadowed light.
  */
 #ifndef ZENG_SCENE_H
 #define ZENG_SCENE_H
@@ -35,9 +43,10 @@
 #include <stdint.h>
 
 #define ZS_MAX_OBJ 24
+#define ZS_MAX_LIGHTS 4
 
 enum { ZS_PLANE, ZS_BOX, ZS_SPHERE };
-enum { ZS_FENCE, ZS_GLOSSY, ZS_OCCLUSION, ZS_PINKROOM, ZS_NSCENES };
+enum { ZS_FENCE, ZS_GLOSSY, ZS_OCCLUSION, ZS_PINKROOM, ZS_LIGHTS, ZS_NSCENES };
 /* the layers the pipeline filters separately (Zeng §4: shading, visibility,
  * glossy, other indirect) */
 enum { ZL_VIS, ZL_GLOSSY, ZL_INDIRECT, ZL_N };
@@ -56,6 +65,11 @@ typedef struct {
     zs_obj_t obj[ZS_MAX_OBJ];
     double cam0[3], cam_vel[3], target[3], target_vel[3], vfov; /* radians */
     double light_c[3], light_e1[3], light_e2[3], light_vel[3], light_le[3];
+    /* lights 1..nlights-1 (0 or 1: light 0 alone): the same size and
+     * radiance as light 0, centred light_d[k] away from it at frame 0 and
+     * moving by light_dv[k] a frame (light_d[0], light_dv[0] stay 0) */
+    int nlights;
+    double light_d[ZS_MAX_LIGHTS][3], light_dv[ZS_MAX_LIGHTS][3];
     double ambient;
     int noisy; /* ZL_* layer this scene renders with one sample per pixel */
     /* the glossy layer's spatial filter: 0 [LLK*19]'s lobe footprint
@@ -127,6 +141,14 @@ double zs_intersect(const zs_scene_t *s, int frame, const double o[3], const dou
                     double n[3]);
 void zs_obj_offset(const zs_scene_t *s, int id, int frame, double off[3]);
 void zs_light_offset(const zs_scene_t *s, int frame, double off[3]);
+/* Light k's translation at `frame` (light 0: zs_light_offset). */
+void zs_light_k_offset(const zs_scene_t *s, int k, int frame, double off[3]);
+int zs_nlights(const zs_scene_t *s);
+/* Visibility from p (normal n) of point (u, v) of light k at `frame`: 1
+ * lit, 0 blocked (then the blocker's point bp and id *bid, else -1); lp:
+ * the light point. */
+double zs_light_vis(const zs_scene_t *s, int frame, int k, const double p[3], const double n[3], double u, double v,
+                    double lp[3], double bp[3], int *bid);
 
 /* Zeng eq. 3: the previous frame's position of a shadow: the line from the
  * light sample l through the blocker point b (both moved back by their own
