@@ -40,7 +40,7 @@ static void v_axpy(double o[3], const double a[3], double k, const double b[3])
     }
 }
 
-static const char *const k_names[ZS_NSCENES] = {"fence", "glossy", "occlusion", "pinkroom", "lights"};
+static const char *const k_names[ZS_NSCENES] = {"fence", "glossy", "occlusion", "pinkroom", "lights", "apples"};
 
 const char *zs_scene_name(int kind) { return kind >= 0 && kind < ZS_NSCENES ? k_names[kind] : "?"; }
 
@@ -135,6 +135,37 @@ void zs_scene_init(zs_scene_t *s, int kind)
         v_set(s->light_dv[1], 0.11, 0, 0); /* +0.05 a frame */
         v_set(s->light_d[2], 1.5, -0.1, -0.1);
         v_set(s->light_dv[2], 0.06, 0, 0.04); /* (0, 0, +0.04) a frame */
+        s->ambient = 0.06;
+        break;
+    case ZS_APPLES:
+        /* Fig. 9: "the Apples scene with highly curved apples and cloth on
+         * the desk, and a rapidly moving area light on the right": a desk
+         * (the floor plane) under a cloth whose folds are three low domes
+         * (large spheres sunk into the desk, 0.12-0.18 high), five apples
+         * (spheres r 0.13-0.18, two rolling 0.02 a frame) on and between
+         * the folds, a back wall, and a 0.4 x 0.4 light 1.1 up at the right
+         * sweeping 0.1 units a frame from back to front.  Every shadow but
+         * the wall's falls on a curved receiver or across one. */
+        s->noisy = ZL_VIS;
+        add(s, ZS_PLANE, 0, 0, 0, 0, 1, 0, 0.55, 0.38, 0.25); /* desk */
+        add(s, ZS_PLANE, 0, 0, -2.2, 0, 0, 1, 0.7, 0.7, 0.68);
+        add(s, ZS_SPHERE, -0.5, -0.52, -0.8, 0.7, 0, 0, 0.85, 0.85, 0.9); /* cloth folds */
+        add(s, ZS_SPHERE, 0.35, -0.48, -1.1, 0.6, 0, 0, 0.85, 0.85, 0.9);
+        add(s, ZS_SPHERE, 0.1, -0.62, -0.1, 0.75, 0, 0, 0.85, 0.85, 0.9);
+        add(s, ZS_SPHERE, -0.55, 0.34, -0.8, 0.16, 0, 0, 0.8, 0.1, 0.08); /* apples */
+        add(s, ZS_SPHERE, 0.35, 0.28, -1.1, 0.16, 0, 0, 0.45, 0.75, 0.15);
+        add(s, ZS_SPHERE, 0.15, 0.26, -0.15, 0.13, 0, 0, 0.85, 0.2, 0.1);
+        o = add(s, ZS_SPHERE, -1.2, 0.18, -0.2, 0.18, 0, 0, 0.75, 0.6, 0.1);
+        v_set(o->vel, 0.02, 0, 0);
+        o = add(s, ZS_SPHERE, 0.9, 0.15, -0.45, 0.15, 0, 0, 0.8, 0.15, 0.12);
+        v_set(o->vel, -0.02, 0, 0);
+        v_set(s->cam0, -0.2, 1.3, 1.6);
+        v_set(s->target, 0.0, 0.15, -0.6);
+        v_set(s->light_c, 1.6, 1.1, -1.8);
+        v_set(s->light_e1, 0.4, 0, 0);
+        v_set(s->light_e2, 0, 0, 0.4);
+        v_set(s->light_vel, 0, 0, 0.1);
+        v_set(s->light_le, 40, 38, 36);
         s->ambient = 0.06;
         break;
     case ZS_GLOSSY:

@@ -35,6 +35,11 @@
  *             its unshadowed light there (§4.1: "for each light sample, we
  *             compute its motion vector"); the visibility layer is the
  *             lights' visibilities weighted by their unshadowed light.
+ *   apples    Fig. 9: apples on a cloth's folds (spheres on low domes) on a
+ *             desk, a light on the right sweeping fast from back to front:
+ *             the shadows fall on curved receivers, eq. 3's flat receiver
+ *             fails almost everywhere and eq. 4's falloff must catch it.
+ *             Noisy layer: visibility, as fence.
  */
 #ifndef ZENG_SCENE_H
 #define ZENG_SCENE_H
@@ -46,7 +51,7 @@
 #define ZS_MAX_LIGHTS 4
 
 enum { ZS_PLANE, ZS_BOX, ZS_SPHERE };
-enum { ZS_FENCE, ZS_GLOSSY, ZS_OCCLUSION, ZS_PINKROOM, ZS_LIGHTS, ZS_NSCENES };
+enum { ZS_FENCE, ZS_GLOSSY, ZS_OCCLUSION, ZS_PINKROOM, ZS_LIGHTS, ZS_APPLES, ZS_NSCENES };
 /* the layers the pipeline filters separately (Zeng §4: shading, visibility,
  * glossy, other indirect) */
 enum { ZL_VIS, ZL_GLOSSY, ZL_INDIRECT, ZL_N };
