@@ -5,8 +5,8 @@
  * by translation, a pinhole camera moving on a line, one rectangular area
  * light (three in the lights scene), traced by hand so that every quantity
  * the paper's vectors need (blocker and light sample positions, lobe hit
- * points, the previous frame's G-buffer) is exact, and so that a 1024-sample ground truth at
- * 160x120 takes seconds on one core.
+ * points, the previous frame's G-buffer) is exact, and so that a
+ * 1024-sample ground truth at 160x120 takes seconds on one core.
  *
  * Each scene exercises one effect, as the paper's figures do (Fig. 8 shows
  * only the shadowed direct light, Fig. 11 the glossy reflection, Fig. 12 the
