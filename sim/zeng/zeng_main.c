@@ -6,7 +6,7 @@
  * evaluated frames; and the cost of the dual vectors (a G-buffer lookup)
  * beside the primary rays (§7).
  *
- *   tdc-zeng --scene fence|glossy|occlusion|pinkroom [--size WxH] [--frames N]
+ *   tdc-zeng --scene fence|glossy|occlusion|pinkroom|lights|apples [--size WxH] [--frames N]
  *            [--eval-from K] [--seeds "1 2 3 4 5"] [--gt-spp 1024]
  *            [--rough SIGMA] [--clamp-on raw|filtered] [--glossy-filter llk|fixed]
  *            [--no-falloff 0|1] [--spread K] [--ours-clamp K] [--glossy-mv pixel|splat]
@@ -40,7 +40,7 @@
 #define EXIT_NOMEM TDC_EXIT_NOMEM
 
 static const char help_text[] =
-    "usage: tdc-zeng --scene fence|glossy|occlusion|pinkroom [--size WxH] [--frames N] [--eval-from K]\n"
+    "usage: tdc-zeng --scene fence|glossy|occlusion|pinkroom|lights|apples [--size WxH] [--frames N] [--eval-from K]\n"
     "                [--seeds \"1 2 3 4 5\"] [--gt-spp 1024] [--rough SIGMA] [--clamp-on raw|filtered]\n"
     "                [--glossy-filter llk|fixed] [--no-falloff 0|1] [--spread K] [--ours-clamp K]\n"
     "                [--glossy-mv pixel|splat] [--fetch-error 0|1] [--jod PPD] [--csv FILE] [--png FILE]\n"
@@ -221,7 +221,7 @@ int main(int argc, char **argv)
     const int clamp_filtered = picked[PICK_CLAMP_ON], fetch_error = picked[PICK_FETCH_ERROR];
     const int kind = scene_name ? zs_scene_by_name(scene_name) : -1;
     if (kind < 0) {
-        return usage("--scene: fence, glossy, occlusion or pinkroom");
+        return usage("--scene: fence, glossy, occlusion, pinkroom, lights or apples");
     }
     const int k = (int)lround(sqrt((double)gt_spp));
     if (k * k != gt_spp || gt_spp < 1) {

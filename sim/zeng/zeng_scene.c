@@ -40,7 +40,7 @@ static void v_axpy(double o[3], const double a[3], double k, const double b[3])
     }
 }
 
-static const char *const k_names[ZS_NSCENES] = {"fence", "glossy", "occlusion", "pinkroom"};
+static const char *const k_names[ZS_NSCENES] = {"fence", "glossy", "occlusion", "pinkroom", "lights", "apples"};
 
 const char *zs_scene_name(int kind) { return kind >= 0 && kind < ZS_NSCENES ? k_names[kind] : "?"; }
 
@@ -73,6 +73,22 @@ static void stripes(zs_obj_t *o, double r, double g, double b, double period)
     o->tex_scale = period;
 }
 
+/* Fig. 8's fence: nine slats 0.35 wide every 0.8 and a rail, moving 0.05
+ * units a frame sideways, before a floor and a back wall. */
+static void fence(zs_scene_t *s)
+{
+    zs_obj_t *o;
+    stripes(add(s, ZS_PLANE, 0, 0, 0, 0, 1, 0, 0.75, 0.72, 0.68), 0.6, 0.6, 0.62, 0.7);
+    add(s, ZS_PLANE, 0, 0, -3, 0, 0, 1, 0.6, 0.62, 0.7);
+    for (int k = 0; k < 9; k++) {
+        double x = -4.4 + 0.8 * k;
+        o = add(s, ZS_BOX, x, 0.25, -1.05, x + 0.35, 1.3, -0.95, 0.55, 0.35, 0.2);
+        v_set(o->vel, 0.05, 0, 0);
+    }
+    o = add(s, ZS_BOX, -4.0, 0.95, -1.1, 2.4, 1.05, -1.05, 0.5, 0.3, 0.2);
+    v_set(o->vel, 0.05, 0, 0);
+}
+
 void zs_scene_init(zs_scene_t *s, int kind)
 {
     memset(s, 0, sizeof *s);
@@ -87,21 +103,69 @@ void zs_scene_init(zs_scene_t *s, int kind)
          * between a 0.3 x 0.3 area light behind it and the floor in front
          * of it. */
         s->noisy = ZL_VIS;
-        stripes(add(s, ZS_PLANE, 0, 0, 0, 0, 1, 0, 0.75, 0.72, 0.68), 0.6, 0.6, 0.62, 0.7);
-        add(s, ZS_PLANE, 0, 0, -3, 0, 0, 1, 0.6, 0.62, 0.7);
-        for (int k = 0; k < 9; k++) {
-            double x = -4.4 + 0.8 * k;
-            o = add(s, ZS_BOX, x, 0.25, -1.05, x + 0.35, 1.3, -0.95, 0.55, 0.35, 0.2);
-            v_set(o->vel, 0.05, 0, 0);
-        }
-        o = add(s, ZS_BOX, -4.0, 0.95, -1.1, 2.4, 1.05, -1.05, 0.5, 0.3, 0.2);
-        v_set(o->vel, 0.05, 0, 0);
+        fence(s);
         v_set(s->cam0, 0, 1.7, 2.6);
         v_set(s->target, 0, 0, -0.6);
         v_set(s->light_c, 0, 2.2, -2.2);
         v_set(s->light_e1, 0.3, 0, 0);
         v_set(s->light_e2, 0, 0, 0.3);
         v_set(s->light_le, 420, 400, 380);
+        s->ambient = 0.06;
+        break;
+    case ZS_LIGHTS:
+        /* Fig. 10: the fence seen from higher up and to the right, under
+         * three 0.3 x 0.3 lights behind it (x -1.5, 0, +1.5) moving their
+         * own ways: the middle one 0.06 a frame to the left, the left one
+         * 0.05 to the right, the right one 0.04 towards the fence.  Each
+         * slat's three shadows move at three speeds (the fence's own 0.05
+         * plus each light's parallax) and cross one another, so one pixel
+         * sees several shadows moving differently (Zeng §7, "Failure due to
+         * mixed information": "Another example is in Fig. 10"). */
+        s->noisy = ZL_VIS;
+        fence(s);
+        v_set(s->cam0, 1.6, 2.5, 2.3);
+        v_set(s->target, -0.2, 0, -0.9);
+        v_set(s->light_c, 0, 2.2, -2.2);
+        v_set(s->light_e1, 0.3, 0, 0);
+        v_set(s->light_e2, 0, 0, 0.3);
+        v_set(s->light_vel, -0.06, 0, 0);
+        v_set(s->light_le, 170, 160, 150);
+        s->nlights = 3;
+        v_set(s->light_d[1], -1.5, 0, 0.1);
+        v_set(s->light_dv[1], 0.11, 0, 0); /* +0.05 a frame */
+        v_set(s->light_d[2], 1.5, -0.1, -0.1);
+        v_set(s->light_dv[2], 0.06, 0, 0.04); /* (0, 0, +0.04) a frame */
+        s->ambient = 0.06;
+        break;
+    case ZS_APPLES:
+        /* Fig. 9: "the Apples scene with highly curved apples and cloth on
+         * the desk, and a rapidly moving area light on the right": a desk
+         * (the floor plane) under a cloth whose folds are three low domes
+         * (large spheres sunk into the desk, 0.12-0.18 high), five apples
+         * (spheres r 0.13-0.18, two rolling 0.02 a frame) on and between
+         * the folds, a back wall, and a 0.4 x 0.4 light 1.1 up at the right
+         * sweeping 0.1 units a frame from back to front.  Every shadow but
+         * the wall's falls on a curved receiver or across one. */
+        s->noisy = ZL_VIS;
+        add(s, ZS_PLANE, 0, 0, 0, 0, 1, 0, 0.55, 0.38, 0.25); /* desk */
+        add(s, ZS_PLANE, 0, 0, -2.2, 0, 0, 1, 0.7, 0.7, 0.68);
+        add(s, ZS_SPHERE, -0.5, -0.52, -0.8, 0.7, 0, 0, 0.85, 0.85, 0.9); /* cloth folds */
+        add(s, ZS_SPHERE, 0.35, -0.48, -1.1, 0.6, 0, 0, 0.85, 0.85, 0.9);
+        add(s, ZS_SPHERE, 0.1, -0.62, -0.1, 0.75, 0, 0, 0.85, 0.85, 0.9);
+        add(s, ZS_SPHERE, -0.55, 0.34, -0.8, 0.16, 0, 0, 0.8, 0.1, 0.08); /* apples */
+        add(s, ZS_SPHERE, 0.35, 0.28, -1.1, 0.16, 0, 0, 0.45, 0.75, 0.15);
+        add(s, ZS_SPHERE, 0.15, 0.26, -0.15, 0.13, 0, 0, 0.85, 0.2, 0.1);
+        o = add(s, ZS_SPHERE, -1.2, 0.18, -0.2, 0.18, 0, 0, 0.75, 0.6, 0.1);
+        v_set(o->vel, 0.02, 0, 0);
+        o = add(s, ZS_SPHERE, 0.9, 0.15, -0.45, 0.15, 0, 0, 0.8, 0.15, 0.12);
+        v_set(o->vel, -0.02, 0, 0);
+        v_set(s->cam0, -0.2, 1.3, 1.6);
+        v_set(s->target, 0.0, 0.15, -0.6);
+        v_set(s->light_c, 1.6, 1.1, -1.8);
+        v_set(s->light_e1, 0.4, 0, 0);
+        v_set(s->light_e2, 0, 0, 0.4);
+        v_set(s->light_vel, 0, 0, 0.1);
+        v_set(s->light_le, 40, 38, 36);
         s->ambient = 0.06;
         break;
     case ZS_GLOSSY:
@@ -193,6 +257,15 @@ void zs_light_offset(const zs_scene_t *s, int frame, double off[3])
 {
     for (int c = 0; c < 3; c++) {
         off[c] = s->light_vel[c] * frame;
+    }
+}
+
+int zs_nlights(const zs_scene_t *s) { return s->nlights > 1 ? s->nlights : 1; }
+
+void zs_light_k_offset(const zs_scene_t *s, int k, int frame, double off[3])
+{
+    for (int c = 0; c < 3; c++) {
+        off[c] = k == 0 ? s->light_vel[c] * frame : s->light_d[k][c] + (s->light_vel[c] + s->light_dv[k][c]) * frame;
     }
 }
 
@@ -351,12 +424,12 @@ static void sky(const double d[3], double out[3])
     out[2] = (1 - t) * 0.7 + t * 1.0 + 1.5 * sp;
 }
 
-/* Unshadowed direct light from the light's centre (the shading layer), per
- * unit albedo: Le A cos_s cos_l / (pi d^2). */
-static double direct(const zs_scene_t *s, int frame, const double p[3], const double n[3])
+/* Unshadowed direct light from light k's centre, per unit albedo: Le A
+ * cos_s cos_l / (pi d^2). */
+static double direct_k(const zs_scene_t *s, int frame, int lk, const double p[3], const double n[3])
 {
     double loff[3], lc[3], ln[3], l[3];
-    zs_light_offset(s, frame, loff);
+    zs_light_k_offset(s, lk, frame, loff);
     v_axpy(lc, s->light_c, 1.0, loff);
     v_cross(s->light_e1, s->light_e2, ln);
     double area = sqrt(v_dot(ln, ln));
@@ -373,6 +446,16 @@ static double direct(const zs_scene_t *s, int frame, const double p[3], const do
     return area * cs * cl / (M_PI * d2);
 }
 
+/* The shading layer: the lights' unshadowed direct light summed. */
+static double direct(const zs_scene_t *s, int frame, const double p[3], const double n[3])
+{
+    double e = 0.0;
+    for (int k = 0; k < zs_nlights(s); k++) {
+        e += direct_k(s, frame, k, p, n);
+    }
+    return e;
+}
+
 /* Radiance leaving a surface point towards the viewer (the glossy layer's
  * reflected objects): its unshadowed diffuse light plus ambient. */
 static void radiance(const zs_scene_t *s, int frame, int id, const double p[3], const double n[3], double out[3])
@@ -385,10 +468,10 @@ static void radiance(const zs_scene_t *s, int frame, int id, const double p[3], 
     }
 }
 
-static void light_point(const zs_scene_t *s, int frame, double u, double v, double out[3])
+static void light_point(const zs_scene_t *s, int frame, int lk, double u, double v, double out[3])
 {
     double off[3];
-    zs_light_offset(s, frame, off);
+    zs_light_k_offset(s, lk, frame, off);
     for (int k = 0; k < 3; k++) {
         out[k] = s->light_c[k] + off[k] + (u - 0.5) * s->light_e1[k] + (v - 0.5) * s->light_e2[k];
     }
@@ -434,13 +517,11 @@ static void offset_origin(double o[3], const double p[3], const double n[3])
     v_axpy(o, p, 1e-6, n);
 }
 
-/* Visibility of light point (u, v) from p: 1 lit, 0 blocked (blocker point
- * and id returned). */
-static double vis_sample(const zs_scene_t *s, int frame, const double p[3], const double n[3], double u, double v,
-                         double lp[3], double bpt[3], int *bid)
+double zs_light_vis(const zs_scene_t *s, int frame, int lk, const double p[3], const double n[3], double u, double v,
+                    double lp[3], double bpt[3], int *bid)
 {
     double o[3], d[3];
-    light_point(s, frame, u, v, lp);
+    light_point(s, frame, lk, u, v, lp);
     offset_origin(o, p, n);
     for (int k = 0; k < 3; k++) {
         d[k] = lp[k] - o[k];
@@ -456,6 +537,39 @@ static double vis_sample(const zs_scene_t *s, int frame, const double p[3], cons
     }
     *bid = -1;
     return 1.0;
+}
+
+/* One visibility sample from p: u picks light *lk in proportion to its
+ * unshadowed light at p (the visibility layer's weights, so that shade *
+ * E[V] is the shadowed light summed over the lights) and, rescaled, with v
+ * the point on it. */
+static double vis_sample(const zs_scene_t *s, int frame, const double p[3], const double n[3], double u, double v,
+                         double lp[3], double bpt[3], int *bid, int *lk)
+{
+    int k = 0;
+    const int nl = zs_nlights(s);
+    if (nl > 1) {
+        double wk[ZS_MAX_LIGHTS], tot = 0;
+        for (int q = 0; q < nl; q++) {
+            tot += wk[q] = direct_k(s, frame, q, p, n);
+        }
+        if (tot > 0) {
+            double t = u * tot;
+            while (k < nl - 1 && (wk[k] <= 0 || t >= wk[k])) {
+                t -= wk[k];
+                k++;
+            }
+            while (wk[k] <= 0) { /* rounding ran past the last lit light */
+                k--;
+            }
+            u = fmin(fmax(t / wk[k], 0.0), 0.999999999);
+        } else {
+            k = (int)(u * nl);
+            u = u * nl - k;
+        }
+    }
+    *lk = k;
+    return zs_light_vis(s, frame, k, p, n, u, v, lp, bpt, bid);
 }
 
 static void glossy_sample(const zs_scene_t *s, int frame, const double p[3], const double n[3], const double vd[3],
@@ -690,8 +804,8 @@ static void layer_sample(const zs_scene_t *s, int frame, int id, const double p[
         v_set(out, one, one, one);
     } else if (s->noisy == ZL_VIS) {
         double lp[3], bp[3];
-        int bid;
-        const double vis = vis_sample(s, frame, p, n, u, v, lp, bp, &bid);
+        int bid, lk;
+        const double vis = vis_sample(s, frame, p, n, u, v, lp, bp, &bid, &lk);
         v_set(out, vis, vis, vis);
     } else if (s->noisy == ZL_GLOSSY) {
         v_set(out, 0, 0, 0);
@@ -759,14 +873,16 @@ void zs_render(const zs_scene_t *s, int frame, uint64_t seed, zs_frame_t *f)
             const double u = zr_u01(key, 0), v = zr_u01(key, 1);
             if (s->noisy == ZL_VIS) {
                 double lp[3], bp[3];
-                int bid;
-                double vis = vis_sample(s, frame, p, n, u, v, lp, bp, &bid);
+                int bid, lk;
+                double vis = vis_sample(s, frame, p, n, u, v, lp, bp, &bid, &lk);
                 v_set(lay, vis, vis, vis);
                 if (bid >= 0) {
-                    /* eq. 3 */
+                    /* eq. 3, with the sampled light's own motion (§4.1:
+                     * "for each light sample, we compute its motion
+                     * vector") */
                     double dl[3], dl0[3], db[3], db0[3], sp[3];
-                    zs_light_offset(s, frame, dl);
-                    zs_light_offset(s, frame - 1, dl0);
+                    zs_light_k_offset(s, lk, frame, dl);
+                    zs_light_k_offset(s, lk, frame - 1, dl0);
                     zs_obj_offset(s, bid, frame, db);
                     zs_obj_offset(s, bid, frame - 1, db0);
                     for (int k = 0; k < 3; k++) {

@@ -3,10 +3,10 @@
  * evaluation ("Temporally Reliable Motion Vectors for Real-time Ray
  * Tracing", EG 2021; sim/zeng/README.md): planes, boxes and spheres moving
  * by translation, a pinhole camera moving on a line, one rectangular area
- * light, traced by hand so that every quantity the paper's vectors need
- * (blocker and light sample positions, lobe hit points, the previous
- * frame's G-buffer) is exact, and so that a 1024-sample ground truth at
- * 160x120 takes seconds on one core.
+ * light (three in the lights scene), traced by hand so that every quantity
+ * the paper's vectors need (blocker and light sample positions, lobe hit
+ * points, the previous frame's G-buffer) is exact, and so that a
+ * 1024-sample ground truth at 160x120 takes seconds on one core.
  *
  * Each scene exercises one effect, as the paper's figures do (Fig. 8 shows
  * only the shadowed direct light, Fig. 11 the glossy reflection, Fig. 12 the
@@ -27,6 +27,19 @@
  *             under an area light sweeping sideways; soft shadows fall over the
  *             floor-wall corners and onto the spheres, where eq. 3's flat
  *             receiver does not hold.  Noisy layer: visibility, as fence.
+ *   lights    Fig. 10: "another view of the fence scene with multiple
+ *             moving light sources": the fence seen from higher and to the
+ *             side under three area lights, each moving its own way, so the
+ *             slats cast three shadows moving at three speeds that overlap.
+ *             One shadow ray per pixel to one light chosen in proportion to
+ *             its unshadowed light there (§4.1: "for each light sample, we
+ *             compute its motion vector"); the visibility layer is the
+ *             lights' visibilities weighted by their unshadowed light.
+ *   apples    Fig. 9: apples on a cloth's folds (spheres on low domes) on a
+ *             desk, a light on the right sweeping fast from back to front:
+ *             the shadows fall on curved receivers, eq. 3's flat receiver
+ *             fails almost everywhere and eq. 4's falloff must catch it.
+ *             Noisy layer: visibility, as fence.
  */
 #ifndef ZENG_SCENE_H
 #define ZENG_SCENE_H
@@ -35,9 +48,10 @@
 #include <stdint.h>
 
 #define ZS_MAX_OBJ 24
+#define ZS_MAX_LIGHTS 4
 
 enum { ZS_PLANE, ZS_BOX, ZS_SPHERE };
-enum { ZS_FENCE, ZS_GLOSSY, ZS_OCCLUSION, ZS_PINKROOM, ZS_NSCENES };
+enum { ZS_FENCE, ZS_GLOSSY, ZS_OCCLUSION, ZS_PINKROOM, ZS_LIGHTS, ZS_APPLES, ZS_NSCENES };
 /* the layers the pipeline filters separately (Zeng §4: shading, visibility,
  * glossy, other indirect) */
 enum { ZL_VIS, ZL_GLOSSY, ZL_INDIRECT, ZL_N };
@@ -56,6 +70,11 @@ typedef struct {
     zs_obj_t obj[ZS_MAX_OBJ];
     double cam0[3], cam_vel[3], target[3], target_vel[3], vfov; /* radians */
     double light_c[3], light_e1[3], light_e2[3], light_vel[3], light_le[3];
+    /* lights 1..nlights-1 (0 or 1: light 0 alone): the same size and
+     * radiance as light 0, centred light_d[k] away from it at frame 0 and
+     * moving by light_dv[k] a frame (light_d[0], light_dv[0] stay 0) */
+    int nlights;
+    double light_d[ZS_MAX_LIGHTS][3], light_dv[ZS_MAX_LIGHTS][3];
     double ambient;
     int noisy; /* ZL_* layer this scene renders with one sample per pixel */
     /* the glossy layer's spatial filter: 0 [LLK*19]'s lobe footprint
@@ -127,6 +146,14 @@ double zs_intersect(const zs_scene_t *s, int frame, const double o[3], const dou
                     double n[3]);
 void zs_obj_offset(const zs_scene_t *s, int id, int frame, double off[3]);
 void zs_light_offset(const zs_scene_t *s, int frame, double off[3]);
+/* Light k's translation at `frame` (light 0: zs_light_offset). */
+void zs_light_k_offset(const zs_scene_t *s, int k, int frame, double off[3]);
+int zs_nlights(const zs_scene_t *s);
+/* Visibility from p (normal n) of point (u, v) of light k at `frame`: 1
+ * lit, 0 blocked (then the blocker's point bp and id *bid, else -1); lp:
+ * the light point. */
+double zs_light_vis(const zs_scene_t *s, int frame, int k, const double p[3], const double n[3], double u, double v,
+                    double lp[3], double bp[3], int *bid);
 
 /* Zeng eq. 3: the previous frame's position of a shadow: the line from the
  * light sample l through the blocker point b (both moved back by their own

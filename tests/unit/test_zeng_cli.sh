@@ -39,6 +39,12 @@ d=$(paste -d, "$t/g.csv" "$t/s.csv" | awk -F, '$1 == "glossy" && $4 != $12 { pri
 expect 0 "tiny pink room run" "" -- "$zeng" --scene pinkroom --size 16x16 --frames 3 --eval-from 2 --seeds 1 --gt-spp 4 --csv "$t/p.csv"
 m=$(awk -F, '$1 == "pinkroom" { print $3 }' "$t/p.csv" | tr '\n' ' ')
 [ "$m" = "trad trad-clamp ours svgf asvgf " ] && ok "pink room: the shadow methods ($m)" || bad "pink room: methods '$m'"
+# the several lights (Fig. 10) and the apples (Fig. 9): shadow scenes too
+for sc in lights apples; do
+    expect 0 "tiny $sc run" "" -- "$zeng" --scene $sc --size 16x16 --frames 3 --eval-from 2 --seeds 1 --gt-spp 4 --csv "$t/$sc.csv"
+    m=$(awk -F, -v s=$sc '$1 == s { print $3 }' "$t/$sc.csv" | tr '\n' ' ')
+    [ "$m" = "trad trad-clamp ours svgf asvgf " ] && ok "$sc: the shadow methods ($m)" || bad "$sc: methods '$m'"
+done
 # --jod adds FovVideoVDP's JODs and changes no other column; the 4-sample
 # frames differ visibly from the ground truth (JOD < 10); the occlusion
 # region (41 of 768 px here) holds a small part of the differences, so its
