@@ -31,7 +31,8 @@
 #define W 64
 #define H 48
 
-static tdc_render_t *open_text(const char *text, int shadow_mv, int dual_mv)
+/* dual_trace: the dual vectors traced as well (the check on the lookup) */
+static tdc_render_t *open_cfg(const char *text, int shadow_mv, int dual_mv, int dual_trace)
 {
     static tdc_scene_t sc;
     char err[256];
@@ -45,10 +46,16 @@ static tdc_render_t *open_text(const char *text, int shadow_mv, int dual_mv)
     cfg.threads = 2;
     cfg.shadow_mv = shadow_mv;
     cfg.dual_mv = dual_mv;
+    cfg.dual_trace = dual_trace;
     tdc_render_t *r = tdc_render_open(&sc, &cfg, err, sizeof err);
     if (!r) fprintf(stderr, "%s\n", err);
     assert_non_null(r);
     return r;
+}
+
+static tdc_render_t *open_text(const char *text, int shadow_mv, int dual_mv)
+{
+    return open_cfg(text, shadow_mv, dual_mv, 0);
 }
 
 /* Reprojection check over every pixel centre of frame f.  mode 0: primary
@@ -794,17 +801,7 @@ static void dual_lookup_vs_trace(const char *text, uint32_t f, int *dis_l, int *
     assert_int_equal(st.dual_lookup, 1);
     assert_true(st.rays[TDC_RAY_MV] == 0); /* a lookup, not a ray */
     tdc_render_close(r);
-    static tdc_scene_t sc;
-    char err[256];
-    assert_int_equal(tdc_scene_parse(text, "test", NULL, &sc, err, sizeof err), TDC_SCENE_OK);
-    tdc_render_config_t cfg;
-    tdc_render_default_config(&cfg);
-    cfg.width = W;
-    cfg.height = H;
-    cfg.threads = 2;
-    cfg.dual_mv = cfg.dual_trace = 1;
-    r = tdc_render_open(&sc, &cfg, err, sizeof err);
-    assert_non_null(r);
+    r = open_cfg(text, 0, 1, 1);
     o.mv_dual = mvt;
     assert_int_equal(tdc_render_frame(r, f - 1, TDC_RENDER_FULL, &o, &st), 0);
     assert_int_equal(tdc_render_frame(r, f, TDC_RENDER_FULL, &o, &st), 0);
