@@ -68,6 +68,11 @@ VERDICTS = ("agree", "equivalent", "disagree", "inconclusive")
 CLASSES = ("", "setting", "model limit", "not reproducible")
 MARK_BEGIN = "<!-- experiments:begin (written by sim/experiments/tdc_experiments.py report) -->"
 MARK_END = "<!-- experiments:end -->"
+# docs/results.md keeps two blocks: the headset-scale run (`make experiments`, hours) and the demo-scale
+# results (`make demo` reproduces them in minutes); a report rewrites the block of its results' scale only,
+# so saving a demo run never erases the headset numbers nor the reverse
+MARK_DEMO_BEGIN = "<!-- experiments-demo:begin (written by sim/experiments/tdc_experiments.py report) -->"
+MARK_DEMO_END = "<!-- experiments-demo:end -->"
 
 
 class ExpError(Exception):
@@ -646,6 +651,8 @@ def update_results(path, rows, out):
         text = f.read()
     metas = [read_meta(out, g) for g in groups() if read_meta(out, g)]
     scales = sorted({m.get("scale", "?") for m in metas})
+    headset = scales == ["headset"]
+    begin, end = (MARK_BEGIN, MARK_END) if headset else (MARK_DEMO_BEGIN, MARK_DEMO_END)
     cmds = sorted({m["command"] for m in metas if m.get("command")})
     gs = set(groups())
 
@@ -656,7 +663,7 @@ def update_results(path, rows, out):
     forms = sorted({generic(c) for c in cmds})
     cmd = ("`%s`" % cmds[0] if len(cmds) == 1 else "`" + "` / `".join(forms) + "` (%d invocations over disjoint "
            "groups, some in parallel; each group's own is in its meta.json)" % len(cmds)) if cmds else (
-        "`make experiments`" if scales == ["headset"] else
+        "`make experiments`" if headset else
         "`make experiments EXP_SCALE=%s`" % (scales[0] if len(scales) == 1 else "S"))
     wall, cpu = sum(m.get("wall_s", 0) for m in metas), sum(m.get("cpu_s", 0) for m in metas)
     jcpu, njobs = sum(m.get("jobs_cpu_s", 0) for m in metas), sum(sum(s["jobs"] for s in m["sweeps"].values())
@@ -665,7 +672,7 @@ def update_results(path, rows, out):
     scale_note = ("**%s scale** (small frames and short runs: not the headset scale of `make experiments`; the "
                   "`run` column and the runs table say which sweep produced each row)" % scales[0].capitalize()
                   if scales and scales != ["headset"] else "Scale of these results: **%s**" % (", ".join(scales) or "?"))
-    body = [MARK_BEGIN, "", "%s. Command: %s, then `sim/experiments/tdc_experiments.py report --out %s`; "
+    body = [begin, "", "%s. Command: %s, then `sim/experiments/tdc_experiments.py report --out %s`; "
             "%d tdc-sim jobs, %.0f CPU s as they ran; the groups' last runs %.0f s wall summed, %.0f CPU s%s (full report "
             "with intervals: `report/experiments.md`; docs/experiments.md)." % (
                 scale_note, cmd, os.path.relpath(out, REPO), njobs, jcpu, wall, cpu,
@@ -679,14 +686,15 @@ def update_results(path, rows, out):
             r["paper"], r["claim"], r["verdict"], ", " + r["class"] if r.get("class") else "", r["paper_value"],
             r["tdc_value"], r["why"] or "(no reason given)") for r in dis]
         body.append("")
-    body.append(MARK_END)
+    body.append(end)
     block = "\n".join(body)
-    if MARK_BEGIN in text and MARK_END in text:
-        a = text.index(MARK_BEGIN)
-        b = text.index(MARK_END) + len(MARK_END)
+    if begin in text and end in text:
+        a = text.index(begin)
+        b = text.index(end) + len(end)
         text = text[:a] + block + text[b:]
     else:
-        text = text.rstrip("\n") + "\n\n## The papers' experiments (issue 15)\n\n" + block + "\n"
+        text = text.rstrip("\n") + "\n\n## The papers' experiments at %s\n\n" % (
+            "headset scale (`make experiments`)" if headset else "demo scale (`make demo`)") + block + "\n"
     with open(path + ".tmp", "w", encoding="utf-8") as f:
         f.write(text)
     os.replace(path + ".tmp", path)

@@ -69,13 +69,14 @@ if head -1 "$O/toy/claims.csv" | grep -qx "group,paper,quote,claim,paper_value,t
     && grep -q "^toy,toy paper,§1: 'static content is identical',static full equals itself (judged),identical,.*,\"gain 0.0000 \[0.0000, 0.0000\]\",0.2500,5,toy (scale demo),equivalent,,\"interval inside" "$O/toy/claims.csv"; then
     ok "claims.csv: $(sed -n 2p "$O/toy/claims.csv")"
 else bad "claims.csv: $(cat "$O/toy/claims.csv" 2>/dev/null)"; fi
-printf '# results\n\ntext before\n' > "$T/results.md"
+printf '# results\n\ntext before\n\n<!-- experiments:begin (written by sim/experiments/tdc_experiments.py report) -->\nHEADSET KEPT\n<!-- experiments:end -->\n' > "$T/results.md"
 $EXP report --out "$O" --report "$T/rep/experiments.md" --results "$T/results.md" > "$T/rep.txt" 2>&1
 $EXP report --out "$O" --report "$T/rep/experiments.md" --results "$T/results.md" > "$T/sum.txt" 2>> "$T/rep.txt"; rc=$?
 if [ $rc -eq 0 ] && grep -q "| toy paper |  | full beats half | yes |" "$T/rep/experiments.md" \
     && grep -q 'a reason, with \\| pipe' "$T/rep/experiments.md" && grep -q "| 1 | 2 |" "$T/rep/experiments.md" \
     && grep -q "^| toy | demo | 10 |" "$T/rep/experiments.md" \
-    && [ "$(grep -c 'experiments:begin' "$T/results.md")" = 1 ] && grep -q "text before" "$T/results.md" \
+    && [ "$(grep -c 'experiments-demo:begin' "$T/results.md")" = 1 ] && grep -q "text before" "$T/results.md" \
+    && grep -q "HEADSET KEPT" "$T/results.md" \
     && grep -q "static TRM = full\*\* (disagree, setting)" "$T/results.md" \
     && grep -q "^3 claims: 1 agree, 1 equivalent, 1 disagree, 0 inconclusive; of the non-agreements 1 are setting" "$T/results.md" \
     && grep -q "^\*\*Demo scale\*\* (small frames.*Command: \`sim/experiments/tdc_experiments.py run toy --scale demo" "$T/results.md" \
@@ -86,6 +87,14 @@ if [ $rc -eq 0 ] && grep -q "| toy paper |  | full beats half | yes |" "$T/rep/e
         ok "summary (make demo): $(sed -n 3,4p "$T/sum.txt" | tr -s ' ')"
     else bad "summary: $(cat "$T/sum.txt")"; fi
 else bad "report exit $rc: $(cat "$T/rep.txt"; cat "$T/results.md")"; fi
+# the same results as a headset-scale run: they replace the headset block and leave the demo block
+cp -r "$O" "$T/outh" && sed -i 's/"scale": "demo"/"scale": "headset"/' "$T/outh"/*/meta.json
+$EXP report --out "$T/outh" --report "$T/reph/experiments.md" --results "$T/results.md" > /dev/null 2>&1; rc=$?
+if [ $rc -eq 0 ] && ! grep -q "HEADSET KEPT" "$T/results.md" && grep -q "^Scale of these results: \*\*headset\*\*" "$T/results.md" \
+    && [ "$(grep -c 'experiments:begin' "$T/results.md")" = 1 ] && [ "$(grep -c 'experiments-demo:begin' "$T/results.md")" = 1 ] \
+    && grep -q "^\*\*Demo scale\*\*" "$T/results.md"; then
+    ok "report: a headset run rewrites the headset block, the demo block stays"
+else bad "headset report exit $rc: $(cat "$T/results.md")"; fi
 
 # 2b. the result cache: the same run again restores every job (status.json "cached") with the same
 # claims; the estimate counts them done; another binary (one byte appended) or another argument
