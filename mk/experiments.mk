@@ -32,7 +32,7 @@ experiments-report:
 # per-group table on stdout, the full table in report/experiments.md):
 #  - when $(EXP_DEMO_OUT) holds results: those (an earlier make demo, or
 #    make experiments EXP_SCALE=demo EXP_OUT=$(EXP_DEMO_OUT));
-#  - with EXP_DEMO=run: every group at demo scale first (455 jobs, ~1,700
+#  - with EXP_DEMO=run: every group at demo scale first (455 jobs, ~2,100
 #    CPU s: longer than the demo's 10-minute budget; jobs cached in
 #    $(EXP_DEMO_OUT)/.cache, an interrupted run resumes);
 #  - else the groups of EXP_DEMO_LIVE run at demo scale (~135 CPU s:
@@ -54,7 +54,7 @@ demo-experiments: $(TDC_SIM)
 	    if [ -n "$(EXP_DEMO_GROUPS)" ] || [ "$(EXP_DEMO)" = run ]; then \
 	        $(EXP_PY) run $(EXP_DEMO_GROUPS) --scale demo --out $(EXP_DEMO_OUT) -j $(JOBS) --sim $(TDC_SIM) || rc=$$?; \
 	    else \
-	        echo "demo: the papers' experiments: $(EXP_DEMO_LIVE) run now at demo scale, the other groups' committed demo-scale results ($(EXP_DEMO_SAVED)); all of them: make demo EXP_DEMO=run (~1,700 CPU s)"; \
+	        echo "demo: the papers' experiments: $(EXP_DEMO_LIVE) run now at demo scale, the other groups' committed demo-scale results ($(EXP_DEMO_SAVED)); all of them: make demo EXP_DEMO=run (~2,100 CPU s)"; \
 	        mkdir -p $(EXP_DEMO_OUT); for d in $(EXP_DEMO_SAVED)/*/; do g=$$(basename $$d); \
 	            case " $(EXP_DEMO_LIVE) " in *" $$g "*) ;; *) cp -r $$d $(EXP_DEMO_OUT)/ ;; esac; done; \
 	        $(EXP_PY) run $(EXP_DEMO_LIVE) --scale demo --out $(EXP_DEMO_OUT) -j $(JOBS) --sim $(TDC_SIM) || rc=$$?; \
