@@ -62,14 +62,25 @@ demo-experiments: $(TDC_SIM)
 	fi; \
 	$(EXP_PY) report --out $(EXP_DEMO_OUT) --report $(or $(REPORT),report)/experiments.md --results - && exit $${rc:-0}
 
-# Copies a demo-scale run's per-group results (claims, meta, extra tables)
-# into $(EXP_DEMO_SAVED), then rewrites docs/results.md's block from them.
-.PHONY: experiments-save-demo
+# Copies a run's per-group results (claims, meta, extra tables) into the
+# committed results of its scale, then rewrites docs/results.md's block of
+# that scale from them (tdc_experiments.py report writes the headset and the
+# demo block apart): the block is made of files in the tree, and one group
+# re-run at a scale replaces only that group's files.
+#   make experiments-save-demo      $(EXP_DEMO_OUT) -> $(EXP_DEMO_SAVED)
+#   make experiments-save-headset   $(EXP_OUT) -> $(EXP_HEADSET_SAVED)
+EXP_HEADSET_SAVED := sim/experiments/headset-results
+define save-results
+	@for d in $(1)/*/; do g=$$(basename $$d); [ -f $$d/claims.csv ] || continue; \
+	    mkdir -p $(2)/$$g; cp $$d/claims.csv $$d/meta.json $(2)/$$g/; \
+	    if [ -f $$d/extra.md ]; then cp $$d/extra.md $(2)/$$g/; fi; done
+	$(EXP_PY) report --out $(2) --report $(or $(REPORT),report)/experiments.md
+endef
+.PHONY: experiments-save-demo experiments-save-headset
 experiments-save-demo:
-	@for d in $(EXP_DEMO_OUT)/*/; do g=$$(basename $$d); [ -f $$d/claims.csv ] || continue; \
-	    mkdir -p $(EXP_DEMO_SAVED)/$$g; cp $$d/claims.csv $$d/meta.json $(EXP_DEMO_SAVED)/$$g/; \
-	    if [ -f $$d/extra.md ]; then cp $$d/extra.md $(EXP_DEMO_SAVED)/$$g/; fi; done
-	$(EXP_PY) report --out $(EXP_DEMO_SAVED) --report $(or $(REPORT),report)/experiments.md
+	$(call save-results,$(EXP_DEMO_OUT),$(EXP_DEMO_SAVED))
+experiments-save-headset:
+	$(call save-results,$(EXP_OUT),$(EXP_HEADSET_SAVED))
 
 # The framework and the statistics helper on a temporary two-job group (~5 s).
 $(B)/test-experiments: tests/unit/test_experiments.sh $(TDC_SIM)
