@@ -29,6 +29,7 @@ interval inside the margin is the two one-sided tests at alpha = 0.025 each
 """
 import math
 import random
+import statistics
 
 MIN_SEEDS = 5
 LEVEL = 0.95
@@ -179,6 +180,18 @@ def ci_bootstrap(d, level=LEVEL, resamples=BOOT_RESAMPLES, seed=BOOT_SEED):
     ms = sorted(sum(d[rng.randrange(n)] for _ in range(n)) / n for _ in range(resamples))
     a = (1.0 - level) / 2.0
     return ms[int(math.floor(a * (resamples - 1)))], ms[int(math.ceil((1.0 - a) * (resamples - 1)))]
+
+
+def ci_proportion(k, n, level=LEVEL):
+    """(lo, hi) of a proportion k / n: Wilson's score interval, which keeps its coverage for small n and
+    for k near 0 or n, where the normal approximation does not (for "most contents" counts)."""
+    if n < 1 or not 0 <= k <= n:
+        return float("nan"), float("nan")
+    z = statistics.NormalDist().inv_cdf(0.5 + level / 2.0)
+    p = float(k) / n
+    c = (p + z * z / (2.0 * n)) / (1.0 + z * z / n)
+    h = z / (1.0 + z * z / n) * math.sqrt(p * (1.0 - p) / n + z * z / (4.0 * n * n))
+    return max(0.0, c - h), min(1.0, c + h)
 
 
 def margin_of(metric, ref_mean=None):

@@ -218,6 +218,14 @@ og, ug = f6.artefacts(0.25, 0.0, 1.0, "gamma", "brightness")
 ol, ul = f6.artefacts(0.25, 0.0, 1.0, "linear", "brightness")
 lin, p = f6.perceived(f6.square(0.0, 0.3, 0.3), "gamma")  # a flat field: TRM changes nothing
 print("fig6", abs(o - u) < 1e-9 and o > 0.1, ol > ul, abs(og - ug) < abs(ol - ul), max(abs(a - b) for a, b in zip(lin, p)) < 1e-12)
+# thesis eq. 5.1 and the rank correlation of its row: known answers (scipy.stats.spearmanr gives 0.9486833 for
+# the tied case; with r <= 1 px the disk is empty and f is the log-polar buffer alone, delta^2)
+spec = importlib.util.spec_from_file_location("tfov", os.path.join(sys.argv[1], "thesis-fov", "claims.py"))
+tf = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(tf)
+print("eq51", tf.spearman([1, 2, 3], [10, 20, 30]) == 1.0, tf.spearman([1, 2, 3], [3, 2, 1]) == -1.0,
+      abs(tf.spearman([1, 2, 2, 3], [1, 2, 3, 4]) - 0.9486833) < 1e-7, abs(tf.eq51(1e-4, 1920, 1080) - 0.555 ** 2) < 1e-6,
+      tf.eq51_argmin(1920, 1080), tf.eq51(0.066, 1920, 1080) < min(tf.eq51(0.03, 1920, 1080), tf.eq51(0.12443, 1920, 1080)))
 PY
 )
 want="sac 6 0 5 7
@@ -227,7 +235,8 @@ spread inconclusive - False
 us premise inconclusive setting True
 us no premise inconclusive - False
 us premise everywhere inconclusive - False
-fig6 True True True True"
-if [ "$out" = "$want" ]; then ok "saccade check, content-spread class, Fig. 6 computation: known answers"
+fig6 True True True True
+eq51 True True True True 0.066 True"
+if [ "$out" = "$want" ]; then ok "saccade check, content-spread class, Fig. 6 computation, eq. 5.1: known answers"
 else bad "saccade/spread/fig6: got '$out'"; fi
 exit $fail

@@ -175,5 +175,24 @@ j = s.judge(a, b, "better", "rmse")
 check(j["verdict"] == "agree" and abs(j["margin"] - 0.3 * s.mean(b) / 10.0) < 1e-9,
       "judge rmse: lower is better, margin 3 %% of B's mean (%.4f)" % j["margin"])
 
+# 8. ci_proportion(): Wilson's score interval against scipy.stats.binomtest(...).proportion_ci("wilson"),
+# and its coverage on seeded Bernoulli samples at a proportion near the edge (where the normal interval fails)
+worst_w = 0.0
+for n in (1, 2, 5, 15, 40):
+    for k in range(n + 1):
+        lo, hi = s.ci_proportion(k, n)
+        ref = sp.binomtest(k, n).proportion_ci(confidence_level=0.95, method="wilson")
+        worst_w = max(worst_w, abs(lo - ref.low), abs(hi - ref.high))
+check(worst_w < 1e-12, "ci_proportion = scipy's Wilson interval (max |diff| %.1e over n 1-40, every k)" % worst_w)
+rng = random.Random(7)
+cover = 0
+for _ in range(2000):
+    k = sum(1 for _ in range(15) if rng.random() < 0.2)
+    lo, hi = s.ci_proportion(k, 15)
+    cover += lo <= 0.2 <= hi
+check(0.93 <= cover / 2000.0 <= 0.99, "ci_proportion covers p = 0.2 at n 15 in %.1f %% of 2000 samples" % (
+    100.0 * cover / 2000))
+check(all(math.isnan(x) for x in s.ci_proportion(0, 0) + s.ci_proportion(3, 2)), "ci_proportion refuses n 0, k > n")
+
 print("test_tdc_stats: %s" % ("all passed" if not fails else "%d FAILED" % fails))
 sys.exit(1 if fails else 0)
