@@ -671,7 +671,7 @@ def update_results(path, rows, out):
     loads = [m["load_avg"] for m in metas if "load_avg" in m]
     scale_note = ("**%s scale** (small frames and short runs: not the headset scale of `make experiments`; the "
                   "`run` column and the runs table say which sweep produced each row)" % scales[0].capitalize()
-                  if scales and scales != ["headset"] else "Scale of these results: **%s**" % (", ".join(scales) or "?"))
+                  if scales and not headset else "Scale of these results: **%s**" % (", ".join(scales) or "?"))
     body = [begin, "", "%s. Command: %s, then `sim/experiments/tdc_experiments.py report --out %s`; "
             "%d tdc-sim jobs, %.0f CPU s as they ran; the groups' last runs %.0f s wall summed, %.0f CPU s%s (full report "
             "with intervals: `report/experiments.md`; docs/experiments.md)." % (

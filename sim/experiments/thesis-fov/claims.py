@@ -145,8 +145,8 @@ def claims(exp):
                   ("share %.2f, 95 %% Wilson interval [%.2f, %.2f] against one half; each content's time over its "
                    "least, mean over the contents: %s" % (float(inside) / len(t_least), lo, hi, prof)) +
                   ("" if verdict == "agree" else "; on this CPU ray tracer the time follows the ray count f(x) "
-                   "(previous row), least at x = %s, and is nearly flat from 0.06 to 0.15, where one timed run per "
-                   "content and threshold picks the least" % ", ".join(sorted(set(f_at), key=float))),
+                   "(previous row), least at x = %s, and nearly flat around its least (the profile above), where one "
+                   "timed run per content and threshold picks the least" % ", ".join(sorted(set(f_at), key=float))),
                   n=len(t_least), quote=Q52, ci="[%.2f, %.2f]" % (lo, hi), margin="0.5 (most)",
                   run="%s/disk (per content; least of one timed run each)" % exp.group)
     if THESIS_X in disks:
