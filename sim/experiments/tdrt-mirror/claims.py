@@ -25,4 +25,5 @@ def claims(exp):
             cells = [exp.stats.fmt_ms(exp.stats.summary(exp.values(rows, col, mode=mode)), d)
                      for col, d in (("flip", 4), ("psnr_db", 2), ("legacy_flicker", 2))]
             lines.append("| %s | %s | %s |" % (mode, name, " | ".join(cells)))
-    exp.write_extra("Mean ± spread over the 5 stretches of the animation:\n\n" + "\n".join(lines) + "\n")
+    exp.write_extra("Mean ± spread over the %d stretches of the animation:\n\n" % len(exp.values(on, "flip", mode="full"))
+                    + "\n".join(lines) + "\n")
