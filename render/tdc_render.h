@@ -76,9 +76,9 @@ typedef struct {
     int reflect_mv;        /* reflected MVs for mirror hits (TDRT §3.1.2), default 1 */
     int shadow_mv;         /* shadow MVs (Zeng §4.1), default 0 */
     int dual_mv;           /* dual MVs for disocclusions (Zeng §4.3), default 0 */
-    int dual_trace;        /* 1: the dual pass traces a previous-frame ray per candidate even where the
-                              previous FULL frame's G-buffer could be read (the check of the lookup,
-                              tdc_render_trace.c); default 0 */
+    int dual_trace;        /* 1: the dual pass (and the shadow pass's falloff) traces a previous-frame ray
+                              per candidate even where the previous FULL frame's G-buffer could be read
+                              (the check of the lookup, tdc_render_trace.c); default 0 */
     double reduced_factor; /* r of REDUCED frames, (0, 1], default 0.5 */
     int reduced_ss;        /* supersamples per reduced pixel per axis, default 2 */
     double reduced_sigma;  /* Gaussian resolve sigma in full-res px, default 2.5 (TRM §4.3) */
@@ -165,7 +165,8 @@ typedef struct {
     int out_w, out_h; /* output size of the mode */
     int frame_static; /* nothing moved between frame - 1 and frame */
     uint64_t dual_culled; /* samples the dual pass decided without a ray (still camera, outside moving objects) */
-    int dual_lookup;      /* 1: the dual pass read the previous frame's G-buffer (no previous-frame rays) */
+    int dual_lookup;      /* 1: the dual and shadow passes read the previous frame's G-buffer (no
+                             previous-frame rays) */
 } tdc_render_stats_t;
 
 /* What the scene needs (detected at open); stages it does not need are skipped. */

@@ -30,8 +30,8 @@ typedef struct {
     int do_reflect, do_mv, do_mv_reflect, do_mv_shadow, do_mv_dual, frame_static, do_layers, do_indirect;
     float *cone_cur;
     const float *cone_prev;
-    tdc_r_gpix_t *gb_cur;       /* FULL frames with dual_mv: this frame's G-buffer, written per sample */
-    const tdc_r_gpix_t *gb_prev; /* the previous frame's, read by the dual pass (NULL: it traces) */
+    tdc_r_gpix_t *gb_cur;       /* FULL frames with dual or shadow MVs: this frame's G-buffer, written per sample */
+    const tdc_r_gpix_t *gb_prev; /* the previous frame's, read by the dual and shadow passes (NULL: they trace) */
     int ndual_rect; /* dual-MV culling rectangles (rthread_t), -1 = none */
     float dual_rect[TDC_SCENE_MAX_OBJECTS][4];
     const tdc_render_out_t *out;
@@ -545,16 +545,16 @@ int tdc_render_frame(tdc_render_t *r, uint32_t frame, tdc_render_mode_t mode, co
         jb.cone_cur = r->cone_hist[frame & 1u];
         jb.cone_prev = r->cone_frame == (long)frame - 1 ? r->cone_hist[(frame - 1) & 1u] : NULL;
     }
-    /* Zeng eq. 6 reads the previous frame's depth and object ids: FULL
+    /* Zeng eq. 6 (and eq. 4's falloff) reads the previous frame's depth and object ids: FULL
      * frames keep their G-buffer; the next FULL frame looks it up.  Other
      * modes trace one pixel in four (subframes) or arbitrary positions, so
      * no previous G-buffer exists there and the dual pass traces. */
-    if (r->cfg.dual_mv && mode == TDC_RENDER_FULL) {
+    if ((r->cfg.dual_mv || r->cfg.shadow_mv) && mode == TDC_RENDER_FULL) {
         const unsigned k = frame & 1u;
         if (!r->gbuf[k] && !(r->gbuf[k] = malloc((size_t)r->W * r->H * sizeof(tdc_r_gpix_t)))) return -1;
         r->gbuf_frame[k] = -2; /* until this frame is written */
         jb.gb_cur = r->gbuf[k];
-        if (jb.do_mv_dual && !r->cfg.dual_trace && r->gbuf_frame[k ^ 1u] == (long)frame - 1)
+        if ((jb.do_mv_dual || jb.do_mv_shadow) && !r->cfg.dual_trace && r->gbuf_frame[k ^ 1u] == (long)frame - 1)
             jb.gb_prev = r->gbuf[k ^ 1u];
     }
     st.ms[TDC_STAGE_SCENE] = tdc_r_now_ms() - t0;

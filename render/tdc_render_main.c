@@ -266,9 +266,10 @@ int main(int argc, char **argv)
     tdc_render_stats_t tot;
     memset(&tot, 0, sizeof tot);
     int ran_frames[TDC_STAGE_COUNT] = {0}, dual_lookups = 0;
-    /* The dual vectors of frame A read frame A - 1's G-buffer (Zeng eq. 6),
-     * as in a renderer that runs on: A - 1 is rendered first, not counted. */
-    if (cfg.dual_mv && !cfg.dual_trace && mode == TDC_RENDER_FULL && !trm && f0 > 0) {
+    /* The dual and shadow vectors of frame A read frame A - 1's G-buffer
+     * (Zeng eqs. 6 and 4), as in a renderer that runs on: A - 1 is rendered
+     * first, not counted. */
+    if ((cfg.dual_mv || cfg.shadow_mv) && !cfg.dual_trace && mode == TDC_RENDER_FULL && !trm && f0 > 0) {
         static const tdc_render_out_t none;
         if (tdc_render_frame(r, (uint32_t)f0 - 1, TDC_RENDER_FULL, &none, NULL) < 0) {
             rc = tdc_fail(TDC_EXIT_REFUSED, NULL, "renderer", "frame %d failed", f0 - 1);
@@ -364,9 +365,10 @@ int main(int argc, char **argv)
     printf("rays: primary %llu shadow %llu reflect %llu mv %llu; wall %.1f ms, %.2f Mrays/s\n",
            (unsigned long long)tot.rays[0], (unsigned long long)tot.rays[1], (unsigned long long)tot.rays[2],
            (unsigned long long)tot.rays[3], tot.wall_ms, tot.wall_ms > 0 ? all / tot.wall_ms / 1e3 : 0.0);
-    if (cfg.dual_mv)
-        printf("dual MVs: the previous frame's G-buffer read in %d of %d frames (the others traced a ray per "
-               "candidate)\n", dual_lookups, nf);
+    if (cfg.dual_mv || cfg.shadow_mv)
+        printf("%s MVs: the previous frame's G-buffer read in %d of %d frames (the others traced a ray per "
+               "candidate)\n", cfg.dual_mv && cfg.shadow_mv ? "dual and shadow" : cfg.dual_mv ? "dual" : "shadow",
+               dual_lookups, nf);
     if (stream) {
         uint32_t np;
         uint64_t nb;

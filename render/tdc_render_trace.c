@@ -11,7 +11,8 @@
  *   mv-reflect   TDRT §3.1.2: the mirror image of the reflected hit's
  *                previous position, reflected through the mirror chain's
  *                previous planes (Householder reflections), projected
- *   mv-shadow    Zeng eq. 3 + falloff eq. 4 (one previous-frame ray)
+ *   mv-shadow    Zeng eq. 3 + falloff eq. 4 (the previous FULL frame's G-buffer
+ *                at x^V; without one, one previous-frame ray)
  *   mv-dual      Zeng eq. 6: x^O = y + (x - z), "where y = P_{i-1} T^{-1}(x_i)
  *                P_i^{-1} x_i and z = P_i T(y) P_{i-1}^{-1} y": a lookup in the
  *                previous FULL frame's depth / object-id G-buffer; without
@@ -1182,11 +1183,57 @@ void tdc_r_pass_mv_reflect(rthread_t *t, rsample_t *s, int n)
     }
 }
 
-/* Previous-frame primary ray through (x, y): object (or -1) and world hit. */
+/* The previous G-buffer's depth at (fx, fy) (sample units; (in, jn) its
+ * nearest sample, inside the image), linear from the neighbour of the same
+ * object toward it (extrapolated from the other side at its edge): a
+ * grazing face changes depth by more than 1 % within half a pixel (the
+ * analytic occlusion scene's boxes: 0.17 a pixel at 3.3), and the shadow
+ * falloff's angle (eq. 4, sigma 0.1 rad) is as sensitive: with the
+ * nearest sample's depth alone, 34 of 190 shadowed pixels' weights were
+ * more than 0.1 from the traced ones (test_shadow_falloff_lookup), with
+ * this none. */
+static double gbuf_depth_at(const rthread_t *t, double fx, double fy, int in, int jn)
+{
+    const int W = t->r->W, H = t->r->H;
+    const tdc_r_gpix_t *gn = &t->gb_prev[(size_t)jn * W + in];
+    double dy = gn->depth; /* sky: INFINITY */
+    const double off[2] = {fx - in, fy - jn};
+    for (int ax = 0; ax < 2 && gn->obj >= 0; ax++) {
+        const int sg = off[ax] >= 0 ? 1 : -1;
+        for (int side = 0; side < 2; side++) {
+            const int s2 = side ? -sg : sg, i = in + (ax ? 0 : s2), j = jn + (ax ? s2 : 0);
+            if (i < 0 || j < 0 || i >= W || j >= H) continue;
+            const tdc_r_gpix_t *g = &t->gb_prev[(size_t)j * W + i];
+            if (g->obj != gn->obj) continue;
+            dy += ((double)g->depth - gn->depth) * s2 * off[ax];
+            break;
+        }
+    }
+    return dy;
+}
+
+/* What the previous frame saw at (x, y): object (or -1) and world point.
+ * With the previous FULL frame's G-buffer, the sample nearest (x, y) (its
+ * object, and gbuf_depth_at along the ray through (x, y)), as a GPU renderer
+ * reads its previous G-buffer; else a previous-frame primary ray.  The
+ * shadow falloff's 1080x1200 fence traced 112 k such rays a frame, half of
+ * the pass (zeng-cost). */
 static int prev_visible(rthread_t *t, double x, double y, double W[3], double d[3])
 {
     const rcam_t *cam = &t->prev->cam;
     tdc_r_cam_ray(cam, x, y, d);
+    if (t->gb_prev) {
+        const double fx = x - 0.5 - t->gb_jx, fy = y - 0.5 - t->gb_jy; /* in sample units */
+        if (fx > -0.5 && fy > -0.5 && fx < t->r->W - 0.5 && fy < t->r->H - 0.5) {
+            const int in = (int)(fx + 0.5), jn = (int)(fy + 0.5);
+            const int o = t->gb_prev[(size_t)jn * t->r->W + in].obj;
+            if (o >= 0) {
+                const double dy = gbuf_depth_at(t, fx, fy, in, jn);
+                for (int c = 0; c < 3; c++) W[c] = cam->pos[c] + dy * d[c];
+            }
+            return o;
+        }
+    }
     struct RTCRayHit rh;
     int o = intersect(t, 1, cam->pos, d, 0, INFINITY, TDC_RAY_MV, &rh);
     if (o >= 0)
@@ -1284,25 +1331,8 @@ static int gbuf_lookup(const rthread_t *t, const rsample_t *a, tdc_r_dual_t *q)
         const double dp = (sp[0] - cam->pos[0]) * cam->fwd[0] + (sp[1] - cam->pos[1]) * cam->fwd[1] +
                           (sp[2] - cam->pos[2]) * cam->fwd[2];
         const double lim = dp - (1e-3 * (1 + dp) + 0.01 * dp);
-        double dy = gn->depth; /* sky: INFINITY */
-        if (dy >= lim) return 1;
-        /* the depth at y itself, linear from the neighbour of the same
-         * object toward y (extrapolated from the other side at its edge):
-         * a grazing face changes depth by more than 1 % within half a
-         * pixel (the analytic occlusion scene's boxes: 0.17 a pixel at 3.3) */
-        const double off[2] = {fx - in, fy - jn};
-        for (int ax = 0; ax < 2; ax++) {
-            const int sg = off[ax] >= 0 ? 1 : -1;
-            for (int side = 0; side < 2; side++) {
-                const int s2 = side ? -sg : sg, i = in + (ax ? 0 : s2), j = jn + (ax ? s2 : 0);
-                if (i < 0 || j < 0 || i >= W || j >= H) continue;
-                const tdc_r_gpix_t *g = &t->gb_prev[(size_t)j * W + i];
-                if (g->obj != gn->obj) continue;
-                dy += ((double)g->depth - gn->depth) * s2 * off[ax];
-                break;
-            }
-        }
-        if (dy >= lim) return 1;
+        if (gn->depth >= lim) return 1; /* sky: INFINITY */
+        if (gbuf_depth_at(t, fx, fy, in, jn) >= lim) return 1;
     }
     tdc_r_cam_ray(cam, q->y[0], q->y[1], q->d);
     q->o = gn->obj;
