@@ -226,6 +226,17 @@ spec.loader.exec_module(tf)
 print("eq51", tf.spearman([1, 2, 3], [10, 20, 30]) == 1.0, tf.spearman([1, 2, 3], [3, 2, 1]) == -1.0,
       abs(tf.spearman([1, 2, 2, 3], [1, 2, 3, 4]) - 0.9486833) < 1e-7, abs(tf.eq51(1e-4, 1920, 1080) - 0.555 ** 2) < 1e-6,
       tf.eq51_argmin(1920, 1080), tf.eq51(0.066, 1920, 1080) < min(tf.eq51(0.03, 1920, 1080), tf.eq51(0.12443, 1920, 1080)))
+# exp.render_stages: each stage's least over the cached runs, skipped stages None, the scene's lights and
+# the G-buffer lookups from tdc-render's text (three runs written as if cached: no tdc-render run)
+e = te.Experiment("rs", out, "demo")
+os.makedirs(os.path.join(out, "rs"), exist_ok=True)
+for rep, (prim, shade, look) in enumerate(((9.5, 4.0, 4), (3.25, 7.0, 4), (131.0, 5.5, 3))):
+    with open(os.path.join(out, "rs", "render-x-%d.txt" % rep), "w") as f:
+        f.write("tdc-render ...\nscene x: 8x8, 1 objects, features: motion=1 (camera 1, objects 0) lights=2 "
+                "area-lights=0\n  primary %9.3f ms  \n  shade %9.3f ms  \n  reflect 0.000 ms  skipped\n"
+                "dual MVs: the previous frame's G-buffer read in %d of 4 frames\n" % (prim, shade, look))
+ms = e.render_stages("x", ["--builtin", "x"], 3)
+print("rstages", ms["primary"], ms["shade"], ms["reflect"], ms["lights"], ms["camera_moves"], ms["gbuf_lookup"])
 PY
 )
 want="sac 6 0 5 7
@@ -236,7 +247,8 @@ us premise inconclusive setting True
 us no premise inconclusive - False
 us premise everywhere inconclusive - False
 fig6 True True True True
-eq51 True True True True 0.066 True"
-if [ "$out" = "$want" ]; then ok "saccade check, content-spread class, Fig. 6 computation, eq. 5.1: known answers"
+eq51 True True True True 0.066 True
+rstages 3.25 4.0 None 2 1 False"
+if [ "$out" = "$want" ]; then ok "saccade check, content-spread class, Fig. 6 computation, eq. 5.1, render_stages: known answers"
 else bad "saccade/spread/fig6: got '$out'"; fi
 exit $fail

@@ -1,18 +1,13 @@
 """Zeng §7: cost of each motion-vector pass per frame beside the primary rays (tdc-render stage timers)."""
-import os
-import re
-import subprocess
-
-REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))  # the checkout
 SCENES = ("fence", "discs", "room", "mirror", "panorama")
 # first frame of each stretch of 4 timed frames; six stretches, not three: the shadow pass runs only in the
 # scenes with a shadow-casting light (fence, mirror), and 6 ratios left its interval across the 0.10 line
 WINDOWS = (1, 31, 61, 91, 121, 151)
 SIZES = {"headset": "1080x1200", "dev": "540x600", "demo": "320x180"}
-REPS = 3  # runs per stretch; each stage's least time is kept (run_frames)
+REPS = 3  # runs per stretch; each stage's least time is kept (exp.render_stages)
 PASSES = (("mv", "primary MVs (Zeng eq. 1)"), ("mv-reflect", "reflected MVs (TDRT §3.1.2)"),
           ("mv-shadow", "shadow MVs (Zeng §4.1)"), ("mv-dual", "dual MVs (Zeng §4.3)"))
-# 'negligible' read as at most a tenth of the frame's render time (primary rays + shading): the paper's
+# 'negligible' read as at most a tenth of the frame's render time (RENDER_STAGES): the paper's
 # own figure, 0.23 ms, is 7 % of the 3.11 ms its denoising step takes per frame (§7, Fig. 13), and a
 # smaller share of the whole frame
 NEGLIGIBLE = 0.10
@@ -20,45 +15,18 @@ Q7 = ("Zeng §7: 'As one would expect from their simple computation in Sec. 4, i
       "negligible performance cost by replacing with our motion vectors, which is always less than 0.23 ms.'")
 
 
-def render_binary():
-    return os.environ.get("TDC_RENDER") or os.path.join(REPO, "build", "gcc-O2", "tdc-render")
-
-
-def run_frames(exp, scene, a, b, size):
-    """Per-stage CPU ms summed over frames a..b-1 of scene: the least of REPS runs per stage (cached).
-    One run's stage timers on the shared machine jump by up to 400x when a thread is descheduled
-    inside a short stage (the mv pass: 0.3 ms for 4 frames at 160x90 in one run, 131 ms at 320x180
-    in another); the least of a few runs is the cost of the pass itself, as benchmarks time it."""
-    d = os.path.join(exp.out, exp.group)
-    os.makedirs(d, exist_ok=True)
-    ms = {}
-    for rep in range(REPS):
-        path = os.path.join(d, "render-%s-%d-%d-%s-%d.txt" % (scene, a, b, size, rep))
-        if not os.path.isfile(path):
-            cmd = [render_binary(), "--builtin", scene, "--frames", "%d:%d" % (a, b), "--size", size,
-                   "--threads", "1", "--shadow-mv", "--dual-mv", "--quiet"]
-            out = subprocess.run(cmd, capture_output=True, text=True, check=True).stdout
-            with open(path + ".tmp", "w", encoding="utf-8") as fh:
-                fh.write(" ".join(cmd) + "\n" + out)
-            os.replace(path + ".tmp", path)
-        text = open(path, encoding="utf-8").read()
-        cam = re.search(r"\(camera (\d)", text)
-        ms["camera_moves"] = int(cam.group(1)) if cam else 0
-        lights = re.search(r" lights=(\d+)", text)
-        ms["lights"] = int(lights.group(1)) if lights else 0
-        look = re.search(r"G-buffer read in (\d+) of (\d+) frames", text)
-        ms["dual_lookup"] = bool(look) and look.group(1) == look.group(2)
-        for name, val, rest in re.findall(r"^[ \t]*([a-z-]+)[ \t]+([0-9.]+) ms[ \t]*(skipped)?", text, re.M):
-            v = None if rest else float(val)
-            ms[name] = v if rep == 0 or v is None or ms.get(name) is None else min(ms[name], v)
-    return ms
+def spec(scene, f, size):
+    """The tdc-render run of frames f..f+3 (4 frames: the stage timers are per-thread clocks that a loaded
+    host inflates by preemption; sums over frames average it out)."""
+    return ("%s-%d-%d-%s" % (scene, f, f + 4, size),
+            ["--builtin", scene, "--frames", "%d:%d" % (f, f + 4), "--size", size, "--threads", "1", "--shadow-mv",
+             "--dual-mv"])
 
 
 def stages(exp, scene, f, size):
-    """Per-stage CPU ms per frame over frames f..f+3 (4 frames: the stage timers are per-thread clocks that
-    a loaded host inflates by preemption; sums over frames average it out)."""
-    ms = run_frames(exp, scene, f, f + 4, size)
-    return {k: (v if k in ("camera_moves", "lights") or not isinstance(v, float) else v / 4.0) for k, v in ms.items()}
+    """Per-stage CPU ms per frame over frames f..f+3, the least of REPS runs."""
+    ms = exp.render_stages(*spec(scene, f, size), REPS)
+    return {k: (v / 4.0 if isinstance(v, float) else v) for k, v in ms.items()}
 
 
 # the stages that render the frame: the scene update, primary rays, shading with its shadow rays, mirror bounces
@@ -78,11 +46,11 @@ def s_mean(v):
 
 def claims(exp):
     size = SIZES.get(exp.scale, SIZES["headset"])
+    exp.prefetch_render([spec(sc, f, size) for sc in SCENES for f in WINDOWS], REPS)
     rows = []
     for sc in SCENES:
         for f in WINDOWS:
             rows.append((sc, f, stages(exp, sc, f, size)))
-    st = exp.stats
     lines = ["| scene | frame | primary ms | shade ms | reflect ms | " + " | ".join(p for p, _ in PASSES) + " |",
              "| --- | ---: | ---: | ---: | ---: |" + " ---: |" * len(PASSES)]
     for sc, f, ms in rows:
@@ -98,7 +66,7 @@ def claims(exp):
     # "always less than 0.23 ms": every scene, each judged on its own (its 6 stretches are its contents),
     # never a mean over scenes whose costs differ by 10x
     for p, label in PASSES:
-        if p in ("mv-dual", "mv-shadow") and not all(ms.get("dual_lookup") for _, _, ms in rows):
+        if p in ("mv-dual", "mv-shadow") and not all(ms.get("gbuf_lookup") for _, _, ms in rows):
             continue  # a pass that traces the previous frame is not the paper's: not judged
         for sc in SCENES:
             mine = [ms for s2, _, ms in rows if s2 == sc]
