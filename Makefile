@@ -104,7 +104,11 @@ FWLIB := $(B)/libtdcfw.a
 SIMLIB := $(B)/libtdcsim.a
 SIMXLIB := $(B)/libtdcsimulator.a
 RENDERLIB := $(B)/libtdcrender.a
-TDC_SIM := $(B)/tdc-sim
+# TDC_SIM may name another binary (make experiments TDC_SIM=frozen/tdc-sim: a
+# long run's cache keys hold the binary's SHA-256); the build rule makes only
+# TDC_SIM_BIN, so a frozen copy is never rebuilt from newer sources
+TDC_SIM_BIN := $(B)/tdc-sim
+TDC_SIM := $(TDC_SIM_BIN)
 TDC_RENDER := $(B)/tdc-render
 TDCRUN := $(B)/bin/tdc-run
 TABLEGEN := $(BUILD)/tools/tdc-tablegen

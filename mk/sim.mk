@@ -14,7 +14,7 @@ SIMX_SRCS := sim/simulator/tdc_sim_scene.c sim/simulator/tdc_sim_modes.c sim/sim
              sim/panel/tdc_panel_sim.c sim/report/tdc_report.c sim/simulator/tdc_sim_render.c
 SIMX_OBJS = $(patsubst %.c,$(B)/%.o,$(SIMX_SRCS))
 
-HOST_PROGS += $(TDC_SIM)
+HOST_PROGS += $(TDC_SIM_BIN)
 DEPS_PKGS += python3-scipy # test_metrics: the flip v1.6 transcription (scipy.signal.convolve2d)
 SIM_TESTS := test_sim_smoke test_sim_eye test_metrics test_eye_temporal test_sim_blockmatch test_sim_retina
 TESTS += $(foreach t,$(SIM_TESTS),$(B)/tests/unit/$(t)) $(B)/test-sim-dump
@@ -41,14 +41,14 @@ $(SIMXLIB): $(SIMX_OBJS)
 	ar rcs $@ $^
 
 # tdc-sim links the renderer (--renderer SCENE).
-$(TDC_SIM): $(B)/sim/simulator/tdc_sim_main.o $(SIMXLIB) $(SIMLIB) $(FWLIB) $(RENDERLIB)
+$(TDC_SIM_BIN): $(B)/sim/simulator/tdc_sim_main.o $(SIMXLIB) $(SIMLIB) $(FWLIB) $(RENDERLIB)
 	$(CC) $(HOST_LDFLAGS) $(SIM_OMP) $< -o $@ $(SIMXLIB) $(RENDERLIB) $(SIMLIB) $(FWLIB) $(RENDER_LDLIBS) $(HOST_LIBS)
 
 $(foreach t,$(SIM_TESTS),$(B)/tests/unit/$(t)): $(B)/tests/%: $(B)/tests/%.o $(SIMXLIB) $(SIMLIB) $(FWLIB)
 	$(CC) $(HOST_LDFLAGS) $(SIM_OMP) $^ -o $@ $(HOST_LIBS)
 
 .PHONY: tdc-sim demo-sim
-tdc-sim: $(TDC_SIM)
+tdc-sim: $(TDC_SIM_BIN)
 
 # `make demo`: prerequisites only (other fragments add theirs).
 demo: deps demo-sim
