@@ -322,9 +322,14 @@ int main(int argc, char **argv)
         }
         tot.wall_ms += s.wall_ms;
         dual_lookups += s.dual_lookup;
-        if (!quiet)
-            printf("frame %4d %-12s %4dx%-4d %8.2f ms  %9llu rays %s\n", f, tdc_render_mode_name(m), s.out_w, s.out_h,
-                   s.wall_ms, (unsigned long long)rays, s.frame_static ? "static" : "");
+        if (!quiet) {
+            /* and the frame's CPU ms per stage that ran (a timing run's per-frame record) */
+            printf("frame %4d %-12s %4dx%-4d %8.2f ms  %9llu rays %s cpu", f, tdc_render_mode_name(m), s.out_w,
+                   s.out_h, s.wall_ms, (unsigned long long)rays, s.frame_static ? "static" : "");
+            for (int k = 0; k < TDC_STAGE_COUNT; k++)
+                if (s.ran[k]) printf(" %s=%.3f", tdc_render_stage_name((tdc_render_stage_t)k), s.ms[k]);
+            putchar('\n');
+        }
         if (png_dir) {
             char path[1024];
             snprintf(path, sizeof path, "%s/%s-%s-%04d.png", png_dir, scene->name, tdc_render_mode_name(m), f);

@@ -180,15 +180,16 @@ class Experiment:
     def _render_path(self, name, rep):
         return os.path.join(self.out, self.group, "render-%s-%d.txt" % (name, rep))
 
-    def prefetch_render(self, specs, reps=3, jobs=None):
-        """Runs the tdc-render runs of render_stages that are not cached yet, jobs at a time (default:
-        the cores; each run is one thread and its stage timers are per-thread CPU clocks).  specs:
-        (name, args) pairs."""
+    def prefetch_render(self, specs, reps=3, jobs=None, quiet=True):
+        """Runs the tdc-render runs of render_stages (quiet) or render_frames (not quiet: the per-frame
+        lines) that are not cached yet, jobs at a time (default: the cores; each run is one thread and
+        its stage timers are per-thread CPU clocks), repetition by repetition over the specs so that
+        a spell of load on the host falls on every spec alike.  specs: (name, args) pairs."""
         import concurrent.futures
         os.makedirs(os.path.join(self.out, self.group), exist_ok=True)
         exe = os.environ.get("TDC_RENDER") or os.path.join(REPO, "build", "gcc-O2", "tdc-render")
-        todo = [(self._render_path(n, rep), [exe] + list(a) + ["--quiet"])
-                for n, a in specs for rep in range(reps) if not os.path.isfile(self._render_path(n, rep))]
+        todo = [(self._render_path(n, rep), [exe] + list(a) + (["--quiet"] if quiet else []))
+                for rep in range(reps) for n, a in specs if not os.path.isfile(self._render_path(n, rep))]
 
         def one(job):
             path, cmd = job
@@ -203,6 +204,23 @@ class Experiment:
             errors = [e for e in pool.map(one, todo) if e]
         if errors:
             raise ExpError(EXIT_RUN_FAILED, "%s: %s" % (self.group, errors[0]))
+
+    def render_frames(self, name, args, reps=3):
+        """tdc-render's frames of one run of args: per frame (in order) its kind (full, reduced, ...)
+        and the CPU ms of each stage that ran, the least of reps runs (a frame's least: a spell of load
+        inflates a few frames of one run, not the same frames of every run).  Cached as render_stages."""
+        self.prefetch_render([(name, args)], reps, 1, quiet=False)
+        frames = {}
+        for rep in range(reps):
+            with open(self._render_path(name, rep), encoding="utf-8") as fh:
+                for line in fh:
+                    m = re.match(r"frame\s+(\d+)\s+(\S+)\s.* cpu((?: [a-z-]+=[0-9.]+)*)\s*$", line)
+                    if not m:
+                        continue
+                    st = {k: float(v) for k, v in re.findall(r"([a-z-]+)=([0-9.]+)", m.group(3))}
+                    f = frames.setdefault(int(m.group(1)), {"kind": m.group(2), "ms": st})
+                    f["ms"] = {k: min(v, f["ms"].get(k, v)) for k, v in st.items()}
+        return [frames[k] for k in sorted(frames)]
 
     def render_stages(self, name, args, reps=3):
         """tdc-render's per-stage CPU ms for one run of args (--quiet added): the least of reps runs per
