@@ -11,8 +11,9 @@ SCENES = ["discs", "text", "panorama", "room", "mirror", "fence", "bigmesh"]
 # ones replace every second of them, so a pair costs F + R against 2 F: saving = (1 - R / F) / 2, from the same
 # run's neighbouring frames.  Each frame's CPU ms is the least of REPS runs (run repetition by repetition over
 # the scenes).  Two designs before this one moved the savings by tens of points: timed inside tdc-sim, a mode's
-# render followed the eye model and the other modes (at 720x800 discs the same full render read 5 % cheaper
-# than full when second in the mode list, 13-15 % dearer when first); timed as separate full and TRM runs,
+# render followed the eye model and the other modes (at 720x800 discs trm50, full's renders plus D on half of
+# them, read 5 % cheaper than full when second in the mode list, 13-15 % dearer when first); timed as separate
+# full and TRM runs,
 # the host's load differed between the runs (the same 8 discs frames drew in 160-488 ms of primary rays).
 # Contents: 5 stretches of 8 frames (4 TRM pairs).
 WINDOWS = (2, 32, 62, 92, 122)  # from frame 2: both warm-up frames (one of each kind) exist
