@@ -1183,6 +1183,21 @@ void tdc_r_pass_mv_reflect(rthread_t *t, rsample_t *s, int n)
     }
 }
 
+/* Where image position (x, y) falls in the previous G-buffer: (fx, fy) in
+ * sample units (its jitter removed) and (in, jn) the nearest sample.
+ * Returns 0, or -1 when it lies outside the image.  Rounding by truncation
+ * of a positive value instead of floor (a libm call, or a 6-instruction
+ * sequence without SSE4.1). */
+static int gbuf_at(const rthread_t *t, double x, double y, double *fx, double *fy, int *in, int *jn)
+{
+    *fx = x - 0.5 - t->gb_jx;
+    *fy = y - 0.5 - t->gb_jy;
+    if (!(*fx > -0.5 && *fy > -0.5 && *fx < t->r->W - 0.5 && *fy < t->r->H - 0.5)) return -1;
+    *in = (int)(*fx + 0.5);
+    *jn = (int)(*fy + 0.5);
+    return 0;
+}
+
 /* The previous G-buffer's depth at (fx, fy) (sample units; (in, jn) its
  * nearest sample, inside the image), linear from the neighbour of the same
  * object toward it (extrapolated from the other side at its edge): a
@@ -1222,17 +1237,15 @@ static int prev_visible(rthread_t *t, double x, double y, double W[3], double d[
 {
     const rcam_t *cam = &t->prev->cam;
     tdc_r_cam_ray(cam, x, y, d);
-    if (t->gb_prev) {
-        const double fx = x - 0.5 - t->gb_jx, fy = y - 0.5 - t->gb_jy; /* in sample units */
-        if (fx > -0.5 && fy > -0.5 && fx < t->r->W - 0.5 && fy < t->r->H - 0.5) {
-            const int in = (int)(fx + 0.5), jn = (int)(fy + 0.5);
-            const int o = t->gb_prev[(size_t)jn * t->r->W + in].obj;
-            if (o >= 0) {
-                const double dy = gbuf_depth_at(t, fx, fy, in, jn);
-                for (int c = 0; c < 3; c++) W[c] = cam->pos[c] + dy * d[c];
-            }
-            return o;
+    double fx, fy;
+    int in, jn;
+    if (t->gb_prev && gbuf_at(t, x, y, &fx, &fy, &in, &jn) == 0) {
+        const int o = t->gb_prev[(size_t)jn * t->r->W + in].obj;
+        if (o >= 0) {
+            const double dy = gbuf_depth_at(t, fx, fy, in, jn);
+            for (int c = 0; c < 3; c++) W[c] = cam->pos[c] + dy * d[c];
         }
+        return o;
     }
     struct RTCRayHit rh;
     int o = intersect(t, 1, cam->pos, d, 0, INFINITY, TDC_RAY_MV, &rh);
@@ -1315,13 +1328,10 @@ typedef struct tdc_r_dual {
  * to regions outside the image plane"), the pixel keeps its vector. */
 static int gbuf_lookup(const rthread_t *t, const rsample_t *a, tdc_r_dual_t *q)
 {
-    const int W = t->r->W, H = t->r->H;
-    const double fx = q->y[0] - 0.5 - t->gb_jx, fy = q->y[1] - 0.5 - t->gb_jy; /* in sample units */
-    if (!(fx > -0.5 && fy > -0.5 && fx < W - 0.5 && fy < H - 0.5)) return -1;
-    /* rounding by truncation of a positive value instead of floor (a libm
-     * call, or a 6-instruction sequence without SSE4.1) */
-    const int in = (int)(fx + 0.5), jn = (int)(fy + 0.5);
-    const tdc_r_gpix_t *gn = &t->gb_prev[(size_t)jn * W + in];
+    double fx, fy;
+    int in, jn;
+    if (gbuf_at(t, q->y[0], q->y[1], &fx, &fy, &in, &jn) != 0) return -1;
+    const tdc_r_gpix_t *gn = &t->gb_prev[(size_t)jn * t->r->W + in];
     const rcam_t *cam = &t->prev->cam;
     if (a->obj < 0) {
         if (gn->obj < 0) return 1; /* sky then and now */
