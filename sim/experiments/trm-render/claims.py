@@ -13,8 +13,8 @@ SCENES = ["discs", "text", "panorama", "room", "mirror", "fence", "bigmesh"]
 # the scenes).  Two designs before this one moved the savings by tens of points: timed inside tdc-sim, a mode's
 # render followed the eye model and the other modes (at 720x800 discs trm50, full's renders plus D on half of
 # them, read 5 % cheaper than full when second in the mode list, 13-15 % dearer when first); timed as separate
-# full and TRM runs,
-# the host's load differed between the runs (the same 8 discs frames drew in 160-488 ms of primary rays).
+# full and TRM runs, the host's load differed between the runs (the same 8 discs frames drew in 160-488 ms of
+# primary rays).
 # Contents: 5 stretches of 8 frames (4 TRM pairs).
 WINDOWS = (2, 32, 62, 92, 122)  # from frame 2: both warm-up frames (one of each kind) exist
 FRAMES = 8
@@ -54,16 +54,11 @@ def stretches(exp, size, mode, scene):
     return out
 
 
-def speedups(exp, size, mode, scene):
-    return [x[0] for x in stretches(exp, size, mode, scene)]
-
-
-def why_reduced(exp, size, mode, scene):
-    """Why a reduced frame with a quarter of the full frame's rays saves no more than the raster's 25 %: the
-    measured split of its time, and the class when it is the CPU renderer's (the resolve a GPU does in
-    hardware, or per-ray texture cost that grows with the footprint where a GPU's mip-mapped sampler does
-    not): None otherwise."""
-    st = stretches(exp, size, mode, scene)
+def why_reduced(st):
+    """Why a reduced frame with a quarter of the full frame's rays saves no more than the raster's 25 %, from
+    its stretches (stretches()): (class, why), the measured split of its time, classed a setting difference
+    when the CPU renderer causes it (the resolve a GPU does in hardware, or per-ray texture cost that grows
+    with the footprint where a GPU's mip-mapped sampler does not), else unclassed ("")."""
     rf = sum(x[1] for x in st) / len(st)
     share = sum(x[2] for x in st) / len(st)
     per_ray = rf * (1.0 - share) / 0.25  # a reduced ray's cost over a full frame's (both have 1/4 the rays)
@@ -94,7 +89,8 @@ def claims(exp):
     def flip_or(col, m):
         return {"flip": flip, "psnr_db": psnr, "jod": jod}[col][m]
     for sc in SCENES:
-        sp = {m: s.summary(speedups(exp, size, m, sc)) for m in per_scene}
+        st = {m: stretches(exp, size, m, sc) for m in per_scene}
+        sp = {m: s.summary([x[0] for x in st[m]]) for m in per_scene}
         for m in per_scene:
             per_scene[m].append(sp[m]["mean"])
         fl = {m: s.summary(exp.values(rows, "flip", mode=m, renderer=sc)) for m in flip}
@@ -111,9 +107,9 @@ def claims(exp):
             rr, rp, *(s.fmt_ms(fl[m], 4) for m in flip)))
         for m, what in (("trm50r", "r = 1/2, 2x2-supersampled reduced frames"), ("trm25r", "r = 1/4, 2x2-supersampled"),
                         ("trm50p", "r = 1/2, point-sampled reduced frames")):
-            v = [100.0 * x for x in speedups(exp, size, m, sc)]
+            v = [100.0 * x[0] for x in st[m]]
             ss = m == "trm50r"  # as many rays as a full frame: the paper's MSAA shades once per pixel
-            cls, why = ("setting", "") if ss else why_reduced(exp, size, m, sc)
+            cls, why = ("setting", "") if ss else why_reduced(st[m])
             exp.judge("TRM §7.2 Fig. 14", Q14, "%s: renderer saving, %s, more than the raster 25 %%" % (sc, what),
                       "19-25 % raster; ray tracing 'even more'", v, [25.0] * len(v), "better", "saving_pct",
                       m, "25 %", 1, run="%s (tdc-render %s, frames %s)" % (

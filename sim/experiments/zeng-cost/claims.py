@@ -40,10 +40,6 @@ def frame(ms):
     return sum(ms.get(k) or 0.0 for k in RENDER_STAGES)
 
 
-def s_mean(v):
-    return sum(v) / len(v) if v else float("nan")
-
-
 def claims(exp):
     size = SIZES.get(exp.scale, SIZES["headset"])
     exp.prefetch_render([spec(sc, f, size) for sc in SCENES for f in WINDOWS], REPS)
@@ -89,6 +85,6 @@ def claims(exp):
                           "; %s has no light: its frame is primary rays and a texture lookup (%.0f ms), where "
                           "Zeng's overhead is measured against ray-traced direct illumination (§4.1: 'our overhead is "
                           "always negligible as compared to the direct illumination time, since they scale up "
-                          "together with the number of samples')" % (sc, s_mean([frame(ms) for ms in mine]))),
+                          "together with the number of samples')" % (sc, exp.stats.mean([frame(ms) for ms in mine]))),
                       cls="setting" if unlit else "")
     exp.write_extra("CPU ms per frame, one thread, %s (ratio to the frame's primary rays + shading):\n\n" % size + "\n".join(lines) + "\n")
